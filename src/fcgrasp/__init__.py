@@ -1,0 +1,90 @@
+"""fcgrasp: force-closure grasps of planar objects, after Nguyen's paper.
+
+Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
+:mod:`~fcgrasp.convexes` (2.3), :mod:`~fcgrasp.contacts` (3.1),
+:mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6).
+"""
+
+from __future__ import annotations
+
+from importlib.metadata import PackageNotFoundError, version
+
+from .closure import (
+    closure_escape,
+    force_direction_closure,
+    friction_pair_closure,
+    friction_pair_modes,
+    is_force_closure,
+    torque_closure,
+)
+from .contacts import (
+    Contact,
+    FrictionEdge,
+    FrictionlessEdge,
+    FrictionlessPoint,
+    FrictionPoint,
+    Gravity,
+    SoftFinger,
+)
+from .convexes import Cone
+from .grasp import ClosureReport, Grasp
+from .screws import (
+    CONTRARY,
+    RECIPROCAL,
+    REPELLING,
+    classify_twist_wrench,
+    rotation_center,
+    spatial_transpose,
+    spatial_twist_about_axis,
+    spatial_twist_translation,
+    spatial_virtual_work,
+    spatial_wrench_from_force,
+    twist_about_point,
+    twist_translation,
+    twist_transpose,
+    velocity_at,
+    virtual_work,
+    wrench_from_force,
+)
+from .tolerances import TOL
+
+try:
+    __version__ = version("fcgrasp")
+except PackageNotFoundError:  # pragma: no cover - running from a source tree
+    __version__ = "0.0.0+unknown"
+
+__all__ = [
+    "TOL",
+    "CONTRARY",
+    "RECIPROCAL",
+    "REPELLING",
+    "ClosureReport",
+    "Cone",
+    "Contact",
+    "FrictionEdge",
+    "FrictionPoint",
+    "FrictionlessEdge",
+    "FrictionlessPoint",
+    "Grasp",
+    "Gravity",
+    "SoftFinger",
+    "classify_twist_wrench",
+    "closure_escape",
+    "force_direction_closure",
+    "friction_pair_closure",
+    "friction_pair_modes",
+    "is_force_closure",
+    "rotation_center",
+    "spatial_transpose",
+    "spatial_twist_about_axis",
+    "spatial_twist_translation",
+    "spatial_virtual_work",
+    "spatial_wrench_from_force",
+    "torque_closure",
+    "twist_about_point",
+    "twist_translation",
+    "twist_transpose",
+    "velocity_at",
+    "virtual_work",
+    "wrench_from_force",
+]

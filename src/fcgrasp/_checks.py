@@ -1,0 +1,120 @@
+"""Validation at the boundary: turn user input into float64 arrays or raise.
+
+Every public function of fcgrasp calls one of these ``check_*`` helpers on its
+arguments.  Errors are :class:`ValueError` (wrong shape, non-finite, out of range)
+or :class:`TypeError` (not numbers at all) and always name the argument and quote
+the value received, in the manner of pytransform3d's ``check_matrix``.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+FloatArray = NDArray[np.float64]
+
+
+def _short(value: Any, limit: int = 80) -> str:
+    text = repr(value)
+    text = " ".join(text.split())
+    return text if len(text) <= limit else text[: limit - 3] + "..."
+
+
+def check_array(value: Any, name: str, *, last: int | tuple[int, ...] | None = None,
+                min_ndim: int = 0, finite: bool = True) -> FloatArray:
+    """Return ``value`` as a float64 array, checking its trailing shape.
+
+    Parameters
+    ----------
+    value : array_like
+        User input.
+    name : str
+        Argument name used in error messages.
+    last : int or tuple of int, optional
+        Required size of the last axis (or sizes of the last axes).
+    min_ndim : int
+        Minimum number of dimensions.
+    finite : bool
+        Reject NaN and infinity.
+    """
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be numeric, got {_short(value)}")
+    try:
+        arr = np.asarray(value, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be an array of numbers, got {_short(value)}") from exc
+    if arr.ndim < min_ndim:
+        raise ValueError(f"{name} must have at least {min_ndim} dimension(s), "
+                         f"got shape {arr.shape}: {_short(value)}")
+    if last is not None:
+        want = (last,) if isinstance(last, int) else tuple(last)
+        if arr.ndim < len(want) or arr.shape[arr.ndim - len(want):] != want:
+            shape_txt = "(..., " + ", ".join(str(w) for w in want) + ")"
+            raise ValueError(f"{name} must have shape {shape_txt}, got shape {arr.shape}: "
+                             f"{_short(value)}")
+    if finite and not np.all(np.isfinite(arr)):
+        raise ValueError(f"{name} must be finite, got {_short(value)}")
+    return arr
+
+
+def check_point(value: Any, name: str = "point") -> FloatArray:
+    """A planar point, shape (2,)."""
+    arr = check_array(value, name, last=2)
+    if arr.ndim != 1:
+        raise ValueError(f"{name} must have shape (2,), got shape {arr.shape}: {_short(value)}")
+    return arr
+
+
+def check_direction(value: Any, name: str = "normal") -> FloatArray:
+    """A non-zero planar direction, returned as a unit vector of shape (2,)."""
+    arr = check_point(value, name)
+    norm = float(np.hypot(arr[0], arr[1]))
+    if norm == 0.0 or not np.isfinite(norm):
+        raise ValueError(f"{name} must be a non-zero vector, got {_short(value)}")
+    return arr / norm
+
+
+def check_directions(value: Any, name: str = "normals") -> FloatArray:
+    """An array of non-zero planar directions (..., 2), returned normalised."""
+    arr = check_array(value, name, last=2, min_ndim=1)
+    norm = np.hypot(arr[..., 0], arr[..., 1])
+    if np.any(norm == 0.0):
+        bad = np.argwhere(norm == 0.0)[0]
+        raise ValueError(f"{name} must be non-zero vectors, got a zero vector at index "
+                         f"{tuple(int(i) for i in bad)}")
+    return arr / norm[..., None]
+
+
+def check_mu(value: Any, name: str = "mu") -> FloatArray:
+    """Coulomb friction coefficients: finite and >= 0 (any shape)."""
+    if isinstance(value, bool):
+        raise TypeError(f"{name} must be a number, got {_short(value)}")
+    arr = check_array(value, name)
+    if np.any(arr < 0):
+        raise ValueError(f"{name} must be >= 0, got {_short(value)}")
+    return arr
+
+
+def check_scalar(value: Any, name: str, *, positive: bool = False,
+                 nonnegative: bool = False) -> float:
+    """A finite real scalar, optionally > 0 or >= 0."""
+    if isinstance(value, bool) or not np.isscalar(value) and np.ndim(value) != 0:
+        raise TypeError(f"{name} must be a real number, got {_short(value)}")
+    try:
+        x = float(value)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be a real number, got {_short(value)}") from exc
+    if not np.isfinite(x):
+        raise ValueError(f"{name} must be finite, got {_short(value)}")
+    if positive and not x > 0:
+        raise ValueError(f"{name} must be > 0, got {_short(value)}")
+    if nonnegative and not x >= 0:
+        raise ValueError(f"{name} must be >= 0, got {_short(value)}")
+    return x
+
+
+def check_tol(value: Any, name: str = "tol") -> float:
+    """A tolerance: finite and >= 0."""
+    return check_scalar(value, name, nonnegative=True)

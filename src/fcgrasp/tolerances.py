@@ -1,0 +1,30 @@
+"""Named tolerances, in one place.
+
+Every geometric predicate of fcgrasp takes a ``tol=`` keyword whose default is one
+of the constants below.  All of them are *relative*: they compare normalised
+quantities (unit directions, sines of angles, lengths divided by the size of the
+problem), never raw coordinates, so a part drawn in metres and the same part drawn
+in micrometres get the same answers.
+
+Ties are decided one way everywhere: a configuration that lies on a boundary, or
+within ``tol`` of it, is **not** force closure (the paper's strict inequalities,
+theorems 4.2, 5.2 and 6.3).  A tolerance can therefore only turn a borderline
+"force closure" into "not force closure", never the reverse.
+"""
+
+from __future__ import annotations
+
+#: Default decision tolerance for the closure tests.  It is compared with sines of
+#: angles between unit vectors (about 1e-9 rad) and with lengths divided by the
+#: characteristic length of the configuration.
+TOL = 1e-9
+
+#: Tolerance used by the convex-cone algebra of :mod:`fcgrasp.convexes` (membership
+#: residuals, rank decisions) on unit-normalised generators.
+CONE_TOL = 1e-9
+
+#: Two generators (or lines) closer than this, relative to the problem size, are
+#: treated as parallel / coincident when enumerating candidate facets.
+DEGENERATE_TOL = 1e-12
+
+__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL"]

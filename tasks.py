@@ -1,0 +1,67 @@
+#!/usr/bin/env python3
+"""The project's two commands, needing nothing but python3 (and PyPI).
+
+    python3 tasks.py demo    # set up .venv if needed, run the demo plan into demo-output/
+    python3 tasks.py test    # set up .venv if needed, run the whole test suite
+    python3 tasks.py bench   # set up .venv if needed, run the benchmark scripts
+
+Extra arguments after the command are passed on (to ``fcgrasp demo`` or to pytest).
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import subprocess
+import sys
+import venv
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parent
+VENV = ROOT / ".venv"
+BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
+PY = BIN / "python"
+STAMP = VENV / ".fcgrasp-installed"
+EXTRAS = "test,plot"
+
+
+def _fingerprint() -> str:
+    data = (ROOT / "pyproject.toml").read_bytes() + EXTRAS.encode()
+    return hashlib.sha256(data).hexdigest()
+
+
+def ensure_venv() -> None:
+    """Create .venv and install the package with its extras, once per pyproject change."""
+    if not PY.exists():
+        print("creating .venv ...", flush=True)
+        venv.EnvBuilder(with_pip=True).create(VENV)
+    if STAMP.exists() and STAMP.read_text() == _fingerprint():
+        return
+    print("installing fcgrasp and its dependencies into .venv ...", flush=True)
+    pip = [str(PY), "-m", "pip", "--disable-pip-version-check", "-q"]
+    subprocess.run(pip + ["install", "--upgrade", "pip"], check=True)
+    subprocess.run(pip + ["install", "-e", f".[{EXTRAS}]"], check=True, cwd=ROOT)
+    STAMP.write_text(_fingerprint())
+
+
+def main(argv: list[str]) -> int:
+    if not argv or argv[0] not in {"demo", "test", "bench"}:
+        print(__doc__)
+        return 2
+    ensure_venv()
+    cmd, rest = argv[0], argv[1:]
+    env = dict(os.environ, MPLBACKEND="Agg")
+    if cmd == "demo":
+        args = rest or ["--out", "demo-output"]
+        return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode
+    if cmd == "test":
+        return subprocess.run([str(PY), "-m", "pytest", *rest], cwd=ROOT, env=env).returncode
+    code = 0
+    for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
+        print(f"== {script.name}", flush=True)
+        code |= subprocess.run([str(PY), str(script), *rest], cwd=ROOT, env=env).returncode
+    return code
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))
