@@ -40,7 +40,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_array, check_mu, check_tol
-from .tolerances import DEGENERATE_TOL, TOL
+from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TOL
 
 __all__ = [
     "is_force_closure",
@@ -71,8 +71,8 @@ def _unit(v: FloatArray) -> FloatArray:
 def normalize_wrenches(wrenches: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Re-centre and scale planar wrenches so that the closure test is scale-aware.
 
-    The origin is moved to the mean of the points of the lines of force nearest to the
-    origin, torques are divided by the largest lever arm ``L`` about that centre, and
+    The origin is moved to the point nearest (in least squares) to all lines of force,
+    torques are divided by the largest lever arm ``L`` about that centre, and
     each wrench is normalised to unit length.  None of this changes whether the cone is
     total (it is a positive linear change of coordinates), but it makes ``tol`` mean
     "an angle" whatever the units and the position of the part.
@@ -89,13 +89,28 @@ def normalize_wrenches(wrenches: FloatArray) -> tuple[FloatArray, FloatArray, Fl
     isf = fn2 > 0
     with np.errstate(invalid="ignore", divide="ignore"):
         k = np.where(isf, tau / np.where(isf, fn2, 1.0), 0.0)
-    r0 = np.stack([k * f[..., 1], -k * f[..., 0]], axis=-1)
+    r0 = np.stack([k * f[..., 1], -k * f[..., 0]], axis=-1)   # foot of each line
+    # least-squares point nearest to all lines (regularised towards the feet's mean)
+    fh = _unit(f)
+    proj = np.eye(2) - fh[..., :, None] * fh[..., None, :]           # (..., k, 2, 2)
+    proj = proj * isf[..., None, None]
+    a = np.sum(proj, axis=-3)
+    b = np.sum(r0, axis=-2)
     cnt = np.maximum(np.sum(isf, axis=-1), 1)
-    center = np.sum(r0, axis=-2) / cnt[..., None]
+    mean = b / cnt[..., None]
+    lam = 1e-9 * np.maximum(np.trace(a, axis1=-2, axis2=-1), 1e-300)
+    a = a + lam[..., None, None] * np.eye(2)
+    center = np.linalg.solve(a, (b + lam[..., None] * mean)[..., None])[..., 0]
     tau_c = tau - _cross2(center[..., None, :], f)
     with np.errstate(invalid="ignore", divide="ignore"):
         arm = np.where(isf, np.abs(tau_c) / np.sqrt(np.where(isf, fn2, 1.0)), 0.0)
     length = np.max(arm, axis=-1) if arm.shape[-1] else np.ones(arm.shape[:-1])
+    # torques carry a rounding error of about eps * |r| (|r|: distance of the lines from
+    # the origin the wrenches were written about); lever arms below that noise divided
+    # by the tolerance are not resolved, so the scale never drops under it
+    dist = np.sqrt(np.sum(r0 * r0, axis=-1))
+    floor = LENGTH_RESOLUTION * np.max(dist, axis=-1, initial=0.0)
+    length = np.maximum(length, floor)
     length = np.where(length > 0, length, 1.0)
     scaled = np.concatenate([f, (tau_c / length[..., None])[..., None]], axis=-1)
     return _unit(scaled), center, length
@@ -202,6 +217,13 @@ def is_force_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
     Returns
     -------
     ndarray of bool, shape (...)
+
+    Notes
+    -----
+    Write the wrenches about a point near the grasp for the finest resolution
+    (:class:`~fcgrasp.Grasp` does): about an origin at distance ``D`` from the lines,
+    lever arms are resolved down to ``TOL * LENGTH_RESOLUTION * D`` and decisions closer
+    to the boundary than that are "not force closure".
 
     Examples
     --------

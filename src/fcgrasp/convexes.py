@@ -40,7 +40,7 @@ import numpy as np
 from scipy.optimize import nnls
 
 from ._checks import FloatArray, check_array, check_tol
-from .tolerances import CONE_TOL
+from .tolerances import CONE_TOL, DEGENERATE_TOL
 
 __all__ = ["Cone", "SPACES"]
 
@@ -66,11 +66,11 @@ _MAX_COMBINATIONS = 3_000_000
 
 
 def _unit_rows(g: FloatArray) -> FloatArray:
-    """Drop zero rows and normalise the others to unit length."""
+    """Drop zero rows (relative to the longest, below DEGENERATE_TOL) and normalise the others."""
     if g.shape[0] == 0:
         return g
     norm = np.linalg.norm(g, axis=1)
-    keep = norm > 0
+    keep = norm > max(float(norm.max()) * DEGENERATE_TOL, 0.0)
     return g[keep] / norm[keep, None]
 
 
@@ -333,7 +333,7 @@ class Cone:
     def issubset(self, other: Cone) -> bool:
         """True when every generator of ``self`` lies in ``other``."""
         other = self._same_kind(other, "issubset")
-        g = self.generators
+        g = self._unit()
         return bool(np.all(other.contains(g))) if g.shape[0] else True
 
     def __eq__(self, other: object) -> bool:

@@ -27,4 +27,11 @@ CONE_TOL = 1e-9
 #: treated as parallel / coincident when enumerating candidate facets.
 DEGENERATE_TOL = 1e-12
 
-__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL"]
+#: Floor of the characteristic length of the general closure test, relative to the
+#: distance of the lines of force from the origin their wrenches are written about.
+#: Torques carry a rounding error of a few 1e-16 of that distance; dividing them by a
+#: length no smaller than this keeps the noise (about 1e-11) far below ``TOL``.  It does
+#: not limit resolution: a lever arm is still resolved down to ``TOL`` times the floor.
+LENGTH_RESOLUTION = 1e-5
+
+__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION"]
