@@ -2,7 +2,8 @@
 
 Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
 :mod:`~fcgrasp.convexes` (2.3), :mod:`~fcgrasp.contacts` (3.1),
-:mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6).
+:mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6),
+:mod:`~fcgrasp.polygon` (the part), :mod:`~fcgrasp.graspsets` (6).
 """
 
 from __future__ import annotations
@@ -28,6 +29,15 @@ from .contacts import (
 )
 from .convexes import Cone
 from .grasp import ClosureReport, Grasp
+from .graspsets import (
+    FrictionGraspSet,
+    FrictionlessGraspSet,
+    Vertex,
+    grasp_set,
+    grasp_sets,
+    three_edge_grasp_sets,
+)
+from .polygon import Polygon
 from .screws import (
     CONTRARY,
     RECIPROCAL,
@@ -65,14 +75,21 @@ __all__ = [
     "FrictionPoint",
     "FrictionlessEdge",
     "FrictionlessPoint",
+    "FrictionGraspSet",
+    "FrictionlessGraspSet",
     "Grasp",
     "Gravity",
+    "Polygon",
+    "Vertex",
     "SoftFinger",
     "classify_twist_wrench",
     "closure_escape",
     "force_direction_closure",
     "friction_pair_closure",
     "friction_pair_modes",
+    "grasp_set",
+    "grasp_sets",
+    "three_edge_grasp_sets",
     "is_force_closure",
     "rotation_center",
     "spatial_transpose",

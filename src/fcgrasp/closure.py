@@ -362,7 +362,7 @@ def torque_closure(points: Any, forces: Any, tol: float = TOL) -> np.ndarray:
     >>> pts = [[0, .2], [0, .8], [1, .2], [1, .8]]
     >>> torque_closure(pts, [[1, 0], [1, 0], [-1, 0], [-1, 0]]).item()  # no vertical force
     False
-    >>> pts = [[0, .5], [.5, 0], [1, .7], [.3, 1]]
+    >>> pts = [[0, .5], [.3, 0], [1, .7], [.7, 1]]     # the two couples turn both ways
     >>> torque_closure(pts, [[1, 0], [0, 1], [-1, 0], [0, -1]]).item()
     True
     """

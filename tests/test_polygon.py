@@ -1,0 +1,102 @@
+import numpy as np
+import pytest
+
+from fcgrasp.polygon import Polygon
+
+from .shapes import random_polygon
+
+
+def test_edge_numbering_follows_input_in_either_orientation():
+    ccw = Polygon([[0, 0], [2, 0], [2, 1], [0, 1]])
+    cw = Polygon([[0, 0], [0, 1], [2, 1], [2, 0]])
+    assert ccw.normals.round(12).tolist() == [[0, -1], [1, 0], [0, 1], [-1, 0]]
+    assert cw.normals.round(12).tolist() == [[-1, 0], [0, 1], [1, 0], [0, -1]]
+    assert np.allclose(cw.starts, [[0, 0], [0, 1], [2, 1], [2, 0]])
+    assert ccw.lengths.tolist() == [2, 1, 2, 1]
+    assert ccw.area == cw.area == 2.0
+
+
+def test_hole_edges_numbered_after_outer_and_normals_point_into_hole():
+    hole = [[1, 1], [2, 1], [2, 2], [1, 2]]
+    for h in (hole, hole[::-1]):
+        p = Polygon([[0, 0], [3, 0], [3, 3], [0, 3]], holes=[h])
+        assert p.n_edges == 8 and p.rings.tolist() == [0] * 4 + [1] * 4
+        mid = (p.starts[4:] + p.ends[4:]) / 2
+        inside_hole = mid + 0.1 * p.normals[4:]
+        assert np.all(np.abs(inside_hole - 1.5).max(axis=1) < 0.5)
+
+
+def test_outward_normals_point_out_of_the_part():
+    rng = np.random.default_rng(0)
+    for _ in range(200):
+        p = random_polygon(rng)
+        mid = (p.starts + p.ends) / 2
+        eps = 1e-6 * p.size
+        out = p.contains(mid + eps * p.normals)
+        inn = p.contains(mid - eps * p.normals)
+        assert not out.any() and inn.all()
+
+
+def test_repeated_closing_vertex_is_dropped():
+    p = Polygon([[0, 0], [1, 0], [1, 1], [0, 1], [0, 0]])
+    assert p.n_edges == 4
+
+
+def test_duplicate_vertex_keeps_numbering_as_zero_length_edge():
+    p = Polygon([[0, 0], [1, 0], [1, 0], [1, 1], [0, 1]])
+    assert p.n_edges == 5
+    assert p.usable.tolist() == [True, False, True, True, True]
+    assert np.allclose(p.normals[2], [1, 0])
+    with pytest.raises(ValueError, match="zero-length"):
+        p.check_edges([1])
+
+
+def test_collinear_edges_are_kept():
+    p = Polygon([[0, 0], [1, 0], [2, 0], [2, 1], [0, 1]])
+    assert p.n_edges == 5
+    assert np.allclose(p.normals[0], p.normals[1])
+
+
+def test_convex_vertices():
+    p = Polygon([[0, 0], [2, 0], [2, 2], [1, 1], [0, 2]])
+    # vertex at the end of edge i
+    assert p.convex_vertices().tolist() == [True, True, False, True, True]
+    q = Polygon([[0, 0], [2, 0], [2, 2], [1, 1], [0, 2]][::-1])
+    assert q.convex_vertices().tolist() == [False, True, True, True, True]
+
+
+@pytest.mark.parametrize("verts, holes, match", [
+    ([[0, 0], [1, 1], [1, 0], [0, 1]], (), r"edges 0 and 2 intersect"),
+    ([[0, 0], [1, 0], [2, 0]], (), "zero area"),
+    ([[0, 0], [1, 0]], (), "at least 3 distinct"),
+    ([[0, 0], [1, 0], [1, 0], [0, 0]], (), "at least 3 distinct"),
+    ([[0, 0], [1, 0], [np.nan, 1]], (), "non-finite coordinate at vertex 2"),
+    ([[0, 0], [1, 0], [np.inf, 1]], (), "vertex 2"),
+    ([[0, 0], [1, 0], [1, 1]], ([[[5, 5], [6, 5], [6, 6]]]), "holes.0. is not inside"),
+    ([[0, 0], [4, 0], [4, 4], [0, 4]], ([[[1, 1], [2, 1], [2, 2]], [[1.5, 1.2], [3, 1.2], [3, 3]]]),
+     "intersect"),
+    ([[0, 0], [1, 0, 3], [1, 1]], (), "shape"),
+    ([[[0, 0], [1, 0], [1, 1]]], (), "shape"),
+    ([], (), "shape"),
+])
+def test_invalid_outlines_say_what_and_where(verts, holes, match):
+    with pytest.raises(ValueError, match=match):
+        Polygon(verts, holes)
+
+
+def test_non_numeric_vertices_type_error():
+    with pytest.raises((TypeError, ValueError), match="vertices"):
+        Polygon([[0, 0], ["a", 0], [1, 1]])
+    with pytest.raises(TypeError, match="vertices"):
+        Polygon("0,0 1,0 1,1")
+
+
+def test_edge_accessors():
+    p = Polygon([[0, 0], [2, 0], [2, 1], [0, 1]])
+    e = p.edge(1)
+    assert e.length == 1 and np.allclose(e.normal, [1, 0])
+    assert np.allclose(e.point_at(0.5), [2, 0.5])
+    with pytest.raises(ValueError, match="edge index"):
+        p.edge(4)
+    with pytest.raises(TypeError):
+        p.edge(1.5)
