@@ -1,0 +1,105 @@
+"""Geometry of region problems: from features to knapsack problems (batched).
+
+Shared by :mod:`fcgrasp.planning`: two fingers with friction (algorithm 7.1) and four
+frictionless fingers, possibly with gravity (theorem 7.1).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ._checks import FloatArray
+from .graspsets import arc_intersection
+from .regions import KnapsackProblem, build_problem
+
+
+def _dir(a: FloatArray) -> FloatArray:
+    return np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+
+def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def _wrap(a: FloatArray) -> FloatArray:
+    return (a + np.pi) % (2 * np.pi) - np.pi
+
+
+def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: FloatArray,
+                        a2: FloatArray, b2: FloatArray, c2: FloatArray, h2: FloatArray,
+                        margin: float) -> tuple[list[KnapsackProblem], FloatArray]:
+    """Problems for the squeezing and expanding modes of two friction fingers.
+
+    ``a, b``: (B, 2) segment ends; ``c, h``: (B,) arcs of force directions.
+    Returns ``([squeeze, expand], half_width_of_shrunk_sector)``.
+    """
+    cen, half = arc_intersection(c1, h1, c2 + np.pi, h2)
+    hm = half - margin
+    k1, k2 = _dir(cen - hm), _dir(cen + hm)
+    L = np.stack([np.hypot(*(b1 - a1).T), np.hypot(*(b2 - a2).T)], axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t1 = (b1 - a1) / np.where(L[:, :1] > 0, L[:, :1], 1.0)
+        t2 = (b2 - a2) / np.where(L[:, 1:] > 0, L[:, 1:], 1.0)
+    vel = np.stack([t1, t2], axis=1)
+    side = np.array([0, 1])
+    probs = [build_problem(side, a1, a2, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
+    return probs, hm
+
+
+def meet_and_velocities(pa: FloatArray, ta: FloatArray, fa: FloatArray,
+                        pb: FloatArray, tb: FloatArray, fb: FloatArray
+                        ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Where the lines of force through ``pa`` and ``pb`` meet, and the derivatives of that
+    point with respect to the arc length of each finger along its edge."""
+    den = _cross(fa, fb)
+    s = _cross(pb - pa, fb) / den
+    x = pa + s[..., None] * fa
+    va = ta - (_cross(ta, fb) / den)[..., None] * fa
+    vb = (_cross(tb, fb) / den)[..., None] * fa
+    return x, va, vb
+
+
+def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
+                         pairing: np.ndarray, margin: float
+                         ) -> tuple[list[KnapsackProblem], FloatArray, FloatArray]:
+    """Problems of four frictionless fingers (``P34 - P12`` in ``C`` and in ``-C``).
+
+    ``a, b``: (B, 4, 2) segment ends (equal for a fixed point such as gravity);
+    ``center``: (B, 4) force directions (angles); ``pairing``: (B, 4) order ``(p, q, r, s)``
+    pairing fingers ``p, q`` against ``r, s``.
+    Returns ``([plus, minus], shrunk half-width, valid)``; ``valid`` is False where the
+    pairing has a null sector.
+    """
+    B = a.shape[0]
+    rows = np.arange(B)[:, None]
+    A = a[rows, pairing]
+    Bq = b[rows, pairing]
+    c = center[rows, pairing]
+    f = _dir(c)
+    L = np.hypot(*(Bq - A).transpose(2, 0, 1))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        t = np.where(L[..., None] > 0, (Bq - A) / np.where(L > 0, L, 1.0)[..., None], 0.0)
+    x12 = _cross(f[:, 0], f[:, 1])
+    x34 = _cross(f[:, 2], f[:, 3])
+    valid = (np.abs(x12) > 1e-12) & (np.abs(x34) > 1e-12)
+    safe = lambda v: np.where(np.abs(v) > 1e-12, v, 1.0)  # noqa: E731
+    g12 = _wrap(c[:, 1] - c[:, 0])
+    c12, h12 = _wrap(c[:, 0] + g12 / 2), np.abs(g12) / 2
+    g34 = _wrap(c[:, 3] - c[:, 2])
+    c34, h34 = _wrap(c[:, 2] + g34 / 2), np.abs(g34) / 2
+    cen, half = arc_intersection(c12, h12, c34 + np.pi, h34)
+    hm = np.where(valid, half - margin, -1.0)
+    fz = f.copy()
+    fz[:, 1] = np.where(valid[:, None], f[:, 1], [1.0, 0.0])
+    fz[:, 3] = np.where(valid[:, None], f[:, 3], [1.0, 0.0])
+    fz[:, 0] = np.where(valid[:, None], f[:, 0], [0.0, 1.0])
+    fz[:, 2] = np.where(valid[:, None], f[:, 2], [0.0, 1.0])
+    del safe
+    o12, va, vb = meet_and_velocities(A[:, 0], t[:, 0], fz[:, 0], A[:, 1], t[:, 1], fz[:, 1])
+    o34, vc, vd = meet_and_velocities(A[:, 2], t[:, 2], fz[:, 2], A[:, 3], t[:, 3], fz[:, 3])
+    vel = np.stack([va, vb, vc, vd], axis=1)
+    vel = np.where(L[..., None] > 0, vel, 0.0)
+    k1, k2 = _dir(cen - hm), _dir(cen + hm)
+    side = np.array([0, 0, 1, 1])
+    probs = [build_problem(side, o12, o34, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
+    return probs, hm, valid

@@ -1,0 +1,624 @@
+"""Grasp plans: optimal independent regions on every edge set, ranked (sections 7, 8).
+
+:func:`independent_regions` gives the optimal regions of contact on chosen edges;
+:func:`plan` enumerates every edge pair (two fingers with friction), every 4-tuple and
+3-edge combination (four frictionless fingers), or every triple with gravity (three
+frictionless fingers), and returns the best :class:`GraspPlan` objects.
+
+Everything is computed in batches: all candidate edge sets of a polygon are pruned with
+the force-direction constraint, their sectors computed, and their region problems solved
+together (see :mod:`fcgrasp.regions` for the exact method).
+
+Units: lengths are in the polygon's units; ``margin`` is an angle in **degrees**: every
+grasp of the returned regions points at least that far inside the friction cones (two
+fingers) or inside the sectors ``C_12`` and ``-C_34`` (four fingers).  The default is
+:data:`fcgrasp.regions.DEFAULT_MARGIN_DEG` (0.5 degree).  Three fingers means three
+frictionless fingers holding the part against gravity (counted as a frictionless contact
+at the centroid, section 3.1); friction, if any, can only help such a grasp.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from ._checks import FloatArray, check_direction, check_mu, check_scalar
+from ._regiongeom import four_finger_problems, two_finger_problems
+from .closure import force_direction_closure
+from .contacts import FrictionlessPoint, FrictionPoint, Gravity
+from .grasp import Grasp
+from .hand import Hand
+from .polygon import Polygon
+from .quality import characteristic_length, quality_of
+from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
+
+__all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS"]
+
+RANKINGS = ("min_region", "resistance", "epsilon")
+_PAIRINGS = np.array([[0, 1, 2, 3], [0, 2, 1, 3], [0, 3, 1, 2]])
+
+
+@dataclass
+class GraspPlan:
+    """One planned grasp: an edge per finger and an independent region on each.
+
+    Attributes
+    ----------
+    edges : tuple of int
+        Edge index per finger (input numbering).
+    regions : ndarray, shape (fingers, 2, 2)
+        Each region's two end points.
+    lengths : ndarray, shape (fingers,)
+    contacts : ndarray, shape (fingers, 2)
+        The representative grasp: each region's midpoint.
+    normals : ndarray, shape (fingers, 2)
+        Outward normals of the edges (the fingers push along ``-normal``).
+    contact_type : {"friction", "frictionless"}
+    mu : float
+    mode : str
+        ``"squeeze"``/``"expand"`` for two fingers; ``"+C"``/``"-C"`` for four.
+    margin : float
+        Safety margin in degrees.
+    gravity : dict or None
+        ``{"center": [x, y], "direction": [gx, gy]}`` when gravity is a contact.
+    quality : dict
+        ``min_region``, ``resistance``, ``resistance_approx``, ``epsilon_l1``,
+        ``epsilon_linf`` (see :mod:`fcgrasp.quality`).
+    """
+
+    edges: tuple[int, ...]
+    regions: FloatArray
+    lengths: FloatArray
+    contacts: FloatArray
+    normals: FloatArray
+    contact_type: str
+    mu: float
+    mode: str
+    margin: float
+    gravity: dict[str, Any] | None = None
+    quality: dict[str, float] = field(default_factory=dict)
+
+    @property
+    def min_length(self) -> float:
+        """Length of the smallest region (the paper's tolerance measure)."""
+        return float(np.min(self.lengths))
+
+    @property
+    def fingers(self) -> int:
+        return len(self.edges)
+
+    def contacts_for(self, points: Any) -> list[Any]:
+        pts = np.asarray(points, dtype=float)
+        out: list[Any] = []
+        for p, n in zip(pts, self.normals, strict=True):
+            if self.contact_type == "friction":
+                out.append(FrictionPoint(p, n, self.mu))
+            else:
+                out.append(FrictionlessPoint(p, n))
+        if self.gravity is not None:
+            out.append(Gravity(self.gravity["center"], self.gravity["direction"]))
+        return out
+
+    def grasp(self, points: Any = None) -> Grasp:
+        """The :class:`~fcgrasp.Grasp` at ``points`` (default: the representative grasp)."""
+        return Grasp(self.contacts_for(self.contacts if points is None else points))
+
+    def sample(self, n: int, rng: np.random.Generator | None = None) -> FloatArray:
+        """``n`` grasps with each finger uniform in its region, shape (n, fingers, 2)."""
+        rng = np.random.default_rng() if rng is None else rng
+        u = rng.random((n, self.fingers))
+        a, b = self.regions[:, 0], self.regions[:, 1]
+        return a[None] + u[..., None] * (b - a)[None]
+
+    def corners(self) -> FloatArray:
+        """All corner grasps of the box of regions, shape (2**fingers, fingers, 2)."""
+        idx = np.array(list(np.ndindex(*(2,) * self.fingers)))
+        return self.regions[np.arange(self.fingers)[None, :], idx]
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready description (rounded to 12 significant digits)."""
+        r = lambda x: np.round(np.asarray(x, float), 12).tolist()  # noqa: E731
+        d: dict[str, Any] = {
+            "edges": [int(e) for e in self.edges],
+            "contact_type": self.contact_type,
+            "mu": self.mu,
+            "mode": self.mode,
+            "regions": r(self.regions),
+            "region_lengths": r(self.lengths),
+            "min_region_length": float(np.round(self.min_length, 12)),
+            "contacts": r(self.contacts),
+            "normals": r(self.normals),
+            "quality": {k: (None if not np.isfinite(v) else float(np.round(v, 12)))
+                        for k, v in sorted(self.quality.items())},
+        }
+        if self.gravity is not None:
+            d["gravity"] = {k: r(v) for k, v in self.gravity.items()}
+        return d
+
+
+# ----------------------------------------------------------------------------- features
+
+
+@dataclass
+class _Features:
+    """Contactable pieces of edges (whole edges, or their feasible parts under a hand)."""
+
+    edge: np.ndarray        # (F,) parent edge
+    a: FloatArray           # (F, 2)
+    b: FloatArray           # (F, 2)
+    offset: FloatArray      # (F,) arc length of a along the parent edge
+    center: FloatArray      # (F,) angle of -n
+    half: FloatArray        # (F,) friction half-angle
+
+
+def _features(polygon: Polygon, mu: float, hand: Hand | None) -> _Features:
+    rows = []
+    if hand is None:
+        ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
+               enumerate(polygon.lengths)]
+    else:
+        ivs = hand.feasible_intervals(polygon, min_length=1e-9 * polygon.size)
+    for e, lst in enumerate(ivs):
+        for t0, t1 in lst:
+            rows.append((e, t0, t1))
+    if not rows:
+        z = np.zeros((0, 2))
+        return _Features(np.zeros(0, int), z, z, np.zeros(0), np.zeros(0), np.zeros(0))
+    e = np.array([r[0] for r in rows])
+    t0 = np.array([r[1] for r in rows])
+    t1 = np.array([r[2] for r in rows])
+    tan = polygon.tangents[e]
+    a = polygon.starts[e] + t0[:, None] * tan
+    b = polygon.starts[e] + t1[:, None] * tan
+    n = polygon.normals[e]
+    center = np.arctan2(-n[:, 1], -n[:, 0])
+    return _Features(e, a, b, t0, center, np.full(len(e), float(np.arctan(mu))))
+
+
+# ----------------------------------------------------------------------------- candidates
+
+
+@dataclass
+class _Candidates:
+    feats: np.ndarray            # (B, n) feature index per finger (-1: gravity)
+    a: FloatArray                # (B, n, 2)
+    b: FloatArray
+    center: FloatArray           # (B, n)
+    perm: np.ndarray             # (B, n) problem order -> finger order
+    problems: list[KnapsackProblem]   # one per mode, in problem order
+    modes: tuple[str, str]
+    score: FloatArray = field(default_factory=lambda: np.zeros(0))
+    best_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+
+
+def _take(p: KnapsackProblem, idx: np.ndarray) -> KnapsackProblem:
+    return KnapsackProblem(p.L[idx], p.w1[idx], p.w2[idx], p.K1[idx], p.K2[idx],
+                           p.upper1[idx], p.active[idx], p.separable[idx])
+
+
+def _score(c: _Candidates) -> None:
+    vals = np.stack([np.where(p.separable, max_min_length(p), -1.0) for p in c.problems])
+    c.best_mode = np.argmax(vals, axis=0)
+    c.score = vals.max(axis=0)
+
+
+def _two_finger(F: _Features, margin: float) -> _Candidates:
+    i, j = np.triu_indices(len(F.edge), k=1)
+    keep = F.edge[i] != F.edge[j]
+    i, j = i[keep], j[keep]
+    # quick sector test before building anything
+    from .graspsets import arc_intersection
+
+    _, half = arc_intersection(F.center[i], F.half[i], F.center[j] + np.pi, F.half[j])
+    ok = half - margin > 0
+    i, j = i[ok], j[ok]
+    probs, _ = two_finger_problems(F.a[i], F.b[i], F.center[i], F.half[i],
+                                   F.a[j], F.b[j], F.center[j], F.half[j], margin)
+    feats = np.stack([i, j], axis=1)
+    c = _Candidates(feats, np.stack([F.a[i], F.a[j]], 1), np.stack([F.b[i], F.b[j]], 1),
+                    np.stack([F.center[i], F.center[j]], 1),
+                    np.tile([0, 1], (len(i), 1)), probs, ("squeeze", "expand"))
+    _score(c)
+    return c
+
+
+def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
+                 centroid: FloatArray) -> _Candidates:
+    nF = len(F.edge)
+    tuples: list[np.ndarray] = []
+    if gravity is None:
+        q = np.array(list(combinations(range(nF), 4)), dtype=int).reshape(-1, 4)
+        q = q[np.all((F.edge[q][:, :, None] != F.edge[q][:, None, :])
+                     | np.eye(4, dtype=bool)[None], axis=(1, 2))]
+        tuples.append(q)
+        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
+        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
+              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
+        for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1)):   # the doubled feature first
+            tuples.append(np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1))
+        feats = np.concatenate(tuples) if tuples else np.zeros((0, 4), int)
+    else:
+        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
+        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
+              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
+        feats = np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+    B = len(feats)
+    g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
+    real = feats >= 0
+    fi = np.where(real, feats, 0)
+    a = np.where(real[..., None], F.a[fi], centroid)
+    b = np.where(real[..., None], F.b[fi], centroid)
+    center = np.where(real, F.center[fi], g_ang)
+    dirs = np.stack([np.cos(center), np.sin(center)], axis=-1)
+    ok = force_direction_closure(dirs) if B else np.zeros(0, bool)
+    feats, a, b, center, dirs = feats[ok], a[ok], b[ok], center[ok], dirs[ok]
+    B = len(feats)
+    # first pairing whose two sectors are non-null
+    cr = lambda u, v: u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]  # noqa: E731
+    good = np.stack([(np.abs(cr(dirs[:, p[0]], dirs[:, p[1]])) > 1e-9)
+                     & (np.abs(cr(dirs[:, p[2]], dirs[:, p[3]])) > 1e-9) for p in _PAIRINGS],
+                    axis=1) if B else np.zeros((0, 3), bool)
+    has = good.any(axis=1)
+    feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
+    perm = _PAIRINGS[np.argmax(good, axis=1)]
+    probs, _, valid = four_finger_problems(a, b, center, perm, margin)
+    c = _Candidates(feats, a, b, center, perm, probs, ("+C", "-C"))
+    _score(c)
+    c.score = np.where(valid, c.score, -1.0)
+    return c
+
+
+# ----------------------------------------------------------------------------- regions
+
+
+def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = 1e-9) -> np.ndarray:
+    """Row-wise leximin comparison ``a > b`` of length vectors, with a relative tolerance.
+
+    Entries equal to 0 with a negative counterpart are regions of fixed points (gravity).
+    """
+    sa, sb = np.sort(a, axis=1), np.sort(b, axis=1)
+    scale = np.maximum(np.maximum(np.abs(sa).max(axis=1), np.abs(sb).max(axis=1)), 1e-300)
+    diff = sa - sb
+    big = np.abs(diff) > rtol * scale[:, None]
+    first = np.argmax(big, axis=1)
+    rows = np.arange(len(a))
+    return big.any(axis=1) & (diff[rows, first] > 0)
+
+
+def _split_search(c: _Candidates, rows: np.ndarray, pos: tuple[int, int], margin: float,
+                  iters: int = 48) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """Best split of a shared edge between fingers ``pos`` (golden-section on the split).
+
+    Returns (score, a, b, mode) for the rows with modified segment ends.
+    """
+    p, q = pos
+    a0, b0 = c.a[rows, p], c.b[rows, p]
+    L = np.hypot(*(b0 - a0).T)
+    t = (b0 - a0) / np.where(L > 0, L, 1.0)[:, None]
+    best = np.full(len(rows), -1.0)
+    best_a = c.a[rows].copy()
+    best_b = c.b[rows].copy()
+    best_mode = np.zeros(len(rows), int)
+
+    def evaluate(sig: FloatArray, first_low: bool) -> tuple[FloatArray, Any, Any, np.ndarray]:
+        a = c.a[rows].copy()
+        b = c.b[rows].copy()
+        cut = a0 + sig[:, None] * t
+        lo_f, hi_f = (p, q) if first_low else (q, p)
+        b[:, lo_f] = cut
+        a[:, hi_f] = cut
+        probs, _, valid = four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)
+        vals = np.stack([np.where(pr.separable & valid, max_min_length(pr), -1.0)
+                         for pr in probs])
+        return vals.max(axis=0), a, b, np.argmax(vals, axis=0)
+
+    gr = (np.sqrt(5) - 1) / 2
+    for first_low in (True, False):
+        lo, hi = np.zeros(len(rows)), L.copy()
+        x1, x2 = hi - gr * (hi - lo), lo + gr * (hi - lo)
+        f1, f2 = evaluate(x1, first_low)[0], evaluate(x2, first_low)[0]
+        for _ in range(iters):
+            left = f1 >= f2
+            hi = np.where(left, x2, hi)
+            lo = np.where(left, lo, x1)
+            x2n = np.where(left, x1, lo + gr * (hi - lo))
+            x1n = np.where(left, hi - gr * (hi - lo), x2)
+            f2n = np.where(left, f1, np.nan)
+            f1n = np.where(left, np.nan, f2)
+            need1 = np.isnan(f1n)
+            need2 = np.isnan(f2n)
+            if need1.any():
+                f1n = np.where(need1, evaluate(x1n, first_low)[0], f1n)
+            if need2.any():
+                f2n = np.where(need2, evaluate(x2n, first_low)[0], f2n)
+            x1, x2, f1, f2 = x1n, x2n, f1n, f2n
+        sig = 0.5 * (lo + hi)
+        val, a, b, mode = evaluate(sig, first_low)
+        better = val > best
+        best = np.where(better, val, best)
+        best_a[better], best_b[better] = a[better], b[better]
+        best_mode = np.where(better, mode, best_mode)
+    return best, best_a, best_b, best_mode
+
+
+def _solve(c: _Candidates, rows: np.ndarray, margin: float
+           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """Leximin regions for candidate ``rows``: (params (R, n, 2) in finger order, lengths,
+    segment starts a (R, n, 2), segment ends b, mode)."""
+    R = len(rows)
+    n = c.feats.shape[1]
+    params = np.zeros((R, n, 2))
+    lengths = np.full((R, n), -1.0)
+    a, b = c.a[rows].copy(), c.b[rows].copy()
+    mode = c.best_mode[rows].copy()
+    inv = np.argsort(c.perm[rows], axis=1)
+    ridx = np.arange(R)[:, None]
+    for m in range(2):
+        # both modes are solved: when their smallest regions tie, the next levels decide
+        pr = _take(c.problems[m], rows)
+        lev = np.where(pr.separable[:, None], leximin(pr), -1.0)
+        pp = place_regions(pr, np.maximum(lev, 0.0))
+        lev_f, pp_f = lev[ridx, inv], pp[ridx, inv]
+        better = _lex_greater(lev_f, lengths)
+        params[better] = pp_f[better]
+        lengths[better] = lev_f[better]
+        mode[better] = m
+    # two fingers on one feature must not overlap
+    if n == 4:
+        same = c.feats[rows][:, 0] == c.feats[rows][:, 2]
+        same &= c.feats[rows][:, 0] >= 0
+        lo0, hi0 = params[:, 0, 0], params[:, 0, 1]
+        lo2, hi2 = params[:, 2, 0], params[:, 2, 1]
+        overlap = same & (np.minimum(hi0, hi2) > np.maximum(lo0, lo2))
+        if overlap.any():
+            sub = rows[overlap]
+            # positions in problem order of fingers 0 and 2
+            pos_map = c.perm[sub]
+            pp0 = np.argmax(pos_map == 0, axis=1)
+            pp2 = np.argmax(pos_map == 2, axis=1)
+            for key in set(zip(pp0.tolist(), pp2.tolist(), strict=True)):
+                k = (pp0 == key[0]) & (pp2 == key[1])
+                subrows = sub[k]
+                val, sa, sb, smode = _split_search(c, subrows, key, margin)
+                probs, _, _ = four_finger_problems(sa, sb, c.center[subrows], c.perm[subrows],
+                                                   margin)
+                idx_over = np.flatnonzero(overlap)[k]
+                for m in range(2):
+                    s2 = smode == m
+                    if not s2.any():
+                        continue
+                    pr = _take(probs[m], np.flatnonzero(s2))
+                    lev = leximin(pr)
+                    pp = place_regions(pr, lev)
+                    iv = np.argsort(c.perm[subrows][s2], axis=1)
+                    ridx = np.arange(s2.sum())[:, None]
+                    tgt = idx_over[s2]
+                    params[tgt] = pp[ridx, iv]
+                    lengths[tgt] = lev[ridx, iv]
+                    a[tgt] = sa[s2][ridx, iv]
+                    b[tgt] = sb[s2][ridx, iv]
+                    mode[tgt] = m
+                    lengths[tgt] = np.where(val[s2][:, None] < 0, -1.0, lengths[tgt])
+    return params, lengths, a, b, mode
+
+
+def _build_plans(polygon: Polygon, F: _Features, c: _Candidates, rows: np.ndarray,
+                 mu: float, margin_deg: float, contact_type: str,
+                 gravity: FloatArray | None, disturbance: tuple[float, float]
+                 ) -> list[GraspPlan]:
+    margin = np.radians(margin_deg)
+    params, lengths, a, b, mode = _solve(c, rows, margin)
+    plans = []
+    rho = characteristic_length(polygon.vertices, polygon.centroid)
+    for r in range(len(rows)):
+        if np.any(lengths[r][c.feats[rows[r]] >= 0] <= 0):
+            continue
+        real = c.feats[rows[r]] >= 0
+        fi = c.feats[rows[r]][real]
+        seg_a, seg_b = a[r][real], b[r][real]
+        L = np.hypot(*(seg_b - seg_a).T)
+        tdir = (seg_b - seg_a) / np.where(L > 0, L, 1.0)[:, None]
+        ends = seg_a[:, None, :] + params[r][real][:, :, None] * tdir[:, None, :]
+        edges = tuple(int(F.edge[f]) for f in fi)
+        normals = polygon.normals[list(edges)]
+        contacts = ends.mean(axis=1)
+        g = None
+        if gravity is not None:
+            g = {"center": polygon.centroid.copy(), "direction": gravity.copy()}
+        plan_ = GraspPlan(edges, ends, lengths[r][real], contacts, normals, contact_type,
+                          mu, c.modes[int(mode[r])], margin_deg, g)
+        # quality at the representative grasp
+        grasp = plan_.grasp()
+        finger = np.concatenate([np.full(len(ct.points), i) for i, ct in
+                                 enumerate(grasp.contacts)])
+        is_real = finger < len(edges)
+        q = quality_of(grasp.points, grasp.forces, finger, polygon.centroid, rho,
+                       disturbance[0], disturbance[1], is_real)
+        q["min_region"] = plan_.min_length
+        plan_.quality = q
+        plans.append(plan_)
+    return plans
+
+
+def _check_common(polygon: Any, mu: Any, margin: Any, hand: Any
+                  ) -> tuple[float, float]:
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    mu_v = float(check_mu(mu, "mu"))
+    if np.ndim(mu) != 0:
+        raise ValueError(f"mu must be a single number, got {mu!r}")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    if margin_v >= 90.0:
+        raise ValueError(f"margin is an angle in degrees below 90, got {margin!r}")
+    if hand is not None and not isinstance(hand, Hand):
+        raise TypeError(f"hand must be a Hand or None, got {type(hand).__name__}")
+    return mu_v, margin_v
+
+
+def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
+         rank_by: str = "min_region", hand: Hand | None = None,
+         margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
+         disturbance: tuple[float, float] = (10.0, 15.0)) -> list[GraspPlan]:
+    """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
+
+    Parameters
+    ----------
+    polygon : Polygon
+    fingers : {2, 3, 4}
+        2: two fingers with friction ``mu``; 4: four frictionless fingers on four edges or
+        on three edges (two on one edge); 3: three frictionless fingers and gravity.
+    mu : float
+        Friction coefficient (two fingers).
+    top : int or None
+        How many plans to return (None: all).
+    rank_by : {"min_region", "resistance", "epsilon"}
+        Largest smallest region first; largest resistance first (the paper's order); or
+        largest Ferrari-Canny L1 measure first.
+    hand : Hand, optional
+        Workspace and finger radius (section 8.2): regions lie in the feasible parts.
+    margin : float
+        Safety margin in degrees inside the cones and sectors.
+    gravity : array_like, shape (2,)
+        Direction of the weight for ``fingers=3``.
+    disturbance : (float, float)
+        Translation (in the polygon's units) and rotation (degrees) of the resistance
+        measure; default 10 units (1 cm in millimetres) and 15 degrees.
+
+    Returns
+    -------
+    list of GraspPlan
+        Best first; empty when the part admits no such grasp.
+
+    Examples
+    --------
+    >>> part = Polygon([[0, 0], [4, 0], [4, 1], [0, 1]])
+    >>> best = plan(part, fingers=2, mu=0.3, top=1)[0]
+    >>> best.edges, round(best.min_length, 4)
+    ((0, 2), 0.2824)
+    """
+    mu_v, margin_v = _check_common(polygon, mu, margin, hand)
+    if isinstance(fingers, bool) or fingers not in (2, 3, 4):
+        raise ValueError(f"fingers must be 2, 3 or 4, got {fingers!r}")
+    if rank_by not in RANKINGS:
+        raise ValueError(f"rank_by must be one of {', '.join(RANKINGS)}, got {rank_by!r}")
+    if top is not None and (isinstance(top, bool) or not isinstance(top, (int, np.integer))
+                            or top < 1):
+        raise ValueError(f"top must be a positive integer or None, got {top!r}")
+    dist = (check_scalar(disturbance[0], "disturbance[0]", positive=True),
+            check_scalar(disturbance[1], "disturbance[1]", positive=True))
+    margin_r = np.radians(margin_v)
+    if fingers == 2:
+        F = _features(polygon, mu_v, hand)
+        c = _two_finger(F, margin_r)
+        g = None
+        ctype = "friction"
+    else:
+        F = _features(polygon, 0.0, hand)
+        g = check_direction(gravity, "gravity") if fingers == 3 else None
+        c = _four_finger(F, margin_r, g, polygon.centroid)
+        ctype = "frictionless"
+    good = np.flatnonzero(c.score > 0)
+    if good.size == 0:
+        return []
+    order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
+    if rank_by == "min_region":
+        # the leximin solve can only lower a score when two fingers share an edge
+        take = order if top is None else order[: max(4 * top, top + 16)]
+        plans = _build_plans(polygon, F, c, take, mu_v if fingers == 2 else 0.0, margin_v,
+                             ctype, g, dist)
+        plans.sort(key=lambda p: (-round(p.min_length, 12), p.edges))
+    else:
+        plans = _build_plans(polygon, F, c, order, mu_v if fingers == 2 else 0.0, margin_v,
+                             ctype, g, dist)
+        key = "resistance" if rank_by == "resistance" else "epsilon_l1"
+        plans.sort(key=lambda p: (-np.nan_to_num(p.quality[key], nan=-1.0),
+                                  -p.min_length, p.edges))
+    return plans if top is None else plans[:top]
+
+
+def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
+                        margin: float = DEFAULT_MARGIN_DEG, hand: Hand | None = None,
+                        gravity: Any = None) -> GraspPlan | None:
+    """Optimal independent regions of contact on the given edges (definition 7.1).
+
+    Parameters
+    ----------
+    edges : sequence of int
+        Two edges (fingers with friction ``mu``: algorithm 7.1, squeezing and expanding
+        grasps), four edges (frictionless: theorem 7.1; an edge may repeat, then its two
+        regions do not overlap) or three edges with ``gravity``.
+    margin : float
+        Safety margin in degrees.
+
+    Returns
+    -------
+    GraspPlan or None
+        None when the edges admit no force-closure grasp with that margin.
+
+    Examples
+    --------
+    >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    >>> r = independent_regions(sq, (0, 2), mu=0.3)
+    >>> r.regions.round(3).tolist()
+    [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
+    """
+    mu_v, margin_v = _check_common(polygon, mu, margin, hand)
+    idx = polygon.check_edges(edges)
+    margin_r = np.radians(margin_v)
+    n = len(idx)
+    if n == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        F = _features(polygon, mu_v, hand)
+        c = _two_finger(F, margin_r)
+        g = None
+        ctype = "friction"
+    elif n in (3, 4):
+        if mu_v != 0:
+            raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
+        if (n == 3) != (gravity is not None):
+            raise ValueError("three edges need gravity=..., four edges take no gravity")
+        F = _features(polygon, 0.0, hand)
+        g = None if gravity is None else check_direction(gravity, "gravity")
+        c = _four_finger(F, margin_r, g, polygon.centroid)
+        ctype = "frictionless"
+    else:
+        raise ValueError(f"edges must hold 2, 3 (with gravity) or 4 edge indices, got {n}")
+    want = np.array(idx)
+    fe = np.where(c.feats >= 0, F.edge[np.maximum(c.feats, 0)], -1)
+    fe = fe[:, :n]
+    match = np.all(fe == want[None, :], axis=1) if len(fe) else np.zeros(0, bool)
+    if n == 2 or n == 3 or (n == 4 and len(set(idx)) == 4):
+        # four distinct edges are enumerated in increasing feature order; any order is fine
+        match = np.all(np.sort(fe, axis=1) == np.sort(want)[None, :], axis=1)
+    elif n == 4:
+        # the doubled edge is enumerated first: compare as multisets of the same layout
+        match = np.array([sorted(r.tolist()) == sorted(idx) and r[0] == r[2] for r in fe],
+                         dtype=bool) if len(fe) else match
+    rows = np.flatnonzero(match & (c.score > 0))
+    if rows.size == 0:
+        return None
+    best = rows[np.argmax(c.score[rows])]
+    plans = _build_plans(polygon, F, c, np.array([best]), mu_v if n == 2 else 0.0, margin_v,
+                         ctype, g, (10.0, 15.0))
+    if not plans:
+        return None
+    p = plans[0]
+    if True:
+        # report the fingers in the order asked for
+        order = []
+        used = [False] * len(p.edges)
+        for e in idx:
+            for k, pe in enumerate(p.edges):
+                if pe == e and not used[k]:
+                    used[k] = True
+                    order.append(k)
+                    break
+        o = np.array(order)
+        p = GraspPlan(tuple(p.edges[k] for k in o), p.regions[o], p.lengths[o],
+                      p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
+                      p.gravity, p.quality)
+    return p

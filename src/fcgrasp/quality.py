@@ -1,0 +1,136 @@
+r"""Grasp quality (paper section 8.1), computed at a plan's representative grasp.
+
+* ``min_region``: the length of the smallest independent region, the paper's tolerance
+  measure.
+* ``resistance`` and ``resistance_approx``: the grasp resistance of section 8.1, made
+  precise as follows.  The part is disturbed by a translation of ``d`` (1 cm) in any
+  direction and a rotation of ``theta`` (15 degrees) about its centroid.  A translation
+  disturbance is resisted by the contact forces balancing a unit force through the
+  centroid along the direction of motion; a rotation disturbance by those balancing a
+  pure torque ``+-rho`` (a unit force at the part's radius ``rho``).  Among the balancing
+  force distributions the one with the smallest forces is used (for four generating
+  wrenches it is unique: the least non-negative solution).  The *work* of finger ``i`` is
+  its force for the translation times ``d`` plus its force for the rotation times the
+  distance its contact point moves, ``theta |p_i - c|``.  The **exact** resistance takes,
+  for the worst disturbance, the largest over fingers of that sum (the two parts for the
+  same finger, as the paper requires); the paper's **approximation** adds the largest
+  translational work and the largest rotational work, each maximised on its own (it is
+  never smaller).  Translation directions are sampled every 0.5 degree.  Both are
+  reported as ``1 / work`` so that **larger is better**, matching the paper's ranking in
+  decreasing order of resistance.
+* ``epsilon_l1`` and ``epsilon_linf``: the Ferrari-Canny measure, the radius of the
+  largest wrench ball around the origin inside the convex hull of the unit contact
+  wrenches (L1: the sum of finger forces is at most 1) or inside the Minkowski sum of
+  the fingers' hulls (L-infinity: every finger force at most 1).  Torques are divided by
+  the characteristic length ``rho``, the largest distance from the part's centroid to
+  its vertices, and taken about the centroid.
+"""
+
+from __future__ import annotations
+
+from itertools import product
+from typing import Any
+
+import numpy as np
+from scipy.spatial import ConvexHull, QhullError
+
+from ._checks import FloatArray
+
+__all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length"]
+
+
+def characteristic_length(vertices: FloatArray, centroid: FloatArray) -> float:
+    """Largest distance from the centroid to a vertex (the part's radius)."""
+    return float(np.max(np.hypot(*(vertices - centroid).T)))
+
+
+def _scaled_wrenches(points: FloatArray, forces: FloatArray, centroid: FloatArray,
+                     rho: float) -> FloatArray:
+    r = points - centroid
+    tau = (r[:, 0] * forces[:, 1] - r[:, 1] * forces[:, 0]) / rho
+    return np.column_stack([forces, tau])
+
+
+def _ball_radius(points: FloatArray) -> float:
+    """Distance from the origin to the boundary of conv(points) (0 if outside or flat)."""
+    try:
+        hull = ConvexHull(points)
+    except (QhullError, ValueError):
+        return 0.0
+    d = -hull.equations[:, -1]          # unit normals: n.x + off <= 0 inside
+    return float(max(0.0, d.min()))
+
+
+def epsilon_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
+                    centroid: FloatArray, rho: float) -> dict[str, float]:
+    """Ferrari-Canny L1 and L-infinity measures of one grasp.
+
+    ``points``, ``forces``: (k, 2) generating forces (unit); ``finger``: (k,) finger index
+    of each generator.
+    """
+    w = _scaled_wrenches(points, forces, centroid, rho)
+    l1 = _ball_radius(w)
+    groups = [np.concatenate([np.zeros((1, 3)), w[finger == f]]) for f in np.unique(finger)]
+    sums = np.array([np.sum(c, axis=0) for c in product(*groups)])
+    linf = _ball_radius(sums)
+    return {"epsilon_l1": l1, "epsilon_linf": linf}
+
+
+def _least_solutions(w: FloatArray, targets: FloatArray) -> FloatArray | None:
+    """Least non-negative lambda with lambda @ w = target, for 4 generators (k = 4)."""
+    _, _, vt = np.linalg.svd(w.T)
+    nvec = vt[-1]
+    if np.all(nvec <= 0):
+        nvec = -nvec
+    if not np.all(nvec > 1e-12 * np.abs(nvec).max()):
+        return None
+    lam0 = np.linalg.lstsq(w.T, targets.T, rcond=None)[0].T        # (m, 4)
+    s = np.max(-lam0 / nvec, axis=1)
+    return lam0 + s[:, None] * nvec
+
+
+def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
+                       centroid: FloatArray, rho: float, translation: float,
+                       rotation_deg: float, counts: np.ndarray | None = None
+                       ) -> dict[str, float]:
+    """Exact and approximate grasp resistance (see the module docstring).
+
+    ``counts`` marks which generators belong to real fingers (gravity is not a finger).
+    """
+    if len(points) != 4:
+        return {"resistance": float("nan"), "resistance_approx": float("nan")}
+    theta = np.radians(rotation_deg)
+    w = _scaled_wrenches(points, forces, centroid, rho)
+    ang = np.radians(np.arange(0.0, 360.0, 0.5))
+    trans = -np.column_stack([np.cos(ang), np.sin(ang), np.zeros_like(ang)])
+    rot = -np.array([[0.0, 0.0, 1.0], [0.0, 0.0, -1.0]])   # torque +-rho, scaled by rho
+    lt = _least_solutions(w, trans)
+    lr = _least_solutions(w, rot)
+    if lt is None or lr is None:
+        return {"resistance": 0.0, "resistance_approx": 0.0}
+    fingers = np.unique(finger)
+    real = np.ones(len(points), bool) if counts is None else counts
+    dist = np.hypot(*(points - centroid).T)
+
+    def finger_force(lam: FloatArray, f: int) -> FloatArray:
+        sel = (finger == f) & real
+        vec = lam[:, sel, None] * forces[sel][None]
+        return np.hypot(*vec.sum(axis=1).T)
+
+    wt = np.stack([finger_force(lt, f) * translation for f in fingers], axis=1)     # (m, F)
+    wr = np.stack([finger_force(lr, f) * theta * float(np.max(dist[finger == f]))
+                   for f in fingers], axis=1)                                          # (2, F)
+    exact = float(np.max(wt[:, None, :] + wr[None, :, :]))
+    approx = float(wt.max() + wr.max())
+    return {"resistance": 1.0 / exact if exact > 0 else float("inf"),
+            "resistance_approx": 1.0 / approx if approx > 0 else float("inf")}
+
+
+def quality_of(points: Any, forces: Any, finger: Any, centroid: Any, rho: float,
+               translation: float, rotation_deg: float, real: Any = None) -> dict[str, float]:
+    p, f = np.asarray(points, float), np.asarray(forces, float)
+    fi = np.asarray(finger)
+    out = epsilon_metrics(p, f, fi, np.asarray(centroid, float), rho)
+    out.update(resistance_metrics(p, f, fi, np.asarray(centroid, float), rho, translation,
+                                  rotation_deg, None if real is None else np.asarray(real)))
+    return out

@@ -1,0 +1,300 @@
+r"""Optimal independent regions of contact (paper section 7).
+
+Definition 7.1: regions ``r_1 .. r_n``, one segment on each chosen edge, such that
+every grasp with finger ``i`` anywhere in ``r_i`` (end points included) is force
+closure; optimal when the smallest region is as long as possible, then the next
+smallest, and so on (the *leximin* order).
+
+**The exact method.**  Let ``C`` be the counter-overlapping sector of the grasp set
+(theorem 6.4 for two fingers with friction, ``C_12 & -C_34`` for four frictionless
+fingers), shrunk by the safety ``margin`` on both sides, with edges ``k1`` (clockwise)
+and ``k2``.  Write :math:`\phi_1(x) = k_1 \times x` and :math:`\phi_2(x) = x \times k_2`.
+All grasps of the box of regions are force closure iff, for both ``i``,
+
+.. math:: \min_{P_{34}} \phi_i(P_{34}) \ge \max_{P_{12}} \phi_i(P_{12})
+
+(theorem 7.1: the two-sided cone of vertex ``I`` with sector ``C`` splits the
+restricted parallelograms :math:`\Pi'_{12}` and :math:`\Pi'_{34}`; for two fingers
+``P12 = P`` and ``P34 = Q``, algorithm 7.1).  ``P12`` is affine in the positions of
+its fingers along their edges, so each side of the inequality is reached at one end
+of every region.  Because ``C`` lies strictly inside the sectors of the forces, the
+two functionals always pick **opposite** ends of a region.  In *extension*
+coordinates (how far each end reaches from the far end of its edge) the problem is
+
+.. math::
+   \text{leximin } \ell_m = e^{(1)}_m + e^{(2)}_m - L_m \quad\text{s.t.}\quad
+   \sum_m w^{(1)}_m e^{(1)}_m \le K_1,\;
+   \sum_m w^{(2)}_m e^{(2)}_m \le K_2,\; 0 \le e \le L
+
+two fractional knapsacks over the two ends of every region, coupled only through the
+lengths.  For a target length ``t`` the best split is the greedy fill of knapsack 1
+by the ratio ``w2 / w1``, so feasibility of ``t`` is a closed-form test and the
+optimum is found by bisection to machine precision; the leximin levels follow by
+fixing the regions that cannot grow and repeating (at most ``n`` stages).  The
+regions are then placed at a canonical point of the optimal face: as near the middle
+of the admissible ranges as the constraints allow (the paper's "anywhere on this
+segment" for parallel edges).
+
+Two fingers on one edge (section 6.2) must not overlap: the unconstrained optimum is
+used when its regions are disjoint, otherwise the edge is split at the best point
+(the optimum is concave in the split point; golden-section search).
+
+The tests compare the optimum with an independent linear program over the region end
+points (every corner grasp of the box inside the shrunk cones, solved with scipy's
+HiGHS) on thousands of seeded random edge sets.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from ._checks import FloatArray
+
+__all__ = [
+    "KnapsackProblem",
+    "build_problem",
+    "max_min_length",
+    "leximin",
+    "place_regions",
+    "DEFAULT_MARGIN_DEG",
+]
+
+#: Default safety margin: every grasp of a region box points at least this far (degrees)
+#: inside the friction cones (two fingers) or the sectors (four fingers).
+DEFAULT_MARGIN_DEG = 0.5
+
+_BISECT = 64
+
+
+def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+@dataclass
+class KnapsackProblem:
+    """A batch of region problems in extension coordinates (shapes (B, n) and (B,)).
+
+    ``upper1[b, m]`` says whether constraint 1 limits the upper end of region ``m``
+    (then constraint 2 limits its lower end).  ``active[b, m]`` is False for fixed points
+    (gravity), which have no region.  ``separable`` is False where the two constraints
+    would limit the same end of some region (cannot happen with a positive margin).
+    """
+
+    L: FloatArray
+    w1: FloatArray
+    w2: FloatArray
+    K1: FloatArray
+    K2: FloatArray
+    upper1: np.ndarray
+    active: np.ndarray
+    separable: np.ndarray
+
+    @property
+    def batch(self) -> int:
+        return int(self.L.shape[0])
+
+
+def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
+                  vel: FloatArray, L: FloatArray, k1: FloatArray, k2: FloatArray
+                  ) -> KnapsackProblem:
+    """Knapsack form of "P34 - P12 inside the cone (k1, k2) for every corner grasp".
+
+    Parameters
+    ----------
+    side : ndarray of int, shape (n,)
+        0 for fingers meeting in ``P12``, 1 for fingers meeting in ``P34``.
+    origin12, origin34 : ndarray, shape (B, 2)
+        ``P12`` and ``P34`` with every finger at the start of its edge.
+    vel : ndarray, shape (B, n, 2)
+        Derivative of ``P12`` (or ``P34``) with respect to the arc length of finger ``m``.
+    L : ndarray, shape (B, n)
+        Edge lengths (0 for a fixed point).
+    k1, k2 : ndarray, shape (B, 2)
+        Unit edges of the (shrunk) cone, ``k1`` clockwise of ``k2``.
+    """
+    B, n = L.shape
+    w = np.empty((2, B, n))
+    up = np.empty((2, B, n), dtype=bool)
+    K = np.empty((2, B))
+    is34 = (np.asarray(side) == 1)[None, :]
+    for i, phi in enumerate((lambda x: _cross(k1[:, None, :], x) if x.ndim == 3
+                             else _cross(k1, x),
+                             lambda x: _cross(x, k2[:, None, :]) if x.ndim == 3
+                             else _cross(x, k2))):
+        g = phi(vel)                                        # (B, n)
+        # a coefficient that is zero up to rounding (a cone edge parallel to a force, as
+        # with a zero margin) is zero: that end is then free for this constraint
+        g = np.where(np.abs(g) <= 1e-12 * np.hypot(vel[..., 0], vel[..., 1]), 0.0, g)
+        w[i] = np.abs(g)
+        # P12 side: the max is at the upper end if g > 0; P34 side: the min is at the
+        # upper end if g < 0
+        up[i] = np.where(is34, g < 0, g > 0)
+        base = np.where(is34, np.maximum(g, 0.0) * L, -np.minimum(g, 0.0) * L)
+        K[i] = phi(origin34) - phi(origin12) + np.sum(base, axis=1)
+    active = L > 0
+    nz = (w[0] > 0) & (w[1] > 0) & active
+    separable = ~np.any(nz & (up[0] == up[1]), axis=1)
+    return KnapsackProblem(L, np.where(active, w[0], 0.0), np.where(active, w[1], 0.0),
+                           K[0], K[1], up[0], active, separable)
+
+
+# ----------------------------------------------------------------------------- the solver
+
+
+def _order(p: KnapsackProblem) -> np.ndarray:
+    """Greedy order of knapsack 1: the largest gain in knapsack 2 per unit of cost first."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(p.w1 > 0, p.w2 / np.where(p.w1 > 0, p.w1, 1.0), np.inf)
+    ratio = np.where(p.active, ratio, -np.inf)
+    return np.argsort(-ratio, axis=1, kind="stable")
+
+
+def _fill(p: KnapsackProblem, lb: FloatArray, order: np.ndarray
+          ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Greedy fill of x = e^(1) from ``lb`` up to ``L`` within budget ``K1``.
+
+    Returns (x at the greedy optimum, the budget slack of knapsack 1 at ``x = lb``, and
+    the value ``sum w2 x``).
+    """
+    L = np.where(p.active, p.L, 0.0)
+    lb = np.where(p.active, lb, 0.0)
+    slack = p.K1 - np.sum(p.w1 * lb, axis=1)
+    rows = np.arange(p.batch)[:, None]
+    w1s, caps = p.w1[rows, order], (L - lb)[rows, order]
+    cost = w1s * caps
+    before = np.cumsum(cost, axis=1) - cost
+    room = np.maximum(slack[:, None] - before, 0.0)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        take = np.where(w1s > 0, np.minimum(caps, room / np.where(w1s > 0, w1s, 1.0)), caps)
+    take = np.maximum(take, 0.0)
+    x = lb.copy()
+    x[rows, order] += take
+    return x, slack, np.sum(p.w2 * x, axis=1)
+
+
+def _feasible(p: KnapsackProblem, lb: FloatArray, order: np.ndarray, eps: FloatArray
+              ) -> np.ndarray:
+    """Is there a box of regions with lengths at least ``lb`` (per region)?"""
+    ok = np.all((lb <= p.L + eps[:, None]) | ~p.active, axis=1)
+    _, slack, value = _fill(p, lb, order)
+    need = np.sum(p.w2 * (np.where(p.active, p.L + lb, 0.0)), axis=1) - p.K2
+    return ok & (slack >= -eps * _wscale(p)) & (value >= need - eps * _wscale(p))
+
+
+def _wscale(p: KnapsackProblem) -> FloatArray:
+    return np.maximum(np.sum((p.w1 + p.w2) * p.L, axis=1), 1e-300)
+
+
+def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
+               order: np.ndarray) -> FloatArray:
+    """Largest ``t`` such that the free regions reach ``t`` and the fixed ones their levels."""
+    eps = 1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300)
+    hi = np.min(np.where(free, p.L, np.inf), axis=1)
+    hi = np.where(np.isfinite(hi), hi, 0.0)
+    lo = np.zeros(p.batch)
+    ok0 = _feasible(p, np.where(free, 0.0, lb_fixed), order, eps)
+    okh = _feasible(p, np.where(free, hi[:, None], lb_fixed), order, eps)
+    lo = np.where(okh, hi, lo)
+    todo = ok0 & ~okh
+    for _ in range(_BISECT):
+        if not todo.any():
+            break
+        mid = 0.5 * (lo + hi)
+        okm = _feasible(p, np.where(free, mid[:, None], lb_fixed), order, eps)
+        lo = np.where(todo & okm, mid, lo)
+        hi = np.where(todo & ~okm, mid, hi)
+    return np.where(ok0, lo, -1.0)
+
+
+def max_min_length(p: KnapsackProblem) -> FloatArray:
+    """Largest achievable length of the smallest region (-1 where none is possible)."""
+    order = _order(p)
+    free = p.active.copy()
+    return _max_level(p, np.zeros_like(p.L), free, order)
+
+
+def leximin(p: KnapsackProblem) -> FloatArray:
+    """Leximin-optimal region lengths (definition 7.1), shape (B, n); -1 rows if infeasible."""
+    order = _order(p)
+    levels = np.zeros_like(p.L)
+    free = p.active.copy()
+    dead = np.zeros(p.batch, dtype=bool)
+    for _ in range(p.L.shape[1]):
+        if not free.any():
+            break
+        t = _max_level(p, levels, free, order)
+        first = free.all(axis=1) | ~p.active.any(axis=1)
+        dead |= (t < 0) & first
+        t = np.maximum(t, 0.0)
+        levels = np.where(free, t[:, None], levels)
+        # which free regions cannot grow beyond t while the others stay at their levels?
+        eps = 1e-9 * np.maximum(np.max(p.L, axis=1), 1e-300)
+        blocked = np.zeros_like(free)
+        for m in range(p.L.shape[1]):
+            trial = levels.copy()
+            trial[:, m] += eps
+            grow = _feasible(p, trial, order, 1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300))
+            blocked[:, m] = free[:, m] & ~grow
+        none = free.any(axis=1) & ~blocked.any(axis=1)
+        blocked |= free & none[:, None]          # numerical stall: fix all
+        free &= ~blocked
+    levels = np.where(p.active, levels, 0.0)
+    levels[dead] = -1.0
+    return levels
+
+
+def _centre(p: KnapsackProblem, lb: FloatArray) -> FloatArray:
+    """Mean of the vertices of {x in [lb, L] : w1.x <= K1, w2.x >= R2}: a canonical interior
+    point of the optimal face (its midpoint when the face is a segment)."""
+    B, n = p.L.shape
+    L = np.where(p.active, p.L, 0.0)
+    lo = np.where(p.active, lb, 0.0)
+    r2 = np.sum(p.w2 * (L + lo), axis=1) - p.K2
+    # constraint rows G x = h for the candidate active sets: x_m = lo_m, x_m = L_m,
+    # w1 . x = K1, w2 . x = R2
+    eye = np.eye(n)
+    rows = np.concatenate([np.broadcast_to(eye, (B, n, n)), np.broadcast_to(eye, (B, n, n)),
+                           p.w1[:, None, :], p.w2[:, None, :]], axis=1)     # (B, 2n+2, n)
+    rhs = np.concatenate([lo, L, p.K1[:, None], r2[:, None]], axis=1)       # (B, 2n+2)
+    subsets = np.array(list(combinations(range(2 * n + 2), n)), dtype=int)  # (S, n)
+    G = rows[:, subsets]                                                     # (B, S, n, n)
+    h = rhs[:, subsets]                                                      # (B, S, n)
+    det = np.linalg.det(G)
+    scale = np.maximum(np.abs(G).max(axis=(2, 3)) ** n, 1e-300)
+    ok = np.abs(det) > 1e-12 * scale
+    G = np.where(ok[..., None, None], G, np.eye(n))
+    x = np.linalg.solve(G, h[..., None])[..., 0]                             # (B, S, n)
+    tol = 1e-9 * np.maximum(np.max(L, axis=1), 1e-300)[:, None]
+    wtol = 1e-9 * _wscale(p)[:, None]
+    feas = (ok & np.all(x >= lo[:, None, :] - tol[..., None], axis=2)
+            & np.all(x <= L[:, None, :] + tol[..., None], axis=2)
+            & (np.einsum("bsn,bn->bs", x, p.w1) <= p.K1[:, None] + wtol)
+            & (np.einsum("bsn,bn->bs", x, p.w2) >= r2[:, None] - wtol))
+    cnt = feas.sum(axis=1)
+    mean = np.einsum("bs,bsn->bn", feas.astype(float), x) / np.maximum(cnt, 1)[:, None]
+    return np.clip(mean, lo, L), cnt > 0
+
+
+def place_regions(p: KnapsackProblem, levels: FloatArray) -> FloatArray:
+    """Region end points (parameters along each edge) for the given lengths.
+
+    Returns an array (B, n, 2) of ``[lo, hi]`` arc-length parameters.  Among the optimal
+    placements, the mean of the vertices of the optimal face is chosen (the midpoint when
+    the regions can slide, as between parallel edges), so ties are broken symmetrically.
+    """
+    L = np.where(p.active, p.L, 0.0)
+    lb = np.where(p.active, np.maximum(levels, 0.0), 0.0)
+    x, found = _centre(p, lb)
+    if not np.all(found):
+        xg, _, _ = _fill(p, lb, _order(p))        # the greedy point is feasible too
+        x = np.where(found[:, None], x, xg)
+    e1 = x
+    e2 = L + lb - x
+    hi = np.where(p.upper1, e1, e2)
+    lo = L - np.where(p.upper1, e2, e1)
+    out = np.stack([lo, hi], axis=-1)
+    return np.where(p.active[..., None], out, 0.0)

@@ -1,0 +1,288 @@
+"""Optimal independent regions (section 7) against an independent LP formulation, and
+every grasp inside returned regions against the general test of the core."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.planning import GraspPlan, independent_regions, plan
+from fcgrasp.polygon import Polygon
+
+from .oracle import region_lp
+from .shapes import random_polygon
+
+MARGIN = 0.5
+
+
+def _lex_better(a, b, rtol=1e-9):
+    """Leximin comparison of two length vectors with a relative tolerance."""
+    a, b = np.sort(a), np.sort(b)
+    scale = max(a.max(), b.max(), 1e-300)
+    for x, y in zip(a, b, strict=True):
+        if abs(x - y) > rtol * scale:
+            return x > y
+    return False
+
+
+def _dir(a):
+    return np.array([np.cos(a), np.sin(a)])
+
+
+def _arc_meet(c1, h1, c2, h2):
+    d = (c2 - c1 + np.pi) % (2 * np.pi) - np.pi
+    lo, hi = max(-h1, d - h2), min(h1, d + h2)
+    return c1 + (lo + hi) / 2, (hi - lo) / 2
+
+
+def oracle_two(poly, i, j, mu, margin_deg=MARGIN):
+    """Best leximin lengths over both modes, by LP; None if no regions."""
+    phi = np.arctan(mu)
+    ci = np.arctan2(-poly.normals[i][1], -poly.normals[i][0])
+    cj = np.arctan2(-poly.normals[j][1], -poly.normals[j][0])
+    cen, half = _arc_meet(ci, phi, cj + np.pi, phi)
+    h = half - np.radians(margin_deg)
+    if h <= 0:
+        return None
+    k1, k2 = _dir(cen - h), _dir(cen + h)
+    best = None
+    for s in (1, -1):
+        res = region_lp(poly.starts[[i, j]], poly.ends[[i, j]],
+                        -poly.normals[[i, j]], [0, 1], s * k1, s * k2)
+        if res is not None and res.min() > 0:
+            if best is None or _lex_better(res, best):
+                best = res
+    return best
+
+
+def canonical(edges):
+    """The layout fcgrasp pairs from: sorted edges, or (doubled, low, doubled, high)."""
+    if len(set(edges)) == 4:
+        return tuple(sorted(edges))
+    d = [e for e in edges if list(edges).count(e) == 2][0]
+    o = sorted(e for e in edges if e != d)
+    return (d, o[0], d, o[1])
+
+
+def oracle_four(poly, edges, margin_deg=MARGIN):
+    """The LP optimum with the margin applied to the sector of fcgrasp's canonical pairing
+    (the first usable pairing of the canonical layout); the pairing only matters for
+    the margin (corollary 5.1), see test_three_pairings_give_the_same_regions."""
+    edges = canonical(edges)
+    f = -poly.normals[list(edges)]
+    ang = np.arctan2(f[:, 1], f[:, 0])
+    cr = lambda a, b: a[0] * b[1] - a[1] * b[0]  # noqa: E731
+    for p in ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2)):
+        if abs(cr(f[p[0]], f[p[1]])) > 1e-9 and abs(cr(f[p[2]], f[p[3]])) > 1e-9:
+            break
+    else:
+        return None
+    g12 = (ang[p[1]] - ang[p[0]] + np.pi) % (2 * np.pi) - np.pi
+    g34 = (ang[p[3]] - ang[p[2]] + np.pi) % (2 * np.pi) - np.pi
+    cen, half = _arc_meet(ang[p[0]] + g12 / 2, abs(g12) / 2, ang[p[2]] + g34 / 2 + np.pi,
+                          abs(g34) / 2)
+    h = half - np.radians(margin_deg)
+    if h <= 0:
+        return None
+    k1, k2 = _dir(cen - h), _dir(cen + h)
+    side = np.zeros(4, int)
+    side[[p[2], p[3]]] = 1
+    # the LP pairs the first two fingers of each side: reorder the fingers by the pairing
+    order = list(p)
+    st, en, ff = poly.starts[list(edges)][order], poly.ends[list(edges)][order], f[order]
+    same = [(a, b) for a in range(4) for b in range(a + 1, 4)
+            if edges[order[a]] == edges[order[b]]]
+    best = None
+    for s in (1, -1):
+        orders = [None] if not same else [same[0], same[0][::-1]]
+        for o in orders:
+            res = region_lp(st, en, ff, [0, 0, 1, 1], s * k1, s * k2, same_edge=same, order=o)
+            if res is not None and res.min() > 0:
+                if best is None or _lex_better(res, best):
+                    best = res
+    return best
+
+
+def _check_plan_grasps(p: GraspPlan, rng, n=200):
+    """Every corner grasp and n random grasps of the regions are force closure."""
+    grasps = np.concatenate([p.corners(), p.sample(n, rng)])
+    w = []
+    for g in grasps:
+        w.append(p.grasp(g).wrenches)
+    ok = fc.is_force_closure(np.array(w))
+    assert ok.all(), (p, grasps[~ok][:3])
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_two_finger_regions_match_lp(seed):
+    rng = np.random.default_rng(seed)
+    compared = positive = 0
+    while compared < 300:
+        poly = random_polygon(rng)
+        idx = np.flatnonzero(poly.usable)
+        i, j = (int(x) for x in rng.choice(idx, 2, replace=False))
+        mu = float(np.exp(rng.uniform(np.log(0.05), np.log(3))))
+        got = independent_regions(poly, (i, j), mu=mu)
+        ref = oracle_two(poly, i, j, mu)
+        compared += 1
+        if ref is None:
+            assert got is None or got.min_length < 1e-9 * poly.size
+            continue
+        assert got is not None, (poly, i, j, mu, ref)
+        scale = max(ref.max(), 1e-300)
+        assert np.allclose(np.sort(got.lengths), np.sort(ref), rtol=1e-9, atol=1e-9 * scale), \
+            (got.lengths, ref)
+        _check_plan_grasps(got, rng, 50)
+        positive += 1
+    assert positive > 60
+
+
+@pytest.mark.parametrize("kind", ["four", "three"])
+def test_four_finger_regions_match_lp(kind):
+    rng = np.random.default_rng(7 if kind == "four" else 8)
+    compared = positive = 0
+    while positive < 40 and compared < 3000:
+        poly = random_polygon(rng)
+        idx = np.flatnonzero(poly.usable)
+        if kind == "four":
+            if len(idx) < 4:
+                continue
+            edges = tuple(int(x) for x in rng.choice(idx, 4, replace=False))
+        else:
+            a, b, c = (int(x) for x in rng.choice(idx, 3, replace=False))
+            edges = (a, b, a, c)
+        got = independent_regions(poly, edges)
+        ref = oracle_four(poly, edges)
+        compared += 1
+        if ref is None:
+            assert got is None
+            continue
+        assert got is not None, (poly, edges, ref)
+        scale = max(ref.max(), 1e-300)
+        assert np.allclose(np.sort(got.lengths), np.sort(ref), rtol=1e-9, atol=1e-9 * scale), \
+            (poly, edges, got.lengths, ref)
+        _check_plan_grasps(got, rng, 50)
+        positive += 1
+    assert positive >= 40
+
+
+def test_three_pairings_give_the_same_regions():
+    """Corollary 5.1 / section 7.3: without margin the three pairings of four edges give the
+    same optimal regions (with a margin, the margin is taken on the pairing's sector)."""
+    from fcgrasp._regiongeom import four_finger_problems
+    from fcgrasp.regions import leximin, place_regions
+
+    rng = np.random.default_rng(9)
+    done = 0
+    while done < 60:
+        poly = random_polygon(rng)
+        idx = np.flatnonzero(poly.usable)
+        if len(idx) < 4:
+            continue
+        e = np.array([int(x) for x in rng.choice(idx, 4, replace=False)])
+        a, b = poly.starts[e][None], poly.ends[e][None]
+        n = poly.normals[e]
+        center = np.arctan2(-n[:, 1], -n[:, 0])[None]
+        results = []
+        for perm in ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2)):
+            probs, hm, valid = four_finger_problems(a, b, center, np.array([perm]), 0.0)
+            if not valid[0] or hm[0] <= 0:
+                continue
+            best = None
+            for pr in probs:
+                lev = leximin(pr)[0]
+                if lev.min() > 0 and (best is None or _lex_better(lev, best[0])):
+                    inv = np.argsort(perm)
+                    best = (lev[inv], place_regions(pr, lev[None])[0][inv])
+            results.append(best)
+        if len(results) < 2 or all(r is None for r in results):
+            continue
+        assert all(r is not None for r in results)
+        for other in results[1:]:
+            assert np.allclose(other[0], results[0][0], rtol=1e-9, atol=1e-12)
+        done += 1
+
+
+def test_parallel_edges_regions_are_centred():
+    sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    r = independent_regions(sq, (0, 2), mu=0.3)
+    assert np.allclose(r.regions[0, :, 0].mean(), 5.0) and np.allclose(r.regions[1, :, 0].mean(), 5.0)
+    assert np.isclose(r.min_length, 3 * np.tan(np.arctan(0.3) - np.radians(MARGIN)))
+
+
+def test_margin_is_an_angle_inside_the_cones():
+    sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    r0 = independent_regions(sq, (0, 2), mu=0.3, margin=0.0)
+    r5 = independent_regions(sq, (0, 2), mu=0.3, margin=5.0)
+    assert r5.min_length < r0.min_length
+    assert np.isclose(r5.min_length, 3 * np.tan(np.arctan(0.3) - np.radians(5.0)))
+    # every corner grasp points at least 5 degrees inside both friction cones
+    for g in r5.corners():
+        d = g[1] - g[0]
+        ang = np.degrees(np.arctan2(abs(d[0]), abs(d[1])))
+        assert ang <= np.degrees(np.arctan(0.3)) - 5.0 + 1e-9
+
+
+def test_no_regions_without_friction_or_grasp():
+    sq = Polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
+    assert independent_regions(sq, (0, 2), mu=0.0) is None
+    assert independent_regions(sq, (0, 1), mu=0.3) is None
+
+
+def test_expanding_regions_inside_a_hole():
+    part = Polygon([[0, 0], [6, 0], [6, 6], [0, 6]], holes=[[[2, 2], [4, 2], [4, 4], [2, 4]]])
+    r = independent_regions(part, (5, 7), mu=0.3)
+    assert r is not None and r.mode == "expand"
+    _check_plan_grasps(r, np.random.default_rng(0))
+
+
+def test_plan_two_fingers_ranked_and_sound():
+    rng = np.random.default_rng(11)
+    for _ in range(10):
+        poly = random_polygon(rng)
+        plans = plan(poly, fingers=2, mu=0.4, top=5)
+        lengths = [p.min_length for p in plans]
+        assert all(a >= b - 1e-9 * poly.size for a, b in zip(lengths, lengths[1:]))
+        for p in plans:
+            _check_plan_grasps(p, rng, 30)
+            ref = independent_regions(poly, p.edges, mu=0.4)
+            assert np.isclose(ref.min_length, p.min_length, rtol=1e-9)
+
+
+@pytest.mark.parametrize("fingers", [3, 4])
+def test_plan_frictionless_sound(fingers):
+    rng = np.random.default_rng(12 + fingers)
+    seen = 0
+    for _ in range(6):
+        poly = random_polygon(rng, str(rng.choice(["convex", "star", "rectangle"])))
+        plans = plan(poly, fingers=fingers, top=3)
+        for p in plans:
+            assert p.fingers == (3 if fingers == 3 else 4)
+            _check_plan_grasps(p, rng, 30)
+            seen += 1
+    assert seen > 5
+
+
+@pytest.mark.parametrize("rank_by, key", [("resistance", "resistance"), ("epsilon", "epsilon_l1")])
+def test_plan_ranking_by_quality(rank_by, key):
+    poly = Polygon([[0, 0], [3, 0], [4, 2], [1, 3], [-1, 1.5]])
+    plans = plan(poly, fingers=2, mu=0.5, top=None, rank_by=rank_by)
+    vals = [p.quality[key] for p in plans]
+    assert vals == sorted(vals, reverse=True) and len(vals) > 2
+
+
+def test_resistance_exact_never_exceeds_approximation_work():
+    poly = Polygon([[0, 0], [3, 0], [4, 2], [1, 3], [-1, 1.5]])
+    for p in plan(poly, fingers=2, mu=0.5, top=None):
+        assert p.quality["resistance"] >= p.quality["resistance_approx"] - 1e-12
+
+
+@pytest.mark.parametrize("kw, match", [
+    ({"fingers": 5}, "fingers"), ({"rank_by": "fast"}, "rank_by"), ({"mu": -1}, "mu"),
+    ({"top": 0}, "top"), ({"margin": -1}, "margin"), ({"margin": 95}, "margin"),
+])
+def test_plan_bad_arguments(kw, match):
+    sq = Polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
+    with pytest.raises(ValueError, match=match):
+        plan(sq, **kw)
