@@ -289,7 +289,7 @@ def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = 1e-9) -> np.ndarray
 
 
 def _split_search(c: _Candidates, rows: np.ndarray, pos: tuple[int, int], margin: float,
-                  iters: int = 48) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+                  iters: int = 80) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
     """Best split of a shared edge between fingers ``pos`` (golden-section on the split).
 
     Returns (score, a, b, mode) for the rows with modified segment ends.
