@@ -305,3 +305,21 @@ def test_plan_bad_arguments(kw, match):
     sq = Polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     with pytest.raises(ValueError, match=match):
         plan(sq, **kw)
+
+
+def test_two_region_closed_form_equals_general_solver():
+    from fcgrasp.regions import KnapsackProblem, _max_level, _max_min_two, _order
+
+    rng = np.random.default_rng(21)
+    B = 100_000
+    L = rng.uniform(0.1, 3, (B, 2))
+    w1, w2 = rng.uniform(0, 2, (2, B, 2))
+    w1[rng.random((B, 2)) < 0.1] = 0
+    w2[rng.random((B, 2)) < 0.1] = 0
+    K1, K2 = rng.uniform(-0.5, 4, (2, B))
+    p = KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, 2), bool), np.ones((B, 2), bool),
+                        np.ones(B, bool))
+    a = _max_min_two(p)
+    b = _max_level(p, np.zeros((B, 2)), np.ones((B, 2), bool), _order(p))
+    assert np.allclose(a, b, rtol=1e-9, atol=1e-12)
+    assert 0.3 < (a > 0).mean() < 0.9

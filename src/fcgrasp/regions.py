@@ -67,7 +67,6 @@ __all__ = [
 #: inside the friction cones (two fingers) or the sectors (four fingers).
 DEFAULT_MARGIN_DEG = 0.5
 
-_BISECT = 64
 
 
 def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -191,27 +190,106 @@ def _wscale(p: KnapsackProblem) -> FloatArray:
 
 def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
                order: np.ndarray) -> FloatArray:
-    """Largest ``t`` such that the free regions reach ``t`` and the fixed ones their levels."""
-    eps = 1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300)
-    hi = np.min(np.where(free, p.L, np.inf), axis=1)
-    hi = np.where(np.isfinite(hi), hi, 0.0)
-    lo = np.zeros(p.batch)
-    ok0 = _feasible(p, np.where(free, 0.0, lb_fixed), order, eps)
-    okh = _feasible(p, np.where(free, hi[:, None], lb_fixed), order, eps)
-    lo = np.where(okh, hi, lo)
-    todo = ok0 & ~okh
-    for _ in range(_BISECT):
-        if not todo.any():
-            break
-        mid = 0.5 * (lo + hi)
-        okm = _feasible(p, np.where(free, mid[:, None], lb_fixed), order, eps)
-        lo = np.where(todo & okm, mid, lo)
-        hi = np.where(todo & ~okm, mid, hi)
-    return np.where(ok0, lo, -1.0)
+    """Largest ``t`` such that the free regions reach ``t`` and the fixed ones their levels.
+
+    Exact: with the greedy order fixed, the slack ``D(t)`` of knapsack 2 at the greedy
+    optimum of knapsack 1 is continuous, non-increasing and linear between the values of
+    ``t`` at which the greedy fill moves to the next region.  Those breakpoints are solved
+    for, ``D`` is evaluated there, and the root is interpolated on its linear piece.
+    Returns -1 where even ``t = 0`` is infeasible.
+    """
+    B, n = p.L.shape
+    fr = free & p.active
+    L = np.where(p.active, p.L, 0.0)
+    lb0 = np.where(fr, 0.0, np.where(p.active, lb_fixed, 0.0))      # lb(t) = lb0 + t * fr
+    a, b = p.w1, p.w2
+    af = np.sum(a * fr, axis=1)
+    r0 = p.K1 - np.sum(a * lb0, axis=1)                              # R(t) = r0 - t af
+    t_cap = np.min(np.where(fr, L, np.inf), axis=1)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_cap = np.minimum(t_cap, np.where(af > 0, r0 / np.where(af > 0, af, 1.0), np.inf))
+    t_cap = np.where(np.isfinite(t_cap), t_cap, 0.0)
+    rows = np.arange(B)[:, None]
+    a_s, fr_s = a[rows, order], fr[rows, order].astype(float)
+    cap0 = (L - lb0)[rows, order]                                    # capacity(t) = cap0 - t fr
+    s0 = np.cumsum(a_s * cap0, axis=1) - a_s * cap0                  # cost of items before j
+    s1 = np.cumsum(a_s * fr_s, axis=1) - a_s * fr_s
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tj = (r0[:, None] - s0) / (af[:, None] - s1)
+    tj = np.where(np.isfinite(tj) & (tj > 0) & (tj < t_cap[:, None]), tj, 0.0)
+    pts = np.sort(np.concatenate([np.zeros((B, 1)), tj, t_cap[:, None]], axis=1), axis=1)
+    m = pts.shape[1]
+    D = np.empty((B, m))
+    for k in range(m):
+        lb = lb0 + pts[:, k:k + 1] * fr
+        _, slack, value = _fill(p, lb, order)
+        need = np.sum(b * (L + lb), axis=1) - p.K2
+        D[:, k] = np.where(slack >= -1e-12 * _wscale(p), value - need, -np.inf)
+    tol = 1e-12 * _wscale(p)
+    ok = D >= -tol[:, None]
+    feasible0 = ok[:, 0] & (t_cap >= 0)
+    last = m - 1 - np.argmax(ok[:, ::-1], axis=1)                    # last feasible point
+    nxt = np.minimum(last + 1, m - 1)
+    r = np.arange(B)
+    t_a, t_b = pts[r, last], pts[r, nxt]
+    d_a, d_b = D[r, last], D[r, nxt]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.where((nxt > last) & np.isfinite(d_b) & (d_a - d_b > 0),
+                        np.clip(d_a / (d_a - d_b), 0.0, 1.0), 0.0)
+    t = t_a + frac * (t_b - t_a)
+    return np.where(feasible0, t, -1.0)
+
+
+def _max_min_two(p: KnapsackProblem) -> FloatArray:
+    """:func:`max_min_length` for two regions (algorithm 7.1), in closed form on 1-D arrays.
+
+    ``D(t) = b_p fill_p + b_q fill_q - (b . L - K2)`` with the greedy fill of knapsack 1
+    (item ``p`` first); it is linear on ``[0, t1]`` and ``[t1, t_cap]`` where
+    ``t1 = (K1 - a_p L_p) / a_q`` is where item ``p`` becomes full.
+    """
+    a1, a2 = p.w1[:, 0], p.w1[:, 1]
+    b1, b2 = p.w2[:, 0], p.w2[:, 1]
+    L1, L2 = p.L[:, 0], p.L[:, 1]
+    first = b1 * a2 >= b2 * a1                                   # ratio b/a of item 1 larger
+    ap, aq = np.where(first, a1, a2), np.where(first, a2, a1)
+    bp, bq = np.where(first, b1, b2), np.where(first, b2, b1)
+    Lp, Lq = np.where(first, L1, L2), np.where(first, L2, L1)
+    asum = a1 + a2
+    c = b1 * L1 + b2 * L2 - p.K2
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t_cap = np.minimum(np.minimum(L1, L2),
+                           np.where(asum > 0, p.K1 / np.where(asum > 0, asum, 1.0), np.inf))
+        t1 = np.where(aq > 0, (p.K1 - ap * Lp) / np.where(aq > 0, aq, 1.0), np.inf)
+
+        def D(t: FloatArray) -> FloatArray:
+            R = p.K1 - t * asum
+            capp, capq = Lp - t, Lq - t
+            fp = np.where(ap > 0, np.minimum(capp, R / np.where(ap > 0, ap, 1.0)), capp)
+            rest = np.maximum(R - ap * capp, 0.0)
+            fq = np.where(aq > 0, np.minimum(capq, rest / np.where(aq > 0, aq, 1.0)), capq)
+            return bp * np.maximum(fp, 0.0) + bq * np.maximum(fq, 0.0) - c
+
+    tol = 1e-12 * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, 1e-300)
+    d0, dc = D(np.zeros_like(t_cap)), D(t_cap)
+    mid = np.where((t1 > 0) & (t1 < t_cap), t1, t_cap)
+    dm = D(mid)
+    # root in [0, mid] if D(mid) < 0, else in [mid, t_cap]
+    left = dm < -tol
+    ta = np.where(left, 0.0, mid)
+    tb = np.where(left, mid, t_cap)
+    da = np.where(left, d0, dm)
+    db = np.where(left, dm, dc)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        frac = np.where(da - db > 0, np.clip(da / (da - db), 0.0, 1.0), 1.0)
+    t = np.where(dc >= -tol, t_cap, ta + frac * (tb - ta))
+    ok = (d0 >= -tol) & (t_cap >= 0) & (p.K1 >= -tol) & np.all(p.active, axis=1)
+    return np.where(ok, t, -1.0)
 
 
 def max_min_length(p: KnapsackProblem) -> FloatArray:
     """Largest achievable length of the smallest region (-1 where none is possible)."""
+    if p.L.shape[1] == 2:
+        return _max_min_two(p)
     order = _order(p)
     free = p.active.copy()
     return _max_level(p, np.zeros_like(p.L), free, order)
