@@ -79,7 +79,27 @@ class GraspPlan:
     mode: str
     margin: float
     gravity: dict[str, Any] | None = None
-    quality: dict[str, float] = field(default_factory=dict)
+    _quality: dict[str, float] | None = field(default=None, repr=False)
+    _context: tuple[Any, ...] | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def quality(self) -> dict[str, float]:
+        """Quality metrics at the representative grasp (computed on first use)."""
+        if self._quality is None:
+            self._quality = self._compute_quality()
+        return self._quality
+
+    def _compute_quality(self) -> dict[str, float]:
+        if self._context is None:
+            return {"min_region": self.min_length}
+        centroid, rho, disturbance = self._context
+        grasp = self.grasp()
+        finger = np.concatenate([np.full(len(ct.points), i) for i, ct in
+                                 enumerate(grasp.contacts)])
+        q = quality_of(grasp.points, grasp.forces, finger, centroid, rho,
+                       disturbance[0], disturbance[1], finger < self.fingers)
+        q["min_region"] = self.min_length
+        return q
 
     @property
     def min_length(self) -> float:
@@ -187,6 +207,7 @@ class _Candidates:
     a: FloatArray                # (B, n, 2)
     b: FloatArray
     center: FloatArray           # (B, n)
+    half: FloatArray             # (B, n) friction half-angles
     perm: np.ndarray             # (B, n) problem order -> finger order
     problems: list[KnapsackProblem]   # one per mode, in problem order
     modes: tuple[str, str]
@@ -219,7 +240,7 @@ def _two_finger(F: _Features, margin: float) -> _Candidates:
                                    F.a[j], F.b[j], F.center[j], F.half[j], margin)
     feats = np.stack([i, j], axis=1)
     c = _Candidates(feats, np.stack([F.a[i], F.a[j]], 1), np.stack([F.b[i], F.b[j]], 1),
-                    np.stack([F.center[i], F.center[j]], 1),
+                    np.stack([F.center[i], F.center[j]], 1), np.stack([F.half[i], F.half[j]], 1),
                     np.tile([0, 1], (len(i), 1)), probs, ("squeeze", "expand"))
     _score(c)
     return c
@@ -265,7 +286,7 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
     perm = _PAIRINGS[np.argmax(good, axis=1)]
     probs, _, valid = four_finger_problems(a, b, center, perm, margin)
-    c = _Candidates(feats, a, b, center, perm, probs, ("+C", "-C"))
+    c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
     _score(c)
     c.score = np.where(valid, c.score, -1.0)
     return c
@@ -288,134 +309,137 @@ def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = 1e-9) -> np.ndarray
     return big.any(axis=1) & (diff[rows, first] > 0)
 
 
-def _split_search(c: _Candidates, rows: np.ndarray, pos: tuple[int, int], margin: float,
-                  iters: int = 80) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
-    """Best split of a shared edge between fingers ``pos`` (golden-section on the split).
+def _problems(c: _Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+              margin: float) -> list[KnapsackProblem]:
+    """Region problems of candidate ``rows`` with the finger segments ``a``-``b``."""
+    if c.feats.shape[1] == 2:
+        probs, _ = two_finger_problems(a[:, 0], b[:, 0], c.center[rows, 0], c.half[rows, 0],
+                                       a[:, 1], b[:, 1], c.center[rows, 1], c.half[rows, 1],
+                                       margin)
+        return probs
+    probs, _, valid = four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)
+    for pr in probs:
+        pr.separable &= valid
+    return probs
 
-    Returns (score, a, b, mode) for the rows with modified segment ends.
-    """
-    p, q = pos
-    a0, b0 = c.a[rows, p], c.b[rows, p]
+
+def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray
+                 ) -> tuple[FloatArray, np.ndarray]:
+    """Leximin lengths (finger order) of the better mode, and that mode."""
+    R = len(perm)
+    inv = np.argsort(perm, axis=1)
+    ridx = np.arange(R)[:, None]
+    lengths = np.full(perm.shape, -1.0)
+    mode = np.zeros(R, dtype=int)
+    for m, pr in enumerate(probs):
+        # both modes are solved: when their smallest regions tie, the next levels decide
+        lev = np.where(pr.separable[:, None], leximin(pr), -1.0)[ridx, inv]
+        better = _lex_greater(lev, lengths)
+        lengths[better] = lev[better]
+        mode[better] = m
+    return lengths, mode
+
+
+def _place(c: _Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+           lengths: FloatArray, mode: np.ndarray, margin: float) -> FloatArray:
+    """Region parameters (R, n, 2), finger order, for the chosen levels and modes."""
+    probs = _problems(c, rows, a, b, margin)
+    perm = c.perm[rows]
+    ridx = np.arange(len(rows))[:, None]
+    lev_p = np.maximum(lengths, 0.0)[ridx, perm]          # problem order
+    inv = np.argsort(perm, axis=1)
+    params = np.zeros(a.shape[:2] + (2,))
+    for m, pr in enumerate(probs):
+        sel = mode == m
+        if sel.any():
+            pp = place_regions(_take(pr, np.flatnonzero(sel)), lev_p[sel])
+            params[sel] = pp[np.arange(sel.sum())[:, None], inv[sel]]
+    return params
+
+
+def _split_search(c: _Candidates, rows: np.ndarray, margin: float, iters: int = 80
+                  ) -> tuple[FloatArray, FloatArray]:
+    """Best split point of the edge shared by fingers 0 and 2 (golden-section search on
+    the concave optimum of the smallest region).  Returns the segments (a, b)."""
+    a0, b0 = c.a[rows, 0], c.b[rows, 0]
     L = np.hypot(*(b0 - a0).T)
     t = (b0 - a0) / np.where(L > 0, L, 1.0)[:, None]
-    best = np.full(len(rows), -1.0)
-    best_a = c.a[rows].copy()
-    best_b = c.b[rows].copy()
-    best_mode = np.zeros(len(rows), int)
+    best = np.full(len(rows), -np.inf)
+    best_a, best_b = c.a[rows].copy(), c.b[rows].copy()
 
-    def evaluate(sig: FloatArray, first_low: bool) -> tuple[FloatArray, Any, Any, np.ndarray]:
-        a = c.a[rows].copy()
-        b = c.b[rows].copy()
+    def segments(sig: FloatArray, first_low: bool) -> tuple[FloatArray, FloatArray]:
+        a, b = c.a[rows].copy(), c.b[rows].copy()
         cut = a0 + sig[:, None] * t
-        lo_f, hi_f = (p, q) if first_low else (q, p)
+        lo_f, hi_f = (0, 2) if first_low else (2, 0)
         b[:, lo_f] = cut
         a[:, hi_f] = cut
-        probs, _, valid = four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)
-        vals = np.stack([np.where(pr.separable & valid, max_min_length(pr), -1.0)
-                         for pr in probs])
-        return vals.max(axis=0), a, b, np.argmax(vals, axis=0)
+        return a, b
+
+    def value(sig: FloatArray, first_low: bool) -> FloatArray:
+        probs = _problems(c, rows, *segments(sig, first_low), margin)
+        return np.max([np.where(pr.separable, max_min_length(pr), -1.0) for pr in probs],
+                      axis=0)
 
     gr = (np.sqrt(5) - 1) / 2
     for first_low in (True, False):
         lo, hi = np.zeros(len(rows)), L.copy()
         x1, x2 = hi - gr * (hi - lo), lo + gr * (hi - lo)
-        f1, f2 = evaluate(x1, first_low)[0], evaluate(x2, first_low)[0]
+        f1, f2 = value(x1, first_low), value(x2, first_low)
         for _ in range(iters):
             left = f1 >= f2
             hi = np.where(left, x2, hi)
             lo = np.where(left, lo, x1)
-            x2n = np.where(left, x1, lo + gr * (hi - lo))
-            x1n = np.where(left, hi - gr * (hi - lo), x2)
-            f2n = np.where(left, f1, np.nan)
-            f1n = np.where(left, np.nan, f2)
-            need1 = np.isnan(f1n)
-            need2 = np.isnan(f2n)
-            if need1.any():
-                f1n = np.where(need1, evaluate(x1n, first_low)[0], f1n)
-            if need2.any():
-                f2n = np.where(need2, evaluate(x2n, first_low)[0], f2n)
-            x1, x2, f1, f2 = x1n, x2n, f1n, f2n
+            nx1 = np.where(left, hi - gr * (hi - lo), x2)
+            nx2 = np.where(left, x1, lo + gr * (hi - lo))
+            fnew = value(np.where(left, nx1, nx2), first_low)
+            f1, f2 = np.where(left, fnew, f2), np.where(left, f1, fnew)
+            x1, x2 = nx1, nx2
         sig = 0.5 * (lo + hi)
-        val, a, b, mode = evaluate(sig, first_low)
+        val = value(sig, first_low)
         better = val > best
+        a, b = segments(sig, first_low)
         best = np.where(better, val, best)
         best_a[better], best_b[better] = a[better], b[better]
-        best_mode = np.where(better, mode, best_mode)
-    return best, best_a, best_b, best_mode
+    return best_a, best_b
 
 
-def _solve(c: _Candidates, rows: np.ndarray, margin: float
-           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, np.ndarray]:
-    """Leximin regions for candidate ``rows``: (params (R, n, 2) in finger order, lengths,
-    segment starts a (R, n, 2), segment ends b, mode)."""
-    R = len(rows)
-    n = c.feats.shape[1]
-    params = np.zeros((R, n, 2))
-    lengths = np.full((R, n), -1.0)
+def _levels(c: _Candidates, rows: np.ndarray, margin: float
+            ) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """Leximin lengths (R, n) in finger order for candidate ``rows``, with the segments
+    the fingers range over (split where two fingers share an edge) and the mode."""
     a, b = c.a[rows].copy(), c.b[rows].copy()
-    mode = c.best_mode[rows].copy()
-    inv = np.argsort(c.perm[rows], axis=1)
-    ridx = np.arange(R)[:, None]
-    for m in range(2):
-        # both modes are solved: when their smallest regions tie, the next levels decide
-        pr = _take(c.problems[m], rows)
-        lev = np.where(pr.separable[:, None], leximin(pr), -1.0)
-        pp = place_regions(pr, np.maximum(lev, 0.0))
-        lev_f, pp_f = lev[ridx, inv], pp[ridx, inv]
-        better = _lex_greater(lev_f, lengths)
-        params[better] = pp_f[better]
-        lengths[better] = lev_f[better]
-        mode[better] = m
-    # two fingers on one feature must not overlap
-    if n == 4:
-        same = c.feats[rows][:, 0] == c.feats[rows][:, 2]
-        same &= c.feats[rows][:, 0] >= 0
-        lo0, hi0 = params[:, 0, 0], params[:, 0, 1]
-        lo2, hi2 = params[:, 2, 0], params[:, 2, 1]
-        overlap = same & (np.minimum(hi0, hi2) > np.maximum(lo0, lo2))
-        if overlap.any():
-            sub = rows[overlap]
-            # positions in problem order of fingers 0 and 2
-            pos_map = c.perm[sub]
-            pp0 = np.argmax(pos_map == 0, axis=1)
-            pp2 = np.argmax(pos_map == 2, axis=1)
-            for key in set(zip(pp0.tolist(), pp2.tolist(), strict=True)):
-                k = (pp0 == key[0]) & (pp2 == key[1])
-                subrows = sub[k]
-                val, sa, sb, smode = _split_search(c, subrows, key, margin)
-                probs, _, _ = four_finger_problems(sa, sb, c.center[subrows], c.perm[subrows],
-                                                   margin)
-                idx_over = np.flatnonzero(overlap)[k]
-                for m in range(2):
-                    s2 = smode == m
-                    if not s2.any():
-                        continue
-                    pr = _take(probs[m], np.flatnonzero(s2))
-                    lev = leximin(pr)
-                    pp = place_regions(pr, lev)
-                    iv = np.argsort(c.perm[subrows][s2], axis=1)
-                    ridx = np.arange(s2.sum())[:, None]
-                    tgt = idx_over[s2]
-                    params[tgt] = pp[ridx, iv]
-                    lengths[tgt] = lev[ridx, iv]
-                    a[tgt] = sa[s2][ridx, iv]
-                    b[tgt] = sb[s2][ridx, iv]
-                    mode[tgt] = m
-                    lengths[tgt] = np.where(val[s2][:, None] < 0, -1.0, lengths[tgt])
-    return params, lengths, a, b, mode
+    lengths, mode = _best_levels([_take(p, rows) for p in c.problems], c.perm[rows])
+    if c.feats.shape[1] == 4:
+        same = (c.feats[rows, 0] == c.feats[rows, 2]) & (c.feats[rows, 0] >= 0)
+        same &= lengths.min(axis=1) > 0
+        if same.any():
+            sub = np.flatnonzero(same)
+            params = _place(c, rows[sub], a[sub], b[sub], lengths[sub], mode[sub], margin)
+            over = np.minimum(params[:, 0, 1], params[:, 2, 1]) > \
+                np.maximum(params[:, 0, 0], params[:, 2, 0])
+            fix = sub[over]
+            if fix.size:
+                sa, sb = _split_search(c, rows[fix], margin)
+                lv, md = _best_levels(_problems(c, rows[fix], sa, sb, margin),
+                                      c.perm[rows[fix]])
+                a[fix], b[fix], lengths[fix], mode[fix] = sa, sb, lv, md
+    return lengths, a, b, mode
 
 
 def _build_plans(polygon: Polygon, F: _Features, c: _Candidates, rows: np.ndarray,
+                 lengths: FloatArray, a: FloatArray, b: FloatArray, mode: np.ndarray,
                  mu: float, margin_deg: float, contact_type: str,
                  gravity: FloatArray | None, disturbance: tuple[float, float]
                  ) -> list[GraspPlan]:
-    margin = np.radians(margin_deg)
-    params, lengths, a, b, mode = _solve(c, rows, margin)
-    plans = []
+    """GraspPlan objects for candidate ``rows`` with their leximin levels."""
+    keep = np.all((lengths > 0) | (c.feats[rows] < 0), axis=1)
+    rows, lengths, a, b, mode = rows[keep], lengths[keep], a[keep], b[keep], mode[keep]
+    if rows.size == 0:
+        return []
+    params = _place(c, rows, a, b, lengths, mode, np.radians(margin_deg))
     rho = characteristic_length(polygon.vertices, polygon.centroid)
+    plans = []
     for r in range(len(rows)):
-        if np.any(lengths[r][c.feats[rows[r]] >= 0] <= 0):
-            continue
         real = c.feats[rows[r]] >= 0
         fi = c.feats[rows[r]][real]
         seg_a, seg_b = a[r][real], b[r][real]
@@ -423,23 +447,13 @@ def _build_plans(polygon: Polygon, F: _Features, c: _Candidates, rows: np.ndarra
         tdir = (seg_b - seg_a) / np.where(L > 0, L, 1.0)[:, None]
         ends = seg_a[:, None, :] + params[r][real][:, :, None] * tdir[:, None, :]
         edges = tuple(int(F.edge[f]) for f in fi)
-        normals = polygon.normals[list(edges)]
-        contacts = ends.mean(axis=1)
         g = None
         if gravity is not None:
             g = {"center": polygon.centroid.copy(), "direction": gravity.copy()}
-        plan_ = GraspPlan(edges, ends, lengths[r][real], contacts, normals, contact_type,
-                          mu, c.modes[int(mode[r])], margin_deg, g)
-        # quality at the representative grasp
-        grasp = plan_.grasp()
-        finger = np.concatenate([np.full(len(ct.points), i) for i, ct in
-                                 enumerate(grasp.contacts)])
-        is_real = finger < len(edges)
-        q = quality_of(grasp.points, grasp.forces, finger, polygon.centroid, rho,
-                       disturbance[0], disturbance[1], is_real)
-        q["min_region"] = plan_.min_length
-        plan_.quality = q
-        plans.append(plan_)
+        plans.append(GraspPlan(edges, ends, lengths[r][real], ends.mean(axis=1),
+                               polygon.normals[list(edges)], contact_type, mu,
+                               c.modes[int(mode[r])], margin_deg, g,
+                               _context=(polygon.centroid, rho, disturbance)))
     return plans
 
 
@@ -524,18 +538,43 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     if good.size == 0:
         return []
     order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
-    if rank_by == "min_region":
-        # the leximin solve can only lower a score when two fingers share an edge
-        take = order if top is None else order[: max(4 * top, top + 16)]
-        plans = _build_plans(polygon, F, c, take, mu_v if fingers == 2 else 0.0, margin_v,
-                             ctype, g, dist)
-        plans.sort(key=lambda p: (-round(p.min_length, 12), p.edges))
+    mu_plan = mu_v if fingers == 2 else 0.0
+    if rank_by == "min_region" and top is not None:
+        # the stage-1 score is the smallest region unless two fingers share an edge, when
+        # it is an upper bound: take candidates in chunks until no later one can compete
+        parts = []
+        start = 0
+        chunk = max(2 * top, 16)
+        while start < order.size:
+            rows = order[start:start + chunk]
+            parts.append((rows, *_levels(c, rows, margin_r)))
+            start += chunk
+            mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
+            if start >= order.size or (mins_so_far.size >= top and
+                                       mins_so_far[top - 1] >= c.score[order[start]]):
+                break
+        rows = np.concatenate([x[0] for x in parts])
+        lv = np.concatenate([x[1] for x in parts])
+        a_ = np.concatenate([x[2] for x in parts])
+        b_ = np.concatenate([x[3] for x in parts])
+        md = np.concatenate([x[4] for x in parts])
+        real = c.feats[rows] >= 0
+        mins = np.where(np.all((lv > 0) | ~real, axis=1),
+                        np.min(np.where(real, lv, np.inf), axis=1), -1.0)
+        pick = np.lexsort((np.arange(rows.size), -np.round(mins / polygon.size, 12)))[:top]
+        pick = pick[mins[pick] > 0]
+        plans = _build_plans(polygon, F, c, rows[pick], lv[pick], a_[pick], b_[pick], md[pick],
+                             mu_plan, margin_v, ctype, g, dist)
     else:
-        plans = _build_plans(polygon, F, c, order, mu_v if fingers == 2 else 0.0, margin_v,
-                             ctype, g, dist)
-        key = "resistance" if rank_by == "resistance" else "epsilon_l1"
-        plans.sort(key=lambda p: (-np.nan_to_num(p.quality[key], nan=-1.0),
-                                  -p.min_length, p.edges))
+        lv, a_, b_, md = _levels(c, order, margin_r)
+        plans = _build_plans(polygon, F, c, order, lv, a_, b_, md, mu_plan, margin_v, ctype,
+                             g, dist)
+        if rank_by == "min_region":
+            plans.sort(key=lambda p: -round(p.min_length / polygon.size, 12))
+        else:
+            key = "resistance" if rank_by == "resistance" else "epsilon_l1"
+            plans.sort(key=lambda p: (-np.nan_to_num(p.quality[key], nan=-1.0),
+                                      -round(p.min_length / polygon.size, 12)))
     return plans if top is None else plans[:top]
 
 
@@ -601,9 +640,14 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     rows = np.flatnonzero(match & (c.score > 0))
     if rows.size == 0:
         return None
-    best = rows[np.argmax(c.score[rows])]
-    plans = _build_plans(polygon, F, c, np.array([best]), mu_v if n == 2 else 0.0, margin_v,
-                         ctype, g, (10.0, 15.0))
+    lv, a_, b_, md = _levels(c, rows, margin_r)
+    best = 0
+    for k in range(1, len(rows)):
+        if _lex_greater(lv[k:k + 1], lv[best:best + 1])[0]:
+            best = k
+    sel = np.array([best])
+    plans = _build_plans(polygon, F, c, rows[sel], lv[sel], a_[sel], b_[sel], md[sel],
+                         mu_v if n == 2 else 0.0, margin_v, ctype, g, (10.0, 15.0))
     if not plans:
         return None
     p = plans[0]
@@ -620,5 +664,5 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
         o = np.array(order)
         p = GraspPlan(tuple(p.edges[k] for k in o), p.regions[o], p.lengths[o],
                       p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
-                      p.gravity, p.quality)
+                      p.gravity, _context=p._context)
     return p
