@@ -43,6 +43,8 @@ def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: Floa
     vel = np.stack([t1, t2], axis=1)
     side = np.array([0, 1])
     probs = [build_problem(side, a1, a2, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
+    for pr in probs:
+        pr.separable &= hm > 0           # a sector narrower than the margin has no regions
     return probs, hm
 
 
@@ -102,4 +104,6 @@ def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
     k1, k2 = _dir(cen - hm), _dir(cen + hm)
     side = np.array([0, 0, 1, 1])
     probs = [build_problem(side, o12, o34, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
+    for pr in probs:
+        pr.separable &= valid & (hm > 0)  # null pairing, or a sector narrower than the margin
     return probs, hm, valid

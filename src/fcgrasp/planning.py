@@ -285,10 +285,9 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     has = good.any(axis=1)
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
     perm = _PAIRINGS[np.argmax(good, axis=1)]
-    probs, _, valid = four_finger_problems(a, b, center, perm, margin)
+    probs, _, _ = four_finger_problems(a, b, center, perm, margin)
     c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
     _score(c)
-    c.score = np.where(valid, c.score, -1.0)
     return c
 
 
@@ -313,14 +312,10 @@ def _problems(c: _Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
               margin: float) -> list[KnapsackProblem]:
     """Region problems of candidate ``rows`` with the finger segments ``a``-``b``."""
     if c.feats.shape[1] == 2:
-        probs, _ = two_finger_problems(a[:, 0], b[:, 0], c.center[rows, 0], c.half[rows, 0],
-                                       a[:, 1], b[:, 1], c.center[rows, 1], c.half[rows, 1],
-                                       margin)
-        return probs
-    probs, _, valid = four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)
-    for pr in probs:
-        pr.separable &= valid
-    return probs
+        return two_finger_problems(a[:, 0], b[:, 0], c.center[rows, 0], c.half[rows, 0],
+                                   a[:, 1], b[:, 1], c.center[rows, 1], c.half[rows, 1],
+                                   margin)[0]
+    return four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)[0]
 
 
 def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray
@@ -510,8 +505,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     --------
     >>> part = Polygon([[0, 0], [4, 0], [4, 1], [0, 1]])
     >>> best = plan(part, fingers=2, mu=0.3, top=1)[0]
-    >>> best.edges, round(best.min_length, 4)
-    ((0, 2), 0.2824)
+    >>> best.edges, round(best.min_length, 4)      # the short sides face each other
+    ((1, 3), 1.0)
     """
     mu_v, margin_v = _check_common(polygon, mu, margin, hand)
     if isinstance(fingers, bool) or fingers not in (2, 3, 4):
