@@ -22,7 +22,7 @@ VENV = ROOT / ".venv"
 BIN = VENV / ("Scripts" if os.name == "nt" else "bin")
 PY = BIN / "python"
 STAMP = VENV / ".fcgrasp-installed"
-EXTRAS = "test,plot"
+EXTRAS = "test,all"
 
 
 def _fingerprint() -> str:

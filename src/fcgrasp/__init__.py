@@ -3,7 +3,9 @@
 Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
 :mod:`~fcgrasp.convexes` (2.3), :mod:`~fcgrasp.contacts` (3.1),
 :mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6),
-:mod:`~fcgrasp.polygon` (the part), :mod:`~fcgrasp.graspsets` (6).
+:mod:`~fcgrasp.polygon` (the part), :mod:`~fcgrasp.graspsets` (6),
+:mod:`~fcgrasp.regions` and :mod:`~fcgrasp.planning` (7, 8), :mod:`~fcgrasp.quality`
+(8.1), :mod:`~fcgrasp.hand` (8.2), :mod:`~fcgrasp.parts` (reading part files).
 """
 
 from __future__ import annotations
@@ -37,6 +39,9 @@ from .graspsets import (
     grasp_sets,
     three_edge_grasp_sets,
 )
+from .hand import Hand
+from .parts import read_part
+from .planning import GraspPlan, independent_regions, plan
 from .polygon import Polygon
 from .screws import (
     CONTRARY,
@@ -78,7 +83,9 @@ __all__ = [
     "FrictionGraspSet",
     "FrictionlessGraspSet",
     "Grasp",
+    "GraspPlan",
     "Gravity",
+    "Hand",
     "Polygon",
     "Vertex",
     "SoftFinger",
@@ -88,6 +95,9 @@ __all__ = [
     "friction_pair_closure",
     "friction_pair_modes",
     "grasp_set",
+    "independent_regions",
+    "plan",
+    "read_part",
     "grasp_sets",
     "three_edge_grasp_sets",
     "is_force_closure",

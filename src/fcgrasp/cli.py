@@ -1,8 +1,9 @@
 """The ``fcgrasp`` command (a leaf: nothing in the core imports it).
 
-``fcgrasp demo [--out DIR]`` runs the main job on built-in examples and writes a
-JSON result and a figure into ``DIR``.  Errors print one line on stderr and exit
-with code 2; output files are written atomically.
+Sub-commands: ``plan`` (ranked grasp plans of a part file), ``check`` (the verdict for a
+given grasp) and ``demo`` (the main job on built-in parts).  Every error prints one line
+on stderr and exits with code 2 (1 for an internal error), never a traceback; output
+files are written atomically (temporary file, then rename), so a failed run leaves none.
 """
 
 from __future__ import annotations
@@ -11,140 +12,401 @@ import argparse
 import json
 import sys
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 import numpy as np
 
 from . import __version__
 from ._atomic import atomic_write_text
-from .contacts import (
-    FrictionEdge,
-    FrictionlessEdge,
-    FrictionlessPoint,
-    FrictionPoint,
-    Gravity,
-    SoftFinger,
-)
+from .contacts import FrictionlessPoint, FrictionPoint, Gravity, SoftFinger
 from .grasp import Grasp
+from .hand import Hand
+from .parts import DEMO_PARTS, demo_part, read_part
+from .planning import RANKINGS, plan
+from .regions import DEFAULT_MARGIN_DEG
+from .report import dumps, part_dict, plan_report
 
 EXIT_USAGE = 2
+EXIT_INTERNAL = 1
+UNITS = {"mm": 10.0, "cm": 1.0, "m": 0.01}      # 1 cm in each unit
 
 
 class CliError(Exception):
     """An error reported as one line on stderr with exit code 2."""
 
 
-def _round(x: Any) -> Any:
-    return np.round(np.asarray(x, dtype=float), 9).tolist()
+class _Parser(argparse.ArgumentParser):
+    def error(self, message: str) -> NoReturn:
+        print(f"fcgrasp: error: {message} (see fcgrasp --help)", file=sys.stderr)
+        raise SystemExit(EXIT_USAGE)
 
 
-def _cone_json(cone: Any) -> dict[str, Any]:
-    m = cone.minimal()
-    return {"rays": _round(m.rays + 0.0), "lines": _round(m.lines + 0.0)}
+# ----------------------------------------------------------------------------- helpers
 
 
-def demo_contacts() -> dict[str, Any]:
-    """The primitive contacts of figure 4 with their wrench and twist convexes."""
-    corner = np.sqrt(0.5)
-    return {
-        "frictionless point (4.a)": FrictionlessPoint([0, 0], [0, 1]),
-        "point with friction (4.b)": FrictionPoint([0, 0], [0, 1], 0.3),
-        "frictionless edge (4.c)": FrictionlessEdge([-1, 0], [1, 0], [0, 1]),
-        "edge with friction (4.d)": FrictionEdge([-1, 0], [1, 0], [0, 1], 0.3),
-        "soft finger around a corner (4.e)": SoftFinger.corner(
-            [-1, 0], [0, 0], [corner, -corner], [0, 1], [corner, corner], 0.3),
-        "gravity (3.1)": Gravity([0, 0.5]),
-    }
+def _floats(text: str, n: int, name: str) -> tuple[float, ...]:
+    parts = [t for t in text.replace(" ", "").split(",") if t]
+    try:
+        vals = tuple(float(t) for t in parts)
+    except ValueError:
+        raise CliError(f"{name} must be {n} comma-separated numbers, got {text!r}") from None
+    if len(vals) != n or not all(np.isfinite(vals)):
+        raise CliError(f"{name} must be {n} comma-separated finite numbers, got {text!r}")
+    return vals
 
 
-def demo_grasps() -> dict[str, tuple[Grasp, list[list[float]]]]:
-    """A few grasps on a unit square with their verdicts."""
-    square = [[0, 0], [1, 0], [1, 1], [0, 1]]
-    return {
-        "two fingers with friction": (Grasp([FrictionPoint([0, 0.5], [-1, 0], 0.3),
-                                             FrictionPoint([1, 0.6], [1, 0], 0.3)]), square),
-        "two frictionless fingers": (Grasp([FrictionlessPoint([0, 0.5], [-1, 0]),
-                                            FrictionlessPoint([1, 0.5], [1, 0])]), square),
-        "four frictionless fingers": (Grasp([FrictionlessPoint([0, 0.3], [-1, 0]),
-                                             FrictionlessPoint([0.4, 0], [0, -1]),
-                                             FrictionlessPoint([1, 0.7], [1, 0]),
-                                             FrictionlessPoint([0.6, 1], [0, 1])]), square),
-        "four fingers, lines concurrent": (Grasp([FrictionlessPoint([0, 0.5], [-1, 0]),
-                                                  FrictionlessPoint([0.5, 0], [0, -1]),
-                                                  FrictionlessPoint([1, 0.5], [1, 0]),
-                                                  FrictionlessPoint([0.5, 1], [0, 1])]), square),
-    }
+def _progress(enabled: bool) -> Any:
+    if not enabled:
+        return None
+
+    def show(done: int, total: int) -> None:
+        width = 30
+        frac = done / max(total, 1)
+        bar = "#" * int(width * frac)
+        print(f"\r[{bar:<{width}}] {100 * frac:5.1f}% candidate edge sets", end="",
+              file=sys.stderr, flush=True)
+        if done >= total:
+            print("\r" + " " * (width + 32) + "\r", end="", file=sys.stderr, flush=True)
+
+    return show
 
 
-def run_demo(out: Path, quiet: bool = False) -> dict[str, Any]:
-    """Compute the demo, write ``demo.json`` and ``demo.png`` into ``out``."""
-    result: dict[str, Any] = {"fcgrasp": __version__, "format": 1, "contacts": {}, "grasps": {}}
-    for name, c in demo_contacts().items():
-        result["contacts"][name] = {
-            "wrenches": _round(c.wrenches),
-            "wrench_cone": _cone_json(c.wrench_cone()),
-            "total_freedom": _cone_json(c.twist_cone()),
-        }
-    for name, (g, _) in demo_grasps().items():
-        rep = g.explain()
-        result["grasps"][name] = {
-            "force_closure": rep.force_closure,
-            "failed": rep.failed,
-            "escape_twist": None if rep.escape_twist is None else _round(rep.escape_twist),
-            "escape": rep.escape_description,
-        }
+def _write_outputs(polygon: Any, plans: list[Any], report: dict[str, Any], args: Any,
+                   title: str) -> None:
+    if args.json:
+        atomic_write_text(args.json, dumps(report))
+    if args.plot:
+        ext = Path(args.plot).suffix.lower()
+        if ext not in (".png", ".svg", ".pdf"):
+            raise CliError(f"--plot must end in .png, .svg or .pdf, got {args.plot!r}")
+        from .plotting import plan_figure
+
+        plan_figure(polygon, plans, args.plot, units=args.units, title=title)
+
+
+def _print_table(plans: list[Any], units: str, out: Any) -> None:
+    if not plans:
+        return
+    print(f"{'rank':>4}  {'edges':<16} {'min region':>11}  {'regions (' + units + ')':<28} "
+          f"{'resistance':>10} {'eps L1':>8}", file=out)
+    for k, p in enumerate(plans):
+        q = p.quality
+        regs = ", ".join(f"{x:.3g}" for x in p.lengths)
+        print(f"{k + 1:>4}  {str(list(p.edges)):<16} {p.min_length:>11.4g}  {regs:<28} "
+              f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
+
+
+def _no_grasp_reason(polygon: Any, fingers: int, mu: float, margin: float,
+                     hand: Hand | None) -> str:
+    if fingers == 2 and mu == 0:
+        return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
+    base = {2: f"no pair of edges admits two fingers with mu = {mu:g}",
+            3: "no three edges hold the part against gravity with frictionless fingers",
+            4: "no four edges (or three, two fingers on one) admit frictionless fingers"}[fingers]
+    extra = f" with a margin of {margin:g} degrees"
+    if hand is not None:
+        extra += " within the hand's reach"
+    return base + extra
+
+
+# ----------------------------------------------------------------------------- commands
+
+
+def cmd_plan(args: Any) -> int:
+    polygon = read_part(args.part, args.id, args.flatten)
+    if args.mu < 0 or not np.isfinite(args.mu):
+        raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
+    if not 0 <= args.margin < 90:
+        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
+    if args.top < 1:
+        raise CliError(f"--top must be at least 1, got {args.top}")
+    hand = None
+    if args.workspace is not None or args.finger_radius:
+        ws = _floats(args.workspace, 3, "--workspace") if args.workspace else None
+        if ws is not None and ws[2] <= 0:
+            raise CliError(f"--workspace radius must be > 0, got {ws[2]:g}")
+        if args.finger_radius < 0:
+            raise CliError(f"--finger-radius must be >= 0, got {args.finger_radius:g}")
+        hand = Hand(workspace=ws, finger_radius=args.finger_radius)
+        reach = hand.feasible_intervals(polygon)
+        if not any(reach):
+            where = f"workspace {ws}" if ws else f"finger radius {args.finger_radius:g}"
+            raise CliError(f"the hand cannot touch the part: no edge is reachable with the "
+                           f"{where}")
+    show = _progress(sys.stderr.isatty() and not args.quiet)
+    plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
+                 hand=hand, margin=args.margin, disturbance=(UNITS[args.units], 15.0),
+                 progress=show)
+    params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
+              "margin_deg": args.margin,
+              "workspace": None if hand is None or hand.workspace is None else
+              list(hand.workspace),
+              "finger_radius": args.finger_radius,
+              "disturbance": {"translation": UNITS[args.units], "rotation_deg": 15.0}}
+    reason = None if plans else _no_grasp_reason(polygon, args.fingers, args.mu, args.margin,
+                                                 hand)
+    report = plan_report(polygon, plans, params, args.units, reason)
+    _write_outputs(polygon, plans, report, args, f"{args.part}: {args.fingers} fingers")
+    if not args.quiet:
+        if plans:
+            _print_table(plans, args.units, sys.stdout)
+        else:
+            print(f"no grasp: {reason}")
+    return 0
+
+
+def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, Any]]]:
+    try:
+        data = json.loads(Path(path).read_text(encoding="utf-8"))
+    except FileNotFoundError:
+        raise CliError(f"{path}: no such file") from None
+    except json.JSONDecodeError as exc:
+        raise CliError(f"{path}: not valid JSON ({exc.msg} at line {exc.lineno})") from None
+    except (OSError, UnicodeDecodeError) as exc:
+        raise CliError(f"{path}: cannot read ({exc})") from None
+    items = data.get("contacts") if isinstance(data, dict) else data
+    if not isinstance(items, list) or not items:
+        raise CliError(f"{path}: expected {{'contacts': [...]}} with at least one contact")
+    contacts, described = [], []
+    for k, c in enumerate(items):
+        where = f"{path} contacts[{k}]"
+        if not isinstance(c, dict):
+            raise CliError(f"{where}: expected an object, got {type(c).__name__}")
+        kind = c.get("type", "friction" if "mu" in c else "frictionless")
+        mu = c.get("mu", 0.0)
+        if not isinstance(mu, (int, float)) or isinstance(mu, bool) or mu < 0:
+            raise CliError(f"{where}: mu must be a number >= 0, got {mu!r}")
+        if kind == "soft":
+            if "vertex" not in c:
+                raise CliError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
+            k_v = c["vertex"]
+            if not isinstance(k_v, int) or not 0 <= k_v < polygon.n_edges:
+                raise CliError(f"{where}: vertex must be a vertex index, got {k_v!r}")
+            ring = np.flatnonzero((polygon.rings == polygon.rings[k_v]) & polygon.usable)
+            prev = ring[(np.searchsorted(ring, k_v) - 1) % len(ring)]
+            if not polygon.convex_vertices()[prev]:
+                raise CliError(f"{where}: vertex {k_v} is not convex; a soft finger needs a "
+                               f"convex corner")
+            v = polygon.starts[k_v]
+            a = v - 0.05 * polygon.lengths[prev] * polygon.tangents[prev]
+            b = v + 0.05 * polygon.lengths[k_v] * polygon.tangents[k_v]
+            contacts.append(SoftFinger.corner(a, v, b, polygon.normals[prev],
+                                              polygon.normals[k_v], mu))
+            described.append({"type": "soft", "vertex": k_v, "point": v, "mu": mu})
+            continue
+        if kind not in ("friction", "frictionless"):
+            raise CliError(f"{where}: type must be friction, frictionless or soft, got {kind!r}")
+        try:
+            pt = np.asarray(c["point"], dtype=float)
+        except KeyError:
+            raise CliError(f"{where}: missing 'point'") from None
+        except (TypeError, ValueError):
+            raise CliError(f"{where}: point must be [x, y] numbers, got {c.get('point')!r}") \
+                from None
+        if pt.shape != (2,) or not np.all(np.isfinite(pt)):
+            raise CliError(f"{where}: point must be [x, y] finite numbers, got {c.get('point')!r}")
+        if "normal" in c:
+            n = np.asarray(c["normal"], dtype=float)
+            edge = c.get("edge")
+        else:
+            if "edge" in c:
+                e = c["edge"]
+                if not isinstance(e, int) or not 0 <= e < polygon.n_edges or not polygon.usable[e]:
+                    raise CliError(f"{where}: edge must be an edge index, got {e!r}")
+            else:
+                d = _dist_to_edges(polygon, pt)
+                e = int(np.argmin(d))
+            d_e = float(_dist_to_edges(polygon, pt)[e])
+            if d_e > 1e-6 * polygon.size:
+                raise CliError(f"{where}: point {pt.tolist()} is not on edge {e} "
+                               f"(distance {d_e:.3g})")
+            n = polygon.normals[e]
+            edge = e
+        if kind == "friction":
+            contacts.append(FrictionPoint(pt, n, mu))
+        else:
+            contacts.append(FrictionlessPoint(pt, n))
+        described.append({"type": kind, "point": pt, "normal": n, "edge": edge, "mu": mu})
+    if isinstance(data, dict) and data.get("gravity"):
+        g = data["gravity"]
+        direction = g.get("direction", [0, -1]) if isinstance(g, dict) else [0, -1]
+        contacts.append(Gravity(polygon.centroid, direction))
+        described.append({"type": "gravity", "point": polygon.centroid, "direction": direction})
+    return contacts, described
+
+
+def _dist_to_edges(polygon: Any, pt: np.ndarray) -> np.ndarray:
+    d = polygon.ends - polygon.starts
+    ln2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
+    t = np.clip(np.sum((pt - polygon.starts) * d, axis=1) / ln2, 0, 1)
+    proj = polygon.starts + t[:, None] * d
+    out = np.hypot(*(proj - pt).T)
+    return np.where(polygon.usable, out, np.inf)
+
+
+def cmd_check(args: Any) -> int:
+    polygon = read_part(args.part, args.id, args.flatten)
+    contacts, described = _load_contacts(args.contacts, polygon)
+    grasp = Grasp(contacts)
+    rep = grasp.explain()
+    free = grasp.total_freedom()
+    result = {"fcgrasp": __version__, "format_version": 1, "units": args.units,
+              "part": part_dict(polygon), "contacts": described,
+              "force_closure": rep.force_closure, "failed": rep.failed,
+              "escape_twist": rep.escape_twist, "escape": rep.escape_description,
+              "total_freedom": {"rays": free.rays, "lines": free.lines}}
+    if args.json:
+        atomic_write_text(args.json, dumps(result))
+    if not args.quiet:
+        print(str(rep))
+        if not rep.force_closure:
+            print(f"total freedom: {len(free.lines)} free motion(s), {len(free.rays)} unisense "
+                  f"motion(s) (twists (omega, vx, vy))")
+            for line in free.lines:
+                print(f"  free      {np.round(line, 6).tolist()}")
+            for ray in free.rays:
+                print(f"  unisense  {np.round(ray, 6).tolist()}")
+        else:
+            print("total freedom: none (the twist convexe is null)")
+    return 0
+
+
+def cmd_demo(args: Any) -> int:
+    out = Path(args.out)
+    if out.exists() and not out.is_dir():
+        raise CliError(f"--out {out} exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
-    atomic_write_text(out / "demo.json", json.dumps(result, indent=2, sort_keys=True) + "\n")
-    _demo_figure(out / "demo.png")
-    if not quiet:
-        for name, g in result["grasps"].items():
-            verdict = "force closure" if g["force_closure"] else f"not: {g['failed']}"
-            print(f"{name:34s} {verdict:28s} escape: {g['escape']}")
-        print(f"wrote {out / 'demo.json'} and {out / 'demo.png'}")
-    return result
+    from .plotting import plan_figure
+
+    jobs = [("blob", 2, 0.3, "figure 1.a: two fingers with friction"),
+            ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
+            ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
+            ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
+            ("washer", 2, 0.2, "two fingers, squeezing or expanding in the hole")]
+    summary = {"fcgrasp": __version__, "format_version": 1, "units": "mm", "plans": []}
+    for name, fingers, mu, title in jobs:
+        polygon = demo_part(name)
+        plans = plan(polygon, fingers=fingers, mu=mu, top=6, margin=DEFAULT_MARGIN_DEG)
+        params = {"fingers": fingers, "mu": mu, "top": 6, "rank_by": "min_region",
+                  "margin_deg": DEFAULT_MARGIN_DEG, "workspace": None, "finger_radius": 0.0,
+                  "disturbance": {"translation": 10.0, "rotation_deg": 15.0}}
+        reason = None if plans else _no_grasp_reason(polygon, fingers, mu, DEFAULT_MARGIN_DEG,
+                                                     None)
+        stem = f"{name}-{fingers}f"
+        atomic_write_text(out / f"{stem}.json",
+                          dumps(plan_report(polygon, plans, params, "mm", reason)))
+        plan_figure(polygon, plans, str(out / f"{stem}.png"), units="mm",
+                    title=f"demo:{name} - {title}")
+        best = plans[0] if plans else None
+        summary["plans"].append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
+                                 "json": f"{stem}.json", "figure": f"{stem}.png",
+                                 "best_edges": None if best is None else list(best.edges),
+                                 "best_min_region": None if best is None else best.min_length})
+        if not args.quiet:
+            if best is None:
+                print(f"demo:{name:9s} {fingers} fingers  no grasp: {reason}")
+            else:
+                print(f"demo:{name:9s} {fingers} fingers  best edges {list(best.edges)!s:16s} "
+                      f"min region {best.min_length:7.3f} mm  -> {out / stem}.png")
+    atomic_write_text(out / "demo.json", dumps(summary))
+    if not args.quiet:
+        print(f"wrote {len(jobs)} plans (JSON and PNG) and {out / 'demo.json'}")
+    return 0
 
 
-def _demo_figure(path: Path) -> None:
-    from .plotting import _pyplot, draw_grasp, save_figure
-
-    plt = _pyplot()
-    grasps = demo_grasps()
-    fig, axes = plt.subplots(1, len(grasps), figsize=(3 * len(grasps), 3))
-    for ax, (name, (g, outline)) in zip(np.atleast_1d(axes), grasps.items(), strict=True):
-        rep = g.explain()
-        draw_grasp(ax, g, outline, title=f"{name}\n{'FC' if rep.force_closure else rep.failed}")
-    save_figure(fig, str(path))
-    plt.close(fig)
+# ----------------------------------------------------------------------------- parser
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
-        prog="fcgrasp",
-        description="Force-closure grasps of planar objects (Nguyen's synthesis).",
-        epilog="example: fcgrasp demo --out demo-output")
+    parser = _Parser(prog="fcgrasp",
+                     description="Force-closure grasps of planar parts (Nguyen's synthesis): "
+                                 "where to put the fingers, with independent regions of "
+                                 "contact.",
+                     epilog="examples:\n  fcgrasp demo --out demo-output\n"
+                            "  fcgrasp plan part.svg --fingers 2 --mu 0.3 --json plan.json "
+                            "--plot plan.png\n  fcgrasp check part.json --contacts grasp.json",
+                     formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"fcgrasp {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
-    demo = sub.add_parser("demo", help="run the built-in examples, write JSON and a figure",
-                          description="Run the built-in examples and write demo.json and "
-                                      "demo.png into a folder.",
-                          epilog="example: fcgrasp demo --out demo-output")
-    demo.add_argument("--out", default="demo-output", help="output folder (default: %(default)s)")
-    demo.add_argument("--quiet", action="store_true", help="print nothing on success")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+
+    def part_args(p: argparse.ArgumentParser) -> None:
+        p.add_argument("part", metavar="PART",
+                       help="part file (.json, .geojson, .wkt, .svg, .dxf, .png) or demo:NAME "
+                            f"({', '.join(DEMO_PARTS)})")
+        p.add_argument("--id", help="SVG element id, or DXF entity handle or layer")
+        p.add_argument("--flatten", type=float, default=None, metavar="TOL",
+                       help="curve flattening tolerance (SVG, DXF) or pixels (images)")
+        p.add_argument("--units", choices=sorted(UNITS), default="mm",
+                       help="units of the coordinates (default mm)")
+        p.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
+        p.add_argument("--quiet", action="store_true", help="print nothing on success")
+
+    p = sub.add_parser("plan", help="ranked grasp plans of a part",
+                       description="Plan force-closure grasps: the best edge sets with their "
+                                   "independent regions of contact.",
+                       epilog="example:\n  fcgrasp plan demo:blob --fingers 2 --mu 0.3 --top 5 "
+                              "--json plan.json --plot plan.png",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    part_args(p)
+    p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=2,
+                   help="2: with friction; 4: frictionless; 3: frictionless with gravity")
+    p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
+    p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
+    p.add_argument("--rank-by", choices=RANKINGS, default="min_region")
+    p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",
+                   help=f"safety margin in degrees (default {DEFAULT_MARGIN_DEG})")
+    p.add_argument("--workspace", metavar="CX,CY,R", help="circular workspace of the fingertips")
+    p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
+                   help="fingertip radius (default 0)")
+    p.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf", help="write a figure")
+    p.set_defaults(func=cmd_plan)
+
+    c = sub.add_parser("check", help="the verdict for a given grasp",
+                       description="Is this grasp force closure? If not, why, and how does "
+                                   "the part escape?",
+                       epilog='example:\n  fcgrasp check demo:rectangle --contacts grasp.json\n'
+                              'with grasp.json = {"contacts": [{"point": [0, 15], "mu": 0.3}, '
+                              '{"point": [80, 15], "mu": 0.3}]}',
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    part_args(c)
+    c.add_argument("--contacts", required=True, metavar="CONTACTS.json",
+                   help="contacts: point, and per contact its type and mu")
+    c.set_defaults(func=cmd_check)
+
+    d = sub.add_parser("demo", help="plans for the built-in parts, JSON and figures",
+                       description="The main job on built-in parts (the paper's figure 1): "
+                                   "plans written as JSON and figures into a folder.",
+                       epilog="example:\n  fcgrasp demo --out demo-output",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    d.add_argument("--out", default="demo-output", help="output folder (default demo-output)")
+    d.add_argument("--quiet", action="store_true", help="print nothing on success")
+    d.set_defaults(func=cmd_demo)
     return parser
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
-    try:
-        if args.command == "demo":
-            run_demo(Path(args.out), quiet=args.quiet)
-            return 0
+    if not getattr(args, "func", None):
         parser.print_help()
         return EXIT_USAGE
-    except (CliError, ValueError, TypeError, OSError) as exc:
-        print(f"fcgrasp: error: {exc}", file=sys.stderr)
+    try:
+        return int(args.func(args))
+    except (CliError, ValueError, TypeError) as exc:
+        msg = " ".join(str(exc).split())
+        print(f"fcgrasp: error: {msg}", file=sys.stderr)
         return EXIT_USAGE
+    except OSError as exc:
+        print(f"fcgrasp: error: {exc.filename or ''}: {exc.strerror or exc}".replace(": :", ":"),
+              file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print("fcgrasp: interrupted", file=sys.stderr)
+        return 130
+    except Exception as exc:  # noqa: BLE001 - the promise is: never a traceback
+        print(f"fcgrasp: internal error: {type(exc).__name__}: {' '.join(str(exc).split())}",
+              file=sys.stderr)
+        return EXIT_INTERNAL
 
 
 if __name__ == "__main__":  # pragma: no cover

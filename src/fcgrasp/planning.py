@@ -470,7 +470,8 @@ def _check_common(polygon: Any, mu: Any, margin: Any, hand: Any
 def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
          rank_by: str = "min_region", hand: Hand | None = None,
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
-         disturbance: tuple[float, float] = (10.0, 15.0)) -> list[GraspPlan]:
+         disturbance: tuple[float, float] = (10.0, 15.0),
+         progress: Any = None) -> list[GraspPlan]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -495,6 +496,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     disturbance : (float, float)
         Translation (in the polygon's units) and rotation (degrees) of the resistance
         measure; default 10 units (1 cm in millimetres) and 15 degrees.
+    progress : callable, optional
+        Called as ``progress(done, total)`` while candidate edge sets are solved.
 
     Returns
     -------
@@ -544,6 +547,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             rows = order[start:start + chunk]
             parts.append((rows, *_levels(c, rows, margin_r)))
             start += chunk
+            if progress is not None:
+                progress(min(start, order.size), order.size)
             mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
             if start >= order.size or (mins_so_far.size >= top and
                                        mins_so_far[top - 1] >= c.score[order[start]]):
@@ -562,6 +567,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
                              mu_plan, margin_v, ctype, g, dist)
     else:
         lv, a_, b_, md = _levels(c, order, margin_r)
+        if progress is not None:
+            progress(order.size, order.size)
         plans = _build_plans(polygon, F, c, order, lv, a_, b_, md, mu_plan, margin_v, ctype,
                              g, dist)
         if rank_by == "min_region":

@@ -68,3 +68,95 @@ def save_figure(fig: Any, path: str) -> None:
     from ._atomic import atomic_write
 
     atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"))
+
+
+# ----------------------------------------------------------------------------- plans
+
+_FINGER_COLORS = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"]
+
+
+def draw_part(ax: Any, polygon: Any, numbers: bool = True) -> None:
+    """The part, holes cut out, with its edges numbered (input numbering)."""
+    from matplotlib.patches import PathPatch
+    from matplotlib.path import Path as MplPath
+
+    rings = [polygon.vertices, *polygon.holes]
+    verts, codes = [], []
+    for r in rings:
+        verts += list(r) + [r[0]]
+        codes += [MplPath.MOVETO] + [MplPath.LINETO] * (len(r) - 1) + [MplPath.CLOSEPOLY]
+    ax.add_patch(PathPatch(MplPath(verts, codes), facecolor="0.88", edgecolor="0.25", lw=1.0,
+                           zorder=0))
+    if numbers:
+        mid = (polygon.starts + polygon.ends) / 2
+        off = 0.025 * polygon.size
+        for i in range(polygon.n_edges):
+            if not polygon.usable[i]:
+                continue
+            p = mid[i] + off * polygon.normals[i]
+            ax.text(p[0], p[1], str(i), fontsize=6, color="0.35", ha="center", va="center")
+    lo = np.min(polygon.vertices, axis=0)
+    hi = np.max(polygon.vertices, axis=0)
+    pad = 0.12 * polygon.size
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+
+
+def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
+              units: str = "", numbers: bool = True) -> None:
+    """Figure 1 style: regions drawn bold, a small V at each finger showing its push."""
+    draw_part(ax, polygon, numbers)
+    v = 0.05 * polygon.size
+    for i, (reg, c, n) in enumerate(zip(plan.regions, plan.contacts, plan.normals,
+                                        strict=True)):
+        col = _FINGER_COLORS[i % len(_FINGER_COLORS)]
+        ax.plot(reg[:, 0], reg[:, 1], color=col, lw=4.5, solid_capstyle="butt", zorder=3,
+                label=f"finger {i + 1}: edge {plan.edges[i]}, "
+                      f"{np.hypot(*(reg[1] - reg[0])):.3g} {units}".rstrip())
+        for sgn in (1.0, -1.0):
+            ang = sgn * np.radians(28)
+            d = np.array([n[0] * np.cos(ang) - n[1] * np.sin(ang),
+                          n[0] * np.sin(ang) + n[1] * np.cos(ang)])
+            ax.plot([c[0], c[0] + v * d[0]], [c[1], c[1] + v * d[1]], color="k", lw=1.2,
+                    zorder=4)
+    if plan.gravity is not None:
+        g = np.asarray(plan.gravity["center"])
+        d = np.asarray(plan.gravity["direction"]) * 1.5 * v
+        ax.annotate("", xy=g + d, xytext=g, arrowprops={"arrowstyle": "-|>", "color": "0.2"})
+    mu_txt = f"mu = {plan.mu:g}" if plan.contact_type == "friction" else "frictionless"
+    ax.set_title(title or f"min region {plan.min_length:.3g} {units}, {mu_txt}", fontsize=8)
+    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.08), frameon=False)
+    ax.tick_params(labelsize=6)
+    if units:
+        ax.set_ylabel(units, fontsize=7)
+
+
+def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
+                title: str | None = None, panel: int = 3) -> None:
+    """Write a figure of the best plan (figure 1), or with several plans a panel of the best
+    and worst ranked ones (figure 15), atomically; format from the extension."""
+    plt = _pyplot()
+    if not plans:
+        fig, ax = plt.subplots(figsize=(4, 4))
+        draw_part(ax, polygon)
+        ax.set_title(title or "no force-closure grasp", fontsize=9)
+    else:
+        idx = list(range(len(plans)))
+        shown = idx if len(idx) <= 2 * panel else idx[:panel] + idx[-panel:]
+        cols = min(len(shown), panel)
+        nrows = (len(shown) + cols - 1) // cols
+        fig, axes = plt.subplots(nrows, cols, figsize=(3.4 * cols, 3.9 * nrows), squeeze=False)
+        for ax in axes.ravel()[len(shown):]:
+            ax.axis("off")
+        for ax, k in zip(axes.ravel(), shown, strict=False):
+            p = plans[k]
+            mu_txt = f"mu={p.mu:g}" if p.contact_type == "friction" else "frictionless"
+            draw_plan(ax, polygon, p, units=units,
+                      title=f"rank {k + 1}: edges {list(p.edges)}\nmin region "
+                            f"{p.min_length:.3g} {units}, {mu_txt}")
+        if title:
+            fig.suptitle(title, fontsize=10)
+    fig.tight_layout()
+    save_figure(fig, path)
+    plt.close(fig)

@@ -1,0 +1,281 @@
+"""The fcgrasp command: real files of every format, driven as a subprocess, compared with
+the library; every failure case checks the exit code, the one-line message and that no
+output file is left behind."""
+
+from __future__ import annotations
+
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from fcgrasp import Polygon, plan
+from fcgrasp.cli import main
+from fcgrasp.parts import read_part
+from fcgrasp.report import dumps, plan_report
+
+OUTLINE = [[0.0, 0.0], [40.0, -6.0], [62.0, 18.0], [45.0, 44.0], [8.0, 38.0]]
+
+
+def run(*args, timeout=120):
+    env = dict(os.environ, MPLBACKEND="Agg")
+    return subprocess.run([sys.executable, "-m", "fcgrasp", *map(str, args)],
+                          capture_output=True, text=True, timeout=timeout, env=env)
+
+
+def library_grasps(poly, **kw):
+    plans = plan(poly, **kw)
+    return json.loads(dumps(plan_report(poly, plans, {}, "mm")))["grasps"]
+
+
+# ------------------------------------------------------------------ writers of test files
+
+def write_json(tmp):
+    p = tmp / "part.json"
+    p.write_text(json.dumps({"vertices": OUTLINE}))
+    return p
+
+
+def write_geojson(tmp):
+    p = tmp / "part.geojson"
+    ring = OUTLINE + [OUTLINE[0]]
+    p.write_text(json.dumps({"type": "FeatureCollection", "features": [
+        {"type": "Feature", "properties": {}, "geometry": {"type": "Polygon",
+                                                           "coordinates": [ring]}}]}))
+    return p
+
+
+def write_wkt(tmp):
+    p = tmp / "part.wkt"
+    ring = OUTLINE + [OUTLINE[0]]
+    p.write_text("POLYGON ((" + ", ".join(f"{x} {y}" for x, y in ring) + "))")
+    return p
+
+
+def write_svg(tmp):
+    # drawn at half size and shifted, then put back by the transform
+    pts = " ".join(f"{x / 2},{-y / 2}" for x, y in OUTLINE)
+    p = tmp / "part.svg"
+    p.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="200">'
+                 '<path id="open" d="M 0 0 L 10 10" fill="none"/>'
+                 f'<g transform="translate(0, 0) scale(2)"><polygon id="part" points="{pts}"/></g>'
+                 '</svg>')
+    return p
+
+
+def write_dxf(tmp):
+    import ezdxf
+
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    # a slot with two semicircular ends: straight edges plus bulges (arcs)
+    msp.add_lwpolyline([(0, 0, 0), (40, 0, 1), (40, 20, 0), (0, 20, 1)], format="xyb",
+                       close=True)
+    p = tmp / "slot.dxf"
+    doc.saveas(p)
+    return p
+
+
+def write_png(tmp):
+    from skimage import io
+
+    img = np.full((120, 160), 255, dtype=np.uint8)
+    yy, xx = np.mgrid[0:120, 0:160]
+    img[(xx > 30) & (xx < 130) & (yy > 40) & (yy < 90)] = 0       # a dark rectangle
+    p = tmp / "part.png"
+    io.imsave(p, img, check_contrast=False)
+    return p
+
+
+WRITERS = {"json": write_json, "geojson": write_geojson, "wkt": write_wkt, "svg": write_svg}
+
+
+@pytest.mark.parametrize("fmt", sorted(WRITERS))
+def test_plan_command_matches_library(tmp_path, fmt):
+    part = WRITERS[fmt](tmp_path)
+    out = tmp_path / "plan.json"
+    fig = tmp_path / "plan.png"
+    r = run("plan", part, "--mu", "0.4", "--top", "3", "--json", out, "--plot", fig,
+            *(["--id", "part"] if fmt == "svg" else []))
+    assert r.returncode == 0, r.stderr
+    assert "rank" in r.stdout and r.stderr == ""
+    data = json.loads(out.read_text())
+    assert data["format_version"] == 1 and data["units"] == "mm"
+    poly = Polygon(OUTLINE)
+    assert np.allclose(data["part"]["vertices"], poly.vertices, atol=1e-9)
+    assert data["grasps"] == library_grasps(poly, fingers=2, mu=0.4, top=3)
+    assert fig.stat().st_size > 1000
+
+
+def test_svg_transform_applied_and_y_flipped(tmp_path):
+    poly = read_part(write_svg(tmp_path), "part")
+    assert np.allclose(poly.vertices, OUTLINE, atol=1e-9)
+
+
+def test_dxf_with_bulges(tmp_path):
+    part = write_dxf(tmp_path)
+    poly = read_part(part)
+    assert poly.n_edges > 20                      # the arcs were flattened
+    # chords lie inside the arcs: area short by about perimeter * tolerance
+    assert 0.995 < poly.area / (40 * 20 + np.pi * 10 ** 2) < 1.0
+    out = tmp_path / "dxf.json"
+    r = run("plan", part, "--fingers", "4", "--top", "2", "--json", out)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(out.read_text())["grasps"] == library_grasps(poly, fingers=4, top=2)
+
+
+def test_png_silhouette(tmp_path):
+    part = write_png(tmp_path)
+    poly = read_part(part)
+    lo, hi = poly.vertices.min(axis=0), poly.vertices.max(axis=0)
+    assert np.allclose(hi - lo, [98, 48], atol=2)
+    out = tmp_path / "png.json"
+    r = run("plan", part, "--mu", "0.3", "--json", out, "--quiet")
+    assert r.returncode == 0 and r.stdout == ""
+    assert json.loads(out.read_text())["grasps"] == library_grasps(poly, fingers=2, mu=0.3,
+                                                                   top=10)
+
+
+def test_demo_command_writes_json_and_figures(tmp_path):
+    r = run("demo", "--out", tmp_path / "demo")
+    assert r.returncode == 0, r.stderr
+    files = sorted(p.name for p in (tmp_path / "demo").iterdir())
+    assert "demo.json" in files and sum(f.endswith(".png") for f in files) >= 3
+    summary = json.loads((tmp_path / "demo" / "demo.json").read_text())
+    assert all(p["best_min_region"] > 0 for p in summary["plans"])
+
+
+def test_check_command(tmp_path):
+    good = tmp_path / "good.json"
+    good.write_text(json.dumps({"contacts": [{"point": [0, 15], "mu": 0.3},
+                                             {"point": [80, 16], "mu": 0.3}]}))
+    r = run("check", "demo:rectangle", "--contacts", good, "--json", tmp_path / "c.json")
+    assert r.returncode == 0 and r.stdout.startswith("force closure")
+    bad = tmp_path / "bad.json"
+    bad.write_text(json.dumps({"contacts": [{"point": [0, 15], "type": "frictionless"},
+                                            {"point": [80, 15], "type": "frictionless"}]}))
+    r = run("check", "demo:rectangle", "--contacts", bad)
+    assert r.returncode == 0
+    assert "force-direction closure fails" in r.stdout and "translation" in r.stdout
+    assert "free" in r.stdout
+
+
+def test_version_and_help():
+    r = run("--version")
+    assert r.returncode == 0 and r.stdout.startswith("fcgrasp ")
+    for cmd in ("plan", "check", "demo"):
+        r = run(cmd, "--help")
+        assert r.returncode == 0 and "example" in r.stdout
+
+
+def test_output_is_deterministic(tmp_path):
+    part = write_json(tmp_path)
+    a, b = tmp_path / "a.json", tmp_path / "b.json"
+    assert run("plan", part, "--fingers", "4", "--json", a).returncode == 0
+    assert run("plan", part, "--fingers", "4", "--json", b).returncode == 0
+    assert a.read_bytes() == b.read_bytes()
+
+
+def test_no_grasp_is_a_valid_answer(tmp_path):
+    out = tmp_path / "none.json"
+    r = run("plan", "demo:rectangle", "--mu", "0", "--json", out)
+    assert r.returncode == 0
+    data = json.loads(out.read_text())
+    assert data["grasps"] == [] and "friction" in data["reason"]
+
+
+# ------------------------------------------------------------------ failures
+
+def _bad_files(tmp):
+    (tmp / "selfx.json").write_text(json.dumps({"vertices": [[0, 0], [1, 1], [1, 0], [0, 1]]}))
+    (tmp / "nan.json").write_text('{"vertices": [[0, 0], [1, 0], ["x", 1]]}')
+    (tmp / "open.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg">'
+                                  '<path d="M 0 0 L 10 10 L 20 0" fill="none"/></svg>')
+    (tmp / "part.xyz").write_text("hello")
+    (tmp / "broken.json").write_text('{"vertices": [[0, 0], [1, 0]')
+    (tmp / "hole.json").write_text(json.dumps({"vertices": [[0, 0], [1, 0], [1, 1], [0, 1]],
+                                               "holes": [[[2, 2], [3, 2], [3, 3]]]}))
+    return tmp
+
+
+FAILURES = [
+    (["plan", "{tmp}/missing.json"], "no such file"),
+    (["plan", "{tmp}"], "folder"),
+    (["plan", "{tmp}/part.xyz"], "unknown part format"),
+    (["plan", "{tmp}/open.svg"], "no closed path"),
+    (["plan", "{tmp}/selfx.json"], "edges 0 and 2 intersect"),
+    (["plan", "{tmp}/nan.json"], "numbers"),
+    (["plan", "{tmp}/broken.json"], "not valid JSON"),
+    (["plan", "{tmp}/hole.json"], "holes[0] is not inside"),
+    (["plan", "demo:rectangle", "--mu", "-0.5"], "--mu"),
+    (["plan", "demo:rectangle", "--workspace", "500,500,10"], "cannot touch the part"),
+    (["plan", "demo:rectangle", "--workspace", "1,2"], "--workspace"),
+    (["plan", "demo:nothing"], "unknown demo part"),
+    (["plan", "demo:rectangle", "--fingers", "5"], "invalid choice"),
+    (["plan", "demo:rectangle", "--plot", "{tmp}/x.gif"], "--plot"),
+    (["check", "demo:rectangle", "--contacts", "{tmp}/missing.json"], "no such file"),
+]
+
+
+@pytest.mark.parametrize("args, message", FAILURES)
+def test_failures_one_line_exit_2_no_output(tmp_path, args, message):
+    _bad_files(tmp_path)
+    out = tmp_path / "out.json"
+    fig = tmp_path / "out.png"
+    argv = [a.format(tmp=tmp_path) for a in args]
+    if argv[0] == "plan" and "--plot" not in argv:
+        argv += ["--json", str(out), "--plot", str(fig)]
+    r = run(*argv)
+    assert r.returncode == 2, (r.stdout, r.stderr)
+    lines = r.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("fcgrasp: error:"), r.stderr
+    assert message in lines[0], lines[0]
+    assert "Traceback" not in r.stderr
+    assert not out.exists() and not fig.exists()
+    assert not any(p.name.startswith(".out") for p in tmp_path.iterdir())
+
+
+def test_failed_plot_leaves_no_partial_json(tmp_path, monkeypatch, capsys):
+    """A failure after the JSON is produced (while plotting) removes nothing already
+    complete, and leaves no temporary file."""
+    import fcgrasp.plotting as plotting
+
+    def boom(*a, **k):
+        raise ValueError("plotting failed on purpose")
+
+    monkeypatch.setattr(plotting, "plan_figure", boom)
+    fig = tmp_path / "f.png"
+    code = main(["plan", "demo:blob", "--plot", str(fig), "--quiet"])
+    assert code == 2 and not fig.exists()
+    assert [p for p in tmp_path.iterdir()] == []
+    assert "plotting failed" in capsys.readouterr().err
+
+
+# ------------------------------------------------------------------ fuzz
+
+def test_fuzz_readers_never_traceback(tmp_path, capsys):
+    rng = np.random.default_rng(0)
+    for k in range(60):
+        kind = k % 4
+        path = tmp_path / f"f{k}{['.json', '.svg', '.wkt', ''][kind]}"
+        if kind == 0:
+            choices = [None, 1, "a", [], {}, {"vertices": None},
+                       {"vertices": rng.normal(size=(int(rng.integers(0, 6)), 2)).tolist()},
+                       {"vertices": [[1, 2], [3]]}, {"type": "Polygon", "coordinates": 5},
+                       {"vertices": [[0, 0], [1, 0], [0, 1]], "holes": 7},
+                       {"type": "Feature", "geometry": {"type": "Point", "coordinates": [0, 0]}},
+                       {"vertices": [[0, 0], [1e308, 0], [0, 1e308]]}]
+            obj = choices[int(rng.integers(len(choices)))]
+            path.write_text(json.dumps(obj))
+        else:
+            path.write_bytes(rng.integers(0, 256, int(rng.integers(0, 400))).astype(np.uint8)
+                             .tobytes())
+        code = main(["plan", str(path), "--quiet"])
+        err = capsys.readouterr().err
+        assert code in (0, 2), err
+        if code:
+            assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
