@@ -226,24 +226,81 @@ def _score(c: _Candidates) -> None:
     c.score = vals.max(axis=0)
 
 
-def _two_finger(F: _Features, margin: float) -> _Candidates:
-    i, j = np.triu_indices(len(F.edge), k=1)
+def _cand_take(c: _Candidates, idx: np.ndarray) -> _Candidates:
+    out = _Candidates(c.feats[idx], c.a[idx], c.b[idx], c.center[idx], c.half[idx], c.perm[idx],
+                      [_take(p, idx) for p in c.problems], c.modes)
+    out.score, out.best_mode = c.score[idx], c.best_mode[idx]
+    return out
+
+
+def _cand_concat(parts: list[_Candidates]) -> _Candidates:
+    def cat(xs: list[Any]) -> Any:
+        return np.concatenate(xs)
+
+    probs = [KnapsackProblem(*(cat([getattr(p.problems[m], f) for p in parts])
+                               for f in ("L", "w1", "w2", "K1", "K2", "upper1", "active",
+                                         "separable")))
+             for m in range(2)]
+    out = _Candidates(cat([p.feats for p in parts]), cat([p.a for p in parts]),
+                      cat([p.b for p in parts]), cat([p.center for p in parts]),
+                      cat([p.half for p in parts]), cat([p.perm for p in parts]), probs,
+                      parts[0].modes)
+    out.score = cat([p.score for p in parts])
+    out.best_mode = cat([p.best_mode for p in parts])
+    return out
+
+
+def _pair_candidates(F: _Features, margin: float, i: np.ndarray, j: np.ndarray) -> _Candidates:
+    from .graspsets import arc_intersection
+
     keep = F.edge[i] != F.edge[j]
     i, j = i[keep], j[keep]
     # quick sector test before building anything
-    from .graspsets import arc_intersection
-
     _, half = arc_intersection(F.center[i], F.half[i], F.center[j] + np.pi, F.half[j])
     ok = half - margin > 0
     i, j = i[ok], j[ok]
     probs, _ = two_finger_problems(F.a[i], F.b[i], F.center[i], F.half[i],
                                    F.a[j], F.b[j], F.center[j], F.half[j], margin)
-    feats = np.stack([i, j], axis=1)
-    c = _Candidates(feats, np.stack([F.a[i], F.a[j]], 1), np.stack([F.b[i], F.b[j]], 1),
-                    np.stack([F.center[i], F.center[j]], 1), np.stack([F.half[i], F.half[j]], 1),
-                    np.tile([0, 1], (len(i), 1)), probs, ("squeeze", "expand"))
+    c = _Candidates(np.stack([i, j], axis=1), np.stack([F.a[i], F.a[j]], 1),
+                    np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
+                    np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
+                    ("squeeze", "expand"))
     _score(c)
     return c
+
+
+#: Edge pairs solved per batch; larger polygons are processed in batches of about this
+#: size, keeping only the best candidates of each, so memory stays bounded.
+PAIR_BATCH = 2_000_000
+
+
+def _two_finger(F: _Features, margin: float, keep: int | None = None) -> _Candidates:
+    """All candidate pairs (or, for large polygons, the ``keep`` best by smallest region)."""
+    n = len(F.edge)
+    if n * (n - 1) // 2 <= PAIR_BATCH or keep is None:
+        i, j = np.triu_indices(n, k=1)
+        return _pair_candidates(F, margin, i, j)
+    parts: list[_Candidates] = []
+    start = 0
+    while start < n - 1:
+        # rows start..stop-1 hold about PAIR_BATCH pairs
+        rows_left = np.arange(start, n - 1)
+        cum = np.cumsum(n - 1 - rows_left)
+        stop = start + max(1, int(np.searchsorted(cum, PAIR_BATCH)))
+        ii = np.concatenate([np.full(n - 1 - r, r) for r in range(start, min(stop, n - 1))])
+        jj = np.concatenate([np.arange(r + 1, n) for r in range(start, min(stop, n - 1))])
+        c = _pair_candidates(F, margin, ii, jj)
+        if len(c.score) > keep:
+            best = np.argpartition(-c.score, keep - 1)[:keep]
+            c = _cand_take(c, np.sort(best))
+        parts.append(c)
+        merged = _cand_concat(parts)
+        if len(merged.score) > keep:
+            best = np.argpartition(-merged.score, keep - 1)[:keep]
+            merged = _cand_take(merged, np.sort(best))
+        parts = [merged]
+        start = min(stop, n - 1)
+    return parts[0]
 
 
 def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
@@ -524,7 +581,10 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     margin_r = np.radians(margin_v)
     if fingers == 2:
         F = _features(polygon, mu_v, hand)
-        c = _two_finger(F, margin_r)
+        # for very large polygons only the best candidates by smallest region are kept
+        keep = None if top is None else (max(64 * top, 1024) if rank_by == "min_region"
+                                         else 20_000)
+        c = _two_finger(F, margin_r, keep)
         g = None
         ctype = "friction"
     else:
