@@ -66,40 +66,40 @@ def canonical(edges):
 
 
 def oracle_four(poly, edges, margin_deg=MARGIN):
-    """The LP optimum with the margin applied to the sector of fcgrasp's canonical pairing
-    (the first usable pairing of the canonical layout); the pairing only matters for
-    the margin (corollary 5.1), see test_three_pairings_give_the_same_regions."""
+    """The LP optimum with the margin applied to the sector of the pairing that gives the
+    best regions (fcgrasp's rule); the pairing only matters for the margin (corollary 5.1,
+    see test_three_pairings_give_the_same_regions)."""
     edges = canonical(edges)
     f = -poly.normals[list(edges)]
     ang = np.arctan2(f[:, 1], f[:, 0])
     cr = lambda a, b: a[0] * b[1] - a[1] * b[0]  # noqa: E731
-    for p in ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2)):
-        if abs(cr(f[p[0]], f[p[1]])) > 1e-9 and abs(cr(f[p[2]], f[p[3]])) > 1e-9:
-            break
-    else:
-        return None
-    g12 = (ang[p[1]] - ang[p[0]] + np.pi) % (2 * np.pi) - np.pi
-    g34 = (ang[p[3]] - ang[p[2]] + np.pi) % (2 * np.pi) - np.pi
-    cen, half = _arc_meet(ang[p[0]] + g12 / 2, abs(g12) / 2, ang[p[2]] + g34 / 2 + np.pi,
-                          abs(g34) / 2)
-    h = half - np.radians(margin_deg)
-    if h <= 0:
-        return None
-    k1, k2 = _dir(cen - h), _dir(cen + h)
-    side = np.zeros(4, int)
-    side[[p[2], p[3]]] = 1
-    # the LP pairs the first two fingers of each side: reorder the fingers by the pairing
-    order = list(p)
-    st, en, ff = poly.starts[list(edges)][order], poly.ends[list(edges)][order], f[order]
-    same = [(a, b) for a in range(4) for b in range(a + 1, 4)
-            if edges[order[a]] == edges[order[b]]]
     best = None
-    for s in (1, -1):
-        orders = [None] if not same else [same[0], same[0][::-1]]
-        for o in orders:
-            res = region_lp(st, en, ff, [0, 0, 1, 1], s * k1, s * k2, same_edge=same, order=o)
-            if res is not None and res.min() > 0:
-                if best is None or _lex_better(res, best):
+    for p in ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2)):
+        if abs(cr(f[p[0]], f[p[1]])) <= 1e-9 or abs(cr(f[p[2]], f[p[3]])) <= 1e-9:
+            continue
+        g12 = (ang[p[1]] - ang[p[0]] + np.pi) % (2 * np.pi) - np.pi
+        g34 = (ang[p[3]] - ang[p[2]] + np.pi) % (2 * np.pi) - np.pi
+        cen, half = _arc_meet(ang[p[0]] + g12 / 2, abs(g12) / 2, ang[p[2]] + g34 / 2 + np.pi,
+                              abs(g34) / 2)
+        h = half - np.radians(margin_deg)
+        if h <= 0:
+            continue
+        k1, k2 = _dir(cen - h), _dir(cen + h)
+        order = list(p)
+        st, en, ff = poly.starts[list(edges)][order], poly.ends[list(edges)][order], f[order]
+        same = [(a, b) for a in range(4) for b in range(a + 1, 4)
+                if edges[order[a]] == edges[order[b]]]
+        for s in (1, -1):
+            orders = [None] if not same else [same[0], same[0][::-1]]
+            for o in orders:
+                res = region_lp(st, en, ff, [0, 0, 1, 1], s * k1, s * k2, same_edge=same,
+                                order=o)
+                if res is None or res.min() <= 0:
+                    continue
+                # the first stage decides the pairing, as in fcgrasp
+                if best is None or res.min() > best.min() * (1 + 1e-9) or (
+                        abs(res.min() - best.min()) <= 1e-9 * best.min()
+                        and _lex_better(res, best)):
                     best = res
     return best
 

@@ -11,7 +11,9 @@ together (see :mod:`fcgrasp.regions` for the exact method).
 
 Units: lengths are in the polygon's units; ``margin`` is an angle in **degrees**: every
 grasp of the returned regions points at least that far inside the friction cones (two
-fingers) or inside the sectors ``C_12`` and ``-C_34`` (four fingers).  The default is
+fingers) or inside the sector ``C_12 & -C_34`` (four fingers; the pairing of the four
+fingers is the one giving the largest regions, so a plan does not depend on how the edges
+are numbered).  The default is
 :data:`fcgrasp.regions.DEFAULT_MARGIN_DEG` (0.5 degree).  Three fingers means three
 frictionless fingers holding the part against gravity (counted as a frictionless contact
 at the centroid, section 3.1); friction, if any, can only help such a grasp.
@@ -334,14 +336,45 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     ok = force_direction_closure(dirs) if B else np.zeros(0, bool)
     feats, a, b, center, dirs = feats[ok], a[ok], b[ok], center[ok], dirs[ok]
     B = len(feats)
-    # first pairing whose two sectors are non-null
+    # every pairing whose two sectors are non-null describes the same grasp set
+    # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
+    # largest smallest region, so the plan does not depend on how edges are numbered
     cr = lambda u, v: u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]  # noqa: E731
     good = np.stack([(np.abs(cr(dirs[:, p[0]], dirs[:, p[1]])) > 1e-9)
                      & (np.abs(cr(dirs[:, p[2]], dirs[:, p[3]])) > 1e-9) for p in _PAIRINGS],
                     axis=1) if B else np.zeros((0, 3), bool)
     has = good.any(axis=1)
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
-    perm = _PAIRINGS[np.argmax(good, axis=1)]
+    B = len(feats)
+    scores = np.full((B, 3), -np.inf)
+    for k, p in enumerate(_PAIRINGS):
+        rows = np.flatnonzero(good[:, k])
+        if rows.size == 0:
+            continue
+        probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows],
+                                           np.broadcast_to(p, (rows.size, 4)), margin)
+        scores[rows, k] = np.max([np.where(pr.separable, max_min_length(pr), -1.0)
+                                  for pr in probs], axis=0)
+    choice = np.argmax(scores, axis=1)
+    top_s = scores[np.arange(B), choice]
+    tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - 1e-9 *
+                                                np.abs(top_s[:, None]), axis=1) > 1))
+    if tied.size:
+        # equal smallest regions: the next levels of the leximin order decide
+        best_lv = np.full((tied.size, 4), -1.0)
+        for k, p in enumerate(_PAIRINGS):
+            cand = scores[tied, k] >= top_s[tied] - 1e-9 * np.abs(top_s[tied])
+            if not cand.any():
+                continue
+            rows = tied[cand]
+            perm_k = np.broadcast_to(p, (rows.size, 4))
+            probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows], perm_k, margin)
+            lv, _ = _best_levels(probs, np.array(perm_k))
+            better = _lex_greater(lv, best_lv[cand])
+            idx = np.flatnonzero(cand)[better]
+            best_lv[idx] = lv[better]
+            choice[tied[idx]] = k
+    perm = _PAIRINGS[choice]
     probs, _, _ = four_finger_problems(a, b, center, perm, margin)
     c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
     _score(c)
