@@ -295,8 +295,27 @@ def max_min_length(p: KnapsackProblem) -> FloatArray:
     return _max_level(p, np.zeros_like(p.L), free, order)
 
 
+def _leximin_two(p: KnapsackProblem) -> FloatArray:
+    """Leximin for two regions: the largest smallest region ``t1`` (closed form), then the
+    larger of what either region reaches while the other keeps ``t1``."""
+    order = _order(p)
+    t1 = _max_min_two(p)
+    B = p.batch
+    fixed = np.zeros((B, 2))
+    fixed[:, 0] = np.maximum(t1, 0.0)
+    t2a = _max_level(p, fixed, np.tile([False, True], (B, 1)), order)    # region 2 grows
+    fixed = fixed[:, ::-1].copy()
+    t2b = _max_level(p, fixed, np.tile([True, False], (B, 1)), order)    # region 1 grows
+    lv = np.where((t2a >= t2b)[:, None], np.stack([t1, t2a], 1), np.stack([t2b, t1], 1))
+    lv = np.maximum(lv, t1[:, None])
+    lv[t1 < 0] = -1.0
+    return lv
+
+
 def leximin(p: KnapsackProblem) -> FloatArray:
     """Leximin-optimal region lengths (definition 7.1), shape (B, n); -1 rows if infeasible."""
+    if p.L.shape[1] == 2 and bool(np.all(p.active)):
+        return _leximin_two(p)
     order = _order(p)
     levels = np.zeros_like(p.L)
     free = p.active.copy()
