@@ -179,17 +179,22 @@ def main() -> None:
         t0 = time.perf_counter()
         lp = np.array([lp_candidate(cp, r) for r in sample])
         t_lp = (time.perf_counter() - t0) / len(sample) * ncand
-        ok = cp.feats[sample, 0] != cp.feats[sample, -2] if fingers == 4 else np.ones(len(sample), bool)
+        ok = (cp.feats[sample, 0] != cp.feats[sample, -2] if fingers == 4
+              else np.ones(len(sample), bool))
         agree = np.allclose(np.maximum(lp[ok], 0), np.maximum(cp.score[sample][ok], 0),
                             rtol=1e-7, atol=1e-9)
         rows.append((name, t, t_lp, agree, target))
 
     print(f"{'workload':44s} {'fcgrasp':>12s} {'LP (HiGHS)':>12s} {'speed-up':>10s} "
           f"{'agree':>6s}  target")
+    def fmt(x):
+        if x < 1e-3:
+            return f"{x * 1e6:.3g} us"
+        return f"{x * 1e3:.3g} ms" if x < 1 else f"{x:.3g} s"
+
     for name, t, t_lp, agree, target in rows:
-        def fmt(x):
-            return f"{x * 1e6:.3g} us" if x < 1e-3 else (f"{x * 1e3:.3g} ms" if x < 1 else f"{x:.3g} s")
-        print(f"{name:44s} {fmt(t):>12s} {fmt(t_lp):>12s} {t_lp / t:>9.0f}x {str(agree):>6s}  {target}")
+        print(f"{name:44s} {fmt(t):>12s} {fmt(t_lp):>12s} {t_lp / t:>9.0f}x "
+              f"{str(agree):>6s}  {target}")
 
 
 if __name__ == "__main__":

@@ -147,7 +147,8 @@ def test_mu_zero_two_fingers_no_grasp_and_reason():
     sq = Polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
     assert plan(sq, fingers=2, mu=0.0) == []
     assert independent_regions(sq, (1, 3), mu=0.0) is None
-    g = fc.Grasp([fc.FrictionPoint([0, 0.5], [-1, 0], 0.0), fc.FrictionPoint([1, 0.5], [1, 0], 0.0)])
+    g = fc.Grasp([fc.FrictionPoint([0, 0.5], [-1, 0], 0.0),
+                  fc.FrictionPoint([1, 0.5], [1, 0], 0.0)])
     assert g.explain().failed == "force-direction"
 
 
@@ -199,7 +200,8 @@ def _transformed(v, kind, rng):
         return v * [-1, 1], 1.0, lambda e: e
     if kind == "start":
         k = int(rng.integers(1, len(v)))
-        return np.roll(v, -k, axis=0), 1.0, lambda e, k=k, n=len(v): (e + k) % n
+        n = len(v)
+        return np.roll(v, -k, axis=0), 1.0, lambda e: (e + k) % n
     raise AssertionError(kind)
 
 

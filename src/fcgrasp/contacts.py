@@ -101,7 +101,7 @@ class Contact:
         return Cone(self.wrenches, space="wrench")
 
     def twist_cone(self) -> Cone:
-        """The total freedom left by the contact: the dual twist convexe (figure 4, third column)."""
+        """The total freedom left by the contact: the dual twist convexe (figure 4, column 3)."""
         return self.wrench_cone().dual().minimal()
 
     def __repr__(self) -> str:

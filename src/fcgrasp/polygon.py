@@ -111,7 +111,6 @@ def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, i
         if inter.is_empty:
             continue
         if ring_of[a] == ring_of[b]:
-            (i, n), (j, _) = n_of[a], n_of[b]
             ea, eb = segs[a].coords, segs[b].coords
             shared = {tuple(p) for p in ea} & {tuple(p) for p in eb}
             if shared and inter.geom_type == "Point" and (inter.x, inter.y) in shared:
