@@ -347,14 +347,18 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
     B = len(feats)
     scores = np.full((B, 3), -np.inf)
+    per_mode = np.full((B, 3, 2), -1.0)
+    built: dict[int, tuple[np.ndarray, list[KnapsackProblem]]] = {}
     for k, p in enumerate(_PAIRINGS):
         rows = np.flatnonzero(good[:, k])
         if rows.size == 0:
             continue
         probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows],
                                            np.broadcast_to(p, (rows.size, 4)), margin)
-        scores[rows, k] = np.max([np.where(pr.separable, max_min_length(pr), -1.0)
-                                  for pr in probs], axis=0)
+        for m, pr in enumerate(probs):
+            per_mode[rows, k, m] = np.where(pr.separable, max_min_length(pr), -1.0)
+        scores[rows, k] = per_mode[rows, k].max(axis=1)
+        built[k] = (rows, probs)
     choice = np.argmax(scores, axis=1)
     top_s = scores[np.arange(B), choice]
     tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - 1e-9 *
@@ -366,18 +370,33 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
             cand = scores[tied, k] >= top_s[tied] - 1e-9 * np.abs(top_s[tied])
             if not cand.any():
                 continue
-            rows = tied[cand]
-            perm_k = np.broadcast_to(p, (rows.size, 4))
-            probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows], perm_k, margin)
-            lv, _ = _best_levels(probs, np.array(perm_k))
+            rows_k, probs_k = built[k]
+            pos = np.searchsorted(rows_k, tied[cand])
+            lv, _ = _best_levels([_take(pr, pos) for pr in probs_k],
+                                 np.broadcast_to(p, (pos.size, 4)).copy())
             better = _lex_greater(lv, best_lv[cand])
             idx = np.flatnonzero(cand)[better]
             best_lv[idx] = lv[better]
             choice[tied[idx]] = k
+    # gather the chosen pairing's problems (already built) row by row
+    fields = ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")
+    probs = [] if built else four_finger_problems(a, b, center, np.zeros((0, 4), int),
+                                                  margin)[0]
+    for m in range(2 if built else 0):
+        cols = {}
+        for f in fields:
+            ref = getattr(built[next(iter(built))][1][m], f)
+            cols[f] = np.zeros((B,) + ref.shape[1:], dtype=ref.dtype)
+        for k, (rows_k, probs_k) in built.items():
+            sel = np.flatnonzero(choice[rows_k] == k)
+            for f in fields:
+                cols[f][rows_k[sel]] = getattr(probs_k[m], f)[sel]
+        probs.append(KnapsackProblem(**cols))
     perm = _PAIRINGS[choice]
-    probs, _, _ = four_finger_problems(a, b, center, perm, margin)
     c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
-    _score(c)
+    pm = per_mode[np.arange(B), choice]
+    c.best_mode = np.argmax(pm, axis=1)
+    c.score = pm.max(axis=1)
     return c
 
 
