@@ -282,7 +282,7 @@ def cmd_demo(args: Any) -> int:
             ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
             ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
             ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
-            ("washer", 2, 0.2, "two fingers, squeezing or expanding in the hole")]
+            ("washer", 2, 0.2, "two fingers with friction on a part with a hole")]
     summary = {"fcgrasp": __version__, "format_version": 1, "units": "mm", "plans": []}
     for name, fingers, mu, title in jobs:
         polygon = demo_part(name)

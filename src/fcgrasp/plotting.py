@@ -80,7 +80,13 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True) -> None:
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
-    rings = [polygon.vertices, *polygon.holes]
+    def oriented(r: Any, ccw: bool) -> Any:
+        x, y = r[:, 0], r[:, 1]
+        area = np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
+        return r if (area > 0) == ccw else r[::-1]
+
+    # outer ring counter-clockwise, holes clockwise: the non-zero fill rule cuts them out
+    rings = [oriented(polygon.vertices, True), *(oriented(h, False) for h in polygon.holes)]
     verts, codes = [], []
     for r in rings:
         verts += list(r) + [r[0]]
