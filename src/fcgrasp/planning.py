@@ -306,7 +306,7 @@ def _two_finger(F: _Features, margin: float, keep: int | None = None) -> _Candid
 
 
 def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
-                 centroid: FloatArray) -> _Candidates:
+                 centroid: FloatArray, three_edge: bool = True) -> _Candidates:
     nF = len(F.edge)
     tuples: list[np.ndarray] = []
     if gravity is None:
@@ -317,7 +317,8 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
         t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
         t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
               & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
-        for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1)):   # the doubled feature first
+        for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1)) if three_edge else ():
+            # the doubled feature first
             tuples.append(np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1))
         feats = np.concatenate(tuples) if tuples else np.zeros((0, 4), int)
     else:

@@ -151,6 +151,12 @@ def _order(p: KnapsackProblem) -> np.ndarray:
     return np.argsort(-ratio, axis=1, kind="stable")
 
 
+def _tile(p: KnapsackProblem, m: int) -> KnapsackProblem:
+    """The problem with every row repeated ``m`` times (to evaluate m points at once)."""
+    return KnapsackProblem(*(np.repeat(getattr(p, f), m, axis=0) for f in
+                             ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")))
+
+
 def _fill(p: KnapsackProblem, lb: FloatArray, order: np.ndarray
           ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Greedy fill of x = e^(1) from ``lb`` up to ``L`` within budget ``K1``.
@@ -218,13 +224,13 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     tj = np.where(np.isfinite(tj) & (tj > 0) & (tj < t_cap[:, None]), tj, 0.0)
     pts = np.sort(np.concatenate([np.zeros((B, 1)), tj, t_cap[:, None]], axis=1), axis=1)
     m = pts.shape[1]
-    D = np.empty((B, m))
-    for k in range(m):
-        lb = lb0 + pts[:, k:k + 1] * fr
-        _, slack, value = _fill(p, lb, order)
-        need = np.sum(b * (L + lb), axis=1) - p.K2
-        D[:, k] = np.where(slack >= -1e-12 * _wscale(p), value - need, -np.inf)
+    # all m points of every row in one greedy fill: the rows repeated m times
+    lb = (lb0[:, None, :] + pts[:, :, None] * fr[:, None, :]).reshape(B * m, n)
+    pt = _tile(p, m)
+    _, slack, value = _fill(pt, lb, np.repeat(order, m, axis=0))
+    need = np.sum(pt.w2 * (pt.L * pt.active + lb), axis=1) - pt.K2
     tol = 1e-12 * _wscale(p)
+    D = np.where(slack >= -np.repeat(tol, m), value - need, -np.inf).reshape(B, m)
     ok = D >= -tol[:, None]
     feasible0 = ok[:, 0] & (t_cap >= 0)
     last = m - 1 - np.argmax(ok[:, ::-1], axis=1)                    # last feasible point
@@ -328,13 +334,12 @@ def leximin(p: KnapsackProblem) -> FloatArray:
         t = np.maximum(t, 0.0)
         levels = np.where(free, t[:, None], levels)
         # which free regions cannot grow beyond t while the others stay at their levels?
+        n = p.L.shape[1]
         eps = 1e-9 * np.maximum(np.max(p.L, axis=1), 1e-300)
-        blocked = np.zeros_like(free)
-        for m in range(p.L.shape[1]):
-            trial = levels.copy()
-            trial[:, m] += eps
-            grow = _feasible(p, trial, order, 1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300))
-            blocked[:, m] = free[:, m] & ~grow
+        trial = levels[:, None, :] + np.eye(n)[None] * eps[:, None, None]     # (B, n, n)
+        grow = _feasible(_tile(p, n), trial.reshape(-1, n), np.repeat(order, n, axis=0),
+                         np.repeat(1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300), n))
+        blocked = free & ~grow.reshape(-1, n)
         none = free.any(axis=1) & ~blocked.any(axis=1)
         blocked |= free & none[:, None]          # numerical stall: fix all
         free &= ~blocked
