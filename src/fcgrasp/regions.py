@@ -207,7 +207,7 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     fr = free & p.active
     L = np.where(p.active, p.L, 0.0)
     lb0 = np.where(fr, 0.0, np.where(p.active, lb_fixed, 0.0))      # lb(t) = lb0 + t * fr
-    a, b = p.w1, p.w2
+    a = p.w1
     af = np.sum(a * fr, axis=1)
     r0 = p.K1 - np.sum(a * lb0, axis=1)                              # R(t) = r0 - t af
     t_cap = np.min(np.where(fr, L, np.inf), axis=1)
