@@ -322,3 +322,27 @@ def test_two_region_closed_form_equals_general_solver():
     b = _max_level(p, np.zeros((B, 2)), np.ones((B, 2), bool), _order(p))
     assert np.allclose(a, b, rtol=1e-9, atol=1e-12)
     assert 0.3 < (a > 0).mean() < 0.9
+
+
+def test_two_region_second_stage_closed_form_equals_general_solver():
+    from fcgrasp.regions import KnapsackProblem, _max_level, _order, _two_level
+
+    rng = np.random.default_rng(22)
+    B = 100_000
+    L = rng.uniform(0.1, 3, (B, 2))
+    w1, w2 = rng.uniform(0, 2, (2, B, 2))
+    w1[rng.random((B, 2)) < 0.1] = 0
+    w2[rng.random((B, 2)) < 0.1] = 0
+    K1, K2 = rng.uniform(-0.5, 4, (2, B))
+    p = KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, 2), bool), np.ones((B, 2), bool),
+                        np.ones(B, bool))
+    fixed = rng.uniform(0, 1.5, B)
+    for k in (0, 1):
+        lb0 = np.zeros((B, 2))
+        lb0[:, k] = fixed
+        fr = np.zeros((B, 2))
+        fr[:, 1 - k] = 1
+        a = _two_level(p, lb0, fr)
+        b = _max_level(p, lb0, fr.astype(bool), _order(p))
+        assert np.allclose(a, b, rtol=1e-9, atol=1e-12)
+        assert 0.2 < (a > 0).mean() < 0.9

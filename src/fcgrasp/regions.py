@@ -232,7 +232,7 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     tol = 1e-12 * _wscale(p)
     D = np.where(slack >= -np.repeat(tol, m), value - need, -np.inf).reshape(B, m)
     ok = D >= -tol[:, None]
-    feasible0 = ok[:, 0] & (t_cap >= 0)
+    feasible0 = ok[:, 0] & (t_cap >= 0) & np.all((lb0 <= L + 1e-12 * L) | ~p.active, axis=1)
     last = m - 1 - np.argmax(ok[:, ::-1], axis=1)                    # last feasible point
     nxt = np.minimum(last + 1, m - 1)
     r = np.arange(B)
@@ -245,50 +245,60 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     return np.where(feasible0, t, -1.0)
 
 
-def _max_min_two(p: KnapsackProblem) -> FloatArray:
-    """:func:`max_min_length` for two regions (algorithm 7.1), in closed form on 1-D arrays.
+def _two_level(p: KnapsackProblem, lb0: FloatArray, fr: FloatArray) -> FloatArray:
+    """:func:`_max_level` for two regions in closed form on 1-D arrays (algorithm 7.1).
 
-    ``D(t) = b_p fill_p + b_q fill_q - (b . L - K2)`` with the greedy fill of knapsack 1
-    (item ``p`` first); it is linear on ``[0, t1]`` and ``[t1, t_cap]`` where
-    ``t1 = (K1 - a_p L_p) / a_q`` is where item ``p`` becomes full.
+    Region ``i`` must reach ``lb0[i] + t fr[i]``; returns the largest ``t``.  With the
+    greedy order fixed (item ``p`` first), the slack of knapsack 2 at the greedy optimum
+    of knapsack 1 is ``D(t) = b_p fill_p + b_q fill_q - (b . L - K2)``: continuous,
+    non-increasing and linear on both sides of the point where item ``p`` becomes full.
     """
     a1, a2 = p.w1[:, 0], p.w1[:, 1]
     b1, b2 = p.w2[:, 0], p.w2[:, 1]
     L1, L2 = p.L[:, 0], p.L[:, 1]
     first = b1 * a2 >= b2 * a1                                   # ratio b/a of item 1 larger
-    ap, aq = np.where(first, a1, a2), np.where(first, a2, a1)
-    bp, bq = np.where(first, b1, b2), np.where(first, b2, b1)
-    Lp, Lq = np.where(first, L1, L2), np.where(first, L2, L1)
-    asum = a1 + a2
+    sel = lambda u, v: np.where(first, u, v)  # noqa: E731
+    ap, aq, bp, bq = sel(a1, a2), sel(a2, a1), sel(b1, b2), sel(b2, b1)
+    Lp, Lq = sel(L1 - lb0[:, 0], L2 - lb0[:, 1]), sel(L2 - lb0[:, 1], L1 - lb0[:, 0])
+    fp, fq = sel(fr[:, 0], fr[:, 1]), sel(fr[:, 1], fr[:, 0])
+    r0 = p.K1 - a1 * lb0[:, 0] - a2 * lb0[:, 1]                  # R(t) = r0 - t af
+    af = a1 * fr[:, 0] + a2 * fr[:, 1]
     c = b1 * L1 + b2 * L2 - p.K2
+    inf = np.inf
     with np.errstate(divide="ignore", invalid="ignore"):
-        t_cap = np.minimum(np.minimum(L1, L2),
-                           np.where(asum > 0, p.K1 / np.where(asum > 0, asum, 1.0), np.inf))
-        t1 = np.where(aq > 0, (p.K1 - ap * Lp) / np.where(aq > 0, aq, 1.0), np.inf)
+        t_cap = np.minimum(np.where(fp > 0, Lp, inf), np.where(fq > 0, Lq, inf))
+        t_cap = np.minimum(t_cap, np.where(af > 0, r0 / np.where(af > 0, af, 1.0), inf))
+        den = af - ap * fp
+        t1 = np.where(den != 0, (r0 - ap * Lp) / np.where(den != 0, den, 1.0), inf)
 
         def D(t: FloatArray) -> FloatArray:
-            R = p.K1 - t * asum
-            capp, capq = Lp - t, Lq - t
-            fp = np.where(ap > 0, np.minimum(capp, R / np.where(ap > 0, ap, 1.0)), capp)
+            R = r0 - t * af
+            capp, capq = Lp - t * fp, Lq - t * fq
+            fillp = np.where(ap > 0, np.minimum(capp, R / np.where(ap > 0, ap, 1.0)), capp)
             rest = np.maximum(R - ap * capp, 0.0)
-            fq = np.where(aq > 0, np.minimum(capq, rest / np.where(aq > 0, aq, 1.0)), capq)
-            return bp * np.maximum(fp, 0.0) + bq * np.maximum(fq, 0.0) - c
+            fillq = np.where(aq > 0, np.minimum(capq, rest / np.where(aq > 0, aq, 1.0)), capq)
+            return bp * np.maximum(fillp, 0.0) + bq * np.maximum(fillq, 0.0) - c
 
+    t_cap = np.where(np.isfinite(t_cap), t_cap, 0.0)
     tol = 1e-12 * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, 1e-300)
-    d0, dc = D(np.zeros_like(t_cap)), D(t_cap)
+    zero = np.zeros_like(t_cap)
+    d0, dc = D(zero), D(t_cap)
     mid = np.where((t1 > 0) & (t1 < t_cap), t1, t_cap)
     dm = D(mid)
-    # root in [0, mid] if D(mid) < 0, else in [mid, t_cap]
     left = dm < -tol
-    ta = np.where(left, 0.0, mid)
-    tb = np.where(left, mid, t_cap)
-    da = np.where(left, d0, dm)
-    db = np.where(left, dm, dc)
+    ta, tb = np.where(left, 0.0, mid), np.where(left, mid, t_cap)
+    da, db = np.where(left, d0, dm), np.where(left, dm, dc)
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.where(da - db > 0, np.clip(da / (da - db), 0.0, 1.0), 1.0)
     t = np.where(dc >= -tol, t_cap, ta + frac * (tb - ta))
-    ok = (d0 >= -tol) & (t_cap >= 0) & (p.K1 >= -tol) & np.all(p.active, axis=1)
+    ok = ((d0 >= -tol) & (t_cap >= 0) & (r0 >= -tol) & (Lp >= -tol) & (Lq >= -tol)
+          & np.all(p.active, axis=1))
     return np.where(ok, t, -1.0)
+
+
+def _max_min_two(p: KnapsackProblem) -> FloatArray:
+    """:func:`max_min_length` for two regions, in closed form."""
+    return _two_level(p, np.zeros_like(p.L), np.ones_like(p.L))
 
 
 def max_min_length(p: KnapsackProblem) -> FloatArray:
@@ -302,15 +312,12 @@ def max_min_length(p: KnapsackProblem) -> FloatArray:
 
 def _leximin_two(p: KnapsackProblem) -> FloatArray:
     """Leximin for two regions: the largest smallest region ``t1`` (closed form), then the
-    larger of what either region reaches while the other keeps ``t1``."""
-    order = _order(p)
+    larger of what either region reaches while the other keeps ``t1`` (closed form)."""
     t1 = _max_min_two(p)
-    B = p.batch
-    fixed = np.zeros((B, 2))
-    fixed[:, 0] = np.maximum(t1, 0.0)
-    t2a = _max_level(p, fixed, np.tile([False, True], (B, 1)), order)    # region 2 grows
-    fixed = fixed[:, ::-1].copy()
-    t2b = _max_level(p, fixed, np.tile([True, False], (B, 1)), order)    # region 1 grows
+    s = np.maximum(t1, 0.0)
+    z = np.zeros_like(s)
+    t2a = _two_level(p, np.stack([s, z], 1), np.stack([z, z + 1], 1))    # region 2 grows
+    t2b = _two_level(p, np.stack([z, s], 1), np.stack([z + 1, z], 1))    # region 1 grows
     lv = np.where((t2a >= t2b)[:, None], np.stack([t1, t2a], 1), np.stack([t2b, t1], 1))
     lv = np.maximum(lv, t1[:, None])
     lv[t1 < 0] = -1.0
