@@ -332,27 +332,38 @@ def leximin(p: KnapsackProblem) -> FloatArray:
     levels = np.zeros_like(p.L)
     free = p.active.copy()
     dead = np.zeros(p.batch, dtype=bool)
-    for _ in range(p.L.shape[1]):
-        if not free.any():
+    n = p.L.shape[1]
+    first_stage = True
+    for _ in range(n):
+        rows = np.flatnonzero(free.any(axis=1))
+        if rows.size == 0:
             break
-        t = _max_level(p, levels, free, order)
-        first = free.all(axis=1) | ~p.active.any(axis=1)
-        dead |= (t < 0) & first
+        sub = _rows(p, rows)
+        lv, fr, od = levels[rows], free[rows], order[rows]
+        t = _max_level(sub, lv, fr, od)
+        if first_stage:
+            dead[rows] |= t < 0
+            first_stage = False
         t = np.maximum(t, 0.0)
-        levels = np.where(free, t[:, None], levels)
+        lv = np.where(fr, t[:, None], lv)
         # which free regions cannot grow beyond t while the others stay at their levels?
-        n = p.L.shape[1]
-        eps = 1e-9 * np.maximum(np.max(p.L, axis=1), 1e-300)
-        trial = levels[:, None, :] + np.eye(n)[None] * eps[:, None, None]     # (B, n, n)
-        grow = _feasible(_tile(p, n), trial.reshape(-1, n), np.repeat(order, n, axis=0),
-                         np.repeat(1e-13 * np.maximum(np.max(p.L, axis=1), 1e-300), n))
-        blocked = free & ~grow.reshape(-1, n)
-        none = free.any(axis=1) & ~blocked.any(axis=1)
-        blocked |= free & none[:, None]          # numerical stall: fix all
-        free &= ~blocked
+        scale = np.maximum(np.max(sub.L, axis=1), 1e-300)
+        trial = lv[:, None, :] + np.eye(n)[None] * (1e-9 * scale)[:, None, None]
+        grow = _feasible(_tile(sub, n), trial.reshape(-1, n), np.repeat(od, n, axis=0),
+                         np.repeat(1e-13 * scale, n))
+        blocked = fr & ~grow.reshape(-1, n)
+        none = fr.any(axis=1) & ~blocked.any(axis=1)
+        blocked |= fr & none[:, None]          # numerical stall: fix all
+        levels[rows] = lv
+        free[rows] = fr & ~blocked
     levels = np.where(p.active, levels, 0.0)
     levels[dead] = -1.0
     return levels
+
+
+def _rows(p: KnapsackProblem, rows: np.ndarray) -> KnapsackProblem:
+    return KnapsackProblem(*(getattr(p, f)[rows] for f in
+                             ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")))
 
 
 def _centre(p: KnapsackProblem, lb: FloatArray) -> FloatArray:
