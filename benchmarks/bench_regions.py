@@ -156,7 +156,7 @@ def main() -> None:
         _levels(c, good, MARGIN)
         return c
 
-    t, c4 = timeit(all_quads, repeat=3)
+    t, c4 = timeit(all_quads, repeat=7)
     distinct = np.flatnonzero(c4.feats[:, 0] != c4.feats[:, 2])
     sample = rng.choice(distinct, min(40, distinct.size), replace=False)
     t0 = time.perf_counter()

@@ -221,16 +221,32 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     s1 = np.cumsum(a_s * fr_s, axis=1) - a_s * fr_s
     with np.errstate(divide="ignore", invalid="ignore"):
         tj = (r0[:, None] - s0) / (af[:, None] - s1)
-    tj = np.where(np.isfinite(tj) & (tj > 0) & (tj < t_cap[:, None]), tj, 0.0)
-    pts = np.sort(np.concatenate([np.zeros((B, 1)), tj, t_cap[:, None]], axis=1), axis=1)
-    m = pts.shape[1]
-    # all m points of every row in one greedy fill: the rows repeated m times
-    lb = (lb0[:, None, :] + pts[:, :, None] * fr[:, None, :]).reshape(B * m, n)
-    pt = _tile(p, m)
-    _, slack, value = _fill(pt, lb, np.repeat(order, m, axis=0))
+    valid = np.isfinite(tj) & (tj > 0) & (tj < t_cap[:, None])
+    # at a breakpoint the greedy fill holds exactly the items before it, full: the slack of
+    # knapsack 2 there is a cumulative sum; only t = 0 and t_cap need the general fill
+    b_s = p.w2[rows, order]
+    c = np.sum(p.w2 * L, axis=1) - p.K2
+    s0b = np.cumsum(b_s * cap0, axis=1) - b_s * cap0
+    s1b = np.cumsum(b_s * fr_s, axis=1) - b_s * fr_s
+    with np.errstate(invalid="ignore"):
+        d_j = np.where(valid, s0b - tj * s1b - c[:, None], np.inf)
+    ends = np.stack([np.zeros(B), t_cap], axis=1)                     # (B, 2)
+    lb = (lb0[:, None, :] + ends[:, :, None] * fr[:, None, :]).reshape(B * 2, n)
+    pt = _tile(p, 2)
+    _, slack, value = _fill(pt, lb, np.repeat(order, 2, axis=0))
     need = np.sum(pt.w2 * (pt.L * pt.active + lb), axis=1) - pt.K2
     tol = 1e-12 * _wscale(p)
-    D = np.where(slack >= -np.repeat(tol, m), value - need, -np.inf).reshape(B, m)
+    d_ends = np.where(slack >= -np.repeat(tol, 2), value - need, -np.inf).reshape(B, 2)
+    pts = np.concatenate([ends[:, :1], np.where(valid, tj, np.inf), ends[:, 1:]], axis=1)
+    D = np.concatenate([d_ends[:, :1], d_j, d_ends[:, 1:]], axis=1)
+    srt = np.argsort(pts, axis=1, kind="stable")
+    pts = np.take_along_axis(pts, srt, axis=1)
+    D = np.take_along_axis(D, srt, axis=1)
+    keep = np.isfinite(pts)
+    # invalid breakpoints sort to the end (inf); give them the value at t_cap
+    pts = np.where(keep, pts, t_cap[:, None])
+    D = np.where(keep, D, d_ends[:, 1:])
+    m = pts.shape[1]
     ok = D >= -tol[:, None]
     feasible0 = ok[:, 0] & (t_cap >= 0) & np.all((lb0 <= L + 1e-12 * L) | ~p.active, axis=1)
     last = m - 1 - np.argmax(ok[:, ::-1], axis=1)                    # last feasible point
