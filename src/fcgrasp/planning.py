@@ -176,14 +176,19 @@ class _Features:
     half: FloatArray        # (F,) friction half-angle
 
 
-def _features(polygon: Polygon, mu: float, hand: Hand | None) -> _Features:
+def _features(polygon: Polygon, mu: float, hand: Hand | None,
+              edges: Any = None) -> _Features:
+    """Contactable pieces of the edges (of ``edges`` only, if given)."""
     rows = []
     if hand is None:
         ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
                enumerate(polygon.lengths)]
     else:
         ivs = hand.feasible_intervals(polygon, min_length=1e-9 * polygon.size)
+    wanted = None if edges is None else set(int(e) for e in edges)
     for e, lst in enumerate(ivs):
+        if wanted is not None and e not in wanted:
+            continue
         for t0, t1 in lst:
             rows.append((e, t0, t1))
     if not rows:
@@ -723,36 +728,32 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     idx = polygon.check_edges(edges)
     margin_r = np.radians(margin_v)
     n = len(idx)
+    # only the pieces of the asked edges are enumerated
     if n == 2:
         if gravity is not None:
             raise ValueError("gravity is counted with three frictionless fingers, not two")
-        F = _features(polygon, mu_v, hand)
+        F = _features(polygon, mu_v, hand, edges=idx)
         c = _two_finger(F, margin_r)
         g = None
-        ctype = "friction"
     elif n in (3, 4):
         if mu_v != 0:
             raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
         if (n == 3) != (gravity is not None):
             raise ValueError("three edges need gravity=..., four edges take no gravity")
-        F = _features(polygon, 0.0, hand)
+        F = _features(polygon, 0.0, hand, edges=idx)
         g = None if gravity is None else check_direction(gravity, "gravity")
-        c = _four_finger(F, margin_r, g, polygon.centroid)
-        ctype = "frictionless"
+        doubled = [e for e in set(idx) if idx.count(e) == 2]
+        if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
+            raise ValueError(f"four fingers need four distinct edges or three with one twice, "
+                             f"got {list(idx)}")
+        c = _four_finger(F, margin_r, g, polygon.centroid, three_edge=bool(doubled))
+        if doubled:    # keep the layout with the asked edge doubled
+            keep = np.flatnonzero((F.edge[c.feats[:, 0]] == doubled[0])
+                                  & (c.feats[:, 0] == c.feats[:, 2]))
+            c = _cand_take(c, keep)
     else:
         raise ValueError(f"edges must hold 2, 3 (with gravity) or 4 edge indices, got {n}")
-    want = np.array(idx)
-    fe = np.where(c.feats >= 0, F.edge[np.maximum(c.feats, 0)], -1)
-    fe = fe[:, :n]
-    match = np.all(fe == want[None, :], axis=1) if len(fe) else np.zeros(0, bool)
-    if n == 2 or n == 3 or (n == 4 and len(set(idx)) == 4):
-        # four distinct edges are enumerated in increasing feature order; any order is fine
-        match = np.all(np.sort(fe, axis=1) == np.sort(want)[None, :], axis=1)
-    elif n == 4:
-        # the doubled edge is enumerated first: compare as multisets of the same layout
-        match = np.array([sorted(r.tolist()) == sorted(idx) and r[0] == r[2] for r in fe],
-                         dtype=bool) if len(fe) else match
-    rows = np.flatnonzero(match & (c.score > 0))
+    rows = np.flatnonzero(c.score > 0)
     if rows.size == 0:
         return None
     lv, a_, b_, md = _levels(c, rows, margin_r)
@@ -762,22 +763,16 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
             best = k
     sel = np.array([best])
     plans = _build_plans(polygon, F, c, rows[sel], lv[sel], a_[sel], b_[sel], md[sel],
-                         mu_v if n == 2 else 0.0, margin_v, ctype, g, (10.0, 15.0))
+                         mu_v if n == 2 else 0.0, margin_v,
+                         "friction" if n == 2 else "frictionless", g, (10.0, 15.0))
     if not plans:
         return None
     p = plans[0]
-    if True:
-        # report the fingers in the order asked for
-        order = []
-        used = [False] * len(p.edges)
-        for e in idx:
-            for k, pe in enumerate(p.edges):
-                if pe == e and not used[k]:
-                    used[k] = True
-                    order.append(k)
-                    break
-        o = np.array(order)
-        p = GraspPlan(tuple(p.edges[k] for k in o), p.regions[o], p.lengths[o],
-                      p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
-                      p.gravity, _context=p._context)
-    return p
+    # report the fingers in the order asked for
+    order: list[int] = []
+    for e in idx:
+        order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
+    o = np.array(order)
+    return GraspPlan(tuple(p.edges[k] for k in o), p.regions[o], p.lengths[o], p.contacts[o],
+                     p.normals[o], p.contact_type, p.mu, p.mode, p.margin, p.gravity,
+                     _context=p._context)
