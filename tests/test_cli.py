@@ -157,8 +157,9 @@ def test_check_command(tmp_path):
     bad = tmp_path / "bad.json"
     bad.write_text(json.dumps({"contacts": [{"point": [0, 15], "type": "frictionless"},
                                             {"point": [80, 15], "type": "frictionless"}]}))
-    r = run("check", "demo:rectangle", "--contacts", bad)
-    assert r.returncode == 0
+    fig = tmp_path / "check.png"
+    r = run("check", "demo:rectangle", "--contacts", bad, "--plot", fig)
+    assert r.returncode == 0 and fig.stat().st_size > 1000
     assert "force-direction closure fails" in r.stdout and "translation" in r.stdout
     assert "free" in r.stdout
 

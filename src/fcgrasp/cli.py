@@ -257,6 +257,12 @@ def cmd_check(args: Any) -> int:
               "total_freedom": {"rays": free.rays, "lines": free.lines}}
     if args.json:
         atomic_write_text(args.json, dumps(result))
+    if args.plot:
+        if Path(args.plot).suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise CliError(f"--plot must end in .png, .svg or .pdf, got {args.plot!r}")
+        from .plotting import grasp_figure
+
+        grasp_figure(polygon, grasp, args.plot, units=args.units)
     if not args.quiet:
         print(str(rep))
         if not rep.force_closure:
@@ -371,6 +377,8 @@ def build_parser() -> argparse.ArgumentParser:
     part_args(c)
     c.add_argument("--contacts", required=True, metavar="CONTACTS.json",
                    help="contacts: point, and per contact its type and mu")
+    c.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf",
+                   help="draw the part, the contact forces and the escape motion")
     c.set_defaults(func=cmd_check)
 
     d = sub.add_parser("demo", help="plans for the built-in parts, JSON and figures",

@@ -166,3 +166,17 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
     fig.tight_layout()
     save_figure(fig, path)
     plt.close(fig)
+
+
+def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "") -> None:
+    """The part with a checked grasp: contact forces, verdict, escape motion (atomically)."""
+    plt = _pyplot()
+    fig, ax = plt.subplots(figsize=(4.5, 4.5))
+    draw_part(ax, polygon)
+    draw_grasp(ax, grasp, size=0.08 * polygon.size)
+    draw_part(ax, polygon, numbers=False)      # restore the limits of the part
+    if units:
+        ax.set_ylabel(units, fontsize=7)
+    fig.tight_layout()
+    save_figure(fig, path)
+    plt.close(fig)
