@@ -306,18 +306,24 @@ def test_plan_bad_arguments(kw, match):
         plan(sq, **kw)
 
 
-def test_two_region_closed_form_equals_general_solver():
-    from fcgrasp.regions import KnapsackProblem, _max_level, _max_min_two, _order
+def _random_two_region_problems(rng, B=100_000):
+    """Random two-region knapsack problems, zero weights and negative budgets included."""
+    from fcgrasp.regions import KnapsackProblem
 
-    rng = np.random.default_rng(21)
-    B = 100_000
     L = rng.uniform(0.1, 3, (B, 2))
     w1, w2 = rng.uniform(0, 2, (2, B, 2))
     w1[rng.random((B, 2)) < 0.1] = 0
     w2[rng.random((B, 2)) < 0.1] = 0
     K1, K2 = rng.uniform(-0.5, 4, (2, B))
-    p = KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, 2), bool), np.ones((B, 2), bool),
-                        np.ones(B, bool))
+    return KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, 2), bool), np.ones((B, 2), bool),
+                           np.ones(B, bool))
+
+
+def test_two_region_closed_form_equals_general_solver():
+    from fcgrasp.regions import _max_level, _max_min_two, _order
+
+    p = _random_two_region_problems(np.random.default_rng(21))
+    B = p.batch
     a = _max_min_two(p)
     b = _max_level(p, np.zeros((B, 2)), np.ones((B, 2), bool), _order(p))
     assert np.allclose(a, b, rtol=1e-9, atol=1e-12)
@@ -325,17 +331,11 @@ def test_two_region_closed_form_equals_general_solver():
 
 
 def test_two_region_second_stage_closed_form_equals_general_solver():
-    from fcgrasp.regions import KnapsackProblem, _max_level, _order, _two_level
+    from fcgrasp.regions import _max_level, _order, _two_level
 
     rng = np.random.default_rng(22)
-    B = 100_000
-    L = rng.uniform(0.1, 3, (B, 2))
-    w1, w2 = rng.uniform(0, 2, (2, B, 2))
-    w1[rng.random((B, 2)) < 0.1] = 0
-    w2[rng.random((B, 2)) < 0.1] = 0
-    K1, K2 = rng.uniform(-0.5, 4, (2, B))
-    p = KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, 2), bool), np.ones((B, 2), bool),
-                        np.ones(B, bool))
+    p = _random_two_region_problems(rng)
+    B = p.batch
     fixed = rng.uniform(0, 1.5, B)
     for k in (0, 1):
         lb0 = np.zeros((B, 2))
