@@ -222,11 +222,6 @@ class _Candidates:
     best_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
 
 
-def _take(p: KnapsackProblem, idx: np.ndarray) -> KnapsackProblem:
-    return KnapsackProblem(p.L[idx], p.w1[idx], p.w2[idx], p.K1[idx], p.K2[idx],
-                           p.upper1[idx], p.active[idx], p.separable[idx])
-
-
 def _score(c: _Candidates) -> None:
     vals = np.stack([np.where(p.separable, max_min_length(p), -1.0) for p in c.problems])
     c.best_mode = np.argmax(vals, axis=0)
@@ -235,7 +230,7 @@ def _score(c: _Candidates) -> None:
 
 def _cand_take(c: _Candidates, idx: np.ndarray) -> _Candidates:
     out = _Candidates(c.feats[idx], c.a[idx], c.b[idx], c.center[idx], c.half[idx], c.perm[idx],
-                      [_take(p, idx) for p in c.problems], c.modes)
+                      [p.take(idx) for p in c.problems], c.modes)
     out.score, out.best_mode = c.score[idx], c.best_mode[idx]
     return out
 
@@ -244,10 +239,7 @@ def _cand_concat(parts: list[_Candidates]) -> _Candidates:
     def cat(xs: list[Any]) -> Any:
         return np.concatenate(xs)
 
-    probs = [KnapsackProblem(*(cat([getattr(p.problems[m], f) for p in parts])
-                               for f in ("L", "w1", "w2", "K1", "K2", "upper1", "active",
-                                         "separable")))
-             for m in range(2)]
+    probs = [KnapsackProblem.concat([p.problems[m] for p in parts]) for m in range(2)]
     out = _Candidates(cat([p.feats for p in parts]), cat([p.a for p in parts]),
                       cat([p.b for p in parts]), cat([p.center for p in parts]),
                       cat([p.half for p in parts]), cat([p.perm for p in parts]), probs,
@@ -378,26 +370,20 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
                 continue
             rows_k, probs_k = built[k]
             pos = np.searchsorted(rows_k, tied[cand])
-            lv, _ = _best_levels([_take(pr, pos) for pr in probs_k],
+            lv, _ = _best_levels([pr.take(pos) for pr in probs_k],
                                  np.broadcast_to(p, (pos.size, 4)).copy())
             better = _lex_greater(lv, best_lv[cand])
             idx = np.flatnonzero(cand)[better]
             best_lv[idx] = lv[better]
             choice[tied[idx]] = k
-    # gather the chosen pairing's problems (already built) row by row
-    fields = ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")
-    probs = [] if built else four_finger_problems(a, b, center, np.zeros((0, 4), int),
-                                                  margin)[0]
-    for m in range(2 if built else 0):
-        cols = {}
-        for f in fields:
-            ref = getattr(built[next(iter(built))][1][m], f)
-            cols[f] = np.zeros((B,) + ref.shape[1:], dtype=ref.dtype)
-        for k, (rows_k, probs_k) in built.items():
-            sel = np.flatnonzero(choice[rows_k] == k)
-            for f in fields:
-                cols[f][rows_k[sel]] = getattr(probs_k[m], f)[sel]
-        probs.append(KnapsackProblem(**cols))
+    # gather the chosen pairing's problems (already built), back in row order
+    if built:
+        sels = {k: np.flatnonzero(choice[rows_k] == k) for k, (rows_k, _) in built.items()}
+        back = np.argsort(np.concatenate([built[k][0][sel] for k, sel in sels.items()]))
+        probs = [KnapsackProblem.concat([built[k][1][m].take(sel) for k, sel in sels.items()])
+                 .take(back) for m in range(2)]
+    else:
+        probs = four_finger_problems(a, b, center, np.zeros((0, 4), int), margin)[0]
     perm = _PAIRINGS[choice]
     c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
     pm = per_mode[np.arange(B), choice]
@@ -462,7 +448,7 @@ def _place(c: _Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
     for m, pr in enumerate(probs):
         sel = mode == m
         if sel.any():
-            pp = place_regions(_take(pr, np.flatnonzero(sel)), lev_p[sel])
+            pp = place_regions(pr.take(np.flatnonzero(sel)), lev_p[sel])
             params[sel] = pp[np.arange(sel.sum())[:, None], inv[sel]]
     return params
 
@@ -518,7 +504,7 @@ def _levels(c: _Candidates, rows: np.ndarray, margin: float
     """Leximin lengths (R, n) in finger order for candidate ``rows``, with the segments
     the fingers range over (split where two fingers share an edge) and the mode."""
     a, b = c.a[rows].copy(), c.b[rows].copy()
-    lengths, mode = _best_levels([_take(p, rows) for p in c.problems], c.perm[rows])
+    lengths, mode = _best_levels([p.take(rows) for p in c.problems], c.perm[rows])
     if c.feats.shape[1] == 4:
         same = (c.feats[rows, 0] == c.feats[rows, 2]) & (c.feats[rows, 0] >= 0)
         same &= lengths.min(axis=1) > 0

@@ -48,6 +48,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from itertools import combinations
+from typing import Any
 
 import numpy as np
 
@@ -91,9 +92,25 @@ class KnapsackProblem:
     active: np.ndarray
     separable: np.ndarray
 
+    FIELDS = ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")
+
     @property
     def batch(self) -> int:
         return int(self.L.shape[0])
+
+    def take(self, rows: Any) -> KnapsackProblem:
+        """The problems of the given rows (indices or a mask)."""
+        return KnapsackProblem(*(getattr(self, f)[rows] for f in self.FIELDS))
+
+    def repeat(self, m: int) -> KnapsackProblem:
+        """Every row repeated ``m`` times (to evaluate m points of a row at once)."""
+        return KnapsackProblem(*(np.repeat(getattr(self, f), m, axis=0) for f in self.FIELDS))
+
+    @staticmethod
+    def concat(parts: list[KnapsackProblem]) -> KnapsackProblem:
+        """The rows of several batches, in order."""
+        return KnapsackProblem(*(np.concatenate([getattr(p, f) for p in parts])
+                                 for f in KnapsackProblem.FIELDS))
 
 
 def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
@@ -149,12 +166,6 @@ def _order(p: KnapsackProblem) -> np.ndarray:
         ratio = np.where(p.w1 > 0, p.w2 / np.where(p.w1 > 0, p.w1, 1.0), np.inf)
     ratio = np.where(p.active, ratio, -np.inf)
     return np.argsort(-ratio, axis=1, kind="stable")
-
-
-def _tile(p: KnapsackProblem, m: int) -> KnapsackProblem:
-    """The problem with every row repeated ``m`` times (to evaluate m points at once)."""
-    return KnapsackProblem(*(np.repeat(getattr(p, f), m, axis=0) for f in
-                             ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")))
 
 
 def _fill(p: KnapsackProblem, lb: FloatArray, order: np.ndarray
@@ -232,7 +243,7 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
         d_j = np.where(valid, s0b - tj * s1b - c[:, None], np.inf)
     ends = np.stack([np.zeros(B), t_cap], axis=1)                     # (B, 2)
     lb = (lb0[:, None, :] + ends[:, :, None] * fr[:, None, :]).reshape(B * 2, n)
-    pt = _tile(p, 2)
+    pt = p.repeat(2)
     _, slack, value = _fill(pt, lb, np.repeat(order, 2, axis=0))
     need = np.sum(pt.w2 * (pt.L * pt.active + lb), axis=1) - pt.K2
     tol = 1e-12 * _wscale(p)
@@ -354,7 +365,7 @@ def leximin(p: KnapsackProblem) -> FloatArray:
         rows = np.flatnonzero(free.any(axis=1))
         if rows.size == 0:
             break
-        sub = _rows(p, rows)
+        sub = p.take(rows)
         lv, fr, od = levels[rows], free[rows], order[rows]
         t = _max_level(sub, lv, fr, od)
         if first_stage:
@@ -365,7 +376,7 @@ def leximin(p: KnapsackProblem) -> FloatArray:
         # which free regions cannot grow beyond t while the others stay at their levels?
         scale = np.maximum(np.max(sub.L, axis=1), 1e-300)
         trial = lv[:, None, :] + np.eye(n)[None] * (1e-9 * scale)[:, None, None]
-        grow = _feasible(_tile(sub, n), trial.reshape(-1, n), np.repeat(od, n, axis=0),
+        grow = _feasible(sub.repeat(n), trial.reshape(-1, n), np.repeat(od, n, axis=0),
                          np.repeat(1e-13 * scale, n))
         blocked = fr & ~grow.reshape(-1, n)
         none = fr.any(axis=1) & ~blocked.any(axis=1)
@@ -375,11 +386,6 @@ def leximin(p: KnapsackProblem) -> FloatArray:
     levels = np.where(p.active, levels, 0.0)
     levels[dead] = -1.0
     return levels
-
-
-def _rows(p: KnapsackProblem, rows: np.ndarray) -> KnapsackProblem:
-    return KnapsackProblem(*(getattr(p, f)[rows] for f in
-                             ("L", "w1", "w2", "K1", "K2", "upper1", "active", "separable")))
 
 
 def _centre(p: KnapsackProblem, lb: FloatArray) -> FloatArray:
