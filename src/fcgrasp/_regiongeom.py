@@ -9,20 +9,11 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import FloatArray
+from ._geom import cross2 as _cross
+from ._geom import direction as _dir
+from ._geom import wrap as _wrap
 from .graspsets import arc_intersection
 from .regions import KnapsackProblem, build_problem
-
-
-def _dir(a: FloatArray) -> FloatArray:
-    return np.stack([np.cos(a), np.sin(a)], axis=-1)
-
-
-def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
-
-
-def _wrap(a: FloatArray) -> FloatArray:
-    return (a + np.pi) % (2 * np.pi) - np.pi
 
 
 def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: FloatArray,

@@ -40,6 +40,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_array, check_mu, check_tol
+from ._geom import cross2 as _cross2
 from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TOL
 
 __all__ = [
@@ -54,9 +55,6 @@ __all__ = [
 
 _CHUNK = 1 << 21  # floats per working array when chunking batches
 
-
-def _cross2(a: FloatArray, b: FloatArray) -> FloatArray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def _unit(v: FloatArray) -> FloatArray:

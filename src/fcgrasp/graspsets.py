@@ -37,6 +37,9 @@ import shapely
 from shapely.geometry import MultiPoint
 
 from ._checks import FloatArray, check_array, check_direction, check_mu, check_tol
+from ._geom import cross2 as _cross
+from ._geom import direction as _dir
+from ._geom import wrap as _wrap
 from .polygon import Polygon
 from .tolerances import TOL
 
@@ -61,17 +64,7 @@ FIELD_OF_VIEW = "field-of-view"
 SOFT_HALF_ANGLE_CAP = np.pi / 2 - 1e-6
 
 
-def _wrap(a: Any) -> Any:
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
-
-def _dir(angle: Any) -> FloatArray:
-    angle = np.asarray(angle, dtype=float)
-    return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
-
-
-def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 def arc_intersection(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[FloatArray, FloatArray]:

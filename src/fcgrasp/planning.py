@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_direction, check_mu, check_scalar
+from ._geom import cross2
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
@@ -337,9 +338,8 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     # every pairing whose two sectors are non-null describes the same grasp set
     # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
     # largest smallest region, so the plan does not depend on how edges are numbered
-    cr = lambda u, v: u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]  # noqa: E731
-    good = np.stack([(np.abs(cr(dirs[:, p[0]], dirs[:, p[1]])) > 1e-9)
-                     & (np.abs(cr(dirs[:, p[2]], dirs[:, p[3]])) > 1e-9) for p in _PAIRINGS],
+    good = np.stack([(np.abs(cross2(dirs[:, p[0]], dirs[:, p[1]])) > 1e-9)
+                     & (np.abs(cross2(dirs[:, p[2]], dirs[:, p[3]])) > 1e-9) for p in _PAIRINGS],
                     axis=1) if B else np.zeros((0, 3), bool)
     has = good.any(axis=1)
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]

@@ -53,6 +53,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
+from ._geom import cross2 as _cross
 
 __all__ = [
     "KnapsackProblem",
@@ -68,9 +69,6 @@ __all__ = [
 DEFAULT_MARGIN_DEG = 0.5
 
 
-
-def _cross(a: FloatArray, b: FloatArray) -> FloatArray:
-    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
 
 
 @dataclass
