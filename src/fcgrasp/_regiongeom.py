@@ -75,19 +75,19 @@ def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
     x12 = _cross(f[:, 0], f[:, 1])
     x34 = _cross(f[:, 2], f[:, 3])
     valid = (np.abs(x12) > 1e-12) & (np.abs(x34) > 1e-12)
-    safe = lambda v: np.where(np.abs(v) > 1e-12, v, 1.0)  # noqa: E731
     g12 = _wrap(c[:, 1] - c[:, 0])
     c12, h12 = _wrap(c[:, 0] + g12 / 2), np.abs(g12) / 2
     g34 = _wrap(c[:, 3] - c[:, 2])
     c34, h34 = _wrap(c[:, 2] + g34 / 2), np.abs(g34) / 2
     cen, half = arc_intersection(c12, h12, c34 + np.pi, h34)
     hm = np.where(valid, half - margin, -1.0)
+    # rows with a null pairing get stand-in directions, so nothing divides by zero; their
+    # problems are marked non-separable below
     fz = f.copy()
     fz[:, 1] = np.where(valid[:, None], f[:, 1], [1.0, 0.0])
     fz[:, 3] = np.where(valid[:, None], f[:, 3], [1.0, 0.0])
     fz[:, 0] = np.where(valid[:, None], f[:, 0], [0.0, 1.0])
     fz[:, 2] = np.where(valid[:, None], f[:, 2], [0.0, 1.0])
-    del safe
     o12, va, vb = meet_and_velocities(A[:, 0], t[:, 0], fz[:, 0], A[:, 1], t[:, 1], fz[:, 1])
     o34, vc, vd = meet_and_velocities(A[:, 2], t[:, 2], fz[:, 2], A[:, 3], t[:, 3], fz[:, 3])
     vel = np.stack([va, vb, vc, vd], axis=1)

@@ -707,7 +707,6 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
         feats: list[Any] = [int(i) for i in idx]
         if soft:
             conv = polygon.convex_vertices()
-            _, _, _ = polygon.vertex_normals()
             starts = []
             for r in np.unique(polygon.rings):
                 ring_idx = np.flatnonzero((polygon.rings == r) & polygon.usable)
