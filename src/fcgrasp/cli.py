@@ -180,10 +180,10 @@ def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, A
             if "vertex" not in c:
                 raise CliError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
             k_v = c["vertex"]
-            if not isinstance(k_v, int) or not 0 <= k_v < polygon.n_edges:
+            if (not isinstance(k_v, int) or not 0 <= k_v < polygon.n_edges
+                    or not polygon.usable[k_v]):
                 raise CliError(f"{where}: vertex must be a vertex index, got {k_v!r}")
-            ring = np.flatnonzero((polygon.rings == polygon.rings[k_v]) & polygon.usable)
-            prev = ring[(np.searchsorted(ring, k_v) - 1) % len(ring)]
+            prev = polygon.previous_edge(k_v)
             if not polygon.convex_vertices()[prev]:
                 raise CliError(f"{where}: vertex {k_v} is not convex; a soft finger needs a "
                                f"convex corner")

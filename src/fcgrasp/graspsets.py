@@ -149,11 +149,9 @@ def edge_feature(poly: Polygon, i: int, mu: float = 0.0) -> Feature:
 def vertex_feature(poly: Polygon, k: int, mu: float) -> Feature:
     """Soft finger at the vertex that starts edge ``k``: the arc of directions covering the
     friction cones of both incident edges (capped below a half-plane)."""
-    ring = poly.rings == poly.rings[k]
-    idx = np.flatnonzero(ring & poly.usable)
     if not poly.usable[k]:
         raise ValueError(f"vertex {k} starts a zero-length edge: use the next vertex")
-    prev = idx[(np.searchsorted(idx, k) - 1) % idx.size]
+    prev = poly.previous_edge(k)
     if not poly.convex_vertices()[prev]:
         raise ValueError(f"vertex {k} is not a convex vertex of the part: a soft finger "
                          "needs a convex corner")
@@ -707,14 +705,7 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
         feats: list[Any] = [int(i) for i in idx]
         if soft:
             conv = polygon.convex_vertices()
-            starts = []
-            for r in np.unique(polygon.rings):
-                ring_idx = np.flatnonzero((polygon.rings == r) & polygon.usable)
-                for j, e in enumerate(ring_idx):
-                    prev = ring_idx[j - 1]
-                    if conv[prev]:
-                        starts.append(Vertex(int(e)))
-            feats += starts
+            feats += [Vertex(int(e)) for e in idx if conv[polygon.previous_edge(int(e))]]
         for a, b in combinations(feats, 2):
             gs = grasp_set(polygon, (a, b), mu=mu_v, tol=tol)
             if not gs.is_empty:

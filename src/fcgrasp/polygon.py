@@ -189,6 +189,13 @@ class Polygon:
         d = self.ends - self.starts
         self.lengths = np.hypot(d[:, 0], d[:, 1])
         self.usable = self.lengths > 0
+        # neighbours along each ring among the usable edges (zero-length edges skipped)
+        self._next = np.full(len(self.rings), -1)
+        self._prev = np.full(len(self.rings), -1)
+        for r in range(len(rings)):
+            idx = np.flatnonzero((self.rings == r) & self.usable)
+            self._next[idx] = np.roll(idx, -1)
+            self._prev[idx] = np.roll(idx, 1)
         with np.errstate(invalid="ignore", divide="ignore"):
             t = np.where(self.usable[:, None], d / np.where(self.usable, self.lengths, 1)[:, None],
                          0.0)
@@ -246,11 +253,11 @@ class Polygon:
 
         Row ``i`` describes the vertex at the end of edge ``i`` (skipping zero-length edges).
         """
-        nxt = np.empty(self.n_edges, dtype=int)
-        for r in np.unique(self.rings):
-            idx = np.flatnonzero((self.rings == r) & self.usable)
-            nxt[idx] = np.roll(idx, -1)
-        return self.ends, self.normals, self.normals[nxt]
+        return self.ends, self.normals, self.normals[np.where(self.usable, self._next, 0)]
+
+    def previous_edge(self, k: int) -> int:
+        """The usable edge that ends where edge ``k`` starts (same ring)."""
+        return int(self._prev[k])
 
     def convex_vertices(self) -> FloatArray:
         """Boolean per edge: is the vertex at the end of the edge convex for the object?"""
