@@ -137,3 +137,50 @@ def region_lp(starts, ends, forces, side, k1, k2, same_edge=(), order=None):
             lengths[i] = tval
         free = [i for i in free if i not in blocked]
     return lengths
+
+
+# ----------------------------------------------------------------------------- grasps
+
+
+def grasp_wrenches(points, normals, mu):
+    """Unit contact wrenches of point fingers, written without fcgrasp: a frictionless
+    finger pushes along ``-n``; one with friction along the two edges of its cone,
+    ``-n`` turned by ``+-atan(mu)``.  Torques about the grasp's centre, over its spread.
+    """
+    points, normals = np.asarray(points, float), np.asarray(normals, float)
+    c = points.mean(axis=0)
+    spread = max(float(np.max(np.hypot(*(points - c).T))), 1e-300)
+    rows = []
+    for p, n in zip(points, normals, strict=True):
+        f = -n / np.hypot(*n)
+        angles = (0.0,) if mu == 0 else (np.arctan(mu), -np.arctan(mu))
+        for a in angles:
+            g = np.array([np.cos(a) * f[0] - np.sin(a) * f[1],
+                          np.sin(a) * f[0] + np.cos(a) * f[1]])
+            r = (p - c) / spread
+            rows.append([g[0], g[1], r[0] * g[1] - r[1] * g[0]])
+    return np.array(rows)
+
+
+def closure_margin_lp(wrenches):
+    """How strictly the wrenches positively span the plane's wrench space (HiGHS).
+
+    max t  s.t.  sum_i l_i w_i = 0,  sum_i l_i = 1,  l_i >= t, with the unit wrenches;
+    a grasp is force closure iff t > 0 and the wrenches have rank 3.  Returns t; 0 (a tie,
+    the limit of closure grasps at best) for rank below 3; -1 when the LP is infeasible.
+    """
+    w = np.asarray(wrenches, float)
+    w = w / np.linalg.norm(w, axis=1)[:, None]
+    if np.linalg.matrix_rank(w, tol=1e-10) < 3:
+        return 0.0
+    k = len(w)
+    c = np.zeros(k + 1)
+    c[-1] = -1.0
+    a_eq = np.zeros((4, k + 1))
+    a_eq[:3, :k] = w.T
+    a_eq[3, :k] = 1.0
+    b_eq = np.array([0.0, 0.0, 0.0, 1.0])
+    a_ub = np.hstack([-np.eye(k), np.ones((k, 1))])
+    res = linprog(c, A_ub=a_ub, b_ub=np.zeros(k), A_eq=a_eq, b_eq=b_eq,
+                  bounds=[(0, None)] * k + [(None, None)], method="highs")
+    return float(-res.fun) if res.status == 0 else -1.0

@@ -35,6 +35,14 @@ regions are then placed at a canonical point of the optimal face: as near the mi
 of the admissible ranges as the constraints allow (the paper's "anywhere on this
 segment" for parallel edges).
 
+**Margin zero.**  With ``margin=0`` the shrunk sector is the sector itself and the
+inequalities above are not strict: the regions returned are then the *closure* of a set
+of force-closure grasps.  Every grasp with every finger strictly inside its region is
+force closure; a grasp with a finger at a region's end may be a tie (not force closure,
+as everywhere in fcgrasp).  A constraint that no region can move (a cone edge parallel
+to every motion of ``P12`` and ``P34``) and that is tight is a tie everywhere: such an
+edge set has no regions.  With a positive margin the ends hold too.
+
 Two fingers on one edge (section 6.2) must not overlap: the unconstrained optimum is
 used when its regions are disjoint, otherwise the edge is split at the best point
 (the optimum is concave in the split point; golden-section search).
@@ -151,8 +159,21 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
     active = L > 0
     nz = (w[0] > 0) & (w[1] > 0) & active
     separable = ~np.any(nz & (up[0] == up[1]), axis=1)
+    # A region that constraint 1 does not see (coefficient zero: with a zero margin a cone
+    # edge is parallel to the motion of P12 or P34) has its one binding end set by
+    # constraint 2; constraint 1's free extension is then the *other* end.  Reading the
+    # side from the sign of a zero would put both extensions on the same end and place
+    # the region on the wrong side (issue 9: false closure at margin 0, parallel edges).
+    upper1 = np.where(w[0] > 0, up[0], ~up[1])
+    # A constraint that no region can move and that is tight (P34 - P12 on a cone edge
+    # whatever the fingers do) holds with equality everywhere: a tie, never closure.
+    for i in range(2):
+        flat = ~np.any((w[i] > 0) & active, axis=1)
+        scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1)
+                           + np.abs(K[0]) + np.abs(K[1]), 1e-300)
+        separable &= ~(flat & (K[i] <= 1e-12 * scale))
     return KnapsackProblem(L, np.where(active, w[0], 0.0), np.where(active, w[1], 0.0),
-                           K[0], K[1], up[0], active, separable)
+                           K[0], K[1], upper1, active, separable)
 
 
 # ----------------------------------------------------------------------------- the solver
