@@ -13,6 +13,8 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from .tolerances import MAX_MAGNITUDE
+
 FloatArray = NDArray[np.float64]
 
 
@@ -39,12 +41,7 @@ def check_array(value: Any, name: str, *, last: int | tuple[int, ...] | None = N
     finite : bool
         Reject NaN and infinity.
     """
-    if isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must be numeric, got {_short(value)}")
-    try:
-        arr = np.asarray(value, dtype=np.float64)
-    except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be an array of numbers, got {_short(value)}") from exc
+    arr = numeric_array(value, name)
     if arr.ndim < min_ndim:
         raise ValueError(f"{name} must have at least {min_ndim} dimension(s), "
                          f"got shape {arr.shape}: {_short(value)}")
@@ -56,7 +53,47 @@ def check_array(value: Any, name: str, *, last: int | tuple[int, ...] | None = N
                              f"{_short(value)}")
     if finite and not np.all(np.isfinite(arr)):
         raise ValueError(f"{name} must be finite, got {_short(value)}")
+    if finite and arr.size and float(np.max(np.abs(arr))) > MAX_MAGNITUDE:
+        raise ValueError(f"{name} must have magnitudes at most {MAX_MAGNITUDE:g} (fcgrasp's "
+                         f"documented range), got {_short(value)}")
     return arr
+
+
+def _is_number(x: Any) -> bool:
+    return (isinstance(x, (int, float, np.integer, np.floating))
+            and not isinstance(x, (bool, np.bool_)))
+
+
+def _holds_bool(value: Any) -> bool:
+    """Does a nested list hold a bool (numpy would silently turn it into 0 or 1)?"""
+    stack = [value]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, (bool, np.bool_)):
+            return True
+        if isinstance(x, (list, tuple)):
+            stack.extend(x)
+    return False
+
+
+def numeric_array(value: Any, name: str) -> FloatArray:
+    """``value`` as float64, refusing strings and booleans (which numpy would convert)."""
+    if isinstance(value, (str, bytes)):
+        raise TypeError(f"{name} must be numeric, got {_short(value)}")
+    try:
+        raw = np.asarray(value)
+    except ValueError as exc:       # ragged nesting
+        raise ValueError(f"{name} must be a regular array of numbers, got "
+                         f"{_short(value)}") from exc
+    if raw.dtype.kind in "USb" or (raw.dtype.kind == "O" and not all(
+            _is_number(x) for x in raw.ravel())) or (isinstance(value, (list, tuple))
+                                                     and _holds_bool(value)):
+        raise TypeError(f"{name} must hold numbers (not strings or booleans), got "
+                        f"{_short(value)}")
+    try:
+        return np.asarray(raw, dtype=np.float64)
+    except (TypeError, ValueError) as exc:
+        raise TypeError(f"{name} must be an array of numbers, got {_short(value)}") from exc
 
 
 def check_point(value: Any, name: str = "point") -> FloatArray:
@@ -97,10 +134,32 @@ def check_mu(value: Any, name: str = "mu") -> FloatArray:
     return arr
 
 
+def check_mu_scalar(value: Any, name: str = "mu") -> float:
+    """One Coulomb friction coefficient: a finite number >= 0."""
+    if not _is_number(value) and not (isinstance(value, np.ndarray) and value.ndim == 0
+                                      and _is_number(value.item())):
+        raise TypeError(f"{name} must be a single number, got {_short(value)}")
+    return float(check_mu(value, name))
+
+
+def check_int(value: Any, name: str, *, choices: tuple[int, ...] | None = None,
+              minimum: int | None = None) -> int:
+    """An integer (not a bool, not a float), optionally one of ``choices`` or >= minimum."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise TypeError(f"{name} must be an integer, got {_short(value)}")
+    v = int(value)
+    if choices is not None and v not in choices:
+        raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}, got {v}")
+    if minimum is not None and v < minimum:
+        raise ValueError(f"{name} must be >= {minimum}, got {v}")
+    return v
+
+
 def check_scalar(value: Any, name: str, *, positive: bool = False,
                  nonnegative: bool = False) -> float:
     """A finite real scalar, optionally > 0 or >= 0."""
-    if isinstance(value, bool) or not np.isscalar(value) and np.ndim(value) != 0:
+    if isinstance(value, (bool, np.bool_, str, bytes)) or (not np.isscalar(value)
+                                                            and np.ndim(value) != 0):
         raise TypeError(f"{name} must be a real number, got {_short(value)}")
     try:
         x = float(value)

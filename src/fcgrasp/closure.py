@@ -413,6 +413,14 @@ def friction_pair_modes(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
             raise ValueError(f"{name} must be non-zero vectors, got a zero vector")
     mu_p = check_mu(mu, "mu")
     mu_q_arr = mu_p if mu_q is None else check_mu(mu_q, "mu_q")
+    named = {"p": p.shape[:-1], "normal_p": npn.shape[:-1], "q": q.shape[:-1],
+             "normal_q": nqn.shape[:-1], "mu": mu_p.shape, "mu_q": mu_q_arr.shape}
+    try:
+        np.broadcast_shapes(*named.values())
+    except ValueError:
+        shapes = ", ".join(f"{k} {v}" for k, v in named.items())
+        raise ValueError(f"p, normal_p, q, normal_q and mu must broadcast to one batch "
+                         f"shape, got {shapes}") from None
     phi_p, phi_q = np.arctan(mu_p), np.arctan(mu_q_arr)
     d = q - p
     dn = np.linalg.norm(d, axis=-1)

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import FloatArray, check_direction, check_mu, check_point
+from ._checks import FloatArray, check_direction, check_mu_scalar, check_point
 from .convexes import Cone
 from .screws import wrench_from_force
 
@@ -137,7 +137,7 @@ class FrictionPoint(Contact):
     def __init__(self, point: Any, normal: Any, mu: Any) -> None:
         self.point = check_point(point, "point")
         self.normal = check_direction(normal, "normal")
-        self.mu = float(check_mu(mu, "mu"))
+        self.mu = check_mu_scalar(mu, "mu")
         self.points = np.repeat(self.point[None, :], 2, axis=0)
         self.forces = friction_cone_edges(self.normal, self.mu)
 
@@ -162,7 +162,7 @@ class FrictionEdge(Contact):
 
     def __init__(self, a: Any, b: Any, normal: Any, mu: Any) -> None:
         self.a, self.b, self.normal = _check_edge(a, b, normal)
-        self.mu = float(check_mu(mu, "mu"))
+        self.mu = check_mu_scalar(mu, "mu")
         edges = friction_cone_edges(self.normal, self.mu)
         self.points = np.stack([self.a, self.a, self.b, self.b])
         self.forces = np.concatenate([edges, edges])

@@ -27,12 +27,13 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import FloatArray, check_direction, check_mu, check_scalar
+from ._checks import FloatArray, check_direction, check_int, check_mu_scalar, check_scalar
 from ._geom import cross2
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .grasp import Grasp
+from .graspsets import Vertex
 from .hand import Hand
 from .polygon import Polygon
 from .quality import characteristic_length, quality_of
@@ -142,24 +143,24 @@ class GraspPlan:
         return self.regions[np.arange(self.fingers)[None, :], idx]
 
     def to_dict(self) -> dict[str, Any]:
-        """A JSON-ready description (rounded to 12 significant digits)."""
-        r = lambda x: np.round(np.asarray(x, float), 12).tolist()  # noqa: E731
+        """A JSON-ready description (floats rounded to 12 significant digits)."""
+        from .report import json_ready
+
         d: dict[str, Any] = {
             "edges": [int(e) for e in self.edges],
             "contact_type": self.contact_type,
             "mu": self.mu,
             "mode": self.mode,
-            "regions": r(self.regions),
-            "region_lengths": r(self.lengths),
-            "min_region_length": float(np.round(self.min_length, 12)),
-            "contacts": r(self.contacts),
-            "normals": r(self.normals),
-            "quality": {k: (None if not np.isfinite(v) else float(np.round(v, 12)))
-                        for k, v in sorted(self.quality.items())},
+            "regions": self.regions,
+            "region_lengths": self.lengths,
+            "min_region_length": self.min_length,
+            "contacts": self.contacts,
+            "normals": self.normals,
+            "quality": dict(sorted(self.quality.items())),
         }
         if self.gravity is not None:
-            d["gravity"] = {k: r(v) for k, v in self.gravity.items()}
-        return d
+            d["gravity"] = dict(self.gravity)
+        return json_ready(d)
 
 
 # ----------------------------------------------------------------------------- features
@@ -274,6 +275,13 @@ def _pair_candidates(F: _Features, margin: float, i: np.ndarray, j: np.ndarray) 
 PAIR_BATCH = 2_000_000
 
 
+def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
+    """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
+    of them, so that which of equal candidates survive does not depend on numbering."""
+    thr = np.partition(score, score.size - keep)[score.size - keep]
+    return np.flatnonzero(score >= thr - 1e-9 * abs(thr))
+
+
 def _two_finger(F: _Features, margin: float, keep: int | None = None) -> _Candidates:
     """All candidate pairs (or, for large polygons, the ``keep`` best by smallest region)."""
     n = len(F.edge)
@@ -291,13 +299,11 @@ def _two_finger(F: _Features, margin: float, keep: int | None = None) -> _Candid
         jj = np.concatenate([np.arange(r + 1, n) for r in range(start, min(stop, n - 1))])
         c = _pair_candidates(F, margin, ii, jj)
         if len(c.score) > keep:
-            best = np.argpartition(-c.score, keep - 1)[:keep]
-            c = _cand_take(c, np.sort(best))
+            c = _cand_take(c, _keep_best(c.score, keep))
         parts.append(c)
         merged = _cand_concat(parts)
         if len(merged.score) > keep:
-            best = np.argpartition(-merged.score, keep - 1)[:keep]
-            merged = _cand_take(merged, np.sort(best))
+            merged = _cand_take(merged, _keep_best(merged.score, keep))
         parts = [merged]
         start = min(stop, n - 1)
     return parts[0]
@@ -522,6 +528,72 @@ def _levels(c: _Candidates, rows: np.ndarray, margin: float
     return lengths, a, b, mode
 
 
+def _region_ends(seg_a: FloatArray, seg_b: FloatArray, params: FloatArray) -> FloatArray:
+    """End points (n, 2, 2) of regions at arc-length ``params`` (n, 2) along segments."""
+    L = np.hypot(*(seg_b - seg_a).T)
+    tdir = (seg_b - seg_a) / np.where(L > 0, L, 1.0)[:, None]
+    return seg_a[:, None, :] + params[:, :, None] * tdir[:, None, :]
+
+
+def geometric_key(regions: FloatArray, polygon: Polygon) -> tuple[float, ...]:
+    """A key of a set of regions that does not depend on how the part is numbered.
+
+    Each region's two ends are sorted, the regions are sorted, and the coordinates
+    (relative to the part's centroid and size, rounded to 1e-9) are read in that order.
+    Used to break ties between equally good plans or placements.
+    """
+    rel = np.round((np.asarray(regions, float) - polygon.centroid) / polygon.size, 9) + 0.0
+    segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)
+    return tuple(x for seg in segs for pt in seg for x in pt)
+
+
+def _break_ties(polygon: Polygon, c: _Candidates, rows: np.ndarray, a: FloatArray,
+                b: FloatArray, lengths: FloatArray, mode: np.ndarray, margin: float
+                ) -> np.ndarray:
+    """Among pairings and modes with the same leximin levels (corollary 5.1 makes them
+    equivalent without a margin), place the regions of each and keep the placement of
+    least :func:`geometric_key`, so that a renumbered part gets the same regions.
+
+    Updates ``c.perm`` for ``rows`` and returns the modes.  Rows where two fingers share
+    an edge keep their split search's answer.
+    """
+    mode = mode.copy()
+    if c.feats.shape[1] != 4 or rows.size == 0:
+        return mode
+    sel = np.flatnonzero(c.feats[rows, 0] != c.feats[rows, 2])
+    if sel.size == 0:
+        return mode
+    R = rows[sel]
+    options = []                                   # (pairing, mode, levels in finger order)
+    for P in _PAIRINGS:
+        perm = np.broadcast_to(P, (sel.size, 4)).copy()
+        probs = four_finger_problems(a[sel], b[sel], c.center[R], perm, margin)[0]
+        inv = np.argsort(perm, axis=1)
+        for m, pr in enumerate(probs):
+            lev = np.where(pr.separable[:, None], leximin(pr), -1.0)
+            options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
+    for i, r in enumerate(sel):
+        want = np.maximum(lengths[r], 0.0)[None]
+        tied = [(P, m) for P, m, lev in options
+                if not _lex_greater(want, lev[i:i + 1])[0]
+                and not _lex_greater(lev[i:i + 1], want)[0]]
+        if len(tied) < 2:
+            continue
+        best: tuple[Any, ...] | None = None
+        for P, m in tied:
+            c.perm[rows[r]] = P
+            params = _place(c, rows[r:r + 1], a[r:r + 1], b[r:r + 1], lengths[r:r + 1],
+                            np.array([m]), margin)[0]
+            real = c.feats[rows[r]] >= 0
+            key = geometric_key(_region_ends(a[r][real], b[r][real], params[real]), polygon)
+            if best is None or key < best[0]:
+                best = (key, P, m)
+        assert best is not None
+        c.perm[rows[r]] = best[1]
+        mode[r] = best[2]
+    return mode
+
+
 def _build_plans(polygon: Polygon, F: _Features, c: _Candidates, rows: np.ndarray,
                  lengths: FloatArray, a: FloatArray, b: FloatArray, mode: np.ndarray,
                  mu: float, margin_deg: float, contact_type: str,
@@ -532,16 +604,14 @@ def _build_plans(polygon: Polygon, F: _Features, c: _Candidates, rows: np.ndarra
     rows, lengths, a, b, mode = rows[keep], lengths[keep], a[keep], b[keep], mode[keep]
     if rows.size == 0:
         return []
+    mode = _break_ties(polygon, c, rows, a, b, lengths, mode, np.radians(margin_deg))
     params = _place(c, rows, a, b, lengths, mode, np.radians(margin_deg))
     rho = characteristic_length(polygon.vertices, polygon.centroid)
     plans = []
     for r in range(len(rows)):
         real = c.feats[rows[r]] >= 0
         fi = c.feats[rows[r]][real]
-        seg_a, seg_b = a[r][real], b[r][real]
-        L = np.hypot(*(seg_b - seg_a).T)
-        tdir = (seg_b - seg_a) / np.where(L > 0, L, 1.0)[:, None]
-        ends = seg_a[:, None, :] + params[r][real][:, :, None] * tdir[:, None, :]
+        ends = _region_ends(a[r][real], b[r][real], params[r][real])
         edges = tuple(int(F.edge[f]) for f in fi)
         g = None
         if gravity is not None:
@@ -557,15 +627,43 @@ def _check_common(polygon: Any, mu: Any, margin: Any, hand: Any
                   ) -> tuple[float, float]:
     if not isinstance(polygon, Polygon):
         raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
-    mu_v = float(check_mu(mu, "mu"))
-    if np.ndim(mu) != 0:
-        raise ValueError(f"mu must be a single number, got {mu!r}")
+    mu_v = check_mu_scalar(mu, "mu")
     margin_v = check_scalar(margin, "margin", nonnegative=True)
     if margin_v >= 90.0:
         raise ValueError(f"margin is an angle in degrees below 90, got {margin!r}")
     if hand is not None and not isinstance(hand, Hand):
         raise TypeError(f"hand must be a Hand or None, got {type(hand).__name__}")
     return mu_v, margin_v
+
+
+def _leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
+    """Sort key of the leximin order (definition 7.1): smaller is better."""
+    return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, 9))
+
+
+def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region") -> tuple[Any, ...]:
+    """The sort key of :func:`plan` (smaller is better), independent of numbering.
+
+    ``min_region``: the leximin order of the region lengths (definition 7.1);
+    ``resistance`` / ``epsilon``: that quality (larger first, to 9 significant digits),
+    then the leximin order.  Remaining ties are broken by :func:`geometric_key`.
+    """
+    lex = _leximin_key(p.lengths, polygon.size)
+    geo = geometric_key(p.regions, polygon)
+    if rank_by == "min_region":
+        return (lex, geo)
+    q = p.quality["resistance" if rank_by == "resistance" else "epsilon_l1"]
+    q = -1.0 if not np.isfinite(q) else float(f"{q:.9g}")
+    return (-q, lex, geo)
+
+
+def _check_disturbance(disturbance: Any) -> tuple[float, float]:
+    if isinstance(disturbance, (str, bytes)) or np.ndim(disturbance) != 1 \
+            or len(disturbance) != 2:
+        raise ValueError(f"disturbance must be (translation, rotation in degrees), got "
+                         f"{disturbance!r}")
+    return (check_scalar(disturbance[0], "disturbance[0]", positive=True),
+            check_scalar(disturbance[1], "disturbance[1]", positive=True))
 
 
 def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
@@ -613,15 +711,17 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     ((1, 3), 1.0)
     """
     mu_v, margin_v = _check_common(polygon, mu, margin, hand)
-    if isinstance(fingers, bool) or fingers not in (2, 3, 4):
-        raise ValueError(f"fingers must be 2, 3 or 4, got {fingers!r}")
+    fingers = check_int(fingers, "fingers", choices=(2, 3, 4))
+    if not isinstance(rank_by, str):
+        raise TypeError(f"rank_by must be a string, got {rank_by!r}")
     if rank_by not in RANKINGS:
         raise ValueError(f"rank_by must be one of {', '.join(RANKINGS)}, got {rank_by!r}")
-    if top is not None and (isinstance(top, bool) or not isinstance(top, (int, np.integer))
-                            or top < 1):
-        raise ValueError(f"top must be a positive integer or None, got {top!r}")
-    dist = (check_scalar(disturbance[0], "disturbance[0]", positive=True),
-            check_scalar(disturbance[1], "disturbance[1]", positive=True))
+    if top is not None:
+        top = check_int(top, "top", minimum=1)
+    dist = _check_disturbance(disturbance)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a callable progress(done, total) or None, "
+                        f"got {progress!r}")
     margin_r = np.radians(margin_v)
     if fingers == 2:
         F = _features(polygon, mu_v, hand)
@@ -654,8 +754,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             if progress is not None:
                 progress(min(start, order.size), order.size)
             mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
-            if start >= order.size or (mins_so_far.size >= top and
-                                       mins_so_far[top - 1] >= c.score[order[start]]):
+            # stop when no later candidate can reach (or tie) the top-th smallest region
+            if start >= order.size or (mins_so_far.size >= top and mins_so_far[top - 1] >
+                                       c.score[order[start]] + 1e-9 * polygon.size):
                 break
         rows = np.concatenate([x[0] for x in parts])
         lv = np.concatenate([x[1] for x in parts])
@@ -663,10 +764,12 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         b_ = np.concatenate([x[3] for x in parts])
         md = np.concatenate([x[4] for x in parts])
         real = c.feats[rows] >= 0
-        mins = np.where(np.all((lv > 0) | ~real, axis=1),
-                        np.min(np.where(real, lv, np.inf), axis=1), -1.0)
-        pick = np.lexsort((np.arange(rows.size), -np.round(mins / polygon.size, 12)))[:top]
-        pick = pick[mins[pick] > 0]
+        ok = np.all((lv > 0) | ~real, axis=1)
+        keys = [_leximin_key(lv[r][real[r]], polygon.size) for r in range(len(rows))]
+        ranked = sorted((k, r) for r, k in enumerate(keys) if ok[r])
+        if len(ranked) > top:      # the top plans and every plan tied with the last of them
+            ranked = [kr for kr in ranked if kr[0] <= ranked[top - 1][0]]
+        pick = np.array(sorted(r for _, r in ranked), dtype=int)
         plans = _build_plans(polygon, F, c, rows[pick], lv[pick], a_[pick], b_[pick], md[pick],
                              mu_plan, margin_v, ctype, g, dist)
     else:
@@ -675,12 +778,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             progress(order.size, order.size)
         plans = _build_plans(polygon, F, c, order, lv, a_, b_, md, mu_plan, margin_v, ctype,
                              g, dist)
-        if rank_by == "min_region":
-            plans.sort(key=lambda p: -round(p.min_length / polygon.size, 12))
-        else:
-            key = "resistance" if rank_by == "resistance" else "epsilon_l1"
-            plans.sort(key=lambda p: (-np.nan_to_num(p.quality[key], nan=-1.0),
-                                      -round(p.min_length / polygon.size, 12)))
+    plans.sort(key=lambda p: rank_key(p, polygon, rank_by))
     return plans if top is None else plans[:top]
 
 
@@ -711,6 +809,12 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
     """
     mu_v, margin_v = _check_common(polygon, mu, margin, hand)
+    if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
+        raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
+    if any(isinstance(e, Vertex) for e in edges):
+        raise ValueError(f"edges holds a Vertex (a soft finger), got {list(edges)!r}: "
+                         f"independent regions lie on edges; use grasp_set or grasp_sets "
+                         f"for a soft finger at a vertex")
     idx = polygon.check_edges(edges)
     margin_r = np.radians(margin_v)
     n = len(idx)

@@ -32,7 +32,8 @@ import shapely
 from shapely.geometry import LineString
 from shapely.geometry import Polygon as ShapelyPolygon
 
-from ._checks import FloatArray, _short
+from ._checks import FloatArray, _short, numeric_array
+from .tolerances import MAX_MAGNITUDE
 
 __all__ = ["Polygon", "Edge"]
 
@@ -59,14 +60,8 @@ def _check_ring(value: Any, name: str) -> FloatArray:
     if isinstance(value, (str, bytes)):
         raise TypeError(f"{name} must be a list of [x, y] pairs, got {_short(value)}")
     try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError) as exc:
-        try:
-            shape = np.asarray(value, dtype=object).shape
-        except ValueError:
-            shape = ()
-        if len(shape) == 2 and shape[1] == 2:
-            raise TypeError(f"{name} must hold numbers, got {_short(value)}") from exc
+        arr = numeric_array(value, name)
+    except ValueError as exc:
         raise ValueError(f"{name} must be a list of [x, y] pairs (shape (n, 2)), got "
                          f"{_short(value)}") from exc
     if arr.ndim != 2 or arr.shape[1] != 2:
@@ -75,6 +70,10 @@ def _check_ring(value: Any, name: str) -> FloatArray:
     if bad.size:
         raise ValueError(f"{name} has a non-finite coordinate at vertex {int(bad[0])}: "
                          f"{arr[bad[0]].tolist()}")
+    big = float(np.max(np.abs(arr))) if arr.size else 0.0
+    if big > MAX_MAGNITUDE:
+        raise ValueError(f"{name} has a coordinate of magnitude {big:.3g}, above fcgrasp's "
+                         f"documented range ({MAX_MAGNITUDE:g}): rescale the part")
     if arr.shape[0] >= 2 and np.array_equal(arr[0], arr[-1]):
         arr = arr[:-1]
     distinct = np.unique(arr, axis=0).shape[0] if arr.size else 0
@@ -148,6 +147,9 @@ class Polygon:
 
     def __init__(self, vertices: Any, holes: Sequence[Any] = ()) -> None:
         outer = _check_ring(vertices, "vertices")
+        if isinstance(holes, (str, bytes)) or not isinstance(holes, (Sequence, np.ndarray)):
+            raise TypeError(f"holes must be a list of rings (each of shape (m, 2)), got "
+                            f"{_short(holes)}")
         if isinstance(holes, np.ndarray) and holes.ndim == 2:
             raise ValueError("holes must be a list of rings (each of shape (m, 2)), got one "
                              "array of shape " + str(holes.shape))
@@ -155,6 +157,10 @@ class Polygon:
         rings = [outer, *hole_rings]
         areas = [_signed_area(r) for r in rings]
         scale = float(np.max(np.ptp(np.concatenate(rings), axis=0)))
+        if scale < 1.0 / MAX_MAGNITUDE:
+            raise ValueError(f"vertices span {scale:.3g}, below fcgrasp's documented range "
+                             f"(parts at least {1.0 / MAX_MAGNITUDE:g} across): rescale the "
+                             f"part")
         for k, r in enumerate(rings):
             rel = r - r[0]
             far = rel[np.argmax(np.hypot(rel[:, 0], rel[:, 1]))]

@@ -8,8 +8,10 @@ r"""Grasp quality (paper section 8.1), computed at a plan's representative grasp
   disturbance is resisted by the contact forces balancing a unit force through the
   centroid along the direction of motion; a rotation disturbance by those balancing a
   pure torque ``+-rho`` (a unit force at the part's radius ``rho``).  Among the balancing
-  force distributions the one with the smallest forces is used (for four generating
-  wrenches it is unique: the least non-negative solution).  The *work* of finger ``i`` is
+  force distributions the one of least total force is used, for any number of
+  generating forces (for four it is unique: the least non-negative solution; with more,
+  the cheapest balancing triple).  A grasp that is not force closure cannot balance
+  every disturbance: its resistance is 0.  The *work* of finger ``i`` is
   its force for the translation times ``d`` plus its force for the rotation times the
   distance its contact point moves, ``theta |p_i - c|``.  The **exact** resistance takes,
   for the worst disturbance, the largest over fingers of that sum (the two parts for the
@@ -28,7 +30,7 @@ r"""Grasp quality (paper section 8.1), computed at a plan's representative grasp
 
 from __future__ import annotations
 
-from itertools import product
+from itertools import combinations, product
 from typing import Any
 
 import numpy as np
@@ -77,16 +79,38 @@ def epsilon_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
 
 
 def _least_solutions(w: FloatArray, targets: FloatArray) -> FloatArray | None:
-    """Least non-negative lambda with lambda @ w = target, for 4 generators (k = 4)."""
-    _, _, vt = np.linalg.svd(w.T)
-    nvec = vt[-1]
-    if np.all(nvec <= 0):
-        nvec = -nvec
-    if not np.all(nvec > 1e-12 * np.abs(nvec).max()):
+    """Non-negative ``lambda`` with ``lambda @ w = target`` and the least total force.
+
+    The balancing distributions of a target form a polyhedron; the one of least
+    ``sum(lambda)`` is one of its vertices, which use at most three generators (the
+    wrench space has three dimensions).  All triples are solved at once and the cheapest
+    feasible one is kept (ties: the first triple in index order).  With four generators
+    whose null vector is positive (a force-closure grasp) this is the unique least
+    non-negative solution.  Returns None when some target cannot be balanced (the grasp
+    is not force closure).
+    """
+    k = len(w)
+    if k < 3:
         return None
-    lam0 = np.linalg.lstsq(w.T, targets.T, rcond=None)[0].T        # (m, 4)
-    s = np.max(-lam0 / nvec, axis=1)
-    return lam0 + s[:, None] * nvec
+    trip = np.array(list(combinations(range(k), 3)))                    # (T, 3)
+    M = np.transpose(w[trip], (0, 2, 1))                                  # (T, 3, 3)
+    det = np.linalg.det(M)
+    ok = np.abs(det) > 1e-12 * np.max(np.abs(M), axis=(1, 2)) ** 3
+    if not ok.any():
+        return None
+    M, trip = M[ok], trip[ok]
+    lam = np.linalg.solve(M[:, None], targets[None, :, :, None])[..., 0]  # (T, m, 3)
+    scale = np.max(np.abs(targets), axis=1)[None, :]
+    feasible = np.all(lam >= -1e-12 * np.maximum(scale, 1e-300)[..., None], axis=2)
+    cost = np.where(feasible, lam.sum(axis=2), np.inf)                    # (T, m)
+    best = np.argmin(cost, axis=0)
+    if not np.all(np.isfinite(cost[best, np.arange(len(targets))])):
+        return None
+    out = np.zeros((len(targets), k))
+    cols = trip[best]                                                     # (m, 3)
+    rows = np.arange(len(targets))[:, None]
+    out[rows, cols] = np.maximum(lam[best, np.arange(len(targets))], 0.0)
+    return out
 
 
 def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
@@ -97,8 +121,6 @@ def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarra
 
     ``counts`` marks which generators belong to real fingers (gravity is not a finger).
     """
-    if len(points) != 4:
-        return {"resistance": float("nan"), "resistance_approx": float("nan")}
     theta = np.radians(rotation_deg)
     w = _scaled_wrenches(points, forces, centroid, rho)
     ang = np.radians(np.arange(0.0, 360.0, 0.5))

@@ -34,14 +34,16 @@ from . import __version__
 FORMAT_VERSION = 1
 
 
-def _clean(x: Any) -> Any:
-    """JSON-ready copy: numpy to Python, floats to 12 significant digits, -0.0 to 0.0."""
+def json_ready(x: Any) -> Any:
+    """JSON-ready copy: numpy to Python, floats to 12 significant digits (not decimals: a
+    part in metres keeps its precision, one in micrometres drops its noise), -0.0 to 0.0,
+    non-finite to None."""
     if isinstance(x, dict):
-        return {str(k): _clean(v) for k, v in x.items()}
+        return {str(k): json_ready(v) for k, v in x.items()}
     if isinstance(x, (list, tuple)):
-        return [_clean(v) for v in x]
+        return [json_ready(v) for v in x]
     if isinstance(x, np.ndarray):
-        return _clean(x.tolist())
+        return json_ready(x.tolist())
     if isinstance(x, (np.bool_, bool)):
         return bool(x)
     if isinstance(x, (np.integer, int)):
@@ -57,7 +59,7 @@ def _clean(x: Any) -> Any:
 
 def dumps(report: dict[str, Any]) -> str:
     """Deterministic JSON text (sorted keys, two-space indent, trailing newline)."""
-    return json.dumps(_clean(report), sort_keys=True, indent=2, allow_nan=False) + "\n"
+    return json.dumps(json_ready(report), sort_keys=True, indent=2, allow_nan=False) + "\n"
 
 
 def part_dict(polygon: Any) -> dict[str, Any]:

@@ -34,4 +34,11 @@ DEGENERATE_TOL = 1e-12
 #: not limit resolution: a lever arm is still resolved down to ``TOL`` times the floor.
 LENGTH_RESOLUTION = 1e-5
 
-__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION"]
+#: The documented range of inputs: coordinates (and every other input number) of
+#: magnitude at most this, and parts at least ``1 / MAX_MAGNITUDE`` across.  Within it,
+#: squares and products of coordinates stay far from float64 overflow and underflow, so
+#: a part gives the same answer at every scale; outside it, inputs are refused with a
+#: ``ValueError`` naming the argument.
+MAX_MAGNITUDE = 1e100
+
+__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE"]
