@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import os
 import sys
 from pathlib import Path
 from typing import Any, NoReturn
@@ -17,7 +18,7 @@ from typing import Any, NoReturn
 import numpy as np
 
 from . import __version__
-from ._atomic import atomic_write_text
+from ._atomic import OutputSet
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity, SoftFinger
 from .grasp import Grasp
 from .hand import Hand
@@ -71,17 +72,54 @@ def _progress(enabled: bool) -> Any:
     return show
 
 
+def _same_file(a: str, b: str) -> bool:
+    try:
+        if os.path.exists(a) and os.path.exists(b):
+            return os.path.samefile(a, b)
+    except OSError:
+        pass
+    return os.path.realpath(a) == os.path.realpath(b)
+
+
+def _check_outputs(args: Any, inputs: list[str]) -> None:
+    """Validate every output option before any work: extensions, and no output that is
+    an input or another output (a run must never overwrite what it reads)."""
+    outs = [(f"--{k}", getattr(args, k)) for k in ("json", "plot") if getattr(args, k, None)]
+    for opt, path in outs:
+        if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
+            raise CliError(f"{opt} must be a file name, got {path!r}")
+        for src in inputs:
+            if not src.startswith("demo:") and _same_file(path, src):
+                raise CliError(f"{opt} {path} is an input of this run: refusing to "
+                               f"overwrite it")
+    if len(outs) == 2 and _same_file(outs[0][1], outs[1][1]):
+        raise CliError(f"--json and --plot name the same file {outs[0][1]!r}")
+    plot = getattr(args, "plot", None)
+    if plot:
+        if Path(plot).suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise CliError(f"--plot must end in .png, .svg or .pdf, got {plot!r}")
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise CliError("--plot needs matplotlib: pip install 'fcgrasp[plot]'") from None
+
+
+def _check_flatten(args: Any) -> None:
+    f = getattr(args, "flatten", None)
+    if f is not None and not (np.isfinite(f) and f > 0):
+        raise CliError(f"--flatten must be a finite number > 0, got {f:g}")
+
+
 def _write_outputs(polygon: Any, plans: list[Any], report: dict[str, Any], args: Any,
                    title: str) -> None:
-    if args.json:
-        atomic_write_text(args.json, dumps(report))
-    if args.plot:
-        ext = Path(args.plot).suffix.lower()
-        if ext not in (".png", ".svg", ".pdf"):
-            raise CliError(f"--plot must end in .png, .svg or .pdf, got {args.plot!r}")
-        from .plotting import plan_figure
+    """The JSON and the figure of one run, written as a set (both or neither)."""
+    with OutputSet() as out:
+        if args.json:
+            out.add_text(args.json, dumps(report))
+        if args.plot:
+            from .plotting import plan_figure
 
-        plan_figure(polygon, plans, args.plot, units=args.units, title=title)
+            plan_figure(polygon, plans, args.plot, units=args.units, title=title, outputs=out)
 
 
 def _print_table(plans: list[Any], units: str, out: Any) -> None:
@@ -113,20 +151,26 @@ def _no_grasp_reason(polygon: Any, fingers: int, mu: float, margin: float,
 
 
 def cmd_plan(args: Any) -> int:
-    polygon = read_part(args.part, args.id, args.flatten)
+    # every option is checked before any work or output
+    _check_outputs(args, [args.part])
+    _check_flatten(args)
     if args.mu < 0 or not np.isfinite(args.mu):
         raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
     if not 0 <= args.margin < 90:
         raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
     if args.top < 1:
         raise CliError(f"--top must be at least 1, got {args.top}")
-    hand = None
+    ws = None
     if args.workspace is not None or args.finger_radius:
         ws = _floats(args.workspace, 3, "--workspace") if args.workspace else None
         if ws is not None and ws[2] <= 0:
             raise CliError(f"--workspace radius must be > 0, got {ws[2]:g}")
-        if args.finger_radius < 0:
-            raise CliError(f"--finger-radius must be >= 0, got {args.finger_radius:g}")
+        if not (np.isfinite(args.finger_radius) and args.finger_radius >= 0):
+            raise CliError(f"--finger-radius must be a finite number >= 0, got "
+                           f"{args.finger_radius:g}")
+    polygon = read_part(args.part, args.id, args.flatten)
+    hand = None
+    if args.workspace is not None or args.finger_radius:
         hand = Hand(workspace=ws, finger_radius=args.finger_radius)
         reach = hand.feasible_intervals(polygon)
         if not any(reach):
@@ -155,6 +199,34 @@ def cmd_plan(args: Any) -> int:
     return 0
 
 
+_CONTACTS_KEYS = {"contacts", "gravity"}
+_CONTACT_KEYS = {"point", "type", "mu", "edge", "normal", "vertex"}
+_GRAVITY_KEYS = {"direction"}
+
+
+def _unknown(d: dict[str, Any], allowed: set[str], where: str) -> None:
+    extra = sorted(set(d) - allowed)
+    if extra:
+        raise CliError(f"{where}: unknown key {extra[0]!r} (expected "
+                       f"{', '.join(sorted(allowed))})")
+
+
+def _index(value: Any, name: str, where: str, upto: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < upto:
+        raise CliError(f"{where}: {name} must be an index from 0 to {upto - 1}, got "
+                       f"{json.dumps(value)}")
+    return value
+
+
+def _number_pair(value: Any, name: str, where: str) -> np.ndarray:
+    if (not isinstance(value, list) or len(value) != 2
+            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
+            or not all(np.isfinite(value))):
+        raise CliError(f"{where}: {name} must be [x, y] finite numbers, got "
+                       f"{json.dumps(value)}")
+    return np.asarray(value, dtype=float)
+
+
 def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, Any]]]:
     try:
         data = json.loads(Path(path).read_text(encoding="utf-8"))
@@ -162,8 +234,12 @@ def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, A
         raise CliError(f"{path}: no such file") from None
     except json.JSONDecodeError as exc:
         raise CliError(f"{path}: not valid JSON ({exc.msg} at line {exc.lineno})") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise CliError(f"{path}: cannot read ({exc})") from None
+    except UnicodeDecodeError as exc:
+        raise CliError(f"{path}: not UTF-8 text (byte {exc.start})") from None
+    except OSError as exc:
+        raise CliError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    if isinstance(data, dict):
+        _unknown(data, _CONTACTS_KEYS, path)
     items = data.get("contacts") if isinstance(data, dict) else data
     if not isinstance(items, list) or not items:
         raise CliError(f"{path}: expected {{'contacts': [...]}} with at least one contact")
@@ -172,17 +248,18 @@ def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, A
         where = f"{path} contacts[{k}]"
         if not isinstance(c, dict):
             raise CliError(f"{where}: expected an object, got {type(c).__name__}")
+        _unknown(c, _CONTACT_KEYS, where)
         kind = c.get("type", "friction" if "mu" in c else "frictionless")
         mu = c.get("mu", 0.0)
-        if not isinstance(mu, (int, float)) or isinstance(mu, bool) or mu < 0:
-            raise CliError(f"{where}: mu must be a number >= 0, got {mu!r}")
+        if not isinstance(mu, (int, float)) or isinstance(mu, bool) or not mu >= 0 \
+                or not np.isfinite(mu):
+            raise CliError(f"{where}: mu must be a finite number >= 0, got {json.dumps(mu)}")
         if kind == "soft":
             if "vertex" not in c:
                 raise CliError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
-            k_v = c["vertex"]
-            if (not isinstance(k_v, int) or not 0 <= k_v < polygon.n_edges
-                    or not polygon.usable[k_v]):
-                raise CliError(f"{where}: vertex must be a vertex index, got {k_v!r}")
+            k_v = _index(c["vertex"], "vertex", where, polygon.n_edges)
+            if not polygon.usable[k_v]:
+                raise CliError(f"{where}: vertex {k_v} starts a zero-length edge")
             prev = polygon.previous_edge(k_v)
             if not polygon.convex_vertices()[prev]:
                 raise CliError(f"{where}: vertex {k_v} is not convex; a soft finger needs a "
@@ -195,27 +272,26 @@ def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, A
             described.append({"type": "soft", "vertex": k_v, "point": v, "mu": mu})
             continue
         if kind not in ("friction", "frictionless"):
-            raise CliError(f"{where}: type must be friction, frictionless or soft, got {kind!r}")
-        try:
-            pt = np.asarray(c["point"], dtype=float)
-        except KeyError:
-            raise CliError(f"{where}: missing 'point'") from None
-        except (TypeError, ValueError):
-            raise CliError(f"{where}: point must be [x, y] numbers, got {c.get('point')!r}") \
-                from None
-        if pt.shape != (2,) or not np.all(np.isfinite(pt)):
-            raise CliError(f"{where}: point must be [x, y] finite numbers, got {c.get('point')!r}")
+            raise CliError(f"{where}: type must be friction, frictionless or soft, got "
+                           f"{json.dumps(kind)}")
+        if "vertex" in c:
+            raise CliError(f"{where}: 'vertex' goes with a soft contact, not {kind}")
+        if "point" not in c:
+            raise CliError(f"{where}: missing 'point'")
+        pt = _number_pair(c["point"], "point", where)
         if "normal" in c:
-            n = np.asarray(c["normal"], dtype=float)
-            edge = c.get("edge")
+            n = _number_pair(c["normal"], "normal", where)
+            if not np.any(n):
+                raise CliError(f"{where}: normal must be a non-zero vector")
+            edge = None if "edge" not in c else _index(c["edge"], "edge", where,
+                                                       polygon.n_edges)
         else:
             if "edge" in c:
-                e = c["edge"]
-                if not isinstance(e, int) or not 0 <= e < polygon.n_edges or not polygon.usable[e]:
-                    raise CliError(f"{where}: edge must be an edge index, got {e!r}")
+                e = _index(c["edge"], "edge", where, polygon.n_edges)
+                if not polygon.usable[e]:
+                    raise CliError(f"{where}: edge {e} has zero length")
             else:
-                d = _dist_to_edges(polygon, pt)
-                e = int(np.argmin(d))
+                e = int(np.argmin(_dist_to_edges(polygon, pt)))
             d_e = float(_dist_to_edges(polygon, pt)[e])
             if d_e > 1e-6 * polygon.size:
                 raise CliError(f"{where}: point {pt.tolist()} is not on edge {e} "
@@ -227,9 +303,15 @@ def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, A
         else:
             contacts.append(FrictionlessPoint(pt, n))
         described.append({"type": kind, "point": pt, "normal": n, "edge": edge, "mu": mu})
-    if isinstance(data, dict) and data.get("gravity"):
-        g = data["gravity"]
-        direction = g.get("direction", [0, -1]) if isinstance(g, dict) else [0, -1]
+    g = data.get("gravity") if isinstance(data, dict) else None
+    if g is not None:
+        if not isinstance(g, dict):
+            raise CliError(f"{path}: gravity must be an object such as "
+                           f'{{"direction": [0, -1]}}, got {json.dumps(g)}')
+        _unknown(g, _GRAVITY_KEYS, f"{path} gravity")
+        direction = _number_pair(g.get("direction", [0, -1]), "direction", f"{path} gravity")
+        if not np.any(direction):
+            raise CliError(f"{path} gravity: direction must be a non-zero vector")
         contacts.append(Gravity(polygon.centroid, direction))
         described.append({"type": "gravity", "point": polygon.centroid, "direction": direction})
     return contacts, described
@@ -245,6 +327,8 @@ def _dist_to_edges(polygon: Any, pt: np.ndarray) -> np.ndarray:
 
 
 def cmd_check(args: Any) -> int:
+    _check_outputs(args, [args.part, args.contacts])
+    _check_flatten(args)
     polygon = read_part(args.part, args.id, args.flatten)
     contacts, described = _load_contacts(args.contacts, polygon)
     grasp = Grasp(contacts)
@@ -255,14 +339,13 @@ def cmd_check(args: Any) -> int:
               "force_closure": rep.force_closure, "failed": rep.failed,
               "escape_twist": rep.escape_twist, "escape": rep.escape_description,
               "total_freedom": {"rays": free.rays, "lines": free.lines}}
-    if args.json:
-        atomic_write_text(args.json, dumps(result))
-    if args.plot:
-        if Path(args.plot).suffix.lower() not in (".png", ".svg", ".pdf"):
-            raise CliError(f"--plot must end in .png, .svg or .pdf, got {args.plot!r}")
-        from .plotting import grasp_figure
+    with OutputSet() as out:
+        if args.json:
+            out.add_text(args.json, dumps(result))
+        if args.plot:
+            from .plotting import grasp_figure
 
-        grasp_figure(polygon, grasp, args.plot, units=args.units)
+            grasp_figure(polygon, grasp, args.plot, units=args.units, outputs=out)
     if not args.quiet:
         print(str(rep))
         if not rep.force_closure:
@@ -299,10 +382,11 @@ def cmd_demo(args: Any) -> int:
         reason = None if plans else _no_grasp_reason(polygon, fingers, mu, DEFAULT_MARGIN_DEG,
                                                      None)
         stem = f"{name}-{fingers}f"
-        atomic_write_text(out / f"{stem}.json",
-                          dumps(plan_report(polygon, plans, params, "mm", reason)))
-        plan_figure(polygon, plans, str(out / f"{stem}.png"), units="mm",
-                    title=f"demo:{name} - {title}")
+        with OutputSet() as files:
+            files.add_text(out / f"{stem}.json",
+                           dumps(plan_report(polygon, plans, params, "mm", reason)))
+            plan_figure(polygon, plans, str(out / f"{stem}.png"), units="mm",
+                        title=f"demo:{name} - {title}", outputs=files)
         best = plans[0] if plans else None
         summary["plans"].append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
                                  "json": f"{stem}.json", "figure": f"{stem}.png",
@@ -314,7 +398,8 @@ def cmd_demo(args: Any) -> int:
             else:
                 print(f"demo:{name:9s} {fingers} fingers  best edges {list(best.edges)!s:16s} "
                       f"min region {best.min_length:7.3f} mm  -> {out / stem}.png")
-    atomic_write_text(out / "demo.json", dumps(summary))
+    with OutputSet() as files:
+        files.add_text(out / "demo.json", dumps(summary))
     if not args.quiet:
         print(f"wrote {len(jobs)} plans (JSON and PNG) and {out / 'demo.json'}")
     return 0

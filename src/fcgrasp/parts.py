@@ -72,6 +72,10 @@ def polygon_from_json(data: Any, where: str = "JSON") -> Polygon:
         raise ValueError(f"{where}: expected an object with 'vertices' or a GeoJSON "
                          f"geometry, got {type(data).__name__}")
     if "vertices" in data:
+        extra = sorted(set(data) - {"vertices", "holes"})
+        if extra:
+            raise ValueError(f"{where}: unknown key {extra[0]!r} (a part is "
+                             f"{{'vertices': [...], 'holes': [...]}})")
         holes = data.get("holes", [])
         if not isinstance(holes, list):
             raise ValueError(f"{where}: 'holes' must be a list of rings")
@@ -84,8 +88,16 @@ def polygon_from_json(data: Any, where: str = "JSON") -> Polygon:
 def polygon_from_geojson(data: Any, where: str = "GeoJSON") -> Polygon:
     kind = data.get("type")
     if kind == "FeatureCollection":
-        for i, feat in enumerate(data.get("features") or []):
-            geom = (feat or {}).get("geometry") or {}
+        feats = data.get("features")
+        if not isinstance(feats, list):
+            raise ValueError(f"{where}: a FeatureCollection needs a 'features' list")
+        for i, feat in enumerate(feats):
+            if not isinstance(feat, dict):
+                raise ValueError(f"{where} features[{i}]: expected a Feature object, got "
+                                 f"{type(feat).__name__}")
+            geom = feat.get("geometry") or {}
+            if not isinstance(geom, dict):
+                raise ValueError(f"{where} features[{i}]: geometry must be an object")
             if geom.get("type") in ("Polygon", "MultiPolygon"):
                 return polygon_from_geojson(geom, f"{where} features[{i}]")
         raise ValueError(f"{where}: the FeatureCollection holds no Polygon")
@@ -96,7 +108,7 @@ def polygon_from_geojson(data: Any, where: str = "GeoJSON") -> Polygon:
         return polygon_from_geojson(geom, f"{where} geometry")
     if kind == "MultiPolygon":
         polys = data.get("coordinates") or []
-        if not polys:
+        if not isinstance(polys, list) or not polys:
             raise ValueError(f"{where}: empty MultiPolygon")
         return polygon_from_geojson({"type": "Polygon", "coordinates": polys[0]}, where)
     if kind == "Polygon":
@@ -126,6 +138,22 @@ def polygon_from_wkt(text: str, where: str = "WKT") -> Polygon:
 
 
 # ----------------------------------------------------------------------------- SVG
+
+#: Default curve flattening tolerance, relative to the drawing's size.
+FLATTEN_DEFAULT = 1e-3
+#: Finest flattening tolerance accepted, relative to the drawing's size: finer would
+#: only multiply edges (a circle at 1e-6 already has about 2,000).
+FLATTEN_FINEST = 1e-6
+
+
+def _flatten_tolerance(tolerance: float | None, size: float, where: str) -> float:
+    if tolerance is None:
+        return max(size, 1e-300) * FLATTEN_DEFAULT
+    if tolerance < FLATTEN_FINEST * size:
+        raise ValueError(f"{where}: flattening tolerance {tolerance:g} is below "
+                         f"{FLATTEN_FINEST:g} of the drawing's size ({size:.6g})")
+    return tolerance
+
 
 
 def _flatten_segment(seg: Any, tol: float, out: list[complex], depth: int = 0,
@@ -173,7 +201,8 @@ def polygon_from_svg(path: str, element_id: str | None = None,
         if bbox is None:
             continue
         size = max(bbox[2] - bbox[0], bbox[3] - bbox[1])
-        tol = tolerance if tolerance is not None else max(size, 1e-300) * 1e-3
+        tol = _flatten_tolerance(tolerance, size, f"{path} element "
+                                 f"{getattr(shape, 'id', None) or type(shape).__name__}")
         rings: list[list[complex]] = []
         cur: list[complex] = []
         for s in segs:
@@ -238,7 +267,7 @@ def polygon_from_dxf(path: str, element_id: str | None = None,
         ext = p.control_vertices()
         arr = np.array([[v.x, v.y] for v in ext]) if len(ext) else np.zeros((0, 2))
         size = float(np.max(np.ptp(arr, axis=0))) if len(arr) else 1.0
-        tol = tolerance if tolerance is not None else max(size, 1e-300) * 1e-3
+        tol = _flatten_tolerance(tolerance, size, f"{path} {kind} {e.dxf.handle}")
         pts = np.array([[v.x, v.y] for v in p.flattening(tol)])
         try:
             return Polygon(pts)
@@ -339,7 +368,18 @@ def read_part(spec: str, element_id: str | None = None,
     if not isinstance(spec, (str, os.PathLike)):
         raise TypeError(f"part must be a path or 'demo:NAME', got {spec!r}")
     spec = os.fspath(spec)
+    if tolerance is not None:
+        if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float, np.number)):
+            raise TypeError(f"tolerance must be a number, got {tolerance!r}")
+        if not (np.isfinite(tolerance) and tolerance > 0):
+            raise ValueError(f"tolerance (--flatten) must be a finite number > 0, got "
+                             f"{tolerance!r}")
+    if element_id is not None and not isinstance(element_id, str):
+        raise TypeError(f"element_id must be a string, got {element_id!r}")
     if spec.startswith("demo:"):
+        if tolerance is not None or element_id is not None:
+            raise ValueError("tolerance (--flatten) and element_id (--id) do not apply to "
+                             "built-in parts")
         return demo_part(spec[5:])
     p = Path(spec)
     if not p.exists():
@@ -350,6 +390,24 @@ def read_part(spec: str, element_id: str | None = None,
         fmt = sniff_format(spec)
     except OSError as exc:
         raise ValueError(f"{spec}: cannot read ({exc.strerror})") from exc
+    try:
+        return _read_format(spec, p, fmt, element_id, tolerance)
+    except (ValueError, TypeError):
+        raise
+    except MemoryError:
+        raise ValueError(f"{spec}: too large to read") from None
+    except Exception as exc:  # noqa: BLE001 - malformed files surface in many ways
+        raise ValueError(f"{spec}: cannot read as {fmt} ({type(exc).__name__}: "
+                         f"{' '.join(str(exc).split())[:120]})") from exc
+
+
+def _read_format(spec: str, p: Path, fmt: str, element_id: str | None,
+                 tolerance: float | None) -> Polygon:
+    if fmt == "image" and element_id is not None:
+        raise ValueError(f"{spec}: element_id (--id) applies to SVG and DXF, not images")
+    if fmt in ("json", "wkt") and (tolerance is not None or element_id is not None):
+        raise ValueError(f"{spec}: tolerance (--flatten) and element_id (--id) apply to SVG, "
+                         f"DXF and images, not {fmt.upper()}")
     if fmt in ("json", "wkt"):
         try:
             text = p.read_text(encoding="utf-8")

@@ -63,11 +63,19 @@ def draw_grasp(ax: Any, grasp: Grasp, outline: Any = None, title: str | None = N
     ax.tick_params(labelsize=6)
 
 
-def save_figure(fig: Any, path: str) -> None:
-    """Save a matplotlib figure atomically (format from the extension)."""
-    from ._atomic import atomic_write
+def save_figure(fig: Any, path: str, outputs: Any = None) -> None:
+    """Save a matplotlib figure atomically (format from the extension), or stage it in
+    ``outputs`` (an output set written all or none)."""
+    from ._atomic import OutputSet
 
-    atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=120, bbox_inches="tight"))
+    def write(tmp: str) -> None:
+        fig.savefig(tmp, dpi=120, bbox_inches="tight")
+
+    if outputs is not None:
+        outputs.add(path, write)
+        return
+    with OutputSet() as out:
+        out.add(path, write)
 
 
 # ----------------------------------------------------------------------------- plans
@@ -139,7 +147,7 @@ def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
 
 
 def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
-                title: str | None = None, panel: int = 3) -> None:
+                title: str | None = None, panel: int = 3, outputs: Any = None) -> None:
     """Write a figure of the best plan (figure 1), or with several plans a panel of the best
     and worst ranked ones (figure 15), atomically; format from the extension."""
     plt = _pyplot()
@@ -164,11 +172,12 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
         if title:
             fig.suptitle(title, fontsize=10)
     fig.tight_layout()
-    save_figure(fig, path)
+    save_figure(fig, path, outputs)
     plt.close(fig)
 
 
-def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "") -> None:
+def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "",
+                 outputs: Any = None) -> None:
     """The part with a checked grasp: contact forces, verdict, escape motion (atomically)."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(4.5, 4.5))
@@ -178,5 +187,5 @@ def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "") -> None
     if units:
         ax.set_ylabel(units, fontsize=7)
     fig.tight_layout()
-    save_figure(fig, path)
+    save_figure(fig, path, outputs)
     plt.close(fig)
