@@ -392,8 +392,10 @@ def read_part(spec: str, element_id: str | None = None,
         raise ValueError(f"{spec}: cannot read ({exc.strerror})") from exc
     try:
         return _read_format(spec, p, fmt, element_id, tolerance)
-    except (ValueError, TypeError):
-        raise
+    except (ValueError, TypeError) as exc:
+        if str(exc).startswith(spec):
+            raise
+        raise ValueError(f"{spec}: {exc}") from exc
     except MemoryError:
         raise ValueError(f"{spec}: too large to read") from None
     except Exception as exc:  # noqa: BLE001 - malformed files surface in many ways
