@@ -10,8 +10,6 @@ Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
 
 from __future__ import annotations
 
-from importlib.metadata import PackageNotFoundError, version
-
 from .closure import (
     closure_escape,
     force_direction_closure,
@@ -63,10 +61,9 @@ from .screws import (
 )
 from .tolerances import TOL
 
-try:
-    __version__ = version("fcgrasp")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0.0.0+unknown"
+#: The package version (kept equal to pyproject.toml's by tests/test_imports.py; a literal,
+#: because importlib.metadata alone costs more than the rest of ``import fcgrasp``).
+__version__ = "0.1.0"
 
 __all__ = [
     "TOL",

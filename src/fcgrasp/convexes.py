@@ -37,7 +37,6 @@ from itertools import combinations
 from typing import Any
 
 import numpy as np
-from scipy.optimize import nnls
 
 from ._checks import FloatArray, check_array, check_tol
 from .tolerances import CONE_TOL, DEGENERATE_TOL
@@ -159,6 +158,8 @@ def _in_cone(unit_gens: FloatArray, v: FloatArray, tol: float) -> bool:
         return True
     if unit_gens.shape[0] == 0:
         return False
+    from scipy.optimize import nnls  # imported on first use: import fcgrasp stays light
+
     _, res = nnls(unit_gens.T, v / norm)
     return bool(res <= tol * 10.0 + 1e-12)
 

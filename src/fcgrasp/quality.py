@@ -34,11 +34,10 @@ from itertools import combinations, product
 from typing import Any
 
 import numpy as np
-from scipy.spatial import ConvexHull, QhullError
 
 from ._checks import FloatArray
 
-__all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length"]
+__all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length", "ball_radius"]
 
 
 def characteristic_length(vertices: FloatArray, centroid: FloatArray) -> float:
@@ -53,14 +52,43 @@ def _scaled_wrenches(points: FloatArray, forces: FloatArray, centroid: FloatArra
     return np.column_stack([forces, tau])
 
 
-def _ball_radius(points: FloatArray) -> float:
-    """Distance from the origin to the boundary of conv(points) (0 if outside or flat)."""
-    try:
-        hull = ConvexHull(points)
-    except (QhullError, ValueError):
+def ball_radius(points: FloatArray, tol: float = 1e-12) -> float:
+    """Distance from the origin to the boundary of ``conv(points)`` in 3-D (0 when the
+    origin is outside or on the boundary, or the hull is flat).
+
+    The hull's facets are found directly: every plane through three of the points that
+    has all the others on one side (a supporting plane).  Exact and fast for the few
+    points of a grasp (at most a few dozen); the distance is the smallest offset of a
+    supporting plane from the origin.
+
+    >>> cube = np.array([[x, y, z] for x in (-1, 1) for y in (-1, 1) for z in (-1, 1)])
+    >>> ball_radius(cube)
+    1.0
+    """
+    P = np.unique(np.asarray(points, float), axis=0)
+    k = len(P)
+    if k < 4:
         return 0.0
-    d = -hull.equations[:, -1]          # unit normals: n.x + off <= 0 inside
-    return float(max(0.0, d.min()))
+    scale = max(float(np.max(np.abs(P))), 1e-300)
+    Q = P / scale
+    if np.linalg.matrix_rank(Q - Q.mean(axis=0), tol=1e-10) < 3:
+        return 0.0
+    t = np.array(list(combinations(range(k), 3)))
+    a, b, c = Q[t[:, 0]], Q[t[:, 1]], Q[t[:, 2]]
+    n = np.cross(b - a, c - a)
+    nn = np.linalg.norm(n, axis=1)
+    keep = nn > 1e-10
+    a, n = a[keep], n[keep] / nn[keep, None]
+    side = (Q[None, :, :] - a[:, None, :]) @ n[..., None]           # (T, k, 1)
+    side = side[..., 0]
+    below = np.all(side <= tol, axis=1)
+    above = np.all(side >= -tol, axis=1)
+    n = np.where(above[:, None] & ~below[:, None], -n, n)             # outward normals
+    support = below | above
+    if not support.any():
+        return 0.0
+    offsets = np.einsum("ij,ij->i", a[support], n[support])           # a . n_out
+    return float(max(0.0, offsets.min())) * scale
 
 
 def epsilon_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
@@ -71,10 +99,10 @@ def epsilon_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
     of each generator.
     """
     w = _scaled_wrenches(points, forces, centroid, rho)
-    l1 = _ball_radius(w)
+    l1 = ball_radius(w)
     groups = [np.concatenate([np.zeros((1, 3)), w[finger == f]]) for f in np.unique(finger)]
     sums = np.array([np.sum(c, axis=0) for c in product(*groups)])
-    linf = _ball_radius(sums)
+    linf = ball_radius(sums)
     return {"epsilon_l1": l1, "epsilon_linf": linf}
 
 
