@@ -54,7 +54,7 @@ def meet_and_velocities(pa: FloatArray, ta: FloatArray, fa: FloatArray,
 
 def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
                          pairing: np.ndarray, margin: float
-                         ) -> tuple[list[KnapsackProblem], FloatArray, FloatArray]:
+                         ) -> tuple[list[KnapsackProblem], FloatArray, np.ndarray]:
     """Problems of four frictionless fingers (``P34 - P12`` in ``C`` and in ``-C``).
 
     ``a, b``: (B, 4, 2) segment ends (equal for a fixed point such as gravity);

@@ -9,7 +9,6 @@ files are written atomically (temporary file, then rename), so a failed run leav
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import sys
 from pathlib import Path
@@ -19,13 +18,12 @@ import numpy as np
 
 from . import __version__
 from ._atomic import OutputSet
-from .contacts import FrictionlessPoint, FrictionPoint, Gravity, SoftFinger
 from .grasp import Grasp
 from .hand import Hand
-from .parts import DEMO_PARTS, demo_part, read_part
+from .parts import DEMO_PARTS, demo_part, read_contacts, read_part
 from .planning import RANKINGS, plan
 from .regions import DEFAULT_MARGIN_DEG
-from .report import dumps, part_dict, plan_report
+from .report import check_report, demo_summary, dumps, plan_report
 
 EXIT_USAGE = 2
 EXIT_INTERNAL = 1
@@ -199,146 +197,15 @@ def cmd_plan(args: Any) -> int:
     return 0
 
 
-_CONTACTS_KEYS = {"contacts", "gravity"}
-_CONTACT_KEYS = {"point", "type", "mu", "edge", "normal", "vertex"}
-_GRAVITY_KEYS = {"direction"}
-
-
-def _unknown(d: dict[str, Any], allowed: set[str], where: str) -> None:
-    extra = sorted(set(d) - allowed)
-    if extra:
-        raise CliError(f"{where}: unknown key {extra[0]!r} (expected "
-                       f"{', '.join(sorted(allowed))})")
-
-
-def _index(value: Any, name: str, where: str, upto: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < upto:
-        raise CliError(f"{where}: {name} must be an index from 0 to {upto - 1}, got "
-                       f"{json.dumps(value)}")
-    return value
-
-
-def _number_pair(value: Any, name: str, where: str) -> np.ndarray:
-    if (not isinstance(value, list) or len(value) != 2
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
-            or not all(np.isfinite(value))):
-        raise CliError(f"{where}: {name} must be [x, y] finite numbers, got "
-                       f"{json.dumps(value)}")
-    return np.asarray(value, dtype=float)
-
-
-def _load_contacts(path: str, polygon: Any) -> tuple[list[Any], list[dict[str, Any]]]:
-    try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise CliError(f"{path}: no such file") from None
-    except json.JSONDecodeError as exc:
-        raise CliError(f"{path}: not valid JSON ({exc.msg} at line {exc.lineno})") from None
-    except UnicodeDecodeError as exc:
-        raise CliError(f"{path}: not UTF-8 text (byte {exc.start})") from None
-    except OSError as exc:
-        raise CliError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    if isinstance(data, dict):
-        _unknown(data, _CONTACTS_KEYS, path)
-    items = data.get("contacts") if isinstance(data, dict) else data
-    if not isinstance(items, list) or not items:
-        raise CliError(f"{path}: expected {{'contacts': [...]}} with at least one contact")
-    contacts, described = [], []
-    for k, c in enumerate(items):
-        where = f"{path} contacts[{k}]"
-        if not isinstance(c, dict):
-            raise CliError(f"{where}: expected an object, got {type(c).__name__}")
-        _unknown(c, _CONTACT_KEYS, where)
-        kind = c.get("type", "friction" if "mu" in c else "frictionless")
-        mu = c.get("mu", 0.0)
-        if not isinstance(mu, (int, float)) or isinstance(mu, bool) or not mu >= 0 \
-                or not np.isfinite(mu):
-            raise CliError(f"{where}: mu must be a finite number >= 0, got {json.dumps(mu)}")
-        if kind == "soft":
-            if "vertex" not in c:
-                raise CliError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
-            k_v = _index(c["vertex"], "vertex", where, polygon.n_edges)
-            if not polygon.usable[k_v]:
-                raise CliError(f"{where}: vertex {k_v} starts a zero-length edge")
-            prev = polygon.previous_edge(k_v)
-            if not polygon.convex_vertices()[prev]:
-                raise CliError(f"{where}: vertex {k_v} is not convex; a soft finger needs a "
-                               f"convex corner")
-            v = polygon.starts[k_v]
-            a = v - 0.05 * polygon.lengths[prev] * polygon.tangents[prev]
-            b = v + 0.05 * polygon.lengths[k_v] * polygon.tangents[k_v]
-            contacts.append(SoftFinger.corner(a, v, b, polygon.normals[prev],
-                                              polygon.normals[k_v], mu))
-            described.append({"type": "soft", "vertex": k_v, "point": v, "mu": mu})
-            continue
-        if kind not in ("friction", "frictionless"):
-            raise CliError(f"{where}: type must be friction, frictionless or soft, got "
-                           f"{json.dumps(kind)}")
-        if "vertex" in c:
-            raise CliError(f"{where}: 'vertex' goes with a soft contact, not {kind}")
-        if "point" not in c:
-            raise CliError(f"{where}: missing 'point'")
-        pt = _number_pair(c["point"], "point", where)
-        if "normal" in c:
-            n = _number_pair(c["normal"], "normal", where)
-            if not np.any(n):
-                raise CliError(f"{where}: normal must be a non-zero vector")
-            edge = None if "edge" not in c else _index(c["edge"], "edge", where,
-                                                       polygon.n_edges)
-        else:
-            if "edge" in c:
-                e = _index(c["edge"], "edge", where, polygon.n_edges)
-                if not polygon.usable[e]:
-                    raise CliError(f"{where}: edge {e} has zero length")
-            else:
-                e = int(np.argmin(_dist_to_edges(polygon, pt)))
-            d_e = float(_dist_to_edges(polygon, pt)[e])
-            if d_e > 1e-6 * polygon.size:
-                raise CliError(f"{where}: point {pt.tolist()} is not on edge {e} "
-                               f"(distance {d_e:.3g})")
-            n = polygon.normals[e]
-            edge = e
-        if kind == "friction":
-            contacts.append(FrictionPoint(pt, n, mu))
-        else:
-            contacts.append(FrictionlessPoint(pt, n))
-        described.append({"type": kind, "point": pt, "normal": n, "edge": edge, "mu": mu})
-    g = data.get("gravity") if isinstance(data, dict) else None
-    if g is not None:
-        if not isinstance(g, dict):
-            raise CliError(f"{path}: gravity must be an object such as "
-                           f'{{"direction": [0, -1]}}, got {json.dumps(g)}')
-        _unknown(g, _GRAVITY_KEYS, f"{path} gravity")
-        direction = _number_pair(g.get("direction", [0, -1]), "direction", f"{path} gravity")
-        if not np.any(direction):
-            raise CliError(f"{path} gravity: direction must be a non-zero vector")
-        contacts.append(Gravity(polygon.centroid, direction))
-        described.append({"type": "gravity", "point": polygon.centroid, "direction": direction})
-    return contacts, described
-
-
-def _dist_to_edges(polygon: Any, pt: np.ndarray) -> np.ndarray:
-    d = polygon.ends - polygon.starts
-    ln2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
-    t = np.clip(np.sum((pt - polygon.starts) * d, axis=1) / ln2, 0, 1)
-    proj = polygon.starts + t[:, None] * d
-    out = np.hypot(*(proj - pt).T)
-    return np.where(polygon.usable, out, np.inf)
-
-
 def cmd_check(args: Any) -> int:
     _check_outputs(args, [args.part, args.contacts])
     _check_flatten(args)
     polygon = read_part(args.part, args.id, args.flatten)
-    contacts, described = _load_contacts(args.contacts, polygon)
+    contacts, described = read_contacts(args.contacts, polygon)
     grasp = Grasp(contacts)
     rep = grasp.explain()
     free = grasp.total_freedom()
-    result = {"fcgrasp": __version__, "format_version": 1, "units": args.units,
-              "part": part_dict(polygon), "contacts": described,
-              "force_closure": rep.force_closure, "failed": rep.failed,
-              "escape_twist": rep.escape_twist, "escape": rep.escape_description,
-              "total_freedom": {"rays": free.rays, "lines": free.lines}}
+    result = check_report(polygon, described, rep, free, args.units)
     with OutputSet() as out:
         if args.json:
             out.add_text(args.json, dumps(result))
@@ -372,7 +239,7 @@ def cmd_demo(args: Any) -> int:
             ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
             ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
             ("washer", 2, 0.2, "two fingers with friction on a part with a hole")]
-    summary = {"fcgrasp": __version__, "format_version": 1, "units": "mm", "plans": []}
+    entries: list[dict[str, Any]] = []
     for name, fingers, mu, title in jobs:
         polygon = demo_part(name)
         plans = plan(polygon, fingers=fingers, mu=mu, top=6, margin=DEFAULT_MARGIN_DEG)
@@ -388,7 +255,7 @@ def cmd_demo(args: Any) -> int:
             plan_figure(polygon, plans, str(out / f"{stem}.png"), units="mm",
                         title=f"demo:{name} - {title}", outputs=files)
         best = plans[0] if plans else None
-        summary["plans"].append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
+        entries.append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
                                  "json": f"{stem}.json", "figure": f"{stem}.png",
                                  "best_edges": None if best is None else list(best.edges),
                                  "best_min_region": None if best is None else best.min_length})
@@ -399,7 +266,7 @@ def cmd_demo(args: Any) -> int:
                 print(f"demo:{name:9s} {fingers} fingers  best edges {list(best.edges)!s:16s} "
                       f"min region {best.min_length:7.3f} mm  -> {out / stem}.png")
     with OutputSet() as files:
-        files.add_text(out / "demo.json", dumps(summary))
+        files.add_text(out / "demo.json", dumps(demo_summary(entries, "mm")))
     if not args.quiet:
         print(f"wrote {len(jobs)} plans (JSON and PNG) and {out / 'demo.json'}")
     return 0

@@ -299,7 +299,7 @@ _PAIRINGS = ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2))
 
 
 def _in_open_cone(fa: FloatArray, fb: FloatArray, sab: FloatArray, d: FloatArray,
-                  tol: float) -> FloatArray:
+                  tol: float) -> np.ndarray:
     """d strictly inside the cone of fa, fb (the sector of angle < pi)."""
     return (sab * _cross2(fa, d) > tol) & (sab * _cross2(d, fb) > tol)
 

@@ -314,14 +314,15 @@ class FrictionGraspSet:
             raise ValueError("cannot sample an empty grasp set")
         rng = np.random.default_rng() if rng is None else rng
         modes = [(m, r) for m, r in self.restricted.items() if r[0] is not None]
-        weights = np.array([max(r[0][1] - r[0][0], 1e-12) for _, r in modes])
+        weights = np.array([max(r[0][1] - r[0][0], 1e-12) for _, r in modes  # type: ignore[index]
+                            ])
         ps, qs = [], []
         got = 0
         for _ in range(200):
             pick = rng.choice(len(modes), size=n, p=weights / weights.sum())
             for mi, (mode, (r1, _)) in enumerate(modes):
                 k = int(np.sum(pick == mi))
-                if k == 0:
+                if k == 0 or r1 is None:
                     continue
                 t = r1[0] + (r1[1] - r1[0]) * rng.random(k)
                 p = self.features[0].point_at(t)
@@ -392,17 +393,18 @@ def _sample_geometry(geom: Any, k: int, rng: np.random.Generator) -> FloatArray:
         r1[flip], r2[flip] = 1 - r1[flip], 1 - r2[flip]
         t = tri[pick]
         return t[:, 0] + r1[:, None] * (t[:, 1] - t[:, 0]) + r2[:, None] * (t[:, 2] - t[:, 0])
-    segs, weights = [], []
+    segs: list[FloatArray] = []
+    seg_weights: list[float] = []
     for g in parts:
         cs = _hull_coords(g)
         if len(cs) == 1:
             segs.append(np.stack([cs[0], cs[0]]))
-            weights.append(0.0)
+            seg_weights.append(0.0)
         for i in range(len(cs) - 1):
             segs.append(cs[i:i + 2])
-            weights.append(float(np.hypot(*(cs[i + 1] - cs[i]))))
+            seg_weights.append(float(np.hypot(*(cs[i + 1] - cs[i]))))
     seg = np.array(segs)
-    w = np.array(weights) + 1e-300
+    w = np.array(seg_weights) + 1e-300
     pick = rng.choice(len(seg), size=k, p=w / w.sum())
     u = rng.random(k)[:, None]
     return seg[pick, 0] + u * (seg[pick, 1] - seg[pick, 0])
@@ -567,7 +569,7 @@ class FrictionlessGraspSet:
         need = n
         for _ in range(50):
             p12 = _sample_geometry(self.r12, need, rng)
-            rows = []
+            rows: list[FloatArray] = []
             for x in p12:
                 cones = [MultiPoint([x, x + far * s * k1, x + far * s * k2]).convex_hull
                          for s in (1.0, -1.0)]
@@ -576,7 +578,7 @@ class FrictionlessGraspSet:
                 if part.is_empty:
                     continue
                 y = _sample_geometry(part, 1, rng)[0]
-                pts = [None] * 4
+                pts: list[Any] = [None] * 4
                 for idx, src in ((a, x), (b, x), (c, y), (d, y)):
                     pts[idx] = _back_project(self.features[idx], src)
                 rows.append(np.stack(pts))

@@ -196,15 +196,15 @@ def _features(polygon: Polygon, mu: float, hand: Hand | None,
     if not rows:
         z = np.zeros((0, 2))
         return _Features(np.zeros(0, int), z, z, np.zeros(0), np.zeros(0), np.zeros(0))
-    e = np.array([r[0] for r in rows])
-    t0 = np.array([r[1] for r in rows])
-    t1 = np.array([r[2] for r in rows])
-    tan = polygon.tangents[e]
-    a = polygon.starts[e] + t0[:, None] * tan
-    b = polygon.starts[e] + t1[:, None] * tan
-    n = polygon.normals[e]
+    ei = np.array([r[0] for r in rows])
+    s0 = np.array([r[1] for r in rows])
+    s1 = np.array([r[2] for r in rows])
+    tan = polygon.tangents[ei]
+    a = polygon.starts[ei] + s0[:, None] * tan
+    b = polygon.starts[ei] + s1[:, None] * tan
+    n = polygon.normals[ei]
     center = np.arctan2(-n[:, 1], -n[:, 0])
-    return _Features(e, a, b, t0, center, np.full(len(e), float(np.arctan(mu))))
+    return _Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
 
 
 # ----------------------------------------------------------------------------- candidates

@@ -56,8 +56,8 @@ def draw_grasp(ax: Any, grasp: Grasp, outline: Any = None, title: str | None = N
             ax.annotate("", xy=center + v, xytext=center,
                         arrowprops={"arrowstyle": "-|>", "color": "C0", "lw": 2})
         else:
-            c = np.array([-vy / om, vx / om])
-            ax.plot(*c, marker="x", color="C0", ms=8)
+            pivot = np.array([-vy / om, vx / om])
+            ax.plot(*pivot, marker="x", color="C0", ms=8)
     ax.set_aspect("equal")
     ax.set_title(title or str(report).split(";")[0], fontsize=8)
     ax.tick_params(labelsize=6)

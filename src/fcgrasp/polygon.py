@@ -196,10 +196,10 @@ class Polygon:
         self.lengths = np.hypot(d[:, 0], d[:, 1])
         self.usable = self.lengths > 0
         # neighbours along each ring among the usable edges (zero-length edges skipped)
-        self._next = np.full(len(self.rings), -1)
-        self._prev = np.full(len(self.rings), -1)
-        for r in range(len(rings)):
-            idx = np.flatnonzero((self.rings == r) & self.usable)
+        self._next: np.ndarray = np.full(len(self.rings), -1)
+        self._prev: np.ndarray = np.full(len(self.rings), -1)
+        for ring_id in range(len(rings)):
+            idx = np.flatnonzero((self.rings == ring_id) & self.usable)
             self._next[idx] = np.roll(idx, -1)
             self._prev[idx] = np.roll(idx, 1)
         with np.errstate(invalid="ignore", divide="ignore"):
@@ -272,6 +272,29 @@ class Polygon:
         # vertices; in input order that walk is reversed where the object is on the right
         turn = (n_in[:, 0] * n_out[:, 1] - n_in[:, 1] * n_out[:, 0]) * self._object_left
         return (turn > 0) & self.usable
+
+    def distance_to_edges(self, point: Any) -> FloatArray:
+        """Distance from ``point`` to every edge, shape (E,) (inf for zero-length edges)."""
+        pt = np.asarray(point, dtype=float)
+        d = self.ends - self.starts
+        ln2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
+        t = np.clip(np.sum((pt - self.starts) * d, axis=1) / ln2, 0, 1)
+        proj = self.starts + t[:, None] * d
+        out = np.hypot(*(proj - pt).T)
+        return np.where(self.usable, out, np.inf)
+
+    def soft_finger_at(self, vertex: int, mu: float) -> Any:
+        """A soft finger (figure 4.e) on the convex vertex ``vertex`` (the start of edge
+        ``vertex``), spanning a twentieth of each adjacent edge."""
+        from .contacts import SoftFinger
+
+        prev = self.previous_edge(vertex)
+        if not self.usable[vertex] or not self.convex_vertices()[prev]:
+            raise ValueError(f"vertex {vertex} is not a convex corner of the part")
+        v = self.starts[vertex]
+        a = v - 0.05 * self.lengths[prev] * self.tangents[prev]
+        b = v + 0.05 * self.lengths[vertex] * self.tangents[vertex]
+        return SoftFinger.corner(a, v, b, self.normals[prev], self.normals[vertex], mu)
 
     def to_shapely(self) -> ShapelyPolygon:
         return self._shapely

@@ -303,7 +303,10 @@ def _two_level(p: KnapsackProblem, lb0: FloatArray, fr: FloatArray) -> FloatArra
     b1, b2 = p.w2[:, 0], p.w2[:, 1]
     L1, L2 = p.L[:, 0], p.L[:, 1]
     first = b1 * a2 >= b2 * a1                                   # ratio b/a of item 1 larger
-    sel = lambda u, v: np.where(first, u, v)  # noqa: E731
+
+    def sel(u: FloatArray, v: FloatArray) -> FloatArray:
+        return np.where(first, u, v)
+
     ap, aq, bp, bq = sel(a1, a2), sel(a2, a1), sel(b1, b2), sel(b2, b1)
     Lp, Lq = sel(L1 - lb0[:, 0], L2 - lb0[:, 1]), sel(L2 - lb0[:, 1], L1 - lb0[:, 0])
     fp, fq = sel(fr[:, 0], fr[:, 1]), sel(fr[:, 1], fr[:, 0])
@@ -407,7 +410,7 @@ def leximin(p: KnapsackProblem) -> FloatArray:
     return levels
 
 
-def _centre(p: KnapsackProblem, lb: FloatArray) -> FloatArray:
+def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]:
     """Mean of the vertices of {x in [lb, L] : w1.x <= K1, w2.x >= R2}: a canonical interior
     point of the optimal face (its midpoint when the face is a segment)."""
     B, n = p.L.shape

@@ -77,3 +77,20 @@ def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], unit
     return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
             "part": part_dict(polygon), "parameters": parameters, "grasps": grasps,
             "reason": None if plans else (reason or "no force-closure grasp")}
+
+
+def check_report(polygon: Any, contacts: list[dict[str, Any]], verdict: Any, freedom: Any,
+                 units: str) -> dict[str, Any]:
+    """The report of ``fcgrasp check``: the contacts as read, the verdict of
+    :meth:`~fcgrasp.Grasp.explain` and the total freedom (a twist cone)."""
+    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+            "part": part_dict(polygon), "contacts": contacts,
+            "force_closure": verdict.force_closure, "failed": verdict.failed,
+            "escape_twist": verdict.escape_twist, "escape": verdict.escape_description,
+            "total_freedom": {"rays": freedom.rays, "lines": freedom.lines}}
+
+
+def demo_summary(plans: list[dict[str, Any]], units: str) -> dict[str, Any]:
+    """The index ``demo.json`` of ``fcgrasp demo``: one entry per built-in plan."""
+    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+            "plans": plans}
