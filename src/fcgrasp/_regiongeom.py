@@ -9,11 +9,10 @@ from __future__ import annotations
 import numpy as np
 
 from ._checks import FloatArray
-from ._geom import cross2 as _cross
 from ._geom import direction as _dir
-from ._geom import wrap as _wrap
-from .graspsets import arc_intersection
 from .regions import KnapsackProblem, build_problem
+from .sectors import arc_intersection, meet_and_velocities, pair_arc, pairing_valid
+from .tolerances import TOL
 
 
 def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: FloatArray,
@@ -39,21 +38,8 @@ def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: Floa
     return probs, hm
 
 
-def meet_and_velocities(pa: FloatArray, ta: FloatArray, fa: FloatArray,
-                        pb: FloatArray, tb: FloatArray, fb: FloatArray
-                        ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """Where the lines of force through ``pa`` and ``pb`` meet, and the derivatives of that
-    point with respect to the arc length of each finger along its edge."""
-    den = _cross(fa, fb)
-    s = _cross(pb - pa, fb) / den
-    x = pa + s[..., None] * fa
-    va = ta - (_cross(ta, fb) / den)[..., None] * fa
-    vb = (_cross(tb, fb) / den)[..., None] * fa
-    return x, va, vb
-
-
 def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
-                         pairing: np.ndarray, margin: float
+                         pairing: np.ndarray, margin: float, tol: float = TOL
                          ) -> tuple[list[KnapsackProblem], FloatArray, np.ndarray]:
     """Problems of four frictionless fingers (``P34 - P12`` in ``C`` and in ``-C``).
 
@@ -72,13 +58,9 @@ def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
     L = np.hypot(*(Bq - A).transpose(2, 0, 1))
     with np.errstate(invalid="ignore", divide="ignore"):
         t = np.where(L[..., None] > 0, (Bq - A) / np.where(L > 0, L, 1.0)[..., None], 0.0)
-    x12 = _cross(f[:, 0], f[:, 1])
-    x34 = _cross(f[:, 2], f[:, 3])
-    valid = (np.abs(x12) > 1e-12) & (np.abs(x34) > 1e-12)
-    g12 = _wrap(c[:, 1] - c[:, 0])
-    c12, h12 = _wrap(c[:, 0] + g12 / 2), np.abs(g12) / 2
-    g34 = _wrap(c[:, 3] - c[:, 2])
-    c34, h34 = _wrap(c[:, 2] + g34 / 2), np.abs(g34) / 2
+    valid = pairing_valid(f, np.arange(4), tol)
+    c12, h12 = pair_arc(c[:, 0], c[:, 1])
+    c34, h34 = pair_arc(c[:, 2], c[:, 3])
     cen, half = arc_intersection(c12, h12, c34 + np.pi, h34)
     hm = np.where(valid, half - margin, -1.0)
     # rows with a null pairing get stand-in directions, so nothing divides by zero; their

@@ -41,6 +41,7 @@ import numpy as np
 
 from ._checks import FloatArray, check_array, check_mu, check_tol
 from ._geom import cross2 as _cross2
+from .sectors import PAIRINGS, line_meet
 from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TOL
 
 __all__ = [
@@ -295,7 +296,6 @@ def force_direction_closure(forces: Any, tol: float = TOL) -> np.ndarray:
 
 # ----------------------------------------------------------------------------- theorem 5.2
 
-_PAIRINGS = ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2))
 
 
 def _in_open_cone(fa: FloatArray, fb: FloatArray, sab: FloatArray, d: FloatArray,
@@ -304,16 +304,17 @@ def _in_open_cone(fa: FloatArray, fb: FloatArray, sab: FloatArray, d: FloatArray
     return (sab * _cross2(fa, d) > tol) & (sab * _cross2(d, fb) > tol)
 
 
-def _pairing_test(p: FloatArray, f: FloatArray, order: tuple[int, int, int, int],
-                  tol: float) -> np.ndarray:
-    a, b, c, d = order
+def _pairing_test(p: FloatArray, f: FloatArray, order: Any, tol: float) -> np.ndarray:
+    a, b, c, d = (int(i) for i in order)
     pa, pb, pc, pd = p[..., a, :], p[..., b, :], p[..., c, :], p[..., d, :]
     fa, fb, fc, fd = f[..., a, :], f[..., b, :], f[..., c, :], f[..., d, :]
     xab, xcd = _cross2(fa, fb), _cross2(fc, fd)
     ok = (np.abs(xab) > tol) & (np.abs(xcd) > tol)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        p12 = pa + (_cross2(pb - pa, fb) / np.where(ok, xab, 1.0))[..., None] * fa
-        p34 = pc + (_cross2(pd - pc, fd) / np.where(ok, xcd, 1.0))[..., None] * fc
+    with np.errstate(invalid="ignore", divide="ignore", over="ignore"):
+        p12 = line_meet(pa, fa, pb, fb)      # masked by ok where the pair is parallel
+        p34 = line_meet(pc, fc, pd, fd)
+    p12 = np.where(ok[..., None], p12, 0.0)
+    p34 = np.where(ok[..., None], p34, 0.0)
     seg = p34 - p12
     sn = np.linalg.norm(seg, axis=-1)
     ok &= sn > tol
@@ -383,7 +384,7 @@ def torque_closure(points: Any, forces: Any, tol: float = TOL) -> np.ndarray:
     for sub in combinations(range(k), 4):
         idx = list(sub)
         qs, us = q[..., idx, :], u[..., idx, :]
-        for order in _PAIRINGS:
+        for order in PAIRINGS:
             out |= _pairing_test(qs, us, order, tol)
     return out
 

@@ -41,6 +41,7 @@ from ._geom import cross2 as _cross
 from ._geom import direction as _dir
 from ._geom import wrap as _wrap
 from .polygon import Polygon
+from .sectors import PAIRINGS, arc_intersection, line_meet, pair_arc, pairing_sector, pairing_valid
 from .tolerances import TOL
 
 __all__ = [
@@ -65,19 +66,6 @@ SOFT_HALF_ANGLE_CAP = np.pi / 2 - 1e-6
 
 
 
-
-
-def arc_intersection(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[FloatArray, FloatArray]:
-    """Intersection of arcs of directions (centre, half-width), each narrower than pi.
-
-    Returns the centre and half-width of the intersection; the half-width is negative
-    where the open arcs do not meet.
-    """
-    c1, h1, c2, h2 = (np.asarray(x, dtype=float) for x in (c1, h1, c2, h2))
-    delta = _wrap(c2 - c1)
-    lo = np.maximum(-h1, delta - h2)
-    hi = np.minimum(h1, delta + h2)
-    return _wrap(c1 + (lo + hi) / 2), (hi - lo) / 2
 
 
 # ----------------------------------------------------------------------------- features
@@ -157,9 +145,8 @@ def vertex_feature(poly: Polygon, k: int, mu: float) -> Feature:
                          "needs a convex corner")
     a1 = np.arctan2(-poly.normals[prev][1], -poly.normals[prev][0])
     a2 = np.arctan2(-poly.normals[k][1], -poly.normals[k][0])
-    gap = _wrap(a2 - a1)
-    center = _wrap(a1 + gap / 2)
-    half = min(abs(gap) / 2 + float(np.arctan(mu)), SOFT_HALF_ANGLE_CAP)
+    center, half_gap = pair_arc(a1, a2)
+    half = min(float(half_gap) + float(np.arctan(mu)), SOFT_HALF_ANGLE_CAP)
     p = poly.starts[k]
     return Feature("vertex", int(k), p, p, float(center), float(half))
 
@@ -358,7 +345,6 @@ def _hull_coords(geom: Any) -> FloatArray:
         return np.asarray(hull.exterior.coords)
     return np.asarray(hull.coords)
 
-_PAIRINGS = ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2))
 
 
 def _back_project(f: Feature, x: FloatArray) -> FloatArray:
@@ -410,13 +396,6 @@ def _sample_geometry(geom: Any, k: int, rng: np.random.Generator) -> FloatArray:
     return seg[pick, 0] + u * (seg[pick, 1] - seg[pick, 0])
 
 
-def _line_meet(p1: FloatArray, f1: FloatArray, p2: FloatArray, f2: FloatArray) -> FloatArray:
-    """Intersection of the lines ``p1 + s f1`` and ``p2 + t f2`` (batched)."""
-    den = _cross(f1, f2)
-    s = _cross(p2 - p1, f2) / den
-    return p1 + s[..., None] * f1
-
-
 class FrictionlessGraspSet:
     """Grasp set of four frictionless point contacts (algorithm 6.1, theorem 6.2).
 
@@ -444,15 +423,12 @@ class FrictionlessGraspSet:
         dirs = np.array([f.direction for f in self.features])
         self.pairing: tuple[int, int, int, int] | None = None
         self.sector = (0.0, -1.0)
-        for order in _PAIRINGS:
-            a, b, c, d = order
-            xab, xcd = _cross(dirs[a], dirs[b]), _cross(dirs[c], dirs[d])
-            if abs(xab) <= tol or abs(xcd) <= tol:
+        centers = np.array([f.center for f in self.features])
+        for order in PAIRINGS:
+            if not pairing_valid(dirs, order, tol):
                 continue
-            c12 = self._pair_arc(a, b)
-            c34 = self._pair_arc(c, d)
-            sec = arc_intersection(c12[0], c12[1], c34[0] + np.pi, c34[1])
-            self.pairing = order
+            sec = pairing_sector(centers, order)
+            self.pairing = (int(order[0]), int(order[1]), int(order[2]), int(order[3]))
             self.sector = (float(sec[0]), float(sec[1]))
             break
         self.pi12 = self.pi34 = self.r12 = self.r34 = None
@@ -468,14 +444,9 @@ class FrictionlessGraspSet:
         if self.r12.is_empty or self.r34.is_empty:
             self.failure = FIELD_OF_VIEW
 
-    def _pair_arc(self, a: int, b: int) -> tuple[float, float]:
-        ca, cb = self.features[a].center, self.features[b].center
-        gap = float(_wrap(cb - ca))
-        return float(_wrap(ca + gap / 2)), abs(gap) / 2
-
     def _parallelogram(self, a: int, b: int) -> Any:
         fa, fb = self.features[a], self.features[b]
-        pts = [_line_meet(pa, fa.direction, pb, fb.direction)
+        pts = [line_meet(pa, fa.direction, pb, fb.direction)
                for pa in (fa.a, fa.b) for pb in (fb.a, fb.b)]
         return MultiPoint(pts).convex_hull
 
@@ -541,8 +512,8 @@ class FrictionlessGraspSet:
             on &= _on_feature(f, p, tol_len)
         a, b, c, d = self.pairing
         fa, fb, fc, fd = (self.features[i].direction for i in (a, b, c, d))
-        p12 = _line_meet(pts[a], fa, pts[b], fb)
-        p34 = _line_meet(pts[c], fc, pts[d], fd)
+        p12 = line_meet(pts[a], fa, pts[b], fb)
+        p34 = line_meet(pts[c], fc, pts[d], fd)
         v = p34 - p12
         vn = np.hypot(v[..., 0], v[..., 1])
         ang = np.arctan2(v[..., 1], v[..., 0])

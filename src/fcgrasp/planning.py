@@ -28,7 +28,6 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_direction, check_int, check_mu_scalar, check_scalar
-from ._geom import cross2
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
@@ -38,11 +37,11 @@ from .hand import Hand
 from .polygon import Polygon
 from .quality import characteristic_length, quality_of
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
+from .sectors import PAIRINGS, arc_intersection, pairing_valid
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS"]
 
 RANKINGS = ("min_region", "resistance", "epsilon")
-_PAIRINGS = np.array([[0, 1, 2, 3], [0, 2, 1, 3], [0, 3, 1, 2]])
 
 
 @dataclass
@@ -252,8 +251,6 @@ def _cand_concat(parts: list[_Candidates]) -> _Candidates:
 
 
 def _pair_candidates(F: _Features, margin: float, i: np.ndarray, j: np.ndarray) -> _Candidates:
-    from .graspsets import arc_intersection
-
     keep = F.edge[i] != F.edge[j]
     i, j = i[keep], j[keep]
     # quick sector test before building anything
@@ -344,16 +341,15 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     # every pairing whose two sectors are non-null describes the same grasp set
     # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
     # largest smallest region, so the plan does not depend on how edges are numbered
-    good = np.stack([(np.abs(cross2(dirs[:, p[0]], dirs[:, p[1]])) > 1e-9)
-                     & (np.abs(cross2(dirs[:, p[2]], dirs[:, p[3]])) > 1e-9) for p in _PAIRINGS],
-                    axis=1) if B else np.zeros((0, 3), bool)
+    good = np.stack([pairing_valid(dirs, p) for p in PAIRINGS], axis=1) if B \
+        else np.zeros((0, 3), bool)
     has = good.any(axis=1)
     feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
     B = len(feats)
     scores = np.full((B, 3), -np.inf)
     per_mode = np.full((B, 3, 2), -1.0)
     built: dict[int, tuple[np.ndarray, list[KnapsackProblem]]] = {}
-    for k, p in enumerate(_PAIRINGS):
+    for k, p in enumerate(PAIRINGS):
         rows = np.flatnonzero(good[:, k])
         if rows.size == 0:
             continue
@@ -370,7 +366,7 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
     if tied.size:
         # equal smallest regions: the next levels of the leximin order decide
         best_lv = np.full((tied.size, 4), -1.0)
-        for k, p in enumerate(_PAIRINGS):
+        for k, p in enumerate(PAIRINGS):
             cand = scores[tied, k] >= top_s[tied] - 1e-9 * np.abs(top_s[tied])
             if not cand.any():
                 continue
@@ -390,7 +386,7 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
                  .take(back) for m in range(2)]
     else:
         probs = four_finger_problems(a, b, center, np.zeros((0, 4), int), margin)[0]
-    perm = _PAIRINGS[choice]
+    perm = PAIRINGS[choice]
     c = _Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
     pm = per_mode[np.arange(B), choice]
     c.best_mode = np.argmax(pm, axis=1)
@@ -565,7 +561,7 @@ def _break_ties(polygon: Polygon, c: _Candidates, rows: np.ndarray, a: FloatArra
         return mode
     R = rows[sel]
     options = []                                   # (pairing, mode, levels in finger order)
-    for P in _PAIRINGS:
+    for P in PAIRINGS:
         perm = np.broadcast_to(P, (sel.size, 4)).copy()
         probs = four_finger_problems(a[sel], b[sel], c.center[R], perm, margin)[0]
         inv = np.argsort(perm, axis=1)
