@@ -21,7 +21,8 @@ from ._atomic import OutputSet
 from .grasp import Grasp
 from .hand import Hand
 from .parts import DEMO_PARTS, demo_part, read_contacts, read_part
-from .planning import RANKINGS, plan
+from .planning import plan
+from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG
 from .report import check_report, demo_summary, dumps, plan_report
 
@@ -310,7 +311,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="2: with friction; 4: frictionless; 3: frictionless with gravity")
     p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
     p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
-    p.add_argument("--rank-by", choices=RANKINGS, default="min_region")
+    p.add_argument("--rank-by", choices=tuple(MEASURES), default="min_region",
+                   help="ranking measure (see fcgrasp.ranking)")
     p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",
                    help=f"safety margin in degrees (default {DEFAULT_MARGIN_DEG})")
     p.add_argument("--workspace", metavar="CX,CY,R", help="circular workspace of the fingertips")

@@ -36,12 +36,14 @@ from .graspsets import Vertex
 from .hand import Hand
 from .polygon import Polygon
 from .quality import characteristic_length, quality_of
+from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS"]
 
-RANKINGS = ("min_region", "resistance", "epsilon")
+#: Names of the ranking measures (see :mod:`fcgrasp.ranking`).
+RANKINGS = tuple(MEASURES)
 
 
 @dataclass
@@ -637,18 +639,20 @@ def _leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
     return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, 9))
 
 
-def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region") -> tuple[Any, ...]:
+def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region",
+             score: float | None = None) -> tuple[Any, ...]:
     """The sort key of :func:`plan` (smaller is better), independent of numbering.
 
-    ``min_region``: the leximin order of the region lengths (definition 7.1);
-    ``resistance`` / ``epsilon``: that quality (larger first, to 9 significant digits),
-    then the leximin order.  Remaining ties are broken by :func:`geometric_key`.
+    ``min_region``: the leximin order of the region lengths (definition 7.1); any other
+    measure of :data:`fcgrasp.ranking.MEASURES`: its score (larger first, to 9
+    significant digits), then the leximin order.  Remaining ties are broken by
+    :func:`geometric_key`.
     """
     lex = _leximin_key(p.lengths, polygon.size)
     geo = geometric_key(p.regions, polygon)
     if rank_by == "min_region":
         return (lex, geo)
-    q = p.quality["resistance" if rank_by == "resistance" else "epsilon_l1"]
+    q = MEASURES[rank_by].score([p])[0] if score is None else score
     q = -1.0 if not np.isfinite(q) else float(f"{q:.9g}")
     return (-q, lex, geo)
 
@@ -710,8 +714,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     fingers = check_int(fingers, "fingers", choices=(2, 3, 4))
     if not isinstance(rank_by, str):
         raise TypeError(f"rank_by must be a string, got {rank_by!r}")
-    if rank_by not in RANKINGS:
-        raise ValueError(f"rank_by must be one of {', '.join(RANKINGS)}, got {rank_by!r}")
+    if rank_by not in MEASURES:
+        raise ValueError(f"rank_by must be one of {', '.join(MEASURES)}, got {rank_by!r}")
     if top is not None:
         top = check_int(top, "top", minimum=1)
     dist = _check_disturbance(disturbance)
@@ -774,7 +778,10 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             progress(order.size, order.size)
         plans = _build_plans(polygon, F, c, order, lv, a_, b_, md, mu_plan, margin_v, ctype,
                              g, dist)
-    plans.sort(key=lambda p: rank_key(p, polygon, rank_by))
+    scores = MEASURES[rank_by].score(plans) if plans else np.zeros(0)
+    order_ = sorted(range(len(plans)),
+                    key=lambda k: rank_key(plans[k], polygon, rank_by, float(scores[k])))
+    plans = [plans[k] for k in order_]
     return plans if top is None else plans[:top]
 
 
