@@ -32,6 +32,7 @@ import numpy as np
 
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .polygon import Polygon
+from .tolerances import ON_EDGE_TOL
 
 __all__ = ["read_part", "read_contacts", "DEMO_PARTS", "demo_part", "polygon_from_geojson"]
 
@@ -429,7 +430,7 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
             else:
                 e = int(np.argmin(polygon.distance_to_edges(pt)))
             d_e = float(polygon.distance_to_edges(pt)[e])
-            if d_e > 1e-6 * polygon.size:
+            if d_e > ON_EDGE_TOL * polygon.size:
                 raise ValueError(f"{where}: point {pt.tolist()} is not on edge {e} "
                                f"(distance {d_e:.3g})")
             n = polygon.normals[e]

@@ -39,6 +39,7 @@ from .quality import characteristic_length, quality_of
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
+from .tolerances import RANK_TOL
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS"]
 
@@ -278,7 +279,7 @@ def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
     """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
     of them, so that which of equal candidates survive does not depend on numbering."""
     thr = np.partition(score, score.size - keep)[score.size - keep]
-    return np.flatnonzero(score >= thr - 1e-9 * abs(thr))
+    return np.flatnonzero(score >= thr - RANK_TOL * abs(thr))
 
 
 def _two_finger(F: _Features, margin: float, keep: int | None = None) -> _Candidates:
@@ -363,13 +364,13 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
         built[k] = (rows, probs)
     choice = np.argmax(scores, axis=1)
     top_s = scores[np.arange(B), choice]
-    tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - 1e-9 *
+    tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - RANK_TOL *
                                                 np.abs(top_s[:, None]), axis=1) > 1))
     if tied.size:
         # equal smallest regions: the next levels of the leximin order decide
         best_lv = np.full((tied.size, 4), -1.0)
         for k, p in enumerate(PAIRINGS):
-            cand = scores[tied, k] >= top_s[tied] - 1e-9 * np.abs(top_s[tied])
+            cand = scores[tied, k] >= top_s[tied] - RANK_TOL * np.abs(top_s[tied])
             if not cand.any():
                 continue
             rows_k, probs_k = built[k]
@@ -399,7 +400,7 @@ def _four_finger(F: _Features, margin: float, gravity: FloatArray | None,
 # ----------------------------------------------------------------------------- regions
 
 
-def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = 1e-9) -> np.ndarray:
+def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = RANK_TOL) -> np.ndarray:
     """Row-wise leximin comparison ``a > b`` of length vectors, with a relative tolerance.
 
     Entries equal to 0 with a negative counterpart are regions of fixed points (gravity).
@@ -756,7 +757,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
             # stop when no later candidate can reach (or tie) the top-th smallest region
             if start >= order.size or (mins_so_far.size >= top and mins_so_far[top - 1] >
-                                       c.score[order[start]] + 1e-9 * polygon.size):
+                                       c.score[order[start]] + RANK_TOL * polygon.size):
                 break
         rows = np.concatenate([x[0] for x in parts])
         lv = np.concatenate([x[1] for x in parts])

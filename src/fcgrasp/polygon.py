@@ -33,7 +33,7 @@ from shapely.geometry import LineString
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ._checks import FloatArray, _short, numeric_array
-from .tolerances import MAX_MAGNITUDE
+from .tolerances import COLLINEAR_TOL, MAX_MAGNITUDE
 
 __all__ = ["Polygon", "Edge"]
 
@@ -165,7 +165,7 @@ class Polygon:
             rel = r - r[0]
             far = rel[np.argmax(np.hypot(rel[:, 0], rel[:, 1]))]
             off_line = np.abs(rel[:, 0] * far[1] - rel[:, 1] * far[0])
-            if np.max(off_line) <= 1e-12 * scale * scale:
+            if np.max(off_line) <= COLLINEAR_TOL * scale * scale:
                 where = "vertices" if k == 0 else f"holes[{k - 1}]"
                 raise ValueError(f"{where} has zero area: all its vertices lie on one line")
         offsets = list(np.cumsum([0] + [len(r) for r in rings[:-1]]))

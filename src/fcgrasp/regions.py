@@ -62,6 +62,7 @@ import numpy as np
 
 from ._checks import FloatArray
 from ._geom import cross2 as _cross
+from .tolerances import FACE_TOL, LEXIMIN_STEP, SOLVER_TOL
 
 __all__ = [
     "KnapsackProblem",
@@ -120,8 +121,8 @@ class KnapsackProblem:
 
 
 def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
-                  vel: FloatArray, L: FloatArray, k1: FloatArray, k2: FloatArray
-                  ) -> KnapsackProblem:
+                  vel: FloatArray, L: FloatArray, k1: FloatArray, k2: FloatArray,
+                  tol: float = SOLVER_TOL) -> KnapsackProblem:
     """Knapsack form of "P34 - P12 inside the cone (k1, k2) for every corner grasp".
 
     Parameters
@@ -149,7 +150,7 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
         g = phi(vel)                                        # (B, n)
         # a coefficient that is zero up to rounding (a cone edge parallel to a force, as
         # with a zero margin) is zero: that end is then free for this constraint
-        g = np.where(np.abs(g) <= 1e-12 * np.hypot(vel[..., 0], vel[..., 1]), 0.0, g)
+        g = np.where(np.abs(g) <= tol * np.hypot(vel[..., 0], vel[..., 1]), 0.0, g)
         w[i] = np.abs(g)
         # P12 side: the max is at the upper end if g > 0; P34 side: the min is at the
         # upper end if g < 0
@@ -171,7 +172,7 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
         flat = ~np.any((w[i] > 0) & active, axis=1)
         scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1)
                            + np.abs(K[0]) + np.abs(K[1]), 1e-300)
-        separable &= ~(flat & (K[i] <= 1e-12 * scale))
+        separable &= ~(flat & (K[i] <= tol * scale))
     return KnapsackProblem(L, np.where(active, w[0], 0.0), np.where(active, w[1], 0.0),
                            K[0], K[1], upper1, active, separable)
 
@@ -224,7 +225,7 @@ def _wscale(p: KnapsackProblem) -> FloatArray:
 
 
 def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
-               order: np.ndarray) -> FloatArray:
+               order: np.ndarray, tol: float = SOLVER_TOL) -> FloatArray:
     """Largest ``t`` such that the free regions reach ``t`` and the fixed ones their levels.
 
     Exact: with the greedy order fixed, the slack ``D(t)`` of knapsack 2 at the greedy
@@ -265,8 +266,8 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     pt = p.repeat(2)
     _, slack, value = _fill(pt, lb, np.repeat(order, 2, axis=0))
     need = np.sum(pt.w2 * (pt.L * pt.active + lb), axis=1) - pt.K2
-    tol = 1e-12 * _wscale(p)
-    d_ends = np.where(slack >= -np.repeat(tol, 2), value - need, -np.inf).reshape(B, 2)
+    tolw = tol * _wscale(p)
+    d_ends = np.where(slack >= -np.repeat(tolw, 2), value - need, -np.inf).reshape(B, 2)
     pts = np.concatenate([ends[:, :1], np.where(valid, tj, np.inf), ends[:, 1:]], axis=1)
     D = np.concatenate([d_ends[:, :1], d_j, d_ends[:, 1:]], axis=1)
     srt = np.argsort(pts, axis=1, kind="stable")
@@ -277,8 +278,8 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     pts = np.where(keep, pts, t_cap[:, None])
     D = np.where(keep, D, d_ends[:, 1:])
     m = pts.shape[1]
-    ok = D >= -tol[:, None]
-    feasible0 = ok[:, 0] & (t_cap >= 0) & np.all((lb0 <= L + 1e-12 * L) | ~p.active, axis=1)
+    ok = D >= -tolw[:, None]
+    feasible0 = ok[:, 0] & (t_cap >= 0) & np.all((lb0 <= L + tol * L) | ~p.active, axis=1)
     last = m - 1 - np.argmax(ok[:, ::-1], axis=1)                    # last feasible point
     nxt = np.minimum(last + 1, m - 1)
     r = np.arange(B)
@@ -291,7 +292,8 @@ def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
     return np.where(feasible0, t, -1.0)
 
 
-def _two_level(p: KnapsackProblem, lb0: FloatArray, fr: FloatArray) -> FloatArray:
+def _two_level(p: KnapsackProblem, lb0: FloatArray, fr: FloatArray,
+               tol: float = SOLVER_TOL) -> FloatArray:
     """:func:`_max_level` for two regions in closed form on 1-D arrays (algorithm 7.1).
 
     Region ``i`` must reach ``lb0[i] + t fr[i]``; returns the largest ``t``.  With the
@@ -329,54 +331,58 @@ def _two_level(p: KnapsackProblem, lb0: FloatArray, fr: FloatArray) -> FloatArra
             return bp * np.maximum(fillp, 0.0) + bq * np.maximum(fillq, 0.0) - c
 
     t_cap = np.where(np.isfinite(t_cap), t_cap, 0.0)
-    tol = 1e-12 * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, 1e-300)
+    tolw = tol * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, 1e-300)
     zero = np.zeros_like(t_cap)
     d0, dc = D(zero), D(t_cap)
     mid = np.where((t1 > 0) & (t1 < t_cap), t1, t_cap)
     dm = D(mid)
-    left = dm < -tol
+    left = dm < -tolw
     ta, tb = np.where(left, 0.0, mid), np.where(left, mid, t_cap)
     da, db = np.where(left, d0, dm), np.where(left, dm, dc)
     with np.errstate(divide="ignore", invalid="ignore"):
         frac = np.where(da - db > 0, np.clip(da / (da - db), 0.0, 1.0), 1.0)
-    t = np.where(dc >= -tol, t_cap, ta + frac * (tb - ta))
-    ok = ((d0 >= -tol) & (t_cap >= 0) & (r0 >= -tol) & (Lp >= -tol) & (Lq >= -tol)
+    t = np.where(dc >= -tolw, t_cap, ta + frac * (tb - ta))
+    ok = ((d0 >= -tolw) & (t_cap >= 0) & (r0 >= -tolw) & (Lp >= -tolw) & (Lq >= -tolw)
           & np.all(p.active, axis=1))
     return np.where(ok, t, -1.0)
 
 
-def _max_min_two(p: KnapsackProblem) -> FloatArray:
+def _max_min_two(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     """:func:`max_min_length` for two regions, in closed form."""
-    return _two_level(p, np.zeros_like(p.L), np.ones_like(p.L))
+    return _two_level(p, np.zeros_like(p.L), np.ones_like(p.L), tol)
 
 
-def max_min_length(p: KnapsackProblem) -> FloatArray:
-    """Largest achievable length of the smallest region (-1 where none is possible)."""
+def max_min_length(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
+    """Largest achievable length of the smallest region (-1 where none is possible).
+
+    ``tol``: relative slack of the solver (:data:`fcgrasp.tolerances.SOLVER_TOL`)."""
     if p.L.shape[1] == 2:
-        return _max_min_two(p)
+        return _max_min_two(p, tol)
     order = _order(p)
     free = p.active.copy()
-    return _max_level(p, np.zeros_like(p.L), free, order)
+    return _max_level(p, np.zeros_like(p.L), free, order, tol)
 
 
-def _leximin_two(p: KnapsackProblem) -> FloatArray:
+def _leximin_two(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     """Leximin for two regions: the largest smallest region ``t1`` (closed form), then the
     larger of what either region reaches while the other keeps ``t1`` (closed form)."""
-    t1 = _max_min_two(p)
+    t1 = _max_min_two(p, tol)
     s = np.maximum(t1, 0.0)
     z = np.zeros_like(s)
-    t2a = _two_level(p, np.stack([s, z], 1), np.stack([z, z + 1], 1))    # region 2 grows
-    t2b = _two_level(p, np.stack([z, s], 1), np.stack([z + 1, z], 1))    # region 1 grows
+    t2a = _two_level(p, np.stack([s, z], 1), np.stack([z, z + 1], 1), tol)   # region 2 grows
+    t2b = _two_level(p, np.stack([z, s], 1), np.stack([z + 1, z], 1), tol)   # region 1 grows
     lv = np.where((t2a >= t2b)[:, None], np.stack([t1, t2a], 1), np.stack([t2b, t1], 1))
     lv = np.maximum(lv, t1[:, None])
     lv[t1 < 0] = -1.0
     return lv
 
 
-def leximin(p: KnapsackProblem) -> FloatArray:
-    """Leximin-optimal region lengths (definition 7.1), shape (B, n); -1 rows if infeasible."""
+def leximin(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
+    """Leximin-optimal region lengths (definition 7.1), shape (B, n); -1 rows if infeasible.
+
+    ``tol``: relative slack of the solver (:data:`fcgrasp.tolerances.SOLVER_TOL`)."""
     if p.L.shape[1] == 2 and bool(np.all(p.active)):
-        return _leximin_two(p)
+        return _leximin_two(p, tol)
     order = _order(p)
     levels = np.zeros_like(p.L)
     free = p.active.copy()
@@ -389,7 +395,7 @@ def leximin(p: KnapsackProblem) -> FloatArray:
             break
         sub = p.take(rows)
         lv, fr, od = levels[rows], free[rows], order[rows]
-        t = _max_level(sub, lv, fr, od)
+        t = _max_level(sub, lv, fr, od, tol)
         if first_stage:
             dead[rows] |= t < 0
             first_stage = False
@@ -397,9 +403,9 @@ def leximin(p: KnapsackProblem) -> FloatArray:
         lv = np.where(fr, t[:, None], lv)
         # which free regions cannot grow beyond t while the others stay at their levels?
         scale = np.maximum(np.max(sub.L, axis=1), 1e-300)
-        trial = lv[:, None, :] + np.eye(n)[None] * (1e-9 * scale)[:, None, None]
+        trial = lv[:, None, :] + np.eye(n)[None] * (LEXIMIN_STEP * scale)[:, None, None]
         grow = _feasible(sub.repeat(n), trial.reshape(-1, n), np.repeat(od, n, axis=0),
-                         np.repeat(1e-13 * scale, n))
+                         np.repeat(0.1 * tol * scale, n))
         blocked = fr & ~grow.reshape(-1, n)
         none = fr.any(axis=1) & ~blocked.any(axis=1)
         blocked |= fr & none[:, None]          # numerical stall: fix all
@@ -428,11 +434,11 @@ def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]
     h = rhs[:, subsets]                                                      # (B, S, n)
     det = np.linalg.det(G)
     scale = np.maximum(np.abs(G).max(axis=(2, 3)) ** n, 1e-300)
-    ok = np.abs(det) > 1e-12 * scale
+    ok = np.abs(det) > SOLVER_TOL * scale
     G = np.where(ok[..., None, None], G, np.eye(n))
     x = np.linalg.solve(G, h[..., None])[..., 0]                             # (B, S, n)
-    tol = 1e-9 * np.maximum(np.max(L, axis=1), 1e-300)[:, None]
-    wtol = 1e-9 * _wscale(p)[:, None]
+    tol = FACE_TOL * np.maximum(np.max(L, axis=1), 1e-300)[:, None]
+    wtol = FACE_TOL * _wscale(p)[:, None]
     feas = (ok & np.all(x >= lo[:, None, :] - tol[..., None], axis=2)
             & np.all(x <= L[:, None, :] + tol[..., None], axis=2)
             & (np.einsum("bsn,bn->bs", x, p.w1) <= p.K1[:, None] + wtol)

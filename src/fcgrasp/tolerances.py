@@ -34,6 +34,30 @@ DEGENERATE_TOL = 1e-12
 #: not limit resolution: a lever arm is still resolved down to ``TOL`` times the floor.
 LENGTH_RESOLUTION = 1e-5
 
+#: Relative slack of the exact region solver (:mod:`fcgrasp.regions`): knapsack budgets
+#: and breakpoints are compared with this times the problem's own scale (the sum of
+#: weighted edge lengths), and a coefficient this small relative to its velocity is zero.
+SOLVER_TOL = 1e-12
+
+#: Relative step of the leximin stages: a region "can grow" when it reaches this much
+#: (times the longest edge) beyond the current level.
+LEXIMIN_STEP = 1e-9
+
+#: Relative tolerance of the placement on the optimal face (vertex enumeration).
+FACE_TOL = 1e-9
+
+#: Relative tolerance of rankings: region lengths and scores that agree to this are tied
+#: and the next key decides (the leximin order, then the regions' coordinates).
+RANK_TOL = 1e-9
+
+#: A contact point given by coordinates lies on an edge when within this fraction of
+#: the part's size (contact files of ``fcgrasp check``).
+ON_EDGE_TOL = 1e-6
+
+#: A ring has zero area when all its vertices lie within this fraction of its size of
+#: one line.
+COLLINEAR_TOL = 1e-12
+
 #: The documented range of inputs: coordinates (and every other input number) of
 #: magnitude at most this, and parts at least ``1 / MAX_MAGNITUDE`` across.  Within it,
 #: squares and products of coordinates stay far from float64 overflow and underflow, so
@@ -41,4 +65,5 @@ LENGTH_RESOLUTION = 1e-5
 #: ``ValueError`` naming the argument.
 MAX_MAGNITUDE = 1e100
 
-__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE"]
+__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE",
+           "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL"]
