@@ -17,8 +17,8 @@ from itertools import product
 import numpy as np
 from scipy.optimize import linprog
 
-from fcgrasp import Polygon
-from fcgrasp.planning import _features, _four_finger, _levels, _two_finger, plan
+from fcgrasp import Polygon, plan
+from fcgrasp.pipeline import candidates, grasp_geometry, plan_spec, region_levels
 
 MARGIN = np.radians(0.5)
 
@@ -125,17 +125,19 @@ def main() -> None:
 
     # 1. regions for all edge pairs of a 200-edge polygon
     p200 = blob(200)
-    F = _features(p200, 0.5, None)
+    spec2 = plan_spec(fingers=2, mu=0.5, margin=np.degrees(MARGIN), top=None)
     npairs = 200 * 199 // 2
 
-    def all_pairs():
-        c = _two_finger(F, MARGIN)
-        good = np.flatnonzero(c.score > 0)
-        _levels(c, good, MARGIN)
+    def stage1(part, spec):
+        return [grasp_geometry(part, spec, batch) for batch in candidates(part, spec)][0]
+
+    def all_regions(part, spec):
+        c = stage1(part, spec)
+        region_levels(c, np.flatnonzero(c.score > 0), spec)
         return c
 
-    t, c2 = timeit(all_pairs)
-    t_stage1, _ = timeit(lambda: _two_finger(F, MARGIN))
+    t, c2 = timeit(lambda: all_regions(p200, spec2))
+    t_stage1, _ = timeit(lambda: stage1(p200, spec2))
     sample = rng.choice(len(c2.score), 60, replace=False)
     t0 = time.perf_counter()
     lp = np.array([lp_candidate(c2, r) for r in sample])
@@ -147,13 +149,13 @@ def main() -> None:
 
     # 2. regions for all 4-tuples of a 20-edge polygon
     p20 = blob(20)
-    F20 = _features(p20, 0.0, None)
+    spec4 = plan_spec(fingers=4, mu=0.0, margin=np.degrees(MARGIN), top=None)
     nquad = 4845
 
     def all_quads():
-        c = _four_finger(F20, MARGIN, None, p20.centroid, three_edge=False)
-        good = np.flatnonzero(c.score > 0)
-        _levels(c, good, MARGIN)
+        c = stage1(p20, spec4)
+        four = np.flatnonzero((c.feats[:, 0] != c.feats[:, 2]) & (c.score > 0))
+        region_levels(c, four, spec4)
         return c
 
     t, c4 = timeit(all_quads, repeat=7)
@@ -173,9 +175,8 @@ def main() -> None:
         t, plans = timeit(lambda poly=poly, fingers=fingers, mu=mu: plan(poly, fingers=fingers,
                                                                          mu=mu, top=10),
                           repeat=3 if fingers == 4 and poly.n_edges > 10 else 5)
-        Fp = _features(poly, mu, None)
-        cp = (_two_finger(Fp, MARGIN) if fingers == 2
-              else _four_finger(Fp, MARGIN, None, poly.centroid))
+        cp = stage1(poly, plan_spec(fingers=fingers, mu=mu, margin=np.degrees(MARGIN),
+                                    top=None))
         ncand = len(cp.score)
         sample = rng.choice(ncand, min(20, ncand), replace=False)
         t0 = time.perf_counter()

@@ -248,13 +248,13 @@ def test_coordinates_far_from_one(scale):
 
 
 def test_large_polygon_batches_match_single_batch(monkeypatch):
-    import fcgrasp.planning as planning
+    import fcgrasp.pipeline as pipeline
 
     ang = np.linspace(0, 2 * np.pi, 160, endpoint=False)
     r = 1 + 0.3 * np.sin(3 * ang)
     poly = Polygon(np.column_stack([r * np.cos(ang), r * np.sin(ang)]))
     whole = plan(poly, fingers=2, mu=0.3, top=8)
-    monkeypatch.setattr(planning, "PAIR_BATCH", 1000)
+    monkeypatch.setattr(pipeline, "BATCH_SIZE", 1000)
     batched = plan(poly, fingers=2, mu=0.3, top=8)
     assert [p.edges for p in whole] == [p.edges for p in batched]
     assert np.allclose([p.min_length for p in whole], [p.min_length for p in batched])

@@ -1,0 +1,767 @@
+"""The planning pipeline: candidates -> solve -> rank (sections 6, 7 and 8).
+
+Three public steps, each on batches of numpy arrays, in the shape of shapely's array
+functions under thin objects; :func:`fcgrasp.plan` is these three calls::
+
+    spec = plan_spec(fingers=2, mu=0.3, top=5)
+    solved = (solve(part, spec, batch) for batch in candidates(part, spec))
+    plans = rank(part, spec, solved)
+
+* :func:`candidates` streams :class:`EdgeSets`: batches of candidate edge sets (feature
+  indices, picklable, at most ``batch_size`` rows each, so memory stays bounded however
+  large the part).
+* :func:`solve` builds the grasp sets of a batch (the sectors of section 6, by
+  :mod:`fcgrasp.sectors`), prunes it with the force-direction constraint, and solves the
+  optimal regions of the rows that can still reach the top (theorem 7.1, by
+  :mod:`fcgrasp.regions`).  A batch solved anywhere (another process, another machine)
+  gives the same :class:`Solved` as solved in place.
+* :func:`rank` merges solved batches, keeps the best by the leximin order and the chosen
+  measure (:mod:`fcgrasp.ranking`), places the regions and returns
+  :class:`~fcgrasp.GraspPlan` objects, best first.
+
+Units: lengths in the polygon's units; ``margin`` in **degrees** in :class:`PlanSpec`
+(radians only inside this module's solvers).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import dataclass, field
+from itertools import combinations
+from typing import Any
+
+import numpy as np
+
+from ._checks import (
+    FloatArray,
+    check_direction,
+    check_int,
+    check_mu_scalar,
+    check_scalar,
+)
+from ._regiongeom import four_finger_problems, two_finger_problems
+from .closure import force_direction_closure
+from .hand import Hand
+from .plans import GraspPlan, geometric_key, leximin_key, rank_key
+from .polygon import Polygon
+from .quality import characteristic_length
+from .ranking import MEASURES
+from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
+from .sectors import PAIRINGS, arc_intersection, pairing_valid
+from .tolerances import RANK_TOL
+
+__all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
+           "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
+           "BATCH_SIZE"]
+
+#: Candidate rows per batch: large parts are streamed in batches of about this size.
+BATCH_SIZE = 2_000_000
+#: With a measure other than ``min_region`` and a ``top``, the rows of a batch kept for
+#: the measure: the best by the smallest region (the measures are computed per plan).
+KEEP_FOR_MEASURE = 20_000
+
+
+# ----------------------------------------------------------------------------- the spec
+
+
+@dataclass(frozen=True)
+class PlanSpec:
+    """What to plan: the gripper, the margin and the ranking (validated by
+    :func:`plan_spec`).  Picklable, so a batch can be solved elsewhere.
+
+    ``margin`` is in degrees; ``gravity`` is a unit direction (``fingers=3``) or None;
+    ``disturbance`` is (translation in the part's units, rotation in degrees).
+    """
+
+    fingers: int = 2
+    mu: float = 0.0
+    margin: float = DEFAULT_MARGIN_DEG
+    top: int | None = 10
+    rank_by: str = "min_region"
+    hand: Hand | None = None
+    gravity: tuple[float, float] | None = None
+    disturbance: tuple[float, float] = (10.0, 15.0)
+
+    @property
+    def margin_rad(self) -> float:
+        return float(np.radians(self.margin))
+
+    @property
+    def contact_type(self) -> str:
+        return "friction" if self.fingers == 2 else "frictionless"
+
+
+def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
+              hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
+              disturbance: Any = (10.0, 15.0)) -> PlanSpec:
+    """A validated :class:`PlanSpec` (arguments as for :func:`fcgrasp.plan`).
+
+    Raises :class:`TypeError` or :class:`ValueError` naming the argument.
+
+    >>> plan_spec(fingers=2, mu=0.3).contact_type
+    'friction'
+    """
+    mu_v = check_mu_scalar(mu, "mu")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    if margin_v >= 90.0:
+        raise ValueError(f"margin is an angle in degrees below 90, got {margin!r}")
+    if hand is not None and not isinstance(hand, Hand):
+        raise TypeError(f"hand must be a Hand or None, got {type(hand).__name__}")
+    fingers = check_int(fingers, "fingers", choices=(2, 3, 4))
+    if not isinstance(rank_by, str):
+        raise TypeError(f"rank_by must be a string, got {rank_by!r}")
+    if rank_by not in MEASURES:
+        raise ValueError(f"rank_by must be one of {', '.join(MEASURES)}, got {rank_by!r}")
+    if top is not None:
+        top = check_int(top, "top", minimum=1)
+    dist = _check_disturbance(disturbance)
+    g = None
+    if fingers == 3:
+        gv = check_direction(gravity, "gravity")
+        g = (float(gv[0]), float(gv[1]))
+    return PlanSpec(fingers, mu_v if fingers == 2 else 0.0, margin_v, top, rank_by, hand, g,
+                    dist)
+
+
+def _check_disturbance(disturbance: Any) -> tuple[float, float]:
+    if isinstance(disturbance, (str, bytes)) or np.ndim(disturbance) != 1 \
+            or len(disturbance) != 2:
+        raise ValueError(f"disturbance must be (translation, rotation in degrees), got "
+                         f"{disturbance!r}")
+    return (check_scalar(disturbance[0], "disturbance[0]", positive=True),
+            check_scalar(disturbance[1], "disturbance[1]", positive=True))
+
+
+
+# ----------------------------------------------------------------------------- features
+
+@dataclass
+class Features:
+    """Contactable pieces of edges (whole edges, or their feasible parts under a hand).
+
+    The fingers of a candidate are indices into these arrays."""
+
+    edge: np.ndarray        # (F,) parent edge
+    a: FloatArray           # (F, 2)
+    b: FloatArray           # (F, 2)
+    offset: FloatArray      # (F,) arc length of a along the parent edge
+    center: FloatArray      # (F,) angle of -n
+    half: FloatArray        # (F,) friction half-angle
+
+
+def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
+             edges: Any = None) -> Features:
+    """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
+    or their parts a :class:`~fcgrasp.Hand` can reach (section 8.2)."""
+    rows = []
+    if hand is None:
+        ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
+               enumerate(polygon.lengths)]
+    else:
+        ivs = hand.feasible_intervals(polygon, min_length=1e-9 * polygon.size)
+    wanted = None if edges is None else set(int(e) for e in edges)
+    for e, lst in enumerate(ivs):
+        if wanted is not None and e not in wanted:
+            continue
+        for t0, t1 in lst:
+            rows.append((e, t0, t1))
+    if not rows:
+        z = np.zeros((0, 2))
+        return Features(np.zeros(0, int), z, z, np.zeros(0), np.zeros(0), np.zeros(0))
+    ei = np.array([r[0] for r in rows])
+    s0 = np.array([r[1] for r in rows])
+    s1 = np.array([r[2] for r in rows])
+    tan = polygon.tangents[ei]
+    a = polygon.starts[ei] + s0[:, None] * tan
+    b = polygon.starts[ei] + s1[:, None] * tan
+    n = polygon.normals[ei]
+    center = np.arctan2(-n[:, 1], -n[:, 0])
+    return Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
+
+
+# ----------------------------------------------------------------------------- candidates
+
+
+@dataclass
+class Candidates:
+    """A batch of candidate edge sets with their grasp-set geometry (section 6) and region
+    problems (section 7), scored by the largest smallest region (stage 1)."""
+
+    feats: np.ndarray            # (B, n) feature index per finger (-1: gravity)
+    a: FloatArray                # (B, n, 2)
+    b: FloatArray
+    center: FloatArray           # (B, n)
+    half: FloatArray             # (B, n) friction half-angles
+    perm: np.ndarray             # (B, n) problem order -> finger order
+    problems: list[KnapsackProblem]   # one per mode, in problem order
+    modes: tuple[str, str]
+    score: FloatArray = field(default_factory=lambda: np.zeros(0))
+    best_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+
+    def take(self, idx: Any) -> Candidates:
+        """The candidates of the given rows."""
+        out = Candidates(self.feats[idx], self.a[idx], self.b[idx], self.center[idx],
+                         self.half[idx], self.perm[idx], [p.take(idx) for p in self.problems],
+                         self.modes)
+        out.score, out.best_mode = self.score[idx], self.best_mode[idx]
+        return out
+
+    @staticmethod
+    def concat(parts: list[Candidates]) -> Candidates:
+        """The rows of several batches, in order."""
+        def cat(xs: list[Any]) -> Any:
+            return np.concatenate(xs)
+
+        probs = [KnapsackProblem.concat([p.problems[m] for p in parts]) for m in range(2)]
+        out = Candidates(cat([p.feats for p in parts]), cat([p.a for p in parts]),
+                         cat([p.b for p in parts]), cat([p.center for p in parts]),
+                         cat([p.half for p in parts]), cat([p.perm for p in parts]), probs,
+                         parts[0].modes)
+        out.score = cat([p.score for p in parts])
+        out.best_mode = cat([p.best_mode for p in parts])
+        return out
+
+
+def _score(c: Candidates) -> None:
+    vals = np.stack([np.where(p.separable, max_min_length(p), -1.0) for p in c.problems])
+    c.best_mode = np.argmax(vals, axis=0)
+    c.score = vals.max(axis=0)
+
+
+def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
+    """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
+    of them, so that which of equal candidates survive does not depend on numbering."""
+    thr = np.partition(score, score.size - keep)[score.size - keep]
+    return np.flatnonzero(score >= thr - RANK_TOL * abs(thr))
+
+
+def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray) -> Candidates:
+    keep = F.edge[i] != F.edge[j]
+    i, j = i[keep], j[keep]
+    # quick sector test before building anything
+    _, half = arc_intersection(F.center[i], F.half[i], F.center[j] + np.pi, F.half[j])
+    ok = half - margin > 0
+    i, j = i[ok], j[ok]
+    probs, _ = two_finger_problems(F.a[i], F.b[i], F.center[i], F.half[i],
+                                   F.a[j], F.b[j], F.center[j], F.half[j], margin)
+    c = Candidates(np.stack([i, j], axis=1), np.stack([F.a[i], F.a[j]], 1),
+                    np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
+                    np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
+                    ("squeeze", "expand"))
+    _score(c)
+    return c
+
+
+
+def _quad_rows(F: Features, gravity: FloatArray | None, three_edge: bool = True
+               ) -> np.ndarray:
+    """Every four-finger row: 4-tuples of features on distinct edges, then (with
+    ``three_edge``) three edges with one doubled (the doubled feature first and third);
+    with gravity, triples of features plus the gravity contact (-1)."""
+    nF = len(F.edge)
+    tuples: list[np.ndarray] = []
+    if gravity is None:
+        q = np.array(list(combinations(range(nF), 4)), dtype=int).reshape(-1, 4)
+        q = q[np.all((F.edge[q][:, :, None] != F.edge[q][:, None, :])
+                     | np.eye(4, dtype=bool)[None], axis=(1, 2))]
+        tuples.append(q)
+        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
+        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
+              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
+        for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1)) if three_edge else ():
+            # the doubled feature first
+            tuples.append(np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1))
+        feats = np.concatenate(tuples) if tuples else np.zeros((0, 4), int)
+    else:
+        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
+        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
+              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
+        feats = np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+    return feats
+
+
+def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
+                     centroid: FloatArray, feats: np.ndarray) -> Candidates:
+    """Grasp-set geometry and problems of four-finger (or three plus gravity) rows."""
+    B = len(feats)
+    g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
+    real = feats >= 0
+    fi = np.where(real, feats, 0)
+    a = np.where(real[..., None], F.a[fi], centroid)
+    b = np.where(real[..., None], F.b[fi], centroid)
+    center = np.where(real, F.center[fi], g_ang)
+    dirs = np.stack([np.cos(center), np.sin(center)], axis=-1)
+    ok = force_direction_closure(dirs) if B else np.zeros(0, bool)
+    feats, a, b, center, dirs = feats[ok], a[ok], b[ok], center[ok], dirs[ok]
+    B = len(feats)
+    # every pairing whose two sectors are non-null describes the same grasp set
+    # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
+    # largest smallest region, so the plan does not depend on how edges are numbered
+    good = np.stack([pairing_valid(dirs, p) for p in PAIRINGS], axis=1) if B \
+        else np.zeros((0, 3), bool)
+    has = good.any(axis=1)
+    feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
+    B = len(feats)
+    scores = np.full((B, 3), -np.inf)
+    per_mode = np.full((B, 3, 2), -1.0)
+    built: dict[int, tuple[np.ndarray, list[KnapsackProblem]]] = {}
+    for k, p in enumerate(PAIRINGS):
+        rows = np.flatnonzero(good[:, k])
+        if rows.size == 0:
+            continue
+        probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows],
+                                           np.broadcast_to(p, (rows.size, 4)), margin)
+        for m, pr in enumerate(probs):
+            per_mode[rows, k, m] = np.where(pr.separable, max_min_length(pr), -1.0)
+        scores[rows, k] = per_mode[rows, k].max(axis=1)
+        built[k] = (rows, probs)
+    choice = np.argmax(scores, axis=1)
+    top_s = scores[np.arange(B), choice]
+    tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - RANK_TOL *
+                                                np.abs(top_s[:, None]), axis=1) > 1))
+    if tied.size:
+        # equal smallest regions: the next levels of the leximin order decide
+        best_lv = np.full((tied.size, 4), -1.0)
+        for k, p in enumerate(PAIRINGS):
+            cand = scores[tied, k] >= top_s[tied] - RANK_TOL * np.abs(top_s[tied])
+            if not cand.any():
+                continue
+            rows_k, probs_k = built[k]
+            pos = np.searchsorted(rows_k, tied[cand])
+            lv, _ = _best_levels([pr.take(pos) for pr in probs_k],
+                                 np.broadcast_to(p, (pos.size, 4)).copy())
+            better = _lex_greater(lv, best_lv[cand])
+            idx = np.flatnonzero(cand)[better]
+            best_lv[idx] = lv[better]
+            choice[tied[idx]] = k
+    # gather the chosen pairing's problems (already built), back in row order
+    if built:
+        sels = {k: np.flatnonzero(choice[rows_k] == k) for k, (rows_k, _) in built.items()}
+        back = np.argsort(np.concatenate([built[k][0][sel] for k, sel in sels.items()]))
+        probs = [KnapsackProblem.concat([built[k][1][m].take(sel) for k, sel in sels.items()])
+                 .take(back) for m in range(2)]
+    else:
+        probs = four_finger_problems(a, b, center, np.zeros((0, 4), int), margin)[0]
+    perm = PAIRINGS[choice]
+    c = Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
+    pm = per_mode[np.arange(B), choice]
+    c.best_mode = np.argmax(pm, axis=1)
+    c.score = pm.max(axis=1)
+    return c
+
+
+
+# ----------------------------------------------------------------------------- candidates
+
+
+@dataclass
+class EdgeSets:
+    """A batch of candidate edge sets: ``feats[r, k]`` is the feature (see
+    :func:`features`) of finger ``k`` in row ``r``, -1 for gravity.  Picklable."""
+
+    feats: np.ndarray
+
+
+def _pair_batches(F: Features, size: int) -> Iterator[EdgeSets]:
+    """Pairs ``i < j`` of features on distinct edges, a block of rows ``i`` at a time
+    (about ``size`` pairs per batch; a row longer than that is split)."""
+    n = len(F.edge)
+    start = 0
+    while start < n - 1:
+        counts = n - 1 - np.arange(start, n - 1)
+        stop = start + max(1, int(np.searchsorted(np.cumsum(counts), size, side="right")))
+        stop = min(stop, n - 1)
+        ii = np.repeat(np.arange(start, stop), n - 1 - np.arange(start, stop))
+        jj = np.concatenate([np.arange(r + 1, n) for r in range(start, stop)])
+        keep = F.edge[ii] != F.edge[jj]
+        ii, jj = ii[keep], jj[keep]
+        for k in range(0, len(ii), size):
+            yield EdgeSets(np.stack([ii[k:k + size], jj[k:k + size]], axis=1))
+        start = stop
+
+
+def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+               batch_size: int | None = None) -> Iterator[EdgeSets]:
+    """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows.
+
+    Two fingers: every pair of features on distinct edges.  Four: every 4-tuple on
+    distinct edges, then every three edges with one doubled.  Three (gravity): every
+    triple.  ``edges`` restricts the features to those edges (with four fingers and an
+    edge given twice, only the layouts doubling that edge).
+    """
+    size = BATCH_SIZE if batch_size is None else check_int(batch_size, "batch_size",
+                                                           minimum=1)
+    F = features(polygon, spec.mu, spec.hand, edges)
+    if spec.fingers == 2:
+        yield from _pair_batches(F, size)
+        return
+    gravity = None if spec.gravity is None else np.array(spec.gravity)
+    doubled = None
+    three_edge = True
+    if edges is not None:
+        idx = [int(e) for e in edges]
+        twice = [e for e in set(idx) if idx.count(e) == 2]
+        doubled = twice[0] if twice else None
+        three_edge = doubled is not None
+    rows = _quad_rows(F, gravity, three_edge)
+    if doubled is not None:
+        rows = rows[(F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])]
+    for k in range(0, len(rows), size):
+        yield EdgeSets(rows[k:k + size])
+
+
+def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
+                   edges: Any = None) -> Candidates:
+    """The grasp sets of a batch (section 6) and their region problems, scored by the
+    largest smallest region (stage 1, exact unless two fingers share an edge, when it is
+    an upper bound).  Rows that fail the force-direction constraint are dropped."""
+    F = features(polygon, spec.mu, spec.hand, edges)
+    feats = np.asarray(sets.feats, dtype=int)
+    if spec.fingers == 2:
+        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1])
+    gravity = None if spec.gravity is None else np.array(spec.gravity)
+    return _quad_candidates(F, spec.margin_rad, gravity, polygon.centroid,
+                            feats.reshape(-1, 4))
+
+
+# ----------------------------------------------------------------------------- regions
+
+def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = RANK_TOL) -> np.ndarray:
+    """Row-wise leximin comparison ``a > b`` of length vectors, with a relative tolerance.
+
+    Entries equal to 0 with a negative counterpart are regions of fixed points (gravity).
+    """
+    sa, sb = np.sort(a, axis=1), np.sort(b, axis=1)
+    scale = np.maximum(np.maximum(np.abs(sa).max(axis=1), np.abs(sb).max(axis=1)), 1e-300)
+    diff = sa - sb
+    big = np.abs(diff) > rtol * scale[:, None]
+    first = np.argmax(big, axis=1)
+    rows = np.arange(len(a))
+    return big.any(axis=1) & (diff[rows, first] > 0)
+
+
+def _problems(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+              margin: float) -> list[KnapsackProblem]:
+    """Region problems of candidate ``rows`` with the finger segments ``a``-``b``."""
+    if c.feats.shape[1] == 2:
+        return two_finger_problems(a[:, 0], b[:, 0], c.center[rows, 0], c.half[rows, 0],
+                                   a[:, 1], b[:, 1], c.center[rows, 1], c.half[rows, 1],
+                                   margin)[0]
+    return four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)[0]
+
+
+def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray
+                 ) -> tuple[FloatArray, np.ndarray]:
+    """Leximin lengths (finger order) of the better mode, and that mode."""
+    R = len(perm)
+    inv = np.argsort(perm, axis=1)
+    ridx = np.arange(R)[:, None]
+    lengths = np.full(perm.shape, -1.0)
+    mode = np.zeros(R, dtype=int)
+    for m, pr in enumerate(probs):
+        # both modes are solved: when their smallest regions tie, the next levels decide
+        lev = np.where(pr.separable[:, None], leximin(pr), -1.0)[ridx, inv]
+        better = _lex_greater(lev, lengths)
+        lengths[better] = lev[better]
+        mode[better] = m
+    return lengths, mode
+
+
+def _place(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+           lengths: FloatArray, mode: np.ndarray, margin: float) -> FloatArray:
+    """Region parameters (R, n, 2), finger order, for the chosen levels and modes."""
+    probs = _problems(c, rows, a, b, margin)
+    perm = c.perm[rows]
+    ridx = np.arange(len(rows))[:, None]
+    lev_p = np.maximum(lengths, 0.0)[ridx, perm]          # problem order
+    inv = np.argsort(perm, axis=1)
+    params = np.zeros(a.shape[:2] + (2,))
+    for m, pr in enumerate(probs):
+        sel = mode == m
+        if sel.any():
+            pp = place_regions(pr.take(np.flatnonzero(sel)), lev_p[sel])
+            params[sel] = pp[np.arange(sel.sum())[:, None], inv[sel]]
+    return params
+
+
+def _split_search(c: Candidates, rows: np.ndarray, margin: float, iters: int = 80
+                  ) -> tuple[FloatArray, FloatArray]:
+    """Best split point of the edge shared by fingers 0 and 2 (golden-section search on
+    the concave optimum of the smallest region).  Returns the segments (a, b)."""
+    a0, b0 = c.a[rows, 0], c.b[rows, 0]
+    L = np.hypot(*(b0 - a0).T)
+    t = (b0 - a0) / np.where(L > 0, L, 1.0)[:, None]
+    best = np.full(len(rows), -np.inf)
+    best_a, best_b = c.a[rows].copy(), c.b[rows].copy()
+
+    def segments(sig: FloatArray, first_low: bool) -> tuple[FloatArray, FloatArray]:
+        a, b = c.a[rows].copy(), c.b[rows].copy()
+        cut = a0 + sig[:, None] * t
+        lo_f, hi_f = (0, 2) if first_low else (2, 0)
+        b[:, lo_f] = cut
+        a[:, hi_f] = cut
+        return a, b
+
+    def value(sig: FloatArray, first_low: bool) -> FloatArray:
+        probs = _problems(c, rows, *segments(sig, first_low), margin)
+        return np.max([np.where(pr.separable, max_min_length(pr), -1.0) for pr in probs],
+                      axis=0)
+
+    gr = (np.sqrt(5) - 1) / 2
+    for first_low in (True, False):
+        lo, hi = np.zeros(len(rows)), L.copy()
+        x1, x2 = hi - gr * (hi - lo), lo + gr * (hi - lo)
+        f1, f2 = value(x1, first_low), value(x2, first_low)
+        for _ in range(iters):
+            left = f1 >= f2
+            hi = np.where(left, x2, hi)
+            lo = np.where(left, lo, x1)
+            nx1 = np.where(left, hi - gr * (hi - lo), x2)
+            nx2 = np.where(left, x1, lo + gr * (hi - lo))
+            fnew = value(np.where(left, nx1, nx2), first_low)
+            f1, f2 = np.where(left, fnew, f2), np.where(left, f1, fnew)
+            x1, x2 = nx1, nx2
+        sig = 0.5 * (lo + hi)
+        val = value(sig, first_low)
+        better = val > best
+        a, b = segments(sig, first_low)
+        best = np.where(better, val, best)
+        best_a[better], best_b[better] = a[better], b[better]
+    return best_a, best_b
+
+
+def _levels(c: Candidates, rows: np.ndarray, margin: float
+            ) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """Leximin lengths (R, n) in finger order for candidate ``rows``, with the segments
+    the fingers range over (split where two fingers share an edge) and the mode."""
+    a, b = c.a[rows].copy(), c.b[rows].copy()
+    lengths, mode = _best_levels([p.take(rows) for p in c.problems], c.perm[rows])
+    if c.feats.shape[1] == 4:
+        same = (c.feats[rows, 0] == c.feats[rows, 2]) & (c.feats[rows, 0] >= 0)
+        same &= lengths.min(axis=1) > 0
+        if same.any():
+            sub = np.flatnonzero(same)
+            params = _place(c, rows[sub], a[sub], b[sub], lengths[sub], mode[sub], margin)
+            over = np.minimum(params[:, 0, 1], params[:, 2, 1]) > \
+                np.maximum(params[:, 0, 0], params[:, 2, 0])
+            fix = sub[over]
+            if fix.size:
+                sa, sb = _split_search(c, rows[fix], margin)
+                lv, md = _best_levels(_problems(c, rows[fix], sa, sb, margin),
+                                      c.perm[rows[fix]])
+                a[fix], b[fix], lengths[fix], mode[fix] = sa, sb, lv, md
+    return lengths, a, b, mode
+
+
+def _region_ends(seg_a: FloatArray, seg_b: FloatArray, params: FloatArray) -> FloatArray:
+    """End points (n, 2, 2) of regions at arc-length ``params`` (n, 2) along segments."""
+    L = np.hypot(*(seg_b - seg_a).T)
+    tdir = (seg_b - seg_a) / np.where(L > 0, L, 1.0)[:, None]
+    return seg_a[:, None, :] + params[:, :, None] * tdir[:, None, :]
+
+
+
+def region_levels(cands: Candidates, rows: np.ndarray, spec: PlanSpec
+                  ) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """Leximin region lengths (R, n) of candidate ``rows`` in finger order, the segments
+    the fingers range over (split where two share an edge) and the mode."""
+    return _levels(cands, np.asarray(rows, dtype=int), spec.margin_rad)
+
+
+def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray,
+                b: FloatArray, lengths: FloatArray, mode: np.ndarray, margin: float
+                ) -> np.ndarray:
+    """Among pairings and modes with the same leximin levels (corollary 5.1 makes them
+    equivalent without a margin), place the regions of each and keep the placement of
+    least :func:`geometric_key`, so that a renumbered part gets the same regions.
+
+    Updates ``c.perm`` for ``rows`` and returns the modes.  Rows where two fingers share
+    an edge keep their split search's answer.
+    """
+    mode = mode.copy()
+    if c.feats.shape[1] != 4 or rows.size == 0:
+        return mode
+    sel = np.flatnonzero(c.feats[rows, 0] != c.feats[rows, 2])
+    if sel.size == 0:
+        return mode
+    R = rows[sel]
+    options = []                                   # (pairing, mode, levels in finger order)
+    for P in PAIRINGS:
+        perm = np.broadcast_to(P, (sel.size, 4)).copy()
+        probs = four_finger_problems(a[sel], b[sel], c.center[R], perm, margin)[0]
+        inv = np.argsort(perm, axis=1)
+        for m, pr in enumerate(probs):
+            lev = np.where(pr.separable[:, None], leximin(pr), -1.0)
+            options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
+    for i, r in enumerate(sel):
+        want = np.maximum(lengths[r], 0.0)[None]
+        tied = [(P, m) for P, m, lev in options
+                if not _lex_greater(want, lev[i:i + 1])[0]
+                and not _lex_greater(lev[i:i + 1], want)[0]]
+        if len(tied) < 2:
+            continue
+        best: tuple[Any, ...] | None = None
+        for P, m in tied:
+            c.perm[rows[r]] = P
+            params = _place(c, rows[r:r + 1], a[r:r + 1], b[r:r + 1], lengths[r:r + 1],
+                            np.array([m]), margin)[0]
+            real = c.feats[rows[r]] >= 0
+            key = geometric_key(_region_ends(a[r][real], b[r][real], params[real]), polygon)
+            if best is None or key < best[0]:
+                best = (key, P, m)
+        assert best is not None
+        c.perm[rows[r]] = best[1]
+        mode[r] = best[2]
+    return mode
+
+
+def _build_plans(polygon: Polygon, F: Features, c: Candidates, rows: np.ndarray,
+                 lengths: FloatArray, a: FloatArray, b: FloatArray, mode: np.ndarray,
+                 mu: float, margin_deg: float, contact_type: str,
+                 gravity: FloatArray | None, disturbance: tuple[float, float]
+                 ) -> list[GraspPlan]:
+    """GraspPlan objects for candidate ``rows`` with their leximin levels."""
+    keep = np.all((lengths > 0) | (c.feats[rows] < 0), axis=1)
+    rows, lengths, a, b, mode = rows[keep], lengths[keep], a[keep], b[keep], mode[keep]
+    if rows.size == 0:
+        return []
+    mode = _break_ties(polygon, c, rows, a, b, lengths, mode, np.radians(margin_deg))
+    params = _place(c, rows, a, b, lengths, mode, np.radians(margin_deg))
+    rho = characteristic_length(polygon.vertices, polygon.centroid)
+    plans = []
+    for r in range(len(rows)):
+        real = c.feats[rows[r]] >= 0
+        fi = c.feats[rows[r]][real]
+        ends = _region_ends(a[r][real], b[r][real], params[r][real])
+        edges = tuple(int(F.edge[f]) for f in fi)
+        g = None
+        if gravity is not None:
+            g = {"center": polygon.centroid.copy(), "direction": gravity.copy()}
+        plans.append(GraspPlan(edges, ends, lengths[r][real], ends.mean(axis=1),
+                               polygon.normals[list(edges)], contact_type, mu,
+                               c.modes[int(mode[r])], margin_deg, g,
+                               centroid=polygon.centroid.copy(), radius=rho,
+                               disturbance=disturbance))
+    return plans
+
+
+
+# ----------------------------------------------------------------------------- solve, rank
+
+
+@dataclass
+class Solved:
+    """A solved batch: the candidates that can reach the top, with their leximin region
+    lengths (finger order), segments and modes.  Picklable."""
+
+    cands: Candidates
+    lengths: FloatArray
+    a: FloatArray
+    b: FloatArray
+    mode: np.ndarray
+    examined: int = 0
+
+    @staticmethod
+    def concat(parts: list[Solved]) -> Solved:
+        parts = [p for p in parts if len(p.lengths)]
+        if not parts:
+            raise ValueError("nothing to concatenate")
+        return Solved(Candidates.concat([p.cands for p in parts]),
+                      np.concatenate([p.lengths for p in parts]),
+                      np.concatenate([p.a for p in parts]),
+                      np.concatenate([p.b for p in parts]),
+                      np.concatenate([p.mode for p in parts]),
+                      sum(p.examined for p in parts))
+
+
+def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
+            ) -> np.ndarray:
+    """Rows (sorted) with positive regions, the ``top`` best by leximin and their ties."""
+    real = feats >= 0
+    ok = np.all((lengths > 0) | ~real, axis=1)
+    keys = [(leximin_key(lengths[r][real[r]], size), r) for r in np.flatnonzero(ok)]
+    keys.sort()
+    if top is not None and len(keys) > top:
+        keys = [kr for kr in keys if kr[0] <= keys[top - 1][0]]
+    return np.array(sorted(r for _, r in keys), dtype=int)
+
+
+def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
+          progress: Any = None) -> Solved:
+    """Grasp sets and optimal regions of a batch of candidate edge sets.
+
+    With ``spec.top`` and ``min_region``, only the rows that can still reach the batch's
+    top (ties included) get their leximin levels: rows are taken by their stage-1 bound,
+    in chunks, until no later row can reach the top-th smallest region found.  The union
+    of the batches' tops holds the global top, so :func:`rank` of the solved batches is
+    the same as of one batch.
+    """
+    c = grasp_geometry(polygon, spec, sets, edges)
+    margin = spec.margin_rad
+    good = np.flatnonzero(c.score > 0)
+    order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
+    top = spec.top
+    if top is not None and spec.rank_by == "min_region":
+        parts = []
+        start = 0
+        chunk = max(2 * top, 16)
+        while start < order.size:
+            rows = order[start:start + chunk]
+            parts.append((rows, *_levels(c, rows, margin)))
+            start += chunk
+            if progress is not None:
+                progress(min(start, order.size), order.size)
+            mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
+            # stop when no later candidate can reach (or tie) the top-th smallest region
+            if start >= order.size or (mins_so_far.size >= top and mins_so_far[top - 1] >
+                                       c.score[order[start]] + RANK_TOL * polygon.size):
+                break
+        if parts:
+            rows = np.concatenate([x[0] for x in parts])
+            lv = np.concatenate([x[1] for x in parts])
+            a_ = np.concatenate([x[2] for x in parts])
+            b_ = np.concatenate([x[3] for x in parts])
+            md = np.concatenate([x[4] for x in parts])
+        else:
+            rows, lv, a_, b_, md = order, *_levels(c, order, margin)
+    else:
+        if top is not None and order.size > KEEP_FOR_MEASURE:
+            order = np.sort(order[_keep_best(c.score[order], KEEP_FOR_MEASURE)])
+            order = order[np.lexsort((order, -c.score[order]))]
+        rows = order
+        lv, a_, b_, md = _levels(c, rows, margin)
+        if progress is not None:
+            progress(order.size, order.size)
+    pick = _select(lv, c.feats[rows], polygon.size, top if spec.rank_by == "min_region"
+                   else None)
+    return Solved(c.take(rows[pick]), lv[pick], a_[pick], b_[pick], md[pick], len(sets.feats))
+
+
+def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
+         edges: Any = None) -> list[GraspPlan]:
+    """Merge solved batches and return the best plans, best first (a top-k reduce).
+
+    Sorted by the measure ``spec.rank_by`` (:mod:`fcgrasp.ranking`), then the leximin
+    order of the region lengths, then :func:`~fcgrasp.plans.geometric_key`.
+    """
+    parts = [s for s in solved if len(s.lengths)]
+    if not parts:
+        return []
+    s = Solved.concat(parts)
+    top = spec.top
+    if spec.rank_by == "min_region":
+        pick = _select(s.lengths, s.cands.feats, polygon.size, top)
+    elif top is not None and len(s.lengths) > KEEP_FOR_MEASURE:
+        pick = _select(s.lengths, s.cands.feats, polygon.size, KEEP_FOR_MEASURE)
+    else:
+        pick = np.arange(len(s.lengths))
+    F = features(polygon, spec.mu, spec.hand, edges)
+    gravity = None if spec.gravity is None else np.array(spec.gravity)
+    plans = _build_plans(polygon, F, s.cands, pick, s.lengths[pick], s.a[pick], s.b[pick],
+                         s.mode[pick], spec.mu, spec.margin, spec.contact_type, gravity,
+                         spec.disturbance)
+    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+    order = sorted(range(len(plans)),
+                   key=lambda k: rank_key(plans[k], polygon, spec.rank_by, float(scores[k])))
+    plans = [plans[k] for k in order]
+    return plans if top is None else plans[:top]

@@ -1,0 +1,74 @@
+"""The public pipeline (issue 10): candidates -> solve -> rank gives plan()'s answer, in
+any batch size, with batches pickled and solved in other processes."""
+
+from __future__ import annotations
+
+import pickle
+from concurrent.futures import ProcessPoolExecutor
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.pipeline import EdgeSets, PlanSpec, candidates, plan_spec, rank, solve
+
+from .shapes import random_polygon
+
+JOBS = [dict(fingers=2, mu=0.4), dict(fingers=4, mu=0.0), dict(fingers=3, mu=0.0),
+        dict(fingers=2, mu=0.4, rank_by="epsilon"), dict(fingers=4, mu=0.0, top=None)]
+
+
+def _key(plans):
+    return [(p.edges, np.round(p.regions, 9).tolist(), p.mode) for p in plans]
+
+
+def _solve_remote(args):
+    part_pickle, spec, batch = args
+    return solve(pickle.loads(part_pickle), spec, batch)
+
+
+@pytest.mark.parametrize("job", JOBS)
+@pytest.mark.parametrize("batch_size", [1, 7, 1000])
+def test_batches_give_the_plan(job, batch_size, rng):
+    part = random_polygon(rng, "star")
+    spec = plan_spec(top=job.get("top", 4), rank_by=job.get("rank_by", "min_region"),
+                     fingers=job["fingers"], mu=job["mu"])
+    want = fc.plan(part, fingers=job["fingers"], mu=job["mu"], top=spec.top,
+                   rank_by=spec.rank_by)
+    batches = list(candidates(part, spec, batch_size=batch_size))
+    assert all(len(b.feats) <= batch_size for b in batches)
+    got = rank(part, spec, (solve(part, spec, b) for b in batches))
+    assert _key(got) == _key(want)
+
+
+def test_batches_solved_in_other_processes():
+    part = fc.read_part("demo:blob")
+    spec = plan_spec(fingers=4, mu=0.0, top=5)
+    batches = [pickle.loads(pickle.dumps(b)) for b in candidates(part, spec, batch_size=5)]
+    assert all(isinstance(b, EdgeSets) for b in batches) and len(batches) > 3
+    with ProcessPoolExecutor(2) as pool:
+        solved = list(pool.map(_solve_remote, [(pickle.dumps(part), spec, b)
+                                               for b in batches]))
+    solved = [pickle.loads(pickle.dumps(s)) for s in solved]
+    assert _key(rank(part, spec, solved)) == _key(fc.plan(part, fingers=4, mu=0, top=5))
+
+
+def test_candidates_stream_in_bounded_batches():
+    ang = np.linspace(0, 2 * np.pi, 400, endpoint=False)
+    part = fc.Polygon(np.column_stack([np.cos(ang), np.sin(ang)]))
+    spec = plan_spec(fingers=2, mu=0.3)
+    sizes = [len(b.feats) for b in candidates(part, spec, batch_size=10_000)]
+    assert max(sizes) <= 10_000 and sum(sizes) == 400 * 399 // 2
+
+
+def test_plan_spec_is_checked_and_picklable():
+    spec = plan_spec(fingers=3, gravity=(0, -2))
+    assert spec.gravity == (0.0, -1.0) and spec.mu == 0.0
+    assert pickle.loads(pickle.dumps(spec)) == spec
+    assert isinstance(spec, PlanSpec)
+    with pytest.raises(TypeError, match="fingers"):
+        plan_spec(fingers="2")
+    with pytest.raises(ValueError, match="rank_by"):
+        plan_spec(rank_by="nope")
+    with pytest.raises(TypeError, match="batch_size"):
+        list(candidates(fc.read_part("demo:blob"), spec, batch_size=1.5))

@@ -1,0 +1,40 @@
+"""The planning façade: plan() and independent_regions() over the pipeline."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+
+BLOB = fc.read_part("demo:blob")
+
+
+@pytest.mark.parametrize("fingers, mu", [(2, 0.3), (3, 0.0), (4, 0.0)])
+def test_plans_sorted_and_force_closure(fingers, mu):
+    plans = fc.plan(BLOB, fingers=fingers, mu=mu, top=6)
+    assert plans
+    mins = [p.min_length for p in plans]
+    assert mins == sorted(mins, reverse=True)
+    for p in plans:
+        assert p.grasp().is_force_closure()
+        assert p.regions.shape == (fingers if fingers != 3 else 3, 2, 2)
+
+
+def test_independent_regions_matches_the_plan_of_its_edges():
+    best = fc.plan(BLOB, fingers=2, mu=0.3, top=1)[0]
+    again = fc.independent_regions(BLOB, best.edges, mu=0.3)
+    np.testing.assert_allclose(again.regions, best.regions)
+    flipped = fc.independent_regions(BLOB, best.edges[::-1], mu=0.3)
+    np.testing.assert_allclose(flipped.regions, best.regions[::-1])
+
+
+def test_quality_inputs_are_explicit():
+    p = fc.plan(BLOB, fingers=2, mu=0.3, top=1)[0]
+    assert p.radius > 0 and p.centroid.shape == (2,) and p.disturbance == (10.0, 15.0)
+    assert set(p.quality) >= {"min_region", "resistance", "epsilon_l1", "epsilon_linf"}
+
+
+def test_top_none_returns_every_plan():
+    every = fc.plan(BLOB, fingers=2, mu=0.3, top=None)
+    assert len(every) >= 3 and len(fc.plan(BLOB, fingers=2, mu=0.3, top=2)) == 2
