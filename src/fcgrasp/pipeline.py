@@ -38,6 +38,7 @@ from ._checks import (
     check_int,
     check_mu_scalar,
     check_scalar,
+    check_tol,
 )
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
@@ -48,7 +49,7 @@ from .quality import characteristic_length
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
-from .tolerances import RANK_TOL
+from .tolerances import RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
@@ -81,6 +82,7 @@ class PlanSpec:
     hand: Hand | None = None
     gravity: tuple[float, float] | None = None
     disturbance: tuple[float, float] = (10.0, 15.0)
+    tol: float = SOLVER_TOL
 
     @property
     def margin_rad(self) -> float:
@@ -93,7 +95,7 @@ class PlanSpec:
 
 def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
               hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
-              disturbance: Any = (10.0, 15.0)) -> PlanSpec:
+              disturbance: Any = (10.0, 15.0), tol: Any = SOLVER_TOL) -> PlanSpec:
     """A validated :class:`PlanSpec` (arguments as for :func:`fcgrasp.plan`).
 
     Raises :class:`TypeError` or :class:`ValueError` naming the argument.
@@ -120,7 +122,7 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
         gv = check_direction(gravity, "gravity")
         g = (float(gv[0]), float(gv[1]))
     return PlanSpec(fingers, mu_v if fingers == 2 else 0.0, margin_v, top, rank_by, hand, g,
-                    dist)
+                    dist, check_tol(tol))
 
 
 def _check_disturbance(disturbance: Any) -> tuple[float, float]:
@@ -197,12 +199,13 @@ class Candidates:
     modes: tuple[str, str]
     score: FloatArray = field(default_factory=lambda: np.zeros(0))
     best_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    tol: float = SOLVER_TOL          # relative slack of the region solver
 
     def take(self, idx: Any) -> Candidates:
         """The candidates of the given rows."""
         out = Candidates(self.feats[idx], self.a[idx], self.b[idx], self.center[idx],
                          self.half[idx], self.perm[idx], [p.take(idx) for p in self.problems],
-                         self.modes)
+                         self.modes, tol=self.tol)
         out.score, out.best_mode = self.score[idx], self.best_mode[idx]
         return out
 
@@ -216,14 +219,15 @@ class Candidates:
         out = Candidates(cat([p.feats for p in parts]), cat([p.a for p in parts]),
                          cat([p.b for p in parts]), cat([p.center for p in parts]),
                          cat([p.half for p in parts]), cat([p.perm for p in parts]), probs,
-                         parts[0].modes)
+                         parts[0].modes, tol=parts[0].tol)
         out.score = cat([p.score for p in parts])
         out.best_mode = cat([p.best_mode for p in parts])
         return out
 
 
 def _score(c: Candidates) -> None:
-    vals = np.stack([np.where(p.separable, max_min_length(p), -1.0) for p in c.problems])
+    vals = np.stack([np.where(p.separable, max_min_length(p, c.tol), -1.0)
+                     for p in c.problems])
     c.best_mode = np.argmax(vals, axis=0)
     c.score = vals.max(axis=0)
 
@@ -235,7 +239,8 @@ def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
     return np.flatnonzero(score >= thr - RANK_TOL * abs(thr))
 
 
-def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray) -> Candidates:
+def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
+                     tol: float = SOLVER_TOL) -> Candidates:
     keep = F.edge[i] != F.edge[j]
     i, j = i[keep], j[keep]
     # quick sector test before building anything
@@ -247,7 +252,7 @@ def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray) -
     c = Candidates(np.stack([i, j], axis=1), np.stack([F.a[i], F.a[j]], 1),
                     np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
                     np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
-                    ("squeeze", "expand"))
+                    ("squeeze", "expand"), tol=tol)
     _score(c)
     return c
 
@@ -281,7 +286,8 @@ def _quad_rows(F: Features, gravity: FloatArray | None, three_edge: bool = True
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
-                     centroid: FloatArray, feats: np.ndarray) -> Candidates:
+                     centroid: FloatArray, feats: np.ndarray, tol: float = SOLVER_TOL
+                     ) -> Candidates:
     """Grasp-set geometry and problems of four-finger (or three plus gravity) rows."""
     B = len(feats)
     g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
@@ -312,7 +318,7 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
         probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows],
                                            np.broadcast_to(p, (rows.size, 4)), margin)
         for m, pr in enumerate(probs):
-            per_mode[rows, k, m] = np.where(pr.separable, max_min_length(pr), -1.0)
+            per_mode[rows, k, m] = np.where(pr.separable, max_min_length(pr, tol), -1.0)
         scores[rows, k] = per_mode[rows, k].max(axis=1)
         built[k] = (rows, probs)
     choice = np.argmax(scores, axis=1)
@@ -329,7 +335,7 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
             rows_k, probs_k = built[k]
             pos = np.searchsorted(rows_k, tied[cand])
             lv, _ = _best_levels([pr.take(pos) for pr in probs_k],
-                                 np.broadcast_to(p, (pos.size, 4)).copy())
+                                 np.broadcast_to(p, (pos.size, 4)).copy(), tol)
             better = _lex_greater(lv, best_lv[cand])
             idx = np.flatnonzero(cand)[better]
             best_lv[idx] = lv[better]
@@ -343,7 +349,8 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
     else:
         probs = four_finger_problems(a, b, center, np.zeros((0, 4), int), margin)[0]
     perm = PAIRINGS[choice]
-    c = Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"))
+    c = Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"),
+                   tol=tol)
     pm = per_mode[np.arange(B), choice]
     c.best_mode = np.argmax(pm, axis=1)
     c.score = pm.max(axis=1)
@@ -418,10 +425,10 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
     F = features(polygon, spec.mu, spec.hand, edges)
     feats = np.asarray(sets.feats, dtype=int)
     if spec.fingers == 2:
-        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1])
+        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol)
     gravity = None if spec.gravity is None else np.array(spec.gravity)
     return _quad_candidates(F, spec.margin_rad, gravity, polygon.centroid,
-                            feats.reshape(-1, 4))
+                            feats.reshape(-1, 4), spec.tol)
 
 
 # ----------------------------------------------------------------------------- regions
@@ -450,7 +457,7 @@ def _problems(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
     return four_finger_problems(a, b, c.center[rows], c.perm[rows], margin)[0]
 
 
-def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray
+def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray, tol: float = SOLVER_TOL
                  ) -> tuple[FloatArray, np.ndarray]:
     """Leximin lengths (finger order) of the better mode, and that mode."""
     R = len(perm)
@@ -460,7 +467,7 @@ def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray
     mode = np.zeros(R, dtype=int)
     for m, pr in enumerate(probs):
         # both modes are solved: when their smallest regions tie, the next levels decide
-        lev = np.where(pr.separable[:, None], leximin(pr), -1.0)[ridx, inv]
+        lev = np.where(pr.separable[:, None], leximin(pr, tol), -1.0)[ridx, inv]
         better = _lex_greater(lev, lengths)
         lengths[better] = lev[better]
         mode[better] = m
@@ -504,7 +511,7 @@ def _split_search(c: Candidates, rows: np.ndarray, margin: float, iters: int = 8
 
     def value(sig: FloatArray, first_low: bool) -> FloatArray:
         probs = _problems(c, rows, *segments(sig, first_low), margin)
-        return np.max([np.where(pr.separable, max_min_length(pr), -1.0) for pr in probs],
+        return np.max([np.where(pr.separable, max_min_length(pr, c.tol), -1.0) for pr in probs],
                       axis=0)
 
     gr = (np.sqrt(5) - 1) / 2
@@ -535,7 +542,7 @@ def _levels(c: Candidates, rows: np.ndarray, margin: float
     """Leximin lengths (R, n) in finger order for candidate ``rows``, with the segments
     the fingers range over (split where two fingers share an edge) and the mode."""
     a, b = c.a[rows].copy(), c.b[rows].copy()
-    lengths, mode = _best_levels([p.take(rows) for p in c.problems], c.perm[rows])
+    lengths, mode = _best_levels([p.take(rows) for p in c.problems], c.perm[rows], c.tol)
     if c.feats.shape[1] == 4:
         same = (c.feats[rows, 0] == c.feats[rows, 2]) & (c.feats[rows, 0] >= 0)
         same &= lengths.min(axis=1) > 0
@@ -548,7 +555,7 @@ def _levels(c: Candidates, rows: np.ndarray, margin: float
             if fix.size:
                 sa, sb = _split_search(c, rows[fix], margin)
                 lv, md = _best_levels(_problems(c, rows[fix], sa, sb, margin),
-                                      c.perm[rows[fix]])
+                                      c.perm[rows[fix]], c.tol)
                 a[fix], b[fix], lengths[fix], mode[fix] = sa, sb, lv, md
     return lengths, a, b, mode
 
@@ -591,7 +598,7 @@ def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray
         probs = four_finger_problems(a[sel], b[sel], c.center[R], perm, margin)[0]
         inv = np.argsort(perm, axis=1)
         for m, pr in enumerate(probs):
-            lev = np.where(pr.separable[:, None], leximin(pr), -1.0)
+            lev = np.where(pr.separable[:, None], leximin(pr, c.tol), -1.0)
             options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
     for i, r in enumerate(sel):
         want = np.maximum(lengths[r], 0.0)[None]

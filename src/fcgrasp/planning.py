@@ -30,6 +30,7 @@ from .plans import GraspPlan, geometric_key, rank_key
 from .polygon import Polygon
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG
+from .tolerances import SOLVER_TOL
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key"]
@@ -47,7 +48,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          rank_by: str = "min_region", hand: Hand | None = None,
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
          disturbance: tuple[float, float] = (10.0, 15.0),
-         progress: Any = None) -> list[GraspPlan]:
+         progress: Any = None, tol: float = SOLVER_TOL) -> list[GraspPlan]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -74,6 +75,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         measure; default 10 units (1 cm in millimetres) and 15 degrees.
     progress : callable, optional
         Called as ``progress(done, total)`` while candidate edge sets are solved.
+    tol : float
+        Relative slack of the exact region solver
+        (:data:`fcgrasp.tolerances.SOLVER_TOL`).
 
     Returns
     -------
@@ -89,7 +93,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     """
     _check_polygon(polygon)
     spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
-                     margin=margin, gravity=gravity, disturbance=disturbance)
+                     margin=margin, gravity=gravity, disturbance=disturbance, tol=tol)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be a callable progress(done, total) or None, "
                         f"got {progress!r}")
@@ -99,7 +103,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
 
 def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
                         margin: float = DEFAULT_MARGIN_DEG, hand: Hand | None = None,
-                        gravity: Any = None) -> GraspPlan | None:
+                        gravity: Any = None, tol: float = SOLVER_TOL) -> GraspPlan | None:
     """Optimal independent regions of contact on the given edges (definition 7.1).
 
     Parameters
@@ -135,7 +139,7 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     if n == 2:
         if gravity is not None:
             raise ValueError("gravity is counted with three frictionless fingers, not two")
-        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin)
+        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
     elif n in (3, 4):
         spec0 = plan_spec(fingers=2, mu=mu, hand=hand, margin=margin)   # checks mu, margin
         if spec0.mu != 0:
@@ -147,7 +151,7 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
             raise ValueError(f"four fingers need four distinct edges or three with one twice, "
                              f"got {list(idx)}")
         spec = plan_spec(fingers=n if n == 3 else 4, mu=0.0, top=1, hand=hand, margin=margin,
-                         gravity=gravity if n == 3 else (0.0, -1.0))
+                         gravity=gravity if n == 3 else (0.0, -1.0), tol=tol)
     else:
         raise ValueError(f"edges must hold 2, 3 (with gravity) or 4 edge indices, got {n}")
     plans = rank(polygon, spec, (solve(polygon, spec, batch, edges=idx)
