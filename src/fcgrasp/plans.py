@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
+from ._json import json_ready
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .grasp import Grasp
 from .polygon import Polygon
@@ -131,8 +132,6 @@ class GraspPlan:
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (floats rounded to 12 significant digits)."""
-        from .report import json_ready
-
         d: dict[str, Any] = {
             "edges": [int(e) for e in self.edges],
             "contact_type": self.contact_type,
