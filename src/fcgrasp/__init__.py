@@ -10,6 +10,9 @@ Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
 
 from __future__ import annotations
 
+from importlib import import_module
+from typing import TYPE_CHECKING, Any
+
 from .closure import (
     closure_escape,
     force_direction_closure,
@@ -29,17 +32,7 @@ from .contacts import (
 )
 from .convexes import Cone
 from .grasp import ClosureReport, Grasp
-from .graspsets import (
-    FrictionGraspSet,
-    FrictionlessGraspSet,
-    Vertex,
-    grasp_set,
-    grasp_sets,
-    three_edge_grasp_sets,
-)
 from .hand import Hand
-from .parts import read_part
-from .planning import GraspPlan, independent_regions, plan
 from .polygon import Polygon
 from .screws import (
     CONTRARY,
@@ -60,6 +53,40 @@ from .screws import (
     wrench_from_force,
 )
 from .tolerances import TOL
+
+if TYPE_CHECKING:   # for type checkers; at run time these load on first use
+    from .graspsets import (
+        FrictionGraspSet,
+        FrictionlessGraspSet,
+        Vertex,
+        grasp_set,
+        grasp_sets,
+        three_edge_grasp_sets,
+    )
+    from .parts import read_part
+    from .planning import GraspPlan, independent_regions, plan
+
+#: Names loaded on first use (PEP 562), so that ``import fcgrasp`` stays light: the grasp
+#: sets, the planner and the readers are imported when a program first asks for them.
+_LAZY = {
+    "FrictionGraspSet": "graspsets", "FrictionlessGraspSet": "graspsets",
+    "Vertex": "graspsets", "grasp_set": "graspsets", "grasp_sets": "graspsets",
+    "three_edge_grasp_sets": "graspsets", "read_part": "parts", "GraspPlan": "planning",
+    "independent_regions": "planning", "plan": "planning",
+}
+
+
+def __getattr__(name: str) -> Any:
+    if name in _LAZY:
+        value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'fcgrasp' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_LAZY))
+
 
 #: The package version (kept equal to pyproject.toml's by tests/test_imports.py; a literal,
 #: because importlib.metadata alone costs more than the rest of ``import fcgrasp``).
