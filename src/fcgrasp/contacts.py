@@ -32,6 +32,7 @@ import numpy as np
 from ._checks import FloatArray, check_direction, check_mu_scalar, check_point
 from .convexes import Cone
 from .screws import wrench_from_force
+from .tolerances import ON_EDGE_TOL
 
 __all__ = [
     "Contact",
@@ -79,7 +80,7 @@ def _check_edge(a: Any, b: Any, normal: Any) -> tuple[FloatArray, FloatArray, Fl
     length = float(np.hypot(*(b - a)))
     if length == 0.0:
         raise ValueError(f"a and b must be distinct points, got a={a.tolist()} b={b.tolist()}")
-    if abs(float(n @ (b - a))) > 1e-6 * length:
+    if abs(float(n @ (b - a))) > ON_EDGE_TOL * length:
         raise ValueError(f"normal must be perpendicular to the edge from a to b, got "
                          f"normal={n.tolist()} for edge {a.tolist()} -> {b.tolist()}")
     return a, b, n

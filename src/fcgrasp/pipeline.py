@@ -49,7 +49,7 @@ from .quality import characteristic_length
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
-from .tolerances import RANK_TOL, SOLVER_TOL
+from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
@@ -160,7 +160,7 @@ def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
         ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
                enumerate(polygon.lengths)]
     else:
-        ivs = hand.feasible_intervals(polygon, min_length=1e-9 * polygon.size)
+        ivs = hand.feasible_intervals(polygon, min_length=LEXIMIN_STEP * polygon.size)
     wanted = None if edges is None else set(int(e) for e in edges)
     for e, lst in enumerate(ivs):
         if wanted is not None and e not in wanted:

@@ -36,6 +36,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
+from .tolerances import DEGENERATE_TOL
 
 __all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length", "ball_radius"]
 
@@ -52,7 +53,7 @@ def _scaled_wrenches(points: FloatArray, forces: FloatArray, centroid: FloatArra
     return np.column_stack([forces, tau])
 
 
-def ball_radius(points: FloatArray, tol: float = 1e-12) -> float:
+def ball_radius(points: FloatArray, tol: float = DEGENERATE_TOL) -> float:
     """Distance from the origin to the boundary of ``conv(points)`` in 3-D (0 when the
     origin is outside or on the boundary, or the hull is flat).
 
@@ -123,7 +124,7 @@ def _least_solutions(w: FloatArray, targets: FloatArray) -> FloatArray | None:
     trip = np.array(list(combinations(range(k), 3)))                    # (T, 3)
     M = np.transpose(w[trip], (0, 2, 1))                                  # (T, 3, 3)
     det = np.linalg.det(M)
-    ok = np.abs(det) > 1e-12 * np.max(np.abs(M), axis=(1, 2)) ** 3
+    ok = np.abs(det) > DEGENERATE_TOL * np.max(np.abs(M), axis=(1, 2)) ** 3
     if not ok.any():
         return None
     M, trip = M[ok], trip[ok]
@@ -178,6 +179,29 @@ def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarra
 
 def quality_of(points: Any, forces: Any, finger: Any, centroid: Any, rho: float,
                translation: float, rotation_deg: float, real: Any = None) -> dict[str, float]:
+    """Every quality measure of one grasp (section 8.1; see the module docstring).
+
+    Parameters
+    ----------
+    points, forces : array_like, shape (k, 2)
+        The grasp's generating forces (unit) and where they act.
+    finger : array_like of int, shape (k,)
+        The finger of each generator.
+    centroid : array_like, shape (2,)
+        The part's centroid: torques are taken about it.
+    rho : float
+        The part's radius: torques are divided by it (units of length).
+    translation, rotation_deg : float
+        The disturbance of the resistance measure (part's units, degrees).
+    real : array_like of bool, shape (k,), optional
+        Which generators are real fingers (gravity is not).
+
+    Returns
+    -------
+    dict
+        ``epsilon_l1``, ``epsilon_linf`` (dimensionless), ``resistance`` and
+        ``resistance_approx`` (1 / work; 0 when the grasp is not force closure).
+    """
     p, f = np.asarray(points, float), np.asarray(forces, float)
     fi = np.asarray(finger)
     out = epsilon_metrics(p, f, fi, np.asarray(centroid, float), rho)
