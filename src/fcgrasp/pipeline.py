@@ -591,15 +591,27 @@ def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray
     sel = np.flatnonzero(c.feats[rows, 0] != c.feats[rows, 2])
     if sel.size == 0:
         return mode
-    R = rows[sel]
-    options = []                                   # (pairing, mode, levels in finger order)
+    # stage 1 first: only rows where a second option reaches the same smallest region
+    # need the whole leximin order of every option
+    built = []
+    reach = np.zeros(sel.size, dtype=int)
+    smallest = np.min(np.where(lengths[sel] > 0, lengths[sel], np.inf), axis=1)
     for P in PAIRINGS:
         perm = np.broadcast_to(P, (sel.size, 4)).copy()
-        probs = four_finger_problems(a[sel], b[sel], c.center[R], perm, margin)[0]
-        inv = np.argsort(perm, axis=1)
+        probs = four_finger_problems(a[sel], b[sel], c.center[rows[sel]], perm, margin)[0]
         for m, pr in enumerate(probs):
-            lev = np.where(pr.separable[:, None], leximin(pr, c.tol), -1.0)
-            options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
+            mm = np.where(pr.separable, max_min_length(pr, c.tol), -1.0)
+            reach += mm >= smallest - RANK_TOL * np.maximum(smallest, polygon.size)
+            built.append((P, m, perm, pr))
+    keep = reach >= 2
+    if not keep.any():
+        return mode
+    sel = sel[keep]
+    options = []                                   # (pairing, mode, levels in finger order)
+    for P, m, perm, pr in built:
+        inv = np.argsort(perm[keep], axis=1)
+        lev = np.where(pr.separable[keep][:, None], leximin(pr.take(keep), c.tol), -1.0)
+        options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
     for i, r in enumerate(sel):
         want = np.maximum(lengths[r], 0.0)[None]
         tied = [(P, m) for P, m, lev in options
