@@ -105,17 +105,3 @@ class OutputSet:
             self.commit()
         else:
             self.discard()
-
-
-def atomic_write(path: str | os.PathLike[str], writer: Callable[[str], None]) -> Path:
-    """Call ``writer(tmp_path)`` and rename the result onto ``path`` (a set of one)."""
-    with OutputSet() as out:
-        out.add(path, writer)
-    return Path(path)
-
-
-def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
-    """Write ``text`` (UTF-8) to ``path`` atomically."""
-    with OutputSet() as out:
-        out.add_text(path, text)
-    return Path(path)
