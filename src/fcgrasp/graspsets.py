@@ -137,12 +137,7 @@ def edge_feature(poly: Polygon, i: int, mu: float = 0.0) -> Feature:
 def vertex_feature(poly: Polygon, k: int, mu: float) -> Feature:
     """Soft finger at the vertex that starts edge ``k``: the arc of directions covering the
     friction cones of both incident edges (capped below a half-plane)."""
-    if not poly.usable[k]:
-        raise ValueError(f"vertex {k} starts a zero-length edge: use the next vertex")
-    prev = poly.previous_edge(k)
-    if not poly.convex_vertices()[prev]:
-        raise ValueError(f"vertex {k} is not a convex vertex of the part: a soft finger "
-                         "needs a convex corner")
+    prev = poly.convex_corner(k)
     a1 = np.arctan2(-poly.normals[prev][1], -poly.normals[prev][0])
     a2 = np.arctan2(-poly.normals[k][1], -poly.normals[k][0])
     center, half_gap = pair_arc(a1, a2)

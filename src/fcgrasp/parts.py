@@ -398,13 +398,10 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
             if "vertex" not in c:
                 raise ValueError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
             k_v = _index(c["vertex"], "vertex", where, polygon.n_edges)
-            if not polygon.usable[k_v]:
-                raise ValueError(f"{where}: vertex {k_v} starts a zero-length edge")
-            prev = polygon.previous_edge(k_v)
-            if not polygon.convex_vertices()[prev]:
-                raise ValueError(f"{where}: vertex {k_v} is not convex; a soft finger needs a "
-                               f"convex corner")
-            contacts.append(polygon.soft_finger_at(k_v, mu))
+            try:
+                contacts.append(polygon.soft_finger_at(k_v, mu))
+            except ValueError as exc:
+                raise ValueError(f"{where}: {exc}") from None
             described.append({"type": "soft", "vertex": k_v, "point": polygon.starts[k_v],
                               "mu": mu})
             continue
@@ -423,13 +420,14 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
             edge = None if "edge" not in c else _index(c["edge"], "edge", where,
                                                        polygon.n_edges)
         else:
+            dist = polygon.distance_to_edges(pt)
             if "edge" in c:
                 e = _index(c["edge"], "edge", where, polygon.n_edges)
                 if not polygon.usable[e]:
                     raise ValueError(f"{where}: edge {e} has zero length")
             else:
-                e = int(np.argmin(polygon.distance_to_edges(pt)))
-            d_e = float(polygon.distance_to_edges(pt)[e])
+                e = int(np.argmin(dist))
+            d_e = float(dist[e])
             if d_e > ON_EDGE_TOL * polygon.size:
                 raise ValueError(f"{where}: point {pt.tolist()} is not on edge {e} "
                                f"(distance {d_e:.3g})")

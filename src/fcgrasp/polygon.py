@@ -283,14 +283,23 @@ class Polygon:
         out = np.hypot(*(proj - pt).T)
         return np.where(self.usable, out, np.inf)
 
+    def convex_corner(self, vertex: int) -> int:
+        """Check that ``vertex`` (the start of edge ``vertex``) is a convex corner, where a
+        soft finger can sit; return the edge that ends there."""
+        if not self.usable[vertex]:
+            raise ValueError(f"vertex {vertex} starts a zero-length edge: use the next vertex")
+        prev = self.previous_edge(vertex)
+        if not self.convex_vertices()[prev]:
+            raise ValueError(f"vertex {vertex} is not a convex vertex of the part: a soft "
+                             f"finger needs a convex corner")
+        return prev
+
     def soft_finger_at(self, vertex: int, mu: float) -> Any:
         """A soft finger (figure 4.e) on the convex vertex ``vertex`` (the start of edge
         ``vertex``), spanning a twentieth of each adjacent edge."""
         from .contacts import SoftFinger
 
-        prev = self.previous_edge(vertex)
-        if not self.usable[vertex] or not self.convex_vertices()[prev]:
-            raise ValueError(f"vertex {vertex} is not a convex corner of the part")
+        prev = self.convex_corner(vertex)
         v = self.starts[vertex]
         a = v - 0.05 * self.lengths[prev] * self.tangents[prev]
         b = v + 0.05 * self.lengths[vertex] * self.tangents[vertex]
