@@ -103,12 +103,6 @@ def _check_outputs(args: Any, inputs: list[str]) -> None:
             raise CliError("--plot needs matplotlib: pip install 'fcgrasp[plot]'") from None
 
 
-def _check_flatten(args: Any) -> None:
-    f = getattr(args, "flatten", None)
-    if f is not None and not (np.isfinite(f) and f > 0):
-        raise CliError(f"--flatten must be a finite number > 0, got {f:g}")
-
-
 def _write_outputs(polygon: Any, plans: list[Any], report: dict[str, Any], args: Any,
                    title: str) -> None:
     """The JSON and the figure of one run, written as a set (both or neither)."""
@@ -150,16 +144,16 @@ def _no_grasp_reason(polygon: Any, fingers: int, mu: float, margin: float,
 
 
 def cmd_plan(args: Any) -> int:
-    # every option is checked before any work or output
+    # every option is checked before any work or output (--flatten and --id by read_part,
+    # before it reads anything)
     _check_outputs(args, [args.part])
-    _check_flatten(args)
     if args.mu < 0 or not np.isfinite(args.mu):
         raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
     if not 0 <= args.margin < 90:
         raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
     if args.top < 1:
         raise CliError(f"--top must be at least 1, got {args.top}")
-    ws = None
+    hand = ws = None
     if args.workspace is not None or args.finger_radius:
         ws = _floats(args.workspace, 3, "--workspace") if args.workspace else None
         if ws is not None and ws[2] <= 0:
@@ -167,10 +161,9 @@ def cmd_plan(args: Any) -> int:
         if not (np.isfinite(args.finger_radius) and args.finger_radius >= 0):
             raise CliError(f"--finger-radius must be a finite number >= 0, got "
                            f"{args.finger_radius:g}")
-    polygon = read_part(args.part, args.id, args.flatten)
-    hand = None
-    if args.workspace is not None or args.finger_radius:
         hand = Hand(workspace=ws, finger_radius=args.finger_radius)
+    polygon = read_part(args.part, args.id, args.flatten)
+    if hand is not None:
         reach = hand.feasible_intervals(polygon)
         if not any(reach):
             where = f"workspace {ws}" if ws else f"finger radius {args.finger_radius:g}"
@@ -200,7 +193,6 @@ def cmd_plan(args: Any) -> int:
 
 def cmd_check(args: Any) -> int:
     _check_outputs(args, [args.part, args.contacts])
-    _check_flatten(args)
     polygon = read_part(args.part, args.id, args.flatten)
     contacts, described = read_contacts(args.contacts, polygon)
     grasp = Grasp(contacts)
