@@ -295,16 +295,15 @@ class FrictionGraspSet:
         if self.is_empty:
             raise ValueError("cannot sample an empty grasp set")
         rng = np.random.default_rng() if rng is None else rng
-        modes = [(m, r) for m, r in self.restricted.items() if r[0] is not None]
-        weights = np.array([max(r[0][1] - r[0][0], 1e-12) for _, r in modes  # type: ignore[index]
-                            ])
+        modes = [(m, r1) for m, (r1, _) in self.restricted.items() if r1 is not None]
+        weights = np.array([max(r1[1] - r1[0], 1e-12) for _, r1 in modes])
         ps, qs = [], []
         got = 0
         for _ in range(200):
             pick = rng.choice(len(modes), size=n, p=weights / weights.sum())
-            for mi, (mode, (r1, _)) in enumerate(modes):
+            for mi, (mode, r1) in enumerate(modes):
                 k = int(np.sum(pick == mi))
-                if k == 0 or r1 is None:
+                if k == 0:
                     continue
                 t = r1[0] + (r1[1] - r1[0]) * rng.random(k)
                 p = self.features[0].point_at(t)

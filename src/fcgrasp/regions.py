@@ -168,10 +168,9 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
     upper1 = np.where(w[0] > 0, up[0], ~up[1])
     # A constraint that no region can move and that is tight (P34 - P12 on a cone edge
     # whatever the fingers do) holds with equality everywhere: a tie, never closure.
+    scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1) + np.abs(K[0]) + np.abs(K[1]), 1e-300)
     for i in range(2):
         flat = ~np.any((w[i] > 0) & active, axis=1)
-        scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1)
-                           + np.abs(K[0]) + np.abs(K[1]), 1e-300)
         separable &= ~(flat & (K[i] <= tol * scale))
     return KnapsackProblem(L, np.where(active, w[0], 0.0), np.where(active, w[1], 0.0),
                            K[0], K[1], upper1, active, separable)
