@@ -27,6 +27,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
+from functools import lru_cache
 from itertools import combinations
 from typing import Any
 
@@ -154,7 +155,17 @@ class Features:
 def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
              edges: Any = None) -> Features:
     """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
-    or their parts a :class:`~fcgrasp.Hand` can reach (section 8.2)."""
+    or their parts a :class:`~fcgrasp.Hand` can reach (section 8.2).
+
+    Every step of the pipeline needs them for every batch, so the last few are kept
+    (the arrays are read-only)."""
+    key = None if edges is None else tuple(sorted({int(e) for e in edges}))
+    return _features(polygon, float(mu), hand, key)
+
+
+@lru_cache(maxsize=8)
+def _features(polygon: Polygon, mu: float, hand: Hand | None,
+              edges: tuple[int, ...] | None) -> Features:
     rows = []
     if hand is None:
         ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
@@ -178,7 +189,10 @@ def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
     b = polygon.starts[ei] + s1[:, None] * tan
     n = polygon.normals[ei]
     center = np.arctan2(-n[:, 1], -n[:, 0])
-    return Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
+    out = Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
+    for arr in (out.edge, out.a, out.b, out.offset, out.center, out.half):
+        arr.flags.writeable = False
+    return out
 
 
 # ----------------------------------------------------------------------------- candidates
