@@ -51,9 +51,10 @@ def check_array(value: Any, name: str, *, last: int | tuple[int, ...] | None = N
             shape_txt = "(..., " + ", ".join(str(w) for w in want) + ")"
             raise ValueError(f"{name} must have shape {shape_txt}, got shape {arr.shape}: "
                              f"{_short(value)}")
-    if finite and not np.all(np.isfinite(arr)):
-        raise ValueError(f"{name} must be finite, got {_short(value)}")
-    if finite and arr.size and float(np.max(np.abs(arr))) > MAX_MAGNITUDE:
+    # one pass: NaN and infinity also fail the comparison with the documented range
+    if finite and not np.all(np.abs(arr) <= MAX_MAGNITUDE):
+        if not np.all(np.isfinite(arr)):
+            raise ValueError(f"{name} must be finite, got {_short(value)}")
         raise ValueError(f"{name} must have magnitudes at most {MAX_MAGNITUDE:g} (fcgrasp's "
                          f"documented range), got {_short(value)}")
     return arr
