@@ -692,7 +692,6 @@ class Solved:
     a: FloatArray
     b: FloatArray
     mode: np.ndarray
-    examined: int = 0
 
     @staticmethod
     def concat(parts: list[Solved]) -> Solved:
@@ -703,8 +702,7 @@ class Solved:
                       np.concatenate([p.lengths for p in parts]),
                       np.concatenate([p.a for p in parts]),
                       np.concatenate([p.b for p in parts]),
-                      np.concatenate([p.mode for p in parts]),
-                      sum(p.examined for p in parts))
+                      np.concatenate([p.mode for p in parts]))
 
 
 def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
@@ -759,15 +757,15 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
             rows, lv, a_, b_, md = order, *_levels(c, order, margin)
     else:
         if top is not None and order.size > KEEP_FOR_MEASURE:
-            order = np.sort(order[_keep_best(c.score[order], KEEP_FOR_MEASURE)])
-            order = order[np.lexsort((order, -c.score[order]))]
+            # a subsequence of order: still by decreasing bound
+            order = order[_keep_best(c.score[order], KEEP_FOR_MEASURE)]
         rows = order
         lv, a_, b_, md = _levels(c, rows, margin)
         if progress is not None:
             progress(order.size, order.size)
     pick = _select(lv, c.feats[rows], polygon.size, top if spec.rank_by == "min_region"
                    else None)
-    return Solved(c.take(rows[pick]), lv[pick], a_[pick], b_[pick], md[pick], len(sets.feats))
+    return Solved(c.take(rows[pick]), lv[pick], a_[pick], b_[pick], md[pick])
 
 
 def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
