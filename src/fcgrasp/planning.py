@@ -23,6 +23,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import check_mu_scalar
 from .graspsets import Vertex
 from .hand import Hand
 from .pipeline import candidates, plan_spec, rank, solve
@@ -141,8 +142,7 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
             raise ValueError("gravity is counted with three frictionless fingers, not two")
         spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
     elif n in (3, 4):
-        spec0 = plan_spec(fingers=2, mu=mu, hand=hand, margin=margin)   # checks mu, margin
-        if spec0.mu != 0:
+        if check_mu_scalar(mu, "mu") != 0:
             raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
         if (n == 3) != (gravity is not None):
             raise ValueError("three edges need gravity=..., four edges take no gravity")
