@@ -59,7 +59,8 @@ def write_svg(tmp):
     # drawn at half size and shifted, then put back by the transform
     pts = " ".join(f"{x / 2},{-y / 2}" for x, y in OUTLINE)
     p = tmp / "part.svg"
-    p.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200" height="200">'
+    p.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
+                 'viewBox="0 0 200 200">'
                  '<path id="open" d="M 0 0 L 10 10" fill="none"/>'
                  f'<g transform="translate(0, 0) scale(2)"><polygon id="part" points="{pts}"/></g>'
                  '</svg>')
@@ -70,6 +71,7 @@ def write_dxf(tmp):
     import ezdxf
 
     doc = ezdxf.new()
+    doc.units = 4                                 # millimetres ($INSUNITS)
     msp = doc.modelspace()
     # a slot with two semicircular ends: straight edges plus bulges (arcs)
     msp.add_lwpolyline([(0, 0, 0), (40, 0, 1), (40, 20, 0), (0, 20, 1)], format="xyb",
@@ -159,7 +161,7 @@ def test_check_command(tmp_path):
                                             {"point": [80, 15], "type": "frictionless"}]}))
     fig = tmp_path / "check.png"
     r = run("check", "demo:rectangle", "--contacts", bad, "--plot", fig)
-    assert r.returncode == 0 and fig.stat().st_size > 1000
+    assert r.returncode == 1 and fig.stat().st_size > 1000     # not force closure: exit 1
     assert "force-direction closure fails" in r.stdout and "translation" in r.stdout
     assert "free" in r.stdout
 

@@ -55,7 +55,7 @@ def assert_one_line_error(code, err, *words):
     (lambda: fc.friction_pair_closure(np.zeros((3, 2)), [1, 0], np.ones((4, 2)), [-1, 0],
                                       0.3), ValueError, "normal_q"),
     (lambda: fc.independent_regions(BLOB, (fc.Vertex(2), 4), mu=0.5), ValueError, "Vertex"),
-    (lambda: fc.read_part("demo:blob", tolerance=0.1), ValueError, "tolerance"),
+    (lambda: fc.read_part("demo:blob", flatten=0.1), ValueError, "flatten"),
 ])
 def test_errors_name_the_argument(call, exc, word):
     with pytest.raises(exc, match=word):

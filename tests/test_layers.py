@@ -8,14 +8,17 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 LAYERS = [
-    ["tolerances", "_checks", "_geom", "_json"],
+    ["tolerances", "_checks", "_geom", "_json", "units"],
     ["screws", "convexes", "sectors"],
     ["contacts", "grasp", "closure"],
     ["polygon", "graspsets"],
+    ["outline"],
     ["regions", "_regiongeom", "hand"],
     ["quality", "ranking", "plans"],
     ["pipeline"],
     ["planning"],
+    ["_drawing"],
+    ["_read_svg", "_read_dxf", "_read_image"],
     ["parts", "report", "_atomic"],
     ["cli", "plotting", "__main__"],
 ]

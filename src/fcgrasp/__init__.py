@@ -5,7 +5,11 @@ Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
 :mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6),
 :mod:`~fcgrasp.polygon` (the part), :mod:`~fcgrasp.graspsets` (6),
 :mod:`~fcgrasp.regions` and :mod:`~fcgrasp.planning` (7, 8), :mod:`~fcgrasp.quality`
-(8.1), :mod:`~fcgrasp.hand` (8.2), :mod:`~fcgrasp.parts` (reading part files).
+(8.1), :mod:`~fcgrasp.hand` (8.2), :mod:`~fcgrasp.parts` (reading part files, with
+:mod:`~fcgrasp.units` and :mod:`~fcgrasp.outline`).
+
+Every name loads on first use (PEP 562): ``import fcgrasp`` costs almost nothing, and
+the command line's ``--version`` answers at once.
 """
 
 from __future__ import annotations
@@ -13,48 +17,33 @@ from __future__ import annotations
 from importlib import import_module
 from typing import TYPE_CHECKING, Any
 
-from .closure import (
-    closure_escape,
-    force_direction_closure,
-    friction_pair_closure,
-    friction_pair_modes,
-    is_force_closure,
-    torque_closure,
-)
-from .contacts import (
-    Contact,
-    FrictionEdge,
-    FrictionlessEdge,
-    FrictionlessPoint,
-    FrictionPoint,
-    Gravity,
-    SoftFinger,
-)
-from .convexes import Cone
-from .grasp import ClosureReport, Grasp
-from .hand import Hand
-from .polygon import Polygon
-from .screws import (
-    CONTRARY,
-    RECIPROCAL,
-    REPELLING,
-    classify_twist_wrench,
-    rotation_center,
-    spatial_transpose,
-    spatial_twist_about_axis,
-    spatial_twist_translation,
-    spatial_virtual_work,
-    spatial_wrench_from_force,
-    twist_about_point,
-    twist_translation,
-    twist_transpose,
-    velocity_at,
-    virtual_work,
-    wrench_from_force,
-)
 from .tolerances import TOL
 
 if TYPE_CHECKING:   # for type checkers; at run time these load on first use
+    from .closure import (
+        closure_escape,
+        force_direction_closure,
+        friction_pair_closure,
+        friction_pair_modes,
+        is_force_closure,
+        torque_closure,
+    )
+    from .contacts import (
+        Contact,
+        FrictionEdge,
+        FrictionlessEdge,
+        FrictionlessPoint,
+        FrictionPoint,
+        Gravity,
+        SoftFinger,
+    )
+    from .convexes import (
+        Cone,
+    )
+    from .grasp import (
+        ClosureReport,
+        Grasp,
+    )
     from .graspsets import (
         FrictionGraspSet,
         FrictionlessGraspSet,
@@ -63,16 +52,100 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
         grasp_sets,
         three_edge_grasp_sets,
     )
-    from .parts import read_part
-    from .planning import GraspPlan, independent_regions, plan
+    from .hand import (
+        Hand,
+    )
+    from .outline import (
+        clean_outline,
+        fill_rings,
+        simplify_outline,
+    )
+    from .parts import (
+        Part,
+        list_parts,
+        load_part,
+        read_part,
+    )
+    from .planning import (
+        GraspPlan,
+        independent_regions,
+        plan,
+    )
+    from .polygon import (
+        Polygon,
+    )
+    from .screws import (
+        CONTRARY,
+        RECIPROCAL,
+        REPELLING,
+        classify_twist_wrench,
+        rotation_center,
+        spatial_transpose,
+        spatial_twist_about_axis,
+        spatial_twist_translation,
+        spatial_virtual_work,
+        spatial_wrench_from_force,
+        twist_about_point,
+        twist_translation,
+        twist_transpose,
+        velocity_at,
+        virtual_work,
+        wrench_from_force,
+    )
 
-#: Names loaded on first use (PEP 562), so that ``import fcgrasp`` stays light: the grasp
-#: sets, the planner and the readers are imported when a program first asks for them.
+#: Where each public name lives; loaded on first use (PEP 562), so that ``import fcgrasp``
+#: stays light and the command line starts fast.
 _LAZY = {
-    "FrictionGraspSet": "graspsets", "FrictionlessGraspSet": "graspsets",
-    "Vertex": "graspsets", "grasp_set": "graspsets", "grasp_sets": "graspsets",
-    "three_edge_grasp_sets": "graspsets", "read_part": "parts", "GraspPlan": "planning",
-    "independent_regions": "planning", "plan": "planning",
+    "closure_escape": "closure",
+    "force_direction_closure": "closure",
+    "friction_pair_closure": "closure",
+    "friction_pair_modes": "closure",
+    "is_force_closure": "closure",
+    "torque_closure": "closure",
+    "Contact": "contacts",
+    "FrictionEdge": "contacts",
+    "FrictionlessEdge": "contacts",
+    "FrictionlessPoint": "contacts",
+    "FrictionPoint": "contacts",
+    "Gravity": "contacts",
+    "SoftFinger": "contacts",
+    "Cone": "convexes",
+    "ClosureReport": "grasp",
+    "Grasp": "grasp",
+    "Hand": "hand",
+    "Polygon": "polygon",
+    "CONTRARY": "screws",
+    "RECIPROCAL": "screws",
+    "REPELLING": "screws",
+    "classify_twist_wrench": "screws",
+    "rotation_center": "screws",
+    "spatial_transpose": "screws",
+    "spatial_twist_about_axis": "screws",
+    "spatial_twist_translation": "screws",
+    "spatial_virtual_work": "screws",
+    "spatial_wrench_from_force": "screws",
+    "twist_about_point": "screws",
+    "twist_translation": "screws",
+    "twist_transpose": "screws",
+    "velocity_at": "screws",
+    "virtual_work": "screws",
+    "wrench_from_force": "screws",
+    "FrictionGraspSet": "graspsets",
+    "FrictionlessGraspSet": "graspsets",
+    "Vertex": "graspsets",
+    "grasp_set": "graspsets",
+    "grasp_sets": "graspsets",
+    "three_edge_grasp_sets": "graspsets",
+    "read_part": "parts",
+    "load_part": "parts",
+    "list_parts": "parts",
+    "Part": "parts",
+    "GraspPlan": "planning",
+    "independent_regions": "planning",
+    "plan": "planning",
+    "clean_outline": "outline",
+    "simplify_outline": "outline",
+    "fill_rings": "outline",
 }
 
 
@@ -94,48 +167,54 @@ __version__ = "0.1.0"
 
 __all__ = [
     "TOL",
-    "CONTRARY",
-    "RECIPROCAL",
-    "REPELLING",
-    "ClosureReport",
-    "Cone",
-    "Contact",
-    "FrictionEdge",
-    "FrictionPoint",
-    "FrictionlessEdge",
-    "FrictionlessPoint",
-    "FrictionGraspSet",
-    "FrictionlessGraspSet",
-    "Grasp",
-    "GraspPlan",
-    "Gravity",
-    "Hand",
-    "Polygon",
-    "Vertex",
-    "SoftFinger",
-    "classify_twist_wrench",
     "closure_escape",
     "force_direction_closure",
     "friction_pair_closure",
     "friction_pair_modes",
-    "grasp_set",
-    "independent_regions",
-    "plan",
-    "read_part",
-    "grasp_sets",
-    "three_edge_grasp_sets",
     "is_force_closure",
+    "torque_closure",
+    "Contact",
+    "FrictionEdge",
+    "FrictionlessEdge",
+    "FrictionlessPoint",
+    "FrictionPoint",
+    "Gravity",
+    "SoftFinger",
+    "Cone",
+    "ClosureReport",
+    "Grasp",
+    "Hand",
+    "Polygon",
+    "CONTRARY",
+    "RECIPROCAL",
+    "REPELLING",
+    "classify_twist_wrench",
     "rotation_center",
     "spatial_transpose",
     "spatial_twist_about_axis",
     "spatial_twist_translation",
     "spatial_virtual_work",
     "spatial_wrench_from_force",
-    "torque_closure",
     "twist_about_point",
     "twist_translation",
     "twist_transpose",
     "velocity_at",
     "virtual_work",
     "wrench_from_force",
+    "FrictionGraspSet",
+    "FrictionlessGraspSet",
+    "Vertex",
+    "grasp_set",
+    "grasp_sets",
+    "three_edge_grasp_sets",
+    "read_part",
+    "load_part",
+    "list_parts",
+    "Part",
+    "GraspPlan",
+    "independent_regions",
+    "plan",
+    "clean_outline",
+    "simplify_outline",
+    "fill_rings",
 ]

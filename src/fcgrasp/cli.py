@@ -1,9 +1,12 @@
 """The ``fcgrasp`` command (a leaf: nothing in the core imports it).
 
 Sub-commands: ``plan`` (ranked grasp plans of a part file), ``check`` (the verdict for a
-given grasp) and ``demo`` (the main job on built-in parts).  Every error prints one line
-on stderr and exits with code 2 (1 for an internal error), never a traceback; output
-files are written atomically (temporary file, then rename), so a failed run leaves none.
+given grasp), ``parts`` (the parts a file holds) and ``demo`` (the main job on built-in
+parts).  Exit codes: 0 success; 1 ``check`` found the grasp is not force closure; 2 bad
+input or options (one line on stderr, never a traceback); 3 an internal error.  Output
+files are written atomically (temporary file, then rename), so a failed run leaves none;
+``-`` reads the part from standard input, and ``--json -`` writes the JSON on standard
+output.
 """
 
 from __future__ import annotations
@@ -14,21 +17,13 @@ import sys
 from pathlib import Path
 from typing import Any, NoReturn
 
-import numpy as np
-
 from . import __version__
-from ._atomic import OutputSet
-from .grasp import Grasp
-from .hand import Hand
-from .parts import DEMO_PARTS, demo_part, read_contacts, read_part
-from .planning import plan
-from .ranking import MEASURES
-from .regions import DEFAULT_MARGIN_DEG
-from .report import check_report, demo_summary, dumps, plan_report
 
+EXIT_NOT_CLOSURE = 1
 EXIT_USAGE = 2
-EXIT_INTERNAL = 1
-UNITS = {"mm": 10.0, "cm": 1.0, "m": 0.01}      # 1 cm in each unit
+EXIT_INTERNAL = 3
+#: Units a part can be read in (``--units``); see :mod:`fcgrasp.units`.
+UNIT_CHOICES = ("mm", "cm", "m", "in")
 
 
 class CliError(Exception):
@@ -45,14 +40,34 @@ class _Parser(argparse.ArgumentParser):
 
 
 def _floats(text: str, n: int, name: str) -> tuple[float, ...]:
+    import math
+
     parts = [t for t in text.replace(" ", "").split(",") if t]
     try:
         vals = tuple(float(t) for t in parts)
     except ValueError:
         raise CliError(f"{name} must be {n} comma-separated numbers, got {text!r}") from None
-    if len(vals) != n or not all(np.isfinite(vals)):
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
         raise CliError(f"{name} must be {n} comma-separated finite numbers, got {text!r}")
     return vals
+
+
+_SIZES = {"": 1, "b": 1, "k": 2 ** 10, "kb": 2 ** 10, "m": 2 ** 20, "mb": 2 ** 20,
+          "g": 2 ** 30, "gb": 2 ** 30, "t": 2 ** 40, "tb": 2 ** 40}
+
+
+def _memory(text: str) -> int:
+    """A memory size: bytes, or a number with K, M, G or T (powers of 1024)."""
+    t = text.strip().lower().replace("i", "")
+    num = t.rstrip("kmgtb")
+    unit = t[len(num):]
+    try:
+        value = float(num)
+    except ValueError:
+        value = float("nan")
+    if unit not in _SIZES or not value > 0 or value == float("inf"):
+        raise CliError(f"--max-memory must be a size such as 500M or 2G, got {text!r}")
+    return int(value * _SIZES[unit])
 
 
 def _progress(enabled: bool) -> Any:
@@ -83,15 +98,19 @@ def _same_file(a: str, b: str) -> bool:
 def _check_outputs(args: Any, inputs: list[str]) -> None:
     """Validate every output option before any work: extensions, and no output that is
     an input or another output (a run must never overwrite what it reads)."""
+    if sum(1 for src in inputs if src == "-") > 1:
+        raise CliError("only one input can be read from standard input ('-')")
     outs = [(f"--{k}", getattr(args, k)) for k in ("json", "plot") if getattr(args, k, None)]
     for opt, path in outs:
+        if path == "-" and opt == "--json":
+            continue
         if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
             raise CliError(f"{opt} must be a file name, got {path!r}")
         for src in inputs:
-            if not src.startswith("demo:") and _same_file(path, src):
+            if not src.startswith("demo:") and src != "-" and _same_file(path, src):
                 raise CliError(f"{opt} {path} is an input of this run: refusing to "
                                f"overwrite it")
-    if len(outs) == 2 and _same_file(outs[0][1], outs[1][1]):
+    if len(outs) == 2 and outs[0][1] != "-" and _same_file(outs[0][1], outs[1][1]):
         raise CliError(f"--json and --plot name the same file {outs[0][1]!r}")
     plot = getattr(args, "plot", None)
     if plot:
@@ -103,16 +122,49 @@ def _check_outputs(args: Any, inputs: list[str]) -> None:
             raise CliError("--plot needs matplotlib: pip install 'fcgrasp[plot]'") from None
 
 
-def _write_outputs(polygon: Any, plans: list[Any], report: dict[str, Any], args: Any,
-                   title: str) -> None:
-    """The JSON and the figure of one run, written as a set (both or neither)."""
-    with OutputSet() as out:
-        if args.json:
-            out.add_text(args.json, dumps(report))
-        if args.plot:
-            from .plotting import plan_figure
+def _reading(args: Any) -> dict[str, Any]:
+    """The reading options of the command line, as :func:`fcgrasp.parts.list_parts`
+    keywords."""
+    return {"units": args.units, "file_units": args.file_units, "flatten": args.flatten,
+            "layer": args.layer, "gap": args.gap, "pixel_size": args.pixel_size,
+            "threshold": args.threshold, "y_down": args.y_down, "clean": not args.no_clean,
+            "simplify": args.simplify}
 
-            plan_figure(polygon, plans, args.plot, units=args.units, title=title, outputs=out)
+
+def _load(args: Any) -> Any:
+    """The part asked for; when the file holds several, which one was taken is said on
+    stderr (unless --quiet)."""
+    from .parts import load_part
+
+    part = load_part(args.part, args.select, **_reading(args))
+    if not args.quiet:
+        if part.count > 1:
+            name = f" ({part.id})" if part.id else ""
+            print(f"fcgrasp: {part.source}: part {part.index}{name} of {part.count}, "
+                  f"{part.chosen} (see fcgrasp parts)", file=sys.stderr)
+        for note in part.notes:
+            print(f"fcgrasp: {part.source}: {note}", file=sys.stderr)
+    return part
+
+
+def _json_out(args: Any) -> bool:
+    return getattr(args, "json", None) == "-"
+
+
+def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
+    """Write text outputs (``-``: standard output) and an optional figure as a set."""
+    from ._atomic import OutputSet
+
+    stdout = [text for path, text in outputs if path == "-"]
+    with OutputSet() as out:
+        for path, text in outputs:
+            if path != "-":
+                out.add_text(path, text)
+        if figure is not None:
+            figure(out)
+    for text in stdout:
+        sys.stdout.write(text)
+        sys.stdout.flush()
 
 
 def _print_table(plans: list[Any], units: str, out: Any) -> None:
@@ -127,8 +179,7 @@ def _print_table(plans: list[Any], units: str, out: Any) -> None:
               f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
 
 
-def _no_grasp_reason(polygon: Any, fingers: int, mu: float, margin: float,
-                     hand: Hand | None) -> str:
+def _no_grasp_reason(fingers: int, mu: float, margin: float, hand: Any) -> str:
     if fingers == 2 and mu == 0:
         return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
     base = {2: f"no pair of edges admits two fingers with mu = {mu:g}",
@@ -144,25 +195,33 @@ def _no_grasp_reason(polygon: Any, fingers: int, mu: float, margin: float,
 
 
 def cmd_plan(args: Any) -> int:
-    # every option is checked before any work or output (--flatten and --id by read_part,
-    # before it reads anything)
+    import math
+
+    from .hand import Hand
+    from .planning import plan
+    from .report import dumps, plan_report
+    from .units import disturbance_step
+
+    # every option is checked before any work or output
     _check_outputs(args, [args.part])
-    if args.mu < 0 or not np.isfinite(args.mu):
+    if args.mu < 0 or not math.isfinite(args.mu):
         raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
     if not 0 <= args.margin < 90:
         raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
     if args.top < 1:
         raise CliError(f"--top must be at least 1, got {args.top}")
+    budget = None if args.max_memory is None else _memory(args.max_memory)
     hand = ws = None
     if args.workspace is not None or args.finger_radius:
         ws = _floats(args.workspace, 3, "--workspace") if args.workspace else None
         if ws is not None and ws[2] <= 0:
             raise CliError(f"--workspace radius must be > 0, got {ws[2]:g}")
-        if not (np.isfinite(args.finger_radius) and args.finger_radius >= 0):
+        if not (math.isfinite(args.finger_radius) and args.finger_radius >= 0):
             raise CliError(f"--finger-radius must be a finite number >= 0, got "
                            f"{args.finger_radius:g}")
         hand = Hand(workspace=ws, finger_radius=args.finger_radius)
-    polygon = read_part(args.part, args.id, args.flatten)
+    part = _load(args)
+    polygon, units = part.polygon, part.units
     if hand is not None:
         reach = hand.feasible_intervals(polygon)
         if not any(reach):
@@ -170,43 +229,59 @@ def cmd_plan(args: Any) -> int:
             raise CliError(f"the hand cannot touch the part: no edge is reachable with the "
                            f"{where}")
     show = _progress(sys.stderr.isatty() and not args.quiet)
+    step = disturbance_step(units)
+    kw = {} if budget is None else {"max_memory": budget}
     plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
-                 hand=hand, margin=args.margin, disturbance=(UNITS[args.units], 15.0),
-                 progress=show)
+                 hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
     params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
               "margin_deg": args.margin,
               "workspace": None if hand is None or hand.workspace is None else
               list(hand.workspace),
               "finger_radius": args.finger_radius,
-              "disturbance": {"translation": UNITS[args.units], "rotation_deg": 15.0}}
-    reason = None if plans else _no_grasp_reason(polygon, args.fingers, args.mu, args.margin,
-                                                 hand)
-    report = plan_report(polygon, plans, params, args.units, reason)
-    _write_outputs(polygon, plans, report, args, f"{args.part}: {args.fingers} fingers")
-    if not args.quiet:
+              "disturbance": {"translation": step, "rotation_deg": 15.0}}
+    reason = None if plans else _no_grasp_reason(args.fingers, args.mu, args.margin, hand)
+    report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+
+    def figure(out: Any) -> None:
+        from .plotting import plan_figure
+
+        plan_figure(polygon, plans, args.plot, units=units,
+                    title=f"{args.part}: {args.fingers} fingers", outputs=out)
+
+    _write_outputs([(args.json, dumps(report))] if args.json else [],
+                   figure if args.plot else None)
+    if not args.quiet and not _json_out(args):
         if plans:
-            _print_table(plans, args.units, sys.stdout)
+            _print_table(plans, units, sys.stdout)
         else:
             print(f"no grasp: {reason}")
     return 0
 
 
 def cmd_check(args: Any) -> int:
+    import numpy as np
+
+    from .grasp import Grasp
+    from .parts import read_contacts
+    from .report import check_report, dumps
+
     _check_outputs(args, [args.part, args.contacts])
-    polygon = read_part(args.part, args.id, args.flatten)
+    part = _load(args)
+    polygon = part.polygon
     contacts, described = read_contacts(args.contacts, polygon)
     grasp = Grasp(contacts)
     rep = grasp.explain()
     free = grasp.total_freedom()
-    result = check_report(polygon, described, rep, free, args.units)
-    with OutputSet() as out:
-        if args.json:
-            out.add_text(args.json, dumps(result))
-        if args.plot:
-            from .plotting import grasp_figure
+    result = check_report(polygon, described, rep, free, part.units, source=part.to_dict())
 
-            grasp_figure(polygon, grasp, args.plot, units=args.units, outputs=out)
-    if not args.quiet:
+    def figure(out: Any) -> None:
+        from .plotting import grasp_figure
+
+        grasp_figure(polygon, grasp, args.plot, units=part.units, outputs=out)
+
+    _write_outputs([(args.json, dumps(result))] if args.json else [],
+                   figure if args.plot else None)
+    if not args.quiet and not _json_out(args):
         print(str(rep))
         if not rep.force_closure:
             print(f"total freedom: {len(free.lines)} free motion(s), {len(free.rays)} unisense "
@@ -217,16 +292,57 @@ def cmd_check(args: Any) -> int:
                 print(f"  unisense  {np.round(ray, 6).tolist()}")
         else:
             print("total freedom: none (the twist convexe is null)")
+    return 0 if rep.force_closure else EXIT_NOT_CLOSURE
+
+
+def cmd_parts(args: Any) -> int:
+    from .parts import choose_part, list_parts
+    from .report import dumps, parts_report
+
+    _check_outputs(args, [args.part])
+    parts = list_parts(args.part, **_reading(args))
+    try:
+        default = choose_part(parts).index
+    except ValueError:
+        default = -1
+    if args.json:
+        _write_outputs([(args.json, dumps(parts_report(parts, default)))])
+    if args.quiet or _json_out(args):
+        return 0
+    units = parts[0].units if parts else ""
+    print(f"{parts[0].source}: {len(parts)} part{'s' * (len(parts) != 1)} ({parts[0].format}, "
+          f"units {units}: {parts[0].units_note}); * = the default (the largest)")
+    print(f"  {'index':>5}  {'id':<18} {'layer':<10} {'edges':>6} {'holes':>5}  "
+          f"{'width x height':>22}  {'area':>11}")
+    for p in parts:
+        mark = "*" if p.index == default else " "
+        ident = (p.id or "-")[:18]
+        layer = (p.layer or "-")[:10]
+        if p.polygon is None:
+            print(f"{mark} {p.index:>5}  {ident:<18} {layer:<10} not usable: {p.error}")
+            continue
+        w, h = p.polygon.vertices.max(axis=0) - p.polygon.vertices.min(axis=0)
+        extra = "  (background)" if p.background else ""
+        print(f"{mark} {p.index:>5}  {ident:<18} {layer:<10} {p.polygon.n_edges:>6} "
+              f"{len(p.polygon.holes):>5}  {f'{w:.4g} x {h:.4g}':>22}  "
+              f"{p.polygon.area:>11.4g}{extra}")
+    for note in parts[0].notes if parts else ():
+        print(f"note: {note}")
     return 0
 
 
 def cmd_demo(args: Any) -> int:
+    from ._atomic import OutputSet
+    from .parts import demo_part
+    from .planning import plan
+    from .plotting import plan_figure
+    from .regions import DEFAULT_MARGIN_DEG
+    from .report import demo_summary, dumps, plan_report
+
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise CliError(f"--out {out} exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
-    from .plotting import plan_figure
-
     jobs = [("blob", 2, 0.3, "figure 1.a: two fingers with friction"),
             ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
             ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
@@ -239,8 +355,7 @@ def cmd_demo(args: Any) -> int:
         params = {"fingers": fingers, "mu": mu, "top": 6, "rank_by": "min_region",
                   "margin_deg": DEFAULT_MARGIN_DEG, "workspace": None, "finger_radius": 0.0,
                   "disturbance": {"translation": 10.0, "rotation_deg": 15.0}}
-        reason = None if plans else _no_grasp_reason(polygon, fingers, mu, DEFAULT_MARGIN_DEG,
-                                                     None)
+        reason = None if plans else _no_grasp_reason(fingers, mu, DEFAULT_MARGIN_DEG, None)
         stem = f"{name}-{fingers}f"
         with OutputSet() as files:
             files.add_text(out / f"{stem}.json",
@@ -249,9 +364,9 @@ def cmd_demo(args: Any) -> int:
                         title=f"demo:{name} - {title}", outputs=files)
         best = plans[0] if plans else None
         entries.append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
-                                 "json": f"{stem}.json", "figure": f"{stem}.png",
-                                 "best_edges": None if best is None else list(best.edges),
-                                 "best_min_region": None if best is None else best.min_length})
+                        "json": f"{stem}.json", "figure": f"{stem}.png",
+                        "best_edges": None if best is None else list(best.edges),
+                        "best_min_region": None if best is None else best.min_length})
         if not args.quiet:
             if best is None:
                 print(f"demo:{name:9s} {fingers} fingers  no grasp: {reason}")
@@ -269,28 +384,64 @@ def cmd_demo(args: Any) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
+    from .parts import DEMO_PARTS
+    from .ranking import MEASURES
+    from .regions import DEFAULT_MARGIN_DEG
+    from .units import FILE_UNITS
+
     parser = _Parser(prog="fcgrasp",
                      description="Force-closure grasps of planar parts (Nguyen's synthesis): "
                                  "where to put the fingers, with independent regions of "
                                  "contact.",
-                     epilog="examples:\n  fcgrasp demo --out demo-output\n"
+                     epilog="exit codes: 0 success, 1 check: not force closure, 2 bad input "
+                            "or options, 3 internal error\n\nexamples:\n"
+                            "  fcgrasp demo --out demo-output\n"
+                            "  fcgrasp parts drawing.dxf\n"
                             "  fcgrasp plan part.svg --fingers 2 --mu 0.3 --json plan.json "
                             "--plot plan.png\n  fcgrasp check part.json --contacts grasp.json",
                      formatter_class=argparse.RawDescriptionHelpFormatter)
-    parser.add_argument("--version", action="version", version=f"fcgrasp {__version__}")
+    parser.add_argument("--version", action="version", version=f"fcgrasp {__version__}",
+                        help="print the version and exit")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
 
-    def part_args(p: argparse.ArgumentParser) -> None:
+    def reading_args(p: argparse.ArgumentParser, json_help: str) -> None:
         p.add_argument("part", metavar="PART",
-                       help="part file (.json, .geojson, .wkt, .svg, .dxf, .png) or demo:NAME "
+                       help="part file (.json, .geojson, .wkt, .svg, .dxf, .png, .gif, .jpg, "
+                            "...), '-' for standard input, or demo:NAME "
                             f"({', '.join(DEMO_PARTS)})")
-        p.add_argument("--id", help="SVG element id, or DXF entity handle or layer")
-        p.add_argument("--flatten", type=float, default=None, metavar="TOL",
-                       help="curve flattening tolerance (SVG, DXF) or pixels (images)")
-        p.add_argument("--units", choices=sorted(UNITS), default="mm",
-                       help="units of the coordinates (default mm)")
-        p.add_argument("--json", metavar="OUT.json", help="write the result as JSON")
-        p.add_argument("--quiet", action="store_true", help="print nothing on success")
+        g = p.add_argument_group("reading the part")
+        g.add_argument("--part", "--id", dest="select", metavar="N|ID",
+                       help="which part of the file: its index (see fcgrasp parts) or an id "
+                            "(SVG element or group id, DXF handle or layer, GeoJSON feature "
+                            "id or name); default the largest")
+        g.add_argument("--units", choices=UNIT_CHOICES, default=None,
+                       help="units to read the part in (default mm; an image without "
+                            "--pixel-size stays in pixels)")
+        g.add_argument("--file-units", choices=FILE_UNITS, default=None, metavar="UNIT",
+                       help="units the file is in, overriding what it says (JSON, WKT and "
+                            "unitless DXF say nothing: taken as --units)")
+        g.add_argument("--flatten", type=float, default=None, metavar="TOL",
+                       help="curve flattening tolerance (SVG, DXF) or outline simplification "
+                            "(images), in --units (default 1/1000 of each element's size; "
+                            "1 pixel for images)")
+        g.add_argument("--layer", default=None, help="DXF: only the entities of this layer")
+        g.add_argument("--gap", type=float, default=None, metavar="TOL",
+                       help="DXF: entity ends closer than this meet (in --units; default "
+                            "1e-6 of the drawing's extents)")
+        g.add_argument("--pixel-size", type=float, default=None, metavar="SIZE",
+                       help="images: size of one pixel in --units")
+        g.add_argument("--threshold", type=float, default=None, metavar="GREY",
+                       help="images: grey level in (0, 1) between part and background "
+                            "(default Otsu's)")
+        g.add_argument("--y-down", action="store_true",
+                       help="the file's y axis points down (screen coordinates): flip it")
+        g.add_argument("--simplify", type=float, default=None, metavar="TOL",
+                       help="simplify the outline to within TOL (in --units), topology kept")
+        g.add_argument("--no-clean", action="store_true",
+                       help="keep collinear runs and sub-tolerance edges as drawn")
+        p.add_argument("--json", metavar="OUT.json", help=json_help)
+        p.add_argument("--quiet", action="store_true",
+                       help="print nothing on success (errors still go to stderr)")
 
     p = sub.add_parser("plan", help="ranked grasp plans of a part",
                        description="Plan force-closure grasps: the best edge sets with their "
@@ -298,7 +449,7 @@ def build_parser() -> argparse.ArgumentParser:
                        epilog="example:\n  fcgrasp plan demo:blob --fingers 2 --mu 0.3 --top 5 "
                               "--json plan.json --plot plan.png",
                        formatter_class=argparse.RawDescriptionHelpFormatter)
-    part_args(p)
+    reading_args(p, "write the result as JSON ('-': standard output)")
     p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=2,
                    help="2: with friction; 4: frictionless; 3: frictionless with gravity")
     p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
@@ -310,22 +461,36 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--workspace", metavar="CX,CY,R", help="circular workspace of the fingertips")
     p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
                    help="fingertip radius (default 0)")
+    p.add_argument("--max-memory", default=None, metavar="SIZE",
+                   help="memory budget of the search, such as 500M or 4G (default 2G); a "
+                        "search that cannot fit stops at once and says what would")
     p.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf", help="write a figure")
     p.set_defaults(func=cmd_plan)
 
-    c = sub.add_parser("check", help="the verdict for a given grasp",
+    c = sub.add_parser("check", help="the verdict for a given grasp (exit 1: not force "
+                                     "closure)",
                        description="Is this grasp force closure? If not, why, and how does "
-                                   "the part escape?",
+                                   "the part escape? Exit code 0 when it is, 1 when it is not.",
                        epilog='example:\n  fcgrasp check demo:rectangle --contacts grasp.json\n'
                               'with grasp.json = {"contacts": [{"point": [0, 15], "mu": 0.3}, '
                               '{"point": [80, 15], "mu": 0.3}]}',
                        formatter_class=argparse.RawDescriptionHelpFormatter)
-    part_args(c)
+    reading_args(c, "write the verdict as JSON ('-': standard output)")
     c.add_argument("--contacts", required=True, metavar="CONTACTS.json",
-                   help="contacts: point, and per contact its type and mu")
+                   help="contacts: point, and per contact its type and mu ('-': standard "
+                        "input)")
     c.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf",
                    help="draw the part, the contact forces and the escape motion")
     c.set_defaults(func=cmd_check)
+
+    ls = sub.add_parser("parts", help="the parts a file holds (index, id, layer, size, area)",
+                        description="List the parts of a file, as fcgrasp plan would read "
+                                    "them; --part N|ID picks one, the default is the "
+                                    "largest (marked *).",
+                        epilog="example:\n  fcgrasp parts drawing.dxf --units in",
+                        formatter_class=argparse.RawDescriptionHelpFormatter)
+    reading_args(ls, "write the list as JSON ('-': standard output)")
+    ls.set_defaults(func=cmd_parts)
 
     d = sub.add_parser("demo", help="plans for the built-in parts, JSON and figures",
                        description="The main job on built-in parts (the paper's figure 1): "
@@ -339,8 +504,15 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def main(argv: list[str] | None = None) -> int:
-    parser = build_parser()
-    args = parser.parse_args(argv)
+    args_list = sys.argv[1:] if argv is None else list(argv)
+    if args_list == ["--version"]:          # answered before anything heavy is imported
+        print(f"fcgrasp {__version__}")
+        return 0
+    try:
+        parser = build_parser()
+        args = parser.parse_args(args_list)
+    except SystemExit as exc:
+        return int(exc.code or 0)
     if not getattr(args, "func", None):
         parser.print_help()
         return EXIT_USAGE

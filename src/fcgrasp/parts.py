@@ -1,40 +1,60 @@
-"""Reading parts: JSON, GeoJSON, WKT, SVG, DXF, PNG silhouettes and built-in examples.
+"""Reading parts: JSON, GeoJSON, WKT, SVG, DXF, raster silhouettes and built-in examples.
 
-:func:`read_part` takes a path (or ``demo:NAME``) and returns a :class:`Polygon`.  The
-format is taken from the extension, or from the contents when the extension says
-nothing.  Every problem is a :class:`ValueError` saying what is wrong and where (the
-file, the element, the vertex), so the command line can print it on one line.
+A file may hold several parts: :func:`list_parts` returns them all (like ``ogrinfo`` or
+``ezdxf info``), :func:`load_part` picks one (by index, by id, or by default the largest)
+with a record of how it was read, and :func:`read_part` returns just its
+:class:`~fcgrasp.Polygon`.  A source is a path, ``-`` for standard input, or
+``demo:NAME``; the format comes from the extension, else from the contents.
 
-Formats:
+What each format gives:
 
-* JSON ``{"vertices": [[x, y], ...], "holes": [[[x, y], ...], ...]}``;
-* GeoJSON: a Polygon, or a Feature or FeatureCollection holding one (the first
-  polygon; a MultiPolygon gives its first polygon);
-* WKT: ``POLYGON ((...), (...))``;
-* SVG: the first closed path, polygon, rect, circle or ellipse, or the one with
-  ``id``; transforms are applied, curves flattened to ``tolerance`` (default: 1/1000 of
-  the drawing's size), and ``y`` is flipped so the part reads as in a viewer;
-* DXF (``ezdxf``, extra ``dxf``): the first closed LWPOLYLINE or POLYLINE (or the one
-  whose handle or layer is ``id``), arcs and bulges flattened;
-* PNG/JPEG silhouettes (``scikit-image``, extra ``image``): the largest dark blob on a
-  light background (or light on dark, whichever is the minority), traced and
-  simplified to ``tolerance`` pixels (default 1), one pixel per unit, ``y`` up.
+==========  ==============================================================================
+JSON        ``{"vertices": [[x, y], ...], "holes": [...], "units": "in"}`` (``units``
+            optional), or bare rings ``[[x, y], ...]`` / ``[[[x, y], ...], ...]`` (outer
+            ring, then holes)
+GeoJSON     every Polygon of a geometry, Feature or FeatureCollection (MultiPolygons
+            give one part per polygon); ids from the feature's ``id`` or its ``name``
+WKT         one or several geometries (the whole file, or one per line); every polygon
+SVG         every visible shape (svgelements), subpaths filled by ``fill-rule`` as a
+            viewer does, groups' ids select their shapes, a canvas-filling background
+            is never the default; CSS px at 96 per inch, y flipped
+DXF         closed entities and loops of LINE, ARC, ELLIPSE, SPLINE and polylines met end
+            to end (ezdxf), blocks expanded, loops nested into parts and holes; units
+            from ``$INSUNITS``
+images      PNG, GIF, JPEG, BMP, TIFF, WebP silhouettes (scikit-image): every blob not
+            touching the border, with its holes; pixels until ``pixel_size`` is given
+==========  ==============================================================================
+
+Then, for every format: coordinates are converted to ``units`` (:mod:`fcgrasp.units`),
+y is flipped for y-down sources (SVG, images, or ``y_down=True``), the outline is cleaned
+(:func:`fcgrasp.outline.clean_outline`: collinear runs merged, sub-tolerance edges
+dropped) and optionally simplified.  Lengths given to the readers (``flatten``,
+``simplify``, ``gap``, ``pixel_size``) are in the output ``units``.
+
+Every problem is a :class:`ValueError` saying what is wrong and where (the file, the
+element, the vertex), so the command line can print it on one line.
 """
 
 from __future__ import annotations
 
 import json
 import os
+import sys
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+from ._drawing import Drawing, Shape
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
+from .outline import CLEAN_TOL, clean_outline, simplify_outline
 from .polygon import Polygon
 from .tolerances import ON_EDGE_TOL
+from .units import FILE_UNITS, UNITS, check_units, conversion
 
-__all__ = ["read_part", "read_contacts", "DEMO_PARTS", "demo_part", "polygon_from_geojson"]
+__all__ = ["read_part", "load_part", "list_parts", "Part", "read_contacts", "DEMO_PARTS",
+           "demo_part", "sniff_format", "FLATTEN_DEFAULT", "FLATTEN_FINEST", "FORMATS"]
 
 
 def _regular(n: int, r: float = 1.0, phase: float = 0.0) -> list[list[float]]:
@@ -65,263 +85,598 @@ def demo_part(name: str) -> Polygon:
     return Polygon(d["vertices"], d.get("holes", ()))
 
 
+#: Default curve flattening tolerance, relative to the size of the curve's element.
+FLATTEN_DEFAULT = 1e-3
+#: Finest flattening tolerance accepted, relative to the element's size: finer would
+#: only multiply edges (a circle at 1e-6 already has about 2,000).
+FLATTEN_FINEST = 1e-6
+#: Default simplification of traced images, in pixels.
+IMAGE_TOLERANCE_PX = 1.0
+
+
+# ----------------------------------------------------------------------------- the result
+
+
+@dataclass(frozen=True)
+class Part:
+    """One part of a file, as read: the polygon and how it was obtained.
+
+    Attributes
+    ----------
+    polygon : Polygon or None
+        None when this part of the file is not a valid outline (``error`` says why).
+    source, format : str
+        The path (``-`` for standard input, ``demo:NAME``) and the format read.
+    index : int
+        Position among the parts of the file (file order, from 0).
+    id, layer : str or None
+        Element id, entity handle, feature id or blob number; DXF layer.
+    units : str
+        Units of the polygon's coordinates (``"px"`` for an image without pixel size).
+    file_units : str or None
+        Units the file is in (None when it says nothing: coordinates taken as ``units``).
+    scale : float
+        Factor applied to the file's coordinates.
+    flip_y : bool
+        Whether ``y`` was negated (y-down sources).
+    flatten : float or None
+        Flattening (or image simplification) tolerance used, in ``units``.
+    cleaned : int
+        Vertices removed by :func:`~fcgrasp.outline.clean_outline`.
+    """
+
+    polygon: Polygon | None
+    source: str
+    format: str
+    index: int = 0
+    count: int = 1
+    id: str | None = None
+    layer: str | None = None
+    tags: tuple[str, ...] = ()
+    units: str = "mm"
+    file_units: str | None = None
+    units_note: str = ""
+    scale: float = 1.0
+    flip_y: bool = False
+    flatten: float | None = None
+    cleaned: int = 0
+    clean_tol: float | None = None
+    simplify: float | None = None
+    background: bool = False
+    area: float = 0.0
+    error: str | None = None
+    chosen: str = ""
+    notes: tuple[str, ...] = field(default_factory=tuple)
+
+    def to_dict(self) -> dict[str, Any]:
+        """Where the part came from, for the JSON reports."""
+        return {"file": self.source, "format": self.format, "index": self.index,
+                "parts_in_file": self.count, "id": self.id, "layer": self.layer,
+                "chosen": self.chosen, "units": self.units, "file_units": self.file_units,
+                "units_note": self.units_note, "scale": self.scale, "flip_y": self.flip_y,
+                "flatten": self.flatten, "cleaned_vertices": self.cleaned,
+                "clean_tolerance": self.clean_tol, "simplify": self.simplify}
+
+    def describe(self) -> str:
+        """One line: index, id, size and area (``fcgrasp parts``)."""
+        if self.polygon is None:
+            return f"part {self.index} ({self.id}): not usable: {self.error}"
+        lo = self.polygon.vertices.min(axis=0)
+        hi = self.polygon.vertices.max(axis=0)
+        w, h = hi - lo
+        return (f"part {self.index}" + (f" id {self.id!r}" if self.id else "")
+                + f": {self.polygon.n_edges} edges, {len(self.polygon.holes)} holes, "
+                  f"{w:.4g} x {h:.4g} {self.units}, area {self.polygon.area:.4g}")
+
+
 # ----------------------------------------------------------------------------- JSON family
 
 
-def polygon_from_json(data: Any, where: str = "JSON") -> Polygon:
-    """A Polygon from our JSON layout or from GeoJSON."""
+def _as_shape(outer: Any, holes: list[Any], where: str, sid: str | None = None,
+              tags: tuple[str, ...] = ()) -> Shape:
+    try:
+        poly = Polygon(outer, holes)
+    except (ValueError, TypeError) as exc:
+        raise ValueError(f"{where}: {exc}") from None
+    return Shape(poly.to_shapely(), sid, tags)
+
+
+def _rings_depth(data: Any) -> int:
+    d = 0
+    while isinstance(data, list) and data:
+        data, d = data[0], d + 1
+    return d
+
+
+def _json_drawing(data: Any, where: str) -> Drawing:
+    if isinstance(data, list):                  # bare rings
+        depth = _rings_depth(data)
+        if depth == 2:
+            return Drawing([_as_shape(data, [], where)])
+        if depth == 3:
+            return Drawing([_as_shape(data[0], data[1:], where)])
+        raise ValueError(f"{where}: a bare JSON part is a ring [[x, y], ...] or rings "
+                         f"[[[x, y], ...], ...] (outer ring, then holes)")
     if not isinstance(data, dict):
         raise ValueError(f"{where}: expected an object with 'vertices' or a GeoJSON "
                          f"geometry, got {type(data).__name__}")
     if "vertices" in data:
-        extra = sorted(set(data) - {"vertices", "holes"})
+        extra = sorted(set(data) - {"vertices", "holes", "units"})
         if extra:
             raise ValueError(f"{where}: unknown key {extra[0]!r} (a part is "
-                             f"{{'vertices': [...], 'holes': [...]}})")
+                             f"{{'vertices': [...], 'holes': [...], 'units': 'mm'}})")
         holes = data.get("holes", [])
         if not isinstance(holes, list):
             raise ValueError(f"{where}: 'holes' must be a list of rings")
-        return Polygon(data["vertices"], holes)
+        units = data.get("units")
+        if units is not None:
+            try:
+                check_units(units, "'units'", FILE_UNITS)
+            except (TypeError, ValueError) as exc:
+                raise ValueError(f"{where}: {exc}") from None
+        return Drawing([_as_shape(data["vertices"], holes, where)], units,
+                       f"'units' of the JSON: {units}" if units else "not given by the file")
     if "type" in data:
-        return polygon_from_geojson(data, where)
+        return Drawing(_geojson_shapes(data, where))
     raise ValueError(f"{where}: no 'vertices' and no GeoJSON 'type'")
 
 
-def polygon_from_geojson(data: Any, where: str = "GeoJSON") -> Polygon:
+def _feature_tags(feat: dict[str, Any], k: int) -> tuple[str, ...]:
+    tags = []
+    if feat.get("id") is not None:
+        tags.append(str(feat["id"]))
+    props = feat.get("properties")
+    if isinstance(props, dict):
+        for key, v in props.items():
+            if key.lower() in ("name", "id", "label", "part", "admin", "name_en") and \
+                    isinstance(v, (str, int)) and not isinstance(v, bool):
+                tags.append(str(v))
+    return tuple(dict.fromkeys(tags)) or (f"feature{k}",)
+
+
+def _geojson_shapes(data: dict[str, Any], where: str) -> list[Shape]:
+    import shapely.geometry
+    from shapely.errors import ShapelyError
+
     kind = data.get("type")
+    items: list[tuple[Any, tuple[str, ...], str]] = []
     if kind == "FeatureCollection":
         feats = data.get("features")
         if not isinstance(feats, list):
             raise ValueError(f"{where}: a FeatureCollection needs a 'features' list")
-        for i, feat in enumerate(feats):
-            if not isinstance(feat, dict):
-                raise ValueError(f"{where} features[{i}]: expected a Feature object, got "
-                                 f"{type(feat).__name__}")
-            geom = feat.get("geometry") or {}
-            if not isinstance(geom, dict):
-                raise ValueError(f"{where} features[{i}]: geometry must be an object")
-            if geom.get("type") in ("Polygon", "MultiPolygon"):
-                return polygon_from_geojson(geom, f"{where} features[{i}]")
-        raise ValueError(f"{where}: the FeatureCollection holds no Polygon")
-    if kind == "Feature":
-        geom = data.get("geometry")
+        for k, feat in enumerate(feats):
+            if not isinstance(feat, dict) or feat.get("type") != "Feature":
+                raise ValueError(f"{where} features[{k}]: expected a Feature object")
+            items.append((feat.get("geometry"), _feature_tags(feat, k),
+                          f"{where} features[{k}]"))
+    elif kind == "Feature":
+        items.append((data.get("geometry"), _feature_tags(data, 0), f"{where} geometry"))
+    else:
+        items.append((data, (), where))
+    shapes: list[Shape] = []
+    kinds = set()
+    for geom, tags, w in items:
+        if geom is None:
+            continue
         if not isinstance(geom, dict):
-            raise ValueError(f"{where}: the Feature has no geometry")
-        return polygon_from_geojson(geom, f"{where} geometry")
-    if kind == "MultiPolygon":
-        polys = data.get("coordinates") or []
-        if not isinstance(polys, list) or not polys:
-            raise ValueError(f"{where}: empty MultiPolygon")
-        return polygon_from_geojson({"type": "Polygon", "coordinates": polys[0]}, where)
-    if kind == "Polygon":
-        rings = data.get("coordinates")
-        if not isinstance(rings, list) or not rings:
-            raise ValueError(f"{where}: a Polygon needs 'coordinates' with at least one ring")
-        return Polygon(rings[0], rings[1:])
-    raise ValueError(f"{where}: geometry type {kind!r} is not a polygon")
+            raise ValueError(f"{w}: geometry must be an object")
+        try:
+            g = shapely.geometry.shape(geom)
+        except (ShapelyError, ValueError, TypeError, KeyError, IndexError,
+                AttributeError) as exc:
+            raise ValueError(f"{w}: not a valid GeoJSON geometry ({exc})") from None
+        kinds.add(g.geom_type)
+        shapes += _polygons_of(g, w, tags)
+    if not shapes:
+        raise ValueError(f"{where}: no Polygon or MultiPolygon (found "
+                         f"{', '.join(sorted(kinds)) or 'no geometry'})")
+    return shapes
 
 
-def polygon_from_wkt(text: str, where: str = "WKT") -> Polygon:
+def _polygons_of(g: Any, where: str, tags: tuple[str, ...]) -> list[Shape]:
+    import shapely
+
+    polys = [p for p in shapely.get_parts(g) if p.geom_type == "Polygon" and not p.is_empty]
+    out = []
+    base = tags[0] if tags else None
+    for j, p in enumerate(polys):
+        sid = base if len(polys) == 1 else (f"{base}#{j + 1}" if base else f"#{j + 1}")
+        out.append(_as_shape(np.asarray(p.exterior.coords),
+                             [np.asarray(h.coords) for h in p.interiors],
+                             where + (f" polygon {j + 1}" if len(polys) > 1 else ""), sid,
+                             (*tags, sid) if sid else tags))
+    return out
+
+
+def _wkt_drawing(text: str, where: str) -> Drawing:
     import shapely
     from shapely.errors import ShapelyError
 
+    def parse(t: str) -> Any:
+        return shapely.from_wkt(t.strip())
+
     try:
-        geom = shapely.from_wkt(text.strip())
-    except (ShapelyError, ValueError) as exc:
-        raise ValueError(f"{where}: not valid WKT ({str(exc).splitlines()[0]})") from exc
-    if geom is None or geom.is_empty:
-        raise ValueError(f"{where}: empty geometry")
-    if geom.geom_type == "MultiPolygon":
-        geom = geom.geoms[0]
-    if geom.geom_type != "Polygon":
-        raise ValueError(f"{where}: geometry type {geom.geom_type} is not a polygon")
-    return Polygon(np.asarray(geom.exterior.coords), [np.asarray(r.coords)
-                                                     for r in geom.interiors])
-
-
-# ----------------------------------------------------------------------------- SVG
-
-#: Default curve flattening tolerance, relative to the drawing's size.
-FLATTEN_DEFAULT = 1e-3
-#: Finest flattening tolerance accepted, relative to the drawing's size: finer would
-#: only multiply edges (a circle at 1e-6 already has about 2,000).
-FLATTEN_FINEST = 1e-6
-
-
-def _flatten_tolerance(tolerance: float | None, size: float, where: str) -> float:
-    if tolerance is None:
-        return max(size, 1e-300) * FLATTEN_DEFAULT
-    if tolerance < FLATTEN_FINEST * size:
-        raise ValueError(f"{where}: flattening tolerance {tolerance:g} is below "
-                         f"{FLATTEN_FINEST:g} of the drawing's size ({size:.6g})")
-    return tolerance
-
-
-
-def _flatten_segment(seg: Any, tol: float, out: list[complex], depth: int = 0,
-                     t0: float = 0.0, t1: float = 1.0) -> None:
-    """Append the end point of ``seg`` restricted to [t0, t1], subdividing until the
-    midpoint is within ``tol`` of the chord."""
-    p0, p1 = complex(seg.point(t0)), complex(seg.point(t1))
-    tm = 0.5 * (t0 + t1)
-    pm = complex(seg.point(tm))
-    chord = p1 - p0
-    if abs(chord) > 0:
-        dev = abs((pm - p0).real * chord.imag - (pm - p0).imag * chord.real) / abs(chord)
-    else:
-        dev = abs(pm - p0)
-    if depth < 16 and (dev > tol or depth < 2):
-        _flatten_segment(seg, tol, out, depth + 1, t0, tm)
-        _flatten_segment(seg, tol, out, depth + 1, tm, t1)
-    else:
-        out.append(p1)
-
-
-def polygon_from_svg(path: str, element_id: str | None = None,
-                     tolerance: float | None = None) -> Polygon:
-    try:
-        from svgelements import SVG, Close, Line, Move, Shape
-        from svgelements import Path as SvgPath
-    except ImportError as exc:  # pragma: no cover - depends on the install
-        raise ValueError("reading SVG needs svgelements: pip install 'fcgrasp[svg]'") from exc
-    try:
-        svg = SVG.parse(path, reify=True)
-    except Exception as exc:  # svgelements raises many kinds of errors on bad XML
-        raise ValueError(f"{path}: not a readable SVG ({str(exc).splitlines()[0][:120]})") from exc
-    shapes = [e for e in svg.elements() if isinstance(e, Shape)]
-    if element_id is not None:
-        shapes = [e for e in shapes if getattr(e, "id", None) == element_id]
-        if not shapes:
-            raise ValueError(f"{path}: no shape with id {element_id!r}")
-    for shape in shapes:
-        p = SvgPath(shape)
-        segs = [s for s in p.segments()]
-        if not segs or not any(isinstance(s, Close) for s in segs):
-            if type(shape).__name__ not in ("Rect", "Circle", "Ellipse", "Polygon"):
+        geoms = [(parse(text), where, None)]
+    except (ShapelyError, ValueError):
+        geoms = []
+        for k, line in enumerate(text.splitlines(), start=1):
+            if not line.strip() or line.lstrip().startswith("#"):
                 continue
-        bbox = p.bbox()
-        if bbox is None:
+            try:
+                geoms.append((parse(line), f"{where} line {k}", f"line{k}"))
+            except (ShapelyError, ValueError) as exc:
+                raise ValueError(f"{where} line {k}: not valid WKT "
+                                 f"({str(exc).splitlines()[0]})") from None
+    if not geoms:
+        raise ValueError(f"{where}: empty WKT file")
+    shapes: list[Shape] = []
+    kinds = set()
+    for g, w, tag in geoms:
+        if g is None or g.is_empty:
             continue
-        size = max(bbox[2] - bbox[0], bbox[3] - bbox[1])
-        tol = _flatten_tolerance(tolerance, size, f"{path} element "
-                                 f"{getattr(shape, 'id', None) or type(shape).__name__}")
-        rings: list[list[complex]] = []
-        cur: list[complex] = []
-        for s in segs:
-            if isinstance(s, Move):
-                if len(cur) >= 3:
-                    rings.append(cur)
-                cur = [complex(s.end)]
-            elif isinstance(s, Close):
-                if len(cur) >= 3:
-                    rings.append(cur)
-                cur = []
-            elif isinstance(s, Line):
-                cur.append(complex(s.end))
-            else:
-                _flatten_segment(s, tol, cur)
-        if len(cur) >= 3:
-            rings.append(cur)
-        if not rings:
-            continue
-        arrs = [np.array([[z.real, -z.imag] for z in r]) for r in rings]
-        areas = [abs(_area(a)) for a in arrs]
-        k = int(np.argmax(areas))
-        outer = arrs[k]
-        holes = [a for i, a in enumerate(arrs) if i != k]
-        where = f"{path} element {getattr(shape, 'id', None) or type(shape).__name__}"
-        try:
-            return Polygon(outer, holes)
-        except ValueError as exc:
-            raise ValueError(f"{where}: {exc}") from exc
-    raise ValueError(f"{path}: no closed path or polygon found")
+        kinds.add(g.geom_type)
+        shapes += _polygons_of(g, w, (tag,) if tag else ())
+    if not shapes:
+        raise ValueError(f"{where}: no polygon (found {', '.join(sorted(kinds)) or 'empty'})")
+    return Drawing(shapes)
 
 
-def _area(a: np.ndarray) -> float:
-    x, y = a[:, 0], a[:, 1]
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+# ----------------------------------------------------------------------------- dispatch
+
+#: Formats by file extension.
+FORMATS = {".json": "json", ".geojson": "json", ".wkt": "wkt", ".svg": "svg", ".dxf": "dxf",
+           ".png": "image", ".gif": "image", ".jpg": "image", ".jpeg": "image",
+           ".bmp": "image", ".tif": "image", ".tiff": "image", ".webp": "image"}
+_MAGIC = (b"\x89PNG", b"\xff\xd8", b"GIF87a", b"GIF89a", b"BM", b"II*\x00", b"MM\x00*")
 
 
-# ----------------------------------------------------------------------------- DXF
+def sniff_format(name: str, head: bytes) -> str:
+    """Format from the name's extension, else from the first bytes of the file."""
+    ext = os.path.splitext(name)[1].lower()
+    if ext in FORMATS:
+        return FORMATS[ext]
+    if head.startswith(_MAGIC) or (head[:4] == b"RIFF" and head[8:12] == b"WEBP"):
+        return "image"
+    if head.startswith(b"AutoCAD Binary DXF"):
+        return "dxf"
+    text = head[:512].decode("utf-8", "replace").lstrip("\ufeff \t\r\n").lower()
+    if text.startswith(("{", "[")):
+        return "json"
+    if text.startswith("<") and "<svg" in text or text.startswith("<svg"):
+        return "svg"
+    if text.startswith(("polygon", "multipolygon", "geometrycollection")):
+        return "wkt"
+    if text.startswith("0") and "section" in text:
+        return "dxf"
+    raise ValueError("unknown part format (use .json, .geojson, .wkt, .svg, .dxf or an "
+                     "image: .png, .gif, .jpg, .bmp, .tif, .webp)")
 
 
-def polygon_from_dxf(path: str, element_id: str | None = None,
-                     tolerance: float | None = None) -> Polygon:
+def _read_bytes(spec: str) -> bytes:
+    if spec == "-":
+        return sys.stdin.buffer.read()
+    p = Path(spec)
+    if not p.exists():
+        raise ValueError(f"{spec}: no such file")
+    if p.is_dir():
+        raise ValueError(f"{spec}: is a folder, not a part file")
     try:
-        import ezdxf
-        from ezdxf import path as dxfpath
-    except ImportError as exc:
-        raise ValueError("reading DXF needs ezdxf: pip install 'fcgrasp[dxf]'") from exc
-    try:
-        doc = ezdxf.readfile(path)
-    except (OSError, ezdxf.DXFError) as exc:
-        raise ValueError(f"{path}: not a readable DXF ({str(exc).splitlines()[0][:120]})") from exc
-    for e in doc.modelspace():
-        kind = e.dxftype()
-        if kind not in ("LWPOLYLINE", "POLYLINE"):
-            continue
-        if element_id is not None and element_id not in (e.dxf.handle,
-                                                         e.dxf.get("layer", None)):
-            continue
-        if not getattr(e, "closed", False) and not getattr(e, "is_closed", False):
-            continue
-        p = dxfpath.make_path(e)
-        ext = p.control_vertices()
-        arr = np.array([[v.x, v.y] for v in ext]) if len(ext) else np.zeros((0, 2))
-        size = float(np.max(np.ptp(arr, axis=0))) if len(arr) else 1.0
-        tol = _flatten_tolerance(tolerance, size, f"{path} {kind} {e.dxf.handle}")
-        pts = np.array([[v.x, v.y] for v in p.flattening(tol)])
-        try:
-            return Polygon(pts)
-        except ValueError as exc:
-            raise ValueError(f"{path} {kind} {e.dxf.handle}: {exc}") from exc
-    which = f" with handle or layer {element_id!r}" if element_id else ""
-    raise ValueError(f"{path}: no closed LWPOLYLINE or POLYLINE{which}")
+        return p.read_bytes()
+    except OSError as exc:
+        raise ValueError(f"{spec}: cannot read ({exc.strerror or exc})") from None
 
 
-# ----------------------------------------------------------------------------- images
+def _text(data: bytes, spec: str) -> str:
+    try:
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        raise ValueError(f"{spec}: not UTF-8 text (byte {exc.start})") from None
 
 
-def polygon_from_image(path: str, tolerance: float | None = None) -> Polygon:
+def _positive(value: Any, name: str) -> float | None:
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
+        raise TypeError(f"{name} must be a number, got {value!r}")
+    if not (np.isfinite(value) and value > 0):
+        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
+    return float(value)
+
+
+@dataclass(frozen=True)
+class _Options:
+    units: str | None
+    file_units: str | None
+    flatten: float | None
+    layer: str | None
+    gap: float | None
+    pixel_size: float | None
+    threshold: float | None
+    y_down: bool
+    clean: bool
+    simplify: float | None
+
+
+def _options(units: Any, file_units: Any, flatten: Any, layer: Any, gap: Any,
+             pixel_size: Any, threshold: Any, y_down: Any, clean: Any,
+             simplify: Any) -> _Options:
+    if units is not None:
+        check_units(units, "units", UNITS)
+    if file_units is not None:
+        check_units(file_units, "file_units", FILE_UNITS)
+    if layer is not None and not isinstance(layer, str):
+        raise TypeError(f"layer must be a string, got {layer!r}")
+    if threshold is not None:
+        if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.number)):
+            raise TypeError(f"threshold must be a number, got {threshold!r}")
+        if not 0 < threshold < 1:
+            raise ValueError(f"threshold (--threshold) is a grey level in (0, 1), got "
+                             f"{threshold!r}")
+    for name, v in (("y_down", y_down), ("clean", clean)):
+        if not isinstance(v, (bool, np.bool_)):
+            raise TypeError(f"{name} must be True or False, got {v!r}")
+    return _Options(units, file_units, _positive(flatten, "flatten (--flatten)"), layer,
+                    _positive(gap, "gap (--gap)"), _positive(pixel_size,
+                                                               "pixel_size (--pixel-size)"),
+                    None if threshold is None else float(threshold), bool(y_down),
+                    bool(clean), _positive(simplify, "simplify (--simplify)"))
+
+
+def _scale(fmt: str, file_units: str | None, opt: _Options) -> tuple[str, float]:
+    """Output units and the factor from file units to them."""
+    if fmt == "image":
+        if opt.pixel_size is None:
+            if opt.units is not None:
+                raise ValueError(f"an image has no physical size: give pixel_size "
+                                 f"(--pixel-size, in {opt.units} per pixel) to read it in "
+                                 f"{opt.units}")
+            return "px", 1.0
+        return opt.units or "mm", opt.pixel_size
+    units = opt.units or "mm"
+    if file_units is None or file_units == units:
+        return units, 1.0
+    return units, conversion(file_units, units)
+
+
+def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
+    if fmt != "image" and (opt.pixel_size is not None or opt.threshold is not None):
+        raise ValueError("pixel_size (--pixel-size) and threshold (--threshold) apply to "
+                         f"images, not {fmt.upper()}")
+    if fmt != "dxf" and (opt.layer is not None or opt.gap is not None):
+        raise ValueError(f"layer (--layer) and gap (--gap) apply to DXF, not {fmt.upper()}")
+    if fmt in ("json", "wkt") and opt.flatten is not None:
+        raise ValueError(f"flatten (--flatten) applies to SVG, DXF and images, not "
+                         f"{fmt.upper()} (its edges are already straight)")
+    if fmt == "image" and opt.file_units is not None:
+        raise ValueError("an image's units come from pixel_size (--pixel-size), not "
+                         "file_units")
+
+    def tol_of(size: float, file_units: str | None) -> float:
+        units = opt.file_units or file_units
+        _, scale = _scale(fmt, units, opt)
+        if opt.flatten is not None:
+            tol = opt.flatten / scale
+            if tol < FLATTEN_FINEST * size:
+                raise ValueError(f"flattening tolerance {opt.flatten:g} is below "
+                                 f"{FLATTEN_FINEST:g} of the drawing's size "
+                                 f"({size * scale:.6g})")
+            return tol
+        if fmt == "image":
+            return IMAGE_TOLERANCE_PX
+        return max(size, 1e-300) * FLATTEN_DEFAULT
+
+    if fmt == "json":
+        return _json_drawing(_json_data(data, spec), spec)
+    if fmt == "wkt":
+        return _wkt_drawing(_text(data, spec), spec)
+    if fmt == "svg":
+        from ._read_svg import read_svg
+
+        return read_svg(data, tol_of)
+    if fmt == "dxf":
+        from ._read_dxf import read_dxf
+
+        def gap_of(file_units: str | None) -> float | None:
+            if opt.gap is None:
+                return None
+            return opt.gap / _scale(fmt, opt.file_units or file_units, opt)[1]
+
+        return read_dxf(data, tol_of, opt.layer, gap_of)
+    from ._read_image import read_image
+
+    return read_image(data, tol_of, opt.threshold)
+
+
+def _json_data(data: bytes, spec: str) -> Any:
+    text = _text(data, spec)
     try:
-        from skimage import color, filters, io, measure
-    except ImportError as exc:
-        raise ValueError("reading images needs scikit-image: pip install 'fcgrasp[image]'") \
-            from exc
+        return json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise ValueError(f"{spec}: not valid JSON ({exc.msg} at line {exc.lineno} column "
+                         f"{exc.colno})") from None
+    except RecursionError:
+        raise ValueError(f"{spec}: JSON nested too deeply") from None
+
+
+def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
+          opt: _Options) -> Part:
+    file_units = opt.file_units or d.units
+    units, scale = _scale(fmt, file_units, opt)
+    flip = d.y_down != opt.y_down            # a y-down file read with y_down flips back
+    sy = -scale if flip else scale
+    outer = np.asarray(shape.polygon.exterior.coords)[:-1] * [scale, sy]
+    holes = [np.asarray(h.coords)[:-1] * [scale, sy] for h in shape.polygon.interiors]
+    where = spec + (f" part {k}" if count > 1 else "") + (f" ({shape.id})" if shape.id
+                                                         and count > 1 else "")
+    common = {"source": spec, "format": fmt, "index": k, "count": count, "id": shape.id,
+              "layer": shape.layer, "tags": shape.tags, "units": units,
+              "file_units": file_units if fmt != "image" else "px",
+              "units_note": (f"--file-units {opt.file_units}" if opt.file_units else
+                             d.units_note) if fmt != "image" else
+              (f"pixel size {opt.pixel_size:g} {units}" if opt.pixel_size else d.units_note),
+              "scale": scale, "flip_y": flip,
+              "flatten": None if shape.flatten is None else shape.flatten * scale,
+              "simplify": opt.simplify, "background": shape.background,
+              "area": float(shape.polygon.area) * scale * scale, "notes": tuple(d.notes)}
     try:
-        img = io.imread(path)
-    except Exception as exc:  # imageio raises several kinds
-        raise ValueError(f"{path}: not a readable image ({str(exc).splitlines()[0][:120]})") \
-            from exc
-    img = np.asarray(img)
-    if img.ndim == 3:
-        if img.shape[2] == 4:
-            img = img[..., :3]
-        img = color.rgb2gray(img)
-    img = img.astype(float)
-    if img.ndim != 2 or min(img.shape) < 3 or np.ptp(img) == 0:
-        raise ValueError(f"{path}: the image has no contrast, no silhouette to trace")
-    thr = filters.threshold_otsu(img)
-    mask = img < thr
-    if mask.mean() > 0.5:           # the part is the minority class
-        mask = ~mask
-    labels = measure.label(mask, connectivity=2)
-    if labels.max() == 0:
-        raise ValueError(f"{path}: no silhouette found")
-    sizes = np.bincount(labels.ravel())
-    sizes[0] = 0
-    blob = labels == int(np.argmax(sizes))
-    padded = np.pad(blob, 1).astype(float)
-    contours = measure.find_contours(padded, 0.5)
-    if not contours:
-        raise ValueError(f"{path}: no closed outline found")
-    c = max(contours, key=len)
-    c = measure.approximate_polygon(c, tolerance=1.0 if tolerance is None else tolerance)
-    pts = np.column_stack([c[:, 1] - 1, -(c[:, 0] - 1)])        # (x, y) with y up
-    try:
-        return Polygon(pts)
+        poly = Polygon(outer, holes)
+        removed, tol = 0, None
+        if opt.clean:
+            tol = CLEAN_TOL * poly.size
+            poly, removed = clean_outline(poly, tol)
+        if opt.simplify is not None:
+            poly = simplify_outline(poly, opt.simplify)
     except ValueError as exc:
-        raise ValueError(f"{path}: traced outline is not usable: {exc}") from exc
+        return Part(None, error=f"{where}: {exc}", **common)
+    return Part(poly, cleaned=removed, clean_tol=tol, **common)
+
+
+def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
+               file_units: str | None = None, flatten: float | None = None,
+               layer: str | None = None, gap: float | None = None,
+               pixel_size: float | None = None, threshold: float | None = None,
+               y_down: bool = False, clean: bool = True,
+               simplify: float | None = None) -> list[Part]:
+    """Every part of a file, in file order (see the module docstring for the formats).
+
+    Parameters
+    ----------
+    source : str or path
+        A path, ``-`` (standard input) or ``demo:NAME``.
+    units : {"mm", "cm", "m", "in"}, optional
+        Units to convert to (default millimetres; pixels for an image without
+        ``pixel_size``).
+    file_units : str, optional
+        Units the file is in, overriding what it says (or saying it for JSON, WKT and
+        unitless DXF); one of :data:`fcgrasp.units.FILE_UNITS`.
+    flatten : float, optional
+        Curve flattening tolerance (SVG, DXF) or outline simplification of a traced image,
+        in ``units``; default :data:`FLATTEN_DEFAULT` of each element's size (one pixel
+        for images).
+    layer : str, optional
+        DXF: only the entities of this layer.
+    gap : float, optional
+        DXF: ends of entities closer than this meet (in ``units``; default 1e-6 of the
+        drawing's extents).
+    pixel_size : float, optional
+        Images: size of a pixel in ``units``.
+    threshold : float, optional
+        Images: grey level in (0, 1) between part and background (default Otsu's).
+    y_down : bool
+        The file's y axis points down (screen coordinates): flip it.  SVG and images are
+        always read as y-down, so ``y_down=True`` leaves them unflipped.
+    clean : bool
+        Merge collinear runs and drop sub-tolerance edges (default True).
+    simplify : float, optional
+        Douglas-Peucker tolerance in ``units``, topology preserved.
+
+    Returns
+    -------
+    list of Part
+        A part whose outline is not valid has ``polygon`` None and an ``error``.
+    """
+    if not isinstance(source, (str, os.PathLike)):
+        raise TypeError(f"part must be a path, '-' or 'demo:NAME', got {source!r}")
+    spec = os.fspath(source)
+    opt = _options(units, file_units, flatten, layer, gap, pixel_size, threshold, y_down,
+                   clean, simplify)
+    if spec.startswith("demo:"):
+        if any(v is not None for v in (file_units, flatten, layer, gap, pixel_size,
+                                       threshold, simplify)) or y_down:
+            raise ValueError("reading options (flatten, layer, pixel size, ...) do not apply "
+                             "to built-in parts")
+        poly = demo_part(spec[5:])
+        u = opt.units or "mm"
+        scale = conversion("mm", u)
+        if scale != 1.0:
+            poly = Polygon(poly.vertices * scale, [h * scale for h in poly.holes])
+        return [Part(poly, spec, "demo", units=u, file_units="mm",
+                     units_note="built-in parts are in mm", scale=scale, area=poly.area)]
+    data = _read_bytes(spec)
+    try:
+        fmt = sniff_format(spec, data[:512])
+        d = _drawing(data, spec, fmt, opt)
+        return [_part(s, k, len(d.shapes), spec, fmt, d, opt) for k, s in enumerate(d.shapes)]
+    except (ValueError, TypeError) as exc:
+        msg = str(exc)
+        raise ValueError(msg if msg.startswith(spec) else f"{spec}: {msg}") from None
+    except MemoryError:
+        raise ValueError(f"{spec}: too large to read") from None
+    except RecursionError:
+        raise ValueError(f"{spec}: nested too deeply to read") from None
+    except Exception as exc:  # noqa: BLE001 - malformed files surface in many ways
+        raise ValueError(f"{spec}: cannot read ({type(exc).__name__}: "
+                         f"{' '.join(str(exc).split())[:120]})") from None
+
+
+def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
+    """The part asked for: by index (an int or a string of digits), by id (an element id,
+    group id, handle, layer, feature id or name: the largest of those it selects), or by
+    default the largest usable part that is not a background.  ``chosen`` says why."""
+    if not parts:
+        raise ValueError("the file holds no part")
+    src = parts[0].source
+    n = len(parts)
+    if isinstance(part, bool) or (part is not None and not isinstance(part, (int, str))):
+        raise TypeError(f"part must be an index or an id, got {part!r}")
+    if isinstance(part, str) and part.strip().isdigit() and \
+            not any(part in p.tags for p in parts):
+        part = int(part)
+    if isinstance(part, int):
+        if not 0 <= part < n:
+            raise ValueError(f"{src}: part {part} does not exist: the file holds {n} "
+                             f"part{'s' * (n != 1)} (0 to {n - 1}; see fcgrasp parts)")
+        pool, why = [parts[part]], f"index {part}"
+    elif isinstance(part, str):
+        pool = [p for p in parts if part == p.id or part in p.tags
+                or (p.layer is not None and part.lower() == p.layer.lower())]
+        if not pool:
+            ids = sorted({t for p in parts for t in p.tags})
+            shown = ", ".join(ids[:12]) + (", ..." if len(ids) > 12 else "")
+            raise ValueError(f"{src}: no part with id {part!r} (ids: {shown or 'none'})")
+        why = f"id {part!r}" + (f", the largest of {len(pool)}" if len(pool) > 1 else "")
+    else:
+        pool = [p for p in parts if not p.background] or parts
+        why = "the largest of " + f"{n} parts" if n > 1 else "the only part"
+    usable = [p for p in pool if p.polygon is not None]
+    if not usable:
+        raise ValueError(pool[0].error or f"{src}: no usable part")
+    best = max(usable, key=lambda p: (p.area, -p.index))
+    return _replace(best, chosen=why)
+
+
+def _replace(p: Part, **kw: Any) -> Part:
+    from dataclasses import replace
+
+    return replace(p, **kw)
+
+
+def load_part(source: str | os.PathLike[str], part: int | str | None = None,
+              **options: Any) -> Part:
+    """One part of a file with how it was read (see :func:`list_parts` for the options
+    and :func:`choose_part` for ``part``).
+
+    Examples
+    --------
+    >>> p = load_part("demo:rectangle", units="in")
+    >>> p.units, round(p.scale, 6), p.polygon.vertices.max(axis=0).round(4).tolist()
+    ('in', 0.03937, [3.1496, 1.1811])
+    """
+    return choose_part(list_parts(source, **options), part)
+
+
+def read_part(source: str | os.PathLike[str], part: int | str | None = None,
+              **options: Any) -> Polygon:
+    """The polygon of one part of a file (see :func:`load_part`).
+
+    Examples
+    --------
+    >>> read_part("demo:blob").n_edges
+    6
+    """
+    p = load_part(source, part, **options).polygon
+    assert p is not None
+    return p
 
 
 # ----------------------------------------------------------------------------- contact files
@@ -368,7 +723,8 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
     """
     path = os.fspath(path)
     try:
-        data = json.loads(Path(path).read_text(encoding="utf-8"))
+        text = sys.stdin.read() if path == "-" else Path(path).read_text(encoding="utf-8")
+        data = json.loads(text)
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
     except json.JSONDecodeError as exc:
@@ -450,116 +806,3 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
         contacts.append(Gravity(polygon.centroid, direction))
         described.append({"type": "gravity", "point": polygon.centroid, "direction": direction})
     return contacts, described
-
-
-# ----------------------------------------------------------------------------- dispatch
-
-_EXT = {".json": "json", ".geojson": "json", ".wkt": "wkt", ".svg": "svg", ".dxf": "dxf",
-        ".png": "image", ".jpg": "image", ".jpeg": "image", ".bmp": "image", ".tif": "image",
-        ".tiff": "image"}
-
-
-def sniff_format(path: str) -> str:
-    """Format from the extension, else from the first bytes of the file."""
-    ext = os.path.splitext(path)[1].lower()
-    if ext in _EXT:
-        return _EXT[ext]
-    with open(path, "rb") as fh:
-        head = fh.read(512)
-    if head.startswith(b"\x89PNG") or head.startswith(b"\xff\xd8"):
-        return "image"
-    text = head.decode("utf-8", "replace").lstrip().lower()
-    if text.startswith("{") or text.startswith("["):
-        return "json"
-    if text.startswith("<?xml") or text.startswith("<svg") or "<svg" in text:
-        return "svg"
-    if text.startswith("polygon") or text.startswith("multipolygon"):
-        return "wkt"
-    if text.startswith("0") and "section" in text:
-        return "dxf"
-    raise ValueError(f"{path}: unknown part format (use .json, .geojson, .wkt, .svg, .dxf "
-                     f"or .png)")
-
-
-def read_part(spec: str, element_id: str | None = None,
-              tolerance: float | None = None) -> Polygon:
-    """Read a part from a file or ``demo:NAME``.
-
-    Parameters
-    ----------
-    spec : str
-        A path, or ``demo:NAME`` for a built-in part.
-    element_id : str, optional
-        SVG element id, or DXF entity handle or layer, to choose among several.
-    tolerance : float, optional
-        Flattening tolerance for curves (SVG, DXF) or simplification tolerance in
-        pixels (images).
-    """
-    if not isinstance(spec, (str, os.PathLike)):
-        raise TypeError(f"part must be a path or 'demo:NAME', got {spec!r}")
-    spec = os.fspath(spec)
-    if tolerance is not None:
-        if isinstance(tolerance, bool) or not isinstance(tolerance, (int, float, np.number)):
-            raise TypeError(f"tolerance must be a number, got {tolerance!r}")
-        if not (np.isfinite(tolerance) and tolerance > 0):
-            raise ValueError(f"tolerance (--flatten) must be a finite number > 0, got "
-                             f"{tolerance!r}")
-    if element_id is not None and not isinstance(element_id, str):
-        raise TypeError(f"element_id must be a string, got {element_id!r}")
-    if spec.startswith("demo:"):
-        if tolerance is not None or element_id is not None:
-            raise ValueError("tolerance (--flatten) and element_id (--id) do not apply to "
-                             "built-in parts")
-        return demo_part(spec[5:])
-    p = Path(spec)
-    if not p.exists():
-        raise ValueError(f"{spec}: no such file")
-    if p.is_dir():
-        raise ValueError(f"{spec}: is a folder, not a part file")
-    try:
-        fmt = sniff_format(spec)
-    except OSError as exc:
-        raise ValueError(f"{spec}: cannot read ({exc.strerror})") from exc
-    try:
-        return _read_format(spec, p, fmt, element_id, tolerance)
-    except (ValueError, TypeError) as exc:
-        if str(exc).startswith(spec):
-            raise
-        raise ValueError(f"{spec}: {exc}") from exc
-    except MemoryError:
-        raise ValueError(f"{spec}: too large to read") from None
-    except Exception as exc:  # noqa: BLE001 - malformed files surface in many ways
-        raise ValueError(f"{spec}: cannot read as {fmt} ({type(exc).__name__}: "
-                         f"{' '.join(str(exc).split())[:120]})") from exc
-
-
-def _read_format(spec: str, p: Path, fmt: str, element_id: str | None,
-                 tolerance: float | None) -> Polygon:
-    if fmt == "image" and element_id is not None:
-        raise ValueError(f"{spec}: element_id (--id) applies to SVG and DXF, not images")
-    if fmt in ("json", "wkt") and (tolerance is not None or element_id is not None):
-        raise ValueError(f"{spec}: tolerance (--flatten) and element_id (--id) apply to SVG, "
-                         f"DXF and images, not {fmt.upper()}")
-    if fmt in ("json", "wkt"):
-        try:
-            text = p.read_text(encoding="utf-8")
-        except UnicodeDecodeError as exc:
-            raise ValueError(f"{spec}: not UTF-8 text (byte {exc.start})") from exc
-        except OSError as exc:
-            raise ValueError(f"{spec}: cannot read ({exc.strerror})") from exc
-        if fmt == "wkt":
-            return polygon_from_wkt(text, spec)
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as exc:
-            raise ValueError(f"{spec}: not valid JSON ({exc.msg} at line {exc.lineno} "
-                             f"column {exc.colno})") from exc
-        try:
-            return polygon_from_json(data, spec)
-        except TypeError as exc:
-            raise ValueError(f"{spec}: {exc}") from exc
-    if fmt == "svg":
-        return polygon_from_svg(spec, element_id, tolerance)
-    if fmt == "dxf":
-        return polygon_from_dxf(spec, element_id, tolerance)
-    return polygon_from_image(spec, tolerance)

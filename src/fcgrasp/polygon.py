@@ -14,7 +14,10 @@ Degenerate input is handled one documented way:
   number, so the numbering still matches the input, but have no normal and are never
   touched by a finger (``Polygon.usable`` is False for them);
 * collinear consecutive edges are kept as separate edges, each with its number (they
-  share a normal and form separate grasp sets).
+  share a normal and form separate grasp sets; :func:`fcgrasp.outline.clean_outline`
+  merges them, as the file readers do);
+* a hole may touch the outer ring or another hole at a single point (a valid polygon in
+  the OGC sense); touching along a segment or at two points is refused.
 
 Invalid outlines raise :class:`ValueError` saying what is wrong and where: non-finite
 coordinates (which vertex), fewer than three distinct vertices, zero area, edges that
@@ -109,11 +112,13 @@ def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, i
         inter = segs[a].intersection(segs[b])
         if inter.is_empty:
             continue
+        ends = {tuple(p) for p in segs[a].coords}, {tuple(p) for p in segs[b].coords}
         if ring_of[a] == ring_of[b]:
-            ea, eb = segs[a].coords, segs[b].coords
-            shared = {tuple(p) for p in ea} & {tuple(p) for p in eb}
+            shared = ends[0] & ends[1]
             if shared and inter.geom_type == "Point" and (inter.x, inter.y) in shared:
                 continue   # neighbours meeting at their common vertex
+        elif inter.geom_type == "Point" and (inter.x, inter.y) in ends[0] | ends[1]:
+            continue       # rings touching at a vertex: valid if shapely says so (below)
         return ids[a], ids[b], inter
     return None
 

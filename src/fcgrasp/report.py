@@ -14,11 +14,19 @@ Layout of a plan report (``format_version`` 1)::
                   "contacts": [[x, y], ...], "normals": [[nx, ny], ...],
                   "quality": {"min_region": ..., "resistance": ..., "resistance_approx": ...,
                               "epsilon_l1": ..., "epsilon_linf": ...}}, ...],
-      "reason": null
+      "reason": null,
+      "source": {"file": "part.svg", "format": "svg", "index": 2, "parts_in_file": 3,
+                 "id": "gear", "layer": null, "chosen": "the largest of 3 parts",
+                 "units": "mm", "file_units": "px", "units_note": "...", "scale": 0.2646,
+                 "flip_y": true, "flatten": 0.05, "cleaned_vertices": 0,
+                 "clean_tolerance": 1e-05, "simplify": null}
     }
 
 ``edges`` use the input vertex order (hole edges numbered after the outer ring's);
-``grasps`` is empty when no grasp exists, and ``reason`` then says why.
+``grasps`` is empty when no grasp exists, and ``reason`` then says why.  ``source``
+(absent for parts built in Python) records how the part was read: the file, which of its
+parts, the units it was in and the scale applied, the flip of y-down sources, the
+flattening tolerance and the clean-up (see :class:`fcgrasp.parts.Part`).
 """
 
 from __future__ import annotations
@@ -43,26 +51,48 @@ def part_dict(polygon: Any) -> dict[str, Any]:
 
 
 def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], units: str,
-                reason: str | None = None) -> dict[str, Any]:
+                reason: str | None = None, source: dict[str, Any] | None = None
+                ) -> dict[str, Any]:
     grasps = []
     for k, p in enumerate(plans):
         d = p.to_dict()
         d["rank"] = k + 1
         grasps.append(d)
-    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
-            "part": part_dict(polygon), "parameters": parameters, "grasps": grasps,
-            "reason": None if plans else (reason or "no force-closure grasp")}
+    out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+           "part": part_dict(polygon), "parameters": parameters, "grasps": grasps,
+           "reason": None if plans else (reason or "no force-closure grasp")}
+    if source is not None:
+        out["source"] = source
+    return out
 
 
 def check_report(polygon: Any, contacts: list[dict[str, Any]], verdict: Any, freedom: Any,
-                 units: str) -> dict[str, Any]:
+                 units: str, source: dict[str, Any] | None = None) -> dict[str, Any]:
     """The report of ``fcgrasp check``: the contacts as read, the verdict of
     :meth:`~fcgrasp.Grasp.explain` and the total freedom (a twist cone)."""
-    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
-            "part": part_dict(polygon), "contacts": contacts,
-            "force_closure": verdict.force_closure, "failed": verdict.failed,
-            "escape_twist": verdict.escape_twist, "escape": verdict.escape_description,
-            "total_freedom": {"rays": freedom.rays, "lines": freedom.lines}}
+    out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+           "part": part_dict(polygon), "contacts": contacts,
+           "force_closure": verdict.force_closure, "failed": verdict.failed,
+           "escape_twist": verdict.escape_twist, "escape": verdict.escape_description,
+           "total_freedom": {"rays": freedom.rays, "lines": freedom.lines}}
+    if source is not None:
+        out["source"] = source
+    return out
+
+
+def parts_report(parts: list[Any], default: int) -> dict[str, Any]:
+    """The report of ``fcgrasp parts``: every part of a file with its outline, and which
+    one is the default (-1: none is usable)."""
+    items = []
+    for p in parts:
+        d = p.to_dict()
+        d["background"] = p.background
+        d["error"] = p.error
+        d["part"] = None if p.polygon is None else part_dict(p.polygon)
+        d["area"] = None if p.polygon is None else p.polygon.area
+        items.append(d)
+    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION,
+            "units": parts[0].units if parts else None, "default": default, "parts": items}
 
 
 def demo_summary(plans: list[dict[str, Any]], units: str) -> dict[str, Any]:
