@@ -72,3 +72,58 @@ def test_plan_spec_is_checked_and_picklable():
         plan_spec(rank_by="nope")
     with pytest.raises(TypeError, match="batch_size"):
         list(candidates(fc.read_part("demo:blob"), spec, batch_size=1.5))
+
+
+# ------------------------------------------------------------------ memory (issue 11)
+
+
+def test_index_tuples_are_the_combinations():
+    from itertools import combinations
+
+    from fcgrasp.pipeline import _index_tuples
+
+    for n, k, size in [(9, 4, 5), (12, 3, 7), (6, 4, 1000), (3, 4, 2), (5, 3, 1)]:
+        blocks = list(_index_tuples(n, k, size))
+        assert all(len(b) <= size for b in blocks)
+        got = [tuple(r) for b in blocks for r in b.tolist()]
+        assert got == list(combinations(range(n), k))
+
+
+def test_search_too_large_is_refused_at_once():
+    from fcgrasp.pipeline import SearchTooLarge, check_search, search_size
+
+    a = np.linspace(0, 2 * np.pi, 301)[:-1]
+    r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
+    big = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+    spec = plan_spec(fingers=4, top=None)
+    size = search_size(big, spec)
+    assert not size.fits and size.rows > 3e8
+    with pytest.raises(SearchTooLarge, match=r"give a top.*simplify the outline to at most "
+                                             r"about \d+ edges"):
+        check_search(big, spec)
+    with pytest.raises(ValueError, match="memory budget"):       # before any work
+        fc.plan(big, fingers=4, top=None)
+    # with a top the search streams: batches sized to the budget
+    small = plan_spec(fingers=4, top=3, max_memory=2 ** 25)
+    s = search_size(big, small)
+    assert s.fits and s.peak_bytes + s.kept_bytes <= 2 ** 25
+    first = next(candidates(big, small))
+    assert len(first.feats) <= s.batch_rows
+    with pytest.raises(ValueError, match="max_memory"):
+        plan_spec(max_memory=1000)
+
+
+def test_rank_folds_batches_into_a_running_top(rng):
+    from fcgrasp import pipeline
+
+    part = random_polygon(rng, "star")
+    spec = plan_spec(fingers=4, top=2, max_memory=2 ** 24)
+    want = fc.plan(part, fingers=4, top=2)
+    batches = [solve(part, spec, b) for b in candidates(part, spec, batch_size=5)]
+    old = pipeline.REDUCE_ROWS
+    try:
+        pipeline.REDUCE_ROWS = 1        # fold after every batch
+        got = rank(part, spec, iter(batches))
+    finally:
+        pipeline.REDUCE_ROWS = old
+    assert _key(got) == _key(want)

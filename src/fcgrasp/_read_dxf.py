@@ -24,6 +24,20 @@ INSUNITS = {1: "in", 2: "ft", 3: "mi", 4: "mm", 5: "cm", 6: "m", 7: "km", 8: "ui
 _CURVES = {"LINE", "ARC", "CIRCLE", "ELLIPSE", "SPLINE", "LWPOLYLINE", "POLYLINE"}
 
 
+def _expand(entities: Any, depth: int = 0) -> Any:
+    """Entities with block references expanded (recursively); an entity on layer 0 inside a
+    block takes the layer of its reference, as CAD programs draw it."""
+    for e in entities:
+        if e.dxftype() == "INSERT" and depth < 32:
+            layer = e.dxf.get("layer", "0")
+            for v in _expand(e.virtual_entities(), depth + 1):
+                if v.dxf.get("layer", "0") == "0":
+                    v.dxf.layer = layer
+                yield v
+        else:
+            yield e
+
+
 def _extents(entities: list[Any]) -> float:
     from ezdxf import bbox
 
@@ -46,7 +60,6 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
         from ezdxf import edgesmith as es
         from ezdxf import path as dxfpath
         from ezdxf import recover
-        from ezdxf.disassemble import recursive_decompose
     except ImportError as exc:  # pragma: no cover - depends on the install
         raise ValueError("reading DXF needs ezdxf: pip install 'fcgrasp[dxf]'") from exc
     try:
@@ -57,7 +70,7 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
     units = INSUNITS.get(code)
     note = f"$INSUNITS {code} ({units})" if units else \
         f"$INSUNITS {code} (unitless: taken as the units asked)"
-    ents = [e for e in recursive_decompose(doc.modelspace()) if e.dxftype() in _CURVES]
+    ents = [e for e in _expand(doc.modelspace()) if e.dxftype() in _CURVES]
     layers = sorted({e.dxf.get("layer", "0") for e in ents})
     if layer is not None:
         ents = [e for e in ents if e.dxf.get("layer", "0").lower() == layer.lower()]

@@ -17,13 +17,18 @@ PPI = 96.0
 BACKGROUND_FRACTION = 0.98
 
 
+def _z(point: Any) -> complex:
+    """An svgelements point as a Python complex number."""
+    return complex(float(point.x), float(point.y))
+
+
 def _flatten_segment(seg: Any, tol: float, out: list[complex], depth: int = 0,
                      t0: float = 0.0, t1: float = 1.0) -> None:
     """Append the end point of ``seg`` restricted to [t0, t1], subdividing until the
     midpoint of each piece is within ``tol`` of its chord."""
-    p0, p1 = complex(seg.point(t0)), complex(seg.point(t1))
+    p0, p1 = _z(seg.point(t0)), _z(seg.point(t1))
     tm = 0.5 * (t0 + t1)
-    pm = complex(seg.point(tm))
+    pm = _z(seg.point(tm))
     chord = p1 - p0
     if abs(chord) > 0:
         dev = abs((pm - p0).real * chord.imag - (pm - p0).imag * chord.real) / abs(chord)
@@ -52,7 +57,7 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
     for s in path.segments():
         if isinstance(s, Move):
             finish(cur, False)
-            cur = [complex(s.end)]
+            cur = [_z(s.end)]
             start = cur[0]
         elif isinstance(s, Close):
             finish(cur, True)
@@ -61,7 +66,7 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
             if not cur and start is not None:
                 cur = [start]
             if isinstance(s, Line):
-                cur.append(complex(s.end))
+                cur.append(_z(s.end))
             else:
                 _flatten_segment(s, tol, cur)
     finish(cur, False)
@@ -131,12 +136,12 @@ def read_svg(data: bytes, tol_of: TolOf) -> Drawing:
     # svgelements turns mm and cm into px with 1/25.4 rounded to 0.0393701 (0.5 ppm off);
     # drawings sized in those units are put back on the exact 96 px per inch
     width = str(svg.values.get("width", "")).strip().lower()
-    k = 1.0 / (25.4 * 0.0393701) if width.endswith(("mm", "cm")) else 1.0
-    if k != 1.0:
+    fix = 1.0 / (25.4 * 0.0393701) if width.endswith(("mm", "cm")) else 1.0
+    if fix != 1.0:
         for sh in shapes:
-            sh.polygon = shapely.transform(sh.polygon, lambda c: c * k)
-            sh.flatten = None if sh.flatten is None else sh.flatten * k
-    canvas = float(svg.width or 0) * float(svg.height or 0) * k * k
+            sh.polygon = shapely.transform(sh.polygon, lambda c: c * fix)
+            sh.flatten = None if sh.flatten is None else sh.flatten * fix
+    canvas = float(svg.width or 0) * float(svg.height or 0) * fix * fix
     if len(shapes) > 1 and canvas > 0:
         for s in shapes:
             x0, y0, x1, y1 = s.polygon.bounds

@@ -70,6 +70,16 @@ def _memory(text: str) -> int:
     return int(value * _SIZES[unit])
 
 
+def _duration(seconds: float) -> str:
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 2 * 86400:
+        return f"{seconds / 3600:.1f} h"
+    return f"{seconds / 86400:.0f} days"
+
+
 def _progress(enabled: bool) -> Any:
     if not enabled:
         return None
@@ -198,6 +208,7 @@ def cmd_plan(args: Any) -> int:
     import math
 
     from .hand import Hand
+    from .pipeline import check_search, plan_spec
     from .planning import plan
     from .report import dumps, plan_report
     from .units import disturbance_step
@@ -231,6 +242,13 @@ def cmd_plan(args: Any) -> int:
     show = _progress(sys.stderr.isatty() and not args.quiet)
     step = disturbance_step(units)
     kw = {} if budget is None else {"max_memory": budget}
+    spec = plan_spec(fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
+                     hand=hand, margin=args.margin, disturbance=(step, 15.0), **kw)
+    size = check_search(polygon, spec)          # too large: a one-line error, at once
+    if size.seconds > 60 and not args.quiet:
+        print(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
+              f"{_duration(size.seconds)} (--simplify TOL or fewer fingers is faster)",
+              file=sys.stderr)
     plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
                  hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
     params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
@@ -402,7 +420,8 @@ def build_parser() -> argparse.ArgumentParser:
                      formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--version", action="version", version=f"fcgrasp {__version__}",
                         help="print the version and exit")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser,
+                                help="plan, check, parts or demo (fcgrasp COMMAND --help)")
 
     def reading_args(p: argparse.ArgumentParser, json_help: str) -> None:
         p.add_argument("part", metavar="PART",

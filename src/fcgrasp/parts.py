@@ -40,7 +40,7 @@ from __future__ import annotations
 import json
 import os
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -295,6 +295,7 @@ def _wkt_drawing(text: str, where: str) -> Drawing:
     def parse(t: str) -> Any:
         return shapely.from_wkt(t.strip())
 
+    geoms: list[tuple[Any, str, str | None]]
     try:
         geoms = [(parse(text), where, None)]
     except (ShapelyError, ValueError):
@@ -508,16 +509,17 @@ def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
     holes = [np.asarray(h.coords)[:-1] * [scale, sy] for h in shape.polygon.interiors]
     where = spec + (f" part {k}" if count > 1 else "") + (f" ({shape.id})" if shape.id
                                                          and count > 1 else "")
-    common = {"source": spec, "format": fmt, "index": k, "count": count, "id": shape.id,
-              "layer": shape.layer, "tags": shape.tags, "units": units,
-              "file_units": file_units if fmt != "image" else "px",
-              "units_note": (f"--file-units {opt.file_units}" if opt.file_units else
-                             d.units_note) if fmt != "image" else
-              (f"pixel size {opt.pixel_size:g} {units}" if opt.pixel_size else d.units_note),
-              "scale": scale, "flip_y": flip,
-              "flatten": None if shape.flatten is None else shape.flatten * scale,
-              "simplify": opt.simplify, "background": shape.background,
-              "area": float(shape.polygon.area) * scale * scale, "notes": tuple(d.notes)}
+    if fmt == "image":
+        note = f"pixel size {opt.pixel_size:g} {units}" if opt.pixel_size else d.units_note
+    else:
+        note = f"--file-units {opt.file_units}" if opt.file_units else d.units_note
+    base = Part(None, spec, fmt, index=k, count=count, id=shape.id, layer=shape.layer,
+                tags=shape.tags, units=units,
+                file_units="px" if fmt == "image" else file_units, units_note=note,
+                scale=scale, flip_y=flip,
+                flatten=None if shape.flatten is None else shape.flatten * scale,
+                simplify=opt.simplify, background=shape.background,
+                area=float(shape.polygon.area) * scale * scale, notes=tuple(d.notes))
     try:
         poly = Polygon(outer, holes)
         removed, tol = 0, None
@@ -527,8 +529,8 @@ def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
         if opt.simplify is not None:
             poly = simplify_outline(poly, opt.simplify)
     except ValueError as exc:
-        return Part(None, error=f"{where}: {exc}", **common)
-    return Part(poly, cleaned=removed, clean_tol=tol, **common)
+        return replace(base, error=f"{where}: {exc}")
+    return replace(base, polygon=poly, cleaned=removed, clean_tol=tol)
 
 
 def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
@@ -642,13 +644,7 @@ def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
     if not usable:
         raise ValueError(pool[0].error or f"{src}: no usable part")
     best = max(usable, key=lambda p: (p.area, -p.index))
-    return _replace(best, chosen=why)
-
-
-def _replace(p: Part, **kw: Any) -> Part:
-    from dataclasses import replace
-
-    return replace(p, **kw)
+    return replace(best, chosen=why)
 
 
 def load_part(source: str | os.PathLike[str], part: int | str | None = None,

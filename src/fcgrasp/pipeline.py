@@ -28,7 +28,7 @@ from __future__ import annotations
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
-from itertools import combinations
+from math import comb
 from typing import Any
 
 import numpy as np
@@ -54,10 +54,27 @@ from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
-           "BATCH_SIZE"]
+           "BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
+           "check_search"]
 
-#: Candidate rows per batch: large parts are streamed in batches of about this size.
+#: Candidate rows per batch: large parts are streamed in batches of at most this size (fewer
+#: when the memory budget asks for it, see :func:`search_size`).
 BATCH_SIZE = 2_000_000
+#: :func:`rank` folds the solved batches into their running top whenever it holds this many
+#: rows beyond it, so what it keeps does not grow with the number of batches.
+REDUCE_ROWS = 20_000
+#: Default memory budget of a search, in bytes (``max_memory``, ``--max-memory``).
+MAX_MEMORY = 2 ** 31
+#: Smallest memory budget accepted.
+MIN_MEMORY = 2 ** 24
+#: Measured peak bytes per candidate row while a batch is solved (two fingers; three or
+#: four), rounded up (``benchmarks/bench_scale.py`` prints them).
+ROW_BYTES = {2: 450, 3: 1700, 4: 1700}
+#: Bytes kept per candidate row when every plan is asked for (``top=None``): the solved
+#: row and its GraspPlan, rounded up.
+KEPT_ROW_BYTES = 3000
+#: Measured seconds per candidate row (two fingers; three or four), for the time estimate.
+ROW_SECONDS = {2: 1e-6, 3: 3e-5, 4: 3e-5}
 #: With a measure other than ``min_region`` and a ``top``, the rows of a batch kept for
 #: the measure: the best by the smallest region (the measures are computed per plan).
 KEEP_FOR_MEASURE = 20_000
@@ -84,6 +101,7 @@ class PlanSpec:
     gravity: tuple[float, float] | None = None
     disturbance: tuple[float, float] = (10.0, 15.0)
     tol: float = SOLVER_TOL
+    max_memory: int = 2 ** 31
 
     @property
     def margin_rad(self) -> float:
@@ -96,7 +114,8 @@ class PlanSpec:
 
 def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
               hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
-              disturbance: Any = (10.0, 15.0), tol: Any = SOLVER_TOL) -> PlanSpec:
+              disturbance: Any = (10.0, 15.0), tol: Any = SOLVER_TOL,
+              max_memory: Any = None) -> PlanSpec:
     """A validated :class:`PlanSpec` (arguments as for :func:`fcgrasp.plan`).
 
     Raises :class:`TypeError` or :class:`ValueError` naming the argument.
@@ -122,8 +141,10 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
     if fingers == 3:
         gv = check_direction(gravity, "gravity")
         g = (float(gv[0]), float(gv[1]))
+    budget = MAX_MEMORY if max_memory is None else check_int(max_memory, "max_memory",
+                                                              minimum=MIN_MEMORY)
     return PlanSpec(fingers, mu_v if fingers == 2 else 0.0, margin_v, top, rank_by, hand, g,
-                    dist, check_tol(tol))
+                    dist, check_tol(tol), budget)
 
 
 def _check_disturbance(disturbance: Any) -> tuple[float, float]:
@@ -272,31 +293,70 @@ def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
 
 
 
-def _quad_rows(F: Features, gravity: FloatArray | None, three_edge: bool = True
-               ) -> np.ndarray:
-    """Every four-finger row: 4-tuples of features on distinct edges, then (with
+def _index_tuples(n: int, k: int, size: int) -> Iterator[np.ndarray]:
+    """Every increasing ``k``-tuple of ``range(n)`` (k = 3 or 4), in lexicographic order,
+    in blocks of at most ``size`` rows: nothing holds all C(n, k) at once."""
+    buf: list[np.ndarray] = []
+    count = 0
+    prefixes: Iterable[tuple[int, ...]] = ((i,) for i in range(n)) if k == 3 else \
+        ((i, j) for i in range(n) for j in range(i + 1, n))
+    for pre in prefixes:
+        last = pre[-1]
+        a, b = np.triu_indices(n - last - 1, 1)
+        if a.size == 0:
+            continue
+        block = np.empty((a.size, k), dtype=int)
+        block[:, :k - 2] = pre
+        block[:, k - 2] = a + last + 1
+        block[:, k - 1] = b + last + 1
+        buf.append(block)
+        count += a.size
+        if count >= size:
+            rows = np.concatenate(buf)
+            for s in range(0, len(rows), size):
+                yield rows[s:s + size]
+            buf, count = [], 0
+    if buf:
+        rows = np.concatenate(buf)
+        for s in range(0, len(rows), size):
+            yield rows[s:s + size]
+
+
+def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
+    e = F.edge[t]
+    k = t.shape[1]
+    ok = np.ones(len(t), dtype=bool)
+    for x in range(k):
+        for y in range(x + 1, k):
+            ok &= e[:, x] != e[:, y]
+    return t[ok]
+
+
+def _quad_batches(F: Features, gravity: FloatArray | None, three_edge: bool, size: int
+                  ) -> Iterator[np.ndarray]:
+    """Every four-finger row, streamed: 4-tuples of features on distinct edges, then (with
     ``three_edge``) three edges with one doubled (the doubled feature first and third);
     with gravity, triples of features plus the gravity contact (-1)."""
     nF = len(F.edge)
-    tuples: list[np.ndarray] = []
-    if gravity is None:
-        q = np.array(list(combinations(range(nF), 4)), dtype=int).reshape(-1, 4)
-        q = q[np.all((F.edge[q][:, :, None] != F.edge[q][:, None, :])
-                     | np.eye(4, dtype=bool)[None], axis=(1, 2))]
-        tuples.append(q)
-        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
-        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
-              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
-        for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1)) if three_edge else ():
-            # the doubled feature first
-            tuples.append(np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1))
-        feats = np.concatenate(tuples) if tuples else np.zeros((0, 4), int)
-    else:
-        t = np.array(list(combinations(range(nF), 3)), dtype=int).reshape(-1, 3)
-        t = t[(F.edge[t[:, 0]] != F.edge[t[:, 1]]) & (F.edge[t[:, 1]] != F.edge[t[:, 2]])
-              & (F.edge[t[:, 0]] != F.edge[t[:, 2]])]
-        feats = np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
-    return feats
+    if gravity is not None:
+        for t in _index_tuples(nF, 3, size):
+            t = _distinct_edges(F, t)
+            if len(t):
+                yield np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+        return
+    for q in _index_tuples(nF, 4, size):
+        q = _distinct_edges(F, q)
+        if len(q):
+            yield q
+    if not three_edge:
+        return
+    for t in _index_tuples(nF, 3, max(1, size // 3)):
+        t = _distinct_edges(F, t)
+        # the doubled feature first
+        rows = np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
+                               for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
+        for k in range(0, len(rows), size):
+            yield rows[k:k + size]
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
@@ -383,6 +443,110 @@ class EdgeSets:
     feats: np.ndarray
 
 
+@dataclass(frozen=True)
+class SearchSize:
+    """How big a search is, before it starts (see :func:`search_size`).
+
+    ``rows``: candidate edge sets (an upper bound when a hand splits edges); ``batch_rows``:
+    rows per streamed batch; ``peak_bytes``: memory of one batch being solved;
+    ``kept_bytes``: memory of what is kept across batches (every row's plan with
+    ``top=None``, else the top of each batch); ``seconds``: a rough time on one core.
+    """
+
+    features: int
+    rows: int
+    batch_rows: int
+    peak_bytes: int
+    kept_bytes: int
+    seconds: float
+    budget: int
+
+    @property
+    def fits(self) -> bool:
+        return self.peak_bytes + self.kept_bytes <= self.budget
+
+
+class SearchTooLarge(ValueError):
+    """A search that cannot fit its memory budget (raised before any work)."""
+
+
+def _rows(fingers: int, n: int, three_edge: bool = True) -> int:
+    if fingers == 2:
+        return comb(n, 2)
+    if fingers == 3:
+        return comb(n, 3)
+    return comb(n, 4) + (3 * comb(n, 3) if three_edge else 0)
+
+
+def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
+    """(rows, batch rows, peak bytes, kept bytes) of a search over ``n`` features."""
+    rows = _rows(spec.fingers, n)
+    per = ROW_BYTES[spec.fingers]
+    batch = int(max(1, min(BATCH_SIZE, spec.max_memory // 2 // per)))
+    peak = min(rows, batch) * per
+    if spec.top is None:
+        held = rows
+    else:
+        keep = spec.top if spec.rank_by == "min_region" else KEEP_FOR_MEASURE
+        held = min(rows, _reduce_rows(spec) + 2 * keep)
+    return rows, batch, peak, held * KEPT_ROW_BYTES
+
+
+def _reduce_rows(spec: PlanSpec) -> int:
+    """Rows :func:`rank` holds beyond its running top before folding them in."""
+    return int(min(REDUCE_ROWS, max(1000, spec.max_memory // 4 // KEPT_ROW_BYTES)))
+
+
+def search_size(polygon: Polygon, spec: PlanSpec, edges: Any = None) -> SearchSize:
+    """The size of the search :func:`candidates` -> :func:`solve` -> :func:`rank` will do,
+    and the batch size that keeps it within ``spec.max_memory``.
+
+    Batches take at most half the budget (``ROW_BYTES`` per row, at most
+    :data:`BATCH_SIZE` rows); what :func:`rank` keeps across batches must fit as well
+    (``KEPT_ROW_BYTES`` per row): its running top, at most ``REDUCE_ROWS`` (fewer on small
+    budgets) plus twice the top, or with ``top=None`` every row; see :func:`check_search`.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> s = search_size(demo_part("quad"), plan_spec(fingers=4))
+    >>> s.rows, s.fits
+    (13, True)
+    """
+    n = len(features(polygon, spec.mu, spec.hand, edges).edge)
+    rows, batch, peak, kept = _estimate(spec, n)
+    return SearchSize(n, rows, batch, peak, kept, rows * ROW_SECONDS[spec.fingers],
+                      spec.max_memory)
+
+
+def _fmt_bytes(b: float) -> str:
+    for unit in ("B", "KB", "MB", "GB", "TB"):
+        if b < 1024:
+            return f"{b:.3g} {unit}"
+        b /= 1024
+    return f"{b:.3g} PB"
+
+
+def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
+    """The :func:`search_size` of a plan, or :class:`SearchTooLarge` (a ValueError) when it
+    cannot fit ``spec.max_memory``, saying what would: how many edges fit, a ``top``, fewer
+    fingers."""
+    size = search_size(polygon, spec)
+    if size.fits:
+        return size
+    fit = 2
+    while fit < size.features and sum(_estimate(spec, fit + 1)[2:]) <= spec.max_memory:
+        fit += 1
+    what = {2: "two-finger", 3: "three-finger", 4: "four-finger"}[spec.fingers]
+    hint = "give a top (--top K), or " if spec.top is None else \
+        "ask for fewer plans (--top), " if spec.top * KEPT_ROW_BYTES > spec.max_memory // 4 \
+        else ""
+    raise SearchTooLarge(
+        f"a {what} search of this part ({size.features} edges, {size.rows:.3g} candidate "
+        f"edge sets) would need about {_fmt_bytes(size.peak_bytes + size.kept_bytes)}, above "
+        f"the memory budget of {_fmt_bytes(spec.max_memory)} (max_memory, --max-memory): "
+        f"{hint}simplify the outline to at most about {fit} edges (--simplify TOL), or plan "
+        f"with fewer fingers")
+
+
 def _pair_batches(F: Features, size: int) -> Iterator[EdgeSets]:
     """Pairs ``i < j`` of features on distinct edges, a block of rows ``i`` at a time
     (about ``size`` pairs per batch; a row longer than that is split)."""
@@ -410,9 +574,9 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     triple.  ``edges`` restricts the features to those edges (with four fingers and an
     edge given twice, only the layouts doubling that edge).
     """
-    size = BATCH_SIZE if batch_size is None else check_int(batch_size, "batch_size",
-                                                           minimum=1)
     F = features(polygon, spec.mu, spec.hand, edges)
+    size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
+        check_int(batch_size, "batch_size", minimum=1)
     if spec.fingers == 2:
         yield from _pair_batches(F, size)
         return
@@ -424,11 +588,11 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         twice = [e for e in set(idx) if idx.count(e) == 2]
         doubled = twice[0] if twice else None
         three_edge = doubled is not None
-    rows = _quad_rows(F, gravity, three_edge)
-    if doubled is not None:
-        rows = rows[(F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])]
-    for k in range(0, len(rows), size):
-        yield EdgeSets(rows[k:k + size])
+    for rows in _quad_batches(F, gravity, three_edge, size):
+        if doubled is not None:
+            rows = rows[(F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])]
+        if len(rows):
+            yield EdgeSets(rows)
 
 
 def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
@@ -704,6 +868,11 @@ class Solved:
                       np.concatenate([p.b for p in parts]),
                       np.concatenate([p.mode for p in parts]))
 
+    def take(self, idx: Any) -> Solved:
+        """The solved rows ``idx``."""
+        return Solved(self.cands.take(idx), self.lengths[idx], self.a[idx], self.b[idx],
+                      self.mode[idx])
+
 
 def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
             ) -> np.ndarray:
@@ -775,11 +944,25 @@ def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
     Sorted by the measure ``spec.rank_by`` (:mod:`fcgrasp.ranking`), then the leximin
     order of the region lengths, then :func:`~fcgrasp.plans.geometric_key`.
     """
-    parts = [s for s in solved if len(s.lengths)]
+    top = spec.top
+    keep = None if top is None else (top if spec.rank_by == "min_region" else
+                                     KEEP_FOR_MEASURE)
+    parts: list[Solved] = []
+    held = 0
+    for batch in solved:
+        if not len(batch.lengths):
+            continue
+        parts.append(batch)
+        held += len(batch.lengths)
+        if keep is not None and held > _reduce_rows(spec) + keep:
+            # a running reduction: what the final selection would drop can go now
+            merged = Solved.concat(parts)
+            merged = merged.take(_select(merged.lengths, merged.cands.feats, polygon.size,
+                                         keep))
+            parts, held = [merged], len(merged.lengths)
     if not parts:
         return []
     s = Solved.concat(parts)
-    top = spec.top
     if spec.rank_by == "min_region":
         pick = _select(s.lengths, s.cands.feats, polygon.size, top)
     elif top is not None and len(s.lengths) > KEEP_FOR_MEASURE:

@@ -26,7 +26,7 @@ import numpy as np
 from ._checks import check_mu_scalar
 from .graspsets import Vertex
 from .hand import Hand
-from .pipeline import candidates, plan_spec, rank, solve
+from .pipeline import candidates, check_search, plan_spec, rank, solve
 from .plans import GraspPlan, geometric_key, rank_key
 from .polygon import Polygon
 from .ranking import MEASURES
@@ -49,7 +49,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          rank_by: str = "min_region", hand: Hand | None = None,
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
          disturbance: tuple[float, float] = (10.0, 15.0),
-         progress: Any = None, tol: float = SOLVER_TOL) -> list[GraspPlan]:
+         progress: Any = None, tol: float = SOLVER_TOL,
+         max_memory: int | None = None) -> list[GraspPlan]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -79,6 +80,12 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     tol : float
         Relative slack of the exact region solver
         (:data:`fcgrasp.tolerances.SOLVER_TOL`).
+    max_memory : int, optional
+        Memory budget of the search in bytes (default
+        :data:`fcgrasp.pipeline.MAX_MEMORY`, 2 GiB).  The search streams its candidates in
+        batches sized to it; a search that cannot fit (every plan of a large part with
+        ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
+        what would fit, before any work.
 
     Returns
     -------
@@ -94,10 +101,12 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     """
     _check_polygon(polygon)
     spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
-                     margin=margin, gravity=gravity, disturbance=disturbance, tol=tol)
+                     margin=margin, gravity=gravity, disturbance=disturbance, tol=tol,
+                     max_memory=max_memory)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be a callable progress(done, total) or None, "
                         f"got {progress!r}")
+    check_search(polygon, spec)
     return rank(polygon, spec, (solve(polygon, spec, batch, progress=progress)
                                 for batch in candidates(polygon, spec)))
 

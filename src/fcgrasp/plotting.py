@@ -83,8 +83,33 @@ def save_figure(fig: Any, path: str, outputs: Any = None) -> None:
 _FINGER_COLORS = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"]
 
 
-def draw_part(ax: Any, polygon: Any, numbers: bool = True) -> None:
-    """The part, holes cut out, with its edges numbered (input numbering)."""
+#: At most this many edge numbers are drawn on a part; labels closer than
+#: ``LABEL_SPACING`` of the part's size to one already drawn are left out.
+MAX_LABELS = 40
+LABEL_SPACING = 0.06
+
+
+def edge_labels(polygon: Any, keep: Any = ()) -> list[int]:
+    """The edges whose numbers stay legible: the edges in ``keep`` (those a plan uses),
+    then the longest others, skipping any whose label would crowd one already placed."""
+    mid = (polygon.starts + polygon.ends) / 2
+    chosen: list[int] = []
+    keep = [int(e) for e in keep if 0 <= int(e) < polygon.n_edges]
+    order = keep + [int(i) for i in np.argsort(-polygon.lengths, kind="stable")
+                    if int(i) not in keep and polygon.usable[i]]
+    gap = LABEL_SPACING * polygon.size
+    for i in order:
+        if len(chosen) >= MAX_LABELS and i not in keep:
+            break
+        if i in keep or all(np.hypot(*(mid[i] - mid[j])) >= gap for j in chosen):
+            chosen.append(i)
+    return sorted(set(chosen))
+
+
+def draw_part(ax: Any, polygon: Any, numbers: bool = True, keep: Any = (),
+              units: str = "") -> None:
+    """The part, holes cut out, with the numbers of its edges (input numbering) where they
+    stay legible (:func:`edge_labels`; the edges in ``keep`` always), axes in ``units``."""
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
@@ -99,14 +124,12 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True) -> None:
     for r in rings:
         verts += list(r) + [r[0]]
         codes += [MplPath.MOVETO] + [MplPath.LINETO] * (len(r) - 1) + [MplPath.CLOSEPOLY]
-    ax.add_patch(PathPatch(MplPath(verts, codes), facecolor="0.88", edgecolor="0.25", lw=1.0,
-                           zorder=0))
+    ax.add_patch(PathPatch(MplPath(verts, codes), facecolor="0.88", edgecolor="0.25",
+                           lw=1.0 if polygon.n_edges < 400 else 0.6, zorder=0))
     if numbers:
         mid = (polygon.starts + polygon.ends) / 2
         off = 0.025 * polygon.size
-        for i in range(polygon.n_edges):
-            if not polygon.usable[i]:
-                continue
+        for i in edge_labels(polygon, keep):
             p = mid[i] + off * polygon.normals[i]
             ax.text(p[0], p[1], str(i), fontsize=6, color="0.35", ha="center", va="center")
     lo = np.min(polygon.vertices, axis=0)
@@ -115,12 +138,16 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True) -> None:
     ax.set_xlim(lo[0] - pad, hi[0] + pad)
     ax.set_ylim(lo[1] - pad, hi[1] + pad)
     ax.set_aspect("equal")
+    if units:
+        ax.set_xlabel(f"x ({units})", fontsize=7)
+        ax.set_ylabel(f"y ({units})", fontsize=7)
 
 
 def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
               units: str = "", numbers: bool = True) -> None:
-    """Figure 1 style: regions drawn bold, a small V at each finger showing its push."""
-    draw_part(ax, polygon, numbers)
+    """Figure 1 style: regions drawn bold, a small V at each finger showing its push; the
+    legend sits inside the axes, where it cannot run into a neighbour's title."""
+    draw_part(ax, polygon, numbers, keep=[e for e in plan.edges if e >= 0], units=units)
     v = 0.05 * polygon.size
     for i, (reg, c, n) in enumerate(zip(plan.regions, plan.contacts, plan.normals,
                                         strict=True)):
@@ -140,10 +167,8 @@ def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
         ax.annotate("", xy=g + d, xytext=g, arrowprops={"arrowstyle": "-|>", "color": "0.2"})
     mu_txt = f"mu = {plan.mu:g}" if plan.contact_type == "friction" else "frictionless"
     ax.set_title(title or f"min region {plan.min_length:.3g} {units}, {mu_txt}", fontsize=8)
-    ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(0.0, -0.08), frameon=False)
+    ax.legend(fontsize=6, loc="best", framealpha=0.85, handlelength=1.2)
     ax.tick_params(labelsize=6)
-    if units:
-        ax.set_ylabel(units, fontsize=7)
 
 
 def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
@@ -153,7 +178,7 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
     plt = _pyplot()
     if not plans:
         fig, ax = plt.subplots(figsize=(4, 4))
-        draw_part(ax, polygon)
+        draw_part(ax, polygon, units=units)
         ax.set_title(title or "no force-closure grasp", fontsize=9)
     else:
         idx = list(range(len(plans)))
@@ -181,11 +206,9 @@ def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "",
     """The part with a checked grasp: contact forces, verdict, escape motion (atomically)."""
     plt = _pyplot()
     fig, ax = plt.subplots(figsize=(4.5, 4.5))
-    draw_part(ax, polygon)
+    draw_part(ax, polygon, units=units)
     draw_grasp(ax, grasp, size=0.08 * polygon.size)
-    draw_part(ax, polygon, numbers=False)      # restore the limits of the part
-    if units:
-        ax.set_ylabel(units, fontsize=7)
+    draw_part(ax, polygon, numbers=False, units=units)      # restore the limits of the part
     fig.tight_layout()
     save_figure(fig, path, outputs)
     plt.close(fig)
