@@ -124,6 +124,12 @@ BAD_OPTIONS = [
     ["--plot", "OUT/fig.txt"], ["--plot", "OUT/fig"], ["--rank-by", "beauty"],
     ["--units", "furlong"], ["--id", "x"], ["--bogus"], ["--json", "OUT/"],
     ["--workspace", "1000,1000,1"],
+    # reading options (issue 11): wrong for the format, out of range, unknown
+    ["--part", "7"], ["--part", "-1"], ["--layer", "CUT"], ["--gap", "0.1"],
+    ["--pixel-size", "0.1"], ["--threshold", "0.5"], ["--units", "px"],
+    ["--file-units", "furlong"], ["--simplify", "0"], ["--simplify", "1e9"],
+    ["--max-memory", "lots"], ["--max-memory", "0"], ["--max-memory", "1k"],
+    ["--json", "-", "--plot", "-"],
 ]
 
 BAD_CONTACTS = {

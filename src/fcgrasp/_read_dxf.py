@@ -38,6 +38,17 @@ def _expand(entities: Any, depth: int = 0) -> Any:
             yield e
 
 
+def _canonical(ring: np.ndarray) -> np.ndarray:
+    """The ring counter-clockwise, starting at its lowest-leftmost vertex (edgeminer's chains
+    start and run wherever its search happened to)."""
+    if len(ring) > 1 and np.array_equal(ring[0], ring[-1]):
+        ring = ring[:-1]
+    x, y = ring[:, 0] - ring[:, 0].mean(), ring[:, 1] - ring[:, 1].mean()
+    if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) < 0:
+        ring = ring[::-1]
+    return np.roll(ring, -int(np.lexsort((ring[:, 0], ring[:, 1]))[0]), axis=0)
+
+
 def _extents(entities: list[Any]) -> float:
     from ezdxf import bbox
 
@@ -83,19 +94,24 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
     rings: list[np.ndarray] = []
     meta: list[tuple[str, str, float]] = []   # (handle, layer, flattening) of each ring
 
-    def add(p: Any, first: Any) -> None:
+    order = {id(e): k for k, e in enumerate(ents)}
+    found: list[tuple[int, np.ndarray, Any, float]] = []
+
+    def add(p: Any, members: list[Any]) -> None:
         size = float(np.max(np.ptp(np.array([[v.x, v.y] for v in p.control_vertices()]),
                                    axis=0))) if len(p) else 0.0
         if not size > 0:
             return
         tol = tol_of(size, units)
-        rings.append(np.array([[v.x, v.y] for v in p.flattening(tol)]))
-        meta.append((str(first.dxf.get("handle", "")), first.dxf.get("layer", "0"), tol))
+        first = min(members, key=lambda e: order[id(e)])
+        found.append((order[id(first)], _canonical(np.array([[v.x, v.y]
+                                                             for v in p.flattening(tol)])),
+                      first, tol))
 
     open_ents = []
     for e in ents:
         if es.is_closed_entity(e):
-            add(dxfpath.make_path(e), e)
+            add(dxfpath.make_path(e), [e])
         else:
             open_ents.append(e)
     notes: list[str] = []
@@ -105,12 +121,17 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
         loose = 0
         for chain in em.find_all_simple_chains(deposit):
             if em.is_loop(chain, gap_tol=gap_tol):
-                add(es.path2d_from_chain(chain), chain[0].payload)
+                add(es.path2d_from_chain(chain), [edge.payload for edge in chain])
             else:
                 loose += len(chain)
         if loose:
             notes.append(f"{loose} entities not in a closed loop (gap tolerance "
                          f"{gap_tol:.3g}) were left out")
+    # loops in file order (of their first entity), each from its lowest vertex, counter-
+    # clockwise: the same file gives the same parts and edge numbers on every run
+    for _, ring, first, tol in sorted(found, key=lambda f: f[0]):
+        rings.append(ring)
+        meta.append((str(first.dxf.get("handle", "")), first.dxf.get("layer", "0"), tol))
     if not rings:
         which = f" on layer {layer!r}" if layer else ""
         raise ValueError(f"no closed loop{which}: no closed polyline, circle, ellipse or "

@@ -150,8 +150,8 @@ def _load(args: Any) -> Any:
     if not args.quiet:
         if part.count > 1:
             name = f" ({part.id})" if part.id else ""
-            print(f"fcgrasp: {part.source}: part {part.index}{name} of {part.count}, "
-                  f"{part.chosen} (see fcgrasp parts)", file=sys.stderr)
+            print(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
+                  f"(see fcgrasp parts)", file=sys.stderr)
         for note in part.notes:
             print(f"fcgrasp: {part.source}: {note}", file=sys.stderr)
     return part

@@ -206,6 +206,9 @@ def simplify_outline(polygon: Polygon, tol: float) -> Polygon:
     if not isinstance(polygon, Polygon):
         raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
     tol = check_scalar(tol, "tol", nonnegative=True)
+    if tol >= polygon.size:
+        raise ValueError(f"simplify tolerance {tol:g} is not below the part's size "
+                         f"({polygon.size:.6g}): nothing of the outline would be kept")
     s = shapely.simplify(polygon.to_shapely(), tol, preserve_topology=True)
     if s.is_empty or s.geom_type != "Polygon":
         raise ValueError(f"simplifying with tol {tol:g} leaves no polygon: use a smaller "

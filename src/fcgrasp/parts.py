@@ -639,7 +639,9 @@ def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
         why = f"id {part!r}" + (f", the largest of {len(pool)}" if len(pool) > 1 else "")
     else:
         pool = [p for p in parts if not p.background] or parts
-        why = "the largest of " + f"{n} parts" if n > 1 else "the only part"
+        why = f"the largest of {n} parts" if n > 1 else "the only part"
+        if len(pool) < n:
+            why += f" ({n - len(pool)} canvas background{'s' * (n - len(pool) > 1)} left out)"
     usable = [p for p in pool if p.polygon is not None]
     if not usable:
         raise ValueError(pool[0].error or f"{src}: no usable part")
