@@ -127,3 +127,15 @@ def test_rank_folds_batches_into_a_running_top(rng):
     finally:
         pipeline.REDUCE_ROWS = old
     assert _key(got) == _key(want)
+
+
+def test_three_finger_search_stops_early(rng):
+    """The top-k stop ignores gravity's zero-length region (it never stopped before)."""
+    a = np.linspace(0, 2 * np.pi, 41)[:-1]
+    r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
+    part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+    calls = []
+    got = fc.plan(part, fingers=3, top=2, progress=lambda d, t: calls.append((d, t)))
+    assert calls and calls[-1][0] < calls[-1][1]
+    every = fc.plan(part, fingers=3, top=None)
+    assert _key(got) == _key(every[:2])

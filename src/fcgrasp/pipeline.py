@@ -911,7 +911,10 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
             start += chunk
             if progress is not None:
                 progress(min(start, order.size), order.size)
-            mins_so_far = np.sort(np.concatenate([p[1].min(axis=1) for p in parts]))[::-1]
+            # the smallest region of each row among its real fingers (gravity's region has
+            # length zero and would keep the search from ever stopping)
+            mins_so_far = np.sort(np.concatenate([
+                np.where(c.feats[p[0]] >= 0, p[1], np.inf).min(axis=1) for p in parts]))[::-1]
             # stop when no later candidate can reach (or tie) the top-th smallest region
             if start >= order.size or (mins_so_far.size >= top and mins_so_far[top - 1] >
                                        c.score[order[start]] + RANK_TOL * polygon.size):
