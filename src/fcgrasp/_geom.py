@@ -20,6 +20,14 @@ def direction(angle: Any) -> FloatArray:
     return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
 
 
+def signed_area(ring: Any) -> float:
+    """Signed area of a closed ring (n, 2), positive when counter-clockwise (shoelace
+    about the ring's mean, so large offsets do not cancel it)."""
+    r = np.asarray(ring, dtype=float)
+    x, y = r[:, 0] - r[:, 0].mean(), r[:, 1] - r[:, 1].mean()
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
 def wrap(angle: Any) -> Any:
     """Angles wrapped to [-pi, pi)."""
     return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi

@@ -12,6 +12,7 @@ from shapely.geometry import Point
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ._drawing import Drawing, Shape, TolOf
+from ._geom import signed_area
 from .outline import fill_rings
 
 #: Ends of entities closer than this, relative to the drawing's extents, meet.
@@ -43,8 +44,7 @@ def _canonical(ring: np.ndarray) -> np.ndarray:
     start and run wherever its search happened to)."""
     if len(ring) > 1 and np.array_equal(ring[0], ring[-1]):
         ring = ring[:-1]
-    x, y = ring[:, 0] - ring[:, 0].mean(), ring[:, 1] - ring[:, 1].mean()
-    if np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y) < 0:
+    if signed_area(ring) < 0:
         ring = ring[::-1]
     return np.roll(ring, -int(np.lexsort((ring[:, 0], ring[:, 1]))[0]), axis=0)
 

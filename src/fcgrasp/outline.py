@@ -26,6 +26,7 @@ from shapely.geometry import LineString
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ._checks import FloatArray, check_scalar
+from ._geom import signed_area
 from .polygon import Polygon
 
 __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ring",
@@ -56,12 +57,7 @@ def winding_numbers(points: Any, ring: Any) -> np.ndarray:
 
 
 def _ring_ok(r: FloatArray) -> bool:
-    return len(np.unique(r, axis=0)) >= 3 and abs(_area(r)) > 0
-
-
-def _area(r: FloatArray) -> float:
-    x, y = r[:, 0] - r[:, 0].mean(), r[:, 1] - r[:, 1].mean()
-    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+    return len(np.unique(r, axis=0)) >= 3 and abs(signed_area(r)) > 0
 
 
 def fill_rings(rings: list[Any], rule: str = "evenodd") -> list[ShapelyPolygon]:

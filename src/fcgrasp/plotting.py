@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from ._geom import signed_area
 from .contacts import Contact
 from .grasp import Grasp
 
@@ -114,9 +115,7 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True, keep: Any = (),
     from matplotlib.path import Path as MplPath
 
     def oriented(r: Any, ccw: bool) -> Any:
-        x, y = r[:, 0], r[:, 1]
-        area = np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y)
-        return r if (area > 0) == ccw else r[::-1]
+        return r if (signed_area(r) > 0) == ccw else r[::-1]
 
     # outer ring counter-clockwise, holes clockwise: the non-zero fill rule cuts them out
     rings = [oriented(polygon.vertices, True), *(oriented(h, False) for h in polygon.holes)]

@@ -36,6 +36,7 @@ from shapely.geometry import LineString
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ._checks import FloatArray, _short, numeric_array
+from ._geom import signed_area
 from .tolerances import COLLINEAR_TOL, MAX_MAGNITUDE
 
 __all__ = ["Polygon", "Edge"]
@@ -84,11 +85,6 @@ def _check_ring(value: Any, name: str) -> FloatArray:
         raise ValueError(f"{name} needs at least 3 distinct vertices, got {distinct}")
     return arr
 
-
-def _signed_area(ring: FloatArray) -> float:
-    x, y = ring[:, 0], ring[:, 1]
-    xs, ys = x - x.mean(), y - y.mean()
-    return 0.5 * float(np.sum(xs * np.roll(ys, -1) - np.roll(xs, -1) * ys))
 
 
 def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, int, Any] | None:
@@ -160,7 +156,7 @@ class Polygon:
                              "array of shape " + str(holes.shape))
         hole_rings = [_check_ring(h, f"holes[{k}]") for k, h in enumerate(holes)]
         rings = [outer, *hole_rings]
-        areas = [_signed_area(r) for r in rings]
+        areas = [signed_area(r) for r in rings]
         scale = float(np.max(np.ptp(np.concatenate(rings), axis=0)))
         if scale < 1.0 / MAX_MAGNITUDE:
             raise ValueError(f"vertices span {scale:.3g}, below fcgrasp's documented range "
