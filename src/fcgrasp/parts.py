@@ -46,6 +46,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import check_scalar
 from ._drawing import Drawing, Shape
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .outline import CLEAN_TOL, clean_outline, simplify_outline
@@ -143,7 +144,6 @@ class Part:
     clean_tol: float | None = None
     simplify: float | None = None
     background: bool = False
-    area: float = 0.0
     error: str | None = None
     chosen: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
@@ -157,16 +157,10 @@ class Part:
                 "flatten": self.flatten, "cleaned_vertices": self.cleaned,
                 "clean_tolerance": self.clean_tol, "simplify": self.simplify}
 
-    def describe(self) -> str:
-        """One line: index, id, size and area (``fcgrasp parts``)."""
-        if self.polygon is None:
-            return f"part {self.index} ({self.id}): not usable: {self.error}"
-        lo = self.polygon.vertices.min(axis=0)
-        hi = self.polygon.vertices.max(axis=0)
-        w, h = hi - lo
-        return (f"part {self.index}" + (f" id {self.id!r}" if self.id else "")
-                + f": {self.polygon.n_edges} edges, {len(self.polygon.holes)} holes, "
-                  f"{w:.4g} x {h:.4g} {self.units}, area {self.polygon.area:.4g}")
+    @property
+    def area(self) -> float:
+        """Area of the polygon (0 for a part that is not usable)."""
+        return 0.0 if self.polygon is None else self.polygon.area
 
 
 # ----------------------------------------------------------------------------- JSON family
@@ -375,13 +369,7 @@ def _text(data: bytes, spec: str) -> str:
 
 
 def _positive(value: Any, name: str) -> float | None:
-    if value is None:
-        return None
-    if isinstance(value, bool) or not isinstance(value, (int, float, np.number)):
-        raise TypeError(f"{name} must be a number, got {value!r}")
-    if not (np.isfinite(value) and value > 0):
-        raise ValueError(f"{name} must be a finite number > 0, got {value!r}")
-    return float(value)
+    return None if value is None else check_scalar(value, name, positive=True)
 
 
 @dataclass(frozen=True)
@@ -407,12 +395,9 @@ def _options(units: Any, file_units: Any, flatten: Any, layer: Any, gap: Any,
         check_units(file_units, "file_units", FILE_UNITS)
     if layer is not None and not isinstance(layer, str):
         raise TypeError(f"layer must be a string, got {layer!r}")
-    if threshold is not None:
-        if isinstance(threshold, bool) or not isinstance(threshold, (int, float, np.number)):
-            raise TypeError(f"threshold must be a number, got {threshold!r}")
-        if not 0 < threshold < 1:
-            raise ValueError(f"threshold (--threshold) is a grey level in (0, 1), got "
-                             f"{threshold!r}")
+    if threshold is not None and not 0 < check_scalar(threshold, "threshold") < 1:
+        raise ValueError(f"threshold (--threshold) is a grey level in (0, 1), got "
+                         f"{threshold!r}")
     for name, v in (("y_down", y_down), ("clean", clean)):
         if not isinstance(v, (bool, np.bool_)):
             raise TypeError(f"{name} must be True or False, got {v!r}")
@@ -518,8 +503,7 @@ def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
                 file_units="px" if fmt == "image" else file_units, units_note=note,
                 scale=scale, flip_y=flip,
                 flatten=None if shape.flatten is None else shape.flatten * scale,
-                simplify=opt.simplify, background=shape.background,
-                area=float(shape.polygon.area) * scale * scale, notes=tuple(d.notes))
+                simplify=opt.simplify, background=shape.background, notes=tuple(d.notes))
     try:
         poly = Polygon(outer, holes)
         removed, tol = 0, None
@@ -593,7 +577,7 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
         if scale != 1.0:
             poly = Polygon(poly.vertices * scale, [h * scale for h in poly.holes])
         return [Part(poly, spec, "demo", units=u, file_units="mm",
-                     units_note="built-in parts are in mm", scale=scale, area=poly.area)]
+                     units_note="built-in parts are in mm", scale=scale)]
     data = _read_bytes(spec)
     try:
         fmt = sniff_format(spec, data[:512])
@@ -630,7 +614,7 @@ def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
                              f"part{'s' * (n != 1)} (0 to {n - 1}; see fcgrasp parts)")
         pool, why = [parts[part]], f"index {part}"
     elif isinstance(part, str):
-        pool = [p for p in parts if part == p.id or part in p.tags
+        pool = [p for p in parts if part in p.tags
                 or (p.layer is not None and part.lower() == p.layer.lower())]
         if not pool:
             ids = sorted({t for p in parts for t in p.tags})
