@@ -1,0 +1,604 @@
+r"""Regions that run along the boundary: two fingers with friction (issue 12).
+
+A *stretch* is a connected piece of one boundary ring, from a point on one edge to a
+point on another, covering the edges and vertices between them.  Two stretches
+``R1, R2`` are independent regions of contact (definition 7.1) when every grasp with
+one finger anywhere in ``R1`` and the other anywhere in ``R2`` is force closure, with
+the contact normal of the edge strictly inside an edge and, at a vertex strictly
+inside a stretch, **every** normal between the two edges' normals (a fingertip on a
+corner).  A stretch's end point takes the normal of the edge the stretch covers there.
+
+**The condition (theorem 6.3 with a margin).**  Write ``beta = atan(mu) - margin`` and
+``W(f)`` for the cone of directions within ``beta`` of the force direction ``f``
+(the inward normal).  Two contacts ``X`` (force ``f``) and ``Y`` (force ``g``) hold
+the part, squeezing, iff ``Y - X`` lies in ``W(f)`` and ``X - Y`` in ``W(g)``
+(expanding: the opposite signs).  ``W(f)`` is the intersection of two half-planes
+whose edges turn with ``f``; *for a fixed chord the set of force directions that
+contain it is an arc of width 2 beta*, convex in the normal's angle, so a fan of
+normals at a vertex holds iff its two extreme normals (the two edges') hold.  Hence
+the stretches hold iff every pair of *points* ``(X, Y)`` taken among the end points
+and interior vertices of ``R1`` and ``R2`` holds with every normal those points carry
+(end: one; interior vertex: both), because on every pair of edge pieces the chord
+``Y - X`` is affine in the two positions and the cones are convex: the pair of pieces
+holds iff its four corners do.
+
+**The optimum.**  The smallest region as long as possible (definition 7.1).  A
+*configuration* fixes which edges the two stretches cover (its interior vertices and
+end edges); for a configuration the condition is linear in the two start positions
+and the common length ``t`` of a square pair of regions (a longer region can be cut
+to the shorter's length, so the largest smallest region is reached by a square pair):
+
+* the end points against the other stretch's interior vertices bound each end to an
+  interval of its edge (a running max/min over the window of vertices);
+* the four corner pairs (end against end) give 16 half-planes in ``(s0, u0, t)``.
+
+The largest ``t`` of a configuration is found by bisection on ``t`` with an exact
+feasibility test of the remaining two-variable system (Fourier-Motzkin elimination of
+``s0``), to machine precision.  Configurations are enumerated exhaustively behind a
+bound: every interior vertex pair must hold with both fans (the boolean matrix
+``M``), so the interior windows are runs of the intersection of rows of ``M``; a
+configuration is never longer than the arc length it can reach
+(:func:`stretch_bound`); the vertex-aligned stretches of every window are feasible and
+give the lower bound that prunes the others.  The search is exact: every
+configuration that could beat the best found is solved.
+
+The tests compare the optimum with an independent fine raster of the two contact
+parameters (the largest square of force-closure samples, sharing no code with this
+module) and sample every returned pair of regions with the general test.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ._geom import cross2 as _cross
+from .polygon import Polygon
+from .regions import DEFAULT_MARGIN_DEG
+
+__all__ = ["StretchPair", "two_finger_stretches"]
+
+#: A coefficient of the linear system smaller than this (a cross product of unit
+#: vectors) is zero.
+_EPS = 1e-12
+
+
+@dataclass(frozen=True)
+class StretchPair:
+    """Two independent regions along the boundary (two fingers with friction).
+
+    ``regions[i]`` is the polyline ``(m_i, 2)`` of region ``i`` from one end to the
+    other through the vertices it covers; ``region_edges[i]`` the edges it covers in
+    order; ``lengths[i]`` its arc length; ``mode`` "squeeze" or "expand".
+    """
+
+    regions: tuple[FloatArray, FloatArray]
+    region_edges: tuple[tuple[int, ...], tuple[int, ...]]
+    lengths: tuple[float, float]
+    mode: str
+
+    @property
+    def min_length(self) -> float:
+        return min(self.lengths)
+
+
+@dataclass
+class _Ring:
+    """One ring's usable edges in ring order (the sequence wraps around)."""
+
+    edges: np.ndarray      # (m,) polygon edge ids
+    a: FloatArray          # (m, 2) start points (vertex k is a[k])
+    t: FloatArray          # (m, 2) unit tangents
+    f: FloatArray          # (m, 2) force directions (inward normals)
+    L: FloatArray          # (m,)
+    U: FloatArray          # (4m,) arc position of vertex k, unrolled: U[k + m] = U[k] + P
+
+    @property
+    def m(self) -> int:
+        return int(self.edges.size)
+
+
+def _rings(polygon: Polygon) -> list[_Ring]:
+    out = []
+    for r in np.unique(polygon.rings):
+        idx = np.flatnonzero((polygon.rings == r) & polygon.usable)
+        if idx.size < 3:
+            continue
+        L = polygon.lengths[idx]
+        per = float(L.sum())
+        base = np.concatenate([[0.0], np.cumsum(L)[:-1]])
+        U = np.concatenate([base + j * per for j in range(4)])
+        out.append(_Ring(idx, polygon.starts[idx], polygon.tangents[idx], -polygon.normals[idx],
+                         L, U))
+    return out
+
+
+def _rot(f: FloatArray, ang: float) -> FloatArray:
+    c, s = np.cos(ang), np.sin(ang)
+    return np.stack([c * f[..., 0] - s * f[..., 1], s * f[..., 0] + c * f[..., 1]], axis=-1)
+
+
+def _gens_x(f: FloatArray, beta: float) -> list[FloatArray]:
+    """Generators g with ``cross(g, d) >= 0`` iff ``d`` is in ``W(f)`` (chord from X)."""
+    return [_rot(f, -beta), -_rot(f, beta)]
+
+
+def _gens_y(f: FloatArray, beta: float) -> list[FloatArray]:
+    """Generators g with ``cross(g, d) >= 0`` iff ``-d`` is in ``W(f)`` (chord to Y)."""
+    return [-_rot(f, -beta), _rot(f, beta)]
+
+
+def _fan(ring: _Ring) -> tuple[FloatArray, FloatArray]:
+    """The two force directions at every vertex (edge before, edge after)."""
+    return np.roll(ring.f, 1, axis=0), ring.f
+
+
+def _vertex_matrix(ra: _Ring, rb: _Ring, sigma: float, beta: float) -> np.ndarray:
+    """``M[v, w]``: vertices ``v`` (ring a) and ``w`` (ring b) hold with both fans."""
+    d = sigma * (rb.a[None, :, :] - ra.a[:, None, :])
+    ok = np.hypot(d[..., 0], d[..., 1]) > 0
+    for f in _fan(ra):
+        for g in _gens_x(f, beta):
+            ok &= _cross(g[:, None, :], d) >= 0
+    for f in _fan(rb):
+        for g in _gens_y(f, beta):
+            ok &= _cross(g[None, :, :], d) >= 0
+    return ok
+
+
+def _edge_intervals(ra: _Ring, rb: _Ring, sigma: float, beta: float
+                    ) -> tuple[FloatArray, FloatArray]:
+    """``[lo, hi][e, w]``: positions on edge ``e`` (ring a, arc length from its start)
+    where a contact holds against vertex ``w`` of ring b with both its fan normals
+    (empty where ``lo > hi``)."""
+    d0 = sigma * (rb.a[None, :, :] - ra.a[:, None, :])          # chord at p = 0
+    d1 = np.broadcast_to(-sigma * ra.t[:, None, :], d0.shape)   # its derivative in p
+    lo = np.zeros(d0.shape[:2])
+    hi = np.broadcast_to(ra.L[:, None], lo.shape).copy()
+    rows = [g[:, None, :] for g in _gens_x(ra.f, beta)]
+    rows += [g[None, :, :] for f in _fan(rb) for g in _gens_y(f, beta)]
+    for g in rows:
+        c0, c1 = _cross(g, d0), _cross(g, d1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            r = -c0 / c1
+        lo = np.where(c1 > _EPS, np.maximum(lo, r), lo)
+        hi = np.where(c1 < -_EPS, np.minimum(hi, r), hi)
+        hi = np.where((np.abs(c1) <= _EPS) & (c0 < 0), -np.inf, hi)
+    return lo, hi
+
+
+def _runs(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Maximal cyclic runs of True in every row: (row, start, length)."""
+    m = rows.shape[1]
+    full = rows.all(axis=1)
+    st = rows & ~np.roll(rows, 1, axis=1)
+    en = rows & ~np.roll(rows, -1, axis=1)
+    sr, sc = np.nonzero(st)
+    er, ec = np.nonzero(en)
+    # the end of a run is the first end at or after its start, cyclically, in its row
+    key_e = er * m + ec
+    pos = np.searchsorted(key_e, sr * m + sc)
+    same = (pos < key_e.size) & (er[np.minimum(pos, key_e.size - 1)] == sr)
+    first = np.searchsorted(er, sr)                      # first end of the row
+    pick = np.where(same, pos, first)
+    length = (ec[pick] - sc) % m + 1
+    fr = np.flatnonzero(full)
+    return (np.concatenate([sr, fr]), np.concatenate([sc, np.zeros(fr.size, int)]),
+            np.concatenate([length, np.full(fr.size, m)]))
+
+
+def _cyc_reduce(values: FloatArray, row: np.ndarray, start: np.ndarray, count: np.ndarray,
+                op: Any, empty: float) -> FloatArray:
+    """``op`` over ``values[row, start .. start + count - 1]`` (columns cyclic)."""
+    out = np.full(row.size, empty)
+    has = count > 0
+    if not has.any():
+        return out
+    r, s, c = row[has], start[has], count[has]
+    m = values.shape[1]
+    offs = np.concatenate([[0], np.cumsum(c)[:-1]])
+    k = np.arange(int(c.sum())) - np.repeat(offs, c)
+    flat = values[np.repeat(r, c), (np.repeat(s, c) + k) % m]
+    out[has] = op.reduceat(flat, offs)
+    return out
+
+
+@dataclass
+class _Configs:
+    """Configurations of one ring pair and mode: stretch 1 covers edges iA .. iA + kA of
+    ring a (kA interior vertices), stretch 2 edges iC .. iC + kC of ring b."""
+
+    iA: np.ndarray
+    kA: np.ndarray
+    iC: np.ndarray
+    kC: np.ndarray
+
+    @staticmethod
+    def cat(parts: list[_Configs]) -> _Configs:
+        return _Configs(*(np.concatenate([getattr(p, f) for p in parts])
+                          for f in ("iA", "kA", "iC", "kC")))
+
+    def take(self, idx: Any) -> _Configs:
+        return _Configs(self.iA[idx], self.kA[idx], self.iC[idx], self.kC[idx])
+
+
+def _ext(ring: _Ring, i: np.ndarray, k: np.ndarray) -> FloatArray:
+    """Arc length of the edges i .. i + k (the most a stretch covering them reaches)."""
+    i = np.asarray(i) % ring.m + ring.m
+    return ring.U[i + k + 1] - ring.U[i]
+
+
+def _inner(ring: _Ring, i: np.ndarray, k: np.ndarray) -> FloatArray:
+    """Arc length between the first and last interior vertex (the least it covers)."""
+    i = np.asarray(i) % ring.m + ring.m
+    return np.where(k > 0, ring.U[i + np.maximum(k, 1)] - ring.U[i + 1], 0.0)
+
+
+def stretch_bound(ra: _Ring, rb: _Ring, c: _Configs) -> FloatArray:
+    """Upper bound of a configuration's smallest region: each stretch reaches at most the
+    arc length of the edges it covers."""
+    return np.minimum(_ext(ra, c.iA, c.kA), _ext(rb, c.iC, c.kC))
+
+
+def _disjoint(ra: _Ring, c: _Configs, same: bool) -> np.ndarray:
+    if not same:
+        return np.ones(c.iA.size, bool)
+    m = ra.m
+    # edges of stretch 2 relative to the first edge of stretch 1
+    rel = (c.iC - c.iA) % m
+    return (rel > c.kA) & (rel + c.kC < m)
+
+
+def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, lb: float,
+                  collect: bool) -> tuple[_Configs, float]:
+    """Configurations with interior vertices on both stretches: stretch 1's interior
+    window i .. i+k-1 leaves for stretch 2 the runs of the AND of those rows of ``M``.
+
+    Returns the configurations whose bound reaches the lower bound (if ``collect``)
+    and the lower bound raised by the vertex-aligned stretches of every run (feasible:
+    all their cells have their four corners in ``M``)."""
+    parts: list[_Configs] = []
+    best = lb
+    C = M.copy()
+    k = 1
+    while k < ra.m - 1:
+        live = np.flatnonzero(C.any(axis=1))
+        if live.size == 0:
+            break
+        ks = np.full(live.size, k)
+        ext_s = _ext(ra, live - 1, ks)
+        live = live[ext_s >= best]
+        if live.size:
+            sub, p0, r = _runs(C[live])
+            row = live[sub]
+            kr = np.full(row.size, k)
+            inner_s, ext_s = _inner(ra, row - 1, kr), _ext(ra, row - 1, kr)
+            rr = np.minimum(r, rb.m - 2)
+            vert_u = np.where(rr > 0, _inner(rb, p0 - 1, rr), 0.0)
+            if row.size:
+                best = max(best, float(np.max(np.minimum(inner_s, vert_u))))
+            keep = (ext_s >= best) & (rr >= 1)
+            if collect and keep.any():
+                parts.append(_sub_windows(rb, row[keep], p0[keep], rr[keep], k,
+                                          inner_s[keep], ext_s[keep], best))
+        C &= np.roll(M, -k, axis=0)
+        k += 1
+    if not parts:
+        return _empty(), best
+    cfg = _Configs.cat(parts)
+    keep = _disjoint(ra, cfg, same)
+    if same:                      # each unordered pair once
+        keep &= cfg.iA % ra.m < cfg.iC % rb.m
+    return cfg.take(keep), best
+
+
+def _empty() -> _Configs:
+    return _Configs(*(np.zeros(0, int) for _ in range(4)))
+
+
+def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: int,
+                 inner_s: FloatArray, ext_s: FloatArray, lb: float) -> _Configs:
+    """Every interior window p..q of stretch 2 inside the runs whose spans are
+    compatible with a square pair of side at least ``lb``."""
+    # expand runs to their start vertices p (absolute, unrolled in [m, 2m))
+    off = np.concatenate([[0], np.cumsum(r)[:-1]])
+    j = np.arange(int(r.sum())) - np.repeat(off, r)
+    p = (np.repeat(p0, r) + j) % rb.m + rb.m
+    run_end = np.repeat(p0 + r - 1, r) % rb.m + rb.m
+    run_end = np.where(run_end < p, run_end + rb.m, run_end)
+    run_end = np.minimum(run_end, p + rb.m - 3)
+    e_s, i_s = np.repeat(ext_s, r), np.repeat(inner_s, r)
+    need = np.maximum(lb, i_s)
+    U = rb.U
+    q_hi = np.searchsorted(U, U[p] + e_s, side="right") - 1
+    q_lo = np.searchsorted(U, U[p - 1] + need, side="left") - 1
+    q_lo = np.maximum(q_lo, p)
+    q_hi = np.minimum(q_hi, run_end)
+    n = np.maximum(q_hi - q_lo + 1, 0)
+    rows = np.repeat(np.repeat(row, r), n)
+    offs = np.concatenate([[0], np.cumsum(n)[:-1]])
+    q = np.repeat(q_lo, n) + np.arange(int(n.sum())) - np.repeat(offs, n)
+    pp = np.repeat(p, n)
+    return _Configs(rows - 1, np.full(rows.size, k), pp - 1, q - pp + 1)
+
+
+def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: bool,
+                    lb: float, collect: bool) -> tuple[_Configs, float]:
+    """Stretch 1 on one edge A, stretch 2 with interior vertices p .. p+k-1: those
+    vertices confine stretch 1 to the intersection of their intervals on A (the
+    vertex-aligned stretch 2 with that whole intersection is feasible: lower bound)."""
+    A = np.flatnonzero(ra.L >= lb)
+    parts: list[_Configs] = []
+    best = lb
+    if A.size == 0:
+        return _empty(), best
+    mb = rb.m
+    loA, hiA = lo[A], hi[A]
+    cl, ch = loA.copy(), hiA.copy()
+    pidx = np.arange(mb)
+    k = 1
+    while k < mb - 1:
+        room = ch - cl
+        ok = room >= best
+        if not ok.any():
+            break
+        ks = np.full(mb, k)
+        inner_u = _inner(rb, pidx - 1, ks)[None, :]
+        ext_u = _ext(rb, pidx - 1, ks)[None, :]
+        best = max(best, float(np.max(np.where(ok, np.minimum(room, inner_u), -np.inf))))
+        if collect:
+            a_i, p_i = np.nonzero(ok & (room >= best) & (ext_u >= best) & (room >= inner_u))
+            if a_i.size:
+                parts.append(_Configs(A[a_i], np.zeros(a_i.size, int), p_i - 1,
+                                      np.full(a_i.size, k)))
+        nxt = (pidx + k) % mb
+        cl = np.maximum(cl, loA[:, nxt])
+        ch = np.minimum(ch, hiA[:, nxt])
+        k += 1
+    if not parts:
+        return _empty(), best
+    cfg = _Configs.cat(parts)
+    return cfg.take(_disjoint(ra, cfg, same)), best
+
+
+def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
+    A = np.flatnonzero(ra.L >= lb)
+    C = np.flatnonzero(rb.L >= lb)
+    a, c = np.meshgrid(A, C, indexing="ij")
+    a, c = a.ravel(), c.ravel()
+    if same:
+        keep = a < c
+        a, c = a[keep], c[keep]
+    z = np.zeros(a.size, int)
+    return _Configs(a, z, c, z)
+
+
+# ----------------------------------------------------------------------------- one LP
+
+
+def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
+            Iab: tuple[FloatArray, FloatArray], Iba: tuple[FloatArray, FloatArray]
+            ) -> FloatArray:
+    mA, mB = ra.m, rb.m
+    A, B = c.iA % mA, (c.iA + c.kA) % mA
+    C, D = c.iC % mB, (c.iC + c.kC) % mB
+    # ends against the other stretch's interior vertices
+    lo0 = _cyc_reduce(Iab[0], A, (c.iC + 1) % mB, c.kC, np.maximum, 0.0)
+    hi0 = np.minimum(_cyc_reduce(Iab[1], A, (c.iC + 1) % mB, c.kC, np.minimum, np.inf),
+                     ra.L[A])
+    lo1 = _cyc_reduce(Iab[0], B, (c.iC + 1) % mB, c.kC, np.maximum, 0.0)
+    hi1 = np.minimum(_cyc_reduce(Iab[1], B, (c.iC + 1) % mB, c.kC, np.minimum, np.inf),
+                     ra.L[B])
+    ulo0 = _cyc_reduce(Iba[0], C, (c.iA + 1) % mA, c.kA, np.maximum, 0.0)
+    uhi0 = np.minimum(_cyc_reduce(Iba[1], C, (c.iA + 1) % mA, c.kA, np.minimum, np.inf),
+                      rb.L[C])
+    ulo1 = _cyc_reduce(Iba[0], D, (c.iA + 1) % mA, c.kA, np.maximum, 0.0)
+    uhi1 = np.minimum(_cyc_reduce(Iba[1], D, (c.iA + 1) % mA, c.kA, np.minimum, np.inf),
+                      rb.L[D])
+    off_s = np.where(c.kA > 0, ra.L[A] + _inner(ra, c.iA, c.kA), 0.0)
+    off_u = np.where(c.kC > 0, rb.L[C] + _inner(rb, c.iC, c.kC), 0.0)
+    # points, affine in z = (s0, u0, t): x0 + J z
+    n = A.size
+    zero = np.zeros((n, 2))
+    pts = {
+        "P0": (ra.a[A], ra.t[A], zero, zero, ra.f[A]),
+        "P1": (ra.a[B] - off_s[:, None] * ra.t[B], ra.t[B], zero, ra.t[B], ra.f[B]),
+        "Q0": (rb.a[C], zero, rb.t[C], zero, rb.f[C]),
+        "Q1": (rb.a[D] - off_u[:, None] * rb.t[D], zero, rb.t[D], rb.t[D], rb.f[D]),
+    }
+    rows = []
+    for xn in ("P0", "P1"):
+        for yn in ("Q0", "Q1"):
+            X, Y = pts[xn], pts[yn]
+            d = [sigma * (Y[j] - X[j]) for j in range(4)]
+            for g in _gens_x(X[4], beta) + _gens_y(Y[4], beta):
+                rows.append(np.stack([_cross(g, dj) for dj in d], axis=1))
+    one, zero1 = np.ones(n), np.zeros(n)
+    # boxes: lo0 <= s0 <= hi0, lo1 <= s0 + t - off_s <= hi1, and the same for u0
+    box = [(-lo0, one, zero1, zero1), (hi0, -one, zero1, zero1),
+           (-(lo1 + off_s), one, zero1, one), (hi1 + off_s, -one, zero1, -one),
+           (-ulo0, zero1, one, zero1), (uhi0, zero1, -one, zero1),
+           (-(ulo1 + off_u), zero1, one, one), (uhi1 + off_u, zero1, -one, -one),
+           (zero1, zero1, zero1, one)]
+    rows += [np.stack(r, axis=1) for r in box]
+    return np.stack(rows, axis=1)
+
+
+def _eliminate(rows: FloatArray, var: int) -> FloatArray:
+    """Fourier-Motzkin: rows ``c0 + sum_j c_j x_j >= 0`` (B, R, K) without ``x_var``.
+
+    Every row with a positive coefficient of ``x_var`` is added to every row with a
+    negative one (each divided by its coefficient's magnitude); rows without it stay.
+    The result is trimmed to the most valid rows of any problem of the batch (unused
+    rows read ``1 >= 0``)."""
+    B, R, K = rows.shape
+    a = rows[:, :, var]
+    pos, neg = a > _EPS, a < -_EPS
+    with np.errstate(divide="ignore", invalid="ignore"):
+        rp = np.where(pos[..., None], rows / np.abs(a)[..., None], 0.0)
+        rn = np.where(neg[..., None], rows / np.abs(a)[..., None], 0.0)
+    pairs = (rp[:, :, None, :] + rn[:, None, :, :]).reshape(B, R * R, K)
+    valid = (pos[:, :, None] & neg[:, None, :]).reshape(B, R * R)
+    zero = ~(pos | neg)
+    out = np.concatenate([pairs, np.where(zero[..., None], rows, 0.0)], axis=1)
+    valid = np.concatenate([valid, zero], axis=1)
+    keep = np.delete(out, var, axis=2)
+    trivial = np.zeros(K - 1)
+    trivial[0] = 1.0
+    keep = np.where(valid[..., None], keep, trivial)
+    width = max(int(valid.sum(axis=1).max(initial=0)), 1)
+    order = np.argsort(~valid, axis=1, kind="stable")[:, :width]
+    return np.take_along_axis(keep, order[..., None], axis=1)
+
+
+def _bounds(rows: FloatArray, x: FloatArray | None = None
+            ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """For rows ``c0 + c1 y (+ c2 x) >= 0`` in one unknown ``y`` (x given): the interval
+    of ``y`` and the least constant of the rows without ``y``."""
+    c0 = rows[:, :, 0] if x is None else rows[:, :, 0] + rows[:, :, 2] * x[:, None]
+    c1 = rows[:, :, 1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = -c0 / c1
+    lo = np.max(np.where(c1 > _EPS, q, -np.inf), axis=1)
+    hi = np.min(np.where(c1 < -_EPS, q, np.inf), axis=1)
+    flat = np.min(np.where(np.abs(c1) <= _EPS, c0, np.inf), axis=1)
+    return lo, hi, flat
+
+
+def _solve(rows: FloatArray, ub: FloatArray, scale: float
+           ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Largest common length t of each configuration (-1 if none) and its placement.
+
+    Exact: ``s0`` then ``u0`` are eliminated (Fourier-Motzkin), which leaves bounds on
+    ``t`` alone; ``u0`` and ``s0`` are then read back as the middle of their intervals.
+    ``rows``: (B, R, 4) rows ``c0 + cs s0 + cu u0 + ct t >= 0``; ``ub``: (B,) bound."""
+    B = ub.size
+    cap = np.stack([ub, np.zeros(B), np.zeros(B), -np.ones(B)], axis=1)[:, None, :]
+    rows = np.concatenate([rows, cap], axis=1)
+    r_ut = _eliminate(rows, 1)                       # (c0, cu, ct)
+    r_t = _eliminate(r_ut, 1)                        # (c0, ct)
+    tol = 1e-12 * scale
+    t_lo, t_hi, flat = _bounds(r_t)
+    ok = (t_lo <= t_hi + tol) & (flat >= -tol) & (t_hi >= 0) & np.isfinite(t_hi)
+    t = np.where(ok, np.maximum(t_hi, 0.0), -1.0)
+    tt = np.maximum(t, 0.0)
+    u_lo, u_hi, _ = _bounds(np.stack([r_ut[:, :, 0] + r_ut[:, :, 2] * tt[:, None],
+                                      r_ut[:, :, 1]], axis=2))
+    u0 = np.where(ok, 0.5 * (u_lo + u_hi), 0.0)
+    base = rows[:, :, 0] + rows[:, :, 2] * u0[:, None] + rows[:, :, 3] * tt[:, None]
+    s_lo, s_hi, _ = _bounds(np.stack([base, rows[:, :, 1]], axis=2))
+    s0 = np.where(ok, 0.5 * (s_lo + s_hi), 0.0)
+    return t, s0, u0
+
+
+# ----------------------------------------------------------------------------- search
+
+
+def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatArray, tuple]:
+    """Points of the stretch starting at s0 on edge i, length t, k interior vertices."""
+    m = ring.m
+    first = ring.a[i % m] + s0 * ring.t[i % m]
+    verts = [ring.a[(i + j) % m] for j in range(1, k + 1)]
+    end_edge = (i + k) % m
+    if k == 0:
+        last = first + t * ring.t[i % m]
+    else:
+        off = ring.L[i % m] - s0 + float(_inner(ring, np.array([i]), np.array([k]))[0])
+        last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
+    pts = np.array([first, *verts, last])
+    edges = tuple(int(ring.edges[(i + j) % m]) for j in range(k + 1))
+    return pts, edges
+
+
+def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
+                         top: Any = 5) -> list[StretchPair]:
+    """Optimal independent regions along the boundary for two fingers with friction.
+
+    Regions are stretches of the rings (see the module docstring); the largest
+    smallest region over every pair of stretches, squeezing and expanding, exact up to
+    the bisection's relative precision (about 1e-15 of the part's size).
+
+    Parameters
+    ----------
+    polygon : Polygon
+    mu : float
+        Friction coefficient of both fingers.
+    margin : float
+        Safety margin in degrees inside the friction cones.
+    top : int
+        How many pairs of regions to return, longest smallest region first.
+
+    Returns
+    -------
+    list of StretchPair
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> a = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    >>> disc = Polygon(np.c_[50 * np.cos(a), 50 * np.sin(a)])
+    >>> best = two_finger_stretches(disc, mu=0.3, margin=0.5, top=1)[0]
+    >>> round(best.min_length, 1), len(best.region_edges[0]) > 20
+    (27.7, True)
+    """
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    mu_v = check_mu_scalar(mu, "mu")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    top_v = check_int(top, "top", minimum=1)
+    beta = float(np.arctan(mu_v) - np.radians(margin_v))
+    if beta <= 0:
+        return []
+    rings = _rings(polygon)
+    found: list[tuple[float, float, _Ring, _Ring, tuple[int, int, int, int], float, float,
+                      str]] = []
+    lb = 0.0
+    jobs = []
+    for x, ra in enumerate(rings):
+        for y, rb in enumerate(rings):
+            for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand")):
+                jobs.append((x, y, ra, rb, sigma, mode))
+    prepared = []
+    for collect in (False, True):
+        for x, y, ra, rb, sigma, mode in jobs:
+            Iab = _edge_intervals(ra, rb, sigma, beta)
+            both = _empty()
+            if x <= y:
+                M = _vertex_matrix(ra, rb, sigma, beta)
+                both, lb = _windows_both(M, ra, rb, x == y, lb, collect)
+            single, lb = _windows_single(*Iab, ra, rb, x == y, lb, collect)
+            if collect:
+                pairs = _pairs_single(ra, rb, x == y, lb) if x <= y else _empty()
+                prepared.append((ra, rb, sigma, mode, Iab, _Configs.cat([both, single, pairs])))
+    kth = 0.0
+    for ra, rb, sigma, mode, Iab, cfg in prepared:
+        ub = stretch_bound(ra, rb, cfg)
+        keep = ub >= max(lb, kth) * (1 - 1e-12)
+        cfg, ub = cfg.take(keep), ub[keep]
+        if cfg.iA.size == 0:
+            continue
+        order = np.argsort(-ub, kind="stable")
+        Iba = _edge_intervals(rb, ra, sigma, beta)
+        for s in range(0, order.size, 256):
+            chunk = order[s:s + 256]
+            if ub[chunk[0]] < kth * (1 - 1e-12):
+                break
+            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, Iab, Iba)
+            t, s0, u0 = _solve(rows, ub[chunk], polygon.size)
+            for j in np.flatnonzero(t > 0):
+                c = chunk[j]
+                found.append((float(t[j]), float(ub[c]), ra, rb,
+                              (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]), int(cfg.kC[c])),
+                              float(s0[j]), float(u0[j]), mode))
+            if len(found) >= top_v:
+                kth = sorted((f[0] for f in found), reverse=True)[top_v - 1]
+    found.sort(key=lambda f: -f[0])
+    out = []
+    for t, _, ra, rb, (iA, kA, iC, kC), s0, u0, mode in found[:top_v]:
+        p1, e1 = _polyline(ra, iA, kA, s0, t)
+        p2, e2 = _polyline(rb, iC, kC, u0, t)
+        out.append(StretchPair((p1, p2), (e1, e2), (t, t), mode))
+    return out
