@@ -468,6 +468,31 @@ def _bounds(rows: FloatArray, x: FloatArray | None = None
     return lo, hi, flat
 
 
+def _t_bounds(r: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """Bounds of t left by rows ``c0 + cu u0 + ct t >= 0`` once u0 is eliminated: every
+    lower bound of u0 (``u0 >= al + ga t``) against every upper bound, and the rows
+    without u0; with the least constant of the rows left without t."""
+    c0, cu, ct = r[:, :, 0], r[:, :, 1], r[:, :, 2]
+    pos, neg = cu > _EPS, cu < -_EPS
+    with np.errstate(divide="ignore", invalid="ignore"):
+        al = np.where(pos | neg, -c0 / cu, 0.0)
+        ga = np.where(pos | neg, -ct / cu, 0.0)
+    D = ga[:, :, None] - ga[:, None, :]                # (ga_p - ga_n) t <= al_n - al_p
+    E = al[:, None, :] - al[:, :, None]
+    valid = pos[:, :, None] & neg[:, None, :]
+    zero = ~(pos | neg)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        q = E / D
+        qz = -c0 / ct
+    hi = np.min(np.where(valid & (D > _EPS), q, np.inf), axis=(1, 2))
+    lo = np.max(np.where(valid & (D < -_EPS), q, -np.inf), axis=(1, 2))
+    hi = np.minimum(hi, np.min(np.where(zero & (ct < -_EPS), qz, np.inf), axis=1))
+    lo = np.maximum(lo, np.max(np.where(zero & (ct > _EPS), qz, -np.inf), axis=1))
+    flat = np.minimum(np.min(np.where(valid & (np.abs(D) <= _EPS), E, np.inf), axis=(1, 2)),
+                      np.min(np.where(zero & (np.abs(ct) <= _EPS), c0, np.inf), axis=1))
+    return lo, hi, flat
+
+
 def _solve(rows: FloatArray, ub: FloatArray, scale: float
            ) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Largest common length t of each configuration (-1 if none) and its placement.
@@ -479,9 +504,8 @@ def _solve(rows: FloatArray, ub: FloatArray, scale: float
     cap = np.stack([ub, np.zeros(B), np.zeros(B), -np.ones(B)], axis=1)[:, None, :]
     rows = np.concatenate([rows, cap], axis=1)
     r_ut = _eliminate(rows, 1)                       # (c0, cu, ct)
-    r_t = _eliminate(r_ut, 1)                        # (c0, ct)
     tol = 1e-12 * scale
-    t_lo, t_hi, flat = _bounds(r_t)
+    t_lo, t_hi, flat = _t_bounds(r_ut)
     ok = (t_lo <= t_hi + tol) & (flat >= -tol) & (t_hi >= 0) & np.isfinite(t_hi)
     t = np.where(ok, np.maximum(t_hi, 0.0), -1.0)
     tt = np.maximum(t, 0.0)
