@@ -271,7 +271,9 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, lb: float,
         ks = np.full(live.size, k)
         ext_s = _ext(ra, live - 1, ks)
         live = live[ext_s >= best]
-        if live.size:
+        # the lower bound only has to be feasible, not the largest: without collecting,
+        # runs are read at about eight window lengths per doubling
+        if live.size and (collect or k <= 8 or k % (k // 8) == 0):
             sub, p0, r = _runs(C[live])
             row = live[sub]
             kr = np.full(row.size, k)
