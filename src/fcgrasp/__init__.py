@@ -92,6 +92,7 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
         virtual_work,
         wrench_from_force,
     )
+    from .stretches import StretchPair, two_finger_stretches
 
 #: Where each public name lives; loaded on first use (PEP 562), so that ``import fcgrasp``
 #: stays light and the command line starts fast.
@@ -142,6 +143,8 @@ _LAZY = {
     "Part": "parts",
     "GraspPlan": "planning",
     "independent_regions": "planning",
+    "two_finger_stretches": "stretches",
+    "StretchPair": "stretches",
     "plan": "planning",
     "clean_outline": "outline",
     "simplify_outline": "outline",
@@ -213,6 +216,8 @@ __all__ = [
     "Part",
     "GraspPlan",
     "independent_regions",
+    "two_finger_stretches",
+    "StretchPair",
     "plan",
     "clean_outline",
     "simplify_outline",

@@ -388,18 +388,17 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     A, B = c.iA % mA, (c.iA + c.kA) % mA
     C, D = c.iC % mB, (c.iC + c.kC) % mB
     # ends against the other stretch's interior vertices
-    lo0 = _cyc_reduce(Iab[0], A, (c.iC + 1) % mB, c.kC, np.maximum, 0.0)
-    hi0 = np.minimum(_cyc_reduce(Iab[1], A, (c.iC + 1) % mB, c.kC, np.minimum, np.inf),
-                     ra.L[A])
-    lo1 = _cyc_reduce(Iab[0], B, (c.iC + 1) % mB, c.kC, np.maximum, 0.0)
-    hi1 = np.minimum(_cyc_reduce(Iab[1], B, (c.iC + 1) % mB, c.kC, np.minimum, np.inf),
-                     ra.L[B])
-    ulo0 = _cyc_reduce(Iba[0], C, (c.iA + 1) % mA, c.kA, np.maximum, 0.0)
-    uhi0 = np.minimum(_cyc_reduce(Iba[1], C, (c.iA + 1) % mA, c.kA, np.minimum, np.inf),
-                      rb.L[C])
-    ulo1 = _cyc_reduce(Iba[0], D, (c.iA + 1) % mA, c.kA, np.maximum, 0.0)
-    uhi1 = np.minimum(_cyc_reduce(Iba[1], D, (c.iA + 1) % mA, c.kA, np.minimum, np.inf),
-                      rb.L[D])
+
+    def box(I: tuple[FloatArray, FloatArray], edge: np.ndarray, ring: _Ring,
+            first: np.ndarray, count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
+        return (_cyc_reduce(I[0], edge, (first + 1) % m, count, np.maximum, 0.0),
+                np.minimum(_cyc_reduce(I[1], edge, (first + 1) % m, count, np.minimum,
+                                       np.inf), ring.L[edge]))
+
+    lo0, hi0 = box(Iab, A, ra, c.iC, c.kC, mB)
+    lo1, hi1 = box(Iab, B, ra, c.iC, c.kC, mB)
+    ulo0, uhi0 = box(Iba, C, rb, c.iA, c.kA, mA)
+    ulo1, uhi1 = box(Iba, D, rb, c.iA, c.kA, mA)
     off_s = np.where(c.kA > 0, ra.L[A] + _inner(ra, c.iA, c.kA), 0.0)
     off_u = np.where(c.kC > 0, rb.L[C] + _inner(rb, c.iC, c.kC), 0.0)
     # points, affine in z = (s0, u0, t): x0 + J z
