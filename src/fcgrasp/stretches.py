@@ -389,10 +389,10 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     C, D = c.iC % mB, (c.iC + c.kC) % mB
     # ends against the other stretch's interior vertices
 
-    def box(I: tuple[FloatArray, FloatArray], edge: np.ndarray, ring: _Ring,
+    def box(iv: tuple[FloatArray, FloatArray], edge: np.ndarray, ring: _Ring,
             first: np.ndarray, count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
-        return (_cyc_reduce(I[0], edge, (first + 1) % m, count, np.maximum, 0.0),
-                np.minimum(_cyc_reduce(I[1], edge, (first + 1) % m, count, np.minimum,
+        return (_cyc_reduce(iv[0], edge, (first + 1) % m, count, np.maximum, 0.0),
+                np.minimum(_cyc_reduce(iv[1], edge, (first + 1) % m, count, np.minimum,
                                        np.inf), ring.L[edge]))
 
     lo0, hi0 = box(Iab, A, ra, c.iC, c.kC, mB)
