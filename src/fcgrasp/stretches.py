@@ -369,8 +369,8 @@ def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: 
 def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
     A = np.flatnonzero(ra.L >= lb)
     C = np.flatnonzero(rb.L >= lb)
-    a, c = np.meshgrid(A, C, indexing="ij")
-    a, c = a.ravel(), c.ravel()
+    ga, gc = np.meshgrid(A, C, indexing="ij")
+    a, c = ga.ravel(), gc.ravel()
     if same:
         keep = a < c
         a, c = a[keep], c[keep]
@@ -419,12 +419,12 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
                 rows.append(np.stack([_cross(g, dj) for dj in d], axis=1))
     one, zero1 = np.ones(n), np.zeros(n)
     # boxes: lo0 <= s0 <= hi0, lo1 <= s0 + t - off_s <= hi1, and the same for u0
-    box = [(-lo0, one, zero1, zero1), (hi0, -one, zero1, zero1),
+    limits = [(-lo0, one, zero1, zero1), (hi0, -one, zero1, zero1),
            (-(lo1 + off_s), one, zero1, one), (hi1 + off_s, -one, zero1, -one),
            (-ulo0, zero1, one, zero1), (uhi0, zero1, -one, zero1),
            (-(ulo1 + off_u), zero1, one, one), (uhi1 + off_u, zero1, -one, -one),
            (zero1, zero1, zero1, one)]
-    rows += [np.stack(r, axis=1) for r in box]
+    rows += [np.stack(r, axis=1) for r in limits]
     return np.stack(rows, axis=1)
 
 
@@ -623,8 +623,8 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
                 kth = sorted((f[0] for f in found), reverse=True)[top_v - 1]
     found.sort(key=lambda f: -f[0])
     out = []
-    for t, _, ra, rb, (iA, kA, iC, kC), s0, u0, mode in found[:top_v]:
-        p1, e1 = _polyline(ra, iA, kA, s0, t)
-        p2, e2 = _polyline(rb, iC, kC, u0, t)
-        out.append(StretchPair((p1, p2), (e1, e2), (t, t), mode))
+    for length, _, ra, rb, (iA, kA, iC, kC), start1, start2, mode in found[:top_v]:
+        p1, e1 = _polyline(ra, iA, kA, start1, length)
+        p2, e2 = _polyline(rb, iC, kC, start2, length)
+        out.append(StretchPair((p1, p2), (e1, e2), (length, length), mode))
     return out
