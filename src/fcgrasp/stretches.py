@@ -38,7 +38,7 @@ feasibility test of the remaining two-variable system (Fourier-Motzkin eliminati
 bound: every interior vertex pair must hold with both fans (the boolean matrix
 ``M``), so the interior windows are runs of the intersection of rows of ``M``; a
 configuration is never longer than the arc length it can reach
-(:func:`stretch_bound`); the vertex-aligned stretches of every window are feasible and
+(``_stretch_bound``); the vertex-aligned stretches of every window are feasible and
 give the lower bound that prunes the others.  The search is exact: every
 configuration that could beat the best found is solved.
 
@@ -56,6 +56,7 @@ import numpy as np
 
 from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ._geom import cross2 as _cross
+from .contacts import rotate
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
 
@@ -116,19 +117,14 @@ def _rings(polygon: Polygon) -> list[_Ring]:
     return out
 
 
-def _rot(f: FloatArray, ang: float) -> FloatArray:
-    c, s = np.cos(ang), np.sin(ang)
-    return np.stack([c * f[..., 0] - s * f[..., 1], s * f[..., 0] + c * f[..., 1]], axis=-1)
-
-
 def _gens_x(f: FloatArray, beta: float) -> list[FloatArray]:
     """Generators g with ``cross(g, d) >= 0`` iff ``d`` is in ``W(f)`` (chord from X)."""
-    return [_rot(f, -beta), -_rot(f, beta)]
+    return [rotate(f, -beta), -rotate(f, beta)]
 
 
 def _gens_y(f: FloatArray, beta: float) -> list[FloatArray]:
     """Generators g with ``cross(g, d) >= 0`` iff ``-d`` is in ``W(f)`` (chord to Y)."""
-    return [-_rot(f, -beta), _rot(f, beta)]
+    return [-rotate(f, -beta), rotate(f, beta)]
 
 
 def _fan(ring: _Ring) -> tuple[FloatArray, FloatArray]:
@@ -190,6 +186,13 @@ def _runs(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
             np.concatenate([length, np.full(fr.size, m)]))
 
 
+def _segments(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """For consecutive segments of the given lengths: where each starts in the flat
+    sequence, and each element's position within its segment."""
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(int)
+    return starts, np.arange(int(np.sum(counts))) - np.repeat(starts, counts)
+
+
 def _cyc_reduce(values: FloatArray, row: np.ndarray, start: np.ndarray, count: np.ndarray,
                 op: Any, empty: float) -> FloatArray:
     """``op`` over ``values[row, start .. start + count - 1]`` (columns cyclic)."""
@@ -199,8 +202,7 @@ def _cyc_reduce(values: FloatArray, row: np.ndarray, start: np.ndarray, count: n
         return out
     r, s, c = row[has], start[has], count[has]
     m = values.shape[1]
-    offs = np.concatenate([[0], np.cumsum(c)[:-1]])
-    k = np.arange(int(c.sum())) - np.repeat(offs, c)
+    offs, k = _segments(c)
     flat = values[np.repeat(r, c), (np.repeat(s, c) + k) % m]
     out[has] = op.reduceat(flat, offs)
     return out
@@ -237,7 +239,7 @@ def _inner(ring: _Ring, i: np.ndarray, k: np.ndarray) -> FloatArray:
     return np.where(k > 0, ring.U[i + np.maximum(k, 1)] - ring.U[i + 1], 0.0)
 
 
-def stretch_bound(ra: _Ring, rb: _Ring, c: _Configs) -> FloatArray:
+def _stretch_bound(ra: _Ring, rb: _Ring, c: _Configs) -> FloatArray:
     """Upper bound of a configuration's smallest region: each stretch reaches at most the
     arc length of the edges it covers."""
     return np.minimum(_ext(ra, c.iA, c.kA), _ext(rb, c.iC, c.kC))
@@ -306,8 +308,7 @@ def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: i
     """Every interior window p..q of stretch 2 inside the runs whose spans are
     compatible with a square pair of side at least ``lb``."""
     # expand runs to their start vertices p (absolute, unrolled in [m, 2m))
-    off = np.concatenate([[0], np.cumsum(r)[:-1]])
-    j = np.arange(int(r.sum())) - np.repeat(off, r)
+    _, j = _segments(r)
     p = (np.repeat(p0, r) + j) % rb.m + rb.m
     run_end = np.repeat(p0 + r - 1, r) % rb.m + rb.m
     run_end = np.where(run_end < p, run_end + rb.m, run_end)
@@ -321,8 +322,7 @@ def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: i
     q_hi = np.minimum(q_hi, run_end)
     n = np.maximum(q_hi - q_lo + 1, 0)
     rows = np.repeat(np.repeat(row, r), n)
-    offs = np.concatenate([[0], np.cumsum(n)[:-1]])
-    q = np.repeat(q_lo, n) + np.arange(int(n.sum())) - np.repeat(offs, n)
+    q = np.repeat(q_lo, n) + _segments(n)[1]
     pp = np.repeat(p, n)
     return _Configs(rows - 1, np.full(rows.size, k), pp - 1, q - pp + 1)
 
@@ -420,10 +420,10 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     one, zero1 = np.ones(n), np.zeros(n)
     # boxes: lo0 <= s0 <= hi0, lo1 <= s0 + t - off_s <= hi1, and the same for u0
     limits = [(-lo0, one, zero1, zero1), (hi0, -one, zero1, zero1),
-           (-(lo1 + off_s), one, zero1, one), (hi1 + off_s, -one, zero1, -one),
-           (-ulo0, zero1, one, zero1), (uhi0, zero1, -one, zero1),
-           (-(ulo1 + off_u), zero1, one, one), (uhi1 + off_u, zero1, -one, -one),
-           (zero1, zero1, zero1, one)]
+              (-(lo1 + off_s), one, zero1, one), (hi1 + off_s, -one, zero1, -one),
+              (-ulo0, zero1, one, zero1), (uhi0, zero1, -one, zero1),
+              (-(ulo1 + off_u), zero1, one, one), (uhi1 + off_u, zero1, -one, -one),
+              (zero1, zero1, zero1, one)]
     rows += [np.stack(r, axis=1) for r in limits]
     return np.stack(rows, axis=1)
 
@@ -455,12 +455,10 @@ def _eliminate(rows: FloatArray, var: int) -> FloatArray:
     return np.take_along_axis(keep, order[..., None], axis=1)
 
 
-def _bounds(rows: FloatArray, x: FloatArray | None = None
-            ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """For rows ``c0 + c1 y (+ c2 x) >= 0`` in one unknown ``y`` (x given): the interval
-    of ``y`` and the least constant of the rows without ``y``."""
-    c0 = rows[:, :, 0] if x is None else rows[:, :, 0] + rows[:, :, 2] * x[:, None]
-    c1 = rows[:, :, 1]
+def _bounds(rows: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """For rows ``c0 + c1 y >= 0`` in one unknown ``y``: the interval of ``y`` and the
+    least constant of the rows without ``y``."""
+    c0, c1 = rows[:, :, 0], rows[:, :, 1]
     with np.errstate(divide="ignore", invalid="ignore"):
         q = -c0 / c1
     lo = np.max(np.where(c1 > _EPS, q, -np.inf), axis=1)
@@ -578,52 +576,53 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     if beta <= 0:
         return []
     rings = _rings(polygon)
-    found: list[tuple[float, float, _Ring, _Ring, tuple[int, int, int, int], float, float,
+    found: list[tuple[float, _Ring, _Ring, tuple[int, int, int, int], float, float,
                       str]] = []
     lb = 0.0
-    jobs = []
-    for x, ra in enumerate(rings):
-        for y, rb in enumerate(rings):
-            for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand")):
-                jobs.append((x, y, ra, rb, sigma, mode))
+    jobs = [(x, y, sigma, mode) for x in range(len(rings)) for y in range(len(rings))
+            for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand"))]
+    # every ordered ring pair is a job, so a job's reverse intervals are another's
+    intervals = {(x, y, sigma): _edge_intervals(rings[x], rings[y], sigma, beta)
+                 for x, y, sigma, _ in jobs}
+    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
+                for x, y, sigma, _ in jobs if x <= y}
     prepared = []
-    geo = [(_edge_intervals(ra, rb, sigma, beta),
-            _vertex_matrix(ra, rb, sigma, beta) if x <= y else None)
-           for x, y, ra, rb, sigma, _ in jobs]
     for collect in (False, True):          # the lower bound first, then the candidates
-        for (x, y, ra, rb, sigma, mode), (Iab, M) in zip(jobs, geo, strict=True):
+        for x, y, sigma, mode in jobs:
+            ra, rb = rings[x], rings[y]
             both = _empty()
-            if M is not None:
-                both, lb = _windows_both(M, ra, rb, x == y, lb, collect)
-            single, lb = _windows_single(*Iab, ra, rb, x == y, lb, collect)
+            if x <= y:
+                both, lb = _windows_both(matrices[x, y, sigma], ra, rb, x == y, lb, collect)
+            single, lb = _windows_single(*intervals[x, y, sigma], ra, rb, x == y, lb, collect)
             if collect:
                 pairs = _pairs_single(ra, rb, x == y, lb) if x <= y else _empty()
-                prepared.append((ra, rb, sigma, mode, Iab, _Configs.cat([both, single, pairs])))
+                prepared.append((x, y, sigma, mode, _Configs.cat([both, single, pairs])))
     kth = 0.0
-    for ra, rb, sigma, mode, Iab, cfg in prepared:
-        ub = stretch_bound(ra, rb, cfg)
+    for x, y, sigma, mode, cfg in prepared:
+        ra, rb = rings[x], rings[y]
+        ub = _stretch_bound(ra, rb, cfg)
         keep = ub >= max(lb, kth) * (1 - 1e-12)
         cfg, ub = cfg.take(keep), ub[keep]
         if cfg.iA.size == 0:
             continue
         order = np.argsort(-ub, kind="stable")
-        Iba = _edge_intervals(rb, ra, sigma, beta)
         for s in range(0, order.size, 256):
             chunk = order[s:s + 256]
             if ub[chunk[0]] < kth * (1 - 1e-12):
                 break
-            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, Iab, Iba)
+            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, intervals[x, y, sigma],
+                           intervals[y, x, sigma])
             t, s0, u0 = _solve(rows, ub[chunk], polygon.size)
             for j in np.flatnonzero(t > 0):
                 c = chunk[j]
-                found.append((float(t[j]), float(ub[c]), ra, rb,
+                found.append((float(t[j]), ra, rb,
                               (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]), int(cfg.kC[c])),
                               float(s0[j]), float(u0[j]), mode))
             if len(found) >= top_v:
                 kth = sorted((f[0] for f in found), reverse=True)[top_v - 1]
     found.sort(key=lambda f: -f[0])
     out = []
-    for length, _, ra, rb, (iA, kA, iC, kC), start1, start2, mode in found[:top_v]:
+    for length, ra, rb, (iA, kA, iC, kC), start1, start2, mode in found[:top_v]:
         p1, e1 = _polyline(ra, iA, kA, start1, length)
         p2, e2 = _polyline(rb, iC, kC, start2, length)
         out.append(StretchPair((p1, p2), (e1, e2), (length, length), mode))
