@@ -94,7 +94,7 @@ def test_every_scale_in_range_gives_the_same_plans(scale):
                           top=3)
             assert [p.edges for p in got] == [p.edges for p in ref]
             for a, b in zip(got, ref, strict=True):
-                np.testing.assert_allclose(a.regions / scale, b.regions, rtol=1e-9,
+                np.testing.assert_allclose(a.ends / scale, b.ends, rtol=1e-9,
                                            atol=1e-9 * BLOB.size)
                 assert a.grasp().is_force_closure()
                 assert np.isfinite(a.quality["epsilon_l1"])

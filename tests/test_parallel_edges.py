@@ -24,7 +24,8 @@ MARGINS = (0.0, 1e-9, DEFAULT_MARGIN_DEG)
 
 
 def _lp(p, grasps):
-    return np.array([closure_margin_lp(grasp_wrenches(g, p.normals, p.mu)) for g in grasps])
+    return np.array([closure_margin_lp(grasp_wrenches(g, p.normals_at(g), p.mu))
+                     for g in grasps])
 
 
 def check_part(poly, rng, n_inside=12):
@@ -33,13 +34,11 @@ def check_part(poly, rng, n_inside=12):
     for fingers, mu in SETTINGS:
         for margin in MARGINS:
             for p in fc.plan(poly, fingers=fingers, mu=mu, margin=margin, top=3):
-                a, b = p.regions[:, 0], p.regions[:, 1]
-                u = rng.uniform(0.05, 0.95, (n_inside, p.fingers))
-                inside = a[None] + u[..., None] * (b - a)[None]
+                inside = p.sample(n_inside, rng)
                 mid = p.contacts[None]
                 t_in = _lp(p, np.concatenate([mid, inside]))
                 assert np.all(t_in > LP_BAND), (poly, fingers, mu, margin, p.edges,
-                                                p.regions.tolist(), t_in.min())
+                                                p.ends.tolist(), t_in.min())
                 t_end = _lp(p, p.corners())
                 if margin >= DEFAULT_MARGIN_DEG:
                     assert np.all(t_end > LP_BAND), (poly, fingers, margin, p.edges)

@@ -224,8 +224,8 @@ def test_three_pairings_give_the_same_regions():
 def test_parallel_edges_regions_are_centred():
     sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
     r = independent_regions(sq, (0, 2), mu=0.3)
-    assert np.allclose(r.regions[0, :, 0].mean(), 5.0)
-    assert np.allclose(r.regions[1, :, 0].mean(), 5.0)
+    assert np.allclose(r.ends[0, :, 0].mean(), 5.0)
+    assert np.allclose(r.ends[1, :, 0].mean(), 5.0)
     assert np.isclose(r.min_length, 3 * np.tan(np.arctan(0.3) - np.radians(MARGIN)))
 
 
@@ -264,7 +264,7 @@ def test_plan_two_fingers_ranked_and_sound():
         assert all(a >= b - 1e-9 * poly.size for a, b in zip(lengths, lengths[1:], strict=False))
         for p in plans:
             _check_plan_grasps(p, rng, 30)
-            ref = independent_regions(poly, p.edges, mu=0.4)
+            ref = independent_regions(poly, p.region_edges, mu=0.4)
             assert np.isclose(ref.min_length, p.min_length, rtol=1e-9)
 
 

@@ -31,3 +31,17 @@ def signed_area(ring: Any) -> float:
 def wrap(angle: Any) -> Any:
     """Angles wrapped to [-pi, pi)."""
     return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
+
+
+def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
+    """Points at fractions ``u`` (any shape) of the arc length of a polyline (m, 2),
+    and the index of the segment holding each."""
+    line = np.asarray(line, dtype=float)
+    u = np.asarray(u, dtype=float)
+    seg = np.diff(line, axis=0)
+    L = np.hypot(seg[:, 0], seg[:, 1])
+    cum = np.concatenate([[0.0], np.cumsum(L)])
+    target = u * cum[-1]
+    k = np.clip(np.searchsorted(cum, target, side="right") - 1, 0, len(seg) - 1)
+    frac = np.where(L[k] > 0, (target - cum[k]) / np.where(L[k] > 0, L[k], 1.0), 0.0)
+    return line[k] + frac[..., None] * seg[k], k

@@ -180,12 +180,15 @@ def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
 def _print_table(plans: list[Any], units: str, out: Any) -> None:
     if not plans:
         return
-    print(f"{'rank':>4}  {'edges':<16} {'min region':>11}  {'regions (' + units + ')':<28} "
+    print(f"{'rank':>4}  {'edges':<20} {'min region':>11}  {'regions (' + units + ')':<24} "
           f"{'resistance':>10} {'eps L1':>8}", file=out)
     for k, p in enumerate(plans):
         q = p.quality
         regs = ", ".join(f"{x:.3g}" for x in p.lengths)
-        print(f"{k + 1:>4}  {str(list(p.edges)):<16} {p.min_length:>11.4g}  {regs:<28} "
+        # a region along the boundary shows the edges it covers, first-last
+        edges = " ".join(str(r[0]) if len(r) == 1 else f"{r[0]}-{r[-1]}"
+                         for r in p.region_edges)
+        print(f"{k + 1:>4}  {edges:<20} {p.min_length:>11.4g}  {regs:<24} "
               f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
 
 
@@ -241,7 +244,9 @@ def cmd_plan(args: Any) -> int:
                            f"{where}")
     show = _progress(sys.stderr.isatty() and not args.quiet)
     step = disturbance_step(units)
-    kw = {} if budget is None else {"max_memory": budget}
+    kw: dict[str, Any] = {"along_boundary": not args.single_edge}
+    if budget is not None:
+        kw["max_memory"] = budget
     spec = plan_spec(fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
                      hand=hand, margin=args.margin, disturbance=(step, 15.0), **kw)
     size = check_search(polygon, spec)          # too large: a one-line error, at once
@@ -252,7 +257,7 @@ def cmd_plan(args: Any) -> int:
     plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
                  hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
     params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
-              "margin_deg": args.margin,
+              "margin_deg": args.margin, "along_boundary": spec.stretches,
               "workspace": None if hand is None or hand.workspace is None else
               list(hand.workspace),
               "finger_radius": args.finger_radius,
@@ -473,6 +478,9 @@ def build_parser() -> argparse.ArgumentParser:
                    help="2: with friction; 4: frictionless; 3: frictionless with gravity")
     p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
     p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
+    p.add_argument("--single-edge", action="store_true",
+                   help="keep each two-finger region on one edge, as in the paper (default: "
+                        "regions run along the boundary across vertices)")
     p.add_argument("--rank-by", choices=tuple(MEASURES), default="min_region",
                    help="ranking measure (see fcgrasp.ranking)")
     p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",

@@ -26,7 +26,7 @@ Units: lengths in the polygon's units; ``margin`` in **degrees** in :class:`Plan
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from functools import lru_cache
 from math import comb
 from typing import Any
@@ -50,12 +50,13 @@ from .quality import characteristic_length
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
+from .stretches import StretchPair, two_finger_stretches
 from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
            "BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
-           "check_search"]
+           "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES"]
 
 #: Candidate rows per batch: large parts are streamed in batches of at most this size (fewer
 #: when the memory budget asks for it, see :func:`search_size`).
@@ -73,6 +74,12 @@ ROW_BYTES = {2: 450, 3: 1700, 4: 1700}
 #: Bytes kept per candidate row when every plan is asked for (``top=None``): the solved
 #: row and its GraspPlan, rounded up.
 KEPT_ROW_BYTES = 3000
+#: Peak bytes of the stretch search (regions along the boundary) per pair of edges
+#: (measured: about 490 MB at 2,000 edges).
+STRETCH_BYTES = 125
+#: With a ranking measure other than ``min_region``, how many stretch configurations
+#: (by their leximin order) are scored besides the single-edge plans.
+KEEP_STRETCHES = 200
 #: Measured seconds per candidate row (two fingers; three or four), for the time estimate.
 ROW_SECONDS = {2: 1e-6, 3: 3e-5, 4: 3e-5}
 #: With a measure other than ``min_region`` and a ``top``, the rows of a batch kept for
@@ -102,6 +109,12 @@ class PlanSpec:
     disturbance: tuple[float, float] = (10.0, 15.0)
     tol: float = SOLVER_TOL
     max_memory: int = 2 ** 31
+    along_boundary: bool = True
+
+    @property
+    def stretches(self) -> bool:
+        """Whether the regions run along the boundary (two fingers without a hand)."""
+        return self.along_boundary and self.fingers == 2 and self.hand is None
 
     @property
     def margin_rad(self) -> float:
@@ -115,7 +128,7 @@ class PlanSpec:
 def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
               hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
               disturbance: Any = (10.0, 15.0), tol: Any = SOLVER_TOL,
-              max_memory: Any = None) -> PlanSpec:
+              max_memory: Any = None, along_boundary: Any = True) -> PlanSpec:
     """A validated :class:`PlanSpec` (arguments as for :func:`fcgrasp.plan`).
 
     Raises :class:`TypeError` or :class:`ValueError` naming the argument.
@@ -143,8 +156,10 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
         g = (float(gv[0]), float(gv[1]))
     budget = MAX_MEMORY if max_memory is None else check_int(max_memory, "max_memory",
                                                               minimum=MIN_MEMORY)
+    if not isinstance(along_boundary, bool):
+        raise TypeError(f"along_boundary must be a bool, got {along_boundary!r}")
     return PlanSpec(fingers, mu_v if fingers == 2 else 0.0, margin_v, top, rank_by, hand, g,
-                    dist, check_tol(tol), budget)
+                    dist, check_tol(tol), budget, along_boundary)
 
 
 def _check_disturbance(disturbance: Any) -> tuple[float, float]:
@@ -480,6 +495,12 @@ def _rows(fingers: int, n: int, three_edge: bool = True) -> int:
 
 def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
     """(rows, batch rows, peak bytes, kept bytes) of a search over ``n`` features."""
+    if spec.stretches:
+        # the stretch search holds a few (n, n) arrays per ring pair; every
+        # configuration of a curved outline (top=None) is about n**3 / 36 of them
+        rows = n ** 3 // 36 if spec.top is None else comb(n, 2)
+        held = rows if spec.top is None else min(rows, 2 * max(spec.top, KEEP_STRETCHES))
+        return rows, rows, STRETCH_BYTES * n * n, held * KEPT_ROW_BYTES
     rows = _rows(spec.fingers, n)
     per = ROW_BYTES[spec.fingers]
     batch = int(max(1, min(BATCH_SIZE, spec.max_memory // 2 // per)))
@@ -536,7 +557,9 @@ def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
     while fit < size.features and sum(_estimate(spec, fit + 1)[2:]) <= spec.max_memory:
         fit += 1
     what = {2: "two-finger", 3: "three-finger", 4: "four-finger"}[spec.fingers]
-    hint = "give a top (--top K), or " if spec.top is None else \
+    hint = "plan on single edges (along_boundary=False, --single-edge), or " \
+        if spec.stretches and spec.top is not None else \
+        "give a top (--top K), or " if spec.top is None else \
         "ask for fewer plans (--top), " if spec.top * KEPT_ROW_BYTES > spec.max_memory // 4 \
         else ""
     raise SearchTooLarge(
@@ -982,3 +1005,73 @@ def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
                    key=lambda k: rank_key(plans[k], polygon, spec.rank_by, float(scores[k])))
     plans = [plans[k] for k in order]
     return plans if top is None else plans[:top]
+
+
+# ----------------------------------------------------------------------------- stretches
+
+
+
+def stretch_plan(polygon: Polygon, spec: PlanSpec, pair: StretchPair) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of a pair of stretches (representative contacts
+    halfway along each region)."""
+    contacts, edges = pair.midpoints()
+    return GraspPlan(edges, pair.regions, np.array(pair.lengths), contacts,
+                     polygon.normals[list(edges)], "friction", spec.mu, pair.mode,
+                     spec.margin, None, centroid=polygon.centroid.copy(),
+                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     disturbance=spec.disturbance, region_edges=pair.region_edges)
+
+
+def _single_edge_plans(polygon: Polygon, spec: PlanSpec, pairs: list[tuple[int, int]]
+                       ) -> list[GraspPlan]:
+    """The single-edge pipeline's plans (exact leximin levels and placement) of chosen
+    edge pairs."""
+    if not pairs:
+        return []
+    F = features(polygon, spec.mu, None)
+    feat = {int(e): i for i, e in enumerate(F.edge)}
+    rows = np.array(sorted({tuple(sorted((feat[a], feat[b]))) for a, b in pairs}))
+    sub = replace(spec, top=None, rank_by="min_region")
+    return rank(polygon, sub, [solve(polygon, sub, EdgeSets(rows))])
+
+
+def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
+    """Two-finger plans whose regions run along the boundary (stretches of the rings,
+    :mod:`fcgrasp.stretches`), ranked as :func:`rank` ranks.
+
+    The exact stretch search gives the best configurations and every tie of the
+    ``top``-th; those on single edges are solved by the single-edge pipeline (the same
+    leximin levels and placement as :func:`solve`), so on outlines where no region
+    gains by crossing a vertex the plans are those of the single-edge search.  With a
+    ranking measure other than ``min_region`` the single-edge search's plans and the
+    :data:`KEEP_STRETCHES` best stretch configurations are scored.  ``top=None``: every
+    configuration that holds (one plan per configuration: which edges each region
+    covers), for small parts.
+    """
+    if not spec.stretches:
+        raise ValueError("boundary_plans plans two fingers without a hand "
+                         "(spec.stretches is False)")
+    by_min = spec.rank_by == "min_region"
+    keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
+    pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
+    multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
+    plans = [stretch_plan(polygon, spec, p) for p in multi]
+    if by_min:
+        plans += _single_edge_plans(polygon, spec, [
+            (p.region_edges[0][0], p.region_edges[1][0]) for p in pairs
+            if max(len(e) for e in p.region_edges) == 1])
+    else:
+        flat = replace(spec, along_boundary=False)
+        plans += rank(polygon, flat, (solve(polygon, flat, batch)
+                                      for batch in candidates(polygon, flat)))
+    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+    keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
+                   for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
+    out: list[GraspPlan] = []
+    seen = set()
+    for key, k in keyed:
+        if (key, plans[k].mode) in seen:      # one grasp reached by two configurations
+            continue
+        seen.add((key, plans[k].mode))
+        out.append(plans[k])
+    return out if spec.top is None else out[:spec.top]

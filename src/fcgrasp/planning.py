@@ -26,11 +26,20 @@ import numpy as np
 from ._checks import check_mu_scalar
 from .graspsets import Vertex
 from .hand import Hand
-from .pipeline import candidates, check_search, plan_spec, rank, solve
+from .pipeline import (
+    boundary_plans,
+    candidates,
+    check_search,
+    plan_spec,
+    rank,
+    solve,
+    stretch_plan,
+)
 from .plans import GraspPlan, geometric_key, rank_key
 from .polygon import Polygon
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG
+from .stretches import stretch_regions
 from .tolerances import SOLVER_TOL
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
@@ -50,7 +59,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
-         max_memory: int | None = None) -> list[GraspPlan]:
+         max_memory: int | None = None, along_boundary: bool = True) -> list[GraspPlan]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -86,6 +95,10 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         batches sized to it; a search that cannot fit (every plan of a large part with
         ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
         what would fit, before any work.
+    along_boundary : bool
+        Two fingers (without a hand): regions are stretches of the boundary that may
+        cover several edges and the vertices between them (:mod:`fcgrasp.stretches`);
+        False keeps each region on one edge, as in the paper.  Needs a finite ``top``.
 
     Returns
     -------
@@ -102,11 +115,16 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     _check_polygon(polygon)
     spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
                      margin=margin, gravity=gravity, disturbance=disturbance, tol=tol,
-                     max_memory=max_memory)
+                     max_memory=max_memory, along_boundary=along_boundary)
     if progress is not None and not callable(progress):
         raise TypeError(f"progress must be a callable progress(done, total) or None, "
                         f"got {progress!r}")
     check_search(polygon, spec)
+    if spec.stretches:
+        plans = boundary_plans(polygon, spec)
+        if progress is not None:
+            progress(1, 1)
+        return plans
     return rank(polygon, spec, (solve(polygon, spec, batch, progress=progress)
                                 for batch in candidates(polygon, spec)))
 
@@ -118,10 +136,13 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
 
     Parameters
     ----------
-    edges : sequence of int
+    edges : sequence of int, or two sequences of int
         Two edges (fingers with friction ``mu``: algorithm 7.1, squeezing and expanding
         grasps), four edges (frictionless: theorem 7.1; an edge may repeat, then its two
-        regions do not overlap) or three edges with ``gravity``.
+        regions do not overlap) or three edges with ``gravity``.  Two fingers may also be
+        given a *stretch* each, the consecutive edges of one ring it may run along
+        (``[[3, 4, 5], [9]]``): the regions are then the best stretches inside them
+        (:func:`fcgrasp.stretches.stretch_regions`), covering the vertices between.
     margin : float
         Safety margin in degrees.
 
@@ -133,11 +154,14 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     Examples
     --------
     >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
-    >>> r = independent_regions(sq, (0, 2), mu=0.3)
-    >>> r.regions.round(3).tolist()
+    >>> reg = independent_regions(sq, (0, 2), mu=0.3)
+    >>> [r.round(3).tolist() for r in reg.regions]
     [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
     """
     _check_polygon(polygon)
+    if not isinstance(edges, (str, bytes)) and len(edges) == 2 and all(
+            np.ndim(e) == 1 for e in edges):
+        return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
     if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
         raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
     if any(isinstance(e, Vertex) for e in edges):
@@ -173,6 +197,17 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     for e in idx:
         order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
     o = np.array(order)
-    return GraspPlan(tuple(p.edges[k] for k in o), p.regions[o], p.lengths[o], p.contacts[o],
-                     p.normals[o], p.contact_type, p.mu, p.mode, p.margin, p.gravity,
-                     centroid=p.centroid, radius=p.radius, disturbance=p.disturbance)
+    return GraspPlan(tuple(p.edges[k] for k in o), [p.regions[k] for k in o], p.lengths[o],
+                     p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
+                     p.gravity, centroid=p.centroid, radius=p.radius,
+                     disturbance=p.disturbance)
+
+
+def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
+                     hand: Hand | None, gravity: Any) -> GraspPlan | None:
+    if hand is not None or gravity is not None:
+        raise ValueError("regions along given stretches are for two fingers with friction, "
+                         "without a hand or gravity")
+    spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
+    pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
+    return None if pair is None else stretch_plan(polygon, spec, pair)

@@ -15,6 +15,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
+from ._geom import along
 from ._json import json_ready
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .grasp import Grasp
@@ -35,14 +36,18 @@ class GraspPlan:
     Attributes
     ----------
     edges : tuple of int
-        Edge index per finger (input numbering).
-    regions : ndarray, shape (fingers, 2, 2)
-        Each region's two end points.
+        Per finger, the edge holding its representative contact (input numbering).
+    regions : tuple of ndarray, shape (m_i, 2)
+        Each region as a polyline along the boundary, from one end to the other through
+        the vertices it covers (two points when it stays on one edge).  An array of
+        shape (fingers, 2, 2) is taken as regions on single edges.
     lengths : ndarray, shape (fingers,)
+        Arc lengths of the regions.
     contacts : ndarray, shape (fingers, 2)
-        The representative grasp: each region's midpoint.
+        The representative grasp: each region's point halfway along it.
     normals : ndarray, shape (fingers, 2)
-        Outward normals of the edges (the fingers push along ``-normal``).
+        Outward normals at the representative contacts (the fingers push along
+        ``-normal``).
     contact_type : {"friction", "frictionless"}
     mu : float
     mode : str
@@ -58,10 +63,12 @@ class GraspPlan:
     quality : dict
         ``min_region``, ``resistance``, ``resistance_approx``, ``epsilon_l1``,
         ``epsilon_linf`` (see :mod:`fcgrasp.quality`).
+    region_edges : tuple of tuple of int
+        The edges each region covers, in order along it (default: ``(edges[i],)``).
     """
 
     edges: tuple[int, ...]
-    regions: FloatArray
+    regions: Any
     lengths: FloatArray
     contacts: FloatArray
     normals: FloatArray
@@ -73,7 +80,45 @@ class GraspPlan:
     centroid: FloatArray | None = field(default=None, repr=False, compare=False)
     radius: float | None = field(default=None, repr=False, compare=False)
     disturbance: tuple[float, float] = field(default=(10.0, 15.0), repr=False, compare=False)
+    region_edges: tuple[tuple[int, ...], ...] = ()
     _quality: dict[str, float] | None = field(default=None, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        self.regions = tuple(np.asarray(r, dtype=float).reshape(-1, 2) for r in self.regions)
+        if not self.region_edges:
+            self.region_edges = tuple((int(e),) for e in self.edges)
+        self.region_edges = tuple(tuple(int(e) for e in r) for r in self.region_edges)
+
+    @property
+    def ends(self) -> FloatArray:
+        """Each region's two end points, shape (fingers, 2, 2)."""
+        return np.array([[r[0], r[-1]] for r in self.regions]).reshape(-1, 2, 2)
+
+    def segment_normals(self) -> tuple[FloatArray, ...]:
+        """Outward normal of every segment of every region (shape (m_i - 1, 2))."""
+        out = []
+        for line, n in zip(self.regions, self.normals, strict=True):
+            d = np.diff(line, axis=0)
+            L = np.hypot(d[:, 0], d[:, 1])
+            t = d / np.where(L > 0, L, 1.0)[:, None]
+            cand = np.c_[t[:, 1], -t[:, 0]]
+            # the ring's orientation is the same along a region: take the side that
+            # the representative contact's normal takes on its segment
+            k = int(np.argmax(cand @ n))
+            sign = 1.0 if cand[k] @ n >= 0 else -1.0
+            out.append(sign * cand)
+        return tuple(out)
+
+    def normals_at(self, points: Any) -> FloatArray:
+        """Outward normal at a finger position in each region (the nearest segment's;
+        at a vertex inside a region either edge's), shape (fingers, 2)."""
+        pts = np.asarray(points, dtype=float).reshape(self.fingers, 2)
+        out = np.array(self.normals, dtype=float)
+        for i, (line, sn) in enumerate(zip(self.regions, self.segment_normals(),
+                                           strict=True)):
+            if len(line) > 2:
+                out[i] = sn[_nearest_segment(line, pts[i])]
+        return out
 
     @property
     def quality(self) -> dict[str, float]:
@@ -102,10 +147,13 @@ class GraspPlan:
     def fingers(self) -> int:
         return len(self.edges)
 
-    def contacts_for(self, points: Any) -> list[Any]:
+    def contacts_for(self, points: Any, normals: Any = None) -> list[Any]:
+        """The contacts of a grasp with the fingers at ``points`` (normals: the
+        region's edge at each point unless given)."""
         pts = np.asarray(points, dtype=float)
+        nrm = self.normals_at(pts) if normals is None else np.asarray(normals, float)
         out: list[Any] = []
-        for p, n in zip(pts, self.normals, strict=True):
+        for p, n in zip(pts, nrm, strict=True):
             if self.contact_type == "friction":
                 out.append(FrictionPoint(p, n, self.mu))
             else:
@@ -116,19 +164,23 @@ class GraspPlan:
 
     def grasp(self, points: Any = None) -> Grasp:
         """The :class:`~fcgrasp.Grasp` at ``points`` (default: the representative grasp)."""
-        return Grasp(self.contacts_for(self.contacts if points is None else points))
+        if points is None:
+            return Grasp(self.contacts_for(self.contacts, self.normals))
+        return Grasp(self.contacts_for(points))
 
     def sample(self, n: int, rng: np.random.Generator | None = None) -> FloatArray:
-        """``n`` grasps with each finger uniform in its region, shape (n, fingers, 2)."""
+        """``n`` grasps with each finger uniform (in arc length) in its region, shape
+        (n, fingers, 2)."""
         rng = np.random.default_rng() if rng is None else rng
         u = rng.random((n, self.fingers))
-        a, b = self.regions[:, 0], self.regions[:, 1]
-        return a[None] + u[..., None] * (b - a)[None]
+        return np.stack([along(line, u[:, i])[0] for i, line in enumerate(self.regions)],
+                        axis=1)
 
     def corners(self) -> FloatArray:
-        """All corner grasps of the box of regions, shape (2**fingers, fingers, 2)."""
+        """All corner grasps of the box of regions (each finger at one end of its
+        region), shape (2**fingers, fingers, 2)."""
         idx = np.array(list(np.ndindex(*(2,) * self.fingers)))
-        return self.regions[np.arange(self.fingers)[None, :], idx]
+        return self.ends[np.arange(self.fingers)[None, :], idx]
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (floats rounded to 12 significant digits)."""
@@ -137,7 +189,8 @@ class GraspPlan:
             "contact_type": self.contact_type,
             "mu": self.mu,
             "mode": self.mode,
-            "regions": self.regions,
+            "regions": [r for r in self.regions],
+            "region_edges": [list(r) for r in self.region_edges],
             "region_lengths": self.lengths,
             "min_region_length": self.min_length,
             "contacts": self.contacts,
@@ -149,19 +202,29 @@ class GraspPlan:
         return json_ready(d)
 
 
+def _nearest_segment(line: FloatArray, p: FloatArray) -> int:
+    a, d = line[:-1], np.diff(line, axis=0)
+    dd = np.einsum("ij,ij->i", d, d)
+    s = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(dd, 1e-300), 0.0, 1.0)
+    q = a + s[:, None] * d
+    return int(np.argmin(np.where(dd > 0, np.hypot(*(q - p).T), np.inf)))
+
+
 def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
     """Sort key of the leximin order (definition 7.1): smaller is better."""
     return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, _DIGITS))
 
 
-def geometric_key(regions: FloatArray, polygon: Polygon) -> tuple[float, ...]:
+def geometric_key(regions: Any, polygon: Polygon) -> tuple[float, ...]:
     """A key of a set of regions that does not depend on how the part is numbered.
 
-    Each region's two ends are sorted, the regions are sorted, and the coordinates
-    (relative to the part's centroid and size, rounded to 1e-9) are read in that order.
-    Used to break ties between equally good plans or placements.
+    Each region's two ends (of a polyline: its first and last points) are sorted, the
+    regions are sorted, and the coordinates (relative to the part's centroid and size,
+    rounded to 1e-9) are read in that order.  Used to break ties between equally good
+    plans or placements.
     """
-    rel = np.round((np.asarray(regions, float) - polygon.centroid) / polygon.size, _DIGITS) + 0.0
+    ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])
+    rel = np.round((ends.reshape(-1, 2, 2) - polygon.centroid) / polygon.size, _DIGITS) + 0.0
     segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)
     return tuple(x for seg in segs for pt in seg for x in pt)
 
@@ -176,7 +239,7 @@ def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region",
     :func:`geometric_key`.
     """
     lex = leximin_key(p.lengths, polygon.size)
-    geo = geometric_key(p.regions, polygon)
+    geo = geometric_key(p.ends, polygon)
     if rank_by == "min_region":
         return (lex, geo)
     q = MEASURES[rank_by].score([p])[0] if score is None else score

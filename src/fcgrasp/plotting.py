@@ -146,14 +146,19 @@ def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
               units: str = "", numbers: bool = True) -> None:
     """Figure 1 style: regions drawn bold, a small V at each finger showing its push; the
     legend sits inside the axes, where it cannot run into a neighbour's title."""
-    draw_part(ax, polygon, numbers, keep=[e for e in plan.edges if e >= 0], units=units)
+    keep = sorted({e for r in plan.region_edges for e in (r[0], r[-1]) if e >= 0})
+    draw_part(ax, polygon, numbers, keep=keep, units=units)
     v = 0.05 * polygon.size
     for i, (reg, c, n) in enumerate(zip(plan.regions, plan.contacts, plan.normals,
                                         strict=True)):
         col = _FINGER_COLORS[i % len(_FINGER_COLORS)]
-        ax.plot(reg[:, 0], reg[:, 1], color=col, lw=4.5, solid_capstyle="butt", zorder=3,
-                label=f"finger {i + 1}: edge {plan.edges[i]}, "
-                      f"{np.hypot(*(reg[1] - reg[0])):.3g} {units}".rstrip())
+        covered = plan.region_edges[i]
+        where = f"edge {covered[0]}" if len(covered) == 1 else \
+            f"edges {covered[0]}-{covered[-1]}"
+        # the region bold along the boundary, through the vertices it covers
+        ax.plot(reg[:, 0], reg[:, 1], color=col, lw=4.5, solid_capstyle="butt",
+                solid_joinstyle="round", zorder=3,
+                label=f"finger {i + 1}: {where}, {plan.lengths[i]:.3g} {units}".rstrip())
         for sgn in (1.0, -1.0):
             ang = sgn * np.radians(28)
             d = np.array([n[0] * np.cos(ang) - n[1] * np.sin(ang),

@@ -1,15 +1,16 @@
 """JSON reports of plans and checks: versioned, deterministic (sorted keys, rounded floats).
 
-Layout of a plan report (``format_version`` 1)::
+Layout of a plan report (``format_version`` 2)::
 
     {
-      "fcgrasp": "0.1.0", "format_version": 1, "units": "mm",
+      "fcgrasp": "0.1.0", "format_version": 2, "units": "mm",
       "part": {"vertices": [[x, y], ...], "holes": [...], "edges": E},
       "parameters": {"fingers": 2, "mu": 0.3, "top": 10, "rank_by": "min_region",
                      "margin_deg": 0.5, "workspace": null, "finger_radius": 0.0,
                      "disturbance": {"translation": 10.0, "rotation_deg": 15.0}},
       "grasps": [{"rank": 1, "edges": [i, j], "contact_type": "friction", "mu": 0.3,
-                  "mode": "squeeze", "regions": [[[x, y], [x, y]], ...],
+                  "mode": "squeeze", "regions": [[[x, y], [x, y], ...], ...],
+                  "region_edges": [[i, ...], [j, ...]],
                   "region_lengths": [...], "min_region_length": l,
                   "contacts": [[x, y], ...], "normals": [[nx, ny], ...],
                   "quality": {"min_region": ..., "resistance": ..., "resistance_approx": ...,
@@ -22,7 +23,12 @@ Layout of a plan report (``format_version`` 1)::
                  "clean_tolerance": 1e-05, "simplify": null}
     }
 
-``edges`` use the input vertex order (hole edges numbered after the outer ring's);
+``edges`` use the input vertex order (hole edges numbered after the outer ring's) and
+give, per finger, the edge of its representative contact (``contacts``, the point
+halfway along its region); ``regions`` are polylines along the boundary through the
+vertices they cover, ``region_edges`` the edges they cover and ``region_lengths`` arc
+lengths.  Version 1 had two-point regions on one edge each and no ``region_edges``:
+:func:`migrate_report` reads a version-1 report as version 2;
 ``grasps`` is empty when no grasp exists, and ``reason`` then says why.  ``source``
 (absent for parts built in Python) records how the part was read: the file, which of its
 parts, the units it was in and the scale applied, the flip of y-down sources, the
@@ -37,7 +43,29 @@ from typing import Any
 from . import __version__
 from ._json import json_ready
 
-FORMAT_VERSION = 1
+FORMAT_VERSION = 2
+
+
+def migrate_report(report: dict[str, Any]) -> dict[str, Any]:
+    """A report of any earlier ``format_version`` as the current version (a copy).
+
+    Version 1 -> 2: every grasp's region (two end points on one edge) is a two-point
+    polyline and gets ``region_edges`` ``[[edge], ...]``; nothing else changed.
+
+    >>> old = {"format_version": 1, "grasps": [{"edges": [1, 3], "regions": []}]}
+    >>> migrate_report(old)["grasps"][0]["region_edges"], migrate_report(old)["format_version"]
+    ([[1], [3]], 2)
+    """
+    version = report.get("format_version")
+    if version not in (1, FORMAT_VERSION):
+        raise ValueError(f"report has format_version {version!r}; this fcgrasp reads "
+                         f"versions 1 to {FORMAT_VERSION}")
+    out = json.loads(json.dumps(report))
+    if version == 1:
+        for g in out.get("grasps", []):
+            g["region_edges"] = [[e] for e in g["edges"]]
+        out["format_version"] = 2
+    return out
 
 
 def dumps(report: dict[str, Any]) -> str:

@@ -55,16 +55,21 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ._geom import along
 from ._geom import cross2 as _cross
 from .contacts import rotate
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
+from .tolerances import RANK_TOL
 
-__all__ = ["StretchPair", "two_finger_stretches"]
+__all__ = ["StretchPair", "two_finger_stretches", "stretch_regions"]
 
 #: A coefficient of the linear system smaller than this (a cross product of unit
 #: vectors) is zero.
 _EPS = 1e-12
+
+#: Relative tolerance within which two smallest regions tie (the ranking's).
+TIE = RANK_TOL
 
 
 @dataclass(frozen=True)
@@ -84,6 +89,16 @@ class StretchPair:
     @property
     def min_length(self) -> float:
         return min(self.lengths)
+
+    def midpoints(self) -> tuple[FloatArray, tuple[int, int]]:
+        """Each region's point halfway along it (the representative contact) and the
+        edge holding it."""
+        pts, edges = [], []
+        for line, covered in zip(self.regions, self.region_edges, strict=True):
+            p, k = along(line, 0.5)
+            pts.append(p)
+            edges.append(covered[int(k)])
+        return np.array(pts), (edges[0], edges[1])
 
 
 @dataclass
@@ -254,16 +269,43 @@ def _disjoint(ra: _Ring, c: _Configs, same: bool) -> np.ndarray:
     return (rel > c.kA) & (rel + c.kC < m)
 
 
-def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, lb: float,
-                  collect: bool) -> tuple[_Configs, float]:
+class _Bound:
+    """The ``k``-th largest smallest region among distinct feasible configurations seen
+    so far (0 until ``k`` are seen): no configuration below it can reach the top ``k``.
+    ``floor`` is that value less the relative tie tolerance, so ties are kept."""
+
+    def __init__(self, k: int) -> None:
+        self.k = k
+        self.vals = np.zeros(0)
+
+    def add(self, values: FloatArray) -> None:
+        v = np.asarray(values, float).ravel()
+        v = v[v > max(self.value, 0.0)]
+        if v.size == 0:
+            return
+        v = np.concatenate([self.vals, v])
+        if v.size > self.k:
+            v = -np.partition(-v, self.k - 1)[:self.k]
+        self.vals = v
+
+    @property
+    def value(self) -> float:
+        return float(self.vals.min()) if self.vals.size >= self.k else 0.0
+
+    @property
+    def floor(self) -> float:
+        return self.value * (1 - TIE)
+
+
+def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound,
+                  collect: bool) -> _Configs:
     """Configurations with interior vertices on both stretches: stretch 1's interior
     window i .. i+k-1 leaves for stretch 2 the runs of the AND of those rows of ``M``.
 
-    Returns the configurations whose bound reaches the lower bound (if ``collect``)
-    and the lower bound raised by the vertex-aligned stretches of every run (feasible:
-    all their cells have their four corners in ``M``)."""
+    Returns the configurations whose bound reaches the lower bound (if ``collect``),
+    and raises the lower bound with the vertex-aligned stretches of every run
+    (feasible: all their cells have their four corners in ``M``)."""
     parts: list[_Configs] = []
-    best = lb
     C = M.copy()
     k = 1
     while k < ra.m - 1:
@@ -272,7 +314,7 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, lb: float,
             break
         ks = np.full(live.size, k)
         ext_s = _ext(ra, live - 1, ks)
-        live = live[ext_s >= best]
+        live = live[ext_s >= bound.floor]
         # the lower bound only has to be feasible, not the largest: without collecting,
         # runs are read at about eight window lengths per doubling
         if live.size and (collect or k <= 8 or k % (k // 8) == 0):
@@ -282,21 +324,20 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, lb: float,
             inner_s, ext_s = _inner(ra, row - 1, kr), _ext(ra, row - 1, kr)
             rr = np.minimum(r, rb.m - 2)
             vert_u = np.where(rr > 0, _inner(rb, p0 - 1, rr), 0.0)
-            if row.size:
-                best = max(best, float(np.max(np.minimum(inner_s, vert_u))))
-            keep = (ext_s >= best) & (rr >= 1)
+            bound.add(np.minimum(inner_s, vert_u))
+            keep = (ext_s >= bound.floor) & (rr >= 1)
             if collect and keep.any():
                 parts.append(_sub_windows(rb, row[keep], p0[keep], rr[keep], k,
-                                          inner_s[keep], ext_s[keep], best))
+                                          inner_s[keep], ext_s[keep], bound.floor))
         C &= np.roll(M, -k, axis=0)
         k += 1
     if not parts:
-        return _empty(), best
+        return _empty()
     cfg = _Configs.cat(parts)
     keep = _disjoint(ra, cfg, same)
     if same:                      # each unordered pair once
         keep &= cfg.iA % ra.m < cfg.iC % rb.m
-    return cfg.take(keep), best
+    return cfg.take(keep)
 
 
 def _empty() -> _Configs:
@@ -328,15 +369,14 @@ def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: i
 
 
 def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: bool,
-                    lb: float, collect: bool) -> tuple[_Configs, float]:
+                    bound: _Bound, collect: bool) -> _Configs:
     """Stretch 1 on one edge A, stretch 2 with interior vertices p .. p+k-1: those
     vertices confine stretch 1 to the intersection of their intervals on A (the
     vertex-aligned stretch 2 with that whole intersection is feasible: lower bound)."""
-    A = np.flatnonzero(ra.L >= lb)
+    A = np.flatnonzero(ra.L >= bound.floor)
     parts: list[_Configs] = []
-    best = lb
     if A.size == 0:
-        return _empty(), best
+        return _empty()
     mb = rb.m
     loA, hiA = lo[A], hi[A]
     cl, ch = loA.copy(), hiA.copy()
@@ -344,13 +384,14 @@ def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: 
     k = 1
     while k < mb - 1:
         room = ch - cl
-        ok = room >= best
+        ok = room >= bound.floor
         if not ok.any():
             break
         ks = np.full(mb, k)
         inner_u = _inner(rb, pidx - 1, ks)[None, :]
         ext_u = _ext(rb, pidx - 1, ks)[None, :]
-        best = max(best, float(np.max(np.where(ok, np.minimum(room, inner_u), -np.inf))))
+        bound.add(np.minimum(room, inner_u)[ok])
+        best = bound.floor
         if collect:
             a_i, p_i = np.nonzero(ok & (room >= best) & (ext_u >= best) & (room >= inner_u))
             if a_i.size:
@@ -361,12 +402,13 @@ def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: 
         ch = np.minimum(ch, hiA[:, nxt])
         k += 1
     if not parts:
-        return _empty(), best
+        return _empty()
     cfg = _Configs.cat(parts)
-    return cfg.take(_disjoint(ra, cfg, same)), best
+    return cfg.take(_disjoint(ra, cfg, same))
 
 
 def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
+    """Both stretches on single edges: every pair of edges long enough."""
     A = np.flatnonzero(ra.L >= lb)
     C = np.flatnonzero(rb.L >= lb)
     ga, gc = np.meshgrid(A, C, indexing="ij")
@@ -382,8 +424,12 @@ def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
 
 
 def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
-            Iab: tuple[FloatArray, FloatArray], Iba: tuple[FloatArray, FloatArray]
-            ) -> FloatArray:
+            Iab: tuple[FloatArray, FloatArray], Iba: tuple[FloatArray, FloatArray],
+            fixed: tuple[int, FloatArray] | None = None) -> FloatArray:
+    """Rows ``c0 + cs s0 + cu u0 + ct t >= 0`` of a batch of configurations: both
+    regions of length ``t`` (a square pair), or, with ``fixed = (side, length)``, the
+    region of that side (0: stretch 1, 1: stretch 2) of the given length and the other
+    of length ``t`` (the second level of the leximin order)."""
     mA, mB = ra.m, rb.m
     A, B = c.iA % mA, (c.iA + c.kA) % mA
     C, D = c.iC % mB, (c.iC + c.kC) % mB
@@ -404,11 +450,22 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     # points, affine in z = (s0, u0, t): x0 + J z
     n = A.size
     zero = np.zeros((n, 2))
+    one, zero1 = np.ones(n), np.zeros(n)
+    # the length of each stretch: t (coefficient 1) or a fixed constant (coefficient 0)
+    len_s, ct_s = zero1, one
+    len_u, ct_u = zero1, one
+    if fixed is not None:
+        if fixed[0] == 0:
+            len_s, ct_s = np.asarray(fixed[1], float), zero1
+        else:
+            len_u, ct_u = np.asarray(fixed[1], float), zero1
     pts = {
         "P0": (ra.a[A], ra.t[A], zero, zero, ra.f[A]),
-        "P1": (ra.a[B] - off_s[:, None] * ra.t[B], ra.t[B], zero, ra.t[B], ra.f[B]),
+        "P1": (ra.a[B] + (len_s - off_s)[:, None] * ra.t[B], ra.t[B], zero,
+               ct_s[:, None] * ra.t[B], ra.f[B]),
         "Q0": (rb.a[C], zero, rb.t[C], zero, rb.f[C]),
-        "Q1": (rb.a[D] - off_u[:, None] * rb.t[D], zero, rb.t[D], rb.t[D], rb.f[D]),
+        "Q1": (rb.a[D] + (len_u - off_u)[:, None] * rb.t[D], zero, rb.t[D],
+               ct_u[:, None] * rb.t[D], rb.f[D]),
     }
     rows = []
     for xn in ("P0", "P1"):
@@ -417,12 +474,11 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
             d = [sigma * (Y[j] - X[j]) for j in range(4)]
             for g in _gens_x(X[4], beta) + _gens_y(Y[4], beta):
                 rows.append(np.stack([_cross(g, dj) for dj in d], axis=1))
-    one, zero1 = np.ones(n), np.zeros(n)
     # boxes: lo0 <= s0 <= hi0, lo1 <= s0 + t - off_s <= hi1, and the same for u0
     limits = [(-lo0, one, zero1, zero1), (hi0, -one, zero1, zero1),
-              (-(lo1 + off_s), one, zero1, one), (hi1 + off_s, -one, zero1, -one),
+              (len_s - lo1 - off_s, one, zero1, ct_s), (hi1 + off_s - len_s, -one, zero1, -ct_s),
               (-ulo0, zero1, one, zero1), (uhi0, zero1, -one, zero1),
-              (-(ulo1 + off_u), zero1, one, one), (uhi1 + off_u, zero1, -one, -one),
+              (len_u - ulo1 - off_u, zero1, one, ct_u), (uhi1 + off_u - len_u, zero1, -one, -ct_u),
               (zero1, zero1, zero1, one)]
     rows += [np.stack(r, axis=1) for r in limits]
     return np.stack(rows, axis=1)
@@ -532,17 +588,219 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatAr
         off = ring.L[i % m] - s0 + float(_inner(ring, np.array([i]), np.array([k]))[0])
         last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
     pts = np.array([first, *verts, last])
-    edges = tuple(int(ring.edges[(i + j) % m]) for j in range(k + 1))
-    return pts, edges
+    edges = [int(ring.edges[(i + j) % m]) for j in range(k + 1)]
+    # a stretch that starts or ends exactly at a vertex does not cover the edge beyond
+    # it (the vertex held with both normals, so either is its end normal)
+    tiny = 1e-12 * float(ring.U[m])
+    if k and np.hypot(*(pts[1] - pts[0])) <= tiny:
+        pts, edges = pts[1:], edges[1:]
+    if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
+        pts, edges = pts[:-1], edges[:-1]
+    return pts, tuple(edges)
+
+
+@dataclass
+class _Found:
+    """A solved configuration: ring pair and mode (the job), covered edges, the common
+    length ``t`` and the placement; after the second level, both lengths."""
+
+    job: tuple[int, int, float, str]
+    cfg: tuple[int, int, int, int]
+    t: float
+    s0: float
+    u0: float
+    lengths: tuple[float, float] = (0.0, 0.0)
+
+
+def _jobs(n_rings: int) -> list[tuple[int, int, float, str]]:
+    return [(x, y, sigma, mode) for x in range(n_rings) for y in range(n_rings)
+            for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand"))]
+
+
+def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[int]]
+                ) -> _Configs:
+    """Every configuration inside two runs of ring edges (for each stretch, the ring
+    positions of its edges in order)."""
+    cols = []
+    for pos in runs:
+        first, last = np.triu_indices(len(pos))
+        cols.append((np.asarray(pos)[first], last - first))
+    (ia, ka), (ic, kc) = cols
+    ga = np.repeat(np.arange(ia.size), ic.size)
+    gc = np.tile(np.arange(ic.size), ia.size)
+    cfg = _Configs(ia[ga], ka[ga], ic[gc], kc[gc])
+    return cfg.take(_disjoint(ra, cfg, same))
+
+
+def _candidates(rings: list[_Ring], beta: float, bound: _Bound,
+                intervals: dict[Any, Any]) -> list[tuple[Any, _Configs]]:
+    """Every configuration that can reach the bound, per job (exhaustive: the bound
+    only rises with feasible configurations)."""
+    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
+                for x, y, sigma, _ in _jobs(len(rings)) if x <= y}
+    prepared = []
+    for collect in (False, True):          # the lower bound first, then the candidates
+        for job in _jobs(len(rings)):
+            x, y, sigma, _ = job
+            ra, rb = rings[x], rings[y]
+            both = _empty()
+            if x <= y:
+                both = _windows_both(matrices[x, y, sigma], ra, rb, x == y, bound, collect)
+            lo, hi = intervals[x, y, sigma]
+            single = _windows_single(lo, hi, ra, rb, x == y, bound, collect)
+            if collect:
+                pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
+                prepared.append((job, _Configs.cat([both, single, pairs])))
+    return prepared
+
+
+def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
+                intervals: dict[Any, Any], bound: _Bound, scale: float) -> list[_Found]:
+    """The largest square pair of every configuration that can still reach the top
+    (largest bound first, in chunks; ties with the ``k``-th kept)."""
+    found: list[_Found] = []
+    for job, cfg in prepared:
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        ub = _stretch_bound(ra, rb, cfg)
+        keep = ub >= bound.floor
+        cfg, ub = cfg.take(keep), ub[keep]
+        order = np.argsort(-ub, kind="stable")
+        for s in range(0, order.size, 256):
+            chunk = order[s:s + 256]
+            if ub[chunk[0]] < bound.floor:
+                break
+            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, intervals[x, y, sigma],
+                           intervals[y, x, sigma])
+            t, s0, u0 = _solve(rows, ub[chunk], scale)
+            ok = np.flatnonzero(t > 0)
+            for j in ok:
+                c = chunk[j]
+                found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
+                                          int(cfg.kC[c])), float(t[j]), float(s0[j]),
+                                    float(u0[j])))
+            bound.add(t[ok])
+    return found
+
+
+def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
+                  intervals: dict[Any, Any], scale: float) -> None:
+    """The second level of the leximin order (definition 7.1) of each configuration:
+    one region at the optimal smallest length, the other as long as possible (both
+    sides tried; exact, the same three-variable program with one length fixed)."""
+    by_job: dict[Any, list[_Found]] = {}
+    for f in found:
+        by_job.setdefault(f.job, []).append(f)
+    for job, items in by_job.items():
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        cfg = _Configs(*(np.array([f.cfg[j] for f in items]) for j in range(4)))
+        t1 = np.array([f.t for f in items])
+        best_len = t1.copy()
+        best_side = np.full(t1.size, -1)
+        best_s0 = np.array([f.s0 for f in items])
+        best_u0 = np.array([f.u0 for f in items])
+        for side in (0, 1):
+            ub = _ext(rb, cfg.iC, cfg.kC) if side == 0 else _ext(ra, cfg.iA, cfg.kA)
+            rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
+                           intervals[y, x, sigma], fixed=(side, t1))
+            t2, s0, u0 = _solve(rows, ub, scale)
+            better = t2 > best_len * (1 + TIE)
+            best_len = np.where(better, t2, best_len)
+            best_side = np.where(better, side, best_side)
+            best_s0 = np.where(better, s0, best_s0)
+            best_u0 = np.where(better, u0, best_u0)
+        for j, f in enumerate(items):
+            f.s0, f.u0 = float(best_s0[j]), float(best_u0[j])
+            long_ = float(best_len[j])
+            f.lengths = ((f.t, long_) if best_side[j] == 0 else (long_, f.t)
+                         if best_side[j] == 1 else (f.t, f.t))
+
+
+def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
+    """The configurations that are optimal on their own edges: a configuration whose
+    smallest region is beaten by one of its sub-configurations (fewer edges on either
+    side, all of them found, since they rank higher) is not a plan of those edges."""
+    keep = np.ones(len(found), bool)
+    by_job: dict[Any, list[int]] = {}
+    for j, f in enumerate(found):
+        by_job.setdefault(f.job, []).append(j)
+    for job, idx in by_job.items():
+        ra, rb = rings[job[0]], rings[job[1]]
+        c = np.array([found[j].cfg for j in idx])
+        t = np.array([found[j].t for j in idx])
+        if c[:, [1, 3]].max() == 0:
+            continue
+
+        def inside(i: np.ndarray, k: np.ndarray, m: int) -> np.ndarray:
+            # [sub] stretch (rows) inside [super] stretch (columns), cyclically
+            rel = (i[:, None] - i[None, :]) % m
+            return rel + k[:, None] <= k[None, :]
+
+        sub = inside(c[:, 0], c[:, 1], ra.m) & inside(c[:, 2], c[:, 3], rb.m)
+        if job[0] == job[1]:            # one ring: a pair may be stored either way round
+            sub |= ((c[:, None, 0] - c[None, :, 2]) % ra.m + c[:, None, 1] <= c[None, :, 3]) \
+                & ((c[:, None, 2] - c[None, :, 0]) % ra.m + c[:, None, 3] <= c[None, :, 1])
+        beaten = sub & (t[:, None] > t[None, :] * (1 + TIE))
+        keep[np.asarray(idx)[beaten.any(axis=0)]] = False
+    return [f for f, k in zip(found, keep, strict=True) if k]
+
+
+def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
+               intervals: dict[Any, Any], polygon: Polygon) -> list[_Found]:
+    """The placement of a pair on one ring, independent of which stretch the search
+    called the first: both ways round are placed, and the one whose end points come
+    first (relative to the part, rounded) is kept, so a renumbered part gets the same
+    regions."""
+    same = [j for j, f in enumerate(found) if f.job[0] == f.job[1]]
+    if not same:
+        return found
+    swapped = [_Found(found[j].job, found[j].cfg[2:] + found[j].cfg[:2], found[j].t,
+                      found[j].u0, found[j].s0) for j in same]
+    _second_level(rings, beta, swapped, intervals, polygon.size)
+    out = list(found)
+
+    def key(f: _Found) -> tuple[Any, ...]:
+        pair = _pairs(rings, [f])[0]
+        ends = [np.round((np.array([r[0], r[-1]]) - polygon.centroid) / polygon.size, 9)
+                for r in pair.regions]
+        return (np.round(-np.sort(pair.lengths) / polygon.size, 9).tolist(),
+                sorted(sorted(map(tuple, e.tolist())) for e in ends))
+
+    for j, g in zip(same, swapped, strict=True):
+        if key(g) < key(found[j]):
+            out[j] = g
+    return out
+
+
+def _pairs(rings: list[_Ring], found: list[_Found]) -> list[StretchPair]:
+    out = []
+    for f in found:
+        x, y, _, mode = f.job
+        iA, kA, iC, kC = f.cfg
+        p1, e1 = _polyline(rings[x], iA, kA, f.s0, f.lengths[0])
+        p2, e2 = _polyline(rings[y], iC, kC, f.u0, f.lengths[1])
+        out.append(StretchPair((p1, p2), (e1, e2), f.lengths, mode))
+    return out
+
+
+def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
+    """The half-angle ``beta = atan(mu) - margin`` of the shrunk friction cones."""
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    mu_v = check_mu_scalar(mu, "mu")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    return float(np.arctan(mu_v) - np.radians(margin_v))
 
 
 def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
-                         top: Any = 5) -> list[StretchPair]:
+                         top: Any = 5, ties: bool = False) -> list[StretchPair]:
     """Optimal independent regions along the boundary for two fingers with friction.
 
-    Regions are stretches of the rings (see the module docstring); the largest
-    smallest region over every pair of stretches, squeezing and expanding, exact up to
-    the bisection's relative precision (about 1e-15 of the part's size).
+    Regions are stretches of the rings (see the module docstring).  The pairs are
+    ordered by definition 7.1's leximin order: the smallest region first, then the
+    other (the second level: one region at the optimal smallest length, the other as
+    long as the same covered edges allow).  Exact up to about 1e-12 of the part's size.
 
     Parameters
     ----------
@@ -551,8 +809,13 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
         Friction coefficient of both fingers.
     margin : float
         Safety margin in degrees inside the friction cones.
-    top : int
-        How many pairs of regions to return, longest smallest region first.
+    top : int or None
+        How many pairs of regions to return (distinct configurations: which edges each
+        region covers); None: every configuration that holds (small parts only: their
+        number grows with the cube of the edges of a curved outline).
+    ties : bool
+        Also return every configuration whose smallest region ties the ``top``-th's
+        (to a relative 1e-9), so that a later order (leximin, then geometry) is exact.
 
     Returns
     -------
@@ -567,63 +830,93 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     >>> round(best.min_length, 1), len(best.region_edges[0]) > 20
     (27.9, True)
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
-    mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
-    top_v = check_int(top, "top", minimum=1)
-    beta = float(np.arctan(mu_v) - np.radians(margin_v))
+    beta = _check_args(polygon, mu, margin)
+    top_v = None if top is None else check_int(top, "top", minimum=1)
+    if not isinstance(ties, bool):
+        raise TypeError(f"ties must be a bool, got {ties!r}")
     if beta <= 0:
         return []
     rings = _rings(polygon)
-    found: list[tuple[float, _Ring, _Ring, tuple[int, int, int, int], float, float,
-                      str]] = []
-    lb = 0.0
-    jobs = [(x, y, sigma, mode) for x in range(len(rings)) for y in range(len(rings))
-            for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand"))]
     # every ordered ring pair is a job, so a job's reverse intervals are another's
     intervals = {(x, y, sigma): _edge_intervals(rings[x], rings[y], sigma, beta)
-                 for x, y, sigma, _ in jobs}
-    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
-                for x, y, sigma, _ in jobs if x <= y}
-    prepared = []
-    for collect in (False, True):          # the lower bound first, then the candidates
-        for x, y, sigma, mode in jobs:
-            ra, rb = rings[x], rings[y]
-            both = _empty()
-            if x <= y:
-                both, lb = _windows_both(matrices[x, y, sigma], ra, rb, x == y, lb, collect)
-            single, lb = _windows_single(*intervals[x, y, sigma], ra, rb, x == y, lb, collect)
-            if collect:
-                pairs = _pairs_single(ra, rb, x == y, lb) if x <= y else _empty()
-                prepared.append((x, y, sigma, mode, _Configs.cat([both, single, pairs])))
-    kth = 0.0
-    for x, y, sigma, mode, cfg in prepared:
-        ra, rb = rings[x], rings[y]
-        ub = _stretch_bound(ra, rb, cfg)
-        keep = ub >= max(lb, kth) * (1 - 1e-12)
-        cfg, ub = cfg.take(keep), ub[keep]
-        if cfg.iA.size == 0:
-            continue
-        order = np.argsort(-ub, kind="stable")
-        for s in range(0, order.size, 256):
-            chunk = order[s:s + 256]
-            if ub[chunk[0]] < kth * (1 - 1e-12):
-                break
-            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma])
-            t, s0, u0 = _solve(rows, ub[chunk], polygon.size)
-            for j in np.flatnonzero(t > 0):
-                c = chunk[j]
-                found.append((float(t[j]), ra, rb,
-                              (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]), int(cfg.kC[c])),
-                              float(s0[j]), float(u0[j]), mode))
-            if len(found) >= top_v:
-                kth = sorted((f[0] for f in found), reverse=True)[top_v - 1]
-    found.sort(key=lambda f: -f[0])
-    out = []
-    for length, ra, rb, (iA, kA, iC, kC), start1, start2, mode in found[:top_v]:
-        p1, e1 = _polyline(ra, iA, kA, start1, length)
-        p2, e2 = _polyline(rb, iC, kC, start2, length)
-        out.append(StretchPair((p1, p2), (e1, e2), (length, length), mode))
-    return out
+                 for x, y, sigma, _ in _jobs(len(rings))}
+    want = top_v
+    for _ in range(4):
+        # configurations beaten on their own edges are dropped; ask for more until
+        # ``top`` remain (or every configuration was seen)
+        bound = _Bound(2 ** 62 if want is None else want)
+        prepared = _candidates(rings, beta, bound, intervals)
+        found = _solve_jobs(rings, beta, prepared, intervals, bound, polygon.size)
+        found.sort(key=lambda f: -f.t)
+        found = _own_optimum(rings, found)
+        if want is None or top_v is None or len(found) >= top_v or bound.value == 0.0:
+            break
+        want = 4 * want
+    if not found:
+        return []
+    if top_v is not None:
+        kth = found[min(top_v, len(found)) - 1].t
+        found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
+    _second_level(rings, beta, found, intervals, polygon.size)
+    found = _canonical(rings, beta, found, intervals, polygon)
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    return _pairs(rings, found if ties or top_v is None else found[:top_v])
+
+
+def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
+                    margin: Any = DEFAULT_MARGIN_DEG) -> StretchPair | None:
+    """Optimal independent regions inside two given stretches (definition 7.1).
+
+    ``stretches``: for each finger, the consecutive edges of one ring it may cover, in
+    ring order (a single edge is a stretch of one edge).  Every configuration inside
+    them is solved exactly; the best by the leximin order, squeezing or expanding.
+    None when no pair of regions holds.
+
+    >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    >>> r = stretch_regions(sq, [[0], [2]], mu=0.3)
+    >>> r.region_edges, round(r.min_length, 3)
+    (((0,), (2,)), 0.872)
+    """
+    beta = _check_args(polygon, mu, margin)
+    if isinstance(stretches, (str, bytes)) or len(stretches) != 2:
+        raise ValueError(f"stretches must hold two sequences of edges, got {stretches!r}")
+    rings = _rings(polygon)
+    where = {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
+    runs = []
+    for k, st in enumerate(stretches):
+        edges = list(polygon.check_edges(st))
+        if not edges or any(e not in where for e in edges):
+            raise ValueError(f"stretches[{k}] must list usable edges of the part, got {st!r}")
+        ring = where[edges[0]][0]
+        pos = [where[e][1] for e in edges]
+        m = rings[ring].m
+        if any(where[e][0] != ring for e in edges) or any(
+                (b - a) % m != 1 for a, b in zip(pos, pos[1:], strict=False)) or len(pos) >= m:
+            raise ValueError(f"stretches[{k}] must be consecutive edges of one ring in ring "
+                             f"order, got {st!r}")
+        runs.append((ring, pos))
+    if set(map(int, stretches[0])) & set(map(int, stretches[1])):
+        raise ValueError(f"the two stretches share an edge, got {stretches!r}")
+    if beta <= 0:
+        return None
+    x, y = runs[0][0], runs[1][0]
+    ra, rb = rings[x], rings[y]
+    intervals = {(a, b, sigma): _edge_intervals(rings[a], rings[b], sigma, beta)
+                 for a, b in ((x, y), (y, x)) for sigma in (1.0, -1.0)}
+    cfg = _configs_in(ra, rb, x == y, (runs[0][1], runs[1][1]))
+    found: list[_Found] = []
+    for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand")):
+        rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
+                       intervals[y, x, sigma])
+        t, s0, u0 = _solve(rows, _stretch_bound(ra, rb, cfg), polygon.size)
+        found += [_Found((x, y, sigma, mode), (int(cfg.iA[j]), int(cfg.kA[j]),
+                                               int(cfg.iC[j]), int(cfg.kC[j])),
+                         float(t[j]), float(s0[j]), float(u0[j]))
+                  for j in np.flatnonzero(t > 0)]
+    if not found:
+        return None
+    best = max(f.t for f in found)
+    found = [f for f in found if f.t >= best * (1 - TIE)]
+    _second_level(rings, beta, found, intervals, polygon.size)
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    return _pairs(rings, found[:1])[0]
