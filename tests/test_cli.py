@@ -121,8 +121,8 @@ def test_dxf_with_bulges(tmp_path):
     part = write_dxf(tmp_path)
     poly = read_part(part)
     assert poly.n_edges > 20                      # the arcs were flattened
-    # chords lie inside the arcs: area short by about perimeter * tolerance
-    assert 0.995 < poly.area / (40 * 20 + np.pi * 10 ** 2) < 1.0
+    # fine chords of ezdxf's Bezier arcs (within 3e-4 of the radius of the true arcs)
+    assert 0.999 < poly.area / (40 * 20 + np.pi * 10 ** 2) < 1.001
     out = tmp_path / "dxf.json"
     r = run("plan", part, "--fingers", "4", "--top", "2", "--json", out)
     assert r.returncode == 0, r.stderr

@@ -11,7 +11,7 @@ import numpy as np
 from shapely.geometry import Point
 from shapely.geometry import Polygon as ShapelyPolygon
 
-from ._drawing import Drawing, Shape, TolOf
+from ._drawing import Drawing, Shape, TolOf, flatten_curve
 from ._geom import signed_area
 from .outline import fill_rings
 
@@ -49,6 +49,29 @@ def _canonical(ring: np.ndarray) -> np.ndarray:
     return np.roll(ring, -int(np.lexsort((ring[:, 0], ring[:, 1]))[0]), axis=0)
 
 
+def _flatten_path(path: Any, tol: float) -> np.ndarray:
+    """The points of an ezdxf path (lines and Bezier curves), curves flattened by
+    :func:`fcgrasp._drawing.flatten_curve` (chord and turn)."""
+    from ezdxf.math import Bezier3P, Bezier4P, Vec3
+    from ezdxf.path import Command
+
+    start = Vec3(path.start)
+    pts = [complex(start.x, start.y)]
+    for cmd in path.commands():
+        end = Vec3(cmd.end)
+        if cmd.type == Command.CURVE4_TO:
+            curve: Any = Bezier4P([start, Vec3(cmd.ctrl1), Vec3(cmd.ctrl2), end])
+        elif cmd.type == Command.CURVE3_TO:
+            curve = Bezier3P([start, Vec3(cmd.ctrl), end])
+        else:
+            curve = None
+            pts.append(complex(end.x, end.y))
+        if curve is not None:
+            flatten_curve(lambda t, c=curve: complex(c.point(t).x, c.point(t).y), tol, pts)
+        start = end
+    return np.array([[z.real, z.imag] for z in pts])
+
+
 def _extents(entities: list[Any]) -> float:
     from ezdxf import bbox
 
@@ -63,9 +86,11 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
     """Loops of a DXF's modelspace (or of ``layer``): closed LWPOLYLINE, POLYLINE, CIRCLE,
     ELLIPSE and SPLINE entities, and chains of LINE, ARC, ELLIPSE, SPLINE and open
     polylines joined end to end (ezdxf's edgesmith and edgeminer) within ``gap_of(units)``
-    (file units; default :data:`GAP_REL` of the drawing's extents).  Every curve is flattened
-    by one rule (ezdxf's ``Path.flattening``: at most the tolerance between curve and
-    chord), and loops are nested into parts and holes by the even-odd rule."""
+    (file units; default :data:`GAP_REL` of the drawing's extents).  Every curve (ezdxf's
+    paths of Bezier curves) is flattened by one rule, the SVG reader's: at most the
+    tolerance between curve and chord and at most
+    :data:`~fcgrasp._drawing.MAX_TURN_DEG` of turn per edge; loops are nested into parts
+    and holes by the even-odd rule."""
     try:
         from ezdxf import edgeminer as em
         from ezdxf import edgesmith as es
@@ -104,9 +129,7 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
             return
         tol = tol_of(size, units)
         first = min(members, key=lambda e: order[id(e)])
-        found.append((order[id(first)], _canonical(np.array([[v.x, v.y]
-                                                             for v in p.flattening(tol)])),
-                      first, tol))
+        found.append((order[id(first)], _canonical(_flatten_path(p, tol)), first, tol))
 
     open_ents = []
     for e in ents:

@@ -8,7 +8,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from ._drawing import Drawing, Shape, TolOf
+from ._drawing import Drawing, Shape, TolOf, flatten_curve
 from .outline import fill_rings
 
 #: CSS pixels per inch: the unit of SVG user space after its viewBox and width/height.
@@ -20,25 +20,6 @@ BACKGROUND_FRACTION = 0.98
 def _z(point: Any) -> complex:
     """An svgelements point as a Python complex number."""
     return complex(float(point.x), float(point.y))
-
-
-def _flatten_segment(seg: Any, tol: float, out: list[complex], depth: int = 0,
-                     t0: float = 0.0, t1: float = 1.0) -> None:
-    """Append the end point of ``seg`` restricted to [t0, t1], subdividing until the
-    midpoint of each piece is within ``tol`` of its chord."""
-    p0, p1 = _z(seg.point(t0)), _z(seg.point(t1))
-    tm = 0.5 * (t0 + t1)
-    pm = _z(seg.point(tm))
-    chord = p1 - p0
-    if abs(chord) > 0:
-        dev = abs((pm - p0).real * chord.imag - (pm - p0).imag * chord.real) / abs(chord)
-    else:
-        dev = abs(pm - p0)
-    if depth < 18 and (dev > tol or depth < 2):
-        _flatten_segment(seg, tol, out, depth + 1, t0, tm)
-        _flatten_segment(seg, tol, out, depth + 1, tm, t1)
-    else:
-        out.append(p1)
 
 
 def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
@@ -68,7 +49,7 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
             if isinstance(s, Line):
                 cur.append(_z(s.end))
             else:
-                _flatten_segment(s, tol, cur)
+                flatten_curve(lambda t, seg=s: _z(seg.point(t)), tol, cur)
     finish(cur, False)
     return rings
 

@@ -447,7 +447,7 @@ def build_parser() -> argparse.ArgumentParser:
         g.add_argument("--flatten", type=float, default=None, metavar="TOL",
                        help="curve flattening tolerance (SVG, DXF) or outline simplification "
                             "(images), in --units (default 1/1000 of each element's size; "
-                            "1 pixel for images)")
+                            "1 pixel for images); curves also turn at most 1 degree per edge")
         g.add_argument("--layer", default=None, help="DXF: only the entities of this layer")
         g.add_argument("--gap", type=float, default=None, metavar="TOL",
                        help="DXF: entity ends closer than this meet (in --units; default "
