@@ -131,7 +131,8 @@ KINDS = ("ellipse", "star", "cam", "rounded")
 def _case(seed):
     rng = np.random.default_rng(seed)
     kind = KINDS[seed % len(KINDS)]
-    n = int(rng.choice([100, 150, 250, 400]))
+    # the default seeds stay small; the slow ones reach 2,000 edges
+    n = int(rng.choice([100, 150, 250, 400] if seed < 8 else [100, 250, 400, 1000, 2000]))
     mu = float(rng.uniform(0.15, 0.8))
     return rng, kind, n, mu
 
@@ -199,3 +200,84 @@ def test_bad_arguments():
         two_finger_stretches(poly, -1)
     with pytest.raises(ValueError, match="top"):
         two_finger_stretches(poly, 0.3, top=0)
+
+
+def _check_plans(seed):
+    """fc.plan on a smooth outline: every plan's regions hold (sampled grasps, vertex
+    fans included, through the general test); the best reaches the stretch optimum; each
+    plan is the optimum of its own edges (independent_regions on its stretches); and the
+    longer region of a plan cannot be pushed further along its end edge."""
+    import fcgrasp as fc
+
+    rng, kind, n, mu = _case(seed)
+    poly = Polygon(smooth_outline(rng, kind, min(n, 400)))
+    plans = fc.plan(poly, fingers=2, mu=mu, top=3)
+    best = two_finger_stretches(poly, mu, top=1)
+    assert bool(plans) == bool(best)
+    if not plans:
+        return
+    assert plans[0].min_length == pytest.approx(best[0].min_length, rel=1e-9)
+    for p in plans:
+        g = sampled_grasps(p, poly, rng, per_region=24)
+        assert is_force_closure(wrenches(*g, mu)).all(), (kind, n, mu, p.region_edges)
+        again = fc.independent_regions(poly, p.region_edges, mu=mu)
+        assert again.min_length == pytest.approx(p.min_length, rel=1e-9)
+        long_side = int(np.argmax(p.lengths))
+        if p.lengths[long_side] > p.lengths[1 - long_side] * (1 + 1e-6):
+            _check_longest(p, long_side, poly, mu, rng)
+
+
+def _check_longest(p, side, poly, mu, rng):
+    """The second level of the leximin order is the largest: extended by 1% of its
+    length at either end, staying on its end edges, the longer region fails (with
+    friction cones shrunk by nearly the planner's margin of 0.5 degree)."""
+    mu_margin = np.tan(np.arctan(mu) - np.radians(0.45))
+    from dataclasses import replace as dc_replace
+
+    pts = p.regions[side]
+    grow = 0.01 * p.lengths[side]
+    failed = []
+    for end in (0, -1):
+        nb = -2 if end == -1 else 1
+        d = pts[end] - pts[nb]
+        d = d / np.hypot(*d)
+        e = p.region_edges[side][end]
+        a, b = poly.starts[e], poly.starts[e] + poly.lengths[e] * poly.tangents[e]
+        new_end = pts[end] + grow * d
+        # still on the edge (between its ends)?
+        u = np.dot(new_end - a, b - a) / np.dot(b - a, b - a)
+        if not 0 <= u <= 1:
+            continue
+        longer = [np.array(r, float) for r in p.regions]
+        longer[side] = longer[side].copy()
+        longer[side][end] = new_end
+        q = dc_replace(p, regions=tuple(longer))
+        g = sampled_grasps(q, poly, rng, per_region=24)
+        failed.append(not is_force_closure(wrenches(*g, mu_margin)).all())
+    assert not failed or any(failed), p.region_edges
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_plans_along_the_boundary(seed):
+    _check_plans(seed)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(4, 104))
+def test_plans_along_the_boundary_exhaustive(seed):
+    _check_plans(seed)
+
+
+def test_single_edge_plans_unchanged_on_long_edges():
+    """Where no region gains by crossing a vertex, fc.plan gives the single-edge plans."""
+    import fcgrasp as fc
+    from fcgrasp.parts import DEMO_PARTS, demo_part
+
+    for name in DEMO_PARTS:
+        poly = demo_part(name)
+        a = fc.plan(poly, mu=0.3, top=4)
+        b = fc.plan(poly, mu=0.3, top=4, along_boundary=False)
+        assert [(p.edges, p.mode) for p in a] == [(p.edges, p.mode) for p in b], name
+        for p, q in zip(a, b, strict=True):
+            np.testing.assert_array_equal(p.ends, q.ends)
+            assert p.region_edges == tuple((e,) for e in q.edges)

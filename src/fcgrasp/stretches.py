@@ -904,15 +904,10 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
     intervals = {(a, b, sigma): _edge_intervals(rings[a], rings[b], sigma, beta)
                  for a, b in ((x, y), (y, x)) for sigma in (1.0, -1.0)}
     cfg = _configs_in(ra, rb, x == y, (runs[0][1], runs[1][1]))
-    found: list[_Found] = []
-    for sigma, mode in ((1.0, "squeeze"), (-1.0, "expand")):
-        rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
-                       intervals[y, x, sigma])
-        t, s0, u0 = _solve(rows, _stretch_bound(ra, rb, cfg), polygon.size)
-        found += [_Found((x, y, sigma, mode), (int(cfg.iA[j]), int(cfg.kA[j]),
-                                               int(cfg.iC[j]), int(cfg.kC[j])),
-                         float(t[j]), float(s0[j]), float(u0[j]))
-                  for j in np.flatnonzero(t > 0)]
+    # every sub-configuration, longest bound first, in chunks behind the best found
+    prepared = [((x, y, sigma, mode), cfg) for sigma, mode in ((1.0, "squeeze"),
+                                                               (-1.0, "expand"))]
+    found = _solve_jobs(rings, beta, prepared, intervals, _Bound(1), polygon.size)
     if not found:
         return None
     best = max(f.t for f in found)
