@@ -1,7 +1,8 @@
 """Regions along the boundary (issue 12): two-finger plans of curved outlines, each run
 in a fresh process, with its time (seconds, the planning call alone), peak resident
 memory of the process and the smallest region of the best plan, for the single-edge
-regions of ``fc.plan`` (before) and the stretches of ``fcgrasp.stretches`` (after).
+regions (``fc.plan(..., along_boundary=False)``, before) and the regions along the
+boundary (``fc.plan``'s default, after), ``top=1``.
 Targets on the project's 2-core machine: 2 s and 500 MB at 2,000 edges.
 
 Run: ``.venv/bin/python benchmarks/bench_stretches.py``.
@@ -17,16 +18,13 @@ CHILD = r"""
 import json, resource, sys, time
 import numpy as np
 import fcgrasp as fc
-from fcgrasp.stretches import two_finger_stretches
 kind, n, how = sys.argv[1], int(sys.argv[2]), sys.argv[3]
 a = np.linspace(0, 2 * np.pi, n, endpoint=False)
 r = 50.0 if kind == "disc" else 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
 poly = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
 t0 = time.perf_counter()
-if how == "single edges":
-    best = fc.plan(poly, fingers=2, mu=0.3, top=1)[0].min_length
-else:
-    best = two_finger_stretches(poly, 0.3, top=1)[0].min_length
+best = fc.plan(poly, fingers=2, mu=0.3, top=1,
+               along_boundary=how == "stretches")[0].min_length
 dt = time.perf_counter() - t0
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 print(json.dumps([dt, peak, best]))

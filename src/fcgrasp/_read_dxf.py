@@ -49,6 +49,14 @@ def _canonical(ring: np.ndarray) -> np.ndarray:
     return np.roll(ring, -int(np.lexsort((ring[:, 0], ring[:, 1]))[0]), axis=0)
 
 
+def _bezier_point(curve: Any) -> Callable[[float], complex]:
+    """``t -> point`` of an ezdxf Bezier curve, as a complex number."""
+    def point(t: float) -> complex:
+        p = curve.point(t)
+        return complex(p.x, p.y)
+    return point
+
+
 def _flatten_path(path: Any, tol: float) -> np.ndarray:
     """The points of an ezdxf path (lines and Bezier curves), curves flattened by
     :func:`fcgrasp._drawing.flatten_curve` (chord and turn)."""
@@ -67,7 +75,7 @@ def _flatten_path(path: Any, tol: float) -> np.ndarray:
             curve = None
             pts.append(complex(end.x, end.y))
         if curve is not None:
-            flatten_curve(lambda t, c=curve: complex(c.point(t).x, c.point(t).y), tol, pts)
+            flatten_curve(_bezier_point(curve), tol, pts)
         start = end
     return np.array([[z.real, z.imag] for z in pts])
 

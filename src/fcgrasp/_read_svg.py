@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -20,6 +21,11 @@ BACKGROUND_FRACTION = 0.98
 def _z(point: Any) -> complex:
     """An svgelements point as a Python complex number."""
     return complex(float(point.x), float(point.y))
+
+
+def _curve_point(seg: Any) -> Callable[[float], complex]:
+    """``t -> point`` of an svgelements segment, as a complex number."""
+    return lambda t: _z(seg.point(t))
 
 
 def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
@@ -49,7 +55,7 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
             if isinstance(s, Line):
                 cur.append(_z(s.end))
             else:
-                flatten_curve(lambda t, seg=s: _z(seg.point(t)), tol, cur)
+                flatten_curve(_curve_point(s), tol, cur)
     finish(cur, False)
     return rings
 
