@@ -370,7 +370,8 @@ def cmd_demo(args: Any) -> int:
             ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
             ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
             ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
-            ("washer", 2, 0.2, "two fingers with friction on a part with a hole")]
+            ("washer", 2, 0.2, "two fingers with friction on a part with a hole"),
+            ("cam", 2, 0.3, "regions along the boundary of a curved part")]
     entries: list[dict[str, Any]] = []
     for name, fingers, mu, title in jobs:
         polygon = demo_part(name)

@@ -63,7 +63,15 @@ def _regular(n: int, r: float = 1.0, phase: float = 0.0) -> list[list[float]]:
     return np.round(np.column_stack([r * np.cos(a), r * np.sin(a)]), 12).tolist()
 
 
-#: Built-in parts, in millimetres, in the spirit of the paper's figure 1.
+def _cam(n: int = 360) -> list[list[float]]:
+    """A smooth cam (base circle of radius 40 mm with a lobe), flattened to ``n`` edges."""
+    a = np.arange(n) * 2 * np.pi / n
+    r = 40.0 * (1 + 0.3 * np.exp(-(np.angle(np.exp(1j * (a - 1.0))) / 0.6) ** 2))
+    return np.round(np.column_stack([r * np.cos(a), r * np.sin(a)]), 12).tolist()
+
+
+#: Built-in parts, in millimetres, in the spirit of the paper's figure 1 (and a curved
+#: part, whose regions run along the boundary).
 DEMO_PARTS: dict[str, dict[str, Any]] = {
     # figure 1.a: grasps with friction on two edges of an irregular blob
     "blob": {"vertices": [[0, 0], [42, -6], [70, 14], [64, 46], [30, 58], [-4, 36]]},
@@ -75,6 +83,7 @@ DEMO_PARTS: dict[str, dict[str, Any]] = {
     "washer": {"vertices": _regular(12, 30.0, 0.1),
                "holes": [_regular(8, 12.0, 0.3)]},
     "rectangle": {"vertices": [[0, 0], [80, 0], [80, 30], [0, 30]]},
+    "cam": {"vertices": _cam()},
 }
 
 
