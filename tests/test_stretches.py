@@ -152,14 +152,14 @@ def _check_against_raster(seed, samples=900):
         assert is_force_closure(wrenches(p, n_p, q, n_q, mu)).all(), (kind, n, mu)
 
 
-@pytest.mark.parametrize("seed", range(8))
+def seeds(default, total):
+    """Seeds 0 .. total - 1, those from ``default`` on marked slow (the exhaustive run)."""
+    return [*range(default), *(pytest.param(s, marks=pytest.mark.slow)
+                               for s in range(default, total))]
+
+
+@pytest.mark.parametrize("seed", seeds(8, 208))
 def test_stretches_match_raster(seed):
-    _check_against_raster(seed)
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", range(8, 208))
-def test_stretches_match_raster_exhaustive(seed):
     _check_against_raster(seed)
 
 
@@ -257,14 +257,8 @@ def _check_longest(p, side, poly, mu, rng):
     assert not failed or any(failed), p.region_edges
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", seeds(4, 104))
 def test_plans_along_the_boundary(seed):
-    _check_plans(seed)
-
-
-@pytest.mark.slow
-@pytest.mark.parametrize("seed", range(4, 104))
-def test_plans_along_the_boundary_exhaustive(seed):
     _check_plans(seed)
 
 
