@@ -7,6 +7,10 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
+from .tolerances import RANK_TOL
+
+#: Decimal digits of the ranking's rounding (:data:`~fcgrasp.tolerances.RANK_TOL`).
+RANK_DIGITS = int(round(-np.log10(RANK_TOL)))
 
 
 def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
@@ -45,3 +49,22 @@ def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
     k = np.clip(np.searchsorted(cum, target, side="right") - 1, 0, len(seg) - 1)
     frac = np.where(L[k] > 0, (target - cum[k]) / np.where(L[k] > 0, L[k], 1.0), 0.0)
     return line[k] + frac[..., None] * seg[k], k
+
+
+def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
+    """Sort key of the leximin order (definition 7.1): smaller is better."""
+    return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, RANK_DIGITS))
+
+
+def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
+    """A key of a set of regions that does not depend on how the part is numbered.
+
+    Each region's two ends (of a polyline: its first and last points) are sorted, the
+    regions are sorted, and the coordinates (relative to the part's centroid and size,
+    rounded to 1e-9) are read in that order.  Used to break ties between equally good
+    plans or placements.
+    """
+    ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])
+    rel = np.round((ends.reshape(-1, 2, 2) - polygon.centroid) / polygon.size, RANK_DIGITS) + 0.0
+    segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)
+    return tuple(x for seg in segs for pt in seg for x in pt)

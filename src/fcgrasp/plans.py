@@ -15,19 +15,16 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
-from ._geom import along
+from ._geom import RANK_DIGITS as _DIGITS
+from ._geom import along, geometric_key, leximin_key
 from ._json import json_ready
 from .contacts import FrictionlessPoint, FrictionPoint, Gravity
 from .grasp import Grasp
 from .polygon import Polygon
 from .quality import quality_of
 from .ranking import MEASURES
-from .tolerances import RANK_TOL
 
 __all__ = ["GraspPlan", "leximin_key", "geometric_key", "rank_key"]
-
-_DIGITS = int(round(-np.log10(RANK_TOL)))
-
 
 @dataclass
 class GraspPlan:
@@ -208,25 +205,6 @@ def _nearest_segment(line: FloatArray, p: FloatArray) -> int:
     s = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(dd, 1e-300), 0.0, 1.0)
     q = a + s[:, None] * d
     return int(np.argmin(np.where(dd > 0, np.hypot(*(q - p).T), np.inf)))
-
-
-def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
-    """Sort key of the leximin order (definition 7.1): smaller is better."""
-    return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, _DIGITS))
-
-
-def geometric_key(regions: Any, polygon: Polygon) -> tuple[float, ...]:
-    """A key of a set of regions that does not depend on how the part is numbered.
-
-    Each region's two ends (of a polyline: its first and last points) are sorted, the
-    regions are sorted, and the coordinates (relative to the part's centroid and size,
-    rounded to 1e-9) are read in that order.  Used to break ties between equally good
-    plans or placements.
-    """
-    ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])
-    rel = np.round((ends.reshape(-1, 2, 2) - polygon.centroid) / polygon.size, _DIGITS) + 0.0
-    segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)
-    return tuple(x for seg in segs for pt in seg for x in pt)
 
 
 def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region",

@@ -55,7 +55,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ._geom import along
+from ._geom import along, geometric_key, leximin_key
 from ._geom import cross2 as _cross
 from .contacts import rotate
 from .polygon import Polygon
@@ -632,12 +632,10 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
     return cfg.take(_disjoint(ra, cfg, same))
 
 
-def _candidates(rings: list[_Ring], beta: float, bound: _Bound,
-                intervals: dict[Any, Any]) -> list[tuple[Any, _Configs]]:
+def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, Any],
+                matrices: dict[Any, Any]) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations)."""
-    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
-                for x, y, sigma, _ in _jobs(len(rings)) if x <= y}
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
         for job in _jobs(len(rings)):
@@ -761,16 +759,25 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     out = list(found)
 
     def key(f: _Found) -> tuple[Any, ...]:
+        # the ranking's own order: leximin, then the geometric tie-break
         pair = _pairs(rings, [f])[0]
-        ends = [np.round((np.array([r[0], r[-1]]) - polygon.centroid) / polygon.size, 9)
-                for r in pair.regions]
-        return (np.round(-np.sort(pair.lengths) / polygon.size, 9).tolist(),
-                sorted(sorted(map(tuple, e.tolist())) for e in ends))
+        return (leximin_key(np.array(pair.lengths), polygon.size),
+                geometric_key(pair.regions, polygon))
 
     for j, g in zip(same, swapped, strict=True):
         if key(g) < key(found[j]):
             out[j] = g
     return out
+
+
+def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, Any],
+            polygon: Polygon) -> list[_Found]:
+    """The second leximin level and the numbering-free placement of the configurations
+    kept, in the leximin order."""
+    _second_level(rings, beta, found, intervals, polygon.size)
+    found = _canonical(rings, beta, found, intervals, polygon)
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    return found
 
 
 def _pairs(rings: list[_Ring], found: list[_Found]) -> list[StretchPair]:
@@ -840,12 +847,14 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     # every ordered ring pair is a job, so a job's reverse intervals are another's
     intervals = {(x, y, sigma): _edge_intervals(rings[x], rings[y], sigma, beta)
                  for x, y, sigma, _ in _jobs(len(rings))}
+    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
+                for x, y, sigma, _ in _jobs(len(rings)) if x <= y}
     want = top_v
     for _ in range(4):
         # configurations beaten on their own edges are dropped; ask for more until
         # ``top`` remain (or every configuration was seen)
         bound = _Bound(2 ** 62 if want is None else want)
-        prepared = _candidates(rings, beta, bound, intervals)
+        prepared = _candidates(rings, bound, intervals, matrices)
         found = _solve_jobs(rings, beta, prepared, intervals, bound, polygon.size)
         found.sort(key=lambda f: -f.t)
         found = _own_optimum(rings, found)
@@ -857,9 +866,7 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     if top_v is not None:
         kth = found[min(top_v, len(found)) - 1].t
         found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
-    _second_level(rings, beta, found, intervals, polygon.size)
-    found = _canonical(rings, beta, found, intervals, polygon)
-    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    found = _finish(rings, beta, found, intervals, polygon)
     return _pairs(rings, found if ties or top_v is None else found[:top_v])
 
 
@@ -911,7 +918,6 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
     if not found:
         return None
     best = max(f.t for f in found)
-    found = [f for f in found if f.t >= best * (1 - TIE)]
-    _second_level(rings, beta, found, intervals, polygon.size)
-    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    found = _finish(rings, beta, [f for f in found if f.t >= best * (1 - TIE)], intervals,
+                    polygon)
     return _pairs(rings, found[:1])[0]
