@@ -13,7 +13,7 @@ LAYERS = [
     ["contacts", "grasp", "closure"],
     ["polygon", "graspsets"],
     ["outline"],
-    ["regions", "_regiongeom", "hand", "stretches"],
+    ["regions", "_regiongeom", "hand", "stretches", "frictionless_stretches"],
     ["quality", "ranking", "plans"],
     ["pipeline"],
     ["planning"],

@@ -40,6 +40,7 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .convexes import (
         Cone,
     )
+    from .frictionless_stretches import FrictionlessStretches, grow_stretches
     from .grasp import (
         ClosureReport,
         Grasp,
@@ -145,6 +146,8 @@ _LAZY = {
     "independent_regions": "planning",
     "two_finger_stretches": "stretches",
     "StretchPair": "stretches",
+    "grow_stretches": "frictionless_stretches",
+    "FrictionlessStretches": "frictionless_stretches",
     "plan": "planning",
     "clean_outline": "outline",
     "simplify_outline": "outline",
@@ -218,6 +221,8 @@ __all__ = [
     "independent_regions",
     "two_finger_stretches",
     "StretchPair",
+    "grow_stretches",
+    "FrictionlessStretches",
     "plan",
     "clean_outline",
     "simplify_outline",

@@ -38,16 +38,20 @@ def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: Floa
     return probs, hm
 
 
-def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
+def four_finger_geometry(a: FloatArray, b: FloatArray, center: FloatArray,
                          pairing: np.ndarray, margin: float, tol: float = TOL
-                         ) -> tuple[list[KnapsackProblem], FloatArray, np.ndarray]:
-    """Problems of four frictionless fingers (``P34 - P12`` in ``C`` and in ``-C``).
+                         ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray,
+                                    FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """The affine maps and the shrunk sector of four frictionless fingers (theorem 7.1).
 
     ``a, b``: (B, 4, 2) segment ends (equal for a fixed point such as gravity);
     ``center``: (B, 4) force directions (angles); ``pairing``: (B, 4) order ``(p, q, r, s)``
-    pairing fingers ``p, q`` against ``r, s``.
-    Returns ``([plus, minus], shrunk half-width, valid)``; ``valid`` is False where the
-    pairing has a null sector.
+    pairing fingers ``p, q`` against ``r, s``.  Returns, in pairing order,
+    ``(o12, o34, vel, L, k1, k2, hm, valid)``: ``P12 = o12 + vel[:, 0] s_p + vel[:, 1] s_q``
+    and ``P34`` likewise (``s`` the arc length from ``a`` along each segment), the
+    segment lengths ``L`` (B, 4), the edges ``k1, k2`` of the sector
+    ``C_12 & -C_34`` shrunk by ``margin`` on both sides, its half-width ``hm`` and
+    ``valid`` (False where the pairing has a null sector).
     """
     B = a.shape[0]
     rows = np.arange(B)[:, None]
@@ -63,8 +67,7 @@ def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
     c34, h34 = pair_arc(c[:, 2], c[:, 3])
     cen, half = arc_intersection(c12, h12, c34 + np.pi, h34)
     hm = np.where(valid, half - margin, -1.0)
-    # rows with a null pairing get stand-in directions, so nothing divides by zero; their
-    # problems are marked non-separable below
+    # rows with a null pairing get stand-in directions, so nothing divides by zero
     fz = f.copy()
     fz[:, 1] = np.where(valid[:, None], f[:, 1], [1.0, 0.0])
     fz[:, 3] = np.where(valid[:, None], f[:, 3], [1.0, 0.0])
@@ -74,7 +77,19 @@ def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
     o34, vc, vd = meet_and_velocities(A[:, 2], t[:, 2], fz[:, 2], A[:, 3], t[:, 3], fz[:, 3])
     vel = np.stack([va, vb, vc, vd], axis=1)
     vel = np.where(L[..., None] > 0, vel, 0.0)
-    k1, k2 = _dir(cen - hm), _dir(cen + hm)
+    return o12, o34, vel, L, _dir(cen - hm), _dir(cen + hm), hm, valid
+
+
+def four_finger_problems(a: FloatArray, b: FloatArray, center: FloatArray,
+                         pairing: np.ndarray, margin: float, tol: float = TOL
+                         ) -> tuple[list[KnapsackProblem], FloatArray, np.ndarray]:
+    """Problems of four frictionless fingers (``P34 - P12`` in ``C`` and in ``-C``).
+
+    Arguments as :func:`four_finger_geometry`.  Returns ``([plus, minus], shrunk
+    half-width, valid)``; ``valid`` is False where the pairing has a null sector.
+    """
+    o12, o34, vel, L, k1, k2, hm, valid = four_finger_geometry(a, b, center, pairing,
+                                                               margin, tol)
     side = np.array([0, 0, 1, 1])
     probs = [build_problem(side, o12, o34, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
     for pr in probs:

@@ -41,8 +41,10 @@ from ._checks import (
     check_scalar,
     check_tol,
 )
+from ._geom import along
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
+from .frictionless_stretches import FrictionlessStretches, grow_stretches
 from .hand import Hand
 from .plans import GraspPlan, geometric_key, leximin_key, rank_key
 from .polygon import Polygon
@@ -56,7 +58,8 @@ from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
            "BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
-           "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES"]
+           "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
+           "grown_plans", "frictionless_plan", "GROW_SEEDS"]
 
 #: Candidate rows per batch: large parts are streamed in batches of at most this size (fewer
 #: when the memory budget asks for it, see :func:`search_size`).
@@ -80,6 +83,9 @@ STRETCH_BYTES = 125
 #: With a ranking measure other than ``min_region``, how many stretch configurations
 #: (by their leximin order) are scored besides the single-edge plans.
 KEEP_STRETCHES = 200
+#: Three or four fingers along the boundary: how many of the best single-edge plans are
+#: grown into stretches (:func:`fcgrasp.frictionless_stretches.grow_stretches`).
+GROW_SEEDS = 10
 #: Measured seconds per candidate row (two fingers; three or four), for the time estimate.
 ROW_SECONDS = {2: 1e-6, 3: 3e-5, 4: 3e-5}
 #: With a measure other than ``min_region`` and a ``top``, the rows of a batch kept for
@@ -113,8 +119,14 @@ class PlanSpec:
 
     @property
     def stretches(self) -> bool:
-        """Whether the regions run along the boundary (two fingers without a hand)."""
+        """Whether the two-finger stretch search runs (two fingers without a hand)."""
         return self.along_boundary and self.fingers == 2 and self.hand is None
+
+    @property
+    def grows(self) -> bool:
+        """Whether single-edge plans of three or four fingers are grown along the
+        boundary (without a hand)."""
+        return self.along_boundary and self.fingers > 2 and self.hand is None
 
     @property
     def margin_rad(self) -> float:
@@ -1035,6 +1047,76 @@ def _single_edge_plans(polygon: Polygon, spec: PlanSpec, pairs: list[tuple[int, 
     return rank(polygon, sub, [solve(polygon, sub, EdgeSets(rows))])
 
 
+def frictionless_plan(polygon: Polygon, spec: PlanSpec, r: FrictionlessStretches
+                      ) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of frictionless regions along the boundary
+    (representative contacts halfway along each region)."""
+    contacts, edges = [], []
+    for line, covered in zip(r.regions, r.region_edges, strict=True):
+        p, k = along(line, 0.5)
+        contacts.append(p)
+        edges.append(int(covered[int(k)]))
+    g = None if spec.gravity is None else {"center": polygon.centroid.copy(),
+                                           "direction": np.array(spec.gravity)}
+    return GraspPlan(tuple(edges), r.regions, np.array(r.lengths), np.array(contacts),
+                     polygon.normals[edges], "frictionless", spec.mu, r.mode, spec.margin,
+                     g, centroid=polygon.centroid.copy(),
+                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     disturbance=spec.disturbance, region_edges=r.region_edges)
+
+
+def _sorted_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]
+                   ) -> list[GraspPlan]:
+    """Plans in :func:`rank_key` order, a grasp reached by two configurations once."""
+    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+    keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
+                   for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
+    out: list[GraspPlan] = []
+    seen = set()
+    for key, k in keyed:
+        if (key, plans[k].mode) in seen:
+            continue
+        seen.add((key, plans[k].mode))
+        out.append(plans[k])
+    return out if spec.top is None else out[:spec.top]
+
+
+def _reaches_a_vertex(polygon: Polygon, p: GraspPlan) -> bool:
+    """Some region of a single-edge plan ends at an end of its edge (elsewhere the
+    regions are held back by each other, not by their edges)."""
+    tol = LEXIMIN_STEP * polygon.size
+    for e, (x, y) in zip(p.edges, p.ends, strict=True):
+        for v in (polygon.starts[e], polygon.ends[e]):
+            if min(np.hypot(*(x - v)), np.hypot(*(y - v))) <= tol:
+                return True
+    return False
+
+
+def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None) -> list[GraspPlan]:
+    """Three or four frictionless fingers along the boundary: the single-edge plans and,
+    grown from those of the :data:`GROW_SEEDS` best of them with the fingers on distinct
+    edges and a region that reaches an end of its edge, regions along the boundary
+    (:mod:`fcgrasp.frictionless_stretches`: every grasp of them holds; a lower bound on
+    the optimum, not the optimum), ranked together.
+    ``progress`` as for :func:`solve` (the single-edge search)."""
+    if not spec.grows:
+        raise ValueError("grown_plans plans three or four fingers without a hand "
+                         "(spec.grows is False)")
+    flat = replace(spec, along_boundary=False,
+                   top=None if spec.top is None else max(spec.top, GROW_SEEDS))
+    seeds = rank(polygon, flat, (solve(polygon, flat, batch, progress=progress)
+                                 for batch in candidates(polygon, flat)))
+    rows = [p.edges for p in seeds[:GROW_SEEDS]
+            if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
+    plans = list(seeds)
+    if rows:
+        grown = grow_stretches(polygon, rows, spec.margin,
+                               None if spec.gravity is None else np.array(spec.gravity))
+        plans += [frictionless_plan(polygon, spec, r) for r in grown
+                  if r is not None and max(len(e) for e in r.region_edges) > 1]
+    return _sorted_unique(polygon, spec, plans)
+
+
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     """Two-finger plans whose regions run along the boundary (stretches of the rings,
     :mod:`fcgrasp.stretches`), ranked as :func:`rank` ranks.
@@ -1064,14 +1146,4 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
         flat = replace(spec, along_boundary=False)
         plans += rank(polygon, flat, (solve(polygon, flat, batch)
                                       for batch in candidates(polygon, flat)))
-    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
-    keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
-                   for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
-    out: list[GraspPlan] = []
-    seen = set()
-    for key, k in keyed:
-        if (key, plans[k].mode) in seen:      # one grasp reached by two configurations
-            continue
-        seen.add((key, plans[k].mode))
-        out.append(plans[k])
-    return out if spec.top is None else out[:spec.top]
+    return _sorted_unique(polygon, spec, plans)

@@ -24,12 +24,15 @@ from typing import Any
 import numpy as np
 
 from ._checks import check_mu_scalar
+from .frictionless_stretches import frictionless_stretch_regions
 from .graspsets import Vertex
 from .hand import Hand
 from .pipeline import (
     boundary_plans,
     candidates,
     check_search,
+    frictionless_plan,
+    grown_plans,
     plan_spec,
     rank,
     solve,
@@ -125,6 +128,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         if progress is not None:
             progress(1, 1)
         return plans
+    if spec.grows:
+        return grown_plans(polygon, spec, progress)
     return rank(polygon, spec, (solve(polygon, spec, batch, progress=progress)
                                 for batch in candidates(polygon, spec)))
 
@@ -143,6 +148,9 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
         given a *stretch* each, the consecutive edges of one ring it may run along
         (``[[3, 4, 5], [9]]``): the regions are then the best stretches inside them
         (:func:`fcgrasp.stretches.stretch_regions`), covering the vertices between.
+        Three (with ``gravity``) or four frictionless fingers given stretches get the
+        optimal regions covering exactly those edges
+        (:func:`fcgrasp.frictionless_stretches.frictionless_stretch_regions`).
     margin : float
         Safety margin in degrees.
 
@@ -159,7 +167,7 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
     """
     _check_polygon(polygon)
-    if not isinstance(edges, (str, bytes)) and len(edges) == 2 and all(
+    if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
             np.ndim(e) == 1 for e in edges):
         return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
     if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
@@ -205,9 +213,21 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
 
 def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
                      hand: Hand | None, gravity: Any) -> GraspPlan | None:
-    if hand is not None or gravity is not None:
-        raise ValueError("regions along given stretches are for two fingers with friction, "
-                         "without a hand or gravity")
-    spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
-    pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
-    return None if pair is None else stretch_plan(polygon, spec, pair)
+    if hand is not None:
+        raise ValueError("regions along given stretches are planned without a hand")
+    if len(stretches) == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
+        pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
+        return None if pair is None else stretch_plan(polygon, spec, pair)
+    n = len(stretches)
+    if check_mu_scalar(mu, "mu") != 0:
+        raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
+    if (n == 3) != (gravity is not None):
+        raise ValueError("three stretches need gravity=..., four stretches take no gravity")
+    spec = plan_spec(fingers=n, mu=0.0, top=1, margin=margin,
+                     gravity=gravity if n == 3 else (0.0, -1.0))
+    r = frictionless_stretch_regions(polygon, stretches, spec.margin,
+                                     None if spec.gravity is None else spec.gravity)
+    return None if r is None else frictionless_plan(polygon, spec, r)

@@ -255,6 +255,21 @@ class Polygon:
                 raise ValueError(f"{name} holds {e}, a zero-length edge (duplicate vertex)")
         return idx
 
+    def check_stretch(self, edges: Any, name: str = "stretch") -> tuple[int, ...]:
+        """Validate a stretch: consecutive usable edges of one ring, in ring order
+        (wrapping around), not the whole ring.
+
+        >>> Polygon([[0, 0], [4, 0], [4, 3], [0, 3]]).check_stretch([3, 0, 1])
+        (3, 0, 1)
+        """
+        idx = self.check_edges(edges, name)
+        ring = np.flatnonzero((self.rings == self.rings[idx[0]]) & self.usable) if idx else ()
+        if not idx or len(idx) >= len(ring) or any(
+                int(self._next[a]) != b for a, b in zip(idx, idx[1:], strict=False)):
+            raise ValueError(f"{name} must be consecutive edges of one ring in ring order "
+                             f"(not all of it), got {list(edges)!r}")
+        return idx
+
     def vertex_normals(self) -> tuple[FloatArray, FloatArray, FloatArray]:
         """Per edge end vertex: (point, normal of the incoming edge, of the outgoing edge).
 
@@ -265,6 +280,10 @@ class Polygon:
     def previous_edge(self, k: int) -> int:
         """The usable edge that ends where edge ``k`` starts (same ring)."""
         return int(self._prev[k])
+
+    def next_edge(self, k: int) -> int:
+        """The usable edge that starts where edge ``k`` ends (same ring)."""
+        return int(self._next[k])
 
     def convex_vertices(self) -> FloatArray:
         """Boolean per edge: is the vertex at the end of the edge convex for the object?"""

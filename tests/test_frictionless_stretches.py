@@ -1,0 +1,200 @@
+"""Three and four frictionless fingers along the boundary (fcgrasp.frictionless_stretches)
+against methods that share none of its code: the general closure test (an LP over the
+wrenches, tests/oracle.py) on sampled grasps, vertices inside regions with every normal
+between the two edges'; and, for regions on single edges, the single-edge solver."""
+
+from __future__ import annotations
+
+from itertools import product
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.frictionless_stretches import (
+    all_frictionless_stretches,
+    frictionless_stretch_regions,
+    grow_stretches,
+)
+from fcgrasp.parts import demo_part
+
+from .oracle import closure_margin_lp, grasp_wrenches
+from .shapes import random_polygon
+from .test_stretches import KINDS, seeds, smooth_outline
+
+
+def _chain(plan, i, polygon, rng, extra):
+    """Contacts (point, outward normal) of region ``i``: every end and interior vertex
+    with each normal it carries, a vertex with a random normal of its fan, and random
+    points of every piece."""
+    pts, edges = plan.regions[i], plan.region_edges[i]
+    normals = polygon.normals[list(edges)]
+    out = []
+    for k in range(len(edges)):
+        a, b = pts[k], pts[k + 1]
+        for u in np.r_[0.0, 1.0, rng.uniform(0, 1, extra)]:
+            out.append((a + u * (b - a), normals[k]))
+        if k > 0:                       # interior vertex a: a normal inside its fan
+            th0 = np.arctan2(normals[k - 1][1], normals[k - 1][0])
+            dth = np.angle(np.exp(1j * (np.arctan2(normals[k][1], normals[k][0]) - th0)))
+            th = th0 + dth * rng.uniform(0, 1)
+            out.append((a, np.array([np.cos(th), np.sin(th)])))
+    return out
+
+
+def _check_plan_holds(plan, polygon, rng, grasps=150):
+    """Random grasps of the plan's regions (fans included) are force closure."""
+    chains = [_chain(plan, i, polygon, rng, 2) for i in range(plan.fingers)]
+    for _ in range(grasps):
+        picks = [c[rng.integers(len(c))] for c in chains]
+        pts = [p for p, _ in picks]
+        nrm = [n for _, n in picks]
+        if plan.gravity is not None:
+            g = np.asarray(plan.gravity["direction"], float)
+            pts.append(np.asarray(plan.gravity["center"], float))
+            nrm.append(-g)                  # a "finger" pushing along g
+        w = grasp_wrenches(np.array(pts), np.array(nrm), 0.0)
+        assert closure_margin_lp(w) > 0, (plan.region_edges, pts)
+
+
+def _curved(seed):
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    n = int(rng.choice([16, 20, 24, 28]))
+    return fc.Polygon(smooth_outline(rng, kind, n)), rng
+
+
+@pytest.mark.parametrize("seed", seeds(3, 100))
+@pytest.mark.parametrize("fingers", [3, 4])
+def test_plans_along_the_boundary_hold(seed, fingers):
+    """Every returned plan (grown along the boundary or not) holds for every sampled
+    grasp, and ranks at least as high as the single-edge search's best."""
+    poly, rng = _curved(seed)
+    plans = fc.plan(poly, fingers=fingers, top=3)
+    flat = fc.plan(poly, fingers=fingers, top=1, along_boundary=False)
+    assert bool(plans) == bool(flat)
+    if not plans:
+        return
+    assert plans[0].min_length >= flat[0].min_length * (1 - 1e-9)
+    for p in plans:
+        _check_plan_holds(p, poly, rng)
+
+
+def test_curved_parts_gain():
+    """On a flattened ellipse the regions run along the boundary and are several times
+    longer than the single-edge ones."""
+    t = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    flat = fc.plan(poly, fingers=4, top=1, along_boundary=False)[0]
+    grown = fc.plan(poly, fingers=4, top=1)[0]
+    assert max(len(e) for e in grown.region_edges) > 1
+    assert grown.min_length > 2 * flat.min_length
+    _check_plan_holds(grown, poly, np.random.default_rng(1), grasps=400)
+
+
+@pytest.mark.parametrize("seed", range(30))
+def test_single_edges_match_the_single_edge_solver(seed):
+    """On single edges the linear program of a configuration reaches the single-edge
+    solver's optimum (the knapsack bisection of fcgrasp.regions)."""
+    rng = np.random.default_rng(seed)
+    poly = random_polygon(rng)
+    plans = fc.plan(poly, fingers=4, top=3, along_boundary=False)
+    for p in plans:
+        if len(set(p.edges)) < 4:
+            continue
+        r = frictionless_stretch_regions(poly, [[e] for e in p.edges])
+        assert r is not None
+        assert r.min_length == pytest.approx(p.min_length, rel=1e-6)
+
+
+def _corners(plan, i, polygon):
+    """The chain vertices of region ``i``: its ends with their edges' normals and every
+    interior vertex with both."""
+    pts, edges = plan.regions[i], plan.region_edges[i]
+    normals = polygon.normals[list(edges)]
+    out = [(pts[0], normals[0]), (pts[-1], normals[-1])]
+    for k in range(1, len(edges)):
+        out += [(pts[k], normals[k - 1]), (pts[k], normals[k])]
+    return out
+
+
+def test_regions_are_maximal():
+    """Lengthening the smallest region past the optimum (margin 0) at an end inside its
+    edge lets some grasp fail: the optimum is as long as the condition allows."""
+    t = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    best = fc.plan(poly, fingers=4, top=1, margin=0.0)[0]
+    assert max(len(e) for e in best.region_edges) > 1
+    k = int(np.argmin(best.lengths))
+    line, edges = best.regions[k], best.region_edges[k]
+    checked = 0
+    for end, e, inner in ((0, edges[0], line[1]), (-1, edges[-1], line[-2])):
+        at_vertex = min(np.hypot(*(line[end] - poly.starts[e])),
+                        np.hypot(*(line[end] - poly.ends[e]))) < 1e-9 * poly.size
+        if at_vertex:
+            continue
+        d = line[end] - inner
+        beyond = line[end] + 0.02 * best.lengths[k] * d / np.hypot(*d)
+        others = [_corners(best, i, poly) for i in range(4) if i != k]
+        worst = np.inf
+        for picks in product(*others):
+            pts = [p for p, _ in picks]
+            nrm = [n for _, n in picks]
+            pts.insert(k, beyond)
+            nrm.insert(k, poly.normals[e])
+            worst = min(worst, closure_margin_lp(grasp_wrenches(np.array(pts),
+                                                                np.array(nrm), 0.0)))
+        checked += 1
+        assert worst <= 1e-9
+    assert checked
+
+
+@pytest.mark.parametrize("n", [12, pytest.param(16, marks=pytest.mark.slow)])
+def test_grow_is_a_lower_bound_of_the_exhaustive_search(n):
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    flat = fc.plan(poly, fingers=4, top=1, along_boundary=False)[0]
+    g = grow_stretches(poly, [flat.edges])[0]
+    ex = all_frictionless_stretches(poly, flat.edges)
+    assert ex.min_length >= g.min_length * (1 - 1e-9)
+    assert g.min_length >= flat.min_length * (1 - 1e-9)
+
+
+def test_independent_regions_on_given_stretches():
+    t = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    best = fc.plan(poly, fingers=4, top=1)[0]
+    again = fc.independent_regions(poly, [list(e) for e in best.region_edges])
+    assert again.region_edges == best.region_edges
+    assert again.min_length == pytest.approx(best.min_length, rel=1e-9)
+    three = fc.plan(poly, fingers=3, top=1)[0]
+    got = fc.independent_regions(poly, [list(e) for e in three.region_edges],
+                                 gravity=(0, -1))
+    assert got.min_length == pytest.approx(three.min_length, rel=1e-9)
+
+
+@pytest.mark.parametrize("stretches, kwargs, match", [
+    ([[0, 2], [5], [9], [14]], {}, "consecutive"),
+    ([[0, 1], [1, 2], [9], [14]], {}, "share"),
+    ([[0], [5], [9]], {}, "gravity"),
+    ([[0], [5], [9], [14]], {"gravity": (0, -1)}, "four stretches take no gravity"),
+    ([[0], [5], [9], [14]], {"mu": 0.3}, "frictionless"),
+    ([[0], [5], [9], [99]], {}, "not an edge"),
+])
+def test_bad_stretches(stretches, kwargs, match):
+    t = np.linspace(0, 2 * np.pi, 20, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    with pytest.raises(ValueError, match=match):
+        fc.independent_regions(poly, stretches, **kwargs)
+
+
+def test_bad_arguments_of_the_module():
+    poly = demo_part("blob")
+    with pytest.raises(ValueError, match="region_edges must hold 4"):
+        frictionless_stretch_regions(poly, [[0], [1]])
+    with pytest.raises(ValueError, match="gravity must be a nonzero"):
+        frictionless_stretch_regions(poly, [[0], [1], [3]], gravity=(0, 0))
+    with pytest.raises(TypeError, match="polygon must be"):
+        grow_stretches("blob", [[0, 1, 3, 4]])
+    with pytest.raises(ValueError, match="max_steps"):
+        grow_stretches(poly, [[0, 1, 3, 4]], max_steps=-1)
