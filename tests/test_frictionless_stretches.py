@@ -155,7 +155,7 @@ def test_grow_is_a_lower_bound_of_the_exhaustive_search(n):
     poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
     flat = fc.plan(poly, fingers=4, top=1, along_boundary=False)[0]
     g = grow_stretches(poly, [flat.edges])[0]
-    ex = all_frictionless_stretches(poly, flat.edges)
+    ex = all_frictionless_stretches(poly, [flat.edges])
     assert ex.min_length >= g.min_length * (1 - 1e-9)
     assert g.min_length >= flat.min_length * (1 - 1e-9)
 

@@ -273,9 +273,20 @@ def _polyline(polygon: Polygon, st: tuple[int, ...], lo: float, hi: float) -> Fl
 def _result(polygon: Polygon, cfg: _Config, x: FloatArray, pairing: np.ndarray,
             mode: str) -> FrictionlessStretches:
     x = np.asarray(x)[:2 * len(cfg.edges)]
-    lines = tuple(_polyline(polygon, st, x[2 * f], x[2 * f + 1])
-                  for f, st in enumerate(cfg.edges))
-    return FrictionlessStretches(cfg.edges, lines, tuple(float(v) for v in _lengths(cfg, x)),
+    lines, covered = [], []
+    tiny = 1e-12 * polygon.size
+    for f, st in enumerate(cfg.edges):
+        pts, edges = _polyline(polygon, st, x[2 * f], x[2 * f + 1]), list(st)
+        # a region that starts or ends exactly at a vertex does not cover the edge beyond
+        # it (a sub-region of the certified one: it holds)
+        if len(edges) > 1 and np.hypot(*(pts[1] - pts[0])) <= tiny:
+            pts, edges = pts[1:], edges[1:]
+        if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
+            pts, edges = pts[:-1], edges[:-1]
+        lines.append(pts)
+        covered.append(tuple(edges))
+    return FrictionlessStretches(tuple(covered), tuple(lines),
+                                 tuple(float(v) for v in _lengths(cfg, x)),
                                  tuple(int(p) for p in pairing), mode)
 
 
@@ -415,7 +426,7 @@ def _moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...], grow_only: bool
     for f, st in enumerate(edges):
         ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
         before, after = polygon.previous_edge(st[0]), polygon.next_edge(st[-1])
-        news = []
+        news: list[tuple[tuple[int, ...], int | None]] = []
         if len(st) + 1 < ring:
             news += [((before, *st), before), ((*st, after), after)]
         if not grow_only:
@@ -433,7 +444,7 @@ def _size(edges: tuple[tuple[int, ...], ...]) -> int:
 
 
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
-                   gravity: Any = None, max_steps: int = 400
+                   gravity: Any = None, max_steps: int = 400, keep_single: bool = True
                    ) -> list[FrictionlessStretches | None]:
     """Grow single-edge regions along the boundary (the search of this module's
     docstring).
@@ -442,7 +453,8 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     from each, extend the region whose extension improves most until none does.  Rows
     share what they solve.  Returns, per row, a safe plan that ranks at least as high as
     the row's single-edge regions (a lower bound on the optimum), or None when the row's
-    edges hold no regions.
+    edges hold no regions (or, with ``keep_single=False``, when its regions do not leave
+    their edges: the single-edge search has them already).
 
     >>> from fcgrasp.parts import demo_part
     >>> [r.region_edges for r in grow_stretches(demo_part("blob"), [[0, 1, 3, 4]])]
@@ -458,31 +470,45 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
         if search is None:
             search = _Search(polygon, margin_v, g)
         key = search.seed(edges)
-        out.append(None if key is None else search.result(search.grow(key, max_steps)))
+        if key is not None:
+            key = search.grow(key, max_steps)
+            if not keep_single and _size(key[0]) == 1:
+                key = None
+        out.append(None if key is None else search.result(key))
     return out
 
 
-def all_frictionless_stretches(polygon: Polygon, edges: Any,
+def all_frictionless_stretches(polygon: Polygon, edge_sets: Any,
                                margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = None,
-                               limit: int = 20000) -> FrictionlessStretches | None:
-    """The best configuration that covers the given single edges (one per finger) and
-    holds, over every pairing and cone orientation: exhaustive and slow, the reference
-    that measures the gap of :func:`grow_stretches`.
+                               limit: int = 200_000) -> FrictionlessStretches | None:
+    """The best configuration that holds and covers one of the given single-edge sets
+    (rows of edges, one per finger), over every pairing and cone orientation:
+    exhaustive and slow, the reference that measures the gap of :func:`grow_stretches`.
+    Given every single-edge set that holds (``fc.plan(part, fingers, top=None,
+    along_boundary=False)``), it is the optimum over all configurations.
 
     A configuration that holds for a pairing and orientation still holds, for the same
     ones, with an end edge dropped; so every configuration that holds is reached from
-    the single edges by one-edge extensions that all hold, and a breadth-first search
-    over them sees every one.  ``limit`` caps the configurations tried (``ValueError``
+    single edges by one-edge extensions that all hold, and a breadth-first search over
+    them sees every one.  ``limit`` caps the configurations tried (``ValueError``
     beyond it).
     """
-    edges0, margin_v, g = _check(polygon, [[int(e)] for e in np.ravel(edges)], margin,
-                                 gravity)
-    search = _Search(polygon, margin_v, g)
-    top = search.seed(edges0)
-    if top is None:
+    rows = [np.ravel(np.asarray(r)).tolist() for r in edge_sets]
+    search: _Search | None = None
+    top = None
+    frontier = []
+    for row in rows:
+        edges0, margin_v, g = _check(polygon, [[e] for e in row], margin, gravity)
+        if search is None:
+            search = _Search(polygon, margin_v, g)
+        key = search.seed(edges0)
+        if key is not None:
+            frontier.append(edges0)
+            if search.better(key, top):
+                top = key
+    if search is None or top is None:
         return None
-    frontier = [edges0]
-    seen = {edges0}
+    seen = set(frontier)
     while frontier:
         nxt = []
         for cfg in frontier:

@@ -1111,7 +1111,8 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None) -> list[
     plans = list(seeds)
     if rows:
         grown = grow_stretches(polygon, rows, spec.margin,
-                               None if spec.gravity is None else np.array(spec.gravity))
+                               None if spec.gravity is None else np.array(spec.gravity),
+                               keep_single=False)
         plans += [frictionless_plan(polygon, spec, r) for r in grown
                   if r is not None and max(len(e) for e in r.region_edges) > 1]
     return _sorted_unique(polygon, spec, plans)

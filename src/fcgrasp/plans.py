@@ -101,7 +101,7 @@ class GraspPlan:
             cand = np.c_[t[:, 1], -t[:, 0]]
             # the ring's orientation is the same along a region: take the side that
             # the representative contact's normal takes on its segment
-            k = int(np.argmax(cand @ n))
+            k = int(np.argmax(np.abs(cand @ n)))   # not a zero-length segment
             sign = 1.0 if cand[k] @ n >= 0 else -1.0
             out.append(sign * cand)
         return tuple(out)
