@@ -149,7 +149,7 @@ def test_regions_are_maximal():
     assert checked
 
 
-@pytest.mark.parametrize("n", [12, pytest.param(16, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("n", [10, pytest.param(16, marks=pytest.mark.slow)])
 def test_grow_is_a_lower_bound_of_the_exhaustive_search(n):
     t = np.linspace(0, 2 * np.pi, n, endpoint=False)
     poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])

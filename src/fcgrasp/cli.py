@@ -257,7 +257,7 @@ def cmd_plan(args: Any) -> int:
     plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
                  hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
     params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
-              "margin_deg": args.margin, "along_boundary": spec.stretches,
+              "margin_deg": args.margin, "along_boundary": spec.stretches or spec.grows,
               "workspace": None if hand is None or hand.workspace is None else
               list(hand.workspace),
               "finger_radius": args.finger_radius,
@@ -480,8 +480,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
     p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
     p.add_argument("--single-edge", action="store_true",
-                   help="keep each two-finger region on one edge, as in the paper (default: "
-                        "regions run along the boundary across vertices)")
+                   help="keep each region on one edge, as in the paper (default: regions "
+                        "run along the boundary across vertices; exact for two fingers, "
+                        "grown from the single-edge plans for three or four)")
     p.add_argument("--rank-by", choices=tuple(MEASURES), default="min_region",
                    help="ranking measure (see fcgrasp.ranking)")
     p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",

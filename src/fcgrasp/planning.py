@@ -99,9 +99,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
         what would fit, before any work.
     along_boundary : bool
-        Two fingers (without a hand): regions are stretches of the boundary that may
-        cover several edges and the vertices between them (:mod:`fcgrasp.stretches`);
-        False keeps each region on one edge, as in the paper.  Needs a finite ``top``.
+        Without a hand, regions are stretches of the boundary that may cover several
+        edges and the vertices between them: for two fingers the exact optimum
+        (:mod:`fcgrasp.stretches`); for three or four, the single-edge plans and regions
+        grown from the best of them (:mod:`fcgrasp.frictionless_stretches`: safe, a lower
+        bound on the optimum).  False keeps each region on one edge, as in the paper.
 
     Returns
     -------
