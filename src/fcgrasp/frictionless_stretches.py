@@ -443,6 +443,22 @@ def _size(edges: tuple[tuple[int, ...], ...]) -> int:
     return int(np.prod([len(st) for st in edges]))
 
 
+def _seeds(polygon: Polygon, edge_sets: Any, margin: Any, gravity: Any
+           ) -> tuple[_Search, list[tuple[tuple[tuple[int, ...], ...], Any]]]:
+    """One search for the rows of single edges, and each row's configuration with its
+    best pairing and orientation (None where it holds no regions)."""
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a fcgrasp.Polygon, got {type(polygon).__name__}")
+    search = _Search(polygon, 0.0, None)
+    out = []
+    for k, row in enumerate(np.ravel(np.asarray(r)).tolist() for r in edge_sets):
+        edges, margin_v, g = _check(polygon, [[e] for e in row], margin, gravity)
+        if k == 0:
+            search = _Search(polygon, margin_v, g)
+        out.append((edges, search.seed(edges)))
+    return search, out
+
+
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
                    gravity: Any = None, max_steps: int = 400, keep_single: bool = True
                    ) -> list[FrictionlessStretches | None]:
@@ -460,16 +476,11 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     >>> [r.region_edges for r in grow_stretches(demo_part("blob"), [[0, 1, 3, 4]])]
     [((0,), (1,), (3,), (4,))]
     """
-    rows = [np.ravel(np.asarray(r)).tolist() for r in edge_sets]
     if not isinstance(max_steps, int) or max_steps < 0:
         raise ValueError(f"max_steps must be an integer >= 0, got {max_steps!r}")
-    search: _Search | None = None
+    search, seeds = _seeds(polygon, edge_sets, margin, gravity)
     out: list[FrictionlessStretches | None] = []
-    for row in rows:
-        edges, margin_v, g = _check(polygon, [[e] for e in row], margin, gravity)
-        if search is None:
-            search = _Search(polygon, margin_v, g)
-        key = search.seed(edges)
+    for _, key in seeds:
         if key is not None:
             key = search.grow(key, max_steps)
             if not keep_single and _size(key[0]) == 1:
@@ -493,20 +504,15 @@ def all_frictionless_stretches(polygon: Polygon, edge_sets: Any,
     them sees every one.  ``limit`` caps the configurations tried (``ValueError``
     beyond it).
     """
-    rows = [np.ravel(np.asarray(r)).tolist() for r in edge_sets]
-    search: _Search | None = None
+    search, seeds = _seeds(polygon, edge_sets, margin, gravity)
     top = None
     frontier = []
-    for row in rows:
-        edges0, margin_v, g = _check(polygon, [[e] for e in row], margin, gravity)
-        if search is None:
-            search = _Search(polygon, margin_v, g)
-        key = search.seed(edges0)
+    for edges0, key in seeds:
         if key is not None:
             frontier.append(edges0)
             if search.better(key, top):
                 top = key
-    if search is None or top is None:
+    if top is None:
         return None
     seen = set(frontier)
     while frontier:
