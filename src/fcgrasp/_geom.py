@@ -51,6 +51,30 @@ def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
     return line[k] + frac[..., None] * seg[k], k
 
 
+def midpoints(regions: Any, region_edges: Any) -> tuple[FloatArray, tuple[int, ...]]:
+    """Each region's point halfway along its polyline (the representative contact) and
+    the edge holding it, from the edges each region covers in order."""
+    pts, edges = [], []
+    for line, covered in zip(regions, region_edges, strict=True):
+        p, k = along(line, 0.5)
+        pts.append(p)
+        edges.append(int(covered[int(k)]))
+    return np.array(pts), tuple(edges)
+
+
+def trim_vertex_ends(pts: FloatArray, edges: Any, tiny: float
+                     ) -> tuple[FloatArray, tuple[int, ...]]:
+    """A region polyline through the edges it covers, without a piece of length at most
+    ``tiny`` at either end: a region that starts or ends exactly at a vertex does not
+    cover the edge beyond it."""
+    edges = list(edges)
+    if len(edges) > 1 and np.hypot(*(pts[1] - pts[0])) <= tiny:
+        pts, edges = pts[1:], edges[1:]
+    if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
+        pts, edges = pts[:-1], edges[:-1]
+    return pts, tuple(edges)
+
+
 def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
     """Sort key of the leximin order (definition 7.1): smaller is better."""
     return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, RANK_DIGITS))

@@ -59,6 +59,7 @@ from scipy.optimize import linprog
 
 from ._checks import FloatArray, check_scalar
 from ._geom import cross2 as _cross
+from ._geom import trim_vertex_ends
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -212,21 +213,29 @@ def _lengths(cfg: _Config, x: FloatArray) -> FloatArray:
     return np.array([x[2 * f + 1] - x[2 * f] + cfg.const[f] for f in range(k)])
 
 
+def _length_objective(k: int, fingers: Any = None) -> FloatArray:
+    """``(x, t)`` weights of the summed lengths (less their constants) of the given
+    fingers (default all), or of ``t`` alone with ``fingers=()``."""
+    obj = np.zeros(2 * k + 1)
+    if fingers is not None and not len(fingers):
+        obj[-1] = 1.0
+        return obj
+    for f in range(k) if fingers is None else fingers:
+        obj[2 * f + 1], obj[2 * f] = 1.0, -1.0
+    return obj
+
+
 def _first_level(cfg: _Config) -> float | None:
     """The largest smallest region of a configuration (None: no regions)."""
     k = len(cfg.edges)
-    obj = np.zeros(2 * k + 1)
-    obj[-1] = 1.0
-    got = _lp(cfg, obj, np.full(k, np.nan), True)
+    got = _lp(cfg, _length_objective(k, ()), np.full(k, np.nan), True)
     return None if got is None or got[0] <= 0 else got[0]
 
 
 def _total(cfg: _Config, t: float) -> float:
     """The largest total length with every region at least ``t`` (nearly) long."""
     k = len(cfg.edges)
-    tot = np.zeros(2 * k + 1)
-    tot[1:2 * k:2], tot[0:2 * k:2] = 1.0, -1.0
-    more = _lp(cfg, tot, np.full(k, t * (1 - RANK_TOL / 4)), False)
+    more = _lp(cfg, _length_objective(k), np.full(k, t * (1 - RANK_TOL / 4)), False)
     return t * k if more is None else more[0] + float(cfg.const.sum())
 
 
@@ -237,9 +246,7 @@ def _leximin(cfg: _Config) -> FloatArray | None:
     floors = np.full(k, np.nan)
     x = None
     while np.isnan(floors).any():
-        obj = np.zeros(2 * k + 1)
-        obj[-1] = 1.0
-        got = _lp(cfg, obj, floors, True)
+        got = _lp(cfg, _length_objective(k, ()), floors, True)
         if got is None:
             return x
         t, x = got
@@ -248,17 +255,12 @@ def _leximin(cfg: _Config) -> FloatArray | None:
         stuck = []
         for f in free:
             fl = np.where(np.isnan(floors), t_floor, floors)
-            o = np.zeros(2 * k + 1)
-            o[2 * f + 1], o[2 * f] = 1.0, -1.0
-            best = _lp(cfg, o, fl, False)
+            best = _lp(cfg, _length_objective(k, [f]), fl, False)
             if best is None or best[0] + cfg.const[f] <= t * (1 + RANK_TOL / 4):
                 stuck.append(f)
         for f in (stuck or list(free)):
             floors[f] = t_floor
-    fl = np.where(np.isnan(floors), 0.0, floors)
-    tot = np.zeros(2 * k + 1)
-    tot[1:2 * k:2], tot[0:2 * k:2] = 1.0, -1.0
-    last = _lp(cfg, tot, fl, False)
+    last = _lp(cfg, _length_objective(k), np.where(np.isnan(floors), 0.0, floors), False)
     return x if last is None else last[1]
 
 
@@ -276,15 +278,11 @@ def _result(polygon: Polygon, cfg: _Config, x: FloatArray, pairing: np.ndarray,
     lines, covered = [], []
     tiny = 1e-12 * polygon.size
     for f, st in enumerate(cfg.edges):
-        pts, edges = _polyline(polygon, st, x[2 * f], x[2 * f + 1]), list(st)
-        # a region that starts or ends exactly at a vertex does not cover the edge beyond
-        # it (a sub-region of the certified one: it holds)
-        if len(edges) > 1 and np.hypot(*(pts[1] - pts[0])) <= tiny:
-            pts, edges = pts[1:], edges[1:]
-        if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
-            pts, edges = pts[:-1], edges[:-1]
+        # a sub-region of the certified one: it holds
+        pts, edges = trim_vertex_ends(_polyline(polygon, st, x[2 * f], x[2 * f + 1]), st,
+                                      tiny)
         lines.append(pts)
-        covered.append(tuple(edges))
+        covered.append(edges)
     return FrictionlessStretches(tuple(covered), tuple(lines),
                                  tuple(float(v) for v in _lengths(cfg, x)),
                                  tuple(int(p) for p in pairing), mode)

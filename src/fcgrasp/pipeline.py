@@ -41,7 +41,7 @@ from ._checks import (
     check_scalar,
     check_tol,
 )
-from ._geom import along
+from ._geom import midpoints
 from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
 from .frictionless_stretches import FrictionlessStretches, grow_stretches
@@ -1023,15 +1023,24 @@ def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
 
 
 
+def _boundary_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges: Any,
+                   lengths: Any, contact_type: str, mode: str,
+                   gravity: dict[str, Any] | None = None) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of regions along the boundary (representative
+    contacts halfway along each region)."""
+    contacts, edges = midpoints(regions, region_edges)
+    return GraspPlan(edges, regions, np.array(lengths), contacts, polygon.normals[list(edges)],
+                     contact_type, spec.mu, mode, spec.margin, gravity,
+                     centroid=polygon.centroid.copy(),
+                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     disturbance=spec.disturbance, region_edges=region_edges)
+
+
 def stretch_plan(polygon: Polygon, spec: PlanSpec, pair: StretchPair) -> GraspPlan:
     """The :class:`~fcgrasp.GraspPlan` of a pair of stretches (representative contacts
     halfway along each region)."""
-    contacts, edges = pair.midpoints()
-    return GraspPlan(edges, pair.regions, np.array(pair.lengths), contacts,
-                     polygon.normals[list(edges)], "friction", spec.mu, pair.mode,
-                     spec.margin, None, centroid=polygon.centroid.copy(),
-                     radius=characteristic_length(polygon.vertices, polygon.centroid),
-                     disturbance=spec.disturbance, region_edges=pair.region_edges)
+    return _boundary_plan(polygon, spec, pair.regions, pair.region_edges, pair.lengths,
+                          "friction", pair.mode)
 
 
 def _single_edge_plans(polygon: Polygon, spec: PlanSpec, pairs: list[tuple[int, int]]
@@ -1051,18 +1060,10 @@ def frictionless_plan(polygon: Polygon, spec: PlanSpec, r: FrictionlessStretches
                       ) -> GraspPlan:
     """The :class:`~fcgrasp.GraspPlan` of frictionless regions along the boundary
     (representative contacts halfway along each region)."""
-    contacts, edges = [], []
-    for line, covered in zip(r.regions, r.region_edges, strict=True):
-        p, k = along(line, 0.5)
-        contacts.append(p)
-        edges.append(int(covered[int(k)]))
     g = None if spec.gravity is None else {"center": polygon.centroid.copy(),
                                            "direction": np.array(spec.gravity)}
-    return GraspPlan(tuple(edges), r.regions, np.array(r.lengths), np.array(contacts),
-                     polygon.normals[edges], "frictionless", spec.mu, r.mode, spec.margin,
-                     g, centroid=polygon.centroid.copy(),
-                     radius=characteristic_length(polygon.vertices, polygon.centroid),
-                     disturbance=spec.disturbance, region_edges=r.region_edges)
+    return _boundary_plan(polygon, spec, r.regions, r.region_edges, r.lengths,
+                          "frictionless", r.mode, g)
 
 
 def _sorted_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]

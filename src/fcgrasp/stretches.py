@@ -55,8 +55,8 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ._geom import along, geometric_key, leximin_key
 from ._geom import cross2 as _cross
+from ._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from .contacts import rotate
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -93,12 +93,8 @@ class StretchPair:
     def midpoints(self) -> tuple[FloatArray, tuple[int, int]]:
         """Each region's point halfway along it (the representative contact) and the
         edge holding it."""
-        pts, edges = [], []
-        for line, covered in zip(self.regions, self.region_edges, strict=True):
-            p, k = along(line, 0.5)
-            pts.append(p)
-            edges.append(covered[int(k)])
-        return np.array(pts), (edges[0], edges[1])
+        pts, edges = midpoints(self.regions, self.region_edges)
+        return pts, (edges[0], edges[1])
 
 
 @dataclass
@@ -589,14 +585,8 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatAr
         last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
     pts = np.array([first, *verts, last])
     edges = [int(ring.edges[(i + j) % m]) for j in range(k + 1)]
-    # a stretch that starts or ends exactly at a vertex does not cover the edge beyond
-    # it (the vertex held with both normals, so either is its end normal)
-    tiny = 1e-12 * float(ring.U[m])
-    if k and np.hypot(*(pts[1] - pts[0])) <= tiny:
-        pts, edges = pts[1:], edges[1:]
-    if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
-        pts, edges = pts[:-1], edges[:-1]
-    return pts, tuple(edges)
+    # the vertex is held with both normals, so either is its end normal
+    return trim_vertex_ends(pts, edges, 1e-12 * float(ring.U[m]))
 
 
 @dataclass
@@ -891,17 +881,8 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
     where = {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
     runs = []
     for k, st in enumerate(stretches):
-        edges = list(polygon.check_edges(st))
-        if not edges or any(e not in where for e in edges):
-            raise ValueError(f"stretches[{k}] must list usable edges of the part, got {st!r}")
-        ring = where[edges[0]][0]
-        pos = [where[e][1] for e in edges]
-        m = rings[ring].m
-        if any(where[e][0] != ring for e in edges) or any(
-                (b - a) % m != 1 for a, b in zip(pos, pos[1:], strict=False)) or len(pos) >= m:
-            raise ValueError(f"stretches[{k}] must be consecutive edges of one ring in ring "
-                             f"order, got {st!r}")
-        runs.append((ring, pos))
+        edges = polygon.check_stretch(st, f"stretches[{k}]")
+        runs.append((where[edges[0]][0], [where[e][1] for e in edges]))
     if set(map(int, stretches[0])) & set(map(int, stretches[1])):
         raise ValueError(f"the two stretches share an edge, got {stretches!r}")
     if beta <= 0:
