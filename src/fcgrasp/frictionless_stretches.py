@@ -55,7 +55,6 @@ from itertools import product
 from typing import Any
 
 import numpy as np
-from scipy.optimize import linprog
 
 from ._checks import FloatArray, check_scalar
 from ._geom import cross2 as _cross
@@ -200,6 +199,8 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
         else:
             rhs.append(np.array([cfg.const[f] - floors[f]]))
         rows.append(r[None])
+    from scipy.optimize import linprog  # on first use: two-finger plans never load scipy
+
     res = linprog(-objective, A_ub=np.concatenate(rows), b_ub=np.concatenate(rhs),
                   bounds=[*cfg.bounds, (0.0, None) if t_var else (0.0, 0.0)],
                   method="highs")

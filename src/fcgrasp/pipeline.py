@@ -77,9 +77,11 @@ ROW_BYTES = {2: 450, 3: 1700, 4: 1700}
 #: Bytes kept per candidate row when every plan is asked for (``top=None``): the solved
 #: row and its GraspPlan, rounded up.
 KEPT_ROW_BYTES = 3000
-#: Peak bytes of the stretch search (regions along the boundary) per pair of edges
-#: (measured: about 490 MB at 2,000 edges).
-STRETCH_BYTES = 125
+#: Peak bytes of the stretch search (regions along the boundary) per pair of edges, in
+#: the worst case: every edge long enough to hold a region on its own, so the end
+#: intervals of every edge against every vertex are held at once (measured 57; a curved
+#: outline needs about 3: 61 MB of peak resident memory at 2,000 edges).
+STRETCH_BYTES = 64
 #: With a ranking measure other than ``min_region``, how many stretch configurations
 #: (by their leximin order) are scored besides the single-edge plans.
 KEEP_STRETCHES = 200

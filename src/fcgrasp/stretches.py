@@ -36,8 +36,10 @@ The largest ``t`` of a configuration is found by bisection on ``t`` with an exac
 feasibility test of the remaining two-variable system (Fourier-Motzkin elimination of
 ``s0``), to machine precision.  Configurations are enumerated exhaustively behind a
 bound: every interior vertex pair must hold with both fans (the boolean matrix
-``M``), so the interior windows are runs of the intersection of rows of ``M``; a
-configuration is never longer than the arc length it can reach
+``M``), so the interior windows are runs of the intersection of rows of ``M`` (each
+row held as its sorted runs of columns, so widening a window costs the runs it still
+has, not a row of ``M``; the intervals of the ends are computed only for the cells
+the search reads); a configuration is never longer than the arc length it can reach
 (``_stretch_bound``); the vertex-aligned stretches of every window are feasible and
 give the lower bound that prunes the others.  The search is exact: every
 configuration that could beat the best found is solved.
@@ -143,58 +145,149 @@ def _fan(ring: _Ring) -> tuple[FloatArray, FloatArray]:
     return np.roll(ring.f, 1, axis=0), ring.f
 
 
+#: Elements per block of a ring-by-ring array: blocks of rows this size stay in cache.
+_BLOCK = 1 << 15
+
+
+def _row_blocks(rows: int, cols: int) -> list[slice]:
+    """Slices of ``rows`` whose blocks of ``cols`` columns hold about ``_BLOCK`` cells."""
+    step = max(1, _BLOCK // max(cols, 1))
+    return [slice(s, s + step) for s in range(0, rows, step)]
+
+
 def _vertex_matrix(ra: _Ring, rb: _Ring, sigma: float, beta: float) -> np.ndarray:
     """``M[v, w]``: vertices ``v`` (ring a) and ``w`` (ring b) hold with both fans."""
-    d = sigma * (rb.a[None, :, :] - ra.a[:, None, :])
-    ok = np.hypot(d[..., 0], d[..., 1]) > 0
-    for f in _fan(ra):
-        for g in _gens_x(f, beta):
-            ok &= _cross(g[:, None, :], d) >= 0
-    for f in _fan(rb):
-        for g in _gens_y(f, beta):
-            ok &= _cross(g[None, :, :], d) >= 0
-    return ok
+    gx = [g for f in _fan(ra) for g in _gens_x(f, beta)]
+    gy = [g[None, :, :] for f in _fan(rb) for g in _gens_y(f, beta)]
+    out = np.empty((ra.m, rb.m), bool)
+    for sl in _row_blocks(ra.m, rb.m):
+        d = sigma * (rb.a[None, :, :] - ra.a[sl, None, :])
+        ok = (d[..., 0] != 0) | (d[..., 1] != 0)
+        for g in [g[sl, None, :] for g in gx] + gy:
+            ok &= _cross(g, d) >= 0
+        out[sl] = ok
+    return out
 
 
-def _edge_intervals(ra: _Ring, rb: _Ring, sigma: float, beta: float
-                    ) -> tuple[FloatArray, FloatArray]:
+class _Intervals:
     """``[lo, hi][e, w]``: positions on edge ``e`` (ring a, arc length from its start)
     where a contact holds against vertex ``w`` of ring b with both its fan normals
-    (empty where ``lo > hi``)."""
-    d0 = sigma * (rb.a[None, :, :] - ra.a[:, None, :])          # chord at p = 0
-    d1 = np.broadcast_to(-sigma * ra.t[:, None, :], d0.shape)   # its derivative in p
-    lo = np.zeros(d0.shape[:2])
-    hi = np.broadcast_to(ra.L[:, None], lo.shape).copy()
-    rows = [g[:, None, :] for g in _gens_x(ra.f, beta)]
-    rows += [g[None, :, :] for f in _fan(rb) for g in _gens_y(f, beta)]
-    for g in rows:
-        c0, c1 = _cross(g, d0), _cross(g, d1)
-        with np.errstate(divide="ignore", invalid="ignore"):
-            r = -c0 / c1
-        lo = np.where(c1 > _EPS, np.maximum(lo, r), lo)
-        hi = np.where(c1 < -_EPS, np.minimum(hi, r), hi)
-        hi = np.where((np.abs(c1) <= _EPS) & (c0 < 0), -np.inf, hi)
-    return lo, hi
+    (empty where ``lo > hi``).  Computed for the cells asked for: the searches read
+    whole rows only for edges long enough to matter, and windows of a few cells."""
+
+    def __init__(self, ra: _Ring, rb: _Ring, sigma: float, beta: float) -> None:
+        self.ra, self.rb, self.sigma = ra, rb, sigma
+        self.gx = np.stack(_gens_x(ra.f, beta), axis=1)                      # (ma, 2, 2)
+        self.gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
+
+    def cells(self, e: np.ndarray, w: np.ndarray) -> tuple[FloatArray, FloatArray]:
+        """The intervals of the cells ``(e, w)`` (integer arrays, broadcast together)."""
+        ra, sigma = self.ra, self.sigma
+        e, w = np.broadcast_arrays(e, w)
+        d0 = sigma * (self.rb.a[w] - ra.a[e])          # chord at p = 0
+        d1 = -sigma * ra.t[e]                          # its derivative in p
+        lo = np.zeros(e.shape)
+        hi = ra.L[e].astype(float)
+        for g in [self.gx[e, j] for j in range(2)] + [self.gy[w, j] for j in range(4)]:
+            c0, c1 = _cross(g, d0), _cross(g, d1)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                r = -c0 / c1
+            np.maximum(lo, r, out=lo, where=c1 > _EPS)
+            np.minimum(hi, r, out=hi, where=c1 < -_EPS)
+            hi[(np.abs(c1) <= _EPS) & (c0 < 0)] = -np.inf
+        return lo, hi
+
+    def rows(self, edges: np.ndarray) -> tuple[FloatArray, FloatArray]:
+        """Whole rows ``[lo, hi][edges, :]``, in blocks that stay in cache."""
+        lo = np.empty((edges.size, self.rb.m))
+        hi = np.empty_like(lo)
+        cols = np.arange(self.rb.m)[None, :]
+        for sl in _row_blocks(edges.size, self.rb.m):
+            lo[sl], hi[sl] = self.cells(edges[sl, None], cols)
+        return lo, hi
+
+    def window(self, edge: np.ndarray, start: np.ndarray, count: np.ndarray
+               ) -> tuple[FloatArray, FloatArray]:
+        """For each edge, the intersection of its intervals against vertices
+        ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0."""
+        lo, hi = np.zeros(edge.size), np.full(edge.size, np.inf)
+        has = np.flatnonzero(count > 0)
+        if has.size:
+            c = count[has]
+            offs, k = _segments(c)
+            flo, fhi = self.cells(np.repeat(edge[has], c),
+                                  (np.repeat(start[has], c) + k) % self.rb.m)
+            lo[has] = np.maximum.reduceat(flo, offs)
+            hi[has] = np.minimum.reduceat(fhi, offs)
+        return lo, hi
 
 
-def _runs(rows: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Maximal cyclic runs of True in every row: (row, start, length)."""
-    m = rows.shape[1]
-    full = rows.all(axis=1)
-    st = rows & ~np.roll(rows, 1, axis=1)
-    en = rows & ~np.roll(rows, -1, axis=1)
-    sr, sc = np.nonzero(st)
-    er, ec = np.nonzero(en)
-    # the end of a run is the first end at or after its start, cyclically, in its row
-    key_e = er * m + ec
-    pos = np.searchsorted(key_e, sr * m + sc)
-    same = (pos < key_e.size) & (er[np.minimum(pos, key_e.size - 1)] == sr)
-    first = np.searchsorted(er, sr)                      # first end of the row
-    pick = np.where(same, pos, first)
-    length = (ec[pick] - sc) % m + 1
-    fr = np.flatnonzero(full)
-    return (np.concatenate([sr, fr]), np.concatenate([sc, np.zeros(fr.size, int)]),
-            np.concatenate([length, np.full(fr.size, m)]))
+def _row_intervals(M: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The maximal runs of True in every row of ``M``, not wrapping around: (row, first
+    column, last column), sorted by row then column."""
+    pad = np.zeros((M.shape[0], 1), bool)
+    step = np.diff(np.concatenate([pad, M, pad], axis=1).view(np.int8), axis=1)
+    r0, c0 = np.nonzero(step == 1)
+    _, c1 = np.nonzero(step == -1)
+    return r0, c0, c1 - 1
+
+
+def _intersect_rows(c: tuple[np.ndarray, np.ndarray, np.ndarray],
+                    m: tuple[np.ndarray, np.ndarray, np.ndarray], ptr: np.ndarray,
+                    shift: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Row ``i`` of ``c`` AND row ``i + shift`` (cyclic) of ``m`` (``ptr``: where each
+    row's intervals start in ``m``), as intervals sorted like the inputs."""
+    row, s, e = c
+    other = (row + shift) % (ptr.size - 1)
+    first, n = ptr[other], ptr[other + 1] - ptr[other]
+    one = n == 1                      # the common case: one interval to meet
+    q = first[one]
+    r1, s1, e1 = row[one], np.maximum(s[one], m[1][q]), np.minimum(e[one], m[2][q])
+    if not one.all():
+        many = ~one
+        n = n[many]
+        _, j = _segments(n)
+        q = np.repeat(first[many], n) + j
+        r2 = np.repeat(row[many], n)
+        s2 = np.maximum(np.repeat(s[many], n), m[1][q])
+        e2 = np.minimum(np.repeat(e[many], n), m[2][q])
+        # back in order of row and column: rows of one interval first, then merge
+        r1, s1, e1 = (np.concatenate(v) for v in ((r1, r2), (s1, s2), (e1, e2)))
+        order = np.lexsort((s1, r1))
+        r1, s1, e1 = r1[order], s1[order], e1[order]
+    keep = s1 <= e1
+    return r1[keep], s1[keep], e1[keep]
+
+
+def _group_starts(row: np.ndarray) -> np.ndarray:
+    """Where each group of equal values starts in a sorted array."""
+    return np.flatnonzero(np.diff(row, prepend=-1))
+
+
+def _cyclic_runs(c: tuple[np.ndarray, np.ndarray, np.ndarray], rows: np.ndarray, m: int
+                 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Maximal cyclic runs (row, start, length) of the given rows of a matrix of ``m``
+    columns held as intervals: a row's run through its last column continues into its
+    first; runs in order of row and start, whole rows (start 0, length ``m``) last."""
+    row, s, e = c
+    wanted = np.zeros(int(row.max(initial=rows.max(initial=0))) + 1, bool)
+    wanted[rows] = True
+    sel = wanted[row]
+    row, s, e = row[sel], s[sel], e[sel]
+    if row.size == 0:
+        return row, s, e
+    first = _group_starts(row)
+    last = np.append(first[1:] - 1, row.size - 1)
+    full = (first == last) & (s[first] == 0) & (e[first] == m - 1)
+    wrap = (first != last) & (s[first] == 0) & (e[last] == m - 1)
+    length = e - s + 1
+    length[last[wrap]] += e[first[wrap]] + 1
+    drop = np.zeros(row.size, bool)
+    drop[first[wrap]] = True
+    drop[first[full]] = True
+    fr = row[first[full]]
+    return (np.concatenate([row[~drop], fr]), np.concatenate([s[~drop], np.zeros(fr.size, int)]),
+            np.concatenate([length[~drop], np.full(fr.size, m)]))
 
 
 def _segments(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -202,21 +295,6 @@ def _segments(counts: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     sequence, and each element's position within its segment."""
     starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(int)
     return starts, np.arange(int(np.sum(counts))) - np.repeat(starts, counts)
-
-
-def _cyc_reduce(values: FloatArray, row: np.ndarray, start: np.ndarray, count: np.ndarray,
-                op: Any, empty: float) -> FloatArray:
-    """``op`` over ``values[row, start .. start + count - 1]`` (columns cyclic)."""
-    out = np.full(row.size, empty)
-    has = count > 0
-    if not has.any():
-        return out
-    r, s, c = row[has], start[has], count[has]
-    m = values.shape[1]
-    offs, k = _segments(c)
-    flat = values[np.repeat(r, c), (np.repeat(s, c) + k) % m]
-    out[has] = op.reduceat(flat, offs)
-    return out
 
 
 @dataclass
@@ -302,10 +380,12 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound
     and raises the lower bound with the vertex-aligned stretches of every run
     (feasible: all their cells have their four corners in ``M``)."""
     parts: list[_Configs] = []
-    C = M.copy()
+    Mi = _row_intervals(M)
+    ptr = np.searchsorted(Mi[0], np.arange(ra.m + 1))
+    C = Mi
     k = 1
     while k < ra.m - 1:
-        live = np.flatnonzero(C.any(axis=1))
+        live = C[0][_group_starts(C[0])]
         if live.size == 0:
             break
         ks = np.full(live.size, k)
@@ -314,8 +394,7 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound
         # the lower bound only has to be feasible, not the largest: without collecting,
         # runs are read at about eight window lengths per doubling
         if live.size and (collect or k <= 8 or k % (k // 8) == 0):
-            sub, p0, r = _runs(C[live])
-            row = live[sub]
+            row, p0, r = _cyclic_runs(C, live, rb.m)
             kr = np.full(row.size, k)
             inner_s, ext_s = _inner(ra, row - 1, kr), _ext(ra, row - 1, kr)
             rr = np.minimum(r, rb.m - 2)
@@ -325,7 +404,7 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound
             if collect and keep.any():
                 parts.append(_sub_windows(rb, row[keep], p0[keep], rr[keep], k,
                                           inner_s[keep], ext_s[keep], bound.floor))
-        C &= np.roll(M, -k, axis=0)
+        C = _intersect_rows(C, Mi, ptr, k)
         k += 1
     if not parts:
         return _empty()
@@ -364,8 +443,8 @@ def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: i
     return _Configs(rows - 1, np.full(rows.size, k), pp - 1, q - pp + 1)
 
 
-def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: bool,
-                    bound: _Bound, collect: bool) -> _Configs:
+def _windows_single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, bound: _Bound,
+                    collect: bool) -> _Configs:
     """Stretch 1 on one edge A, stretch 2 with interior vertices p .. p+k-1: those
     vertices confine stretch 1 to the intersection of their intervals on A (the
     vertex-aligned stretch 2 with that whole intersection is feasible: lower bound)."""
@@ -374,7 +453,7 @@ def _windows_single(lo: FloatArray, hi: FloatArray, ra: _Ring, rb: _Ring, same: 
     if A.size == 0:
         return _empty()
     mb = rb.m
-    loA, hiA = lo[A], hi[A]
+    loA, hiA = iv.rows(A)
     cl, ch = loA.copy(), hiA.copy()
     pidx = np.arange(mb)
     k = 1
@@ -420,7 +499,7 @@ def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
 
 
 def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
-            Iab: tuple[FloatArray, FloatArray], Iba: tuple[FloatArray, FloatArray],
+            Iab: _Intervals, Iba: _Intervals,
             fixed: tuple[int, FloatArray] | None = None) -> FloatArray:
     """Rows ``c0 + cs s0 + cu u0 + ct t >= 0`` of a batch of configurations: both
     regions of length ``t`` (a square pair), or, with ``fixed = (side, length)``, the
@@ -431,11 +510,10 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     C, D = c.iC % mB, (c.iC + c.kC) % mB
     # ends against the other stretch's interior vertices
 
-    def box(iv: tuple[FloatArray, FloatArray], edge: np.ndarray, ring: _Ring,
-            first: np.ndarray, count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
-        return (_cyc_reduce(iv[0], edge, (first + 1) % m, count, np.maximum, 0.0),
-                np.minimum(_cyc_reduce(iv[1], edge, (first + 1) % m, count, np.minimum,
-                                       np.inf), ring.L[edge]))
+    def box(iv: _Intervals, edge: np.ndarray, ring: _Ring, first: np.ndarray,
+            count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
+        lo, hi = iv.window(edge, (first + 1) % m, count)
+        return lo, np.minimum(hi, ring.L[edge])
 
     lo0, hi0 = box(Iab, A, ra, c.iC, c.kC, mB)
     lo1, hi1 = box(Iab, B, ra, c.iC, c.kC, mB)
@@ -556,7 +634,10 @@ def _solve(rows: FloatArray, ub: FloatArray, scale: float
     rows = np.concatenate([rows, cap], axis=1)
     r_ut = _eliminate(rows, 1)                       # (c0, cu, ct)
     tol = 1e-12 * scale
-    t_lo, t_hi, flat = _t_bounds(r_ut)
+    # every pair of rows meets in _t_bounds: blocks of about _BLOCK * 32 pairs
+    step = max(1, (_BLOCK * 32) // r_ut.shape[1] ** 2)
+    parts = [_t_bounds(r_ut[b:b + step]) for b in range(0, B, step)]
+    t_lo, t_hi, flat = (np.concatenate([p[j] for p in parts]) for j in range(3))
     ok = (t_lo <= t_hi + tol) & (flat >= -tol) & (t_hi >= 0) & np.isfinite(t_hi)
     t = np.where(ok, np.maximum(t_hi, 0.0), -1.0)
     tt = np.maximum(t, 0.0)
@@ -622,7 +703,7 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
     return cfg.take(_disjoint(ra, cfg, same))
 
 
-def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, Any],
+def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
                 matrices: dict[Any, Any]) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations)."""
@@ -634,8 +715,7 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, Any],
             both = _empty()
             if x <= y:
                 both = _windows_both(matrices[x, y, sigma], ra, rb, x == y, bound, collect)
-            lo, hi = intervals[x, y, sigma]
-            single = _windows_single(lo, hi, ra, rb, x == y, bound, collect)
+            single = _windows_single(intervals[x, y, sigma], ra, rb, x == y, bound, collect)
             if collect:
                 pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
                 prepared.append((job, _Configs.cat([both, single, pairs])))
@@ -643,7 +723,7 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, Any],
 
 
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
-                intervals: dict[Any, Any], bound: _Bound, scale: float) -> list[_Found]:
+                intervals: dict[Any, _Intervals], bound: _Bound, scale: float) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept)."""
     found: list[_Found] = []
@@ -672,7 +752,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
 
 
 def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
-                  intervals: dict[Any, Any], scale: float) -> None:
+                  intervals: dict[Any, _Intervals], scale: float) -> None:
     """The second level of the leximin order (definition 7.1) of each configuration:
     one region at the optimal smallest length, the other as long as possible (both
     sides tried; exact, the same three-variable program with one length fixed)."""
@@ -720,22 +800,28 @@ def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
         if c[:, [1, 3]].max() == 0:
             continue
 
-        def inside(i: np.ndarray, k: np.ndarray, m: int) -> np.ndarray:
+        def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
+                   m: int) -> np.ndarray:
             # [sub] stretch (rows) inside [super] stretch (columns), cyclically
-            rel = (i[:, None] - i[None, :]) % m
-            return rel + k[:, None] <= k[None, :]
+            return (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :]
 
-        sub = inside(c[:, 0], c[:, 1], ra.m) & inside(c[:, 2], c[:, 3], rb.m)
-        if job[0] == job[1]:            # one ring: a pair may be stored either way round
-            sub |= ((c[:, None, 0] - c[None, :, 2]) % ra.m + c[:, None, 1] <= c[None, :, 3]) \
-                & ((c[:, None, 2] - c[None, :, 0]) % ra.m + c[:, None, 3] <= c[None, :, 1])
-        beaten = sub & (t[:, None] > t[None, :] * (1 + TIE))
-        keep[np.asarray(idx)[beaten.any(axis=0)]] = False
+        at = np.asarray(idx)
+        # supers in blocks of columns: the (sub, super) matrix stays about 1M cells
+        step = max(1, (_BLOCK * 32) // len(idx))
+        for b in range(0, len(idx), step):
+            cs, ts = c[b:b + step], t[b:b + step]
+            sub = inside(c[:, 0], c[:, 1], cs[:, 0], cs[:, 1], ra.m) \
+                & inside(c[:, 2], c[:, 3], cs[:, 2], cs[:, 3], rb.m)
+            if job[0] == job[1]:        # one ring: a pair may be stored either way round
+                sub |= inside(c[:, 0], c[:, 1], cs[:, 2], cs[:, 3], ra.m) \
+                    & inside(c[:, 2], c[:, 3], cs[:, 0], cs[:, 1], ra.m)
+            beaten = sub & (t[:, None] > ts[None, :] * (1 + TIE))
+            keep[at[b:b + step][beaten.any(axis=0)]] = False
     return [f for f, k in zip(found, keep, strict=True) if k]
 
 
 def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
-               intervals: dict[Any, Any], polygon: Polygon) -> list[_Found]:
+               intervals: dict[Any, _Intervals], polygon: Polygon) -> list[_Found]:
     """The placement of a pair on one ring, independent of which stretch the search
     called the first: both ways round are placed, and the one whose end points come
     first (relative to the part, rounded) is kept, so a renumbered part gets the same
@@ -760,7 +846,7 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     return out
 
 
-def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, Any],
+def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, _Intervals],
             polygon: Polygon) -> list[_Found]:
     """The second leximin level and the numbering-free placement of the configurations
     kept, in the leximin order."""
@@ -835,7 +921,7 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
         return []
     rings = _rings(polygon)
     # every ordered ring pair is a job, so a job's reverse intervals are another's
-    intervals = {(x, y, sigma): _edge_intervals(rings[x], rings[y], sigma, beta)
+    intervals = {(x, y, sigma): _Intervals(rings[x], rings[y], sigma, beta)
                  for x, y, sigma, _ in _jobs(len(rings))}
     matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
                 for x, y, sigma, _ in _jobs(len(rings)) if x <= y}
@@ -889,7 +975,7 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
         return None
     x, y = runs[0][0], runs[1][0]
     ra, rb = rings[x], rings[y]
-    intervals = {(a, b, sigma): _edge_intervals(rings[a], rings[b], sigma, beta)
+    intervals = {(a, b, sigma): _Intervals(rings[a], rings[b], sigma, beta)
                  for a, b in ((x, y), (y, x)) for sigma in (1.0, -1.0)}
     cfg = _configs_in(ra, rb, x == y, (runs[0][1], runs[1][1]))
     # every sub-configuration, longest bound first, in chunks behind the best found
