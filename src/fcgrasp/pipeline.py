@@ -59,11 +59,12 @@ __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solve
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
            "BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
            "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
-           "grown_plans", "frictionless_plan", "GROW_SEEDS"]
+           "grown_plans", "frictionless_plan", "GROW_SEEDS", "TopK", "search",
+           "FIRST_BATCH"]
 
 #: Candidate rows per batch: large parts are streamed in batches of at most this size (fewer
 #: when the memory budget asks for it, see :func:`search_size`).
-BATCH_SIZE = 2_000_000
+BATCH_SIZE = 2000000
 #: :func:`rank` folds the solved batches into their running top whenever it holds this many
 #: rows beyond it, so what it keeps does not grow with the number of batches.
 REDUCE_ROWS = 20_000
@@ -88,6 +89,8 @@ KEEP_STRETCHES = 200
 #: Three or four fingers along the boundary: how many of the best single-edge plans are
 #: grown into stretches (:func:`fcgrasp.frictionless_stretches.grow_stretches`).
 GROW_SEEDS = 10
+#: Rows of the first batch of a search with a ``top`` (then doubling up to the batch size).
+FIRST_BATCH = 4096
 #: Measured seconds per candidate row (two fingers; three or four), for the time estimate.
 ROW_SECONDS = {2: 1e-6, 3: 3e-5, 4: 3e-5}
 #: With a measure other than ``min_region`` and a ``top``, the rows of a batch kept for
@@ -322,35 +325,6 @@ def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
 
 
 
-def _index_tuples(n: int, k: int, size: int) -> Iterator[np.ndarray]:
-    """Every increasing ``k``-tuple of ``range(n)`` (k = 3 or 4), in lexicographic order,
-    in blocks of at most ``size`` rows: nothing holds all C(n, k) at once."""
-    buf: list[np.ndarray] = []
-    count = 0
-    prefixes: Iterable[tuple[int, ...]] = ((i,) for i in range(n)) if k == 3 else \
-        ((i, j) for i in range(n) for j in range(i + 1, n))
-    for pre in prefixes:
-        last = pre[-1]
-        a, b = np.triu_indices(n - last - 1, 1)
-        if a.size == 0:
-            continue
-        block = np.empty((a.size, k), dtype=int)
-        block[:, :k - 2] = pre
-        block[:, k - 2] = a + last + 1
-        block[:, k - 1] = b + last + 1
-        buf.append(block)
-        count += a.size
-        if count >= size:
-            rows = np.concatenate(buf)
-            for s in range(0, len(rows), size):
-                yield rows[s:s + size]
-            buf, count = [], 0
-    if buf:
-        rows = np.concatenate(buf)
-        for s in range(0, len(rows), size):
-            yield rows[s:s + size]
-
-
 def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
     e = F.edge[t]
     k = t.shape[1]
@@ -361,31 +335,92 @@ def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
     return t[ok]
 
 
-def _quad_batches(F: Features, gravity: FloatArray | None, three_edge: bool, size: int
-                  ) -> Iterator[np.ndarray]:
-    """Every four-finger row, streamed: 4-tuples of features on distinct edges, then (with
-    ``three_edge``) three edges with one doubled (the doubled feature first and third);
-    with gravity, triples of features plus the gravity contact (-1)."""
-    nF = len(F.edge)
-    if gravity is not None:
-        for t in _index_tuples(nF, 3, size):
-            t = _distinct_edges(F, t)
-            if len(t):
-                yield np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+def _combos(s: int, r: int) -> Iterator[np.ndarray]:
+    """Every increasing ``r``-tuple (r = 1, 2 or 3) of ``range(s)``, in blocks."""
+    if r == 1:
+        if s > 0:
+            yield np.arange(s)[:, None]
         return
-    for q in _index_tuples(nF, 4, size):
-        q = _distinct_edges(F, q)
-        if len(q):
-            yield q
-    if not three_edge:
+    if r == 2:
+        a, b = np.triu_indices(s, 1)
+        if a.size:
+            yield np.stack([a, b], axis=1)
         return
-    for t in _index_tuples(nF, 3, max(1, size // 3)):
-        t = _distinct_edges(F, t)
-        # the doubled feature first
-        rows = np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
-                               for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
-        for k in range(0, len(rows), size):
-            yield rows[k:k + size]
+    for first in range(s - 2):
+        a, b = np.triu_indices(s - first - 1, 1)
+        block = np.empty((a.size, 3), dtype=int)
+        block[:, 0] = first
+        block[:, 1] = a + first + 1
+        block[:, 2] = b + first + 1
+        yield block
+
+
+def _layouts(t: np.ndarray, fingers: int, gravity: bool) -> np.ndarray:
+    """Candidate rows of sorted feature tuples ``t``: pairs as they are; triples plus the
+    gravity contact (-1); 4-tuples as they are; with four fingers on three edges (no
+    gravity, ``t`` of width 3) the three layouts doubling each feature (first and third)."""
+    if fingers == 2 or t.shape[1] == 4:
+        return t
+    if gravity:
+        return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+    return np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
+                           for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
+
+
+def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
+    """Upper bound of the smallest region of each row: no region is longer than its
+    feature, and two fingers on one feature (first and third) share it, so one of them
+    has at most half of it.  Gravity (-1) has no region."""
+    L = np.where(rows >= 0, lengths[np.maximum(rows, 0)], np.inf)
+    if rows.shape[1] == 4:
+        same = rows[:, 0] == rows[:, 2]
+        L[same, 0] *= 0.5
+        L[same, 2] = L[same, 0]
+    return L.min(axis=1)
+
+
+def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
+                  first: int) -> Iterator[EdgeSets]:
+    """Every candidate row, streamed by decreasing bound (branch and bound).
+
+    Features are sorted by decreasing length; a row's *last* feature in that order is its
+    shortest, so the rows are enumerated by their last position ``s``: every row whose
+    features all come before ``s``'s has a bound at least the length at ``s``.  Batches
+    grow from ``first`` rows, doubling, to ``size``, so that a search whose top is found
+    early stops after little work.
+    """
+    lengths = np.hypot(*(F.b - F.a).T)
+    n = lengths.size
+    order = np.lexsort((np.arange(n), -lengths))
+    gravity = spec.gravity is not None
+    widths = [1] if spec.fingers == 2 else [2] if gravity else \
+        ([3, 2] if three_edge else [3])
+    buf: list[np.ndarray] = []
+    count = 0
+    target = min(first, size)
+    ceiling = np.inf
+    for s in range(n):
+        if not count:
+            ceiling = float(lengths[order[s]])
+        for r in widths:
+            for block in _combos(s, r):
+                t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
+                                                 axis=1)], axis=1)
+                t = _distinct_edges(F, t)
+                if not len(t):
+                    continue
+                buf.append(_layouts(t, spec.fingers, gravity))
+                count += len(buf[-1])
+                while count >= target:
+                    rows = np.concatenate(buf)
+                    yield EdgeSets(rows[:target], _row_bound(lengths, rows[:target]), ceiling)
+                    # the rows left over come from position s: bounded by its length
+                    buf, count = [rows[target:]], len(rows) - target
+                    ceiling = float(lengths[order[s]])
+                    target = min(2 * target, size)
+    if count:
+        rows = np.concatenate(buf)
+        yield EdgeSets(rows, _row_bound(lengths, rows), ceiling)
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
@@ -467,9 +502,18 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
 @dataclass
 class EdgeSets:
     """A batch of candidate edge sets: ``feats[r, k]`` is the feature (see
-    :func:`features`) of finger ``k`` in row ``r``, -1 for gravity.  Picklable."""
+    :func:`features`) of finger ``k`` in row ``r``, -1 for gravity.  Picklable.
+
+    ``bound[r]`` is an upper bound of row ``r``'s smallest region (no region is longer
+    than its feature; two fingers on one feature share it), ``ceiling`` a bound of every
+    row of this batch *and of every later batch* of the stream: :func:`candidates`
+    yields rows by decreasing bound, so a search whose running top already beats a
+    batch's ceiling can stop there (:func:`search`).
+    """
 
     feats: np.ndarray
+    bound: FloatArray | None = None
+    ceiling: float = float("inf")
 
 
 @dataclass(frozen=True)
@@ -584,52 +628,39 @@ def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
         f"with fewer fingers")
 
 
-def _pair_batches(F: Features, size: int) -> Iterator[EdgeSets]:
-    """Pairs ``i < j`` of features on distinct edges, a block of rows ``i`` at a time
-    (about ``size`` pairs per batch; a row longer than that is split)."""
-    n = len(F.edge)
-    start = 0
-    while start < n - 1:
-        counts = n - 1 - np.arange(start, n - 1)
-        stop = start + max(1, int(np.searchsorted(np.cumsum(counts), size, side="right")))
-        stop = min(stop, n - 1)
-        ii = np.repeat(np.arange(start, stop), n - 1 - np.arange(start, stop))
-        jj = np.concatenate([np.arange(r + 1, n) for r in range(start, stop)])
-        keep = F.edge[ii] != F.edge[jj]
-        ii, jj = ii[keep], jj[keep]
-        for k in range(0, len(ii), size):
-            yield EdgeSets(np.stack([ii[k:k + size], jj[k:k + size]], axis=1))
-        start = stop
-
-
 def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                batch_size: int | None = None) -> Iterator[EdgeSets]:
-    """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows.
+    """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows,
+    by decreasing upper bound of their smallest region (:class:`EdgeSets`).
 
     Two fingers: every pair of features on distinct edges.  Four: every 4-tuple on
-    distinct edges, then every three edges with one doubled.  Three (gravity): every
+    distinct edges and every three edges with one doubled.  Three (gravity): every
     triple.  ``edges`` restricts the features to those edges (with four fingers and an
-    edge given twice, only the layouts doubling that edge).
+    edge given twice, only the layouts doubling that edge).  With a ``top``, batches
+    start small and double up to ``batch_size``, so a search that finds its top among
+    the first rows stops after little work (:func:`search`); the stream itself always
+    holds every row.
     """
     F = features(polygon, spec.mu, spec.hand, edges)
     size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
         check_int(batch_size, "batch_size", minimum=1)
-    if spec.fingers == 2:
-        yield from _pair_batches(F, size)
-        return
-    gravity = None if spec.gravity is None else np.array(spec.gravity)
+    first = size if spec.top is None else FIRST_BATCH
     doubled = None
-    three_edge = True
-    if edges is not None:
+    three_edge = spec.fingers == 4
+    if edges is not None and spec.fingers == 4:
         idx = [int(e) for e in edges]
         twice = [e for e in set(idx) if idx.count(e) == 2]
         doubled = twice[0] if twice else None
         three_edge = doubled is not None
-    for rows in _quad_batches(F, gravity, three_edge, size):
+    for sets in _ordered_rows(F, spec, three_edge, size, first):
         if doubled is not None:
-            rows = rows[(F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])]
-        if len(rows):
-            yield EdgeSets(rows)
+            rows = sets.feats
+            keep = (F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])
+            if not keep.any():
+                continue
+            assert sets.bound is not None
+            sets = EdgeSets(rows[keep], sets.bound[keep], sets.ceiling)
+        yield sets
 
 
 def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
@@ -924,18 +955,26 @@ def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
 
 
 def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
-          progress: Any = None) -> Solved:
+          progress: Any = None, floor: float = 0.0) -> Solved:
     """Grasp sets and optimal regions of a batch of candidate edge sets.
 
-    With ``spec.top`` and ``min_region``, only the rows that can still reach the batch's
-    top (ties included) get their leximin levels: rows are taken by their stage-1 bound,
-    in chunks, until no later row can reach the top-th smallest region found.  The union
-    of the batches' tops holds the global top, so :func:`rank` of the solved batches is
-    the same as of one batch.
+    With ``spec.top``, only the rows that can still reach the top (ties included) get
+    their leximin levels: rows are taken by their stage-1 bound, in chunks, until no
+    later row can reach the top-th smallest region found.  The union of the batches'
+    tops holds the global top, so :func:`rank` of the solved batches is the same as of
+    one batch.  ``floor`` (:attr:`TopK.floor`): rows whose smallest region cannot reach
+    it are dropped unsolved, first by the batch's bounds (before any geometry), then by
+    their stage-1 bound; 0 keeps every row.
     """
+    floor = check_scalar(floor, "floor", nonnegative=True)
+    if spec.top is None:
+        floor = 0.0
+    if floor > 0 and sets.bound is not None:
+        sets = EdgeSets(sets.feats[sets.bound >= floor], sets.bound[sets.bound >= floor],
+                        sets.ceiling)
     c = grasp_geometry(polygon, spec, sets, edges)
     margin = spec.margin_rad
-    good = np.flatnonzero(c.score > 0)
+    good = np.flatnonzero((c.score > 0) & (c.score >= floor))
     order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
     top = spec.top
     if top is not None and spec.rank_by == "min_region":
@@ -977,48 +1016,126 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
     return Solved(c.take(rows[pick]), lv[pick], a_[pick], b_[pick], md[pick])
 
 
+class TopK:
+    """The running top of a search: solved batches folded in as they come (the reduce
+    of :func:`rank`), and the :attr:`floor` a row must reach to enter it.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> part, spec = demo_part("blob"), plan_spec(fingers=2, mu=0.3, top=2)
+    >>> top = TopK(part, spec)
+    >>> for batch in candidates(part, spec):
+    ...     if batch.ceiling < top.floor:
+    ...         break                       # no later row can enter the top
+    ...     top.add(solve(part, spec, batch, floor=top.floor))
+    >>> [p.edges for p in top.plans()]
+    [(2, 5), (0, 3)]
+    """
+
+    def __init__(self, polygon: Polygon, spec: PlanSpec, edges: Any = None) -> None:
+        self.polygon, self.spec, self.edges = polygon, spec, edges
+        top = spec.top
+        #: rows kept by the smallest region: the top, or with another measure the
+        #: :data:`KEEP_FOR_MEASURE` best, which the measure then orders
+        self.keep = None if top is None else (top if spec.rank_by == "min_region" else
+                                              KEEP_FOR_MEASURE)
+        self._parts: list[Solved] = []
+        self._held = 0
+        self._floor = 0.0
+
+    def add(self, solved: Solved) -> None:
+        """Fold in a solved batch (from any process, in any order)."""
+        if not len(solved.lengths):
+            return
+        self._parts.append(solved)
+        self._held += len(solved.lengths)
+        if self.keep is None:
+            return
+        if self._held > _reduce_rows(self.spec) + self.keep:
+            # a running reduction: what the final selection would drop can go now
+            merged = Solved.concat(self._parts)
+            merged = merged.take(_select(merged.lengths, merged.cands.feats,
+                                         self.polygon.size, self.keep))
+            self._parts, self._held = [merged], len(merged.lengths)
+        if self._held >= self.keep:
+            mins = np.concatenate([np.where(p.cands.feats >= 0, p.lengths, np.inf)
+                                   .min(axis=1) for p in self._parts])
+            kth = float(np.partition(-mins, self.keep - 1)[self.keep - 1])
+            # rounding of the ranking (leximin_key) is within RANK_TOL * size: a row
+            # below this cannot tie the keep-th row
+            self._floor = max(self._floor, -kth - 2 * RANK_TOL * self.polygon.size)
+
+    @property
+    def floor(self) -> float:
+        """A row whose smallest region is below this cannot enter the top (0 until the
+        top is full, and always 0 with ``top=None``)."""
+        return self._floor
+
+    def plans(self) -> list[GraspPlan]:
+        """The best plans, best first: sorted by the measure ``spec.rank_by``
+        (:mod:`fcgrasp.ranking`), then the leximin order of the region lengths, then
+        :func:`~fcgrasp.plans.geometric_key`."""
+        if not self._parts:
+            return []
+        polygon, spec, top = self.polygon, self.spec, self.spec.top
+        s = Solved.concat(self._parts)
+        if self.keep is not None:
+            pick = _select(s.lengths, s.cands.feats, polygon.size, self.keep)
+        else:
+            pick = np.arange(len(s.lengths))
+        F = features(polygon, spec.mu, spec.hand, self.edges)
+        gravity = None if spec.gravity is None else np.array(spec.gravity)
+        plans = _build_plans(polygon, F, s.cands, pick, s.lengths[pick], s.a[pick],
+                             s.b[pick], s.mode[pick], spec.mu, spec.margin,
+                             spec.contact_type, gravity, spec.disturbance)
+        scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+        order = sorted(range(len(plans)), key=lambda k: rank_key(
+            plans[k], polygon, spec.rank_by, float(scores[k])))
+        plans = [plans[k] for k in order]
+        return plans if top is None else plans[:top]
+
+
+def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None
+           ) -> list[GraspPlan]:
+    """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
+    decreasing bound, :func:`solve` drops the rows below the running top's
+    :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
+    it.  The same plans as solving every row (``rank`` of every batch), tested on the
+    corpus for every ``rank_by``; with a measure other than ``min_region`` the floor is
+    that of the :data:`KEEP_FOR_MEASURE` rows the measure orders.
+
+    ``progress(done, total)`` counts candidate rows solved or pruned.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
+    [(0, 1, 2, 3)]
+    """
+    top = TopK(polygon, spec, edges)
+    total = search_size(polygon, spec, edges).rows if progress is not None else 0
+    done = 0
+    for batch in candidates(polygon, spec, edges):
+        if batch.ceiling < top.floor:
+            break
+        top.add(solve(polygon, spec, batch, edges, floor=top.floor))
+        done += len(batch.feats)
+        if progress is not None:
+            progress(min(done, total), total)
+    if progress is not None and done < total:
+        progress(total, total)
+    return top.plans()
+
+
 def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
          edges: Any = None) -> list[GraspPlan]:
-    """Merge solved batches and return the best plans, best first (a top-k reduce).
+    """Merge solved batches and return the best plans, best first (a top-k reduce,
+    :class:`TopK`).
 
     Sorted by the measure ``spec.rank_by`` (:mod:`fcgrasp.ranking`), then the leximin
     order of the region lengths, then :func:`~fcgrasp.plans.geometric_key`.
     """
-    top = spec.top
-    keep = None if top is None else (top if spec.rank_by == "min_region" else
-                                     KEEP_FOR_MEASURE)
-    parts: list[Solved] = []
-    held = 0
+    top = TopK(polygon, spec, edges)
     for batch in solved:
-        if not len(batch.lengths):
-            continue
-        parts.append(batch)
-        held += len(batch.lengths)
-        if keep is not None and held > _reduce_rows(spec) + keep:
-            # a running reduction: what the final selection would drop can go now
-            merged = Solved.concat(parts)
-            merged = merged.take(_select(merged.lengths, merged.cands.feats, polygon.size,
-                                         keep))
-            parts, held = [merged], len(merged.lengths)
-    if not parts:
-        return []
-    s = Solved.concat(parts)
-    if spec.rank_by == "min_region":
-        pick = _select(s.lengths, s.cands.feats, polygon.size, top)
-    elif top is not None and len(s.lengths) > KEEP_FOR_MEASURE:
-        pick = _select(s.lengths, s.cands.feats, polygon.size, KEEP_FOR_MEASURE)
-    else:
-        pick = np.arange(len(s.lengths))
-    F = features(polygon, spec.mu, spec.hand, edges)
-    gravity = None if spec.gravity is None else np.array(spec.gravity)
-    plans = _build_plans(polygon, F, s.cands, pick, s.lengths[pick], s.a[pick], s.b[pick],
-                         s.mode[pick], spec.mu, spec.margin, spec.contact_type, gravity,
-                         spec.disturbance)
-    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
-    order = sorted(range(len(plans)),
-                   key=lambda k: rank_key(plans[k], polygon, spec.rank_by, float(scores[k])))
-    plans = [plans[k] for k in order]
-    return plans if top is None else plans[:top]
+        top.add(batch)
+    return top.plans()
 
 
 # ----------------------------------------------------------------------------- stretches
@@ -1107,8 +1224,7 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None) -> list[
                          "(spec.grows is False)")
     flat = replace(spec, along_boundary=False,
                    top=None if spec.top is None else max(spec.top, GROW_SEEDS))
-    seeds = rank(polygon, flat, (solve(polygon, flat, batch, progress=progress)
-                                 for batch in candidates(polygon, flat)))
+    seeds = search(polygon, flat, progress=progress)
     rows = [p.edges for p in seeds[:GROW_SEEDS]
             if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
     plans = list(seeds)
@@ -1148,6 +1264,5 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
             if max(len(e) for e in p.region_edges) == 1])
     else:
         flat = replace(spec, along_boundary=False)
-        plans += rank(polygon, flat, (solve(polygon, flat, batch)
-                                      for batch in candidates(polygon, flat)))
+        plans += search(polygon, flat)
     return _sorted_unique(polygon, spec, plans)

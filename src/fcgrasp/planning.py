@@ -29,13 +29,11 @@ from .graspsets import Vertex
 from .hand import Hand
 from .pipeline import (
     boundary_plans,
-    candidates,
     check_search,
     frictionless_plan,
     grown_plans,
     plan_spec,
-    rank,
-    solve,
+    search,
     stretch_plan,
 )
 from .plans import GraspPlan, geometric_key, rank_key
@@ -132,8 +130,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         return plans
     if spec.grows:
         return grown_plans(polygon, spec, progress)
-    return rank(polygon, spec, (solve(polygon, spec, batch, progress=progress)
-                                for batch in candidates(polygon, spec)))
+    return search(polygon, spec, progress=progress)
 
 
 def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
@@ -197,8 +194,7 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
                          gravity=gravity if n == 3 else (0.0, -1.0), tol=tol)
     else:
         raise ValueError(f"edges must hold 2, 3 (with gravity) or 4 edge indices, got {n}")
-    plans = rank(polygon, spec, (solve(polygon, spec, batch, edges=idx)
-                                 for batch in candidates(polygon, spec, edges=idx)), edges=idx)
+    plans = search(polygon, spec, edges=idx)
     if not plans:
         return None
     p = plans[0]
