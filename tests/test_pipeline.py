@@ -77,16 +77,25 @@ def test_plan_spec_is_checked_and_picklable():
 # ------------------------------------------------------------------ memory (issue 11)
 
 
-def test_index_tuples_are_the_combinations():
+@pytest.mark.parametrize("size", [1, 5, 1000])
+def test_candidates_are_every_combination_once(size):
+    """The stream (by decreasing bound) holds every row exactly once."""
     from itertools import combinations
 
-    from fcgrasp.pipeline import _index_tuples
-
-    for n, k, size in [(9, 4, 5), (12, 3, 7), (6, 4, 1000), (3, 4, 2), (5, 3, 1)]:
-        blocks = list(_index_tuples(n, k, size))
-        assert all(len(b) <= size for b in blocks)
-        got = [tuple(r) for b in blocks for r in b.tolist()]
-        assert got == list(combinations(range(n), k))
+    a = np.linspace(0, 2 * np.pi, 10, endpoint=False)
+    part = fc.Polygon(np.c_[np.cos(a) * (1 + 0.1 * a), np.sin(a)])
+    n = len(part.lengths)
+    want = {2: list(combinations(range(n), 2)),
+            3: [(*t, -1) for t in combinations(range(n), 3)],
+            4: list(combinations(range(n), 4)) +
+            [(t[x], t[y], t[x], t[z]) for t in combinations(range(n), 3)
+             for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))]}
+    for fingers, rows in want.items():
+        spec = plan_spec(fingers=fingers, mu=0.3)
+        blocks = list(candidates(part, spec, batch_size=size))
+        assert all(len(b.feats) <= size for b in blocks)
+        got = [tuple(r) for b in blocks for r in b.feats.tolist()]
+        assert len(got) == len(rows) and set(got) == set(rows)
 
 
 def test_search_too_large_is_refused_at_once():
@@ -129,13 +138,25 @@ def test_rank_folds_batches_into_a_running_top(rng):
     assert _key(got) == _key(want)
 
 
-def test_three_finger_search_stops_early(rng):
+def test_three_finger_search_stops_early(monkeypatch):
     """The top-k stop ignores gravity's zero-length region (it never stopped before)."""
+    from fcgrasp import pipeline
+
     a = np.linspace(0, 2 * np.pi, 41)[:-1]
     r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
     part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
-    calls = []
-    got = fc.plan(part, fingers=3, top=2, progress=lambda d, t: calls.append((d, t)))
-    assert calls and calls[-1][0] < calls[-1][1]
-    every = fc.plan(part, fingers=3, top=None)
+    calls, rows = [], []
+    real = pipeline.solve
+
+    def counting(polygon, spec, sets, *args, **kw):
+        rows.append(int(np.sum(sets.bound >= kw.get("floor", 0.0))))
+        return real(polygon, spec, sets, *args, **kw)
+
+    monkeypatch.setattr(pipeline, "solve", counting)
+    got = fc.plan(part, fingers=3, top=2, progress=lambda d, t: calls.append((d, t)),
+                  along_boundary=False)
+    monkeypatch.undo()
+    total = calls[-1][1]
+    assert calls[-1][0] == total and sum(rows) < total / 2
+    every = fc.plan(part, fingers=3, top=None, along_boundary=False)
     assert _key(got) == _key(every[:2])

@@ -60,11 +60,11 @@ __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solve
            "BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
            "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
            "grown_plans", "frictionless_plan", "GROW_SEEDS", "TopK", "search",
-           "FIRST_BATCH"]
+           "every_plan", "FIRST_BATCH"]
 
 #: Candidate rows per batch: large parts are streamed in batches of at most this size (fewer
 #: when the memory budget asks for it, see :func:`search_size`).
-BATCH_SIZE = 2000000
+BATCH_SIZE = 32_768
 #: :func:`rank` folds the solved batches into their running top whenever it holds this many
 #: rows beyond it, so what it keeps does not grow with the number of batches.
 REDUCE_ROWS = 20_000
@@ -1028,7 +1028,7 @@ class TopK:
     ...         break                       # no later row can enter the top
     ...     top.add(solve(part, spec, batch, floor=top.floor))
     >>> [p.edges for p in top.plans()]
-    [(2, 5), (0, 3)]
+    [(2, 5), (1, 4)]
     """
 
     def __init__(self, polygon: Polygon, spec: PlanSpec, edges: Any = None) -> None:
@@ -1094,8 +1094,8 @@ class TopK:
         return plans if top is None else plans[:top]
 
 
-def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None
-           ) -> list[GraspPlan]:
+def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
+           batch_size: int | None = None) -> list[GraspPlan]:
     """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
     decreasing bound, :func:`solve` drops the rows below the running top's
     :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
@@ -1103,7 +1103,8 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     corpus for every ``rank_by``; with a measure other than ``min_region`` the floor is
     that of the :data:`KEEP_FOR_MEASURE` rows the measure orders.
 
-    ``progress(done, total)`` counts candidate rows solved or pruned.
+    ``progress(done, total)`` counts candidate rows solved or pruned; ``batch_size`` as
+    for :func:`candidates`.
 
     >>> from fcgrasp.parts import demo_part
     >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
@@ -1112,7 +1113,7 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     top = TopK(polygon, spec, edges)
     total = search_size(polygon, spec, edges).rows if progress is not None else 0
     done = 0
-    for batch in candidates(polygon, spec, edges):
+    for batch in candidates(polygon, spec, edges, batch_size):
         if batch.ceiling < top.floor:
             break
         top.add(solve(polygon, spec, batch, edges, floor=top.floor))
@@ -1122,6 +1123,28 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def every_plan(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+               batch_size: int | None = None) -> Iterator[GraspPlan]:
+    """Every single-edge plan of a part (``top=None``), streamed: each batch of
+    :func:`candidates` is solved and its plans yielded (in rank order within the batch;
+    batches by decreasing bound of their rows), so memory is bounded by one batch
+    whatever the part's size, where ``plan(..., top=None)`` must hold every plan to rank
+    them and refuses parts whose plans would not fit (:class:`SearchTooLarge`).
+
+    >>> from fcgrasp.parts import demo_part
+    >>> part = demo_part("quad")
+    >>> spec = plan_spec(fingers=2, mu=0.5)
+    >>> sorted(p.edges for p in every_plan(part, spec)) == sorted(
+    ...     p.edges for p in search(part, plan_spec(fingers=2, mu=0.5, top=None)))
+    True
+    """
+    spec = replace(spec, top=None)
+    for batch in candidates(polygon, spec, edges, batch_size):
+        top = TopK(polygon, spec, edges)
+        top.add(solve(polygon, spec, batch, edges))
+        yield from top.plans()
 
 
 def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
