@@ -57,8 +57,8 @@ from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
            "features", "candidates", "grasp_geometry", "solve", "rank", "region_levels",
-           "BATCH_SIZE", "TUPLE_BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge", "search_size",
-           "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
+           "BATCH_SIZE", "TUPLE_BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge",
+           "search_size", "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
            "grown_plans", "frictionless_plan", "GROW_SEEDS", "TopK", "search",
            "every_plan", "FIRST_BATCH"]
 
