@@ -1,5 +1,7 @@
-"""Scale of parts (issue 6): two-finger plans of finely flattened outlines, with the time
-and the peak memory of each run (each size in a fresh process, peak resident set size).
+"""Scale of parts (issue 6): two-finger plans of finely flattened outlines on single edges
+(the exact branch and bound of ``fcgrasp.pipeline.search``), with the time and the peak
+memory of each run (each size in a fresh process, peak resident set size).  Regions along
+the boundary at these sizes: ``bench_stretches.py``.
 
     python benchmarks/bench_scale.py [--sizes 1000,3000,10000]
 """
@@ -20,7 +22,7 @@ ang = np.linspace(0, 2 * np.pi, n, endpoint=False)
 r = 1 + 0.3 * np.sin(3 * ang) + 0.1 * np.cos(5 * ang + 1)
 part = Polygon(np.column_stack([r * np.cos(ang), r * np.sin(ang)]) * 50.0)
 t0 = time.perf_counter()
-plans = plan(part, fingers=2, mu=0.3, top=5)
+plans = plan(part, fingers=2, mu=0.3, top=5, along_boundary=False)
 dt = time.perf_counter() - t0
 peak = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024
 print(json.dumps({"n": n, "seconds": dt, "peak_mb": peak, "plans": len(plans),
