@@ -275,3 +275,56 @@ def test_single_edge_plans_unchanged_on_long_edges():
         for p, q in zip(a, b, strict=True):
             np.testing.assert_array_equal(p.ends, q.ends)
             assert p.region_edges == tuple((e,) for e in q.edges)
+
+
+# ------------------------------------------------------------- no vertex can be covered
+
+
+def _plan_key(plans):
+    return [(p.edges, [np.round(r, 9).tolist() for r in p.regions], p.region_edges, p.mode,
+             np.round(p.lengths, 9).tolist()) for p in plans]
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_sharp_corners_skip_the_stretch_search(seed, monkeypatch):
+    """Where every vertex turns more than twice the shrunk friction angle
+    (``crosses_a_vertex`` False) the plans are the single-edge search's, and exactly
+    those of the full stretch search (forced here); and the full search indeed covers no
+    vertex there."""
+    import fcgrasp as fc
+    from fcgrasp import pipeline
+    from fcgrasp.stretches import crosses_a_vertex
+
+    rng = np.random.default_rng(seed)
+    seen = 0
+    for kind in ("convex", "star", "holes", "rectangle", "regular"):
+        part = random_polygon(rng, kind)
+        for mu, rank_by in ((0.3, "min_region"), (0.15, "min_region"), (0.3, "epsilon")):
+            if crosses_a_vertex(part, mu, 0.5):
+                continue
+            seen += 1
+            fast = fc.plan(part, fingers=2, mu=mu, top=4, rank_by=rank_by)
+            every = two_finger_stretches(part, mu, 0.5, top=None)
+            assert all(len(e) == 1 for p in every for e in p.region_edges)
+            with monkeypatch.context() as m:
+                m.setattr(pipeline, "crosses_a_vertex", lambda *a: True)
+                full = fc.plan(part, fingers=2, mu=mu, top=4, rank_by=rank_by)
+            assert _plan_key(fast) == _plan_key(full)
+    assert seen >= 5
+
+
+def test_crosses_a_vertex_is_the_fan_condition():
+    """A regular n-gon turns 2 pi / n at every vertex: a region may cover a vertex
+    exactly when that is below 2 (atan(mu) - margin)."""
+    from fcgrasp.stretches import crosses_a_vertex
+
+    for n in (8, 12, 24, 60):
+        a = np.arange(n) * 2 * np.pi / n
+        part = Polygon(np.c_[np.cos(a), np.sin(a)])
+        for mu in (0.1, 0.2, 0.3, 0.6):
+            beta = np.arctan(mu) - np.radians(0.5)
+            want = 2 * np.pi / n < 2 * beta
+            assert crosses_a_vertex(part, mu, 0.5) == want
+            if 2 * np.pi / n < beta / 2:          # well inside: the best covers vertices
+                best = two_finger_stretches(part, mu, 0.5, top=1)[0]
+                assert max(len(e) for e in best.region_edges) > 1

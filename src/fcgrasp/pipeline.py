@@ -52,7 +52,7 @@ from .quality import characteristic_length
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
 from .sectors import PAIRINGS, arc_intersection, pairing_valid
-from .stretches import StretchPair, two_finger_stretches
+from .stretches import StretchPair, crosses_a_vertex, two_finger_stretches
 from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
 __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solved",
@@ -1282,6 +1282,10 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     if not spec.stretches:
         raise ValueError("boundary_plans plans two fingers without a hand "
                          "(spec.stretches is False)")
+    flat = replace(spec, along_boundary=False)
+    if not crosses_a_vertex(polygon, spec.mu, spec.margin):
+        # no region can cover a vertex: the regions are the single-edge ones
+        return _sorted_unique(polygon, spec, search(polygon, flat))
     by_min = spec.rank_by == "min_region"
     keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
@@ -1292,6 +1296,5 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
             (p.region_edges[0][0], p.region_edges[1][0]) for p in pairs
             if max(len(e) for e in p.region_edges) == 1])
     else:
-        flat = replace(spec, along_boundary=False)
         plans += search(polygon, flat)
     return _sorted_unique(polygon, spec, plans)

@@ -64,7 +64,7 @@ from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
 from .tolerances import RANK_TOL
 
-__all__ = ["StretchPair", "two_finger_stretches", "stretch_regions"]
+__all__ = ["StretchPair", "two_finger_stretches", "stretch_regions", "crosses_a_vertex"]
 
 #: A coefficient of the linear system smaller than this (a cross product of unit
 #: vectors) is zero.
@@ -874,6 +874,36 @@ def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
     mu_v = check_mu_scalar(mu, "mu")
     margin_v = check_scalar(margin, "margin", nonnegative=True)
     return float(np.arctan(mu_v) - np.radians(margin_v))
+
+
+def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> bool:
+    """Whether a region of two fingers with friction can cover some vertex.
+
+    A vertex inside a region pushes along both its edges' normals, and for any chord to
+    the other finger both must hold it: each within ``beta = atan(mu) - margin`` of the
+    chord (the arc of the module docstring), so the two normals are less than
+    ``2 beta`` apart.  Where every vertex turns by at least that much (every corner of
+    a CAD polygon at ordinary friction), no region covers a vertex and the regions along
+    the boundary are the single-edge regions of algorithm 7.1.
+
+    >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    >>> crosses_a_vertex(sq, mu=0.3)
+    False
+    >>> import numpy as np
+    >>> a = np.linspace(0, 2 * np.pi, 360, endpoint=False)
+    >>> crosses_a_vertex(Polygon(np.c_[np.cos(a), np.sin(a)]), mu=0.3)
+    True
+    """
+    beta = _check_args(polygon, mu, margin)
+    if beta <= 0:
+        return False
+    for ring in _rings(polygon):
+        f, g = ring.f, np.roll(ring.f, -1, axis=0)      # force directions at vertex k + 1
+        turn = np.arctan2(np.abs(_cross(f, g)), np.sum(f * g, axis=1))
+        # a relative 1e-9 on the angle: a vertex at the limit is left to the exact search
+        if np.any(turn < 2 * beta * (1 + 1e-9) + 1e-12):
+            return True
+    return False
 
 
 def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
