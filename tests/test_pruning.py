@@ -71,10 +71,10 @@ def test_pruned_top_k_is_the_exhaustive_top_k(seed, job, rank_by):
 @pytest.mark.slow
 @pytest.mark.parametrize("rank_by", RANKINGS)
 @pytest.mark.parametrize("job", JOBS, ids=lambda j: f"{j['fingers']}f{j.get('mu', '')}")
-@pytest.mark.parametrize("seed", range(2, 40))
+@pytest.mark.parametrize("seed", range(2, 20))
 def test_pruned_top_k_is_the_exhaustive_top_k_slow(seed, job, rank_by):
     for part in _corpus(seed):
-        for top in (1, 2, 5, 12):
+        for top in (1, 5):
             _check(part, job, top, rank_by)
 
 

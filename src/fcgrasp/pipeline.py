@@ -987,18 +987,20 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
         parts = []
         start = 0
         chunk = max(2 * top, 16)
+        best = np.zeros(0)          # the top smallest regions so far, largest first
         while start < order.size:
             rows = order[start:start + chunk]
             parts.append((rows, *_levels(c, rows, margin)))
             start += chunk
+            chunk *= 2              # a long run of bounds above the top needs few calls
             if progress is not None:
                 progress(min(start, order.size), order.size)
             # the smallest region of each row among its real fingers (gravity's region has
             # length zero and would keep the search from ever stopping)
-            mins_so_far = np.sort(np.concatenate([
-                np.where(c.feats[p[0]] >= 0, p[1], np.inf).min(axis=1) for p in parts]))[::-1]
+            mins = np.where(c.feats[rows] >= 0, parts[-1][1], np.inf).min(axis=1)
+            best = np.sort(np.concatenate([best, mins]))[::-1][:top]
             # stop when no later candidate can reach (or tie) the top-th smallest region
-            if start >= order.size or (mins_so_far.size >= top and mins_so_far[top - 1] >
+            if start >= order.size or (best.size >= top and best[top - 1] >
                                        c.score[order[start]] + RANK_TOL * polygon.size):
                 break
         if parts:
