@@ -25,6 +25,7 @@ Units: lengths in the polygon's units; ``margin`` in **degrees** in :class:`Plan
 
 from __future__ import annotations
 
+import bisect
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
 from functools import lru_cache
@@ -383,6 +384,20 @@ def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
     return L.min(axis=1)
 
 
+#: A gap between force directions this much above half a turn (radians) certainly
+#: leaves them unable to span the plane; closer to it, rows are left to the exact test.
+SPAN_SLACK = 1e-9
+
+
+def _spans_plane(angles: FloatArray) -> bool:
+    """Whether directions at sorted ``angles`` in [0, 2 pi) may positively span the plane
+    (no gap between neighbours, cyclically, wider than half a turn plus the slack)."""
+    if angles.size < 3:
+        return False
+    gaps = np.diff(np.concatenate([angles, angles[:1] + 2 * np.pi]))
+    return bool(gaps.max() <= np.pi + SPAN_SLACK)
+
+
 def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
                   first: int) -> Iterator[EdgeSets]:
     """Every candidate row, streamed by decreasing bound (branch and bound).
@@ -399,6 +414,11 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     gravity = spec.gravity is not None
     widths = [1] if spec.fingers == 2 else [2] if gravity else \
         ([3, 2] if three_edge else [3])
+    # frictionless fingers hold only if their force directions positively span the plane
+    # (theorem 4.2; gravity counts as one): rows whose features all come from positions
+    # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
+    seen = [] if not gravity else \
+        [float(np.arctan2(spec.gravity[1], spec.gravity[0]) % (2 * np.pi))]
     buf: list[np.ndarray] = []
     count = 0
     target = min(first, size)
@@ -406,6 +426,10 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     for s in range(n):
         if not count:
             ceiling = float(lengths[order[s]])
+        if spec.fingers > 2:
+            bisect.insort(seen, float(F.center[order[s]] % (2 * np.pi)))
+            if not _spans_plane(np.array(seen)):
+                continue
         for r in widths:
             for block in _combos(s, r):
                 t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
