@@ -411,14 +411,14 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     lengths = np.hypot(*(F.b - F.a).T)
     n = lengths.size
     order = np.lexsort((np.arange(n), -lengths))
-    gravity = spec.gravity is not None
+    g = spec.gravity
+    gravity = g is not None
     widths = [1] if spec.fingers == 2 else [2] if gravity else \
         ([3, 2] if three_edge else [3])
     # frictionless fingers hold only if their force directions positively span the plane
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
-    seen = [] if not gravity else \
-        [float(np.arctan2(spec.gravity[1], spec.gravity[0]) % (2 * np.pi))]
+    seen = [] if g is None else [float(np.arctan2(g[1], g[0]) % (2 * np.pi))]
     buf: list[np.ndarray] = []
     count = 0
     target = min(first, size)
