@@ -452,9 +452,12 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
-                     centroid: FloatArray, feats: np.ndarray, tol: float = SOLVER_TOL
-                     ) -> Candidates:
-    """Grasp-set geometry and problems of four-finger (or three plus gravity) rows."""
+                     centroid: FloatArray, feats: np.ndarray, tol: float = SOLVER_TOL,
+                     floor: float = 0.0) -> Candidates:
+    """Grasp-set geometry and problems of four-finger (or three plus gravity) rows.
+    Pairings tied on the smallest region are told apart by the next leximin levels only
+    in rows that reach ``floor`` (the others cannot enter the top; their score, the
+    tied value, is the same whichever pairing is kept)."""
     B = len(feats)
     g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
     real = feats >= 0
@@ -489,8 +492,9 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
         built[k] = (rows, probs)
     choice = np.argmax(scores, axis=1)
     top_s = scores[np.arange(B), choice]
-    tied = np.flatnonzero((top_s > 0) & (np.sum(scores >= top_s[:, None] - RANK_TOL *
-                                                np.abs(top_s[:, None]), axis=1) > 1))
+    tied = np.flatnonzero((top_s > 0) & (top_s >= floor) &
+                          (np.sum(scores >= top_s[:, None] - RANK_TOL *
+                                  np.abs(top_s[:, None]), axis=1) > 1))
     if tied.size:
         # equal smallest regions: the next levels of the leximin order decide
         best_lv = np.full((tied.size, 4), -1.0)
@@ -694,17 +698,19 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
 
 
 def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
-                   edges: Any = None) -> Candidates:
+                   edges: Any = None, floor: float = 0.0) -> Candidates:
     """The grasp sets of a batch (section 6) and their region problems, scored by the
     largest smallest region (stage 1, exact unless two fingers share an edge, when it is
-    an upper bound).  Rows that fail the force-direction constraint are dropped."""
+    an upper bound).  Rows that fail the force-direction constraint are dropped.  With a
+    ``floor`` (:attr:`TopK.floor`), four-finger pairings tied on the smallest region are
+    told apart only in the rows that reach it."""
     F = features(polygon, spec.mu, spec.hand, edges)
     feats = np.asarray(sets.feats, dtype=int)
     if spec.fingers == 2:
         return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol)
     gravity = None if spec.gravity is None else np.array(spec.gravity)
     return _quad_candidates(F, spec.margin_rad, gravity, polygon.centroid,
-                            feats.reshape(-1, 4), spec.tol)
+                            feats.reshape(-1, 4), spec.tol, floor)
 
 
 # ----------------------------------------------------------------------------- regions
@@ -1002,7 +1008,7 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
     if floor > 0 and sets.bound is not None:
         sets = EdgeSets(sets.feats[sets.bound >= floor], sets.bound[sets.bound >= floor],
                         sets.ceiling)
-    c = grasp_geometry(polygon, spec, sets, edges)
+    c = grasp_geometry(polygon, spec, sets, edges, floor)
     margin = spec.margin_rad
     good = np.flatnonzero((c.score > 0) & (c.score >= floor))
     order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
