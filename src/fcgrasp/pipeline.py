@@ -990,6 +990,12 @@ def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
     return np.array(sorted(r for _, r in keys), dtype=int)
 
 
+def _smallest_region(feats: np.ndarray, lengths: FloatArray) -> FloatArray:
+    """The smallest region of each row among its real fingers (gravity's region has
+    length zero and would keep a top-k search from ever stopping)."""
+    return np.where(feats >= 0, lengths, np.inf).min(axis=1)
+
+
 def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
           progress: Any = None, floor: float = 0.0) -> Solved:
     """Grasp sets and optimal regions of a batch of candidate edge sets.
@@ -1006,8 +1012,8 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
     if spec.top is None:
         floor = 0.0
     if floor > 0 and sets.bound is not None:
-        sets = EdgeSets(sets.feats[sets.bound >= floor], sets.bound[sets.bound >= floor],
-                        sets.ceiling)
+        reach = sets.bound >= floor
+        sets = EdgeSets(sets.feats[reach], sets.bound[reach], sets.ceiling)
     c = grasp_geometry(polygon, spec, sets, edges, floor)
     margin = spec.margin_rad
     good = np.flatnonzero((c.score > 0) & (c.score >= floor))
@@ -1025,9 +1031,7 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
             chunk *= 2              # a long run of bounds above the top needs few calls
             if progress is not None:
                 progress(min(start, order.size), order.size)
-            # the smallest region of each row among its real fingers (gravity's region has
-            # length zero and would keep the search from ever stopping)
-            mins = np.where(c.feats[rows] >= 0, parts[-1][1], np.inf).min(axis=1)
+            mins = _smallest_region(c.feats[rows], parts[-1][1])
             best = np.sort(np.concatenate([best, mins]))[::-1][:top]
             # stop when no later candidate can reach (or tie) the top-th smallest region
             if start >= order.size or (best.size >= top and best[top - 1] >
@@ -1095,8 +1099,8 @@ class TopK:
                                          self.polygon.size, self.keep))
             self._parts, self._held = [merged], len(merged.lengths)
         if self._held >= self.keep:
-            mins = np.concatenate([np.where(p.cands.feats >= 0, p.lengths, np.inf)
-                                   .min(axis=1) for p in self._parts])
+            mins = np.concatenate([_smallest_region(p.cands.feats, p.lengths)
+                                   for p in self._parts])
             kth = float(np.partition(-mins, self.keep - 1)[self.keep - 1])
             # rounding of the ranking (leximin_key) is within RANK_TOL * size: a row
             # below this cannot tie the keep-th row
