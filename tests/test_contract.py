@@ -17,6 +17,7 @@ from fcgrasp.cli import main
 from fcgrasp.planning import geometric_key
 from fcgrasp.quality import resistance_metrics
 
+from .grippers import grip
 from .shapes import random_polygon
 
 BLOB = fc.read_part("demo:blob")
@@ -89,8 +90,8 @@ def test_every_scale_in_range_gives_the_same_plans(scale):
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         for fingers, mu in ((2, 0.3), (4, 0.0), (3, 0.0)):
-            ref = fc.plan(BLOB, fingers=fingers, mu=mu, top=3)
-            got = fc.plan(fc.Polygon(np.array(BLOB.vertices) * scale), fingers=fingers, mu=mu,
+            ref = fc.plan(BLOB, **grip(fingers, mu), top=3)
+            got = fc.plan(fc.Polygon(np.array(BLOB.vertices) * scale), **grip(fingers, mu),
                           top=3)
             assert [p.edges for p in got] == [p.edges for p in ref]
             for a, b in zip(got, ref, strict=True):
@@ -110,7 +111,8 @@ def _least_total_force_lp(w, target):
 
 def test_resistance_defined_for_every_grasp_plan_returns():
     for fingers, mu in ((2, 0.3), (3, 0.0), (4, 0.0)):
-        for p in fc.plan(BLOB, fingers=fingers, mu=mu, top=3):
+        for p in fc.plan(BLOB, **grip(fingers, mu), top=3) + fc.plan(BLOB, fingers=3, mu=0.5,
+                                                                     top=2):
             q = p.quality
             assert np.isfinite(q["resistance"]) and q["resistance"] > 0, (fingers, q)
             assert q["resistance_approx"] <= q["resistance"] + 1e-12
@@ -173,10 +175,10 @@ def test_ranking_independent_of_vertex_numbering(kind, rng):
         for fingers, mu in ((2, 0.8), (4, 0.0)):
             if fingers == 4 and poly.n_edges > 8:
                 continue
-            a = [geometric_key(p.regions, poly) for p in fc.plan(poly, fingers=fingers, mu=mu,
+            a = [geometric_key(p.regions, poly) for p in fc.plan(poly, **grip(fingers, mu),
                                                                  top=4)]
-            b = [geometric_key(p.regions, other) for p in fc.plan(other, fingers=fingers,
-                                                                  mu=mu, top=4)]
+            b = [geometric_key(p.regions, other) for p in fc.plan(other, **grip(fingers, mu),
+                                                                  top=4)]
             assert a == b, (kind, fingers, poly)
 
 

@@ -18,6 +18,7 @@ from fcgrasp.frictionless_stretches import (
 )
 from fcgrasp.parts import demo_part
 
+from .grippers import grip
 from .oracle import closure_margin_lp, grasp_wrenches
 from .shapes import random_polygon
 from .test_stretches import KINDS, seeds, smooth_outline
@@ -70,8 +71,8 @@ def test_plans_along_the_boundary_hold(seed, fingers):
     """Every returned plan (grown along the boundary or not) holds for every sampled
     grasp, and ranks at least as high as the single-edge search's best."""
     poly, rng = _curved(seed)
-    plans = fc.plan(poly, fingers=fingers, top=3)
-    flat = fc.plan(poly, fingers=fingers, top=1, along_boundary=False)
+    plans = fc.plan(poly, **grip(fingers), top=3)
+    flat = fc.plan(poly, **grip(fingers), top=1, along_boundary=False)
     assert bool(plans) == bool(flat)
     if not plans:
         return
@@ -167,7 +168,7 @@ def test_independent_regions_on_given_stretches():
     again = fc.independent_regions(poly, [list(e) for e in best.region_edges])
     assert again.region_edges == best.region_edges
     assert again.min_length == pytest.approx(best.min_length, rel=1e-9)
-    three = fc.plan(poly, fingers=3, top=1)[0]
+    three = fc.plan(poly, fingers=3, gravity=(0, -1), top=1)[0]
     got = fc.independent_regions(poly, [list(e) for e in three.region_edges],
                                  gravity=(0, -1))
     assert got.min_length == pytest.approx(three.min_length, rel=1e-9)

@@ -22,6 +22,7 @@ import fcgrasp as fc
 from fcgrasp.parts import demo_part
 from fcgrasp.report import dumps, migrate_report, plan_report
 
+from .grippers import grip
 from .shapes import random_polygon
 
 GOLDEN = Path(__file__).parent / "golden" / "plans.json"
@@ -46,7 +47,7 @@ def _reports():
         for fingers, mu, rank_by in JOBS:
             if fingers > 2 and poly.n_edges > 12:
                 continue
-            plans = fc.plan(poly, fingers=fingers, mu=mu, top=4, rank_by=rank_by)
+            plans = fc.plan(poly, **grip(fingers, mu), top=4, rank_by=rank_by)
             params = {"fingers": fingers, "mu": mu, "top": 4, "rank_by": rank_by}
             out[f"{name} {fingers} {mu} {rank_by}"] = json.loads(
                 dumps(plan_report(poly, plans, params, "mm")))

@@ -10,6 +10,7 @@ import shapely
 import fcgrasp as fc
 from fcgrasp import Hand, Polygon, plan
 
+from .grippers import grip
 from .shapes import random_polygon
 
 U_PART = Polygon([[0, 0], [4, 0], [4, 3], [2.5, 3], [2.5, 1], [1.5, 1], [1.5, 3], [0, 3]])
@@ -65,7 +66,7 @@ def test_plans_stay_in_reach():
     hand = Hand(workspace=(2.0, 1.5, 2.2), finger_radius=0.35)
     ivs = hand.feasible_intervals(U_PART)
     for fingers, mu in ((2, 0.4), (4, 0.0)):
-        plans = plan(U_PART, fingers=fingers, mu=mu, hand=hand, top=5)
+        plans = plan(U_PART, **grip(fingers, mu), hand=hand, top=5)
         assert plans
         for p in plans:
             for e, reg in zip(p.edges, p.regions, strict=True):

@@ -16,6 +16,7 @@ LAYERS = [
     ["regions", "_regiongeom", "hand", "stretches", "frictionless_stretches"],
     ["quality", "ranking", "plans"],
     ["pipeline"],
+    ["three_fingers"],
     ["planning"],
     ["_drawing"],
     ["_read_svg", "_read_dxf", "_read_image"],

@@ -14,6 +14,7 @@ import pytest
 import fcgrasp as fc
 from fcgrasp.regions import DEFAULT_MARGIN_DEG
 
+from .grippers import grip
 from .oracle import closure_margin_lp, grasp_wrenches
 from .shapes import PARALLEL_KINDS, parallel_polygon
 
@@ -33,7 +34,7 @@ def check_part(poly, rng, n_inside=12):
     judged = 0
     for fingers, mu in SETTINGS:
         for margin in MARGINS:
-            for p in fc.plan(poly, fingers=fingers, mu=mu, margin=margin, top=3):
+            for p in fc.plan(poly, **grip(fingers, mu), margin=margin, top=3):
                 inside = p.sample(n_inside, rng)
                 mid = p.contacts[None]
                 t_in = _lp(p, np.concatenate([mid, inside]))

@@ -12,9 +12,11 @@ import pytest
 import fcgrasp as fc
 from fcgrasp.pipeline import EdgeSets, PlanSpec, candidates, plan_spec, rank, solve
 
+from .grippers import grip
 from .shapes import random_polygon
 
-JOBS = [dict(fingers=2, mu=0.4), dict(fingers=4, mu=0.0), dict(fingers=3, mu=0.0),
+JOBS = [dict(fingers=2, mu=0.4), dict(fingers=4, mu=0.0),
+        dict(fingers=3, mu=0.0, gravity=(0.0, -1.0)),
         dict(fingers=2, mu=0.4, rank_by="epsilon"), dict(fingers=4, mu=0.0, top=None)]
 
 
@@ -32,8 +34,9 @@ def _solve_remote(args):
 def test_batches_give_the_plan(job, batch_size, rng):
     part = random_polygon(rng, "star")
     spec = plan_spec(top=job.get("top", 4), rank_by=job.get("rank_by", "min_region"),
-                     fingers=job["fingers"], mu=job["mu"])
-    want = fc.plan(part, fingers=job["fingers"], mu=job["mu"], top=spec.top,
+                     fingers=job["fingers"], mu=job["mu"], gravity=job.get("gravity"))
+    want = fc.plan(part, fingers=job["fingers"], mu=job["mu"], gravity=job.get("gravity"),
+                   top=spec.top,
                    rank_by=spec.rank_by, along_boundary=False)
     batches = list(candidates(part, spec, batch_size=batch_size))
     assert all(len(b.feats) <= batch_size for b in batches)
@@ -99,7 +102,7 @@ def test_candidates_are_every_combination_once(size, shape):
              for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))]}
     skipped = 0
     for fingers, rows in want.items():
-        spec = plan_spec(fingers=fingers, mu=0.3)
+        spec = plan_spec(**grip(fingers, 0.3))
         blocks = list(candidates(part, spec, batch_size=size))
         assert all(len(b.feats) <= size for b in blocks)
         got = [tuple(r) for b in blocks for r in b.feats.tolist()]
@@ -170,10 +173,10 @@ def test_three_finger_search_stops_early(monkeypatch):
         return real(polygon, spec, sets, *args, **kw)
 
     monkeypatch.setattr(pipeline, "solve", counting)
-    got = fc.plan(part, fingers=3, top=2, progress=lambda d, t: calls.append((d, t)),
-                  along_boundary=False)
+    got = fc.plan(part, fingers=3, gravity=(0, -1), top=2,
+                  progress=lambda d, t: calls.append((d, t)), along_boundary=False)
     monkeypatch.undo()
     total = calls[-1][1]
     assert calls[-1][0] == total and sum(rows) < total / 2
-    every = fc.plan(part, fingers=3, top=None, along_boundary=False)
+    every = fc.plan(part, fingers=3, gravity=(0, -1), top=None, along_boundary=False)
     assert _key(got) == _key(every[:2])

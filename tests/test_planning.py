@@ -7,12 +7,14 @@ import pytest
 
 import fcgrasp as fc
 
+from .grippers import grip
+
 BLOB = fc.read_part("demo:blob")
 
 
 @pytest.mark.parametrize("fingers, mu", [(2, 0.3), (3, 0.0), (4, 0.0)])
 def test_plans_sorted_and_force_closure(fingers, mu):
-    plans = fc.plan(BLOB, fingers=fingers, mu=mu, top=6)
+    plans = fc.plan(BLOB, **grip(fingers, mu), top=6)
     assert plans
     mins = [p.min_length for p in plans]
     assert mins == sorted(mins, reverse=True)

@@ -12,10 +12,11 @@ from fcgrasp import pipeline
 from fcgrasp.pipeline import candidates, plan_spec, rank, search, solve
 from fcgrasp.planning import RANKINGS
 
+from .grippers import grip
 from .shapes import parallel_polygon, random_polygon
 
 KINDS = ("convex", "star", "holes", "rectangle", "regular")
-JOBS = [dict(fingers=2, mu=0.3), dict(fingers=2, mu=0.05), dict(fingers=3),
+JOBS = [dict(fingers=2, mu=0.3), dict(fingers=2, mu=0.05), dict(fingers=3, gravity=(0.0, -1.0)),
         dict(fingers=4)]
 
 
@@ -113,7 +114,7 @@ def test_the_search_prunes(fingers, monkeypatch):
     ang = np.linspace(0, 2 * np.pi, n, endpoint=False)
     r = 1 + 0.3 * np.sin(3 * ang) + 0.1 * np.cos(5 * ang + 1)
     part = fc.Polygon(np.column_stack([r * np.cos(ang), r * np.sin(ang)]) * 50.0)
-    spec = plan_spec(fingers=fingers, mu=0.3, top=3)
+    spec = plan_spec(**grip(fingers, 0.3), top=3)
     solved_rows = []
     real_solve = pipeline.solve
 

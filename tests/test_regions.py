@@ -10,6 +10,7 @@ import fcgrasp as fc
 from fcgrasp.planning import GraspPlan, independent_regions, plan
 from fcgrasp.polygon import Polygon
 
+from .grippers import grip
 from .oracle import region_lp
 from .shapes import random_polygon
 
@@ -274,7 +275,7 @@ def test_plan_frictionless_sound(fingers):
     seen = 0
     for _ in range(6):
         poly = random_polygon(rng, str(rng.choice(["convex", "star", "rectangle"])))
-        plans = plan(poly, fingers=fingers, top=3)
+        plans = plan(poly, **grip(fingers), top=3)
         for p in plans:
             assert p.fingers == (3 if fingers == 3 else 4)
             _check_plan_grasps(p, rng, 30)

@@ -11,6 +11,7 @@ from hypothesis import strategies as st
 import fcgrasp as fc
 from fcgrasp import Polygon, grasp_set, independent_regions, plan
 
+from .grippers import grip
 from .shapes import random_polygon
 
 STRICT = 1e-7      # a positive margin for the general test: stricter than the default
@@ -34,7 +35,7 @@ def test_no_false_force_closure_in_plans(seed, kind, log_mu, fingers):
     poly = random_polygon(rng, kind)
     if fingers == 4 and poly.n_edges > 9:
         fingers = 2
-    plans = plan(poly, fingers=fingers, mu=float(np.exp(log_mu)), top=3)
+    plans = plan(poly, **grip(fingers, float(np.exp(log_mu))), top=3)
     for p in plans:
         assert plan_grasps_ok(p, rng, 20).all()
 
@@ -66,7 +67,7 @@ def _sweep(seed, target):
         poly = random_polygon(rng)
         fingers = int(rng.choice([2, 2, 3, 4])) if poly.n_edges <= 8 else 2
         mu = float(np.exp(rng.uniform(np.log(1e-3), np.log(10))))
-        for p in plan(poly, fingers=fingers, mu=mu, top=3):
+        for p in plan(poly, **grip(fingers, mu), top=3):
             ok = plan_grasps_ok(p, rng, 200)
             assert ok.all(), (poly, p)
             checked += ok.size
@@ -214,11 +215,11 @@ def test_plans_invariant(kind, fingers):
         if fingers != 2 and poly.n_edges > 8:
             continue
         v2, s, emap = _transformed(poly.vertices, kind, rng)
-        base = plan(poly, fingers=fingers, mu=0.4, top=None)
+        base = plan(poly, **grip(fingers, 0.4), top=None)
         if kind == "rotate" and fingers == 3:
             # gravity turns with the part
             continue
-        moved = plan(Polygon(v2), fingers=fingers, mu=0.4, top=None)
+        moved = plan(Polygon(v2), **grip(fingers, 0.4), top=None)
         a = _signature(base)
         b = _signature(moved, scale=s)
         inv = {}
@@ -238,8 +239,8 @@ def test_coordinates_far_from_one(scale):
         for fingers in (2, 4):
             if fingers == 4 and poly.n_edges > 8:
                 continue
-            a = _signature(plan(poly, fingers=fingers, mu=0.3, top=None))
-            b = _signature(plan(big, fingers=fingers, mu=0.3, top=None), scale=scale)
+            a = _signature(plan(poly, **grip(fingers, 0.3), top=None))
+            b = _signature(plan(big, **grip(fingers, 0.3), top=None), scale=scale)
             assert a.keys() == b.keys()
             for k in a:
                 assert np.isclose(a[k], b[k], rtol=1e-6)

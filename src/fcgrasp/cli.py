@@ -192,11 +192,13 @@ def _print_table(plans: list[Any], units: str, out: Any) -> None:
               f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
 
 
-def _no_grasp_reason(fingers: int, mu: float, margin: float, hand: Any) -> str:
+def _no_grasp_reason(fingers: int, mu: float, margin: float, hand: Any,
+                     gravity: Any = None) -> str:
     if fingers == 2 and mu == 0:
         return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
     base = {2: f"no pair of edges admits two fingers with mu = {mu:g}",
-            3: "no three edges hold the part against gravity with frictionless fingers",
+            3: f"no three edges admit three fingers with mu = {mu:g}" if gravity is None
+            else "no three edges hold the part against gravity with frictionless fingers",
             4: "no four edges (or three, two fingers on one) admit frictionless fingers"}[fingers]
     extra = f" with a margin of {margin:g} degrees"
     if hand is not None:
@@ -218,6 +220,17 @@ def cmd_plan(args: Any) -> int:
 
     # every option is checked before any work or output
     _check_outputs(args, [args.part])
+    gravity = None if args.gravity is None else _floats(args.gravity, 2, "--gravity")
+    if gravity is not None and args.fingers != 3:
+        raise CliError(f"--gravity is a contact of three frictionless fingers, not of "
+                       f"{args.fingers} (drop it, or use --fingers 3)")
+    frictionless = args.fingers == 4 or gravity is not None
+    if args.mu is None:
+        args.mu = 0.0 if frictionless else 0.3
+    elif frictionless and args.mu != 0:
+        what = "four fingers" if args.fingers == 4 else "three fingers with --gravity"
+        raise CliError(f"--mu {args.mu:g} would not be used: {what} are planned frictionless "
+                       f"(drop --mu)")
     if args.mu < 0 or not math.isfinite(args.mu):
         raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
     if not 0 <= args.margin < 90:
@@ -247,6 +260,7 @@ def cmd_plan(args: Any) -> int:
     kw: dict[str, Any] = {"along_boundary": not args.single_edge}
     if budget is not None:
         kw["max_memory"] = budget
+    kw["gravity"] = gravity
     spec = plan_spec(fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
                      hand=hand, margin=args.margin, disturbance=(step, 15.0), **kw)
     size = check_search(polygon, spec)          # too large: a one-line error, at once
@@ -261,11 +275,13 @@ def cmd_plan(args: Any) -> int:
                  hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
     params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
               "margin_deg": args.margin, "along_boundary": spec.stretches or spec.grows,
+              "gravity": None if gravity is None else list(gravity),
               "workspace": None if hand is None or hand.workspace is None else
               list(hand.workspace),
               "finger_radius": args.finger_radius,
               "disturbance": {"translation": step, "rotation_deg": 15.0}}
-    reason = None if plans else _no_grasp_reason(args.fingers, args.mu, args.margin, hand)
+    reason = None if plans else _no_grasp_reason(args.fingers, args.mu, args.margin, hand,
+                                                 gravity)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
 
     def figure(out: Any) -> None:
@@ -373,17 +389,22 @@ def cmd_demo(args: Any) -> int:
             ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
             ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
             ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
+            ("blob", 3, 0.5, "three fingers with friction"),
             ("washer", 2, 0.2, "two fingers with friction on a part with a hole"),
             ("cam", 2, 0.3, "regions along the boundary of a curved part")]
     entries: list[dict[str, Any]] = []
     for name, fingers, mu, title in jobs:
         polygon = demo_part(name)
-        plans = plan(polygon, fingers=fingers, mu=mu, top=6, margin=DEFAULT_MARGIN_DEG)
+        gravity = (0.0, -1.0) if fingers == 3 and mu == 0 else None
+        plans = plan(polygon, fingers=fingers, mu=mu, top=6, margin=DEFAULT_MARGIN_DEG,
+                     gravity=gravity)
         params = {"fingers": fingers, "mu": mu, "top": 6, "rank_by": "min_region",
+                  "gravity": None if gravity is None else list(gravity),
                   "margin_deg": DEFAULT_MARGIN_DEG, "workspace": None, "finger_radius": 0.0,
                   "disturbance": {"translation": 10.0, "rotation_deg": 15.0}}
-        reason = None if plans else _no_grasp_reason(fingers, mu, DEFAULT_MARGIN_DEG, None)
-        stem = f"{name}-{fingers}f"
+        reason = None if plans else _no_grasp_reason(fingers, mu, DEFAULT_MARGIN_DEG, None,
+                                                     gravity)
+        stem = f"{name}-{fingers}f" + ("g" if gravity is not None else "")
         with OutputSet() as files:
             files.add_text(out / f"{stem}.json",
                            dumps(plan_report(polygon, plans, params, "mm", reason)))
@@ -479,8 +500,14 @@ def build_parser() -> argparse.ArgumentParser:
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     reading_args(p, "write the result as JSON ('-': standard output)")
     p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=2,
-                   help="2: with friction; 4: frictionless; 3: frictionless with gravity")
-    p.add_argument("--mu", type=float, default=0.3, help="friction coefficient (default 0.3)")
+                   help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
+                        "frictionless against gravity")
+    p.add_argument("--mu", type=float, default=None,
+                   help="friction coefficient (default 0.3; four fingers and --gravity are "
+                        "frictionless and take none)")
+    p.add_argument("--gravity", metavar="GX,GY", default=None,
+                   help="with --fingers 3: three frictionless fingers holding the part "
+                        "against gravity in this direction, such as 0,-1")
     p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
     p.add_argument("--single-edge", action="store_true",
                    help="keep each region on one edge, as in the paper (default: regions "

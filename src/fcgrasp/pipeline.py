@@ -111,7 +111,8 @@ class PlanSpec:
     """What to plan: the gripper, the margin and the ranking (validated by
     :func:`plan_spec`).  Picklable, so a batch can be solved elsewhere.
 
-    ``margin`` is in degrees; ``gravity`` is a unit direction (``fingers=3``) or None;
+    ``margin`` is in degrees; ``gravity`` is a unit direction (three frictionless fingers
+    and gravity) or None (with three fingers: three fingers with friction);
     ``disturbance`` is (translation in the part's units, rotation in degrees).
     """
 
@@ -136,7 +137,8 @@ class PlanSpec:
     def grows(self) -> bool:
         """Whether single-edge plans of three or four fingers are grown along the
         boundary (without a hand)."""
-        return self.along_boundary and self.fingers > 2 and self.hand is None
+        return (self.along_boundary and self.contact_type == "frictionless"
+                and self.hand is None)
 
     @property
     def margin_rad(self) -> float:
@@ -144,16 +146,20 @@ class PlanSpec:
 
     @property
     def contact_type(self) -> str:
-        return "friction" if self.fingers == 2 else "frictionless"
+        return "friction" if self.fingers == 2 or (self.fingers == 3 and self.gravity is None) \
+            else "frictionless"
 
 
 def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
-              hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
+              hand: Any = None, margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = None,
               disturbance: Any = (10.0, 15.0), tol: Any = SOLVER_TOL,
               max_memory: Any = None, along_boundary: Any = True) -> PlanSpec:
     """A validated :class:`PlanSpec` (arguments as for :func:`fcgrasp.plan`).
 
-    Raises :class:`TypeError` or :class:`ValueError` naming the argument.
+    Raises :class:`TypeError` or :class:`ValueError` naming the argument, also for an
+    argument the planner would not use: a ``mu`` with four fingers or with gravity, a
+    ``gravity`` with two or four fingers.  Three fingers are three fingers with friction
+    (``mu > 0``) or, with ``gravity``, three frictionless fingers and gravity.
 
     >>> plan_spec(fingers=2, mu=0.3).contact_type
     'friction'
@@ -173,14 +179,27 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
         top = check_int(top, "top", minimum=1)
     dist = _check_disturbance(disturbance)
     g = None
-    if fingers == 3:
+    if gravity is not None:
+        if fingers != 3:
+            raise ValueError(f"gravity is a contact of three frictionless fingers; with "
+                             f"{fingers} fingers it would not be used, got gravity={gravity!r}")
         gv = check_direction(gravity, "gravity")
         g = (float(gv[0]), float(gv[1]))
+        if mu_v != 0:
+            raise ValueError(f"three fingers with gravity are frictionless: mu would not be "
+                             f"used, got mu={mu!r} (drop gravity to plan three fingers with "
+                             f"friction)")
+    elif fingers == 3 and mu_v == 0:
+        raise ValueError("three fingers need friction (mu > 0), or gravity=(gx, gy) for "
+                         "three frictionless fingers and gravity; got mu=0 and no gravity")
+    if fingers == 4 and mu_v != 0:
+        raise ValueError(f"four fingers are planned frictionless (theorem 7.1): mu would not "
+                         f"be used, got mu={mu!r}")
     budget = MAX_MEMORY if max_memory is None else check_int(max_memory, "max_memory",
                                                               minimum=MIN_MEMORY)
     if not isinstance(along_boundary, bool):
         raise TypeError(f"along_boundary must be a bool, got {along_boundary!r}")
-    return PlanSpec(fingers, mu_v if fingers == 2 else 0.0, margin_v, top, rank_by, hand, g,
+    return PlanSpec(fingers, mu_v, margin_v, top, rank_by, hand, g,
                     dist, check_tol(tol), budget, along_boundary)
 
 
@@ -364,7 +383,7 @@ def _layouts(t: np.ndarray, fingers: int, gravity: bool) -> np.ndarray:
     """Candidate rows of sorted feature tuples ``t``: pairs as they are; triples plus the
     gravity contact (-1); 4-tuples as they are; with four fingers on three edges (no
     gravity, ``t`` of width 3) the three layouts doubling each feature (first and third)."""
-    if fingers == 2 or t.shape[1] == 4:
+    if fingers == 2 or t.shape[1] == 4 or (fingers == 3 and not gravity):
         return t
     if gravity:
         return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
@@ -413,7 +432,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     order = np.lexsort((np.arange(n), -lengths))
     g = spec.gravity
     gravity = g is not None
-    widths = [1] if spec.fingers == 2 else [2] if gravity else \
+    widths = [1] if spec.fingers == 2 else [2] if spec.fingers == 3 else \
         ([3, 2] if three_edge else [3])
     # frictionless fingers hold only if their force directions positively span the plane
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
@@ -426,7 +445,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     for s in range(n):
         if not count:
             ceiling = float(lengths[order[s]])
-        if spec.fingers > 2:
+        if spec.contact_type == "frictionless":
             bisect.insort(seen, float(F.center[order[s]] % (2 * np.pi)))
             if not _spans_plane(np.array(seen)):
                 continue
@@ -668,9 +687,10 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     by decreasing upper bound of their smallest region (:class:`EdgeSets`).
 
     Two fingers: every pair of features on distinct edges.  Four: every 4-tuple on
-    distinct edges and every three edges with one doubled.  Three (gravity): every
-    triple.  ``edges`` restricts the features to those edges (with four fingers and an
-    edge given twice, only the layouts doubling that edge).  With a ``top``, batches
+    distinct edges and every three edges with one doubled.  Three: every triple on
+    distinct edges (with gravity, plus the gravity contact -1).  ``edges`` restricts
+    the features to those edges (with four fingers and an edge given twice, only the
+    layouts doubling that edge).  With a ``top``, batches
     start small and double up to ``batch_size``, so a search that finds its top among
     the first rows stops after little work (:func:`search`); the stream itself always
     holds every row.
@@ -704,6 +724,9 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
     an upper bound).  Rows that fail the force-direction constraint are dropped.  With a
     ``floor`` (:attr:`TopK.floor`), four-finger pairings tied on the smallest region are
     told apart only in the rows that reach it."""
+    if spec.fingers == 3 and spec.gravity is None:
+        raise ValueError("three fingers with friction are solved by linear programs: "
+                         "fcgrasp.three_fingers.three_finger_plans, not grasp_geometry")
     F = features(polygon, spec.mu, spec.hand, edges)
     feats = np.asarray(sets.feats, dtype=int)
     if spec.fingers == 2:

@@ -12,9 +12,10 @@ grasp of the returned regions points at least that far inside the friction cones
 fingers) or inside the sector ``C_12 & -C_34`` (four fingers; the pairing of the four
 fingers is the one giving the largest regions, so a plan does not depend on how the edges
 are numbered).  The default is :data:`fcgrasp.regions.DEFAULT_MARGIN_DEG` (0.5 degree).
-Three fingers means three frictionless fingers holding the part against gravity (counted
-as a frictionless contact at the centroid, section 3.1); friction, if any, can only help
-such a grasp.
+Three fingers are three fingers with friction (:mod:`fcgrasp.three_fingers`: concurrent
+grasps in non-marginal equilibrium, a safe lower bound of the optimum), or, given
+``gravity``, three frictionless fingers holding the part against gravity (counted as a
+frictionless contact at the centroid, section 3.1).
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from .polygon import Polygon
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG
 from .stretches import stretch_regions
+from .three_fingers import three_finger_plans
 from .tolerances import SOLVER_TOL
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
@@ -57,7 +59,7 @@ def _check_polygon(polygon: Any) -> None:
 
 def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
          rank_by: str = "min_region", hand: Hand | None = None,
-         margin: float = DEFAULT_MARGIN_DEG, gravity: Any = (0.0, -1.0),
+         margin: float = DEFAULT_MARGIN_DEG, gravity: Any = None,
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True) -> list[GraspPlan]:
@@ -67,10 +69,13 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     ----------
     polygon : Polygon
     fingers : {2, 3, 4}
-        2: two fingers with friction ``mu``; 4: four frictionless fingers on four edges or
-        on three edges (two on one edge); 3: three frictionless fingers and gravity.
+        2: two fingers with friction ``mu``; 3: three fingers with friction ``mu``
+        (:mod:`fcgrasp.three_fingers`), or with ``gravity`` three frictionless fingers
+        and gravity; 4: four frictionless fingers on four edges or on three edges (two
+        on one edge).
     mu : float
-        Friction coefficient (two fingers).
+        Friction coefficient (two fingers, three without gravity; with four fingers or
+        gravity it must be 0: a ``mu`` the planner cannot use is an error).
     top : int or None
         How many plans to return (None: all).
     rank_by : {"min_region", "resistance", "epsilon"}
@@ -80,8 +85,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         Workspace and finger radius (section 8.2): regions lie in the feasible parts.
     margin : float
         Safety margin in degrees inside the cones and sectors.
-    gravity : array_like, shape (2,)
-        Direction of the weight for ``fingers=3``.
+    gravity : array_like, shape (2,), optional
+        Direction of the weight: ``fingers=3`` then means three frictionless fingers
+        holding the part against gravity.
     disturbance : (float, float)
         Translation (in the polygon's units) and rotation (degrees) of the resistance
         measure; default 10 units (1 cm in millimetres) and 15 degrees.
@@ -123,6 +129,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         raise TypeError(f"progress must be a callable progress(done, total) or None, "
                         f"got {progress!r}")
     check_search(polygon, spec)
+    if spec.fingers == 3 and spec.gravity is None:
+        return three_finger_plans(polygon, spec, progress=progress)
     if spec.stretches:
         plans = boundary_plans(polygon, spec)
         if progress is not None:
@@ -143,10 +151,12 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     edges : sequence of int, or two sequences of int
         Two edges (fingers with friction ``mu``: algorithm 7.1, squeezing and expanding
         grasps), four edges (frictionless: theorem 7.1; an edge may repeat, then its two
-        regions do not overlap) or three edges with ``gravity``.  Two fingers may also be
-        given a *stretch* each, the consecutive edges of one ring it may run along
-        (``[[3, 4, 5], [9]]``): the regions are then the best stretches inside them
-        (:func:`fcgrasp.stretches.stretch_regions`), covering the vertices between.
+        regions do not overlap), three distinct edges (fingers with friction ``mu``,
+        :mod:`fcgrasp.three_fingers`) or three edges with ``gravity`` (frictionless).
+        Two fingers may also be given a *stretch* each, the consecutive edges of one
+        ring it may run along (``[[3, 4, 5], [9]]``): the regions are then the best
+        stretches inside them (:func:`fcgrasp.stretches.stretch_regions`), covering the
+        vertices between.
         Three (with ``gravity``) or four frictionless fingers given stretches get the
         optimal regions covering exactly those edges
         (:func:`fcgrasp.frictionless_stretches.frictionless_stretch_regions`).
@@ -181,20 +191,28 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
         if gravity is not None:
             raise ValueError("gravity is counted with three frictionless fingers, not two")
         spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
+    elif n == 3 and gravity is None:
+        if len(set(idx)) != 3:
+            raise ValueError(f"three fingers with friction need three distinct edges, got "
+                             f"{list(idx)}")
+        spec = plan_spec(fingers=3, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
     elif n in (3, 4):
         if check_mu_scalar(mu, "mu") != 0:
-            raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
-        if (n == 3) != (gravity is not None):
-            raise ValueError("three edges need gravity=..., four edges take no gravity")
+            raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
+                             f"got mu={mu}")
+        if n == 4 and gravity is not None:
+            raise ValueError("four edges take no gravity (gravity is counted with three "
+                             "frictionless fingers)")
         doubled = [e for e in set(idx) if idx.count(e) == 2]
         if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
             raise ValueError(f"four fingers need four distinct edges or three with one twice, "
                              f"got {list(idx)}")
-        spec = plan_spec(fingers=n if n == 3 else 4, mu=0.0, top=1, hand=hand, margin=margin,
-                         gravity=gravity if n == 3 else (0.0, -1.0), tol=tol)
+        spec = plan_spec(fingers=n, mu=0.0, top=1, hand=hand, margin=margin,
+                         gravity=gravity if n == 3 else None, tol=tol)
     else:
-        raise ValueError(f"edges must hold 2, 3 (with gravity) or 4 edge indices, got {n}")
-    plans = search(polygon, spec, edges=idx)
+        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {n}")
+    plans = three_finger_plans(polygon, spec, edges=idx) if spec.fingers == 3 and \
+        spec.gravity is None else search(polygon, spec, edges=idx)
     if not plans:
         return None
     p = plans[0]
@@ -220,12 +238,16 @@ def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
         pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
         return None if pair is None else stretch_plan(polygon, spec, pair)
     n = len(stretches)
+    if n == 3 and gravity is None:
+        raise ValueError("three stretches are three frictionless fingers with "
+                         "gravity=(gx, gy); three fingers with friction are planned on "
+                         "single edges (give three edge indices)")
     if check_mu_scalar(mu, "mu") != 0:
         raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
     if (n == 3) != (gravity is not None):
         raise ValueError("three stretches need gravity=..., four stretches take no gravity")
     spec = plan_spec(fingers=n, mu=0.0, top=1, margin=margin,
-                     gravity=gravity if n == 3 else (0.0, -1.0))
+                     gravity=gravity if n == 3 else None)
     r = frictionless_stretch_regions(polygon, stretches, spec.margin,
                                      None if spec.gravity is None else spec.gravity)
     return None if r is None else frictionless_plan(polygon, spec, r)

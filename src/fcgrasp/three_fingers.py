@@ -1,0 +1,506 @@
+r"""Three fingers with friction: independent regions of concurrent grasps (issue 14).
+
+Three point fingers with friction ``mu`` hold a planar part when their forces can be in
+*non-marginal equilibrium*: three lines of force, each strictly inside its friction
+cone, meet in one point ``p``, and the three force directions positively span the plane.
+Then the contact wrenches hold ``(d_i, 0)`` (the force through ``p``, no torque about
+it) in the relative interior of their cones and a strictly positive combination of them
+is zero, so the wrenches span the whole wrench space: the grasp is force closure (the
+argument of the paper's theorem 3.? on equilibrium and closure, section 3; Ponce and
+Faverjon's sufficient condition for three fingers).
+
+**A convex piece of the closure set.**  Choose, for each finger, a sub-arc ``D_i`` of its
+friction cone shrunk by the ``margin``, such that *every* choice of one direction from
+each sub-arc positively spans the plane (:func:`spanning_arcs`: with the arcs in
+counter-clockwise order, the angle from the start of one arc to the end of the next is
+below half a turn, minus the margin), and a side ``sigma_i``: the meeting point lies
+ahead of finger ``i`` (``+1``, inside the part) or behind it (``-1``).  Then
+
+.. math:: p - x_i(s_i) \in \sigma_i \, \mathrm{cone}(D_i), \qquad i = 1, 2, 3
+
+is linear in the finger positions ``s`` and in ``p``: the grasps it admits are the
+projection of a polytope, a convex set, and every one of them is force closure.  A box of
+regions (one interval of positions per finger) lies in a convex set iff its eight corner
+grasps do, each with its own witness point ``p_c``: one linear program per piece
+maximises the smallest region (definition 7.1), and the leximin levels follow by fixing
+the regions that cannot grow and maximising again.
+
+**Exact or a bound.**  The regions are *safe* (every grasp of them is force closure,
+tested against the general wrench test) and optimal within each piece, but the union of
+the pieces (the sides, the sub-arcs: :data:`SPLITS` of the half-turn excess) is not the
+whole closure set: the optimum is a **lower bound** of the true one.  Two fingers that
+hold the part on their own (a two-finger plan, algorithm 7.1, exact) with the third
+anywhere on another edge are a candidate too, so three fingers never do worse than two
+with the third placed on the longest remaining edge.  ``benchmarks/bench_three_fingers.py``
+measures the gap: how far each returned box can grow before a sampled grasp fails the
+general test.
+
+Units: lengths in the part's units, ``margin`` in radians in this module's functions
+(degrees in :class:`~fcgrasp.pipeline.PlanSpec`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from itertools import product
+from typing import Any
+
+import numpy as np
+
+from ._checks import FloatArray
+from .pipeline import PlanSpec, candidates, features, search, search_size
+from .plans import GraspPlan, leximin_key, rank_key
+from .polygon import Polygon
+from .quality import characteristic_length
+from .ranking import MEASURES
+from .tolerances import LEXIMIN_STEP, RANK_TOL
+
+__all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
+           "KEEP_PAIRS"]
+
+#: How the half-turn excess between two neighbouring cones is split between them (the
+#: share taken from the first arc's start): each split gives one convex piece.
+SPLITS = (0.0, 0.5, 1.0)
+#: Two-finger plans (fingers holding on their own) tried with a third finger anywhere.
+KEEP_PAIRS = 20
+#: Rows of candidate triples solved per linear program (blocks of one sparse LP).
+LP_ROWS = 24
+#: Feasibility tolerance of the linear programs (HiGHS), in units of the part's size.
+LP_TOL = 1e-10
+#: A corner grasp whose witness misses a cone by more than this (times the size) is not
+#: accepted (the solver's answer is checked, not trusted).
+CHECK_TOL = 1e-8
+
+_CORNERS = np.array(list(product((0, 1), repeat=3)))          # (8, 3): 0 low end, 1 high
+_SIDES = np.array(list(product((1.0, -1.0), repeat=3)))       # (8, 3) sigma
+
+
+def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArray, FloatArray]]:
+    """Sub-arcs of three friction cones every selection of which positively spans the
+    plane (three force directions in non-marginal equilibrium, section 3).
+
+    ``center`` (3,): angles of the cones' axes (the inward normals); ``half`` (3,): their
+    half-widths; ``margin``: how far inside the cones the arcs stay, and how far below
+    half a turn every gap between chosen directions stays.  Returns a list of
+    ``(low, high)`` angle arrays (3,), one per split of the excess (:data:`SPLITS`);
+    empty when the cones cannot span the plane.
+
+    >>> arcs = spanning_arcs(np.radians([90, 210, 330]), np.radians([20] * 3), 0.0)
+    >>> len(arcs), np.degrees(arcs[0][0]).round(1).tolist()   # wide enough already
+    (1, [70.0, 190.0, 310.0])
+    """
+    c = np.mod(np.asarray(center, float), 2 * np.pi)
+    w = np.asarray(half, float) - margin
+    if np.any(w < 0):
+        return []
+    limit = np.pi - margin
+    out: list[tuple[FloatArray, FloatArray]] = []
+    seen = set()
+    # the chosen directions go round in one of two cyclic orders; between two centres
+    # the unwrapped gap is the turn from one to the next, or that less a full turn (an
+    # arc reaching back past its neighbour's centre); the third gap closes the turn
+    for o in ((0, 1, 2), (0, 2, 1)):
+        oi, nx = np.array(o), np.roll(np.array(o), -1)
+        base = np.mod(c[nx] - c[oi], 2 * np.pi)
+        for k1, k2 in product((0, -1), repeat=2):
+            gap = base + 2 * np.pi * np.array([k1, k2, 0])
+            gap[2] = 2 * np.pi - gap[0] - gap[1]
+            for lo, hi in _split_excess(gap, w[oi], w[nx], oi, nx, limit):
+                key = tuple(np.round(np.concatenate([lo, hi]), 12).tolist())
+                if key not in seen:
+                    seen.add(key)
+                    out.append((c + lo, c + hi))
+    return out
+
+
+def _split_excess(gap: FloatArray, w_cur: FloatArray, w_next: FloatArray, cur: np.ndarray,
+                  nxt: np.ndarray, limit: float) -> list[tuple[FloatArray, FloatArray]]:
+    """Offsets ``(lo, hi)`` of the sub-arcs (from the cones' axes) that keep every turn
+    from the start of one arc to the end of the next below ``limit`` (the cyclic order
+    ``cur -> nxt`` with unwrapped ``gap`` between the axes): the excess of each turn is
+    taken from the two arcs in the shares of :data:`SPLITS`."""
+    excess = gap + w_cur + w_next - limit
+    if np.any(gap - w_cur - w_next > limit):
+        return []
+    w = np.zeros(3)
+    w[cur] = w_cur
+    out = []
+    for split in product(*[SPLITS if e > 0 else (0.0,) for e in excess]):
+        lo, hi = -w.copy(), w.copy()
+        for i, r in enumerate(split):
+            e = max(float(excess[i]), 0.0)
+            x = min(max(r * e, e - 2 * w_next[i]), 2 * w_cur[i])   # raise cur's start by x
+            lo[cur[i]] += x
+            hi[nxt[i]] -= e - x                                     # lower nxt's end
+        if np.all(lo <= hi + 1e-12):
+            out.append((lo, np.maximum(hi, lo)))
+    return out
+
+
+@dataclass
+class Piece:
+    """The optimal box of regions of three features in one convex piece.
+
+    ``lo``, ``hi`` (3,): region ends as arc lengths from each feature's start ``a``;
+    ``levels`` (3,): their lengths; ``sigma`` (3,): the side of each finger the
+    meeting point lies on; ``arcs``: the ``(low, high)`` force-direction angles (3,);
+    ``witness`` (8, 2): a meeting point for each corner grasp (:data:`_CORNERS` order).
+    """
+
+    lo: FloatArray
+    hi: FloatArray
+    levels: FloatArray
+    sigma: FloatArray
+    arcs: tuple[FloatArray, FloatArray]
+    witness: FloatArray
+
+
+@dataclass
+class _Block:
+    """One convex piece of one row of features, as a block of a linear program
+    (positions in units of the part's size)."""
+
+    a: FloatArray           # (3, 2) feature starts
+    t: FloatArray           # (3, 2) unit tangents
+    L: FloatArray           # (3,) feature lengths
+    lo_ang: FloatArray      # (3,) force-direction arcs
+    hi_ang: FloatArray
+    sigma: FloatArray       # (3,) side of the meeting point
+    row: int
+
+
+#: Variables of a block: lo (3), hi (3), level, px (8), py (8), v.
+_NV = 24
+_CORNER_VAR = np.where(_CORNERS == 0, np.arange(3), np.arange(3) + 3)     # (8, 3)
+
+
+def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+    """The 48 cone constraints of a block (8 corners x 3 fingers x 2 cone edges), each
+    ``S (u x p - s (u x t) - u x a) >= 0`` (``S`` the side, negated on the arc's high
+    edge): ``(cpx, cpy, cs, rhs)`` of ``cpx px + cpy py + cs s >= rhs``, shapes (8, 3, 2)."""
+    ang = np.stack([blk.lo_ang, blk.hi_ang], axis=-1)               # (3, 2)
+    ux, uy = np.cos(ang), np.sin(ang)
+    S = blk.sigma[:, None] * np.array([1.0, -1.0])
+    cross_ut = ux * blk.t[:, None, 1] - uy * blk.t[:, None, 0]
+    cross_ua = ux * blk.a[:, None, 1] - uy * blk.a[:, None, 0]
+    shape = (8, 3, 2)
+    return (np.broadcast_to(-S * uy, shape), np.broadcast_to(S * ux, shape),
+            np.broadcast_to(-S * cross_ut, shape), np.broadcast_to(S * cross_ua, shape))
+
+
+def _cone_values(blk: _Block, x: FloatArray) -> FloatArray:
+    """How far inside its piece every corner grasp's witness is (>= 0 inside), (8, 3, 2)."""
+    cpx, cpy, cs, rh = _cone_rows(blk)
+    s = np.where(_CORNERS == 0, x[:3], x[3:6])[:, :, None]
+    return cpx * x[7:15, None, None] + cpy * x[15:23, None, None] + cs * s - rh
+
+
+def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
+                  free: np.ndarray | None = None, grow: int | None = None,
+                  deep: bool = False) -> list[FloatArray | None]:
+    """Solve independent blocks in one sparse HiGHS program; per block its solution
+    vector, or None where it is infeasible (the answer is checked, not trusted).
+
+    Every cone constraint may use the block's violation ``v`` at a large cost, so an
+    infeasible block does not make the program infeasible.  Default objective: the
+    largest ``level`` with every region at least it (max-min, definition 7.1).  With
+    ``fixed`` (3,): regions keep at least their fixed length, and either the ``free``
+    ones reach the largest common ``level``, or region ``grow`` is made as long as it
+    can, or (``deep``) the witnesses are placed as far inside the cones as they can be
+    (``level`` is then that depth): the placement.
+    """
+    from scipy.optimize import linprog
+    from scipy.sparse import coo_array
+
+    nb = len(blocks)
+    ri: list[np.ndarray] = []
+    ci: list[np.ndarray] = []
+    vals: list[np.ndarray] = []
+    rhs: list[np.ndarray] = []
+    cost = np.zeros(nb * _NV)
+    bounds = np.zeros((nb * _NV, 2))
+    r0 = 0
+    for k, blk in enumerate(blocks):
+        base = k * _NV
+        cpx, cpy, cs, rh = _cone_rows(blk)
+        # -(cpx px + cpy py + cs s) - v (+ level when deep) <= -rh
+        rid = np.broadcast_to(r0 + np.arange(48).reshape(8, 3, 2), (8, 3, 2))
+        for var, coef in ((base + 7 + np.arange(8)[:, None, None], cpx),
+                          (base + 15 + np.arange(8)[:, None, None], cpy),
+                          (base + _CORNER_VAR[:, :, None], cs)):
+            ri.append(rid.ravel())
+            ci.append(np.broadcast_to(var, (8, 3, 2)).ravel())
+            vals.append(-coef.ravel())
+        ri.append(rid.ravel())
+        ci.append(np.full(48, base + 23))
+        vals.append(np.full(48, -1.0))
+        if deep:
+            ri.append(rid.ravel())
+            ci.append(np.full(48, base + 6))
+            vals.append(np.ones(48))
+        rhs.append(-rh.ravel())
+        r0 += 48
+        for i in range(3):
+            reach = fixed is None or (free is not None and bool(free[i]))
+            if reach:       # level - (hi - lo) <= 0
+                ri.append(np.full(3, r0))
+                ci.append(np.array([base + 6, base + 3 + i, base + i]))
+                vals.append(np.array([1.0, -1.0, 1.0]))
+                rhs.append(np.zeros(1))
+            else:           # lo - hi <= -fixed
+                assert fixed is not None
+                ri.append(np.full(2, r0))
+                ci.append(np.array([base + 3 + i, base + i]))
+                vals.append(np.array([-1.0, 1.0]))
+                rhs.append(np.array([-float(fixed[i]) * (1 - 1e-12)]))
+            r0 += 1
+        bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L, blk.L]]
+        bounds[base + 6] = (0.0, 1.0 if deep else float(blk.L.max()))
+        bounds[base + 7:base + 23] = (-np.inf, np.inf)
+        bounds[base + 23] = (0.0, np.inf)
+        cost[base + 23] = 1e4
+        if grow is not None:
+            cost[base + 3 + grow], cost[base + grow] = -1.0, 1.0
+        else:
+            cost[base + 6] = -1.0
+    A = coo_array((np.concatenate(vals), (np.concatenate(ri), np.concatenate(ci))),
+                  shape=(r0, nb * _NV)).tocsr()
+    res = linprog(cost, A_ub=A, b_ub=np.concatenate(rhs), bounds=bounds, method="highs",
+                  options={"primal_feasibility_tolerance": LP_TOL,
+                           "dual_feasibility_tolerance": LP_TOL})
+    if res.status != 0 or res.x is None:
+        return [None] * nb
+    out: list[FloatArray | None] = []
+    for k, blk in enumerate(blocks):
+        x = np.array(res.x[k * _NV:(k + 1) * _NV])
+        ok = (_cone_values(blk, x).min() >= -CHECK_TOL
+              and bool(np.all(x[3:6] >= x[:3] - CHECK_TOL)))
+        out.append(x if ok else None)
+    return out
+
+
+def _blocks(a: FloatArray, t: FloatArray, L: FloatArray, center: FloatArray,
+            half: FloatArray, margin: float, row: int) -> list[_Block]:
+    """Every convex piece of one row: the sub-arcs of :func:`spanning_arcs` times the
+    eight sides of the meeting point."""
+    return [_Block(a, t, L, lo, hi, sigma, row)
+            for lo, hi in spanning_arcs(center, half, margin) for sigma in _SIDES]
+
+
+def _smallest(x: FloatArray) -> float:
+    return float(np.min(x[3:6] - x[:3]))
+
+
+def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
+                 margin: float, size: float) -> list[tuple[_Block | None, float]]:
+    """Per row of three features, the piece with the largest smallest region and that
+    region's length in units of ``size`` (-1 where no piece holds a grasp)."""
+    d = b - a
+    L = np.hypot(d[..., 0], d[..., 1])
+    t = d / np.where(L > 0, L, 1.0)[..., None]
+    an, Ln = a / size, L / size
+    out: list[tuple[_Block | None, float]] = []
+    for start in range(0, len(a), LP_ROWS):
+        stop = min(start + LP_ROWS, len(a))
+        blocks = [blk for r in range(start, stop)
+                  for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r)]
+        best: dict[int, tuple[float, _Block]] = {}
+        for blk, x in zip(blocks, _solve_blocks(blocks) if blocks else [], strict=True):
+            if x is not None and (blk.row not in best or _smallest(x) > best[blk.row][0]):
+                best[blk.row] = (_smallest(x), blk)
+        out += [(best[r][1], best[r][0]) if r in best else (None, -1.0)
+                for r in range(start, stop)]
+    return out
+
+
+def _leximin(blk: _Block) -> Piece | None:
+    """Leximin-optimal levels (definition 7.1) in one piece, then the placement whose
+    witnesses are deepest inside the cones at those levels."""
+    x = _solve_blocks([blk])[0]
+    if x is None:
+        return None
+    levels = np.full(3, _smallest(x))
+    free = np.ones(3, dtype=bool)
+    step = LEXIMIN_STEP * max(float(blk.L.max()), 1e-300)
+    while free.any():
+        grows = np.zeros(3, dtype=bool)
+        for i in np.flatnonzero(free):
+            xi = _solve_blocks([blk], fixed=levels, grow=int(i))[0]
+            grows[i] = xi is not None and xi[3 + i] - xi[i] > levels[i] + step
+        free &= grows
+        if not free.any():
+            break
+        xf = _solve_blocks([blk], fixed=levels, free=free)[0]
+        if xf is None:
+            break
+        levels[free] = max(float(np.min((xf[3:6] - xf[:3])[free])), float(levels[free].max()))
+    xd = _solve_blocks([blk], fixed=levels, deep=True)[0]
+    x = x if xd is None else xd
+    return Piece(x[:3].copy(), x[3:6].copy(), x[3:6] - x[:3], blk.sigma.copy(),
+                 (blk.lo_ang.copy(), blk.hi_ang.copy()),
+                 np.stack([x[7:15], x[15:23]], axis=1))
+
+
+def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,
+                       size: float = 1.0) -> list[Piece | None]:
+    """The best box of regions of concurrent grasps on each of a batch of three features.
+
+    ``a``, ``b`` (R, 3, 2): the features' ends; ``center``, ``half`` (R, 3): their
+    friction cones (angle of the inward normal, half-width ``atan(mu)``, radians);
+    ``margin`` (radians); ``size``: a length scale of the part (the programs are solved
+    in units of it).  Returns per row the :class:`Piece` with the largest smallest
+    region, its levels leximin-optimal within that piece (definition 7.1) and its
+    witnesses as deep inside the cones as the levels allow (positions and witnesses in
+    the part's units), or None when no piece holds a grasp.
+
+    >>> tri = np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 3.0]])
+    >>> a, b = tri[None], np.roll(tri, -1, axis=0)[None]
+    >>> d = b - a
+    >>> inward = np.arctan2(d[..., 0], -d[..., 1])          # the left normal: inside
+    >>> piece = concurrent_regions(a, b, inward, np.full((1, 3), np.arctan(0.5)),
+    ...                            np.radians(0.5))[0]
+    >>> bool(piece.levels.min() > 0.5)
+    True
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    center, half = np.asarray(center, float), np.asarray(half, float)
+    out: list[Piece | None] = []
+    for blk, _ in _best_blocks(a, b, center, half, margin, size):
+        p = None if blk is None else _leximin(blk)
+        if p is not None:
+            p = replace(p, lo=p.lo * size, hi=p.hi * size, levels=p.levels * size,
+                        witness=p.witness * size)
+        out.append(p)
+    return out
+
+
+def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: FloatArray,
+          mode: str) -> GraspPlan:
+    regions = np.asarray(regions, float)
+    lengths = np.hypot(*(regions[:, 1] - regions[:, 0]).T)
+    return GraspPlan(edges, regions, lengths, regions.mean(axis=1),
+                     polygon.normals[list(edges)], "friction", spec.mu, mode, spec.margin,
+                     centroid=polygon.centroid.copy(),
+                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     disturbance=spec.disturbance)
+
+
+#: With a measure other than ``min_region``, how many plans (the best by their smallest
+#: region) the measure orders.
+KEEP_FOR_MEASURE = 50
+
+
+def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+                       progress: Any = None) -> list[GraspPlan]:
+    """Ranked plans of three fingers with friction (``plan(part, fingers=3, mu=...)``).
+
+    Candidate triples of features on distinct edges come from
+    :func:`~fcgrasp.pipeline.candidates` by decreasing bound (the shortest feature): each
+    gets its best concurrent piece (:func:`concurrent_regions`), and the stream stops when
+    no later triple can reach the ``top``-th smallest region found (branch and bound,
+    exact for the pieces).  The :data:`KEEP_PAIRS` best two-finger plans with the third
+    finger anywhere on the longest feature of another edge (mode ``"pair"``) are
+    candidates too.  Ranked as :func:`fcgrasp.pipeline.rank` ranks: the measure
+    ``spec.rank_by`` (of the :data:`KEEP_FOR_MEASURE` best by smallest region when it is
+    not ``min_region``), the leximin order, the geometric key.  ``progress(done,
+    total)`` counts candidate triples.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> best = three_finger_plans(demo_part("triangle"), plan_spec(fingers=3, mu=0.5,
+    ...                                                          gravity=None, top=1))[0]
+    >>> best.mode, len(best.edges), best.contact_type
+    ('concurrent', 3, 'friction')
+    """
+    if spec.fingers != 3 or spec.gravity is not None:
+        raise ValueError("three_finger_plans plans three fingers with friction "
+                         "(fingers=3, gravity=None)")
+    F = features(polygon, spec.mu, spec.hand, edges)
+    size = polygon.size
+    keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
+                                          max(spec.top, KEEP_FOR_MEASURE))
+    found: list[tuple[float, tuple[int, ...], _Block]] = []
+    floor = 0.0
+    total = search_size(polygon, spec, edges).rows
+    done = 0
+    for batch in candidates(polygon, spec, edges):
+        if keep is not None and batch.ceiling < floor:
+            break
+        rows = np.asarray(batch.feats, dtype=int)
+        bound = np.asarray(batch.bound, dtype=float)
+        for start in range(0, len(rows), LP_ROWS):
+            sub, bnd = rows[start:start + LP_ROWS], bound[start:start + LP_ROWS]
+            if keep is not None:
+                sub = sub[bnd >= floor]
+            if len(sub):
+                res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
+                                   spec.margin_rad, size)
+                found += [(lv * size, tuple(int(f) for f in row), blk)
+                          for row, (blk, lv) in zip(sub, res, strict=True)
+                          if blk is not None and lv > 0]
+                if keep is not None and len(found) >= keep:
+                    found.sort(key=lambda r: -r[0])
+                    del found[keep + _ties(found, keep, size):]
+                    floor = found[keep - 1][0] - 2 * RANK_TOL * size
+            done += LP_ROWS
+            if progress is not None:
+                progress(min(done, total), total)
+            if keep is not None and len(bnd) and bnd[-1] < floor:
+                break
+    plans = []
+    for lv, row, blk in found:
+        if keep is not None and lv < floor:
+            continue
+        piece = _leximin(blk)
+        if piece is None:
+            continue
+        ends = np.stack([F.a[list(row)] + (piece.lo * size)[:, None] * blk.t,
+                         F.a[list(row)] + (piece.hi * size)[:, None] * blk.t], axis=1)
+        plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
+                           "concurrent"))
+    plans += _pair_plans(polygon, spec, edges, F)
+    return _ranked(polygon, spec, plans, keep)
+
+
+def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
+    """How many rows after the ``keep``-th tie with it."""
+    last = found[keep - 1][0]
+    return sum(1 for r in found[keep:] if r[0] >= last - 2 * RANK_TOL * size)
+
+
+def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[GraspPlan]:
+    """Two fingers that hold on their own (the exact two-finger plans) and a third
+    anywhere on the longest feature of another edge: force closure whatever the third
+    finger does."""
+    if edges is not None and len(set(int(e) for e in edges)) != 3:
+        return []
+    two = replace(spec, fingers=2, top=KEEP_PAIRS, rank_by="min_region",
+                  along_boundary=False)
+    lengths = np.hypot(*(F.b - F.a).T)
+    out = []
+    for p in search(polygon, two, edges=edges):
+        other = np.flatnonzero(~np.isin(F.edge, p.edges))
+        if not other.size:
+            continue
+        f = int(other[np.argmax(lengths[other])])
+        ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
+        out.append(_plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair"))
+    return out
+
+
+def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
+            ) -> list[GraspPlan]:
+    """Plans in :func:`~fcgrasp.plans.rank_key` order (the measure of the ``keep`` best
+    by the leximin order), each grasp once."""
+    plans.sort(key=lambda p: leximin_key(p.lengths, polygon.size))
+    if keep is not None:
+        plans = plans[:keep]
+    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+    keyed = sorted(((rank_key(p, polygon, spec.rank_by, float(q)), k)
+                    for k, (p, q) in enumerate(zip(plans, scores, strict=True))))
+    out, seen = [], set()
+    for key, k in keyed:
+        if key not in seen:
+            seen.add(key)
+            out.append(plans[k])
+    return out if spec.top is None else out[:spec.top]

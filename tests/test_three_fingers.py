@@ -1,0 +1,270 @@
+"""Three fingers with friction (issue 14): every grasp of the planned regions is force
+closure by the general wrench test of tests/oracle.py (an LP over the contact wrenches,
+written without fcgrasp), the sub-arcs span, the branch and bound is exact, and a third
+finger never makes things worse."""
+
+import json
+
+import numpy as np
+import pytest
+from scipy.optimize import linprog
+
+import fcgrasp as fc
+from fcgrasp.parts import DEMO_PARTS, demo_part
+from fcgrasp.pipeline import plan_spec
+from fcgrasp.plans import leximin_key
+from fcgrasp.three_fingers import concurrent_regions, spanning_arcs, three_finger_plans
+
+from .oracle import closure_margin_lp, grasp_wrenches
+from .shapes import random_polygon
+from .test_cli import run
+
+
+def _spans(d):
+    """Do unit directions d (3, 2) positively span the plane, strictly? (0 strictly
+    inside their triangle: the three cross products share a sign)."""
+    c = [d[0, 0] * d[1, 1] - d[0, 1] * d[1, 0], d[1, 0] * d[2, 1] - d[1, 1] * d[2, 0],
+         d[2, 0] * d[0, 1] - d[2, 1] * d[0, 0]]
+    return all(x > 0 for x in c) or all(x < 0 for x in c)
+
+
+def _unit(a):
+    return np.stack([np.cos(a), np.sin(a)], axis=-1)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_spanning_arcs_every_selection_spans(seed):
+    rng = np.random.default_rng(seed)
+    nonempty = 0
+    for _ in range(500):
+        center = rng.uniform(-np.pi, 3 * np.pi, 3)
+        if rng.random() < 0.2:                       # near-degenerate: two axes opposite
+            center[1] = center[0] + np.pi + rng.normal(0, 1e-3)
+        half = rng.uniform(0.0, 0.9, 3)
+        margin = rng.choice([0.0, 0.01, 0.1])
+        arcs = spanning_arcs(center, half, margin)
+        for lo, hi in arcs:
+            nonempty += 1
+            # inside the cones shrunk by the margin
+            off_lo = (lo - center + np.pi) % (2 * np.pi) - np.pi
+            off_hi = (hi - center + np.pi) % (2 * np.pi) - np.pi
+            assert np.all(off_lo >= -half + margin - 1e-9)
+            assert np.all(off_hi <= half - margin + 1e-9)
+            assert np.all(off_hi >= off_lo - 1e-9)
+            # every selection (ends included) positively spans; with no margin the
+            # arcs are closed and their ends may be a tie (the closure, as everywhere)
+            u = rng.random((60, 3))
+            u[:8] = np.array(list(np.ndindex(2, 2, 2)))
+            if margin == 0:
+                u = 1e-6 + (1 - 2e-6) * u
+            for uu in u:
+                assert _spans(_unit(lo + uu * (hi - lo))), (center, half, margin, lo, hi)
+        if not arcs and margin == 0:
+            # none returned: no selection from the cones spans the plane
+            for _ in range(200):
+                d = _unit(center + rng.uniform(-1, 1, 3) * half * (1 - 1e-9))
+                assert not _spans(d)
+    assert nonempty > 100
+
+
+def _corner_and_random(rng, lo, hi, n=24):
+    u = rng.random((n, 3))
+    u[:8] = np.array(list(np.ndindex(2, 2, 2)))
+    return lo + u * (hi - lo)
+
+
+def _check_piece(rng, poly, edges, mu, margin_deg=0.5):
+    e = np.array(edges)
+    a, b = poly.starts[e], poly.ends[e]
+    nrm = poly.normals[e]
+    center = np.arctan2(-nrm[:, 1], -nrm[:, 0])
+    piece = concurrent_regions(a[None], b[None], center[None],
+                               np.full((1, 3), np.arctan(mu)), np.radians(margin_deg),
+                               poly.size)[0]
+    if piece is None:
+        return None
+    tan = (b - a) / poly.lengths[e][:, None]
+    assert np.all(piece.lo >= -1e-9 * poly.size)
+    assert np.all(piece.hi <= poly.lengths[e] + 1e-9 * poly.size)
+    for s in _corner_and_random(rng, piece.lo, piece.hi):
+        pts = a + s[:, None] * tan
+        m = closure_margin_lp(grasp_wrenches(pts, nrm, mu))
+        # with no margin the regions are the closure of force-closure grasps: a grasp
+        # at their ends may be a tie (m = 0), as documented for every planner
+        assert m > 0 if margin_deg > 0 else m >= 0, (edges, mu, piece)
+    return piece
+
+
+def _random_cases(seed, count):
+    rng = np.random.default_rng(seed)
+    found = 0
+    for _ in range(count):
+        poly = random_polygon(rng)
+        edges = rng.choice(poly.n_edges, 3, replace=False)
+        mu = float(rng.choice([0.1, 0.3, 0.5, 1.0, rng.uniform(0.05, 1.5)]))
+        if _check_piece(rng, poly, edges, mu, float(rng.choice([0.0, 0.5, 2.0]))) is not None:
+            found += 1
+    return found
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_regions_force_closure_by_wrench_lp(seed):
+    assert _random_cases(100 + seed, 25) > 5
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(3, 23))
+def test_regions_force_closure_by_wrench_lp_slow(seed):
+    assert _random_cases(100 + seed, 40) > 5
+
+
+def _dense_max_min(a, t, L, lo_ang, hi_ang, sigma):
+    """The max-min program of one piece written out densely, the straightforward way:
+    variables lo (3), hi (3), level, and a witness per corner; constraints
+    sigma (u x (p - x)) >= 0 on the low edge, <= 0 on the high edge."""
+    corners = list(np.ndindex(2, 2, 2))
+    nv = 7 + 16
+    A, bnd = [], []
+    for c, corner in enumerate(corners):
+        for i in range(3):
+            var = i if corner[i] == 0 else 3 + i
+            for ang, sgn in ((lo_ang[i], 1.0), (hi_ang[i], -1.0)):
+                u = np.array([np.cos(ang), np.sin(ang)])
+                # sgn sigma (u_x (py - ay - s ty) - u_y (px - ax - s tx)) >= 0
+                row = np.zeros(nv)
+                k = sgn * sigma[i]
+                row[7 + c] = k * u[1]          # -(-u_y) for px, as <= form
+                row[15 + c] = -k * u[0]
+                row[var] = k * (u[0] * t[i, 1] - u[1] * t[i, 0])
+                A.append(row)
+                bnd.append(-k * (u[0] * a[i, 1] - u[1] * a[i, 0]))
+    for i in range(3):
+        row = np.zeros(nv)
+        row[6], row[3 + i], row[i] = 1, -1, 1
+        A.append(row)
+        bnd.append(0.0)
+    c = np.zeros(nv)
+    c[6] = -1
+    bounds = [(0, L[i]) for i in range(3)] * 2 + [(0, L.max())] + [(None, None)] * 16
+    res = linprog(c, A_ub=np.array(A), b_ub=np.array(bnd), bounds=bounds, method="highs")
+    return -res.fun if res.status == 0 else -1.0
+
+
+def test_max_min_matches_a_dense_program():
+    from fcgrasp.three_fingers import SPLITS  # noqa: F401 - the pieces enumerated here
+    rng = np.random.default_rng(7)
+    checked = 0
+    for _ in range(40):
+        poly = random_polygon(rng)
+        e = rng.choice(poly.n_edges, 3, replace=False)
+        mu = 0.6
+        a, b = poly.starts[e], poly.ends[e]
+        nrm = poly.normals[e]
+        center = np.arctan2(-nrm[:, 1], -nrm[:, 0])
+        piece = concurrent_regions(a[None], b[None], center[None],
+                                   np.full((1, 3), np.arctan(mu)), np.radians(0.5),
+                                   poly.size)[0]
+        size = poly.size
+        L = poly.lengths[e] / size
+        t = (b - a) / poly.lengths[e][:, None]
+        best = -1.0
+        for lo, hi in spanning_arcs(center, np.full(3, np.arctan(mu)), np.radians(0.5)):
+            for sigma in np.array(list(np.ndindex(2, 2, 2))) * -2.0 + 1.0:
+                best = max(best, _dense_max_min(a / size, t, L, lo, hi, sigma))
+        if piece is None:
+            assert best <= 1e-9
+        else:
+            checked += 1
+            assert piece.levels.min() == pytest.approx(best * size, rel=1e-6, abs=1e-9 * size)
+    assert checked > 10
+
+
+PARTS = [name for name in DEMO_PARTS if name not in ("cam",)]
+
+
+@pytest.mark.parametrize("name", PARTS)
+def test_plans_of_the_built_in_parts_hold(name):
+    part = demo_part(name)
+    rng = np.random.default_rng(3)
+    plans = fc.plan(part, fingers=3, mu=0.5, top=3)
+    assert plans and all(p.contact_type == "friction" and p.fingers == 3 for p in plans)
+    for p in plans:
+        assert p.mode in ("concurrent", "pair")
+        assert len(set(p.edges)) == 3
+        for g in np.concatenate([p.corners(), p.sample(16, rng)]):
+            m = closure_margin_lp(grasp_wrenches(g, p.normals, 0.5))
+            assert m > 0, (name, p.edges, p.mode)
+    lex = [leximin_key(p.lengths, part.size) for p in plans]
+    assert lex == sorted(lex)                     # best first
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_third_finger_only_helps(seed):
+    """A third finger can only help: the best three-finger plan is at least as good as
+    the best two-finger plan with the third finger anywhere on another edge."""
+    rng = np.random.default_rng(50 + seed)
+    for _ in range(4):
+        part = random_polygon(rng)
+        mu = float(rng.uniform(0.2, 0.8))
+        two = fc.plan(part, fingers=2, mu=mu, top=1, along_boundary=False)
+        three = fc.plan(part, fingers=3, mu=mu, top=1)
+        if not two:
+            continue
+        other = max(L for e, L in enumerate(part.lengths) if e not in two[0].edges)
+        assert three, "two fingers hold: three must too"
+        assert three[0].min_length >= min(two[0].min_length, other) * (1 - 1e-9)
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_branch_and_bound_is_exact(seed):
+    rng = np.random.default_rng(80 + seed)
+    for _ in range(3):
+        part = random_polygon(rng, kind="star")
+        spec_all = plan_spec(fingers=3, mu=0.4, top=None)
+        every = three_finger_plans(part, spec_all)
+        for top in (1, 3):
+            pruned = three_finger_plans(part, plan_spec(fingers=3, mu=0.4, top=top))
+            assert [p.edges for p in pruned] == [p.edges for p in every[:top]]
+            for p, q in zip(pruned, every, strict=False):
+                assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=1e-9 * part.size)
+
+
+def test_independent_regions_on_three_edges():
+    part = demo_part("triangle")
+    reg = fc.independent_regions(part, (2, 0, 1), mu=0.5)
+    assert reg.edges == (2, 0, 1) and reg.contact_type == "friction"
+    assert reg.min_length > 0
+    with pytest.raises(ValueError, match="distinct"):
+        fc.independent_regions(part, (0, 0, 1), mu=0.5)
+
+
+def test_a_mu_the_planner_cannot_use_is_an_error():
+    part = demo_part("quad")
+    with pytest.raises(ValueError, match="mu"):
+        fc.plan(part, fingers=4, mu=0.3)
+    with pytest.raises(ValueError, match="mu"):
+        fc.plan(part, fingers=3, mu=0.3, gravity=(0, -1))
+    with pytest.raises(ValueError, match="friction"):
+        fc.plan(part, fingers=3)
+    with pytest.raises(ValueError, match="gravity"):
+        fc.plan(part, fingers=2, mu=0.3, gravity=(0, -1))
+    # the explicit frictionless-with-gravity planner is still there
+    assert fc.plan(demo_part("triangle"), fingers=3, gravity=(0, -1), top=1)[0].gravity
+
+
+def test_cli_three_fingers_and_gravity(tmp_path):
+    out = tmp_path / "p.json"
+    r = run("plan", "demo:blob", "--fingers", "3", "--mu", "0.5", "--top", "2", "--json", out)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(out.read_text())
+    assert d["grasps"][0]["contact_type"] == "friction" and len(d["grasps"][0]["edges"]) == 3
+    r = run("plan", "demo:triangle", "--fingers", "3", "--gravity", "0,-1", "--json", out)
+    assert r.returncode == 0, r.stderr
+    assert json.loads(out.read_text())["grasps"][0]["contact_type"] == "frictionless"
+    for bad in (["--fingers", "4", "--mu", "0.3"], ["--fingers", "3", "--gravity", "0,-1",
+                                                    "--mu", "0.2"],
+                ["--fingers", "2", "--gravity", "0,-1"]):
+        r = run("plan", "demo:quad", *bad, "--json", tmp_path / "bad.json")
+        assert r.returncode != 0
+        assert len(r.stderr.strip().splitlines()) == 1 and "Traceback" not in r.stderr
+        assert not (tmp_path / "bad.json").exists()
