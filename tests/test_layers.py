@@ -15,6 +15,7 @@ LAYERS = [
     ["outline"],
     ["regions", "_regiongeom", "hand", "stretches", "frictionless_stretches"],
     ["quality", "ranking", "plans"],
+    ["jaw"],
     ["pipeline"],
     ["three_fingers"],
     ["planning"],

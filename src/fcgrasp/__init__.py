@@ -56,6 +56,7 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .hand import (
         Hand,
     )
+    from .jaw import JawPlan, ParallelJaw, jaw_plans
     from .outline import (
         clean_outline,
         fill_rings,
@@ -115,6 +116,9 @@ _LAZY = {
     "ClosureReport": "grasp",
     "Grasp": "grasp",
     "Hand": "hand",
+    "ParallelJaw": "jaw",
+    "JawPlan": "jaw",
+    "jaw_plans": "jaw",
     "Polygon": "polygon",
     "CONTRARY": "screws",
     "RECIPROCAL": "screws",
@@ -190,6 +194,9 @@ __all__ = [
     "ClosureReport",
     "Grasp",
     "Hand",
+    "ParallelJaw",
+    "JawPlan",
+    "jaw_plans",
     "Polygon",
     "CONTRARY",
     "RECIPROCAL",

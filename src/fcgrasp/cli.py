@@ -220,6 +220,13 @@ def cmd_plan(args: Any) -> int:
 
     # every option is checked before any work or output
     _check_outputs(args, [args.part])
+    if args.gripper == "jaw":
+        return _plan_jaw(args)
+    for opt, value in (("--stroke", args.stroke), ("--pad", args.pad)):
+        if value is not None:
+            raise CliError(f"{opt} is an option of --gripper jaw")
+    if args.fingers is None:
+        args.fingers = 2
     gravity = None if args.gravity is None else _floats(args.gravity, 2, "--gravity")
     if gravity is not None and args.fingers != 3:
         raise CliError(f"--gravity is a contact of three frictionless fingers, not of "
@@ -300,6 +307,68 @@ def cmd_plan(args: Any) -> int:
     return 0
 
 
+def _plan_jaw(args: Any) -> int:
+    """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.jaw`)."""
+    import math
+
+    from .jaw import ParallelJaw
+    from .planning import plan
+    from .report import dumps, plan_report
+
+    for opt, given in (("--fingers", args.fingers is not None),
+                       ("--gravity", args.gravity is not None),
+                       ("--workspace", args.workspace is not None),
+                       ("--finger-radius", bool(args.finger_radius)),
+                       ("--rank-by", args.rank_by != "min_region"),
+                       ("--single-edge", args.single_edge)):
+        if given:
+            raise CliError(f"{opt} is an option of point fingers, not of --gripper jaw")
+    if args.stroke is None or args.pad is None:
+        raise CliError("--gripper jaw needs --stroke MIN,MAX and --pad WIDTH (in the part's "
+                       "units)")
+    stroke = _floats(args.stroke, 2, "--stroke")
+    mu = 0.3 if args.mu is None else args.mu
+    if not (math.isfinite(mu) and mu > 0):
+        raise CliError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
+    if not 0 <= args.margin < 90:
+        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
+    if args.top < 1:
+        raise CliError(f"--top must be at least 1, got {args.top}")
+    jaw = ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=args.pad, mu=mu)
+    part = _load(args)
+    polygon, units = part.polygon, part.units
+    plans = plan(polygon, gripper=jaw, top=args.top, margin=args.margin)
+    params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
+              "pad_width": jaw.pad_width, "mu": jaw.mu, "top": args.top,
+              "margin_deg": args.margin}
+    reason = None if plans else (
+        f"no pose of the jaw holds the part (stroke {jaw.stroke[0]:g} to {jaw.stroke[1]:g}, "
+        f"pads {jaw.pad_width:g} wide, mu = {jaw.mu:g}, margin {args.margin:g} degrees)")
+    report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+
+    def figure(out: Any) -> None:
+        from .plotting import plan_figure
+
+        plan_figure(polygon, plans, args.plot, units=units,
+                    title=f"{args.part}: parallel jaw", outputs=out)
+
+    _write_outputs([(args.json, dumps(report))] if args.json else [],
+                   figure if args.plot else None)
+    if not args.quiet and not _json_out(args):
+        if plans:
+            print(f"{'rank':>4}  {'closing (deg)':<16} {'offset (' + units + ')':<20} "
+                  f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}")
+            for k, p in enumerate(plans):
+                t = [math.degrees(x) for x in p.theta]
+                print(f"{k + 1:>4}  {t[0]:6.1f} to {t[1]:<6.1f} "
+                      f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
+                      f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
+                      f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}")
+        else:
+            print(f"no grasp: {reason}")
+    return 0
+
+
 def cmd_check(args: Any) -> int:
     import numpy as np
 
@@ -374,6 +443,8 @@ def cmd_parts(args: Any) -> int:
 
 
 def cmd_demo(args: Any) -> int:
+    import math
+
     from ._atomic import OutputSet
     from .parts import demo_part
     from .planning import plan
@@ -421,10 +492,37 @@ def cmd_demo(args: Any) -> int:
             else:
                 print(f"demo:{name:9s} {fingers} fingers  best edges {list(best.edges)!s:16s} "
                       f"min region {best.min_length:7.3f} mm  -> {out / stem}.png")
+    # a parallel-jaw gripper: boxes of jaw poses (closing angle, offset) that hold
+    from .jaw import ParallelJaw
+
+    jaw = ParallelJaw(stroke=(10.0, 50.0), pad_width=8.0, mu=0.5)
+    polygon = demo_part("rectangle")
+    boxes = plan(polygon, gripper=jaw, top=3, margin=DEFAULT_MARGIN_DEG)
+    params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
+              "pad_width": jaw.pad_width, "mu": jaw.mu, "top": 3,
+              "margin_deg": DEFAULT_MARGIN_DEG}
+    with OutputSet() as files:
+        files.add_text(out / "rectangle-jaw.json",
+                       dumps(plan_report(polygon, boxes, params, "mm", "no pose holds")))
+        plan_figure(polygon, boxes, str(out / "rectangle-jaw.png"), units="mm",
+                    title="demo:rectangle - a parallel jaw (stroke 10-50 mm, 8 mm pads, "
+                          "mu 0.5)", outputs=files)
+    best_box = boxes[0] if boxes else None
+    entries.append({"part": "demo:rectangle", "gripper": "parallel_jaw", "mu": jaw.mu,
+                    "json": "rectangle-jaw.json", "figure": "rectangle-jaw.png",
+                    "best_theta_deg": None if best_box is None else
+                    [math.degrees(x) for x in best_box.theta],
+                    "best_offset": None if best_box is None else list(best_box.offset),
+                    "best_measure": None if best_box is None else best_box.measure})
+    if not args.quiet and best_box is not None:
+        t0, t1 = (math.degrees(x) for x in best_box.theta)
+        print(f"demo:rectangle jaw        closing {t0:.1f}-{t1:.1f} deg, offsets "
+              f"{best_box.offset[0]:.1f}-{best_box.offset[1]:.1f} mm  -> "
+              f"{out / 'rectangle-jaw'}.png")
     with OutputSet() as files:
         files.add_text(out / "demo.json", dumps(demo_summary(entries, "mm")))
     if not args.quiet:
-        print(f"wrote {len(jobs)} plans (JSON and PNG) and {out / 'demo.json'}")
+        print(f"wrote {len(entries)} plans (JSON and PNG) and {out / 'demo.json'}")
     return 0
 
 
@@ -499,7 +597,14 @@ def build_parser() -> argparse.ArgumentParser:
                               "--json plan.json --plot plan.png",
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     reading_args(p, "write the result as JSON ('-': standard output)")
-    p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=2,
+    p.add_argument("--gripper", choices=("fingers", "jaw"), default="fingers",
+                   help="point fingers (default) or a parallel-jaw gripper (--stroke, --pad, "
+                        "--mu)")
+    p.add_argument("--stroke", metavar="MIN,MAX", default=None,
+                   help="with --gripper jaw: the smallest and largest opening")
+    p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
+                   help="with --gripper jaw: the width of the flat pads")
+    p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
                    help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
                         "frictionless against gravity")
     p.add_argument("--mu", type=float, default=None,

@@ -28,6 +28,7 @@ from ._checks import check_mu_scalar
 from .frictionless_stretches import frictionless_stretch_regions
 from .graspsets import Vertex
 from .hand import Hand
+from .jaw import ParallelJaw, jaw_plans
 from .pipeline import (
     boundary_plans,
     check_search,
@@ -62,7 +63,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = None,
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
-         max_memory: int | None = None, along_boundary: bool = True) -> list[GraspPlan]:
+         max_memory: int | None = None, along_boundary: bool = True,
+         gripper: Any = None) -> list[Any]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -102,6 +104,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         batches sized to it; a search that cannot fit (every plan of a large part with
         ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
         what would fit, before any work.
+    gripper : ParallelJaw, optional
+        Plan for a parallel-jaw gripper instead of point fingers
+        (:func:`fcgrasp.jaw.jaw_plans`: boxes of jaw poses, :class:`~fcgrasp.JawPlan`);
+        its friction is the jaw's, so ``fingers``, ``mu``, ``hand``, ``gravity`` and
+        ``rank_by`` must keep their defaults.
     along_boundary : bool
         Without a hand, regions are stretches of the boundary that may cover several
         edges and the vertices between them: for two fingers the exact optimum
@@ -111,7 +118,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
 
     Returns
     -------
-    list of GraspPlan
+    list of GraspPlan (of JawPlan with a ``gripper``)
         Best first; empty when the part admits no such grasp.
 
     Examples
@@ -122,6 +129,20 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     ((1, 3), 1.0)
     """
     _check_polygon(polygon)
+    if gripper is not None:
+        if not isinstance(gripper, ParallelJaw):
+            raise TypeError(f"gripper must be a ParallelJaw or None, got "
+                            f"{type(gripper).__name__}")
+        unused = [f"{name}={value!r}" for name, value, default in (
+            ("fingers", fingers, 2), ("mu", mu, 0.0), ("hand", hand, None),
+            ("gravity", gravity, None), ("rank_by", rank_by, "min_region"))
+            if value != default]
+        if unused:
+            raise ValueError(f"a parallel jaw is planned from its own stroke, pads and mu: "
+                             f"{', '.join(unused)} would not be used")
+        if top is None:
+            raise ValueError("a parallel jaw needs a top (how many boxes), got top=None")
+        return list(jaw_plans(polygon, gripper, top=top, margin=margin))
     spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
                      margin=margin, gravity=gravity, disturbance=disturbance, tol=tol,
                      max_memory=max_memory, along_boundary=along_boundary)

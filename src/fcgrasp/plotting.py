@@ -175,10 +175,55 @@ def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
     ax.tick_params(labelsize=6)
 
 
+def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
+                  units: str = "") -> None:
+    """A parallel-jaw box (:class:`~fcgrasp.JawPlan`): the part, the two pads at the box's
+    centre pose, the strip the pads sweep over the offset range (shaded) and the fan of
+    the angle range (the closing directions at its ends, through the centre)."""
+    from matplotlib.patches import Polygon as MplPolygon
+
+    draw_part(ax, polygon, numbers=False, units=units)
+    theta, c = plan.centre
+    u = np.array([np.cos(theta), np.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    cen = np.asarray(plan.centroid, float)
+    half = plan.jaw.pad_width / 2
+    rel = polygon.vertices - cen
+    reach = float(np.max(np.abs(rel @ u))) + 0.1 * polygon.size
+    lo, hi = plan.offset[0] - half, plan.offset[1] + half
+    band = [cen + lo * n - reach * u, cen + hi * n - reach * u, cen + hi * n + reach * u,
+            cen + lo * n + reach * u]
+    ax.add_patch(MplPolygon(band, closed=True, facecolor="#1f77b4", alpha=0.12, lw=0,
+                            zorder=1, label=f"offsets {plan.offset[0]:.3g} to "
+                                            f"{plan.offset[1]:.3g} {units}".rstrip()))
+    thick = 0.03 * polygon.size
+    for k, stop in enumerate(plan.stops):
+        sgn = 1.0 if k == 0 else -1.0
+        base = cen + c * n + stop * u
+        pad = [base - half * n, base + half * n, base + half * n + sgn * thick * u,
+               base - half * n + sgn * thick * u]
+        ax.add_patch(MplPolygon(pad, closed=True, facecolor="0.3", edgecolor="k", zorder=4,
+                                label="pads at the centre pose" if k == 0 else None))
+    for pts in plan.contacts:
+        ax.plot(*np.asarray(pts).T, "o", color="#d62728", ms=4, zorder=5)
+    mid = cen + c * n
+    for t in plan.theta:
+        d = np.array([np.cos(t), np.sin(t)]) * reach
+        ax.plot(*np.c_[mid - d, mid + d], color="#2ca02c", lw=1.0, ls="--", zorder=3)
+    ax.plot([], [], color="#2ca02c", ls="--",
+            label=f"closing {np.degrees(plan.theta[0]):.1f} to "
+                  f"{np.degrees(plan.theta[1]):.1f} deg")
+    ax.set_title(title or f"box measure {plan.measure:.3g} {units}", fontsize=8)
+    ax.legend(fontsize=6, loc="best", framealpha=0.85, handlelength=1.2)
+    ax.tick_params(labelsize=6)
+
+
 def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
                 title: str | None = None, panel: int = 3, outputs: Any = None) -> None:
     """Write a figure of the best plan (figure 1), or with several plans a panel of the best
     and worst ranked ones (figure 15), atomically; format from the extension."""
+    from .jaw import JawPlan
+
     plt = _pyplot()
     if not plans:
         fig, ax = plt.subplots(figsize=(4, 4))
@@ -194,6 +239,11 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
             ax.axis("off")
         for ax, k in zip(axes.ravel(), shown, strict=False):
             p = plans[k]
+            if isinstance(p, JawPlan):
+                draw_jaw_plan(ax, polygon, p, units=units,
+                              title=f"rank {k + 1}: box {p.measure:.3g} {units}, "
+                                    f"mu={p.jaw.mu:g}")
+                continue
             mu_txt = f"mu={p.mu:g}" if p.contact_type == "friction" else "frictionless"
             draw_plan(ax, polygon, p, units=units,
                       title=f"rank {k + 1}: edges {list(p.edges)}\nmin region "

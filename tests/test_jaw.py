@@ -1,0 +1,186 @@
+"""The parallel-jaw gripper (issue 14): the pose model against an independent one (shapely
+clips the part to the pads' strip; the contacts go through the wrench LP of
+tests/oracle.py), and every sampled pose of every returned box holds and fits the stroke."""
+
+import json
+
+import numpy as np
+import pytest
+import shapely
+
+import fcgrasp as fc
+from fcgrasp.jaw import ParallelJaw, jaw_plans, jaw_poses
+from fcgrasp.parts import demo_part
+
+from .oracle import closure_margin_lp, grasp_wrenches
+from .shapes import random_polygon
+from .test_cli import run
+
+
+def _frame(part, theta):
+    u = np.array([np.cos(theta), np.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    return u, n
+
+
+def independent_pose(part, jaw, theta, c, margin_deg):
+    """(holds, opening) of one pose, from shapely's clip of the part to the strip."""
+    u, n = _frame(part, theta)
+
+    def tf(ring):
+        r = np.asarray(ring) - part.centroid
+        return np.c_[r @ n, r @ u]
+
+    shape = shapely.Polygon(tf(part.vertices), [tf(h) for h in part.holes])
+    w = jaw.pad_width / 2
+    strip = shapely.box(c - w, -1e3 * part.size, c + w, 1e3 * part.size)
+    cut = shape.intersection(strip)
+    if cut.is_empty:
+        return False, np.nan
+    pts = shapely.get_coordinates(cut.boundary)
+    tol = 1e-9 * part.size
+    top, bottom = pts[:, 1].max(), pts[:, 1].min()
+    verts = np.concatenate([tf(part.vertices)] + [tf(h) for h in part.holes])
+    # the outward normal of every edge, in the strip frame
+    normals = np.c_[part.normals @ n, part.normals @ u]
+    starts = np.c_[(part.starts - part.centroid) @ n, (part.starts - part.centroid) @ u]
+    ends = np.c_[(part.ends - part.centroid) @ n, (part.ends - part.centroid) @ u]
+    points, nrm = [], []
+    for y, pad_normal in ((top, (0.0, 1.0)), (bottom, (0.0, -1.0))):
+        for p in np.unique(pts[np.abs(pts[:, 1] - y) <= tol], axis=0):
+            on_side = min(abs(p[0] - (c - w)), abs(p[0] - (c + w))) <= tol
+            is_vertex = np.min(np.hypot(*(verts - p).T)) <= tol
+            normal = pad_normal
+            if on_side and not is_vertex:
+                # the pad's corner on an edge: that edge's normal, unless it is level
+                d = ends - starts
+                t = np.clip(np.einsum("ij,ij->i", p - starts, d) / np.einsum("ij,ij->i", d, d),
+                            0, 1)
+                e = int(np.argmin(np.hypot(*(starts + t[:, None] * d - p).T)))
+                if abs(d[e, 1]) > tol:
+                    normal = tuple(normals[e])
+            points.append(p)
+            nrm.append(normal)
+    opening = top - bottom
+    mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
+    fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0
+    fits = jaw.stroke[0] <= opening <= jaw.stroke[1]
+    return bool(fc_ok and fits), opening
+
+
+def _random_part(rng):
+    return random_polygon(rng, str(rng.choice(["convex", "star", "rectangle", "holes"])))
+
+
+def _jaw_for(part, rng):
+    return ParallelJaw(stroke=(0.05 * part.size, float(rng.uniform(0.6, 1.5)) * part.size),
+                       pad_width=float(rng.uniform(0.02, 0.4)) * part.size,
+                       mu=float(rng.uniform(0.2, 1.0)))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_pose_model_matches_shapely_and_the_wrench_lp(seed):
+    rng = np.random.default_rng(seed)
+    compared = held = 0
+    for _ in range(8):
+        part = _random_part(rng)
+        jaw = _jaw_for(part, rng)
+        radius = np.max(np.hypot(*(part.vertices - part.centroid).T))
+        th = rng.uniform(0, 2 * np.pi, 40)
+        c = rng.uniform(-radius, radius, 40)
+        mine = jaw_poses(part, jaw, th, c, margin=0.5)
+        # decisions away from a tie: the same with a slightly larger and smaller margin
+        lo = jaw_poses(part, jaw, th, c, margin=0.45).holds
+        hi = jaw_poses(part, jaw, th, c, margin=0.55).holds
+        for k in range(len(th)):
+            if lo[k] != hi[k]:
+                continue
+            ok, opening = independent_pose(part, jaw, th[k], c[k], 0.5)
+            if np.isfinite(opening):
+                assert mine.opening[k] == pytest.approx(opening, abs=1e-9 * part.size)
+            assert bool(mine.holds[k]) == ok, (seed, k, th[k], c[k])
+            compared += 1
+            held += ok
+    assert compared > 200 and held > 5
+
+
+def _check_plans(part, jaw, rng, n=40):
+    plans = jaw_plans(part, jaw, top=3)
+    for p in plans:
+        assert p.theta[1] >= p.theta[0] and p.offset[1] >= p.offset[0]
+        poses = np.r_[p.sample(n, rng), [[p.theta[a], p.offset[b]] for a in (0, 1)
+                                          for b in (0, 1)]]
+        for th, c in poses:
+            ok, opening = independent_pose(part, jaw, th, c, 0.5)
+            assert ok, (p, th, c)
+            assert p.opening[0] - 1e-9 * part.size <= opening
+    measures = [p.measure for p in plans]
+    assert measures == sorted(measures, reverse=True)
+    return plans
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_every_sampled_pose_of_a_box_holds(seed):
+    rng = np.random.default_rng(10 + seed)
+    found = 0
+    for _ in range(4):
+        part = _random_part(rng)
+        found += len(_check_plans(part, _jaw_for(part, rng), rng))
+    assert found
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(3, 40))
+def test_every_sampled_pose_of_a_box_holds_slow(seed):
+    rng = np.random.default_rng(10 + seed)
+    for _ in range(6):
+        part = _random_part(rng)
+        _check_plans(part, _jaw_for(part, rng), rng)
+
+
+@pytest.mark.parametrize("name", ["rectangle", "blob", "quad", "triangle", "bracket"])
+def test_built_in_parts(name):
+    part = demo_part(name)
+    jaw = ParallelJaw(stroke=(10, 60), pad_width=12, mu=0.4)
+    plans = _check_plans(part, jaw, np.random.default_rng(1))
+    assert plans
+
+
+def test_the_measure_makes_angle_and_offset_comparable():
+    part = demo_part("rectangle")
+    jaw = ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4)
+    for p in jaw_plans(part, jaw, top=3):
+        assert p.measure == pytest.approx(min(p.offset[1] - p.offset[0],
+                                              (p.theta[1] - p.theta[0]) * p.radius))
+
+
+def test_bad_jaws():
+    with pytest.raises(ValueError, match="stroke"):
+        ParallelJaw(stroke=(50, 10), pad_width=12, mu=0.4)
+    with pytest.raises(ValueError, match="mu"):
+        ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.0)
+    with pytest.raises(ValueError, match="pad_width"):
+        ParallelJaw(stroke=(10, 50), pad_width=-1, mu=0.4)
+    with pytest.raises(TypeError, match="jaw"):
+        jaw_plans(demo_part("quad"), "jaw")
+
+
+def test_plan_with_a_gripper_and_the_cli(tmp_path):
+    jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4)
+    plans = fc.plan(demo_part("rectangle"), gripper=jaw, top=2)
+    assert plans and all(isinstance(p, fc.JawPlan) for p in plans)
+    with pytest.raises(ValueError, match="fingers"):
+        fc.plan(demo_part("rectangle"), gripper=jaw, fingers=3)
+    out, fig = tmp_path / "jaw.json", tmp_path / "jaw.png"
+    r = run("plan", "demo:rectangle", "--gripper", "jaw", "--stroke", "10,50", "--pad", "12",
+            "--mu", "0.4", "--top", "2", "--json", out, "--plot", fig)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(out.read_text())
+    assert d["grasps"][0]["gripper"] == "parallel_jaw"
+    assert d["grasps"][0]["theta_deg"] == pytest.approx(np.degrees(plans[0].theta))
+    assert fig.stat().st_size > 1000
+    for bad in (["--gripper", "jaw"], ["--gripper", "jaw", "--stroke", "50,10", "--pad", "3"],
+                ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"]):
+        r = run("plan", "demo:rectangle", *bad, "--json", tmp_path / "bad.json")
+        assert r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
+        assert not (tmp_path / "bad.json").exists()
