@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 import fcgrasp as fc
-from fcgrasp.jaw import ParallelJaw, jaw_plans, jaw_poses
+from fcgrasp.jaw import ParallelJaw, convex_holes, jaw_plans, jaw_poses
 from fcgrasp.parts import demo_part
 
 from .oracle import closure_margin_lp, grasp_wrenches
@@ -23,13 +23,16 @@ def _frame(part, theta):
     return u, n
 
 
-def independent_pose(part, jaw, theta, c, margin_deg):
+def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
     """(holds, opening) of one pose, from shapely's clip of the part to the strip."""
     u, n = _frame(part, theta)
 
     def tf(ring):
         r = np.asarray(ring) - part.centroid
         return np.c_[r @ n, r @ u]
+
+    if hole is not None:
+        return _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole)
 
     shape = shapely.Polygon(tf(part.vertices), [tf(h) for h in part.holes])
     w = jaw.pad_width / 2
@@ -61,6 +64,53 @@ def independent_pose(part, jaw, theta, c, margin_deg):
                     normal = tuple(normals[e])
             points.append(p)
             nrm.append(normal)
+    opening = top - bottom
+    mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
+    fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0
+    fits = jaw.stroke[0] <= opening <= jaw.stroke[1]
+    return bool(fc_ok and fits), opening
+
+
+def _hole_edge_normal(part, hole, p, tf, u, n):
+    """The part's outward normal (strip frame) of the hole edge nearest ``p``."""
+    ring = tf(part.holes[hole])
+    a, b = ring, np.roll(ring, -1, axis=0)
+    d = b - a
+    t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0, 1)
+    e = int(np.argmin(np.hypot(*(a + t[:, None] * d - p).T)))
+    nrm = np.array([d[e, 1], -d[e, 0]]) / np.hypot(*d[e])
+    inside = shapely.Polygon(ring).centroid
+    to_in = np.array([inside.x, inside.y]) - (a[e] + b[e]) / 2
+    return nrm if nrm @ to_in > 0 else -nrm          # points into the hole
+
+
+def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
+    """Jaws opening inside a convex hole: each pad stops where the hole's boundary above
+    (below) it is lowest (highest) across the strip, at the strip's sides or on a level
+    edge (the boundary is concave seen from inside)."""
+    ring = tf(part.holes[hole])
+    shape = shapely.Polygon(ring)
+    w = jaw.pad_width / 2
+    s0, s1 = c - w, c + w
+    if not (s0 > ring[:, 0].min() and s1 < ring[:, 0].max()):
+        return False, np.nan
+    big = 1e3 * part.size
+    span = {}
+    for x in (s0, s1):
+        ys = shapely.get_coordinates(shape.intersection(
+            shapely.LineString([(x, -big), (x, big)])))[:, 1]
+        span[x] = (ys.min(), ys.max())
+    top = min(span[s0][1], span[s1][1])
+    bottom = max(span[s0][0], span[s1][0])
+    tol = 1e-9 * part.size
+    points, nrm = [], []
+    for y, k, pad_normal in ((top, 1, (0.0, -1.0)), (bottom, 0, (0.0, 1.0))):
+        sides = [x for x in (s0, s1) if abs(span[x][k] - y) <= tol]
+        level = len(sides) == 2
+        for x in sides:
+            p = np.array([x, y])
+            points.append(p)
+            nrm.append(pad_normal if level else _hole_edge_normal(part, hole, p, tf, u, n))
     opening = top - bottom
     mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
     fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0
@@ -107,11 +157,12 @@ def test_pose_model_matches_shapely_and_the_wrench_lp(seed):
 def _check_plans(part, jaw, rng, n=40):
     plans = jaw_plans(part, jaw, top=3)
     for p in plans:
+        assert (p.mode == "internal") == (p.hole is not None)
         assert p.theta[1] >= p.theta[0] and p.offset[1] >= p.offset[0]
         poses = np.r_[p.sample(n, rng), [[p.theta[a], p.offset[b]] for a in (0, 1)
                                           for b in (0, 1)]]
         for th, c in poses:
-            ok, opening = independent_pose(part, jaw, th, c, 0.5)
+            ok, opening = independent_pose(part, jaw, th, c, 0.5, p.hole)
             assert ok, (p, th, c)
             assert p.opening[0] - 1e-9 * part.size <= opening
     measures = [p.measure for p in plans]
@@ -136,6 +187,47 @@ def test_every_sampled_pose_of_a_box_holds_slow(seed):
     for _ in range(6):
         part = _random_part(rng)
         _check_plans(part, _jaw_for(part, rng), rng)
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_internal_pose_model_matches_shapely_and_the_wrench_lp(seed):
+    rng = np.random.default_rng(200 + seed)
+    compared = held = 0
+    while compared < 150:
+        part = random_polygon(rng, "holes")
+        holes = convex_holes(part)
+        if not holes:
+            continue
+        k = holes[0]
+        hole = part.holes[k]
+        size = float(np.max(np.ptp(hole, axis=0)))
+        jaw = ParallelJaw(stroke=(0.05 * size, 2 * size), pad_width=float(rng.uniform(0.02, 0.5))
+                          * size, mu=float(rng.uniform(0.2, 1.0)))
+        th = rng.uniform(0, 2 * np.pi, 30)
+        rel = (hole.mean(axis=0) - part.centroid)
+        c = np.c_[-np.sin(th), np.cos(th)] @ rel + rng.uniform(-0.5, 0.5, 30) * size
+        mine = jaw_poses(part, jaw, th, c, margin=0.5, hole=k)
+        lo = jaw_poses(part, jaw, th, c, margin=0.45, hole=k).holds
+        hi = jaw_poses(part, jaw, th, c, margin=0.55, hole=k).holds
+        for i in range(len(th)):
+            if lo[i] != hi[i]:
+                continue
+            ok, opening = independent_pose(part, jaw, th[i], c[i], 0.5, hole=k)
+            if mine.holds[i] or ok:
+                assert mine.opening[i] == pytest.approx(opening, abs=1e-9 * part.size)
+            assert bool(mine.holds[i]) == ok, (seed, i, th[i], c[i])
+            compared += 1
+            held += ok
+    assert held > 5
+
+
+def test_internal_grips_in_the_washer():
+    part = demo_part("washer")
+    jaw = ParallelJaw(stroke=(5, 50), pad_width=4, mu=0.5)
+    plans = _check_plans(part, jaw, np.random.default_rng(2))
+    assert plans and all(p.mode == "internal" and p.hole == 0 for p in plans)
+    with pytest.raises(ValueError, match="hole"):
+        jaw_poses(part, jaw, [0.0], [0.0], hole=3)
 
 
 @pytest.mark.parametrize("name", ["rectangle", "blob", "quad", "triangle", "bracket"])

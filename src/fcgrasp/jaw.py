@@ -18,9 +18,10 @@ The pose holds when the two contacts are force closure (theorem 6.3, two fingers
 friction: some point of one contact sees some point of the other strictly inside both
 friction cones, shrunk by ``margin``; between the pads' own normals this is
 ``|lateral offset| < tan(atan(mu) - margin) * opening``) and the opening (the part's
-width in the strip along ``u``) is within the stroke.  Poses are those of an external
-grip (jaws closing on the outline); internal grips (jaws opening inside a hole) are not
-planned yet.
+width in the strip along ``u``) is within the stroke.  External grips close on the outline;
+internal grips open inside a convex hole (pad ``A``, facing ``+u``, meets the hole's
+boundary above it, pad ``B`` the boundary below; the strip must lie inside the hole's
+width; on a curved hole a flat pad meets the boundary at its corners).
 
 **Tolerance boxes.**  The answer is not one pose but a box of poses
 ``theta in [t0, t1]``, ``c in [c0, c1]`` every pose of which holds, the analogue of
@@ -121,18 +122,22 @@ class PoseContacts:
 
 
 def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
-         s0: FloatArray, s1: FloatArray, sign: float, tol: float, psi_edge: FloatArray
+         s0: FloatArray, s1: FloatArray, sign: float, tol: float, psi_edge: FloatArray,
+         use: np.ndarray | None = None
          ) -> tuple[FloatArray, np.ndarray, FloatArray, FloatArray]:
     """One pad: the extreme of ``sign * y`` over the edges clipped to the strip
     ``[s0, s1]`` (arrays (P, E) of edge ends, (P, 1) strip sides).  Returns the stop
     (P,), whether it touches anything (P,), the contact features' lateral intervals
     (P, K, 2) and the angle of each feature's contact force from the pad's (P, K):
     0 on a vertex or an edge parallel to the pad, the edge's (``psi_edge`` (P, E))
-    where the pad's corner touches an edge."""
+    where the pad's corner touches an edge.  ``use`` (P, E): the edges the pad can meet
+    (default all)."""
     ya, yb = sign * y_a, sign * y_b
     lo_x = np.minimum(x_a, x_b)
     hi_x = np.maximum(x_a, x_b)
     inside = (hi_x >= s0) & (lo_x <= s1)
+    if use is not None:
+        inside &= use
     cl_lo = np.clip(lo_x, s0, s1)
     cl_hi = np.clip(hi_x, s0, s1)
     dx = x_b - x_a
@@ -169,14 +174,30 @@ def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
     return sign * stop, ok, lat, np.where(tk, psi[rows, order], np.nan)
 
 
+def convex_holes(polygon: Polygon) -> list[int]:
+    """The holes of a part in which the jaws can open (internal grips): the convex ones."""
+    import shapely
+
+    out = []
+    for k, h in enumerate(polygon.holes):
+        ring = shapely.Polygon(h)
+        if ring.convex_hull.area <= ring.area * (1 + 1e-9):
+            out.append(k)
+    return out
+
+
 def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
-              margin: float = DEFAULT_MARGIN_DEG) -> PoseContacts:
+              margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None) -> PoseContacts:
     """The contacts and the verdict of the jaw at a batch of poses (the model of this
     module's docstring), exact at each pose.
 
     ``theta`` (P,): closing directions (radians); ``offset`` (P,): lateral offsets from
-    the centroid; ``margin`` in degrees.  Every edge of the part (holes included: their
-    material is never the extreme) is clipped to each pose's strip.
+    the centroid; ``margin`` in degrees.  External grip (``hole=None``): every edge of
+    the part (holes included: their material is never the extreme) is clipped to each
+    pose's strip.  Internal grip in the convex hole ``hole`` (an index into
+    ``polygon.holes``): the jaws, inside the hole, open until pad A (facing ``+u``) meets
+    the hole's boundary above and pad B the boundary below; the strip must lie inside
+    the hole's width.
 
     >>> from fcgrasp.parts import demo_part
     >>> part = demo_part("rectangle")              # 80 x 30
@@ -190,8 +211,16 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     if th.shape != c.shape:
         raise ValueError(f"theta and offset must have the same length, got {th.size} and "
                          f"{c.size}")
-    rel_a = polygon.starts - polygon.centroid
-    rel_b = polygon.ends - polygon.centroid
+    internal = hole is not None
+    ring = np.ones(polygon.n_edges, dtype=bool)
+    if hole is not None:
+        if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
+                or int(hole) not in convex_holes(polygon):
+            raise ValueError(f"hole must be the index of a convex hole of the part (internal "
+                             f"grips), got {hole!r}; convex holes: {convex_holes(polygon)}")
+        ring = polygon.rings == int(hole) + 1
+    rel_a = polygon.starts[ring] - polygon.centroid
+    rel_b = polygon.ends[ring] - polygon.centroid
     u = np.stack([np.cos(th), np.sin(th)], axis=1)
     n = np.stack([-u[:, 1], u[:, 0]], axis=1)
     y_a, y_b = u @ rel_a.T, u @ rel_b.T
@@ -201,11 +230,24 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     tol = CONTACT_TOL * polygon.size
     # the contact force on an edge (its inward normal) as an angle from each pad's force,
     # positive towards +n: pad A pushes along -u, pad B along +u
-    f = -polygon.normals
+    f = -polygon.normals[ring]
     fx, fy = n @ f.T, u @ f.T
-    top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol, np.arctan2(fx, -fy))
-    bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
-                                      np.arctan2(fx, fy))
+    if internal:
+        # inside a hole pad A pushes along +u on the boundary above it (where the part's
+        # outward normal points down), pad B along -u on the boundary below
+        above, below = fy > 0, fy < 0
+        top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
+                                       np.arctan2(fx, fy), above)
+        bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
+                                          np.arctan2(fx, -fy), below)
+        # the pads fit only if the strip lies inside the hole's width
+        ok_a &= (s0[:, 0] > np.minimum(x_a, x_b).min(axis=1)) \
+            & (s1[:, 0] < np.maximum(x_a, x_b).max(axis=1))
+    else:
+        top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
+                                       np.arctan2(fx, -fy))
+        bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
+                                          np.arctan2(fx, fy))
     with np.errstate(invalid="ignore"):
         opening = top - bottom
     beta = np.arctan(jaw.mu) - np.radians(margin)
@@ -213,8 +255,10 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     # one of B's, at angle psi from -u (positive towards +n), must be within beta of
     # both forces: psi in (lo, hi); over the features' lateral spans the offset
     # dx = xb - xa ranges over [b0 - a1, b1 - a0] and psi = atan(dx / opening)
-    pa = psi_a[:, :, None]
-    pb = -psi_b[:, None, :]
+    # (inside a hole the pads push apart: the same test with both angles negated)
+    flip = -1.0 if internal else 1.0
+    pa = flip * psi_a[:, :, None]
+    pb = -flip * psi_b[:, None, :]
     lo = np.maximum(pa, pb) - beta
     hi = np.minimum(pa, pb) + beta
     d = opening[:, None, None]
@@ -239,7 +283,9 @@ class JawPlan:
     from the centroid, the ``opening`` range over the box, the contacts at the box's
     centre pose (``contacts``: per pad, the contact points; ``kinds``: ``"vertex"``,
     ``"edge"`` or ``"corner"``; ``stops``: where pads A and B stop, along ``u`` from the
-    centroid), and the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``."""
+    centroid), the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``, and the
+    grip: ``mode`` ``"external"`` (closing on the outline) or ``"internal"`` (opening in
+    the hole ``hole``, an index into the part's holes)."""
 
     theta: tuple[float, float]
     offset: tuple[float, float]
@@ -252,6 +298,7 @@ class JawPlan:
     centroid: FloatArray = field(repr=False)
     radius: float = field(repr=False)
     mode: str = "external"
+    hole: int | None = None
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -268,7 +315,7 @@ class JawPlan:
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (angles also in degrees)."""
         return json_ready({
-            "gripper": "parallel_jaw", "mode": self.mode,
+            "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
             "theta_rad": list(self.theta), "theta_deg": list(np.degrees(self.theta)),
             "offset": list(self.offset), "opening": list(self.opening),
             "contacts": {"a": {"kind": self.kinds[0], "points": self.contacts[0],
@@ -324,16 +371,18 @@ def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
 
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
-              margin: float = DEFAULT_MARGIN_DEG) -> list[JawPlan]:
+              margin: float = DEFAULT_MARGIN_DEG, internal: bool = True) -> list[JawPlan]:
     """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
-    docstring): each found box's poses are removed from the grid before the next is
-    sought, with their mirror (``theta + pi``, ``-c``: the same grasp, pads swapped).
+    docstring): external grips, and with ``internal`` grips inside each convex hole
+    (:func:`convex_holes`).  For each grip, each found box's poses are removed from the
+    grid before the next is sought, with their mirror (``theta + pi``, ``-c``: the same
+    grasp, pads swapped).
 
     >>> from fcgrasp.parts import demo_part
-    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4)
-    >>> best = jaw_plans(demo_part("rectangle"), jaw, top=1)[0]
-    >>> [round(float(np.degrees(t)) % 180) for t in best.centre[:1]]   # across the 30 mm
-    [90]
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> best = jaw_plans(demo_part("rectangle"), jaw, top=1)[0]   # across the 30 mm
+    >>> [round(float(np.degrees(t))) % 180 for t in best.theta], best.kinds
+    ([78, 102], ('edge', 'edge'))
     """
     if not isinstance(polygon, Polygon):
         raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
@@ -341,6 +390,19 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
         raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
     margin = check_scalar(margin, "margin", nonnegative=True)
     top = check_int(top, "top", minimum=1)
+    if not isinstance(internal, bool):
+        raise TypeError(f"internal must be a bool, got {internal!r}")
+    holes: list[int | None] = [None]
+    if internal:
+        holes += convex_holes(polygon)
+    plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h)]
+    plans.sort(key=lambda p: -p.measure)
+    return plans[:top]
+
+
+def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
+                hole: int | None) -> list[JawPlan]:
+    """The best boxes of one grip (external, or internal in ``hole``)."""
     radius = characteristic_length(polygon.vertices, polygon.centroid)
     K = int(round(360 / THETA_STEP_DEG))
     M = OFFSET_STEPS
@@ -350,7 +412,7 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
     tt, cc = np.meshgrid(thetas, offsets, indexing="ij")
     H = np.concatenate([jaw_poses(polygon, jaw, tt.ravel()[i:i + 20000],
-                                  cc.ravel()[i:i + 20000], margin).holds
+                                  cc.ravel()[i:i + 20000], margin, hole).holds
                         for i in range(0, tt.size, 20000)]).reshape(K, M)
     plans: list[JawPlan] = []
     while len(plans) < top:
@@ -359,13 +421,14 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
             break
         H[np.arange(k0, k1 + 1) % K, j0:j1 + 1] = False
         H[(np.arange(k0, k1 + 1) + K // 2) % K, M - 1 - j1:M - j0] = False
-        box = _checked_box(polygon, jaw, margin, thetas[k0] + np.array([0, k1 - k0]) * dth,
-                           offsets[[j0, j1]], dth, dc)
+        box = _checked_box(polygon, jaw, margin, hole,
+                           thetas[k0] + np.array([0, k1 - k0]) * dth, offsets[[j0, j1]],
+                           dth, dc)
         if box is None:
             continue
         (t0, t1), (c0, c1), opening = box
         tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
-        r = jaw_poses(polygon, jaw, [tc], [ccen], margin)
+        r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
         pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
                _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]
         kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
@@ -373,13 +436,13 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
         plans.append(JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts,
                              kinds, (float(r.top[0]), float(r.bottom[0])),
                              min(c1 - c0, (t1 - t0) * radius), jaw,
-                             polygon.centroid.copy(), radius))
-    plans.sort(key=lambda p: -p.measure)
+                             polygon.centroid.copy(), radius,
+                             "external" if hole is None else "internal", hole))
     return plans
 
 
-def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, th: FloatArray,
-                 off: FloatArray, dth: float, dc: float
+def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                 th: FloatArray, off: FloatArray, dth: float, dc: float
                  ) -> tuple[tuple[float, float], tuple[float, float],
                             tuple[float, float]] | None:
     """Shrink a box by grid steps until every pose of a grid :data:`CHECK_DENSITY`
@@ -391,7 +454,7 @@ def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, th: FloatArr
         nt = max(2, int(round((t1 - t0) / dth)) * CHECK_DENSITY + 1)
         nc = max(2, int(round((c1 - c0) / dc)) * CHECK_DENSITY + 1)
         tt, cc = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
-        r = jaw_poses(polygon, jaw, tt.ravel(), cc.ravel(), margin)
+        r = jaw_poses(polygon, jaw, tt.ravel(), cc.ravel(), margin, hole)
         if np.all(r.holds):
             return (t0, t1), (c0, c1), (float(r.opening.min()), float(r.opening.max()))
         t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc

@@ -198,7 +198,8 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
                                             f"{plan.offset[1]:.3g} {units}".rstrip()))
     thick = 0.03 * polygon.size
     for k, stop in enumerate(plan.stops):
-        sgn = 1.0 if k == 0 else -1.0
+        # a pad's body lies behind its face: outside the part's material
+        sgn = (1.0 if k == 0 else -1.0) * (-1.0 if plan.mode == "internal" else 1.0)
         base = cen + c * n + stop * u
         pad = [base - half * n, base + half * n, base + half * n + sgn * thick * u,
                base - half * n + sgn * thick * u]
