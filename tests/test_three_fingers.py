@@ -16,7 +16,7 @@ from fcgrasp.plans import leximin_key
 from fcgrasp.three_fingers import concurrent_regions, spanning_arcs, three_finger_plans
 
 from .oracle import closure_margin_lp, grasp_wrenches
-from .shapes import random_polygon
+from .shapes import random_polygon, star
 from .test_cli import run
 
 
@@ -154,7 +154,7 @@ def test_max_min_matches_a_dense_program():
     from fcgrasp.three_fingers import SPLITS  # noqa: F401 - the pieces enumerated here
     rng = np.random.default_rng(7)
     checked = 0
-    for _ in range(40):
+    for _ in range(25):
         poly = random_polygon(rng)
         e = rng.choice(poly.n_edges, 3, replace=False)
         mu = 0.6
@@ -176,10 +176,12 @@ def test_max_min_matches_a_dense_program():
         else:
             checked += 1
             assert piece.levels.min() == pytest.approx(best * size, rel=1e-6, abs=1e-9 * size)
-    assert checked > 10
+    assert checked > 6
 
 
-PARTS = [name for name in DEMO_PARTS if name not in ("cam",)]
+# the washer's 20 equal outer edges tie everywhere: every triple is solved (slow suite)
+PARTS = [pytest.param(name, marks=pytest.mark.slow) if name == "washer" else name
+         for name in DEMO_PARTS if name not in ("cam",)]
 
 
 @pytest.mark.parametrize("name", PARTS)
@@ -213,13 +215,17 @@ def test_third_finger_only_helps(seed):
         other = max(L for e, L in enumerate(part.lengths) if e not in two[0].edges)
         assert three, "two fingers hold: three must too"
         assert three[0].min_length >= min(two[0].min_length, other) * (1 - 1e-9)
+        # and every sampled grasp of the plan holds (general wrench test)
+        p = three[0]
+        for g in np.concatenate([p.corners(), p.sample(12, rng)]):
+            assert closure_margin_lp(grasp_wrenches(g, p.normals, mu)) > 0, (p.edges, p.mode)
 
 
 @pytest.mark.parametrize("seed", range(2))
 def test_branch_and_bound_is_exact(seed):
     rng = np.random.default_rng(80 + seed)
-    for _ in range(3):
-        part = random_polygon(rng, kind="star")
+    for _ in range(2):
+        part = fc.Polygon(star(rng, n=int(rng.integers(6, 9))))
         spec_all = plan_spec(fingers=3, mu=0.4, top=None)
         every = three_finger_plans(part, spec_all)
         for top in (1, 3):

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING, Any
 from .tolerances import TOL
 
 if TYPE_CHECKING:   # for type checkers; at run time these load on first use
+    from .batch import plan_many
     from .closure import (
         closure_escape,
         force_direction_closure,
@@ -117,6 +118,7 @@ _LAZY = {
     "Grasp": "grasp",
     "Hand": "hand",
     "ParallelJaw": "jaw",
+    "plan_many": "batch",
     "JawPlan": "jaw",
     "jaw_plans": "jaw",
     "Polygon": "polygon",
@@ -195,6 +197,7 @@ __all__ = [
     "Grasp",
     "Hand",
     "ParallelJaw",
+    "plan_many",
     "JawPlan",
     "jaw_plans",
     "Polygon",

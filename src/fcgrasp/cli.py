@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -141,19 +142,21 @@ def _reading(args: Any) -> dict[str, Any]:
             "simplify": args.simplify}
 
 
-def _load(args: Any) -> Any:
-    """The part asked for; when the file holds several, which one was taken is said on
-    stderr (unless --quiet)."""
+def _load(args: Any, say: Any = "stderr") -> Any:
+    """The part asked for; when the file holds several, which one was taken is said with
+    ``say`` (default on stderr unless --quiet; None: nowhere)."""
     from .parts import load_part
 
     part = load_part(args.part, args.select, **_reading(args))
-    if not args.quiet:
+    if say == "stderr":
+        say = None if args.quiet else _stderr
+    if say is not None:
         if part.count > 1:
             name = f" ({part.id})" if part.id else ""
-            print(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
-                  f"(see fcgrasp parts)", file=sys.stderr)
+            say(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
+                f"(see fcgrasp parts)")
         for note in part.notes:
-            print(f"fcgrasp: {part.source}: {note}", file=sys.stderr)
+            say(f"fcgrasp: {part.source}: {note}")
     return part
 
 
@@ -209,37 +212,44 @@ def _no_grasp_reason(fingers: int, mu: float, margin: float, hand: Any,
 # ----------------------------------------------------------------------------- commands
 
 
-def cmd_plan(args: Any) -> int:
+@dataclass
+class PlanDocument:
+    """What ``fcgrasp plan`` computes for one part: the report written by ``--json``,
+    the plans, the part's polygon and units, and a title for its figure."""
+
+    report: dict[str, Any]
+    plans: list[Any]
+    polygon: Any
+    units: str
+    reason: str | None
+    title: str
+
+
+def _finger_options(args: Any) -> tuple[Any, ...]:
+    """The point-finger options of ``fcgrasp plan``, checked and resolved:
+    ``(fingers, mu, gravity, max_memory, hand, workspace)``."""
     import math
 
     from .hand import Hand
-    from .pipeline import check_search, plan_spec
-    from .planning import plan
-    from .report import dumps, plan_report
-    from .units import disturbance_step
 
-    # every option is checked before any work or output
-    _check_outputs(args, [args.part])
-    if args.gripper == "jaw":
-        return _plan_jaw(args)
     for opt, value in (("--stroke", args.stroke), ("--pad", args.pad)):
         if value is not None:
             raise CliError(f"{opt} is an option of --gripper jaw")
-    if args.fingers is None:
-        args.fingers = 2
+    fingers = 2 if args.fingers is None else args.fingers
     gravity = None if args.gravity is None else _floats(args.gravity, 2, "--gravity")
-    if gravity is not None and args.fingers != 3:
+    if gravity is not None and fingers != 3:
         raise CliError(f"--gravity is a contact of three frictionless fingers, not of "
-                       f"{args.fingers} (drop it, or use --fingers 3)")
-    frictionless = args.fingers == 4 or gravity is not None
-    if args.mu is None:
-        args.mu = 0.0 if frictionless else 0.3
-    elif frictionless and args.mu != 0:
-        what = "four fingers" if args.fingers == 4 else "three fingers with --gravity"
-        raise CliError(f"--mu {args.mu:g} would not be used: {what} are planned frictionless "
+                       f"{fingers} (drop it, or use --fingers 3)")
+    frictionless = fingers == 4 or gravity is not None
+    mu = args.mu
+    if mu is None:
+        mu = 0.0 if frictionless else 0.3
+    elif frictionless and mu != 0:
+        what = "four fingers" if fingers == 4 else "three fingers with --gravity"
+        raise CliError(f"--mu {mu:g} would not be used: {what} are planned frictionless "
                        f"(drop --mu)")
-    if args.mu < 0 or not math.isfinite(args.mu):
-        raise CliError(f"--mu must be a finite number >= 0, got {args.mu:g}")
+    if mu < 0 or not math.isfinite(mu):
+        raise CliError(f"--mu must be a finite number >= 0, got {mu:g}")
     if not 0 <= args.margin < 90:
         raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
     if args.top < 1:
@@ -254,7 +264,26 @@ def cmd_plan(args: Any) -> int:
             raise CliError(f"--finger-radius must be a finite number >= 0, got "
                            f"{args.finger_radius:g}")
         hand = Hand(workspace=ws, finger_radius=args.finger_radius)
-    part = _load(args)
+    return fingers, mu, gravity, budget, hand, ws
+
+
+def plan_document(args: Any, part: Any = None, progress: Any = None,
+                  say: Any = None) -> PlanDocument:
+    """Plan one part as ``fcgrasp plan`` does: ``args`` are its parsed options (see
+    :func:`build_parser`), ``part`` a :class:`fcgrasp.parts.Part` already read (default:
+    read ``args.part``), ``progress(done, total)`` a progress callback and ``say(text)``
+    where notes go (default nowhere).  Raises :class:`CliError` (a one-line message) for
+    options that do not fit together.  ``fcgrasp batch`` calls it for every part, so a
+    batch's results are exactly those of ``plan --json``."""
+    from .pipeline import check_search, plan_spec
+    from .planning import plan
+    from .report import plan_report
+    from .units import disturbance_step
+
+    if args.gripper == "jaw":
+        return _plan_jaw(args, part)
+    fingers, mu, gravity, budget, hand, ws = _finger_options(args)
+    part = _load(args, say) if part is None else part
     polygon, units = part.polygon, part.units
     if hand is not None:
         reach = hand.feasible_intervals(polygon)
@@ -262,58 +291,73 @@ def cmd_plan(args: Any) -> int:
             where = f"workspace {ws}" if ws else f"finger radius {args.finger_radius:g}"
             raise CliError(f"the hand cannot touch the part: no edge is reachable with the "
                            f"{where}")
-    show = _progress(sys.stderr.isatty() and not args.quiet)
     step = disturbance_step(units)
-    kw: dict[str, Any] = {"along_boundary": not args.single_edge}
+    kw: dict[str, Any] = {"along_boundary": not args.single_edge, "gravity": gravity}
     if budget is not None:
         kw["max_memory"] = budget
-    kw["gravity"] = gravity
-    spec = plan_spec(fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
+    spec = plan_spec(fingers=fingers, mu=mu, top=args.top, rank_by=args.rank_by,
                      hand=hand, margin=args.margin, disturbance=(step, 15.0), **kw)
     size = check_search(polygon, spec)          # too large: a one-line error, at once
     # with a top and the smallest region, the exact pruning stops far sooner than
     # solving every candidate (seconds where this estimate says hours)
     pruned = spec.top is not None and spec.rank_by == "min_region"
-    if size.seconds > 60 and not args.quiet and not pruned:
-        print(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
-              f"{_duration(size.seconds)} (--simplify TOL or fewer fingers is faster)",
-              file=sys.stderr)
-    plans = plan(polygon, fingers=args.fingers, mu=args.mu, top=args.top, rank_by=args.rank_by,
-                 hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=show, **kw)
-    params = {"fingers": args.fingers, "mu": args.mu, "top": args.top, "rank_by": args.rank_by,
+    if size.seconds > 60 and say is not None and not pruned:
+        say(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
+            f"{_duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
+    plans = plan(polygon, fingers=fingers, mu=mu, top=args.top, rank_by=args.rank_by,
+                 hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=progress,
+                 **kw)
+    params = {"fingers": fingers, "mu": mu, "top": args.top, "rank_by": args.rank_by,
               "margin_deg": args.margin, "along_boundary": spec.stretches or spec.grows,
               "gravity": None if gravity is None else list(gravity),
               "workspace": None if hand is None or hand.workspace is None else
               list(hand.workspace),
               "finger_radius": args.finger_radius,
               "disturbance": {"translation": step, "rotation_deg": 15.0}}
-    reason = None if plans else _no_grasp_reason(args.fingers, args.mu, args.margin, hand,
-                                                 gravity)
+    reason = None if plans else _no_grasp_reason(fingers, mu, args.margin, hand, gravity)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+    return PlanDocument(report, plans, polygon, units, reason,
+                        f"{args.part}: {fingers} fingers")
+
+
+def cmd_plan(args: Any) -> int:
+    from .report import dumps
+
+    # every option is checked before any work or output
+    _check_outputs(args, [args.part])
+    say = None if args.quiet else _stderr
+    doc = plan_document(args, progress=_progress(sys.stderr.isatty() and not args.quiet),
+                        say=say)
 
     def figure(out: Any) -> None:
         from .plotting import plan_figure
 
-        plan_figure(polygon, plans, args.plot, units=units,
-                    title=f"{args.part}: {args.fingers} fingers", outputs=out)
+        plan_figure(doc.polygon, doc.plans, args.plot, units=doc.units, title=doc.title,
+                    outputs=out)
 
-    _write_outputs([(args.json, dumps(report))] if args.json else [],
+    _write_outputs([(args.json, dumps(doc.report))] if args.json else [],
                    figure if args.plot else None)
     if not args.quiet and not _json_out(args):
-        if plans:
-            _print_table(plans, units, sys.stdout)
+        if not doc.plans:
+            print(f"no grasp: {doc.reason}")
+        elif args.gripper == "jaw":
+            _print_jaw_table(doc.plans, doc.units, sys.stdout)
         else:
-            print(f"no grasp: {reason}")
+            _print_table(doc.plans, doc.units, sys.stdout)
     return 0
 
 
-def _plan_jaw(args: Any) -> int:
+def _stderr(text: str) -> None:
+    print(text, file=sys.stderr)
+
+
+def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
     """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.jaw`)."""
     import math
 
     from .jaw import ParallelJaw
     from .planning import plan
-    from .report import dumps, plan_report
+    from .report import plan_report
 
     for opt, given in (("--fingers", args.fingers is not None),
                        ("--gravity", args.gravity is not None),
@@ -335,7 +379,7 @@ def _plan_jaw(args: Any) -> int:
     if args.top < 1:
         raise CliError(f"--top must be at least 1, got {args.top}")
     jaw = ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=args.pad, mu=mu)
-    part = _load(args)
+    part = _load(args) if part is None else part
     polygon, units = part.polygon, part.units
     plans = plan(polygon, gripper=jaw, top=args.top, margin=args.margin)
     params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
@@ -345,28 +389,103 @@ def _plan_jaw(args: Any) -> int:
         f"no pose of the jaw holds the part (stroke {jaw.stroke[0]:g} to {jaw.stroke[1]:g}, "
         f"pads {jaw.pad_width:g} wide, mu = {jaw.mu:g}, margin {args.margin:g} degrees)")
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+    return PlanDocument(report, plans, polygon, units, reason, f"{args.part}: parallel jaw")
 
-    def figure(out: Any) -> None:
-        from .plotting import plan_figure
 
-        plan_figure(polygon, plans, args.plot, units=units,
-                    title=f"{args.part}: parallel jaw", outputs=out)
+def _print_jaw_table(plans: list[Any], units: str, out: Any) -> None:
+    import math
 
-    _write_outputs([(args.json, dumps(report))] if args.json else [],
-                   figure if args.plot else None)
-    if not args.quiet and not _json_out(args):
-        if plans:
-            print(f"{'rank':>4}  {'closing (deg)':<16} {'offset (' + units + ')':<20} "
-                  f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}")
-            for k, p in enumerate(plans):
-                t = [math.degrees(x) for x in p.theta]
-                print(f"{k + 1:>4}  {t[0]:6.1f} to {t[1]:<6.1f} "
-                      f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
-                      f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
-                      f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}")
-        else:
-            print(f"no grasp: {reason}")
-    return 0
+    print(f"{'rank':>4}  {'grip':<9} {'closing (deg)':<16} {'offset (' + units + ')':<20} "
+          f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}", file=out)
+    for k, p in enumerate(plans):
+        t = [math.degrees(x) for x in p.theta]
+        print(f"{k + 1:>4}  {p.mode:<9} {t[0]:6.1f} to {t[1]:<6.1f} "
+              f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
+              f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
+              f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}", file=out)
+
+
+#: The options of ``fcgrasp plan`` that ``fcgrasp batch`` passes on to every part.
+PLAN_DESTS = ("gripper", "stroke", "pad", "fingers", "mu", "gravity", "top", "single_edge",
+              "rank_by", "margin", "workspace", "finger_radius", "max_memory", "select",
+              "units", "file_units", "flatten", "layer", "gap", "pixel_size", "threshold",
+              "y_down", "simplify", "no_clean")
+
+
+def cmd_batch(args: Any) -> int:
+    from .batch import part_files, run_batch
+
+    if args.workers is not None and args.workers < 1:
+        raise CliError(f"--workers must be at least 1, got {args.workers}")
+    if args.part_timeout is not None and not args.part_timeout > 0:
+        raise CliError(f"--part-timeout must be a number of seconds > 0, got "
+                       f"{args.part_timeout:g}")
+    paths = part_files(args.input)
+    if not paths:
+        raise CliError(f"no part files in {args.input!r} (a folder of .json, .svg, .dxf, "
+                       f"image ... files, or a glob pattern)")
+    if os.path.isdir(args.out):
+        raise CliError(f"--out {args.out} is a folder, not a results file")
+    options = {d: getattr(args, d) for d in PLAN_DESTS}
+    # the options are checked once, on the first part's terms, before any work
+    plan_document_check(options)
+    client = None
+    workers = args.workers or os.cpu_count() or 1
+    if args.scheduler is not None:
+        from .batch import cluster
+
+        client = cluster(args.scheduler, workers)
+    show = _batch_progress(sys.stderr.isatty() and not args.quiet)
+    try:
+        summary = run_batch(paths, args.out, workers=workers, client=client,
+                            part_timeout=args.part_timeout, figures=args.figures,
+                            progress=show, retry_failed=args.retry_failed, **options)
+    finally:
+        if client is not None:
+            client.close()
+            cluster_of = getattr(client, "cluster", None)
+            if cluster_of is not None:
+                cluster_of.close()
+    if not args.quiet:
+        print(summary.table())
+    return 1 if summary.failed or summary.failed_before else 0
+
+
+def plan_document_check(options: dict[str, Any]) -> None:
+    """Check ``fcgrasp plan`` options (as :data:`PLAN_DESTS` keywords) without planning:
+    a :class:`CliError` for options that do not fit together."""
+    from .batch import plan_options
+
+    args = build_parser().parse_args(["plan", "demo:quad", *plan_options(**options)])
+    if args.gripper == "jaw":
+        if args.stroke is None or args.pad is None:
+            raise CliError("--gripper jaw needs --stroke MIN,MAX and --pad WIDTH (in the "
+                           "part's units)")
+        _floats(args.stroke, 2, "--stroke")
+        return
+    _finger_options(args)
+
+
+def _batch_progress(enabled: bool) -> Any:
+    if not enabled:
+        return None
+    import time
+
+    t0 = time.perf_counter()
+
+    def show(done: int, total: int) -> None:
+        width = 30
+        frac = done / max(total, 1)
+        el = time.perf_counter() - t0
+        rate = done / el if el > 0 else 0.0
+        left = (total - done) / rate if rate > 0 else float("nan")
+        eta = _duration(left) if left == left else "?"
+        print(f"\r[{'#' * int(width * frac):<{width}}] {done}/{total} parts, "
+              f"{rate:.2f}/s, {eta} left   ", end="", file=sys.stderr, flush=True)
+        if done >= total:
+            print("", file=sys.stderr)
+
+    return show
 
 
 def cmd_check(args: Any) -> int:
@@ -551,11 +670,12 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser,
                                 help="plan, check, parts or demo (fcgrasp COMMAND --help)")
 
-    def reading_args(p: argparse.ArgumentParser, json_help: str) -> None:
-        p.add_argument("part", metavar="PART",
-                       help="part file (.json, .geojson, .wkt, .svg, .dxf, .png, .gif, .jpg, "
-                            "...), '-' for standard input, or demo:NAME "
-                            f"({', '.join(DEMO_PARTS)})")
+    def reading_args(p: argparse.ArgumentParser, json_help: str | None) -> None:
+        if json_help is not None:
+            p.add_argument("part", metavar="PART",
+                           help="part file (.json, .geojson, .wkt, .svg, .dxf, .png, .gif, "
+                                ".jpg, ...), '-' for standard input, or demo:NAME "
+                                f"({', '.join(DEMO_PARTS)})")
         g = p.add_argument_group("reading the part")
         g.add_argument("--part", "--id", dest="select", metavar="N|ID",
                        help="which part of the file: its index (see fcgrasp parts) or an id "
@@ -586,9 +706,45 @@ def build_parser() -> argparse.ArgumentParser:
                        help="simplify the outline to within TOL (in --units), topology kept")
         g.add_argument("--no-clean", action="store_true",
                        help="keep collinear runs and sub-tolerance edges as drawn")
+        if json_help is None:
+            return
         p.add_argument("--json", metavar="OUT.json", help=json_help)
         p.add_argument("--quiet", action="store_true",
                        help="print nothing on success (errors still go to stderr)")
+
+    def planning_args(p: argparse.ArgumentParser) -> None:
+        p.add_argument("--gripper", choices=("fingers", "jaw"), default="fingers",
+                       help="point fingers (default) or a parallel-jaw gripper (--stroke, --pad, "
+                            "--mu)")
+        p.add_argument("--stroke", metavar="MIN,MAX", default=None,
+                       help="with --gripper jaw: the smallest and largest opening")
+        p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
+                       help="with --gripper jaw: the width of the flat pads")
+        p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
+                       help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
+                            "frictionless against gravity")
+        p.add_argument("--mu", type=float, default=None,
+                       help="friction coefficient (default 0.3; four fingers and --gravity are "
+                            "frictionless and take none)")
+        p.add_argument("--gravity", metavar="GX,GY", default=None,
+                       help="with --fingers 3: three frictionless fingers holding the part "
+                            "against gravity in this direction, such as 0,-1")
+        p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
+        p.add_argument("--single-edge", action="store_true",
+                       help="keep each region on one edge, as in the paper (default: regions "
+                            "run along the boundary across vertices; exact for two fingers, "
+                            "grown from the single-edge plans for three or four)")
+        p.add_argument("--rank-by", choices=tuple(MEASURES), default="min_region",
+                       help="ranking measure (see fcgrasp.ranking)")
+        p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",
+                       help=f"safety margin in degrees (default {DEFAULT_MARGIN_DEG})")
+        p.add_argument("--workspace", metavar="CX,CY,R",
+                       help="circular workspace of the fingertips")
+        p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
+                       help="fingertip radius (default 0)")
+        p.add_argument("--max-memory", default=None, metavar="SIZE",
+                       help="memory budget of the search, such as 500M or 4G (default 2G); a "
+                            "search that cannot fit stops at once and says what would")
 
     p = sub.add_parser("plan", help="ranked grasp plans of a part",
                        description="Plan force-closure grasps: the best edge sets with their "
@@ -597,37 +753,7 @@ def build_parser() -> argparse.ArgumentParser:
                               "--json plan.json --plot plan.png",
                        formatter_class=argparse.RawDescriptionHelpFormatter)
     reading_args(p, "write the result as JSON ('-': standard output)")
-    p.add_argument("--gripper", choices=("fingers", "jaw"), default="fingers",
-                   help="point fingers (default) or a parallel-jaw gripper (--stroke, --pad, "
-                        "--mu)")
-    p.add_argument("--stroke", metavar="MIN,MAX", default=None,
-                   help="with --gripper jaw: the smallest and largest opening")
-    p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
-                   help="with --gripper jaw: the width of the flat pads")
-    p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
-                   help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
-                        "frictionless against gravity")
-    p.add_argument("--mu", type=float, default=None,
-                   help="friction coefficient (default 0.3; four fingers and --gravity are "
-                        "frictionless and take none)")
-    p.add_argument("--gravity", metavar="GX,GY", default=None,
-                   help="with --fingers 3: three frictionless fingers holding the part "
-                        "against gravity in this direction, such as 0,-1")
-    p.add_argument("--top", type=int, default=10, help="how many plans (default 10)")
-    p.add_argument("--single-edge", action="store_true",
-                   help="keep each region on one edge, as in the paper (default: regions "
-                        "run along the boundary across vertices; exact for two fingers, "
-                        "grown from the single-edge plans for three or four)")
-    p.add_argument("--rank-by", choices=tuple(MEASURES), default="min_region",
-                   help="ranking measure (see fcgrasp.ranking)")
-    p.add_argument("--margin", type=float, default=DEFAULT_MARGIN_DEG, metavar="DEG",
-                   help=f"safety margin in degrees (default {DEFAULT_MARGIN_DEG})")
-    p.add_argument("--workspace", metavar="CX,CY,R", help="circular workspace of the fingertips")
-    p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
-                   help="fingertip radius (default 0)")
-    p.add_argument("--max-memory", default=None, metavar="SIZE",
-                   help="memory budget of the search, such as 500M or 4G (default 2G); a "
-                        "search that cannot fit stops at once and says what would")
+    planning_args(p)
     p.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf", help="write a figure")
     p.set_defaults(func=cmd_plan)
 
@@ -655,6 +781,41 @@ def build_parser() -> argparse.ArgumentParser:
                         formatter_class=argparse.RawDescriptionHelpFormatter)
     reading_args(ls, "write the list as JSON ('-': standard output)")
     ls.set_defaults(func=cmd_parts)
+
+    b = sub.add_parser("batch", help="plan every part of a folder or glob into JSON Lines",
+                       description="Plan a catalogue: every part file of a folder (or a glob "
+                                   "pattern), one JSON line per part appended to --out as it "
+                                   "finishes, with the plans exactly as fcgrasp plan --json "
+                                   "gives them. Run it again to finish an interrupted batch: "
+                                   "parts already planned with the same content and options "
+                                   "are skipped. Exit code 1 when a part of the input has a "
+                                   "failed result (now or recorded before).",
+                       epilog="examples:\n  fcgrasp batch parts/ --out results.jsonl "
+                              "--fingers 2 --mu 0.4 --top 5\n"
+                              "  fcgrasp batch 'drawings/**/*.dxf' --out r.jsonl --scheduler "
+                              "tcp://10.0.0.5:8786",
+                       formatter_class=argparse.RawDescriptionHelpFormatter)
+    b.add_argument("input", metavar="INPUT_DIR_OR_GLOB",
+                   help="a folder (its part files) or a glob pattern (quote it)")
+    b.add_argument("--out", required=True, metavar="RESULTS.jsonl",
+                   help="JSON Lines results, appended to (created if missing)")
+    b.add_argument("--workers", type=int, default=None, metavar="N",
+                   help="worker processes (default: one per core; with --scheduler local, "
+                        "the local cluster's workers)")
+    b.add_argument("--scheduler", default=None, metavar="ADDRESS",
+                   help="run on a Dask cluster: tcp://HOST:PORT, or 'local' for a "
+                        "LocalCluster here (needs fcgrasp[distributed])")
+    b.add_argument("--part-timeout", type=float, default=None, metavar="SECONDS",
+                   help="give up on a part after this long (recorded as failed)")
+    b.add_argument("--retry-failed", action="store_true",
+                   help="plan again the parts whose recorded result is an error")
+    b.add_argument("--figures", default=None, metavar="DIR",
+                   help="also write a figure of each part's plans into this folder")
+    b.add_argument("--quiet", action="store_true",
+                   help="print nothing on success (errors still go to stderr)")
+    planning_args(b)
+    reading_args(b, None)
+    b.set_defaults(func=cmd_batch)
 
     d = sub.add_parser("demo", help="plans for the built-in parts, JSON and figures",
                        description="The main job on built-in parts (the paper's figure 1): "

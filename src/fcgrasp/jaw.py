@@ -332,24 +332,27 @@ def _box_scores(H: np.ndarray, dth: float, dc: float, radius: float, max_rows: i
                 ) -> tuple[float, int, int, int, int]:
     """The largest box of True cells of the pose grid ``H`` (theta rows, cyclic; offset
     columns) by ``min(offset range, theta range * radius)``: ``(score, k0, k1, j0, j1)``
-    with inclusive grid indices (``k1`` may pass the last row: it wraps)."""
+    with inclusive grid indices (``k1`` may pass the last row: it wraps).
+
+    For each first row ``k0``, the rows from it are AND-ed cumulatively and the longest
+    run of True of every prefix is read off at once (run lengths by cumulative sums)."""
     K, M = H.shape
     best = (-1.0, 0, 0, 0, 0)
-    starts = np.flatnonzero(H.any(axis=1))
-    for k0 in starts:
-        acc = H[k0].copy()
-        for k1 in range(k0, k0 + max_rows):
-            acc &= H[k1 % K]
-            if not acc.any():
-                break
-            # the longest run of True in acc
-            padded = np.r_[False, acc, False].astype(np.int8)
-            d = np.diff(padded)
-            s, e = np.flatnonzero(d == 1), np.flatnonzero(d == -1)
-            r = int(np.argmax(e - s))
-            score = min((e[r] - 1 - s[r]) * dc, (k1 - k0) * dth * radius)
-            if score > best[0]:
-                best = (score, int(k0), int(k1), int(s[r]), int(e[r] - 1))
+    span = np.arange(max_rows)
+    for k0 in np.flatnonzero(H.any(axis=1)):
+        acc = np.logical_and.accumulate(H[(k0 + span) % K], axis=0)
+        alive = acc.any(axis=1)
+        rows = int(np.argmin(alive)) if not alive.all() else max_rows
+        acc = acc[:rows]
+        count = np.cumsum(acc, axis=1)
+        last_false = np.maximum.accumulate(np.where(acc, 0, count), axis=1)
+        run = count - last_false                     # length of the run ending here
+        length = run.max(axis=1)
+        score = np.minimum((length - 1) * dc, np.arange(rows) * dth * radius)
+        r = int(np.argmax(score))
+        if score[r] > best[0]:
+            end = int(np.argmax(run[r]))
+            best = (float(score[r]), int(k0), int(k0 + r), end - int(length[r]) + 1, end)
     return best
 
 

@@ -1,0 +1,222 @@
+"""``fcgrasp batch`` and ``plan_many`` (issue 15): a folder of parts in every input format,
+some broken on purpose, planned by the local pool and by a Dask LocalCluster; results
+equal ``fcgrasp plan --json``; a second run does nothing; a batch killed half-way and run
+again ends with the same file as one never interrupted."""
+
+import json
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp import batch
+
+from .test_cli import run
+
+OPTIONS = ["--fingers", "2", "--mu", "0.4", "--top", "3"]
+
+
+def _ring(rng, n=None, radius=30.0):
+    n = n or int(rng.integers(5, 9))
+    ang = np.sort(rng.uniform(0, 2 * np.pi, n))
+    r = rng.uniform(0.6, 1.0, n) * radius
+    return np.c_[r * np.cos(ang), r * np.sin(ang)].round(4)
+
+
+def make_parts(folder, seed=0):
+    """One part in each format (JSON, GeoJSON, WKT, SVG, DXF, PNG) and four broken ones."""
+    import ezdxf
+    from PIL import Image, ImageDraw
+
+    rng = np.random.default_rng(seed)
+    folder.mkdir(exist_ok=True)
+    v = _ring(rng)
+    (folder / "a.json").write_text(json.dumps({"vertices": v.tolist()}))
+    v = _ring(rng)
+    (folder / "b.geojson").write_text(json.dumps({"type": "Feature", "geometry": {
+        "type": "Polygon", "coordinates": [v.tolist() + [v[0].tolist()]]}}))
+    v = _ring(rng)
+    (folder / "c.wkt").write_text("POLYGON ((" + ", ".join(f"{x} {y}" for x, y in
+                                                           np.r_[v, v[:1]]) + "))")
+    v = _ring(rng) + 40
+    pts = " ".join(f"{x},{y}" for x, y in v)
+    (folder / "d.svg").write_text(f'<svg xmlns="http://www.w3.org/2000/svg" width="100mm" '
+                                  f'height="100mm" viewBox="0 0 100 100">'
+                                  f'<polygon points="{pts}"/></svg>')
+    doc = ezdxf.new()
+    doc.modelspace().add_lwpolyline(_ring(rng).tolist(), close=True)
+    doc.saveas(folder / "e.dxf")
+    img = Image.new("L", (120, 120), 255)
+    ImageDraw.Draw(img).polygon([tuple(p) for p in (_ring(rng, 6, 50) + 60)], fill=0)
+    img.save(folder / "f.png")
+    (folder / "broken.json").write_text("{not json")
+    (folder / "open.svg").write_text('<svg xmlns="http://www.w3.org/2000/svg">'
+                                     '<path d="M 0 0 L 10 10" fill="none"/></svg>')
+    (folder / "crossing.json").write_text(json.dumps({"vertices": [[0, 0], [10, 10], [10, 0],
+                                                                   [0, 10]]}))
+    Image.new("L", (40, 40), 255).save(folder / "blank.png")
+    return sorted(p.name for p in folder.iterdir())
+
+
+def _lines(path):
+    out = {}
+    for line in path.read_text().splitlines():
+        r = json.loads(line)
+        assert r["path"] not in out, f"{r['path']} twice"
+        out[r["path"]] = r
+    return out
+
+
+def _same(a, b):
+    assert set(a) == set(b)
+    for k in a:
+        for key in ("hash", "parameters", "grasps", "reason", "error", "units"):
+            assert a[k][key] == b[k][key], (k, key)
+
+
+@pytest.fixture(scope="module")
+def folder(tmp_path_factory):
+    f = tmp_path_factory.mktemp("parts") / "in"
+    make_parts(f)
+    return f
+
+
+@pytest.fixture(scope="module")
+def local_results(folder, tmp_path_factory):
+    out = tmp_path_factory.mktemp("res") / "local.jsonl"
+    r = run("batch", folder, "--out", out, "--workers", "2", *OPTIONS, timeout=300)
+    return r, out
+
+
+def test_local_batch_equals_plan_json(folder, local_results, tmp_path):
+    r, out = local_results
+    assert r.returncode == 1, r.stderr                  # four parts are broken
+    assert "failed                   4" in r.stdout
+    got = _lines(out)
+    assert len(got) == 10
+    broken = {"broken.json", "open.svg", "crossing.json", "blank.png"}
+    for path, res in got.items():
+        name = os.path.basename(path)
+        if name in broken:
+            assert res["error"] and res["grasps"] is None and "\n" not in res["error"]
+            continue
+        assert res["error"] is None, (name, res["error"])
+        want = tmp_path / f"{name}.plan.json"
+        p = run("plan", path, *OPTIONS, "--json", want)
+        assert p.returncode == 0, p.stderr
+        report = json.loads(want.read_text())
+        assert res["grasps"] == report["grasps"] and res["reason"] == report["reason"]
+        assert res["parameters"]["fingers"] == 2 and res["parameters"]["mu"] == 0.4
+        assert len(res["hash"]) == 64 and res["seconds"] >= 0
+
+
+def test_a_second_run_does_nothing(folder, local_results):
+    _, out = local_results
+    before = out.read_bytes()
+    r = run("batch", folder, "--out", out, *OPTIONS)
+    assert r.returncode == 1                               # failures are still recorded
+    assert "planned                  0" in r.stdout and "skipped (done before)    10" in r.stdout
+    assert out.read_bytes() == before
+    # other options are other results
+    other = out.parent / "other.jsonl"
+    other.write_bytes(before)
+    r = run("batch", folder, "--out", other, "--fingers", "2", "--mu", "0.5", "--top", "3")
+    assert len(other.read_text().splitlines()) == 20
+
+
+def test_dask_local_cluster_gives_the_same_results(folder, local_results, tmp_path):
+    pytest.importorskip("distributed")
+    _, out = local_results
+    dask_out = tmp_path / "dask.jsonl"
+    r = run("batch", folder, "--out", dask_out, "--scheduler", "local", "--workers", "2",
+            *OPTIONS, timeout=300)
+    assert r.returncode == 1, r.stderr
+    want = {k: v for k, v in _lines(out).items()}
+    _same(_lines(dask_out), want)
+
+
+def test_killed_half_way_then_resumed_equals_uninterrupted(tmp_path):
+    rng = np.random.default_rng(5)
+    folder = tmp_path / "many"
+    folder.mkdir()
+    for k in range(24):
+        (folder / f"p{k:02d}.json").write_text(json.dumps({"vertices": _ring(rng, 40).tolist()}))
+    opts = ["--fingers", "4", "--top", "3", "--single-edge"]
+    whole = tmp_path / "whole.jsonl"
+    assert run("batch", folder, "--out", whole, "--workers", "1", *opts,
+               timeout=600).returncode == 0
+    cut = tmp_path / "cut.jsonl"
+    cmd = [sys.executable, "-m", "fcgrasp", "batch", str(folder), "--out", str(cut),
+           "--workers", "1", *opts]
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                            start_new_session=True)
+    deadline = time.time() + 300
+    while time.time() < deadline:
+        if cut.exists() and len(cut.read_bytes().splitlines()) >= 6:
+            break
+        time.sleep(0.02)
+    os.killpg(proc.pid, signal.SIGKILL)                 # the batch and its workers
+    proc.wait()
+    n_cut = len(cut.read_bytes().splitlines())
+    assert 6 <= n_cut < 24
+    with open(cut, "ab") as f:                          # as if killed while writing a line
+        f.write(b'{"path": "torn')
+    r = run("batch", folder, "--out", cut, "--workers", "2", *opts, timeout=600)
+    assert r.returncode == 0, r.stderr
+    assert f"skipped (done before)    {n_cut}" in r.stdout
+    _same(_lines(cut), _lines(whole))
+
+
+def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
+    rng = np.random.default_rng(9)
+    polys = [fc.Polygon(_ring(rng, 6)), fc.Polygon(_ring(rng, 7))]
+    real = batch._plan_one
+
+    def flaky(task):                 # inherited by the forked workers
+        if task.path == "polygon:1":
+            os._exit(3)
+        if task.path == "polygon:2":
+            time.sleep(30)
+        return real(task)
+
+    monkeypatch.setattr(batch, "_plan_one", flaky)
+    res = {r["path"]: r for r in batch.plan_many(polys + [fc.Polygon(_ring(rng, 5))],
+                                                 workers=2, part_timeout=2.0, fingers=2,
+                                                 mu=0.4, top=2)}
+    assert res["polygon:0"]["error"] is None and res["polygon:0"]["grasps"]
+    assert "worker died" in res["polygon:1"]["error"]
+    assert "timeout" in res["polygon:2"]["error"]
+
+
+def test_plan_many_from_python_local_and_on_a_client():
+    distributed = pytest.importorskip("distributed")
+    rng = np.random.default_rng(11)
+    polys = [fc.Polygon(_ring(rng)) for _ in range(5)]
+    local = {r["path"]: r for r in fc.plan_many(polys, fingers=3, mu=0.5, top=2, workers=2)}
+    direct = [fc.plan(p, fingers=3, mu=0.5, top=2) for p in polys]
+    for k, plans in enumerate(direct):
+        assert [g["edges"] for g in local[f"polygon:{k}"]["grasps"]] == \
+            [list(p.edges) for p in plans]
+    with distributed.Client(processes=False, n_workers=1, threads_per_worker=1,
+                            dashboard_address=None) as client:
+        on = {r["path"]: r for r in fc.plan_many(polys, client=client, fingers=3, mu=0.5,
+                                                  top=2)}
+    for k in local:
+        assert on[k]["grasps"] == local[k]["grasps"]
+
+
+def test_bad_batch_options(tmp_path, folder):
+    for bad in (["--workers", "0"], ["--part-timeout", "-1"], ["--gripper", "jaw"],
+                ["--fingers", "4", "--mu", "0.3"]):
+        r = run("batch", folder, "--out", tmp_path / "x.jsonl", *bad)
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
+        assert not (tmp_path / "x.jsonl").exists()
+    r = run("batch", tmp_path / "nothing-here", "--out", tmp_path / "x.jsonl")
+    assert r.returncode == 2 and "no part files" in r.stderr
+    with pytest.raises(TypeError, match="parts"):
+        list(fc.plan_many([3.0]))
