@@ -5,7 +5,8 @@
     python3 tasks.py test    # set up .venv if needed, run the whole test suite
     python3 tasks.py bench   # set up .venv if needed, run the benchmark scripts
 
-Extra arguments after the command are passed on (to ``fcgrasp demo`` or to pytest).
+Extra arguments after the command are passed on (to ``fcgrasp demo`` or to pytest; the
+tests run on every core unless ``-n 0`` is given).
 """
 
 from __future__ import annotations
@@ -55,7 +56,11 @@ def main(argv: list[str]) -> int:
         args = rest or ["--out", "demo-output"]
         return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode
     if cmd == "test":
-        return subprocess.run([str(PY), "-m", "pytest", *rest], cwd=ROOT, env=env).returncode
+        # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
+        par = [] if any(a == "-n" or a.startswith(("-n", "--numprocesses")) for a in rest) \
+            else ["-n", "auto"]
+        return subprocess.run([str(PY), "-m", "pytest", *par, *rest], cwd=ROOT,
+                              env=env).returncode
     code = 0
     for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
         print(f"== {script.name}", flush=True)
