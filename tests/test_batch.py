@@ -220,3 +220,26 @@ def test_bad_batch_options(tmp_path, folder):
     assert r.returncode == 2 and "no part files" in r.stderr
     with pytest.raises(TypeError, match="parts"):
         list(fc.plan_many([3.0]))
+
+
+def test_a_large_part_is_split_across_the_cluster(monkeypatch):
+    """A large part's candidate batches are solved by the cluster's workers (the public
+    candidates -> solve -> rank pipeline): the same plans as planned whole."""
+    distributed = pytest.importorskip("distributed")
+    from fcgrasp import pipeline
+
+    rng = np.random.default_rng(21)
+    polys = [fc.Polygon(_ring(rng, 14)) for _ in range(2)] + [fc.Polygon(_ring(rng, 6))]
+    opts = {"fingers": 4, "top": 3, "single_edge": True}
+    whole = {r["path"]: r for r in fc.plan_many(polys, workers=1, **opts)}
+    monkeypatch.setattr(batch, "LARGE_EDGES", 10)
+    monkeypatch.setattr(pipeline, "FIRST_BATCH", 64)       # several batches to share out
+    with distributed.Client(processes=False, n_workers=2, threads_per_worker=1,
+                            dashboard_address=None) as client:
+        with distributed.get_task_stream(client) as stream:
+            split = {r["path"]: r for r in fc.plan_many(polys, client=client, **opts)}
+    names = [str(t["key"]) for t in stream.data]
+    assert sum("solve" in k for k in names) >= 8          # batches solved as cluster tasks
+    assert sum("_plan_group" in k for k in names) == 1     # the small part, as a group
+    for k in whole:
+        assert split[k]["error"] is None and split[k]["grasps"] == whole[k]["grasps"]

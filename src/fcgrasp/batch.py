@@ -10,7 +10,10 @@ Every part is planned by :func:`fcgrasp.cli.plan_document`, the function behind
 * **Dask** (``fcgrasp[distributed]``): ``client`` (a ``distributed.Client``), or on the
   command line ``--scheduler tcp://HOST:PORT`` for an existing cluster and ``--scheduler
   local`` for a ``LocalCluster`` on this machine.  Small parts are sent in groups of
-  :data:`GROUP_SIZE` (one task each group), large ones alone.  On a cluster the deadline
+  :data:`GROUP_SIZE` (one task each group); a large part is planned on the client with
+  its candidate batches solved across the workers (``plan(..., map=...)``: the public
+  candidates -> solve -> rank pipeline; the single-edge searches split, the two-finger
+  stretch search and three fingers with friction run whole).  On a cluster the deadline
   is cooperative: it is checked between candidate batches of the search.
 * **Nothing lost, nothing done twice**: :func:`run_batch` appends each result to a JSON
   Lines file as it finishes (written, flushed and synced line by line), and skips the
@@ -35,12 +38,14 @@ from dataclasses import dataclass, field
 from typing import Any
 
 __all__ = ["plan_many", "run_batch", "plan_options", "part_files", "BatchSummary", "cluster",
-           "GROUP_SIZE", "SMALL_PART_BYTES"]
+           "GROUP_SIZE", "SMALL_PART_BYTES", "LARGE_EDGES"]
 
 #: Parts smaller than this (bytes of their file) are sent to a cluster in groups.
 SMALL_PART_BYTES = 200_000
 #: How many small parts make one cluster task.
 GROUP_SIZE = 8
+#: Polygons with this many edges are split across a cluster's workers.
+LARGE_EDGES = 500
 
 #: Options whose flag is not their keyword's name.
 _FLAGS = {"select": "--part"}
@@ -135,8 +140,9 @@ class PartTimeout(Exception):
     """A part ran past its deadline."""
 
 
-def _plan_one(task: _Task) -> dict[str, Any]:
-    """Plan one part (in a worker); every failure becomes the result's error."""
+def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
+    """Plan one part (in a worker, or with ``map`` on the client of a cluster that solves
+    its candidate batches); every failure becomes the result's error."""
     t0 = time.perf_counter()
     out: dict[str, Any] = {"path": task.path, "hash": task.digest,
                            "parameters": task.parameters, "grasps": None, "reason": None,
@@ -158,7 +164,7 @@ def _plan_one(task: _Task) -> dict[str, Any]:
             if limit is not None and time.perf_counter() > limit:
                 raise PartTimeout(f"part timeout: more than {task.deadline:g} s")
 
-        doc = plan_document(args, part=part, progress=progress)
+        doc = plan_document(args, part=part, progress=progress, map=map)
         out["grasps"] = doc.report["grasps"]
         out["reason"] = doc.report["reason"]
         out["units"] = doc.units
@@ -279,16 +285,26 @@ def _local(tasks: list[_Task], workers: int) -> Iterator[dict[str, Any]]:
 # ----------------------------------------------------------------------------- dask
 
 
+def _large(task: _Task) -> bool:
+    """A part worth splitting across a cluster's workers: a file of at least
+    :data:`SMALL_PART_BYTES`, or a polygon of at least :data:`LARGE_EDGES` edges."""
+    from .polygon import Polygon
+
+    if isinstance(task.item, Polygon):
+        return task.item.n_edges >= LARGE_EDGES
+    if not isinstance(task.item, str) or task.item.startswith("demo:"):
+        return False
+    try:
+        return os.path.getsize(task.item) >= SMALL_PART_BYTES
+    except OSError:
+        return False
+
+
 def _groups(tasks: list[_Task]) -> list[list[_Task]]:
-    """Small parts in groups of :data:`GROUP_SIZE`, large ones alone."""
+    """Small parts in groups of :data:`GROUP_SIZE`."""
     out: list[list[_Task]] = []
     small: list[_Task] = []
     for t in tasks:
-        size = 0 if not isinstance(t.item, str) or t.item.startswith("demo:") else \
-            os.path.getsize(t.item)
-        if size >= SMALL_PART_BYTES:
-            out.append([t])
-            continue
         small.append(t)
         if len(small) == GROUP_SIZE:
             out.append(small)
@@ -301,7 +317,17 @@ def _groups(tasks: list[_Task]) -> list[list[_Task]]:
 def _dask(tasks: list[_Task], client: Any) -> Iterator[dict[str, Any]]:
     from distributed import as_completed
 
-    groups = {client.submit(_plan_group, g, pure=False): g for g in _groups(tasks)}
+    def solve_on_cluster(function: Any, batches: Any) -> Any:
+        return client.gather(client.map(function, list(batches), pure=False))
+
+    large = [t for t in tasks if _large(t)]
+    groups = {client.submit(_plan_group, g, pure=False): g
+              for g in _groups([t for t in tasks if not _large(t)])}
+    # a large part is planned here, its candidate batches solved by the cluster's
+    # workers (the public candidates -> solve -> rank pipeline), while the small
+    # parts' groups run
+    for t in large:
+        yield _plan_one(t, map=solve_on_cluster)
     for fut in as_completed(list(groups)):
         try:
             results = fut.result()

@@ -268,11 +268,12 @@ def _finger_options(args: Any) -> tuple[Any, ...]:
 
 
 def plan_document(args: Any, part: Any = None, progress: Any = None,
-                  say: Any = None) -> PlanDocument:
+                  say: Any = None, map: Any = None) -> PlanDocument:
     """Plan one part as ``fcgrasp plan`` does: ``args`` are its parsed options (see
     :func:`build_parser`), ``part`` a :class:`fcgrasp.parts.Part` already read (default:
     read ``args.part``), ``progress(done, total)`` a progress callback and ``say(text)``
-    where notes go (default nowhere).  Raises :class:`CliError` (a one-line message) for
+    where notes go (default nowhere), ``map`` where candidate batches are solved (see
+    :func:`fcgrasp.plan`).  Raises :class:`CliError` (a one-line message) for
     options that do not fit together.  ``fcgrasp batch`` calls it for every part, so a
     batch's results are exactly those of ``plan --json``."""
     from .pipeline import check_search, plan_spec
@@ -306,7 +307,7 @@ def plan_document(args: Any, part: Any = None, progress: Any = None,
             f"{_duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
     plans = plan(polygon, fingers=fingers, mu=mu, top=args.top, rank_by=args.rank_by,
                  hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=progress,
-                 **kw)
+                 map=map, **kw)
     params = {"fingers": fingers, "mu": mu, "top": args.top, "rank_by": args.rank_by,
               "margin_deg": args.margin, "along_boundary": spec.stretches or spec.grows,
               "gravity": None if gravity is None else list(gravity),

@@ -28,7 +28,7 @@ from __future__ import annotations
 import bisect
 from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field, replace
-from functools import lru_cache
+from functools import lru_cache, partial
 from math import comb
 from typing import Any
 
@@ -61,7 +61,7 @@ __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solve
            "BATCH_SIZE", "TUPLE_BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge",
            "search_size", "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
            "grown_plans", "frictionless_plan", "GROW_SEEDS", "TopK", "search",
-           "every_plan", "FIRST_BATCH"]
+           "every_plan", "FIRST_BATCH", "MAP_WINDOW"]
 
 #: Candidate rows per batch of two fingers: large parts are streamed in batches of at most
 #: this size (fewer when the memory budget asks for it, see :func:`search_size`).
@@ -94,6 +94,8 @@ KEEP_STRETCHES = 200
 #: Three or four fingers along the boundary: how many of the best single-edge plans are
 #: grown into stretches (:func:`fcgrasp.frictionless_stretches.grow_stretches`).
 GROW_SEEDS = 10
+#: Batches a search hands to a ``map`` at a time (see :func:`search`).
+MAP_WINDOW = 8
 #: Rows of the first batch of a search with a ``top`` (then doubling up to the batch size).
 FIRST_BATCH = 4096
 #: Measured seconds per candidate row (two fingers; three or four), for the time estimate.
@@ -1160,7 +1162,7 @@ class TopK:
 
 
 def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
-           batch_size: int | None = None) -> list[GraspPlan]:
+           batch_size: int | None = None, map: Any = None) -> list[GraspPlan]:
     """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
     decreasing bound, :func:`solve` drops the rows below the running top's
     :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
@@ -1169,7 +1171,10 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     that of the :data:`KEEP_FOR_MEASURE` rows the measure orders.
 
     ``progress(done, total)`` counts candidate rows solved or pruned; ``batch_size`` as
-    for :func:`candidates`.
+    for :func:`candidates`.  ``map(function, batches)``, such as the built-in ``map``, an
+    executor's ``map`` or one over a Dask client, solves :data:`MAP_WINDOW` batches at a
+    time wherever it runs them (each with the floor known when the window was sent: a
+    lower floor only keeps more rows, so the answer is the same).
 
     >>> from fcgrasp.parts import demo_part
     >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
@@ -1178,13 +1183,32 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     top = TopK(polygon, spec, edges)
     total = search_size(polygon, spec, edges).rows if progress is not None else 0
     done = 0
+    window: list[EdgeSets] = []
+
+    def fold() -> None:
+        nonlocal done
+        floor = top.floor
+        live = [b for b in window if b.ceiling >= floor]
+        if map is None:
+            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=floor)
+                                         for b in live]
+        else:
+            results = map(partial(solve, polygon, spec, edges=edges, floor=floor), live)
+        for solved in results:
+            top.add(solved)
+        done += sum(len(b.feats) for b in window)
+        window.clear()
+        if progress is not None:
+            progress(min(done, total), total)
+
     for batch in candidates(polygon, spec, edges, batch_size):
         if batch.ceiling < top.floor:
             break
-        top.add(solve(polygon, spec, batch, edges, floor=top.floor))
-        done += len(batch.feats)
-        if progress is not None:
-            progress(min(done, total), total)
+        window.append(batch)
+        if map is None or len(window) >= MAP_WINDOW:
+            fold()
+    if window:
+        fold()
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
@@ -1300,7 +1324,8 @@ def _reaches_a_vertex(polygon: Polygon, p: GraspPlan) -> bool:
     return False
 
 
-def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None) -> list[GraspPlan]:
+def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None
+                ) -> list[GraspPlan]:
     """Three or four frictionless fingers along the boundary: the single-edge plans and,
     grown from those of the :data:`GROW_SEEDS` best of them with the fingers on distinct
     edges and a region that reaches an end of its edge, regions along the boundary
@@ -1312,7 +1337,7 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None) -> list[
                          "(spec.grows is False)")
     flat = replace(spec, along_boundary=False,
                    top=None if spec.top is None else max(spec.top, GROW_SEEDS))
-    seeds = search(polygon, flat, progress=progress)
+    seeds = search(polygon, flat, progress=progress, map=map)
     rows = [p.edges for p in seeds[:GROW_SEEDS]
             if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
     plans = list(seeds)

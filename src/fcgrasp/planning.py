@@ -64,7 +64,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True,
-         gripper: Any = None) -> list[Any]:
+         gripper: Any = None, map: Any = None) -> list[Any]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -109,6 +109,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         (:func:`fcgrasp.jaw.jaw_plans`: boxes of jaw poses, :class:`~fcgrasp.JawPlan`);
         its friction is the jaw's, so ``fingers``, ``mu``, ``hand``, ``gravity`` and
         ``rank_by`` must keep their defaults.
+    map : callable, optional
+        ``map(function, batches)`` to solve candidate batches elsewhere (processes, a
+        Dask cluster): the single-edge search (:func:`fcgrasp.pipeline.search`) of two
+        fingers without stretches, and of three frictionless or four fingers, uses it;
+        the answer is the same.
     along_boundary : bool
         Without a hand, regions are stretches of the boundary that may cover several
         edges and the vertices between them: for two fingers the exact optimum
@@ -158,8 +163,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             progress(1, 1)
         return plans
     if spec.grows:
-        return grown_plans(polygon, spec, progress)
-    return search(polygon, spec, progress=progress)
+        return grown_plans(polygon, spec, progress, map=map)
+    return search(polygon, spec, progress=progress, map=map)
 
 
 def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
