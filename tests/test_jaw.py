@@ -164,7 +164,9 @@ def _check_plans(part, jaw, rng, n=40):
         for th, c in poses:
             ok, opening = independent_pose(part, jaw, th, c, 0.5, p.hole)
             assert ok, (p, th, c)
-            assert p.opening[0] - 1e-9 * part.size <= opening
+            # the opening range is that of the checked poses: between them the opening
+            # may dip a little below (the stroke itself is checked above, exactly)
+            assert p.opening[0] - 1e-3 * part.size <= opening <= p.opening[1] + 1e-3 * part.size
     measures = [p.measure for p in plans]
     assert measures == sorted(measures, reverse=True)
     return plans

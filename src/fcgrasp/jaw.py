@@ -280,7 +280,9 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
 @dataclass
 class JawPlan:
     """A box of jaw poses that hold: ``theta`` (t0, t1) in radians, ``offset`` (c0, c1)
-    from the centroid, the ``opening`` range over the box, the contacts at the box's
+    from the centroid, the ``opening`` range over the box's checked poses (every pose of
+    the box fits the stroke; between checked poses the opening may pass the range by a
+    little), the contacts at the box's
     centre pose (``contacts``: per pad, the contact points; ``kinds``: ``"vertex"``,
     ``"edge"`` or ``"corner"``; ``stops``: where pads A and B stop, along ``u`` from the
     centroid), the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``, and the
