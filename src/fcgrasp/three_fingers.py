@@ -6,8 +6,9 @@ cone, meet in one point ``p``, and the three force directions positively span th
 Then the contact wrenches hold ``(d_i, 0)`` (the force through ``p``, no torque about
 it) in the relative interior of their cones and a strictly positive combination of them
 is zero, so the wrenches span the whole wrench space: the grasp is force closure (the
-argument of the paper's theorem 3.? on equilibrium and closure, section 3; Ponce and
-Faverjon's sufficient condition for three fingers).
+force directions satisfy theorem 4.2, three directions with a strictly positive null
+combination; the friction cones add the torques of theorem 6.1's total convexe; this is
+Ponce and Faverjon's sufficient condition for three fingers).
 
 **A convex piece of the closure set.**  Choose, for each finger, a sub-arc ``D_i`` of its
 friction cone shrunk by the ``margin``, such that *every* choice of one direction from
@@ -322,7 +323,9 @@ def _leximin(blk: _Block) -> Piece | None:
     levels = np.full(3, _smallest(x))
     free = np.ones(3, dtype=bool)
     step = LEXIMIN_STEP * max(float(blk.L.max()), 1e-300)
-    while free.any():
+    for _ in range(3):                    # each round fixes at least one region
+        if not free.any():
+            break
         grows = np.zeros(3, dtype=bool)
         for i in np.flatnonzero(free):
             xi = _solve_blocks([blk], fixed=levels, grow=int(i))[0]
