@@ -220,6 +220,8 @@ def test_bad_batch_options(tmp_path, folder):
     assert r.returncode == 2 and "no part files" in r.stderr
     with pytest.raises(TypeError, match="parts"):
         list(fc.plan_many([3.0]))
+    with pytest.raises(ValueError, match="top"):
+        list(fc.plan_many(["demo:quad"], top=None))
 
 
 def test_a_large_part_is_split_across_the_cluster(monkeypatch):

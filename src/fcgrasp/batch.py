@@ -399,6 +399,9 @@ def plan_many(parts: Iterable[Any], *, workers: int | None = None, client: Any =
     ...                                             workers=1)]
     [[0, 2]]
     """
+    if "top" in options and options["top"] is None:
+        raise ValueError("top=None (every plan) is not planned in a batch, as in fcgrasp "
+                         "plan: give a number of plans, got top=None")
     argv = plan_options(**options)
     tasks = _tasks(parts, argv, part_timeout, figures)
     if figures:
