@@ -50,9 +50,6 @@ LARGE_EDGES = 500
 #: Options whose flag is not their keyword's name.
 _FLAGS = {"select": "--part"}
 
-_FORMATS = (".json", ".geojson", ".wkt", ".svg", ".dxf", ".png", ".gif", ".jpg", ".jpeg",
-            ".bmp", ".tif", ".tiff", ".webp")
-
 
 def plan_options(**options: Any) -> list[str]:
     """The ``fcgrasp plan`` command-line options for keyword options
@@ -96,10 +93,12 @@ def _parameters(argv: list[str]) -> dict[str, Any]:
 def part_files(pattern: str) -> list[str]:
     """The part files of a folder (every file of a known format, sorted) or of a glob
     pattern (sorted)."""
+    from .parts import FORMATS
+
     if os.path.isdir(pattern):
         names = sorted(os.listdir(pattern))
         return [os.path.join(pattern, n) for n in names
-                if os.path.splitext(n)[1].lower() in _FORMATS
+                if os.path.splitext(n)[1].lower() in FORMATS
                 and os.path.isfile(os.path.join(pattern, n))]
     return sorted(p for p in glob.glob(pattern, recursive=True) if os.path.isfile(p))
 
@@ -399,15 +398,25 @@ def plan_many(parts: Iterable[Any], *, workers: int | None = None, client: Any =
     ...                                             workers=1)]
     [[0, 2]]
     """
+    yield from _run(_prepared(parts, options, part_timeout, figures), workers, client)
+
+
+def _prepared(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | None,
+              figures: str | None) -> list[_Task]:
+    """The tasks of the parts, each with its content hash (the options parsed once)."""
     if "top" in options and options["top"] is None:
         raise ValueError("top=None (every plan) is not planned in a batch, as in fcgrasp "
                          "plan: give a number of plans, got top=None")
-    argv = plan_options(**options)
-    tasks = _tasks(parts, argv, part_timeout, figures)
+    tasks = _tasks(parts, plan_options(**options), part_timeout, figures)
     if figures:
         os.makedirs(figures, exist_ok=True)
     for t in tasks:
         t.digest = _digest(t)
+    return tasks
+
+
+def _run(tasks: list[_Task], workers: int | None, client: Any
+         ) -> Iterator[dict[str, Any]]:
     if not tasks:
         return
     if client is not None:
@@ -483,25 +492,20 @@ def run_batch(parts: list[Any], out: str, *, workers: int | None = None,
     content and parameters skipped (with ``retry_failed``, those whose result is an error
     are planned again, their old line removed).  ``progress(done, total)`` is called as
     parts finish.  Returns a :class:`BatchSummary`."""
-    argv = plan_options(**options)
-    key_params = json.dumps(_parameters(argv), sort_keys=True)
     done = _done(out, retry_failed)
     todo, summary = [], BatchSummary()
-    for item in parts:
-        task = _tasks([item], argv, None, None)[0]
-        key = (_digest(task), key_params)
+    for task in _prepared(parts, options, part_timeout, figures):
+        key = (task.digest, json.dumps(task.parameters, sort_keys=True))
         if key in done:
             summary.skipped += 1
             summary.failed_before += done[key]
         else:
-            todo.append(item)
+            todo.append(task)
     total = len(todo)
     if progress is not None:
         progress(0, total)
     with open(out, "ab") as f:
-        for k, r in enumerate(plan_many(todo, workers=workers, client=client,
-                                        part_timeout=part_timeout, figures=figures,
-                                        **options)):
+        for k, r in enumerate(_run(todo, workers, client)):
             line = json.dumps(r, sort_keys=True, allow_nan=False).encode() + b"\n"
             f.write(line)
             f.flush()

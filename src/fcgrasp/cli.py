@@ -250,10 +250,7 @@ def _finger_options(args: Any) -> tuple[Any, ...]:
                        f"(drop --mu)")
     if mu < 0 or not math.isfinite(mu):
         raise CliError(f"--mu must be a finite number >= 0, got {mu:g}")
-    if not 0 <= args.margin < 90:
-        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
-    if args.top < 1:
-        raise CliError(f"--top must be at least 1, got {args.top}")
+    _check_margin_top(args)
     budget = None if args.max_memory is None else _memory(args.max_memory)
     hand = ws = None
     if args.workspace is not None or args.finger_radius:
@@ -352,13 +349,19 @@ def _stderr(text: str) -> None:
     print(text, file=sys.stderr)
 
 
-def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
-    """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.jaw`)."""
+def _check_margin_top(args: Any) -> None:
+    if not 0 <= args.margin < 90:
+        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
+    if args.top < 1:
+        raise CliError(f"--top must be at least 1, got {args.top}")
+
+
+def _jaw_options(args: Any) -> Any:
+    """The :class:`~fcgrasp.ParallelJaw` of ``fcgrasp plan --gripper jaw``, its options
+    checked (none of the point fingers' given)."""
     import math
 
     from .jaw import ParallelJaw
-    from .planning import plan
-    from .report import plan_report
 
     for opt, given in (("--fingers", args.fingers is not None),
                        ("--gravity", args.gravity is not None),
@@ -375,11 +378,16 @@ def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
     mu = 0.3 if args.mu is None else args.mu
     if not (math.isfinite(mu) and mu > 0):
         raise CliError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
-    if not 0 <= args.margin < 90:
-        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
-    if args.top < 1:
-        raise CliError(f"--top must be at least 1, got {args.top}")
-    jaw = ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=args.pad, mu=mu)
+    _check_margin_top(args)
+    return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=args.pad, mu=mu)
+
+
+def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
+    """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.jaw`)."""
+    from .planning import plan
+    from .report import plan_report
+
+    jaw = _jaw_options(args)
     part = _load(args) if part is None else part
     polygon, units = part.polygon, part.units
     plans = plan(polygon, gripper=jaw, top=args.top, margin=args.margin)
@@ -459,12 +467,9 @@ def plan_document_check(options: dict[str, Any]) -> None:
 
     args = build_parser().parse_args(["plan", "demo:quad", *plan_options(**options)])
     if args.gripper == "jaw":
-        if args.stroke is None or args.pad is None:
-            raise CliError("--gripper jaw needs --stroke MIN,MAX and --pad WIDTH (in the "
-                           "part's units)")
-        _floats(args.stroke, 2, "--stroke")
-        return
-    _finger_options(args)
+        _jaw_options(args)
+    else:
+        _finger_options(args)
 
 
 def _batch_progress(enabled: bool) -> Any:

@@ -61,7 +61,7 @@ __all__ = ["PlanSpec", "plan_spec", "EdgeSets", "Features", "Candidates", "Solve
            "BATCH_SIZE", "TUPLE_BATCH_SIZE", "MAX_MEMORY", "SearchSize", "SearchTooLarge",
            "search_size", "check_search", "boundary_plans", "stretch_plan", "KEEP_STRETCHES",
            "grown_plans", "frictionless_plan", "GROW_SEEDS", "TopK", "search",
-           "every_plan", "FIRST_BATCH", "MAP_WINDOW"]
+           "every_plan", "FIRST_BATCH", "MAP_WINDOW", "regions_plan", "ranked_unique"]
 
 #: Candidate rows per batch of two fingers: large parts are streamed in batches of at most
 #: this size (fewer when the memory budget asks for it, see :func:`search_size`).
@@ -1254,11 +1254,11 @@ def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
 
 
 
-def _boundary_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges: Any,
+def regions_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges: Any,
                    lengths: Any, contact_type: str, mode: str,
                    gravity: dict[str, Any] | None = None) -> GraspPlan:
-    """The :class:`~fcgrasp.GraspPlan` of regions along the boundary (representative
-    contacts halfway along each region)."""
+    """The :class:`~fcgrasp.GraspPlan` of given regions, each a polyline along the edges
+    ``region_edges[i]`` (representative contacts halfway along each region)."""
     contacts, edges = midpoints(regions, region_edges)
     return GraspPlan(edges, regions, np.array(lengths), contacts, polygon.normals[list(edges)],
                      contact_type, spec.mu, mode, spec.margin, gravity,
@@ -1270,7 +1270,7 @@ def _boundary_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges:
 def stretch_plan(polygon: Polygon, spec: PlanSpec, pair: StretchPair) -> GraspPlan:
     """The :class:`~fcgrasp.GraspPlan` of a pair of stretches (representative contacts
     halfway along each region)."""
-    return _boundary_plan(polygon, spec, pair.regions, pair.region_edges, pair.lengths,
+    return regions_plan(polygon, spec, pair.regions, pair.region_edges, pair.lengths,
                           "friction", pair.mode)
 
 
@@ -1293,13 +1293,14 @@ def frictionless_plan(polygon: Polygon, spec: PlanSpec, r: FrictionlessStretches
     (representative contacts halfway along each region)."""
     g = None if spec.gravity is None else {"center": polygon.centroid.copy(),
                                            "direction": np.array(spec.gravity)}
-    return _boundary_plan(polygon, spec, r.regions, r.region_edges, r.lengths,
+    return regions_plan(polygon, spec, r.regions, r.region_edges, r.lengths,
                           "frictionless", r.mode, g)
 
 
-def _sorted_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]
+def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]
                    ) -> list[GraspPlan]:
-    """Plans in :func:`rank_key` order, a grasp reached by two configurations once."""
+    """Plans in :func:`rank_key` order (the best ``spec.top``), a grasp reached by two
+    configurations of one mode once."""
     scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
     keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
                    for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
@@ -1347,7 +1348,7 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
                                keep_single=False)
         plans += [frictionless_plan(polygon, spec, r) for r in grown
                   if r is not None and max(len(e) for e in r.region_edges) > 1]
-    return _sorted_unique(polygon, spec, plans)
+    return ranked_unique(polygon, spec, plans)
 
 
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
@@ -1369,7 +1370,7 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     flat = replace(spec, along_boundary=False)
     if not crosses_a_vertex(polygon, spec.mu, spec.margin):
         # no region can cover a vertex: the regions are the single-edge ones
-        return _sorted_unique(polygon, spec, search(polygon, flat))
+        return ranked_unique(polygon, spec, search(polygon, flat))
     by_min = spec.rank_by == "min_region"
     keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
@@ -1381,4 +1382,4 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
             if max(len(e) for e in p.region_edges) == 1])
     else:
         plans += search(polygon, flat)
-    return _sorted_unique(polygon, spec, plans)
+    return ranked_unique(polygon, spec, plans)

@@ -49,11 +49,17 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
-from .pipeline import PlanSpec, candidates, features, search, search_size
-from .plans import GraspPlan, leximin_key, rank_key
+from .pipeline import (
+    PlanSpec,
+    candidates,
+    features,
+    ranked_unique,
+    regions_plan,
+    search,
+    search_size,
+)
+from .plans import GraspPlan, leximin_key
 from .polygon import Polygon
-from .quality import characteristic_length
-from .ranking import MEASURES
 from .tolerances import LEXIMIN_STEP, RANK_TOL
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
@@ -380,12 +386,8 @@ def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,
 def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: FloatArray,
           mode: str) -> GraspPlan:
     regions = np.asarray(regions, float)
-    lengths = np.hypot(*(regions[:, 1] - regions[:, 0]).T)
-    return GraspPlan(edges, regions, lengths, regions.mean(axis=1),
-                     polygon.normals[list(edges)], "friction", spec.mu, mode, spec.margin,
-                     centroid=polygon.centroid.copy(),
-                     radius=characteristic_length(polygon.vertices, polygon.centroid),
-                     disturbance=spec.disturbance)
+    return regions_plan(polygon, spec, regions, tuple((e,) for e in edges),
+                        np.hypot(*(regions[:, 1] - regions[:, 0]).T), "friction", mode)
 
 
 #: With a measure other than ``min_region``, how many plans (the best by their smallest
@@ -496,14 +498,4 @@ def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int 
     """Plans in :func:`~fcgrasp.plans.rank_key` order (the measure of the ``keep`` best
     by the leximin order), each grasp once."""
     plans.sort(key=lambda p: leximin_key(p.lengths, polygon.size))
-    if keep is not None:
-        plans = plans[:keep]
-    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
-    keyed = sorted(((rank_key(p, polygon, spec.rank_by, float(q)), k)
-                    for k, (p, q) in enumerate(zip(plans, scores, strict=True))))
-    out, seen = [], set()
-    for key, k in keyed:
-        if key not in seen:
-            seen.add(key)
-            out.append(plans[k])
-    return out if spec.top is None else out[:spec.top]
+    return ranked_unique(polygon, spec, plans if keep is None else plans[:keep])
