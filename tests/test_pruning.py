@@ -174,22 +174,37 @@ def test_every_plan_streams_every_plan():
 
 
 def test_every_plan_memory_is_bounded_by_a_batch():
-    """Consuming more plans does not hold more memory (10x the plans, same peak)."""
-    import itertools
-    import tracemalloc
+    """Consuming more plans does not hold more memory (10x the plans, same peak).
 
-    from fcgrasp.pipeline import every_plan
+    Measured in a fresh interpreter: tracemalloc counts every thread's allocations, and
+    in a pytest-xdist worker its messaging thread (and what earlier tests left) can add
+    to the peak."""
+    import json
+    import subprocess
+    import sys
 
-    ang = np.linspace(0, 2 * np.pi, 1000, endpoint=False)
-    part = fc.Polygon(np.c_[np.cos(ang), (1 + 0.2 * np.sin(3 * ang)) * np.sin(ang)])
-    spec = plan_spec(fingers=2, mu=0.3)
-    # warm up: the caches a first plan fills (features, imports) are not the stream's
-    sum(1 for _ in itertools.islice(every_plan(part, spec, batch_size=20), 20))
-    peaks = []
-    for count in (40, 400):
-        tracemalloc.start()
-        n = sum(1 for _ in itertools.islice(every_plan(part, spec, batch_size=20), count))
-        peaks.append(tracemalloc.get_traced_memory()[1])
-        tracemalloc.stop()
-        assert n == count
+    code = """
+import itertools, json, tracemalloc
+import numpy as np
+import fcgrasp as fc
+from fcgrasp.pipeline import every_plan, plan_spec
+ang = np.linspace(0, 2 * np.pi, 1000, endpoint=False)
+part = fc.Polygon(np.c_[np.cos(ang), (1 + 0.2 * np.sin(3 * ang)) * np.sin(ang)])
+spec = plan_spec(fingers=2, mu=0.3)
+# warm up: the caches a first plan fills (features, imports) are not the stream's
+sum(1 for _ in itertools.islice(every_plan(part, spec, batch_size=20), 20))
+out = []
+for count in (40, 400):
+    tracemalloc.start()
+    n = sum(1 for _ in itertools.islice(every_plan(part, spec, batch_size=20), count))
+    out.append([n, tracemalloc.get_traced_memory()[1]])
+    tracemalloc.stop()
+print(json.dumps(out))
+"""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=600)
+    assert r.returncode == 0, r.stderr
+    (n0, p0), (n1, p1) = json.loads(r.stdout)
+    assert (n0, n1) == (40, 400)
+    peaks = [p0, p1]
     assert peaks[1] < 1.5 * peaks[0]
