@@ -567,6 +567,27 @@ def cmd_parts(args: Any) -> int:
     return 0
 
 
+def cmd_serve(args: Any) -> int:
+    import importlib.util
+
+    missing = [m for m in ("starlette", "uvicorn") if importlib.util.find_spec(m) is None]
+    if missing:
+        raise CliError(f"fcgrasp serve needs {' and '.join(missing)}: pip install "
+                       f"'fcgrasp[serve]'")
+    if not 0 <= args.port <= 65535:
+        raise CliError(f"--port must be from 0 to 65535, got {args.port}")
+    from .serve import serve
+
+    part = _load(args, say=_stderr)
+    try:
+        serve(part, host=args.host, port=args.port, open_browser=args.open,
+              announce=lambda text: print(text, flush=True))
+    except OSError as exc:
+        raise CliError(f"cannot listen on {args.host}:{args.port}: "
+                       f"{exc.strerror or exc}") from None
+    return 0
+
+
 def cmd_demo(args: Any) -> int:
     import math
 
@@ -822,6 +843,25 @@ def build_parser() -> argparse.ArgumentParser:
     planning_args(b)
     reading_args(b, None)
     b.set_defaults(func=cmd_batch)
+
+    sv = sub.add_parser("serve", help="the grasp explorer in the browser (fcgrasp[serve])",
+                        description="Start the grasp explorer, a local web app: edit the part, "
+                                    "pick the gripper, read the ranked plans drawn as in "
+                                    "figure 1, place fingers by hand and see the verdict and "
+                                    "the escape motion. Needs the extra fcgrasp[serve].",
+                        epilog="example:\n  fcgrasp serve demo:blob --port 8000   # then open "
+                               "http://127.0.0.1:8000/",
+                        formatter_class=argparse.RawDescriptionHelpFormatter)
+    sv.add_argument("part", metavar="PART", nargs="?", default="demo:blob",
+                    help="the part shown first (any file fcgrasp plan reads; default "
+                         "demo:blob)")
+    sv.add_argument("--host", default="127.0.0.1",
+                    help="address to listen on (default 127.0.0.1: this machine only)")
+    sv.add_argument("--port", type=int, default=8000,
+                    help="port to listen on (default 8000; 0: any free port)")
+    sv.add_argument("--open", action="store_true", help="open the page in a web browser")
+    reading_args(sv, None)
+    sv.set_defaults(func=cmd_serve)
 
     d = sub.add_parser("demo", help="plans for the built-in parts, JSON and figures",
                        description="The main job on built-in parts (the paper's figure 1): "

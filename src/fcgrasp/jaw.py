@@ -324,7 +324,7 @@ class JawPlan:
                                "stop": self.stops[0]},
                          "b": {"kind": self.kinds[1], "points": self.contacts[1],
                                "stop": self.stops[1]}},
-            "measure": self.measure,
+            "measure": self.measure, "centre": list(self.centre), "centroid": self.centroid,
             "stroke": list(self.jaw.stroke), "pad_width": self.jaw.pad_width,
             "mu": self.jaw.mu,
         })

@@ -724,6 +724,21 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
         raise ValueError(f"{path}: not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
         raise ValueError(f"{path}: cannot read ({exc.strerror or exc})") from None
+    return contacts_from_data(data, polygon, path)
+
+
+def contacts_from_data(data: Any, polygon: Polygon, where: str = "contacts"
+                       ) -> tuple[list[Any], list[dict[str, Any]]]:
+    """Contacts from the decoded JSON of a contacts file (see :func:`read_contacts`),
+    checked as strictly; ``where`` names the source in error messages.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> cs, _ = contacts_from_data({"contacts": [{"point": [0, 15], "mu": 0.3}]},
+    ...                            demo_part("rectangle"))
+    >>> type(cs[0]).__name__, cs[0].normal.tolist()
+    ('FrictionPoint', [-1.0, 0.0])
+    """
+    path = where
     if isinstance(data, dict):
         _unknown(data, _CONTACTS_KEYS, path)
     items = data.get("contacts") if isinstance(data, dict) else data
