@@ -2,7 +2,7 @@
 """The project's two commands, needing nothing but python3 (and PyPI).
 
     python3 tasks.py demo    # set up .venv if needed, run the demo plan into demo-output/
-    python3 tasks.py test    # set up .venv if needed, run the whole test suite
+    python3 tasks.py test    # set up .venv (and Debian's chromium) if needed, run every test
     python3 tasks.py bench   # set up .venv if needed, run the benchmark scripts
 
 Extra arguments after the command are passed on (to ``fcgrasp demo`` or to pytest; the
@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import hashlib
 import os
+import shutil
 import subprocess
 import sys
 import venv
@@ -45,6 +46,26 @@ def ensure_venv() -> None:
     STAMP.write_text(_fingerprint())
 
 
+def ensure_browser() -> None:
+    """Debian's Chromium and ChromeDriver, for the explorer's browser tests
+    (tests/test_explorer.py), installed with apt-get when missing; nothing downloads a
+    browser build of its own.  Where apt-get cannot run (not Debian, not root) the tests
+    that need a browser are skipped and say why."""
+    if shutil.which("chromium") and shutil.which("chromedriver"):
+        return
+    if not shutil.which("apt-get") or not hasattr(os, "geteuid") or os.geteuid() != 0:
+        print("note: chromium and chromedriver are missing and apt-get cannot install them "
+              "here (needs Debian and root): the browser tests will be skipped", flush=True)
+        return
+    print("installing Debian's chromium and chromium-driver for the browser tests ...",
+          flush=True)
+    env = dict(os.environ, DEBIAN_FRONTEND="noninteractive")
+    subprocess.run(["apt-get", "update", "-qq"], check=True, env=env)
+    subprocess.run(["apt-get", "install", "-y", "-qq", "--no-install-recommends", "chromium",
+                    "chromium-driver", "fonts-liberation"], check=True, env=env,
+                   stdout=subprocess.DEVNULL)
+
+
 def main(argv: list[str]) -> int:
     if not argv or argv[0] not in {"demo", "test", "bench"}:
         print(__doc__)
@@ -56,6 +77,7 @@ def main(argv: list[str]) -> int:
         args = rest or ["--out", "demo-output"]
         return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode
     if cmd == "test":
+        ensure_browser()
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
         par = [] if any(a == "-n" or a.startswith(("-n", "--numprocesses")) for a in rest) \
             else ["-n", "auto"]

@@ -22,7 +22,7 @@ LAYERS = [
     ["_drawing"],
     ["_read_svg", "_read_dxf", "_read_image"],
     ["parts", "report", "_atomic"],
-    ["cli", "plotting", "batch", "__main__"],
+    ["cli", "plotting", "batch", "__main__", "serve"],
 ]
 LEVEL = {m: k for k, layer in enumerate(LAYERS) for m in layer}
 

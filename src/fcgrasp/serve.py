@@ -456,7 +456,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
             chunks.append(chunk)
         return b"".join(chunks)
 
-    async def json_of(request: Request) -> dict[str, Any]:
+    async def json_of(request: Request, keys: set[str]) -> dict[str, Any]:
         raw = await body_of(request, MAX_REQUEST)
         try:
             data = json.loads(raw)
@@ -464,6 +464,10 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
             raise RequestError(f"the request is not valid JSON ({exc})") from None
         if not isinstance(data, dict):
             raise RequestError(f"the request must be a JSON object, got {_short(data)}")
+        extra = sorted(set(data) - keys)
+        if extra:
+            raise RequestError(f"unknown key {extra[0]!r} in the request (expected "
+                               f"{', '.join(sorted(keys))})")
         return data
 
     def guarded(handler: Any) -> Any:
@@ -507,7 +511,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return JSONResponse(out)
 
     async def plan(request: Request) -> Response:
-        data = await json_of(request)
+        data = await json_of(request, {"part", "options"})
         polygon, units = polygon_of(data.get("part"))
         options = data.get("options", {})
         job = jobs.start(polygon, units, options)
@@ -521,7 +525,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return JSONResponse(jobs.cancel(request.path_params["id"]).answer())
 
     async def check(request: Request) -> Response:
-        data = await json_of(request)
+        data = await json_of(request, {"part", "contacts", "gravity"})
         polygon, _ = polygon_of(data.get("part"))
         return JSONResponse(check_result(polygon, data))
 

@@ -1,0 +1,285 @@
+"""The grasp explorer in a real browser: Debian's headless Chromium driven by Selenium
+through Debian's ChromeDriver (installed by ``python3 tasks.py test``), against
+``fcgrasp serve`` started as a user would start it.
+
+The page's plans must agree with ``fcgrasp plan`` on the part the page holds, after a
+load, a drag and a change of mu; hand-placed fingers get the verdict of ``fcgrasp check``;
+a screenshot shows each region in its finger's colour where the plan says it is."""
+
+from __future__ import annotations
+
+import io
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+pytest.importorskip("selenium")
+pytest.importorskip("starlette")
+
+from selenium import webdriver  # noqa: E402
+from selenium.webdriver.chrome.service import Service  # noqa: E402
+from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
+from selenium.webdriver.common.by import By  # noqa: E402
+
+from fcgrasp.cli import main  # noqa: E402
+
+CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
+DRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
+COLORS = [(0xd6, 0x27, 0x28), (0x1f, 0x77, 0xb4), (0x2c, 0xa0, 0x2c), (0x94, 0x67, 0xbd)]
+
+pytestmark = pytest.mark.skipif(
+    not (os.path.exists(CHROMIUM) and os.path.exists(DRIVER)),
+    reason="Debian's chromium and chromium-driver are not installed (python3 tasks.py test "
+           "installs them with apt-get)")
+
+
+@pytest.fixture(scope="module")
+def server():
+    proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "serve", "demo:blob", "--port",
+                             "0"], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    line = proc.stdout.readline()
+    if "http://" not in line:
+        proc.kill()
+        pytest.fail(f"fcgrasp serve did not start: {line!r} {proc.stderr.read()!r}")
+    url = line.split()[2]
+    yield url
+    proc.terminate()
+    proc.wait(10)
+
+
+@pytest.fixture(scope="module")
+def downloads():
+    with tempfile.TemporaryDirectory(prefix="fcgrasp-dl-") as d:
+        yield Path(d)
+
+
+@pytest.fixture(scope="module")
+def browser(downloads):
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = CHROMIUM
+    profile = tempfile.mkdtemp(prefix="fcgrasp-chromium-")
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                "--no-first-run", "--disable-background-networking",
+                "--disable-component-update", "--disable-sync", "--window-size=1300,850",
+                "--force-device-scale-factor=1", f"--user-data-dir={profile}"):
+        opts.add_argument(arg)
+    opts.add_experimental_option("prefs", {"download.default_directory": str(downloads),
+                                           "download.prompt_for_download": False})
+    os.environ.setdefault("SE_OFFLINE", "true")      # never let Selenium fetch a driver
+    driver = webdriver.Chrome(options=opts, service=Service(DRIVER))
+    yield driver
+    driver.quit()
+    shutil.rmtree(profile, ignore_errors=True)
+
+
+def wait(driver, script, timeout=30.0):
+    """Poll a JavaScript expression until it is truthy; its value."""
+    end = time.monotonic() + timeout
+    while True:
+        value = driver.execute_script(f"return ({script});")
+        if value:
+            return value
+        if time.monotonic() > end:
+            raise AssertionError(f"timed out waiting for {script}")
+        time.sleep(0.05)
+
+
+def plan_seq(driver):
+    return int(driver.execute_script("return document.body.dataset.planSeq"))
+
+
+def wait_plan(driver, after):
+    wait(driver, f"Number(document.body.dataset.planSeq) > {after} && "
+                 f"document.body.dataset.busy === '0'")
+
+
+def page_plans(driver):
+    items = driver.find_elements(By.CSS_SELECTOR, "#plans li")
+    return [(li.get_attribute("data-edges"), float(li.get_attribute("data-min")))
+            for li in items]
+
+
+def cli_plans(tmp_path, driver, argv):
+    part = driver.execute_script("return explorer.state.part")
+    path = tmp_path / "page-part.json"
+    path.write_text(json.dumps({"vertices": part["outer"], "holes": part["holes"]}))
+    out = tmp_path / "cli.json"
+    assert main(["plan", str(path), "--no-clean", "--json", str(out), "--quiet", *argv]) == 0
+    report = json.loads(out.read_text())
+    return [(",".join(map(str, g["edges"])), g["min_region_length"]) for g in report["grasps"]]
+
+
+def same_plans(a, b):
+    assert [e for e, _ in a] == [e for e, _ in b]
+    assert np.allclose([m for _, m in a], [m for _, m in b], rtol=1e-9)
+
+
+def set_value(driver, element_id, value):
+    driver.execute_script("const e = document.getElementById(arguments[0]); e.value = "
+                          "arguments[1]; e.dispatchEvent(new Event('change'));",
+                          element_id, str(value))
+
+
+def screen_point(driver, p):
+    """Viewport coordinates (CSS pixels) of a part point ``p``."""
+    return driver.execute_script(
+        "const q = explorer.toScreen(arguments[0]); const r = document.getElementById('view')"
+        ".getBoundingClientRect(); return [r.left + q[0], r.top + q[1]];", list(p))
+
+
+def click_at(driver, xy):
+    body = driver.find_element(By.TAG_NAME, "body")
+    ActionChains(driver).move_to_element_with_offset(
+        body, xy[0] - body.rect["width"] / 2, xy[1] - body.rect["height"] / 2).click().perform()
+
+
+def test_plans_load_drag_and_mu_agree_with_fcgrasp_plan(server, browser, tmp_path):
+    from PIL import Image
+
+    browser.get(server)
+    wait_plan(browser, 0)
+    same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.3"]))
+    assert browser.find_element(By.CSS_SELECTOR, "#plans li.selected").get_attribute(
+        "data-rank") == "1"
+
+    # the screenshot: each region of plan 1 drawn in its finger's colour along the plan's
+    # polyline, and the part's grey inside the outline
+    png = browser.get_screenshot_as_png()
+    shot = Path(tmp_path / "explorer.png")
+    shot.write_bytes(png)
+    img = np.asarray(Image.open(io.BytesIO(png)).convert("RGB")).astype(int)
+    plan = browser.execute_script("return explorer.state.plans[0]")
+    for i, reg in enumerate(plan["regions"]):
+        reg = np.asarray(reg)
+        for t in (0.3, 0.5, 0.7):
+            p = reg[0] + t * (reg[-1] - reg[0]) if len(reg) == 2 else reg[len(reg) // 2]
+            x, y = screen_point(browser, p)
+            patch = img[int(round(y)) - 1:int(round(y)) + 2, int(round(x)) - 1:int(round(x)) + 2]
+            dist = np.abs(patch - np.array(COLORS[i])).sum(axis=2).min()
+            assert dist < 40, (i, t, patch.tolist())
+    cx, cy = screen_point(browser, browser.execute_script(
+        "return [explorer.state.part.outer.reduce((a, p) => a + p[0], 0) / 6,"
+        " explorer.state.part.outer.reduce((a, p) => a + p[1], 0) / 6]"))
+    assert np.abs(img[int(cy), int(cx)] - 224).max() <= 3        # the part's fill, #e0e0e0
+    # away from the regions nothing is in a finger's colour: the drawing is not a smear
+    reds = (np.abs(img - np.array(COLORS[0])).sum(axis=2) < 40).sum()
+    assert 0 < reds < 0.01 * img.shape[0] * img.shape[1]
+
+    # drag vertex 2 by (30, -20) pixels: the part follows, the plans are those of the new part
+    seq = plan_seq(browser)
+    before = browser.execute_script("return explorer.state.part.outer[2]")
+    scale = browser.execute_script("return explorer.state.view.s")
+    handle = browser.find_element(By.CSS_SELECTOR, 'circle.vertex[data-ring="0"]'
+                                                   '[data-index="2"]')
+    ActionChains(browser).drag_and_drop_by_offset(handle, 30, -20).perform()
+    wait_plan(browser, seq)
+    after = browser.execute_script("return explorer.state.part.outer[2]")
+    assert np.allclose(np.subtract(after, before), [30 / scale, 20 / scale], atol=2 / scale)
+    same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.3"]))
+
+    # mu 0.6: new plans, still those of fcgrasp plan
+    seq = plan_seq(browser)
+    set_value(browser, "mu", 0.6)
+    wait_plan(browser, seq)
+    same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.6"]))
+
+    # a drag that makes the outline cross itself: a message, and the last good outline kept
+    good = browser.execute_script("return explorer.state.part.outer")
+    handle = browser.find_element(By.CSS_SELECTOR, 'circle.vertex[data-ring="0"]'
+                                                   '[data-index="0"]')
+    x0, y0 = screen_point(browser, good[0])
+    x3, y3 = screen_point(browser, good[3])
+    ActionChains(browser).drag_and_drop_by_offset(handle, (x3 - x0) * 1.3,
+                                                  (y3 - y0) * 1.3).perform()
+    wait(browser, "document.getElementById('message').textContent.includes('crossed')")
+    assert browser.execute_script("return explorer.state.part.outer") == good
+
+
+def test_fingers_by_hand_verdict_and_escape(server, browser, tmp_path):
+    browser.get(server)
+    wait_plan(browser, 0)
+    plan = browser.execute_script("return explorer.state.plans[0]")
+    browser.find_element(By.ID, "mode-fingers").click()
+    for c in plan["contacts"]:          # the plan's own grasp: force closure
+        click_at(browser, screen_point(browser, c))
+    wait(browser, "document.getElementById('verdict').dataset.closure === 'yes'")
+    assert "force closure" in browser.find_element(By.ID, "verdict").text
+
+    # the same fingers checked by fcgrasp check
+    fingers = browser.execute_script("return explorer.state.fingers")
+    part = browser.execute_script("return explorer.state.part")
+    (tmp_path / "p.json").write_text(json.dumps({"vertices": part["outer"]}))
+    (tmp_path / "c.json").write_text(json.dumps({"contacts": [
+        {"point": f["point"], "edge": f["edge"], "mu": 0.3} for f in fingers]}))
+    assert main(["check", str(tmp_path / "p.json"), "--no-clean", "--contacts",
+                 str(tmp_path / "c.json"), "--quiet"]) == 0
+
+    # take the second finger away (click it) and put it beside the first: not closure,
+    # the reason is said and the escape motion animated
+    finger = browser.find_element(By.CSS_SELECTOR, 'circle.finger[data-finger="1"]')
+    finger.click()
+    wait(browser, "explorer.state.fingers.length === 1")
+    e = fingers[0]["edge"]
+    a, b = np.asarray(part["outer"][e]), np.asarray(part["outer"][(e + 1) % len(part["outer"])])
+    click_at(browser, screen_point(browser, a + 0.8 * (b - a)))
+    wait(browser, "document.getElementById('verdict').dataset.closure === 'no'")
+    text = browser.find_element(By.ID, "verdict").text
+    assert "closure fails" in text and "escape" in text
+    ghost = wait(browser, "document.getElementById('ghost').getAttribute('transform')")
+    assert ghost.startswith(("rotate", "translate"))
+    assert browser.execute_script("return document.getElementById('ghost').getAttribute('d')")
+
+
+def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
+    browser.get(server)
+    wait_plan(browser, 0)
+    # a file in another format: an SVG of the rectangle
+    svg = tmp_path / "plate.svg"
+    svg.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="80mm" height="30mm" '
+                   'viewBox="0 0 80 30"><rect x="0" y="0" width="80" height="30"/></svg>')
+    seq = plan_seq(browser)
+    browser.find_element(By.ID, "file").send_keys(str(svg))
+    wait_plan(browser, seq)
+    assert "plate.svg" in browser.find_element(By.ID, "partinfo").text
+    same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.3"]))
+
+    # an unreadable file: a message, the part kept
+    bad = tmp_path / "bad.json"
+    bad.write_text("{not json")
+    browser.find_element(By.ID, "file").send_keys(str(bad))
+    wait(browser, "document.getElementById('message').textContent.includes('bad.json')")
+    assert "plate.svg" in browser.find_element(By.ID, "partinfo").text
+
+    # exports: the plan JSON is the server's report; the SVG figure has the regions
+    browser.find_element(By.ID, "export-json").click()
+    browser.find_element(By.ID, "export-svg").click()
+    end = time.monotonic() + 20
+    while time.monotonic() < end and not ((downloads / "fcgrasp-plan.json").exists()
+                                          and (downloads / "fcgrasp-plan.svg").exists()):
+        time.sleep(0.1)
+    report = json.loads((downloads / "fcgrasp-plan.json").read_text())
+    assert report["grasps"] == browser.execute_script("return explorer.state.report.grasps")
+    figure = (downloads / "fcgrasp-plan.svg").read_text()
+    assert figure.count('class="region"') == len(report["grasps"][0]["regions"])
+    assert 'class="vertex"' not in figure
+
+    # a slow plan (three fingers on 300 edges) shows progress and is cancelled
+    rng = np.random.default_rng(5)
+    ang = np.sort(rng.uniform(0, 2 * np.pi, 300))
+    r = 50 * (1 + 0.3 * rng.random(300))
+    big = tmp_path / "big.json"
+    big.write_text(json.dumps({"vertices": np.c_[r * np.cos(ang), r * np.sin(ang)].tolist()}))
+    set_value(browser, "gripper", "3")
+    browser.find_element(By.ID, "file").send_keys(str(big))
+    wait(browser, "document.getElementById('statustext').textContent.includes('/')")
+    browser.find_element(By.ID, "cancel").click()
+    wait(browser, "document.body.dataset.busy === '0'")
+    assert browser.find_element(By.ID, "statustext").text == "cancelled"

@@ -1,0 +1,260 @@
+"""The explorer's server (``fcgrasp serve``), through its HTTP interface: the plans are
+those of ``fcgrasp plan``, the verdicts those of ``fcgrasp check``, slow plans report
+progress and can be cancelled, and no request, however malformed, stops the server."""
+
+from __future__ import annotations
+
+import json
+import time
+
+import numpy as np
+import pytest
+
+pytest.importorskip("starlette")
+pytest.importorskip("httpx2")
+
+from starlette.testclient import TestClient  # noqa: E402
+
+from fcgrasp import Grasp, Polygon  # noqa: E402
+from fcgrasp.cli import main  # noqa: E402
+from fcgrasp.contacts import FrictionlessPoint, FrictionPoint  # noqa: E402
+from fcgrasp.parts import load_part  # noqa: E402
+from fcgrasp.serve import create_app  # noqa: E402
+
+from .test_batch import _ring, make_parts  # noqa: E402
+
+BLOB = load_part("demo:blob").polygon.vertices.tolist()
+
+
+@pytest.fixture(scope="module")
+def client():
+    with TestClient(create_app(max_upload=64 * 1024)) as c:
+        yield c
+
+
+def _plan(client, part, options, polls=600):
+    r = client.post("/api/plan", json={"part": part, "options": options})
+    assert r.status_code == 200, r.text
+    ans = r.json()
+    while ans["state"] == "running" and polls:
+        time.sleep(0.05)
+        polls -= 1
+        ans = client.get(f"/api/jobs/{ans['job']}").json()
+    return ans
+
+
+def _cli_report(tmp_path, vertices, argv):
+    path = tmp_path / "part.json"
+    path.write_text(json.dumps({"vertices": vertices}))
+    out = tmp_path / "plan.json"
+    code = main(["plan", str(path), "--no-clean", "--json", str(out), "--quiet", *argv])
+    assert code == 0
+    return json.loads(out.read_text())
+
+
+CASES = [
+    {"gripper": "2", "mu": 0.3},
+    {"gripper": "2", "mu": 0.5, "along_boundary": False, "rank_by": "epsilon", "top": 4},
+    {"gripper": "3", "mu": 0.4, "along_boundary": False, "top": 3},
+    {"gripper": "3g", "along_boundary": False, "top": 3},
+    {"gripper": "4", "top": 5, "margin": 1.0, "along_boundary": False},
+    {"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 2},
+]
+
+
+@pytest.mark.parametrize("options", CASES, ids=lambda o: o["gripper"])
+def test_plans_are_those_of_fcgrasp_plan(client, tmp_path, options):
+    rng = np.random.default_rng(len(json.dumps(options)))
+    for vertices in (BLOB, _ring(rng, 7).tolist()):
+        ans = _plan(client, {"outer": vertices, "units": "mm"}, options)
+        assert ans["state"] == "done", ans
+        cli = _cli_report(tmp_path, vertices, ans["argv"])
+        assert ans["report"]["grasps"] == cli["grasps"]
+        assert ans["report"]["parameters"] == cli["parameters"]
+        assert ans["report"]["reason"] == cli["reason"]
+        assert len(ans["overlays"]) == len(ans["report"]["grasps"])
+
+
+def test_the_page_options_become_the_cli_options(client):
+    ans = _plan(client, {"outer": BLOB}, {"gripper": "2", "mu": 0.7, "top": 2,
+                                          "along_boundary": False, "margin": 2})
+    assert ans["argv"] == ["--fingers", "2", "--single-edge", "--mu", "0.7", "--margin", "2.0",
+                           "--top", "2"]
+    params = ans["report"]["parameters"]
+    assert (params["mu"], params["top"], params["margin_deg"], params["along_boundary"]) == \
+        (0.7, 2, 2.0, False)
+    assert len(ans["report"]["grasps"]) <= 2
+
+
+def test_two_finger_overlay_is_the_restricted_edges_of_the_plan(client):
+    ans = _plan(client, {"outer": BLOB}, {"gripper": "2", "mu": 0.3, "along_boundary": False})
+    poly = Polygon(BLOB)
+    for g, ov in zip(ans["report"]["grasps"], ans["overlays"], strict=True):
+        assert ov["kind"] == "e'" and ov["segments"]
+        # every e'_i segment lies on one of the plan's two edges, and the regions lie in it
+        for seg in ov["segments"]:
+            d = [poly.distance_to_edges(p)[g["edges"]].min() for p in seg]
+            assert max(d) < 1e-9 * poly.size
+        covered = 0.0
+        for reg in g["regions"]:
+            for seg in ov["segments"]:
+                a, b = np.asarray(seg)
+                t = [(np.asarray(p) - a) @ (b - a) / ((b - a) @ (b - a)) for p in reg]
+                off = (np.asarray(reg) - a) @ np.array([-(b - a)[1], (b - a)[0]])
+                if all(-1e-9 <= x <= 1 + 1e-9 for x in t) and np.allclose(off, 0, atol=1e-6):
+                    covered += 1
+                    break
+        assert covered == 2
+
+
+def test_four_finger_overlay_has_the_parallelograms_and_the_sector(client):
+    quad = load_part("demo:quad").polygon.vertices.tolist()
+    ans = _plan(client, {"outer": quad}, {"gripper": "4", "along_boundary": False, "top": 2})
+    ov = ans["overlays"][0]
+    assert ov["kind"] == "Pi"
+    assert len(ov["polygons"]) + len(ov["segments"]) == 2
+    assert len(ov["cones"]) == 1 and 0 < ov["cones"][0]["half"] < np.pi / 2
+
+
+def test_check_is_the_verdict_of_fcgrasp_check(client, rng):
+    rect = [[0, 0], [80, 0], [80, 30], [0, 30]]
+    poly = Polygon(rect)
+    for _ in range(40):
+        k = int(rng.integers(2, 5))
+        edges = rng.integers(0, 4, k)
+        t = rng.random(k)
+        pts = poly.starts[edges] + t[:, None] * (poly.ends[edges] - poly.starts[edges])
+        mu = float(rng.choice([0.0, 0.2, 0.6]))
+        kind = "friction" if mu else "frictionless"
+        contacts = [{"point": p.tolist(), "edge": int(e), "type": kind, "mu": mu}
+                    for p, e in zip(pts, edges, strict=True)]
+        r = client.post("/api/check", json={"part": {"outer": rect}, "contacts": contacts})
+        assert r.status_code == 200, r.text
+        ans = r.json()
+        make = (lambda p, e: FrictionPoint(p, poly.normals[e], mu)) if mu else \
+            (lambda p, e: FrictionlessPoint(p, poly.normals[e]))
+        rep = Grasp([make(p, e) for p, e in zip(pts, edges, strict=True)]).explain()
+        assert ans["force_closure"] == rep.force_closure
+        assert ans["failed"] == rep.failed
+        if not rep.force_closure:
+            assert np.allclose(ans["escape_twist"], rep.escape_twist)
+            assert ans["escape"] == rep.escape_description
+
+
+def test_gravity_check(client):
+    tri = [[0, 0], [60, 0], [22, 48]]
+    contacts = [{"point": [30, 0], "type": "frictionless"},
+                {"point": [11, 24], "type": "frictionless"}]
+    ans = client.post("/api/check", json={"part": {"outer": tri}, "contacts": contacts,
+                                          "gravity": {"direction": [0, -1]}}).json()
+    assert ans["contacts"][-1]["type"] == "gravity"
+
+
+def test_a_slow_plan_reports_progress_and_can_be_cancelled(client):
+    rng = np.random.default_rng(5)
+    n = 300
+    ang = np.sort(rng.uniform(0, 2 * np.pi, n))
+    r = 50 * (1 + 0.3 * rng.random(n))
+    part = {"outer": np.c_[r * np.cos(ang), r * np.sin(ang)].tolist()}
+    r1 = client.post("/api/plan", json={"part": part, "options": {"gripper": "3", "mu": 0.3}})
+    ans = r1.json()
+    assert ans["state"] == "running"
+    seen = []
+    for _ in range(100):
+        time.sleep(0.05)
+        ans = client.get(f"/api/jobs/{ans['job']}").json()
+        seen.append(ans["progress"])
+        if ans["progress"][1] > 0:
+            break
+    assert seen[-1][1] > 0, "no progress reported"
+    cancelled = client.delete(f"/api/jobs/{ans['job']}").json()
+    assert cancelled["state"] == "cancelled"
+    for _ in range(200):            # the search stops at its next progress report
+        time.sleep(0.05)
+        ans = client.get(f"/api/jobs/{ans['job']}").json()
+        if ans["seconds"] is not None:
+            break
+    assert ans["state"] == "cancelled" and ans["seconds"] is not None
+    assert "report" not in ans
+
+
+def test_uploads_in_every_format(client, tmp_path):
+    names = make_parts(tmp_path / "parts")
+    for name in names:
+        body = (tmp_path / "parts" / name).read_bytes()
+        r = client.post(f"/api/part?name={name}", content=body)
+        broken = name in {"broken.json", "open.svg", "crossing.json", "blank.png"}
+        if broken:
+            assert r.status_code == 400, (name, r.text)
+            assert r.json()["field"] == "file" and name in r.json()["error"]
+            continue
+        assert r.status_code == 200, (name, r.text)
+        expect = load_part(tmp_path / "parts" / name)
+        got = r.json()
+        assert np.allclose(got["outer"], expect.polygon.vertices)
+        assert got["units"] == expect.units and got["edges"] == expect.polygon.n_edges
+
+
+def test_oversized_uploads_are_refused(client):
+    big = b"x" * (64 * 1024 + 1)
+    r = client.post("/api/part?name=big.json", content=big)
+    assert r.status_code == 413 and "too large" in r.json()["error"]
+
+    def chunks():                     # no Content-Length: the stream is cut off
+        for _ in range(80):
+            yield b"y" * 1024
+    r = client.post("/api/part?name=big.json", content=chunks())
+    assert r.status_code == 413
+
+
+@pytest.mark.parametrize(("body", "field", "words"), [
+    ({"part": {"outer": [[0, 0], [10, 10], [10, 0], [0, 10]]}}, "part", "intersect"),
+    ({"part": {"outer": [[0, 0], [1, 0]]}}, "part", "at least 3"),
+    ({"part": {"outer": [[0, 0], [1, 0], [0, "a"]]}}, "part", "part.outer[2]"),
+    ({"part": {"outer": BLOB}, "options": {"gripper": "5"}}, "gripper", "gripper"),
+    ({"part": {"outer": BLOB}, "options": {"mu": -1}}, "mu", "mu"),
+    ({"part": {"outer": BLOB}, "options": {"top": 0}}, "top", "top"),
+    ({"part": {"outer": BLOB}, "options": {"rank_by": "x"}}, "rank_by", "rank_by"),
+    ({"part": {"outer": BLOB}, "options": {"gripper": "jaw", "pad": 4}}, "stroke", "stroke"),
+    ({"part": {"outer": BLOB}, "options": {"colour": 1}}, "options", "colour"),
+    ({"part": {"outer": BLOB}, "options": {"gripper": "2", "mu": 0}}, None, "friction"),
+])
+def test_bad_plan_requests_say_what_is_wrong(client, body, field, words):
+    r = client.post("/api/plan", json=body)
+    if field is None:                 # accepted, and the answer says why there is no grasp
+        ans = r.json()
+        while ans["state"] == "running":
+            ans = client.get(f"/api/jobs/{ans['job']}").json()
+        assert ans["report"]["grasps"] == [] and words in ans["report"]["reason"]
+        return
+    assert r.status_code == 400, r.text
+    assert r.json()["field"] == field and words in r.json()["error"]
+
+
+def test_junk_never_stops_the_server(client):
+    rng = np.random.default_rng(3)
+    junk = [b"", b"{", b"[]", b"null", b'"x"', b"\xff\xfe", b'{"part": 3}',
+            b'{"part": {"outer": {}}}', b'{"contacts": 1, "part": {"outer": [[0,0],[1,0],[0,1]]}}',
+            b'{"part": {"outer": [[0,0],[1,0],[0,1]]}, "contacts": [{"point": [5, 5]}]}',
+            b'{"part": {"outer": [[0,0],[1,0],[0,1]], "units": "furlong"}}',
+            b'{"part": {"outer": [[0,0],[1e308,0],[0,1e308]]}}']
+    junk += [bytes(rng.integers(0, 256, int(rng.integers(1, 200)), dtype=np.uint8))
+             for _ in range(30)]
+    for body in junk:
+        for url in ("/api/plan", "/api/check", "/api/part?name=x.svg", "/api/part"):
+            r = client.post(url, content=body)
+            assert r.status_code in (400, 413), (url, body, r.status_code, r.text)
+            assert r.json()["error"]
+    assert client.get("/api/jobs/nope").status_code == 404
+    assert client.get("/api/demo/nope").status_code == 404
+    assert client.get("/api/state").status_code == 200
+
+
+def test_page_and_static_files_are_served(client):
+    page = client.get("/")
+    assert page.status_code == 200 and "fcgrasp explorer" in page.text
+    for name in ("app.js", "style.css"):
+        assert client.get(f"/static/{name}").status_code == 200
+    st = client.get("/api/state").json()
+    assert st["part"]["outer"] == BLOB and "blob" in st["demos"]
+    assert client.get("/api/demo/rectangle").json()["edges"] == 4
