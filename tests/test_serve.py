@@ -131,9 +131,9 @@ def test_check_is_the_verdict_of_fcgrasp_check(client, rng):
         r = client.post("/api/check", json={"part": {"outer": rect}, "contacts": contacts})
         assert r.status_code == 200, r.text
         ans = r.json()
-        make = (lambda p, e: FrictionPoint(p, poly.normals[e], mu)) if mu else \
-            (lambda p, e: FrictionlessPoint(p, poly.normals[e]))
-        rep = Grasp([make(p, e) for p, e in zip(pts, edges, strict=True)]).explain()
+        rep = Grasp([FrictionPoint(p, poly.normals[e], mu) if mu else
+                     FrictionlessPoint(p, poly.normals[e])
+                     for p, e in zip(pts, edges, strict=True)]).explain()
         assert ans["force_closure"] == rep.force_closure
         assert ans["failed"] == rep.failed
         if not rep.force_closure:

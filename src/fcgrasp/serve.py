@@ -55,7 +55,7 @@ MAX_UPLOAD = 8 * 2 ** 20
 #: Largest accepted JSON request body, bytes.
 MAX_REQUEST = 4 * 2 ** 20
 #: How long ``POST /api/plan`` waits for the result before answering with a job to poll.
-ANSWER_WITHIN = 0.08
+ANSWER_WITHIN = 0.05
 #: Finished jobs kept for polling (the oldest are forgotten first).
 KEEP_JOBS = 32
 #: The page's gripper choices: (fingers, gravity, jaw).
@@ -556,6 +556,7 @@ def serve(start: Any = None, host: str = "127.0.0.1", port: int = 8000,
     sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET)
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     sock.bind((host, port))
+    sock.listen(128)             # connections wait from now on: the URL announced is live
     actual = sock.getsockname()[1]
     shown = f"[{host}]" if ":" in host else host
     url = f"http://{shown}:{actual}/"

@@ -282,6 +282,10 @@ function drawJaw(plan) {
 function drawOverlay(ov) {
   if (!ov) return;
   const g = el("g", { id: "overlay", class: "overlay" });
+  el("text", { x: 12, y: 40, "font-size": 12, fill: "#555" }, g).textContent =
+    ov.kind === "e'" ? "grasp set: the restricted edges e'1, e'2 (theorem 6.3), orange"
+      : "grasp set: the parallelograms Pi12, Pi34 (purple) and the two-sided sector C " +
+        "(brown) of algorithm 6.1";
   for (const p of ov.polygons) {
     el("polygon", { points: pts(p), fill: "#9467bd", "fill-opacity": 0.18, stroke: "#9467bd",
                     class: "pi" }, g);
@@ -724,6 +728,6 @@ async function init() {
 }
 
 // for tests and the console: the state and the mapping from part to screen
-window.explorer = { state: S, toScreen: (p) => X(p), figureSVG, options };
+window.explorer = { state: S, toScreen: (p) => X(p), figureSVG, options, selfCrossing, render };
 
 init().catch((e) => message(`cannot start: ${e.message}`));
