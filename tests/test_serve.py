@@ -258,3 +258,56 @@ def test_page_and_static_files_are_served(client):
     st = client.get("/api/state").json()
     assert st["part"]["outer"] == BLOB and "blob" in st["demos"]
     assert client.get("/api/demo/rectangle").json()["edges"] == 4
+
+
+def _star(n, seed=5):
+    rng = np.random.default_rng(seed)
+    ang = np.sort(rng.uniform(0, 2 * np.pi, n))
+    r = 50 * (1 + 0.3 * rng.random(n))
+    return np.c_[r * np.cos(ang), r * np.sin(ang)]
+
+
+def test_jobs_kill_any_planner_and_replace_the_process():
+    from fcgrasp.serve import Jobs, RequestError
+
+    jobs = Jobs(workers=1)
+    try:
+        big = Polygon(_star(2000))
+        # the two-finger stretch search reports no progress: only killing stops it
+        job = jobs.start(big, "mm", {"gripper": "2", "mu": 0.3})
+        time.sleep(0.3)
+        assert job.state == "running"
+        with pytest.raises(RequestError) as exc:          # one worker: the next must wait
+            jobs.start(big, "mm", {"gripper": "2", "mu": 0.3})
+        assert exc.value.status == 429
+        pid = job.process.pid
+        jobs.cancel(job.id)
+        assert job.done.wait(10) and job.state == "cancelled" and job.result is None
+        assert not job.process.is_alive()
+        # the next plan runs in a fresh process and is right
+        small = jobs.start(Polygon(BLOB), "mm", {"gripper": "2", "mu": 0.3})
+        assert small.done.wait(60) and small.state == "done"
+        assert small.process.pid != pid
+        # a planning process that dies is an error, and the pool goes on
+        dying = jobs.start(big, "mm", {"gripper": "2", "mu": 0.3})
+        time.sleep(0.2)
+        dying.process.kill()
+        assert dying.done.wait(10) and dying.state == "error"
+        assert "stopped" in dying.error
+        again = jobs.start(Polygon(BLOB), "mm", {"gripper": "4", "along_boundary": False})
+        assert again.done.wait(60) and again.state == "done"
+    finally:
+        jobs.close()
+
+
+def test_a_new_plan_replaces_the_stale_one(client):
+    big = {"outer": _star(2000).tolist()}
+    first = client.post("/api/plan", json={"part": big, "options": {"gripper": "2"}}).json()
+    assert first["state"] == "running"
+    second = client.post("/api/plan", json={"part": {"outer": BLOB}, "options": {},
+                                            "replaces": first["job"]}).json()
+    assert client.get(f"/api/jobs/{first['job']}").json()["state"] == "cancelled"
+    while second["state"] == "running":
+        time.sleep(0.05)
+        second = client.get(f"/api/jobs/{second['job']}").json()
+    assert second["state"] == "done" and second["report"]["grasps"]

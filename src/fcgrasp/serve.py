@@ -22,12 +22,14 @@ with status 400, 404 or 413; the server answers every request and never stops on
     the starting part, the built-in parts, the ranking measures and the limits;
 ``GET /api/demo/NAME``, ``POST /api/part?name=FILE`` (the file's bytes as the body)
     a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}``;
-``POST /api/plan`` ``{"part": ..., "options": {...}}``
-    starts a plan and answers within :data:`ANSWER_WITHIN` seconds: the finished result,
-    or ``{"job": id, "state": "running", "progress": [done, total]}`` to poll;
+``POST /api/plan`` ``{"part": ..., "options": {...}, "replaces": null}``
+    starts a plan in a process of its own (cancelling the job ``replaces`` first) and
+    answers within :data:`ANSWER_WITHIN` seconds: the finished result, or
+    ``{"job": id, "state": "running", "progress": [done, total]}`` to poll (429 when
+    eight plans run already);
 ``GET /api/jobs/ID``, ``DELETE /api/jobs/ID``
     a plan's state (``running``, ``done``, ``error``, ``cancelled``), and cancelling it
-    (the search stops at its next progress report);
+    (its process is killed at once, whatever planner runs);
 ``POST /api/check`` ``{"part": ..., "contacts": [...], "gravity": null}``
     the verdict on a grasp, the failed closure and the escape twist ``(omega, vx, vy)``.
 """
@@ -35,6 +37,7 @@ with status 400, 404 or 413; the server answers every request and never stops on
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import itertools
 import json
 import math
@@ -70,10 +73,6 @@ class RequestError(ValueError):
         super().__init__(message)
         self.field = field
         self.status = status
-
-
-class Cancelled(Exception):
-    """Raised inside a plan's progress report when its job was cancelled."""
 
 
 # ----------------------------------------------------------------------------- parts
@@ -290,17 +289,17 @@ def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
 
 @dataclass
 class Job:
-    """One plan being computed in a thread."""
+    """One plan being computed in a process of its own."""
 
     id: str
     state: str = "running"
     progress: tuple[int, int] = (0, 0)
     result: dict[str, Any] | None = None
     error: str | None = None
-    cancel: threading.Event = field(default_factory=threading.Event)
     done: threading.Event = field(default_factory=threading.Event)
     started: float = field(default_factory=time.perf_counter)
     seconds: float | None = None
+    process: Any = field(default=None, repr=False)
 
     def answer(self) -> dict[str, Any]:
         out: dict[str, Any] = {"job": self.id, "state": self.state,
@@ -337,42 +336,135 @@ def _dumps(report: dict[str, Any]) -> str:
     return dumps(report)
 
 
-class Jobs:
-    """The plans being computed (a thread each; at most ``KEEP_JOBS`` remembered)."""
+def _worker(conn: Any) -> None:
+    """A planning process: warms up (a small plan of each kind loads what planning
+    loads), then plans each ``(polygon, units, options)`` it is sent, sending progress
+    reports (at most every 50 ms) and then ``("done", result)`` or ``("error", text)``."""
+    from .parts import demo_part
 
-    def __init__(self) -> None:
+    blob = demo_part("blob")
+    for opts in ({"gripper": "2", "mu": 0.3}, {"gripper": "4", "along_boundary": False},
+                 {"gripper": "3", "mu": 0.5, "along_boundary": False, "top": 1}):
+        plan_result(blob, "mm", opts)
+    check_result(blob, {"contacts": [{"point": [21.0, -3.0], "mu": 0.3}]})
+    last = [0.0]
+
+    def progress(done: int, total: int) -> None:
+        now = time.perf_counter()
+        if now - last[0] >= 0.05 or done >= total:
+            last[0] = now
+            conn.send(("progress", (int(done), int(total))))
+
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        try:
+            polygon, units, options = task
+            conn.send(("done", plan_result(polygon, units, options, progress=progress)))
+        except (ValueError, TypeError) as exc:
+            conn.send(("error", " ".join(str(exc).split())))
+        except Exception as exc:  # noqa: BLE001 - reported to the page
+            conn.send(("error", f"internal error: {type(exc).__name__}: {exc}"))
+
+
+@dataclass
+class _Process:
+    process: Any
+    conn: Any
+
+
+class Jobs:
+    """The plans being computed, in a pool of warmed-up planning processes (one plan
+    each at a time): cancelling a job kills its process, whatever planner runs, and a
+    fresh one takes its place.  At most ``workers`` plans run at once (more: 429);
+    ``KEEP_JOBS`` finished jobs are remembered for polling.
+
+    Processes come from a fork server (started once, fcgrasp loaded): safe to start from
+    the server's threads, a few milliseconds each."""
+
+    def __init__(self, workers: int = 4) -> None:
+        import multiprocessing
+
+        self._ctx = multiprocessing.get_context("forkserver")
+        self._ctx.set_forkserver_preload(["fcgrasp.serve", "fcgrasp.cli", "fcgrasp.planning"])
         self._jobs: dict[str, Job] = {}
+        self._idle: list[_Process] = []
         self._ids = itertools.count(1)
         self._lock = threading.Lock()
+        self.workers = workers
+        self._closed = False
+
+    def _spawn(self) -> _Process:
+        mine, theirs = self._ctx.Pipe()
+        proc = self._ctx.Process(target=_worker, args=(theirs,), daemon=True,
+                                 name="fcgrasp-planner")
+        proc.start()
+        theirs.close()
+        return _Process(proc, mine)
+
+    def warm(self, n: int = 1) -> None:
+        """Start ``n`` planning processes now (the first one also starts the fork
+        server: about a second), so that the first plans do not wait for them."""
+        fresh = [self._spawn() for _ in range(n)]
+        with self._lock:
+            self._idle += fresh
 
     def start(self, polygon: Any, units: str, options: dict[str, Any]) -> Job:
         plan_arguments(options)               # a bad option is an answer now, not a job
-        job = Job(id=str(next(self._ids)))
-
-        def progress(done: int, total: int) -> None:
-            job.progress = (int(done), int(total))
-            if job.cancel.is_set():
-                raise Cancelled
-
-        def run() -> None:
-            try:
-                job.result = plan_result(polygon, units, options, progress=progress)
-                job.state = "cancelled" if job.cancel.is_set() else "done"
-            except Cancelled:
-                job.state = "cancelled"
-            except (ValueError, TypeError) as exc:
-                job.state, job.error = "error", " ".join(str(exc).split())
-            except Exception as exc:  # noqa: BLE001 - reported to the page, server stays up
-                job.state, job.error = "error", f"internal error: {type(exc).__name__}: {exc}"
-            job.seconds = time.perf_counter() - job.started
-            job.done.set()
-
         with self._lock:
+            busy = sum(not j.done.is_set() for j in self._jobs.values())
+            if busy >= self.workers:
+                raise RequestError(f"{busy} plans are running already: cancel one or wait",
+                                   "job", 429)
+            job = Job(id=str(next(self._ids)))
             self._jobs[job.id] = job
             finished = [k for k, j in self._jobs.items() if j.done.is_set()]
             for k in finished[:max(0, len(self._jobs) - KEEP_JOBS)]:
                 del self._jobs[k]
-        threading.Thread(target=run, name=f"fcgrasp-plan-{job.id}", daemon=True).start()
+            worker = self._idle.pop() if self._idle else None
+        worker = worker or self._spawn()
+        job.process = worker.process
+        worker.conn.send((polygon, units, options))
+
+        def watch() -> None:
+            alive = False
+            try:
+                while True:
+                    kind, value = worker.conn.recv()
+                    if kind == "progress":
+                        job.progress = value
+                        continue
+                    alive = True
+                    if job.state == "running":
+                        job.state = kind
+                        if kind == "done":
+                            job.result = value
+                        else:
+                            job.error = value
+                    break
+            except (EOFError, OSError):
+                if job.state == "running":    # died without a word: out of memory?
+                    job.state = "error"
+                    job.error = (f"the planning process stopped (exit code "
+                                 f"{worker.process.exitcode}; out of memory?)")
+            job.seconds = time.perf_counter() - job.started
+            with self._lock:
+                keep = alive and not self._closed and len(self._idle) < self.workers
+                if keep:
+                    self._idle.append(worker)
+            if not keep:
+                worker.process.kill()
+                worker.process.join(5)
+                worker.conn.close()
+                if not alive and not self._closed:
+                    self.warm()               # a warm process for the next plan
+            job.done.set()
+
+        threading.Thread(target=watch, name=f"fcgrasp-job-{job.id}", daemon=True).start()
         return job
 
     def get(self, job_id: str) -> Job:
@@ -385,10 +477,24 @@ class Jobs:
 
     def cancel(self, job_id: str) -> Job:
         job = self.get(job_id)
-        job.cancel.set()
         if not job.done.is_set():
             job.state = "cancelled"
+            job.process.kill()
         return job
+
+    def close(self) -> None:
+        """Stop every planning process (the server is stopping)."""
+        with self._lock:
+            self._closed = True
+            idle, self._idle = self._idle, []
+            jobs = list(self._jobs.values())
+        for job in jobs:
+            if not job.done.is_set():
+                job.state = "cancelled"
+                job.process.kill()
+        for w in idle:
+            w.process.kill()
+            w.conn.close()
 
 
 # ----------------------------------------------------------------------------- checks
@@ -511,10 +617,16 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return JSONResponse(out)
 
     async def plan(request: Request) -> Response:
-        data = await json_of(request, {"part", "options"})
+        data = await json_of(request, {"part", "options", "replaces"})
         polygon, units = polygon_of(data.get("part"))
         options = data.get("options", {})
-        job = jobs.start(polygon, units, options)
+        old = data.get("replaces")
+        if old is not None:                   # the page's previous plan, now stale
+            try:
+                await asyncio.to_thread(jobs.cancel, str(old))
+            except RequestError:
+                pass
+        job = await asyncio.to_thread(jobs.start, polygon, units, options)
         await asyncio.to_thread(job.done.wait, ANSWER_WITHIN)
         return JSONResponse(job.answer())
 
@@ -541,7 +653,13 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         Route("/api/check", guarded(check), methods=["POST"]),
         Mount("/static", app=StaticFiles(directory=static), name="static"),
     ]
-    return Starlette(routes=routes)
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Any) -> Any:
+        await asyncio.to_thread(jobs.warm, 2)
+        yield
+        jobs.close()
+
+    return Starlette(routes=routes, lifespan=lifespan)
 
 
 def serve(start: Any = None, host: str = "127.0.0.1", port: int = 8000,

@@ -365,13 +365,14 @@ async function runPlan() {
   let opts;
   try { opts = options(); } catch (e) { message(e.message); return; }
   const seq = ++S.seq;
-  if (S.job) cancelJob(S.job);
+  const replaces = S.job;            // the previous plan, stale now: the server kills it
+  S.job = null;
   const sent = clone(S.part);
   busy(true, "planning…");
   $("progress").removeAttribute("value");
   let ans;
   try {
-    ans = await request("POST", "/api/plan", { part: partBody(sent), options: opts });
+    ans = await request("POST", "/api/plan", { part: partBody(sent), options: opts, replaces });
     S.good = sent;
     while (seq === S.seq && ans.state === "running") {
       S.job = ans.job;
