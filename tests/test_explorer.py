@@ -107,14 +107,31 @@ def page_plans(driver):
             for li in items]
 
 
-def cli_plans(tmp_path, driver, argv):
+def cli_report(tmp_path, driver, argv):
     part = driver.execute_script("return explorer.state.part")
     path = tmp_path / "page-part.json"
     path.write_text(json.dumps({"vertices": part["outer"], "holes": part["holes"]}))
     out = tmp_path / "cli.json"
     assert main(["plan", str(path), "--no-clean", "--json", str(out), "--quiet", *argv]) == 0
-    report = json.loads(out.read_text())
+    return json.loads(out.read_text())
+
+
+def cli_plans(tmp_path, driver, argv):
+    report = cli_report(tmp_path, driver, argv)
     return [(",".join(map(str, g["edges"])), g["min_region_length"]) for g in report["grasps"]]
+
+
+def drawn_regions_are(driver, grasp):
+    """The bold polylines on the page are the regions of ``grasp`` (a plan of
+    ``fcgrasp plan --json``), point for point on the screen."""
+    lines = driver.find_elements(By.CSS_SELECTOR, "#plan polyline.region")
+    assert len(lines) == len(grasp["regions"])
+    for line, region in zip(lines, grasp["regions"], strict=True):
+        drawn = np.array([[float(v) for v in p.split(",")]
+                          for p in line.get_attribute("points").split()])
+        want = np.array(driver.execute_script(
+            "return arguments[0].map((p) => explorer.toScreen(p));", region))
+        assert drawn.shape == want.shape and np.allclose(drawn, want, atol=0.01)
 
 
 def same_plans(a, b):
@@ -190,6 +207,12 @@ def test_plans_load_drag_and_mu_agree_with_fcgrasp_plan(server, browser, tmp_pat
     set_value(browser, "mu", 0.6)
     wait_plan(browser, seq)
     same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.6"]))
+    # the drawing is the CLI's best plan; picking plan 2 in the list draws plan 2
+    report = cli_report(tmp_path, browser, ["--mu", "0.6"])
+    drawn_regions_are(browser, report["grasps"][0])
+    browser.find_elements(By.CSS_SELECTOR, "#plans li")[1].click()
+    wait(browser, "document.getElementById('plan').dataset.rank === '2'")
+    drawn_regions_are(browser, report["grasps"][1])
 
     # a drag that makes the outline cross itself: a message, and the last good outline kept
     good = browser.execute_script("return explorer.state.part.outer")
