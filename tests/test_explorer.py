@@ -225,6 +225,13 @@ def test_plans_load_drag_and_mu_agree_with_fcgrasp_plan(server, browser, tmp_pat
     wait(browser, "document.getElementById('message').textContent.includes('crossed')")
     assert browser.execute_script("return explorer.state.part.outer") == good
 
+    # undo: back to the outline before the drag, planned again
+    seq = plan_seq(browser)
+    browser.find_element(By.ID, "undo").click()
+    wait_plan(browser, seq)
+    assert np.allclose(browser.execute_script("return explorer.state.part.outer[2]"), before)
+    same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.6"]))
+
 
 def test_fingers_by_hand_verdict_and_escape(server, browser, tmp_path):
     browser.get(server)

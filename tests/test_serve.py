@@ -311,3 +311,27 @@ def test_a_new_plan_replaces_the_stale_one(client):
         time.sleep(0.05)
         second = client.get(f"/api/jobs/{second['job']}").json()
     assert second["state"] == "done" and second["report"]["grasps"]
+
+
+def test_fcgrasp_serve_command_errors_are_one_line():
+    import subprocess
+    import sys
+
+    proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "serve", "--port", "0"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    try:
+        line = proc.stdout.readline()
+        assert line.startswith("fcgrasp explorer: http://127.0.0.1:")
+        port = line.split(":")[3].split("/")[0]
+        taken = subprocess.run([sys.executable, "-m", "fcgrasp", "serve", "--port", port],
+                               capture_output=True, text=True, timeout=60)
+        assert taken.returncode == 2
+        assert taken.stderr.count("\n") == 1 and "cannot listen" in taken.stderr
+    finally:
+        proc.terminate()
+        proc.wait(10)
+    for argv, words in ((["--port", "70000"], "--port"), (["nope.svg"], "nope.svg")):
+        r = subprocess.run([sys.executable, "-m", "fcgrasp", "serve", *argv],
+                           capture_output=True, text=True, timeout=60)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1 and words in r.stderr
+        assert "Traceback" not in r.stderr

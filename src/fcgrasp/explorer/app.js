@@ -16,6 +16,7 @@ const S = {
   mode: "edit", fingers: [], verdict: null,
   seq: 0, job: null, checkSeq: 0,
   view: null, drag: null, invalid: false, maxUpload: 8 << 20, anim: null,
+  history: [],       // earlier accepted outlines of this part, for undo
 };
 
 // ------------------------------------------------------------------ server
@@ -373,7 +374,12 @@ async function runPlan() {
   let ans;
   try {
     ans = await request("POST", "/api/plan", { part: partBody(sent), options: opts, replaces });
+    if (S.good && JSON.stringify(S.good) !== JSON.stringify(sent)) {
+      S.history.push(S.good);
+      if (S.history.length > 100) S.history.shift();
+    }
     S.good = sent;
+    $("undo").disabled = !S.history.length;
     while (seq === S.seq && ans.state === "running") {
       S.job = ans.job;
       const [done, total] = ans.progress;
@@ -513,9 +519,21 @@ function stopEscape() {
 
 // ------------------------------------------------------------------ editing
 
+function undo() {
+  if (!S.history.length) return;
+  S.part = S.history.pop();
+  S.good = clone(S.part);
+  $("undo").disabled = !S.history.length;
+  S.invalid = false;
+  message("");
+  changed();
+}
+
 function setPart(part, note) {
   S.part = { outer: part.outer, holes: part.holes || [], units: part.units, name: part.name };
   S.good = clone(S.part);
+  S.history = [];
+  $("undo").disabled = true;
   S.fingers = [];
   S.plans = []; S.overlays = []; S.report = null;
   $("plans").textContent = "";
@@ -710,6 +728,13 @@ async function init() {
   $("mode-edit").addEventListener("change", () => setMode("edit"));
   $("mode-fingers").addEventListener("change", () => setMode("fingers"));
   $("fit").addEventListener("click", () => { fit(); render(); });
+  $("undo").addEventListener("click", undo);
+  document.addEventListener("keydown", (ev) => {
+    if ((ev.ctrlKey || ev.metaKey) && ev.key === "z" && ev.target.tagName !== "INPUT") {
+      ev.preventDefault();
+      undo();
+    }
+  });
   $("clear-fingers").addEventListener("click", () => { S.fingers = []; render(); runCheck(); });
   $("cancel").addEventListener("click", () => {
     S.seq++;
