@@ -278,3 +278,74 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path):
         r = run("plan", "demo:rectangle", *bad, "--json", tmp_path / "bad.json")
         assert r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
         assert not (tmp_path / "bad.json").exists()
+
+
+def _certify_cases(seed, n_parts, internal=False):
+    """Small boxes around random holding poses of random parts (external; with
+    ``internal``, the washer's hole with random jaws) that certify_box proves; each
+    checked at random poses by the independent model.  Returns how many were proved."""
+    from fcgrasp.jaw import certify_box
+
+    rng = np.random.default_rng(400 + seed)
+    proved = 0
+    for _ in range(n_parts):
+        if internal:
+            part, hole = demo_part("washer"), 0
+            jaw = ParallelJaw(stroke=(float(rng.uniform(2, 20)), float(rng.uniform(21, 40))),
+                              pad_width=float(rng.uniform(0.5, 12)),
+                              mu=float(rng.uniform(0.2, 1.0)))
+        else:
+            part, hole = _random_part(rng), None
+            jaw = _jaw_for(part, rng)
+        th = rng.uniform(0, 2 * np.pi, 400)
+        c = rng.uniform(-0.6, 0.6, 400) * part.size
+        if hole is not None:
+            rel = part.holes[hole].mean(axis=0) - part.centroid
+            c = np.c_[-np.sin(th), np.cos(th)] @ rel + c * 0.2
+        holds = jaw_poses(part, jaw, th, c, 0.5, hole).holds
+        for k in np.flatnonzero(holds)[:6]:
+            dt = float(rng.uniform(0.001, 0.05))
+            dc = float(rng.uniform(0.001, 0.05)) * part.size
+            box_t = (th[k] - dt * rng.random(), th[k] + dt * rng.random())
+            box_c = (c[k] - dc * rng.random(), c[k] + dc * rng.random())
+            got = certify_box(part, jaw, box_t, box_c, 0.5, hole, max_boxes=64)
+            if got is None:
+                continue
+            proved += 1
+            tt = rng.uniform(*box_t, 25)
+            cc = rng.uniform(*box_c, 25)
+            tt = np.r_[tt, [box_t[a] for a in (0, 0, 1, 1)]]
+            cc = np.r_[cc, [box_c[b] for b in (0, 1, 0, 1)]]
+            for t, x in zip(tt, cc, strict=True):
+                ok, opening = independent_pose(part, jaw, t, x, 0.5, hole)
+                assert ok, (seed, t, x, hole)
+                assert got[0] - 1e-9 * part.size <= opening <= got[1] + 1e-9 * part.size
+    return proved
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_certified_boxes_hold_at_every_sampled_pose(seed):
+    assert _certify_cases(seed, 12) > 10
+    assert _certify_cases(seed, 4, internal=True) > 4
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(2, 30))
+def test_certified_boxes_hold_at_every_sampled_pose_slow(seed):
+    _certify_cases(seed, 20)
+    _certify_cases(seed, 6, internal=True)
+
+
+def test_certify_box_proves_the_rectangle_and_refuses_what_fails():
+    from fcgrasp.jaw import certify_box
+
+    part = demo_part("rectangle")
+    jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    lo, hi = certify_box(part, jaw, np.radians([80, 100]), (-30, 30))
+    assert 27 < lo <= 30 and 30 / np.cos(np.radians(10)) <= hi < 35
+    # closing 70-110 degrees: near 70 the pads' corners see each other outside the cones
+    assert not jaw_poses(part, jaw, [np.radians(70)], [0.0]).holds[0]
+    assert certify_box(part, jaw, np.radians([70, 110]), (-30, 30), max_boxes=300) is None
+    # a stroke the part does not fit
+    small = ParallelJaw(stroke=(10, 29), pad_width=8, mu=0.5)
+    assert certify_box(part, small, np.radians([89, 91]), (-1, 1)) is None

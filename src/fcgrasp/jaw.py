@@ -33,7 +33,8 @@ arc it sweeps at the part's radius: both lengths) is then checked on a grid
 :data:`CHECK_DENSITY` times finer and shrunk by grid steps until every checked pose
 holds.  It is therefore a box *verified on a fine grid*, not an exact one: the exact
 boundary of the set (the support functions of the part restricted to the strip,
-piecewise-smooth curves) is not computed.
+piecewise-smooth curves) is not computed.  :func:`certify_box` *proves* a box (every pose
+of it holds) where it can: sound, not complete.
 """
 
 from __future__ import annotations
@@ -49,7 +50,7 @@ from .polygon import Polygon
 from .quality import characteristic_length
 from .regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "jaw_plans", "THETA_STEP_DEG",
+__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "jaw_plans", "certify_box", "THETA_STEP_DEG",
            "OFFSET_STEPS", "CHECK_DENSITY"]
 
 #: Angular step of the pose grid (degrees).
@@ -373,6 +374,248 @@ def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
     ends = lat[np.isfinite(lat[:, 0])]
     pts = [polygon.centroid + stop * u + x * n for row in ends for x in np.unique(row)]
     return np.array(pts).reshape(-1, 2)
+
+
+# ----------------------------------------------------------------------------- certificates
+
+
+def _sin_range(a: FloatArray, b: FloatArray, t0: float, t1: float
+               ) -> tuple[FloatArray, FloatArray]:
+    """Exact range of ``a cos(t) + b sin(t)`` over ``t in [t0, t1]`` (``t1 - t0 < 2 pi``),
+    elementwise: the ends, and the extremes ``+-hypot(a, b)`` where their angle falls
+    inside."""
+    v0 = a * np.cos(t0) + b * np.sin(t0)
+    v1 = a * np.cos(t1) + b * np.sin(t1)
+    r = np.hypot(a, b)
+    phi = np.arctan2(b, a)                              # the maximum is at t = phi
+    has_max = np.mod(phi - t0, 2 * np.pi) <= t1 - t0
+    has_min = np.mod(phi + np.pi - t0, 2 * np.pi) <= t1 - t0
+    return (np.where(has_min, -r, np.minimum(v0, v1)),
+            np.where(has_max, r, np.maximum(v0, v1)))
+
+
+def _wrap(x: Any) -> Any:
+    """Angles wrapped to [-pi, pi)."""
+    return (np.asarray(x) + np.pi) % (2 * np.pi) - np.pi
+
+
+def _arc_of(vectors: FloatArray) -> tuple[float, float] | None:
+    """The smallest arc (centre, half-width) holding the directions of ``vectors``
+    (corners of a convex set), None when the set may hold the origin."""
+    ang = np.arctan2(vectors[:, 1], vectors[:, 0])
+    rel = _wrap(ang - ang[0])
+    lo, hi = float(rel.min()), float(rel.max())
+    if hi - lo >= np.pi - 1e-9 or np.min(np.hypot(*vectors.T)) <= 0:
+        return None
+    return float(ang[0] + (lo + hi) / 2), (hi - lo) / 2
+
+
+@dataclass
+class _Candidates:
+    """Everything a pad may touch at some pose of a box: point sets (segments ``p0-p1``,
+    a point when equal) with their contact force's direction as an arc (centre,
+    half-width); and bounds ``lo``, ``hi`` of the pad's stop over the box."""
+
+    p0: FloatArray
+    p1: FloatArray
+    force: list[tuple[float, float]]
+    lo: float
+    hi: float
+
+
+def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
+                    box: tuple[float, float, float, float], half: float
+                    ) -> _Candidates | None:
+    """The pad of ``sign`` (+1: pad A of an external grip, the extreme of ``sign * y``)
+    over the box ``(t0, t1, c0, c1)``: a superset of its contacts, or None when too many
+    features could touch (more than :data:`MAX_CONTACTS`, as :func:`jaw_poses`)."""
+    t0, t1, c0, c1 = box
+    cen = polygon.centroid
+    a = polygon.starts[ring] - cen
+    b = polygon.ends[ring] - cen
+    f = -polygon.normals[ring]                          # the force on the part at an edge
+    # y = p . u = px cos t + py sin t;  x = p . n = -px sin t + py cos t
+    fy_lo, fy_hi = _sin_range(f[:, 0], f[:, 1], t0, t1)
+    if internal:                                        # the edges this pad can meet
+        pad_force = -sign                               # the force's sign along u
+        maybe = fy_hi > 0 if pad_force > 0 else fy_lo < 0
+        surely = fy_lo > 0 if pad_force > 0 else fy_hi < 0
+    else:
+        maybe = surely = np.ones(len(a), dtype=bool)
+    ends = np.concatenate([a, b])
+    y_lo, y_hi = _sin_range(sign * ends[:, 0], sign * ends[:, 1], t0, t1)
+    x_lo, x_hi = _sin_range(ends[:, 1], -ends[:, 0], t0, t1)
+    ok2 = np.concatenate([maybe, maybe])
+    sure2 = np.concatenate([surely, surely])
+    # a lower bound of the stop: a vertex inside the strip at every pose of the box
+    always = sure2 & (x_lo >= c1 - half) & (x_hi <= c0 + half)
+    lower = float(y_lo[always].max()) if always.any() else -np.inf
+    # an edge point inside the strip at every pose: the one at the strip's centre line
+    # at the box's centre pose, if its lateral range stays inside
+    tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
+    xa_m = a @ np.array([-np.sin(tm), np.cos(tm)])
+    xb_m = b @ np.array([-np.sin(tm), np.cos(tm)])
+    dx_m = xb_m - xa_m
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tt = np.where(np.abs(dx_m) > 0, (cm - xa_m) / dx_m, np.nan)
+    good = surely & (tt >= 0) & (tt <= 1)
+    if good.any():
+        pts = a[good] + tt[good, None] * (b[good] - a[good])
+        px_lo, px_hi = _sin_range(pts[:, 1], -pts[:, 0], t0, t1)
+        py_lo, _ = _sin_range(sign * pts[:, 0], sign * pts[:, 1], t0, t1)
+        inside = (px_lo >= c1 - half) & (px_hi <= c0 + half)
+        if inside.any():
+            lower = max(lower, float(py_lo[inside].max()))
+    if not np.isfinite(lower):
+        return None
+    # vertices that may be in the strip and reach the lower bound
+    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower)
+    # a vertex (or a level edge) touches the pad's face: its force is the pad's, -sign u
+    face = ((t0 + t1) / 2 + (0.0 if sign < 0 else np.pi), (t1 - t0) / 2)
+    uniq = np.unique(ends[vert], axis=0)
+    seg0, seg1 = list(uniq), list(uniq)
+    force = [face] * len(uniq)
+    highs = [float(y_hi[vert].max())] if len(uniq) else []
+    # edge cuts by the strip's sides: the pad's corner on the edge
+    xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
+    dxr_lo, dxr_hi = _sin_range(b[:, 1] - a[:, 1], -(b[:, 0] - a[:, 0]), t0, t1)
+    xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
+    e_lo, e_hi = np.minimum(xa_lo, xb_lo), np.maximum(xa_hi, xb_hi)
+    # a cut is the extreme of its clipped edge only if the edge rises (for this pad)
+    # towards the strip's side there: drop the cuts where it surely falls
+    dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)
+    rise_sign = np.where(dy_lo > 0, 1, np.where(dy_hi < 0, -1, 0)) * \
+        np.where(dxr_lo > 0, 1, np.where(dxr_hi < 0, -1, 0))
+    for side in (-half, half):
+        s_lo, s_hi = c0 + side, c1 + side
+        falls = rise_sign * np.sign(side) < 0
+        for k in np.flatnonzero(maybe & (e_hi >= s_lo) & (e_lo <= s_hi) & ~falls):
+            if dxr_lo[k] <= 0 <= dxr_hi[k]:
+                # the edge may turn along u: its cut can be anywhere on it
+                t_lo, t_hi = 0.0, 1.0
+            else:
+                num = np.array([s_lo - xa_hi[k], s_hi - xa_lo[k]])
+                q = np.concatenate([num / dxr_lo[k], num / dxr_hi[k]])
+                t_lo, t_hi = max(0.0, float(q.min())), min(1.0, float(q.max()))
+            if t_lo > t_hi:
+                continue
+            p0 = a[k] + t_lo * (b[k] - a[k])
+            p1 = a[k] + t_hi * (b[k] - a[k])
+            _, h0 = _sin_range(sign * p0[0], sign * p0[1], t0, t1)
+            _, h1 = _sin_range(sign * p1[0], sign * p1[1], t0, t1)
+            if max(h0, h1) < lower:
+                continue
+            seg0.append(p0)
+            seg1.append(p1)
+            force.append((float(np.arctan2(f[k, 1], f[k, 0])), 0.0))
+            highs.append(float(max(h0, h1)))
+    if not seg0 or len(seg0) > MAX_CONTACTS:
+        return None
+    return _Candidates(np.array(seg0), np.array(seg1), force, lower, max(highs))
+
+
+def _pair_holds(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> bool:
+    """Every pair of candidate contacts is force closure at every pose of the box
+    (theorem 6.3: the segment joining the contacts lies strictly inside both friction
+    cones, with the directions of both ranging over arcs; squeezing for an external grip,
+    expanding inside a hole)."""
+    turn = np.pi if expand else 0.0
+    for i in range(len(ca.p0)):
+        for j in range(len(cb.p0)):
+            corners = np.array([cb.p0[j] - ca.p0[i], cb.p0[j] - ca.p1[i],
+                                cb.p1[j] - ca.p0[i], cb.p1[j] - ca.p1[i]])
+            arc = _arc_of(corners)
+            if arc is None:
+                return False
+            d, hd = arc
+            # squeezing, A's force is within beta of every direction A -> B and B's of
+            # B -> A; expanding, of the opposite directions
+            (fa, ha), (fb, hb) = ca.force[i], cb.force[j]
+            if abs(float(_wrap(d + turn - fa))) + hd + ha >= beta:
+                return False
+            if abs(float(_wrap(d + np.pi + turn - fb))) + hd + hb >= beta:
+                return False
+    return True
+
+
+def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
+                margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
+                max_boxes: int = 4096) -> tuple[float, float] | None:
+    """Prove that **every** pose of the box ``theta = (t0, t1)``, ``offset = (c0, c1)``
+    holds (the model of :func:`jaw_poses`): the box is cut into sub-boxes until, in each,
+    the features each pad may touch at some pose (vertices that may lie in the strip and
+    reach a lower bound of the pad's stop; the strip's sides cut edges on segments
+    enclosed by interval arithmetic; all bounds of ``a cos t + b sin t`` exact) are
+    few, every pair of them is force closure over all its positions and directions
+    (theorem 6.3 on arcs of directions), and the opening's enclosure is within the
+    stroke.  Returns that enclosure of the opening over the box, or None when the proof
+    fails within ``max_boxes`` sub-boxes (the box may still hold: the test is sound, not
+    complete).
+
+    >>> from fcgrasp.parts import demo_part
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> lo, hi = certify_box(demo_part("rectangle"), jaw, np.radians([80, 100]), (-30, 30))
+    >>> bool(10 <= lo <= 30 and 30 / np.cos(np.radians(10)) <= hi <= 50)   # encloses 30-30.46
+    True
+    """
+    t0, t1 = (float(v) for v in theta)
+    c0, c1 = (float(v) for v in offset)
+    if not (t1 >= t0 and c1 >= c0 and t1 - t0 < np.pi):
+        raise ValueError(f"theta and offset must be increasing ranges (theta under pi), "
+                         f"got {theta!r}, {offset!r}")
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    if not isinstance(jaw, ParallelJaw):
+        raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
+    margin = check_scalar(margin, "margin", nonnegative=True)
+    max_boxes = check_int(max_boxes, "max_boxes", minimum=1)
+    internal = hole is not None
+    ring: np.ndarray = np.ones(polygon.n_edges, dtype=bool)
+    if hole is not None:
+        if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
+                or int(hole) not in convex_holes(polygon):
+            raise ValueError(f"hole must be the index of a convex hole of the part, got "
+                             f"{hole!r}; convex holes: {convex_holes(polygon)}")
+        ring = np.asarray(polygon.rings == int(hole) + 1)
+    beta = float(np.arctan(jaw.mu) - np.radians(margin))
+    if beta <= 0:
+        return None
+    half = jaw.pad_width / 2
+    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    if internal:
+        rel = np.concatenate([polygon.starts[ring], polygon.ends[ring]]) - polygon.centroid
+    stack = [(t0, t1, c0, c1)]
+    lo_open, hi_open = np.inf, -np.inf
+    done = 0
+    while stack:
+        box = stack.pop()
+        done += 1
+        if done > max_boxes:
+            return None
+        sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
+        ca = _pad_candidates(polygon, ring, sa, internal, box, half)
+        cb = _pad_candidates(polygon, ring, sb, internal, box, half)
+        fits = True
+        if internal:
+            x_lo, x_hi = _sin_range(rel[:, 1], -rel[:, 0], box[0], box[1])
+            fits = bool(x_hi.min() < box[2] - half and x_lo.max() > box[3] + half)
+        if ca is not None and cb is not None and fits:
+            # the stops as heights along u: sign * stop lies in [lo, hi]
+            a_rng = sorted((sa * ca.lo, sa * ca.hi))
+            b_rng = sorted((sb * cb.lo, sb * cb.hi))
+            o_lo, o_hi = a_rng[0] - b_rng[1], a_rng[1] - b_rng[0]
+            fits = jaw.stroke[0] <= o_lo and o_hi <= jaw.stroke[1]
+            if fits and _pair_holds(ca, cb, beta, internal):
+                lo_open, hi_open = min(lo_open, o_lo), max(hi_open, o_hi)
+                continue
+        bt0, bt1, bc0, bc1 = box
+        if (bt1 - bt0) * radius >= bc1 - bc0:
+            m = (bt0 + bt1) / 2
+            stack += [(bt0, m, bc0, bc1), (m, bt1, bc0, bc1)]
+        else:
+            m = (bc0 + bc1) / 2
+            stack += [(bt0, bt1, bc0, m), (bt0, bt1, m, bc1)]
+    return lo_open, hi_open
 
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
