@@ -335,3 +335,20 @@ def test_fcgrasp_serve_command_errors_are_one_line():
                            capture_output=True, text=True, timeout=60)
         assert r.returncode == 2 and r.stderr.count("\n") == 1 and words in r.stderr
         assert "Traceback" not in r.stderr
+
+
+def test_an_idle_planning_process_that_died_is_replaced():
+    from fcgrasp.serve import Jobs
+
+    jobs = Jobs(workers=2)
+    try:
+        jobs.warm(1)
+        idle = jobs.start(Polygon(BLOB), "mm", {"gripper": "2"})
+        assert idle.done.wait(60) and idle.state == "done"
+        idle.process.kill()                   # dies while idle, back in the pool
+        idle.process.join(5)
+        job = jobs.start(Polygon(BLOB), "mm", {"gripper": "2"})
+        assert job.done.wait(60) and job.state == "done", job.error
+        assert job.process.pid != idle.process.pid
+    finally:
+        jobs.close()

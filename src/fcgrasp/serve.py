@@ -427,8 +427,13 @@ class Jobs:
                 del self._jobs[k]
             worker = self._idle.pop() if self._idle else None
         worker = worker or self._spawn()
+        try:
+            worker.conn.send((polygon, units, options))
+        except OSError:                       # an idle process died: take a fresh one
+            worker.process.kill()
+            worker = self._spawn()
+            worker.conn.send((polygon, units, options))
         job.process = worker.process
-        worker.conn.send((polygon, units, options))
 
         def watch() -> None:
             alive = False
