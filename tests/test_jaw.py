@@ -349,3 +349,33 @@ def test_certify_box_proves_the_rectangle_and_refuses_what_fails():
     # a stroke the part does not fit
     small = ParallelJaw(stroke=(10, 29), pad_width=8, mu=0.5)
     assert certify_box(part, small, np.radians([89, 91]), (-1, 1)) is None
+
+
+def test_jaw_plans_certify_proves_every_box():
+    part = demo_part("rectangle")
+    jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    plain = jaw_plans(part, jaw, top=1)[0]
+    best = jaw_plans(part, jaw, top=1, certify=True)[0]
+    assert not plain.certified and best.certified and best.to_dict()["certified"] is True
+    # the proved box is the planned one, shrunk by at most a couple of grid steps
+    assert plain.theta[0] <= best.theta[0] < best.theta[1] <= plain.theta[1]
+    assert best.measure >= 0.8 * plain.measure
+    rng = np.random.default_rng(7)
+    for th, c in np.r_[best.sample(40, rng), [[best.theta[a], best.offset[b]]
+                                              for a in (0, 1) for b in (0, 1)]]:
+        ok, opening = independent_pose(part, jaw, th, c, 0.5)
+        assert ok and jaw.stroke[0] <= opening <= jaw.stroke[1]
+    with pytest.raises(TypeError, match="certify"):
+        jaw_plans(part, jaw, certify="yes")
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(6))
+def test_jaw_plans_certify_on_random_parts(seed):
+    rng = np.random.default_rng(900 + seed)
+    part = _random_part(rng)
+    jaw = _jaw_for(part, rng)
+    for p in jaw_plans(part, jaw, top=2, certify=True):
+        assert p.certified
+        for th, c in p.sample(60, rng):
+            assert independent_pose(part, jaw, th, c, 0.5, p.hole)[0]

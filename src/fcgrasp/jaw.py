@@ -51,7 +51,7 @@ from .quality import characteristic_length
 from .regions import DEFAULT_MARGIN_DEG
 
 __all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "jaw_plans", "certify_box", "THETA_STEP_DEG",
-           "OFFSET_STEPS", "CHECK_DENSITY"]
+           "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]
 
 #: Angular step of the pose grid (degrees).
 THETA_STEP_DEG = 0.5
@@ -59,6 +59,10 @@ THETA_STEP_DEG = 0.5
 OFFSET_STEPS = 160
 #: The found box is checked on a grid this many times finer (and shrunk until it holds).
 CHECK_DENSITY = 4
+#: Sub-boxes :func:`certify_box` may use to prove a planned box (``jaw_plans(certify=True)``).
+CERTIFY_BOXES = 8000
+#: Grid steps a planned box may be shrunk by until it is proved.
+CERTIFY_SHRINKS = 2
 #: Heights within this (times the part's size) are one contact (ties of the extreme).
 CONTACT_TOL = 1e-9
 #: At most this many contact features per pad are compared (more: not held, safely).
@@ -302,6 +306,7 @@ class JawPlan:
     radius: float = field(repr=False)
     mode: str = "external"
     hole: int | None = None
+    certified: bool = False
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -326,6 +331,7 @@ class JawPlan:
                          "b": {"kind": self.kinds[1], "points": self.contacts[1],
                                "stop": self.stops[1]}},
             "measure": self.measure, "centre": list(self.centre), "centroid": self.centroid,
+            "certified": self.certified,
             "stroke": list(self.jaw.stroke), "pad_width": self.jaw.pad_width,
             "mu": self.jaw.mu,
         })
@@ -441,7 +447,12 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         maybe = fy_hi > 0 if pad_force > 0 else fy_lo < 0
         surely = fy_lo > 0 if pad_force > 0 else fy_hi < 0
     else:
-        maybe = surely = np.ones(len(a), dtype=bool)
+        # only an edge facing the pad (outward normal towards it) can hold its extreme:
+        # below the strip's side line a part's boundary point faces away
+        nu_lo, nu_hi = _sin_range(sign * polygon.normals[ring][:, 0],
+                                  sign * polygon.normals[ring][:, 1], t0, t1)
+        maybe = nu_hi > CONTACT_TOL
+        surely = np.ones(len(a), dtype=bool)
     ends = np.concatenate([a, b])
     y_lo, y_hi = _sin_range(sign * ends[:, 0], sign * ends[:, 1], t0, t1)
     x_lo, x_hi = _sin_range(ends[:, 1], -ends[:, 0], t0, t1)
@@ -484,8 +495,11 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     # a cut is the extreme of its clipped edge only if the edge rises (for this pad)
     # towards the strip's side there: drop the cuts where it surely falls
     dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)
+    # (an edge along u at the box's edge, dx = 0, has its extreme at a vertex: its cut is
+    # dropped with the side it leans to inside the box, soundly; a level edge keeps both)
+    zero = CONTACT_TOL * polygon.size                   # dx = 0 at a critical angle
     rise_sign = np.where(dy_lo > 0, 1, np.where(dy_hi < 0, -1, 0)) * \
-        np.where(dxr_lo > 0, 1, np.where(dxr_hi < 0, -1, 0))
+        np.where(dxr_lo >= -zero, 1, np.where(dxr_hi <= zero, -1, 0))
     for side in (-half, half):
         s_lo, s_hi = c0 + side, c1 + side
         falls = rise_sign * np.sign(side) < 0
@@ -584,7 +598,14 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     radius = characteristic_length(polygon.vertices, polygon.centroid)
     if internal:
         rel = np.concatenate([polygon.starts[ring], polygon.ends[ring]]) - polygon.centroid
-    stack = [(t0, t1, c0, c1)]
+    # cut the box at the critical angles, where an edge turns parallel to u (its facing
+    # and its lateral direction change sign there): no sub-box straddles one
+    d = polygon.ends[ring] - polygon.starts[ring]
+    crit = np.mod(np.arctan2(d[:, 1], d[:, 0]), np.pi)
+    crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
+                                                             int(np.ceil(t1 / np.pi)) + 1)])
+    cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
+    stack = [(float(x), float(y), c0, c1) for x, y in zip(cuts[:-1], cuts[1:], strict=True)]
     lo_open, hi_open = np.inf, -np.inf
     done = 0
     while stack:
@@ -619,12 +640,16 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
 
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
-              margin: float = DEFAULT_MARGIN_DEG, internal: bool = True) -> list[JawPlan]:
+              margin: float = DEFAULT_MARGIN_DEG, internal: bool = True,
+              certify: bool = False) -> list[JawPlan]:
     """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
     docstring): external grips, and with ``internal`` grips inside each convex hole
     (:func:`convex_holes`).  For each grip, each found box's poses are removed from the
     grid before the next is sought, with their mirror (``theta + pi``, ``-c``: the same
-    grasp, pads swapped).
+    grasp, pads swapped).  With ``certify`` each box is also *proved* by
+    :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid steps until the
+    proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
+    dropped): every returned plan then has ``certified`` True.  Seconds per box.
 
     >>> from fcgrasp.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -640,16 +665,33 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     top = check_int(top, "top", minimum=1)
     if not isinstance(internal, bool):
         raise TypeError(f"internal must be a bool, got {internal!r}")
+    if not isinstance(certify, bool):
+        raise TypeError(f"certify must be a bool, got {certify!r}")
     holes: list[int | None] = [None]
     if internal:
         holes += convex_holes(polygon)
-    plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h)]
+    plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h, certify)]
     plans.sort(key=lambda p: -p.measure)
     return plans[:top]
 
 
+def _proved(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+            th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+            ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The box, shrunk by whole grid steps (at most :data:`CERTIFY_SHRINKS`) until
+    :func:`certify_box` proves it; None when it cannot."""
+    for k in range(CERTIFY_SHRINKS + 1):
+        t = (th[0] + k * dth, th[1] - k * dth)
+        c = (off[0] + k * dc, off[1] - k * dc)
+        if t[1] < t[0] or c[1] < c[0]:
+            return None
+        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=CERTIFY_BOXES):
+            return t, c
+    return None
+
+
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
-                hole: int | None) -> list[JawPlan]:
+                hole: int | None, certify: bool = False) -> list[JawPlan]:
     """The best boxes of one grip (external, or internal in ``hole``)."""
     radius = characteristic_length(polygon.vertices, polygon.centroid)
     K = int(round(360 / THETA_STEP_DEG))
@@ -674,6 +716,15 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                            dth, dc)
         if box is None:
             continue
+        if certify:
+            proved = _proved(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+            if proved is None:
+                continue
+            # the opening range over the proved box's checked poses
+            box = _checked_box(polygon, jaw, margin, hole, np.array(proved[0]),
+                               np.array(proved[1]), dth, dc)
+            if box is None:
+                continue
         (t0, t1), (c0, c1), opening = box
         tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
         r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
@@ -685,7 +736,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                              kinds, (float(r.top[0]), float(r.bottom[0])),
                              min(c1 - c0, (t1 - t0) * radius), jaw,
                              polygon.centroid.copy(), radius,
-                             "external" if hole is None else "internal", hole))
+                             "external" if hole is None else "internal", hole, certify))
     return plans
 
 
