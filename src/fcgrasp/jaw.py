@@ -191,6 +191,26 @@ def convex_holes(polygon: Polygon) -> list[int]:
     return out
 
 
+def _check_jaw_args(polygon: Any, jaw: Any, margin: Any) -> float:
+    """The common arguments checked; the margin as a float."""
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    if not isinstance(jaw, ParallelJaw):
+        raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
+    return check_scalar(margin, "margin", nonnegative=True)
+
+
+def _grip_edges(polygon: Polygon, hole: Any) -> np.ndarray:
+    """The edges a grip meets: all (external, ``hole=None``) or those of a convex hole."""
+    if hole is None:
+        return np.ones(polygon.n_edges, dtype=bool)
+    if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
+            or int(hole) not in convex_holes(polygon):
+        raise ValueError(f"hole must be the index of a convex hole of the part (internal "
+                         f"grips), got {hole!r}; convex holes: {convex_holes(polygon)}")
+    return np.asarray(polygon.rings == int(hole) + 1)
+
+
 def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
               margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None) -> PoseContacts:
     """The contacts and the verdict of the jaw at a batch of poses (the model of this
@@ -217,13 +237,7 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
         raise ValueError(f"theta and offset must have the same length, got {th.size} and "
                          f"{c.size}")
     internal = hole is not None
-    ring = np.ones(polygon.n_edges, dtype=bool)
-    if hole is not None:
-        if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
-                or int(hole) not in convex_holes(polygon):
-            raise ValueError(f"hole must be the index of a convex hole of the part (internal "
-                             f"grips), got {hole!r}; convex holes: {convex_holes(polygon)}")
-        ring = polygon.rings == int(hole) + 1
+    ring = _grip_edges(polygon, hole)
     rel_a = polygon.starts[ring] - polygon.centroid
     rel_b = polygon.ends[ring] - polygon.centroid
     u = np.stack([np.cos(th), np.sin(th)], axis=1)
@@ -577,20 +591,10 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     if not (t1 >= t0 and c1 >= c0 and t1 - t0 < np.pi):
         raise ValueError(f"theta and offset must be increasing ranges (theta under pi), "
                          f"got {theta!r}, {offset!r}")
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
-    if not isinstance(jaw, ParallelJaw):
-        raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
-    margin = check_scalar(margin, "margin", nonnegative=True)
+    margin = _check_jaw_args(polygon, jaw, margin)
     max_boxes = check_int(max_boxes, "max_boxes", minimum=1)
     internal = hole is not None
-    ring: np.ndarray = np.ones(polygon.n_edges, dtype=bool)
-    if hole is not None:
-        if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
-                or int(hole) not in convex_holes(polygon):
-            raise ValueError(f"hole must be the index of a convex hole of the part, got "
-                             f"{hole!r}; convex holes: {convex_holes(polygon)}")
-        ring = np.asarray(polygon.rings == int(hole) + 1)
+    ring = _grip_edges(polygon, hole)
     beta = float(np.arctan(jaw.mu) - np.radians(margin))
     if beta <= 0:
         return None
@@ -657,11 +661,7 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     >>> [round(float(np.degrees(t))) % 180 for t in best.theta], best.kinds
     ([78, 102], ('edge', 'edge'))
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
-    if not isinstance(jaw, ParallelJaw):
-        raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
-    margin = check_scalar(margin, "margin", nonnegative=True)
+    margin = _check_jaw_args(polygon, jaw, margin)
     top = check_int(top, "top", minimum=1)
     if not isinstance(internal, bool):
         raise TypeError(f"internal must be a bool, got {internal!r}")
