@@ -273,8 +273,15 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path):
     assert d["grasps"][0]["gripper"] == "parallel_jaw"
     assert d["grasps"][0]["theta_deg"] == pytest.approx(np.degrees(plans[0].theta))
     assert fig.stat().st_size > 1000
+    # --certify: the boxes proved, the same JSON otherwise
+    r = run("plan", "demo:quad", "--gripper", "jaw", "--stroke", "10,60", "--pad", "12",
+            "--mu", "0.4", "--top", "1", "--certify", "--json", out)
+    assert r.returncode == 0, r.stderr
+    d = json.loads(out.read_text())
+    assert d["parameters"]["certify"] is True and d["grasps"][0]["certified"] is True
     for bad in (["--gripper", "jaw"], ["--gripper", "jaw", "--stroke", "50,10", "--pad", "3"],
-                ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"]):
+                ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"],
+                ["--certify"]):
         r = run("plan", "demo:rectangle", *bad, "--json", tmp_path / "bad.json")
         assert r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
         assert not (tmp_path / "bad.json").exists()

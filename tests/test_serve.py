@@ -59,6 +59,7 @@ CASES = [
     {"gripper": "3g", "along_boundary": False, "top": 3},
     {"gripper": "4", "top": 5, "margin": 1.0, "along_boundary": False},
     {"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 2},
+    {"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 1, "certify": True},
 ]
 
 
@@ -217,6 +218,8 @@ def test_oversized_uploads_are_refused(client):
     ({"part": {"outer": BLOB}, "options": {"rank_by": "x"}}, "rank_by", "rank_by"),
     ({"part": {"outer": BLOB}, "options": {"gripper": "jaw", "pad": 4}}, "stroke", "stroke"),
     ({"part": {"outer": BLOB}, "options": {"colour": 1}}, "options", "colour"),
+    ({"part": {"outer": BLOB}, "options": {"gripper": "jaw", "stroke": [5, 60], "pad": 6,
+                                           "certify": "yes"}}, "certify", "certify"),
     ({"part": {"outer": BLOB}, "options": {"gripper": "2", "mu": 0}}, None, "friction"),
 ])
 def test_bad_plan_requests_say_what_is_wrong(client, body, field, words):

@@ -232,7 +232,8 @@ def _finger_options(args: Any) -> tuple[Any, ...]:
 
     from .hand import Hand
 
-    for opt, value in (("--stroke", args.stroke), ("--pad", args.pad)):
+    for opt, value in (("--stroke", args.stroke), ("--pad", args.pad),
+                       ("--certify", args.certify or None)):
         if value is not None:
             raise CliError(f"{opt} is an option of --gripper jaw")
     fingers = 2 if args.fingers is None else args.fingers
@@ -384,16 +385,16 @@ def _jaw_options(args: Any) -> Any:
 
 def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
     """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.jaw`)."""
-    from .planning import plan
+    from .jaw import jaw_plans
     from .report import plan_report
 
     jaw = _jaw_options(args)
     part = _load(args) if part is None else part
     polygon, units = part.polygon, part.units
-    plans = plan(polygon, gripper=jaw, top=args.top, margin=args.margin)
+    plans = jaw_plans(polygon, jaw, top=args.top, margin=args.margin, certify=args.certify)
     params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
               "pad_width": jaw.pad_width, "mu": jaw.mu, "top": args.top,
-              "margin_deg": args.margin}
+              "margin_deg": args.margin, "certify": args.certify}
     reason = None if plans else (
         f"no pose of the jaw holds the part (stroke {jaw.stroke[0]:g} to {jaw.stroke[1]:g}, "
         f"pads {jaw.pad_width:g} wide, mu = {jaw.mu:g}, margin {args.margin:g} degrees)")
@@ -747,6 +748,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="with --gripper jaw: the smallest and largest opening")
         p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
                        help="with --gripper jaw: the width of the flat pads")
+        p.add_argument("--certify", action="store_true",
+                       help="with --gripper jaw: prove every pose of each box holds "
+                            "(fcgrasp.jaw.certify_box; seconds a box; boxes it cannot prove "
+                            "are dropped)")
         p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
                        help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
                             "frictionless against gravity")

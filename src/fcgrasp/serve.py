@@ -166,7 +166,7 @@ def plan_arguments(options: Any) -> list[str]:
 
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
-         "stroke": [10, 50], "pad": 8, "gravity": [0, -1]}
+         "stroke": [10, 50], "pad": 8, "certify": false, "gravity": [0, -1]}
 
     Checked here, so that a bad value is a message naming the option, not a usage error.
 
@@ -178,7 +178,7 @@ def plan_arguments(options: Any) -> list[str]:
     if not isinstance(options, dict):
         raise RequestError(f"options must be an object, got {_short(options)}", "options")
     known = {"gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-             "gravity"}
+             "gravity", "certify"}
     extra = sorted(set(options) - known)
     if extra:
         raise RequestError(f"options: unknown option {extra[0]!r} (expected "
@@ -213,6 +213,12 @@ def plan_arguments(options: Any) -> list[str]:
             raise RequestError("options.pad (the pads' width) is needed with a parallel jaw",
                                "pad")
         argv += ["--stroke", f"{float(stroke[0])!r},{float(stroke[1])!r}", "--pad", repr(pad)]
+        certify = options.get("certify", False)
+        if not isinstance(certify, bool):
+            raise RequestError(f"options.certify must be true or false, got "
+                               f"{_short(certify)}", "certify")
+        if certify:
+            argv += ["--certify"]
     else:
         argv += ["--fingers", str(fingers)]
         if gravity:

@@ -339,6 +339,7 @@ function options() {
   if (g === "jaw") {
     o.stroke = [num("stroke0", "stroke"), num("stroke1", "stroke")];
     o.pad = num("pad", "pad width");
+    o.certify = $("certify").checked;
   } else {
     o.along_boundary = $("along").checked;
     o.rank_by = $("rank").value;
@@ -427,7 +428,7 @@ function accept(ans) {
       li.dataset.measure = String(p.measure);
       li.textContent = `${p.rank}. box ${fmt(p.measure)} ${units}: closing ` +
         `${p.theta_deg[0].toFixed(1)}–${p.theta_deg[1].toFixed(1)}°, offset ` +
-        `${fmt(p.offset[0])}…${fmt(p.offset[1])}, ${p.mode}`;
+        `${fmt(p.offset[0])}…${fmt(p.offset[1])}, ${p.mode}${p.certified ? ", proved" : ""}`;
     } else {
       li.dataset.edges = p.edges.join(",");
       li.dataset.min = String(p.min_region_length);
@@ -717,7 +718,8 @@ async function init() {
     if (f) loadFile(f);
     $("file").value = "";
   });
-  for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along"]) {
+  for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
+                    "certify"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
