@@ -31,6 +31,8 @@ from selenium.webdriver.common.by import By  # noqa: E402
 
 from fcgrasp.cli import main  # noqa: E402
 
+from .test_serve import _star  # noqa: E402
+
 CHROMIUM = shutil.which("chromium") or "/usr/bin/chromium"
 DRIVER = shutil.which("chromedriver") or "/usr/bin/chromedriver"
 COLORS = [(0xd6, 0x27, 0x28), (0x1f, 0x77, 0xb4), (0x2c, 0xa0, 0x2c), (0x94, 0x67, 0xbd)]
@@ -302,11 +304,8 @@ def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
     assert 'class="vertex"' not in figure
 
     # a slow plan (three fingers on 300 edges) shows progress and is cancelled
-    rng = np.random.default_rng(5)
-    ang = np.sort(rng.uniform(0, 2 * np.pi, 300))
-    r = 50 * (1 + 0.3 * rng.random(300))
     big = tmp_path / "big.json"
-    big.write_text(json.dumps({"vertices": np.c_[r * np.cos(ang), r * np.sin(ang)].tolist()}))
+    big.write_text(json.dumps({"vertices": _star(300).tolist()}))
     set_value(browser, "gripper", "3")
     browser.find_element(By.ID, "file").send_keys(str(big))
     wait(browser, "document.getElementById('statustext').textContent.includes('/')")

@@ -152,11 +152,7 @@ def test_gravity_check(client):
 
 
 def test_a_slow_plan_reports_progress_and_can_be_cancelled(client):
-    rng = np.random.default_rng(5)
-    n = 300
-    ang = np.sort(rng.uniform(0, 2 * np.pi, n))
-    r = 50 * (1 + 0.3 * rng.random(n))
-    part = {"outer": np.c_[r * np.cos(ang), r * np.sin(ang)].tolist()}
+    part = {"outer": _star(300).tolist()}
     r1 = client.post("/api/plan", json={"part": part, "options": {"gripper": "3", "mu": 0.3}})
     ans = r1.json()
     assert ans["state"] == "running"

@@ -501,11 +501,12 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     seg0, seg1 = list(uniq), list(uniq)
     force = [face] * len(uniq)
     highs = [float(y_hi[vert].max())] if len(uniq) else []
-    # edge cuts by the strip's sides: the pad's corner on the edge
-    xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
+    # edge cuts by the strip's sides: the pad's corner on the edge (the lateral ranges of
+    # the edges' ends are those of the vertices above: starts first, then ends)
+    m = len(a)
+    xa_lo, xa_hi = x_lo[:m], x_hi[:m]
     dxr_lo, dxr_hi = _sin_range(b[:, 1] - a[:, 1], -(b[:, 0] - a[:, 0]), t0, t1)
-    xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
-    e_lo, e_hi = np.minimum(xa_lo, xb_lo), np.maximum(xa_hi, xb_hi)
+    e_lo, e_hi = np.minimum(xa_lo, x_lo[m:]), np.maximum(xa_hi, x_hi[m:])
     # a cut is the extreme of its clipped edge only if the edge rises (for this pad)
     # towards the strip's side there: drop the cuts where it surely falls
     dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)

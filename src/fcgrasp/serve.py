@@ -47,7 +47,7 @@ import threading
 import time
 from dataclasses import dataclass, field
 from importlib.resources import files
-from typing import Any
+from typing import Any, TypeGuard
 
 import numpy as np
 
@@ -86,14 +86,19 @@ def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict
                        "notes": list(notes)})
 
 
+def _is_pair(value: Any) -> TypeGuard[list[float]]:
+    """Whether ``value`` is a JSON list of two finite numbers."""
+    return (isinstance(value, list) and len(value) == 2
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                    and math.isfinite(v) for v in value))
+
+
 def _ring(value: Any, name: str) -> list[list[float]]:
     if not isinstance(value, list) or len(value) < 3:
         raise RequestError(f"{name} must be a list of at least 3 [x, y] points, got "
                            f"{_short(value)}", "part")
     for k, p in enumerate(value):
-        if (not isinstance(p, list) or len(p) != 2
-                or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in p)
-                or not all(math.isfinite(v) for v in p)):
+        if not _is_pair(p):
             raise RequestError(f"{name}[{k}] must be [x, y] finite numbers, got {_short(p)}",
                                "part")
     return value
@@ -203,9 +208,7 @@ def plan_arguments(options: Any) -> list[str]:
     if jaw:
         argv += ["--gripper", "jaw"]
         stroke = options.get("stroke")
-        if (not isinstance(stroke, list) or len(stroke) != 2
-                or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                           and math.isfinite(v) for v in stroke)):
+        if not _is_pair(stroke):
             raise RequestError(f"options.stroke must be [min, max] opening, got "
                                f"{_short(stroke)}", "stroke")
         pad = number("pad")
@@ -223,9 +226,7 @@ def plan_arguments(options: Any) -> list[str]:
         argv += ["--fingers", str(fingers)]
         if gravity:
             g = options.get("gravity", [0.0, -1.0])
-            if (not isinstance(g, list) or len(g) != 2
-                    or not all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                               and math.isfinite(v) for v in g) or not any(g)):
+            if not _is_pair(g) or not any(g):
                 raise RequestError(f"options.gravity must be a non-zero [gx, gy], got "
                                    f"{_short(g)}", "gravity")
             argv += ["--gravity", f"{float(g[0])!r},{float(g[1])!r}"]
@@ -281,15 +282,15 @@ def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
     if gs.pi12 is None or gs.pi34 is None:
         return {"kind": "Pi", "segments": [], "polygons": [], "cones": []}
     polys, segs = [], []
-    for g in (gs.pi12, gs.pi34):
+    for g in (gs.pi12, gs.pi34):              # a parallelogram, or a segment or point
         if g.geom_type == "Polygon":
             polys.append(np.asarray(g.exterior.coords)[:-1].tolist())
         elif not g.is_empty:
-            segs.append(np.asarray(g.coords).tolist() if hasattr(g, "coords") else [])
+            segs.append(np.asarray(g.coords).tolist())
     a = np.asarray(gs.pi12.centroid.coords[0])
     b = np.asarray(gs.pi34.centroid.coords[0])
     cone = {"apex": ((a + b) / 2).tolist(), "angle": gs.sector[0], "half": gs.sector[1]}
-    return {"kind": "Pi", "segments": [s for s in segs if s], "polygons": polys,
+    return {"kind": "Pi", "segments": segs, "polygons": polys,
             "cones": [cone] if gs.sector[1] > 0 else []}
 
 
@@ -324,6 +325,7 @@ def plan_result(polygon: Any, units: str, options: dict[str, Any], name: str = "
     and its grasp-set overlay."""
     from .cli import CliError, build_parser, plan_document
     from .parts import Part
+    from .report import dumps
 
     argv = ["plan", name, *plan_arguments(options)]
     args = build_parser().parse_args(argv)
@@ -332,14 +334,8 @@ def plan_result(polygon: Any, units: str, options: dict[str, Any], name: str = "
         doc = plan_document(args, part=part, progress=progress)
     except CliError as exc:
         raise RequestError(str(exc), "options") from None
-    return {"report": json.loads(_dumps(doc.report)), "argv": argv[2:],
+    return {"report": json.loads(dumps(doc.report)), "argv": argv[2:],
             "overlays": [json_ready(overlay(polygon, p)) for p in doc.plans]}
-
-
-def _dumps(report: dict[str, Any]) -> str:
-    from .report import dumps
-
-    return dumps(report)
 
 
 def _worker(conn: Any) -> None:

@@ -168,11 +168,10 @@ function rot(n, a) {
 function drawPush(g, c, n, mu, color) {
   const L = 0.07 * S.view.size;
   if (mu > 0) {
-    const a = Math.atan(mu);
+    const a = Math.atan(mu), at = X(c);
     for (const sg of [1, -1]) {
-      const d = rot(n, sg * a);
-      el("line", { x1: X(c)[0], y1: X(c)[1], x2: X([c[0] + L * d[0], c[1] + L * d[1]])[0],
-                   y2: X([c[0] + L * d[0], c[1] + L * d[1]])[1], stroke: color || "#000",
+      const d = rot(n, sg * a), end = X([c[0] + L * d[0], c[1] + L * d[1]]);
+      el("line", { x1: at[0], y1: at[1], x2: end[0], y2: end[1], stroke: color || "#000",
                    "stroke-width": 1.4, class: "vee" }, g);
     }
   } else {
