@@ -8,7 +8,7 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 LAYERS = [
-    ["tolerances", "_checks", "_geom", "_json", "units"],
+    ["tolerances", "_checks", "_geom", "_json", "units", "kernels"],
     ["screws", "convexes", "sectors"],
     ["contacts", "grasp", "closure"],
     ["polygon", "graspsets"],

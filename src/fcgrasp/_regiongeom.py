@@ -10,6 +10,7 @@ import numpy as np
 
 from ._checks import FloatArray
 from ._geom import direction as _dir
+from .kernels import pair_problems, pair_sector
 from .regions import KnapsackProblem, build_problem
 from .sectors import arc_intersection, meet_and_velocities, pair_arc, pairing_valid
 from .tolerances import TOL
@@ -21,21 +22,24 @@ def two_finger_problems(a1: FloatArray, b1: FloatArray, c1: FloatArray, h1: Floa
     """Problems for the squeezing and expanding modes of two friction fingers.
 
     ``a, b``: (B, 2) segment ends; ``c, h``: (B,) arcs of force directions.
-    Returns ``([squeeze, expand], half_width_of_shrunk_sector)``.
+    Returns ``([squeeze, expand], half_width_of_shrunk_sector)``.  The formulas are
+    :func:`fcgrasp.kernels.pair_sector` and :func:`fcgrasp.kernels.pair_problem`.
     """
-    cen, half = arc_intersection(c1, h1, c2 + np.pi, h2)
-    hm = half - margin
-    k1, k2 = _dir(cen - hm), _dir(cen + hm)
-    L = np.stack([np.hypot(*(b1 - a1).T), np.hypot(*(b2 - a2).T)], axis=1)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        t1 = (b1 - a1) / np.where(L[:, :1] > 0, L[:, :1], 1.0)
-        t2 = (b2 - a2) / np.where(L[:, 1:] > 0, L[:, 1:], 1.0)
-    vel = np.stack([t1, t2], axis=1)
-    side = np.array([0, 1])
-    probs = [build_problem(side, a1, a2, vel, L, s * k1, s * k2) for s in (1.0, -1.0)]
-    for pr in probs:
-        pr.separable &= hm > 0           # a sector narrower than the margin has no regions
-    return probs, hm
+    with np.errstate(invalid="ignore"):
+        cen, hm = pair_sector(np.asarray(c1, float), np.asarray(h1, float),
+                              np.asarray(c2, float), np.asarray(h2, float), margin)
+    cen, hm = np.broadcast_to(cen, (len(a1),)), np.broadcast_to(hm, (len(a1),))
+    return [problem_from_pair(pair_problems(a1, b1, a2, b2, cen, hm, s))
+            for s in (1.0, -1.0)], hm
+
+
+def problem_from_pair(f: dict[str, np.ndarray]) -> KnapsackProblem:
+    """The :class:`KnapsackProblem` of :func:`fcgrasp.kernels.pair_problems`' fields."""
+    L = np.stack([f["L1"], f["L2"]], axis=1)
+    return KnapsackProblem(L, np.stack([f["w1_1"], f["w1_2"]], axis=1),
+                           np.stack([f["w2_1"], f["w2_2"]], axis=1), np.array(f["K1"]),
+                           np.array(f["K2"]), np.stack([f["up_1"], f["up_2"]], axis=1),
+                           L > 0, np.array(f["separable"]))
 
 
 def four_finger_geometry(a: FloatArray, b: FloatArray, center: FloatArray,

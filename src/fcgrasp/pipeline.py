@@ -47,12 +47,13 @@ from ._regiongeom import four_finger_problems, two_finger_problems
 from .closure import force_direction_closure
 from .frictionless_stretches import FrictionlessStretches, grow_stretches
 from .hand import Hand
+from .kernels import pair_scores
 from .plans import GraspPlan, geometric_key, leximin_key, rank_key
 from .polygon import Polygon
 from .quality import characteristic_length
 from .ranking import MEASURES
 from .regions import DEFAULT_MARGIN_DEG, KnapsackProblem, leximin, max_min_length, place_regions
-from .sectors import PAIRINGS, arc_intersection, pairing_valid
+from .sectors import PAIRINGS, pairing_valid
 from .stretches import StretchPair, crosses_a_vertex, two_finger_stretches
 from .tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
 
@@ -333,22 +334,24 @@ def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
 
 
 def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
-                     tol: float = SOLVER_TOL) -> Candidates:
+                     tol: float = SOLVER_TOL, floor: float = 0.0) -> Candidates:
+    """Two-finger candidates of the feature pairs ``(i, j)`` on distinct edges that have
+    regions (reaching ``floor``, if given), scored by one fused pass over every pair
+    (:func:`fcgrasp.kernels.pair_scores`, exact: the two fingers are on distinct edges);
+    the problems are built for those pairs only."""
     keep = F.edge[i] != F.edge[j]
     i, j = i[keep], j[keep]
-    # quick sector test before building anything
-    _, half = arc_intersection(F.center[i], F.half[i], F.center[j] + np.pi, F.half[j])
-    ok = half - margin > 0
-    i, j = i[ok], j[ok]
+    score, mode, _ = pair_scores(F.a, F.b, F.center, F.half, i, j, margin, tol)
+    ok = np.flatnonzero((score > 0) & (score >= floor))
+    i, j, score, mode = i[ok], j[ok], score[ok], mode[ok]
     probs, _ = two_finger_problems(F.a[i], F.b[i], F.center[i], F.half[i],
                                    F.a[j], F.b[j], F.center[j], F.half[j], margin)
     c = Candidates(np.stack([i, j], axis=1), np.stack([F.a[i], F.a[j]], 1),
-                    np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
-                    np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
-                    ("squeeze", "expand"), tol=tol)
-    _score(c)
+                   np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
+                   np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
+                   ("squeeze", "expand"), tol=tol)
+    c.score, c.best_mode = score, mode
     return c
-
 
 
 def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
@@ -723,7 +726,9 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
                    edges: Any = None, floor: float = 0.0) -> Candidates:
     """The grasp sets of a batch (section 6) and their region problems, scored by the
     largest smallest region (stage 1, exact unless two fingers share an edge, when it is
-    an upper bound).  Rows that fail the force-direction constraint are dropped.  With a
+    an upper bound).  Rows that fail the force-direction constraint are dropped; with two
+    fingers, so are rows with no regions (or, with a ``floor`` and a ``top``, with a
+    smallest region below it).  With a
     ``floor`` (:attr:`TopK.floor`), four-finger pairings tied on the smallest region are
     told apart only in the rows that reach it."""
     if spec.fingers == 3 and spec.gravity is None:
@@ -732,7 +737,8 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
     F = features(polygon, spec.mu, spec.hand, edges)
     feats = np.asarray(sets.feats, dtype=int)
     if spec.fingers == 2:
-        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol)
+        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol,
+                                floor if spec.top is not None else 0.0)
     gravity = None if spec.gravity is None else np.array(spec.gravity)
     return _quad_candidates(F, spec.margin_rad, gravity, polygon.centroid,
                             feats.reshape(-1, 4), spec.tol, floor)

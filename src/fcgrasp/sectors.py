@@ -24,6 +24,7 @@ import numpy as np
 
 from ._checks import FloatArray
 from ._geom import cross2, wrap
+from .kernels import arc_meet
 from .tolerances import TOL
 
 __all__ = ["PAIRINGS", "line_meet", "meet_and_velocities", "pair_arc", "arc_intersection",
@@ -75,10 +76,7 @@ def arc_intersection(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[FloatArray, Fl
     (0.2, 0.3)
     """
     c1, h1, c2, h2 = (np.asarray(x, dtype=float) for x in (c1, h1, c2, h2))
-    delta = wrap(c2 - c1)
-    lo = np.maximum(-h1, delta - h2)
-    hi = np.minimum(h1, delta + h2)
-    return wrap(c1 + (lo + hi) / 2), (hi - lo) / 2
+    return arc_meet(c1, h1, c2, h2)
 
 
 def pairing_valid(directions: FloatArray, pairing: Any, tol: float = TOL) -> np.ndarray:

@@ -1,0 +1,175 @@
+"""The fused kernels (issue 13) against the previous pure-numpy implementation
+(``tests/previous_kernels.py``), numpy mode and compiled mode, on seeded random edge sets,
+near-degenerate ones included; and whole plans equal in both modes."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp import kernels
+from fcgrasp._regiongeom import two_finger_problems
+from fcgrasp.regions import KnapsackProblem, _two_level
+
+from . import previous_kernels as prev
+from .shapes import random_polygon
+
+RTOL = 1e-12
+MODES = ["numpy", "compiled"]
+
+
+@pytest.fixture(params=MODES)
+def mode(request, monkeypatch):
+    """Run the kernels by numpy, or compiled for every batch however small."""
+    monkeypatch.setenv("FCGRASP_JIT", "0" if request.param == "numpy" else "1")
+    return request.param
+
+
+def _edge_sets(rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
+    """Random pairs of segments with friction cones, a quarter of them near-degenerate:
+    parallel opposed edges, cones touching within rounding, zero margin, tiny and huge
+    scales, a zero-length segment."""
+    scale = 10.0 ** rng.uniform(-3, 3, n)
+    a1, a2 = rng.normal(size=(n, 2)) * scale[:, None], rng.normal(size=(n, 2)) * scale[:, None]
+    d1, d2 = rng.normal(size=(n, 2)) * scale[:, None], rng.normal(size=(n, 2)) * scale[:, None]
+    c1 = rng.uniform(-np.pi, np.pi, n)
+    c2 = c1 + np.pi + rng.normal(0, 0.6, n)
+    h = np.arctan(rng.uniform(0.0, 1.2, n))
+    margin = np.full(n, np.radians(0.5))
+    kind = rng.integers(0, 8, n)
+    par = kind == 1                              # parallel opposed edges
+    c2[par] = c1[par] + np.pi
+    d2[par] = -d1[par] * rng.uniform(0.2, 3, par.sum())[:, None]
+    touch = kind == 2                            # cones that just meet
+    c2[touch] = c1[touch] + np.pi + 2 * h[touch] * (1 - 1e-13)
+    margin[kind == 3] = 0.0
+    margin[kind == 4] = h[kind == 4] * (1 - 1e-12)   # margin eats the sector
+    d1[kind == 5] = 0.0                           # a point contact
+    b1, b2 = a1 + d1, a2 + d2
+    return dict(a1=a1, b1=b1, c1=c1, h1=h, a2=a2, b2=b2, c2=c2, h2=h.copy(), margin=margin)
+
+
+def _close(new: np.ndarray, old: np.ndarray, scale: np.ndarray) -> np.ndarray:
+    return np.abs(np.asarray(new, float) - np.asarray(old, float)) <= RTOL * scale
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_pair_problems_equal_the_previous_implementation(seed, mode):
+    e = _edge_sets(np.random.default_rng(seed), 3000)
+    for m in (np.radians(0.5), 0.0):
+        new, hm_new = two_finger_problems(e["a1"], e["b1"], e["c1"], e["h1"], e["a2"],
+                                          e["b2"], e["c2"], e["h2"], m)
+        old, hm_old = prev.two_finger_problems(e["a1"], e["b1"], e["c1"], e["h1"], e["a2"],
+                                               e["b2"], e["c2"], e["h2"], m)
+        assert np.all(_close(hm_new, hm_old, 1.0))
+        for pn, po in zip(new, old, strict=True):
+            size = np.maximum(po.L.max(axis=1), 1e-300)
+            wscale = np.sum((po.w1 + po.w2) * po.L, axis=1) + abs(po.K1) + abs(po.K2)
+            assert np.all(_close(pn.L, po.L, size[:, None]))
+            assert np.all(_close(pn.w1, po.w1, 1.0)) and np.all(_close(pn.w2, po.w2, 1.0))
+            assert np.all(_close(pn.K1, po.K1, wscale))
+            assert np.all(_close(pn.K2, po.K2, wscale))
+            for f in ("upper1", "active", "separable"):
+                same = getattr(pn, f) == getattr(po, f)
+                # a flag may only differ where its deciding quantity is a rounding tie
+                assert same.mean() > 0.999, f
+            # the solved levels agree wherever the flags do
+            ok = pn.separable & po.separable
+            lv_new = _two_level(pn, np.zeros_like(pn.L), np.ones_like(pn.L))
+            lv_old = prev.two_level(po, np.zeros_like(po.L), np.ones_like(po.L))
+            assert np.all(_close(lv_new, lv_old, size)[ok])
+
+
+def _random_problems(rng: np.random.Generator, B: int) -> KnapsackProblem:
+    L = rng.uniform(0, 2, (B, 2))
+    L[rng.random(B) < 0.05, 0] = 0.0
+    w1, w2 = rng.uniform(0, 1, (B, 2)), rng.uniform(0, 1, (B, 2))
+    w1[rng.random((B, 2)) < 0.1] = 0.0
+    w2[rng.random((B, 2)) < 0.05] = 0.0
+    # budgets around the interesting range, some exactly at a breakpoint
+    K1 = rng.uniform(-0.2, 1.0, B) * np.sum(w1 * L, axis=1)
+    K2 = rng.uniform(-0.2, 1.0, B) * np.sum(w2 * L, axis=1)
+    tie = rng.random(B) < 0.1
+    K1[tie] = w1[tie, 0] * L[tie, 0]
+    up = rng.random((B, 2)) < 0.5
+    return KnapsackProblem(L, w1, w2, K1, K2, up, L > 0, np.ones(B, bool))
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_two_level_equals_the_previous_implementation(seed, mode):
+    rng = np.random.default_rng(100 + seed)
+    p = _random_problems(rng, 5000)
+    B = p.batch
+    for lb0, fr in ((np.zeros((B, 2)), np.ones((B, 2))),
+                    (np.stack([rng.uniform(0, 1, B), np.zeros(B)], 1),
+                     np.tile([0.0, 1.0], (B, 1))),
+                    (np.stack([np.zeros(B), rng.uniform(0, 1, B)], 1),
+                     np.tile([1.0, 0.0], (B, 1)))):
+        new = _two_level(p, lb0, fr)
+        old = prev.two_level(p, lb0, fr)
+        scale = np.maximum(p.L.max(axis=1), 1e-300)
+        assert np.all(_close(new, old, scale)), np.flatnonzero(~_close(new, old, scale))[:5]
+        assert 0.1 < (new > 0).mean() < 0.95       # both outcomes are exercised
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_pair_scores_equal_the_previous_implementation(seed, mode):
+    rng = np.random.default_rng(200 + seed)
+    n = 120
+    e = _edge_sets(rng, n)
+    a, b = np.concatenate([e["a1"], e["a2"]]), np.concatenate([e["b1"], e["b2"]])
+    center, half = np.concatenate([e["c1"], e["c2"]]), np.concatenate([e["h1"], e["h2"]])
+    i, j = np.triu_indices(2 * n, 1)
+    margin = np.radians(0.5)
+    score, best, hm = kernels.pair_scores(a, b, center, half, i, j, margin)
+    probs, hm_old = prev.two_finger_problems(a[i], b[i], center[i], half[i], a[j], b[j],
+                                             center[j], half[j], margin)
+    vals = np.stack([np.where(p.separable, prev.two_level(p, np.zeros_like(p.L),
+                                                           np.ones_like(p.L)), -1.0)
+                     for p in probs])
+    size = np.maximum(probs[0].L.max(axis=1), 1e-300)
+    assert np.all(_close(hm, hm_old, 1.0))
+    ok = hm_old > 1e-12
+    assert np.all(_close(score, vals.max(axis=0), size)[ok])
+    clear = ok & (np.abs(vals[0] - vals[1]) > 1e-9 * size)
+    assert np.array_equal(best[clear], np.argmax(vals, axis=0)[clear])
+    assert 0.05 < (score > 0).mean() < 0.9
+
+
+def test_plans_are_the_same_compiled_and_by_numpy(monkeypatch):
+    rng = np.random.default_rng(7)
+    for k in range(12):
+        poly = random_polygon(rng)
+        kw = dict(fingers=2, mu=float(rng.uniform(0.1, 0.8)), top=5,
+                  along_boundary=bool(k % 2))
+        out = {}
+        for setting in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", setting)
+            out[setting] = fc.plan(poly, **kw)
+        assert len(out["0"]) == len(out["1"])
+        for p, q in zip(out["0"], out["1"], strict=True):
+            assert p.edges == q.edges and p.mode == q.mode
+            assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=0)
+            for r, s in zip(p.regions, q.regions, strict=True):
+                assert np.allclose(r, s, rtol=1e-9, atol=1e-9 * poly.size)
+
+
+def test_small_batches_do_not_load_numba():
+    """A small plan in a fresh process runs by numpy: numba is not even imported."""
+    import subprocess
+    import sys
+    code = ("import sys, fcgrasp as fc\nfrom fcgrasp.parts import demo_part\n"
+            "fc.plan(demo_part('blob'), fingers=2, mu=0.5, along_boundary=False)\n"
+            "print('numba' in sys.modules)")
+    env = {"PATH": "/usr/bin:/bin"}
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True, env=env)
+    assert out.stdout.strip() == "False"
+
+
+def test_use_jit_follows_the_setting(monkeypatch):
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    assert not kernels.use_jit(10 ** 9)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    assert kernels.use_jit(1)
