@@ -4,6 +4,10 @@ near-degenerate ones included; and whole plans equal in both modes."""
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+
 import numpy as np
 import pytest
 
@@ -157,8 +161,6 @@ def test_plans_are_the_same_compiled_and_by_numpy(monkeypatch):
 
 def test_small_batches_do_not_load_numba():
     """A small plan in a fresh process runs by numpy: numba is not even imported."""
-    import subprocess
-    import sys
     code = ("import sys, fcgrasp as fc\nfrom fcgrasp.parts import demo_part\n"
             "fc.plan(demo_part('blob'), fingers=2, mu=0.5, along_boundary=False)\n"
             "print('numba' in sys.modules)")
@@ -173,3 +175,21 @@ def test_use_jit_follows_the_setting(monkeypatch):
     assert not kernels.use_jit(10 ** 9)
     monkeypatch.setenv("FCGRASP_JIT", "1")
     assert kernels.use_jit(1)
+
+
+def test_a_large_search_switches_to_the_compiled_kernels():
+    """Once a process has run JIT_AFTER_ROWS rows by numpy, the kernels are compiled (and
+    the plans are the same as by numpy alone)."""
+    code = ("import sys, json, numpy as np, fcgrasp as fc\nfrom fcgrasp import kernels\n"
+            "kernels.JIT_AFTER_ROWS = int(sys.argv[1])\n"
+            "a = np.linspace(0, 2 * np.pi, 120, endpoint=False)\n"
+            "r = 1 + 0.3 * np.sin(3 * a)\n"
+            "part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])\n"
+            "p = fc.plan(part, fingers=2, mu=0.4, top=3, along_boundary=False)\n"
+            "print(json.dumps(['numba' in sys.modules, [q.lengths.tolist() for q in p]]))")
+    env = {"PATH": "/usr/bin:/bin"}
+    runs = [json.loads(subprocess.run([sys.executable, "-c", code, str(after)],
+                                      capture_output=True, text=True, check=True,
+                                      env=env).stdout) for after in (100, 10 ** 9)]
+    assert runs[0][0] is True and runs[1][0] is False
+    assert np.allclose(runs[0][1], runs[1][1], rtol=1e-9)

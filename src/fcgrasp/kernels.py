@@ -8,8 +8,9 @@ source then runs two ways:
   numba; used for small batches, so that a small plan is not start-up bound;
 * **compiled by numba** into a fused, allocation-free loop over the rows of a batch
   (numba imported on first need, the machine code cached on disk beside this file):
-  used for batches of at least :data:`JIT_MIN_ROWS` rows, and for every batch once numba
-  is loaded in the process.
+  once the process has run :data:`JIT_AFTER_ROWS` rows by numpy, that is once the search
+  is large enough to repay numba's start-up (about 0.45 s to import it and load the
+  cached code; about 2.5 s the first time, to compile), and for every batch after that.
 
 Both ways evaluate the same floating-point expressions in the same order, so they agree
 to the last few units in the last place (tested to 1e-12 relative, with the previous pure
@@ -45,13 +46,14 @@ import numpy as np
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL
 
-__all__ = ["JIT_MIN_ROWS", "use_jit", "arc_meet", "segment", "pair_sector", "pair_problem",
+__all__ = ["JIT_AFTER_ROWS", "use_jit", "arc_meet", "segment", "pair_sector", "pair_problem",
            "two_level", "pair_modes", "pair_scores", "pair_problems", "two_levels",
            "PROBLEM_FIELDS"]
 
-#: Rows from which a batch is run by the compiled loop rather than by numpy (the first
-#: compiled call of a process costs about 0.45 s: numba's import and its cache).
-JIT_MIN_ROWS = 4096
+#: Rows a process runs by numpy before the kernels are compiled (numpy takes about
+#: 0.2-0.3 us a row, so about as long as the first compiled call of a process costs:
+#: numba's import and its cache, about 0.45 s).
+JIT_AFTER_ROWS = 2_000_000
 
 #: The outputs of :func:`pair_problem`, in order (per finger: ``_1``, ``_2``).
 PROBLEM_FIELDS = ("L1", "L2", "w1_1", "w1_2", "w2_1", "w2_2", "K1", "K2", "up_1", "up_2",
@@ -306,6 +308,7 @@ _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop")
 
 _compiled: dict[str, Any] | None = None
 _no_numba = False
+_rows_by_numpy = 0
 _compiling = threading.Lock()
 
 
@@ -314,15 +317,18 @@ def _setting() -> str:
 
 
 def use_jit(rows: int) -> bool:
-    """Does a batch of ``rows`` rows run compiled?  Yes when numba is already loaded by
-    this process, or the batch has at least :data:`JIT_MIN_ROWS` rows; never with
-    ``FCGRASP_JIT=0`` or without numba; always with ``FCGRASP_JIT=1``."""
+    """Does a batch of ``rows`` rows run compiled?  Yes once this process has loaded the
+    compiled kernels, or has run :data:`JIT_AFTER_ROWS` rows by numpy (this batch
+    included: a batch that runs by numpy is counted); never with ``FCGRASP_JIT=0`` or
+    without numba; always with ``FCGRASP_JIT=1``."""
+    global _rows_by_numpy
     setting = _setting()
     if setting in ("0", "off", "no", "false") or _no_numba:
         return False
-    if setting in ("1", "on", "yes", "true"):
+    if setting in ("1", "on", "yes", "true") or _compiled is not None:
         return True
-    return _compiled is not None or rows >= JIT_MIN_ROWS
+    _rows_by_numpy += rows
+    return _rows_by_numpy > JIT_AFTER_ROWS
 
 
 def _loops() -> dict[str, Any] | None:
