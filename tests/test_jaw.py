@@ -157,6 +157,7 @@ def test_pose_model_matches_shapely_and_the_wrench_lp(seed):
 def _check_plans(part, jaw, rng, n=40):
     plans = jaw_plans(part, jaw, top=3)
     for p in plans:
+        assert p.certified                     # proved by default
         assert (p.mode == "internal") == (p.hole is not None)
         assert p.theta[1] >= p.theta[0] and p.offset[1] >= p.offset[0]
         poses = np.r_[p.sample(n, rng), [[p.theta[a], p.offset[b]] for a in (0, 1)
@@ -273,15 +274,17 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path):
     assert d["grasps"][0]["gripper"] == "parallel_jaw"
     assert d["grasps"][0]["theta_deg"] == pytest.approx(np.degrees(plans[0].theta))
     assert fig.stat().st_size > 1000
-    # --certify: the boxes proved, the same JSON otherwise
-    r = run("plan", "demo:quad", "--gripper", "jaw", "--stroke", "10,60", "--pad", "12",
-            "--mu", "0.4", "--top", "1", "--certify", "--json", out)
-    assert r.returncode == 0, r.stderr
-    d = json.loads(out.read_text())
+    # the boxes are proved by default (--certify); --no-certify: grid-verified only
     assert d["parameters"]["certify"] is True and d["grasps"][0]["certified"] is True
+    for flag, proved in (("--certify", True), ("--no-certify", False)):
+        r = run("plan", "demo:quad", "--gripper", "jaw", "--stroke", "10,60", "--pad", "12",
+                "--mu", "0.4", "--top", "1", flag, "--json", out)
+        assert r.returncode == 0, r.stderr
+        d = json.loads(out.read_text())
+        assert d["parameters"]["certify"] is proved and d["grasps"][0]["certified"] is proved
     for bad in (["--gripper", "jaw"], ["--gripper", "jaw", "--stroke", "50,10", "--pad", "3"],
                 ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"],
-                ["--certify"]):
+                ["--certify"], ["--no-certify"]):
         r = run("plan", "demo:rectangle", *bad, "--json", tmp_path / "bad.json")
         assert r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
         assert not (tmp_path / "bad.json").exists()
@@ -361,8 +364,8 @@ def test_certify_box_proves_the_rectangle_and_refuses_what_fails():
 def test_jaw_plans_certify_proves_every_box():
     part = demo_part("rectangle")
     jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
-    plain = jaw_plans(part, jaw, top=1)[0]
-    best = jaw_plans(part, jaw, top=1, certify=True)[0]
+    plain = jaw_plans(part, jaw, top=1, certify=False)[0]
+    best = jaw_plans(part, jaw, top=1)[0]                     # proved by default
     assert not plain.certified and best.certified and best.to_dict()["certified"] is True
     # the proved box is the planned one, shrunk by at most a couple of grid steps
     assert plain.theta[0] <= best.theta[0] < best.theta[1] <= plain.theta[1]

@@ -233,7 +233,7 @@ def _finger_options(args: Any) -> tuple[Any, ...]:
     from .hand import Hand
 
     for opt, value in (("--stroke", args.stroke), ("--pad", args.pad),
-                       ("--certify", args.certify or None)):
+                       ("--certify" if args.certify else "--no-certify", args.certify)):
         if value is not None:
             raise CliError(f"{opt} is an option of --gripper jaw")
     fingers = 2 if args.fingers is None else args.fingers
@@ -391,10 +391,11 @@ def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
     jaw = _jaw_options(args)
     part = _load(args) if part is None else part
     polygon, units = part.polygon, part.units
-    plans = jaw_plans(polygon, jaw, top=args.top, margin=args.margin, certify=args.certify)
+    certify = args.certify is not False
+    plans = jaw_plans(polygon, jaw, top=args.top, margin=args.margin, certify=certify)
     params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
               "pad_width": jaw.pad_width, "mu": jaw.mu, "top": args.top,
-              "margin_deg": args.margin, "certify": args.certify}
+              "margin_deg": args.margin, "certify": certify}
     reason = None if plans else (
         f"no pose of the jaw holds the part (stroke {jaw.stroke[0]:g} to {jaw.stroke[1]:g}, "
         f"pads {jaw.pad_width:g} wide, mu = {jaw.mu:g}, margin {args.margin:g} degrees)")
@@ -748,10 +749,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="with --gripper jaw: the smallest and largest opening")
         p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
                        help="with --gripper jaw: the width of the flat pads")
-        p.add_argument("--certify", action="store_true",
-                       help="with --gripper jaw: prove every pose of each box holds "
-                            "(fcgrasp.jaw.certify_box; seconds a box; boxes it cannot prove "
-                            "are dropped)")
+        p.add_argument("--certify", action=argparse.BooleanOptionalAction, default=None,
+                       help="with --gripper jaw: prove that every pose of each box holds "
+                            "(fcgrasp.jaw.certify_box; the default: boxes it cannot prove "
+                            "are dropped); --no-certify: boxes verified on a fine grid only")
         p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
                        help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
                             "frictionless against gravity")

@@ -31,10 +31,12 @@ grid (:data:`THETA_STEP_DEG`, :data:`OFFSET_STEPS` across the part) by
 ``min(c1 - c0, (t1 - t0) * radius)`` (the offset range, and the angular range as the
 arc it sweeps at the part's radius: both lengths) is then checked on a grid
 :data:`CHECK_DENSITY` times finer and shrunk by grid steps until every checked pose
-holds.  It is therefore a box *verified on a fine grid*, not an exact one: the exact
-boundary of the set (the support functions of the part restricted to the strip,
-piecewise-smooth curves) is not computed.  :func:`certify_box` *proves* a box (every pose
-of it holds) where it can: sound, not complete.
+holds.  :func:`certify_box` then *proves* that every pose of the box holds, between the
+grid points too (sound, not complete; a box it cannot prove is shrunk, then dropped):
+:func:`jaw_plans` returns proved boxes unless asked not to (``certify=False``: boxes
+verified on the fine grid only).  The exact boundary of the set (the support functions of
+the part restricted to the strip, piecewise-smooth curves) is not constructed: a box is the
+largest on the grid, proved, not the largest of the exact set.
 """
 
 from __future__ import annotations
@@ -59,8 +61,10 @@ THETA_STEP_DEG = 0.5
 OFFSET_STEPS = 160
 #: The found box is checked on a grid this many times finer (and shrunk until it holds).
 CHECK_DENSITY = 4
-#: Sub-boxes :func:`certify_box` may use to prove a planned box (``jaw_plans(certify=True)``).
-CERTIFY_BOXES = 8000
+#: Sub-boxes :func:`certify_box` may use to prove a planned box (``jaw_plans``); the box
+#: as found gets an eighth of them (found on the grid, it usually touches the holding
+#: set's boundary: refused at once by a failing pose, or proved one step smaller).
+CERTIFY_BOXES = 4000
 #: Grid steps a planned box may be shrunk by until it is proved.
 CERTIFY_SHRINKS = 2
 #: Heights within this (times the part's size) are one contact (ties of the extreme).
@@ -399,7 +403,7 @@ def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
 # ----------------------------------------------------------------------------- certificates
 
 
-def _sin_range(a: FloatArray, b: FloatArray, t0: float, t1: float
+def _sin_range(a: Any, b: Any, t0: Any, t1: Any
                ) -> tuple[FloatArray, FloatArray]:
     """Exact range of ``a cos(t) + b sin(t)`` over ``t in [t0, t1]`` (``t1 - t0 < 2 pi``),
     elementwise: the ends, and the extremes ``+-hypot(a, b)`` where their angle falls
@@ -432,31 +436,38 @@ def _arc_of(vectors: FloatArray) -> tuple[float, float] | None:
 
 @dataclass
 class _Candidates:
-    """Everything a pad may touch at some pose of a box: point sets (segments ``p0-p1``,
-    a point when equal) with their contact force's direction as an arc (centre,
-    half-width); and bounds ``lo``, ``hi`` of the pad's stop over the box."""
+    """Everything a pad may touch at some pose of each box of a batch (B boxes): up to
+    :data:`MAX_CONTACTS` point sets (segments ``p0-p1`` (B, K, 2), a point when equal)
+    with their contact force's direction as an arc (``centre``, ``half`` (B, K)),
+    ``valid`` (B, K); bounds ``lo``, ``hi`` (B,) of the pad's stop over the box; ``ok``
+    (B,): False where no feature surely reaches the strip or too many may touch."""
 
     p0: FloatArray
     p1: FloatArray
-    force: list[tuple[float, float]]
-    lo: float
-    hi: float
+    centre: FloatArray
+    half: FloatArray
+    valid: np.ndarray
+    lo: FloatArray
+    hi: FloatArray
+    ok: np.ndarray
 
 
 def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
-                    box: tuple[float, float, float, float], half: float
-                    ) -> _Candidates | None:
+                    boxes: FloatArray, half: float) -> _Candidates:
     """The pad of ``sign`` (+1: pad A of an external grip, the extreme of ``sign * y``)
-    over the box ``(t0, t1, c0, c1)``: a superset of its contacts, or None when too many
-    features could touch (more than :data:`MAX_CONTACTS`, as :func:`jaw_poses`)."""
-    t0, t1, c0, c1 = box
+    over each box ``(t0, t1, c0, c1)`` of ``boxes`` (B, 4): a superset of its contacts
+    (``ok`` False when too many features could touch: more than :data:`MAX_CONTACTS`,
+    as :func:`jaw_poses`)."""
+    t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))        # (B, 1) each
+    B = len(boxes)
     cen = polygon.centroid
     a = polygon.starts[ring] - cen
     b = polygon.ends[ring] - cen
+    m = len(a)
     f = -polygon.normals[ring]                          # the force on the part at an edge
     # y = p . u = px cos t + py sin t;  x = p . n = -px sin t + py cos t
-    fy_lo, fy_hi = _sin_range(f[:, 0], f[:, 1], t0, t1)
     if internal:                                        # the edges this pad can meet
+        fy_lo, fy_hi = _sin_range(f[:, 0], f[:, 1], t0, t1)
         pad_force = -sign                               # the force's sign along u
         maybe = fy_hi > 0 if pad_force > 0 else fy_lo < 0
         surely = fy_lo > 0 if pad_force > 0 else fy_hi < 0
@@ -466,47 +477,51 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         nu_lo, nu_hi = _sin_range(sign * polygon.normals[ring][:, 0],
                                   sign * polygon.normals[ring][:, 1], t0, t1)
         maybe = nu_hi > CONTACT_TOL
-        surely = np.ones(len(a), dtype=bool)
+        surely = np.ones((B, m), dtype=bool)
     ends = np.concatenate([a, b])
-    y_lo, y_hi = _sin_range(sign * ends[:, 0], sign * ends[:, 1], t0, t1)
+    y_lo, y_hi = _sin_range(sign * ends[:, 0], sign * ends[:, 1], t0, t1)      # (B, 2m)
     x_lo, x_hi = _sin_range(ends[:, 1], -ends[:, 0], t0, t1)
-    ok2 = np.concatenate([maybe, maybe])
-    sure2 = np.concatenate([surely, surely])
+    ok2 = np.concatenate([maybe, maybe], axis=1)
+    sure2 = np.concatenate([surely, surely], axis=1)
     # a lower bound of the stop: a vertex inside the strip at every pose of the box
     always = sure2 & (x_lo >= c1 - half) & (x_hi <= c0 + half)
-    lower = float(y_lo[always].max()) if always.any() else -np.inf
+    lower = np.max(np.where(always, y_lo, -np.inf), axis=1)
     # an edge point inside the strip at every pose: the one at the strip's centre line
     # at the box's centre pose, if its lateral range stays inside
     tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
-    xa_m = a @ np.array([-np.sin(tm), np.cos(tm)])
-    xb_m = b @ np.array([-np.sin(tm), np.cos(tm)])
+    xa_m = -a[:, 0] * np.sin(tm) + a[:, 1] * np.cos(tm)
+    xb_m = -b[:, 0] * np.sin(tm) + b[:, 1] * np.cos(tm)
     dx_m = xb_m - xa_m
     with np.errstate(divide="ignore", invalid="ignore"):
         tt = np.where(np.abs(dx_m) > 0, (cm - xa_m) / dx_m, np.nan)
     good = surely & (tt >= 0) & (tt <= 1)
-    if good.any():
-        pts = a[good] + tt[good, None] * (b[good] - a[good])
-        px_lo, px_hi = _sin_range(pts[:, 1], -pts[:, 0], t0, t1)
-        py_lo, _ = _sin_range(sign * pts[:, 0], sign * pts[:, 1], t0, t1)
-        inside = (px_lo >= c1 - half) & (px_hi <= c0 + half)
-        if inside.any():
-            lower = max(lower, float(py_lo[inside].max()))
-    if not np.isfinite(lower):
-        return None
-    # vertices that may be in the strip and reach the lower bound
-    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower)
+    ttg = np.where(good, tt, 0.0)
+    pts = a + ttg[..., None] * (b - a)                                         # (B, m, 2)
+    px_lo, px_hi = _sin_range(pts[..., 1], -pts[..., 0], t0, t1)
+    py_lo, _ = _sin_range(sign * pts[..., 0], sign * pts[..., 1], t0, t1)
+    inside = good & (px_lo >= c1 - half) & (px_hi <= c0 + half)
+    lower = np.maximum(lower, np.max(np.where(inside, py_lo, -np.inf), axis=1))
+    # vertices that may be in the strip and reach the lower bound (one entry per point:
+    # an edge's end is the next edge's start)
+    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower[:, None])
+    uniq, inv = np.unique(ends, axis=0, return_inverse=True)
+    vmask = np.zeros((B, len(uniq)), dtype=bool)
+    rows, cols = np.nonzero(vert)
+    vmask[rows, inv.ravel()[cols]] = True
+    high = np.max(np.where(vert, y_hi, -np.inf), axis=1)
     # a vertex (or a level edge) touches the pad's face: its force is the pad's, -sign u
-    face = ((t0 + t1) / 2 + (0.0 if sign < 0 else np.pi), (t1 - t0) / 2)
-    uniq = np.unique(ends[vert], axis=0)
-    seg0, seg1 = list(uniq), list(uniq)
-    force = [face] * len(uniq)
-    highs = [float(y_hi[vert].max())] if len(uniq) else []
+    face = ((t0 + t1) / 2)[:, 0] + (0.0 if sign < 0 else np.pi)
+    face_half = ((t1 - t0) / 2)[:, 0]
+    P0 = [np.broadcast_to(uniq, (B, len(uniq), 2))]
+    P1 = [P0[0]]
+    cen_f = [np.broadcast_to(face[:, None], vmask.shape)]
+    half_f = [np.broadcast_to(face_half[:, None], vmask.shape)]
+    use = [vmask]
     # edge cuts by the strip's sides: the pad's corner on the edge (the lateral ranges of
     # the edges' ends are those of the vertices above: starts first, then ends)
-    m = len(a)
-    xa_lo, xa_hi = x_lo[:m], x_hi[:m]
+    xa_lo, xa_hi = x_lo[:, :m], x_hi[:, :m]
     dxr_lo, dxr_hi = _sin_range(b[:, 1] - a[:, 1], -(b[:, 0] - a[:, 0]), t0, t1)
-    e_lo, e_hi = np.minimum(xa_lo, x_lo[m:]), np.maximum(xa_hi, x_hi[m:])
+    e_lo, e_hi = np.minimum(xa_lo, x_lo[:, m:]), np.maximum(xa_hi, x_hi[:, m:])
     # a cut is the extreme of its clipped edge only if the edge rises (for this pad)
     # towards the strip's side there: drop the cuts where it surely falls
     dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)
@@ -515,56 +530,79 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     zero = CONTACT_TOL * polygon.size                   # dx = 0 at a critical angle
     rise_sign = np.where(dy_lo > 0, 1, np.where(dy_hi < 0, -1, 0)) * \
         np.where(dxr_lo >= -zero, 1, np.where(dxr_hi <= zero, -1, 0))
+    # the edge may turn along u: its cut can be anywhere on it
+    turns = (dxr_lo <= 0) & (dxr_hi >= 0)
+    edge_force = np.arctan2(f[:, 1], f[:, 0])
     for side in (-half, half):
         s_lo, s_hi = c0 + side, c1 + side
         falls = rise_sign * np.sign(side) < 0
-        for k in np.flatnonzero(maybe & (e_hi >= s_lo) & (e_lo <= s_hi) & ~falls):
-            if dxr_lo[k] <= 0 <= dxr_hi[k]:
-                # the edge may turn along u: its cut can be anywhere on it
-                t_lo, t_hi = 0.0, 1.0
-            else:
-                num = np.array([s_lo - xa_hi[k], s_hi - xa_lo[k]])
-                q = np.concatenate([num / dxr_lo[k], num / dxr_hi[k]])
-                t_lo, t_hi = max(0.0, float(q.min())), min(1.0, float(q.max()))
-            if t_lo > t_hi:
-                continue
-            p0 = a[k] + t_lo * (b[k] - a[k])
-            p1 = a[k] + t_hi * (b[k] - a[k])
-            _, h0 = _sin_range(sign * p0[0], sign * p0[1], t0, t1)
-            _, h1 = _sin_range(sign * p1[0], sign * p1[1], t0, t1)
-            if max(h0, h1) < lower:
-                continue
-            seg0.append(p0)
-            seg1.append(p1)
-            force.append((float(np.arctan2(f[k, 1], f[k, 0])), 0.0))
-            highs.append(float(max(h0, h1)))
-    if not seg0 or len(seg0) > MAX_CONTACTS:
-        return None
-    return _Candidates(np.array(seg0), np.array(seg1), force, lower, max(highs))
+        sel = maybe & (e_hi >= s_lo) & (e_lo <= s_hi) & ~falls
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = np.stack([(s_lo - xa_hi) / dxr_lo, (s_hi - xa_lo) / dxr_lo,
+                          (s_lo - xa_hi) / dxr_hi, (s_hi - xa_lo) / dxr_hi])
+        t_lo = np.where(turns, 0.0, np.maximum(0.0, q.min(axis=0)))
+        t_hi = np.where(turns, 1.0, np.minimum(1.0, q.max(axis=0)))
+        sel &= t_lo <= t_hi
+        t_lo, t_hi = np.where(sel, t_lo, 0.0), np.where(sel, t_hi, 0.0)
+        p0 = a + t_lo[..., None] * (b - a)
+        p1 = a + t_hi[..., None] * (b - a)
+        _, h0 = _sin_range(sign * p0[..., 0], sign * p0[..., 1], t0, t1)
+        _, h1 = _sin_range(sign * p1[..., 0], sign * p1[..., 1], t0, t1)
+        hh = np.maximum(h0, h1)
+        sel &= hh >= lower[:, None]
+        high = np.maximum(high, np.max(np.where(sel, hh, -np.inf), axis=1))
+        P0.append(p0)
+        P1.append(p1)
+        cen_f.append(np.broadcast_to(edge_force, sel.shape))
+        half_f.append(np.zeros(sel.shape))
+        use.append(sel)
+    use_all = np.concatenate(use, axis=1)
+    count = use_all.sum(axis=1)
+    ok = np.isfinite(lower) & (count >= 1) & (count <= MAX_CONTACTS)
+    # the candidates first, at most MAX_CONTACTS of them
+    order = np.argsort(~use_all, axis=1, kind="stable")[:, :MAX_CONTACTS]
+    r = np.arange(B)[:, None]
+
+    def pick(parts: list[Any]) -> Any:
+        return np.concatenate(parts, axis=1)[r, order]
+
+    return _Candidates(pick(P0), pick(P1), pick(cen_f), pick(half_f), use_all[r, order],
+                       lower, high, ok)
 
 
-def _pair_holds(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> bool:
-    """Every pair of candidate contacts is force closure at every pose of the box
+def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> np.ndarray:
+    """Per box: every pair of candidate contacts is force closure at every pose of it
     (theorem 6.3: the segment joining the contacts lies strictly inside both friction
     cones, with the directions of both ranging over arcs; squeezing for an external grip,
-    expanding inside a hole)."""
+    expanding inside a hole).  The directions of a pair's chords are the smallest arc
+    holding its four corner chords (the chords of two segments form a convex set); none
+    when the set may hold the origin."""
     turn = np.pi if expand else 0.0
-    for i in range(len(ca.p0)):
-        for j in range(len(cb.p0)):
-            corners = np.array([cb.p0[j] - ca.p0[i], cb.p0[j] - ca.p1[i],
-                                cb.p1[j] - ca.p0[i], cb.p1[j] - ca.p1[i]])
-            arc = _arc_of(corners)
-            if arc is None:
-                return False
-            d, hd = arc
+    holds = np.ones(len(ca.lo), dtype=bool)
+    for i in range(ca.valid.shape[1]):
+        for j in range(cb.valid.shape[1]):
+            corners = np.stack([cb.p0[:, j] - ca.p0[:, i], cb.p0[:, j] - ca.p1[:, i],
+                                cb.p1[:, j] - ca.p0[:, i], cb.p1[:, j] - ca.p1[:, i]],
+                               axis=1)                                         # (B, 4, 2)
+            ang = np.arctan2(corners[..., 1], corners[..., 0])
+            rel = _wrap(ang - ang[:, :1])
+            lo, hi = rel.min(axis=1), rel.max(axis=1)
+            no_arc = (hi - lo >= np.pi - 1e-9) | (np.min(np.hypot(corners[..., 0],
+                                                                   corners[..., 1]),
+                                                          axis=1) <= 0)
+            d, hd = ang[:, 0] + (lo + hi) / 2, (hi - lo) / 2
             # squeezing, A's force is within beta of every direction A -> B and B's of
             # B -> A; expanding, of the opposite directions
-            (fa, ha), (fb, hb) = ca.force[i], cb.force[j]
-            if abs(float(_wrap(d + turn - fa))) + hd + ha >= beta:
-                return False
-            if abs(float(_wrap(d + np.pi + turn - fb))) + hd + hb >= beta:
-                return False
-    return True
+            fail = (no_arc
+                    | (np.abs(_wrap(d + turn - ca.centre[:, i])) + hd + ca.half[:, i] >= beta)
+                    | (np.abs(_wrap(d + np.pi + turn - cb.centre[:, j])) + hd
+                       + cb.half[:, j] >= beta))
+            holds &= ~(ca.valid[:, i] & cb.valid[:, j] & fail)
+    return holds
+
+
+#: Sub-boxes :func:`certify_box` examines at a time.
+CERTIFY_BATCH = 512
 
 
 def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
@@ -578,8 +616,9 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     few, every pair of them is force closure over all its positions and directions
     (theorem 6.3 on arcs of directions), and the opening's enclosure is within the
     stroke.  Returns that enclosure of the opening over the box, or None when the proof
-    fails within ``max_boxes`` sub-boxes (the box may still hold: the test is sound, not
-    complete).
+    fails within ``max_boxes`` sub-boxes, or when a sub-box's centre pose does not hold
+    (then the box does not hold either).  Sound, not complete: None does not say that
+    some pose fails.  The sub-boxes are examined in batches, level by level.
 
     >>> from fcgrasp.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -610,57 +649,75 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
                                                              int(np.ceil(t1 / np.pi)) + 1)])
     cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
-    stack = [(float(x), float(y), c0, c1) for x, y in zip(cuts[:-1], cuts[1:], strict=True)]
+    todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
+                            np.full(cuts.size - 1, c1)])
     lo_open, hi_open = np.inf, -np.inf
     done = 0
-    while stack:
-        box = stack.pop()
-        done += 1
+    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
+    while len(todo):
+        boxes, todo = todo[:CERTIFY_BATCH], todo[CERTIFY_BATCH:]
+        done += len(boxes)
         if done > max_boxes:
             return None
-        sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
-        ca = _pad_candidates(polygon, ring, sa, internal, box, half)
-        cb = _pad_candidates(polygon, ring, sb, internal, box, half)
-        fits = True
+        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
+        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
+        proved = ca.ok & cb.ok
         if internal:
-            x_lo, x_hi = _sin_range(rel[:, 1], -rel[:, 0], box[0], box[1])
-            fits = bool(x_hi.min() < box[2] - half and x_lo.max() > box[3] + half)
-        if ca is not None and cb is not None and fits:
-            # the stops as heights along u: sign * stop lies in [lo, hi]
-            a_rng = sorted((sa * ca.lo, sa * ca.hi))
-            b_rng = sorted((sb * cb.lo, sb * cb.hi))
-            o_lo, o_hi = a_rng[0] - b_rng[1], a_rng[1] - b_rng[0]
-            fits = jaw.stroke[0] <= o_lo and o_hi <= jaw.stroke[1]
-            if fits and _pair_holds(ca, cb, beta, internal):
-                lo_open, hi_open = min(lo_open, o_lo), max(hi_open, o_hi)
-                continue
-        bt0, bt1, bc0, bc1 = box
-        if (bt1 - bt0) * radius >= bc1 - bc0:
-            m = (bt0 + bt1) / 2
-            stack += [(bt0, m, bc0, bc1), (m, bt1, bc0, bc1)]
-        else:
-            m = (bc0 + bc1) / 2
-            stack += [(bt0, bt1, bc0, m), (bt0, bt1, m, bc1)]
+            x_lo, x_hi = _sin_range(rel[:, 1], -rel[:, 0], boxes[:, :1], boxes[:, 1:2])
+            proved &= (x_hi.min(axis=1) < boxes[:, 2] - half) \
+                & (x_lo.max(axis=1) > boxes[:, 3] + half)
+        # the stops as heights along u: sign * stop lies in [lo, hi]
+        a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
+        b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
+        with np.errstate(invalid="ignore"):
+            o_lo, o_hi = a_lo - b_hi, a_hi - b_lo
+            proved &= (jaw.stroke[0] <= o_lo) & (o_hi <= jaw.stroke[1])
+        proved &= _pairs_hold(ca, cb, beta, internal)
+        if proved.any():
+            lo_open = min(lo_open, float(o_lo[proved].min()))
+            hi_open = max(hi_open, float(o_hi[proved].max()))
+        rest = boxes[~proved]
+        if not len(rest):
+            continue
+        # a sub-box whose centre pose fails cannot be proved: neither can the box
+        centre = jaw_poses(polygon, jaw, (rest[:, 0] + rest[:, 1]) / 2,
+                           (rest[:, 2] + rest[:, 3]) / 2, margin, hole)
+        if not centre.holds.all():
+            return None
+        bt0, bt1, bc0, bc1 = rest.T
+        by_angle = (bt1 - bt0) * radius >= bc1 - bc0
+        mt, mc = (bt0 + bt1) / 2, (bc0 + bc1) / 2
+        first = np.column_stack([bt0, np.where(by_angle, mt, bt1), bc0,
+                                 np.where(by_angle, bc1, mc)])
+        second = np.column_stack([np.where(by_angle, mt, bt0), bt1,
+                                  np.where(by_angle, bc0, mc), bc1])
+        todo = np.concatenate([todo, first, second])
     return lo_open, hi_open
 
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
               margin: float = DEFAULT_MARGIN_DEG, internal: bool = True,
-              certify: bool = False) -> list[JawPlan]:
+              certify: bool = True) -> list[JawPlan]:
     """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
     docstring): external grips, and with ``internal`` grips inside each convex hole
     (:func:`convex_holes`).  For each grip, each found box's poses are removed from the
     grid before the next is sought, with their mirror (``theta + pi``, ``-c``: the same
-    grasp, pads swapped).  With ``certify`` each box is also *proved* by
+    grasp, pads swapped).  With ``certify`` (the default) each box is also *proved* by
     :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid steps until the
     proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
-    dropped): every returned plan then has ``certified`` True.  Seconds per box.
+    dropped and the next one sought): every returned plan then has ``certified`` True.
+    ``certify=False`` returns the boxes verified on the fine grid only.
 
     >>> from fcgrasp.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
     >>> best = jaw_plans(demo_part("rectangle"), jaw, top=1)[0]   # across the 30 mm
-    >>> [round(float(np.degrees(t))) % 180 for t in best.theta], best.kinds
-    ([78, 102], ('edge', 'edge'))
+    >>> [round(float(np.degrees(t)), 1) % 180 for t in best.theta], best.kinds
+    ([78.5, 101.5], ('edge', 'edge'))
+    >>> best.certified, round(best.offset[1], 2)       # proved: every pose of the box holds
+    (True, 39.08)
+    >>> grid = jaw_plans(demo_part("rectangle"), jaw, top=1, certify=False)[0]
+    >>> [round(float(np.degrees(t))) % 180 for t in grid.theta], grid.certified
+    ([78, 102], False)
     """
     margin = _check_jaw_args(polygon, jaw, margin)
     top = check_int(top, "top", minimum=1)
@@ -686,13 +743,14 @@ def _proved(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
         c = (off[0] + k * dc, off[1] - k * dc)
         if t[1] < t[0] or c[1] < c[0]:
             return None
-        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=CERTIFY_BOXES):
+        budget = CERTIFY_BOXES if k else CERTIFY_BOXES // 8
+        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=budget):
             return t, c
     return None
 
 
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
-                hole: int | None, certify: bool = False) -> list[JawPlan]:
+                hole: int | None, certify: bool = True) -> list[JawPlan]:
     """The best boxes of one grip (external, or internal in ``hole``)."""
     radius = characteristic_length(polygon.vertices, polygon.centroid)
     K = int(round(360 / THETA_STEP_DEG))

@@ -171,7 +171,7 @@ def plan_arguments(options: Any) -> list[str]:
 
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
-         "stroke": [10, 50], "pad": 8, "certify": false, "gravity": [0, -1]}
+         "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1]}
 
     Checked here, so that a bad value is a message naming the option, not a usage error.
 
@@ -216,12 +216,11 @@ def plan_arguments(options: Any) -> list[str]:
             raise RequestError("options.pad (the pads' width) is needed with a parallel jaw",
                                "pad")
         argv += ["--stroke", f"{float(stroke[0])!r},{float(stroke[1])!r}", "--pad", repr(pad)]
-        certify = options.get("certify", False)
+        certify = options.get("certify", True)
         if not isinstance(certify, bool):
             raise RequestError(f"options.certify must be true or false, got "
                                f"{_short(certify)}", "certify")
-        if certify:
-            argv += ["--certify"]
+        argv += ["--certify" if certify else "--no-certify"]
     else:
         argv += ["--fingers", str(fingers)]
         if gravity:
