@@ -221,6 +221,50 @@ def test_third_finger_only_helps(seed):
             assert closure_margin_lp(grasp_wrenches(g, p.normals, mu)) > 0, (p.edges, p.mode)
 
 
+def _sampled_with_normals(plan, polygon, rng, n):
+    """Grasps sampled along the plan's regions (polylines along the boundary), each point
+    with the normal of the edge it lies on."""
+    from fcgrasp._geom import along
+
+    u = rng.random((n, plan.fingers))
+    pts, nrm = [], []
+    for i, line in enumerate(plan.regions):
+        p, k = along(line, u[:, i])
+        pts.append(p)
+        nrm.append(polygon.normals[np.asarray(plan.region_edges[i])[k]])
+    return np.stack(pts, axis=1), np.stack(nrm, axis=1)
+
+
+def _curved(rng):
+    """A finely flattened curved outline (ellipse or smooth star), where regions run
+    along the boundary."""
+    n = int(rng.integers(60, 140))
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + float(rng.uniform(0, 0.25)) * np.sin(int(rng.integers(2, 5)) * a)
+    return fc.Polygon(np.c_[float(rng.uniform(20, 60)) * r * np.cos(a),
+                            float(rng.uniform(15, 40)) * r * np.sin(a)])
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_third_finger_only_helps_along_the_boundary(seed):
+    """Against the default two-finger plans (regions along the boundary) on curved
+    outlines: three fingers do at least as well, and every sampled grasp of their regions
+    (each point with its own edge's normal) holds by the general wrench test."""
+    rng = np.random.default_rng(70 + seed)
+    for _ in range(2):
+        part = _curved(rng)
+        mu = float(rng.uniform(0.3, 0.7))
+        two = fc.plan(part, fingers=2, mu=mu, top=1)
+        three = fc.plan(part, fingers=3, mu=mu, top=2)
+        assert two and three
+        assert max(len(e) for e in two[0].region_edges) > 1     # really along the boundary
+        assert three[0].min_length >= two[0].min_length * (1 - 1e-9)
+        for p in three:
+            pts, nrm = _sampled_with_normals(p, part, rng, 30)
+            for g, n in zip(pts, nrm, strict=True):
+                assert closure_margin_lp(grasp_wrenches(g, n, mu)) > 0, (p.mode, p.edges)
+
+
 @pytest.mark.parametrize("seed", range(2))
 def test_branch_and_bound_is_exact(seed):
     rng = np.random.default_rng(80 + seed)

@@ -51,6 +51,7 @@ import numpy as np
 from ._checks import FloatArray
 from .pipeline import (
     PlanSpec,
+    boundary_plans,
     candidates,
     features,
     ranked_unique,
@@ -60,10 +61,11 @@ from .pipeline import (
 )
 from .plans import GraspPlan, leximin_key
 from .polygon import Polygon
+from .stretches import crosses_a_vertex
 from .tolerances import LEXIMIN_STEP, RANK_TOL
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
-           "KEEP_PAIRS"]
+           "KEEP_PAIRS", "free_stretch"]
 
 #: How the half-turn excess between two neighbouring cones is split between them (the
 #: share taken from the first arc's start): each split gives one convex piece.
@@ -476,13 +478,30 @@ def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: f
 def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[GraspPlan]:
     """Two fingers that hold on their own (the exact two-finger plans) and a third
     anywhere on the longest feature of another edge: force closure whatever the third
-    finger does."""
+    finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
+    an outline where a region can cover a vertex) the two are the exact two-finger
+    stretches (:func:`fcgrasp.pipeline.boundary_plans`) and the third runs along the
+    longest stretch of edges neither touches (:func:`free_stretch`): three fingers then
+    never do worse than two along the boundary."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return []
+    boundary = (spec.along_boundary and spec.hand is None and edges is None
+                and crosses_a_vertex(polygon, spec.mu, spec.margin))
     two = replace(spec, fingers=2, top=KEEP_PAIRS, rank_by="min_region",
-                  along_boundary=False)
+                  along_boundary=boundary)
     lengths = np.hypot(*(F.b - F.a).T)
     out = []
+    if boundary:
+        for p in boundary_plans(polygon, two):
+            run = free_stretch(polygon, {e for st in p.region_edges for e in st})
+            if run is None:
+                continue
+            line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
+            out.append(regions_plan(polygon, spec, [*p.regions, line],
+                                    (*p.region_edges, run),
+                                    [*p.lengths, float(polygon.lengths[list(run)].sum())],
+                                    "friction", "pair"))
+        return out
     for p in search(polygon, two, edges=edges):
         other = np.flatnonzero(~np.isin(F.edge, p.edges))
         if not other.size:
@@ -491,6 +510,41 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[Gr
         ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
         out.append(_plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair"))
     return out
+
+
+def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
+    """The longest stretch (consecutive usable edges of one ring, in ring order, not the
+    whole ring) none of whose edges is in ``covered`` (on a ring no edge of which is
+    covered: all but its shortest edge); None when every edge is.
+
+    >>> sq = Polygon([[0, 0], [4, 0], [4, 3], [0, 3]])
+    >>> free_stretch(sq, {0}), free_stretch(sq, set())
+    ((1, 2, 3), (2, 3, 0))
+    """
+    covered = {int(e) for e in covered}
+    best: tuple[int, ...] | None = None
+    best_len = -1.0
+    for r in np.unique(polygon.rings):
+        usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
+        if usable.size < 2:
+            continue
+        # the ring in order, starting just after a covered edge (or after its shortest)
+        taken = [int(e) for e in usable if int(e) in covered]
+        first = taken[0] if taken else int(usable[np.argmin(polygon.lengths[usable])])
+        order = [polygon.next_edge(first)]
+        while len(order) < usable.size:
+            order.append(polygon.next_edge(order[-1]))
+        runs: list[list[int]] = [[]]
+        for e in order[:-1] if not taken else order:
+            if e in covered:
+                runs.append([])
+            else:
+                runs[-1].append(e)
+        for run in runs:
+            length = float(polygon.lengths[run].sum()) if run else 0.0
+            if run and length > best_len:
+                best, best_len = tuple(run), length
+    return best
 
 
 def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
