@@ -148,12 +148,14 @@ def _split_excess(gap: FloatArray, w_cur: FloatArray, w_next: FloatArray, cur: n
 
 @dataclass
 class Piece:
-    """The optimal box of regions of three features in one convex piece.
+    """The optimal box of regions of three features (or stretches) in one convex piece.
 
-    ``lo``, ``hi`` (3,): region ends as arc lengths from each feature's start ``a``;
-    ``levels`` (3,): their lengths; ``sigma`` (3,): the side of each finger the
-    meeting point lies on; ``arcs``: the ``(low, high)`` force-direction angles (3,);
-    ``witness`` (8, 2): a meeting point for each corner grasp (:data:`_CORNERS` order).
+    ``lo``, ``hi`` (3,): region ends as arc lengths, ``lo`` from the start of the first
+    edge a region covers, ``hi`` from the start of its last (one edge: both from its
+    start); ``levels`` (3,): the regions' lengths; ``sigma`` (3,): the side of each finger
+    the meeting point lies on; ``arcs``: the ``(low, high)`` force-direction angles (3,);
+    ``witness`` (N, 2): a meeting point for each corner grasp (on single edges N = 8, in
+    the order of :data:`_CORNERS`).
     """
 
     lo: FloatArray
@@ -166,49 +168,89 @@ class Piece:
 
 @dataclass
 class _Block:
-    """One convex piece of one row of features, as a block of a linear program
-    (positions in units of the part's size)."""
+    """One convex piece of one row of three fingers, as a block of a linear program
+    (positions in units of the part's size).  Finger ``i``'s region starts at
+    ``a0[i] + lo_i t0[i]`` (``0 <= lo_i <= L0[i]``), passes the fixed points
+    ``inner[i]`` (the interior vertices of a stretch) and ends at ``a1[i] + hi_i t1[i]``
+    (``0 <= hi_i <= L1[i]``); its length is ``hi_i - lo_i + const[i]`` (on one edge
+    ``a0 = a1``, no inner point and ``const`` 0)."""
 
-    a: FloatArray           # (3, 2) feature starts
-    t: FloatArray           # (3, 2) unit tangents
-    L: FloatArray           # (3,) feature lengths
+    a0: FloatArray          # (3, 2) starts of the first edges
+    t0: FloatArray          # (3, 2) their unit tangents
+    L0: FloatArray          # (3,) their lengths
+    a1: FloatArray          # (3, 2) the same for the last edges
+    t1: FloatArray
+    L1: FloatArray
+    const: FloatArray       # (3,) length of a region less hi - lo
+    inner: tuple[FloatArray, ...]   # (k_i, 2) fixed points of each region
     lo_ang: FloatArray      # (3,) force-direction arcs
     hi_ang: FloatArray
     sigma: FloatArray       # (3,) side of the meeting point
     row: int
 
+    @staticmethod
+    def on_edges(a: FloatArray, t: FloatArray, L: FloatArray, lo_ang: FloatArray,
+                 hi_ang: FloatArray, sigma: FloatArray, row: int) -> _Block:
+        """A block of three single features."""
+        none = np.zeros((0, 2))
+        return _Block(a, t, L, a, t, L, np.zeros(3), (none, none, none), lo_ang, hi_ang,
+                      sigma, row)
 
-#: Variables of a block: lo (3), hi (3), level, px (8), py (8), v.
-_NV = 24
-_CORNER_VAR = np.where(_CORNERS == 0, np.arange(3), np.arange(3) + 3)     # (8, 3)
+    def corners(self) -> np.ndarray:
+        """The corner grasps (N, 3): per finger, 0 its start, 1 its end, ``2 + j`` its
+        ``j``-th fixed point (on single edges the order of :data:`_CORNERS`)."""
+        opts = [[0, 1] + [2 + j for j in range(len(p))] for p in self.inner]
+        return np.array(list(product(*opts)), dtype=int).reshape(-1, 3)
 
 
-def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
-    """The 48 cone constraints of a block (8 corners x 3 fingers x 2 cone edges), each
-    ``S (u x p - s (u x t) - u x a) >= 0`` (``S`` the side, negated on the arc's high
-    edge): ``(cpx, cpy, cs, rhs)`` of ``cpx px + cpy py + cs s >= rhs``, shapes (8, 3, 2)."""
+def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray,
+                                     FloatArray]:
+    """The cone constraints of a block (N corners x 3 fingers x 2 cone edges), each
+    ``S (u x p - s (u x t) - u x a) >= 0`` at a variable end ``a + s t`` and
+    ``S (u x p - u x v) >= 0`` at a fixed point ``v`` (``S`` the side, negated on the arc's
+    high edge): ``(cpx, cpy, cs, svar, rhs)`` of ``cpx px + cpy py + cs s >= rhs``, shapes
+    (N, 3, 2), ``svar`` the index of ``s`` (``lo_i``: ``i``, ``hi_i``: ``3 + i``; -1 at
+    a fixed point, where ``cs`` is 0)."""
     ang = np.stack([blk.lo_ang, blk.hi_ang], axis=-1)               # (3, 2)
     ux, uy = np.cos(ang), np.sin(ang)
     S = blk.sigma[:, None] * np.array([1.0, -1.0])
-    cross_ut = ux * blk.t[:, None, 1] - uy * blk.t[:, None, 0]
-    cross_ua = ux * blk.a[:, None, 1] - uy * blk.a[:, None, 0]
-    shape = (8, 3, 2)
-    return (np.broadcast_to(-S * uy, shape), np.broadcast_to(S * ux, shape),
-            np.broadcast_to(-S * cross_ut, shape), np.broadcast_to(S * cross_ua, shape))
+    C = blk.corners()
+    N = len(C)
+    cs = np.zeros((N, 3, 2))
+    svar = np.full((N, 3), -1)
+    rhs = np.zeros((N, 3, 2))
+    for i in range(3):
+        for k, (a, t) in enumerate(((blk.a0[i], blk.t0[i]), (blk.a1[i], blk.t1[i]))):
+            at = C[:, i] == k
+            cs[at, i] = -S[i] * (ux[i] * t[1] - uy[i] * t[0])
+            rhs[at, i] = S[i] * (ux[i] * a[1] - uy[i] * a[0])
+            svar[at, i] = i + 3 * k
+        for j, v in enumerate(blk.inner[i]):
+            rhs[C[:, i] == 2 + j, i] = S[i] * (ux[i] * v[1] - uy[i] * v[0])
+    shape = (N, 3, 2)
+    return (np.broadcast_to(-S * uy, shape), np.broadcast_to(S * ux, shape), cs,
+            np.broadcast_to(svar[:, :, None], shape), rhs)
 
 
 def _cone_values(blk: _Block, x: FloatArray) -> FloatArray:
-    """How far inside its piece every corner grasp's witness is (>= 0 inside), (8, 3, 2)."""
-    cpx, cpy, cs, rh = _cone_rows(blk)
-    s = np.where(_CORNERS == 0, x[:3], x[3:6])[:, :, None]
-    return cpx * x[7:15, None, None] + cpy * x[15:23, None, None] + cs * s - rh
+    """How far inside its piece every corner grasp's witness is (>= 0 inside), (N, 3, 2)."""
+    cpx, cpy, cs, svar, rh = _cone_rows(blk)
+    N = len(cpx)
+    s = np.where(svar >= 0, x[np.maximum(svar, 0)], 0.0)
+    return cpx * x[7:7 + N, None, None] + cpy * x[7 + N:7 + 2 * N, None, None] + cs * s - rh
+
+
+def _lengths(blk: _Block, x: FloatArray) -> FloatArray:
+    """The regions' lengths at a solution ``x`` of the block."""
+    return x[3:6] - x[:3] + blk.const
 
 
 def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
                   free: np.ndarray | None = None, grow: int | None = None,
                   deep: bool = False) -> list[FloatArray | None]:
     """Solve independent blocks in one sparse HiGHS program; per block its solution
-    vector, or None where it is infeasible (the answer is checked, not trusted).
+    vector ``(lo (3), hi (3), level, px (N), py (N), v)``, or None where it is
+    infeasible (the answer is checked, not trusted).
 
     Every cone constraint may use the block's violation ``v`` at a large cost, so an
     infeasible block does not make the program infeasible.  Default objective: the
@@ -221,69 +263,74 @@ def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
     from scipy.optimize import linprog
     from scipy.sparse import coo_array
 
-    nb = len(blocks)
+    rows = [_cone_rows(blk) for blk in blocks]
+    sizes = [8 + 2 * len(r[0]) for r in rows]
+    starts = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
     ri: list[np.ndarray] = []
     ci: list[np.ndarray] = []
     vals: list[np.ndarray] = []
     rhs: list[np.ndarray] = []
-    cost = np.zeros(nb * _NV)
-    bounds = np.zeros((nb * _NV, 2))
+    cost = np.zeros(starts[-1])
+    bounds = np.zeros((starts[-1], 2))
     r0 = 0
-    for k, blk in enumerate(blocks):
-        base = k * _NV
-        cpx, cpy, cs, rh = _cone_rows(blk)
+    for k, (blk, (cpx, cpy, cs, svar, rh)) in enumerate(zip(blocks, rows, strict=True)):
+        base, N = int(starts[k]), len(cpx)
+        nr = 6 * N
         # -(cpx px + cpy py + cs s) - v (+ level when deep) <= -rh
-        rid = np.broadcast_to(r0 + np.arange(48).reshape(8, 3, 2), (8, 3, 2))
-        for var, coef in ((base + 7 + np.arange(8)[:, None, None], cpx),
-                          (base + 15 + np.arange(8)[:, None, None], cpy),
-                          (base + _CORNER_VAR[:, :, None], cs)):
-            ri.append(rid.ravel())
-            ci.append(np.broadcast_to(var, (8, 3, 2)).ravel())
-            vals.append(-coef.ravel())
+        rid = r0 + np.arange(nr).reshape(N, 3, 2)
+        var_s = svar >= 0
+        for var, coef, use in ((base + 7 + np.arange(N)[:, None, None], cpx, None),
+                               (base + 7 + N + np.arange(N)[:, None, None], cpy, None),
+                               (base + svar, cs, var_s)):
+            var = np.broadcast_to(var, (N, 3, 2))
+            m = np.ones((N, 3, 2), bool) if use is None else use
+            ri.append(rid[m])
+            ci.append(var[m])
+            vals.append(-coef[m])
         ri.append(rid.ravel())
-        ci.append(np.full(48, base + 23))
-        vals.append(np.full(48, -1.0))
+        ci.append(np.full(nr, base + 7 + 2 * N))
+        vals.append(np.full(nr, -1.0))
         if deep:
             ri.append(rid.ravel())
-            ci.append(np.full(48, base + 6))
-            vals.append(np.ones(48))
+            ci.append(np.full(nr, base + 6))
+            vals.append(np.ones(nr))
         rhs.append(-rh.ravel())
-        r0 += 48
+        r0 += nr
         for i in range(3):
             reach = fixed is None or (free is not None and bool(free[i]))
-            if reach:       # level - (hi - lo) <= 0
+            if reach:       # level - (hi - lo) <= const
                 ri.append(np.full(3, r0))
                 ci.append(np.array([base + 6, base + 3 + i, base + i]))
                 vals.append(np.array([1.0, -1.0, 1.0]))
-                rhs.append(np.zeros(1))
-            else:           # lo - hi <= -fixed
+                rhs.append(np.array([blk.const[i]]))
+            else:           # lo - hi <= const - fixed
                 assert fixed is not None
                 ri.append(np.full(2, r0))
                 ci.append(np.array([base + 3 + i, base + i]))
                 vals.append(np.array([-1.0, 1.0]))
-                rhs.append(np.array([-float(fixed[i]) * (1 - 1e-12)]))
+                rhs.append(np.array([blk.const[i] - float(fixed[i]) * (1 - 1e-12)]))
             r0 += 1
-        bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L, blk.L]]
-        bounds[base + 6] = (0.0, 1.0 if deep else float(blk.L.max()))
-        bounds[base + 7:base + 23] = (-np.inf, np.inf)
-        bounds[base + 23] = (0.0, np.inf)
-        cost[base + 23] = 1e4
+        bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L0, blk.L1]]
+        bounds[base + 6] = (0.0, 1.0 if deep else float((blk.L0 + blk.L1 + blk.const).max()))
+        bounds[base + 7:base + 7 + 2 * N] = (-np.inf, np.inf)
+        bounds[base + 7 + 2 * N] = (0.0, np.inf)
+        cost[base + 7 + 2 * N] = 1e4
         if grow is not None:
             cost[base + 3 + grow], cost[base + grow] = -1.0, 1.0
         else:
             cost[base + 6] = -1.0
     A = coo_array((np.concatenate(vals), (np.concatenate(ri), np.concatenate(ci))),
-                  shape=(r0, nb * _NV)).tocsr()
+                  shape=(r0, int(starts[-1]))).tocsr()
     res = linprog(cost, A_ub=A, b_ub=np.concatenate(rhs), bounds=bounds, method="highs",
                   options={"primal_feasibility_tolerance": LP_TOL,
                            "dual_feasibility_tolerance": LP_TOL})
     if res.status != 0 or res.x is None:
-        return [None] * nb
+        return [None] * len(blocks)
     out: list[FloatArray | None] = []
     for k, blk in enumerate(blocks):
-        x = np.array(res.x[k * _NV:(k + 1) * _NV])
+        x = np.array(res.x[starts[k]:starts[k + 1]])
         ok = (_cone_values(blk, x).min() >= -CHECK_TOL
-              and bool(np.all(x[3:6] >= x[:3] - CHECK_TOL)))
+              and bool(np.all(_lengths(blk, x) >= -CHECK_TOL)))
         out.append(x if ok else None)
     return out
 
@@ -292,12 +339,12 @@ def _blocks(a: FloatArray, t: FloatArray, L: FloatArray, center: FloatArray,
             half: FloatArray, margin: float, row: int) -> list[_Block]:
     """Every convex piece of one row: the sub-arcs of :func:`spanning_arcs` times the
     eight sides of the meeting point."""
-    return [_Block(a, t, L, lo, hi, sigma, row)
+    return [_Block.on_edges(a, t, L, lo, hi, sigma, row)
             for lo, hi in spanning_arcs(center, half, margin) for sigma in _SIDES]
 
 
-def _smallest(x: FloatArray) -> float:
-    return float(np.min(x[3:6] - x[:3]))
+def _smallest(blk: _Block, x: FloatArray) -> float:
+    return float(np.min(_lengths(blk, x)))
 
 
 def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
@@ -315,8 +362,8 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
                   for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r)]
         best: dict[int, tuple[float, _Block]] = {}
         for blk, x in zip(blocks, _solve_blocks(blocks) if blocks else [], strict=True):
-            if x is not None and (blk.row not in best or _smallest(x) > best[blk.row][0]):
-                best[blk.row] = (_smallest(x), blk)
+            if x is not None and (blk.row not in best or _smallest(blk, x) > best[blk.row][0]):
+                best[blk.row] = (_smallest(blk, x), blk)
         out += [(best[r][1], best[r][0]) if r in best else (None, -1.0)
                 for r in range(start, stop)]
     return out
@@ -328,28 +375,29 @@ def _leximin(blk: _Block) -> Piece | None:
     x = _solve_blocks([blk])[0]
     if x is None:
         return None
-    levels = np.full(3, _smallest(x))
+    levels = np.full(3, _smallest(blk, x))
     free = np.ones(3, dtype=bool)
-    step = LEXIMIN_STEP * max(float(blk.L.max()), 1e-300)
+    step = LEXIMIN_STEP * max(float((blk.L0 + blk.L1 + blk.const).max()), 1e-300)
     for _ in range(3):                    # each round fixes at least one region
         if not free.any():
             break
         grows = np.zeros(3, dtype=bool)
         for i in np.flatnonzero(free):
             xi = _solve_blocks([blk], fixed=levels, grow=int(i))[0]
-            grows[i] = xi is not None and xi[3 + i] - xi[i] > levels[i] + step
+            grows[i] = xi is not None and _lengths(blk, xi)[i] > levels[i] + step
         free &= grows
         if not free.any():
             break
         xf = _solve_blocks([blk], fixed=levels, free=free)[0]
         if xf is None:
             break
-        levels[free] = max(float(np.min((xf[3:6] - xf[:3])[free])), float(levels[free].max()))
+        levels[free] = max(float(np.min(_lengths(blk, xf)[free])), float(levels[free].max()))
     xd = _solve_blocks([blk], fixed=levels, deep=True)[0]
     x = x if xd is None else xd
-    return Piece(x[:3].copy(), x[3:6].copy(), x[3:6] - x[:3], blk.sigma.copy(),
+    N = len(blk.corners())
+    return Piece(x[:3].copy(), x[3:6].copy(), _lengths(blk, x), blk.sigma.copy(),
                  (blk.lo_ang.copy(), blk.hi_ang.copy()),
-                 np.stack([x[7:15], x[15:23]], axis=1))
+                 np.stack([x[7:7 + N], x[7 + N:7 + 2 * N]], axis=1))
 
 
 def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,
@@ -461,8 +509,8 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         piece = _leximin(blk)
         if piece is None:
             continue
-        ends = np.stack([F.a[list(row)] + (piece.lo * size)[:, None] * blk.t,
-                         F.a[list(row)] + (piece.hi * size)[:, None] * blk.t], axis=1)
+        ends = np.stack([F.a[list(row)] + (piece.lo * size)[:, None] * blk.t0,
+                         F.a[list(row)] + (piece.hi * size)[:, None] * blk.t0], axis=1)
         plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
                            "concurrent"))
     plans += _pair_plans(polygon, spec, edges, F)
