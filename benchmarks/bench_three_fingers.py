@@ -10,6 +10,11 @@ grasps (the corners and random ones) still pass the general test
 already at the boundary; 0.5 means the regions could be about 50% longer (a bound from
 samples, not a proof).
 
+Curved outlines (finely flattened, where regions run along the boundary) get a second
+table: the best plan, the best ``concurrent`` plan grown along the boundary, and the
+default two-finger plan (its regions along the boundary too); the gap is not measured
+there (regions that cross vertices).
+
     python benchmarks/bench_three_fingers.py [--quick]
 """
 
@@ -87,8 +92,40 @@ def main() -> None:
             print(f"| {name} | {part.n_edges} | {dt:.2f} | none | | {two_s} | |")
             continue
         p = three[0]
+        on_edges = max(len(e) for e in p.region_edges) == 1
+        g = f"{gap(part, p, rng):.2f}" if on_edges else "(along the boundary)"
         print(f"| {name} | {part.n_edges} | {dt:.2f} | {p.mode} | {p.min_length:.3f} | "
-              f"{two_s} | {gap(part, p, rng):.2f} |")
+              f"{two_s} | {g} |")
+    main_curved((0.2, 0.3) if args.quick else (0.2, 0.3, 0.5))
+
+
+def curved() -> list[tuple[str, fc.Polygon]]:
+    a90 = np.linspace(0, 2 * np.pi, 90, endpoint=False)
+    a120 = np.linspace(0, 2 * np.pi, 120, endpoint=False)
+    tri = 40 * (1 + 0.12 * np.cos(3 * a90))
+    return [("rounded triangle (90 edges)", fc.Polygon(np.c_[tri * np.cos(a90),
+                                                              tri * np.sin(a90)])),
+            ("ellipse 50 x 30 (120 edges)", fc.Polygon(np.c_[50 * np.cos(a120),
+                                                              30 * np.sin(a120)]))]
+
+
+def main_curved(mu_values: tuple[float, ...]) -> None:
+    print()
+    print("curved outlines, top 10 (seconds of fc.plan; regions along the boundary)")
+    print("| part | mu | 3 fingers: s | best (mode) | best concurrent | 2 fingers |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for name, part in curved():
+        for mu in mu_values:
+            t0 = time.perf_counter()
+            three = fc.plan(part, fingers=3, mu=mu, top=10)
+            dt = time.perf_counter() - t0
+            two = fc.plan(part, fingers=2, mu=mu, top=1)
+            conc = [p for p in three if p.mode == "concurrent"]
+            c_s = (f"{conc[0].min_length:.3f} ({max(len(e) for e in conc[0].region_edges)} "
+                   f"edges)" if conc else "not in the top 10")
+            best = f"{three[0].min_length:.3f} ({three[0].mode})" if three else "none"
+            print(f"| {name} | {mu} | {dt:.2f} | {best} | {c_s} | "
+                  f"{two[0].min_length if two else 0:.3f} |", flush=True)
 
 
 if __name__ == "__main__":

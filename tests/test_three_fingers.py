@@ -265,6 +265,61 @@ def test_third_finger_only_helps_along_the_boundary(seed):
                 assert closure_margin_lp(grasp_wrenches(g, n, mu)) > 0, (p.mode, p.edges)
 
 
+def _grown_cases(seed, n):
+    """Concurrent regions grown along the boundary of random curved outlines from three
+    random edges: every sampled grasp (each point with its own edge's normal) and every
+    grasp of region ends and interior vertices (a vertex with either of its edges'
+    normals) holds by the general wrench test.  Returns how many regions left their edge."""
+    from fcgrasp.three_fingers import grow_concurrent, stretch_polylines
+
+    rng = np.random.default_rng(300 + seed)
+    grown = 0
+    for _ in range(n):
+        part = _curved(rng)
+        mu = float(rng.uniform(0.2, 0.8))
+        m = part.n_edges
+        e0 = int(rng.integers(m))
+        edges = [(e0 + k * m // 3 + int(rng.integers(-2, 3))) % m for k in range(3)]
+        got = grow_concurrent(part, edges, mu, np.radians(0.5))
+        if got is None:
+            continue
+        stretches, piece = got
+        lines = stretch_polylines(part, stretches, piece)
+        assert np.allclose([np.sum(np.hypot(*np.diff(ln, axis=0).T)) for ln in lines],
+                           piece.levels, rtol=1e-9)
+        plan = fc.GraspPlan(tuple(st[0] for st in stretches), lines, piece.levels,
+                            np.array([ln[0] for ln in lines]),
+                            part.normals[[st[0] for st in stretches]], "friction", mu,
+                            "concurrent", 0.5, None, region_edges=tuple(stretches))
+        grown += max(len(st) for st in stretches) > 1
+        pts, nrm = _sampled_with_normals(plan, part, rng, 25)
+        for g, n in zip(pts, nrm, strict=True):
+            assert closure_margin_lp(grasp_wrenches(g, n, mu)) > 0, (seed, stretches)
+        # ends and interior vertices, a vertex with either normal
+        for _ in range(25):
+            g, n = [], []
+            for st, ln in zip(stretches, lines, strict=True):
+                j = int(rng.integers(len(ln)))
+                g.append(ln[j])
+                e = st[0] if j == 0 else st[-1] if j == len(ln) - 1 \
+                    else st[j - int(rng.integers(2))]          # vertex j: edge j-1 or j
+                n.append(part.normals[e])
+            assert closure_margin_lp(grasp_wrenches(np.array(g), np.array(n), mu)) > 0, \
+                (seed, stretches)
+    return grown
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_grown_concurrent_regions_hold(seed):
+    assert _grown_cases(seed, 3) >= 1
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", range(2, 22))
+def test_grown_concurrent_regions_hold_slow(seed):
+    _grown_cases(seed, 4)
+
+
 @pytest.mark.parametrize("seed", range(2))
 def test_branch_and_bound_is_exact(seed):
     rng = np.random.default_rng(80 + seed)

@@ -65,7 +65,8 @@ from .stretches import crosses_a_vertex
 from .tolerances import LEXIMIN_STEP, RANK_TOL
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
-           "KEEP_PAIRS", "free_stretch"]
+           "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
+           "MAX_CORNERS", "MAX_STEPS"]
 
 #: How the half-turn excess between two neighbouring cones is split between them (the
 #: share taken from the first arc's start): each split gives one convex piece.
@@ -474,18 +475,23 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     size = polygon.size
     keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
                                           max(spec.top, KEEP_FOR_MEASURE))
+    grow = (spec.along_boundary and spec.hand is None and edges is None
+             and crosses_a_vertex(polygon, spec.mu, spec.margin))
+    # the rows kept: the top, and the seeds grown along the boundary (the same whatever
+    # the top, so that the pruned search gives the exhaustive answer)
+    hold = keep if keep is None or not grow else max(keep, GROW_SEEDS)
     found: list[tuple[float, tuple[int, ...], _Block]] = []
     floor = 0.0
     total = search_size(polygon, spec, edges).rows
     done = 0
     for batch in candidates(polygon, spec, edges):
-        if keep is not None and batch.ceiling < floor:
+        if hold is not None and batch.ceiling < floor:
             break
         rows = np.asarray(batch.feats, dtype=int)
         bound = np.asarray(batch.bound, dtype=float)
         for start in range(0, len(rows), LP_ROWS):
             sub, bnd = rows[start:start + LP_ROWS], bound[start:start + LP_ROWS]
-            if keep is not None:
+            if hold is not None:
                 sub = sub[bnd >= floor]
             if len(sub):
                 res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
@@ -493,18 +499,18 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                 found += [(lv * size, tuple(int(f) for f in row), blk)
                           for row, (blk, lv) in zip(sub, res, strict=True)
                           if blk is not None and lv > 0]
-                if keep is not None and len(found) >= keep:
+                if hold is not None and len(found) >= hold:
                     found.sort(key=lambda r: -r[0])
-                    del found[keep + _ties(found, keep, size):]
-                    floor = found[keep - 1][0] - 2 * RANK_TOL * size
+                    del found[hold + _ties(found, hold, size):]
+                    floor = found[hold - 1][0] - 2 * RANK_TOL * size
             done += LP_ROWS
             if progress is not None:
                 progress(min(done, total), total)
-            if keep is not None and len(bnd) and bnd[-1] < floor:
+            if hold is not None and len(bnd) and bnd[-1] < floor:
                 break
     plans = []
     for lv, row, blk in found:
-        if keep is not None and lv < floor:
+        if hold is not None and lv < floor:
             continue
         piece = _leximin(blk)
         if piece is None:
@@ -513,8 +519,179 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                          F.a[list(row)] + (piece.hi * size)[:, None] * blk.t0], axis=1)
         plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
                            "concurrent"))
+    if grow:
+        plans += _grown_plans(polygon, spec, found, F)
     plans += _pair_plans(polygon, spec, edges, F)
     return _ranked(polygon, spec, plans, keep)
+
+
+#: Concurrent plans of single edges grown along the boundary (the best ones).
+GROW_SEEDS = 5
+#: A grown configuration has at most this many corner grasps (points per region, multiplied).
+MAX_CORNERS = 216
+#: Growth steps at most (each lengthens one region by one edge).
+MAX_STEPS = 60
+
+
+def _stretch_cone(polygon: Polygon, stretch: tuple[int, ...], mu: float
+                  ) -> tuple[float, float]:
+    """The friction cone every contact of a stretch has (centre and half-width of the
+    force directions; negative where none): the intersection of its edges' cones (a
+    fingertip on an interior vertex may push along any normal of the vertex's fan, whose
+    cones all hold that intersection)."""
+    n = polygon.normals[list(stretch)]
+    c = np.arctan2(-n[:, 1], -n[:, 0])
+    d = (c - c[0] + np.pi) % (2 * np.pi) - np.pi
+    phi = float(np.arctan(mu))
+    lo, hi = c[0] + d.max() - phi, c[0] + d.min() + phi
+    return float((lo + hi) / 2), float((hi - lo) / 2)
+
+
+def _stretch_blocks(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], mu: float,
+                    margin: float, sides: Any = None) -> list[_Block]:
+    """The convex pieces of three fingers on three stretches (in units of the part's size):
+    the sub-arcs of :func:`spanning_arcs` of the stretches' common cones times the sides
+    (default all eight)."""
+    size = polygon.size
+    cones = [_stretch_cone(polygon, st, mu) for st in stretches]
+    center = np.array([c for c, _ in cones])
+    half = np.array([h for _, h in cones])
+    if np.any(half <= margin):
+        return []
+    first = [st[0] for st in stretches]
+    last = [st[-1] for st in stretches]
+    L = polygon.lengths
+    const = np.array([0.0 if len(st) == 1 else float(L[list(st[:-1])].sum())
+                      for st in stretches]) / size
+    inner = tuple(polygon.starts[list(st[1:])] / size for st in stretches)
+    args = (polygon.starts[first] / size, polygon.tangents[first], L[first] / size,
+            polygon.starts[last] / size, polygon.tangents[last], L[last] / size, const,
+            inner)
+    return [_Block(*args, lo, hi, np.asarray(sigma, float), 0)
+            for lo, hi in spanning_arcs(center, half, margin)
+            for sigma in (_SIDES if sides is None else sides)]
+
+
+def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...]
+                   ) -> list[tuple[tuple[int, ...], ...]]:
+    """Configurations with some regions one edge longer, each at one of its ends (on
+    edges no region covers, never a whole ring): the smallest region can only grow when
+    every region as short grows."""
+    used = {e for st in stretches for e in st}
+    options = []
+    for st in stretches:
+        ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
+        opts = [st]
+        if len(st) + 1 < ring:
+            for new, added in (((polygon.previous_edge(st[0]), *st), polygon.previous_edge(st[0])),
+                               ((*st, polygon.next_edge(st[-1])), polygon.next_edge(st[-1]))):
+                if added not in used and polygon.usable[added]:
+                    opts.append(new)
+        options.append(opts)
+    out = []
+    for combo in product(*options):
+        edges = [e for st in combo for e in st]
+        if combo != stretches and len(edges) == len(set(edges)):
+            out.append(tuple(combo))
+    return out
+
+
+def _corner_count(stretches: tuple[tuple[int, ...], ...]) -> int:
+    return int(np.prod([len(st) + 1 for st in stretches]))
+
+
+def _best_piece(blocks: list[_Block], xs: list[FloatArray | None]
+                ) -> tuple[float, _Block | None]:
+    best: tuple[float, _Block | None] = (-1.0, None)
+    for blk, x in zip(blocks, xs, strict=True):
+        if x is not None and _smallest(blk, x) > best[0]:
+            best = (_smallest(blk, x), blk)
+    return best
+
+
+def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
+                    sigma: Any = None) -> tuple[tuple[tuple[int, ...], ...], Piece] | None:
+    """Concurrent regions of three fingers grown along the boundary from three edges.
+
+    Each step solves, in one linear program, every configuration with some regions one
+    edge longer (:func:`_stretch_moves`; every contact of a stretch keeps the cone common
+    to its edges, so a piece of it is convex as on single edges) with the sides
+    ``sigma`` of the meeting point (default: all eight), and takes the best that
+    lengthens the smallest region; it stops when none does.  The configuration reached
+    is solved over every piece and its levels made leximin-optimal.  Returns the
+    stretches and the :class:`Piece` (positions in the part's units), or None when the
+    edges hold no concurrent grasp.  A safe lower bound, as on single edges: every grasp
+    of the regions is force closure.
+
+    >>> import numpy as np
+    >>> a = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    >>> part = Polygon(np.c_[40 * np.cos(a), 25 * np.sin(a)])
+    >>> st, piece = grow_concurrent(part, (0, 20, 40), mu=0.5, margin=np.radians(0.5))
+    >>> min(len(s) for s in st) > 1, bool(piece.levels.min() > part.lengths[0])
+    (True, True)
+    """
+    sides = None if sigma is None else [np.asarray(sigma, float)]
+    cur: tuple[tuple[int, ...], ...] = tuple((int(e),) for e in edges)
+    blocks = _stretch_blocks(polygon, cur, mu, margin, sides)
+    level, blk = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None)
+    if blk is None:
+        return None
+    for _ in range(MAX_STEPS):
+        moves = [m for m in _stretch_moves(polygon, cur) if _corner_count(m) <= MAX_CORNERS]
+        per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]
+        flat = [b for bs in per for b in bs]
+        if not flat:
+            break
+        xs = _solve_blocks(flat)
+        best = None
+        k = 0
+        for m, bs in zip(moves, per, strict=True):
+            lv, b = _best_piece(bs, xs[k:k + len(bs)])
+            k += len(bs)
+            if b is not None and lv > level * (1 + RANK_TOL) and (best is None or lv > best[0]):
+                best = (lv, m, b)
+        if best is None:
+            break
+        level, cur, blk = best
+    blocks = _stretch_blocks(polygon, cur, mu, margin)
+    _, blk = _best_piece(blocks, _solve_blocks(blocks))
+    piece = None if blk is None else _leximin(blk)
+    if piece is None:
+        return None
+    size = polygon.size
+    return cur, replace(piece, lo=piece.lo * size, hi=piece.hi * size,
+                        levels=piece.levels * size, witness=piece.witness * size)
+
+
+def _grown_plans(polygon: Polygon, spec: PlanSpec,
+                 found: list[tuple[float, tuple[int, ...], _Block]], F: Any
+                 ) -> list[GraspPlan]:
+    """The :data:`GROW_SEEDS` best concurrent plans of single edges grown along the
+    boundary (:func:`grow_concurrent`): the plans whose regions leave their edges."""
+    out = []
+    seen = set()
+    for _, row, blk in sorted(found, key=lambda r: -r[0])[:GROW_SEEDS]:
+        got = grow_concurrent(polygon, [int(F.edge[f]) for f in row], spec.mu,
+                              spec.margin_rad, blk.sigma)
+        if got is None or max(len(st) for st in got[0]) == 1 or got[0] in seen:
+            continue                    # two seeds may grow into one configuration
+        stretches, piece = got
+        seen.add(stretches)
+        out.append(regions_plan(polygon, spec, stretch_polylines(polygon, stretches, piece),
+                                stretches, piece.levels, "friction", "concurrent"))
+    return out
+
+
+def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[FloatArray]:
+    """The regions of a :class:`Piece` on stretches as polylines: from ``lo`` on each
+    stretch's first edge through its interior vertices to ``hi`` on its last."""
+    out = []
+    for i, st in enumerate(stretches):
+        a0, t0 = polygon.starts[st[0]], polygon.tangents[st[0]]
+        a1, t1 = polygon.starts[st[-1]], polygon.tangents[st[-1]]
+        out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
+                                   [a1 + piece.hi[i] * t1]]))
+    return out
 
 
 def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
