@@ -572,26 +572,26 @@ def _stretch_blocks(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], mu
             for sigma in (_SIDES if sides is None else sides)]
 
 
-def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...]
-                   ) -> list[tuple[tuple[int, ...], ...]]:
-    """Configurations with some regions one edge longer, each at one of its ends (on
-    edges no region covers, never a whole ring): the smallest region can only grow when
-    every region as short grows."""
+def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...],
+                   grow: Any = (True, True, True)) -> list[tuple[tuple[int, ...], ...]]:
+    """Configurations with every region marked in ``grow`` one edge longer, each at one
+    of its ends (on edges no region covers, never a whole ring): the smallest region can
+    only grow when every region as short does."""
     used = {e for st in stretches for e in st}
     options = []
-    for st in stretches:
+    for st, g in zip(stretches, grow, strict=True):
         ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
-        opts = [st]
-        if len(st) + 1 < ring:
+        opts = []
+        if g and len(st) + 1 < ring:
             for new, added in (((polygon.previous_edge(st[0]), *st), polygon.previous_edge(st[0])),
                                ((*st, polygon.next_edge(st[-1])), polygon.next_edge(st[-1]))):
                 if added not in used and polygon.usable[added]:
                     opts.append(new)
-        options.append(opts)
+        options.append(opts if g else [st])
     out = []
     for combo in product(*options):
         edges = [e for st in combo for e in st]
-        if combo != stretches and len(edges) == len(set(edges)):
+        if len(edges) == len(set(edges)):
             out.append(tuple(combo))
     return out
 
@@ -601,11 +601,11 @@ def _corner_count(stretches: tuple[tuple[int, ...], ...]) -> int:
 
 
 def _best_piece(blocks: list[_Block], xs: list[FloatArray | None]
-                ) -> tuple[float, _Block | None]:
-    best: tuple[float, _Block | None] = (-1.0, None)
+                ) -> tuple[float, _Block | None, FloatArray | None]:
+    best: tuple[float, _Block | None, FloatArray | None] = (-1.0, None, None)
     for blk, x in zip(blocks, xs, strict=True):
         if x is not None and _smallest(blk, x) > best[0]:
-            best = (_smallest(blk, x), blk)
+            best = (_smallest(blk, x), blk, x)
     return best
 
 
@@ -613,9 +613,10 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
                     sigma: Any = None) -> tuple[tuple[tuple[int, ...], ...], Piece] | None:
     """Concurrent regions of three fingers grown along the boundary from three edges.
 
-    Each step solves, in one linear program, every configuration with some regions one
-    edge longer (:func:`_stretch_moves`; every contact of a stretch keeps the cone common
-    to its edges, so a piece of it is convex as on single edges) with the sides
+    Each step solves, in one linear program, every configuration with the regions as
+    short as the smallest one edge longer (:func:`_stretch_moves`; every contact of a
+    stretch keeps the cone common to its edges, so a piece of it is convex as on single
+    edges) with the sides
     ``sigma`` of the meeting point (default: all eight), and takes the best that
     lengthens the smallest region; it stops when none does.  The configuration reached
     is solved over every piece and its levels made leximin-optimal.  Returns the
@@ -633,11 +634,14 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
     sides = None if sigma is None else [np.asarray(sigma, float)]
     cur: tuple[tuple[int, ...], ...] = tuple((int(e),) for e in edges)
     blocks = _stretch_blocks(polygon, cur, mu, margin, sides)
-    level, blk = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None)
-    if blk is None:
+    level, blk, x = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None, None)
+    if blk is None or x is None:
         return None
     for _ in range(MAX_STEPS):
-        moves = [m for m in _stretch_moves(polygon, cur) if _corner_count(m) <= MAX_CORNERS]
+        # the regions as short as the smallest must all grow for it to grow
+        short = _lengths(blk, x) <= level * (1 + 1e-6)
+        moves = [m for m in _stretch_moves(polygon, cur, short)
+                 if _corner_count(m) <= MAX_CORNERS]
         per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]
         flat = [b for bs in per for b in bs]
         if not flat:
@@ -646,15 +650,16 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
         best = None
         k = 0
         for m, bs in zip(moves, per, strict=True):
-            lv, b = _best_piece(bs, xs[k:k + len(bs)])
+            lv, b, xb = _best_piece(bs, xs[k:k + len(bs)])
             k += len(bs)
-            if b is not None and lv > level * (1 + RANK_TOL) and (best is None or lv > best[0]):
-                best = (lv, m, b)
+            if b is not None and xb is not None and lv > level * (1 + RANK_TOL) \
+                    and (best is None or lv > best[0]):
+                best = (lv, m, b, xb)
         if best is None:
             break
-        level, cur, blk = best
+        level, cur, blk, x = best
     blocks = _stretch_blocks(polygon, cur, mu, margin)
-    _, blk = _best_piece(blocks, _solve_blocks(blocks))
+    _, blk, _ = _best_piece(blocks, _solve_blocks(blocks))
     piece = None if blk is None else _leximin(blk)
     if piece is None:
         return None
