@@ -27,6 +27,7 @@ import numpy as np
 
 import fcgrasp as fc
 from fcgrasp.parts import demo_part
+from fcgrasp.three_fingers import grow_concurrent
 
 GROWTH = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0)
 
@@ -112,8 +113,9 @@ def curved() -> list[tuple[str, fc.Polygon]]:
 def main_curved(mu_values: tuple[float, ...]) -> None:
     print()
     print("curved outlines, top 10 (seconds of fc.plan; regions along the boundary)")
-    print("| part | mu | 3 fingers: s | best (mode) | best concurrent | 2 fingers |")
-    print("| --- | --- | --- | --- | --- | --- |")
+    print("| part | mu | 3 fingers: s | best (mode) | best concurrent in the top 10 | "
+          "best single-edge concurrent, grown | 2 fingers |")
+    print("| --- | --- | --- | --- | --- | --- | --- |")
     for name, part in curved():
         for mu in mu_values:
             t0 = time.perf_counter()
@@ -124,7 +126,15 @@ def main_curved(mu_values: tuple[float, ...]) -> None:
             c_s = (f"{conc[0].min_length:.3f} ({max(len(e) for e in conc[0].region_edges)} "
                    f"edges)" if conc else "not in the top 10")
             best = f"{three[0].min_length:.3f} ({three[0].mode})" if three else "none"
-            print(f"| {name} | {mu} | {dt:.2f} | {best} | {c_s} | "
+            single = [p for p in fc.plan(part, fingers=3, mu=mu, top=10, along_boundary=False)
+                      if p.mode == "concurrent"]
+            grown = "none"
+            if single:
+                got = grow_concurrent(part, single[0].edges, mu, np.radians(0.5))
+                if got is not None:
+                    grown = (f"{single[0].min_length:.3f} -> {got[1].levels.min():.3f} "
+                             f"({max(len(e) for e in got[0])} edges)")
+            print(f"| {name} | {mu} | {dt:.2f} | {best} | {c_s} | {grown} | "
                   f"{two[0].min_length if two else 0:.3f} |", flush=True)
 
 
