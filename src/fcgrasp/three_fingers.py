@@ -36,6 +36,15 @@ with the third placed on the longest remaining edge.  ``benchmarks/bench_three_f
 measures the gap: how far each returned box can grow before a sampled grasp fails the
 general test.
 
+**Along the boundary** (on outlines where a region can cover a vertex,
+:func:`fcgrasp.stretches.crosses_a_vertex`): the two fingers that hold on their own are
+the exact two-finger stretches, the third runs along the longest free stretch
+(:func:`free_stretch`); and the best concurrent plans are grown into stretches
+(:func:`grow_concurrent`): a contact anywhere on a stretch, on an interior vertex too,
+keeps the friction cone common to the stretch's edges, so with those cones a piece is
+again a projection of a polytope and a box of regions is inside it iff every grasp of
+region ends and interior vertices is, each with its own witness.
+
 Units: lengths in the part's units, ``margin`` in radians in this module's functions
 (degrees in :class:`~fcgrasp.pipeline.PlanSpec`).
 """
