@@ -721,7 +721,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[Gr
     an outline where a region can cover a vertex) the two are the exact two-finger
     stretches (:func:`fcgrasp.pipeline.boundary_plans`) and the third runs along the
     longest stretch of edges neither touches (:func:`free_stretch`): three fingers then
-    never do worse than two along the boundary."""
+    never do worse than the two-finger stretches with the third finger so placed."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return []
     boundary = (spec.along_boundary and spec.hand is None and edges is None
