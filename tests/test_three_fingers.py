@@ -394,3 +394,24 @@ def test_cli_three_fingers_and_gravity(tmp_path):
         assert r.returncode != 0
         assert len(r.stderr.strip().splitlines()) == 1 and "Traceback" not in r.stderr
         assert not (tmp_path / "bad.json").exists()
+
+
+def test_grow_concurrent_and_free_stretch_bad_arguments():
+    from fcgrasp.three_fingers import free_stretch, grow_concurrent
+
+    part = demo_part("quad")
+    for bad, err, word in (((0, 1), ValueError, "three"), ((0, 0, 1), ValueError, "three"),
+                           ((0, 1, 9), ValueError, "edges"), ((0, 1, 2.5), TypeError, "edges")):
+        with pytest.raises(err, match=word):
+            grow_concurrent(part, bad, 0.5, 0.01)
+    with pytest.raises(ValueError, match="mu"):
+        grow_concurrent(part, (0, 1, 2), -0.5, 0.01)
+    with pytest.raises(ValueError, match="margin"):
+        grow_concurrent(part, (0, 1, 2), 0.5, -1.0)
+    with pytest.raises(ValueError, match="sigma"):
+        grow_concurrent(part, (0, 1, 2), 0.5, 0.01, sigma=(1, 0, 1))
+    with pytest.raises(TypeError, match="polygon"):
+        grow_concurrent("quad", (0, 1, 2), 0.5, 0.01)
+    with pytest.raises(ValueError, match="covered"):
+        free_stretch(part, {7})
+    assert free_stretch(part, {0, 1, 2, 3}) is None

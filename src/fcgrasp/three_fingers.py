@@ -57,7 +57,7 @@ from typing import Any
 
 import numpy as np
 
-from ._checks import FloatArray
+from ._checks import FloatArray, check_mu_scalar, check_scalar
 from .pipeline import (
     PlanSpec,
     boundary_plans,
@@ -640,8 +640,17 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
     >>> min(len(s) for s in st) > 1, bool(piece.levels.min() > part.lengths[0])
     (True, True)
     """
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    idx = polygon.check_edges(edges, "edges")
+    if len(idx) != 3 or len(set(idx)) != 3:
+        raise ValueError(f"edges must be three distinct edges, got {edges!r}")
+    mu = check_mu_scalar(mu, "mu")
+    margin = check_scalar(margin, "margin", nonnegative=True)
+    if sigma is not None and (np.shape(sigma) != (3,) or not np.all(np.abs(sigma) == 1)):
+        raise ValueError(f"sigma must be three sides, each 1 or -1, got {sigma!r}")
     sides = None if sigma is None else [np.asarray(sigma, float)]
-    cur: tuple[tuple[int, ...], ...] = tuple((int(e),) for e in edges)
+    cur: tuple[tuple[int, ...], ...] = tuple((e,) for e in idx)
     blocks = _stretch_blocks(polygon, cur, mu, margin, sides)
     level, blk, x = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None, None)
     if blk is None or x is None:
@@ -760,7 +769,9 @@ def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
     >>> free_stretch(sq, {0}), free_stretch(sq, set())
     ((1, 2, 3), (2, 3, 0))
     """
-    covered = {int(e) for e in covered}
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    covered = set(polygon.check_edges(list(covered), "covered")) if len(covered) else set()
     best: tuple[int, ...] | None = None
     best_len = -1.0
     for r in np.unique(polygon.rings):
