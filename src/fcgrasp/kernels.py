@@ -5,7 +5,7 @@ numpy's ufuncs only (arithmetic, comparisons, ``np.where``, ``np.minimum`` ...).
 source then runs two ways:
 
 * **on numpy arrays** (numpy broadcasts it over the batch): no compilation, no import of
-  numba; used for small batches, so that a small plan is not start-up bound;
+  numba; used first, so that a small plan is not start-up bound;
 * **compiled by numba** into a fused, allocation-free loop over the rows of a batch
   (numba imported on first need, the machine code cached on disk beside this file):
   once the process has run :data:`JIT_AFTER_ROWS` rows by numpy, that is once the search
