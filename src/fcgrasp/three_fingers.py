@@ -52,6 +52,7 @@ Units: lengths in the part's units, ``margin`` in radians in this module's funct
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from functools import lru_cache
 from itertools import product
 from typing import Any
 
@@ -209,8 +210,15 @@ class _Block:
     def corners(self) -> np.ndarray:
         """The corner grasps (N, 3): per finger, 0 its start, 1 its end, ``2 + j`` its
         ``j``-th fixed point (on single edges the order of :data:`_CORNERS`)."""
-        opts = [[0, 1] + [2 + j for j in range(len(p))] for p in self.inner]
-        return np.array(list(product(*opts)), dtype=int).reshape(-1, 3)
+        return _corner_grid(tuple(2 + len(p) for p in self.inner))
+
+
+@lru_cache(maxsize=256)
+def _corner_grid(points: tuple[int, ...]) -> np.ndarray:
+    """Every combination of one point index per finger, ``points[i]`` points each."""
+    out = np.array(list(product(*(range(n) for n in points))), dtype=int).reshape(-1, 3)
+    out.flags.writeable = False
+    return out
 
 
 def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray,
@@ -226,17 +234,19 @@ def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, np.ndar
     S = blk.sigma[:, None] * np.array([1.0, -1.0])
     C = blk.corners()
     N = len(C)
-    cs = np.zeros((N, 3, 2))
-    svar = np.full((N, 3), -1)
-    rhs = np.zeros((N, 3, 2))
+    cs = np.empty((N, 3, 2))
+    svar = np.empty((N, 3), dtype=int)
+    rhs = np.empty((N, 3, 2))
     for i in range(3):
-        for k, (a, t) in enumerate(((blk.a0[i], blk.t0[i]), (blk.a1[i], blk.t1[i]))):
-            at = C[:, i] == k
-            cs[at, i] = -S[i] * (ux[i] * t[1] - uy[i] * t[0])
-            rhs[at, i] = S[i] * (ux[i] * a[1] - uy[i] * a[0])
-            svar[at, i] = i + 3 * k
-        for j, v in enumerate(blk.inner[i]):
-            rhs[C[:, i] == 2 + j, i] = S[i] * (ux[i] * v[1] - uy[i] * v[0])
+        # finger i's points: its start, its end (variable), its fixed points
+        pts = np.concatenate([[blk.a0[i], blk.a1[i]], blk.inner[i]])          # (n_i, 2)
+        tan = np.zeros_like(pts)
+        tan[0], tan[1] = blk.t0[i], blk.t1[i]
+        p_cs = -S[i] * (ux[i] * tan[:, 1, None] - uy[i] * tan[:, 0, None])    # (n_i, 2)
+        p_rhs = S[i] * (ux[i] * pts[:, 1, None] - uy[i] * pts[:, 0, None])
+        p_var = np.full(len(pts), -1)
+        p_var[:2] = (i, 3 + i)
+        cs[:, i], rhs[:, i], svar[:, i] = p_cs[C[:, i]], p_rhs[C[:, i]], p_var[C[:, i]]
     shape = (N, 3, 2)
     return (np.broadcast_to(-S * uy, shape), np.broadcast_to(S * ux, shape), cs,
             np.broadcast_to(svar[:, :, None], shape), rhs)
