@@ -25,9 +25,12 @@ MODES = ["numpy", "compiled"]
 
 @pytest.fixture(params=MODES)
 def mode(request, monkeypatch):
-    """Run the kernels by numpy, or compiled for every batch however small."""
+    """Run the kernels by numpy, or compiled for every batch however small (and check
+    that they really ran compiled)."""
     monkeypatch.setenv("FCGRASP_JIT", "0" if request.param == "numpy" else "1")
-    return request.param
+    yield request.param
+    if request.param == "compiled":
+        assert kernels.compiled()
 
 
 def _edge_sets(rng: np.random.Generator, n: int) -> dict[str, np.ndarray]:
@@ -193,3 +196,23 @@ def test_a_large_search_switches_to_the_compiled_kernels():
                                       env=env).stdout) for after in (100, 10 ** 9)]
     assert runs[0][0] is True and runs[1][0] is False
     assert np.allclose(runs[0][1], runs[1][1], rtol=1e-9)
+
+
+def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
+    """A numba that fails (a typing error, say) never breaks a plan: numpy runs instead."""
+    def boom(*args):
+        raise TypeError("numba failed")
+
+    e = _edge_sets(np.random.default_rng(9), 50)
+    a, b = np.concatenate([e["a1"], e["a2"]]), np.concatenate([e["b1"], e["b2"]])
+    c, h = np.concatenate([e["c1"], e["c2"]]), np.concatenate([e["h1"], e["h2"]])
+    i, j = np.triu_indices(100, 1)
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    want = kernels.pair_scores(a, b, c, h, i, j, 0.01)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    monkeypatch.setattr(kernels, "_loops", lambda: {"_pair_scores_loop": boom})
+    monkeypatch.setattr(kernels, "_no_numba", False)
+    got = kernels.pair_scores(a, b, c, h, i, j, 0.01)
+    for x, y in zip(got, want, strict=True):
+        assert np.array_equal(x, y)
+    assert not kernels.compiled()

@@ -46,8 +46,8 @@ import numpy as np
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL
 
-__all__ = ["JIT_AFTER_ROWS", "use_jit", "arc_meet", "segment", "pair_sector", "pair_problem",
-           "two_level", "pair_modes", "pair_scores", "pair_problems", "two_levels",
+__all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled", "arc_meet", "segment", "pair_sector",
+           "pair_problem", "two_level", "pair_modes", "pair_scores", "pair_problems", "two_levels",
            "PROBLEM_FIELDS"]
 
 #: Rows a process runs by numpy before the kernels are compiled (numpy takes about
@@ -354,9 +354,32 @@ def _loops() -> dict[str, Any] | None:
             clone = types.FunctionType(func.__code__, namespace, func.__name__,
                                        func.__defaults__)
             clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
-            namespace[name] = numba.njit(cache=True, error_model="numpy")(clone)
+            try:
+                namespace[name] = numba.njit(cache=True, error_model="numpy")(clone)
+            except RuntimeError:        # nowhere to cache (a read-only install): compile
+                namespace[name] = numba.njit(error_model="numpy")(clone)
         _compiled = namespace
         return namespace
+
+
+def compiled() -> bool:
+    """Whether this process runs the kernels compiled (loaded, and working)."""
+    return _compiled is not None and not _no_numba
+
+
+def _run(name: str, *args: Any) -> bool:
+    """Run the compiled loop ``name``; False (and numpy from then on) if numba fails to
+    compile it, so that a broken numba never breaks a plan."""
+    global _no_numba
+    loops = _loops()
+    if loops is None:
+        return False
+    try:
+        loops[name](*args)
+    except Exception:                   # numba's typing or lowering errors
+        _no_numba = True
+        return False
+    return True
 
 
 def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
@@ -372,15 +395,14 @@ def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArr
         # per feature: start, length, unit tangent and its norm
         seg = np.column_stack([a[:, 0], a[:, 1], *segment(a[:, 0], a[:, 1], b[:, 0],
                                                           b[:, 1])])
-    loops = _loops() if use_jit(i.size) else None
-    if loops is not None:
+    if use_jit(i.size):
         score = np.empty(i.size)
         mode = np.empty(i.size, dtype=np.int64)
         hm = np.empty(i.size)
-        loops["_pair_scores_loop"](seg, np.ascontiguousarray(center, float),
-                                   np.ascontiguousarray(half, float), i, j, float(margin),
-                                   float(tol), score, mode, hm)
-        return score, mode, hm
+        if _run("_pair_scores_loop", seg, np.ascontiguousarray(center, float),
+                np.ascontiguousarray(half, float), i, j, float(margin), float(tol), score,
+                mode, hm):
+            return score, mode, hm
     with np.errstate(divide="ignore", invalid="ignore"):
         cen, hm = pair_sector(center[i], half[i], center[j], half[j], margin)
         score = np.full(i.size, -1.0)
@@ -400,14 +422,13 @@ def pair_problems(a1: FloatArray, b1: FloatArray, a2: FloatArray, b2: FloatArray
     arrays keyed by :data:`PROBLEM_FIELDS`."""
     cen = np.ascontiguousarray(cen, dtype=float)
     hm = np.ascontiguousarray(hm, dtype=float)
-    loops = _loops() if use_jit(cen.size) else None
-    if loops is not None:
+    if use_jit(cen.size):
         out = np.empty((8, cen.size))
         flags = np.empty((3, cen.size), dtype=np.bool_)
-        loops["_pair_problems_loop"](*(np.ascontiguousarray(x, float)
-                                       for x in (a1, b1, a2, b2)), cen, hm, float(sign),
-                                     float(tol), out, flags)
-        return dict(zip(PROBLEM_FIELDS, [*out, *flags], strict=True))
+        if _run("_pair_problems_loop", *(np.ascontiguousarray(x, float)
+                                         for x in (a1, b1, a2, b2)), cen, hm, float(sign),
+                float(tol), out, flags):
+            return dict(zip(PROBLEM_FIELDS, [*out, *flags], strict=True))
     with np.errstate(divide="ignore", invalid="ignore"):
         res = pair_problem(a1[:, 0], a1[:, 1], b1[:, 0], b1[:, 1], a2[:, 0], a2[:, 1],
                            b2[:, 0], b2[:, 1], cen, hm, sign, tol)
@@ -420,13 +441,12 @@ def two_levels(w1: FloatArray, w2: FloatArray, L: FloatArray, K1: FloatArray,
                tol: float = SOLVER_TOL) -> FloatArray:
     """:func:`two_level` of every row: weights, lengths, levels and growth (B, 2),
     budgets (B,), ``active`` (B,) both regions real."""
-    loops = _loops() if use_jit(len(K1)) else None
-    if loops is not None:
+    if use_jit(len(K1)):
         out = np.empty(len(K1))
         args = [np.ascontiguousarray(x, float) for x in (w1, w2, L, K1, K2, lb, fr)]
-        loops["_two_levels_loop"](*args, np.ascontiguousarray(active, np.bool_),
-                                  float(tol), out)
-        return out
+        if _run("_two_levels_loop", *args, np.ascontiguousarray(active, np.bool_),
+                float(tol), out):
+            return out
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.asarray(two_level(w1[:, 0], w1[:, 1], w2[:, 0], w2[:, 1], L[:, 0],
                                     L[:, 1], K1, K2, lb[:, 0], lb[:, 1], fr[:, 0], fr[:, 1],
