@@ -423,15 +423,16 @@ def _wrap(x: Any) -> Any:
     return (np.asarray(x) + np.pi) % (2 * np.pi) - np.pi
 
 
-def _arc_of(vectors: FloatArray) -> tuple[float, float] | None:
-    """The smallest arc (centre, half-width) holding the directions of ``vectors``
-    (corners of a convex set), None when the set may hold the origin."""
-    ang = np.arctan2(vectors[:, 1], vectors[:, 0])
-    rel = _wrap(ang - ang[0])
-    lo, hi = float(rel.min()), float(rel.max())
-    if hi - lo >= np.pi - 1e-9 or np.min(np.hypot(*vectors.T)) <= 0:
-        return None
-    return float(ang[0] + (lo + hi) / 2), (hi - lo) / 2
+def _arc_of(vectors: FloatArray) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    """The smallest arcs (centre, half-width) holding the directions of each row of
+    ``vectors`` (B, k, 2) (corners of a convex set), and where there is none (the set may
+    hold the origin)."""
+    ang = np.arctan2(vectors[..., 1], vectors[..., 0])
+    rel = _wrap(ang - ang[:, :1])
+    lo, hi = rel.min(axis=1), rel.max(axis=1)
+    none = (hi - lo >= np.pi - 1e-9) | (np.min(np.hypot(vectors[..., 0], vectors[..., 1]),
+                                               axis=1) <= 0)
+    return ang[:, 0] + (lo + hi) / 2, (hi - lo) / 2, none
 
 
 @dataclass
@@ -584,13 +585,7 @@ def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> 
             corners = np.stack([cb.p0[:, j] - ca.p0[:, i], cb.p0[:, j] - ca.p1[:, i],
                                 cb.p1[:, j] - ca.p0[:, i], cb.p1[:, j] - ca.p1[:, i]],
                                axis=1)                                         # (B, 4, 2)
-            ang = np.arctan2(corners[..., 1], corners[..., 0])
-            rel = _wrap(ang - ang[:, :1])
-            lo, hi = rel.min(axis=1), rel.max(axis=1)
-            no_arc = (hi - lo >= np.pi - 1e-9) | (np.min(np.hypot(corners[..., 0],
-                                                                   corners[..., 1]),
-                                                          axis=1) <= 0)
-            d, hd = ang[:, 0] + (lo + hi) / 2, (hi - lo) / 2
+            d, hd, no_arc = _arc_of(corners)
             # squeezing, A's force is within beta of every direction A -> B and B's of
             # B -> A; expanding, of the opposite directions
             fail = (no_arc

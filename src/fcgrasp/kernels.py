@@ -299,9 +299,8 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
 
 
 _FORMULAS = ("_select", "_wrap", "arc_meet", "pair_sector", "_coefficient", "segment",
-             "_cone_edges",
-             "pair_problem", "_signed_problem", "_greedy_slack",
-             "two_level", "_mode_value", "pair_modes")
+             "_cone_edges", "pair_problem", "_signed_problem", "_greedy_slack", "two_level",
+             "_mode_value", "pair_modes")
 _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop")
 
 

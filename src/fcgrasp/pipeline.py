@@ -319,13 +319,6 @@ class Candidates:
         return out
 
 
-def _score(c: Candidates) -> None:
-    vals = np.stack([np.where(p.separable, max_min_length(p, c.tol), -1.0)
-                     for p in c.problems])
-    c.best_mode = np.argmax(vals, axis=0)
-    c.score = vals.max(axis=0)
-
-
 def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
     """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
     of them, so that which of equal candidates survive does not depend on numbering."""
@@ -727,10 +720,9 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
     """The grasp sets of a batch (section 6) and their region problems, scored by the
     largest smallest region (stage 1, exact unless two fingers share an edge, when it is
     an upper bound).  Rows that fail the force-direction constraint are dropped; with two
-    fingers, so are rows with no regions (or, with a ``floor`` and a ``top``, with a
-    smallest region below it).  With a
-    ``floor`` (:attr:`TopK.floor`), four-finger pairings tied on the smallest region are
-    told apart only in the rows that reach it."""
+    fingers, so are rows with no regions.  With a ``floor`` (:attr:`TopK.floor`) and a
+    ``top``, two-finger rows below the floor are dropped too, and four-finger pairings
+    tied on the smallest region are told apart only in the rows that reach it."""
     if spec.fingers == 3 and spec.gravity is None:
         raise ValueError("three fingers with friction are solved by linear programs: "
                          "fcgrasp.three_fingers.three_finger_plans, not grasp_geometry")

@@ -59,6 +59,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_mu_scalar, check_scalar
+from ._geom import wrap
 from .pipeline import (
     PlanSpec,
     boundary_plans,
@@ -548,7 +549,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
 GROW_SEEDS = 5
 #: A grown configuration has at most this many corner grasps (points per region, multiplied).
 MAX_CORNERS = 216
-#: Growth steps at most (each lengthens one region by one edge).
+#: Growth steps at most (each lengthens the shortest regions by one edge each).
 MAX_STEPS = 60
 
 
@@ -560,7 +561,7 @@ def _stretch_cone(polygon: Polygon, stretch: tuple[int, ...], mu: float
     cones all hold that intersection)."""
     n = polygon.normals[list(stretch)]
     c = np.arctan2(-n[:, 1], -n[:, 0])
-    d = (c - c[0] + np.pi) % (2 * np.pi) - np.pi
+    d = wrap(c - c[0])
     phi = float(np.arctan(mu))
     lo, hi = c[0] + d.max() - phi, c[0] + d.min() + phi
     return float((lo + hi) / 2), float((hi - lo) / 2)
@@ -591,8 +592,8 @@ def _stretch_blocks(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], mu
             for sigma in (_SIDES if sides is None else sides)]
 
 
-def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...],
-                   grow: Any = (True, True, True)) -> list[tuple[tuple[int, ...], ...]]:
+def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], grow: Any
+                   ) -> list[tuple[tuple[int, ...], ...]]:
     """Configurations with every region marked in ``grow`` one edge longer, each at one
     of its ends (on edges no region covers, never a whole ring): the smallest region can
     only grow when every region as short does."""
@@ -635,9 +636,8 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
     Each step solves, in one linear program, every configuration with the regions as
     short as the smallest one edge longer (:func:`_stretch_moves`; every contact of a
     stretch keeps the cone common to its edges, so a piece of it is convex as on single
-    edges) with the sides
-    ``sigma`` of the meeting point (default: all eight), and takes the best that
-    lengthens the smallest region; it stops when none does.  The configuration reached
+    edges) with the sides ``sigma`` of the meeting point (default: all eight), and takes
+    the best that lengthens the smallest region; it stops when none does.  The configuration reached
     is solved over every piece and its levels made leximin-optimal.  Returns the
     stretches and the :class:`Piece` (positions in the part's units), or None when the
     edges hold no concurrent grasp.  A safe lower bound, as on single edges: every grasp
