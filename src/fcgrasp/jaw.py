@@ -52,7 +52,8 @@ from .polygon import Polygon
 from .quality import characteristic_length
 from .regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "jaw_plans", "certify_box", "THETA_STEP_DEG",
+__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "holding_offsets", "jaw_plans", "certify_box",
+           "THETA_STEP_DEG", "SLICE_TOL",
            "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]
 
 #: Angular step of the pose grid (degrees).
@@ -71,6 +72,12 @@ CERTIFY_SHRINKS = 2
 CONTACT_TOL = 1e-9
 #: At most this many contact features per pad are compared (more: not held, safely).
 MAX_CONTACTS = 4
+#: :func:`holding_offsets` is exact up to this (times the part's size): it samples a cell
+#: this far inside its ends (past the contact tolerance's bands around a vertex entering
+#: the strip), and a cell around a kink is halved until it is 4 times this long.
+SLICE_TOL = 1e-6
+#: Poses evaluated at a time (memory: a few arrays of this many rows times the edges).
+POSE_BATCH = 20000
 
 
 @dataclass(frozen=True)
@@ -240,6 +247,12 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     if th.shape != c.shape:
         raise ValueError(f"theta and offset must have the same length, got {th.size} and "
                          f"{c.size}")
+    return _evaluate(polygon, jaw, th, c, margin, hole)[0]
+
+
+def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+              margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
+    """:func:`jaw_poses` on checked arrays, with the verdict's slacks (:func:`_verdict`)."""
     internal = hole is not None
     ring = _grip_edges(polygon, hole)
     rel_a = polygon.starts[ring] - polygon.centroid
@@ -273,12 +286,32 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
                                           np.arctan2(fx, fy))
     with np.errstate(invalid="ignore"):
         opening = top - bottom
+    holds, slacks = _verdict(opening, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, jaw, margin,
+                             internal)
+    kind_a = np.where(ok_a, np.where(np.nanmax(np.abs(psi_a), axis=1, initial=0.0) > 0, 2, 1),
+                      0)
+    kind_b = np.where(ok_b, np.where(np.nanmax(np.abs(psi_b), axis=1, initial=0.0) > 0, 2, 1),
+                      0)
+    return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
+                        holds), slacks
+
+
+def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: FloatArray,
+             psi_b: FloatArray, ok_a: np.ndarray, ok_b: np.ndarray, jaw: ParallelJaw,
+             margin: float, internal: bool) -> tuple[np.ndarray, FloatArray]:
+    """Whether the poses hold, from what the pads touch (theorem 6.3 and the stroke), and
+    the slacks the verdict is made of, (P, 2 K**2 + 2): per pair of features the two
+    lateral conditions (> 0 where met; NaN where a feature is missing or the pair's
+    cones do not meet), then ``opening - min_opening`` and ``max_opening - opening``
+    (>= 0 where met).  The pose holds when both pads touch, some pair has both lateral
+    slacks positive, and both stroke slacks are >= 0.
+
+    Two friction contacts (theorem 6.3): the direction from a point of A's feature to
+    one of B's, at angle psi from -u (positive towards +n), must be within beta of both
+    forces: psi in (lo, hi); over the features' lateral spans the offset dx = xb - xa
+    ranges over [b0 - a1, b1 - a0] and psi = atan(dx / opening).  Inside a hole the pads
+    push apart: the same test with both angles negated."""
     beta = np.arctan(jaw.mu) - np.radians(margin)
-    # two friction contacts (theorem 6.3): the direction from a point of A's feature to
-    # one of B's, at angle psi from -u (positive towards +n), must be within beta of
-    # both forces: psi in (lo, hi); over the features' lateral spans the offset
-    # dx = xb - xa ranges over [b0 - a1, b1 - a0] and psi = atan(dx / opening)
-    # (inside a hole the pads push apart: the same test with both angles negated)
     flip = -1.0 if internal else 1.0
     pa = flip * psi_a[:, :, None]
     pb = -flip * psi_b[:, None, :]
@@ -288,16 +321,154 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     a0, a1 = lat_a[:, :, None, 0], lat_a[:, :, None, 1]
     b0, b1 = lat_b[:, None, :, 0], lat_b[:, None, :, 1]
     with np.errstate(invalid="ignore"):
-        pair = ((lo < hi) & (b0 - a1 < d * np.tan(np.minimum(hi, np.pi / 2 - 1e-12)))
-                & (b1 - a0 > d * np.tan(np.maximum(lo, -np.pi / 2 + 1e-12))))
+        meet = lo < hi
+        s_hi = np.where(meet, d * np.tan(np.minimum(hi, np.pi / 2 - 1e-12)) - (b0 - a1),
+                        np.nan)
+        s_lo = np.where(meet, (b1 - a0) - d * np.tan(np.maximum(lo, -np.pi / 2 + 1e-12)),
+                        np.nan)
+        pair = (s_hi > 0) & (s_lo > 0)
+        s_min, s_max = opening - jaw.stroke[0], jaw.stroke[1] - opening
         holds = (ok_a & ok_b & (beta > 0) & np.any(pair, axis=(1, 2))
-                 & (opening >= jaw.stroke[0]) & (opening <= jaw.stroke[1]))
-    kind_a = np.where(ok_a, np.where(np.nanmax(np.abs(psi_a), axis=1, initial=0.0) > 0, 2, 1),
-                      0)
-    kind_b = np.where(ok_b, np.where(np.nanmax(np.abs(psi_b), axis=1, initial=0.0) > 0, 2, 1),
-                      0)
-    return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
-                        holds)
+                 & (s_min >= 0) & (s_max >= 0))
+    P = len(opening)
+    slacks = np.concatenate([s_hi.reshape(P, -1), s_lo.reshape(P, -1), s_min[:, None],
+                             s_max[:, None]], axis=1)
+    return holds, slacks
+
+
+def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
+                    margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
+                    offsets: tuple[float, float] | None = None) -> list[FloatArray]:
+    """The exact slices of the set of holding poses: for each closing angle of ``theta``
+    (T,), the offsets at which the jaw holds (the model of :func:`jaw_poses`), as sorted
+    disjoint intervals, an array (k, 2) per angle.  ``offsets`` ``(lo, hi)`` limits the
+    slices to a window (an interval reaching its end is cut there; default: every offset
+    at which a pad can touch the part).
+
+    At a fixed angle every quantity of the model is piecewise affine in the offset ``c``:
+    a vertex enters or leaves the strip at ``c = x +- pad_width / 2`` (these cut the
+    slice into *cells*), and inside a cell a pad's stop is the largest (pad B: smallest)
+    of affine functions - a vertex's height, the height of an edge cut by a side of the
+    strip - so it is convex (concave) and kinks where the extreme passes from one
+    feature to another.  A cell on which the stops and the contacts' lateral spans are
+    affine at three points (near its ends and at its middle: a convex function affine at
+    three points is affine between them) has affine verdict slacks (theorem 6.3's two
+    lateral conditions per pair of contacts, and the stroke), so the verdict changes only
+    at their roots, found in closed form; the pieces between roots are decided by
+    :func:`jaw_poses` at their middles.  A cell holding a kink is halved until it is
+    shorter than ``4 * SLICE_TOL`` times the part's size, then decided at its middle.
+    Exact up to :data:`SLICE_TOL` of the part's size: the three points stand that far
+    inside a cell's ends (where a vertex entering the strip ties with the stop within
+    :data:`CONTACT_TOL`), so a kink closer to an end than that is not seen.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> sl = holding_offsets(demo_part("rectangle"), jaw, [np.pi / 2])[0]   # across 30 mm
+    >>> sl.round(6).tolist()    # on the long faces, while the pads overlap them (80 + 8)
+    [[-44.0, 44.0]]
+    """
+    margin = _check_jaw_args(polygon, jaw, margin)
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
+    if not np.all(np.isfinite(th)):
+        raise ValueError(f"theta must be finite angles, got {theta!r}")
+    ring = _grip_edges(polygon, hole)
+    pts = np.unique(np.concatenate([polygon.starts[ring], polygon.ends[ring]]), axis=0)
+    rel = pts - polygon.centroid
+    X = -np.sin(th)[:, None] * rel[:, 0] + np.cos(th)[:, None] * rel[:, 1]    # (T, V)
+    half = jaw.pad_width / 2
+    if offsets is None:
+        w_lo, w_hi = X.min(axis=1) - half, X.max(axis=1) + half
+    else:
+        lo_hi = np.asarray(offsets, dtype=float)
+        if lo_hi.shape != (2,) or not np.all(np.isfinite(lo_hi)) or lo_hi[1] < lo_hi[0]:
+            raise ValueError(f"offsets must be an increasing range (lo, hi), got "
+                             f"{offsets!r}")
+        w_lo, w_hi = np.full(th.size, lo_hi[0]), np.full(th.size, lo_hi[1])
+    brk = np.sort(np.clip(np.concatenate([X - half, X + half, w_lo[:, None],
+                                          w_hi[:, None]], axis=1),
+                          w_lo[:, None], w_hi[:, None]), axis=1)
+    tiny = 1e-12 * polygon.size
+    keep = brk[:, 1:] - brk[:, :-1] > tiny
+    rows = np.nonzero(keep)
+    cell_t, cell_lo, cell_hi = rows[0], brk[:, :-1][rows], brk[:, 1:][rows]
+    found: list[FloatArray] = []                        # rows (angle index, lo, hi)
+    atol = CONTACT_TOL * polygon.size
+    while cell_t.size:
+        inset = np.minimum((cell_hi - cell_lo) / 4, SLICE_TOL * polygon.size)
+        ends = np.stack([cell_lo + inset, (cell_lo + cell_hi) / 2, cell_hi - inset])  # (3, C)
+        r, slack = _evaluate_batched(polygon, jaw, np.tile(th[cell_t], 3), ends.ravel(),
+                                     margin, hole)
+        C = cell_t.size
+        q = np.concatenate([r.top[:, None], r.bottom[:, None], r.lat_a.reshape(3 * C, -1),
+                            r.lat_b.reshape(3 * C, -1)], axis=1).reshape(3, C, -1)
+        fin = np.isfinite(q)
+        qz = np.where(fin, q, 0.0)
+        psi = np.nan_to_num(np.concatenate([r.psi_a, r.psi_b], axis=1), nan=9.0)
+        psi = psi.reshape(3, C, -1)
+        kinds = np.stack([r.kind_a, r.kind_b], axis=1).reshape(3, C, 2)
+        affine = (np.all(fin[0] == fin[1], axis=1) & np.all(fin[1] == fin[2], axis=1)
+                  & np.all(psi[0] == psi[1], axis=1) & np.all(psi[1] == psi[2], axis=1)
+                  & np.all(kinds[0] == kinds[1], axis=1) & np.all(kinds[1] == kinds[2], axis=1)
+                  & np.all(np.abs(qz[1] - (qz[0] + qz[2]) / 2) <= atol, axis=1))
+        holds_mid = r.holds.reshape(3, C)[1]
+        last = ~affine & (cell_hi - cell_lo <= 4 * SLICE_TOL * polygon.size)
+        found.append(np.column_stack([cell_t[last & holds_mid], cell_lo[last & holds_mid],
+                                      cell_hi[last & holds_mid]]))
+        # affine cells: the roots of the slacks, then the pieces between them decided
+        s = slack.reshape(3, C, -1)
+        s0, s2 = s[0][affine], s[2][affine]
+        a_t, a_lo, a_hi = cell_t[affine], cell_lo[affine], cell_hi[affine]
+        p0, p2 = ends[0][affine], ends[2][affine]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            cross = (s0 * s2 < 0) | ((s0 == 0) != (s2 == 0))
+            frac = np.where(cross, s0 / (s0 - s2), np.nan)
+        ci, si = np.nonzero(cross)
+        roots = p0[ci] + frac[ci, si] * (p2[ci] - p0[ci])
+        which = np.concatenate([np.arange(a_t.size), np.arange(a_t.size), ci])
+        where = np.concatenate([a_lo, a_hi, np.clip(roots, a_lo[ci], a_hi[ci])])
+        order = np.lexsort((where, which))
+        which, where = which[order], where[order]
+        piece = (which[1:] == which[:-1]) & (where[1:] - where[:-1] > tiny)
+        plo, phi, pc = where[:-1][piece], where[1:][piece], which[:-1][piece]
+        if plo.size:
+            verdict = _evaluate_batched(polygon, jaw, th[a_t[pc]], (plo + phi) / 2, margin,
+                                        hole)[0].holds
+            found.append(np.column_stack([a_t[pc][verdict], plo[verdict], phi[verdict]]))
+        split = ~affine & ~last
+        mid = ends[1][split]
+        cell_t = np.concatenate([cell_t[split], cell_t[split]])
+        cell_lo, cell_hi = (np.concatenate([cell_lo[split], mid]),
+                            np.concatenate([mid, cell_hi[split]]))
+    # pieces apart by less than the contact tolerance are one (at a vertex entering the
+    # strip a contact's span starts from zero: its slack's root is the cell's end, give
+    # or take rounding)
+    return _merge_intervals(np.concatenate(found) if found else np.zeros((0, 3)), th.size,
+                            atol)
+
+
+def _evaluate_batched(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+                      margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
+    """:func:`_evaluate` in batches of :data:`POSE_BATCH` poses, joined."""
+    parts = [_evaluate(polygon, jaw, th[i:i + POSE_BATCH], c[i:i + POSE_BATCH], margin, hole)
+             for i in range(0, max(th.size, 1), POSE_BATCH)]
+    if len(parts) == 1:
+        return parts[0]
+    fields = {k: np.concatenate([getattr(p[0], k) for p in parts])
+              for k in PoseContacts.__dataclass_fields__}
+    return PoseContacts(**fields), np.concatenate([p[1] for p in parts])
+
+
+def _merge_intervals(rows: FloatArray, count: int, tol: float) -> list[FloatArray]:
+    """Rows ``(index, lo, hi)`` joined into sorted disjoint intervals per index (pieces
+    that touch within ``tol`` are one)."""
+    out: list[list[list[float]]] = [[] for _ in range(count)]
+    for k, lo, hi in rows[np.lexsort((rows[:, 1], rows[:, 0]))]:
+        cur = out[int(k)]
+        if cur and lo <= cur[-1][1] + tol:
+            cur[-1][1] = max(cur[-1][1], hi)
+        else:
+            cur.append([lo, hi])
+    return [np.array(c, dtype=float).reshape(-1, 2) for c in out]
 
 
 @dataclass
@@ -700,16 +871,18 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     grasp, pads swapped).  With ``certify`` (the default) each box is also *proved* by
     :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid steps until the
     proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
-    dropped and the next one sought): every returned plan then has ``certified`` True.
+    dropped and the next one sought), then grown to the exact boundary of the set
+    (:func:`holding_offsets`), moved in by :data:`GROW_BACKOFF` and proved again, kept
+    where it measures more: every returned plan then has ``certified`` True.
     ``certify=False`` returns the boxes verified on the fine grid only.
 
     >>> from fcgrasp.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
     >>> best = jaw_plans(demo_part("rectangle"), jaw, top=1)[0]   # across the 30 mm
     >>> [round(float(np.degrees(t)), 1) % 180 for t in best.theta], best.kinds
-    ([78.5, 101.5], ('edge', 'edge'))
+    ([77.9, 102.1], ('edge', 'edge'))
     >>> best.certified, round(best.offset[1], 2)       # proved: every pose of the box holds
-    (True, 39.08)
+    (True, 39.78)
     >>> grid = jaw_plans(demo_part("rectangle"), jaw, top=1, certify=False)[0]
     >>> [round(float(np.degrees(t))) % 180 for t in grid.theta], grid.certified
     ([78, 102], False)
@@ -744,6 +917,127 @@ def _proved(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
     return None
 
 
+#: A grown box is moved in from the set's boundary by these fractions of a grid step
+#: until it is proved (a box on the boundary cannot be: its sub-boxes would have to
+#: shrink to nothing there), each try with that many times :data:`CERTIFY_BOXES`
+#: sub-boxes (the sub-boxes a proof needs grow as the inverse of the back-off:
+#: ``demo:rectangle`` 7,900 at half a step, 15,800 at a quarter, 32,200 at an eighth).
+GROW_BACKOFF = ((0.25, 5.0), (0.5, 2.5))
+
+
+def _reach(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+           thetas: FloatArray, anchor: float, step: float, side: int) -> float | None:
+    """How far from ``anchor`` (an offset at which every angle of ``thetas`` holds) the
+    exact slices (:func:`holding_offsets`) hold at every one of ``thetas``, towards
+    ``side`` (+1: larger offsets): the nearest end of the slices' intervals through
+    ``anchor``.  Windows of ``2 * step`` are added until it is found (None: no interval
+    through the anchor at some angle)."""
+    tol = CONTACT_TOL * polygon.size
+    far = anchor
+    reach_max = characteristic_length(polygon.vertices, polygon.centroid) + jaw.pad_width
+    while True:
+        near, far = far, far + side * 2 * step
+        window = (min(near, far), max(near, far))
+        slices = holding_offsets(polygon, jaw, thetas, margin, hole, window)
+        ends = []
+        for iv in slices:
+            # the interval through the window's end next to the anchor
+            at = (iv[:, 0] <= window[0] + tol) if side > 0 else (iv[:, 1] >= window[1] - tol)
+            if not at.any():
+                return None if near == anchor else near
+            ends.append(iv[at][0, 1] if side > 0 else iv[at][-1, 0])
+        end = min(ends) if side > 0 else max(ends)
+        if abs(end - far) > tol or abs(far) > reach_max:
+            return end
+
+
+def _holds_across(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                  thetas: FloatArray, c0: float, c1: float) -> np.ndarray:
+    """Whether the exact slice at each angle holds at every offset of ``[c0, c1]``."""
+    tol = CONTACT_TOL * polygon.size
+    return np.array([iv.shape[0] == 1 and iv[0, 0] <= c0 + tol and iv[0, 1] >= c1 - tol
+                     for iv in holding_offsets(polygon, jaw, thetas, margin, hole,
+                                               (c0, c1))])
+
+
+def _grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+           th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+           ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """A box found on the grid grown to the exact boundary of the holding set, the
+    dimension that limits its measure first: its offset range to the nearest ends of the
+    exact slices at :data:`CHECK_DENSITY` angles per grid step across it
+    (:func:`holding_offsets`), and its angle range, with the offset range fixed, by
+    bisection (to 1/4096 of a fine step) to the first angle whose slice does not hold
+    across it.  None when the slices disagree with the grid."""
+    (t0, t1), (c0, c1) = th, off
+    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    fine = dth / CHECK_DENSITY
+
+    def offsets(t0: float, t1: float, c0: float, c1: float) -> tuple[float, float] | None:
+        lines = np.linspace(t0, t1, max(2, int(round((t1 - t0) / fine)) + 1))
+        mid = (c0 + c1) / 2
+        lo = _reach(polygon, jaw, margin, hole, lines, min(c0 + dc, mid), dc, -1)
+        hi = _reach(polygon, jaw, margin, hole, lines, max(c1 - dc, mid), dc, +1)
+        return None if lo is None or hi is None or hi <= lo else (lo, hi)
+
+    def angles(t0: float, t1: float, c0: float, c1: float) -> tuple[float, float]:
+        grown = [t0, t1]
+        for k, side in ((1, 1), (0, -1)):
+            edge = grown[k]
+            probes = edge + side * fine * np.arange(1, 2 * CHECK_DENSITY + 1)
+            room = np.pi - 2 * dth - (grown[1] - grown[0])   # certify_box: under half a turn
+            probes = probes[np.abs(probes - edge) < room]
+            ok = _holds_across(polygon, jaw, margin, hole, probes, c0, c1)
+            n_ok = int(np.argmin(ok)) if not ok.all() else ok.size
+            good = edge + side * fine * n_ok
+            if n_ok < probes.size:
+                bad = probes[n_ok]
+                for _ in range(12):
+                    t = (good + bad) / 2
+                    if _holds_across(polygon, jaw, margin, hole, np.array([t]), c0, c1)[0]:
+                        good = t
+                    else:
+                        bad = t
+            grown[k] = good
+        return grown[0], grown[1]
+
+    if (t1 - t0) * radius < c1 - c0:
+        t0, t1 = angles(t0, t1, c0, c1)
+    found = offsets(t0, t1, c0, c1)
+    if found is None:
+        return None
+    c0, c1 = found
+    t0, t1 = angles(t0, t1, c0, c1)
+    return (t0, t1), (c0, c1)
+
+
+def _proved_grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                  th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+                  ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The grown box (:func:`_grown`) moved in from the boundary by each of
+    :data:`GROW_BACKOFF` (fractions of a grid step) until :func:`certify_box` proves it;
+    None when it cannot (the grid box is then proved instead)."""
+    grown = _grown(polygon, jaw, margin, hole, th, off, dth, dc)
+    if grown is None:
+        return None
+    (t0, t1), (c0, c1) = grown
+    for f, budget in GROW_BACKOFF:
+        t = (t0 + f * dth, t1 - f * dth)
+        c = (c0 + f * dc, c1 - f * dc)
+        if t[1] < t[0] or c[1] < c[0]:
+            return None
+        if certify_box(polygon, jaw, t, c, margin, hole,
+                       max_boxes=int(budget * CERTIFY_BOXES)):
+            return t, c
+    return None
+
+
+def _measure(theta: tuple[float, float], offset: tuple[float, float], radius: float
+             ) -> float:
+    """The ranking measure of a box: ``min(c1 - c0, (t1 - t0) * radius)``."""
+    return min(offset[1] - offset[0], (theta[1] - theta[0]) * radius)
+
+
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                 hole: int | None, certify: bool = True) -> list[JawPlan]:
     """The best boxes of one grip (external, or internal in ``hole``)."""
@@ -771,7 +1065,14 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
         if box is None:
             continue
         if certify:
+            # the grid box proved (shrunk by grid steps), then grown to the exact
+            # boundary and proved, kept where that measures more (the back-off from
+            # the boundary can cost more than the growth gives)
             proved = _proved(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+            if proved is not None:
+                grown = _proved_grown(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+                if grown is not None and _measure(*grown, radius) > _measure(*proved, radius):
+                    proved = grown
             if proved is None:
                 continue
             # the opening range over the proved box's checked poses
@@ -788,7 +1089,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                  _kind(r.lat_b[0], r.psi_b[0], polygon.size))
         plans.append(JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts,
                              kinds, (float(r.top[0]), float(r.bottom[0])),
-                             min(c1 - c0, (t1 - t0) * radius), jaw,
+                             _measure((t0, t1), (c0, c1), radius), jaw,
                              polygon.centroid.copy(), radius,
                              "external" if hole is None else "internal", hole, certify))
     return plans
