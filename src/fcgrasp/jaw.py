@@ -32,11 +32,21 @@ grid (:data:`THETA_STEP_DEG`, :data:`OFFSET_STEPS` across the part) by
 arc it sweeps at the part's radius: both lengths) is then checked on a grid
 :data:`CHECK_DENSITY` times finer and shrunk by grid steps until every checked pose
 holds.  :func:`certify_box` then *proves* that every pose of the box holds, between the
-grid points too (sound, not complete; a box it cannot prove is shrunk, then dropped):
+grid points too (sound, not complete; a box it cannot prove is shrunk, then dropped).
+
+**The exact set.**  At a fixed closing angle the set's slice is computed exactly
+(:func:`holding_offsets`: every quantity of the model is piecewise affine in the offset,
+so the slice's ends are roots of the verdict's slacks, found in closed form, or kinks of
+a pad's stop, located by halving).  A proved box is grown to the set's exact boundary:
+its offset range to the nearest ends of the slices at :data:`CHECK_DENSITY` angles per
+grid step across it, its angle range by bisection on the slices; the box on the
+boundary cannot be proved (its sub-boxes would have to shrink to nothing there), so it
+is moved in by a quarter of a grid step (else a half, :data:`GROW_BACKOFF`), proved, and
+kept where it measures more than the grid's box.  The boxes are therefore maximal up to
+that back-off in the directions grown, not the global optimum over all boxes of the
+exact set: the box's shape (which rows of angles) is still chosen on the grid.
 :func:`jaw_plans` returns proved boxes unless asked not to (``certify=False``: boxes
-verified on the fine grid only).  The exact boundary of the set (the support functions of
-the part restricted to the strip, piecewise-smooth curves) is not constructed: a box is the
-largest on the grid, proved, not the largest of the exact set.
+verified on the fine grid only, neither proved nor grown).
 """
 
 from __future__ import annotations
