@@ -14,6 +14,7 @@ from fcgrasp.jaw import (
     ParallelJaw,
     convex_holes,
     holding_offsets,
+    insertion_point,
     jaw_plans,
     jaw_poses,
 )
@@ -80,45 +81,53 @@ def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
 
 
 def _hole_edge_normal(part, hole, p, tf, u, n):
-    """The part's outward normal (strip frame) of the hole edge nearest ``p``."""
+    """The part's outward normal (strip frame) of the hole edge nearest ``p``: it points
+    into the hole."""
     ring = tf(part.holes[hole])
     a, b = ring, np.roll(ring, -1, axis=0)
     d = b - a
     t = np.clip(np.einsum("ij,ij->i", p - a, d) / np.einsum("ij,ij->i", d, d), 0, 1)
     e = int(np.argmin(np.hypot(*(a + t[:, None] * d - p).T)))
     nrm = np.array([d[e, 1], -d[e, 0]]) / np.hypot(*d[e])
-    inside = shapely.Polygon(ring).centroid
-    to_in = np.array([inside.x, inside.y]) - (a[e] + b[e]) / 2
-    return nrm if nrm @ to_in > 0 else -nrm          # points into the hole
+    probe = (a[e] + b[e]) / 2 + 1e-6 * np.hypot(*d[e]) * nrm
+    return nrm if shapely.Polygon(ring).contains(shapely.Point(probe)) else -nrm  # into the hole
 
 
 def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
-    """Jaws opening inside a convex hole: each pad stops where the hole's boundary above
-    (below) it is lowest (highest) across the strip, at the strip's sides or on a level
-    edge (the boundary is concave seen from inside)."""
+    """Jaws opening inside a hole from the insertion point's height: shapely clips the
+    hole to the strip; the closed jaws' segment must lie inside the clip, and each pad
+    stops at the nearest vertex of the clip's piece holding it, above (below) that
+    height (the piece's boundary within the strip is the hole's: the strip is tall)."""
+    from fcgrasp.jaw import insertion_point
+
     ring = tf(part.holes[hole])
     shape = shapely.Polygon(ring)
     w = jaw.pad_width / 2
-    s0, s1 = c - w, c + w
-    if not (s0 > ring[:, 0].min() and s1 < ring[:, 0].max()):
-        return False, np.nan
+    y_q = tf(insertion_point(part, hole)[None, :])[0, 1]
     big = 1e3 * part.size
-    span = {}
-    for x in (s0, s1):
-        ys = shapely.get_coordinates(shape.intersection(
-            shapely.LineString([(x, -big), (x, big)])))[:, 1]
-        span[x] = (ys.min(), ys.max())
-    top = min(span[s0][1], span[s1][1])
-    bottom = max(span[s0][0], span[s1][0])
+    segment = shapely.LineString([(c - w, y_q), (c + w, y_q)])
+    if not shape.contains(segment):
+        return False, np.nan
+    cut = shape.intersection(shapely.box(c - w, -big, c + w, big))
+    piece = next(g for g in getattr(cut, "geoms", [cut]) if g.contains(segment))
+    pts = shapely.get_coordinates(piece.exterior)
     tol = 1e-9 * part.size
+    top = pts[pts[:, 1] > y_q, 1].min()
+    bottom = pts[pts[:, 1] < y_q, 1].max()
     points, nrm = [], []
-    for y, k, pad_normal in ((top, 1, (0.0, -1.0)), (bottom, 0, (0.0, 1.0))):
-        sides = [x for x in (s0, s1) if abs(span[x][k] - y) <= tol]
-        level = len(sides) == 2
-        for x in sides:
-            p = np.array([x, y])
+    for y, pad_normal in ((top, (0.0, -1.0)), (bottom, (0.0, 1.0))):
+        for p in np.unique(pts[np.abs(pts[:, 1] - y) <= tol], axis=0):
+            on_side = min(abs(p[0] - (c - w)), abs(p[0] - (c + w))) <= tol
+            is_vertex = np.min(np.hypot(*(ring - p).T)) <= tol
+            normal = pad_normal
+            if on_side and not is_vertex:
+                # the pad's corner on an edge: that edge's normal (into the hole),
+                # unless the edge is level (the pad's face on it)
+                e_n = _hole_edge_normal(part, hole, p, tf, u, n)
+                if abs(e_n[0]) > tol:
+                    normal = tuple(e_n)
             points.append(p)
-            nrm.append(pad_normal if level else _hole_edge_normal(part, hole, p, tf, u, n))
+            nrm.append(normal)
     opening = top - bottom
     mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
     fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0
@@ -203,19 +212,17 @@ def test_every_sampled_pose_of_a_box_holds_slow(seed):
 @pytest.mark.parametrize("seed", range(3))
 def test_internal_pose_model_matches_shapely_and_the_wrench_lp(seed):
     rng = np.random.default_rng(200 + seed)
-    compared = held = 0
+    compared = held = concave = 0
     while compared < 150:
-        part = random_polygon(rng, "holes")
-        holes = convex_holes(part)
-        if not holes:
-            continue
-        k = holes[0]
+        part = random_polygon(rng, "holes")                 # a star-shaped hole
+        k = 0
         hole = part.holes[k]
+        concave += k not in convex_holes(part)
         size = float(np.max(np.ptp(hole, axis=0)))
         jaw = ParallelJaw(stroke=(0.05 * size, 2 * size), pad_width=float(rng.uniform(0.02, 0.5))
                           * size, mu=float(rng.uniform(0.2, 1.0)))
         th = rng.uniform(0, 2 * np.pi, 30)
-        rel = (hole.mean(axis=0) - part.centroid)
+        rel = insertion_point(part, k) - part.centroid
         c = np.c_[-np.sin(th), np.cos(th)] @ rel + rng.uniform(-0.5, 0.5, 30) * size
         mine = jaw_poses(part, jaw, th, c, margin=0.5, hole=k)
         lo = jaw_poses(part, jaw, th, c, margin=0.45, hole=k).holds
@@ -229,7 +236,43 @@ def test_internal_pose_model_matches_shapely_and_the_wrench_lp(seed):
             assert bool(mine.holds[i]) == ok, (seed, i, th[i], c[i])
             compared += 1
             held += ok
-    assert held > 5
+    assert held > 5 and concave > 0
+
+
+def _s_shaped_hole_part():
+    """A plate with an S-shaped hole: below the closed jaws (in the middle bar) material
+    overhangs another part of the hole, so edges below them face down."""
+    bars = [(0, 8, 6, 10), (4, 4, 6, 10), (0, 4, 6, 6), (0, 0, 2, 6), (0, 0, 6, 2)]
+    hole = shapely.union_all([shapely.box(*b) for b in bars]).simplify(0)
+    return fc.Polygon(np.array(shapely.box(-4, -4, 10, 14).exterior.coords)[:-1],
+                      [np.array(hole.exterior.coords)[:-1]])
+
+
+def test_internal_grips_in_a_non_convex_hole():
+    part = _s_shaped_hole_part()
+    assert convex_holes(part) == []
+    rng = np.random.default_rng(5)
+    jaw = ParallelJaw(stroke=(0.5, 12), pad_width=1.0, mu=0.6)
+    u_q = insertion_point(part, 0) - part.centroid
+    compared = held = 0
+    for _ in range(12):
+        th = rng.uniform(0, 2 * np.pi, 25)
+        c = np.c_[-np.sin(th), np.cos(th)] @ u_q + rng.uniform(-3, 3, 25)
+        mine = jaw_poses(part, jaw, th, c, 0.5, hole=0).holds
+        lo = jaw_poses(part, jaw, th, c, 0.45, hole=0).holds
+        hi = jaw_poses(part, jaw, th, c, 0.55, hole=0).holds
+        for i in np.flatnonzero(lo == hi):
+            ok, _ = independent_pose(part, jaw, th[i], c[i], 0.5, hole=0)
+            assert bool(mine[i]) == ok, (th[i], c[i])
+            compared += 1
+            held += ok
+    assert compared > 250 and held > 20
+    plans = [p for p in jaw_plans(part, jaw, top=3) if p.mode == "internal"]
+    assert plans and all(p.certified and p.hole == 0 for p in plans)
+    for p in plans:
+        assert p.to_dict()["insert"] == pytest.approx(list(insertion_point(part, 0)))
+        for th, c in p.sample(30, rng):
+            assert independent_pose(part, jaw, th, c, 0.5, hole=0)[0]
 
 
 def test_internal_grips_in_the_washer():
@@ -307,18 +350,26 @@ def _certify_cases(seed, n_parts, internal=False):
     rng = np.random.default_rng(400 + seed)
     proved = 0
     for _ in range(n_parts):
-        if internal:
+        if internal and rng.random() < 0.5:
             part, hole = demo_part("washer"), 0
             jaw = ParallelJaw(stroke=(float(rng.uniform(2, 20)), float(rng.uniform(21, 40))),
                               pad_width=float(rng.uniform(0.5, 12)),
                               mu=float(rng.uniform(0.2, 1.0)))
+        elif internal:                                  # the S-shaped hole, or a star
+            part = _s_shaped_hole_part() if rng.random() < 0.5 \
+                else random_polygon(rng, "holes")
+            hole = 0
+            size = float(np.max(np.ptp(part.holes[0], axis=0)))
+            jaw = ParallelJaw(stroke=(0.02 * size, 2 * size),
+                              pad_width=float(rng.uniform(0.02, 0.3)) * size,
+                              mu=float(rng.uniform(0.3, 1.0)))
         else:
             part, hole = _random_part(rng), None
             jaw = _jaw_for(part, rng)
         th = rng.uniform(0, 2 * np.pi, 400)
         c = rng.uniform(-0.6, 0.6, 400) * part.size
         if hole is not None:
-            rel = part.holes[hole].mean(axis=0) - part.centroid
+            rel = insertion_point(part, hole) - part.centroid
             c = np.c_[-np.sin(th), np.cos(th)] @ rel + c * 0.2
         holds = jaw_poses(part, jaw, th, c, 0.5, hole).holds
         for k in np.flatnonzero(holds)[:6]:
@@ -416,7 +467,7 @@ def _slice_cases(seed, n_parts, n_angles=12, n_offsets=120):
         part = _random_part(rng)
         jaw = _jaw_for(part, rng)
         d = 1e-5 * part.size
-        for hole in [None] + convex_holes(part):
+        for hole in [None] + list(range(len(part.holes))):
             th = rng.uniform(0, 2 * np.pi, n_angles)
             for k, iv in enumerate(holding_offsets(part, jaw, th, hole=hole)):
                 assert np.all(iv[:, 1] > iv[:, 0]) and np.all(iv[1:, 0] > iv[:-1, 1])

@@ -19,9 +19,12 @@ friction: some point of one contact sees some point of the other strictly inside
 friction cones, shrunk by ``margin``; between the pads' own normals this is
 ``|lateral offset| < tan(atan(mu) - margin) * opening``) and the opening (the part's
 width in the strip along ``u``) is within the stroke.  External grips close on the outline;
-internal grips open inside a convex hole (pad ``A``, facing ``+u``, meets the hole's
-boundary above it, pad ``B`` the boundary below; the strip must lie inside the hole's
-width; on a curved hole a flat pad meets the boundary at its corners).
+internal grips open inside a hole: the closed jaws go in at the hole's
+:func:`insertion_point` (its pole of inaccessibility, fixed in the part), so at a pose
+they sit on the strip's segment at that point's height, which must be free (no edge of
+the hole crosses it) and inside the hole; opening, pad ``A`` (facing ``+u``) meets the
+first boundary above that height, pad ``B`` the first below (in a non-convex hole the
+nearest of several; on a curved hole a flat pad meets the boundary at its corners).
 
 **Tolerance boxes.**  The answer is not one pose but a box of poses
 ``theta in [t0, t1]``, ``c in [c0, c1]`` every pose of which holds, the analogue of
@@ -51,6 +54,7 @@ verified on the fine grid only, neither proved nor grown).
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -62,7 +66,8 @@ from .polygon import Polygon
 from .quality import characteristic_length
 from .regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "holding_offsets", "jaw_plans", "certify_box",
+__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "holding_offsets", "insertion_point", "jaw_plans",
+           "certify_box",
            "THETA_STEP_DEG", "SLICE_TOL",
            "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]
 
@@ -201,7 +206,8 @@ def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
 
 
 def convex_holes(polygon: Polygon) -> list[int]:
-    """The holes of a part in which the jaws can open (internal grips): the convex ones."""
+    """The convex holes of a part (in one, the pads' stops do not depend on where the
+    closed jaws are put in; internal grips are planned in every hole)."""
     import shapely
 
     out = []
@@ -222,14 +228,38 @@ def _check_jaw_args(polygon: Any, jaw: Any, margin: Any) -> float:
 
 
 def _grip_edges(polygon: Polygon, hole: Any) -> np.ndarray:
-    """The edges a grip meets: all (external, ``hole=None``) or those of a convex hole."""
+    """The edges a grip meets: all (external, ``hole=None``) or those of a hole."""
     if hole is None:
         return np.ones(polygon.n_edges, dtype=bool)
     if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
-            or int(hole) not in convex_holes(polygon):
-        raise ValueError(f"hole must be the index of a convex hole of the part (internal "
-                         f"grips), got {hole!r}; convex holes: {convex_holes(polygon)}")
+            or not 0 <= int(hole) < len(polygon.holes):
+        raise ValueError(f"hole must be the index of a hole of the part (internal grips), "
+                         f"got {hole!r}; the part has {len(polygon.holes)} holes")
     return np.asarray(polygon.rings == int(hole) + 1)
+
+
+def insertion_point(polygon: Polygon, hole: int) -> FloatArray:
+    """Where the closed jaws go into the hole ``hole`` for an internal grip: the hole's
+    pole of inaccessibility (shapely's ``polylabel``: the point inside it farthest from
+    its boundary, where the widest closed jaws fit), to 1e-6 of the part's size.
+
+    >>> from fcgrasp.parts import demo_part
+    >>> part = demo_part("washer")
+    >>> bool(np.hypot(*(insertion_point(part, 0) - part.holes[0].mean(axis=0))) < 0.5)
+    True
+    """
+    _grip_edges(polygon, hole)
+    ring = np.ascontiguousarray(polygon.holes[int(hole)], dtype=float)
+    return np.array(_pole(ring.tobytes(), float(polygon.size)))
+
+
+@functools.lru_cache(maxsize=256)
+def _pole(ring: bytes, size: float) -> tuple[float, float]:
+    import shapely
+    from shapely.ops import polylabel
+
+    pt = polylabel(shapely.Polygon(np.frombuffer(ring).reshape(-1, 2)), tolerance=1e-6 * size)
+    return float(pt.x), float(pt.y)
 
 
 def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
@@ -240,10 +270,10 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     ``theta`` (P,): closing directions (radians); ``offset`` (P,): lateral offsets from
     the centroid; ``margin`` in degrees.  External grip (``hole=None``): every edge of
     the part (holes included: their material is never the extreme) is clipped to each
-    pose's strip.  Internal grip in the convex hole ``hole`` (an index into
-    ``polygon.holes``): the jaws, inside the hole, open until pad A (facing ``+u``) meets
-    the hole's boundary above and pad B the boundary below; the strip must lie inside
-    the hole's width.
+    pose's strip.  Internal grip in the hole ``hole`` (an index into ``polygon.holes``):
+    the closed jaws, on the strip's segment at the height of the hole's
+    :func:`insertion_point` (free and inside the hole, or the pose fails), open until
+    pad A (facing ``+u``) meets the first boundary above and pad B the first below.
 
     >>> from fcgrasp.parts import demo_part
     >>> part = demo_part("rectangle")              # 80 x 30
@@ -278,17 +308,20 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
     # positive towards +n: pad A pushes along -u, pad B along +u
     f = -polygon.normals[ring]
     fx, fy = n @ f.T, u @ f.T
-    if internal:
-        # inside a hole pad A pushes along +u on the boundary above it (where the part's
-        # outward normal points down), pad B along -u on the boundary below
-        above, below = fy > 0, fy < 0
+    if hole is not None:
+        # the closed jaws go in at the insertion point's height y_q: the segment the
+        # strip cuts there must be free (no edge of the hole's boundary crosses it) and
+        # inside the hole; opening, pad A (pushing along +u) meets the first boundary
+        # above it, pad B the first below, each an edge facing it
+        y_q = (u @ (insertion_point(polygon, hole) - polygon.centroid))[:, None]
+        above, below = _sides_of(y_a, y_b, x_a, x_b, s0, s1, y_q, tol)
+        meets = (np.maximum(x_a, x_b) >= s0) & (np.minimum(x_a, x_b) <= s1)
+        free = ~np.any(meets & ~above & ~below, axis=1)
         top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
-                                       np.arctan2(fx, fy), above)
+                                       np.arctan2(fx, fy), (fy > 0) & above)
         bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
-                                          np.arctan2(fx, -fy), below)
-        # the pads fit only if the strip lies inside the hole's width
-        ok_a &= (s0[:, 0] > np.minimum(x_a, x_b).min(axis=1)) \
-            & (s1[:, 0] < np.maximum(x_a, x_b).max(axis=1))
+                                          np.arctan2(fx, -fy), (fy < 0) & below)
+        ok_a &= free & _inside(y_a, y_b, x_a, x_b, c[:, None], y_q)
     else:
         top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
                                        np.arctan2(fx, -fy))
@@ -304,6 +337,33 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
                       0)
     return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
                         holds), slacks
+
+
+def _sides_of(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
+              s0: FloatArray, s1: FloatArray, level: FloatArray, tol: float
+              ) -> tuple[np.ndarray, np.ndarray]:
+    """Which edges (P, E) meet the strip ``[s0, s1]`` wholly above the height ``level``
+    (P, 1) there, and which wholly below (the heights of each edge's part in the strip,
+    its clipped ends; an edge along ``u`` is clipped to itself)."""
+    lo_x, hi_x = np.minimum(x_a, x_b), np.maximum(x_a, x_b)
+    meets = (hi_x >= s0) & (lo_x <= s1)
+    flat = np.abs(x_b - x_a) <= tol
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slope = np.where(flat, 0.0, (y_b - y_a) / np.where(flat, 1.0, x_b - x_a))
+    h0 = np.where(flat, y_a, y_a + (np.clip(lo_x, s0, s1) - x_a) * slope)
+    h1 = np.where(flat, y_b, y_a + (np.clip(hi_x, s0, s1) - x_a) * slope)
+    return (meets & (np.minimum(h0, h1) > level + tol),
+            meets & (np.maximum(h0, h1) < level - tol))
+
+
+def _inside(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
+            x: FloatArray, y: FloatArray) -> np.ndarray:
+    """Whether the points ``(x, y)`` (P, 1) are inside the ring of edges (P, E) (even-odd:
+    the ray along ``+u`` from each crosses it an odd number of times)."""
+    straddle = (x_a > x) != (x_b > x)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y_at = y_a + (x - x_a) * (y_b - y_a) / (x_b - x_a)
+    return np.sum(straddle & (y_at > y), axis=1) % 2 == 1
 
 
 def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: FloatArray,
@@ -394,8 +454,21 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
             raise ValueError(f"offsets must be an increasing range (lo, hi), got "
                              f"{offsets!r}")
         w_lo, w_hi = np.full(th.size, lo_hi[0]), np.full(th.size, lo_hi[1])
-    brk = np.sort(np.clip(np.concatenate([X - half, X + half, w_lo[:, None],
-                                          w_hi[:, None]], axis=1),
+    cuts = [X - half, X + half]
+    if hole is not None:
+        # inside a hole the closed jaws' segment is blocked while an edge crosses the
+        # insertion height within the strip: where an edge crosses that height, +- w/2
+        q = insertion_point(polygon, int(hole)) - polygon.centroid
+        cs, sn = np.cos(th)[:, None], np.sin(th)[:, None]
+        a = polygon.starts[ring] - polygon.centroid
+        b = polygon.ends[ring] - polygon.centroid
+        ya, yb = cs * a[:, 0] + sn * a[:, 1], cs * b[:, 0] + sn * b[:, 1]
+        xa, xb = -sn * a[:, 0] + cs * a[:, 1], -sn * b[:, 0] + cs * b[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (cs * q[0] + sn * q[1] - ya) / (yb - ya)
+        xc = np.where((t >= 0) & (t <= 1), xa + t * (xb - xa), w_lo[:, None])
+        cuts += [xc - half, xc + half, xc]
+    brk = np.sort(np.clip(np.concatenate(cuts + [w_lo[:, None], w_hi[:, None]], axis=1),
                           w_lo[:, None], w_hi[:, None]), axis=1)
     tiny = 1e-12 * polygon.size
     keep = brk[:, 1:] - brk[:, :-1] > tiny
@@ -491,7 +564,8 @@ class JawPlan:
     ``"edge"`` or ``"corner"``; ``stops``: where pads A and B stop, along ``u`` from the
     centroid), the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``, and the
     grip: ``mode`` ``"external"`` (closing on the outline) or ``"internal"`` (opening in
-    the hole ``hole``, an index into the part's holes)."""
+    the hole ``hole``, an index into the part's holes, the closed jaws put in at
+    ``insert``: :func:`insertion_point`)."""
 
     theta: tuple[float, float]
     offset: tuple[float, float]
@@ -506,6 +580,7 @@ class JawPlan:
     mode: str = "external"
     hole: int | None = None
     certified: bool = False
+    insert: FloatArray | None = None
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -523,6 +598,7 @@ class JawPlan:
         """A JSON-ready description (angles also in degrees)."""
         return json_ready({
             "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
+            "insert": self.insert,
             "theta_rad": list(self.theta), "theta_deg": list(np.degrees(self.theta)),
             "offset": list(self.offset), "opening": list(self.opening),
             "contacts": {"a": {"kind": self.kinds[0], "points": self.contacts[0],
@@ -635,11 +711,13 @@ class _Candidates:
 
 
 def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
-                    boxes: FloatArray, half: float) -> _Candidates:
+                    boxes: FloatArray, half: float, ahead: np.ndarray | None = None
+                    ) -> _Candidates:
     """The pad of ``sign`` (+1: pad A of an external grip, the extreme of ``sign * y``)
     over each box ``(t0, t1, c0, c1)`` of ``boxes`` (B, 4): a superset of its contacts
     (``ok`` False when too many features could touch: more than :data:`MAX_CONTACTS`,
-    as :func:`jaw_poses`)."""
+    as :func:`jaw_poses`).  Inside a hole, ``ahead`` (B, m): the edges ahead of the pad
+    (on its side of the closed jaws) at every pose of the box."""
     t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))        # (B, 1) each
     B = len(boxes)
     cen = polygon.centroid
@@ -653,6 +731,8 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         pad_force = -sign                               # the force's sign along u
         maybe = fy_hi > 0 if pad_force > 0 else fy_lo < 0
         surely = fy_lo > 0 if pad_force > 0 else fy_hi < 0
+        if ahead is not None:
+            maybe, surely = maybe & ahead, surely & ahead
     else:
         # only an edge facing the pad (outward normal towards it) can hold its extreme:
         # below the strip's side line a part's boundary point faces away
@@ -777,6 +857,26 @@ def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> 
     return holds
 
 
+def _hole_sides(polygon: Polygon, ring: np.ndarray, q: FloatArray, boxes: FloatArray,
+                half: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Over each box (B, 4) of an internal grip with insertion point ``q`` (from the
+    centroid): the hole's edges wholly above the insertion height at every pose, those
+    wholly below (B, m), and whether every edge that may meet the strip is one or the
+    other (B,): the closed jaws' segment is then free at every pose."""
+    t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))
+    a = polygon.starts[ring] - polygon.centroid
+    b = polygon.ends[ring] - polygon.centroid
+    ya_lo, ya_hi = _sin_range(a[:, 0], a[:, 1], t0, t1)
+    yb_lo, yb_hi = _sin_range(b[:, 0], b[:, 1], t0, t1)
+    xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
+    xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
+    yq_lo, yq_hi = _sin_range(q[0], q[1], t0, t1)
+    may_meet = (np.maximum(xa_hi, xb_hi) >= c0 - half) & (np.minimum(xa_lo, xb_lo) <= c1 + half)
+    up = np.minimum(ya_lo, yb_lo) > yq_hi
+    down = np.maximum(ya_hi, yb_hi) < yq_lo
+    return up, down, ~np.any(may_meet & ~up & ~down, axis=1)
+
+
 #: Sub-boxes :func:`certify_box` examines at a time.
 CERTIFY_BATCH = 512
 
@@ -816,8 +916,7 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
         return None
     half = jaw.pad_width / 2
     radius = characteristic_length(polygon.vertices, polygon.centroid)
-    if internal:
-        rel = np.concatenate([polygon.starts[ring], polygon.ends[ring]]) - polygon.centroid
+    q = None if hole is None else insertion_point(polygon, hole) - polygon.centroid
     # cut the box at the critical angles, where an edge turns parallel to u (its facing
     # and its lateral direction change sign there): no sub-box straddles one
     d = polygon.ends[ring] - polygon.starts[ring]
@@ -835,13 +934,21 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
         done += len(boxes)
         if done > max_boxes:
             return None
-        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
-        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
-        proved = ca.ok & cb.ok
-        if internal:
-            x_lo, x_hi = _sin_range(rel[:, 1], -rel[:, 0], boxes[:, :1], boxes[:, 1:2])
-            proved &= (x_hi.min(axis=1) < boxes[:, 2] - half) \
-                & (x_lo.max(axis=1) > boxes[:, 3] + half)
+        if q is not None:
+            # the closed jaws' segment free at every pose (each edge that may meet the
+            # strip wholly above or below the insertion height), and inside the hole at
+            # the centre pose, hence at every pose (the segment's middle would have to
+            # cross an edge to leave); pad A meets only edges above, pad B below
+            up, down, free = _hole_sides(polygon, ring, q, boxes, half)
+            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half, up)
+            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half, down)
+            centre_holds = jaw_poses(polygon, jaw, (boxes[:, 0] + boxes[:, 1]) / 2,
+                                     (boxes[:, 2] + boxes[:, 3]) / 2, margin, hole).holds
+            proved = ca.ok & cb.ok & free & centre_holds
+        else:
+            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
+            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
+            proved = ca.ok & cb.ok
         # the stops as heights along u: sign * stop lies in [lo, hi]
         a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
         b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
@@ -875,10 +982,10 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
               margin: float = DEFAULT_MARGIN_DEG, internal: bool = True,
               certify: bool = True) -> list[JawPlan]:
     """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
-    docstring): external grips, and with ``internal`` grips inside each convex hole
-    (:func:`convex_holes`).  For each grip, each found box's poses are removed from the
-    grid before the next is sought, with their mirror (``theta + pi``, ``-c``: the same
-    grasp, pads swapped).  With ``certify`` (the default) each box is also *proved* by
+    docstring): external grips, and with ``internal`` grips inside each hole (the jaws
+    put in at its :func:`insertion_point`).  For each grip, each found box's poses are
+    removed from the grid before the next is sought, with their mirror (``theta + pi``,
+    ``-c``: the same grasp, pads swapped).  With ``certify`` (the default) each box is also *proved* by
     :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid steps until the
     proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
     dropped and the next one sought), then grown to the exact boundary of the set
@@ -905,7 +1012,7 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
         raise TypeError(f"certify must be a bool, got {certify!r}")
     holes: list[int | None] = [None]
     if internal:
-        holes += convex_holes(polygon)
+        holes += list(range(len(polygon.holes)))
     plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h, certify)]
     plans.sort(key=lambda p: -p.measure)
     return plans[:top]
@@ -1101,7 +1208,8 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                              kinds, (float(r.top[0]), float(r.bottom[0])),
                              _measure((t0, t1), (c0, c1), radius), jaw,
                              polygon.centroid.copy(), radius,
-                             "external" if hole is None else "internal", hole, certify))
+                             "external" if hole is None else "internal", hole, certify,
+                             None if hole is None else insertion_point(polygon, hole)))
     return plans
 
 
