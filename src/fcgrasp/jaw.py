@@ -985,9 +985,9 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     docstring): external grips, and with ``internal`` grips inside each hole (the jaws
     put in at its :func:`insertion_point`).  For each grip, each found box's poses are
     removed from the grid before the next is sought, with their mirror (``theta + pi``,
-    ``-c``: the same grasp, pads swapped).  With ``certify`` (the default) each box is also *proved* by
-    :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid steps until the
-    proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
+    ``-c``: the same grasp, pads swapped).  With ``certify`` (the default) each box is
+    also *proved* by :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid
+    steps until the proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
     dropped and the next one sought), then grown to the exact boundary of the set
     (:func:`holding_offsets`), moved in by :data:`GROW_BACKOFF` and proved again, kept
     where it measures more: every returned plan then has ``certified`` True.
