@@ -61,6 +61,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ._geom import wrap
 from ._json import json_ready
 from .polygon import Polygon
 from .quality import characteristic_length
@@ -675,17 +676,12 @@ def _sin_range(a: Any, b: Any, t0: Any, t1: Any
             np.where(has_max, r, np.maximum(v0, v1)))
 
 
-def _wrap(x: Any) -> Any:
-    """Angles wrapped to [-pi, pi)."""
-    return (np.asarray(x) + np.pi) % (2 * np.pi) - np.pi
-
-
 def _arc_of(vectors: FloatArray) -> tuple[FloatArray, FloatArray, np.ndarray]:
     """The smallest arcs (centre, half-width) holding the directions of each row of
     ``vectors`` (B, k, 2) (corners of a convex set), and where there is none (the set may
     hold the origin)."""
     ang = np.arctan2(vectors[..., 1], vectors[..., 0])
-    rel = _wrap(ang - ang[:, :1])
+    rel = wrap(ang - ang[:, :1])
     lo, hi = rel.min(axis=1), rel.max(axis=1)
     none = (hi - lo >= np.pi - 1e-9) | (np.min(np.hypot(vectors[..., 0], vectors[..., 1]),
                                                axis=1) <= 0)
@@ -850,8 +846,8 @@ def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> 
             # squeezing, A's force is within beta of every direction A -> B and B's of
             # B -> A; expanding, of the opposite directions
             fail = (no_arc
-                    | (np.abs(_wrap(d + turn - ca.centre[:, i])) + hd + ca.half[:, i] >= beta)
-                    | (np.abs(_wrap(d + np.pi + turn - cb.centre[:, j])) + hd
+                    | (np.abs(wrap(d + turn - ca.centre[:, i])) + hd + ca.half[:, i] >= beta)
+                    | (np.abs(wrap(d + np.pi + turn - cb.centre[:, j])) + hd
                        + cb.half[:, j] >= beta))
             holds &= ~(ca.valid[:, i] & cb.valid[:, j] & fail)
     return holds
