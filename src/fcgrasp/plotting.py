@@ -207,6 +207,10 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
                                 label="pads at the centre pose" if k == 0 else None))
     for pts in plan.contacts:
         ax.plot(*np.asarray(pts).T, "o", color="#d62728", ms=4, zorder=5)
+    if plan.insert is not None:
+        # inside a hole: where the closed jaws go in (fcgrasp.jaw.insertion_point)
+        ax.plot(*np.asarray(plan.insert), "+", color="k", ms=7, zorder=5,
+                label="jaws put in here")
     mid = cen + c * n
     for t in plan.theta:
         d = np.array([np.cos(t), np.sin(t)]) * reach
