@@ -114,47 +114,55 @@ def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArra
     w = np.asarray(half, float) - margin
     if np.any(w < 0):
         return []
+    # called once per triple of features: plain floats, not arrays of three
+    cl, wl = c.tolist(), w.tolist()
     limit = np.pi - margin
+    turn = 2 * np.pi
     out: list[tuple[FloatArray, FloatArray]] = []
     seen = set()
     # the chosen directions go round in one of two cyclic orders; between two centres
     # the unwrapped gap is the turn from one to the next, or that less a full turn (an
     # arc reaching back past its neighbour's centre); the third gap closes the turn
-    for o in ((0, 1, 2), (0, 2, 1)):
-        oi, nx = np.array(o), np.roll(np.array(o), -1)
-        base = np.mod(c[nx] - c[oi], 2 * np.pi)
-        for k1, k2 in product((0, -1), repeat=2):
-            gap = base + 2 * np.pi * np.array([k1, k2, 0])
-            gap[2] = 2 * np.pi - gap[0] - gap[1]
-            for lo, hi in _split_excess(gap, w[oi], w[nx], oi, nx, limit):
-                key = tuple(np.round(np.concatenate([lo, hi]), 12).tolist())
+    for cur in ((0, 1, 2), (0, 2, 1)):
+        nxt = (cur[1], cur[2], cur[0])
+        base = [(cl[nxt[i]] - cl[cur[i]]) % turn for i in range(3)]
+        wc, wn = [wl[k] for k in cur], [wl[k] for k in nxt]
+        for k1, k2 in ((0, 0), (0, -1), (-1, 0), (-1, -1)):
+            g0, g1 = base[0] + turn * k1, base[1] + turn * k2
+            g2 = turn - g0 - g1
+            # some turn exceeds the limit even from the end of one arc to the start of
+            # the next: no sub-arcs
+            if g0 - wc[0] - wn[0] > limit or g1 - wc[1] - wn[1] > limit \
+                    or g2 - wc[2] - wn[2] > limit:
+                continue
+            for lo, hi in _split_excess((g0, g1, g2), wl, cur, nxt, limit):
+                key = tuple(round(v, 12) for v in lo + hi)
                 if key not in seen:
                     seen.add(key)
                     out.append((c + lo, c + hi))
     return out
 
 
-def _split_excess(gap: FloatArray, w_cur: FloatArray, w_next: FloatArray, cur: np.ndarray,
-                  nxt: np.ndarray, limit: float) -> list[tuple[FloatArray, FloatArray]]:
-    """Offsets ``(lo, hi)`` of the sub-arcs (from the cones' axes) that keep every turn
-    from the start of one arc to the end of the next below ``limit`` (the cyclic order
-    ``cur -> nxt`` with unwrapped ``gap`` between the axes): the excess of each turn is
-    taken from the two arcs in the shares of :data:`SPLITS`."""
-    excess = gap + w_cur + w_next - limit
-    if np.any(gap - w_cur - w_next > limit):
-        return []
-    w = np.zeros(3)
-    w[cur] = w_cur
+def _split_excess(gap: tuple[float, float, float], w: list[float], cur: tuple[int, ...],
+                  nxt: tuple[int, ...], limit: float) -> list[tuple[list[float], list[float]]]:
+    """Offsets ``(lo, hi)`` of the sub-arcs (from the cones' axes, half-widths ``w``) that
+    keep every turn from the start of one arc to the end of the next below ``limit`` (the
+    cyclic order ``cur -> nxt`` with unwrapped ``gap`` between the axes, no turn beyond
+    the limit from the end of one arc to the start of the next): the excess of each turn
+    is taken from the two arcs in the shares of :data:`SPLITS`."""
+    w_cur = [w[k] for k in cur]
+    w_next = [w[k] for k in nxt]
+    excess = [max(gap[i] + w_cur[i] + w_next[i] - limit, 0.0) for i in range(3)]
     out = []
     for split in product(*[SPLITS if e > 0 else (0.0,) for e in excess]):
-        lo, hi = -w.copy(), w.copy()
+        lo, hi = [-v for v in w], list(w)
         for i, r in enumerate(split):
-            e = max(float(excess[i]), 0.0)
+            e = excess[i]
             x = min(max(r * e, e - 2 * w_next[i]), 2 * w_cur[i])   # raise cur's start by x
             lo[cur[i]] += x
             hi[nxt[i]] -= e - x                                     # lower nxt's end
-        if np.all(lo <= hi + 1e-12):
-            out.append((lo, np.maximum(hi, lo)))
+        if lo[0] <= hi[0] + 1e-12 and lo[1] <= hi[1] + 1e-12 and lo[2] <= hi[2] + 1e-12:
+            out.append((lo, [max(h, v) for h, v in zip(hi, lo, strict=True)]))
     return out
 
 
