@@ -437,6 +437,14 @@ def test_jaw_plans_certify_proves_every_box():
                                               for a in (0, 1) for b in (0, 1)]]:
         ok, opening = independent_pose(part, jaw, th, c, 0.5)
         assert ok and jaw.stroke[0] <= opening <= jaw.stroke[1]
+    # the contact features over the box: the edges each pad touches at its corner and
+    # centre poses are among them (the long faces, and the ends' edges near +-40 mm)
+    (t0, t1), (c0, c1) = best.theta, best.offset
+    r = jaw_poses(part, jaw, [t0, t0, t1, t1, (t0 + t1) / 2], [c0, c1, c0, c1, 0.0])
+    for edges, got in ((r.edge_a, best.features[0]), (r.edge_b, best.features[1])):
+        assert set(edges[edges >= 0].tolist()) <= set(got)
+    assert len(best.features[0]) > 1 and best.to_dict()["contacts"]["a"]["edges"] == \
+        best.features[0]
     with pytest.raises(TypeError, match="certify"):
         jaw_plans(part, jaw, certify="yes")
 

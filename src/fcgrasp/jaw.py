@@ -138,7 +138,9 @@ class PoseContacts:
     ``lat_a``, ``lat_b`` (P, K, 2): lateral intervals of the contact features (NaN
     where fewer); ``psi_a``, ``psi_b`` (P, K): the angle of each feature's contact force
     from its pad's (0 but on a pad corner);
-    ``holds`` (P,): force closure and the opening within the stroke.
+    ``holds`` (P,): force closure and the opening within the stroke;
+    ``edge_a``, ``edge_b`` (P, K): the part's edge of each contact feature (a vertex
+    appears as each of its edges that reaches the stop; -1 where fewer).
     """
 
     top: FloatArray
@@ -151,18 +153,21 @@ class PoseContacts:
     psi_a: FloatArray
     psi_b: FloatArray
     holds: np.ndarray
+    edge_a: np.ndarray
+    edge_b: np.ndarray
 
 
 def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
          s0: FloatArray, s1: FloatArray, sign: float, tol: float, psi_edge: FloatArray,
          use: np.ndarray | None = None
-         ) -> tuple[FloatArray, np.ndarray, FloatArray, FloatArray]:
+         ) -> tuple[FloatArray, np.ndarray, FloatArray, FloatArray, np.ndarray]:
     """One pad: the extreme of ``sign * y`` over the edges clipped to the strip
     ``[s0, s1]`` (arrays (P, E) of edge ends, (P, 1) strip sides).  Returns the stop
     (P,), whether it touches anything (P,), the contact features' lateral intervals
-    (P, K, 2) and the angle of each feature's contact force from the pad's (P, K):
+    (P, K, 2), the angle of each feature's contact force from the pad's (P, K):
     0 on a vertex or an edge parallel to the pad, the edge's (``psi_edge`` (P, E))
-    where the pad's corner touches an edge.  ``use`` (P, E): the edges the pad can meet
+    where the pad's corner touches an edge, and the column of each feature's edge
+    (P, K; -1 where fewer).  ``use`` (P, E): the edges the pad can meet
     (default all)."""
     ya, yb = sign * y_a, sign * y_b
     lo_x = np.minimum(x_a, x_b)
@@ -203,7 +208,8 @@ def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
     lat = np.stack([np.where(tk, lat_lo[rows, order], np.nan),
                     np.where(tk, lat_hi[rows, order], np.nan)], axis=-1)
     ok = np.isfinite(stop) & (touch.sum(axis=1) <= MAX_CONTACTS)
-    return sign * stop, ok, lat, np.where(tk, psi[rows, order], np.nan)
+    return (sign * stop, ok, lat, np.where(tk, psi[rows, order], np.nan),
+            np.where(tk, order, -1))
 
 
 def convex_holes(polygon: Polygon) -> list[int]:
@@ -318,15 +324,15 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
         above, below = _sides_of(y_a, y_b, x_a, x_b, s0, s1, y_q, tol)
         meets = (np.maximum(x_a, x_b) >= s0) & (np.minimum(x_a, x_b) <= s1)
         free = ~np.any(meets & ~above & ~below, axis=1)
-        top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
+        top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
                                        np.arctan2(fx, fy), (fy > 0) & above)
-        bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
+        bottom, ok_b, lat_b, psi_b, e_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
                                           np.arctan2(fx, -fy), (fy < 0) & below)
         ok_a &= free & _inside(y_a, y_b, x_a, x_b, c[:, None], y_q)
     else:
-        top, ok_a, lat_a, psi_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
+        top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
                                        np.arctan2(fx, -fy))
-        bottom, ok_b, lat_b, psi_b = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
+        bottom, ok_b, lat_b, psi_b, e_b = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
                                           np.arctan2(fx, fy))
     with np.errstate(invalid="ignore"):
         opening = top - bottom
@@ -336,8 +342,10 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
                       0)
     kind_b = np.where(ok_b, np.where(np.nanmax(np.abs(psi_b), axis=1, initial=0.0) > 0, 2, 1),
                       0)
+    ids = np.flatnonzero(ring)
     return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
-                        holds), slacks
+                        holds, np.where(e_a >= 0, ids[e_a], -1),
+                        np.where(e_b >= 0, ids[e_b], -1)), slacks
 
 
 def _sides_of(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
@@ -566,7 +574,9 @@ class JawPlan:
     centroid), the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``, and the
     grip: ``mode`` ``"external"`` (closing on the outline) or ``"internal"`` (opening in
     the hole ``hole``, an index into the part's holes, the closed jaws put in at
-    ``insert``: :func:`insertion_point`)."""
+    ``insert``: :func:`insertion_point`); ``features``: the part's edges each pad touches
+    at some checked pose of the box (the contact features over the box; a vertex as the
+    edges that meet there)."""
 
     theta: tuple[float, float]
     offset: tuple[float, float]
@@ -582,6 +592,7 @@ class JawPlan:
     hole: int | None = None
     certified: bool = False
     insert: FloatArray | None = None
+    features: tuple[list[int], list[int]] = ([], [])
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -603,9 +614,9 @@ class JawPlan:
             "theta_rad": list(self.theta), "theta_deg": list(np.degrees(self.theta)),
             "offset": list(self.offset), "opening": list(self.opening),
             "contacts": {"a": {"kind": self.kinds[0], "points": self.contacts[0],
-                               "stop": self.stops[0]},
+                               "stop": self.stops[0], "edges": self.features[0]},
                          "b": {"kind": self.kinds[1], "points": self.contacts[1],
-                               "stop": self.stops[1]}},
+                               "stop": self.stops[1], "edges": self.features[1]}},
             "measure": self.measure, "centre": list(self.centre), "centroid": self.centroid,
             "certified": self.certified,
             "stroke": list(self.jaw.stroke), "pad_width": self.jaw.pad_width,
@@ -1193,7 +1204,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                                np.array(proved[1]), dth, dc)
             if box is None:
                 continue
-        (t0, t1), (c0, c1), opening = box
+        (t0, t1), (c0, c1), opening, features = box
         tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
         r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
         pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
@@ -1205,16 +1216,18 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                              _measure((t0, t1), (c0, c1), radius), jaw,
                              polygon.centroid.copy(), radius,
                              "external" if hole is None else "internal", hole, certify,
-                             None if hole is None else insertion_point(polygon, hole)))
+                             None if hole is None else insertion_point(polygon, hole),
+                             features))
     return plans
 
 
 def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
                  th: FloatArray, off: FloatArray, dth: float, dc: float
                  ) -> tuple[tuple[float, float], tuple[float, float],
-                            tuple[float, float]] | None:
+                            tuple[float, float], tuple[list[int], list[int]]] | None:
     """Shrink a box by grid steps until every pose of a grid :data:`CHECK_DENSITY`
-    times finer holds; returns ``(theta range, offset range, opening range)`` or None."""
+    times finer holds; returns ``(theta range, offset range, opening range, the edges
+    each pad touches at those poses)`` or None."""
     (t0, t1), (c0, c1) = th, off
     for _ in range(4):
         if t1 < t0 or c1 < c0:
@@ -1224,6 +1237,8 @@ def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | 
         tt, cc = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
         r = jaw_poses(polygon, jaw, tt.ravel(), cc.ravel(), margin, hole)
         if np.all(r.holds):
-            return (t0, t1), (c0, c1), (float(r.opening.min()), float(r.opening.max()))
+            return ((t0, t1), (c0, c1), (float(r.opening.min()), float(r.opening.max())),
+                    (np.unique(r.edge_a[r.edge_a >= 0]).tolist(),
+                     np.unique(r.edge_b[r.edge_b >= 0]).tolist()))
         t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
     return None
