@@ -158,17 +158,19 @@ class PoseContacts:
 
 
 def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
-         s0: FloatArray, s1: FloatArray, sign: float, tol: float, psi_edge: FloatArray,
-         use: np.ndarray | None = None
+         s0: FloatArray, s1: FloatArray, sign: float, tol: float,
+         force: tuple[FloatArray, FloatArray], use: np.ndarray | None = None
          ) -> tuple[FloatArray, np.ndarray, FloatArray, FloatArray, np.ndarray]:
     """One pad: the extreme of ``sign * y`` over the edges clipped to the strip
     ``[s0, s1]`` (arrays (P, E) of edge ends, (P, 1) strip sides).  Returns the stop
     (P,), whether it touches anything (P,), the contact features' lateral intervals
     (P, K, 2), the angle of each feature's contact force from the pad's (P, K):
-    0 on a vertex or an edge parallel to the pad, the edge's (``psi_edge`` (P, E))
-    where the pad's corner touches an edge, and the column of each feature's edge
-    (P, K; -1 where fewer).  ``use`` (P, E): the edges the pad can meet
-    (default all)."""
+    0 on a vertex or an edge parallel to the pad, the edge's (``arctan2(*force)``, each
+    (P, E)) where the pad's corner touches an edge, and the column of each feature's
+    edge (P, K; -1 where fewer).  ``use`` (P, E): the edges the pad can meet (default
+    all).  Only the extreme is taken over every edge; the features are described from
+    the (at most :data:`MAX_CONTACTS`) touching columns gathered: K = MAX_CONTACTS
+    always (NaN and -1 where fewer), whatever the number of edges."""
     ya, yb = sign * y_a, sign * y_b
     lo_x = np.minimum(x_a, x_b)
     hi_x = np.maximum(x_a, x_b)
@@ -189,27 +191,35 @@ def _pad(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
     stop = np.maximum(h_lo.max(axis=1), h_hi.max(axis=1))
     at_lo = h_lo >= stop[:, None] - tol
     at_hi = h_hi >= stop[:, None] - tol
-    level = np.abs(ya - yb) <= tol                       # an edge parallel to the pad
+    touch = (at_lo | at_hi) & np.isfinite(stop)[:, None]    # nothing in the strip: none
+    # the touching columns in order, at most MAX_CONTACTS (the k-th where the running
+    # count of touching columns first reaches k)
+    count = np.cumsum(touch, axis=1)
+    order = np.stack([np.argmax(touch & (count == k + 1), axis=1)
+                      for k in range(MAX_CONTACTS)], axis=1)
+    tk = count[:, -1:] > np.arange(MAX_CONTACTS)
+    rows = np.arange(len(stop))[:, None]
+
+    def g(a: Any) -> Any:
+        return a[rows, order]
+
+    a_lo, a_hi = g(at_lo), g(at_hi)
+    g_lo, g_hi = g(cl_lo), g(cl_hi)
+    level = np.abs(g(ya) - g(yb)) <= tol                 # an edge parallel to the pad
     # a clipped end strictly inside the edge's lateral span is where the strip's side
     # cuts the edge: the pad's corner touches the edge there, unless the edge is
     # parallel to the pad (then the whole clipped edge touches the pad's face)
-    cut_lo = (cl_lo > lo_x + tol) & ~level & ~flat_lat
-    cut_hi = (cl_hi < hi_x - tol) & ~level & ~flat_lat
-    corner = (at_lo & cut_lo) | (at_hi & cut_hi)
-    touch = at_lo | at_hi
-    both = level & at_lo & at_hi
-    lat_lo = np.where(both, cl_lo, np.where(at_lo, cl_lo, cl_hi))
-    lat_hi = np.where(both, cl_hi, np.where(at_hi, cl_hi, cl_lo))
-    psi = np.where(corner, psi_edge, 0.0)
-    # keep the touching features first (at most MAX_CONTACTS)
-    order = np.argsort(~touch, axis=1, kind="stable")[:, :MAX_CONTACTS]
-    rows = np.arange(len(stop))[:, None]
-    tk = touch[rows, order]
-    lat = np.stack([np.where(tk, lat_lo[rows, order], np.nan),
-                    np.where(tk, lat_hi[rows, order], np.nan)], axis=-1)
-    ok = np.isfinite(stop) & (touch.sum(axis=1) <= MAX_CONTACTS)
-    return (sign * stop, ok, lat, np.where(tk, psi[rows, order], np.nan),
-            np.where(tk, order, -1))
+    along = g(flat_lat)
+    cut_lo = (g_lo > g(lo_x) + tol) & ~level & ~along
+    cut_hi = (g_hi < g(hi_x) - tol) & ~level & ~along
+    corner = (a_lo & cut_lo) | (a_hi & cut_hi)
+    both = level & a_lo & a_hi
+    lat_lo = np.where(both, g_lo, np.where(a_lo, g_lo, g_hi))
+    lat_hi = np.where(both, g_hi, np.where(a_hi, g_hi, g_lo))
+    psi = np.where(corner, np.arctan2(g(force[0]), g(force[1])), 0.0)
+    lat = np.stack([np.where(tk, lat_lo, np.nan), np.where(tk, lat_hi, np.nan)], axis=-1)
+    ok = np.isfinite(stop) & (count[:, -1] <= MAX_CONTACTS)
+    return (sign * stop, ok, lat, np.where(tk, psi, np.nan), np.where(tk, order, -1))
 
 
 def convex_holes(polygon: Polygon) -> list[int]:
@@ -302,6 +312,9 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
     """:func:`jaw_poses` on checked arrays, with the verdict's slacks (:func:`_verdict`)."""
     internal = hole is not None
     ring = _grip_edges(polygon, hole)
+    if th.size and np.ptp(th) < np.pi / 2:
+        ring = _near_strip(polygon, ring, float(th.min()), float(th.max()), float(c.min()),
+                           float(c.max()), jaw.pad_width / 2)
     rel_a = polygon.starts[ring] - polygon.centroid
     rel_b = polygon.ends[ring] - polygon.centroid
     u = np.stack([np.cos(th), np.sin(th)], axis=1)
@@ -325,15 +338,15 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
         meets = (np.maximum(x_a, x_b) >= s0) & (np.minimum(x_a, x_b) <= s1)
         free = ~np.any(meets & ~above & ~below, axis=1)
         top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
-                                       np.arctan2(fx, fy), (fy > 0) & above)
+                                       (fx, fy), (fy > 0) & above)
         bottom, ok_b, lat_b, psi_b, e_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
-                                          np.arctan2(fx, -fy), (fy < 0) & below)
+                                          (fx, -fy), (fy < 0) & below)
         ok_a &= free & _inside(y_a, y_b, x_a, x_b, c[:, None], y_q)
     else:
         top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
-                                       np.arctan2(fx, -fy))
+                                       (fx, -fy))
         bottom, ok_b, lat_b, psi_b, e_b = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
-                                          np.arctan2(fx, fy))
+                                          (fx, fy))
     with np.errstate(invalid="ignore"):
         opening = top - bottom
     holds, slacks = _verdict(opening, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, jaw, margin,
@@ -346,6 +359,23 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
     return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
                         holds, np.where(e_a >= 0, ids[e_a], -1),
                         np.where(e_b >= 0, ids[e_b], -1)), slacks
+
+
+def _near_strip(polygon: Polygon, ring: np.ndarray, t0: float, t1: float, c0: float,
+                c1: float, half: float) -> np.ndarray:
+    """The edges of ``ring`` that may meet the strip at some pose of the box
+    ``[t0, t1] x [c0, c1]`` (``t1 - t0`` under a quarter turn): an edge none of whose
+    points enters the strip there never touches a pad, never blocks the closed jaws
+    and is never crossed by the ray from their middle."""
+    a = polygon.starts - polygon.centroid
+    b = polygon.ends - polygon.centroid
+    xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
+    xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
+    pad = 10 * CONTACT_TOL * polygon.size
+    near = (np.maximum(xa_hi, xb_hi) >= c0 - half - pad) \
+        & (np.minimum(xa_lo, xb_lo) <= c1 + half + pad)
+    # (none near: the ring as it is, so that every pose has edges to say nothing holds)
+    return ring & near if np.any(ring & near) else ring
 
 
 def _sides_of(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
@@ -918,6 +948,8 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     max_boxes = check_int(max_boxes, "max_boxes", minimum=1)
     internal = hole is not None
     ring = _grip_edges(polygon, hole)
+    if t1 - t0 < np.pi / 2:
+        ring = _near_strip(polygon, ring, t0, t1, c0, c1, jaw.pad_width / 2)
     beta = float(np.arctan(jaw.mu) - np.radians(margin))
     if beta <= 0:
         return None
@@ -1172,10 +1204,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     reach = radius + jaw.pad_width / 2
     offsets = np.linspace(-reach, reach, M)
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
-    tt, cc = np.meshgrid(thetas, offsets, indexing="ij")
-    H = np.concatenate([jaw_poses(polygon, jaw, tt.ravel()[i:i + 20000],
-                                  cc.ravel()[i:i + 20000], margin, hole).holds
-                        for i in range(0, tt.size, 20000)]).reshape(K, M)
+    H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
     plans: list[JawPlan] = []
     while len(plans) < top:
         score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
@@ -1221,6 +1250,32 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     return plans
 
 
+#: A part with more edges than this evaluates the pose grid in tiles (each tile's poses
+#: meet only the edges near its strips); fewer, in large batches.
+TILE_AFTER_EDGES = 64
+#: Grid rows and columns of a tile.
+TILE = (16, 20)
+
+
+def _pose_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+               thetas: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """Whether each pose of the grid ``thetas x offsets`` holds (K, M)."""
+    K, M = thetas.size, offsets.size
+    if polygon.n_edges <= TILE_AFTER_EDGES:
+        tt, cc = np.meshgrid(thetas, offsets, indexing="ij")
+        return np.concatenate([
+            jaw_poses(polygon, jaw, tt.ravel()[i:i + POSE_BATCH], cc.ravel()[i:i + POSE_BATCH],
+                      margin, hole).holds
+            for i in range(0, tt.size, POSE_BATCH)]).reshape(K, M)
+    H = np.zeros((K, M), dtype=bool)
+    for k in range(0, K, TILE[0]):
+        for j in range(0, M, TILE[1]):
+            tt, cc = np.meshgrid(thetas[k:k + TILE[0]], offsets[j:j + TILE[1]], indexing="ij")
+            H[k:k + TILE[0], j:j + TILE[1]] = jaw_poses(
+                polygon, jaw, tt.ravel(), cc.ravel(), margin, hole).holds.reshape(tt.shape)
+    return H
+
+
 def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
                  th: FloatArray, off: FloatArray, dth: float, dc: float
                  ) -> tuple[tuple[float, float], tuple[float, float],
@@ -1234,11 +1289,22 @@ def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | 
             return None
         nt = max(2, int(round((t1 - t0) / dth)) * CHECK_DENSITY + 1)
         nc = max(2, int(round((c1 - c0) / dc)) * CHECK_DENSITY + 1)
-        tt, cc = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
-        r = jaw_poses(polygon, jaw, tt.ravel(), cc.ravel(), margin, hole)
-        if np.all(r.holds):
-            return ((t0, t1), (c0, c1), (float(r.opening.min()), float(r.opening.max())),
-                    (np.unique(r.edge_a[r.edge_a >= 0]).tolist(),
-                     np.unique(r.edge_b[r.edge_b >= 0]).tolist()))
+        grid = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
+        tt, cc = grid[0].ravel(), grid[1].ravel()
+        opening = [np.inf, -np.inf]
+        edges: tuple[set[int], set[int]] = (set(), set())
+        # in batches, stopping at the first pose that fails
+        for i in range(0, tt.size, POSE_BATCH):
+            r = jaw_poses(polygon, jaw, tt[i:i + POSE_BATCH], cc[i:i + POSE_BATCH], margin,
+                          hole)
+            if not np.all(r.holds):
+                break
+            opening = [min(opening[0], float(r.opening.min())),
+                       max(opening[1], float(r.opening.max()))]
+            edges[0].update(r.edge_a[r.edge_a >= 0].tolist())
+            edges[1].update(r.edge_b[r.edge_b >= 0].tolist())
+        else:
+            return ((t0, t1), (c0, c1), (opening[0], opening[1]),
+                    (sorted(edges[0]), sorted(edges[1])))
         t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
     return None
