@@ -193,8 +193,9 @@ def test_plans_of_the_built_in_parts_hold(name):
     for p in plans:
         assert p.mode in ("concurrent", "pair")
         assert len(set(p.edges)) == 3
-        for g in np.concatenate([p.corners(), p.sample(16, rng)]):
-            m = closure_margin_lp(grasp_wrenches(g, p.normals, 0.5))
+        # each point with its own edge's normal (regions may run along the boundary)
+        for g, nrm in zip(*_plan_grasps(p, part, rng, 16), strict=True):
+            m = closure_margin_lp(grasp_wrenches(g, nrm, 0.5))
             assert m > 0, (name, p.edges, p.mode)
     lex = [leximin_key(p.lengths, part.size) for p in plans]
     assert lex == sorted(lex)                     # best first
@@ -217,8 +218,21 @@ def test_third_finger_only_helps(seed):
         assert three[0].min_length >= min(two[0].min_length, other) * (1 - 1e-9)
         # and every sampled grasp of the plan holds (general wrench test)
         p = three[0]
-        for g in np.concatenate([p.corners(), p.sample(12, rng)]):
-            assert closure_margin_lp(grasp_wrenches(g, p.normals, mu)) > 0, (p.edges, p.mode)
+        for g, nrm in zip(*_plan_grasps(p, part, rng, 12), strict=True):
+            assert closure_margin_lp(grasp_wrenches(g, nrm, mu)) > 0, (p.edges, p.mode)
+
+
+def _plan_grasps(plan, polygon, rng, n):
+    """Every combination of the regions' ends (each with the normal of the edge it ends
+    on) and ``n`` grasps sampled along the regions (each point with its own edge's
+    normal): ``(points (G, 3, 2), normals (G, 3, 2))``."""
+    ends = [(np.asarray(line)[[0, -1]], polygon.normals[np.asarray(edges)[[0, -1]]])
+            for line, edges in zip(plan.regions, plan.region_edges, strict=True)]
+    pick = np.array(list(np.ndindex(*(2,) * plan.fingers)))
+    pts = np.stack([ends[i][0][pick[:, i]] for i in range(plan.fingers)], axis=1)
+    nrm = np.stack([ends[i][1][pick[:, i]] for i in range(plan.fingers)], axis=1)
+    sp, sn = _sampled_with_normals(plan, polygon, rng, n)
+    return np.concatenate([pts, sp]), np.concatenate([nrm, sn])
 
 
 def _sampled_with_normals(plan, polygon, rng, n):
