@@ -334,9 +334,7 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
         # inside the hole; opening, pad A (pushing along +u) meets the first boundary
         # above it, pad B the first below, each an edge facing it
         y_q = (u @ (insertion_point(polygon, hole) - polygon.centroid))[:, None]
-        above, below = _sides_of(y_a, y_b, x_a, x_b, s0, s1, y_q, tol)
-        meets = (np.maximum(x_a, x_b) >= s0) & (np.minimum(x_a, x_b) <= s1)
-        free = ~np.any(meets & ~above & ~below, axis=1)
+        above, below, free = _sides_of(y_a, y_b, x_a, x_b, s0, s1, y_q, tol)
         top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
                                        (fx, fy), (fy > 0) & above)
         bottom, ok_b, lat_b, psi_b, e_b = _pad(y_a, y_b, x_a, x_b, s0, s1, 1.0, tol,
@@ -380,10 +378,11 @@ def _near_strip(polygon: Polygon, ring: np.ndarray, t0: float, t1: float, c0: fl
 
 def _sides_of(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
               s0: FloatArray, s1: FloatArray, level: FloatArray, tol: float
-              ) -> tuple[np.ndarray, np.ndarray]:
+              ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """Which edges (P, E) meet the strip ``[s0, s1]`` wholly above the height ``level``
-    (P, 1) there, and which wholly below (the heights of each edge's part in the strip,
-    its clipped ends; an edge along ``u`` is clipped to itself)."""
+    (P, 1) there, which wholly below (the heights of each edge's part in the strip, its
+    clipped ends; an edge along ``u`` is clipped to itself), and whether every edge that
+    meets the strip is one or the other (P,): the strip's segment at ``level`` is free."""
     lo_x, hi_x = np.minimum(x_a, x_b), np.maximum(x_a, x_b)
     meets = (hi_x >= s0) & (lo_x <= s1)
     flat = np.abs(x_b - x_a) <= tol
@@ -391,8 +390,9 @@ def _sides_of(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray
         slope = np.where(flat, 0.0, (y_b - y_a) / np.where(flat, 1.0, x_b - x_a))
     h0 = np.where(flat, y_a, y_a + (np.clip(lo_x, s0, s1) - x_a) * slope)
     h1 = np.where(flat, y_b, y_a + (np.clip(hi_x, s0, s1) - x_a) * slope)
-    return (meets & (np.minimum(h0, h1) > level + tol),
-            meets & (np.maximum(h0, h1) < level - tol))
+    above = meets & (np.minimum(h0, h1) > level + tol)
+    below = meets & (np.maximum(h0, h1) < level - tol)
+    return above, below, ~np.any(meets & ~above & ~below, axis=1)
 
 
 def _inside(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
@@ -969,6 +969,7 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     done = 0
     sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
     while len(todo):
+        centre_holds = None
         boxes, todo = todo[:CERTIFY_BATCH], todo[CERTIFY_BATCH:]
         done += len(boxes)
         if done > max_boxes:
@@ -1001,10 +1002,14 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
         rest = boxes[~proved]
         if not len(rest):
             continue
-        # a sub-box whose centre pose fails cannot be proved: neither can the box
-        centre = jaw_poses(polygon, jaw, (rest[:, 0] + rest[:, 1]) / 2,
-                           (rest[:, 2] + rest[:, 3]) / 2, margin, hole)
-        if not centre.holds.all():
+        # a sub-box whose centre pose fails cannot be proved: neither can the box (inside
+        # a hole every centre pose was evaluated above)
+        if centre_holds is None:
+            centre_holds = jaw_poses(polygon, jaw, (rest[:, 0] + rest[:, 1]) / 2,
+                                     (rest[:, 2] + rest[:, 3]) / 2, margin, hole).holds
+        else:
+            centre_holds = centre_holds[~proved]
+        if not centre_holds.all():
             return None
         bt0, bt1, bc0, bc1 = rest.T
         by_angle = (bt1 - bt0) * radius >= bc1 - bc0
