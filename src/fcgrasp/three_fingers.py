@@ -135,7 +135,7 @@ def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArra
             if g0 - wc[0] - wn[0] > limit or g1 - wc[1] - wn[1] > limit \
                     or g2 - wc[2] - wn[2] > limit:
                 continue
-            for lo, hi in _split_excess((g0, g1, g2), wl, cur, nxt, limit):
+            for lo, hi in _split_excess((g0, g1, g2), wl, wc, wn, cur, nxt, limit):
                 key = tuple(round(v, 12) for v in lo + hi)
                 if key not in seen:
                     seen.add(key)
@@ -143,15 +143,15 @@ def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArra
     return out
 
 
-def _split_excess(gap: tuple[float, float, float], w: list[float], cur: tuple[int, ...],
-                  nxt: tuple[int, ...], limit: float) -> list[tuple[list[float], list[float]]]:
+def _split_excess(gap: tuple[float, float, float], w: list[float], w_cur: list[float],
+                  w_next: list[float], cur: tuple[int, ...], nxt: tuple[int, ...],
+                  limit: float) -> list[tuple[list[float], list[float]]]:
     """Offsets ``(lo, hi)`` of the sub-arcs (from the cones' axes, half-widths ``w``) that
     keep every turn from the start of one arc to the end of the next below ``limit`` (the
     cyclic order ``cur -> nxt`` with unwrapped ``gap`` between the axes, no turn beyond
     the limit from the end of one arc to the start of the next): the excess of each turn
-    is taken from the two arcs in the shares of :data:`SPLITS`."""
-    w_cur = [w[k] for k in cur]
-    w_next = [w[k] for k in nxt]
+    is taken from the two arcs in the shares of :data:`SPLITS` (``w_cur``, ``w_next``:
+    the half-widths of each turn's two arcs)."""
     excess = [max(gap[i] + w_cur[i] + w_next[i] - limit, 0.0) for i in range(3)]
     out = []
     for split in product(*[SPLITS if e > 0 else (0.0,) for e in excess]):
