@@ -17,7 +17,7 @@ import numpy as np
 from scipy.optimize import linprog
 
 import fcgrasp as fc
-from fcgrasp.contacts import friction_cone_edges
+from fcgrasp.core.contacts import friction_cone_edges
 
 
 def _rate(fn, n, repeat=3):

@@ -20,7 +20,7 @@ import numpy as np
 from shapely.geometry import Polygon as ShapelyPolygon
 
 import fcgrasp as fc
-from fcgrasp.frictionless_stretches import all_frictionless_stretches
+from fcgrasp.model.frictionless_stretches import all_frictionless_stretches
 
 
 def outline(kind: str, n: int) -> fc.Polygon:

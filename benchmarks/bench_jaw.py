@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 import fcgrasp as fc
-from fcgrasp.jaw import holding_offsets
+from fcgrasp.grippers.jaw import holding_offsets
 
 
 def _timed(fn):

@@ -91,12 +91,12 @@ def lp_candidate(c, r):
     a, b, cen = c.a[r][perm], c.b[r][perm], c.center[r][perm]
     f = np.stack([np.cos(cen), np.sin(cen)], axis=1)
     if n == 2:
-        from fcgrasp.sectors import arc_intersection
+        from fcgrasp.core.sectors import arc_intersection
 
         cc, hh = arc_intersection(cen[0], c.half[r][0], cen[1] + np.pi, c.half[r][1])
         side = [0, 1]
     else:
-        from fcgrasp.sectors import arc_intersection
+        from fcgrasp.core.sectors import arc_intersection
 
         g12 = (cen[1] - cen[0] + np.pi) % (2 * np.pi) - np.pi
         g34 = (cen[3] - cen[2] + np.pi) % (2 * np.pi) - np.pi

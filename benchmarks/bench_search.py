@@ -57,7 +57,7 @@ KERNEL = r"""
 import json, time
 import numpy as np
 import fcgrasp as fc
-from fcgrasp import kernels
+from fcgrasp.core import kernels
 from fcgrasp.pipeline import EdgeSets, features, grasp_geometry, plan_spec, region_levels
 n = 200
 ang = np.linspace(0, 2 * np.pi, n, endpoint=False)

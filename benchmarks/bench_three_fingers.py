@@ -2,7 +2,7 @@
 two fingers, and the gap of the safe bound.
 
 The planner's regions are a safe lower bound (convex pieces of the closure set,
-:mod:`fcgrasp.three_fingers`).  The *gap* column measures how far from the true boundary
+:mod:`fcgrasp.grippers.three_fingers`).  The *gap* column measures how far from the true boundary
 the best plan is: every region is lengthened about its middle by a factor ``1 + g``
 (within its edge) for growing ``g``, and the largest ``g`` at which all of 200 sampled
 grasps (the corners and random ones) still pass the general test
@@ -26,8 +26,8 @@ import time
 import numpy as np
 
 import fcgrasp as fc
-from fcgrasp.parts import demo_part
-from fcgrasp.three_fingers import grow_concurrent
+from fcgrasp.grippers.three_fingers import grow_concurrent
+from fcgrasp.io.parts import demo_part
 
 GROWTH = (0.0, 0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.5, 0.75, 1.0, 1.5, 2.0)
 

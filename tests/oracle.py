@@ -1,7 +1,7 @@
 """Independent formulation of the optimal regions: an LP over the region end points in
 which every corner grasp of the box of regions lies inside the shrunk cone (HiGHS).
 
-It shares no code with fcgrasp.regions: corner points are computed directly from the
+It shares no code with fcgrasp.model.regions: corner points are computed directly from the
 edges, lines of force are intersected by solving 2x2 systems, and the leximin order is
 obtained by solving one LP per stage.
 """

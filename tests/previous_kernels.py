@@ -1,4 +1,4 @@
-"""The two-finger closed forms as they were before :mod:`fcgrasp.kernels` (commit 185015f,
+"""The two-finger closed forms as they were before :mod:`fcgrasp.core.kernels` (commit 185015f,
 pure numpy): the oracle of ``tests/test_kernels.py`` ("kernels vs the previous
 implementation identical to 1e-12 relative", issue 13).  Frozen: do not edit."""
 
@@ -6,9 +6,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from fcgrasp._checks import FloatArray
-from fcgrasp._geom import direction as _dir
-from fcgrasp.regions import KnapsackProblem, build_problem
+from fcgrasp.core._checks import FloatArray
+from fcgrasp.core._geom import direction as _dir
+from fcgrasp.model.regions import KnapsackProblem, build_problem
 
 
 def _arc_intersection(c1, h1, c2, h2):

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from fcgrasp.polygon import Polygon
+from fcgrasp.model.polygon import Polygon
 
 
 def convex(rng, n=None):

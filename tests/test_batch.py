@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp import batch
+from fcgrasp.apps import batch
 
 from .test_cli import run
 

@@ -13,9 +13,9 @@ import numpy as np
 import pytest
 
 from fcgrasp import Polygon, plan
-from fcgrasp.cli import main
-from fcgrasp.parts import read_part
-from fcgrasp.report import dumps, plan_report
+from fcgrasp.apps.cli import main
+from fcgrasp.io.parts import read_part
+from fcgrasp.io.report import dumps, plan_report
 
 OUTLINE = [[0.0, 0.0], [40.0, -6.0], [62.0, 18.0], [45.0, 44.0], [8.0, 38.0]]
 

@@ -12,7 +12,7 @@ import sys
 import numpy as np
 import pytest
 
-from fcgrasp.cli import main
+from fcgrasp.apps.cli import main
 
 GOOD = [[0, 0], [42, -6], [70, 14], [64, 46], [30, 58], [-4, 36]]
 

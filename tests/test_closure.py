@@ -8,9 +8,9 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.closure import _pairing_test
-from fcgrasp.contacts import friction_cone_edges, rotate
-from fcgrasp.sectors import PAIRINGS as _PAIRINGS
+from fcgrasp.core.closure import _pairing_test
+from fcgrasp.core.contacts import friction_cone_edges, rotate
+from fcgrasp.core.sectors import PAIRINGS as _PAIRINGS
 
 from .conftest import lp_is_total
 

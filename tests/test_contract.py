@@ -13,9 +13,9 @@ import pytest
 from scipy.optimize import linprog
 
 import fcgrasp as fc
-from fcgrasp.cli import main
-from fcgrasp.planning import geometric_key
-from fcgrasp.quality import resistance_metrics
+from fcgrasp.apps.cli import main
+from fcgrasp.model.quality import resistance_metrics
+from fcgrasp.planning.planner import geometric_key
 
 from .grippers import grip
 from .shapes import random_polygon

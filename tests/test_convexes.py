@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from scipy.optimize import linprog
 
 import fcgrasp as fc
-from fcgrasp.convexes import halfspace_rays
+from fcgrasp.core.convexes import halfspace_rays
 
 from .conftest import lp_is_total
 

@@ -29,7 +29,7 @@ from selenium.webdriver.chrome.service import Service  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
 
-from fcgrasp.cli import main  # noqa: E402
+from fcgrasp.apps.cli import main  # noqa: E402
 
 from .test_serve import _star  # noqa: E402
 

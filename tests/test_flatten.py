@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp._drawing import MAX_TURN_DEG
+from fcgrasp.io._drawing import MAX_TURN_DEG
 
 SVG = """<svg xmlns="http://www.w3.org/2000/svg" width="100mm" height="100mm"
  viewBox="0 0 100 100">
@@ -57,7 +57,7 @@ def test_regions_do_not_depend_on_the_flattening(drawing, mu):
 
 
 def test_every_curve_piece_turns_at_most_the_limit():
-    from fcgrasp._drawing import flatten_curve
+    from fcgrasp.io._drawing import flatten_curve
 
     out = [1 + 0j]
     flatten_curve(lambda t: np.exp(1j * np.pi * t), 0.5, out)     # a half circle

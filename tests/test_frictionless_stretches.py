@@ -1,4 +1,4 @@
-"""Three and four frictionless fingers along the boundary (fcgrasp.frictionless_stretches)
+"""Three and four frictionless fingers along the boundary (fcgrasp.model.frictionless_stretches)
 against methods that share none of its code: the general closure test (an LP over the
 wrenches, tests/oracle.py) on sampled grasps, vertices inside regions with every normal
 between the two edges'; and, for regions on single edges, the single-edge solver."""
@@ -11,12 +11,12 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.frictionless_stretches import (
+from fcgrasp.io.parts import demo_part
+from fcgrasp.model.frictionless_stretches import (
     all_frictionless_stretches,
     frictionless_stretch_regions,
     grow_stretches,
 )
-from fcgrasp.parts import demo_part
 
 from .grippers import grip
 from .oracle import closure_margin_lp, grasp_wrenches
@@ -96,7 +96,7 @@ def test_curved_parts_gain():
 @pytest.mark.parametrize("seed", range(30))
 def test_single_edges_match_the_single_edge_solver(seed):
     """On single edges the linear program of a configuration reaches the single-edge
-    solver's optimum (the knapsack bisection of fcgrasp.regions)."""
+    solver's optimum (the knapsack bisection of fcgrasp.model.regions)."""
     rng = np.random.default_rng(seed)
     poly = random_polygon(rng)
     plans = fc.plan(poly, fingers=4, top=3, along_boundary=False)

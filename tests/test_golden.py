@@ -19,8 +19,8 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.parts import demo_part
-from fcgrasp.report import dumps, migrate_report, plan_report
+from fcgrasp.io.parts import demo_part
+from fcgrasp.io.report import dumps, migrate_report, plan_report
 
 from .grippers import grip
 from .shapes import random_polygon

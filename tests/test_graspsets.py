@@ -7,8 +7,9 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.contacts import friction_cone_edges
-from fcgrasp.graspsets import (
+import fcgrasp.model.graspsets
+from fcgrasp.core.contacts import friction_cone_edges
+from fcgrasp.model.graspsets import (
     FIELD_OF_VIEW,
     FORCE_DIRECTION,
     FrictionlessGraspSet,
@@ -17,7 +18,7 @@ from fcgrasp.graspsets import (
     grasp_sets,
     three_edge_grasp_sets,
 )
-from fcgrasp.polygon import Polygon
+from fcgrasp.model.polygon import Polygon
 
 from .shapes import random_polygon
 
@@ -215,7 +216,7 @@ def test_three_pairings_describe_the_same_set():
         if len(idx) < 4:
             continue
         edges = [int(x) for x in rng.choice(idx, 4, replace=False)]
-        feats = [fc.graspsets.edge_feature(poly, e) for e in edges]
+        feats = [fc.model.graspsets.edge_feature(poly, e) for e in edges]
         sets = []
         for perm in ((0, 1, 2, 3), (0, 2, 1, 3), (0, 3, 1, 2)):
             s = FrictionlessGraspSet(poly, [feats[i] for i in perm])

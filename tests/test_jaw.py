@@ -9,7 +9,7 @@ import pytest
 import shapely
 
 import fcgrasp as fc
-from fcgrasp.jaw import (
+from fcgrasp.grippers.jaw import (
     THETA_STEP_DEG,
     ParallelJaw,
     convex_holes,
@@ -18,8 +18,8 @@ from fcgrasp.jaw import (
     jaw_plans,
     jaw_poses,
 )
-from fcgrasp.parts import demo_part
-from fcgrasp.quality import characteristic_length
+from fcgrasp.io.parts import demo_part
+from fcgrasp.model.quality import characteristic_length
 
 from .oracle import closure_margin_lp, grasp_wrenches
 from .shapes import random_polygon
@@ -98,7 +98,7 @@ def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
     hole to the strip; the closed jaws' segment must lie inside the clip, and each pad
     stops at the nearest vertex of the clip's piece holding it, above (below) that
     height (the piece's boundary within the strip is the hole's: the strip is tall)."""
-    from fcgrasp.jaw import insertion_point
+    from fcgrasp.grippers.jaw import insertion_point
 
     ring = tf(part.holes[hole])
     shape = shapely.Polygon(ring)
@@ -345,7 +345,7 @@ def _certify_cases(seed, n_parts, internal=False):
     """Small boxes around random holding poses of random parts (external; with
     ``internal``, the washer's hole with random jaws) that certify_box proves; each
     checked at random poses by the independent model.  Returns how many were proved."""
-    from fcgrasp.jaw import certify_box
+    from fcgrasp.grippers.jaw import certify_box
 
     rng = np.random.default_rng(400 + seed)
     proved = 0
@@ -406,7 +406,7 @@ def test_certified_boxes_hold_at_every_sampled_pose_slow(seed):
 
 
 def test_certify_box_proves_the_rectangle_and_refuses_what_fails():
-    from fcgrasp.jaw import certify_box
+    from fcgrasp.grippers.jaw import certify_box
 
     part = demo_part("rectangle")
     jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp import kernels
-from fcgrasp._regiongeom import two_finger_problems
-from fcgrasp.regions import KnapsackProblem, _two_level
+from fcgrasp.core import kernels
+from fcgrasp.model._regiongeom import two_finger_problems
+from fcgrasp.model.regions import KnapsackProblem, _two_level
 
 from . import previous_kernels as prev
 from .shapes import random_polygon
@@ -161,7 +161,7 @@ def test_plans_are_the_same_compiled_and_by_numpy(monkeypatch):
 
 def test_small_batches_do_not_load_numba():
     """A small plan in a fresh process runs by numpy: numba is not even imported."""
-    code = ("import sys, fcgrasp as fc\nfrom fcgrasp.parts import demo_part\n"
+    code = ("import sys, fcgrasp as fc\nfrom fcgrasp.io.parts import demo_part\n"
             "fc.plan(demo_part('blob'), fingers=2, mu=0.5, along_boundary=False)\n"
             "print('numba' in sys.modules)")
     env = {"PATH": "/usr/bin:/bin"}
@@ -180,7 +180,7 @@ def test_use_jit_follows_the_setting(monkeypatch):
 def test_a_large_search_switches_to_the_compiled_kernels():
     """Once a process has run JIT_AFTER_ROWS rows by numpy, the kernels are compiled (and
     the plans are the same as by numpy alone)."""
-    code = ("import sys, json, numpy as np, fcgrasp as fc\nfrom fcgrasp import kernels\n"
+    code = ("import sys, json, numpy as np, fcgrasp as fc\nfrom fcgrasp.core import kernels\n"
             "kernels.JIT_AFTER_ROWS = int(sys.argv[1])\n"
             "a = np.linspace(0, 2 * np.pi, 120, endpoint=False)\n"
             "r = 1 + 0.3 * np.sin(3 * a)\n"

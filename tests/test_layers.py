@@ -1,53 +1,141 @@
-"""The package layout drawn in the README: each module imports only from its own layer or
-the layers above it (arrows go down); the CLI and the figures are leaves."""
+"""The package layout: subpackages in layers, each importing only from its own layer or the
+layers below it (``core`` <- ``model`` <- ``io`` <- ``pipeline`` <- ``grippers`` <-
+``planning`` <- ``plotting`` <- ``apps``), no cycle between modules, front ends that never
+import one another and see only public names.  Imports inside functions count too."""
 
 from __future__ import annotations
 
 import ast
+from collections import defaultdict
 from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
-LAYERS = [
-    ["tolerances", "_checks", "_geom", "_json", "units", "kernels"],
-    ["screws", "convexes", "sectors"],
-    ["contacts", "grasp", "closure"],
-    ["polygon", "graspsets"],
-    ["outline"],
-    ["regions", "_regiongeom", "hand", "stretches", "frictionless_stretches"],
-    ["quality", "ranking", "plans"],
-    ["jaw"],
-    ["pipeline"],
-    ["three_fingers"],
-    ["planning"],
-    ["_drawing"],
-    ["_read_svg", "_read_dxf", "_read_image"],
-    ["parts", "report", "_atomic"],
-    ["cli", "plotting", "batch", "__main__", "serve"],
-]
-LEVEL = {m: k for k, layer in enumerate(LAYERS) for m in layer}
+#: bottom first; ``errors`` may be imported by every layer
+LAYERS = ["errors", "core", "model", "io", "pipeline", "grippers", "planning", "plotting",
+          "apps"]
+LEVEL = {name: k for k, name in enumerate(LAYERS)}
+APPS = ("cli", "batch", "serve")
 
 
-def _imports(path):
+def _module(path: Path) -> str:
+    """Dotted module name of a source file (``fcgrasp.core.screws``)."""
+    parts = list(path.relative_to(SRC.parent).with_suffix("").parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _package(path: Path) -> str:
+    mod = _module(path)
+    return mod if path.name == "__init__.py" else mod.rsplit(".", 1)[0]
+
+
+def _imports(path: Path):
+    """Every fcgrasp module a file imports, anywhere in it (functions included), with the
+    names taken from it: ``(module, names)``."""
     tree = ast.parse(path.read_text())
+    pkg = _package(path).split(".")
     for node in ast.walk(tree):
-        if isinstance(node, ast.ImportFrom) and node.level == 1:
-            if node.module:
-                yield node.module.split(".")[0]
+        if isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = pkg[: len(pkg) - node.level + 1]
+                mod = ".".join(base + ([node.module] if node.module else []))
             else:
-                yield from (a.name for a in node.names)
+                mod = node.module or ""
+            if mod.split(".")[0] != "fcgrasp":
+                continue
+            names = [a.name for a in node.names]
+            # "from . import x" may name submodules
+            yield mod, names
+            for n in names:
+                if (SRC.parent / (mod.replace(".", "/") + f"/{n}.py")).exists() or \
+                        (SRC.parent / (mod.replace(".", "/") + f"/{n}/__init__.py")).exists():
+                    yield f"{mod}.{n}", []
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name.split(".")[0] == "fcgrasp":
+                    yield a.name, []
+        elif isinstance(node, ast.Call) and getattr(node.func, "id", None) == "import_module":
+            if node.args and isinstance(node.args[0], ast.Constant):
+                yield str(node.args[0].value), []
+
+
+def _layer(module: str) -> str | None:
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 and parts[1] in LEVEL else None
+
+
+def _sources():
+    return [p for p in SRC.rglob("*.py") if _module(p) not in ("fcgrasp", "fcgrasp.__main__")]
 
 
 def test_every_module_has_a_layer():
-    mods = {p.stem for p in SRC.glob("*.py")} - {"__init__"}
-    assert mods == set(LEVEL), mods ^ set(LEVEL)
+    lost = [_module(p) for p in _sources() if _layer(_module(p)) is None]
+    assert not lost, lost
+    assert len(_sources()) > 40
 
 
 def test_imports_only_go_down():
     bad = []
-    for path in SRC.glob("*.py"):
-        if path.stem == "__init__":
-            continue
-        for dep in _imports(path):
-            if dep in LEVEL and LEVEL[dep] > LEVEL[path.stem]:
-                bad.append(f"{path.stem} -> {dep}")
+    for path in _sources():
+        here = _layer(_module(path))
+        for dep, names in _imports(path):
+            there = _layer(dep)
+            if dep == "fcgrasp" and names != ["__version__"]:
+                there = "apps"        # the public façade sits above everything but the apps
+            if there is not None and LEVEL[there] > LEVEL[here]:
+                bad.append(f"{_module(path)} -> {dep}")
+    assert not bad, bad
+
+
+def test_the_checker_sees_imports_inside_functions(tmp_path):
+    src = "def f():\n    from ..apps.cli import main\n    return main\n"
+    probe = SRC / "core" / "_probe_for_layers.py"
+    probe.write_text(src)
+    try:
+        assert ("fcgrasp.apps.cli", ["main"]) in list(_imports(probe))
+    finally:
+        probe.unlink()
+
+
+def test_no_cycle_between_modules():
+    graph: dict[str, set[str]] = defaultdict(set)
+    mods = {_module(p) for p in _sources()}
+    for path in _sources():
+        for dep, _ in _imports(path):
+            if dep in mods and dep != _module(path) and not dep.endswith(".__init__"):
+                graph[_module(path)].add(dep)
+    # a package's __init__ re-exporting its modules is not a cycle with them
+    for m in list(graph):
+        graph[m] = {d for d in graph[m] if not m.startswith(d + ".")}
+    seen: dict[str, int] = {}
+    cycles = []
+
+    def visit(m: str, stack: list[str]) -> None:
+        seen[m] = 1
+        for d in sorted(graph[m]):
+            if seen.get(d) == 1:
+                cycles.append(stack[stack.index(d):] + [d])
+            elif d not in seen:
+                visit(d, [*stack, d])
+        seen[m] = 2
+
+    for m in sorted(mods):
+        if m not in seen:
+            visit(m, [m])
+    assert not cycles, cycles
+
+
+def test_front_ends_never_import_one_another_and_use_the_public_api():
+    bad = []
+    for app in APPS:
+        path = SRC / "apps" / f"{app}.py"
+        for dep, names in _imports(path):
+            leaf = dep.rsplit(".", 1)[-1]
+            if leaf in APPS and leaf != app:
+                bad.append(f"{app} imports {dep}")
+            if _layer(dep) != "apps" and (any(p.startswith("_") for p in dep.split("."))
+                                          or any(n.startswith("_") for n in names
+                                                 if n != "__version__")):
+                bad.append(f"{app} imports private {dep} {names}")
     assert not bad, bad

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.regions import DEFAULT_MARGIN_DEG
+from fcgrasp.model.regions import DEFAULT_MARGIN_DEG
 
 from .grippers import grip
 from .oracle import closure_margin_lp, grasp_wrenches

@@ -1,4 +1,4 @@
-"""Readers (fcgrasp.parts): part files of every format and contact files."""
+"""Readers (fcgrasp.io.parts): part files of every format and contact files."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.parts import DEMO_PARTS, read_contacts
+from fcgrasp.io.parts import DEMO_PARTS, read_contacts
 
 RING = [[0, 0], [40, -6], [62, 18], [45, 44], [8, 38]]
 

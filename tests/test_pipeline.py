@@ -87,7 +87,7 @@ def test_candidates_are_every_combination_once(size, shape):
     frictionless fingers) rows whose force directions cannot span the plane."""
     from itertools import combinations
 
-    from fcgrasp.closure import force_direction_closure
+    from fcgrasp.core.closure import force_direction_closure
 
     a = np.linspace(0, 2 * np.pi, 10, endpoint=False)
     # "lobe": the longest edges all face one way, so whole positions are skipped

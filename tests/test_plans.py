@@ -1,11 +1,11 @@
-"""GraspPlan and the keys that order plans (fcgrasp.plans)."""
+"""GraspPlan and the keys that order plans (fcgrasp.model.plans)."""
 
 from __future__ import annotations
 
 import numpy as np
 
 import fcgrasp as fc
-from fcgrasp.plans import geometric_key, leximin_key
+from fcgrasp.model.plans import geometric_key, leximin_key
 
 PART = fc.read_part("demo:quad")
 

@@ -1,7 +1,7 @@
 import numpy as np
 import pytest
 
-from fcgrasp.polygon import Polygon
+from fcgrasp.model.polygon import Polygon
 
 from .shapes import random_polygon
 

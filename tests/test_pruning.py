@@ -10,7 +10,7 @@ import pytest
 import fcgrasp as fc
 from fcgrasp import pipeline
 from fcgrasp.pipeline import candidates, plan_spec, rank, search, solve
-from fcgrasp.planning import RANKINGS
+from fcgrasp.planning.planner import RANKINGS
 
 from .grippers import grip
 from .shapes import parallel_polygon, random_polygon

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.spatial import ConvexHull, QhullError
 
-from fcgrasp.quality import ball_radius
+from fcgrasp.model.quality import ball_radius
 
 
 def qhull_radius(points):

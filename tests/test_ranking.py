@@ -1,4 +1,4 @@
-"""The registry of ranking measures (fcgrasp.ranking): every measure documented, and a
+"""The registry of ranking measures (fcgrasp.model.ranking): every measure documented, and a
 new measure is one function and one line."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.ranking import MEASURES, register
+from fcgrasp.model.ranking import MEASURES, register
 
 BLOB = fc.read_part("demo:blob")
 

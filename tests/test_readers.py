@@ -16,8 +16,8 @@ import pytest
 import shapely
 
 import fcgrasp as fc
-from fcgrasp.outline import clean_ring, fill_rings
-from fcgrasp.parts import choose_part, list_parts, load_part, read_part
+from fcgrasp.io.parts import choose_part, list_parts, load_part, read_part
+from fcgrasp.model.outline import clean_ring, fill_rings
 
 ezdxf = pytest.importorskip("ezdxf")
 iio = pytest.importorskip("imageio.v3")
@@ -407,7 +407,7 @@ def test_check_exit_codes(tmp_path):
 
 
 def test_version_is_fast():
-    code = ("import sys; from fcgrasp.cli import main; main(['--version']); "
+    code = ("import sys; from fcgrasp.apps.cli import main; main(['--version']); "
             "print(sorted(m for m in ('numpy', 'shapely', 'scipy') if m in sys.modules))")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
                        check=True)
@@ -415,7 +415,7 @@ def test_version_is_fast():
 
 
 def test_every_option_has_help():
-    from fcgrasp.cli import build_parser
+    from fcgrasp.apps.cli import build_parser
 
     parser = build_parser()
     subs = next(a for a in parser._actions if a.dest == "command").choices

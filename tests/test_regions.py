@@ -7,8 +7,8 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.planning import GraspPlan, independent_regions, plan
-from fcgrasp.polygon import Polygon
+from fcgrasp.model.polygon import Polygon
+from fcgrasp.planning.planner import GraspPlan, independent_regions, plan
 
 from .grippers import grip
 from .oracle import region_lp
@@ -188,8 +188,8 @@ def test_four_finger_regions_match_lp_exhaustive(kind):
 def test_three_pairings_give_the_same_regions():
     """Corollary 5.1 / section 7.3: without margin the three pairings of four edges give the
     same optimal regions (with a margin, the margin is taken on the pairing's sector)."""
-    from fcgrasp._regiongeom import four_finger_problems
-    from fcgrasp.regions import leximin, place_regions
+    from fcgrasp.model._regiongeom import four_finger_problems
+    from fcgrasp.model.regions import leximin, place_regions
 
     rng = np.random.default_rng(9)
     done = 0
@@ -309,7 +309,7 @@ def test_plan_bad_arguments(kw, match):
 
 def _random_two_region_problems(rng, B=100_000):
     """Random two-region knapsack problems, zero weights and negative budgets included."""
-    from fcgrasp.regions import KnapsackProblem
+    from fcgrasp.model.regions import KnapsackProblem
 
     L = rng.uniform(0.1, 3, (B, 2))
     w1, w2 = rng.uniform(0, 2, (2, B, 2))
@@ -321,7 +321,7 @@ def _random_two_region_problems(rng, B=100_000):
 
 
 def test_two_region_closed_form_equals_general_solver():
-    from fcgrasp.regions import _max_level, _max_min_two, _order
+    from fcgrasp.model.regions import _max_level, _max_min_two, _order
 
     p = _random_two_region_problems(np.random.default_rng(21))
     B = p.batch
@@ -332,7 +332,7 @@ def test_two_region_closed_form_equals_general_solver():
 
 
 def test_two_region_second_stage_closed_form_equals_general_solver():
-    from fcgrasp.regions import _max_level, _order, _two_level
+    from fcgrasp.model.regions import _max_level, _order, _two_level
 
     rng = np.random.default_rng(22)
     p = _random_two_region_problems(rng)

@@ -1,4 +1,4 @@
-"""JSON documents (fcgrasp.report): one FORMAT_VERSION, deterministic bytes, significant
+"""JSON documents (fcgrasp.io.report): one FORMAT_VERSION, deterministic bytes, significant
 digits, and the same shape from the library and the command."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import json
 import numpy as np
 
 import fcgrasp as fc
-from fcgrasp.report import (
+from fcgrasp.io.report import (
     FORMAT_VERSION,
     check_report,
     demo_summary,

@@ -9,6 +9,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import fcgrasp as fc
+import fcgrasp.core.contacts
 from fcgrasp import Polygon, grasp_set, independent_regions, plan
 
 from .grippers import grip
@@ -53,9 +54,9 @@ def test_no_false_force_closure_in_grasp_sets(seed, log_mu):
         p, q = gs.sample(30, rng)
         feats = gs.features
         w = np.concatenate([
-            fc.wrench_from_force(fc.contacts.friction_cone_edges(poly.normals[feats[0].index],
+            fc.wrench_from_force(fc.core.contacts.friction_cone_edges(poly.normals[feats[0].index],
                                                                  gs.mu), p[:, None]),
-            fc.wrench_from_force(fc.contacts.friction_cone_edges(poly.normals[feats[1].index],
+            fc.wrench_from_force(fc.core.contacts.friction_cone_edges(poly.normals[feats[1].index],
                                                                  gs.mu), q[:, None])], axis=1)
         assert fc.is_force_closure(w).all()
 

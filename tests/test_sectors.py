@@ -1,11 +1,11 @@
-"""Section 6 geometry on arrays (fcgrasp.sectors), against direct constructions."""
+"""Section 6 geometry on arrays (fcgrasp.core.sectors), against direct constructions."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from fcgrasp.sectors import (
+from fcgrasp.core.sectors import (
     PAIRINGS,
     arc_intersection,
     line_meet,

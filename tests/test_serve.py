@@ -16,10 +16,10 @@ pytest.importorskip("httpx2")
 from starlette.testclient import TestClient  # noqa: E402
 
 from fcgrasp import Grasp, Polygon  # noqa: E402
-from fcgrasp.cli import main  # noqa: E402
-from fcgrasp.contacts import FrictionlessPoint, FrictionPoint  # noqa: E402
-from fcgrasp.parts import load_part  # noqa: E402
-from fcgrasp.serve import create_app  # noqa: E402
+from fcgrasp.apps.cli import main  # noqa: E402
+from fcgrasp.apps.serve import create_app  # noqa: E402
+from fcgrasp.core.contacts import FrictionlessPoint, FrictionPoint  # noqa: E402
+from fcgrasp.io.parts import load_part  # noqa: E402
 
 from .test_batch import _ring, make_parts  # noqa: E402
 
@@ -267,7 +267,7 @@ def _star(n, seed=5):
 
 
 def test_jobs_kill_any_planner_and_replace_the_process():
-    from fcgrasp.serve import Jobs, RequestError
+    from fcgrasp.apps.serve import Jobs, RequestError
 
     jobs = Jobs(workers=1)
     try:
@@ -337,7 +337,7 @@ def test_fcgrasp_serve_command_errors_are_one_line():
 
 
 def test_an_idle_planning_process_that_died_is_replaced():
-    from fcgrasp.serve import Jobs
+    from fcgrasp.apps.serve import Jobs
 
     jobs = Jobs(workers=2)
     try:

@@ -1,4 +1,4 @@
-"""Regions along the boundary (fcgrasp.stretches) against methods that share none of its
+"""Regions along the boundary (fcgrasp.model.stretches) against methods that share none of its
 code: a fine raster of the two contact parameters (largest square of force-closure
 samples on the torus of the two arc lengths) and the general closure test on sampled
 grasps, vertices inside regions with every normal between the two edges'."""
@@ -10,9 +10,9 @@ import pytest
 from scipy.ndimage import minimum_filter
 from shapely.geometry import Polygon as ShapelyPolygon
 
-from fcgrasp.closure import is_force_closure
-from fcgrasp.polygon import Polygon
-from fcgrasp.stretches import two_finger_stretches
+from fcgrasp.core.closure import is_force_closure
+from fcgrasp.model.polygon import Polygon
+from fcgrasp.model.stretches import two_finger_stretches
 
 from .shapes import random_polygon
 
@@ -265,7 +265,7 @@ def test_plans_along_the_boundary(seed):
 def test_single_edge_plans_unchanged_on_long_edges():
     """Where no region gains by crossing a vertex, fc.plan gives the single-edge plans."""
     import fcgrasp as fc
-    from fcgrasp.parts import demo_part
+    from fcgrasp.io.parts import demo_part
 
     for name in ("blob", "triangle", "quad", "bracket", "washer", "rectangle"):
         poly = demo_part(name)
@@ -293,7 +293,7 @@ def test_sharp_corners_skip_the_stretch_search(seed, monkeypatch):
     vertex there."""
     import fcgrasp as fc
     from fcgrasp import pipeline
-    from fcgrasp.stretches import crosses_a_vertex
+    from fcgrasp.model.stretches import crosses_a_vertex
 
     rng = np.random.default_rng(seed)
     seen = 0
@@ -316,7 +316,7 @@ def test_sharp_corners_skip_the_stretch_search(seed, monkeypatch):
 def test_crosses_a_vertex_is_the_fan_condition():
     """A regular n-gon turns 2 pi / n at every vertex: a region may cover a vertex
     exactly when that is below 2 (atan(mu) - margin)."""
-    from fcgrasp.stretches import crosses_a_vertex
+    from fcgrasp.model.stretches import crosses_a_vertex
 
     for n in (8, 12, 24, 60):
         a = np.arange(n) * 2 * np.pi / n

@@ -10,10 +10,10 @@ import pytest
 from scipy.optimize import linprog
 
 import fcgrasp as fc
-from fcgrasp.parts import DEMO_PARTS, demo_part
+from fcgrasp.grippers.three_fingers import concurrent_regions, spanning_arcs, three_finger_plans
+from fcgrasp.io.parts import DEMO_PARTS, demo_part
+from fcgrasp.model.plans import leximin_key
 from fcgrasp.pipeline import plan_spec
-from fcgrasp.plans import leximin_key
-from fcgrasp.three_fingers import concurrent_regions, spanning_arcs, three_finger_plans
 
 from .oracle import closure_margin_lp, grasp_wrenches
 from .shapes import random_polygon, star
@@ -151,7 +151,7 @@ def _dense_max_min(a, t, L, lo_ang, hi_ang, sigma):
 
 
 def test_max_min_matches_a_dense_program():
-    from fcgrasp.three_fingers import SPLITS  # noqa: F401 - the pieces enumerated here
+    from fcgrasp.grippers.three_fingers import SPLITS  # noqa: F401 - the pieces enumerated here
     rng = np.random.default_rng(7)
     checked = 0
     for _ in range(25):
@@ -238,7 +238,7 @@ def _plan_grasps(plan, polygon, rng, n):
 def _sampled_with_normals(plan, polygon, rng, n):
     """Grasps sampled along the plan's regions (polylines along the boundary), each point
     with the normal of the edge it lies on."""
-    from fcgrasp._geom import along
+    from fcgrasp.core._geom import along
 
     u = rng.random((n, plan.fingers))
     pts, nrm = [], []
@@ -305,7 +305,7 @@ def _grown_cases(seed, n):
     random edges: every sampled grasp (each point with its own edge's normal) and every
     grasp of region ends and interior vertices (a vertex with either of its edges'
     normals) holds by the general wrench test.  Returns how many regions left their edge."""
-    from fcgrasp.three_fingers import grow_concurrent, stretch_polylines
+    from fcgrasp.grippers.three_fingers import grow_concurrent, stretch_polylines
 
     rng = np.random.default_rng(300 + seed)
     grown = 0
@@ -411,7 +411,7 @@ def test_cli_three_fingers_and_gravity(tmp_path):
 
 
 def test_grow_concurrent_and_free_stretch_bad_arguments():
-    from fcgrasp.three_fingers import free_stretch, grow_concurrent
+    from fcgrasp.grippers.three_fingers import free_stretch, grow_concurrent
 
     part = demo_part("quad")
     for bad, err, word in (((0, 1), ValueError, "three"), ((0, 0, 1), ValueError, "three"),

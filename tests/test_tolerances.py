@@ -1,11 +1,11 @@
-"""Named tolerances (fcgrasp.tolerances): relative, so answers do not depend on units."""
+"""Named tolerances (fcgrasp.core.tolerances): relative, so answers do not depend on units."""
 
 from __future__ import annotations
 
 import numpy as np
 
 import fcgrasp as fc
-from fcgrasp import tolerances
+from fcgrasp.core import tolerances
 
 
 def test_every_tolerance_is_named_and_small():

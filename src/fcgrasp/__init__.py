@@ -1,12 +1,17 @@
 """fcgrasp: force-closure grasps of planar objects, after Nguyen's paper.
 
-Modules mirror the paper: :mod:`~fcgrasp.screws` (section 2.1-2.2, 2.4),
-:mod:`~fcgrasp.convexes` (2.3), :mod:`~fcgrasp.contacts` (3.1),
-:mod:`~fcgrasp.grasp` (3.2), :mod:`~fcgrasp.closure` (4, 5, 6),
-:mod:`~fcgrasp.polygon` (the part), :mod:`~fcgrasp.graspsets` (6),
-:mod:`~fcgrasp.regions` and :mod:`~fcgrasp.planning` (7, 8), :mod:`~fcgrasp.quality`
-(8.1), :mod:`~fcgrasp.hand` (8.2), :mod:`~fcgrasp.parts` (reading part files, with
-:mod:`~fcgrasp.units` and :mod:`~fcgrasp.outline`).
+Subpackages show the architecture (imports only go down this list):
+
+- :mod:`fcgrasp.core`: screws (sections 2.1-2.2, 2.4), convexes (2.3), contacts (3.1),
+  grasps (3.2) and closure tests (4, 5, 6): mechanics, no notion of a part or a gripper;
+- :mod:`fcgrasp.model`: the part (polygon, outline clean-up) and the paper's constructions
+  on it: grasp sets (6), regions (7), stretches along the boundary, quality (8.1), hand (8.2);
+- :mod:`fcgrasp.io`: every part reader, units, JSON reports, atomic outputs;
+- :mod:`fcgrasp.pipeline`: the point fingers' search, candidates -> solve -> rank;
+- :mod:`fcgrasp.grippers`: one object per gripper behind one interface, and the registry;
+- :mod:`fcgrasp.planning`: :class:`~fcgrasp.planning.PlanRequest` and :func:`plan`;
+- :mod:`fcgrasp.plotting`: figures (matplotlib, imported inside its functions);
+- :mod:`fcgrasp.apps`: the command line, the batch runner and the explorer.
 
 Every name loads on first use (PEP 562): ``import fcgrasp`` costs almost nothing, and
 the command line's ``--version`` answers at once.
@@ -14,14 +19,15 @@ the command line's ``--version`` answers at once.
 
 from __future__ import annotations
 
-from importlib import import_module
-from typing import TYPE_CHECKING, Any
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
 
-from .tolerances import TOL
+from .core.tolerances import TOL
 
-if TYPE_CHECKING:   # for type checkers; at run time these load on first use
-    from .batch import plan_many
-    from .closure import (
+if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
+    from .apps.batch import plan_many
+    from .core.closure import (
         closure_escape,
         force_direction_closure,
         friction_pair_closure,
@@ -29,7 +35,7 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
         is_force_closure,
         torque_closure,
     )
-    from .contacts import (
+    from .core.contacts import (
         Contact,
         FrictionEdge,
         FrictionlessEdge,
@@ -38,46 +44,14 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
         Gravity,
         SoftFinger,
     )
-    from .convexes import (
+    from .core.convexes import (
         Cone,
     )
-    from .frictionless_stretches import FrictionlessStretches, grow_stretches
-    from .grasp import (
+    from .core.grasp import (
         ClosureReport,
         Grasp,
     )
-    from .graspsets import (
-        FrictionGraspSet,
-        FrictionlessGraspSet,
-        Vertex,
-        grasp_set,
-        grasp_sets,
-        three_edge_grasp_sets,
-    )
-    from .hand import (
-        Hand,
-    )
-    from .jaw import JawPlan, ParallelJaw, jaw_plans
-    from .outline import (
-        clean_outline,
-        fill_rings,
-        simplify_outline,
-    )
-    from .parts import (
-        Part,
-        list_parts,
-        load_part,
-        read_part,
-    )
-    from .planning import (
-        GraspPlan,
-        independent_regions,
-        plan,
-    )
-    from .polygon import (
-        Polygon,
-    )
-    from .screws import (
+    from .core.screws import (
         CONTRARY,
         RECIPROCAL,
         REPELLING,
@@ -95,146 +69,118 @@ if TYPE_CHECKING:   # for type checkers; at run time these load on first use
         virtual_work,
         wrench_from_force,
     )
-    from .stretches import StretchPair, two_finger_stretches
+    from .grippers.jaw import JawPlan, ParallelJaw, jaw_plans
+    from .io.parts import (
+        Part,
+        list_parts,
+        load_part,
+        read_part,
+    )
+    from .model.frictionless_stretches import FrictionlessStretches, grow_stretches
+    from .model.graspsets import (
+        FrictionGraspSet,
+        FrictionlessGraspSet,
+        Vertex,
+        grasp_set,
+        grasp_sets,
+        three_edge_grasp_sets,
+    )
+    from .model.hand import (
+        Hand,
+    )
+    from .model.outline import (
+        clean_outline,
+        fill_rings,
+        simplify_outline,
+    )
+    from .model.polygon import (
+        Polygon,
+    )
+    from .model.stretches import StretchPair, two_finger_stretches
+    from .planning.planner import (
+        GraspPlan,
+        independent_regions,
+        plan,
+    )
 
 #: Where each public name lives; loaded on first use (PEP 562), so that ``import fcgrasp``
 #: stays light and the command line starts fast.
 _LAZY = {
-    "closure_escape": "closure",
-    "force_direction_closure": "closure",
-    "friction_pair_closure": "closure",
-    "friction_pair_modes": "closure",
-    "is_force_closure": "closure",
-    "torque_closure": "closure",
-    "Contact": "contacts",
-    "FrictionEdge": "contacts",
-    "FrictionlessEdge": "contacts",
-    "FrictionlessPoint": "contacts",
-    "FrictionPoint": "contacts",
-    "Gravity": "contacts",
-    "SoftFinger": "contacts",
-    "Cone": "convexes",
-    "ClosureReport": "grasp",
-    "Grasp": "grasp",
-    "Hand": "hand",
-    "ParallelJaw": "jaw",
-    "plan_many": "batch",
-    "JawPlan": "jaw",
-    "jaw_plans": "jaw",
-    "Polygon": "polygon",
-    "CONTRARY": "screws",
-    "RECIPROCAL": "screws",
-    "REPELLING": "screws",
-    "classify_twist_wrench": "screws",
-    "rotation_center": "screws",
-    "spatial_transpose": "screws",
-    "spatial_twist_about_axis": "screws",
-    "spatial_twist_translation": "screws",
-    "spatial_virtual_work": "screws",
-    "spatial_wrench_from_force": "screws",
-    "twist_about_point": "screws",
-    "twist_translation": "screws",
-    "twist_transpose": "screws",
-    "velocity_at": "screws",
-    "virtual_work": "screws",
-    "wrench_from_force": "screws",
-    "FrictionGraspSet": "graspsets",
-    "FrictionlessGraspSet": "graspsets",
-    "Vertex": "graspsets",
-    "grasp_set": "graspsets",
-    "grasp_sets": "graspsets",
-    "three_edge_grasp_sets": "graspsets",
-    "read_part": "parts",
-    "load_part": "parts",
-    "list_parts": "parts",
-    "Part": "parts",
+    "closure_escape": "core.closure",
+    "force_direction_closure": "core.closure",
+    "friction_pair_closure": "core.closure",
+    "friction_pair_modes": "core.closure",
+    "is_force_closure": "core.closure",
+    "torque_closure": "core.closure",
+    "Contact": "core.contacts",
+    "FrictionEdge": "core.contacts",
+    "FrictionlessEdge": "core.contacts",
+    "FrictionlessPoint": "core.contacts",
+    "FrictionPoint": "core.contacts",
+    "Gravity": "core.contacts",
+    "SoftFinger": "core.contacts",
+    "Cone": "core.convexes",
+    "ClosureReport": "core.grasp",
+    "Grasp": "core.grasp",
+    "Hand": "model.hand",
+    "ParallelJaw": "grippers.jaw",
+    "plan_many": "apps.batch",
+    "JawPlan": "grippers.jaw",
+    "jaw_plans": "grippers.jaw",
+    "Polygon": "model.polygon",
+    "CONTRARY": "core.screws",
+    "RECIPROCAL": "core.screws",
+    "REPELLING": "core.screws",
+    "classify_twist_wrench": "core.screws",
+    "rotation_center": "core.screws",
+    "spatial_transpose": "core.screws",
+    "spatial_twist_about_axis": "core.screws",
+    "spatial_twist_translation": "core.screws",
+    "spatial_virtual_work": "core.screws",
+    "spatial_wrench_from_force": "core.screws",
+    "twist_about_point": "core.screws",
+    "twist_translation": "core.screws",
+    "twist_transpose": "core.screws",
+    "velocity_at": "core.screws",
+    "virtual_work": "core.screws",
+    "wrench_from_force": "core.screws",
+    "FrictionGraspSet": "model.graspsets",
+    "FrictionlessGraspSet": "model.graspsets",
+    "Vertex": "model.graspsets",
+    "grasp_set": "model.graspsets",
+    "grasp_sets": "model.graspsets",
+    "three_edge_grasp_sets": "model.graspsets",
+    "read_part": "io.parts",
+    "load_part": "io.parts",
+    "list_parts": "io.parts",
+    "Part": "io.parts",
     "GraspPlan": "planning",
     "independent_regions": "planning",
-    "two_finger_stretches": "stretches",
-    "StretchPair": "stretches",
-    "grow_stretches": "frictionless_stretches",
-    "FrictionlessStretches": "frictionless_stretches",
+    "two_finger_stretches": "model.stretches",
+    "StretchPair": "model.stretches",
+    "grow_stretches": "model.frictionless_stretches",
+    "FrictionlessStretches": "model.frictionless_stretches",
     "plan": "planning",
-    "clean_outline": "outline",
-    "simplify_outline": "outline",
-    "fill_rings": "outline",
+    "clean_outline": "model.outline",
+    "simplify_outline": "model.outline",
+    "fill_rings": "model.outline",
 }
 
 
-def __getattr__(name: str) -> Any:
+def __getattr__(name: str) -> _Any:
     if name in _LAZY:
-        value = getattr(import_module(f".{_LAZY[name]}", __name__), name)
+        value = getattr(_import_module(f".{_LAZY[name]}", __name__), name)
         globals()[name] = value
         return value
     raise AttributeError(f"module 'fcgrasp' has no attribute {name!r}")
 
 
 def __dir__() -> list[str]:
-    return sorted(set(globals()) | set(_LAZY))
+    return sorted(__all__)
 
 
 #: The package version (kept equal to pyproject.toml's by tests/test_imports.py; a literal,
 #: because importlib.metadata alone costs more than the rest of ``import fcgrasp``).
 __version__ = "0.1.0"
 
-__all__ = [
-    "TOL",
-    "closure_escape",
-    "force_direction_closure",
-    "friction_pair_closure",
-    "friction_pair_modes",
-    "is_force_closure",
-    "torque_closure",
-    "Contact",
-    "FrictionEdge",
-    "FrictionlessEdge",
-    "FrictionlessPoint",
-    "FrictionPoint",
-    "Gravity",
-    "SoftFinger",
-    "Cone",
-    "ClosureReport",
-    "Grasp",
-    "Hand",
-    "ParallelJaw",
-    "plan_many",
-    "JawPlan",
-    "jaw_plans",
-    "Polygon",
-    "CONTRARY",
-    "RECIPROCAL",
-    "REPELLING",
-    "classify_twist_wrench",
-    "rotation_center",
-    "spatial_transpose",
-    "spatial_twist_about_axis",
-    "spatial_twist_translation",
-    "spatial_virtual_work",
-    "spatial_wrench_from_force",
-    "twist_about_point",
-    "twist_translation",
-    "twist_transpose",
-    "velocity_at",
-    "virtual_work",
-    "wrench_from_force",
-    "FrictionGraspSet",
-    "FrictionlessGraspSet",
-    "Vertex",
-    "grasp_set",
-    "grasp_sets",
-    "three_edge_grasp_sets",
-    "read_part",
-    "load_part",
-    "list_parts",
-    "Part",
-    "GraspPlan",
-    "independent_regions",
-    "two_finger_stretches",
-    "StretchPair",
-    "grow_stretches",
-    "FrictionlessStretches",
-    "plan",
-    "clean_outline",
-    "simplify_outline",
-    "fill_rings",
-]
+__all__ = ["TOL", "__version__", *_LAZY]

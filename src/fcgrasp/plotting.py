@@ -11,9 +11,9 @@ from typing import Any
 
 import numpy as np
 
-from ._geom import signed_area
-from .contacts import Contact
-from .grasp import Grasp
+from .core._geom import signed_area
+from .core.contacts import Contact
+from .core.grasp import Grasp
 
 
 def _pyplot() -> Any:
@@ -67,7 +67,7 @@ def draw_grasp(ax: Any, grasp: Grasp, outline: Any = None, title: str | None = N
 def save_figure(fig: Any, path: str, outputs: Any = None) -> None:
     """Save a matplotlib figure atomically (format from the extension), or stage it in
     ``outputs`` (an output set written all or none)."""
-    from ._atomic import OutputSet
+    from .io._atomic import OutputSet
 
     def write(tmp: str) -> None:
         fig.savefig(tmp, dpi=120, bbox_inches="tight")
@@ -208,7 +208,7 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
     for pts in plan.contacts:
         ax.plot(*np.asarray(pts).T, "o", color="#d62728", ms=4, zorder=5)
     if plan.insert is not None:
-        # inside a hole: where the closed jaws go in (fcgrasp.jaw.insertion_point)
+        # inside a hole: where the closed jaws go in (fcgrasp.grippers.jaw.insertion_point)
         ax.plot(*np.asarray(plan.insert), "+", color="k", ms=7, zorder=5,
                 label="jaws put in here")
     mid = cen + c * n
@@ -227,7 +227,7 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
                 title: str | None = None, panel: int = 3, outputs: Any = None) -> None:
     """Write a figure of the best plan (figure 1), or with several plans a panel of the best
     and worst ranked ones (figure 15), atomically; format from the extension."""
-    from .jaw import JawPlan
+    from .grippers.jaw import JawPlan
 
     plt = _pyplot()
     if not plans:

@@ -1,0 +1,695 @@
+"""``fcgrasp serve``: the grasp explorer, a local web app (needs ``fcgrasp[serve]``).
+
+The page (static HTML, JavaScript and CSS shipped in ``fcgrasp/explorer``, no build step)
+draws the part to scale and lets the user drag, add and delete vertices, load a part file,
+pick the gripper and its options, and read the ranked plans drawn as in the paper's
+figure 1; it places fingers by hand and shows the verdict of theorem 6.1 with the escape
+motion.  Everything it computes comes from the same public functions as the command line:
+
+* a plan is :func:`fcgrasp.apps.cli.plan_document` on the options ``fcgrasp plan`` would parse,
+  so the page's plans are exactly those of ``fcgrasp plan --no-clean`` on the same
+  vertices;
+* a hand-placed grasp is :meth:`fcgrasp.Grasp.explain` on the contacts of
+  :func:`fcgrasp.io.parts.contacts_from_data` (the contacts file of ``fcgrasp check``);
+* the grasp-set overlay is :func:`fcgrasp.grasp_set` on the plan's edges: the restricted
+  edges ``e'_i`` of theorem 6.3 for two fingers, the parallelograms ``Pi_12``, ``Pi_34``
+  and the two-sided sector ``C`` of algorithm 6.1 for four (three against gravity).
+
+The HTTP interface (JSON in and out; errors are ``{"error": message, "field": name}``
+with status 400, 404 or 413; the server answers every request and never stops on one):
+
+``GET /api/state``
+    the starting part, the built-in parts, the ranking measures and the limits;
+``GET /api/demo/NAME``, ``POST /api/part?name=FILE`` (the file's bytes as the body)
+    a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}``;
+``POST /api/plan`` ``{"part": ..., "options": {...}, "replaces": null}``
+    starts a plan in a process of its own (cancelling the job ``replaces`` first) and
+    answers within :data:`ANSWER_WITHIN` seconds: the finished result, or
+    ``{"job": id, "state": "running", "progress": [done, total]}`` to poll (429 when
+    eight plans run already);
+``GET /api/jobs/ID``, ``DELETE /api/jobs/ID``
+    a plan's state (``running``, ``done``, ``error``, ``cancelled``), and cancelling it
+    (its process is killed at once, whatever planner runs);
+``POST /api/check`` ``{"part": ..., "contacts": [...], "gravity": null}``
+    the verdict on a grasp, the failed closure and the escape twist ``(omega, vx, vy)``.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import contextlib
+import itertools
+import json
+import math
+import os
+import tempfile
+import threading
+import time
+from dataclasses import dataclass, field
+from importlib.resources import files
+from typing import Any, TypeGuard
+
+import numpy as np
+
+from ..core._json import json_ready
+
+#: Largest accepted upload (a part file), bytes.
+MAX_UPLOAD = 8 * 2 ** 20
+#: Largest accepted JSON request body, bytes.
+MAX_REQUEST = 4 * 2 ** 20
+#: How long ``POST /api/plan`` waits for the result before answering with a job to poll.
+ANSWER_WITHIN = 0.05
+#: Finished jobs kept for polling (the oldest are forgotten first).
+KEEP_JOBS = 32
+#: The page's gripper choices: (fingers, gravity, jaw).
+GRIPPERS = {"2": (2, False, False), "3": (3, False, False), "3g": (3, True, False),
+            "4": (4, False, False), "jaw": (2, False, True)}
+
+
+class RequestError(ValueError):
+    """A request the server refuses: ``status`` and the ``field`` it is about."""
+
+    def __init__(self, message: str, field: str = "request", status: int = 400) -> None:
+        super().__init__(message)
+        self.field = field
+        self.status = status
+
+
+# ----------------------------------------------------------------------------- parts
+
+
+def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
+    """A part as the page holds it: rings, units and a few measures for drawing."""
+    return json_ready({"outer": polygon.vertices, "holes": list(polygon.holes),
+                       "units": units, "name": name, "edges": polygon.n_edges,
+                       "size": polygon.size, "centroid": polygon.centroid,
+                       "notes": list(notes)})
+
+
+def _is_pair(value: Any) -> TypeGuard[list[float]]:
+    """Whether ``value`` is a JSON list of two finite numbers."""
+    return (isinstance(value, list) and len(value) == 2
+            and all(isinstance(v, (int, float)) and not isinstance(v, bool)
+                    and math.isfinite(v) for v in value))
+
+
+def _ring(value: Any, name: str) -> list[list[float]]:
+    if not isinstance(value, list) or len(value) < 3:
+        raise RequestError(f"{name} must be a list of at least 3 [x, y] points, got "
+                           f"{_short(value)}", "part")
+    for k, p in enumerate(value):
+        if not _is_pair(p):
+            raise RequestError(f"{name}[{k}] must be [x, y] finite numbers, got {_short(p)}",
+                               "part")
+    return value
+
+
+def _short(value: Any) -> str:
+    text = json.dumps(value) if _jsonable(value) else repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _jsonable(value: Any) -> bool:
+    try:
+        json.dumps(value)
+    except (TypeError, ValueError):
+        return False
+    return True
+
+
+def polygon_of(data: Any) -> tuple[Any, str]:
+    """The :class:`~fcgrasp.Polygon` and units of a part sent by the page
+    (``{"outer": [[x, y], ...], "holes": [[[x, y], ...], ...], "units": "mm"}``).
+    Raises :class:`RequestError` (field ``part``) saying what is wrong: a crossing edge,
+    too few vertices, a malformed point."""
+    from ..io.units import UNITS
+    from ..model.polygon import Polygon
+
+    if not isinstance(data, dict):
+        raise RequestError(f"part must be an object with 'outer', got {_short(data)}", "part")
+    outer = _ring(data.get("outer"), "part.outer")
+    holes = data.get("holes", [])
+    if not isinstance(holes, list):
+        raise RequestError(f"part.holes must be a list of rings, got {_short(holes)}", "part")
+    holes = [_ring(h, f"part.holes[{k}]") for k, h in enumerate(holes)]
+    units = data.get("units", "mm")
+    if units not in UNITS and units != "px":
+        raise RequestError(f"part.units must be one of {', '.join(UNITS)} or px, got "
+                           f"{_short(units)}", "part")
+    try:
+        return Polygon(outer, holes), units
+    except (ValueError, TypeError) as exc:
+        raise RequestError(f"the outline is not valid: {exc}", "part") from None
+
+
+def read_upload(body: bytes, name: str) -> dict[str, Any]:
+    """The default part of an uploaded file (any format ``fcgrasp plan`` reads; the
+    largest part, as the command line chooses), as :func:`part_json`."""
+    from ..io.parts import FORMATS, choose_part, list_parts
+
+    base = os.path.basename(name) or "upload"
+    suffix = os.path.splitext(base)[1].lower()
+    if suffix not in FORMATS:
+        suffix = ""            # the reader sniffs the content
+    with tempfile.TemporaryDirectory(prefix="fcgrasp-upload-") as tmp:
+        path = os.path.join(tmp, "part" + suffix)
+        with open(path, "wb") as fh:
+            fh.write(body)
+        try:
+            part = choose_part(list_parts(path))
+        except (ValueError, TypeError, OSError) as exc:
+            msg = str(exc).replace(path, base)
+            raise RequestError(f"cannot read {base}: {msg}", "file") from None
+    return part_json(part.polygon, part.units, base, part.notes)
+
+
+# ----------------------------------------------------------------------------- plans
+
+
+def plan_arguments(options: Any) -> list[str]:
+    """The ``fcgrasp plan`` options for the page's ``options``::
+
+        {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
+         "rank_by": "min_region", "top": 10, "along_boundary": true,
+         "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1]}
+
+    Checked here, so that a bad value is a message naming the option, not a usage error.
+
+    >>> plan_arguments({"gripper": "4", "top": 3})
+    ['--fingers', '4', '--top', '3']
+    """
+    from ..model.ranking import MEASURES
+
+    if not isinstance(options, dict):
+        raise RequestError(f"options must be an object, got {_short(options)}", "options")
+    known = {"gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
+             "gravity", "certify"}
+    extra = sorted(set(options) - known)
+    if extra:
+        raise RequestError(f"options: unknown option {extra[0]!r} (expected "
+                           f"{', '.join(sorted(known))})", "options")
+
+    def number(key: str, lo: float = 0.0) -> float | None:
+        v = options.get(key)
+        if v is None:
+            return None
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
+                or v < lo:
+            raise RequestError(f"options.{key} must be a finite number >= {lo:g}, got "
+                               f"{_short(v)}", key)
+        return float(v)
+
+    gripper = options.get("gripper", "2")
+    if gripper not in GRIPPERS:
+        raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
+                           f"{_short(gripper)}", "gripper")
+    fingers, gravity, jaw = GRIPPERS[gripper]
+    argv: list[str] = []
+    if jaw:
+        argv += ["--gripper", "jaw"]
+        stroke = options.get("stroke")
+        if not _is_pair(stroke):
+            raise RequestError(f"options.stroke must be [min, max] opening, got "
+                               f"{_short(stroke)}", "stroke")
+        pad = number("pad")
+        if pad is None:
+            raise RequestError("options.pad (the pads' width) is needed with a parallel jaw",
+                               "pad")
+        argv += ["--stroke", f"{float(stroke[0])!r},{float(stroke[1])!r}", "--pad", repr(pad)]
+        certify = options.get("certify", True)
+        if not isinstance(certify, bool):
+            raise RequestError(f"options.certify must be true or false, got "
+                               f"{_short(certify)}", "certify")
+        argv += ["--certify" if certify else "--no-certify"]
+    else:
+        argv += ["--fingers", str(fingers)]
+        if gravity:
+            g = options.get("gravity", [0.0, -1.0])
+            if not _is_pair(g) or not any(g):
+                raise RequestError(f"options.gravity must be a non-zero [gx, gy], got "
+                                   f"{_short(g)}", "gravity")
+            argv += ["--gravity", f"{float(g[0])!r},{float(g[1])!r}"]
+        if options.get("along_boundary", True) is False:
+            argv += ["--single-edge"]
+    frictionless = fingers == 4 or gravity
+    mu = number("mu")
+    if mu is not None and not frictionless:
+        argv += ["--mu", repr(mu)]
+    margin = number("margin")
+    if margin is not None:
+        argv += ["--margin", repr(margin)]
+    rank_by = options.get("rank_by")
+    if rank_by is not None:
+        if rank_by not in MEASURES:
+            raise RequestError(f"options.rank_by must be one of {', '.join(MEASURES)}, got "
+                               f"{_short(rank_by)}", "rank_by")
+        argv += ["--rank-by", rank_by]
+    top = options.get("top")
+    if top is not None:
+        if isinstance(top, bool) or not isinstance(top, int) or not 1 <= top <= 100:
+            raise RequestError(f"options.top must be a whole number from 1 to 100, got "
+                               f"{_short(top)}", "top")
+        argv += ["--top", str(top)]
+    return argv
+
+
+def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
+    """The grasp set of a plan's edges as shapes to draw (None where there is none):
+    ``segments`` (the restricted edges ``e'_i``, theorem 6.3, for two fingers), ``polygons``
+    (``Pi_12`` and ``Pi_34`` of algorithm 6.1 for four fingers or three with gravity) and
+    ``cones`` (the two-sided sector ``C`` at the point between them: ``apex``, ``angle``,
+    ``half`` in radians)."""
+    from ..model.graspsets import FrictionGraspSet, grasp_set
+
+    if not hasattr(plan, "edges"):            # a parallel-jaw box: no grasp set
+        return None
+    edges = list(plan.edges)
+    try:
+        if len(edges) == 2 and plan.contact_type == "friction":
+            gs: Any = grasp_set(polygon, edges, mu=plan.mu)
+        elif len(edges) == 4:
+            gs = grasp_set(polygon, edges)
+        elif len(edges) == 3 and plan.gravity is not None:
+            gs = grasp_set(polygon, edges, gravity=plan.gravity["direction"])
+        else:
+            return None
+    except ValueError:
+        return None
+    if isinstance(gs, FrictionGraspSet):
+        segs = [np.asarray(s).tolist() for f in (0, 1) for s in gs.restricted_segments(f)]
+        return {"kind": "e'", "segments": segs, "polygons": [], "cones": []}
+    if gs.pi12 is None or gs.pi34 is None:
+        return {"kind": "Pi", "segments": [], "polygons": [], "cones": []}
+    polys, segs = [], []
+    for g in (gs.pi12, gs.pi34):              # a parallelogram, or a segment or point
+        if g.geom_type == "Polygon":
+            polys.append(np.asarray(g.exterior.coords)[:-1].tolist())
+        elif not g.is_empty:
+            segs.append(np.asarray(g.coords).tolist())
+    a = np.asarray(gs.pi12.centroid.coords[0])
+    b = np.asarray(gs.pi34.centroid.coords[0])
+    cone = {"apex": ((a + b) / 2).tolist(), "angle": gs.sector[0], "half": gs.sector[1]}
+    return {"kind": "Pi", "segments": segs, "polygons": polys,
+            "cones": [cone] if gs.sector[1] > 0 else []}
+
+
+@dataclass
+class Job:
+    """One plan being computed in a process of its own."""
+
+    id: str
+    state: str = "running"
+    progress: tuple[int, int] = (0, 0)
+    result: dict[str, Any] | None = None
+    error: str | None = None
+    done: threading.Event = field(default_factory=threading.Event)
+    started: float = field(default_factory=time.perf_counter)
+    seconds: float | None = None
+    process: Any = field(default=None, repr=False)
+
+    def answer(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"job": self.id, "state": self.state,
+                               "progress": list(self.progress), "seconds": self.seconds}
+        if self.state == "done":
+            out.update(self.result or {})
+        elif self.state == "error":
+            out["error"] = self.error
+        return out
+
+
+def plan_result(polygon: Any, units: str, options: dict[str, Any], name: str = "explorer",
+                progress: Any = None) -> dict[str, Any]:
+    """Plan a part as ``fcgrasp plan`` does (:func:`fcgrasp.apps.cli.plan_document` on the
+    options of :func:`plan_arguments`): the JSON report, the drawing data of every plan
+    and its grasp-set overlay."""
+    from ..io.parts import Part
+    from ..io.report import dumps
+    from .cli import CliError, build_parser, plan_document
+
+    argv = ["plan", name, *plan_arguments(options)]
+    args = build_parser().parse_args(argv)
+    part = Part(polygon=polygon, source=name, format="explorer", units=units)
+    try:
+        doc = plan_document(args, part=part, progress=progress)
+    except CliError as exc:
+        raise RequestError(str(exc), "options") from None
+    return {"report": json.loads(dumps(doc.report)), "argv": argv[2:],
+            "overlays": [json_ready(overlay(polygon, p)) for p in doc.plans]}
+
+
+def _worker(conn: Any) -> None:
+    """A planning process: warms up (a small plan of each kind loads what planning
+    loads), then plans each ``(polygon, units, options)`` it is sent, sending progress
+    reports (at most every 50 ms) and then ``("done", result)`` or ``("error", text)``."""
+    from ..io.parts import demo_part
+
+    blob = demo_part("blob")
+    for opts in ({"gripper": "2", "mu": 0.3}, {"gripper": "4", "along_boundary": False},
+                 {"gripper": "3", "mu": 0.5, "along_boundary": False, "top": 1}):
+        plan_result(blob, "mm", opts)
+    check_result(blob, {"contacts": [{"point": [21.0, -3.0], "mu": 0.3}]})
+    last = [0.0]
+
+    def progress(done: int, total: int) -> None:
+        now = time.perf_counter()
+        if now - last[0] >= 0.05 or done >= total:
+            last[0] = now
+            conn.send(("progress", (int(done), int(total))))
+
+    while True:
+        try:
+            task = conn.recv()
+        except (EOFError, OSError):
+            return
+        if task is None:
+            return
+        try:
+            polygon, units, options = task
+            conn.send(("done", plan_result(polygon, units, options, progress=progress)))
+        except (ValueError, TypeError) as exc:
+            conn.send(("error", " ".join(str(exc).split())))
+        except Exception as exc:  # noqa: BLE001 - reported to the page
+            conn.send(("error", f"internal error: {type(exc).__name__}: {exc}"))
+
+
+@dataclass
+class _Process:
+    process: Any
+    conn: Any
+
+
+class Jobs:
+    """The plans being computed, in a pool of warmed-up planning processes (one plan
+    each at a time): cancelling a job kills its process, whatever planner runs, and a
+    fresh one takes its place.  At most ``workers`` plans run at once (more: 429);
+    ``KEEP_JOBS`` finished jobs are remembered for polling.
+
+    Processes come from a fork server (started once, fcgrasp loaded): safe to start from
+    the server's threads, a few milliseconds each."""
+
+    def __init__(self, workers: int = 4) -> None:
+        import multiprocessing
+
+        self._ctx = multiprocessing.get_context("forkserver")
+        self._ctx.set_forkserver_preload(["fcgrasp.apps.serve", "fcgrasp.apps.cli",
+                                         "fcgrasp.planning.planner"])
+        self._jobs: dict[str, Job] = {}
+        self._idle: list[_Process] = []
+        self._ids = itertools.count(1)
+        self._lock = threading.Lock()
+        self.workers = workers
+        self._closed = False
+
+    def _spawn(self) -> _Process:
+        mine, theirs = self._ctx.Pipe()
+        proc = self._ctx.Process(target=_worker, args=(theirs,), daemon=True,
+                                 name="fcgrasp-planner")
+        proc.start()
+        theirs.close()
+        return _Process(proc, mine)
+
+    def warm(self, n: int = 1) -> None:
+        """Start ``n`` planning processes now (the first one also starts the fork
+        server: about a second), so that the first plans do not wait for them."""
+        fresh = [self._spawn() for _ in range(n)]
+        with self._lock:
+            self._idle += fresh
+
+    def start(self, polygon: Any, units: str, options: dict[str, Any]) -> Job:
+        plan_arguments(options)               # a bad option is an answer now, not a job
+        with self._lock:
+            busy = sum(not j.done.is_set() for j in self._jobs.values())
+            if busy >= self.workers:
+                raise RequestError(f"{busy} plans are running already: cancel one or wait",
+                                   "job", 429)
+            job = Job(id=str(next(self._ids)))
+            self._jobs[job.id] = job
+            finished = [k for k, j in self._jobs.items() if j.done.is_set()]
+            for k in finished[:max(0, len(self._jobs) - KEEP_JOBS)]:
+                del self._jobs[k]
+            worker = self._idle.pop() if self._idle else None
+        worker = worker or self._spawn()
+        try:
+            worker.conn.send((polygon, units, options))
+        except OSError:                       # an idle process died: take a fresh one
+            worker.process.kill()
+            worker = self._spawn()
+            worker.conn.send((polygon, units, options))
+        job.process = worker.process
+
+        def watch() -> None:
+            alive = False
+            try:
+                while True:
+                    kind, value = worker.conn.recv()
+                    if kind == "progress":
+                        job.progress = value
+                        continue
+                    alive = True
+                    if job.state == "running":
+                        job.state = kind
+                        if kind == "done":
+                            job.result = value
+                        else:
+                            job.error = value
+                    break
+            except (EOFError, OSError):
+                if job.state == "running":    # died without a word: out of memory?
+                    job.state = "error"
+                    job.error = (f"the planning process stopped (exit code "
+                                 f"{worker.process.exitcode}; out of memory?)")
+            job.seconds = time.perf_counter() - job.started
+            with self._lock:
+                keep = alive and not self._closed and len(self._idle) < self.workers
+                if keep:
+                    self._idle.append(worker)
+            if not keep:
+                worker.process.kill()
+                worker.process.join(5)
+                worker.conn.close()
+                if not alive and not self._closed:
+                    self.warm()               # a warm process for the next plan
+            job.done.set()
+
+        threading.Thread(target=watch, name=f"fcgrasp-job-{job.id}", daemon=True).start()
+        return job
+
+    def get(self, job_id: str) -> Job:
+        with self._lock:
+            job = self._jobs.get(job_id)
+        if job is None:
+            raise RequestError(f"no job {job_id!r} (finished jobs are kept for a while)",
+                               "job", 404)
+        return job
+
+    def cancel(self, job_id: str) -> Job:
+        job = self.get(job_id)
+        if not job.done.is_set():
+            job.state = "cancelled"
+            job.process.kill()
+        return job
+
+    def close(self) -> None:
+        """Stop every planning process (the server is stopping)."""
+        with self._lock:
+            self._closed = True
+            idle, self._idle = self._idle, []
+            jobs = list(self._jobs.values())
+        for job in jobs:
+            if not job.done.is_set():
+                job.state = "cancelled"
+                job.process.kill()
+        for w in idle:
+            w.process.kill()
+            w.conn.close()
+
+
+# ----------------------------------------------------------------------------- checks
+
+
+def check_result(polygon: Any, data: dict[str, Any]) -> dict[str, Any]:
+    """The verdict on a hand-placed grasp (theorem 6.1 by :meth:`~fcgrasp.Grasp.explain`):
+    ``data`` holds ``contacts`` (and optionally ``gravity``) as in a contacts file."""
+    from ..core.grasp import Grasp
+    from ..core.screws import rotation_center
+    from ..io.parts import contacts_from_data
+
+    body = {k: data[k] for k in ("contacts", "gravity") if k in data and data[k] is not None}
+    try:
+        contacts, described = contacts_from_data(body, polygon, "check")
+    except ValueError as exc:
+        raise RequestError(str(exc), "contacts") from None
+    rep = Grasp(contacts).explain()
+    twist = rep.escape_twist
+    centre = None
+    if twist is not None and abs(float(twist[0])) > 1e-12 * max(1.0, float(np.abs(twist).max())):
+        centre = rotation_center(twist)
+    return json_ready({"force_closure": rep.force_closure, "failed": rep.failed,
+                       "verdict": str(rep), "escape": rep.escape_description,
+                       "escape_twist": twist, "rotation_center": centre,
+                       "contacts": described})
+
+
+# ----------------------------------------------------------------------------- the app
+
+
+def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
+    """The explorer as an ASGI application (Starlette).  ``start`` is the first part shown:
+    a :class:`fcgrasp.io.parts.Part` (default ``demo:blob``)."""
+    from starlette.applications import Starlette
+    from starlette.requests import Request
+    from starlette.responses import FileResponse, JSONResponse, Response
+    from starlette.routing import Mount, Route
+    from starlette.staticfiles import StaticFiles
+
+    from ..io.parts import DEMO_PARTS, load_part
+    from ..model.ranking import MEASURES
+
+    if start is None:
+        start = load_part("demo:blob")
+    first = part_json(start.polygon, start.units, start.source, start.notes)
+    static = str(files("fcgrasp") / "apps" / "explorer")
+    jobs = Jobs()
+
+    def error(exc: RequestError) -> JSONResponse:
+        return JSONResponse({"error": " ".join(str(exc).split()), "field": exc.field},
+                            status_code=exc.status)
+
+    async def body_of(request: Request, limit: int) -> bytes:
+        length = request.headers.get("content-length")
+        if length is not None and (not length.isdigit() or int(length) > limit):
+            raise RequestError(f"the request is too large ({length} bytes; at most "
+                               f"{limit} are accepted)", "file", 413)
+        chunks, size = [], 0
+        async for chunk in request.stream():
+            size += len(chunk)
+            if size > limit:
+                raise RequestError(f"the request is too large (more than {limit} bytes)",
+                                   "file", 413)
+            chunks.append(chunk)
+        return b"".join(chunks)
+
+    async def json_of(request: Request, keys: set[str]) -> dict[str, Any]:
+        raw = await body_of(request, MAX_REQUEST)
+        try:
+            data = json.loads(raw)
+        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
+            raise RequestError(f"the request is not valid JSON ({exc})") from None
+        if not isinstance(data, dict):
+            raise RequestError(f"the request must be a JSON object, got {_short(data)}")
+        extra = sorted(set(data) - keys)
+        if extra:
+            raise RequestError(f"unknown key {extra[0]!r} in the request (expected "
+                               f"{', '.join(sorted(keys))})")
+        return data
+
+    def guarded(handler: Any) -> Any:
+        async def endpoint(request: Request) -> Response:
+            try:
+                return await handler(request)
+            except RequestError as exc:
+                return error(exc)
+            except (ValueError, TypeError) as exc:
+                return error(RequestError(str(exc)))
+            except Exception as exc:  # noqa: BLE001 - one bad request never stops the server
+                return JSONResponse({"error": f"internal error: {type(exc).__name__}: {exc}",
+                                     "field": "server"}, status_code=500)
+        return endpoint
+
+    async def index(request: Request) -> Response:
+        return FileResponse(os.path.join(static, "index.html"), media_type="text/html")
+
+    async def favicon(request: Request) -> Response:
+        return Response(status_code=204)
+
+    async def state(request: Request) -> Response:
+        return JSONResponse({"part": first, "demos": list(DEMO_PARTS),
+                             "measures": list(MEASURES), "grippers": list(GRIPPERS),
+                             "max_upload": max_upload, "answer_within": ANSWER_WITHIN})
+
+    async def demo(request: Request) -> Response:
+        name = request.path_params["name"]
+        if name not in DEMO_PARTS:
+            raise RequestError(f"no built-in part {name!r} (one of {', '.join(DEMO_PARTS)})",
+                               "part", 404)
+        p = load_part(f"demo:{name}")
+        return JSONResponse(part_json(p.polygon, p.units, p.source, p.notes))
+
+    async def upload(request: Request) -> Response:
+        name = request.query_params.get("name", "upload")
+        body = await body_of(request, max_upload)
+        if not body:
+            raise RequestError("the file is empty", "file")
+        out = await asyncio.to_thread(read_upload, body, name)
+        return JSONResponse(out)
+
+    async def plan(request: Request) -> Response:
+        data = await json_of(request, {"part", "options", "replaces"})
+        polygon, units = polygon_of(data.get("part"))
+        options = data.get("options", {})
+        old = data.get("replaces")
+        if old is not None:                   # the page's previous plan, now stale
+            try:
+                await asyncio.to_thread(jobs.cancel, str(old))
+            except RequestError:
+                pass
+        job = await asyncio.to_thread(jobs.start, polygon, units, options)
+        await asyncio.to_thread(job.done.wait, ANSWER_WITHIN)
+        return JSONResponse(job.answer())
+
+    async def job_state(request: Request) -> Response:
+        return JSONResponse(jobs.get(request.path_params["id"]).answer())
+
+    async def job_cancel(request: Request) -> Response:
+        return JSONResponse(jobs.cancel(request.path_params["id"]).answer())
+
+    async def check(request: Request) -> Response:
+        data = await json_of(request, {"part", "contacts", "gravity"})
+        polygon, _ = polygon_of(data.get("part"))
+        return JSONResponse(check_result(polygon, data))
+
+    routes = [
+        Route("/", guarded(index)),
+        Route("/favicon.ico", guarded(favicon)),
+        Route("/api/state", guarded(state)),
+        Route("/api/demo/{name}", guarded(demo)),
+        Route("/api/part", guarded(upload), methods=["POST"]),
+        Route("/api/plan", guarded(plan), methods=["POST"]),
+        Route("/api/jobs/{id}", guarded(job_state), methods=["GET"]),
+        Route("/api/jobs/{id}", guarded(job_cancel), methods=["DELETE"]),
+        Route("/api/check", guarded(check), methods=["POST"]),
+        Mount("/static", app=StaticFiles(directory=static), name="static"),
+    ]
+    @contextlib.asynccontextmanager
+    async def lifespan(app: Any) -> Any:
+        await asyncio.to_thread(jobs.warm, 2)
+        yield
+        jobs.close()
+
+    return Starlette(routes=routes, lifespan=lifespan)
+
+
+def serve(start: Any = None, host: str = "127.0.0.1", port: int = 8000,
+          announce: Any = print, open_browser: bool = False) -> None:
+    """Run the explorer until interrupted; ``announce(url)`` is told where it listens
+    (``port=0`` takes a free port)."""
+    import socket
+
+    import uvicorn
+
+    app = create_app(start)
+    sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET)
+    sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
+    sock.bind((host, port))
+    sock.listen(128)             # connections wait from now on: the URL announced is live
+    actual = sock.getsockname()[1]
+    shown = f"[{host}]" if ":" in host else host
+    url = f"http://{shown}:{actual}/"
+    config = uvicorn.Config(app, log_level="warning", access_log=False)
+    server = uvicorn.Server(config)
+    announce(f"fcgrasp explorer: {url} (Ctrl-C to stop)")
+    if open_browser:
+        import webbrowser
+
+        threading.Timer(0.5, webbrowser.open, args=(url,)).start()
+    server.run(sockets=[sock])

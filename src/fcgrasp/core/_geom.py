@@ -1,0 +1,94 @@
+"""Small planar helpers shared by the modules (batched over leading axes)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ._checks import FloatArray
+from .tolerances import RANK_TOL
+
+#: Decimal digits of the ranking's rounding (:data:`~fcgrasp.core.tolerances.RANK_TOL`).
+RANK_DIGITS = int(round(-np.log10(RANK_TOL)))
+
+
+def cross2(a: FloatArray, b: FloatArray) -> FloatArray:
+    """Scalar cross product ``a x b`` of planar vectors (..., 2)."""
+    return a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]
+
+
+def direction(angle: Any) -> FloatArray:
+    """Unit vectors (..., 2) at the given angles (radians)."""
+    angle = np.asarray(angle, dtype=float)
+    return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
+
+
+def signed_area(ring: Any) -> float:
+    """Signed area of a closed ring (n, 2), positive when counter-clockwise (shoelace
+    about the ring's mean, so large offsets do not cancel it)."""
+    r = np.asarray(ring, dtype=float)
+    x, y = r[:, 0] - r[:, 0].mean(), r[:, 1] - r[:, 1].mean()
+    return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
+
+
+def wrap(angle: Any) -> Any:
+    """Angles wrapped to [-pi, pi)."""
+    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
+
+
+def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
+    """Points at fractions ``u`` (any shape) of the arc length of a polyline (m, 2),
+    and the index of the segment holding each."""
+    line = np.asarray(line, dtype=float)
+    u = np.asarray(u, dtype=float)
+    seg = np.diff(line, axis=0)
+    L = np.hypot(seg[:, 0], seg[:, 1])
+    cum = np.concatenate([[0.0], np.cumsum(L)])
+    target = u * cum[-1]
+    k = np.clip(np.searchsorted(cum, target, side="right") - 1, 0, len(seg) - 1)
+    frac = np.where(L[k] > 0, (target - cum[k]) / np.where(L[k] > 0, L[k], 1.0), 0.0)
+    return line[k] + frac[..., None] * seg[k], k
+
+
+def midpoints(regions: Any, region_edges: Any) -> tuple[FloatArray, tuple[int, ...]]:
+    """Each region's point halfway along its polyline (the representative contact) and
+    the edge holding it, from the edges each region covers in order."""
+    pts, edges = [], []
+    for line, covered in zip(regions, region_edges, strict=True):
+        p, k = along(line, 0.5)
+        pts.append(p)
+        edges.append(int(covered[int(k)]))
+    return np.array(pts), tuple(edges)
+
+
+def trim_vertex_ends(pts: FloatArray, edges: Any, tiny: float
+                     ) -> tuple[FloatArray, tuple[int, ...]]:
+    """A region polyline through the edges it covers, without a piece of length at most
+    ``tiny`` at either end: a region that starts or ends exactly at a vertex does not
+    cover the edge beyond it."""
+    edges = list(edges)
+    if len(edges) > 1 and np.hypot(*(pts[1] - pts[0])) <= tiny:
+        pts, edges = pts[1:], edges[1:]
+    if len(edges) > 1 and np.hypot(*(pts[-1] - pts[-2])) <= tiny:
+        pts, edges = pts[:-1], edges[:-1]
+    return pts, tuple(edges)
+
+
+def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
+    """Sort key of the leximin order (definition 7.1): smaller is better."""
+    return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, RANK_DIGITS))
+
+
+def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
+    """A key of a set of regions that does not depend on how the part is numbered.
+
+    Each region's two ends (of a polyline: its first and last points) are sorted, the
+    regions are sorted, and the coordinates (relative to the part's centroid and size,
+    rounded to 1e-9) are read in that order.  Used to break ties between equally good
+    plans or placements.
+    """
+    ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])
+    rel = np.round((ends.reshape(-1, 2, 2) - polygon.centroid) / polygon.size, RANK_DIGITS) + 0.0
+    segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)
+    return tuple(x for seg in segs for pt in seg for x in pt)

@@ -1,0 +1,823 @@
+r"""Three fingers with friction: independent regions of concurrent grasps (issue 14).
+
+Three point fingers with friction ``mu`` hold a planar part when their forces can be in
+*non-marginal equilibrium*: three lines of force, each strictly inside its friction
+cone, meet in one point ``p``, and the three force directions positively span the plane.
+Then the contact wrenches hold ``(d_i, 0)`` (the force through ``p``, no torque about
+it) in the relative interior of their cones and a strictly positive combination of them
+is zero, so the wrenches span the whole wrench space: the grasp is force closure (the
+force directions satisfy theorem 4.2, three directions with a strictly positive null
+combination; the friction cones add the torques of theorem 6.1's total convexe; this is
+Ponce and Faverjon's sufficient condition for three fingers).
+
+**A convex piece of the closure set.**  Choose, for each finger, a sub-arc ``D_i`` of its
+friction cone shrunk by the ``margin``, such that *every* choice of one direction from
+each sub-arc positively spans the plane (:func:`spanning_arcs`: with the arcs in
+counter-clockwise order, the angle from the start of one arc to the end of the next is
+below half a turn, minus the margin), and a side ``sigma_i``: the meeting point lies
+ahead of finger ``i`` (``+1``, inside the part) or behind it (``-1``).  Then
+
+.. math:: p - x_i(s_i) \in \sigma_i \, \mathrm{cone}(D_i), \qquad i = 1, 2, 3
+
+is linear in the finger positions ``s`` and in ``p``: the grasps it admits are the
+projection of a polytope, a convex set, and every one of them is force closure.  A box of
+regions (one interval of positions per finger) lies in a convex set iff its eight corner
+grasps do, each with its own witness point ``p_c``: one linear program per piece
+maximises the smallest region (definition 7.1), and the leximin levels follow by fixing
+the regions that cannot grow and maximising again.
+
+**Exact or a bound.**  The regions are *safe* (every grasp of them is force closure,
+tested against the general wrench test) and optimal within each piece, but the union of
+the pieces (the sides, the sub-arcs: :data:`SPLITS` of the half-turn excess) is not the
+whole closure set: the optimum is a **lower bound** of the true one.  Two fingers that
+hold the part on their own (a two-finger plan, algorithm 7.1, exact) with the third
+anywhere on another edge are a candidate too, so three fingers never do worse than two
+with the third placed on the longest remaining edge.  ``benchmarks/bench_three_fingers.py``
+measures the gap: how far each returned box can grow before a sampled grasp fails the
+general test.
+
+**Along the boundary** (on outlines where a region can cover a vertex,
+:func:`fcgrasp.model.stretches.crosses_a_vertex`): the two fingers that hold on their own are
+the exact two-finger stretches, the third runs along the longest free stretch
+(:func:`free_stretch`); and the best concurrent plans are grown into stretches
+(:func:`grow_concurrent`): a contact anywhere on a stretch, on an interior vertex too,
+keeps the friction cone common to the stretch's edges, so with those cones a piece is
+again a projection of a polytope and a box of regions is inside it iff every grasp of
+region ends and interior vertices is, each with its own witness.
+
+Units: lengths in the part's units, ``margin`` in radians in this module's functions
+(degrees in :class:`~fcgrasp.pipeline.PlanSpec`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, replace
+from functools import lru_cache
+from itertools import product
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, check_mu_scalar, check_scalar
+from ..core._geom import wrap
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
+from ..model.plans import GraspPlan, leximin_key
+from ..model.polygon import Polygon
+from ..model.stretches import crosses_a_vertex
+from ..pipeline import (
+    PlanSpec,
+    boundary_plans,
+    candidates,
+    features,
+    ranked_unique,
+    regions_plan,
+    search,
+    search_size,
+)
+
+__all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
+           "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
+           "MAX_CORNERS", "MAX_STEPS"]
+
+#: How the half-turn excess between two neighbouring cones is split between them (the
+#: share taken from the first arc's start): each split gives one convex piece.
+SPLITS = (0.0, 0.5, 1.0)
+#: Two-finger plans (fingers holding on their own) tried with a third finger anywhere.
+KEEP_PAIRS = 20
+#: Rows of candidate triples solved per linear program (blocks of one sparse LP).
+LP_ROWS = 24
+#: Feasibility tolerance of the linear programs (HiGHS), in units of the part's size.
+LP_TOL = 1e-10
+#: A corner grasp whose witness misses a cone by more than this (times the size) is not
+#: accepted (the solver's answer is checked, not trusted).
+CHECK_TOL = 1e-8
+
+_CORNERS = np.array(list(product((0, 1), repeat=3)))          # (8, 3): 0 low end, 1 high
+_SIDES = np.array(list(product((1.0, -1.0), repeat=3)))       # (8, 3) sigma
+
+
+def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArray, FloatArray]]:
+    """Sub-arcs of three friction cones every selection of which positively spans the
+    plane (three force directions in non-marginal equilibrium, section 3).
+
+    ``center`` (3,): angles of the cones' axes (the inward normals); ``half`` (3,): their
+    half-widths; ``margin``: how far inside the cones the arcs stay, and how far below
+    half a turn every gap between chosen directions stays.  Returns a list of
+    ``(low, high)`` angle arrays (3,), one per split of the excess (:data:`SPLITS`);
+    empty when the cones cannot span the plane.
+
+    >>> arcs = spanning_arcs(np.radians([90, 210, 330]), np.radians([20] * 3), 0.0)
+    >>> len(arcs), np.degrees(arcs[0][0]).round(1).tolist()   # wide enough already
+    (1, [70.0, 190.0, 310.0])
+    """
+    c = np.mod(np.asarray(center, float), 2 * np.pi)
+    w = np.asarray(half, float) - margin
+    if np.any(w < 0):
+        return []
+    # called once per triple of features: plain floats, not arrays of three
+    cl, wl = c.tolist(), w.tolist()
+    limit = np.pi - margin
+    turn = 2 * np.pi
+    out: list[tuple[FloatArray, FloatArray]] = []
+    seen = set()
+    # the chosen directions go round in one of two cyclic orders; between two centres
+    # the unwrapped gap is the turn from one to the next, or that less a full turn (an
+    # arc reaching back past its neighbour's centre); the third gap closes the turn
+    for cur in ((0, 1, 2), (0, 2, 1)):
+        nxt = (cur[1], cur[2], cur[0])
+        base = [(cl[nxt[i]] - cl[cur[i]]) % turn for i in range(3)]
+        wc, wn = [wl[k] for k in cur], [wl[k] for k in nxt]
+        for k1, k2 in ((0, 0), (0, -1), (-1, 0), (-1, -1)):
+            g0, g1 = base[0] + turn * k1, base[1] + turn * k2
+            g2 = turn - g0 - g1
+            # some turn exceeds the limit even from the end of one arc to the start of
+            # the next: no sub-arcs
+            if g0 - wc[0] - wn[0] > limit or g1 - wc[1] - wn[1] > limit \
+                    or g2 - wc[2] - wn[2] > limit:
+                continue
+            for lo, hi in _split_excess((g0, g1, g2), wl, wc, wn, cur, nxt, limit):
+                key = tuple(round(v, 12) for v in lo + hi)
+                if key not in seen:
+                    seen.add(key)
+                    out.append((c + lo, c + hi))
+    return out
+
+
+def _split_excess(gap: tuple[float, float, float], w: list[float], w_cur: list[float],
+                  w_next: list[float], cur: tuple[int, ...], nxt: tuple[int, ...],
+                  limit: float) -> list[tuple[list[float], list[float]]]:
+    """Offsets ``(lo, hi)`` of the sub-arcs (from the cones' axes, half-widths ``w``) that
+    keep every turn from the start of one arc to the end of the next below ``limit`` (the
+    cyclic order ``cur -> nxt`` with unwrapped ``gap`` between the axes, no turn beyond
+    the limit from the end of one arc to the start of the next): the excess of each turn
+    is taken from the two arcs in the shares of :data:`SPLITS` (``w_cur``, ``w_next``:
+    the half-widths of each turn's two arcs)."""
+    excess = [max(gap[i] + w_cur[i] + w_next[i] - limit, 0.0) for i in range(3)]
+    out = []
+    for split in product(*[SPLITS if e > 0 else (0.0,) for e in excess]):
+        lo, hi = [-v for v in w], list(w)
+        for i, r in enumerate(split):
+            e = excess[i]
+            x = min(max(r * e, e - 2 * w_next[i]), 2 * w_cur[i])   # raise cur's start by x
+            lo[cur[i]] += x
+            hi[nxt[i]] -= e - x                                     # lower nxt's end
+        if lo[0] <= hi[0] + 1e-12 and lo[1] <= hi[1] + 1e-12 and lo[2] <= hi[2] + 1e-12:
+            out.append((lo, [max(h, v) for h, v in zip(hi, lo, strict=True)]))
+    return out
+
+
+@dataclass
+class Piece:
+    """The optimal box of regions of three features (or stretches) in one convex piece.
+
+    ``lo``, ``hi`` (3,): region ends as arc lengths, ``lo`` from the start of the first
+    edge a region covers, ``hi`` from the start of its last (one edge: both from its
+    start); ``levels`` (3,): the regions' lengths; ``sigma`` (3,): the side of each finger
+    the meeting point lies on; ``arcs``: the ``(low, high)`` force-direction angles (3,);
+    ``witness`` (N, 2): a meeting point for each corner grasp (on single edges N = 8, in
+    the order of :data:`_CORNERS`).
+    """
+
+    lo: FloatArray
+    hi: FloatArray
+    levels: FloatArray
+    sigma: FloatArray
+    arcs: tuple[FloatArray, FloatArray]
+    witness: FloatArray
+
+
+@dataclass
+class _Block:
+    """One convex piece of one row of three fingers, as a block of a linear program
+    (positions in units of the part's size).  Finger ``i``'s region starts at
+    ``a0[i] + lo_i t0[i]`` (``0 <= lo_i <= L0[i]``), passes the fixed points
+    ``inner[i]`` (the interior vertices of a stretch) and ends at ``a1[i] + hi_i t1[i]``
+    (``0 <= hi_i <= L1[i]``); its length is ``hi_i - lo_i + const[i]`` (on one edge
+    ``a0 = a1``, no inner point and ``const`` 0)."""
+
+    a0: FloatArray          # (3, 2) starts of the first edges
+    t0: FloatArray          # (3, 2) their unit tangents
+    L0: FloatArray          # (3,) their lengths
+    a1: FloatArray          # (3, 2) the same for the last edges
+    t1: FloatArray
+    L1: FloatArray
+    const: FloatArray       # (3,) length of a region less hi - lo
+    inner: tuple[FloatArray, ...]   # (k_i, 2) fixed points of each region
+    lo_ang: FloatArray      # (3,) force-direction arcs
+    hi_ang: FloatArray
+    sigma: FloatArray       # (3,) side of the meeting point
+    row: int
+
+    @staticmethod
+    def on_edges(a: FloatArray, t: FloatArray, L: FloatArray, lo_ang: FloatArray,
+                 hi_ang: FloatArray, sigma: FloatArray, row: int) -> _Block:
+        """A block of three single features."""
+        none = np.zeros((0, 2))
+        return _Block(a, t, L, a, t, L, np.zeros(3), (none, none, none), lo_ang, hi_ang,
+                      sigma, row)
+
+    def corners(self) -> np.ndarray:
+        """The corner grasps (N, 3): per finger, 0 its start, 1 its end, ``2 + j`` its
+        ``j``-th fixed point (on single edges the order of :data:`_CORNERS`)."""
+        return _corner_grid(tuple(2 + len(p) for p in self.inner))
+
+
+@lru_cache(maxsize=256)
+def _corner_grid(points: tuple[int, ...]) -> np.ndarray:
+    """Every combination of one point index per finger, ``points[i]`` points each."""
+    out = np.array(list(product(*(range(n) for n in points))), dtype=int).reshape(-1, 3)
+    out.flags.writeable = False
+    return out
+
+
+def _cone_rows(blk: _Block) -> tuple[FloatArray, FloatArray, FloatArray, np.ndarray,
+                                     FloatArray]:
+    """The cone constraints of a block (N corners x 3 fingers x 2 cone edges), each
+    ``S (u x p - s (u x t) - u x a) >= 0`` at a variable end ``a + s t`` and
+    ``S (u x p - u x v) >= 0`` at a fixed point ``v`` (``S`` the side, negated on the arc's
+    high edge): ``(cpx, cpy, cs, svar, rhs)`` of ``cpx px + cpy py + cs s >= rhs``, shapes
+    (N, 3, 2), ``svar`` the index of ``s`` (``lo_i``: ``i``, ``hi_i``: ``3 + i``; -1 at
+    a fixed point, where ``cs`` is 0)."""
+    ang = np.stack([blk.lo_ang, blk.hi_ang], axis=-1)               # (3, 2)
+    ux, uy = np.cos(ang), np.sin(ang)
+    S = blk.sigma[:, None] * np.array([1.0, -1.0])
+    C = blk.corners()
+    N = len(C)
+    cs = np.empty((N, 3, 2))
+    svar = np.empty((N, 3), dtype=int)
+    rhs = np.empty((N, 3, 2))
+    for i in range(3):
+        # finger i's points: its start, its end (variable), its fixed points
+        pts = np.concatenate([[blk.a0[i], blk.a1[i]], blk.inner[i]])          # (n_i, 2)
+        tan = np.zeros_like(pts)
+        tan[0], tan[1] = blk.t0[i], blk.t1[i]
+        p_cs = -S[i] * (ux[i] * tan[:, 1, None] - uy[i] * tan[:, 0, None])    # (n_i, 2)
+        p_rhs = S[i] * (ux[i] * pts[:, 1, None] - uy[i] * pts[:, 0, None])
+        p_var = np.full(len(pts), -1)
+        p_var[:2] = (i, 3 + i)
+        cs[:, i], rhs[:, i], svar[:, i] = p_cs[C[:, i]], p_rhs[C[:, i]], p_var[C[:, i]]
+    shape = (N, 3, 2)
+    return (np.broadcast_to(-S * uy, shape), np.broadcast_to(S * ux, shape), cs,
+            np.broadcast_to(svar[:, :, None], shape), rhs)
+
+
+def _cone_values(blk: _Block, x: FloatArray) -> FloatArray:
+    """How far inside its piece every corner grasp's witness is (>= 0 inside), (N, 3, 2)."""
+    cpx, cpy, cs, svar, rh = _cone_rows(blk)
+    N = len(cpx)
+    s = np.where(svar >= 0, x[np.maximum(svar, 0)], 0.0)
+    return cpx * x[7:7 + N, None, None] + cpy * x[7 + N:7 + 2 * N, None, None] + cs * s - rh
+
+
+def _lengths(blk: _Block, x: FloatArray) -> FloatArray:
+    """The regions' lengths at a solution ``x`` of the block."""
+    return x[3:6] - x[:3] + blk.const
+
+
+def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
+                  free: np.ndarray | None = None, grow: int | None = None,
+                  deep: bool = False) -> list[FloatArray | None]:
+    """Solve independent blocks in one sparse HiGHS program; per block its solution
+    vector ``(lo (3), hi (3), level, px (N), py (N), v)``, or None where it is
+    infeasible (the answer is checked, not trusted).
+
+    Every cone constraint may use the block's violation ``v`` at a large cost, so an
+    infeasible block does not make the program infeasible.  Default objective: the
+    largest ``level`` with every region at least it (max-min, definition 7.1).  With
+    ``fixed`` (3,): regions keep at least their fixed length, and either the ``free``
+    ones reach the largest common ``level``, or region ``grow`` is made as long as it
+    can, or (``deep``) the witnesses are placed as far inside the cones as they can be
+    (``level`` is then that depth): the placement.
+    """
+    from scipy.optimize import linprog
+    from scipy.sparse import coo_array
+
+    rows = [_cone_rows(blk) for blk in blocks]
+    sizes = [8 + 2 * len(r[0]) for r in rows]
+    starts = np.concatenate([[0], np.cumsum(sizes)]).astype(int)
+    ri: list[np.ndarray] = []
+    ci: list[np.ndarray] = []
+    vals: list[np.ndarray] = []
+    rhs: list[np.ndarray] = []
+    cost = np.zeros(starts[-1])
+    bounds = np.zeros((starts[-1], 2))
+    r0 = 0
+    for k, (blk, (cpx, cpy, cs, svar, rh)) in enumerate(zip(blocks, rows, strict=True)):
+        base, N = int(starts[k]), len(cpx)
+        nr = 6 * N
+        # -(cpx px + cpy py + cs s) - v (+ level when deep) <= -rh
+        rid = r0 + np.arange(nr).reshape(N, 3, 2)
+        var_s = svar >= 0
+        for var, coef, use in ((base + 7 + np.arange(N)[:, None, None], cpx, None),
+                               (base + 7 + N + np.arange(N)[:, None, None], cpy, None),
+                               (base + svar, cs, var_s)):
+            var = np.broadcast_to(var, (N, 3, 2))
+            m = np.ones((N, 3, 2), bool) if use is None else use
+            ri.append(rid[m])
+            ci.append(var[m])
+            vals.append(-coef[m])
+        ri.append(rid.ravel())
+        ci.append(np.full(nr, base + 7 + 2 * N))
+        vals.append(np.full(nr, -1.0))
+        if deep:
+            ri.append(rid.ravel())
+            ci.append(np.full(nr, base + 6))
+            vals.append(np.ones(nr))
+        rhs.append(-rh.ravel())
+        r0 += nr
+        for i in range(3):
+            reach = fixed is None or (free is not None and bool(free[i]))
+            if reach:       # level - (hi - lo) <= const
+                ri.append(np.full(3, r0))
+                ci.append(np.array([base + 6, base + 3 + i, base + i]))
+                vals.append(np.array([1.0, -1.0, 1.0]))
+                rhs.append(np.array([blk.const[i]]))
+            else:           # lo - hi <= const - fixed
+                assert fixed is not None
+                ri.append(np.full(2, r0))
+                ci.append(np.array([base + 3 + i, base + i]))
+                vals.append(np.array([-1.0, 1.0]))
+                rhs.append(np.array([blk.const[i] - float(fixed[i]) * (1 - 1e-12)]))
+            r0 += 1
+        bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L0, blk.L1]]
+        bounds[base + 6] = (0.0, 1.0 if deep else float((blk.L0 + blk.L1 + blk.const).max()))
+        bounds[base + 7:base + 7 + 2 * N] = (-np.inf, np.inf)
+        bounds[base + 7 + 2 * N] = (0.0, np.inf)
+        cost[base + 7 + 2 * N] = 1e4
+        if grow is not None:
+            cost[base + 3 + grow], cost[base + grow] = -1.0, 1.0
+        else:
+            cost[base + 6] = -1.0
+    A = coo_array((np.concatenate(vals), (np.concatenate(ri), np.concatenate(ci))),
+                  shape=(r0, int(starts[-1]))).tocsr()
+    res = linprog(cost, A_ub=A, b_ub=np.concatenate(rhs), bounds=bounds, method="highs",
+                  options={"primal_feasibility_tolerance": LP_TOL,
+                           "dual_feasibility_tolerance": LP_TOL})
+    if res.status != 0 or res.x is None:
+        return [None] * len(blocks)
+    out: list[FloatArray | None] = []
+    for k, blk in enumerate(blocks):
+        x = np.array(res.x[starts[k]:starts[k + 1]])
+        ok = (_cone_values(blk, x).min() >= -CHECK_TOL
+              and bool(np.all(_lengths(blk, x) >= -CHECK_TOL)))
+        out.append(x if ok else None)
+    return out
+
+
+def _blocks(a: FloatArray, t: FloatArray, L: FloatArray, center: FloatArray,
+            half: FloatArray, margin: float, row: int) -> list[_Block]:
+    """Every convex piece of one row: the sub-arcs of :func:`spanning_arcs` times the
+    eight sides of the meeting point."""
+    return [_Block.on_edges(a, t, L, lo, hi, sigma, row)
+            for lo, hi in spanning_arcs(center, half, margin) for sigma in _SIDES]
+
+
+def _smallest(blk: _Block, x: FloatArray) -> float:
+    return float(np.min(_lengths(blk, x)))
+
+
+def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
+                 margin: float, size: float) -> list[tuple[_Block | None, float]]:
+    """Per row of three features, the piece with the largest smallest region and that
+    region's length in units of ``size`` (-1 where no piece holds a grasp)."""
+    d = b - a
+    L = np.hypot(d[..., 0], d[..., 1])
+    t = d / np.where(L > 0, L, 1.0)[..., None]
+    an, Ln = a / size, L / size
+    out: list[tuple[_Block | None, float]] = []
+    for start in range(0, len(a), LP_ROWS):
+        stop = min(start + LP_ROWS, len(a))
+        blocks = [blk for r in range(start, stop)
+                  for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r)]
+        best: dict[int, tuple[float, _Block]] = {}
+        for blk, x in zip(blocks, _solve_blocks(blocks) if blocks else [], strict=True):
+            if x is not None and (blk.row not in best or _smallest(blk, x) > best[blk.row][0]):
+                best[blk.row] = (_smallest(blk, x), blk)
+        out += [(best[r][1], best[r][0]) if r in best else (None, -1.0)
+                for r in range(start, stop)]
+    return out
+
+
+def _leximin(blk: _Block) -> Piece | None:
+    """Leximin-optimal levels (definition 7.1) in one piece, then the placement whose
+    witnesses are deepest inside the cones at those levels."""
+    x = _solve_blocks([blk])[0]
+    if x is None:
+        return None
+    levels = np.full(3, _smallest(blk, x))
+    free = np.ones(3, dtype=bool)
+    step = LEXIMIN_STEP * max(float((blk.L0 + blk.L1 + blk.const).max()), 1e-300)
+    for _ in range(3):                    # each round fixes at least one region
+        if not free.any():
+            break
+        grows = np.zeros(3, dtype=bool)
+        for i in np.flatnonzero(free):
+            xi = _solve_blocks([blk], fixed=levels, grow=int(i))[0]
+            grows[i] = xi is not None and _lengths(blk, xi)[i] > levels[i] + step
+        free &= grows
+        if not free.any():
+            break
+        xf = _solve_blocks([blk], fixed=levels, free=free)[0]
+        if xf is None:
+            break
+        levels[free] = max(float(np.min(_lengths(blk, xf)[free])), float(levels[free].max()))
+    xd = _solve_blocks([blk], fixed=levels, deep=True)[0]
+    x = x if xd is None else xd
+    N = len(blk.corners())
+    return Piece(x[:3].copy(), x[3:6].copy(), _lengths(blk, x), blk.sigma.copy(),
+                 (blk.lo_ang.copy(), blk.hi_ang.copy()),
+                 np.stack([x[7:7 + N], x[7 + N:7 + 2 * N]], axis=1))
+
+
+def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,
+                       size: float = 1.0) -> list[Piece | None]:
+    """The best box of regions of concurrent grasps on each of a batch of three features.
+
+    ``a``, ``b`` (R, 3, 2): the features' ends; ``center``, ``half`` (R, 3): their
+    friction cones (angle of the inward normal, half-width ``atan(mu)``, radians);
+    ``margin`` (radians); ``size``: a length scale of the part (the programs are solved
+    in units of it).  Returns per row the :class:`Piece` with the largest smallest
+    region, its levels leximin-optimal within that piece (definition 7.1) and its
+    witnesses as deep inside the cones as the levels allow (positions and witnesses in
+    the part's units), or None when no piece holds a grasp.
+
+    >>> tri = np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 3.0]])
+    >>> a, b = tri[None], np.roll(tri, -1, axis=0)[None]
+    >>> d = b - a
+    >>> inward = np.arctan2(d[..., 0], -d[..., 1])          # the left normal: inside
+    >>> piece = concurrent_regions(a, b, inward, np.full((1, 3), np.arctan(0.5)),
+    ...                            np.radians(0.5))[0]
+    >>> bool(piece.levels.min() > 0.5)
+    True
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    center, half = np.asarray(center, float), np.asarray(half, float)
+    out: list[Piece | None] = []
+    for blk, _ in _best_blocks(a, b, center, half, margin, size):
+        p = None if blk is None else _leximin(blk)
+        if p is not None:
+            p = replace(p, lo=p.lo * size, hi=p.hi * size, levels=p.levels * size,
+                        witness=p.witness * size)
+        out.append(p)
+    return out
+
+
+def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: FloatArray,
+          mode: str) -> GraspPlan:
+    regions = np.asarray(regions, float)
+    return regions_plan(polygon, spec, regions, tuple((e,) for e in edges),
+                        np.hypot(*(regions[:, 1] - regions[:, 0]).T), "friction", mode)
+
+
+#: With a measure other than ``min_region``, how many plans (the best by their smallest
+#: region) the measure orders.
+KEEP_FOR_MEASURE = 50
+
+
+def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+                       progress: Any = None) -> list[GraspPlan]:
+    """Ranked plans of three fingers with friction (``plan(part, fingers=3, mu=...)``).
+
+    Candidate triples of features on distinct edges come from
+    :func:`~fcgrasp.pipeline.candidates` by decreasing bound (the shortest feature): each
+    gets its best concurrent piece (:func:`concurrent_regions`), and the stream stops when
+    no later triple can reach the ``top``-th smallest region found (branch and bound,
+    exact for the pieces).  The :data:`KEEP_PAIRS` best two-finger plans with the third
+    finger anywhere on the longest feature of another edge (mode ``"pair"``) are
+    candidates too.  Ranked as :func:`fcgrasp.pipeline.rank` ranks: the measure
+    ``spec.rank_by`` (of the :data:`KEEP_FOR_MEASURE` best by smallest region when it is
+    not ``min_region``), the leximin order, the geometric key.  ``progress(done,
+    total)`` counts candidate triples.
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> best = three_finger_plans(demo_part("triangle"), plan_spec(fingers=3, mu=0.5,
+    ...                                                          gravity=None, top=1))[0]
+    >>> best.mode, len(best.edges), best.contact_type
+    ('concurrent', 3, 'friction')
+    """
+    if spec.fingers != 3 or spec.gravity is not None:
+        raise ValueError("three_finger_plans plans three fingers with friction "
+                         "(fingers=3, gravity=None)")
+    F = features(polygon, spec.mu, spec.hand, edges)
+    size = polygon.size
+    keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
+                                          max(spec.top, KEEP_FOR_MEASURE))
+    grow = (spec.along_boundary and spec.hand is None and edges is None
+             and crosses_a_vertex(polygon, spec.mu, spec.margin))
+    # the rows kept: the top, and the seeds grown along the boundary (the same whatever
+    # the top, so that the pruned search gives the exhaustive answer)
+    hold = keep if keep is None or not grow else max(keep, GROW_SEEDS)
+    found: list[tuple[float, tuple[int, ...], _Block]] = []
+    floor = 0.0
+    total = search_size(polygon, spec, edges).rows
+    done = 0
+    for batch in candidates(polygon, spec, edges):
+        if hold is not None and batch.ceiling < floor:
+            break
+        rows = np.asarray(batch.feats, dtype=int)
+        bound = np.asarray(batch.bound, dtype=float)
+        for start in range(0, len(rows), LP_ROWS):
+            sub, bnd = rows[start:start + LP_ROWS], bound[start:start + LP_ROWS]
+            if hold is not None:
+                sub = sub[bnd >= floor]
+            if len(sub):
+                res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
+                                   spec.margin_rad, size)
+                found += [(lv * size, tuple(int(f) for f in row), blk)
+                          for row, (blk, lv) in zip(sub, res, strict=True)
+                          if blk is not None and lv > 0]
+                if hold is not None and len(found) >= hold:
+                    found.sort(key=lambda r: -r[0])
+                    del found[hold + _ties(found, hold, size):]
+                    floor = found[hold - 1][0] - 2 * RANK_TOL * size
+            done += LP_ROWS
+            if progress is not None:
+                progress(min(done, total), total)
+            if hold is not None and len(bnd) and bnd[-1] < floor:
+                break
+    plans = []
+    for lv, row, blk in found:
+        if hold is not None and lv < floor:
+            continue
+        piece = _leximin(blk)
+        if piece is None:
+            continue
+        ends = np.stack([F.a[list(row)] + (piece.lo * size)[:, None] * blk.t0,
+                         F.a[list(row)] + (piece.hi * size)[:, None] * blk.t0], axis=1)
+        plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
+                           "concurrent"))
+    if grow:
+        plans += _grown_plans(polygon, spec, found, F)
+    plans += _pair_plans(polygon, spec, edges, F)
+    return _ranked(polygon, spec, plans, keep)
+
+
+#: Concurrent plans of single edges grown along the boundary (the best ones).
+GROW_SEEDS = 5
+#: A grown configuration has at most this many corner grasps (points per region, multiplied).
+MAX_CORNERS = 216
+#: Growth steps at most (each lengthens the shortest regions by one edge each).
+MAX_STEPS = 60
+
+
+def _stretch_cone(polygon: Polygon, stretch: tuple[int, ...], mu: float
+                  ) -> tuple[float, float]:
+    """The friction cone every contact of a stretch has (centre and half-width of the
+    force directions; negative where none): the intersection of its edges' cones (a
+    fingertip on an interior vertex may push along any normal of the vertex's fan, whose
+    cones all hold that intersection)."""
+    n = polygon.normals[list(stretch)]
+    c = np.arctan2(-n[:, 1], -n[:, 0])
+    d = wrap(c - c[0])
+    phi = float(np.arctan(mu))
+    lo, hi = c[0] + d.max() - phi, c[0] + d.min() + phi
+    return float((lo + hi) / 2), float((hi - lo) / 2)
+
+
+def _stretch_blocks(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], mu: float,
+                    margin: float, sides: Any = None) -> list[_Block]:
+    """The convex pieces of three fingers on three stretches (in units of the part's size):
+    the sub-arcs of :func:`spanning_arcs` of the stretches' common cones times the sides
+    (default all eight)."""
+    size = polygon.size
+    cones = [_stretch_cone(polygon, st, mu) for st in stretches]
+    center = np.array([c for c, _ in cones])
+    half = np.array([h for _, h in cones])
+    if np.any(half <= margin):
+        return []
+    first = [st[0] for st in stretches]
+    last = [st[-1] for st in stretches]
+    L = polygon.lengths
+    const = np.array([0.0 if len(st) == 1 else float(L[list(st[:-1])].sum())
+                      for st in stretches]) / size
+    inner = tuple(polygon.starts[list(st[1:])] / size for st in stretches)
+    args = (polygon.starts[first] / size, polygon.tangents[first], L[first] / size,
+            polygon.starts[last] / size, polygon.tangents[last], L[last] / size, const,
+            inner)
+    return [_Block(*args, lo, hi, np.asarray(sigma, float), 0)
+            for lo, hi in spanning_arcs(center, half, margin)
+            for sigma in (_SIDES if sides is None else sides)]
+
+
+def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], grow: Any
+                   ) -> list[tuple[tuple[int, ...], ...]]:
+    """Configurations with every region marked in ``grow`` one edge longer, each at one
+    of its ends (on edges no region covers, never a whole ring): the smallest region can
+    only grow when every region as short does."""
+    used = {e for st in stretches for e in st}
+    options = []
+    for st, g in zip(stretches, grow, strict=True):
+        ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
+        opts = []
+        if g and len(st) + 1 < ring:
+            for new, added in (((polygon.previous_edge(st[0]), *st), polygon.previous_edge(st[0])),
+                               ((*st, polygon.next_edge(st[-1])), polygon.next_edge(st[-1]))):
+                if added not in used and polygon.usable[added]:
+                    opts.append(new)
+        options.append(opts if g else [st])
+    out = []
+    for combo in product(*options):
+        edges = [e for st in combo for e in st]
+        if len(edges) == len(set(edges)):
+            out.append(tuple(combo))
+    return out
+
+
+def _corner_count(stretches: tuple[tuple[int, ...], ...]) -> int:
+    return int(np.prod([len(st) + 1 for st in stretches]))
+
+
+def _best_piece(blocks: list[_Block], xs: list[FloatArray | None]
+                ) -> tuple[float, _Block | None, FloatArray | None]:
+    best: tuple[float, _Block | None, FloatArray | None] = (-1.0, None, None)
+    for blk, x in zip(blocks, xs, strict=True):
+        if x is not None and _smallest(blk, x) > best[0]:
+            best = (_smallest(blk, x), blk, x)
+    return best
+
+
+def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
+                    sigma: Any = None) -> tuple[tuple[tuple[int, ...], ...], Piece] | None:
+    """Concurrent regions of three fingers grown along the boundary from three edges.
+
+    Each step solves, in one linear program, every configuration with the regions as
+    short as the smallest one edge longer (:func:`_stretch_moves`; every contact of a
+    stretch keeps the cone common to its edges, so a piece of it is convex as on single
+    edges) with the sides ``sigma`` of the meeting point (default: all eight), and takes
+    the best that lengthens the smallest region; it stops when none does.  The configuration reached
+    is solved over every piece and its levels made leximin-optimal.  Returns the
+    stretches and the :class:`Piece` (positions in the part's units), or None when the
+    edges hold no concurrent grasp.  A safe lower bound, as on single edges: every grasp
+    of the regions is force closure.
+
+    >>> import numpy as np
+    >>> a = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    >>> part = Polygon(np.c_[40 * np.cos(a), 25 * np.sin(a)])
+    >>> st, piece = grow_concurrent(part, (0, 20, 40), mu=0.5, margin=np.radians(0.5))
+    >>> min(len(s) for s in st) > 1, bool(piece.levels.min() > part.lengths[0])
+    (True, True)
+    """
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    idx = polygon.check_edges(edges, "edges")
+    if len(idx) != 3 or len(set(idx)) != 3:
+        raise ValueError(f"edges must be three distinct edges, got {edges!r}")
+    mu = check_mu_scalar(mu, "mu")
+    margin = check_scalar(margin, "margin", nonnegative=True)
+    if sigma is not None and (np.shape(sigma) != (3,) or not np.all(np.abs(sigma) == 1)):
+        raise ValueError(f"sigma must be three sides, each 1 or -1, got {sigma!r}")
+    sides = None if sigma is None else [np.asarray(sigma, float)]
+    cur: tuple[tuple[int, ...], ...] = tuple((e,) for e in idx)
+    blocks = _stretch_blocks(polygon, cur, mu, margin, sides)
+    level, blk, x = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None, None)
+    if blk is None or x is None:
+        return None
+    for _ in range(MAX_STEPS):
+        # the regions as short as the smallest must all grow for it to grow
+        short = _lengths(blk, x) <= level * (1 + 1e-6)
+        moves = [m for m in _stretch_moves(polygon, cur, short)
+                 if _corner_count(m) <= MAX_CORNERS]
+        per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]
+        flat = [b for bs in per for b in bs]
+        if not flat:
+            break
+        xs = _solve_blocks(flat)
+        best = None
+        k = 0
+        for m, bs in zip(moves, per, strict=True):
+            lv, b, xb = _best_piece(bs, xs[k:k + len(bs)])
+            k += len(bs)
+            if b is not None and xb is not None and lv > level * (1 + RANK_TOL) \
+                    and (best is None or lv > best[0]):
+                best = (lv, m, b, xb)
+        if best is None:
+            break
+        level, cur, blk, x = best
+    blocks = _stretch_blocks(polygon, cur, mu, margin)
+    _, blk, _ = _best_piece(blocks, _solve_blocks(blocks))
+    piece = None if blk is None else _leximin(blk)
+    if piece is None:
+        return None
+    size = polygon.size
+    return cur, replace(piece, lo=piece.lo * size, hi=piece.hi * size,
+                        levels=piece.levels * size, witness=piece.witness * size)
+
+
+def _grown_plans(polygon: Polygon, spec: PlanSpec,
+                 found: list[tuple[float, tuple[int, ...], _Block]], F: Any
+                 ) -> list[GraspPlan]:
+    """The :data:`GROW_SEEDS` best concurrent plans of single edges grown along the
+    boundary (:func:`grow_concurrent`): the plans whose regions leave their edges."""
+    out = []
+    seen = set()
+    for _, row, blk in sorted(found, key=lambda r: -r[0])[:GROW_SEEDS]:
+        got = grow_concurrent(polygon, [int(F.edge[f]) for f in row], spec.mu,
+                              spec.margin_rad, blk.sigma)
+        if got is None or max(len(st) for st in got[0]) == 1 or got[0] in seen:
+            continue                    # two seeds may grow into one configuration
+        stretches, piece = got
+        seen.add(stretches)
+        out.append(regions_plan(polygon, spec, stretch_polylines(polygon, stretches, piece),
+                                stretches, piece.levels, "friction", "concurrent"))
+    return out
+
+
+def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[FloatArray]:
+    """The regions of a :class:`Piece` on stretches as polylines: from ``lo`` on each
+    stretch's first edge through its interior vertices to ``hi`` on its last."""
+    out = []
+    for i, st in enumerate(stretches):
+        a0, t0 = polygon.starts[st[0]], polygon.tangents[st[0]]
+        a1, t1 = polygon.starts[st[-1]], polygon.tangents[st[-1]]
+        out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
+                                   [a1 + piece.hi[i] * t1]]))
+    return out
+
+
+def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
+    """How many rows after the ``keep``-th tie with it."""
+    last = found[keep - 1][0]
+    return sum(1 for r in found[keep:] if r[0] >= last - 2 * RANK_TOL * size)
+
+
+def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[GraspPlan]:
+    """Two fingers that hold on their own (the exact two-finger plans) and a third
+    anywhere on the longest feature of another edge: force closure whatever the third
+    finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
+    an outline where a region can cover a vertex) the two are the exact two-finger
+    stretches (:func:`fcgrasp.pipeline.boundary_plans`) and the third runs along the
+    longest stretch of edges neither touches (:func:`free_stretch`): three fingers then
+    never do worse than the two-finger stretches with the third finger so placed."""
+    if edges is not None and len(set(int(e) for e in edges)) != 3:
+        return []
+    boundary = (spec.along_boundary and spec.hand is None and edges is None
+                and crosses_a_vertex(polygon, spec.mu, spec.margin))
+    two = replace(spec, fingers=2, top=KEEP_PAIRS, rank_by="min_region",
+                  along_boundary=boundary)
+    lengths = np.hypot(*(F.b - F.a).T)
+    out = []
+    if boundary:
+        for p in boundary_plans(polygon, two):
+            run = free_stretch(polygon, {e for st in p.region_edges for e in st})
+            if run is None:
+                continue
+            line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
+            out.append(regions_plan(polygon, spec, [*p.regions, line],
+                                    (*p.region_edges, run),
+                                    [*p.lengths, float(polygon.lengths[list(run)].sum())],
+                                    "friction", "pair"))
+        return out
+    for p in search(polygon, two, edges=edges):
+        other = np.flatnonzero(~np.isin(F.edge, p.edges))
+        if not other.size:
+            continue
+        f = int(other[np.argmax(lengths[other])])
+        ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
+        out.append(_plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair"))
+    return out
+
+
+def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
+    """The longest stretch (consecutive usable edges of one ring, in ring order, not the
+    whole ring) none of whose edges is in ``covered`` (on a ring no edge of which is
+    covered: all but its shortest edge); None when every edge is.
+
+    >>> sq = Polygon([[0, 0], [4, 0], [4, 3], [0, 3]])
+    >>> free_stretch(sq, {0}), free_stretch(sq, set())
+    ((1, 2, 3), (2, 3, 0))
+    """
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    covered = set(polygon.check_edges(list(covered), "covered")) if len(covered) else set()
+    best: tuple[int, ...] | None = None
+    best_len = -1.0
+    for r in np.unique(polygon.rings):
+        usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
+        if usable.size < 2:
+            continue
+        # the ring in order, starting just after a covered edge (or after its shortest)
+        taken = [int(e) for e in usable if int(e) in covered]
+        first = taken[0] if taken else int(usable[np.argmin(polygon.lengths[usable])])
+        order = [polygon.next_edge(first)]
+        while len(order) < usable.size:
+            order.append(polygon.next_edge(order[-1]))
+        runs: list[list[int]] = [[]]
+        for e in order[:-1] if not taken else order:
+            if e in covered:
+                runs.append([])
+            else:
+                runs[-1].append(e)
+        for run in runs:
+            length = float(polygon.lengths[run].sum()) if run else 0.0
+            if run and length > best_len:
+                best, best_len = tuple(run), length
+    return best
+
+
+def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
+            ) -> list[GraspPlan]:
+    """Plans in :func:`~fcgrasp.model.plans.rank_key` order (the measure of the ``keep`` best
+    by the leximin order), each grasp once."""
+    plans.sort(key=lambda p: leximin_key(p.lengths, polygon.size))
+    return ranked_unique(polygon, spec, plans if keep is None else plans[:keep])

@@ -1,0 +1,94 @@
+"""Silhouettes in raster images (scikit-image and imageio, extra ``image``)."""
+
+from __future__ import annotations
+
+import io
+from typing import Any
+
+import numpy as np
+
+from ..model.outline import fill_rings
+from ._drawing import Drawing, Shape, TolOf
+
+#: Blobs smaller than this fraction of the largest one (or than 9 pixels) are noise.
+MIN_BLOB = 1e-3
+
+
+def _gray(img: np.ndarray) -> np.ndarray:
+    from skimage import color
+
+    img = np.asarray(img)
+    if img.ndim == 3 and img.shape[2] in (2, 4):
+        alpha = img[..., -1].astype(float)
+        if np.ptp(alpha) > 0:                  # a transparent background: alpha is the part
+            return 1.0 - alpha / max(float(alpha.max()), 1.0)
+        img = img[..., :-1]
+    if img.ndim == 3 and img.shape[2] == 3:
+        img = color.rgb2gray(img)
+    elif img.ndim == 3 and img.shape[2] == 1:
+        img = img[..., 0]
+    img = img.astype(float)
+    hi = float(img.max()) if img.size else 0.0
+    return img / hi if hi > 0 else img
+
+
+def read_image(data: bytes, tol_of: TolOf, threshold: float | None = None) -> Drawing:
+    """Blobs of a silhouette image, in pixels with y down.
+
+    The image is made grey (an alpha channel with contrast is the silhouette), split at
+    ``threshold`` (a grey level in [0, 1]; default Otsu's), and the class that covers most
+    of the image's border is the background: a band of background touching the border is
+    never taken for the part.  Blobs of the other class that touch the border are left out
+    when others do not.  Each blob is traced with its holes (``find_contours``) and
+    simplified to ``tol_of`` pixels (``approximate_polygon``)."""
+    try:
+        import imageio.v3 as iio
+        from skimage import filters, measure, segmentation
+    except ImportError as exc:  # pragma: no cover - depends on the install
+        raise ValueError("reading images needs scikit-image: pip install "
+                         "'fcgrasp[image]'") from exc
+    try:
+        img: Any = iio.imread(io.BytesIO(data), index=0, plugin="pillow")
+    except Exception as exc:  # imageio raises several kinds
+        raise ValueError(f"not a readable image ({str(exc).splitlines()[0][:120]})") from exc
+    g = _gray(img)
+    if g.ndim != 2 or min(g.shape) < 3 or np.ptp(g) == 0:
+        raise ValueError("the image has no contrast, no silhouette to trace")
+    thr = filters.threshold_otsu(g) if threshold is None else threshold
+    dark = g < thr
+    if dark.all() or not dark.any():
+        raise ValueError(f"threshold {thr:.3g} leaves the whole image on one side: no "
+                         f"silhouette")
+    border = np.concatenate([dark[0], dark[-1], dark[:, 0], dark[:, -1]])
+    mask = dark if border.mean() < 0.5 else ~dark        # the part is not the border's class
+    labels = measure.label(mask, connectivity=2)
+    inner = segmentation.clear_border(labels)
+    notes = []
+    if inner.max() > 0:
+        if (labels > 0).sum() > (inner > 0).sum():
+            notes.append("blobs touching the image border were left out")
+        labels = inner
+    else:
+        notes.append("every blob touches the image border")
+    props = measure.regionprops(labels)
+    if not props:
+        raise ValueError("no silhouette found")
+    biggest = max(p.area for p in props)
+    tol = tol_of(float(max(g.shape)), "px")
+    shapes: list[Shape] = []
+    for p in sorted(props, key=lambda p: p.label):
+        if p.area < max(9, MIN_BLOB * biggest):
+            continue
+        r0, c0, r1, c1 = p.bbox
+        blob = np.pad(labels[r0:r1, c0:c1] == p.label, 1).astype(float)
+        rings = []
+        for c in measure.find_contours(blob, 0.5):
+            c = measure.approximate_polygon(c, tolerance=tol)
+            rings.append(np.column_stack([c[:, 1] + c0 - 1, c[:, 0] + r0 - 1]))
+        for j, poly in enumerate(fill_rings(rings, "evenodd")):
+            bid = f"blob{p.label}" + ("" if j == 0 else f"#{j + 1}")
+            shapes.append(Shape(poly, bid, (bid,), flatten=tol))
+    if not shapes:
+        raise ValueError("no silhouette found")
+    return Drawing(shapes, "px", "pixels (no physical size: give pixel_size / "
+                   "--pixel-size)", y_down=True, notes=notes)

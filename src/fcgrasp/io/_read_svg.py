@@ -1,0 +1,140 @@
+"""SVG drawings (svgelements, extra ``svg``): every visible shape, filled by its rule."""
+
+from __future__ import annotations
+
+import io
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+import shapely
+
+from ..model.outline import fill_rings
+from ._drawing import Drawing, Shape, TolOf, flatten_curve
+
+#: CSS pixels per inch: the unit of SVG user space after its viewBox and width/height.
+PPI = 96.0
+#: A shape covering at least this fraction of the canvas, as a rectangle, is a background.
+BACKGROUND_FRACTION = 0.98
+
+
+def _z(point: Any) -> complex:
+    """An svgelements point as a Python complex number."""
+    return complex(float(point.x), float(point.y))
+
+
+def _curve_point(seg: Any) -> Callable[[float], complex]:
+    """``t -> point`` of an svgelements segment, as a complex number."""
+    return lambda t: _z(seg.point(t))
+
+
+def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
+    """The subpaths of a path that enclose something: closed ones, and open ones when the
+    shape is filled (a viewer closes them) or when they end where they start."""
+    from svgelements import Close, Line, Move
+
+    rings: list[np.ndarray] = []
+    cur: list[complex] = []
+    start: complex | None = None
+
+    def finish(pts: list[complex], closed: bool) -> None:
+        if len(pts) >= 3 and (closed or filled or abs(pts[-1] - pts[0]) <= tol):
+            rings.append(np.array([[z.real, z.imag] for z in pts]))
+
+    for s in path.segments():
+        if isinstance(s, Move):
+            finish(cur, False)
+            cur = [_z(s.end)]
+            start = cur[0]
+        elif isinstance(s, Close):
+            finish(cur, True)
+            cur = []
+        else:
+            if not cur and start is not None:
+                cur = [start]
+            if isinstance(s, Line):
+                cur.append(_z(s.end))
+            else:
+                flatten_curve(_curve_point(s), tol, cur)
+    finish(cur, False)
+    return rings
+
+
+def _walk(group: Any, ancestors: tuple[str, ...]) -> Any:
+    from svgelements import Group
+    from svgelements import Shape as SvgShape
+
+    for child in group:
+        if isinstance(child, Group):
+            gid = child.values.get("id")
+            yield from _walk(child, ancestors + ((gid,) if gid else ()))
+        elif isinstance(child, SvgShape):
+            yield child, ancestors
+
+
+def _visible(value: Any) -> bool:
+    return value is not None and str(value).lower() not in ("none", "transparent") and \
+        getattr(value, "alpha", 255) != 0
+
+
+def read_svg(data: bytes, tol_of: TolOf) -> Drawing:
+    """Shapes of an SVG: paths, polygons, rects, circles, ellipses; transforms applied,
+    curves flattened, subpaths filled by the element's ``fill-rule`` (``evenodd`` for
+    outlines drawn without fill), in CSS px (96 per inch) with y down."""
+    try:
+        from svgelements import SVG
+        from svgelements import Path as SvgPath
+    except ImportError as exc:  # pragma: no cover - depends on the install
+        raise ValueError("reading SVG needs svgelements: pip install 'fcgrasp[svg]'") from exc
+    try:
+        svg = SVG.parse(io.BytesIO(data), reify=True, ppi=PPI)
+    except Exception as exc:  # svgelements raises many kinds of errors on bad XML
+        raise ValueError(f"not a readable SVG ({str(exc).splitlines()[0][:120]})") from exc
+    shapes: list[Shape] = []
+    for k, (el, ancestors) in enumerate(_walk(svg, ())):
+        filled = _visible(el.fill)
+        if not filled and not _visible(el.stroke):
+            continue
+        if str(el.values.get("display", "")).lower() == "none":
+            continue
+        path = SvgPath(el)
+        bbox = path.bbox()
+        if bbox is None:
+            continue
+        size = max(bbox[2] - bbox[0], bbox[3] - bbox[1])
+        if not size > 0:
+            continue
+        tol = tol_of(size, "px")
+        rings = _rings(path, tol, filled)
+        if not rings:
+            continue
+        rule = str(el.values.get("fill-rule", "nonzero")).strip().lower() if filled \
+            else "evenodd"
+        pieces = fill_rings(rings, rule if rule in ("nonzero", "evenodd") else "nonzero")
+        eid = el.values.get("id")
+        name = eid or f"{type(el).__name__.lower()}{k}"
+        for j, poly in enumerate(pieces):
+            pid = name if len(pieces) == 1 else f"{name}#{j + 1}"
+            tags = tuple(dict.fromkeys((*ancestors, *((eid,) if eid else ()), pid)))
+            shapes.append(Shape(poly, pid, tags, flatten=tol))
+    if not shapes:
+        raise ValueError("no closed path, polygon, rect, circle or ellipse found (nor a "
+                         "filled open path)")
+    # svgelements turns mm and cm into px with 1/25.4 rounded to 0.0393701 (0.5 ppm off);
+    # drawings sized in those units are put back on the exact 96 px per inch
+    width = str(svg.values.get("width", "")).strip().lower()
+    fix = 1.0 / (25.4 * 0.0393701) if width.endswith(("mm", "cm")) else 1.0
+    if fix != 1.0:
+        for sh in shapes:
+            sh.polygon = shapely.transform(sh.polygon, lambda c: c * fix)
+            sh.flatten = None if sh.flatten is None else sh.flatten * fix
+    canvas = float(svg.width or 0) * float(svg.height or 0) * fix * fix
+    if len(shapes) > 1 and canvas > 0:
+        for s in shapes:
+            x0, y0, x1, y1 = s.polygon.bounds
+            box = (x1 - x0) * (y1 - y0)
+            if s.polygon.area >= BACKGROUND_FRACTION * canvas and \
+                    s.polygon.area >= BACKGROUND_FRACTION * box:
+                s.background = True
+    return Drawing(shapes, "px", f"CSS px ({PPI:g} per inch, after viewBox and width/height)",
+                   y_down=True)

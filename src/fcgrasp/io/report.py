@@ -1,0 +1,129 @@
+"""JSON reports of plans and checks: versioned, deterministic (sorted keys, rounded floats).
+
+Layout of a plan report (``format_version`` 2)::
+
+    {
+      "fcgrasp": "0.1.0", "format_version": 2, "units": "mm",
+      "part": {"vertices": [[x, y], ...], "holes": [...], "edges": E},
+      "parameters": {"fingers": 2, "mu": 0.3, "top": 10, "rank_by": "min_region",
+                     "margin_deg": 0.5, "workspace": null, "finger_radius": 0.0,
+                     "disturbance": {"translation": 10.0, "rotation_deg": 15.0}},
+      "grasps": [{"rank": 1, "edges": [i, j], "contact_type": "friction", "mu": 0.3,
+                  "mode": "squeeze", "regions": [[[x, y], [x, y], ...], ...],
+                  "region_edges": [[i, ...], [j, ...]],
+                  "region_lengths": [...], "min_region_length": l,
+                  "contacts": [[x, y], ...], "normals": [[nx, ny], ...],
+                  "quality": {"min_region": ..., "resistance": ..., "resistance_approx": ...,
+                              "epsilon_l1": ..., "epsilon_linf": ...}}, ...],
+      "reason": null,
+      "source": {"file": "part.svg", "format": "svg", "index": 2, "parts_in_file": 3,
+                 "id": "gear", "layer": null, "chosen": "the largest of 3 parts",
+                 "units": "mm", "file_units": "px", "units_note": "...", "scale": 0.2646,
+                 "flip_y": true, "flatten": 0.05, "cleaned_vertices": 0,
+                 "clean_tolerance": 1e-05, "simplify": null}
+    }
+
+``edges`` use the input vertex order (hole edges numbered after the outer ring's) and
+give, per finger, the edge of its representative contact (``contacts``, the point
+halfway along its region); ``regions`` are polylines along the boundary through the
+vertices they cover, ``region_edges`` the edges they cover and ``region_lengths`` arc
+lengths.  Version 1 had two-point regions on one edge each and no ``region_edges``:
+:func:`migrate_report` reads a version-1 report as version 2;
+``grasps`` is empty when no grasp exists, and ``reason`` then says why.  ``source``
+(absent for parts built in Python) records how the part was read: the file, which of its
+parts, the units it was in and the scale applied, the flip of y-down sources, the
+flattening tolerance and the clean-up (see :class:`fcgrasp.io.parts.Part`).
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+from .. import __version__
+from ..core._json import json_ready
+
+FORMAT_VERSION = 2
+
+
+def migrate_report(report: dict[str, Any]) -> dict[str, Any]:
+    """A report of any earlier ``format_version`` as the current version (a copy).
+
+    Version 1 -> 2: every grasp's region (two end points on one edge) is a two-point
+    polyline and gets ``region_edges`` ``[[edge], ...]``; nothing else changed.
+
+    >>> old = {"format_version": 1, "grasps": [{"edges": [1, 3], "regions": []}]}
+    >>> migrate_report(old)["grasps"][0]["region_edges"], migrate_report(old)["format_version"]
+    ([[1], [3]], 2)
+    """
+    version = report.get("format_version")
+    if version not in (1, FORMAT_VERSION):
+        raise ValueError(f"report has format_version {version!r}; this fcgrasp reads "
+                         f"versions 1 to {FORMAT_VERSION}")
+    out = json.loads(json.dumps(report))
+    if version == 1:
+        for g in out.get("grasps", []):
+            g["region_edges"] = [[e] for e in g["edges"]]
+        out["format_version"] = 2
+    return out
+
+
+def dumps(report: dict[str, Any]) -> str:
+    """Deterministic JSON text (sorted keys, two-space indent, trailing newline)."""
+    return json.dumps(json_ready(report), sort_keys=True, indent=2, allow_nan=False) + "\n"
+
+
+def part_dict(polygon: Any) -> dict[str, Any]:
+    return {"vertices": polygon.vertices, "holes": list(polygon.holes),
+            "edges": polygon.n_edges}
+
+
+def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], units: str,
+                reason: str | None = None, source: dict[str, Any] | None = None
+                ) -> dict[str, Any]:
+    grasps = []
+    for k, p in enumerate(plans):
+        d = p.to_dict()
+        d["rank"] = k + 1
+        grasps.append(d)
+    out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+           "part": part_dict(polygon), "parameters": parameters, "grasps": grasps,
+           "reason": None if plans else (reason or "no force-closure grasp")}
+    if source is not None:
+        out["source"] = source
+    return out
+
+
+def check_report(polygon: Any, contacts: list[dict[str, Any]], verdict: Any, freedom: Any,
+                 units: str, source: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The report of ``fcgrasp check``: the contacts as read, the verdict of
+    :meth:`~fcgrasp.Grasp.explain` and the total freedom (a twist cone)."""
+    out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+           "part": part_dict(polygon), "contacts": contacts,
+           "force_closure": verdict.force_closure, "failed": verdict.failed,
+           "escape_twist": verdict.escape_twist, "escape": verdict.escape_description,
+           "total_freedom": {"rays": freedom.rays, "lines": freedom.lines}}
+    if source is not None:
+        out["source"] = source
+    return out
+
+
+def parts_report(parts: list[Any], default: int) -> dict[str, Any]:
+    """The report of ``fcgrasp parts``: every part of a file with its outline, and which
+    one is the default (-1: none is usable)."""
+    items = []
+    for p in parts:
+        d = p.to_dict()
+        d["background"] = p.background
+        d["error"] = p.error
+        d["part"] = None if p.polygon is None else part_dict(p.polygon)
+        d["area"] = None if p.polygon is None else p.polygon.area
+        items.append(d)
+    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION,
+            "units": parts[0].units if parts else None, "default": default, "parts": items}
+
+
+def demo_summary(plans: list[dict[str, Any]], units: str) -> dict[str, Any]:
+    """The index ``demo.json`` of ``fcgrasp demo``: one entry per built-in plan."""
+    return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
+            "plans": plans}

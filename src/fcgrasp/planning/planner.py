@@ -1,0 +1,279 @@
+"""Grasp plans: optimal independent regions on every edge set, ranked (sections 7, 8).
+
+:func:`plan` enumerates every edge pair (two fingers with friction), every 4-tuple and
+3-edge combination (four frictionless fingers), or every triple with gravity (three
+frictionless fingers), and returns the best :class:`~fcgrasp.GraspPlan` objects;
+:func:`independent_regions` gives the optimal regions of contact on chosen edges.  Both
+are thin façades over the public pipeline of :mod:`fcgrasp.pipeline` (candidates ->
+solve -> rank), which a user, a benchmark or a distributed runner can call step by step.
+
+Units: lengths are in the polygon's units; ``margin`` is an angle in **degrees**: every
+grasp of the returned regions points at least that far inside the friction cones (two
+fingers) or inside the sector ``C_12 & -C_34`` (four fingers; the pairing of the four
+fingers is the one giving the largest regions, so a plan does not depend on how the edges
+are numbered).  The default is :data:`fcgrasp.model.regions.DEFAULT_MARGIN_DEG` (0.5 degree).
+Three fingers are three fingers with friction (:mod:`fcgrasp.grippers.three_fingers`: concurrent
+grasps in non-marginal equilibrium, a safe lower bound of the optimum), or, given
+``gravity``, three frictionless fingers holding the part against gravity (counted as a
+frictionless contact at the centroid, section 3.1).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import check_mu_scalar
+from ..core.tolerances import SOLVER_TOL
+from ..grippers.jaw import ParallelJaw, jaw_plans
+from ..grippers.three_fingers import three_finger_plans
+from ..model.frictionless_stretches import frictionless_stretch_regions
+from ..model.graspsets import Vertex
+from ..model.hand import Hand
+from ..model.plans import GraspPlan, geometric_key, rank_key
+from ..model.polygon import Polygon
+from ..model.ranking import MEASURES
+from ..model.regions import DEFAULT_MARGIN_DEG
+from ..model.stretches import stretch_regions
+from ..pipeline import (
+    boundary_plans,
+    check_search,
+    frictionless_plan,
+    grown_plans,
+    plan_spec,
+    search,
+    stretch_plan,
+)
+
+__all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
+           "rank_key"]
+
+#: Names of the ranking measures (see :mod:`fcgrasp.model.ranking`).
+RANKINGS = tuple(MEASURES)
+
+
+def _check_polygon(polygon: Any) -> None:
+    if not isinstance(polygon, Polygon):
+        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+
+
+def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
+         rank_by: str = "min_region", hand: Hand | None = None,
+         margin: float = DEFAULT_MARGIN_DEG, gravity: Any = None,
+         disturbance: tuple[float, float] = (10.0, 15.0),
+         progress: Any = None, tol: float = SOLVER_TOL,
+         max_memory: int | None = None, along_boundary: bool = True,
+         gripper: Any = None, map: Any = None) -> list[Any]:
+    """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
+
+    Parameters
+    ----------
+    polygon : Polygon
+    fingers : {2, 3, 4}
+        2: two fingers with friction ``mu``; 3: three fingers with friction ``mu``
+        (:mod:`fcgrasp.grippers.three_fingers`), or with ``gravity`` three frictionless fingers
+        and gravity; 4: four frictionless fingers on four edges or on three edges (two
+        on one edge).
+    mu : float
+        Friction coefficient (two fingers, three without gravity; with four fingers or
+        gravity it must be 0: a ``mu`` the planner cannot use is an error).
+    top : int or None
+        How many plans to return (None: all).
+    rank_by : {"min_region", "resistance", "epsilon"}
+        Largest smallest region first; largest resistance first (the paper's order); or
+        largest Ferrari-Canny L1 measure first.
+    hand : Hand, optional
+        Workspace and finger radius (section 8.2): regions lie in the feasible parts.
+    margin : float
+        Safety margin in degrees inside the cones and sectors.
+    gravity : array_like, shape (2,), optional
+        Direction of the weight: ``fingers=3`` then means three frictionless fingers
+        holding the part against gravity.
+    disturbance : (float, float)
+        Translation (in the polygon's units) and rotation (degrees) of the resistance
+        measure; default 10 units (1 cm in millimetres) and 15 degrees.
+    progress : callable, optional
+        Called as ``progress(done, total)`` while candidate edge sets are solved.
+    tol : float
+        Relative slack of the exact region solver
+        (:data:`fcgrasp.core.tolerances.SOLVER_TOL`).
+    max_memory : int, optional
+        Memory budget of the search in bytes (default
+        :data:`fcgrasp.pipeline.MAX_MEMORY`, 2 GiB).  The search streams its candidates in
+        batches sized to it; a search that cannot fit (every plan of a large part with
+        ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
+        what would fit, before any work.
+    gripper : ParallelJaw, optional
+        Plan for a parallel-jaw gripper instead of point fingers
+        (:func:`fcgrasp.grippers.jaw.jaw_plans`: boxes of jaw poses, :class:`~fcgrasp.JawPlan`);
+        its friction is the jaw's, so ``fingers``, ``mu``, ``hand``, ``gravity`` and
+        ``rank_by`` must keep their defaults.
+    map : callable, optional
+        ``map(function, batches)`` to solve candidate batches elsewhere (processes, a
+        Dask cluster): the single-edge search (:func:`fcgrasp.pipeline.search`) of two
+        fingers without stretches, and of three frictionless or four fingers, uses it;
+        the answer is the same.
+    along_boundary : bool
+        Without a hand, regions are stretches of the boundary that may cover several
+        edges and the vertices between them: for two fingers the exact optimum
+        (:mod:`fcgrasp.model.stretches`); for three or four, the single-edge plans and regions
+        grown from the best of them (:mod:`fcgrasp.model.frictionless_stretches`: safe, a lower
+        bound on the optimum).  False keeps each region on one edge, as in the paper.
+
+    Returns
+    -------
+    list of GraspPlan (of JawPlan with a ``gripper``)
+        Best first; empty when the part admits no such grasp.
+
+    Examples
+    --------
+    >>> part = Polygon([[0, 0], [4, 0], [4, 1], [0, 1]])
+    >>> best = plan(part, fingers=2, mu=0.3, top=1)[0]
+    >>> best.edges, round(best.min_length, 4)      # the short sides face each other
+    ((1, 3), 1.0)
+    """
+    _check_polygon(polygon)
+    if gripper is not None:
+        if not isinstance(gripper, ParallelJaw):
+            raise TypeError(f"gripper must be a ParallelJaw or None, got "
+                            f"{type(gripper).__name__}")
+        unused = [f"{name}={value!r}" for name, value, default in (
+            ("fingers", fingers, 2), ("mu", mu, 0.0), ("hand", hand, None),
+            ("gravity", gravity, None), ("rank_by", rank_by, "min_region"))
+            if value != default]
+        if unused:
+            raise ValueError(f"a parallel jaw is planned from its own stroke, pads and mu: "
+                             f"{', '.join(unused)} would not be used")
+        if top is None:
+            raise ValueError("a parallel jaw needs a top (how many boxes), got top=None")
+        return list(jaw_plans(polygon, gripper, top=top, margin=margin))
+    spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
+                     margin=margin, gravity=gravity, disturbance=disturbance, tol=tol,
+                     max_memory=max_memory, along_boundary=along_boundary)
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress must be a callable progress(done, total) or None, "
+                        f"got {progress!r}")
+    check_search(polygon, spec)
+    if spec.fingers == 3 and spec.gravity is None:
+        return three_finger_plans(polygon, spec, progress=progress)
+    if spec.stretches:
+        plans = boundary_plans(polygon, spec)
+        if progress is not None:
+            progress(1, 1)
+        return plans
+    if spec.grows:
+        return grown_plans(polygon, spec, progress, map=map)
+    return search(polygon, spec, progress=progress, map=map)
+
+
+def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
+                        margin: float = DEFAULT_MARGIN_DEG, hand: Hand | None = None,
+                        gravity: Any = None, tol: float = SOLVER_TOL) -> GraspPlan | None:
+    """Optimal independent regions of contact on the given edges (definition 7.1).
+
+    Parameters
+    ----------
+    edges : sequence of int, or two sequences of int
+        Two edges (fingers with friction ``mu``: algorithm 7.1, squeezing and expanding
+        grasps), four edges (frictionless: theorem 7.1; an edge may repeat, then its two
+        regions do not overlap), three distinct edges (fingers with friction ``mu``,
+        :mod:`fcgrasp.grippers.three_fingers`) or three edges with ``gravity`` (frictionless).
+        Two fingers may also be given a *stretch* each, the consecutive edges of one
+        ring it may run along (``[[3, 4, 5], [9]]``): the regions are then the best
+        stretches inside them (:func:`fcgrasp.model.stretches.stretch_regions`), covering the
+        vertices between.
+        Three (with ``gravity``) or four frictionless fingers given stretches get the
+        optimal regions covering exactly those edges
+        (:func:`fcgrasp.model.frictionless_stretches.frictionless_stretch_regions`).
+    margin : float
+        Safety margin in degrees.
+
+    Returns
+    -------
+    GraspPlan or None
+        None when the edges admit no force-closure grasp with that margin.
+
+    Examples
+    --------
+    >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    >>> reg = independent_regions(sq, (0, 2), mu=0.3)
+    >>> [r.round(3).tolist() for r in reg.regions]
+    [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
+    """
+    _check_polygon(polygon)
+    if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
+            np.ndim(e) == 1 for e in edges):
+        return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
+    if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
+        raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
+    if any(isinstance(e, Vertex) for e in edges):
+        raise ValueError(f"edges holds a Vertex (a soft finger), got {list(edges)!r}: "
+                         f"independent regions lie on edges; use grasp_set or grasp_sets "
+                         f"for a soft finger at a vertex")
+    idx = polygon.check_edges(edges)
+    n = len(idx)
+    if n == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
+    elif n == 3 and gravity is None:
+        if len(set(idx)) != 3:
+            raise ValueError(f"three fingers with friction need three distinct edges, got "
+                             f"{list(idx)}")
+        spec = plan_spec(fingers=3, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
+    elif n in (3, 4):
+        if check_mu_scalar(mu, "mu") != 0:
+            raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
+                             f"got mu={mu}")
+        if n == 4 and gravity is not None:
+            raise ValueError("four edges take no gravity (gravity is counted with three "
+                             "frictionless fingers)")
+        doubled = [e for e in set(idx) if idx.count(e) == 2]
+        if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
+            raise ValueError(f"four fingers need four distinct edges or three with one twice, "
+                             f"got {list(idx)}")
+        spec = plan_spec(fingers=n, mu=0.0, top=1, hand=hand, margin=margin,
+                         gravity=gravity if n == 3 else None, tol=tol)
+    else:
+        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {n}")
+    plans = three_finger_plans(polygon, spec, edges=idx) if spec.fingers == 3 and \
+        spec.gravity is None else search(polygon, spec, edges=idx)
+    if not plans:
+        return None
+    p = plans[0]
+    # report the fingers in the order asked for
+    order: list[int] = []
+    for e in idx:
+        order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
+    o = np.array(order)
+    return GraspPlan(tuple(p.edges[k] for k in o), [p.regions[k] for k in o], p.lengths[o],
+                     p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
+                     p.gravity, centroid=p.centroid, radius=p.radius,
+                     disturbance=p.disturbance)
+
+
+def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
+                     hand: Hand | None, gravity: Any) -> GraspPlan | None:
+    if hand is not None:
+        raise ValueError("regions along given stretches are planned without a hand")
+    if len(stretches) == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
+        pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
+        return None if pair is None else stretch_plan(polygon, spec, pair)
+    n = len(stretches)
+    if n == 3 and gravity is None:
+        raise ValueError("three stretches are three frictionless fingers with "
+                         "gravity=(gx, gy); three fingers with friction are planned on "
+                         "single edges (give three edge indices)")
+    if check_mu_scalar(mu, "mu") != 0:
+        raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
+    if (n == 3) != (gravity is not None):
+        raise ValueError("three stretches need gravity=..., four stretches take no gravity")
+    spec = plan_spec(fingers=n, mu=0.0, top=1, margin=margin,
+                     gravity=gravity if n == 3 else None)
+    r = frictionless_stretch_regions(polygon, stretches, spec.margin,
+                                     None if spec.gravity is None else spec.gravity)
+    return None if r is None else frictionless_plan(polygon, spec, r)
