@@ -79,8 +79,8 @@ def test_plans_are_those_of_fcgrasp_plan(client, tmp_path, options):
 def test_the_page_options_become_the_cli_options(client):
     ans = _plan(client, {"outer": BLOB}, {"gripper": "2", "mu": 0.7, "top": 2,
                                           "along_boundary": False, "margin": 2})
-    assert ans["argv"] == ["--fingers", "2", "--single-edge", "--mu", "0.7", "--margin", "2.0",
-                           "--top", "2"]
+    assert ans["argv"] == ["--fingers", "2", "--mu", "0.7", "--top", "2", "--single-edge",
+                           "--margin", "2.0"]
     params = ans["report"]["parameters"]
     assert (params["mu"], params["top"], params["margin_deg"], params["along_boundary"]) == \
         (0.7, 2, 2.0, False)
@@ -211,7 +211,7 @@ def test_oversized_uploads_are_refused(client):
     ({"part": {"outer": BLOB}, "options": {"gripper": "5"}}, "gripper", "gripper"),
     ({"part": {"outer": BLOB}, "options": {"mu": -1}}, "mu", "mu"),
     ({"part": {"outer": BLOB}, "options": {"top": 0}}, "top", "top"),
-    ({"part": {"outer": BLOB}, "options": {"rank_by": "x"}}, "rank_by", "rank_by"),
+    ({"part": {"outer": BLOB}, "options": {"rank_by": "x"}}, "rank_by", "--rank-by"),
     ({"part": {"outer": BLOB}, "options": {"gripper": "jaw", "pad": 4}}, "stroke", "stroke"),
     ({"part": {"outer": BLOB}, "options": {"colour": 1}}, "options", "colour"),
     ({"part": {"outer": BLOB}, "options": {"gripper": "jaw", "stroke": [5, 60], "pad": 6,

@@ -67,7 +67,7 @@ def draw_grasp(ax: Any, grasp: Grasp, outline: Any = None, title: str | None = N
 def save_figure(fig: Any, path: str, outputs: Any = None) -> None:
     """Save a matplotlib figure atomically (format from the extension), or stage it in
     ``outputs`` (an output set written all or none)."""
-    from .io._atomic import OutputSet
+    from .io.outputs import OutputSet
 
     def write(tmp: str) -> None:
         fig.savefig(tmp, dpi=120, bbox_inches="tight")

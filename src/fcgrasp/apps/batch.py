@@ -1,7 +1,8 @@
 """Planning a catalogue of parts: ``fcgrasp batch`` and :func:`plan_many` (issue 15).
 
-Every part is planned by :func:`fcgrasp.apps.cli.plan_document`, the function behind
-``fcgrasp plan``, so a batch's results are exactly what ``plan --json`` gives.
+Every part is planned by :func:`fcgrasp.planning.plan_document` on a
+:class:`~fcgrasp.planning.PlanRequest` (the function and the request behind ``fcgrasp
+plan``), so a batch's results are exactly what ``plan --json`` gives.
 
 * **Local** (default): a pool of worker processes, one per core unless ``workers`` says
   otherwise, nothing to install beyond fcgrasp.  Each part runs under a deadline
@@ -22,7 +23,8 @@ Every part is planned by :func:`fcgrasp.apps.cli.plan_document`, the function be
   writing) is cut off first.
 
 A result is a dict: ``path``, ``hash`` (SHA-256 of the file's bytes, or of the polygon's
-coordinates), ``parameters`` (the planning options), ``grasps`` and ``reason`` (as in
+coordinates), ``parameters`` (the request's options,
+:meth:`~fcgrasp.planning.PlanRequest.options`), ``grasps`` and ``reason`` (as in
 ``plan --json``), ``units``, ``seconds`` and ``error`` (None, or one line).
 """
 
@@ -37,7 +39,9 @@ from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["plan_many", "run_batch", "plan_options", "part_files", "BatchSummary", "cluster",
+from ..errors import PartTimeout
+
+__all__ = ["plan_many", "run_batch", "part_files", "BatchSummary", "cluster",
            "GROUP_SIZE", "SMALL_PART_BYTES", "LARGE_EDGES"]
 
 #: Parts smaller than this (bytes of their file) are sent to a cluster in groups.
@@ -46,49 +50,6 @@ SMALL_PART_BYTES = 200_000
 GROUP_SIZE = 8
 #: Polygons with this many edges are split across a cluster's workers.
 LARGE_EDGES = 500
-
-#: Options whose flag is not their keyword's name.
-_FLAGS = {"select": "--part"}
-
-
-def plan_options(**options: Any) -> list[str]:
-    """The ``fcgrasp plan`` command-line options for keyword options
-    (``fingers=3, mu=0.5, single_edge=True`` -> ``--fingers 3 --mu 0.5 --single-edge``).
-
-    >>> plan_options(fingers=3, mu=0.5, single_edge=True, top=None)
-    ['--fingers', '3', '--mu', '0.5', '--single-edge']
-    """
-    argv: list[str] = []
-    for key, value in options.items():
-        if value is None or value is False:
-            continue
-        flag = _FLAGS.get(key, "--" + key.replace("_", "-"))
-        if value is True:
-            argv.append(flag)
-        elif isinstance(value, (list, tuple)):
-            argv += [flag, ",".join(str(v) for v in value)]
-        else:
-            argv += [flag, str(value)]
-    return argv
-
-
-def _parse(source: str, argv: list[str]) -> Any:
-    """The parsed ``fcgrasp plan`` options for one part (a ValueError if they do not
-    parse)."""
-    from .cli import build_parser
-
-    try:
-        return build_parser().parse_args(["plan", source, "--quiet", *argv])
-    except SystemExit:
-        raise ValueError(f"not options of fcgrasp plan: {' '.join(argv)}") from None
-
-
-def _parameters(argv: list[str]) -> dict[str, Any]:
-    """The planning options as recorded with each result (and compared on a rerun)."""
-    args = vars(_parse("demo:quad", argv))
-    return {k: v for k, v in sorted(args.items())
-            if k not in ("part", "quiet", "json", "plot", "func", "command")}
-
 
 def part_files(pattern: str) -> list[str]:
     """The part files of a folder (every file of a known format, sorted) or of a glob
@@ -128,15 +89,11 @@ class _Task:
     index: int
     path: str
     item: Any            # a path, or a Polygon
-    argv: list[str]
+    request: Any         # the PlanRequest of this part
     deadline: float | None
     figures: str | None
     digest: str = ""
     parameters: dict[str, Any] = field(default_factory=dict)
-
-
-class PartTimeout(Exception):
-    """A part ran past its deadline."""
 
 
 def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
@@ -147,23 +104,20 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
                            "parameters": task.parameters, "grasps": None, "reason": None,
                            "units": None, "seconds": 0.0, "error": None}
     try:
+        from ..io.parts import Part
         from ..model.polygon import Polygon
-        from .cli import plan_document
+        from ..planning import plan_document
 
-        args = _parse(task.path if not isinstance(task.item, Polygon) else "demo:quad",
-                      task.argv)
         part = None
         if isinstance(task.item, Polygon):
-            from ..io.parts import Part
-
-            part = Part(task.item, task.path, "polygon", units=args.units or "mm")
+            part = Part(task.item, task.path, "polygon", units=task.request.units or "mm")
         limit = None if task.deadline is None else t0 + task.deadline
 
         def progress(done: int, total: int) -> None:
             if limit is not None and time.perf_counter() > limit:
                 raise PartTimeout(f"part timeout: more than {task.deadline:g} s")
 
-        doc = plan_document(args, part=part, progress=progress, map=map)
+        doc = plan_document(task.request, part=part, progress=progress, map=map)
         out["grasps"] = doc.report["grasps"]
         out["reason"] = doc.report["reason"]
         out["units"] = doc.units
@@ -189,8 +143,34 @@ def _plan_group(tasks: list[_Task]) -> list[dict[str, Any]]:
 # ----------------------------------------------------------------------------- local pool
 
 
-def _worker(conn: Any) -> None:
-    """A local worker: plans the tasks it receives until it receives None."""
+def _die_with(parent: int) -> None:
+    """End this worker when the process ``parent`` dies, even killed with SIGKILL while
+    this worker plans: on Linux the kernel sends SIGKILL (``PR_SET_PDEATHSIG``); anywhere,
+    a daemon thread checks the parent every half second."""
+    import threading
+
+    try:
+        import ctypes
+        import signal
+
+        ctypes.CDLL(None, use_errno=True).prctl(1, int(signal.SIGKILL))   # PR_SET_PDEATHSIG
+    except (OSError, AttributeError):
+        pass
+
+    def watch() -> None:
+        while True:
+            if os.getppid() != parent:
+                os._exit(1)
+            time.sleep(0.5)
+
+    threading.Thread(target=watch, daemon=True, name="fcgrasp-parent-watch").start()
+
+
+def _worker(conn: Any, parent: int | None = None) -> None:
+    """A local worker: plans the tasks it receives until it receives None; it dies with
+    its ``parent`` (the batch's process)."""
+    if parent is not None:
+        _die_with(parent)
     while True:
         try:
             task = conn.recv()
@@ -205,7 +185,7 @@ class _Slot:
     def __init__(self, ctx: Any) -> None:
         parent, child = ctx.Pipe()
         self.conn = parent
-        self.proc = ctx.Process(target=_worker, args=(child,), daemon=True)
+        self.proc = ctx.Process(target=_worker, args=(child, os.getpid()), daemon=True)
         self.proc.start()
         child.close()
         self.task: _Task | None = None
@@ -354,11 +334,13 @@ def cluster(scheduler: str, workers: int) -> Any:
 # ----------------------------------------------------------------------------- API
 
 
-def _tasks(parts: Iterable[Any], argv: list[str], part_timeout: float | None,
+def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | None,
            figures: str | None) -> list[_Task]:
     from ..model.polygon import Polygon
+    from ..planning import PlanRequest
 
-    parameters = _parameters(argv)
+    template = PlanRequest(part="demo:quad", **options)    # checked once, before any work
+    parameters = template.options()
     out = []
     for k, item in enumerate(parts):
         if isinstance(item, Polygon):
@@ -367,7 +349,8 @@ def _tasks(parts: Iterable[Any], argv: list[str], part_timeout: float | None,
             path = os.fspath(item)
         else:
             raise TypeError(f"parts must hold paths or Polygons, got {type(item).__name__}")
-        out.append(_Task(k, path, item if isinstance(item, Polygon) else path, argv,
+        request = template if isinstance(item, Polygon) else template.replace(part=path)
+        out.append(_Task(k, path, item if isinstance(item, Polygon) else path, request,
                          part_timeout, figures, parameters=parameters))
     return out
 
@@ -388,7 +371,8 @@ def plan_many(parts: Iterable[Any], *, workers: int | None = None, client: Any =
 
     ``parts``: paths (any format ``fcgrasp plan`` reads, or ``demo:NAME``) or
     :class:`~fcgrasp.Polygon` objects; ``options``: the options of ``fcgrasp plan`` as
-    keywords (``fingers=3, mu=0.5, top=5``; :func:`plan_options`); ``workers``: local
+    keywords, typed as :class:`~fcgrasp.planning.PlanRequest` takes them (``fingers=3,
+    mu=0.5, top=5``, ``stroke=(10, 50)``); ``workers``: local
     worker processes (default: every core); ``client``: a ``distributed.Client`` to run
     on instead; ``part_timeout``: seconds per part; ``figures``: a folder for a figure
     of each part.
@@ -407,7 +391,7 @@ def _prepared(parts: Iterable[Any], options: dict[str, Any], part_timeout: float
     if "top" in options and options["top"] is None:
         raise ValueError("top=None (every plan) is not planned in a batch, as in fcgrasp "
                          "plan: give a number of plans, got top=None")
-    tasks = _tasks(parts, plan_options(**options), part_timeout, figures)
+    tasks = _tasks(parts, options, part_timeout, figures)
     if figures:
         os.makedirs(figures, exist_ok=True)
     for t in tasks:
@@ -476,7 +460,7 @@ def _done(out: str, retry_failed: bool = False) -> dict[tuple[str, str], bool]:
         done[(r.get("hash"), json.dumps(r.get("parameters"), sort_keys=True))] = \
             r.get("error") is not None
     if retry_failed and len(kept) < len(data.splitlines()):
-        from ..io._atomic import OutputSet
+        from ..io.outputs import OutputSet
 
         with OutputSet() as files:
             files.add_text(out, b"".join(kept).decode())
@@ -491,7 +475,12 @@ def run_batch(parts: list[Any], out: str, *, workers: int | None = None,
     (each line written whole, flushed and synced), the parts already there with the same
     content and parameters skipped (with ``retry_failed``, those whose result is an error
     are planned again, their old line removed).  ``progress(done, total)`` is called as
-    parts finish.  Returns a :class:`BatchSummary`."""
+    parts finish.  Returns a :class:`BatchSummary`.  ``out`` must not be one of the parts
+    (a ValueError, through symlinks and hard links too: results never overwrite a part)."""
+    from ..io.outputs import refuse_overwriting
+
+    refuse_overwriting([("out", os.fspath(out))],
+                       [os.fspath(p) for p in parts if isinstance(p, (str, os.PathLike))])
     done = _done(out, retry_failed)
     todo, summary = [], BatchSummary()
     for task in _prepared(parts, options, part_timeout, figures):

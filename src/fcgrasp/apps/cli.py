@@ -14,21 +14,17 @@ from __future__ import annotations
 import argparse
 import os
 import sys
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, NoReturn
 
 from .. import __version__
+from ..errors import RequestError as CliError
 
 EXIT_NOT_CLOSURE = 1
 EXIT_USAGE = 2
 EXIT_INTERNAL = 3
 #: Units a part can be read in (``--units``); see :mod:`fcgrasp.io.units`.
 UNIT_CHOICES = ("mm", "cm", "m", "in")
-
-
-class CliError(Exception):
-    """An error reported as one line on stderr with exit code 2."""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -71,16 +67,6 @@ def _memory(text: str) -> int:
     return int(value * _SIZES[unit])
 
 
-def _duration(seconds: float) -> str:
-    if seconds < 120:
-        return f"{seconds:.0f} s"
-    if seconds < 7200:
-        return f"{seconds / 60:.0f} min"
-    if seconds < 2 * 86400:
-        return f"{seconds / 3600:.1f} h"
-    return f"{seconds / 86400:.0f} days"
-
-
 def _progress(enabled: bool) -> Any:
     if not enabled:
         return None
@@ -97,18 +83,11 @@ def _progress(enabled: bool) -> Any:
     return show
 
 
-def _same_file(a: str, b: str) -> bool:
-    try:
-        if os.path.exists(a) and os.path.exists(b):
-            return os.path.samefile(a, b)
-    except OSError:
-        pass
-    return os.path.realpath(a) == os.path.realpath(b)
-
-
 def _check_outputs(args: Any, inputs: list[str]) -> None:
-    """Validate every output option before any work: extensions, and no output that is
-    an input or another output (a run must never overwrite what it reads)."""
+    """Validate the output options of ``check`` and ``parts`` before any work: file
+    names, the figure's format, and no output that is an input or another output."""
+    from ..io.outputs import refuse_overwriting
+
     if sum(1 for src in inputs if src == "-") > 1:
         raise CliError("only one input can be read from standard input ('-')")
     outs = [(f"--{k}", getattr(args, k)) for k in ("json", "plot") if getattr(args, k, None)]
@@ -117,13 +96,11 @@ def _check_outputs(args: Any, inputs: list[str]) -> None:
             continue
         if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
             raise CliError(f"{opt} must be a file name, got {path!r}")
-        for src in inputs:
-            if not src.startswith("demo:") and src != "-" and _same_file(path, src):
-                raise CliError(f"{opt} {path} is an input of this run: refusing to "
-                               f"overwrite it")
-    if len(outs) == 2 and outs[0][1] != "-" and _same_file(outs[0][1], outs[1][1]):
-        raise CliError(f"--json and --plot name the same file {outs[0][1]!r}")
-    plot = getattr(args, "plot", None)
+    refuse_overwriting(outs, inputs)
+    _check_plot(getattr(args, "plot", None))
+
+
+def _check_plot(plot: str | None) -> None:
     if plot:
         if Path(plot).suffix.lower() not in (".png", ".svg", ".pdf"):
             raise CliError(f"--plot must end in .png, .svg or .pdf, got {plot!r}")
@@ -166,7 +143,7 @@ def _json_out(args: Any) -> bool:
 
 def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
     """Write text outputs (``-``: standard output) and an optional figure as a set."""
-    from ..io._atomic import OutputSet
+    from ..io.outputs import OutputSet
 
     stdout = [text for path, text in outputs if path == "-"]
     with OutputSet() as out:
@@ -195,137 +172,31 @@ def _print_table(plans: list[Any], units: str, out: Any) -> None:
               f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
 
 
-def _no_grasp_reason(fingers: int, mu: float, margin: float, hand: Any,
-                     gravity: Any = None) -> str:
-    if fingers == 2 and mu == 0:
-        return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
-    base = {2: f"no pair of edges admits two fingers with mu = {mu:g}",
-            3: f"no three edges admit three fingers with mu = {mu:g}" if gravity is None
-            else "no three edges hold the part against gravity with frictionless fingers",
-            4: "no four edges (or three, two fingers on one) admit frictionless fingers"}[fingers]
-    extra = f" with a margin of {margin:g} degrees"
-    if hand is not None:
-        extra += " within the hand's reach"
-    return base + extra
+def plan_options(args: Any) -> dict[str, Any]:
+    """The typed planning and reading options of parsed ``plan`` (or ``batch``)
+    arguments, as :class:`~fcgrasp.planning.PlanRequest` keywords: ``--stroke 10,50``
+    becomes ``stroke=(10.0, 50.0)``, ``--max-memory 2G`` bytes."""
+    from ..planning import PLAN_OPTIONS, READING_OPTIONS
 
-
-# ----------------------------------------------------------------------------- commands
-
-
-@dataclass
-class PlanDocument:
-    """What ``fcgrasp plan`` computes for one part: the report written by ``--json``,
-    the plans, the part's polygon and units, and a title for its figure."""
-
-    report: dict[str, Any]
-    plans: list[Any]
-    polygon: Any
-    units: str
-    reason: str | None
-    title: str
-
-
-def _finger_options(args: Any) -> tuple[Any, ...]:
-    """The point-finger options of ``fcgrasp plan``, checked and resolved:
-    ``(fingers, mu, gravity, max_memory, hand, workspace)``."""
-    import math
-
-    from ..model.hand import Hand
-
-    for opt, value in (("--stroke", args.stroke), ("--pad", args.pad),
-                       ("--certify" if args.certify else "--no-certify", args.certify)):
-        if value is not None:
-            raise CliError(f"{opt} is an option of --gripper jaw")
-    fingers = 2 if args.fingers is None else args.fingers
-    gravity = None if args.gravity is None else _floats(args.gravity, 2, "--gravity")
-    if gravity is not None and fingers != 3:
-        raise CliError(f"--gravity is a contact of three frictionless fingers, not of "
-                       f"{fingers} (drop it, or use --fingers 3)")
-    frictionless = fingers == 4 or gravity is not None
-    mu = args.mu
-    if mu is None:
-        mu = 0.0 if frictionless else 0.3
-    elif frictionless and mu != 0:
-        what = "four fingers" if fingers == 4 else "three fingers with --gravity"
-        raise CliError(f"--mu {mu:g} would not be used: {what} are planned frictionless "
-                       f"(drop --mu)")
-    if mu < 0 or not math.isfinite(mu):
-        raise CliError(f"--mu must be a finite number >= 0, got {mu:g}")
-    _check_margin_top(args)
-    budget = None if args.max_memory is None else _memory(args.max_memory)
-    hand = ws = None
-    if args.workspace is not None or args.finger_radius:
-        ws = _floats(args.workspace, 3, "--workspace") if args.workspace else None
-        if ws is not None and ws[2] <= 0:
-            raise CliError(f"--workspace radius must be > 0, got {ws[2]:g}")
-        if not (math.isfinite(args.finger_radius) and args.finger_radius >= 0):
-            raise CliError(f"--finger-radius must be a finite number >= 0, got "
-                           f"{args.finger_radius:g}")
-        hand = Hand(workspace=ws, finger_radius=args.finger_radius)
-    return fingers, mu, gravity, budget, hand, ws
-
-
-def plan_document(args: Any, part: Any = None, progress: Any = None,
-                  say: Any = None, map: Any = None) -> PlanDocument:
-    """Plan one part as ``fcgrasp plan`` does: ``args`` are its parsed options (see
-    :func:`build_parser`), ``part`` a :class:`fcgrasp.io.parts.Part` already read (default:
-    read ``args.part``), ``progress(done, total)`` a progress callback and ``say(text)``
-    where notes go (default nowhere), ``map`` where candidate batches are solved (see
-    :func:`fcgrasp.plan`).  Raises :class:`CliError` (a one-line message) for
-    options that do not fit together.  ``fcgrasp batch`` calls it for every part, so a
-    batch's results are exactly those of ``plan --json``."""
-    from ..io.report import plan_report
-    from ..io.units import disturbance_step
-    from ..pipeline import check_search, plan_spec
-    from ..planning.planner import plan
-
-    if args.gripper == "jaw":
-        return _plan_jaw(args, part)
-    fingers, mu, gravity, budget, hand, ws = _finger_options(args)
-    part = _load(args, say) if part is None else part
-    polygon, units = part.polygon, part.units
-    if hand is not None:
-        reach = hand.feasible_intervals(polygon)
-        if not any(reach):
-            where = f"workspace {ws}" if ws else f"finger radius {args.finger_radius:g}"
-            raise CliError(f"the hand cannot touch the part: no edge is reachable with the "
-                           f"{where}")
-    step = disturbance_step(units)
-    kw: dict[str, Any] = {"along_boundary": not args.single_edge, "gravity": gravity}
-    if budget is not None:
-        kw["max_memory"] = budget
-    spec = plan_spec(fingers=fingers, mu=mu, top=args.top, rank_by=args.rank_by,
-                     hand=hand, margin=args.margin, disturbance=(step, 15.0), **kw)
-    size = check_search(polygon, spec)          # too large: a one-line error, at once
-    # with a top and the smallest region, the exact pruning stops far sooner than
-    # solving every candidate (seconds where this estimate says hours)
-    pruned = spec.top is not None and spec.rank_by == "min_region"
-    if size.seconds > 60 and say is not None and not pruned:
-        say(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
-            f"{_duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
-    plans = plan(polygon, fingers=fingers, mu=mu, top=args.top, rank_by=args.rank_by,
-                 hand=hand, margin=args.margin, disturbance=(step, 15.0), progress=progress,
-                 map=map, **kw)
-    params = {"fingers": fingers, "mu": mu, "top": args.top, "rank_by": args.rank_by,
-              "margin_deg": args.margin, "along_boundary": spec.stretches or spec.grows,
-              "gravity": None if gravity is None else list(gravity),
-              "workspace": None if hand is None or hand.workspace is None else
-              list(hand.workspace),
-              "finger_radius": args.finger_radius,
-              "disturbance": {"translation": step, "rotation_deg": 15.0}}
-    reason = None if plans else _no_grasp_reason(fingers, mu, args.margin, hand, gravity)
-    report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
-    return PlanDocument(report, plans, polygon, units, reason,
-                        f"{args.part}: {fingers} fingers")
+    options = {k: getattr(args, k) for k in (*PLAN_OPTIONS, *READING_OPTIONS)}
+    for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3)):
+        if options[key] is not None:
+            options[key] = _floats(options[key], n, "--" + key)
+    if options["max_memory"] is not None:
+        options["max_memory"] = _memory(options["max_memory"])
+    return options
 
 
 def cmd_plan(args: Any) -> int:
     from ..io.report import dumps
+    from ..planning import PlanRequest, plan_document
 
     # every option is checked before any work or output
-    _check_outputs(args, [args.part])
+    request = PlanRequest(part=args.part, json=args.json, plot=args.plot,
+                          **plan_options(args))
+    _check_plot(args.plot)
     say = None if args.quiet else _stderr
-    doc = plan_document(args, progress=_progress(sys.stderr.isatty() and not args.quiet),
+    doc = plan_document(request, progress=_progress(sys.stderr.isatty() and not args.quiet),
                         say=say)
 
     def figure(out: Any) -> None:
@@ -350,59 +221,6 @@ def _stderr(text: str) -> None:
     print(text, file=sys.stderr)
 
 
-def _check_margin_top(args: Any) -> None:
-    if not 0 <= args.margin < 90:
-        raise CliError(f"--margin is an angle in degrees in [0, 90), got {args.margin:g}")
-    if args.top < 1:
-        raise CliError(f"--top must be at least 1, got {args.top}")
-
-
-def _jaw_options(args: Any) -> Any:
-    """The :class:`~fcgrasp.ParallelJaw` of ``fcgrasp plan --gripper jaw``, its options
-    checked (none of the point fingers' given)."""
-    import math
-
-    from ..grippers.jaw import ParallelJaw
-
-    for opt, given in (("--fingers", args.fingers is not None),
-                       ("--gravity", args.gravity is not None),
-                       ("--workspace", args.workspace is not None),
-                       ("--finger-radius", bool(args.finger_radius)),
-                       ("--rank-by", args.rank_by != "min_region"),
-                       ("--single-edge", args.single_edge)):
-        if given:
-            raise CliError(f"{opt} is an option of point fingers, not of --gripper jaw")
-    if args.stroke is None or args.pad is None:
-        raise CliError("--gripper jaw needs --stroke MIN,MAX and --pad WIDTH (in the part's "
-                       "units)")
-    stroke = _floats(args.stroke, 2, "--stroke")
-    mu = 0.3 if args.mu is None else args.mu
-    if not (math.isfinite(mu) and mu > 0):
-        raise CliError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
-    _check_margin_top(args)
-    return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=args.pad, mu=mu)
-
-
-def _plan_jaw(args: Any, part: Any = None) -> PlanDocument:
-    """``fcgrasp plan --gripper jaw``: boxes of parallel-jaw poses (:mod:`fcgrasp.grippers.jaw`)."""
-    from ..grippers.jaw import jaw_plans
-    from ..io.report import plan_report
-
-    jaw = _jaw_options(args)
-    part = _load(args) if part is None else part
-    polygon, units = part.polygon, part.units
-    certify = args.certify is not False
-    plans = jaw_plans(polygon, jaw, top=args.top, margin=args.margin, certify=certify)
-    params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
-              "pad_width": jaw.pad_width, "mu": jaw.mu, "top": args.top,
-              "margin_deg": args.margin, "certify": certify}
-    reason = None if plans else (
-        f"no pose of the jaw holds the part (stroke {jaw.stroke[0]:g} to {jaw.stroke[1]:g}, "
-        f"pads {jaw.pad_width:g} wide, mu = {jaw.mu:g}, margin {args.margin:g} degrees)")
-    report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
-    return PlanDocument(report, plans, polygon, units, reason, f"{args.part}: parallel jaw")
-
-
 def _print_jaw_table(plans: list[Any], units: str, out: Any) -> None:
     import math
 
@@ -414,13 +232,6 @@ def _print_jaw_table(plans: list[Any], units: str, out: Any) -> None:
               f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
               f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
               f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}", file=out)
-
-
-#: The options of ``fcgrasp plan`` that ``fcgrasp batch`` passes on to every part.
-PLAN_DESTS = ("gripper", "stroke", "pad", "fingers", "mu", "gravity", "top", "single_edge",
-              "rank_by", "margin", "workspace", "finger_radius", "max_memory", "select",
-              "units", "file_units", "flatten", "layer", "gap", "pixel_size", "threshold",
-              "y_down", "simplify", "no_clean")
 
 
 def cmd_batch(args: Any) -> int:
@@ -437,9 +248,11 @@ def cmd_batch(args: Any) -> int:
                        f"image ... files, or a glob pattern)")
     if os.path.isdir(args.out):
         raise CliError(f"--out {args.out} is a folder, not a results file")
-    options = {d: getattr(args, d) for d in PLAN_DESTS}
-    # the options are checked once, on the first part's terms, before any work
-    plan_document_check(options)
+    options = plan_options(args)
+    # the options are checked once, before any work (run_batch checks each part's again)
+    from ..planning import PlanRequest
+
+    PlanRequest(part=paths[0], **options)
     client = None
     workers = args.workers or os.cpu_count() or 1
     if args.scheduler is not None:
@@ -462,22 +275,12 @@ def cmd_batch(args: Any) -> int:
     return 1 if summary.failed or summary.failed_before else 0
 
 
-def plan_document_check(options: dict[str, Any]) -> None:
-    """Check ``fcgrasp plan`` options (as :data:`PLAN_DESTS` keywords) without planning:
-    a :class:`CliError` for options that do not fit together."""
-    from .batch import plan_options
-
-    args = build_parser().parse_args(["plan", "demo:quad", *plan_options(**options)])
-    if args.gripper == "jaw":
-        _jaw_options(args)
-    else:
-        _finger_options(args)
-
-
 def _batch_progress(enabled: bool) -> Any:
     if not enabled:
         return None
     import time
+
+    from ..io.report import duration
 
     t0 = time.perf_counter()
 
@@ -487,7 +290,7 @@ def _batch_progress(enabled: bool) -> Any:
         el = time.perf_counter() - t0
         rate = done / el if el > 0 else 0.0
         left = (total - done) / rate if rate > 0 else float("nan")
-        eta = _duration(left) if left == left else "?"
+        eta = duration(left) if left == left else "?"
         print(f"\r[{'#' * int(width * frac):<{width}}] {done}/{total} parts, "
               f"{rate:.2f}/s, {eta} left   ", end="", file=sys.stderr, flush=True)
         if done >= total:
@@ -590,83 +393,78 @@ def cmd_serve(args: Any) -> int:
     return 0
 
 
-def cmd_demo(args: Any) -> int:
+def _demo_jobs() -> list[tuple[Any, str, str]]:
+    """The demo's plan requests, each with its files' stem and its figure's title."""
+    from ..planning import PlanRequest
+
+    fingers = [("blob", 2, 0.3, None, "figure 1.a: two fingers with friction"),
+               ("triangle", 4, None, None, "figure 1.b: four frictionless fingers on three "
+                                              "edges"),
+               ("quad", 4, None, None, "figure 1.c: four frictionless fingers on four edges"),
+               ("triangle", 3, None, (0.0, -1.0), "three frictionless fingers and gravity"),
+               ("blob", 3, 0.5, None, "three fingers with friction"),
+               ("washer", 2, 0.2, None, "two fingers with friction on a part with a hole"),
+               ("cam", 2, 0.3, None, "regions along the boundary of a curved part")]
+    jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6),
+             f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}")
+            for name, n, mu, g, title in fingers]
+    # a parallel-jaw gripper: boxes of jaw poses (closing angle, offset) that hold
+    jobs.append((PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10.0, 50.0),
+                             pad=8.0, mu=0.5, top=3), "rectangle-jaw",
+                 "demo:rectangle - a parallel jaw (stroke 10-50 mm, 8 mm pads, mu 0.5)"))
+    return jobs
+
+
+def _demo_entry(request: Any, doc: Any, stem: str) -> tuple[dict[str, Any], str]:
+    """The demo summary's entry for one plan, and the line printed for it."""
     import math
 
-    from ..io._atomic import OutputSet
-    from ..io.parts import demo_part
-    from ..io.report import demo_summary, dumps, plan_report
-    from ..model.regions import DEFAULT_MARGIN_DEG
-    from ..planning.planner import plan
+    best = doc.plans[0] if doc.plans else None
+    entry: dict[str, Any] = {"part": request.part, "json": f"{stem}.json",
+                             "figure": f"{stem}.png"}
+    params = doc.report["parameters"]
+    if "fingers" not in params:
+        entry.update({"gripper": params["gripper"], "mu": params["mu"],
+                      "best_theta_deg": None if best is None else
+                      [math.degrees(x) for x in best.theta],
+                      "best_offset": None if best is None else list(best.offset),
+                      "best_measure": None if best is None else best.measure})
+        if best is None:
+            return entry, f"{request.part:14s} jaw        no grasp: {doc.reason}"
+        t0, t1 = (math.degrees(x) for x in best.theta)
+        return entry, (f"{request.part:14s} jaw        closing {t0:.1f}-{t1:.1f} deg, "
+                       f"offsets {best.offset[0]:.1f}-{best.offset[1]:.1f} mm")
+    n = params["fingers"]
+    entry.update({"fingers": n, "mu": params["mu"],
+                  "best_edges": None if best is None else list(best.edges),
+                  "best_min_region": None if best is None else best.min_length})
+    if best is None:
+        return entry, f"{request.part:14s} {n} fingers  no grasp: {doc.reason}"
+    return entry, (f"{request.part:14s} {n} fingers  best edges {list(best.edges)!s:16s} "
+                   f"min region {best.min_length:7.3f} mm")
+
+
+def cmd_demo(args: Any) -> int:
+    from ..io.outputs import OutputSet
+    from ..io.report import demo_summary, dumps
+    from ..planning import plan_document
     from ..plotting import plan_figure
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():
         raise CliError(f"--out {out} exists and is not a folder")
     out.mkdir(parents=True, exist_ok=True)
-    jobs = [("blob", 2, 0.3, "figure 1.a: two fingers with friction"),
-            ("triangle", 4, 0.0, "figure 1.b: four frictionless fingers on three edges"),
-            ("quad", 4, 0.0, "figure 1.c: four frictionless fingers on four edges"),
-            ("triangle", 3, 0.0, "three frictionless fingers and gravity"),
-            ("blob", 3, 0.5, "three fingers with friction"),
-            ("washer", 2, 0.2, "two fingers with friction on a part with a hole"),
-            ("cam", 2, 0.3, "regions along the boundary of a curved part")]
     entries: list[dict[str, Any]] = []
-    for name, fingers, mu, title in jobs:
-        polygon = demo_part(name)
-        gravity = (0.0, -1.0) if fingers == 3 and mu == 0 else None
-        plans = plan(polygon, fingers=fingers, mu=mu, top=6, margin=DEFAULT_MARGIN_DEG,
-                     gravity=gravity)
-        params = {"fingers": fingers, "mu": mu, "top": 6, "rank_by": "min_region",
-                  "gravity": None if gravity is None else list(gravity),
-                  "margin_deg": DEFAULT_MARGIN_DEG, "workspace": None, "finger_radius": 0.0,
-                  "disturbance": {"translation": 10.0, "rotation_deg": 15.0}}
-        reason = None if plans else _no_grasp_reason(fingers, mu, DEFAULT_MARGIN_DEG, None,
-                                                     gravity)
-        stem = f"{name}-{fingers}f" + ("g" if gravity is not None else "")
+    for request, stem, title in _demo_jobs():
+        doc = plan_document(request)
         with OutputSet() as files:
-            files.add_text(out / f"{stem}.json",
-                           dumps(plan_report(polygon, plans, params, "mm", reason)))
-            plan_figure(polygon, plans, str(out / f"{stem}.png"), units="mm",
-                        title=f"demo:{name} - {title}", outputs=files)
-        best = plans[0] if plans else None
-        entries.append({"part": f"demo:{name}", "fingers": fingers, "mu": mu,
-                        "json": f"{stem}.json", "figure": f"{stem}.png",
-                        "best_edges": None if best is None else list(best.edges),
-                        "best_min_region": None if best is None else best.min_length})
+            files.add_text(out / f"{stem}.json", dumps(doc.report))
+            plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"), units=doc.units,
+                        title=title, outputs=files)
+        entry, line = _demo_entry(request, doc, stem)
+        entries.append(entry)
         if not args.quiet:
-            if best is None:
-                print(f"demo:{name:9s} {fingers} fingers  no grasp: {reason}")
-            else:
-                print(f"demo:{name:9s} {fingers} fingers  best edges {list(best.edges)!s:16s} "
-                      f"min region {best.min_length:7.3f} mm  -> {out / stem}.png")
-    # a parallel-jaw gripper: boxes of jaw poses (closing angle, offset) that hold
-    from ..grippers.jaw import ParallelJaw
-
-    jaw = ParallelJaw(stroke=(10.0, 50.0), pad_width=8.0, mu=0.5)
-    polygon = demo_part("rectangle")
-    boxes = plan(polygon, gripper=jaw, top=3, margin=DEFAULT_MARGIN_DEG)
-    params = {"gripper": "parallel_jaw", "stroke": list(jaw.stroke),
-              "pad_width": jaw.pad_width, "mu": jaw.mu, "top": 3,
-              "margin_deg": DEFAULT_MARGIN_DEG}
-    with OutputSet() as files:
-        files.add_text(out / "rectangle-jaw.json",
-                       dumps(plan_report(polygon, boxes, params, "mm", "no pose holds")))
-        plan_figure(polygon, boxes, str(out / "rectangle-jaw.png"), units="mm",
-                    title="demo:rectangle - a parallel jaw (stroke 10-50 mm, 8 mm pads, "
-                          "mu 0.5)", outputs=files)
-    best_box = boxes[0] if boxes else None
-    entries.append({"part": "demo:rectangle", "gripper": "parallel_jaw", "mu": jaw.mu,
-                    "json": "rectangle-jaw.json", "figure": "rectangle-jaw.png",
-                    "best_theta_deg": None if best_box is None else
-                    [math.degrees(x) for x in best_box.theta],
-                    "best_offset": None if best_box is None else list(best_box.offset),
-                    "best_measure": None if best_box is None else best_box.measure})
-    if not args.quiet and best_box is not None:
-        t0, t1 = (math.degrees(x) for x in best_box.theta)
-        print(f"demo:rectangle jaw        closing {t0:.1f}-{t1:.1f} deg, offsets "
-              f"{best_box.offset[0]:.1f}-{best_box.offset[1]:.1f} mm  -> "
-              f"{out / 'rectangle-jaw'}.png")
+            print(f"{line}  -> {out / stem}.png")
     with OutputSet() as files:
         files.add_text(out / "demo.json", dumps(demo_summary(entries, "mm")))
     if not args.quiet:

@@ -51,7 +51,8 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
-from ..core._json import json_ready
+from ..errors import RequestError
+from ..io.report import json_ready
 
 #: Largest accepted upload (a part file), bytes.
 MAX_UPLOAD = 8 * 2 ** 20
@@ -61,18 +62,17 @@ MAX_REQUEST = 4 * 2 ** 20
 ANSWER_WITHIN = 0.05
 #: Finished jobs kept for polling (the oldest are forgotten first).
 KEEP_JOBS = 32
-#: The page's gripper choices: (fingers, gravity, jaw).
-GRIPPERS = {"2": (2, False, False), "3": (3, False, False), "3g": (3, True, False),
-            "4": (4, False, False), "jaw": (2, False, True)}
-
-
-class RequestError(ValueError):
-    """A request the server refuses: ``status`` and the ``field`` it is about."""
-
-    def __init__(self, message: str, field: str = "request", status: int = 400) -> None:
-        super().__init__(message)
-        self.field = field
-        self.status = status
+#: The page's gripper choices, as plan-request options.
+GRIPPERS: dict[str, dict[str, Any]] = {
+    "2": {"fingers": 2}, "3": {"fingers": 3}, "3g": {"fingers": 3, "gravity": (0.0, -1.0)},
+    "4": {"fingers": 4}, "jaw": {"gripper": "jaw", "certify": True}}
+_COMMON = ("margin", "rank_by", "top")
+#: The page's options each of its gripper choices uses (the page sends them all).
+_PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
+                 "3": ("mu", "along_boundary", *_COMMON),
+                 "3g": ("gravity", "along_boundary", *_COMMON),
+                 "4": ("along_boundary", *_COMMON),
+                 "jaw": ("mu", "stroke", "pad", "certify", *_COMMON)}
 
 
 # ----------------------------------------------------------------------------- parts
@@ -166,19 +166,21 @@ def read_upload(body: bytes, name: str) -> dict[str, Any]:
 # ----------------------------------------------------------------------------- plans
 
 
-def plan_arguments(options: Any) -> list[str]:
-    """The ``fcgrasp plan`` options for the page's ``options``::
+def plan_request(options: Any, name: str = "explorer") -> Any:
+    """The :class:`~fcgrasp.planning.PlanRequest` of the page's ``options``::
 
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
          "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1]}
 
-    Checked here, so that a bad value is a message naming the option, not a usage error.
+    checked whole here, before a job starts, with the command line's messages (a
+    :class:`~fcgrasp.errors.RequestError` naming the option).  The page sends every
+    option whatever the gripper; those of another gripper are not used.
 
-    >>> plan_arguments({"gripper": "4", "top": 3})
+    >>> plan_request({"gripper": "4", "top": 3}).to_argv()
     ['--fingers', '4', '--top', '3']
     """
-    from ..model.ranking import MEASURES
+    from ..planning import PlanRequest
 
     if not isinstance(options, dict):
         raise RequestError(f"options must be an object, got {_short(options)}", "options")
@@ -188,69 +190,31 @@ def plan_arguments(options: Any) -> list[str]:
     if extra:
         raise RequestError(f"options: unknown option {extra[0]!r} (expected "
                            f"{', '.join(sorted(known))})", "options")
-
-    def number(key: str, lo: float = 0.0) -> float | None:
-        v = options.get(key)
-        if v is None:
-            return None
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) \
-                or v < lo:
-            raise RequestError(f"options.{key} must be a finite number >= {lo:g}, got "
-                               f"{_short(v)}", key)
-        return float(v)
-
     gripper = options.get("gripper", "2")
     if gripper not in GRIPPERS:
         raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
                            f"{_short(gripper)}", "gripper")
-    fingers, gravity, jaw = GRIPPERS[gripper]
-    argv: list[str] = []
-    if jaw:
-        argv += ["--gripper", "jaw"]
-        stroke = options.get("stroke")
-        if not _is_pair(stroke):
-            raise RequestError(f"options.stroke must be [min, max] opening, got "
-                               f"{_short(stroke)}", "stroke")
-        pad = number("pad")
-        if pad is None:
-            raise RequestError("options.pad (the pads' width) is needed with a parallel jaw",
-                               "pad")
-        argv += ["--stroke", f"{float(stroke[0])!r},{float(stroke[1])!r}", "--pad", repr(pad)]
-        certify = options.get("certify", True)
-        if not isinstance(certify, bool):
-            raise RequestError(f"options.certify must be true or false, got "
-                               f"{_short(certify)}", "certify")
-        argv += ["--certify" if certify else "--no-certify"]
-    else:
-        argv += ["--fingers", str(fingers)]
-        if gravity:
-            g = options.get("gravity", [0.0, -1.0])
-            if not _is_pair(g) or not any(g):
-                raise RequestError(f"options.gravity must be a non-zero [gx, gy], got "
-                                   f"{_short(g)}", "gravity")
-            argv += ["--gravity", f"{float(g[0])!r},{float(g[1])!r}"]
-        if options.get("along_boundary", True) is False:
-            argv += ["--single-edge"]
-    frictionless = fingers == 4 or gravity
-    mu = number("mu")
-    if mu is not None and not frictionless:
-        argv += ["--mu", repr(mu)]
-    margin = number("margin")
-    if margin is not None:
-        argv += ["--margin", repr(margin)]
-    rank_by = options.get("rank_by")
-    if rank_by is not None:
-        if rank_by not in MEASURES:
-            raise RequestError(f"options.rank_by must be one of {', '.join(MEASURES)}, got "
-                               f"{_short(rank_by)}", "rank_by")
-        argv += ["--rank-by", rank_by]
-    top = options.get("top")
-    if top is not None:
-        if isinstance(top, bool) or not isinstance(top, int) or not 1 <= top <= 100:
-            raise RequestError(f"options.top must be a whole number from 1 to 100, got "
-                               f"{_short(top)}", "top")
-        argv += ["--top", str(top)]
-    return argv
+    kw: dict[str, Any] = dict(GRIPPERS[gripper])
+    for key in _PAGE_OPTIONS[gripper]:
+        if options.get(key) is not None:
+            kw[key] = options[key]
+    if "along_boundary" in kw:
+        kw["single_edge"] = kw.pop("along_boundary") is False
+    for key in ("stroke", "gravity"):
+        if isinstance(kw.get(key), list):
+            kw[key] = tuple(kw[key])
+    top = kw.get("top")
+    if top is not None and (isinstance(top, bool) or not isinstance(top, int)
+                            or not 1 <= top <= 100):
+        raise RequestError(f"options.top must be a whole number from 1 to 100, got "
+                           f"{_short(top)}", "top")
+    try:
+        return PlanRequest(part=name, **kw)
+    except RequestError:
+        raise
+    except (TypeError, ValueError) as exc:    # a value of the wrong type: its option first
+        first = str(exc).split(" ", 1)[0]
+        raise RequestError(str(exc), first if first in known else "options") from None
 
 
 def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
@@ -317,36 +281,31 @@ class Job:
         return out
 
 
-def plan_result(polygon: Any, units: str, options: dict[str, Any], name: str = "explorer",
+def plan_result(polygon: Any, units: str, request: Any,
                 progress: Any = None) -> dict[str, Any]:
-    """Plan a part as ``fcgrasp plan`` does (:func:`fcgrasp.apps.cli.plan_document` on the
-    options of :func:`plan_arguments`): the JSON report, the drawing data of every plan
-    and its grasp-set overlay."""
+    """Plan a part as ``fcgrasp plan`` does (:func:`fcgrasp.planning.plan_document` on
+    the :func:`plan_request` of the page's options): the JSON report, the equivalent
+    command-line options, the drawing data of every plan and its grasp-set overlay."""
     from ..io.parts import Part
     from ..io.report import dumps
-    from .cli import CliError, build_parser, plan_document
+    from ..planning import plan_document
 
-    argv = ["plan", name, *plan_arguments(options)]
-    args = build_parser().parse_args(argv)
-    part = Part(polygon=polygon, source=name, format="explorer", units=units)
-    try:
-        doc = plan_document(args, part=part, progress=progress)
-    except CliError as exc:
-        raise RequestError(str(exc), "options") from None
-    return {"report": json.loads(dumps(doc.report)), "argv": argv[2:],
+    part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
+    doc = plan_document(request, part=part, progress=progress)
+    return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
             "overlays": [json_ready(overlay(polygon, p)) for p in doc.plans]}
 
 
 def _worker(conn: Any) -> None:
     """A planning process: warms up (a small plan of each kind loads what planning
-    loads), then plans each ``(polygon, units, options)`` it is sent, sending progress
+    loads), then plans each ``(polygon, units, request)`` it is sent, sending progress
     reports (at most every 50 ms) and then ``("done", result)`` or ``("error", text)``."""
     from ..io.parts import demo_part
 
     blob = demo_part("blob")
     for opts in ({"gripper": "2", "mu": 0.3}, {"gripper": "4", "along_boundary": False},
                  {"gripper": "3", "mu": 0.5, "along_boundary": False, "top": 1}):
-        plan_result(blob, "mm", opts)
+        plan_result(blob, "mm", plan_request(opts))
     check_result(blob, {"contacts": [{"point": [21.0, -3.0], "mu": 0.3}]})
     last = [0.0]
 
@@ -364,8 +323,8 @@ def _worker(conn: Any) -> None:
         if task is None:
             return
         try:
-            polygon, units, options = task
-            conn.send(("done", plan_result(polygon, units, options, progress=progress)))
+            polygon, units, request = task
+            conn.send(("done", plan_result(polygon, units, request, progress=progress)))
         except (ValueError, TypeError) as exc:
             conn.send(("error", " ".join(str(exc).split())))
         except Exception as exc:  # noqa: BLE001 - reported to the page
@@ -391,8 +350,7 @@ class Jobs:
         import multiprocessing
 
         self._ctx = multiprocessing.get_context("forkserver")
-        self._ctx.set_forkserver_preload(["fcgrasp.apps.serve", "fcgrasp.apps.cli",
-                                         "fcgrasp.planning.planner"])
+        self._ctx.set_forkserver_preload(["fcgrasp.apps.serve", "fcgrasp.planning"])
         self._jobs: dict[str, Job] = {}
         self._idle: list[_Process] = []
         self._ids = itertools.count(1)
@@ -415,8 +373,11 @@ class Jobs:
         with self._lock:
             self._idle += fresh
 
-    def start(self, polygon: Any, units: str, options: dict[str, Any]) -> Job:
-        plan_arguments(options)               # a bad option is an answer now, not a job
+    def start(self, polygon: Any, units: str, request: Any) -> Job:
+        """Start planning ``request`` (a :func:`plan_request`) on ``polygon``; a page's
+        options dict is checked first (a bad option is an answer now, not a job)."""
+        if isinstance(request, dict):
+            request = plan_request(request)
         with self._lock:
             busy = sum(not j.done.is_set() for j in self._jobs.values())
             if busy >= self.workers:
@@ -430,11 +391,11 @@ class Jobs:
             worker = self._idle.pop() if self._idle else None
         worker = worker or self._spawn()
         try:
-            worker.conn.send((polygon, units, options))
+            worker.conn.send((polygon, units, request))
         except OSError:                       # an idle process died: take a fresh one
             worker.process.kill()
             worker = self._spawn()
-            worker.conn.send((polygon, units, options))
+            worker.conn.send((polygon, units, request))
         job.process = worker.process
 
         def watch() -> None:
@@ -542,7 +503,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
     from starlette.routing import Mount, Route
     from starlette.staticfiles import StaticFiles
 
-    from ..io.parts import DEMO_PARTS, load_part
+    from ..io.parts import DEMO_PARTS, load_part, read_json
     from ..model.ranking import MEASURES
 
     if start is None:
@@ -571,10 +532,10 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
 
     async def json_of(request: Request, keys: set[str]) -> dict[str, Any]:
         raw = await body_of(request, MAX_REQUEST)
-        try:
-            data = json.loads(raw)
-        except (json.JSONDecodeError, UnicodeDecodeError) as exc:
-            raise RequestError(f"the request is not valid JSON ({exc})") from None
+        try:                                  # parsing a large body is not the loop's work
+            data = await asyncio.to_thread(read_json, raw, "the request")
+        except ValueError as exc:
+            raise RequestError(str(exc)) from None
         if not isinstance(data, dict):
             raise RequestError(f"the request must be a JSON object, got {_short(data)}")
         extra = sorted(set(data) - keys)
@@ -625,15 +586,20 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
 
     async def plan(request: Request) -> Response:
         data = await json_of(request, {"part", "options", "replaces"})
-        polygon, units = polygon_of(data.get("part"))
-        options = data.get("options", {})
         old = data.get("replaces")
+        if old is not None and (isinstance(old, bool) or not isinstance(old, (str, int))):
+            raise RequestError(f"replaces must be the id of the page's previous job, got "
+                               f"{_short(old)}", "replaces")
+        # checking a large outline and the options is work: never on the event loop
+        polygon, units = await asyncio.to_thread(polygon_of, data.get("part"))
+        options = data.get("options", {})
+        request_ = await asyncio.to_thread(plan_request, options)
         if old is not None:                   # the page's previous plan, now stale
             try:
                 await asyncio.to_thread(jobs.cancel, str(old))
             except RequestError:
                 pass
-        job = await asyncio.to_thread(jobs.start, polygon, units, options)
+        job = await asyncio.to_thread(jobs.start, polygon, units, request_)
         await asyncio.to_thread(job.done.wait, ANSWER_WITHIN)
         return JSONResponse(job.answer())
 
@@ -645,8 +611,8 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
 
     async def check(request: Request) -> Response:
         data = await json_of(request, {"part", "contacts", "gravity"})
-        polygon, _ = polygon_of(data.get("part"))
-        return JSONResponse(check_result(polygon, data))
+        polygon, _ = await asyncio.to_thread(polygon_of, data.get("part"))
+        return JSONResponse(await asyncio.to_thread(check_result, polygon, data))
 
     routes = [
         Route("/", guarded(index)),

@@ -1,0 +1,25 @@
+"""Grippers: one object per gripper behind one interface, and their registry.
+
+- :mod:`~fcgrasp.grippers.base`: the :class:`~fcgrasp.grippers.base.Gripper` protocol
+  (parameters and their checks, the search, the plans' JSON), :class:`SearchOptions` and
+  the registry that plan requests build grippers from;
+- :mod:`~fcgrasp.grippers.fingers`: point fingers, two or three with friction, three
+  frictionless with gravity, four frictionless (sections 6-8);
+- :mod:`~fcgrasp.grippers.three_fingers`: the search of three fingers with friction;
+- :mod:`~fcgrasp.grippers.jaw`: a parallel jaw and its proved boxes of poses.
+
+Adding a gripper is one module implementing the protocol and one
+:func:`~fcgrasp.grippers.base.register` line; importing this package registers the
+built-in ones.
+"""
+
+from __future__ import annotations
+
+from . import fingers, jaw
+from .base import REGISTRY, Gripper, SearchOptions, register
+from .fingers import FourFingers, ThreeFingers, ThreeFrictionless, TwoFingers, point_fingers
+from .jaw import ParallelJaw
+
+__all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "TwoFingers", "ThreeFingers",
+           "ThreeFrictionless", "FourFingers", "ParallelJaw", "point_fingers", "fingers",
+           "jaw"]

@@ -55,8 +55,10 @@ verified on the fine grid only, neither proved nor grown).
 from __future__ import annotations
 
 import functools
+import math
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -66,10 +68,10 @@ from ..core._json import json_ready
 from ..model.polygon import Polygon
 from ..model.quality import characteristic_length
 from ..model.regions import DEFAULT_MARGIN_DEG
+from .base import register
 
-__all__ = ["ParallelJaw", "JawPlan", "jaw_poses", "holding_offsets", "insertion_point", "jaw_plans",
-           "certify_box",
-           "THETA_STEP_DEG", "SLICE_TOL",
+__all__ = ["ParallelJaw", "jaw_from_options", "JawPlan", "jaw_poses", "holding_offsets",
+           "insertion_point", "jaw_plans", "certify_box", "THETA_STEP_DEG", "SLICE_TOL",
            "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]
 
 #: Angular step of the pose grid (degrees).
@@ -108,8 +110,13 @@ class ParallelJaw:
     stroke: tuple[float, float]
     pad_width: float
     mu: float
+    #: prove every box (:func:`certify_box`); False: boxes verified on a fine grid only
+    certify: bool = True
+    name: ClassVar[str] = "jaw"
 
     def __post_init__(self) -> None:
+        if not isinstance(self.certify, bool):
+            raise TypeError(f"certify must be a bool, got {self.certify!r}")
         if isinstance(self.stroke, (str, bytes)) or np.ndim(self.stroke) != 1 \
                 or len(self.stroke) != 2:
             raise ValueError(f"stroke must be (min_opening, max_opening), got {self.stroke!r}")
@@ -126,6 +133,61 @@ class ParallelJaw:
             raise ValueError(f"a parallel jaw holds by friction: mu must be > 0, got "
                              f"{self.mu!r}")
         object.__setattr__(self, "mu", mu)
+
+    # the gripper interface (fcgrasp.grippers.base.Gripper)
+    def plan(self, polygon: Polygon, options: Any) -> list[JawPlan]:
+        """The jaw's boxes (:func:`jaw_plans`) for a plan's search options."""
+        if options.top is None:
+            raise ValueError("a parallel jaw needs a top (how many boxes), got top=None")
+        if options.rank_by != "min_region":
+            raise ValueError(f"a parallel jaw ranks its boxes by their measure: "
+                             f"rank_by={options.rank_by!r} would not be used")
+        return jaw_plans(polygon, self, top=options.top, margin=options.margin,
+                         certify=self.certify)
+
+    def check_part(self, polygon: Polygon, options: Any) -> None:
+        """Nothing to refuse before the search."""
+
+    def parameters(self, options: Any) -> dict[str, Any]:
+        return {"gripper": "parallel_jaw", "stroke": list(self.stroke),
+                "pad_width": self.pad_width, "mu": self.mu, "top": options.top,
+                "margin_deg": options.margin, "certify": self.certify}
+
+    def no_grasp_reason(self, margin: float) -> str:
+        return (f"no pose of the jaw holds the part (stroke {self.stroke[0]:g} to "
+                f"{self.stroke[1]:g}, pads {self.pad_width:g} wide, mu = {self.mu:g}, "
+                f"margin {margin:g} degrees)")
+
+    @property
+    def title(self) -> str:
+        return "parallel jaw"
+
+
+def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
+    """The parallel jaw of a plan request (``--gripper jaw``): ``stroke``, ``pad``,
+    ``mu`` (default 0.3), ``certify`` (default True); none of the point fingers'
+    options."""
+    for opt, given in (("--fingers", options.get("fingers") is not None),
+                       ("--gravity", options.get("gravity") is not None),
+                       ("--workspace", options.get("workspace") is not None),
+                       ("--finger-radius", bool(options.get("finger_radius"))),
+                       ("--rank-by", options.get("rank_by", "min_region") != "min_region"),
+                       ("--single-edge", bool(options.get("single_edge")))):
+        if given:
+            raise ValueError(f"{opt} is an option of point fingers, not of --gripper jaw")
+    stroke, pad = options.get("stroke"), options.get("pad")
+    if stroke is None or pad is None:
+        missing = "--stroke MIN,MAX" if stroke is None else "--pad WIDTH"
+        raise ValueError(f"{missing} is needed: --gripper jaw needs --stroke MIN,MAX and "
+                         f"--pad WIDTH (in the part's units)")
+    mu = 0.3 if options.get("mu") is None else options["mu"]
+    if not (math.isfinite(mu) and mu > 0):
+        raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
+    return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=pad, mu=mu,
+                       certify=options.get("certify") is not False)
+
+
+register("jaw", jaw_from_options)
 
 
 @dataclass

@@ -264,7 +264,8 @@ def _geojson_shapes(data: dict[str, Any], where: str) -> list[Shape]:
         if not isinstance(geom, dict):
             raise ValueError(f"{w}: geometry must be an object")
         try:
-            g = shapely.geometry.shape(geom)
+            with np.errstate(invalid="ignore"):   # NaN: refused below, in one line
+                g = shapely.geometry.shape(geom)
         except (ShapelyError, ValueError, TypeError, KeyError, IndexError,
                 AttributeError) as exc:
             raise ValueError(f"{w}: not a valid GeoJSON geometry ({exc})") from None
@@ -296,7 +297,8 @@ def _wkt_drawing(text: str, where: str) -> Drawing:
     from shapely.errors import ShapelyError
 
     def parse(t: str) -> Any:
-        return shapely.from_wkt(t.strip())
+        with np.errstate(invalid="ignore"):       # NaN: refused below, in one line
+            return shapely.from_wkt(t.strip())
 
     geoms: list[tuple[Any, str, str | None]]
     try:
@@ -482,8 +484,11 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
     return read_image(data, tol_of, opt.threshold)
 
 
-def _json_data(data: bytes, spec: str) -> Any:
-    text = _text(data, spec)
+def read_json(data: bytes | str, spec: str) -> Any:
+    """The value of a JSON text (bytes in UTF-8, a BOM allowed): the one reader of every
+    JSON input (part files, contacts, the explorer's requests).  Malformed, nested too
+    deeply or not UTF-8: a one-line :class:`ValueError` starting with ``spec``."""
+    text = _text(data, spec) if isinstance(data, bytes) else data
     try:
         return json.loads(text)
     except json.JSONDecodeError as exc:
@@ -491,6 +496,9 @@ def _json_data(data: bytes, spec: str) -> Any:
                          f"{exc.colno})") from None
     except RecursionError:
         raise ValueError(f"{spec}: JSON nested too deeply") from None
+
+
+_json_data = read_json
 
 
 def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
@@ -714,17 +722,12 @@ def read_contacts(path: str | os.PathLike[str], polygon: Polygon
     """
     path = os.fspath(path)
     try:
-        text = sys.stdin.read() if path == "-" else Path(path).read_text(encoding="utf-8")
-        data = json.loads(text)
+        raw = sys.stdin.buffer.read() if path == "-" else Path(path).read_bytes()
     except FileNotFoundError:
         raise ValueError(f"{path}: no such file") from None
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{path}: not valid JSON ({exc.msg} at line {exc.lineno})") from None
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{path}: not UTF-8 text (byte {exc.start})") from None
     except OSError as exc:
         raise ValueError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    return contacts_from_data(data, polygon, path)
+    return contacts_from_data(read_json(raw, path), polygon, path)
 
 
 def contacts_from_data(data: Any, polygon: Polygon, where: str = "contacts"

@@ -127,3 +127,14 @@ def demo_summary(plans: list[dict[str, Any]], units: str) -> dict[str, Any]:
     """The index ``demo.json`` of ``fcgrasp demo``: one entry per built-in plan."""
     return {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
             "plans": plans}
+
+
+def duration(seconds: float) -> str:
+    """A duration for people: seconds, minutes, hours or days."""
+    if seconds < 120:
+        return f"{seconds:.0f} s"
+    if seconds < 7200:
+        return f"{seconds / 60:.0f} min"
+    if seconds < 2 * 86400:
+        return f"{seconds / 3600:.1f} h"
+    return f"{seconds / 86400:.0f} days"

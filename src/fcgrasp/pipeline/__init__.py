@@ -47,6 +47,7 @@ from ..core.closure import force_direction_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
+from ..errors import SearchTooLarge
 from ..model._regiongeom import four_finger_problems, two_finger_problems
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
 from ..model.hand import Hand
@@ -186,7 +187,7 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
         raise ValueError(f"rank_by must be one of {', '.join(MEASURES)}, got {rank_by!r}")
     if top is not None:
         top = check_int(top, "top", minimum=1)
-    dist = _check_disturbance(disturbance)
+    dist = check_disturbance(disturbance)
     g = None
     if gravity is not None:
         if fingers != 3:
@@ -212,7 +213,7 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
                     dist, check_tol(tol), budget, along_boundary)
 
 
-def _check_disturbance(disturbance: Any) -> tuple[float, float]:
+def check_disturbance(disturbance: Any) -> tuple[float, float]:
     if isinstance(disturbance, (str, bytes)) or np.ndim(disturbance) != 1 \
             or len(disturbance) != 2:
         raise ValueError(f"disturbance must be (translation, rotation in degrees), got "
@@ -592,10 +593,6 @@ class SearchSize:
     @property
     def fits(self) -> bool:
         return self.peak_bytes + self.kept_bytes <= self.budget
-
-
-class SearchTooLarge(ValueError):
-    """A search that cannot fit its memory budget (raised before any work)."""
 
 
 def _rows(fingers: int, n: int, three_edge: bool = True) -> int:

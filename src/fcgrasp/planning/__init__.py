@@ -10,6 +10,14 @@
 from __future__ import annotations
 
 from .planner import RANKINGS, GraspPlan, geometric_key, independent_regions, plan, rank_key
+from .request import (
+    PLAN_OPTIONS,
+    READING_OPTIONS,
+    PlanDocument,
+    PlanRequest,
+    plan_document,
+)
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
-           "rank_key"]
+           "rank_key", "PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS",
+           "READING_OPTIONS"]

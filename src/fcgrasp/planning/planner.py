@@ -22,29 +22,15 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
-from ..core._checks import check_mu_scalar
 from ..core.tolerances import SOLVER_TOL
-from ..grippers.jaw import ParallelJaw, jaw_plans
-from ..grippers.three_fingers import three_finger_plans
-from ..model.frictionless_stretches import frictionless_stretch_regions
-from ..model.graspsets import Vertex
+from ..grippers.base import Gripper, SearchOptions
+from ..grippers.fingers import point_fingers, regions_on
 from ..model.hand import Hand
 from ..model.plans import GraspPlan, geometric_key, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
-from ..model.stretches import stretch_regions
-from ..pipeline import (
-    boundary_plans,
-    check_search,
-    frictionless_plan,
-    grown_plans,
-    plan_spec,
-    search,
-    stretch_plan,
-)
+from ..pipeline import check_disturbance as _check_disturbance
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key"]
@@ -134,37 +120,28 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     ((1, 3), 1.0)
     """
     _check_polygon(polygon)
-    if gripper is not None:
-        if not isinstance(gripper, ParallelJaw):
-            raise TypeError(f"gripper must be a ParallelJaw or None, got "
-                            f"{type(gripper).__name__}")
-        unused = [f"{name}={value!r}" for name, value, default in (
-            ("fingers", fingers, 2), ("mu", mu, 0.0), ("hand", hand, None),
-            ("gravity", gravity, None), ("rank_by", rank_by, "min_region"))
-            if value != default]
-        if unused:
-            raise ValueError(f"a parallel jaw is planned from its own stroke, pads and mu: "
-                             f"{', '.join(unused)} would not be used")
-        if top is None:
-            raise ValueError("a parallel jaw needs a top (how many boxes), got top=None")
-        return list(jaw_plans(polygon, gripper, top=top, margin=margin))
-    spec = plan_spec(fingers=fingers, mu=mu, top=top, rank_by=rank_by, hand=hand,
-                     margin=margin, gravity=gravity, disturbance=disturbance, tol=tol,
-                     max_memory=max_memory, along_boundary=along_boundary)
-    if progress is not None and not callable(progress):
-        raise TypeError(f"progress must be a callable progress(done, total) or None, "
-                        f"got {progress!r}")
-    check_search(polygon, spec)
-    if spec.fingers == 3 and spec.gravity is None:
-        return three_finger_plans(polygon, spec, progress=progress)
-    if spec.stretches:
-        plans = boundary_plans(polygon, spec)
-        if progress is not None:
-            progress(1, 1)
-        return plans
-    if spec.grows:
-        return grown_plans(polygon, spec, progress, map=map)
-    return search(polygon, spec, progress=progress, map=map)
+    if gripper is None:
+        gripper = point_fingers(fingers, mu, gravity, hand, along_boundary)
+    else:
+        _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, 0.0), hand=(hand, None),
+                           gravity=(gravity, None), along_boundary=(along_boundary, True))
+    options = SearchOptions(top=top, rank_by=rank_by, margin=margin,
+                            disturbance=_check_disturbance(disturbance), tol=tol,
+                            max_memory=max_memory, progress=progress, map=map)
+    return list(gripper.plan(polygon, options))
+
+
+def _short_form_unused(gripper: Any, **given: tuple[Any, Any]) -> None:
+    """With a gripper object, the short form's arguments must keep their defaults."""
+    if not isinstance(gripper, Gripper):
+        raise TypeError(f"gripper must be a gripper (fcgrasp.grippers.base.Gripper: a "
+                        f"ParallelJaw, TwoFingers, ...) or None, got "
+                        f"{type(gripper).__name__}")
+    unused = [f"{name}={value!r}" for name, (value, default) in given.items()
+              if value is not default and value != default]
+    if unused:
+        raise ValueError(f"a gripper object carries its own parameters: "
+                         f"{', '.join(unused)} would not be used")
 
 
 def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
@@ -202,78 +179,5 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
     """
     _check_polygon(polygon)
-    if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
-            np.ndim(e) == 1 for e in edges):
-        return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
-    if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
-        raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
-    if any(isinstance(e, Vertex) for e in edges):
-        raise ValueError(f"edges holds a Vertex (a soft finger), got {list(edges)!r}: "
-                         f"independent regions lie on edges; use grasp_set or grasp_sets "
-                         f"for a soft finger at a vertex")
-    idx = polygon.check_edges(edges)
-    n = len(idx)
-    if n == 2:
-        if gravity is not None:
-            raise ValueError("gravity is counted with three frictionless fingers, not two")
-        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
-    elif n == 3 and gravity is None:
-        if len(set(idx)) != 3:
-            raise ValueError(f"three fingers with friction need three distinct edges, got "
-                             f"{list(idx)}")
-        spec = plan_spec(fingers=3, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
-    elif n in (3, 4):
-        if check_mu_scalar(mu, "mu") != 0:
-            raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
-                             f"got mu={mu}")
-        if n == 4 and gravity is not None:
-            raise ValueError("four edges take no gravity (gravity is counted with three "
-                             "frictionless fingers)")
-        doubled = [e for e in set(idx) if idx.count(e) == 2]
-        if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
-            raise ValueError(f"four fingers need four distinct edges or three with one twice, "
-                             f"got {list(idx)}")
-        spec = plan_spec(fingers=n, mu=0.0, top=1, hand=hand, margin=margin,
-                         gravity=gravity if n == 3 else None, tol=tol)
-    else:
-        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {n}")
-    plans = three_finger_plans(polygon, spec, edges=idx) if spec.fingers == 3 and \
-        spec.gravity is None else search(polygon, spec, edges=idx)
-    if not plans:
-        return None
-    p = plans[0]
-    # report the fingers in the order asked for
-    order: list[int] = []
-    for e in idx:
-        order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
-    o = np.array(order)
-    return GraspPlan(tuple(p.edges[k] for k in o), [p.regions[k] for k in o], p.lengths[o],
-                     p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
-                     p.gravity, centroid=p.centroid, radius=p.radius,
-                     disturbance=p.disturbance)
-
-
-def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
-                     hand: Hand | None, gravity: Any) -> GraspPlan | None:
-    if hand is not None:
-        raise ValueError("regions along given stretches are planned without a hand")
-    if len(stretches) == 2:
-        if gravity is not None:
-            raise ValueError("gravity is counted with three frictionless fingers, not two")
-        spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
-        pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
-        return None if pair is None else stretch_plan(polygon, spec, pair)
-    n = len(stretches)
-    if n == 3 and gravity is None:
-        raise ValueError("three stretches are three frictionless fingers with "
-                         "gravity=(gx, gy); three fingers with friction are planned on "
-                         "single edges (give three edge indices)")
-    if check_mu_scalar(mu, "mu") != 0:
-        raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
-    if (n == 3) != (gravity is not None):
-        raise ValueError("three stretches need gravity=..., four stretches take no gravity")
-    spec = plan_spec(fingers=n, mu=0.0, top=1, margin=margin,
-                     gravity=gravity if n == 3 else None)
-    r = frictionless_stretch_regions(polygon, stretches, spec.margin,
-                                     None if spec.gravity is None else spec.gravity)
-    return None if r is None else frictionless_plan(polygon, spec, r)
+    return regions_on(polygon, edges, mu=mu, margin=margin, hand=hand, gravity=gravity,
+                      tol=tol)

@@ -14,11 +14,9 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
+from ..errors import OutputError
+
 _TAG = ".fcgrasp-tmp-"
-
-
-class OutputError(ValueError):
-    """An output file could not be written (names the user's path, not the temporary)."""
 
 
 def _stale(target: Path) -> list[Path]:
@@ -105,3 +103,30 @@ class OutputSet:
             self.commit()
         else:
             self.discard()
+
+
+def same_file(a: str, b: str) -> bool:
+    """Whether two paths name one file: the same inode where both exist (through symlinks
+    and hard links), else the same resolved path."""
+    try:
+        if os.path.exists(a) and os.path.exists(b):
+            return os.path.samefile(a, b)
+    except OSError:
+        pass
+    return os.path.realpath(a) == os.path.realpath(b)
+
+
+def refuse_overwriting(outputs: list[tuple[str, str]], inputs: list[str]) -> None:
+    """Raise :class:`ValueError` when an output (``(option, path)``; ``-`` is standard
+    output) is one of the ``inputs`` (paths; ``-`` and ``demo:`` names are not files) or
+    two outputs are one file: a run must never overwrite what it reads."""
+    files = [(opt, path) for opt, path in outputs if path != "-"]
+    for opt, path in files:
+        for src in inputs:
+            if not src.startswith("demo:") and src != "-" and same_file(path, src):
+                raise ValueError(f"{opt} {path} is an input of this run: refusing to "
+                                 f"overwrite it")
+    for k, (opt, path) in enumerate(files):
+        for opt2, path2 in files[k + 1:]:
+            if same_file(path, path2):
+                raise ValueError(f"{opt} and {opt2} name the same file {path!r}")

@@ -1,0 +1,345 @@
+"""Point fingers: the grippers of sections 6-8, each one object behind
+:class:`~fcgrasp.grippers.base.Gripper`.
+
+- :class:`TwoFingers` with friction (theorem 6.4, algorithm 7.1; regions along the
+  boundary by :mod:`fcgrasp.model.stretches`, exact);
+- :class:`ThreeFingers` with friction (:mod:`fcgrasp.grippers.three_fingers`: concurrent
+  grasps in non-marginal equilibrium, a safe lower bound of the optimum);
+- :class:`ThreeFrictionless` fingers holding the part against gravity (gravity counted as
+  a frictionless contact at the centroid, section 3.1);
+- :class:`FourFingers`, frictionless (theorem 7.1, algorithm 6.1).
+
+Each knows its parameters (checked when built), its search (candidates -> solve -> rank
+of :mod:`fcgrasp.pipeline`, or its own) and how its plans are described.
+:func:`point_fingers` is the short form ``fingers=, mu=, gravity=`` of
+:func:`fcgrasp.plan`; :func:`fingers_from_options` builds one from a plan request.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ..core._checks import check_mu_scalar
+from ..core.tolerances import SOLVER_TOL
+from ..model.frictionless_stretches import frictionless_stretch_regions
+from ..model.graspsets import Vertex
+from ..model.hand import Hand
+from ..model.plans import GraspPlan
+from ..model.polygon import Polygon
+from ..model.regions import DEFAULT_MARGIN_DEG
+from ..model.stretches import stretch_regions
+from ..pipeline import (
+    PlanSpec,
+    boundary_plans,
+    check_search,
+    frictionless_plan,
+    grown_plans,
+    plan_spec,
+    search,
+    stretch_plan,
+)
+from .base import SearchOptions, register
+from .three_fingers import three_finger_plans
+
+__all__ = ["TwoFingers", "ThreeFingers", "ThreeFrictionless", "FourFingers",
+           "point_fingers", "fingers_from_options", "regions_on"]
+
+
+@dataclass(frozen=True)
+class _PointFingers:
+    """Point fingers: their count, friction and gravity (validated by
+    :func:`fcgrasp.pipeline.plan_spec`), an optional :class:`~fcgrasp.Hand` and whether
+    regions run along the boundary."""
+
+    fingers: ClassVar[int]
+    name: ClassVar[str]
+    mu: float = 0.0
+    gravity: tuple[float, float] | None = None
+    hand: Hand | None = None
+    along_boundary: bool = True
+
+    def __post_init__(self) -> None:
+        spec = plan_spec(fingers=self.fingers, mu=self.mu, gravity=self.gravity,
+                         hand=self.hand, along_boundary=self.along_boundary)
+        object.__setattr__(self, "mu", spec.mu)
+        object.__setattr__(self, "gravity", spec.gravity)
+
+    def spec(self, options: SearchOptions) -> PlanSpec:
+        """The search's :class:`~fcgrasp.pipeline.PlanSpec` for these options."""
+        return plan_spec(fingers=self.fingers, mu=self.mu, top=options.top,
+                         rank_by=options.rank_by, hand=self.hand, margin=options.margin,
+                         gravity=self.gravity, disturbance=options.disturbance,
+                         tol=options.tol, max_memory=options.max_memory,
+                         along_boundary=self.along_boundary)
+
+    def check_part(self, polygon: Polygon, options: SearchOptions) -> Any:
+        """Refuse at once what cannot be planned: a hand that reaches no edge, a search
+        that cannot fit its memory (:class:`~fcgrasp.errors.SearchTooLarge`); the search's
+        :class:`~fcgrasp.pipeline.SearchSize` otherwise."""
+        if self.hand is not None and not any(self.hand.feasible_intervals(polygon)):
+            ws = self.hand.workspace
+            where = f"workspace {tuple(float(v) for v in ws)}" if ws is not None else \
+                f"finger radius {self.hand.finger_radius:g}"
+            raise ValueError(f"the hand cannot touch the part: no edge is reachable with "
+                             f"the {where}")
+        return check_search(polygon, self.spec(options))
+
+    def plan(self, polygon: Polygon, options: SearchOptions) -> list[GraspPlan]:
+        spec = self.spec(options)
+        check_search(polygon, spec)
+        return self._search(polygon, spec, options)
+
+    def _search(self, polygon: Polygon, spec: PlanSpec,
+                options: SearchOptions) -> list[GraspPlan]:
+        if spec.grows:
+            return grown_plans(polygon, spec, options.progress, map=options.map)
+        return search(polygon, spec, progress=options.progress, map=options.map)
+
+    def parameters(self, options: SearchOptions) -> dict[str, Any]:
+        ws = None if self.hand is None or self.hand.workspace is None else \
+            [float(v) for v in self.hand.workspace]
+        return {"fingers": self.fingers, "mu": self.mu, "top": options.top,
+                "rank_by": options.rank_by, "margin_deg": options.margin,
+                "along_boundary": self.along_boundary and self.hand is None,
+                "gravity": None if self.gravity is None else list(self.gravity),
+                "workspace": ws,
+                "finger_radius": 0.0 if self.hand is None else self.hand.finger_radius,
+                "disturbance": {"translation": options.disturbance[0],
+                                "rotation_deg": options.disturbance[1]}}
+
+    def no_grasp_reason(self, margin: float) -> str:
+        extra = f" with a margin of {margin:g} degrees"
+        if self.hand is not None:
+            extra += " within the hand's reach"
+        return self._none + extra
+
+    @property
+    def _none(self) -> str:
+        raise NotImplementedError
+
+    @property
+    def title(self) -> str:
+        return f"{self.fingers} fingers"
+
+
+@dataclass(frozen=True)
+class TwoFingers(_PointFingers):
+    """Two fingers with friction ``mu`` (theorem 6.4, algorithm 7.1)."""
+
+    fingers: ClassVar[int] = 2
+    name: ClassVar[str] = "two_fingers"
+
+    def _search(self, polygon: Polygon, spec: PlanSpec,
+                options: SearchOptions) -> list[GraspPlan]:
+        if not spec.stretches:
+            return super()._search(polygon, spec, options)
+        plans = boundary_plans(polygon, spec)
+        if options.progress is not None:
+            options.progress(1, 1)
+        return plans
+
+    def no_grasp_reason(self, margin: float) -> str:
+        if self.mu == 0:
+            return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
+        return super().no_grasp_reason(margin)
+
+    @property
+    def _none(self) -> str:
+        return f"no pair of edges admits two fingers with mu = {self.mu:g}"
+
+
+@dataclass(frozen=True)
+class ThreeFingers(_PointFingers):
+    """Three fingers with friction ``mu`` (:mod:`fcgrasp.grippers.three_fingers`)."""
+
+    fingers: ClassVar[int] = 3
+    name: ClassVar[str] = "three_fingers"
+
+    def _search(self, polygon: Polygon, spec: PlanSpec,
+                options: SearchOptions) -> list[GraspPlan]:
+        return three_finger_plans(polygon, spec, progress=options.progress)
+
+    @property
+    def _none(self) -> str:
+        return f"no three edges admit three fingers with mu = {self.mu:g}"
+
+
+@dataclass(frozen=True)
+class ThreeFrictionless(_PointFingers):
+    """Three frictionless fingers holding the part against ``gravity`` (a direction)."""
+
+    fingers: ClassVar[int] = 3
+    name: ClassVar[str] = "three_frictionless"
+    gravity: tuple[float, float] | None = (0.0, -1.0)
+
+    @property
+    def _none(self) -> str:
+        return "no three edges hold the part against gravity with frictionless fingers"
+
+
+@dataclass(frozen=True)
+class FourFingers(_PointFingers):
+    """Four frictionless fingers (theorem 7.1), on four edges or on three (two fingers
+    on one edge)."""
+
+    fingers: ClassVar[int] = 4
+    name: ClassVar[str] = "four_fingers"
+
+    @property
+    def _none(self) -> str:
+        return "no four edges (or three, two fingers on one) admit frictionless fingers"
+
+
+#: The point-finger gripper of ``(fingers, with gravity)``.
+_BY_COUNT: dict[tuple[int, bool], type[_PointFingers]] = {
+    (2, False): TwoFingers, (3, False): ThreeFingers, (3, True): ThreeFrictionless,
+    (4, False): FourFingers}
+
+
+def point_fingers(fingers: Any = 2, mu: Any = 0.0, gravity: Any = None,
+                  hand: Hand | None = None, along_boundary: Any = True) -> _PointFingers:
+    """The point-finger gripper of :func:`fcgrasp.plan`'s short form: ``fingers`` 2 or 3
+    with friction ``mu``, 3 with ``gravity`` (frictionless), 4 frictionless.  Raises
+    ValueError or TypeError naming the argument, also for one the gripper would not use.
+
+    >>> point_fingers(3, mu=0.5).name
+    'three_fingers'
+    """
+    spec = plan_spec(fingers=fingers, mu=mu, gravity=gravity, hand=hand,
+                     along_boundary=along_boundary)
+    cls = _BY_COUNT[(spec.fingers, spec.gravity is not None)]
+    return cls(mu=spec.mu, gravity=spec.gravity, hand=hand, along_boundary=along_boundary)
+
+
+def regions_on(polygon: Polygon, edges: Any, mu: float = 0.0,
+               margin: float = DEFAULT_MARGIN_DEG, hand: Hand | None = None,
+               gravity: Any = None, tol: float = SOLVER_TOL) -> GraspPlan | None:
+    """Optimal independent regions of point fingers on the given edges or stretches
+    (definition 7.1; :func:`fcgrasp.independent_regions` documents the arguments)."""
+    if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
+            np.ndim(e) == 1 for e in edges):
+        return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
+    if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
+        raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
+    if any(isinstance(e, Vertex) for e in edges):
+        raise ValueError(f"edges holds a Vertex (a soft finger), got {list(edges)!r}: "
+                         f"independent regions lie on edges; use grasp_set or grasp_sets "
+                         f"for a soft finger at a vertex")
+    idx = polygon.check_edges(edges)
+    n = len(idx)
+    if n == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
+    elif n == 3 and gravity is None:
+        if len(set(idx)) != 3:
+            raise ValueError(f"three fingers with friction need three distinct edges, got "
+                             f"{list(idx)}")
+        spec = plan_spec(fingers=3, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
+    elif n in (3, 4):
+        if check_mu_scalar(mu, "mu") != 0:
+            raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
+                             f"got mu={mu}")
+        if n == 4 and gravity is not None:
+            raise ValueError("four edges take no gravity (gravity is counted with three "
+                             "frictionless fingers)")
+        doubled = [e for e in set(idx) if idx.count(e) == 2]
+        if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
+            raise ValueError(f"four fingers need four distinct edges or three with one twice, "
+                             f"got {list(idx)}")
+        spec = plan_spec(fingers=n, mu=0.0, top=1, hand=hand, margin=margin,
+                         gravity=gravity if n == 3 else None, tol=tol)
+    else:
+        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {n}")
+    plans = three_finger_plans(polygon, spec, edges=idx) if spec.fingers == 3 and \
+        spec.gravity is None else search(polygon, spec, edges=idx)
+    if not plans:
+        return None
+    p = plans[0]
+    # report the fingers in the order asked for
+    order: list[int] = []
+    for e in idx:
+        order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
+    o = np.array(order)
+    return GraspPlan(tuple(p.edges[k] for k in o), [p.regions[k] for k in o], p.lengths[o],
+                     p.contacts[o], p.normals[o], p.contact_type, p.mu, p.mode, p.margin,
+                     p.gravity, centroid=p.centroid, radius=p.radius,
+                     disturbance=p.disturbance)
+
+
+def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
+                     hand: Hand | None, gravity: Any) -> GraspPlan | None:
+    if hand is not None:
+        raise ValueError("regions along given stretches are planned without a hand")
+    if len(stretches) == 2:
+        if gravity is not None:
+            raise ValueError("gravity is counted with three frictionless fingers, not two")
+        spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin)
+        pair = stretch_regions(polygon, stretches, spec.mu, spec.margin)
+        return None if pair is None else stretch_plan(polygon, spec, pair)
+    n = len(stretches)
+    if n == 3 and gravity is None:
+        raise ValueError("three stretches are three frictionless fingers with "
+                         "gravity=(gx, gy); three fingers with friction are planned on "
+                         "single edges (give three edge indices)")
+    if check_mu_scalar(mu, "mu") != 0:
+        raise ValueError(f"regions of {n} fingers are frictionless: mu must be 0, got {mu}")
+    if (n == 3) != (gravity is not None):
+        raise ValueError("three stretches need gravity=..., four stretches take no gravity")
+    spec = plan_spec(fingers=n, mu=0.0, top=1, margin=margin,
+                     gravity=gravity if n == 3 else None)
+    r = frictionless_stretch_regions(polygon, stretches, spec.margin,
+                                     None if spec.gravity is None else spec.gravity)
+    return None if r is None else frictionless_plan(polygon, spec, r)
+
+
+def _no_jaw_options(options: Mapping[str, Any]) -> None:
+    for opt, key in (("--stroke", "stroke"), ("--pad", "pad")):
+        if options.get(key) is not None:
+            raise ValueError(f"{opt} is an option of --gripper jaw")
+    if options.get("certify") is not None:
+        raise ValueError(f"{'--certify' if options['certify'] else '--no-certify'} is an "
+                         f"option of --gripper jaw")
+
+
+def _hand(options: Mapping[str, Any]) -> Hand | None:
+    ws, radius = options.get("workspace"), options.get("finger_radius") or 0.0
+    if ws is None and not radius:
+        return None
+    if ws is not None and ws[2] <= 0:
+        raise ValueError(f"--workspace radius must be > 0, got {ws[2]:g}")
+    if not (math.isfinite(radius) and radius >= 0):
+        raise ValueError(f"--finger-radius must be a finite number >= 0, got {radius:g}")
+    return Hand(workspace=ws, finger_radius=radius)
+
+
+def fingers_from_options(options: Mapping[str, Any]) -> _PointFingers:
+    """The point fingers of a plan request (``--gripper fingers``): ``fingers`` (default
+    2), ``mu`` (default 0.3 with friction, 0 frictionless), ``gravity``, ``workspace``,
+    ``finger_radius``, ``single_edge``; none of the jaw's options."""
+    _no_jaw_options(options)
+    fingers = 2 if options.get("fingers") is None else options["fingers"]
+    gravity = options.get("gravity")
+    if gravity is not None and fingers != 3:
+        raise ValueError(f"--gravity is a contact of three frictionless fingers, not of "
+                         f"{fingers} (drop it, or use --fingers 3)")
+    frictionless = fingers == 4 or gravity is not None
+    mu = options.get("mu")
+    if mu is None:
+        mu = 0.0 if frictionless else 0.3
+    elif frictionless and mu != 0:
+        what = "four fingers" if fingers == 4 else "three fingers with --gravity"
+        raise ValueError(f"--mu {mu:g} would not be used: {what} are planned frictionless "
+                         f"(drop --mu)")
+    if mu < 0 or not math.isfinite(mu):
+        raise ValueError(f"--mu must be a finite number >= 0, got {mu:g}")
+    return point_fingers(fingers, mu, gravity, _hand(options),
+                         not options.get("single_edge", False))
+
+
+register("fingers", fingers_from_options)

@@ -1,0 +1,328 @@
+"""What to plan, as one typed value: :class:`PlanRequest`, and :func:`plan_document`, the
+one function that turns a request into the JSON document ``fcgrasp plan --json`` writes.
+
+Every front end builds a request from its own input (the command line from argv, the
+batch runner from keyword options, the explorer from a JSON body) and calls
+:func:`plan_document`; none of them imports another.  A request is checked whole when it
+is built (types, values, options of another gripper, outputs that would overwrite an
+input), with one message per problem naming the option, so every front end refuses the
+same requests with the same words.  It is a frozen dataclass: picklable, so a batch
+sends it to its workers as it is.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from collections.abc import Callable
+from dataclasses import asdict, dataclass, field, fields, replace
+from pathlib import Path
+from typing import Any
+
+from ..errors import RequestError
+from ..grippers.base import Gripper, SearchOptions, check_margin, gripper_from_options
+from ..io.outputs import refuse_overwriting
+from ..io.parts import Part, load_part
+from ..io.report import duration, plan_report
+from ..io.units import FILE_UNITS, UNITS, disturbance_step
+from ..model.ranking import MEASURES
+from ..model.regions import DEFAULT_MARGIN_DEG
+from .planner import plan
+
+__all__ = ["PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS", "READING_OPTIONS"]
+
+#: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
+READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
+                   "threshold", "y_down", "simplify", "no_clean")
+#: The options of a request that say how to plan (the gripper's and the search's).
+PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
+                "single_edge", "rank_by", "margin", "workspace", "finger_radius",
+                "max_memory")
+#: Figures a plan can be drawn into.
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def _fail(field_name: str, message: str) -> RequestError:
+    return RequestError(message, field_name)
+
+
+def _number(name: str, value: Any, *, integer: bool = False) -> None:
+    kinds = (int,) if integer else (int, float)
+    if isinstance(value, bool) or not isinstance(value, kinds):
+        what = "a whole number" if integer else "a number"
+        raise TypeError(f"{name} must be {what}, got {value!r}")
+    if not integer and not math.isfinite(value):
+        raise _fail(name, f"--{name.replace('_', '-')} must be a finite number, got {value!r}")
+
+
+def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
+    if isinstance(value, (str, bytes)) or not isinstance(value, (list, tuple)) \
+            or len(value) != n:
+        raise TypeError(f"{name} must be a sequence of {n} numbers, got {value!r}")
+    for v in value:
+        _number(name, v)
+    return tuple(float(v) for v in value)
+
+
+#: Each option's kind: "int", "float", "bool", "str", or ("floats", n).
+_KINDS: dict[str, Any] = {
+    "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
+    "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
+    "pixel_size": "float", "threshold": "float", "simplify": "float",
+    "certify": "bool", "single_edge": "bool", "y_down": "bool", "no_clean": "bool",
+    "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
+    "part": "str", "gripper": "str", "rank_by": "str", "select": "str", "units": "str",
+    "file_units": "str", "layer": "str", "json": "str", "plot": "str"}
+
+
+def _check_kind(name: str, value: Any) -> Any:
+    """``value`` as option ``name`` takes it (tuples of floats for pairs), or TypeError."""
+    kind = _KINDS[name]
+    if value is None:
+        return None
+    if isinstance(kind, tuple):
+        return _numbers(name, value, kind[1])
+    if kind in ("int", "float"):
+        _number(name, value, integer=kind == "int")
+        return int(value) if kind == "int" else float(value)
+    if kind == "bool" and not isinstance(value, bool):
+        raise TypeError(f"{name} must be true or false, got {value!r}")
+    if kind == "str" and not isinstance(value, str):
+        raise TypeError(f"{name} must be a string, got {value!r}")
+    return value
+
+
+@dataclass(frozen=True)
+class PlanRequest:
+    """One plan to make: the part, the gripper and its parameters, the search, the
+    outputs.  The fields are ``fcgrasp plan``'s options (``--rank-by`` is ``rank_by``),
+    typed: pairs and triples are tuples of numbers (``stroke=(10, 50)``), ``max_memory``
+    is bytes.  ``None`` is "not given" (the gripper's default).
+
+    ``part`` is a file path, ``-`` (standard input) or ``demo:NAME``; ``gripper`` a name
+    in :data:`fcgrasp.grippers.base.REGISTRY` (``fingers``: point fingers, ``jaw``: a
+    parallel jaw); ``json`` and ``plot`` are output paths (``json="-"``: standard
+    output).  Building one checks it whole: :class:`TypeError` for a value of the wrong
+    type, :class:`~fcgrasp.errors.RequestError` (a ValueError, with the ``field`` it is
+    about) for a value out of range, an option the gripper does not take, or an output
+    that is an input.
+
+    >>> r = PlanRequest(part="demo:blob", fingers=3, mu=0.5, top=3)
+    >>> r.gripper_object().name, r.search_options("mm").top
+    ('three_fingers', 3)
+    >>> PlanRequest(part="demo:blob", gripper="jaw", stroke=(50, 10), pad=8)
+    Traceback (most recent call last):
+    ...
+    fcgrasp.errors.RequestError: stroke must have min_opening <= max_opening, got (50.0, 10.0)
+    """
+
+    part: str = "demo:blob"
+    gripper: str = "fingers"
+    fingers: int | None = None
+    mu: float | None = None
+    gravity: tuple[float, float] | None = None
+    stroke: tuple[float, float] | None = None
+    pad: float | None = None
+    certify: bool | None = None
+    top: int = 10
+    single_edge: bool = False
+    rank_by: str = "min_region"
+    margin: float = DEFAULT_MARGIN_DEG
+    workspace: tuple[float, float, float] | None = None
+    finger_radius: float = 0.0
+    max_memory: int | None = None
+    select: str | None = None
+    units: str | None = None
+    file_units: str | None = None
+    flatten: float | None = None
+    layer: str | None = None
+    gap: float | None = None
+    pixel_size: float | None = None
+    threshold: float | None = None
+    y_down: bool = False
+    simplify: float | None = None
+    no_clean: bool = False
+    json: str | None = None
+    plot: str | None = None
+    _gripper: Any = field(default=None, init=False, repr=False, compare=False)
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            if f.init:
+                value = getattr(self, f.name)
+                if f.name in ("top", "margin", "finger_radius", "part", "gripper",
+                              "rank_by", "single_edge", "y_down", "no_clean") \
+                        and value is None:
+                    raise TypeError(f"{f.name} must be given, got None")
+                object.__setattr__(self, f.name, _check_kind(f.name, value))
+        self._check_values()
+        self._check_outputs()
+        try:
+            built = gripper_from_options(self.gripper, self.plan_options())
+        except RequestError:
+            raise
+        except ValueError as exc:             # about the option its message names first
+            named = re.match(r"--([a-z-]+)", str(exc))
+            raise _fail(named.group(1).replace("-", "_") if named else "gripper",
+                        str(exc)) from None
+        object.__setattr__(self, "_gripper", built)
+
+    def _check_values(self) -> None:
+        try:
+            check_margin(self.margin, "--margin")
+        except ValueError:
+            raise _fail("margin", f"--margin is an angle in degrees in [0, 90), got "
+                                  f"{self.margin:g}") from None
+        if self.top < 1:
+            raise _fail("top", f"--top must be at least 1, got {self.top}")
+        if self.rank_by not in MEASURES:
+            raise _fail("rank_by", f"--rank-by must be one of {', '.join(MEASURES)}, got "
+                                   f"{self.rank_by!r}")
+        if self.units is not None and self.units not in UNITS:
+            raise _fail("units", f"--units must be one of {', '.join(UNITS)}, got "
+                                 f"{self.units!r}")
+        if self.file_units is not None and self.file_units not in FILE_UNITS:
+            raise _fail("file_units", f"--file-units must be one of {', '.join(FILE_UNITS)}, "
+                                      f"got {self.file_units!r}")
+        if self.max_memory is not None and self.max_memory < 1:
+            raise _fail("max_memory", f"--max-memory must be a positive size, got "
+                                      f"{self.max_memory}")
+
+    def _check_outputs(self) -> None:
+        outs = [(f"--{k}", getattr(self, k)) for k in ("json", "plot") if getattr(self, k)]
+        for opt, path in outs:
+            if path == "-" and opt == "--json":
+                continue
+            if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
+                raise _fail(opt[2:], f"{opt} must be a file name, got {path!r}")
+        if self.plot and Path(self.plot).suffix.lower() not in FIGURE_SUFFIXES:
+            raise _fail("plot", f"--plot must end in .png, .svg or .pdf, got {self.plot!r}")
+        try:
+            refuse_overwriting(outs, [self.part])
+        except ValueError as exc:
+            raise _fail("json", str(exc)) from None
+
+    # ------------------------------------------------------------------ views of it
+    def gripper_object(self) -> Gripper:
+        """The gripper the request names, built from its options (checked)."""
+        return self._gripper
+
+    def plan_options(self) -> dict[str, Any]:
+        """The planning options (:data:`PLAN_OPTIONS`), as given."""
+        return {k: getattr(self, k) for k in PLAN_OPTIONS}
+
+    def reading(self) -> dict[str, Any]:
+        """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
+        kw = {k: getattr(self, k) for k in READING_OPTIONS if k not in ("select",
+                                                                         "no_clean")}
+        kw["clean"] = not self.no_clean
+        return kw
+
+    def options(self) -> dict[str, Any]:
+        """Every option but the part and the outputs, JSON-ready: what a batch records
+        with each result (and compares on a rerun)."""
+        out = {k: v for k, v in asdict(self).items()
+               if k not in ("part", "json", "plot", "_gripper")}
+        return {k: list(v) if isinstance(v, tuple) else v for k, v in sorted(out.items())}
+
+    def search_options(self, units: str, progress: Callable[[int, int], None] | None = None,
+                       map: Any = None) -> SearchOptions:
+        """The search's options for a part in ``units`` (the resistance measure moves the
+        part by :func:`fcgrasp.io.units.disturbance_step` and 15 degrees)."""
+        return SearchOptions(top=self.top, rank_by=self.rank_by, margin=self.margin,
+                             disturbance=(disturbance_step(units), 15.0),
+                             max_memory=self.max_memory, progress=progress, map=map)
+
+    def to_argv(self) -> list[str]:
+        """The ``fcgrasp plan`` options that make this request (the part and the outputs
+        left out): every option that differs from its default, in the request's order.
+
+        >>> PlanRequest(fingers=4, single_edge=True, margin=2.0).to_argv()
+        ['--fingers', '4', '--single-edge', '--margin', '2.0']
+        """
+        argv: list[str] = []
+        for f in fields(self):
+            if not f.init or f.name in ("part", "json", "plot"):
+                continue
+            value = getattr(self, f.name)
+            if value == f.default:
+                continue
+            flag = "--part" if f.name == "select" else "--" + f.name.replace("_", "-")
+            if isinstance(value, bool):
+                argv.append(flag if value else "--no-" + flag[2:])
+            elif isinstance(value, tuple):
+                argv += [flag, ",".join(repr(v) for v in value)]
+            else:
+                argv += [flag, repr(value) if isinstance(value, float) else str(value)]
+        return argv
+
+    def replace(self, **changes: Any) -> PlanRequest:
+        """A copy with some options changed (checked again)."""
+        return replace(self, **changes)
+
+    def load(self, say: Callable[[str], None] | None = None) -> Part:
+        """Read the request's part; when the file holds several, which one was taken and
+        the reader's notes are said with ``say``."""
+        part = load_part(self.part, self.select, **self.reading())
+        if say is not None:
+            if part.count > 1:
+                name = f" ({part.id})" if part.id else ""
+                say(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
+                    f"(see fcgrasp parts)")
+            for note in part.notes:
+                say(f"fcgrasp: {part.source}: {note}")
+        return part
+
+
+@dataclass
+class PlanDocument:
+    """What a request plans for one part: the ``report`` (the JSON document), the plans,
+    the part's polygon and units, why there is no plan (``reason``) and a figure title."""
+
+    report: dict[str, Any]
+    plans: list[Any]
+    polygon: Any
+    units: str
+    reason: str | None
+    title: str
+
+
+def plan_document(request: PlanRequest, part: Part | None = None,
+                  progress: Callable[[int, int], None] | None = None,
+                  say: Callable[[str], None] | None = None, map: Any = None) -> PlanDocument:
+    """Plan a request: read its part (or take ``part``, a
+    :class:`~fcgrasp.io.parts.Part` already read), plan it with its gripper and build the
+    JSON document ``fcgrasp plan --json`` writes.  ``progress(done, total)`` is told how
+    the search goes, ``say(text)`` gets notes (which part of a file was taken, a long
+    search's estimate), ``map`` solves candidate batches elsewhere (see
+    :func:`fcgrasp.plan`).  Every front end plans through this function, so a batch's
+    and the explorer's results are exactly those of ``fcgrasp plan --json``.
+
+    >>> doc = plan_document(PlanRequest(part="demo:blob", top=1))
+    >>> doc.report["parameters"]["fingers"], len(doc.report["grasps"])
+    (2, 1)
+    """
+    if not isinstance(request, PlanRequest):
+        raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
+    gripper = request.gripper_object()
+    part = request.load(say) if part is None else part
+    polygon, units = part.polygon, part.units
+    if polygon is None:
+        raise ValueError(f"{part.source}: part {part.index} is not usable: {part.error}")
+    options = request.search_options(units, progress, map)
+    size = gripper.check_part(polygon, options)
+    # with a top and the smallest region, the exact pruning stops far sooner than
+    # solving every candidate (seconds where this estimate says hours)
+    pruned = options.top is not None and options.rank_by == "min_region"
+    if size is not None and size.seconds > 60 and say is not None and not pruned:
+        say(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
+            f"{duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
+    plans = plan(polygon, gripper=gripper, top=options.top, rank_by=options.rank_by,
+                 margin=options.margin, disturbance=options.disturbance,
+                 max_memory=options.max_memory, progress=progress, map=map)
+    params = gripper.parameters(options)
+    reason = None if plans else gripper.no_grasp_reason(request.margin)
+    report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+    return PlanDocument(report, plans, polygon, units, reason,
+                        f"{request.part}: {gripper.title}")
