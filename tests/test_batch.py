@@ -89,7 +89,7 @@ def folder(tmp_path_factory):
 @pytest.fixture(scope="module")
 def local_results(folder, tmp_path_factory):
     out = tmp_path_factory.mktemp("res") / "local.jsonl"
-    r = run("batch", folder, "--out", out, "--workers", "2", *OPTIONS, timeout=300)
+    r = run("batch", folder, "--out", out, "--workers", "2", *OPTIONS, timeout=600)
     return r, out
 
 
@@ -134,7 +134,7 @@ def test_dask_local_cluster_gives_the_same_results(folder, local_results, tmp_pa
     _, out = local_results
     dask_out = tmp_path / "dask.jsonl"
     r = run("batch", folder, "--out", dask_out, "--scheduler", "local", "--workers", "2",
-            *OPTIONS, timeout=300)
+            *OPTIONS, timeout=600)
     assert r.returncode == 1, r.stderr
     want = {k: v for k, v in _lines(out).items()}
     _same(_lines(dask_out), want)
@@ -186,7 +186,7 @@ def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
 
     monkeypatch.setattr(batch, "_plan_one", flaky)
     res = {r["path"]: r for r in batch.plan_many(polys + [fc.Polygon(_ring(rng, 5))],
-                                                 workers=2, part_timeout=2.0, fingers=2,
+                                                 workers=2, part_timeout=10.0, fingers=2,
                                                  mu=0.4, top=2)}
     assert res["polygon:0"]["error"] is None and res["polygon:0"]["grasps"]
     assert "worker died" in res["polygon:1"]["error"]

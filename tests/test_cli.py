@@ -20,7 +20,7 @@ from fcgrasp.io.report import dumps, plan_report
 OUTLINE = [[0.0, 0.0], [40.0, -6.0], [62.0, 18.0], [45.0, 44.0], [8.0, 38.0]]
 
 
-def run(*args, timeout=120):
+def run(*args, timeout=600):
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([sys.executable, "-m", "fcgrasp", *map(str, args)],
                           capture_output=True, text=True, timeout=timeout, env=env)

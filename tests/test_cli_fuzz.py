@@ -217,6 +217,6 @@ def test_cli_errors_as_a_process(args):
     import sys
 
     r = subprocess.run([sys.executable, "-m", "fcgrasp", *args], capture_output=True,
-                       text=True, timeout=120)
+                       text=True, timeout=600)
     assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1
     assert "Traceback" not in r.stderr

@@ -82,7 +82,7 @@ def browser(downloads):
     shutil.rmtree(profile, ignore_errors=True)
 
 
-def wait(driver, script, timeout=30.0):
+def wait(driver, script, timeout=600.0):
     """Poll a JavaScript expression until it is truthy; its value."""
     end = time.monotonic() + timeout
     while True:

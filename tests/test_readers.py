@@ -26,7 +26,7 @@ iio = pytest.importorskip("imageio.v3")
 def run(*args, stdin=None):
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([sys.executable, "-m", "fcgrasp", *map(str, args)], input=stdin,
-                          capture_output=True, timeout=120, env=env)
+                          capture_output=True, timeout=600, env=env)
 
 
 def bounds(poly):
