@@ -182,39 +182,45 @@ def plan_request(options: Any, name: str = "explorer") -> Any:
     """
     from ..planning import PlanRequest
 
-    if not isinstance(options, dict):
-        raise RequestError(f"options must be an object, got {_short(options)}", "options")
-    known = {"gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-             "gravity", "certify"}
-    extra = sorted(set(options) - known)
-    if extra:
-        raise RequestError(f"options: unknown option {extra[0]!r} (expected "
-                           f"{', '.join(sorted(known))})", "options")
-    gripper = options.get("gripper", "2")
-    if gripper not in GRIPPERS:
-        raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
-                           f"{_short(gripper)}", "gripper")
-    kw: dict[str, Any] = dict(GRIPPERS[gripper])
-    for key in _PAGE_OPTIONS[gripper]:
-        if options.get(key) is not None:
-            kw[key] = options[key]
-    if "along_boundary" in kw:
-        kw["single_edge"] = kw.pop("along_boundary") is False
-    for key in ("stroke", "gravity"):
-        if isinstance(kw.get(key), list):
-            kw[key] = tuple(kw[key])
-    top = kw.get("top")
-    if top is not None and (isinstance(top, bool) or not isinstance(top, int)
-                            or not 1 <= top <= 100):
-        raise RequestError(f"options.top must be a whole number from 1 to 100, got "
-                           f"{_short(top)}", "top")
+    kw = _request_options(options)
     try:
         return PlanRequest(part=name, **kw)
     except RequestError:
         raise
     except (TypeError, ValueError) as exc:    # a value of the wrong type: its option first
         first = str(exc).split(" ", 1)[0]
-        raise RequestError(str(exc), first if first in known else "options") from None
+        raise RequestError(str(exc), first if first in _KNOWN else "options") from None
+
+
+#: The keys of the page's options.
+_KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
+          "gravity", "certify")
+
+
+def _request_options(options: Any) -> dict[str, Any]:
+    """The page's options as :class:`~fcgrasp.planning.PlanRequest` keywords (those of
+    the chosen gripper only), or a RequestError for an unknown key, gripper or top."""
+    if not isinstance(options, dict):
+        raise RequestError(f"options must be an object, got {_short(options)}", "options")
+    extra = sorted(set(options) - set(_KNOWN))
+    if extra:
+        raise RequestError(f"options: unknown option {extra[0]!r} (expected "
+                           f"{', '.join(sorted(_KNOWN))})", "options")
+    gripper = options.get("gripper", "2")
+    if gripper not in GRIPPERS:
+        raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
+                           f"{_short(gripper)}", "gripper")
+    kw: dict[str, Any] = dict(GRIPPERS[gripper])
+    kw.update({k: options[k] for k in _PAGE_OPTIONS[gripper] if options.get(k) is not None})
+    if "along_boundary" in kw:
+        kw["single_edge"] = kw.pop("along_boundary") is False
+    kw.update({k: tuple(kw[k]) for k in ("stroke", "gravity") if isinstance(kw.get(k), list)})
+    top = kw.get("top")
+    if top is not None and (isinstance(top, bool) or not isinstance(top, int)
+                            or not 1 <= top <= 100):
+        raise RequestError(f"options.top must be a whole number from 1 to 100, got "
+                           f"{_short(top)}", "top")
+    return kw
 
 
 def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:

@@ -100,6 +100,11 @@ class _PointFingers:
             return grown_plans(polygon, spec, options.progress, map=options.map)
         return search(polygon, spec, progress=options.progress, map=options.map)
 
+    def search_edges(self, polygon: Polygon, spec: PlanSpec,
+                     edges: list[int]) -> list[GraspPlan]:
+        """The single-edge search restricted to these edges (independent regions)."""
+        return search(polygon, spec, edges=edges)
+
     def parameters(self, options: SearchOptions) -> dict[str, Any]:
         ws = None if self.hand is None or self.hand.workspace is None else \
             [float(v) for v in self.hand.workspace]
@@ -164,6 +169,10 @@ class ThreeFingers(_PointFingers):
                 options: SearchOptions) -> list[GraspPlan]:
         return three_finger_plans(polygon, spec, progress=options.progress)
 
+    def search_edges(self, polygon: Polygon, spec: PlanSpec,
+                     edges: list[int]) -> list[GraspPlan]:
+        return three_finger_plans(polygon, spec, edges=edges)
+
     @property
     def _none(self) -> str:
         return f"no three edges admit three fingers with mu = {self.mu:g}"
@@ -224,6 +233,15 @@ def regions_on(polygon: Polygon, edges: Any, mu: float = 0.0,
     if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
             np.ndim(e) == 1 for e in edges):
         return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
+    idx = _edge_indices(polygon, edges)
+    gripper = _gripper_on(idx, mu, hand, gravity)
+    spec = plan_spec(fingers=gripper.fingers, mu=gripper.mu, top=1, hand=hand,
+                     margin=margin, gravity=gripper.gravity, tol=tol)
+    plans = gripper.search_edges(polygon, spec, idx)
+    return _in_order(plans[0], idx) if plans else None
+
+
+def _edge_indices(polygon: Polygon, edges: Any) -> list[int]:
     if isinstance(edges, (str, bytes)) or np.ndim(edges) != 1:
         raise TypeError(f"edges must be a sequence of edge indices, got {edges!r}")
     if any(isinstance(e, Vertex) for e in edges):
@@ -231,37 +249,38 @@ def regions_on(polygon: Polygon, edges: Any, mu: float = 0.0,
                          f"independent regions lie on edges; use grasp_set or grasp_sets "
                          f"for a soft finger at a vertex")
     idx = polygon.check_edges(edges)
-    n = len(idx)
-    if n == 2:
-        if gravity is not None:
-            raise ValueError("gravity is counted with three frictionless fingers, not two")
-        spec = plan_spec(fingers=2, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
-    elif n == 3 and gravity is None:
-        if len(set(idx)) != 3:
-            raise ValueError(f"three fingers with friction need three distinct edges, got "
-                             f"{list(idx)}")
-        spec = plan_spec(fingers=3, mu=mu, top=1, hand=hand, margin=margin, tol=tol)
-    elif n in (3, 4):
-        if check_mu_scalar(mu, "mu") != 0:
-            raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
-                             f"got mu={mu}")
-        if n == 4 and gravity is not None:
-            raise ValueError("four edges take no gravity (gravity is counted with three "
-                             "frictionless fingers)")
-        doubled = [e for e in set(idx) if idx.count(e) == 2]
-        if n == 4 and (len(doubled) != 1 or len(set(idx)) != 3) and len(set(idx)) != 4:
-            raise ValueError(f"four fingers need four distinct edges or three with one twice, "
-                             f"got {list(idx)}")
-        spec = plan_spec(fingers=n, mu=0.0, top=1, hand=hand, margin=margin,
-                         gravity=gravity if n == 3 else None, tol=tol)
-    else:
-        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {n}")
-    plans = three_finger_plans(polygon, spec, edges=idx) if spec.fingers == 3 and \
-        spec.gravity is None else search(polygon, spec, edges=idx)
-    if not plans:
-        return None
-    p = plans[0]
-    # report the fingers in the order asked for
+    if len(idx) not in (2, 3, 4):
+        raise ValueError(f"edges must hold 2, 3 or 4 edge indices, got {len(idx)}")
+    return list(idx)
+
+
+#: Why gravity does not fit a number of edges.
+_NO_GRAVITY = {2: "gravity is counted with three frictionless fingers, not two",
+               4: "four edges take no gravity (gravity is counted with three frictionless "
+                  "fingers)"}
+
+
+def _gripper_on(idx: list[int], mu: float, hand: Hand | None,
+                gravity: Any) -> _PointFingers:
+    """The point fingers that ``idx`` (2, 3 or 4 edge indices) are regions of."""
+    n, distinct = len(idx), len(set(idx))
+    if gravity is not None and n in _NO_GRAVITY:
+        raise ValueError(_NO_GRAVITY[n])
+    if n == 3 and gravity is None and distinct != 3:
+        raise ValueError(f"three fingers with friction need three distinct edges, got {idx}")
+    frictionless = n == 4 or gravity is not None
+    if frictionless and check_mu_scalar(mu, "mu") != 0:
+        raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "
+                         f"got mu={mu}")
+    doubled = sum(idx.count(e) == 2 for e in set(idx))
+    if n == 4 and distinct != 4 and (doubled != 1 or distinct != 3):
+        raise ValueError(f"four fingers need four distinct edges or three with one twice, "
+                         f"got {idx}")
+    return point_fingers(n, 0.0 if frictionless else mu, gravity, hand)
+
+
+def _in_order(p: GraspPlan, idx: list[int]) -> GraspPlan:
+    """The plan with its fingers in the order asked for."""
     order: list[int] = []
     for e in idx:
         order.append(next(k for k, pe in enumerate(p.edges) if pe == e and k not in order))
