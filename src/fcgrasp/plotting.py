@@ -14,6 +14,7 @@ import numpy as np
 from .core._geom import signed_area
 from .core.contacts import Contact
 from .core.grasp import Grasp
+from .core.tolerances import ROUND_TOL
 
 
 def _pyplot() -> Any:
@@ -52,7 +53,7 @@ def draw_grasp(ax: Any, grasp: Grasp, outline: Any = None, title: str | None = N
     if report.escape_twist is not None:
         om, vx, vy = report.escape_twist
         center = grasp.points.mean(axis=0)
-        if abs(om) < 1e-12:
+        if abs(om) < ROUND_TOL:
             v = np.array([vx, vy]) / np.hypot(vx, vy) * size * 2
             ax.annotate("", xy=center + v, xytext=center,
                         arrowprops={"arrowstyle": "-|>", "color": "C0", "lw": 2})

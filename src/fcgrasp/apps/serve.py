@@ -51,6 +51,7 @@ from typing import Any, TypeGuard
 
 import numpy as np
 
+from ..core.tolerances import ROUND_TOL
 from ..errors import RequestError
 from ..io.report import json_ready
 
@@ -489,7 +490,8 @@ def check_result(polygon: Any, data: dict[str, Any]) -> dict[str, Any]:
     rep = Grasp(contacts).explain()
     twist = rep.escape_twist
     centre = None
-    if twist is not None and abs(float(twist[0])) > 1e-12 * max(1.0, float(np.abs(twist).max())):
+    if twist is not None and \
+            abs(float(twist[0])) > ROUND_TOL * max(1.0, float(np.abs(twist).max())):
         centre = rotation_center(twist)
     return json_ready({"force_closure": rep.force_closure, "failed": rep.failed,
                        "verdict": str(rep), "escape": rep.escape_description,

@@ -42,7 +42,7 @@ import numpy as np
 from ._checks import FloatArray, check_array, check_mu, check_tol
 from ._geom import cross2 as _cross2
 from .sectors import PAIRINGS, line_meet
-from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TOL
+from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TINY, TOL
 
 __all__ = [
     "is_force_closure",
@@ -97,7 +97,7 @@ def normalize_wrenches(wrenches: FloatArray) -> tuple[FloatArray, FloatArray, Fl
     b = np.sum(r0, axis=-2)
     cnt = np.maximum(np.sum(isf, axis=-1), 1)
     mean = b / cnt[..., None]
-    lam = 1e-9 * np.maximum(np.trace(a, axis1=-2, axis2=-1), 1e-300)
+    lam = TOL * np.maximum(np.trace(a, axis1=-2, axis2=-1), TINY)
     a = a + lam[..., None, None] * np.eye(2)
     center = np.linalg.solve(a, (b + lam[..., None] * mean)[..., None])[..., 0]
     tau_c = tau - _cross2(center[..., None, :], f)

@@ -39,7 +39,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray, check_array, check_tol
-from .tolerances import CONE_TOL, DEGENERATE_TOL
+from .tolerances import CONE_TOL, DEGENERATE_TOL, ROUND_TOL
 
 __all__ = ["Cone", "SPACES"]
 
@@ -161,7 +161,7 @@ def _in_cone(unit_gens: FloatArray, v: FloatArray, tol: float) -> bool:
     from scipy.optimize import nnls  # imported on first use: import fcgrasp stays light
 
     _, res = nnls(unit_gens.T, v / norm)
-    return bool(res <= tol * 10.0 + 1e-12)
+    return bool(res <= tol * 10.0 + ROUND_TOL)
 
 
 class Cone:

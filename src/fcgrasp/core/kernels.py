@@ -44,7 +44,7 @@ from typing import Any
 import numpy as np
 
 from ._checks import FloatArray
-from .tolerances import SOLVER_TOL
+from .tolerances import SOLVER_TOL, TINY
 
 __all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled", "arc_meet", "segment", "pair_sector",
            "pair_problem", "two_level", "pair_modes", "pair_scores", "pair_problems", "two_levels",
@@ -168,7 +168,7 @@ def _signed_problem(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax
     upper2 = _select(w12 > 0, up12, np.logical_not(up22))
     # a constraint that no region can move and that is tight is a tie everywhere
     scale = np.maximum((w11 + w21) * L1 + (w12 + w22) * L2 + np.abs(K1) + np.abs(K2),
-                       1e-300)
+                       TINY)
     flat1 = np.logical_not(((w11 > 0) & act1) | ((w12 > 0) & act2))
     flat2 = np.logical_not(((w21 > 0) & act1) | ((w22 > 0) & act2))
     separable = (separable & np.logical_not(flat1 & (K1 <= tol * scale))
@@ -217,7 +217,7 @@ def two_level(a1: Any, a2: Any, b1: Any, b2: Any, L1: Any, L2: Any, K1: Any, K2:
     den = af - ap * fp
     t1 = _select(den != 0, (r0 - ap * Lp) / _select(den != 0, den, 1.0), np.inf)
     t_cap = _select(np.isfinite(t_cap), t_cap, 0.0)
-    tolw = tol * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, 1e-300)
+    tolw = tol * np.maximum((a1 + b1) * L1 + (a2 + b2) * L2, TINY)
     d0 = _greedy_slack(0.0, r0, af, ap, aq, bp, bq, Lp, Lq, fp, fq, c)
     dc = _greedy_slack(t_cap, r0, af, ap, aq, bp, bq, Lp, Lq, fp, fq, c)
     mid = _select((t1 > 0) & (t1 < t_cap), t1, t_cap)

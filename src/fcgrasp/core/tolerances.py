@@ -65,5 +65,62 @@ COLLINEAR_TOL = 1e-12
 #: ``ValueError`` naming the argument.
 MAX_MAGNITUDE = 1e100
 
+#: A floor for divisors and scales that may be zero on a degenerate input: far below
+#: anything fcgrasp resolves, it only turns ``0 / 0`` into ``0``.
+TINY = 1e-300
+
+#: Rounding slack of comparisons between quantities already relative to the problem's
+#: size (a few thousand float64 ulps): nearly equal numbers compare equal, so ties are
+#: decided by the next rule, not by noise.
+ROUND_TOL = 1e-12
+
+#: Relative rank tolerance of the quality measures' wrench sets (8.1): singular values
+#: below this times the largest are zero.
+RANK_RTOL = 1e-10
+
+#: Parallel jaw: pad stops within this (times the part's size) are one contact (ties of
+#: the extreme).
+CONTACT_TOL = 1e-9
+
+#: Parallel jaw: :func:`~fcgrasp.grippers.jaw.holding_offsets` is exact up to this (times
+#: the part's size): it samples a cell this far inside its ends (past the contact
+#: tolerance's bands around a vertex entering the strip), and a cell around a kink is
+#: halved until it is 4 times this long; a hole's insertion point is found to this too.
+SLICE_TOL = 1e-6
+
+#: Three fingers with friction: feasibility tolerance of the linear programs (HiGHS), in
+#: units of the part's size.
+LP_TOL = 1e-10
+
+#: Three fingers with friction: a corner grasp whose witness misses a cone by more than
+#: this (times the size) is not accepted (the solver's answer is checked, not trusted).
+CHECK_TOL = 1e-8
+
+#: Three fingers along the boundary: regions within this (relative) of the smallest are
+#: the ones that must grow for the smallest to grow.
+LEVEL_TIE = 1e-6
+
+#: A gap between force directions this much above half a turn (radians) certainly
+#: leaves them unable to span the plane; closer to it, rows are left to the exact test.
+SPAN_SLACK = 1e-9
+
+#: A soft finger's arc of force directions is capped this far (radians) below a
+#: half-plane (conservative: a grasp that holds with the smaller arc holds with the
+#: larger one).
+ANGLE_CAP_GAP = 1e-6
+
+#: Relative tolerance of :func:`~fcgrasp.model.outline.clean_outline` (times the part's
+#: size).
+CLEAN_TOL = 1e-7
+
+#: DXF: ends of entities closer than this, relative to the drawing's extents, meet.
+GAP_REL = 1e-6
+
+#: Finest curve flattening tolerance accepted, relative to the element's size: finer
+#: would only multiply edges (a circle at 1e-6 already has about 2,000).
+FLATTEN_FINEST = 1e-6
+
 __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE",
-           "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL"]
+           "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
+           "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
+           "LEVEL_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST"]

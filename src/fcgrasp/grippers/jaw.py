@@ -65,6 +65,7 @@ import numpy as np
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import wrap
 from ..core._json import json_ready
+from ..core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
 from ..model.polygon import Polygon
 from ..model.quality import characteristic_length
 from ..model.regions import DEFAULT_MARGIN_DEG
@@ -86,14 +87,8 @@ CHECK_DENSITY = 4
 CERTIFY_BOXES = 4000
 #: Grid steps a planned box may be shrunk by until it is proved.
 CERTIFY_SHRINKS = 2
-#: Heights within this (times the part's size) are one contact (ties of the extreme).
-CONTACT_TOL = 1e-9
 #: At most this many contact features per pad are compared (more: not held, safely).
 MAX_CONTACTS = 4
-#: :func:`holding_offsets` is exact up to this (times the part's size): it samples a cell
-#: this far inside its ends (past the contact tolerance's bands around a vertex entering
-#: the strip), and a cell around a kink is halved until it is 4 times this long.
-SLICE_TOL = 1e-6
 #: Poses evaluated at a time (memory: a few arrays of this many rows times the edges).
 POSE_BATCH = 20000
 
@@ -292,7 +287,7 @@ def convex_holes(polygon: Polygon) -> list[int]:
     out = []
     for k, h in enumerate(polygon.holes):
         ring = shapely.Polygon(h)
-        if ring.convex_hull.area <= ring.area * (1 + 1e-9):
+        if ring.convex_hull.area <= ring.area * (1 + TOL):
             out.append(k)
     return out
 
@@ -337,7 +332,7 @@ def _pole(ring: bytes, size: float) -> tuple[float, float]:
     import shapely
     from shapely.ops import polylabel
 
-    pt = polylabel(shapely.Polygon(np.frombuffer(ring).reshape(-1, 2)), tolerance=1e-6 * size)
+    pt = polylabel(shapely.Polygon(np.frombuffer(ring).reshape(-1, 2)), tolerance=SLICE_TOL * size)
     return float(pt.x), float(pt.y)
 
 
@@ -493,9 +488,9 @@ def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: F
     b0, b1 = lat_b[:, None, :, 0], lat_b[:, None, :, 1]
     with np.errstate(invalid="ignore"):
         meet = lo < hi
-        s_hi = np.where(meet, d * np.tan(np.minimum(hi, np.pi / 2 - 1e-12)) - (b0 - a1),
+        s_hi = np.where(meet, d * np.tan(np.minimum(hi, np.pi / 2 - ROUND_TOL)) - (b0 - a1),
                         np.nan)
-        s_lo = np.where(meet, (b1 - a0) - d * np.tan(np.maximum(lo, -np.pi / 2 + 1e-12)),
+        s_lo = np.where(meet, (b1 - a0) - d * np.tan(np.maximum(lo, -np.pi / 2 + ROUND_TOL)),
                         np.nan)
         pair = (s_hi > 0) & (s_lo > 0)
         s_min, s_max = opening - jaw.stroke[0], jaw.stroke[1] - opening
@@ -571,7 +566,7 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
         cuts += [xc - half, xc + half, xc]
     brk = np.sort(np.clip(np.concatenate(cuts + [w_lo[:, None], w_hi[:, None]], axis=1),
                           w_lo[:, None], w_hi[:, None]), axis=1)
-    tiny = 1e-12 * polygon.size
+    tiny = ROUND_TOL * polygon.size
     keep = brk[:, 1:] - brk[:, :-1] > tiny
     rows = np.nonzero(keep)
     cell_t, cell_lo, cell_hi = rows[0], brk[:, :-1][rows], brk[:, 1:][rows]
@@ -786,7 +781,7 @@ def _arc_of(vectors: FloatArray) -> tuple[FloatArray, FloatArray, np.ndarray]:
     ang = np.arctan2(vectors[..., 1], vectors[..., 0])
     rel = wrap(ang - ang[:, :1])
     lo, hi = rel.min(axis=1), rel.max(axis=1)
-    none = (hi - lo >= np.pi - 1e-9) | (np.min(np.hypot(vectors[..., 0], vectors[..., 1]),
+    none = (hi - lo >= np.pi - TOL) | (np.min(np.hypot(vectors[..., 0], vectors[..., 1]),
                                                axis=1) <= 0)
     return ang[:, 0] + (lo + hi) / 2, (hi - lo) / 2, none
 

@@ -60,7 +60,7 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core._geom import wrap
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
+from ..core.tolerances import CHECK_TOL, LEVEL_TIE, LEXIMIN_STEP, LP_TOL, RANK_TOL, ROUND_TOL, TINY
 from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon
 from ..model.stretches import crosses_a_vertex
@@ -86,11 +86,6 @@ SPLITS = (0.0, 0.5, 1.0)
 KEEP_PAIRS = 20
 #: Rows of candidate triples solved per linear program (blocks of one sparse LP).
 LP_ROWS = 24
-#: Feasibility tolerance of the linear programs (HiGHS), in units of the part's size.
-LP_TOL = 1e-10
-#: A corner grasp whose witness misses a cone by more than this (times the size) is not
-#: accepted (the solver's answer is checked, not trusted).
-CHECK_TOL = 1e-8
 
 _CORNERS = np.array(list(product((0, 1), repeat=3)))          # (8, 3): 0 low end, 1 high
 _SIDES = np.array(list(product((1.0, -1.0), repeat=3)))       # (8, 3) sigma
@@ -161,7 +156,7 @@ def _split_excess(gap: tuple[float, float, float], w: list[float], w_cur: list[f
             x = min(max(r * e, e - 2 * w_next[i]), 2 * w_cur[i])   # raise cur's start by x
             lo[cur[i]] += x
             hi[nxt[i]] -= e - x                                     # lower nxt's end
-        if lo[0] <= hi[0] + 1e-12 and lo[1] <= hi[1] + 1e-12 and lo[2] <= hi[2] + 1e-12:
+        if lo[0] <= hi[0] + ROUND_TOL and lo[1] <= hi[1] + ROUND_TOL and lo[2] <= hi[2] + ROUND_TOL:
             out.append((lo, [max(h, v) for h, v in zip(hi, lo, strict=True)]))
     return out
 
@@ -337,7 +332,7 @@ def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
                 ri.append(np.full(2, r0))
                 ci.append(np.array([base + 3 + i, base + i]))
                 vals.append(np.array([-1.0, 1.0]))
-                rhs.append(np.array([blk.const[i] - float(fixed[i]) * (1 - 1e-12)]))
+                rhs.append(np.array([blk.const[i] - float(fixed[i]) * (1 - ROUND_TOL)]))
             r0 += 1
         bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L0, blk.L1]]
         bounds[base + 6] = (0.0, 1.0 if deep else float((blk.L0 + blk.L1 + blk.const).max()))
@@ -406,7 +401,7 @@ def _leximin(blk: _Block) -> Piece | None:
         return None
     levels = np.full(3, _smallest(blk, x))
     free = np.ones(3, dtype=bool)
-    step = LEXIMIN_STEP * max(float((blk.L0 + blk.L1 + blk.const).max()), 1e-300)
+    step = LEXIMIN_STEP * max(float((blk.L0 + blk.L1 + blk.const).max()), TINY)
     for _ in range(3):                    # each round fixes at least one region
         if not free.any():
             break
@@ -675,7 +670,7 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
         return None
     for _ in range(MAX_STEPS):
         # the regions as short as the smallest must all grow for it to grow
-        short = _lengths(blk, x) <= level * (1 + 1e-6)
+        short = _lengths(blk, x) <= level * (1 + LEVEL_TIE)
         moves = [m for m in _stretch_moves(polygon, cur, short)
                  if _corner_count(m) <= MAX_CORNERS]
         per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]

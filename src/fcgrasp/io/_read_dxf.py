@@ -12,11 +12,9 @@ from shapely.geometry import Point
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._geom import signed_area
+from ..core.tolerances import GAP_REL, TINY
 from ..model.outline import fill_rings
 from ._drawing import Drawing, Shape, TolOf, flatten_curve
-
-#: Ends of entities closer than this, relative to the drawing's extents, meet.
-GAP_REL = 1e-6
 
 #: $INSUNITS codes and their unit names (0, unitless, says nothing).
 INSUNITS = {1: "in", 2: "ft", 3: "mi", 4: "mm", 5: "cm", 6: "m", 7: "km", 8: "uin",
@@ -174,7 +172,7 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
         probe = Point(poly.exterior.coords[0])
         best, err = 0, np.inf
         for i, rp in enumerate(ring_polys):
-            if rp is None or rp.distance(probe) > 1e-6 * max(extent, 1e-300):
+            if rp is None or rp.distance(probe) > GAP_REL * max(extent, TINY):
                 continue
             e_ = abs(abs(rp.area) - outer_area)
             if e_ < err:

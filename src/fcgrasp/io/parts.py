@@ -48,7 +48,7 @@ import numpy as np
 
 from ..core._checks import check_scalar
 from ..core.contacts import FrictionlessPoint, FrictionPoint, Gravity
-from ..core.tolerances import ON_EDGE_TOL
+from ..core.tolerances import FLATTEN_FINEST, ON_EDGE_TOL, TINY
 from ..model.outline import CLEAN_TOL, clean_outline, simplify_outline
 from ..model.polygon import Polygon
 from ._drawing import Drawing, Shape
@@ -97,9 +97,6 @@ def demo_part(name: str) -> Polygon:
 
 #: Default curve flattening tolerance, relative to the size of the curve's element.
 FLATTEN_DEFAULT = 1e-3
-#: Finest flattening tolerance accepted, relative to the element's size: finer would
-#: only multiply edges (a circle at 1e-6 already has about 2,000).
-FLATTEN_FINEST = 1e-6
 #: Default simplification of traced images, in pixels.
 IMAGE_TOLERANCE_PX = 1.0
 
@@ -460,7 +457,7 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
             return tol
         if fmt == "image":
             return IMAGE_TOLERANCE_PX
-        return max(size, 1e-300) * FLATTEN_DEFAULT
+        return max(size, TINY) * FLATTEN_DEFAULT
 
     if fmt == "json":
         return _json_drawing(_json_data(data, spec), spec)

@@ -60,7 +60,7 @@ from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import RANK_TOL
+from ..core.tolerances import RANK_TOL, ROUND_TOL
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -277,7 +277,7 @@ def _result(polygon: Polygon, cfg: _Config, x: FloatArray, pairing: np.ndarray,
             mode: str) -> FrictionlessStretches:
     x = np.asarray(x)[:2 * len(cfg.edges)]
     lines, covered = [], []
-    tiny = 1e-12 * polygon.size
+    tiny = ROUND_TOL * polygon.size
     for f, st in enumerate(cfg.edges):
         # a sub-region of the certified one: it holds
         pts, edges = trim_vertex_ends(_polyline(polygon, st, x[2 * f], x[2 * f + 1]), st,

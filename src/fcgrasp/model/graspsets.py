@@ -48,7 +48,7 @@ from ..core.sectors import (
     pairing_sector,
     pairing_valid,
 )
-from ..core.tolerances import TOL
+from ..core.tolerances import ANGLE_CAP_GAP, ROUND_TOL, TINY, TOL
 from .polygon import Polygon
 
 __all__ = [
@@ -69,7 +69,7 @@ FIELD_OF_VIEW = "field-of-view"
 
 #: A soft finger's arc of force directions is capped below a half-plane (conservative:
 #: a grasp that holds with the smaller arc holds with the larger one).
-SOFT_HALF_ANGLE_CAP = np.pi / 2 - 1e-6
+SOFT_HALF_ANGLE_CAP = np.pi / 2 - ANGLE_CAP_GAP
 
 
 
@@ -191,7 +191,7 @@ def _fov_interval(fa: Feature, fb: Feature, k1: FloatArray, k2: FloatArray,
             hi = min(hi, t)
         else:
             lo = max(lo, t)
-    scale = max(fa.length, fb.length, float(np.hypot(*(fa.a - fb.a))), 1e-300)
+    scale = max(fa.length, fb.length, float(np.hypot(*(fa.a - fb.a))), TINY)
     if hi < lo or (fa.length > 0 and (hi - lo) * fa.length <= tol * scale):
         return None
     return lo, hi
@@ -199,7 +199,7 @@ def _fov_interval(fa: Feature, fb: Feature, k1: FloatArray, k2: FloatArray,
 
 def _on_feature(f: Feature, p: FloatArray, tol_len: float) -> np.ndarray:
     t, off = f.param_of(p)
-    ln = max(f.length, 1e-300)
+    ln = max(f.length, TINY)
     return (off <= tol_len) & (t >= -tol_len / ln) & (t <= 1 + tol_len / ln)
 
 
@@ -303,7 +303,7 @@ class FrictionGraspSet:
             raise ValueError("cannot sample an empty grasp set")
         rng = np.random.default_rng() if rng is None else rng
         modes = [(m, r1) for m, (r1, _) in self.restricted.items() if r1 is not None]
-        weights = np.array([max(r1[1] - r1[0], 1e-12) for _, r1 in modes])
+        weights = np.array([max(r1[1] - r1[0], ROUND_TOL) for _, r1 in modes])
         ps, qs = [], []
         got = 0
         for _ in range(200):
@@ -391,7 +391,7 @@ def _sample_geometry(geom: Any, k: int, rng: np.random.Generator) -> FloatArray:
             segs.append(cs[i:i + 2])
             seg_weights.append(float(np.hypot(*(cs[i + 1] - cs[i]))))
     seg = np.array(segs)
-    w = np.array(seg_weights) + 1e-300
+    w = np.array(seg_weights) + TINY
     pick = rng.choice(len(seg), size=k, p=w / w.sum())
     u = rng.random(k)[:, None]
     return seg[pick, 0] + u * (seg[pick, 1] - seg[pick, 0])

@@ -23,6 +23,7 @@ import numpy as np
 import shapely
 
 from ..core._checks import check_array, check_scalar
+from ..core.tolerances import TOL
 from .polygon import Polygon
 
 __all__ = ["Hand"]
@@ -85,7 +86,7 @@ class Hand:
             ei, gj = tree.query(boxes, predicate="intersects")
             keep = (ei != gj) & polygon.usable[ei]
             ei, gj = ei[keep], gj[keep]
-            r = rho * (1 - 1e-9)
+            r = rho * (1 - TOL)
             cc, dd = c0[ei], d[ei]
             s0, s1 = polygon.starts[gj], polygon.ends[gj]
             lo_a, hi_a = _roots_inside(cc, dd, s0, r)

@@ -27,13 +27,12 @@ from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import signed_area
+from ..core.tolerances import CLEAN_TOL
 from .polygon import Polygon
 
 __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ring",
            "clean_outline", "simplify_outline"]
 
-#: Relative tolerance of :func:`clean_outline` (times the part's size).
-CLEAN_TOL = 1e-7
 #: Fill rules of :func:`fill_rings` (SVG's ``fill-rule``).
 FILL_RULES = ("nonzero", "evenodd")
 

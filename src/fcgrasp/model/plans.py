@@ -20,6 +20,7 @@ from ..core._geom import along, geometric_key, leximin_key
 from ..core._json import json_ready
 from ..core.contacts import FrictionlessPoint, FrictionPoint, Gravity
 from ..core.grasp import Grasp
+from ..core.tolerances import TINY
 from .polygon import Polygon
 from .quality import quality_of
 from .ranking import MEASURES
@@ -202,7 +203,7 @@ class GraspPlan:
 def _nearest_segment(line: FloatArray, p: FloatArray) -> int:
     a, d = line[:-1], np.diff(line, axis=0)
     dd = np.einsum("ij,ij->i", d, d)
-    s = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(dd, 1e-300), 0.0, 1.0)
+    s = np.clip(np.einsum("ij,ij->i", p - a, d) / np.maximum(dd, TINY), 0.0, 1.0)
     q = a + s[:, None] * d
     return int(np.argmin(np.where(dd > 0, np.hypot(*(q - p).T), np.inf)))
 

@@ -37,7 +37,7 @@ from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, _short, numeric_array
 from ..core._geom import signed_area
-from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE
+from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, TINY
 
 __all__ = ["Polygon", "Edge"]
 
@@ -297,7 +297,7 @@ class Polygon:
         """Distance from ``point`` to every edge, shape (E,) (inf for zero-length edges)."""
         pt = np.asarray(point, dtype=float)
         d = self.ends - self.starts
-        ln2 = np.maximum(np.sum(d * d, axis=1), 1e-300)
+        ln2 = np.maximum(np.sum(d * d, axis=1), TINY)
         t = np.clip(np.sum((pt - self.starts) * d, axis=1) / ln2, 0, 1)
         proj = self.starts + t[:, None] * d
         out = np.hypot(*(proj - pt).T)

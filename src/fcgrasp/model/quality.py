@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.tolerances import DEGENERATE_TOL
+from ..core.tolerances import DEGENERATE_TOL, RANK_RTOL, ROUND_TOL, TINY
 
 __all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length", "ball_radius"]
 
@@ -70,15 +70,15 @@ def ball_radius(points: FloatArray, tol: float = DEGENERATE_TOL) -> float:
     k = len(P)
     if k < 4:
         return 0.0
-    scale = max(float(np.max(np.abs(P))), 1e-300)
+    scale = max(float(np.max(np.abs(P))), TINY)
     Q = P / scale
-    if np.linalg.matrix_rank(Q - Q.mean(axis=0), tol=1e-10) < 3:
+    if np.linalg.matrix_rank(Q - Q.mean(axis=0), tol=RANK_RTOL) < 3:
         return 0.0
     t = np.array(list(combinations(range(k), 3)))
     a, b, c = Q[t[:, 0]], Q[t[:, 1]], Q[t[:, 2]]
     n = np.cross(b - a, c - a)
     nn = np.linalg.norm(n, axis=1)
-    keep = nn > 1e-10
+    keep = nn > RANK_RTOL
     a, n = a[keep], n[keep] / nn[keep, None]
     side = (Q[None, :, :] - a[:, None, :]) @ n[..., None]           # (T, k, 1)
     side = side[..., 0]
@@ -130,7 +130,7 @@ def _least_solutions(w: FloatArray, targets: FloatArray) -> FloatArray | None:
     M, trip = M[ok], trip[ok]
     lam = np.linalg.solve(M[:, None], targets[None, :, :, None])[..., 0]  # (T, m, 3)
     scale = np.max(np.abs(targets), axis=1)[None, :]
-    feasible = np.all(lam >= -1e-12 * np.maximum(scale, 1e-300)[..., None], axis=2)
+    feasible = np.all(lam >= -ROUND_TOL * np.maximum(scale, TINY)[..., None], axis=2)
     cost = np.where(feasible, lam.sum(axis=2), np.inf)                    # (T, m)
     best = np.argmin(cost, axis=0)
     if not np.all(np.isfinite(cost[best, np.arange(len(targets))])):

@@ -63,7 +63,7 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core._geom import cross2 as _cross
 from ..core.kernels import two_levels
-from ..core.tolerances import FACE_TOL, LEXIMIN_STEP, SOLVER_TOL
+from ..core.tolerances import FACE_TOL, LEXIMIN_STEP, SOLVER_TOL, TINY
 
 __all__ = [
     "KnapsackProblem",
@@ -169,7 +169,7 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
     upper1 = np.where(w[0] > 0, up[0], ~up[1])
     # A constraint that no region can move and that is tight (P34 - P12 on a cone edge
     # whatever the fingers do) holds with equality everywhere: a tie, never closure.
-    scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1) + np.abs(K[0]) + np.abs(K[1]), 1e-300)
+    scale = np.maximum(np.sum((w[0] + w[1]) * L, axis=1) + np.abs(K[0]) + np.abs(K[1]), TINY)
     for i in range(2):
         flat = ~np.any((w[i] > 0) & active, axis=1)
         separable &= ~(flat & (K[i] <= tol * scale))
@@ -221,7 +221,7 @@ def _feasible(p: KnapsackProblem, lb: FloatArray, order: np.ndarray, eps: FloatA
 
 
 def _wscale(p: KnapsackProblem) -> FloatArray:
-    return np.maximum(np.sum((p.w1 + p.w2) * p.L, axis=1), 1e-300)
+    return np.maximum(np.sum((p.w1 + p.w2) * p.L, axis=1), TINY)
 
 
 def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,
@@ -357,7 +357,7 @@ def leximin(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
         t = np.maximum(t, 0.0)
         lv = np.where(fr, t[:, None], lv)
         # which free regions cannot grow beyond t while the others stay at their levels?
-        scale = np.maximum(np.max(sub.L, axis=1), 1e-300)
+        scale = np.maximum(np.max(sub.L, axis=1), TINY)
         trial = lv[:, None, :] + np.eye(n)[None] * (LEXIMIN_STEP * scale)[:, None, None]
         grow = _feasible(sub.repeat(n), trial.reshape(-1, n), np.repeat(od, n, axis=0),
                          np.repeat(0.1 * tol * scale, n))
@@ -388,11 +388,11 @@ def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]
     G = rows[:, subsets]                                                     # (B, S, n, n)
     h = rhs[:, subsets]                                                      # (B, S, n)
     det = np.linalg.det(G)
-    scale = np.maximum(np.abs(G).max(axis=(2, 3)) ** n, 1e-300)
+    scale = np.maximum(np.abs(G).max(axis=(2, 3)) ** n, TINY)
     ok = np.abs(det) > SOLVER_TOL * scale
     G = np.where(ok[..., None, None], G, np.eye(n))
     x = np.linalg.solve(G, h[..., None])[..., 0]                             # (B, S, n)
-    tol = FACE_TOL * np.maximum(np.max(L, axis=1), 1e-300)[:, None]
+    tol = FACE_TOL * np.maximum(np.max(L, axis=1), TINY)[:, None]
     wtol = FACE_TOL * _wscale(p)[:, None]
     feas = (ok & np.all(x >= lo[:, None, :] - tol[..., None], axis=2)
             & np.all(x <= L[:, None, :] + tol[..., None], axis=2)

@@ -60,7 +60,7 @@ from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.contacts import rotate
-from ..core.tolerances import RANK_TOL
+from ..core.tolerances import RANK_TOL, ROUND_TOL, TOL
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
 
@@ -68,7 +68,7 @@ __all__ = ["StretchPair", "two_finger_stretches", "stretch_regions", "crosses_a_
 
 #: A coefficient of the linear system smaller than this (a cross product of unit
 #: vectors) is zero.
-_EPS = 1e-12
+_EPS = ROUND_TOL
 
 #: Relative tolerance within which two smallest regions tie (the ranking's).
 TIE = RANK_TOL
@@ -633,7 +633,7 @@ def _solve(rows: FloatArray, ub: FloatArray, scale: float
     cap = np.stack([ub, np.zeros(B), np.zeros(B), -np.ones(B)], axis=1)[:, None, :]
     rows = np.concatenate([rows, cap], axis=1)
     r_ut = _eliminate(rows, 1)                       # (c0, cu, ct)
-    tol = 1e-12 * scale
+    tol = ROUND_TOL * scale
     # every pair of rows meets in _t_bounds: blocks of about _BLOCK * 32 pairs
     step = max(1, (_BLOCK * 32) // r_ut.shape[1] ** 2)
     parts = [_t_bounds(r_ut[b:b + step]) for b in range(0, B, step)]
@@ -667,7 +667,7 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatAr
     pts = np.array([first, *verts, last])
     edges = [int(ring.edges[(i + j) % m]) for j in range(k + 1)]
     # the vertex is held with both normals, so either is its end normal
-    return trim_vertex_ends(pts, edges, 1e-12 * float(ring.U[m]))
+    return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
 
 @dataclass
@@ -901,7 +901,7 @@ def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG
         f, g = ring.f, np.roll(ring.f, -1, axis=0)      # force directions at vertex k + 1
         turn = np.arctan2(np.abs(_cross(f, g)), np.sum(f * g, axis=1))
         # a relative 1e-9 on the angle: a vertex at the limit is left to the exact search
-        if np.any(turn < 2 * beta * (1 + 1e-9) + 1e-12):
+        if np.any(turn < 2 * beta * (1 + TOL) + ROUND_TOL):
             return True
     return False
 

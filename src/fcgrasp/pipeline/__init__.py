@@ -46,7 +46,7 @@ from ..core._geom import midpoints
 from ..core.closure import force_direction_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
 from ..errors import SearchTooLarge
 from ..model._regiongeom import four_finger_problems, two_finger_problems
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
@@ -408,9 +408,6 @@ def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
     return L.min(axis=1)
 
 
-#: A gap between force directions this much above half a turn (radians) certainly
-#: leaves them unable to span the plane; closer to it, rows are left to the exact test.
-SPAN_SLACK = 1e-9
 
 
 def _spans_plane(angles: FloatArray) -> bool:
@@ -747,7 +744,7 @@ def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = RANK_TOL) -> np.nda
     Entries equal to 0 with a negative counterpart are regions of fixed points (gravity).
     """
     sa, sb = np.sort(a, axis=1), np.sort(b, axis=1)
-    scale = np.maximum(np.maximum(np.abs(sa).max(axis=1), np.abs(sb).max(axis=1)), 1e-300)
+    scale = np.maximum(np.maximum(np.abs(sa).max(axis=1), np.abs(sb).max(axis=1)), TINY)
     diff = sa - sb
     big = np.abs(diff) > rtol * scale[:, None]
     first = np.argmax(big, axis=1)
