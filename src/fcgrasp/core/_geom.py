@@ -32,11 +32,6 @@ def signed_area(ring: Any) -> float:
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-def wrap(angle: Any) -> Any:
-    """Angles wrapped to [-pi, pi)."""
-    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi
-
-
 def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
     """Points at fractions ``u`` (any shape) of the arc length of a polyline (m, 2),
     and the index of the segment holding each."""

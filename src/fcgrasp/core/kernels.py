@@ -43,6 +43,7 @@ from typing import Any
 
 import numpy as np
 
+from ._angles import wrap as _wrap  # compiled over this module's namespace
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
@@ -73,12 +74,6 @@ def _select(cond: Any, x: Any, y: Any) -> Any:
 def _select_scalar(cond: Any, x: Any, y: Any) -> Any:
     """:func:`_select` of numbers: what the compiled formulas call."""
     return x if cond else y
-
-
-def _wrap(x: Any) -> Any:
-    """Angles wrapped to [-pi, pi) (by ``floor``: a machine instruction, where ``fmod``
-    is a library call)."""
-    return x - _TWO_PI * np.floor((x + np.pi) / _TWO_PI)
 
 
 def arc_meet(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[Any, Any]:

@@ -22,8 +22,9 @@ from typing import Any
 
 import numpy as np
 
+from ._angles import wrap
 from ._checks import FloatArray
-from ._geom import cross2, wrap
+from ._geom import cross2
 from .kernels import arc_meet
 from .tolerances import TOL
 

@@ -62,8 +62,8 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ..core._angles import wrap, wrap_positive
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core._geom import wrap
 from ..core._json import json_ready
 from ..core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
 from ..model.polygon import Polygon
@@ -768,8 +768,8 @@ def _sin_range(a: Any, b: Any, t0: Any, t1: Any
     v1 = a * np.cos(t1) + b * np.sin(t1)
     r = np.hypot(a, b)
     phi = np.arctan2(b, a)                              # the maximum is at t = phi
-    has_max = np.mod(phi - t0, 2 * np.pi) <= t1 - t0
-    has_min = np.mod(phi + np.pi - t0, 2 * np.pi) <= t1 - t0
+    has_max = wrap_positive(phi - t0) <= t1 - t0
+    has_min = wrap_positive(phi + np.pi - t0) <= t1 - t0
     return (np.where(has_min, -r, np.minimum(v0, v1)),
             np.where(has_max, r, np.maximum(v0, v1)))
 

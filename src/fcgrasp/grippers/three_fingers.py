@@ -58,8 +58,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core._angles import wrap, wrap_positive
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
-from ..core._geom import wrap
 from ..core.tolerances import CHECK_TOL, LEVEL_TIE, LEXIMIN_STEP, LP_TOL, RANK_TOL, ROUND_TOL, TINY
 from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon
@@ -105,7 +105,7 @@ def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArra
     >>> len(arcs), np.degrees(arcs[0][0]).round(1).tolist()   # wide enough already
     (1, [70.0, 190.0, 310.0])
     """
-    c = np.mod(np.asarray(center, float), 2 * np.pi)
+    c = wrap_positive(np.asarray(center, float))
     w = np.asarray(half, float) - margin
     if np.any(w < 0):
         return []

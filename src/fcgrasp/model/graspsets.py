@@ -36,10 +36,10 @@ import numpy as np
 import shapely
 from shapely.geometry import MultiPoint
 
+from ..core._angles import wrap as _wrap
 from ..core._checks import FloatArray, check_array, check_direction, check_mu, check_tol
 from ..core._geom import cross2 as _cross
 from ..core._geom import direction as _dir
-from ..core._geom import wrap as _wrap
 from ..core.sectors import (
     PAIRINGS,
     arc_intersection,

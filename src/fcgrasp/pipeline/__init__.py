@@ -34,6 +34,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core._angles import wrap_positive
 from ..core._checks import (
     FloatArray,
     check_direction,
@@ -439,7 +440,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     # frictionless fingers hold only if their force directions positively span the plane
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
-    seen = [] if g is None else [float(np.arctan2(g[1], g[0]) % (2 * np.pi))]
+    seen = [] if g is None else [float(wrap_positive(np.arctan2(g[1], g[0])))]
     buf: list[np.ndarray] = []
     count = 0
     target = min(first, size)
@@ -448,7 +449,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
         if not count:
             ceiling = float(lengths[order[s]])
         if spec.contact_type == "frictionless":
-            bisect.insort(seen, float(F.center[order[s]] % (2 * np.pi)))
+            bisect.insort(seen, float(wrap_positive(F.center[order[s]])))
             if not _spans_plane(np.array(seen)):
                 continue
         for r in widths:

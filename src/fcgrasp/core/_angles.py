@@ -1,0 +1,35 @@
+"""The one angle wrap of fcgrasp (private to the package; tested in tests/test_angles.py).
+
+Both functions work on floats and on arrays of any shape, and are compiled as they are
+by :mod:`fcgrasp.core.kernels` (``floor`` is a machine instruction, where ``fmod`` is a
+library call).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+__all__ = ["wrap", "wrap_positive"]
+
+_TWO_PI = 2.0 * np.pi
+
+
+def wrap(angle: Any) -> Any:
+    """Angles (radians) wrapped to ``[-pi, pi)``.
+
+    >>> float(wrap(3 * np.pi / 2)), float(wrap(np.pi))
+    (-1.5707963267948966, -3.141592653589793)
+    """
+    return angle - _TWO_PI * np.floor((angle + np.pi) / _TWO_PI)
+
+
+def wrap_positive(angle: Any) -> Any:
+    """Angles (radians) wrapped to ``[0, 2 pi)``: directions as counter-clockwise turns
+    from the x axis.
+
+    >>> float(wrap_positive(-np.pi / 2))
+    4.71238898038469
+    """
+    return angle - _TWO_PI * np.floor(angle / _TWO_PI)
