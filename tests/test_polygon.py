@@ -100,3 +100,26 @@ def test_edge_accessors():
         p.edge(4)
     with pytest.raises(TypeError):
         p.edge(1.5)
+
+
+def test_a_shapely_polygon_or_geo_interface_is_a_part():
+    """``fc.plan(shapely.box(0, 0, 10, 5))`` said "polygon must be a Polygon, got Polygon"."""
+    import shapely
+
+    import fcgrasp as fc
+    from fcgrasp.model.polygon import check_polygon
+
+    box = shapely.box(0, 0, 10, 5).difference(shapely.box(4, 2, 6, 3))
+
+    class Feature:
+        __geo_interface__ = shapely.geometry.mapping(box)
+
+    for value in (box, Feature()):
+        p = check_polygon(value)
+        assert p.n_edges == 8 and len(p.holes) == 1
+        assert abs(p.area - box.area) < 1e-12
+        assert [q.edges for q in fc.plan(value, mu=0.3, top=2)] == \
+            [q.edges for q in fc.plan(p, mu=0.3, top=2)]
+    for bad in ("x", shapely.Point(0, 0), None):
+        with pytest.raises(TypeError, match="polygon must be a fcgrasp Polygon"):
+            fc.plan(bad)

@@ -66,7 +66,7 @@ from ..core._angles import wrap, wrap_positive
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._json import json_ready
 from ..core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
-from ..model.polygon import Polygon
+from ..model.polygon import Polygon, check_polygon
 from ..model.quality import characteristic_length
 from ..model.regions import DEFAULT_MARGIN_DEG
 from .base import register
@@ -294,8 +294,7 @@ def convex_holes(polygon: Polygon) -> list[int]:
 
 def _check_jaw_args(polygon: Any, jaw: Any, margin: Any) -> float:
     """The common arguments checked; the margin as a float."""
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     if not isinstance(jaw, ParallelJaw):
         raise TypeError(f"jaw must be a ParallelJaw, got {type(jaw).__name__}")
     return check_scalar(margin, "margin", nonnegative=True)

@@ -62,7 +62,7 @@ from ..core._angles import wrap, wrap_positive
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core.tolerances import CHECK_TOL, LEVEL_TIE, LEXIMIN_STEP, LP_TOL, RANK_TOL, ROUND_TOL, TINY
 from ..model.plans import GraspPlan, leximin_key
-from ..model.polygon import Polygon
+from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import crosses_a_vertex
 from ..pipeline import (
     PlanSpec,
@@ -653,8 +653,7 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
     >>> min(len(s) for s in st) > 1, bool(piece.levels.min() > part.lengths[0])
     (True, True)
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     idx = polygon.check_edges(edges, "edges")
     if len(idx) != 3 or len(set(idx)) != 3:
         raise ValueError(f"edges must be three distinct edges, got {edges!r}")
@@ -782,8 +781,7 @@ def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
     >>> free_stretch(sq, {0}), free_stretch(sq, set())
     ((1, 2, 3), (2, 3, 0))
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     covered = set(polygon.check_edges(list(covered), "covered")) if len(covered) else set()
     best: tuple[int, ...] | None = None
     best_len = -1.0

@@ -49,7 +49,7 @@ from ..core.sectors import (
     pairing_valid,
 )
 from ..core.tolerances import ANGLE_CAP_GAP, ROUND_TOL, TINY, TOL
-from .polygon import Polygon
+from .polygon import Polygon, check_polygon
 
 __all__ = [
     "Feature",
@@ -614,8 +614,7 @@ def grasp_set(polygon: Polygon, edges: Sequence[Any], mu: float = 0.0,
     >>> bool(gs.contains([1, 0.5], [0, 0.55])), bool(gs.contains([1, 0.1], [0, 0.9]))
     (True, False)
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     tol = check_tol(tol)
     mu_v = float(check_mu(mu, "mu"))
     items = list(edges)
@@ -668,8 +667,7 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
     Candidates whose force directions cannot span the plane (the force-direction
     constraint) are pruned in one vectorised pass before any set is built.
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     if fingers not in (2, 3, 4) or isinstance(fingers, bool):
         raise ValueError(f"fingers must be 2, 3 or 4, got {fingers!r}")
     mu_v = float(check_mu(mu, "mu"))

@@ -28,7 +28,7 @@ from shapely.geometry import Polygon as ShapelyPolygon
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import signed_area
 from ..core.tolerances import CLEAN_TOL
-from .polygon import Polygon
+from .polygon import Polygon, check_polygon
 
 __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ring",
            "clean_outline", "simplify_outline"]
@@ -166,8 +166,7 @@ def clean_outline(polygon: Polygon, tol: float | None = None) -> tuple[Polygon, 
     >>> q.n_edges, removed
     (4, 1)
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     tol = CLEAN_TOL * polygon.size if tol is None else check_scalar(tol, "tol", nonnegative=True)
     rings = [polygon.vertices, *polygon.holes]
     cleaned = [clean_ring(r, tol) for r in rings]
@@ -198,8 +197,7 @@ def simplify_outline(polygon: Polygon, tol: float) -> Polygon:
     >>> simplify_outline(p, 0.1).n_edges
     4
     """
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     tol = check_scalar(tol, "tol", nonnegative=True)
     if tol >= polygon.size:
         raise ValueError(f"simplify tolerance {tol:g} is not below the part's size "

@@ -39,7 +39,7 @@ from ..core._checks import FloatArray, _short, numeric_array
 from ..core._geom import signed_area
 from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, TINY
 
-__all__ = ["Polygon", "Edge"]
+__all__ = ["Polygon", "Edge", "check_polygon"]
 
 
 @dataclass(frozen=True)
@@ -335,3 +335,26 @@ class Polygon:
 
     def __repr__(self) -> str:
         return f"Polygon({self.vertices.tolist()}, holes={[h.tolist() for h in self.holes]})"
+
+
+def check_polygon(value: Any, name: str = "polygon") -> Polygon:
+    """``value`` as a :class:`Polygon`: a Polygon as it is; a shapely Polygon, or any
+    object with a ``__geo_interface__`` of type Polygon (GeoJSON's coordinates, the last
+    point repeating the first), converted.  Anything else: a :class:`TypeError` naming
+    the argument and what it received (the one check of every function taking a part).
+
+    >>> import shapely
+    >>> check_polygon(shapely.box(0, 0, 10, 5)).n_edges
+    4
+    """
+    if isinstance(value, Polygon):
+        return value
+    geo = getattr(value, "__geo_interface__", None)
+    if isinstance(geo, dict) and geo.get("type") == "Polygon" and geo.get("coordinates"):
+        rings = [np.asarray(r, dtype=float)[:-1, :2] for r in geo["coordinates"]]
+        return Polygon(rings[0], rings[1:])
+    what = type(value).__name__
+    if isinstance(geo, dict):
+        what += f" (a {geo.get('type')} geometry)"
+    raise TypeError(f"{name} must be a fcgrasp Polygon, a shapely Polygon or an object "
+                    f"with a Polygon __geo_interface__, got {what}")

@@ -61,7 +61,7 @@ from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.contacts import rotate
 from ..core.tolerances import RANK_TOL, ROUND_TOL, TOL
-from .polygon import Polygon
+from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG
 
 __all__ = ["StretchPair", "two_finger_stretches", "stretch_regions", "crosses_a_vertex"]
@@ -869,8 +869,7 @@ def _pairs(rings: list[_Ring], found: list[_Found]) -> list[StretchPair]:
 
 def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
     """The half-angle ``beta = atan(mu) - margin`` of the shrunk friction cones."""
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
+    polygon = check_polygon(polygon)
     mu_v = check_mu_scalar(mu, "mu")
     margin_v = check_scalar(margin, "margin", nonnegative=True)
     return float(np.arctan(mu_v) - np.radians(margin_v))

@@ -27,7 +27,7 @@ from ..grippers.base import Gripper, SearchOptions
 from ..grippers.fingers import point_fingers, regions_on
 from ..model.hand import Hand
 from ..model.plans import GraspPlan, geometric_key, rank_key
-from ..model.polygon import Polygon
+from ..model.polygon import Polygon, check_polygon
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 from ..pipeline import check_disturbance as _check_disturbance
@@ -37,11 +37,6 @@ __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_ke
 
 #: Names of the ranking measures (see :mod:`fcgrasp.model.ranking`).
 RANKINGS = tuple(MEASURES)
-
-
-def _check_polygon(polygon: Any) -> None:
-    if not isinstance(polygon, Polygon):
-        raise TypeError(f"polygon must be a Polygon, got {type(polygon).__name__}")
 
 
 def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
@@ -119,7 +114,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     >>> best.edges, round(best.min_length, 4)      # the short sides face each other
     ((1, 3), 1.0)
     """
-    _check_polygon(polygon)
+    polygon = check_polygon(polygon)
     if gripper is None:
         gripper = point_fingers(fingers, mu, gravity, hand, along_boundary)
     else:
@@ -178,6 +173,6 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     >>> [r.round(3).tolist() for r in reg.regions]
     [[[4.564, 0.0], [5.436, 0.0]], [[5.436, 3.0], [4.564, 3.0]]]
     """
-    _check_polygon(polygon)
+    polygon = check_polygon(polygon)
     return regions_on(polygon, edges, mu=mu, margin=margin, hand=hand, gravity=gravity,
                       tol=tol)
