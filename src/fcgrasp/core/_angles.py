@@ -11,7 +11,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["wrap", "wrap_positive"]
+__all__ = ["wrap", "wrap_positive", "margin_radians", "shrunk_half_angle"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -33,3 +33,20 @@ def wrap_positive(angle: Any) -> Any:
     4.71238898038469
     """
     return angle - _TWO_PI * np.floor(angle / _TWO_PI)
+
+
+def margin_radians(margin: Any) -> Any:
+    """A safety margin given in degrees (as every public function takes it), in radians:
+    the one conversion of margins."""
+    return np.radians(margin)
+
+
+def shrunk_half_angle(mu: Any, margin: Any) -> Any:
+    """The half-angle ``atan(mu) - margin`` (radians; ``margin`` in degrees) of a friction
+    cone shrunk by the safety margin: a force inside it is inside the cone by at least
+    the margin (theorem 6.3 with a margin).
+
+    >>> round(float(np.degrees(shrunk_half_angle(1.0, 5.0))), 9)
+    40.0
+    """
+    return np.arctan(mu) - margin_radians(margin)

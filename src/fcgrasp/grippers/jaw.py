@@ -62,7 +62,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..core._angles import wrap, wrap_positive
+from ..core._angles import shrunk_half_angle, wrap, wrap_positive
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._json import json_ready
 from ..core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
@@ -476,7 +476,7 @@ def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: F
     forces: psi in (lo, hi); over the features' lateral spans the offset dx = xb - xa
     ranges over [b0 - a1, b1 - a0] and psi = atan(dx / opening).  Inside a hole the pads
     push apart: the same test with both angles negated."""
-    beta = np.arctan(jaw.mu) - np.radians(margin)
+    beta = shrunk_half_angle(jaw.mu, margin)
     flip = -1.0 if internal else 1.0
     pa = flip * psi_a[:, :, None]
     pb = -flip * psi_b[:, None, :]
@@ -1006,7 +1006,7 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     ring = _grip_edges(polygon, hole)
     if t1 - t0 < np.pi / 2:
         ring = _near_strip(polygon, ring, t0, t1, c0, c1, jaw.pad_width / 2)
-    beta = float(np.arctan(jaw.mu) - np.radians(margin))
+    beta = float(shrunk_half_angle(jaw.mu, margin))
     if beta <= 0:
         return None
     half = jaw.pad_width / 2

@@ -56,6 +56,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core._angles import margin_radians
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
@@ -140,7 +141,7 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
         center[:, 3] = np.arctan2(gravity[1], gravity[0])
     perm = np.broadcast_to(pairing, (C, nf)).copy()
     o12, o34, vel, L, k1, k2, hm, valid = four_finger_geometry(
-        a, b, center, perm, np.radians(margin))
+        a, b, center, perm, margin_radians(margin))
     if not np.all(valid & (hm > 0)):
         return None
     s = 1.0 if mode == "+C" else -1.0

@@ -56,6 +56,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
@@ -872,7 +873,7 @@ def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
     polygon = check_polygon(polygon)
     mu_v = check_mu_scalar(mu, "mu")
     margin_v = check_scalar(margin, "margin", nonnegative=True)
-    return float(np.arctan(mu_v) - np.radians(margin_v))
+    return float(shrunk_half_angle(mu_v, margin_v))
 
 
 def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> bool:

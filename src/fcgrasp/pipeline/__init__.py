@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core._angles import wrap_positive
+from ..core._angles import margin_radians, wrap_positive
 from ..core._checks import (
     FloatArray,
     check_direction,
@@ -153,7 +153,7 @@ class PlanSpec:
 
     @property
     def margin_rad(self) -> float:
-        return float(np.radians(self.margin))
+        return float(margin_radians(self.margin))
 
     @property
     def contact_type(self) -> str:
@@ -950,8 +950,9 @@ def _build_plans(polygon: Polygon, F: Features, c: Candidates, rows: np.ndarray,
     rows, lengths, a, b, mode = rows[keep], lengths[keep], a[keep], b[keep], mode[keep]
     if rows.size == 0:
         return []
-    mode = _break_ties(polygon, c, rows, a, b, lengths, mode, np.radians(margin_deg))
-    params = _place(c, rows, a, b, lengths, mode, np.radians(margin_deg))
+    margin = margin_radians(margin_deg)
+    mode = _break_ties(polygon, c, rows, a, b, lengths, mode, margin)
+    params = _place(c, rows, a, b, lengths, mode, margin)
     rho = characteristic_length(polygon.vertices, polygon.centroid)
     plans = []
     for r in range(len(rows)):
