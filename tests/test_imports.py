@@ -23,3 +23,37 @@ def test_version_matches_pyproject():
 
     meta = tomllib.loads((Path(__file__).parents[1] / "pyproject.toml").read_text())
     assert fcgrasp.__version__ == meta["project"]["version"]
+
+
+def _type_checking_names() -> dict[str, str]:
+    """The names the ``if TYPE_CHECKING:`` block of fcgrasp/__init__.py imports, each with
+    its module (what a type checker sees)."""
+    import ast
+
+    tree = ast.parse((Path(__file__).parents[1] / "src" / "fcgrasp" / "__init__.py")
+                     .read_text())
+    out: dict[str, str] = {}
+    for node in tree.body:
+        if isinstance(node, ast.If) and getattr(node.test, "id", "") == "_TYPE_CHECKING":
+            for imp in node.body:
+                assert isinstance(imp, ast.ImportFrom) and imp.level == 1
+                out.update({a.name: imp.module for a in imp.names})
+    return out
+
+
+def test_the_public_names_are_one_list():
+    """The lazy table, __all__, the type checkers' imports and dir() agree, and every
+    public name loads from the module the table says."""
+    import importlib
+
+    import fcgrasp
+
+    lazy = fcgrasp._LAZY
+    assert fcgrasp.__all__ == ["TOL", "__version__", *lazy]
+    assert _type_checking_names() == lazy
+    assert dir(fcgrasp) == sorted(fcgrasp.__all__)
+    for name, module in lazy.items():
+        mod = importlib.import_module(f"fcgrasp.{module}")
+        assert getattr(fcgrasp, name) is getattr(mod, name)
+        assert name in getattr(mod, "__all__", [name]), (name, module)
+    assert not {"Any", "TYPE_CHECKING", "import_module"} & set(dir(fcgrasp))

@@ -97,7 +97,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         Polygon,
     )
     from .model.stretches import StretchPair, two_finger_stretches
-    from .planning.planner import (
+    from .planning import (
         GraspPlan,
         independent_regions,
         plan,
