@@ -186,7 +186,7 @@ def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
 
     monkeypatch.setattr(batch, "_plan_one", flaky)
     res = {r["path"]: r for r in batch.plan_many(polys + [fc.Polygon(_ring(rng, 5))],
-                                                 workers=2, part_timeout=10.0, fingers=2,
+                                                 workers=2, part_timeout=4.0, fingers=2,
                                                  mu=0.4, top=2)}
     assert res["polygon:0"]["error"] is None and res["polygon:0"]["grasps"]
     assert "worker died" in res["polygon:1"]["error"]

@@ -190,7 +190,7 @@ def _check_plans(part, jaw, rng, n=40):
     return plans
 
 
-@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("seed", range(1))
 def test_every_sampled_pose_of_a_box_holds(seed):
     rng = np.random.default_rng(10 + seed)
     found = 0
@@ -201,7 +201,7 @@ def test_every_sampled_pose_of_a_box_holds(seed):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", range(3, 40))
+@pytest.mark.parametrize("seed", range(1, 40))
 def test_every_sampled_pose_of_a_box_holds_slow(seed):
     rng = np.random.default_rng(10 + seed)
     for _ in range(6):
@@ -392,14 +392,14 @@ def _certify_cases(seed, n_parts, internal=False):
     return proved
 
 
-@pytest.mark.parametrize("seed", range(2))
+@pytest.mark.parametrize("seed", range(1))
 def test_certified_boxes_hold_at_every_sampled_pose(seed):
     assert _certify_cases(seed, 12) > 10
     assert _certify_cases(seed, 4, internal=True) > 4
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("seed", range(2, 30))
+@pytest.mark.parametrize("seed", range(1, 30))
 def test_certified_boxes_hold_at_every_sampled_pose_slow(seed):
     _certify_cases(seed, 20)
     _certify_cases(seed, 6, internal=True)

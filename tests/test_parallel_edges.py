@@ -52,7 +52,8 @@ def check_part(poly, rng, n_inside=12):
 
 
 @pytest.mark.parametrize("kind", PARALLEL_KINDS)
-@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                      for s in range(1, 3))])
 def test_parallel_edges_no_false_closure(kind, seed):
     rng = np.random.default_rng([9, seed, PARALLEL_KINDS.index(kind)])
     assert check_part(parallel_polygon(rng, kind), rng) > 0
