@@ -143,7 +143,7 @@ def test_search_too_large_is_refused_at_once():
 
 
 def test_rank_folds_batches_into_a_running_top(rng):
-    from fcgrasp import pipeline
+    from fcgrasp.pipeline import _candidates as pipeline  # where REDUCE_ROWS is read
 
     part = random_polygon(rng, "star")
     spec = plan_spec(fingers=4, top=2, max_memory=2 ** 24)
@@ -160,7 +160,7 @@ def test_rank_folds_batches_into_a_running_top(rng):
 
 def test_three_finger_search_stops_early(monkeypatch):
     """The top-k stop ignores gravity's zero-length region (it never stopped before)."""
-    from fcgrasp import pipeline
+    from fcgrasp.pipeline import _search as pipeline  # where the search calls solve
 
     a = np.linspace(0, 2 * np.pi, 41)[:-1]
     r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)

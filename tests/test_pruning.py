@@ -9,7 +9,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp import pipeline
-from fcgrasp.pipeline import candidates, plan_spec, rank, search, solve
+from fcgrasp.pipeline import _candidates, _search, candidates, plan_spec, rank, search, solve
 from fcgrasp.planning.planner import RANKINGS
 
 from .grippers import grip
@@ -49,15 +49,15 @@ def _check(part, job, top, rank_by, hand=None, sizes=(1, 9, 64)):
 
     With a measure other than ``min_region`` the floor is that of the
     ``KEEP_FOR_MEASURE`` rows the measure orders: made small here so that it prunes."""
-    old = pipeline.KEEP_FOR_MEASURE
-    pipeline.KEEP_FOR_MEASURE = 4 if rank_by != "min_region" else old
+    old = _candidates.KEEP_FOR_MEASURE
+    _candidates.KEEP_FOR_MEASURE = 4 if rank_by != "min_region" else old
     try:
         spec = plan_spec(top=top, rank_by=rank_by, hand=hand, **job)
         want = _key(_exhaustive(part, spec))
         for size in sizes if rank_by == "min_region" else sizes[1:]:
             assert _key(search(part, spec, batch_size=size)) == want, size
     finally:
-        pipeline.KEEP_FOR_MEASURE = old
+        _candidates.KEEP_FOR_MEASURE = old
 
 
 @pytest.mark.parametrize("rank_by", RANKINGS)
@@ -116,7 +116,7 @@ def test_the_search_prunes(fingers, monkeypatch):
     part = fc.Polygon(np.column_stack([r * np.cos(ang), r * np.sin(ang)]) * 50.0)
     spec = plan_spec(**grip(fingers, 0.3), top=3)
     solved_rows = []
-    real_solve = pipeline.solve
+    real_solve = _search.solve
 
     def counting(polygon, spec, sets, *args, **kw):
         out = real_solve(polygon, spec, sets, *args, **kw)
@@ -124,7 +124,7 @@ def test_the_search_prunes(fingers, monkeypatch):
         solved_rows.append(int(np.sum(sets.bound >= floor)))
         return out
 
-    monkeypatch.setattr(pipeline, "solve", counting)
+    monkeypatch.setattr(_search, "solve", counting)
     got = search(part, spec)
     total = pipeline.search_size(part, spec).rows
     assert sum(solved_rows) < 0.2 * total

@@ -292,7 +292,7 @@ def test_sharp_corners_skip_the_stretch_search(seed, monkeypatch):
     those of the full stretch search (forced here); and the full search indeed covers no
     vertex there."""
     import fcgrasp as fc
-    from fcgrasp import pipeline
+    from fcgrasp.grippers import _boundary as pipeline  # where boundary_plans asks
     from fcgrasp.model.stretches import crosses_a_vertex
 
     rng = np.random.default_rng(seed)

@@ -35,14 +35,11 @@ from ..model.regions import DEFAULT_MARGIN_DEG
 from ..model.stretches import stretch_regions
 from ..pipeline import (
     PlanSpec,
-    boundary_plans,
     check_search,
-    frictionless_plan,
-    grown_plans,
     plan_spec,
     search,
-    stretch_plan,
 )
+from ._boundary import boundary_plans, frictionless_plan, grown_plans, stretch_plan
 from .base import SearchOptions, register
 from .three_fingers import three_finger_plans
 

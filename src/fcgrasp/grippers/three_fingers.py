@@ -66,14 +66,12 @@ from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import crosses_a_vertex
 from ..pipeline import (
     PlanSpec,
-    boundary_plans,
     candidates,
     features,
-    ranked_unique,
-    regions_plan,
     search,
     search_size,
 )
+from ._boundary import boundary_plans, ranked_unique, regions_plan
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
            "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",

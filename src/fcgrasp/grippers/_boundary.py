@@ -1,0 +1,163 @@
+"""Plans whose regions run along the boundary, shared by the point-finger grippers:
+two fingers' stretches (exact), three or four frictionless fingers grown from their
+best single-edge plans (a safe lower bound), and the plan builders they share."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ..core._geom import midpoints
+from ..core.tolerances import LEXIMIN_STEP
+from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
+from ..model.plans import GraspPlan, rank_key
+from ..model.polygon import Polygon
+from ..model.quality import characteristic_length
+from ..model.ranking import MEASURES
+from ..model.stretches import StretchPair, crosses_a_vertex, two_finger_stretches
+from ..pipeline import (
+    GROW_SEEDS,
+    KEEP_STRETCHES,
+    EdgeSets,
+    PlanSpec,
+    features,
+    rank,
+    search,
+    solve,
+)
+
+# ----------------------------------------------------------------------------- stretches
+
+
+
+def regions_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges: Any,
+                   lengths: Any, contact_type: str, mode: str,
+                   gravity: dict[str, Any] | None = None) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of given regions, each a polyline along the edges
+    ``region_edges[i]`` (representative contacts halfway along each region)."""
+    contacts, edges = midpoints(regions, region_edges)
+    return GraspPlan(edges, regions, np.array(lengths), contacts, polygon.normals[list(edges)],
+                     contact_type, spec.mu, mode, spec.margin, gravity,
+                     centroid=polygon.centroid.copy(),
+                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     disturbance=spec.disturbance, region_edges=region_edges)
+
+
+def stretch_plan(polygon: Polygon, spec: PlanSpec, pair: StretchPair) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of a pair of stretches (representative contacts
+    halfway along each region)."""
+    return regions_plan(polygon, spec, pair.regions, pair.region_edges, pair.lengths,
+                          "friction", pair.mode)
+
+
+def _single_edge_plans(polygon: Polygon, spec: PlanSpec, pairs: list[tuple[int, int]]
+                       ) -> list[GraspPlan]:
+    """The single-edge pipeline's plans (exact leximin levels and placement) of chosen
+    edge pairs."""
+    if not pairs:
+        return []
+    F = features(polygon, spec.mu, None)
+    feat = {int(e): i for i, e in enumerate(F.edge)}
+    rows = np.array(sorted({tuple(sorted((feat[a], feat[b]))) for a, b in pairs}))
+    sub = replace(spec, top=None, rank_by="min_region")
+    return rank(polygon, sub, [solve(polygon, sub, EdgeSets(rows))])
+
+
+def frictionless_plan(polygon: Polygon, spec: PlanSpec, r: FrictionlessStretches
+                      ) -> GraspPlan:
+    """The :class:`~fcgrasp.GraspPlan` of frictionless regions along the boundary
+    (representative contacts halfway along each region)."""
+    g = None if spec.gravity is None else {"center": polygon.centroid.copy(),
+                                           "direction": np.array(spec.gravity)}
+    return regions_plan(polygon, spec, r.regions, r.region_edges, r.lengths,
+                          "frictionless", r.mode, g)
+
+
+def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]
+                   ) -> list[GraspPlan]:
+    """Plans in :func:`rank_key` order (the best ``spec.top``), a grasp reached by two
+    configurations of one mode once."""
+    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+    keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
+                   for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
+    out: list[GraspPlan] = []
+    seen = set()
+    for key, k in keyed:
+        if (key, plans[k].mode) in seen:
+            continue
+        seen.add((key, plans[k].mode))
+        out.append(plans[k])
+    return out if spec.top is None else out[:spec.top]
+
+
+def _reaches_a_vertex(polygon: Polygon, p: GraspPlan) -> bool:
+    """Some region of a single-edge plan ends at an end of its edge (elsewhere the
+    regions are held back by each other, not by their edges)."""
+    tol = LEXIMIN_STEP * polygon.size
+    for e, (x, y) in zip(p.edges, p.ends, strict=True):
+        for v in (polygon.starts[e], polygon.ends[e]):
+            if min(np.hypot(*(x - v)), np.hypot(*(y - v))) <= tol:
+                return True
+    return False
+
+
+def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None
+                ) -> list[GraspPlan]:
+    """Three or four frictionless fingers along the boundary: the single-edge plans and,
+    grown from those of the :data:`GROW_SEEDS` best of them with the fingers on distinct
+    edges and a region that reaches an end of its edge, regions along the boundary
+    (:mod:`fcgrasp.model.frictionless_stretches`: every grasp of them holds; a lower bound on
+    the optimum, not the optimum), ranked together.
+    ``progress`` as for :func:`solve` (the single-edge search)."""
+    if not spec.grows:
+        raise ValueError("grown_plans plans three or four fingers without a hand "
+                         "(spec.grows is False)")
+    flat = replace(spec, along_boundary=False,
+                   top=None if spec.top is None else max(spec.top, GROW_SEEDS))
+    seeds = search(polygon, flat, progress=progress, map=map)
+    rows = [p.edges for p in seeds[:GROW_SEEDS]
+            if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
+    plans = list(seeds)
+    if rows:
+        grown = grow_stretches(polygon, rows, spec.margin,
+                               None if spec.gravity is None else np.array(spec.gravity),
+                               keep_single=False)
+        plans += [frictionless_plan(polygon, spec, r) for r in grown
+                  if r is not None and max(len(e) for e in r.region_edges) > 1]
+    return ranked_unique(polygon, spec, plans)
+
+
+def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
+    """Two-finger plans whose regions run along the boundary (stretches of the rings,
+    :mod:`fcgrasp.model.stretches`), ranked as :func:`rank` ranks.
+
+    The exact stretch search gives the best configurations and every tie of the
+    ``top``-th; those on single edges are solved by the single-edge pipeline (the same
+    leximin levels and placement as :func:`solve`), so on outlines where no region
+    gains by crossing a vertex the plans are those of the single-edge search.  With a
+    ranking measure other than ``min_region`` the single-edge search's plans and the
+    :data:`KEEP_STRETCHES` best stretch configurations are scored.  ``top=None``: every
+    configuration that holds (one plan per configuration: which edges each region
+    covers), for small parts.
+    """
+    if not spec.stretches:
+        raise ValueError("boundary_plans plans two fingers without a hand "
+                         "(spec.stretches is False)")
+    flat = replace(spec, along_boundary=False)
+    if not crosses_a_vertex(polygon, spec.mu, spec.margin):
+        # no region can cover a vertex: the regions are the single-edge ones
+        return ranked_unique(polygon, spec, search(polygon, flat))
+    by_min = spec.rank_by == "min_region"
+    keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
+    pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
+    multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
+    plans = [stretch_plan(polygon, spec, p) for p in multi]
+    if by_min:
+        plans += _single_edge_plans(polygon, spec, [
+            (p.region_edges[0][0], p.region_edges[1][0]) for p in pairs
+            if max(len(e) for e in p.region_edges) == 1])
+    else:
+        plans += search(polygon, flat)
+    return ranked_unique(polygon, spec, plans)

@@ -1,0 +1,588 @@
+"""Candidates: the features of a part and the candidate edge sets of a search, streamed
+by decreasing bound, with the memory estimate that refuses a search too large (part
+of :mod:`fcgrasp.pipeline`; sections 6 and 7.2)."""
+
+from __future__ import annotations
+
+import bisect
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from functools import lru_cache
+from math import comb
+from typing import Any
+
+import numpy as np
+
+from ..core._angles import wrap_positive
+from ..core._checks import (
+    FloatArray,
+    check_int,
+)
+from ..core.closure import force_direction_closure
+from ..core.kernels import pair_scores
+from ..core.sectors import PAIRINGS, pairing_valid
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
+from ..errors import SearchTooLarge
+from ..model._regiongeom import four_finger_problems, two_finger_problems
+from ..model.hand import Hand
+from ..model.polygon import Polygon
+from ..model.regions import (
+    KnapsackProblem,
+    leximin,
+    max_min_length,
+)
+from ._spec import (
+    BATCH_SIZE,
+    FIRST_BATCH,
+    KEEP_FOR_MEASURE,
+    KEEP_STRETCHES,
+    KEPT_ROW_BYTES,
+    REDUCE_ROWS,
+    ROW_BYTES,
+    ROW_SECONDS,
+    STRETCH_BYTES,
+    TUPLE_BATCH_SIZE,
+    PlanSpec,
+)
+
+# ----------------------------------------------------------------------------- features
+
+@dataclass
+class Features:
+    """Contactable pieces of edges (whole edges, or their feasible parts under a hand).
+
+    The fingers of a candidate are indices into these arrays."""
+
+    edge: np.ndarray        # (F,) parent edge
+    a: FloatArray           # (F, 2)
+    b: FloatArray           # (F, 2)
+    offset: FloatArray      # (F,) arc length of a along the parent edge
+    center: FloatArray      # (F,) angle of -n
+    half: FloatArray        # (F,) friction half-angle
+def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
+             edges: Any = None) -> Features:
+    """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
+    or their parts a :class:`~fcgrasp.Hand` can reach (section 8.2).
+
+    Every step of the pipeline needs them for every batch, so the last few are kept
+    (the arrays are read-only)."""
+    key = None if edges is None else tuple(sorted({int(e) for e in edges}))
+    return _features(polygon, float(mu), hand, key)
+
+
+@lru_cache(maxsize=8)
+def _features(polygon: Polygon, mu: float, hand: Hand | None,
+              edges: tuple[int, ...] | None) -> Features:
+    rows = []
+    if hand is None:
+        ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
+               enumerate(polygon.lengths)]
+    else:
+        ivs = hand.feasible_intervals(polygon, min_length=LEXIMIN_STEP * polygon.size)
+    wanted = None if edges is None else set(int(e) for e in edges)
+    for e, lst in enumerate(ivs):
+        if wanted is not None and e not in wanted:
+            continue
+        for t0, t1 in lst:
+            rows.append((e, t0, t1))
+    if not rows:
+        z = np.zeros((0, 2))
+        return Features(np.zeros(0, int), z, z, np.zeros(0), np.zeros(0), np.zeros(0))
+    ei = np.array([r[0] for r in rows])
+    s0 = np.array([r[1] for r in rows])
+    s1 = np.array([r[2] for r in rows])
+    tan = polygon.tangents[ei]
+    a = polygon.starts[ei] + s0[:, None] * tan
+    b = polygon.starts[ei] + s1[:, None] * tan
+    n = polygon.normals[ei]
+    center = np.arctan2(-n[:, 1], -n[:, 0])
+    out = Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
+    for arr in (out.edge, out.a, out.b, out.offset, out.center, out.half):
+        arr.flags.writeable = False
+    return out
+
+
+# ----------------------------------------------------------------------------- candidates
+
+
+@dataclass
+class Candidates:
+    """A batch of candidate edge sets with their grasp-set geometry (section 6) and region
+    problems (section 7), scored by the largest smallest region (stage 1)."""
+
+    feats: np.ndarray            # (B, n) feature index per finger (-1: gravity)
+    a: FloatArray                # (B, n, 2)
+    b: FloatArray
+    center: FloatArray           # (B, n)
+    half: FloatArray             # (B, n) friction half-angles
+    perm: np.ndarray             # (B, n) problem order -> finger order
+    problems: list[KnapsackProblem]   # one per mode, in problem order
+    modes: tuple[str, str]
+    score: FloatArray = field(default_factory=lambda: np.zeros(0))
+    best_mode: np.ndarray = field(default_factory=lambda: np.zeros(0, int))
+    tol: float = SOLVER_TOL          # relative slack of the region solver
+
+    def take(self, idx: Any) -> Candidates:
+        """The candidates of the given rows."""
+        out = Candidates(self.feats[idx], self.a[idx], self.b[idx], self.center[idx],
+                         self.half[idx], self.perm[idx], [p.take(idx) for p in self.problems],
+                         self.modes, tol=self.tol)
+        out.score, out.best_mode = self.score[idx], self.best_mode[idx]
+        return out
+
+    @staticmethod
+    def concat(parts: list[Candidates]) -> Candidates:
+        """The rows of several batches, in order."""
+        def cat(xs: list[Any]) -> Any:
+            return np.concatenate(xs)
+
+        probs = [KnapsackProblem.concat([p.problems[m] for p in parts]) for m in range(2)]
+        out = Candidates(cat([p.feats for p in parts]), cat([p.a for p in parts]),
+                         cat([p.b for p in parts]), cat([p.center for p in parts]),
+                         cat([p.half for p in parts]), cat([p.perm for p in parts]), probs,
+                         parts[0].modes, tol=parts[0].tol)
+        out.score = cat([p.score for p in parts])
+        out.best_mode = cat([p.best_mode for p in parts])
+        return out
+
+
+def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
+    """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
+    of them, so that which of equal candidates survive does not depend on numbering."""
+    thr = np.partition(score, score.size - keep)[score.size - keep]
+    return np.flatnonzero(score >= thr - RANK_TOL * abs(thr))
+
+
+def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
+                     tol: float = SOLVER_TOL, floor: float = 0.0) -> Candidates:
+    """Two-finger candidates of the feature pairs ``(i, j)`` on distinct edges that have
+    regions (reaching ``floor``, if given), scored by one fused pass over every pair
+    (:func:`fcgrasp.core.kernels.pair_scores`, exact: the two fingers are on distinct edges);
+    the problems are built for those pairs only."""
+    keep = F.edge[i] != F.edge[j]
+    i, j = i[keep], j[keep]
+    score, mode, _ = pair_scores(F.a, F.b, F.center, F.half, i, j, margin, tol)
+    ok = np.flatnonzero((score > 0) & (score >= floor))
+    i, j, score, mode = i[ok], j[ok], score[ok], mode[ok]
+    probs, _ = two_finger_problems(F.a[i], F.b[i], F.center[i], F.half[i],
+                                   F.a[j], F.b[j], F.center[j], F.half[j], margin)
+    c = Candidates(np.stack([i, j], axis=1), np.stack([F.a[i], F.a[j]], 1),
+                   np.stack([F.b[i], F.b[j]], 1), np.stack([F.center[i], F.center[j]], 1),
+                   np.stack([F.half[i], F.half[j]], 1), np.tile([0, 1], (len(i), 1)), probs,
+                   ("squeeze", "expand"), tol=tol)
+    c.score, c.best_mode = score, mode
+    return c
+
+
+def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
+    e = F.edge[t]
+    k = t.shape[1]
+    ok = np.ones(len(t), dtype=bool)
+    for x in range(k):
+        for y in range(x + 1, k):
+            ok &= e[:, x] != e[:, y]
+    return t[ok]
+
+
+def _combos(s: int, r: int) -> Iterator[np.ndarray]:
+    """Every increasing ``r``-tuple (r = 1, 2 or 3) of ``range(s)``, in blocks."""
+    if r == 1:
+        if s > 0:
+            yield np.arange(s)[:, None]
+        return
+    if r == 2:
+        a, b = np.triu_indices(s, 1)
+        if a.size:
+            yield np.stack([a, b], axis=1)
+        return
+    for first in range(s - 2):
+        a, b = np.triu_indices(s - first - 1, 1)
+        block = np.empty((a.size, 3), dtype=int)
+        block[:, 0] = first
+        block[:, 1] = a + first + 1
+        block[:, 2] = b + first + 1
+        yield block
+
+
+def _layouts(t: np.ndarray, fingers: int, gravity: bool) -> np.ndarray:
+    """Candidate rows of sorted feature tuples ``t``: pairs as they are; triples plus the
+    gravity contact (-1); 4-tuples as they are; with four fingers on three edges (no
+    gravity, ``t`` of width 3) the three layouts doubling each feature (first and third)."""
+    if fingers == 2 or t.shape[1] == 4 or (fingers == 3 and not gravity):
+        return t
+    if gravity:
+        return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
+    return np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
+                           for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
+
+
+def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
+    """Upper bound of the smallest region of each row: no region is longer than its
+    feature, and two fingers on one feature (first and third) share it, so one of them
+    has at most half of it.  Gravity (-1) has no region."""
+    L = np.where(rows >= 0, lengths[np.maximum(rows, 0)], np.inf)
+    if rows.shape[1] == 4:
+        same = rows[:, 0] == rows[:, 2]
+        L[same, 0] *= 0.5
+        L[same, 2] = L[same, 0]
+    return L.min(axis=1)
+
+
+
+
+def _spans_plane(angles: FloatArray) -> bool:
+    """Whether directions at sorted ``angles`` in [0, 2 pi) may positively span the plane
+    (no gap between neighbours, cyclically, wider than half a turn plus the slack)."""
+    if angles.size < 3:
+        return False
+    gaps = np.diff(np.concatenate([angles, angles[:1] + 2 * np.pi]))
+    return bool(gaps.max() <= np.pi + SPAN_SLACK)
+
+
+def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
+                  first: int) -> Iterator[EdgeSets]:
+    """Every candidate row, streamed by decreasing bound (branch and bound).
+
+    Features are sorted by decreasing length; a row's *last* feature in that order is its
+    shortest, so the rows are enumerated by their last position ``s``: every row whose
+    features all come before ``s``'s has a bound at least the length at ``s``.  Batches
+    grow from ``first`` rows, doubling, to ``size``, so that a search whose top is found
+    early stops after little work.
+    """
+    lengths = np.hypot(*(F.b - F.a).T)
+    n = lengths.size
+    order = np.lexsort((np.arange(n), -lengths))
+    g = spec.gravity
+    gravity = g is not None
+    widths = [1] if spec.fingers == 2 else [2] if spec.fingers == 3 else \
+        ([3, 2] if three_edge else [3])
+    # frictionless fingers hold only if their force directions positively span the plane
+    # (theorem 4.2; gravity counts as one): rows whose features all come from positions
+    # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
+    seen = [] if g is None else [float(wrap_positive(np.arctan2(g[1], g[0])))]
+    buf: list[np.ndarray] = []
+    count = 0
+    target = min(first, size)
+    ceiling = np.inf
+    for s in range(n):
+        if not count:
+            ceiling = float(lengths[order[s]])
+        if spec.contact_type == "frictionless":
+            bisect.insort(seen, float(wrap_positive(F.center[order[s]])))
+            if not _spans_plane(np.array(seen)):
+                continue
+        for r in widths:
+            for block in _combos(s, r):
+                t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
+                                                 axis=1)], axis=1)
+                t = _distinct_edges(F, t)
+                if not len(t):
+                    continue
+                buf.append(_layouts(t, spec.fingers, gravity))
+                count += len(buf[-1])
+                while count >= target:
+                    rows = np.concatenate(buf)
+                    yield EdgeSets(rows[:target], _row_bound(lengths, rows[:target]), ceiling)
+                    # the rows left over come from position s: bounded by its length
+                    buf, count = [rows[target:]], len(rows) - target
+                    ceiling = float(lengths[order[s]])
+                    target = min(2 * target, size)
+    if count:
+        rows = np.concatenate(buf)
+        yield EdgeSets(rows, _row_bound(lengths, rows), ceiling)
+
+
+def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
+                     centroid: FloatArray, feats: np.ndarray, tol: float = SOLVER_TOL,
+                     floor: float = 0.0) -> Candidates:
+    """Grasp-set geometry and problems of four-finger (or three plus gravity) rows.
+    Pairings tied on the smallest region are told apart by the next leximin levels only
+    in rows that reach ``floor`` (the others cannot enter the top; their score, the
+    tied value, is the same whichever pairing is kept)."""
+    B = len(feats)
+    g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
+    real = feats >= 0
+    fi = np.where(real, feats, 0)
+    a = np.where(real[..., None], F.a[fi], centroid)
+    b = np.where(real[..., None], F.b[fi], centroid)
+    center = np.where(real, F.center[fi], g_ang)
+    dirs = np.stack([np.cos(center), np.sin(center)], axis=-1)
+    ok = force_direction_closure(dirs) if B else np.zeros(0, bool)
+    feats, a, b, center, dirs = feats[ok], a[ok], b[ok], center[ok], dirs[ok]
+    B = len(feats)
+    # every pairing whose two sectors are non-null describes the same grasp set
+    # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
+    # largest smallest region, so the plan does not depend on how edges are numbered
+    good = np.stack([pairing_valid(dirs, p) for p in PAIRINGS], axis=1) if B \
+        else np.zeros((0, 3), bool)
+    has = good.any(axis=1)
+    feats, a, b, center, good = feats[has], a[has], b[has], center[has], good[has]
+    B = len(feats)
+    scores = np.full((B, 3), -np.inf)
+    per_mode = np.full((B, 3, 2), -1.0)
+    built: dict[int, tuple[np.ndarray, list[KnapsackProblem]]] = {}
+    for k, p in enumerate(PAIRINGS):
+        rows = np.flatnonzero(good[:, k])
+        if rows.size == 0:
+            continue
+        probs, _, _ = four_finger_problems(a[rows], b[rows], center[rows],
+                                           np.broadcast_to(p, (rows.size, 4)), margin)
+        for m, pr in enumerate(probs):
+            per_mode[rows, k, m] = np.where(pr.separable, max_min_length(pr, tol), -1.0)
+        scores[rows, k] = per_mode[rows, k].max(axis=1)
+        built[k] = (rows, probs)
+    choice = np.argmax(scores, axis=1)
+    top_s = scores[np.arange(B), choice]
+    tied = np.flatnonzero((top_s > 0) & (top_s >= floor) &
+                          (np.sum(scores >= top_s[:, None] - RANK_TOL *
+                                  np.abs(top_s[:, None]), axis=1) > 1))
+    if tied.size:
+        # equal smallest regions: the next levels of the leximin order decide
+        best_lv = np.full((tied.size, 4), -1.0)
+        for k, p in enumerate(PAIRINGS):
+            cand = scores[tied, k] >= top_s[tied] - RANK_TOL * np.abs(top_s[tied])
+            if not cand.any():
+                continue
+            rows_k, probs_k = built[k]
+            pos = np.searchsorted(rows_k, tied[cand])
+            lv, _ = _best_levels([pr.take(pos) for pr in probs_k],
+                                 np.broadcast_to(p, (pos.size, 4)).copy(), tol)
+            better = _lex_greater(lv, best_lv[cand])
+            idx = np.flatnonzero(cand)[better]
+            best_lv[idx] = lv[better]
+            choice[tied[idx]] = k
+    # gather the chosen pairing's problems (already built), back in row order
+    if built:
+        sels = {k: np.flatnonzero(choice[rows_k] == k) for k, (rows_k, _) in built.items()}
+        back = np.argsort(np.concatenate([built[k][0][sel] for k, sel in sels.items()]))
+        probs = [KnapsackProblem.concat([built[k][1][m].take(sel) for k, sel in sels.items()])
+                 .take(back) for m in range(2)]
+    else:
+        probs = four_finger_problems(a, b, center, np.zeros((0, 4), int), margin)[0]
+    perm = PAIRINGS[choice]
+    c = Candidates(feats, a, b, center, np.zeros_like(center), perm, probs, ("+C", "-C"),
+                   tol=tol)
+    pm = per_mode[np.arange(B), choice]
+    c.best_mode = np.argmax(pm, axis=1)
+    c.score = pm.max(axis=1)
+    return c
+
+
+
+# ----------------------------------------------------------------------------- candidates
+
+
+@dataclass
+class EdgeSets:
+    """A batch of candidate edge sets: ``feats[r, k]`` is the feature (see
+    :func:`features`) of finger ``k`` in row ``r``, -1 for gravity.  Picklable.
+
+    ``bound[r]`` is an upper bound of row ``r``'s smallest region (no region is longer
+    than its feature; two fingers on one feature share it), ``ceiling`` a bound of every
+    row of this batch *and of every later batch* of the stream: :func:`candidates`
+    yields rows by decreasing bound, so a search whose running top already beats a
+    batch's ceiling can stop there (:func:`search`).
+    """
+
+    feats: np.ndarray
+    bound: FloatArray | None = None
+    ceiling: float = float("inf")
+
+
+@dataclass(frozen=True)
+class SearchSize:
+    """How big a search is, before it starts (see :func:`search_size`).
+
+    ``rows``: candidate edge sets (an upper bound when a hand splits edges); ``batch_rows``:
+    rows per streamed batch; ``peak_bytes``: memory of one batch being solved;
+    ``kept_bytes``: memory of what is kept across batches (every row's plan with
+    ``top=None``, else the top of each batch); ``seconds``: a rough time on one core.
+    """
+
+    features: int
+    rows: int
+    batch_rows: int
+    peak_bytes: int
+    kept_bytes: int
+    seconds: float
+    budget: int
+
+    @property
+    def fits(self) -> bool:
+        return self.peak_bytes + self.kept_bytes <= self.budget
+
+
+def _rows(fingers: int, n: int, three_edge: bool = True) -> int:
+    if fingers == 2:
+        return comb(n, 2)
+    if fingers == 3:
+        return comb(n, 3)
+    return comb(n, 4) + (3 * comb(n, 3) if three_edge else 0)
+
+
+def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
+    """(rows, batch rows, peak bytes, kept bytes) of a search over ``n`` features."""
+    if spec.stretches:
+        # the stretch search holds a few (n, n) arrays per ring pair; every
+        # configuration of a curved outline (top=None) is about n**3 / 36 of them
+        rows = n ** 3 // 36 if spec.top is None else comb(n, 2)
+        held = rows if spec.top is None else min(rows, 2 * max(spec.top, KEEP_STRETCHES))
+        return rows, rows, STRETCH_BYTES * n * n, held * KEPT_ROW_BYTES
+    rows = _rows(spec.fingers, n)
+    per = ROW_BYTES[spec.fingers]
+    cap = BATCH_SIZE if spec.fingers == 2 else TUPLE_BATCH_SIZE
+    batch = int(max(1, min(cap, spec.max_memory // 2 // per)))
+    peak = min(rows, batch) * per
+    if spec.top is None:
+        held = rows
+    else:
+        keep = spec.top if spec.rank_by == "min_region" else KEEP_FOR_MEASURE
+        held = min(rows, _reduce_rows(spec) + 2 * keep)
+    return rows, batch, peak, held * KEPT_ROW_BYTES
+
+
+def _reduce_rows(spec: PlanSpec) -> int:
+    """Rows :func:`rank` holds beyond its running top before folding them in."""
+    return int(min(REDUCE_ROWS, max(1000, spec.max_memory // 4 // KEPT_ROW_BYTES)))
+
+
+def search_size(polygon: Polygon, spec: PlanSpec, edges: Any = None) -> SearchSize:
+    """The size of the search :func:`candidates` -> :func:`solve` -> :func:`rank` will do,
+    and the batch size that keeps it within ``spec.max_memory``.
+
+    Batches take at most half the budget (``ROW_BYTES`` per row, at most
+    :data:`BATCH_SIZE` rows of two fingers, :data:`TUPLE_BATCH_SIZE` of three or four);
+    what :func:`rank` keeps across batches must fit as well (``KEPT_ROW_BYTES`` per
+    row): its running top, at most ``REDUCE_ROWS`` (fewer on small
+    budgets) plus twice the top, or with ``top=None`` every row; see :func:`check_search`.
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> s = search_size(demo_part("quad"), plan_spec(fingers=4))
+    >>> s.rows, s.fits
+    (13, True)
+    """
+    n = len(features(polygon, spec.mu, spec.hand, edges).edge)
+    rows, batch, peak, kept = _estimate(spec, n)
+    return SearchSize(n, rows, batch, peak, kept, rows * ROW_SECONDS[spec.fingers],
+                      spec.max_memory)
+
+
+def _fmt_bytes(b: float) -> str:
+    for unit in ("B", "KB", "MB", "GB", "TB"):
+        if b < 1024:
+            return f"{b:.3g} {unit}"
+        b /= 1024
+    return f"{b:.3g} PB"
+
+
+def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
+    """The :func:`search_size` of a plan, or :class:`SearchTooLarge` (a ValueError) when it
+    cannot fit ``spec.max_memory``, saying what would: how many edges fit, a ``top``, fewer
+    fingers."""
+    size = search_size(polygon, spec)
+    if size.fits:
+        return size
+    fit = 2
+    while fit < size.features and sum(_estimate(spec, fit + 1)[2:]) <= spec.max_memory:
+        fit += 1
+    what = {2: "two-finger", 3: "three-finger", 4: "four-finger"}[spec.fingers]
+    hint = "plan on single edges (along_boundary=False, --single-edge), or " \
+        if spec.stretches and spec.top is not None else \
+        "give a top (--top K), or " if spec.top is None else \
+        "ask for fewer plans (--top), " if spec.top * KEPT_ROW_BYTES > spec.max_memory // 4 \
+        else ""
+    raise SearchTooLarge(
+        f"a {what} search of this part ({size.features} edges, {size.rows:.3g} candidate "
+        f"edge sets) would need about {_fmt_bytes(size.peak_bytes + size.kept_bytes)}, above "
+        f"the memory budget of {_fmt_bytes(spec.max_memory)} (max_memory, --max-memory): "
+        f"{hint}simplify the outline to at most about {fit} edges (--simplify TOL), or plan "
+        f"with fewer fingers")
+
+
+def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+               batch_size: int | None = None) -> Iterator[EdgeSets]:
+    """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows,
+    by decreasing upper bound of their smallest region (:class:`EdgeSets`).
+
+    Two fingers: every pair of features on distinct edges.  Four: every 4-tuple on
+    distinct edges and every three edges with one doubled.  Three: every triple on
+    distinct edges (with gravity, plus the gravity contact -1).  ``edges`` restricts
+    the features to those edges (with four fingers and an edge given twice, only the
+    layouts doubling that edge).  With a ``top``, batches
+    start small and double up to ``batch_size``, so a search that finds its top among
+    the first rows stops after little work (:func:`search`); the stream itself always
+    holds every row.
+    """
+    F = features(polygon, spec.mu, spec.hand, edges)
+    size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
+        check_int(batch_size, "batch_size", minimum=1)
+    first = size if spec.top is None else FIRST_BATCH
+    doubled = None
+    three_edge = spec.fingers == 4
+    if edges is not None and spec.fingers == 4:
+        idx = [int(e) for e in edges]
+        twice = [e for e in set(idx) if idx.count(e) == 2]
+        doubled = twice[0] if twice else None
+        three_edge = doubled is not None
+    for sets in _ordered_rows(F, spec, three_edge, size, first):
+        if doubled is not None:
+            rows = sets.feats
+            keep = (F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])
+            if not keep.any():
+                continue
+            assert sets.bound is not None
+            sets = EdgeSets(rows[keep], sets.bound[keep], sets.ceiling)
+        yield sets
+
+
+def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
+                   edges: Any = None, floor: float = 0.0) -> Candidates:
+    """The grasp sets of a batch (section 6) and their region problems, scored by the
+    largest smallest region (stage 1, exact unless two fingers share an edge, when it is
+    an upper bound).  Rows that fail the force-direction constraint are dropped; with two
+    fingers, so are rows with no regions.  With a ``floor`` (:attr:`TopK.floor`) and a
+    ``top``, two-finger rows below the floor are dropped too, and four-finger pairings
+    tied on the smallest region are told apart only in the rows that reach it."""
+    if spec.fingers == 3 and spec.gravity is None:
+        raise ValueError("three fingers with friction are solved by linear programs: "
+                         "fcgrasp.grippers.three_fingers.three_finger_plans, not grasp_geometry")
+    F = features(polygon, spec.mu, spec.hand, edges)
+    feats = np.asarray(sets.feats, dtype=int)
+    if spec.fingers == 2:
+        return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol,
+                                floor if spec.top is not None else 0.0)
+    gravity = None if spec.gravity is None else np.array(spec.gravity)
+    return _quad_candidates(F, spec.margin_rad, gravity, polygon.centroid,
+                            feats.reshape(-1, 4), spec.tol, floor)
+
+
+def _lex_greater(a: FloatArray, b: FloatArray, rtol: float = RANK_TOL) -> np.ndarray:
+    """Row-wise leximin comparison ``a > b`` of length vectors, with a relative tolerance.
+
+    Entries equal to 0 with a negative counterpart are regions of fixed points (gravity).
+    """
+    sa, sb = np.sort(a, axis=1), np.sort(b, axis=1)
+    scale = np.maximum(np.maximum(np.abs(sa).max(axis=1), np.abs(sb).max(axis=1)), TINY)
+    diff = sa - sb
+    big = np.abs(diff) > rtol * scale[:, None]
+    first = np.argmax(big, axis=1)
+    rows = np.arange(len(a))
+    return big.any(axis=1) & (diff[rows, first] > 0)
+
+
+def _best_levels(probs: list[KnapsackProblem], perm: np.ndarray, tol: float = SOLVER_TOL
+                 ) -> tuple[FloatArray, np.ndarray]:
+    """Leximin lengths (finger order) of the better mode, and that mode."""
+    R = len(perm)
+    inv = np.argsort(perm, axis=1)
+    ridx = np.arange(R)[:, None]
+    lengths = np.full(perm.shape, -1.0)
+    mode = np.zeros(R, dtype=int)
+    for m, pr in enumerate(probs):
+        # both modes are solved: when their smallest regions tie, the next levels decide
+        lev = np.where(pr.separable[:, None], leximin(pr, tol), -1.0)[ridx, inv]
+        better = _lex_greater(lev, lengths)
+        lengths[better] = lev[better]
+        mode[better] = m
+    return lengths, mode

@@ -1,0 +1,189 @@
+"""The running top, the exact branch and bound and the ranking of solved batches (part
+of :mod:`fcgrasp.pipeline`; section 7.3 and 8)."""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Iterator
+from dataclasses import replace
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+from ..core.tolerances import RANK_TOL
+from ..model.plans import GraspPlan, rank_key
+from ..model.polygon import Polygon
+from ..model.ranking import MEASURES
+from ._candidates import EdgeSets, _reduce_rows, candidates, features, search_size
+from ._solve import Solved, _build_plans, _select, _smallest_region, solve
+from ._spec import KEEP_FOR_MEASURE, MAP_WINDOW, PlanSpec
+
+
+class TopK:
+    """The running top of a search: solved batches folded in as they come (the reduce
+    of :func:`rank`), and the :attr:`floor` a row must reach to enter it.
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> part, spec = demo_part("blob"), plan_spec(fingers=2, mu=0.3, top=2)
+    >>> top = TopK(part, spec)
+    >>> for batch in candidates(part, spec):
+    ...     if batch.ceiling < top.floor:
+    ...         break                       # no later row can enter the top
+    ...     top.add(solve(part, spec, batch, floor=top.floor))
+    >>> [p.edges for p in top.plans()]
+    [(2, 5), (1, 4)]
+    """
+
+    def __init__(self, polygon: Polygon, spec: PlanSpec, edges: Any = None) -> None:
+        self.polygon, self.spec, self.edges = polygon, spec, edges
+        top = spec.top
+        #: rows kept by the smallest region: the top, or with another measure the
+        #: :data:`KEEP_FOR_MEASURE` best, which the measure then orders
+        self.keep = None if top is None else (top if spec.rank_by == "min_region" else
+                                              KEEP_FOR_MEASURE)
+        self._parts: list[Solved] = []
+        self._held = 0
+        self._floor = 0.0
+
+    def add(self, solved: Solved) -> None:
+        """Fold in a solved batch (from any process, in any order)."""
+        if not len(solved.lengths):
+            return
+        self._parts.append(solved)
+        self._held += len(solved.lengths)
+        if self.keep is None:
+            return
+        if self._held > _reduce_rows(self.spec) + self.keep:
+            # a running reduction: what the final selection would drop can go now
+            merged = Solved.concat(self._parts)
+            merged = merged.take(_select(merged.lengths, merged.cands.feats,
+                                         self.polygon.size, self.keep))
+            self._parts, self._held = [merged], len(merged.lengths)
+        if self._held >= self.keep:
+            mins = np.concatenate([_smallest_region(p.cands.feats, p.lengths)
+                                   for p in self._parts])
+            kth = float(np.partition(-mins, self.keep - 1)[self.keep - 1])
+            # rounding of the ranking (leximin_key) is within RANK_TOL * size: a row
+            # below this cannot tie the keep-th row
+            self._floor = max(self._floor, -kth - 2 * RANK_TOL * self.polygon.size)
+
+    @property
+    def floor(self) -> float:
+        """A row whose smallest region is below this cannot enter the top (0 until the
+        top is full, and always 0 with ``top=None``)."""
+        return self._floor
+
+    def plans(self) -> list[GraspPlan]:
+        """The best plans, best first: sorted by the measure ``spec.rank_by``
+        (:mod:`fcgrasp.model.ranking`), then the leximin order of the region lengths, then
+        :func:`~fcgrasp.model.plans.geometric_key`."""
+        if not self._parts:
+            return []
+        polygon, spec, top = self.polygon, self.spec, self.spec.top
+        s = Solved.concat(self._parts)
+        if self.keep is not None:
+            pick = _select(s.lengths, s.cands.feats, polygon.size, self.keep)
+        else:
+            pick = np.arange(len(s.lengths))
+        F = features(polygon, spec.mu, spec.hand, self.edges)
+        gravity = None if spec.gravity is None else np.array(spec.gravity)
+        plans = _build_plans(polygon, F, s.cands, pick, s.lengths[pick], s.a[pick],
+                             s.b[pick], s.mode[pick], spec.mu, spec.margin,
+                             spec.contact_type, gravity, spec.disturbance)
+        scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
+        order = sorted(range(len(plans)), key=lambda k: rank_key(
+            plans[k], polygon, spec.rank_by, float(scores[k])))
+        plans = [plans[k] for k in order]
+        return plans if top is None else plans[:top]
+
+
+def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
+           batch_size: int | None = None, map: Any = None) -> list[GraspPlan]:
+    """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
+    decreasing bound, :func:`solve` drops the rows below the running top's
+    :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
+    it.  The same plans as solving every row (``rank`` of every batch), tested on the
+    corpus for every ``rank_by``; with a measure other than ``min_region`` the floor is
+    that of the :data:`KEEP_FOR_MEASURE` rows the measure orders.
+
+    ``progress(done, total)`` counts candidate rows solved or pruned; ``batch_size`` as
+    for :func:`candidates`.  ``map(function, batches)``, such as the built-in ``map``, an
+    executor's ``map`` or one over a Dask client, solves :data:`MAP_WINDOW` batches at a
+    time wherever it runs them (each with the floor known when the window was sent: a
+    lower floor only keeps more rows, so the answer is the same).
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
+    [(0, 1, 2, 3)]
+    """
+    top = TopK(polygon, spec, edges)
+    total = search_size(polygon, spec, edges).rows if progress is not None else 0
+    done = 0
+    window: list[EdgeSets] = []
+
+    def fold() -> None:
+        nonlocal done
+        floor = top.floor
+        live = [b for b in window if b.ceiling >= floor]
+        if map is None:
+            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=floor)
+                                         for b in live]
+        else:
+            results = map(partial(solve, polygon, spec, edges=edges, floor=floor), live)
+        for solved in results:
+            top.add(solved)
+        done += sum(len(b.feats) for b in window)
+        window.clear()
+        if progress is not None:
+            progress(min(done, total), total)
+
+    for batch in candidates(polygon, spec, edges, batch_size):
+        if batch.ceiling < top.floor:
+            break
+        window.append(batch)
+        if map is None or len(window) >= MAP_WINDOW:
+            fold()
+    if window:
+        fold()
+    if progress is not None and done < total:
+        progress(total, total)
+    return top.plans()
+
+
+def every_plan(polygon: Polygon, spec: PlanSpec, edges: Any = None,
+               batch_size: int | None = None) -> Iterator[GraspPlan]:
+    """Every single-edge plan of a part (``top=None``), streamed: each batch of
+    :func:`candidates` is solved and its plans yielded (in rank order within the batch;
+    batches by decreasing bound of their rows), so memory is bounded by one batch
+    whatever the part's size, where ``plan(..., top=None)`` must hold every plan to rank
+    them and refuses parts whose plans would not fit (:class:`SearchTooLarge`).
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> from fcgrasp.pipeline import plan_spec
+    >>> part = demo_part("quad")
+    >>> spec = plan_spec(fingers=2, mu=0.5)
+    >>> sorted(p.edges for p in every_plan(part, spec)) == sorted(
+    ...     p.edges for p in search(part, plan_spec(fingers=2, mu=0.5, top=None)))
+    True
+    """
+    spec = replace(spec, top=None)
+    for batch in candidates(polygon, spec, edges, batch_size):
+        top = TopK(polygon, spec, edges)
+        top.add(solve(polygon, spec, batch, edges))
+        yield from top.plans()
+
+
+def rank(polygon: Polygon, spec: PlanSpec, solved: Iterable[Solved],
+         edges: Any = None) -> list[GraspPlan]:
+    """Merge solved batches and return the best plans, best first (a top-k reduce,
+    :class:`TopK`).
+
+    Sorted by the measure ``spec.rank_by`` (:mod:`fcgrasp.model.ranking`), then the leximin
+    order of the region lengths, then :func:`~fcgrasp.model.plans.geometric_key`.
+    """
+    top = TopK(polygon, spec, edges)
+    for batch in solved:
+        top.add(batch)
+    return top.plans()
