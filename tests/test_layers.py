@@ -35,7 +35,13 @@ def _imports(path: Path):
     names taken from it: ``(module, names)``."""
     tree = ast.parse(path.read_text())
     pkg = _package(path).split(".")
+    # imports for type checkers only never run: not an edge of the import graph
+    typing_only = {id(n) for node in ast.walk(tree) if isinstance(node, ast.If)
+                   and getattr(node.test, "id", "") == "TYPE_CHECKING"
+                   for n in ast.walk(node)}
     for node in ast.walk(tree):
+        if id(node) in typing_only:
+            continue
         if isinstance(node, ast.ImportFrom):
             if node.level:
                 base = pkg[: len(pkg) - node.level + 1]

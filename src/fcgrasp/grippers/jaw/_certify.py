@@ -1,0 +1,338 @@
+"""Proofs that every pose of a box of jaw poses holds (:func:`certify_box`): interval
+bounds over sub-boxes, sound, not complete."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ...core._angles import shrunk_half_angle, wrap
+from ...core._checks import FloatArray, check_int
+from ...core.tolerances import CONTACT_TOL, TOL
+from ...model.polygon import Polygon
+from ...model.quality import characteristic_length
+from ...model.regions import DEFAULT_MARGIN_DEG
+from ._poses import (
+    MAX_CONTACTS,
+    _check_jaw_args,
+    _grip_edges,
+    _near_strip,
+    _sin_range,
+    insertion_point,
+    jaw_poses,
+)
+
+if TYPE_CHECKING:
+    from ._plans import ParallelJaw
+
+
+# ----------------------------------------------------------------------------- certificates
+
+
+def _arc_of(vectors: FloatArray) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    """The smallest arcs (centre, half-width) holding the directions of each row of
+    ``vectors`` (B, k, 2) (corners of a convex set), and where there is none (the set may
+    hold the origin)."""
+    ang = np.arctan2(vectors[..., 1], vectors[..., 0])
+    rel = wrap(ang - ang[:, :1])
+    lo, hi = rel.min(axis=1), rel.max(axis=1)
+    none = (hi - lo >= np.pi - TOL) | (np.min(np.hypot(vectors[..., 0], vectors[..., 1]),
+                                               axis=1) <= 0)
+    return ang[:, 0] + (lo + hi) / 2, (hi - lo) / 2, none
+
+
+@dataclass
+class _Candidates:
+    """Everything a pad may touch at some pose of each box of a batch (B boxes): up to
+    :data:`MAX_CONTACTS` point sets (segments ``p0-p1`` (B, K, 2), a point when equal)
+    with their contact force's direction as an arc (``centre``, ``half`` (B, K)),
+    ``valid`` (B, K); bounds ``lo``, ``hi`` (B,) of the pad's stop over the box; ``ok``
+    (B,): False where no feature surely reaches the strip or too many may touch."""
+
+    p0: FloatArray
+    p1: FloatArray
+    centre: FloatArray
+    half: FloatArray
+    valid: np.ndarray
+    lo: FloatArray
+    hi: FloatArray
+    ok: np.ndarray
+
+
+def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
+                    boxes: FloatArray, half: float, ahead: np.ndarray | None = None
+                    ) -> _Candidates:
+    """The pad of ``sign`` (+1: pad A of an external grip, the extreme of ``sign * y``)
+    over each box ``(t0, t1, c0, c1)`` of ``boxes`` (B, 4): a superset of its contacts
+    (``ok`` False when too many features could touch: more than :data:`MAX_CONTACTS`,
+    as :func:`jaw_poses`).  Inside a hole, ``ahead`` (B, m): the edges ahead of the pad
+    (on its side of the closed jaws) at every pose of the box."""
+    t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))        # (B, 1) each
+    B = len(boxes)
+    cen = polygon.centroid
+    a = polygon.starts[ring] - cen
+    b = polygon.ends[ring] - cen
+    m = len(a)
+    f = -polygon.normals[ring]                          # the force on the part at an edge
+    # y = p . u = px cos t + py sin t;  x = p . n = -px sin t + py cos t
+    if internal:                                        # the edges this pad can meet
+        fy_lo, fy_hi = _sin_range(f[:, 0], f[:, 1], t0, t1)
+        pad_force = -sign                               # the force's sign along u
+        maybe = fy_hi > 0 if pad_force > 0 else fy_lo < 0
+        surely = fy_lo > 0 if pad_force > 0 else fy_hi < 0
+        if ahead is not None:
+            maybe, surely = maybe & ahead, surely & ahead
+    else:
+        # only an edge facing the pad (outward normal towards it) can hold its extreme:
+        # below the strip's side line a part's boundary point faces away
+        nu_lo, nu_hi = _sin_range(sign * polygon.normals[ring][:, 0],
+                                  sign * polygon.normals[ring][:, 1], t0, t1)
+        maybe = nu_hi > CONTACT_TOL
+        surely = np.ones((B, m), dtype=bool)
+    ends = np.concatenate([a, b])
+    y_lo, y_hi = _sin_range(sign * ends[:, 0], sign * ends[:, 1], t0, t1)      # (B, 2m)
+    x_lo, x_hi = _sin_range(ends[:, 1], -ends[:, 0], t0, t1)
+    ok2 = np.concatenate([maybe, maybe], axis=1)
+    sure2 = np.concatenate([surely, surely], axis=1)
+    # a lower bound of the stop: a vertex inside the strip at every pose of the box
+    always = sure2 & (x_lo >= c1 - half) & (x_hi <= c0 + half)
+    lower = np.max(np.where(always, y_lo, -np.inf), axis=1)
+    # an edge point inside the strip at every pose: the one at the strip's centre line
+    # at the box's centre pose, if its lateral range stays inside
+    tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
+    xa_m = -a[:, 0] * np.sin(tm) + a[:, 1] * np.cos(tm)
+    xb_m = -b[:, 0] * np.sin(tm) + b[:, 1] * np.cos(tm)
+    dx_m = xb_m - xa_m
+    with np.errstate(divide="ignore", invalid="ignore"):
+        tt = np.where(np.abs(dx_m) > 0, (cm - xa_m) / dx_m, np.nan)
+    good = surely & (tt >= 0) & (tt <= 1)
+    ttg = np.where(good, tt, 0.0)
+    pts = a + ttg[..., None] * (b - a)                                         # (B, m, 2)
+    px_lo, px_hi = _sin_range(pts[..., 1], -pts[..., 0], t0, t1)
+    py_lo, _ = _sin_range(sign * pts[..., 0], sign * pts[..., 1], t0, t1)
+    inside = good & (px_lo >= c1 - half) & (px_hi <= c0 + half)
+    lower = np.maximum(lower, np.max(np.where(inside, py_lo, -np.inf), axis=1))
+    # vertices that may be in the strip and reach the lower bound (one entry per point:
+    # an edge's end is the next edge's start)
+    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower[:, None])
+    uniq, inv = np.unique(ends, axis=0, return_inverse=True)
+    vmask = np.zeros((B, len(uniq)), dtype=bool)
+    rows, cols = np.nonzero(vert)
+    vmask[rows, inv.ravel()[cols]] = True
+    high = np.max(np.where(vert, y_hi, -np.inf), axis=1)
+    # a vertex (or a level edge) touches the pad's face: its force is the pad's, -sign u
+    face = ((t0 + t1) / 2)[:, 0] + (0.0 if sign < 0 else np.pi)
+    face_half = ((t1 - t0) / 2)[:, 0]
+    P0 = [np.broadcast_to(uniq, (B, len(uniq), 2))]
+    P1 = [P0[0]]
+    cen_f = [np.broadcast_to(face[:, None], vmask.shape)]
+    half_f = [np.broadcast_to(face_half[:, None], vmask.shape)]
+    use = [vmask]
+    # edge cuts by the strip's sides: the pad's corner on the edge (the lateral ranges of
+    # the edges' ends are those of the vertices above: starts first, then ends)
+    xa_lo, xa_hi = x_lo[:, :m], x_hi[:, :m]
+    dxr_lo, dxr_hi = _sin_range(b[:, 1] - a[:, 1], -(b[:, 0] - a[:, 0]), t0, t1)
+    e_lo, e_hi = np.minimum(xa_lo, x_lo[:, m:]), np.maximum(xa_hi, x_hi[:, m:])
+    # a cut is the extreme of its clipped edge only if the edge rises (for this pad)
+    # towards the strip's side there: drop the cuts where it surely falls
+    dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)
+    # (an edge along u at the box's edge, dx = 0, has its extreme at a vertex: its cut is
+    # dropped with the side it leans to inside the box, soundly; a level edge keeps both)
+    zero = CONTACT_TOL * polygon.size                   # dx = 0 at a critical angle
+    rise_sign = np.where(dy_lo > 0, 1, np.where(dy_hi < 0, -1, 0)) * \
+        np.where(dxr_lo >= -zero, 1, np.where(dxr_hi <= zero, -1, 0))
+    # the edge may turn along u: its cut can be anywhere on it
+    turns = (dxr_lo <= 0) & (dxr_hi >= 0)
+    edge_force = np.arctan2(f[:, 1], f[:, 0])
+    for side in (-half, half):
+        s_lo, s_hi = c0 + side, c1 + side
+        falls = rise_sign * np.sign(side) < 0
+        sel = maybe & (e_hi >= s_lo) & (e_lo <= s_hi) & ~falls
+        with np.errstate(divide="ignore", invalid="ignore"):
+            q = np.stack([(s_lo - xa_hi) / dxr_lo, (s_hi - xa_lo) / dxr_lo,
+                          (s_lo - xa_hi) / dxr_hi, (s_hi - xa_lo) / dxr_hi])
+        t_lo = np.where(turns, 0.0, np.maximum(0.0, q.min(axis=0)))
+        t_hi = np.where(turns, 1.0, np.minimum(1.0, q.max(axis=0)))
+        sel &= t_lo <= t_hi
+        t_lo, t_hi = np.where(sel, t_lo, 0.0), np.where(sel, t_hi, 0.0)
+        p0 = a + t_lo[..., None] * (b - a)
+        p1 = a + t_hi[..., None] * (b - a)
+        _, h0 = _sin_range(sign * p0[..., 0], sign * p0[..., 1], t0, t1)
+        _, h1 = _sin_range(sign * p1[..., 0], sign * p1[..., 1], t0, t1)
+        hh = np.maximum(h0, h1)
+        sel &= hh >= lower[:, None]
+        high = np.maximum(high, np.max(np.where(sel, hh, -np.inf), axis=1))
+        P0.append(p0)
+        P1.append(p1)
+        cen_f.append(np.broadcast_to(edge_force, sel.shape))
+        half_f.append(np.zeros(sel.shape))
+        use.append(sel)
+    use_all = np.concatenate(use, axis=1)
+    count = use_all.sum(axis=1)
+    ok = np.isfinite(lower) & (count >= 1) & (count <= MAX_CONTACTS)
+    # the candidates first, at most MAX_CONTACTS of them
+    order = np.argsort(~use_all, axis=1, kind="stable")[:, :MAX_CONTACTS]
+    r = np.arange(B)[:, None]
+
+    def pick(parts: list[Any]) -> Any:
+        return np.concatenate(parts, axis=1)[r, order]
+
+    return _Candidates(pick(P0), pick(P1), pick(cen_f), pick(half_f), use_all[r, order],
+                       lower, high, ok)
+
+
+def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> np.ndarray:
+    """Per box: every pair of candidate contacts is force closure at every pose of it
+    (theorem 6.3: the segment joining the contacts lies strictly inside both friction
+    cones, with the directions of both ranging over arcs; squeezing for an external grip,
+    expanding inside a hole).  The directions of a pair's chords are the smallest arc
+    holding its four corner chords (the chords of two segments form a convex set); none
+    when the set may hold the origin."""
+    turn = np.pi if expand else 0.0
+    holds = np.ones(len(ca.lo), dtype=bool)
+    for i in range(ca.valid.shape[1]):
+        for j in range(cb.valid.shape[1]):
+            corners = np.stack([cb.p0[:, j] - ca.p0[:, i], cb.p0[:, j] - ca.p1[:, i],
+                                cb.p1[:, j] - ca.p0[:, i], cb.p1[:, j] - ca.p1[:, i]],
+                               axis=1)                                         # (B, 4, 2)
+            d, hd, no_arc = _arc_of(corners)
+            # squeezing, A's force is within beta of every direction A -> B and B's of
+            # B -> A; expanding, of the opposite directions
+            fail = (no_arc
+                    | (np.abs(wrap(d + turn - ca.centre[:, i])) + hd + ca.half[:, i] >= beta)
+                    | (np.abs(wrap(d + np.pi + turn - cb.centre[:, j])) + hd
+                       + cb.half[:, j] >= beta))
+            holds &= ~(ca.valid[:, i] & cb.valid[:, j] & fail)
+    return holds
+
+
+def _hole_sides(polygon: Polygon, ring: np.ndarray, q: FloatArray, boxes: FloatArray,
+                half: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Over each box (B, 4) of an internal grip with insertion point ``q`` (from the
+    centroid): the hole's edges wholly above the insertion height at every pose, those
+    wholly below (B, m), and whether every edge that may meet the strip is one or the
+    other (B,): the closed jaws' segment is then free at every pose."""
+    t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))
+    a = polygon.starts[ring] - polygon.centroid
+    b = polygon.ends[ring] - polygon.centroid
+    ya_lo, ya_hi = _sin_range(a[:, 0], a[:, 1], t0, t1)
+    yb_lo, yb_hi = _sin_range(b[:, 0], b[:, 1], t0, t1)
+    xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
+    xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
+    yq_lo, yq_hi = _sin_range(q[0], q[1], t0, t1)
+    may_meet = (np.maximum(xa_hi, xb_hi) >= c0 - half) & (np.minimum(xa_lo, xb_lo) <= c1 + half)
+    up = np.minimum(ya_lo, yb_lo) > yq_hi
+    down = np.maximum(ya_hi, yb_hi) < yq_lo
+    return up, down, ~np.any(may_meet & ~up & ~down, axis=1)
+
+
+#: Sub-boxes :func:`certify_box` examines at a time.
+CERTIFY_BATCH = 512
+
+
+def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
+                margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
+                max_boxes: int = 4096) -> tuple[float, float] | None:
+    """Prove that **every** pose of the box ``theta = (t0, t1)``, ``offset = (c0, c1)``
+    holds (the model of :func:`jaw_poses`): the box is cut into sub-boxes until, in each,
+    the features each pad may touch at some pose (vertices that may lie in the strip and
+    reach a lower bound of the pad's stop; the strip's sides cut edges on segments
+    enclosed by interval arithmetic; all bounds of ``a cos t + b sin t`` exact) are
+    few, every pair of them is force closure over all its positions and directions
+    (theorem 6.3 on arcs of directions), and the opening's enclosure is within the
+    stroke.  Returns that enclosure of the opening over the box, or None when the proof
+    fails within ``max_boxes`` sub-boxes, or when a sub-box's centre pose does not hold
+    (then the box does not hold either).  Sound, not complete: None does not say that
+    some pose fails.  The sub-boxes are examined in batches, level by level.
+
+    >>> from fcgrasp.io.parts import demo_part
+
+    >>> from fcgrasp.grippers.jaw import ParallelJaw
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> lo, hi = certify_box(demo_part("rectangle"), jaw, np.radians([80, 100]), (-30, 30))
+    >>> bool(10 <= lo <= 30 and 30 / np.cos(np.radians(10)) <= hi <= 50)   # encloses 30-30.46
+    True
+    """
+    t0, t1 = (float(v) for v in theta)
+    c0, c1 = (float(v) for v in offset)
+    if not (t1 >= t0 and c1 >= c0 and t1 - t0 < np.pi):
+        raise ValueError(f"theta and offset must be increasing ranges (theta under pi), "
+                         f"got {theta!r}, {offset!r}")
+    margin = _check_jaw_args(polygon, jaw, margin)
+    max_boxes = check_int(max_boxes, "max_boxes", minimum=1)
+    internal = hole is not None
+    ring = _grip_edges(polygon, hole)
+    if t1 - t0 < np.pi / 2:
+        ring = _near_strip(polygon, ring, t0, t1, c0, c1, jaw.pad_width / 2)
+    beta = float(shrunk_half_angle(jaw.mu, margin))
+    if beta <= 0:
+        return None
+    half = jaw.pad_width / 2
+    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    q = None if hole is None else insertion_point(polygon, hole) - polygon.centroid
+    # cut the box at the critical angles, where an edge turns parallel to u (its facing
+    # and its lateral direction change sign there): no sub-box straddles one
+    d = polygon.ends[ring] - polygon.starts[ring]
+    crit = np.mod(np.arctan2(d[:, 1], d[:, 0]), np.pi)
+    crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
+                                                             int(np.ceil(t1 / np.pi)) + 1)])
+    cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
+    todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
+                            np.full(cuts.size - 1, c1)])
+    lo_open, hi_open = np.inf, -np.inf
+    done = 0
+    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
+    while len(todo):
+        centre_holds = None
+        boxes, todo = todo[:CERTIFY_BATCH], todo[CERTIFY_BATCH:]
+        done += len(boxes)
+        if done > max_boxes:
+            return None
+        if q is not None:
+            # the closed jaws' segment free at every pose (each edge that may meet the
+            # strip wholly above or below the insertion height), and inside the hole at
+            # the centre pose, hence at every pose (the segment's middle would have to
+            # cross an edge to leave); pad A meets only edges above, pad B below
+            up, down, free = _hole_sides(polygon, ring, q, boxes, half)
+            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half, up)
+            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half, down)
+            centre_holds = jaw_poses(polygon, jaw, (boxes[:, 0] + boxes[:, 1]) / 2,
+                                     (boxes[:, 2] + boxes[:, 3]) / 2, margin, hole).holds
+            proved = ca.ok & cb.ok & free & centre_holds
+        else:
+            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
+            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
+            proved = ca.ok & cb.ok
+        # the stops as heights along u: sign * stop lies in [lo, hi]
+        a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
+        b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
+        with np.errstate(invalid="ignore"):
+            o_lo, o_hi = a_lo - b_hi, a_hi - b_lo
+            proved &= (jaw.stroke[0] <= o_lo) & (o_hi <= jaw.stroke[1])
+        proved &= _pairs_hold(ca, cb, beta, internal)
+        if proved.any():
+            lo_open = min(lo_open, float(o_lo[proved].min()))
+            hi_open = max(hi_open, float(o_hi[proved].max()))
+        rest = boxes[~proved]
+        if not len(rest):
+            continue
+        # a sub-box whose centre pose fails cannot be proved: neither can the box (inside
+        # a hole every centre pose was evaluated above)
+        if centre_holds is None:
+            centre_holds = jaw_poses(polygon, jaw, (rest[:, 0] + rest[:, 1]) / 2,
+                                     (rest[:, 2] + rest[:, 3]) / 2, margin, hole).holds
+        else:
+            centre_holds = centre_holds[~proved]
+        if not centre_holds.all():
+            return None
+        bt0, bt1, bc0, bc1 = rest.T
+        by_angle = (bt1 - bt0) * radius >= bc1 - bc0
+        mt, mc = (bt0 + bt1) / 2, (bc0 + bc1) / 2
+        first = np.column_stack([bt0, np.where(by_angle, mt, bt1), bc0,
+                                 np.where(by_angle, bc1, mc)])
+        second = np.column_stack([np.where(by_angle, mt, bt0), bt1,
+                                  np.where(by_angle, bc0, mc), bc1])
+        todo = np.concatenate([todo, first, second])
+    return lo_open, hi_open

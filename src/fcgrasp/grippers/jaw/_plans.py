@@ -1,0 +1,507 @@
+"""The parallel jaw as a gripper (:class:`ParallelJaw`) and its plans: the largest
+boxes of holding poses, proved and grown (:func:`jaw_plans`, :class:`JawPlan`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from typing import Any, ClassVar
+
+import numpy as np
+
+from ...core._checks import FloatArray, check_int
+from ...core._json import json_ready
+from ...core.tolerances import CONTACT_TOL
+from ...model.polygon import Polygon
+from ...model.quality import characteristic_length
+from ...model.regions import DEFAULT_MARGIN_DEG
+from ..base import register
+from ._certify import (
+    certify_box,
+)
+from ._poses import (
+    CERTIFY_BOXES,
+    CERTIFY_SHRINKS,
+    CHECK_DENSITY,
+    OFFSET_STEPS,
+    POSE_BATCH,
+    THETA_STEP_DEG,
+    JawParameters,
+    _check_jaw_args,
+    insertion_point,
+    jaw_poses,
+)
+from ._slices import (
+    holding_offsets,
+)
+
+
+@dataclass(frozen=True)
+class ParallelJaw(JawParameters):
+    """A parallel-jaw gripper: its stroke ``(min_opening, max_opening)``, the width of
+    its flat pads and their friction coefficient ``mu`` (lengths in the part's units).
+
+    >>> ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4).stroke
+    (10.0, 50.0)
+    """
+
+    name: ClassVar[str] = "jaw"
+
+    # the gripper interface (fcgrasp.grippers.base.Gripper)
+    def plan(self, polygon: Polygon, options: Any) -> list[JawPlan]:
+        """The jaw's boxes (:func:`jaw_plans`) for a plan's search options."""
+        if options.top is None:
+            raise ValueError("a parallel jaw needs a top (how many boxes), got top=None")
+        if options.rank_by != "min_region":
+            raise ValueError(f"a parallel jaw ranks its boxes by their measure: "
+                             f"rank_by={options.rank_by!r} would not be used")
+        return jaw_plans(polygon, self, top=options.top, margin=options.margin,
+                         certify=self.certify)
+
+    def check_part(self, polygon: Polygon, options: Any) -> None:
+        """Nothing to refuse before the search."""
+
+    def parameters(self, options: Any) -> dict[str, Any]:
+        return {"gripper": "parallel_jaw", "stroke": list(self.stroke),
+                "pad_width": self.pad_width, "mu": self.mu, "top": options.top,
+                "margin_deg": options.margin, "certify": self.certify}
+
+    def no_grasp_reason(self, margin: float) -> str:
+        return (f"no pose of the jaw holds the part (stroke {self.stroke[0]:g} to "
+                f"{self.stroke[1]:g}, pads {self.pad_width:g} wide, mu = {self.mu:g}, "
+                f"margin {margin:g} degrees)")
+
+    @property
+    def title(self) -> str:
+        return "parallel jaw"
+
+
+def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
+    """The parallel jaw of a plan request (``--gripper jaw``): ``stroke``, ``pad``,
+    ``mu`` (default 0.3), ``certify`` (default True); none of the point fingers'
+    options."""
+    for opt, given in (("--fingers", options.get("fingers") is not None),
+                       ("--gravity", options.get("gravity") is not None),
+                       ("--workspace", options.get("workspace") is not None),
+                       ("--finger-radius", bool(options.get("finger_radius"))),
+                       ("--rank-by", options.get("rank_by", "min_region") != "min_region"),
+                       ("--single-edge", bool(options.get("single_edge")))):
+        if given:
+            raise ValueError(f"{opt} is an option of point fingers, not of --gripper jaw")
+    stroke, pad = options.get("stroke"), options.get("pad")
+    if stroke is None or pad is None:
+        missing = "--stroke MIN,MAX" if stroke is None else "--pad WIDTH"
+        raise ValueError(f"{missing} is needed: --gripper jaw needs --stroke MIN,MAX and "
+                         f"--pad WIDTH (in the part's units)")
+    mu = 0.3 if options.get("mu") is None else options["mu"]
+    if not (math.isfinite(mu) and mu > 0):
+        raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
+    return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=pad, mu=mu,
+                       certify=options.get("certify") is not False)
+
+
+register("jaw", jaw_from_options)
+
+
+
+
+@dataclass
+class JawPlan:
+    """A box of jaw poses that hold: ``theta`` (t0, t1) in radians, ``offset`` (c0, c1)
+    from the centroid, the ``opening`` range over the box's checked poses (every pose of
+    the box fits the stroke; between checked poses the opening may pass the range by a
+    little), the contacts at the box's
+    centre pose (``contacts``: per pad, the contact points; ``kinds``: ``"vertex"``,
+    ``"edge"`` or ``"corner"``; ``stops``: where pads A and B stop, along ``u`` from the
+    centroid), the ranking ``measure``: ``min(c1 - c0, (t1 - t0) * radius)``, and the
+    grip: ``mode`` ``"external"`` (closing on the outline) or ``"internal"`` (opening in
+    the hole ``hole``, an index into the part's holes, the closed jaws put in at
+    ``insert``: :func:`insertion_point`); ``features``: the part's edges each pad touches
+    at some checked pose of the box (the contact features over the box; a vertex as the
+    edges that meet there)."""
+
+    theta: tuple[float, float]
+    offset: tuple[float, float]
+    opening: tuple[float, float]
+    contacts: list[FloatArray]
+    kinds: tuple[str, str]
+    stops: tuple[float, float]
+    measure: float
+    jaw: ParallelJaw
+    centroid: FloatArray = field(repr=False)
+    radius: float = field(repr=False)
+    mode: str = "external"
+    hole: int | None = None
+    certified: bool = False
+    insert: FloatArray | None = None
+    features: tuple[list[int], list[int]] = ([], [])
+
+    @property
+    def centre(self) -> tuple[float, float]:
+        """The box's centre pose ``(theta, offset)``."""
+        return (sum(self.theta) / 2, sum(self.offset) / 2)
+
+    def sample(self, n: int, rng: np.random.Generator | None = None) -> FloatArray:
+        """``n`` poses uniform in the box, shape (n, 2): ``(theta, offset)``."""
+        rng = np.random.default_rng() if rng is None else rng
+        u = rng.random((n, 2))
+        return np.c_[self.theta[0] + u[:, 0] * (self.theta[1] - self.theta[0]),
+                     self.offset[0] + u[:, 1] * (self.offset[1] - self.offset[0])]
+
+    def to_dict(self) -> dict[str, Any]:
+        """A JSON-ready description (angles also in degrees)."""
+        return json_ready({
+            "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
+            "insert": self.insert,
+            "theta_rad": list(self.theta), "theta_deg": list(np.degrees(self.theta)),
+            "offset": list(self.offset), "opening": list(self.opening),
+            "contacts": {"a": {"kind": self.kinds[0], "points": self.contacts[0],
+                               "stop": self.stops[0], "edges": self.features[0]},
+                         "b": {"kind": self.kinds[1], "points": self.contacts[1],
+                               "stop": self.stops[1], "edges": self.features[1]}},
+            "measure": self.measure, "centre": list(self.centre), "centroid": self.centroid,
+            "certified": self.certified,
+            "stroke": list(self.jaw.stroke), "pad_width": self.jaw.pad_width,
+            "mu": self.jaw.mu,
+        })
+
+
+def _box_scores(H: np.ndarray, dth: float, dc: float, radius: float, max_rows: int
+                ) -> tuple[float, int, int, int, int]:
+    """The largest box of True cells of the pose grid ``H`` (theta rows, cyclic; offset
+    columns) by ``min(offset range, theta range * radius)``: ``(score, k0, k1, j0, j1)``
+    with inclusive grid indices (``k1`` may pass the last row: it wraps).
+
+    For each first row ``k0``, the rows from it are AND-ed cumulatively and the longest
+    run of True of every prefix is read off at once (run lengths by cumulative sums)."""
+    K, M = H.shape
+    best = (-1.0, 0, 0, 0, 0)
+    span = np.arange(max_rows)
+    for k0 in np.flatnonzero(H.any(axis=1)):
+        acc = np.logical_and.accumulate(H[(k0 + span) % K], axis=0)
+        alive = acc.any(axis=1)
+        rows = int(np.argmin(alive)) if not alive.all() else max_rows
+        acc = acc[:rows]
+        count = np.cumsum(acc, axis=1)
+        last_false = np.maximum.accumulate(np.where(acc, 0, count), axis=1)
+        run = count - last_false                     # length of the run ending here
+        length = run.max(axis=1)
+        score = np.minimum((length - 1) * dc, np.arange(rows) * dth * radius)
+        r = int(np.argmax(score))
+        if score[r] > best[0]:
+            end = int(np.argmax(run[r]))
+            best = (float(score[r]), int(k0), int(k0 + r), end - int(length[r]) + 1, end)
+    return best
+
+
+def _kind(lat: FloatArray, psi: FloatArray, size: float) -> str:
+    """How a pad touches at one pose: on a pad corner, an edge flat on it, or vertices."""
+    real = np.isfinite(lat[:, 0])
+    if np.any(np.abs(psi[real]) > 0):
+        return "corner"
+    return "edge" if np.any(lat[real, 1] - lat[real, 0] > CONTACT_TOL * size) else "vertex"
+
+
+def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
+                    ) -> FloatArray:
+    u = np.array([np.cos(theta), np.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    ends = lat[np.isfinite(lat[:, 0])]
+    pts = [polygon.centroid + stop * u + x * n for row in ends for x in np.unique(row)]
+    return np.array(pts).reshape(-1, 2)
+
+
+
+
+def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
+              margin: float = DEFAULT_MARGIN_DEG, internal: bool = True,
+              certify: bool = True) -> list[JawPlan]:
+    """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
+    docstring): external grips, and with ``internal`` grips inside each hole (the jaws
+    put in at its :func:`insertion_point`).  For each grip, each found box's poses are
+    removed from the grid before the next is sought, with their mirror (``theta + pi``,
+    ``-c``: the same grasp, pads swapped).  With ``certify`` (the default) each box is
+    also *proved* by :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid
+    steps until the proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
+    dropped and the next one sought), then grown to the exact boundary of the set
+    (:func:`holding_offsets`), moved in by :data:`GROW_BACKOFF` and proved again, kept
+    where it measures more: every returned plan then has ``certified`` True.
+    ``certify=False`` returns the boxes verified on the fine grid only.
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> best = jaw_plans(demo_part("rectangle"), jaw, top=1)[0]   # across the 30 mm
+    >>> [round(float(np.degrees(t)), 1) % 180 for t in best.theta], best.kinds
+    ([77.9, 102.1], ('edge', 'edge'))
+    >>> best.certified, round(best.offset[1], 2)       # proved: every pose of the box holds
+    (True, 39.78)
+    >>> grid = jaw_plans(demo_part("rectangle"), jaw, top=1, certify=False)[0]
+    >>> [round(float(np.degrees(t))) % 180 for t in grid.theta], grid.certified
+    ([78, 102], False)
+    """
+    margin = _check_jaw_args(polygon, jaw, margin)
+    top = check_int(top, "top", minimum=1)
+    if not isinstance(internal, bool):
+        raise TypeError(f"internal must be a bool, got {internal!r}")
+    if not isinstance(certify, bool):
+        raise TypeError(f"certify must be a bool, got {certify!r}")
+    holes: list[int | None] = [None]
+    if internal:
+        holes += list(range(len(polygon.holes)))
+    plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h, certify)]
+    plans.sort(key=lambda p: -p.measure)
+    return plans[:top]
+
+
+def _proved(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+            th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+            ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The box, shrunk by whole grid steps (at most :data:`CERTIFY_SHRINKS`) until
+    :func:`certify_box` proves it; None when it cannot."""
+    for k in range(CERTIFY_SHRINKS + 1):
+        t = (th[0] + k * dth, th[1] - k * dth)
+        c = (off[0] + k * dc, off[1] - k * dc)
+        if t[1] < t[0] or c[1] < c[0]:
+            return None
+        budget = CERTIFY_BOXES if k else CERTIFY_BOXES // 8
+        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=budget):
+            return t, c
+    return None
+
+
+#: A grown box is moved in from the set's boundary by these fractions of a grid step
+#: until it is proved (a box on the boundary cannot be: its sub-boxes would have to
+#: shrink to nothing there), each try with that many times :data:`CERTIFY_BOXES`
+#: sub-boxes (the sub-boxes a proof needs grow as the inverse of the back-off:
+#: ``demo:rectangle`` 7,900 at half a step, 15,800 at a quarter, 32,200 at an eighth).
+GROW_BACKOFF = ((0.25, 5.0), (0.5, 2.5))
+
+
+def _reach(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+           thetas: FloatArray, anchor: float, step: float, side: int) -> float | None:
+    """How far from ``anchor`` (an offset at which every angle of ``thetas`` holds) the
+    exact slices (:func:`holding_offsets`) hold at every one of ``thetas``, towards
+    ``side`` (+1: larger offsets): the nearest end of the slices' intervals through
+    ``anchor``.  Windows of ``2 * step`` are added until it is found (None: no interval
+    through the anchor at some angle)."""
+    tol = CONTACT_TOL * polygon.size
+    far = anchor
+    reach_max = characteristic_length(polygon.vertices, polygon.centroid) + jaw.pad_width
+    while True:
+        near, far = far, far + side * 2 * step
+        window = (min(near, far), max(near, far))
+        slices = holding_offsets(polygon, jaw, thetas, margin, hole, window)
+        ends = []
+        for iv in slices:
+            # the interval through the window's end next to the anchor
+            at = (iv[:, 0] <= window[0] + tol) if side > 0 else (iv[:, 1] >= window[1] - tol)
+            if not at.any():
+                return None if near == anchor else near
+            ends.append(iv[at][0, 1] if side > 0 else iv[at][-1, 0])
+        end = min(ends) if side > 0 else max(ends)
+        if abs(end - far) > tol or abs(far) > reach_max:
+            return end
+
+
+def _holds_across(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                  thetas: FloatArray, c0: float, c1: float) -> np.ndarray:
+    """Whether the exact slice at each angle holds at every offset of ``[c0, c1]``."""
+    tol = CONTACT_TOL * polygon.size
+    return np.array([iv.shape[0] == 1 and iv[0, 0] <= c0 + tol and iv[0, 1] >= c1 - tol
+                     for iv in holding_offsets(polygon, jaw, thetas, margin, hole,
+                                               (c0, c1))])
+
+
+def _grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+           th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+           ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """A box found on the grid grown to the exact boundary of the holding set, the
+    dimension that limits its measure first: its offset range to the nearest ends of the
+    exact slices at :data:`CHECK_DENSITY` angles per grid step across it
+    (:func:`holding_offsets`), and its angle range, with the offset range fixed, by
+    bisection (to 1/4096 of a fine step) to the first angle whose slice does not hold
+    across it.  None when the slices disagree with the grid."""
+    (t0, t1), (c0, c1) = th, off
+    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    fine = dth / CHECK_DENSITY
+
+    def offsets(t0: float, t1: float, c0: float, c1: float) -> tuple[float, float] | None:
+        lines = np.linspace(t0, t1, max(2, int(round((t1 - t0) / fine)) + 1))
+        mid = (c0 + c1) / 2
+        lo = _reach(polygon, jaw, margin, hole, lines, min(c0 + dc, mid), dc, -1)
+        hi = _reach(polygon, jaw, margin, hole, lines, max(c1 - dc, mid), dc, +1)
+        return None if lo is None or hi is None or hi <= lo else (lo, hi)
+
+    def angles(t0: float, t1: float, c0: float, c1: float) -> tuple[float, float]:
+        grown = [t0, t1]
+        for k, side in ((1, 1), (0, -1)):
+            edge = grown[k]
+            probes = edge + side * fine * np.arange(1, 2 * CHECK_DENSITY + 1)
+            room = np.pi - 2 * dth - (grown[1] - grown[0])   # certify_box: under half a turn
+            probes = probes[np.abs(probes - edge) < room]
+            ok = _holds_across(polygon, jaw, margin, hole, probes, c0, c1)
+            n_ok = int(np.argmin(ok)) if not ok.all() else ok.size
+            good = edge + side * fine * n_ok
+            if n_ok < probes.size:
+                bad = probes[n_ok]
+                for _ in range(12):
+                    t = (good + bad) / 2
+                    if _holds_across(polygon, jaw, margin, hole, np.array([t]), c0, c1)[0]:
+                        good = t
+                    else:
+                        bad = t
+            grown[k] = good
+        return grown[0], grown[1]
+
+    if (t1 - t0) * radius < c1 - c0:
+        t0, t1 = angles(t0, t1, c0, c1)
+    found = offsets(t0, t1, c0, c1)
+    if found is None:
+        return None
+    c0, c1 = found
+    t0, t1 = angles(t0, t1, c0, c1)
+    return (t0, t1), (c0, c1)
+
+
+def _proved_grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                  th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
+                  ) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The grown box (:func:`_grown`) moved in from the boundary by each of
+    :data:`GROW_BACKOFF` (fractions of a grid step) until :func:`certify_box` proves it;
+    None when it cannot (the grid box is then proved instead)."""
+    grown = _grown(polygon, jaw, margin, hole, th, off, dth, dc)
+    if grown is None:
+        return None
+    (t0, t1), (c0, c1) = grown
+    for f, budget in GROW_BACKOFF:
+        t = (t0 + f * dth, t1 - f * dth)
+        c = (c0 + f * dc, c1 - f * dc)
+        if t[1] < t[0] or c[1] < c[0]:
+            return None
+        if certify_box(polygon, jaw, t, c, margin, hole,
+                       max_boxes=int(budget * CERTIFY_BOXES)):
+            return t, c
+    return None
+
+
+def _measure(theta: tuple[float, float], offset: tuple[float, float], radius: float
+             ) -> float:
+    """The ranking measure of a box: ``min(c1 - c0, (t1 - t0) * radius)``."""
+    return min(offset[1] - offset[0], (theta[1] - theta[0]) * radius)
+
+
+def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
+                hole: int | None, certify: bool = True) -> list[JawPlan]:
+    """The best boxes of one grip (external, or internal in ``hole``)."""
+    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    K = int(round(360 / THETA_STEP_DEG))
+    M = OFFSET_STEPS
+    thetas = np.arange(K) * (2 * np.pi / K)
+    reach = radius + jaw.pad_width / 2
+    offsets = np.linspace(-reach, reach, M)
+    dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
+    H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
+    plans: list[JawPlan] = []
+    while len(plans) < top:
+        score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
+        if score <= 0:
+            break
+        H[np.arange(k0, k1 + 1) % K, j0:j1 + 1] = False
+        H[(np.arange(k0, k1 + 1) + K // 2) % K, M - 1 - j1:M - j0] = False
+        box = _checked_box(polygon, jaw, margin, hole,
+                           thetas[k0] + np.array([0, k1 - k0]) * dth, offsets[[j0, j1]],
+                           dth, dc)
+        if box is None:
+            continue
+        if certify:
+            # the grid box proved (shrunk by grid steps), then grown to the exact
+            # boundary and proved, kept where that measures more (the back-off from
+            # the boundary can cost more than the growth gives)
+            proved = _proved(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+            if proved is not None:
+                grown = _proved_grown(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+                if grown is not None and _measure(*grown, radius) > _measure(*proved, radius):
+                    proved = grown
+            if proved is None:
+                continue
+            # the opening range over the proved box's checked poses
+            box = _checked_box(polygon, jaw, margin, hole, np.array(proved[0]),
+                               np.array(proved[1]), dth, dc)
+            if box is None:
+                continue
+        (t0, t1), (c0, c1), opening, features = box
+        tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
+        r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
+        pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
+               _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]
+        kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
+                 _kind(r.lat_b[0], r.psi_b[0], polygon.size))
+        plans.append(JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts,
+                             kinds, (float(r.top[0]), float(r.bottom[0])),
+                             _measure((t0, t1), (c0, c1), radius), jaw,
+                             polygon.centroid.copy(), radius,
+                             "external" if hole is None else "internal", hole, certify,
+                             None if hole is None else insertion_point(polygon, hole),
+                             features))
+    return plans
+
+
+#: A part with more edges than this evaluates the pose grid in tiles (each tile's poses
+#: meet only the edges near its strips); fewer, in large batches.
+TILE_AFTER_EDGES = 64
+#: Grid rows and columns of a tile.
+TILE = (16, 20)
+
+
+def _pose_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+               thetas: np.ndarray, offsets: np.ndarray) -> np.ndarray:
+    """Whether each pose of the grid ``thetas x offsets`` holds (K, M)."""
+    K, M = thetas.size, offsets.size
+    if polygon.n_edges <= TILE_AFTER_EDGES:
+        tt, cc = np.meshgrid(thetas, offsets, indexing="ij")
+        return np.concatenate([
+            jaw_poses(polygon, jaw, tt.ravel()[i:i + POSE_BATCH], cc.ravel()[i:i + POSE_BATCH],
+                      margin, hole).holds
+            for i in range(0, tt.size, POSE_BATCH)]).reshape(K, M)
+    H = np.zeros((K, M), dtype=bool)
+    for k in range(0, K, TILE[0]):
+        for j in range(0, M, TILE[1]):
+            tt, cc = np.meshgrid(thetas[k:k + TILE[0]], offsets[j:j + TILE[1]], indexing="ij")
+            H[k:k + TILE[0], j:j + TILE[1]] = jaw_poses(
+                polygon, jaw, tt.ravel(), cc.ravel(), margin, hole).holds.reshape(tt.shape)
+    return H
+
+
+def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                 th: FloatArray, off: FloatArray, dth: float, dc: float
+                 ) -> tuple[tuple[float, float], tuple[float, float],
+                            tuple[float, float], tuple[list[int], list[int]]] | None:
+    """Shrink a box by grid steps until every pose of a grid :data:`CHECK_DENSITY`
+    times finer holds; returns ``(theta range, offset range, opening range, the edges
+    each pad touches at those poses)`` or None."""
+    (t0, t1), (c0, c1) = th, off
+    for _ in range(4):
+        if t1 < t0 or c1 < c0:
+            return None
+        nt = max(2, int(round((t1 - t0) / dth)) * CHECK_DENSITY + 1)
+        nc = max(2, int(round((c1 - c0) / dc)) * CHECK_DENSITY + 1)
+        grid = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
+        tt, cc = grid[0].ravel(), grid[1].ravel()
+        opening = [np.inf, -np.inf]
+        edges: tuple[set[int], set[int]] = (set(), set())
+        # in batches, stopping at the first pose that fails
+        for i in range(0, tt.size, POSE_BATCH):
+            r = jaw_poses(polygon, jaw, tt[i:i + POSE_BATCH], cc[i:i + POSE_BATCH], margin,
+                          hole)
+            if not np.all(r.holds):
+                break
+            opening = [min(opening[0], float(r.opening.min())),
+                       max(opening[1], float(r.opening.max()))]
+            edges[0].update(r.edge_a[r.edge_a >= 0].tolist())
+            edges[1].update(r.edge_b[r.edge_b >= 0].tolist())
+        else:
+            return ((t0, t1), (c0, c1), (opening[0], opening[1]),
+                    (sorted(edges[0]), sorted(edges[1])))
+        t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
+    return None

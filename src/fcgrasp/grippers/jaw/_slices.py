@@ -1,0 +1,174 @@
+"""The exact holding set of a parallel jaw, slice by slice: per closing angle, the offsets
+that hold as intervals (:func:`holding_offsets`)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ...core._checks import FloatArray
+from ...core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL
+from ...model.polygon import Polygon
+from ...model.regions import DEFAULT_MARGIN_DEG
+from ._poses import (
+    POSE_BATCH,
+    PoseContacts,
+    _check_jaw_args,
+    _evaluate,
+    _grip_edges,
+    insertion_point,
+)
+
+if TYPE_CHECKING:
+    from ._plans import ParallelJaw
+
+
+def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
+                    margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
+                    offsets: tuple[float, float] | None = None) -> list[FloatArray]:
+    """The exact slices of the set of holding poses: for each closing angle of ``theta``
+    (T,), the offsets at which the jaw holds (the model of :func:`jaw_poses`), as sorted
+    disjoint intervals, an array (k, 2) per angle.  ``offsets`` ``(lo, hi)`` limits the
+    slices to a window (an interval reaching its end is cut there; default: every offset
+    at which a pad can touch the part).
+
+    At a fixed angle every quantity of the model is piecewise affine in the offset ``c``:
+    a vertex enters or leaves the strip at ``c = x +- pad_width / 2`` (these cut the
+    slice into *cells*), and inside a cell a pad's stop is the largest (pad B: smallest)
+    of affine functions - a vertex's height, the height of an edge cut by a side of the
+    strip - so it is convex (concave) and kinks where the extreme passes from one
+    feature to another.  A cell on which the stops and the contacts' lateral spans are
+    affine at three points (near its ends and at its middle: a convex function affine at
+    three points is affine between them) has affine verdict slacks (theorem 6.3's two
+    lateral conditions per pair of contacts, and the stroke), so the verdict changes only
+    at their roots, found in closed form; the pieces between roots are decided by
+    :func:`jaw_poses` at their middles.  A cell holding a kink is halved until it is
+    shorter than ``4 * SLICE_TOL`` times the part's size, then decided at its middle.
+    Exact up to :data:`SLICE_TOL` of the part's size: the three points stand that far
+    inside a cell's ends (where a vertex entering the strip ties with the stop within
+    :data:`CONTACT_TOL`), so a kink closer to an end than that is not seen.
+
+    >>> from fcgrasp.io.parts import demo_part
+
+    >>> from fcgrasp.grippers.jaw import ParallelJaw
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> sl = holding_offsets(demo_part("rectangle"), jaw, [np.pi / 2])[0]   # across 30 mm
+    >>> sl.round(6).tolist()    # on the long faces, while the pads overlap them (80 + 8)
+    [[-44.0, 44.0]]
+    """
+    margin = _check_jaw_args(polygon, jaw, margin)
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
+    if not np.all(np.isfinite(th)):
+        raise ValueError(f"theta must be finite angles, got {theta!r}")
+    ring = _grip_edges(polygon, hole)
+    pts = np.unique(np.concatenate([polygon.starts[ring], polygon.ends[ring]]), axis=0)
+    rel = pts - polygon.centroid
+    X = -np.sin(th)[:, None] * rel[:, 0] + np.cos(th)[:, None] * rel[:, 1]    # (T, V)
+    half = jaw.pad_width / 2
+    if offsets is None:
+        w_lo, w_hi = X.min(axis=1) - half, X.max(axis=1) + half
+    else:
+        lo_hi = np.asarray(offsets, dtype=float)
+        if lo_hi.shape != (2,) or not np.all(np.isfinite(lo_hi)) or lo_hi[1] < lo_hi[0]:
+            raise ValueError(f"offsets must be an increasing range (lo, hi), got "
+                             f"{offsets!r}")
+        w_lo, w_hi = np.full(th.size, lo_hi[0]), np.full(th.size, lo_hi[1])
+    cuts = [X - half, X + half]
+    if hole is not None:
+        # inside a hole the closed jaws' segment is blocked while an edge crosses the
+        # insertion height within the strip: where an edge crosses that height, +- w/2
+        q = insertion_point(polygon, int(hole)) - polygon.centroid
+        cs, sn = np.cos(th)[:, None], np.sin(th)[:, None]
+        a = polygon.starts[ring] - polygon.centroid
+        b = polygon.ends[ring] - polygon.centroid
+        ya, yb = cs * a[:, 0] + sn * a[:, 1], cs * b[:, 0] + sn * b[:, 1]
+        xa, xb = -sn * a[:, 0] + cs * a[:, 1], -sn * b[:, 0] + cs * b[:, 1]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            t = (cs * q[0] + sn * q[1] - ya) / (yb - ya)
+        xc = np.where((t >= 0) & (t <= 1), xa + t * (xb - xa), w_lo[:, None])
+        cuts += [xc - half, xc + half, xc]
+    brk = np.sort(np.clip(np.concatenate(cuts + [w_lo[:, None], w_hi[:, None]], axis=1),
+                          w_lo[:, None], w_hi[:, None]), axis=1)
+    tiny = ROUND_TOL * polygon.size
+    keep = brk[:, 1:] - brk[:, :-1] > tiny
+    rows = np.nonzero(keep)
+    cell_t, cell_lo, cell_hi = rows[0], brk[:, :-1][rows], brk[:, 1:][rows]
+    found: list[FloatArray] = []                        # rows (angle index, lo, hi)
+    atol = CONTACT_TOL * polygon.size
+    while cell_t.size:
+        inset = np.minimum((cell_hi - cell_lo) / 4, SLICE_TOL * polygon.size)
+        ends = np.stack([cell_lo + inset, (cell_lo + cell_hi) / 2, cell_hi - inset])  # (3, C)
+        r, slack = _evaluate_batched(polygon, jaw, np.tile(th[cell_t], 3), ends.ravel(),
+                                     margin, hole)
+        C = cell_t.size
+        q = np.concatenate([r.top[:, None], r.bottom[:, None], r.lat_a.reshape(3 * C, -1),
+                            r.lat_b.reshape(3 * C, -1)], axis=1).reshape(3, C, -1)
+        fin = np.isfinite(q)
+        qz = np.where(fin, q, 0.0)
+        psi = np.nan_to_num(np.concatenate([r.psi_a, r.psi_b], axis=1), nan=9.0)
+        psi = psi.reshape(3, C, -1)
+        kinds = np.stack([r.kind_a, r.kind_b], axis=1).reshape(3, C, 2)
+        affine = (np.all(fin[0] == fin[1], axis=1) & np.all(fin[1] == fin[2], axis=1)
+                  & np.all(psi[0] == psi[1], axis=1) & np.all(psi[1] == psi[2], axis=1)
+                  & np.all(kinds[0] == kinds[1], axis=1) & np.all(kinds[1] == kinds[2], axis=1)
+                  & np.all(np.abs(qz[1] - (qz[0] + qz[2]) / 2) <= atol, axis=1))
+        holds_mid = r.holds.reshape(3, C)[1]
+        last = ~affine & (cell_hi - cell_lo <= 4 * SLICE_TOL * polygon.size)
+        found.append(np.column_stack([cell_t[last & holds_mid], cell_lo[last & holds_mid],
+                                      cell_hi[last & holds_mid]]))
+        # affine cells: the roots of the slacks, then the pieces between them decided
+        s = slack.reshape(3, C, -1)
+        s0, s2 = s[0][affine], s[2][affine]
+        a_t, a_lo, a_hi = cell_t[affine], cell_lo[affine], cell_hi[affine]
+        p0, p2 = ends[0][affine], ends[2][affine]
+        with np.errstate(invalid="ignore", divide="ignore"):
+            cross = (s0 * s2 < 0) | ((s0 == 0) != (s2 == 0))
+            frac = np.where(cross, s0 / (s0 - s2), np.nan)
+        ci, si = np.nonzero(cross)
+        roots = p0[ci] + frac[ci, si] * (p2[ci] - p0[ci])
+        which = np.concatenate([np.arange(a_t.size), np.arange(a_t.size), ci])
+        where = np.concatenate([a_lo, a_hi, np.clip(roots, a_lo[ci], a_hi[ci])])
+        order = np.lexsort((where, which))
+        which, where = which[order], where[order]
+        piece = (which[1:] == which[:-1]) & (where[1:] - where[:-1] > tiny)
+        plo, phi, pc = where[:-1][piece], where[1:][piece], which[:-1][piece]
+        if plo.size:
+            verdict = _evaluate_batched(polygon, jaw, th[a_t[pc]], (plo + phi) / 2, margin,
+                                        hole)[0].holds
+            found.append(np.column_stack([a_t[pc][verdict], plo[verdict], phi[verdict]]))
+        split = ~affine & ~last
+        mid = ends[1][split]
+        cell_t = np.concatenate([cell_t[split], cell_t[split]])
+        cell_lo, cell_hi = (np.concatenate([cell_lo[split], mid]),
+                            np.concatenate([mid, cell_hi[split]]))
+    # pieces apart by less than the contact tolerance are one (at a vertex entering the
+    # strip a contact's span starts from zero: its slack's root is the cell's end, give
+    # or take rounding)
+    return _merge_intervals(np.concatenate(found) if found else np.zeros((0, 3)), th.size,
+                            atol)
+
+
+def _evaluate_batched(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+                      margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
+    """:func:`_evaluate` in batches of :data:`POSE_BATCH` poses, joined."""
+    parts = [_evaluate(polygon, jaw, th[i:i + POSE_BATCH], c[i:i + POSE_BATCH], margin, hole)
+             for i in range(0, max(th.size, 1), POSE_BATCH)]
+    if len(parts) == 1:
+        return parts[0]
+    fields = {k: np.concatenate([getattr(p[0], k) for p in parts])
+              for k in PoseContacts.__dataclass_fields__}
+    return PoseContacts(**fields), np.concatenate([p[1] for p in parts])
+
+
+def _merge_intervals(rows: FloatArray, count: int, tol: float) -> list[FloatArray]:
+    """Rows ``(index, lo, hi)`` joined into sorted disjoint intervals per index (pieces
+    that touch within ``tol`` are one)."""
+    out: list[list[list[float]]] = [[] for _ in range(count)]
+    for k, lo, hi in rows[np.lexsort((rows[:, 1], rows[:, 0]))]:
+        cur = out[int(k)]
+        if cur and lo <= cur[-1][1] + tol:
+            cur[-1][1] = max(cur[-1][1], hi)
+        else:
+            cur.append([lo, hi])
+    return [np.array(c, dtype=float).reshape(-1, 2) for c in out]
