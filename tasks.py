@@ -2,7 +2,9 @@
 """The project's two commands, needing nothing but python3 (and PyPI).
 
     python3 tasks.py demo    # set up .venv if needed, run the demo plan into demo-output/
-    python3 tasks.py test    # set up .venv (and Debian's chromium) if needed, run every test
+    python3 tasks.py test    # set up .venv (and Debian's chromium) if needed, run every test,
+                             # then build the documentation (warnings are errors)
+    python3 tasks.py docs    # set up .venv if needed, build the documentation into docs/_build
     python3 tasks.py bench   # set up .venv if needed, run the benchmark scripts
 
 Extra arguments after the command are passed on (to ``fcgrasp demo`` or to pytest; the
@@ -16,6 +18,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 import venv
 from pathlib import Path
 
@@ -66,8 +69,16 @@ def ensure_browser() -> None:
                    stdout=subprocess.DEVNULL)
 
 
+def build_docs(out: str, env: dict[str, str], quiet: bool = True) -> int:
+    """The documentation (docs/: the guide, the API reference from the docstrings, the
+    design notes, the gallery) built with Sphinx into ``out``, every warning an error."""
+    return subprocess.run([str(BIN / "sphinx-build"), "-W", "--keep-going", "-E",
+                           *(["-q"] if quiet else []), "-b", "html", "docs", out],
+                          cwd=ROOT, env=env).returncode
+
+
 def main(argv: list[str]) -> int:
-    if not argv or argv[0] not in {"demo", "test", "bench"}:
+    if not argv or argv[0] not in {"demo", "test", "docs", "bench"}:
         print(__doc__)
         return 2
     ensure_venv()
@@ -81,8 +92,16 @@ def main(argv: list[str]) -> int:
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
         par = [] if any(a == "-n" or a.startswith(("-n", "--numprocesses")) for a in rest) \
             else ["-n", "auto"]
-        return subprocess.run([str(PY), "-m", "pytest", *par, *rest], cwd=ROOT,
+        code = subprocess.run([str(PY), "-m", "pytest", *par, *rest], cwd=ROOT,
                               env=env).returncode
+        with tempfile.TemporaryDirectory() as out:
+            docs = build_docs(out, env)
+        if docs:
+            print("the documentation does not build (see above): sphinx-build exit "
+                  f"{docs}", flush=True)
+        return code or docs
+    if cmd == "docs":
+        return build_docs(str(ROOT / "docs" / "_build" / "html"), env, quiet=False)
     code = 0
     for script in sorted((ROOT / "benchmarks").glob("bench_*.py")):
         print(f"== {script.name}", flush=True)

@@ -40,20 +40,25 @@ import asyncio
 import contextlib
 import itertools
 import json
-import math
 import os
-import tempfile
 import threading
 import time
 from dataclasses import dataclass, field
 from importlib.resources import files
-from typing import Any, TypeGuard
+from typing import Any
 
-import numpy as np
-
-from ..core.tolerances import ROUND_TOL
 from ..errors import RequestError
 from ..io.report import json_ready
+from ._explorer_data import (
+    GRIPPERS,
+    _short,
+    check_result,
+    overlay,
+    part_json,
+    plan_request,
+    polygon_of,
+    read_upload,
+)
 
 #: Largest accepted upload (a part file), bytes.
 MAX_UPLOAD = 8 * 2 ** 20
@@ -63,205 +68,6 @@ MAX_REQUEST = 4 * 2 ** 20
 ANSWER_WITHIN = 0.05
 #: Finished jobs kept for polling (the oldest are forgotten first).
 KEEP_JOBS = 32
-#: The page's gripper choices, as plan-request options.
-GRIPPERS: dict[str, dict[str, Any]] = {
-    "2": {"fingers": 2}, "3": {"fingers": 3}, "3g": {"fingers": 3, "gravity": (0.0, -1.0)},
-    "4": {"fingers": 4}, "jaw": {"gripper": "jaw", "certify": True}}
-_COMMON = ("margin", "rank_by", "top")
-#: The page's options each of its gripper choices uses (the page sends them all).
-_PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
-                 "3": ("mu", "along_boundary", *_COMMON),
-                 "3g": ("gravity", "along_boundary", *_COMMON),
-                 "4": ("along_boundary", *_COMMON),
-                 "jaw": ("mu", "stroke", "pad", "certify", *_COMMON)}
-
-
-# ----------------------------------------------------------------------------- parts
-
-
-def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
-    """A part as the page holds it: rings, units and a few measures for drawing."""
-    return json_ready({"outer": polygon.vertices, "holes": list(polygon.holes),
-                       "units": units, "name": name, "edges": polygon.n_edges,
-                       "size": polygon.size, "centroid": polygon.centroid,
-                       "notes": list(notes)})
-
-
-def _is_pair(value: Any) -> TypeGuard[list[float]]:
-    """Whether ``value`` is a JSON list of two finite numbers."""
-    return (isinstance(value, list) and len(value) == 2
-            and all(isinstance(v, (int, float)) and not isinstance(v, bool)
-                    and math.isfinite(v) for v in value))
-
-
-def _ring(value: Any, name: str) -> list[list[float]]:
-    if not isinstance(value, list) or len(value) < 3:
-        raise RequestError(f"{name} must be a list of at least 3 [x, y] points, got "
-                           f"{_short(value)}", "part")
-    for k, p in enumerate(value):
-        if not _is_pair(p):
-            raise RequestError(f"{name}[{k}] must be [x, y] finite numbers, got {_short(p)}",
-                               "part")
-    return value
-
-
-def _short(value: Any) -> str:
-    text = json.dumps(value) if _jsonable(value) else repr(value)
-    return text if len(text) <= 60 else text[:57] + "..."
-
-
-def _jsonable(value: Any) -> bool:
-    try:
-        json.dumps(value)
-    except (TypeError, ValueError):
-        return False
-    return True
-
-
-def polygon_of(data: Any) -> tuple[Any, str]:
-    """The :class:`~fcgrasp.Polygon` and units of a part sent by the page
-    (``{"outer": [[x, y], ...], "holes": [[[x, y], ...], ...], "units": "mm"}``).
-    Raises :class:`RequestError` (field ``part``) saying what is wrong: a crossing edge,
-    too few vertices, a malformed point."""
-    from ..io.units import UNITS
-    from ..model.polygon import Polygon
-
-    if not isinstance(data, dict):
-        raise RequestError(f"part must be an object with 'outer', got {_short(data)}", "part")
-    outer = _ring(data.get("outer"), "part.outer")
-    holes = data.get("holes", [])
-    if not isinstance(holes, list):
-        raise RequestError(f"part.holes must be a list of rings, got {_short(holes)}", "part")
-    holes = [_ring(h, f"part.holes[{k}]") for k, h in enumerate(holes)]
-    units = data.get("units", "mm")
-    if units not in UNITS and units != "px":
-        raise RequestError(f"part.units must be one of {', '.join(UNITS)} or px, got "
-                           f"{_short(units)}", "part")
-    try:
-        return Polygon(outer, holes), units
-    except (ValueError, TypeError) as exc:
-        raise RequestError(f"the outline is not valid: {exc}", "part") from None
-
-
-def read_upload(body: bytes, name: str) -> dict[str, Any]:
-    """The default part of an uploaded file (any format ``fcgrasp plan`` reads; the
-    largest part, as the command line chooses), as :func:`part_json`."""
-    from ..io.parts import FORMATS, choose_part, list_parts
-
-    base = os.path.basename(name) or "upload"
-    suffix = os.path.splitext(base)[1].lower()
-    if suffix not in FORMATS:
-        suffix = ""            # the reader sniffs the content
-    with tempfile.TemporaryDirectory(prefix="fcgrasp-upload-") as tmp:
-        path = os.path.join(tmp, "part" + suffix)
-        with open(path, "wb") as fh:
-            fh.write(body)
-        try:
-            part = choose_part(list_parts(path))
-        except (ValueError, TypeError, OSError) as exc:
-            msg = str(exc).replace(path, base)
-            raise RequestError(f"cannot read {base}: {msg}", "file") from None
-    return part_json(part.polygon, part.units, base, part.notes)
-
-
-# ----------------------------------------------------------------------------- plans
-
-
-def plan_request(options: Any, name: str = "explorer") -> Any:
-    """The :class:`~fcgrasp.planning.PlanRequest` of the page's ``options``::
-
-        {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
-         "rank_by": "min_region", "top": 10, "along_boundary": true,
-         "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1]}
-
-    checked whole here, before a job starts, with the command line's messages (a
-    :class:`~fcgrasp.errors.RequestError` naming the option).  The page sends every
-    option whatever the gripper; those of another gripper are not used.
-
-    >>> plan_request({"gripper": "4", "top": 3}).to_argv()
-    ['--fingers', '4', '--top', '3']
-    """
-    from ..planning import PlanRequest
-
-    kw = _request_options(options)
-    try:
-        return PlanRequest(part=name, **kw)
-    except RequestError:
-        raise
-    except (TypeError, ValueError) as exc:    # a value of the wrong type: its option first
-        first = str(exc).split(" ", 1)[0]
-        raise RequestError(str(exc), first if first in _KNOWN else "options") from None
-
-
-#: The keys of the page's options.
-_KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-          "gravity", "certify")
-
-
-def _request_options(options: Any) -> dict[str, Any]:
-    """The page's options as :class:`~fcgrasp.planning.PlanRequest` keywords (those of
-    the chosen gripper only), or a RequestError for an unknown key, gripper or top."""
-    if not isinstance(options, dict):
-        raise RequestError(f"options must be an object, got {_short(options)}", "options")
-    extra = sorted(set(options) - set(_KNOWN))
-    if extra:
-        raise RequestError(f"options: unknown option {extra[0]!r} (expected "
-                           f"{', '.join(sorted(_KNOWN))})", "options")
-    gripper = options.get("gripper", "2")
-    if gripper not in GRIPPERS:
-        raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
-                           f"{_short(gripper)}", "gripper")
-    kw: dict[str, Any] = dict(GRIPPERS[gripper])
-    kw.update({k: options[k] for k in _PAGE_OPTIONS[gripper] if options.get(k) is not None})
-    if "along_boundary" in kw:
-        kw["single_edge"] = kw.pop("along_boundary") is False
-    kw.update({k: tuple(kw[k]) for k in ("stroke", "gravity") if isinstance(kw.get(k), list)})
-    top = kw.get("top")
-    if top is not None and (isinstance(top, bool) or not isinstance(top, int)
-                            or not 1 <= top <= 100):
-        raise RequestError(f"options.top must be a whole number from 1 to 100, got "
-                           f"{_short(top)}", "top")
-    return kw
-
-
-def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
-    """The grasp set of a plan's edges as shapes to draw (None where there is none):
-    ``segments`` (the restricted edges ``e'_i``, theorem 6.3, for two fingers), ``polygons``
-    (``Pi_12`` and ``Pi_34`` of algorithm 6.1 for four fingers or three with gravity) and
-    ``cones`` (the two-sided sector ``C`` at the point between them: ``apex``, ``angle``,
-    ``half`` in radians)."""
-    from ..model.graspsets import FrictionGraspSet, grasp_set
-
-    if not hasattr(plan, "edges"):            # a parallel-jaw box: no grasp set
-        return None
-    edges = list(plan.edges)
-    try:
-        if len(edges) == 2 and plan.contact_type == "friction":
-            gs: Any = grasp_set(polygon, edges, mu=plan.mu)
-        elif len(edges) == 4:
-            gs = grasp_set(polygon, edges)
-        elif len(edges) == 3 and plan.gravity is not None:
-            gs = grasp_set(polygon, edges, gravity=plan.gravity["direction"])
-        else:
-            return None
-    except ValueError:
-        return None
-    if isinstance(gs, FrictionGraspSet):
-        segs = [np.asarray(s).tolist() for f in (0, 1) for s in gs.restricted_segments(f)]
-        return {"kind": "e'", "segments": segs, "polygons": [], "cones": []}
-    if gs.pi12 is None or gs.pi34 is None:
-        return {"kind": "Pi", "segments": [], "polygons": [], "cones": []}
-    polys, segs = [], []
-    for g in (gs.pi12, gs.pi34):              # a parallelogram, or a segment or point
-        if g.geom_type == "Polygon":
-            polys.append(np.asarray(g.exterior.coords)[:-1].tolist())
-        elif not g.is_empty:
-            segs.append(np.asarray(g.coords).tolist())
-    a = np.asarray(gs.pi12.centroid.coords[0])
-    b = np.asarray(gs.pi34.centroid.coords[0])
-    cone = {"apex": ((a + b) / 2).tolist(), "angle": gs.sector[0], "half": gs.sector[1]}
-    return {"kind": "Pi", "segments": segs, "polygons": polys,
-            "cones": [cone] if gs.sector[1] > 0 else []}
 
 
 @dataclass
@@ -470,33 +276,6 @@ class Jobs:
         for w in idle:
             w.process.kill()
             w.conn.close()
-
-
-# ----------------------------------------------------------------------------- checks
-
-
-def check_result(polygon: Any, data: dict[str, Any]) -> dict[str, Any]:
-    """The verdict on a hand-placed grasp (theorem 6.1 by :meth:`~fcgrasp.Grasp.explain`):
-    ``data`` holds ``contacts`` (and optionally ``gravity``) as in a contacts file."""
-    from ..core.grasp import Grasp
-    from ..core.screws import rotation_center
-    from ..io.parts import contacts_from_data
-
-    body = {k: data[k] for k in ("contacts", "gravity") if k in data and data[k] is not None}
-    try:
-        contacts, described = contacts_from_data(body, polygon, "check")
-    except ValueError as exc:
-        raise RequestError(str(exc), "contacts") from None
-    rep = Grasp(contacts).explain()
-    twist = rep.escape_twist
-    centre = None
-    if twist is not None and \
-            abs(float(twist[0])) > ROUND_TOL * max(1.0, float(np.abs(twist).max())):
-        centre = rotation_center(twist)
-    return json_ready({"force_closure": rep.force_closure, "failed": rep.failed,
-                       "verdict": str(rep), "escape": rep.escape_description,
-                       "escape_twist": twist, "rotation_center": centre,
-                       "contacts": described})
 
 
 # ----------------------------------------------------------------------------- the app

@@ -10,17 +10,17 @@ friction half-angle is ``phi = atan(mu)``.  Each contact exposes
 * ``wrench_cone()``: the convexe of the wrenches it can exert;
 * ``twist_cone()``: the total freedom it leaves, the dual of the wrench cone.
 
-==================  =========================================================  ====
-contact             wrenches                                                   k
-==================  =========================================================  ====
-FrictionlessPoint   ``-n`` through the point (fig. 4.a)                        1
+==================  ===========================================================  ====
+contact             wrenches                                                     k
+==================  ===========================================================  ====
+FrictionlessPoint   ``-n`` through the point (fig. 4.a)                          1
 FrictionPoint       the two edges ``rot(-n, +-phi)`` of the friction cone (4.b)  2
-FrictionlessEdge    ``-n`` through both end points (4.c)                       2
-FrictionEdge        friction cones at both end points (4.d)                    4
-SoftFinger          as FrictionEdge on an edge; around a corner, the sum of    4/8
+FrictionlessEdge    ``-n`` through both end points (4.c)                         2
+FrictionEdge        friction cones at both end points (4.d)                      4
+SoftFinger          as FrictionEdge on an edge; around a corner, the sum of      4/8
                     the friction-edge convexes of both sides (4.e)
-Gravity             the weight through the centre of gravity (end of 3.1)      1
-==================  =========================================================  ====
+Gravity             the weight through the centre of gravity (end of 3.1)        1
+==================  ===========================================================  ====
 """
 
 from __future__ import annotations

@@ -37,7 +37,6 @@ element, the vertex), so the command line can print it on one line.
 
 from __future__ import annotations
 
-import json
 import os
 import sys
 from dataclasses import dataclass, field, replace
@@ -47,53 +46,29 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import check_scalar
-from ..core.contacts import FrictionlessPoint, FrictionPoint, Gravity
-from ..core.tolerances import FLATTEN_FINEST, ON_EDGE_TOL, TINY
+from ..core.tolerances import FLATTEN_FINEST, TINY
 from ..model.outline import CLEAN_TOL, clean_outline, simplify_outline
 from ..model.polygon import Polygon
 from ._drawing import Drawing, Shape
+from ._read_contacts import (
+    contacts_from_data,
+    read_contacts,
+)
+from ._read_json import (
+    _json_drawing,
+    _text,
+    _wkt_drawing,
+    read_json,
+)
+from .demo import (
+    DEMO_PARTS,
+    demo_part,
+)
 from .units import FILE_UNITS, UNITS, check_units, conversion
 
-__all__ = ["read_part", "load_part", "list_parts", "Part", "read_contacts", "DEMO_PARTS",
+__all__ = ["read_part", "load_part", "list_parts", "choose_part", "Part", "read_contacts",
+           "contacts_from_data", "read_json", "DEMO_PARTS",
            "demo_part", "sniff_format", "FLATTEN_DEFAULT", "FLATTEN_FINEST", "FORMATS"]
-
-
-def _regular(n: int, r: float = 1.0, phase: float = 0.0) -> list[list[float]]:
-    a = phase + np.arange(n) * 2 * np.pi / n
-    return np.round(np.column_stack([r * np.cos(a), r * np.sin(a)]), 12).tolist()
-
-
-def _cam(n: int = 360) -> list[list[float]]:
-    """A smooth cam (base circle of radius 40 mm with a lobe), flattened to ``n`` edges."""
-    a = np.arange(n) * 2 * np.pi / n
-    r = 40.0 * (1 + 0.3 * np.exp(-(np.angle(np.exp(1j * (a - 1.0))) / 0.6) ** 2))
-    return np.round(np.column_stack([r * np.cos(a), r * np.sin(a)]), 12).tolist()
-
-
-#: Built-in parts, in millimetres, in the spirit of the paper's figure 1 (and a curved
-#: part, whose regions run along the boundary).
-DEMO_PARTS: dict[str, dict[str, Any]] = {
-    # figure 1.a: grasps with friction on two edges of an irregular blob
-    "blob": {"vertices": [[0, 0], [42, -6], [70, 14], [64, 46], [30, 58], [-4, 36]]},
-    # figure 1.b: frictionless grasps on three edges
-    "triangle": {"vertices": [[0, 0], [60, 0], [22, 48]]},
-    # figure 1.c: frictionless grasps on four edges
-    "quad": {"vertices": [[0, 0], [56, 8], [50, 44], [6, 38]]},
-    "bracket": {"vertices": [[0, 0], [60, 0], [60, 14], [16, 14], [16, 50], [0, 50]]},
-    "washer": {"vertices": _regular(12, 30.0, 0.1),
-               "holes": [_regular(8, 12.0, 0.3)]},
-    "rectangle": {"vertices": [[0, 0], [80, 0], [80, 30], [0, 30]]},
-    "cam": {"vertices": _cam()},
-}
-
-
-def demo_part(name: str) -> Polygon:
-    """A built-in part by name (see :data:`DEMO_PARTS`)."""
-    if name not in DEMO_PARTS:
-        raise ValueError(f"unknown demo part {name!r}: choose from {', '.join(DEMO_PARTS)}")
-    d = DEMO_PARTS[name]
-    return Polygon(d["vertices"], d.get("holes", ()))
-
 
 #: Default curve flattening tolerance, relative to the size of the curve's element.
 FLATTEN_DEFAULT = 1e-3
@@ -169,161 +144,6 @@ class Part:
         return 0.0 if self.polygon is None else self.polygon.area
 
 
-# ----------------------------------------------------------------------------- JSON family
-
-
-def _as_shape(outer: Any, holes: list[Any], where: str, sid: str | None = None,
-              tags: tuple[str, ...] = ()) -> Shape:
-    try:
-        poly = Polygon(outer, holes)
-    except (ValueError, TypeError) as exc:
-        raise ValueError(f"{where}: {exc}") from None
-    return Shape(poly.to_shapely(), sid, tags)
-
-
-def _rings_depth(data: Any) -> int:
-    d = 0
-    while isinstance(data, list) and data:
-        data, d = data[0], d + 1
-    return d
-
-
-def _json_drawing(data: Any, where: str) -> Drawing:
-    if isinstance(data, list):                  # bare rings
-        depth = _rings_depth(data)
-        if depth == 2:
-            return Drawing([_as_shape(data, [], where)])
-        if depth == 3:
-            return Drawing([_as_shape(data[0], data[1:], where)])
-        raise ValueError(f"{where}: a bare JSON part is a ring [[x, y], ...] or rings "
-                         f"[[[x, y], ...], ...] (outer ring, then holes)")
-    if not isinstance(data, dict):
-        raise ValueError(f"{where}: expected an object with 'vertices' or a GeoJSON "
-                         f"geometry, got {type(data).__name__}")
-    if "vertices" in data:
-        extra = sorted(set(data) - {"vertices", "holes", "units"})
-        if extra:
-            raise ValueError(f"{where}: unknown key {extra[0]!r} (a part is "
-                             f"{{'vertices': [...], 'holes': [...], 'units': 'mm'}})")
-        holes = data.get("holes", [])
-        if not isinstance(holes, list):
-            raise ValueError(f"{where}: 'holes' must be a list of rings")
-        units = data.get("units")
-        if units is not None:
-            try:
-                check_units(units, "'units'", FILE_UNITS)
-            except (TypeError, ValueError) as exc:
-                raise ValueError(f"{where}: {exc}") from None
-        return Drawing([_as_shape(data["vertices"], holes, where)], units,
-                       f"'units' of the JSON: {units}" if units else "not given by the file")
-    if "type" in data:
-        return Drawing(_geojson_shapes(data, where))
-    raise ValueError(f"{where}: no 'vertices' and no GeoJSON 'type'")
-
-
-def _feature_tags(feat: dict[str, Any], k: int) -> tuple[str, ...]:
-    tags = []
-    if feat.get("id") is not None:
-        tags.append(str(feat["id"]))
-    props = feat.get("properties")
-    if isinstance(props, dict):
-        for key, v in props.items():
-            if key.lower() in ("name", "id", "label", "part", "admin", "name_en") and \
-                    isinstance(v, (str, int)) and not isinstance(v, bool):
-                tags.append(str(v))
-    return tuple(dict.fromkeys(tags)) or (f"feature{k}",)
-
-
-def _geojson_shapes(data: dict[str, Any], where: str) -> list[Shape]:
-    import shapely.geometry
-    from shapely.errors import ShapelyError
-
-    kind = data.get("type")
-    items: list[tuple[Any, tuple[str, ...], str]] = []
-    if kind == "FeatureCollection":
-        feats = data.get("features")
-        if not isinstance(feats, list):
-            raise ValueError(f"{where}: a FeatureCollection needs a 'features' list")
-        for k, feat in enumerate(feats):
-            if not isinstance(feat, dict) or feat.get("type") != "Feature":
-                raise ValueError(f"{where} features[{k}]: expected a Feature object")
-            items.append((feat.get("geometry"), _feature_tags(feat, k),
-                          f"{where} features[{k}]"))
-    elif kind == "Feature":
-        items.append((data.get("geometry"), _feature_tags(data, 0), f"{where} geometry"))
-    else:
-        items.append((data, (), where))
-    shapes: list[Shape] = []
-    kinds = set()
-    for geom, tags, w in items:
-        if geom is None:
-            continue
-        if not isinstance(geom, dict):
-            raise ValueError(f"{w}: geometry must be an object")
-        try:
-            with np.errstate(invalid="ignore"):   # NaN: refused below, in one line
-                g = shapely.geometry.shape(geom)
-        except (ShapelyError, ValueError, TypeError, KeyError, IndexError,
-                AttributeError) as exc:
-            raise ValueError(f"{w}: not a valid GeoJSON geometry ({exc})") from None
-        kinds.add(g.geom_type)
-        shapes += _polygons_of(g, w, tags)
-    if not shapes:
-        raise ValueError(f"{where}: no Polygon or MultiPolygon (found "
-                         f"{', '.join(sorted(kinds)) or 'no geometry'})")
-    return shapes
-
-
-def _polygons_of(g: Any, where: str, tags: tuple[str, ...]) -> list[Shape]:
-    import shapely
-
-    polys = [p for p in shapely.get_parts(g) if p.geom_type == "Polygon" and not p.is_empty]
-    out = []
-    base = tags[0] if tags else None
-    for j, p in enumerate(polys):
-        sid = base if len(polys) == 1 else (f"{base}#{j + 1}" if base else f"#{j + 1}")
-        out.append(_as_shape(np.asarray(p.exterior.coords),
-                             [np.asarray(h.coords) for h in p.interiors],
-                             where + (f" polygon {j + 1}" if len(polys) > 1 else ""), sid,
-                             (*tags, sid) if sid else tags))
-    return out
-
-
-def _wkt_drawing(text: str, where: str) -> Drawing:
-    import shapely
-    from shapely.errors import ShapelyError
-
-    def parse(t: str) -> Any:
-        with np.errstate(invalid="ignore"):       # NaN: refused below, in one line
-            return shapely.from_wkt(t.strip())
-
-    geoms: list[tuple[Any, str, str | None]]
-    try:
-        geoms = [(parse(text), where, None)]
-    except (ShapelyError, ValueError):
-        geoms = []
-        for k, line in enumerate(text.splitlines(), start=1):
-            if not line.strip() or line.lstrip().startswith("#"):
-                continue
-            try:
-                geoms.append((parse(line), f"{where} line {k}", f"line{k}"))
-            except (ShapelyError, ValueError) as exc:
-                raise ValueError(f"{where} line {k}: not valid WKT "
-                                 f"({str(exc).splitlines()[0]})") from None
-    if not geoms:
-        raise ValueError(f"{where}: empty WKT file")
-    shapes: list[Shape] = []
-    kinds = set()
-    for g, w, tag in geoms:
-        if g is None or g.is_empty:
-            continue
-        kinds.add(g.geom_type)
-        shapes += _polygons_of(g, w, (tag,) if tag else ())
-    if not shapes:
-        raise ValueError(f"{where}: no polygon (found {', '.join(sorted(kinds)) or 'empty'})")
-    return Drawing(shapes)
-
-
 # ----------------------------------------------------------------------------- dispatch
 
 #: Formats by file extension.
@@ -367,13 +187,6 @@ def _read_bytes(spec: str) -> bytes:
         return p.read_bytes()
     except OSError as exc:
         raise ValueError(f"{spec}: cannot read ({exc.strerror or exc})") from None
-
-
-def _text(data: bytes, spec: str) -> str:
-    try:
-        return data.decode("utf-8-sig")
-    except UnicodeDecodeError as exc:
-        raise ValueError(f"{spec}: not UTF-8 text (byte {exc.start})") from None
 
 
 def _positive(value: Any, name: str) -> float | None:
@@ -460,7 +273,7 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
         return max(size, TINY) * FLATTEN_DEFAULT
 
     if fmt == "json":
-        return _json_drawing(_json_data(data, spec), spec)
+        return _json_drawing(read_json(data, spec), spec)
     if fmt == "wkt":
         return _wkt_drawing(_text(data, spec), spec)
     if fmt == "svg":
@@ -481,21 +294,6 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
     return read_image(data, tol_of, opt.threshold)
 
 
-def read_json(data: bytes | str, spec: str) -> Any:
-    """The value of a JSON text (bytes in UTF-8, a BOM allowed): the one reader of every
-    JSON input (part files, contacts, the explorer's requests).  Malformed, nested too
-    deeply or not UTF-8: a one-line :class:`ValueError` starting with ``spec``."""
-    text = _text(data, spec) if isinstance(data, bytes) else data
-    try:
-        return json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise ValueError(f"{spec}: not valid JSON ({exc.msg} at line {exc.lineno} column "
-                         f"{exc.colno})") from None
-    except RecursionError:
-        raise ValueError(f"{spec}: JSON nested too deeply") from None
-
-
-_json_data = read_json
 
 
 def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
@@ -673,142 +471,3 @@ def read_part(source: str | os.PathLike[str], part: int | str | None = None,
     p = load_part(source, part, **options).polygon
     assert p is not None
     return p
-
-
-# ----------------------------------------------------------------------------- contact files
-
-_CONTACTS_KEYS = {"contacts", "gravity"}
-_CONTACT_KEYS = {"point", "type", "mu", "edge", "normal", "vertex"}
-_GRAVITY_KEYS = {"direction"}
-
-
-def _unknown(d: dict[str, Any], allowed: set[str], where: str) -> None:
-    extra = sorted(set(d) - allowed)
-    if extra:
-        raise ValueError(f"{where}: unknown key {extra[0]!r} (expected "
-                       f"{', '.join(sorted(allowed))})")
-
-
-def _index(value: Any, name: str, where: str, upto: int) -> int:
-    if isinstance(value, bool) or not isinstance(value, int) or not 0 <= value < upto:
-        raise ValueError(f"{where}: {name} must be an index from 0 to {upto - 1}, got "
-                       f"{json.dumps(value)}")
-    return value
-
-
-def _number_pair(value: Any, name: str, where: str) -> np.ndarray:
-    if (not isinstance(value, list) or len(value) != 2
-            or not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value)
-            or not all(np.isfinite(value))):
-        raise ValueError(f"{where}: {name} must be [x, y] finite numbers, got "
-                       f"{json.dumps(value)}")
-    return np.asarray(value, dtype=float)
-
-
-def read_contacts(path: str | os.PathLike[str], polygon: Polygon
-                  ) -> tuple[list[Any], list[dict[str, Any]]]:
-    """Read a contacts file (the input of ``fcgrasp check``) for ``polygon``.
-
-    Layout: ``{"contacts": [{"point": [x, y], "type": "friction", "mu": 0.3,
-    "edge": 2}, ...], "gravity": {"direction": [0, -1]}}``; ``type`` is ``friction``,
-    ``frictionless`` or ``soft`` (a soft finger on the convex vertex ``"vertex": k``, the
-    start of edge ``k``); the normal comes from ``edge``, the nearest edge, or
-    ``"normal"``.  Read strictly: an unknown key is a :class:`ValueError` naming it.
-
-    Returns the contacts (for :class:`~fcgrasp.Grasp`) and their JSON description.
-    """
-    path = os.fspath(path)
-    try:
-        raw = sys.stdin.buffer.read() if path == "-" else Path(path).read_bytes()
-    except FileNotFoundError:
-        raise ValueError(f"{path}: no such file") from None
-    except OSError as exc:
-        raise ValueError(f"{path}: cannot read ({exc.strerror or exc})") from None
-    return contacts_from_data(read_json(raw, path), polygon, path)
-
-
-def contacts_from_data(data: Any, polygon: Polygon, where: str = "contacts"
-                       ) -> tuple[list[Any], list[dict[str, Any]]]:
-    """Contacts from the decoded JSON of a contacts file (see :func:`read_contacts`),
-    checked as strictly; ``where`` names the source in error messages.
-
-    >>> from fcgrasp.io.parts import demo_part
-    >>> cs, _ = contacts_from_data({"contacts": [{"point": [0, 15], "mu": 0.3}]},
-    ...                            demo_part("rectangle"))
-    >>> type(cs[0]).__name__, cs[0].normal.tolist() == [-1, 0]
-    ('FrictionPoint', True)
-    """
-    path = where
-    if isinstance(data, dict):
-        _unknown(data, _CONTACTS_KEYS, path)
-    items = data.get("contacts") if isinstance(data, dict) else data
-    if not isinstance(items, list) or not items:
-        raise ValueError(f"{path}: expected {{'contacts': [...]}} with at least one contact")
-    contacts: list[Any] = []
-    described: list[dict[str, Any]] = []
-    for k, c in enumerate(items):
-        where = f"{path} contacts[{k}]"
-        if not isinstance(c, dict):
-            raise ValueError(f"{where}: expected an object, got {type(c).__name__}")
-        _unknown(c, _CONTACT_KEYS, where)
-        kind = c.get("type", "friction" if "mu" in c else "frictionless")
-        mu = c.get("mu", 0.0)
-        if not isinstance(mu, (int, float)) or isinstance(mu, bool) or not mu >= 0 \
-                or not np.isfinite(mu):
-            raise ValueError(f"{where}: mu must be a finite number >= 0, got {json.dumps(mu)}")
-        if kind == "soft":
-            if "vertex" not in c:
-                raise ValueError(f"{where}: a soft contact needs 'vertex' (a vertex index)")
-            k_v = _index(c["vertex"], "vertex", where, polygon.n_edges)
-            try:
-                contacts.append(polygon.soft_finger_at(k_v, mu))
-            except ValueError as exc:
-                raise ValueError(f"{where}: {exc}") from None
-            described.append({"type": "soft", "vertex": k_v, "point": polygon.starts[k_v],
-                              "mu": mu})
-            continue
-        if kind not in ("friction", "frictionless"):
-            raise ValueError(f"{where}: type must be friction, frictionless or soft, got "
-                           f"{json.dumps(kind)}")
-        if "vertex" in c:
-            raise ValueError(f"{where}: 'vertex' goes with a soft contact, not {kind}")
-        if "point" not in c:
-            raise ValueError(f"{where}: missing 'point'")
-        pt = _number_pair(c["point"], "point", where)
-        if "normal" in c:
-            n = _number_pair(c["normal"], "normal", where)
-            if not np.any(n):
-                raise ValueError(f"{where}: normal must be a non-zero vector")
-            edge = None if "edge" not in c else _index(c["edge"], "edge", where,
-                                                       polygon.n_edges)
-        else:
-            dist = polygon.distance_to_edges(pt)
-            if "edge" in c:
-                e = _index(c["edge"], "edge", where, polygon.n_edges)
-                if not polygon.usable[e]:
-                    raise ValueError(f"{where}: edge {e} has zero length")
-            else:
-                e = int(np.argmin(dist))
-            d_e = float(dist[e])
-            if d_e > ON_EDGE_TOL * polygon.size:
-                raise ValueError(f"{where}: point {pt.tolist()} is not on edge {e} "
-                               f"(distance {d_e:.3g})")
-            n = polygon.normals[e]
-            edge = e
-        if kind == "friction":
-            contacts.append(FrictionPoint(pt, n, mu))
-        else:
-            contacts.append(FrictionlessPoint(pt, n))
-        described.append({"type": kind, "point": pt, "normal": n, "edge": edge, "mu": mu})
-    g = data.get("gravity") if isinstance(data, dict) else None
-    if g is not None:
-        if not isinstance(g, dict):
-            raise ValueError(f"{path}: gravity must be an object such as "
-                           f'{{"direction": [0, -1]}}, got {json.dumps(g)}')
-        _unknown(g, _GRAVITY_KEYS, f"{path} gravity")
-        direction = _number_pair(g.get("direction", [0, -1]), "direction", f"{path} gravity")
-        if not np.any(direction):
-            raise ValueError(f"{path} gravity: direction must be a non-zero vector")
-        contacts.append(Gravity(polygon.centroid, direction))
-        described.append({"type": "gravity", "point": polygon.centroid, "direction": direction})
-    return contacts, described

@@ -1,0 +1,191 @@
+"""The command line's helpers: option values parsed from text, outputs checked and
+written as a set, parts read as the options say, progress bars and result tables (part
+of :mod:`fcgrasp.apps.cli`)."""
+
+from __future__ import annotations
+
+import os
+import sys
+from pathlib import Path
+from typing import Any
+
+from ..errors import RequestError as CliError
+
+# ----------------------------------------------------------------------------- helpers
+
+
+def _floats(text: str, n: int, name: str) -> tuple[float, ...]:
+    import math
+
+    parts = [t for t in text.replace(" ", "").split(",") if t]
+    try:
+        vals = tuple(float(t) for t in parts)
+    except ValueError:
+        raise CliError(f"{name} must be {n} comma-separated numbers, got {text!r}") from None
+    if len(vals) != n or not all(math.isfinite(v) for v in vals):
+        raise CliError(f"{name} must be {n} comma-separated finite numbers, got {text!r}")
+    return vals
+
+
+_SIZES = {"": 1, "b": 1, "k": 2 ** 10, "kb": 2 ** 10, "m": 2 ** 20, "mb": 2 ** 20,
+          "g": 2 ** 30, "gb": 2 ** 30, "t": 2 ** 40, "tb": 2 ** 40}
+
+
+def _memory(text: str) -> int:
+    """A memory size: bytes, or a number with K, M, G or T (powers of 1024)."""
+    t = text.strip().lower().replace("i", "")
+    num = t.rstrip("kmgtb")
+    unit = t[len(num):]
+    try:
+        value = float(num)
+    except ValueError:
+        value = float("nan")
+    if unit not in _SIZES or not value > 0 or value == float("inf"):
+        raise CliError(f"--max-memory must be a size such as 500M or 2G, got {text!r}")
+    return int(value * _SIZES[unit])
+
+
+def _progress(enabled: bool) -> Any:
+    if not enabled:
+        return None
+
+    def show(done: int, total: int) -> None:
+        width = 30
+        frac = done / max(total, 1)
+        bar = "#" * int(width * frac)
+        print(f"\r[{bar:<{width}}] {100 * frac:5.1f}% candidate edge sets", end="",
+              file=sys.stderr, flush=True)
+        if done >= total:
+            print("\r" + " " * (width + 32) + "\r", end="", file=sys.stderr, flush=True)
+
+    return show
+
+
+def _check_outputs(args: Any, inputs: list[str]) -> None:
+    """Validate the output options of ``check`` and ``parts`` before any work: file
+    names, the figure's format, and no output that is an input or another output."""
+    from ..io.outputs import refuse_overwriting
+
+    if sum(1 for src in inputs if src == "-") > 1:
+        raise CliError("only one input can be read from standard input ('-')")
+    outs = [(f"--{k}", getattr(args, k)) for k in ("json", "plot") if getattr(args, k, None)]
+    for opt, path in outs:
+        if path == "-" and opt == "--json":
+            continue
+        if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
+            raise CliError(f"{opt} must be a file name, got {path!r}")
+    refuse_overwriting(outs, inputs)
+    _check_plot(getattr(args, "plot", None))
+
+
+def _check_plot(plot: str | None) -> None:
+    if plot:
+        if Path(plot).suffix.lower() not in (".png", ".svg", ".pdf"):
+            raise CliError(f"--plot must end in .png, .svg or .pdf, got {plot!r}")
+        try:
+            import matplotlib  # noqa: F401
+        except ImportError:
+            raise CliError("--plot needs matplotlib: pip install 'fcgrasp[plot]'") from None
+
+
+def _reading(args: Any) -> dict[str, Any]:
+    """The reading options of the command line, as :func:`fcgrasp.io.parts.list_parts`
+    keywords."""
+    return {"units": args.units, "file_units": args.file_units, "flatten": args.flatten,
+            "layer": args.layer, "gap": args.gap, "pixel_size": args.pixel_size,
+            "threshold": args.threshold, "y_down": args.y_down, "clean": not args.no_clean,
+            "simplify": args.simplify}
+
+
+def _load(args: Any, say: Any = "stderr") -> Any:
+    """The part asked for; when the file holds several, which one was taken is said with
+    ``say`` (default on stderr unless --quiet; None: nowhere)."""
+    from ..io.parts import load_part
+
+    part = load_part(args.part, args.select, **_reading(args))
+    if say == "stderr":
+        say = None if args.quiet else _stderr
+    if say is not None:
+        if part.count > 1:
+            name = f" ({part.id})" if part.id else ""
+            say(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
+                f"(see fcgrasp parts)")
+        for note in part.notes:
+            say(f"fcgrasp: {part.source}: {note}")
+    return part
+
+
+def _json_out(args: Any) -> bool:
+    return getattr(args, "json", None) == "-"
+
+
+def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
+    """Write text outputs (``-``: standard output) and an optional figure as a set."""
+    from ..io.outputs import OutputSet
+
+    stdout = [text for path, text in outputs if path == "-"]
+    with OutputSet() as out:
+        for path, text in outputs:
+            if path != "-":
+                out.add_text(path, text)
+        if figure is not None:
+            figure(out)
+    for text in stdout:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+
+
+def _print_table(plans: list[Any], units: str, out: Any) -> None:
+    if not plans:
+        return
+    print(f"{'rank':>4}  {'edges':<20} {'min region':>11}  {'regions (' + units + ')':<24} "
+          f"{'resistance':>10} {'eps L1':>8}", file=out)
+    for k, p in enumerate(plans):
+        q = p.quality
+        regs = ", ".join(f"{x:.3g}" for x in p.lengths)
+        # a region along the boundary shows the edges it covers, first-last
+        edges = " ".join(str(r[0]) if len(r) == 1 else f"{r[0]}-{r[-1]}"
+                         for r in p.region_edges)
+        print(f"{k + 1:>4}  {edges:<20} {p.min_length:>11.4g}  {regs:<24} "
+              f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
+
+
+def _stderr(text: str) -> None:
+    print(text, file=sys.stderr)
+
+
+def _print_jaw_table(plans: list[Any], units: str, out: Any) -> None:
+    import math
+
+    print(f"{'rank':>4}  {'grip':<9} {'closing (deg)':<16} {'offset (' + units + ')':<20} "
+          f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}", file=out)
+    for k, p in enumerate(plans):
+        t = [math.degrees(x) for x in p.theta]
+        print(f"{k + 1:>4}  {p.mode:<9} {t[0]:6.1f} to {t[1]:<6.1f} "
+              f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
+              f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
+              f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}", file=out)
+
+
+def _batch_progress(enabled: bool) -> Any:
+    if not enabled:
+        return None
+    import time
+
+    from ..io.report import duration
+
+    t0 = time.perf_counter()
+
+    def show(done: int, total: int) -> None:
+        width = 30
+        frac = done / max(total, 1)
+        el = time.perf_counter() - t0
+        rate = done / el if el > 0 else 0.0
+        left = (total - done) / rate if rate > 0 else float("nan")
+        eta = duration(left) if left == left else "?"
+        print(f"\r[{'#' * int(width * frac):<{width}}] {done}/{total} parts, "
+              f"{rate:.2f}/s, {eta} left   ", end="", file=sys.stderr, flush=True)
+        if done >= total:
+            print("", file=sys.stderr)
+
+    return show
