@@ -69,5 +69,5 @@ def test_the_bare_tolerance_check_can_fail(tmp_path):
     probe.write_text("def f(x):\n    return x < 1e-9 * 2\nROW_SECONDS = {2: 1e-6}\n")
     assert sorted(_bare_small_literals(probe, "probe.py")) == ["probe.py:2: 1e-09",
                                                        "probe.py:3: 1e-06"]
-    assert _bare_small_literals(probe, "pipeline/__init__.py") == [
-        "pipeline/__init__.py:2: 1e-09"]
+    assert _bare_small_literals(probe, "pipeline/_spec.py") == [
+        "pipeline/_spec.py:2: 1e-09"]
