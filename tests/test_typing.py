@@ -16,3 +16,12 @@ def test_mypy_clean():
     r = subprocess.run([sys.executable, "-m", "mypy", "--no-error-summary", "src"], cwd=ROOT,
                        capture_output=True, text=True)
     assert r.returncode == 0, r.stdout + r.stderr
+
+
+def test_mypy_strict_on_core_and_model():
+    """The two bottom layers type-check with ``--strict`` too."""
+    pytest.importorskip("mypy", reason="mypy is installed with the test extras")
+    r = subprocess.run([sys.executable, "-m", "mypy", "--no-error-summary", "--strict",
+                        "src/fcgrasp/core", "src/fcgrasp/model"], cwd=ROOT,
+                       capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr

@@ -35,7 +35,7 @@ Two places where the paper's "vice versa" needs care, documented and tested:
 from __future__ import annotations
 
 from itertools import combinations
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -324,7 +324,7 @@ def _pairing_test(p: FloatArray, f: FloatArray, order: Any, tol: float) -> np.nd
     into_34 = _in_open_cone(fc, fd, scd, -dh, tol)    # ... and into C34
     out_34 = _in_open_cone(fc, fd, scd, dh, tol)
     into_12 = _in_open_cone(fa, fb, sab, -dh, tol)
-    return ok & ((out_12 & into_34) | (into_12 & out_34))
+    return cast("np.ndarray", ok & ((out_12 & into_34) | (into_12 & out_34)))
 
 
 def torque_closure(points: Any, forces: Any, tol: float = TOL) -> np.ndarray:
@@ -393,7 +393,7 @@ def torque_closure(points: Any, forces: Any, tol: float = TOL) -> np.ndarray:
 
 
 def _angle(a: FloatArray, b: FloatArray) -> FloatArray:
-    return np.arctan2(np.abs(_cross2(a, b)), np.sum(a * b, axis=-1))
+    return cast("FloatArray", np.arctan2(np.abs(_cross2(a, b)), np.sum(a * b, axis=-1)))
 
 
 def friction_pair_modes(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
@@ -468,4 +468,4 @@ def friction_pair_closure(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
     False
     """
     squeeze, expand = friction_pair_modes(p, normal_p, q, normal_q, mu, mu_q, tol)
-    return squeeze | expand
+    return cast("np.ndarray", squeeze | expand)

@@ -34,7 +34,7 @@ membership is a non-negative least-squares problem (``scipy.optimize.nnls``).
 from __future__ import annotations
 
 from itertools import combinations
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -70,7 +70,7 @@ def _unit_rows(g: FloatArray) -> FloatArray:
         return g
     norm = np.linalg.norm(g, axis=1)
     keep = norm > max(float(norm.max()) * DEGENERATE_TOL, 0.0)
-    return g[keep] / norm[keep, None]
+    return cast("FloatArray", g[keep] / norm[keep, None])
 
 
 def _dedupe(rays: FloatArray, tol: float) -> FloatArray:
@@ -313,12 +313,12 @@ class Cone:
     # -------------------------------------------------------------- predicates
     def is_null(self) -> bool:
         """True when the cone is ``{0}``."""
-        return self._unit().shape[0] == 0
+        return bool(self._unit().shape[0] == 0)
 
     def is_total(self) -> bool:
         """True when the cone is the whole space (its dual is null)."""
         rays, lines = halfspace_rays(self._unit().reshape(-1, self.dim), self.dim, self.tol)
-        return rays.shape[0] == 0 and lines.shape[0] == 0
+        return bool(rays.shape[0] == 0 and lines.shape[0] == 0)
 
     def contains(self, v: Any) -> Any:
         """Membership of ``v`` (shape (d,) or (n, d)); returns a bool or a bool array."""

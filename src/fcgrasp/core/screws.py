@@ -24,7 +24,7 @@ All functions broadcast over leading axes: a batch of one is just an array.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -213,4 +213,5 @@ def spatial_virtual_work(wrench: Any, twist: Any) -> FloatArray:
     """Virtual work ``f . dx + m . dalpha`` of a spatial wrench against a twist (eq. 4)."""
     w = check_array(wrench, "wrench", last=6)
     t = check_array(twist, "twist", last=6)
-    return np.sum(w[..., :3] * t[..., 3:], axis=-1) + np.sum(w[..., 3:] * t[..., :3], axis=-1)
+    work = np.sum(w[..., :3] * t[..., 3:], axis=-1) + np.sum(w[..., 3:] * t[..., :3], axis=-1)
+    return cast("FloatArray", work)

@@ -5,7 +5,7 @@ centroid) and the field-of-view constraint between two of them (part of
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -72,7 +72,7 @@ class Feature:
 
     def point_at(self, t: Any) -> FloatArray:
         t = np.asarray(t, dtype=float)
-        return self.a + t[..., None] * (self.b - self.a)
+        return cast("FloatArray", self.a + t[..., None] * (self.b - self.a))
 
     def param_of(self, p: FloatArray) -> tuple[FloatArray, FloatArray]:
         """Parameter along the segment and distance from its line, for points ``p``."""

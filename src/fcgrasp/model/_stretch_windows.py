@@ -5,7 +5,7 @@ covers) bounded and pruned (part of :mod:`fcgrasp.model.stretches`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -243,7 +243,7 @@ class _Configs:
 def _ext(ring: _Ring, i: np.ndarray, k: np.ndarray) -> FloatArray:
     """Arc length of the edges i .. i + k (the most a stretch covering them reaches)."""
     i = np.asarray(i) % ring.m + ring.m
-    return ring.U[i + k + 1] - ring.U[i]
+    return cast("FloatArray", ring.U[i + k + 1] - ring.U[i])
 
 
 def _inner(ring: _Ring, i: np.ndarray, k: np.ndarray) -> FloatArray:
@@ -264,7 +264,7 @@ def _disjoint(ra: _Ring, c: _Configs, same: bool) -> np.ndarray:
     m = ra.m
     # edges of stretch 2 relative to the first edge of stretch 1
     rel = (c.iC - c.iA) % m
-    return (rel > c.kA) & (rel + c.kC < m)
+    return cast("np.ndarray", (rel > c.kA) & (rel + c.kC < m))
 
 
 class _Bound:

@@ -50,6 +50,7 @@ general force-closure test.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import product
 from typing import Any
@@ -148,7 +149,9 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     k1, k2 = s * k1, s * k2
     nv = 2 * k
     rows_A, rows_b = [], []
-    for phi in (lambda x: _cross(k1, x), lambda x: -_cross(k2, x)):
+    phis: tuple[Callable[[FloatArray], FloatArray], ...] = (lambda x: _cross(k1, x),
+                                                          lambda x: -_cross(k2, x))
+    for phi in phis:
         A = np.zeros((C, nv))
         rhs = phi(o34) - phi(o12)
         for p in range(4):

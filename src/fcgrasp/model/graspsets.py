@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from itertools import combinations
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import shapely
@@ -155,7 +155,7 @@ class FrictionGraspSet:
         ang = np.arctan2(d[..., 1], d[..., 0])
         lim = h - self.tol
         inside = (np.abs(_wrap(ang - c)) < lim) | (np.abs(_wrap(ang - c - np.pi)) < lim)
-        return on & inside & (dn > tol_len)
+        return cast("np.ndarray", on & inside & (dn > tol_len))
 
     def partners(self, p: Any, mode: str = "squeeze") -> tuple[float, float] | None:
         """Parameter interval on feature 2 of the partners of ``p`` in ``mode``."""
@@ -250,7 +250,8 @@ def _sample_geometry(geom: Any, k: int, rng: np.random.Generator) -> FloatArray:
         flip = r1 + r2 > 1
         r1[flip], r2[flip] = 1 - r1[flip], 1 - r2[flip]
         t = tri[pick]
-        return t[:, 0] + r1[:, None] * (t[:, 1] - t[:, 0]) + r2[:, None] * (t[:, 2] - t[:, 0])
+        points = t[:, 0] + r1[:, None] * (t[:, 1] - t[:, 0]) + r2[:, None] * (t[:, 2] - t[:, 0])
+        return cast("FloatArray", points)
     segs: list[FloatArray] = []
     seg_weights: list[float] = []
     for g in parts:
@@ -265,7 +266,7 @@ def _sample_geometry(geom: Any, k: int, rng: np.random.Generator) -> FloatArray:
     w = np.array(seg_weights) + TINY
     pick = rng.choice(len(seg), size=k, p=w / w.sum())
     u = rng.random(k)[:, None]
-    return seg[pick, 0] + u * (seg[pick, 1] - seg[pick, 0])
+    return cast("FloatArray", seg[pick, 0] + u * (seg[pick, 1] - seg[pick, 0]))
 
 
 class FrictionlessGraspSet:
@@ -392,7 +393,7 @@ class FrictionlessGraspSet:
         cen, h = self.sector
         lim = h - self.tol
         inside = (np.abs(_wrap(ang - cen)) < lim) | (np.abs(_wrap(ang - cen - np.pi)) < lim)
-        return on & inside & (vn > tol_len)
+        return cast("np.ndarray", on & inside & (vn > tol_len))
 
     def sample(self, n: int, rng: np.random.Generator | None = None) -> tuple[FloatArray, ...]:
         """Draw ``n`` grasps of the set: ``P12`` uniform in :math:`\\mathcal{R}_{12}`, then

@@ -18,7 +18,7 @@ coarser, optional Douglas-Peucker simplification (``--simplify``), topology pres
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import shapely
@@ -52,7 +52,7 @@ def winding_numbers(points: Any, ring: Any) -> np.ndarray:
     side = (b[:, 0] - a[:, 0]) * (py - a[:, 1]) - (px - a[:, 0]) * (b[:, 1] - a[:, 1])
     up = (a[:, 1] <= py) & (b[:, 1] > py) & (side > 0)
     down = (a[:, 1] > py) & (b[:, 1] <= py) & (side < 0)
-    return (up.sum(axis=1) - down.sum(axis=1)).astype(int)
+    return cast("np.ndarray", (up.sum(axis=1) - down.sum(axis=1)).astype(int))
 
 
 def _ring_ok(r: FloatArray) -> bool:

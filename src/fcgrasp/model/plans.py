@@ -10,7 +10,7 @@ not depend on how the part's vertices are numbered.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -178,7 +178,7 @@ class GraspPlan:
         """All corner grasps of the box of regions (each finger at one end of its
         region), shape (2**fingers, fingers, 2)."""
         idx = np.array(list(np.ndindex(*(2,) * self.fingers)))
-        return self.ends[np.arange(self.fingers)[None, :], idx]
+        return cast("FloatArray", self.ends[np.arange(self.fingers)[None, :], idx])
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (floats rounded to 12 significant digits)."""
@@ -197,7 +197,7 @@ class GraspPlan:
         }
         if self.gravity is not None:
             d["gravity"] = dict(self.gravity)
-        return json_ready(d)
+        return cast("dict[str, Any]", json_ready(d))
 
 
 def _nearest_segment(line: FloatArray, p: FloatArray) -> int:

@@ -28,7 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import shapely
@@ -57,7 +57,7 @@ class Edge:
     def point_at(self, t: Any) -> FloatArray:
         """Points ``start + t (end - start)`` for parameters ``t`` in [0, 1]."""
         t = np.asarray(t, dtype=float)
-        return self.start + t[..., None] * (self.end - self.start)
+        return cast("FloatArray", self.start + t[..., None] * (self.end - self.start))
 
 
 def _check_ring(value: Any, name: str) -> FloatArray:
@@ -291,7 +291,7 @@ class Polygon:
         # walking with the object on the left, normals turn counter-clockwise at convex
         # vertices; in input order that walk is reversed where the object is on the right
         turn = (n_in[:, 0] * n_out[:, 1] - n_in[:, 1] * n_out[:, 0]) * self._object_left
-        return (turn > 0) & self.usable
+        return cast("FloatArray", (turn > 0) & self.usable)
 
     def distance_to_edges(self, point: Any) -> FloatArray:
         """Distance from ``point`` to every edge, shape (E,) (inf for zero-length edges)."""
@@ -331,7 +331,7 @@ class Polygon:
     def contains(self, points: Any) -> np.ndarray:
         """Whether points lie in the part (boundary included)."""
         pts = np.asarray(points, dtype=float)
-        return shapely.covers(self._shapely, shapely.points(pts))
+        return cast("np.ndarray", shapely.covers(self._shapely, shapely.points(pts)))
 
     def __repr__(self) -> str:
         return f"Polygon({self.vertices.tolist()}, holes={[h.tolist() for h in self.holes]})"

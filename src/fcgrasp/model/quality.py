@@ -31,7 +31,7 @@ r"""Grasp quality (paper section 8.1), computed at a plan's representative grasp
 from __future__ import annotations
 
 from itertools import combinations, product
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -166,7 +166,7 @@ def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarra
     def finger_force(lam: FloatArray, f: int) -> FloatArray:
         sel = (finger == f) & real
         vec = lam[:, sel, None] * forces[sel][None]
-        return np.hypot(*vec.sum(axis=1).T)
+        return cast("FloatArray", np.hypot(*vec.sum(axis=1).T))
 
     wt = np.stack([finger_force(lt, f) * translation for f in fingers], axis=1)     # (m, F)
     wr = np.stack([finger_force(lr, f) * theta * float(np.max(dist[finger == f]))

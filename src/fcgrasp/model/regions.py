@@ -54,9 +54,10 @@ HiGHS) on thousands of seeded random edge sets.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from itertools import combinations
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -144,10 +145,10 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
     up = np.empty((2, B, n), dtype=bool)
     K = np.empty((2, B))
     is34 = (np.asarray(side) == 1)[None, :]
-    for i, phi in enumerate((lambda x: _cross(k1[:, None, :], x) if x.ndim == 3
-                             else _cross(k1, x),
-                             lambda x: _cross(x, k2[:, None, :]) if x.ndim == 3
-                             else _cross(x, k2))):
+    phis: tuple[Callable[[FloatArray], FloatArray], ...] = (
+        lambda x: _cross(k1[:, None, :], x) if x.ndim == 3 else _cross(k1, x),
+        lambda x: _cross(x, k2[:, None, :]) if x.ndim == 3 else _cross(x, k2))
+    for i, phi in enumerate(phis):
         g = phi(vel)                                        # (B, n)
         # a coefficient that is zero up to rounding (a cone edge parallel to a force, as
         # with a zero margin) is zero: that end is then free for this constraint
@@ -217,11 +218,12 @@ def _feasible(p: KnapsackProblem, lb: FloatArray, order: np.ndarray, eps: FloatA
     ok = np.all((lb <= p.L + eps[:, None]) | ~p.active, axis=1)
     _, slack, value = _fill(p, lb, order)
     need = np.sum(p.w2 * (np.where(p.active, p.L + lb, 0.0)), axis=1) - p.K2
-    return ok & (slack >= -eps * _wscale(p)) & (value >= need - eps * _wscale(p))
+    scale = eps * _wscale(p)
+    return cast("np.ndarray", ok & (slack >= -scale) & (value >= need - scale))
 
 
 def _wscale(p: KnapsackProblem) -> FloatArray:
-    return np.maximum(np.sum((p.w1 + p.w2) * p.L, axis=1), TINY)
+    return cast("FloatArray", np.maximum(np.sum((p.w1 + p.w2) * p.L, axis=1), TINY))
 
 
 def _max_level(p: KnapsackProblem, lb_fixed: FloatArray, free: np.ndarray,

@@ -52,7 +52,7 @@ module) and sample every returned pair of regions with the general test.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -117,7 +117,8 @@ class StretchPair:
 # ----------------------------------------------------------------------------- search
 
 
-def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatArray, tuple]:
+def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
+              ) -> tuple[FloatArray, tuple[int, ...]]:
     """Points of the stretch starting at s0 on edge i, length t, k interior vertices."""
     m = ring.m
     first = ring.a[i % m] + s0 * ring.t[i % m]
@@ -267,7 +268,7 @@ def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
         def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
                    m: int) -> np.ndarray:
             # [sub] stretch (rows) inside [super] stretch (columns), cyclically
-            return (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :]
+            return cast("np.ndarray", (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :])
 
         at = np.asarray(idx)
         # supers in blocks of columns: the (sub, super) matrix stays about 1M cells
