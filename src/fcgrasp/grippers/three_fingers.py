@@ -126,7 +126,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     >>> best.mode, len(best.edges), best.contact_type
     ('concurrent', 3, 'friction')
     """
-    if spec.fingers != 3 or spec.gravity is not None:
+    if not spec.shape.lp:
         raise ValueError("three_finger_plans plans three fingers with friction "
                          "(fingers=3, gravity=None)")
     F = features(polygon, spec.mu, spec.hand, edges)

@@ -204,13 +204,13 @@ def _combos(s: int, r: int) -> Iterator[np.ndarray]:
         yield block
 
 
-def _layouts(t: np.ndarray, fingers: int, gravity: bool) -> np.ndarray:
-    """Candidate rows of sorted feature tuples ``t``: pairs as they are; triples plus the
-    gravity contact (-1); 4-tuples as they are; with four fingers on three edges (no
-    gravity, ``t`` of width 3) the three layouts doubling each feature (first and third)."""
-    if fingers == 2 or t.shape[1] == 4 or (fingers == 3 and not gravity):
+def _layouts(t: np.ndarray, layout: str) -> np.ndarray:
+    """Candidate rows of sorted feature tuples ``t`` (:attr:`SearchShape.layout`): as they
+    are; triples plus the gravity contact (-1); with four fingers on three edges (``t`` of
+    width 3) the three layouts doubling each feature (first and third)."""
+    if layout == "as_is" or t.shape[1] == 4:
         return t
-    if gravity:
+    if layout == "gravity":
         return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
     return np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
                            for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
@@ -253,9 +253,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     n = lengths.size
     order = np.lexsort((np.arange(n), -lengths))
     g = spec.gravity
-    gravity = g is not None
-    widths = [1] if spec.fingers == 2 else [2] if spec.fingers == 3 else \
-        ([3, 2] if three_edge else [3])
+    widths = spec.shape.widths if three_edge else spec.shape.widths[:1]
     # frictionless fingers hold only if their force directions positively span the plane
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
@@ -278,7 +276,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
                 t = _distinct_edges(F, t)
                 if not len(t):
                     continue
-                buf.append(_layouts(t, spec.fingers, gravity))
+                buf.append(_layouts(t, spec.shape.layout))
                 count += len(buf[-1])
                 while count >= target:
                     rows = np.concatenate(buf)
@@ -412,14 +410,6 @@ class SearchSize:
         return self.peak_bytes + self.kept_bytes <= self.budget
 
 
-def _rows(fingers: int, n: int, three_edge: bool = True) -> int:
-    if fingers == 2:
-        return comb(n, 2)
-    if fingers == 3:
-        return comb(n, 3)
-    return comb(n, 4) + (3 * comb(n, 3) if three_edge else 0)
-
-
 def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
     """(rows, batch rows, peak bytes, kept bytes) of a search over ``n`` features."""
     if spec.stretches:
@@ -428,9 +418,9 @@ def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
         rows = n ** 3 // 36 if spec.top is None else comb(n, 2)
         held = rows if spec.top is None else min(rows, 2 * max(spec.top, KEEP_STRETCHES))
         return rows, rows, STRETCH_BYTES * n * n, held * KEPT_ROW_BYTES
-    rows = _rows(spec.fingers, n)
+    rows = spec.shape.rows(n)
     per = ROW_BYTES[spec.fingers]
-    cap = BATCH_SIZE if spec.fingers == 2 else TUPLE_BATCH_SIZE
+    cap = TUPLE_BATCH_SIZE if spec.shape.tuple_batches else BATCH_SIZE
     batch = int(max(1, min(cap, spec.max_memory // 2 // per)))
     peak = min(rows, batch) * per
     if spec.top is None:
@@ -486,7 +476,7 @@ def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
     fit = 2
     while fit < size.features and sum(_estimate(spec, fit + 1)[2:]) <= spec.max_memory:
         fit += 1
-    what = {2: "two-finger", 3: "three-finger", 4: "four-finger"}[spec.fingers]
+    what = spec.shape.label
     hint = "plan on single edges (along_boundary=False, --single-edge), or " \
         if spec.stretches and spec.top is not None else \
         "give a top (--top K), or " if spec.top is None else \
@@ -519,8 +509,8 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         check_int(batch_size, "batch_size", minimum=1)
     first = size if spec.top is None else FIRST_BATCH
     doubled = None
-    three_edge = spec.fingers == 4
-    if edges is not None and spec.fingers == 4:
+    three_edge = spec.shape.three_edge
+    if edges is not None and three_edge:
         idx = [int(e) for e in edges]
         twice = [e for e in set(idx) if idx.count(e) == 2]
         doubled = twice[0] if twice else None
@@ -544,12 +534,12 @@ def grasp_geometry(polygon: Polygon, spec: PlanSpec, sets: EdgeSets,
     fingers, so are rows with no regions.  With a ``floor`` (:attr:`TopK.floor`) and a
     ``top``, two-finger rows below the floor are dropped too, and four-finger pairings
     tied on the smallest region are told apart only in the rows that reach it."""
-    if spec.fingers == 3 and spec.gravity is None:
+    if spec.shape.lp:
         raise ValueError("three fingers with friction are solved by linear programs: "
                          "fcgrasp.grippers.three_fingers.three_finger_plans, not grasp_geometry")
     F = features(polygon, spec.mu, spec.hand, edges)
     feats = np.asarray(sets.feats, dtype=int)
-    if spec.fingers == 2:
+    if spec.shape.pairs:
         return _pair_candidates(F, spec.margin_rad, feats[:, 0], feats[:, 1], spec.tol,
                                 floor if spec.top is not None else 0.0)
     gravity = None if spec.gravity is None else np.array(spec.gravity)

@@ -4,6 +4,7 @@ constants that size its batches and its memory (part of :mod:`fcgrasp.pipeline`)
 from __future__ import annotations
 
 from dataclasses import dataclass
+from math import comb
 from typing import Any
 
 import numpy as np
@@ -69,6 +70,56 @@ KEEP_FOR_MEASURE = 20_000
 
 
 @dataclass(frozen=True)
+class SearchShape:
+    """How the search enumerates the candidates of one kind of point fingers (the table
+    :data:`SHAPES`, read through :attr:`PlanSpec.shape`).
+
+    ``label`` names the search in messages; ``contact_type`` is ``friction`` or
+    ``frictionless``; ``widths``: how many features a row draws besides its shortest,
+    per layout (the first alone without ``three_edge``); ``three_edge``: four fingers
+    also on three edges, one doubled; ``layout``: rows ``as_is``, plus the ``gravity``
+    contact (-1), or ``doubled`` (three features, each in turn taken twice); ``pairs``:
+    rows are solved by the two-finger closed forms (theorem 6.4, algorithm 7.1; else the
+    four-finger problems of theorem 7.1); ``lp``: rows are solved by linear programs
+    (three fingers with friction, :mod:`fcgrasp.grippers.three_fingers`);
+    ``tuple_batches``: batches of :data:`TUPLE_BATCH_SIZE`, not :data:`BATCH_SIZE`;
+    ``row_terms``: the candidate count ``sum(m * comb(n, k))`` over ``(k, m)``;
+    ``unused_mu``: why a frictionless search refuses a ``mu`` (``{mu}``: the value)."""
+
+    label: str
+    contact_type: str
+    widths: tuple[int, ...]
+    layout: str = "as_is"
+    three_edge: bool = False
+    pairs: bool = False
+    lp: bool = False
+    tuple_batches: bool = True
+    row_terms: tuple[tuple[int, int], ...] = ()
+    unused_mu: str = ""
+
+    def rows(self, n: int) -> int:
+        """Candidate rows over ``n`` features."""
+        return sum(m * comb(n, k) for k, m in self.row_terms)
+
+
+#: The search of each kind of point fingers, by ``(fingers, with gravity)``.
+SHAPES: dict[tuple[int, bool], SearchShape] = {
+    (2, False): SearchShape("two-finger", "friction", (1,), pairs=True, tuple_batches=False,
+                            row_terms=((2, 1),)),
+    (3, False): SearchShape("three-finger", "friction", (2,), lp=True, row_terms=((3, 1),)),
+    (3, True): SearchShape("three-finger", "frictionless", (2,), layout="gravity",
+                           row_terms=((3, 1),),
+                           unused_mu="three fingers with gravity are frictionless: mu would "
+                                     "not be used, got mu={mu!r} (drop gravity to plan three "
+                                     "fingers with friction)"),
+    (4, False): SearchShape("four-finger", "frictionless", (3, 2), layout="doubled",
+                            three_edge=True, row_terms=((4, 1), (3, 3)),
+                            unused_mu="four fingers are planned frictionless (theorem 7.1): mu "
+                                      "would not be used, got mu={mu!r}"),
+}
+
+
+@dataclass(frozen=True)
 class PlanSpec:
     """What to plan: the gripper, the margin and the ranking (validated by
     :func:`plan_spec`).  Picklable, so a batch can be solved elsewhere.
@@ -91,9 +142,14 @@ class PlanSpec:
     along_boundary: bool = True
 
     @property
+    def shape(self) -> SearchShape:
+        """How the search enumerates this gripper's candidates (:data:`SHAPES`)."""
+        return SHAPES[(self.fingers, self.gravity is not None)]
+
+    @property
     def stretches(self) -> bool:
         """Whether the two-finger stretch search runs (two fingers without a hand)."""
-        return self.along_boundary and self.fingers == 2 and self.hand is None
+        return self.along_boundary and self.shape.pairs and self.hand is None
 
     @property
     def grows(self) -> bool:
@@ -108,8 +164,7 @@ class PlanSpec:
 
     @property
     def contact_type(self) -> str:
-        return "friction" if self.fingers == 2 or (self.fingers == 3 and self.gravity is None) \
-            else "frictionless"
+        return self.shape.contact_type
 
 
 def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "min_region",
@@ -140,23 +195,19 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
     if top is not None:
         top = check_int(top, "top", minimum=1)
     dist = check_disturbance(disturbance)
+    shape = SHAPES.get((fingers, gravity is not None))
+    if shape is None:
+        raise ValueError(f"gravity is a contact of three frictionless fingers; with "
+                         f"{fingers} fingers it would not be used, got gravity={gravity!r}")
     g = None
     if gravity is not None:
-        if fingers != 3:
-            raise ValueError(f"gravity is a contact of three frictionless fingers; with "
-                             f"{fingers} fingers it would not be used, got gravity={gravity!r}")
         gv = check_direction(gravity, "gravity")
         g = (float(gv[0]), float(gv[1]))
-        if mu_v != 0:
-            raise ValueError(f"three fingers with gravity are frictionless: mu would not be "
-                             f"used, got mu={mu!r} (drop gravity to plan three fingers with "
-                             f"friction)")
-    elif fingers == 3 and mu_v == 0:
+    if shape.contact_type == "frictionless" and mu_v != 0:
+        raise ValueError(shape.unused_mu.format(mu=mu))
+    if shape.lp and mu_v == 0:
         raise ValueError("three fingers need friction (mu > 0), or gravity=(gx, gy) for "
                          "three frictionless fingers and gravity; got mu=0 and no gravity")
-    if fingers == 4 and mu_v != 0:
-        raise ValueError(f"four fingers are planned frictionless (theorem 7.1): mu would not "
-                         f"be used, got mu={mu!r}")
     budget = MAX_MEMORY if max_memory is None else check_int(max_memory, "max_memory",
                                                               minimum=MIN_MEMORY)
     if not isinstance(along_boundary, bool):
