@@ -228,7 +228,7 @@ def test_a_large_part_is_split_across_the_cluster(monkeypatch):
     """A large part's candidate batches are solved by the cluster's workers (the public
     candidates -> solve -> rank pipeline): the same plans as planned whole."""
     distributed = pytest.importorskip("distributed")
-    from fcgrasp.pipeline import _candidates as pipeline  # where the batch sizes are read
+    from fcgrasp.pipeline import _spec as pipeline  # the search's tunables
 
     rng = np.random.default_rng(21)
     polys = [fc.Polygon(_ring(rng, 14)) for _ in range(2)] + [fc.Polygon(_ring(rng, 6))]

@@ -143,7 +143,7 @@ def test_search_too_large_is_refused_at_once():
 
 
 def test_rank_folds_batches_into_a_running_top(rng):
-    from fcgrasp.pipeline import _candidates as pipeline  # where REDUCE_ROWS is read
+    from fcgrasp.pipeline import _spec as pipeline  # the search's tunables
 
     part = random_polygon(rng, "star")
     spec = plan_spec(fingers=4, top=2, max_memory=2 ** 24)

@@ -9,7 +9,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp import pipeline
-from fcgrasp.pipeline import _candidates, _search, candidates, plan_spec, rank, search, solve
+from fcgrasp.pipeline import _search, _spec, candidates, plan_spec, rank, search, solve
 from fcgrasp.planning.planner import RANKINGS
 
 from .grippers import grip
@@ -49,15 +49,15 @@ def _check(part, job, top, rank_by, hand=None, sizes=(1, 9, 64)):
 
     With a measure other than ``min_region`` the floor is that of the
     ``KEEP_FOR_MEASURE`` rows the measure orders: made small here so that it prunes."""
-    old = _candidates.KEEP_FOR_MEASURE
-    _candidates.KEEP_FOR_MEASURE = 4 if rank_by != "min_region" else old
+    old = _spec.KEEP_FOR_MEASURE
+    _spec.KEEP_FOR_MEASURE = 4 if rank_by != "min_region" else old
     try:
         spec = plan_spec(top=top, rank_by=rank_by, hand=hand, **job)
         want = _key(_exhaustive(part, spec))
         for size in sizes if rank_by == "min_region" else sizes[1:]:
             assert _key(search(part, spec, batch_size=size)) == want, size
     finally:
-        _candidates.KEEP_FOR_MEASURE = old
+        _spec.KEEP_FOR_MEASURE = old
 
 
 @pytest.mark.parametrize("rank_by", RANKINGS)

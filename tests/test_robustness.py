@@ -250,7 +250,7 @@ def test_coordinates_far_from_one(scale):
 
 
 def test_large_polygon_batches_match_single_batch(monkeypatch):
-    import fcgrasp.pipeline._candidates as pipeline  # where the batch size is read
+    import fcgrasp.pipeline._spec as pipeline  # the search's tunables
 
     ang = np.linspace(0, 2 * np.pi, 160, endpoint=False)
     r = 1 + 0.3 * np.sin(3 * ang)

@@ -31,17 +31,13 @@ from ..model.regions import (
     leximin,
     max_min_length,
 )
+from . import _spec  # the search's tunables, read when used
 from ._spec import (
-    BATCH_SIZE,
-    FIRST_BATCH,
-    KEEP_FOR_MEASURE,
     KEEP_STRETCHES,
     KEPT_ROW_BYTES,
-    REDUCE_ROWS,
     ROW_BYTES,
     ROW_SECONDS,
     STRETCH_BYTES,
-    TUPLE_BATCH_SIZE,
     PlanSpec,
 )
 
@@ -420,20 +416,20 @@ def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
         return rows, rows, STRETCH_BYTES * n * n, held * KEPT_ROW_BYTES
     rows = spec.shape.rows(n)
     per = ROW_BYTES[spec.fingers]
-    cap = TUPLE_BATCH_SIZE if spec.shape.tuple_batches else BATCH_SIZE
+    cap = _spec.TUPLE_BATCH_SIZE if spec.shape.tuple_batches else _spec.BATCH_SIZE
     batch = int(max(1, min(cap, spec.max_memory // 2 // per)))
     peak = min(rows, batch) * per
     if spec.top is None:
         held = rows
     else:
-        keep = spec.top if spec.rank_by == "min_region" else KEEP_FOR_MEASURE
+        keep = spec.top if spec.rank_by == "min_region" else _spec.KEEP_FOR_MEASURE
         held = min(rows, _reduce_rows(spec) + 2 * keep)
     return rows, batch, peak, held * KEPT_ROW_BYTES
 
 
 def _reduce_rows(spec: PlanSpec) -> int:
     """Rows :func:`rank` holds beyond its running top before folding them in."""
-    return int(min(REDUCE_ROWS, max(1000, spec.max_memory // 4 // KEPT_ROW_BYTES)))
+    return int(min(_spec.REDUCE_ROWS, max(1000, spec.max_memory // 4 // KEPT_ROW_BYTES)))
 
 
 def search_size(polygon: Polygon, spec: PlanSpec, edges: Any = None) -> SearchSize:
@@ -507,7 +503,7 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     F = features(polygon, spec.mu, spec.hand, edges)
     size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
         check_int(batch_size, "batch_size", minimum=1)
-    first = size if spec.top is None else FIRST_BATCH
+    first = size if spec.top is None else _spec.FIRST_BATCH
     doubled = None
     three_edge = spec.shape.three_edge
     if edges is not None and three_edge:

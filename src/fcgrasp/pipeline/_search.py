@@ -14,9 +14,13 @@ from ..core.tolerances import RANK_TOL
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
+from . import _spec  # the search's tunables, read when used
 from ._candidates import EdgeSets, _reduce_rows, candidates, features, search_size
 from ._solve import Solved, _build_plans, _select, _smallest_region, solve
-from ._spec import KEEP_FOR_MEASURE, MAP_WINDOW, PlanSpec
+from ._spec import (
+    MAP_WINDOW,
+    PlanSpec,
+)
 
 
 class TopK:
@@ -41,7 +45,7 @@ class TopK:
         #: rows kept by the smallest region: the top, or with another measure the
         #: :data:`KEEP_FOR_MEASURE` best, which the measure then orders
         self.keep = None if top is None else (top if spec.rank_by == "min_region" else
-                                              KEEP_FOR_MEASURE)
+                                              _spec.KEEP_FOR_MEASURE)
         self._parts: list[Solved] = []
         self._held = 0
         self._floor = 0.0

@@ -26,6 +26,7 @@ from ..model.regions import (
     max_min_length,
     place_regions,
 )
+from . import _spec  # the search's tunables, read when used
 from ._candidates import (
     Candidates,
     EdgeSets,
@@ -35,7 +36,9 @@ from ._candidates import (
     _lex_greater,
     grasp_geometry,
 )
-from ._spec import KEEP_FOR_MEASURE, PlanSpec
+from ._spec import (
+    PlanSpec,
+)
 
 # ----------------------------------------------------------------------------- regions
 
@@ -344,9 +347,9 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
         else:
             rows, lv, a_, b_, md = order, *_levels(c, order, margin)
     else:
-        if top is not None and order.size > KEEP_FOR_MEASURE:
+        if top is not None and order.size > _spec.KEEP_FOR_MEASURE:
             # a subsequence of order: still by decreasing bound
-            order = order[_keep_best(c.score[order], KEEP_FOR_MEASURE)]
+            order = order[_keep_best(c.score[order], _spec.KEEP_FOR_MEASURE)]
         rows = order
         lv, a_, b_, md = _levels(c, rows, margin)
         if progress is not None:
