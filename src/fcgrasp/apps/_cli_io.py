@@ -106,12 +106,8 @@ def _load(args: Any, say: Any = "stderr") -> Any:
     if say == "stderr":
         say = None if args.quiet else _stderr
     if say is not None:
-        if part.count > 1:
-            name = f" ({part.id})" if part.id else ""
-            say(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
-                f"(see fcgrasp parts)")
-        for note in part.notes:
-            say(f"fcgrasp: {part.source}: {note}")
+        for line in part.notices():
+            say(line)
     return part
 
 

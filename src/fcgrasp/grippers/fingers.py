@@ -55,6 +55,8 @@ class _PointFingers:
 
     fingers: ClassVar[int]
     name: ClassVar[str]
+    #: why a part has no plan (``{mu}``: the friction coefficient)
+    NONE: ClassVar[str]
     mu: float = 0.0
     gravity: tuple[float, float] | None = None
     hand: Hand | None = None
@@ -118,11 +120,7 @@ class _PointFingers:
         extra = f" with a margin of {margin:g} degrees"
         if self.hand is not None:
             extra += " within the hand's reach"
-        return self._none + extra
-
-    @property
-    def _none(self) -> str:
-        raise NotImplementedError
+        return self.NONE.format(mu=self.mu) + extra
 
     @property
     def title(self) -> str:
@@ -135,6 +133,7 @@ class TwoFingers(_PointFingers):
 
     fingers: ClassVar[int] = 2
     name: ClassVar[str] = "two_fingers"
+    NONE: ClassVar[str] = "no pair of edges admits two fingers with mu = {mu:g}"
 
     def _search(self, polygon: Polygon, spec: PlanSpec,
                 options: SearchOptions) -> list[GraspPlan]:
@@ -150,10 +149,6 @@ class TwoFingers(_PointFingers):
             return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
         return super().no_grasp_reason(margin)
 
-    @property
-    def _none(self) -> str:
-        return f"no pair of edges admits two fingers with mu = {self.mu:g}"
-
 
 @dataclass(frozen=True)
 class ThreeFingers(_PointFingers):
@@ -161,6 +156,7 @@ class ThreeFingers(_PointFingers):
 
     fingers: ClassVar[int] = 3
     name: ClassVar[str] = "three_fingers"
+    NONE: ClassVar[str] = "no three edges admit three fingers with mu = {mu:g}"
 
     def _search(self, polygon: Polygon, spec: PlanSpec,
                 options: SearchOptions) -> list[GraspPlan]:
@@ -170,10 +166,6 @@ class ThreeFingers(_PointFingers):
                      edges: list[int]) -> list[GraspPlan]:
         return three_finger_plans(polygon, spec, edges=edges)
 
-    @property
-    def _none(self) -> str:
-        return f"no three edges admit three fingers with mu = {self.mu:g}"
-
 
 @dataclass(frozen=True)
 class ThreeFrictionless(_PointFingers):
@@ -181,11 +173,8 @@ class ThreeFrictionless(_PointFingers):
 
     fingers: ClassVar[int] = 3
     name: ClassVar[str] = "three_frictionless"
+    NONE: ClassVar[str] = "no three edges hold the part against gravity with frictionless fingers"
     gravity: tuple[float, float] | None = (0.0, -1.0)
-
-    @property
-    def _none(self) -> str:
-        return "no three edges hold the part against gravity with frictionless fingers"
 
 
 @dataclass(frozen=True)
@@ -195,10 +184,7 @@ class FourFingers(_PointFingers):
 
     fingers: ClassVar[int] = 4
     name: ClassVar[str] = "four_fingers"
-
-    @property
-    def _none(self) -> str:
-        return "no four edges (or three, two fingers on one) admit frictionless fingers"
+    NONE: ClassVar[str] = "no four edges (or three, two fingers on one) admit frictionless fingers"
 
 
 #: The point-finger gripper of ``(fingers, with gravity)``.

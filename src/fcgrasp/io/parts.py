@@ -129,6 +129,16 @@ class Part:
     chosen: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
 
+    def notices(self) -> list[str]:
+        """What a front end tells the user about this part: which one of the file was
+        taken when it holds several, and the reader's notes (one line each)."""
+        out = []
+        if self.count > 1:
+            name = f" ({self.id})" if self.id else ""
+            out.append(f"fcgrasp: {self.source}: took part {self.index}{name}, {self.chosen} "
+                       f"(see fcgrasp parts)")
+        return out + [f"fcgrasp: {self.source}: {note}" for note in self.notes]
+
     def to_dict(self) -> dict[str, Any]:
         """Where the part came from, for the JSON reports."""
         return {"file": self.source, "format": self.format, "index": self.index,

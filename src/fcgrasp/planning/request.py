@@ -266,12 +266,8 @@ class PlanRequest:
         the reader's notes are said with ``say``."""
         part = load_part(self.part, self.select, **self.reading())
         if say is not None:
-            if part.count > 1:
-                name = f" ({part.id})" if part.id else ""
-                say(f"fcgrasp: {part.source}: took part {part.index}{name}, {part.chosen} "
-                    f"(see fcgrasp parts)")
-            for note in part.notes:
-                say(f"fcgrasp: {part.source}: {note}")
+            for line in part.notices():
+                say(line)
         return part
 
 
