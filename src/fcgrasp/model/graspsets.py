@@ -543,35 +543,48 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
     if fingers not in (2, 3, 4) or isinstance(fingers, bool):
         raise ValueError(f"fingers must be 2, 3 or 4, got {fingers!r}")
     mu_v = float(check_mu(mu, "mu"))
-    idx = np.flatnonzero(polygon.usable)
+    yield from _SETS[fingers](polygon, np.flatnonzero(polygon.usable), mu_v, soft, gravity,
+                              tol)
+
+
+def _pair_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+               tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
+    """Two fingers: every pair of edges (and of soft fingers at convex vertices)."""
+    feats: list[Any] = [int(i) for i in idx]
+    if soft:
+        conv = polygon.convex_vertices()
+        feats += [Vertex(int(e)) for e in idx if conv[polygon.previous_edge(int(e))]]
+    for a, b in combinations(feats, 2):
+        gs = grasp_set(polygon, (a, b), mu=mu, tol=tol)
+        if not gs.is_empty:
+            yield gs
+
+
+def _quad_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+               tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
+    """Four frictionless fingers: 4-tuples, and three edges with one taken twice."""
+    if mu != 0.0:
+        raise ValueError(f"four-finger grasp sets are frictionless: mu must be 0, got {mu}")
     force = -polygon.normals
-    if fingers == 2:
-        feats: list[Any] = [int(i) for i in idx]
-        if soft:
-            conv = polygon.convex_vertices()
-            feats += [Vertex(int(e)) for e in idx if conv[polygon.previous_edge(int(e))]]
-        for a, b in combinations(feats, 2):
-            gs = grasp_set(polygon, (a, b), mu=mu_v, tol=tol)
+    quads = np.array(list(combinations(idx, 4)), dtype=int).reshape(-1, 4)
+    ok = _spans_all_directions(force[quads], tol) if len(quads) else np.zeros(0, bool)
+    for q in quads[ok]:
+        gs = grasp_set(polygon, tuple(int(x) for x in q), tol=tol)
+        if not gs.is_empty:
+            yield gs
+    trips = np.array(list(combinations(idx, 3)), dtype=int).reshape(-1, 3)
+    ok3 = _spans_all_directions(force[trips], tol) if len(trips) else np.zeros(0, bool)
+    for t in trips[ok3]:
+        for gs in three_edge_grasp_sets(polygon, tuple(int(x) for x in t), tol=tol):
             if not gs.is_empty:
                 yield gs
-        return
-    if fingers == 4:
-        if mu_v != 0.0:
-            raise ValueError(f"four-finger grasp sets are frictionless: mu must be 0, got {mu}")
-        quads = np.array(list(combinations(idx, 4)), dtype=int).reshape(-1, 4)
-        ok = _spans_all_directions(force[quads], tol) if len(quads) else np.zeros(0, bool)
-        for q in quads[ok]:
-            gs = grasp_set(polygon, tuple(int(x) for x in q), tol=tol)
-            if not gs.is_empty:
-                yield gs
-        trips = np.array(list(combinations(idx, 3)), dtype=int).reshape(-1, 3)
-        ok3 = _spans_all_directions(force[trips], tol) if len(trips) else np.zeros(0, bool)
-        for t in trips[ok3]:
-            for gs in three_edge_grasp_sets(polygon, tuple(int(x) for x in t), tol=tol):
-                if not gs.is_empty:
-                    yield gs
-        return
+
+
+def _gravity_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+                  tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
+    """Three frictionless fingers and gravity (default straight down)."""
     g = check_direction((0.0, -1.0) if gravity is None else gravity, "gravity")
+    force = -polygon.normals
     trips = np.array(list(combinations(idx, 3)), dtype=int).reshape(-1, 3)
     if len(trips) == 0:
         return
@@ -580,3 +593,7 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
         gs = grasp_set(polygon, tuple(int(x) for x in t), gravity=g, tol=tol)
         if not gs.is_empty:
             yield gs
+
+
+#: The grasp sets :func:`grasp_sets` enumerates, by number of fingers.
+_SETS = {2: _pair_sets, 3: _gravity_sets, 4: _quad_sets}
