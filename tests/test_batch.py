@@ -245,3 +245,21 @@ def test_a_large_part_is_split_across_the_cluster(monkeypatch):
     assert sum("_plan_group" in k for k in names) == 1     # the small part, as a group
     for k in whole:
         assert split[k]["error"] is None and split[k]["grasps"] == whole[k]["grasps"]
+
+
+def test_a_folder_is_walked_and_only_part_files_are_parts(tmp_path):
+    """`fcgrasp batch DIR` did not look into subfolders and counted a README or a .tsv
+    as a failed part."""
+    ring = '{"vertices": [[0, 0], [40, 0], [40, 20], [0, 20]]}'
+    (tmp_path / "a.json").write_text(ring)
+    (tmp_path / "sub" / "deeper").mkdir(parents=True)
+    (tmp_path / "sub" / "b.json").write_text(ring)
+    (tmp_path / "sub" / "deeper" / "c.wkt").write_text("POLYGON ((0 0, 9 0, 9 4, 0 4, 0 0))")
+    (tmp_path / "README").write_text("parts of the widget")
+    (tmp_path / "sub" / "table.tsv").write_text("a\tb\n")
+    (tmp_path / ".hidden").mkdir()
+    (tmp_path / ".hidden" / "d.json").write_text(ring)
+    want = [str(tmp_path / "a.json"), str(tmp_path / "sub" / "b.json"),
+            str(tmp_path / "sub" / "deeper" / "c.wkt")]
+    assert batch.part_files(str(tmp_path)) == sorted(want)
+    assert batch.part_files(str(tmp_path / "**" / "*")) == sorted(want)

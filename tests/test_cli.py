@@ -291,3 +291,12 @@ def test_fuzz_readers_never_traceback(tmp_path, capsys):
         assert code in (0, 2), err
         if code:
             assert len(err.strip().splitlines()) == 1 and "Traceback" not in err
+
+
+def test_the_resistance_column_says_its_unit(capsys):
+    """The resistance changed 25.4 times between --units mm and --units in, unlabelled:
+    it is 1 / work, per unit of the part's length."""
+    for units in ("mm", "in"):
+        assert main(["plan", "demo:blob", "--units", units, "--top", "1"]) == 0
+        header = capsys.readouterr().out.splitlines()[0]
+        assert f"resistance (1/{units})" in header and f"regions ({units})" in header

@@ -423,3 +423,24 @@ def test_every_option_has_help():
         for a in p._actions:
             if a.dest != "help":
                 assert a.help, (name, a.dest)
+
+
+@pytest.mark.parametrize(("name", "text"), [
+    ("z.wkt", "POLYGON Z ((0 0 1, 10 0 1, 10 5 2, 0 5 2, 0 0 1))"),
+    ("z.geojson", '{"type": "Polygon", "coordinates": '
+                  '[[[0, 0, 1], [10, 0, 1], [10, 5, 2], [0, 5, 2], [0, 0, 1]]]}'),
+])
+def test_z_coordinates_are_dropped_and_said(tmp_path, name, text):
+    """WKT (or GeoJSON) with Z values was refused with an array dump."""
+    from fcgrasp.io.parts import load_part
+
+    path = tmp_path / name
+    path.write_text(text)
+    part = load_part(str(path))
+    assert part.polygon.vertices.shape == (4, 2) and abs(part.polygon.area - 50) < 1e-12
+    assert any("Z coordinates dropped" in n for n in part.notes)
+    flat = tmp_path / ("flat" + path.suffix)
+    flat.write_text(text.replace(" Z", "").replace(", 1]", "]").replace(", 2]", "]")
+                    .replace(" 1,", ",").replace(" 2,", ",").replace(" 1))", "))"))
+    assert np.allclose(load_part(str(flat)).polygon.vertices, part.polygon.vertices)
+    assert not load_part(str(flat)).notes

@@ -229,6 +229,17 @@ def _children(pid: int) -> list[int]:
     return out
 
 
+def _ignores_sigint(pid: int) -> bool:
+    try:
+        status = Path(f"/proc/{pid}/status").read_text()
+    except OSError:
+        return False
+    for line in status.splitlines():
+        if line.startswith("SigIgn:"):
+            return bool(int(line.split()[1], 16) & (1 << (signal.SIGINT - 1)))
+    return False
+
+
 def _alive(pid: int) -> bool:
     try:
         state = Path(f"/proc/{pid}/stat").read_text().rsplit(")", 1)[1].split()[0]
@@ -256,6 +267,39 @@ def test_workers_die_with_a_killed_batch(tmp_path):
     assert len(workers) == 2, "the batch ended before its workers were seen"
     os.kill(proc.pid, signal.SIGKILL)
     proc.wait()
+    while any(_alive(w) for w in workers) and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert not any(_alive(w) for w in workers)
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux's /proc")
+def test_ctrl_c_in_a_batch_is_one_line_and_no_worker_traceback(tmp_path):
+    """Ctrl-C (SIGINT to the terminal's process group) printed a worker's traceback."""
+    folder = tmp_path / "parts"
+    folder.mkdir()
+    for k in range(4):
+        (folder / f"cam{k}.json").write_text(
+            '{"vertices": ' + str(fc.io.parts.demo_part("cam").vertices.tolist()) + "}")
+    proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "batch", str(folder), "--out",
+                             str(tmp_path / "r.jsonl"), "--workers", "2", "--fingers", "3",
+                             "--mu", "0.5"], stderr=subprocess.PIPE, text=True,
+                            start_new_session=True)
+    workers: list[int] = []
+    deadline = time.monotonic() + 600          # only against a hang, never reached
+    while len(workers) < 2 and proc.poll() is None and time.monotonic() < deadline:
+        workers = [c for c in _children(proc.pid) if _alive(c)]
+        time.sleep(0.05)
+    assert len(workers) == 2, "the batch ended before its workers were seen"
+    # Ctrl-C is the batch's to handle: its workers ignore SIGINT (bit 2 of SigIgn)
+    while not all(_ignores_sigint(w) for w in workers) and all(map(_alive, workers)) \
+            and time.monotonic() < deadline:
+        time.sleep(0.05)
+    assert all(_ignores_sigint(w) for w in workers)
+    time.sleep(0.5)                            # the workers are planning
+    os.killpg(proc.pid, signal.SIGINT)
+    err = proc.communicate(timeout=600)[1]
+    assert proc.returncode == 130, err
+    assert "Traceback" not in err and err.strip().splitlines()[-1] == "fcgrasp: interrupted"
     while any(_alive(w) for w in workers) and time.monotonic() < deadline:
         time.sleep(0.05)
     assert not any(_alive(w) for w in workers)

@@ -134,8 +134,9 @@ def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
 def _print_table(plans: list[Any], units: str, out: Any) -> None:
     if not plans:
         return
+    # the resistance is 1 / work (section 8.1): per unit force and per unit of length
     print(f"{'rank':>4}  {'edges':<20} {'min region':>11}  {'regions (' + units + ')':<24} "
-          f"{'resistance':>10} {'eps L1':>8}", file=out)
+          f"{'resistance (1/' + units + ')':>18} {'eps L1':>8}", file=out)
     for k, p in enumerate(plans):
         q = p.quality
         regs = ", ".join(f"{x:.3g}" for x in p.lengths)
@@ -143,7 +144,7 @@ def _print_table(plans: list[Any], units: str, out: Any) -> None:
         edges = " ".join(str(r[0]) if len(r) == 1 else f"{r[0]}-{r[-1]}"
                          for r in p.region_edges)
         print(f"{k + 1:>4}  {edges:<20} {p.min_length:>11.4g}  {regs:<24} "
-              f"{q['resistance']:>10.4g} {q['epsilon_l1']:>8.4g}", file=out)
+              f"{q['resistance']:>18.4g} {q['epsilon_l1']:>8.4g}", file=out)
 
 
 def _stderr(text: str) -> None:

@@ -52,16 +52,23 @@ GROUP_SIZE = 8
 LARGE_EDGES = 500
 
 def part_files(pattern: str) -> list[str]:
-    """The part files of a folder (every file of a known format, sorted) or of a glob
-    pattern (sorted)."""
+    """The part files of a folder and its subfolders, or of a glob pattern: every file of
+    a format fcgrasp reads (by its extension: a README or a table beside the parts is
+    not a part), hidden files and folders left out, sorted."""
     from ..io.parts import FORMATS
 
+    def is_part(path: str) -> bool:
+        name = os.path.basename(path)
+        return (not name.startswith(".") and os.path.splitext(name)[1].lower() in FORMATS
+                and os.path.isfile(path))
+
     if os.path.isdir(pattern):
-        names = sorted(os.listdir(pattern))
-        return [os.path.join(pattern, n) for n in names
-                if os.path.splitext(n)[1].lower() in FORMATS
-                and os.path.isfile(os.path.join(pattern, n))]
-    return sorted(p for p in glob.glob(pattern, recursive=True) if os.path.isfile(p))
+        found = []
+        for root, dirs, names in os.walk(pattern):
+            dirs[:] = sorted(d for d in dirs if not d.startswith("."))
+            found += [os.path.join(root, n) for n in names if is_part(os.path.join(root, n))]
+        return sorted(found)
+    return sorted(p for p in glob.glob(pattern, recursive=True) if is_part(p))
 
 
 def _content_hash(item: Any) -> str:
@@ -168,7 +175,11 @@ def _die_with(parent: int) -> None:
 
 def _worker(conn: Any, parent: int | None = None) -> None:
     """A local worker: plans the tasks it receives until it receives None; it dies with
-    its ``parent`` (the batch's process)."""
+    its ``parent`` (the batch's process).  Ctrl-C is the parent's to handle (a terminal
+    sends it to every process of the group): a worker ignores it and is stopped by it."""
+    import signal
+
+    signal.signal(signal.SIGINT, signal.SIG_IGN)
     if parent is not None:
         _die_with(parent)
     while True:

@@ -54,6 +54,7 @@ class Shape:
     layer: str | None = None
     flatten: float | None = None          # flattening tolerance used (file units)
     background: bool = False              # a canvas-filling background (SVG icons)
+    had_z: bool = False                   # Z coordinates were dropped (WKT, GeoJSON)
 
 
 @dataclass

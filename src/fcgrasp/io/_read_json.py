@@ -4,6 +4,7 @@ WKT, and :func:`read_json`, the one reader of every JSON input."""
 from __future__ import annotations
 
 import json
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -60,7 +61,8 @@ def _json_drawing(data: Any, where: str) -> Drawing:
         return Drawing([_as_shape(data["vertices"], holes, where)], units,
                        f"'units' of the JSON: {units}" if units else "not given by the file")
     if "type" in data:
-        return Drawing(_geojson_shapes(data, where))
+        shapes = _geojson_shapes(data, where)
+        return Drawing(shapes, notes=_z_notes(shapes))
     raise ValueError(f"{where}: no 'vertices' and no GeoJSON 'type'")
 
 
@@ -121,15 +123,24 @@ def _polygons_of(g: Any, where: str, tags: tuple[str, ...]) -> list[Shape]:
     import shapely
 
     polys = [p for p in shapely.get_parts(g) if p.geom_type == "Polygon" and not p.is_empty]
+    had_z = [bool(shapely.has_z(p)) for p in polys]
+    polys = [shapely.force_2d(p) for p in polys]           # a planar part: Z is dropped
     out = []
     base = tags[0] if tags else None
     for j, p in enumerate(polys):
         sid = base if len(polys) == 1 else (f"{base}#{j + 1}" if base else f"#{j + 1}")
-        out.append(_as_shape(np.asarray(p.exterior.coords),
-                             [np.asarray(h.coords) for h in p.interiors],
-                             where + (f" polygon {j + 1}" if len(polys) > 1 else ""), sid,
-                             (*tags, sid) if sid else tags))
+        holes = [np.asarray(h.coords) for h in p.interiors]
+        shape = _as_shape(np.asarray(p.exterior.coords), holes,
+                          where + (f" polygon {j + 1}" if len(polys) > 1 else ""), sid,
+                          (*tags, sid) if sid else tags)
+        out.append(replace(shape, had_z=had_z[j]))
     return out
+
+
+def _z_notes(shapes: list[Shape]) -> list[str]:
+    """The note a drawing gets when Z coordinates were dropped from its polygons."""
+    return ["Z coordinates dropped: a part is planar, its outline taken in x, y"] \
+        if any(s.had_z for s in shapes) else []
 
 
 def _wkt_drawing(text: str, where: str) -> Drawing:
@@ -164,7 +175,7 @@ def _wkt_drawing(text: str, where: str) -> Drawing:
         shapes += _polygons_of(g, w, (tag,) if tag else ())
     if not shapes:
         raise ValueError(f"{where}: no polygon (found {', '.join(sorted(kinds)) or 'empty'})")
-    return Drawing(shapes)
+    return Drawing(shapes, notes=_z_notes(shapes))
 
 
 def _text(data: bytes, spec: str) -> str:
