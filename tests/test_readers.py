@@ -444,3 +444,25 @@ def test_z_coordinates_are_dropped_and_said(tmp_path, name, text):
                     .replace(" 1,", ",").replace(" 2,", ",").replace(" 1))", "))"))
     assert np.allclose(load_part(str(flat)).polygon.vertices, part.polygon.vertices)
     assert not load_part(str(flat)).notes
+
+
+def test_an_opaque_rgba_image_with_clear_corners_is_read_by_its_colours(tmp_path):
+    """An RGBA PNG opaque but for a few corner pixels read as "no silhouette found",
+    even with --threshold."""
+    from PIL import Image
+
+    from fcgrasp.io.parts import load_part
+
+    rgba = np.full((60, 80, 4), 255, np.uint8)
+    rgba[20:40, 25:55, :3] = 0                       # a dark 30 x 20 rectangle
+    rgba[0, 0, 3] = rgba[0, -1, 3] = rgba[-1, 0, 3] = 0
+    path = tmp_path / "icon.png"
+    Image.fromarray(rgba, "RGBA").save(path)
+    for threshold in (None, 0.5):
+        part = load_part(str(path), threshold=threshold)
+        assert abs(part.polygon.area - 600) < 60, part.polygon.area
+    clear = rgba.copy()
+    clear[..., 3] = 0
+    clear[20:40, 25:55, 3] = 255                     # a transparent background: alpha rules
+    Image.fromarray(clear, "RGBA").save(path)
+    assert abs(load_part(str(path)).polygon.area - 600) < 60

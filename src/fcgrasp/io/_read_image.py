@@ -12,6 +12,9 @@ from ._drawing import Drawing, Shape, TolOf
 
 #: Blobs smaller than this fraction of the largest one (or than 9 pixels) are noise.
 MIN_BLOB = 1e-3
+#: An alpha channel is the silhouette when at least this fraction of the image is
+#: transparent (a few clear corner pixels of an opaque picture are not a background).
+MIN_TRANSPARENT = 0.01
 
 
 def _gray(img: np.ndarray) -> np.ndarray:
@@ -20,7 +23,8 @@ def _gray(img: np.ndarray) -> np.ndarray:
     img = np.asarray(img)
     if img.ndim == 3 and img.shape[2] in (2, 4):
         alpha = img[..., -1].astype(float)
-        if np.ptp(alpha) > 0:                  # a transparent background: alpha is the part
+        clear = alpha < 0.5 * float(alpha.max())
+        if clear.mean() >= MIN_TRANSPARENT:    # a transparent background: alpha is the part
             return 1.0 - alpha / max(float(alpha.max()), 1.0)
         img = img[..., :-1]
     if img.ndim == 3 and img.shape[2] == 3:
