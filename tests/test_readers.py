@@ -466,3 +466,18 @@ def test_an_opaque_rgba_image_with_clear_corners_is_read_by_its_colours(tmp_path
     clear[20:40, 25:55, 3] = 255                     # a transparent background: alpha rules
     Image.fromarray(clear, "RGBA").save(path)
     assert abs(load_part(str(path)).polygon.area - 600) < 60
+
+
+def test_slivers_are_not_parts(tmp_path):
+    """Sliver parts of 5e-4 mm (drafting leftovers beside a plate) were listed as parts."""
+    from fcgrasp.io.parts import list_parts
+
+    path = tmp_path / "plate.wkt"
+    path.write_text("MULTIPOLYGON (((0 0, 100 0, 100 50, 0 50, 0 0)),"
+                    " ((200 0, 210 0, 210 0.0005, 200 0.0005, 200 0)),"
+                    " ((300 0, 303 0, 303 3, 300 3, 300 0)))")
+    parts = list_parts(str(path))
+    assert [round(p.polygon.area, 6) for p in parts] == [5000.0, 9.0]   # the 3 mm one stays
+    assert any("1 sliver" in n for n in parts[0].notes)
+    path.write_text("POLYGON ((200 0, 210 0, 210 0.0005, 200 0.0005, 200 0))")
+    assert len(list_parts(str(path))) == 1             # alone, a thin part is the part

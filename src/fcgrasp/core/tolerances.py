@@ -120,7 +120,12 @@ GAP_REL = 1e-6
 #: would only multiply edges (a circle at 1e-6 already has about 2,000).
 FLATTEN_FINEST = 1e-6
 
+#: A drawn piece thinner than this (twice its area over its perimeter), relative to the
+#: size of the file's largest piece, is a sliver of the drawing, not a part.
+SLIVER_REL = 1e-4
+
 __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE",
            "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
-           "LEVEL_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST"]
+           "LEVEL_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST",
+           "SLIVER_REL"]

@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import check_scalar
-from ..core.tolerances import FLATTEN_FINEST, TINY
+from ..core.tolerances import FLATTEN_FINEST, SLIVER_REL, TINY
 from ..model.outline import CLEAN_TOL, clean_outline, simplify_outline
 from ..model.polygon import Polygon
 from ._drawing import Drawing, Shape
@@ -403,7 +403,7 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
     data = _read_bytes(spec)
     try:
         fmt = sniff_format(spec, data[:512])
-        d = _drawing(data, spec, fmt, opt)
+        d = _without_slivers(_drawing(data, spec, fmt, opt))
         return [_part(s, k, len(d.shapes), spec, fmt, d, opt) for k, s in enumerate(d.shapes)]
     except (ValueError, TypeError) as exc:
         msg = str(exc)
@@ -415,6 +415,25 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
     except Exception as exc:  # noqa: BLE001 - malformed files surface in many ways
         raise ValueError(f"{spec}: cannot read ({type(exc).__name__}: "
                          f"{' '.join(str(exc).split())[:120]})") from None
+
+
+def _without_slivers(d: Drawing) -> Drawing:
+    """The drawing less its slivers: pieces thinner (twice the area over the perimeter)
+    than :data:`~fcgrasp.core.tolerances.SLIVER_REL` of the largest piece's size, which
+    no gripper could hold and which are left by drafting (a note says how many)."""
+    if len(d.shapes) < 2:
+        return d
+    big = max(d.shapes, key=lambda s: s.polygon.area).polygon
+    x0, y0, x1, y1 = big.bounds
+    floor = SLIVER_REL * max(x1 - x0, y1 - y0)
+    kept = [s for s in d.shapes
+            if s.polygon.length == 0 or 2 * s.polygon.area / s.polygon.length >= floor]
+    if len(kept) == len(d.shapes):
+        return d
+    gone = len(d.shapes) - len(kept)
+    return replace(d, shapes=kept, notes=[*d.notes, f"{gone} sliver{'s' * (gone > 1)} "
+                                          f"(thinner than {SLIVER_REL:g} of the largest "
+                                          f"part) left out"])
 
 
 def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
