@@ -409,6 +409,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="circular workspace of the fingertips")
         p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
                        help="fingertip radius (default 0)")
+        p.add_argument("--distinct", type=float, default=0.0, metavar="FRACTION",
+                       help="keep only distinct alternatives: drop a plan whose regions "
+                            "overlap a better plan's by more than FRACTION of the shorter "
+                            "(0.5 is a good choice; default 0: every plan, as ranked)")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")

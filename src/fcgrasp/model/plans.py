@@ -63,6 +63,9 @@ class GraspPlan:
         ``epsilon_linf`` (see :mod:`fcgrasp.model.quality`).
     region_edges : tuple of tuple of int
         The edges each region covers, in order along it (default: ``(edges[i],)``).
+    similar : tuple of tuple of int
+        With distinct plans (``plan(..., distinct=)``), the edges of the lower-ranked
+        plans this one stands for (the same alternative); in the JSON as ``similar``.
     """
 
     edges: tuple[int, ...]
@@ -80,6 +83,8 @@ class GraspPlan:
     disturbance: tuple[float, float] = field(default=(10.0, 15.0), repr=False, compare=False)
     region_edges: tuple[tuple[int, ...], ...] = ()
     _quality: dict[str, float] | None = field(default=None, repr=False, compare=False)
+    #: the edges of the lower-ranked plans this one stands for (:mod:`fcgrasp.model.distinct`)
+    similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.regions = tuple(np.asarray(r, dtype=float).reshape(-1, 2) for r in self.regions)
@@ -197,6 +202,8 @@ class GraspPlan:
         }
         if self.gravity is not None:
             d["gravity"] = dict(self.gravity)
+        if self.similar:
+            d["similar"] = [list(e) for e in self.similar]
         return cast("dict[str, Any]", json_ready(d))
 
 

@@ -20,11 +20,14 @@ frictionless contact at the centroid, section 3.1).
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
+from ..core._checks import check_scalar
 from ..core.tolerances import SOLVER_TOL
 from ..grippers.base import Gripper, SearchOptions
 from ..grippers.fingers import point_fingers, regions_on
+from ..model.distinct import distinct_plans
 from ..model.hand import Hand
 from ..model.plans import GraspPlan, geometric_key, rank_key
 from ..model.polygon import Polygon, check_polygon
@@ -45,7 +48,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True,
-         gripper: Any = None, map: Any = None) -> list[Any]:
+         gripper: Any = None, map: Any = None, distinct: float = 0.0) -> list[Any]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -95,6 +98,13 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         Dask cluster): the single-edge search (:func:`fcgrasp.pipeline.search`) of two
         fingers without stretches, and of three frictionless or four fingers, uses it;
         the answer is the same.
+    distinct : float
+        0 (the default): every plan, as ranked.  A fraction in (0, 1]: the ``top``
+        plans that are distinct alternatives, each standing for the lower-ranked plans
+        whose regions overlap its own by more than that fraction (``similar``; see
+        :mod:`fcgrasp.model.distinct`; :data:`~fcgrasp.model.distinct.DEFAULT_DISTINCT`
+        is 0.5).  The search is asked for more plans until ``top`` distinct ones are
+        found or :data:`DISTINCT_DEPTH` times ``top`` were searched.
     along_boundary : bool
         Without a hand, regions are stretches of the boundary that may cover several
         edges and the vertices between them: for two fingers the exact optimum
@@ -123,7 +133,33 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     options = SearchOptions(top=top, rank_by=rank_by, margin=margin,
                             disturbance=_check_disturbance(disturbance), tol=tol,
                             max_memory=max_memory, progress=progress, map=map)
-    return list(gripper.plan(polygon, options))
+    return _distinct(polygon, gripper, options, distinct)
+
+
+#: ``distinct=``: the search is asked for at most this many times ``top`` plans.
+DISTINCT_DEPTH = 32
+
+
+def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
+              distinct: Any) -> list[Any]:
+    """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
+    (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for twice as
+    many plans until ``top`` distinct ones are found, it has no more, or it was asked for
+    :data:`DISTINCT_DEPTH` times ``top``."""
+    fraction = check_scalar(distinct, "distinct", nonnegative=True)
+    if fraction > 1:
+        raise ValueError(f"distinct must be a fraction in [0, 1], got {distinct!r}")
+    plans = list(gripper.plan(polygon, options))
+    if fraction == 0:
+        return plans
+    top, ask = options.top, options.top
+    kept = distinct_plans(plans, fraction, polygon.size)
+    while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
+            and ask < DISTINCT_DEPTH * top:
+        ask = min(2 * ask, DISTINCT_DEPTH * top)
+        plans = list(gripper.plan(polygon, replace(options, top=ask)))
+        kept = distinct_plans(plans, fraction, polygon.size)
+    return kept[:top] if top is not None else kept
 
 
 def _short_form_unused(gripper: Any, **given: tuple[Any, Any]) -> None:

@@ -38,7 +38,7 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 #: The options of a request that say how to plan (the gripper's and the search's).
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
-                "max_memory")
+                "max_memory", "distinct")
 #: Figures a plan can be drawn into.
 FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
@@ -69,6 +69,7 @@ def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
 _KINDS: dict[str, Any] = {
     "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
+    "distinct": "float",
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
@@ -132,6 +133,7 @@ class PlanRequest:
     workspace: tuple[float, float, float] | None = None
     finger_radius: float = 0.0
     max_memory: int | None = None
+    distinct: float = 0.0
     select: str | None = None
     units: str | None = None
     file_units: str | None = None
@@ -152,7 +154,7 @@ class PlanRequest:
             if f.init:
                 value = getattr(self, f.name)
                 if f.name in ("top", "margin", "finger_radius", "part", "gripper",
-                              "rank_by", "single_edge", "y_down", "no_clean") \
+                              "rank_by", "single_edge", "y_down", "no_clean", "distinct") \
                         and value is None:
                     raise TypeError(f"{f.name} must be given, got None")
                 object.__setattr__(self, f.name, _check_kind(f.name, value))
@@ -185,6 +187,8 @@ class PlanRequest:
         if self.file_units is not None and self.file_units not in FILE_UNITS:
             raise _fail("file_units", f"--file-units must be one of {', '.join(FILE_UNITS)}, "
                                       f"got {self.file_units!r}")
+        if not 0 <= self.distinct <= 1:
+            raise _fail("distinct", f"--distinct is a fraction in [0, 1], got {self.distinct:g}")
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
@@ -316,8 +320,11 @@ def plan_document(request: PlanRequest, part: Part | None = None,
             f"{duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
     plans = plan(polygon, gripper=gripper, top=options.top, rank_by=options.rank_by,
                  margin=options.margin, disturbance=options.disturbance,
-                 max_memory=options.max_memory, progress=progress, map=map)
+                 max_memory=options.max_memory, progress=progress, map=map,
+                 distinct=request.distinct)
     params = gripper.parameters(options)
+    if request.distinct:
+        params["distinct"] = request.distinct
     reason = None if plans else gripper.no_grasp_reason(request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
     return PlanDocument(report, plans, polygon, units, reason,

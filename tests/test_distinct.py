@@ -1,0 +1,116 @@
+"""Distinct alternatives (fcgrasp.model.distinct): the overlap of two regions against an
+independent estimate (dense points along one polyline, their distance to the other's
+segments), and the suppression's invariants on seeded random parts and curved ones."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.model.distinct import distinct_plans, region_overlap, same_alternative
+
+from .shapes import random_polygon, star
+
+
+def _dist_to_polyline(p, line):
+    a, d = line[:-1], np.diff(line, axis=0)
+    dd = np.maximum(np.einsum("ij,ij->i", d, d), 1e-300)
+    s = np.clip(np.einsum("kij,ij->ki", p[:, None, :] - a[None], d) / dd, 0, 1)
+    q = a[None] + s[..., None] * d[None]
+    return np.min(np.hypot(*(q - p[:, None, :]).transpose(2, 0, 1)), axis=1)
+
+
+def _sampled_overlap(a, b, tol):
+    """Length of ``a`` within ``tol`` of ``b``, by 4,000 points along each segment."""
+    total = 0.0
+    for p0, p1 in zip(a[:-1], a[1:], strict=True):
+        t = (np.arange(4000) + 0.5) / 4000
+        pts = p0 + t[:, None] * (p1 - p0)
+        total += np.hypot(*(p1 - p0)) * np.mean(_dist_to_polyline(pts, b) <= tol)
+    return total
+
+
+def _plans(seed):
+    rng = np.random.default_rng(seed)
+    parts = [fc.Polygon(star(rng, n=int(rng.integers(20, 60)))) for _ in range(2)]
+    parts.append(random_polygon(rng, "star"))
+    return [(part, fc.plan(part, fingers=2, mu=float(rng.uniform(0.2, 0.6)), top=25))
+            for part in parts]
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                      for s in range(1, 6))])
+def test_region_overlap_matches_a_sampled_estimate(seed):
+    checked = 0
+    for part, plans in _plans(seed):
+        tol = 1e-9 * part.size
+        regions = [r for p in plans for r in p.regions]
+        for a in regions[:12]:
+            for b in regions[:12]:
+                exact = region_overlap(a, b, tol)
+                est = _sampled_overlap(a, b, 1e-7 * part.size)
+                la = float(np.sum(np.hypot(*np.diff(a, axis=0).T)))
+                assert abs(exact - est) <= 2e-3 * la + 1e-9 * part.size, (exact, est, la)
+                checked += 1
+    assert checked > 200
+
+
+@pytest.mark.parametrize("fraction", [0.2, 0.5, 0.9])
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+def test_suppression_keeps_distinct_plans_and_accounts_for_the_rest(seed, fraction):
+    for part, plans in _plans(seed):
+        tol = 1e-12 * part.size
+        kept = distinct_plans(plans, fraction, part.size)
+        # copies of the plans kept, in rank order, the first plan always kept
+        rank = {id(p): k for k, p in enumerate(plans)}
+        for p in kept:
+            rank[id(p)] = next(k for k, q in enumerate(plans) if q.edges == p.edges
+                               and np.array_equal(q.lengths, p.lengths))
+        assert [rank[id(p)] for p in kept] == sorted(rank[id(p)] for p in kept)
+        assert rank[id(kept[0])] == 0 and all(not p.similar for p in plans)
+        for i, p in enumerate(kept):
+            for q in kept[i + 1:]:
+                assert not same_alternative(p, q, fraction, tol)
+        # every other plan is the same alternative as the first better kept plan it
+        # matches, and that plan lists it
+        kept_ranks = {rank[id(p)] for p in kept}
+        for k, q in enumerate(plans):
+            if k in kept_ranks:
+                continue
+            twin = next(p for p in kept if rank[id(p)] < k
+                        and same_alternative(p, q, fraction, tol))
+            assert q.edges in twin.similar
+        assert sum(len(p.similar) for p in kept) == len(plans) - len(kept)
+        assert distinct_plans(plans, 0.0, part.size) == plans
+
+
+def test_a_curved_outline_has_one_grasp_shifted_and_plan_finds_others():
+    """On demo:cam the ten best plans are one grasp shifted by an edge: with distinct=0.5
+    they are one alternative, and plan() searches deeper for the others."""
+    cam = fc.read_part("demo:cam")
+    ten = fc.plan(cam, fingers=2, mu=0.3, top=10)
+    assert len(distinct_plans(ten, 0.5, cam.size)) == 1
+    alt = fc.plan(cam, fingers=2, mu=0.3, top=2, distinct=0.5)
+    assert alt[0].edges == ten[0].edges and len(alt[0].similar) >= 9
+    for i, p in enumerate(alt):
+        for q in alt[i + 1:]:
+            assert not same_alternative(p, q, 0.5, 1e-12 * cam.size)
+    again = fc.plan(cam, fingers=2, mu=0.3, top=10, distinct=0.0)
+    assert [(p.edges, p.lengths.tolist()) for p in again] == \
+        [(p.edges, p.lengths.tolist()) for p in ten]
+
+
+def test_distinct_is_checked_and_reported(tmp_path):
+    from fcgrasp.planning import PlanRequest, plan_document
+
+    with pytest.raises(ValueError, match="distinct"):
+        fc.plan(fc.read_part("demo:blob"), mu=0.3, distinct=1.5)
+    with pytest.raises(ValueError, match="--distinct"):
+        PlanRequest(part="demo:blob", distinct=-0.1)
+    doc = plan_document(PlanRequest(part="demo:cam", top=2, distinct=0.5))
+    assert doc.report["parameters"]["distinct"] == 0.5
+    assert len(doc.report["grasps"][0]["similar"]) >= 9
+    plain = plan_document(PlanRequest(part="demo:cam", top=2))
+    assert "distinct" not in plain.report["parameters"]
+    assert all("similar" not in g for g in plain.report["grasps"])
