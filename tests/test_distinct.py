@@ -114,3 +114,58 @@ def test_distinct_is_checked_and_reported(tmp_path):
     plain = plan_document(PlanRequest(part="demo:cam", top=2))
     assert "distinct" not in plain.report["parameters"]
     assert all("similar" not in g for g in plain.report["grasps"])
+
+
+def _image(poly, kind, ang):
+    import shapely.affinity as aff
+
+    g = poly.centroid
+    shp = poly.to_shapely()
+    if kind == "rot":
+        return aff.rotate(shp, ang, origin=(g[0], g[1]), use_radians=True)
+    moved = aff.translate(shp, -g[0], -g[1])
+    c, s = np.cos(2 * ang), np.sin(2 * ang)
+    return aff.translate(aff.affine_transform(moved, [c, s, s, -c, 0, 0]), g[0], g[1])
+
+
+@pytest.mark.parametrize(("vertices", "count"), [
+    ([[0, 0], [4, 0], [4, 2], [0, 2]], 4),                          # rectangle: D2
+    ([[0, 0], [3, 0], [3, 3], [0, 3]], 8),                          # square: D4
+    ([[0, 0], [2, 0], [1, np.sqrt(3)]], 6),                         # equilateral: D3
+    ([[0, 0], [5, 0], [4, 2], [1, 3]], 1),                          # none but the identity
+    ([[0, 0], [6, 0], [6, 1], [0, 1], [-1, 0.5]], 2),               # one mirror
+])
+def test_part_symmetries_against_shapely_images(vertices, count):
+    from fcgrasp.model.distinct import part_symmetries
+
+    poly = fc.Polygon(vertices)
+    syms = part_symmetries(poly)
+    assert len(syms) == count, syms
+    shp = poly.to_shapely()
+    for kind, ang in syms:                        # each maps the part onto itself
+        assert _image(poly, kind, ang).symmetric_difference(shp).area < 1e-9 * shp.area
+    rng = np.random.default_rng(7)
+    for ang in rng.uniform(0, 2 * np.pi, 40):     # no other isometry does
+        for kind in ("rot", "ref"):
+            same = _image(poly, kind, ang).symmetric_difference(shp).area < 1e-9 * shp.area
+            found = any(k == kind and abs(np.angle(np.exp(1j * (a - ang) * (1 if k == "rot"
+                        else 2)))) < 1e-6 for k, a in syms)
+            assert found or not same      # an isometry that maps the part is listed
+
+
+def test_jaw_boxes_are_distinct_up_to_the_part_symmetries():
+    """On demo:rectangle ranks 2-5 were one box and its images under the part's mirror
+    symmetries."""
+    from fcgrasp.model.distinct import part_symmetries, same_box
+
+    part = fc.read_part("demo:rectangle")
+    jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    every = fc.plan(part, gripper=jaw, top=5)
+    syms = part_symmetries(part)
+    assert any(same_box(p, q, 0.5, syms) for i, p in enumerate(every) for q in every[i + 1:])
+    kept = fc.plan(part, gripper=jaw, top=5, distinct=0.5)
+    assert kept[0].theta == every[0].theta and kept[1].theta == every[1].theta
+    for i, p in enumerate(kept):
+        for q in kept[i + 1:]:
+            assert not same_box(p, q, 0.5, syms) and not same_box(q, p, 0.5, syms)
+    assert kept[1].similar >= 3 and kept[1].to_dict()["similar"] == kept[1].similar

@@ -25,7 +25,8 @@ import shapely
 from ..core.tolerances import ROUND_TOL
 from .plans import GraspPlan
 
-__all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "distinct_plans"]
+__all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "distinct_plans",
+           "part_symmetries", "same_box", "distinct_boxes"]
 
 #: The documented default of ``distinct=`` / ``--distinct``: half of the shorter region.
 DEFAULT_DISTINCT = 0.5
@@ -92,3 +93,99 @@ def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
     # copies: the plans given are left as they are
     return [replace(p, similar=tuple(stands[id(p)])) if id(p) in stands else p
             for p in kept]
+
+
+def part_symmetries(polygon: Any, tol: float = 1e-9) -> list[tuple[str, float]]:
+    """The isometries about the centroid that map the part onto itself: ``("rot",
+    alpha)`` (a rotation by ``alpha``; the identity is ``("rot", 0.0)``) and ``("ref",
+    phi)`` (the reflection across the line through the centroid at angle ``phi``), every
+    vertex of every ring landing within ``tol`` times the part's size of a vertex.
+
+    >>> from fcgrasp.model.polygon import Polygon
+    >>> [k for k, _ in part_symmetries(Polygon([[0, 0], [4, 0], [4, 2], [0, 2]]))]
+    ['rot', 'rot', 'ref', 'ref']
+    """
+    g = np.asarray(polygon.centroid, float)
+    v = np.concatenate([polygon.vertices, *polygon.holes]) - g
+    r = np.hypot(v[:, 0], v[:, 1])
+    eps = tol * float(polygon.size)
+    far = np.flatnonzero(r >= r.max() - eps)
+    a0 = float(np.arctan2(v[far[0], 1], v[far[0], 0]))
+    candidates = [("rot", float(np.arctan2(v[j, 1], v[j, 0])) - a0) for j in far]
+    candidates += [("ref", 0.5 * (a0 + float(np.arctan2(v[j, 1], v[j, 0])))) for j in far]
+    tree = shapely.STRtree(shapely.points(v))
+    out: list[tuple[str, float]] = []
+    for kind, ang in candidates:
+        c, s = np.cos(ang), np.sin(ang)
+        m = np.array([[c, -s], [s, c]]) if kind == "rot" else \
+            np.array([[np.cos(2 * ang), np.sin(2 * ang)], [np.sin(2 * ang), -np.cos(2 * ang)]])
+        w = v @ m.T
+        _, dist = tree.query_nearest(shapely.points(w), return_distance=True)
+        if len(dist) == len(w) and float(np.max(dist)) <= eps:
+            key = (kind, round(float(np.mod(ang, np.pi if kind == "ref" else 2 * np.pi)), 9))
+            if all((k, round(float(np.mod(a, np.pi if k == "ref" else 2 * np.pi)), 9)) != key
+                   for k, a in out):
+                out.append((kind, ang))
+    return out
+
+
+def _box_images(theta: tuple[float, float], offset: tuple[float, float],
+                symmetries: list[tuple[str, float]]) -> list[tuple[float, float, float, float]]:
+    """A box of jaw poses ``(t0, t1, c0, c1)`` under every symmetry of the part, and under
+    the jaw's own (``theta + pi``, ``-c``: the pads swapped)."""
+    t0, t1 = theta
+    c0, c1 = offset
+    out = []
+    for kind, ang in symmetries:
+        box = (t0 + ang, t1 + ang, c0, c1) if kind == "rot" else \
+            (2 * ang - t1, 2 * ang - t0, -c1, -c0)
+        out += [box, (box[0] + np.pi, box[1] + np.pi, -box[3], -box[2])]
+    return out
+
+
+def _interval_overlap(a0: float, a1: float, b0: float, b1: float, period: float) -> float:
+    """Overlap of two angle intervals (each shorter than the period), mod ``period``."""
+    shift = b0 - a0 - period * np.floor((b0 - a0) / period)       # b moved to start >= a0
+    best = 0.0
+    for s in (shift, shift - period):
+        lo, hi = max(a0, a0 + s), min(a1, a0 + s + (b1 - b0))
+        best = max(best, hi - lo)
+    return best
+
+
+def same_box(p: Any, q: Any, fraction: float, symmetries: list[tuple[str, float]]) -> bool:
+    """Whether two jaw boxes are the same alternative: some image of ``q`` under the
+    part's symmetries and the jaw's (see :func:`part_symmetries`) overlaps ``p`` by more
+    than ``fraction`` of the smaller box's area (angle x offset); boxes of different
+    grips (external, or internal in different holes) never are."""
+    if (p.mode, p.hole) != (q.mode, q.hole):
+        return False
+    t0, t1 = p.theta
+    c0, c1 = p.offset
+    area = min((t1 - t0) * (c1 - c0), (q.theta[1] - q.theta[0]) * (q.offset[1] - q.offset[0]))
+    for b0, b1, d0, d1 in _box_images(q.theta, q.offset, symmetries):
+        dc = min(c1, d1) - max(c0, d0)
+        if dc > 0 and _interval_overlap(t0, t1, b0, b1, 2 * np.pi) * dc > fraction * area:
+            return True
+    return False
+
+
+def distinct_boxes(polygon: Any, plans: list[Any], fraction: float) -> list[Any]:
+    """The ranked jaw boxes less those that are the same alternative as a better one
+    (:func:`same_box`, up to the part's symmetries), each kept box's ``similar`` counting
+    the boxes it stands for."""
+    if not 0 <= fraction <= 1:
+        raise ValueError(f"distinct must be a fraction in [0, 1], got {fraction!r}")
+    if fraction == 0:
+        return list(plans)
+    syms = part_symmetries(polygon)
+    kept: list[Any] = []
+    stands: dict[int, int] = {}
+    for p in plans:
+        twin = next((q for q in kept if same_box(q, p, fraction, syms)), None)
+        if twin is not None:
+            stands[id(twin)] += 1
+            continue
+        stands[id(p)] = 0
+        kept.append(p)
+    return [replace(p, similar=stands[id(p)]) for p in kept]

@@ -152,13 +152,17 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     plans = list(gripper.plan(polygon, options))
     if fraction == 0:
         return plans
+    # a gripper may say what distinct means for its plans (the jaw: boxes up to the
+    # part's symmetries); regions of contact otherwise
+    suppress = getattr(gripper, "distinct_plans", None) or \
+        (lambda poly, ps, f: distinct_plans(ps, f, poly.size))
     top, ask = options.top, options.top
-    kept = distinct_plans(plans, fraction, polygon.size)
+    kept = suppress(polygon, plans, fraction)
     while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
             and ask < DISTINCT_DEPTH * top:
         ask = min(2 * ask, DISTINCT_DEPTH * top)
         plans = list(gripper.plan(polygon, replace(options, top=ask)))
-        kept = distinct_plans(plans, fraction, polygon.size)
+        kept = suppress(polygon, plans, fraction)
     return kept[:top] if top is not None else kept
 
 

@@ -13,6 +13,7 @@ import numpy as np
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL
+from ...model.distinct import distinct_boxes
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
@@ -49,6 +50,12 @@ class ParallelJaw(JawParameters):
     name: ClassVar[str] = "jaw"
 
     # the gripper interface (fcgrasp.grippers.base.Gripper)
+    def distinct_plans(self, polygon: Polygon, plans: list[JawPlan],
+                       fraction: float) -> list[JawPlan]:
+        """The boxes that are distinct alternatives, up to the part's symmetries
+        (:func:`fcgrasp.model.distinct.distinct_boxes`)."""
+        return distinct_boxes(polygon, plans, fraction)
+
     def plan(self, polygon: Polygon, options: Any) -> list[JawPlan]:
         """The jaw's boxes (:func:`jaw_plans`) for a plan's search options."""
         if options.top is None:
@@ -136,6 +143,8 @@ class JawPlan:
     certified: bool = False
     insert: FloatArray | None = None
     features: tuple[list[int], list[int]] = ([], [])
+    #: with distinct plans: how many lower-ranked boxes this one stands for
+    similar: int = 0
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -151,7 +160,8 @@ class JawPlan:
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (angles also in degrees)."""
-        return json_ready({
+        extra = {"similar": self.similar} if self.similar else {}
+        return json_ready({**extra,
             "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
             "insert": self.insert,
             "theta_rad": list(self.theta), "theta_deg": list(np.degrees(self.theta)),
