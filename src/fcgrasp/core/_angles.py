@@ -1,8 +1,12 @@
-"""The one angle wrap of fcgrasp (private to the package; tested in tests/test_angles.py).
+"""The angle wraps of fcgrasp and the conversion of margins (private to the package;
+tested in tests/test_angles.py).
 
-Both functions work on floats and on arrays of any shape, and are compiled as they are
-by :mod:`fcgrasp.core.kernels` (``floor`` is a machine instruction, where ``fmod`` is a
-library call).
+:func:`wrap` and :func:`wrap_positive` are numpy's floor-modulo (``%``), the reduction
+every module uses on floats and arrays.  :func:`wrap_floor` is the same wrap written with
+``floor``, for the loops :mod:`fcgrasp.core.kernels` compiles (a machine instruction where
+``fmod`` is a library call); the two agree to within an ulp of the angle, and each module
+keeps the one it was verified with (the exhaustive checks are sensitive to the last bit on
+near-degenerate parts).
 """
 
 from __future__ import annotations
@@ -11,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["wrap", "wrap_positive", "margin_radians", "shrunk_half_angle"]
+__all__ = ["wrap", "wrap_positive", "wrap_floor", "margin_radians", "shrunk_half_angle"]
 
 _TWO_PI = 2.0 * np.pi
 
@@ -22,7 +26,7 @@ def wrap(angle: Any) -> Any:
     >>> float(wrap(3 * np.pi / 2)), float(wrap(np.pi))
     (-1.5707963267948966, -3.141592653589793)
     """
-    return angle - _TWO_PI * np.floor((angle + np.pi) / _TWO_PI)
+    return (np.asarray(angle) + np.pi) % _TWO_PI - np.pi
 
 
 def wrap_positive(angle: Any) -> Any:
@@ -32,7 +36,16 @@ def wrap_positive(angle: Any) -> Any:
     >>> float(wrap_positive(-np.pi / 2))
     4.71238898038469
     """
-    return angle - _TWO_PI * np.floor(angle / _TWO_PI)
+    return np.mod(angle, _TWO_PI)
+
+
+def wrap_floor(angle: Any) -> Any:
+    """:func:`wrap` written with ``floor``, for compiled loops (works on floats too).
+
+    >>> float(wrap_floor(3 * np.pi / 2))
+    -1.5707963267948966
+    """
+    return angle - _TWO_PI * np.floor((angle + np.pi) / _TWO_PI)
 
 
 def margin_radians(margin: Any) -> Any:

@@ -43,7 +43,7 @@ from typing import Any
 
 import numpy as np
 
-from ._angles import wrap as _wrap  # compiled over this module's namespace
+from ._angles import wrap_floor as _wrap  # compiled over this module's namespace
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
