@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 import shapely
 
-from ..core.tolerances import ROUND_TOL
+from ..core.tolerances import ROUND_TOL, TOL
 from .plans import GraspPlan
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "distinct_plans",
@@ -95,7 +95,7 @@ def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
             for p in kept]
 
 
-def part_symmetries(polygon: Any, tol: float = 1e-9) -> list[tuple[str, float]]:
+def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
     """The isometries about the centroid that map the part onto itself: ``("rot",
     alpha)`` (a rotation by ``alpha``; the identity is ``("rot", 0.0)``) and ``("ref",
     phi)`` (the reflection across the line through the centroid at angle ``phi``), every
