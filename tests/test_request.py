@@ -248,9 +248,13 @@ def _alive(pid: int) -> bool:
     return state != "Z"
 
 
-@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux's /proc")
-def test_workers_die_with_a_killed_batch(tmp_path):
-    """kill -9 of a local-pool batch left its workers alive (reparented, minutes later)."""
+#: Stops only a hang, never reached.
+HANG = 600
+
+
+def _batch_with_workers(tmp_path, *extra, **popen):
+    """A running ``fcgrasp batch`` of demo:cam copies with two local workers, and their
+    pids once both are seen."""
     folder = tmp_path / "parts"
     folder.mkdir()
     for k in range(6):
@@ -258,48 +262,46 @@ def test_workers_die_with_a_killed_batch(tmp_path):
             '{"vertices": ' + str(fc.io.parts.demo_part("cam").vertices.tolist()) + "}")
     proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "batch", str(folder), "--out",
                              str(tmp_path / "r.jsonl"), "--workers", "2", "--fingers", "3",
-                             "--mu", "0.5", "--quiet"])
+                             "--mu", "0.5", *extra], **popen)
     workers: list[int] = []
-    deadline = time.monotonic() + 600          # only against a hang, never reached
+    deadline = time.monotonic() + HANG
     while len(workers) < 2 and proc.poll() is None and time.monotonic() < deadline:
         workers = [c for c in _children(proc.pid) if _alive(c)]
         time.sleep(0.05)
     assert len(workers) == 2, "the batch ended before its workers were seen"
-    os.kill(proc.pid, signal.SIGKILL)
-    proc.wait()
+    return proc, workers
+
+
+def _gone(workers):
+    deadline = time.monotonic() + HANG
     while any(_alive(w) for w in workers) and time.monotonic() < deadline:
         time.sleep(0.05)
-    assert not any(_alive(w) for w in workers)
+    return not any(_alive(w) for w in workers)
+
+
+@pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux's /proc")
+def test_workers_die_with_a_killed_batch(tmp_path):
+    """kill -9 of a local-pool batch left its workers alive (reparented, minutes later)."""
+    proc, workers = _batch_with_workers(tmp_path, "--quiet")
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    assert _gone(workers)
 
 
 @pytest.mark.skipif(not Path("/proc/self/stat").exists(), reason="needs Linux's /proc")
 def test_ctrl_c_in_a_batch_is_one_line_and_no_worker_traceback(tmp_path):
     """Ctrl-C (SIGINT to the terminal's process group) printed a worker's traceback."""
-    folder = tmp_path / "parts"
-    folder.mkdir()
-    for k in range(4):
-        (folder / f"cam{k}.json").write_text(
-            '{"vertices": ' + str(fc.io.parts.demo_part("cam").vertices.tolist()) + "}")
-    proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "batch", str(folder), "--out",
-                             str(tmp_path / "r.jsonl"), "--workers", "2", "--fingers", "3",
-                             "--mu", "0.5"], stderr=subprocess.PIPE, text=True,
-                            start_new_session=True)
-    workers: list[int] = []
-    deadline = time.monotonic() + 600          # only against a hang, never reached
-    while len(workers) < 2 and proc.poll() is None and time.monotonic() < deadline:
-        workers = [c for c in _children(proc.pid) if _alive(c)]
-        time.sleep(0.05)
-    assert len(workers) == 2, "the batch ended before its workers were seen"
+    proc, workers = _batch_with_workers(tmp_path, stderr=subprocess.PIPE, text=True,
+                                        start_new_session=True)
     # Ctrl-C is the batch's to handle: its workers ignore SIGINT (bit 2 of SigIgn)
+    deadline = time.monotonic() + HANG
     while not all(_ignores_sigint(w) for w in workers) and all(map(_alive, workers)) \
             and time.monotonic() < deadline:
         time.sleep(0.05)
     assert all(_ignores_sigint(w) for w in workers)
     time.sleep(0.5)                            # the workers are planning
     os.killpg(proc.pid, signal.SIGINT)
-    err = proc.communicate(timeout=600)[1]
+    err = proc.communicate(timeout=HANG)[1]
     assert proc.returncode == 130, err
     assert "Traceback" not in err and err.strip().splitlines()[-1] == "fcgrasp: interrupted"
-    while any(_alive(w) for w in workers) and time.monotonic() < deadline:
-        time.sleep(0.05)
-    assert not any(_alive(w) for w in workers)
+    assert _gone(workers)
