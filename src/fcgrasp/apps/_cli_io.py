@@ -4,9 +4,7 @@ of :mod:`fcgrasp.apps.cli`)."""
 
 from __future__ import annotations
 
-import os
 import sys
-from pathlib import Path
 from typing import Any
 
 from ..errors import RequestError as CliError
@@ -64,24 +62,17 @@ def _progress(enabled: bool) -> Any:
 def _check_outputs(args: Any, inputs: list[str]) -> None:
     """Validate the output options of ``check`` and ``parts`` before any work: file
     names, the figure's format, and no output that is an input or another output."""
-    from ..io.outputs import refuse_overwriting
+    from ..io.outputs import check_outputs
 
     if sum(1 for src in inputs if src == "-") > 1:
         raise CliError("only one input can be read from standard input ('-')")
-    outs = [(f"--{k}", getattr(args, k)) for k in ("json", "plot") if getattr(args, k, None)]
-    for opt, path in outs:
-        if path == "-" and opt == "--json":
-            continue
-        if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
-            raise CliError(f"{opt} must be a file name, got {path!r}")
-    refuse_overwriting(outs, inputs)
+    check_outputs(getattr(args, "json", None), getattr(args, "plot", None), inputs)
     _check_plot(getattr(args, "plot", None))
 
 
 def _check_plot(plot: str | None) -> None:
+    """A figure needs matplotlib (its name is checked with the other outputs)."""
     if plot:
-        if Path(plot).suffix.lower() not in (".png", ".svg", ".pdf"):
-            raise CliError(f"--plot must end in .png, .svg or .pdf, got {plot!r}")
         try:
             import matplotlib  # noqa: F401
         except ImportError:

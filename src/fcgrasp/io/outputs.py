@@ -14,7 +14,7 @@ import tempfile
 from collections.abc import Callable
 from pathlib import Path
 
-from ..errors import OutputError
+from ..errors import OutputError, RequestError
 
 _TAG = ".fcgrasp-tmp-"
 
@@ -130,3 +130,26 @@ def refuse_overwriting(outputs: list[tuple[str, str]], inputs: list[str]) -> Non
         for opt2, path2 in files[k + 1:]:
             if same_file(path, path2):
                 raise ValueError(f"{opt} and {opt2} name the same file {path!r}")
+
+
+#: Figures a run can write.
+FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
+
+
+def check_outputs(json: str | None, plot: str | None, inputs: list[str]) -> None:
+    """Check a run's ``--json`` and ``--plot`` before any work: file names (``-`` is
+    standard output, for the JSON only), the figure's format, and no output that is an
+    input or the other output.  A :class:`~fcgrasp.errors.RequestError` naming the
+    option (its ``field``) otherwise."""
+    outs = [(f"--{k}", path) for k, path in (("json", json), ("plot", plot)) if path]
+    for opt, path in outs:
+        if path == "-" and opt == "--json":
+            continue
+        if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
+            raise RequestError(f"{opt} must be a file name, got {path!r}", opt[2:])
+    try:
+        refuse_overwriting(outs, inputs)
+    except ValueError as exc:
+        raise RequestError(str(exc), str(exc).split()[0][2:]) from None
+    if plot and Path(plot).suffix.lower() not in FIGURE_SUFFIXES:
+        raise RequestError(f"--plot must end in .png, .svg or .pdf, got {plot!r}", "plot")

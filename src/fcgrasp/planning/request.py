@@ -13,16 +13,14 @@ sends it to its workers as it is.
 from __future__ import annotations
 
 import math
-import os
 import re
 from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, fields, replace
-from pathlib import Path
 from typing import Any
 
 from ..errors import RequestError
 from ..grippers.base import Gripper, SearchOptions, check_margin, gripper_from_options
-from ..io.outputs import refuse_overwriting
+from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
 from ..io.units import FILE_UNITS, UNITS, disturbance_step
@@ -39,8 +37,6 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
                 "max_memory", "distinct")
-#: Figures a plan can be drawn into.
-FIGURE_SUFFIXES = (".png", ".svg", ".pdf")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -194,18 +190,7 @@ class PlanRequest:
                                       f"{self.max_memory}")
 
     def _check_outputs(self) -> None:
-        outs = [(f"--{k}", getattr(self, k)) for k in ("json", "plot") if getattr(self, k)]
-        for opt, path in outs:
-            if path == "-" and opt == "--json":
-                continue
-            if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
-                raise _fail(opt[2:], f"{opt} must be a file name, got {path!r}")
-        if self.plot and Path(self.plot).suffix.lower() not in FIGURE_SUFFIXES:
-            raise _fail("plot", f"--plot must end in .png, .svg or .pdf, got {self.plot!r}")
-        try:
-            refuse_overwriting(outs, [self.part])
-        except ValueError as exc:
-            raise _fail("json", str(exc)) from None
+        check_outputs(self.json, self.plot, [self.part])
 
     # ------------------------------------------------------------------ views of it
     def gripper_object(self) -> Gripper:
