@@ -178,3 +178,11 @@ def check_scalar(value: Any, name: str, *, positive: bool = False,
 def check_tol(value: Any, name: str = "tol") -> float:
     """A tolerance: finite and >= 0."""
     return check_scalar(value, name, nonnegative=True)
+
+
+def check_margin(value: Any, name: str = "margin") -> float:
+    """A safety margin in degrees, in ``[0, 90)``: the one check of every margin."""
+    m = check_scalar(value, name, nonnegative=True)
+    if m >= 90.0:
+        raise ValueError(f"{name} is an angle in degrees below 90, got {value!r}")
+    return m

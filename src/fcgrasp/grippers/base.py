@@ -19,21 +19,12 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
-from ..core._checks import check_int, check_scalar, check_tol
+from ..core._checks import check_int, check_margin, check_tol
 from ..core.tolerances import SOLVER_TOL
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "gripper_from_options",
-           "check_margin"]
-
-
-def check_margin(margin: Any, name: str = "margin") -> float:
-    """A safety margin in degrees, in ``[0, 90)`` (the one check of every gripper)."""
-    m = check_scalar(margin, name, nonnegative=True)
-    if m >= 90.0:
-        raise ValueError(f"{name} is an angle in degrees below 90, got {margin!r}")
-    return m
+__all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "gripper_from_options"]
 
 
 @dataclass(frozen=True)

@@ -13,6 +13,7 @@ from ..core._angles import margin_radians
 from ..core._checks import (
     check_direction,
     check_int,
+    check_margin,
     check_mu_scalar,
     check_scalar,
     check_tol,
@@ -182,9 +183,7 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
     'friction'
     """
     mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
-    if margin_v >= 90.0:
-        raise ValueError(f"margin is an angle in degrees below 90, got {margin!r}")
+    margin_v = check_margin(margin)
     if hand is not None and not isinstance(hand, Hand):
         raise TypeError(f"hand must be a Hand or None, got {type(hand).__name__}")
     fingers = check_int(fingers, "fingers", choices=(2, 3, 4))

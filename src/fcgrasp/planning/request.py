@@ -18,8 +18,9 @@ from collections.abc import Callable
 from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
+from ..core._checks import check_margin
 from ..errors import RequestError
-from ..grippers.base import Gripper, SearchOptions, check_margin, gripper_from_options
+from ..grippers.base import Gripper, SearchOptions, gripper_from_options
 from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
