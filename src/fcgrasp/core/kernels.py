@@ -47,9 +47,9 @@ from ._angles import wrap_floor as _wrap  # compiled over this module's namespac
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
-__all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled", "arc_meet", "segment", "pair_sector",
-           "pair_problem", "two_level", "pair_modes", "pair_scores", "pair_problems", "two_levels",
-           "PROBLEM_FIELDS"]
+__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "arc_meet", "segment",
+           "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
+           "pair_problems", "two_levels", "PROBLEM_FIELDS"]
 
 #: Rows a process runs by numpy before the kernels are compiled (numpy takes about
 #: 0.2-0.3 us a row, so about as long as the first compiled call of a process costs:
@@ -307,8 +307,13 @@ _rows_by_numpy = 0
 _compiling = threading.Lock()
 
 
-def _setting() -> str:
+def jit_setting() -> str:
+    """``FCGRASP_JIT`` as set in the environment (lower case; "auto" when unset): "0"
+    never compiles, "1" always does, anything else when the work repays it."""
     return os.environ.get("FCGRASP_JIT", "auto").strip().lower()
+
+
+_setting = jit_setting
 
 
 def use_jit(rows: int) -> bool:

@@ -100,7 +100,7 @@ class _Intervals:
     whole rows only for edges long enough to matter, and windows of a few cells."""
 
     def __init__(self, ra: _Ring, rb: _Ring, sigma: float, beta: float) -> None:
-        self.ra, self.rb, self.sigma = ra, rb, sigma
+        self.ra, self.rb, self.sigma, self.beta = ra, rb, sigma, beta
         self.gx = np.stack(_gens_x(ra.f, beta), axis=1)                      # (ma, 2, 2)
         self.gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
 
@@ -268,43 +268,60 @@ def _disjoint(ra: _Ring, c: _Configs, same: bool) -> np.ndarray:
 
 
 class _Bound:
-    """The ``k``-th largest smallest region among distinct feasible configurations seen
-    so far (0 until ``k`` are seen): no configuration below it can reach the top ``k``.
-    ``floor`` is that value less the relative tie tolerance, so ties are kept."""
+    """The ``k``-th largest smallest region among feasible configurations seen so far,
+    **at most one per key** (0 until ``k`` keys are seen): no configuration below it can
+    reach the top ``k``.  ``floor`` is that value less the relative tie tolerance, so
+    ties are kept.
 
-    def __init__(self, k: int) -> None:
+    A key is a mode and a boundary edge: the start edge of the stretch that comes first
+    (ring, then position in the ring) of a feasible configuration, so that two values
+    under different keys are two different configurations.  A configuration reached
+    twice (a lower bound from its vertex-aligned stretches, then its optimum; or the
+    same pair from either stretch) only raises its own key, never counts twice.
+
+    With ``fixed``, the floor is that number and never rises (a search that must solve
+    every configuration reaching it)."""
+
+    def __init__(self, k: int, keys: int, fixed: float | None = None) -> None:
         self.k = k
-        self.vals = np.zeros(0)
+        self.best = np.zeros(keys)
+        self._value = 0.0
+        self.fixed = fixed
 
-    def add(self, values: FloatArray) -> None:
-        v = np.asarray(values, float).ravel()
-        v = v[v > max(self.value, 0.0)]
-        if v.size == 0:
+    def add(self, keys: Any, values: Any) -> None:
+        if self.fixed is not None:
             return
-        v = np.concatenate([self.vals, v])
-        if v.size > self.k:
-            v = -np.partition(-v, self.k - 1)[:self.k]
-        self.vals = v
+        v = np.asarray(values, float).ravel()
+        sel = v > self._value
+        if not sel.any():
+            return
+        np.maximum.at(self.best, np.asarray(keys).ravel()[sel], v[sel])
+        n = self.best.size
+        if n >= self.k:
+            self._value = float(np.partition(self.best, n - self.k)[n - self.k])
 
     @property
     def value(self) -> float:
-        return float(self.vals.min()) if self.vals.size >= self.k else 0.0
+        return self._value
 
     @property
     def floor(self) -> float:
-        return self.value * (1 - TIE)
+        return self.value * (1 - TIE) if self.fixed is None else self.fixed
 
 
-def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound,
-                  collect: bool) -> _Configs:
+def _windows_both(Mi: tuple[np.ndarray, np.ndarray, np.ndarray], ra: _Ring, rb: _Ring,
+                  same: bool, floor: float, collect: bool) -> tuple[FloatArray, _Configs]:
     """Configurations with interior vertices on both stretches: stretch 1's interior
-    window i .. i+k-1 leaves for stretch 2 the runs of the AND of those rows of ``M``.
+    window i .. i+k-1 leaves for stretch 2 the runs of the AND of those rows of ``M``
+    (``Mi``: the runs of its rows, :func:`_row_intervals`).
 
-    Returns the configurations whose bound reaches the lower bound (if ``collect``),
-    and raises the lower bound with the vertex-aligned stretches of every run
-    (feasible: all their cells have their four corners in ``M``)."""
+    Returns, for each first row ``i`` (stretch 1 from vertex ``i``), the largest
+    smallest region of the vertex-aligned stretches of its runs (feasible: all their
+    cells have their four corners in ``M``; a lower bound, on one ring only from pairs
+    whose stretch 2 starts after ``i``), and, with ``collect``, the configurations whose
+    bound reaches ``floor``."""
+    best = np.zeros(ra.m)
     parts: list[_Configs] = []
-    Mi = _row_intervals(M)
     ptr = np.searchsorted(Mi[0], np.arange(ra.m + 1))
     C = Mi
     k = 1
@@ -314,7 +331,7 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound
             break
         ks = np.full(live.size, k)
         ext_s = _ext(ra, live - 1, ks)
-        live = live[ext_s >= bound.floor]
+        live = live[ext_s >= floor]
         # the lower bound only has to be feasible, not the largest: without collecting,
         # runs are read at about eight window lengths per doubling
         if live.size and (collect or k <= 8 or k % (k // 8) == 0):
@@ -323,18 +340,25 @@ def _windows_both(M: np.ndarray, ra: _Ring, rb: _Ring, same: bool, bound: _Bound
             inner_s, ext_s = _inner(ra, row - 1, kr), _ext(ra, row - 1, kr)
             rr = np.minimum(r, rb.m - 2)
             vert_u = np.where(rr > 0, _inner(rb, p0 - 1, rr), 0.0)
-            bound.add(np.minimum(inner_s, vert_u))
-            keep = (ext_s >= bound.floor) & (rr >= 1)
+            mine = (rr > 0) & ((p0 % rb.m > row) if same else True)
+            np.maximum.at(best, row[mine], np.minimum(inner_s, vert_u)[mine])
+            keep = (ext_s >= floor) & (rr >= 1)
             if collect and keep.any():
                 parts.append(_sub_windows(rb, row[keep], p0[keep], rr[keep], k,
-                                          inner_s[keep], ext_s[keep], bound.floor))
+                                          inner_s[keep], ext_s[keep], floor))
         C = _intersect_rows(C, Mi, ptr, k)
         k += 1
     if not parts:
-        return _empty()
+        return best, _empty()
     cfg = _Configs.cat(parts)
+    return best, _both_kept(cfg, ra, rb, same)
+
+
+def _both_kept(cfg: _Configs, ra: _Ring, rb: _Ring, same: bool) -> _Configs:
+    """The configurations of two windows whose stretches are disjoint, each unordered
+    pair of one ring once."""
     keep = _disjoint(ra, cfg, same)
-    if same:                      # each unordered pair once
+    if same:
         keep &= cfg.iA % ra.m < cfg.iC % rb.m
     return cfg.take(keep)
 
@@ -367,32 +391,40 @@ def _sub_windows(rb: _Ring, row: np.ndarray, p0: np.ndarray, r: np.ndarray, k: i
     return _Configs(rows - 1, np.full(rows.size, k), pp - 1, q - pp + 1)
 
 
-def _windows_single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, bound: _Bound,
-                    collect: bool) -> _Configs:
+def _windows_single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float,
+                    collect: bool) -> tuple[tuple[np.ndarray, np.ndarray, FloatArray], _Configs]:
     """Stretch 1 on one edge A, stretch 2 with interior vertices p .. p+k-1: those
-    vertices confine stretch 1 to the intersection of their intervals on A (the
-    vertex-aligned stretch 2 with that whole intersection is feasible: lower bound)."""
-    A = np.flatnonzero(ra.L >= bound.floor)
+    vertices confine stretch 1 to the intersection of their intervals on A.
+
+    Returns the lower bounds ``(A, p, value)``: the vertex-aligned stretch 2 with that
+    whole intersection is feasible (on one ring only where stretch 2 starts after A,
+    apart from it), the largest over ``k``; and, with ``collect``, the configurations
+    whose bound reaches ``floor``."""
+    A = np.flatnonzero(ra.L >= floor)
     parts: list[_Configs] = []
+    none = (np.zeros(0, int), np.zeros(0, int), np.zeros(0))
     if A.size == 0:
-        return _empty()
+        return none, _empty()
     mb = rb.m
     loA, hiA = iv.rows(A)
     cl, ch = loA.copy(), hiA.copy()
     pidx = np.arange(mb)
+    best = np.zeros((A.size, mb))
+    # on one ring: stretch 2 (vertices p .. p + k - 1) after A and clear of both its ends
+    after = (pidx[None, :] >= A[:, None] + 2) if same else np.ones((A.size, mb), bool)
     k = 1
     while k < mb - 1:
         room = ch - cl
-        ok = room >= bound.floor
+        ok = room >= floor
         if not ok.any():
             break
         ks = np.full(mb, k)
         inner_u = _inner(rb, pidx - 1, ks)[None, :]
         ext_u = _ext(rb, pidx - 1, ks)[None, :]
-        bound.add(np.minimum(room, inner_u)[ok])
-        best = bound.floor
+        mine = ok & after & ((pidx[None, :] + k - 1 < mb + A[:, None]) if same else True)
+        np.maximum(best, np.where(mine, np.minimum(room, inner_u), 0.0), out=best)
         if collect:
-            a_i, p_i = np.nonzero(ok & (room >= best) & (ext_u >= best) & (room >= inner_u))
+            a_i, p_i = np.nonzero(ok & (room >= floor) & (ext_u >= floor) & (room >= inner_u))
             if a_i.size:
                 parts.append(_Configs(A[a_i], np.zeros(a_i.size, int), p_i - 1,
                                       np.full(a_i.size, k)))
@@ -400,10 +432,12 @@ def _windows_single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, bound: _Bo
         cl = np.maximum(cl, loA[:, nxt])
         ch = np.minimum(ch, hiA[:, nxt])
         k += 1
+    a_i, p_i = np.nonzero(best > 0)
+    found = (A[a_i], p_i, best[a_i, p_i])
     if not parts:
-        return _empty()
+        return found, _empty()
     cfg = _Configs.cat(parts)
-    return cfg.take(_disjoint(ra, cfg, same))
+    return found, cfg.take(_disjoint(ra, cfg, same))
 
 
 def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:

@@ -60,24 +60,32 @@ from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
+from ..core.kernels import jit_setting
 from ..core.tolerances import ROUND_TOL, TOL
+from . import _stretch_kernels
 from ._stretch_lp import (
     _solve,
     _system,
 )
 from ._stretch_windows import (
     _BLOCK,
+    _EPS,
     TIE,
+    _both_kept,
     _Bound,
     _Configs,
     _disjoint,
     _empty,
     _ext,
+    _fan,
+    _gens_x,
+    _gens_y,
     _inner,
     _Intervals,
     _pairs_single,
     _Ring,
     _rings,
+    _row_intervals,
     _stretch_bound,
     _vertex_matrix,
     _windows_both,
@@ -168,10 +176,106 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
     return cfg.take(_disjoint(ra, cfg, same))
 
 
+#: Vertex pairs (``m_a * m_b``) from which the search runs the compiled loops of
+#: :mod:`fcgrasp.model._stretch_kernels` (numba's start-up, about 0.3 s, is then less
+#: than what they save); ``FCGRASP_JIT=0`` never does, ``FCGRASP_JIT=1`` always.
+KERNEL_CELLS = 250_000
+
+#: Radians added to the angular windows of the compiled vertex matrix: far above the
+#: rounding of the angles, so no cell the exact test would hold is skipped.
+_ANGLE_SLACK = 1e-6
+
+
+def _use_kernels(cells: int) -> bool:
+    setting = jit_setting()
+    if setting in ("0", "off", "no", "false"):
+        return False
+    return setting in ("1", "on", "yes", "true") or cells >= KERNEL_CELLS
+
+
+class _Keys:
+    """Keys of :class:`_Bound`: a mode and the first start edge of a configuration's two
+    stretches (rings numbered one after the other)."""
+
+    def __init__(self, rings: list[_Ring]) -> None:
+        self.offset = np.concatenate([[0], np.cumsum([r.m for r in rings])]).astype(int)
+        self.total = int(self.offset[-1])
+
+    def __call__(self, job: tuple[int, int, float, str], a: Any, b: Any) -> np.ndarray:
+        x, y, sigma, _ = job
+        first = np.minimum(self.offset[x] + np.asarray(a) % (self.offset[x + 1] - self.offset[x]),
+                           self.offset[y] + np.asarray(b) % (self.offset[y + 1] - self.offset[y]))
+        return cast("np.ndarray", first + (0 if sigma > 0 else self.total))
+
+
+def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
+    """The runs of True of every row of the vertex matrix of each mode, as row pointers,
+    first and last columns (compiled for large rings; :func:`_vertex_matrix` else)."""
+    if _use_kernels(ra.m * rb.m):
+        gx = np.stack([g for f in _fan(ra) for g in _gens_x(f, beta)], axis=1)
+        gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
+        # a cell holds only if the two force directions are opposite within 2 beta (each
+        # within beta of the chord), and a vertex only if its two normals are within
+        # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
+        width = 2 * beta + _ANGLE_SLACK
+        fa = ra.f
+        order, angle_b = _by_angle(rb)
+        prev = np.roll(fa, 1, axis=0)
+        turn = np.arctan2(np.abs(_cross(prev, fa)), np.sum(prev * fa, axis=1))
+        va = np.where(turn <= width, np.arctan2(fa[:, 1], fa[:, 0]) + np.pi, np.nan)
+        out = _stretch_kernels.vertex_runs(ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va,
+                                           rb.a[order, 0], rb.a[order, 1], gy[order],
+                                           order, angle_b, width)
+        return {1.0: out[:3], -1.0: out[3:]}
+    runs = {}
+    for sigma in (1.0, -1.0):
+        row, first, last = _row_intervals(_vertex_matrix(ra, rb, sigma, beta))
+        runs[sigma] = (np.searchsorted(row, np.arange(ra.m + 1)), first, last)
+    return runs
+
+
+def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool
+          ) -> tuple[FloatArray, _Configs]:
+    """:func:`_windows_both`, compiled for large rings."""
+    ptr, first, last = runs
+    if _use_kernels(ra.m * rb.m):
+        best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
+                                              collect, same)
+        return best, _both_kept(_Configs(*cfg), ra, rb, same)
+    row = np.repeat(np.arange(ra.m), np.diff(ptr))
+    return _windows_both((row, first, last), ra, rb, same, floor, collect)
+
+
+def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool
+            ) -> tuple[tuple[np.ndarray, np.ndarray, FloatArray], _Configs]:
+    """:func:`_windows_single`, compiled for large rings."""
+    if not _use_kernels(ra.m * rb.m):
+        return _windows_single(iv, ra, rb, same, floor, collect)
+    A = np.flatnonzero(ra.L >= floor)
+    width = 2 * iv.beta + _ANGLE_SLACK
+    order, angle_b = _by_angle(rb)
+    va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
+    gx = np.stack(_gens_x(ra.f, iv.beta), axis=1)
+    gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, iv.beta)], axis=1)
+    wa, wp, wv, iA, iC, kC = _stretch_kernels.single(
+        A, ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L,
+        gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), gy, order, angle_b, width, rb.U,
+        iv.sigma, _EPS, floor, collect, same)
+    cfg = _Configs(iA, np.zeros(iA.size, int), iC, kC)
+    return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
+
+
+def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
+    """The ring's edges in order of their force direction's angle, and those angles."""
+    angle = np.arctan2(ring.f[:, 1], ring.f[:, 0])
+    order = np.argsort(angle, kind="stable")
+    return order, angle[order]
+
+
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
-                matrices: dict[Any, Any]) -> list[tuple[Any, _Configs]]:
+                runs: dict[Any, Any], keys: _Keys) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
-    only rises with feasible configurations)."""
+    only rises with feasible configurations, one per key)."""
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
         for job in _jobs(len(rings)):
@@ -179,8 +283,15 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             ra, rb = rings[x], rings[y]
             both = _empty()
             if x <= y:
-                both = _windows_both(matrices[x, y, sigma], ra, rb, x == y, bound, collect)
-            single = _windows_single(intervals[x, y, sigma], ra, rb, x == y, bound, collect)
+                best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect)
+                if not collect:
+                    # stretch 1 (ring x <= y; on one ring, the one that starts first)
+                    rows = np.flatnonzero(best > 0)
+                    bound.add(keys(job, rows, rows + (ra.m if x == y else 0)), best[rows])
+            (a, p, v), single = _single(intervals[x, y, sigma], ra, rb, x == y,
+                                        bound.floor, collect)
+            if not collect:
+                bound.add(keys(job, a, p), v)
             if collect:
                 pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
                 prepared.append((job, _Configs.cat([both, single, pairs])))
@@ -188,7 +299,8 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
 
 
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
-                intervals: dict[Any, _Intervals], bound: _Bound, scale: float) -> list[_Found]:
+                intervals: dict[Any, _Intervals], bound: _Bound, scale: float,
+                keys: _Keys) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept)."""
     found: list[_Found] = []
@@ -203,7 +315,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             chunk = order[s:s + 256]
             if ub[chunk[0]] < bound.floor:
                 break
-            rows = _system(ra, rb, cfg.take(chunk), sigma, beta, intervals[x, y, sigma],
+            part = cfg.take(chunk)
+            rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
                            intervals[y, x, sigma])
             t, s0, u0 = _solve(rows, ub[chunk], scale)
             ok = np.flatnonzero(t > 0)
@@ -212,7 +325,46 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
                                           int(cfg.kC[c])), float(t[j]), float(s0[j]),
                                     float(u0[j])))
-            bound.add(t[ok])
+            bound.add(keys(job, part.iA[ok], part.iC[ok]), t[ok])
+    return found
+
+
+#: Searches :func:`_search` runs at most before it solves every configuration.
+_ATTEMPTS = 5
+
+
+def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
+            runs: dict[Any, Any], top: int | None, scale: float) -> list[_Found]:
+    """The configurations optimal on their own edges (:func:`_own_optimum`), largest
+    ``t`` first: all of them (``top`` None), or at least every one that ties the
+    ``top``-th (to the relative tie tolerance).
+
+    The bound counts feasible configurations, but a configuration beaten by one of its
+    own sub-configurations is dropped afterwards, so the ``top``-th kept can fall below
+    the floor the search pruned with.  The search is then run again with the floor
+    fixed at that ``top``-th (every configuration that reaches it solved, its
+    sub-configurations with it), until the floor it pruned with is below the
+    ``top``-th it kept; when fewer than ``top`` are kept, with a bound of four times as
+    many; the last attempt prunes nothing."""
+    keys = _Keys(rings)
+    want, fixed = top, None
+    for attempt in range(_ATTEMPTS):
+        if top is None or attempt == _ATTEMPTS - 1:
+            fixed = 0.0
+        bound = _Bound(want or 1, 2 * keys.total, fixed)
+        prepared = _candidates(rings, bound, intervals, runs, keys)
+        found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys)
+        found.sort(key=lambda f: -f.t)
+        found = _own_optimum(rings, found)
+        if top is None or bound.floor == 0.0:
+            break                           # nothing was pruned
+        if len(found) >= top:
+            kth = found[top - 1].t * (1 - TIE)
+            if bound.floor <= kth:
+                break
+            fixed = kth
+        else:
+            want, fixed = 4 * (want or 1), None
     return found
 
 
@@ -417,20 +569,9 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     # every ordered ring pair is a job, so a job's reverse intervals are another's
     intervals = {(x, y, sigma): _Intervals(rings[x], rings[y], sigma, beta)
                  for x, y, sigma, _ in _jobs(len(rings))}
-    matrices = {(x, y, sigma): _vertex_matrix(rings[x], rings[y], sigma, beta)
-                for x, y, sigma, _ in _jobs(len(rings)) if x <= y}
-    want = top_v
-    for _ in range(4):
-        # configurations beaten on their own edges are dropped; ask for more until
-        # ``top`` remain (or every configuration was seen)
-        bound = _Bound(2 ** 62 if want is None else want)
-        prepared = _candidates(rings, bound, intervals, matrices)
-        found = _solve_jobs(rings, beta, prepared, intervals, bound, polygon.size)
-        found.sort(key=lambda f: -f.t)
-        found = _own_optimum(rings, found)
-        if want is None or top_v is None or len(found) >= top_v or bound.value == 0.0:
-            break
-        want = 4 * want
+    runs = {(x, y): _vertex_runs(rings[x], rings[y], beta)
+            for x in range(len(rings)) for y in range(x, len(rings))}
+    found = _search(rings, beta, intervals, runs, top_v, polygon.size)
     if not found:
         return []
     if top_v is not None:
@@ -475,7 +616,9 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
     # every sub-configuration, longest bound first, in chunks behind the best found
     prepared = [((x, y, sigma, mode), cfg) for sigma, mode in ((1.0, "squeeze"),
                                                                (-1.0, "expand"))]
-    found = _solve_jobs(rings, beta, prepared, intervals, _Bound(1), polygon.size)
+    keys = _Keys(rings)
+    found = _solve_jobs(rings, beta, prepared, intervals, _Bound(1, 2 * keys.total),
+                        polygon.size, keys)
     if not found:
         return None
     best = max(f.t for f in found)

@@ -1,0 +1,359 @@
+"""Compiled loops of the two-finger stretch search for large rings (issue 30; part of
+:mod:`fcgrasp.model.stretches`).
+
+The numpy search of :mod:`fcgrasp.model._stretch_windows` holds the vertex matrix ``M``
+as ``m_a x m_b`` booleans and widens every window of rows at once; on a 10,000-edge
+outline that is 10^8 cells per mode and hundreds of passes over every row's runs.  These
+loops do the same work row by row, with nothing of size ``m_a x m_b`` in memory:
+
+* :func:`vertex_runs` scans each row of ``M`` once for both modes (squeeze ``M+`` and
+  expand ``M-``: the expand test of a cell is the squeeze test with the chord reversed,
+  so the same eight cross products, with the opposite sign) and keeps its runs of True
+  (the evaluation is the numpy one's, operation for operation, so the cells agree bit
+  for bit);
+* :func:`windows` widens one row's window of interior vertices at a time, intersecting
+  its runs with the next row's (two monotone pointers over two sorted lists of runs),
+  and stops as soon as no run is long enough to reach the bound: the lower bound of
+  each first row (its vertex-aligned stretches), or the configurations whose bound
+  reaches the floor, enumerated only over the start vertices that can reach it.
+
+numba is imported on first use (the machine code cached on disk beside this file); the
+search uses these loops only on rings large enough to repay it
+(:data:`fcgrasp.model.stretches.KERNEL_CELLS`), and ``FCGRASP_JIT=0`` never does.
+"""
+
+from __future__ import annotations
+
+import threading
+import types
+from typing import Any
+
+import numpy as np
+
+_lock = threading.Lock()
+_loaded: dict[str, Any] = {}
+
+
+def _grow(a: Any, n: int) -> Any:
+    """``a`` with room for at least ``n`` elements (doubling)."""
+    if n <= a.size:
+        return a
+    out = np.empty(max(n, 2 * a.size), a.dtype)
+    out[:a.size] = a
+    return out
+
+
+def _append(first: Any, last: Any, n: int, a: int, b: int) -> Any:
+    first, last = _grow(first, n + 1), _grow(last, n + 1)
+    first[n], last[n] = a, b
+    return first, last
+
+
+def _in_order(c: Any, mark: Any) -> Any:
+    """The distinct column numbers ``c`` in increasing order: by marking them when they
+    span little more than their number (a smooth outline's), else by sorting."""
+    if c.size == 0:
+        return c
+    lo, hi = c.min(), c.max()
+    if hi - lo > 8 * c.size:
+        return np.sort(c)
+    for w in c:
+        mark[w] = True
+    out = np.empty(c.size, np.int64)
+    n = 0
+    for w in range(lo, hi + 1):
+        if mark[w]:
+            out[n] = w
+            n += 1
+            mark[w] = False
+    return out[:n]
+
+
+def _vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
+                 angle_b: Any, width: float) -> Any:
+    """Runs of True of every row of ``M+`` (squeeze) and ``M-`` (expand): for each mode,
+    the row pointers and the first and last column of each run.
+
+    Only the columns a cell can hold are read: both modes need the two edges' force
+    directions opposite within twice the cone's half-angle, so row ``v`` reads the
+    columns whose angle ``angle_b`` is within ``width`` of ``va[v]`` (the opposite of
+    its force direction's angle; NaN: a vertex whose two normals turn by more than
+    that, which holds with nothing).  Ring b's arrays come sorted by that angle (so
+    the window is read in order), ``order`` maps them back to columns."""
+    ma, mb = ax.size, bx.size
+    ptr_p, ptr_m = np.zeros(ma + 1, np.int64), np.zeros(ma + 1, np.int64)
+    fp, lp = np.empty(4 * ma + 16, np.int64), np.empty(4 * ma + 16, np.int64)
+    fm, lm = np.empty(4 * ma + 16, np.int64), np.empty(4 * ma + 16, np.int64)
+    np_, nm = 0, 0
+    cols_p, cols_m = np.empty(mb, np.int64), np.empty(mb, np.int64)
+    mark = np.zeros(mb, np.bool_)
+    for v in range(ma):
+        cp, cm = 0, 0
+        if not np.isnan(va[v]):
+            for turn in range(-1, 2):           # the window, wrapped around +-pi
+                lo, hi = 0, mb
+                if width >= np.pi:              # every column, once
+                    if turn != 0:
+                        continue
+                else:
+                    lo = np.searchsorted(angle_b, va[v] + 2 * np.pi * turn - width,
+                                         side="left")
+                    hi = np.searchsorted(angle_b, va[v] + 2 * np.pi * turn + width,
+                                         side="right")
+                for q in range(lo, hi):
+                    # the eight cross products cross(g, d), without a branch: M+ holds
+                    # where all are >= 0, M- where all are <= 0 (the chord reversed)
+                    d0, d1 = bx[q] - ax[v], by[q] - ay[v]
+                    lo_c, hi_c = np.inf, -np.inf
+                    for j in range(4):
+                        c = gx[v, j, 0] * d1 - gx[v, j, 1] * d0
+                        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+                        c = gy[q, j, 0] * d1 - gy[q, j, 1] * d0
+                        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+                    moved = (d0 != 0.0) | (d1 != 0.0)
+                    cols_p[cp] = order[q]
+                    cp += moved & (lo_c >= 0.0)
+                    cols_m[cm] = order[q]
+                    cm += moved & (hi_c <= 0.0)
+        for s in range(2):
+            c = _in_order(cols_p[:cp] if s == 0 else cols_m[:cm], mark)
+            j = 0
+            while j < c.size:
+                e = j
+                while e + 1 < c.size and c[e + 1] == c[e] + 1:
+                    e += 1
+                if s == 0:
+                    fp, lp = _append(fp, lp, np_, c[j], c[e])
+                    np_ += 1
+                else:
+                    fm, lm = _append(fm, lm, nm, c[j], c[e])
+                    nm += 1
+                j = e + 1
+        ptr_p[v + 1], ptr_m[v + 1] = np_, nm
+    return ptr_p, fp[:np_], lp[:np_], ptr_m, fm[:nm], lm[:nm]
+
+
+def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
+             floor: float, collect: bool, same: bool) -> Any:
+    """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
+    search, row by row).
+
+    Without ``collect``: for each first row ``r`` (stretch 1 from vertex ``r``), the
+    largest smallest region of the vertex-aligned stretch pairs it starts (its lower
+    bound; 0 if none exceeds ``floor``; on one ring only pairs whose stretch 2 starts
+    after ``r``, so that each unordered pair is counted by one row).  With ``collect``:
+    every configuration ``(iA, kA, iC, kC)`` whose arc bound reaches ``floor``."""
+    best = np.zeros(ma)
+    cap = 1024
+    oA, okA = np.empty(cap, np.int64), np.empty(cap, np.int64)
+    oC, okC = np.empty(cap, np.int64), np.empty(cap, np.int64)
+    n_out = 0
+    cs = np.empty(mb + 1, np.int64)
+    ce = np.empty(mb + 1, np.int64)
+    ns = np.empty(mb + 1, np.int64)
+    ne = np.empty(mb + 1, np.int64)
+    rp0 = np.empty(mb + 1, np.int64)
+    rlen = np.empty(mb + 1, np.int64)
+    for r in range(ma):
+        nc = 0
+        for q in range(ptr[r], ptr[r + 1]):
+            cs[nc], ce[nc] = first[q], last[q]
+            nc += 1
+        i = (r - 1) % ma + ma
+        k = 1
+        while k < ma - 1 and nc > 0:
+            ext_s = Ua[i + k + 1] - Ua[i]
+            inner_s = Ua[i + k] - Ua[i + 1]
+            # the current window's cyclic runs: a run through the last column goes on
+            # into the first
+            nr = 0
+            if nc == 1 and cs[0] == 0 and ce[0] == mb - 1:
+                rp0[0], rlen[0] = 0, mb
+                nr = 1
+            else:
+                wrap = nc > 1 and cs[0] == 0 and ce[nc - 1] == mb - 1
+                for j in range(1 if wrap else 0, nc):
+                    rp0[nr], rlen[nr] = cs[j], ce[j] - cs[j] + 1
+                    if wrap and j == nc - 1:
+                        rlen[nr] += ce[0] + 1
+                    nr += 1
+            reach = 0.0          # the most any stretch 2 inside these runs reaches
+            for j in range(nr):
+                jb = (rp0[j] - 1) % mb + mb
+                reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
+            # runs only shrink as the window grows: stop when none can reach the bound
+            if reach < floor or (not collect and reach <= best[r]):
+                break
+            for j in range(nr):
+                rr = min(rlen[j], mb - 2)
+                if rr < 1:
+                    continue
+                jb = (rp0[j] - 1) % mb + mb
+                vert_u = Ub[jb + rr] - Ub[jb + 1]
+                if not collect:
+                    if not same or rp0[j] % mb > r:
+                        best[r] = max(best[r], min(inner_s, vert_u))
+                    continue
+                if ext_s < floor:
+                    continue
+                need = max(floor, inner_s)
+                run_end0 = (rp0[j] + rlen[j] - 1) % mb + mb
+                for jj in range(rlen[j]):
+                    p = (rp0[j] + jj) % mb + mb
+                    run_end = run_end0 if run_end0 >= p else run_end0 + mb
+                    run_end = min(run_end, p + mb - 3)
+                    # stretch 2 from edge p - 1 reaches at most the edges up to run_end,
+                    # less with every later p (unless the run is nearly the whole ring)
+                    if Ub[run_end + 1] - Ub[p - 1] < need:
+                        if rlen[j] <= mb - 2:
+                            break
+                        continue
+                    q_hi = np.searchsorted(Ub, Ub[p] + ext_s, side="right") - 1
+                    q_lo = np.searchsorted(Ub, Ub[p - 1] + need, side="left") - 1
+                    q_lo = max(q_lo, p)
+                    q_hi = min(q_hi, run_end)
+                    if q_hi < q_lo:
+                        continue
+                    n_new = n_out + q_hi - q_lo + 1
+                    oA, okA = _grow(oA, n_new), _grow(okA, n_new)
+                    oC, okC = _grow(oC, n_new), _grow(okC, n_new)
+                    for q in range(q_lo, q_hi + 1):
+                        oA[n_out], okA[n_out] = r - 1, k
+                        oC[n_out], okC[n_out] = p - 1, q - p + 1
+                        n_out += 1
+            # the window grows by row r + k: intersect the runs
+            row = (r + k) % ma
+            a, b, n2 = 0, ptr[row], 0
+            while a < nc and b < ptr[row + 1]:
+                lo = max(cs[a], first[b])
+                hi = min(ce[a], last[b])
+                if lo <= hi:
+                    ns[n2], ne[n2] = lo, hi
+                    n2 += 1
+                if ce[a] < last[b]:
+                    a += 1
+                else:
+                    b += 1
+            for j in range(n2):
+                cs[j], ce[j] = ns[j], ne[j]
+            nc = n2
+            k += 1
+    return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
+
+
+def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
+            bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
+            sigma: float, eps: float, floor: float, collect: bool, same: bool) -> Any:
+    """Stretch 1 on one edge ``A``, stretch 2 with interior vertices ``p .. p+k-1``
+    (``_windows_single`` of the numpy search, edge by edge).
+
+    The interval of edge ``A`` against a vertex (the contacts on ``A`` that hold with
+    both its normals: ``_Intervals.cells``, the same operations) is empty unless the
+    two force directions are opposite within ``width``, so only those vertices are
+    computed (``va``, ``angle_b``, ``order``: as in :func:`_vertex_runs`; ``gy`` in ring
+    order here).  Returns the lower bounds ``(A, p, value)`` (the largest over ``k``)
+    and, with ``collect``, the configurations whose bound reaches ``floor``."""
+    mb = bx.size
+    lo = np.full(mb, 0.0)
+    hi = np.full(mb, -np.inf)
+    touched = np.empty(mb, np.int64)
+    cap = 1024
+    wa, wp, wv = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap)
+    oA, oC, okC = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64)
+    n_w, n_out = 0, 0
+    for e in A:
+        nt = 0
+        for turn in range(-1, 2):
+            qlo, qhi = 0, mb
+            if width >= np.pi:
+                if turn != 0:
+                    continue
+            else:
+                qlo = np.searchsorted(angle_b, va[e] + 2 * np.pi * turn - width, side="left")
+                qhi = np.searchsorted(angle_b, va[e] + 2 * np.pi * turn + width, side="right")
+            for q in range(qlo, qhi):
+                w = order[q]
+                d00, d01 = sigma * (bx[w] - ax[e]), sigma * (by[w] - ay[e])
+                d10, d11 = -sigma * tx[e], -sigma * ty[e]
+                a, b = 0.0, L[e]
+                for j in range(6):
+                    if j < 2:
+                        g0, g1 = gx[e, j, 0], gx[e, j, 1]
+                    else:
+                        g0, g1 = gy[w, j - 2, 0], gy[w, j - 2, 1]
+                    c0 = g0 * d01 - g1 * d00
+                    c1 = g0 * d11 - g1 * d10
+                    r = -c0 / c1
+                    if c1 > eps:
+                        a = max(a, r)
+                    if c1 < -eps:
+                        b = min(b, r)
+                    if abs(c1) <= eps and c0 < 0:
+                        b = -np.inf
+                lo[w], hi[w] = a, b
+                touched[nt] = w
+                nt += 1
+        for jp in range(nt):
+            p = touched[jp]
+            if not hi[p] - lo[p] >= floor:
+                continue
+            cl, ch = lo[p], hi[p]
+            best = 0.0
+            k = 1
+            while k < mb - 1:
+                room = ch - cl
+                if not room >= floor:
+                    break
+                i = (p - 1) % mb + mb
+                inner_u = Ub[i + k] - Ub[i + 1]
+                ext_u = Ub[i + k + 1] - Ub[i]
+                if not same or (p >= e + 2 and p + k - 1 < mb + e):
+                    best = max(best, min(room, inner_u))
+                if collect and ext_u >= floor and room >= inner_u:
+                    oA, oC = _grow(oA, n_out + 1), _grow(oC, n_out + 1)
+                    okC = _grow(okC, n_out + 1)
+                    oA[n_out], oC[n_out], okC[n_out] = e, p - 1, k
+                    n_out += 1
+                w = (p + k) % mb
+                cl, ch = max(cl, lo[w]), min(ch, hi[w])
+                k += 1
+            if best > 0:
+                wa, wp = _grow(wa, n_w + 1), _grow(wp, n_w + 1)
+                wv = _grow(wv, n_w + 1)
+                wa[n_w], wp[n_w], wv[n_w] = e, p, best
+                n_w += 1
+        for j in range(nt):                 # the columns back to empty
+            lo[touched[j]], hi[touched[j]] = 0.0, -np.inf
+    return wa[:n_w], wp[:n_w], wv[:n_w], oA[:n_out], oC[:n_out], okC[:n_out]
+
+
+def _load() -> dict[str, Any]:
+    with _lock:
+        if not _loaded:
+            import numba
+            namespace = dict(globals())
+            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _single):
+                clone = types.FunctionType(func.__code__, namespace, func.__name__)
+                clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
+                namespace[func.__name__] = numba.njit(cache=True, error_model="numpy")(clone)
+            _loaded["vertex_runs"] = namespace["_vertex_runs"]
+            _loaded["windows"] = namespace["_windows"]
+            _loaded["single"] = namespace["_single"]
+        return _loaded
+
+
+def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
+                angle_b: Any, width: float) -> Any:
+    """Compiled :func:`_vertex_runs`."""
+    return _load()["vertex_runs"](ax, ay, gx, va, bx, by, gy, order, angle_b, float(width))
+
+
+def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
+            floor: float, collect: bool, same: bool) -> Any:
+    """Compiled :func:`_windows`."""
+    return _load()["windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same)
+
+
+def single(*args: Any) -> Any:
+    """Compiled :func:`_single`."""
+    return _load()["single"](*args)
