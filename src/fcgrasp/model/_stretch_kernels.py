@@ -182,7 +182,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
                 jb = (rp0[j] - 1) % mb + mb
                 reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
             # runs only shrink as the window grows: stop when none can reach the bound
-            if reach < floor or (not collect and reach <= best[r]):
+            if reach < floor * (1 - 1e-12) or (not collect and reach <= best[r]):
                 break
             for j in range(nr):
                 rr = min(rlen[j], mb - 2)
@@ -204,7 +204,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
                     run_end = min(run_end, p + mb - 3)
                     # stretch 2 from edge p - 1 reaches at most the edges up to run_end,
                     # less with every later p (unless the run is nearly the whole ring)
-                    if Ub[run_end + 1] - Ub[p - 1] < need:
+                    if Ub[run_end + 1] < Ub[p - 1] + need:
                         if rlen[j] <= mb - 2:
                             break
                         continue

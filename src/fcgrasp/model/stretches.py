@@ -354,7 +354,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         bound = _Bound(want or 1, 2 * keys.total, fixed)
         prepared = _candidates(rings, bound, intervals, runs, keys)
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys)
-        found.sort(key=lambda f: -f.t)
+        found.sort(key=lambda f: (-f.t, f.job[:2], f.job[3], _edges_key(rings, f)))
         found = _own_optimum(rings, found)
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
@@ -463,13 +463,20 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     return out
 
 
+def _edges_key(rings: list[_Ring], f: _Found) -> tuple[int, int, int, int]:
+    iA, kA, iC, kC = f.cfg
+    return (iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
+
+
 def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, _Intervals],
             polygon: Polygon) -> list[_Found]:
     """The second leximin level and the numbering-free placement of the configurations
     kept, in the leximin order."""
     _second_level(rings, beta, found, intervals, polygon.size)
     found = _canonical(rings, beta, found, intervals, polygon)
-    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths)))
+    # exact ties in the order of their edges, whatever order the search met them in
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), f.job[:2], f.job[3],
+                              _edges_key(rings, f)))
     return found
 
 

@@ -1,0 +1,235 @@
+"""The compiled loops of the two-finger stretch search (fcgrasp.model._stretch_kernels)
+against the numpy search they replace on large rings, kept as the reference: the same
+vertex runs bit for bit, the same configurations, the same plans; the lower bounds of
+the windows against a dense brute force written here; and the top ``k`` of the search
+against the head of every configuration (``top=None``), which the bound must never
+cut short."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from fcgrasp.core.contacts import rotate
+from fcgrasp.model import stretches as S
+from fcgrasp.model._stretch_windows import _Intervals, _rings, _windows_both, _windows_single
+from fcgrasp.model.polygon import Polygon
+
+from .test_stretches import seeds, smooth_outline
+
+KINDS = ("ellipse", "star", "cam", "rounded", "noisy", "regular", "collinear")
+
+
+def outline(rng, kind, n):
+    """Outlines of every kind the search meets, near-degenerate ones included: exact
+    symmetric ties (a regular polygon), straight runs of collinear vertices (turn 0),
+    and noise that makes most vertices too sharp to cover."""
+    if kind == "noisy":
+        th = np.sort(rng.uniform(0, 2 * np.pi, n))
+        r = (1 + 0.3 * np.sin(5 * th)) * (1 + rng.uniform(0.002, 0.03) * rng.standard_normal(n))
+        return 50 * np.c_[r * np.cos(th), r * np.sin(th)]
+    if kind == "regular":
+        th = np.arange(n) * 2 * np.pi / n
+        return 40 * np.c_[np.cos(th), np.sin(th)]
+    if kind == "collinear":
+        side = max(2, n // 4)
+        t = np.arange(side) / side
+        w, h = 60.0, rng.uniform(10, 60)
+        return np.concatenate([np.c_[w * t, 0 * t], np.c_[w + 0 * t, h * t],
+                               np.c_[w * (1 - t), h + 0 * t], np.c_[0 * t, h * (1 - t)]])
+    return smooth_outline(rng, kind, n)
+
+
+def part(seed, n=None):
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    pts = outline(rng, kind, n or int(rng.integers(12, 90)))
+    holes = []
+    if seed % 3 == 0:                       # a hole: ring pairs of two rings
+        c = pts.mean(axis=0)
+        r = 0.15 * np.min(np.ptp(pts, axis=0))
+        th = np.linspace(0, 2 * np.pi, int(rng.integers(5, 30)), endpoint=False)[::-1]
+        holes = [c + r * np.c_[np.cos(th), np.sin(th)]]
+    mu = float(rng.choice([0.15, 0.3, 0.6, 1.2]))
+    return Polygon(pts, holes=holes), mu, float(rng.choice([0.0, 0.5, 2.0]))
+
+
+def _beta(mu, margin):
+    return float(np.arctan(mu) - np.radians(margin))
+
+
+def _runs(monkeypatch, setting, ra, rb, beta):
+    monkeypatch.setenv("FCGRASP_JIT", setting)
+    return S._vertex_runs(ra, rb, beta)
+
+
+@pytest.mark.parametrize("seed", seeds(12, 300))
+def test_vertex_runs_are_the_numpy_matrix(seed, monkeypatch):
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    rings = _rings(poly)
+    for x in range(len(rings)):
+        for y in range(x, len(rings)):
+            fast = _runs(monkeypatch, "1", rings[x], rings[y], beta)
+            slow = _runs(monkeypatch, "0", rings[x], rings[y], beta)
+            for sigma in (1.0, -1.0):
+                for got, want in zip(fast[sigma], slow[sigma], strict=True):
+                    np.testing.assert_array_equal(got, want)
+
+
+def _dense(runs, ma, mb):
+    ptr, first, last = runs
+    M = np.zeros((ma, mb), bool)
+    for r in range(ma):
+        for q in range(ptr[r], ptr[r + 1]):
+            M[r, first[q]:last[q] + 1] = True
+    return M
+
+
+def _brute_lower_bounds(M, ra, rb, same):
+    """For each first row: the best vertex-aligned pair of every window of rows (the
+    AND of the rows, its cyclic runs), by plain loops over a dense matrix."""
+    ma, mb = M.shape
+    best = np.zeros(ma)
+    arc_a = lambda i, k: ra.U[(i - 1) % ma + ma + k] - ra.U[(i - 1) % ma + ma + 1]  # noqa: E731
+    arc_b = lambda i, k: rb.U[(i - 1) % mb + mb + k] - rb.U[(i - 1) % mb + mb + 1]  # noqa: E731
+    for r in range(ma):
+        cols = M[r].copy()
+        for k in range(1, ma - 1):
+            if not cols.any():
+                break
+            if cols.all():
+                runs = [(0, mb)]
+            else:
+                start = int(np.flatnonzero(~cols)[0]) + 1       # after a False column
+                runs, j = [], 0
+                while j < mb:
+                    c = (start + j) % mb
+                    if cols[c]:
+                        n = 0
+                        while n < mb and cols[(c + n) % mb]:
+                            n += 1
+                        runs.append((c, n))
+                        j += n
+                    else:
+                        j += 1
+            for p0, n in runs:
+                rr = min(n, mb - 2)
+                if rr >= 1 and (not same or p0 > r):
+                    best[r] = max(best[r], min(arc_a(r, k), arc_b(p0, rr)))
+            cols &= M[(r + k) % ma]
+    return best
+
+
+def _config_set(cfg, ma, mb):
+    return set(zip((cfg.iA % ma).tolist(), cfg.kA.tolist(), (cfg.iC % mb).tolist(),
+                   cfg.kC.tolist(), strict=True))
+
+
+@pytest.mark.parametrize("seed", seeds(12, 200))
+def test_windows_are_the_numpy_windows(seed, monkeypatch):
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    rings = _rings(poly)
+    ra = rb = rings[0]
+    runs = _runs(monkeypatch, "0", ra, rb, beta)
+    for sigma in (1.0, -1.0):
+        M = _dense(runs[sigma], ra.m, rb.m)
+        brute = _brute_lower_bounds(M, ra, rb, True)
+        monkeypatch.setenv("FCGRASP_JIT", "1")
+        best, _ = S._both(runs[sigma], ra, rb, True, 0.0, False)
+        np.testing.assert_allclose(best, brute, rtol=0, atol=1e-12 * poly.size)
+        # the numpy search reads fewer window lengths: its bounds are never higher
+        row = np.repeat(np.arange(ra.m), np.diff(runs[sigma][0]))
+        slow, _ = _windows_both((row, runs[sigma][1], runs[sigma][2]), ra, rb, True, 0.0,
+                                False)
+        assert np.all(slow <= best + 1e-12 * poly.size)
+        for floor in (0.0, 0.5 * best.max(initial=0.0), best.max(initial=0.0)):
+            _, fast = S._both(runs[sigma], ra, rb, True, floor, True)
+            _, want = _windows_both((row, runs[sigma][1], runs[sigma][2]), ra, rb, True,
+                                    floor, True)
+            assert _config_set(fast, ra.m, rb.m) == _config_set(want, ra.m, rb.m)
+
+
+@pytest.mark.parametrize("seed", seeds(12, 200))
+def test_single_edge_windows_are_the_numpy_ones(seed, monkeypatch):
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    rings = _rings(poly)
+    pairs = [(0, 0)] + ([(0, 1), (1, 0)] if len(rings) > 1 else [])
+    for x, y in pairs:
+        for sigma in (1.0, -1.0):
+            iv = _Intervals(rings[x], rings[y], sigma, beta)
+            lengths = rings[x].L
+            for floor in (0.0, float(np.median(lengths)), float(lengths.max())):
+                monkeypatch.setenv("FCGRASP_JIT", "1")
+                (a, p, v), fast = S._single(iv, rings[x], rings[y], x == y, floor, True)
+                (a2, p2, v2), want = _windows_single(iv, rings[x], rings[y], x == y, floor,
+                                                     True)
+                m_a, m_b = rings[x].m, rings[y].m
+                assert _config_set(fast, m_a, m_b) == _config_set(want, m_a, m_b)
+                got = dict(zip(zip(a.tolist(), p.tolist(), strict=True), v.tolist(),
+                               strict=True))
+                ref = dict(zip(zip(a2.tolist(), p2.tolist(), strict=True), v2.tolist(),
+                               strict=True))
+                assert got.keys() == ref.keys()
+                for key, val in ref.items():
+                    assert got[key] == pytest.approx(val, rel=0, abs=1e-12 * poly.size)
+
+
+def _plans(poly, mu, margin, top, ties=True):
+    return [(p.region_edges, p.mode, p.lengths, p.regions)
+            for p in S.two_finger_stretches(poly, mu, margin, top=top, ties=ties)]
+
+
+def _assert_same_plans(got, want, size):
+    assert len(got) == len(want)
+    for g, w in zip(got, want, strict=True):
+        assert g[0] == w[0] and g[1] == w[1]
+        np.testing.assert_allclose(g[2], w[2], rtol=0, atol=1e-9 * size)
+        for rg, rw in zip(g[3], w[3], strict=True):
+            np.testing.assert_allclose(rg, rw, rtol=0, atol=1e-9 * size)
+
+
+@pytest.mark.parametrize("seed", seeds(16, 400))
+def test_compiled_search_gives_the_numpy_plans(seed, monkeypatch):
+    poly, mu, margin = part(seed)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    fast = _plans(poly, mu, margin, 8)
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    _assert_same_plans(fast, _plans(poly, mu, margin, 8), poly.size)
+
+
+@pytest.mark.parametrize("seed", seeds(16, 300))
+def test_top_k_is_the_head_of_every_configuration(seed, monkeypatch):
+    """The bound prunes, but the top ``k`` (ties included) are the first of all the
+    configurations, found with no bound at all."""
+    poly, mu, margin = part(seed, n=int(np.random.default_rng(seed).integers(10, 36)))
+    monkeypatch.setenv("FCGRASP_JIT", "1" if seed % 2 else "0")
+    every = [p.min_length for p in S.two_finger_stretches(poly, mu, margin, top=None)]
+    for k in (1, 3, 10):
+        got = [p.min_length for p in S.two_finger_stretches(poly, mu, margin, top=k,
+                                                            ties=True)]
+        head = sorted(every, reverse=True)
+        if len(head) > k:
+            kth = head[k - 1]
+            head = [t for t in head if t >= kth * (1 - S.TIE)]
+        np.testing.assert_allclose(sorted(got, reverse=True), head, rtol=1e-9)
+
+
+def test_angular_window_misses_no_cell(monkeypatch):
+    """A chord exactly at the edge of both cones (the two normals exactly 2 beta from
+    opposite) is read by the compiled loop: two parallel edges facing each other and
+    tilted by the cone's full width."""
+    mu, margin = 0.3, 0.0
+    beta = _beta(mu, margin)
+    d = rotate(np.array([0.0, 1.0]), beta)
+    a, b = np.array([0.0, 0.0]), 30 * d
+    poly = Polygon([a, a + [40, 0], b + [40, 0] + rotate(np.array([1.0, 0]), 2 * beta) * 0,
+                    b])
+    rings = _rings(poly)
+    fast = _runs(monkeypatch, "1", rings[0], rings[0], beta)
+    slow = _runs(monkeypatch, "0", rings[0], rings[0], beta)
+    for sigma in (1.0, -1.0):
+        for got, want in zip(fast[sigma], slow[sigma], strict=True):
+            np.testing.assert_array_equal(got, want)
