@@ -129,3 +129,8 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST",
            "SLIVER_REL"]
+
+#: Radians added to the angular windows of the compiled two-finger stretch search
+#: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
+#: compares, so no cell the exact test would hold is left unread.
+ANGLE_SLACK = 1e-6

@@ -30,6 +30,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core.tolerances import ROUND_TOL
+
 _lock = threading.Lock()
 _loaded: dict[str, Any] = {}
 
@@ -182,7 +184,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
                 jb = (rp0[j] - 1) % mb + mb
                 reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
             # runs only shrink as the window grows: stop when none can reach the bound
-            if reach < floor * (1 - 1e-12) or (not collect and reach <= best[r]):
+            if reach < floor * (1 - ROUND_TOL) or (not collect and reach <= best[r]):
                 break
             for j in range(nr):
                 rr = min(rlen[j], mb - 2)

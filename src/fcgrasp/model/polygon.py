@@ -32,7 +32,6 @@ from typing import Any, cast
 
 import numpy as np
 import shapely
-from shapely.geometry import LineString
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, _short, numeric_array
@@ -88,35 +87,47 @@ def _check_ring(value: Any, name: str) -> FloatArray:
 
 
 def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, int, Any] | None:
-    """First pair of edges (global numbers) that intersect other than at a shared vertex."""
-    segs, ids, ring_of, n_of = [], [], [], []
+    """First pair of edges (global numbers) that intersect other than at a shared vertex.
+
+    Every candidate pair comes from one spatial index query and is intersected in one
+    vectorised call; only the pairs left (none, for a valid part) are looked at."""
+    starts, ends, ids, ring_of = [], [], [], []
     for r, (ring, off) in enumerate(zip(rings, offsets, strict=True)):
-        n = len(ring)
-        for i in range(n):
-            a, b = ring[i], ring[(i + 1) % n]
-            if np.array_equal(a, b):
-                continue
-            segs.append(LineString([a, b]))
-            ids.append(off + i)
-            ring_of.append(r)
-            n_of.append((i, n))
-    tree = shapely.STRtree(segs)
-    left, right = tree.query(segs, predicate="intersects")
-    for a, b in zip(left, right, strict=True):
-        if a >= b:
-            continue
-        inter = segs[a].intersection(segs[b])
-        if inter.is_empty:
-            continue
-        ends = {tuple(p) for p in segs[a].coords}, {tuple(p) for p in segs[b].coords}
-        if ring_of[a] == ring_of[b]:
-            shared = ends[0] & ends[1]
-            if shared and inter.geom_type == "Point" and (inter.x, inter.y) in shared:
-                continue   # neighbours meeting at their common vertex
-        elif inter.geom_type == "Point" and (inter.x, inter.y) in ends[0] | ends[1]:
-            continue       # rings touching at a vertex: valid if shapely says so (below)
-        return ids[a], ids[b], inter
-    return None
+        nxt = np.roll(ring, -1, axis=0)
+        keep = np.flatnonzero(np.any(ring != nxt, axis=1))
+        starts.append(ring[keep])
+        ends.append(nxt[keep])
+        ids.append(off + keep)
+        ring_of.append(np.full(keep.size, r))
+    p0, p1 = np.concatenate(starts), np.concatenate(ends)
+    edge, ring_id = np.concatenate(ids), np.concatenate(ring_of)
+    segs = shapely.linestrings(np.stack([p0, p1], axis=1))
+    left, right = shapely.STRtree(segs).query(segs, predicate="intersects")
+    sel = left < right
+    left, right = left[sel], right[sel]
+    order = np.lexsort((right, left))
+    left, right = left[order], right[order]
+    inter = shapely.intersection(segs[left], segs[right])
+    point = shapely.get_type_id(inter) == 0
+    xy = np.full((left.size, 2), np.nan)
+    xy[point] = shapely.get_coordinates(inter[point])
+
+    def at(p: FloatArray) -> np.ndarray:
+        return cast("np.ndarray", np.all(xy == p, axis=1))
+
+    in_a = at(p0[left]) | at(p1[left])
+    in_b = at(p0[right]) | at(p1[right])
+    same = ring_id[left] == ring_id[right]
+    shared = (at(p0[left]) & (at(p0[right]) | at(p1[right]))) \
+        | (at(p1[left]) & (at(p0[right]) | at(p1[right])))
+    # neighbours meeting at their common vertex; rings touching at a vertex are valid
+    # if shapely says so (the caller checks)
+    fine = shapely.is_empty(inter) | (point & np.where(same, shared, in_a | in_b))
+    bad = np.flatnonzero(~fine)
+    if bad.size == 0:
+        return None
+    j = bad[0]
+    return int(edge[left[j]]), int(edge[right[j]]), inter[j]
 
 
 class Polygon:

@@ -61,7 +61,7 @@ from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting
-from ..core.tolerances import ROUND_TOL, TOL
+from ..core.tolerances import ANGLE_SLACK, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._stretch_lp import (
     _solve,
@@ -181,10 +181,6 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
 #: than what they save); ``FCGRASP_JIT=0`` never does, ``FCGRASP_JIT=1`` always.
 KERNEL_CELLS = 250_000
 
-#: Radians added to the angular windows of the compiled vertex matrix: far above the
-#: rounding of the angles, so no cell the exact test would hold is skipped.
-_ANGLE_SLACK = 1e-6
-
 
 def _use_kernels(cells: int) -> bool:
     setting = jit_setting()
@@ -217,7 +213,7 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
         # a cell holds only if the two force directions are opposite within 2 beta (each
         # within beta of the chord), and a vertex only if its two normals are within
         # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
-        width = 2 * beta + _ANGLE_SLACK
+        width = 2 * beta + ANGLE_SLACK
         fa = ra.f
         order, angle_b = _by_angle(rb)
         prev = np.roll(fa, 1, axis=0)
@@ -252,7 +248,7 @@ def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, coll
     if not _use_kernels(ra.m * rb.m):
         return _windows_single(iv, ra, rb, same, floor, collect)
     A = np.flatnonzero(ra.L >= floor)
-    width = 2 * iv.beta + _ANGLE_SLACK
+    width = 2 * iv.beta + ANGLE_SLACK
     order, angle_b = _by_angle(rb)
     va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
     gx = np.stack(_gens_x(ra.f, iv.beta), axis=1)
