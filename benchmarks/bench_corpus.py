@@ -1,0 +1,99 @@
+"""Issue 30's real-file corpus: every file of ``benchmarks/corpus`` (public drawings nobody
+here drew: CAD plates and polylines, icons, country outlines; see its SOURCES.md) planned
+with every gripper at default options, as a user would (``fcgrasp.load_part`` then
+``fcgrasp.plan``).  Each (file, gripper) runs in a fresh process, timed in CPU seconds
+(the planning call; the import and the file's reading apart), with a limit after which it
+is stopped and reported as over it.  Prints the table of every run, then the worst.
+
+    python benchmarks/bench_corpus.py [--limit 60] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
+
+Target (issue 30): every run within 2 s of CPU.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+CORPUS = Path(__file__).with_name("corpus")
+FORMATS = {".svg", ".dxf", ".json", ".geojson", ".wkt", ".png"}
+TARGET = 2.0
+
+CHILD = r"""
+import json, sys, time
+import fcgrasp as fc
+path, gripper = sys.argv[1], sys.argv[2]
+t0 = time.process_time()
+part = fc.load_part(path)
+read = time.process_time() - t0
+poly = part.polygon
+lo, hi = poly.vertices.min(axis=0), poly.vertices.max(axis=0)
+size = float((hi - lo).max())
+kw = {"2f": dict(fingers=2, mu=0.3), "3f": dict(fingers=3, mu=0.3),
+      "3g": dict(fingers=3, gravity=(0, -1)), "4f": dict(fingers=4),
+      # a jaw that opens wider than the part, with pads a tenth of its size
+      "jaw": dict(gripper=fc.ParallelJaw(stroke=(0.0, 1.2 * size), pad_width=0.1 * size,
+                                         mu=0.3))}[gripper]
+t0 = time.process_time()
+plans = fc.plan(poly, **kw)
+print(json.dumps({"edges": poly.n_edges, "read": read, "cpu": time.process_time() - t0,
+                  "plans": len(plans)}))
+"""
+
+GRIPPERS = {"2f": "2 fingers, mu 0.3", "3f": "3 fingers, mu 0.3",
+            "3g": "3 frictionless + gravity", "4f": "4 frictionless", "jaw": "parallel jaw"}
+
+
+def files(pattern: str) -> list[Path]:
+    return sorted(p for p in CORPUS.rglob("*") if p.suffix.lower() in FORMATS
+                  and pattern in str(p.relative_to(CORPUS)))
+
+
+def run(path: Path, gripper: str, limit: float) -> dict[str, object]:
+    try:
+        out = subprocess.run([sys.executable, "-c", CHILD, str(path), gripper],
+                             capture_output=True, text=True, timeout=limit)
+    except subprocess.TimeoutExpired:
+        return {"cpu": None, "note": f"stopped after {limit:g} s"}
+    if out.returncode:
+        last = (out.stderr.strip().splitlines() or ["?"])[-1]
+        return {"cpu": None, "note": last[:80]}
+    return dict(json.loads(out.stdout.strip().splitlines()[-1]), note="")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--limit", type=float, default=60.0, help="seconds before a run is stopped")
+    ap.add_argument("--grippers", default=",".join(GRIPPERS))
+    ap.add_argument("--files", default="", help="only files whose path contains this")
+    ap.add_argument("--worst", type=int, default=10)
+    args = ap.parse_args()
+    grippers = [g for g in args.grippers.split(",") if g]
+    rows = []
+    print("| file | edges | gripper | CPU s | plans | note |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for path in files(args.files):
+        for g in grippers:
+            r = run(path, g, args.limit)
+            name = path.relative_to(CORPUS).as_posix()
+            cpu = r["cpu"]
+            rows.append((float("inf") if cpu is None else float(cpu), name, g, r))
+            cpu_s = "-" if cpu is None else f"{cpu:.2f}"
+            print(f"| {name} | {r.get('edges', '-')} | {GRIPPERS[g]} | {cpu_s} | "
+                  f"{r.get('plans', '-')} | {r['note']} |", flush=True)
+    done = [r for r in rows if r[0] != float("inf")]
+    over = [r for r in rows if r[0] > TARGET]
+    print(f"\n{len(rows)} runs on {len({r[1] for r in rows})} files; {len(over)} over "
+          f"{TARGET:g} s (or stopped/failed); median CPU "
+          f"{sorted(r[0] for r in done)[len(done) // 2] if done else float('nan'):.2f} s")
+    print("\nworst:")
+    for cpu, name, g, r in sorted(rows, key=lambda r: -r[0])[:args.worst]:
+        print(f"  {'stopped' if cpu == float('inf') else f'{cpu:.2f} s':>10}  {name} "
+              f"({GRIPPERS[g]}) {r['note']}")
+
+
+if __name__ == "__main__":
+    main()

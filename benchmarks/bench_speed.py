@@ -1,0 +1,240 @@
+"""Issue 30's table: real parts at interactive speed.  Each workload runs in a fresh
+process (the package imported and numba's cache loaded before the clock starts, unless
+the row is the start-up itself), timed in CPU seconds, beside its target and a baseline
+measured in the same run:
+
+* the searches: the previous implementation kept in the package (``FCGRASP_JIT=0``:
+  the numpy stretch search, whose vertex matrix is ``m x m`` booleans);
+* the per-call rows: the LP a user would write (scipy's HiGHS);
+* rows not reworked yet: no baseline, the row says so.
+
+    python benchmarks/bench_speed.py [--quick] [--rows a,b,...]
+
+``--quick`` leaves out the rows whose baseline takes minutes.  Prints a Markdown table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import time
+
+CHILD = r"""
+import json, os, resource, sys, time
+import numpy as np
+import fcgrasp as fc
+
+def star(n, noise, seed=0):
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 50 * (1 + 0.3 * np.sin(5 * a)) * (1 + noise * rng.standard_normal(n))
+    return fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+
+def ellipse(n):
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    return fc.Polygon(np.c_[60 * np.cos(a), 30 * np.sin(a)])
+
+def blob(n):
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
+    return fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+
+def lp_closure(w):
+    from scipy.optimize import linprog
+    v = w / np.linalg.norm(w, axis=1, keepdims=True)
+    k = len(v)
+    a_eq = np.vstack([np.hstack([v.T, np.zeros((3, 1))]), np.r_[np.ones(k), 0.0]])
+    res = linprog(np.r_[np.zeros(k), -1.0], A_ub=np.hstack([-np.eye(k), np.ones((k, 1))]),
+                  b_ub=np.zeros(k), A_eq=a_eq, b_eq=np.r_[0.0, 0.0, 0.0, 1.0],
+                  bounds=[(0, None)] * k + [(None, None)], method="highs")
+    return res.status == 0 and -res.fun > 1e-9
+
+def lp_regions(poly, e1, e2, mu):
+    # the LP a user would write for the regions of two fingers on two edges (squeezing):
+    # variables s1, e1, s2, e2 (arc positions of the region ends) and t; each region at
+    # least t long; every pair of region corners inside both friction cones (the chord
+    # within atan(mu) of each inward normal: two half-planes per cone, linear in the ends)
+    from scipy.optimize import linprog
+    beta = np.arctan(mu)
+    A, B = poly.starts[[e1, e2]], poly.tangents[[e1, e2]]
+    L = poly.lengths[[e1, e2]]
+    f = -poly.normals[[e1, e2]]
+    rot = lambda v, a: np.array([np.cos(a) * v[0] - np.sin(a) * v[1],
+                                 np.sin(a) * v[0] + np.cos(a) * v[1]])
+    cross = lambda g, d: g[0] * d[1] - g[1] * d[0]
+    gens1 = [rot(f[0], -beta), -rot(f[0], beta)]
+    gens2 = [-rot(f[1], -beta), rot(f[1], beta)]
+    rows, rhs = [], []
+    for i in (0, 1):            # X = A0 + x B0 with x = s1 or e1
+        for j in (2, 3):        # Y = A1 + y B1 with y = s2 or e2
+            for g in gens1 + gens2:
+                # cross(g, Y - X) >= 0  ->  -cross(g, B1) y + cross(g, B0) x <= cross(g, A1 - A0)
+                row = np.zeros(5)
+                row[j] -= cross(g, B[1])
+                row[i] += cross(g, B[0])
+                rows.append(row)
+                rhs.append(cross(g, A[1] - A[0]))
+    rows += [[1, -1, 0, 0, 1], [0, 0, 1, -1, 1]]
+    rhs += [0, 0]
+    res = linprog([0, 0, 0, 0, -1], A_ub=rows, b_ub=rhs,
+                  bounds=[(0, L[0])] * 2 + [(0, L[1])] * 2 + [(0, None)], method="highs")
+    return -res.fun
+
+part_for = {"star1k": lambda: star(1000, 0.01), "ellipse10k": lambda: ellipse(10000),
+            "star10k": lambda: star(10000, 0.003), "blob10k": lambda: blob(10000),
+            "blob1k": lambda: blob(1000), "blob3k": lambda: blob(3000)}
+
+def run(row):
+    if row in part_for:
+        poly = part_for[row]()
+        fc.plan(blob(40), fingers=2, mu=0.3, top=1)           # warm: numba's cache
+        t0 = time.process_time()
+        fc.plan(poly, fingers=2, mu=0.3, max_memory=16 * 10**9)
+        return time.process_time() - t0
+    if row == "single10k":
+        poly = star(10000, 0.003)
+        t0 = time.process_time()
+        fc.plan(poly, fingers=2, mu=0.3, along_boundary=False)
+        return time.process_time() - t0
+    if row in ("jaw_cam", "jaw_washer"):
+        poly = fc.read_part("demo:" + row.split("_")[1])
+        t0 = time.process_time()
+        fc.plan(poly, gripper=fc.ParallelJaw(), top=5)
+        return time.process_time() - t0
+    if row in ("f3_200", "f3_cam"):
+        poly = blob(200) if row == "f3_200" else fc.read_part("demo:cam")
+        t0 = time.process_time()
+        fc.plan(poly, fingers=3, mu=0.3)
+        return time.process_time() - t0
+    if row == "f4_500":
+        poly = blob(500)
+        t0 = time.process_time()
+        fc.plan(poly, fingers=4, along_boundary=False)
+        return time.process_time() - t0
+    if row == "f4_100":
+        poly = blob(100)
+        t0 = time.process_time()
+        fc.plan(poly, fingers=4)
+        return time.process_time() - t0
+    if row == "f4_blob":
+        poly = fc.read_part("demo:blob")
+        fc.plan(poly, fingers=4)
+        t0 = time.perf_counter()
+        for _ in range(5):
+            fc.plan(poly, fingers=4)
+        return (time.perf_counter() - t0) / 5
+    if row in ("closure", "closure_lp"):
+        rng = np.random.default_rng(0)
+        grasps = []
+        for _ in range(200):
+            p, q = rng.random((2, 2)) * 10
+            n1, n2 = rng.normal(size=(2, 2))
+            grasps.append(fc.Grasp([fc.FrictionPoint(p, n1 / np.hypot(*n1), 0.5),
+                                    fc.FrictionPoint(q, n2 / np.hypot(*n2), 0.5)]))
+        ws = [g.wrenches for g in grasps]
+        t0 = time.perf_counter()
+        if row == "closure":
+            for g in grasps:
+                g.is_force_closure()
+        else:
+            for w in ws:
+                lp_closure(np.asarray(w))
+        return (time.perf_counter() - t0) / len(grasps)
+    if row in ("regions", "regions_lp"):
+        sq = fc.Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+        n = 200
+        t0 = time.perf_counter()
+        for _ in range(n):
+            if row == "regions":
+                fc.independent_regions(sq, (0, 2), mu=0.3)
+            else:
+                lp_regions(sq, 0, 2, 0.3)
+        return (time.perf_counter() - t0) / n
+    raise SystemExit(f"unknown row {row}")
+
+print(json.dumps(run(sys.argv[1])))
+"""
+
+#: (key, workload, target, unit, baseline: how it is run or None)
+ROWS = [
+    ("star1k", "2 fingers along the boundary, noisy star, 1,000 edges", 0.1, "s", "jit0"),
+    ("ellipse10k", "2 fingers along the boundary, ellipse, 10,000 edges", 0.5, "s", "jit0"),
+    ("star10k", "2 fingers along the boundary, noisy star, 10,000 edges", 0.5, "s", "jit0"),
+    ("blob10k", "2 fingers along the boundary, blob, 10,000 edges", 0.5, "s", "jit0"),
+    ("single10k", "2 fingers single-edge, noisy star, 10,000 edges", 0.3, "s", None),
+    ("jaw_cam", "parallel jaw, `demo:cam`, top 5", 2.0, "s", None),
+    ("jaw_washer", "parallel jaw, `demo:washer`", 0.2, "s", None),
+    ("f3_200", "3 fingers with friction, 200-edge blob", 1.0, "s", None),
+    ("f3_cam", "3 fingers with friction, `demo:cam`", 2.0, "s", None),
+    ("f4_500", "4 fingers single-edge, smooth 500-edge blob", 5.0, "s", None),
+    ("f4_100", "4 fingers along the boundary, 100-edge blob", 1.0, "s", None),
+    ("f4_blob", "4 fingers, the six-edge blob, in process (wall)", 0.001, "s", None),
+    ("closure", "`Grasp.is_force_closure()`, one grasp (wall)", 20e-6, "s", "closure_lp"),
+    ("regions", "`independent_regions`, one edge pair (wall)", 20e-6, "s", "regions_lp"),
+]
+
+#: Rows whose baseline or workload takes minutes: left out by ``--quick``.
+SLOW = {"star10k", "ellipse10k", "blob10k", "jaw_cam", "jaw_washer", "f3_cam", "f4_500"}
+
+
+def measure(row: str, jit: str | None = None) -> float:
+    env = dict(os.environ)
+    if jit is not None:
+        env["FCGRASP_JIT"] = jit
+    out = subprocess.run([sys.executable, "-c", CHILD, row], capture_output=True, text=True,
+                         env=env)
+    if out.returncode:
+        raise SystemExit(f"row {row} failed:\n{out.stderr[-2000:]}")
+    return float(json.loads(out.stdout.strip().splitlines()[-1]))
+
+
+def startup() -> float:
+    """``fcgrasp plan demo:blob`` as a process, wall seconds, median of 5."""
+    times = []
+    for _ in range(5):
+        t0 = time.perf_counter()
+        subprocess.run([sys.executable, "-m", "fcgrasp.apps.cli", "plan", "demo:blob"],
+                       capture_output=True, check=True)
+        times.append(time.perf_counter() - t0)
+    return sorted(times)[2]
+
+
+def fmt(x: float) -> str:
+    return f"{x * 1e6:.1f} us" if x < 1e-3 else f"{x * 1e3:.1f} ms" if x < 0.1 else f"{x:.2f} s"
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="leave out the minutes-long rows")
+    ap.add_argument("--rows", default="", help="comma-separated row keys (default: all)")
+    args = ap.parse_args()
+    wanted = set(filter(None, args.rows.split(",")))
+    print("| workload | target | now | baseline | baseline / now | met |")
+    print("| --- | --- | --- | --- | --- | --- |")
+    for key, name, target, _, base in ROWS:
+        if (wanted and key not in wanted) or (args.quick and key in SLOW and not wanted):
+            continue
+        now = measure(key)
+        if base == "jit0":
+            b = measure(key, jit="0")
+            label = "numpy search"
+        elif base:
+            b = measure(base)
+            label = "HiGHS LP"
+        else:
+            b, label = None, "not reworked"
+        ratio = f"{b / now:.1f}x" if b else "-"
+        base_s = f"{fmt(b)} ({label})" if b else label
+        print(f"| {name} | <= {fmt(target)} | {fmt(now)} | {base_s} | {ratio} | "
+              f"{'yes' if now <= target else 'no'} |", flush=True)
+    if not wanted or "startup" in wanted:
+        s = startup()
+        print(f"| `fcgrasp plan demo:blob` as a process (wall) | <= 150.0 ms | {fmt(s)} | - | - "
+              f"| {'yes' if s <= 0.15 else 'no'} |")
+
+
+if __name__ == "__main__":
+    main()
