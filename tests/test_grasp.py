@@ -52,3 +52,67 @@ def test_tol_checked(tol):
     g = fc.Grasp([fc.FrictionlessPoint([0, 0], [1, 0])])
     with pytest.raises((TypeError, ValueError), match="tol"):
         g.is_force_closure(tol=tol)
+
+
+def _random_grasp(rng):
+    """Grasps of one to five contacts of every kind, with degenerate ones on purpose:
+    exactly opposite points, collinear contacts, repeated contacts, far offsets."""
+    k = int(rng.integers(1, 6))
+    kind = rng.integers(0, 4, k)
+    off = rng.choice([0.0, 1e3]) * rng.standard_normal(2)
+    scale = float(rng.choice([1e-2, 1.0, 1e3]))
+    contacts = []
+    for j in range(k):
+        p = off + scale * rng.uniform(-1, 1, 2)
+        n = rng.standard_normal(2)
+        if rng.random() < 0.3 and contacts:               # exactly opposite the last one
+            n = -contacts[-1][2]
+        mu = float(rng.choice([0.1, 0.5, 1.5]))
+        contacts.append((kind[j], p, n / np.linalg.norm(n), mu))
+    if rng.random() < 0.2:                                 # collinear contact points
+        d = rng.standard_normal(2)
+        contacts = [(c[0], off + scale * rng.uniform(-1, 1) * d, c[2], c[3]) for c in contacts]
+    out = []
+    for kd, p, n, mu in contacts:
+        t = np.array([-n[1], n[0]]) * scale * 0.1
+        out.append([fc.FrictionlessPoint(p, n), fc.FrictionPoint(p, n, mu),
+                    fc.FrictionlessEdge(p - t, p + t, n), fc.FrictionEdge(p - t, p + t, n, mu)
+                    ][kd])
+    return fc.Grasp(out)
+
+
+def test_one_grasp_in_floats_is_the_batched_test():
+    """``Grasp.is_force_closure`` (plain floats) against the batched general test on the
+    same wrenches, 5,000 seeded grasps; both are also checked against the LP where the
+    grasp is not within rounding of the boundary."""
+    rng = np.random.default_rng(30)
+    counts = {True: 0, False: 0}
+    for _ in range(5000):
+        g = _random_grasp(rng)
+        one = g.is_force_closure()
+        batch = bool(fc.is_force_closure(g.wrenches))
+        assert one == batch
+        counts[one] += 1
+    assert min(counts.values()) > 500          # both verdicts well represented
+
+
+@pytest.mark.parametrize("scale", [1e-3, 1.0, 1e4])
+def test_one_grasp_in_floats_at_the_tolerance(scale):
+    """Near the boundary the verdict depends on the frame ``tol`` is measured in: four
+    frictionless fingers in two opposite pairs, each pair's lines ``d`` apart (two
+    couples of opposite signs: closure iff the arm ``d`` is resolved), with ``d`` from
+    far below to far above the resolution, turned and moved at random."""
+    rng = np.random.default_rng(int(scale * 7) % 1000)
+    seen = set()
+    for d in np.geomspace(1e-20, 1e-4, 120):
+        ang = rng.uniform(0, 2 * np.pi)
+        x = np.array([np.cos(ang), np.sin(ang)])
+        y = np.array([-x[1], x[0]])
+        c = rng.uniform(-1, 1, 2) * scale
+        pts = c + scale * np.array([1, d, -1, 0, d, 1, 0, -1]).reshape(4, 2) @ np.stack([x, y])
+        g = fc.Grasp([fc.FrictionlessPoint(p, n) for p, n in zip(pts, [x, -x, y, -y],
+                                                                 strict=True)])
+        one = g.is_force_closure()
+        assert one == bool(fc.is_force_closure(g.wrenches)), d
+        seen.add(one)
+    assert seen == {True, False}

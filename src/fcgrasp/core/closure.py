@@ -34,6 +34,7 @@ Two places where the paper's "vice versa" needs care, documented and tested:
 
 from __future__ import annotations
 
+import math
 from itertools import combinations
 from typing import Any, cast
 
@@ -52,6 +53,7 @@ __all__ = [
     "friction_pair_closure",
     "friction_pair_modes",
     "normalize_wrenches",
+    "closure_one",
 ]
 
 _CHUNK = 1 << 21  # floats per working array when chunking batches
@@ -133,12 +135,13 @@ def _closure_chunk(u: FloatArray, tol: float) -> tuple[np.ndarray, FloatArray]:
     y = np.zeros((n, 3))
     has_pos = esc_pos.any(axis=-1)
     has_neg = esc_neg.any(axis=-1)
-    ip = np.argmax(esc_pos, axis=-1)
-    ineg = np.argmax(esc_neg, axis=-1)
-    rows = np.arange(n)
-    y[has_pos] = c[rows, ip][has_pos]
-    only_neg = ~has_pos & has_neg
-    y[only_neg] = -c[rows, ineg][only_neg]
+    if pairs.shape[0]:                  # one wrench has no pair (and no closure)
+        ip = np.argmax(esc_pos, axis=-1)
+        ineg = np.argmax(esc_neg, axis=-1)
+        rows = np.arange(n)
+        y[has_pos] = c[rows, ip][has_pos]
+        only_neg = ~has_pos & has_neg
+        y[only_neg] = -c[rows, ineg][only_neg]
     # no valid pair: every wrench is parallel to one line (or zero): any orthogonal y
     none = ~valid.any(axis=-1) & ~closure
     if np.any(none):
@@ -201,6 +204,87 @@ def closure_escape(wrenches: Any, tol: float = TOL) -> tuple[np.ndarray, FloatAr
         closure[s:s + per] = cl
         escape[s:s + per] = t
     return closure.reshape(batch), escape.reshape(batch + (3,))
+
+
+#: Wrenches up to which one grasp is decided by :func:`closure_one` (plain floats: its
+#: pairs times wrenches stay a few hundred operations); more go through the batch.
+ONE_GRASP_WRENCHES = 12
+
+
+def closure_one(wrenches: list[tuple[float, float, float]], tol: float = TOL) -> bool:
+    """:func:`is_force_closure` of one grasp, in plain float arithmetic (theorem 6.1).
+
+    The same steps as the batched test (:func:`normalize_wrenches`, then every plane
+    spanned by two generators must have generators strictly on both sides), on Python
+    floats: a single grasp pays no numpy call, and stops at the first plane with every
+    generator on one side.  The numbers agree with the batch to rounding (the batch
+    solves its 2 x 2 system by LAPACK, this one by Cramer's rule), so only grasps within
+    a few ulps of ``tol`` of the boundary can be decided differently; tested against
+    the batch on random and degenerate grasps.  ``tol`` is not checked here."""
+    k = len(wrenches)
+    feet, unit_f = [], []
+    a00 = a01 = a11 = b0 = b1 = 0.0
+    cnt = 0
+    for fx, fy, tau in wrenches:
+        fn2 = fx * fx + fy * fy
+        if fn2 > 0:
+            q = tau / fn2
+            rx, ry = q * fy, -q * fx
+            n = math.sqrt(fn2)
+            hx, hy = fx / n, fy / n
+            a00 += 1.0 - hx * hx
+            a01 -= hx * hy
+            a11 += 1.0 - hy * hy
+            cnt += 1
+        else:
+            rx = ry = 0.0
+        b0 += rx
+        b1 += ry
+        feet.append((rx, ry))
+        unit_f.append(fn2)
+    cnt = max(cnt, 1)
+    lam = TOL * max(a00 + a11, TINY)
+    a00 += lam
+    a11 += lam
+    r0, r1 = b0 + lam * (b0 / cnt), b1 + lam * (b1 / cnt)
+    det = a00 * a11 - a01 * a01
+    cx, cy = (r0 * a11 - a01 * r1) / det, (a00 * r1 - a01 * r0) / det
+    length, dist = 0.0, 0.0
+    taus = []
+    for (fx, fy, tau), fn2, (rx, ry) in zip(wrenches, unit_f, feet, strict=True):
+        tc = tau - (cx * fy - cy * fx)
+        taus.append(tc)
+        if fn2 > 0:
+            length = max(length, abs(tc) / math.sqrt(fn2))
+        dist = max(dist, math.sqrt(rx * rx + ry * ry))
+    length = max(length, LENGTH_RESOLUTION * dist)
+    if not length > 0:
+        length = 1.0
+    u = []
+    for (fx, fy, _), tc in zip(wrenches, taus, strict=True):
+        z = tc / length
+        n = math.sqrt(fx * fx + fy * fy + z * z)
+        u.append((fx / n, fy / n, z / n) if n > 0 else (0.0, 0.0, 0.0))
+    any_valid = False
+    for i in range(k):
+        ax, ay, az = u[i]
+        for j in range(i + 1, k):
+            bx, by, bz = u[j]
+            cx_, cy_, cz_ = ay * bz - az * by, az * bx - ax * bz, ax * by - ay * bx
+            cn = math.sqrt(cx_ * cx_ + cy_ * cy_ + cz_ * cz_)
+            if not cn > DEGENERATE_TOL:
+                continue
+            any_valid = True
+            cx_, cy_, cz_ = cx_ / cn, cy_ / cn, cz_ / cn
+            lo, hi = math.inf, -math.inf
+            for ux, uy, uz in u:
+                d = cx_ * ux + cy_ * uy + cz_ * uz
+                lo, hi = min(lo, d), max(hi, d)
+                if lo < -tol and hi > tol:
+                    break
+            if lo >= -tol or hi <= tol:
+                return False            # every generator on one side of this plane
+    return any_valid
 
 
 def is_force_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:

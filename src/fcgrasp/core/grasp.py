@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ._checks import FloatArray, check_tol
-from .closure import closure_escape, normalize_wrenches
+from .closure import ONE_GRASP_WRENCHES, closure_escape, closure_one, normalize_wrenches
 from .contacts import Contact
 from .convexes import Cone
 from .screws import rotation_center
@@ -125,8 +125,18 @@ class Grasp:
         return self.wrench_cone().dual().minimal()
 
     def is_force_closure(self, tol: float = TOL) -> bool:
-        """General test (theorem 6.1): the wrench convexe is total."""
-        return bool(closure_escape(self.wrenches, tol)[0])
+        """General test (theorem 6.1): the wrench convexe is total.
+
+        A grasp of a few contacts is decided in plain float arithmetic
+        (:func:`~fcgrasp.core.closure.closure_one`), with no numpy call per wrench."""
+        tol = check_tol(tol)
+        w = []
+        for c in self.contacts:
+            for (px, py), (fx, fy) in zip(c.points.tolist(), c.forces.tolist(), strict=True):
+                w.append((fx, fy, px * fy - py * fx))
+        if len(w) <= ONE_GRASP_WRENCHES:
+            return closure_one(w, tol)
+        return bool(closure_escape(np.array(w), tol)[0])
 
     def force_direction_closure(self, tol: float = TOL) -> bool:
         """Theorem 4.1: the forces can be combined into any direction (general test).
