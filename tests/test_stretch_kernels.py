@@ -233,3 +233,35 @@ def test_angular_window_misses_no_cell(monkeypatch):
     for sigma in (1.0, -1.0):
         for got, want in zip(fast[sigma], slow[sigma], strict=True):
             np.testing.assert_array_equal(got, want)
+
+
+@pytest.mark.parametrize("seed", seeds(6, 60))
+def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
+    """The compiled per-configuration solve against the batched Fourier-Motzkin solve
+    on the systems of every configuration of a part (feasible and not)."""
+    from fcgrasp.model._stretch_kernels import solve_rows
+    from fcgrasp.model._stretch_lp import _solve, _system
+    from fcgrasp.model._stretch_windows import _Configs, _stretch_bound
+
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    ring = _rings(poly)[0]
+    m = ring.m
+    rng = np.random.default_rng(seed)
+    n = 400
+    iA, iC = rng.integers(0, m, n), rng.integers(0, m, n)
+    kA, kC = rng.integers(0, 4, n), rng.integers(0, 4, n)
+    cfg = _Configs(iA, kA, (iA + kA + 1 + iC % np.maximum(1, m - kA - kC - 2)) % m, kC)
+    counts = []
+    for sigma in (1.0, -1.0):
+        iv = _Intervals(ring, ring, sigma, beta)
+        rows = _system(ring, ring, cfg, sigma, beta, iv, iv)
+        ub = _stretch_bound(ring, ring, cfg)
+        want = _solve(rows, ub, poly.size)
+        got = solve_rows(rows, ub, S.ROUND_TOL * poly.size, S._EPS)
+        feasible = want[0] > 0
+        np.testing.assert_array_equal(got[0] > 0, feasible)
+        counts.append(int(feasible.sum()))
+        for g, w in zip(got, want, strict=True):
+            np.testing.assert_allclose(g, w, rtol=0, atol=1e-12 * poly.size)
+    assert 0 < sum(counts) < 2 * n          # feasible and infeasible systems both met

@@ -8,14 +8,18 @@ the value received, in the manner of pytransform3d's ``check_matrix``.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from .tolerances import MAX_MAGNITUDE
 
-FloatArray = NDArray[np.float64]
+if TYPE_CHECKING:       # numpy.typing costs a plan's start-up; annotations only need it
+    from numpy.typing import NDArray
+
+    FloatArray = NDArray[np.float64]
+else:
+    FloatArray = np.ndarray
 
 
 def _short(value: Any, limit: int = 80) -> str:

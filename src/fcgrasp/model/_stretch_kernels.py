@@ -329,19 +329,113 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
     return wa[:n_w], wp[:n_w], wv[:n_w], oA[:n_out], oC[:n_out], okC[:n_out]
 
 
+def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
+    """``_stretch_lp._solve`` one configuration at a time: the same Fourier-Motzkin
+    elimination of ``s0`` (every row with a positive coefficient added to every row with
+    a negative one, each divided by its coefficient's magnitude), the same bounds of
+    ``t`` from every pair of the rows left, the same read-back of ``u0`` and ``s0``
+    (the middle of their intervals), operation for operation: no ``B x R^2 x R^2``
+    array, and the rows of a configuration stay in cache."""
+    B, R, _ = rows.shape
+    t_out, s_out, u_out = np.empty(B), np.empty(B), np.empty(B)
+    rr = np.empty((R + 1, 4))
+    el = np.empty(((R + 1) * (R + 1) + R + 1, 3))
+    for b in range(B):
+        for i in range(R):
+            for j in range(4):
+                rr[i, j] = rows[b, i, j]
+        rr[R, 0], rr[R, 1], rr[R, 2], rr[R, 3] = ub[b], 0.0, 0.0, -1.0
+        m = 0
+        for i in range(R + 1):          # rows with a positive coefficient of s0 ...
+            ai = rr[i, 1]
+            if not ai > eps:
+                continue
+            for j in range(R + 1):      # ... plus rows with a negative one
+                aj = rr[j, 1]
+                if not aj < -eps:
+                    continue
+                el[m, 0] = rr[i, 0] / abs(ai) + rr[j, 0] / abs(aj)
+                el[m, 1] = rr[i, 2] / abs(ai) + rr[j, 2] / abs(aj)
+                el[m, 2] = rr[i, 3] / abs(ai) + rr[j, 3] / abs(aj)
+                m += 1
+        for i in range(R + 1):
+            if not (rr[i, 1] > eps or rr[i, 1] < -eps):
+                el[m, 0], el[m, 1], el[m, 2] = rr[i, 0], rr[i, 2], rr[i, 3]
+                m += 1
+        hi, lo, flat = np.inf, -np.inf, np.inf
+        for p in range(m):
+            cp = el[p, 1]
+            if cp > eps:
+                al_p, ga_p = -el[p, 0] / cp, -el[p, 2] / cp
+                for q in range(m):
+                    cq = el[q, 1]
+                    if cq < -eps:
+                        al_q, ga_q = -el[q, 0] / cq, -el[q, 2] / cq
+                        d = ga_p - ga_q
+                        e = al_q - al_p
+                        if d > eps:
+                            hi = min(hi, e / d)
+                        elif d < -eps:
+                            lo = max(lo, e / d)
+                        else:
+                            flat = min(flat, e)
+            elif not cp < -eps:
+                c0, ct = el[p, 0], el[p, 2]
+                if ct < -eps:
+                    hi = min(hi, -c0 / ct)
+                elif ct > eps:
+                    lo = max(lo, -c0 / ct)
+                else:
+                    flat = min(flat, c0)
+        ok = lo <= hi + tol and flat >= -tol and hi >= 0 and np.isfinite(hi)
+        t = max(hi, 0.0) if ok else -1.0
+        tt = max(t, 0.0)
+        u0 = 0.0
+        if ok:
+            ulo, uhi = -np.inf, np.inf
+            for p in range(m):
+                c1 = el[p, 1]
+                c0 = el[p, 0] + el[p, 2] * tt
+                if c1 > eps:
+                    ulo = max(ulo, -c0 / c1)
+                elif c1 < -eps:
+                    uhi = min(uhi, -c0 / c1)
+            u0 = 0.5 * (ulo + uhi)
+        s0 = 0.0
+        if ok:
+            slo, shi = -np.inf, np.inf
+            for i in range(R + 1):
+                c1 = rr[i, 1]
+                c0 = rr[i, 0] + rr[i, 2] * u0 + rr[i, 3] * tt
+                if c1 > eps:
+                    slo = max(slo, -c0 / c1)
+                elif c1 < -eps:
+                    shi = min(shi, -c0 / c1)
+            s0 = 0.5 * (slo + shi)
+        t_out[b], s_out[b], u_out[b] = t, s0, u0
+    return t_out, s_out, u_out
+
+
 def _load() -> dict[str, Any]:
     with _lock:
         if not _loaded:
             import numba
             namespace = dict(globals())
-            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _single):
+            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _single,
+                         _solve_rows):
                 clone = types.FunctionType(func.__code__, namespace, func.__name__)
                 clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
                 namespace[func.__name__] = numba.njit(cache=True, error_model="numpy")(clone)
             _loaded["vertex_runs"] = namespace["_vertex_runs"]
             _loaded["windows"] = namespace["_windows"]
             _loaded["single"] = namespace["_single"]
+            _loaded["solve_rows"] = namespace["_solve_rows"]
         return _loaded
+
+
+def loaded() -> bool:
+    """Whether this process has loaded the compiled loops (then they cost nothing more)."""
+    return bool(_loaded)
 
 
 def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
@@ -359,3 +453,9 @@ def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
 def single(*args: Any) -> Any:
     """Compiled :func:`_single`."""
     return _load()["single"](*args)
+
+
+def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
+    """Compiled :func:`_solve_rows`."""
+    return _load()["solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
+                                 float(tol), float(eps))

@@ -177,16 +177,23 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
 
 
 #: Vertex pairs (``m_a * m_b``) from which the search runs the compiled loops of
-#: :mod:`fcgrasp.model._stretch_kernels` (numba's start-up, about 0.3 s, is then less
-#: than what they save); ``FCGRASP_JIT=0`` never does, ``FCGRASP_JIT=1`` always.
-KERNEL_CELLS = 250_000
+#: :mod:`fcgrasp.model._stretch_kernels`: numba's start-up (about 0.4 s of CPU once per
+#: process, to import it and load the cached code) is then less than what they save.
+#: Once loaded, they run for every part; ``FCGRASP_JIT=0`` never runs them,
+#: ``FCGRASP_JIT=1`` always.
+KERNEL_CELLS = 1_500_000
+
+#: Configurations of one job to solve from which the compiled solve runs, whatever the
+#: size of the rings (a noisy outline can leave tens of thousands).
+KERNEL_CONFIGS = 20_000
 
 
 def _use_kernels(cells: int) -> bool:
     setting = jit_setting()
     if setting in ("0", "off", "no", "false"):
         return False
-    return setting in ("1", "on", "yes", "true") or cells >= KERNEL_CELLS
+    return (setting in ("1", "on", "yes", "true") or _stretch_kernels.loaded()
+            or cells >= KERNEL_CELLS)
 
 
 class _Keys:
@@ -261,6 +268,15 @@ def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, coll
     return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
 
 
+def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, cells: int
+               ) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`~fcgrasp.model._stretch_lp._solve`, compiled for large rings."""
+    if _use_kernels(cells):
+        t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS)
+        return t, s0, u0
+    return _solve(rows, ub, scale)
+
+
 def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
     """The ring's edges in order of their force direction's angle, and those angles."""
     angle = np.arctan2(ring.f[:, 1], ring.f[:, 0])
@@ -307,6 +323,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         keep = ub >= bound.floor
         cfg, ub = cfg.take(keep), ub[keep]
         order = np.argsort(-ub, kind="stable")
+        # many to solve: the compiled solve repays numba's start-up
+        cells = ra.m * rb.m if order.size < KERNEL_CONFIGS else KERNEL_CELLS
         for s in range(0, order.size, 256):
             chunk = order[s:s + 256]
             if ub[chunk[0]] < bound.floor:
@@ -314,7 +332,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             part = cfg.take(chunk)
             rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
                            intervals[y, x, sigma])
-            t, s0, u0 = _solve(rows, ub[chunk], scale)
+            t, s0, u0 = _solve_any(rows, ub[chunk], scale, cells)
             ok = np.flatnonzero(t > 0)
             for j in ok:
                 c = chunk[j]
@@ -385,7 +403,7 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
             ub = _ext(rb, cfg.iC, cfg.kC) if side == 0 else _ext(ra, cfg.iA, cfg.kA)
             rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
                            intervals[y, x, sigma], fixed=(side, t1))
-            t2, s0, u0 = _solve(rows, ub, scale)
+            t2, s0, u0 = _solve_any(rows, ub, scale, ra.m * rb.m)
             better = t2 > best_len * (1 + TIE)
             best_len = np.where(better, t2, best_len)
             best_side = np.where(better, side, best_side)
