@@ -113,7 +113,7 @@ def run(row):
     if row in ("jaw_cam", "jaw_washer"):
         poly = fc.read_part("demo:" + row.split("_")[1])
         t0 = time.process_time()
-        fc.plan(poly, gripper=fc.ParallelJaw(), top=5)
+        fc.plan(poly, gripper=fc.ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5), top=5)
         return time.process_time() - t0
     if row in ("f3_200", "f3_cam"):
         poly = blob(200) if row == "f3_200" else fc.read_part("demo:cam")
@@ -177,7 +177,8 @@ ROWS = [
     ("blob10k", "2 fingers along the boundary, blob, 10,000 edges", 0.5, "s", "jit0"),
     ("numba", "numba's start-up, once per process (import, cached code)", 0.5, "s", None),
     ("single10k", "2 fingers single-edge, noisy star, 10,000 edges", 0.3, "s", None),
-    ("jaw_cam", "parallel jaw, `demo:cam`, top 5", 2.0, "s", None),
+    ("jaw_cam", "parallel jaw, `demo:cam`, top 5 (stroke 5-60, pads 8, mu 0.5)", 2.0, "s",
+     None),
     ("jaw_washer", "parallel jaw, `demo:washer`", 0.2, "s", None),
     ("f3_200", "3 fingers with friction, 200-edge blob", 1.0, "s", None),
     ("f3_cam", "3 fingers with friction, `demo:cam`", 2.0, "s", None),

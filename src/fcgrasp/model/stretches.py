@@ -196,6 +196,13 @@ def _use_kernels(cells: int) -> bool:
             or cells >= KERNEL_CELLS)
 
 
+def stretch_kernels_for(cells: int) -> bool:
+    """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
+    so holds no array of every pair: the memory estimate of
+    :func:`fcgrasp.pipeline.check_search`)."""
+    return _use_kernels(cells)
+
+
 class _Keys:
     """Keys of :class:`_Bound`: a mode and the first start edge of a configuration's two
     stretches (rings numbered one after the other)."""

@@ -31,6 +31,7 @@ from ..model.regions import (
     leximin,
     max_min_length,
 )
+from ..model.stretches import stretch_kernels_for
 from . import _spec  # the search's tunables, read when used
 from ._spec import (
     KEEP_STRETCHES,
@@ -38,6 +39,7 @@ from ._spec import (
     ROW_BYTES,
     ROW_SECONDS,
     STRETCH_BYTES,
+    STRETCH_KERNEL_BYTES,
     PlanSpec,
 )
 
@@ -413,7 +415,9 @@ def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
         # configuration of a curved outline (top=None) is about n**3 / 36 of them
         rows = n ** 3 // 36 if spec.top is None else comb(n, 2)
         held = rows if spec.top is None else min(rows, 2 * max(spec.top, KEEP_STRETCHES))
-        return rows, rows, STRETCH_BYTES * n * n, held * KEPT_ROW_BYTES
+        # large rings run compiled, with nothing of size n x n
+        peak = STRETCH_KERNEL_BYTES * n if stretch_kernels_for(n * n) else STRETCH_BYTES * n * n
+        return rows, rows, peak, held * KEPT_ROW_BYTES
     rows = spec.shape.rows(n)
     per = ROW_BYTES[spec.fingers]
     cap = _spec.TUPLE_BATCH_SIZE if spec.shape.tuple_batches else _spec.BATCH_SIZE

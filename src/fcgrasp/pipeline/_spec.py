@@ -50,6 +50,10 @@ KEPT_ROW_BYTES = 3000
 #: intervals of every edge against every vertex are held at once (measured 57; a curved
 #: outline needs about 3: 61 MB of peak resident memory at 2,000 edges).
 STRETCH_BYTES = 64
+#: Peak bytes per edge of the compiled stretch search (large rings: no array of every
+#: pair of edges): measured 2.5 KB (a smooth 10,000-edge blob, 25 MB) to 5.4 KB (a noisy
+#: 10,000-edge star, 54 MB), rounded up.
+STRETCH_KERNEL_BYTES = 8192
 #: With a ranking measure other than ``min_region``, how many stretch configurations
 #: (by their leximin order) are scored besides the single-edge plans.
 KEEP_STRETCHES = 200
