@@ -265,3 +265,25 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
         for g, w in zip(got, want, strict=True):
             np.testing.assert_allclose(g, w, rtol=0, atol=1e-12 * poly.size)
     assert 0 < sum(counts) < 2 * n          # feasible and infeasible systems both met
+
+
+@pytest.mark.parametrize("seed", seeds(8, 80))
+def test_compiled_end_intervals_are_the_numpy_ones(seed):
+    """The intersection of an edge's intervals against a window of vertices (the ends'
+    boxes of every configuration's system), compiled and by numpy."""
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    rings = _rings(poly)
+    rng = np.random.default_rng(seed)
+    for x, y in [(0, 0)] + ([(0, 1), (1, 0)] if len(rings) > 1 else []):
+        for sigma in (1.0, -1.0):
+            iv = _Intervals(rings[x], rings[y], sigma, beta)
+            n = 300
+            edge = rng.integers(0, rings[x].m, n)
+            start = rng.integers(0, rings[y].m, n)
+            count = rng.integers(0, min(rings[y].m, 12), n)
+            got = iv.window(edge, start, count, compiled=True)
+            want = iv.window(edge, start, count)
+            for g, w in zip(got, want, strict=True):
+                np.testing.assert_array_equal(g, w)
+            assert np.any(got[0] <= got[1]) and np.any(got[0] > got[1])

@@ -179,13 +179,21 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
                     if wrap and j == nc - 1:
                         rlen[nr] += ce[0] + 1
                     nr += 1
-            reach = 0.0          # the most any stretch 2 inside these runs reaches
+            # the most any stretch 2 inside these runs reaches (its edges), and the
+            # longest vertex-aligned one (its interior vertices): runs only shrink as
+            # the window grows, so neither grows with k
+            reach, vert = 0.0, 0.0
             for j in range(nr):
                 jb = (rp0[j] - 1) % mb + mb
                 reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
-            # runs only shrink as the window grows: stop when none can reach the bound
-            if reach < floor * (1 - ROUND_TOL) or (not collect and reach <= best[r]):
-                break
+                vert = max(vert, Ub[jb + min(rlen[j], mb - 2)] - Ub[jb + 1])
+            if collect:
+                # a configuration's stretch 2 reaches the floor and stretch 1's interior
+                # (inner_s, growing with k): stop when no run can
+                if reach < max(floor, inner_s) * (1 - ROUND_TOL):
+                    break
+            elif reach < floor * (1 - ROUND_TOL) or vert <= best[r]:
+                break                   # no later lower bound can beat this row's
             for j in range(nr):
                 rr = min(rlen[j], mb - 2)
                 if rr < 1:
@@ -243,6 +251,50 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
+def _interval(ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, bx: Any, by: Any,
+              gy: Any, sigma: float, eps: float, e: int, w: int) -> Any:
+    """The positions on edge ``e`` (ring a) that hold against vertex ``w`` (ring b)
+    with both its normals: ``_Intervals.cells`` of one cell, the same operations
+    (empty where the first exceeds the second)."""
+    d00, d01 = sigma * (bx[w] - ax[e]), sigma * (by[w] - ay[e])
+    d10, d11 = -sigma * tx[e], -sigma * ty[e]
+    a, b = 0.0, L[e]
+    for j in range(6):
+        if j < 2:
+            g0, g1 = gx[e, j, 0], gx[e, j, 1]
+        else:
+            g0, g1 = gy[w, j - 2, 0], gy[w, j - 2, 1]
+        c0 = g0 * d01 - g1 * d00
+        c1 = g0 * d11 - g1 * d10
+        r = -c0 / c1
+        if c1 > eps:
+            a = max(a, r)
+        if c1 < -eps:
+            b = min(b, r)
+        if abs(c1) <= eps and c0 < 0:
+            b = -np.inf
+    return a, b
+
+
+def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, ty: Any,
+                  L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float, eps: float
+                  ) -> Any:
+    """``_Intervals.window``: for each edge, the intersection of its intervals against
+    vertices ``start .. start + count - 1`` (cyclic); ``(0, inf)`` when ``count`` is 0."""
+    n, mb = edge.size, bx.size
+    lo, hi = np.zeros(n), np.full(n, np.inf)
+    for i in range(n):
+        if count[i] <= 0:
+            continue
+        a_max, b_min = -np.inf, np.inf
+        for k in range(count[i]):
+            a, b = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps, edge[i],
+                             (start[i] + k) % mb)
+            a_max, b_min = max(a_max, a), min(b_min, b)
+        lo[i], hi[i] = a_max, b_min
+    return lo, hi
+
+
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
             bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
             sigma: float, eps: float, floor: float, collect: bool, same: bool) -> Any:
@@ -275,23 +327,7 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
                 qhi = np.searchsorted(angle_b, va[e] + 2 * np.pi * turn + width, side="right")
             for q in range(qlo, qhi):
                 w = order[q]
-                d00, d01 = sigma * (bx[w] - ax[e]), sigma * (by[w] - ay[e])
-                d10, d11 = -sigma * tx[e], -sigma * ty[e]
-                a, b = 0.0, L[e]
-                for j in range(6):
-                    if j < 2:
-                        g0, g1 = gx[e, j, 0], gx[e, j, 1]
-                    else:
-                        g0, g1 = gy[w, j - 2, 0], gy[w, j - 2, 1]
-                    c0 = g0 * d01 - g1 * d00
-                    c1 = g0 * d11 - g1 * d10
-                    r = -c0 / c1
-                    if c1 > eps:
-                        a = max(a, r)
-                    if c1 < -eps:
-                        b = min(b, r)
-                    if abs(c1) <= eps and c0 < 0:
-                        b = -np.inf
+                a, b = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps, e, w)
                 lo[w], hi[w] = a, b
                 touched[nt] = w
                 nt += 1
@@ -421,8 +457,8 @@ def _load() -> dict[str, Any]:
         if not _loaded:
             import numba
             namespace = dict(globals())
-            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _single,
-                         _solve_rows):
+            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _interval,
+                         _window_boxes, _single, _solve_rows):
                 clone = types.FunctionType(func.__code__, namespace, func.__name__)
                 clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
                 namespace[func.__name__] = numba.njit(cache=True, error_model="numpy")(clone)
@@ -430,6 +466,7 @@ def _load() -> dict[str, Any]:
             _loaded["windows"] = namespace["_windows"]
             _loaded["single"] = namespace["_single"]
             _loaded["solve_rows"] = namespace["_solve_rows"]
+            _loaded["window_boxes"] = namespace["_window_boxes"]
         return _loaded
 
 
@@ -459,3 +496,8 @@ def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
     """Compiled :func:`_solve_rows`."""
     return _load()["solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
                                  float(tol), float(eps))
+
+
+def window_boxes(*args: Any) -> Any:
+    """Compiled :func:`_window_boxes`."""
+    return _load()["window_boxes"](*args)

@@ -15,11 +15,12 @@ from ._stretch_windows import _BLOCK, _EPS, _Configs, _gens_x, _gens_y, _inner, 
 
 def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
             Iab: _Intervals, Iba: _Intervals,
-            fixed: tuple[int, FloatArray] | None = None) -> FloatArray:
+            fixed: tuple[int, FloatArray] | None = None, compiled: bool = False) -> FloatArray:
     """Rows ``c0 + cs s0 + cu u0 + ct t >= 0`` of a batch of configurations: both
     regions of length ``t`` (a square pair), or, with ``fixed = (side, length)``, the
     region of that side (0: stretch 1, 1: stretch 2) of the given length and the other
-    of length ``t`` (the second level of the leximin order)."""
+    of length ``t`` (the second level of the leximin order).  ``compiled``: the end
+    intervals by the compiled loop (the same numbers)."""
     mA, mB = ra.m, rb.m
     A, B = c.iA % mA, (c.iA + c.kA) % mA
     C, D = c.iC % mB, (c.iC + c.kC) % mB
@@ -27,7 +28,7 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
 
     def box(iv: _Intervals, edge: np.ndarray, ring: _Ring, first: np.ndarray,
             count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
-        lo, hi = iv.window(edge, (first + 1) % m, count)
+        lo, hi = iv.window(edge, (first + 1) % m, count, compiled)
         return lo, np.minimum(hi, ring.L[edge])
 
     lo0, hi0 = box(Iab, A, ra, c.iC, c.kC, mB)

@@ -13,6 +13,7 @@ from ..core._checks import FloatArray
 from ..core._geom import cross2 as _cross
 from ..core.contacts import rotate
 from ..core.tolerances import RANK_TOL, ROUND_TOL
+from . import _stretch_kernels
 from .polygon import Polygon
 
 #: A coefficient of the linear system smaller than this (a cross product of unit
@@ -130,10 +131,18 @@ class _Intervals:
             lo[sl], hi[sl] = self.cells(edges[sl, None], cols)
         return lo, hi
 
-    def window(self, edge: np.ndarray, start: np.ndarray, count: np.ndarray
-               ) -> tuple[FloatArray, FloatArray]:
+    def window(self, edge: np.ndarray, start: np.ndarray, count: np.ndarray,
+               compiled: bool = False) -> tuple[FloatArray, FloatArray]:
         """For each edge, the intersection of its intervals against vertices
-        ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0."""
+        ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
+        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`)."""
+        if compiled:
+            ra, rb = self.ra, self.rb
+            return cast("tuple[FloatArray, FloatArray]", _stretch_kernels.window_boxes(
+                np.asarray(edge, np.int64), np.asarray(start, np.int64),
+                np.asarray(count, np.int64), ra.a[:, 0].copy(), ra.a[:, 1].copy(),
+                ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L, self.gx, rb.a[:, 0].copy(),
+                rb.a[:, 1].copy(), self.gy, self.sigma, _EPS))
         lo, hi = np.zeros(edge.size), np.full(edge.size, np.inf)
         has = np.flatnonzero(count > 0)
         if has.size:

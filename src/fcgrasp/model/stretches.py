@@ -338,7 +338,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 break
             part = cfg.take(chunk)
             rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma])
+                           intervals[y, x, sigma], compiled=_use_kernels(cells))
             t, s0, u0 = _solve_any(rows, ub[chunk], scale, cells)
             ok = np.flatnonzero(t > 0)
             for j in ok:
@@ -409,7 +409,8 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
         for side in (0, 1):
             ub = _ext(rb, cfg.iC, cfg.kC) if side == 0 else _ext(ra, cfg.iA, cfg.kA)
             rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma], fixed=(side, t1))
+                           intervals[y, x, sigma], fixed=(side, t1),
+                           compiled=_use_kernels(ra.m * rb.m))
             t2, s0, u0 = _solve_any(rows, ub, scale, ra.m * rb.m)
             better = t2 > best_len * (1 + TIE)
             best_len = np.where(better, t2, best_len)
