@@ -243,6 +243,16 @@ def main() -> None:
         base_s = f"{fmt(b)} ({label})" if b else label
         print(f"| {name} | <= {fmt(target)} | {fmt(now)} | {base_s} | {ratio} | "
               f"{'yes' if now <= target else 'no'} |", flush=True)
+    if not wanted or "exponent" in wanted:
+        # the time exponent of the stretch search from 1,000 to 10,000 edges (blob)
+        import math
+        t1, t10 = measure("blob1k"), measure("blob10k")
+        b1, b10 = (None, None) if args.quick else (measure("blob1k", "0"), measure("blob10k", "0"))
+        e = math.log(t10 / t1, 10)
+        base_s = f"{math.log(b10 / b1, 10):.2f} (numpy search)" if b1 else "(--quick)"
+        print(f"| 2 fingers along the boundary, time exponent 1,000 -> 10,000 edges (blob) | "
+              f"<= 1.2 | {e:.2f} ({fmt(t1)} -> {fmt(t10)}) | {base_s} | - | "
+              f"{'yes' if e <= 1.2 else 'no'} |", flush=True)
     if not wanted or "startup" in wanted:
         s = startup()
         print(f"| `fcgrasp plan demo:blob` as a process (wall) | <= 150.0 ms | {fmt(s)} | - | - "
