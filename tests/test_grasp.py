@@ -81,19 +81,19 @@ def _random_grasp(rng):
     return fc.Grasp(out)
 
 
-def test_one_grasp_in_floats_is_the_batched_test():
+@pytest.mark.parametrize("n", [2000, pytest.param(50_000, marks=pytest.mark.slow)])
+def test_one_grasp_in_floats_is_the_batched_test(n):
     """``Grasp.is_force_closure`` (plain floats) against the batched general test on the
-    same wrenches, 5,000 seeded grasps; both are also checked against the LP where the
-    grasp is not within rounding of the boundary."""
+    same wrenches: 2,000 seeded grasps (50,000 with ``-m slow``)."""
     rng = np.random.default_rng(30)
     counts = {True: 0, False: 0}
-    for _ in range(5000):
+    for _ in range(n):
         g = _random_grasp(rng)
         one = g.is_force_closure()
         batch = bool(fc.is_force_closure(g.wrenches))
         assert one == batch
         counts[one] += 1
-    assert min(counts.values()) > 500          # both verdicts well represented
+    assert min(counts.values()) > n // 10      # both verdicts well represented
 
 
 @pytest.mark.parametrize("scale", [1e-3, 1.0, 1e4])
