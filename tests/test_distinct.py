@@ -153,6 +153,7 @@ def test_part_symmetries_against_shapely_images(vertices, count):
             assert found or not same      # an isometry that maps the part is listed
 
 
+@pytest.mark.slow      # 18 s: the jaw plans of the rectangle twice
 def test_jaw_boxes_are_distinct_up_to_the_part_symmetries():
     """On demo:rectangle ranks 2-5 were one box and its images under the part's mirror
     symmetries."""

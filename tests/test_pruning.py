@@ -173,6 +173,7 @@ def test_every_plan_streams_every_plan():
             assert got == sorted(_key(search(part, spec)))
 
 
+@pytest.mark.slow      # 13 s
 def test_every_plan_memory_is_bounded_by_a_batch():
     """Consuming more plans does not hold more memory (10x the plans, same peak).
 
