@@ -15,10 +15,23 @@ built-in ones.
 
 from __future__ import annotations
 
-from . import fingers, jaw
+from typing import TYPE_CHECKING, Any
+
+from . import fingers
 from .base import REGISTRY, Gripper, SearchOptions, register
 from .fingers import FourFingers, ThreeFingers, ThreeFrictionless, TwoFingers, point_fingers
-from .jaw import ParallelJaw
+
+if TYPE_CHECKING:
+    from . import jaw
+    from .jaw import ParallelJaw
+
+
+def __getattr__(name: str) -> Any:
+    """The jaw on first use: a plan of point fingers does not pay its import."""
+    if name in ("jaw", "ParallelJaw"):
+        from . import jaw
+        return jaw if name == "jaw" else jaw.ParallelJaw
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 __all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "TwoFingers", "ThreeFingers",
            "ThreeFrictionless", "FourFingers", "ParallelJaw", "point_fingers", "fingers",

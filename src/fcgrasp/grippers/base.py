@@ -106,9 +106,23 @@ def register(name: str, builder: Callable[[Mapping[str, Any]], Gripper]) -> None
     REGISTRY[name] = builder
 
 
+#: The built-in grippers' modules, imported (and so registered) when a request first
+#: names them: a plan of point fingers does not pay the jaw's import.
+BUILT_IN = {"fingers": "fcgrasp.grippers.fingers", "jaw": "fcgrasp.grippers.jaw"}
+
+
+def _register_built_in(name: str | None = None) -> None:
+    import importlib
+
+    for key, module in BUILT_IN.items():
+        if (name is None or key == name) and key not in REGISTRY:
+            importlib.import_module(module)
+
+
 def gripper_from_options(name: str, options: Mapping[str, Any]) -> Gripper:
     """The gripper a request names, built from its options (see :func:`register`; the
-    built-in grippers register when :mod:`fcgrasp.grippers` is imported)."""
+    built-in grippers register when first named)."""
+    _register_built_in(name if name in BUILT_IN else None)
     if name not in REGISTRY:
         raise ValueError(f"gripper must be one of {', '.join(sorted(REGISTRY))}, got "
                          f"{name!r}")

@@ -42,7 +42,7 @@ class _Ring:
 
 def _rings(polygon: Polygon) -> list[_Ring]:
     out = []
-    for r in np.unique(polygon.rings):
+    for r in range(int(polygon.rings.max()) + 1):      # rings are numbered from 0
         idx = np.flatnonzero((polygon.rings == r) & polygon.usable)
         if idx.size < 3:
             continue

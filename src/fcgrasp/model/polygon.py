@@ -35,7 +35,7 @@ import shapely
 from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, _short, numeric_array
-from ..core._geom import signed_area
+from ..core._geom import signed_area, unique_rows
 from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, TINY
 
 __all__ = ["Polygon", "Edge", "check_polygon"]
@@ -79,9 +79,7 @@ def _check_ring(value: Any, name: str) -> FloatArray:
                          f"documented range ({MAX_MAGNITUDE:g}): rescale the part")
     if arr.shape[0] >= 2 and np.array_equal(arr[0], arr[-1]):
         arr = arr[:-1]
-    # distinct vertices, counted on the sorted rows (np.unique(axis=0) imports numpy.ma)
-    srt = arr[np.lexsort(arr.T[::-1])]
-    distinct = int(np.any(np.diff(srt, axis=0) != 0, axis=1).sum()) + 1 if arr.size else 0
+    distinct = unique_rows(arr).shape[0]
     if distinct < 3:
         raise ValueError(f"{name} needs at least 3 distinct vertices, got {distinct}")
     return arr

@@ -36,6 +36,7 @@ from typing import Any, cast
 import numpy as np
 
 from ..core._checks import FloatArray
+from ..core._geom import unique_rows
 from ..core.tolerances import DEGENERATE_TOL, RANK_RTOL, ROUND_TOL, TINY
 
 __all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length", "ball_radius"]
@@ -66,7 +67,7 @@ def ball_radius(points: FloatArray, tol: float = DEGENERATE_TOL) -> float:
     >>> ball_radius(cube)
     1.0
     """
-    P = np.unique(np.asarray(points, float), axis=0)
+    P = unique_rows(np.asarray(points, float))
     k = len(P)
     if k < 4:
         return 0.0
@@ -101,7 +102,8 @@ def epsilon_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarray,
     """
     w = _scaled_wrenches(points, forces, centroid, rho)
     l1 = ball_radius(w)
-    groups = [np.concatenate([np.zeros((1, 3)), w[finger == f]]) for f in np.unique(finger)]
+    groups = [np.concatenate([np.zeros((1, 3)), w[finger == f]])
+              for f in sorted(set(finger.tolist()))]
     sums = np.array([np.sum(c, axis=0) for c in product(*groups)])
     linf = ball_radius(sums)
     return {"epsilon_l1": l1, "epsilon_linf": linf}
@@ -159,7 +161,7 @@ def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarra
     lr = _least_solutions(w, rot)
     if lt is None or lr is None:
         return {"resistance": 0.0, "resistance_approx": 0.0}
-    fingers = np.unique(finger)
+    fingers = sorted(set(finger.tolist()))
     real = np.ones(len(points), bool) if counts is None else counts
     dist = np.hypot(*(points - centroid).T)
 
