@@ -240,7 +240,7 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
     """The compiled per-configuration solve against the batched Fourier-Motzkin solve
     on the systems of every configuration of a part (feasible and not)."""
     from fcgrasp.model._stretch_kernels import solve_rows
-    from fcgrasp.model._stretch_lp import _solve, _system
+    from fcgrasp.model._stretch_lp import _box_bound, _solve, _system
     from fcgrasp.model._stretch_windows import _Configs, _stretch_bound
 
     poly, mu, margin = part(seed)
@@ -261,6 +261,10 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
         got = solve_rows(rows, ub, S.ROUND_TOL * poly.size, S._EPS)
         feasible = want[0] > 0
         np.testing.assert_array_equal(got[0] > 0, feasible)
+        # the ends' boxes bound the optimum (the search prunes and orders by them)
+        box = _box_bound(ring, ring, cfg, iv, iv, False)
+        assert np.all(box[feasible] >= want[0][feasible] - 1e-9 * poly.size)
+        np.testing.assert_array_equal(box, _box_bound(ring, ring, cfg, iv, iv, True))
         counts.append(int(feasible.sum()))
         for g, w in zip(got, want, strict=True):
             np.testing.assert_allclose(g, w, rtol=0, atol=1e-12 * poly.size)

@@ -3,6 +3,8 @@ eliminating variables (part of :mod:`fcgrasp.model.stretches`)."""
 
 from __future__ import annotations
 
+from typing import cast
+
 import numpy as np
 
 from ..core._checks import FloatArray
@@ -13,22 +15,27 @@ from ._stretch_windows import _BLOCK, _EPS, _Configs, _gens_x, _gens_y, _inner, 
 # ----------------------------------------------------------------------------- one LP
 
 
-def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
-            Iab: _Intervals, Iba: _Intervals,
-            fixed: tuple[int, FloatArray] | None = None, compiled: bool = False) -> FloatArray:
-    """Rows ``c0 + cs s0 + cu u0 + ct t >= 0`` of a batch of configurations: both
-    regions of length ``t`` (a square pair), or, with ``fixed = (side, length)``, the
-    region of that side (0: stretch 1, 1: stretch 2) of the given length and the other
-    of length ``t`` (the second level of the leximin order).  ``compiled``: the end
-    intervals by the compiled loop (the same numbers)."""
+def _ends(ra: _Ring, rb: _Ring, c: _Configs, Iab: _Intervals, Iba: _Intervals,
+          compiled: bool, reach: int | None = None
+          ) -> tuple[tuple[FloatArray, ...], tuple[FloatArray, FloatArray]]:
+    """The intervals of each stretch's two end edges against the other stretch's
+    interior vertices (``lo0, hi0`` first edge of stretch 1, ``lo1, hi1`` its last edge,
+    ``ulo0 .. uhi1`` the same for stretch 2) and each stretch's offset from its start
+    edge to its last edge.  With ``reach``, against at most the first and the last
+    ``reach`` of those vertices (intervals that contain the exact ones: for a bound)."""
     mA, mB = ra.m, rb.m
     A, B = c.iA % mA, (c.iA + c.kA) % mA
     C, D = c.iC % mB, (c.iC + c.kC) % mB
-    # ends against the other stretch's interior vertices
 
     def box(iv: _Intervals, edge: np.ndarray, ring: _Ring, first: np.ndarray,
             count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
-        lo, hi = iv.window(edge, (first + 1) % m, count, compiled)
+        if reach is None:
+            lo, hi = iv.window(edge, (first + 1) % m, count, compiled)
+        else:
+            k = np.minimum(count, reach)
+            lo, hi = iv.window(edge, (first + 1) % m, k, compiled)
+            lo2, hi2 = iv.window(edge, (first + 1 + count - k) % m, k, compiled)
+            lo, hi = np.maximum(lo, lo2), np.minimum(hi, hi2)
         return lo, np.minimum(hi, ring.L[edge])
 
     lo0, hi0 = box(Iab, A, ra, c.iC, c.kC, mB)
@@ -37,6 +44,40 @@ def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
     ulo1, uhi1 = box(Iba, D, rb, c.iA, c.kA, mA)
     off_s = np.where(c.kA > 0, ra.L[A] + _inner(ra, c.iA, c.kA), 0.0)
     off_u = np.where(c.kC > 0, rb.L[C] + _inner(rb, c.iC, c.kC), 0.0)
+    return (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u)
+
+
+#: Interior vertices at each end of the other stretch that :func:`_box_bound` reads (the
+#: nearest constrain an end most; fewer vertices only loosen the bound).
+BOX_REACH = 8
+
+
+def _box_bound(ra: _Ring, rb: _Ring, c: _Configs, Iab: _Intervals, Iba: _Intervals,
+               compiled: bool) -> FloatArray:
+    """An upper bound of a configuration's common length ``t``, from its ends' boxes
+    alone: stretch 1 starts no earlier than ``lo0`` on its first edge and ends no later
+    than ``hi1`` on its last, so ``t <= hi1 + off_s - lo0``; the same for stretch 2.
+    The intervals are those against the first and last :data:`BOX_REACH` interior
+    vertices of the other stretch (they contain the exact ones), so the bound is never
+    below the program's optimum (tested), and far below the arc length where the ends
+    are confined (flattened curves)."""
+    (lo0, _, _, hi1, ulo0, _, _, uhi1), (off_s, off_u) = _ends(ra, rb, c, Iab, Iba, compiled,
+                                                               BOX_REACH)
+    return cast("FloatArray", np.minimum(hi1 + off_s - lo0, uhi1 + off_u - ulo0))
+
+
+def _system(ra: _Ring, rb: _Ring, c: _Configs, sigma: float, beta: float,
+            Iab: _Intervals, Iba: _Intervals,
+            fixed: tuple[int, FloatArray] | None = None, compiled: bool = False) -> FloatArray:
+    """Rows ``c0 + cs s0 + cu u0 + ct t >= 0`` of a batch of configurations: both
+    regions of length ``t`` (a square pair), or, with ``fixed = (side, length)``, the
+    region of that side (0: stretch 1, 1: stretch 2) of the given length and the other
+    of length ``t`` (the second level of the leximin order).  ``compiled``: the end
+    intervals by the compiled loop (the same numbers)."""
+    A, C = c.iA % ra.m, c.iC % rb.m
+    (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(ra, rb, c, Iab, Iba,
+                                                                         compiled)
+    B, D = (c.iA + c.kA) % ra.m, (c.iC + c.kC) % rb.m
     # points, affine in z = (s0, u0, t): x0 + J z
     n = A.size
     zero = np.zeros((n, 2))

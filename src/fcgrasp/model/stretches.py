@@ -64,6 +64,7 @@ from ..core.kernels import jit_setting
 from ..core.tolerances import ANGLE_SLACK, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._stretch_lp import (
+    _box_bound,
     _solve,
     _system,
 )
@@ -329,12 +330,18 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         ub = _stretch_bound(ra, rb, cfg)
         keep = ub >= bound.floor
         cfg, ub = cfg.take(keep), ub[keep]
-        order = np.argsort(-ub, kind="stable")
-        # many to solve: the compiled solve repays numba's start-up
-        cells = ra.m * rb.m if order.size < KERNEL_CONFIGS else KERNEL_CELLS
+        # many to solve: the compiled loops repay numba's start-up
+        cells = ra.m * rb.m if ub.size < KERNEL_CONFIGS else KERNEL_CELLS
+        # the ends' boxes bound a configuration far below its arc length where the ends
+        # are confined: solved in that order, pruned by it (the arc length stays the
+        # program's cap, so each configuration's solution is unchanged)
+        box = np.minimum(ub, _box_bound(ra, rb, cfg, intervals[x, y, sigma],
+                                        intervals[y, x, sigma], _use_kernels(cells)))
+        order = np.argsort(-box, kind="stable")
         for s in range(0, order.size, 256):
             chunk = order[s:s + 256]
-            if ub[chunk[0]] < bound.floor:
+            chunk = chunk[box[chunk] >= bound.floor]
+            if chunk.size == 0:
                 break
             part = cfg.take(chunk)
             rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
