@@ -57,3 +57,17 @@ def test_the_public_names_are_one_list():
         assert getattr(fcgrasp, name) is getattr(mod, name)
         assert name in getattr(mod, "__all__", [name]), (name, module)
     assert not {"Any", "TYPE_CHECKING", "import_module"} & set(dir(fcgrasp))
+
+
+def test_the_jaw_is_imported_on_first_use():
+    """A plan of point fingers does not import the jaw; asking the package for it (as
+    ``hasattr`` and Sphinx do, before anything imported it) imports it once, with no
+    recursion."""
+    code = ("import sys, fcgrasp as fc, fcgrasp.grippers as g\n"
+            "fc.plan(fc.read_part('demo:blob'), fingers=2, mu=0.3, top=1)\n"
+            "assert 'fcgrasp.grippers.jaw' not in sys.modules\n"
+            "assert hasattr(g, 'jaw') and g.ParallelJaw is g.jaw.ParallelJaw\n"
+            "assert not hasattr(g, 'no_such_gripper')\n"
+            "print('ok')")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr

@@ -29,7 +29,9 @@ if TYPE_CHECKING:
 def __getattr__(name: str) -> Any:
     """The jaw on first use: a plan of point fingers does not pay its import."""
     if name in ("jaw", "ParallelJaw"):
-        from . import jaw
+        import importlib  # not "from . import jaw": that asks this function again
+
+        jaw = importlib.import_module(f"{__name__}.jaw")
         return jaw if name == "jaw" else jaw.ParallelJaw
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
