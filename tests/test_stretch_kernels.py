@@ -291,3 +291,21 @@ def test_compiled_end_intervals_are_the_numpy_ones(seed):
             for g, w in zip(got, want, strict=True):
                 np.testing.assert_array_equal(g, w)
             assert np.any(got[0] <= got[1]) and np.any(got[0] > got[1])
+
+
+def test_large_outline_fits_the_default_budget(monkeypatch):
+    """The compiled search holds nothing of size n x n, so its memory estimate lets a
+    6,000-edge outline through the default 2 GB budget (the numpy search's estimate,
+    64 bytes per pair of edges, refuses it and says what would fit)."""
+    import fcgrasp as fc
+    from fcgrasp.errors import SearchTooLarge
+
+    a = np.linspace(0, 2 * np.pi, 6000, endpoint=False)
+    part = Polygon(np.c_[60 * np.cos(a), 30 * np.sin(a)])
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    with pytest.raises(SearchTooLarge, match="simplify"):
+        fc.plan(part, fingers=2, mu=0.3, top=1)
+    monkeypatch.setenv("FCGRASP_JIT", "auto")
+    best = fc.plan(part, fingers=2, mu=0.3, top=1)[0]
+    # the ellipse's regions run along the curve: far longer than one edge (0.05 mm)
+    assert best.min_length > 20
