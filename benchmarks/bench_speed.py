@@ -29,6 +29,8 @@ CHILD = r"""
 import json, os, resource, sys, time
 import numpy as np
 import fcgrasp as fc
+sys.path.insert(0, os.environ["FCGRASP_BENCH_DIR"])
+from bench_closure import lp_closure      # the LP a user would write (issue 2's baseline)
 
 def star(n, noise, seed=0):
     rng = np.random.default_rng(seed)
@@ -44,16 +46,6 @@ def blob(n):
     a = np.linspace(0, 2 * np.pi, n, endpoint=False)
     r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
     return fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
-
-def lp_closure(w):
-    from scipy.optimize import linprog
-    v = w / np.linalg.norm(w, axis=1, keepdims=True)
-    k = len(v)
-    a_eq = np.vstack([np.hstack([v.T, np.zeros((3, 1))]), np.r_[np.ones(k), 0.0]])
-    res = linprog(np.r_[np.zeros(k), -1.0], A_ub=np.hstack([-np.eye(k), np.ones((k, 1))]),
-                  b_ub=np.zeros(k), A_eq=a_eq, b_eq=np.r_[0.0, 0.0, 0.0, 1.0],
-                  bounds=[(0, None)] * k + [(None, None)], method="highs")
-    return res.status == 0 and -res.fun > 1e-9
 
 def lp_regions(poly, e1, e2, mu):
     # the LP a user would write for the regions of two fingers on two edges (squeezing):
@@ -194,7 +186,7 @@ SLOW = {"star10k", "ellipse10k", "blob10k", "jaw_cam", "jaw_washer", "f3_cam", "
 
 
 def measure(row: str, jit: str | None = None) -> float:
-    env = dict(os.environ)
+    env = dict(os.environ, FCGRASP_BENCH_DIR=os.path.dirname(os.path.abspath(__file__)))
     if jit is not None:
         env["FCGRASP_JIT"] = jit
     out = subprocess.run([sys.executable, "-c", CHILD, row], capture_output=True, text=True,
