@@ -5,7 +5,7 @@ with every gripper at default options, as a user would (``fcgrasp.load_part`` th
 (the planning call; the import and the file's reading apart), with a limit after which it
 is stopped and reported as over it.  Prints the table of every run, then the worst.
 
-    python benchmarks/bench_corpus.py [--limit 60] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
+    python benchmarks/bench_corpus.py [--limit 30] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
 
 Target (issue 30): every run within 2 s of CPU.
 """
@@ -66,7 +66,7 @@ def run(path: Path, gripper: str, limit: float) -> dict[str, object]:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--limit", type=float, default=60.0, help="seconds before a run is stopped")
+    ap.add_argument("--limit", type=float, default=30.0, help="seconds before a run is stopped")
     ap.add_argument("--grippers", default=",".join(GRIPPERS))
     ap.add_argument("--files", default="", help="only files whose path contains this")
     ap.add_argument("--worst", type=int, default=10)
