@@ -140,14 +140,11 @@ def test_windows_are_the_numpy_windows(seed, monkeypatch):
         best, _ = S._both(runs[sigma], ra, rb, True, 0.0, False)
         np.testing.assert_allclose(best, brute, rtol=0, atol=1e-12 * poly.size)
         # the numpy search reads fewer window lengths: its bounds are never higher
-        row = np.repeat(np.arange(ra.m), np.diff(runs[sigma][0]))
-        slow, _ = _windows_both((row, runs[sigma][1], runs[sigma][2]), ra, rb, True, 0.0,
-                                False)
+        slow, _ = _windows_both(runs[sigma], ra, rb, True, 0.0, False)
         assert np.all(slow <= best + 1e-12 * poly.size)
         for floor in (0.0, 0.5 * best.max(initial=0.0), best.max(initial=0.0)):
             _, fast = S._both(runs[sigma], ra, rb, True, floor, True)
-            _, want = _windows_both((row, runs[sigma][1], runs[sigma][2]), ra, rb, True,
-                                    floor, True)
+            _, want = _windows_both(runs[sigma], ra, rb, True, floor, True)
             assert _config_set(fast, ra.m, rb.m) == _config_set(want, ra.m, rb.m)
 
 

@@ -47,8 +47,8 @@ from ._angles import wrap_floor as _wrap  # compiled over this module's namespac
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
-__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "arc_meet", "segment",
-           "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
+__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "arc_meet",
+           "segment", "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
            "pair_problems", "two_levels", "PROBLEM_FIELDS"]
 
 #: Rows a process runs by numpy before the kernels are compiled (numpy takes about
@@ -307,13 +307,17 @@ _rows_by_numpy = 0
 _compiling = threading.Lock()
 
 
-def jit_setting() -> str:
-    """``FCGRASP_JIT`` as set in the environment (lower case; "auto" when unset): "0"
-    never compiles, "1" always does, anything else when the work repays it."""
-    return os.environ.get("FCGRASP_JIT", "auto").strip().lower()
-
-
-_setting = jit_setting
+def jit_setting() -> bool | None:
+    """``FCGRASP_JIT`` as set in the environment: False ("0", "off", "no", "false"):
+    never compile; True ("1", "on", "yes", "true"): always; None (unset or anything
+    else): when the work repays it.  Read at every decision, by these kernels and by
+    the stretch search's (:mod:`fcgrasp.model._stretch_kernels`)."""
+    setting = os.environ.get("FCGRASP_JIT", "auto").strip().lower()
+    if setting in ("0", "off", "no", "false"):
+        return False
+    if setting in ("1", "on", "yes", "true"):
+        return True
+    return None
 
 
 def use_jit(rows: int) -> bool:
@@ -322,10 +326,10 @@ def use_jit(rows: int) -> bool:
     included: a batch that runs by numpy is counted); never with ``FCGRASP_JIT=0`` or
     without numba; always with ``FCGRASP_JIT=1``."""
     global _rows_by_numpy
-    setting = _setting()
-    if setting in ("0", "off", "no", "false") or _no_numba:
+    setting = jit_setting()
+    if setting is False or _no_numba:
         return False
-    if setting in ("1", "on", "yes", "true") or _compiled is not None:
+    if setting is True or _compiled is not None:
         return True
     _rows_by_numpy += rows
     return _rows_by_numpy > JIT_AFTER_ROWS
@@ -346,19 +350,28 @@ def _loops() -> dict[str, Any] | None:
         except ImportError:
             _no_numba = True
             return None
-        namespace = dict(globals())
         module = sys.modules[__name__]
-        for name in _FORMULAS + _LOOPS:
-            func = getattr(module, "_select_scalar" if name == "_select" else name)
-            clone = types.FunctionType(func.__code__, namespace, func.__name__,
-                                       func.__defaults__)
-            clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
-            try:
-                namespace[name] = numba.njit(cache=True, error_model="numpy")(clone)
-            except RuntimeError:        # nowhere to cache (a read-only install): compile
-                namespace[name] = numba.njit(error_model="numpy")(clone)
-        _compiled = namespace
-        return namespace
+        _compiled = njit_all(numba, dict(globals()), [
+            (name, getattr(module, "_select_scalar" if name == "_select" else name))
+            for name in _FORMULAS + _LOOPS])
+        return _compiled
+
+
+def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
+             ) -> dict[str, Any]:
+    """Compile plain-Python functions with numba, each rebuilt over ``namespace`` and
+    stored there under its name, so that compiled functions call compiled ones (here
+    and in :mod:`fcgrasp.model._stretch_kernels`).  The machine code is cached on disk
+    beside the functions' module; where there is nowhere to write it (a read-only
+    install), compiled without a cache.  Returns ``namespace``."""
+    for name, func in funcs:
+        clone = types.FunctionType(func.__code__, namespace, func.__name__, func.__defaults__)
+        clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
+        try:
+            namespace[name] = numba.njit(cache=True, error_model="numpy")(clone)
+        except RuntimeError:            # nowhere to cache (a read-only install): compile
+            namespace[name] = numba.njit(error_model="numpy")(clone)
+    return namespace
 
 
 def compiled() -> bool:

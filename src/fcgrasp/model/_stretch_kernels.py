@@ -25,11 +25,11 @@ search uses these loops only on rings large enough to repay it
 from __future__ import annotations
 
 import threading
-import types
 from typing import Any
 
 import numpy as np
 
+from ..core.kernels import njit_all
 from ..core.tolerances import ROUND_TOL
 
 _lock = threading.Lock()
@@ -453,20 +453,14 @@ def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
 
 
 def _load() -> dict[str, Any]:
+    """The loops compiled (once per process; :func:`fcgrasp.core.kernels.njit_all`)."""
     with _lock:
         if not _loaded:
             import numba
-            namespace = dict(globals())
-            for func in (_grow, _append, _in_order, _vertex_runs, _windows, _interval,
-                         _window_boxes, _single, _solve_rows):
-                clone = types.FunctionType(func.__code__, namespace, func.__name__)
-                clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
-                namespace[func.__name__] = numba.njit(cache=True, error_model="numpy")(clone)
-            _loaded["vertex_runs"] = namespace["_vertex_runs"]
-            _loaded["windows"] = namespace["_windows"]
-            _loaded["single"] = namespace["_single"]
-            _loaded["solve_rows"] = namespace["_solve_rows"]
-            _loaded["window_boxes"] = namespace["_window_boxes"]
+
+            _loaded.update(njit_all(numba, dict(globals()), [
+                (f.__name__, f) for f in (_grow, _append, _in_order, _vertex_runs, _windows,
+                                          _interval, _window_boxes, _single, _solve_rows)]))
         return _loaded
 
 
@@ -478,26 +472,26 @@ def loaded() -> bool:
 def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
                 angle_b: Any, width: float) -> Any:
     """Compiled :func:`_vertex_runs`."""
-    return _load()["vertex_runs"](ax, ay, gx, va, bx, by, gy, order, angle_b, float(width))
+    return _load()["_vertex_runs"](ax, ay, gx, va, bx, by, gy, order, angle_b, float(width))
 
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool) -> Any:
     """Compiled :func:`_windows`."""
-    return _load()["windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same)
+    return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same)
 
 
 def single(*args: Any) -> Any:
     """Compiled :func:`_single`."""
-    return _load()["single"](*args)
+    return _load()["_single"](*args)
 
 
 def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
     """Compiled :func:`_solve_rows`."""
-    return _load()["solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
+    return _load()["_solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
                                  float(tol), float(eps))
 
 
 def window_boxes(*args: Any) -> Any:
     """Compiled :func:`_window_boxes`."""
-    return _load()["window_boxes"](*args)
+    return _load()["_window_boxes"](*args)

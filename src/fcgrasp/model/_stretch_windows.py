@@ -70,6 +70,13 @@ def _fan(ring: _Ring) -> tuple[FloatArray, FloatArray]:
     return np.roll(ring.f, 1, axis=0), ring.f
 
 
+def _turns(ring: _Ring) -> FloatArray:
+    """The angle between the two force directions at every vertex (the fan's width)."""
+    before, after = _fan(ring)
+    return cast("FloatArray", np.arctan2(np.abs(_cross(before, after)),
+                                         np.sum(before * after, axis=1)))
+
+
 #: Elements per block of a ring-by-ring array: blocks of rows this size stay in cache.
 _BLOCK = 1 << 15
 
@@ -318,11 +325,11 @@ class _Bound:
         return self.value * (1 - TIE) if self.fixed is None else self.fixed
 
 
-def _windows_both(Mi: tuple[np.ndarray, np.ndarray, np.ndarray], ra: _Ring, rb: _Ring,
+def _windows_both(runs: tuple[np.ndarray, np.ndarray, np.ndarray], ra: _Ring, rb: _Ring,
                   same: bool, floor: float, collect: bool) -> tuple[FloatArray, _Configs]:
     """Configurations with interior vertices on both stretches: stretch 1's interior
     window i .. i+k-1 leaves for stretch 2 the runs of the AND of those rows of ``M``
-    (``Mi``: the runs of its rows, :func:`_row_intervals`).
+    (``runs``: the runs of its rows as row pointers, first and last columns).
 
     Returns, for each first row ``i`` (stretch 1 from vertex ``i``), the largest
     smallest region of the vertex-aligned stretches of its runs (feasible: all their
@@ -331,7 +338,8 @@ def _windows_both(Mi: tuple[np.ndarray, np.ndarray, np.ndarray], ra: _Ring, rb: 
     bound reaches ``floor``."""
     best = np.zeros(ra.m)
     parts: list[_Configs] = []
-    ptr = np.searchsorted(Mi[0], np.arange(ra.m + 1))
+    ptr, first, last = runs
+    Mi = (np.repeat(np.arange(ra.m), np.diff(ptr)), first, last)
     C = Mi
     k = 1
     while k < ra.m - 1:
@@ -433,7 +441,7 @@ def _windows_single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: flo
         mine = ok & after & ((pidx[None, :] + k - 1 < mb + A[:, None]) if same else True)
         np.maximum(best, np.where(mine, np.minimum(room, inner_u), 0.0), out=best)
         if collect:
-            a_i, p_i = np.nonzero(ok & (room >= floor) & (ext_u >= floor) & (room >= inner_u))
+            a_i, p_i = np.nonzero(ok & (ext_u >= floor) & (room >= inner_u))
             if a_i.size:
                 parts.append(_Configs(A[a_i], np.zeros(a_i.size, int), p_i - 1,
                                       np.full(a_i.size, k)))

@@ -58,7 +58,6 @@ import numpy as np
 
 from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core._geom import cross2 as _cross
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting
 from ..core.tolerances import ANGLE_SLACK, ROUND_TOL, TOL
@@ -88,6 +87,7 @@ from ._stretch_windows import (
     _rings,
     _row_intervals,
     _stretch_bound,
+    _turns,
     _vertex_matrix,
     _windows_both,
     _windows_single,
@@ -189,19 +189,14 @@ KERNEL_CELLS = 1_500_000
 KERNEL_CONFIGS = 20_000
 
 
-def _use_kernels(cells: int) -> bool:
-    setting = jit_setting()
-    if setting in ("0", "off", "no", "false"):
-        return False
-    return (setting in ("1", "on", "yes", "true") or _stretch_kernels.loaded()
-            or cells >= KERNEL_CELLS)
-
-
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
-    :func:`fcgrasp.pipeline.check_search`)."""
-    return _use_kernels(cells)
+    :func:`fcgrasp.pipeline.check_search` asks too)."""
+    setting = jit_setting()
+    if setting is not None:
+        return setting
+    return _stretch_kernels.loaded() or cells >= KERNEL_CELLS
 
 
 class _Keys:
@@ -212,28 +207,33 @@ class _Keys:
         self.offset = np.concatenate([[0], np.cumsum([r.m for r in rings])]).astype(int)
         self.total = int(self.offset[-1])
 
+    def _edge(self, ring: int, pos: Any, sigma: float) -> np.ndarray:
+        m = self.offset[ring + 1] - self.offset[ring]
+        return cast("np.ndarray", self.offset[ring] + np.asarray(pos) % m
+                    + (0 if sigma > 0 else self.total))
+
     def __call__(self, job: tuple[int, int, float, str], a: Any, b: Any) -> np.ndarray:
+        """The key of pairs starting at edges ``a`` (ring x) and ``b`` (ring y)."""
         x, y, sigma, _ = job
-        first = np.minimum(self.offset[x] + np.asarray(a) % (self.offset[x + 1] - self.offset[x]),
-                           self.offset[y] + np.asarray(b) % (self.offset[y + 1] - self.offset[y]))
-        return cast("np.ndarray", first + (0 if sigma > 0 else self.total))
+        return cast("np.ndarray", np.minimum(self._edge(x, a, sigma), self._edge(y, b, sigma)))
+
+    def first(self, job: tuple[int, int, float, str], a: Any) -> np.ndarray:
+        """The key of pairs whose stretch 1 (edge ``a`` of ring x) comes first."""
+        return self._edge(job[0], a, job[2])
 
 
 def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
     """The runs of True of every row of the vertex matrix of each mode, as row pointers,
     first and last columns (compiled for large rings; :func:`_vertex_matrix` else)."""
-    if _use_kernels(ra.m * rb.m):
+    if stretch_kernels_for(ra.m * rb.m):
         gx = np.stack([g for f in _fan(ra) for g in _gens_x(f, beta)], axis=1)
         gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
         # a cell holds only if the two force directions are opposite within 2 beta (each
         # within beta of the chord), and a vertex only if its two normals are within
         # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
         width = 2 * beta + ANGLE_SLACK
-        fa = ra.f
         order, angle_b = _by_angle(rb)
-        prev = np.roll(fa, 1, axis=0)
-        turn = np.arctan2(np.abs(_cross(prev, fa)), np.sum(prev * fa, axis=1))
-        va = np.where(turn <= width, np.arctan2(fa[:, 1], fa[:, 0]) + np.pi, np.nan)
+        va = np.where(_turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
         out = _stretch_kernels.vertex_runs(ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va,
                                            rb.a[order, 0], rb.a[order, 1], gy[order],
                                            order, angle_b, width)
@@ -249,37 +249,34 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
           ) -> tuple[FloatArray, _Configs]:
     """:func:`_windows_both`, compiled for large rings."""
     ptr, first, last = runs
-    if _use_kernels(ra.m * rb.m):
+    if stretch_kernels_for(ra.m * rb.m):
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
                                               collect, same)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
-    row = np.repeat(np.arange(ra.m), np.diff(ptr))
-    return _windows_both((row, first, last), ra, rb, same, floor, collect)
+    return _windows_both(runs, ra, rb, same, floor, collect)
 
 
 def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool
             ) -> tuple[tuple[np.ndarray, np.ndarray, FloatArray], _Configs]:
     """:func:`_windows_single`, compiled for large rings."""
-    if not _use_kernels(ra.m * rb.m):
+    if not stretch_kernels_for(ra.m * rb.m):
         return _windows_single(iv, ra, rb, same, floor, collect)
     A = np.flatnonzero(ra.L >= floor)
     width = 2 * iv.beta + ANGLE_SLACK
     order, angle_b = _by_angle(rb)
     va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
-    gx = np.stack(_gens_x(ra.f, iv.beta), axis=1)
-    gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, iv.beta)], axis=1)
     wa, wp, wv, iA, iC, kC = _stretch_kernels.single(
         A, ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L,
-        gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), gy, order, angle_b, width, rb.U,
+        iv.gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), iv.gy, order, angle_b, width, rb.U,
         iv.sigma, _EPS, floor, collect, same)
     cfg = _Configs(iA, np.zeros(iA.size, int), iC, kC)
     return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
 
 
-def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, cells: int
+def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool
                ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """:func:`~fcgrasp.model._stretch_lp._solve`, compiled for large rings."""
-    if _use_kernels(cells):
+    """:func:`~fcgrasp.model._stretch_lp._solve`, or its compiled loop."""
+    if compiled:
         t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS)
         return t, s0, u0
     return _solve(rows, ub, scale)
@@ -305,9 +302,9 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             if x <= y:
                 best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect)
                 if not collect:
-                    # stretch 1 (ring x <= y; on one ring, the one that starts first)
+                    # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
-                    bound.add(keys(job, rows, rows + (ra.m if x == y else 0)), best[rows])
+                    bound.add(keys.first(job, rows), best[rows])
             (a, p, v), single = _single(intervals[x, y, sigma], ra, rb, x == y,
                                         bound.floor, collect)
             if not collect:
@@ -331,12 +328,13 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         keep = ub >= bound.floor
         cfg, ub = cfg.take(keep), ub[keep]
         # many to solve: the compiled loops repay numba's start-up
-        cells = ra.m * rb.m if ub.size < KERNEL_CONFIGS else KERNEL_CELLS
+        compiled = stretch_kernels_for(ra.m * rb.m if ub.size < KERNEL_CONFIGS
+                                       else KERNEL_CELLS)
         # the ends' boxes bound a configuration far below its arc length where the ends
         # are confined: solved in that order, pruned by it (the arc length stays the
         # program's cap, so each configuration's solution is unchanged)
         box = np.minimum(ub, _box_bound(ra, rb, cfg, intervals[x, y, sigma],
-                                        intervals[y, x, sigma], _use_kernels(cells)))
+                                        intervals[y, x, sigma], compiled))
         order = np.argsort(-box, kind="stable")
         for s in range(0, order.size, 256):
             chunk = order[s:s + 256]
@@ -345,8 +343,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 break
             part = cfg.take(chunk)
             rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma], compiled=_use_kernels(cells))
-            t, s0, u0 = _solve_any(rows, ub[chunk], scale, cells)
+                           intervals[y, x, sigma], compiled=compiled)
+            t, s0, u0 = _solve_any(rows, ub[chunk], scale, compiled)
             ok = np.flatnonzero(t > 0)
             for j in ok:
                 c = chunk[j]
@@ -382,7 +380,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         bound = _Bound(want or 1, 2 * keys.total, fixed)
         prepared = _candidates(rings, bound, intervals, runs, keys)
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys)
-        found.sort(key=lambda f: (-f.t, f.job[:2], f.job[3], _edges_key(rings, f)))
+        found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
         found = _own_optimum(rings, found)
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
@@ -407,6 +405,7 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
     for job, items in by_job.items():
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
+        compiled = stretch_kernels_for(ra.m * rb.m)
         cfg = _Configs(*(np.array([f.cfg[j] for f in items]) for j in range(4)))
         t1 = np.array([f.t for f in items])
         best_len = t1.copy()
@@ -416,9 +415,8 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
         for side in (0, 1):
             ub = _ext(rb, cfg.iC, cfg.kC) if side == 0 else _ext(ra, cfg.iA, cfg.kA)
             rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma], fixed=(side, t1),
-                           compiled=_use_kernels(ra.m * rb.m))
-            t2, s0, u0 = _solve_any(rows, ub, scale, ra.m * rb.m)
+                           intervals[y, x, sigma], fixed=(side, t1), compiled=compiled)
+            t2, s0, u0 = _solve_any(rows, ub, scale, compiled)
             better = t2 > best_len * (1 + TIE)
             best_len = np.where(better, t2, best_len)
             best_side = np.where(better, side, best_side)
@@ -492,9 +490,11 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     return out
 
 
-def _edges_key(rings: list[_Ring], f: _Found) -> tuple[int, int, int, int]:
+def _tie_key(rings: list[_Ring], f: _Found) -> tuple[Any, ...]:
+    """The order of exact ties: the job, then the covered edges (whatever order the
+    search met them in)."""
     iA, kA, iC, kC = f.cfg
-    return (iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
+    return (f.job[:2], f.job[3], iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
 
 
 def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, _Intervals],
@@ -503,9 +503,7 @@ def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dic
     kept, in the leximin order."""
     _second_level(rings, beta, found, intervals, polygon.size)
     found = _canonical(rings, beta, found, intervals, polygon)
-    # exact ties in the order of their edges, whatever order the search met them in
-    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), f.job[:2], f.job[3],
-                              _edges_key(rings, f)))
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), *_tie_key(rings, f)))
     return found
 
 
@@ -550,10 +548,8 @@ def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG
     if beta <= 0:
         return False
     for ring in _rings(polygon):
-        f, g = ring.f, np.roll(ring.f, -1, axis=0)      # force directions at vertex k + 1
-        turn = np.arctan2(np.abs(_cross(f, g)), np.sum(f * g, axis=1))
         # a relative 1e-9 on the angle: a vertex at the limit is left to the exact search
-        if np.any(turn < 2 * beta * (1 + TOL) + ROUND_TOL):
+        if np.any(_turns(ring) < 2 * beta * (1 + TOL) + ROUND_TOL):
             return True
     return False
 
