@@ -96,6 +96,18 @@ LP_TOL = 1e-10
 #: this (times the size) is not accepted (the solver's answer is checked, not trusted).
 CHECK_TOL = 1e-8
 
+#: Three fingers with friction, solved in closed form (:mod:`fcgrasp.grippers._concurrency`):
+#: the simplex's pivot threshold (programs in units of the part's size), how far Harris's
+#: ratio test lets a basic variable dip below zero, a null combination of three normals
+#: this small (or two lines' determinant: ``PARALLEL_TOL``) counts as none, and pieces
+#: whose smallest regions agree to ``PIECE_TIE`` of the part's size tie (the first is
+#: taken, whichever solver found them).
+SIMPLEX_PIVOT = 1e-9
+SIMPLEX_SLACK = 1e-12
+NULL_TOL = 1e-14
+PARALLEL_TOL = 1e-12
+PIECE_TIE = 1e-9
+
 #: Three fingers along the boundary: regions within this (relative) of the smallest are
 #: the ones that must grow for the smallest to grow.
 LEVEL_TIE = 1e-6
@@ -127,7 +139,8 @@ SLIVER_REL = 1e-4
 __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE",
            "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
-           "LEVEL_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST",
+           "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
+           "PIECE_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST",
            "SLIVER_REL"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search

@@ -14,18 +14,19 @@ import numpy as np
 
 from ..core._angles import wrap_positive
 from ..core._checks import FloatArray
-from ..core.tolerances import CHECK_TOL, LEXIMIN_STEP, LP_TOL, ROUND_TOL, TINY
+from ..core.tolerances import CHECK_TOL, LEXIMIN_STEP, LP_TOL, PIECE_TIE, ROUND_TOL, TINY
+from . import _concurrency
 
 #: How the half-turn excess between two neighbouring cones is split between them (the
 #: share taken from the first arc's start): each split gives one convex piece.
-SPLITS = (0.0, 0.5, 1.0)
+SPLITS = _concurrency.SPLITS
 #: Two-finger plans (fingers holding on their own) tried with a third finger anywhere.
 KEEP_PAIRS = 20
 #: Rows of candidate triples solved per linear program (blocks of one sparse LP).
 LP_ROWS = 24
 
 _CORNERS = np.array(list(product((0, 1), repeat=3)))          # (8, 3): 0 low end, 1 high
-_SIDES = np.array(list(product((1.0, -1.0), repeat=3)))       # (8, 3) sigma
+_SIDES = _concurrency._SIDES                                  # (8, 3) sigma
 
 
 def spanning_arcs(center: Any, half: Any, margin: float) -> list[tuple[FloatArray, FloatArray]]:
@@ -220,7 +221,28 @@ def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
     ones reach the largest common ``level``, or region ``grow`` is made as long as it
     can, or (``deep``) the witnesses are placed as far inside the cones as they can be
     (``level`` is then that depth): the placement.
+
+    Solved by the compiled closed form of :mod:`fcgrasp.grippers._concurrency` once it
+    runs (:func:`fcgrasp.grippers._concurrency.available`), the solution vectors then
+    ``(lo, hi, level)`` only (no witnesses); else by HiGHS (the reference).
     """
+    if _concurrency.available():
+        got = _concurrency.solve(blocks, _KINDS[(deep, grow is not None, fixed is not None)],
+                                 fixed, free, 0 if grow is None else grow)
+        if got is not None:
+            return [x if ok else None for x, ok in zip(got[0], got[1], strict=True)]
+    return _solve_blocks_lp(blocks, fixed, free, grow, deep)
+
+
+#: The kernel's objective by ``(deep, grow given, fixed given)``.
+_KINDS = {(True, False, True): _concurrency.DEEP, (False, True, True): _concurrency.GROW,
+          (False, False, True): _concurrency.FREE, (False, False, False): _concurrency.MAXMIN}
+
+
+def _solve_blocks_lp(blocks: list[_Block], fixed: FloatArray | None = None,
+                     free: np.ndarray | None = None, grow: int | None = None,
+                     deep: bool = False) -> list[FloatArray | None]:
+    """:func:`_solve_blocks` by one sparse HiGHS program (the reference)."""
     from scipy.optimize import linprog
     from scipy.sparse import coo_array
 
@@ -286,7 +308,11 @@ def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
                   options={"primal_feasibility_tolerance": LP_TOL,
                            "dual_feasibility_tolerance": LP_TOL})
     if res.status != 0 or res.x is None:
-        return [None] * len(blocks)
+        # one block's numerical trouble must not lose the others: each on its own
+        if len(blocks) > 1:
+            return [x for blk in blocks
+                    for x in _solve_blocks_lp([blk], fixed, free, grow, deep)]
+        return [None]
     out: list[FloatArray | None] = []
     for k, blk in enumerate(blocks):
         x = np.array(res.x[starts[k]:starts[k + 1]])
@@ -316,18 +342,37 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
     L = np.hypot(d[..., 0], d[..., 1])
     t = d / np.where(L > 0, L, 1.0)[..., None]
     an, Ln = a / size, L / size
+    if _concurrency.available():
+        got = _concurrency.best_rows(an, t, Ln, center, half, margin)
+        if got is not None:
+            found, level, lo, hi, sg = got
+            return [(_Block.on_edges(an[r], t[r], Ln[r], lo[r], hi[r], sg[r], r),
+                     float(level[r])) if found[r] else (None, -1.0) for r in range(len(a))]
     out: list[tuple[_Block | None, float]] = []
     for start in range(0, len(a), LP_ROWS):
         stop = min(start + LP_ROWS, len(a))
         blocks = [blk for r in range(start, stop)
                   for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r)]
-        best: dict[int, tuple[float, _Block]] = {}
+        per: dict[int, list[tuple[float, _Block]]] = {}
         for blk, x in zip(blocks, _solve_blocks(blocks) if blocks else [], strict=True):
-            if x is not None and (blk.row not in best or _smallest(blk, x) > best[blk.row][0]):
-                best[blk.row] = (_smallest(blk, x), blk)
-        out += [(best[r][1], best[r][0]) if r in best else (None, -1.0)
-                for r in range(start, stop)]
+            if x is not None:
+                per.setdefault(blk.row, []).append((_smallest(blk, x), blk))
+        for r in range(start, stop):
+            row = per.get(r)
+            if row:
+                v, blk = row[first_best([v for v, _ in row])]
+                out.append((blk, v))
+            else:
+                out.append((None, -1.0))
     return out
+
+
+
+
+def first_best(values: list[float]) -> int:
+    """The first of ``values`` within :data:`PIECE_TIE` of the largest."""
+    top = max(values)
+    return next(i for i, v in enumerate(values) if v >= top - PIECE_TIE)
 
 
 def _leximin(blk: _Block) -> Piece | None:
@@ -356,9 +401,10 @@ def _leximin(blk: _Block) -> Piece | None:
     xd = _solve_blocks([blk], fixed=levels, deep=True)[0]
     x = x if xd is None else xd
     N = len(blk.corners())
+    witness = (np.stack([x[7:7 + N], x[7 + N:7 + 2 * N]], axis=1) if len(x) > 7 else
+               _concurrency.witnesses(blk, x[:3], x[3:6]))
     return Piece(x[:3].copy(), x[3:6].copy(), _lengths(blk, x), blk.sigma.copy(),
-                 (blk.lo_ang.copy(), blk.hi_ang.copy()),
-                 np.stack([x[7:7 + N], x[7 + N:7 + 2 * N]], axis=1))
+                 (blk.lo_ang.copy(), blk.hi_ang.copy()), witness)
 
 
 def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,

@@ -59,7 +59,7 @@ import numpy as np
 
 from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
-from ..core.tolerances import LEVEL_TIE, RANK_TOL
+from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import crosses_a_vertex
@@ -70,6 +70,7 @@ from ..pipeline import (
     search,
     search_size,
 )
+from . import _concurrency
 from ._boundary import boundary_plans, ranked_unique, regions_plan
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
@@ -88,6 +89,7 @@ from ._concurrent import (
     _smallest,
     _solve_blocks,
     concurrent_regions,
+    first_best,
     spanning_arcs,
 )
 
@@ -98,6 +100,9 @@ def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: Flo
     return regions_plan(polygon, spec, regions, tuple((e,) for e in edges),
                         np.hypot(*(regions[:, 1] - regions[:, 0]).T), "friction", mode)
 
+
+#: Candidate triples per compiled call (:mod:`fcgrasp.grippers._concurrency`).
+KERNEL_ROWS = 1024
 
 #: With a measure other than ``min_region``, how many plans (the best by their smallest
 #: region) the measure orders.
@@ -147,8 +152,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
             break
         rows = np.asarray(batch.feats, dtype=int)
         bound = np.asarray(batch.bound, dtype=float)
-        for start in range(0, len(rows), LP_ROWS):
-            sub, bnd = rows[start:start + LP_ROWS], bound[start:start + LP_ROWS]
+        # rows per program: one compiled call takes many more than one HiGHS program
+        step = KERNEL_ROWS if _concurrency.available() else LP_ROWS
+        for start in range(0, len(rows), step):
+            sub, bnd = rows[start:start + step], bound[start:start + step]
             if hold is not None:
                 sub = sub[bnd >= floor]
             if len(sub):
@@ -158,10 +165,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                           for row, (blk, lv) in zip(sub, res, strict=True)
                           if blk is not None and lv > 0]
                 if hold is not None and len(found) >= hold:
-                    found.sort(key=lambda r: -r[0])
+                    found.sort(key=lambda r: _found_key(r, size))
                     del found[hold + _ties(found, hold, size):]
                     floor = found[hold - 1][0] - 2 * RANK_TOL * size
-            done += LP_ROWS
+            done += step
             if progress is not None:
                 progress(min(done, total), total)
             if hold is not None and len(bnd) and bnd[-1] < floor:
@@ -260,11 +267,21 @@ def _corner_count(stretches: tuple[tuple[int, ...], ...]) -> int:
 
 def _best_piece(blocks: list[_Block], xs: list[FloatArray | None]
                 ) -> tuple[float, _Block | None, FloatArray | None]:
-    best: tuple[float, _Block | None, FloatArray | None] = (-1.0, None, None)
-    for blk, x in zip(blocks, xs, strict=True):
-        if x is not None and _smallest(blk, x) > best[0]:
-            best = (_smallest(blk, x), blk, x)
-    return best
+    got = [(_smallest(blk, x), blk, x) for blk, x in zip(blocks, xs, strict=True)
+           if x is not None]
+    return got[first_best([g[0] for g in got])] if got else (-1.0, None, None)
+
+
+def _bottlenecks(blk: _Block, level: float) -> np.ndarray:
+    """The regions of a piece that cannot be longer than ``level`` (the others kept at
+    least that long): the ones that must all grow for the smallest to grow.  Decided by
+    one program per region, so not by which optimal solution a solver returned."""
+    fixed = np.full(3, level)
+    out = np.ones(3, dtype=bool)
+    for i in range(3):
+        x = _solve_blocks([blk], fixed=fixed, grow=i)[0]
+        out[i] = x is None or _lengths(blk, x)[i] <= level * (1 + LEVEL_TIE)
+    return out
 
 
 def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
@@ -304,7 +321,7 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
         return None
     for _ in range(MAX_STEPS):
         # the regions as short as the smallest must all grow for it to grow
-        short = _lengths(blk, x) <= level * (1 + LEVEL_TIE)
+        short = _bottlenecks(blk, level)
         moves = [m for m in _stretch_moves(polygon, cur, short)
                  if _corner_count(m) <= MAX_CORNERS]
         per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]
@@ -312,17 +329,16 @@ def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
         if not flat:
             break
         xs = _solve_blocks(flat)
-        best = None
+        better = []
         k = 0
         for m, bs in zip(moves, per, strict=True):
             lv, b, xb = _best_piece(bs, xs[k:k + len(bs)])
             k += len(bs)
-            if b is not None and xb is not None and lv > level * (1 + RANK_TOL) \
-                    and (best is None or lv > best[0]):
-                best = (lv, m, b, xb)
-        if best is None:
+            if b is not None and xb is not None and lv > level * (1 + RANK_TOL):
+                better.append((lv, m, b, xb))
+        if not better:
             break
-        level, cur, blk, x = best
+        level, cur, blk, x = better[first_best([g[0] for g in better])]
     blocks = _stretch_blocks(polygon, cur, mu, margin)
     _, blk, _ = _best_piece(blocks, _solve_blocks(blocks))
     piece = None if blk is None else _leximin(blk)
@@ -340,7 +356,7 @@ def _grown_plans(polygon: Polygon, spec: PlanSpec,
     boundary (:func:`grow_concurrent`): the plans whose regions leave their edges."""
     out = []
     seen = set()
-    for _, row, blk in sorted(found, key=lambda r: -r[0])[:GROW_SEEDS]:
+    for _, row, blk in sorted(found, key=lambda r: _found_key(r, polygon.size))[:GROW_SEEDS]:
         got = grow_concurrent(polygon, [int(F.edge[f]) for f in row], spec.mu,
                               spec.margin_rad, blk.sigma)
         if got is None or max(len(st) for st in got[0]) == 1 or got[0] in seen:
@@ -362,6 +378,13 @@ def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[Fl
         out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
                                    [a1 + piece.hi[i] * t1]]))
     return out
+
+
+def _found_key(r: tuple[float, tuple[int, ...], _Block], size: float
+               ) -> tuple[int, tuple[int, ...]]:
+    """Rows found by decreasing smallest region (in steps of :data:`PIECE_TIE` of the
+    part's size: levels that agree to the solvers' rounding tie), then by features."""
+    return -round(r[0] / size / PIECE_TIE), r[1]
 
 
 def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
