@@ -199,3 +199,26 @@ def test_bad_arguments_of_the_module():
         grow_stretches("blob", [[0, 1, 3, 4]])
     with pytest.raises(ValueError, match="max_steps"):
         grow_stretches(poly, [[0, 1, 3, 4]], max_steps=-1)
+
+
+@pytest.mark.parametrize("kind", ["ellipse", "blob", "quad", "bracket"])
+def test_plans_by_the_compiled_simplex_equal_highs(kind, monkeypatch):
+    """Four fingers along the boundary with the growth's programs solved by the compiled
+    simplex (fcgrasp.core._simplex) and by HiGHS (``FCGRASP_JIT=0``, the reference):
+    the same configurations and region lengths (to 1e-9 of the size)."""
+    from fcgrasp.io.parts import demo_part
+    if kind in ("quad", "bracket"):
+        part = demo_part(kind)
+    else:
+        t = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+        r = 30 / np.sqrt(np.cos(t) ** 2 + (np.sin(t) / 0.6) ** 2) if kind == "ellipse" \
+            else 30 + 4 * np.sin(3 * t) + 2 * np.cos(5 * t)
+        part = fc.Polygon(np.c_[r * np.cos(t), r * np.sin(t)])
+    got = []
+    for jit in ("1", "0"):
+        monkeypatch.setenv("FCGRASP_JIT", jit)
+        got.append(fc.plan(part, fingers=4, top=5))
+    assert [(p.mode, p.region_edges) for p in got[0]] == [(p.mode, p.region_edges)
+                                                          for p in got[1]]
+    for a, b in zip(*got, strict=True):
+        assert np.allclose(a.lengths, b.lengths, rtol=0, atol=1e-9 * part.size)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 
 from fcgrasp.core.contacts import rotate
+from fcgrasp.model import _stretch_kernels
 from fcgrasp.model import stretches as S
 from fcgrasp.model._stretch_windows import _Intervals, _rings, _windows_both, _windows_single
 from fcgrasp.model.polygon import Polygon
@@ -306,3 +307,33 @@ def test_large_outline_fits_the_default_budget(monkeypatch):
     best = fc.plan(part, fingers=2, mu=0.3, top=1)[0]
     # the ellipse's regions run along the curve: far longer than one edge (0.05 mm)
     assert best.min_length > 20
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_own_optimum_filter_matches_every_pair(seed):
+    """The compiled own-optimum filter (candidates by start) against the definition over
+    every (sub, super) pair: a configuration is dropped iff one inside it, on both rings
+    (on one ring either way round), has a longer smallest region; exact ties and
+    wrapping stretches included."""
+    rng = np.random.default_rng(seed)
+    for _ in range(20):
+        ma, mb = int(rng.integers(5, 40)), int(rng.integers(5, 40))
+        same = bool(rng.random() < 0.4)
+        if same:
+            mb = ma
+        F = int(rng.integers(1, 300))
+        c = np.c_[rng.integers(0, ma, F), rng.integers(0, ma // 2, F),
+                  rng.integers(0, mb, F), rng.integers(0, mb // 2, F)]
+        t = np.round(rng.random(F), 1)          # many exact ties
+        got = _stretch_kernels.beaten(c, t, ma, mb, same, S.TIE)
+
+        def inside(i, k, i2, k2, m):
+            return (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :]
+
+        sub = inside(c[:, 0], c[:, 1], c[:, 0], c[:, 1], ma) \
+            & inside(c[:, 2], c[:, 3], c[:, 2], c[:, 3], mb)
+        if same:
+            sub |= inside(c[:, 0], c[:, 1], c[:, 2], c[:, 3], ma) \
+                & inside(c[:, 2], c[:, 3], c[:, 0], c[:, 1], ma)
+        want = ~(sub & (t[:, None] > t[None, :] * (1 + S.TIE))).any(axis=0)
+        assert np.array_equal(got, want)

@@ -371,6 +371,27 @@ def test_branch_and_bound_is_exact(seed):
                 assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=1e-9 * part.size)
 
 
+@pytest.mark.parametrize("kind", ["regular", "ellipse", "blob"])
+def test_branch_and_bound_is_exact_along_the_boundary(kind):
+    """On smooth outlines, where every triple of equal edges ties on its bound and the
+    two-finger plans end the search, and on a regular polygon with exact ties: the top
+    of the pruned search is the head of the exhaustive one (seeds of the growth
+    included: exact ties are taken in the order found, by both)."""
+    n = {"regular": 24, "ellipse": 36, "blob": 30}[kind]
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = {"regular": np.full(n, 30.0), "ellipse": 30 / np.sqrt(np.cos(a) ** 2
+                                                               + (np.sin(a) / 0.6) ** 2),
+         "blob": 30 + 4 * np.sin(3 * a) + 2 * np.cos(5 * a)}[kind]
+    part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+    every = three_finger_plans(part, plan_spec(fingers=3, mu=0.4, top=None))
+    for top in (1, 3, 10):
+        pruned = three_finger_plans(part, plan_spec(fingers=3, mu=0.4, top=top))
+        assert [(p.mode, p.region_edges) for p in pruned] == \
+            [(p.mode, p.region_edges) for p in every[:top]]
+        for p, q in zip(pruned, every, strict=False):
+            assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=1e-9 * part.size)
+
+
 def test_independent_regions_on_three_edges():
     part = demo_part("triangle")
     reg = fc.independent_regions(part, (2, 0, 1), mu=0.5)

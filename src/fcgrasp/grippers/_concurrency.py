@@ -43,6 +43,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core import _simplex
+from ..core._simplex import _lp_max
 from ..core.kernels import jit_setting, njit_all
 from ..core.tolerances import (
     CHECK_TOL,
@@ -52,7 +54,6 @@ from ..core.tolerances import (
     PIECE_TIE,
     ROUND_TOL,
     SIMPLEX_PIVOT,
-    SIMPLEX_SLACK,
 )
 
 __all__ = ["available", "loaded", "solve", "best_rows", "witnesses", "facets", "MAXMIN",
@@ -64,10 +65,9 @@ __all__ = ["available", "loaded", "solve", "best_rows", "witnesses", "facets", "
 MAXMIN, FREE, GROW, DEEP = 0, 1, 2, 3
 
 
-#: Pivot threshold of the simplex (the programs are in units of the part's size), and
-#: how far Harris's ratio test lets a basic variable dip below zero (then set to zero).
+#: Pivot threshold of the simplex (:mod:`fcgrasp.core._simplex`; the programs are in
+#: units of the part's size).
 PIVOT_EPS = SIMPLEX_PIVOT
-SLACK = SIMPLEX_SLACK
 #: How the excess of a half turn is split between two arcs (as
 #: :data:`fcgrasp.grippers._concurrent.SPLITS`), and the eight sides in its order.
 SPLITS = (0.0, 0.5, 1.0)
@@ -77,112 +77,6 @@ _TRIPLES = np.array([(i, j, k) for i in range(6) for j in range(i + 1, 6)
 
 
 # ----------------------------------------------------------------------------- loops
-
-
-def _pivot(T: Any, r: int, e: int) -> None:
-    rows, cols = T.shape
-    inv = 1.0 / T[r, e]
-    for j in range(cols):
-        T[r, j] *= inv
-    T[r, e] = 1.0
-    for i in range(rows):
-        if i != r:
-            f = T[i, e]
-            if f != 0.0:
-                for j in range(cols):
-                    T[i, j] -= f * T[r, j]
-                T[i, e] = 0.0
-
-
-def _iterate(T: Any, basis: Any, skip: int, eps: float, slack: float, max_iter: int) -> int:
-    """Primal simplex on a feasible tableau (last row the reduced costs of a maximum,
-    last column the right-hand sides), Bland's rule: 0 optimal, 2 unbounded, 3 out of
-    iterations."""
-    m = T.shape[0] - 1
-    rhs = T.shape[1] - 1
-    for _ in range(max_iter):
-        e = -1
-        for j in range(rhs):
-            if j != skip and T[m, j] < -eps:
-                e = j
-                break
-        if e < 0:
-            return 0
-        # Harris's ratio test: the bound with every row relaxed by ``slack``, then the
-        # largest pivot among the rows that reach it (a tiny pivot on a degenerate row
-        # would blow the tableau up); ties by the basis index (Bland)
-        bound = np.inf
-        for i in range(m):
-            if T[i, e] > eps:
-                bound = min(bound, (max(T[i, rhs], 0.0) + slack) / T[i, e])
-        if bound == np.inf:
-            return 2
-        r = -1
-        for i in range(m):
-            if T[i, e] > eps and max(T[i, rhs], 0.0) / T[i, e] <= bound:
-                if r < 0 or T[i, e] > T[r, e] or (T[i, e] == T[r, e] and basis[i] < basis[r]):
-                    r = i
-        _pivot(T, r, e)
-        basis[r] = e
-        for i in range(m):               # what Harris's test lets dip below zero
-            if T[i, rhs] < 0.0:
-                T[i, rhs] = 0.0
-    return 3
-
-
-def _lp_max(c: Any, A: Any, b: Any, m: int, n: int, x: Any, eps: float, feas: float) -> int:
-    """``max c.x`` subject to ``A[:m, :n] x <= b[:m]``, ``x >= 0`` (two phases: one
-    artificial variable raised to the most violated row, Bland's rule): 0 optimal (``x``
-    filled), 1 infeasible, 2 unbounded, 3 out of iterations."""
-    ncol = n + m + 1
-    art = n + m
-    T = np.zeros((m + 1, ncol + 1))
-    basis = np.empty(m, dtype=np.int64)
-    low = 0
-    for i in range(m):
-        for j in range(n):
-            T[i, j] = A[i, j]
-        T[i, n + i] = 1.0
-        T[i, art] = -1.0
-        T[i, ncol] = b[i]
-        basis[i] = n + i
-        if b[i] < b[low]:
-            low = i
-    max_iter = 50 * (m + n) + 100
-    if m > 0 and b[low] < 0.0:
-        T[m, art] = 1.0                       # maximise -x0
-        _pivot(T, low, art)
-        basis[low] = art
-        status = _iterate(T, basis, -1, eps, SLACK, max_iter)
-        if status != 0 or T[m, ncol] < -feas:
-            return 1
-        for i in range(m):
-            if basis[i] == art:               # at zero: pivot it out where possible
-                for j in range(n + m):
-                    if abs(T[i, j]) > eps:
-                        _pivot(T, i, j)
-                        basis[i] = j
-                        break
-    for j in range(ncol + 1):
-        T[m, j] = 0.0
-    for j in range(n):
-        T[m, j] = -c[j]
-    for i in range(m):
-        j = basis[i]
-        if j < n and T[m, j] != 0.0:
-            f = T[m, j]
-            for k in range(ncol + 1):
-                T[m, k] -= f * T[i, k]
-            T[m, j] = 0.0
-    status = _iterate(T, basis, art, eps, SLACK, max_iter)
-    if status != 0:
-        return status
-    for j in range(n):
-        x[j] = 0.0
-    for i in range(m):
-        if basis[i] < n:
-            x[basis[i]] = T[i, ncol]
-    return 0
 
 
 def _normals(lo_ang: Any, hi_ang: Any, sigma: Any, nx: Any, ny: Any) -> None:
@@ -340,7 +234,8 @@ def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
     else:
         c[6] = 1.0
     x = np.zeros(n)
-    st = _lp_max(c, A, b, m, n, x, eps, feas)
+    y = np.zeros(m)
+    st = _lp_max(c, A, b, m, n, x, y, eps, feas)
     for j in range(7):
         out[j] = x[j]
     if st != 0:
@@ -536,7 +431,7 @@ def _best_rows(A: Any, T: Any, L: Any, center: Any, half: Any, margin: float, sp
                 break
 
 
-_LOOPS = (_pivot, _iterate, _lp_max, _normals, _facets, _facet_value, _region_max,
+_LOOPS = (_normals, _facets, _facet_value, _region_max,
           _meet, _solve_one, _solve_loop, _row_arcs, _best_rows)
 _lock = threading.Lock()
 _loaded: dict[str, Any] = {}
@@ -544,15 +439,16 @@ _broken = False
 
 
 def _load() -> dict[str, Any] | None:
-    global _broken
     with _lock:
         if not _loaded and not _broken:
-            try:
-                import numba
-            except ImportError:
-                _broken = True
+            simplex = _simplex.compiled()       # None without numba, or FCGRASP_JIT=0
+            if simplex is None:
                 return None
-            _loaded.update(njit_all(numba, dict(globals()), [(f.__name__, f) for f in _LOOPS]))
+            import numba
+
+            # the loops call the simplex compiled once, in its own module
+            names = dict(globals(), _lp_max=simplex["_lp_max"])
+            _loaded.update(njit_all(numba, names, [(f.__name__, f) for f in _LOOPS]))
         return _loaded or None
 
 

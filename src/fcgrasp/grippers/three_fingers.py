@@ -140,15 +140,33 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                                           max(spec.top, KEEP_FOR_MEASURE))
     grow = (spec.along_boundary and spec.hand is None and edges is None
              and crosses_a_vertex(polygon, spec.mu, spec.margin))
-    # the rows kept: the top, and the seeds grown along the boundary (the same whatever
-    # the top, so that the pruned search gives the exhaustive answer)
-    hold = keep if keep is None or not grow else max(keep, GROW_SEEDS)
-    found: list[tuple[float, tuple[int, ...], _Block]] = []
+    # two fingers that hold on their own, first: a triple whose smallest region cannot
+    # reach the top-th of them cannot rank (on a smooth outline of equal edges, where
+    # every triple's bound ties, this is what ends the search)
+    pairs = _pair_plans(polygon, spec, edges, F)
     floor = 0.0
+    if keep is not None and len(pairs) >= keep:
+        floor = sorted((float(min(p.lengths)) for p in pairs), reverse=True)[keep - 1] \
+            - 2 * RANK_TOL * size
+    pair_floor = floor
+    found: list[tuple[float, tuple[int, ...], _Block]] = []
+    # the GROW_SEEDS best rows to grow along the boundary, exact ties (to PIECE_TIE of
+    # the size) in the order found: (-level step, order, level, row, block)
+    seeds: list[tuple[int, int, float, tuple[int, ...], _Block]] = []
+    seed_step: int | None = None        # when full: rows with a bound of no more steps
+    order = 0
     total = search_size(polygon, spec, edges).rows
     done = 0
+
+    def useful(bnd: FloatArray) -> np.ndarray:
+        out = bnd >= floor
+        if grow:
+            out |= (np.round(bnd / size / PIECE_TIE) > seed_step) if seed_step is not None \
+                else True
+        return out
+
     for batch in candidates(polygon, spec, edges):
-        if hold is not None and batch.ceiling < floor:
+        if keep is not None and not useful(np.array([batch.ceiling]))[0]:
             break
         rows = np.asarray(batch.feats, dtype=int)
         bound = np.asarray(batch.bound, dtype=float)
@@ -156,26 +174,35 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         step = KERNEL_ROWS if _concurrency.available() else LP_ROWS
         for start in range(0, len(rows), step):
             sub, bnd = rows[start:start + step], bound[start:start + step]
-            if hold is not None:
-                sub = sub[bnd >= floor]
+            if keep is not None:
+                sub = sub[useful(bnd)]
             if len(sub):
                 res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
                                    spec.margin_rad, size)
-                found += [(lv * size, tuple(int(f) for f in row), blk)
-                          for row, (blk, lv) in zip(sub, res, strict=True)
-                          if blk is not None and lv > 0]
-                if hold is not None and len(found) >= hold:
-                    found.sort(key=lambda r: _found_key(r, size))
-                    del found[hold + _ties(found, hold, size):]
-                    floor = found[hold - 1][0] - 2 * RANK_TOL * size
+                got = [(lv * size, tuple(int(f) for f in row), blk)
+                       for row, (blk, lv) in zip(sub, res, strict=True)
+                       if blk is not None and lv > 0]
+                found += [g for g in got if keep is None or g[0] >= floor]
+                if grow:
+                    for lv, row, blk in got:
+                        seeds.append((-round(lv / size / PIECE_TIE), order, lv, row, blk))
+                        order += 1
+                    seeds.sort(key=lambda r: r[:2])
+                    del seeds[GROW_SEEDS:]
+                    if keep is not None and len(seeds) == GROW_SEEDS:
+                        seed_step = -seeds[-1][0]
+                if keep is not None and len(found) >= keep:
+                    found.sort(key=lambda r: -r[0])
+                    del found[keep + _ties(found, keep, size):]
+                    floor = max(pair_floor, found[keep - 1][0] - 2 * RANK_TOL * size)
             done += step
             if progress is not None:
                 progress(min(done, total), total)
-            if hold is not None and len(bnd) and bnd[-1] < floor:
+            if keep is not None and len(bnd) and not useful(bnd[-1:])[0]:
                 break
     plans = []
     for lv, row, blk in found:
-        if hold is not None and lv < floor:
+        if keep is not None and lv < floor:
             continue
         piece = _leximin(blk)
         if piece is None:
@@ -185,8 +212,8 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
                            "concurrent"))
     if grow:
-        plans += _grown_plans(polygon, spec, found, F)
-    plans += _pair_plans(polygon, spec, edges, F)
+        plans += _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
+    plans += pairs
     return _ranked(polygon, spec, plans, keep)
 
 
@@ -356,7 +383,7 @@ def _grown_plans(polygon: Polygon, spec: PlanSpec,
     boundary (:func:`grow_concurrent`): the plans whose regions leave their edges."""
     out = []
     seen = set()
-    for _, row, blk in sorted(found, key=lambda r: _found_key(r, polygon.size))[:GROW_SEEDS]:
+    for _, row, blk in found[:GROW_SEEDS]:
         got = grow_concurrent(polygon, [int(F.edge[f]) for f in row], spec.mu,
                               spec.margin_rad, blk.sigma)
         if got is None or max(len(st) for st in got[0]) == 1 or got[0] in seen:
@@ -378,13 +405,6 @@ def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[Fl
         out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
                                    [a1 + piece.hi[i] * t1]]))
     return out
-
-
-def _found_key(r: tuple[float, tuple[int, ...], _Block], size: float
-               ) -> tuple[int, tuple[int, ...]]:
-    """Rows found by decreasing smallest region (in steps of :data:`PIECE_TIE` of the
-    part's size: levels that agree to the solvers' rounding tie), then by features."""
-    return -round(r[0] / size / PIECE_TIE), r[1]
 
 
 def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
@@ -470,5 +490,10 @@ def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int 
             ) -> list[GraspPlan]:
     """Plans in :func:`~fcgrasp.model.plans.rank_key` order (the measure of the ``keep`` best
     by the leximin order), each grasp once."""
-    plans.sort(key=lambda p: leximin_key(p.lengths, polygon.size))
-    return ranked_unique(polygon, spec, plans if keep is None else plans[:keep])
+    keys = [leximin_key(p.lengths, polygon.size) for p in plans]
+    order = sorted(range(len(plans)), key=keys.__getitem__)
+    if keep is not None and len(order) > keep:
+        # the plans tied with the keep-th as well: the geometry orders them
+        last = keys[order[keep - 1]]
+        order = [k for i, k in enumerate(order) if i < keep or keys[k] == last]
+    return ranked_unique(polygon, spec, [plans[k] for k in order])

@@ -452,6 +452,50 @@ def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
     return t_out, s_out, u_out
 
 
+def _scan_inside(order: Any, starts: Any, lo: int, span: int, m: int, iA: Any, kA: Any,
+                 iC: Any, kC: Any, lo2: int, span2: int, m2: int, t: Any, thr: float) -> bool:
+    """Is some configuration ``u`` whose first stretch starts in the cyclic range
+    ``[lo, lo + span]`` of a ring of ``m`` (``order``: the configurations by start,
+    ``starts`` their starts sorted) inside it (``(iA - lo) % m + kA <= span``), its
+    second stretch inside ``[lo2, lo2 + span2]`` of a ring of ``m2``, and ``t[u] >
+    thr``?"""
+    F = order.shape[0]
+    for part in range(2):
+        if part == 0:
+            a = int(np.searchsorted(starts, lo, side="left"))
+            b = int(np.searchsorted(starts, min(lo + span, m - 1), side="right"))
+        else:
+            if lo + span < m:
+                break
+            a = 0
+            b = min(int(np.searchsorted(starts, lo + span - m, side="right")), F)
+        for q in range(a, b):
+            u = order[q]
+            if (iA[u] - lo) % m + kA[u] <= span and (iC[u] - lo2) % m2 + kC[u] <= span2 \
+                    and t[u] > thr:
+                return True
+    return False
+
+
+def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: bool,
+            tie: float, keep: Any) -> None:
+    """:func:`fcgrasp.model.stretches._own_optimum` of one job, without its matrix of
+    every (sub, super) pair: ``keep[s]`` False where a configuration inside ``s`` (on
+    both rings; on one ring, either way round) has a smallest region longer than
+    ``t[s] (1 + tie)``.  Candidates are read from the configurations sorted by the
+    start of their first stretch (a range of starts per ``s``)."""
+    order = np.argsort(iA, kind="mergesort")
+    starts = iA[order]
+    for s in range(t.shape[0]):
+        thr = t[s] * (1 + tie)
+        if _scan_inside(order, starts, iA[s], kA[s], ma, iA, kA, iC, kC, iC[s], kC[s], mb,
+                        t, thr):
+            keep[s] = False
+        elif same and _scan_inside(order, starts, iC[s], kC[s], ma, iA, kA, iC, kC, iA[s],
+                                   kA[s], ma, t, thr):
+            keep[s] = False
+
+
 def _load() -> dict[str, Any]:
     """The loops compiled (once per process; :func:`fcgrasp.core.kernels.njit_all`)."""
     with _lock:
@@ -460,7 +504,8 @@ def _load() -> dict[str, Any]:
 
             _loaded.update(njit_all(numba, dict(globals()), [
                 (f.__name__, f) for f in (_grow, _append, _in_order, _vertex_runs, _windows,
-                                          _interval, _window_boxes, _single, _solve_rows)]))
+                                          _interval, _window_boxes, _single, _solve_rows,
+                                          _scan_inside, _beaten)]))
         return _loaded
 
 
@@ -495,3 +540,15 @@ def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
 def window_boxes(*args: Any) -> Any:
     """Compiled :func:`_window_boxes`."""
     return _load()["_window_boxes"](*args)
+
+
+def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
+    """Compiled :func:`_beaten` of configurations ``c`` (F, 4: first start, its interior
+    vertices, second start, its interior vertices) with smallest regions ``t``: the
+    ones to keep."""
+    c = np.asarray(c, np.int64)
+    keep = np.ones(len(c), bool)
+    _load()["_beaten"](np.ascontiguousarray(c[:, 0]), np.ascontiguousarray(c[:, 1]),
+                       np.ascontiguousarray(c[:, 2]), np.ascontiguousarray(c[:, 3]),
+                       np.asarray(t, float), int(ma), int(mb), bool(same), float(tie), keep)
+    return keep

@@ -57,12 +57,13 @@ from typing import Any
 
 import numpy as np
 
+from ..core import _simplex
 from ..core._angles import margin_radians
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import RANK_TOL, ROUND_TOL
+from ..core.tolerances import CHECK_TOL, RANK_TOL, ROUND_TOL, TINY
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -203,9 +204,33 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
         else:
             rhs.append(np.array([cfg.const[f] - floors[f]]))
         rows.append(r[None])
+    A, b = np.concatenate(rows), np.concatenate(rhs)
+    if _simplex.compiled() is not None:
+        # the compiled dense simplex: x >= 0 is its own; the upper bounds are rows, and
+        # without t its column is dropped
+        # (in units of the longest edge, each row scaled to a largest coefficient of 1)
+        nx = 2 * k
+        ub = np.array([hi for _, hi in cfg.bounds])
+        unit = max(float(ub.max()), TINY)
+        cols = nx + 1 if t_var else nx
+        As = A[:, :cols] * unit
+        norm = np.abs(As).max(axis=1)
+        norm = np.where(norm > 0, norm, 1.0)
+        full = np.zeros((len(A) + nx, cols))
+        full[:len(A)] = As / norm[:, None]
+        full[len(A):, :nx] = np.eye(nx)
+        st, y = _simplex.lp_max(objective[:cols], full, np.r_[b / norm, ub / unit],
+                                feas=CHECK_TOL / 10)
+        if st == _simplex.INFEASIBLE:
+            return None
+        if st == _simplex.OPTIMAL and not np.any(full @ y > np.r_[b / norm, ub / unit]
+                                                  + CHECK_TOL):
+            x = y * unit if t_var else np.r_[y * unit, 0.0]
+            return float(objective @ x), x
+        # out of iterations, or an answer that does not hold: HiGHS decides
     from scipy.optimize import linprog  # on first use: two-finger plans never load scipy
 
-    res = linprog(-objective, A_ub=np.concatenate(rows), b_ub=np.concatenate(rhs),
+    res = linprog(-objective, A_ub=A, b_ub=b,
                   bounds=[*cfg.bounds, (0.0, None) if t_var else (0.0, 0.0)],
                   method="highs")
     if res.status != 0:

@@ -189,6 +189,11 @@ KERNEL_CELLS = 1_500_000
 KERNEL_CONFIGS = 20_000
 
 
+#: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
+#: filter compares every pair: 41,000 configurations of an icon took 37 s).
+KERNEL_OWN = 2_000
+
+
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
@@ -442,6 +447,10 @@ def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
         c = np.array([found[j].cfg for j in idx])
         t = np.array([found[j].t for j in idx])
         if c[:, [1, 3]].max() == 0:
+            continue
+        if len(idx) >= KERNEL_OWN and jit_setting() is not False:
+            keep[np.asarray(idx)] = _stretch_kernels.beaten(c, t, ra.m, rb.m, job[0] == job[1],
+                                                            TIE)
             continue
 
         def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
