@@ -69,6 +69,15 @@ def ensure_browser() -> None:
                    stdout=subprocess.DEVNULL)
 
 
+def compile_kernels(env: dict[str, str]) -> None:
+    """numba's kernels compiled once, before the demo or the suite (fcgrasp.compile_kernels:
+    about 20 s the first time, the cache beside the sources after that), so that no
+    test worker compiles them again."""
+    print("numba kernels: compiling or loading the cache ...", flush=True)
+    subprocess.run([str(PY), "-c", "import fcgrasp; fcgrasp.compile_kernels()"], cwd=ROOT,
+                   env=env, check=True)
+
+
 def build_docs(out: str, env: dict[str, str], quiet: bool = True) -> int:
     """The documentation (docs/: the guide, the API reference from the docstrings, the
     design notes, the gallery) built with Sphinx into ``out``, every warning an error."""
@@ -84,6 +93,8 @@ def main(argv: list[str]) -> int:
     ensure_venv()
     cmd, rest = argv[0], argv[1:]
     env = dict(os.environ, MPLBACKEND="Agg")
+    if cmd in ("demo", "test"):
+        compile_kernels(env)
     if cmd == "demo":
         args = rest or ["--out", "demo-output"]
         return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode

@@ -102,6 +102,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         independent_regions,
         plan,
     )
+    from .planning.compiled import compile_kernels
 
 #: Where each public name lives; loaded on first use (PEP 562), so that ``import fcgrasp``
 #: stays light and the command line starts fast.
@@ -161,6 +162,7 @@ _LAZY = {
     "grow_stretches": "model.frictionless_stretches",
     "FrictionlessStretches": "model.frictionless_stretches",
     "plan": "planning",
+    "compile_kernels": "planning.compiled",
     "clean_outline": "model.outline",
     "simplify_outline": "model.outline",
     "fill_rings": "model.outline",

@@ -1,0 +1,76 @@
+"""Compile every numba kernel of the planners ahead of time (issue 30).
+
+numba compiles a kernel on its first call and caches the machine code on disk beside its
+module; a process that finds the cache loads it (about 0.3-0.5 s once) instead of
+compiling (about 20 s for all of them).  :func:`compile_kernels` makes those first
+calls, on small built-in parts, so that a deployment (a container image, a batch
+cluster's workers, ``python3 tasks.py test`` before the suite starts) pays the compile
+once, and no plan of a user does.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from typing import Any
+
+import numpy as np
+
+__all__ = ["compile_kernels"]
+
+
+def compile_kernels() -> dict[str, float]:
+    """Compile (or load from the cache) every compiled kernel: the closed forms of two
+    fingers (:mod:`fcgrasp.core.kernels`), the two-finger stretch search
+    (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
+    (:mod:`fcgrasp.core._simplex`) and three fingers with friction
+    (:mod:`fcgrasp.grippers._concurrency`).  Returns the seconds each took (near zero
+    once cached); without numba (or with ``FCGRASP_JIT=0``) nothing is compiled and
+    every entry is 0.
+
+    >>> sorted(compile_kernels())
+    ['four fingers', 'stretches', 'three fingers', 'two fingers']
+    """
+    from ..core.kernels import jit_setting
+    from ..model.polygon import Polygon
+    from .planner import plan
+
+    out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0}
+    if jit_setting() is False:
+        return out
+    try:
+        import numba  # noqa: F401
+    except ImportError:
+        return out
+    a = np.linspace(0, 2 * np.pi, 40, endpoint=False)
+    r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
+    blob = Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+    small = Polygon(np.c_[r[::4] * np.cos(a[::4]), r[::4] * np.sin(a[::4])])
+    saved = os.environ.get("FCGRASP_JIT")
+    os.environ["FCGRASP_JIT"] = "1"         # every path compiled, whatever the size
+    try:
+        runs: list[tuple[str, Any]] = [
+            ("two fingers", lambda: plan(blob, fingers=2, mu=0.3, along_boundary=False)),
+            ("stretches", lambda: _stretches(blob)),
+            ("three fingers", lambda: plan(small, fingers=3, mu=0.3, top=1)),
+            ("four fingers", lambda: plan(small, fingers=4, top=1)),
+        ]
+        for name, run in runs:
+            t0 = time.perf_counter()
+            run()
+            out[name] = time.perf_counter() - t0
+    finally:
+        if saved is None:
+            del os.environ["FCGRASP_JIT"]
+        else:
+            os.environ["FCGRASP_JIT"] = saved
+    return out
+
+
+def _stretches(blob: Any) -> None:
+    from ..model import _stretch_kernels
+    from .planner import plan
+
+    plan(blob, fingers=2, mu=0.3, top=1)
+    c = np.array([[0, 2, 5, 1], [1, 0, 5, 0]])
+    _stretch_kernels.beaten(c, np.array([1.0, 2.0]), 10, 10, False, 1e-9)
