@@ -68,9 +68,10 @@ def compile_kernels() -> dict[str, float]:
 
 
 def _stretches(blob: Any) -> None:
+    from ..core.tolerances import RANK_TOL
     from ..model import _stretch_kernels
     from .planner import plan
 
     plan(blob, fingers=2, mu=0.3, top=1)
     c = np.array([[0, 2, 5, 1], [1, 0, 5, 0]])
-    _stretch_kernels.beaten(c, np.array([1.0, 2.0]), 10, 10, False, 1e-9)
+    _stretch_kernels.beaten(c, np.array([1.0, 2.0]), 10, 10, False, RANK_TOL)
