@@ -107,6 +107,10 @@ SIMPLEX_SLACK = 1e-12
 NULL_TOL = 1e-14
 PARALLEL_TOL = 1e-12
 PIECE_TIE = 1e-9
+#: A row of a linear program whose largest coefficient is below this fraction of the
+#: program's largest is rounding noise: the dense simplex does not scale it up into a
+#: constraint (four fingers' growth leaves such programs to HiGHS).
+NOISE_ROW = 1e-9
 
 #: Three fingers along the boundary: regions within this (relative) of the smallest are
 #: the ones that must grow for the smallest to grow.
@@ -140,8 +144,8 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
-           "PIECE_TIE", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL", "FLATTEN_FINEST",
-           "SLIVER_REL"]
+           "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",
+           "FLATTEN_FINEST", "SLIVER_REL"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it

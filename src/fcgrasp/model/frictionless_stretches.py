@@ -63,7 +63,7 @@ from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import CHECK_TOL, RANK_TOL, ROUND_TOL, TINY
+from ..core.tolerances import CHECK_TOL, NOISE_ROW, RANK_TOL, ROUND_TOL, TINY
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -206,28 +206,11 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
         rows.append(r[None])
     A, b = np.concatenate(rows), np.concatenate(rhs)
     if _simplex.compiled() is not None:
-        # the compiled dense simplex: x >= 0 is its own; the upper bounds are rows, and
-        # without t its column is dropped
-        # (in units of the longest edge, each row scaled to a largest coefficient of 1)
-        nx = 2 * k
-        ub = np.array([hi for _, hi in cfg.bounds])
-        unit = max(float(ub.max()), TINY)
-        cols = nx + 1 if t_var else nx
-        As = A[:, :cols] * unit
-        norm = np.abs(As).max(axis=1)
-        norm = np.where(norm > 0, norm, 1.0)
-        full = np.zeros((len(A) + nx, cols))
-        full[:len(A)] = As / norm[:, None]
-        full[len(A):, :nx] = np.eye(nx)
-        st, y = _simplex.lp_max(objective[:cols], full, np.r_[b / norm, ub / unit],
-                                feas=CHECK_TOL / 10)
-        if st == _simplex.INFEASIBLE:
-            return None
-        if st == _simplex.OPTIMAL and not np.any(full @ y > np.r_[b / norm, ub / unit]
-                                                  + CHECK_TOL):
-            x = y * unit if t_var else np.r_[y * unit, 0.0]
-            return float(objective @ x), x
-        # out of iterations, or an answer that does not hold: HiGHS decides
+        got = _lp_simplex(cfg, A, b, objective, t_var)
+        if got is None or isinstance(got, tuple):
+            return got
+        # a row of rounding noise, the simplex out of iterations, or an answer that does
+        # not hold: HiGHS decides
     from scipy.optimize import linprog  # on first use: two-finger plans never load scipy
 
     res = linprog(-objective, A_ub=A, b_ub=b,
@@ -236,6 +219,37 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
     if res.status != 0:
         return None
     return float(-res.fun), res.x
+
+
+def _lp_simplex(cfg: _Config, A: FloatArray, b: FloatArray, objective: FloatArray,
+                t_var: bool) -> tuple[float, FloatArray] | None | bool:
+    """:func:`_lp` by the compiled dense simplex (:mod:`fcgrasp.core._simplex`): in
+    units of the longest edge, each row scaled to a largest coefficient of 1, the upper
+    bounds as rows (``x >= 0`` is the simplex's own), ``t``'s column dropped when it is
+    not a variable.  False where it does not decide: a row whose coefficients are
+    rounding noise (below :data:`~fcgrasp.core.tolerances.NOISE_ROW` of the largest:
+    scaling it up would make the noise a constraint), the simplex out of iterations, or
+    an answer that misses the rows as given."""
+    k = len(cfg.edges)
+    nx = 2 * k
+    ub = np.array([hi for _, hi in cfg.bounds])
+    unit = max(float(ub.max()), TINY)
+    cols = nx + 1 if t_var else nx
+    As = A[:, :cols] * unit
+    norm = np.abs(As).max(axis=1)
+    if np.any(norm <= NOISE_ROW * max(float(norm.max(initial=0.0)), TINY)):
+        return False
+    full = np.zeros((len(A) + nx, cols))
+    full[:len(A)] = As / norm[:, None]
+    full[len(A):, :nx] = np.eye(nx)
+    rhs = np.r_[b / norm, ub / unit]
+    st, y = _simplex.lp_max(objective[:cols], full, rhs, feas=CHECK_TOL / 10)
+    if st == _simplex.INFEASIBLE:
+        return None
+    if st != _simplex.OPTIMAL or np.any(full @ y > rhs + CHECK_TOL):
+        return False
+    x = y * unit if t_var else np.r_[y * unit, 0.0]
+    return float(objective @ x), x
 
 
 def _lengths(cfg: _Config, x: FloatArray) -> FloatArray:
