@@ -222,3 +222,24 @@ def test_plans_by_the_compiled_simplex_equal_highs(kind, monkeypatch):
                                                           for p in got[1]]
     for a, b in zip(*got, strict=True):
         assert np.allclose(a.lengths, b.lengths, rtol=0, atol=1e-9 * part.size)
+
+
+@pytest.mark.parametrize("kind", ["regular", "ellipse"])
+@pytest.mark.parametrize("grip", [dict(fingers=4), dict(fingers=3, gravity=(0, -1))])
+def test_pruned_growth_is_the_head_of_the_exhaustive(kind, grip):
+    """The seeds grown along the boundary come from their own search (exact ties in the
+    order found), and the single-edge search stops below the top-th grown plan: the
+    pruned plans are still the head of the exhaustive list, on a regular polygon whose
+    rows all tie and on an ellipse."""
+    n = 16
+    t = np.linspace(0, 2 * np.pi, n, endpoint=False) + 0.1
+    r = np.full(n, 30.0) if kind == "regular" else \
+        30 / np.sqrt(np.cos(t) ** 2 + (np.sin(t) / 0.6) ** 2)
+    part = fc.Polygon(np.c_[r * np.cos(t), r * np.sin(t)])
+    every = fc.plan(part, top=None, **grip)
+    for top in (1, 4):
+        pruned = fc.plan(part, top=top, **grip)
+        assert [(p.mode, p.region_edges) for p in pruned] == \
+            [(p.mode, p.region_edges) for p in every[:top]]
+        for p, q in zip(pruned, every, strict=False):
+            assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)

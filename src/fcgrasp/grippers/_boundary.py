@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
-from ..core.tolerances import LEXIMIN_STEP
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
@@ -114,19 +114,28 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     if not spec.grows:
         raise ValueError("grown_plans plans three or four fingers without a hand "
                          "(spec.grows is False)")
-    flat = replace(spec, along_boundary=False,
-                   top=None if spec.top is None else max(spec.top, GROW_SEEDS))
-    seeds = search(polygon, flat, progress=progress, map=map)
+    flat = replace(spec, along_boundary=False)
+    # the seeds: the GROW_SEEDS best single-edge plans, whatever the top (exact ties on
+    # the smallest region in the order found)
+    seeds = search(polygon, replace(flat, top=GROW_SEEDS),
+                   map=map, strict=True)
     rows = [p.edges for p in seeds[:GROW_SEEDS]
             if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
-    plans = list(seeds)
+    grown: list[GraspPlan] = []
     if rows:
-        grown = grow_stretches(polygon, rows, spec.margin,
-                               None if spec.gravity is None else np.array(spec.gravity),
-                               keep_single=False)
-        plans += [frictionless_plan(polygon, spec, r) for r in grown
-                  if r is not None and max(len(e) for e in r.region_edges) > 1]
-    return ranked_unique(polygon, spec, plans)
+        got = grow_stretches(polygon, rows, spec.margin,
+                             None if spec.gravity is None else np.array(spec.gravity),
+                             keep_single=False)
+        grown = [frictionless_plan(polygon, spec, r) for r in got
+                 if r is not None and max(len(e) for e in r.region_edges) > 1]
+    # a single-edge plan below the top-th grown one cannot rank (on a smooth outline of
+    # equal edges, where every row ties on its bound, this ends the search at once)
+    floor = 0.0
+    distinct = ranked_unique(polygon, replace(spec, top=None), grown)   # one per grasp
+    if spec.top is not None and spec.rank_by == "min_region" and len(distinct) >= spec.top:
+        floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
+    plans = search(polygon, flat, progress=progress, map=map, floor=floor)
+    return ranked_unique(polygon, spec, plans + grown)
 
 
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:

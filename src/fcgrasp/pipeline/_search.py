@@ -103,7 +103,8 @@ class TopK:
 
 
 def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
-           batch_size: int | None = None, map: Any = None) -> list[GraspPlan]:
+           batch_size: int | None = None, map: Any = None, floor: float = 0.0,
+           strict: bool = False) -> list[GraspPlan]:
     """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
     decreasing bound, :func:`solve` drops the rows below the running top's
     :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
@@ -117,6 +118,12 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     time wherever it runs them (each with the floor known when the window was sent: a
     lower floor only keeps more rows, so the answer is the same).
 
+    ``floor``: a smallest region a plan must reach to matter (the caller has ``top``
+    plans at least that good elsewhere; rows below it are not solved).  ``strict``: a
+    row that can at best tie the top's last on its smallest region is not solved either
+    (exact ties are then kept in the order found, not all of them: on a flattened circle
+    every row ties, and the search ends at once).
+
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
     >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
@@ -127,15 +134,21 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     done = 0
     window: list[EdgeSets] = []
 
+    tie = 4 * RANK_TOL * polygon.size
+
+    def current() -> float:
+        f = top.floor + (tie if strict and top.floor > 0 else 0.0)
+        return max(f, floor)
+
     def fold() -> None:
         nonlocal done
-        floor = top.floor
-        live = [b for b in window if b.ceiling >= floor]
+        at = current()
+        live = [b for b in window if b.ceiling >= at]
         if map is None:
-            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=floor)
+            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=at)
                                          for b in live]
         else:
-            results = map(partial(solve, polygon, spec, edges=edges, floor=floor), live)
+            results = map(partial(solve, polygon, spec, edges=edges, floor=at), live)
         for solved in results:
             top.add(solved)
         done += sum(len(b.feats) for b in window)
@@ -144,7 +157,7 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
             progress(min(done, total), total)
 
     for batch in candidates(polygon, spec, edges, batch_size):
-        if batch.ceiling < top.floor:
+        if batch.ceiling < current():
             break
         window.append(batch)
         if map is None or len(window) >= MAP_WINDOW:
