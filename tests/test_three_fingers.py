@@ -377,7 +377,7 @@ def test_branch_and_bound_is_exact_along_the_boundary(kind):
     two-finger plans end the search, and on a regular polygon with exact ties: the top
     of the pruned search is the head of the exhaustive one (seeds of the growth
     included: exact ties are taken in the order found, by both)."""
-    n = {"regular": 24, "ellipse": 36, "blob": 30}[kind]
+    n = {"regular": 24, "ellipse": 28, "blob": 24}[kind]
     a = np.linspace(0, 2 * np.pi, n, endpoint=False)
     r = {"regular": np.full(n, 30.0), "ellipse": 30 / np.sqrt(np.cos(a) ** 2
                                                                + (np.sin(a) / 0.6) ** 2),
