@@ -25,7 +25,6 @@ __all__ = ["compiled", "lp_max", "OPTIMAL", "INFEASIBLE", "UNBOUNDED", "ITERATIO
 
 #: Statuses of :func:`lp_max`.
 OPTIMAL, INFEASIBLE, UNBOUNDED, ITERATIONS = 0, 1, 2, 3
-SLACK = SIMPLEX_SLACK
 
 
 def _pivot(T: Any, r: int, e: int) -> None:
@@ -104,7 +103,7 @@ def _lp_max(c: Any, A: Any, b: Any, m: int, n: int, x: Any, y: Any, eps: float,
         T[m, art] = 1.0                       # maximise -x0
         _pivot(T, low, art)
         basis[low] = art
-        status = _iterate(T, basis, -1, eps, SLACK, max_iter)
+        status = _iterate(T, basis, -1, eps, SIMPLEX_SLACK, max_iter)
         if status == 3:
             return 3
         if status != 0 or T[m, ncol] < -feas:
@@ -127,7 +126,7 @@ def _lp_max(c: Any, A: Any, b: Any, m: int, n: int, x: Any, y: Any, eps: float,
             for k in range(ncol + 1):
                 T[m, k] -= f * T[i, k]
             T[m, j] = 0.0
-    status = _iterate(T, basis, art, eps, SLACK, max_iter)
+    status = _iterate(T, basis, art, eps, SIMPLEX_SLACK, max_iter)
     if status != 0:
         return status
     for j in range(n):

@@ -131,9 +131,10 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     # a single-edge plan below the top-th grown one cannot rank (on a smooth outline of
     # equal edges, where every row ties on its bound, this ends the search at once)
     floor = 0.0
-    distinct = ranked_unique(polygon, replace(spec, top=None), grown)   # one per grasp
-    if spec.top is not None and spec.rank_by == "min_region" and len(distinct) >= spec.top:
-        floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
+    if spec.top is not None and spec.rank_by == "min_region" and len(grown) >= spec.top:
+        distinct = ranked_unique(polygon, replace(spec, top=None), grown)   # one per grasp
+        if len(distinct) >= spec.top:
+            floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
     plans = search(polygon, flat, progress=progress, map=map, floor=floor)
     return ranked_unique(polygon, spec, plans + grown)
 

@@ -56,8 +56,8 @@ from ..core.tolerances import (
     SIMPLEX_PIVOT,
 )
 
-__all__ = ["available", "loaded", "solve", "best_rows", "witnesses", "facets", "MAXMIN",
-           "FREE", "GROW", "DEEP"]
+__all__ = ["available", "solve", "best_rows", "witnesses", "facets", "MAXMIN", "FREE",
+           "GROW", "DEEP"]
 
 #: Objectives (as :func:`fcgrasp.grippers._concurrent._solve_blocks` has them): the
 #: largest common level; with fixed lengths, the largest level of the free regions; one
@@ -65,9 +65,6 @@ __all__ = ["available", "loaded", "solve", "best_rows", "witnesses", "facets", "
 MAXMIN, FREE, GROW, DEEP = 0, 1, 2, 3
 
 
-#: Pivot threshold of the simplex (:mod:`fcgrasp.core._simplex`; the programs are in
-#: units of the part's size).
-PIVOT_EPS = SIMPLEX_PIVOT
 #: How the excess of a half turn is split between two arcs (as
 #: :data:`fcgrasp.grippers._concurrent.SPLITS`), and the eight sides in its order.
 SPLITS = (0.0, 0.5, 1.0)
@@ -496,7 +493,7 @@ def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = 
     try:
         loops["_solve_loop"](A0, T0, L0, A1, T1, L1, const, starts.astype(np.int64), counts,
                              inner, lo_ang, hi_ang, sigma, int(kind), fx, fr, int(grow),
-                             _TRIPLES, PIVOT_EPS, LP_TOL, CHECK_TOL, ROUND_TOL, out, status)
+                             _TRIPLES, SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, out, status)
     except Exception:                   # numba's typing or lowering errors
         _broken = True
         return None
@@ -521,7 +518,7 @@ def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
                             np.ascontiguousarray(L, float),
                             np.ascontiguousarray(center, float),
                             np.ascontiguousarray(half, float), float(margin),
-                            np.asarray(SPLITS, float), _SIDES, _TRIPLES, PIVOT_EPS, LP_TOL,
+                            np.asarray(SPLITS, float), _SIDES, _TRIPLES, SIMPLEX_PIVOT, LP_TOL,
                             CHECK_TOL, ROUND_TOL, PIECE_TIE, level, lo, hi, side)
     except Exception:                   # numba's typing or lowering errors
         _broken = True
@@ -529,18 +526,19 @@ def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
     return side[:, 0] != 0, level, lo, hi, side
 
 
-def loaded() -> bool:
-    """Whether this process has loaded the compiled loops."""
-    return bool(_loaded)
+def _block_normals(blk: Any) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`_normals` of a block (plain Python)."""
+    nx, ny = np.empty(6), np.empty(6)
+    _normals(np.asarray(blk.lo_ang, float), np.asarray(blk.hi_ang, float),
+             np.asarray(blk.sigma, float), nx, ny)
+    return nx, ny
 
 
 def facets(blk: Any) -> np.ndarray:
     """The concurrency region's inequalities of a block, ``W`` (F, 3, 2): its grasps are
     the finger points ``x`` with ``sum_i W[f, i] . x_i <= 0`` for every ``f`` (plain
     Python; what the compiled loop builds, for tests and :func:`witnesses`)."""
-    nx, ny = np.empty(6), np.empty(6)
-    _normals(np.asarray(blk.lo_ang, float), np.asarray(blk.hi_ang, float),
-             np.asarray(blk.sigma, float), nx, ny)
+    nx, ny = _block_normals(blk)
     W = np.empty((20, 3, 2))
     return W[:_facets(nx, ny, _TRIPLES, W)].copy()
 
@@ -549,9 +547,7 @@ def witnesses(blk: Any, lo: np.ndarray, hi: np.ndarray) -> np.ndarray:
     """For each corner grasp of ``blk`` (in :meth:`_Block.corners` order) at region ends
     ``lo``, ``hi``, the point deepest inside its six half-planes (N, 2): the best vertex
     of ``max delta: n_k . p - delta >= n_k . x_k`` (three of the six rows tight)."""
-    nx, ny = np.empty(6), np.empty(6)
-    _normals(np.asarray(blk.lo_ang, float), np.asarray(blk.hi_ang, float),
-             np.asarray(blk.sigma, float), nx, ny)
+    nx, ny = _block_normals(blk)
     pts_per = []
     for i in range(3):
         pts_per.append(np.concatenate([[blk.a0[i] + lo[i] * blk.t0[i],

@@ -367,8 +367,6 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
     return out
 
 
-
-
 def first_best(values: list[float]) -> int:
     """The first of ``values`` within :data:`PIECE_TIE` of the largest."""
     top = max(values)

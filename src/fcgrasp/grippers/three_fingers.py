@@ -161,8 +161,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     def useful(bnd: FloatArray) -> np.ndarray:
         out = bnd >= floor
         if grow:
-            out |= (np.round(bnd / size / PIECE_TIE) > seed_step) if seed_step is not None \
-                else True
+            out |= (_tie_step(bnd, size) > seed_step) if seed_step is not None else True
         return out
 
     for batch in candidates(polygon, spec, edges):
@@ -185,7 +184,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                 found += [g for g in got if keep is None or g[0] >= floor]
                 if grow:
                     for lv, row, blk in got:
-                        seeds.append((-round(lv / size / PIECE_TIE), order, lv, row, blk))
+                        seeds.append((-int(_tie_step(lv, size)), order, lv, row, blk))
                         order += 1
                     seeds.sort(key=lambda r: r[:2])
                     del seeds[GROW_SEEDS:]
@@ -405,6 +404,12 @@ def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[Fl
         out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
                                    [a1 + piece.hi[i] * t1]]))
     return out
+
+
+def _tie_step(length: Any, size: float) -> Any:
+    """Lengths in steps of :data:`~fcgrasp.core.tolerances.PIECE_TIE` of the part's size:
+    two levels of one step tie (the order found decides between them)."""
+    return np.round(np.asarray(length) / size / PIECE_TIE)
 
 
 def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
