@@ -23,19 +23,21 @@ def compile_kernels() -> dict[str, float]:
     """Compile (or load from the cache) every compiled kernel: the closed forms of two
     fingers (:mod:`fcgrasp.core.kernels`), the two-finger stretch search
     (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
-    (:mod:`fcgrasp.core._simplex`) and three fingers with friction
-    (:mod:`fcgrasp.grippers._concurrency`).  Returns the seconds each took (near zero
+    (:mod:`fcgrasp.core._simplex`), three fingers with friction
+    (:mod:`fcgrasp.grippers._concurrency`) and the parallel jaw's pose model and proofs
+    (:mod:`fcgrasp.grippers.jaw._kernels`).  Returns the seconds each took (near zero
     once cached); without numba (or with ``FCGRASP_JIT=0``) nothing is compiled and
     every entry is 0.
 
     >>> sorted(compile_kernels())
-    ['four fingers', 'stretches', 'three fingers', 'two fingers']
+    ['four fingers', 'parallel jaw', 'stretches', 'three fingers', 'two fingers']
     """
     from ..core.kernels import jit_setting
     from ..model.polygon import Polygon
     from .planner import plan
 
-    out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0}
+    out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0,
+           "parallel jaw": 0.0}
     if jit_setting() is False:
         return out
     try:
@@ -54,6 +56,7 @@ def compile_kernels() -> dict[str, float]:
             ("stretches", lambda: _stretches(blob)),
             ("three fingers", lambda: plan(small, fingers=3, mu=0.3, top=1)),
             ("four fingers", lambda: plan(small, fingers=4, top=1)),
+            ("parallel jaw", lambda: _jaw()),
         ]
         for name, run in runs:
             t0 = time.perf_counter()
@@ -75,3 +78,12 @@ def _stretches(blob: Any) -> None:
     plan(blob, fingers=2, mu=0.3, top=1)
     c = np.array([[0, 2, 5, 1], [1, 0, 5, 0]])
     _stretch_kernels.beaten(c, np.array([1.0, 2.0]), 10, 10, False, RANK_TOL)
+
+
+def _jaw() -> None:
+    from ..grippers.jaw import ParallelJaw, jaw_plans
+    from ..io.parts import demo_part
+
+    # a part with a hole: the internal grips' paths too
+    jaw_plans(demo_part("washer"), ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5), top=1,
+              internal=True)

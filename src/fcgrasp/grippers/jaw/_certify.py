@@ -14,6 +14,7 @@ from ...core.tolerances import CONTACT_TOL, TOL
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
+from . import _kernels
 from ._poses import (
     MAX_CONTACTS,
     _check_jaw_args,
@@ -228,6 +229,57 @@ def _hole_sides(polygon: Polygon, ring: np.ndarray, q: FloatArray, boxes: FloatA
     return up, down, ~np.any(may_meet & ~up & ~down, axis=1)
 
 
+def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: FloatArray,
+                beta: float, q: FloatArray | None
+                ) -> tuple[np.ndarray, FloatArray, FloatArray]:
+    """For each box (B, 4) of a batch: whether it is proved (the features each pad may
+    touch few, every pair of them force closure over the box, the opening's enclosure
+    within the stroke; inside a hole, with insertion point ``q`` from the centroid, the
+    closed jaws' segment free: the centre pose is the caller's), and that enclosure
+    ``(o_lo, o_hi)``.  By the compiled loop of :mod:`._kernels` where it runs, else by
+    numpy (:func:`_box_proofs_numpy`, the reference)."""
+    if _kernels.available():
+        ends = np.concatenate([polygon.starts[ring], polygon.ends[ring]]) - polygon.centroid
+        uniq, inv = np.unique(ends, axis=0, return_inverse=True)
+        cen = polygon.centroid
+        out = _kernels.prove(boxes, polygon.starts[ring] - cen, polygon.ends[ring] - cen,
+                             polygon.normals[ring], uniq, inv.ravel(), jaw.pad_width / 2,
+                             CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
+                             jaw.stroke)
+        if out is not None:
+            return out
+    return _box_proofs_numpy(polygon, ring, jaw, boxes, beta, q)
+
+
+def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw,
+                      boxes: FloatArray, beta: float, q: FloatArray | None
+                      ) -> tuple[np.ndarray, FloatArray, FloatArray]:
+    """:func:`_box_proofs` by numpy (the reference of the compiled loop)."""
+    internal = q is not None
+    half = jaw.pad_width / 2
+    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
+    if q is not None:
+        # the closed jaws' segment free at every pose (each edge that may meet the
+        # strip wholly above or below the insertion height); pad A meets only edges
+        # above, pad B below
+        up, down, free = _hole_sides(polygon, ring, q, boxes, half)
+        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half, up)
+        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half, down)
+        proved = ca.ok & cb.ok & free
+    else:
+        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
+        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
+        proved = ca.ok & cb.ok
+    # the stops as heights along u: sign * stop lies in [lo, hi]
+    a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
+    b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
+    with np.errstate(invalid="ignore"):
+        o_lo, o_hi = a_lo - b_hi, a_hi - b_lo
+        proved &= (jaw.stroke[0] <= o_lo) & (o_hi <= jaw.stroke[1])
+    proved &= _pairs_hold(ca, cb, beta, internal)
+    return proved, o_lo, o_hi
+
+
 #: Sub-boxes :func:`certify_box` examines at a time.
 CERTIFY_BATCH = 512
 
@@ -262,14 +314,12 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
                          f"got {theta!r}, {offset!r}")
     margin = _check_jaw_args(polygon, jaw, margin)
     max_boxes = check_int(max_boxes, "max_boxes", minimum=1)
-    internal = hole is not None
     ring = _grip_edges(polygon, hole)
     if t1 - t0 < np.pi / 2:
         ring = _near_strip(polygon, ring, t0, t1, c0, c1, jaw.pad_width / 2)
     beta = float(shrunk_half_angle(jaw.mu, margin))
     if beta <= 0:
         return None
-    half = jaw.pad_width / 2
     radius = characteristic_length(polygon.vertices, polygon.centroid)
     q = None if hole is None else insertion_point(polygon, hole) - polygon.centroid
     # cut the box at the critical angles, where an edge turns parallel to u (its facing
@@ -283,35 +333,19 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
                             np.full(cuts.size - 1, c1)])
     lo_open, hi_open = np.inf, -np.inf
     done = 0
-    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
     while len(todo):
-        centre_holds = None
         boxes, todo = todo[:CERTIFY_BATCH], todo[CERTIFY_BATCH:]
         done += len(boxes)
         if done > max_boxes:
             return None
+        proved, o_lo, o_hi = _box_proofs(polygon, ring, jaw, boxes, beta, q)
+        centre_holds = None
         if q is not None:
-            # the closed jaws' segment free at every pose (each edge that may meet the
-            # strip wholly above or below the insertion height), and inside the hole at
-            # the centre pose, hence at every pose (the segment's middle would have to
-            # cross an edge to leave); pad A meets only edges above, pad B below
-            up, down, free = _hole_sides(polygon, ring, q, boxes, half)
-            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half, up)
-            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half, down)
+            # inside a hole, the closed jaws' segment is inside the hole at the centre
+            # pose, hence at every pose (its middle would have to cross an edge to leave)
             centre_holds = jaw_poses(polygon, jaw, (boxes[:, 0] + boxes[:, 1]) / 2,
                                      (boxes[:, 2] + boxes[:, 3]) / 2, margin, hole).holds
-            proved = ca.ok & cb.ok & free & centre_holds
-        else:
-            ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
-            cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
-            proved = ca.ok & cb.ok
-        # the stops as heights along u: sign * stop lies in [lo, hi]
-        a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
-        b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
-        with np.errstate(invalid="ignore"):
-            o_lo, o_hi = a_lo - b_hi, a_hi - b_lo
-            proved &= (jaw.stroke[0] <= o_lo) & (o_hi <= jaw.stroke[1])
-        proved &= _pairs_hold(ca, cb, beta, internal)
+            proved &= centre_holds
         if proved.any():
             lo_open = min(lo_open, float(o_lo[proved].min()))
             hi_open = max(hi_open, float(o_hi[proved].max()))

@@ -18,6 +18,7 @@ from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import register
+from . import _kernels
 from ._certify import (
     certify_box,
 )
@@ -181,10 +182,18 @@ def _box_scores(H: np.ndarray, dth: float, dc: float, radius: float, max_rows: i
                 ) -> tuple[float, int, int, int, int]:
     """The largest box of True cells of the pose grid ``H`` (theta rows, cyclic; offset
     columns) by ``min(offset range, theta range * radius)``: ``(score, k0, k1, j0, j1)``
-    with inclusive grid indices (``k1`` may pass the last row: it wraps).
+    with inclusive grid indices (``k1`` may pass the last row: it wraps).  By the
+    compiled loop (:func:`._kernels.box_scores`) where it runs."""
+    found = _kernels.box_scores(H, dth, dc, radius, max_rows) if _kernels.available() \
+        else None
+    return found if found is not None else _box_scores_numpy(H, dth, dc, radius, max_rows)
 
-    For each first row ``k0``, the rows from it are AND-ed cumulatively and the longest
-    run of True of every prefix is read off at once (run lengths by cumulative sums)."""
+
+def _box_scores_numpy(H: np.ndarray, dth: float, dc: float, radius: float, max_rows: int
+                      ) -> tuple[float, int, int, int, int]:
+    """:func:`_box_scores` by numpy (the reference): for each first row ``k0``, the rows
+    from it are AND-ed cumulatively and the longest run of True of every prefix is read
+    off at once (run lengths by cumulative sums)."""
     K, M = H.shape
     best = (-1.0, 0, 0, 0, 0)
     span = np.arange(max_rows)

@@ -14,6 +14,7 @@ from ...core._checks import FloatArray, check_mu_scalar, check_scalar
 from ...core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
 from ...model.polygon import Polygon, check_polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
+from . import _kernels
 
 if TYPE_CHECKING:
     from ._plans import ParallelJaw
@@ -32,7 +33,7 @@ CERTIFY_BOXES = 4000
 #: Grid steps a planned box may be shrunk by until it is proved.
 CERTIFY_SHRINKS = 2
 #: At most this many contact features per pad are compared (more: not held, safely).
-MAX_CONTACTS = 4
+MAX_CONTACTS = _kernels.K_MAX
 #: Poses evaluated at a time (memory: a few arrays of this many rows times the edges).
 POSE_BATCH = 20000
 
@@ -273,31 +274,78 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
 
 def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
               margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
-    """:func:`jaw_poses` on checked arrays, with the verdict's slacks (:func:`_verdict`)."""
-    internal = hole is not None
+    """:func:`jaw_poses` on checked arrays, with the verdict's slacks (:func:`_verdict`):
+    by the compiled loop of :mod:`._kernels` where it runs, else by numpy
+    (:func:`_evaluate_numpy`, the reference)."""
     ring = _grip_edges(polygon, hole)
     if th.size and np.ptp(th) < np.pi / 2:
         ring = _near_strip(polygon, ring, float(th.min()), float(th.max()), float(c.min()),
                            float(c.max()), jaw.pad_width / 2)
+    if _kernels.available():
+        cen = polygon.centroid
+        q = None if hole is None else insertion_point(polygon, hole) - cen
+        out = _kernels.poses(th, c, polygon.starts[ring] - cen, polygon.ends[ring] - cen,
+                             -polygon.normals[ring], jaw.pad_width / 2,
+                             CONTACT_TOL * polygon.size, q, jaw.stroke,
+                             float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL)
+        if out is not None:
+            top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, e_a, e_b, holds, slacks = out
+            return _contacts(ring, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, e_a,
+                             e_b, holds), slacks
+    return _evaluate_numpy(polygon, jaw, th, c, margin, hole, ring)
+
+
+def _contacts(ring: np.ndarray, top: FloatArray, bottom: FloatArray, ok_a: np.ndarray,
+              ok_b: np.ndarray, lat_a: FloatArray, lat_b: FloatArray, psi_a: FloatArray,
+              psi_b: FloatArray, e_a: np.ndarray, e_b: np.ndarray, holds: np.ndarray
+              ) -> PoseContacts:
+    """The pads' findings as :class:`PoseContacts` (columns of ``ring`` made the part's
+    edges)."""
+    with np.errstate(invalid="ignore"):
+        opening = top - bottom
+    kind_a = np.where(ok_a, np.where(np.nanmax(np.abs(psi_a), axis=1, initial=0.0) > 0, 2, 1),
+                      0)
+    kind_b = np.where(ok_b, np.where(np.nanmax(np.abs(psi_b), axis=1, initial=0.0) > 0, 2, 1),
+                      0)
+    ids = np.flatnonzero(ring)
+    return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
+                        holds, np.where(e_a >= 0, ids[e_a], -1),
+                        np.where(e_b >= 0, ids[e_b], -1))
+
+
+def _evaluate_numpy(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+                    margin: float, hole: int | None, ring: np.ndarray
+                    ) -> tuple[PoseContacts, FloatArray]:
+    """:func:`_evaluate` by numpy over the edges ``ring`` (the reference of the compiled
+    loop)."""
+    internal = hole is not None
     rel_a = polygon.starts[ring] - polygon.centroid
     rel_b = polygon.ends[ring] - polygon.centroid
-    u = np.stack([np.cos(th), np.sin(th)], axis=1)
-    n = np.stack([-u[:, 1], u[:, 0]], axis=1)
-    y_a, y_b = u @ rel_a.T, u @ rel_b.T
-    x_a, x_b = n @ rel_a.T, n @ rel_b.T
+    # coordinates along u = (cos, sin) and n = (-sin, cos), products summed in one
+    # order (as the compiled loop does; a matrix product may fuse them differently)
+    cs, sn = np.cos(th)[:, None], np.sin(th)[:, None]
+
+    def along_u(v: FloatArray) -> FloatArray:
+        return cs * v[:, 0] + sn * v[:, 1]
+
+    def along_n(v: FloatArray) -> FloatArray:
+        return -sn * v[:, 0] + cs * v[:, 1]
+
+    y_a, y_b = along_u(rel_a), along_u(rel_b)
+    x_a, x_b = along_n(rel_a), along_n(rel_b)
     half = jaw.pad_width / 2
     s0, s1 = (c - half)[:, None], (c + half)[:, None]
     tol = CONTACT_TOL * polygon.size
     # the contact force on an edge (its inward normal) as an angle from each pad's force,
     # positive towards +n: pad A pushes along -u, pad B along +u
     f = -polygon.normals[ring]
-    fx, fy = n @ f.T, u @ f.T
+    fx, fy = along_n(f), along_u(f)
     if hole is not None:
         # the closed jaws go in at the insertion point's height y_q: the segment the
         # strip cuts there must be free (no edge of the hole's boundary crosses it) and
         # inside the hole; opening, pad A (pushing along +u) meets the first boundary
         # above it, pad B the first below, each an edge facing it
-        y_q = (u @ (insertion_point(polygon, hole) - polygon.centroid))[:, None]
+        y_q = along_u((insertion_point(polygon, hole) - polygon.centroid)[None, :])
         above, below, free = _sides_of(y_a, y_b, x_a, x_b, s0, s1, y_q, tol)
         top, ok_a, lat_a, psi_a, e_a = _pad(y_a, y_b, x_a, x_b, s0, s1, -1.0, tol,
                                        (fx, fy), (fy > 0) & above)
@@ -313,14 +361,8 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
         opening = top - bottom
     holds, slacks = _verdict(opening, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, jaw, margin,
                              internal)
-    kind_a = np.where(ok_a, np.where(np.nanmax(np.abs(psi_a), axis=1, initial=0.0) > 0, 2, 1),
-                      0)
-    kind_b = np.where(ok_b, np.where(np.nanmax(np.abs(psi_b), axis=1, initial=0.0) > 0, 2, 1),
-                      0)
-    ids = np.flatnonzero(ring)
-    return PoseContacts(top, bottom, opening, kind_a, kind_b, lat_a, lat_b, psi_a, psi_b,
-                        holds, np.where(e_a >= 0, ids[e_a], -1),
-                        np.where(e_b >= 0, ids[e_b], -1)), slacks
+    return _contacts(ring, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, e_a, e_b,
+                     holds), slacks
 
 
 def _near_strip(polygon: Polygon, ring: np.ndarray, t0: float, t1: float, c0: float,

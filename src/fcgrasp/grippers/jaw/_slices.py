@@ -7,10 +7,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ...core._angles import shrunk_half_angle
 from ...core._checks import FloatArray
 from ...core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL
 from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
+from . import _kernels
 from ._poses import (
     POSE_BATCH,
     PoseContacts,
@@ -92,8 +94,40 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
                           w_lo[:, None], w_hi[:, None]), axis=1)
     tiny = ROUND_TOL * polygon.size
     keep = brk[:, 1:] - brk[:, :-1] > tiny
-    rows = np.nonzero(keep)
-    cell_t, cell_lo, cell_hi = rows[0], brk[:, :-1][rows], brk[:, 1:][rows]
+    cells = np.nonzero(keep)
+    cell_t, cell_lo, cell_hi = cells[0], brk[:, :-1][cells], brk[:, 1:][cells]
+    rows = _holding_pieces(polygon, jaw, th, margin, hole, ring, cell_t, cell_lo, cell_hi)
+    # pieces apart by less than the contact tolerance are one (at a vertex entering the
+    # strip a contact's span starts from zero: its slack's root is the cell's end, give
+    # or take rounding)
+    return _merge_intervals(rows, th.size, CONTACT_TOL * polygon.size)
+
+
+def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
+                    hole: int | None, ring: np.ndarray, cell_t: np.ndarray,
+                    cell_lo: FloatArray, cell_hi: FloatArray) -> FloatArray:
+    """The holding pieces ``(angle index, lo, hi)`` of the cells (the method of
+    :func:`holding_offsets`): by the compiled loop of :mod:`._kernels` where it runs,
+    else by numpy (:func:`_holding_pieces_numpy`, the reference)."""
+    if _kernels.available():
+        cen = polygon.centroid
+        q = None if hole is None else insertion_point(polygon, hole) - cen
+        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th, polygon.starts[ring] - cen,
+                               polygon.ends[ring] - cen, -polygon.normals[ring],
+                               jaw.pad_width / 2, CONTACT_TOL * polygon.size, q, jaw.stroke,
+                               float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL,
+                               SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
+                               CONTACT_TOL * polygon.size)
+        if rows is not None:
+            return rows
+    return _holding_pieces_numpy(polygon, jaw, th, margin, hole, cell_t, cell_lo, cell_hi)
+
+
+def _holding_pieces_numpy(polygon: Polygon, jaw: ParallelJaw, th: FloatArray,
+                          margin: float, hole: int | None, cell_t: np.ndarray,
+                          cell_lo: FloatArray, cell_hi: FloatArray) -> FloatArray:
+    """:func:`_holding_pieces` by numpy, the cells of a round side by side."""
+    tiny = ROUND_TOL * polygon.size
     found: list[FloatArray] = []                        # rows (angle index, lo, hi)
     atol = CONTACT_TOL * polygon.size
     while cell_t.size:
@@ -142,11 +176,9 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
         cell_t = np.concatenate([cell_t[split], cell_t[split]])
         cell_lo, cell_hi = (np.concatenate([cell_lo[split], mid]),
                             np.concatenate([mid, cell_hi[split]]))
-    # pieces apart by less than the contact tolerance are one (at a vertex entering the
-    # strip a contact's span starts from zero: its slack's root is the cell's end, give
-    # or take rounding)
-    return _merge_intervals(np.concatenate(found) if found else np.zeros((0, 3)), th.size,
-                            atol)
+    return np.concatenate(found) if found else np.zeros((0, 3))
+
+
 
 
 def _evaluate_batched(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,

@@ -1,0 +1,781 @@
+"""The parallel jaw's pose model compiled (issue 30): :func:`poses` evaluates a batch of
+poses in one loop, pose by pose and edge by edge, with the same formulas, in the same
+order, as the numpy model of :mod:`._poses` (``_pad``, ``_sides_of``, ``_inside``,
+``_verdict``), which stays the reference (``FCGRASP_JIT=0``, and the tests: verdicts
+equal wherever a slack is not within rounding of zero, values to 1e-12 of the size).
+
+numpy spends its time on calls over arrays of a few elements (a pose batch of a grid
+tile, a cell's three points, a box's centre); the loop pays none of them and allocates
+only its outputs.  Compiled by numba on first use, cached on disk beside this file
+(:func:`fcgrasp.compile_kernels` does it ahead of time); without numba, or with
+``FCGRASP_JIT=0``, :func:`available` is False and the numpy model runs.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from typing import Any
+
+import numpy as np
+
+from ...core.kernels import jit_setting, njit_all
+
+#: At most this many contact features per pad (as ``_poses.MAX_CONTACTS``).
+K_MAX = 4
+
+
+def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any,
+              half: float, tol: float, sign: float, fsign: float, use: Any,
+              stop_out: Any, ok_out: Any, lat: Any, psi: Any, col: Any, h_lo: Any,
+              h_hi: Any) -> None:
+    """One pad at pose ``p`` (``_poses._pad``): the stop (``sign`` times the extreme of
+    ``sign * y``), whether it is valid, and its first :data:`K_MAX` touching edges'
+    lateral spans, force angles and columns.  ``use``: the edges it may meet (None:
+    all); ``fsign``: the sign of the force's ``u`` component in ``arctan2``; ``h_lo``,
+    ``h_hi``: scratch (E,)."""
+    s0, s1 = c - half, c + half
+    E = a.shape[0]
+    stop = -np.inf
+    for e in range(E):
+        xa = -th_s * a[e, 0] + th_c * a[e, 1]
+        xb = -th_s * b[e, 0] + th_c * b[e, 1]
+        ya = sign * (th_c * a[e, 0] + th_s * a[e, 1])
+        yb = sign * (th_c * b[e, 0] + th_s * b[e, 1])
+        lo_x, hi_x = min(xa, xb), max(xa, xb)
+        inside = hi_x >= s0 and lo_x <= s1 and use[e] > 0
+        if not inside:
+            h_lo[e] = -np.inf
+            h_hi[e] = -np.inf
+            continue
+        cl_lo = min(max(lo_x, s0), s1)
+        cl_hi = min(max(hi_x, s0), s1)
+        dx = xb - xa
+        if abs(dx) <= tol:
+            h_lo[e] = max(ya, yb)
+            h_hi[e] = max(ya, yb)
+        else:
+            slope = (yb - ya) / dx
+            h_lo[e] = ya + (cl_lo - xa) * slope
+            h_hi[e] = ya + (cl_hi - xa) * slope
+        stop = max(stop, h_lo[e], h_hi[e])
+    count = 0
+    finite = stop > -np.inf
+    for e in range(E):
+        at_lo = h_lo[e] >= stop - tol
+        at_hi = h_hi[e] >= stop - tol
+        if not (finite and (at_lo or at_hi)):
+            continue
+        if count < K_MAX:
+            k = count
+            xa = -th_s * a[e, 0] + th_c * a[e, 1]
+            xb = -th_s * b[e, 0] + th_c * b[e, 1]
+            ya = sign * (th_c * a[e, 0] + th_s * a[e, 1])
+            yb = sign * (th_c * b[e, 0] + th_s * b[e, 1])
+            lo_x, hi_x = min(xa, xb), max(xa, xb)
+            g_lo = min(max(lo_x, s0), s1)
+            g_hi = min(max(hi_x, s0), s1)
+            level = abs(ya - yb) <= tol
+            along = abs(xb - xa) <= tol
+            cut_lo = g_lo > lo_x + tol and not level and not along
+            cut_hi = g_hi < hi_x - tol and not level and not along
+            corner = (at_lo and cut_lo) or (at_hi and cut_hi)
+            if level and at_lo and at_hi:
+                lat[p, k, 0], lat[p, k, 1] = g_lo, g_hi
+            else:
+                lat[p, k, 0] = g_lo if at_lo else g_hi
+                lat[p, k, 1] = g_hi if at_hi else g_lo
+            if corner:
+                fx = -th_s * f[e, 0] + th_c * f[e, 1]
+                fy = th_c * f[e, 0] + th_s * f[e, 1]
+                psi[p, k] = math.atan2(fx, fsign * fy)
+            else:
+                psi[p, k] = 0.0
+            col[p, k] = e
+        count += 1
+    for k in range(min(count, K_MAX), K_MAX):
+        lat[p, k, 0], lat[p, k, 1], psi[p, k], col[p, k] = np.nan, np.nan, np.nan, -1
+    stop_out[p] = sign * stop
+    ok_out[p] = finite and count <= K_MAX
+
+
+def _hole_sides(th_c: float, th_s: float, c: float, a: Any, b: Any, half: float,
+                tol: float, level: float, above: Any, below: Any) -> bool:
+    """``_poses._sides_of`` at one pose: which edges meet the strip wholly above the
+    height ``level``, which wholly below (into ``above``, ``below``), and whether the
+    strip's segment at that height is free (every edge meeting it one or the other)."""
+    s0, s1 = c - half, c + half
+    free = True
+    for e in range(a.shape[0]):
+        xa = -th_s * a[e, 0] + th_c * a[e, 1]
+        xb = -th_s * b[e, 0] + th_c * b[e, 1]
+        ya = th_c * a[e, 0] + th_s * a[e, 1]
+        yb = th_c * b[e, 0] + th_s * b[e, 1]
+        lo_x, hi_x = min(xa, xb), max(xa, xb)
+        meets = hi_x >= s0 and lo_x <= s1
+        if abs(xb - xa) <= tol:
+            h0, h1 = ya, yb
+        else:
+            slope = (yb - ya) / (xb - xa)
+            h0 = ya + (min(max(lo_x, s0), s1) - xa) * slope
+            h1 = ya + (min(max(hi_x, s0), s1) - xa) * slope
+        up = meets and min(h0, h1) > level + tol
+        down = meets and max(h0, h1) < level - tol
+        above[e] = 1.0 if up else 0.0
+        below[e] = 1.0 if down else 0.0
+        if meets and not up and not down:
+            free = False
+    return free
+
+
+def _inside_ring(th_c: float, th_s: float, a: Any, b: Any, x: float, y: float) -> bool:
+    """``_poses._inside`` at one pose: is ``(x, y)`` inside the ring (even-odd, the ray
+    along ``+u``)?"""
+    crossings = 0
+    for e in range(a.shape[0]):
+        xa = -th_s * a[e, 0] + th_c * a[e, 1]
+        xb = -th_s * b[e, 0] + th_c * b[e, 1]
+        if (xa > x) != (xb > x):
+            ya = th_c * a[e, 0] + th_s * a[e, 1]
+            yb = th_c * b[e, 0] + th_s * b[e, 1]
+            if ya + (x - xa) * (yb - ya) / (xb - xa) > y:
+                crossings += 1
+    return crossings % 2 == 1
+
+
+def _poses_loop(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
+                internal: bool, q: Any, stroke0: float, stroke1: float, beta: float,
+                flip: float, round_tol: float, top: Any, bottom: Any, ok_a: Any,
+                ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any, psi_b: Any, col_a: Any,
+                col_b: Any, holds: Any, slacks: Any) -> None:
+    """Every pose of the batch: both pads, the verdict and its slacks
+    (``_poses._evaluate``)."""
+    E = a.shape[0]
+    scratch = np.empty((4, E))
+    for p in range(th.shape[0]):
+        _pose_one(p, th[p], c[p], a, b, f, half, tol, internal, q, stroke0, stroke1, beta,
+                  flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b,
+                  col_a, col_b, holds, slacks, scratch)
+
+
+def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: float,
+              tol: float, internal: bool, q: Any, stroke0: float, stroke1: float,
+              beta: float, flip: float, round_tol: float, top: Any, bottom: Any, ok_a: Any,
+              ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any, psi_b: Any, col_a: Any,
+              col_b: Any, holds: Any, slacks: Any, scratch: Any) -> None:
+    """The pose ``(theta, c)`` into row ``p`` of the outputs: both pads, the verdict and
+    its slacks (``_poses._evaluate``; NaN and -1 where a feature is missing).
+    ``scratch`` (4, E)."""
+    E = a.shape[0]
+    K = K_MAX
+    h_lo, h_hi = scratch[0], scratch[1]
+    above, below = scratch[2], scratch[3]
+    tc, ts = math.cos(theta), math.sin(theta)
+    for s in range(2 * K * K + 2):
+        slacks[p, s] = np.nan
+    if internal:
+        y_q = tc * q[0] + ts * q[1]
+        free = _hole_sides(tc, ts, c, a, b, half, tol, y_q, above, below)
+        for e in range(E):
+            fy = tc * f[e, 0] + ts * f[e, 1]
+            above[e] = 1.0 if fy > 0 and above[e] > 0 else 0.0
+            below[e] = 1.0 if fy < 0 and below[e] > 0 else 0.0
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, -1.0, 1.0, above, top, ok_a,
+                  lat_a, psi_a, col_a, h_lo, h_hi)
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, 1.0, -1.0, below, bottom, ok_b,
+                  lat_b, psi_b, col_b, h_lo, h_hi)
+        ok_a[p] = ok_a[p] and free and _inside_ring(tc, ts, a, b, c, y_q)
+    else:
+        for e in range(E):
+            above[e] = 1.0
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, 1.0, -1.0, above, top, ok_a,
+                  lat_a, psi_a, col_a, h_lo, h_hi)
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, -1.0, 1.0, above, bottom, ok_b,
+                  lat_b, psi_b, col_b, h_lo, h_hi)
+    opening = top[p] - bottom[p]
+    any_pair = False
+    for i in range(K):
+        for j in range(K):
+            pa = flip * psi_a[p, i]
+            pb = -flip * psi_b[p, j]
+            lo = max(pa, pb) - beta
+            hi = min(pa, pb) + beta
+            if lo < hi:         # False where a feature is missing (NaN)
+                s_hi = opening * math.tan(min(hi, math.pi / 2 - round_tol)) \
+                    - (lat_b[p, j, 0] - lat_a[p, i, 1])
+                s_lo = (lat_b[p, j, 1] - lat_a[p, i, 0]) \
+                    - opening * math.tan(max(lo, -math.pi / 2 + round_tol))
+                slacks[p, i * K + j] = s_hi
+                slacks[p, K * K + i * K + j] = s_lo
+                if s_hi > 0 and s_lo > 0:
+                    any_pair = True
+    s_min, s_max = opening - stroke0, stroke1 - opening
+    slacks[p, 2 * K * K] = s_min
+    slacks[p, 2 * K * K + 1] = s_max
+    holds[p] = ok_a[p] and ok_b[p] and beta > 0 and any_pair and s_min >= 0 \
+        and s_max >= 0
+
+
+def poses(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
+          q: Any, stroke: tuple[float, float], beta: float, round_tol: float
+          ) -> tuple[Any, ...] | None:
+    """Every pose ``(th[p], c[p])`` of the batch against the edges ``a``-``b`` (E, 2,
+    from the centroid) whose contact forces are ``f`` (E, 2); ``q``: the insertion point
+    from the centroid (internal grip) or None.  Returns ``(top, bottom, ok_a, ok_b,
+    lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks)`` as ``_poses._evaluate``
+    builds them, or None when the compiled loop cannot run."""
+    global _broken
+    loops = _load()
+    if loops is None:
+        return None
+    P, K = th.shape[0], K_MAX
+    top, bottom = np.empty(P), np.empty(P)
+    ok_a, ok_b = np.zeros(P, bool), np.zeros(P, bool)
+    lat_a, lat_b = np.full((P, K, 2), np.nan), np.full((P, K, 2), np.nan)
+    psi_a, psi_b = np.full((P, K), np.nan), np.full((P, K), np.nan)
+    col_a, col_b = np.full((P, K), -1, np.int64), np.full((P, K), -1, np.int64)
+    holds = np.zeros(P, bool)
+    slacks = np.full((P, 2 * K * K + 2), np.nan)
+    internal = q is not None
+    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
+    try:
+        loops["_poses_loop"](np.ascontiguousarray(th, dtype=float),
+                             np.ascontiguousarray(c, dtype=float),
+                             np.ascontiguousarray(a, dtype=float),
+                             np.ascontiguousarray(b, dtype=float),
+                             np.ascontiguousarray(f, dtype=float), float(half), float(tol),
+                             internal, qq, float(stroke[0]), float(stroke[1]), float(beta),
+                             -1.0 if internal else 1.0, float(round_tol), top, bottom, ok_a,
+                             ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks)
+    except Exception:                   # numba's typing or lowering errors
+        _broken = True
+        return None
+    return (top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
+            slacks)
+
+
+def _box_loop(H: Any, dth: float, dc: float, radius: float, max_rows: int,
+              out: Any) -> None:
+    """``_plans._box_scores_numpy`` as one loop: for each first row, the rows from it
+    AND-ed one by one, the longest run of the intersection read at each; a first row
+    stops once its longest run cannot beat the best (runs only shorten), so the best
+    box and its ties are those of the numpy search (first row, then first prefix, then
+    first run)."""
+    K, M = H.shape
+    best = -1.0
+    acc = np.empty(M, dtype=np.bool_)
+    for k0 in range(K):
+        for j in range(M):
+            acc[j] = H[k0, j]
+        for r in range(max_rows):
+            if r:
+                row = (k0 + r) % K
+                for j in range(M):
+                    acc[j] = acc[j] and H[row, j]
+            length, end, run = 0, 0, 0
+            for j in range(M):
+                run = run + 1 if acc[j] else 0
+                if run > length:
+                    length, end = run, j
+            if length == 0 or (length - 1) * dc <= best:
+                break
+            score = min((length - 1) * dc, r * dth * radius)
+            if score > best:
+                best = score
+                out[0], out[1], out[2], out[3], out[4] = score, k0, k0 + r, \
+                    end - length + 1, end
+
+
+def box_scores(H: Any, dth: float, dc: float, radius: float, max_rows: int
+               ) -> tuple[float, int, int, int, int] | None:
+    """The largest box of True cells of the pose grid ``H`` (``_plans._box_scores``),
+    compiled; None when the loop cannot run."""
+    global _broken
+    loops = _load()
+    if loops is None:
+        return None
+    out = np.array([-1.0, 0, 0, 0, 0])
+    try:
+        loops["_box_loop"](np.ascontiguousarray(H, dtype=np.bool_), float(dth), float(dc),
+                           float(radius), int(max_rows), out)
+    except Exception:                   # numba's typing or lowering errors
+        _broken = True
+        return None
+    return float(out[0]), int(out[1]), int(out[2]), int(out[3]), int(out[4])
+
+
+# ----------------------------------------------------------------------------- proofs
+
+_TWO_PI = 2.0 * math.pi
+
+
+def _sin_range(a: float, b: float, t0: float, t1: float) -> tuple[float, float]:
+    """``_poses._sin_range`` of numbers: the exact range of ``a cos t + b sin t`` over
+    ``[t0, t1]``."""
+    return _range(a, b, math.hypot(a, b), math.atan2(b, a), t0, t1, math.cos(t0),
+                  math.sin(t0), math.cos(t1), math.sin(t1))
+
+
+def _range(a: float, b: float, r: float, phi: float, t0: float, t1: float, c0: float,
+           s0: float, c1: float, s1: float) -> tuple[float, float]:
+    """:func:`_sin_range` given ``r = hypot(a, b)``, ``phi = atan2(b, a)`` and the
+    cosines and sines of ``t0``, ``t1`` (the same numbers, computed once)."""
+    v0 = a * c0 + b * s0
+    v1 = a * c1 + b * s1
+    has_max = (phi - t0) % _TWO_PI <= t1 - t0
+    has_min = (phi + math.pi - t0) % _TWO_PI <= t1 - t0
+    return (-r if has_min else min(v0, v1)), (r if has_max else max(v0, v1))
+
+
+def _polar(x: Any, y: Any) -> Any:
+    """Rows ``(x, y, hypot, atan2)`` (n, 4) of the vectors ``(x, y)``, for :func:`_range`."""
+    out = np.empty((x.shape[0], 4))
+    for k in range(x.shape[0]):
+        out[k, 0], out[k, 1] = x[k], y[k]
+        out[k, 2], out[k, 3] = math.hypot(x[k], y[k]), math.atan2(y[k], x[k])
+    return out
+
+
+def _vrange(v: Any, k: int, t0: float, t1: float, trig: Any) -> tuple[float, float]:
+    """:func:`_range` of row ``k`` of a :func:`_polar` table."""
+    return _range(v[k, 0], v[k, 1], v[k, 2], v[k, 3], t0, t1, trig[0], trig[1], trig[2],
+                  trig[3])
+
+
+def _nan_min(x: float, y: float) -> float:
+    """numpy's ``minimum``: NaN if either is."""
+    return x + y if (x != x or y != y) else min(x, y)
+
+
+def _nan_max(x: float, y: float) -> float:
+    """numpy's ``maximum``: NaN if either is."""
+    return x + y if (x != x or y != y) else max(x, y)
+
+
+def _candidates(box: Any, trig: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any,
+                sign: float, internal: bool, ahead: Any, half: float, zero: float,
+                contact_tol: float, ys: Any, xs: Any, dxr: Any, dy: Any, fn: Any,
+                ranges: Any, vert: Any, vmask: Any, facing: Any, p0: Any, p1: Any,
+                centre: Any, hw: Any) -> tuple[float, float, int]:
+    """``_certify._pad_candidates`` for one box ``(t0, t1, c0, c1)`` (``trig``: the
+    cosines and sines of its ends): the first :data:`K_MAX` candidate contacts into
+    ``p0``, ``p1`` (K, 2), ``centre``, ``hw`` (K,) in the numpy order (vertices by their
+    unique index, then the cuts by the strip's side ``-half``, then ``+half``, each by
+    edge), and ``(lower, high, count)``: the bounds of the pad's stop and how many
+    candidates there are.  :func:`_polar` tables: ``ys``, ``xs`` (2m) the heights
+    (``sign`` times) and lateral positions of the edges' ends (starts, then ends),
+    ``dxr``, ``dy`` (m) of the edges' directions, ``fn`` (m) of the normals this pad's
+    facing is read from.  ``ranges`` (2m, 4), ``vert`` (2m,), ``vmask`` (U,),
+    ``facing`` (m, 2): scratch."""
+    t0, t1, c0, c1 = box[0], box[1], box[2], box[3]
+    m = a.shape[0]
+    lower = -np.inf
+    for idx in range(2 * m):
+        y_lo, y_hi = _vrange(ys, idx, t0, t1, trig)
+        x_lo, x_hi = _vrange(xs, idx, t0, t1, trig)
+        ranges[idx, 0], ranges[idx, 1], ranges[idx, 2], ranges[idx, 3] = \
+            x_lo, x_hi, y_lo, y_hi
+    # which edges the pad may meet (maybe) and surely faces (surely); per edge
+    tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
+    sin_m, cos_m = math.sin(tm), math.cos(tm)
+    for e in range(m):
+        f_lo, f_hi = _vrange(fn, e, t0, t1, trig)
+        if internal:
+            if -sign > 0:
+                maybe, surely = f_hi > 0 and ahead[e], f_lo > 0 and ahead[e]
+            else:
+                maybe, surely = f_lo < 0 and ahead[e], f_hi < 0 and ahead[e]
+        else:
+            maybe, surely = f_hi > contact_tol, True
+        facing[e, 0], facing[e, 1] = maybe, surely
+        for idx in (e, m + e):
+            if surely and ranges[idx, 0] >= c1 - half and ranges[idx, 1] <= c0 + half:
+                lower = _nan_max(lower, ranges[idx, 2])
+        xa_m = -a[e, 0] * sin_m + a[e, 1] * cos_m
+        xb_m = -b[e, 0] * sin_m + b[e, 1] * cos_m
+        dx_m = xb_m - xa_m
+        tt = (cm - xa_m) / dx_m if abs(dx_m) > 0 else np.nan
+        if surely and tt >= 0 and tt <= 1:
+            qx = a[e, 0] + tt * (b[e, 0] - a[e, 0])
+            qy = a[e, 1] + tt * (b[e, 1] - a[e, 1])
+            px_lo, px_hi = _range(qy, -qx, math.hypot(qy, -qx), math.atan2(-qx, qy), t0,
+                                  t1, trig[0], trig[1], trig[2], trig[3])
+            if px_lo >= c1 - half and px_hi <= c0 + half:
+                sx, sy = sign * qx, sign * qy
+                py_lo, _ = _range(sx, sy, math.hypot(sx, sy), math.atan2(sy, sx), t0, t1,
+                                  trig[0], trig[1], trig[2], trig[3])
+                lower = _nan_max(lower, py_lo)
+    high = -np.inf
+    for u in range(vmask.shape[0]):
+        vmask[u] = False
+    for idx in range(2 * m):
+        vert[idx] = facing[idx % m, 0] and ranges[idx, 1] >= c0 - half \
+            and ranges[idx, 0] <= c1 + half and ranges[idx, 3] >= lower
+        if vert[idx]:
+            vmask[inv[idx]] = True
+            high = _nan_max(high, ranges[idx, 3])
+    count = 0
+    face = (t0 + t1) / 2 + (0.0 if sign < 0 else math.pi)
+    for u in range(vmask.shape[0]):
+        if vmask[u]:
+            if count < K_MAX:
+                p0[count, 0], p0[count, 1] = uniq[u, 0], uniq[u, 1]
+                p1[count, 0], p1[count, 1] = uniq[u, 0], uniq[u, 1]
+                centre[count], hw[count] = face, (t1 - t0) / 2
+            count += 1
+    for side in (-half, half):
+        s_lo, s_hi = c0 + side, c1 + side
+        for e in range(m):
+            if not facing[e, 0]:
+                continue
+            xa_lo, xa_hi = ranges[e, 0], ranges[e, 1]
+            e_lo, e_hi = min(xa_lo, ranges[m + e, 0]), max(xa_hi, ranges[m + e, 1])
+            if not (e_hi >= s_lo and e_lo <= s_hi):
+                continue
+            dxr_lo, dxr_hi = _vrange(dxr, e, t0, t1, trig)
+            dy_lo, dy_hi = _vrange(dy, e, t0, t1, trig)
+            rise = (1 if dy_lo > 0 else (-1 if dy_hi < 0 else 0)) \
+                * (1 if dxr_lo >= -zero else (-1 if dxr_hi <= zero else 0))
+            if rise * (1.0 if side > 0 else -1.0) < 0:      # the edge falls there
+                continue
+            if dxr_lo <= 0 and dxr_hi >= 0:
+                t_lo, t_hi = 0.0, 1.0
+            else:
+                q0, q1 = (s_lo - xa_hi) / dxr_lo, (s_hi - xa_lo) / dxr_lo
+                q2, q3 = (s_lo - xa_hi) / dxr_hi, (s_hi - xa_lo) / dxr_hi
+                t_lo = _nan_max(0.0, _nan_min(_nan_min(q0, q1), _nan_min(q2, q3)))
+                t_hi = _nan_min(1.0, _nan_max(_nan_max(q0, q1), _nan_max(q2, q3)))
+            if not t_lo <= t_hi:
+                continue
+            ex, ey = b[e, 0] - a[e, 0], b[e, 1] - a[e, 1]
+            x0, y0 = a[e, 0] + t_lo * ex, a[e, 1] + t_lo * ey
+            x1, y1 = a[e, 0] + t_hi * ex, a[e, 1] + t_hi * ey
+            h0 = _range(sign * x0, sign * y0, math.hypot(sign * x0, sign * y0),
+                        math.atan2(sign * y0, sign * x0), t0, t1, trig[0], trig[1],
+                        trig[2], trig[3])[1]
+            h1 = _range(sign * x1, sign * y1, math.hypot(sign * x1, sign * y1),
+                        math.atan2(sign * y1, sign * x1), t0, t1, trig[0], trig[1],
+                        trig[2], trig[3])[1]
+            hh = max(h0, h1)
+            if not hh >= lower:
+                continue
+            high = _nan_max(high, hh)
+            if count < K_MAX:
+                p0[count, 0], p0[count, 1] = x0, y0
+                p1[count, 0], p1[count, 1] = x1, y1
+                centre[count], hw[count] = math.atan2(-nrm[e, 1], -nrm[e, 0]), 0.0
+            count += 1
+    return lower, high, count
+
+
+def _arc_holds(ax: float, ay: float, bx: float, by: float, cx: float, cy: float,
+               dx: float, dy: float, turn: float, ca: float, ha: float, cb: float,
+               hb: float, beta: float, tol: float) -> bool:
+    """``_certify._pairs_hold`` for one pair: the smallest arc holding the four corner
+    chords (``_arc_of``), each force within ``beta`` of every chord's direction."""
+    a0 = math.atan2(ay, ax)
+    lo, hi = 0.0, 0.0
+    shortest = math.hypot(ax, ay)
+    for vx, vy in ((bx, by), (cx, cy), (dx, dy)):
+        rel = (math.atan2(vy, vx) - a0 + math.pi) % _TWO_PI - math.pi
+        lo, hi = min(lo, rel), max(hi, rel)
+        shortest = min(shortest, math.hypot(vx, vy))
+    if hi - lo >= math.pi - tol or shortest <= 0:
+        return False
+    d, hd = a0 + (lo + hi) / 2, (hi - lo) / 2
+    if abs((d + turn - ca + math.pi) % _TWO_PI - math.pi) + hd + ha >= beta:
+        return False
+    return abs((d + math.pi + turn - cb + math.pi) % _TWO_PI - math.pi) + hd + hb < beta
+
+
+def _prove_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
+                zero: float, contact_tol: float, tol: float, internal: bool, q: Any,
+                beta: float, stroke0: float, stroke1: float, proved: Any, o_lo: Any,
+                o_hi: Any) -> None:
+    """``_certify._box_proofs_numpy`` box by box: both pads' candidates, the opening's
+    enclosure within the stroke, every pair of candidates force closure over the box
+    (inside a hole, the closed jaws' segment free; the centre pose is the caller's)."""
+    m = a.shape[0]
+    ends = np.concatenate((a, b))
+    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
+    # the ranges' fixed vectors, polar once: heights (per pad), lateral positions,
+    # the edges' directions, the normals each pad's facing is read from
+    ys_a, ys_b = _polar(sa * ends[:, 0], sa * ends[:, 1]), _polar(sb * ends[:, 0],
+                                                                  sb * ends[:, 1])
+    xs = _polar(ends[:, 1], -ends[:, 0])
+    ex, ey = b[:, 0] - a[:, 0], b[:, 1] - a[:, 1]
+    dxr = _polar(ey, -ex)
+    dy_a, dy_b = _polar(sa * ex, sa * ey), _polar(sb * ex, sb * ey)
+    if internal:
+        fn_a = _polar(-nrm[:, 0], -nrm[:, 1])
+        fn_b = fn_a
+    else:
+        fn_a, fn_b = (_polar(sa * nrm[:, 0], sa * nrm[:, 1]),
+                      _polar(sb * nrm[:, 0], sb * nrm[:, 1]))
+    ranges = np.empty((2 * m, 4))
+    vert = np.empty(2 * m, dtype=np.bool_)
+    vmask = np.empty(uniq.shape[0], dtype=np.bool_)
+    facing = np.empty((m, 2), dtype=np.bool_)
+    up = np.ones(m, dtype=np.bool_)
+    down = np.ones(m, dtype=np.bool_)
+    trig = np.empty(4)
+    pa0, pa1, pb0, pb1 = (np.zeros((K_MAX, 2)), np.zeros((K_MAX, 2)), np.zeros((K_MAX, 2)),
+                          np.zeros((K_MAX, 2)))
+    ca, ha, cb, hb = np.zeros(K_MAX), np.zeros(K_MAX), np.zeros(K_MAX), np.zeros(K_MAX)
+    turn = math.pi if internal else 0.0
+    for k in range(boxes.shape[0]):
+        t0, t1, c0, c1 = boxes[k, 0], boxes[k, 1], boxes[k, 2], boxes[k, 3]
+        trig[0], trig[1], trig[2], trig[3] = (math.cos(t0), math.sin(t0), math.cos(t1),
+                                              math.sin(t1))
+        free = True
+        if internal:
+            yq_lo, yq_hi = _sin_range(q[0], q[1], t0, t1)
+            for e in range(m):
+                ya_lo, ya_hi = _sin_range(a[e, 0], a[e, 1], t0, t1)
+                yb_lo, yb_hi = _sin_range(b[e, 0], b[e, 1], t0, t1)
+                xa_lo, xa_hi = _vrange(xs, e, t0, t1, trig)
+                xb_lo, xb_hi = _vrange(xs, m + e, t0, t1, trig)
+                meet = max(xa_hi, xb_hi) >= c0 - half and min(xa_lo, xb_lo) <= c1 + half
+                up[e] = min(ya_lo, yb_lo) > yq_hi
+                down[e] = max(ya_hi, yb_hi) < yq_lo
+                if meet and not up[e] and not down[e]:
+                    free = False
+        lo_a, hi_a, n_a = _candidates(boxes[k], trig, a, b, nrm, uniq, inv, sa, internal,
+                                      up, half, zero, contact_tol, ys_a, xs, dxr, dy_a,
+                                      fn_a, ranges, vert, vmask, facing, pa0, pa1, ca, ha)
+        lo_b, hi_b, n_b = _candidates(boxes[k], trig, a, b, nrm, uniq, inv, sb, internal,
+                                      down, half, zero, contact_tol, ys_b, xs, dxr, dy_b,
+                                      fn_b, ranges, vert, vmask, facing, pb0, pb1, cb, hb)
+        ok = free and lo_a > -np.inf and 1 <= n_a <= K_MAX and lo_b > -np.inf \
+            and 1 <= n_b <= K_MAX
+        al, ah = _nan_min(sa * lo_a, sa * hi_a), _nan_max(sa * lo_a, sa * hi_a)
+        bl, bh = _nan_min(sb * lo_b, sb * hi_b), _nan_max(sb * lo_b, sb * hi_b)
+        o_lo[k], o_hi[k] = al - bh, ah - bl
+        ok = ok and stroke0 <= o_lo[k] and o_hi[k] <= stroke1
+        for i in range(n_a if ok else 0):
+            for j in range(n_b):
+                if not _arc_holds(pb0[j, 0] - pa0[i, 0], pb0[j, 1] - pa0[i, 1],
+                                  pb0[j, 0] - pa1[i, 0], pb0[j, 1] - pa1[i, 1],
+                                  pb1[j, 0] - pa0[i, 0], pb1[j, 1] - pa0[i, 1],
+                                  pb1[j, 0] - pa1[i, 0], pb1[j, 1] - pa1[i, 1], turn,
+                                  ca[i], ha[i], cb[j], hb[j], beta, tol):
+                    ok = False
+                    break
+        proved[k] = ok
+
+
+def prove(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
+          zero: float, contact_tol: float, tol: float, q: Any, beta: float,
+          stroke: tuple[float, float]) -> tuple[Any, Any, Any] | None:
+    """The proofs of a batch of boxes (``_certify._box_proofs_numpy``): ``(proved,
+    o_lo, o_hi)``, compiled; None when the loop cannot run."""
+    global _broken
+    loops = _load()
+    if loops is None:
+        return None
+    B = boxes.shape[0]
+    proved, o_lo, o_hi = np.zeros(B, bool), np.empty(B), np.empty(B)
+    internal = q is not None
+    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
+    try:
+        loops["_prove_loop"](np.ascontiguousarray(boxes, dtype=float),
+                             np.ascontiguousarray(a, dtype=float),
+                             np.ascontiguousarray(b, dtype=float),
+                             np.ascontiguousarray(nrm, dtype=float),
+                             np.ascontiguousarray(uniq, dtype=float),
+                             np.ascontiguousarray(inv, dtype=np.int64), float(half),
+                             float(zero), float(contact_tol), float(tol), internal, qq,
+                             float(beta), float(stroke[0]), float(stroke[1]), proved, o_lo,
+                             o_hi)
+    except Exception:                   # numba's typing or lowering errors
+        _broken = True
+        return None
+    return proved, o_lo, o_hi
+
+
+# ----------------------------------------------------------------------------- slices
+
+
+def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
+                 half: float, tol: float, internal: bool, q: Any, stroke0: float,
+                 stroke1: float, beta: float, flip: float, round_tol: float,
+                 slice_tol: float, tiny: float, atol: float) -> Any:
+    """``_slices.holding_offsets``'s cells, each decided to the end (a stack instead of
+    numpy's rounds): a cell affine at three points is cut at its slacks' roots and its
+    pieces decided at their middles; one that is not is halved until it is shorter than
+    ``4 slice_tol``, then decided at its middle.  Returns the holding pieces (N, 3):
+    ``(angle index, lo, hi)``."""
+    E = a.shape[0]
+    K = K_MAX
+    S = 2 * K * K + 2
+    top, bottom = np.empty(3), np.empty(3)
+    ok_a, ok_b, holds = (np.zeros(3, np.bool_), np.zeros(3, np.bool_),
+                         np.zeros(3, np.bool_))
+    lat_a, lat_b = np.empty((3, K, 2)), np.empty((3, K, 2))
+    psi_a, psi_b = np.empty((3, K)), np.empty((3, K))
+    col_a, col_b = np.empty((3, K), np.int64), np.empty((3, K), np.int64)
+    slacks = np.empty((3, S))
+    scratch = np.empty((4, E))
+    where = np.empty(S + 2)
+    stack_t = list(cell_t)
+    stack_lo = list(cell_lo)
+    stack_hi = list(cell_hi)
+    out_t, out_lo, out_hi = [0], [0.0], [0.0]
+    out_t.pop()
+    out_lo.pop()
+    out_hi.pop()
+    while len(stack_t):
+        t, lo, hi = stack_t.pop(), stack_lo.pop(), stack_hi.pop()
+        theta = th[t]
+        inset = min((hi - lo) / 4, slice_tol)
+        pts = (lo + inset, (lo + hi) / 2, hi - inset)
+        for i in range(3):
+            _pose_one(i, theta, pts[i], a, b, f, half, tol, internal, q, stroke0, stroke1,
+                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                      psi_b, col_a, col_b, holds, slacks, scratch)
+        if _affine(top, bottom, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, atol):
+            n = 2
+            where[0], where[1] = lo, hi
+            for s in range(S):
+                s0, s2 = slacks[0, s], slacks[2, s]
+                if s0 * s2 < 0 or ((s0 == 0) != (s2 == 0)):
+                    root = pts[0] + s0 / (s0 - s2) * (pts[2] - pts[0])
+                    if root == root:
+                        where[n] = min(max(root, lo), hi)
+                        n += 1
+            cuts = np.sort(where[:n])
+            for k in range(n - 1):
+                if cuts[k + 1] - cuts[k] > tiny:
+                    _pose_one(0, theta, (cuts[k] + cuts[k + 1]) / 2, a, b, f, half, tol,
+                              internal, q, stroke0, stroke1, beta, flip, round_tol, top,
+                              bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b,
+                              holds, slacks, scratch)
+                    if holds[0]:
+                        out_t.append(t)
+                        out_lo.append(cuts[k])
+                        out_hi.append(cuts[k + 1])
+        elif hi - lo <= 4 * slice_tol:
+            if holds[1]:
+                out_t.append(t)
+                out_lo.append(lo)
+                out_hi.append(hi)
+        else:
+            mid = pts[1]
+            stack_t.append(t)
+            stack_lo.append(lo)
+            stack_hi.append(mid)
+            stack_t.append(t)
+            stack_lo.append(mid)
+            stack_hi.append(hi)
+    rows = np.empty((len(out_t), 3))
+    for k in range(len(out_t)):
+        rows[k, 0], rows[k, 1], rows[k, 2] = out_t[k], out_lo[k], out_hi[k]
+    return rows
+
+
+def _kind(ok: bool, psi: Any, i: int) -> int:
+    """A pad's kind at pose ``i`` (``_poses._contacts``): 0 not valid, 2 on a pad corner,
+    1 otherwise."""
+    if not ok:
+        return 0
+    for k in range(psi.shape[1]):
+        if abs(psi[i, k]) > 0:          # False for NaN
+            return 2
+    return 1
+
+
+def _affine(top: Any, bottom: Any, lat_a: Any, lat_b: Any, psi_a: Any, psi_b: Any,
+            ok_a: Any, ok_b: Any, atol: float) -> bool:
+    """``_slices.holding_offsets``'s test of a cell at its three points: the same
+    contacts (kinds, force angles, which quantities are finite) and every stop and
+    lateral span affine to ``atol`` (its middle value the mean of its ends')."""
+    for i in (0, 2):
+        if _kind(ok_a[i], psi_a, i) != _kind(ok_a[1], psi_a, 1) \
+                or _kind(ok_b[i], psi_b, i) != _kind(ok_b[1], psi_b, 1):
+            return False
+    for k in range(psi_a.shape[1]):
+        for psi in (psi_a, psi_b):
+            v0, v1, v2 = psi[0, k], psi[1, k], psi[2, k]
+            w0 = 9.0 if v0 != v0 else v0
+            w1 = 9.0 if v1 != v1 else v1
+            w2 = 9.0 if v2 != v2 else v2
+            if w0 != w1 or w1 != w2:
+                return False
+    if not _affine3(top[0], top[1], top[2], atol) \
+            or not _affine3(bottom[0], bottom[1], bottom[2], atol):
+        return False
+    for k in range(lat_a.shape[1]):
+        for j in range(2):
+            if not _affine3(lat_a[0, k, j], lat_a[1, k, j], lat_a[2, k, j], atol) \
+                    or not _affine3(lat_b[0, k, j], lat_b[1, k, j], lat_b[2, k, j], atol):
+                return False
+    return True
+
+
+def _affine3(v0: float, v1: float, v2: float, atol: float) -> bool:
+    """Finite at all three points or at none, and (non-finite taken as 0) the middle
+    within ``atol`` of the ends' mean."""
+    f0, f1, f2 = math.isfinite(v0), math.isfinite(v1), math.isfinite(v2)
+    if f0 != f1 or f1 != f2:
+        return False
+    z0 = v0 if f0 else 0.0
+    z1 = v1 if f1 else 0.0
+    z2 = v2 if f2 else 0.0
+    return abs(z1 - (z0 + z2) / 2) <= atol
+
+
+def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
+           half: float, tol: float, q: Any, stroke: tuple[float, float], beta: float,
+           round_tol: float, slice_tol: float, tiny: float, atol: float) -> Any:
+    """The holding pieces of the cells (``_slices.holding_offsets``), compiled: rows
+    ``(angle index, lo, hi)``; None when the loop cannot run."""
+    global _broken
+    loops = _load()
+    if loops is None:
+        return None
+    internal = q is not None
+    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
+    try:
+        return loops["_slices_loop"](
+            np.ascontiguousarray(cell_t, dtype=np.int64),
+            np.ascontiguousarray(cell_lo, dtype=float),
+            np.ascontiguousarray(cell_hi, dtype=float), np.ascontiguousarray(th, dtype=float),
+            np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float),
+            np.ascontiguousarray(f, dtype=float), float(half), float(tol), internal, qq,
+            float(stroke[0]), float(stroke[1]), float(beta), -1.0 if internal else 1.0,
+            float(round_tol), float(slice_tol), float(tiny), float(atol))
+    except Exception:                   # numba's typing or lowering errors
+        _broken = True
+        return None
+
+
+# ----------------------------------------------------------------------------- loading
+
+_LOOPS = (_pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop,
+          _sin_range, _range, _polar, _vrange, _nan_min, _nan_max, _candidates,
+          _arc_holds, _prove_loop,
+          _kind, _affine3, _affine, _slices_loop)
+_lock = threading.Lock()
+_loaded: dict[str, Any] = {}
+_broken = False
+
+
+def _load() -> dict[str, Any] | None:
+    """The loops compiled (once per process; None without numba)."""
+    global _broken
+    with _lock:
+        if not _loaded and not _broken:
+            try:
+                import numba
+            except ImportError:
+                _broken = True
+                return None
+            _loaded.update(njit_all(numba, dict(globals()),
+                                    [(fn.__name__, fn) for fn in _LOOPS]))
+        return _loaded or None
+
+
+def available() -> bool:
+    """Are the jaw's poses evaluated compiled here?  Always, but with ``FCGRASP_JIT=0``
+    or without a working numba (then by the numpy model)."""
+    return jit_setting() is not False and not _broken and _load() is not None

@@ -1,0 +1,156 @@
+"""The parallel jaw's compiled loops (issue 30: ``fcgrasp.grippers.jaw._kernels``) against
+the numpy model they replace, kept as the reference: the pose model (verdicts, stops,
+contacts, slacks), the largest box of the pose grid, the proofs of boxes and the exact
+slices, on seeded random parts with holes (internal grips too), at critical angles (an
+edge parallel to the pads) and at offsets where a vertex enters the strip; then whole
+plans, compiled and not, the same boxes."""
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.core._angles import shrunk_half_angle
+from fcgrasp.grippers.jaw import ParallelJaw, _certify, _kernels, _plans, _poses, _slices
+from fcgrasp.io.parts import demo_part
+
+from .shapes import random_polygon
+
+pytestmark = pytest.mark.skipif(not _kernels.available(), reason="numba not available")
+
+
+def _part_and_jaw(rng):
+    part = random_polygon(rng, str(rng.choice(["convex", "star", "rectangle", "holes",
+                                               "regular"])))
+    jaw = ParallelJaw(stroke=(0.05 * part.size, float(rng.uniform(0.6, 1.5)) * part.size),
+                      pad_width=float(rng.uniform(0.02, 0.4)) * part.size,
+                      mu=float(rng.uniform(0.2, 1.0)))
+    return part, jaw
+
+
+def _poses_of(rng, part, jaw, n):
+    """Random poses, a third at the angles where an edge is parallel to the pads (and
+    their opposites), a third at offsets where a vertex enters or leaves the strip."""
+    th = rng.uniform(0, 2 * np.pi, n)
+    c = rng.uniform(-0.7, 0.7, n) * part.size
+    d = part.ends - part.starts
+    crit = np.arctan2(d[:, 1], d[:, 0]) + np.pi / 2
+    k = n // 3
+    th[:k] = rng.choice(np.r_[crit, crit + np.pi], k)
+    u = np.c_[np.cos(th[k:2 * k]), np.sin(th[k:2 * k])]
+    v = part.vertices[rng.integers(0, len(part.vertices), k)] - part.centroid
+    x = -u[:, 1] * v[:, 0] + u[:, 0] * v[:, 1]
+    c[k:2 * k] = x + rng.choice([-1, 1], k) * jaw.pad_width / 2
+    return th, c
+
+
+def _holes(part):
+    return [None] + list(range(len(part.holes)))
+
+
+def test_compiled_poses_are_the_numpy_model():
+    rng = np.random.default_rng(11)
+    cases = agree = 0
+    for _ in range(60):
+        part, jaw = _part_and_jaw(rng)
+        for hole in _holes(part):
+            th, c = _poses_of(rng, part, jaw, 300)
+            ring = _poses._grip_edges(part, hole)
+            ref, s_ref = _poses._evaluate_numpy(part, jaw, th, c, 2.0, hole, ring)
+            got, s_got = _poses._evaluate(part, jaw, th, c, 2.0, hole)
+            tol = 1e-12 * part.size
+            for name in ("top", "bottom", "opening", "lat_a", "lat_b", "psi_a", "psi_b"):
+                np.testing.assert_allclose(getattr(got, name), getattr(ref, name), rtol=0,
+                                           atol=tol, err_msg=name)
+            for name in ("kind_a", "kind_b", "edge_a", "edge_b"):
+                np.testing.assert_array_equal(getattr(got, name), getattr(ref, name),
+                                              err_msg=name)
+            np.testing.assert_allclose(s_got, s_ref, rtol=0, atol=1e-9 * part.size)
+            # verdicts equal but where a slack is within rounding of zero
+            near = np.any(np.abs(s_ref) <= 1e-9 * part.size, axis=1)
+            assert np.array_equal(got.holds[~near], ref.holds[~near])
+            cases += th.size
+            agree += int(np.sum(ref.holds))
+    assert cases >= 20000 and agree >= 500
+
+
+def test_compiled_box_search_is_the_numpy_search():
+    rng = np.random.default_rng(12)
+    for t in range(1500):
+        K, M = int(rng.integers(2, 40)), int(rng.integers(2, 30))
+        H = rng.random((K, M)) < rng.uniform(0.3, 0.97)
+        if t % 3 == 0:                  # one block, then noise holes in it
+            H[:] = False
+            k0, k1 = np.sort(rng.integers(0, K, 2))
+            j0, j1 = np.sort(rng.integers(0, M, 2))
+            H[k0:k1 + 1, j0:j1 + 1] = True
+        dth, dc, radius = rng.uniform(0.01, 0.2), rng.uniform(0.1, 2), rng.uniform(1, 30)
+        if t % 5 == 0:
+            dc = dth * radius           # the two sides tie
+        rows = int(rng.integers(1, K // 2 + 2))
+        assert _plans._box_scores(H, dth, dc, radius, rows) \
+            == _plans._box_scores_numpy(H, dth, dc, radius, rows)
+
+
+def test_compiled_proofs_are_the_numpy_proofs():
+    rng = np.random.default_rng(13)
+    boxes_seen = proved = 0
+    for _ in range(40):
+        part, jaw = _part_and_jaw(rng)
+        beta = float(shrunk_half_angle(jaw.mu, 2.0))
+        for hole in _holes(part):
+            ring = _poses._grip_edges(part, hole)
+            q = None if hole is None else _poses.insertion_point(part, hole) - part.centroid
+            th, c = _poses_of(rng, part, jaw, 600)
+            w = rng.choice([1e-5, 1e-3, 1e-2, 0.05, 0.3], th.size) * rng.random(th.size)
+            cw = rng.choice([1e-4, 1e-2, 0.1], th.size) * rng.random(th.size) * part.size
+            boxes = np.c_[th, th + w, c, c + cw]
+            ok_ref, lo_ref, hi_ref = _certify._box_proofs_numpy(part, ring, jaw, boxes,
+                                                                beta, q)
+            ok, lo, hi = _certify._box_proofs(part, ring, jaw, boxes, beta, q)
+            assert np.array_equal(ok, ok_ref)
+            np.testing.assert_allclose(lo[ok], lo_ref[ok], rtol=0, atol=1e-9 * part.size)
+            np.testing.assert_allclose(hi[ok], hi_ref[ok], rtol=0, atol=1e-9 * part.size)
+            boxes_seen += len(boxes)
+            proved += int(ok.sum())
+    assert boxes_seen >= 20000 and proved >= 1000
+
+
+def _numpy_only(monkeypatch):
+    monkeypatch.setattr(_kernels, "available", lambda: False)
+
+
+def test_compiled_slices_are_the_numpy_slices(monkeypatch):
+    rng = np.random.default_rng(14)
+    pieces = 0
+    for _ in range(25):
+        part, jaw = _part_and_jaw(rng)
+        d = part.ends - part.starts
+        crit = np.arctan2(d[:, 1], d[:, 0]) + np.pi / 2
+        th = np.r_[rng.uniform(0, 2 * np.pi, 12), crit[:6]]
+        for hole in _holes(part):
+            got = _slices.holding_offsets(part, jaw, th, 2.0, hole)
+            with monkeypatch.context() as m:
+                _numpy_only(m)
+                ref = _slices.holding_offsets(part, jaw, th, 2.0, hole)
+            for g, r in zip(got, ref, strict=True):
+                assert g.shape == r.shape
+                np.testing.assert_allclose(g, r, rtol=0, atol=1e-9 * part.size)
+                pieces += len(r)
+    assert pieces >= 100
+
+
+@pytest.mark.parametrize("name", [pytest.param("washer", marks=pytest.mark.slow),
+                                  "rectangle", "quad", "triangle", "blob"])
+def test_compiled_jaw_plans_are_the_numpy_plans(name, monkeypatch):
+    part = demo_part(name)
+    jaw = ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5)
+    got = fc.jaw_plans(part, jaw, top=3, internal=True)
+    with monkeypatch.context() as m:
+        _numpy_only(m)
+        ref = fc.jaw_plans(part, jaw, top=3, internal=True)
+    assert len(got) == len(ref) >= 1
+    for g, r in zip(got, ref, strict=True):
+        np.testing.assert_allclose(g.theta, r.theta, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(g.offset, r.offset, rtol=0, atol=1e-9 * part.size)
+        np.testing.assert_allclose(g.opening, r.opening, rtol=0, atol=1e-9 * part.size)
+        assert (g.mode, g.hole, g.kinds, g.features) == (r.mode, r.hole, r.kinds, r.features)
