@@ -154,3 +154,39 @@ def test_compiled_jaw_plans_are_the_numpy_plans(name, monkeypatch):
         np.testing.assert_allclose(g.offset, r.offset, rtol=0, atol=1e-9 * part.size)
         np.testing.assert_allclose(g.opening, r.opening, rtol=0, atol=1e-9 * part.size)
         assert (g.mode, g.hole, g.kinds, g.features) == (r.mode, r.hole, r.kinds, r.features)
+
+
+@pytest.mark.parametrize("seed, parts", [(15, 8), pytest.param(16, 60, marks=pytest.mark.slow)])
+def test_compiled_certify_box_is_the_numpy_subdivision(seed, parts, monkeypatch):
+    """The compiled proof goes depth first over the edges near each box; numpy goes
+    breadth first over every edge: the same boxes are examined, so the same answer
+    (proved or not, and the opening's enclosure), on the grid boxes of random parts,
+    those boxes widened past the holding set, and random boxes."""
+    rng = np.random.default_rng(seed)
+    seen = proved = refused = 0
+    for _ in range(parts):
+        part, jaw = _part_and_jaw(rng)
+        for hole in _holes(part):
+            plans = fc.jaw_plans(part, jaw, top=2, certify=False, internal=hole is not None)
+            boxes = [(p.theta, p.offset) for p in plans if p.hole == hole]
+            for _ in range(2):
+                t0, c0 = rng.uniform(0, 2 * np.pi), rng.uniform(-0.5, 0.5) * part.size
+                boxes.append(((t0, t0 + rng.uniform(0, 0.3)),
+                              (c0, c0 + rng.uniform(0, 0.3) * part.size)))
+            for th, off in boxes:
+                for grow in (0.0, 0.003):
+                    th2 = (th[0] - grow, th[1] + grow)
+                    off2 = (off[0] - grow * part.size, off[1] + grow * part.size)
+                    got = _certify.certify_box(part, jaw, th2, off2, 2.0, hole,
+                                               max_boxes=2000)
+                    with monkeypatch.context() as m:
+                        _numpy_only(m)
+                        ref = _certify.certify_box(part, jaw, th2, off2, 2.0, hole,
+                                                   max_boxes=2000)
+                    assert (got is None) == (ref is None)
+                    if ref is not None:
+                        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-9 * part.size)
+                    seen += 1
+                    proved += ref is not None
+                    refused += ref is None
+    assert seen >= 8 * parts and proved >= parts and refused >= parts

@@ -10,13 +10,14 @@ import numpy as np
 
 from ...core._angles import shrunk_half_angle, wrap
 from ...core._checks import FloatArray, check_int
-from ...core.tolerances import CONTACT_TOL, TOL
+from ...core.tolerances import CONTACT_TOL, ROUND_TOL, TOL
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
 from . import _kernels
 from ._poses import (
     MAX_CONTACTS,
+    NEAR_STRIP,
     _check_jaw_args,
     _grip_edges,
     _near_strip,
@@ -229,6 +230,17 @@ def _hole_sides(polygon: Polygon, ring: np.ndarray, q: FloatArray, boxes: FloatA
     return up, down, ~np.any(may_meet & ~up & ~down, axis=1)
 
 
+def _edges(polygon: Polygon, ring: np.ndarray
+           ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray, np.ndarray]:
+    """The edges of ``ring`` as the compiled proofs read them: starts and ends from the
+    centroid, outward normals, the distinct ends and each end's index among them
+    (starts first)."""
+    a = polygon.starts[ring] - polygon.centroid
+    b = polygon.ends[ring] - polygon.centroid
+    uniq, inv = np.unique(np.concatenate([a, b]), axis=0, return_inverse=True)
+    return a, b, polygon.normals[ring], uniq, inv.ravel()
+
+
 def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: FloatArray,
                 beta: float, q: FloatArray | None
                 ) -> tuple[np.ndarray, FloatArray, FloatArray]:
@@ -239,11 +251,7 @@ def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: Flo
     ``(o_lo, o_hi)``.  By the compiled loop of :mod:`._kernels` where it runs, else by
     numpy (:func:`_box_proofs_numpy`, the reference)."""
     if _kernels.available():
-        ends = np.concatenate([polygon.starts[ring], polygon.ends[ring]]) - polygon.centroid
-        uniq, inv = np.unique(ends, axis=0, return_inverse=True)
-        cen = polygon.centroid
-        out = _kernels.prove(boxes, polygon.starts[ring] - cen, polygon.ends[ring] - cen,
-                             polygon.normals[ring], uniq, inv.ravel(), jaw.pad_width / 2,
+        out = _kernels.prove(boxes, *_edges(polygon, ring), jaw.pad_width / 2,
                              CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
                              jaw.stroke)
         if out is not None:
@@ -331,6 +339,13 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
     todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
                             np.full(cuts.size - 1, c1)])
+    if _kernels.available():
+        found = _kernels.certify(todo, *_edges(polygon, ring), jaw.pad_width / 2,
+                                 CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
+                                 jaw.stroke, max_boxes, radius,
+                                 NEAR_STRIP * CONTACT_TOL * polygon.size, ROUND_TOL)
+        if found is not None:
+            return (found[1], found[2]) if found[0] else None
     lo_open, hi_open = np.inf, -np.inf
     done = 0
     while len(todo):

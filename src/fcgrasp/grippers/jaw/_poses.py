@@ -34,6 +34,8 @@ CERTIFY_BOXES = 4000
 CERTIFY_SHRINKS = 2
 #: At most this many contact features per pad are compared (more: not held, safely).
 MAX_CONTACTS = _kernels.K_MAX
+#: Edges within this many contact tolerances of a box's strips are kept as near it.
+NEAR_STRIP = 10
 #: Poses evaluated at a time (memory: a few arrays of this many rows times the edges).
 POSE_BATCH = 20000
 
@@ -375,7 +377,7 @@ def _near_strip(polygon: Polygon, ring: np.ndarray, t0: float, t1: float, c0: fl
     b = polygon.ends - polygon.centroid
     xa_lo, xa_hi = _sin_range(a[:, 1], -a[:, 0], t0, t1)
     xb_lo, xb_hi = _sin_range(b[:, 1], -b[:, 0], t0, t1)
-    pad = 10 * CONTACT_TOL * polygon.size
+    pad = NEAR_STRIP * CONTACT_TOL * polygon.size
     near = (np.maximum(xa_hi, xb_hi) >= c0 - half - pad) \
         & (np.minimum(xa_lo, xb_lo) <= c1 + half + pad)
     # (none near: the ring as it is, so that every pose has edges to say nothing holds)
