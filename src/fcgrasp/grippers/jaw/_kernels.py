@@ -761,6 +761,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     slacks = np.empty((3, S))
     scratch = np.empty((4, E))
     where = np.empty(S + 2)
+    qs = np.empty((5, 2 + 4 * K))
     stack_t = list(cell_t)
     stack_lo = list(cell_lo)
     stack_hi = list(cell_hi)
@@ -804,17 +805,70 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
                 out_lo.append(lo)
                 out_hi.append(hi)
         else:
-            mid = pts[1]
+            # two more points, a step in from each end (``_slices._kinks``)
+            e0, e2 = lo + 2 * inset, hi - 2 * inset
+            _quantities(top, bottom, lat_a, lat_b, qs, 0, 0)
+            _quantities(top, bottom, lat_a, lat_b, qs, 1, 2)
+            _quantities(top, bottom, lat_a, lat_b, qs, 2, 4)
+            _pose_one(0, theta, e0, a, b, f, half, tol, internal, q, stroke0, stroke1,
+                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                      psi_b, col_a, col_b, holds, slacks, scratch)
+            _pose_one(1, theta, e2, a, b, f, half, tol, internal, q, stroke0, stroke1,
+                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                      psi_b, col_a, col_b, holds, slacks, scratch)
+            _quantities(top, bottom, lat_a, lat_b, qs, 0, 1)
+            _quantities(top, bottom, lat_a, lat_b, qs, 1, 3)
+            cut = _kink(pts[0], e0, pts[1], e2, pts[2], qs, lo, hi, inset, atol)
             stack_t.append(t)
             stack_lo.append(lo)
-            stack_hi.append(mid)
+            stack_hi.append(cut)
             stack_t.append(t)
-            stack_lo.append(mid)
+            stack_lo.append(cut)
             stack_hi.append(hi)
     rows = np.empty((len(out_t), 3))
     for k in range(len(out_t)):
         rows[k, 0], rows[k, 1], rows[k, 2] = out_t[k], out_lo[k], out_hi[k]
     return rows
+
+
+def _quantities(top: Any, bottom: Any, lat_a: Any, lat_b: Any, qs: Any, i: int,
+                row: int) -> None:
+    """Row ``row`` of ``qs``: the stops and lateral spans of pose ``i`` in the order of
+    ``_slices`` (top, bottom, A's spans, B's spans)."""
+    K = lat_a.shape[1]
+    qs[row, 0], qs[row, 1] = top[i], bottom[i]
+    for k in range(K):
+        qs[row, 2 + 2 * k], qs[row, 3 + 2 * k] = lat_a[i, k, 0], lat_a[i, k, 1]
+        qs[row, 2 + 2 * K + 2 * k] = lat_b[i, k, 0]
+        qs[row, 3 + 2 * K + 2 * k] = lat_b[i, k, 1]
+
+
+def _kink(p0: float, e0: float, p1: float, e2: float, p2: float, qs: Any, lo: float,
+          hi: float, inset: float, atol: float) -> float:
+    """``_slices._kinks`` for one cell, the five points' quantities the rows of ``qs``."""
+    best, j = -1.0, 0
+    for k in range(qs.shape[1]):
+        fin = True
+        for row in range(5):
+            if not math.isfinite(qs[row, k]):
+                fin = False
+        dev = abs(qs[2, k] - (qs[0, k] + qs[4, k]) / 2) if fin else -1.0
+        if dev > best:
+            best, j = dev, k
+    a0, b0, m1, b2, a2 = qs[0, j], qs[1, j], qs[2, j], qs[3, j], qs[4, j]
+    s_l = (b0 - a0) / (e0 - p0)
+    s_r = (a2 - b2) / (p2 - e2)
+    x = (a2 - a0 + s_l * p0 - s_r * p2) / (s_l - s_r)
+    left = a0 + s_l * (p1 - p0)
+    right = a2 + s_r * (p1 - p2)
+    if m1 < (a0 + a2) / 2:
+        model = _nan_max(left, right)
+    else:
+        model = _nan_min(left, right)
+    if best > atol and abs(model - m1) <= atol and x > lo + 2 * inset \
+            and x < hi - 2 * inset:
+        return x
+    return p1
 
 
 def _kind(ok: bool, psi: Any, i: int) -> int:
@@ -898,7 +952,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 _LOOPS = (_pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop,
           _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates,
           _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop,
-          _kind, _affine3, _affine, _slices_loop)
+          _kind, _affine3, _affine, _quantities, _kink, _slices_loop)
 _lock = threading.Lock()
 _loaded: dict[str, Any] = {}
 _broken = False

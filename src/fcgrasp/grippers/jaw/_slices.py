@@ -19,6 +19,7 @@ from ._poses import (
     _check_jaw_args,
     _evaluate,
     _grip_edges,
+    _near_strip,
     insertion_point,
 )
 
@@ -96,6 +97,10 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
     keep = brk[:, 1:] - brk[:, :-1] > tiny
     cells = np.nonzero(keep)
     cell_t, cell_lo, cell_hi = cells[0], brk[:, :-1][cells], brk[:, 1:][cells]
+    if th.size and np.ptp(th) < np.pi / 2:
+        # only the edges that may meet a strip of these angles and offsets
+        ring = _near_strip(polygon, ring, float(th.min()), float(th.max()),
+                           float(w_lo.min()) + half, float(w_hi.max()) - half, half)
     rows = _holding_pieces(polygon, jaw, th, margin, hole, ring, cell_t, cell_lo, cell_hi)
     # pieces apart by less than the contact tolerance are one (at a vertex entering the
     # strip a contact's span starts from zero: its slack's root is the cell's end, give
@@ -172,11 +177,54 @@ def _holding_pieces_numpy(polygon: Polygon, jaw: ParallelJaw, th: FloatArray,
                                         hole)[0].holds
             found.append(np.column_stack([a_t[pc][verdict], plo[verdict], phi[verdict]]))
         split = ~affine & ~last
-        mid = ends[1][split]
+        cut = ends[1][split]
+        if cut.size:
+            # two more points, a step in from each end: where the lines through each
+            # end's pair meet is the kink, if one kink explains the middle too
+            lo_s, hi_s, ins = cell_lo[split], cell_hi[split], inset[split]
+            e0, e2 = lo_s + 2 * ins, hi_s - 2 * ins
+            S = cut.size
+            r2 = _evaluate_batched(polygon, jaw, np.tile(th[cell_t[split]], 2),
+                                   np.concatenate([e0, e2]), margin, hole)[0]
+            q2 = np.concatenate([r2.top[:, None], r2.bottom[:, None],
+                                 r2.lat_a.reshape(2 * S, -1), r2.lat_b.reshape(2 * S, -1)],
+                                axis=1).reshape(2, S, -1)
+            cut = _kinks(ends[0][split], e0, ends[1][split], e2, ends[2][split],
+                         q[0][split], q2[0], q[1][split], q2[1], q[2][split], lo_s, hi_s,
+                         ins, atol)
         cell_t = np.concatenate([cell_t[split], cell_t[split]])
-        cell_lo, cell_hi = (np.concatenate([cell_lo[split], mid]),
-                            np.concatenate([mid, cell_hi[split]]))
+        cell_lo, cell_hi = (np.concatenate([cell_lo[split], cut]),
+                            np.concatenate([cut, cell_hi[split]]))
     return np.concatenate(found) if found else np.zeros((0, 3))
+
+
+def _kinks(p0: FloatArray, e0: FloatArray, p1: FloatArray, e2: FloatArray, p2: FloatArray,
+           q0: FloatArray, qe0: FloatArray, q1: FloatArray, qe2: FloatArray, q2: FloatArray,
+           lo: FloatArray, hi: FloatArray, inset: FloatArray, atol: float) -> FloatArray:
+    """Where to split each cell ``[lo, hi]`` (C,) that is not affine: the model's
+    quantities (C, Q) at five points ``p0 < e0 < p1 < e2 < p2``; of the quantity finite at
+    all five that strays most from its chord at ``p1``, the crossing of the line through
+    ``(p0, e0)`` and the line through ``(e2, p2)``, when the larger (convex) or smaller
+    (concave) of the two lines is that quantity at ``p1`` within ``atol`` (one kink
+    explains it) and the crossing lies between ``e0`` and ``e2``; else the middle
+    ``p1`` (``_kernels._kink`` is the same, number by number)."""
+    fin = np.isfinite(q0) & np.isfinite(qe0) & np.isfinite(q1) & np.isfinite(qe2) \
+        & np.isfinite(q2)
+    with np.errstate(invalid="ignore"):
+        dev = np.where(fin, np.abs(q1 - (q0 + q2) / 2), -1.0)
+    j = np.argmax(dev, axis=1)
+    r = np.arange(len(j))
+    a0, b0, m1, b2, a2 = q0[r, j], qe0[r, j], q1[r, j], qe2[r, j], q2[r, j]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        s_l = (b0 - a0) / (e0 - p0)
+        s_r = (a2 - b2) / (p2 - e2)
+        x = (a2 - a0 + s_l * p0 - s_r * p2) / (s_l - s_r)
+        left = a0 + s_l * (p1 - p0)
+        right = a2 + s_r * (p1 - p2)
+        model = np.where(m1 < (a0 + a2) / 2, np.maximum(left, right), np.minimum(left, right))
+        ok = (dev[r, j] > atol) & (np.abs(model - m1) <= atol) & (x > lo + 2 * inset) \
+            & (x < hi - 2 * inset)
+    return np.where(ok, x, p1)
 
 
 
