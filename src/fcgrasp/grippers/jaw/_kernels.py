@@ -743,12 +743,14 @@ def prove(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float
 def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
                  half: float, tol: float, internal: bool, q: Any, stroke0: float,
                  stroke1: float, beta: float, flip: float, round_tol: float,
-                 slice_tol: float, tiny: float, atol: float) -> Any:
-    """``_slices.holding_offsets``'s cells, each decided to the end (a stack instead of
-    numpy's rounds): a cell affine at three points is cut at its slacks' roots and its
-    pieces decided at their middles; one that is not is halved until it is shorter than
-    ``4 slice_tol``, then decided at its middle.  Returns the holding pieces (N, 3):
-    ``(angle index, lo, hi)``."""
+                 slice_tol: float, tiny: float, atol: float, near: float) -> Any:
+    """``_slices.holding_offsets``'s cells (sorted by angle), each decided to the end (a
+    stack instead of numpy's rounds): a cell affine at three points is cut at its
+    slacks' roots and its pieces decided at their middles; one that is not is split
+    (``_slices._kinks``) until it is shorter than ``4 slice_tol``, then decided at its
+    middle.  Each cell's poses read only the edges that may meet its strips (within
+    ``near``), in their order.  Returns the holding pieces (N, 3): ``(angle index, lo,
+    hi)``."""
     E = a.shape[0]
     K = K_MAX
     S = 2 * K * K + 2
@@ -762,73 +764,107 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     scratch = np.empty((4, E))
     where = np.empty(S + 2)
     qs = np.empty((5, 2 + 4 * K))
-    stack_t = list(cell_t)
-    stack_lo = list(cell_lo)
-    stack_hi = list(cell_hi)
+    x_lo, x_hi = np.empty(E), np.empty(E)
+    ga, gb, gf = np.empty((E, 2)), np.empty((E, 2)), np.empty((E, 2))
     out_t, out_lo, out_hi = [0], [0.0], [0.0]
     out_t.pop()
     out_lo.pop()
     out_hi.pop()
-    while len(stack_t):
-        t, lo, hi = stack_t.pop(), stack_lo.pop(), stack_hi.pop()
+    first = 0
+    while first < cell_t.shape[0]:
+        last = first
+        while last < cell_t.shape[0] and cell_t[last] == cell_t[first]:
+            last += 1
+        t = cell_t[first]
         theta = th[t]
-        inset = min((hi - lo) / 4, slice_tol)
-        pts = (lo + inset, (lo + hi) / 2, hi - inset)
-        for i in range(3):
-            _pose_one(i, theta, pts[i], a, b, f, half, tol, internal, q, stroke0, stroke1,
-                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
-                      psi_b, col_a, col_b, holds, slacks, scratch)
-        if _affine(top, bottom, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, atol):
-            n = 2
-            where[0], where[1] = lo, hi
-            for s in range(S):
-                s0, s2 = slacks[0, s], slacks[2, s]
-                if s0 * s2 < 0 or ((s0 == 0) != (s2 == 0)):
-                    root = pts[0] + s0 / (s0 - s2) * (pts[2] - pts[0])
-                    if root == root:
-                        where[n] = min(max(root, lo), hi)
-                        n += 1
-            cuts = np.sort(where[:n])
-            for k in range(n - 1):
-                if cuts[k + 1] - cuts[k] > tiny:
-                    _pose_one(0, theta, (cuts[k] + cuts[k + 1]) / 2, a, b, f, half, tol,
-                              internal, q, stroke0, stroke1, beta, flip, round_tol, top,
-                              bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b,
-                              holds, slacks, scratch)
-                    if holds[0]:
-                        out_t.append(t)
-                        out_lo.append(cuts[k])
-                        out_hi.append(cuts[k + 1])
-        elif hi - lo <= 4 * slice_tol:
-            if holds[1]:
-                out_t.append(t)
-                out_lo.append(lo)
-                out_hi.append(hi)
-        else:
-            # two more points, a step in from each end (``_slices._kinks``)
-            e0, e2 = lo + 2 * inset, hi - 2 * inset
-            _quantities(top, bottom, lat_a, lat_b, qs, 0, 0)
-            _quantities(top, bottom, lat_a, lat_b, qs, 1, 2)
-            _quantities(top, bottom, lat_a, lat_b, qs, 2, 4)
-            _pose_one(0, theta, e0, a, b, f, half, tol, internal, q, stroke0, stroke1,
-                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
-                      psi_b, col_a, col_b, holds, slacks, scratch)
-            _pose_one(1, theta, e2, a, b, f, half, tol, internal, q, stroke0, stroke1,
-                      beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
-                      psi_b, col_a, col_b, holds, slacks, scratch)
-            _quantities(top, bottom, lat_a, lat_b, qs, 0, 1)
-            _quantities(top, bottom, lat_a, lat_b, qs, 1, 3)
-            cut = _kink(pts[0], e0, pts[1], e2, pts[2], qs, lo, hi, inset, atol)
-            stack_t.append(t)
-            stack_lo.append(lo)
-            stack_hi.append(cut)
-            stack_t.append(t)
-            stack_lo.append(cut)
-            stack_hi.append(hi)
+        tc, ts = math.cos(theta), math.sin(theta)
+        for e in range(E):
+            xa = -ts * a[e, 0] + tc * a[e, 1]
+            xb = -ts * b[e, 0] + tc * b[e, 1]
+            x_lo[e], x_hi[e] = min(xa, xb), max(xa, xb)
+        stack_lo = list(cell_lo[first:last])
+        stack_hi = list(cell_hi[first:last])
+        first = last
+        while len(stack_lo):
+            lo, hi = stack_lo.pop(), stack_hi.pop()
+            n = 0
+            for e in range(E):
+                if x_hi[e] >= lo - half - near and x_lo[e] <= hi + half + near:
+                    ga[n, 0], ga[n, 1] = a[e, 0], a[e, 1]
+                    gb[n, 0], gb[n, 1] = b[e, 0], b[e, 1]
+                    gf[n, 0], gf[n, 1] = f[e, 0], f[e, 1]
+                    n += 1
+            _cell(t, theta, lo, hi, ga[:n], gb[:n], gf[:n], half, tol, internal, q, stroke0,
+                  stroke1, beta, flip, round_tol, slice_tol, tiny, atol, top, bottom, ok_a,
+                  ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks, scratch,
+                  where, qs, stack_lo, stack_hi, out_t, out_lo, out_hi)
     rows = np.empty((len(out_t), 3))
     for k in range(len(out_t)):
         rows[k, 0], rows[k, 1], rows[k, 2] = out_t[k], out_lo[k], out_hi[k]
     return rows
+
+
+def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, half: float,
+          tol: float, internal: bool, q: Any, stroke0: float, stroke1: float, beta: float,
+          flip: float, round_tol: float, slice_tol: float, tiny: float, atol: float,
+          top: Any, bottom: Any, ok_a: Any, ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any,
+          psi_b: Any, col_a: Any, col_b: Any, holds: Any, slacks: Any, scratch: Any,
+          where: Any, qs: Any, stack_lo: Any, stack_hi: Any, out_t: Any, out_lo: Any,
+          out_hi: Any) -> None:
+    """One cell ``[lo, hi]`` of the angle ``t`` (:func:`_slices_loop`): its holding
+    pieces appended to ``out_*``, or its two parts pushed on the stack."""
+    S = slacks.shape[1]
+    inset = min((hi - lo) / 4, slice_tol)
+    pts = (lo + inset, (lo + hi) / 2, hi - inset)
+    for i in range(3):
+        _pose_one(i, theta, pts[i], a, b, f, half, tol, internal, q, stroke0, stroke1,
+                  beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                  psi_b, col_a, col_b, holds, slacks, scratch)
+    if _affine(top, bottom, lat_a, lat_b, psi_a, psi_b, ok_a, ok_b, atol):
+        n = 2
+        where[0], where[1] = lo, hi
+        for s in range(S):
+            s0, s2 = slacks[0, s], slacks[2, s]
+            if s0 * s2 < 0 or ((s0 == 0) != (s2 == 0)):
+                root = pts[0] + s0 / (s0 - s2) * (pts[2] - pts[0])
+                if root == root:
+                    where[n] = min(max(root, lo), hi)
+                    n += 1
+        cuts = np.sort(where[:n])
+        for k in range(n - 1):
+            if cuts[k + 1] - cuts[k] > tiny:
+                _pose_one(0, theta, (cuts[k] + cuts[k + 1]) / 2, a, b, f, half, tol,
+                          internal, q, stroke0, stroke1, beta, flip, round_tol, top,
+                          bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b,
+                          holds, slacks, scratch)
+                if holds[0]:
+                    out_t.append(t)
+                    out_lo.append(cuts[k])
+                    out_hi.append(cuts[k + 1])
+    elif hi - lo <= 4 * slice_tol:
+        if holds[1]:
+            out_t.append(t)
+            out_lo.append(lo)
+            out_hi.append(hi)
+    else:
+        # two more points, a step in from each end (``_slices._kinks``)
+        e0, e2 = lo + 2 * inset, hi - 2 * inset
+        _quantities(top, bottom, lat_a, lat_b, qs, 0, 0)
+        _quantities(top, bottom, lat_a, lat_b, qs, 1, 2)
+        _quantities(top, bottom, lat_a, lat_b, qs, 2, 4)
+        _pose_one(0, theta, e0, a, b, f, half, tol, internal, q, stroke0, stroke1,
+                  beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                  psi_b, col_a, col_b, holds, slacks, scratch)
+        _pose_one(1, theta, e2, a, b, f, half, tol, internal, q, stroke0, stroke1,
+                  beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a,
+                  psi_b, col_a, col_b, holds, slacks, scratch)
+        _quantities(top, bottom, lat_a, lat_b, qs, 0, 1)
+        _quantities(top, bottom, lat_a, lat_b, qs, 1, 3)
+        cut = _kink(pts[0], e0, pts[1], e2, pts[2], qs, lo, hi, inset, atol)
+        stack_lo.append(lo)
+        stack_hi.append(cut)
+        stack_lo.append(cut)
+        stack_hi.append(hi)
 
 
 def _quantities(top: Any, bottom: Any, lat_a: Any, lat_b: Any, qs: Any, i: int,
@@ -924,9 +960,10 @@ def _affine3(v0: float, v1: float, v2: float, atol: float) -> bool:
 
 def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
            half: float, tol: float, q: Any, stroke: tuple[float, float], beta: float,
-           round_tol: float, slice_tol: float, tiny: float, atol: float) -> Any:
-    """The holding pieces of the cells (``_slices.holding_offsets``), compiled: rows
-    ``(angle index, lo, hi)``; None when the loop cannot run."""
+           round_tol: float, slice_tol: float, tiny: float, atol: float, near: float
+           ) -> Any:
+    """The holding pieces of the cells (``_slices.holding_offsets``; sorted by angle),
+    compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run."""
     global _broken
     loops = _load()
     if loops is None:
@@ -941,7 +978,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
             np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float),
             np.ascontiguousarray(f, dtype=float), float(half), float(tol), internal, qq,
             float(stroke[0]), float(stroke[1]), float(beta), -1.0 if internal else 1.0,
-            float(round_tol), float(slice_tol), float(tiny), float(atol))
+            float(round_tol), float(slice_tol), float(tiny), float(atol), float(near))
     except Exception:                   # numba's typing or lowering errors
         _broken = True
         return None
@@ -952,7 +989,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 _LOOPS = (_pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop,
           _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates,
           _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop,
-          _kind, _affine3, _affine, _quantities, _kink, _slices_loop)
+          _kind, _affine3, _affine, _quantities, _kink, _cell, _slices_loop)
 _lock = threading.Lock()
 _loaded: dict[str, Any] = {}
 _broken = False

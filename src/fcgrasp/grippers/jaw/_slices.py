@@ -14,6 +14,7 @@ from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from . import _kernels
 from ._poses import (
+    NEAR_STRIP,
     POSE_BATCH,
     PoseContacts,
     _check_jaw_args,
@@ -122,7 +123,8 @@ def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: 
                                jaw.pad_width / 2, CONTACT_TOL * polygon.size, q, jaw.stroke,
                                float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL,
                                SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
-                               CONTACT_TOL * polygon.size)
+                               CONTACT_TOL * polygon.size,
+                               NEAR_STRIP * CONTACT_TOL * polygon.size)
         if rows is not None:
             return rows
     return _holding_pieces_numpy(polygon, jaw, th, margin, hole, cell_t, cell_lo, cell_hi)
