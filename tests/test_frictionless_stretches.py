@@ -243,3 +243,41 @@ def test_pruned_growth_is_the_head_of_the_exhaustive(kind, grip):
             [(p.mode, p.region_edges) for p in every[:top]]
         for p, q in zip(pruned, every, strict=False):
             assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
+
+
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+def test_programs_solved_on_generated_rows_are_solved(seed):
+    """Tall programs (few variables, up to a thousand rows, as the vertex lemma builds
+    them for long stretches) solved on rows added as they are violated: the optimum of
+    the whole program (HiGHS on every row), a feasible point of it, and infeasible
+    exactly where HiGHS says so; with repeated and nearly parallel rows."""
+    from scipy.optimize import linprog
+
+    from fcgrasp.core import _simplex
+    from fcgrasp.model.frictionless_stretches import DIRECT_ROWS, _rows_generated
+
+    rng = np.random.default_rng(seed)
+    solved = infeasible = 0
+    for case in range(300 if seed == 0 else 3000):
+        n = int(rng.integers(2, 10))
+        m = int(rng.integers(DIRECT_ROWS + 1, 1000))
+        A = rng.normal(size=(m, n))
+        if case % 4 == 0:                           # repeated and nearly parallel rows
+            A[m // 2:] = A[:m - m // 2] * (1 + 1e-9 * rng.normal(size=(m - m // 2, 1)))
+        A /= np.abs(A).max(axis=1, keepdims=True)
+        x0 = rng.uniform(0, 1, n)
+        b = A @ x0 + rng.uniform(0.0 if case % 3 else -0.3, 1.0, m)
+        full_A = np.r_[A, np.eye(n)]                # the bound rows last, as _lp_simplex
+        full_b = np.r_[b, np.full(n, 2.0)]
+        c = rng.normal(size=n)
+        st, y = _rows_generated(c, full_A, full_b, m)
+        ref = linprog(-c, A_ub=full_A, b_ub=full_b, bounds=[(0, None)] * n, method="highs")
+        if ref.status == 2:
+            assert st == _simplex.INFEASIBLE
+            infeasible += 1
+            continue
+        assert st == _simplex.OPTIMAL
+        assert np.all(full_A @ y <= full_b + 1e-8) and np.all(y >= -1e-12)
+        assert c @ y == pytest.approx(-ref.fun, rel=1e-8, abs=1e-8)
+        solved += 1
+    assert solved >= 100 and infeasible >= 10

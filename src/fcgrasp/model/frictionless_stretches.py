@@ -243,13 +243,52 @@ def _lp_simplex(cfg: _Config, A: FloatArray, b: FloatArray, objective: FloatArra
     full[:len(A)] = As / norm[:, None]
     full[len(A):, :nx] = np.eye(nx)
     rhs = np.r_[b / norm, ub / unit]
-    st, y = _simplex.lp_max(objective[:cols], full, rhs, feas=CHECK_TOL / 10)
+    st, y = _rows_generated(objective[:cols], full, rhs, len(A) - k)
     if st == _simplex.INFEASIBLE:
         return None
     if st != _simplex.OPTIMAL or np.any(full @ y > rhs + CHECK_TOL):
         return False
     x = y * unit if t_var else np.r_[y * unit, 0.0]
     return float(objective @ x), x
+
+
+#: A program with more rows than this is solved on a subset of them, the rows its
+#: solution violates added until it violates none (:func:`_rows_generated`).
+DIRECT_ROWS = 64
+#: Rows added per round of :func:`_rows_generated`, per variable.
+ROWS_PER_ROUND = 2
+
+
+def _rows_generated(c: FloatArray, A: FloatArray, b: FloatArray, n_cut: int
+                    ) -> tuple[int, FloatArray]:
+    """``max c.x`` subject to ``A x <= b``, ``x >= 0`` by the dense simplex, where the
+    first ``n_cut`` rows (the vertex lemma's, up to thousands for long stretches of a
+    smooth outline) are taken as needed: the program is solved on the other rows and
+    the ``ROWS_PER_ROUND`` rows per variable most violated at the origin, then again with
+    the rows its solution violates most (by more than the simplex's own feasibility
+    tolerance) until it violates none.  The answer solves the whole program: it is
+    optimal for a relaxation and feasible for the program (a relaxation that is
+    infeasible, the program is too).  Programs of at most :data:`DIRECT_ROWS` rows are
+    solved as they are."""
+    feas = CHECK_TOL / 10
+    if len(A) <= DIRECT_ROWS or n_cut <= 0:
+        return _simplex.lp_max(c, A, b, feas=feas)
+    per_round = ROWS_PER_ROUND * A.shape[1]
+    active = np.zeros(len(A), dtype=bool)
+    active[n_cut:] = True
+    active[np.argsort(b[:n_cut], kind="stable")[:per_round]] = True
+    while True:
+        rows = np.flatnonzero(active)
+        st, y = _simplex.lp_max(c, A[rows], b[rows], feas=feas)
+        if st != _simplex.OPTIMAL:
+            return st, y
+        over = A[:n_cut] @ y - b[:n_cut]
+        over[active[:n_cut]] = -np.inf
+        worst = np.argsort(-over, kind="stable")[:per_round]
+        worst = worst[over[worst] > feas]
+        if not worst.size:
+            return st, y
+        active[worst] = True
 
 
 def _lengths(cfg: _Config, x: FloatArray) -> FloatArray:
