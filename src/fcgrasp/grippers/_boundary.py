@@ -128,11 +128,13 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
                              keep_single=False)
         grown = [frictionless_plan(polygon, spec, r) for r in got
                  if r is not None and max(len(e) for e in r.region_edges) > 1]
-    # a single-edge plan below the top-th grown one cannot rank (on a smooth outline of
+    # a single-edge plan below the top-th of the plans found so far (grown, and the
+    # seeds: single-edge plans of the exact search) cannot rank (on a smooth outline of
     # equal edges, where every row ties on its bound, this ends the search at once)
     floor = 0.0
-    if spec.top is not None and spec.rank_by == "min_region" and len(grown) >= spec.top:
-        distinct = ranked_unique(polygon, replace(spec, top=None), grown)   # one per grasp
+    if spec.top is not None and spec.rank_by == "min_region" \
+            and len(grown) + len(seeds) >= spec.top:
+        distinct = ranked_unique(polygon, replace(spec, top=None), grown + seeds)
         if len(distinct) >= spec.top:
             floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
     plans = search(polygon, flat, progress=progress, map=map, floor=floor)
