@@ -24,7 +24,6 @@ import urllib.request
 
 import numpy as np
 
-
 #: Edges of the parts measured.
 SIZES = (6, 50, 200, 2000)
 #: Issue 30's target for an interaction (seconds).

@@ -85,7 +85,8 @@ CONTACT_TOL = 1e-9
 #: Parallel jaw: :func:`~fcgrasp.grippers.jaw.holding_offsets` is exact up to this (times
 #: the part's size): it samples a cell this far inside its ends (past the contact
 #: tolerance's bands around a vertex entering the strip), and a cell around a kink is
-#: halved until it is 4 times this long; a hole's insertion point is found to this too.
+#: split (where one kink explains it, else halved) until it is 4 times this long; a
+#: hole's insertion point is found to this too.
 SLICE_TOL = 1e-6
 
 #: Three fingers with friction: feasibility tolerance of the linear programs (HiGHS), in

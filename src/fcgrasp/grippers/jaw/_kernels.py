@@ -20,6 +20,7 @@ from typing import Any
 import numpy as np
 
 from ...core.kernels import jit_setting, njit_all
+from ...core.tolerances import ROUND_TOL
 
 #: At most this many contact features per pad (as ``_poses.MAX_CONTACTS``).
 K_MAX = 4
@@ -309,7 +310,7 @@ def box_scores(H: Any, dth: float, dc: float, radius: float, max_rows: int
 _TWO_PI = 2.0 * math.pi
 #: Relative room left by the shortcuts of :func:`_candidates` (bounds that skip work only
 #: where the full test must fail by more than rounding).
-_SLACK = 1e-12
+_SLACK = ROUND_TOL
 
 
 def _sin_range(a: float, b: float, t0: float, t1: float) -> tuple[float, float]:

@@ -47,8 +47,11 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
     three points is affine between them) has affine verdict slacks (theorem 6.3's two
     lateral conditions per pair of contacts, and the stroke), so the verdict changes only
     at their roots, found in closed form; the pieces between roots are decided by
-    :func:`jaw_poses` at their middles.  A cell holding a kink is halved until it is
-    shorter than ``4 * SLICE_TOL`` times the part's size, then decided at its middle.
+    :func:`jaw_poses` at their middles.  A cell holding a kink is split until it is
+    shorter than ``4 * SLICE_TOL`` times the part's size, then decided at its middle: at
+    the kink itself where one kink explains the model at five points (the lines through
+    the two points nearest each end cross there, and their larger, or smaller, is the
+    middle value), else at its middle.
     Exact up to :data:`SLICE_TOL` of the part's size: the three points stand that far
     inside a cell's ends (where a vertex entering the strip ties with the stop within
     :data:`CONTACT_TOL`), so a kink closer to an end than that is not seen.
