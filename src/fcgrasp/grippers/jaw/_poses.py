@@ -210,9 +210,11 @@ def _check_jaw_args(polygon: Any, jaw: Any, margin: Any) -> float:
 
 
 def _grip_edges(polygon: Polygon, hole: Any) -> np.ndarray:
-    """The edges a grip meets: all (external, ``hole=None``) or those of a hole."""
+    """The edges a grip meets: those of the outer ring (external, ``hole=None``: a
+    hole's material is never a pad's extreme, the topmost point of the part on every
+    line along ``u`` being on the outer ring) or those of a hole."""
     if hole is None:
-        return np.ones(polygon.n_edges, dtype=bool)
+        return np.asarray(polygon.rings == 0)
     if isinstance(hole, bool) or not isinstance(hole, (int, np.integer)) \
             or not 0 <= int(hole) < len(polygon.holes):
         raise ValueError(f"hole must be the index of a hole of the part (internal grips), "
@@ -251,8 +253,8 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
 
     ``theta`` (P,): closing directions (radians); ``offset`` (P,): lateral offsets from
     the centroid; ``margin`` in degrees.  External grip (``hole=None``): every edge of
-    the part (holes included: their material is never the extreme) is clipped to each
-    pose's strip.  Internal grip in the hole ``hole`` (an index into ``polygon.holes``):
+    the outer ring is clipped to each pose's strip (a hole's material is never the
+    extreme).  Internal grip in the hole ``hole`` (an index into ``polygon.holes``):
     the closed jaws, on the strip's segment at the height of the hole's
     :func:`insertion_point` (free and inside the hole, or the pose fails), open until
     pad A (facing ``+u``) meets the first boundary above and pad B the first below.
