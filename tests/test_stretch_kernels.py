@@ -331,6 +331,8 @@ def test_own_optimum_filter_matches_every_pair(seed):
         c = np.c_[rng.integers(0, ma, F), rng.integers(0, ma // 2, F),
                   rng.integers(0, mb, F), rng.integers(0, mb // 2, F)]
         t = np.round(rng.random(F), 1)          # many exact ties
+        if rng.random() < 0.5:                  # and ties within the tie factor
+            t = t * (1 + S.TIE * rng.choice([-2.0, -0.5, 0.0, 0.5, 2.0], F))
         got = _stretch_kernels.beaten(c, t, ma, mb, same, S.TIE)
 
         def inside(i, k, i2, k2, m):

@@ -452,13 +452,15 @@ def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
     return t_out, s_out, u_out
 
 
-def _scan_inside(order: Any, starts: Any, lo: int, span: int, m: int, iA: Any, kA: Any,
-                 iC: Any, kC: Any, lo2: int, span2: int, m2: int, t: Any, thr: float) -> bool:
+def _scan_inside(order: Any, starts: Any, next_start: Any, lo: int, span: int, m: int,
+                 iA: Any, kA: Any, iC: Any, kC: Any, lo2: int, span2: int, m2: int, t: Any,
+                 thr: float) -> bool:
     """Is some configuration ``u`` whose first stretch starts in the cyclic range
-    ``[lo, lo + span]`` of a ring of ``m`` (``order``: the configurations by start,
-    ``starts`` their starts sorted) inside it (``(iA - lo) % m + kA <= span``), its
-    second stretch inside ``[lo2, lo2 + span2]`` of a ring of ``m2``, and ``t[u] >
-    thr``?"""
+    ``[lo, lo + span]`` of a ring of ``m`` (``order``: the configurations by start, then
+    by smallest region, longest first; ``starts`` their starts sorted; ``next_start[q]``
+    where the next start begins) inside it (``(iA - lo) % m + kA <= span``), its second
+    stretch inside ``[lo2, lo2 + span2]`` of a ring of ``m2``, and ``t[u] > thr``?  Each
+    start's configurations are read only while their smallest region passes ``thr``."""
     F = order.shape[0]
     for part in range(2):
         if part == 0:
@@ -469,30 +471,41 @@ def _scan_inside(order: Any, starts: Any, lo: int, span: int, m: int, iA: Any, k
                 break
             a = 0
             b = min(int(np.searchsorted(starts, lo + span - m, side="right")), F)
-        for q in range(a, b):
+        q = a
+        while q < b:
             u = order[q]
-            if (iA[u] - lo) % m + kA[u] <= span and (iC[u] - lo2) % m2 + kC[u] <= span2 \
-                    and t[u] > thr:
+            if t[u] <= thr:             # the rest of this start's are shorter still
+                q = next_start[q]
+                continue
+            if (iA[u] - lo) % m + kA[u] <= span and (iC[u] - lo2) % m2 + kC[u] <= span2:
                 return True
+            q += 1
     return False
 
 
 def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: bool,
-            tie: float, keep: Any) -> None:
+            tie: float, order: Any, keep: Any) -> None:
     """:func:`fcgrasp.model.stretches._own_optimum` of one job, without its matrix of
     every (sub, super) pair: ``keep[s]`` False where a configuration inside ``s`` (on
     both rings; on one ring, either way round) has a smallest region longer than
     ``t[s] (1 + tie)``.  Candidates are read from the configurations sorted by the
-    start of their first stretch (a range of starts per ``s``)."""
-    order = np.argsort(iA, kind="mergesort")
+    start of their first stretch (a range of starts per ``s``), each start's longest
+    first (``order``), and only those longer than ``s``'s."""
     starts = iA[order]
+    F = order.shape[0]
+    next_start = np.empty(F, np.int64)
+    q = F
+    for r in range(F - 1, -1, -1):
+        if r == F - 1 or starts[r] != starts[r + 1]:
+            q = r + 1
+        next_start[r] = q
     for s in range(t.shape[0]):
         thr = t[s] * (1 + tie)
-        if _scan_inside(order, starts, iA[s], kA[s], ma, iA, kA, iC, kC, iC[s], kC[s], mb,
-                        t, thr):
+        if _scan_inside(order, starts, next_start, iA[s], kA[s], ma, iA, kA, iC, kC, iC[s],
+                        kC[s], mb, t, thr):
             keep[s] = False
-        elif same and _scan_inside(order, starts, iC[s], kC[s], ma, iA, kA, iC, kC, iA[s],
-                                   kA[s], ma, t, thr):
+        elif same and _scan_inside(order, starts, next_start, iC[s], kC[s], ma, iA, kA, iC,
+                                   kC, iA[s], kA[s], ma, t, thr):
             keep[s] = False
 
 
@@ -547,8 +560,11 @@ def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
     vertices, second start, its interior vertices) with smallest regions ``t``: the
     ones to keep."""
     c = np.asarray(c, np.int64)
+    t = np.asarray(t, float)
     keep = np.ones(len(c), bool)
+    order = np.lexsort((-t, c[:, 0]))           # by first start, then the longest first
     _load()["_beaten"](np.ascontiguousarray(c[:, 0]), np.ascontiguousarray(c[:, 1]),
-                       np.ascontiguousarray(c[:, 2]), np.ascontiguousarray(c[:, 3]),
-                       np.asarray(t, float), int(ma), int(mb), bool(same), float(tie), keep)
+                       np.ascontiguousarray(c[:, 2]), np.ascontiguousarray(c[:, 3]), t,
+                       int(ma), int(mb), bool(same), float(tie), order.astype(np.int64),
+                       keep)
     return keep
