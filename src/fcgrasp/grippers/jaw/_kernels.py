@@ -225,10 +225,6 @@ def poses(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
     from the centroid (internal grip) or None.  Returns ``(top, bottom, ok_a, ok_b,
     lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks)`` as ``_poses._evaluate``
     builds them, or None when the compiled loop cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return None
     P, K = th.shape[0], K_MAX
     top, bottom = np.empty(P), np.empty(P)
     ok_a, ok_b = np.zeros(P, bool), np.zeros(P, bool)
@@ -239,17 +235,14 @@ def poses(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
     slacks = np.full((P, 2 * K * K + 2), np.nan)
     internal = q is not None
     qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
-    try:
-        loops["_poses_loop"](np.ascontiguousarray(th, dtype=float),
-                             np.ascontiguousarray(c, dtype=float),
-                             np.ascontiguousarray(a, dtype=float),
-                             np.ascontiguousarray(b, dtype=float),
-                             np.ascontiguousarray(f, dtype=float), float(half), float(tol),
-                             internal, qq, float(stroke[0]), float(stroke[1]), float(beta),
-                             -1.0 if internal else 1.0, float(round_tol), top, bottom, ok_a,
-                             ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
+    if not _run("_poses_loop", np.ascontiguousarray(th, dtype=float),
+                np.ascontiguousarray(c, dtype=float),
+                np.ascontiguousarray(a, dtype=float),
+                np.ascontiguousarray(b, dtype=float),
+                np.ascontiguousarray(f, dtype=float), float(half), float(tol),
+                internal, qq, float(stroke[0]), float(stroke[1]), float(beta),
+                -1.0 if internal else 1.0, float(round_tol), top, bottom, ok_a,
+                ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks):
         return None
     return (top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
             slacks)
@@ -291,16 +284,9 @@ def box_scores(H: Any, dth: float, dc: float, radius: float, max_rows: int
                ) -> tuple[float, int, int, int, int] | None:
     """The largest box of True cells of the pose grid ``H`` (``_plans._box_scores``),
     compiled; None when the loop cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return None
     out = np.array([-1.0, 0, 0, 0, 0])
-    try:
-        loops["_box_loop"](np.ascontiguousarray(H, dtype=np.bool_), float(dth), float(dc),
-                           float(radius), int(max_rows), out)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
+    if not _run("_box_loop", np.ascontiguousarray(H, dtype=np.bool_), float(dth), float(dc),
+                float(radius), int(max_rows), out):
         return None
     return float(out[0]), int(out[1]), int(out[2]), int(out[3]), int(out[4])
 
@@ -709,31 +695,30 @@ def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, hal
     out[0], out[1], out[2] = 1.0, lo_open, hi_open
 
 
+def _proof_args(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
+                zero: float, contact_tol: float, tol: float, q: Any, beta: float,
+                stroke: tuple[float, float]) -> tuple[Any, ...]:
+    """The arguments :func:`_prove_loop` and :func:`_certify_loop` begin with, typed."""
+    def floats(x: Any) -> Any:
+        return np.ascontiguousarray(x, dtype=float)
+
+    qq = np.zeros(2) if q is None else floats(q)
+    return (floats(boxes), floats(a), floats(b), floats(nrm), floats(uniq),
+            np.ascontiguousarray(inv, dtype=np.int64), float(half), float(zero),
+            float(contact_tol), float(tol), q is not None, qq, float(beta),
+            float(stroke[0]), float(stroke[1]))
+
+
 def prove(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
           zero: float, contact_tol: float, tol: float, q: Any, beta: float,
           stroke: tuple[float, float]) -> tuple[Any, Any, Any] | None:
     """The proofs of a batch of boxes (``_certify._box_proofs_numpy``): ``(proved,
     o_lo, o_hi)``, compiled; None when the loop cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return None
     B = boxes.shape[0]
     proved, o_lo, o_hi = np.zeros(B, bool), np.empty(B), np.empty(B)
-    internal = q is not None
-    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
-    try:
-        loops["_prove_loop"](np.ascontiguousarray(boxes, dtype=float),
-                             np.ascontiguousarray(a, dtype=float),
-                             np.ascontiguousarray(b, dtype=float),
-                             np.ascontiguousarray(nrm, dtype=float),
-                             np.ascontiguousarray(uniq, dtype=float),
-                             np.ascontiguousarray(inv, dtype=np.int64), float(half),
-                             float(zero), float(contact_tol), float(tol), internal, qq,
-                             float(beta), float(stroke[0]), float(stroke[1]), proved, o_lo,
-                             o_hi)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
+    if not _run("_prove_loop", *_proof_args(boxes, a, b, nrm, uniq, inv, half, zero,
+                                            contact_tol, tol, q, beta, stroke),
+                proved, o_lo, o_hi):
         return None
     return proved, o_lo, o_hi
 
@@ -965,24 +950,20 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
            ) -> Any:
     """The holding pieces of the cells (``_slices.holding_offsets``; sorted by angle),
     compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return None
     internal = q is not None
     qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
-    try:
-        return loops["_slices_loop"](
-            np.ascontiguousarray(cell_t, dtype=np.int64),
-            np.ascontiguousarray(cell_lo, dtype=float),
-            np.ascontiguousarray(cell_hi, dtype=float), np.ascontiguousarray(th, dtype=float),
-            np.ascontiguousarray(a, dtype=float), np.ascontiguousarray(b, dtype=float),
-            np.ascontiguousarray(f, dtype=float), float(half), float(tol), internal, qq,
-            float(stroke[0]), float(stroke[1]), float(beta), -1.0 if internal else 1.0,
-            float(round_tol), float(slice_tol), float(tiny), float(atol), float(near))
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
+    out: list[Any] = []
+    if not _run("_slices_loop",
+                np.ascontiguousarray(cell_t, dtype=np.int64),
+                np.ascontiguousarray(cell_lo, dtype=float),
+                np.ascontiguousarray(cell_hi, dtype=float),
+                np.ascontiguousarray(th, dtype=float), np.ascontiguousarray(a, dtype=float),
+                np.ascontiguousarray(b, dtype=float), np.ascontiguousarray(f, dtype=float),
+                float(half), float(tol), internal, qq, float(stroke[0]), float(stroke[1]),
+                float(beta), -1.0 if internal else 1.0, float(round_tol), float(slice_tol),
+                float(tiny), float(atol), float(near), answer=out):
         return None
+    return out[0]
 
 
 # ----------------------------------------------------------------------------- loading
@@ -1011,6 +992,24 @@ def _load() -> dict[str, Any] | None:
         return _loaded or None
 
 
+def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
+    """Run the compiled loop ``name`` (its return value appended to ``answer``); False
+    (and numpy from then on) when numba is missing or fails to compile it, so that a
+    broken numba never breaks a plan."""
+    global _broken
+    loops = _load()
+    if loops is None:
+        return False
+    try:
+        got = loops[name](*args)
+    except Exception:                   # numba's typing or lowering errors
+        _broken = True
+        return False
+    if answer is not None:
+        answer.append(got)
+    return True
+
+
 def available() -> bool:
     """Are the jaw's poses evaluated compiled here?  Always, but with ``FCGRASP_JIT=0``
     or without a working numba (then by the numpy model)."""
@@ -1024,24 +1023,9 @@ def certify(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: flo
     """``_certify.certify_box``'s subdivision from the boxes ``boxes`` (B, 4), compiled
     (:func:`_certify_loop`): ``(proved, lo, hi, boxes examined)``; None when the loop
     cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return None
     out = np.zeros(4)
-    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
-    try:
-        loops["_certify_loop"](np.ascontiguousarray(boxes, dtype=float),
-                               np.ascontiguousarray(a, dtype=float),
-                               np.ascontiguousarray(b, dtype=float),
-                               np.ascontiguousarray(nrm, dtype=float),
-                               np.ascontiguousarray(uniq, dtype=float),
-                               np.ascontiguousarray(inv, dtype=np.int64), float(half),
-                               float(zero), float(contact_tol), float(tol), q is not None, qq,
-                               float(beta), float(stroke[0]), float(stroke[1]),
-                               int(max_boxes), float(radius), float(near), float(round_tol),
-                               out)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
+    if not _run("_certify_loop", *_proof_args(boxes, a, b, nrm, uniq, inv, half, zero,
+                                              contact_tol, tol, q, beta, stroke),
+                int(max_boxes), float(radius), float(near), float(round_tol), out):
         return None
     return bool(out[0]), float(out[1]), float(out[2]), int(out[3])
