@@ -50,6 +50,11 @@ that back-off in the directions grown, not the global optimum over all boxes of 
 exact set: the box's shape (which rows of angles) is still chosen on the grid.
 :func:`jaw_plans` returns proved boxes unless asked not to (``certify=False``: boxes
 verified on the fine grid only, neither proved nor grown).
+
+**Compiled.**  The pose model, the grid's largest box, the proofs and the slices run as
+numba loops (:mod:`._kernels`, compiled once and cached; :func:`fcgrasp.compile_kernels`)
+with the formulas of the numpy model, which stays the reference (``FCGRASP_JIT=0`` or
+no numba: the same boxes, tested).
 """
 
 from __future__ import annotations
