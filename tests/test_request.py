@@ -254,10 +254,12 @@ HANG = 600
 
 def _batch_with_workers(tmp_path, *extra, **popen):
     """A running ``fcgrasp batch`` of demo:cam copies with two local workers, and their
-    pids once both are seen."""
+    pids once both are seen.  Forty copies (about a second each): the batch must still
+    be running when a test stops it, however fast planning gets (six copies finished
+    before the Ctrl-C of a loaded machine once three fingers took 0.6 s a part)."""
     folder = tmp_path / "parts"
     folder.mkdir()
-    for k in range(6):
+    for k in range(40):
         (folder / f"cam{k}.json").write_text(
             '{"vertices": ' + str(fc.io.parts.demo_part("cam").vertices.tolist()) + "}")
     proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "batch", str(folder), "--out",
