@@ -41,14 +41,14 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
     for e in range(E):
         xa = -th_s * a[e, 0] + th_c * a[e, 1]
         xb = -th_s * b[e, 0] + th_c * b[e, 1]
-        ya = sign * (th_c * a[e, 0] + th_s * a[e, 1])
-        yb = sign * (th_c * b[e, 0] + th_s * b[e, 1])
         lo_x, hi_x = min(xa, xb), max(xa, xb)
         inside = hi_x >= s0 and lo_x <= s1 and use[e] > 0
         if not inside:
             h_lo[e] = -np.inf
             h_hi[e] = -np.inf
             continue
+        ya = sign * (th_c * a[e, 0] + th_s * a[e, 1])
+        yb = sign * (th_c * b[e, 0] + th_s * b[e, 1])
         cl_lo = min(max(lo_x, s0), s1)
         cl_hi = min(max(hi_x, s0), s1)
         dx = xb - xa
