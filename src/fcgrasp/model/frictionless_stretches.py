@@ -213,12 +213,32 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
         # not hold: HiGHS decides
     from scipy.optimize import linprog  # on first use: two-finger plans never load scipy
 
-    res = linprog(-objective, A_ub=A, b_ub=b,
-                  bounds=[*cfg.bounds, (0.0, None) if t_var else (0.0, 0.0)],
+    # in units of the longest edge, rows scaled to a largest coefficient of 1 (rounding
+    # noise left as it is): HiGHS's absolute tolerances then mean the same on any scale
+    unit, M, rhs, _ = _scaled(cfg, A, b, len(objective))
+    res = linprog(-objective, A_ub=M, b_ub=rhs,
+                  bounds=[*((lo / unit, hi / unit) for lo, hi in cfg.bounds),
+                          (0.0, None) if t_var else (0.0, 0.0)],
                   method="highs")
     if res.status != 0:
         return None
-    return float(-res.fun), res.x
+    x = res.x * unit
+    return float(objective @ x), x
+
+
+def _scaled(cfg: _Config, A: FloatArray, b: FloatArray, cols: int
+            ) -> tuple[float, FloatArray, FloatArray, np.ndarray]:
+    """The program ``A x <= b`` (its first ``cols`` columns) in units of the longest
+    edge of ``cfg`` (``x = unit * y``), each row divided by its largest coefficient
+    unless that is rounding noise (below :data:`~fcgrasp.core.tolerances.NOISE_ROW` of
+    the largest: scaling it up would make the noise a constraint): ``(unit, rows,
+    right-hand sides, which rows are noise)``."""
+    unit = max(float(max(hi for _, hi in cfg.bounds)), TINY)
+    As = A[:, :cols] * unit
+    norm = np.abs(As).max(axis=1)
+    noise = norm <= NOISE_ROW * max(float(norm.max(initial=0.0)), TINY)
+    scale = np.where(noise, unit, norm)
+    return unit, As / scale[:, None], b / scale, noise
 
 
 def _lp_simplex(cfg: _Config, A: FloatArray, b: FloatArray, objective: FloatArray,
@@ -233,16 +253,14 @@ def _lp_simplex(cfg: _Config, A: FloatArray, b: FloatArray, objective: FloatArra
     k = len(cfg.edges)
     nx = 2 * k
     ub = np.array([hi for _, hi in cfg.bounds])
-    unit = max(float(ub.max()), TINY)
     cols = nx + 1 if t_var else nx
-    As = A[:, :cols] * unit
-    norm = np.abs(As).max(axis=1)
-    if np.any(norm <= NOISE_ROW * max(float(norm.max(initial=0.0)), TINY)):
+    unit, M, scaled_b, noise = _scaled(cfg, A, b, cols)
+    if np.any(noise):
         return False
     full = np.zeros((len(A) + nx, cols))
-    full[:len(A)] = As / norm[:, None]
+    full[:len(A)] = M
     full[len(A):, :nx] = np.eye(nx)
-    rhs = np.r_[b / norm, ub / unit]
+    rhs = np.r_[scaled_b, ub / unit]
     st, y = _rows_generated(objective[:cols], full, rhs, len(A) - k)
     if st == _simplex.INFEASIBLE:
         return None
