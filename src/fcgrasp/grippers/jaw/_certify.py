@@ -305,7 +305,9 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     stroke.  Returns that enclosure of the opening over the box, or None when the proof
     fails within ``max_boxes`` sub-boxes, or when a sub-box's centre pose does not hold
     (then the box does not hold either).  Sound, not complete: None does not say that
-    some pose fails.  The sub-boxes are examined in batches, level by level.
+    some pose fails.  The sub-boxes are examined in batches, level by level (compiled,
+    :func:`._kernels.certify`: depth first, each reading only its parent's edges near its
+    strip; the same sub-boxes, so the same answer).
 
     >>> from fcgrasp.io.parts import demo_part
 
