@@ -215,8 +215,8 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
 
     # in units of the longest edge, rows scaled to a largest coefficient of 1 (rounding
     # noise left as it is): HiGHS's absolute tolerances then mean the same on any scale
-    unit, M, rhs, _ = _scaled(cfg, A, b, len(objective))
-    res = linprog(-objective, A_ub=M, b_ub=rhs,
+    unit, M, scaled_b, _ = _scaled(cfg, A, b, len(objective))
+    res = linprog(-objective, A_ub=M, b_ub=scaled_b,
                   bounds=[*((lo / unit, hi / unit) for lo, hi in cfg.bounds),
                           (0.0, None) if t_var else (0.0, 0.0)],
                   method="highs")
