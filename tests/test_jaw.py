@@ -561,3 +561,53 @@ def test_planned_boxes_reach_the_exact_boundary():
     best = jaw_plans(part, jaw, top=1)[0]
     assert best.certified and best.offset[0] < 0 < best.offset[1]
     assert 0.985 * bound <= best.measure <= bound + 1e-9
+
+
+@pytest.mark.parametrize("name, symmetries", [
+    ("rectangle", [("rot", 0.0), ("rot", np.pi), ("ref", 0.0), ("ref", np.pi / 2)]),
+    ("washer", [("rot", k * np.pi / 2) for k in range(4)]
+     + [("ref", 0.1 * np.pi / 6 + k * np.pi / 4) for k in range(4)]),
+])
+def test_no_box_is_an_image_of_another(name, symmetries):
+    """The rectangle's ranks 2 and 3 were mirror images of one box (issue 31): a box's
+    images under the part's symmetries are taken off the grid with it (the grid box
+    found, and the box as grown).  Checked with the rectangle's symmetries written out
+    by hand (half turn, reflections across the axes) and the washer's, and the jaw's
+    own (pads swapped)."""
+    part = demo_part(name)
+    if name == "washer":           # its outer 12-gon and 8-gon hole share a quarter turn
+        from fcgrasp.model.distinct import part_symmetries
+        symmetries = part_symmetries(part)
+    plans = jaw_plans(part, ParallelJaw(stroke=(5, 90), pad_width=8, mu=0.5), top=6,
+                      internal=False)
+    assert len(plans) >= 4
+
+    def images(p):
+        (t0, t1), (c0, c1) = p.theta, p.offset
+        out = []
+        for kind, ang in symmetries:
+            box = (t0 + ang, t1 + ang, c0, c1) if kind == "rot" else \
+                (2 * ang - t1, 2 * ang - t0, -c1, -c0)
+            # (the box itself is not an image: overlapping boxes are the distinct=
+            # rule's, off by default)
+            if not (kind == "rot" and np.isclose(np.mod(ang + 1e-9, 2 * np.pi), 1e-9)):
+                out.append(box)
+            out.append((box[0] + np.pi, box[1] + np.pi, -box[3], -box[2]))
+        return out
+
+    def overlap(p, box):
+        (t0, t1), (c0, c1) = p.theta, p.offset
+        dc = min(c1, box[3]) - max(c0, box[2])
+        best = 0.0
+        for turn in (-2, -1, 0, 1, 2):
+            b0, b1 = box[0] + 2 * np.pi * turn, box[1] + 2 * np.pi * turn
+            best = max(best, min(t1, b1) - max(t0, b0))
+        return max(dc, 0.0) * max(best, 0.0)
+
+    for i, p in enumerate(plans):
+        for q in plans[i + 1:]:
+            area = min(np.ptp(p.theta) * np.ptp(p.offset), np.ptp(q.theta) * np.ptp(q.offset))
+            # an image that is the box itself (a box symmetric on its own) is the box
+            moved = [b for b in images(q)
+                     if overlap(q, b) < 0.99 * np.ptp(q.theta) * np.ptp(q.offset)]
+            assert all(overlap(p, b) <= 0.5 * area for b in moved), (p.theta, q.theta)

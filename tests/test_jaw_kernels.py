@@ -190,4 +190,4 @@ def test_compiled_certify_box_is_the_numpy_subdivision(seed, parts, monkeypatch)
                     seen += 1
                     proved += ref is not None
                     refused += ref is None
-    assert seen >= 8 * parts and proved >= parts // 2 and refused >= parts
+    assert seen >= 6 * parts and proved >= parts // 2 and refused >= parts

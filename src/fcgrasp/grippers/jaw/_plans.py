@@ -13,7 +13,7 @@ import numpy as np
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL
-from ...model.distinct import distinct_boxes
+from ...model.distinct import _box_images, distinct_boxes, part_symmetries
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
@@ -240,7 +240,9 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     docstring): external grips, and with ``internal`` grips inside each hole (the jaws
     put in at its :func:`insertion_point`).  For each grip, each found box's poses are
     removed from the grid before the next is sought, with their mirror (``theta + pi``,
-    ``-c``: the same grasp, pads swapped).  With ``certify`` (the default) each box is
+    ``-c``: the same grasp, pads swapped) and, for external grips, their images under the
+    part's symmetries (:func:`fcgrasp.model.distinct.part_symmetries`: the same grasp
+    turned or mirrored); a returned box as grown is removed too, with its images.  With ``certify`` (the default) each box is
     also *proved* by :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid
     steps until the proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
     dropped and the next one sought), then grown to the exact boundary of the set
@@ -404,6 +406,25 @@ def _proved_grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int |
     return None
 
 
+def _clear_images(H: np.ndarray, theta: FloatArray, offset: FloatArray,
+                  symmetries: list[tuple[str, float]], dth: float, offsets: FloatArray
+                  ) -> None:
+    """Clear from the pose grid ``H`` (rows every ``dth`` from angle 0, columns at
+    ``offsets``) the poses inside the images of the box ``theta x offset`` under the
+    part's symmetries (:func:`fcgrasp.model.distinct.part_symmetries`): a box found
+    there would hold the part the same way, mirrored or turned."""
+    K = H.shape[0]
+    eps = 1e-9 * max(float(offsets[-1] - offsets[0]), 1.0)
+    for t0, t1, c0, c1 in _box_images((float(theta[0]), float(theta[1])),
+                                      (float(offset[0]), float(offset[1])), symmetries):
+        k_lo = int(math.ceil((t0 - 1e-9) / dth))
+        k_hi = int(math.floor((t1 + 1e-9) / dth))
+        j_lo = int(np.searchsorted(offsets, c0 - eps, side="left"))
+        j_hi = int(np.searchsorted(offsets, c1 + eps, side="right"))
+        if k_hi >= k_lo and j_hi > j_lo:
+            H[np.arange(k_lo, k_hi + 1) % K, j_lo:j_hi] = False
+
+
 def _measure(theta: tuple[float, float], offset: tuple[float, float], radius: float
              ) -> float:
     """The ranking measure of a box: ``min(c1 - c0, (t1 - t0) * radius)``."""
@@ -421,6 +442,8 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     offsets = np.linspace(-reach, reach, M)
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
     H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
+    # inside a hole only the identity (a symmetry may map the hole onto another)
+    symmetries = part_symmetries(polygon) if hole is None else [("rot", 0.0)]
     plans: list[JawPlan] = []
     while len(plans) < top:
         score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
@@ -428,6 +451,9 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
             break
         H[np.arange(k0, k1 + 1) % K, j0:j1 + 1] = False
         H[(np.arange(k0, k1 + 1) + K // 2) % K, M - 1 - j1:M - j0] = False
+        # the box's images under the part's symmetries are the same grasps
+        _clear_images(H, thetas[k0] + (k1 - k0) * dth * np.array([0.0, 1.0]),
+                      offsets[[j0, j1]], symmetries, dth, offsets)
         box = _checked_box(polygon, jaw, margin, hole,
                            thetas[k0] + np.array([0, k1 - k0]) * dth, offsets[[j0, j1]],
                            dth, dc)
@@ -450,6 +476,9 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
             if box is None:
                 continue
         (t0, t1), (c0, c1), opening, features = box
+        # the box as grown (past the grid box found) and its images are off the grid
+        # too: a later box would overlap it or mirror it
+        _clear_images(H, np.array([t0, t1]), np.array([c0, c1]), symmetries, dth, offsets)
         tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
         r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
         pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
