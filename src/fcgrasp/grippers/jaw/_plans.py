@@ -12,7 +12,7 @@ import numpy as np
 
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
-from ...core.tolerances import CONTACT_TOL
+from ...core.tolerances import CONTACT_TOL, TOL
 from ...model.distinct import _box_images, distinct_boxes, part_symmetries
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
@@ -242,13 +242,14 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     removed from the grid before the next is sought, with their mirror (``theta + pi``,
     ``-c``: the same grasp, pads swapped) and, for external grips, their images under the
     part's symmetries (:func:`fcgrasp.model.distinct.part_symmetries`: the same grasp
-    turned or mirrored); a returned box as grown is removed too, with its images.  With ``certify`` (the default) each box is
-    also *proved* by :func:`certify_box` (shrunk by up to :data:`CERTIFY_SHRINKS` grid
-    steps until the proof succeeds within :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is
-    dropped and the next one sought), then grown to the exact boundary of the set
-    (:func:`holding_offsets`), moved in by :data:`GROW_BACKOFF` and proved again, kept
-    where it measures more: every returned plan then has ``certified`` True.
-    ``certify=False`` returns the boxes verified on the fine grid only.
+    turned or mirrored); a returned box as grown is removed too, with its images.
+    With ``certify`` (the default) each box is also *proved* by :func:`certify_box` (shrunk
+    by up to :data:`CERTIFY_SHRINKS` grid steps until the proof succeeds within
+    :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is dropped and the next one
+    sought), then grown to the exact boundary of the set (:func:`holding_offsets`), moved in
+    by :data:`GROW_BACKOFF` and proved again, kept where it measures more: every returned
+    plan then has ``certified`` True. ``certify=False`` returns the boxes verified on the
+    fine grid only.
 
     >>> from fcgrasp.io.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -414,11 +415,11 @@ def _clear_images(H: np.ndarray, theta: FloatArray, offset: FloatArray,
     part's symmetries (:func:`fcgrasp.model.distinct.part_symmetries`): a box found
     there would hold the part the same way, mirrored or turned."""
     K = H.shape[0]
-    eps = 1e-9 * max(float(offsets[-1] - offsets[0]), 1.0)
+    eps = TOL * float(offsets[-1] - offsets[0])      # rounding of the images' ends
     for t0, t1, c0, c1 in _box_images((float(theta[0]), float(theta[1])),
                                       (float(offset[0]), float(offset[1])), symmetries):
-        k_lo = int(math.ceil((t0 - 1e-9) / dth))
-        k_hi = int(math.floor((t1 + 1e-9) / dth))
+        k_lo = int(math.ceil((t0 - TOL) / dth))
+        k_hi = int(math.floor((t1 + TOL) / dth))
         j_lo = int(np.searchsorted(offsets, c0 - eps, side="left"))
         j_hi = int(np.searchsorted(offsets, c1 + eps, side="right"))
         if k_hi >= k_lo and j_hi > j_lo:
