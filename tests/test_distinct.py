@@ -170,3 +170,27 @@ def test_jaw_boxes_are_distinct_up_to_the_part_symmetries():
         for q in kept[i + 1:]:
             assert not same_box(p, q, 0.5, syms) and not same_box(q, p, 0.5, syms)
     assert kept[1].similar >= 3 and kept[1].to_dict()["similar"] == kept[1].similar
+
+
+def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
+    """On demo:triangle the boxes ranked 2-6 were adjacent 6.5-degree slices of one
+    slanted band of poses (the same edges under each pad, issue 31): with distinct=
+    they are one alternative, the best standing for the rest; boxes apart by more than
+    a grid step, or touching other edges, stay."""
+    part = fc.read_part("demo:triangle")
+    jaw = fc.ParallelJaw(stroke=(5, 90), pad_width=8, mu=0.5)
+    every = fc.plan(part, gripper=jaw, top=6)
+    key = [tuple(tuple(sorted(f)) for f in p.features) for p in every]
+    assert len(set(key)) < len(key)               # slices touching the same edges
+    kept = fc.plan(part, gripper=jaw, top=6, distinct=0.5)
+    step_t, seen = np.radians(0.5), {}
+    for p in kept:
+        k = tuple(tuple(sorted(f)) for f in p.features)
+        for q in seen.get(k, []):                  # the same contacts: not neighbours
+            gap_t = max(q.theta[0] - p.theta[1], p.theta[0] - q.theta[1])
+            gap_c = max(q.offset[0] - p.offset[1], p.offset[0] - q.offset[1])
+            assert gap_t > step_t * 1.01 or gap_c > 0.0 or \
+                gap_c > 2 * (p.offset[1] - p.offset[0])
+        seen.setdefault(k, []).append(p)
+    assert any(p.similar >= 2 for p in kept)
+    assert kept[0].theta == every[0].theta

@@ -26,7 +26,7 @@ from ..core.tolerances import ROUND_TOL, TOL
 from .plans import GraspPlan
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "distinct_plans",
-           "part_symmetries", "same_box", "distinct_boxes"]
+           "part_symmetries", "box_images", "same_box", "distinct_boxes"]
 
 #: The documented default of ``distinct=`` / ``--distinct``: half of the shorter region.
 DEFAULT_DISTINCT = 0.5
@@ -129,7 +129,7 @@ def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
     return out
 
 
-def _box_images(theta: tuple[float, float], offset: tuple[float, float],
+def box_images(theta: tuple[float, float], offset: tuple[float, float],
                 symmetries: list[tuple[str, float]]) -> list[tuple[float, float, float, float]]:
     """A box of jaw poses ``(t0, t1, c0, c1)`` under every symmetry of the part, and under
     the jaw's own (``theta + pi``, ``-c``: the pads swapped)."""
@@ -143,49 +143,69 @@ def _box_images(theta: tuple[float, float], offset: tuple[float, float],
     return out
 
 
-def _interval_overlap(a0: float, a1: float, b0: float, b1: float, period: float) -> float:
-    """Overlap of two angle intervals (each shorter than the period), mod ``period``."""
+def _interval_overlap(a0: float, a1: float, b0: float, b1: float, period: float,
+                      gaps: bool = False) -> float:
+    """Overlap of two angle intervals (each shorter than the period), mod ``period``;
+    with ``gaps``, negative where they are apart: minus the smallest gap between them."""
     shift = b0 - a0 - period * np.floor((b0 - a0) / period)       # b moved to start >= a0
-    best = 0.0
-    for s in (shift, shift - period):
+    best = -np.inf if gaps else 0.0
+    for s in (shift, shift - period, shift + period):
         lo, hi = max(a0, a0 + s), min(a1, a0 + s + (b1 - b0))
         best = max(best, hi - lo)
-    return best
+    return float(best)
 
 
-def same_box(p: Any, q: Any, fraction: float, symmetries: list[tuple[str, float]]) -> bool:
+def _features(p: Any) -> tuple[tuple[int, ...], ...]:
+    """The edges each pad of a jaw box touches, as a key."""
+    return tuple(tuple(sorted(f)) for f in p.features)
+
+
+def same_box(p: Any, q: Any, fraction: float, symmetries: list[tuple[str, float]],
+             adjacent: tuple[float, float] | None = None) -> bool:
     """Whether two jaw boxes are the same alternative: some image of ``q`` under the
     part's symmetries and the jaw's (see :func:`part_symmetries`) overlaps ``p`` by more
-    than ``fraction`` of the smaller box's area (angle x offset); boxes of different
+    than ``fraction`` of the smaller box's area (angle x offset); or, with ``adjacent``
+    ``(angle step, offset step)``, the pads touch the same edges in both and the boxes
+    are neighbours, apart by at most a step each way (one contact configuration cut into
+    boxes: a slanted band of holding poses is covered by slices).  Boxes of different
     grips (external, or internal in different holes) never are."""
     if (p.mode, p.hole) != (q.mode, q.hole):
         return False
+    if adjacent is not None and _features(p) == _features(q):
+        gap_t = -_interval_overlap(p.theta[0], p.theta[1], q.theta[0], q.theta[1],
+                                   2 * np.pi, gaps=True)
+        gap_c = max(p.offset[0], q.offset[0]) - min(p.offset[1], q.offset[1])
+        if gap_t <= adjacent[0] * (1 + ROUND_TOL) and gap_c <= adjacent[1] * (1 + ROUND_TOL):
+            return True
     t0, t1 = p.theta
     c0, c1 = p.offset
     area = min((t1 - t0) * (c1 - c0), (q.theta[1] - q.theta[0]) * (q.offset[1] - q.offset[0]))
-    for b0, b1, d0, d1 in _box_images(q.theta, q.offset, symmetries):
+    for b0, b1, d0, d1 in box_images(q.theta, q.offset, symmetries):
         dc = min(c1, d1) - max(c0, d0)
         if dc > 0 and _interval_overlap(t0, t1, b0, b1, 2 * np.pi) * dc > fraction * area:
             return True
     return False
 
 
-def distinct_boxes(polygon: Any, plans: list[Any], fraction: float) -> list[Any]:
+def distinct_boxes(polygon: Any, plans: list[Any], fraction: float,
+                   adjacent: tuple[float, float] | None = None) -> list[Any]:
     """The ranked jaw boxes less those that are the same alternative as a better one
-    (:func:`same_box`, up to the part's symmetries), each kept box's ``similar`` counting
-    the boxes it stands for."""
+    (:func:`same_box`, up to the part's symmetries; with ``adjacent``, neighbouring boxes
+    of the same contacts too), each kept box's ``similar`` counting the boxes it stands
+    for.  A box joins the group of the first kept box it is the same alternative as, or
+    as any box of that group: a chain of adjacent slices is one alternative."""
     if not 0 <= fraction <= 1:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {fraction!r}")
     if fraction == 0:
         return list(plans)
     syms = part_symmetries(polygon)
-    kept: list[Any] = []
-    stands: dict[int, int] = {}
+    groups: list[list[Any]] = []         # each kept box first, then those it stands for
     for p in plans:
-        twin = next((q for q in kept if same_box(q, p, fraction, syms)), None)
-        if twin is not None:
-            stands[id(twin)] += 1
+        # the same alternative as any box of a group (a band of adjacent slices is one)
+        group = next((g for g in groups
+                      if any(same_box(q, p, fraction, syms, adjacent) for q in g)), None)
+        if group is not None:
+            group.append(p)
             continue
-        stands[id(p)] = 0
-        kept.append(p)
-    return [replace(p, similar=stands[id(p)]) for p in kept]
+        groups.append([p])
+    return [replace(g[0], similar=len(g) - 1) for g in groups]

@@ -13,7 +13,7 @@ import numpy as np
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL, TOL
-from ...model.distinct import _box_images, distinct_boxes, part_symmetries
+from ...model.distinct import box_images, distinct_boxes, part_symmetries
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
@@ -53,9 +53,15 @@ class ParallelJaw(JawParameters):
     # the gripper interface (fcgrasp.grippers.base.Gripper)
     def distinct_plans(self, polygon: Polygon, plans: list[JawPlan],
                        fraction: float) -> list[JawPlan]:
-        """The boxes that are distinct alternatives, up to the part's symmetries
+        """The boxes that are distinct alternatives, up to the part's symmetries, the
+        neighbouring boxes of one contact configuration (apart by at most two steps of
+        the pose grid: a box is moved in from the holding set's boundary by a fraction
+        of a step before its proof) merged
         (:func:`fcgrasp.model.distinct.distinct_boxes`)."""
-        return distinct_boxes(polygon, plans, fraction)
+        reach = characteristic_length(polygon.vertices, polygon.centroid) \
+            + self.pad_width / 2
+        steps = (2 * np.radians(THETA_STEP_DEG), 2 * 2 * reach / (OFFSET_STEPS - 1))
+        return distinct_boxes(polygon, plans, fraction, adjacent=steps)
 
     def plan(self, polygon: Polygon, options: Any) -> list[JawPlan]:
         """The jaw's boxes (:func:`jaw_plans`) for a plan's search options."""
@@ -416,7 +422,7 @@ def _clear_images(H: np.ndarray, theta: FloatArray, offset: FloatArray,
     there would hold the part the same way, mirrored or turned."""
     K = H.shape[0]
     eps = TOL * float(offsets[-1] - offsets[0])      # rounding of the images' ends
-    for t0, t1, c0, c1 in _box_images((float(theta[0]), float(theta[1])),
+    for t0, t1, c0, c1 in box_images((float(theta[0]), float(theta[1])),
                                       (float(offset[0]), float(offset[1])), symmetries):
         k_lo = int(math.ceil((t0 - TOL) / dth))
         k_hi = int(math.floor((t1 + TOL) / dth))
