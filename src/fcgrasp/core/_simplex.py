@@ -13,12 +13,11 @@ its own constraints before it is trusted.
 
 from __future__ import annotations
 
-import threading
 from typing import Any
 
 import numpy as np
 
-from .kernels import jit_setting, njit_all
+from .kernels import CompiledLoops, jit_setting
 from .tolerances import LP_TOL, SIMPLEX_PIVOT, SIMPLEX_SLACK
 
 __all__ = ["compiled", "lp_max", "OPTIMAL", "INFEASIBLE", "UNBOUNDED", "ITERATIONS"]
@@ -138,27 +137,15 @@ def _lp_max(c: Any, A: Any, b: Any, m: int, n: int, x: Any, y: Any, eps: float,
     return 0
 
 
-_lock = threading.Lock()
-_loaded: dict[str, Any] = {}
-_broken = False
+_LOOPS = CompiledLoops(globals(), (_pivot, _iterate, _lp_max))
 
 
 def compiled() -> dict[str, Any] | None:
     """The compiled loops (``"_lp_max"`` and what it calls), None without a working
     numba or with ``FCGRASP_JIT=0``."""
-    global _broken
     if jit_setting() is False:
         return None
-    with _lock:
-        if not _loaded and not _broken:
-            try:
-                import numba
-            except ImportError:
-                _broken = True
-                return None
-            _loaded.update(njit_all(numba, dict(globals()),
-                                    [(f.__name__, f) for f in (_pivot, _iterate, _lp_max)]))
-        return _loaded or None
+    return _LOOPS.get()
 
 
 def lp_max(c: Any, A: Any, b: Any, eps: float = SIMPLEX_PIVOT, feas: float = LP_TOL

@@ -47,7 +47,8 @@ from ._angles import wrap_floor as _wrap  # compiled over this module's namespac
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
-__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "arc_meet",
+__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "CompiledLoops",
+           "arc_meet",
            "segment", "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
            "pair_problems", "two_levels", "PROBLEM_FIELDS"]
 
@@ -372,6 +373,59 @@ def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
         except RuntimeError:            # nowhere to cache (a read-only install): compile
             namespace[name] = numba.njit(error_model="numpy")(clone)
     return namespace
+
+
+class CompiledLoops:
+    """The numba loops of one module (``funcs``, plain Python over the module's
+    ``namespace``), compiled or loaded from numba's cache once per process, on first
+    use (:func:`njit_all`; ``extra()`` adds names compiled elsewhere, None when they
+    cannot be had).  Used by the compiled simplex, three fingers with friction and the
+    parallel jaw."""
+
+    def __init__(self, namespace: dict[str, Any], funcs: tuple[Any, ...],
+                 extra: Any = None) -> None:
+        self._namespace, self._funcs, self._extra = namespace, funcs, extra
+        self._lock = threading.Lock()
+        self._loaded: dict[str, Any] = {}
+        #: numba missing, or a loop that failed to compile: numpy from then on
+        self.broken = False
+
+    def get(self) -> dict[str, Any] | None:
+        """The compiled loops by name; None without numba (or ``extra``'s names)."""
+        with self._lock:
+            if not self._loaded and not self.broken:
+                try:
+                    import numba
+                except ImportError:
+                    self.broken = True
+                    return None
+                names = dict(self._namespace)
+                if self._extra is not None:
+                    more = self._extra()
+                    if more is None:
+                        return None
+                    names.update(more)
+                self._loaded.update(njit_all(numba, names,
+                                             [(f.__name__, f) for f in self._funcs]))
+            return self._loaded or None
+
+    def available(self) -> bool:
+        """Do the loops run here?  Not with ``FCGRASP_JIT=0``, without numba, or once
+        one failed to compile."""
+        return jit_setting() is not False and not self.broken and self.get() is not None
+
+    def run(self, name: str, *args: Any) -> tuple[bool, Any]:
+        """Run the loop ``name``: ``(True, what it returns)``, or ``(False, None)`` when
+        the loops cannot run or numba fails to compile it (then :attr:`broken`, so that a
+        broken numba never breaks a plan)."""
+        loops = self.get()
+        if loops is None:
+            return False, None
+        try:
+            return True, loops[name](*args)
+        except Exception:               # numba's typing or lowering errors
+            self.broken = True
+            return False, None
 
 
 def compiled() -> bool:

@@ -37,7 +37,6 @@ twenty vertices of the 3-variable program ``max delta: n_k . p - delta >= n_k . 
 
 from __future__ import annotations
 
-import threading
 from itertools import product
 from typing import Any
 
@@ -45,7 +44,7 @@ import numpy as np
 
 from ..core import _simplex
 from ..core._simplex import _lp_max
-from ..core.kernels import jit_setting, njit_all
+from ..core.kernels import CompiledLoops
 from ..core.tolerances import (
     CHECK_TOL,
     LP_TOL,
@@ -428,25 +427,16 @@ def _best_rows(A: Any, T: Any, L: Any, center: Any, half: Any, margin: float, sp
                 break
 
 
-_LOOPS = (_normals, _facets, _facet_value, _region_max,
-          _meet, _solve_one, _solve_loop, _row_arcs, _best_rows)
-_lock = threading.Lock()
-_loaded: dict[str, Any] = {}
-_broken = False
+def _simplex_loop() -> dict[str, Any] | None:
+    """The loops call the simplex compiled once, in its own module (None without it:
+    no numba, or ``FCGRASP_JIT=0``)."""
+    simplex = _simplex.compiled()
+    return None if simplex is None else {"_lp_max": simplex["_lp_max"]}
 
 
-def _load() -> dict[str, Any] | None:
-    with _lock:
-        if not _loaded and not _broken:
-            simplex = _simplex.compiled()       # None without numba, or FCGRASP_JIT=0
-            if simplex is None:
-                return None
-            import numba
-
-            # the loops call the simplex compiled once, in its own module
-            names = dict(globals(), _lp_max=simplex["_lp_max"])
-            _loaded.update(njit_all(numba, names, [(f.__name__, f) for f in _LOOPS]))
-        return _loaded or None
+_LOOPS = CompiledLoops(globals(), (_normals, _facets, _facet_value, _region_max, _meet,
+                                   _solve_one, _solve_loop, _row_arcs, _best_rows),
+                       extra=_simplex_loop)
 
 
 def available() -> bool:
@@ -455,7 +445,7 @@ def available() -> bool:
     HiGHS programs.  Not a matter of size, so that a plan does not depend on what the
     process did before (the two solvers may place regions differently where the optimum
     is not unique)."""
-    return jit_setting() is not False and not _broken and _load() is not None
+    return _LOOPS.available()
 
 
 def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = None,
@@ -465,9 +455,7 @@ def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = 
     ok (B,))`` with ``x = (lo (3), hi (3), level)``, ``ok`` where it is solved and the
     closed form holds at its ends; None when the compiled loops cannot run (numba
     missing or broken: the caller solves them by HiGHS)."""
-    global _broken
-    loops = _load()
-    if loops is None:
+    if _LOOPS.get() is None:
         return None
     B = len(blocks)
     A0 = np.array([blk.a0 for blk in blocks], float).reshape(B, 3, 2)
@@ -490,14 +478,10 @@ def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = 
         np.asarray(free, bool), (B, 3)).copy()
     out = np.zeros((B, 7))
     status = np.zeros(B, np.int64)
-    try:
-        loops["_solve_loop"](A0, T0, L0, A1, T1, L1, const, starts.astype(np.int64), counts,
-                             inner, lo_ang, hi_ang, sigma, int(kind), fx, fr, int(grow),
-                             _TRIPLES, SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, out, status)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
-        return None
-    return out, status == 0
+    ok, _ = _LOOPS.run("_solve_loop", A0, T0, L0, A1, T1, L1, const, starts.astype(np.int64),
+                       counts, inner, lo_ang, hi_ang, sigma, int(kind), fx, fr, int(grow),
+                       _TRIPLES, SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, out, status)
+    return (out, status == 0) if ok else None
 
 
 def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
@@ -506,24 +490,18 @@ def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
     lengths ``L`` (R, 3), in units of the part's size; cones ``center``, ``half``
     (R, 3)): ``(found, level, lo_ang, hi_ang, sigma)`` per row; None when the compiled
     loops cannot run."""
-    global _broken
-    loops = _load()
-    if loops is None:
+    if _LOOPS.get() is None:
         return None
     R = len(a)
     level = np.empty(R)
     lo, hi, side = np.empty((R, 3)), np.empty((R, 3)), np.zeros((R, 3))
-    try:
-        loops["_best_rows"](np.ascontiguousarray(a, float), np.ascontiguousarray(t, float),
-                            np.ascontiguousarray(L, float),
-                            np.ascontiguousarray(center, float),
-                            np.ascontiguousarray(half, float), float(margin),
-                            np.asarray(SPLITS, float), _SIDES, _TRIPLES, SIMPLEX_PIVOT, LP_TOL,
-                            CHECK_TOL, ROUND_TOL, PIECE_TIE, level, lo, hi, side)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
-        return None
-    return side[:, 0] != 0, level, lo, hi, side
+    ok, _ = _LOOPS.run("_best_rows", np.ascontiguousarray(a, float),
+                       np.ascontiguousarray(t, float), np.ascontiguousarray(L, float),
+                       np.ascontiguousarray(center, float), np.ascontiguousarray(half, float),
+                       float(margin), np.asarray(SPLITS, float), _SIDES, _TRIPLES,
+                       SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, PIECE_TIE, level, lo, hi,
+                       side)
+    return (side[:, 0] != 0, level, lo, hi, side) if ok else None
 
 
 def _block_normals(blk: Any) -> tuple[np.ndarray, np.ndarray]:

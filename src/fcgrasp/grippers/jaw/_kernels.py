@@ -14,12 +14,11 @@ only its outputs.  Compiled by numba on first use, cached on disk beside this fi
 from __future__ import annotations
 
 import math
-import threading
 from typing import Any
 
 import numpy as np
 
-from ...core.kernels import jit_setting, njit_all
+from ...core.kernels import CompiledLoops
 from ...core.tolerances import ROUND_TOL
 
 #: At most this many contact features per pad (as ``_poses.MAX_CONTACTS``).
@@ -968,52 +967,26 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 
 # ----------------------------------------------------------------------------- loading
 
-_LOOPS = (_pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop,
-          _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates,
-          _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop,
-          _kind, _affine3, _affine, _quantities, _kink, _cell, _slices_loop)
-_lock = threading.Lock()
-_loaded: dict[str, Any] = {}
-_broken = False
-
-
-def _load() -> dict[str, Any] | None:
-    """The loops compiled (once per process; None without numba)."""
-    global _broken
-    with _lock:
-        if not _loaded and not _broken:
-            try:
-                import numba
-            except ImportError:
-                _broken = True
-                return None
-            _loaded.update(njit_all(numba, dict(globals()),
-                                    [(fn.__name__, fn) for fn in _LOOPS]))
-        return _loaded or None
+_LOOPS = CompiledLoops(globals(), (
+    _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop, _sin_range,
+    _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _arc_holds,
+    _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine, _quantities,
+    _kink, _cell, _slices_loop))
 
 
 def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
-    """Run the compiled loop ``name`` (its return value appended to ``answer``); False
-    (and numpy from then on) when numba is missing or fails to compile it, so that a
-    broken numba never breaks a plan."""
-    global _broken
-    loops = _load()
-    if loops is None:
-        return False
-    try:
-        got = loops[name](*args)
-    except Exception:                   # numba's typing or lowering errors
-        _broken = True
-        return False
-    if answer is not None:
+    """Run the compiled loop ``name`` (:meth:`CompiledLoops.run`; its return value
+    appended to ``answer``): False when it cannot run (numpy then)."""
+    ok, got = _LOOPS.run(name, *args)
+    if ok and answer is not None:
         answer.append(got)
-    return True
+    return ok
 
 
 def available() -> bool:
     """Are the jaw's poses evaluated compiled here?  Always, but with ``FCGRASP_JIT=0``
     or without a working numba (then by the numpy model)."""
-    return jit_setting() is not False and not _broken and _load() is not None
+    return _LOOPS.available()
 
 
 def certify(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
