@@ -286,17 +286,28 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
         ring = _near_strip(polygon, ring, float(th.min()), float(th.max()), float(c.min()),
                            float(c.max()), jaw.pad_width / 2)
     if _kernels.available():
-        cen = polygon.centroid
-        q = None if hole is None else insertion_point(polygon, hole) - cen
-        out = _kernels.poses(th, c, polygon.starts[ring] - cen, polygon.ends[ring] - cen,
-                             -polygon.normals[ring], jaw.pad_width / 2,
-                             CONTACT_TOL * polygon.size, q, jaw.stroke,
-                             float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL)
+        out = _kernels.poses(th, c, *_pose_args(polygon, jaw, margin, hole, ring))
         if out is not None:
             top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, e_a, e_b, holds, slacks = out
             return _contacts(ring, top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, e_a,
                              e_b, holds), slacks
     return _evaluate_numpy(polygon, jaw, th, c, margin, hole, ring)
+
+
+def _pose_args(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+               ring: np.ndarray
+               ) -> tuple[FloatArray, FloatArray, FloatArray, float, float, FloatArray | None,
+                          tuple[float, float], float, float]:
+    """The pose model's numbers as the compiled loops take them (:func:`._kernels.poses`,
+    :func:`._kernels.slices`): the edges of ``ring`` from the centroid, their contact
+    forces (inward normals), half the pad's width, the contact tolerance, the insertion
+    point from the centroid (None for an external grip), the stroke, the friction cone's
+    shrunk half-angle and the rounding slack."""
+    cen = polygon.centroid
+    q = None if hole is None else insertion_point(polygon, hole) - cen
+    return (polygon.starts[ring] - cen, polygon.ends[ring] - cen, -polygon.normals[ring],
+            jaw.pad_width / 2, CONTACT_TOL * polygon.size, q, jaw.stroke,
+            float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL)
 
 
 def _contacts(ring: np.ndarray, top: FloatArray, bottom: FloatArray, ok_a: np.ndarray,

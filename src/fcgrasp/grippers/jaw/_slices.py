@@ -7,7 +7,6 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ...core._angles import shrunk_half_angle
 from ...core._checks import FloatArray
 from ...core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL
 from ...model.polygon import Polygon
@@ -21,6 +20,7 @@ from ._poses import (
     _evaluate,
     _grip_edges,
     _near_strip,
+    _pose_args,
     insertion_point,
 )
 
@@ -119,12 +119,8 @@ def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: 
     :func:`holding_offsets`): by the compiled loop of :mod:`._kernels` where it runs,
     else by numpy (:func:`_holding_pieces_numpy`, the reference)."""
     if _kernels.available():
-        cen = polygon.centroid
-        q = None if hole is None else insertion_point(polygon, hole) - cen
-        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th, polygon.starts[ring] - cen,
-                               polygon.ends[ring] - cen, -polygon.normals[ring],
-                               jaw.pad_width / 2, CONTACT_TOL * polygon.size, q, jaw.stroke,
-                               float(shrunk_half_angle(jaw.mu, margin)), ROUND_TOL,
+        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th,
+                               *_pose_args(polygon, jaw, margin, hole, ring),
                                SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
                                CONTACT_TOL * polygon.size,
                                NEAR_STRIP * CONTACT_TOL * polygon.size)
