@@ -194,3 +194,39 @@ def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
         seen.setdefault(k, []).append(p)
     assert any(p.similar >= 2 for p in kept)
     assert kept[0].theta == every[0].theta
+
+
+def _smooth(rng, n):
+    """A smooth outline of ``n`` edges (an ellipse with a wave), so that regions run
+    along it and every grasp has shifted copies."""
+    a = np.sort(rng.uniform(0, 2 * np.pi, n)) if rng.random() < 0.5 else \
+        np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + float(rng.uniform(0, 0.15)) * np.cos(int(rng.integers(2, 5)) * a)
+    return fc.Polygon(np.c_[float(rng.uniform(30, 60)) * r * np.cos(a),
+                            float(rng.uniform(15, 30)) * r * np.sin(a)])
+
+
+@pytest.mark.parametrize("seed", [*range(6), *(pytest.param(s, marks=pytest.mark.slow)
+                                                 for s in range(6, 200))])
+def test_distinct_search_equals_suppression_of_every_plan(seed):
+    """Two fingers along the boundary with ``distinct=``: the search that leaves each
+    kept plan's copies out (fcgrasp.grippers._boundary.distinct_boundary_plans) gives
+    the plans that suppression along the *whole* ranked list gives (every
+    configuration of the part, ``top=None``), same edges and region lengths, on seeded
+    smooth outlines where a grasp has dozens of shifted copies."""
+    from fcgrasp.grippers._boundary import boundary_plans
+    from fcgrasp.pipeline import plan_spec
+
+    rng = np.random.default_rng(seed)
+    part = _smooth(rng, int(rng.integers(24, 48)))
+    mu = float(rng.uniform(0.2, 0.5))
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    top = int(rng.integers(3, 8))
+    every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
+    want = distinct_plans(every, fraction, part.size)[:top]
+    got = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction)
+    assert len(want) > 1
+    assert [p.edges for p in got] == [p.edges for p in want]
+    for p, q in zip(got, want, strict=True):
+        assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
+        assert set(p.similar) <= set(q.similar)

@@ -10,13 +10,19 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, ROUND_TOL
+from ..model.distinct import same_alternative
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
 from ..model.quality import characteristic_length
 from ..model.ranking import MEASURES
-from ..model.stretches import StretchPair, crosses_a_vertex, two_finger_stretches
+from ..model.stretches import (
+    StretchPair,
+    StretchSearch,
+    crosses_a_vertex,
+    two_finger_stretches,
+)
 from ..pipeline import (
     GROW_SEEDS,
     KEEP_STRETCHES,
@@ -75,15 +81,16 @@ def frictionless_plan(polygon: Polygon, spec: PlanSpec, r: FrictionlessStretches
                           "frictionless", r.mode, g)
 
 
-def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan]
-                   ) -> list[GraspPlan]:
+def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan],
+                  seen: set[Any] | None = None) -> list[GraspPlan]:
     """Plans in :func:`rank_key` order (the best ``spec.top``), a grasp reached by two
-    configurations of one mode once."""
+    configurations of one mode once (``seen``: the keys of grasps already given, which
+    this call adds to)."""
     scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
     keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
                    for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
     out: list[GraspPlan] = []
-    seen = set()
+    seen = set() if seen is None else seen
     for key, k in keyed:
         if (key, plans[k].mode) in seen:
             continue
@@ -141,6 +148,67 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     return ranked_unique(polygon, spec, plans + grown)
 
 
+def _stretch_plans(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair]
+                   ) -> list[GraspPlan]:
+    """Plans of the stretch pairs found, those on single edges solved by the single-edge
+    pipeline (the same leximin levels and placement as :func:`solve`)."""
+    multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
+    return [stretch_plan(polygon, spec, p) for p in multi] + _single_edge_plans(
+        polygon, spec, [(p.region_edges[0][0], p.region_edges[1][0]) for p in pairs
+                        if max(len(e) for e in p.region_edges) == 1])
+
+
+#: Plans each round of :func:`distinct_boundary_plans` reads at least.
+DISTINCT_READ = 10
+
+
+def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
+                            ) -> list[GraspPlan] | None:
+    """The ``spec.top`` best two-finger plans along the boundary that are distinct
+    alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the whole ranked
+    list, exactly), or None where this search does not apply (another ``rank_by``,
+    ``top=None``, no region covering a vertex: the caller then suppresses as usual).
+
+    Rounds of the stretch search, each excluding the configurations that are surely
+    the same alternative as a plan kept so far (:class:`~fcgrasp.model.stretches`'s
+    ``exclude``: on a curved outline a grasp has thousands of shifted copies, which
+    would otherwise fill the ranked list), and the plans already read.  The list a
+    round returns is the ranked list less plans that suppression drops anyway, down to
+    its last, so suppressing in rank order along it gives the same plans as along the
+    whole list.  Each kept
+    plan's ``similar`` lists the plans it stands for among those the rounds read (at
+    least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out unread
+    are not listed."""
+    top = spec.top
+    if top is None or spec.rank_by != "min_region" or fraction <= 0 \
+            or not crosses_a_vertex(polygon, spec.mu, spec.margin):
+        return None
+    tol = ROUND_TOL * polygon.size
+    kept: list[GraspPlan] = []
+    seen: list[GraspPlan] = []
+    given: set[Any] = set()             # one grasp reached by two configurations: once
+    stands: dict[int, list[tuple[int, ...]]] = {}
+    ask = max(2 * top, DISTINCT_READ)
+    stretches = StretchSearch(polygon, spec.mu, spec.margin)
+    while len(kept) < top:
+        pairs = stretches.pairs(top=ask, ties=True, exclude=kept, fraction=fraction,
+                                seen=seen)
+        ranked = ranked_unique(polygon, replace(spec, top=None),
+                               _stretch_plans(polygon, spec, pairs), given)
+        for p in ranked:
+            twin = next((q for q in kept if same_alternative(q, p, fraction, tol)), None)
+            if twin is not None:
+                stands[id(twin)].append(tuple(p.edges))
+                seen.append(p)
+                continue
+            stands[id(p)] = []
+            kept.append(p)
+        if len(pairs) < ask:
+            break                       # every plan left was read
+        # the copies read are left out by name, so each round reads further down
+    return [replace(p, similar=tuple(stands[id(p)])) for p in kept[:top]]
+
+
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     """Two-finger plans whose regions run along the boundary (stretches of the rings,
     :mod:`fcgrasp.model.stretches`), ranked as :func:`rank` ranks.
@@ -164,12 +232,9 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     by_min = spec.rank_by == "min_region"
     keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
-    multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
-    plans = [stretch_plan(polygon, spec, p) for p in multi]
     if by_min:
-        plans += _single_edge_plans(polygon, spec, [
-            (p.region_edges[0][0], p.region_edges[1][0]) for p in pairs
-            if max(len(e) for e in p.region_edges) == 1])
+        plans = _stretch_plans(polygon, spec, pairs)
     else:
-        plans += search(polygon, flat)
+        multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
+        plans = [stretch_plan(polygon, spec, p) for p in multi] + search(polygon, flat)
     return ranked_unique(polygon, spec, plans)

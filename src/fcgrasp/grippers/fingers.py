@@ -39,7 +39,13 @@ from ..pipeline import (
     plan_spec,
     search,
 )
-from ._boundary import boundary_plans, frictionless_plan, grown_plans, stretch_plan
+from ._boundary import (
+    boundary_plans,
+    distinct_boundary_plans,
+    frictionless_plan,
+    grown_plans,
+    stretch_plan,
+)
 from .base import SearchOptions, register
 from .three_fingers import three_finger_plans
 
@@ -141,6 +147,21 @@ class TwoFingers(_PointFingers):
             return super()._search(polygon, spec, options)
         plans = boundary_plans(polygon, spec)
         if options.progress is not None:
+            options.progress(1, 1)
+        return plans
+
+    def distinct_search(self, polygon: Polygon, options: SearchOptions, fraction: float
+                        ) -> list[GraspPlan] | None:
+        """The ``top`` distinct alternatives along the boundary found by a search that
+        leaves out each kept plan's copies
+        (:func:`~fcgrasp.grippers._boundary.distinct_boundary_plans`), or None where the
+        ranked list is suppressed as it comes."""
+        spec = self.spec(options)
+        if not spec.stretches:
+            return None
+        check_search(polygon, spec)
+        plans = distinct_boundary_plans(polygon, spec, fraction)
+        if plans is not None and options.progress is not None:
             options.progress(1, 1)
         return plans
 

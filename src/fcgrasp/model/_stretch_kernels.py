@@ -509,6 +509,129 @@ def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: 
             keep[s] = False
 
 
+def _group_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int) -> Any:
+    """The configurations grouped by their two start edges ``(iA, iC)`` (groups with
+    ``iA = p`` are ``ptr[p] .. ptr[p + 1]``, by ``iC``), each with a table over its
+    ``(kA, kC)`` of the largest ``t`` at most that long on both sides (a prefix
+    maximum): ``(ptr, g_iC, ka0, ka1, kc0, kc1, off, table)``; ``table`` is None-sized
+    (empty) and ``off[-1]`` its would-be size when that passes :data:`TABLE_CELLS`."""
+    F = iA.shape[0]
+    key = iA * mb + iC
+    order = np.argsort(key, kind="mergesort")
+    G = 0
+    for r in range(F):
+        if r == 0 or key[order[r]] != key[order[r - 1]]:
+            G += 1
+    g_iA = np.empty(G, np.int64)
+    g_iC = np.empty(G, np.int64)
+    ka0 = np.empty(G, np.int64)
+    ka1 = np.empty(G, np.int64)
+    kc0 = np.empty(G, np.int64)
+    kc1 = np.empty(G, np.int64)
+    gid = np.empty(F, np.int64)
+    g = -1
+    for r in range(F):
+        u = order[r]
+        if r == 0 or key[u] != key[order[r - 1]]:
+            g += 1
+            g_iA[g], g_iC[g] = iA[u], iC[u]
+            ka0[g], ka1[g], kc0[g], kc1[g] = kA[u], kA[u], kC[u], kC[u]
+        gid[u] = g
+        ka0[g] = min(ka0[g], kA[u])
+        ka1[g] = max(ka1[g], kA[u])
+        kc0[g] = min(kc0[g], kC[u])
+        kc1[g] = max(kc1[g], kC[u])
+    off = np.empty(G + 1, np.int64)
+    off[0] = 0
+    for g in range(G):
+        off[g + 1] = off[g] + (ka1[g] - ka0[g] + 1) * (kc1[g] - kc0[g] + 1)
+    ptr = np.zeros(ma + 1, np.int64)
+    for g in range(G):
+        ptr[g_iA[g] + 1] += 1
+    for p in range(ma):
+        ptr[p + 1] += ptr[p]
+    if off[G] > TABLE_CELLS:
+        return ptr, g_iC, ka0, ka1, kc0, kc1, off, np.empty(0)
+    table = np.full(off[G], -np.inf)
+    for u in range(F):
+        g = gid[u]
+        cols = kc1[g] - kc0[g] + 1
+        at = off[g] + (kA[u] - ka0[g]) * cols + (kC[u] - kc0[g])
+        table[at] = max(table[at], t[u])
+    for g in range(G):                    # prefix maxima along kA, then along kC
+        rows, cols = ka1[g] - ka0[g] + 1, kc1[g] - kc0[g] + 1
+        for a in range(1, rows):
+            for c in range(cols):
+                at = off[g] + a * cols + c
+                table[at] = max(table[at], table[at - cols])
+        for a in range(rows):
+            for c in range(1, cols):
+                at = off[g] + a * cols + c
+                table[at] = max(table[at], table[at - 1])
+    return ptr, g_iC, ka0, ka1, kc0, kc1, off, table
+
+
+def _any_inside(ptr: Any, g_iC: Any, ka0: Any, ka1: Any, kc0: Any, kc1: Any, off: Any,
+                table: Any, lo: int, span: int, ma: int, lo2: int, span2: int, mb: int,
+                thr: float) -> bool:
+    """Is some configuration with its first stretch inside ``[lo, lo + span]`` (a ring
+    of ``ma``, cyclically), its second inside ``[lo2, lo2 + span2]`` (of ``mb``) and a
+    smallest region above ``thr``?  One look-up in the table of each start pair."""
+    for d in range(min(span, ma - 1) + 1):
+        p = (lo + d) % ma
+        g0, g1 = ptr[p], ptr[p + 1]
+        if g0 == g1:
+            continue
+        KA = span - d
+        for part in range(2):
+            if span2 >= mb - 1:
+                if part == 1:
+                    break
+                qa, qb = 0, mb - 1
+            elif lo2 + span2 < mb:
+                if part == 1:
+                    break
+                qa, qb = lo2, lo2 + span2
+            elif part == 0:
+                qa, qb = lo2, mb - 1
+            else:
+                qa, qb = 0, lo2 + span2 - mb
+            g = g0 + int(np.searchsorted(g_iC[g0:g1], qa))
+            while g < g1 and g_iC[g] <= qb:
+                KC = span2 - (g_iC[g] - lo2) % mb
+                if KA >= ka0[g] and KC >= kc0[g]:
+                    cols = kc1[g] - kc0[g] + 1
+                    at = off[g] + (min(KA, ka1[g]) - ka0[g]) * cols + (min(KC, kc1[g]) - kc0[g])
+                    if table[at] > thr:
+                        return True
+                g += 1
+    return False
+
+
+def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
+                   same: bool, tie: float, keep: Any) -> bool:
+    """:func:`_beaten` by table look-ups (:func:`_group_tables`): False, leaving
+    ``keep`` as it is, when the tables would pass :data:`TABLE_CELLS`.  Starts are
+    ring positions (``0 <= iA < ma``, ``0 <= iC < mb``)."""
+    ptr, g_iC, ka0, ka1, kc0, kc1, off, table = _group_tables(iA, kA, iC, kC, t, ma, mb)
+    if table.shape[0] != off[-1]:
+        return False
+    for s in range(t.shape[0]):
+        thr = t[s] * (1 + tie)
+        if _any_inside(ptr, g_iC, ka0, ka1, kc0, kc1, off, table, iA[s], kA[s], ma, iC[s],
+                       kC[s], mb, thr):
+            keep[s] = False
+        elif same and _any_inside(ptr, g_iC, ka0, ka1, kc0, kc1, off, table, iC[s], kC[s],
+                                  ma, iA[s], kA[s], mb, thr):
+            keep[s] = False
+    return True
+
+
+#: Cells of the own-optimum filter's tables (:func:`_group_tables`) above which it
+#: scans configurations by start instead (:func:`_beaten`).
+TABLE_CELLS = 50_000_000
+
+
 def _load() -> dict[str, Any]:
     """The loops compiled (once per process; :func:`fcgrasp.core.kernels.njit_all`)."""
     with _lock:
@@ -518,7 +641,8 @@ def _load() -> dict[str, Any]:
             _loaded.update(njit_all(numba, dict(globals()), [
                 (f.__name__, f) for f in (_grow, _append, _in_order, _vertex_runs, _windows,
                                           _interval, _window_boxes, _single, _solve_rows,
-                                          _scan_inside, _beaten)]))
+                                          _scan_inside, _beaten, _group_tables,
+                                          _any_inside, _beaten_tables)]))
         return _loaded
 
 
@@ -559,9 +683,14 @@ def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
     """Compiled :func:`_beaten` of configurations ``c`` (F, 4: first start, its interior
     vertices, second start, its interior vertices) with smallest regions ``t``: the
     ones to keep."""
-    c = np.asarray(c, np.int64)
+    c = np.array(c, np.int64)
+    c[:, 0] %= ma                               # starts as ring positions
+    c[:, 2] %= mb
     t = np.asarray(t, float)
     keep = np.ones(len(c), bool)
+    cols = [np.ascontiguousarray(c[:, j]) for j in range(4)]
+    if _load()["_beaten_tables"](*cols, t, int(ma), int(mb), bool(same), float(tie), keep):
+        return keep
     order = np.lexsort((-t, c[:, 0]))           # by first start, then the longest first
     _load()["_beaten"](np.ascontiguousarray(c[:, 0]), np.ascontiguousarray(c[:, 1]),
                        np.ascontiguousarray(c[:, 2]), np.ascontiguousarray(c[:, 3]), t,

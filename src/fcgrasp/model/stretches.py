@@ -95,7 +95,8 @@ from ._stretch_windows import (
 from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["StretchPair", "two_finger_stretches", "stretch_regions", "crosses_a_vertex"]
+__all__ = ["StretchPair", "StretchSearch", "two_finger_stretches", "stretch_regions",
+           "crosses_a_vertex"]
 
 
 @dataclass(frozen=True)
@@ -155,6 +156,94 @@ class _Found:
     s0: float
     u0: float
     lengths: tuple[float, float] = (0.0, 0.0)
+    #: the same alternative as a plan the caller excludes (:class:`_Exclusion`)
+    similar: bool = False
+
+
+class _Exclusion:
+    """Plans already kept (``distinct=``): a configuration whose regions, whatever
+    their placement inside its stretches, overlap a kept plan's regions by more than
+    ``fraction`` of the shorter (:func:`fcgrasp.model.distinct.same_alternative`) is the
+    same alternative as that plan.  Its regions lie inside its stretches and are at
+    least ``t`` long, so when the arc of each stretch outside its partner region is
+    below ``(1 - fraction) min(t, partner's length)`` the overlap of the regions is
+    above ``fraction`` of the shorter, surely: such configurations are solved (a
+    configuration they beat is still no plan) but neither raise the search's bound nor
+    are returned; so are the configurations of the plans ``seen`` (already read by the
+    caller: their covered edges and mode)."""
+
+    def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
+                 fraction: float, seen: Any = ()) -> None:
+        where = {int(e): (r, p) for r, ring in enumerate(rings)
+                 for p, e in enumerate(ring.edges)}
+        #: configurations excluded as such (plans already read: ring, start and
+        #: interior vertices of each stretch, and the mode; on one ring both ways round)
+        self.seen: set[tuple[Any, ...]] = set()
+        for edges, mode in seen:
+            if all(int(e) in where for st in edges for e in st):
+                (x, pa), (y, pc) = where[int(edges[0][0])], where[int(edges[1][0])]
+                ka, kc = len(edges[0]) - 1, len(edges[1]) - 1
+                self.seen.add((x, pa, ka, y, pc, kc, mode))
+                self.seen.add((y, pc, kc, x, pa, ka, mode))
+        self.fraction = float(fraction)
+        self.tol = ROUND_TOL * polygon.size
+        self.plans: list[list[tuple[int, float, float]]] = []
+        for regions, region_edges in kept:
+            arcs: list[tuple[int, float, float]] = []
+            for pts, edges in zip(regions, region_edges, strict=True):
+                pts = np.asarray(pts, float)
+                if int(edges[0]) not in where or int(edges[-1]) not in where:
+                    arcs = []
+                    break
+                r0, p0 = where[int(edges[0])]
+                r1, p1 = where[int(edges[-1])]
+                ring = rings[r0]
+                u0 = ring.U[p0] + float(np.hypot(*(pts[0] - ring.a[p0])))
+                u1 = ring.U[p1] + float(np.hypot(*(pts[-1] - ring.a[p1])))
+                if r1 != r0:
+                    arcs = []
+                    break
+                if u1 < u0 - self.tol:                  # wraps past vertex 0
+                    u1 += float(ring.U[ring.m])
+                arcs.append((r0, u0, max(u1, u0)))
+            if len(arcs) == 2:
+                self.plans.append(arcs)
+
+    def __bool__(self) -> bool:
+        return bool(self.plans) or bool(self.seen)
+
+    def _outside(self, ring: _Ring, i: np.ndarray, k: np.ndarray, u0: float, u1: float
+                 ) -> FloatArray:
+        """Arc of the stretches (edges i .. i + k) outside the arc [u0, u1]."""
+        per = float(ring.U[ring.m])
+        a0 = ring.U[np.asarray(i) % ring.m]
+        a1 = ring.U[np.asarray(i) % ring.m + np.asarray(k) + 1]
+        common = np.zeros(a0.shape)
+        for shift in (-per, 0.0, per):
+            common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
+        return cast("FloatArray", (a1 - a0) - common)
+
+    def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
+                t: FloatArray) -> np.ndarray:
+        """Which configurations of ``job`` (smallest regions ``t``) are surely the same
+        alternative as a kept plan."""
+        x, y = job[0], job[1]
+        out = np.zeros(len(t), bool)
+        if self.seen:
+            ma, mb = rings[x].m, rings[y].m
+            out[:] = [(x, int(a) % ma, int(ka), y, int(c) % mb, int(kc), job[3]) in self.seen
+                      for a, ka, c, kc in zip(cfg.iA, cfg.kA, cfg.iC, cfg.kC, strict=True)]
+        f = self.fraction
+        for arcs in self.plans:
+            for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1]):
+                if rx != x or ry != y:
+                    continue
+                la, lc = ax1 - ax0, ay1 - ay0
+                out |= (self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1)
+                        < (1 - f) * np.minimum(t, la) - self.tol) \
+                    & (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1)
+                       < (1 - f) * np.minimum(t, lc) - self.tol)
+        return out
 
 
 def _jobs(n_rings: int) -> list[tuple[int, int, float, str]]:
@@ -295,9 +384,11 @@ def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
 
 
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
-                runs: dict[Any, Any], keys: _Keys) -> list[tuple[Any, _Configs]]:
+                runs: dict[Any, Any], keys: _Keys, prebound: bool = True
+                ) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
-    only rises with feasible configurations, one per key)."""
+    only rises with feasible configurations, one per key).  ``prebound`` False: the
+    vertex-aligned stretches do not raise the bound (an excluded plan's copies would)."""
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
         for job in _jobs(len(rings)):
@@ -306,13 +397,13 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             both = _empty()
             if x <= y:
                 best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect)
-                if not collect:
+                if not collect and prebound:
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
                     bound.add(keys.first(job, rows), best[rows])
             (a, p, v), single = _single(intervals[x, y, sigma], ra, rb, x == y,
                                         bound.floor, collect)
-            if not collect:
+            if not collect and prebound:
                 bound.add(keys(job, a, p), v)
             if collect:
                 pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
@@ -320,42 +411,93 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
     return prepared
 
 
+@dataclass
+class _Job:
+    """A job's configurations, their bounds (arc length ``ub``, the ends' boxes
+    ``box``), the order they are solved in and the solutions found (NaN: not yet)."""
+
+    cfg: _Configs
+    ub: FloatArray
+    box: FloatArray
+    order: np.ndarray
+    compiled: bool
+    t: FloatArray
+    s0: FloatArray
+    u0: FloatArray
+
+
+class _Memo:
+    """What the runs of one search share (the rounds of ``distinct=``, whose floors
+    differ): every configuration collected once, without a floor, and each one's
+    solution once solved."""
+
+    def __init__(self) -> None:
+        self.prepared: list[tuple[Any, _Configs]] | None = None
+        self.jobs: dict[Any, _Job] = {}
+
+
+def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
+         floor: float) -> _Job:
+    x, y, sigma, _ = job
+    ra, rb = rings[x], rings[y]
+    ub = _stretch_bound(ra, rb, cfg)
+    keep = ub >= floor
+    cfg, ub = cfg.take(keep), ub[keep]
+    # many to solve: the compiled loops repay numba's start-up
+    compiled = stretch_kernels_for(ra.m * rb.m if ub.size < KERNEL_CONFIGS
+                                   else KERNEL_CELLS)
+    # the ends' boxes bound a configuration far below its arc length where the ends are
+    # confined: solved in that order, pruned by it (the arc length stays the program's
+    # cap, so each configuration's solution is unchanged)
+    box = np.minimum(ub, _box_bound(ra, rb, cfg, intervals[x, y, sigma],
+                                    intervals[y, x, sigma], compiled))
+    nan = np.full(ub.size, np.nan)
+    return _Job(cfg, ub, box, np.argsort(-box, kind="stable"), compiled, nan,
+                nan.copy(), nan.copy())
+
+
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
                 intervals: dict[Any, _Intervals], bound: _Bound, scale: float,
-                keys: _Keys) -> list[_Found]:
+                keys: _Keys, exclude: _Exclusion | None = None,
+                memo: _Memo | None = None) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
-    (largest bound first, in chunks; ties with the ``k``-th kept)."""
+    (largest bound first, in chunks; ties with the ``k``-th kept).  With ``exclude``,
+    the configurations that are surely a kept plan's alternative are marked
+    ``similar`` and do not raise the bound.  With ``memo``, configurations solved by
+    an earlier run are not solved again."""
     found: list[_Found] = []
     for job, cfg in prepared:
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
-        ub = _stretch_bound(ra, rb, cfg)
-        keep = ub >= bound.floor
-        cfg, ub = cfg.take(keep), ub[keep]
-        # many to solve: the compiled loops repay numba's start-up
-        compiled = stretch_kernels_for(ra.m * rb.m if ub.size < KERNEL_CONFIGS
-                                       else KERNEL_CELLS)
-        # the ends' boxes bound a configuration far below its arc length where the ends
-        # are confined: solved in that order, pruned by it (the arc length stays the
-        # program's cap, so each configuration's solution is unchanged)
-        box = np.minimum(ub, _box_bound(ra, rb, cfg, intervals[x, y, sigma],
-                                        intervals[y, x, sigma], compiled))
-        order = np.argsort(-box, kind="stable")
+        if memo is None:
+            J = _job(rings, job, cfg, intervals, bound.floor)
+        elif job in memo.jobs:
+            J = memo.jobs[job]
+        else:
+            J = memo.jobs[job] = _job(rings, job, cfg, intervals, 0.0)
+        cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
         for s in range(0, order.size, 256):
             chunk = order[s:s + 256]
             chunk = chunk[box[chunk] >= bound.floor]
             if chunk.size == 0:
                 break
+            todo = chunk[np.isnan(J.t[chunk])]
+            if todo.size:
+                rows = _system(ra, rb, cfg.take(todo), sigma, beta, intervals[x, y, sigma],
+                               intervals[y, x, sigma], compiled=J.compiled)
+                J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, ub[todo], scale,
+                                                               J.compiled)
             part = cfg.take(chunk)
-            rows = _system(ra, rb, part, sigma, beta, intervals[x, y, sigma],
-                           intervals[y, x, sigma], compiled=compiled)
-            t, s0, u0 = _solve_any(rows, ub[chunk], scale, compiled)
+            t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
             ok = np.flatnonzero(t > 0)
-            for j in ok:
+            sim = exclude.similar(rings, job, part.take(ok), t[ok]) if exclude \
+                else np.zeros(ok.size, bool)
+            for j, same in zip(ok, sim, strict=True):
                 c = chunk[j]
                 found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
                                           int(cfg.kC[c])), float(t[j]), float(s0[j]),
-                                    float(u0[j])))
+                                    float(u0[j]), similar=bool(same)))
+            ok = ok[~sim]
             bound.add(keys(job, part.iA[ok], part.iC[ok]), t[ok])
     return found
 
@@ -365,7 +507,8 @@ _ATTEMPTS = 5
 
 
 def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
-            runs: dict[Any, Any], top: int | None, scale: float) -> list[_Found]:
+            runs: dict[Any, Any], top: int | None, scale: float,
+            exclude: _Exclusion | None = None, memo: _Memo | None = None) -> list[_Found]:
     """The configurations optimal on their own edges (:func:`_own_optimum`), largest
     ``t`` first: all of them (``top`` None), or at least every one that ties the
     ``top``-th (to the relative tie tolerance).
@@ -376,17 +519,28 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     fixed at that ``top``-th (every configuration that reaches it solved, its
     sub-configurations with it), until the floor it pruned with is below the
     ``top``-th it kept; when fewer than ``top`` are kept, with a bound of four times as
-    many; the last attempt prunes nothing."""
+    many; the last attempt prunes nothing.  ``exclude``: configurations surely the
+    same alternative as a kept plan are left out (after the filter, which they still
+    take part in); they then run without the vertex-aligned lower bound, on every
+    configuration, shared with other runs through ``memo``."""
     keys = _Keys(rings)
+    if not exclude:
+        memo = None
     want, fixed = top, None
     for attempt in range(_ATTEMPTS):
         if top is None or attempt == _ATTEMPTS - 1:
             fixed = 0.0
         bound = _Bound(want or 1, 2 * keys.total, fixed)
-        prepared = _candidates(rings, bound, intervals, runs, keys)
-        found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys)
+        if memo is not None and memo.prepared is not None:
+            prepared = memo.prepared
+        else:
+            prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude)
+            if memo is not None and bound.floor == 0.0:
+                memo.prepared = prepared
+        found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
+                            memo)
         found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
-        found = _own_optimum(rings, found)
+        found = [f for f in _own_optimum(rings, found) if not f.similar]
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
         if len(found) >= top:
@@ -564,7 +718,8 @@ def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG
 
 
 def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
-                         top: Any = 5, ties: bool = False) -> list[StretchPair]:
+                         top: Any = 5, ties: bool = False, exclude: Any = (),
+                         fraction: float = 0.5, seen: Any = ()) -> list[StretchPair]:
     """Optimal independent regions along the boundary for two fingers with friction.
 
     Regions are stretches of the rings (see the module docstring).  The pairs are
@@ -586,6 +741,17 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     ties : bool
         Also return every configuration whose smallest region ties the ``top``-th's
         (to a relative 1e-9), so that a later order (leximin, then geometry) is exact.
+    exclude : sequence of plans
+        Plans already kept (objects with ``regions`` and ``region_edges``, two
+        regions each): the pairs returned are the best of those that are not surely
+        the same alternative as one of them (their regions, wherever placed in their
+        stretches, overlapping by more than ``fraction`` of the shorter,
+        :func:`fcgrasp.model.distinct.same_alternative`); used by ``distinct=``.
+    fraction : float
+        The overlap of ``exclude``.
+    seen : sequence of plans
+        Plans already read (objects with ``region_edges`` and ``mode``): their
+        configurations are not returned again.
 
     Returns
     -------
@@ -600,26 +766,58 @@ def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN
     >>> round(best.min_length, 1), len(best.region_edges[0]) > 20
     (27.9, True)
     """
-    beta = _check_args(polygon, mu, margin)
-    top_v = None if top is None else check_int(top, "top", minimum=1)
-    if not isinstance(ties, bool):
-        raise TypeError(f"ties must be a bool, got {ties!r}")
-    if beta <= 0:
-        return []
-    rings = _rings(polygon)
-    # every ordered ring pair is a job, so a job's reverse intervals are another's
-    intervals = {(x, y, sigma): _Intervals(rings[x], rings[y], sigma, beta)
-                 for x, y, sigma, _ in _jobs(len(rings))}
-    runs = {(x, y): _vertex_runs(rings[x], rings[y], beta)
-            for x in range(len(rings)) for y in range(x, len(rings))}
-    found = _search(rings, beta, intervals, runs, top_v, polygon.size)
-    if not found:
-        return []
-    if top_v is not None:
-        kth = found[min(top_v, len(found)) - 1].t
-        found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
-    found = _finish(rings, beta, found, intervals, polygon)
-    return _pairs(rings, found if ties or top_v is None else found[:top_v])
+    return StretchSearch(polygon, mu, margin).pairs(top, ties, exclude, fraction, seen)
+
+
+class StretchSearch:
+    """:func:`two_finger_stretches` of one part, ``mu`` and ``margin``, asked several
+    times (the rounds of ``distinct=``, :func:`fcgrasp.grippers._boundary.distinct_boundary_plans`):
+    the rings' vertex matrices once, and for the runs that exclude plans every
+    configuration collected once and each solved once.
+
+    >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
+    >>> [p.region_edges for p in StretchSearch(sq, 0.3).pairs(top=1)]
+    [((0,), (2,))]
+    """
+
+    def __init__(self, polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> None:
+        self.beta = _check_args(polygon, mu, margin)
+        self.polygon = check_polygon(polygon)
+        self.rings = rings = _rings(self.polygon)
+        if self.beta <= 0:
+            return
+        # every ordered ring pair is a job, so a job's reverse intervals are another's
+        self.intervals = {(x, y, sigma): _Intervals(rings[x], rings[y], sigma, self.beta)
+                          for x, y, sigma, _ in _jobs(len(rings))}
+        self.runs = {(x, y): _vertex_runs(rings[x], rings[y], self.beta)
+                     for x in range(len(rings)) for y in range(x, len(rings))}
+        self._memo = _Memo()
+
+    def pairs(self, top: Any = 5, ties: bool = False, exclude: Any = (),
+              fraction: float = 0.5, seen: Any = ()) -> list[StretchPair]:
+        """:func:`two_finger_stretches`'s answer (the same arguments)."""
+        top_v = None if top is None else check_int(top, "top", minimum=1)
+        if not isinstance(ties, bool):
+            raise TypeError(f"ties must be a bool, got {ties!r}")
+        fraction_v = check_scalar(fraction, "fraction", nonnegative=True)
+        if fraction_v > 1:
+            raise ValueError(f"fraction must be in [0, 1], got {fraction!r}")
+        if self.beta <= 0:
+            return []
+        rings, polygon = self.rings, self.polygon
+        excl = _Exclusion(rings, polygon, [(p.regions, p.region_edges) for p in exclude
+                                           if len(p.regions) == 2], fraction_v,
+                          [(p.region_edges, p.mode) for p in seen
+                           if len(p.region_edges) == 2])
+        found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
+                        excl or None, self._memo)
+        if not found:
+            return []
+        if top_v is not None:
+            kth = found[min(top_v, len(found)) - 1].t
+            found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
+        found = _finish(rings, self.beta, found, self.intervals, polygon)
+        return _pairs(rings, found if ties or top_v is None else found[:top_v])
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,

@@ -149,9 +149,15 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     fraction = check_scalar(distinct, "distinct", nonnegative=True)
     if fraction > 1:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {distinct!r}")
-    plans = list(gripper.plan(polygon, options))
     if fraction == 0:
-        return plans
+        return list(gripper.plan(polygon, options))
+    # a gripper may search for distinct plans itself (two fingers along the boundary:
+    # each kept plan's shifted copies left out of the search)
+    direct = getattr(gripper, "distinct_search", None)
+    found = direct(polygon, options, fraction) if direct is not None else None
+    if found is not None:
+        return list(found)
+    plans = list(gripper.plan(polygon, options))
     # a gripper may say what distinct means for its plans (the jaw: boxes up to the
     # part's symmetries); regions of contact otherwise
     suppress = getattr(gripper, "distinct_plans", None) or \
