@@ -777,7 +777,7 @@ class StretchSearch:
 
     >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
     >>> [p.region_edges for p in StretchSearch(sq, 0.3).pairs(top=1)]
-    [((0,), (2,))]
+    [((1,), (3,))]
     """
 
     def __init__(self, polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> None:
