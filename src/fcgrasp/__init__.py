@@ -88,6 +88,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.hand import (
         Hand,
     )
+    from .model.loads import Load, Payload, RegionPayload, grasp_payload, region_payload
     from .model.outline import (
         clean_outline,
         fill_rings,
@@ -166,6 +167,11 @@ _LAZY = {
     "clean_outline": "model.outline",
     "simplify_outline": "model.outline",
     "fill_rings": "model.outline",
+    "Load": "model.loads",
+    "Payload": "model.loads",
+    "RegionPayload": "model.loads",
+    "grasp_payload": "model.loads",
+    "region_payload": "model.loads",
 }
 
 

@@ -9,5 +9,7 @@
   along the boundary, across vertices;
 - :mod:`~fcgrasp.model.hand`: workspace and finger radius (8.2);
 - :mod:`~fcgrasp.model.quality`, :mod:`~fcgrasp.model.ranking`: the measures (8.1) and
-  their registry; :mod:`~fcgrasp.model.plans`: :class:`~fcgrasp.GraspPlan` and its keys.
+  their registry; :mod:`~fcgrasp.model.plans`: :class:`~fcgrasp.GraspPlan` and its keys;
+- :mod:`~fcgrasp.model.loads`: loads with finger force limits, for a grasp and over a
+  plan's regions (issue 32).
 """

@@ -1,0 +1,516 @@
+r"""Loads a grasp must carry, with fingers that push only so hard (issue 32).
+
+Force closure says a grasp resists *any* wrench with *some* finger forces; a gripper's
+fingers push at most so many newtons.  This module answers "will it hold this part?":
+
+* :class:`Load` is the *task wrench set*: the weight of a part of ``mass`` kilograms at
+  its centre of mass ``com``, carried with every linear acceleration of a box
+  ``|a_x| <= accel[0]``, ``|a_y| <= accel[1]`` (m/s^2), plus an external torque in a
+  range.  The wrench the fingers must supply is ``-(F, com x F + tau)`` with
+  ``F = mass (gravity - a)``: an affine image of a box, so a polytope whose vertices are
+  the box's corners (:meth:`Load.wrenches`).
+* Finger forces: each finger pushes inside its Coulomb cone (``mu``; 0: along the
+  normal), its **normal force** at most ``force_limit`` newtons (one value or one per
+  finger: a gripper's grip force) and, with ``total_limit``, the normal forces sum to at
+  most that (the L1 total a single motor gives).
+* :func:`grasp_payload` is the **largest scale** ``s`` such that every wrench of ``s``
+  times the load is resisted within the limits (the paper's section 8 resistance, now
+  with limits; Dex-Net's ``wrench_resistance`` with ``force_limits``, for a set of
+  wrenches instead of one).  Resisting a polytope of wrenches is resisting its vertices
+  (the forces resisting a convex combination are the combination of theirs), so it is one
+  linear program: a scale and a set of finger forces per vertex.  ``s >= 1``: the grasp
+  carries the load; ``s = inf``: no limit given and every scale is resisted.  The
+  least-peak-force distribution resisting the load (``s = 1``) comes with it.
+* :func:`region_payload` is the scale guaranteed over **every** grasp of a plan's
+  regions (one finger anywhere in each region), certified: a lower bound from boxes of
+  finger positions (below), an upper bound from the worst grasp met, refined by branch
+  and bound until they are within ``gap``.
+
+**The lower bound of a box.**  A finger at ``x = a + u t`` on an edge (tangent ``t``,
+inward normal ``n``) with force ``f = c_n n + c_t t`` exerts the torque
+``a x f + u c_n (t x n)``: bilinear in the position ``u`` and the normal force ``c_n``
+only.  Take forces at the corners ``u^k`` of a box of positions and, at a point
+``u = sum_k l_k u^k`` inside, their combination with the same weights: its force
+balance is exact and its torque is off by
+``delta = sum_i sum_k l_k (u_i - u^k_i)(c^k_i - cbar_i) (t_i x n_i)`` for any ``cbar``,
+so ``|delta| <= E = sum_i w_i d_i`` when every corner's normal force ``c^k_i`` is
+within ``d_i`` of a common ``cbar_i`` (``w_i``: the box's width).  Each corner then
+resists the load's wrench with the torque offset by ``+E`` and by ``-E``; at ``u`` the
+combination of the ``+E`` and ``-E`` solutions whose offset cancels ``delta`` exists
+(the offset runs from ``-E + delta`` to ``E + delta``, continuously, through 0).  So
+one linear program over the box's corners (variables: the scale, ``cbar``, ``d``,
+``E`` and two sets of forces per corner and load vertex) gives a scale every grasp of
+the box reaches: a certified lower bound, tight as the box shrinks (``E -> 0``).
+A finger on a vertex its region covers pushes, whatever the normal of the fan between
+its two edges, inside the cone common to all of them (half-angle ``atan(mu)`` less half
+the fan's turn), its normal force measured along the fan's bisector.
+
+Units: lengths in the part's units, masses in kg, accelerations in m/s^2, forces in N,
+torques in N times the part's unit.
+
+>>> import numpy as np
+>>> load = Load(mass=0.5, com=(0.0, 0.0))
+>>> # two fingers squeezing a 40-wide part from the sides, mu 0.5, 10 N each at most
+>>> p = grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5, load, force_limit=10)
+>>> round(p.scale, 4)        # friction holds 2 x 0.5 x 10 N = 10 N against 4.905 N
+2.0394
+"""
+
+from __future__ import annotations
+
+import itertools
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, check_array, check_mu_scalar, check_scalar
+from ..core.tolerances import TOL
+
+__all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload"]
+
+#: Standard gravity, m/s^2.
+G0 = 9.80665
+
+
+def _pair(value: Any, name: str, nonnegative: bool = False) -> tuple[float, float]:
+    a = check_array(value, name, last=2)
+    if a.shape != (2,) or not np.all(np.isfinite(a)):
+        raise ValueError(f"{name} must be two finite numbers, got {value!r}")
+    if nonnegative and np.any(a < 0):
+        raise ValueError(f"{name} must be two non-negative numbers, got {value!r}")
+    return float(a[0]), float(a[1])
+
+
+@dataclass(frozen=True)
+class Load:
+    """A task wrench set: a part's weight and inertia under a box of accelerations, and
+    a range of external torque.
+
+    Parameters
+    ----------
+    mass : float
+        Kilograms (> 0).
+    com : (float, float), optional
+        Centre of mass in the part's coordinates; None: the part's centroid (given by the
+        caller that knows the part, such as :func:`region_payload`).
+    gravity : (float, float)
+        Gravity's acceleration, m/s^2 (default ``(0, -9.80665)``: y up).
+    accel : (float, float)
+        Half-widths of the box of the part's linear accelerations, m/s^2
+        (``|a_x| <= accel[0]``, ``|a_y| <= accel[1]``).
+    torque : (float, float)
+        Range ``(low, high)`` of an external torque on the part, N x the part's unit.
+
+    >>> Load(1.0, com=(0, 0), accel=(2, 0)).wrenches().round(3).tolist()
+    [[-2.0, -9.807, 0.0], [2.0, -9.807, 0.0]]
+    """
+
+    mass: float
+    com: tuple[float, float] | None = None
+    gravity: tuple[float, float] = (0.0, -G0)
+    accel: tuple[float, float] = (0.0, 0.0)
+    torque: tuple[float, float] = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", check_scalar(self.mass, "mass", positive=True))
+        if self.com is not None:
+            object.__setattr__(self, "com", _pair(self.com, "com"))
+        object.__setattr__(self, "gravity", _pair(self.gravity, "gravity"))
+        object.__setattr__(self, "accel", _pair(self.accel, "accel", nonnegative=True))
+        lo, hi = _pair(self.torque, "torque")
+        if lo > hi:
+            raise ValueError(f"torque must be a range (low, high) with low <= high, got "
+                             f"{self.torque!r}")
+        object.__setattr__(self, "torque", (lo, hi))
+
+    def wrenches(self, com: Any = None) -> FloatArray:
+        """The vertices ``(fx, fy, tau)`` of the set of wrenches the load applies to the
+        part (the fingers supply their opposite), duplicates removed; ``com`` where the
+        load has none."""
+        c = self.com if self.com is not None else com
+        if c is None:
+            raise ValueError("the load has no centre of mass (com=None): give com, or "
+                             "plan it on a part (its centroid)")
+        cx, cy = _pair(c, "com")
+        out = []
+        for sx, sy in itertools.product((-1.0, 1.0), repeat=2):
+            fx = self.mass * (self.gravity[0] - sx * self.accel[0])
+            fy = self.mass * (self.gravity[1] - sy * self.accel[1])
+            for tau in self.torque:
+                out.append((fx, fy, cx * fy - cy * fx + tau))
+        return np.unique(np.round(np.array(out), 12), axis=0)
+
+
+@dataclass(frozen=True)
+class Payload:
+    """What one grasp carries: ``scale`` (the largest multiple of the load resisted
+    within the limits; ``inf`` when nothing limits it, 0 when the grasp cannot resist
+    it at all); ``forces`` (V, k, 2): the least-peak-force distribution resisting each
+    vertex wrench of the load itself (``scale >= 1``; else None); ``peak``: its largest
+    normal force."""
+
+    scale: float
+    forces: FloatArray | None = None
+    peak: float | None = None
+
+    @property
+    def holds(self) -> bool:
+        """The grasp carries the load (``scale >= 1``)."""
+        return self.scale >= 1.0
+
+
+@dataclass(frozen=True)
+class RegionPayload:
+    """The scale a plan's regions guarantee: every grasp of them carries ``lower`` times
+    the load (certified), and the grasp ``worst`` (one point per finger) carries only
+    ``upper`` times it; ``gap = 1 - lower / upper``."""
+
+    lower: float
+    upper: float
+    worst: FloatArray = field(repr=False)
+    boxes: int = 0
+
+    @property
+    def gap(self) -> float:
+        if not np.isfinite(self.upper) or self.upper <= 0:
+            return 0.0 if self.lower == self.upper else 1.0
+        return max(0.0, 1.0 - self.lower / self.upper)
+
+
+# ----------------------------------------------------------------------------- one grasp
+
+
+def _limits(force_limit: Any, total_limit: Any, k: int) -> tuple[FloatArray, float]:
+    per = np.full(k, np.inf)
+    if force_limit is not None:
+        try:
+            given = np.asarray(force_limit, float)
+        except (TypeError, ValueError):
+            given = np.full(0, np.nan)
+        if given.ndim > 1 or given.size not in (1, k) or not np.all(given > 0):
+            raise ValueError(f"force_limit must be a positive number or one per finger "
+                             f"({k}), got {force_limit!r}")
+        per = np.broadcast_to(given.ravel(), (k,)).astype(float)
+    total = np.inf if total_limit is None else check_scalar(total_limit, "total_limit",
+                                                            positive=True)
+    return per, total
+
+
+def _contacts(points: Any, normals: Any) -> tuple[FloatArray, FloatArray]:
+    p = check_array(points, "points", last=2)
+    n = check_array(normals, "normals", last=2)
+    if p.ndim != 2 or p.shape != n.shape or not len(p):
+        raise ValueError(f"points and normals must both be (k, 2) arrays, got shapes "
+                         f"{p.shape} and {n.shape}")
+    norm = np.hypot(n[:, 0], n[:, 1])
+    if np.any(norm <= 0) or not np.all(np.isfinite(p)) or not np.all(np.isfinite(norm)):
+        raise ValueError(f"normals must be non-zero and points finite, got {normals!r}")
+    return p, n / norm[:, None]
+
+
+def _cone_edges(n: FloatArray, half: FloatArray) -> FloatArray:
+    """(k, 2, 2): the two edges of each finger's cone, scaled to a unit normal part."""
+    t = np.stack([-n[:, 1], n[:, 0]], axis=1)
+    m = np.tan(half)[:, None]
+    return np.stack([n + m * t, n - m * t], axis=1)
+
+
+def _program(rows: list[tuple[FloatArray, FloatArray]], W: FloatArray, per: FloatArray,
+             total: float, minimize_peak: bool = False) -> Any:
+    """The linear program of :func:`grasp_payload` over ``rows``: for each position set
+    (a corner of a box; one for a single grasp) the cone edges' wrenches (k, 2, 3) and
+    the normal force ``(k,)`` is shared between positions.  Variables: the scale (or the
+    peak), then per vertex of W the shared normal forces and per position the cone
+    coefficients."""
+    from scipy.optimize import linprog  # on first use
+
+    P, V = len(rows), len(W)
+    k = rows[0][0].shape[0]
+    nvar = 1 + V * k + V * P * 2 * k
+    A_eq, b_eq, A_ub, b_ub = [], [], [], []
+
+    def cvar(v: int, p: int, i: int, j: int) -> int:
+        return int(1 + V * k + ((v * P + p) * k + i) * 2 + j)
+
+    for v in range(V):
+        for p, (E, _) in enumerate(rows):
+            for r in range(3):                   # sum of finger wrenches = -s w (or -w)
+                row = np.zeros(nvar)
+                for i in range(k):
+                    for j in range(2):
+                        row[cvar(v, p, i, j)] = E[i, j, r]
+                if minimize_peak:
+                    A_eq.append(row)
+                    b_eq.append(-W[v, r])
+                else:
+                    row[0] = W[v, r]
+                    A_eq.append(row)
+                    b_eq.append(0.0)
+            for i in range(k):                   # the normal force is the shared one
+                row = np.zeros(nvar)
+                row[cvar(v, p, i, 0)] = row[cvar(v, p, i, 1)] = 1.0
+                row[1 + v * k + i] = -1.0
+                A_eq.append(row)
+                b_eq.append(0.0)
+        for i in range(k):
+            row = np.zeros(nvar)
+            row[1 + v * k + i] = 1.0
+            if minimize_peak:
+                row[0] = -1.0
+                A_ub.append(row)
+                b_ub.append(0.0)
+            if np.isfinite(per[i]):
+                A_ub.append(np.where(np.arange(nvar) == 1 + v * k + i, 1.0, 0.0))
+                b_ub.append(per[i])
+        if np.isfinite(total):
+            row = np.zeros(nvar)
+            row[1 + v * k: 1 + (v + 1) * k] = 1.0
+            A_ub.append(row)
+            b_ub.append(total)
+    cost = np.zeros(nvar)
+    cost[0] = 1.0 if minimize_peak else -1.0
+    return linprog(cost, A_ub=np.array(A_ub) if A_ub else None,
+                   b_ub=np.array(b_ub) if b_ub else None, A_eq=np.array(A_eq),
+                   b_eq=np.array(b_eq), bounds=[(0, None)] * nvar, method="highs")
+
+
+def _wrench_edges(p: FloatArray, E: FloatArray) -> FloatArray:
+    """(k, 2, 3): the wrenches of the cone edges ``E`` (k, 2, 2) applied at ``p``."""
+    tau = p[:, None, 0] * E[..., 1] - p[:, None, 1] * E[..., 0]
+    return np.concatenate([E, tau[..., None]], axis=-1)
+
+
+def _scale(rows: list[tuple[FloatArray, FloatArray]], W: FloatArray, per: FloatArray,
+           total: float) -> float:
+    res = _program(rows, W, per, total)
+    if res.status == 3:
+        return float("inf")
+    if res.status != 0:
+        # only s = 0 can fail to be feasible when W is not resisted at all; HiGHS
+        # reports that as infeasible or unbounded-or-infeasible
+        return 0.0
+    return max(0.0, float(-res.fun))
+
+
+def grasp_payload(points: Any, normals: Any, mu: Any, load: Load, force_limit: Any = None,
+                  total_limit: Any = None, com: Any = None) -> Payload:
+    """The largest scale of ``load`` one grasp resists within the finger force limits
+    (see the module docstring), and the least-peak-force distribution for the load.
+
+    Parameters
+    ----------
+    points, normals : array_like, shape (k, 2)
+        Contact points and *inward* normals (the direction each finger pushes).
+    mu : float
+        Friction coefficient of every finger (0: frictionless).
+    load : Load
+    force_limit : float or sequence of k floats, optional
+        Largest normal force of each finger, N.
+    total_limit : float, optional
+        Largest sum of the normal forces, N.
+    com : (float, float), optional
+        The centre of mass where the load has none.
+    """
+    if not isinstance(load, Load):
+        raise TypeError(f"load must be a fcgrasp Load, got {type(load).__name__}")
+    p, n = _contacts(points, normals)
+    mu_v = check_mu_scalar(mu, "mu")
+    per, total = _limits(force_limit, total_limit, len(p))
+    W = load.wrenches(com)
+    E = _wrench_edges(p, _cone_edges(n, np.full(len(p), np.arctan(mu_v))))
+    s = _scale([(E, p)], W, per, total)
+    if s < 1.0:
+        return Payload(s)
+    res = _program([(E, p)], W, per, total, minimize_peak=True)
+    if res.status != 0:                           # pragma: no cover - feasible at s >= 1
+        return Payload(s)
+    k, V = len(p), len(W)
+    c = res.x[1 + V * k:].reshape(V, k, 2)
+    edges = _cone_edges(n, np.full(k, np.arctan(mu_v)))
+    forces = np.einsum("vkj,kjd->vkd", c, edges)
+    return Payload(s, forces, float(res.x[0]))
+
+
+# ----------------------------------------------------------------------------- regions
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """Where one finger may be: a segment ``a + u t``, ``u`` in ``[0, length]``, pushing
+    along ``n`` inside a cone of half-angle ``half`` (a vertex: length 0)."""
+
+    a: FloatArray
+    t: FloatArray
+    length: float
+    n: FloatArray
+    half: float
+
+
+def _pieces(region: FloatArray, inward: FloatArray, mu: float) -> list[_Piece]:
+    """A region (a polyline along the boundary, with the inward normal of the edge
+    under each segment) as segments and the vertices between them."""
+    beta = float(np.arctan(mu))
+    out = []
+    for j in range(len(region) - 1):
+        d = region[j + 1] - region[j]
+        L = float(np.hypot(*d))
+        t = d / L if L > 0 else np.array([-inward[j][1], inward[j][0]])
+        out.append(_Piece(region[j], t, L, inward[j], beta))
+        if j + 1 < len(region) - 1:               # a vertex the region covers
+            a, b = inward[j], inward[j + 1]
+            turn = float(np.arccos(np.clip(a @ b, -1.0, 1.0)))
+            mid = (a + b) / np.hypot(*(a + b))
+            out.append(_Piece(region[j + 1], np.array([-mid[1], mid[0]]), 0.0, mid,
+                              beta - 0.5 * turn))
+    return out
+
+
+def _box_scale(rows: list[tuple[FloatArray, FloatArray]], widths: FloatArray,
+               W: FloatArray, per: FloatArray, total: float) -> float:
+    """The certified scale of a box (the module docstring's lower bound): ``rows`` the
+    cone edges' wrenches at its corners, ``widths`` its width along each finger."""
+    from scipy.optimize import linprog  # on first use
+    from scipy.sparse import coo_matrix
+
+    P, V = len(rows), len(W)
+    k = rows[0][0].shape[0]
+    # variables: s | per v: cbar (k), d (k), E | per (v, p, sign): coefficients (k, 2)
+    head = 1 + V * (2 * k + 1)
+    nvar = head + V * P * 2 * 2 * k
+    eq: list[tuple[int, int, float]] = []
+    ub: list[tuple[int, int, float]] = []
+    b_ub: list[float] = []
+    n_eq = 0
+
+    def coef(v: int, p: int, sg: int, i: int, j: int) -> int:
+        return int(head + (((v * P + p) * 2 + sg) * k + i) * 2 + j)
+
+    for v in range(V):
+        cbar, dvar, evar = 1 + v * (2 * k + 1), 1 + v * (2 * k + 1) + k, 1 + v * (2 * k + 1) + 2 * k
+        for p, (E, _) in enumerate(rows):
+            for sg, sign in enumerate((1.0, -1.0)):
+                for r in range(3):
+                    for i in range(k):
+                        for j in range(2):
+                            eq.append((n_eq, coef(v, p, sg, i, j), float(E[i, j, r])))
+                    eq.append((n_eq, 0, float(W[v, r])))
+                    if r == 2:
+                        eq.append((n_eq, evar, sign))
+                    n_eq += 1
+                row_total = len(b_ub)
+                if np.isfinite(total):
+                    b_ub.append(total)
+                for i in range(k):
+                    a, b = coef(v, p, sg, i, 0), coef(v, p, sg, i, 1)
+                    r0 = len(b_ub)           # c - cbar <= d and cbar - c <= d
+                    ub += [(r0, a, 1.0), (r0, b, 1.0), (r0, cbar + i, -1.0), (r0, dvar + i, -1.0),
+                           (r0 + 1, a, -1.0), (r0 + 1, b, -1.0), (r0 + 1, cbar + i, 1.0),
+                           (r0 + 1, dvar + i, -1.0)]
+                    b_ub += [0.0, 0.0]
+                    if np.isfinite(per[i]):
+                        ub += [(len(b_ub), a, 1.0), (len(b_ub), b, 1.0)]
+                        b_ub.append(float(per[i]))
+                    if np.isfinite(total):
+                        ub += [(row_total, a, 1.0), (row_total, b, 1.0)]
+        r0 = len(b_ub)                      # sum_i w_i d_i <= E
+        ub += [(r0, dvar + i, float(widths[i])) for i in range(k)] + [(r0, evar, -1.0)]
+        b_ub.append(0.0)
+
+    def matrix(items: list[tuple[int, int, float]], rows_n: int) -> Any:
+        r, c, x = zip(*items, strict=True)
+        return coo_matrix((x, (r, c)), shape=(rows_n, nvar)).tocsr()
+
+    cost = np.zeros(nvar)
+    cost[0] = -1.0
+    res = linprog(cost, A_ub=matrix(ub, len(b_ub)), b_ub=np.array(b_ub),
+                  A_eq=matrix(eq, n_eq), b_eq=np.zeros(n_eq), bounds=[(0, None)] * nvar,
+                  method="highs")
+    if res.status == 3:
+        return float("inf")
+    return max(0.0, float(-res.fun)) if res.status == 0 else 0.0
+
+
+def _box_rows(pieces: tuple[_Piece, ...], lo: FloatArray, hi: FloatArray
+              ) -> list[tuple[FloatArray, FloatArray]]:
+    """The cone edges' wrenches at every corner of a box of positions."""
+    n = np.array([q.n for q in pieces])
+    E = _cone_edges(n, np.array([max(q.half, 0.0) for q in pieces]))
+    rows = []
+    for corner in itertools.product(*[(a, b) if b > a else (a,) for a, b in
+                                      zip(lo, hi, strict=True)]):
+        p = np.array([q.a + u * q.t for q, u in zip(pieces, corner, strict=True)])
+        rows.append((_wrench_edges(p, E), p))
+    return rows
+
+
+def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
+                   total_limit: Any = None, gap: float = 0.01, max_boxes: int = 200
+                   ) -> RegionPayload:
+    """The scale of ``load`` guaranteed over every grasp of a plan's regions (one finger
+    anywhere in each region), within the finger force limits: a certified lower bound
+    and the worst grasp found, refined by branch and bound (boxes of finger positions,
+    the widest split in half) until ``1 - lower / upper <= gap`` or ``max_boxes`` boxes
+    were solved (see the module docstring).
+
+    ``polygon``: the part (its centroid is the centre of mass of a load without one);
+    ``plan``: a :class:`~fcgrasp.GraspPlan` of point fingers (friction ``plan.mu``;
+    gravity's contact, if any, is part of the load instead: its region is a point).
+    Each box costs a linear program over its corners (two fingers: about 15 ms; four:
+    about 70 ms); four frictionless fingers converge slowest (their corners' forces
+    are determined, so the bound needs small boxes): ``upper`` and ``gap`` say how far
+    the certified ``lower`` is from the worst grasp found.
+    """
+    from .plans import GraspPlan
+    from .polygon import check_polygon
+
+    polygon = check_polygon(polygon)
+    if not isinstance(plan, GraspPlan):
+        raise TypeError(f"plan must be a GraspPlan of point fingers, got "
+                        f"{type(plan).__name__}")
+    if not isinstance(load, Load):
+        raise TypeError(f"load must be a fcgrasp Load, got {type(load).__name__}")
+    gap_v = check_scalar(gap, "gap", nonnegative=True)
+    mu = float(plan.mu) if plan.contact_type != "frictionless" else 0.0
+    fingers = [(np.asarray(r, float), e) for r, e in
+               zip(plan.regions, plan.region_edges, strict=True)
+               if len(r) > 1 or np.hypot(*(np.asarray(r[0]) - polygon.centroid)) > TOL]
+    per, total = _limits(force_limit, total_limit, len(fingers))
+    W = load.wrenches(polygon.centroid)
+    choices = [_pieces(r, -polygon.normals[list(e)], mu) for r, e in fingers]
+
+    best_upper, worst = np.inf, np.zeros((len(fingers), 2))
+    heap: list[tuple[float, int, tuple[_Piece, ...], FloatArray, FloatArray]] = []
+    count = 0
+    import heapq
+
+    def solve(pieces: tuple[_Piece, ...], lo: FloatArray, hi: FloatArray) -> None:
+        nonlocal best_upper, worst, count
+        count += 1
+        rows = _box_rows(pieces, lo, hi)
+        corners = []
+        for E, p in rows:                          # each corner is a grasp: an upper bound
+            corners.append(_scale([(E, p)], W, per, total))
+            if corners[-1] < best_upper:
+                best_upper, worst = corners[-1], p
+        low = _box_scale(rows, hi - lo, W, per, total) if len(rows) > 1 else corners[0]
+        heapq.heappush(heap, (low, count, pieces, lo, hi))
+
+    for pieces in itertools.product(*choices):
+        solve(pieces, np.zeros(len(pieces)), np.array([q.length for q in pieces]))
+    while heap:
+        low, _, pieces, lo, hi = heap[0]
+        if low >= best_upper * (1 - gap_v) or count >= max_boxes or low == np.inf:
+            break
+        heapq.heappop(heap)
+        j = int(np.argmax(hi - lo))
+        if hi[j] - lo[j] <= 0:                     # a point: its bound is exact
+            heapq.heappush(heap, (best_upper, count, pieces, lo, hi))
+            break
+        mid = 0.5 * (lo[j] + hi[j])
+        for a, b in ((lo[j], mid), (mid, hi[j])):
+            l2, h2 = lo.copy(), hi.copy()
+            l2[j], h2[j] = a, b
+            solve(pieces, l2, h2)
+    lower = min(min(h[0] for h in heap), best_upper) if heap else best_upper
+    return RegionPayload(float(lower), float(best_upper), worst, count)

@@ -1,0 +1,195 @@
+"""Loads with finger force limits (fcgrasp.model.loads, issue 32): the payload of one
+grasp against an independent linear program written over the finger forces' components
+(the module parametrises the cones by their edges), the least-peak-force distribution
+checked for equilibrium, cones and limits, and the certified scale of a plan's regions
+against the payload of grasps sampled in the regions (their corners included)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from scipy.optimize import linprog
+
+import fcgrasp as fc
+from fcgrasp.model.loads import Load, grasp_payload, region_payload
+
+from .shapes import random_polygon
+
+
+def _reference_scale(points, normals, mu, W, per, total):
+    """Largest s with forces f_i = (fx, fy) per contact and load vertex: n.f >= 0,
+    |t.f| <= mu n.f, n.f <= per_i, sum n.f <= total, sum f = -s F, sum p x f = -s tau."""
+    k, V = len(points), len(W)
+    n = normals / np.hypot(*normals.T)[:, None]
+    t = np.c_[-n[:, 1], n[:, 0]]
+    nvar = 1 + V * k * 2
+    A_eq, b_eq, A_ub, b_ub = [], [], [], []
+
+    def f(v, i):
+        return 1 + (v * k + i) * 2
+    for v in range(V):
+        for r in range(3):
+            row = np.zeros(nvar)
+            row[0] = W[v, r]
+            for i in range(k):
+                if r < 2:
+                    row[f(v, i) + r] = 1.0
+                else:
+                    row[f(v, i)] = -points[i, 1]
+                    row[f(v, i) + 1] = points[i, 0]
+            A_eq.append(row)
+            b_eq.append(0.0)
+        tot = np.zeros(nvar)
+        for i in range(k):
+            nn = np.zeros(nvar)
+            nn[f(v, i):f(v, i) + 2] = n[i]
+            tt = np.zeros(nvar)
+            tt[f(v, i):f(v, i) + 2] = t[i]
+            A_ub += [-nn, tt - mu * nn, -tt - mu * nn]
+            b_ub += [0.0, 0.0, 0.0]
+            if np.isfinite(per[i]):
+                A_ub.append(nn)
+                b_ub.append(per[i])
+            tot += nn
+        if np.isfinite(total):
+            A_ub.append(tot)
+            b_ub.append(total)
+    cost = np.zeros(nvar)
+    cost[0] = -1
+    bounds = [(0, None)] + [(None, None)] * (nvar - 1)
+    res = linprog(cost, A_ub=np.array(A_ub), b_ub=np.array(b_ub), A_eq=np.array(A_eq),
+                  b_eq=np.array(b_eq), bounds=bounds, method="highs")
+    if res.status == 3:
+        return np.inf
+    assert res.status == 0
+    return -res.fun
+
+
+def _random_case(rng):
+    k = int(rng.integers(2, 5))
+    ang = rng.uniform(0, 2 * np.pi, k)
+    if rng.random() < 0.3:                      # near-antipodal pairs: near-degenerate
+        ang[1] = ang[0] + np.pi + rng.normal(0, 1e-3)
+    points = np.c_[np.cos(ang), np.sin(ang)] * rng.uniform(5, 50) + rng.normal(0, 3, 2)
+    normals = -np.c_[np.cos(ang), np.sin(ang)] + rng.normal(0, 0.2, (k, 2))
+    mu = 0.0 if rng.random() < 0.25 else float(rng.uniform(0.05, 1.0))
+    load = Load(float(rng.uniform(0.05, 3)), com=tuple(rng.normal(0, 5, 2)),
+                accel=tuple(rng.choice([0.0, 1.0, 5.0], 2)),
+                torque=(0.0, 0.0) if rng.random() < 0.5 else (-20.0, 35.0))
+    per = None if rng.random() < 0.2 else (float(rng.uniform(1, 50)) if rng.random() < 0.5
+                                           else rng.uniform(1, 50, k))
+    total = None if rng.random() < 0.6 else float(rng.uniform(5, 80))
+    return points, normals, mu, load, per, total
+
+
+@pytest.mark.parametrize("seed", [*range(4), *(pytest.param(s, marks=pytest.mark.slow)
+                                                 for s in range(4, 40))])
+def test_grasp_payload_equals_a_program_over_force_components(seed):
+    rng = np.random.default_rng(seed)
+    for _ in range(60):
+        points, normals, mu, load, per, total = _random_case(rng)
+        got = grasp_payload(points, normals, mu, load, per, total)
+        k = len(points)
+        per_v = np.full(k, np.inf) if per is None else np.broadcast_to(per, (k,))
+        want = _reference_scale(points, normals, mu, load.wrenches(),
+                                per_v, np.inf if total is None else total)
+        if np.isinf(want):
+            assert np.isinf(got.scale)
+        else:
+            assert got.scale == pytest.approx(want, rel=1e-6, abs=1e-9)
+        if got.holds:
+            # the least-peak distribution: equilibrium with each load vertex, in the
+            # cones, within the limits, and its peak is its largest normal force
+            n = normals / np.hypot(*normals.T)[:, None]
+            t = np.c_[-n[:, 1], n[:, 0]]
+            for w, F in zip(load.wrenches(), got.forces, strict=True):
+                assert np.allclose(F.sum(axis=0), -w[:2], atol=1e-6 * (1 + abs(w).max()))
+                torque = np.sum(points[:, 0] * F[:, 1] - points[:, 1] * F[:, 0])
+                assert torque == pytest.approx(-w[2], abs=1e-6 * (1 + abs(w).max()) * 50)
+                fn, ft = np.einsum("kd,kd->k", F, n), np.einsum("kd,kd->k", F, t)
+                assert np.all(fn >= -1e-7) and np.all(np.abs(ft) <= mu * fn + 1e-6)
+                assert np.all(fn <= per_v + 1e-6) and fn.max() <= got.peak + 1e-6
+                if total is not None:
+                    assert fn.sum() <= total + 1e-6
+
+
+def test_payload_of_a_squeeze_by_hand():
+    """Two fingers squeezing horizontally hold the weight by friction alone: the scale
+    is 2 mu f_max / (m g); a grip without friction holds nothing; without limits, any
+    load (force closure is not needed: the weight alone is resisted)."""
+    load = Load(0.5, com=(0.0, 0.0))
+    p = grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5, load, force_limit=10)
+    assert p.scale == pytest.approx(2 * 0.5 * 10 / (0.5 * 9.80665))
+    assert grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.0, load, 10).scale == 0
+    assert np.isinf(grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5, load).scale)
+    # a total of 12 N shared by the two fingers: 2 mu * 6 N
+    q = grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5, load, total_limit=12)
+    assert q.scale == pytest.approx(0.5 * 12 / (0.5 * 9.80665))
+
+
+def _sample_grasps(rng, part, plan, count):
+    """Points along each region (ends and vertices included), with its edge's normal."""
+    out = []
+    for _ in range(count):
+        pts, nrm = [], []
+        for r, edges in zip(plan.regions, plan.region_edges, strict=True):
+            r = np.asarray(r, float)
+            seg = np.hypot(*np.diff(r, axis=0).T)
+            if len(r) == 1 or seg.sum() == 0:
+                pts.append(r[0])
+                nrm.append(-part.normals[edges[0]])
+                continue
+            j = int(rng.choice(len(seg), p=seg / seg.sum()))
+            u = float(rng.choice([0.0, 1.0, rng.random()]))
+            pts.append(r[j] + u * (r[j + 1] - r[j]))
+            nrm.append(-part.normals[edges[j]])
+        out.append((np.array(pts), np.array(nrm)))
+    return out
+
+
+@pytest.mark.parametrize("seed", [0, 1, pytest.param(2, marks=pytest.mark.slow)])
+def test_region_payload_is_below_every_grasp_of_the_regions(seed):
+    """The certified scale of a plan's regions is at most the payload of every grasp
+    sampled in them (and of the worst grasp reported), and within the requested gap."""
+    rng = np.random.default_rng(seed)
+    parts = [fc.read_part("demo:blob"), fc.read_part("demo:quad"),
+             random_polygon(rng, "star")]
+    cases = 0
+    for part in parts:
+        for kw, boxes in ((dict(fingers=2, mu=0.4), 60), (dict(fingers=3, mu=0.4), 60),
+                          (dict(fingers=4), 8)):
+            for plan in fc.plan(part, top=1, **kw):
+                load = Load(float(rng.uniform(0.1, 1.0)), accel=(2.0, 0.0),
+                            torque=(-5.0, 5.0))
+                limit = float(rng.uniform(5, 40))
+                got = region_payload(part, plan, load, force_limit=limit, gap=0.02,
+                                     max_boxes=boxes)
+                assert got.lower <= got.upper
+                if got.boxes < boxes:
+                    assert got.gap <= 0.02 + 1e-9
+                mu = plan.mu if plan.contact_type != "frictionless" else 0.0
+                for pts, nrm in _sample_grasps(rng, part, plan, 15):
+                    s = grasp_payload(pts, nrm, mu, load, limit, com=part.centroid).scale
+                    assert got.lower <= s * (1 + 1e-7) + 1e-9
+                cases += 1
+    assert cases >= 6
+
+
+def test_load_and_payload_errors_name_the_argument():
+    with pytest.raises(ValueError, match="mass"):
+        Load(-1.0)
+    with pytest.raises(ValueError, match="torque"):
+        Load(1.0, torque=(3.0, -3.0))
+    with pytest.raises(ValueError, match="accel"):
+        Load(1.0, accel=(-1.0, 0.0))
+    with pytest.raises(ValueError, match="com"):
+        Load(1.0).wrenches()
+    load = Load(1.0, com=(0, 0))
+    with pytest.raises(TypeError, match="load"):
+        grasp_payload([[0, 0], [1, 0]], [[1, 0], [-1, 0]], 0.3, 5.0)
+    with pytest.raises(ValueError, match="force_limit"):
+        grasp_payload([[0, 0], [1, 0]], [[1, 0], [-1, 0]], 0.3, load, force_limit=[1, 2, 3])
+    with pytest.raises(ValueError, match="normals"):
+        grasp_payload([[0, 0], [1, 0]], [[0, 0], [-1, 0]], 0.3, load)
+    with pytest.raises(TypeError, match="plan"):
+        region_payload(fc.read_part("demo:blob"), "plan", load)
