@@ -193,3 +193,24 @@ def test_load_and_payload_errors_name_the_argument():
         grasp_payload([[0, 0], [1, 0]], [[0, 0], [-1, 0]], 0.3, load)
     with pytest.raises(TypeError, match="plan"):
         region_payload(fc.read_part("demo:blob"), "plan", load)
+
+
+def test_plan_document_reports_the_payload_of_each_plan():
+    """A request with a load: each grasp's certified payload in the JSON, equal to
+    region_payload's; the load's options need --mass; the jaw refuses a load."""
+    from fcgrasp.errors import RequestError
+    from fcgrasp.planning import PlanRequest, plan_document
+
+    doc = plan_document(PlanRequest(part="demo:quad", fingers=2, mu=0.4, top=2, mass=0.3,
+                                    force_limit=10.0, accel=(1.0, 0.0)))
+    assert doc.report["parameters"]["load"]["mass_kg"] == 0.3
+    part = fc.read_part("demo:quad")
+    for plan, g in zip(doc.plans, doc.report["grasps"], strict=True):
+        want = region_payload(part, plan, Load(0.3, accel=(1.0, 0.0)), force_limit=10.0)
+        assert g["payload"]["scale"] == pytest.approx(want.lower)
+        assert g["payload"]["worst_grasp_scale"] == pytest.approx(want.upper)
+    with pytest.raises(RequestError, match="--mass"):
+        PlanRequest(part="demo:quad", force_limit=10.0)
+    with pytest.raises(RequestError, match="jaw"):
+        PlanRequest(part="demo:quad", gripper="jaw", stroke=(5.0, 60.0), pad=8.0, mass=1.0)
+    assert "--mass" in PlanRequest(part="demo:quad", mass=0.5).to_argv()

@@ -52,10 +52,11 @@ def plan_options(args: Any) -> dict[str, Any]:
     """The typed planning and reading options of parsed ``plan`` (or ``batch``)
     arguments, as :class:`~fcgrasp.planning.PlanRequest` keywords: ``--stroke 10,50``
     becomes ``stroke=(10.0, 50.0)``, ``--max-memory 2G`` bytes."""
-    from ..planning import PLAN_OPTIONS, READING_OPTIONS
+    from ..planning import LOAD_OPTIONS, PLAN_OPTIONS, READING_OPTIONS
 
-    options = {k: getattr(args, k) for k in (*PLAN_OPTIONS, *READING_OPTIONS)}
-    for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3)):
+    options = {k: getattr(args, k) for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS)}
+    for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
+                   ("accel", 2)):
         if options[key] is not None:
             options[key] = _floats(options[key], n, "--" + key)
     if options["max_memory"] is not None:
@@ -90,7 +91,23 @@ def cmd_plan(args: Any) -> int:
             _print_jaw_table(doc.plans, doc.units, sys.stdout)
         else:
             _print_table(doc.plans, doc.units, sys.stdout)
+            _print_payloads(doc.report, sys.stdout)
     return 0
+
+
+def _print_payloads(report: dict[str, Any], out: Any) -> None:
+    """With a load: what each plan's regions carry, one line each."""
+    load = report["parameters"].get("load")
+    if load is None:
+        return
+    print(f"load {load['mass_kg']:g} kg (every grasp of the regions carries at least "
+          f"this multiple of it; certified):", file=out)
+    for k, g in enumerate(report["grasps"], 1):
+        p = g["payload"]
+        scale = "any" if p["scale"] is None else f"{p['scale']:.3g}x"
+        worst = "" if p["worst_grasp_scale"] is None else \
+            f" (worst grasp found {p['worst_grasp_scale']:.3g}x, gap {100 * p['gap']:.1f} %)"
+        print(f"  {k:>2}  {scale}{worst}", file=out)
 
 
 def cmd_batch(args: Any) -> int:
@@ -413,6 +430,19 @@ def build_parser() -> argparse.ArgumentParser:
                        help="keep only distinct alternatives: drop a plan whose regions "
                             "overlap a better plan's by more than FRACTION of the shorter "
                             "(0.5 is a good choice; default 0: every plan, as ranked)")
+        p.add_argument("--mass", type=float, default=None, metavar="KG",
+                       help="a load to carry: the part's mass in kg; each plan then reports "
+                            "the scale of the load every grasp of its regions carries "
+                            "(certified; gravity along -y)")
+        p.add_argument("--com", default=None, metavar="X,Y",
+                       help="the load's centre of mass (default: the part's centroid)")
+        p.add_argument("--accel", default=None, metavar="AX,AY",
+                       help="the load is also carried under every acceleration with "
+                            "|a_x| <= AX and |a_y| <= AY (m/s^2)")
+        p.add_argument("--force-limit", type=float, default=None, metavar="N",
+                       help="largest normal force of each finger, newtons")
+        p.add_argument("--total-force", type=float, default=None, metavar="N",
+                       help="largest sum of the fingers' normal forces, newtons")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")

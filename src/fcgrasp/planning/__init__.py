@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from .planner import RANKINGS, GraspPlan, geometric_key, independent_regions, plan, rank_key
 from .request import (
+    LOAD_OPTIONS,
     PLAN_OPTIONS,
     READING_OPTIONS,
     PlanDocument,
@@ -20,4 +21,4 @@ from .request import (
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key", "PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS",
-           "READING_OPTIONS"]
+           "READING_OPTIONS", "LOAD_OPTIONS"]

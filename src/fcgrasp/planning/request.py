@@ -29,7 +29,8 @@ from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 from .planner import plan
 
-__all__ = ["PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS", "READING_OPTIONS"]
+__all__ = ["PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS", "READING_OPTIONS",
+           "LOAD_OPTIONS"]
 
 #: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
 READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
@@ -38,6 +39,9 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
                 "max_memory", "distinct")
+#: The options of a request that give a load to carry (:class:`fcgrasp.Load`): each plan
+#: then reports the scale of it its regions carry (:func:`fcgrasp.region_payload`).
+LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -66,7 +70,8 @@ def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
 _KINDS: dict[str, Any] = {
     "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
-    "distinct": "float",
+    "distinct": "float", "mass": "float", "force_limit": "float", "total_force": "float",
+    "com": ("floats", 2), "accel": ("floats", 2),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
@@ -131,6 +136,11 @@ class PlanRequest:
     finger_radius: float = 0.0
     max_memory: int | None = None
     distinct: float = 0.0
+    mass: float | None = None
+    com: tuple[float, float] | None = None
+    accel: tuple[float, float] | None = None
+    force_limit: float | None = None
+    total_force: float | None = None
     select: str | None = None
     units: str | None = None
     file_units: str | None = None
@@ -186,6 +196,20 @@ class PlanRequest:
                                       f"got {self.file_units!r}")
         if not 0 <= self.distinct <= 1:
             raise _fail("distinct", f"--distinct is a fraction in [0, 1], got {self.distinct:g}")
+        for name in ("mass", "force_limit", "total_force"):
+            value = getattr(self, name)
+            if value is not None and not value > 0:
+                raise _fail(name, f"--{name.replace('_', '-')} must be > 0, got {value:g}")
+        if self.mass is None:
+            for name in ("com", "accel", "force_limit", "total_force"):
+                if getattr(self, name) is not None:
+                    raise _fail(name, f"--{name.replace('_', '-')} describes a load: give "
+                                      f"its --mass too")
+        elif self.gripper == "jaw":
+            raise _fail("mass", "--mass: loads are carried by point fingers' regions; the "
+                                "parallel jaw's boxes do not report them yet")
+        if self.accel is not None and min(self.accel) < 0:
+            raise _fail("accel", f"--accel is two half-widths >= 0, got {self.accel}")
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
@@ -313,5 +337,30 @@ def plan_document(request: PlanRequest, part: Part | None = None,
         params["distinct"] = request.distinct
     reason = None if plans else gripper.no_grasp_reason(request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
+    if request.mass is not None:
+        _payloads(request, request.mass, polygon, plans, report)
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
+
+
+def _payloads(request: PlanRequest, mass: float, polygon: Any, plans: list[Any],
+              report: dict[str, Any]) -> None:
+    """Each plan's certified payload (:func:`fcgrasp.region_payload`) in the report."""
+    from ..model.loads import Load, region_payload
+
+    load = Load(mass, com=request.com, accel=request.accel or (0.0, 0.0))
+    report["parameters"]["load"] = {
+        "mass_kg": mass,
+        "com": None if request.com is None else list(request.com),
+        "accel_m_s2": list(load.accel), "gravity_m_s2": list(load.gravity),
+        "force_limit_n": request.force_limit, "total_force_n": request.total_force}
+    for p, entry in zip(plans, report["grasps"], strict=True):
+        r = region_payload(polygon, p, load, force_limit=request.force_limit,
+                           total_limit=request.total_force)
+        entry["payload"] = {"scale": _finite(r.lower), "worst_grasp_scale": _finite(r.upper),
+                            "gap": r.gap, "boxes": r.boxes}
+
+
+def _finite(x: float) -> float | None:
+    """JSON has no infinity: None stands for "no limit"."""
+    return float(x) if math.isfinite(x) else None
