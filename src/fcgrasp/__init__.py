@@ -97,6 +97,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.polygon import (
         Polygon,
     )
+    from .model.robustness import placement_probability
     from .model.stretches import StretchPair, two_finger_stretches
     from .planning import (
         GraspPlan,
@@ -172,6 +173,7 @@ _LAZY = {
     "RegionPayload": "model.loads",
     "grasp_payload": "model.loads",
     "region_payload": "model.loads",
+    "placement_probability": "model.robustness",
 }
 
 

@@ -96,7 +96,14 @@ def cmd_plan(args: Any) -> int:
 
 
 def _print_payloads(report: dict[str, Any], out: Any) -> None:
-    """With a load: what each plan's regions carry, one line each."""
+    """With a load: what each plan's regions carry, one line each; with a placement
+    error: the probability that each plan holds."""
+    sigma = report["parameters"].get("placement_sigma")
+    if sigma is not None:
+        print(f"placement error {sigma:g} (standard deviation along the boundary): "
+              f"probability that the grasp holds", file=out)
+        for k, g in enumerate(report["grasps"], 1):
+            print(f"  {k:>2}  {g['probability']:.6f}", file=out)
     load = report["parameters"].get("load")
     if load is None:
         return
@@ -443,6 +450,10 @@ def build_parser() -> argparse.ArgumentParser:
                        help="largest normal force of each finger, newtons")
         p.add_argument("--total-force", type=float, default=None, metavar="N",
                        help="largest sum of the fingers' normal forces, newtons")
+        p.add_argument("--placement-sigma", type=float, default=None, metavar="S",
+                       help="two fingers: the probability that each plan holds when each "
+                            "finger lands with a Gaussian error of S (the part's units) "
+                            "along the boundary around its region's centre (exact)")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")

@@ -11,5 +11,6 @@
 - :mod:`~fcgrasp.model.quality`, :mod:`~fcgrasp.model.ranking`: the measures (8.1) and
   their registry; :mod:`~fcgrasp.model.plans`: :class:`~fcgrasp.GraspPlan` and its keys;
 - :mod:`~fcgrasp.model.loads`: loads with finger force limits, for a grasp and over a
-  plan's regions (issue 32).
+  plan's regions; :mod:`~fcgrasp.model.robustness`: the probability that a two-finger
+  plan holds under placement errors (issue 32).
 """

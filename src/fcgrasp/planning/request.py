@@ -41,7 +41,7 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
                 "max_memory", "distinct")
 #: The options of a request that give a load to carry (:class:`fcgrasp.Load`): each plan
 #: then reports the scale of it its regions carry (:func:`fcgrasp.region_payload`).
-LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force")
+LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -70,7 +70,8 @@ def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
 _KINDS: dict[str, Any] = {
     "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
-    "distinct": "float", "mass": "float", "force_limit": "float", "total_force": "float",
+    "distinct": "float", "placement_sigma": "float", "mass": "float",
+    "force_limit": "float", "total_force": "float",
     "com": ("floats", 2), "accel": ("floats", 2),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "y_down": "bool", "no_clean": "bool",
@@ -141,6 +142,7 @@ class PlanRequest:
     accel: tuple[float, float] | None = None
     force_limit: float | None = None
     total_force: float | None = None
+    placement_sigma: float | None = None
     select: str | None = None
     units: str | None = None
     file_units: str | None = None
@@ -208,6 +210,11 @@ class PlanRequest:
         elif self.gripper == "jaw":
             raise _fail("mass", "--mass: loads are carried by point fingers' regions; the "
                                 "parallel jaw's boxes do not report them yet")
+        if self.placement_sigma is not None and (not self.placement_sigma > 0
+                                                  or self.gripper == "jaw"
+                                                  or self.fingers not in (None, 2)):
+            raise _fail("placement_sigma", f"--placement-sigma is a distance > 0 for two "
+                                           f"fingers, got {self.placement_sigma:g}")
         if self.accel is not None and min(self.accel) < 0:
             raise _fail("accel", f"--accel is two half-widths >= 0, got {self.accel}")
         if self.max_memory is not None and self.max_memory < 1:
@@ -339,6 +346,12 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
     if request.mass is not None:
         _payloads(request, request.mass, polygon, plans, report)
+    if request.placement_sigma is not None:
+        from ..model.robustness import placement_probability
+
+        report["parameters"]["placement_sigma"] = request.placement_sigma
+        for p, entry in zip(plans, report["grasps"], strict=True):
+            entry["probability"] = placement_probability(polygon, p, request.placement_sigma)
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
 
