@@ -147,7 +147,7 @@ def _sample_grasps(rng, part, plan, count):
     return out
 
 
-@pytest.mark.parametrize("seed", [0, 1, pytest.param(2, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow) for s in (1, 2))])
 def test_region_payload_is_below_every_grasp_of_the_regions(seed):
     """The certified scale of a plan's regions is at most the payload of every grasp
     sampled in them (and of the worst grasp reported), and within the requested gap."""
