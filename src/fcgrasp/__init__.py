@@ -98,6 +98,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         Polygon,
     )
     from .model.robustness import placement_probability
+    from .model.stability import Stability, grasp_stability, grasp_stiffness, least_stiffness
     from .model.stretches import StretchPair, two_finger_stretches
     from .planning import (
         GraspPlan,
@@ -174,6 +175,10 @@ _LAZY = {
     "grasp_payload": "model.loads",
     "region_payload": "model.loads",
     "placement_probability": "model.robustness",
+    "Stability": "model.stability",
+    "grasp_stability": "model.stability",
+    "grasp_stiffness": "model.stability",
+    "least_stiffness": "model.stability",
 }
 
 

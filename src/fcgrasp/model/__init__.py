@@ -12,5 +12,6 @@
   their registry; :mod:`~fcgrasp.model.plans`: :class:`~fcgrasp.GraspPlan` and its keys;
 - :mod:`~fcgrasp.model.loads`: loads with finger force limits, for a grasp and over a
   plan's regions; :mod:`~fcgrasp.model.robustness`: the probability that a two-finger
-  plan holds under placement errors (issue 32).
+  plan holds under placement errors; :mod:`~fcgrasp.model.stability`: fingers as
+  springs, the grasp stiffness and its stability (issue 32).
 """
