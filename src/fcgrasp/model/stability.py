@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray, check_array, check_scalar
-from ..core.tolerances import CHECK_TOL, TOL
+from ..core.tolerances import CHECK_TOL, TINY, TOL
 
 __all__ = ["Stability", "grasp_stiffness", "grasp_stability", "least_stiffness"]
 
@@ -159,7 +159,7 @@ def grasp_stability(points: Any, normals: Any, stiffness: Any, preload: Any,
     K = grasp_stiffness(points, normals, stiffness, preload, tangential, tangential_preload,
                         finger_radius, about)
     vals, vecs = np.linalg.eigh(K)
-    top = max(float(np.abs(vals).max()), 1e-300)
+    top = max(float(np.abs(vals).max()), TINY)
     stable = bool(vals[0] > tol * top)
     weak = vecs[:, 0] / np.linalg.norm(vecs[:, 0])
     names = ("translation along x", "translation along y", "rotation")
