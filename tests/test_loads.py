@@ -152,9 +152,9 @@ def test_region_payload_is_below_every_grasp_of_the_regions(seed):
     """The certified scale of a plan's regions is at most the payload of every grasp
     sampled in them (and of the worst grasp reported), and within the requested gap."""
     rng = np.random.default_rng(seed)
-    parts = [fc.read_part("demo:blob"), fc.read_part("demo:quad")]
-    if seed:                                  # the random parts with -m slow
-        parts.append(random_polygon(rng, "star"))
+    parts = [fc.read_part("demo:blob")]
+    if seed:                                  # the others with -m slow
+        parts += [fc.read_part("demo:quad"), random_polygon(rng, "star")]
     cases = 0
     for part in parts:
         for kw, boxes in ((dict(fingers=2, mu=0.4), 60), (dict(fingers=3, mu=0.4), 60),
@@ -173,7 +173,7 @@ def test_region_payload_is_below_every_grasp_of_the_regions(seed):
                     s = grasp_payload(pts, nrm, mu, load, limit, com=part.centroid).scale
                     assert got.lower <= s * (1 + 1e-7) + 1e-9
                 cases += 1
-    assert cases >= 4
+    assert cases >= 3
 
 
 def test_load_and_payload_errors_name_the_argument():

@@ -55,9 +55,9 @@ def _monte_carlo(part, plan, sigma, mu, n, rng):
                                   pytest.param(2, marks=pytest.mark.slow)])
 def test_placement_probability_matches_a_million_landings(seed):
     rng = np.random.default_rng(seed)
-    parts = [fc.read_part("demo:quad"), random_polygon(rng, "star")]
-    if seed:                                  # demo:blob with -m slow
-        parts.append(fc.read_part("demo:blob"))
+    parts = [fc.read_part("demo:quad")]
+    if seed:                                  # the others with -m slow
+        parts += [random_polygon(rng, "star"), fc.read_part("demo:blob")]
     checked = 0
     for part in parts:
         mu = float(rng.uniform(0.15, 0.5))
@@ -71,7 +71,7 @@ def test_placement_probability_matches_a_million_landings(seed):
             se = max(np.sqrt(mc * (1 - mc) / n), 1 / n)
             assert abs(exact - mc) <= 4.5 * se + 1e-9, (exact, mc, se)
             checked += 1
-    assert checked >= 3
+    assert checked >= 2
 
 
 def test_friction_range_is_the_average_over_mu():
