@@ -109,6 +109,20 @@ def check_point(value: Any, name: str = "point") -> FloatArray:
     return arr
 
 
+def check_contact_points(points: Any, normals: Any) -> tuple[FloatArray, FloatArray]:
+    """Contacts given as points and normals, both (k, 2) with k >= 1: the points and the
+    normals made unit vectors."""
+    p = check_array(points, "points", last=2)
+    n = check_array(normals, "normals", last=2)
+    if p.ndim != 2 or p.shape != n.shape or not len(p):
+        raise ValueError(f"points and normals must both be (k, 2) arrays, got shapes "
+                         f"{p.shape} and {n.shape}")
+    norm = np.hypot(n[:, 0], n[:, 1])
+    if np.any(norm <= 0) or not np.all(np.isfinite(norm)) or not np.all(np.isfinite(p)):
+        raise ValueError(f"normals must be non-zero and points finite, got {_short(normals)}")
+    return p, n / norm[:, None]
+
+
 def check_direction(value: Any, name: str = "normal") -> FloatArray:
     """A non-zero planar direction, returned as a unit vector of shape (2,)."""
     arr = check_point(value, name)

@@ -64,7 +64,13 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, check_array, check_mu_scalar, check_scalar
+from ..core._checks import (
+    FloatArray,
+    check_array,
+    check_contact_points,
+    check_mu_scalar,
+    check_scalar,
+)
 from ..core.tolerances import TOL
 
 __all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload"]
@@ -197,18 +203,6 @@ def _limits(force_limit: Any, total_limit: Any, k: int) -> tuple[FloatArray, flo
     return per, total
 
 
-def _contacts(points: Any, normals: Any) -> tuple[FloatArray, FloatArray]:
-    p = check_array(points, "points", last=2)
-    n = check_array(normals, "normals", last=2)
-    if p.ndim != 2 or p.shape != n.shape or not len(p):
-        raise ValueError(f"points and normals must both be (k, 2) arrays, got shapes "
-                         f"{p.shape} and {n.shape}")
-    norm = np.hypot(n[:, 0], n[:, 1])
-    if np.any(norm <= 0) or not np.all(np.isfinite(p)) or not np.all(np.isfinite(norm)):
-        raise ValueError(f"normals must be non-zero and points finite, got {normals!r}")
-    return p, n / norm[:, None]
-
-
 def _cone_edges(n: FloatArray, half: FloatArray) -> FloatArray:
     """(k, 2, 2): the two edges of each finger's cone, scaled to a unit normal part."""
     t = np.stack([-n[:, 1], n[:, 0]], axis=1)
@@ -314,7 +308,7 @@ def grasp_payload(points: Any, normals: Any, mu: Any, load: Load, force_limit: A
     """
     if not isinstance(load, Load):
         raise TypeError(f"load must be a fcgrasp Load, got {type(load).__name__}")
-    p, n = _contacts(points, normals)
+    p, n = check_contact_points(points, normals)
     mu_v = check_mu_scalar(mu, "mu")
     per, total = _limits(force_limit, total_limit, len(p))
     W = load.wrenches(com)

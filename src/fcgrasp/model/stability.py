@@ -45,7 +45,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, check_array, check_scalar
+from ..core._checks import FloatArray, check_array, check_contact_points, check_scalar
 from ..core.tolerances import CHECK_TOL, TINY, TOL
 
 __all__ = ["Stability", "grasp_stiffness", "grasp_stability", "least_stiffness"]
@@ -64,18 +64,11 @@ def _per_finger(value: Any, name: str, k: int, nonnegative: bool = True) -> Floa
 
 
 def _geometry(points: Any, normals: Any, about: Any) -> tuple[FloatArray, FloatArray]:
-    p = check_array(points, "points", last=2)
-    n = check_array(normals, "normals", last=2)
-    if p.ndim != 2 or p.shape != n.shape or not len(p):
-        raise ValueError(f"points and normals must both be (k, 2) arrays, got shapes "
-                         f"{p.shape} and {n.shape}")
-    norm = np.hypot(n[:, 0], n[:, 1])
-    if np.any(norm <= 0) or not np.all(np.isfinite(norm)) or not np.all(np.isfinite(p)):
-        raise ValueError(f"normals must be non-zero and points finite, got {normals!r}")
+    p, n = check_contact_points(points, normals)
     c = np.zeros(2) if about is None else check_array(about, "about", last=2)
     if c.shape != (2,):
         raise ValueError(f"about must be a point (x, y), got {about!r}")
-    return p - c, n / norm[:, None]
+    return p - c, n
 
 
 def grasp_stiffness(points: Any, normals: Any, stiffness: Any, preload: Any,
