@@ -210,63 +210,41 @@ def _cone_edges(n: FloatArray, half: FloatArray) -> FloatArray:
     return np.stack([n + m * t, n - m * t], axis=1)
 
 
-def _program(rows: list[tuple[FloatArray, FloatArray]], W: FloatArray, per: FloatArray,
-             total: float, minimize_peak: bool = False) -> Any:
-    """The linear program of :func:`grasp_payload` over ``rows``: for each position set
-    (a corner of a box; one for a single grasp) the cone edges' wrenches (k, 2, 3) and
-    the normal force ``(k,)`` is shared between positions.  Variables: the scale (or the
-    peak), then per vertex of W the shared normal forces and per position the cone
-    coefficients."""
+def _program(E: FloatArray, W: FloatArray, per: FloatArray, total: float,
+             minimize_peak: bool = False) -> Any:
+    """The linear program of :func:`grasp_payload`: ``E`` the cone edges' wrenches
+    (k, 2, 3) of one grasp, ``W`` the load's vertices (V, 3).  Variables: the scale (or,
+    with ``minimize_peak``, the peak normal force at scale 1), then each vertex's cone
+    coefficients (V, k, 2); a finger's normal force is the sum of its two."""
     from scipy.optimize import linprog  # on first use
 
-    P, V = len(rows), len(W)
-    k = rows[0][0].shape[0]
-    nvar = 1 + V * k + V * P * 2 * k
-    A_eq, b_eq, A_ub, b_ub = [], [], [], []
-
-    def cvar(v: int, p: int, i: int, j: int) -> int:
-        return int(1 + V * k + ((v * P + p) * k + i) * 2 + j)
-
-    for v in range(V):
-        for p, (E, _) in enumerate(rows):
-            for r in range(3):                   # sum of finger wrenches = -s w (or -w)
-                row = np.zeros(nvar)
-                for i in range(k):
-                    for j in range(2):
-                        row[cvar(v, p, i, j)] = E[i, j, r]
-                if minimize_peak:
-                    A_eq.append(row)
-                    b_eq.append(-W[v, r])
-                else:
-                    row[0] = W[v, r]
-                    A_eq.append(row)
-                    b_eq.append(0.0)
-            for i in range(k):                   # the normal force is the shared one
-                row = np.zeros(nvar)
-                row[cvar(v, p, i, 0)] = row[cvar(v, p, i, 1)] = 1.0
-                row[1 + v * k + i] = -1.0
-                A_eq.append(row)
-                b_eq.append(0.0)
-        for i in range(k):
-            row = np.zeros(nvar)
-            row[1 + v * k + i] = 1.0
-            if minimize_peak:
-                row[0] = -1.0
-                A_ub.append(row)
-                b_ub.append(0.0)
-            if np.isfinite(per[i]):
-                A_ub.append(np.where(np.arange(nvar) == 1 + v * k + i, 1.0, 0.0))
-                b_ub.append(per[i])
-        if np.isfinite(total):
-            row = np.zeros(nvar)
-            row[1 + v * k: 1 + (v + 1) * k] = 1.0
-            A_ub.append(row)
-            b_ub.append(total)
-    cost = np.zeros(nvar)
+    V, k = len(W), E.shape[0]
+    # equilibrium, per vertex: sum of the edges' wrenches = -s w (or -w at scale 1)
+    A_eq = np.zeros((V * 3, 1 + V * k * 2))
+    A_eq[:, 1:] = np.kron(np.eye(V), E.reshape(k * 2, 3).T)
+    if minimize_peak:
+        b_eq = -W.reshape(-1)
+    else:
+        A_eq[:, 0] = W.reshape(-1)
+        b_eq = np.zeros(V * 3)
+    # normal forces (V * k rows) from the coefficients
+    normal = np.kron(np.eye(V * k), np.ones((1, 2)))
+    rows, rhs = [], []
+    if minimize_peak:
+        rows.append(np.c_[-np.ones(V * k), normal])
+        rhs.append(np.zeros(V * k))
+    limited = np.tile(np.isfinite(per), V)
+    if limited.any():
+        rows.append(np.c_[np.zeros(limited.sum()), normal[limited]])
+        rhs.append(np.tile(per, V)[limited])
+    if np.isfinite(total):
+        rows.append(np.c_[np.zeros(V), np.kron(np.eye(V), np.ones((1, 2 * k)))])
+        rhs.append(np.full(V, total))
+    cost = np.zeros(1 + V * k * 2)
     cost[0] = 1.0 if minimize_peak else -1.0
-    return linprog(cost, A_ub=np.array(A_ub) if A_ub else None,
-                   b_ub=np.array(b_ub) if b_ub else None, A_eq=np.array(A_eq),
-                   b_eq=np.array(b_eq), bounds=[(0, None)] * nvar, method="highs")
+    return linprog(cost, A_ub=np.concatenate(rows) if rows else None,
+                   b_ub=np.concatenate(rhs) if rhs else None, A_eq=A_eq, b_eq=b_eq,
+                   bounds=[(0, None)] * len(cost), method="highs")
 
 
 def _wrench_edges(p: FloatArray, E: FloatArray) -> FloatArray:
@@ -275,9 +253,9 @@ def _wrench_edges(p: FloatArray, E: FloatArray) -> FloatArray:
     return np.concatenate([E, tau[..., None]], axis=-1)
 
 
-def _scale(rows: list[tuple[FloatArray, FloatArray]], W: FloatArray, per: FloatArray,
-           total: float) -> float:
-    res = _program(rows, W, per, total)
+def _scale(E: FloatArray, W: FloatArray, per: FloatArray, total: float) -> float:
+    """The largest scale of one grasp (``E``: its cone edges' wrenches)."""
+    res = _program(E, W, per, total)
     if res.status == 3:
         return float("inf")
     if res.status != 0:
@@ -312,16 +290,15 @@ def grasp_payload(points: Any, normals: Any, mu: Any, load: Load, force_limit: A
     mu_v = check_mu_scalar(mu, "mu")
     per, total = _limits(force_limit, total_limit, len(p))
     W = load.wrenches(com)
-    E = _wrench_edges(p, _cone_edges(n, np.full(len(p), np.arctan(mu_v))))
-    s = _scale([(E, p)], W, per, total)
+    edges = _cone_edges(n, np.full(len(p), np.arctan(mu_v)))
+    E = _wrench_edges(p, edges)
+    s = _scale(E, W, per, total)
     if s < 1.0:
         return Payload(s)
-    res = _program([(E, p)], W, per, total, minimize_peak=True)
+    res = _program(E, W, per, total, minimize_peak=True)
     if res.status != 0:                           # pragma: no cover - feasible at s >= 1
         return Payload(s)
-    k, V = len(p), len(W)
-    c = res.x[1 + V * k:].reshape(V, k, 2)
-    edges = _cone_edges(n, np.full(k, np.arctan(mu_v)))
+    c = res.x[1:].reshape(len(W), len(p), 2)
     forces = np.einsum("vkj,kjd->vkd", c, edges)
     return Payload(s, forces, float(res.x[0]))
 
@@ -484,7 +461,7 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
         rows = _box_rows(pieces, lo, hi)
         corners = []
         for E, p in rows:                          # each corner is a grasp: an upper bound
-            corners.append(_scale([(E, p)], W, per, total))
+            corners.append(_scale(E, W, per, total))
             if corners[-1] < best_upper:
                 best_upper, worst = corners[-1], p
         low = _box_scale(rows, hi - lo, W, per, total) if len(rows) > 1 else corners[0]
