@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, ROUND_TOL
-from ..model.distinct import same_alternative
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
+from ..model.distinct import Suppression
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
@@ -175,38 +175,31 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     would otherwise fill the ranked list), and the plans already read.  The list a
     round returns is the ranked list less plans that suppression drops anyway, down to
     its last, so suppressing in rank order along it gives the same plans as along the
-    whole list.  Each kept
-    plan's ``similar`` lists the plans it stands for among those the rounds read (at
-    least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out unread
-    are not listed."""
+    whole list (:class:`~fcgrasp.model.distinct.Suppression`, fed round by round).
+    Each kept plan's ``similar`` lists the plans it stands for among those the rounds
+    read (at least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out
+    unread are not listed."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or not crosses_a_vertex(polygon, spec.mu, spec.margin):
         return None
-    tol = ROUND_TOL * polygon.size
-    kept: list[GraspPlan] = []
-    seen: list[GraspPlan] = []
+    suppression = Suppression(fraction, polygon.size)
+    read: list[GraspPlan] = []
     given: set[Any] = set()             # one grasp reached by two configurations: once
-    stands: dict[int, list[tuple[int, ...]]] = {}
     ask = max(2 * top, DISTINCT_READ)
     stretches = StretchSearch(polygon, spec.mu, spec.margin)
-    while len(kept) < top:
-        pairs = stretches.pairs(top=ask, ties=True, exclude=kept, fraction=fraction,
-                                seen=seen)
+    while len(suppression.kept) < top:
+        pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
+                                fraction=fraction, seen=read)
         ranked = ranked_unique(polygon, replace(spec, top=None),
                                _stretch_plans(polygon, spec, pairs), given)
         for p in ranked:
-            twin = next((q for q in kept if same_alternative(q, p, fraction, tol)), None)
-            if twin is not None:
-                stands[id(twin)].append(tuple(p.edges))
-                seen.append(p)
-                continue
-            stands[id(p)] = []
-            kept.append(p)
+            suppression.add(p)
+        read += ranked
         if len(pairs) < ask:
             break                       # every plan left was read
-        # the copies read are left out by name, so each round reads further down
-    return [replace(p, similar=tuple(stands[id(p)])) for p in kept[:top]]
+        # the plans read are left out by name, so each round reads further down
+    return suppression.plans()[:top]
 
 
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:

@@ -25,7 +25,8 @@ import shapely
 from ..core.tolerances import ROUND_TOL, TOL
 from .plans import GraspPlan
 
-__all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "distinct_plans",
+__all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppression",
+           "distinct_plans",
            "part_symmetries", "box_images", "same_box", "distinct_boxes"]
 
 #: The documented default of ``distinct=`` / ``--distinct``: half of the shorter region.
@@ -61,6 +62,36 @@ def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float) ->
     return any(all(hit[i][perm[i]] for i in range(k)) for perm in permutations(range(k)))
 
 
+class Suppression:
+    """Suppression fed in rank order, in as many calls as the caller likes (a search
+    that reads the ranked list in rounds): :meth:`add` keeps a plan that is not the same
+    alternative as a plan kept before, else files it under that plan; :attr:`kept` the
+    plans kept so far; :meth:`plans` them, each with ``similar`` (copies)."""
+
+    def __init__(self, fraction: float, size: float) -> None:
+        self.fraction, self.tol = fraction, ROUND_TOL * size
+        self.kept: list[Any] = []
+        self._stands: dict[int, list[tuple[int, ...]]] = {}
+
+    def add(self, p: Any) -> bool:
+        """Whether ``p`` was kept (plans that are not :class:`~fcgrasp.GraspPlan`, such
+        as a jaw's boxes, are)."""
+        if isinstance(p, GraspPlan):
+            twin = next((q for q in self.kept if isinstance(q, GraspPlan)
+                         and same_alternative(q, p, self.fraction, self.tol)), None)
+            if twin is not None:
+                self._stands[id(twin)].append(tuple(p.edges))
+                return False
+            self._stands[id(p)] = []
+        self.kept.append(p)
+        return True
+
+    def plans(self) -> list[Any]:
+        # copies: the plans given are left as they are
+        return [replace(p, similar=tuple(self._stands[id(p)])) if id(p) in self._stands
+                else p for p in self.kept]
+
+
 def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
     """The ranked ``plans`` less those that are the same alternative as a better one,
     each kept plan's ``similar`` listing the edges of the plans it stands for.  Plans
@@ -78,21 +109,10 @@ def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {fraction!r}")
     if fraction == 0:
         return list(plans)
-    tol = ROUND_TOL * size
-    kept: list[Any] = []
-    stands: dict[int, list[tuple[int, ...]]] = {}
+    suppression = Suppression(fraction, size)
     for p in plans:
-        if isinstance(p, GraspPlan):
-            twin = next((q for q in kept if isinstance(q, GraspPlan)
-                         and same_alternative(q, p, fraction, tol)), None)
-            if twin is not None:
-                stands[id(twin)].append(tuple(p.edges))
-                continue
-            stands[id(p)] = []
-        kept.append(p)
-    # copies: the plans given are left as they are
-    return [replace(p, similar=tuple(stands[id(p)])) if id(p) in stands else p
-            for p in kept]
+        suppression.add(p)
+    return suppression.plans()
 
 
 def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
