@@ -91,11 +91,11 @@ def cmd_plan(args: Any) -> int:
             _print_jaw_table(doc.plans, doc.units, sys.stdout)
         else:
             _print_table(doc.plans, doc.units, sys.stdout)
-            _print_payloads(doc.report, sys.stdout)
+            _print_load_and_placement(doc.report, sys.stdout)
     return 0
 
 
-def _print_payloads(report: dict[str, Any], out: Any) -> None:
+def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
     """With a load: what each plan's regions carry, one line each; with a placement
     error: the probability that each plan holds."""
     sigma = report["parameters"].get("placement_sigma")

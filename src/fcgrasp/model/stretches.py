@@ -160,6 +160,11 @@ class _Found:
     similar: bool = False
 
 
+def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
+    """Each usable polygon edge's ring and position in it."""
+    return {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
+
+
 class _Exclusion:
     """Plans already kept (``distinct=``): a configuration whose regions, whatever
     their placement inside its stretches, overlap a kept plan's regions by more than
@@ -174,8 +179,7 @@ class _Exclusion:
 
     def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
                  fraction: float, seen: Any = ()) -> None:
-        where = {int(e): (r, p) for r, ring in enumerate(rings)
-                 for p, e in enumerate(ring.edges)}
+        where = _positions(rings)
         #: configurations excluded as such (plans already read: ring, start and
         #: interior vertices of each stretch, and the mode; on one ring both ways round)
         self.seen: set[tuple[Any, ...]] = set()
@@ -838,7 +842,7 @@ def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
     if isinstance(stretches, (str, bytes)) or len(stretches) != 2:
         raise ValueError(f"stretches must hold two sequences of edges, got {stretches!r}")
     rings = _rings(polygon)
-    where = {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
+    where = _positions(rings)
     runs = []
     for k, st in enumerate(stretches):
         edges = polygon.check_stretch(st, f"stretches[{k}]")

@@ -39,8 +39,10 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
                 "max_memory", "distinct")
-#: The options of a request that give a load to carry (:class:`fcgrasp.Load`): each plan
-#: then reports the scale of it its regions carry (:func:`fcgrasp.region_payload`).
+#: The options of a request that give a load to carry (:class:`fcgrasp.Load`: each plan
+#: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
+#: placement error (each plan's probability of holding,
+#: :func:`fcgrasp.placement_probability`).
 LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma")
 
 
