@@ -180,15 +180,20 @@ class _Exclusion:
     def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
                  fraction: float, seen: Any = ()) -> None:
         where = _positions(rings)
-        #: configurations excluded as such (plans already read: ring, start and
-        #: interior vertices of each stretch, and the mode; on one ring both ways round)
-        self.seen: set[tuple[Any, ...]] = set()
+        #: configurations excluded as such (plans already read), per ring pair and
+        #: mode: the codes (:meth:`_codes`) of their starts and interior vertices, on
+        #: one ring both ways round
+        found: dict[tuple[int, int, str], list[int]] = {}
         for edges, mode in seen:
             if all(int(e) in where for st in edges for e in st):
                 (x, pa), (y, pc) = where[int(edges[0][0])], where[int(edges[1][0])]
                 ka, kc = len(edges[0]) - 1, len(edges[1]) - 1
-                self.seen.add((x, pa, ka, y, pc, kc, mode))
-                self.seen.add((y, pc, kc, x, pa, ka, mode))
+                for (r1, a, k1), (r2, c, k2) in (((x, pa, ka), (y, pc, kc)),
+                                                 ((y, pc, kc), (x, pa, ka))):
+                    found.setdefault((r1, r2, mode), []).append(int(self._codes(
+                        rings, r1, r2, np.array([a]), np.array([k1]), np.array([c]),
+                        np.array([k2]))[0]))
+        self.seen = {key: np.array(v, np.int64) for key, v in found.items()}
         self.fraction = float(fraction)
         self.tol = ROUND_TOL * polygon.size
         self.plans: list[list[tuple[int, float, float]]] = []
@@ -216,6 +221,14 @@ class _Exclusion:
     def __bool__(self) -> bool:
         return bool(self.plans) or bool(self.seen)
 
+    @staticmethod
+    def _codes(rings: list[_Ring], x: int, y: int, iA: Any, kA: Any, iC: Any, kC: Any
+               ) -> np.ndarray:
+        """One integer per configuration of rings ``x`` and ``y`` (starts reduced)."""
+        ma, mb = rings[x].m, rings[y].m
+        return cast("np.ndarray", ((np.asarray(iA, np.int64) % ma * (ma + 1) + kA) * mb
+                                   + np.asarray(iC, np.int64) % mb) * (mb + 1) + kC)
+
     def _outside(self, ring: _Ring, i: np.ndarray, k: np.ndarray, u0: float, u1: float
                  ) -> FloatArray:
         """Arc of the stretches (edges i .. i + k) outside the arc [u0, u1]."""
@@ -233,10 +246,9 @@ class _Exclusion:
         alternative as a kept plan."""
         x, y = job[0], job[1]
         out = np.zeros(len(t), bool)
-        if self.seen:
-            ma, mb = rings[x].m, rings[y].m
-            out[:] = [(x, int(a) % ma, int(ka), y, int(c) % mb, int(kc), job[3]) in self.seen
-                      for a, ka, c, kc in zip(cfg.iA, cfg.kA, cfg.iC, cfg.kC, strict=True)]
+        known = self.seen.get((x, y, job[3]))
+        if known is not None:
+            out |= np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
         f = self.fraction
         for arcs in self.plans:
             for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1]):
