@@ -379,8 +379,8 @@ class CompiledLoops:
     """The numba loops of one module (``funcs``, plain Python over the module's
     ``namespace``), compiled or loaded from numba's cache once per process, on first
     use (:func:`njit_all`; ``extra()`` adds names compiled elsewhere, None when they
-    cannot be had).  Used by the compiled simplex, three fingers with friction and the
-    parallel jaw."""
+    cannot be had).  Used by the compiled simplex, three fingers with friction, the
+    parallel jaw and the two-finger stretch search."""
 
     def __init__(self, namespace: dict[str, Any], funcs: tuple[Any, ...],
                  extra: Any = None) -> None:
@@ -408,6 +408,11 @@ class CompiledLoops:
                 self._loaded.update(njit_all(numba, names,
                                              [(f.__name__, f) for f in self._funcs]))
             return self._loaded or None
+
+    @property
+    def loaded(self) -> bool:
+        """Whether this process has compiled (or loaded) the loops already."""
+        return bool(self._loaded)
 
     def available(self) -> bool:
         """Do the loops run here?  Not with ``FCGRASP_JIT=0``, without numba, or once

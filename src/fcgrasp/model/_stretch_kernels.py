@@ -24,16 +24,12 @@ search uses these loops only on rings large enough to repay it
 
 from __future__ import annotations
 
-import threading
 from typing import Any
 
 import numpy as np
 
-from ..core.kernels import njit_all
+from ..core.kernels import CompiledLoops
 from ..core.tolerances import ROUND_TOL
-
-_lock = threading.Lock()
-_loaded: dict[str, Any] = {}
 
 
 def _grow(a: Any, n: int) -> Any:
@@ -632,23 +628,25 @@ def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
 TABLE_CELLS = 50_000_000
 
 
-def _load() -> dict[str, Any]:
-    """The loops compiled (once per process; :func:`fcgrasp.core.kernels.njit_all`)."""
-    with _lock:
-        if not _loaded:
-            import numba
+_LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _vertex_runs, _windows,
+                                   _interval, _window_boxes, _single, _solve_rows,
+                                   _scan_inside, _beaten, _group_tables, _any_inside,
+                                   _beaten_tables))
 
-            _loaded.update(njit_all(numba, dict(globals()), [
-                (f.__name__, f) for f in (_grow, _append, _in_order, _vertex_runs, _windows,
-                                          _interval, _window_boxes, _single, _solve_rows,
-                                          _scan_inside, _beaten, _group_tables,
-                                          _any_inside, _beaten_tables)]))
-        return _loaded
+
+def _load() -> dict[str, Any]:
+    """The loops compiled (once per process; :class:`fcgrasp.core.kernels.CompiledLoops`).
+    The stretch search runs them only where :func:`~fcgrasp.model.stretches.stretch_kernels_for`
+    says so, which needs numba."""
+    loops = _LOOPS.get()
+    if loops is None:
+        raise ImportError("the stretch search's compiled loops need numba")
+    return loops
 
 
 def loaded() -> bool:
     """Whether this process has loaded the compiled loops (then they cost nothing more)."""
-    return bool(_loaded)
+    return _LOOPS.loaded
 
 
 def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
