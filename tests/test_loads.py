@@ -215,3 +215,37 @@ def test_plan_document_reports_the_payload_of_each_plan():
     with pytest.raises(RequestError, match="jaw"):
         PlanRequest(part="demo:quad", gripper="jaw", stroke=(5.0, 60.0), pad=8.0, mass=1.0)
     assert "--mass" in PlanRequest(part="demo:quad", mass=0.5).to_argv()
+
+
+def test_plans_ranked_by_payload_are_the_pool_reranked():
+    """rank_by="payload": the PAYLOAD_POOL x top plans of the smallest-region order,
+    each with its certified payload, sorted by it (non-increasing); without a load it
+    is refused, and so are force limits alone; the CLI needs --mass for it."""
+    from fcgrasp.errors import RequestError
+    from fcgrasp.planning import PlanRequest, plan_document
+    from fcgrasp.planning.planner import PAYLOAD_POOL
+
+    part = fc.read_part("demo:blob")
+    load = Load(0.3, accel=(1.0, 0.0))
+    pool = fc.plan(part, fingers=2, mu=0.4, top=PAYLOAD_POOL * 2)
+    got = fc.plan(part, fingers=2, mu=0.4, top=2, load=load, force_limit=10.0,
+                  rank_by="payload")
+    scales = {p.edges: region_payload(part, p, load, force_limit=10.0).lower for p in pool}
+    assert [p.payload.lower for p in got] == pytest.approx([scales[p.edges] for p in got])
+    assert [p.edges for p in got] == sorted(scales, key=lambda e: -scales[e])[:2]
+    assert got[0].payload.lower >= got[-1].payload.lower
+    # the default order, each plan with its payload
+    same = fc.plan(part, fingers=2, mu=0.4, top=2, load=load, force_limit=10.0)
+    assert [p.edges for p in same] == [p.edges for p in pool[:2]]
+    assert all(p.to_dict()["payload"]["scale"] == pytest.approx(scales[p.edges]) for p in same)
+    with pytest.raises(ValueError, match="load"):
+        fc.plan(part, rank_by="payload")
+    with pytest.raises(ValueError, match="force_limit"):
+        fc.plan(part, force_limit=10.0)
+    with pytest.raises(TypeError, match="load"):
+        fc.plan(part, load=0.3)
+    with pytest.raises(RequestError, match="--mass"):
+        PlanRequest(part="demo:blob", rank_by="payload")
+    doc = plan_document(PlanRequest(part="demo:blob", mu=0.4, top=2, mass=0.3,
+                                    force_limit=10.0, accel=(1.0, 0.0), rank_by="payload"))
+    assert [g["edges"] for g in doc.report["grasps"]] == [list(p.edges) for p in got]

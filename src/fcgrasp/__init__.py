@@ -165,6 +165,8 @@ _LAZY = {
     "grow_stretches": "model.frictionless_stretches",
     "FrictionlessStretches": "model.frictionless_stretches",
     "plan": "planning",
+    "friction_curve": "planning",
+    "FrictionCurve": "planning",
     "compile_kernels": "planning.compiled",
     "clean_outline": "model.outline",
     "simplify_outline": "model.outline",

@@ -54,7 +54,9 @@ def plan_options(args: Any) -> dict[str, Any]:
     becomes ``stroke=(10.0, 50.0)``, ``--max-memory 2G`` bytes."""
     from ..planning import LOAD_OPTIONS, PLAN_OPTIONS, READING_OPTIONS
 
-    options = {k: getattr(args, k) for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS)}
+    options: dict[str, Any] = {k: getattr(args, k, None)
+                               for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS)}
+    options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
                    ("accel", 2)):
         if options[key] is not None:
@@ -62,6 +64,21 @@ def plan_options(args: Any) -> dict[str, Any]:
     if options["max_memory"] is not None:
         options["max_memory"] = _memory(options["max_memory"])
     return options
+
+
+def _mu(text: str | None) -> tuple[float | None, float | None]:
+    """``--mu 0.3`` or a range ``--mu 0.3:0.6`` (friction known only to lie in it)."""
+    if text is None:
+        return None, None
+    parts = text.split(":")
+    try:
+        values = [float(v) for v in parts]
+    except ValueError:
+        values = []
+    if len(values) not in (1, 2) or len(values) != len(parts):
+        raise CliError(f"--mu must be a number or a range LOW:HIGH such as 0.3:0.6, got "
+                       f"{text!r}")
+    return values[0], values[1] if len(values) == 2 else None
 
 
 def cmd_plan(args: Any) -> int:
@@ -98,6 +115,13 @@ def cmd_plan(args: Any) -> int:
 def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
     """With a load: what each plan's regions carry, one line each; with a placement
     error: the probability that each plan holds."""
+    curve = report.get("friction_curve")
+    if curve is not None:
+        lo, hi = report["parameters"]["mu_range"]
+        print(f"friction in [{lo:g}, {hi:g}]: every plan holds for each mu of it; the best "
+              f"smallest region against mu:", file=out)
+        for m, v in zip(curve["mu"], curve["min_region"], strict=True):
+            print(f"  mu {m:<6.4g} {v:.4g}", file=out)
     sigma = report["parameters"].get("placement_sigma")
     if sigma is not None:
         print(f"placement error {sigma:g} (standard deviation along the boundary): "
@@ -414,9 +438,11 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--fingers", type=int, choices=(2, 3, 4), default=None,
                        help="2 or 3: with friction; 4: frictionless; 3 with --gravity: "
                             "frictionless against gravity")
-        p.add_argument("--mu", type=float, default=None,
+        p.add_argument("--mu", default=None, metavar="MU|LOW:HIGH",
                        help="friction coefficient (default 0.3; four fingers and --gravity are "
-                            "frictionless and take none)")
+                            "frictionless and take none); a range LOW:HIGH when friction is "
+                            "known only to lie in it: plans that hold for every mu of it, "
+                            "and the best region against mu")
         p.add_argument("--gravity", metavar="GX,GY", default=None,
                        help="with --fingers 3: three frictionless fingers holding the part "
                             "against gravity in this direction, such as 0,-1")

@@ -183,6 +183,14 @@ class RegionPayload:
             return 0.0 if self.lower == self.upper else 1.0
         return max(0.0, 1.0 - self.lower / self.upper)
 
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: ``scale`` (certified), ``worst_grasp_scale``, ``gap``, ``boxes``;
+        None stands for an infinite scale (no force limit)."""
+        def finite(x: float) -> float | None:
+            return float(x) if np.isfinite(x) else None
+        return {"scale": finite(self.lower), "worst_grasp_scale": finite(self.upper),
+                "gap": float(self.gap), "boxes": int(self.boxes)}
+
 
 # ----------------------------------------------------------------------------- one grasp
 

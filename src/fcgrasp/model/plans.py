@@ -66,6 +66,9 @@ class GraspPlan:
     similar : tuple of tuple of int
         With distinct plans (``plan(..., distinct=)``), the edges of the lower-ranked
         plans this one stands for (the same alternative); in the JSON as ``similar``.
+    payload : RegionPayload or None
+        With a load (``plan(..., load=)``), the scale of it every grasp of the regions
+        carries within the finger force limits (:func:`fcgrasp.region_payload`).
     """
 
     edges: tuple[int, ...]
@@ -85,6 +88,9 @@ class GraspPlan:
     _quality: dict[str, float] | None = field(default=None, repr=False, compare=False)
     #: the edges of the lower-ranked plans this one stands for (:mod:`fcgrasp.model.distinct`)
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
+    #: with a load (``plan(..., load=)``), the scale of it certified over every grasp of
+    #: the regions (:class:`~fcgrasp.model.loads.RegionPayload`); in the JSON as ``payload``
+    payload: Any = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.regions = tuple(np.asarray(r, dtype=float).reshape(-1, 2) for r in self.regions)
@@ -204,6 +210,8 @@ class GraspPlan:
             d["gravity"] = dict(self.gravity)
         if self.similar:
             d["similar"] = [list(e) for e in self.similar]
+        if self.payload is not None:
+            d["payload"] = self.payload.to_dict()
         return cast("dict[str, Any]", json_ready(d))
 
 

@@ -73,3 +73,21 @@ def resistance(plans: Sequence[Any]) -> FloatArray:
                      "convex hull of the unit contact wrenches")
 def epsilon(plans: Sequence[Any]) -> FloatArray:
     return _quality(plans, "epsilon_l1")
+
+
+@register("payload", units="multiples of the load (plan(..., load=))",
+          definition="the scale of the load every grasp of the regions carries within the "
+                     "finger force limits, certified (fcgrasp.region_payload); the plans "
+                     "ranked first by the smallest region, PAYLOAD_POOL times top of them, "
+                     "re-ranked by it")
+def payload(plans: Sequence[Any]) -> FloatArray:
+    out = []
+    for p in plans:
+        r = getattr(p, "payload", None)
+        # no force limit: every grasp carries any scale (inf), they tie
+        out.append(-1.0 if r is None else min(float(r.lower), _UNLIMITED))
+    return np.array(out, dtype=float)
+
+
+#: the score of an unlimited payload (JSON and the rank key want finite numbers)
+_UNLIMITED = 1e300

@@ -195,6 +195,9 @@ def plan_spec(fingers: Any = 2, mu: Any = 0.0, top: Any = 10, rank_by: Any = "mi
         raise TypeError(f"rank_by must be a string, got {rank_by!r}")
     if rank_by not in MEASURES:
         raise ValueError(f"rank_by must be one of {', '.join(MEASURES)}, got {rank_by!r}")
+    if rank_by == "payload":
+        raise ValueError("rank_by='payload' needs a load: fcgrasp.plan(..., load=) ranks by "
+                         "it, the search itself does not, got rank_by='payload'")
     if top is not None:
         top = check_int(top, "top", minimum=1)
     dist = check_disturbance(disturbance)

@@ -9,7 +9,16 @@
 
 from __future__ import annotations
 
-from .planner import RANKINGS, GraspPlan, geometric_key, independent_regions, plan, rank_key
+from .planner import (
+    RANKINGS,
+    FrictionCurve,
+    GraspPlan,
+    friction_curve,
+    geometric_key,
+    independent_regions,
+    plan,
+    rank_key,
+)
 from .request import (
     LOAD_OPTIONS,
     PLAN_OPTIONS,
@@ -21,4 +30,4 @@ from .request import (
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key", "PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS",
-           "READING_OPTIONS", "LOAD_OPTIONS"]
+           "READING_OPTIONS", "LOAD_OPTIONS", "FrictionCurve", "friction_curve"]

@@ -20,10 +20,10 @@ frictionless contact at the centroid, section 3.1).
 
 from __future__ import annotations
 
-from dataclasses import replace
+from dataclasses import dataclass, field, replace
 from typing import Any
 
-from ..core._checks import check_scalar
+from ..core._checks import check_int, check_scalar
 from ..core.tolerances import SOLVER_TOL
 from ..grippers.base import Gripper, SearchOptions
 from ..grippers.fingers import point_fingers, regions_on
@@ -36,7 +36,7 @@ from ..model.regions import DEFAULT_MARGIN_DEG
 from ..pipeline import check_disturbance as _check_disturbance
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
-           "rank_key"]
+           "rank_key", "FrictionCurve", "friction_curve"]
 
 #: Names of the ranking measures (see :mod:`fcgrasp.model.ranking`).
 RANKINGS = tuple(MEASURES)
@@ -48,7 +48,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True,
-         gripper: Any = None, map: Any = None, distinct: float = 0.0) -> list[Any]:
+         gripper: Any = None, map: Any = None, distinct: float = 0.0,
+         load: Any = None, force_limit: Any = None, total_force: Any = None) -> list[Any]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
@@ -64,9 +65,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         gravity it must be 0: a ``mu`` the planner cannot use is an error).
     top : int or None
         How many plans to return (None: all).
-    rank_by : {"min_region", "resistance", "epsilon"}
-        Largest smallest region first; largest resistance first (the paper's order); or
-        largest Ferrari-Canny L1 measure first.
+    rank_by : {"min_region", "resistance", "epsilon", "payload"}
+        Largest smallest region first; largest resistance first (the paper's order);
+        largest Ferrari-Canny L1 measure first; or, with a ``load``, the largest scale of
+        it certified over every grasp of the regions first (the :data:`PAYLOAD_POOL`
+        times ``top`` plans with the largest smallest regions, re-ranked).
     hand : Hand, optional
         Workspace and finger radius (section 8.2): regions lie in the feasible parts.
     margin : float
@@ -105,6 +108,12 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         :mod:`fcgrasp.model.distinct`; :data:`~fcgrasp.model.distinct.DEFAULT_DISTINCT`
         is 0.5).  The search is asked for more plans until ``top`` distinct ones are
         found or :data:`DISTINCT_DEPTH` times ``top`` were searched.
+    load : Load, optional
+        A load the grasp must carry (:class:`fcgrasp.Load`: mass, centre of mass,
+        accelerations, torque; point fingers only): each plan's ``payload`` is the scale
+        of it every grasp of its regions carries (:func:`fcgrasp.region_payload`, a
+        certified lower bound with its gap), within ``force_limit`` (newtons per finger:
+        one value or one per finger) and ``total_force`` (the sum of the normal forces).
     along_boundary : bool
         Without a hand, regions are stretches of the boundary that may cover several
         edges and the vertices between them: for two fingers the exact optimum
@@ -133,7 +142,49 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     options = SearchOptions(top=top, rank_by=rank_by, margin=margin,
                             disturbance=_check_disturbance(disturbance), tol=tol,
                             max_memory=max_memory, progress=progress, map=map)
-    return _distinct(polygon, gripper, options, distinct)
+    if load is None:
+        for name, value in (("force_limit", force_limit), ("total_force", total_force),
+                            ("rank_by", None if rank_by != "payload" else rank_by)):
+            if value is not None:
+                raise ValueError(f"{name}={value!r} needs a load (load=fcgrasp.Load(mass, "
+                                 f"...)), got load=None")
+        return _distinct(polygon, gripper, options, distinct)
+    return _with_payload(polygon, gripper, options, distinct, load, force_limit,
+                         total_force)
+
+
+#: ``rank_by="payload"``: the plans with the largest smallest regions, this many times
+#: ``top`` of them, are re-ranked by the payload their regions certify.
+PAYLOAD_POOL = 4
+
+
+def _with_payload(polygon: Polygon, gripper: Any, options: SearchOptions, distinct: Any,
+                  load: Any, force_limit: Any, total_force: Any) -> list[Any]:
+    """The plans with each one's certified payload (:func:`fcgrasp.region_payload`);
+    ranked by it for ``rank_by="payload"``: the :data:`PAYLOAD_POOL` times ``top`` plans
+    with the largest smallest regions, re-ranked (ties: the smallest region order)."""
+    from ..model.loads import Load, region_payload
+
+    if not isinstance(load, Load):
+        raise TypeError(f"load must be a fcgrasp.Load, got {type(load).__name__}")
+    if gripper.name == "jaw":
+        raise ValueError("load: loads are carried by point fingers' regions; the parallel "
+                         "jaw's boxes do not report them yet, got a ParallelJaw")
+    by_payload = options.rank_by == "payload"
+    if by_payload:
+        pool = None if options.top is None else PAYLOAD_POOL * options.top
+        options = replace(options, rank_by="min_region", top=pool)
+    plans = _distinct(polygon, gripper, options, distinct)
+    for p in plans:
+        p.payload = region_payload(polygon, p, load, force_limit=force_limit,
+                                   total_limit=total_force)
+    if not by_payload:
+        return plans
+    score = MEASURES["payload"].score(plans)
+    order = sorted(range(len(plans)), key=lambda i: (rank_key(plans[i], polygon, "payload",
+                                                              float(score[i])), i))
+    top = len(plans) if options.top is None else options.top // PAYLOAD_POOL
+    return [plans[i] for i in order[:top]]
 
 
 #: ``distinct=``: the search is asked for at most this many times ``top`` plans.
@@ -222,3 +273,66 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     polygon = check_polygon(polygon)
     return regions_on(polygon, edges, mu=mu, margin=margin, hand=hand, gravity=gravity,
                       tol=tol)
+
+
+@dataclass(frozen=True)
+class FrictionCurve:
+    """The best plan at each friction coefficient of a range (:func:`friction_curve`):
+    ``mu`` (n,), ``min_region`` (n,: the best plan's smallest region, 0 where there is
+    none) and the plans themselves (None where there is none)."""
+
+    mu: Any
+    min_region: Any
+    plans: list[Any] = field(repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"mu": [float(m) for m in self.mu],
+                "min_region": [float(v) for v in self.min_region]}
+
+
+def friction_curve(polygon: Polygon, mu_range: Any, points: int = 9, fingers: int = 2,
+                   **kwargs: Any) -> FrictionCurve:
+    """The best plan's smallest region against friction, at ``points`` coefficients
+    evenly spaced over ``mu_range = (low, high)`` (both ends included), for fingers with
+    friction (two or three); ``kwargs`` go to :func:`plan` (``margin``, ``hand``,
+    ``along_boundary``...).
+
+    Friction known only to lie in the range: a plan made at ``low`` holds for every
+    ``mu`` of it (a larger ``mu`` only widens the friction cones, so a grasp in force
+    closure at ``low`` stays so, with the same margin); the curve says what a better
+    known friction would gain.
+
+    >>> part = Polygon([[0, 0], [4, 0], [4, 1], [0, 1]])
+    >>> c = friction_curve(part, (0.1, 0.4), points=4)
+    >>> [round(float(v), 3) for v in c.min_region]     # 1.0: the whole short side
+    [0.365, 0.764, 1.0, 1.0]
+    """
+    import numpy as np
+
+    lo, hi = _mu_range(mu_range)
+    points = check_int(points, "points", minimum=2)
+    if fingers not in (2, 3):
+        raise ValueError(f"fingers must be 2 or 3 (fingers with friction), got {fingers!r}")
+    for name in ("mu", "top", "gravity", "gripper", "load", "rank_by"):
+        if name in kwargs:
+            raise ValueError(f"{name}={kwargs[name]!r}: friction_curve plans the best "
+                             f"plan by the smallest region at each mu itself")
+    mus = np.linspace(lo, hi, points)
+    plans = []
+    for m in mus:
+        best = plan(polygon, fingers=fingers, mu=float(m), top=1, **kwargs)
+        plans.append(best[0] if best else None)
+    sizes = np.array([0.0 if p is None else p.min_length for p in plans])
+    return FrictionCurve(mus, sizes, plans)
+
+
+def _mu_range(mu_range: Any) -> tuple[float, float]:
+    from ..core._checks import check_mu_scalar
+
+    if isinstance(mu_range, (str, bytes)) or not hasattr(mu_range, "__len__") \
+            or len(mu_range) != 2:
+        raise ValueError(f"mu_range must be (low, high), got {mu_range!r}")
+    lo, hi = (check_mu_scalar(m, "mu_range") for m in mu_range)
+    if not lo < hi:
+        raise ValueError(f"mu_range must be (low, high) with low < high, got {mu_range!r}")
+    return lo, hi

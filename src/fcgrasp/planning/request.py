@@ -27,7 +27,7 @@ from ..io.report import duration, plan_report
 from ..io.units import FILE_UNITS, UNITS, disturbance_step
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
-from .planner import plan
+from .planner import friction_curve, plan
 
 __all__ = ["PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS", "READING_OPTIONS",
            "LOAD_OPTIONS"]
@@ -43,7 +43,8 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
 #: :func:`fcgrasp.placement_probability`).
-LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma")
+LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
+                "mu_high")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -72,7 +73,7 @@ def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
 _KINDS: dict[str, Any] = {
     "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
-    "distinct": "float", "placement_sigma": "float", "mass": "float",
+    "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
     "force_limit": "float", "total_force": "float",
     "com": ("floats", 2), "accel": ("floats", 2),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
@@ -145,6 +146,7 @@ class PlanRequest:
     force_limit: float | None = None
     total_force: float | None = None
     placement_sigma: float | None = None
+    mu_high: float | None = None
     select: str | None = None
     units: str | None = None
     file_units: str | None = None
@@ -204,6 +206,9 @@ class PlanRequest:
             value = getattr(self, name)
             if value is not None and not value > 0:
                 raise _fail(name, f"--{name.replace('_', '-')} must be > 0, got {value:g}")
+        if self.mass is None and self.rank_by == "payload":
+            raise _fail("rank_by", "--rank-by payload ranks by the load a plan carries: give "
+                                   "the load's --mass too")
         if self.mass is None:
             for name in ("com", "accel", "force_limit", "total_force"):
                 if getattr(self, name) is not None:
@@ -217,6 +222,13 @@ class PlanRequest:
                                                   or self.fingers not in (None, 2)):
             raise _fail("placement_sigma", f"--placement-sigma is a distance > 0 for two "
                                            f"fingers, got {self.placement_sigma:g}")
+        if self.mu_high is not None:
+            lo = 0.3 if self.mu is None else self.mu
+            if self.gripper == "jaw" or self.gravity is not None \
+                    or self.fingers not in (None, 2, 3) or not self.mu_high > lo:
+                raise _fail("mu_high", f"--mu LOW:HIGH is a friction range of two or three "
+                                       f"fingers with LOW < HIGH, got {lo:g}:"
+                                       f"{self.mu_high:g}")
         if self.accel is not None and min(self.accel) < 0:
             raise _fail("accel", f"--accel is two half-widths >= 0, got {self.accel}")
         if self.max_memory is not None and self.max_memory < 1:
@@ -234,6 +246,15 @@ class PlanRequest:
     def plan_options(self) -> dict[str, Any]:
         """The planning options (:data:`PLAN_OPTIONS`), as given."""
         return {k: getattr(self, k) for k in PLAN_OPTIONS}
+
+    def load_object(self) -> Any:
+        """The load the request describes (``--mass`` and the options with it), a
+        :class:`fcgrasp.Load`; None without ``--mass``."""
+        if self.mass is None:
+            return None
+        from ..model.loads import Load
+
+        return Load(self.mass, com=self.com, accel=self.accel or (0.0, 0.0))
 
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
@@ -330,52 +351,46 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     if polygon is None:
         raise ValueError(f"{part.source}: part {part.index} is not usable: {part.error}")
     options = request.search_options(units, progress, map)
-    size = gripper.check_part(polygon, options)
+    # ranked by payload, the search ranks by the smallest region (fcgrasp.plan re-ranks)
+    size = gripper.check_part(polygon, replace(options, rank_by="min_region")
+                              if options.rank_by == "payload" else options)
     # with a top and the smallest region, the exact pruning stops far sooner than
     # solving every candidate (seconds where this estimate says hours)
     pruned = options.top is not None and options.rank_by == "min_region"
     if size is not None and size.seconds > 60 and say is not None and not pruned:
         say(f"fcgrasp: {size.rows:.3g} candidate edge sets on {size.features} edges: about "
             f"{duration(size.seconds)} (--simplify TOL or fewer fingers is faster)")
+    load = request.load_object()
     plans = plan(polygon, gripper=gripper, top=options.top, rank_by=options.rank_by,
                  margin=options.margin, disturbance=options.disturbance,
                  max_memory=options.max_memory, progress=progress, map=map,
-                 distinct=request.distinct)
+                 distinct=request.distinct, load=load,
+                 force_limit=None if load is None else request.force_limit,
+                 total_force=None if load is None else request.total_force)
     params = gripper.parameters(options)
     if request.distinct:
         params["distinct"] = request.distinct
+    if load is not None:
+        params["load"] = {
+            "mass_kg": load.mass, "com": None if load.com is None else list(load.com),
+            "accel_m_s2": list(load.accel), "gravity_m_s2": list(load.gravity),
+            "force_limit_n": request.force_limit, "total_force_n": request.total_force}
     reason = None if plans else gripper.no_grasp_reason(request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
-    if request.mass is not None:
-        _payloads(request, request.mass, polygon, plans, report)
+    mu_range = None
+    if request.mu_high is not None:
+        fingers: Any = gripper                 # two or three with friction (checked)
+        mu_range = (float(fingers.mu), request.mu_high)
+        report["parameters"]["mu_range"] = list(mu_range)
+        report["friction_curve"] = friction_curve(
+            polygon, mu_range, fingers=fingers.fingers, margin=options.margin,
+            hand=fingers.hand, along_boundary=fingers.along_boundary).to_dict()
     if request.placement_sigma is not None:
         from ..model.robustness import placement_probability
 
         report["parameters"]["placement_sigma"] = request.placement_sigma
         for p, entry in zip(plans, report["grasps"], strict=True):
-            entry["probability"] = placement_probability(polygon, p, request.placement_sigma)
+            entry["probability"] = placement_probability(polygon, p, request.placement_sigma,
+                                                         mu_range=mu_range)
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
-
-
-def _payloads(request: PlanRequest, mass: float, polygon: Any, plans: list[Any],
-              report: dict[str, Any]) -> None:
-    """Each plan's certified payload (:func:`fcgrasp.region_payload`) in the report."""
-    from ..model.loads import Load, region_payload
-
-    load = Load(mass, com=request.com, accel=request.accel or (0.0, 0.0))
-    report["parameters"]["load"] = {
-        "mass_kg": mass,
-        "com": None if request.com is None else list(request.com),
-        "accel_m_s2": list(load.accel), "gravity_m_s2": list(load.gravity),
-        "force_limit_n": request.force_limit, "total_force_n": request.total_force}
-    for p, entry in zip(plans, report["grasps"], strict=True):
-        r = region_payload(polygon, p, load, force_limit=request.force_limit,
-                           total_limit=request.total_force)
-        entry["payload"] = {"scale": _finite(r.lower), "worst_grasp_scale": _finite(r.upper),
-                            "gap": r.gap, "boxes": r.boxes}
-
-
-def _finite(x: float) -> float | None:
-    """JSON has no infinity: None stands for "no limit"."""
-    return float(x) if math.isfinite(x) else None
