@@ -1,5 +1,5 @@
 """The package layout: subpackages in layers, each importing only from its own layer or the
-layers below it (``core`` <- ``model`` <- ``io`` <- ``pipeline`` <- ``grippers`` <-
+layers below it (``core`` <- ``spatial`` <- ``model`` <- ``io`` <- ``pipeline`` <- ``grippers`` <-
 ``planning`` <- ``plotting`` <- ``apps``), no cycle between modules, front ends that never
 import one another and see only public names.  Imports inside functions count too."""
 
@@ -11,8 +11,8 @@ from pathlib import Path
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
-LAYERS = ["errors", "core", "model", "io", "pipeline", "grippers", "planning", "plotting",
-          "apps"]
+LAYERS = ["errors", "core", "spatial", "model", "io", "pipeline", "grippers", "planning",
+          "plotting", "apps"]
 LEVEL = {name: k for k, name in enumerate(LAYERS)}
 APPS = ("cli", "batch", "serve")
 

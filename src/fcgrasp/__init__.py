@@ -101,11 +101,21 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.stability import Stability, grasp_stability, grasp_stiffness, least_stiffness
     from .model.stretches import StretchPair, two_finger_stretches
     from .planning import (
+        FrictionCurve,
         GraspPlan,
+        friction_curve,
         independent_regions,
         plan,
     )
     from .planning.compiled import compile_kernels
+    from .spatial import (
+        SpatialClosure,
+        SpatialContact,
+        SpatialQuality,
+        spatial_force_closure,
+        spatial_quality,
+        two_soft_closure,
+    )
 
 #: Where each public name lives; loaded on first use (PEP 562), so that ``import fcgrasp``
 #: stays light and the command line starts fast.
@@ -181,6 +191,12 @@ _LAZY = {
     "grasp_stability": "model.stability",
     "grasp_stiffness": "model.stability",
     "least_stiffness": "model.stability",
+    "SpatialContact": "spatial",
+    "SpatialClosure": "spatial",
+    "SpatialQuality": "spatial",
+    "spatial_force_closure": "spatial",
+    "spatial_quality": "spatial",
+    "two_soft_closure": "spatial",
 }
 
 

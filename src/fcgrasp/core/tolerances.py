@@ -146,9 +146,14 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
            "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",
-           "FLATTEN_FINEST", "SLIVER_REL"]
+           "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
 #: compares, so no cell the exact test would hold is left unread.
 ANGLE_SLACK = 1e-6
+
+#: Solid grasps: a margin of the force-closure cone program (Clarabel, interior point,
+#: accurate to about 1e-8 with unit total normal force) below this is a tie, not force
+#: closure.
+CONE_PROGRAM_TOL = 1e-7
