@@ -109,9 +109,14 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     )
     from .planning.compiled import compile_kernels
     from .spatial import (
+        SoftPairPlan,
+        Solid,
         SpatialClosure,
         SpatialContact,
         SpatialQuality,
+        read_solid,
+        soft_pair_plans,
+        soft_pair_regions,
         spatial_force_closure,
         spatial_quality,
         two_soft_closure,
@@ -197,6 +202,11 @@ _LAZY = {
     "spatial_force_closure": "spatial",
     "spatial_quality": "spatial",
     "two_soft_closure": "spatial",
+    "Solid": "spatial",
+    "read_solid": "spatial",
+    "SoftPairPlan": "spatial",
+    "soft_pair_plans": "spatial",
+    "soft_pair_regions": "spatial",
 }
 
 

@@ -272,3 +272,41 @@ def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "",
     fig.tight_layout()
     save_figure(fig, path, outputs)
     plt.close(fig)
+
+
+def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None = None,
+                      panel: int = 3, outputs: Any = None) -> None:
+    """Two soft fingers' regions on a solid (:func:`fcgrasp.spatial.soft_pair_plans`):
+    one 3-D panel per plan (at most ``panel``): the mesh, the two octagon regions, the
+    fingers' approach (the inward normals at the centres) and the segment between them."""
+    plt = _pyplot()
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+
+    shown = plans[:panel] or [None]
+    fig = plt.figure(figsize=(4.2 * len(shown), 4.4))
+    tris = solid.mesh.vertices[solid.mesh.faces]
+    lo, hi = solid.mesh.bounds
+    span = float(np.max(hi - lo))
+    for k, plan in enumerate(shown):
+        ax = fig.add_subplot(1, len(shown), k + 1, projection="3d")
+        ax.add_collection3d(Poly3DCollection(tris, facecolor="0.85", edgecolor="0.6",
+                                             linewidth=0.2, alpha=0.25))
+        if plan is not None:
+            for reg, c, n, color in zip(plan.regions, plan.centers, plan.normals,
+                                        ("C0", "C3"), strict=True):
+                ax.add_collection3d(Poly3DCollection([reg], facecolor=color, alpha=0.8,
+                                                     edgecolor=color))
+                tail = c - 0.35 * span * n
+                ax.quiver(*tail, *(0.3 * span * n), color=color, linewidth=1.5)
+            a, b = plan.centers
+            ax.plot(*np.c_[a, b], color="0.2", linestyle=":", linewidth=1)
+            ax.set_title(f"{k + 1}: facets {plan.facets[0]}, {plan.facets[1]}  "
+                         f"r {plan.radius:.3g}", fontsize=9)
+        mid = 0.5 * (lo + hi)
+        for setter, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid, strict=True):
+            setter(m - 0.6 * span, m + 0.6 * span)
+        ax.set_box_aspect((1, 1, 1))
+        ax.tick_params(labelsize=7)
+    if title:
+        fig.suptitle(title, fontsize=10)
+    save_figure(fig, path, outputs)

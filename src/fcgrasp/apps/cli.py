@@ -56,6 +56,7 @@ def plan_options(args: Any) -> dict[str, Any]:
 
     options: dict[str, Any] = {k: getattr(args, k, None)
                                for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS)}
+    options["soft"] = bool(getattr(args, "soft", False))
     options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
                    ("accel", 2)):
@@ -96,6 +97,12 @@ def cmd_plan(args: Any) -> int:
     def figure(out: Any) -> None:
         from ..plotting import plan_figure
 
+        if request.soft:
+            from ..plotting import solid_plan_figure
+
+            solid_plan_figure(doc.polygon, doc.plans, args.plot, title=doc.title,
+                              outputs=out)
+            return
         plan_figure(doc.polygon, doc.plans, args.plot, units=doc.units, title=doc.title,
                     outputs=out)
 
@@ -104,12 +111,25 @@ def cmd_plan(args: Any) -> int:
     if not args.quiet and not _json_out(args):
         if not doc.plans:
             print(f"no grasp: {doc.reason}")
+        elif request.soft:
+            _print_solid_table(doc.report, sys.stdout)
         elif args.gripper == "jaw":
             _print_jaw_table(doc.plans, doc.units, sys.stdout)
         else:
             _print_table(doc.plans, doc.units, sys.stdout)
             _print_load_and_placement(doc.report, sys.stdout)
     return 0
+
+
+def _print_solid_table(report: dict[str, Any], out: Any) -> None:
+    """Two soft fingers on a solid: one line per plan."""
+    units = report["units"]
+    print(f"rank  facets      radius ({units})  centres", file=out)
+    for g in report["grasps"]:
+        centres = "  ".join("(" + ", ".join(f"{v:.4g}" for v in c) + ")"
+                            for c in g["centers"])
+        print(f"{g['rank']:>4}  {g['facets'][0]:>4} {g['facets'][1]:<5}  "
+              f"{g['radius']:>12.4g}  {centres}", file=out)
 
 
 def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
@@ -443,6 +463,10 @@ def build_parser() -> argparse.ArgumentParser:
                             "frictionless and take none); a range LOW:HIGH when friction is "
                             "known only to lie in it: plans that hold for every mu of it, "
                             "and the best region against mu")
+        p.add_argument("--soft", action="store_true",
+                       help="with a solid part (a mesh, or demo:box, demo:cylinder, "
+                            "demo:prism, demo:angle) and --fingers 2: two soft fingers, "
+                            "regions on two facets")
         p.add_argument("--gravity", metavar="GX,GY", default=None,
                        help="with --fingers 3: three frictionless fingers holding the part "
                             "against gravity in this direction, such as 0,-1")

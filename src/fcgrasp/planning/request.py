@@ -45,6 +45,8 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: :func:`fcgrasp.placement_probability`).
 LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
                 "mu_high")
+#: The options of solid parts (meshes): ``soft``, two soft fingers.
+SOLID_OPTIONS = ("soft",)
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -77,7 +79,7 @@ _KINDS: dict[str, Any] = {
     "force_limit": "float", "total_force": "float",
     "com": ("floats", 2), "accel": ("floats", 2),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
-    "certify": "bool", "single_edge": "bool", "y_down": "bool", "no_clean": "bool",
+    "certify": "bool", "single_edge": "bool", "soft": "bool", "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
     "part": "str", "gripper": "str", "rank_by": "str", "select": "str", "units": "str",
     "file_units": "str", "layer": "str", "json": "str", "plot": "str"}
@@ -134,6 +136,7 @@ class PlanRequest:
     certify: bool | None = None
     top: int = 10
     single_edge: bool = False
+    soft: bool = False
     rank_by: str = "min_region"
     margin: float = DEFAULT_MARGIN_DEG
     workspace: tuple[float, float, float] | None = None
@@ -167,7 +170,8 @@ class PlanRequest:
             if f.init:
                 value = getattr(self, f.name)
                 if f.name in ("top", "margin", "finger_radius", "part", "gripper",
-                              "rank_by", "single_edge", "y_down", "no_clean", "distinct") \
+                              "rank_by", "single_edge", "y_down", "no_clean", "distinct",
+                              "soft") \
                         and value is None:
                     raise TypeError(f"{f.name} must be given, got None")
                 object.__setattr__(self, f.name, _check_kind(f.name, value))
@@ -222,6 +226,17 @@ class PlanRequest:
                                                   or self.fingers not in (None, 2)):
             raise _fail("placement_sigma", f"--placement-sigma is a distance > 0 for two "
                                            f"fingers, got {self.placement_sigma:g}")
+        if self.is_solid() != self.soft:
+            raise _fail("soft", "a solid part (a mesh) is planned for two soft fingers: give "
+                                "--fingers 2 --soft" if self.is_solid() else
+                                "--soft: soft fingers are planned on solid parts (a mesh: .stl, "
+                                f".obj, .ply, .glb, .3mf, .off, or demo:box...), got "
+                                f"{self.part!r}")
+        if self.soft and (self.gripper != "fingers" or self.fingers not in (None, 2)
+                          or self.gravity is not None or self.mass is not None
+                          or self.mu_high is not None or self.placement_sigma is not None):
+            raise _fail("soft", "--soft: two soft fingers on a solid take --mu, --top and "
+                                "--margin only so far")
         if self.mu_high is not None:
             lo = 0.3 if self.mu is None else self.mu
             if self.gripper == "jaw" or self.gravity is not None \
@@ -246,6 +261,12 @@ class PlanRequest:
     def plan_options(self) -> dict[str, Any]:
         """The planning options (:data:`PLAN_OPTIONS`), as given."""
         return {k: getattr(self, k) for k in PLAN_OPTIONS}
+
+    def is_solid(self) -> bool:
+        """The part is a solid: a mesh file or a built-in solid (``demo:box``...)."""
+        from ..spatial.solid import is_solid_source
+
+        return is_solid_source(self.part)
 
     def load_object(self) -> Any:
         """The load the request describes (``--mass`` and the options with it), a
@@ -290,7 +311,10 @@ class PlanRequest:
             if not f.init or f.name in ("part", "json", "plot"):
                 continue
             value = getattr(self, f.name)
-            if value == f.default:
+            if value == f.default or f.name == "mu_high":
+                continue
+            if f.name == "mu" and self.mu_high is not None:     # a range: --mu LOW:HIGH
+                argv += ["--mu", f"{value!r}:{self.mu_high!r}"]
                 continue
             flag = "--part" if f.name == "select" else "--" + f.name.replace("_", "-")
             if isinstance(value, bool):
@@ -345,6 +369,8 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     """
     if not isinstance(request, PlanRequest):
         raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
+    if request.soft:
+        return _solid_document(request)
     gripper = request.gripper_object()
     part = request.load(say) if part is None else part
     polygon, units = part.polygon, part.units
@@ -394,3 +420,35 @@ def plan_document(request: PlanRequest, part: Part | None = None,
                                                          mu_range=mu_range)
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
+
+
+
+def _solid_document(request: PlanRequest) -> PlanDocument:
+    """Two soft fingers on a solid (:func:`fcgrasp.spatial.soft_pair_plans`): the JSON
+    document of ``fcgrasp plan part.stl --fingers 2 --soft``."""
+    from .. import __version__
+    from ..io.report import FORMAT_VERSION
+    from ..spatial.regions import soft_pair_plans
+    from ..spatial.solid import read_solid
+
+    solid = read_solid(request.part, units=request.units)
+    mu = 0.3 if request.mu is None else request.mu
+    plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
+    reason = None if plans else f"no two facets hold two soft fingers with mu {mu:g} " \
+                                f"and a margin of {request.margin:g} degrees"
+    grasps = []
+    for k, p in enumerate(plans, 1):
+        grasps.append({"rank": k, **p.to_dict()})
+    lo, hi = solid.mesh.bounds
+    report = {"fcgrasp": __version__, "format_version": FORMAT_VERSION,
+              "units": solid.units,
+              "part": {"solid": True, "facets": len(solid.facets),
+                       "triangles": int(len(solid.mesh.faces)), "bounds": [lo.tolist(),
+                                                                          hi.tolist()],
+                       "center_of_mass": solid.center.tolist()},
+              "parameters": {"fingers": 2, "contact_type": "soft", "mu": mu,
+                             "top": request.top, "margin_deg": request.margin},
+              "grasps": grasps, "reason": reason, "source": {"path": request.part}}
+    # a solid's document carries the solid where a planar one has its polygon
+    return PlanDocument(report, list(plans), solid, solid.units, reason,
+                        f"{request.part}: two soft fingers")

@@ -5,7 +5,11 @@
 - :mod:`~fcgrasp.spatial.closure`: force closure of a grasp (exact quadratic cones, one
   second-order cone program), two soft fingers batched in closed form;
 - :mod:`~fcgrasp.spatial.quality`: Ferrari-Canny L1 and L-infinity epsilon and the
-  volume of the grasp wrench space.
+  volume of the grasp wrench space;
+- :mod:`~fcgrasp.spatial.solid`: meshes read with trimesh, checked and cut into planar
+  facets, and the built-in solids;
+- :mod:`~fcgrasp.spatial.regions`: independent regions of two soft fingers on a pair of
+  facets (one cone program each) and the search over every pair.
 """
 
 from __future__ import annotations
@@ -13,7 +17,10 @@ from __future__ import annotations
 from .closure import SpatialClosure, closure_margin, spatial_force_closure, two_soft_closure
 from .contacts import SpatialContact, contact_frames, contact_maps, contact_wrench_generators
 from .quality import SpatialQuality, spatial_quality
+from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
+from .solid import Facet, Solid, demo_solid, read_solid, solid_from_mesh
 
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
-           "SpatialQuality", "spatial_quality"]
+           "SpatialQuality", "spatial_quality", "SoftPairPlan", "soft_pair_plans",
+           "soft_pair_regions", "Facet", "Solid", "demo_solid", "read_solid", "solid_from_mesh"]
