@@ -240,6 +240,9 @@ def test_plans_ranked_by_payload_are_the_pool_reranked():
     assert all(p.to_dict()["payload"]["scale"] == pytest.approx(scales[p.edges]) for p in same)
     with pytest.raises(ValueError, match="load"):
         fc.plan(part, rank_by="payload")
+    from fcgrasp.pipeline import plan_spec
+    with pytest.raises(ValueError, match="payload"):         # the search does not rank by it
+        plan_spec(rank_by="payload")
     with pytest.raises(ValueError, match="force_limit"):
         fc.plan(part, force_limit=10.0)
     with pytest.raises(TypeError, match="load"):

@@ -15,6 +15,10 @@ from fcgrasp.planning.planner import RANKINGS
 from .grippers import grip
 from .shapes import parallel_polygon, random_polygon
 
+#: the measures the search itself ranks by ("payload" is fcgrasp.plan's re-ranking of
+#: plans found by the smallest region; the pipeline refuses it: tests/test_loads.py)
+SEARCHED = tuple(r for r in RANKINGS if r != "payload")
+
 KINDS = ("convex", "star", "holes", "rectangle", "regular")
 JOBS = [dict(fingers=2, mu=0.3), dict(fingers=2, mu=0.05), dict(fingers=3, gravity=(0.0, -1.0)),
         dict(fingers=4)]
@@ -60,7 +64,7 @@ def _check(part, job, top, rank_by, hand=None, sizes=(1, 9, 64)):
         _spec.KEEP_FOR_MEASURE = old
 
 
-@pytest.mark.parametrize("rank_by", RANKINGS)
+@pytest.mark.parametrize("rank_by", SEARCHED)
 @pytest.mark.parametrize("job", JOBS, ids=lambda j: f"{j['fingers']}f{j.get('mu', '')}")
 @pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_pruned_top_k_is_the_exhaustive_top_k(seed, job, rank_by):
@@ -70,7 +74,7 @@ def test_pruned_top_k_is_the_exhaustive_top_k(seed, job, rank_by):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("rank_by", RANKINGS)
+@pytest.mark.parametrize("rank_by", SEARCHED)
 @pytest.mark.parametrize("job", JOBS, ids=lambda j: f"{j['fingers']}f{j.get('mu', '')}")
 @pytest.mark.parametrize("seed", range(2, 20))
 def test_pruned_top_k_is_the_exhaustive_top_k_slow(seed, job, rank_by):

@@ -146,7 +146,8 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
            "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",
-           "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL"]
+           "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
+           "INRADIUS_STEP"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
@@ -157,3 +158,7 @@ ANGLE_SLACK = 1e-6
 #: accurate to about 1e-8 with unit total normal force) below this is a tie, not force
 #: closure.
 CONE_PROGRAM_TOL = 1e-7
+
+#: Solid grasps: the pieces' inscribed circles (the search's bound) are found to this
+#: fraction of their size, and the bound adds it.
+INRADIUS_STEP = 1e-3

@@ -24,8 +24,9 @@ contact).
 
 :func:`soft_pair_plans` searches every pair of facets' convex pieces whose cones can
 meet (their normals within ``2 alpha`` of opposite), largest bound first (an octagon
-of radius ``r`` has area ``2 sqrt(2) r^2``, at most its piece's area), and stops when
-the next bound cannot enter the top ``top``.
+of circumradius ``r`` holds a disc of radius ``r cos(pi / 8)``, so ``r`` is at most the
+pieces' inscribed radius over ``cos(pi / 8)``), and stops when the next bound cannot
+enter the top ``top``.
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core.tolerances import CONE_PROGRAM_TOL, TOL
+from ..core.tolerances import CONE_PROGRAM_TOL, INRADIUS_STEP, TOL
 from .solid import Facet, Solid
 
 __all__ = ["SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
@@ -226,6 +227,17 @@ def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatA
     return lo
 
 
+def _inradius(piece: Any) -> float:
+    """The radius of the largest disc inside a convex piece: an octagon of circumradius
+    ``r`` holds the disc of radius ``r cos(pi / 8)``, so ``r <= inradius / cos(pi/8)``."""
+    from shapely import maximum_inscribed_circle
+
+    # shapely finds the centre to within ``tolerance``: the radius is at most that more
+    lo_x, lo_y, hi_x, hi_y = piece.bounds
+    tol = INRADIUS_STEP * max(hi_x - lo_x, hi_y - lo_y)
+    return float(maximum_inscribed_circle(piece, tol).length) + tol
+
+
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
                     margin: Any = DEFAULT_MARGIN_DEG) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
@@ -254,7 +266,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
         for a, pa in enumerate(solid.facets[i].pieces):
             for b, pb in enumerate(solid.facets[j].pieces):
-                bound = math.sqrt(min(pa.area, pb.area) / (2 * math.sqrt(2)))
+                bound = min(_inradius(pa), _inradius(pb)) / math.cos(math.pi / 8)
                 cands.append((bound, i, j, a, b))
     cands.sort(key=lambda c: -c[0])
     plans: list[SoftPairPlan] = []
