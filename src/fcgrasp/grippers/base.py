@@ -24,7 +24,12 @@ from ..core.tolerances import SOLVER_TOL
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 
-__all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "gripper_from_options"]
+__all__ = ["Gripper", "SearchOptions", "REGISTRY", "register", "gripper_from_options",
+           "DEFAULT_MU"]
+
+#: The friction coefficient of a request that gives none (fingers with friction, the
+#: parallel jaw, soft fingers on a solid).
+DEFAULT_MU = 0.3
 
 
 @dataclass(frozen=True)

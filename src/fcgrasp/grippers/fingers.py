@@ -46,7 +46,7 @@ from ._boundary import (
     grown_plans,
     stretch_plan,
 )
-from .base import SearchOptions, register
+from .base import DEFAULT_MU, SearchOptions, register
 from .three_fingers import three_finger_plans
 
 __all__ = ["TwoFingers", "ThreeFingers", "ThreeFrictionless", "FourFingers",
@@ -354,7 +354,7 @@ def fingers_from_options(options: Mapping[str, Any]) -> _PointFingers:
     frictionless = fingers == 4 or gravity is not None
     mu = options.get("mu")
     if mu is None:
-        mu = 0.0 if frictionless else 0.3
+        mu = 0.0 if frictionless else DEFAULT_MU
     elif frictionless and mu != 0:
         what = "four fingers" if fingers == 4 else "three fingers with --gravity"
         raise ValueError(f"--mu {mu:g} would not be used: {what} are planned frictionless "

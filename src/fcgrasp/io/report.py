@@ -79,16 +79,19 @@ def part_dict(polygon: Any) -> dict[str, Any]:
 
 
 def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], units: str,
-                reason: str | None = None, source: dict[str, Any] | None = None
-                ) -> dict[str, Any]:
+                reason: str | None = None, source: dict[str, Any] | None = None,
+                part: dict[str, Any] | None = None) -> dict[str, Any]:
+    """The JSON document of ranked plans: each plan's ``to_dict()`` with its rank, the
+    part (``part``, or the polygon's :func:`part_dict`), the parameters, why there is no
+    plan, and where the part came from."""
     grasps = []
     for k, p in enumerate(plans):
         d = p.to_dict()
         d["rank"] = k + 1
         grasps.append(d)
     out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
-           "part": part_dict(polygon), "parameters": parameters, "grasps": grasps,
-           "reason": None if plans else (reason or "no force-closure grasp")}
+           "part": part_dict(polygon) if part is None else part, "parameters": parameters,
+           "grasps": grasps, "reason": None if plans else (reason or "no force-closure grasp")}
     if source is not None:
         out["source"] = source
     return out

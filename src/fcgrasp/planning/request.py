@@ -20,7 +20,7 @@ from typing import Any
 
 from ..core._checks import check_margin
 from ..errors import RequestError
-from ..grippers.base import Gripper, SearchOptions, gripper_from_options
+from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
 from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
@@ -42,11 +42,10 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: The options of a request that give a load to carry (:class:`fcgrasp.Load`: each plan
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
-#: :func:`fcgrasp.placement_probability`).
+#: :func:`fcgrasp.placement_probability`), and the top of a friction range (``mu_high``:
+#: ``--mu LOW:HIGH``).
 LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
                 "mu_high")
-#: The options of solid parts (meshes): ``soft``, two soft fingers.
-SOLID_OPTIONS = ("soft",)
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -238,7 +237,7 @@ class PlanRequest:
             raise _fail("soft", "--soft: two soft fingers on a solid take --mu, --top and "
                                 "--margin only so far")
         if self.mu_high is not None:
-            lo = 0.3 if self.mu is None else self.mu
+            lo = DEFAULT_MU if self.mu is None else self.mu
             if self.gripper == "jaw" or self.gravity is not None \
                     or self.fingers not in (None, 2, 3) or not self.mu_high > lo:
                 raise _fail("mu_high", f"--mu LOW:HIGH is a friction range of two or three "
@@ -422,33 +421,24 @@ def plan_document(request: PlanRequest, part: Part | None = None,
                         f"{request.part}: {gripper.title}")
 
 
-
 def _solid_document(request: PlanRequest) -> PlanDocument:
     """Two soft fingers on a solid (:func:`fcgrasp.spatial.soft_pair_plans`): the JSON
     document of ``fcgrasp plan part.stl --fingers 2 --soft``."""
-    from .. import __version__
-    from ..io.report import FORMAT_VERSION
     from ..spatial.regions import soft_pair_plans
     from ..spatial.solid import read_solid
 
     solid = read_solid(request.part, units=request.units)
-    mu = 0.3 if request.mu is None else request.mu
+    mu = DEFAULT_MU if request.mu is None else request.mu
     plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
     reason = None if plans else f"no two facets hold two soft fingers with mu {mu:g} " \
                                 f"and a margin of {request.margin:g} degrees"
-    grasps = []
-    for k, p in enumerate(plans, 1):
-        grasps.append({"rank": k, **p.to_dict()})
     lo, hi = solid.mesh.bounds
-    report = {"fcgrasp": __version__, "format_version": FORMAT_VERSION,
-              "units": solid.units,
-              "part": {"solid": True, "facets": len(solid.facets),
-                       "triangles": int(len(solid.mesh.faces)), "bounds": [lo.tolist(),
-                                                                          hi.tolist()],
-                       "center_of_mass": solid.center.tolist()},
-              "parameters": {"fingers": 2, "contact_type": "soft", "mu": mu,
-                             "top": request.top, "margin_deg": request.margin},
-              "grasps": grasps, "reason": reason, "source": {"path": request.part}}
+    part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
+            "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist()}
+    params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
+              "margin_deg": request.margin}
+    report = plan_report(None, plans, params, solid.units, reason,
+                         source={"path": request.part}, part=part)
     # a solid's document carries the solid where a planar one has its polygon
     return PlanDocument(report, list(plans), solid, solid.units, reason,
                         f"{request.part}: two soft fingers")

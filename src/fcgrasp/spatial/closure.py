@@ -39,7 +39,8 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_array
 from ..core.tolerances import CONE_PROGRAM_TOL, TOL
-from .contacts import FRICTION, FRICTIONLESS, SOFT, check_spatial_contacts, contact_maps
+from ._program import solve_linear
+from .contacts import check_spatial_contacts, check_spatial_grasp, contact_maps
 
 __all__ = ["SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure"]
 
@@ -93,15 +94,10 @@ def closure_margin(points: Any, normals: Any, mu: Any = 0.0, torsion: Any = 0.0,
     'not force closure: the contact wrenches '
     """
     import clarabel
-    from scipy import sparse
 
-    p, n, m, tor = check_spatial_contacts(points, normals, mu, torsion)
-    if p.ndim != 2:
-        raise ValueError(f"points must be one grasp, shape (k, 3), got {p.shape}")
-    c = p.mean(axis=0) if center is None else check_array(center, "center", last=3)
-    if radius is None:
-        radius = max(float(np.max(np.linalg.norm(p - c, axis=1))), TOL)
-    G4 = contact_maps(p, n, tor, c, float(radius))              # (k, 6, 4)
+    p, n, m, tor, c, radius = check_spatial_grasp(points, normals, mu, torsion, center,
+                                                  radius)
+    G4 = contact_maps(p, n, tor, c, radius)                     # (k, 6, 4)
     dims = _dims(m, tor)
     G = np.concatenate([G4[i, :, :d] for i, d in enumerate(dims)], axis=1)   # (6, N)
     sv = np.linalg.svd(G, compute_uv=False)
@@ -144,11 +140,7 @@ def closure_margin(points: Any, normals: Any, mu: Any = 0.0, torsion: Any = 0.0,
             rows.append(r)
             b.append(0.0)
         cones.append(clarabel.SecondOrderConeT(d))
-    A = sparse.csc_matrix(np.array(rows))
-    settings = clarabel.DefaultSettings()
-    settings.verbose = False
-    sol = clarabel.DefaultSolver(sparse.csc_matrix((N + 1, N + 1)), q, A, np.array(b),
-                                 cones, settings).solve()
+    sol = solve_linear(q, rows, b, cones)
     status = str(sol.status)
     t = float(sol.x[-1]) if status.startswith("Solved") or "Almost" in status else 0.0
     if "Infeasible" in status:
@@ -168,7 +160,6 @@ def _unresisted(G: FloatArray, dims: list[int], mu: FloatArray, torsion: FloatAr
     by ``torsion / mu``), with the largest total normal work: the certificate that the
     external wrench ``d`` is not resisted.  One more cone program."""
     import clarabel
-    from scipy import sparse
 
     rows: list[FloatArray] = []
     cones: list[Any] = []
@@ -192,10 +183,7 @@ def _unresisted(G: FloatArray, dims: list[int], mu: FloatArray, torsion: FloatAr
     cones.append(clarabel.SecondOrderConeT(7))
     b = np.zeros(len(rows))
     b[-7] = 1.0
-    settings = clarabel.DefaultSettings()
-    settings.verbose = False
-    sol = clarabel.DefaultSolver(sparse.csc_matrix((6, 6)), q, sparse.csc_matrix(
-        np.array(rows)), b, cones, settings).solve()
+    sol = solve_linear(q, rows, b, cones)
     found = np.asarray(sol.x, float)
     norm = float(np.linalg.norm(found))
     return found / norm if norm > 0 else found
@@ -263,7 +251,3 @@ def spatial_force_closure(points: Any, normals: Any, mu: Any = 0.0, torsion: Any
     out = np.array([closure_margin(flat_p[i], flat_n[i], flat_m[i], flat_t[i]).closure
                     for i in range(flat_p.shape[0])], dtype=bool)
     return out.reshape(batch)
-
-
-#: the contact kinds, for the docs
-KINDS = (FRICTIONLESS, FRICTION, SOFT)

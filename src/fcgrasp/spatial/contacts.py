@@ -30,7 +30,8 @@ from ..core._checks import FloatArray, check_array
 from ..core.tolerances import TOL
 
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
-           "check_spatial_contacts", "FRICTIONLESS", "FRICTION", "SOFT"]
+           "check_spatial_contacts", "check_spatial_grasp", "FRICTIONLESS", "FRICTION",
+           "SOFT"]
 
 FRICTIONLESS = "frictionless"
 FRICTION = "friction"
@@ -88,6 +89,22 @@ def check_spatial_contacts(points: Any, normals: Any, mu: Any = 0.0, torsion: An
         raise ValueError(f"torsion (a soft finger) needs friction: mu > 0 where torsion > 0, "
                          f"got mu={mu!r}, torsion={torsion!r}")
     return p, n, m, tor
+
+
+def check_spatial_grasp(points: Any, normals: Any, mu: Any, torsion: Any, center: Any,
+                        radius: float | None) -> tuple[FloatArray, FloatArray, FloatArray,
+                                                       FloatArray, FloatArray, float]:
+    """One grasp of ``k`` contacts checked (:func:`check_spatial_contacts`, shape (k, 3)),
+    with the point torques are taken about (``center``, default the contacts' mean) and
+    the ``radius`` that divides them (default the largest distance of a contact from
+    it): ``(points, normals, mu, torsion, center, radius)``."""
+    p, n, m, tor = check_spatial_contacts(points, normals, mu, torsion)
+    if p.ndim != 2:
+        raise ValueError(f"points must be one grasp, shape (k, 3), got {p.shape}")
+    c = p.mean(axis=0) if center is None else check_array(center, "center", last=3)
+    if radius is None:
+        radius = max(float(np.max(np.linalg.norm(p - c, axis=1))), TOL)
+    return p, n, m, tor, c, float(radius)
 
 
 def contact_frames(normals: Any) -> tuple[FloatArray, FloatArray]:

@@ -31,7 +31,7 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_array
 from ..core.tolerances import TOL
-from .contacts import check_spatial_contacts, contact_wrench_generators
+from .contacts import check_spatial_grasp, contact_wrench_generators
 
 __all__ = ["SpatialQuality", "spatial_quality", "hull_epsilon"]
 
@@ -81,14 +81,10 @@ def spatial_quality(points: Any, normals: Any, mu: Any = 0.0, torsion: Any = 0.0
     >>> q.epsilon_l1 > 0, q.volume > 0
     (True, True)
     """
-    p, n, m, tor = check_spatial_contacts(points, normals, mu, torsion)
-    if p.ndim != 2:
-        raise ValueError(f"points must be one grasp, shape (k, 3), got {p.shape}")
-    c = p.mean(axis=0) if center is None else check_array(center, "center", last=3)
-    if radius is None:
-        radius = max(float(np.max(np.linalg.norm(p - c, axis=1))), TOL)
+    p, n, m, tor, c, radius = check_spatial_grasp(points, normals, mu, torsion, center,
+                                                  radius)
     gens = contact_wrench_generators(p, n, m, tor, facets=facets, center=c,
-                                     radius=float(radius))            # (k, g, 6)
+                                     radius=radius)                   # (k, g, 6)
     eps1, volume = hull_epsilon(gens.reshape(-1, 6))
     epsinf = 0.0
     if linf and eps1 > 0:

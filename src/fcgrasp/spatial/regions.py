@@ -39,6 +39,7 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core.tolerances import CONE_PROGRAM_TOL, INRADIUS_STEP, TOL
+from ._program import solve_linear
 from .solid import Facet, Solid
 
 __all__ = ["SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
@@ -118,7 +119,6 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     5.0
     """
     import clarabel
-    from scipy import sparse
 
     if not isinstance(solid, Solid):
         raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
@@ -173,10 +173,7 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
                 cones.append(clarabel.SecondOrderConeT(4))
     q = np.zeros(5)
     q[4] = -1.0
-    settings = clarabel.DefaultSettings()
-    settings.verbose = False
-    sol = clarabel.DefaultSolver(sparse.csc_matrix((5, 5)), q, sparse.csc_matrix(
-        np.array(rows)), np.array(rhs), cones, settings).solve()
+    sol = solve_linear(q, rows, rhs, cones)
     if not str(sol.status).startswith("Solved"):
         return None
     z = np.asarray(sol.x, float)

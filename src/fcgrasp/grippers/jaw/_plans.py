@@ -17,7 +17,7 @@ from ...model.distinct import box_images, distinct_boxes, part_symmetries
 from ...model.polygon import Polygon
 from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
-from ..base import register
+from ..base import DEFAULT_MU, register
 from . import _kernels
 from ._certify import (
     certify_box,
@@ -108,7 +108,7 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
         missing = "--stroke MIN,MAX" if stroke is None else "--pad WIDTH"
         raise ValueError(f"{missing} is needed: --gripper jaw needs --stroke MIN,MAX and "
                          f"--pad WIDTH (in the part's units)")
-    mu = 0.3 if options.get("mu") is None else options["mu"]
+    mu = DEFAULT_MU if options.get("mu") is None else options["mu"]
     if not (math.isfinite(mu) and mu > 0):
         raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
     return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=pad, mu=mu,
