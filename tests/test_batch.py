@@ -271,3 +271,38 @@ def test_a_folder_is_walked_and_only_part_files_are_parts(tmp_path):
             str(tmp_path / "sub" / "deeper" / "c.wkt")]
     assert batch.part_files(str(tmp_path)) == sorted(want)
     assert batch.part_files(str(tmp_path / "**" / "*")) == sorted(want)
+
+
+def test_meshes_among_drawings_are_planned_for_soft_fingers(tmp_path):
+    """A folder of a drawing and two meshes (one in a subfolder): the meshes are planned
+    for two soft fingers with the batch's friction and top, exactly as ``fcgrasp plan
+    --soft``; with a jaw, each mesh is its own one-line error, the drawing still
+    planned."""
+    trimesh = pytest.importorskip("trimesh")
+    from fcgrasp.io.meshes import read_solid
+    from fcgrasp.spatial import soft_pair_plans
+
+    (tmp_path / "in" / "sub").mkdir(parents=True)
+    (tmp_path / "in" / "plate.json").write_text('{"vertices": [[0, 0], [30, 0], [30, 10], '
+                                                '[0, 10]]}')
+    trimesh.creation.box((20.0, 12.0, 6.0)).export(tmp_path / "in" / "sub" / "block.stl")
+    trimesh.creation.icosphere(subdivisions=2, radius=8.0).export(tmp_path / "in" / "b.stl")
+    out = tmp_path / "soft.jsonl"
+    summary = batch.run_batch(batch.part_files(str(tmp_path / "in")), str(out), workers=1,
+                              mu=0.4, top=2)
+    assert summary.planned == 3 and not summary.failed
+    got = _lines(out)
+    assert all(r["error"] is None for r in got.values())
+    for name in ("sub/block.stl", "b.stl"):
+        path = str(tmp_path / "in" / name)
+        want = soft_pair_plans(read_solid(path), 0.4, top=2)
+        assert [g["radius"] for g in got[path]["grasps"]] == pytest.approx(
+            [p.radius for p in want], rel=1e-12)
+    assert got[str(tmp_path / "in" / "plate.json")]["grasps"][0]["min_region_length"] > 0
+    out = tmp_path / "jaw.jsonl"
+    batch.run_batch(batch.part_files(str(tmp_path / "in")), str(out), workers=1,
+                    gripper="jaw", stroke=(5.0, 40.0), pad=4.0)
+    got = _lines(out)
+    errors = {os.path.basename(k): r["error"] for k, r in got.items()}
+    assert errors["plate.json"] is None
+    assert "soft" in errors["block.stl"] and "soft" in errors["b.stl"]

@@ -154,7 +154,11 @@ def test_demo_command_writes_json_and_figures(tmp_path):
     files = sorted(p.name for p in (tmp_path / "demo").iterdir())
     assert "demo.json" in files and sum(f.endswith(".png") for f in files) >= 3
     summary = json.loads((tmp_path / "demo" / "demo.json").read_text())
-    assert all(p.get("best_min_region", p.get("best_measure")) > 0 for p in summary["plans"])
+    assert all(p.get("best_min_region", p.get("best_measure", p.get("best_radius"))) > 0
+               for p in summary["plans"])
+    solid = [p for p in summary["plans"] if p.get("contact_type") == "soft"]
+    assert solid and json.loads((tmp_path / "demo" / solid[0]["json"]).read_text())[
+        "grasps"][0]["radius"] == solid[0]["best_radius"]
     jaw = [p for p in summary["plans"] if p.get("gripper") == "parallel_jaw"]
     assert jaw and (tmp_path / "demo" / jaw[0]["figure"]).stat().st_size > 1000
     assert any(p.get("fingers") == 3 and p["mu"] > 0 for p in summary["plans"])

@@ -235,7 +235,7 @@ def _plans(part, monkeypatch, jit):
     return fc.plan(part, fingers=3, mu=0.5, top=5)
 
 
-PARTS = [pytest.param(n, marks=pytest.mark.slow) if n in ("cam", "washer") else n
+PARTS = [pytest.param(n, marks=pytest.mark.slow) if n in ("cam", "washer", "blob") else n
          for n in DEMO_PARTS]
 
 

@@ -266,7 +266,7 @@ def test_epsilon_l1_and_linf_equal_brute_force_facets(seed):
         facets = 4 if k == 3 else 3
         c = points.mean(axis=0)
         radius = float(np.max(np.linalg.norm(points - c, axis=1)))
-        got = spatial_quality(points, normals, mu, torsion, facets=facets)
+        got = spatial_quality(points, normals, mu, torsion, facets=facets, linf=True)
         # the same generators as fcgrasp's (its frame), so the hulls are the same sets
         t1, t2 = contact_frames(normals / np.linalg.norm(normals, axis=1)[:, None])
         gens = []

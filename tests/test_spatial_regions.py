@@ -10,9 +10,10 @@ import math
 import numpy as np
 import pytest
 
+from fcgrasp.io.meshes import read_solid
 from fcgrasp.spatial import closure_margin, two_soft_closure
 from fcgrasp.spatial.regions import soft_pair_plans, soft_pair_regions
-from fcgrasp.spatial.solid import demo_solid, read_solid, solid_from_mesh
+from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 
 trimesh = pytest.importorskip("trimesh")
 
@@ -83,15 +84,123 @@ def test_regions_equal_the_analytic_optimum():
     assert prism.radius == pytest.approx(25 * t / 2, rel=1e-6)
 
 
-@pytest.mark.parametrize("seed", [3, pytest.param(4, marks=pytest.mark.slow)])
+def _every_pair(solid, mu, margin=0.5):
+    """The reference: the cone program on every pair of pieces of every pair of facets
+    (the search before its bounds and fits), sorted."""
+    plans = []
+    for i, fi in enumerate(solid.facets):
+        for j in range(i + 1, len(solid.facets)):
+            for a in range(len(fi.pieces)):
+                for b in range(len(solid.facets[j].pieces)):
+                    got = soft_pair_regions(solid, (i, j), mu, margin, (a, b))
+                    if got is not None:
+                        plans.append(got)
+    return sorted(plans, key=lambda p: -p.radius)
+
+
+def _search_corpus(seed):
+    """Solids with many small facets and near-ties: random hulls, icospheres (every
+    facet a triangle of nearly one size), a tessellated cylinder (rectangles and caps),
+    an L-shaped extrusion (non-convex facets cut into pieces)."""
+    rng = np.random.default_rng(seed)
+    kind = seed % 4
+    if kind == 0:
+        return _random_convex(seed)
+    if kind == 1:
+        mesh = trimesh.creation.icosphere(subdivisions=int(seed >= 4),
+                                          radius=float(rng.uniform(5, 30)))
+        mesh.vertices *= rng.uniform(0.7, 1.3, 3)                 # an ellipsoid
+        return solid_from_mesh(mesh, "mm", f"ico{seed}")
+    if kind == 2:
+        return solid_from_mesh(trimesh.creation.cylinder(
+            radius=float(rng.uniform(3, 20)), height=float(rng.uniform(5, 40)),
+            sections=int(rng.integers(6, 14))), "mm", f"cyl{seed}")
+    return demo_solid("angle")
+
+
+@pytest.mark.parametrize("seed", [*range(4), *(pytest.param(s, marks=pytest.mark.slow)
+                                               for s in range(4, 40))])
 def test_bounded_search_equals_every_pair(seed):
-    solid = _random_convex(seed)
-    for mu in (0.4, 0.8):
-        every = soft_pair_plans(solid, mu, top=None)
-        some = soft_pair_plans(solid, mu, top=3)
-        assert [p.radius for p in some] == pytest.approx([p.radius for p in every[:3]])
-        # no pair the search left out beats what it kept: the exhaustive list is sorted
-        assert all(a.radius >= b.radius for a, b in zip(every, every[1:], strict=False))
+    """The best-first search (batched bounds, fits in closed form, cone program only
+    where the fits fail) gives the cone program's radii on every pair, in order."""
+    solid = _search_corpus(seed)
+    rng = np.random.default_rng(seed)
+    for mu in (float(rng.choice([0.2, 0.4])), float(rng.choice([0.8, 1.5]))):
+        every = _every_pair(solid, mu)
+        for top in (1, 5):
+            some = soft_pair_plans(solid, mu, top=top)
+            assert [p.radius for p in some] == pytest.approx(
+                [p.radius for p in every[:top]], rel=1e-6, abs=1e-9 * solid.size)
+        everything = soft_pair_plans(solid, mu, top=None)
+        assert len(everything) == len(every)
+        assert [p.radius for p in everything] == pytest.approx(
+            [p.radius for p in every], rel=1e-6, abs=1e-9 * solid.size)
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 10))])
+def test_bounds_and_fits_against_the_cone_program(seed):
+    """For sampled pairs of pieces: the batched bound is at least the refined one, which
+    is at least the cone program's radius; where the fits hold they equal it."""
+    from fcgrasp.spatial import regions as R
+
+    solid = _search_corpus(seed)
+    rng = np.random.default_rng(100 + seed)
+    mu = float(rng.uniform(0.2, 1.5))
+    alpha = math.atan(mu) - math.radians(0.5)
+    table = R._piece_table(solid)
+    pa, pb = R._pairs(table, np.arange(len(table.facet)), np.zeros(0, np.intp),
+                      math.cos(min(2 * alpha, math.pi)))
+    pick = rng.choice(len(pa), min(len(pa), 60), replace=False)
+    bounds = R._pair_bounds(solid, table, pa[pick], pb[pick], alpha)
+    for bound, i, j in zip(bounds, pa[pick], pb[pick], strict=True):
+        facets = (int(table.facet[i]), int(table.facet[j]))
+        pieces = (int(table.local[i]), int(table.local[j]))
+        want = soft_pair_regions(solid, facets, mu, 0.5, pieces)
+        r = 0.0 if want is None else want.radius
+        refined = R._refine(solid, table, int(i), int(j), alpha)
+        assert bound >= refined.bound * (1 - 1e-12)
+        assert refined.bound >= r * (1 - 1e-6)
+        got = R._solve(solid, table, int(i), int(j), alpha, refined)
+        assert (0.0 if got is None else got[2]) == pytest.approx(r, rel=1e-6,
+                                                                  abs=1e-9 * solid.size)
+
+
+@pytest.mark.parametrize("cases", [300, pytest.param(3000, marks=pytest.mark.slow)])
+def test_octagon_fits_equal_an_lp(cases):
+    """The closed-form fit of a turned octagon in a triangle against scipy's LP over the
+    centre and scale, on seeded triangles (thin ones too), and the batched fits of a
+    mesh's triangles against the one-at-a-time closed form."""
+    from scipy.optimize import linprog
+    from shapely import Polygon
+
+    from fcgrasp.spatial import regions as R
+
+    rng = np.random.default_rng(cases)
+    for _ in range(cases):
+        tri = rng.normal(size=(3, 2)) * rng.uniform(0.1, 10)
+        if rng.random() < 0.2:                                   # a sliver
+            tri[2] = tri[0] + rng.uniform(0.01, 0.99) * (tri[1] - tri[0]) \
+                + rng.normal(size=2) * 1e-3
+        poly = Polygon(tri)
+        if poly.area < 1e-9:
+            continue
+        E, h = R._halfplanes(poly)
+        phi = rng.uniform(0, 2 * math.pi)
+        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
+                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        s, t = R._fit((E, h), corners)
+        k = (E @ corners.T).max(axis=1)
+        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
+                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-8 * np.abs(tri).max())
+        assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
+    solid = solid_from_mesh(trimesh.creation.icosphere(subdivisions=2, radius=7.0))
+    table = R._piece_table(solid)
+    for f, fit in zip(solid.facets, table.own_fit, strict=True):
+        Q1, _ = R._octagon_axes(f, f)
+        assert fit == pytest.approx(R._fit(R._halfplanes(f.pieces[0]), Q1 @ f.axes.T)[0],
+                                    rel=1e-12)
 
 
 def test_meshes_are_read_and_checked(tmp_path):
@@ -139,3 +248,54 @@ def test_cli_plans_soft_fingers_on_a_mesh(tmp_path, capsys):
         assert main(argv) != 0
         err = capsys.readouterr().err
         assert "--soft" in err and len(err.strip().splitlines()) == 1
+
+
+def test_bodies_units_and_the_parts_command(tmp_path, capsys):
+    """A file of two bodies: listed largest first by ``fcgrasp parts`` (table and JSON),
+    the largest planned by default and the other by ``--part 1``; a GLB in metres is
+    converted to millimetres and inches, --file-units overrides an STL's silence, and a
+    body that does not exist is a one-line error."""
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.io.meshes import read_bodies
+
+    big, small = trimesh.creation.box((10, 10, 10)), trimesh.creation.box((2, 4, 6))
+    small.apply_translation((20, 0, 0))
+    mesh = trimesh.util.concatenate([small, big])
+    stl = tmp_path / "two.stl"
+    mesh.export(stl)
+    bodies, units, note = read_bodies(str(stl))
+    assert [b.volume for b in bodies] == pytest.approx([1000.0, 48.0])
+    assert units == "mm" and "no units" in note
+    assert main(["parts", str(stl), "--json", str(tmp_path / "parts.json")]) == 0
+    doc = json.loads((tmp_path / "parts.json").read_text())
+    assert doc["default"] == 0 and [b["triangles"] for b in doc["bodies"]] == [12, 12]
+    assert main(["parts", str(stl)]) == 0
+    out = capsys.readouterr().out
+    assert "2 bodies" in out and "10 x 10 x 10" in out
+    assert read_solid(str(stl)).mesh.volume == pytest.approx(1000.0)
+    assert read_solid(str(stl), select=1).mesh.volume == pytest.approx(48.0)
+    # the small body: its best pair is the two 2 x 4 faces 6 apart, or the 4 x 6 faces 2
+    # apart...: whatever it is, the CLI gives the library's answer for that body
+    out_json = tmp_path / "plan.json"
+    assert main(["plan", str(stl), "--fingers", "2", "--soft", "--part", "1", "--top", "1",
+                 "--json", str(out_json)]) == 0
+    want = soft_pair_plans(read_solid(str(stl), select=1), 0.3, top=1)[0]
+    assert json.loads(out_json.read_text())["grasps"][0]["radius"] == pytest.approx(
+        want.radius)
+    # units: a GLB in metres
+    mesh.units = "m"
+    glb = tmp_path / "two.glb"
+    mesh.export(glb)
+    assert read_solid(str(glb)).mesh.volume == pytest.approx(1000.0 * 1e9)
+    inches = read_solid(str(glb), units="in")
+    assert inches.units == "in" and inches.mesh.volume == pytest.approx(1e12 / 25.4 ** 3)
+    assert read_solid(str(stl), file_units="cm").mesh.volume == pytest.approx(1e6)
+    assert read_solid("demo:box", units="cm").mesh.volume == pytest.approx(8.0)
+    capsys.readouterr()
+    assert main(["plan", str(stl), "--fingers", "2", "--soft", "--part", "7"]) != 0
+    err = capsys.readouterr().err
+    assert "body 7" in err and len(err.strip().splitlines()) == 1
+    with pytest.raises(ValueError, match="units"):
+        read_bodies(str(stl), units="furlong")

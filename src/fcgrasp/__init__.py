@@ -70,6 +70,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         wrench_from_force,
     )
     from .grippers.jaw import JawPlan, ParallelJaw, jaw_plans
+    from .io.meshes import read_solid
     from .io.parts import (
         Part,
         list_parts,
@@ -114,7 +115,6 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         SpatialClosure,
         SpatialContact,
         SpatialQuality,
-        read_solid,
         soft_pair_plans,
         soft_pair_regions,
         spatial_force_closure,
@@ -203,7 +203,7 @@ _LAZY = {
     "spatial_quality": "spatial",
     "two_soft_closure": "spatial",
     "Solid": "spatial",
-    "read_solid": "spatial",
+    "read_solid": "io.meshes",
     "SoftPairPlan": "spatial",
     "soft_pair_plans": "spatial",
     "soft_pair_regions": "spatial",

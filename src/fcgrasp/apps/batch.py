@@ -55,11 +55,13 @@ def part_files(pattern: str) -> list[str]:
     """The part files of a folder and its subfolders, or of a glob pattern: every file of
     a format fcgrasp reads (by its extension: a README or a table beside the parts is
     not a part), hidden files and folders left out, sorted."""
+    from ..io.meshes import MESH_SUFFIXES
     from ..io.parts import FORMATS
 
     def is_part(path: str) -> bool:
         name = os.path.basename(path)
-        return (not name.startswith(".") and os.path.splitext(name)[1].lower() in FORMATS
+        suffix = os.path.splitext(name)[1].lower()
+        return (not name.startswith(".") and (suffix in FORMATS or suffix in MESH_SUFFIXES)
                 and os.path.isfile(path))
 
     if os.path.isdir(pattern):
@@ -101,6 +103,7 @@ class _Task:
     figures: str | None
     digest: str = ""
     parameters: dict[str, Any] = field(default_factory=dict)
+    refused: str = ""    # why this part's request cannot be planned (a mesh with a jaw...)
 
 
 def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
@@ -115,6 +118,8 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
         from ..model.polygon import Polygon
         from ..planning import plan_document
 
+        if task.refused:
+            raise ValueError(task.refused)
         part = None
         if isinstance(task.item, Polygon):
             part = Part(task.item, task.path, "polygon", units=task.request.units or "mm")
@@ -129,12 +134,15 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
         out["reason"] = doc.report["reason"]
         out["units"] = doc.units
         if task.figures:
-            from ..plotting import plan_figure
+            from ..plotting import plan_figure, solid_plan_figure
 
             stem = os.path.splitext(os.path.basename(task.path))[0] or "part"
-            plan_figure(doc.polygon, doc.plans,
-                        os.path.join(task.figures, f"{task.index:05d}-{stem}.png"),
-                        units=doc.units, title=doc.title)
+            figure = os.path.join(task.figures, f"{task.index:05d}-{stem}.png")
+            if task.request.soft:
+                solid_plan_figure(doc.polygon, doc.plans, figure, title=doc.title)
+            else:
+                plan_figure(doc.polygon, doc.plans, figure, units=doc.units,
+                            title=doc.title)
     except Exception as exc:  # noqa: BLE001 - a part's failure is its result
         msg = " ".join(str(exc).split()) or type(exc).__name__
         out["error"] = msg if isinstance(exc, (ValueError, PartTimeout)) else \
@@ -347,10 +355,13 @@ def cluster(scheduler: str, workers: int) -> Any:
 
 def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | None,
            figures: str | None) -> list[_Task]:
+    from ..io.meshes import is_solid_source
     from ..model.polygon import Polygon
     from ..planning import PlanRequest
 
-    template = PlanRequest(part="demo:quad", **options)    # checked once, before any work
+    # checked once, before any work (on a built-in part of the kind the options plan)
+    template = PlanRequest(part="demo:box" if options.get("soft") else "demo:quad",
+                           **options)
     parameters = template.options()
     out = []
     for k, item in enumerate(parts):
@@ -360,9 +371,20 @@ def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | 
             path = os.fspath(item)
         else:
             raise TypeError(f"parts must hold paths or Polygons, got {type(item).__name__}")
-        request = template if isinstance(item, Polygon) else template.replace(part=path)
+        refused = ""
+        if isinstance(item, Polygon):
+            request = template
+        elif is_solid_source(path) != template.soft:
+            # a mesh among drawings is planned for two soft fingers with the batch's
+            # friction, top and margin (a drawing among meshes: its own error)
+            try:
+                request = template.replace(part=path, soft=not template.soft)
+            except ValueError as exc:
+                request, refused = template, str(exc)
+        else:
+            request = template.replace(part=path)
         out.append(_Task(k, path, item if isinstance(item, Polygon) else path, request,
-                         part_timeout, figures, parameters=parameters))
+                         part_timeout, figures, parameters=parameters, refused=refused))
     return out
 
 

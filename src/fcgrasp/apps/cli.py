@@ -172,14 +172,15 @@ def cmd_batch(args: Any) -> int:
     paths = part_files(args.input)
     if not paths:
         raise CliError(f"no part files in {args.input!r} (a folder of .json, .svg, .dxf, "
-                       f"image ... files, or a glob pattern)")
+                       f"image, mesh ... files, or a glob pattern)")
     if os.path.isdir(args.out):
         raise CliError(f"--out {args.out} is a folder, not a results file")
     options = plan_options(args)
     # the options are checked once, before any work (run_batch checks each part's again)
     from ..planning import PlanRequest
 
-    PlanRequest(part=paths[0], **options)
+    # (on a built-in part of the kind they plan: meshes among drawings get soft fingers)
+    PlanRequest(part="demo:box" if options.get("soft") else "demo:quad", **options)
     client = None
     workers = args.workers or os.cpu_count() or 1
     if args.scheduler is not None:
@@ -241,10 +242,13 @@ def cmd_check(args: Any) -> int:
 
 
 def cmd_parts(args: Any) -> int:
+    from ..io.meshes import is_solid_source
     from ..io.parts import choose_part, list_parts
     from ..io.report import dumps, parts_report
 
     _check_outputs(args, [args.part])
+    if is_solid_source(args.part) and not args.part.startswith("demo:"):
+        return _solid_parts(args)
     parts = list_parts(args.part, **_reading(args))
     try:
         default = choose_part(parts).index
@@ -273,6 +277,34 @@ def cmd_parts(args: Any) -> int:
               f"{p.polygon.area:>11.4g}{extra}")
     for note in parts[0].notes if parts else ():
         print(f"note: {note}")
+    return 0
+
+
+def _solid_parts(args: Any) -> int:
+    """``fcgrasp parts part.stl``: the mesh's connected bodies (the default: the largest
+    watertight one)."""
+    from ..io.meshes import read_bodies
+    from ..io.report import dumps
+
+    bodies, units, note = read_bodies(args.part, args.units, args.file_units)
+    default = next((b.index for b in bodies if b.watertight), 0)
+    if args.json:
+        doc = {"source": args.part, "units": units, "units_note": note, "default": default,
+               "bodies": [{"index": b.index, "triangles": b.triangles,
+                           "watertight": b.watertight, "volume": b.volume,
+                           "bounds": b.bounds.tolist()} for b in bodies]}
+        _write_outputs([(args.json, dumps(doc))])
+    if args.quiet or _json_out(args):
+        return 0
+    print(f"{args.part}: {len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} (mesh, units "
+          f"{units}: {note}); * = the default (the largest watertight)")
+    print(f"  {'index':>5}  {'triangles':>9}  {'watertight':>10}  {'size':>26}  "
+          f"{'volume':>11}")
+    for b in bodies:
+        mark = "*" if b.index == default else " "
+        w, h, d = b.bounds[1] - b.bounds[0]
+        print(f"{mark} {b.index:>5}  {b.triangles:>9}  {'yes' if b.watertight else 'no':>10}  "
+              f"{f'{w:.4g} x {h:.4g} x {d:.4g}':>26}  {b.volume:>11.4g}")
     return 0
 
 
@@ -316,6 +348,9 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
     jobs.append((PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10.0, 50.0),
                              pad=8.0, mu=0.5, top=3), "rectangle-jaw",
                  "demo:rectangle - a parallel jaw (stroke 10-50 mm, 8 mm pads, mu 0.5)"))
+    # a solid: two soft fingers' regions on the facets of a mesh (issue 33)
+    jobs.append((PlanRequest(part="demo:angle", fingers=2, soft=True, mu=0.5, top=4),
+                 "angle-soft", "demo:angle - two soft fingers on a solid (mu 0.5)"))
     return jobs
 
 
@@ -327,6 +362,14 @@ def _demo_entry(request: Any, doc: Any, stem: str) -> tuple[dict[str, Any], str]
     entry: dict[str, Any] = {"part": request.part, "json": f"{stem}.json",
                              "figure": f"{stem}.png"}
     params = doc.report["parameters"]
+    if params.get("contact_type") == "soft":
+        entry.update({"fingers": 2, "contact_type": "soft", "mu": params["mu"],
+                      "best_facets": None if best is None else list(best.facets),
+                      "best_radius": None if best is None else best.radius})
+        if best is None:
+            return entry, f"{request.part:14s} 2 soft     no grasp: {doc.reason}"
+        return entry, (f"{request.part:14s} 2 soft     best facets {list(best.facets)!s:16s}"
+                       f"octagons of radius {best.radius:.3g} mm")
     if "fingers" not in params:
         entry.update({"gripper": params["gripper"], "mu": params["mu"],
                       "best_theta_deg": None if best is None else
@@ -352,7 +395,7 @@ def cmd_demo(args: Any) -> int:
     from ..io.outputs import OutputSet
     from ..io.report import demo_summary, dumps
     from ..planning import plan_document
-    from ..plotting import plan_figure
+    from ..plotting import plan_figure, solid_plan_figure
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():
@@ -363,8 +406,12 @@ def cmd_demo(args: Any) -> int:
         doc = plan_document(request)
         with OutputSet() as files:
             files.add_text(out / f"{stem}.json", dumps(doc.report))
-            plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"), units=doc.units,
-                        title=title, outputs=files)
+            if request.soft:
+                solid_plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"),
+                                  title=title, outputs=files)
+            else:
+                plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"),
+                            units=doc.units, title=title, outputs=files)
         entry, line = _demo_entry(request, doc, stem)
         entries.append(entry)
         if not args.quiet:

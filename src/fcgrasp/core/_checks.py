@@ -18,8 +18,9 @@ if TYPE_CHECKING:       # numpy.typing costs a plan's start-up; annotations only
     from numpy.typing import NDArray
 
     FloatArray = NDArray[np.float64]
+    IntArray = NDArray[np.intp]
 else:
-    FloatArray = np.ndarray
+    FloatArray = IntArray = np.ndarray
 
 
 def _short(value: Any, limit: int = 80) -> str:

@@ -147,7 +147,8 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
            "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",
            "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
-           "INRADIUS_STEP"]
+           "INRADIUS_STEP", "FIT_ROUNDING", "PROJECTED_AXIS", "PLANAR_TOL",
+           "ROUNDING_SHRINK"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
@@ -162,3 +163,21 @@ CONE_PROGRAM_TOL = 1e-7
 #: Solid grasps: the pieces' inscribed circles (the search's bound) are found to this
 #: fraction of their size, and the bound adds it.
 INRADIUS_STEP = 1e-3
+
+#: Solid grasps: a solution a rounding outside its constraints (an interior point's, or
+#: a closed-form fit's) is tried again shrunk by up to this fraction (first 1e-5 of it,
+#: then 1e-2 of it, then all of it) before anything slower.
+ROUNDING_SHRINK = 1e-7
+
+#: Solid parts: triangles are one planar facet when every vertex lies within this
+#: fraction of the mesh's size of the facet's plane (above the float32 rounding of STL
+#: files, below the turn between the sides of a finely tessellated cylinder).
+PLANAR_TOL = 1e-6
+
+#: Solid grasps: the octagons' fits in triangles computed in a batch are bounds for the
+#: exact fits once raised by this fraction (their rounding).
+FIT_ROUNDING = 1e-9
+
+#: Solid grasps: below this length, a facet's first axis projected into another facet's
+#: plane is not a direction; the octagon turns along that facet's own axis instead.
+PROJECTED_AXIS = 1e-3

@@ -263,7 +263,7 @@ class PlanRequest:
 
     def is_solid(self) -> bool:
         """The part is a solid: a mesh file or a built-in solid (``demo:box``...)."""
-        from ..spatial.solid import is_solid_source
+        from ..io.meshes import is_solid_source
 
         return is_solid_source(self.part)
 
@@ -424,17 +424,19 @@ def plan_document(request: PlanRequest, part: Part | None = None,
 def _solid_document(request: PlanRequest) -> PlanDocument:
     """Two soft fingers on a solid (:func:`fcgrasp.spatial.soft_pair_plans`): the JSON
     document of ``fcgrasp plan part.stl --fingers 2 --soft``."""
+    from ..io.meshes import read_solid
     from ..spatial.regions import soft_pair_plans
-    from ..spatial.solid import read_solid
 
-    solid = read_solid(request.part, units=request.units)
+    solid = read_solid(request.part, units=request.units, file_units=request.file_units,
+                       select=request.select)
     mu = DEFAULT_MU if request.mu is None else request.mu
     plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
     reason = None if plans else f"no two facets hold two soft fingers with mu {mu:g} " \
                                 f"and a margin of {request.margin:g} degrees"
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
-            "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist()}
+            "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist(),
+            "units_note": solid.units_note}
     params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
               "margin_deg": request.margin}
     report = plan_report(None, plans, params, solid.units, reason,

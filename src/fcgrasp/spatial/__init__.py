@@ -18,9 +18,9 @@ from .closure import SpatialClosure, closure_margin, spatial_force_closure, two_
 from .contacts import SpatialContact, contact_frames, contact_maps, contact_wrench_generators
 from .quality import SpatialQuality, spatial_quality
 from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
-from .solid import Facet, Solid, demo_solid, read_solid, solid_from_mesh
+from .solid import Facet, Solid, demo_solid, solid_from_mesh
 
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
            "SpatialQuality", "spatial_quality", "SoftPairPlan", "soft_pair_plans",
-           "soft_pair_regions", "Facet", "Solid", "demo_solid", "read_solid", "solid_from_mesh"]
+           "soft_pair_regions", "Facet", "Solid", "demo_solid", "solid_from_mesh"]

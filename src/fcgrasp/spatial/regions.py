@@ -23,22 +23,39 @@ octagons holds.  Measure: ``r`` (the paper's "largest smallest region", for disc
 contact).
 
 :func:`soft_pair_plans` searches every pair of facets' convex pieces whose cones can
-meet (their normals within ``2 alpha`` of opposite), largest bound first (an octagon
-of circumradius ``r`` holds a disc of radius ``r cos(pi / 8)``, so ``r`` is at most the
-pieces' inscribed radius over ``cos(pi / 8)``), and stops when the next bound cannot
-enter the top ``top``.
+meet (their normals within ``2 alpha`` of opposite), best bound first, and stops when
+the next bound cannot enter the top ``top``.  Three upper bounds on ``r``, batched over
+all pairs at once: the pieces' inscribed circles over ``cos(pi / 8)`` (an octagon of
+circumradius ``r`` holds a disc of radius ``r cos(pi / 8)``); each octagon's own fit in
+its piece, ignoring the cones (closed form in a triangle, the width across an edge in
+any piece); ``tan(alpha)`` times each piece's height above the other facet's plane.
+The pieces come in rounds, widest first, so that a mesh's thousands of facets do not
+make millions of pairs unless they must.  A pair whose tightened bound comes first is
+solved by the fits themselves when they pass the float check (then they reach the
+bound, so they are optimal: the common case on finely tessellated surfaces, where the
+cones are wide against the facets), otherwise by the cone program.  Tested against the
+cone program on every pair (the search before these bounds).
 """
 
 from __future__ import annotations
 
+import bisect
+import heapq
 import math
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core.tolerances import CONE_PROGRAM_TOL, INRADIUS_STEP, TOL
+from ..core._checks import FloatArray, IntArray, check_int, check_mu_scalar, check_scalar
+from ..core.tolerances import (
+    CONE_PROGRAM_TOL,
+    FIT_ROUNDING,
+    INRADIUS_STEP,
+    PROJECTED_AXIS,
+    ROUNDING_SHRINK,
+    TOL,
+)
 from ._program import solve_linear
 from .solid import Facet, Solid
 
@@ -80,7 +97,11 @@ class SoftPairPlan:
                 "mu": self.mu, "margin_deg": self.margin, "contact_type": "soft"}
 
 
-def _halfplanes(piece: Any) -> tuple[FloatArray, FloatArray]:
+#: A convex piece as ``E x <= h``: outward unit normals (m, 2) and offsets (m,).
+Halfplanes = tuple[FloatArray, FloatArray]
+
+
+def _halfplanes(piece: Any) -> Halfplanes:
     """``E x <= h`` for a convex shapely polygon (counter-clockwise made)."""
     from shapely.geometry.polygon import orient
 
@@ -118,7 +139,6 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     >>> round(soft_pair_regions(box, x, mu=0.3).radius, 4)   # the 10 mm height
     5.0
     """
-    import clarabel
 
     if not isinstance(solid, Solid):
         raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
@@ -139,13 +159,34 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     alpha = math.atan(mu_v) - math.radians(margin_v)
     if alpha <= 0:
         return None
+    got = _pair_program(solid, (i, j), (a, b), alpha,
+                        (_halfplanes(f1.pieces[a]), _halfplanes(f2.pieces[b])))
+    return None if got is None else _plan(solid, (i, j), (a, b), *got, mu_v, margin_v)
+
+
+def _plan(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int], c1: FloatArray,
+          c2: FloatArray, r: float, mu: float, margin: float) -> SoftPairPlan:
+    f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
+    Q1, Q2 = _octagon_axes(f1, f2)
+    regions = np.stack([c1 + r * Q1, c2 + r * Q2])
+    return SoftPairPlan(facets, pieces, r, np.stack([c1, c2]), regions,
+                        np.stack([f1.normal, f2.normal]), mu, margin)
+
+
+def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int],
+                  alpha: float, halfplanes: tuple[Halfplanes, Halfplanes]
+                  ) -> tuple[FloatArray, FloatArray, float] | None:
+    """The cone program of the module docstring for one pair of pieces: the octagons'
+    centres (3-D) and certified circumradius, or None when no regions hold."""
+    import clarabel
+
+    f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
     Q1, Q2 = _octagon_axes(f1, f2)
     # variables z = (c1 (2), c2 (2), r); the corners p = origin + c A + r Q
     rows: list[FloatArray] = []
     rhs: list[float] = []
     lin = 0
-    for f, piece, col, Q in ((f1, f1.pieces[a], 0, Q1), (f2, f2.pieces[b], 2, Q2)):
-        E, h = _halfplanes(piece)
+    for f, (E, h), col, Q in ((f1, halfplanes[0], 0, Q1), (f2, halfplanes[1], 2, Q2)):
         q2 = Q @ f.axes.T                                         # corners in 2-D (8, 2)
         for e, hh in zip(E, h, strict=True):
             for q in q2:                                           # e.(c + r q) <= h
@@ -178,18 +219,15 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
         return None
     z = np.asarray(sol.x, float)
     c1, c2 = f1.to_3d(z[0:2]), f2.to_3d(z[2:4])
-    r = _certified_radius(c1, c2, Q1, Q2, (f1, f2), (f1.pieces[a], f2.pieces[b]),
-                          alpha, float(z[4]))
+    r = _certified_radius(c1, c2, Q1, Q2, (f1, f2), halfplanes, alpha, float(z[4]))
     if r <= CONE_PROGRAM_TOL * solid.size:
         return None
-    regions = np.stack([c1 + r * Q1, c2 + r * Q2])
-    return SoftPairPlan((i, j), (a, b), r, np.stack([c1, c2]), regions,
-                        np.stack([f1.normal, f2.normal]), mu_v, margin_v)
+    return c1, c2, r
 
 
 def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
-           facets: tuple[Facet, Facet], pieces: tuple[Any, Any], alpha: float,
-           r: float) -> bool:
+           facets: tuple[Facet, Facet], halfplanes: tuple[Halfplanes, Halfplanes],
+           alpha: float, r: float) -> bool:
     """The octagons of radius ``r`` about ``c1`` and ``c2``, checked in floats: every
     corner difference within ``alpha`` of ``n_1`` and of ``-n_2`` (strictly), every
     corner inside its piece."""
@@ -198,48 +236,298 @@ def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
     for axis in (facets[0].normal, -facets[1].normal):
         if not np.all(d @ axis > math.cos(alpha) * length):
             return False
-    for f, piece, c, Q in ((facets[0], pieces[0], c1, Q1), (facets[1], pieces[1], c2, Q2)):
-        E, h = _halfplanes(piece)
+    for f, (E, h), c, Q in ((facets[0], halfplanes[0], c1, Q1),
+                            (facets[1], halfplanes[1], c2, Q2)):
         if not np.all(f.to_2d(c + r * Q) @ E.T <= h):
             return False
     return True
 
 
 def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
-                      facets: tuple[Facet, Facet], pieces: tuple[Any, Any], alpha: float,
-                      r: float) -> float:
+                      facets: tuple[Facet, Facet], halfplanes: tuple[Halfplanes, Halfplanes],
+                      alpha: float, r: float) -> float:
     """The program's radius, or the largest below it that :func:`_holds` confirms (an
     interior-point solution may sit a rounding outside a constraint): bisection."""
-    if _holds(c1, c2, Q1, Q2, facets, pieces, alpha, r):
-        return r
+    for shrink in _SHRINKS:                               # the usual rounding first
+        if _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, r * (1 - shrink)):
+            return r * (1 - shrink)
     lo, hi = 0.0, r
-    if not _holds(c1, c2, Q1, Q2, facets, pieces, alpha, lo):
+    if not _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, lo):
         return 0.0
     for _ in range(60):
         mid = 0.5 * (lo + hi)
-        if _holds(c1, c2, Q1, Q2, facets, pieces, alpha, mid):
+        if _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, mid):
             lo = mid
         else:
             hi = mid
     return lo
 
 
-def _inradius(piece: Any) -> float:
-    """The radius of the largest disc inside a convex piece: an octagon of circumradius
-    ``r`` holds the disc of radius ``r cos(pi / 8)``, so ``r <= inradius / cos(pi/8)``."""
-    from shapely import maximum_inscribed_circle
 
-    # shapely finds the centre to within ``tolerance``: the radius is at most that more
-    lo_x, lo_y, hi_x, hi_y = piece.bounds
-    tol = INRADIUS_STEP * max(hi_x - lo_x, hi_y - lo_y)
-    return float(maximum_inscribed_circle(piece, tol).length) + tol
+@dataclass(frozen=True)
+class _Pieces:
+    """Every convex piece of a solid's facets, flattened: its ``facet`` and index in it
+    (``local``), half-planes, 3-D vertices, centroid and ``reach`` (largest distance of a
+    vertex from it), inscribed radius; ``start`` and ``count`` per facet."""
+
+    facet: IntArray
+    local: IntArray
+    halfplanes: list[Halfplanes]
+    vertices: list[FloatArray]
+    centroid: FloatArray
+    reach: FloatArray
+    inradius: FloatArray
+    start: IntArray
+    count: IntArray
+    triangle: Any = field(repr=False)      # bool (P,)
+    edge_angle: FloatArray = field(repr=False)   # triangles: edges' normal angles (P, 3)
+    edge_weight: FloatArray = field(repr=False)  # triangles: lengths / (2 area) (P, 3)
+    normal: FloatArray = field(repr=False)       # the facet's inward normal (P, 3)
+    own_fit: FloatArray = field(repr=False)      # the octagon along the facet's own axis
+    width: list[FloatArray] = field(repr=False)  # the piece's width across each edge
+    narrow_angle: FloatArray = field(repr=False)  # the narrowest widths' normal angles
+    narrow_width: FloatArray = field(repr=False)  # ... and widths (P, NARROW), inf pad
+
+
+def _piece_table(solid: Solid) -> _Pieces:
+    import shapely
+    from shapely.geometry.polygon import orient
+
+    facet, local, hps, verts, polys = [], [], [], [], []
+    for f in solid.facets:
+        for k, piece in enumerate(f.pieces):
+            facet.append(f.index)
+            local.append(k)
+            hps.append(_halfplanes(piece))
+            verts.append(f.to_3d(np.asarray(orient(piece, 1.0).exterior.coords)[:-1]))
+            polys.append(piece)
+    geoms = np.array(polys, dtype=object)
+    area, length = shapely.area(geoms), shapely.length(geoms)
+    inradius = 2 * area / length                              # exact for triangles
+    other = np.array([len(v) != 3 for v in verts], bool)
+    if other.any():
+        lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms[other]).T
+        tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
+        # shapely finds the centre to within ``tol``: the radius is at most that more
+        inradius[other] = shapely.length(
+            shapely.maximum_inscribed_circle(geoms[other], tol)) + tol
+    centroid = np.array([v.mean(axis=0) for v in verts])
+    reach = np.array([np.max(np.linalg.norm(v - c, axis=1))
+                      for v, c in zip(verts, centroid, strict=True)])
+    count = np.array([len(f.pieces) for f in solid.facets], np.intp)
+    start = np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.intp)
+    triangle = ~other
+    edge_angle = np.zeros((len(verts), 3))
+    edge_weight = np.zeros((len(verts), 3))
+    for k in np.flatnonzero(triangle).tolist():
+        E, h = hps[k]
+        length = np.abs(_cross2(E[[1, 2, 0]], E[[2, 0, 1]]))     # law of sines
+        edge_angle[k] = np.arctan2(E[:, 1], E[:, 0])
+        edge_weight[k] = length / (length @ h)          # sum(l h) is twice the area
+    # the width across each edge (its normal's direction), and the narrowest few
+    width = []
+    narrow_angle = np.zeros((len(verts), _NARROW))
+    narrow_width = np.full((len(verts), _NARROW), np.inf)
+    for k, ((E, h), v) in enumerate(zip(hps, polys, strict=True)):
+        xy = np.asarray(v.exterior.coords)[:-1]
+        w = h - (E @ xy.T).min(axis=1)
+        width.append(w)
+        keep = np.argsort(w)[:_NARROW]
+        narrow_angle[k, :len(keep)] = np.arctan2(E[keep, 1], E[keep, 0])
+        narrow_width[k, :len(keep)] = w[keep]
+    table = _Pieces(np.array(facet, np.intp), np.array(local, np.intp), hps, verts,
+                    centroid, reach, inradius, start, count, triangle, edge_angle,
+                    edge_weight, np.array([solid.facets[f].normal for f in facet]),
+                    np.zeros(len(verts)), width, narrow_angle, narrow_width)
+    table.own_fit[:] = _fit_bounds(table, np.arange(len(verts)), np.zeros(len(verts)))
+    return table
+
+
+def _cross2(a: FloatArray, b: FloatArray) -> FloatArray:
+    """The 2-D cross product of rows."""
+    return np.asarray(a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0])
+
+
+def _support(angle: FloatArray) -> FloatArray:
+    """The unit octagon's support along directions at ``angle`` from its first corner:
+    ``cos`` of the angle to the nearest corner."""
+    d = np.mod(angle, math.pi / 4)
+    return np.asarray(np.cos(np.minimum(d, math.pi / 4 - d)))
+
+
+def _fit_bounds(table: _Pieces, pieces: IntArray, phi: FloatArray) -> FloatArray:
+    """An upper bound on the largest octagon (first corner at angle ``phi`` in the
+    facet's 2-D frame) in each piece, batched: in a triangle the exact fit
+    (:func:`_fit`'s closed form, ``1 / sum(w_i k_i)``, ``k_i`` the octagon's support
+    along edge ``i``'s normal); in any piece, its width across an edge over the
+    octagon's width ``2 k_i`` there (exact for centrally symmetric pieces)."""
+    with np.errstate(divide="ignore"):
+        tri = 1.0 / np.einsum("ij,ij->i", table.edge_weight[pieces],
+                              _support(table.edge_angle[pieces] - phi[:, None]))
+        across = np.min(table.narrow_width[pieces] / (
+            2 * _support(table.narrow_angle[pieces] - phi[:, None])), axis=1)
+    return np.where(table.triangle[pieces], np.minimum(tri, across), across)
+
+
+#: The fractions a solution is shrunk by to absorb its rounding, smallest first.
+_SHRINKS = (0.0, *(ROUNDING_SHRINK / 10.0 ** k for k in (5, 2, 0)))
+
+#: The narrowest widths of each piece kept for the batched bound.
+_NARROW = 4
+
+#: Pieces in the search's first round (each round takes four times more).
+_FIRST_ROUND = 256
+
+#: Piece rows compared at once when looking for opposite facets (memory: rows x facets).
+_ROWS = 512
+
+
+def _pairs(table: _Pieces, new: IntArray, old: IntArray, cos_limit: float
+           ) -> tuple[IntArray, IntArray]:
+    """The pairs of pieces, one in ``new`` and the other in ``old`` or ``new``, on
+    different facets whose (inward) normals are within ``2 alpha`` of opposite
+    (``-n_1 . n_2 > cos_limit``), each once, the piece of the lower facet first."""
+    pool = np.concatenate([old, new])
+    firsts, seconds = [], []
+    for s in range(0, len(new), _ROWS):
+        rows = new[s:s + _ROWS]
+        ii, jj = np.nonzero(-(table.normal[rows] @ table.normal[pool].T) > cos_limit)
+        p, q = rows[ii], pool[jj]
+        fp, fq = table.facet[p], table.facet[q]
+        # a pair of two new pieces is met twice: keep it once
+        keep = (fp != fq) & ((jj < len(old)) | (fp < fq))
+        p, q, fp, fq = p[keep], q[keep], fp[keep], fq[keep]
+        firsts.append(np.where(fp < fq, p, q))
+        seconds.append(np.where(fp < fq, q, p))
+    if not firsts:
+        return np.zeros(0, np.intp), np.zeros(0, np.intp)
+    return np.concatenate(firsts), np.concatenate(seconds)
+
+
+def _pair_bounds(solid: Solid, table: _Pieces, pa: IntArray, pb: IntArray, alpha: float
+                 ) -> FloatArray:
+    """An upper bound on each pair's radius, batched: the smaller inscribed circle over
+    ``cos(pi / 8)`` (an octagon holds the disc of ``r cos(pi / 8)``), the octagons'
+    fits in the pieces (:func:`_fit_bounds`), and ``tan(alpha)`` times the height of each piece
+    above the other's plane (the corners of one region, seen from any corner of the
+    other, span a width of ``2 r`` across the normal at that height: the cone holds
+    them only if ``r <= tan(alpha) * height``)."""
+    origins = np.array([f.origin for f in solid.facets])
+    axes = np.array([f.axes for f in solid.facets])
+    fi, fj = table.facet[pa], table.facet[pb]
+    disc = np.minimum(table.inradius[pa], table.inradius[pb]) / math.cos(math.pi / 8)
+    h1 = np.einsum("ij,ij->i", table.centroid[pb] - origins[fi], table.normal[pa]) \
+        + table.reach[pb]
+    h2 = np.einsum("ij,ij->i", table.centroid[pa] - origins[fj], table.normal[pb]) \
+        + table.reach[pa]
+    # the first octagon turned along its facet's first axis (its fit is the piece's
+    # own), the second along that axis projected into its plane (:func:`_octagon_axes`)
+    along = np.einsum("ij,ikj->ik", axes[fi, 0], axes[fj])          # (pairs, 2)
+    projected = np.hypot(along[:, 0], along[:, 1]) > PROJECTED_AXIS
+    phi = np.arctan2(along[:, 1], along[:, 0])
+    fits = np.minimum(table.own_fit[pa],
+                      np.where(projected, _fit_bounds(table, pb, phi), np.inf))
+    return np.minimum(np.minimum(disc, fits * (1 + FIT_ROUNDING)),
+                      math.tan(alpha) * np.minimum(h1, h2))
+
+
+def _fit(halfplanes: Halfplanes, corners: FloatArray, width: FloatArray | None = None
+         ) -> tuple[float, FloatArray]:
+    """The largest scale ``s`` and centre ``t`` with ``t + s * corners`` inside the piece
+    (a translate of the octagon scaled about its centre): in closed form for a triangle
+    (the three edges tight: ``s = 2 A / sum(l_i k_i)``, ``k_i`` the octagon's support
+    along edge ``i``'s normal); for a centrally symmetric piece (given its ``width``
+    across each edge) about its centre, where the octagon's width meets the piece's
+    (the fit is symmetric too, and convex); else a three-variable LP (HiGHS)."""
+    E, h = halfplanes
+    k = (E @ corners.T).max(axis=1)                  # the octagon's support per edge
+    if width is not None and len(E) % 2 == 0 and len(E) > 3:
+        half = len(E) // 2
+        opposite = np.roll(np.arange(len(E)), -half)
+        if np.allclose(E[opposite], -E, rtol=0, atol=FIT_ROUNDING) and \
+                np.allclose(width[opposite], width, rtol=FIT_ROUNDING, atol=0):
+            # the centre: halfway between each pair of opposite edges
+            c = np.linalg.lstsq(E[:half], (h[:half] - h[half:]) / 2,
+                                rcond=None)[0].astype(float)
+            s = float(np.min((h - E @ c) / k))
+            return max(s, 0.0), c
+    if len(E) == 3:
+        # edge lengths are proportional to the cross products of consecutive normals
+        length = np.abs(_cross2(E[[1, 2, 0]], E[[2, 0, 1]]))   # law of sines
+        s = float(length @ h / (length @ k))
+        t = np.linalg.solve(E[:2], h[:2] - s * k[:2])
+        return s, t
+    from scipy.optimize import linprog
+
+    res = linprog([0.0, 0.0, -1.0], A_ub=np.c_[E, k], b_ub=h,
+                  bounds=[(None, None), (None, None), (0, None)], method="highs")
+    if res.status != 0:
+        return 0.0, np.zeros(2)
+    return float(res.x[2]), np.asarray(res.x[:2], float)
+
+
+@dataclass
+class _Refined:
+    """A candidate's tighter bound: both octagons' largest fits (scale, 2-D centre) and
+    the exact heights (``tan(alpha)`` times each piece's highest vertex above the other
+    facet's plane)."""
+
+    bound: float
+    fits: tuple[tuple[float, FloatArray], tuple[float, FloatArray]]
+
+
+def _refine(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float) -> _Refined:
+    f1, f2 = solid.facets[int(table.facet[pa])], solid.facets[int(table.facet[pb])]
+    Q1, Q2 = _octagon_axes(f1, f2)
+    q1, q2 = Q1 @ f1.axes.T, Q2 @ f2.axes.T
+    fit1 = _fit(table.halfplanes[pa], q1, table.width[pa])
+    fit2 = _fit(table.halfplanes[pb], q2, table.width[pb])
+    h1 = float(np.max((table.vertices[pb] - f1.origin) @ f1.normal))
+    h2 = float(np.max((table.vertices[pa] - f2.origin) @ f2.normal))
+    bound = min(_piece_bound(table, pa, q1), _piece_bound(table, pb, q2),
+                math.tan(alpha) * min(h1, h2))
+    return _Refined(bound, (fit1, fit2))
+
+
+def _piece_bound(table: _Pieces, piece: int, corners: FloatArray) -> float:
+    """An upper bound on the octagon's fit in one piece: the triangle's closed form,
+    else the widths across every edge (as :func:`_fit_bounds`, every edge)."""
+    E, h = table.halfplanes[piece]
+    k = (E @ corners.T).max(axis=1)
+    across = float(np.min(table.width[piece] / (2 * k)))
+    if len(E) == 3:
+        return min(_fit((E, h), corners)[0], across)
+    return across
+
+
+def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,
+           refined: _Refined) -> tuple[FloatArray, FloatArray, float] | None:
+    """The pair's regions: first the octagons at the pieces' own largest fits, of the
+    smaller scale (the bound itself, so optimal) when they pass the float check
+    (:func:`_holds`); else the cone program."""
+    f1, f2 = solid.facets[int(table.facet[pa])], solid.facets[int(table.facet[pb])]
+    halfplanes = (table.halfplanes[pa], table.halfplanes[pb])
+    (s1, t1), (s2, t2) = refined.fits
+    r = min(s1, s2)
+    if r >= refined.bound * (1 - FIT_ROUNDING):    # the fits reach the bound: try them
+        Q1, Q2 = _octagon_axes(f1, f2)
+        c1, c2 = f1.to_3d(t1), f2.to_3d(t2)
+        for shrink in _SHRINKS:                   # the fits' own rounding
+            if _holds(c1, c2, Q1, Q2, (f1, f2), halfplanes, alpha, r * (1 - shrink)):
+                return c1, c2, r * (1 - shrink)
+    return _pair_program(solid, (f1.index, f2.index),
+                         (int(table.local[pa]), int(table.local[pb])), alpha, halfplanes)
 
 
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
                     margin: Any = DEFAULT_MARGIN_DEG) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
-    docstring): every pair of convex pieces whose cones can meet, the largest bound first,
-    until the next bound cannot enter the top ``top`` (None: every pair).
+    docstring), by best-first search over every pair of convex pieces whose cones can
+    meet: all pairs' bounds at once (:func:`_candidates`), then in decreasing order each
+    pair's bound tightened (:func:`_refine`: the octagons' exact fits and heights) and,
+    when it is still the largest, the pair solved (:func:`_solve`: the fits themselves
+    when they hold, which is then optimal, else the cone program); the search stops
+    when no bound can enter the top ``top`` (None: every pair).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 4) for p in soft_pair_plans(demo_solid("box"), mu=0.3, top=3)]
@@ -254,24 +542,74 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     alpha = math.atan(mu_v) - math.radians(margin_v)
     if alpha <= 0:
         return []
-    normals = np.array([f.normal for f in solid.facets])
-    # the cones about n_1 and -n_2 meet only when the normals are within 2 alpha of
-    # opposite (one batch over every facet pair)
-    cos = -(normals @ normals.T)
-    ii, jj = np.nonzero(np.triu(cos > math.cos(min(2 * alpha, math.pi)), 1))
-    cands = []
-    for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
-        for a, pa in enumerate(solid.facets[i].pieces):
-            for b, pb in enumerate(solid.facets[j].pieces):
-                bound = min(_inradius(pa), _inradius(pb)) / math.cos(math.pi / 8)
-                cands.append((bound, i, j, a, b))
-    cands.sort(key=lambda c: -c[0])
+    table = _piece_table(solid)
+    cos_limit = math.cos(min(2 * alpha, math.pi))
+    floor = CONE_PROGRAM_TOL * solid.size
+    # rounds over the pieces, largest inscribed circle first: a pair not yet met has a
+    # piece outside the round, so its radius is at most that piece's cap
+    cap = table.inradius / math.cos(math.pi / 8)
+    by_cap = np.argsort(-cap, kind="stable")
+    # each round's pairs sorted by their batched bound (a run); refined pairs in a heap
+    runs: list[_Run] = []
+    heap: list[tuple[float, int, int, int, _Refined]] = []      # (-bound, seq, i, j, ...)
     plans: list[SoftPairPlan] = []
-    for bound, i, j, a, b in cands:
-        if top is not None and len(plans) >= top and bound <= plans[top - 1].radius:
+    seq = done = 0
+    size = _FIRST_ROUND
+    threshold = math.inf
+
+    def key(p: SoftPairPlan) -> tuple[float, tuple[int, int], tuple[int, int]]:
+        return (-p.radius, p.facets, p.pieces)
+
+    while True:
+        run = max(runs, key=_Run.head, default=None)
+        raw = run.head() if run is not None else -math.inf
+        ref = -heap[0][0] if heap else -math.inf
+        best = max(raw, ref)
+        if done < len(by_cap) and best <= threshold:
+            new, old = by_cap[done:done + size], by_cap[:done]
+            done += len(new)
+            threshold = float(cap[by_cap[done]]) if done < len(by_cap) else floor
+            pa, pb = _pairs(table, new, old, cos_limit)
+            bound = _pair_bounds(solid, table, pa, pb, alpha)
+            keep = np.flatnonzero(bound > floor)
+            order = keep[np.argsort(-bound[keep], kind="stable")]
+            runs.append(_Run(bound[order], pa[order], pb[order]))
+            size *= 4
+            continue
+        if best <= floor:
             break
-        got = soft_pair_regions(solid, (i, j), mu_v, margin_v, (a, b))
-        if got is not None:
-            plans.append(got)
-            plans.sort(key=lambda p: (-p.radius, p.facets, p.pieces))
-    return plans if top is None else plans[:top]
+        if top is not None and len(plans) >= top and best <= plans[top - 1].radius:
+            break
+        if run is not None and raw > ref:      # tighten the bound; solve when still first
+            i, j = run.pop()
+            got = _refine(solid, table, i, j, alpha)
+            heapq.heappush(heap, (-got.bound, seq, i, j, got))
+            seq += 1
+            continue
+        _, _, i, j, got = heapq.heappop(heap)
+        sol = _solve(solid, table, i, j, alpha, got)
+        if sol is not None:
+            facets = (int(table.facet[i]), int(table.facet[j]))
+            pieces = (int(table.local[i]), int(table.local[j]))
+            bisect.insort(plans, _plan(solid, facets, pieces, *sol, mu_v, margin_v), key=key)
+            if top is not None:
+                del plans[top:]
+    return plans
+
+
+@dataclass
+class _Run:
+    """One round's pairs of pieces, largest bound first, and how far they were taken."""
+
+    bound: FloatArray
+    first: IntArray
+    second: IntArray
+    pos: int = 0
+
+    def head(self) -> float:
+        return float(self.bound[self.pos]) if self.pos < len(self.bound) else -math.inf
+
+    def pop(self) -> tuple[int, int]:
+        k = self.pos
+        self.pos += 1
+        return int(self.first[k]), int(self.second[k])

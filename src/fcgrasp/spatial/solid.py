@@ -21,14 +21,10 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.tolerances import TOL
+from ..core.tolerances import PLANAR_TOL, TOL
 from .contacts import contact_frames
 
-__all__ = ["Facet", "Solid", "solid_from_mesh", "read_solid", "demo_solid", "DEMO_SOLIDS",
-           "MESH_SUFFIXES", "is_solid_source"]
-
-#: File suffixes read as meshes (by trimesh).
-MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
+__all__ = ["Facet", "Solid", "solid_from_mesh", "demo_solid", "DEMO_SOLIDS"]
 
 #: The built-in solids (``demo:NAME``).
 DEMO_SOLIDS = ("box", "cylinder", "prism", "angle")
@@ -72,6 +68,7 @@ class Solid:
     center: FloatArray
     radius: float
     source: str = ""
+    units_note: str = ""
 
     @property
     def size(self) -> float:
@@ -122,27 +119,79 @@ def solid_from_mesh(mesh: Any, units: str = "mm", source: str = "",
 
 
 def _facets(mesh: Any) -> list[Facet]:
-    """Every triangle in one facet: trimesh's coplanar groups and the triangles left."""
+    """Every triangle in one facet: trimesh's coplanar groups and the triangles left
+    (those batched: one polygon each, convex)."""
+    import shapely
     from shapely import Polygon as ShapelyPolygon
     from shapely import union_all
 
-    groups = [tuple(int(f) for f in g) for g in mesh.facets]
-    grouped = {f for g in groups for f in g}
-    groups += [(int(f),) for f in range(len(mesh.faces)) if f not in grouped]
-    groups.sort(key=lambda g: min(g))
+    # plain arrays, read once (trimesh hashes its arrays on every access)
+    vertices = np.asarray(mesh.vertices, float)
+    faces = np.asarray(mesh.faces)
+    groups = _coplanar_groups(mesh, vertices, faces)
+    first = np.array([g[0] for g in groups])
+    normals = -np.asarray(mesh.face_normals, float)[first]               # inward
+    t1, t2 = contact_frames(normals)
+    axes = np.stack([t1, t2], axis=1)                                     # (F, 2, 3)
+    origins = vertices[faces[first, 0]]
+    # single triangles: their own polygons, batched (counter-clockwise in the frame)
+    single = np.array([len(g) == 1 for g in groups])
+    tri = np.einsum("fvk,fjk->fvj", vertices[faces[first]] - origins[:, None, :], axes)
+    d1, d2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    ccw = d1[:, 0] * d2[:, 1] - d1[:, 1] * d2[:, 0] > 0
+    tri[~ccw] = tri[~ccw][:, ::-1]
+    polys = np.empty(len(groups), dtype=object)
+    polys[single] = shapely.polygons(tri[single])
     out = []
     for k, g in enumerate(groups):
-        normal = -np.asarray(mesh.face_normals[g[0]], float)         # inward
-        t1, t2 = contact_frames(normal[None, :])
-        axes = np.vstack([t1[0], t2[0]])
-        origin = np.asarray(mesh.vertices[mesh.faces[g[0]][0]], float)
-        tris = (mesh.vertices[mesh.faces[list(g)]] - origin) @ axes.T   # (m, 3, 2)
-        poly = union_all([ShapelyPolygon(t) for t in tris]).buffer(0)
-        if poly.geom_type != "Polygon":       # pieces touching at a point: the largest
-            poly = max(poly.geoms, key=lambda p: p.area)
-        out.append(Facet(k, g, normal, origin, axes, poly, float(poly.area),
-                         tuple(_convex_pieces(poly))))
+        if single[k]:
+            poly = polys[k]
+            pieces: tuple[Any, ...] = (poly,)
+        else:
+            tris = (vertices[faces[list(g)]] - origins[k]) @ axes[k].T     # (m, 3, 2)
+            poly = union_all([ShapelyPolygon(t) for t in tris]).buffer(0)
+            if poly.geom_type != "Polygon":   # pieces touching at a point: the largest
+                poly = max(poly.geoms, key=lambda p: p.area)
+            pieces = tuple(_convex_pieces(poly))
+        out.append(Facet(k, g, normals[k], origins[k], axes[k], poly, float(poly.area),
+                         pieces))
     return out
+
+
+def _coplanar_groups(mesh: Any, vertices: FloatArray, faces: Any) -> list[tuple[int, ...]]:
+    """The mesh's triangles in groups of adjacent coplanar ones (each group's vertices
+    within :data:`PLANAR_TOL` of its plane; a chain of nearly coplanar triangles that
+    drifts further, such as the side of a finely tessellated cylinder, is split into
+    its triangles), ordered by their first triangle."""
+    from scipy.sparse import coo_matrix
+    from scipy.sparse.csgraph import connected_components
+
+    n = len(faces)
+    normals = np.asarray(mesh.face_normals, float)
+    limit = PLANAR_TOL * float(mesh.scale)
+    pairs = np.asarray(mesh.face_adjacency).reshape(-1, 2)
+    unshared = np.asarray(mesh.face_adjacency_unshared).reshape(-1, 2)
+    a, b = pairs[:, 0], pairs[:, 1]
+    off_a = np.abs(np.einsum("ij,ij->i", vertices[unshared[:, 1]] - vertices[faces[a, 0]],
+                             normals[a]))
+    off_b = np.abs(np.einsum("ij,ij->i", vertices[unshared[:, 0]] - vertices[faces[b, 0]],
+                             normals[b]))
+    same = (np.einsum("ij,ij->i", normals[a], normals[b]) > 0) \
+        & (np.maximum(off_a, off_b) <= limit)
+    graph = coo_matrix((np.ones(int(same.sum())), (a[same], b[same])), shape=(n, n))
+    _, labels = connected_components(graph, directed=False)
+    order = np.argsort(labels, kind="stable")
+    cuts = np.flatnonzero(np.diff(labels[order])) + 1
+    groups: list[tuple[int, ...]] = []
+    for g in np.split(order, cuts):
+        if len(g) > 1:
+            corners = vertices[faces[g]].reshape(-1, 3)
+            if np.max(np.abs((corners - vertices[faces[g[0], 0]]) @ normals[g[0]])) > limit:
+                groups += [(int(f),) for f in g]             # drifts: each triangle alone
+                continue
+        groups.append(tuple(int(f) for f in g))
+    groups.sort(key=lambda g: min(g))
+    return groups
 
 
 def _convex_pieces(poly: Any) -> list[Any]:
@@ -165,13 +214,6 @@ def _convex_pieces(poly: Any) -> list[Any]:
     return sorted(pieces, key=lambda p: -p.area)
 
 
-def is_solid_source(source: str) -> bool:
-    """``source`` names a solid: ``demo:`` one of :data:`DEMO_SOLIDS`, or a mesh file."""
-    if source.startswith("demo:"):
-        return source[5:] in DEMO_SOLIDS
-    return source.lower().endswith(MESH_SUFFIXES)
-
-
 def demo_solid(name: str) -> Solid:
     """A built-in solid (:data:`DEMO_SOLIDS`), in millimetres."""
     import trimesh
@@ -191,21 +233,3 @@ def demo_solid(name: str) -> Solid:
         raise ValueError(f"name must be one of {', '.join(DEMO_SOLIDS)}, got {name!r}")
     assert isinstance(mesh, trimesh.Trimesh)
     return solid_from_mesh(mesh, "mm", f"demo:{name}")
-
-
-def read_solid(source: str, units: str | None = None, repair: bool = False) -> Solid:
-    """A solid from a mesh file (anything trimesh reads: STL, OBJ, PLY, GLB, 3MF, OFF)
-    or ``demo:NAME``.  ``units``: the file's (default: its own where it records them,
-    else millimetres)."""
-    import trimesh
-
-    if not isinstance(source, str):
-        raise TypeError(f"source must be a path or demo:NAME, got {type(source).__name__}")
-    if source.startswith("demo:"):
-        return demo_solid(source[5:])
-    try:
-        loaded = trimesh.load(source, force="mesh")
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"{source}: not a readable mesh ({exc})") from None
-    own = getattr(loaded, "units", None)
-    return solid_from_mesh(loaded, units or own or "mm", source, repair)

@@ -1,0 +1,102 @@
+"""Two soft fingers on meshes with thousands of facets (issue 33: "a 5,000-facet mesh
+plans in under 2 s").
+
+For icospheres and tessellated cylinders of growing size, prints the time to cut the
+mesh into facets (``solid_from_mesh``) and to plan (``soft_pair_plans``, top 5), the
+issue's target, and the previous search run in the same process as the baseline: every
+pair of opposite pieces ordered by the inscribed-circle bound and solved by the cone
+program (``soft_pair_regions``) until the bound falls below the top five.  The baseline
+runs only up to ``--baseline-facets`` (it takes a minute on 1,280 triangles); both
+searches must give the same radii.
+
+    python benchmarks/bench_solids.py [--baseline-facets 1300]
+"""
+
+from __future__ import annotations
+
+import argparse
+import math
+import time
+
+import numpy as np
+import trimesh
+
+from fcgrasp.spatial.regions import soft_pair_plans, soft_pair_regions
+from fcgrasp.spatial.solid import solid_from_mesh
+
+MU, TOP = 0.5, 5
+TARGET_S = 2.0          # the issue's target for 5,000 facets, read and planned
+
+
+def previous_search(solid, mu, top):
+    """The search before the batched bounds: inscribed circles (shapely) over
+    cos(pi / 8), every pair of pieces whose normals are within 2 alpha of opposite,
+    largest bound first, the cone program on each."""
+    from shapely import maximum_inscribed_circle
+
+    alpha = math.atan(mu) - math.radians(0.5)
+    normals = np.array([f.normal for f in solid.facets])
+    ii, jj = np.nonzero(np.triu(-(normals @ normals.T) > math.cos(2 * alpha), 1))
+    radius = {}
+    for f in solid.facets:
+        for a, p in enumerate(f.pieces):
+            lo_x, lo_y, hi_x, hi_y = p.bounds
+            tol = 1e-3 * max(hi_x - lo_x, hi_y - lo_y)
+            radius[f.index, a] = float(maximum_inscribed_circle(p, tol).length) + tol
+    cands = sorted(((min(radius[i, a], radius[j, b]) / math.cos(math.pi / 8), i, j, a, b)
+                    for i, j in zip(ii.tolist(), jj.tolist(), strict=True)
+                    for a in range(len(solid.facets[i].pieces))
+                    for b in range(len(solid.facets[j].pieces))), key=lambda c: -c[0])
+    plans = []
+    for bound, i, j, a, b in cands:
+        if len(plans) >= top and bound <= plans[top - 1].radius:
+            break
+        got = soft_pair_regions(solid, (i, j), mu, 0.5, (a, b))
+        if got is not None:
+            plans.append(got)
+            plans.sort(key=lambda p: -p.radius)
+    return plans[:top]
+
+
+def _timed(fn):
+    t0 = time.perf_counter()
+    out = fn()
+    return out, time.perf_counter() - t0
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--baseline-facets", type=int, default=1300,
+                    help="run the previous search on meshes up to this many facets")
+    args = ap.parse_args()
+    meshes = [(f"icosphere, {20 * 4 ** k} triangles",
+               lambda k=k: trimesh.creation.icosphere(subdivisions=k, radius=20.0))
+              for k in (2, 3, 4, 5)]
+    meshes += [(f"cylinder, {n} sections",
+                lambda n=n: trimesh.creation.cylinder(radius=10.0, height=30.0, sections=n))
+               for n in (256, 2500)]
+    print(f"two soft fingers, mu {MU}, top {TOP}; target {TARGET_S} s for 5,000 facets")
+    print(f"{'mesh':32s} {'facets':>7s} {'read s':>8s} {'plan s':>8s} {'total s':>8s} "
+          f"{'target':>7s} {'previous s':>10s} {'speed-up':>9s} {'same':>5s}")
+    for name, make in meshes:
+        mesh = make()
+        solid, read = _timed(lambda mesh=mesh: solid_from_mesh(mesh))
+        plans, plan = _timed(lambda solid=solid: soft_pair_plans(solid, MU, top=TOP))
+        total = read + plan
+        if 2000 <= len(solid.facets) <= 6000:          # the issue's size
+            target = "ok" if total <= TARGET_S else "MISS"
+        else:
+            target = "-"
+        if len(solid.facets) <= args.baseline_facets:
+            old, old_t = _timed(lambda solid=solid: previous_search(solid, MU, TOP))
+            same = np.allclose([p.radius for p in plans], [p.radius for p in old],
+                               rtol=1e-6)
+            prev, ratio, agree = f"{old_t:10.2f}", f"{old_t / plan:8.0f}x", str(same)
+        else:
+            prev, ratio, agree = f"{'not run':>10s}", f"{'':>9s}", ""
+        print(f"{name:32s} {len(solid.facets):7d} {read:8.3f} {plan:8.3f} {total:8.3f} "
+              f"{target:>7s} {prev} {ratio} {agree:>5s}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,126 @@
+"""Mesh files: the bodies of a file and a solid part read from one (issue 33).
+
+Anything trimesh reads (STL, OBJ, PLY, GLB, 3MF, OFF) is split into its connected
+**bodies**, converted to the units asked (``--units``, default millimetres) from the
+file's own units where it records them (GLB and 3MF do), from ``file_units``, or else
+taken in the units asked, and the body chosen (default: the largest watertight one) is
+checked and cut into facets by :func:`fcgrasp.spatial.solid.solid_from_mesh`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray
+from ..spatial.solid import DEMO_SOLIDS, Solid, demo_solid, solid_from_mesh
+from .units import FILE_UNITS, UNITS, check_units, conversion
+
+__all__ = ["Body", "read_bodies", "read_solid", "is_solid_source", "MESH_SUFFIXES"]
+
+#: File suffixes read as meshes (by trimesh).
+MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
+
+
+def is_solid_source(source: str) -> bool:
+    """``source`` names a solid: ``demo:`` one of :data:`DEMO_SOLIDS`, or a mesh file."""
+    if source.startswith("demo:"):
+        return source[5:] in DEMO_SOLIDS
+    return source.lower().endswith(MESH_SUFFIXES)
+
+
+@dataclass(frozen=True)
+class Body:
+    """One connected body of a mesh file: ``index``, its ``mesh`` (in the units asked),
+    ``triangles``, ``watertight``, ``volume`` (0 when not watertight) and ``bounds``
+    (2, 3)."""
+
+    index: int
+    mesh: Any = field(repr=False)
+    triangles: int = 0
+    watertight: bool = False
+    volume: float = 0.0
+    bounds: FloatArray = field(default_factory=lambda: np.zeros((2, 3)), repr=False)
+
+
+def _file_scale(loaded: Any, source: str, units: str, file_units: str | None
+                ) -> tuple[float, str]:
+    """The factor from the file's units to ``units`` and a note saying where they came
+    from (``file_units``, the file's own, or none: the units asked)."""
+    import trimesh
+
+    if file_units is not None:
+        check_units(file_units, "file_units", FILE_UNITS)
+        return conversion(file_units, units), f"file units {file_units} (asked)"
+    own = getattr(loaded, "units", None)
+    if own:
+        try:
+            mm = 25.4 * trimesh.units.to_inch(str(own))
+        except (ValueError, KeyError, AttributeError):
+            raise ValueError(f"{source}: the file's units {own!r} are not known: give "
+                             f"file_units (--file-units)") from None
+        return mm / conversion(units, "mm"), f"file units {own} (the file's own)"
+    return 1.0, f"no units in the file: coordinates taken as {units}"
+
+
+def read_bodies(source: str, units: str | None = None, file_units: str | None = None
+                ) -> tuple[list[Body], str, str]:
+    """The connected bodies of a mesh file (anything trimesh reads: STL, OBJ, PLY, GLB,
+    3MF, OFF), converted to ``units`` (default mm) from the file's own units (GLB, 3MF
+    record them; ``file_units`` overrides; none: taken as ``units``), largest volume
+    first; the units and a note on where they came from."""
+    import trimesh
+
+    if not isinstance(source, str):
+        raise TypeError(f"source must be a path, got {type(source).__name__}")
+    units = check_units("mm" if units is None else units, "units", UNITS)
+    try:
+        loaded = trimesh.load(source, force="mesh")
+    except (OSError, ValueError) as exc:
+        raise ValueError(f"{source}: not a readable mesh ({exc})") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise ValueError(f"{source}: no triangles in the file")
+    scale, note = _file_scale(loaded, source, units, file_units)
+    if scale != 1.0:
+        loaded.apply_scale(scale)
+    parts = loaded.split(only_watertight=False)
+    bodies = [Body(0, m, int(len(m.faces)), bool(m.is_watertight),
+                   abs(float(m.volume)) if m.is_watertight else 0.0,
+                   np.asarray(m.bounds, float)) for m in parts]
+    bodies.sort(key=lambda b: (-b.volume, -b.triangles))
+    return [replace(b, index=k) for k, b in enumerate(bodies)], units, note
+
+
+def read_solid(source: str, units: str | None = None, repair: bool = False,
+               file_units: str | None = None, select: int | str | None = None) -> Solid:
+    """A solid from a mesh file or ``demo:NAME``: the body ``select`` (an index of
+    :func:`read_bodies`; default the largest watertight one) in ``units`` (default mm;
+    ``file_units`` as in :func:`read_bodies`), checked and cut into facets."""
+    if not isinstance(source, str):
+        raise TypeError(f"source must be a path or demo:NAME, got {type(source).__name__}")
+    if source.startswith("demo:"):
+        solid = demo_solid(source[5:])
+        if units not in (None, "mm"):
+            target = check_units(units, "units", UNITS)
+            solid.mesh.apply_scale(conversion("mm", target))
+            return solid_from_mesh(solid.mesh, target, source)
+        return solid
+    bodies, target, note = read_bodies(source, units, file_units)
+    if select is None:
+        closed = [b for b in bodies if b.watertight] or bodies
+        body = closed[0]
+    else:
+        try:
+            k = int(select)
+        except (TypeError, ValueError):
+            raise ValueError(f"select must be a body's index (see fcgrasp parts), got "
+                             f"{select!r}") from None
+        if not 0 <= k < len(bodies):
+            raise ValueError(f"{source}: body {k} does not exist: the file holds "
+                             f"{len(bodies)} (0 to {len(bodies) - 1}; see fcgrasp parts)")
+        body = bodies[k]
+    solid = solid_from_mesh(body.mesh, target, source, repair)
+    solid.units_note = note
+    return solid
