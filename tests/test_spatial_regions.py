@@ -152,7 +152,7 @@ def test_bounds_and_fits_against_the_cone_program(seed):
     pa, pb = R._pairs(table, np.arange(len(table.facet)), np.zeros(0, np.intp),
                       math.cos(min(2 * alpha, math.pi)))
     pick = rng.choice(len(pa), min(len(pa), 60), replace=False)
-    bounds = R._pair_bounds(solid, table, pa[pick], pb[pick], alpha)
+    bounds = R._pair_bounds(table, pa[pick], pb[pick], alpha)
     for bound, i, j in zip(bounds, pa[pick], pb[pick], strict=True):
         facets = (int(table.facet[i]), int(table.facet[j]))
         pieces = (int(table.local[i]), int(table.local[j]))

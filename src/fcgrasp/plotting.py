@@ -274,6 +274,21 @@ def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "",
     plt.close(fig)
 
 
+def document_figure(doc: Any, path: str, title: str | None = None,
+                    outputs: Any = None) -> None:
+    """The figure of a plan document (:func:`fcgrasp.planning.plan_document`): a solid's
+    3-D panels (:func:`solid_plan_figure`), else a polygon's (:func:`plan_figure`);
+    ``title`` defaults to the document's."""
+    from .spatial.solid import Solid
+
+    title = doc.title if title is None else title
+    if isinstance(doc.polygon, Solid):
+        solid_plan_figure(doc.polygon, doc.plans, path, title=title, outputs=outputs)
+    else:
+        plan_figure(doc.polygon, doc.plans, path, units=doc.units, title=title,
+                    outputs=outputs)
+
+
 def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None = None,
                       panel: int = 3, outputs: Any = None) -> None:
     """Two soft fingers' regions on a solid (:func:`fcgrasp.spatial.soft_pair_plans`):

@@ -134,15 +134,10 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
         out["reason"] = doc.report["reason"]
         out["units"] = doc.units
         if task.figures:
-            from ..plotting import plan_figure, solid_plan_figure
+            from ..plotting import document_figure
 
             stem = os.path.splitext(os.path.basename(task.path))[0] or "part"
-            figure = os.path.join(task.figures, f"{task.index:05d}-{stem}.png")
-            if task.request.soft:
-                solid_plan_figure(doc.polygon, doc.plans, figure, title=doc.title)
-            else:
-                plan_figure(doc.polygon, doc.plans, figure, units=doc.units,
-                            title=doc.title)
+            document_figure(doc, os.path.join(task.figures, f"{task.index:05d}-{stem}.png"))
     except Exception as exc:  # noqa: BLE001 - a part's failure is its result
         msg = " ".join(str(exc).split()) or type(exc).__name__
         out["error"] = msg if isinstance(exc, (ValueError, PartTimeout)) else \
@@ -357,11 +352,9 @@ def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | 
            figures: str | None) -> list[_Task]:
     from ..io.meshes import is_solid_source
     from ..model.polygon import Polygon
-    from ..planning import PlanRequest
+    from ..planning import template_request
 
-    # checked once, before any work (on a built-in part of the kind the options plan)
-    template = PlanRequest(part="demo:box" if options.get("soft") else "demo:quad",
-                           **options)
+    template = template_request(options)
     parameters = template.options()
     out = []
     for k, item in enumerate(parts):

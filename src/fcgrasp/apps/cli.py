@@ -95,16 +95,9 @@ def cmd_plan(args: Any) -> int:
                         say=say)
 
     def figure(out: Any) -> None:
-        from ..plotting import plan_figure
+        from ..plotting import document_figure
 
-        if request.soft:
-            from ..plotting import solid_plan_figure
-
-            solid_plan_figure(doc.polygon, doc.plans, args.plot, title=doc.title,
-                              outputs=out)
-            return
-        plan_figure(doc.polygon, doc.plans, args.plot, units=doc.units, title=doc.title,
-                    outputs=out)
+        document_figure(doc, args.plot, outputs=out)
 
     _write_outputs([(args.json, dumps(doc.report))] if args.json else [],
                    figure if args.plot else None)
@@ -162,6 +155,7 @@ def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
 
 
 def cmd_batch(args: Any) -> int:
+    from ..planning import template_request
     from .batch import part_files, run_batch
 
     if args.workers is not None and args.workers < 1:
@@ -176,11 +170,7 @@ def cmd_batch(args: Any) -> int:
     if os.path.isdir(args.out):
         raise CliError(f"--out {args.out} is a folder, not a results file")
     options = plan_options(args)
-    # the options are checked once, before any work (run_batch checks each part's again)
-    from ..planning import PlanRequest
-
-    # (on a built-in part of the kind they plan: meshes among drawings get soft fingers)
-    PlanRequest(part="demo:box" if options.get("soft") else "demo:quad", **options)
+    template_request(options)   # once, before any work (run_batch checks each part's again)
     client = None
     workers = args.workers or os.cpu_count() or 1
     if args.scheduler is not None:
@@ -395,7 +385,7 @@ def cmd_demo(args: Any) -> int:
     from ..io.outputs import OutputSet
     from ..io.report import demo_summary, dumps
     from ..planning import plan_document
-    from ..plotting import plan_figure, solid_plan_figure
+    from ..plotting import document_figure
 
     out = Path(args.out)
     if out.exists() and not out.is_dir():
@@ -406,12 +396,7 @@ def cmd_demo(args: Any) -> int:
         doc = plan_document(request)
         with OutputSet() as files:
             files.add_text(out / f"{stem}.json", dumps(doc.report))
-            if request.soft:
-                solid_plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"),
-                                  title=title, outputs=files)
-            else:
-                plan_figure(doc.polygon, doc.plans, str(out / f"{stem}.png"),
-                            units=doc.units, title=title, outputs=files)
+            document_figure(doc, str(out / f"{stem}.png"), title=title, outputs=files)
         entry, line = _demo_entry(request, doc, stem)
         entries.append(entry)
         if not args.quiet:

@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..spatial.solid import DEMO_SOLIDS, Solid, demo_solid, solid_from_mesh
+from ..spatial.solid import DEMO_SOLIDS, Solid, demo_mesh, demo_solid, solid_from_mesh
 from .units import FILE_UNITS, UNITS, check_units, conversion
 
 __all__ = ["Body", "read_bodies", "read_solid", "is_solid_source", "MESH_SUFFIXES"]
@@ -101,12 +101,12 @@ def read_solid(source: str, units: str | None = None, repair: bool = False,
     if not isinstance(source, str):
         raise TypeError(f"source must be a path or demo:NAME, got {type(source).__name__}")
     if source.startswith("demo:"):
-        solid = demo_solid(source[5:])
-        if units not in (None, "mm"):
-            target = check_units(units, "units", UNITS)
-            solid.mesh.apply_scale(conversion("mm", target))
-            return solid_from_mesh(solid.mesh, target, source)
-        return solid
+        if units in (None, "mm"):
+            return demo_solid(source[5:])
+        target = check_units(units, "units", UNITS)
+        mesh = demo_mesh(source[5:])
+        mesh.apply_scale(conversion("mm", target))
+        return solid_from_mesh(mesh, target, source)
     bodies, target, note = read_bodies(source, units, file_units)
     if select is None:
         closed = [b for b in bodies if b.watertight] or bodies

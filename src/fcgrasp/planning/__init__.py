@@ -26,8 +26,10 @@ from .request import (
     PlanDocument,
     PlanRequest,
     plan_document,
+    template_request,
 )
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key", "PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS",
-           "READING_OPTIONS", "LOAD_OPTIONS", "FrictionCurve", "friction_curve"]
+           "READING_OPTIONS", "LOAD_OPTIONS", "FrictionCurve", "friction_curve",
+           "template_request"]

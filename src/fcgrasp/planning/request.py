@@ -29,8 +29,8 @@ from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 from .planner import friction_curve, plan
 
-__all__ = ["PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS", "READING_OPTIONS",
-           "LOAD_OPTIONS"]
+__all__ = ["PlanRequest", "PlanDocument", "plan_document", "template_request",
+           "PLAN_OPTIONS", "READING_OPTIONS", "LOAD_OPTIONS"]
 
 #: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
 READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
@@ -419,6 +419,13 @@ def plan_document(request: PlanRequest, part: Part | None = None,
                                                          mu_range=mu_range)
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
+
+
+def template_request(options: dict[str, Any]) -> PlanRequest:
+    """A batch's options as one request, checked before any work on a built-in part of
+    the kind they plan (a solid with ``soft``); each part's request is this one with its
+    part (a mesh among drawings: with ``soft`` turned on)."""
+    return PlanRequest(part="demo:box" if options.get("soft") else "demo:quad", **options)
 
 
 def _solid_document(request: PlanRequest) -> PlanDocument:

@@ -101,11 +101,20 @@ class SoftPairPlan:
 Halfplanes = tuple[FloatArray, FloatArray]
 
 
-def _halfplanes(piece: Any) -> Halfplanes:
-    """``E x <= h`` for a convex shapely polygon (counter-clockwise made)."""
+def _ring(piece: Any) -> FloatArray:
+    """The vertices (m, 2) of a convex shapely polygon, counter-clockwise."""
     from shapely.geometry.polygon import orient
 
-    ring = np.asarray(orient(piece, 1.0).exterior.coords)[:-1]
+    return np.asarray(orient(piece, 1.0).exterior.coords)[:-1]
+
+
+def _halfplanes(piece: Any) -> Halfplanes:
+    """``E x <= h`` for a convex shapely polygon."""
+    return _ring_halfplanes(_ring(piece))
+
+
+def _ring_halfplanes(ring: FloatArray) -> Halfplanes:
+    """``E x <= h`` for a counter-clockwise convex ring (zero-length edges dropped)."""
     d = np.roll(ring, -1, axis=0) - ring
     length = np.hypot(d[:, 0], d[:, 1])
     keep = length > 0
@@ -283,6 +292,8 @@ class _Pieces:
     edge_angle: FloatArray = field(repr=False)   # triangles: edges' normal angles (P, 3)
     edge_weight: FloatArray = field(repr=False)  # triangles: lengths / (2 area) (P, 3)
     normal: FloatArray = field(repr=False)       # the facet's inward normal (P, 3)
+    origin: FloatArray = field(repr=False)       # ... its plane's origin (P, 3)
+    axes: FloatArray = field(repr=False)         # ... and in-plane axes (P, 2, 3)
     own_fit: FloatArray = field(repr=False)      # the octagon along the facet's own axis
     width: list[FloatArray] = field(repr=False)  # the piece's width across each edge
     narrow_angle: FloatArray = field(repr=False)  # the narrowest widths' normal angles
@@ -291,15 +302,16 @@ class _Pieces:
 
 def _piece_table(solid: Solid) -> _Pieces:
     import shapely
-    from shapely.geometry.polygon import orient
 
-    facet, local, hps, verts, polys = [], [], [], [], []
+    facet, local, hps, rings, verts, polys = [], [], [], [], [], []
     for f in solid.facets:
         for k, piece in enumerate(f.pieces):
+            ring = _ring(piece)
             facet.append(f.index)
             local.append(k)
-            hps.append(_halfplanes(piece))
-            verts.append(f.to_3d(np.asarray(orient(piece, 1.0).exterior.coords)[:-1]))
+            hps.append(_ring_halfplanes(ring))
+            rings.append(ring)
+            verts.append(f.to_3d(ring))
             polys.append(piece)
     geoms = np.array(polys, dtype=object)
     area, length = shapely.area(geoms), shapely.length(geoms)
@@ -321,16 +333,15 @@ def _piece_table(solid: Solid) -> _Pieces:
     edge_weight = np.zeros((len(verts), 3))
     for k in np.flatnonzero(triangle).tolist():
         E, h = hps[k]
-        length = np.abs(_cross2(E[[1, 2, 0]], E[[2, 0, 1]]))     # law of sines
+        length = _triangle_lengths(E)
         edge_angle[k] = np.arctan2(E[:, 1], E[:, 0])
         edge_weight[k] = length / (length @ h)          # sum(l h) is twice the area
     # the width across each edge (its normal's direction), and the narrowest few
     width = []
     narrow_angle = np.zeros((len(verts), _NARROW))
     narrow_width = np.full((len(verts), _NARROW), np.inf)
-    for k, ((E, h), v) in enumerate(zip(hps, polys, strict=True)):
-        xy = np.asarray(v.exterior.coords)[:-1]
-        w = h - (E @ xy.T).min(axis=1)
+    for k, ((E, h), ring) in enumerate(zip(hps, rings, strict=True)):
+        w = h - (E @ ring.T).min(axis=1)
         width.append(w)
         keep = np.argsort(w)[:_NARROW]
         narrow_angle[k, :len(keep)] = np.arctan2(E[keep, 1], E[keep, 0])
@@ -338,14 +349,19 @@ def _piece_table(solid: Solid) -> _Pieces:
     table = _Pieces(np.array(facet, np.intp), np.array(local, np.intp), hps, verts,
                     centroid, reach, inradius, start, count, triangle, edge_angle,
                     edge_weight, np.array([solid.facets[f].normal for f in facet]),
+                    np.array([solid.facets[f].origin for f in facet]),
+                    np.array([solid.facets[f].axes for f in facet]),
                     np.zeros(len(verts)), width, narrow_angle, narrow_width)
     table.own_fit[:] = _fit_bounds(table, np.arange(len(verts)), np.zeros(len(verts)))
     return table
 
 
-def _cross2(a: FloatArray, b: FloatArray) -> FloatArray:
-    """The 2-D cross product of rows."""
-    return np.asarray(a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0])
+def _triangle_lengths(E: FloatArray) -> FloatArray:
+    """A triangle's edge lengths up to a common factor, from its edges' unit normals
+    (3, 2): each is the sine of the opposite angle (the law of sines), the cross product
+    of the other two normals."""
+    a, b = E[[1, 2, 0]], E[[2, 0, 1]]
+    return np.asarray(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
 
 
 def _support(angle: FloatArray) -> FloatArray:
@@ -404,25 +420,21 @@ def _pairs(table: _Pieces, new: IntArray, old: IntArray, cos_limit: float
     return np.concatenate(firsts), np.concatenate(seconds)
 
 
-def _pair_bounds(solid: Solid, table: _Pieces, pa: IntArray, pb: IntArray, alpha: float
-                 ) -> FloatArray:
+def _pair_bounds(table: _Pieces, pa: IntArray, pb: IntArray, alpha: float) -> FloatArray:
     """An upper bound on each pair's radius, batched: the smaller inscribed circle over
     ``cos(pi / 8)`` (an octagon holds the disc of ``r cos(pi / 8)``), the octagons'
-    fits in the pieces (:func:`_fit_bounds`), and ``tan(alpha)`` times the height of each piece
-    above the other's plane (the corners of one region, seen from any corner of the
+    fits in the pieces (:func:`_fit_bounds`), and ``tan(alpha)`` times the height of
+    each piece above the other's plane (the corners of one region, seen from any corner of the
     other, span a width of ``2 r`` across the normal at that height: the cone holds
     them only if ``r <= tan(alpha) * height``)."""
-    origins = np.array([f.origin for f in solid.facets])
-    axes = np.array([f.axes for f in solid.facets])
-    fi, fj = table.facet[pa], table.facet[pb]
     disc = np.minimum(table.inradius[pa], table.inradius[pb]) / math.cos(math.pi / 8)
-    h1 = np.einsum("ij,ij->i", table.centroid[pb] - origins[fi], table.normal[pa]) \
+    h1 = np.einsum("ij,ij->i", table.centroid[pb] - table.origin[pa], table.normal[pa]) \
         + table.reach[pb]
-    h2 = np.einsum("ij,ij->i", table.centroid[pa] - origins[fj], table.normal[pb]) \
+    h2 = np.einsum("ij,ij->i", table.centroid[pa] - table.origin[pb], table.normal[pb]) \
         + table.reach[pa]
     # the first octagon turned along its facet's first axis (its fit is the piece's
     # own), the second along that axis projected into its plane (:func:`_octagon_axes`)
-    along = np.einsum("ij,ikj->ik", axes[fi, 0], axes[fj])          # (pairs, 2)
+    along = np.einsum("ij,ikj->ik", table.axes[pa, 0], table.axes[pb])   # (pairs, 2)
     projected = np.hypot(along[:, 0], along[:, 1]) > PROJECTED_AXIS
     phi = np.arctan2(along[:, 1], along[:, 0])
     fits = np.minimum(table.own_fit[pa],
@@ -452,8 +464,7 @@ def _fit(halfplanes: Halfplanes, corners: FloatArray, width: FloatArray | None =
             s = float(np.min((h - E @ c) / k))
             return max(s, 0.0), c
     if len(E) == 3:
-        # edge lengths are proportional to the cross products of consecutive normals
-        length = np.abs(_cross2(E[[1, 2, 0]], E[[2, 0, 1]]))   # law of sines
+        length = _triangle_lengths(E)
         s = float(length @ h / (length @ k))
         t = np.linalg.solve(E[:2], h[:2] - s * k[:2])
         return s, t
@@ -480,24 +491,21 @@ def _refine(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float) -> _Re
     f1, f2 = solid.facets[int(table.facet[pa])], solid.facets[int(table.facet[pb])]
     Q1, Q2 = _octagon_axes(f1, f2)
     q1, q2 = Q1 @ f1.axes.T, Q2 @ f2.axes.T
-    fit1 = _fit(table.halfplanes[pa], q1, table.width[pa])
-    fit2 = _fit(table.halfplanes[pb], q2, table.width[pb])
+    (b1, fit1), (b2, fit2) = _piece_fit(table, pa, q1), _piece_fit(table, pb, q2)
     h1 = float(np.max((table.vertices[pb] - f1.origin) @ f1.normal))
     h2 = float(np.max((table.vertices[pa] - f2.origin) @ f2.normal))
-    bound = min(_piece_bound(table, pa, q1), _piece_bound(table, pb, q2),
-                math.tan(alpha) * min(h1, h2))
-    return _Refined(bound, (fit1, fit2))
+    return _Refined(min(b1, b2, math.tan(alpha) * min(h1, h2)), (fit1, fit2))
 
 
-def _piece_bound(table: _Pieces, piece: int, corners: FloatArray) -> float:
-    """An upper bound on the octagon's fit in one piece: the triangle's closed form,
-    else the widths across every edge (as :func:`_fit_bounds`, every edge)."""
-    E, h = table.halfplanes[piece]
-    k = (E @ corners.T).max(axis=1)
-    across = float(np.min(table.width[piece] / (2 * k)))
-    if len(E) == 3:
-        return min(_fit((E, h), corners)[0], across)
-    return across
+def _piece_fit(table: _Pieces, piece: int, corners: FloatArray
+               ) -> tuple[float, tuple[float, FloatArray]]:
+    """The octagon's fit in one piece (:func:`_fit`) and an upper bound on it: the
+    widths across every edge (as :func:`_fit_bounds`, every edge), and in a triangle
+    the closed-form fit itself (exact)."""
+    E, _ = table.halfplanes[piece]
+    fit = _fit(table.halfplanes[piece], corners, table.width[piece])
+    across = float(np.min(table.width[piece] / (2 * (E @ corners.T).max(axis=1))))
+    return (min(fit[0], across) if len(E) == 3 else across), fit
 
 
 def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,
@@ -523,7 +531,8 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
                     margin: Any = DEFAULT_MARGIN_DEG) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
     docstring), by best-first search over every pair of convex pieces whose cones can
-    meet: all pairs' bounds at once (:func:`_candidates`), then in decreasing order each
+    meet: the pairs' bounds batched, round by round (:func:`_pairs`,
+    :func:`_pair_bounds`), then in decreasing order each
     pair's bound tightened (:func:`_refine`: the octagons' exact fits and heights) and,
     when it is still the largest, the pair solved (:func:`_solve`: the fits themselves
     when they hold, which is then optimal, else the cone program); the search stops
@@ -570,7 +579,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             done += len(new)
             threshold = float(cap[by_cap[done]]) if done < len(by_cap) else floor
             pa, pb = _pairs(table, new, old, cos_limit)
-            bound = _pair_bounds(solid, table, pa, pb, alpha)
+            bound = _pair_bounds(table, pa, pb, alpha)
             keep = np.flatnonzero(bound > floor)
             order = keep[np.argsort(-bound[keep], kind="stable")]
             runs.append(_Run(bound[order], pa[order], pb[order]))

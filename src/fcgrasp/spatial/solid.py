@@ -24,7 +24,7 @@ from ..core._checks import FloatArray
 from ..core.tolerances import PLANAR_TOL, TOL
 from .contacts import contact_frames
 
-__all__ = ["Facet", "Solid", "solid_from_mesh", "demo_solid", "DEMO_SOLIDS"]
+__all__ = ["Facet", "Solid", "solid_from_mesh", "demo_solid", "demo_mesh", "DEMO_SOLIDS"]
 
 #: The built-in solids (``demo:NAME``).
 DEMO_SOLIDS = ("box", "cylinder", "prism", "angle")
@@ -216,6 +216,11 @@ def _convex_pieces(poly: Any) -> list[Any]:
 
 def demo_solid(name: str) -> Solid:
     """A built-in solid (:data:`DEMO_SOLIDS`), in millimetres."""
+    return solid_from_mesh(demo_mesh(name), "mm", f"demo:{name}")
+
+
+def demo_mesh(name: str) -> Any:
+    """The triangle mesh (a ``trimesh.Trimesh``, millimetres) of a built-in solid."""
     import trimesh
     from shapely import Polygon as ShapelyPolygon
     from trimesh.creation import box, cylinder, extrude_polygon
@@ -232,4 +237,4 @@ def demo_solid(name: str) -> Solid:
     else:
         raise ValueError(f"name must be one of {', '.join(DEMO_SOLIDS)}, got {name!r}")
     assert isinstance(mesh, trimesh.Trimesh)
-    return solid_from_mesh(mesh, "mm", f"demo:{name}")
+    return mesh
