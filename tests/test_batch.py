@@ -273,14 +273,14 @@ def test_a_folder_is_walked_and_only_part_files_are_parts(tmp_path):
     assert batch.part_files(str(tmp_path / "**" / "*")) == sorted(want)
 
 
-def test_meshes_among_drawings_are_planned_for_soft_fingers(tmp_path):
+def test_meshes_among_drawings_are_planned_for_the_batchs_gripper(tmp_path):
     """A folder of a drawing and two meshes (one in a subfolder): the meshes are planned
     for two soft fingers with the batch's friction and top, exactly as ``fcgrasp plan
-    --soft``; with a jaw, each mesh is its own one-line error, the drawing still
-    planned."""
+    --soft``; with a jaw for the jaw, with three fingers for three fingers with
+    friction, the drawing planned beside them."""
     trimesh = pytest.importorskip("trimesh")
     from fcgrasp.io.meshes import read_solid
-    from fcgrasp.spatial import soft_pair_plans
+    from fcgrasp.spatial import point_triple_plans, soft_pair_plans, solid_jaw_plans
 
     (tmp_path / "in" / "sub").mkdir(parents=True)
     (tmp_path / "in" / "plate.json").write_text('{"vertices": [[0, 0], [30, 0], [30, 10], '
@@ -303,6 +303,18 @@ def test_meshes_among_drawings_are_planned_for_soft_fingers(tmp_path):
     batch.run_batch(batch.part_files(str(tmp_path / "in")), str(out), workers=1,
                     gripper="jaw", stroke=(5.0, 40.0), pad=4.0)
     got = _lines(out)
-    errors = {os.path.basename(k): r["error"] for k, r in got.items()}
-    assert errors["plate.json"] is None
-    assert "soft" in errors["block.stl"] and "soft" in errors["b.stl"]
+    assert all(r["error"] is None for r in got.values())
+    # the meshes for the jaw and for three fingers, as fcgrasp plan plans them
+    block = str(tmp_path / "in" / "sub" / "block.stl")
+    want = solid_jaw_plans(read_solid(block), (5.0, 40.0), 4.0, 0.3, top=10)
+    assert [g["opening"] for g in got[block]["grasps"]] == pytest.approx(
+        [p.opening for p in want], rel=1e-12)
+    out = tmp_path / "three.jsonl"
+    batch.run_batch([block, str(tmp_path / "in" / "plate.json")], str(out), workers=1,
+                    fingers=3, mu=0.5, top=2)
+    got = _lines(out)
+    assert all(r["error"] is None for r in got.values())
+    want3 = point_triple_plans(read_solid(block), 0.5, top=2).plans
+    assert [g["radius"] for g in got[block]["grasps"]] == pytest.approx(
+        [p.radius for p in want3], rel=1e-12)
+    assert all(len(g["facets"]) == 3 for g in got[block]["grasps"])

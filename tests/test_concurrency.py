@@ -155,11 +155,11 @@ SEEDS = [0] + [pytest.param(k, marks=pytest.mark.slow) for k in range(1, 8)]
 @pytest.mark.parametrize("seed", SEEDS)
 def test_every_objective_matches_highs(seed):
     """The four programs of a piece (max-min, free levels, one region grown, deepest
-    placement) by the kernel and by HiGHS, on every piece of 30 random triples (240
+    placement) by the kernel and by HiGHS, on every piece of 15 random triples (120
     under ``-m slow``)."""
     rng = np.random.default_rng(20 + seed)
     count = 0
-    for a, t, L, center, half, margin in _triples(rng, 30):
+    for a, t, L, center, half, margin in _triples(rng, 15):
         blocks = C._blocks(a, t, L, center, half, margin, 0)
         if not blocks:
             continue
@@ -187,10 +187,10 @@ def test_every_objective_matches_highs(seed):
 @pytest.mark.parametrize("seed", SEEDS)
 def test_best_piece_of_each_row_matches(seed, monkeypatch):
     """The compiled search of a row's pieces (sub-arcs written as loops) finds the level
-    the HiGHS search finds, on 60 random triples with and without a margin (480 under
+    the HiGHS search finds, on 30 random triples with and without a margin (240 under
     ``-m slow``)."""
     rng = np.random.default_rng(30 + seed)
-    rows = list(_triples(rng, 60))
+    rows = list(_triples(rng, 30))
     A = np.array([r[0] for r in rows])
     b = A + np.array([r[1] * r[2][:, None] for r in rows])
     center, half = np.array([r[3] for r in rows]), np.array([r[4] for r in rows])

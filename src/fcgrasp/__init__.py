@@ -110,13 +110,17 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     )
     from .planning.compiled import compile_kernels
     from .spatial import (
+        PointTriplePlan,
         SoftPairPlan,
         Solid,
         SpatialClosure,
         SpatialContact,
         SpatialQuality,
+        perturbation_radius,
+        point_triple_plans,
         soft_pair_plans,
         soft_pair_regions,
+        solid_jaw_plans,
         spatial_force_closure,
         spatial_quality,
         two_soft_closure,
@@ -207,6 +211,10 @@ _LAZY = {
     "SoftPairPlan": "spatial",
     "soft_pair_plans": "spatial",
     "soft_pair_regions": "spatial",
+    "PointTriplePlan": "spatial",
+    "point_triple_plans": "spatial",
+    "perturbation_radius": "spatial",
+    "solid_jaw_plans": "spatial",
 }
 
 

@@ -291,9 +291,10 @@ def document_figure(doc: Any, path: str, title: str | None = None,
 
 def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None = None,
                       panel: int = 3, outputs: Any = None) -> None:
-    """Two soft fingers' regions on a solid (:func:`fcgrasp.spatial.soft_pair_plans`):
-    one 3-D panel per plan (at most ``panel``): the mesh, the two octagon regions, the
-    fingers' approach (the inward normals at the centres) and the segment between them."""
+    """Regions of two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`) or three
+    fingers with friction (:func:`fcgrasp.spatial.point_triple_plans`) on a solid: one
+    3-D panel per plan (at most ``panel``): the mesh, the octagon regions, the fingers'
+    approach (the inward normals at the centres) and the lines between the centres."""
     plt = _pyplot()
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -308,15 +309,16 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
                                              linewidth=0.2, alpha=0.25))
         if plan is not None:
             for reg, c, n, color in zip(plan.regions, plan.centers, plan.normals,
-                                        ("C0", "C3"), strict=True):
+                                        _FINGER_COLORS, strict=False):
                 ax.add_collection3d(Poly3DCollection([reg], facecolor=color, alpha=0.8,
                                                      edgecolor=color))
                 tail = c - 0.35 * span * n
                 ax.quiver(*tail, *(0.3 * span * n), color=color, linewidth=1.5)
-            a, b = plan.centers
-            ax.plot(*np.c_[a, b], color="0.2", linestyle=":", linewidth=1)
-            ax.set_title(f"{k + 1}: facets {plan.facets[0]}, {plan.facets[1]}  "
-                         f"r {plan.radius:.3g}", fontsize=9)
+            ring = np.vstack([plan.centers, plan.centers[:1]]) if len(plan.centers) > 2 \
+                else plan.centers
+            ax.plot(*ring.T, color="0.2", linestyle=":", linewidth=1)
+            facets = ", ".join(str(f) for f in plan.facets)
+            ax.set_title(f"{k + 1}: facets {facets}  r {plan.radius:.3g}", fontsize=9)
         mid = 0.5 * (lo + hi)
         for setter, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid, strict=True):
             setter(m - 0.6 * span, m + 0.6 * span)

@@ -367,15 +367,16 @@ def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | 
         refused = ""
         if isinstance(item, Polygon):
             request = template
-        elif is_solid_source(path) != template.soft:
-            # a mesh among drawings is planned for two soft fingers with the batch's
-            # friction, top and margin (a drawing among meshes: its own error)
+        else:
+            # a mesh among drawings is planned with the batch's friction, top and margin
+            # for two soft fingers (two fingers) or three point fingers with friction; a
+            # drawing among meshes for point fingers (or its own error)
+            solid = is_solid_source(path)
+            soft = solid and template.gripper == "fingers" and template.fingers in (None, 2)
             try:
-                request = template.replace(part=path, soft=not template.soft)
+                request = template.replace(part=path, soft=soft)
             except ValueError as exc:
                 request, refused = template, str(exc)
-        else:
-            request = template.replace(part=path)
         out.append(_Task(k, path, item if isinstance(item, Polygon) else path, request,
                          part_timeout, figures, parameters=parameters, refused=refused))
     return out

@@ -104,7 +104,7 @@ def cmd_plan(args: Any) -> int:
     if not args.quiet and not _json_out(args):
         if not doc.plans:
             print(f"no grasp: {doc.reason}")
-        elif request.soft:
+        elif request.is_solid():
             _print_solid_table(doc.report, sys.stdout)
         elif args.gripper == "jaw":
             _print_jaw_table(doc.plans, doc.units, sys.stdout)
@@ -115,14 +115,28 @@ def cmd_plan(args: Any) -> int:
 
 
 def _print_solid_table(report: dict[str, Any], out: Any) -> None:
-    """Two soft fingers on a solid: one line per plan."""
+    """Two soft fingers, three fingers with friction or a parallel jaw on a solid: one
+    line per plan."""
     units = report["units"]
-    print(f"rank  facets      radius ({units})  centres", file=out)
+    params = report["parameters"]
+    jaw = params.get("contact_type") == "jaw"
+    print(f"rank  facets          radius ({units})" + ("  opening" if jaw else "")
+          + "  centres", file=out)
     for g in report["grasps"]:
         centres = "  ".join("(" + ", ".join(f"{v:.4g}" for v in c) + ")"
                             for c in g["centers"])
-        print(f"{g['rank']:>4}  {g['facets'][0]:>4} {g['facets'][1]:<5}  "
-              f"{g['radius']:>12.4g}  {centres}", file=out)
+        facets = " ".join(str(f) for f in g["facets"])
+        opening = f"  {g['opening']:>7.4g}" if jaw else ""
+        print(f"{g['rank']:>4}  {facets:<14s}  {g['radius']:>12.4g}{opening}  {centres}",
+              file=out)
+    if params.get("contact_type") == "friction":
+        how = "every triple of pieces the bound left open" if params["exhaustive"] else \
+            f"the first {params['certified_triples']} triples of pieces (not exhaustive)"
+        print(f"three fingers: certified regions (a lower bound on the largest), searched "
+              f"{how}", file=out)
+    elif jaw:
+        print("parallel jaw: the closing axis anywhere in the region on the first facet "
+              "(radius: its inscribed circle); the pads close flush on both facets", file=out)
 
 
 def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
@@ -341,6 +355,11 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
     # a solid: two soft fingers' regions on the facets of a mesh (issue 33)
     jobs.append((PlanRequest(part="demo:angle", fingers=2, soft=True, mu=0.5, top=4),
                  "angle-soft", "demo:angle - two soft fingers on a solid (mu 0.5)"))
+    jobs.append((PlanRequest(part="demo:prism", fingers=3, mu=0.5, top=3),
+                 "prism-3f", "demo:prism - three fingers with friction on a solid (mu 0.5)"))
+    jobs.append((PlanRequest(part="demo:angle", gripper="jaw", stroke=(5.0, 50.0), pad=8.0,
+                             mu=0.5, top=3), "angle-jaw",
+                 "demo:angle - a parallel jaw on a solid (stroke 5-50 mm, 8 mm pads)"))
     return jobs
 
 
@@ -352,14 +371,19 @@ def _demo_entry(request: Any, doc: Any, stem: str) -> tuple[dict[str, Any], str]
     entry: dict[str, Any] = {"part": request.part, "json": f"{stem}.json",
                              "figure": f"{stem}.png"}
     params = doc.report["parameters"]
-    if params.get("contact_type") == "soft":
-        entry.update({"fingers": 2, "contact_type": "soft", "mu": params["mu"],
+    if doc.report["part"].get("solid"):
+        kind = params["contact_type"]
+        who = "jaw" if kind == "jaw" else f"{params['fingers']} {kind}"
+        entry.update({"gripper": params.get("gripper", "fingers"),
+                      "fingers": params.get("fingers"), "contact_type": kind,
+                      "mu": params["mu"],
                       "best_facets": None if best is None else list(best.facets),
                       "best_radius": None if best is None else best.radius})
         if best is None:
-            return entry, f"{request.part:14s} 2 soft     no grasp: {doc.reason}"
-        return entry, (f"{request.part:14s} 2 soft     best facets {list(best.facets)!s:16s}"
-                       f"octagons of radius {best.radius:.3g} mm")
+            return entry, f"{request.part:14s} {who:10s} no grasp: {doc.reason}"
+        shape = "a region" if kind == "jaw" else "octagons"
+        return entry, (f"{request.part:14s} {who:10s} best facets {list(best.facets)!s:16s}"
+                       f"{shape} of radius {best.radius:.3g} mm")
     if "fingers" not in params:
         entry.update({"gripper": params["gripper"], "mu": params["mu"],
                       "best_theta_deg": None if best is None else
@@ -498,7 +522,8 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--soft", action="store_true",
                        help="with a solid part (a mesh, or demo:box, demo:cylinder, "
                             "demo:prism, demo:angle) and --fingers 2: two soft fingers, "
-                            "regions on two facets")
+                            "regions on two facets (a solid with --fingers 3: three point "
+                            "fingers with friction, certified regions on three facets)")
         p.add_argument("--gravity", metavar="GX,GY", default=None,
                        help="with --fingers 3: three frictionless fingers holding the part "
                             "against gravity in this direction, such as 0,-1")

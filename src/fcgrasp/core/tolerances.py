@@ -181,3 +181,12 @@ FIT_ROUNDING = 1e-9
 #: Solid grasps: below this length, a facet's first axis projected into another facet's
 #: plane is not a direction; the octagon turns along that facet's own axis instead.
 PROJECTED_AXIS = 1e-3
+
+#: Relative rounding of a 6-D hull's facets (qhull), taken off the certified radius of
+#: three point contacts (:mod:`fcgrasp.spatial.triples`) and required of its offsets.
+HULL_ROUNDING = 1e-9
+
+#: Solid parts: two facets are opposite parallel faces a parallel jaw's flat pads can
+#: close on when their normals are opposite within this angle, radians (float32 meshes
+#: round a small facet's normal to about 1e-6).
+PARALLEL_FACETS = 1e-4

@@ -225,17 +225,7 @@ class PlanRequest:
                                                   or self.fingers not in (None, 2)):
             raise _fail("placement_sigma", f"--placement-sigma is a distance > 0 for two "
                                            f"fingers, got {self.placement_sigma:g}")
-        if self.is_solid() != self.soft:
-            raise _fail("soft", "a solid part (a mesh) is planned for two soft fingers: give "
-                                "--fingers 2 --soft" if self.is_solid() else
-                                "--soft: soft fingers are planned on solid parts (a mesh: .stl, "
-                                f".obj, .ply, .glb, .3mf, .off, or demo:box...), got "
-                                f"{self.part!r}")
-        if self.soft and (self.gripper != "fingers" or self.fingers not in (None, 2)
-                          or self.gravity is not None or self.mass is not None
-                          or self.mu_high is not None or self.placement_sigma is not None):
-            raise _fail("soft", "--soft: two soft fingers on a solid take --mu, --top and "
-                                "--margin only so far")
+        self._check_solid()
         if self.mu_high is not None:
             lo = DEFAULT_MU if self.mu is None else self.mu
             if self.gripper == "jaw" or self.gravity is not None \
@@ -248,6 +238,45 @@ class PlanRequest:
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
+
+    def _check_solid(self) -> None:
+        """A solid part takes two soft fingers (``soft``) or three fingers with friction,
+        with ``mu``, ``top`` and ``margin`` only so far; ``soft`` takes a solid."""
+        kind = self.solid_kind()
+        if self.soft and not self.is_solid():
+            raise _fail("soft", f"--soft: soft fingers are planned on solid parts (a mesh: "
+                                f".stl, .obj, .ply, .glb, .3mf, .off, or demo:box...), got "
+                                f"{self.part!r}")
+        if self.is_solid() and kind is None:
+            raise _fail("soft" if self.gripper == "fingers" and self.fingers in (None, 2)
+                        else "fingers" if self.gripper == "fingers" else "gripper",
+                        "a solid part (a mesh) is planned for two soft fingers (--fingers 2 "
+                        "--soft) or three fingers with friction (--fingers 3 --mu MU); two "
+                        "point fingers never hold a solid (nothing resists the turn about "
+                        "the line between them)")
+        if kind is not None and (self.gravity is not None or self.mass is not None
+                                 or self.mu_high is not None or self.single_edge
+                                 or self.placement_sigma is not None
+                                 or self.certify is not None or self.distinct):
+            who = {"soft": ("soft", "--soft: two soft fingers"),
+                   "friction": ("fingers", "--fingers 3: three fingers"),
+                   "jaw": ("gripper", "--gripper jaw: a parallel jaw (--stroke, --pad)")}
+            name, what = who[kind]
+            raise _fail(name, f"{what} on a solid take --mu, --top and --margin only so far")
+
+    def solid_kind(self) -> str | None:
+        """How a solid part is grasped: ``"soft"`` (two soft fingers), ``"friction"``
+        (three point fingers with friction), ``"jaw"`` (a parallel jaw with flat pads),
+        or None (not a solid's request)."""
+        if not self.is_solid():
+            return None
+        if self.gripper == "jaw":
+            return "jaw"
+        if self.gripper != "fingers":
+            return None
+        if self.soft:
+            return "soft" if self.fingers in (None, 2) else None
+        return "friction" if self.fingers == 3 else None
 
     def _check_outputs(self) -> None:
         check_outputs(self.json, self.plot, [self.part])
@@ -368,7 +397,7 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     """
     if not isinstance(request, PlanRequest):
         raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
-    if request.soft:
+    if request.is_solid():
         return _solid_document(request)
     gripper = request.gripper_object()
     part = request.load(say) if part is None else part
@@ -429,25 +458,55 @@ def template_request(options: dict[str, Any]) -> PlanRequest:
 
 
 def _solid_document(request: PlanRequest) -> PlanDocument:
-    """Two soft fingers on a solid (:func:`fcgrasp.spatial.soft_pair_plans`): the JSON
-    document of ``fcgrasp plan part.stl --fingers 2 --soft``."""
+    """Two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`), three point fingers
+    with friction (:func:`fcgrasp.spatial.point_triple_plans`) or a parallel jaw
+    (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
+    ``fcgrasp plan part.stl --fingers 2 --soft``, ``--fingers 3`` or ``--gripper jaw``."""
     from ..io.meshes import read_solid
-    from ..spatial.regions import soft_pair_plans
 
     solid = read_solid(request.part, units=request.units, file_units=request.file_units,
                        select=request.select)
     mu = DEFAULT_MU if request.mu is None else request.mu
-    plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
-    reason = None if plans else f"no two facets hold two soft fingers with mu {mu:g} " \
-                                f"and a margin of {request.margin:g} degrees"
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
             "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist(),
             "units_note": solid.units_note}
-    params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
-              "margin_deg": request.margin}
+    kind = request.solid_kind()
+    if kind == "jaw":
+        from ..spatial.jaw import solid_jaw_plans
+
+        jaw: Any = request.gripper_object()
+        plans: list[Any] = solid_jaw_plans(solid, jaw.stroke, jaw.pad_width, jaw.mu,
+                                           top=request.top, margin=request.margin)
+        params = {"gripper": "jaw", "contact_type": "jaw", "stroke": list(jaw.stroke),
+                  "pad": jaw.pad_width, "mu": jaw.mu, "top": request.top,
+                  "margin_deg": request.margin}
+        what = (f"two opposite parallel facets {jaw.stroke[0]:g} to {jaw.stroke[1]:g} apart "
+                f"(the stroke) take the jaw's {jaw.pad_width:g} pads")
+        title = "a parallel jaw"
+        mu = jaw.mu
+    elif kind == "soft":
+        from ..spatial.regions import soft_pair_plans
+
+        plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
+        params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
+                  "margin_deg": request.margin}
+        what = "two facets hold two soft fingers"
+        title = "two soft fingers"
+    else:
+        from ..spatial.triples import point_triple_plans
+
+        search = point_triple_plans(solid, mu, top=request.top, margin=request.margin)
+        plans = search.plans
+        params = {"fingers": 3, "contact_type": "friction", "mu": mu, "top": request.top,
+                  "margin_deg": request.margin, "certified_triples": search.certified,
+                  "exhaustive": search.exhaustive}
+        what = "three facets hold three fingers with friction"
+        title = "three fingers with friction"
+    reason = None if plans else f"no {what} with mu {mu:g} and a margin of " \
+                                f"{request.margin:g} degrees"
     report = plan_report(None, plans, params, solid.units, reason,
                          source={"path": request.part}, part=part)
     # a solid's document carries the solid where a planar one has its polygon
     return PlanDocument(report, list(plans), solid, solid.units, reason,
-                        f"{request.part}: two soft fingers")
+                        f"{request.part}: {title}")

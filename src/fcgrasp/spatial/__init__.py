@@ -9,18 +9,33 @@
 - :mod:`~fcgrasp.spatial.solid`: meshes read with trimesh, checked and cut into planar
   facets, and the built-in solids;
 - :mod:`~fcgrasp.spatial.regions`: independent regions of two soft fingers on a pair of
-  facets (one cone program each) and the search over every pair.
+  facets (one cone program each) and the search over every pair;
+- :mod:`~fcgrasp.spatial.triples`: certified regions of three point fingers with
+  friction on three facets, and the search over triples;
+- :mod:`~fcgrasp.spatial.jaw`: a parallel jaw's region of closing axes on two opposite
+  parallel facets, and the search over such pairs.
 """
 
 from __future__ import annotations
 
 from .closure import SpatialClosure, closure_margin, spatial_force_closure, two_soft_closure
 from .contacts import SpatialContact, contact_frames, contact_maps, contact_wrench_generators
+from .jaw import SolidJawPlan, solid_jaw_plans, solid_jaw_region
 from .quality import SpatialQuality, spatial_quality
 from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
 from .solid import Facet, Solid, demo_solid, solid_from_mesh
+from .triples import (
+    PointTriplePlan,
+    PointTripleSearch,
+    perturbation_radius,
+    point_triple_plans,
+    point_triple_regions,
+)
 
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
            "SpatialQuality", "spatial_quality", "SoftPairPlan", "soft_pair_plans",
-           "soft_pair_regions", "Facet", "Solid", "demo_solid", "solid_from_mesh"]
+           "soft_pair_regions", "Facet", "Solid", "demo_solid", "solid_from_mesh",
+           "PointTriplePlan", "PointTripleSearch", "perturbation_radius",
+           "point_triple_plans", "point_triple_regions", "SolidJawPlan",
+           "solid_jaw_plans", "solid_jaw_region"]

@@ -1,0 +1,270 @@
+r"""A parallel jaw with flat pads on a solid (issue 33): the region of closing axes on a
+pair of parallel faces such that the pads close flush on both faces and the grasp holds.
+
+**The model.**  The jaw closes two round flat pads (diameter ``pad``) along an axis
+``d``.  A pad lies flush on a planar facet only when the facet faces the pad, so the jaw
+grasps two **opposite parallel facets** ``A`` and ``B`` (inward normals ``n_A`` and
+``n_B = -n_A`` within :data:`~fcgrasp.core.tolerances.PARALLEL_FACETS` radians) a
+distance ``h`` apart, ``d = n_A`` (the bisector when they are within the tolerance),
+with ``h`` inside the jaw's stroke.  The axis meets ``A`` at ``x`` and ``B`` at ``x + h
+d``; each pad presses flush on its facet with friction ``mu``, an area contact that
+resists a torsion about ``d`` (a soft finger, as the paper's conclusion names it).  Two
+soft contacts are in force closure exactly when the segment joining them lies strictly
+inside both friction cones (:func:`~fcgrasp.spatial.closure.two_soft_closure`); the
+segment is along ``d``, inside both cones by ``atan(mu)`` less the facets' tilt, so
+every axis point ``x`` in both facets holds when ``atan(mu) - margin`` exceeds the
+tilt.
+
+**The region** of axis points, in ``A``'s plane, is ``A`` intersected with ``B``
+projected along ``d``, less every point whose pad would meet the part before its facet:
+the part outside each facet's plane (on its pad's side: the triangles clipped to that
+half-space, projected along ``d``) grown by the pad's radius (a round pad centred at
+``x`` covers the disc of radius ``pad / 2``).  The jaw's fingers beyond the pads are not
+modelled.  On a convex part nothing lies outside a face's plane, so the region is the
+overlap of the two faces.  Plans are ranked by the region's **inscribed radius** (how
+far the axis may land from the region's centre in any direction), and carry the
+region's area and the opening ``h``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL
+from .regions import DEFAULT_MARGIN_DEG
+from .solid import Facet, Solid
+
+__all__ = ["SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"]
+
+
+@dataclass(frozen=True)
+class SolidJawPlan:
+    """A parallel jaw's region on two opposite facets: ``facets`` (``A``, ``B``), the
+    closing ``axis`` (``A``'s inward normal), the ``opening`` between the facets,
+    ``radius`` (the region's inscribed radius), ``area``, ``centers`` (2, 3: the best
+    axis point on ``A`` and on ``B``), ``regions`` (two rings of 3-D points: the region
+    on ``A`` and on ``B``), inward ``normals`` (2, 3), ``mu``, ``margin``, ``pad``."""
+
+    facets: tuple[int, int]
+    axis: FloatArray = field(repr=False)
+    opening: float = 0.0
+    radius: float = 0.0
+    area: float = 0.0
+    centers: FloatArray = field(default_factory=lambda: np.zeros((2, 3)), repr=False)
+    regions: tuple[FloatArray, FloatArray] = field(default=(np.zeros((0, 3)),
+                                                            np.zeros((0, 3))), repr=False)
+    normals: FloatArray = field(default_factory=lambda: np.zeros((2, 3)), repr=False)
+    mu: float = 0.0
+    margin: float = DEFAULT_MARGIN_DEG
+    pad: float = 0.0
+
+    @property
+    def min_length(self) -> float:
+        """The measure the plans are ranked by: the region's inscribed radius."""
+        return self.radius
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"facets": list(self.facets), "axis": self.axis.tolist(),
+                "opening": self.opening, "radius": self.radius, "area": self.area,
+                "centers": self.centers.tolist(),
+                "regions": [r.tolist() for r in self.regions],
+                "normals": self.normals.tolist(), "mu": self.mu, "margin_deg": self.margin,
+                "pad": self.pad, "contact_type": "jaw"}
+
+
+def _check(solid: Any, stroke: Any, pad: Any, mu: Any, margin: Any
+           ) -> tuple[tuple[float, float], float, float, float, float]:
+    if not isinstance(solid, Solid):
+        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
+    try:
+        lo, hi = (float(v) for v in stroke)
+    except (TypeError, ValueError):
+        raise ValueError(f"stroke must be (min_opening, max_opening), got {stroke!r}") from None
+    if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi):
+        raise ValueError(f"stroke must have 0 <= min_opening <= max_opening, got {stroke!r}")
+    pad_v = check_scalar(pad, "pad", nonnegative=True)
+    mu_v = check_mu_scalar(mu, "mu")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    return (lo, hi), pad_v, mu_v, margin_v, math.atan(mu_v) - math.radians(margin_v)
+
+
+def _opposite_pairs(solid: Solid, tilt: float) -> list[tuple[int, int]]:
+    """Pairs of facets (lower index first) whose inward normals are opposite within
+    ``tilt`` radians, the second in front of the first (across the part)."""
+    normals = np.array([f.normal for f in solid.facets])
+    ii, jj = np.nonzero(np.triu(-(normals @ normals.T) >= math.cos(tilt), 1))
+    out = []
+    for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
+        a, b = solid.facets[i], solid.facets[j]
+        if (b.origin - a.origin) @ a.normal > 0:
+            out.append((i, j))
+    return out
+
+
+def _outside(solid: Solid, facet: Facet, level: float) -> Any:
+    """The part outside ``facet``'s plane (its pad's side, beyond ``level`` below it),
+    projected into the facet's 2-D frame along its normal: the triangles clipped to
+    that half-space (shapely, a union), or None."""
+    import shapely
+
+    V = solid.mesh.vertices
+    tris = V[solid.mesh.faces]                                          # (T, 3, 3)
+    s = (tris - facet.origin) @ facet.normal                            # (T, 3)
+    hit = np.any(s < -level, axis=1)
+    if not hit.any():
+        return None
+    polys = []
+    for tri, lev in zip(tris[hit], s[hit], strict=True):
+        ring = _clip(tri, lev)
+        if len(ring) >= 3:
+            polys.append(shapely.Polygon(facet.to_2d(ring)))
+    polys = [p for p in polys if p.is_valid and p.area > 0]
+    return shapely.union_all(polys) if polys else None
+
+
+def _clip(tri: FloatArray, level: FloatArray) -> FloatArray:
+    """The part of a triangle where ``level <= 0`` (Sutherland-Hodgman on one plane)."""
+    out = []
+    for k in range(3):
+        p, q = tri[k], tri[(k + 1) % 3]
+        a, b = level[k], level[(k + 1) % 3]
+        if a <= 0:
+            out.append(p)
+        if (a < 0 < b) or (b < 0 < a):
+            out.append(p + (q - p) * (a / (a - b)))
+    return np.array(out)
+
+
+def _largest_piece(region: Any) -> Any:
+    """The part of a (multi)polygon with the largest inscribed circle."""
+    import shapely
+
+    parts = list(region.geoms) if hasattr(region, "geoms") else [region]
+    parts = [p for p in parts if isinstance(p, shapely.Polygon) and p.area > 0]
+    if not parts:
+        return None, 0.0, None
+    best = None
+    for p in parts:
+        lo_x, lo_y, hi_x, hi_y = p.bounds
+        tol = INRADIUS_STEP * max(hi_x - lo_x, hi_y - lo_y)
+        line = shapely.maximum_inscribed_circle(p, tol)
+        # the centre found to within ``tol``: the radius is at least the distance to the
+        # boundary from the centre returned
+        centre = np.asarray(line.coords[0])
+        r = float(p.exterior.distance(shapely.Point(centre)))
+        r = min([r, *(float(h.distance(shapely.Point(centre))) for h in p.interiors)])
+        if best is None or r > best[1]:
+            best = (p, r, centre)
+    return best
+
+
+def solid_jaw_region(solid: Solid, facets: Any, stroke: Any, pad: Any, mu: Any,
+                     margin: Any = DEFAULT_MARGIN_DEG) -> SolidJawPlan | None:
+    """The region of closing axes (module docstring) of a parallel jaw with round pads
+    of diameter ``pad`` and the given ``stroke`` on two opposite parallel facets of
+    ``solid``, or None when none holds (facets not opposite, opening outside the
+    stroke, friction not above the tilt, or nothing left of the overlap).
+
+    >>> from fcgrasp.spatial.solid import demo_solid
+    >>> box = demo_solid("box")                         # 40 x 20 x 10 mm
+    >>> z = [f.index for f in box.facets if abs(f.normal[2]) > 0.5]
+    >>> plan = solid_jaw_region(box, z, stroke=(5, 50), pad=8, mu=0.5)
+    >>> plan.opening, round(plan.radius, 3), round(plan.area, 1)
+    (10.0, 10.0, 800.0)
+    """
+    (lo, hi), pad_v, mu_v, margin_v, alpha = _check(solid, stroke, pad, mu, margin)
+    try:
+        i, j = (int(f) for f in facets)
+    except (TypeError, ValueError):
+        raise ValueError(f"facets must be two indices, got {facets!r}") from None
+    n = len(solid.facets)
+    if not (0 <= i < n and 0 <= j < n) or i == j:
+        raise ValueError(f"facets must be two different facets in [0, {n}), got {facets!r}")
+    return _region(solid, i, j, (lo, hi), pad_v, mu_v, margin_v, alpha)
+
+
+def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: float,
+            mu: float, margin: float, alpha: float) -> SolidJawPlan | None:
+    import shapely
+
+    a, b = solid.facets[i], solid.facets[j]
+    cos_tilt = float(-(a.normal @ b.normal))
+    tilt = math.acos(min(1.0, cos_tilt))
+    if tilt > PARALLEL_FACETS or alpha <= tilt:
+        return None
+    axis = a.normal - b.normal
+    axis /= np.linalg.norm(axis)
+    h = float((b.origin - a.origin) @ axis)
+    if not stroke[0] <= h <= stroke[1]:
+        return None
+
+    def into_a(geom: Any) -> Any:
+        """Polygons of B's frame moved along the axis into A's plane and frame."""
+        def ring(coords: Any) -> FloatArray:
+            pts = b.to_3d(np.asarray(coords)[:, :2])
+            return a.to_2d(pts - np.outer((pts - a.origin) @ a.normal, axis)
+                           / float(axis @ a.normal))
+        return shapely.union_all([
+            shapely.Polygon(ring(p.exterior.coords), [ring(r.coords) for r in p.interiors])
+            for p in shapely.get_parts(geom) if isinstance(p, shapely.Polygon)])
+
+    region = shapely.intersection(a.polygon, into_a(b.polygon))
+    level = PLANAR_TOL * solid.size
+    for facet in (a, b):
+        blocked = _outside(solid, facet, level)
+        if blocked is not None:
+            if facet is b:
+                blocked = into_a(blocked)
+            region = shapely.difference(region, shapely.buffer(blocked, pad / 2))
+    piece, r, centre = _largest_piece(region)
+    if piece is None or r <= 0:
+        return None
+    ca = a.to_3d(centre)
+    ring_a = a.to_3d(np.asarray(piece.exterior.coords)[:-1])
+    return SolidJawPlan((i, j), axis, h, r, float(piece.area),
+                        np.stack([ca, ca + h * axis]), (ring_a, ring_a + h * axis),
+                        np.stack([a.normal, b.normal]), mu, margin, pad)
+
+
+def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | None = 10,
+                    margin: Any = DEFAULT_MARGIN_DEG) -> list[SolidJawPlan]:
+    """The best regions of a parallel jaw on ``solid`` (module docstring), largest
+    inscribed radius first: every pair of opposite parallel facets whose opening is in
+    the stroke, taken by their bound (the smaller of the two facets' inscribed
+    circles, an upper bound on the overlap's) until the bound cannot enter the top
+    ``top`` (None: every pair).
+
+    >>> from fcgrasp.spatial.solid import demo_solid
+    >>> [round(p.radius, 3) for p in solid_jaw_plans(demo_solid("box"), (5, 50), 8, 0.5)]
+    [10.0, 5.0, 5.0]
+    """
+    import shapely
+
+    stroke_v, pad_v, mu_v, margin_v, alpha = _check(solid, stroke, pad, mu, margin)
+    if top is not None:
+        top = check_int(top, "top", minimum=1)
+    pairs = _opposite_pairs(solid, PARALLEL_FACETS)
+    if not pairs or alpha <= 0:
+        return []
+    used = sorted({k for p in pairs for k in p})
+    geoms = np.array([solid.facets[k].polygon for k in used], dtype=object)
+    lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms).T
+    tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
+    inradius = dict(zip(used, (shapely.length(shapely.maximum_inscribed_circle(geoms, tol))
+                               + tol).tolist(), strict=True))
+    cands = sorted(pairs, key=lambda p: (-min(inradius[p[0]], inradius[p[1]]), p))
+    plans: list[SolidJawPlan] = []
+    for i, j in cands:
+        bound = min(inradius[i], inradius[j])
+        if top is not None and len(plans) >= top and plans[top - 1].radius >= bound:
+            break
+        got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)
+        if got is not None:
+            plans.append(got)
+            plans.sort(key=lambda p: (-p.radius, p.facets))
+    return plans if top is None else plans[:top]

@@ -1,0 +1,190 @@
+"""A parallel jaw with flat pads on solids (issue 33): every axis of every returned
+region meets both facets, holds (the 6-D cone program, soft contacts), and its pads
+reach their facets before any other part of the solid (rays cast here, Moller-Trumbore,
+against every triangle); axes just outside the region fail one of these; the box gives
+its faces; the command line plans a mesh for the jaw."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from fcgrasp.spatial import closure_margin
+from fcgrasp.spatial.jaw import solid_jaw_plans, solid_jaw_region
+from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
+
+trimesh = pytest.importorskip("trimesh")
+shapely = pytest.importorskip("shapely")
+
+MU, MARGIN, PAD, STROKE = 0.5, 0.5, 6.0, (2.0, 80.0)
+
+
+def _first_hit(mesh, origin, direction):
+    """The distance along ``direction`` from ``origin`` to the first triangle it meets
+    (Moller-Trumbore on every triangle), inf when none."""
+    tri = mesh.vertices[mesh.faces]
+    e1, e2 = tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    p = np.cross(direction, e2)
+    det = np.einsum("ij,ij->i", e1, p)
+    ok = np.abs(det) > 1e-12
+    inv = np.where(ok, 1.0 / np.where(ok, det, 1.0), 0.0)
+    s = origin - tri[:, 0]
+    u = np.einsum("ij,ij->i", s, p) * inv
+    q = np.cross(s, e1)
+    v = (q @ direction) * inv
+    t = np.einsum("ij,ij->i", e2, q) * inv
+    eps = 1e-9
+    hit = ok & (u >= -eps) & (v >= -eps) & (u + v <= 1 + eps) & (t > 0)
+    return float(t[hit].min()) if hit.any() else math.inf
+
+
+def _pad_reaches(solid, centre, axis, pad, towards):
+    """Whether a round pad of diameter ``pad`` centred at ``centre`` (on its facet's
+    plane), closing ``towards`` the part along ``axis``, first touches the part in that
+    plane: rays from far outside through 24 points of its rim and its centre."""
+    far = 2 * solid.size
+    u = np.cross(axis, [1.0, 0, 0] if abs(axis[0]) < 0.9 else [0, 1.0, 0])
+    u /= np.linalg.norm(u)
+    w = np.cross(axis, u)
+    ring = [centre] + [centre + 0.5 * pad * (math.cos(a) * u + math.sin(a) * w)
+                       for a in np.linspace(0, 2 * np.pi, 24, endpoint=False)]
+    d = towards * axis
+    for q in ring:
+        t = _first_hit(solid.mesh, q - far * d, d)
+        if t < far - 1e-7 * solid.size:       # something before the facet's plane
+            return False
+    return True
+
+
+def _holds(solid, plan, x):
+    """Every check of an axis through ``x`` (a point of the first facet's plane): it
+    meets both facets, the soft contacts hold, both pads reach their facets."""
+    a, b = (solid.facets[f] for f in plan.facets)
+    y = x + plan.opening * plan.axis
+    on = [f.polygon.buffer(1e-9 * solid.size).contains(
+        shapely.Point(f.to_2d(p))) for f, p in ((a, x), (b, y))]
+    if not all(on):
+        return False
+    if not closure_margin(np.array([x, y]), plan.normals,
+                          math.tan(math.atan(MU) - math.radians(MARGIN)), 0.1).closure:
+        return False
+    return _pad_reaches(solid, x, plan.axis, plan.pad, 1.0) and \
+        _pad_reaches(solid, y, plan.axis, plan.pad, -1.0)
+
+
+def _extruded(seed):
+    """A union of random axis-aligned rectangles extruded: a non-convex prism with
+    steps, many opposite parallel walls, and walls that block each other's pads."""
+    rng = np.random.default_rng(seed)
+    boxes = []
+    for _ in range(int(rng.integers(2, 5))):
+        x, y = rng.uniform(0, 20, 2)
+        w, h = rng.uniform(6, 25, 2)
+        boxes.append(shapely.box(x, y, x + w, y + h))
+    merged = shapely.union_all(boxes)
+    poly = max(shapely.get_parts(merged), key=lambda g: g.area)
+    poly = shapely.Polygon(poly.exterior).simplify(0)
+    mesh = trimesh.creation.extrude_polygon(poly, float(rng.uniform(5, 20)))
+    return solid_from_mesh(mesh, "mm", f"steps{seed}")
+
+
+def _axes_inside(rng, solid, plan, n):
+    """The region's centre, its corners pulled in by a hair, and ``n`` random points."""
+    a = solid.facets[plan.facets[0]]
+    ring = a.to_2d(plan.regions[0])
+    poly = shapely.Polygon(ring)
+    shrunk = poly.buffer(-1e-6 * solid.size)
+    pts = [a.to_2d(plan.centers[0])]
+    if not shrunk.is_empty:
+        pts += list(np.asarray(shapely.get_coordinates(shrunk.exterior))[:-1])
+    lo_x, lo_y, hi_x, hi_y = poly.bounds
+    while len(pts) < n + 1:
+        p = rng.uniform([lo_x, lo_y], [hi_x, hi_y])
+        if poly.contains(shapely.Point(p)):
+            pts.append(p)
+    return [a.to_3d(p) for p in pts]
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 30))])
+def test_every_axis_of_the_regions_holds(seed):
+    rng = np.random.default_rng(seed)
+    solids = [demo_solid(n) for n in ("box", "angle")] if seed == 0 else [_extruded(seed)]
+    checked = 0
+    for solid in solids:
+        for plan in solid_jaw_plans(solid, STROKE, PAD, MU, top=4, margin=MARGIN):
+            for x in _axes_inside(rng, solid, plan, 12 if seed == 0 else 30):
+                assert _holds(solid, plan, x)
+            # the region is not needlessly small: just outside it, an axis fails
+            a = solid.facets[plan.facets[0]]
+            poly = shapely.Polygon(a.to_2d(plan.regions[0]))
+            ring = shapely.get_coordinates(poly.buffer(1e-3 * solid.size).exterior)
+            lo_x, lo_y, hi_x, hi_y = a.polygon.bounds
+            outside = [p for p in ring[:: max(1, len(ring) // 8)]]
+            if plan.area >= a.polygon.area * (1 - 1e-9):
+                continue                           # the whole facet: nothing outside
+            failed = sum(not _holds(solid, plan, a.to_3d(p)) for p in outside)
+            assert failed >= 1
+            checked += 1
+    assert checked >= 1 or seed
+
+
+def test_the_box_gives_its_faces():
+    box = demo_solid("box")                                  # 40 x 20 x 10
+    plans = solid_jaw_plans(box, (5, 50), 8, 0.5, top=None)
+    got = sorted((round(p.opening, 9), round(p.radius, 6), round(p.area, 6)) for p in plans)
+    assert got == [(10.0, 10.0, 800.0), (20.0, 5.0, 400.0), (40.0, 5.0, 200.0)]
+    # the stroke keeps the openings in it; friction below the margin holds nothing
+    assert [p.opening for p in solid_jaw_plans(box, (15, 30), 8, 0.5)] == [20.0]
+    assert solid_jaw_plans(box, (5, 50), 8, 0.005) == []
+    z = [f.index for f in box.facets if abs(f.normal[2]) > 0.5]
+    assert solid_jaw_region(box, z, (11, 50), 8, 0.5) is None
+
+
+def test_a_step_blocks_the_pad():
+    """An L-shaped extrusion: on its inner horizontal face, the pad keeps its radius
+    away from the vertical leg."""
+    angle = demo_solid("angle")
+    plans = solid_jaw_plans(angle, (2, 80), 8, 0.5, top=None)
+    for p in plans:
+        a = angle.facets[p.facets[0]]
+        region = shapely.Polygon(a.to_2d(p.regions[0]))
+        assert region.area <= a.polygon.area + 1e-9
+    small = solid_jaw_plans(angle, (2, 80), 2, 0.5, top=None)
+    big = {p.facets: p.area for p in plans}
+    # a smaller pad never loses area, and gains it where a step blocks the larger one
+    assert all(p.area >= big.get(p.facets, 0) - 1e-9 for p in small)
+    assert any(p.area > big.get(p.facets, 0) + 1e-6 for p in small)
+
+
+def test_errors_name_the_argument():
+    box = demo_solid("box")
+    with pytest.raises(ValueError, match="stroke"):
+        solid_jaw_plans(box, (50, 5), 8, 0.5)
+    with pytest.raises(ValueError, match="pad"):
+        solid_jaw_plans(box, (5, 50), -1, 0.5)
+    with pytest.raises(TypeError, match="solid must be"):
+        solid_jaw_plans("box", (5, 50), 8, 0.5)
+    with pytest.raises(ValueError, match="facets must be two different"):
+        solid_jaw_region(box, (1, 1), (5, 50), 8, 0.5)
+
+
+def test_cli_plans_the_jaw_on_a_mesh(tmp_path, capsys):
+    from fcgrasp.apps.cli import main
+
+    path = tmp_path / "block.stl"
+    trimesh.creation.box((30, 20, 10)).export(path)
+    out = tmp_path / "plan.json"
+    assert main(["plan", str(path), "--gripper", "jaw", "--stroke", "5,25", "--pad", "6",
+                 "--mu", "0.5", "--json", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["parameters"]["gripper"] == "jaw"
+    assert sorted(g["opening"] for g in doc["grasps"]) == pytest.approx([10.0, 20.0])
+    capsys.readouterr()
+    assert main(["plan", str(path), "--gripper", "jaw", "--stroke", "5,25", "--pad", "6",
+                 "--mass", "1"]) == 2
+    err = capsys.readouterr().err
+    assert "--mass" in err and len(err.strip().splitlines()) == 1
