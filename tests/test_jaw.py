@@ -311,7 +311,7 @@ def test_bad_jaws():
         jaw_plans(demo_part("quad"), "jaw")
 
 
-def test_plan_with_a_gripper_and_the_cli(tmp_path):
+def test_plan_with_a_gripper_and_the_cli(tmp_path, capsys):
     jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4)
     plans = fc.plan(demo_part("rectangle"), gripper=jaw, top=2)
     assert plans and all(isinstance(p, fc.JawPlan) for p in plans)
@@ -333,11 +333,15 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path):
         assert r.returncode == 0, r.stderr
         d = json.loads(out.read_text())
         assert d["parameters"]["certify"] is proved and d["grasps"][0]["certified"] is proved
+    from fcgrasp.apps.cli import main
+
     for bad in (["--gripper", "jaw"], ["--gripper", "jaw", "--stroke", "50,10", "--pad", "3"],
                 ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"],
                 ["--certify"], ["--no-certify"]):
-        r = run("plan", "demo:rectangle", *bad, "--json", tmp_path / "bad.json")
-        assert r.returncode != 0 and len(r.stderr.strip().splitlines()) == 1
+        capsys.readouterr()
+        assert main(["plan", "demo:rectangle", *bad, "--json",
+                     str(tmp_path / "bad.json")]) != 0
+        assert len(capsys.readouterr().err.strip().splitlines()) == 1
         assert not (tmp_path / "bad.json").exists()
 
 

@@ -198,7 +198,7 @@ def test_compiled_search_gives_the_numpy_plans(seed, monkeypatch):
     _assert_same_plans(fast, _plans(poly, mu, margin, 8), poly.size)
 
 
-@pytest.mark.parametrize("seed", seeds(4, 300))
+@pytest.mark.parametrize("seed", seeds(2, 300))
 def test_top_k_is_the_head_of_every_configuration(seed, monkeypatch):
     """The bound prunes, but the top ``k`` (ties included) are the first of all the
     configurations, found with no bound at all."""

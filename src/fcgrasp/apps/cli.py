@@ -543,7 +543,9 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--distinct", type=float, default=0.0, metavar="FRACTION",
                        help="keep only distinct alternatives: drop a plan whose regions "
                             "overlap a better plan's by more than FRACTION of the shorter "
-                            "(0.5 is a good choice; default 0: every plan, as ranked)")
+                            "(on a solid: whose regions, grown by 1/FRACTION, overlap a "
+                            "better plan's; 0.5 is a good choice; default 0: every plan, "
+                            "as ranked)")
         p.add_argument("--mass", type=float, default=None, metavar="KG",
                        help="a load to carry: the part's mass in kg; each plan then reports "
                             "the scale of the load every grasp of its regions carries "

@@ -78,6 +78,18 @@ def _stretches(blob: Any) -> None:
     plan(blob, fingers=2, mu=0.3, top=1)
     c = np.array([[0, 2, 5, 1], [1, 0, 5, 0]])
     _stretch_kernels.beaten(c, np.array([1.0, 2.0]), 10, 10, False, RANK_TOL)
+    # the sweep behind the tables (taken when they cannot decide), compiled too
+    cols = [np.ascontiguousarray(c[:, k], np.int64) for k in range(4)]
+    _stretch_kernels._load()["_beaten"](*cols, np.array([1.0, 2.0]), 10, 10, False,
+                                        float(RANK_TOL), np.arange(2, dtype=np.int64),
+                                        np.ones(2, bool))
+    # the fused scores of every feature pair (a top-k search's candidates)
+    from ..core.kernels import pair_scores
+    from ..pipeline._candidates import features
+
+    F = features(blob, 0.3)
+    i = np.arange(len(F.a), dtype=np.intp)
+    pair_scores(F.a, F.b, F.center, F.half, i, i[::-1].copy(), 0.0, RANK_TOL)
 
 
 def _jaw() -> None:
@@ -87,3 +99,8 @@ def _jaw() -> None:
     # a part with a hole: the internal grips' paths too
     jaw_plans(demo_part("washer"), ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5), top=1,
               internal=True)
+    # one box proved on its own (the proof's loop over a batch of boxes)
+    from ..grippers.jaw import certify_box
+
+    certify_box(demo_part("rectangle"), ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5),
+                np.radians([80, 100]), (-30, 30))

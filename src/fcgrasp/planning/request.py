@@ -240,8 +240,9 @@ class PlanRequest:
                                       f"{self.max_memory}")
 
     def _check_solid(self) -> None:
-        """A solid part takes two soft fingers (``soft``) or three fingers with friction,
-        with ``mu``, ``top`` and ``margin`` only so far; ``soft`` takes a solid."""
+        """A solid part takes two soft fingers (``soft``), three fingers with friction or a
+        parallel jaw, with ``mu``, ``top``, ``margin`` and ``distinct`` (and the jaw's
+        ``stroke`` and ``pad``) only so far; ``soft`` takes a solid."""
         kind = self.solid_kind()
         if self.soft and not self.is_solid():
             raise _fail("soft", f"--soft: soft fingers are planned on solid parts (a mesh: "
@@ -257,12 +258,13 @@ class PlanRequest:
         if kind is not None and (self.gravity is not None or self.mass is not None
                                  or self.mu_high is not None or self.single_edge
                                  or self.placement_sigma is not None
-                                 or self.certify is not None or self.distinct):
+                                 or self.certify is not None):
             who = {"soft": ("soft", "--soft: two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
                    "jaw": ("gripper", "--gripper jaw: a parallel jaw (--stroke, --pad)")}
             name, what = who[kind]
-            raise _fail(name, f"{what} on a solid take --mu, --top and --margin only so far")
+            raise _fail(name, f"{what} on a solid take --mu, --top, --margin and --distinct "
+                              f"only so far")
 
     def solid_kind(self) -> str | None:
         """How a solid part is grasped: ``"soft"`` (two soft fingers), ``"friction"``
@@ -463,6 +465,7 @@ def _solid_document(request: PlanRequest) -> PlanDocument:
     (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
     ``fcgrasp plan part.stl --fingers 2 --soft``, ``--fingers 3`` or ``--gripper jaw``."""
     from ..io.meshes import read_solid
+    from ..spatial.alternatives import top_distinct
 
     solid = read_solid(request.part, units=request.units, file_units=request.file_units,
                        select=request.select)
@@ -476,8 +479,9 @@ def _solid_document(request: PlanRequest) -> PlanDocument:
         from ..spatial.jaw import solid_jaw_plans
 
         jaw: Any = request.gripper_object()
-        plans: list[Any] = solid_jaw_plans(solid, jaw.stroke, jaw.pad_width, jaw.mu,
-                                           top=request.top, margin=request.margin)
+        plans: list[Any] = top_distinct(
+            lambda n: solid_jaw_plans(solid, jaw.stroke, jaw.pad_width, jaw.mu, top=n,
+                                      margin=request.margin), request.top, request.distinct)
         params = {"gripper": "jaw", "contact_type": "jaw", "stroke": list(jaw.stroke),
                   "pad": jaw.pad_width, "mu": jaw.mu, "top": request.top,
                   "margin_deg": request.margin}
@@ -488,7 +492,8 @@ def _solid_document(request: PlanRequest) -> PlanDocument:
     elif kind == "soft":
         from ..spatial.regions import soft_pair_plans
 
-        plans = soft_pair_plans(solid, mu, top=request.top, margin=request.margin)
+        plans = top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=request.margin),
+                             request.top, request.distinct)
         params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
                   "margin_deg": request.margin}
         what = "two facets hold two soft fingers"
@@ -496,13 +501,21 @@ def _solid_document(request: PlanRequest) -> PlanDocument:
     else:
         from ..spatial.triples import point_triple_plans
 
-        search = point_triple_plans(solid, mu, top=request.top, margin=request.margin)
-        plans = search.plans
+        searches: list[Any] = []
+
+        def triples(n: int | None) -> list[Any]:
+            searches.append(point_triple_plans(solid, mu, top=n, margin=request.margin))
+            return list(searches[-1].plans)
+
+        plans = top_distinct(triples, request.top, request.distinct)
+        search = searches[-1]
         params = {"fingers": 3, "contact_type": "friction", "mu": mu, "top": request.top,
                   "margin_deg": request.margin, "certified_triples": search.certified,
                   "exhaustive": search.exhaustive}
         what = "three facets hold three fingers with friction"
         title = "three fingers with friction"
+    if request.distinct:
+        params["distinct"] = request.distinct
     reason = None if plans else f"no {what} with mu {mu:g} and a margin of " \
                                 f"{request.margin:g} degrees"
     report = plan_report(None, plans, params, solid.units, reason,

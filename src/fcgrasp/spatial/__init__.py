@@ -13,7 +13,8 @@
 - :mod:`~fcgrasp.spatial.triples`: certified regions of three point fingers with
   friction on three facets, and the search over triples;
 - :mod:`~fcgrasp.spatial.jaw`: a parallel jaw's region of closing axes on two opposite
-  parallel facets, and the search over such pairs.
+  parallel facets, and the search over such pairs;
+- :mod:`~fcgrasp.spatial.alternatives`: distinct alternatives among a solid's plans.
 """
 
 from __future__ import annotations

@@ -62,6 +62,7 @@ class SolidJawPlan:
     mu: float = 0.0
     margin: float = DEFAULT_MARGIN_DEG
     pad: float = 0.0
+    similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
     @property
     def min_length(self) -> float:
@@ -69,12 +70,16 @@ class SolidJawPlan:
         return self.radius
 
     def to_dict(self) -> dict[str, Any]:
-        return {"facets": list(self.facets), "axis": self.axis.tolist(),
-                "opening": self.opening, "radius": self.radius, "area": self.area,
-                "centers": self.centers.tolist(),
-                "regions": [r.tolist() for r in self.regions],
-                "normals": self.normals.tolist(), "mu": self.mu, "margin_deg": self.margin,
-                "pad": self.pad, "contact_type": "jaw"}
+        d: dict[str, Any] = {"facets": list(self.facets), "axis": self.axis.tolist(),
+                             "opening": self.opening, "radius": self.radius, "area": self.area,
+                             "centers": self.centers.tolist(),
+                             "regions": [r.tolist() for r in self.regions],
+                             "normals": self.normals.tolist(), "mu": self.mu,
+                             "margin_deg": self.margin, "pad": self.pad,
+                             "contact_type": "jaw"}
+        if self.similar:              # the plans this one stands for (--distinct)
+            d["similar"] = [list(f) for f in self.similar]
+        return d
 
 
 def _check(solid: Any, stroke: Any, pad: Any, mu: Any, margin: Any

@@ -84,6 +84,7 @@ class SoftPairPlan:
     normals: FloatArray = field(repr=False)
     mu: float = 0.0
     margin: float = DEFAULT_MARGIN_DEG
+    similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
     @property
     def min_length(self) -> float:
@@ -91,10 +92,13 @@ class SoftPairPlan:
         return self.radius
 
     def to_dict(self) -> dict[str, Any]:
-        return {"facets": list(self.facets), "pieces": list(self.pieces),
-                "radius": self.radius, "centers": self.centers.tolist(),
-                "regions": self.regions.tolist(), "normals": self.normals.tolist(),
-                "mu": self.mu, "margin_deg": self.margin, "contact_type": "soft"}
+        d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
+                             "radius": self.radius, "centers": self.centers.tolist(),
+                             "regions": self.regions.tolist(), "normals": self.normals.tolist(),
+                             "mu": self.mu, "margin_deg": self.margin, "contact_type": "soft"}
+        if self.similar:              # the plans this one stands for (--distinct)
+            d["similar"] = [list(f) for f in self.similar]
+        return d
 
 
 #: A convex piece as ``E x <= h``: outward unit normals (m, 2) and offsets (m,).

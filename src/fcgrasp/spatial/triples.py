@@ -83,6 +83,7 @@ class PointTriplePlan:
     mu: float = 0.0
     margin: float = DEFAULT_MARGIN_DEG
     delta: float = 0.0
+    similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
     @property
     def min_length(self) -> float:
@@ -90,11 +91,14 @@ class PointTriplePlan:
         return self.radius
 
     def to_dict(self) -> dict[str, Any]:
-        return {"facets": list(self.facets), "pieces": list(self.pieces),
-                "radius": self.radius, "centers": self.centers.tolist(),
-                "regions": self.regions.tolist(), "normals": self.normals.tolist(),
-                "mu": self.mu, "margin_deg": self.margin, "contact_type": "friction",
-                "certificate_radius": self.delta, "bound": "certified lower bound"}
+        d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
+                             "radius": self.radius, "centers": self.centers.tolist(),
+                             "regions": self.regions.tolist(), "normals": self.normals.tolist(),
+                             "mu": self.mu, "margin_deg": self.margin, "contact_type": "friction",
+                             "certificate_radius": self.delta, "bound": "certified lower bound"}
+        if self.similar:              # the plans this one stands for (--distinct)
+            d["similar"] = [list(f) for f in self.similar]
+        return d
 
 
 @dataclass(frozen=True)

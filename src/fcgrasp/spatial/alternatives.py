@@ -1,0 +1,81 @@
+"""Distinct alternatives among a solid's ranked plans (issue 31's rule, on solids): the
+top ``k`` should be ``k`` different grasps, not one grasp moved to the next facet of a
+tessellated surface.
+
+Two plans of a solid (two soft fingers, three fingers with friction, or a parallel
+jaw's two facets) are **the same alternative** at ``fraction`` when their fingers can be
+paired so that every pair of regions' centres is closer than ``(r_p + r_q) / fraction``
+(``r`` the plans' radii): the regions grown by ``1 / fraction`` about their centres
+overlap.  At ``fraction = 1`` the regions themselves overlap; smaller fractions merge
+plans further apart, as the polygon's rule (:mod:`fcgrasp.model.distinct`) merges
+smaller overlaps.  ``fraction = 0`` keeps every plan.
+
+:func:`distinct_solid_plans` keeps, in rank order, each plan that is not the same
+alternative as a plan kept before, and records on each kept plan the facets of the
+plans it stands for (``similar``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from itertools import permutations
+from typing import Any
+
+import numpy as np
+
+__all__ = ["same_solid_alternative", "distinct_solid_plans"]
+
+
+def same_solid_alternative(p: Any, q: Any, fraction: float) -> bool:
+    """Whether two plans of a solid are the same alternative (module docstring).
+
+    >>> from types import SimpleNamespace as P
+    >>> a = P(centers=np.array([[0.0, 0, 0], [10, 0, 0]]), radius=1.0)
+    >>> b = P(centers=np.array([[10.0, 3, 0], [0, 3, 0]]), radius=1.0)
+    >>> same_solid_alternative(a, b, 0.5), same_solid_alternative(a, b, 1.0)
+    (True, False)
+    """
+    if fraction <= 0:
+        return False
+    k = len(p.centers)
+    if k != len(q.centers):
+        return False
+    reach = (p.radius + q.radius) / fraction
+    d = np.linalg.norm(p.centers[:, None, :] - q.centers[None, :, :], axis=-1)
+    near = d < reach
+    return any(all(near[i, perm[i]] for i in range(k)) for perm in permutations(range(k)))
+
+
+def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
+    """The plans (ranked) that are distinct alternatives at ``fraction``, each with the
+    facets of the plans it stands for in ``similar`` (module docstring)."""
+    if not 0 <= fraction <= 1:
+        raise ValueError(f"fraction must be in [0, 1], got {fraction!r}")
+    if fraction == 0:
+        return list(plans)
+    kept: list[Any] = []
+    stands: list[list[tuple[int, ...]]] = []
+    for p in plans:
+        twin = next((k for k, q in enumerate(kept) if same_solid_alternative(q, p, fraction)),
+                    None)
+        if twin is None:
+            kept.append(p)
+            stands.append([])
+        else:
+            stands[twin].append(tuple(p.facets))
+    return [replace(p, similar=tuple(s)) for p, s in zip(kept, stands, strict=True)]
+
+
+def top_distinct(search: Any, top: int | None, fraction: float) -> list[Any]:
+    """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
+    None for every plan): asked for four times more plans than it keeps, and four
+    times more again until ``top`` are kept or the search has no more."""
+    if fraction == 0 or top is None:
+        return distinct_solid_plans(search(top), fraction)
+    n = 4 * top
+    while True:
+        plans = search(n)
+        kept = distinct_solid_plans(plans, fraction)
+        if len(kept) >= top or len(plans) < n:
+            return kept[:top]
+        n *= 4
