@@ -251,7 +251,7 @@ def _general_vs_lp(seed, n):
 
 
 def test_general_test_agrees_with_lp():
-    _general_vs_lp(31, 1500)
+    _general_vs_lp(31, 1000)
 
 
 @pytest.mark.slow

@@ -187,10 +187,10 @@ def test_every_objective_matches_highs(seed):
 @pytest.mark.parametrize("seed", SEEDS)
 def test_best_piece_of_each_row_matches(seed, monkeypatch):
     """The compiled search of a row's pieces (sub-arcs written as loops) finds the level
-    the HiGHS search finds, on 30 random triples with and without a margin (240 under
+    the HiGHS search finds, on 20 random triples with and without a margin (160 under
     ``-m slow``)."""
     rng = np.random.default_rng(30 + seed)
-    rows = list(_triples(rng, 30))
+    rows = list(_triples(rng, 20))
     A = np.array([r[0] for r in rows])
     b = A + np.array([r[1] * r[2][:, None] for r in rows])
     center, half = np.array([r[3] for r in rows]), np.array([r[4] for r in rows])

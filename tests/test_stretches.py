@@ -257,7 +257,8 @@ def _check_longest(p, side, poly, mu, rng):
     assert not failed or any(failed), p.region_edges
 
 
-@pytest.mark.parametrize("seed", seeds(2, 104))
+@pytest.mark.parametrize("seed", [1, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in (0, *range(2, 104)))])
 def test_plans_along_the_boundary(seed):
     _check_plans(seed)
 

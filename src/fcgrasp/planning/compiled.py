@@ -99,8 +99,11 @@ def _jaw() -> None:
     # a part with a hole: the internal grips' paths too
     jaw_plans(demo_part("washer"), ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5), top=1,
               internal=True)
-    # one box proved on its own (the proof's loop over a batch of boxes)
-    from ..grippers.jaw import certify_box
+    # a batch of boxes proved at once (the loop behind the boxes' proofs)
+    from ..core._angles import shrunk_half_angle
+    from ..grippers.jaw import _certify, _poses
 
-    certify_box(demo_part("rectangle"), ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5),
-                np.radians([80, 100]), (-30, 30))
+    part, jaw = demo_part("rectangle"), ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    boxes = np.array([[np.radians(80), np.radians(100), -30.0, 30.0]])
+    _certify._box_proofs(part, _poses._grip_edges(part, None), jaw, boxes,
+                         float(shrunk_half_angle(jaw.mu, 2.0)), None)
