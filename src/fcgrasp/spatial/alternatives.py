@@ -23,7 +23,28 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["same_solid_alternative", "distinct_solid_plans"]
+__all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans"]
+
+
+class SolidPlan:
+    """What the plans of a solid's grippers share (:class:`~fcgrasp.spatial.SoftPairPlan`,
+    :class:`~fcgrasp.spatial.PointTriplePlan`, :class:`~fcgrasp.spatial.SolidJawPlan`):
+    ranked by their ``radius``, and the facets of the plans each stands for
+    (``similar``, set by :func:`distinct_solid_plans`) in their JSON."""
+
+    radius: float
+    similar: tuple[tuple[int, ...], ...]
+
+    @property
+    def min_length(self) -> float:
+        """The measure the plans are ranked by: ``radius``."""
+        return self.radius
+
+    def _with_similar(self, d: dict[str, Any]) -> dict[str, Any]:
+        """A plan's JSON ``d`` with ``similar`` when it stands for other plans."""
+        if self.similar:
+            d["similar"] = [list(f) for f in self.similar]
+        return d
 
 
 def same_solid_alternative(p: Any, q: Any, fraction: float) -> bool:

@@ -34,16 +34,17 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ..core._checks import FloatArray, check_int, check_scalar
 from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL
-from .regions import DEFAULT_MARGIN_DEG
+from .alternatives import SolidPlan
+from .regions import DEFAULT_MARGIN_DEG, checked_cone, inscribed_radius_bound
 from .solid import Facet, Solid
 
 __all__ = ["SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"]
 
 
 @dataclass(frozen=True)
-class SolidJawPlan:
+class SolidJawPlan(SolidPlan):
     """A parallel jaw's region on two opposite facets: ``facets`` (``A``, ``B``), the
     closing ``axis`` (``A``'s inward normal), the ``opening`` between the facets,
     ``radius`` (the region's inscribed radius), ``area``, ``centers`` (2, 3: the best
@@ -64,11 +65,6 @@ class SolidJawPlan:
     pad: float = 0.0
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
-    @property
-    def min_length(self) -> float:
-        """The measure the plans are ranked by: the region's inscribed radius."""
-        return self.radius
-
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"facets": list(self.facets), "axis": self.axis.tolist(),
                              "opening": self.opening, "radius": self.radius, "area": self.area,
@@ -77,9 +73,7 @@ class SolidJawPlan:
                              "normals": self.normals.tolist(), "mu": self.mu,
                              "margin_deg": self.margin, "pad": self.pad,
                              "contact_type": "jaw"}
-        if self.similar:              # the plans this one stands for (--distinct)
-            d["similar"] = [list(f) for f in self.similar]
-        return d
+        return self._with_similar(d)
 
 
 def _check(solid: Any, stroke: Any, pad: Any, mu: Any, margin: Any
@@ -93,9 +87,7 @@ def _check(solid: Any, stroke: Any, pad: Any, mu: Any, margin: Any
     if not (math.isfinite(lo) and math.isfinite(hi) and 0 <= lo <= hi):
         raise ValueError(f"stroke must have 0 <= min_opening <= max_opening, got {stroke!r}")
     pad_v = check_scalar(pad, "pad", nonnegative=True)
-    mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
-    return (lo, hi), pad_v, mu_v, margin_v, math.atan(mu_v) - math.radians(margin_v)
+    return (lo, hi), pad_v, *checked_cone(mu, margin)
 
 
 def _opposite_pairs(solid: Solid, tilt: float) -> list[tuple[int, int]]:
@@ -161,8 +153,7 @@ def _largest_piece(region: Any) -> Any:
         # the centre found to within ``tol``: the radius is at least the distance to the
         # boundary from the centre returned
         centre = np.asarray(line.coords[0])
-        r = float(p.exterior.distance(shapely.Point(centre)))
-        r = min([r, *(float(h.distance(shapely.Point(centre))) for h in p.interiors)])
+        r = float(p.boundary.distance(shapely.Point(centre)))
         if best is None or r > best[1]:
             best = (p, r, centre)
     return best
@@ -248,8 +239,6 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
     >>> [round(p.radius, 3) for p in solid_jaw_plans(demo_solid("box"), (5, 50), 8, 0.5)]
     [10.0, 5.0, 5.0]
     """
-    import shapely
-
     stroke_v, pad_v, mu_v, margin_v, alpha = _check(solid, stroke, pad, mu, margin)
     if top is not None:
         top = check_int(top, "top", minimum=1)
@@ -258,10 +247,7 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         return []
     used = sorted({k for p in pairs for k in p})
     geoms = np.array([solid.facets[k].polygon for k in used], dtype=object)
-    lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms).T
-    tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
-    inradius = dict(zip(used, (shapely.length(shapely.maximum_inscribed_circle(geoms, tol))
-                               + tol).tolist(), strict=True))
+    inradius = dict(zip(used, inscribed_radius_bound(geoms).tolist(), strict=True))
     cands = sorted(pairs, key=lambda p: (-min(inradius[p[0]], inradius[p[1]]), p))
     plans: list[SolidJawPlan] = []
     for i, j in cands:

@@ -57,6 +57,7 @@ from ..core.tolerances import (
     TOL,
 )
 from ._program import solve_linear
+from .alternatives import SolidPlan
 from .solid import Facet, Solid
 
 __all__ = ["SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
@@ -70,7 +71,7 @@ DEFAULT_MARGIN_DEG = 0.5
 
 
 @dataclass(frozen=True)
-class SoftPairPlan:
+class SoftPairPlan(SolidPlan):
     """Regions of two soft fingers: ``facets`` (the two facets' indices), ``pieces``
     (their convex pieces' indices), ``radius`` (the octagons' circumradius),
     ``centers`` (2, 3), ``regions`` (2, 8, 3: each octagon's corners in 3-D),
@@ -86,19 +87,34 @@ class SoftPairPlan:
     margin: float = DEFAULT_MARGIN_DEG
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
-    @property
-    def min_length(self) -> float:
-        """The measure the plans are ranked by: the octagons' circumradius."""
-        return self.radius
-
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
                              "radius": self.radius, "centers": self.centers.tolist(),
                              "regions": self.regions.tolist(), "normals": self.normals.tolist(),
                              "mu": self.mu, "margin_deg": self.margin, "contact_type": "soft"}
-        if self.similar:              # the plans this one stands for (--distinct)
-            d["similar"] = [list(f) for f in self.similar]
-        return d
+        return self._with_similar(d)
+
+
+def checked_cone(mu: Any, margin: Any, solid: Any = None) -> tuple[float, float, float]:
+    """``(mu, margin, alpha)`` checked, ``alpha = atan(mu) - margin`` the half-angle of
+    the friction cones narrowed by the margin (degrees) that every solid gripper plans
+    in; ``solid``, when given, checked to be a :class:`~fcgrasp.spatial.solid.Solid`."""
+    if solid is not None and not isinstance(solid, Solid):
+        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
+    mu_v = check_mu_scalar(mu, "mu")
+    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    return mu_v, margin_v, math.atan(mu_v) - math.radians(margin_v)
+
+
+def inscribed_radius_bound(geoms: Any) -> FloatArray:
+    """An upper bound on each polygon's inscribed radius (a numpy array of shapely
+    polygons): shapely's largest inscribed circle, found to within ``INRADIUS_STEP`` of
+    the polygon's extent, plus that tolerance."""
+    import shapely
+
+    lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms).T
+    tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
+    return np.asarray(shapely.length(shapely.maximum_inscribed_circle(geoms, tol)) + tol)
 
 
 #: A convex piece as ``E x <= h``: outward unit normals (m, 2) and offsets (m,).
@@ -153,10 +169,7 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     5.0
     """
 
-    if not isinstance(solid, Solid):
-        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
-    mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     try:
         i, j = (int(f) for f in facets)
         a, b = (int(p) for p in pieces)
@@ -169,7 +182,6 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     f1, f2 = solid.facets[i], solid.facets[j]
     if not (0 <= a < len(f1.pieces) and 0 <= b < len(f2.pieces)):
         raise ValueError(f"pieces must index the facets' convex pieces, got {pieces!r}")
-    alpha = math.atan(mu_v) - math.radians(margin_v)
     if alpha <= 0:
         return None
     got = _pair_program(solid, (i, j), (a, b), alpha,
@@ -322,11 +334,7 @@ def _piece_table(solid: Solid) -> _Pieces:
     inradius = 2 * area / length                              # exact for triangles
     other = np.array([len(v) != 3 for v in verts], bool)
     if other.any():
-        lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms[other]).T
-        tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
-        # shapely finds the centre to within ``tol``: the radius is at most that more
-        inradius[other] = shapely.length(
-            shapely.maximum_inscribed_circle(geoms[other], tol)) + tol
+        inradius[other] = inscribed_radius_bound(geoms[other])
     centroid = np.array([v.mean(axis=0) for v in verts])
     reach = np.array([np.max(np.linalg.norm(v - c, axis=1))
                       for v, c in zip(verts, centroid, strict=True)])
@@ -546,13 +554,9 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     >>> [round(p.radius, 4) for p in soft_pair_plans(demo_solid("box"), mu=0.3, top=3)]
     [5.0, 2.9051, 1.4526]
     """
-    if not isinstance(solid, Solid):
-        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
-    mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     if top is not None:
         top = check_int(top, "top", minimum=1)
-    alpha = math.atan(mu_v) - math.radians(margin_v)
     if alpha <= 0:
         return []
     table = _piece_table(solid)

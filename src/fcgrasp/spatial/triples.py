@@ -47,10 +47,11 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ..core._checks import FloatArray, check_int
 from ..core.tolerances import HULL_ROUNDING, TOL
-from .contacts import contact_frames
-from .regions import DEFAULT_MARGIN_DEG, OCTAGON, Halfplanes, _fit, _piece_table
+from .alternatives import SolidPlan
+from .contacts import check_spatial_contacts, contact_frames
+from .regions import DEFAULT_MARGIN_DEG, OCTAGON, Halfplanes, _fit, _piece_table, checked_cone
 from .solid import Solid
 
 __all__ = ["PointTriplePlan", "PointTripleSearch", "perturbation_radius",
@@ -67,7 +68,7 @@ REFINE_STEPS = 6
 
 
 @dataclass(frozen=True)
-class PointTriplePlan:
+class PointTriplePlan(SolidPlan):
     """Regions of three point fingers with friction: ``facets`` (three facets' indices),
     ``pieces`` (their convex pieces' indices), ``radius`` (the octagons' circumradius:
     each finger anywhere in its octagon), ``centers`` (3, 3), ``regions`` (3, 8, 3),
@@ -85,38 +86,25 @@ class PointTriplePlan:
     delta: float = 0.0
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
-    @property
-    def min_length(self) -> float:
-        """The measure the plans are ranked by: the octagons' circumradius."""
-        return self.radius
-
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
                              "radius": self.radius, "centers": self.centers.tolist(),
                              "regions": self.regions.tolist(), "normals": self.normals.tolist(),
                              "mu": self.mu, "margin_deg": self.margin, "contact_type": "friction",
                              "certificate_radius": self.delta, "bound": "certified lower bound"}
-        if self.similar:              # the plans this one stands for (--distinct)
-            d["similar"] = [list(f) for f in self.similar]
-        return d
+        return self._with_similar(d)
 
 
 @dataclass(frozen=True)
 class PointTripleSearch:
     """What :func:`point_triple_plans` searched: ``plans`` (largest first), how many
-    triples of pieces it certified (``certified``) out of the ``triples`` that could
-    balance a force among those it met, and whether it was ``exhaustive`` (it stopped on
-    the bound, not on ``max_triples``)."""
+    triples of pieces it certified (``certified``: those whose cones could balance a
+    force), and whether it was ``exhaustive`` (it stopped on the bound, not on
+    ``max_triples``)."""
 
     plans: list[PointTriplePlan]
     certified: int
     exhaustive: bool
-
-
-def _alpha(mu: Any, margin: Any) -> tuple[float, float, float]:
-    mu_v = check_mu_scalar(mu, "mu")
-    margin_v = check_scalar(margin, "margin", nonnegative=True)
-    return mu_v, margin_v, math.atan(mu_v) - math.radians(margin_v)
 
 
 def _generators(points: FloatArray, normals: FloatArray, alpha: float) -> FloatArray:
@@ -174,20 +162,14 @@ def perturbation_radius(points: Any, normals: Any, mu: Any,
     >>> round(perturbation_radius(p, n, mu=0.5), 3)
     0.628
     """
-    from ..core._checks import check_array
-
-    p = check_array(points, "points", last=3, min_ndim=2)
-    n = check_array(normals, "normals", last=3, min_ndim=2)
-    if p.shape != (3, 3) or n.shape != (3, 3):
+    p, n, _, _ = check_spatial_contacts(points, normals)        # normals made unit
+    if p.shape != (3, 3):
         raise ValueError(f"points and normals must be three contacts, shape (3, 3), got "
-                         f"{p.shape} and {n.shape}")
-    length = np.linalg.norm(n, axis=1)
-    if np.any(length <= TOL):
-        raise ValueError(f"normals must be nonzero vectors, got {normals!r}")
-    _, _, alpha = _alpha(mu, margin)
+                         f"{p.shape}")
+    _, _, alpha = checked_cone(mu, margin)
     if alpha <= 0:
         return 0.0
-    return _certificate(p, n / length[:, None], alpha)
+    return _certificate(p, n, alpha)
 
 
 @dataclass
@@ -219,11 +201,16 @@ class _Triple:
         return min(delta, float(np.min(fits))), delta
 
 
-def _triple(table: Any, pieces: tuple[int, int, int]) -> _Triple:
+def _nominal(table: Any, pieces: tuple[int, int, int]) -> tuple[_Triple, FloatArray]:
+    """A triple of pieces, and its nominal centres (3, 2): each octagon's largest fit in
+    its piece."""
     hps = [table.halfplanes[p] for p in pieces]
-    return _Triple(hps, [(E @ OCTAGON.T).max(axis=1) for E, _ in hps],
-                   table.origin[list(pieces)], table.axes[list(pieces)],
-                   table.normal[list(pieces)])
+    tri = _Triple(hps, [(E @ OCTAGON.T).max(axis=1) for E, _ in hps],
+                  table.origin[list(pieces)], table.axes[list(pieces)],
+                  table.normal[list(pieces)])
+    start = np.array([_fit(hps[k], OCTAGON, table.width[p])[1]
+                      for k, p in enumerate(pieces)])
+    return tri, start
 
 
 def _solve_triple(tri: _Triple, start: FloatArray, alpha: float, refine: bool
@@ -276,9 +263,7 @@ def point_triple_regions(solid: Solid, facets: Any, mu: Any,
     >>> plan.facets, round(plan.radius, 2)
     ((0, 1, 4), 2.25)
     """
-    if not isinstance(solid, Solid):
-        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
-    mu_v, margin_v, alpha = _alpha(mu, margin)
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     try:
         ids = tuple(int(f) for f in facets)
         local = tuple(int(p) for p in pieces)
@@ -302,9 +287,7 @@ def point_triple_regions(solid: Solid, facets: Any, mu: Any,
 def _certify(solid: Solid, table: Any, rows: tuple[int, int, int], alpha: float,
              mu: float, margin: float, refine: bool) -> PointTriplePlan | None:
     rows = tuple(sorted(rows, key=lambda p: (int(table.facet[p]), p)))  # type: ignore[assignment]
-    tri = _triple(table, rows)
-    start = np.array([_fit(tri.halfplanes[k], OCTAGON, table.width[rows[k]])[1]
-                      for k in range(3)])
+    tri, start = _nominal(table, rows)
     t, r, delta = _solve_triple(tri, start, alpha, refine)
     if r <= 0:
         return None
@@ -349,9 +332,7 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
     >>> [p.facets for p in got.plans], got.exhaustive
     ([(2, 3, 4), (0, 1, 3)], True)
     """
-    if not isinstance(solid, Solid):
-        raise TypeError(f"solid must be a fcgrasp Solid, got {type(solid).__name__}")
-    mu_v, margin_v, alpha = _alpha(mu, margin)
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     if top is not None:
         top = check_int(top, "top", minimum=1)
     max_triples = check_int(max_triples, "max_triples", minimum=1)
@@ -360,7 +341,7 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
     table = _piece_table(solid)
     fit = table.own_fit
     order = np.argsort(-fit, kind="stable")
-    found: list[tuple[float, tuple[int, int, int], FloatArray, float]] = []
+    found: list[tuple[float, tuple[int, int, int]]] = []     # (nominal radius, pieces)
     certified, exhaustive = 0, True
     for level in range(2, len(order)):
         bound = float(fit[order[level]])
@@ -385,18 +366,16 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
             if certified >= max_triples:
                 break
             rows = (int(a[i]), int(b[i]), int(c[i]))
-            tri = _triple(table, rows)
-            start = np.array([_fit(tri.halfplanes[j], OCTAGON, table.width[rows[j]])[1]
-                              for j in range(3)])
+            tri, start = _nominal(table, rows)
             r, _ = tri.radius(start, alpha)
             certified += 1
             if r > 0:
-                found.append((r, rows, start, r))
+                found.append((r, rows))
                 found.sort(key=lambda x: (-x[0], x[1]))
                 if top is not None:
                     del found[top:]
     plans = []
-    for _, rows, _, _ in found:
+    for _, rows in found:
         got = _certify(solid, table, rows, alpha, mu_v, margin_v, refine)
         if got is not None:
             plans.append(got)
