@@ -100,7 +100,9 @@ def test_plan_command_matches_library(tmp_path, fmt):
     part = WRITERS[fmt](tmp_path)
     out = tmp_path / "plan.json"
     fig = tmp_path / "plan.png"
-    r = run("plan", part, "--mu", "0.4", "--top", "3", "--json", out, "--plot", fig,
+    # the figure drawn for one format (its reading is what differs between them)
+    plot = ["--plot", fig] if fmt == "svg" else []
+    r = run("plan", part, "--mu", "0.4", "--top", "3", "--json", out, *plot,
             *(["--id", "part"] if fmt == "svg" else []))
     assert r.returncode == 0, r.stderr
     assert "rank" in r.stdout and r.stderr == ""
@@ -109,7 +111,7 @@ def test_plan_command_matches_library(tmp_path, fmt):
     poly = Polygon(OUTLINE)
     assert np.allclose(data["part"]["vertices"], poly.vertices, atol=1e-9)
     assert data["grasps"] == library_grasps(poly, fingers=2, mu=0.4, top=3)
-    assert fig.stat().st_size > 1000
+    assert fig.stat().st_size > 1000 if plot else not fig.exists()
 
 
 def test_svg_transform_applied_and_y_flipped(tmp_path):
@@ -237,15 +239,26 @@ FAILURES = [
 ]
 
 
-@pytest.mark.parametrize("args, message", FAILURES)
-def test_failures_one_line_exit_2_no_output(tmp_path, args, message):
+#: the failures run as a process (the rest call the command's main in process: the same
+#: code, without a Python start-up each)
+AS_PROCESS = {0, 7, 12}
+
+
+@pytest.mark.parametrize("k", range(len(FAILURES)))
+def test_failures_one_line_exit_2_no_output(tmp_path, capsys, k):
+    args, message = FAILURES[k]
     _bad_files(tmp_path)
     out = tmp_path / "out.json"
     fig = tmp_path / "out.png"
     argv = [a.format(tmp=tmp_path) for a in args]
     if argv[0] == "plan" and "--plot" not in argv:
         argv += ["--json", str(out), "--plot", str(fig)]
-    r = run(*argv)
+    if k in AS_PROCESS:
+        r = run(*argv)
+    else:
+        code = main(argv)
+        cap = capsys.readouterr()
+        r = subprocess.CompletedProcess(argv, code, cap.out, cap.err)
     assert r.returncode == 2, (r.stdout, r.stderr)
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("fcgrasp: error:"), r.stderr

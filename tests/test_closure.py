@@ -187,9 +187,9 @@ def test_torque_closure_needs_four_forces():
 
 # ------------------------------------------------------------------ theorem 4.2
 
-def test_corollary_4_1_agrees_with_general_tests():
+@pytest.mark.parametrize("n", [3_000, pytest.param(30_000, marks=pytest.mark.slow)])
+def test_corollary_4_1_agrees_with_general_tests(n):
     rng = np.random.default_rng(21)
-    n = 10_000
     k = rng.integers(2, 7, size=n)
     agree = 0
     for i in range(n):

@@ -51,7 +51,7 @@ def _lp_cases(rng, count):
         yield rng.normal(size=n), A, b
 
 
-@pytest.mark.parametrize("seed", range(2))
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_dense_simplex_matches_highs(seed):
     """Status, optimum and feasibility of the simplex against HiGHS on 1,500 programs."""
     rng = np.random.default_rng(seed)
@@ -101,7 +101,7 @@ def _depth_lp(blk, x):
     return -res.fun
 
 
-@pytest.mark.parametrize("seed", range(2))
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_closed_form_decides_whether_the_half_planes_meet(seed):
     """sum_i W[f, i] . x_i <= 0 for every facet iff the wedges' half-planes meet, on
     1,000 random pieces and finger points (the closed form's depth: its largest facet

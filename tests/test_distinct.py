@@ -4,6 +4,8 @@ segments), and the suppression's invariants on seeded random parts and curved on
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -31,12 +33,14 @@ def _sampled_overlap(a, b, tol):
     return total
 
 
+@functools.cache
 def _plans(seed):
+    """Plans of three seeded parts (computed once per seed: the tests only read them)."""
     rng = np.random.default_rng(seed)
     parts = [fc.Polygon(star(rng, n=int(rng.integers(20, 60)))) for _ in range(2)]
     parts.append(random_polygon(rng, "star"))
-    return [(part, fc.plan(part, fingers=2, mu=float(rng.uniform(0.2, 0.6)), top=25))
-            for part in parts]
+    return tuple((part, fc.plan(part, fingers=2, mu=float(rng.uniform(0.2, 0.6)), top=25))
+                 for part in parts)
 
 
 @pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)

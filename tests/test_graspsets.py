@@ -191,7 +191,7 @@ def _four_finger_trial(rng, mode):
 def test_four_finger_set_agrees_with_general_test(mode):
     rng = np.random.default_rng({"four": 10, "three": 11, "gravity": 12}[mode])
     total = positives = 0
-    while total < 10_000:
+    while total < 5_000:
         poly, edges, g = _four_finger_trial(rng, mode)
         gs = grasp_set(poly, edges, gravity=g)
         pts = list(edge_points(poly, edges, rng, 24))
@@ -205,7 +205,7 @@ def test_four_finger_set_agrees_with_general_test(mode):
         assert np.array_equal(got, ref), (poly, edges, g)
         total += len(pts[0])
         positives += int(ref.sum())
-    assert positives > 500
+    assert positives > 250
 
 
 def test_three_pairings_describe_the_same_set():

@@ -326,14 +326,15 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path, capsys):
     assert d["grasps"][0]["theta_deg"] == pytest.approx(np.degrees(plans[0].theta))
     assert fig.stat().st_size > 1000
     # the boxes are proved by default (--certify); --no-certify: grid-verified only
+    # (the command's main in process from here on)
+    from fcgrasp.apps.cli import main
+
     assert d["parameters"]["certify"] is True and d["grasps"][0]["certified"] is True
     for flag, proved in (("--certify", True), ("--no-certify", False)):
-        r = run("plan", "demo:quad", "--gripper", "jaw", "--stroke", "10,60", "--pad", "12",
-                "--mu", "0.4", "--top", "1", flag, "--json", out)
-        assert r.returncode == 0, r.stderr
+        assert main(["plan", "demo:quad", "--gripper", "jaw", "--stroke", "10,60", "--pad",
+                     "12", "--mu", "0.4", "--top", "1", flag, "--json", str(out)]) == 0
         d = json.loads(out.read_text())
         assert d["parameters"]["certify"] is proved and d["grasps"][0]["certified"] is proved
-    from fcgrasp.apps.cli import main
 
     for bad in (["--gripper", "jaw"], ["--gripper", "jaw", "--stroke", "50,10", "--pad", "3"],
                 ["--gripper", "jaw", "--stroke", "10,50", "--pad", "12", "--fingers", "4"],
@@ -398,7 +399,7 @@ def _certify_cases(seed, n_parts, internal=False):
 
 @pytest.mark.parametrize("seed", range(1))
 def test_certified_boxes_hold_at_every_sampled_pose(seed):
-    assert _certify_cases(seed, 12) > 10
+    assert _certify_cases(seed, 8) > 6
     assert _certify_cases(seed, 4, internal=True) > 4
 
 

@@ -68,9 +68,9 @@ def _check(part, job, top, rank_by, hand=None, sizes=(1, 9, 64)):
 @pytest.mark.parametrize("job", JOBS, ids=lambda j: f"{j['fingers']}f{j.get('mu', '')}")
 @pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_pruned_top_k_is_the_exhaustive_top_k(seed, job, rank_by):
-    for part in _corpus(seed):
-        for top in (1, 3):
-            _check(part, job, top, rank_by)
+    # top 1 and top 3 on alternate parts (both on every part under -m slow)
+    for i, part in enumerate(_corpus(seed)):
+        _check(part, job, (1, 3)[i % 2], rank_by)
 
 
 @pytest.mark.slow
@@ -83,12 +83,12 @@ def test_pruned_top_k_is_the_exhaustive_top_k_slow(seed, job, rank_by):
             _check(part, job, top, rank_by)
 
 
-@pytest.mark.parametrize("name", ["blob", "triangle", "quad", "bracket", "washer",
-                                  "rectangle"])
+@pytest.mark.parametrize("name", ["blob", "triangle", "quad", "bracket", "rectangle",
+                                  pytest.param("washer", marks=pytest.mark.slow)])
 def test_demo_parts(name):
     part = fc.read_part(f"demo:{name}")
     for job in JOBS:
-        _check(part, job, 5, "min_region", sizes=(1, 7, 200) if job["fingers"] == 2
+        _check(part, job, 5, "min_region", sizes=(1, 200) if job["fingers"] == 2
                else (7, 200))
     _check(part, JOBS[0], 3, "resistance")
 
@@ -170,7 +170,7 @@ def test_floor_is_checked():
 def test_every_plan_streams_every_plan():
     from fcgrasp.pipeline import every_plan
 
-    for part in _corpus(7)[:4]:
+    for part in _corpus(7)[:2]:
         for job in JOBS:
             spec = plan_spec(top=None, **job)
             got = sorted(_key(list(every_plan(part, spec, batch_size=13))))

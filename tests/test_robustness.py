@@ -207,11 +207,15 @@ def _transformed(v, kind, rng):
     raise AssertionError(kind)
 
 
-@pytest.mark.parametrize("kind", ["translate", "rotate", "scale", "mirror", "start"])
+MOVES = ("translate", "rotate", "scale", "mirror", "start")
+
+
+@pytest.mark.parametrize("kind", MOVES)
 @pytest.mark.parametrize("fingers", [2, 3, 4])
 def test_plans_invariant(kind, fingers):
-    rng = np.random.default_rng(hash((kind, fingers)) % 2**32)
-    for _ in range(4):
+    # seeded by position: hash() of a string changes from one process to the next
+    rng = np.random.default_rng([MOVES.index(kind), fingers])
+    for _ in range(3):
         poly = random_polygon(rng, str(rng.choice(["convex", "star"])))
         if fingers != 2 and poly.n_edges > 8:
             continue

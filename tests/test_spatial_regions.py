@@ -118,8 +118,8 @@ def _search_corpus(seed):
     return demo_solid("angle")
 
 
-@pytest.mark.parametrize("seed", [*range(4), *(pytest.param(s, marks=pytest.mark.slow)
-                                               for s in range(4, 40))])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 40))])
 def test_bounded_search_equals_every_pair(seed):
     """The best-first search (batched bounds, fits in closed form, cone program only
     where the fits fail) gives the cone program's radii on every pair, in order."""

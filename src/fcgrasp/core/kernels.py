@@ -470,8 +470,9 @@ def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArr
         score = np.empty(i.size)
         mode = np.empty(i.size, dtype=np.int64)
         hm = np.empty(i.size)
-        if _run("_pair_scores_loop", seg, np.ascontiguousarray(center, float),
-                np.ascontiguousarray(half, float), i, j, float(margin), float(tol), score,
+        # contiguous and writable (read-only inputs copied): one compiled signature
+        if _run("_pair_scores_loop", seg, np.require(center, float, ("C", "W")),
+                np.require(half, float, ("C", "W")), i, j, float(margin), float(tol), score,
                 mode, hm):
             return score, mode, hm
     with np.errstate(divide="ignore", invalid="ignore"):

@@ -657,7 +657,9 @@ def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, o
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool) -> Any:
-    """Compiled :func:`_windows`."""
+    """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
+    for every caller)."""
+    ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
     return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same)
 
 
