@@ -111,7 +111,10 @@ def edge_labels(polygon: Any, keep: Any = ()) -> list[int]:
 def draw_part(ax: Any, polygon: Any, numbers: bool = True, keep: Any = (),
               units: str = "") -> None:
     """The part, holes cut out, with the numbers of its edges (input numbering) where they
-    stay legible (:func:`edge_labels`; the edges in ``keep`` always), axes in ``units``."""
+    stay legible (:func:`edge_labels`; the edges in ``keep`` first), each placed by
+    :func:`place_edge_labels` off the outline and clear of every other label; axes in
+    ``units``.  A figure laid out again (or given more drawing on top) calls
+    :func:`place_edge_labels` once more to place them for the final geometry."""
     from matplotlib.patches import PathPatch
     from matplotlib.path import Path as MplPath
 
@@ -126,12 +129,6 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True, keep: Any = (),
         codes += [MplPath.MOVETO] + [MplPath.LINETO] * (len(r) - 1) + [MplPath.CLOSEPOLY]
     ax.add_patch(PathPatch(MplPath(verts, codes), facecolor="0.88", edgecolor="0.25",
                            lw=1.0 if polygon.n_edges < 400 else 0.6, zorder=0))
-    if numbers:
-        mid = (polygon.starts + polygon.ends) / 2
-        off = 0.025 * polygon.size
-        for i in edge_labels(polygon, keep):
-            p = mid[i] + off * polygon.normals[i]
-            ax.text(p[0], p[1], str(i), fontsize=6, color="0.35", ha="center", va="center")
     lo = np.min(polygon.vertices, axis=0)
     hi = np.max(polygon.vertices, axis=0)
     pad = 0.12 * polygon.size
@@ -141,12 +138,119 @@ def draw_part(ax: Any, polygon: Any, numbers: bool = True, keep: Any = (),
     if units:
         ax.set_xlabel(f"x ({units})", fontsize=7)
         ax.set_ylabel(f"y ({units})", fontsize=7)
+    if numbers:
+        idx = edge_labels(polygon, keep)
+        mid = (polygon.starts + polygon.ends) / 2
+        segs = [np.vstack([r, r[:1]]) for r in (polygon.vertices, *polygon.holes)]
+        ax._fcgrasp_labels = {"edges": idx, "mid": mid[idx], "normal": polygon.normals[idx],
+                              "outline": segs}
+        place_edge_labels(ax)
+
+
+#: Edge numbers: font size (points), and the gaps tried between a number's box and its
+#: edge, in multiples of the box's height.
+LABEL_FONT = 6.0
+LABEL_GAPS = (0.35, 1.1, 2.0, 3.2)
+
+
+def _label_size(text: str, dpi: float) -> tuple[float, float]:
+    """Width and height in pixels of a number in :data:`LABEL_FONT` (DejaVu Sans digits
+    are 0.64 em wide), with a small margin."""
+    em = LABEL_FONT * dpi / 72.0
+    return 0.64 * em * len(text) + 0.5 * em, 1.25 * em
+
+
+def place_edge_labels(ax: Any) -> int:
+    """Place (again) the edge numbers :func:`draw_part` left on ``ax``: each number tries
+    spots off its edge on the outward side (growing gaps, then slid along the edge) and
+    takes the first whose box is inside the axes and clear of the outline, of every line
+    drawn over the part (regions, the fingers' V's) and of every number placed before;
+    a number with no such spot is left out.  Positions are computed in pixels for the
+    axes' current size, so a figure calls this again after its layout.  Returns how
+    many numbers were drawn."""
+    import shapely
+
+    info = getattr(ax, "_fcgrasp_labels", None)
+    if info is None:
+        return 0
+    for t in info.get("texts", []):
+        t.remove()
+    info["texts"] = []
+    fig = ax.figure
+    ax.apply_aspect()
+    frame = ax.get_window_extent()
+    to_px = ax.transData.transform
+    lines = [to_px(seg) for seg in info["outline"]]
+    lines += [to_px(np.asarray(line.get_xydata(), float)) for line in ax.get_lines()
+              if line.get_zorder() >= 3 and len(line.get_xydata()) >= 2]
+    obstacles = [shapely.LineString(p) for p in lines if np.all(np.isfinite(p))]
+    tree = shapely.STRtree(obstacles)
+    placed: list[Any] = []
+    dpi = float(fig.dpi)
+    for e, m, n in zip(info["edges"], info["mid"], info["normal"], strict=True):
+        text = str(int(e))
+        w, h = _label_size(text, dpi)
+        a = to_px(m)
+        d = to_px(m + n) - a
+        d = d / (float(np.hypot(*d)) or 1.0)
+        t = np.array([-d[1], d[0]])
+        # the box's reach along the normal: its half-extent in that direction
+        reach = 0.5 * (abs(d[0]) * w + abs(d[1]) * h)
+        spot = None
+        for gap in LABEL_GAPS:
+            for slide in (0.0, 0.6, -0.6, 1.2, -1.2):
+                c = a + d * (reach + gap * h) + t * slide * w
+                box = shapely.box(c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2)
+                inside = frame.x0 <= c[0] - w / 2 and c[0] + w / 2 <= frame.x1 and \
+                    frame.y0 <= c[1] - h / 2 and c[1] + h / 2 <= frame.y1
+                if inside and not len(tree.query(box, predicate="intersects")) and \
+                        not any(box.intersects(b) for b in placed):
+                    spot = c, box
+                    break
+            if spot is not None:
+                break
+        if spot is None:
+            continue
+        c, box = spot
+        placed.append(box)
+        x, y = ax.transData.inverted().transform(c)
+        info["texts"].append(ax.text(x, y, text, fontsize=LABEL_FONT, color="0.35",
+                                     ha="center", va="center", zorder=2,
+                                     gid="edge-label"))
+    return len(info["texts"])
+
+
+def _panel_size(polygon: Any, legend_rows: int) -> tuple[float, float, bool]:
+    """Width and height (inches) of one plan panel from the part's aspect ratio, and
+    whether its legend goes below the drawing (a wide part) or to its right."""
+    lo = np.min(polygon.vertices, axis=0)
+    hi = np.max(polygon.vertices, axis=0)
+    w, h = hi - lo + 0.24 * polygon.size
+    aspect = float(np.clip(h / w, 0.25, 2.5))          # w > 0: it holds the padding
+    below = aspect <= 1.0
+    draw_w = 3.0 if below else 3.0 / max(aspect, 1.0) ** 0.5
+    draw_h = draw_w * aspect
+    if below:
+        return draw_w + 0.6, draw_h + 1.0 + 0.14 * legend_rows, True
+    return draw_w + 2.2, max(draw_h, 0.16 * legend_rows) + 1.0, False
+
+
+def _legend(ax: Any, polygon: Any) -> None:
+    """A panel's legend outside its drawing: below a wide part (under the x axis's
+    numbers and label), right of a tall one."""
+    if _panel_size(polygon, 0)[2]:
+        ax.legend(fontsize=6, loc="upper center", bbox_to_anchor=(0.5, 0.0),
+                  borderaxespad=4.6, framealpha=0.85, handlelength=1.2)
+    else:
+        ax.legend(fontsize=6, loc="upper left", bbox_to_anchor=(1.0, 1.0),
+                  borderaxespad=1.0, framealpha=0.85, handlelength=1.2)
 
 
 def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
               units: str = "", numbers: bool = True) -> None:
-    """Figure 1 style: regions drawn bold, a small V at each finger showing its push; the
-    legend sits inside the axes, where it cannot run into a neighbour's title."""
+    """Figure 1 style: regions drawn bold, a small V at each finger showing its push
+    (above the edge numbers, which are placed clear of both); the legend outside the
+    drawing (below a wide part, right of a tall one)."""
     keep = sorted({e for r in plan.region_edges for e in (r[0], r[-1]) if e >= 0})
     draw_part(ax, polygon, numbers, keep=keep, units=units)
     v = 0.05 * polygon.size
@@ -172,8 +276,9 @@ def draw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
         ax.annotate("", xy=g + d, xytext=g, arrowprops={"arrowstyle": "-|>", "color": "0.2"})
     mu_txt = f"mu = {plan.mu:g}" if plan.contact_type == "friction" else "frictionless"
     ax.set_title(title or f"min region {plan.min_length:.3g} {units}, {mu_txt}", fontsize=8)
-    ax.legend(fontsize=6, loc="best", framealpha=0.85, handlelength=1.2)
+    _legend(ax, polygon)
     ax.tick_params(labelsize=6)
+    place_edge_labels(ax)                       # clear of the regions and the V's now
 
 
 def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
@@ -220,7 +325,7 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
             label=f"closing {np.degrees(plan.theta[0]):.1f} to "
                   f"{np.degrees(plan.theta[1]):.1f} deg")
     ax.set_title(title or f"box measure {plan.measure:.3g} {units}", fontsize=8)
-    ax.legend(fontsize=6, loc="best", framealpha=0.85, handlelength=1.2)
+    _legend(ax, polygon)
     ax.tick_params(labelsize=6)
 
 
@@ -232,7 +337,8 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
 
     plt = _pyplot()
     if not plans:
-        fig, ax = plt.subplots(figsize=(4, 4))
+        w, h, _ = _panel_size(polygon, 0)
+        fig, ax = plt.subplots(figsize=(w, h))
         draw_part(ax, polygon, units=units)
         ax.set_title(title or "no force-closure grasp", fontsize=9)
     else:
@@ -240,7 +346,11 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
         shown = idx if len(idx) <= 2 * panel else idx[:panel] + idx[-panel:]
         cols = min(len(shown), panel)
         nrows = (len(shown) + cols - 1) // cols
-        fig, axes = plt.subplots(nrows, cols, figsize=(3.4 * cols, 3.9 * nrows), squeeze=False)
+        # each panel sized from the part's aspect ratio, room for its legend outside
+        rows = max(4 if isinstance(p, JawPlan) else len(p.regions) for p in plans)
+        w, h, _ = _panel_size(polygon, rows)
+        fig, axes = plt.subplots(nrows, cols, figsize=(w * cols, h * nrows + 0.3 * bool(title)),
+                                 squeeze=False, layout="compressed")
         for ax in axes.ravel()[len(shown):]:
             ax.axis("off")
         for ax, k in zip(axes.ravel(), shown, strict=False):
@@ -256,7 +366,13 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
                             f"{p.min_length:.3g} {units}, {mu_txt}")
         if title:
             fig.suptitle(title, fontsize=10)
-    fig.tight_layout()
+    engine = fig.get_layout_engine()
+    if engine is None:
+        fig.tight_layout()
+    else:
+        engine.execute(fig)
+    for ax in fig.axes:                     # the numbers placed for the final layout
+        place_edge_labels(ax)
     save_figure(fig, path, outputs)
     plt.close(fig)
 
@@ -270,6 +386,7 @@ def grasp_figure(polygon: Any, grasp: Grasp, path: str, units: str = "",
     draw_grasp(ax, grasp, size=0.08 * polygon.size)
     draw_part(ax, polygon, numbers=False, units=units)      # restore the limits of the part
     fig.tight_layout()
+    place_edge_labels(ax)
     save_figure(fig, path, outputs)
     plt.close(fig)
 
