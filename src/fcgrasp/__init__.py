@@ -98,7 +98,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.polygon import (
         Polygon,
     )
-    from .model.robustness import placement_probability
+    from .model.robustness import Estimate, placement_probability, pose_probability
     from .model.stability import Stability, grasp_stability, grasp_stiffness, least_stiffness
     from .model.stretches import StretchPair, two_finger_stretches
     from .planning import (
@@ -196,6 +196,8 @@ _LAZY = {
     "grasp_payload": "model.loads",
     "region_payload": "model.loads",
     "placement_probability": "model.robustness",
+    "pose_probability": "model.robustness",
+    "Estimate": "model.robustness",
     "Stability": "model.stability",
     "grasp_stability": "model.stability",
     "grasp_stiffness": "model.stability",

@@ -59,7 +59,7 @@ def plan_options(args: Any) -> dict[str, Any]:
     options["soft"] = bool(getattr(args, "soft", False))
     options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
-                   ("accel", 2)):
+                   ("accel", 2), ("pose_sigma", 3)):
         if options[key] is not None:
             options[key] = _floats(options[key], n, "--" + key)
     if options["max_memory"] is not None:
@@ -155,6 +155,14 @@ def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
               f"probability that the grasp holds", file=out)
         for k, g in enumerate(report["grasps"], 1):
             print(f"  {k:>2}  {g['probability']:.6f}", file=out)
+    pose = report["parameters"].get("pose_sigma")
+    if pose is not None:
+        print(f"pose error x {pose[0]:g}, y {pose[1]:g}, {pose[2]:g} deg (standard deviations"
+              f"{', with the placement error' if sigma is not None else ''}): probability "
+              f"that the grasp holds (quasi-Monte Carlo, 99 % interval)", file=out)
+        for k, g in enumerate(report["grasps"], 1):
+            est = g["pose_probability"]
+            print(f"  {k:>2}  {est['probability']:.4f} +- {est['error']:.4f}", file=out)
     load = report["parameters"].get("load")
     if load is None:
         return
@@ -563,6 +571,11 @@ def build_parser() -> argparse.ArgumentParser:
                        help="two fingers: the probability that each plan holds when each "
                             "finger lands with a Gaussian error of S (the part's units) "
                             "along the boundary around its region's centre (exact)")
+        p.add_argument("--pose-sigma", default=None, metavar="SX,SY,DEG",
+                       help="point fingers: the probability that each plan holds when the "
+                            "part sits with a Gaussian pose error (deviations in x, y and "
+                            "degrees about its centroid) and each finger closes along its "
+                            "approach line (quasi-Monte Carlo with a 99 %% interval)")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")

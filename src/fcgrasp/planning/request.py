@@ -42,10 +42,10 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: The options of a request that give a load to carry (:class:`fcgrasp.Load`: each plan
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
-#: :func:`fcgrasp.placement_probability`), and the top of a friction range (``mu_high``:
-#: ``--mu LOW:HIGH``).
+#: :func:`fcgrasp.placement_probability`), a pose error (:func:`fcgrasp.pose_probability`),
+#: and the top of a friction range (``mu_high``: ``--mu LOW:HIGH``).
 LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
-                "mu_high")
+                "pose_sigma", "mu_high")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -76,7 +76,7 @@ _KINDS: dict[str, Any] = {
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
     "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
     "force_limit": "float", "total_force": "float",
-    "com": ("floats", 2), "accel": ("floats", 2),
+    "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "soft": "bool", "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
@@ -148,6 +148,7 @@ class PlanRequest:
     force_limit: float | None = None
     total_force: float | None = None
     placement_sigma: float | None = None
+    pose_sigma: tuple[float, float, float] | None = None
     mu_high: float | None = None
     select: str | None = None
     units: str | None = None
@@ -225,6 +226,13 @@ class PlanRequest:
                                                   or self.fingers not in (None, 2)):
             raise _fail("placement_sigma", f"--placement-sigma is a distance > 0 for two "
                                            f"fingers, got {self.placement_sigma:g}")
+        if self.pose_sigma is not None and (min(self.pose_sigma) < 0
+                                            or max(self.pose_sigma) <= 0
+                                            or self.gripper == "jaw"
+                                            or self.gravity is not None):
+            raise _fail("pose_sigma", f"--pose-sigma is three deviations >= 0, not all 0 (x, "
+                                      f"y, degrees), for point fingers without gravity, got "
+                                      f"{self.pose_sigma}")
         self._check_solid()
         if self.mu_high is not None:
             lo = DEFAULT_MU if self.mu is None else self.mu
@@ -258,6 +266,7 @@ class PlanRequest:
         if kind is not None and (self.gravity is not None or self.mass is not None
                                  or self.mu_high is not None or self.single_edge
                                  or self.placement_sigma is not None
+                                 or self.pose_sigma is not None
                                  or self.certify is not None):
             who = {"soft": ("soft", "--soft: two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
@@ -448,6 +457,14 @@ def plan_document(request: PlanRequest, part: Part | None = None,
         for p, entry in zip(plans, report["grasps"], strict=True):
             entry["probability"] = placement_probability(polygon, p, request.placement_sigma,
                                                          mu_range=mu_range)
+    if request.pose_sigma is not None:
+        from ..model.robustness import pose_probability
+
+        report["parameters"]["pose_sigma"] = list(request.pose_sigma)
+        for p, entry in zip(plans, report["grasps"], strict=True):
+            entry["pose_probability"] = pose_probability(
+                polygon, p, request.pose_sigma, placement_sigma=request.placement_sigma,
+                mu_range=mu_range).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
 
