@@ -93,6 +93,9 @@ def main(argv: list[str]) -> int:
     ensure_venv()
     cmd, rest = argv[0], argv[1:]
     env = dict(os.environ, MPLBACKEND="Agg")
+    # bytecode cached beside the sources: the suite starts the command line in dozens of
+    # processes, each of which would otherwise compile the package again
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
     if cmd in ("demo", "test"):
         compile_kernels(env)
     if cmd == "demo":

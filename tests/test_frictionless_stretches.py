@@ -65,7 +65,7 @@ def _curved(seed):
     return fc.Polygon(smooth_outline(rng, kind, n)), rng
 
 
-@pytest.mark.parametrize("seed", seeds(2, 100))
+@pytest.mark.parametrize("seed", seeds(1, 100))
 @pytest.mark.parametrize("fingers", [3, 4])
 def test_plans_along_the_boundary_hold(seed, fingers):
     """Every returned plan (grown along the boundary or not) holds for every sampled

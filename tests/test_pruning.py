@@ -68,8 +68,8 @@ def _check(part, job, top, rank_by, hand=None, sizes=(1, 9, 64)):
 @pytest.mark.parametrize("job", JOBS, ids=lambda j: f"{j['fingers']}f{j.get('mu', '')}")
 @pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_pruned_top_k_is_the_exhaustive_top_k(seed, job, rank_by):
-    # top 1 and top 3 on alternate parts (both on every part under -m slow)
-    for i, part in enumerate(_corpus(seed)):
+    # top 1 and top 3 on alternate parts of every other kind (all: -m slow)
+    for i, part in enumerate(_corpus(seed)[::2]):
         _check(part, job, (1, 3)[i % 2], rank_by)
 
 

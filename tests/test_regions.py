@@ -177,7 +177,7 @@ def _four_finger_vs_lp(kind, seed, count):
 
 @pytest.mark.parametrize("kind", ["four", "three"])
 def test_four_finger_regions_match_lp(kind):
-    _four_finger_vs_lp(kind, 4 if kind == "four" else 5, 20)
+    _four_finger_vs_lp(kind, 4 if kind == "four" else 5, 12)
 
 
 @pytest.mark.slow
