@@ -99,7 +99,15 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         Polygon,
     )
     from .model.robustness import Estimate, placement_probability, pose_probability
-    from .model.stability import Stability, grasp_stability, grasp_stiffness, least_stiffness
+    from .model.stability import (
+        PlanStability,
+        Stability,
+        grasp_stability,
+        grasp_stiffness,
+        least_stiffness,
+        plan_stability,
+        squeeze_preload,
+    )
     from .model.stretches import StretchPair, two_finger_stretches
     from .planning import (
         FrictionCurve,
@@ -202,6 +210,9 @@ _LAZY = {
     "grasp_stability": "model.stability",
     "grasp_stiffness": "model.stability",
     "least_stiffness": "model.stability",
+    "plan_stability": "model.stability",
+    "squeeze_preload": "model.stability",
+    "PlanStability": "model.stability",
     "SpatialContact": "spatial",
     "SpatialClosure": "spatial",
     "SpatialQuality": "spatial",

@@ -149,20 +149,30 @@ def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
               f"smallest region against mu:", file=out)
         for m, v in zip(curve["mu"], curve["min_region"], strict=True):
             print(f"  mu {m:<6.4g} {v:.4g}", file=out)
+    def per_plan(heading: str, line: Any) -> None:
+        print(heading, file=out)
+        for k, g in enumerate(report["grasps"], 1):
+            print(f"  {k:>2}  {line(g)}", file=out)
+
     sigma = report["parameters"].get("placement_sigma")
     if sigma is not None:
-        print(f"placement error {sigma:g} (standard deviation along the boundary): "
-              f"probability that the grasp holds", file=out)
-        for k, g in enumerate(report["grasps"], 1):
-            print(f"  {k:>2}  {g['probability']:.6f}", file=out)
+        per_plan(f"placement error {sigma:g} (standard deviation along the boundary): "
+                 f"probability that the grasp holds", lambda g: f"{g['probability']:.6f}")
     pose = report["parameters"].get("pose_sigma")
     if pose is not None:
-        print(f"pose error x {pose[0]:g}, y {pose[1]:g}, {pose[2]:g} deg (standard deviations"
-              f"{', with the placement error' if sigma is not None else ''}): probability "
-              f"that the grasp holds (quasi-Monte Carlo, 99 % interval)", file=out)
-        for k, g in enumerate(report["grasps"], 1):
-            est = g["pose_probability"]
-            print(f"  {k:>2}  {est['probability']:.4f} +- {est['error']:.4f}", file=out)
+        per_plan(f"pose error x {pose[0]:g}, y {pose[1]:g}, {pose[2]:g} deg (standard "
+                 f"deviations{', with the placement error' if sigma is not None else ''}): "
+                 f"probability that the grasp holds (quasi-Monte Carlo, 99 % interval)",
+                 lambda g: f"{g['pose_probability']['probability']:.4f} +- "
+                           f"{g['pose_probability']['error']:.4f}")
+    k_n = report["parameters"].get("stiffness")
+    if k_n is not None:
+        per_plan(f"finger springs {k_n:g} N per {report['units']}, squeezing with "
+                 f"{report['parameters']['grip_force_n']:g} N (section 8.2): at the plan's "
+                 f"grasp; at the regions' corners",
+                 lambda g: f"{g['stability']['reason']}; corners "
+                           f"{'all' if g['stability']['corners_stable'] else 'not all'} "
+                           f"stable (least {g['stability']['corners_margin']:.4g})")
     load = report["parameters"].get("load")
     if load is None:
         return
@@ -571,6 +581,13 @@ def build_parser() -> argparse.ArgumentParser:
                        help="two fingers: the probability that each plan holds when each "
                             "finger lands with a Gaussian error of S (the part's units) "
                             "along the boundary around its region's centre (exact)")
+        p.add_argument("--stiffness", type=float, default=None, metavar="K",
+                       help="point fingers as springs of stiffness K (N per unit of the "
+                            "part; fingers with friction stick): whether each plan's grasp "
+                            "and its regions' corner grasps are stable (section 8.2)")
+        p.add_argument("--grip-force", type=float, default=None, metavar="N",
+                       help="with --stiffness: the fingers' total squeeze in newtons "
+                            "(default 10)")
         p.add_argument("--pose-sigma", default=None, metavar="SX,SY,DEG",
                        help="point fingers: the probability that each plan holds when the "
                             "part sits with a Gaussian pose error (deviations in x, y and "

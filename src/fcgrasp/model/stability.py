@@ -48,7 +48,8 @@ import numpy as np
 from ..core._checks import FloatArray, check_array, check_contact_points, check_scalar
 from ..core.tolerances import CHECK_TOL, TINY, TOL
 
-__all__ = ["Stability", "grasp_stiffness", "grasp_stability", "least_stiffness"]
+__all__ = ["Stability", "grasp_stiffness", "grasp_stability", "least_stiffness",
+           "squeeze_preload", "PlanStability", "plan_stability"]
 
 
 def _per_finger(value: Any, name: str, k: int, nonnegative: bool = True) -> FloatArray:
@@ -196,3 +197,112 @@ def least_stiffness(points: Any, normals: Any, preload: Any, margin: Any = 1.0,
         mid = 0.5 * (lo + hi)
         lo, hi = (lo, mid) if low(mid) >= m else (mid, hi)
     return hi
+
+
+# ------------------------------------------------------------------ plans (issue 32)
+
+def squeeze_preload(points: Any, normals: Any, mu: Any, grip_force: Any = 1.0,
+                    about: Any = None) -> tuple[FloatArray, FloatArray]:
+    """The fingers' forces at rest in a grasp that squeezes the part and nothing else:
+    normal forces ``f`` (summing to ``grip_force``) and tangential ``g`` (``|g| <= mu f``)
+    whose wrenches cancel, with the smallest normal force as large as it can be (an LP,
+    scipy's HiGHS, its solution projected onto the balance exactly).  Force closure
+    (theorem 6.1) is what makes such internal forces exist with every ``f > 0``; a grasp
+    without them raises ValueError."""
+    from scipy.optimize import linprog
+
+    p, n = _geometry(points, normals, about)
+    k = len(p)
+    m = _per_finger(mu, "mu", k)
+    total = check_scalar(grip_force, "grip_force", positive=True)
+    u = np.stack([-n[:, 1], n[:, 0]], axis=1)
+    size = max(float(np.abs(p).max()), TINY)
+    # the balance: sum_i -f_i n_i + g_i u_i = 0 and the torques (lever arms in the size)
+    A = np.zeros((3, 2 * k + 1))
+    A[0, :k], A[1, :k] = -n[:, 0], -n[:, 1]
+    A[0, k:2 * k], A[1, k:2 * k] = u[:, 0], u[:, 1]
+    A[2, :k] = -(p[:, 0] * n[:, 1] - p[:, 1] * n[:, 0]) / size
+    A[2, k:2 * k] = (p[:, 0] * u[:, 1] - p[:, 1] * u[:, 0]) / size
+    sums = np.zeros((1, 2 * k + 1))
+    sums[0, :k] = 1.0
+    eye = np.eye(k)
+    ub = np.vstack([np.c_[-eye, np.zeros((k, k)), np.ones(k)],          # t <= f_i
+                    np.c_[-np.diag(m), eye, np.zeros(k)],                # g_i <= mu f_i
+                    np.c_[-np.diag(m), -eye, np.zeros(k)]])              # -g_i <= mu f_i
+    c = np.zeros(2 * k + 1)
+    c[-1] = -1.0
+    res = linprog(c, A_ub=ub, b_ub=np.zeros(3 * k), A_eq=np.vstack([A, sums]),
+                  b_eq=np.r_[np.zeros(3), total],
+                  bounds=[(0, None)] * k + [(None, None)] * k + [(None, None)],
+                  method="highs")
+    if res.status != 0 or -res.fun <= CHECK_TOL * total:
+        raise ValueError("the grasp cannot squeeze the part with every finger pushing (it "
+                         "is not force closure): no preload at rest")
+    x = np.asarray(res.x[:2 * k], float)
+    Ab = A[:, :2 * k]
+    x = x - Ab.T @ np.linalg.solve(Ab @ Ab.T, Ab @ x)        # exactly balanced
+    return x[:k], x[k:]
+
+
+@dataclass(frozen=True)
+class PlanStability:
+    """A plan's stability with finger springs: at its representative grasp
+    (``stable``, ``margin``, ``reason``, the ``preload`` of :func:`squeeze_preload` and
+    its ``tangential_preload``) and at every corner grasp of its regions
+    (``corners_stable``: all of them; ``corners_margin``: the smallest margin)."""
+
+    stable: bool
+    margin: float
+    reason: str
+    preload: FloatArray
+    tangential_preload: FloatArray
+    corners_stable: bool
+    corners_margin: float
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"stable": self.stable, "margin": round(self.margin, 9), "reason": self.reason,
+                "preload_n": [round(float(v), 9) for v in self.preload],
+                "tangential_preload_n": [round(float(v), 9) for v in self.tangential_preload],
+                "corners_stable": self.corners_stable,
+                "corners_margin": round(self.corners_margin, 9)}
+
+
+#: The fingers' total squeeze (newtons) when a plan's stability is asked without one.
+DEFAULT_GRIP_FORCE = 10.0
+
+
+def plan_stability(polygon: Any, plan: Any, stiffness: Any,
+                   grip_force: Any = DEFAULT_GRIP_FORCE,
+                   tangential: Any = None, finger_radius: Any = 0.0) -> PlanStability:
+    """Whether a plan's grasps are stable with fingers as springs of ``stiffness``
+    (N per unit of the part) squeezing with ``grip_force`` newtons in all (section 8.2;
+    :func:`grasp_stability` about the centroid, the preload of :func:`squeeze_preload`):
+    at the representative grasp and at every corner grasp of the regions.  Fingers with
+    friction stick (tangential stiffness ``tangential``, by default ``stiffness``);
+    frictionless ones slide (0).  Plans with gravity are refused (their preload balances
+    the weight, not only itself)."""
+    from .plans import GraspPlan
+    from .polygon import check_polygon
+
+    polygon = check_polygon(polygon)
+    if not isinstance(plan, GraspPlan):
+        raise TypeError(f"plan must be a GraspPlan (point fingers), got "
+                        f"{type(plan).__name__}")
+    if plan.gravity is not None:
+        raise ValueError("plan must not rely on gravity: its fingers' preload balances the "
+                         "weight")
+    k_n = check_scalar(stiffness, "stiffness", positive=True)
+    mu = float(plan.mu) if plan.contact_type == "friction" else 0.0
+    k_t = (k_n if mu > 0 else 0.0) if tangential is None else \
+        check_scalar(tangential, "tangential", nonnegative=True)
+    about = np.asarray(polygon.centroid, float)
+
+    def one(points: Any, normals: Any) -> tuple[Stability, FloatArray, FloatArray]:
+        f, g = squeeze_preload(points, normals, mu, grip_force, about)
+        st = grasp_stability(points, normals, k_n, f, k_t, g, finger_radius, about)
+        return st, f, g
+
+    rep, f, g = one(plan.contacts, plan.normals)
+    corners = [one(c, plan.normals_at(c))[0] for c in plan.corners()]
+    return PlanStability(rep.stable, rep.margin, rep.reason, f, g,
+                         all(s.stable for s in corners), min(s.margin for s in corners))

@@ -43,9 +43,10 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
 #: :func:`fcgrasp.placement_probability`), a pose error (:func:`fcgrasp.pose_probability`),
-#: and the top of a friction range (``mu_high``: ``--mu LOW:HIGH``).
+#: finger springs (each plan's stability, :func:`fcgrasp.plan_stability`), and the top
+#: of a friction range (``mu_high``: ``--mu LOW:HIGH``).
 LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
-                "pose_sigma", "mu_high")
+                "pose_sigma", "stiffness", "grip_force", "mu_high")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -75,7 +76,8 @@ _KINDS: dict[str, Any] = {
     "fingers": "int", "top": "int", "max_memory": "int", "mu": "float", "pad": "float",
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
     "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
-    "force_limit": "float", "total_force": "float",
+    "force_limit": "float", "total_force": "float", "stiffness": "float",
+    "grip_force": "float",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "soft": "bool", "y_down": "bool", "no_clean": "bool",
@@ -149,6 +151,8 @@ class PlanRequest:
     total_force: float | None = None
     placement_sigma: float | None = None
     pose_sigma: tuple[float, float, float] | None = None
+    stiffness: float | None = None
+    grip_force: float | None = None
     mu_high: float | None = None
     select: str | None = None
     units: str | None = None
@@ -233,6 +237,15 @@ class PlanRequest:
             raise _fail("pose_sigma", f"--pose-sigma is three deviations >= 0, not all 0 (x, "
                                       f"y, degrees), for point fingers without gravity, got "
                                       f"{self.pose_sigma}")
+        if self.stiffness is not None and (not self.stiffness > 0 or self.gripper == "jaw"
+                                           or self.gravity is not None):
+            raise _fail("stiffness", f"--stiffness is the fingers' spring stiffness > 0 (N per "
+                                     f"unit of the part), for point fingers without "
+                                     f"gravity, got {self.stiffness:g}")
+        if self.grip_force is not None and (self.stiffness is None
+                                            or not self.grip_force > 0):
+            raise _fail("grip_force", f"--grip-force is the fingers' total squeeze > 0 in "
+                                      f"newtons, with --stiffness, got {self.grip_force:g}")
         self._check_solid()
         if self.mu_high is not None:
             lo = DEFAULT_MU if self.mu is None else self.mu
@@ -267,6 +280,7 @@ class PlanRequest:
                                  or self.mu_high is not None or self.single_edge
                                  or self.placement_sigma is not None
                                  or self.pose_sigma is not None
+                                 or self.stiffness is not None
                                  or self.certify is not None):
             who = {"soft": ("soft", "--soft: two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
@@ -465,6 +479,15 @@ def plan_document(request: PlanRequest, part: Part | None = None,
             entry["pose_probability"] = pose_probability(
                 polygon, p, request.pose_sigma, placement_sigma=request.placement_sigma,
                 mu_range=mu_range).to_dict()
+    if request.stiffness is not None:
+        from ..model.stability import DEFAULT_GRIP_FORCE, plan_stability
+
+        force = DEFAULT_GRIP_FORCE if request.grip_force is None else request.grip_force
+        report["parameters"]["stiffness"] = request.stiffness
+        report["parameters"]["grip_force_n"] = force
+        for p, entry in zip(plans, report["grasps"], strict=True):
+            entry["stability"] = plan_stability(polygon, p, request.stiffness,
+                                                grip_force=force).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
 
