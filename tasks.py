@@ -104,8 +104,9 @@ def main(argv: list[str]) -> int:
     if cmd == "test":
         ensure_browser()
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
+        # (work stealing: a worker left idle takes queued tests from the other)
         par = [] if any(a == "-n" or a.startswith(("-n", "--numprocesses")) for a in rest) \
-            else ["-n", "auto"]
+            else ["-n", "auto", "--dist", "worksteal"]
         code = subprocess.run([str(PY), "-m", "pytest", *par, *rest], cwd=ROOT,
                               env=env).returncode
         with tempfile.TemporaryDirectory() as out:
