@@ -140,7 +140,7 @@ def _two_finger_vs_lp(seed, count):
 @pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
                                       for s in range(1, 3))])
 def test_two_finger_regions_match_lp(seed):
-    _two_finger_vs_lp(seed, 300)
+    _two_finger_vs_lp(seed, 150)
 
 
 @pytest.mark.slow
