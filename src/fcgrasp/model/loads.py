@@ -440,13 +440,9 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
     are determined, so the bound needs small boxes): ``upper`` and ``gap`` say how far
     the certified ``lower`` is from the worst grasp found.
     """
-    from .plans import GraspPlan
-    from .polygon import check_polygon
+    from .plans import check_point_plan
 
-    polygon = check_polygon(polygon)
-    if not isinstance(plan, GraspPlan):
-        raise TypeError(f"plan must be a GraspPlan of point fingers, got "
-                        f"{type(plan).__name__}")
+    polygon = check_point_plan(polygon, plan)
     if not isinstance(load, Load):
         raise TypeError(f"load must be a fcgrasp Load, got {type(load).__name__}")
     gap_v = check_scalar(gap, "gap", nonnegative=True)

@@ -21,11 +21,11 @@ from ..core._json import json_ready
 from ..core.contacts import FrictionlessPoint, FrictionPoint, Gravity
 from ..core.grasp import Grasp
 from ..core.tolerances import TINY
-from .polygon import Polygon
+from .polygon import Polygon, check_polygon
 from .quality import quality_of
 from .ranking import MEASURES
 
-__all__ = ["GraspPlan", "leximin_key", "geometric_key", "rank_key"]
+__all__ = ["GraspPlan", "leximin_key", "geometric_key", "rank_key", "check_point_plan"]
 
 @dataclass
 class GraspPlan:
@@ -239,3 +239,17 @@ def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region",
     q = MEASURES[rank_by].score([p])[0] if score is None else score
     q = -1.0 if not np.isfinite(q) else float(f"{q:.{_DIGITS}g}")
     return (-q, lex, geo)
+
+
+def check_point_plan(polygon: Any, plan: Any, no_gravity: str | None = None) -> Polygon:
+    """``polygon`` checked, and ``plan`` a :class:`GraspPlan` of point fingers (else
+    TypeError); with ``no_gravity`` (why), a plan that relies on gravity is refused
+    (ValueError).  What the functions judging a plan's grasps (its payload, its chance
+    of holding, its stability) check first."""
+    checked: Polygon = check_polygon(polygon)
+    if not isinstance(plan, GraspPlan):
+        raise TypeError(f"plan must be a GraspPlan of point fingers, got "
+                        f"{type(plan).__name__}")
+    if no_gravity is not None and plan.gravity is not None:
+        raise ValueError(f"plan must not rely on gravity: {no_gravity}")
+    return checked

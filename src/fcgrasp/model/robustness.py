@@ -350,15 +350,9 @@ def pose_probability(polygon: Any, plan: Any, pose_sigma: Any,
     from scipy.stats import qmc
     from scipy.stats import t as student
 
-    from .plans import GraspPlan
-    from .polygon import check_polygon
+    from .plans import check_point_plan
 
-    polygon = check_polygon(polygon)
-    if not isinstance(plan, GraspPlan):
-        raise TypeError(f"plan must be a GraspPlan (point fingers), got "
-                        f"{type(plan).__name__}")
-    if plan.gravity is not None:
-        raise ValueError("plan must not rely on gravity: a pose error moves the load too")
+    polygon = check_point_plan(polygon, plan, no_gravity="a pose error moves the load too")
     sx, sy, st = _pose_sigmas(pose_sigma)
     sp = 0.0 if placement_sigma is None else \
         check_scalar(placement_sigma, "placement_sigma", positive=True)

@@ -281,16 +281,10 @@ def plan_stability(polygon: Any, plan: Any, stiffness: Any,
     friction stick (tangential stiffness ``tangential``, by default ``stiffness``);
     frictionless ones slide (0).  Plans with gravity are refused (their preload balances
     the weight, not only itself)."""
-    from .plans import GraspPlan
-    from .polygon import check_polygon
+    from .plans import check_point_plan
 
-    polygon = check_polygon(polygon)
-    if not isinstance(plan, GraspPlan):
-        raise TypeError(f"plan must be a GraspPlan (point fingers), got "
-                        f"{type(plan).__name__}")
-    if plan.gravity is not None:
-        raise ValueError("plan must not rely on gravity: its fingers' preload balances the "
-                         "weight")
+    polygon = check_point_plan(polygon, plan,
+                               no_gravity="its fingers' preload balances the weight")
     k_n = check_scalar(stiffness, "stiffness", positive=True)
     mu = float(plan.mu) if plan.contact_type == "friction" else 0.0
     k_t = (k_n if mu > 0 else 0.0) if tangential is None else \

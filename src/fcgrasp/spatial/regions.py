@@ -60,7 +60,7 @@ from ._program import solve_linear
 from .alternatives import SolidPlan
 from .solid import Facet, Solid
 
-__all__ = ["SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
+__all__ = ["OctagonPlan", "SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
            "DEFAULT_MARGIN_DEG"]
 
 #: Corners of the unit regular octagon (first along the first axis).
@@ -71,14 +71,16 @@ DEFAULT_MARGIN_DEG = 0.5
 
 
 @dataclass(frozen=True)
-class SoftPairPlan(SolidPlan):
-    """Regions of two soft fingers: ``facets`` (the two facets' indices), ``pieces``
-    (their convex pieces' indices), ``radius`` (the octagons' circumradius),
-    ``centers`` (2, 3), ``regions`` (2, 8, 3: each octagon's corners in 3-D),
-    inward ``normals`` (2, 3), ``mu`` and ``margin`` (degrees)."""
+class OctagonPlan(SolidPlan):
+    """Octagon regions of fingers on pieces of facets (what two soft fingers and three
+    point fingers with friction share): ``facets`` (one facet's index per finger),
+    ``pieces`` (their convex pieces' indices), ``radius`` (the octagons' circumradius:
+    each finger anywhere in its octagon), ``centers`` (fingers, 3), ``regions``
+    (fingers, 8, 3: each octagon's corners in 3-D), inward ``normals`` (fingers, 3),
+    ``mu`` and ``margin`` (degrees)."""
 
-    facets: tuple[int, int]
-    pieces: tuple[int, int]
+    facets: tuple[int, ...]
+    pieces: tuple[int, ...]
     radius: float
     centers: FloatArray = field(repr=False)
     regions: FloatArray = field(repr=False)
@@ -87,12 +89,20 @@ class SoftPairPlan(SolidPlan):
     margin: float = DEFAULT_MARGIN_DEG
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
+    def _octagon_dict(self, contact_type: str) -> dict[str, Any]:
+        """The JSON both kinds of plan share (``similar`` added by :meth:`to_dict`)."""
+        return {"facets": list(self.facets), "pieces": list(self.pieces),
+                "radius": self.radius, "centers": self.centers.tolist(),
+                "regions": self.regions.tolist(), "normals": self.normals.tolist(),
+                "mu": self.mu, "margin_deg": self.margin, "contact_type": contact_type}
+
+
+@dataclass(frozen=True)
+class SoftPairPlan(OctagonPlan):
+    """Regions of two soft fingers (:class:`OctagonPlan`: two facets, two octagons)."""
+
     def to_dict(self) -> dict[str, Any]:
-        d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
-                             "radius": self.radius, "centers": self.centers.tolist(),
-                             "regions": self.regions.tolist(), "normals": self.normals.tolist(),
-                             "mu": self.mu, "margin_deg": self.margin, "contact_type": "soft"}
-        return self._with_similar(d)
+        return self._with_similar(self._octagon_dict("soft"))
 
 
 def checked_cone(mu: Any, margin: Any, solid: Any = None) -> tuple[float, float, float]:
@@ -574,7 +584,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     size = _FIRST_ROUND
     threshold = math.inf
 
-    def key(p: SoftPairPlan) -> tuple[float, tuple[int, int], tuple[int, int]]:
+    def key(p: SoftPairPlan) -> tuple[float, tuple[int, ...], tuple[int, ...]]:
         return (-p.radius, p.facets, p.pieces)
 
     while True:

@@ -42,16 +42,23 @@ not exhaustive; :attr:`PointTripleSearch.exhaustive` says which).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from ..core._checks import FloatArray, check_int
 from ..core.tolerances import HULL_ROUNDING, TOL
-from .alternatives import SolidPlan
 from .contacts import check_spatial_contacts, contact_frames
-from .regions import DEFAULT_MARGIN_DEG, OCTAGON, Halfplanes, _fit, _piece_table, checked_cone
+from .regions import (
+    DEFAULT_MARGIN_DEG,
+    OCTAGON,
+    Halfplanes,
+    OctagonPlan,
+    _fit,
+    _piece_table,
+    checked_cone,
+)
 from .solid import Solid
 
 __all__ = ["PointTriplePlan", "PointTripleSearch", "perturbation_radius",
@@ -68,30 +75,16 @@ REFINE_STEPS = 6
 
 
 @dataclass(frozen=True)
-class PointTriplePlan(SolidPlan):
-    """Regions of three point fingers with friction: ``facets`` (three facets' indices),
-    ``pieces`` (their convex pieces' indices), ``radius`` (the octagons' circumradius:
-    each finger anywhere in its octagon), ``centers`` (3, 3), ``regions`` (3, 8, 3),
-    inward ``normals`` (3, 3), ``mu`` and ``margin`` (degrees), and ``delta`` (the
-    certificate's radius at these centres, before the fits)."""
+class PointTriplePlan(OctagonPlan):
+    """Regions of three point fingers with friction (:class:`~fcgrasp.spatial.regions.
+    OctagonPlan`: three facets, three octagons, each finger anywhere in its octagon), and
+    ``delta`` (the certificate's radius at these centres, before the fits)."""
 
-    facets: tuple[int, int, int]
-    pieces: tuple[int, int, int]
-    radius: float
-    centers: FloatArray = field(repr=False)
-    regions: FloatArray = field(repr=False)
-    normals: FloatArray = field(repr=False)
-    mu: float = 0.0
-    margin: float = DEFAULT_MARGIN_DEG
     delta: float = 0.0
-    similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
-        d: dict[str, Any] = {"facets": list(self.facets), "pieces": list(self.pieces),
-                             "radius": self.radius, "centers": self.centers.tolist(),
-                             "regions": self.regions.tolist(), "normals": self.normals.tolist(),
-                             "mu": self.mu, "margin_deg": self.margin, "contact_type": "friction",
-                             "certificate_radius": self.delta, "bound": "certified lower bound"}
+        d = self._octagon_dict("friction")
+        d.update({"certificate_radius": self.delta, "bound": "certified lower bound"})
         return self._with_similar(d)
 
 
@@ -245,8 +238,8 @@ def _plan(solid: Solid, table: Any, pieces: tuple[int, int, int], tri: _Triple,
     regions = centers[:, None, :] + r * np.einsum("qi,kij->kqj", OCTAGON, tri.axes)
     facets = tuple(int(table.facet[p]) for p in pieces)
     local = tuple(int(table.local[p]) for p in pieces)
-    return PointTriplePlan(facets, local, r, centers, regions,    # type: ignore[arg-type]
-                           tri.normals.copy(), mu, margin, delta)
+    return PointTriplePlan(facets, local, r, centers, regions, tri.normals.copy(), mu,
+                           margin, delta=delta)
 
 
 def point_triple_regions(solid: Solid, facets: Any, mu: Any,
