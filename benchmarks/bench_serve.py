@@ -69,7 +69,8 @@ def plan_times(base: str, part: dict, options: dict, repeat: int = 5) -> tuple[f
 
 
 def page_frame(base: str, n: int) -> float | None:
-    """Median time of one drag frame (selfCrossing + render) in Chromium, seconds."""
+    """Median time of one drag frame in Chromium (the page's own ``dragVertex``: the
+    vertex moved, the outline checked where it changed, everything drawn again), seconds."""
     if not (shutil.which("chromium") and shutil.which("chromedriver")):
         return None
     from selenium import webdriver
@@ -94,10 +95,7 @@ def page_frame(base: str, n: int) -> float | None:
             const S = explorer.state, out = [];
             for (let k = 0; k < 30; k++) {
               const t0 = performance.now();
-              S.part.outer[0] = [S.part.outer[0][0] + 1e-3, S.part.outer[0][1]];
-              S.dragging = true;
-              S.invalid = explorer.selfCrossing(S.part);
-              explorer.render();
+              explorer.dragVertex(0, 0, [S.part.outer[0][0] + 1e-3, S.part.outer[0][1]]);
               out.push(performance.now() - t0);
             }
             S.dragging = false;

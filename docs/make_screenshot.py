@@ -1,5 +1,7 @@
-"""Make docs/explorer.png, the README's picture of ``fcgrasp serve`` (needs Debian's
-chromium and chromedriver, as the browser tests do):
+"""Make docs/explorer.png, the README's picture of ``fcgrasp serve`` on ``demo:blob``, and
+docs/explorer-real.png, the page on a real drawing (ezdxf's ``forms.dxf`` from the
+benchmark corpus: 900 edges of fillets, holes and slots), zoomed on a corner (needs
+Debian's chromium and chromedriver, as the browser tests do):
 
     .venv/bin/python docs/make_screenshot.py
 """
@@ -15,7 +17,16 @@ from pathlib import Path
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 
-OUT = Path(__file__).resolve().parent / "explorer.png"
+DOCS = Path(__file__).resolve().parent
+OUT = DOCS / "explorer.png"
+REAL = DOCS / "explorer-real.png"
+DRAWING = DOCS.parent / "benchmarks" / "corpus" / "dxf" / "forms.dxf"
+
+
+def wait_plan(d, after: int) -> None:
+    while int(d.execute_script("return document.body.dataset.planSeq")) <= after or \
+            d.execute_script("return document.body.dataset.busy") != "0":
+        time.sleep(0.05)
 
 
 def main() -> None:
@@ -32,15 +43,20 @@ def main() -> None:
     d = webdriver.Chrome(options=opts, service=Service("/usr/bin/chromedriver"))
     try:
         d.get(url)
-        while d.execute_script("return document.body.dataset.planSeq") == "0":
-            time.sleep(0.05)
-        d.find_element("id", "overlay").click()
+        wait_plan(d, 0)
+        d.execute_script("document.getElementById('overlay').click()")
         time.sleep(0.3)
         d.save_screenshot(str(OUT))
+        d.execute_script("document.getElementById('overlay').click()")
+        seq = int(d.execute_script("return document.body.dataset.planSeq"))
+        d.find_element("id", "file").send_keys(str(DRAWING))
+        wait_plan(d, seq)
+        time.sleep(0.3)
+        d.save_screenshot(str(REAL))
     finally:
         d.quit()
         proc.terminate()
-    print(f"wrote {OUT}")
+    print(f"wrote {OUT} and {REAL}")
 
 
 if __name__ == "__main__":

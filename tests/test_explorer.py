@@ -11,6 +11,7 @@ from __future__ import annotations
 import io
 import json
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -312,3 +313,178 @@ def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
     browser.find_element(By.ID, "cancel").click()
     wait(browser, "document.body.dataset.busy === '0'")
     assert browser.find_element(By.ID, "statustext").text == "cancelled"
+
+
+def d_part(n_arc=1999):
+    """A half disc (radius 50) whose arc is flattened into ``n_arc`` edges, with a square
+    hole: 2,003 edges, six corners (two on the outline, four in the hole)."""
+    a = np.linspace(0.0, np.pi, n_arc + 1)
+    outer = np.c_[50 * np.cos(a), 50 * np.sin(a)]
+    hole = [[-5, 15], [-5, 25], [5, 25], [5, 15]]
+    return {"vertices": outer.round(9).tolist(), "holes": [hole]}
+
+
+def move_to(driver, xy):
+    body = driver.find_element(By.TAG_NAME, "body")
+    ActionChains(driver).move_to_element_with_offset(
+        body, xy[0] - body.rect["width"] / 2, xy[1] - body.rect["height"] / 2).perform()
+
+
+def wheel(driver, xy, delta_y):
+    """A wheel event over the drawing at viewport point ``xy``."""
+    driver.execute_script(
+        "document.getElementById('view').dispatchEvent(new WheelEvent('wheel', {clientX: "
+        "arguments[0], clientY: arguments[1], deltaY: arguments[2], bubbles: true, "
+        "cancelable: true}));", xy[0], xy[1], delta_y)
+
+
+def screen_state(driver):
+    """Handles, edge numbers' boxes and the outline's edges, in the drawing's pixels."""
+    return driver.execute_script("""
+        const S = explorer.state, R = [S.part.outer, ...S.part.holes];
+        const segs = [];
+        R.forEach((r) => r.forEach((p, i) => {
+          segs.push([explorer.toScreen(p), explorer.toScreen(r[(i + 1) % r.length])]);
+        }));
+        return {
+          handles: [...document.querySelectorAll('.handle circle.vertex')].map((c) =>
+            [+c.dataset.ring, +c.dataset.index, +c.getAttribute('cx'), +c.getAttribute('cy')]),
+          labels: [...document.querySelectorAll('.labels text')].map((t) => {
+            const b = t.getBBox(); return [+t.dataset.edge, b.x, b.y, b.x + b.width,
+                                           b.y + b.height]; }),
+          segs, view: S.view,
+          regions: S.plans.length ? S.plans[S.selected].regions.map((r) =>
+            r.map((p) => explorer.toScreen(p))) : []};""")
+
+
+def _boxes_clear(labels, segs, regions=()):
+    """No two numbers' boxes overlap, no edge of the outline crosses a number, and no
+    region (a bold line, 7 pixels wide) covers one."""
+    boxes = np.array([b[1:] for b in labels])
+    for i in range(len(boxes)):
+        a = boxes[i]
+        other = boxes[i + 1:]
+        assert not np.any((other[:, 0] < a[2]) & (a[0] < other[:, 2]) & (other[:, 1] < a[3])
+                          & (a[1] < other[:, 3])), labels[i]
+    segs = np.asarray(segs, float)                         # (m, 2, 2)
+    t = np.linspace(0.0, 1.0, 65)[:, None, None]
+    pts = segs[None, :, 0] + t * (segs[None, :, 1] - segs[None, :, 0])   # (65, m, 2)
+    pts = pts.reshape(-1, 2)
+    for b in boxes:
+        inside = (pts[:, 0] > b[0] + 0.5) & (pts[:, 0] < b[2] - 0.5) & \
+            (pts[:, 1] > b[1] + 0.5) & (pts[:, 1] < b[3] - 0.5)
+        assert not inside.any(), b
+    for line in regions:
+        line = np.asarray(line, float)
+        pts = (line[:-1, None] + t[:, :, 0][None] * (line[1:, None] - line[:-1, None]))
+        pts = pts.reshape(-1, 2)
+        for b in boxes:
+            assert not ((pts[:, 0] > b[0] - 3.5) & (pts[:, 0] < b[2] + 3.5)
+                        & (pts[:, 1] > b[1] - 3.5) & (pts[:, 1] < b[3] + 3.5)).any(), b
+
+
+def test_a_real_part_handles_numbers_scale_zoom_and_pan(server, browser, tmp_path):
+    """Issue 31: a 2,003-edge part is drawn for a person, not as a chain of beads."""
+    browser.get(server)
+    wait_plan(browser, 0)
+    path = tmp_path / "half-disc.json"
+    path.write_text(json.dumps(d_part()))
+    seq = plan_seq(browser)
+    browser.find_element(By.ID, "file").send_keys(str(path))
+    wait_plan(browser, seq)
+    gap = browser.execute_script("return HANDLE_GAP")
+    st = screen_state(browser)
+    handles = np.array([h[2:] for h in st["handles"]])
+    # handles: at every corner, never closer than the gap, a few dozen on the curve
+    d = np.hypot(*(handles[:, None] - handles[None]).transpose(2, 0, 1))
+    assert d[~np.eye(len(d), dtype=bool)].min() >= gap - 1e-6
+    assert len(handles) < 150
+    taken = {(h[0], h[1]) for h in st["handles"]}
+    assert {(0, 0), (0, 1999), (1, 0), (1, 1), (1, 2), (1, 3)} <= taken
+
+    # edge numbers: some placed (the flat side's among them), none overlapping a number
+    # or the outline
+    numbers = [lab[0] for lab in st["labels"]]
+    assert 1999 in numbers and len(numbers) >= 5
+    _boxes_clear(st["labels"], st["segs"], st["regions"])
+    browser.find_element(By.ID, "edgenums").click()
+    assert not browser.find_elements(By.CSS_SELECTOR, ".labels text")
+    browser.find_element(By.ID, "edgenums").click()
+
+    # the scale bar: a round length in the part's units, as long as the view says
+    bar = browser.find_element(By.ID, "scalebar")
+    length, pixels = float(bar.get_attribute("data-length")), float(
+        bar.get_attribute("data-pixels"))
+    mant = length / 10 ** np.floor(np.log10(length))
+    assert min(abs(mant - k) for k in (1, 2, 5)) < 1e-9
+    assert 60 <= pixels <= 150 and abs(pixels - length * st["view"]["s"]) < 1e-2
+    assert bar.text.endswith("mm")
+
+    # zoom about the pointer: the part's point under it stays put
+    r = browser.execute_script("return document.getElementById('view')"
+                               ".getBoundingClientRect().toJSON()")
+    # (a wheel event's clientX and clientY are whole pixels)
+    x, y = np.round(screen_point(browser, [50 * np.cos(1.2), 50 * np.sin(1.2)]))
+    on_arc = browser.execute_script("return explorer.toPart(arguments[0], arguments[1])",
+                                    x - r["left"], y - r["top"])
+    s0 = st["view"]["s"]
+    for _ in range(6):
+        wheel(browser, (x, y), -400)
+    s1 = browser.execute_script("return explorer.state.view.s")
+    assert s1 / s0 == pytest.approx(np.exp(6 * 400 * 0.0015), rel=1e-9)
+    under = browser.execute_script("return explorer.toPart(arguments[0], arguments[1])",
+                                   x - r["left"], y - r["top"])
+    assert np.allclose(under, on_arc, atol=1e-6 * 50)
+    # zoomed in this far, the curve's vertices in view are far enough apart: each has one
+    st = screen_state(browser)
+    part = browser.execute_script("return explorer.state.part")
+    q = np.array(browser.execute_script(
+        "return explorer.state.part.outer.map((p) => explorer.toScreen(p))"))
+    view = st["view"]
+    seen = [i for i, (qx, qy) in enumerate(q)
+            if -gap <= qx <= view["W"] + gap and -gap <= qy <= view["H"] + gap]
+    assert len(seen) >= 20 and set(seen) == {h[1] for h in st["handles"] if h[0] == 0}
+    _boxes_clear(st["labels"], st["segs"], st["regions"])
+    assert len(st["labels"]) >= 5
+
+    # pan: dragging the background moves the view by the drag, the scale unchanged
+    o0 = browser.execute_script("return [explorer.state.view.ox, explorer.state.view.oy]")
+    bg = (r["left"] + 20, r["top"] + 60)
+    body = browser.find_element(By.TAG_NAME, "body")
+    ActionChains(browser).move_to_element_with_offset(
+        body, bg[0] - body.rect["width"] / 2, bg[1] - body.rect["height"] / 2) \
+        .click_and_hold().move_by_offset(20, 10).move_by_offset(20, 15).release().perform()
+    o1 = browser.execute_script("return [explorer.state.view.ox, explorer.state.view.oy]")
+    assert np.allclose(np.subtract(o1, o0), [40, 25], atol=1.0)
+    assert browser.execute_script("return explorer.state.view.s") == pytest.approx(s1)
+
+    # fit view, then the pointer on a vertex of the curve: a handle there, the readout
+    # names the edge
+    browser.find_element(By.ID, "fit").click()
+    v = part["outer"][700]
+    move_to(browser, screen_point(browser, v))
+    hover = wait(browser, "document.querySelector('#hover circle.vertex')")
+    k = int(hover.get_attribute("data-index"))       # vertices 0.7 pixels apart here
+    assert abs(k - 700) <= 2
+    assert re.search(rf"edge ({k - 1}|{k})$", browser.find_element(By.ID, "readout").text)
+
+
+def test_the_drag_check_is_the_whole_outline_check(server, browser):
+    """The drag's self-crossing test (the two edges at the moved vertex against the
+    rest, O(n)) gives the verdict of the test of every pair of edges, on seeded random
+    moves of a star with a hole, crossings and near misses included."""
+    browser.get(server)
+    wait_plan(browser, 0)
+    rng = np.random.default_rng(5)
+    for trial in range(40):
+        outer = _star(60, seed=trial).tolist()
+        hole = (0.2 * np.asarray(outer[::6])).tolist()
+        ring = int(rng.integers(0, 2))
+        r = outer if ring == 0 else hole
+        i = int(rng.integers(0, len(r)))
+        r[i] = (np.asarray(r[i]) * rng.uniform(0.0, 2.5) + rng.normal(0, 5, 2)).tolist()
+        fast, whole = browser.execute_script(
+            "const part = {outer: arguments[0], holes: [arguments[1]]};"
+            "return [explorer.crossesAt(part, arguments[2], arguments[3]),"
+            " explorer.selfCrossing(part)];", outer, hole, ring, i)
+        assert fast == whole, (trial, ring, i)

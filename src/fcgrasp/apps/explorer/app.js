@@ -108,6 +108,24 @@ function selfCrossing(part) {
   return false;
 }
 
+// the edges that meet vertex (ring, index) against every other edge: a drag or a
+// deletion changes only those, and the rest of the outline was good (O(n) per frame)
+function crossesAt(part, ring, index) {
+  const R = rings(part), r = R[ring], n = r.length;
+  const moved = [[(index - 1 + n) % n, index], [index, (index + 1) % n]];
+  for (const [i0, i1] of moved) {
+    const p = r[i0], q = r[i1];
+    for (let g = 0; g < R.length; g++) {
+      const s = R[g], m = s.length;
+      for (let j = 0; j < m; j++) {
+        if (g === ring && (j === i0 || j === i1 || (j + 1) % m === i0)) continue;
+        if (segmentsCross(p, q, s[j], s[(j + 1) % m])) return true;
+      }
+    }
+  }
+  return false;
+}
+
 function nearestOnBoundary(part, p) {
   let best = null;
   edges(part).forEach((e, k) => {
@@ -131,7 +149,17 @@ function fit() {
   const b = bounds(S.part), m = 50;
   const s = Math.min((W - 2 * m) / (b.w || 1), (H - 2 * m) / (b.h || 1));
   S.view = { s, W, H, ox: (W - s * b.w) / 2 - s * b.minx, oy: (H + s * b.h) / 2 + s * b.miny,
-             size: b.size };
+             size: b.size, fit: s };
+}
+
+// zoom by `factor` about the screen point (x, y): the part's point under it stays put
+function zoomAt(x, y, factor) {
+  const v = S.view;
+  const f = Math.min(Math.max(factor, v.fit / 20 / v.s), (v.fit * 1e4) / v.s);
+  v.ox = x - (x - v.ox) * f;
+  v.oy = y - (y - v.oy) * f;
+  v.s *= f;
+  render();
 }
 
 const X = (p) => [S.view.ox + S.view.s * p[0], S.view.oy - S.view.s * p[1]];
@@ -181,6 +209,198 @@ function drawPush(g, c, n, mu, color) {
   }
 }
 
+// ------------------------------------------------------------------ handles, numbers, scale
+
+//: screen pixels between two vertex handles, at least: a curve's vertices get handles
+//: only where the zoom spreads them (or under the pointer), never a chain of beads
+const HANDLE_GAP = 22;
+
+const inView = (q, pad) => q[0] >= -pad && q[1] >= -pad && q[0] <= S.view.W + pad &&
+  q[1] <= S.view.H + pad;
+
+//: a vertex is a corner where the outline turns by more than this (radians) between the
+//: points HANDLE_GAP pixels before and after it: noise and flattened curves are not
+const CORNER = (25 * Math.PI) / 180;
+
+// the outline's turn at each vertex of ring r on the screen (points q), measured between
+// the chords to the vertices about HANDLE_GAP pixels back and ahead (at most 64 steps)
+function screenTurns(q) {
+  const n = q.length, out = new Float64Array(n);
+  const far = (i, step) => {
+    let j = i;
+    for (let k = 0; k < Math.min(64, n - 1); k++) {
+      j = (j + step + n) % n;
+      if (Math.hypot(q[j][0] - q[i][0], q[j][1] - q[i][1]) >= HANDLE_GAP) break;
+    }
+    return q[j];
+  };
+  for (let i = 0; i < n; i++) {
+    const a = far(i, -1), b = far(i, 1), p = q[i];
+    const u = [p[0] - a[0], p[1] - a[1]], w = [b[0] - p[0], b[1] - p[1]];
+    out[i] = Math.abs(Math.atan2(u[0] * w[1] - u[1] * w[0], u[0] * w[0] + u[1] * w[1]));
+  }
+  return out;
+}
+
+// the outline's turn at vertex i of ring r, in radians
+function turn(r, i) {
+  const n = r.length, a = r[(i - 1 + n) % n], p = r[i], b = r[(i + 1) % n];
+  const u = [p[0] - a[0], p[1] - a[1]], w = [b[0] - p[0], b[1] - p[1]];
+  return Math.abs(Math.atan2(u[0] * w[1] - u[1] * w[0], u[0] * w[0] + u[1] * w[1]));
+}
+
+// the vertices that get a handle: the corners, and every vertex whose edges are
+// HANDLE_GAP pixels long on the screen (all of a curve's, zoomed in far enough); sharpest
+// first, each at least HANDLE_GAP pixels from the handles taken before it
+function handleVertices() {
+  const cand = [];
+  rings(S.part).forEach((r, ring) => {
+    const q = r.map(X), turns = screenTurns(q), n = r.length;
+    const len = (i, j) => Math.hypot(q[j][0] - q[i][0], q[j][1] - q[i][1]);
+    for (let i = 0; i < n; i++) {
+      if (!inView(q[i], HANDLE_GAP)) continue;
+      const spread = Math.min(len((i - 1 + n) % n, i), len(i, (i + 1) % n)) >= HANDLE_GAP;
+      // sharpest first: on the screen's scale, then at the vertex itself (a corner's
+      // neighbours turn as much on the screen's scale, not at themselves)
+      if (turns[i] >= CORNER || spread) {
+        cand.push({ ring, i, q: q[i], turn: turns[i] + turn(r, i) });
+      }
+    }
+  });
+  cand.sort((a, b) => b.turn - a.turn);
+  const grid = new Map(), out = [];
+  const key = (cx, cy) => `${cx},${cy}`;
+  for (const c of cand) {
+    const cx = Math.floor(c.q[0] / HANDLE_GAP), cy = Math.floor(c.q[1] / HANDLE_GAP);
+    let free = true;
+    for (let dx = -1; dx <= 1 && free; dx++) {
+      for (let dy = -1; dy <= 1 && free; dy++) {
+        for (const o of grid.get(key(cx + dx, cy + dy)) || []) {
+          if (Math.hypot(o.q[0] - c.q[0], o.q[1] - c.q[1]) < HANDLE_GAP) { free = false; break; }
+        }
+      }
+    }
+    if (!free) continue;
+    out.push(c);
+    const k = key(cx, cy);
+    if (!grid.has(k)) grid.set(k, []);
+    grid.get(k).push(c);
+  }
+  return out;
+}
+
+function drawHandle(g, ring, i, extra) {
+  const q = X(rings(S.part)[ring][i]);
+  el("circle", { cx: q[0], cy: q[1], r: 5, class: "vertex" + (extra ? " " + extra : ""),
+                 "data-ring": ring, "data-index": i }, g);
+}
+
+function segmentHitsBox(p, q, b) {
+  // Liang-Barsky: does segment pq meet the box b = [x0, y0, x1, y1]?
+  let t0 = 0, t1 = 1;
+  const d = [q[0] - p[0], q[1] - p[1]];
+  for (const [num, den] of [[p[0] - b[0], -d[0]], [b[2] - p[0], d[0]],
+                            [p[1] - b[1], -d[1]], [b[3] - p[1], d[1]]]) {
+    if (den === 0) { if (num < 0) return false; continue; }
+    const t = num / den;
+    if (den < 0) { if (t > t1) return false; if (t > t0) t0 = t; } else {
+      if (t < t0) return false; if (t < t1) t1 = t;
+    }
+  }
+  return true;
+}
+
+// what a number must not cover besides the outline: the selected plan's regions (bold:
+// their segments padded) and its fingers' V's, as screen segments [a, b, pad]
+function planSegments(plan) {
+  const out = [];
+  if (!plan || plan.gripper === "parallel_jaw") return out;
+  for (const reg of plan.regions) {
+    for (let i = 0; i + 1 < reg.length; i++) out.push([X(reg[i]), X(reg[i + 1]), 5]);
+  }
+  const mu = plan.contact_type === "friction" ? plan.mu : 0, L = 0.07 * S.view.size;
+  plan.contacts.forEach((c, i) => {
+    const n = plan.normals[i];
+    for (const sg of mu > 0 ? [1, -1] : [0]) {
+      const d = rot(n, sg * Math.atan(mu));
+      out.push([X(c), X([c[0] + L * d[0], c[1] + L * d[1]]), 2]);
+    }
+  });
+  return out;
+}
+
+// edge numbers, placed: each off its edge's middle on the outward side, longest edges on
+// the screen first, kept only where its box meets no other number, no edge and nothing
+// of the plan drawn
+function edgeLabels(plan) {
+  const E = edges(S.part), cell = 32, segs = new Map(), out = [];
+  const key = (cx, cy) => `${cx},${cy}`;
+  const cells = (b, fn) => {
+    for (let cx = Math.floor(b[0] / cell); cx <= Math.floor(b[2] / cell); cx++) {
+      for (let cy = Math.floor(b[1] / cell); cy <= Math.floor(b[3] / cell); cy++) fn(key(cx, cy));
+    }
+  };
+  const scr = E.map((e) => [X(e.a), X(e.b), 0]).concat(planSegments(plan));
+  scr.forEach(([a, b, pad], k) => {
+    if (!inView(a, 100) && !inView(b, 100)) return;
+    if (Math.abs(a[0] - b[0]) + Math.abs(a[1] - b[1]) > 4 * Math.max(S.view.W, S.view.H)) return;
+    cells([Math.min(a[0], b[0]) - pad, Math.min(a[1], b[1]) - pad, Math.max(a[0], b[0]) + pad,
+           Math.max(a[1], b[1]) + pad], (c) => { if (!segs.has(c)) segs.set(c, []); segs.get(c).push(k); });
+  });
+  const placed = new Map();
+  const order = E.map((e, k) => k).sort((i, j) => E[j].len - E[i].len);
+  const fits = (box) => {
+    if (box[0] < 0 || box[1] < 0 || box[2] > S.view.W || box[3] > S.view.H) return false;
+    let free = true;
+    cells(box, (c2) => {
+      if (!free) return;
+      for (const o of placed.get(c2) || []) {
+        if (o[0] < box[2] && box[0] < o[2] && o[1] < box[3] && box[1] < o[3]) { free = false; return; }
+      }
+      for (const j of segs.get(c2) || []) {
+        const [a, b, pad] = scr[j];
+        if (segmentHitsBox(a, b, [box[0] - pad, box[1] - pad, box[2] + pad, box[3] + pad])) {
+          free = false; return;
+        }
+      }
+    });
+    return free;
+  };
+  for (const k of order) {
+    const e = E[k], [a, b] = scr[k];
+    const w = 6.2 * String(k).length + 3, h = 12, n = [e.n[0], -e.n[1]];  // y down on screen
+    const base = 3 + Math.abs(n[0]) * w / 2 + Math.abs(n[1]) * h / 2;
+    // the middle first, then off along the edge (an edge under a region), then further out
+    for (const [t, more] of [[0.5, 0], [0.3, 0], [0.7, 0], [0.15, 0], [0.85, 0], [0.5, 10],
+                             [0.3, 10], [0.7, 10]]) {
+      const at = [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])];
+      if (!inView(at, -4)) continue;
+      const c = [at[0] + (base + more) * n[0], at[1] + (base + more) * n[1]];
+      const box = [c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2];
+      if (!fits(box)) continue;
+      out.push({ k, c });
+      cells(box, (c2) => { if (!placed.has(c2)) placed.set(c2, []); placed.get(c2).push(box); });
+      break;
+    }
+  }
+  return out;
+}
+
+// a scale bar of a round length (1, 2 or 5 times a power of ten) 60-150 pixels long
+function drawScaleBar() {
+  const most = 150 / S.view.s, p = 10 ** Math.floor(Math.log10(most));
+  const L = [5, 2, 1].map((k) => k * p).find((v) => v <= most * (1 + 1e-9));
+  const px = L * S.view.s, x0 = 16, y0 = S.view.H - 18;
+  const g = el("g", { id: "scalebar", "data-length": L, "data-pixels": px.toFixed(3) });
+  el("rect", { x: x0 - 6, y: y0 - 18, width: px + 12, height: 26, fill: "#fff",
+               "fill-opacity": 0.8 }, g);
+  el("path", { d: `M${x0},${y0 - 5}V${y0}H${x0 + px}V${y0 - 5}`, fill: "none", stroke: "#222",
+               "stroke-width": 1.5 }, g);
+  const units = S.report ? S.report.units : S.part.units || "";
+  el("text", { x: x0 + px / 2, y: y0 - 7, "font-size": 11, fill: "#222",
+               "text-anchor": "middle" }, g).textContent = `${+L.toPrecision(1)} ${units}`;
+}
+
 function render() {
   if (!S.part || !S.view) return;
   svg.textContent = "";
@@ -188,34 +408,52 @@ function render() {
   const mk = el("marker", { id: "arrow", viewBox: "0 0 10 10", refX: 9, refY: 5,
                             markerWidth: 6, markerHeight: 6, orient: "auto-start-reverse" }, defs);
   el("path", { d: "M0,0L10,5L0,10z", fill: "#333" }, mk);
-  el("rect", { x: 0, y: 0, width: S.view.W, height: S.view.H, fill: "#fff" });
+  el("rect", { x: 0, y: 0, width: S.view.W, height: S.view.H, fill: "#fff", id: "background" });
   el("path", { d: ringPath(S.part), "fill-rule": "evenodd", fill: "#e0e0e0",
                stroke: S.invalid ? "#d00" : "#404040", "stroke-width": S.invalid ? 2 : 1.2,
                id: "part-path" });
-  const E = edges(S.part);
-  if (E.length <= 80) {
-    const g = el("g", { class: "labels", "font-size": 10, fill: "#777",
-                        "text-anchor": "middle", "dominant-baseline": "middle" });
-    const off = 0.03 * S.view.size;
-    E.forEach((e, k) => {
-      const m = X([(e.a[0] + e.b[0]) / 2 + off * e.n[0], (e.a[1] + e.b[1]) / 2 + off * e.n[1]]);
-      el("text", { x: m[0], y: m[1] }, g).textContent = String(k);
-    });
+  // the handles under the plan (which lets the pointer through): regions stay visible
+  if (S.mode === "edit") {
+    const g = el("g", { class: "handle" });
+    for (const h of handleVertices()) drawHandle(g, h.ring, h.i);
   }
   const plan = S.dragging ? null : S.plans[S.selected];
+  if ($("edgenums").checked && !S.dragging) {
+    const g = el("g", { class: "labels", "font-size": 10, fill: "#666",
+                        "text-anchor": "middle", "dominant-baseline": "central" });
+    for (const { k, c } of edgeLabels(plan)) {
+      el("text", { x: c[0].toFixed(1), y: c[1].toFixed(1), "data-edge": k }, g).textContent =
+        String(k);
+    }
+  }
   if (plan && $("overlay").checked) drawOverlay(S.overlays[S.selected]);
   if (plan) (plan.gripper === "parallel_jaw" ? drawJaw : drawPlan)(plan);
   el("text", { x: 12, y: 22, "font-size": 13, fill: "#333", id: "caption" }).textContent =
     plan ? caption(plan) : (S.part.name || "");
   drawFingers();
-  if (S.mode === "edit") {
-    const g = el("g", { class: "handle" });
-    rings(S.part).forEach((r, ring) => r.forEach((p, i) => {
-      const q = X(p);
-      el("circle", { cx: q[0], cy: q[1], r: 5, class: "vertex", "data-ring": ring,
-                     "data-index": i }, g);
-    }));
-  }
+  drawScaleBar();
+  el("g", { id: "hover", class: "handle" });
+  el("text", { x: S.view.W - 12, y: S.view.H - 12, "font-size": 11, fill: "#555",
+               "text-anchor": "end", id: "readout" });
+  showHover();
+}
+
+// the pointer's place in the part's units and the edge under it; in edit mode, a handle
+// on the vertex under the pointer where none is drawn (curves, seen from afar)
+function showHover() {
+  const g = $("hover"), t = $("readout");
+  if (!g || !S.pointer) return;
+  g.textContent = "";
+  const p = toWorld(...S.pointer), u = S.part.units || "";
+  const near = nearestOnBoundary(S.part, p);
+  const onEdge = near && near.d * S.view.s <= 8;
+  t.textContent = `x ${fmt(p[0])}, y ${fmt(p[1])} ${u}` + (onEdge ? `, edge ${near.edge}` : "");
+  if (S.mode !== "edit" || S.drag || !onEdge) return;
+  const r = rings(S.part)[near.e.ring], n = r.length;
+  const i = near.t < 0.5 ? near.e.i : (near.e.i + 1) % n, q = X(r[i]);
+  if (Math.hypot(q[0] - S.pointer[0], q[1] - S.pointer[1]) > 10) return;
+  if (svg.querySelector(`.handle circle[data-ring="${near.e.ring}"][data-index="${i}"]`)) return;
+  drawHandle(g, near.e.ring, i, "hover");
 }
 
 function caption(plan) {
@@ -562,43 +800,85 @@ function changed() {
 }
 
 svg.addEventListener("pointerdown", (ev) => {
-  if (ev.button !== 0 || !S.part) return;
-  const t = ev.target;
-  if (S.mode === "edit" && t.classList.contains("vertex")) {
+  if (!S.part || (ev.button !== 0 && ev.button !== 1)) return;
+  const t = ev.target, here = eventPoint(ev);
+  if (ev.button === 1) {
+    S.drag = { kind: "pan", from: here, ox: S.view.ox, oy: S.view.oy, moved: false };
+  } else if (S.mode === "edit" && t.classList.contains("vertex")) {
     if (ev.shiftKey) { deleteVertex(+t.dataset.ring, +t.dataset.index); return; }
     S.drag = { kind: "vertex", ring: +t.dataset.ring, index: +t.dataset.index, moved: false };
   } else if (S.mode === "fingers" && t.classList.contains("finger")) {
     S.drag = { kind: "finger", index: +t.dataset.finger, moved: false };
-  } else if (S.mode === "fingers") {
-    addFinger(toWorld(...eventPoint(ev)));
+  } else if (S.mode === "fingers" && nearOutline(here)) {
+    addFinger(toWorld(...here));
     return;
   } else {
-    return;
+    // the background: drag to pan (a click in finger mode says where fingers go)
+    S.drag = { kind: "pan", from: here, ox: S.view.ox, oy: S.view.oy, moved: false };
   }
   svg.setPointerCapture(ev.pointerId);
   ev.preventDefault();
 });
 
+function nearOutline(q) {
+  const near = nearestOnBoundary(S.part, toWorld(...q));
+  return near && near.d * S.view.s <= 15;
+}
+
+// one frame of a vertex drag: the vertex moved, the outline checked where it changed
+function dragVertex(ring, index, p) {
+  S.dragging = true;
+  rings(S.part)[ring][index] = p;
+  S.invalid = crossesAt(S.part, ring, index);
+  render();
+}
+
 svg.addEventListener("pointermove", (ev) => {
-  if (!S.drag) return;
-  const p = toWorld(...eventPoint(ev));
-  S.drag.moved = true;
-  if (S.drag.kind === "vertex") {
-    S.dragging = true;
-    rings(S.part)[S.drag.ring][S.drag.index] = p;
-    S.invalid = selfCrossing(S.part);
+  const here = eventPoint(ev);
+  S.pointer = here;
+  if (!S.drag) { showHover(); return; }
+  const p = toWorld(...here), d = S.drag;
+  if (d.kind === "pan") {
+    if (!d.moved && Math.hypot(here[0] - d.from[0], here[1] - d.from[1]) < 3) return;
+    d.moved = true;
+    S.view.ox = d.ox + here[0] - d.from[0];
+    S.view.oy = d.oy + here[1] - d.from[1];
+    render();
+    return;
+  }
+  d.moved = true;
+  if (d.kind === "vertex") {
+    dragVertex(d.ring, d.index, p);
   } else {
     const near = nearestOnBoundary(S.part, p);
-    S.fingers[S.drag.index] = { point: near.point, edge: near.edge };
+    S.fingers[d.index] = { point: near.point, edge: near.edge };
+    render();
   }
-  render();
 });
+
+svg.addEventListener("pointerleave", () => {
+  S.pointer = null;
+  if ($("hover")) { $("hover").textContent = ""; $("readout").textContent = ""; }
+});
+
+svg.addEventListener("wheel", (ev) => {
+  if (!S.part || !S.view) return;
+  ev.preventDefault();
+  const [x, y] = eventPoint(ev);
+  const step = ev.deltaMode === 1 ? 33 * ev.deltaY : ev.deltaMode === 2 ? 500 * ev.deltaY
+    : ev.deltaY;
+  zoomAt(x, y, Math.exp(-step * 0.0015));
+}, { passive: false });
 
 svg.addEventListener("pointerup", () => {
   const d = S.drag;
   S.drag = null;
   S.dragging = false;
   if (!d) return;
+  if (d.kind === "pan") {
+    if (!d.moved && S.mode === "fingers") message("click on the outline to place a finger", true);
+    return;
+  }
   if (d.kind === "vertex") {
     if (!d.moved) { render(); return; }
     if (S.invalid) { revert("the outline crossed itself: kept the last good outline"); return; }
@@ -633,7 +913,7 @@ function deleteVertex(ring, index) {
   const r = rings(S.part)[ring];
   if (r.length <= 3) { message("a ring keeps at least three vertices"); return; }
   r.splice(index, 1);
-  if (selfCrossing(S.part)) {
+  if (crossesAt(S.part, ring, index % r.length)) {
     revert("deleting that vertex makes the outline cross itself: kept the last good outline");
     return;
   }
@@ -665,7 +945,7 @@ function download(name, type, text) {
 
 function figureSVG() {
   const copy = svg.cloneNode(true);
-  copy.querySelectorAll(".handle").forEach((n) => n.remove());
+  copy.querySelectorAll(".handle, #readout").forEach((n) => n.remove());
   copy.setAttribute("xmlns", SVGNS);
   copy.setAttribute("width", S.view.W);
   copy.setAttribute("height", S.view.H);
@@ -726,6 +1006,7 @@ async function init() {
     schedulePlan(); runCheck();
   });
   $("overlay").addEventListener("change", render);
+  $("edgenums").addEventListener("change", render);
   $("mode-edit").addEventListener("change", () => setMode("edit"));
   $("mode-fingers").addEventListener("change", () => setMode("fingers"));
   $("fit").addEventListener("click", () => { fit(); render(); });
@@ -755,6 +1036,7 @@ async function init() {
 }
 
 // for tests and the console: the state and the mapping from part to screen
-window.explorer = { state: S, toScreen: (p) => X(p), figureSVG, options, selfCrossing, render };
+window.explorer = { state: S, toScreen: (p) => X(p), toPart: (x, y) => toWorld(x, y), figureSVG,
+                    options, selfCrossing, crossesAt, dragVertex, zoomAt, render };
 
 init().catch((e) => message(`cannot start: ${e.message}`));
