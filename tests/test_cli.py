@@ -56,8 +56,9 @@ def write_wkt(tmp):
 
 
 def write_svg(tmp):
-    # drawn at half size and shifted, then put back by the transform
-    pts = " ".join(f"{x / 2},{-y / 2}" for x, y in OUTLINE)
+    # drawn at half size, y down from the top of the 200 mm page, then put back by the
+    # transform and the flip about the page's height
+    pts = " ".join(f"{x / 2},{(200 - y) / 2}" for x, y in OUTLINE)
     p = tmp / "part.svg"
     p.write_text('<svg xmlns="http://www.w3.org/2000/svg" width="200mm" height="200mm" '
                  'viewBox="0 0 200 200">'

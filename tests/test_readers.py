@@ -10,6 +10,7 @@ import math
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -145,7 +146,24 @@ def test_svg_units_px_and_real_units(tmp_path):
     mm = write(tmp_path, "mm.svg", svg('<rect x="10" y="10" width="60" height="20"/>',
                                        'width="100mm" height="50mm" viewBox="0 0 100 50"'))
     poly = read_part(mm)
-    assert np.allclose(bounds(poly), [10, -30, 70, -10], atol=1e-9)   # y flipped
+    # y flipped about the page's height: up from its bottom edge
+    assert np.allclose(bounds(poly), [10, 20, 70, 40], atol=1e-9)
+
+
+def test_svg_parts_sit_on_the_page_with_y_up(tmp_path):
+    """Issue 31: an SVG part keeps the page's positive coordinates, y up from its
+    bottom edge (an icon's viewBox, a page in mm, a page without a size)."""
+    px = 25.4 / 96                                          # mm per CSS px
+    for attrs, h, mm in (('width="24" height="24" viewBox="0 0 24 24"', 24, px),
+                         ('width="100mm" height="50mm" viewBox="0 0 100 50"', 50, 1.0),
+                         ('width="48" height="48" viewBox="0 0 24 24"', 24, 2 * px)):
+        f = write(tmp_path, "p.svg", svg('<path d="M2 3 L20 3 L11 21 Z"/>', attrs))
+        box = bounds(read_part(f)) / mm                     # in the drawing's own units
+        assert np.allclose(box, [2, h - 21, 20, h - 3], atol=1e-6), attrs
+    # the corpus's icons: every vertex on the page
+    v = read_part(Path(__file__).resolve().parents[1] / "benchmarks" / "corpus" / "icons"
+                  / "bell.svg").vertices / px
+    assert v.min() >= 0 and v[:, 1].max() <= 24 + 1e-9
 
 
 def test_svg_compound_paths_by_fill_rule(tmp_path):
@@ -253,9 +271,12 @@ def test_image_silhouettes_with_holes_not_the_border(tmp_path, ext):
     p = load_part(f)
     assert p.units == "px" and len(p.polygon.holes) == 1
     assert np.allclose(np.ptp(p.polygon.vertices, axis=0), [98, 58], atol=2)
+    # y up from the image's bottom row: the plate (rows 31-89 of 120) at y 30-89
+    assert np.allclose(bounds(p.polygon)[[1, 3]], [120 - 89.5, 120 - 30.5], atol=1)
     mm = load_part(f, pixel_size=0.5)
     assert mm.units == "mm" and np.allclose(np.ptp(mm.polygon.vertices, axis=0), [49, 29],
                                             atol=1)
+    assert np.allclose(bounds(mm.polygon)[[1, 3]], [15.25, 44.75], atol=0.5)
     with pytest.raises(ValueError, match="pixel_size"):
         load_part(f, units="mm")
 

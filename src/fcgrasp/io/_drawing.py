@@ -65,4 +65,7 @@ class Drawing:
     units: str | None = None              # file units (see fcgrasp.io.units.MM_PER), None: unsaid
     units_note: str = "not given by the file"
     y_down: bool = False                  # the file's y axis points down
+    #: the canvas's height (file units) of a y-down source: y is flipped about it, so the
+    #: part keeps the page's positive coordinates (y up from the bottom edge)
+    height: float | None = None
     notes: list[str] = field(default_factory=list)

@@ -95,4 +95,5 @@ def read_image(data: bytes, tol_of: TolOf, threshold: float | None = None) -> Dr
     if not shapes:
         raise ValueError("no silhouette found")
     return Drawing(shapes, "px", "pixels (no physical size: give pixel_size / "
-                   "--pixel-size)", y_down=True, notes=notes)
+                   "--pixel-size)", y_down=True, notes=notes,
+                   height=float(g.shape[0]))

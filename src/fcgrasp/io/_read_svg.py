@@ -136,5 +136,8 @@ def read_svg(data: bytes, tol_of: TolOf) -> Drawing:
             if s.polygon.area >= BACKGROUND_FRACTION * canvas and \
                     s.polygon.area >= BACKGROUND_FRACTION * box:
                 s.background = True
+    height = float(svg.height or 0) * fix
+    if not height > 0:                     # no size given: the drawing's own extent
+        height = max(s.polygon.bounds[3] for s in shapes)
     return Drawing(shapes, "px", f"CSS px ({PPI:g} per inch, after viewBox and width/height)",
-                   y_down=True)
+                   y_down=True, height=height)

@@ -100,7 +100,9 @@ class Part:
     scale : float
         Factor applied to the file's coordinates.
     flip_y : bool
-        Whether ``y`` was negated (y-down sources).
+        Whether ``y`` was flipped (y-down sources: an SVG page or an image is flipped
+        about its height, so y runs up from its bottom edge and stays positive; a file
+        read with ``y_down=True`` has ``y`` negated).
     flatten : float or None
         Flattening (or image simplification) tolerance used, in ``units``.
     cleaned : int
@@ -312,8 +314,11 @@ def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
     units, scale = _scale(fmt, file_units, opt)
     flip = d.y_down != opt.y_down            # a y-down file read with y_down flips back
     sy = -scale if flip else scale
-    outer = np.asarray(shape.polygon.exterior.coords)[:-1] * [scale, sy]
-    holes = [np.asarray(h.coords)[:-1] * [scale, sy] for h in shape.polygon.interiors]
+    # a y-down page flips about its height: y up from the page's bottom edge, positive
+    dy = scale * d.height if flip and d.height is not None and d.y_down else 0.0
+    outer = np.asarray(shape.polygon.exterior.coords)[:-1] * [scale, sy] + [0.0, dy]
+    holes = [np.asarray(h.coords)[:-1] * [scale, sy] + [0.0, dy]
+             for h in shape.polygon.interiors]
     where = spec + (f" part {k}" if count > 1 else "") + (f" ({shape.id})" if shape.id
                                                          and count > 1 else "")
     if fmt == "image":
