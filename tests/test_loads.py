@@ -113,6 +113,92 @@ def test_grasp_payload_equals_a_program_over_force_components(seed):
                     assert fn.sum() <= total + 1e-6
 
 
+def _limits_of(per, total, k):
+    return (np.full(k, np.inf) if per is None else np.broadcast_to(per, (k,)).astype(float),
+            np.inf if total is None else total)
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 10))])
+def test_facets_of_the_fingers_wrenches_give_the_programs_scale(seed):
+    """The exact scale from the facets of the fingers' wrench polytope (qhull, the
+    load's support function in closed form) equals the program over the load's
+    vertices on box loads: the machinery the ellipse relies on, checked where an
+    independent answer is exact."""
+    from fcgrasp.model.loads import _cone_edges, _facet_scale, _wrench_edges
+
+    rng = np.random.default_rng(100 + seed)
+    checked = 0
+    for _ in range(80):
+        points, normals, mu, load, per, total = _random_case(rng)
+        k = len(points)
+        per_v, total_v = _limits_of(per, total, k)
+        n = normals / np.hypot(*normals.T)[:, None]
+        E = _wrench_edges(points, _cone_edges(n, np.full(k, np.arctan(mu))))
+        got = _facet_scale(E, load, None, per_v, total_v)
+        if got is None:                       # unbounded (no limit) or a flat polytope
+            assert not np.isfinite(per_v).all() and not np.isfinite(total_v) or mu == 0
+            continue
+        want = _reference_scale(points, normals, mu, load.wrenches(), per_v, total_v)
+        assert got == pytest.approx(want, rel=1e-7, abs=1e-9)
+        checked += 1
+    assert checked >= 30
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 8))])
+def test_an_ellipse_of_accelerations_between_its_polygons(seed):
+    """An ellipse of accelerations: the scale lies between the program's over an
+    inscribed polygon of 180 sides (its vertices are loads: an upper bound) and over the
+    circumscribed one (a lower bound), which are 1.5e-4 apart; the least-peak forces
+    resist points of the ellipse."""
+    rng = np.random.default_rng(200 + seed)
+    checked = 0
+    for _ in range(12):
+        points, normals, mu, load, per, total = _random_case(rng)
+        load = Load(load.mass, com=load.com, accel=tuple(rng.uniform(0.5, 6.0, 2)),
+                    torque=load.torque, accel_shape="ellipse")
+        k = len(points)
+        per_v, total_v = _limits_of(per, total, k)
+        got = grasp_payload(points, normals, mu, load, per, total)
+        inner = _reference_scale(points, normals, mu, load.wrenches(outer=False, sides=180),
+                                 per_v, total_v)
+        outer = _reference_scale(points, normals, mu, load.wrenches(outer=True, sides=180),
+                                 per_v, total_v)
+        if np.isinf(inner) and np.isinf(outer):
+            assert np.isinf(got.scale)
+            continue
+        assert outer * (1 - 1e-7) - 1e-9 <= got.scale <= inner * (1 + 1e-7) + 1e-9
+        if got.holds:
+            W = load.wrenches(outer=False)
+            assert got.forces.shape == (len(W), k, 2)
+            for w, F in zip(W, got.forces, strict=True):
+                assert np.allclose(F.sum(axis=0), -w[:2], atol=1e-6 * (1 + abs(w).max()))
+        checked += 1
+    assert checked >= 6
+
+
+def test_an_ellipse_flattened_to_a_segment_is_the_box():
+    load = dict(mass=0.8, com=(1.0, -2.0), accel=(4.0, 0.0), torque=(-3.0, 3.0))
+    box, ell = Load(**load), Load(**load, accel_shape="ellipse")
+    assert ell.is_polytope and np.array_equal(box.wrenches(), ell.wrenches())
+    pts, nrm = [[-20, 0], [20, 0], [0, 15]], [[1, 0], [-1, 0], [0, -1]]
+    assert grasp_payload(pts, nrm, 0.4, ell, 10).scale == \
+        grasp_payload(pts, nrm, 0.4, box, 10).scale
+    # the ellipse lies inside its box: a larger scale; and a circle's by hand.  Two
+    # fingers at (-+20, 0) squeezing along x, the centre of mass between them: the
+    # torque balance shares the vertical load F_y equally, the horizontal one takes
+    # |F_x| off one finger's normal force, so mu (f - s |F_x|) >= s |F_y| / 2 with
+    # F = m (g - a); the worst a on the circle of radius r makes |F_y| / 2 + mu |F_x|
+    # as large as m (g / 2 + r sqrt(1/4 + mu^2))
+    circle = Load(0.5, com=(0.0, 0.0), accel=(2.0, 2.0), accel_shape="ellipse")
+    s = grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5, circle, 10).scale
+    assert s >= grasp_payload([[-20, 0], [20, 0]], [[1, 0], [-1, 0]], 0.5,
+                              Load(0.5, com=(0.0, 0.0), accel=(2.0, 2.0)), 10).scale
+    assert s == pytest.approx(0.5 * 10 / (0.5 * (9.80665 / 2 + 2.0 * np.sqrt(0.25 + 0.25))),
+                              rel=1e-9)
+
+
 def test_payload_of_a_squeeze_by_hand():
     """Two fingers squeezing horizontally hold the weight by friction alone: the scale
     is 2 mu f_max / (m g); a grip without friction holds nothing; without limits, any
@@ -176,6 +262,25 @@ def test_region_payload_is_below_every_grasp_of_the_regions(seed):
     assert cases >= 3
 
 
+def test_region_payload_of_an_ellipse_is_below_its_grasps():
+    """An ellipse of accelerations over a plan's regions: the certified scale (boxes
+    over the ellipse's circumscribed polygon) is at most the exact scale of every grasp
+    sampled in the regions, and the worst grasp's scale is an exact grasp's."""
+    rng = np.random.default_rng(7)
+    part = fc.read_part("demo:blob")
+    load = Load(0.4, accel=(3.0, 1.5), torque=(-2.0, 2.0), accel_shape="ellipse")
+    for kw in (dict(fingers=2, mu=0.4), dict(fingers=3, mu=0.4)):
+        plan = fc.plan(part, top=1, **kw)[0]
+        got = region_payload(part, plan, load, force_limit=12.0, gap=0.02, max_boxes=40)
+        assert 0 < got.lower <= got.upper
+        worst = grasp_payload(got.worst, [-part.normals[e[0]] for e in plan.region_edges],
+                              plan.mu, load, 12.0, com=part.centroid).scale
+        assert got.lower <= worst * (1 + 1e-7)
+        for pts, nrm in _sample_grasps(rng, part, plan, 12):
+            s = grasp_payload(pts, nrm, plan.mu, load, 12.0, com=part.centroid).scale
+            assert got.lower <= s * (1 + 1e-7) + 1e-9
+
+
 def test_load_and_payload_errors_name_the_argument():
     with pytest.raises(ValueError, match="mass"):
         Load(-1.0)
@@ -185,6 +290,8 @@ def test_load_and_payload_errors_name_the_argument():
         Load(1.0, accel=(-1.0, 0.0))
     with pytest.raises(ValueError, match="com"):
         Load(1.0).wrenches()
+    with pytest.raises(ValueError, match="accel_shape"):
+        Load(1.0, accel=(1.0, 1.0), accel_shape="disc")
     load = Load(1.0, com=(0, 0))
     with pytest.raises(TypeError, match="load"):
         grasp_payload([[0, 0], [1, 0]], [[1, 0], [-1, 0]], 0.3, 5.0)

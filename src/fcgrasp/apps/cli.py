@@ -572,7 +572,12 @@ def build_parser() -> argparse.ArgumentParser:
                        help="the load's centre of mass (default: the part's centroid)")
         p.add_argument("--accel", default=None, metavar="AX,AY",
                        help="the load is also carried under every acceleration with "
-                            "|a_x| <= AX and |a_y| <= AY (m/s^2)")
+                            "|a_x| <= AX and |a_y| <= AY (m/s^2), or in their ellipse "
+                            "(--accel-shape ellipse)")
+        p.add_argument("--accel-shape", default="box", choices=("box", "ellipse"),
+                       help="the set of accelerations: the box of --accel (default) or "
+                            "the ellipse with those semi-axes (at most so much in any "
+                            "direction: AX = AY is a circle)")
         p.add_argument("--force-limit", type=float, default=None, metavar="N",
                        help="largest normal force of each finger, newtons")
         p.add_argument("--total-force", type=float, default=None, metavar="N",

@@ -5,10 +5,12 @@ fingers push at most so many newtons.  This module answers "will it hold this pa
 
 * :class:`Load` is the *task wrench set*: the weight of a part of ``mass`` kilograms at
   its centre of mass ``com``, carried with every linear acceleration of a box
-  ``|a_x| <= accel[0]``, ``|a_y| <= accel[1]`` (m/s^2), plus an external torque in a
-  range.  The wrench the fingers must supply is ``-(F, com x F + tau)`` with
-  ``F = mass (gravity - a)``: an affine image of a box, so a polytope whose vertices are
-  the box's corners (:meth:`Load.wrenches`).
+  ``|a_x| <= accel[0]``, ``|a_y| <= accel[1]`` (m/s^2) or of the ellipse with those
+  semi-axes (``accel_shape="ellipse"``: an acceleration of at most so much in any
+  direction), plus an external torque in a range.  The wrench the fingers must supply
+  is ``-(F, com x F + tau)`` with ``F = mass (gravity - a)``: an affine image of a box,
+  so a polytope whose vertices are the box's corners (:meth:`Load.wrenches`), or of an
+  ellipse times a range (its support function in closed form: :meth:`Load.support`).
 * Finger forces: each finger pushes inside its Coulomb cone (``mu``; 0: along the
   normal), its **normal force** at most ``force_limit`` newtons (one value or one per
   finger: a gripper's grip force) and, with ``total_limit``, the normal forces sum to at
@@ -21,6 +23,13 @@ fingers push at most so many newtons.  This module answers "will it hold this pa
   linear program: a scale and a set of finger forces per vertex.  ``s >= 1``: the grasp
   carries the load; ``s = inf``: no limit given and every scale is resisted.  The
   least-peak-force distribution resisting the load (``s = 1``) comes with it.
+  An ellipse of accelerations is not a polytope; with limits the wrenches the fingers
+  can supply are (the forces' set is a polytope: each finger's triangle of cone
+  coefficients, cut by the total), so ``s`` is exact from that polytope's facets
+  ``h . w <= b`` (qhull): ``s = min b / sigma_W(h)``, ``sigma_W`` the load's support
+  function.  Where the limits leave that set unbounded (no limit on some finger and no
+  total) the load's circumscribed polygon of :data:`ELLIPSE_SIDES` sides stands for the
+  ellipse: a lower bound within ``1 / cos(pi / sides) - 1`` of the scale.
 * :func:`region_payload` is the scale guaranteed over **every** grasp of a plan's
   regions (one finger anywhere in each region), certified: a lower bound from boxes of
   finger positions (below), an upper bound from the worst grasp met, refined by branch
@@ -60,7 +69,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -77,6 +86,14 @@ __all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload"
 
 #: Standard gravity, m/s^2.
 G0 = 9.80665
+
+#: Sides of the polygon that stands for an ellipse of accelerations in a linear program
+#: (circumscribed: every grasp that resists it resists the ellipse; a scale so found is
+#: at most a factor ``1 / cos(pi / 64)`` (0.12 %) below the exact one).
+ELLIPSE_SIDES = 64
+
+#: The shapes of a load's set of accelerations.
+ACCEL_SHAPES = ("box", "ellipse")
 
 
 def _pair(value: Any, name: str, nonnegative: bool = False) -> tuple[float, float]:
@@ -104,9 +121,14 @@ class Load:
         Gravity's acceleration, m/s^2 (default ``(0, -9.80665)``: y up).
     accel : (float, float)
         Half-widths of the box of the part's linear accelerations, m/s^2
-        (``|a_x| <= accel[0]``, ``|a_y| <= accel[1]``).
+        (``|a_x| <= accel[0]``, ``|a_y| <= accel[1]``), or the semi-axes of their
+        ellipse.
     torque : (float, float)
         Range ``(low, high)`` of an external torque on the part, N x the part's unit.
+    accel_shape : {"box", "ellipse"}
+        The set of accelerations: the box, or the ellipse
+        ``(a_x / accel[0])^2 + (a_y / accel[1])^2 <= 1`` (a circle of radius ``r``:
+        ``accel=(r, r)``, every direction alike).
 
     >>> Load(1.0, com=(0, 0), accel=(2, 0)).wrenches().round(3).tolist()
     [[-2.0, -9.807, 0.0], [2.0, -9.807, 0.0]]
@@ -117,8 +139,12 @@ class Load:
     gravity: tuple[float, float] = (0.0, -G0)
     accel: tuple[float, float] = (0.0, 0.0)
     torque: tuple[float, float] = (0.0, 0.0)
+    accel_shape: str = "box"
 
     def __post_init__(self) -> None:
+        if self.accel_shape not in ACCEL_SHAPES:
+            raise ValueError(f"accel_shape must be one of {', '.join(ACCEL_SHAPES)}, got "
+                             f"{self.accel_shape!r}")
         object.__setattr__(self, "mass", check_scalar(self.mass, "mass", positive=True))
         if self.com is not None:
             object.__setattr__(self, "com", _pair(self.com, "com"))
@@ -130,22 +156,54 @@ class Load:
                              f"{self.torque!r}")
         object.__setattr__(self, "torque", (lo, hi))
 
-    def wrenches(self, com: Any = None) -> FloatArray:
-        """The vertices ``(fx, fy, tau)`` of the set of wrenches the load applies to the
-        part (the fingers supply their opposite), duplicates removed; ``com`` where the
-        load has none."""
+    @property
+    def is_polytope(self) -> bool:
+        """The load's wrenches are a polytope (a box of accelerations, or an ellipse
+        flattened to a segment or a point)."""
+        return self.accel_shape == "box" or min(self.accel) == 0.0
+
+    def _affine(self, com: Any) -> tuple[FloatArray, FloatArray]:
+        """The wrench at zero acceleration and torque ``w0`` (3,) and the map ``M``
+        (3, 2) of the acceleration's unit coordinates: ``w = w0 + M u + (0, 0, tau)``."""
         c = self.com if self.com is not None else com
         if c is None:
             raise ValueError("the load has no centre of mass (com=None): give com, or "
                              "plan it on a part (its centroid)")
         cx, cy = _pair(c, "com")
-        out = []
-        for sx, sy in itertools.product((-1.0, 1.0), repeat=2):
-            fx = self.mass * (self.gravity[0] - sx * self.accel[0])
-            fy = self.mass * (self.gravity[1] - sy * self.accel[1])
-            for tau in self.torque:
-                out.append((fx, fy, cx * fy - cy * fx + tau))
+        m, (gx, gy), (ax, ay) = self.mass, self.gravity, self.accel
+        w0 = np.array([m * gx, m * gy, cx * m * gy - cy * m * gx])
+        M = np.array([[-m * ax, 0.0], [0.0, -m * ay], [cy * m * ax, -cx * m * ay]])
+        return w0, M
+
+    def wrenches(self, com: Any = None, outer: bool = True,
+                 sides: int = ELLIPSE_SIDES) -> FloatArray:
+        """The vertices ``(fx, fy, tau)`` of the set of wrenches the load applies to the
+        part (the fingers supply their opposite), duplicates removed; ``com`` where the
+        load has none.  An ellipse of accelerations becomes a polygon of ``sides``
+        sides: circumscribed (``outer``: a superset of the load) or inscribed (its
+        vertices are wrenches of the load)."""
+        w0, M = self._affine(com)
+        if self.is_polytope:
+            u = np.array(list(itertools.product((-1.0, 1.0), repeat=2)))
+        else:
+            a = 2 * np.pi * np.arange(sides) / sides
+            r = 1.0 / np.cos(np.pi / sides) if outer else 1.0
+            u = r * np.c_[np.cos(a), np.sin(a)]
+        base = w0 + u @ M.T
+        out = [b + [0.0, 0.0, tau] for b in base for tau in self.torque]
         return np.unique(np.round(np.array(out), 12), axis=0)
+
+    def support(self, h: Any, com: Any = None) -> FloatArray:
+        """The support function of the load's wrenches, ``max h . w`` over the set, for
+        each row ``h`` (n, 3): in closed form (the box's corners, or the ellipse's
+        ``|M^T h|``, plus the torque range's end)."""
+        H = np.atleast_2d(np.asarray(h, float))
+        w0, M = self._affine(com)
+        proj = H @ M                                   # (n, 2)
+        spread = np.abs(proj).sum(axis=1) if self.accel_shape == "box" \
+            else np.hypot(proj[:, 0], proj[:, 1])
+        lo, hi = self.torque
+        return cast("FloatArray", H @ w0 + spread + np.maximum(H[:, 2] * lo, H[:, 2] * hi))
 
 
 @dataclass(frozen=True)
@@ -153,8 +211,9 @@ class Payload:
     """What one grasp carries: ``scale`` (the largest multiple of the load resisted
     within the limits; ``inf`` when nothing limits it, 0 when the grasp cannot resist
     it at all); ``forces`` (V, k, 2): the least-peak-force distribution resisting each
-    vertex wrench of the load itself (``scale >= 1``; else None); ``peak``: its largest
-    normal force."""
+    vertex wrench of the load itself (an ellipse of accelerations: at
+    :data:`ELLIPSE_SIDES` points on it; ``scale >= 1``; else None); ``peak``: its
+    largest normal force."""
 
     scale: float
     forces: FloatArray | None = None
@@ -261,6 +320,83 @@ def _wrench_edges(p: FloatArray, E: FloatArray) -> FloatArray:
     return np.concatenate([E, tau[..., None]], axis=-1)
 
 
+def _force_vertices(per: FloatArray, total: float) -> FloatArray | None:
+    """(N, k, 2): the vertices of the fingers' cone coefficients allowed by the limits
+    (each finger's triangle ``c >= 0, c_1 + c_2 <= per``, cut by ``sum <= total``: the
+    product's vertices under the total and the total's crossings of the product's
+    edges); None where the set is unbounded."""
+    k = len(per)
+    per = np.minimum(per, total)                   # the total bounds every finger too
+    if not np.all(np.isfinite(per)):
+        return None
+    tri = [np.array([[0.0, 0.0], [p, 0.0], [0.0, p]]) for p in per]
+    out = [c for c in (np.array([tri[i][j] for i, j in enumerate(ch)])
+                       for ch in itertools.product(range(3), repeat=k))
+           if c.sum() <= total]
+    if np.isfinite(total):
+        for j in range(k):
+            for ch in itertools.product(range(3), repeat=k - 1):
+                c = np.array([tri[i][x] for i, x in zip([i for i in range(k) if i != j], ch,
+                                                          strict=True)])
+                rest = float(c.sum())
+                for a, b in ((0, 1), (0, 2)):
+                    sa, sb = rest + tri[j][a].sum(), rest + tri[j][b].sum()
+                    if (sa - total) * (sb - total) < 0:
+                        t = (total - sa) / (sb - sa)
+                        out.append(np.insert(c, j, tri[j][a] + t * (tri[j][b] - tri[j][a]),
+                                             axis=0))
+    return np.array(out)
+
+
+def _facet_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: float
+                 ) -> float | None:
+    """The exact largest scale of ``load`` (any convex set with a support function)
+    that one grasp resists: the fingers' wrenches within the limits are a polytope
+    ``P`` (the image of :func:`_force_vertices`); they must supply the opposite of the
+    load, and ``-s W`` is inside ``P`` iff ``s sigma_W(-h) <= b`` on each facet
+    ``h . w <= b`` of ``P``.  None where ``P`` is
+    unbounded or flat (the caller then solves the program on polygon vertices)."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    V = _force_vertices(per, total)
+    if V is None:
+        return None
+    pts = np.einsum("nkj,kjd->nd", V, E)
+    unit = np.abs(pts).max(axis=0)                 # columns scaled: N and N x length
+    if not np.all(unit > 0):
+        return None
+    try:
+        hull = ConvexHull(pts / unit)
+    except QhullError:
+        return None
+    h = hull.equations[:, :3] / unit               # h . w + d <= 0 inside, in wrenches
+    b = np.maximum(-hull.equations[:, 3], 0.0)     # the origin (no force) is in P
+    sigma = load.support(-h, com)
+    pos = sigma > TOL * np.abs(b).max()
+    if not pos.any():                              # pragma: no cover - P is bounded
+        return float("inf")
+    return float(np.min(b[pos] / sigma[pos]))
+
+
+def _load_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: float,
+                upper: bool = False) -> float:
+    """The largest scale of ``load`` one grasp resists: the program over the load's
+    vertices (a polytope), the facets of the fingers' polytope (an ellipse, limits
+    given), else the program over the ellipse's circumscribed polygon (a lower bound;
+    ``upper``: the inscribed one, an upper bound).  Without any limit the scale is 0
+    or infinite: infinite iff some positive scale is resisted with unit limits."""
+    if load.is_polytope:
+        return _scale(E, load.wrenches(com), per, total)
+    if not np.isfinite(per).any() and not np.isfinite(total):
+        s1 = _facet_scale(E, load, com, np.ones(len(per)), np.inf)
+        if s1 is not None:
+            return float("inf") if s1 > 0 else 0.0
+    s = _facet_scale(E, load, com, per, total)
+    if s is not None:
+        return s
+    return _scale(E, load.wrenches(com, outer=not upper), per, total)
+
+
 def _scale(E: FloatArray, W: FloatArray, per: FloatArray, total: float) -> float:
     """The largest scale of one grasp (``E``: its cone edges' wrenches)."""
     res = _program(E, W, per, total)
@@ -297,10 +433,11 @@ def grasp_payload(points: Any, normals: Any, mu: Any, load: Load, force_limit: A
     p, n = check_contact_points(points, normals)
     mu_v = check_mu_scalar(mu, "mu")
     per, total = _limits(force_limit, total_limit, len(p))
-    W = load.wrenches(com)
+    # the forces are those of the load's vertices (an ellipse's: points on it)
+    W = load.wrenches(com, outer=False)
     edges = _cone_edges(n, np.full(len(p), np.arctan(mu_v)))
     E = _wrench_edges(p, edges)
-    s = _scale(E, W, per, total)
+    s = _load_scale(E, load, com, per, total)
     if s < 1.0:
         return Payload(s)
     res = _program(E, W, per, total, minimize_peak=True)
@@ -451,7 +588,7 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
                zip(plan.regions, plan.region_edges, strict=True)
                if len(r) > 1 or np.hypot(*(np.asarray(r[0]) - polygon.centroid)) > TOL]
     per, total = _limits(force_limit, total_limit, len(fingers))
-    W = load.wrenches(polygon.centroid)
+    W = load.wrenches(polygon.centroid)            # an ellipse's circumscribed polygon
     choices = [_pieces(r, -polygon.normals[list(e)], mu) for r, e in fingers]
 
     best_upper, worst = np.inf, np.zeros((len(fingers), 2))
@@ -465,10 +602,14 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
         rows = _box_rows(pieces, lo, hi)
         corners = []
         for E, p in rows:                          # each corner is a grasp: an upper bound
-            corners.append(_scale(E, W, per, total))
+            corners.append(_load_scale(E, load, polygon.centroid, per, total, upper=True))
             if corners[-1] < best_upper:
                 best_upper, worst = corners[-1], p
-        low = _box_scale(rows, hi - lo, W, per, total) if len(rows) > 1 else corners[0]
+        if len(rows) > 1:
+            low = _box_scale(rows, hi - lo, W, per, total)
+        else:                                      # one grasp: its own scale, certified
+            low = corners[0] if load.is_polytope else _load_scale(
+                rows[0][0], load, polygon.centroid, per, total)
         heapq.heappush(heap, (low, count, pieces, lo, hi))
 
     for pieces in itertools.product(*choices):

@@ -45,8 +45,8 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: :func:`fcgrasp.placement_probability`), a pose error (:func:`fcgrasp.pose_probability`),
 #: finger springs (each plan's stability, :func:`fcgrasp.plan_stability`), and the top
 #: of a friction range (``mu_high``: ``--mu LOW:HIGH``).
-LOAD_OPTIONS = ("mass", "com", "accel", "force_limit", "total_force", "placement_sigma",
-                "pose_sigma", "stiffness", "grip_force", "mu_high")
+LOAD_OPTIONS = ("mass", "com", "accel", "accel_shape", "force_limit", "total_force",
+                "placement_sigma", "pose_sigma", "stiffness", "grip_force", "mu_high")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -83,7 +83,7 @@ _KINDS: dict[str, Any] = {
     "certify": "bool", "single_edge": "bool", "soft": "bool", "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
     "part": "str", "gripper": "str", "rank_by": "str", "select": "str", "units": "str",
-    "file_units": "str", "layer": "str", "json": "str", "plot": "str"}
+    "file_units": "str", "layer": "str", "json": "str", "plot": "str", "accel_shape": "str"}
 
 
 def _check_kind(name: str, value: Any) -> Any:
@@ -147,6 +147,7 @@ class PlanRequest:
     mass: float | None = None
     com: tuple[float, float] | None = None
     accel: tuple[float, float] | None = None
+    accel_shape: str = "box"
     force_limit: float | None = None
     total_force: float | None = None
     placement_sigma: float | None = None
@@ -256,6 +257,9 @@ class PlanRequest:
                                        f"{self.mu_high:g}")
         if self.accel is not None and min(self.accel) < 0:
             raise _fail("accel", f"--accel is two half-widths >= 0, got {self.accel}")
+        if self.accel_shape not in ("box", "ellipse"):
+            raise _fail("accel_shape", f"--accel-shape is box or ellipse, got "
+                                       f"{self.accel_shape!r}")
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
@@ -328,7 +332,8 @@ class PlanRequest:
             return None
         from ..model.loads import Load
 
-        return Load(self.mass, com=self.com, accel=self.accel or (0.0, 0.0))
+        return Load(self.mass, com=self.com, accel=self.accel or (0.0, 0.0),
+                    accel_shape=self.accel_shape)
 
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
@@ -452,7 +457,8 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     if load is not None:
         params["load"] = {
             "mass_kg": load.mass, "com": None if load.com is None else list(load.com),
-            "accel_m_s2": list(load.accel), "gravity_m_s2": list(load.gravity),
+            "accel_m_s2": list(load.accel), "accel_shape": load.accel_shape,
+            "gravity_m_s2": list(load.gravity),
             "force_limit_n": request.force_limit, "total_force_n": request.total_force}
     reason = None if plans else gripper.no_grasp_reason(request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
