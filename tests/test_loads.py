@@ -149,21 +149,21 @@ def test_facets_of_the_fingers_wrenches_give_the_programs_scale(seed):
                                        for s in range(1, 8))])
 def test_an_ellipse_of_accelerations_between_its_polygons(seed):
     """An ellipse of accelerations: the scale lies between the program's over an
-    inscribed polygon of 180 sides (its vertices are loads: an upper bound) and over the
-    circumscribed one (a lower bound), which are 1.5e-4 apart; the least-peak forces
+    inscribed polygon of 90 sides (its vertices are loads: an upper bound) and over the
+    circumscribed one (a lower bound), which are 6e-4 apart; the least-peak forces
     resist points of the ellipse."""
     rng = np.random.default_rng(200 + seed)
     checked = 0
-    for _ in range(12):
+    for _ in range(7):
         points, normals, mu, load, per, total = _random_case(rng)
         load = Load(load.mass, com=load.com, accel=tuple(rng.uniform(0.5, 6.0, 2)),
                     torque=load.torque, accel_shape="ellipse")
         k = len(points)
         per_v, total_v = _limits_of(per, total, k)
         got = grasp_payload(points, normals, mu, load, per, total)
-        inner = _reference_scale(points, normals, mu, load.wrenches(outer=False, sides=180),
+        inner = _reference_scale(points, normals, mu, load.wrenches(outer=False, sides=90),
                                  per_v, total_v)
-        outer = _reference_scale(points, normals, mu, load.wrenches(outer=True, sides=180),
+        outer = _reference_scale(points, normals, mu, load.wrenches(outer=True, sides=90),
                                  per_v, total_v)
         if np.isinf(inner) and np.isinf(outer):
             assert np.isinf(got.scale)
@@ -175,7 +175,7 @@ def test_an_ellipse_of_accelerations_between_its_polygons(seed):
             for w, F in zip(W, got.forces, strict=True):
                 assert np.allclose(F.sum(axis=0), -w[:2], atol=1e-6 * (1 + abs(w).max()))
         checked += 1
-    assert checked >= 6
+    assert checked >= 3
 
 
 def test_an_ellipse_flattened_to_a_segment_is_the_box():
@@ -262,16 +262,17 @@ def test_region_payload_is_below_every_grasp_of_the_regions(seed):
     assert cases >= 3
 
 
-def test_region_payload_of_an_ellipse_is_below_its_grasps():
+@pytest.mark.parametrize("fingers", [2, pytest.param(3, marks=pytest.mark.slow)])
+def test_region_payload_of_an_ellipse_is_below_its_grasps(fingers):
     """An ellipse of accelerations over a plan's regions: the certified scale (boxes
     over the ellipse's circumscribed polygon) is at most the exact scale of every grasp
     sampled in the regions, and the worst grasp's scale is an exact grasp's."""
     rng = np.random.default_rng(7)
     part = fc.read_part("demo:blob")
     load = Load(0.4, accel=(3.0, 1.5), torque=(-2.0, 2.0), accel_shape="ellipse")
-    for kw in (dict(fingers=2, mu=0.4), dict(fingers=3, mu=0.4)):
+    for kw in (dict(fingers=fingers, mu=0.4),):
         plan = fc.plan(part, top=1, **kw)[0]
-        got = region_payload(part, plan, load, force_limit=12.0, gap=0.02, max_boxes=40)
+        got = region_payload(part, plan, load, force_limit=12.0, gap=0.02, max_boxes=5)
         assert 0 < got.lower <= got.upper
         worst = grasp_payload(got.worst, [-part.normals[e[0]] for e in plan.region_edges],
                               plan.mu, load, 12.0, com=part.centroid).scale

@@ -573,7 +573,9 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
     ``plan``: a :class:`~fcgrasp.GraspPlan` of point fingers (friction ``plan.mu``;
     gravity's contact, if any, is part of the load instead: its region is a point).
     Each box costs a linear program over its corners (two fingers: about 15 ms; four:
-    about 70 ms); four frictionless fingers converge slowest (their corners' forces
+    about 70 ms; an ellipse of accelerations, whose circumscribed polygon has
+    :data:`ELLIPSE_SIDES` vertices instead of a box's four, about ten times more);
+    four frictionless fingers converge slowest (their corners' forces
     are determined, so the bound needs small boxes): ``upper`` and ``gap`` say how far
     the certified ``lower`` is from the worst grasp found.
     """
