@@ -373,6 +373,8 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
         engine.execute(fig)
     for ax in fig.axes:                     # the numbers placed for the final layout
         place_edge_labels(ax)
+    if engine is not None:                  # that layout kept: saving does not redo it
+        fig.set_layout_engine("none")
     save_figure(fig, path, outputs)
     plt.close(fig)
 
