@@ -469,22 +469,49 @@ def test_a_real_part_handles_numbers_scale_zoom_and_pan(server, browser, tmp_pat
     assert re.search(rf"edge ({k - 1}|{k})$", browser.find_element(By.ID, "readout").text)
 
 
+def _crosses_itself(rings):
+    """Whether two edges that share no vertex cross properly (every pair of edges of
+    every ring, in numpy: the reference the page's O(n) drag check must agree with)."""
+    a = np.concatenate([np.asarray(r, float) for r in rings])
+    b = np.concatenate([np.roll(np.asarray(r, float), -1, axis=0) for r in rings])
+    ring = np.concatenate([np.full(len(r), k) for k, r in enumerate(rings)])
+    idx = np.concatenate([np.arange(len(r)) for r in rings])
+    size = np.array([len(rings[k]) for k in ring])
+
+    def side(pts):                         # [j, i]: pts[i] against edge j (a cross product)
+        e, d = b - a, pts[None, :, :] - a[:, None, :]
+        return e[:, None, 0] * d[..., 1] - e[:, None, 1] * d[..., 0]
+    s, t = side(a), side(b)
+    # edge i's ends on both sides of edge j's line, strictly (and the other way round)
+    split = ((s > 0) != (t > 0)) & (s != 0) & (t != 0)
+    proper = split & split.T
+    gap = np.abs(idx[:, None] - idx[None, :])
+    near = (ring[:, None] == ring[None, :]) & ((gap <= 1) | (gap == size[:, None] - 1))
+    return bool((proper & ~near).any())
+
+
 def test_the_drag_check_is_the_whole_outline_check(server, browser):
     """The drag's self-crossing test (the two edges at the moved vertex against the
-    rest, O(n)) gives the verdict of the test of every pair of edges, on seeded random
-    moves of a star with a hole, crossings and near misses included."""
+    rest, O(n)) gives the verdict of the test of every pair of edges (in numpy here), on
+    seeded random moves of a star with a hole, crossings and near misses included."""
     browser.get(server)
     wait_plan(browser, 0)
     rng = np.random.default_rng(5)
+    verdicts = set()
     for trial in range(40):
         outer = _star(60, seed=trial).tolist()
         hole = (0.2 * np.asarray(outer[::6])).tolist()
         ring = int(rng.integers(0, 2))
         r = outer if ring == 0 else hole
         i = int(rng.integers(0, len(r)))
-        r[i] = (np.asarray(r[i]) * rng.uniform(0.0, 2.5) + rng.normal(0, 5, 2)).tolist()
-        fast, whole = browser.execute_script(
-            "const part = {outer: arguments[0], holes: [arguments[1]]};"
-            "return [explorer.crossesAt(part, arguments[2], arguments[3]),"
-            " explorer.selfCrossing(part)];", outer, hole, ring, i)
+        if trial % 2:                          # anywhere over the part: crossings
+            r[i] = rng.uniform(-80, 80, 2).tolist()
+        else:                                  # near its place: near misses
+            r[i] = (np.asarray(r[i]) * rng.uniform(0.0, 2.5) + rng.normal(0, 5, 2)).tolist()
+        fast = browser.execute_script(
+            "return explorer.crossesAt({outer: arguments[0], holes: [arguments[1]]},"
+            " arguments[2], arguments[3]);", outer, hole, ring, i)
+        whole = _crosses_itself([outer, hole])
         assert fast == whole, (trial, ring, i)
+        verdicts.add(whole)
+    assert verdicts == {True, False}            # both kinds of move were met

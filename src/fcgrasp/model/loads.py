@@ -26,10 +26,11 @@ fingers push at most so many newtons.  This module answers "will it hold this pa
   An ellipse of accelerations is not a polytope; with limits the wrenches the fingers
   can supply are (the forces' set is a polytope: each finger's triangle of cone
   coefficients, cut by the total), so ``s`` is exact from that polytope's facets
-  ``h . w <= b`` (qhull): ``s = min b / sigma_W(h)``, ``sigma_W`` the load's support
-  function.  Where the limits leave that set unbounded (no limit on some finger and no
-  total) the load's circumscribed polygon of :data:`ELLIPSE_SIDES` sides stands for the
-  ellipse: a lower bound within ``1 / cos(pi / sides) - 1`` of the scale.
+  ``h . w <= b`` (qhull): ``s = min b / sigma_W(-h)`` (the fingers supply the load's
+  opposite), ``sigma_W`` the load's support function.  Where the limits leave that set
+  unbounded (no limit on some finger and no total) the load's circumscribed polygon of
+  :data:`ELLIPSE_SIDES` sides stands for the ellipse: a lower bound within
+  ``1 / cos(pi / sides) - 1`` of the scale.
 * :func:`region_payload` is the scale guaranteed over **every** grasp of a plan's
   regions (one finger anywhere in each region), certified: a lower bound from boxes of
   finger positions (below), an upper bound from the worst grasp met, refined by branch
@@ -354,8 +355,8 @@ def _facet_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: fl
     that one grasp resists: the fingers' wrenches within the limits are a polytope
     ``P`` (the image of :func:`_force_vertices`); they must supply the opposite of the
     load, and ``-s W`` is inside ``P`` iff ``s sigma_W(-h) <= b`` on each facet
-    ``h . w <= b`` of ``P``.  None where ``P`` is
-    unbounded or flat (the caller then solves the program on polygon vertices)."""
+    ``h . w <= b`` of ``P``.  None where ``P`` is unbounded or flat (the caller then
+    solves the program on polygon vertices)."""
     from scipy.spatial import ConvexHull, QhullError
 
     V = _force_vertices(per, total)
@@ -379,14 +380,15 @@ def _facet_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: fl
 
 
 def _load_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: float,
-                upper: bool = False) -> float:
+                upper: bool = False, vertices: FloatArray | None = None) -> float:
     """The largest scale of ``load`` one grasp resists: the program over the load's
-    vertices (a polytope), the facets of the fingers' polytope (an ellipse, limits
-    given), else the program over the ellipse's circumscribed polygon (a lower bound;
-    ``upper``: the inscribed one, an upper bound).  Without any limit the scale is 0
-    or infinite: infinite iff some positive scale is resisted with unit limits."""
+    vertices (a polytope; ``vertices``: ``load.wrenches(com)`` when the caller has
+    them), the facets of the fingers' polytope (an ellipse, limits given), else the
+    program over the ellipse's circumscribed polygon (a lower bound; ``upper``: the
+    inscribed one, an upper bound).  Without any limit the scale is 0 or infinite:
+    infinite iff some positive scale is resisted with unit limits."""
     if load.is_polytope:
-        return _scale(E, load.wrenches(com), per, total)
+        return _scale(E, load.wrenches(com) if vertices is None else vertices, per, total)
     if not np.isfinite(per).any() and not np.isfinite(total):
         s1 = _facet_scale(E, load, com, np.ones(len(per)), np.inf)
         if s1 is not None:
@@ -604,7 +606,8 @@ def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
         rows = _box_rows(pieces, lo, hi)
         corners = []
         for E, p in rows:                          # each corner is a grasp: an upper bound
-            corners.append(_load_scale(E, load, polygon.centroid, per, total, upper=True))
+            corners.append(_load_scale(E, load, polygon.centroid, per, total, upper=True,
+                                       vertices=W))
             if corners[-1] < best_upper:
                 best_upper, worst = corners[-1], p
         if len(rows) > 1:

@@ -92,24 +92,9 @@ function segmentsCross(p, q, r, s) {
   return ((d1 > 0) !== (d2 > 0)) && ((d3 > 0) !== (d4 > 0)) && d1 && d2 && d3 && d4;
 }
 
-// a quick test while dragging (the server's Polygon check is the authority)
-function selfCrossing(part) {
-  const E = edges(part);
-  for (let i = 0; i < E.length; i++) {
-    for (let j = i + 1; j < E.length; j++) {
-      const ei = E[i], ej = E[j];
-      if (ei.ring === ej.ring) {
-        const n = rings(part)[ei.ring].length;
-        if (Math.abs(ei.i - ej.i) <= 1 || Math.abs(ei.i - ej.i) === n - 1) continue;
-      }
-      if (segmentsCross(ei.a, ei.b, ej.a, ej.b)) return true;
-    }
-  }
-  return false;
-}
-
 // the edges that meet vertex (ring, index) against every other edge: a drag or a
-// deletion changes only those, and the rest of the outline was good (O(n) per frame)
+// deletion changes only those, and the rest of the outline was good (O(n) per frame; a
+// quick test, the server's Polygon check is the authority)
 function crossesAt(part, ring, index) {
   const R = rings(part), r = R[ring], n = r.length;
   const moved = [[(index - 1 + n) % n, index], [index, (index + 1) % n]];
@@ -234,19 +219,24 @@ function screenTurns(q) {
     }
     return q[j];
   };
-  for (let i = 0; i < n; i++) {
-    const a = far(i, -1), b = far(i, 1), p = q[i];
-    const u = [p[0] - a[0], p[1] - a[1]], w = [b[0] - p[0], b[1] - p[1]];
-    out[i] = Math.abs(Math.atan2(u[0] * w[1] - u[1] * w[0], u[0] * w[0] + u[1] * w[1]));
-  }
+  for (let i = 0; i < n; i++) out[i] = turnAt(far(i, -1), q[i], far(i, 1));
   return out;
 }
 
-// the outline's turn at vertex i of ring r, in radians
-function turn(r, i) {
-  const n = r.length, a = r[(i - 1 + n) % n], p = r[i], b = r[(i + 1) % n];
+// the turn (radians, 0 to pi) of the path a -> p -> b at p
+function turnAt(a, p, b) {
   const u = [p[0] - a[0], p[1] - a[1]], w = [b[0] - p[0], b[1] - p[1]];
   return Math.abs(Math.atan2(u[0] * w[1] - u[1] * w[0], u[0] * w[0] + u[1] * w[1]));
+}
+
+// the outline's turn at vertex i of ring r
+const turn = (r, i) => turnAt(r[(i - 1 + r.length) % r.length], r[i], r[(i + 1) % r.length]);
+
+// spatial hashing of the screen: a cell's key, and the list of what a map holds in it
+const cellKey = (cx, cy) => `${cx},${cy}`;
+function bucket(map, key) {
+  if (!map.has(key)) map.set(key, []);
+  return map.get(key);
 }
 
 // the vertices that get a handle: the corners, and every vertex whose edges are
@@ -269,22 +259,19 @@ function handleVertices() {
   });
   cand.sort((a, b) => b.turn - a.turn);
   const grid = new Map(), out = [];
-  const key = (cx, cy) => `${cx},${cy}`;
   for (const c of cand) {
     const cx = Math.floor(c.q[0] / HANDLE_GAP), cy = Math.floor(c.q[1] / HANDLE_GAP);
     let free = true;
     for (let dx = -1; dx <= 1 && free; dx++) {
       for (let dy = -1; dy <= 1 && free; dy++) {
-        for (const o of grid.get(key(cx + dx, cy + dy)) || []) {
+        for (const o of grid.get(cellKey(cx + dx, cy + dy)) || []) {
           if (Math.hypot(o.q[0] - c.q[0], o.q[1] - c.q[1]) < HANDLE_GAP) { free = false; break; }
         }
       }
     }
     if (!free) continue;
     out.push(c);
-    const k = key(cx, cy);
-    if (!grid.has(k)) grid.set(k, []);
-    grid.get(k).push(c);
+    bucket(grid, cellKey(cx, cy)).push(c);
   }
   return out;
 }
@@ -334,10 +321,11 @@ function planSegments(plan) {
 // of the plan drawn
 function edgeLabels(plan) {
   const E = edges(S.part), cell = 32, segs = new Map(), out = [];
-  const key = (cx, cy) => `${cx},${cy}`;
   const cells = (b, fn) => {
     for (let cx = Math.floor(b[0] / cell); cx <= Math.floor(b[2] / cell); cx++) {
-      for (let cy = Math.floor(b[1] / cell); cy <= Math.floor(b[3] / cell); cy++) fn(key(cx, cy));
+      for (let cy = Math.floor(b[1] / cell); cy <= Math.floor(b[3] / cell); cy++) {
+        fn(cellKey(cx, cy));
+      }
     }
   };
   const scr = E.map((e) => [X(e.a), X(e.b), 0]).concat(planSegments(plan));
@@ -345,7 +333,7 @@ function edgeLabels(plan) {
     if (!inView(a, 100) && !inView(b, 100)) return;
     if (Math.abs(a[0] - b[0]) + Math.abs(a[1] - b[1]) > 4 * Math.max(S.view.W, S.view.H)) return;
     cells([Math.min(a[0], b[0]) - pad, Math.min(a[1], b[1]) - pad, Math.max(a[0], b[0]) + pad,
-           Math.max(a[1], b[1]) + pad], (c) => { if (!segs.has(c)) segs.set(c, []); segs.get(c).push(k); });
+           Math.max(a[1], b[1]) + pad], (c) => bucket(segs, c).push(k));
   });
   const placed = new Map();
   const order = E.map((e, k) => k).sort((i, j) => E[j].len - E[i].len);
@@ -379,7 +367,7 @@ function edgeLabels(plan) {
       const box = [c[0] - w / 2, c[1] - h / 2, c[0] + w / 2, c[1] + h / 2];
       if (!fits(box)) continue;
       out.push({ k, c });
-      cells(box, (c2) => { if (!placed.has(c2)) placed.set(c2, []); placed.get(c2).push(box); });
+      cells(box, (c2) => bucket(placed, c2).push(box));
       break;
     }
   }
@@ -1037,6 +1025,6 @@ async function init() {
 
 // for tests and the console: the state and the mapping from part to screen
 window.explorer = { state: S, toScreen: (p) => X(p), toPart: (x, y) => toWorld(x, y), figureSVG,
-                    options, selfCrossing, crossesAt, dragVertex, zoomAt, render };
+                    options, crossesAt, dragVertex, zoomAt, render };
 
 init().catch((e) => message(`cannot start: ${e.message}`));
