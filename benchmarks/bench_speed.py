@@ -157,6 +157,9 @@ def run(row):
     if row in ("regions", "regions_lp"):
         sq = fc.Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
         n = 200
+        # the first call of a process imports the planner (about 50 ms, once)
+        fc.independent_regions(sq, (0, 2), mu=0.3)
+        lp_regions(sq, 0, 2, 0.3)
         t0 = time.perf_counter()
         for _ in range(n):
             if row == "regions":

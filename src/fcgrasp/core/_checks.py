@@ -8,6 +8,7 @@ the value received, in the manner of pytransform3d's ``check_matrix``.
 
 from __future__ import annotations
 
+import math
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -156,6 +157,8 @@ def check_mu(value: Any, name: str = "mu") -> FloatArray:
 
 def check_mu_scalar(value: Any, name: str = "mu") -> float:
     """One Coulomb friction coefficient: a finite number >= 0."""
+    if type(value) in (float, int) and 0 <= value < math.inf:   # the common case, quick
+        return float(value)
     if not _is_number(value) and not (isinstance(value, np.ndarray) and value.ndim == 0
                                       and _is_number(value.item())):
         raise TypeError(f"{name} must be a single number, got {_short(value)}")
@@ -178,6 +181,12 @@ def check_int(value: Any, name: str, *, choices: tuple[int, ...] | None = None,
 def check_scalar(value: Any, name: str, *, positive: bool = False,
                  nonnegative: bool = False) -> float:
     """A finite real scalar, optionally > 0 or >= 0."""
+    if type(value) in (float, int) and -math.inf < value < math.inf:   # quick, as below
+        x = float(value)
+        if (positive and not x > 0) or (nonnegative and not x >= 0):
+            raise ValueError(f"{name} must be {'> 0' if positive else '>= 0'}, got "
+                             f"{_short(value)}")
+        return x
     if isinstance(value, (bool, np.bool_, str, bytes)) or (not np.isscalar(value)
                                                             and np.ndim(value) != 0):
         raise TypeError(f"{name} must be a real number, got {_short(value)}")

@@ -29,6 +29,7 @@ from ..core.tolerances import SOLVER_TOL
 from ..model.frictionless_stretches import frictionless_stretch_regions
 from ..model.graspsets import Vertex
 from ..model.hand import Hand
+from ..model.one_pair import pair_regions
 from ..model.plans import GraspPlan
 from ..model.polygon import Polygon
 from ..model.regions import DEFAULT_MARGIN_DEG
@@ -238,6 +239,10 @@ def regions_on(polygon: Polygon, edges: Any, mu: float = 0.0,
             np.ndim(e) == 1 for e in edges):
         return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
     idx = _edge_indices(polygon, edges)
+    if len(idx) == 2 and hand is None and gravity is None and idx[0] != idx[1]:
+        # one edge pair: the closed forms on floats (the same checks as below)
+        return _one_pair(polygon, plan_spec(fingers=2, mu=mu, top=1, margin=margin,
+                                            tol=tol), idx)
     gripper = _gripper_on(idx, mu, hand, gravity)
     spec = plan_spec(fingers=gripper.fingers, mu=gripper.mu, top=1, hand=hand,
                      margin=margin, gravity=gripper.gravity, tol=tol)
@@ -281,6 +286,44 @@ def _gripper_on(idx: list[int], mu: float, hand: Hand | None,
         raise ValueError(f"four fingers need four distinct edges or three with one twice, "
                          f"got {idx}")
     return point_fingers(n, 0.0 if frictionless else mu, gravity, hand)
+
+
+def _one_pair(polygon: Polygon, spec: PlanSpec, idx: list[int]) -> GraspPlan | None:
+    """Two fingers with friction on one edge pair, without a hand: the regions of
+    :func:`fcgrasp.model.one_pair.pair_regions` (plain floats; the same plan as
+    :meth:`_PointFingers.search_edges`, which the tests keep as the reference), the
+    fingers in the order asked for."""
+    i, j = sorted(idx)
+    if not (polygon.usable[i] and polygon.usable[j]):
+        return None
+    segs, centers = [], []
+    for e in (i, j):
+        ax, ay = polygon.starts[e].tolist()
+        tx, ty = polygon.tangents[e].tolist()
+        nx, ny = polygon.normals[e].tolist()
+        length = float(polygon.lengths[e])
+        segs.append((ax, ay, ax + length * tx, ay + length * ty))
+        centers.append(math.atan2(-ny, -nx))
+    found = pair_regions(segs[0], segs[1], centers[0], centers[1], math.atan(spec.mu),
+                         math.radians(spec.margin), spec.tol)
+    if found is None:
+        return None
+    mode, levels, params = found
+    regions, contacts = [], []
+    for (ax, ay, bx, by), (lo, hi) in zip(segs, params, strict=True):
+        dx, dy = bx - ax, by - ay
+        d = math.hypot(dx, dy)
+        ux, uy = dx / d, dy / d
+        p, q = (ax + lo * ux, ay + lo * uy), (ax + hi * ux, ay + hi * uy)
+        regions.append(np.array([p, q]))
+        contacts.append(((p[0] + q[0]) / 2, (p[1] + q[1]) / 2))
+    order = (0, 1) if idx[0] == i else (1, 0)
+    return GraspPlan((idx[0], idx[1]), [regions[k] for k in order],
+                     np.array([levels[k] for k in order]),
+                     np.array([contacts[k] for k in order]), polygon.normals[idx],
+                     "friction", spec.mu, ("squeeze", "expand")[mode], spec.margin, None,
+                     centroid=polygon.centroid.copy(), radius=polygon.radius,
+                     disturbance=spec.disturbance)
 
 
 def _in_order(p: GraspPlan, idx: list[int]) -> GraspPlan:

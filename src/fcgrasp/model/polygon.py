@@ -28,6 +28,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, cast
 
 import numpy as np
@@ -232,6 +233,13 @@ class Polygon:
         self.size = float(np.hypot(*(hi - lo)))
 
     # ---------------------------------------------------------------- access
+    @cached_property
+    def radius(self) -> float:
+        """The part's radius: the largest distance from the centroid to a vertex of the
+        outer ring (:func:`fcgrasp.model.quality.characteristic_length`), computed once."""
+        d = self.vertices - self.centroid
+        return float(np.max(np.hypot(d[:, 0], d[:, 1])))
+
     @property
     def n_edges(self) -> int:
         """Number of edges, zero-length ones included."""
