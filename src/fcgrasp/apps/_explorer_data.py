@@ -8,6 +8,7 @@ import json
 import math
 import os
 import tempfile
+from dataclasses import replace
 from typing import Any, TypeGuard
 
 import numpy as np
@@ -23,6 +24,12 @@ from ..io.report import json_ready
 GRIPPERS: dict[str, dict[str, Any]] = {
     "2": {"fingers": 2}, "3": {"fingers": 3}, "3g": {"fingers": 3, "gravity": (0.0, -1.0)},
     "4": {"fingers": 4}, "jaw": {"gripper": "jaw", "certify": True}}
+#: The page's gripper choices on a solid (a mesh): two soft fingers, three fingers with
+#: friction, a parallel jaw with pads (:mod:`fcgrasp.spatial`).
+SOLID_GRIPPERS: dict[str, dict[str, Any]] = {
+    "2": {"fingers": 2, "soft": True}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
+_SOLID_OPTIONS = {"2": ("mu", "margin", "top"), "3": ("mu", "margin", "top"),
+                  "jaw": ("mu", "stroke", "pad", "margin", "top")}
 _COMMON = ("margin", "rank_by", "top")
 #: The page's options each of its gripper choices uses (the page sends them all).
 _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
@@ -38,6 +45,55 @@ def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict
                        "units": units, "name": name, "edges": polygon.n_edges,
                        "size": polygon.size, "centroid": polygon.centroid,
                        "notes": list(notes)})
+
+
+def solid_json(solid: Any, name: str) -> dict[str, Any]:
+    """A solid as the page holds it: its triangles (``vertices``, ``faces``), units, the
+    ``source`` it is planned from (``demo:NAME``, or the uploaded file's name: the page
+    sends the triangles back) and a few measures for drawing."""
+    mesh = solid.mesh
+    return json_ready({"solid": True, "source": solid.source or name, "name": name,
+                       "units": solid.units, "vertices": np.asarray(mesh.vertices),
+                       "faces": np.asarray(mesh.faces), "facets": len(solid.facets),
+                       "triangles": int(len(mesh.faces)), "size": solid.size,
+                       "center": solid.center,
+                       "notes": [solid.units_note] if solid.units_note else []})
+
+
+def solid_of(data: dict[str, Any]) -> tuple[Any, str, str]:
+    """The :class:`~fcgrasp.spatial.solid.Solid`, units and source of a solid sent by
+    the page (:func:`solid_json`): a built-in solid read again by name, any other
+    from its triangles (checked as a mesh file's are).  A :class:`RequestError` (field
+    ``part``) says what is wrong."""
+    from ..io.meshes import MESH_SUFFIXES, read_solid
+    from ..io.units import UNITS
+    from ..spatial.solid import DEMO_SOLIDS, solid_from_mesh
+
+    source, units = data.get("source"), data.get("units", "mm")
+    if not isinstance(source, str) or not (
+            source[5:] in DEMO_SOLIDS if source.startswith("demo:")
+            else source.lower().endswith(MESH_SUFFIXES)):
+        raise RequestError(f"part.source must be demo:NAME of a built-in solid or a mesh "
+                           f"file's name, got {_short(source)}", "part")
+    if units not in UNITS:
+        raise RequestError(f"part.units must be one of {', '.join(UNITS)}, got "
+                           f"{_short(units)}", "part")
+    try:
+        if source.startswith("demo:"):
+            return read_solid(source, units=units), units, source
+        import trimesh
+
+        v = np.asarray(data.get("vertices"), dtype=float)
+        f = np.asarray(data.get("faces"), dtype=np.int64)
+        if v.ndim != 2 or v.shape[1] != 3 or f.ndim != 2 or f.shape[1] != 3 \
+                or f.size == 0 or f.min() < 0 or f.max() >= len(v):
+            raise ValueError(f"vertices must be [x, y, z] points and faces [i, j, k] "
+                             f"indices into them, got arrays of shapes {v.shape} and "
+                             f"{f.shape}")
+        mesh = trimesh.Trimesh(v, f, process=False)
+        return solid_from_mesh(mesh, units, source), units, source
+    except (ValueError, TypeError) as exc:
+        raise RequestError(f"the solid is not valid: {exc}", "part") from None
 
 
 def _is_pair(value: Any) -> TypeGuard[list[float]]:
@@ -99,17 +155,22 @@ def polygon_of(data: Any) -> tuple[Any, str]:
 def read_upload(body: bytes, name: str) -> dict[str, Any]:
     """The default part of an uploaded file (any format ``fcgrasp plan`` reads; the
     largest part, as the command line chooses), as :func:`part_json`."""
+    from ..io.meshes import MESH_SUFFIXES, read_solid
     from ..io.parts import FORMATS, choose_part, list_parts
 
     base = os.path.basename(name) or "upload"
     suffix = os.path.splitext(base)[1].lower()
-    if suffix not in FORMATS:
+    if suffix not in FORMATS and suffix not in MESH_SUFFIXES:
         suffix = ""            # the reader sniffs the content
     with tempfile.TemporaryDirectory(prefix="fcgrasp-upload-") as tmp:
         path = os.path.join(tmp, "part" + suffix)
         with open(path, "wb") as fh:
             fh.write(body)
         try:
+            if suffix in MESH_SUFFIXES:       # a solid: its largest watertight body
+                solid = read_solid(path)
+                solid = replace(solid, source=base)
+                return solid_json(solid, base)
             part = choose_part(list_parts(path))
         except (ValueError, TypeError, OSError) as exc:
             msg = str(exc).replace(path, base)
@@ -120,7 +181,7 @@ def read_upload(body: bytes, name: str) -> dict[str, Any]:
 # ----------------------------------------------------------------------------- plans
 
 
-def plan_request(options: Any, name: str = "explorer") -> Any:
+def plan_request(options: Any, name: str = "explorer", units: str | None = None) -> Any:
     """The :class:`~fcgrasp.planning.PlanRequest` of the page's ``options``::
 
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
@@ -134,9 +195,12 @@ def plan_request(options: Any, name: str = "explorer") -> Any:
     >>> plan_request({"gripper": "4", "top": 3}).to_argv()
     ['--fingers', '4', '--top', '3']
     """
+    from ..io.meshes import is_solid_source
     from ..planning import PlanRequest
 
-    kw = _request_options(options)
+    kw = _request_options(options, is_solid_source(name))
+    if units is not None:
+        kw["units"] = units
     try:
         return PlanRequest(part=name, **kw)
     except RequestError:
@@ -151,9 +215,10 @@ _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke
           "gravity", "certify")
 
 
-def _request_options(options: Any) -> dict[str, Any]:
+def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
     """The page's options as :class:`~fcgrasp.planning.PlanRequest` keywords (those of
-    the chosen gripper only), or a RequestError for an unknown key, gripper or top."""
+    the chosen gripper only; on a ``solid``, :data:`SOLID_GRIPPERS`), or a RequestError
+    for an unknown key, gripper or top."""
     if not isinstance(options, dict):
         raise RequestError(f"options must be an object, got {_short(options)}", "options")
     extra = sorted(set(options) - set(_KNOWN))
@@ -161,11 +226,13 @@ def _request_options(options: Any) -> dict[str, Any]:
         raise RequestError(f"options: unknown option {extra[0]!r} (expected "
                            f"{', '.join(sorted(_KNOWN))})", "options")
     gripper = options.get("gripper", "2")
-    if gripper not in GRIPPERS:
-        raise RequestError(f"options.gripper must be one of {', '.join(GRIPPERS)}, got "
-                           f"{_short(gripper)}", "gripper")
-    kw: dict[str, Any] = dict(GRIPPERS[gripper])
-    kw.update({k: options[k] for k in _PAGE_OPTIONS[gripper] if options.get(k) is not None})
+    choices, used = (SOLID_GRIPPERS, _SOLID_OPTIONS) if solid else (GRIPPERS, _PAGE_OPTIONS)
+    if gripper not in choices:
+        what = "on a solid " if solid else ""
+        raise RequestError(f"options.gripper {what}must be one of {', '.join(choices)}, "
+                           f"got {_short(gripper)}", "gripper")
+    kw: dict[str, Any] = dict(choices[gripper])
+    kw.update({k: options[k] for k in used[gripper] if options.get(k) is not None})
     if "along_boundary" in kw:
         kw["single_edge"] = kw.pop("along_boundary") is False
     kw.update({k: tuple(kw[k]) for k in ("stroke", "gravity") if isinstance(kw.get(k), list)})

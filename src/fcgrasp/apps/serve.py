@@ -51,6 +51,7 @@ from ..errors import RequestError
 from ..io.report import json_ready
 from ._explorer_data import (
     GRIPPERS,
+    SOLID_GRIPPERS,
     _short,
     check_result,
     overlay,
@@ -58,6 +59,8 @@ from ._explorer_data import (
     plan_request,
     polygon_of,
     read_upload,
+    solid_json,
+    solid_of,
 )
 
 #: Largest accepted upload (a part file), bytes.
@@ -98,11 +101,17 @@ def plan_result(polygon: Any, units: str, request: Any,
                 progress: Any = None) -> dict[str, Any]:
     """Plan a part as ``fcgrasp plan`` does (:func:`fcgrasp.planning.plan_document` on
     the :func:`plan_request` of the page's options): the JSON report, the equivalent
-    command-line options, the drawing data of every plan and its grasp-set overlay."""
+    command-line options, the drawing data of every plan and its grasp-set overlay.
+    ``polygon`` is a :class:`~fcgrasp.spatial.solid.Solid` where the request's part is
+    a solid."""
     from ..io.parts import Part
     from ..io.report import dumps
     from ..planning import plan_document
 
+    if request.is_solid():                    # a solid (polygon is its Solid): no overlays
+        doc = plan_document(request, part=polygon, progress=progress)
+        return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
+                "overlays": [None] * len(doc.plans)}
     part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
     doc = plan_document(request, part=part, progress=progress)
     return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
@@ -292,6 +301,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
 
     from ..io.parts import DEMO_PARTS, load_part, read_json
     from ..model.ranking import MEASURES
+    from ..spatial.solid import DEMO_SOLIDS, demo_solid
 
     if start is None:
         start = load_part("demo:blob")
@@ -352,14 +362,19 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
 
     async def state(request: Request) -> Response:
         return JSONResponse({"part": first, "demos": list(DEMO_PARTS),
-                             "measures": list(MEASURES), "grippers": list(GRIPPERS),
+                             "solids": list(DEMO_SOLIDS), "measures": list(MEASURES),
+                             "grippers": list(GRIPPERS),
+                             "solid_grippers": list(SOLID_GRIPPERS),
                              "max_upload": max_upload, "answer_within": ANSWER_WITHIN})
 
     async def demo(request: Request) -> Response:
         name = request.path_params["name"]
+        if name in DEMO_SOLIDS:
+            solid = await asyncio.to_thread(demo_solid, name)
+            return JSONResponse(solid_json(solid, f"demo:{name}"))
         if name not in DEMO_PARTS:
-            raise RequestError(f"no built-in part {name!r} (one of {', '.join(DEMO_PARTS)})",
-                               "part", 404)
+            raise RequestError(f"no built-in part {name!r} (one of "
+                               f"{', '.join([*DEMO_PARTS, *DEMO_SOLIDS])})", "part", 404)
         p = load_part(f"demo:{name}")
         return JSONResponse(part_json(p.polygon, p.units, p.source, p.notes))
 
@@ -378,9 +393,14 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
             raise RequestError(f"replaces must be the id of the page's previous job, got "
                                f"{_short(old)}", "replaces")
         # checking a large outline and the options is work: never on the event loop
-        polygon, units = await asyncio.to_thread(polygon_of, data.get("part"))
+        part = data.get("part")
         options = data.get("options", {})
-        request_ = await asyncio.to_thread(plan_request, options)
+        if isinstance(part, dict) and part.get("solid") is True:
+            polygon, units, source = await asyncio.to_thread(solid_of, part)
+            request_ = await asyncio.to_thread(plan_request, options, source, units)
+        else:
+            polygon, units = await asyncio.to_thread(polygon_of, part)
+            request_ = await asyncio.to_thread(plan_request, options)
         if old is not None:                   # the page's previous plan, now stale
             try:
                 await asyncio.to_thread(jobs.cancel, str(old))

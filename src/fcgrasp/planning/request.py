@@ -410,14 +410,15 @@ class PlanDocument:
     title: str
 
 
-def plan_document(request: PlanRequest, part: Part | None = None,
+def plan_document(request: PlanRequest, part: Any = None,
                   progress: Callable[[int, int], None] | None = None,
                   say: Callable[[str], None] | None = None, map: Any = None) -> PlanDocument:
     """Plan a request: read its part (or take ``part``, a
-    :class:`~fcgrasp.io.parts.Part` already read), plan it with its gripper and build the
-    JSON document ``fcgrasp plan --json`` writes.  ``progress(done, total)`` is told how
-    the search goes, ``say(text)`` gets notes (which part of a file was taken, a long
-    search's estimate), ``map`` solves candidate batches elsewhere (see
+    :class:`~fcgrasp.io.parts.Part` already read; for a solid's request a
+    :class:`~fcgrasp.spatial.solid.Solid`, as the explorer sends it), plan it with its
+    gripper and build the JSON document ``fcgrasp plan --json`` writes.
+    ``progress(done, total)`` is told how the search goes, ``say(text)`` gets notes
+    (which part of a file was taken, a long search's estimate), ``map`` solves candidate batches elsewhere (see
     :func:`fcgrasp.plan`).  Every front end plans through this function, so a batch's
     and the explorer's results are exactly those of ``fcgrasp plan --json``.
 
@@ -428,7 +429,7 @@ def plan_document(request: PlanRequest, part: Part | None = None,
     if not isinstance(request, PlanRequest):
         raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
     if request.is_solid():
-        return _solid_document(request)
+        return _solid_document(request, part)
     gripper = request.gripper_object()
     part = request.load(say) if part is None else part
     polygon, units = part.polygon, part.units
@@ -505,7 +506,7 @@ def template_request(options: dict[str, Any]) -> PlanRequest:
     return PlanRequest(part="demo:box" if options.get("soft") else "demo:quad", **options)
 
 
-def _solid_document(request: PlanRequest) -> PlanDocument:
+def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
     """Two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`), three point fingers
     with friction (:func:`fcgrasp.spatial.point_triple_plans`) or a parallel jaw
     (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
@@ -513,8 +514,9 @@ def _solid_document(request: PlanRequest) -> PlanDocument:
     from ..io.meshes import read_solid
     from ..spatial.alternatives import top_distinct
 
-    solid = read_solid(request.part, units=request.units, file_units=request.file_units,
-                       select=request.select)
+    if solid is None:
+        solid = read_solid(request.part, units=request.units, file_units=request.file_units,
+                           select=request.select)
     mu = DEFAULT_MU if request.mu is None else request.mu
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
