@@ -418,9 +418,10 @@ def plan_document(request: PlanRequest, part: Any = None,
     :class:`~fcgrasp.spatial.solid.Solid`, as the explorer sends it), plan it with its
     gripper and build the JSON document ``fcgrasp plan --json`` writes.
     ``progress(done, total)`` is told how the search goes, ``say(text)`` gets notes
-    (which part of a file was taken, a long search's estimate), ``map`` solves candidate batches elsewhere (see
-    :func:`fcgrasp.plan`).  Every front end plans through this function, so a batch's
-    and the explorer's results are exactly those of ``fcgrasp plan --json``.
+    (which part of a file was taken, a long search's estimate), ``map`` solves
+    candidate batches elsewhere (see :func:`fcgrasp.plan`).  Every front end plans
+    through this function, so a batch's and the explorer's results are exactly those
+    of ``fcgrasp plan --json``.
 
     >>> doc = plan_document(PlanRequest(part="demo:blob", top=1))
     >>> doc.report["parameters"]["fingers"], len(doc.report["grasps"])
