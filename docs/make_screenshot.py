@@ -1,7 +1,8 @@
 """Make docs/explorer.png, the README's picture of ``fcgrasp serve`` on ``demo:blob``, and
 docs/explorer-real.png, the page on a real drawing (ezdxf's ``forms.dxf`` from the
-benchmark corpus: 900 edges of fillets, holes and slots), zoomed on a corner (needs
-Debian's chromium and chromedriver, as the browser tests do):
+benchmark corpus: 900 edges of fillets, holes and slots), zoomed on a corner, and
+docs/explorer-solid.png, the 3-D view of ``demo:prism`` planned for three fingers with
+friction (needs Debian's chromium and chromedriver, as the browser tests do):
 
     .venv/bin/python docs/make_screenshot.py
 """
@@ -20,6 +21,7 @@ from selenium.webdriver.chrome.service import Service
 DOCS = Path(__file__).resolve().parent
 OUT = DOCS / "explorer.png"
 REAL = DOCS / "explorer-real.png"
+SOLID = DOCS / "explorer-solid.png"
 DRAWING = DOCS.parent / "benchmarks" / "corpus" / "dxf" / "forms.dxf"
 
 
@@ -38,6 +40,7 @@ def main() -> None:
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run",
                 "--disable-background-networking", "--disable-component-update",
                 "--window-size=1200,760", "--force-device-scale-factor=1",
+                "--use-angle=swiftshader", "--enable-unsafe-swiftshader",
                 f"--user-data-dir={tempfile.mkdtemp()}"):
         opts.add_argument(arg)
     d = webdriver.Chrome(options=opts, service=Service("/usr/bin/chromedriver"))
@@ -53,10 +56,24 @@ def main() -> None:
         wait_plan(d, seq)
         time.sleep(0.3)
         d.save_screenshot(str(REAL))
+        seq = int(d.execute_script("return document.body.dataset.planSeq"))
+        d.execute_script("const g = document.getElementById('gripper'); g.value = '3'; "
+                         "g.dispatchEvent(new Event('change'));"
+                         "const m = document.getElementById('mu'); m.value = '0.5'; "
+                         "m.dispatchEvent(new Event('change'));"
+                         "const s = document.getElementById('demo'); s.value = 'prism'; "
+                         "s.dispatchEvent(new Event('change'));")
+        wait_plan(d, seq)
+        while not d.execute_script("const S = explorer.state; return S.solid && S.plans.length "
+                                   "&& S.plans[0].contact_type === 'friction' && "
+                                   "document.body.dataset.busy === '0';"):
+            time.sleep(0.05)
+        time.sleep(0.3)
+        d.save_screenshot(str(SOLID))
     finally:
         d.quit()
         proc.terminate()
-    print(f"wrote {OUT} and {REAL}")
+    print(f"wrote {OUT}, {REAL} and {SOLID}")
 
 
 if __name__ == "__main__":

@@ -72,7 +72,9 @@ def browser(downloads):
     for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
                 "--no-first-run", "--disable-background-networking",
                 "--disable-component-update", "--disable-sync", "--window-size=1300,850",
-                "--force-device-scale-factor=1", f"--user-data-dir={profile}"):
+                "--force-device-scale-factor=1", f"--user-data-dir={profile}",
+                # WebGL (a solid's 3-D view) in software, with no GPU
+                "--use-angle=swiftshader", "--enable-unsafe-swiftshader"):
         opts.add_argument(arg)
     opts.add_experimental_option("prefs", {"download.default_directory": str(downloads),
                                            "download.prompt_for_download": False})
@@ -515,3 +517,125 @@ def test_the_drag_check_is_the_whole_outline_check(server, browser):
         assert fast == whole, (trial, ring, i)
         verdicts.add(whole)
     assert verdicts == {True, False}            # both kinds of move were met
+
+
+# ----------------------------------------------------------------------------- solids
+
+_REGION_COLOURS = """
+    const S = explorer.state, v = explorer.solid3d, plan = S.plans[S.selected];
+    const eye = v.state().eye;
+    return plan.regions.map((r, k) => {
+      const c = plan.centers[k], n = plan.normals[k];     // inward: the outside is -n
+      const out = -(n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]));
+      // a point of the region between its centre (under the contact's marker) and a corner
+      const p = [0, 1, 2].map((i) => c[i] + 0.6 * (r[0][i] - c[i]));
+      const q = v.project(p);
+      return {facing: out > 0, pixel: v.pixel(q[0], q[1])};
+    });"""
+
+
+def _colours_right(driver):
+    """Each region of the selected plan whose facet faces the camera shows its finger's
+    colour (red, blue, green: shaded) on the canvas; one facing away shows none."""
+    seen = driver.execute_script(_REGION_COLOURS)
+    for k, s in enumerate(seen):
+        px = s["pixel"][:3]
+        ch = (0, 2, 1)[k]                     # red, blue, green: COLORS of the page
+        others = max(v for i, v in enumerate(px) if i != ch)
+        if s["facing"]:
+            assert px[ch] > 1.3 * others + 10, (k, s)
+    return [s["facing"] for s in seen]
+
+
+def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, tmp_path):
+    """A built-in solid in the explorer: its plans are those of ``fcgrasp plan demo:box
+    --fingers 2 --soft``; the WebGL view shows each region in its finger's colour where
+    the plan puts it; a drag turns the part (the far region comes into view), the wheel
+    comes closer; the point-finger grippers that never hold a solid are disabled; a
+    planar part brings the outline back."""
+    from selenium.webdriver.support.ui import Select
+
+    d = browser
+    d.get(server)
+    wait(d, "window.explorer && explorer.state.part && document.body.dataset.busy === '0'")
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "demo")).select_by_value("box")
+    wait_plan(d, after)
+    assert d.execute_script("return explorer.solid3d.state().error") is None
+    assert d.find_element(By.ID, "view3d").is_displayed()
+    assert not d.find_element(By.ID, "view").is_displayed()
+    disabled = d.execute_script("return [...document.getElementById('gripper').options]"
+                                ".filter((o) => o.disabled).map((o) => o.value)")
+    assert disabled == ["3g", "4"]
+    out = tmp_path / "box.json"
+    assert main(["plan", "demo:box", "--fingers", "2", "--soft", "--mu", "0.3", "--top", "10",
+                 "--json", str(out), "--quiet"]) == 0
+    want = json.loads(out.read_text())["grasps"]
+    items = d.find_elements(By.CSS_SELECTOR, "#plans li")
+    assert [li.get_attribute("data-facets") for li in items] == \
+        [",".join(map(str, g["facets"])) for g in want]
+    assert np.allclose([float(li.get_attribute("data-radius")) for li in items],
+                       [g["radius"] for g in want], rtol=1e-9)
+    facing = _colours_right(d)
+    assert facing.count(True) == 1            # opposite facets: one faces the camera
+    # a drag half a turn across turns the part: the other region faces the camera
+    canvas = d.find_element(By.ID, "view3d")
+    yaw = d.execute_script("return explorer.solid3d.state().yaw")
+    ActionChains(d).move_to_element(canvas).click_and_hold().move_by_offset(157, 0) \
+        .move_by_offset(157, 0).release().perform()
+    turned = d.execute_script("return explorer.solid3d.state().yaw")
+    assert turned == pytest.approx(yaw - 3.14, abs=1e-6)
+    assert _colours_right(d) == [not f for f in facing]
+    dist = d.execute_script("return explorer.solid3d.state().dist")
+    d.execute_script("document.getElementById('view3d').dispatchEvent(new WheelEvent('wheel', "
+                     "{deltaY: -300, bubbles: true, cancelable: true}));")
+    assert d.execute_script("return explorer.solid3d.state().dist") < dist
+    items[1].click()
+    _colours_right(d)
+    # back to a planar part: the outline, every gripper
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "demo")).select_by_value("quad")
+    wait_plan(d, after)
+    assert d.find_element(By.ID, "view").is_displayed()
+    assert not d.find_element(By.ID, "view3d").is_displayed()
+    assert d.execute_script("return [...document.getElementById('gripper').options]"
+                            ".every((o) => !o.disabled)")
+    assert d.find_elements(By.CSS_SELECTOR, "#plans li")[0].get_attribute("data-edges")
+
+
+def test_the_3d_view_triangulates_regions_that_are_not_convex(server, browser):
+    """A jaw's region can be an L (``demo:angle``'s caps): the view cuts each region into
+    triangles by ear clipping; on seeded star-shaped polygons, in tilted planes, either
+    way round, the triangles cover the polygon exactly (their areas add up to its area,
+    each lies inside it)."""
+    import shapely
+
+    d = browser
+    if not d.current_url.startswith(server):
+        d.get(server)
+    wait(d, "window.explorer && explorer.solid3d")
+    rng = np.random.default_rng(3)
+    for _ in range(40):
+        n = int(rng.integers(3, 12))
+        a = np.sort(rng.uniform(0, 2 * np.pi, n))
+        r = rng.uniform(0.3, 1.0, n)
+        flat = np.c_[r * np.cos(a), r * np.sin(a)][::rng.choice([1, -1])]
+        poly = shapely.Polygon(flat)
+        if not poly.is_valid:
+            continue
+        # the polygon in a random plane: axes u, v and normal w
+        w = rng.normal(size=3)
+        w /= np.linalg.norm(w)
+        u = np.cross(w, [1.0, 0.0, 0.0] if abs(w[0]) < 0.9 else [0.0, 1.0, 0.0])
+        u /= np.linalg.norm(u)
+        v = np.cross(w, u)
+        pts = flat[:, :1] * u + flat[:, 1:] * v + rng.normal(size=3)
+        tris = d.execute_script("return explorer.solid3d.triangulate(arguments[0], "
+                                "arguments[1]);", pts.tolist(), w.tolist())
+        assert len(tris) == n - 2
+        area = 0.0
+        for t in tris:
+            tri = shapely.Polygon(flat[t])
+            area += tri.area
+            assert poly.buffer(1e-9).contains(tri), (flat.tolist(), t)
+        assert area == pytest.approx(poly.area, rel=1e-9)

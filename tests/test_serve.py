@@ -408,3 +408,70 @@ def test_parts_and_options_are_checked_off_the_event_loop(client, monkeypatch):
     assert ans["report"]["grasps"]
     assert ("part", False) in where and ("options", False) in where
     assert not any(loop for _, loop in where), where
+
+
+# ----------------------------------------------------------------------------- solids
+
+
+def _solid_cli(tmp_path, source, argv):
+    out = tmp_path / "solid.json"
+    assert main(["plan", source, "--json", str(out), "--quiet", *argv]) == 0
+    return json.loads(out.read_text())
+
+
+@pytest.mark.parametrize("options, argv", [
+    ({"gripper": "2", "mu": 0.3, "top": 3}, ["--fingers", "2", "--soft", "--mu", "0.3",
+                                             "--top", "3"]),
+    ({"gripper": "3", "mu": 0.5, "top": 2}, ["--fingers", "3", "--mu", "0.5", "--top", "2"]),
+    ({"gripper": "jaw", "mu": 0.5, "stroke": [5, 50], "pad": 8, "top": 3},
+     ["--gripper", "jaw", "--mu", "0.5", "--stroke", "5,50", "--pad", "8", "--top", "3"])])
+def test_solids_plan_as_fcgrasp_plan_does(client, tmp_path, options, argv):
+    """A built-in solid by name, and the same solid sent as the page's triangles (as an
+    uploaded mesh is), plan exactly as ``fcgrasp plan demo:NAME`` on the command line."""
+    name = "prism" if options["gripper"] == "3" else "box" if options["gripper"] == "2" \
+        else "angle"
+    part = client.get(f"/api/demo/{name}").json()
+    assert part["solid"] and part["source"] == f"demo:{name}" and part["units"] == "mm"
+    assert len(part["faces"]) == part["triangles"] and len(part["vertices"]) >= 6
+    want = _solid_cli(tmp_path, f"demo:{name}", argv)["grasps"]
+    assert want
+    for sent in (part, dict(part, source=f"{name}.stl")):     # by name; by its triangles
+        ans = _plan(client, sent, options)
+        assert ans["state"] == "done", ans
+        got = ans["report"]["grasps"]
+        assert [g["facets"] for g in got] == [g["facets"] for g in want]
+        for g, w in zip(got, want, strict=True):
+            for a, b in zip(g["regions"], w["regions"], strict=True):
+                assert np.allclose(a, b, atol=1e-9 * part["size"])
+        assert ans["overlays"] == [None] * len(got)
+
+
+def test_a_mesh_upload_is_a_solid(client, tmp_path):
+    trimesh = pytest.importorskip("trimesh")
+    body = trimesh.creation.icosphere(subdivisions=1, radius=10.0).export(file_type="stl")
+    r = client.post("/api/part?name=ball.stl", content=body)
+    assert r.status_code == 200, r.text
+    part = r.json()
+    assert part["solid"] and part["source"] == "ball.stl" and part["triangles"] == 80
+    ans = _plan(client, part, {"gripper": "2", "mu": 0.5, "top": 2})
+    assert ans["state"] == "done" and len(ans["report"]["grasps"]) == 2
+    assert ans["argv"][:2] == ["--fingers", "2"] and "--soft" in ans["argv"]
+
+
+@pytest.mark.parametrize("part, options, field, words", [
+    ({"solid": True, "source": "demo:box"}, {"gripper": "4"}, "gripper", "on a solid"),
+    ({"solid": True, "source": "demo:teapot"}, {"gripper": "2"}, "part", "built-in solid"),
+    ({"solid": True, "source": "x.stl", "vertices": [[0, 0, 0]], "faces": [[0, 1, 2]]},
+     {"gripper": "2"}, "part", "faces"),
+    ({"solid": True, "source": "x.stl", "units": "furlong"}, {"gripper": "2"}, "part",
+     "units")])
+def test_bad_solids_say_what_is_wrong(client, part, options, field, words):
+    r = client.post("/api/plan", json={"part": part, "options": options})
+    assert r.status_code == 400, r.text
+    assert r.json()["field"] == field and words in r.json()["error"], r.json()
+
+
+def test_state_lists_the_solids(client):
+    st = client.get("/api/state").json()
+    assert st["solids"] == ["box", "cylinder", "prism", "angle"]
+    assert st["solid_grippers"] == ["2", "3", "jaw"]

@@ -21,7 +21,12 @@ with status 400, 404 or 413; the server answers every request and never stops on
 ``GET /api/state``
     the starting part, the built-in parts, the ranking measures and the limits;
 ``GET /api/demo/NAME``, ``POST /api/part?name=FILE`` (the file's bytes as the body)
-    a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}``;
+    a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}``; or a
+    solid (a built-in solid, a mesh file): ``{"solid": true, "source": ..., "vertices":
+    [[x, y, z], ...], "faces": [[i, j, k], ...], "units": ..., ...}``, which the page
+    sends back to plan it (a built-in one is read again by its name) with the grippers
+    of a solid (``"2"``: two soft fingers, ``"3"``: three fingers with friction,
+    ``"jaw"``);
 ``POST /api/plan`` ``{"part": ..., "options": {...}, "replaces": null}``
     starts a plan in a process of its own (cancelling the job ``replaces`` first) and
     answers within :data:`ANSWER_WITHIN` seconds: the finished result, or

@@ -17,6 +17,7 @@ const S = {
   seq: 0, job: null, checkSeq: 0,
   view: null, drag: null, invalid: false, maxUpload: 8 << 20, anim: null,
   history: [],       // earlier accepted outlines of this part, for undo
+  solid: null,       // a solid part (a mesh): {source, vertices, faces, units, ...}
 };
 
 // ------------------------------------------------------------------ server
@@ -390,6 +391,7 @@ function drawScaleBar() {
 }
 
 function render() {
+  if (S.solid) { Solid3D.draw(S.plans[S.selected]); return; }
   if (!S.part || !S.view) return;
   svg.textContent = "";
   const defs = el("defs");
@@ -573,6 +575,11 @@ function options() {
 }
 
 function partBody(part) {
+  if (part.solid) {          // the server reads a built-in solid again by its name
+    const demo = part.source.startsWith("demo:");
+    return { solid: true, source: part.source, units: part.units,
+             vertices: demo ? [] : part.vertices, faces: demo ? [] : part.faces };
+  }
   return { outer: part.outer, holes: part.holes || [], units: part.units };
 }
 
@@ -594,17 +601,17 @@ async function runPlan() {
   const seq = ++S.seq;
   const replaces = S.job;            // the previous plan, stale now: the server kills it
   S.job = null;
-  const sent = clone(S.part);
+  const sent = S.solid || clone(S.part);
   busy(true, "planning…");
   $("progress").removeAttribute("value");
   let ans;
   try {
     ans = await request("POST", "/api/plan", { part: partBody(sent), options: opts, replaces });
-    if (S.good && JSON.stringify(S.good) !== JSON.stringify(sent)) {
+    if (!S.solid && S.good && JSON.stringify(S.good) !== JSON.stringify(sent)) {
       S.history.push(S.good);
       if (S.history.length > 100) S.history.shift();
     }
-    S.good = sent;
+    if (!S.solid) S.good = sent;
     $("undo").disabled = !S.history.length;
     while (seq === S.seq && ans.state === "running") {
       S.job = ans.job;
@@ -618,7 +625,7 @@ async function runPlan() {
     if (seq !== S.seq) return;
     busy(false);
     S.job = null;
-    if (e.field === "part") {
+    if (e.field === "part" && !S.solid) {
       revert(`${e.message}: kept the last good outline`);
     } else {
       message(e.message);
@@ -649,7 +656,14 @@ function accept(ans) {
   S.plans.forEach((p, k) => {
     const li = document.createElement("li");
     li.dataset.rank = String(p.rank);
-    if (p.gripper === "parallel_jaw") {
+    if (S.solid) {
+      li.dataset.facets = p.facets.join(",");
+      li.dataset.radius = String(p.radius);
+      li.textContent = `${p.rank}. facets ${p.facets.join(", ")}: ` +
+        (p.contact_type === "jaw"
+          ? `pads' area ${fmt(p.area)} ${units}², opening ${fmt(p.opening)}`
+          : `region radius ${fmt(p.radius)} ${units}, ${p.contact_type}`);
+    } else if (p.gripper === "parallel_jaw") {
       li.dataset.measure = String(p.measure);
       li.textContent = `${p.rank}. box ${fmt(p.measure)} ${units}: closing ` +
         `${p.theta_deg[0].toFixed(1)}–${p.theta_deg[1].toFixed(1)}°, offset ` +
@@ -677,6 +691,7 @@ function select(k) {
 
 async function runCheck() {
   stopEscape();
+  if (S.solid) { $("verdict").textContent = ""; return; }
   const seq = ++S.checkSeq;
   const v = $("verdict");
   if (!S.fingers.length) {
@@ -755,7 +770,37 @@ function undo() {
   changed();
 }
 
+// a solid part: the 3-D view, its grippers (two soft fingers, three fingers with
+// friction, the jaw), no editing
+function setSolid(part, note) {
+  S.solid = part;
+  document.body.dataset.solid = "1";
+  svg.style.display = "none";
+  for (const o of $("gripper").options) o.disabled = !S.solidGrippers.includes(o.value);
+  if ($("gripper").selectedOptions[0].disabled) {
+    $("gripper").value = "2";
+    document.body.dataset.gripper = "2";
+  }
+  S.fingers = []; S.plans = []; S.overlays = []; S.report = null;
+  $("plans").textContent = "";
+  $("undo").disabled = true;
+  $("verdict").textContent = "";
+  $("partinfo").textContent = `${part.name || "solid"}: ${part.triangles} triangles, ` +
+    `${part.facets} facets, units ${part.units}`;
+  const error = Solid3D.show(part);
+  message(error || note || "", !error);
+  schedulePlan(0);
+}
+
 function setPart(part, note) {
+  if (part.solid) { setSolid(part, note); return; }
+  if (S.solid) {
+    S.solid = null;
+    document.body.dataset.solid = "0";
+    svg.style.display = "";
+    for (const o of $("gripper").options) o.disabled = false;
+    Solid3D.hide();
+  }
   S.part = { outer: part.outer, holes: part.holes || [], units: part.units, name: part.name };
   S.good = clone(S.part);
   S.history = [];
@@ -968,6 +1013,12 @@ async function init() {
     o.value = name; o.textContent = name;
     $("demo").appendChild(o);
   }
+  S.solidGrippers = st.solid_grippers;
+  for (const name of st.solids) {
+    const o = document.createElement("option");
+    o.value = name; o.textContent = `${name} (solid)`;
+    $("demo").appendChild(o);
+  }
   for (const m of st.measures) {
     const o = document.createElement("option");
     o.value = m; o.textContent = m.replace(/_/g, " ");
@@ -997,7 +1048,10 @@ async function init() {
   $("edgenums").addEventListener("change", render);
   $("mode-edit").addEventListener("change", () => setMode("edit"));
   $("mode-fingers").addEventListener("change", () => setMode("fingers"));
-  $("fit").addEventListener("click", () => { fit(); render(); });
+  $("fit").addEventListener("click", () => {
+    if (S.solid) { Solid3D.fit(); return; }
+    fit(); render();
+  });
   $("undo").addEventListener("click", undo);
   document.addEventListener("keydown", (ev) => {
     if ((ev.ctrlKey || ev.metaKey) && ev.key === "z" && ev.target.tagName !== "INPUT") {
@@ -1019,12 +1073,12 @@ async function init() {
   $("export-svg").addEventListener("click", () => {
     download("fcgrasp-plan.svg", "image/svg+xml", figureSVG());
   });
-  window.addEventListener("resize", () => { fit(); render(); });
+  window.addEventListener("resize", () => { if (!S.solid) fit(); render(); });
   setPart(st.part);
 }
 
 // for tests and the console: the state and the mapping from part to screen
 window.explorer = { state: S, toScreen: (p) => X(p), toPart: (x, y) => toWorld(x, y), figureSVG,
-                    options, crossesAt, dragVertex, zoomAt, render };
+                    options, crossesAt, dragVertex, zoomAt, render, solid3d: Solid3D };
 
 init().catch((e) => message(`cannot start: ${e.message}`));
