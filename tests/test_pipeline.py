@@ -180,3 +180,30 @@ def test_three_finger_search_stops_early(monkeypatch):
     assert calls[-1][0] == total and sum(rows) < total / 2
     every = fc.plan(part, fingers=3, gravity=(0, -1), top=None, along_boundary=False)
     assert _key(got) == _key(every[:2])
+
+
+def test_batched_tie_break_equals_the_one_by_one(monkeypatch):
+    """Four fingers: the tie-break that places every tied pairing and mode of all rows in
+    one batch per option gives the plans of the one that placed them row by row (kept in
+    ``tests/previous_break_ties.py``), on seeded parts where options tie: regular
+    polygons, exactly parallel edges, random parts."""
+    from fcgrasp.pipeline import _solve
+
+    from .previous_break_ties import break_ties
+    from .shapes import parallel_polygon
+
+    rng = np.random.default_rng(11)
+    parts = [random_polygon(rng, "regular") for _ in range(6)] + \
+        [parallel_polygon(rng) for _ in range(6)] + [random_polygon(rng) for _ in range(6)]
+    compared = 0
+    for poly in parts:
+        new = fc.plan(poly, fingers=4, along_boundary=False, top=None)
+        with monkeypatch.context() as m:
+            m.setattr(_solve, "_break_ties", break_ties)
+            old = fc.plan(poly, fingers=4, along_boundary=False, top=None)
+        assert [(p.edges, p.mode) for p in new] == [(p.edges, p.mode) for p in old]
+        for p, q in zip(new, old, strict=True):
+            for a, b in zip(p.regions, q.regions, strict=True):
+                assert np.allclose(a, b, rtol=0, atol=1e-12 * poly.size)
+        compared += len(new)
+    assert compared > 50

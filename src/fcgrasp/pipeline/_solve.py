@@ -194,25 +194,33 @@ def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray
         inv = np.argsort(perm[keep], axis=1)
         lev = np.where(pr.separable[keep][:, None], leximin(pr.take(keep), c.tol), -1.0)
         options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
-    for i, r in enumerate(sel):
-        want = np.maximum(lengths[r], 0.0)[None]
-        tied = [(P, m) for P, m, lev in options
-                if not _lex_greater(want, lev[i:i + 1])[0]
-                and not _lex_greater(lev[i:i + 1], want)[0]]
-        if len(tied) < 2:
+    # the options tied with each row's levels (both ways not greater), all rows at once
+    want = np.maximum(lengths[sel], 0.0)
+    tied = np.array([~_lex_greater(want, lev) & ~_lex_greater(lev, want)
+                     for _, _, lev in options])                  # (options, rows)
+    many = np.flatnonzero(tied.sum(axis=0) >= 2)
+    if many.size == 0:
+        return mode
+    # every tied option of those rows placed, one batch per option: the least key wins
+    best: dict[int, tuple[Any, ...]] = {}
+    saved = c.perm[rows[sel[many]]].copy()
+    for o, (P, m, _) in enumerate(options):
+        at = many[tied[o, many]]
+        if at.size == 0:
             continue
-        best: tuple[Any, ...] | None = None
-        for P, m in tied:
-            c.perm[rows[r]] = P
-            params = _place(c, rows[r:r + 1], a[r:r + 1], b[r:r + 1], lengths[r:r + 1],
-                            np.array([m]), margin)[0]
-            real = c.feats[rows[r]] >= 0
-            key = geometric_key(_region_ends(a[r][real], b[r][real], params[real]), polygon)
-            if best is None or key < best[0]:
-                best = (key, P, m)
-        assert best is not None
-        c.perm[rows[r]] = best[1]
-        mode[r] = best[2]
+        r = sel[at]
+        c.perm[rows[r]] = P
+        params = _place(c, rows[r], a[r], b[r], lengths[r], np.full(r.size, m), margin)
+        for k, rr in enumerate(r):
+            real = c.feats[rows[rr]] >= 0
+            key = geometric_key(_region_ends(a[rr][real], b[rr][real], params[k][real]),
+                                polygon)
+            if int(rr) not in best or key < best[int(rr)][0]:
+                best[int(rr)] = (key, P, m)
+    c.perm[rows[sel[many]]] = saved
+    for rr, (_, P, m) in best.items():
+        c.perm[rows[rr]] = P
+        mode[rr] = m
     return mode
 
 
