@@ -547,7 +547,8 @@ def _colours_right(driver):
     return [s["facing"] for s in seen]
 
 
-def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, tmp_path):
+def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, downloads,
+                                                              tmp_path):
     """A built-in solid in the explorer: its plans are those of ``fcgrasp plan demo:box
     --fingers 2 --soft``; the WebGL view shows each region in its finger's colour where
     the plan puts it; a drag turns the part (the far region comes into view), the wheel
@@ -592,6 +593,20 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, t
     assert d.execute_script("return explorer.solid3d.state().dist") < dist
     items[1].click()
     _colours_right(d)
+    # the view as a picture: the canvas's pixels
+    from PIL import Image
+
+    png = downloads / "fcgrasp-view.png"
+    png.unlink(missing_ok=True)
+    d.find_element(By.ID, "export-png").click()
+    end = time.monotonic() + 60
+    while not png.exists() and time.monotonic() < end:
+        time.sleep(0.05)
+    size = d.execute_script("const c = document.getElementById('view3d'); "
+                            "return [c.width, c.height];")
+    with Image.open(png) as im:
+        assert list(im.size) == size
+    assert not d.find_element(By.ID, "export-svg").is_displayed()
     # back to a planar part: the outline, every gripper
     after = plan_seq(d)
     Select(d.find_element(By.ID, "demo")).select_by_value("quad")

@@ -1073,6 +1073,9 @@ async function init() {
   $("export-svg").addEventListener("click", () => {
     download("fcgrasp-plan.svg", "image/svg+xml", figureSVG());
   });
+  $("export-png").addEventListener("click", () => {       // a solid's 3-D view as it is
+    $("view3d").toBlob((blob) => download("fcgrasp-view.png", "image/png", blob));
+  });
   window.addEventListener("resize", () => { if (!S.solid) fit(); render(); });
   setPart(st.part);
 }
