@@ -473,5 +473,5 @@ def test_bad_solids_say_what_is_wrong(client, part, options, field, words):
 
 def test_state_lists_the_solids(client):
     st = client.get("/api/state").json()
-    assert st["solids"] == ["box", "cylinder", "prism", "angle"]
+    assert st["solids"] == ["box", "cylinder", "prism", "angle", "mug"]
     assert st["solid_grippers"] == ["2", "3", "jaw"]

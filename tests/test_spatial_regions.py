@@ -38,8 +38,8 @@ def _grasps(rng, plan, n):
                                        for s in range(1, 40))])
 def test_every_grasp_of_the_regions_is_force_closure(seed):
     rng = np.random.default_rng(seed)
-    solids = [demo_solid(n) for n in ("box", "cylinder", "prism", "angle")] if seed == 0 \
-        else [_random_convex(seed)]
+    solids = [demo_solid(n) for n in ("box", "cylinder", "prism", "angle", "mug")] \
+        if seed == 0 else [_random_convex(seed)]
     checked = 0
     for solid in solids:
         mu = float(rng.choice([0.3, 0.6]))
@@ -299,3 +299,23 @@ def test_bodies_units_and_the_parts_command(tmp_path, capsys):
     assert "body 7" in err and len(err.strip().splitlines()) == 1
     with pytest.raises(ValueError, match="units"):
         read_bodies(str(stl), units="furlong")
+
+
+def test_the_mug_is_a_cup_with_a_handle():
+    """``demo:mug``: one watertight body; its flat faces are the 48-gons of the design
+    (the bottom of radius 40, the inside bottom of radius 36 at 6 mm, the rim between
+    them at 90 mm); the handle stands out on +x to 72 mm."""
+    mug = demo_solid("mug")
+    assert mug.mesh.is_watertight and mug.mesh.is_winding_consistent
+    assert len(mug.mesh.split(only_watertight=False)) == 1
+
+    def gon(r):
+        return 0.5 * 48 * r * r * np.sin(2 * np.pi / 48)
+
+    flat = sorted((round(float(f.origin[2]), 9), f.area) for f in mug.facets
+                  if abs(abs(f.normal[2]) - 1) < 1e-9)
+    assert [z for z, _ in flat] == [0.0, 6.0, 90.0]
+    assert [a for _, a in flat] == pytest.approx([gon(40), gon(36), gon(40) - gon(36)],
+                                                 rel=1e-9)
+    lo, hi = mug.mesh.bounds
+    assert np.allclose(lo, [-40, -40, 0]) and np.allclose(hi, [72, 40, 90])

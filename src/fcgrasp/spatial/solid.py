@@ -9,8 +9,9 @@ polygon itself when convex; otherwise triangles merged while they stay convex), 
 regions of contact are placed.
 
 Built-in solids for the demo and the tests: ``demo:box`` (40 x 20 x 10), ``demo:cylinder``
-(radius 10, height 30, 32 sides), ``demo:prism`` (a triangular prism) and ``demo:angle``
-(an L-shaped extrusion), all in millimetres.
+(radius 10, height 30, 32 sides), ``demo:prism`` (a triangular prism), ``demo:angle``
+(an L-shaped extrusion, a bracket) and ``demo:mug`` (a cup of radius 40 and height 90
+with a handle: 1,584 triangles, curved walls), all in millimetres.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ from .contacts import contact_frames
 __all__ = ["Facet", "Solid", "solid_from_mesh", "demo_solid", "demo_mesh", "DEMO_SOLIDS"]
 
 #: The built-in solids (``demo:NAME``).
-DEMO_SOLIDS = ("box", "cylinder", "prism", "angle")
+DEMO_SOLIDS = ("box", "cylinder", "prism", "angle", "mug")
 
 
 @dataclass(frozen=True)
@@ -234,6 +235,14 @@ def demo_mesh(name: str) -> Any:
     elif name == "angle":
         mesh = extrude_polygon(ShapelyPolygon([(0, 0), (40, 0), (40, 8), (8, 8), (8, 30),
                                                (0, 30)]), 20.0)
+    elif name == "mug":
+        # a cup with a handle, joined by an exact boolean union when it was made
+        # (docs/make_mug.py); its triangles are shipped with the package
+        from importlib.resources import files
+
+        with files("fcgrasp.spatial").joinpath("data", "mug.npz").open("rb") as fh:
+            data = np.load(fh)
+            mesh = trimesh.Trimesh(data["vertices"], data["faces"], process=False)
     else:
         raise ValueError(f"name must be one of {', '.join(DEMO_SOLIDS)}, got {name!r}")
     assert isinstance(mesh, trimesh.Trimesh)
