@@ -607,6 +607,12 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     with Image.open(png) as im:
         assert list(im.size) == size
     assert not d.find_element(By.ID, "export-svg").is_displayed()
+    # distinct alternatives only: the page asks for --distinct 0.5
+    after = plan_seq(d)
+    d.find_element(By.ID, "distinct").click()
+    wait_plan(d, after)
+    assert d.execute_script("return explorer.state.report.parameters.distinct") == 0.5
+    d.find_element(By.ID, "distinct").click()
     # back to a planar part: the outline, every gripper
     after = plan_seq(d)
     Select(d.find_element(By.ID, "demo")).select_by_value("quad")

@@ -62,6 +62,7 @@ CASES = [
     {"gripper": "4", "top": 5, "margin": 1.0, "along_boundary": False},
     {"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 2},
     {"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 1, "certify": True},
+    {"gripper": "2", "mu": 0.3, "top": 4, "distinct": 0.5},
 ]
 
 
@@ -424,7 +425,9 @@ def _solid_cli(tmp_path, source, argv):
                                              "--top", "3"]),
     ({"gripper": "3", "mu": 0.5, "top": 2}, ["--fingers", "3", "--mu", "0.5", "--top", "2"]),
     ({"gripper": "jaw", "mu": 0.5, "stroke": [5, 50], "pad": 8, "top": 3},
-     ["--gripper", "jaw", "--mu", "0.5", "--stroke", "5,50", "--pad", "8", "--top", "3"])])
+     ["--gripper", "jaw", "--mu", "0.5", "--stroke", "5,50", "--pad", "8", "--top", "3"]),
+    ({"gripper": "2", "mu": 0.3, "top": 3, "distinct": 0.5},
+     ["--fingers", "2", "--soft", "--mu", "0.3", "--top", "3", "--distinct", "0.5"])])
 def test_solids_plan_as_fcgrasp_plan_does(client, tmp_path, options, argv):
     """A built-in solid by name, and the same solid sent as the page's triangles (as an
     uploaded mesh is), plan exactly as ``fcgrasp plan demo:NAME`` on the command line."""

@@ -562,6 +562,7 @@ function options() {
     return v;
   };
   const o = { gripper: g, margin: num("margin", "margin"), top: Math.round(num("top", "plans")) };
+  if ($("distinct").checked) o.distinct = 0.5;
   if (g !== "4" && g !== "3g") o.mu = num("mu", "mu");
   if (g === "jaw") {
     o.stroke = [num("stroke0", "stroke"), num("stroke1", "stroke")];
@@ -673,6 +674,10 @@ function accept(ans) {
       li.dataset.min = String(p.min_region_length);
       li.textContent = `${p.rank}. edges ${p.edges.join(", ")}: min region ` +
         `${fmt(p.min_region_length)} ${units}, ${p.mode}`;
+    }
+    if (p.similar && p.similar.length) {
+      li.dataset.similar = String(p.similar.length);
+      li.textContent += ` (and ${p.similar.length} like it)`;
     }
     li.addEventListener("click", () => select(k));
     list.appendChild(li);
@@ -1037,7 +1042,7 @@ async function init() {
     $("file").value = "";
   });
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
-                    "certify"]) {
+                    "certify", "distinct"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
