@@ -475,12 +475,16 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
                 intervals: dict[Any, _Intervals], bound: _Bound, scale: float,
                 keys: _Keys, exclude: _Exclusion | None = None,
-                memo: _Memo | None = None) -> list[_Found]:
+                memo: _Memo | None = None,
+                similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                ) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept).  With ``exclude``,
-    the configurations that are surely a kept plan's alternative are marked
-    ``similar`` and do not raise the bound.  With ``memo``, configurations solved by
-    an earlier run are not solved again."""
+    the configurations that are surely a kept plan's alternative do not raise the
+    bound: marked ``similar``, or, given the dict ``similar``, filed there (their
+    indices in their job's configurations: on a curved outline they are tens of
+    thousands, and only :func:`_own_optimum` reads them).  With ``memo``,
+    configurations solved by an earlier run are not solved again."""
     found: list[_Found] = []
     for job, cfg in prepared:
         x, y, sigma, _ = job
@@ -508,6 +512,9 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             ok = np.flatnonzero(t > 0)
             sim = exclude.similar(rings, job, part.take(ok), t[ok]) if exclude \
                 else np.zeros(ok.size, bool)
+            if similar is not None and sim.any():
+                similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
+                ok, sim = ok[~sim], sim[~sim]
             for j, same in zip(ok, sim, strict=True):
                 c = chunk[j]
                 found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
@@ -553,10 +560,11 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude)
             if memo is not None and bound.floor == 0.0:
                 memo.prepared = prepared
+        similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
-                            memo)
+                            memo, similar)
         found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
-        found = [f for f in _own_optimum(rings, found) if not f.similar]
+        found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
         if len(found) >= top:
@@ -604,23 +612,34 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
                          if best_side[j] == 1 else (f.t, f.t))
 
 
-def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
+def _own_optimum(rings: list[_Ring], found: list[_Found],
+                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                 ) -> list[_Found]:
     """The configurations that are optimal on their own edges: a configuration whose
     smallest region is beaten by one of its sub-configurations (fewer edges on either
-    side, all of them found, since they rank higher) is not a plan of those edges."""
+    side, all of them found, since they rank higher) is not a plan of those edges.
+    ``similar`` (:func:`_solve_jobs`): configurations found but filed by index, which
+    take part as beaters; only ``found`` is returned."""
     keep = np.ones(len(found), bool)
     by_job: dict[Any, list[int]] = {}
     for j, f in enumerate(found):
         by_job.setdefault(f.job, []).append(j)
     for job, idx in by_job.items():
         ra, rb = rings[job[0]], rings[job[1]]
-        c = np.array([found[j].cfg for j in idx])
-        t = np.array([found[j].t for j in idx])
+        c = np.array([found[j].cfg for j in idx], dtype=np.int64).reshape(-1, 4)
+        t = np.array([found[j].t for j in idx], dtype=float)
+        if similar is not None and job in similar:
+            J, parts = similar[job]
+            extra = np.concatenate(parts)
+            c = np.concatenate([c, np.stack([J.cfg.iA[extra], J.cfg.kA[extra],
+                                             J.cfg.iC[extra], J.cfg.kC[extra]], axis=1)])
+            t = np.concatenate([t, J.t[extra]])
         if c[:, [1, 3]].max() == 0:
             continue
-        if len(idx) >= KERNEL_OWN and jit_setting() is not False:
+        n = len(idx)
+        if len(c) >= KERNEL_OWN and jit_setting() is not False:
             keep[np.asarray(idx)] = _stretch_kernels.beaten(c, t, ra.m, rb.m, job[0] == job[1],
-                                                            TIE)
+                                                            TIE)[:n]
             continue
 
         def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
@@ -629,17 +648,18 @@ def _own_optimum(rings: list[_Ring], found: list[_Found]) -> list[_Found]:
             return cast("np.ndarray", (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :])
 
         at = np.asarray(idx)
-        # supers in blocks of columns: the (sub, super) matrix stays about 1M cells
-        step = max(1, (_BLOCK * 32) // len(idx))
-        for b in range(0, len(idx), step):
-            cs, ts = c[b:b + step], t[b:b + step]
+        # supers (the found ones only) in blocks of columns: the (sub, super) matrix
+        # stays about 1M cells; every configuration, filed ones too, a sub
+        step = max(1, (_BLOCK * 32) // len(c))
+        for b in range(0, n, step):
+            cs, ts = c[b:min(b + step, n)], t[b:min(b + step, n)]
             sub = inside(c[:, 0], c[:, 1], cs[:, 0], cs[:, 1], ra.m) \
                 & inside(c[:, 2], c[:, 3], cs[:, 2], cs[:, 3], rb.m)
             if job[0] == job[1]:        # one ring: a pair may be stored either way round
                 sub |= inside(c[:, 0], c[:, 1], cs[:, 2], cs[:, 3], ra.m) \
                     & inside(c[:, 2], c[:, 3], cs[:, 0], cs[:, 1], ra.m)
             beaten = sub & (t[:, None] > ts[None, :] * (1 + TIE))
-            keep[at[b:b + step][beaten.any(axis=0)]] = False
+            keep[at[b:min(b + step, n)][beaten.any(axis=0)]] = False
     return [f for f, k in zip(found, keep, strict=True) if k]
 
 
