@@ -607,6 +607,13 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     with Image.open(png) as im:
         assert list(im.size) == size
     assert not d.find_element(By.ID, "export-svg").is_displayed()
+    # the view faces as many regions as it can: three fingers on the sides of a prism
+    inward = [[-np.cos(a), -np.sin(a), 0.0] for a in (0.3, 0.3 + 2.1, 0.3 + 4.2)]
+    assert d.execute_script("return explorer.solid3d.aim({normals: arguments[0]});", inward)
+    st = d.execute_script("return explorer.solid3d.state()")
+    view = np.array([np.cos(st["pitch"]) * np.cos(st["yaw"]),
+                     np.cos(st["pitch"]) * np.sin(st["yaw"]), np.sin(st["pitch"])])
+    assert sum(float(view @ -np.array(n)) > 0.2 for n in inward) == 2
     # distinct alternatives only: the page asks for --distinct 0.5
     after = plan_seq(d)
     d.find_element(By.ID, "distinct").click()

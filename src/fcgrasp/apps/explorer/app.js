@@ -682,6 +682,10 @@ function accept(ans) {
     li.addEventListener("click", () => select(k));
     list.appendChild(li);
   });
+  if (S.solid && !S.solid.aimed && S.plans.length) {
+    S.solid.aimed = true;                  // the first plans of a solid: face the best
+    Solid3D.aim(S.plans[0]);
+  }
   select(0);
   document.body.dataset.planSeq = String(Number(document.body.dataset.planSeq) + 1);
 }
@@ -1054,7 +1058,11 @@ async function init() {
   $("mode-edit").addEventListener("change", () => setMode("edit"));
   $("mode-fingers").addEventListener("change", () => setMode("fingers"));
   $("fit").addEventListener("click", () => {
-    if (S.solid) { Solid3D.fit(); return; }
+    if (S.solid) {
+      Solid3D.fit();
+      if (S.plans[S.selected]) Solid3D.aim(S.plans[S.selected]);
+      return;
+    }
     fit(); render();
   });
   $("undo").addEventListener("click", undo);

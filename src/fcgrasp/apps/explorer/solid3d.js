@@ -241,6 +241,32 @@ const Solid3D = (() => {
     hide() { V.part = null; V.plan = null; canvas.hidden = true; },
     draw(plan) { V.plan = plan || null; render(); },
     fit() { V.yaw = 0.7; V.pitch = 0.45; V.dist = 1; render(); },
+    // look at a plan from where most of its regions face the camera: among each
+    // region's outward normal and the bisectors of two of them (turned a little
+    // upwards), the direction that sees the most regions, then the most squarely
+    aim(plan) {
+      const out = plan.normals.map((n) => mul(n, -1));
+      const cands = [...out];
+      out.forEach((a, i) => out.slice(i + 1).forEach((b) => {
+        const m = add(a, b);
+        if (Math.hypot(...m) > 1e-6) cands.push(m);
+      }));
+      let best = null;
+      for (const c of cands) {
+        const d = unit(add(unit(c), [0, 0, 0.35]));
+        const cos = out.map((o) => dot(d, o));
+        const score = [cos.filter((v) => v > 0.2).length, cos.reduce((a, v) => a + v, 0)];
+        if (!best || score[0] > best.score[0] ||
+            (score[0] === best.score[0] && score[1] > best.score[1] + 1e-9)) {
+          best = { d, score };
+        }
+      }
+      if (!best) return false;
+      V.yaw = Math.atan2(best.d[1], best.d[0]);
+      V.pitch = Math.asin(Math.max(-1, Math.min(1, best.d[2])));
+      render();
+      return true;
+    },
     render,
     // for tests and the console
     state: () => ({ yaw: V.yaw, pitch: V.pitch, dist: V.dist, eye: V.eye, error: V.error }),
