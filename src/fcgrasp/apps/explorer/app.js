@@ -770,7 +770,7 @@ function stopEscape() {
 // ------------------------------------------------------------------ editing
 
 function undo() {
-  if (!S.history.length) return;
+  if (S.solid || !S.history.length) return;      // a solid is not edited
   S.part = S.history.pop();
   S.good = clone(S.part);
   $("undo").disabled = !S.history.length;
@@ -783,6 +783,7 @@ function undo() {
 // friction, the jaw), no editing
 function setSolid(part, note) {
   S.solid = part;
+  S.history = [];
   document.body.dataset.solid = "1";
   svg.style.display = "none";
   for (const o of $("gripper").options) o.disabled = !S.solidGrippers.includes(o.value);
