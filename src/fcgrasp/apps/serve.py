@@ -115,12 +115,13 @@ def plan_result(polygon: Any, units: str, request: Any,
 
     if request.is_solid():                    # a solid (polygon is its Solid): no overlays
         doc = plan_document(request, part=polygon, progress=progress)
-        return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
-                "overlays": [None] * len(doc.plans)}
-    part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
-    doc = plan_document(request, part=part, progress=progress)
+        overlays: list[Any] = [None] * len(doc.plans)
+    else:
+        part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
+        doc = plan_document(request, part=part, progress=progress)
+        overlays = [json_ready(overlay(polygon, p)) for p in doc.plans]
     return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
-            "overlays": [json_ready(overlay(polygon, p)) for p in doc.plans]}
+            "overlays": overlays}
 
 
 def _worker(conn: Any) -> None:

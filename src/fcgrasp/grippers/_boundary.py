@@ -15,7 +15,6 @@ from ..model.distinct import Suppression
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
-from ..model.quality import characteristic_length
 from ..model.ranking import MEASURES
 from ..model.stretches import (
     StretchPair,
@@ -47,7 +46,7 @@ def regions_plan(polygon: Polygon, spec: PlanSpec, regions: Any, region_edges: A
     return GraspPlan(edges, regions, np.array(lengths), contacts, polygon.normals[list(edges)],
                      contact_type, spec.mu, mode, spec.margin, gravity,
                      centroid=polygon.centroid.copy(),
-                     radius=characteristic_length(polygon.vertices, polygon.centroid),
+                     radius=polygon.radius,
                      disturbance=spec.disturbance, region_edges=region_edges)
 
 

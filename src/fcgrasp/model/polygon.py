@@ -237,8 +237,9 @@ class Polygon:
     def radius(self) -> float:
         """The part's radius: the largest distance from the centroid to a vertex of the
         outer ring (:func:`fcgrasp.model.quality.characteristic_length`), computed once."""
-        d = self.vertices - self.centroid
-        return float(np.max(np.hypot(d[:, 0], d[:, 1])))
+        from .quality import characteristic_length
+
+        return characteristic_length(self.vertices, self.centroid)
 
     @property
     def n_edges(self) -> int:

@@ -300,19 +300,15 @@ def _closure(polygon: Any, points: FloatArray, edges: np.ndarray, mu: FloatArray
     ``edges``, friction ``mu`` (S,) (0: frictionless): the friction cones' edges as
     wrenches about the centroid, lengths in the part's size (theorem 6.1)."""
     from ..core.closure import is_force_closure
+    from ..core.contacts import friction_cone_edges
 
     ok = np.all(edges >= 0, axis=1)
     n = polygon.normals[np.maximum(edges, 0)]                    # (S, k, 2) outward
-    f = -n
     r = (points - polygon.centroid) / polygon.size
     if np.all(mu == 0):
-        forces = f[:, :, None]                                   # (S, k, 1, 2)
+        forces = -n[:, :, None]                                  # (S, k, 1, 2)
     else:
-        half = np.arctan(mu)[:, None]
-        c, s = np.cos(half), np.sin(half)
-        left = np.stack([c * f[..., 0] - s * f[..., 1], s * f[..., 0] + c * f[..., 1]], -1)
-        right = np.stack([c * f[..., 0] + s * f[..., 1], -s * f[..., 0] + c * f[..., 1]], -1)
-        forces = np.stack([left, right], axis=2)                 # (S, k, 2, 2)
+        forces = friction_cone_edges(n, mu[:, None])             # (S, k, 2, 2)
     rr = np.broadcast_to(r[:, :, None], forces.shape)
     tau = rr[..., 0] * forces[..., 1] - rr[..., 1] * forces[..., 0]
     w = np.concatenate([forces, tau[..., None]], axis=-1).reshape(len(points), -1, 3)

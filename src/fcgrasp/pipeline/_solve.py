@@ -19,7 +19,6 @@ from ..core.tolerances import RANK_TOL
 from ..model._regiongeom import four_finger_problems, two_finger_problems
 from ..model.plans import GraspPlan, geometric_key, leximin_key
 from ..model.polygon import Polygon
-from ..model.quality import characteristic_length
 from ..model.regions import (
     KnapsackProblem,
     leximin,
@@ -237,7 +236,7 @@ def _build_plans(polygon: Polygon, F: Features, c: Candidates, rows: np.ndarray,
     margin = margin_radians(margin_deg)
     mode = _break_ties(polygon, c, rows, a, b, lengths, mode, margin)
     params = _place(c, rows, a, b, lengths, mode, margin)
-    rho = characteristic_length(polygon.vertices, polygon.centroid)
+    rho = polygon.radius
     plans = []
     for r in range(len(rows)):
         real = c.feats[rows[r]] >= 0

@@ -12,7 +12,6 @@ from ...core._angles import shrunk_half_angle, wrap
 from ...core._checks import FloatArray, check_int
 from ...core.tolerances import CONTACT_TOL, ROUND_TOL, TOL
 from ...model.polygon import Polygon
-from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
 from . import _kernels
 from ._poses import (
@@ -330,7 +329,7 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     beta = float(shrunk_half_angle(jaw.mu, margin))
     if beta <= 0:
         return None
-    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    radius = polygon.radius
     q = None if hole is None else insertion_point(polygon, hole) - polygon.centroid
     # cut the box at the critical angles, where an edge turns parallel to u (its facing
     # and its lateral direction change sign there): no sub-box straddles one

@@ -15,7 +15,6 @@ from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL, TOL
 from ...model.distinct import box_images, distinct_boxes, part_symmetries
 from ...model.polygon import Polygon
-from ...model.quality import characteristic_length
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import DEFAULT_MU, register
 from . import _kernels
@@ -58,7 +57,7 @@ class ParallelJaw(JawParameters):
         the pose grid: a box is moved in from the holding set's boundary by a fraction
         of a step before its proof) merged
         (:func:`fcgrasp.model.distinct.distinct_boxes`)."""
-        reach = characteristic_length(polygon.vertices, polygon.centroid) \
+        reach = polygon.radius \
             + self.pad_width / 2
         steps = (2 * np.radians(THETA_STEP_DEG), 2 * 2 * reach / (OFFSET_STEPS - 1))
         return distinct_boxes(polygon, plans, fraction, adjacent=steps)
@@ -315,7 +314,7 @@ def _reach(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
     through the anchor at some angle)."""
     tol = CONTACT_TOL * polygon.size
     far = anchor
-    reach_max = characteristic_length(polygon.vertices, polygon.centroid) + jaw.pad_width
+    reach_max = polygon.radius + jaw.pad_width
     while True:
         near, far = far, far + side * 2 * step
         window = (min(near, far), max(near, far))
@@ -351,7 +350,7 @@ def _grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
     bisection (to 1/4096 of a fine step) to the first angle whose slice does not hold
     across it.  None when the slices disagree with the grid."""
     (t0, t1), (c0, c1) = th, off
-    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    radius = polygon.radius
     fine = dth / CHECK_DENSITY
 
     def offsets(t0: float, t1: float, c0: float, c1: float) -> tuple[float, float] | None:
@@ -441,7 +440,7 @@ def _measure(theta: tuple[float, float], offset: tuple[float, float], radius: fl
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                 hole: int | None, certify: bool = True) -> list[JawPlan]:
     """The best boxes of one grip (external, or internal in ``hole``)."""
-    radius = characteristic_length(polygon.vertices, polygon.centroid)
+    radius = polygon.radius
     K = int(round(360 / THETA_STEP_DEG))
     M = OFFSET_STEPS
     thetas = np.arange(K) * (2 * np.pi / K)
