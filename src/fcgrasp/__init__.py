@@ -77,6 +77,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         load_part,
         read_part,
     )
+    from .model.bounds import UpperBound, optimum_upper_bound
     from .model.frictionless_stretches import FrictionlessStretches, grow_stretches
     from .model.graspsets import (
         FrictionGraspSet,
@@ -198,6 +199,8 @@ _LAZY = {
     "clean_outline": "model.outline",
     "simplify_outline": "model.outline",
     "fill_rings": "model.outline",
+    "optimum_upper_bound": "model.bounds",
+    "UpperBound": "model.bounds",
     "Load": "model.loads",
     "Payload": "model.loads",
     "RegionPayload": "model.loads",

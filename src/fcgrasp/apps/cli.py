@@ -173,6 +173,16 @@ def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
                  lambda g: f"{g['stability']['reason']}; corners "
                            f"{'all' if g['stability']['corners_stable'] else 'not all'} "
                            f"stable (least {g['stability']['corners_margin']:.4g})")
+    bound = report.get("optimality")
+    if bound is not None:
+        best = max((g["min_region_length"] for g in report["grasps"]), default=0.0)
+        if bound["upper_bound"] is None:
+            print("optimum: no upper bound proved within the search's budget", file=out)
+        else:
+            print(f"optimum: no regions of {report['parameters']['fingers']} fingers each "
+                  f"{bound['upper_bound']:.4g} {report['units']} long or more hold (proved over "
+                  f"{bound['nodes']} boxes of positions); the best plan's {best:.4g} is "
+                  f"within {100 * bound['gap']:.1f} % of that", file=out)
     load = report["parameters"].get("load")
     if load is None:
         return
@@ -598,6 +608,11 @@ def build_parser() -> argparse.ArgumentParser:
                             "part sits with a Gaussian pose error (deviations in x, y and "
                             "degrees about its centroid) and each finger closes along its "
                             "approach line (quasi-Monte Carlo with a 99 %% interval)")
+        p.add_argument("--bound", action="store_true",
+                       help="three fingers with friction or four frictionless: prove an "
+                            "upper bound on the best smallest region any plan could reach "
+                            "(regions along the boundary), so the plans' gap is known "
+                            "(seconds, up to a minute on a large part)")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")

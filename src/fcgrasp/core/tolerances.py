@@ -190,3 +190,7 @@ HULL_ROUNDING = 1e-9
 #: close on when their normals are opposite within this angle, radians (float32 meshes
 #: round a small facet's normal to about 1e-6).
 PARALLEL_FACETS = 1e-4
+
+#: A test contact of the optimality bound (:mod:`fcgrasp.model.bounds`) closer than this
+#: fraction of the part's size to a vertex is moved inside its edge, so it has one normal.
+VERTEX_HAIR = 1e-9

@@ -32,7 +32,10 @@ lengths.  Version 1 had two-point regions on one edge each and no ``region_edges
 ``grasps`` is empty when no grasp exists, and ``reason`` then says why.  ``source``
 (absent for parts built in Python) records how the part was read: the file, which of its
 parts, the units it was in and the scale applied, the flip of y-down sources, the
-flattening tolerance and the clean-up (see :class:`fcgrasp.io.parts.Part`).
+flattening tolerance and the clean-up (see :class:`fcgrasp.io.parts.Part`).  Options
+that ask for more add their entries: ``--bound`` an ``"optimality"`` object
+(``upper_bound``: no regions that long hold, ``gap``: ``1 -`` the best plan's smallest
+region over it, ``nodes``: :meth:`fcgrasp.UpperBound.to_dict`).
 """
 
 from __future__ import annotations

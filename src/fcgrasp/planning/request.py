@@ -43,10 +43,11 @@ PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
 #: :func:`fcgrasp.placement_probability`), a pose error (:func:`fcgrasp.pose_probability`),
-#: finger springs (each plan's stability, :func:`fcgrasp.plan_stability`), and the top
-#: of a friction range (``mu_high``: ``--mu LOW:HIGH``).
+#: finger springs (each plan's stability, :func:`fcgrasp.plan_stability`), the top
+#: of a friction range (``mu_high``: ``--mu LOW:HIGH``) and an upper bound on the best
+#: smallest region (``bound``: :func:`fcgrasp.optimum_upper_bound`).
 LOAD_OPTIONS = ("mass", "com", "accel", "accel_shape", "force_limit", "total_force",
-                "placement_sigma", "pose_sigma", "stiffness", "grip_force", "mu_high")
+                "placement_sigma", "pose_sigma", "stiffness", "grip_force", "mu_high", "bound")
 
 
 def _fail(field_name: str, message: str) -> RequestError:
@@ -80,7 +81,8 @@ _KINDS: dict[str, Any] = {
     "grip_force": "float",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
-    "certify": "bool", "single_edge": "bool", "soft": "bool", "y_down": "bool", "no_clean": "bool",
+    "certify": "bool", "single_edge": "bool", "bound": "bool", "soft": "bool",
+    "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
     "part": "str", "gripper": "str", "rank_by": "str", "select": "str", "units": "str",
     "file_units": "str", "layer": "str", "json": "str", "plot": "str", "accel_shape": "str"}
@@ -155,6 +157,7 @@ class PlanRequest:
     stiffness: float | None = None
     grip_force: float | None = None
     mu_high: float | None = None
+    bound: bool = False
     select: str | None = None
     units: str | None = None
     file_units: str | None = None
@@ -176,7 +179,7 @@ class PlanRequest:
                 value = getattr(self, f.name)
                 if f.name in ("top", "margin", "finger_radius", "part", "gripper",
                               "rank_by", "single_edge", "y_down", "no_clean", "distinct",
-                              "soft") \
+                              "soft", "bound") \
                         and value is None:
                     raise TypeError(f"{f.name} must be given, got None")
                 object.__setattr__(self, f.name, _check_kind(f.name, value))
@@ -248,6 +251,13 @@ class PlanRequest:
             raise _fail("grip_force", f"--grip-force is the fingers' total squeeze > 0 in "
                                       f"newtons, with --stiffness, got {self.grip_force:g}")
         self._check_solid()
+        if self.bound and (self.gripper == "jaw" or self.gravity is not None
+                           or self.fingers not in (3, 4) or self.is_solid()
+                           or (self.fingers == 3 and self.mu == 0)):
+            raise _fail("bound", f"--bound proves an upper bound on the best smallest region "
+                                 f"of three fingers with friction or four frictionless "
+                                 f"fingers (--fingers 3 or 4, no --gravity) on a planar "
+                                 f"part, got {self._what()}")
         if self.mu_high is not None:
             lo = DEFAULT_MU if self.mu is None else self.mu
             if self.gripper == "jaw" or self.gravity is not None \
@@ -263,6 +273,17 @@ class PlanRequest:
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
+
+    def _what(self) -> str:
+        """The gripper asked for, in a few words (for error messages)."""
+        if self.gripper != "fingers":
+            return f"--gripper {self.gripper}"
+        what = f"--fingers {self.fingers if self.fingers is not None else 2}"
+        if self.gravity is not None:
+            what += " with --gravity"
+        if self.is_solid():
+            what += f" on a solid ({self.part})"
+        return what
 
     def _check_solid(self) -> None:
         """A solid part takes two soft fingers (``soft``), three fingers with friction or a
@@ -284,7 +305,7 @@ class PlanRequest:
                                  or self.mu_high is not None or self.single_edge
                                  or self.placement_sigma is not None
                                  or self.pose_sigma is not None
-                                 or self.stiffness is not None
+                                 or self.stiffness is not None or self.bound
                                  or self.certify is not None):
             who = {"soft": ("soft", "--soft: two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
@@ -496,6 +517,14 @@ def plan_document(request: PlanRequest, part: Any = None,
         for p, entry in zip(plans, report["grasps"], strict=True):
             entry["stability"] = plan_stability(polygon, p, request.stiffness,
                                                 grip_force=force).to_dict()
+    if request.bound:
+        from ..model.bounds import optimum_upper_bound
+
+        fingers_: Any = gripper                 # three with friction or four (checked)
+        best = max((p.min_length for p in plans), default=0.0)
+        report["optimality"] = optimum_upper_bound(
+            polygon, fingers_.fingers, fingers_.mu if fingers_.fingers == 3 else 0.0,
+            margin=options.margin, lower=best).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
 
