@@ -31,7 +31,7 @@ from .shapes import random_polygon
 
 def _wrench_sets(rng, n, m):
     """``n`` sets of ``m`` wrenches: generic ones and ties (parallel, coplanar,
-    rank-deficient, exactly opposite), and small perturbations of the ties."""
+    rank-deficient, exactly opposite, all on one line), and small perturbations."""
     w = rng.normal(size=(n, m, 3))
     q = n // 8
     w[:q, 1] = 2.5 * w[:q, 0]                                    # parallel
@@ -40,6 +40,7 @@ def _wrench_sets(rng, n, m):
     w[3 * q:4 * q, 1] = -w[3 * q:4 * q, 0]                        # opposite
     w[4 * q:5 * q] = w[q:2 * q] + 1e-6 * rng.normal(size=(q, m, 3))
     w[5 * q:6 * q] = w[2 * q:3 * q] + 1e-6 * rng.normal(size=(q, m, 3))
+    w[6 * q:6 * q + q // 4] = rng.normal(size=(q // 4, m, 1)) * rng.normal(size=(q // 4, 1, 3))
     return w
 
 

@@ -197,10 +197,11 @@ def clearly_not_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
     origin and two (non-parallel) of the wrenches has every other wrench on one side of
     it, ties within ``tol`` (on unit wrenches) counted on that side as the general test
     counts them: the plane's normal is then a twist repelling or reciprocal to every
-    wrench.  Batched (shape (..., m, 3) -> (...)) and several times faster than
-    :func:`~fcgrasp.is_force_closure` for the handful of wrenches of a grasp, with which
-    it shares no code (the tests hold them to the same verdicts).  Every face of a cone
-    that is not the whole space lies in such a plane, so it is exact."""
+    wrench.  Batched (shape (..., m, 3) -> (...)); it shares no code with
+    :func:`~fcgrasp.is_force_closure` (the tests hold them to the same verdicts).  A
+    cone that is not the whole space has a face through the origin spanned by two of its
+    generators, or all of them lie on one line (every pair parallel, also "not total"),
+    so the test is exact."""
     w = np.asarray(wrenches, dtype=float)
     m = w.shape[-2]
     if m not in _PAIRS:
@@ -220,7 +221,8 @@ def clearly_not_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
          + cz[..., None] * z[..., None, :]) / np.maximum(norm, TINY)[..., None]
     above = np.where(others, d >= -tol, True).all(axis=-1)
     below = np.where(others, d <= tol, True).all(axis=-1)
-    return np.asarray(np.any((above | below) & (norm > tol), axis=-1))
+    on_a_line = np.all(norm <= tol, axis=-1)                    # every pair parallel
+    return np.asarray(np.any((above | below) & (norm > tol), axis=-1) | on_a_line)
 
 
 def _fails(bd: _Boundary, ring: np.ndarray, s: FloatArray, mid: FloatArray,
