@@ -156,22 +156,18 @@ def region_levels(cands: Candidates, rows: np.ndarray, spec: PlanSpec
     return _levels(cands, np.asarray(rows, dtype=int), spec.margin_rad)
 
 
-def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray,
-                b: FloatArray, lengths: FloatArray, mode: np.ndarray, margin: float
-                ) -> np.ndarray:
-    """Among pairings and modes with the same leximin levels (corollary 5.1 makes them
-    equivalent without a margin), place the regions of each and keep the placement of
-    least :func:`geometric_key`, so that a renumbered part gets the same regions.
-
-    Updates ``c.perm`` for ``rows`` and returns the modes.  Rows where two fingers share
-    an edge keep their split search's answer.
-    """
-    mode = mode.copy()
+def tie_options(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray,
+                b: FloatArray, lengths: FloatArray, margin: float
+                ) -> tuple[np.ndarray, list[tuple[Any, int, FloatArray]]] | None:
+    """The rows of four fingers (positions ``sel`` in ``rows``, fingers on distinct
+    edges) where a second pairing or mode reaches the same smallest region, and every
+    option's leximin levels there in finger order: ``(sel, [(pairing, mode, levels)])``,
+    or None where no row has two such options (the tie-break's first stage)."""
     if c.feats.shape[1] != 4 or rows.size == 0:
-        return mode
+        return None
     sel = np.flatnonzero(c.feats[rows, 0] != c.feats[rows, 2])
     if sel.size == 0:
-        return mode
+        return None
     # stage 1 first: only rows where a second option reaches the same smallest region
     # need the whole leximin order of every option
     built = []
@@ -186,13 +182,31 @@ def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray
             built.append((P, m, perm, pr))
     keep = reach >= 2
     if not keep.any():
-        return mode
+        return None
     sel = sel[keep]
     options = []                                   # (pairing, mode, levels in finger order)
     for P, m, perm, pr in built:
         inv = np.argsort(perm[keep], axis=1)
         lev = np.where(pr.separable[keep][:, None], leximin(pr.take(keep), c.tol), -1.0)
         options.append((P, m, lev[np.arange(sel.size)[:, None], inv]))
+    return sel, options
+
+
+def _break_ties(polygon: Polygon, c: Candidates, rows: np.ndarray, a: FloatArray,
+                b: FloatArray, lengths: FloatArray, mode: np.ndarray, margin: float
+                ) -> np.ndarray:
+    """Among pairings and modes with the same leximin levels (corollary 5.1 makes them
+    equivalent without a margin), place the regions of each and keep the placement of
+    least :func:`geometric_key`, so that a renumbered part gets the same regions.
+
+    Updates ``c.perm`` for ``rows`` and returns the modes.  Rows where two fingers share
+    an edge keep their split search's answer.
+    """
+    mode = mode.copy()
+    found = tie_options(polygon, c, rows, a, b, lengths, margin)
+    if found is None:
+        return mode
+    sel, options = found
     # the options tied with each row's levels (both ways not greater), all rows at once
     want = np.maximum(lengths[sel], 0.0)
     tied = np.array([~_lex_greater(want, lev) & ~_lex_greater(lev, want)
