@@ -83,7 +83,8 @@ from ..core._checks import (
 )
 from ..core.tolerances import TOL
 
-__all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload"]
+__all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload",
+           "ACCEL_SHAPES"]
 
 #: Standard gravity, m/s^2.
 G0 = 9.80665

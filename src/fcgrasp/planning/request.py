@@ -25,6 +25,7 @@ from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
 from ..io.units import FILE_UNITS, UNITS, disturbance_step
+from ..model.loads import ACCEL_SHAPES
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
 from .planner import friction_curve, plan
@@ -267,8 +268,8 @@ class PlanRequest:
                                        f"{self.mu_high:g}")
         if self.accel is not None and min(self.accel) < 0:
             raise _fail("accel", f"--accel is two half-widths >= 0, got {self.accel}")
-        if self.accel_shape not in ("box", "ellipse"):
-            raise _fail("accel_shape", f"--accel-shape is box or ellipse, got "
+        if self.accel_shape not in ACCEL_SHAPES:
+            raise _fail("accel_shape", f"--accel-shape is {' or '.join(ACCEL_SHAPES)}, got "
                                        f"{self.accel_shape!r}")
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
