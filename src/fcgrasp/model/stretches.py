@@ -197,6 +197,7 @@ class _Exclusion:
         self.fraction = float(fraction)
         self.tol = ROUND_TOL * polygon.size
         self.plans: list[list[tuple[int, float, float]]] = []
+        self._by_rings: dict[tuple[int, int], tuple[FloatArray, ...]] = {}
         for regions, region_edges in kept:
             arcs: list[tuple[int, float, float]] = []
             for pts, edges in zip(regions, region_edges, strict=True):
@@ -229,16 +230,29 @@ class _Exclusion:
         return cast("np.ndarray", ((np.asarray(iA, np.int64) % ma * (ma + 1) + kA) * mb
                                    + np.asarray(iC, np.int64) % mb) * (mb + 1) + kC)
 
-    def _outside(self, ring: _Ring, i: np.ndarray, k: np.ndarray, u0: float, u1: float
-                 ) -> FloatArray:
-        """Arc of the stretches (edges i .. i + k) outside the arc [u0, u1]."""
+    def _outside(self, ring: _Ring, i: np.ndarray, k: np.ndarray, u0: FloatArray,
+                 u1: FloatArray) -> FloatArray:
+        """Arc of the stretches (edges i .. i + k, rows) outside the arcs [u0, u1]
+        (columns)."""
         per = float(ring.U[ring.m])
-        a0 = ring.U[np.asarray(i) % ring.m]
-        a1 = ring.U[np.asarray(i) % ring.m + np.asarray(k) + 1]
-        common = np.zeros(a0.shape)
+        a0 = ring.U[np.asarray(i) % ring.m][:, None]
+        a1 = ring.U[np.asarray(i) % ring.m + np.asarray(k) + 1][:, None]
+        common = np.zeros((a0.shape[0], len(u0)))
         for shift in (-per, 0.0, per):
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
         return cast("FloatArray", (a1 - a0) - common)
+
+    def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
+        """The kept plans' arcs on rings ``x`` (first region) and ``y`` (second), each
+        plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan."""
+        got = self._by_rings.get((x, y))
+        if got is None:
+            cols = [(ax0, ax1, ay0, ay1) for arcs in self.plans
+                    for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1])
+                    if rx == x and ry == y]
+            got = self._by_rings[x, y] = tuple(np.array(c, float) for c in zip(*cols)) \
+                if cols else ()
+        return got or None
 
     def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
                 t: FloatArray) -> np.ndarray:
@@ -249,17 +263,41 @@ class _Exclusion:
         known = self.seen.get((x, y, job[3]))
         if known is not None:
             out |= np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
-        f = self.fraction
-        for arcs in self.plans:
-            for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1]):
-                if rx != x or ry != y:
-                    continue
-                la, lc = ax1 - ax0, ay1 - ay0
-                out |= (self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1)
-                        < (1 - f) * np.minimum(t, la) - self.tol) \
-                    & (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1)
-                       < (1 - f) * np.minimum(t, lc) - self.tol)
+        arcs = self._arcs(x, y)
+        if arcs is None or not len(t):
+            return out
+        ax0, ax1, ay0, ay1 = arcs
+        f, tc = self.fraction, np.asarray(t)[:, None]
+        la, lc = ax1 - ax0, ay1 - ay0
+        out |= ((self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1)
+                 < (1 - f) * np.minimum(tc, la) - self.tol)
+                & (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1)
+                   < (1 - f) * np.minimum(tc, lc) - self.tol)).any(axis=1)
         return out
+
+    def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                  cfg: _Configs) -> FloatArray:
+        """For each configuration of ``job``, a length above which it is surely the same
+        alternative as a kept plan (:meth:`similar` with any smallest region ``t``
+        greater than it; ``inf``: none).  ``similar`` asks, for each kept plan, that
+        each stretch's arc outside the partner region be below ``(1 - fraction)
+        min(t, partner's length)`` less the tolerance: for ``t`` above ``(outside +
+        tol) / (1 - fraction)`` on both sides, where each partner is longer than that.
+        A configuration already read holds at any ``t > 0``."""
+        x, y = job[0], job[1]
+        out = np.full(len(cfg.iA), np.inf)
+        known = self.seen.get((x, y, job[3]))
+        if known is not None:
+            out[np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)] = 0.0
+        keep = 1 - self.fraction
+        arcs = self._arcs(x, y)
+        if keep <= 0 or arcs is None or not len(out):
+            return out
+        ax0, ax1, ay0, ay1 = arcs
+        ta = (self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1) + self.tol) / keep
+        tc = (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1) + self.tol) / keep
+        tau = np.where((ax1 - ax0 > ta) & (ay1 - ay0 > tc), np.maximum(ta, tc), np.inf)
+        return cast("FloatArray", np.minimum(out, tau.min(axis=1)))
 
 
 def _jobs(n_rings: int) -> list[tuple[int, int, float, str]]:
@@ -453,7 +491,10 @@ class _Memo:
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
-         floor: float) -> _Job:
+         floor: float, lazy: bool = False) -> _Job:
+    """A job's configurations reaching ``floor``, ordered by the ends' boxes; ``lazy``
+    (a job kept for later runs, whose floors are not known yet): ordered by arc
+    length, the boxes NaN until :func:`_fill_boxes` reads them."""
     x, y, sigma, _ = job
     ra, rb = rings[x], rings[y]
     ub = _stretch_bound(ra, rb, cfg)
@@ -462,6 +503,10 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
     # many to solve: the compiled loops repay numba's start-up
     compiled = stretch_kernels_for(ra.m * rb.m if ub.size < KERNEL_CONFIGS
                                    else KERNEL_CELLS)
+    if lazy:
+        nan = np.full(ub.size, np.nan)
+        return _Job(cfg, ub, nan.copy(), np.argsort(-ub, kind="stable"), compiled, nan,
+                    nan.copy(), nan.copy())
     # the ends' boxes bound a configuration far below its arc length where the ends are
     # confined: solved in that order, pruned by it (the arc length stays the program's
     # cap, so each configuration's solution is unchanged)
@@ -472,11 +517,23 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
                 nan.copy(), nan.copy())
 
 
+def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
+                intervals: dict[Any, _Intervals]) -> None:
+    """The ends' boxes of a lazy job's configurations ``chunk`` not yet bounded."""
+    todo = chunk[np.isnan(J.box[chunk])]
+    if todo.size:
+        x, y, sigma, _ = job
+        J.box[todo] = np.minimum(J.ub[todo], _box_bound(
+            rings[x], rings[y], J.cfg.take(todo), intervals[x, y, sigma],
+            intervals[y, x, sigma], J.compiled))
+
+
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
                 intervals: dict[Any, _Intervals], bound: _Bound, scale: float,
                 keys: _Keys, exclude: _Exclusion | None = None,
                 memo: _Memo | None = None,
-                similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
+                deferred: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
                 ) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept).  With ``exclude``,
@@ -484,7 +541,14 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     bound: marked ``similar``, or, given the dict ``similar``, filed there (their
     indices in their job's configurations: on a curved outline they are tens of
     thousands, and only :func:`_own_optimum` reads them).  With ``memo``,
-    configurations solved by an earlier run are not solved again."""
+    configurations solved by an earlier run are not solved again.  Given the dict
+    ``deferred`` as well, a configuration that is surely a kept plan's alternative at
+    any smallest region above a threshold (:meth:`_Exclusion.threshold`) below its
+    bound can be a plan only below that threshold: it waits until the job's other
+    configurations are done, then is solved in the order of the thresholds while they
+    reach the floor.  Those left are excluded or below the floor, filed in
+    ``deferred``; only :func:`_own_optimum` could read them, as beaters
+    (:func:`_solve_deferred`)."""
     found: list[_Found] = []
     for job, cfg in prepared:
         x, y, sigma, _ = job
@@ -494,13 +558,11 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         elif job in memo.jobs:
             J = memo.jobs[job]
         else:
-            J = memo.jobs[job] = _job(rings, job, cfg, intervals, 0.0)
+            J = memo.jobs[job] = _job(rings, job, cfg, intervals, 0.0, lazy=True)
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
-        for s in range(0, order.size, 256):
-            chunk = order[s:s + 256]
-            chunk = chunk[box[chunk] >= bound.floor]
-            if chunk.size == 0:
-                break
+
+        def settle(chunk: np.ndarray) -> None:
+            # solve what is not yet solved, then file, keep and count the chunk
             todo = chunk[np.isnan(J.t[chunk])]
             if todo.size:
                 rows = _system(ra, rb, cfg.take(todo), sigma, beta, intervals[x, y, sigma],
@@ -522,7 +584,110 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                                     float(u0[j]), similar=bool(same)))
             ok = ok[~sim]
             bound.add(keys(job, part.iA[ok], part.iC[ok]), t[ok])
+
+        later_idx: list[np.ndarray] = []
+        later_tau: list[FloatArray] = []
+        for s in range(0, order.size, 256):
+            chunk = order[s:s + 256]
+            if memo is not None:            # lazy: by arc length, boxes as they come
+                if ub[chunk[0]] < bound.floor:
+                    break
+                _fill_boxes(rings, job, J, chunk, intervals)
+                chunk = chunk[box[chunk] >= bound.floor]
+                if chunk.size == 0:
+                    continue
+            else:
+                chunk = chunk[box[chunk] >= bound.floor]
+                if chunk.size == 0:
+                    break
+            if deferred is not None and exclude:
+                # a kept plan's copies: a plan only below their threshold, so they
+                # wait for it (most never reach the floor)
+                fresh = np.isnan(J.t[chunk])
+                tau = exclude.threshold(rings, job, cfg.take(chunk[fresh]))
+                later = np.zeros(chunk.size, bool)
+                later[fresh] = tau * (1 + DEFER_PAD) < box[chunk[fresh]]
+                if later.any():
+                    later_idx.append(chunk[later])
+                    later_tau.append(tau[later[fresh]])
+                    chunk = chunk[~later]
+            settle(chunk)
+        if later_idx:
+            idx, tau = np.concatenate(later_idx), np.concatenate(later_tau)
+            by = np.argsort(-tau, kind="stable")
+            idx, tau = idx[by], tau[by]
+            # the thresholds fall and the floor only rises: once one falls short of
+            # the floor, every one after it does
+            short = 0
+            for s in range(0, idx.size, 256):
+                e = min(s + 256, idx.size)
+                short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD) >= bound.floor))
+                settle(idx[s:short])
+                if short < e:
+                    break
+            if short < idx.size:
+                assert deferred is not None
+                deferred.setdefault(job, (J, []))[1].append(idx[short:])
     return found
+
+
+#: Relative pad on :meth:`_Exclusion.threshold` before a configuration is deferred:
+#: far above the rounding of the threshold, so a deferred configuration whose smallest
+#: region exceeds it is marked similar by :meth:`_Exclusion.similar` too.
+DEFER_PAD = 1e-9
+
+
+def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool
+                ) -> np.ndarray:
+    """Which configurations ``c`` lie inside one of ``supers`` (rows ``iA, kA, iC,
+    kC``; cyclically; on one ring either way round): for each super, only the
+    configurations whose first start lies in its first stretch are read (sorted)."""
+    out = np.zeros(len(c.iA), bool)
+    for flip in ((False, True) if same else (False,)):
+        a, ka, cc, kc = (c.iC, c.kC, c.iA, c.kA) if flip else (c.iA, c.kA, c.iC, c.kC)
+        a = a % ma
+        by = np.argsort(a, kind="stable")
+        sa = a[by]
+        for iA, kA, iC, kC in supers:
+            lo = iA % ma
+            spans = ((lo, lo + kA + 1),) if lo + kA < ma else \
+                ((lo, ma), (0, lo + kA + 1 - ma))
+            for s0, s1 in spans:
+                sel = by[np.searchsorted(sa, s0):np.searchsorted(sa, s1)]
+                if sel.size:
+                    out[sel] |= ((a[sel] - iA) % ma + ka[sel] <= kA) \
+                        & ((cc[sel] - iC) % mb + kc[sel] <= kC)
+    return out
+
+
+def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
+                    scale: float, found: list[_Found], floor: float,
+                    deferred: dict[Any, tuple[_Job, list[np.ndarray]]],
+                    similar: dict[Any, tuple[_Job, list[np.ndarray]]]) -> None:
+    """Solve the deferred configurations (:func:`_solve_jobs`) that may beat a found
+    configuration reaching ``floor`` in :func:`_own_optimum` (those inside it, either
+    way round on one ring), and file the feasible ones in ``similar`` as beaters."""
+    for job, (J, parts) in deferred.items():
+        supers = np.array([f.cfg for f in found if f.job == job and f.t >= floor],
+                          dtype=np.int64).reshape(-1, 4)
+        supers = supers[supers[:, [1, 3]].max(axis=1) > 0]
+        if not len(supers):
+            continue
+        idx = np.unique(np.concatenate(parts))
+        idx = idx[np.isnan(J.t[idx])]
+        todo = idx[_inside_any(J.cfg.take(idx), supers, rings[job[0]].m, rings[job[1]].m,
+                               job[0] == job[1])]
+        if todo.size:
+            x, y, sigma, _ = job
+            rows = _system(rings[x], rings[y], J.cfg.take(todo), sigma, beta,
+                           intervals[x, y, sigma], intervals[y, x, sigma],
+                           compiled=J.compiled)
+            J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale,
+                                                           J.compiled)
+        done = np.concatenate(parts)
+        done = done[J.t[done] > 0]
+        if done.size:
+            similar.setdefault(job, (J, []))[1].append(done)
 
 
 #: Searches :func:`_search` runs at most before it solves every configuration.
@@ -561,8 +726,12 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             if memo is not None and bound.floor == 0.0:
                 memo.prepared = prepared
         similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
+        deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
-                            memo, similar)
+                            memo, similar, deferred)
+        if deferred:
+            _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
+                            similar)
         found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
         found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
         if top is None or bound.floor == 0.0:
