@@ -210,14 +210,15 @@ def _smooth(rng, n):
                             float(rng.uniform(15, 30)) * r * np.sin(a)])
 
 
-@pytest.mark.parametrize("seed", [*range(3), *(pytest.param(s, marks=pytest.mark.slow)
-                                                 for s in range(3, 200))])
+@pytest.mark.parametrize("seed", [*range(3), 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                                     for s in range(3, 200) if s != 78)])
 def test_distinct_search_equals_suppression_of_every_plan(seed):
     """Two fingers along the boundary with ``distinct=``: the search that leaves each
     kept plan's copies out (fcgrasp.grippers._boundary.distinct_boundary_plans) gives
     the plans that suppression along the *whole* ranked list gives (every
     configuration of the part, ``top=None``), same edges and region lengths, on seeded
-    smooth outlines where a grasp has dozens of shifted copies."""
+    smooth outlines where a grasp has dozens of shifted copies (seed 78 by default: a
+    kept plan's copy there is deferred and must still beat its super-configuration)."""
     from fcgrasp.grippers._boundary import boundary_plans
     from fcgrasp.pipeline import plan_spec
 

@@ -60,7 +60,7 @@ from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting
-from ..core.tolerances import ANGLE_SLACK, ROUND_TOL, TOL
+from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._stretch_lp import (
     _box_bound,
@@ -250,8 +250,8 @@ class _Exclusion:
             cols = [(ax0, ax1, ay0, ay1) for arcs in self.plans
                     for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1])
                     if rx == x and ry == y]
-            got = self._by_rings[x, y] = tuple(np.array(c, float) for c in zip(*cols)) \
-                if cols else ()
+            got = self._by_rings[x, y] = tuple(
+                np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
         return got or None
 
     def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
@@ -528,6 +528,51 @@ def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
             intervals[y, x, sigma], J.compiled))
 
 
+@dataclass
+class _Run:
+    """One job of :func:`_solve_jobs`: what :meth:`settle` reads and where it files."""
+
+    rings: list[_Ring]
+    job: Any
+    J: _Job
+    beta: float
+    intervals: dict[Any, _Intervals]
+    scale: float
+    exclude: _Exclusion | None
+    similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None
+    found: list[_Found]
+    bound: _Bound
+    keys: _Keys
+
+    def settle(self, chunk: np.ndarray) -> None:
+        """Solve what of ``chunk`` is not yet solved, then file (a kept plan's copies in
+        ``similar``), keep and count (the bound) the chunk."""
+        J, job, (x, y, sigma, _) = self.J, self.job, self.job
+        cfg, ra, rb = J.cfg, self.rings[x], self.rings[y]
+        todo = chunk[np.isnan(J.t[chunk])]
+        if todo.size:
+            rows = _system(ra, rb, cfg.take(todo), sigma, self.beta,
+                           self.intervals[x, y, sigma], self.intervals[y, x, sigma],
+                           compiled=J.compiled)
+            J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], self.scale,
+                                                           J.compiled)
+        part = cfg.take(chunk)
+        t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
+        ok = np.flatnonzero(t > 0)
+        sim = self.exclude.similar(self.rings, job, part.take(ok), t[ok]) if self.exclude \
+            else np.zeros(ok.size, bool)
+        if self.similar is not None and sim.any():
+            self.similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
+            ok, sim = ok[~sim], sim[~sim]
+        for j, same in zip(ok, sim, strict=True):
+            c = chunk[j]
+            self.found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
+                                           int(cfg.kC[c])), float(t[j]), float(s0[j]),
+                                     float(u0[j]), similar=bool(same)))
+        ok = ok[~sim]
+        self.bound.add(self.keys(job, part.iA[ok], part.iC[ok]), t[ok])
+
+
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
                 intervals: dict[Any, _Intervals], bound: _Bound, scale: float,
                 keys: _Keys, exclude: _Exclusion | None = None,
@@ -551,8 +596,6 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     (:func:`_solve_deferred`)."""
     found: list[_Found] = []
     for job, cfg in prepared:
-        x, y, sigma, _ = job
-        ra, rb = rings[x], rings[y]
         if memo is None:
             J = _job(rings, job, cfg, intervals, bound.floor)
         elif job in memo.jobs:
@@ -561,30 +604,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             J = memo.jobs[job] = _job(rings, job, cfg, intervals, 0.0, lazy=True)
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
-        def settle(chunk: np.ndarray) -> None:
-            # solve what is not yet solved, then file, keep and count the chunk
-            todo = chunk[np.isnan(J.t[chunk])]
-            if todo.size:
-                rows = _system(ra, rb, cfg.take(todo), sigma, beta, intervals[x, y, sigma],
-                               intervals[y, x, sigma], compiled=J.compiled)
-                J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, ub[todo], scale,
-                                                               J.compiled)
-            part = cfg.take(chunk)
-            t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
-            ok = np.flatnonzero(t > 0)
-            sim = exclude.similar(rings, job, part.take(ok), t[ok]) if exclude \
-                else np.zeros(ok.size, bool)
-            if similar is not None and sim.any():
-                similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
-                ok, sim = ok[~sim], sim[~sim]
-            for j, same in zip(ok, sim, strict=True):
-                c = chunk[j]
-                found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
-                                          int(cfg.kC[c])), float(t[j]), float(s0[j]),
-                                    float(u0[j]), similar=bool(same)))
-            ok = ok[~sim]
-            bound.add(keys(job, part.iA[ok], part.iC[ok]), t[ok])
-
+        run = _Run(rings, job, J, beta, intervals, scale, exclude, similar, found, bound,
+                   keys)
         later_idx: list[np.ndarray] = []
         later_tau: list[FloatArray] = []
         for s in range(0, order.size, 256):
@@ -611,7 +632,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                     later_idx.append(chunk[later])
                     later_tau.append(tau[later[fresh]])
                     chunk = chunk[~later]
-            settle(chunk)
+            run.settle(chunk)
         if later_idx:
             idx, tau = np.concatenate(later_idx), np.concatenate(later_tau)
             by = np.argsort(-tau, kind="stable")
@@ -622,19 +643,13 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             for s in range(0, idx.size, 256):
                 e = min(s + 256, idx.size)
                 short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD) >= bound.floor))
-                settle(idx[s:short])
+                run.settle(idx[s:short])
                 if short < e:
                     break
             if short < idx.size:
                 assert deferred is not None
                 deferred.setdefault(job, (J, []))[1].append(idx[short:])
     return found
-
-
-#: Relative pad on :meth:`_Exclusion.threshold` before a configuration is deferred:
-#: far above the rounding of the threshold, so a deferred configuration whose smallest
-#: region exceeds it is marked similar by :meth:`_Exclusion.similar` too.
-DEFER_PAD = 1e-9
 
 
 def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool
