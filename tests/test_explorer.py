@@ -163,6 +163,18 @@ def click_at(driver, xy):
         body, xy[0] - body.rect["width"] / 2, xy[1] - body.rect["height"] / 2).click().perform()
 
 
+def open_demo(driver, server, name):
+    """The page, then the built-in part ``name`` picked from its list and planned."""
+    from selenium.webdriver.support.ui import Select
+
+    driver.get(server)
+    wait(driver, "window.explorer && explorer.state.part && "
+                 "document.body.dataset.busy === '0'")
+    after = plan_seq(driver)
+    Select(driver.find_element(By.ID, "demo")).select_by_value(name)
+    wait_plan(driver, after)
+
+
 def test_plans_load_drag_and_mu_agree_with_fcgrasp_plan(server, browser, tmp_path):
     from PIL import Image
 
@@ -557,11 +569,7 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     from selenium.webdriver.support.ui import Select
 
     d = browser
-    d.get(server)
-    wait(d, "window.explorer && explorer.state.part && document.body.dataset.busy === '0'")
-    after = plan_seq(d)
-    Select(d.find_element(By.ID, "demo")).select_by_value("box")
-    wait_plan(d, after)
+    open_demo(d, server, "box")
     assert d.execute_script("return explorer.solid3d.state().error") is None
     assert d.find_element(By.ID, "view3d").is_displayed()
     assert not d.find_element(By.ID, "view").is_displayed()
@@ -629,6 +637,48 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     assert d.execute_script("return [...document.getElementById('gripper').options]"
                             ".every((o) => !o.disabled)")
     assert d.find_elements(By.CSS_SELECTOR, "#plans li")[0].get_attribute("data-edges")
+
+
+def test_the_optimality_bound_is_shown_as_fcgrasp_plan_prints_it(server, browser, tmp_path):
+    """"prove how far from the optimum" (``--bound``) is offered for three fingers with
+    friction and four frictionless fingers only; checked, the page prints the line
+    ``fcgrasp plan --bound`` prints for the same part and options."""
+    import contextlib
+
+    from selenium.webdriver.support.ui import Select
+
+    d = browser
+    open_demo(d, server, "triangle")
+    assert not d.find_element(By.ID, "bound").is_displayed()      # two fingers
+    after = plan_seq(d)
+    set_value(d, "mu", 0.5)
+    Select(d.find_element(By.ID, "gripper")).select_by_value("3")
+    wait_plan(d, after)
+    assert d.find_element(By.ID, "bound").is_displayed()
+    assert not d.find_element(By.ID, "optimum").is_displayed()   # empty until asked
+    after = plan_seq(d)
+    d.find_element(By.ID, "bound").click()
+    wait_plan(d, after)
+    wait(d, "document.getElementById('optimum').textContent.length > 0")
+    shown = d.find_element(By.ID, "optimum").text
+    argv = ["--fingers", "3", "--mu", "0.5", "--bound"]
+    part = d.execute_script("return explorer.state.part")
+    path = tmp_path / "triangle.json"
+    path.write_text(json.dumps({"vertices": part["outer"], "holes": part["holes"]}))
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main(["plan", str(path), "--no-clean", "--units", part["units"], *argv]) == 0
+    line = next(x for x in out.getvalue().splitlines() if x.startswith("optimum:"))
+    assert shown == line
+    # four frictionless fingers: offered too; jaw: not
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "gripper")).select_by_value("4")
+    wait_plan(d, after)
+    assert d.find_element(By.ID, "bound").is_displayed()
+    assert d.execute_script("return explorer.state.report.optimality.upper_bound") > 0
+    Select(d.find_element(By.ID, "gripper")).select_by_value("jaw")
+    assert not d.find_element(By.ID, "bound").is_displayed()
+    d.execute_script("document.getElementById('bound').checked = false;")
 
 
 def test_the_3d_view_triangulates_regions_that_are_not_convex(server, browser):

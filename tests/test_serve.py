@@ -478,3 +478,31 @@ def test_state_lists_the_solids(client):
     st = client.get("/api/state").json()
     assert st["solids"] == ["box", "cylinder", "prism", "angle", "mug"]
     assert st["solid_grippers"] == ["2", "3", "jaw"]
+
+
+@pytest.mark.parametrize("options", [{"gripper": "3", "mu": 0.5, "top": 2, "bound": True},
+                                     {"gripper": "4", "top": 2, "bound": True}],
+                         ids=["3", "4"])
+def test_the_optimality_bound_is_that_of_fcgrasp_plan(client, tmp_path, options):
+    """``bound`` (three fingers with friction, four frictionless): the page's plan
+    carries the upper bound ``fcgrasp plan --bound`` proves, and says so in its argv."""
+    vertices = load_part("demo:triangle").polygon.vertices.tolist()
+    ans = _plan(client, {"outer": vertices, "units": "mm"}, options)
+    assert ans["state"] == "done", ans
+    assert "--bound" in ans["argv"]
+    cli = _cli_report(tmp_path, vertices, ans["argv"])
+    got = ans["report"]["optimality"]
+    assert got == cli["optimality"] and got["upper_bound"] is not None
+    best = max(g["min_region_length"] for g in ans["report"]["grasps"])
+    assert got["upper_bound"] >= best
+    # another gripper leaves the page's bound unused, as it leaves the jaw's options
+    two = _plan(client, {"outer": vertices}, {"gripper": "2", "mu": 0.5, "top": 1,
+                                              "bound": True})
+    assert "optimality" not in two["report"] and "--bound" not in two["argv"]
+
+
+def test_a_bound_without_friction_is_refused_by_name(client):
+    r = client.post("/api/plan", json={"part": {"outer": BLOB},
+                                       "options": {"gripper": "3", "mu": 0, "bound": True}})
+    assert r.status_code == 400, r.text
+    assert r.json()["field"] == "bound" and "--bound" in r.json()["error"]

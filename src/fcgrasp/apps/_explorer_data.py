@@ -34,9 +34,9 @@ _SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct"),
 _COMMON = ("margin", "rank_by", "top", "distinct")
 #: The page's options each of its gripper choices uses (the page sends them all).
 _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
-                 "3": ("mu", "along_boundary", *_COMMON),
+                 "3": ("mu", "along_boundary", "bound", *_COMMON),
                  "3g": ("gravity", "along_boundary", *_COMMON),
-                 "4": ("along_boundary", *_COMMON),
+                 "4": ("along_boundary", "bound", *_COMMON),
                  "jaw": ("mu", "stroke", "pad", "certify", *_COMMON)}
 
 
@@ -188,7 +188,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
          "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1],
-         "distinct": 0.5}
+         "distinct": 0.5, "bound": true}
 
     checked whole here, before a job starts, with the command line's messages (a
     :class:`~fcgrasp.errors.RequestError` naming the option).  The page sends every
@@ -214,7 +214,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
 
 #: The keys of the page's options.
 _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-          "gravity", "certify", "distinct")
+          "gravity", "certify", "distinct", "bound")
 
 
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:

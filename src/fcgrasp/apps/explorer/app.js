@@ -563,6 +563,7 @@ function options() {
   };
   const o = { gripper: g, margin: num("margin", "margin"), top: Math.round(num("top", "plans")) };
   if ($("distinct").checked) o.distinct = 0.5;
+  if ((g === "3" || g === "4") && !S.solid && $("bound").checked) o.bound = true;
   if (g !== "4" && g !== "3g") o.mu = num("mu", "mu");
   if (g === "jaw") {
     o.stroke = [num("stroke0", "stroke"), num("stroke1", "stroke")];
@@ -682,12 +683,25 @@ function accept(ans) {
     li.addEventListener("click", () => select(k));
     list.appendChild(li);
   });
+  $("optimum").textContent = optimumText(ans.report);
   if (S.solid && !S.solid.aimed && S.plans.length) {
     S.solid.aimed = true;                  // the first plans of a solid: face the best
     Solid3D.aim(S.plans[0]);
   }
   select(0);
   document.body.dataset.planSeq = String(Number(document.body.dataset.planSeq) + 1);
+}
+
+// the proved upper bound of --bound (the report's "optimality"), as fcgrasp plan prints it
+function optimumText(report) {
+  const b = report.optimality;
+  if (!b) return "";
+  if (b.upper_bound === null) return "optimum: no upper bound proved within the search's budget";
+  const best = Math.max(0, ...report.grasps.map((g) => g.min_region_length));
+  const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
+  return `optimum: no regions of ${report.parameters.fingers} fingers each ` +
+    `${g4(b.upper_bound)} ${report.units} long or more hold (proved over ${b.nodes} boxes ` +
+    `of positions); the best plan's ${g4(best)} is within ${(100 * b.gap).toFixed(1)} % of that`;
 }
 
 function select(k) {
@@ -1047,7 +1061,7 @@ async function init() {
     $("file").value = "";
   });
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
-                    "certify", "distinct"]) {
+                    "certify", "distinct", "bound"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
