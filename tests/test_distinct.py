@@ -105,6 +105,27 @@ def test_a_curved_outline_has_one_grasp_shifted_and_plan_finds_others():
         [(p.edges, p.lengths.tolist()) for p in ten]
 
 
+@pytest.mark.parametrize("kw", [dict(fingers=3, mu=0.4), dict(fingers=4),
+                                dict(fingers=3, gravity=(0, -1))], ids=["3", "4", "3g"])
+def test_deeper_rounds_keep_the_plans_of_suppression_along_the_whole_list(kw):
+    """Grippers without a distinct search of their own: however the rounds grow, the
+    plans kept are suppression's along the ranked list at the full depth
+    (``DISTINCT_DEPTH`` times ``top``, asked for at once), on demo:cam (one grasp fills
+    the list: the rounds reach the depth), the blob and the bracket."""
+    from fcgrasp.planning.planner import DISTINCT_DEPTH
+
+    rng = np.random.default_rng(5)
+    names = (["cam"] if kw.get("mu") else []) + ["blob", "bracket"]
+    for part in map(fc.read_part, (f"demo:{n}" for n in names)):
+        top, fraction = int(rng.integers(2, 5)), float(rng.choice([0.3, 0.5]))
+        got = fc.plan(part, top=top, distinct=fraction, **kw)
+        whole = fc.plan(part, top=DISTINCT_DEPTH * top, **kw)
+        want = distinct_plans(whole, fraction, part.size)[:top]
+        assert [p.edges for p in got] == [p.edges for p in want]
+        for p, q in zip(got, want, strict=True):
+            assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
+
+
 def test_distinct_is_checked_and_reported(tmp_path):
     from fcgrasp.planning import PlanRequest, plan_document
 

@@ -194,9 +194,15 @@ DISTINCT_DEPTH = 32
 def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
               distinct: Any) -> list[Any]:
     """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
-    (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for twice as
-    many plans until ``top`` distinct ones are found, it has no more, or it was asked for
-    :data:`DISTINCT_DEPTH` times ``top``."""
+    (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for more plans
+    until ``top`` distinct ones are found, it has no more, or it was asked for
+    :data:`DISTINCT_DEPTH` times ``top``.  Each round asks for at least twice as many,
+    and for as many as the last round's share of distinct plans says ``top`` need, twice
+    over, or, where that is half the depth, for all of it (a search's time grows slowly
+    with ``top``: on a curved outline, where one grasp fills the ranked list with its
+    copies, one long round costs less than many doubling ones).  The plans kept are
+    those of suppression along the ranked list, however long the last round's list
+    was."""
     fraction = check_scalar(distinct, "distinct", nonnegative=True)
     if fraction > 1:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {distinct!r}")
@@ -217,7 +223,9 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     kept = suppress(polygon, plans, fraction)
     while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
             and ask < DISTINCT_DEPTH * top:
-        ask = min(2 * ask, DISTINCT_DEPTH * top)
+        need = max(2 * ask, -(-2 * ask * top // max(len(kept), 1)))   # 2 ask top / kept
+        cap = DISTINCT_DEPTH * top
+        ask = cap if 2 * need >= cap else need     # half the depth: the whole of it
         plans = list(gripper.plan(polygon, replace(options, top=ask)))
         kept = suppress(polygon, plans, fraction)
     return kept[:top] if top is not None else kept
