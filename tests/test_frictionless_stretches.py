@@ -305,3 +305,33 @@ def test_grown_regions_do_not_depend_on_the_scale(jit, monkeypatch):
         assert [r for r, _ in other] == [r for r, _ in got[0]]
         for (_, a), (_, b) in zip(other, got[0], strict=True):
             np.testing.assert_allclose(a, b, rtol=1e-9)
+
+
+def test_pairs_of_moves_reach_the_symmetric_optimum_of_an_ellipse():
+    """Issue 32's case: on a 24-edge ellipse, regions on edges 1-4, 7-10, 13-16 and
+    19-22 are reached from the grown plan only by sliding two regions at once (each
+    slide alone shortens the smallest region): growth one move at a time stops at 0.94
+    of them, the plan (its best growth polished by pairs of moves) reaches them, and
+    its grasps hold (the LP oracle)."""
+    t = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    ref = frictionless_stretch_regions(poly, [[1, 2, 3, 4], [7, 8, 9, 10],
+                                              [13, 14, 15, 16], [19, 20, 21, 22]])
+    rows = [p.edges for p in fc.plan(poly, fingers=4, top=8, along_boundary=False)
+            if len(set(p.edges)) == 4]
+    greedy = max(r.min_length for r in grow_stretches(poly, rows) if r is not None)
+    best = fc.plan(poly, fingers=4, top=1)[0]
+    assert greedy < 0.99 * ref.min_length <= best.min_length
+    _check_plan_holds(best, poly, np.random.default_rng(0))
+    with pytest.raises(ValueError, match="polish"):
+        grow_stretches(poly, rows, polish=-1)
+
+
+@pytest.mark.slow
+def test_the_polished_ellipse_plan_is_not_refuted_by_the_bound():
+    from fcgrasp.model.bounds import optimum_upper_bound
+
+    t = np.linspace(0, 2 * np.pi, 24, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    best = fc.plan(poly, fingers=4, top=1)[0]
+    assert optimum_upper_bound(poly, 4, 0.0, lower=best.min_length).value >= best.min_length

@@ -109,6 +109,11 @@ def _reaches_a_vertex(polygon: Polygon, p: GraspPlan) -> bool:
     return False
 
 
+#: The best grown configurations that also try pairs of moves
+#: (:func:`~fcgrasp.model.frictionless_stretches.grow_stretches`'s ``polish``).
+POLISH = 1
+
+
 def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None
                 ) -> list[GraspPlan]:
     """Three or four frictionless fingers along the boundary: the single-edge plans and,
@@ -131,7 +136,7 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     if rows:
         got = grow_stretches(polygon, rows, spec.margin,
                              None if spec.gravity is None else np.array(spec.gravity),
-                             keep_single=False)
+                             keep_single=False, polish=POLISH)
         grown = [frictionless_plan(polygon, spec, r) for r in got
                  if r is not None and max(len(e) for e in r.region_edges) > 1]
     # a single-edge plan below the top-th of the plans found so far (grown, and the

@@ -38,9 +38,13 @@ programs (scipy's HiGHS): exact for the configuration, pairing and orientation.
 as ``n**8``; instead each of the best single-edge plans is *grown*: at each step every
 extension of one region by one edge, at either end, that keeps the fingers on distinct
 edges is solved, and the best one that improves (the smallest region, then the total
-length) is taken, until none improves.  Every returned plan holds (the lemma) and ranks
-at least as high as the single-edge plan it grew from; it can miss a configuration that
-is reached only through worse ones.  ``benchmarks/bench_stretches.py`` measures that gap
+length) is taken, until none improves; the best grown configurations are then *polished*:
+where no single move improves, the best improving pair of moves on two regions (each
+slid or extended by one edge) is taken and the growth goes on (on a 24-edge ellipse
+the four regions of four edges each are reached only by sliding two regions at once).
+Every returned plan holds (the lemma) and ranks at least as high as the single-edge
+plan it grew from; it can miss a configuration that is reached only through worse
+ones.  ``benchmarks/bench_stretches.py`` measures that gap
 against the exhaustive enumeration (:func:`all_frictionless_stretches`: feasible
 configurations are closed under dropping an end edge, so growing every feasible single
 edge set by one edge at a time reaches every one of them).  The tests sample every
@@ -488,6 +492,30 @@ class _Search:
             key = step
         return key
 
+    def polish(self, key: tuple[Any, ...], max_steps: int) -> tuple[Any, ...]:
+        """:meth:`grow`, then, where no move improves, the best improving *pair* of
+        moves (:func:`_pair_moves`: two regions slid or extended at once; a symmetric
+        part's optimum can need two regions slid together, each slide alone shortening
+        the smallest region), with the configuration's pairing and orientation, and
+        grow again; until no pair improves either."""
+        for _ in range(max_steps):
+            key = self.grow(key, max_steps)
+            step = None
+            for new in _pair_moves(self.polygon, key[0]):
+                if _size(new) > MAX_COMBINATIONS:
+                    continue
+                ahead = self.level[key if step is None else step][1]  # type: ignore[index]
+                if self.reach(new) < ahead * (1 - RANK_TOL):
+                    continue
+                cand = (new, key[1], key[2])
+                if self.solve(*cand) is not None and \
+                        self.better(cand, key if step is None else step):
+                    step = cand
+            if step is None:
+                break
+            key = step
+        return key
+
     def result(self, key: tuple[Any, ...]) -> FrictionlessStretches | None:
         cfg = self.level[key][0]  # type: ignore[index]
         x = _leximin(cfg)
@@ -538,6 +566,30 @@ def _moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...], grow_only: bool
     return out
 
 
+def _pair_moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...]
+                ) -> list[tuple[tuple[int, ...], ...]]:
+    """Configurations two moves away, on two different regions, each slid by one edge
+    or longer by one edge at one end (the fingers still on distinct edges)."""
+    used = {e for st in edges for e in st}
+    per: list[list[tuple[tuple[int, ...], set[int]]]] = []
+    for st in edges:
+        ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
+        before, after = polygon.previous_edge(st[0]), polygon.next_edge(st[-1])
+        options = [((before, *st[:-1]), {before}), ((*st[1:], after), {after})]
+        if len(st) + 1 < ring:
+            options += [((before, *st), {before}), ((*st, after), {after})]
+        per.append([(new, add) for new, add in options if not add & used])
+    out = []
+    for f in range(len(edges)):
+        for g in range(f + 1, len(edges)):
+            for a, add_a in per[f]:
+                for b, add_b in per[g]:
+                    if not add_a & add_b:
+                        out.append(tuple(a if i == f else b if i == g else s
+                                         for i, s in enumerate(edges)))
+    return out
+
+
 def _size(edges: tuple[tuple[int, ...], ...]) -> int:
     return int(np.prod([len(st) for st in edges]))
 
@@ -559,14 +611,17 @@ def _seeds(polygon: Polygon, edge_sets: Any, margin: Any, gravity: Any
 
 
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
-                   gravity: Any = None, max_steps: int = 400, keep_single: bool = True
-                   ) -> list[FrictionlessStretches | None]:
+                   gravity: Any = None, max_steps: int = 400, keep_single: bool = True,
+                   polish: int = 0) -> list[FrictionlessStretches | None]:
     """Grow single-edge regions along the boundary (the search of this module's
     docstring).
 
     ``edge_sets``: rows of edges, one per finger (four, or three with ``gravity``);
     from each, extend the region whose extension improves most until none does.  Rows
-    share what they solve.  Returns, per row, a safe plan that ranks at least as high as
+    share what they solve.  The ``polish`` best configurations grown then try pairs of
+    moves where single moves are done (:meth:`_Search.polish`: on a 24-edge ellipse
+    four regions of four edges each are reached only by sliding two regions at once).
+    Returns, per row, a safe plan that ranks at least as high as
     the row's single-edge regions (a lower bound on the optimum), or None when the row's
     edges hold no regions (or, with ``keep_single=False``, when its regions do not leave
     their edges: the single-edge search has them already).
@@ -577,13 +632,22 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     """
     if not isinstance(max_steps, int) or max_steps < 0:
         raise ValueError(f"max_steps must be an integer >= 0, got {max_steps!r}")
+    if not isinstance(polish, int) or polish < 0:
+        raise ValueError(f"polish must be an integer >= 0, got {polish!r}")
     search, seeds = _seeds(polygon, edge_sets, margin, gravity)
+    keys = [None if key is None else search.grow(key, max_steps) for _, key in seeds]
+    # the best grown (distinct configurations, best first) polished
+    best: list[tuple[Any, ...]] = []
+    for key in keys:
+        if key is not None and key not in best:
+            at = next((i for i, b in enumerate(best) if search.better(key, b)), len(best))
+            best.insert(at, key)
+    polished = {key: search.polish(key, max_steps) for key in best[:polish]}
     out: list[FrictionlessStretches | None] = []
-    for _, key in seeds:
-        if key is not None:
-            key = search.grow(key, max_steps)
-            if not keep_single and _size(key[0]) == 1:
-                key = None
+    for key in keys:
+        key = polished.get(key, key)
+        if key is not None and not keep_single and _size(key[0]) == 1:
+            key = None
         out.append(None if key is None else search.result(key))
     return out
 
