@@ -44,7 +44,6 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import itertools
-import json
 import os
 import threading
 import time
@@ -110,7 +109,6 @@ def plan_result(polygon: Any, units: str, request: Any,
     ``polygon`` is a :class:`~fcgrasp.spatial.solid.Solid` where the request's part is
     a solid."""
     from ..io.parts import Part
-    from ..io.report import dumps
     from ..planning import plan_document
 
     if request.is_solid():                    # a solid (polygon is its Solid): no overlays
@@ -120,7 +118,9 @@ def plan_result(polygon: Any, units: str, request: Any,
         part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
         doc = plan_document(request, part=part, progress=progress)
         overlays = [json_ready(overlay(polygon, p)) for p in doc.plans]
-    return {"report": json.loads(dumps(doc.report)), "argv": request.to_argv(),
+    # the report's JSON values (what fcgrasp plan --json writes, without the round trip
+    # through text: 7 ms of a 2,000-edge plan)
+    return {"report": json_ready(doc.report), "argv": request.to_argv(),
             "overlays": overlays}
 
 

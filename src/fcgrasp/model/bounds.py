@@ -43,8 +43,8 @@ general test decides them (a grasp within ``1e-9`` of the boundary is not force 
 so the bound is exact up to that tolerance, as the plans are.
 
 >>> from fcgrasp.io.parts import demo_part
->>> b = optimum_upper_bound(demo_part("triangle"), 4, lower=5.0, gap=0.05)
->>> b.value >= 5.0, b.gap < 1
+>>> b = optimum_upper_bound(demo_part("quad"), 4, lower=19.0, gap=0.05)   # plan: 19.59
+>>> b.value >= 19.59, b.gap < 0.05
 (True, True)
 """
 

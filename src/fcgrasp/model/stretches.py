@@ -528,6 +528,23 @@ def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
             intervals[y, x, sigma], J.compiled))
 
 
+#: Configurations :func:`_solve_jobs` reads at a time: the first chunk (the floor
+#: rises with each), and the largest a lazy job's chunks grow to (each twice the last:
+#: most of a distinct search's configurations are a kept plan's copies, only
+#: bounded and deferred, at a numpy call's cost per chunk, not per configuration).
+CHUNK, LAZY_CHUNK = 256, 16384
+
+
+def _chunks(order: np.ndarray, grow: bool) -> Any:
+    """``order`` in chunks of :data:`CHUNK`, growing to :data:`LAZY_CHUNK` if ``grow``."""
+    s, size = 0, CHUNK
+    while s < order.size:
+        yield order[s:s + size]
+        s += size
+        if grow:
+            size = min(2 * size, LAZY_CHUNK)
+
+
 @dataclass
 class _Run:
     """One job of :func:`_solve_jobs`: what :meth:`settle` reads and where it files."""
@@ -608,8 +625,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                    keys)
         later_idx: list[np.ndarray] = []
         later_tau: list[FloatArray] = []
-        for s in range(0, order.size, 256):
-            chunk = order[s:s + 256]
+        for chunk in _chunks(order, memo is not None):
             if memo is not None:            # lazy: by arc length, boxes as they come
                 if ub[chunk[0]] < bound.floor:
                     break
@@ -640,8 +656,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             # the thresholds fall and the floor only rises: once one falls short of
             # the floor, every one after it does
             short = 0
-            for s in range(0, idx.size, 256):
-                e = min(s + 256, idx.size)
+            for s in range(0, idx.size, CHUNK):
+                e = min(s + CHUNK, idx.size)
                 short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD) >= bound.floor))
                 run.settle(idx[s:short])
                 if short < e:
@@ -689,7 +705,9 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
         if not len(supers):
             continue
         idx = np.unique(np.concatenate(parts))
-        idx = idx[np.isnan(J.t[idx])]
+        # a beater's smallest region exceeds the found one's (at least the floor) by
+        # the tie tolerance, and its box bounds it
+        idx = idx[np.isnan(J.t[idx]) & (J.box[idx] > floor * (1 + TIE))]
         todo = idx[_inside_any(J.cfg.take(idx), supers, rings[job[0]].m, rings[job[1]].m,
                                job[0] == job[1])]
         if todo.size:
