@@ -480,13 +480,14 @@ def test_state_lists_the_solids(client):
     assert st["solid_grippers"] == ["2", "3", "jaw"]
 
 
-@pytest.mark.parametrize("options", [{"gripper": "3", "mu": 0.5, "top": 2, "bound": True},
-                                     {"gripper": "4", "top": 2, "bound": True}],
+@pytest.mark.parametrize(("name", "options"),
+                         [("triangle", {"gripper": "3", "mu": 0.5, "top": 2, "bound": True}),
+                          ("quad", {"gripper": "4", "top": 2, "bound": True})],
                          ids=["3", "4"])
-def test_the_optimality_bound_is_that_of_fcgrasp_plan(client, tmp_path, options):
+def test_the_optimality_bound_is_that_of_fcgrasp_plan(client, tmp_path, name, options):
     """``bound`` (three fingers with friction, four frictionless): the page's plan
     carries the upper bound ``fcgrasp plan --bound`` proves, and says so in its argv."""
-    vertices = load_part("demo:triangle").polygon.vertices.tolist()
+    vertices = load_part(f"demo:{name}").polygon.vertices.tolist()
     ans = _plan(client, {"outer": vertices, "units": "mm"}, options)
     assert ans["state"] == "done", ans
     assert "--bound" in ans["argv"]

@@ -645,7 +645,8 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     polished = {key: search.polish(key, max_steps) for key in best[:polish]}
     out: list[FrictionlessStretches | None] = []
     for key in keys:
-        key = polished.get(key, key)
+        if key is not None:
+            key = polished.get(key, key)
         if key is not None and not keep_single and _size(key[0]) == 1:
             key = None
         out.append(None if key is None else search.result(key))
