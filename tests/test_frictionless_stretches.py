@@ -201,7 +201,8 @@ def test_bad_arguments_of_the_module():
         grow_stretches(poly, [[0, 1, 3, 4]], max_steps=-1)
 
 
-@pytest.mark.parametrize("kind", ["ellipse", "blob", "quad", "bracket"])
+@pytest.mark.parametrize("kind", [pytest.param("ellipse", marks=pytest.mark.slow), "blob",
+                                  "quad", "bracket"])
 def test_plans_by_the_compiled_simplex_equal_highs(kind, monkeypatch):
     """Four fingers along the boundary with the growth's programs solved by the compiled
     simplex (fcgrasp.core._simplex) and by HiGHS (``FCGRASP_JIT=0``, the reference):
