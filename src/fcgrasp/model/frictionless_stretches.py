@@ -40,7 +40,7 @@ extension of one region by one edge, at either end, that keeps the fingers on di
 edges is solved, and the best one that improves (the smallest region, then the total
 length) is taken, until none improves; the best grown configurations are then *polished*:
 where no single move improves, the best improving pair of moves on two regions (each
-slid or extended by one edge) is taken and the growth goes on (on a 24-edge ellipse
+slid by one edge) is taken and the growth goes on (on a 24-edge ellipse
 the four regions of four edges each are reached only by sliding two regions at once).
 Every returned plan holds (the lemma) and ranks at least as high as the single-edge
 plan it grew from; it can miss a configuration that is reached only through worse
@@ -494,7 +494,7 @@ class _Search:
 
     def polish(self, key: tuple[Any, ...], max_steps: int) -> tuple[Any, ...]:
         """:meth:`grow`, then, where no move improves, the best improving *pair* of
-        moves (:func:`_pair_moves`: two regions slid or extended at once; a symmetric
+        moves (:func:`_pair_moves`: two regions slid at once; a symmetric
         part's optimum can need two regions slid together, each slide alone shortening
         the smallest region), with the configuration's pairing and orientation, and
         grow again; until no pair improves either."""
@@ -568,16 +568,13 @@ def _moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...], grow_only: bool
 
 def _pair_moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...]
                 ) -> list[tuple[tuple[int, ...], ...]]:
-    """Configurations two moves away, on two different regions, each slid by one edge
-    or longer by one edge at one end (the fingers still on distinct edges)."""
+    """Configurations two moves away, two different regions each slid by one edge (the
+    fingers still on distinct edges; growth extends one region at a time already)."""
     used = {e for st in edges for e in st}
     per: list[list[tuple[tuple[int, ...], set[int]]]] = []
     for st in edges:
-        ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
         before, after = polygon.previous_edge(st[0]), polygon.next_edge(st[-1])
         options = [((before, *st[:-1]), {before}), ((*st[1:], after), {after})]
-        if len(st) + 1 < ring:
-            options += [((before, *st), {before}), ((*st, after), {after})]
         per.append([(new, add) for new, add in options if not add & used])
     out = []
     for f in range(len(edges)):
