@@ -130,7 +130,8 @@ def _least_solutions(w: FloatArray, targets: FloatArray) -> FloatArray | None:
     if not ok.any():
         return None
     M, trip = M[ok], trip[ok]
-    lam = np.linalg.solve(M[:, None], targets[None, :, :, None])[..., 0]  # (T, m, 3)
+    # one factorisation per triple, every target a right-hand side of it
+    lam = np.transpose(np.linalg.solve(M, targets.T[None]), (0, 2, 1))   # (T, m, 3)
     scale = np.max(np.abs(targets), axis=1)[None, :]
     feasible = np.all(lam >= -ROUND_TOL * np.maximum(scale, TINY)[..., None], axis=2)
     cost = np.where(feasible, lam.sum(axis=2), np.inf)                    # (T, m)
