@@ -472,18 +472,8 @@ class _Search:
         """Take the best improving move until none improves; then, if another pairing
         or orientation certifies the configuration better, go on with it."""
         for _ in range(max_steps):
-            step = None
-            for new in _moves(self.polygon, key[0]):
-                cand = (new, key[1], key[2])
-                ahead = self.level[key if step is None else step][1]  # type: ignore[index]
-                # single-edge configurations are the single-edge search's (the seeds);
-                # a region is never longer than the edges it covers
-                if _size(new) == 1 or _size(new) > MAX_COMBINATIONS or \
-                        self.reach(new) < ahead * (1 - RANK_TOL):
-                    continue
-                if self.solve(*cand) is not None and \
-                        self.better(cand, key if step is None else step):
-                    step = cand
+            # single-edge configurations are the single-edge search's (the seeds)
+            step = self._best_move(key, _moves(self.polygon, key[0]), single=False)
             if step is None:
                 other = self.seed(key[0])
                 if other is None or not self.better(other, key):
@@ -500,21 +490,30 @@ class _Search:
         grow again; until no pair improves either."""
         for _ in range(max_steps):
             key = self.grow(key, max_steps)
-            step = None
-            for new in _pair_moves(self.polygon, key[0]):
-                if _size(new) > MAX_COMBINATIONS:
-                    continue
-                ahead = self.level[key if step is None else step][1]  # type: ignore[index]
-                if self.reach(new) < ahead * (1 - RANK_TOL):
-                    continue
-                cand = (new, key[1], key[2])
-                if self.solve(*cand) is not None and \
-                        self.better(cand, key if step is None else step):
-                    step = cand
+            step = self._best_move(key, _pair_moves(self.polygon, key[0]), single=True)
             if step is None:
                 break
             key = step
         return key
+
+    def _best_move(self, key: tuple[Any, ...], moves: list[tuple[tuple[int, ...], ...]],
+                   single: bool) -> tuple[Any, ...] | None:
+        """The best of ``moves`` (covered edges) that beats ``key`` with its pairing and
+        orientation, or None; ``single`` False: single-edge configurations left out.  A
+        region is never longer than the edges it covers: a move whose shortest stretch
+        is below the best so far is not solved."""
+        step = None
+        for new in moves:
+            if (not single and _size(new) == 1) or _size(new) > MAX_COMBINATIONS:
+                continue
+            ahead = self.level[key if step is None else step][1]  # type: ignore[index]
+            if self.reach(new) < ahead * (1 - RANK_TOL):
+                continue
+            cand = (new, key[1], key[2])
+            if self.solve(*cand) is not None and \
+                    self.better(cand, key if step is None else step):
+                step = cand
+        return step
 
     def result(self, key: tuple[Any, ...]) -> FrictionlessStretches | None:
         cfg = self.level[key][0]  # type: ignore[index]
@@ -557,7 +556,7 @@ def _moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...], grow_only: bool
         if len(st) + 1 < ring:
             news += [((before, *st), before), ((*st, after), after)]
         if not grow_only:
-            news += [((before, *st[:-1]), before), ((*st[1:], after), after)]
+            news += _slides(polygon, st)
             if len(st) > 1:
                 news += [(st[1:], None), (st[:-1], None)]
         for new, added in news:
@@ -571,20 +570,23 @@ def _pair_moves(polygon: Polygon, edges: tuple[tuple[int, ...], ...]
     """Configurations two moves away, two different regions each slid by one edge (the
     fingers still on distinct edges; growth extends one region at a time already)."""
     used = {e for st in edges for e in st}
-    per: list[list[tuple[tuple[int, ...], set[int]]]] = []
-    for st in edges:
-        before, after = polygon.previous_edge(st[0]), polygon.next_edge(st[-1])
-        options = [((before, *st[:-1]), {before}), ((*st[1:], after), {after})]
-        per.append([(new, add) for new, add in options if not add & used])
+    per = [[(new, add) for new, add in _slides(polygon, st) if add not in used]
+           for st in edges]
     out = []
     for f in range(len(edges)):
         for g in range(f + 1, len(edges)):
             for a, add_a in per[f]:
                 for b, add_b in per[g]:
-                    if not add_a & add_b:
+                    if add_a != add_b:
                         out.append(tuple(a if i == f else b if i == g else s
                                          for i, s in enumerate(edges)))
     return out
+
+
+def _slides(polygon: Polygon, st: tuple[int, ...]) -> list[tuple[tuple[int, ...], int]]:
+    """A stretch slid by one edge either way, with the edge each slide adds."""
+    before, after = polygon.previous_edge(st[0]), polygon.next_edge(st[-1])
+    return [((before, *st[:-1]), before), ((*st[1:], after), after)]
 
 
 def _size(edges: tuple[tuple[int, ...], ...]) -> int:

@@ -545,6 +545,18 @@ def _chunks(order: np.ndarray, grow: bool) -> Any:
             size = min(2 * size, LAZY_CHUNK)
 
 
+def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: float,
+              intervals: dict[Any, _Intervals], scale: float) -> None:
+    """Solve the configurations ``todo`` of ``job`` into its arrays ``J.t``, ``J.s0``,
+    ``J.u0``."""
+    if not todo.size:
+        return
+    x, y, sigma, _ = job
+    rows = _system(rings[x], rings[y], J.cfg.take(todo), sigma, beta, intervals[x, y, sigma],
+                   intervals[y, x, sigma], compiled=J.compiled)
+    J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale, J.compiled)
+
+
 @dataclass
 class _Run:
     """One job of :func:`_solve_jobs`: what :meth:`settle` reads and where it files."""
@@ -564,15 +576,9 @@ class _Run:
     def settle(self, chunk: np.ndarray) -> None:
         """Solve what of ``chunk`` is not yet solved, then file (a kept plan's copies in
         ``similar``), keep and count (the bound) the chunk."""
-        J, job, (x, y, sigma, _) = self.J, self.job, self.job
-        cfg, ra, rb = J.cfg, self.rings[x], self.rings[y]
-        todo = chunk[np.isnan(J.t[chunk])]
-        if todo.size:
-            rows = _system(ra, rb, cfg.take(todo), sigma, self.beta,
-                           self.intervals[x, y, sigma], self.intervals[y, x, sigma],
-                           compiled=J.compiled)
-            J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], self.scale,
-                                                           J.compiled)
+        J, job, cfg = self.J, self.job, self.J.cfg
+        _solve_in(self.rings, job, J, chunk[np.isnan(J.t[chunk])], self.beta,
+                  self.intervals, self.scale)
         part = cfg.take(chunk)
         t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
         ok = np.flatnonzero(t > 0)
@@ -710,13 +716,7 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
         idx = idx[np.isnan(J.t[idx]) & (J.box[idx] > floor * (1 + TIE))]
         todo = idx[_inside_any(J.cfg.take(idx), supers, rings[job[0]].m, rings[job[1]].m,
                                job[0] == job[1])]
-        if todo.size:
-            x, y, sigma, _ = job
-            rows = _system(rings[x], rings[y], J.cfg.take(todo), sigma, beta,
-                           intervals[x, y, sigma], intervals[y, x, sigma],
-                           compiled=J.compiled)
-            J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale,
-                                                           J.compiled)
+        _solve_in(rings, job, J, todo, beta, intervals, scale)
         done = np.concatenate(parts)
         done = done[J.t[done] > 0]
         if done.size:

@@ -221,10 +221,10 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
         (lambda poly, ps, f: distinct_plans(ps, f, poly.size))
     top, ask = options.top, options.top
     kept = suppress(polygon, plans, fraction)
+    cap = DISTINCT_DEPTH * (top or 0)
     while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
-            and ask < DISTINCT_DEPTH * top:
+            and ask < cap:
         need = max(2 * ask, -(-2 * ask * top // max(len(kept), 1)))   # 2 ask top / kept
-        cap = DISTINCT_DEPTH * top
         ask = cap if 2 * need >= cap else need     # half the depth: the whole of it
         plans = list(gripper.plan(polygon, replace(options, top=ask)))
         kept = suppress(polygon, plans, fraction)
