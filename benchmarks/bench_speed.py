@@ -79,7 +79,20 @@ def lp_regions(poly, e1, e2, mu):
                   bounds=[(0, L[0])] * 2 + [(0, L[1])] * 2 + [(0, None)], method="highs")
     return -res.fun
 
+def previous_kernels():
+    # the previous compiled search, kept here as the baseline: every cell of each row's
+    # window of angles read (the window scan), every row's windows widened
+    from fcgrasp.model import _stretch_kernels as K
+    scan, windows = K.vertex_runs, K.windows
+    def runs(ax, ay, gx, va, bx, by, gy, angle, width, pad):
+        order = np.argsort(angle, kind="stable")
+        return scan(ax, ay, gx, va, bx[order], by[order], gy[order], order, angle[order],
+                    width)
+    K.vertex_runs_tree = runs
+    K.windows = lambda *a: windows(*a[:10])
+
 part_for = {"star1k": lambda: star(1000, 0.01), "ellipse10k": lambda: ellipse(10000),
+            "blob100k": lambda: blob(100000), "star100k": lambda: star(100000, 0.001),
             "star10k": lambda: star(10000, 0.003), "blob10k": lambda: blob(10000),
             "blob1k": lambda: blob(1000), "blob3k": lambda: blob(3000)}
 
@@ -90,6 +103,8 @@ def run(row):
             os.environ["FCGRASP_JIT"] = "1"
             fc.plan(blob(40), fingers=2, mu=0.3, top=1)
             del os.environ["FCGRASP_JIT"]
+        if os.environ.get("FCGRASP_BENCH_PREVIOUS"):
+            previous_kernels()
         t0 = time.process_time()
         fc.plan(poly, fingers=2, mu=0.3, max_memory=16 * 10**9)
         return time.process_time() - t0
@@ -178,6 +193,9 @@ ROWS = [
     ("ellipse10k", "2 fingers along the boundary, ellipse, 10,000 edges", 0.5, "s", "jit0"),
     ("star10k", "2 fingers along the boundary, noisy star, 10,000 edges", 0.5, "s", "jit0"),
     ("blob10k", "2 fingers along the boundary, blob, 10,000 edges", 0.5, "s", "jit0"),
+    ("blob100k", "2 fingers along the boundary, blob, 100,000 edges", 10.0, "s", "previous"),
+    ("star100k", "2 fingers along the boundary, noisy star, 100,000 edges", 10.0, "s",
+     "previous"),
     ("numba", "numba's start-up, once per process (import, cached code)", 0.5, "s", None),
     ("single10k", "2 fingers single-edge, noisy star, 10,000 edges", 0.3, "s", None),
     ("jaw_cam", "parallel jaw, `demo:cam`, top 5 (stroke 5-60, pads 8, mu 0.5)", 2.0, "s",
@@ -193,13 +211,16 @@ ROWS = [
 ]
 
 #: Rows whose baseline or workload takes minutes: left out by ``--quick``.
-SLOW = {"star10k", "ellipse10k", "blob10k", "jaw_cam", "jaw_washer", "f3_cam", "f4_500"}
+SLOW = {"star10k", "ellipse10k", "blob10k", "blob100k", "star100k", "jaw_cam", "jaw_washer",
+        "f3_cam", "f4_500"}
 
 
-def measure(row: str, jit: str | None = None) -> float:
+def measure(row: str, jit: str | None = None, previous: bool = False) -> float:
     env = dict(os.environ, FCGRASP_BENCH_DIR=os.path.dirname(os.path.abspath(__file__)))
     if jit is not None:
         env["FCGRASP_JIT"] = jit
+    if previous:
+        env["FCGRASP_BENCH_PREVIOUS"] = "1"
     out = subprocess.run([sys.executable, "-c", CHILD, row], capture_output=True, text=True,
                          env=env)
     if out.returncode:
@@ -238,6 +259,9 @@ def main() -> None:
             b = measure(key, jit="0")
             label = ("HiGHS programs" if key[:2] in ("f3", "f4")
                      else "numpy pose model" if key.startswith("jaw") else "numpy search")
+        elif base == "previous":
+            b = measure(key, previous=True)
+            label = "the previous compiled search"
         elif base:
             b = measure(base)
             label = "HiGHS LP"

@@ -354,3 +354,128 @@ def test_own_optimum_filter_matches_every_pair(seed):
         want = ~(sub & (t[:, None] > t[None, :] * (1 + S.TIE))).any(axis=0)
         assert np.array_equal(got, want)
         assert np.array_equal(scan, want)
+
+
+def _scan_runs(ra, rb, beta):
+    """The runs by the window scan (:func:`_stretch_kernels.vertex_runs`, the previous
+    kernel, kept as the reference): every cell of each row's window of angles read."""
+    gx = np.stack([g for f in S._fan(ra) for g in S._gens_x(f, beta)], axis=1)
+    gy = np.stack([g for f in S._fan(rb) for g in S._gens_y(f, beta)], axis=1)
+    width = 2 * beta + S.ANGLE_SLACK
+    order, angle_b = S._by_angle(rb)
+    va = np.where(S._turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
+    out = _stretch_kernels.vertex_runs(ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va,
+                                       rb.a[order, 0], rb.a[order, 1], gy[order], order,
+                                       angle_b, width)
+    return {1.0: out[:3], -1.0: out[3:]}
+
+
+@pytest.mark.parametrize("seed", seeds(8, 200))
+def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
+    """The tree of bounds over ring b's columns (:func:`_vertex_runs_tree`) against the
+    window scan that reads every cell, on rings of hundreds to thousands of edges of
+    every kind (exact ties of a regular polygon, collinear runs, noise; far from the
+    origin too, where the bounds' rounding is largest): the same runs bit for bit."""
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    n = int(rng.integers(150, 2500))
+    pts = outline(rng, kind, n) + (rng.uniform(-1e4, 1e4, 2) if seed % 4 == 1 else 0.0)
+    poly = Polygon(pts)
+    beta = _beta(float(rng.choice([0.1, 0.3, 0.6, 1.2])), float(rng.choice([0.0, 0.5])))
+    ring = _rings(poly)[0]
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    tree = S._vertex_runs(ring, ring, beta)
+    scan = _scan_runs(ring, ring, beta)
+    reads = 0
+    for sigma in (1.0, -1.0):
+        reads += scan[sigma][1].size
+        for got, want in zip(tree[sigma], scan[sigma], strict=True):
+            np.testing.assert_array_equal(got, want)
+    assert seed % len(KINDS) == KINDS.index("regular") or reads > 0
+
+
+def _kth(values, k):
+    v = np.sort(np.asarray(values, float))[::-1]
+    return float(v[k - 1]) if v.size >= k else 0.0
+
+
+@pytest.mark.parametrize("seed", seeds(10, 300))
+def test_pruned_windows_give_the_same_floor(seed, monkeypatch):
+    """The windows read in order of their rows' upper bounds and cut below the
+    ``keep``-th value (``_windows`` with ``keep``) against every row read: each row's
+    lower bound is the full one wherever that passes the cut, never above it elsewhere,
+    the ``keep``-th largest (with the search's value before) is the same, and the
+    configurations collected are the same (each row starting at its first long enough
+    window).  Short windows too (``short`` 0: the table read however short they are)."""
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    short = 0 if seed % 2 else 64
+    # a regular polygon ties everywhere: its configurations grow fastest
+    poly = Polygon(outline(rng, kind, int(rng.integers(30, 300 if kind == "regular" else 1500))))
+    beta = _beta(float(rng.choice([0.15, 0.3, 0.6, 1.2])), float(rng.choice([0.0, 0.5])))
+    ring = _rings(poly)[0]
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    runs = S._vertex_runs(ring, ring, beta)
+    checked = 0
+    for sigma in (1.0, -1.0):
+        ptr, first, last = runs[sigma]
+        for same in (True, False):
+            full, *_ = _stretch_kernels.windows(ptr, first, last, ring.U, ring.U, ring.m,
+                                                ring.m, 0.0, False, same)
+            for keep in (1, 3, 10):
+                for value in (0.0, 0.5 * _kth(full, keep), _kth(full, keep)):
+                    got, *_ = _stretch_kernels.windows(ptr, first, last, ring.U, ring.U,
+                                                       ring.m, ring.m, 0.0, False, same,
+                                                       value, keep, short)
+                    kth = max(value, _kth(full, keep))
+                    assert max(value, _kth(got, keep)) == kth
+                    assert np.all(got <= full)
+                    np.testing.assert_array_equal(got[full > kth], full[full > kth])
+                    checked += int(np.any(full > 0))
+            # every configuration (floor 0) only on small rings: they grow as n^3
+            top = full.max(initial=0.0)
+            for floor in ((0.0,) if ring.m <= 100 else ()) + (0.8 * top, top):
+                want = _stretch_kernels.windows(ptr, first, last, ring.U, ring.U, ring.m,
+                                                ring.m, floor, True, same)
+                got = _stretch_kernels.windows(ptr, first, last, ring.U, ring.U, ring.m,
+                                               ring.m, floor, True, same, 0.0, 10, short)
+                for g, w in zip(got[1:], want[1:], strict=True):
+                    np.testing.assert_array_equal(g, w)
+    assert checked or kind == "regular"
+
+
+def _previous_kernels(monkeypatch):
+    """The previous compiled search, kept as the reference: the window scan for the
+    runs, every row's windows widened from the first."""
+    scan, windows = _stretch_kernels.vertex_runs, _stretch_kernels.windows
+
+    def runs(ax, ay, gx, va, bx, by, gy, angle, width, pad):
+        order = np.argsort(angle, kind="stable")
+        return scan(ax, ay, gx, va, bx[order], by[order], gy[order], order, angle[order],
+                    width)
+
+    monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", runs)
+    monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
+
+
+@pytest.mark.parametrize("seed", seeds(2, 24))
+def test_large_outlines_give_the_previous_kernels_plans(seed, monkeypatch):
+    """Plans of outlines of 1,000-4,000 edges (smooth, noisy, with a hole) through the
+    tree of bounds and the pruned windows, against the previous kernels: the same
+    configurations, regions to 1e-9 of the part's size."""
+    rng = np.random.default_rng(1000 + seed)
+    kind = ("ellipse", "noisy", "rounded", "cam")[seed % 4]
+    pts = outline(rng, kind, int(rng.integers(1000, 4000)))
+    holes = []
+    if seed % 3 == 2:
+        c = pts.mean(axis=0)
+        r = 0.15 * np.min(np.ptp(pts, axis=0))
+        th = np.linspace(0, 2 * np.pi, 400, endpoint=False)[::-1]
+        holes = [c + r * np.c_[np.cos(th), np.sin(th)]]
+    poly = Polygon(pts, holes=holes)
+    mu, margin = float(rng.choice([0.2, 0.3, 0.6])), 0.5
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    fast = _plans(poly, mu, margin, 10)
+    _previous_kernels(monkeypatch)
+    _assert_same_plans(fast, _plans(poly, mu, margin, 10), poly.size)
+    assert fast

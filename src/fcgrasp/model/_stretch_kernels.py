@@ -6,16 +6,24 @@ as ``m_a x m_b`` booleans and widens every window of rows at once; on a 10,000-e
 outline that is 10^8 cells per mode and hundreds of passes over every row's runs.  These
 loops do the same work row by row, with nothing of size ``m_a x m_b`` in memory:
 
-* :func:`vertex_runs` scans each row of ``M`` once for both modes (squeeze ``M+`` and
-  expand ``M-``: the expand test of a cell is the squeeze test with the chord reversed,
-  so the same eight cross products, with the opposite sign) and keeps its runs of True
-  (the evaluation is the numpy one's, operation for operation, so the cells agree bit
-  for bit);
+* :func:`vertex_runs_tree` finds the runs of True of each row of ``M`` for both modes
+  (squeeze ``M+`` and expand ``M-``: the expand test of a cell is the squeeze test with
+  the chord reversed, so the same eight cross products, with the opposite sign) under a
+  tree of bounds over ring b's columns: a block of columns whose cells surely all hold,
+  or surely all fail, is decided at once, and only the blocks along a run's ends are
+  read cell by cell, with the arithmetic of :func:`vertex_runs` (the window scan that
+  reads every cell of a row's window of angles, kept as the reference), so the runs
+  agree bit for bit;
 * :func:`windows` widens one row's window of interior vertices at a time, intersecting
   its runs with the next row's (two monotone pointers over two sorted lists of runs),
   and stops as soon as no run is long enough to reach the bound: the lower bound of
   each first row (its vertex-aligned stretches), or the configurations whose bound
-  reaches the floor, enumerated only over the start vertices that can reach it.
+  reaches the floor, enumerated only over the start vertices that can reach it.  A
+  sparse table of the rows' runs (the runs common to every window of ``2^j`` rows)
+  gives any window's runs in two look-ups: the lower bounds are read only for the rows
+  whose upper bound (found by bisection over the window's length) can still raise the
+  search's floor, and the configurations from each row's first window long enough to
+  reach it.  On a smooth outline of ``n`` edges both are ``O(n log n)``.
 
 numba is imported on first use (the machine code cached on disk beside this file); the
 search uses these loops only on rings large enough to repay it
@@ -131,8 +139,399 @@ def _vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, 
     return ptr_p, fp[:np_], lp[:np_], ptr_m, fm[:nm], lm[:nm]
 
 
+#: Columns per leaf of the tree of :func:`_vertex_runs_tree` (read cell by cell).
+_LEAF = 16
+
+
+def _column_tree(bx: Any, by: Any, gy: Any, angle: Any) -> Any:
+    """Bounds over blocks of consecutive columns (a complete binary tree over blocks of
+    :data:`_LEAF`, node 1 the root, node ``i``'s children ``2i`` and ``2i + 1``): per node
+    its box of points, its range of force angles and, per generator ``j`` of ring b, the
+    ranges of the generator's two components and of ``cross(g, b)``.  Empty nodes hold
+    an empty range (``+inf`` below ``-inf``)."""
+    mb = bx.size
+    nblocks = (mb + _LEAF - 1) // _LEAF
+    size = 1
+    while size < nblocks:
+        size *= 2
+    lo = np.full((2 * size, 15), np.inf)     # bx by angle (g0x g0y c0) x 4
+    hi = np.full((2 * size, 15), -np.inf)
+    for q in range(mb):
+        node = size + q // _LEAF
+        vals = np.empty(15)
+        vals[0], vals[1], vals[2] = bx[q], by[q], angle[q]
+        for j in range(4):
+            vals[3 + 3 * j] = gy[q, j, 0]
+            vals[4 + 3 * j] = gy[q, j, 1]
+            vals[5 + 3 * j] = gy[q, j, 0] * by[q] - gy[q, j, 1] * bx[q]
+        for t in range(15):
+            lo[node, t] = min(lo[node, t], vals[t])
+            hi[node, t] = max(hi[node, t], vals[t])
+    for node in range(size - 1, 0, -1):
+        for t in range(15):
+            lo[node, t] = min(lo[2 * node, t], lo[2 * node + 1, t])
+            hi[node, t] = max(hi[2 * node, t], hi[2 * node + 1, t])
+    return lo, hi, size
+
+
+def _vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
+                      angle: Any, width: float, pad: float) -> Any:
+    """:func:`_vertex_runs` without reading every cell of a row's window: ring b's
+    columns in their own order (``angle`` their force angles, not sorted), under a tree
+    of bounds (:func:`_column_tree`).  A node whose every cell surely holds (each cross
+    product's lower bound above ``pad``, every angle inside the window) is one run; one
+    whose every cell surely fails is skipped; a leaf in between is read cell by cell
+    with :func:`_vertex_runs`'s own arithmetic, so the runs are the same bit for bit
+    (the bounds only decide which cells need reading; ``pad`` is far above their
+    rounding).  On a smooth outline a row reads the nodes along the ends of its runs:
+    ``O(log n)`` instead of the window's ``O(n)``."""
+    ma, mb = ax.size, bx.size
+    lo, hi, size = _column_tree(bx, by, gy, angle)
+    ptr = (np.zeros(ma + 1, np.int64), np.zeros(ma + 1, np.int64))
+    fp, lp = np.empty(4 * ma + 16, np.int64), np.empty(4 * ma + 16, np.int64)
+    fm, lm = np.empty(4 * ma + 16, np.int64), np.empty(4 * ma + 16, np.int64)
+    counts = np.zeros(2, np.int64)
+    stack = np.empty(64, np.int64)
+    wlo, whi = np.empty(3), np.empty(3)
+    for v in range(ma):
+        if np.isnan(va[v]):
+            ptr[0][v + 1], ptr[1][v + 1] = counts[0], counts[1]
+            continue
+        for t in range(3):
+            wlo[t] = va[v] + 2 * np.pi * (t - 1) - width
+            whi[t] = va[v] + 2 * np.pi * (t - 1) + width
+        for s in range(2):
+            sign = 1.0 if s == 0 else -1.0
+            run_a, run_b = -2, -2
+            top = 0
+            stack[0] = 1
+            top = 1
+            while top > 0:
+                top -= 1
+                node = stack[top]
+                if lo[node, 0] > hi[node, 0]:
+                    continue                    # an empty node
+                # the window of angles
+                w_all, w_none = width >= np.pi, width < np.pi
+                if width < np.pi:
+                    for t in range(3):
+                        if lo[node, 2] >= wlo[t] and hi[node, 2] <= whi[t]:
+                            w_all = True
+                        if not (hi[node, 2] < wlo[t] or lo[node, 2] > whi[t]):
+                            w_none = False
+                if w_none:
+                    continue
+                # bounds of sign * cross(g, b - a) over the node, for the eight g
+                # least: the smallest lower bound (every product surely >= it); fail:
+                # the smallest upper bound (some product surely below it everywhere)
+                least, fail = np.inf, np.inf
+                for j in range(4):
+                    g0, g1 = gx[v, j, 0], gx[v, j, 1]
+                    # g0 (by - ay) - g1 (bx - ax): linear over the box
+                    c_lo = min(g0 * lo[node, 1], g0 * hi[node, 1]) \
+                        - max(g1 * lo[node, 0], g1 * hi[node, 0]) - (g0 * ay[v] - g1 * ax[v])
+                    c_hi = max(g0 * lo[node, 1], g0 * hi[node, 1]) \
+                        - min(g1 * lo[node, 0], g1 * hi[node, 0]) - (g0 * ay[v] - g1 * ax[v])
+                    if sign < 0:
+                        c_lo, c_hi = -c_hi, -c_lo
+                    least, fail = min(least, c_lo), min(fail, c_hi)
+                    # cross(h, b) - h0 ay + h1 ax, h ranging over its box
+                    k = 3 + 3 * j
+                    c_lo = lo[node, k + 2] - max(lo[node, k] * ay[v], hi[node, k] * ay[v]) \
+                        + min(lo[node, k + 1] * ax[v], hi[node, k + 1] * ax[v])
+                    c_hi = hi[node, k + 2] - min(lo[node, k] * ay[v], hi[node, k] * ay[v]) \
+                        + max(lo[node, k + 1] * ax[v], hi[node, k + 1] * ax[v])
+                    if sign < 0:
+                        c_lo, c_hi = -c_hi, -c_lo
+                    least, fail = min(least, c_lo), min(fail, c_hi)
+                if fail < -pad:
+                    continue                    # a product surely negative everywhere
+                # the node's columns
+                first_block, n_blocks = node, 1
+                while first_block < size:
+                    first_block, n_blocks = 2 * first_block, 2 * n_blocks
+                c0 = (first_block - size) * _LEAF
+                c1 = min((first_block - size + n_blocks) * _LEAF, mb) - 1
+                if w_all and least > pad:
+                    a_, b_ = c0, c1            # every cell holds
+                elif node >= size:
+                    a_, b_ = -2, -2             # a leaf: cell by cell
+                    for q in range(c0, c1 + 1):
+                        inside = width >= np.pi
+                        for t in range(3):
+                            inside |= (angle[q] >= wlo[t]) & (angle[q] <= whi[t])
+                        if not inside:
+                            continue
+                        d0, d1 = bx[q] - ax[v], by[q] - ay[v]
+                        lo_c, hi_c = np.inf, -np.inf
+                        for j in range(4):
+                            c = gx[v, j, 0] * d1 - gx[v, j, 1] * d0
+                            lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+                            c = gy[q, j, 0] * d1 - gy[q, j, 1] * d0
+                            lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+                        moved = (d0 != 0.0) | (d1 != 0.0)
+                        holds = moved & ((lo_c >= 0.0) if s == 0 else (hi_c <= 0.0))
+                        if not holds:
+                            continue
+                        if q == run_b + 1:
+                            run_b = q
+                        else:
+                            if run_a >= 0:
+                                if s == 0:
+                                    fp, lp = _append(fp, lp, counts[0], run_a, run_b)
+                                else:
+                                    fm, lm = _append(fm, lm, counts[1], run_a, run_b)
+                                counts[s] += 1
+                            run_a, run_b = q, q
+                    continue
+                else:
+                    if top + 2 > stack.size:
+                        stack = _grow(stack, top + 2)
+                    stack[top] = 2 * node + 1   # the left child is read first
+                    stack[top + 1] = 2 * node
+                    top += 2
+                    continue
+                if a_ == run_b + 1:
+                    run_b = b_
+                else:
+                    if run_a >= 0:
+                        if s == 0:
+                            fp, lp = _append(fp, lp, counts[0], run_a, run_b)
+                        else:
+                            fm, lm = _append(fm, lm, counts[1], run_a, run_b)
+                        counts[s] += 1
+                    run_a, run_b = a_, b_
+            if run_a >= 0:
+                if s == 0:
+                    fp, lp = _append(fp, lp, counts[0], run_a, run_b)
+                else:
+                    fm, lm = _append(fm, lm, counts[1], run_a, run_b)
+                counts[s] += 1
+        ptr[0][v + 1], ptr[1][v + 1] = counts[0], counts[1]
+    return ptr[0], fp[:counts[0]], lp[:counts[0]], ptr[1], fm[:counts[1]], lm[:counts[1]]
+
+
+def _intersect(a0: int, a1: int, fa: Any, la: Any, b0: int, b1: int, fb: Any, lb: Any,
+               out_f: Any, out_l: Any, n: int) -> Any:
+    """The runs common to two sorted lists of runs (``fa[a0:a1]``, ``la[a0:a1]`` and the
+    same of b), appended to ``out_f``, ``out_l`` from position ``n`` (two monotone
+    pointers; maximal runs stay maximal): the arrays (grown) and the new count."""
+    while a0 < a1 and b0 < b1:
+        lo = max(fa[a0], fb[b0])
+        hi = min(la[a0], lb[b0])
+        if lo <= hi:
+            out_f, out_l = _append(out_f, out_l, n, lo, hi)
+            n += 1
+        if la[a0] < lb[b0]:
+            a0 += 1
+        else:
+            b0 += 1
+    return out_f, out_l, n
+
+
+def _run_table(ptr: Any, first: Any, last: Any, ma: int, levels: int) -> Any:
+    """The runs of the AND of rows ``r .. r + 2^j - 1`` (cyclic) for every row ``r`` and
+    level ``j < levels``: row pointers ``tptr[j]`` into one pair of arrays (a sparse table:
+    any window of rows is the AND of two overlapping entries).  Levels stop after the
+    first with no run at all (no longer window has one either): the table and the number
+    of its levels."""
+    tptr = np.zeros((levels, ma + 1), np.int64)
+    n = ptr[ma]
+    tf, tl = np.empty(2 * n + 16, np.int64), np.empty(2 * n + 16, np.int64)
+    tf[:n], tl[:n] = first[:n], last[:n]
+    tptr[0, :] = ptr
+    for j in range(1, levels):
+        half = 1 << (j - 1)
+        tptr[j, 0] = n
+        for r in range(ma):
+            r2 = (r + half) % ma
+            tf, tl, n = _intersect(tptr[j - 1, r], tptr[j - 1, r + 1], tf, tl,
+                                   tptr[j - 1, r2], tptr[j - 1, r2 + 1], tf, tl, tf, tl, n)
+            tptr[j, r + 1] = n
+        if n == tptr[j, 0]:
+            return tptr, tf, tl, j + 1
+    return tptr, tf, tl, levels
+
+
+def _window_of(tptr: Any, tf: Any, tl: Any, r: int, k: int, ma: int, cs: Any, ce: Any) -> Any:
+    """The runs of the AND of rows ``r .. r + k - 1`` (cyclic) into ``cs``, ``ce``, read
+    from the sparse table: their count."""
+    j = 0
+    while (2 << j) <= k:
+        j += 1
+    r2 = (r + k - (1 << j)) % ma
+    cs, ce, n = _intersect(tptr[j, r], tptr[j, r + 1], tf, tl, tptr[j, r2], tptr[j, r2 + 1],
+                           tf, tl, cs, ce, 0)
+    return n
+
+
+def _cyclic(cs: Any, ce: Any, nc: int, mb: int, rp0: Any, rlen: Any) -> int:
+    """A window's runs as cyclic runs (a run through the last column goes on into the
+    first): starts ``rp0`` and lengths ``rlen``, their count."""
+    nr = 0
+    if nc == 1 and cs[0] == 0 and ce[0] == mb - 1:
+        rp0[0], rlen[0] = 0, mb
+        return 1
+    wrap = nc > 1 and cs[0] == 0 and ce[nc - 1] == mb - 1
+    for j in range(1 if wrap else 0, nc):
+        rp0[nr], rlen[nr] = cs[j], ce[j] - cs[j] + 1
+        if wrap and j == nc - 1:
+            rlen[nr] += ce[0] + 1
+        nr += 1
+    return nr
+
+
+def _measures(rp0: Any, rlen: Any, nr: int, mb: int, Ub: Any) -> Any:
+    """The most any stretch 2 inside these cyclic runs reaches (its edges), and the
+    longest vertex-aligned one (its interior vertices)."""
+    reach, vert = 0.0, 0.0
+    for j in range(nr):
+        jb = (rp0[j] - 1) % mb + mb
+        reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
+        vert = max(vert, Ub[jb + min(rlen[j], mb - 2)] - Ub[jb + 1])
+    return reach, vert
+
+
+def _row_bound(tptr: Any, tf: Any, tl: Any, r: int, ma: int, mb: int, k_max: int, Ua: Any,
+               Ub: Any, cs: Any, ce: Any, rp0: Any, rlen: Any) -> float:
+    """An upper bound on row ``r``'s lower bound (:func:`_window_row` without
+    ``collect``): the largest ``min(inner_s, vert)`` over the window lengths ``k``,
+    every run counted (on one ring too).  ``inner_s`` grows with ``k`` and ``vert``
+    shrinks (the runs only shrink), so the largest is where they cross: found by
+    bisection over ``k`` on the sparse table's windows (``k_max``: the longest that may
+    hold a run)."""
+    i = (r - 1) % ma + ma
+    lo_k, hi_k = 1, k_max                       # inner_s(lo_k) <= vert(lo_k) holds at 1
+    if hi_k < 1:
+        return 0.0
+    best = 0.0
+    while lo_k < hi_k:
+        mid = (lo_k + hi_k + 1) // 2
+        nr = _cyclic(cs, ce, _window_of(tptr, tf, tl, r, mid, ma, cs, ce), mb, rp0, rlen)
+        vert = _measures(rp0, rlen, nr, mb, Ub)[1]
+        inner_s = Ua[i + mid] - Ua[i + 1]
+        if inner_s <= vert:
+            lo_k = mid
+            best = max(best, inner_s)
+        else:
+            hi_k = mid - 1
+            best = max(best, vert)
+    # the last k where inner_s <= vert, and the next one
+    for k in range(lo_k, min(lo_k + 2, k_max + 1)):
+        nr = _cyclic(cs, ce, _window_of(tptr, tf, tl, r, k, ma, cs, ce), mb, rp0, rlen)
+        vert = _measures(rp0, rlen, nr, mb, Ub)[1]
+        best = max(best, min(Ua[i + k] - Ua[i + 1], vert))
+    return best
+
+
+def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0: Any,
+                rlen: Any, ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int,
+                mb: int, floor: float, collect: bool, same: bool, best: Any, thresh: float,
+                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int) -> Any:
+    """Row ``r`` of :func:`_windows` from window length ``k`` on (its runs ``cs``,
+    ``ce``: the AND of rows ``r .. r + k - 1``).  Without ``collect`` the widening stops
+    once no window can beat ``max(best[r], thresh)``."""
+    i = (r - 1) % ma + ma
+    while k < ma - 1 and nc > 0:
+        ext_s = Ua[i + k + 1] - Ua[i]
+        inner_s = Ua[i + k] - Ua[i + 1]
+        # the current window's cyclic runs, the most any stretch 2 inside them reaches
+        # and the longest vertex-aligned one: runs only shrink as the window grows,
+        # so neither grows with k
+        nr = _cyclic(cs, ce, nc, mb, rp0, rlen)
+        reach, vert = _measures(rp0, rlen, nr, mb, Ub)
+        if collect:
+            # a configuration's stretch 2 reaches the floor and stretch 1's interior
+            # (inner_s, growing with k): stop when no run can
+            if reach < max(floor, inner_s) * (1 - ROUND_TOL):
+                break
+        elif reach < floor * (1 - ROUND_TOL) or vert <= max(best[r], thresh):
+            break                   # no later lower bound can beat this row's
+        for j in range(nr):
+            rr = min(rlen[j], mb - 2)
+            if rr < 1:
+                continue
+            jb = (rp0[j] - 1) % mb + mb
+            vert_u = Ub[jb + rr] - Ub[jb + 1]
+            if not collect:
+                if not same or rp0[j] % mb > r:
+                    best[r] = max(best[r], min(inner_s, vert_u))
+                continue
+            if ext_s < floor:
+                continue
+            need = max(floor, inner_s)
+            run_end0 = (rp0[j] + rlen[j] - 1) % mb + mb
+            for jj in range(rlen[j]):
+                p = (rp0[j] + jj) % mb + mb
+                run_end = run_end0 if run_end0 >= p else run_end0 + mb
+                run_end = min(run_end, p + mb - 3)
+                # stretch 2 from edge p - 1 reaches at most the edges up to run_end,
+                # less with every later p (unless the run is nearly the whole ring)
+                if Ub[run_end + 1] < Ub[p - 1] + need:
+                    if rlen[j] <= mb - 2:
+                        break
+                    continue
+                q_hi = np.searchsorted(Ub, Ub[p] + ext_s, side="right") - 1
+                q_lo = np.searchsorted(Ub, Ub[p - 1] + need, side="left") - 1
+                q_lo = max(q_lo, p)
+                q_hi = min(q_hi, run_end)
+                if q_hi < q_lo:
+                    continue
+                n_new = n_out + q_hi - q_lo + 1
+                oA, okA = _grow(oA, n_new), _grow(okA, n_new)
+                oC, okC = _grow(oC, n_new), _grow(okC, n_new)
+                for q in range(q_lo, q_hi + 1):
+                    oA[n_out], okA[n_out] = r - 1, k
+                    oC[n_out], okC[n_out] = p - 1, q - p + 1
+                    n_out += 1
+        # the window grows by row r + k: intersect the runs
+        row = (r + k) % ma
+        a, b, n2 = 0, ptr[row], 0
+        while a < nc and b < ptr[row + 1]:
+            lo = max(cs[a], first[b])
+            hi = min(ce[a], last[b])
+            if lo <= hi:
+                ns[n2], ne[n2] = lo, hi
+                n2 += 1
+            if ce[a] < last[b]:
+                a += 1
+            else:
+                b += 1
+        for j in range(n2):
+            cs[j], ce[j] = ns[j], ne[j]
+        nc = n2
+        k += 1
+    return oA, okA, oC, okC, n_out
+
+
+#: Windows of fewer rows than this are all read (no upper bounds, no ordering).
+_SHORT = 64
+
+
+def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
+               floor: float, collect: bool, same: bool) -> Any:
+    """:func:`_windows` reading every row from its first window on."""
+    best = np.zeros(ma)
+    oA, okA = np.empty(1024, np.int64), np.empty(1024, np.int64)
+    oC, okC = np.empty(1024, np.int64), np.empty(1024, np.int64)
+    n_out = 0
+    cs, ce = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    ns, ne = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    rp0, rlen = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    for r in range(ma):
+        nc = 0
+        for q in range(ptr[r], ptr[r + 1]):
+            cs[nc], ce[nc] = first[q], last[q]
+            nc += 1
+        oA, okA, oC, okC, n_out = _window_row(
+            r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
+            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out)
+    return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
+
+
 def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-             floor: float, collect: bool, same: bool) -> Any:
+             floor: float, collect: bool, same: bool, value: float, keep: int,
+             short: int) -> Any:
     """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
     search, row by row).
 
@@ -140,7 +539,18 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     largest smallest region of the vertex-aligned stretch pairs it starts (its lower
     bound; 0 if none exceeds ``floor``; on one ring only pairs whose stretch 2 starts
     after ``r``, so that each unordered pair is counted by one row).  With ``collect``:
-    every configuration ``(iA, kA, iC, kC)`` whose arc bound reaches ``floor``."""
+    every configuration ``(iA, kA, iC, kC)`` whose arc bound reaches ``floor``.
+
+    ``keep > 0`` prunes with a sparse table of the rows' runs (:func:`_run_table`).
+    Without ``collect`` the rows are read in decreasing order of an upper bound
+    (:func:`_row_bound`) and a row is skipped (its bound 0) once that bound cannot pass
+    ``T``: the ``keep``-th largest of the rows read so far, or ``value`` (the search's
+    ``keep``-th largest over every key) if higher; a row read stops widening below
+    ``T`` too.  What is left out is at most ``T``, never above the search's final
+    ``keep``-th value, so the floor it gives is the same.  With ``collect`` each row
+    starts at the first window long enough for stretch 1 to reach ``floor`` (the
+    shorter ones collect nothing; their break test only weakens with ``k``).  Where no
+    window of ``short`` rows has a run, every row is read as without ``keep``."""
     best = np.zeros(ma)
     cap = 1024
     oA, okA = np.empty(cap, np.int64), np.empty(cap, np.int64)
@@ -152,98 +562,57 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     ne = np.empty(mb + 1, np.int64)
     rp0 = np.empty(mb + 1, np.int64)
     rlen = np.empty(mb + 1, np.int64)
+    if ptr[ma] == 0:
+        return best, oA[:0], okA[:0], oC[:0], okC[:0]       # no runs: no window
+    if keep <= 0 or ma < 4:
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
+    levels = 1
+    while (1 << levels) <= ma - 2:
+        levels += 1
+    tptr, tf, tl, levels = _run_table(ptr, first, last, ma, levels)
+    k_max = min(ma - 2, (1 << levels) - 1)     # a longer window contains an empty entry
+    if k_max < short:
+        # short windows only (a noisy outline): reading them all costs less than sorting
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
+    if collect:
+        for r in range(ma):
+            i = (r - 1) % ma + ma
+            # the first k whose stretch 1 reaches the floor (by bisection: ext_s grows)
+            k, k_hi = 1, k_max + 1
+            while k < k_hi:
+                mid = (k + k_hi) // 2
+                if Ua[i + mid + 1] - Ua[i] < floor:
+                    k = mid + 1
+                else:
+                    k_hi = mid
+            if k > k_max:
+                continue
+            nc = _window_of(tptr, tf, tl, r, k, ma, cs, ce)
+            oA, okA, oC, okC, n_out = _window_row(
+                r, k, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
+                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out)
+        return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
+    upper = np.empty(ma)
     for r in range(ma):
+        upper[r] = _row_bound(tptr, tf, tl, r, ma, mb, k_max, Ua, Ub, cs, ce, rp0, rlen)
+    top = np.zeros(keep)                        # the keep largest read, ascending
+    for r in np.argsort(-upper):
+        thresh = max(value, top[0])
+        if upper[r] * (1 + ROUND_TOL) <= thresh:
+            break
         nc = 0
         for q in range(ptr[r], ptr[r + 1]):
             cs[nc], ce[nc] = first[q], last[q]
             nc += 1
-        i = (r - 1) % ma + ma
-        k = 1
-        while k < ma - 1 and nc > 0:
-            ext_s = Ua[i + k + 1] - Ua[i]
-            inner_s = Ua[i + k] - Ua[i + 1]
-            # the current window's cyclic runs: a run through the last column goes on
-            # into the first
-            nr = 0
-            if nc == 1 and cs[0] == 0 and ce[0] == mb - 1:
-                rp0[0], rlen[0] = 0, mb
-                nr = 1
-            else:
-                wrap = nc > 1 and cs[0] == 0 and ce[nc - 1] == mb - 1
-                for j in range(1 if wrap else 0, nc):
-                    rp0[nr], rlen[nr] = cs[j], ce[j] - cs[j] + 1
-                    if wrap and j == nc - 1:
-                        rlen[nr] += ce[0] + 1
-                    nr += 1
-            # the most any stretch 2 inside these runs reaches (its edges), and the
-            # longest vertex-aligned one (its interior vertices): runs only shrink as
-            # the window grows, so neither grows with k
-            reach, vert = 0.0, 0.0
-            for j in range(nr):
-                jb = (rp0[j] - 1) % mb + mb
-                reach = max(reach, Ub[jb + min(rlen[j], mb - 1) + 1] - Ub[jb])
-                vert = max(vert, Ub[jb + min(rlen[j], mb - 2)] - Ub[jb + 1])
-            if collect:
-                # a configuration's stretch 2 reaches the floor and stretch 1's interior
-                # (inner_s, growing with k): stop when no run can
-                if reach < max(floor, inner_s) * (1 - ROUND_TOL):
-                    break
-            elif reach < floor * (1 - ROUND_TOL) or vert <= best[r]:
-                break                   # no later lower bound can beat this row's
-            for j in range(nr):
-                rr = min(rlen[j], mb - 2)
-                if rr < 1:
-                    continue
-                jb = (rp0[j] - 1) % mb + mb
-                vert_u = Ub[jb + rr] - Ub[jb + 1]
-                if not collect:
-                    if not same or rp0[j] % mb > r:
-                        best[r] = max(best[r], min(inner_s, vert_u))
-                    continue
-                if ext_s < floor:
-                    continue
-                need = max(floor, inner_s)
-                run_end0 = (rp0[j] + rlen[j] - 1) % mb + mb
-                for jj in range(rlen[j]):
-                    p = (rp0[j] + jj) % mb + mb
-                    run_end = run_end0 if run_end0 >= p else run_end0 + mb
-                    run_end = min(run_end, p + mb - 3)
-                    # stretch 2 from edge p - 1 reaches at most the edges up to run_end,
-                    # less with every later p (unless the run is nearly the whole ring)
-                    if Ub[run_end + 1] < Ub[p - 1] + need:
-                        if rlen[j] <= mb - 2:
-                            break
-                        continue
-                    q_hi = np.searchsorted(Ub, Ub[p] + ext_s, side="right") - 1
-                    q_lo = np.searchsorted(Ub, Ub[p - 1] + need, side="left") - 1
-                    q_lo = max(q_lo, p)
-                    q_hi = min(q_hi, run_end)
-                    if q_hi < q_lo:
-                        continue
-                    n_new = n_out + q_hi - q_lo + 1
-                    oA, okA = _grow(oA, n_new), _grow(okA, n_new)
-                    oC, okC = _grow(oC, n_new), _grow(okC, n_new)
-                    for q in range(q_lo, q_hi + 1):
-                        oA[n_out], okA[n_out] = r - 1, k
-                        oC[n_out], okC[n_out] = p - 1, q - p + 1
-                        n_out += 1
-            # the window grows by row r + k: intersect the runs
-            row = (r + k) % ma
-            a, b, n2 = 0, ptr[row], 0
-            while a < nc and b < ptr[row + 1]:
-                lo = max(cs[a], first[b])
-                hi = min(ce[a], last[b])
-                if lo <= hi:
-                    ns[n2], ne[n2] = lo, hi
-                    n2 += 1
-                if ce[a] < last[b]:
-                    a += 1
-                else:
-                    b += 1
-            for j in range(n2):
-                cs[j], ce[j] = ns[j], ne[j]
-            nc = n2
-            k += 1
+        oA, okA, oC, okC, n_out = _window_row(
+            r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
+            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out)
+        if best[r] > top[0]:
+            j = 0
+            while j + 1 < keep and top[j + 1] < best[r]:
+                top[j] = top[j + 1]
+                j += 1
+            top[j] = best[r]
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
@@ -628,7 +997,10 @@ def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
 TABLE_CELLS = 50_000_000
 
 
-_LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _vertex_runs, _windows,
+_LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _vertex_runs, _column_tree,
+                                   _vertex_runs_tree, _intersect, _run_table, _window_of,
+                                   _cyclic, _measures, _row_bound, _window_row, _every_row,
+                                   _windows,
                                    _interval, _window_boxes, _single, _solve_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
@@ -655,12 +1027,21 @@ def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, o
     return _load()["_vertex_runs"](ax, ay, gx, va, bx, by, gy, order, angle_b, float(width))
 
 
+def vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
+                     angle: Any, width: float, pad: float) -> Any:
+    """Compiled :func:`_vertex_runs_tree`."""
+    return _load()["_vertex_runs_tree"](ax, ay, gx, va, bx, by, gy, angle, float(width),
+                                        float(pad))
+
+
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-            floor: float, collect: bool, same: bool) -> Any:
+            floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
+            short: int = _SHORT) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
     for every caller)."""
     ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
-    return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same)
+    return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same,
+                               float(value), int(keep), int(short))
 
 
 def single(*args: Any) -> Any:

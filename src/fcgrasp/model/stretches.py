@@ -380,11 +380,14 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
         # within beta of the chord), and a vertex only if its two normals are within
         # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
         width = 2 * beta + ANGLE_SLACK
-        order, angle_b = _by_angle(rb)
         va = np.where(_turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
-        out = _stretch_kernels.vertex_runs(ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va,
-                                           rb.a[order, 0], rb.a[order, 1], gy[order],
-                                           order, angle_b, width)
+        # the tree's bounds are decided with a pad far above their rounding (a few ulps
+        # of the largest coordinate)
+        pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
+        out = _stretch_kernels.vertex_runs_tree(
+            ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
+            rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
+            width, pad)
         return {1.0: out[:3], -1.0: out[3:]}
     runs = {}
     for sigma in (1.0, -1.0):
@@ -393,13 +396,15 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
     return runs
 
 
-def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool
-          ) -> tuple[FloatArray, _Configs]:
-    """:func:`_windows_both`, compiled for large rings."""
+def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
+          bound: _Bound | None = None) -> tuple[FloatArray, _Configs]:
+    """:func:`_windows_both`, compiled for large rings (pruned by ``bound``'s value: the
+    lower bounds it leaves out could not raise it)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
+        value, keep = (bound.value, bound.k) if bound is not None else (0.0, 0)
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
-                                              collect, same)
+                                              collect, same, value, keep)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
     return _windows_both(runs, ra, rb, same, floor, collect)
 
@@ -450,7 +455,8 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             ra, rb = rings[x], rings[y]
             both = _empty()
             if x <= y:
-                best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect)
+                best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect,
+                                   bound if prebound and bound.fixed is None else None)
                 if not collect and prebound:
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
