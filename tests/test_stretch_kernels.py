@@ -370,7 +370,7 @@ def _scan_runs(ra, rb, beta):
     return {1.0: out[:3], -1.0: out[3:]}
 
 
-@pytest.mark.parametrize("seed", seeds(8, 200))
+@pytest.mark.parametrize("seed", seeds(4, 200))
 def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
     """The tree of bounds over ring b's columns (:func:`_vertex_runs_tree`) against the
     window scan that reads every cell, on rings of hundreds to thousands of edges of
@@ -399,7 +399,7 @@ def _kth(values, k):
     return float(v[k - 1]) if v.size >= k else 0.0
 
 
-@pytest.mark.parametrize("seed", seeds(10, 300))
+@pytest.mark.parametrize("seed", seeds(6, 300))
 def test_pruned_windows_give_the_same_floor(seed, monkeypatch):
     """The windows read in order of their rows' upper bounds and cut below the
     ``keep``-th value (``_windows`` with ``keep``) against every row read: each row's
@@ -455,7 +455,7 @@ def _previous_kernels(monkeypatch):
     monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
 
 
-@pytest.mark.parametrize("seed", seeds(2, 24))
+@pytest.mark.parametrize("seed", seeds(1, 24))
 def test_large_outlines_give_the_previous_kernels_plans(seed, monkeypatch):
     """Plans of outlines of 1,000-4,000 edges (smooth, noisy, with a hole) through the
     tree of bounds and the pruned windows, against the previous kernels: the same
