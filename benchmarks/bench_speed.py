@@ -83,12 +83,8 @@ def previous_kernels():
     # the previous compiled search, kept here as the baseline: every cell of each row's
     # window of angles read (the window scan), every row's windows widened
     from fcgrasp.model import _stretch_kernels as K
-    scan, windows = K.vertex_runs, K.windows
-    def runs(ax, ay, gx, va, bx, by, gy, angle, width, pad):
-        order = np.argsort(angle, kind="stable")
-        return scan(ax, ay, gx, va, bx[order], by[order], gy[order], order, angle[order],
-                    width)
-    K.vertex_runs_tree = runs
+    windows = K.windows
+    K.vertex_runs_tree = K.vertex_runs_scan
     K.windows = lambda *a: windows(*a[:10])
 
 part_for = {"star1k": lambda: star(1000, 0.01), "ellipse10k": lambda: ellipse(10000),

@@ -356,18 +356,11 @@ def test_own_optimum_filter_matches_every_pair(seed):
         assert np.array_equal(scan, want)
 
 
-def _scan_runs(ra, rb, beta):
-    """The runs by the window scan (:func:`_stretch_kernels.vertex_runs`, the previous
-    kernel, kept as the reference): every cell of each row's window of angles read."""
-    gx = np.stack([g for f in S._fan(ra) for g in S._gens_x(f, beta)], axis=1)
-    gy = np.stack([g for f in S._fan(rb) for g in S._gens_y(f, beta)], axis=1)
-    width = 2 * beta + S.ANGLE_SLACK
-    order, angle_b = S._by_angle(rb)
-    va = np.where(S._turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
-    out = _stretch_kernels.vertex_runs(ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va,
-                                       rb.a[order, 0], rb.a[order, 1], gy[order], order,
-                                       angle_b, width)
-    return {1.0: out[:3], -1.0: out[3:]}
+def _scan_runs(monkeypatch, ra, rb, beta):
+    """The runs by the window scan (the previous kernel, kept as the reference): every
+    cell of each row's window of angles read."""
+    monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", _stretch_kernels.vertex_runs_scan)
+    return S._vertex_runs(ra, rb, beta)
 
 
 @pytest.mark.parametrize("seed", seeds(4, 200))
@@ -385,7 +378,7 @@ def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
     ring = _rings(poly)[0]
     monkeypatch.setenv("FCGRASP_JIT", "1")
     tree = S._vertex_runs(ring, ring, beta)
-    scan = _scan_runs(ring, ring, beta)
+    scan = _scan_runs(monkeypatch, ring, ring, beta)
     reads = 0
     for sigma in (1.0, -1.0):
         reads += scan[sigma][1].size
@@ -444,14 +437,8 @@ def test_pruned_windows_give_the_same_floor(seed, monkeypatch):
 def _previous_kernels(monkeypatch):
     """The previous compiled search, kept as the reference: the window scan for the
     runs, every row's windows widened from the first."""
-    scan, windows = _stretch_kernels.vertex_runs, _stretch_kernels.windows
-
-    def runs(ax, ay, gx, va, bx, by, gy, angle, width, pad):
-        order = np.argsort(angle, kind="stable")
-        return scan(ax, ay, gx, va, bx[order], by[order], gy[order], order, angle[order],
-                    width)
-
-    monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", runs)
+    windows = _stretch_kernels.windows
+    monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", _stretch_kernels.vertex_runs_scan)
     monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
 
 

@@ -75,6 +75,22 @@ def _in_order(c: Any, mark: Any) -> Any:
     return out[:n]
 
 
+def _cell(ax: Any, ay: Any, gx: Any, v: int, bx: Any, by: Any, gy: Any, q: int) -> Any:
+    """Cell ``(v, q)`` of the vertex matrix: the least and the largest of the eight cross
+    products ``cross(g, d)`` of the chord ``d`` from vertex ``v`` to vertex ``q``
+    (without a branch: ``M+`` holds where all are >= 0, ``M-`` where all are <= 0, the
+    chord reversed), and whether the chord has a length.  The scan and the tree's
+    leaves both read cells through it, so they agree bit for bit."""
+    d0, d1 = bx[q] - ax[v], by[q] - ay[v]
+    lo_c, hi_c = np.inf, -np.inf
+    for j in range(4):
+        c = gx[v, j, 0] * d1 - gx[v, j, 1] * d0
+        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+        c = gy[q, j, 0] * d1 - gy[q, j, 1] * d0
+        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
+    return lo_c, hi_c, (d0 != 0.0) | (d1 != 0.0)
+
+
 def _vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
                  angle_b: Any, width: float) -> Any:
     """Runs of True of every row of ``M+`` (squeeze) and ``M-`` (expand): for each mode,
@@ -107,16 +123,7 @@ def _vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, 
                     hi = np.searchsorted(angle_b, va[v] + 2 * np.pi * turn + width,
                                          side="right")
                 for q in range(lo, hi):
-                    # the eight cross products cross(g, d), without a branch: M+ holds
-                    # where all are >= 0, M- where all are <= 0 (the chord reversed)
-                    d0, d1 = bx[q] - ax[v], by[q] - ay[v]
-                    lo_c, hi_c = np.inf, -np.inf
-                    for j in range(4):
-                        c = gx[v, j, 0] * d1 - gx[v, j, 1] * d0
-                        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
-                        c = gy[q, j, 0] * d1 - gy[q, j, 1] * d0
-                        lo_c, hi_c = min(lo_c, c), max(hi_c, c)
-                    moved = (d0 != 0.0) | (d1 != 0.0)
+                    lo_c, hi_c, moved = _cell(ax, ay, gx, v, bx, by, gy, q)
                     cols_p[cp] = order[q]
                     cp += moved & (lo_c >= 0.0)
                     cols_m[cm] = order[q]
@@ -192,6 +199,8 @@ def _vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: 
     fm, lm = np.empty(4 * ma + 16, np.int64), np.empty(4 * ma + 16, np.int64)
     counts = np.zeros(2, np.int64)
     stack = np.empty(64, np.int64)
+    # one row's ranges of holding columns, in column order (disjoint: at most mb)
+    rf, rl = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
     wlo, whi = np.empty(3), np.empty(3)
     for v in range(ma):
         if np.isnan(va[v]):
@@ -202,8 +211,7 @@ def _vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: 
             whi[t] = va[v] + 2 * np.pi * (t - 1) + width
         for s in range(2):
             sign = 1.0 if s == 0 else -1.0
-            run_a, run_b = -2, -2
-            top = 0
+            nr = 0
             stack[0] = 1
             top = 1
             while top > 0:
@@ -253,60 +261,37 @@ def _vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: 
                 c0 = (first_block - size) * _LEAF
                 c1 = min((first_block - size + n_blocks) * _LEAF, mb) - 1
                 if w_all and least > pad:
-                    a_, b_ = c0, c1            # every cell holds
+                    rf[nr], rl[nr] = c0, c1     # every cell holds
+                    nr += 1
                 elif node >= size:
-                    a_, b_ = -2, -2             # a leaf: cell by cell
-                    for q in range(c0, c1 + 1):
+                    for q in range(c0, c1 + 1):     # a leaf: cell by cell
                         inside = width >= np.pi
                         for t in range(3):
                             inside |= (angle[q] >= wlo[t]) & (angle[q] <= whi[t])
                         if not inside:
                             continue
-                        d0, d1 = bx[q] - ax[v], by[q] - ay[v]
-                        lo_c, hi_c = np.inf, -np.inf
-                        for j in range(4):
-                            c = gx[v, j, 0] * d1 - gx[v, j, 1] * d0
-                            lo_c, hi_c = min(lo_c, c), max(hi_c, c)
-                            c = gy[q, j, 0] * d1 - gy[q, j, 1] * d0
-                            lo_c, hi_c = min(lo_c, c), max(hi_c, c)
-                        moved = (d0 != 0.0) | (d1 != 0.0)
-                        holds = moved & ((lo_c >= 0.0) if s == 0 else (hi_c <= 0.0))
-                        if not holds:
-                            continue
-                        if q == run_b + 1:
-                            run_b = q
-                        else:
-                            if run_a >= 0:
-                                if s == 0:
-                                    fp, lp = _append(fp, lp, counts[0], run_a, run_b)
-                                else:
-                                    fm, lm = _append(fm, lm, counts[1], run_a, run_b)
-                                counts[s] += 1
-                            run_a, run_b = q, q
-                    continue
+                        lo_c, hi_c, moved = _cell(ax, ay, gx, v, bx, by, gy, q)
+                        if moved & ((lo_c >= 0.0) if s == 0 else (hi_c <= 0.0)):
+                            rf[nr], rl[nr] = q, q
+                            nr += 1
                 else:
                     if top + 2 > stack.size:
                         stack = _grow(stack, top + 2)
                     stack[top] = 2 * node + 1   # the left child is read first
                     stack[top + 1] = 2 * node
                     top += 2
-                    continue
-                if a_ == run_b + 1:
-                    run_b = b_
-                else:
-                    if run_a >= 0:
-                        if s == 0:
-                            fp, lp = _append(fp, lp, counts[0], run_a, run_b)
-                        else:
-                            fm, lm = _append(fm, lm, counts[1], run_a, run_b)
-                        counts[s] += 1
-                    run_a, run_b = a_, b_
-            if run_a >= 0:
+            # adjacent ranges are one run
+            j = 0
+            while j < nr:
+                e = j
+                while e + 1 < nr and rf[e + 1] == rl[e] + 1:
+                    e += 1
                 if s == 0:
-                    fp, lp = _append(fp, lp, counts[0], run_a, run_b)
+                    fp, lp = _append(fp, lp, counts[0], rf[j], rl[e])
                 else:
-                    fm, lm = _append(fm, lm, counts[1], run_a, run_b)
+                    fm, lm = _append(fm, lm, counts[1], rf[j], rl[e])
                 counts[s] += 1
+                j = e + 1
         ptr[0][v + 1], ptr[1][v + 1] = counts[0], counts[1]
     return ptr[0], fp[:counts[0]], lp[:counts[0]], ptr[1], fm[:counts[1]], lm[:counts[1]]
 
@@ -508,17 +493,25 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
 _SHORT = 64
 
 
+def _buffers(mb: int) -> Any:
+    """Work arrays of :func:`_windows`: room for the runs of a window (``cs``, ``ce``),
+    of the next one (``ns``, ``ne``), their cyclic runs (``rp0``, ``rlen``), and the
+    configurations collected (``oA``, ``okA``, ``oC``, ``okC``, grown as needed)."""
+    cs, ce = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    ns, ne = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    rp0, rlen = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
+    oA, okA = np.empty(1024, np.int64), np.empty(1024, np.int64)
+    oC, okC = np.empty(1024, np.int64), np.empty(1024, np.int64)
+    return cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC
+
+
 def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
                floor: float, collect: bool, same: bool) -> Any:
     """:func:`_windows` reading every row from its first window on."""
     best = np.zeros(ma)
-    oA, okA = np.empty(1024, np.int64), np.empty(1024, np.int64)
-    oC, okC = np.empty(1024, np.int64), np.empty(1024, np.int64)
+    cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
     n_out = 0
-    cs, ce = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
-    ns, ne = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
-    rp0, rlen = np.empty(mb + 1, np.int64), np.empty(mb + 1, np.int64)
-    for r in range(ma):
+    for r in range(ma if ptr[ma] > 0 else 0):       # no runs: no window
         nc = 0
         for q in range(ptr[r], ptr[r + 1]):
             cs[nc], ce[nc] = first[q], last[q]
@@ -551,20 +544,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     starts at the first window long enough for stretch 1 to reach ``floor`` (the
     shorter ones collect nothing; their break test only weakens with ``k``).  Where no
     window of ``short`` rows has a run, every row is read as without ``keep``."""
-    best = np.zeros(ma)
-    cap = 1024
-    oA, okA = np.empty(cap, np.int64), np.empty(cap, np.int64)
-    oC, okC = np.empty(cap, np.int64), np.empty(cap, np.int64)
-    n_out = 0
-    cs = np.empty(mb + 1, np.int64)
-    ce = np.empty(mb + 1, np.int64)
-    ns = np.empty(mb + 1, np.int64)
-    ne = np.empty(mb + 1, np.int64)
-    rp0 = np.empty(mb + 1, np.int64)
-    rlen = np.empty(mb + 1, np.int64)
-    if ptr[ma] == 0:
-        return best, oA[:0], okA[:0], oC[:0], okC[:0]       # no runs: no window
-    if keep <= 0 or ma < 4:
+    if keep <= 0 or ma < 4 or ptr[ma] == 0:
         return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
     levels = 1
     while (1 << levels) <= ma - 2:
@@ -574,6 +554,9 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     if k_max < short:
         # short windows only (a noisy outline): reading them all costs less than sorting
         return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
+    best = np.zeros(ma)
+    cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
+    n_out = 0
     if collect:
         for r in range(ma):
             i = (r - 1) % ma + ma
@@ -600,10 +583,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
         thresh = max(value, top[0])
         if upper[r] * (1 + ROUND_TOL) <= thresh:
             break
-        nc = 0
-        for q in range(ptr[r], ptr[r + 1]):
-            cs[nc], ce[nc] = first[q], last[q]
-            nc += 1
+        nc = _window_of(tptr, tf, tl, r, 1, ma, cs, ce)         # the row's own runs
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
             floor, collect, same, best, thresh, oA, okA, oC, okC, n_out)
@@ -997,10 +977,10 @@ def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
 TABLE_CELLS = 50_000_000
 
 
-_LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _vertex_runs, _column_tree,
+_LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
-                                   _cyclic, _measures, _row_bound, _window_row, _every_row,
-                                   _windows,
+                                   _cyclic, _measures, _row_bound, _window_row, _buffers,
+                                   _every_row, _windows,
                                    _interval, _window_boxes, _single, _solve_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
@@ -1032,6 +1012,15 @@ def vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
     """Compiled :func:`_vertex_runs_tree`."""
     return _load()["_vertex_runs_tree"](ax, ay, gx, va, bx, by, gy, angle, float(width),
                                         float(pad))
+
+
+def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
+                     angle: Any, width: float, pad: float) -> Any:
+    """:func:`vertex_runs_tree`'s runs by the window scan (:func:`vertex_runs`, the
+    previous kernel, kept as the reference; ``pad`` unused): ring b sorted by angle."""
+    order = np.argsort(angle, kind="stable")
+    return vertex_runs(ax, ay, gx, va, bx[order], by[order], gy[order], order,
+                       angle[order], width)
 
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
