@@ -126,9 +126,13 @@ def test_closed_form_decides_whether_the_half_planes_meet(seed):
 
 
 def _triples(rng, count):
-    for _ in range(count):
+    """Random rows of three features; every third has two fingers side by side on one
+    edge (its first two features one: their regions apart, in order)."""
+    for k in range(count):
         poly = random_polygon(rng)
         e = rng.choice(poly.n_edges, 3, replace=False)
+        if k % 3 == 2:
+            e[1] = e[0]
         mu = float(rng.choice([0.1, 0.3, 0.5, 1.0, rng.uniform(0.05, 1.5)]))
         margin = float(np.radians(rng.choice([0.0, 0.5, 2.0])))
         a, b = poly.starts[e] / poly.size, poly.ends[e] / poly.size
@@ -159,11 +163,14 @@ def test_every_objective_matches_highs(seed):
     under ``-m slow``)."""
     rng = np.random.default_rng(20 + seed)
     count = 0
+    doubled = 0
     for a, t, L, center, half, margin in _triples(rng, 15):
-        blocks = C._blocks(a, t, L, center, half, margin, 0)
+        order = bool(np.all(a[0] == a[1]))
+        blocks = C._blocks(a, t, L, center, half, margin, 0, order)
         if not blocks:
             continue
         ref = C._solve_blocks_lp(blocks)
+        doubled += order and any(x is not None for x in ref)
         got, ok = K.solve(blocks)
         _same(ref, got, ok, lambda x: x[6])
         count += len(blocks)
@@ -181,7 +188,10 @@ def test_every_objective_matches_highs(seed):
                 g, o = K.solve([blk], kind, fixed, free if kind == K.FREE else None,
                                kw.get("grow", 0))
                 _same(r, g, o, key)
-    assert count > 100
+                for v in (*r, *(g[o] if o.any() else [])):
+                    if v is not None and blk.order:      # the regions apart, in order
+                        assert v[3] <= v[1] + 1e-9
+    assert count > 100 and doubled > 0
 
 
 @pytest.mark.parametrize("seed", SEEDS)
@@ -199,14 +209,16 @@ def test_best_piece_of_each_row_matches(seed, monkeypatch):
         monkeypatch.setenv("FCGRASP_JIT", "0")
         ref = C._best_blocks(A, b, center, half, margin, 1.0)
         monkeypatch.setenv("FCGRASP_JIT", "1")
-        held = 0
+        held = doubled = 0
         for (rb, rl), (gb, gl) in zip(ref, got, strict=True):
             if rb is None:
                 assert gb is None or gl <= 1e-7
                 continue
             held += 1
+            doubled += rb.order
             assert gb is not None and gl == pytest.approx(rl, abs=1e-9)
-        assert held > 10
+            assert gb.order == rb.order
+        assert held > 5 and doubled > 0
 
 
 @pytest.mark.parametrize("kind", ["ellipse", "star"])

@@ -186,6 +186,16 @@ PARTS = [pytest.param(name, marks=pytest.mark.slow) if name == "washer" else nam
          for name in DEMO_PARTS if name not in ("cam",)]
 
 
+def _side_by_side(p, part):
+    """Two fingers on one edge (the first two), their regions apart along it."""
+    if p.mode != "concurrent" or p.edges[0] != p.edges[1] or p.edges[2] == p.edges[0]:
+        return False
+    e = p.edges[0]
+    t = (part.ends[e] - part.starts[e]) / part.lengths[e]
+    s0, s1 = ((p.ends[i] - part.starts[e]) @ t for i in (0, 1))
+    return bool(s0.max() <= s1.min() + 1e-9 * part.size)
+
+
 @pytest.mark.parametrize("name", PARTS)
 def test_plans_of_the_built_in_parts_hold(name):
     part = demo_part(name)
@@ -194,7 +204,7 @@ def test_plans_of_the_built_in_parts_hold(name):
     assert plans and all(p.contact_type == "friction" and p.fingers == 3 for p in plans)
     for p in plans:
         assert p.mode in ("concurrent", "pair")
-        assert len(set(p.edges)) == 3
+        assert len(set(p.edges)) == 3 or _side_by_side(p, part)
         # each point with its own edge's normal (regions may run along the boundary)
         for g, nrm in zip(*_plan_grasps(p, part, rng, 16), strict=True):
             m = closure_margin_lp(grasp_wrenches(g, nrm, 0.5))
@@ -399,7 +409,13 @@ def test_independent_regions_on_three_edges():
     assert reg.edges == (2, 0, 1) and reg.contact_type == "friction"
     assert reg.min_length > 0
     with pytest.raises(ValueError, match="distinct"):
-        fc.independent_regions(part, (0, 0, 1), mu=0.5)
+        fc.independent_regions(part, (0, 0, 0), mu=0.5)
+    # two fingers side by side on one edge: the planner's plan of that row
+    quad = demo_part("quad")
+    reg = fc.independent_regions(quad, (0, 0, 2), mu=0.5)
+    best = fc.plan(quad, fingers=3, mu=0.5, top=1)[0]
+    assert best.edges == (0, 0, 2) and _side_by_side(reg, quad)
+    assert np.allclose(reg.lengths, best.lengths, rtol=1e-9)
 
 
 def test_a_mu_the_planner_cannot_use_is_an_error():
@@ -453,3 +469,55 @@ def test_grow_concurrent_and_free_stretch_bad_arguments():
     with pytest.raises(ValueError, match="covered"):
         free_stretch(part, {7})
     assert free_stretch(part, {0, 1, 2, 3}) is None
+
+
+def _side_rows(poly, mu):
+    """Every row of two fingers side by side on one edge and a third on another, as
+    ``concurrent_regions`` takes them: ``(edges, a, b, center, half)``."""
+    nrm = poly.normals
+    inward = np.arctan2(-nrm[:, 1], -nrm[:, 0])
+    for e in range(poly.n_edges):
+        for g in range(poly.n_edges):
+            if g != e:
+                idx = [e, e, g]
+                yield (e, g), poly.starts[idx], poly.ends[idx], inward[idx], \
+                    np.full(3, np.arctan(mu))
+
+
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+def test_side_by_side_regions_are_the_best_split(seed):
+    """Two fingers side by side on one edge: their regions apart, in order, and as good
+    as the best split of the edge in two (the split edge's halves are two distinct
+    features, solved without the order): no split does better, and a split between the
+    two regions does as well.  On the quad and random parts with every mu; the plans'
+    grasps hold by the HiGHS test (corners and samples)."""
+    rng = np.random.default_rng(70 + seed)
+    margin = np.radians(0.5)
+    checked = 0
+    for poly in [demo_part("quad")] + [random_polygon(rng) for _ in range(4)]:
+        mu = 0.5 if checked == 0 else float(rng.uniform(0.2, 0.9))
+        for (e, g), a, b, c, h in _side_rows(poly, mu):
+            piece = concurrent_regions(a[None], b[None], c[None], h[None], margin,
+                                       poly.size)[0]
+            if piece is None:
+                continue
+            best = float(piece.levels.min())
+            assert piece.hi[0] <= piece.lo[1] + 1e-9 * poly.size
+            t = (b[0] - a[0]) / poly.lengths[e]
+            cuts = list(np.linspace(0.1, 0.9, 5) * poly.lengths[e])
+            cuts.append((piece.hi[0] + piece.lo[1]) / 2)
+            for k, s in enumerate(cuts):
+                m = a[0] + s * t
+                sa, sb = np.stack([a[0], m, a[2]]), np.stack([m, b[0], b[2]])
+                split = concurrent_regions(sa[None], sb[None], c[None], h[None], margin,
+                                           poly.size)[0]
+                level = -np.inf if split is None else float(split.levels.min())
+                assert level <= best + 1e-9 * poly.size, (e, g, s)
+                if k == len(cuts) - 1:
+                    assert level >= best - 1e-9 * poly.size, (e, g, s)
+            checked += 1
+    assert checked >= 6
+    plan = fc.plan(demo_part("quad"), fingers=3, mu=0.5, top=1)[0]
+    part = demo_part("quad")
+    for g, nrm in zip(*_plan_grasps(plan, part, rng, 64), strict=True):
+        assert closure_margin_lp(grasp_wrenches(g, nrm, 0.5)) > 0

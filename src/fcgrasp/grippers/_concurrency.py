@@ -137,10 +137,12 @@ def _region_max(W: Any, f: int, i: int, a0: Any, t0: Any, a1: Any, t1: Any, lo: 
 def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
                istart: Any, icount: Any, inner: Any, lo_ang: Any, hi_ang: Any, sigma: Any,
                kind: int, fixed: Any, free: Any, grow: int, triples: Any, eps: float,
-               feas: float, check: float, round_tol: float, nx: Any, ny: Any, W: Any,
-               out: Any) -> int:
+               feas: float, check: float, round_tol: float, order: bool, nx: Any, ny: Any,
+               W: Any, out: Any) -> int:
     """One block's program (the objective ``kind``): ``out = (lo (3), hi (3), level)``;
-    returns 0 when solved and checked against the closed form at its ends."""
+    returns 0 when solved and checked against the closed form at its ends.  ``order``:
+    fingers 0 and 1 share one feature, finger 0's region ending where finger 1's may
+    begin at the earliest (``hi_0 <= lo_1``: disjoint regions)."""
     _normals(lo_ang, hi_ang, sigma, nx, ny)
     nf = _facets(nx, ny, triples, W)
     # variables: lo (3), hi (3), level, then one per (facet, stretch finger)
@@ -149,7 +151,7 @@ def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
         if icount[i] > 0:
             nstretch += 1
     n = 7 + nf * nstretch
-    rows = nf * (1 + 3 * nstretch) + 9 + 1
+    rows = nf * (1 + 3 * nstretch) + 9 + 1 + 1
     A = np.zeros((rows, n))
     b = np.zeros(rows)
     m = 0
@@ -214,6 +216,10 @@ def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
             A[m, i] = 1.0
             b[m] = const[i] - fixed[i] * (1 - round_tol)
         m += 1
+    if order:                       # hi_0 - lo_1 <= 0: one feature, two regions apart
+        A[m, 3] = 1.0
+        A[m, 1] = -1.0
+        m += 1
     A[m, 6] = 1.0
     if kind == DEEP:
         b[m] = 1.0
@@ -250,6 +256,8 @@ def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
     for i in range(3):
         if x[3 + i] - x[i] + const[i] < -check:
             return 4
+    if order and x[3] > x[1] + check:
+        return 4
     # and, independently of the closed form, a witness for every corner grasp: a point
     # of its six half-planes (moved in by the level when deep)
     shift = x[6] if kind == DEEP else 0.0
@@ -302,7 +310,8 @@ def _meet(nx: Any, ny: Any, c: Any, tol: float) -> bool:
 def _solve_loop(A0: Any, T0: Any, L0: Any, A1: Any, T1: Any, L1: Any, const: Any,
                 istart: Any, icount: Any, inner: Any, lo_ang: Any, hi_ang: Any, sigma: Any,
                 kind: int, fixed: Any, free: Any, grow: int, triples: Any, eps: float,
-                feas: float, check: float, round_tol: float, out: Any, status: Any) -> None:
+                feas: float, check: float, round_tol: float, order: Any, out: Any,
+                status: Any) -> None:
     """Each block's program (:func:`_solve_one`): ``out[b]``, ``status[b]``."""
     nx = np.empty(6)
     ny = np.empty(6)
@@ -311,7 +320,8 @@ def _solve_loop(A0: Any, T0: Any, L0: Any, A1: Any, T1: Any, L1: Any, const: Any
         status[blk] = _solve_one(A0[blk], T0[blk], L0[blk], A1[blk], T1[blk], L1[blk],
                                  const[blk], istart[blk], icount[blk], inner, lo_ang[blk],
                                  hi_ang[blk], sigma[blk], kind, fixed[blk], free[blk], grow,
-                                 triples, eps, feas, check, round_tol, nx, ny, W, out[blk])
+                                 triples, eps, feas, check, round_tol, order[blk], nx, ny,
+                                 W, out[blk])
 
 
 def _row_arcs(center: Any, half: Any, margin: float, splits: Any, round_tol: float,
@@ -383,13 +393,13 @@ def _row_arcs(center: Any, half: Any, margin: float, splits: Any, round_tol: flo
 
 def _best_rows(A: Any, T: Any, L: Any, center: Any, half: Any, margin: float, splits: Any,
                sides: Any, triples: Any, eps: float, feas: float, check: float,
-               round_tol: float, tie: float, level: Any, lo_ang: Any, hi_ang: Any,
-               side: Any) -> None:
+               round_tol: float, tie: float, order: Any, level: Any, lo_ang: Any,
+               hi_ang: Any, side: Any) -> None:
     """Per row of three single features (``A``, ``T`` (R, 3, 2), ``L`` (R, 3), in units
     of the part's size), its best piece (:func:`fcgrasp.grippers._concurrent._best_blocks`:
     every sub-arc of :func:`_row_arcs` with every side, the first with the largest
     smallest region): ``level[r]`` (-1 where none holds a grasp), the piece's arcs and
-    side."""
+    side.  ``order[r]``: fingers 0 and 1 share their feature (regions apart, in order)."""
     nx = np.empty(6)
     ny = np.empty(6)
     W = np.empty((20, 3, 2))
@@ -410,7 +420,8 @@ def _best_rows(A: Any, T: Any, L: Any, center: Any, half: Any, margin: float, sp
             for s in range(ns):
                 st = _solve_one(A[r], T[r], L[r], A[r], T[r], L[r], const, zero, zero, inner,
                                 arc_lo[a], arc_hi[a], sides[s], MAXMIN, const, free, 0,
-                                triples, eps, feas, check, round_tol, nx, ny, W, x)
+                                triples, eps, feas, check, round_tol, order[r], nx, ny, W,
+                                x)
                 vals[a * ns + s] = -np.inf
                 if st == 0:
                     vals[a * ns + s] = min(x[3] - x[0], x[4] - x[1], x[5] - x[2])
@@ -476,20 +487,22 @@ def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = 
         np.asarray(fixed, float), (B, 3)).copy()
     fr = np.zeros((B, 3), bool) if free is None else np.broadcast_to(
         np.asarray(free, bool), (B, 3)).copy()
+    order = np.array([blk.order for blk in blocks], np.bool_).reshape(B)
     out = np.zeros((B, 7))
     status = np.zeros(B, np.int64)
     ok, _ = _LOOPS.run("_solve_loop", A0, T0, L0, A1, T1, L1, const, starts.astype(np.int64),
                        counts, inner, lo_ang, hi_ang, sigma, int(kind), fx, fr, int(grow),
-                       _TRIPLES, SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, out, status)
+                       _TRIPLES, SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, order, out,
+                       status)
     return (out, status == 0) if ok else None
 
 
-def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
-              ) -> tuple[np.ndarray, ...] | None:
+def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float,
+              order: Any = None) -> tuple[np.ndarray, ...] | None:
     """Compiled :func:`_best_rows` (features' starts ``a``, tangents ``t`` (R, 3, 2),
     lengths ``L`` (R, 3), in units of the part's size; cones ``center``, ``half``
-    (R, 3)): ``(found, level, lo_ang, hi_ang, sigma)`` per row; None when the compiled
-    loops cannot run."""
+    (R, 3); ``order`` (R,): fingers 0 and 1 share their feature): ``(found, level,
+    lo_ang, hi_ang, sigma)`` per row; None when the compiled loops cannot run."""
     if _LOOPS.get() is None:
         return None
     R = len(a)
@@ -499,8 +512,9 @@ def best_rows(a: Any, t: Any, L: Any, center: Any, half: Any, margin: float
                        np.ascontiguousarray(t, float), np.ascontiguousarray(L, float),
                        np.ascontiguousarray(center, float), np.ascontiguousarray(half, float),
                        float(margin), np.asarray(SPLITS, float), _SIDES, _TRIPLES,
-                       SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, PIECE_TIE, level, lo, hi,
-                       side)
+                       SIMPLEX_PIVOT, LP_TOL, CHECK_TOL, ROUND_TOL, PIECE_TIE,
+                       np.zeros(R, np.bool_) if order is None else
+                       np.ascontiguousarray(order, np.bool_), level, lo, hi, side)
     return (side[:, 0] != 0, level, lo, hi, side) if ok else None
 
 

@@ -126,7 +126,9 @@ class _Block:
     ``a0[i] + lo_i t0[i]`` (``0 <= lo_i <= L0[i]``), passes the fixed points
     ``inner[i]`` (the interior vertices of a stretch) and ends at ``a1[i] + hi_i t1[i]``
     (``0 <= hi_i <= L1[i]``); its length is ``hi_i - lo_i + const[i]`` (on one edge
-    ``a0 = a1``, no inner point and ``const`` 0)."""
+    ``a0 = a1``, no inner point and ``const`` 0).  ``order``: fingers 0 and 1 are on one
+    feature, finger 0's region before finger 1's (``hi_0 <= lo_1``: two fingers side by
+    side on one edge, regions apart)."""
 
     a0: FloatArray          # (3, 2) starts of the first edges
     t0: FloatArray          # (3, 2) their unit tangents
@@ -140,14 +142,16 @@ class _Block:
     hi_ang: FloatArray
     sigma: FloatArray       # (3,) side of the meeting point
     row: int
+    order: bool = False
 
     @staticmethod
     def on_edges(a: FloatArray, t: FloatArray, L: FloatArray, lo_ang: FloatArray,
-                 hi_ang: FloatArray, sigma: FloatArray, row: int) -> _Block:
-        """A block of three single features."""
+                 hi_ang: FloatArray, sigma: FloatArray, row: int, order: bool = False
+                 ) -> _Block:
+        """A block of three single features (``order``: the first two are one)."""
         none = np.zeros((0, 2))
         return _Block(a, t, L, a, t, L, np.zeros(3), (none, none, none), lo_ang, hi_ang,
-                      sigma, row)
+                      sigma, row, bool(order))
 
     def corners(self) -> np.ndarray:
         """The corner grasps (N, 3): per finger, 0 its start, 1 its end, ``2 + j`` its
@@ -293,6 +297,12 @@ def _solve_blocks_lp(blocks: list[_Block], fixed: FloatArray | None = None,
                 vals.append(np.array([-1.0, 1.0]))
                 rhs.append(np.array([blk.const[i] - float(fixed[i]) * (1 - ROUND_TOL)]))
             r0 += 1
+        if blk.order:       # hi_0 - lo_1 <= 0
+            ri.append(np.full(2, r0))
+            ci.append(np.array([base + 3, base + 1]))
+            vals.append(np.array([1.0, -1.0]))
+            rhs.append(np.zeros(1))
+            r0 += 1
         bounds[base:base + 6] = np.c_[np.zeros(6), np.r_[blk.L0, blk.L1]]
         bounds[base + 6] = (0.0, 1.0 if deep else float((blk.L0 + blk.L1 + blk.const).max()))
         bounds[base + 7:base + 7 + 2 * N] = (-np.inf, np.inf)
@@ -317,17 +327,33 @@ def _solve_blocks_lp(blocks: list[_Block], fixed: FloatArray | None = None,
     for k, blk in enumerate(blocks):
         x = np.array(res.x[starts[k]:starts[k + 1]])
         ok = (_cone_values(blk, x).min() >= -CHECK_TOL
-              and bool(np.all(_lengths(blk, x) >= -CHECK_TOL)))
+              and bool(np.all(_lengths(blk, x) >= -CHECK_TOL))
+              and not (blk.order and x[3] > x[1] + CHECK_TOL))
         out.append(x if ok else None)
     return out
 
 
 def _blocks(a: FloatArray, t: FloatArray, L: FloatArray, center: FloatArray,
-            half: FloatArray, margin: float, row: int) -> list[_Block]:
+            half: FloatArray, margin: float, row: int, order: bool = False) -> list[_Block]:
     """Every convex piece of one row: the sub-arcs of :func:`spanning_arcs` times the
-    eight sides of the meeting point."""
-    return [_Block.on_edges(a, t, L, lo, hi, sigma, row)
+    eight sides of the meeting point (``order``: the first two features are one)."""
+    return [_Block.on_edges(a, t, L, lo, hi, sigma, row, order)
             for lo, hi in spanning_arcs(center, half, margin) for sigma in _SIDES]
+
+
+def shared_first(a: FloatArray, b: FloatArray) -> np.ndarray:
+    """Rows (R, 3, 2 ends) whose first two features are one segment: two fingers side by
+    side on one edge, their regions apart (``hi_0 <= lo_1``).  A row repeating another
+    pair of its features is refused: the shared feature comes first."""
+    def same(i: int, j: int) -> np.ndarray:
+        return np.all(a[:, i] == a[:, j], axis=-1) & np.all(b[:, i] == b[:, j], axis=-1)
+
+    bad = same(0, 2) | same(1, 2)
+    if bad.any():
+        r = int(np.flatnonzero(bad)[0])
+        raise ValueError(f"a, b: two fingers on one feature must be the first two of a row; "
+                         f"row {r} repeats its third feature, got a={a[r].tolist()}")
+    return same(0, 1)
 
 
 def _smallest(blk: _Block, x: FloatArray) -> float:
@@ -337,22 +363,25 @@ def _smallest(blk: _Block, x: FloatArray) -> float:
 def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
                  margin: float, size: float) -> list[tuple[_Block | None, float]]:
     """Per row of three features, the piece with the largest smallest region and that
-    region's length in units of ``size`` (-1 where no piece holds a grasp)."""
+    region's length in units of ``size`` (-1 where no piece holds a grasp).  A row whose
+    first two features are one (:func:`shared_first`) keeps their regions apart."""
     d = b - a
     L = np.hypot(d[..., 0], d[..., 1])
     t = d / np.where(L > 0, L, 1.0)[..., None]
     an, Ln = a / size, L / size
+    order = shared_first(a, b)
     if _concurrency.available():
-        got = _concurrency.best_rows(an, t, Ln, center, half, margin)
+        got = _concurrency.best_rows(an, t, Ln, center, half, margin, order)
         if got is not None:
             found, level, lo, hi, sg = got
-            return [(_Block.on_edges(an[r], t[r], Ln[r], lo[r], hi[r], sg[r], r),
+            return [(_Block.on_edges(an[r], t[r], Ln[r], lo[r], hi[r], sg[r], r, order[r]),
                      float(level[r])) if found[r] else (None, -1.0) for r in range(len(a))]
     out: list[tuple[_Block | None, float]] = []
     for start in range(0, len(a), LP_ROWS):
         stop = min(start + LP_ROWS, len(a))
         blocks = [blk for r in range(start, stop)
-                  for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r)]
+                  for blk in _blocks(an[r], t[r], Ln[r], center[r], half[r], margin, r,
+                                     order[r])]
         per: dict[int, list[tuple[float, _Block]]] = {}
         for blk, x in zip(blocks, _solve_blocks(blocks) if blocks else [], strict=True):
             if x is not None:
@@ -415,7 +444,9 @@ def concurrent_regions(a: Any, b: Any, center: Any, half: Any, margin: float,
     in units of it).  Returns per row the :class:`Piece` with the largest smallest
     region, its levels leximin-optimal within that piece (definition 7.1) and its
     witnesses as deep inside the cones as the levels allow (positions and witnesses in
-    the part's units), or None when no piece holds a grasp.
+    the part's units), or None when no piece holds a grasp.  Two fingers side by side
+    on one edge: give its feature first and second; their regions come apart, in order
+    along it (``hi_0 <= lo_1``).
 
     >>> tri = np.array([[0.0, 0.0], [4.0, 0.0], [2.0, 3.0]])
     >>> a, b = tri[None], np.roll(tri, -1, axis=0)[None]

@@ -275,8 +275,9 @@ def _gripper_on(idx: list[int], mu: float, hand: Hand | None,
     n, distinct = len(idx), len(set(idx))
     if gravity is not None and n in _NO_GRAVITY:
         raise ValueError(_NO_GRAVITY[n])
-    if n == 3 and gravity is None and distinct != 3:
-        raise ValueError(f"three fingers with friction need three distinct edges, got {idx}")
+    if n == 3 and gravity is None and distinct < 2:
+        raise ValueError(f"three fingers with friction need three distinct edges or two "
+                         f"with one twice, got {idx}")
     frictionless = n == 4 or gravity is not None
     if frictionless and check_mu_scalar(mu, "mu") != 0:
         raise ValueError(f"regions of {n} frictionless fingers: mu would not be used, "

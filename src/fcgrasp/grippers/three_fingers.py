@@ -183,7 +183,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                        if blk is not None and lv > 0]
                 found += [g for g in got if keep is None or g[0] >= floor]
                 if grow:
+                    # two fingers side by side on one edge are not grown along it
                     for lv, row, blk in got:
+                        if blk.order:
+                            continue
                         seeds.append((-int(_tie_step(lv, size)), order, lv, row, blk))
                         order += 1
                     seeds.sort(key=lambda r: r[:2])

@@ -5,10 +5,11 @@ as a *safe lower bound* (convex pieces of the closure set; stretches grown from 
 single-edge plans).  This module bounds the optimum from above, so a plan's gap is known:
 it proves that no choice of regions, one connected arc of the boundary per finger, each
 at least ``L`` long, has every grasp force closure.  The regions are those the planner
-chooses from: disjoint; for three fingers no two covering one edge; four fingers may
-share an edge (the planner's single-edge plans double one).  The proof uses none of the
-planner's constructions, only the definition of force closure (theorem 6.1: a twist
-repelling or reciprocal to every wrench, :func:`clearly_not_closure`).
+chooses from: disjoint, and two may share an edge (the planner's single-edge plans
+double one: two fingers side by side on it, with three fingers as with four).  The
+proof uses none of the planner's constructions, only the definition of force closure
+(theorem 6.1: a twist repelling or reciprocal to every wrench,
+:func:`clearly_not_closure`).
 
 **The argument.**  Put each region on a boundary ring by its *start*: the arc-length
 ``a`` at which it begins, in the ring's edge order, so the region is ``[a, a + L]``.
@@ -259,27 +260,20 @@ def _refuted(bd: _Boundary, ring: np.ndarray, lo: np.ndarray, hi: np.ndarray, L:
     return out
 
 
-def _itself(ring: np.ndarray, s: FloatArray) -> FloatArray:
-    return s
-
-
-def _apart(ring: np.ndarray, lo: np.ndarray, hi: np.ndarray, L: float, bd: _Boundary,
-           share: bool) -> np.ndarray:
+def _apart(ring: np.ndarray, lo: np.ndarray, hi: np.ndarray, L: float, bd: _Boundary
+           ) -> np.ndarray:
     """Narrow each node's intervals, in place, to starts of disjoint arcs in order along
-    each ring that, unless ``share``, cover no edge in common (between one arc's end and
-    the next one's start lies a vertex); returns the nodes where some starts are left."""
+    each ring; returns the nodes where some starts are left."""
     k = lo.shape[1]
     per = bd.perimeters[ring]
-    after, before = (_itself, _itself) if share else (bd.vertex_at_or_after,
-                                                      bd.vertex_at_or_before)
     for _ in range(2):
         for i in range(k - 1):
             same = ring[:, i] == ring[:, i + 1]
-            nxt = after(ring[:, i], lo[:, i] + L)
+            nxt = lo[:, i] + L
             lo[:, i + 1] = np.where(same, np.maximum(lo[:, i + 1], nxt), lo[:, i + 1])
         for i in range(k - 2, -1, -1):
             same = ring[:, i] == ring[:, i + 1]
-            prv = before(ring[:, i], hi[:, i + 1]) - L
+            prv = hi[:, i + 1] - L
             hi[:, i] = np.where(same, np.minimum(hi[:, i], prv), hi[:, i])
         # the last arc of a ring ends before its first one comes round
         for i in range(k):
@@ -287,8 +281,8 @@ def _apart(ring: np.ndarray, lo: np.ndarray, hi: np.ndarray, L: float, bd: _Boun
                 first = (ring[:, j] == ring[:, i]) & ((i == 0) | (ring[:, i - 1] != ring[:, i]))
                 last = first & ((j == k - 1) | (ring[:, min(j + 1, k - 1)] != ring[:, j]))
                 p = per[:, i]
-                nxt = after(ring[:, j], lo[:, j] + L) - p
-                prv = before(ring[:, i], hi[:, i] + p) - L
+                nxt = lo[:, j] + L - p
+                prv = hi[:, i] + p - L
                 lo[:, i] = np.where(last, np.maximum(lo[:, i], nxt), lo[:, i])
                 hi[:, j] = np.where(last, np.minimum(hi[:, j], prv), hi[:, j])
     return np.asarray(np.all(lo <= hi, axis=1))
@@ -307,7 +301,7 @@ def _halves(lo: FloatArray, hi: FloatArray
 
 
 def _dive(bd: _Boundary, ring: np.ndarray, lo: FloatArray, hi: FloatArray, L: float,
-          half: float | None, floor: float, share: bool) -> tuple[bool, int]:
+          half: float | None, floor: float) -> tuple[bool, int]:
     """Follow one node that is not refuted down through halves that are not either, to a
     box of starts narrower than ``floor`` (True: the length cannot be refuted) or to one
     whose halves both are (False).  A length shorter than the optimum is given up after
@@ -317,7 +311,7 @@ def _dive(bd: _Boundary, ring: np.ndarray, lo: FloatArray, hi: FloatArray, L: fl
         lo_a, hi_a, lo_b, hi_b = _halves(lo, hi)
         r2 = np.concatenate([ring, ring])
         l2, h2 = np.concatenate([lo_a, lo_b]), np.concatenate([hi_a, hi_b])
-        keep = _apart(r2, l2, h2, L, bd, share)
+        keep = _apart(r2, l2, h2, L, bd)
         alive = keep.copy()
         alive[keep] = ~_refuted(bd, r2[keep], l2[keep], h2[keep], L, half)
         tried += 2
@@ -331,9 +325,9 @@ def _dive(bd: _Boundary, ring: np.ndarray, lo: FloatArray, hi: FloatArray, L: fl
 def refutes(polygon: Polygon, fingers: int, length: float, mu: float = 0.0,
             margin: float = 0.0, max_nodes: int = MAX_NODES) -> tuple[bool | None, int]:
     """Is ``length`` proved too long: no regions of ``fingers`` fingers, each an arc of the
-    boundary at least ``length`` long and no two covering one edge, have every grasp
-    force closure?  Returns the verdict and the number of nodes examined (the module
-    docstring has the proof): True (proved), False (a box of starts narrower than
+    boundary at least ``length`` long and disjoint, have every grasp force closure?
+    Returns the verdict and the number of nodes examined (the module docstring has the
+    proof): True (proved), False (a box of starts narrower than
     :data:`MIN_WIDTH` of ``length`` was not refuted: regions there may hold) or None
     (``max_nodes`` examined first).
 
@@ -367,7 +361,7 @@ def refutes(polygon: Polygon, fingers: int, length: float, mu: float = 0.0,
         take = slice(0, min(_BATCH, max_nodes - seen))
         r_, l_, h_ = ring[take], lo[take], hi[take]
         ring, lo, hi = ring[take.stop:], lo[take.stop:], hi[take.stop:]
-        keep = _apart(r_, l_, h_, L, bd, share=fingers == 4)
+        keep = _apart(r_, l_, h_, L, bd)
         r_, l_, h_ = r_[keep], l_[keep], h_[keep]
         seen += r_.shape[0]
         if not r_.shape[0]:
@@ -378,7 +372,7 @@ def refutes(polygon: Polygon, fingers: int, length: float, mu: float = 0.0,
         r_, l_, h_ = r_[alive], l_[alive], h_[alive]
         if np.any(np.max(h_ - l_, axis=1) <= floor):
             return False, seen            # a box of starts too small to refute
-        dived, cost = _dive(bd, r_[:1], l_[:1], h_[:1], L, half, floor, fingers == 4)
+        dived, cost = _dive(bd, r_[:1], l_[:1], h_[:1], L, half, floor)
         seen += cost
         if dived:
             return False, seen            # a box of starts too small to refute

@@ -41,6 +41,7 @@ from ._spec import (
     STRETCH_BYTES,
     STRETCH_KERNEL_BYTES,
     PlanSpec,
+    SearchShape,
 )
 
 # ----------------------------------------------------------------------------- features
@@ -202,27 +203,35 @@ def _combos(s: int, r: int) -> Iterator[np.ndarray]:
         yield block
 
 
-def _layouts(t: np.ndarray, layout: str) -> np.ndarray:
+def _layouts(t: np.ndarray, shape: SearchShape, fingers: int) -> np.ndarray:
     """Candidate rows of sorted feature tuples ``t`` (:attr:`SearchShape.layout`): as they
     are; triples plus the gravity contact (-1); with four fingers on three edges (``t`` of
-    width 3) the three layouts doubling each feature (first and third)."""
-    if layout == "as_is" or t.shape[1] == 4:
-        return t
+    width 3) the three layouts doubling each feature (first and third); with three on two
+    edges (width 2) the two layouts doubling each (first and second)."""
+    layout = shape.layout
     if layout == "gravity":
         return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
-    return np.concatenate([np.stack([t[:, x], t[:, y], t[:, x], t[:, z]], axis=1)
-                           for x, y, z in ((0, 1, 2), (1, 0, 2), (2, 0, 1))])
+    if layout == "as_is" or t.shape[1] == fingers:
+        return t
+    rows = []
+    for x in range(t.shape[1]):
+        rest = [t[:, y] for y in range(t.shape[1]) if y != x]
+        cols = rest[:shape.twin - 1] + [t[:, x]] + rest[shape.twin - 1:]
+        rows.append(np.stack([t[:, x], *cols], axis=1))
+    return np.concatenate(rows)
 
 
 def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
     """Upper bound of the smallest region of each row: no region is longer than its
-    feature, and two fingers on one feature (first and third) share it, so one of them
-    has at most half of it.  Gravity (-1) has no region."""
+    feature, and two fingers on one feature (first and third of four, first and second
+    of three) share it, so one of them has at most half of it.  Gravity (-1) has no
+    region."""
     L = np.where(rows >= 0, lengths[np.maximum(rows, 0)], np.inf)
-    if rows.shape[1] == 4:
-        same = rows[:, 0] == rows[:, 2]
+    if rows.shape[1] >= 3:
+        twin = 2 if rows.shape[1] == 4 else 1
+        same = rows[:, 0] == rows[:, twin]
         L[same, 0] *= 0.5
-        L[same, 2] = L[same, 0]
+        L[same, twin] = L[same, 0]
     return L.min(axis=1)
 
 
@@ -274,7 +283,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
                 t = _distinct_edges(F, t)
                 if not len(t):
                     continue
-                buf.append(_layouts(t, spec.shape.layout))
+                buf.append(_layouts(t, spec.shape, spec.fingers))
                 count += len(buf[-1])
                 while count >= target:
                     rows = np.concatenate(buf)
@@ -497,7 +506,8 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
 
     Two fingers: every pair of features on distinct edges.  Four: every 4-tuple on
     distinct edges and every three edges with one doubled.  Three: every triple on
-    distinct edges (with gravity, plus the gravity contact -1).  ``edges`` restricts
+    distinct edges (with gravity, plus the gravity contact -1; with friction also every
+    two edges with one doubled, fingers 0 and 1 side by side on it).  ``edges`` restricts
     the features to those edges (with four fingers and an edge given twice, only the
     layouts doubling that edge).  With a ``top``, batches
     start small and double up to ``batch_size``, so a search that finds its top among
@@ -518,7 +528,8 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     for sets in _ordered_rows(F, spec, three_edge, size, first):
         if doubled is not None:
             rows = sets.feats
-            keep = (F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, 2])
+            twin = spec.shape.twin
+            keep = (F.edge[rows[:, 0]] == doubled) & (rows[:, 0] == rows[:, twin])
             if not keep.any():
                 continue
             assert sets.bound is not None

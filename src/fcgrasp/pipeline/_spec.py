@@ -82,8 +82,9 @@ class SearchShape:
     ``label`` names the search in messages; ``contact_type`` is ``friction`` or
     ``frictionless``; ``widths``: how many features a row draws besides its shortest,
     per layout (the first alone without ``three_edge``); ``three_edge``: four fingers
-    also on three edges, one doubled; ``layout``: rows ``as_is``, plus the ``gravity``
-    contact (-1), or ``doubled`` (three features, each in turn taken twice); ``pairs``:
+    also on three edges, three on two, one doubled (two fingers side by side on it);
+    ``layout``: rows ``as_is``, plus the ``gravity`` contact (-1), or ``doubled`` (the
+    narrower rows' features each in turn taken twice, in columns 0 and ``twin``); ``pairs``:
     rows are solved by the two-finger closed forms (theorem 6.4, algorithm 7.1; else the
     four-finger problems of theorem 7.1); ``lp``: rows are solved by linear programs
     (three fingers with friction, :mod:`fcgrasp.grippers.three_fingers`);
@@ -96,6 +97,7 @@ class SearchShape:
     widths: tuple[int, ...]
     layout: str = "as_is"
     three_edge: bool = False
+    twin: int = 2
     pairs: bool = False
     lp: bool = False
     tuple_batches: bool = True
@@ -111,7 +113,8 @@ class SearchShape:
 SHAPES: dict[tuple[int, bool], SearchShape] = {
     (2, False): SearchShape("two-finger", "friction", (1,), pairs=True, tuple_batches=False,
                             row_terms=((2, 1),)),
-    (3, False): SearchShape("three-finger", "friction", (2,), lp=True, row_terms=((3, 1),)),
+    (3, False): SearchShape("three-finger", "friction", (2, 1), layout="doubled",
+                            three_edge=True, twin=1, lp=True, row_terms=((3, 1), (2, 2))),
     (3, True): SearchShape("three-finger", "frictionless", (2,), layout="gravity",
                            row_terms=((3, 1),),
                            unused_mu="three fingers with gravity are frictionless: mu would "
