@@ -113,7 +113,8 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                        progress: Any = None) -> list[GraspPlan]:
     """Ranked plans of three fingers with friction (``plan(part, fingers=3, mu=...)``).
 
-    Candidate triples of features on distinct edges come from
+    Candidate triples of features on distinct edges, and on two edges with two fingers
+    side by side on one (their regions apart along it), come from
     :func:`~fcgrasp.pipeline.candidates` by decreasing bound (the shortest feature): each
     gets its best concurrent piece (:func:`concurrent_regions`), and the stream stops when
     no later triple can reach the ``top``-th smallest region found (branch and bound,

@@ -254,8 +254,9 @@ def independent_regions(polygon: Polygon, edges: Any, mu: float = 0.0,
     edges : sequence of int, or two sequences of int
         Two edges (fingers with friction ``mu``: algorithm 7.1, squeezing and expanding
         grasps), four edges (frictionless: theorem 7.1; an edge may repeat, then its two
-        regions do not overlap), three distinct edges (fingers with friction ``mu``,
-        :mod:`fcgrasp.grippers.three_fingers`) or three edges with ``gravity`` (frictionless).
+        regions do not overlap), three edges (fingers with friction ``mu``,
+        :mod:`fcgrasp.grippers.three_fingers`; an edge may repeat, then its two regions
+        come one after the other along it) or three edges with ``gravity`` (frictionless).
         Two fingers may also be given a *stretch* each, the consecutive edges of one
         ring it may run along (``[[3, 4, 5], [9]]``): the regions are then the best
         stretches inside them (:func:`fcgrasp.model.stretches.stretch_regions`), covering the
