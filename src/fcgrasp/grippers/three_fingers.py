@@ -26,6 +26,12 @@ grasps do, each with its own witness point ``p_c``: one linear program per piece
 maximises the smallest region (definition 7.1), and the leximin levels follow by fixing
 the regions that cannot grow and maximising again.
 
+**Two fingers side by side.**  Two fingers may share an edge (the first two of a row,
+the third on another): their positions are measured from the same start, and the one
+inequality ``hi_0 <= lo_1`` keeps their regions apart, one after the other; the piece
+stays the projection of a polytope, so the same program solves it.  Such rows are not
+grown along the boundary.
+
 **Exact or a bound.**  The regions are *safe* (every grasp of them is force closure,
 tested against the general wrench test) and optimal within each piece, but the union of
 the pieces (the sides, the sub-arcs: :data:`SPLITS` of the half-turn excess) is not the
