@@ -95,11 +95,11 @@ def test_no_plan_is_refuted(fingers, n):
     assert seen >= 7 and decided >= 3, decided
 
 
-@pytest.mark.parametrize("n", [3, pytest.param(20, marks=pytest.mark.slow)])
-def test_bound_above_the_exhaustive_four_finger_optimum(n):
+@pytest.mark.parametrize("seed, n", [(12, 1), pytest.param(11, 20, marks=pytest.mark.slow)])
+def test_bound_above_the_exhaustive_four_finger_optimum(seed, n):
     """Four frictionless fingers: the exhaustive search over every configuration of
     stretches (from every single-edge set that holds) never beats the bound."""
-    rng = np.random.default_rng(11)
+    rng = np.random.default_rng(seed)
     checked = 0
     for poly in [demo_part("triangle"), demo_part("quad")] + \
             [random_polygon(rng, "convex") for _ in range(n)]:
