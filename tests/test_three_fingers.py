@@ -517,7 +517,7 @@ def test_side_by_side_regions_are_the_best_split(seed):
                     assert level >= best - 1e-9 * poly.size, (e, g, s)
             checked += 1
     assert checked >= 6
-    plan = fc.plan(demo_part("quad"), fingers=3, mu=0.5, top=1)[0]
     part = demo_part("quad")
+    plan = fc.plan(part, fingers=3, mu=0.5, top=1)[0]
     for g, nrm in zip(*_plan_grasps(plan, part, rng, 64), strict=True):
         assert closure_margin_lp(grasp_wrenches(g, nrm, 0.5)) > 0

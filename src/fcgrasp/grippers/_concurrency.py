@@ -151,7 +151,7 @@ def _solve_one(a0: Any, t0: Any, L0: Any, a1: Any, t1: Any, L1: Any, const: Any,
         if icount[i] > 0:
             nstretch += 1
     n = 7 + nf * nstretch
-    rows = nf * (1 + 3 * nstretch) + 9 + 1 + 1
+    rows = nf * (1 + 3 * nstretch) + 9 + 1 + 1       # the last: the order row
     A = np.zeros((rows, n))
     b = np.zeros(rows)
     m = 0

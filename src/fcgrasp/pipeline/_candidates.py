@@ -221,14 +221,13 @@ def _layouts(t: np.ndarray, shape: SearchShape, fingers: int) -> np.ndarray:
     return np.concatenate(rows)
 
 
-def _row_bound(lengths: FloatArray, rows: np.ndarray) -> FloatArray:
+def _row_bound(lengths: FloatArray, rows: np.ndarray, twin: int | None) -> FloatArray:
     """Upper bound of the smallest region of each row: no region is longer than its
-    feature, and two fingers on one feature (first and third of four, first and second
-    of three) share it, so one of them has at most half of it.  Gravity (-1) has no
-    region."""
+    feature, and two fingers on one feature (first and ``twin``: the third of four, the
+    second of three; None where no row doubles one) share it, so one of them has at most
+    half of it.  Gravity (-1) has no region."""
     L = np.where(rows >= 0, lengths[np.maximum(rows, 0)], np.inf)
-    if rows.shape[1] >= 3:
-        twin = 2 if rows.shape[1] == 4 else 1
+    if twin is not None:
         same = rows[:, 0] == rows[:, twin]
         L[same, 0] *= 0.5
         L[same, twin] = L[same, 0]
@@ -261,6 +260,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     order = np.lexsort((np.arange(n), -lengths))
     g = spec.gravity
     widths = spec.shape.widths if three_edge else spec.shape.widths[:1]
+    twin = spec.shape.twin if three_edge else None
     # frictionless fingers hold only if their force directions positively span the plane
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
@@ -287,14 +287,15 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
                 count += len(buf[-1])
                 while count >= target:
                     rows = np.concatenate(buf)
-                    yield EdgeSets(rows[:target], _row_bound(lengths, rows[:target]), ceiling)
+                    yield EdgeSets(rows[:target], _row_bound(lengths, rows[:target], twin),
+                                   ceiling)
                     # the rows left over come from position s: bounded by its length
                     buf, count = [rows[target:]], len(rows) - target
                     ceiling = float(lengths[order[s]])
                     target = min(2 * target, size)
     if count:
         rows = np.concatenate(buf)
-        yield EdgeSets(rows, _row_bound(lengths, rows), ceiling)
+        yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling)
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
