@@ -12,11 +12,15 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.core.closure import is_force_closure
+from fcgrasp.core.tolerances import TOL
 from fcgrasp.errors import RequestError
 from fcgrasp.io.parts import demo_part
 from fcgrasp.model.bounds import (
+    _LOOPS,
     MAX_NODES,
     _Boundary,
+    _fails_loop,
+    _fails_numpy,
     _wrenches,
     clearly_not_closure,
     optimum_upper_bound,
@@ -64,6 +68,44 @@ def test_one_sided_test_on_grasps_of_random_parts():
             pts, nrm = bd.contacts(np.zeros(s.shape, int), s, s)
             w = _wrenches(pts, nrm, half)
             assert np.array_equal(clearly_not_closure(w), ~is_force_closure(w))
+
+
+@pytest.mark.parametrize("compiled", [True, False], ids=["numba", "python"])
+def test_the_compiled_nodes_test_is_the_batched_one(compiled):
+    """The loop that tests a node's grasps one by one (:func:`_fails_loop`, compiled and
+    as plain Python) gives the batched numpy verdicts (:func:`_fails_numpy`, the
+    reference) on nodes of seeded random parts, three fingers with friction and four
+    without, test points on edges, at vertices (within a hair), doubled, with opposite
+    normals, and
+    on the built-in parts whose parallel sides tie."""
+    if compiled and not _LOOPS.available():
+        pytest.skip("numba does not run here")
+    loop = _LOOPS.get()["_fails_loop"] if compiled else _fails_loop
+    rng = np.random.default_rng(31)
+    seen = {True: 0, False: 0}
+    for trial in range(40 if compiled else 6):
+        poly = (demo_part(("rectangle", "quad", "triangle")[trial]) if trial < 3
+                else random_polygon(rng, ("convex", "star")[trial % 2]))   # ties: parallel
+        bd = _Boundary(poly)
+        per = bd.perimeters[0]
+        for k, half in ((3, float(np.arctan(rng.uniform(0.05, 1.2)))), (4, None),
+                        (3, None), (4, 0.3)):
+            m = int(rng.integers(1, 4))
+            s = rng.uniform(0, per, (60, k, m))
+            cum = bd.rings[0][1]
+            s[::3] = cum[rng.integers(0, cum.size - 1, s[::3].shape)]   # at vertices
+            pts, nrm = bd.contacts(np.zeros(s.shape, int), s, s)
+            pts[::5, 1] = pts[::5, 0]                                    # one point twice
+            nrm[::7, 2] = -nrm[::7, 0]                                   # opposite normals
+            want = _fails_numpy(pts, nrm, half)
+            out = np.empty(s.shape[0], dtype=bool)
+            c, sn = (1.0, 0.0) if half is None else (float(np.cos(half)), float(np.sin(half)))
+            loop(np.ascontiguousarray(pts), np.ascontiguousarray(nrm), c, sn,
+                 half is not None, TOL, out)
+            assert np.array_equal(out, want), (trial, k, half)
+            for v in (True, False):
+                seen[v] += int(np.sum(want == v))
+    assert min(seen.values()) > 50, seen          # both verdicts were tested
 
 
 def _parts(rng, n):

@@ -60,6 +60,7 @@ import numpy as np
 
 from ..core._angles import margin_radians
 from ..core._checks import FloatArray, check_scalar
+from ..core.kernels import CompiledLoops
 from ..core.tolerances import TINY, TOL, VERTEX_HAIR
 from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -226,13 +227,105 @@ def clearly_not_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
     return np.asarray(np.any((above | below) & (norm > tol), axis=-1) | on_a_line)
 
 
+def _fails_loop(pts: FloatArray, nrm: FloatArray, c: float, s: float, friction: bool,
+               tol: float, out: np.ndarray) -> None:
+    """:func:`_fails_numpy` in one compiled loop: per node (``pts``, ``nrm``: shape
+    (N, k, m, 2)), the grasps of the product of its fingers' test points in turn, each
+    tested as :func:`clearly_not_closure` tests it (the same expressions in the same
+    order), stopping at the first that is not force closure."""
+    n, k, m = pts.shape[0], pts.shape[1], pts.shape[2]
+    per = 2 if friction else 1
+    nw = k * per
+    u = np.empty((nw, 3))
+    pick = np.zeros(k, dtype=np.int64)
+    for a in range(n):
+        out[a] = False
+        for f in range(k):
+            pick[f] = 0
+        while True:
+            for f in range(k):
+                px, py = pts[a, f, pick[f], 0], pts[a, f, pick[f], 1]
+                fx, fy = -nrm[a, f, pick[f], 0], -nrm[a, f, pick[f], 1]
+                for e in range(per):
+                    if not friction:
+                        gx, gy = fx, fy
+                    elif e == 0:
+                        gx, gy = c * fx - s * fy, s * fx + c * fy
+                    else:
+                        gx, gy = c * fx + s * fy, -s * fx + c * fy
+                    gz = px * gy - py * gx
+                    r = math.sqrt(gx * gx + gy * gy + gz * gz)
+                    r = max(r, TINY)
+                    w = f * per + e
+                    u[w, 0], u[w, 1], u[w, 2] = gx / r, gy / r, gz / r
+            fails = True                  # every pair parallel, unless one is not
+            found = False
+            for i in range(nw):
+                for j in range(i + 1, nw):
+                    cx = u[i, 1] * u[j, 2] - u[i, 2] * u[j, 1]
+                    cy = u[i, 2] * u[j, 0] - u[i, 0] * u[j, 2]
+                    cz = u[i, 0] * u[j, 1] - u[i, 1] * u[j, 0]
+                    norm = math.sqrt(cx * cx + cy * cy + cz * cz)
+                    if norm > tol:
+                        fails = False
+                    else:
+                        continue
+                    above = True
+                    below = True
+                    den = max(norm, TINY)
+                    for o in range(nw):
+                        if o == i or o == j:
+                            continue
+                        d = (cx * u[o, 0] + cy * u[o, 1] + cz * u[o, 2]) / den
+                        if d < -tol:
+                            above = False
+                        if d > tol:
+                            below = False
+                        if not above and not below:
+                            break
+                    if above or below:
+                        found = True
+                        break
+                if found or fails:
+                    break
+            if found or fails:
+                out[a] = True
+                break
+            f = k - 1                     # the next grasp of the product
+            while f >= 0:
+                pick[f] += 1
+                if pick[f] < m:
+                    break
+                pick[f] = 0
+                f -= 1
+            if f < 0:
+                break
+
+
+_LOOPS = CompiledLoops(globals(), (_fails_loop,))
+
+
 def _fails(bd: _Boundary, ring: np.ndarray, s: FloatArray, mid: FloatArray,
            half: float | None) -> np.ndarray:
     """Per node: is one grasp of the product of its fingers' test points (``s``: shape
-    (N, k, m), arc-lengths) not force closure?"""
-    n, k, m = s.shape
+    (N, k, m), arc-lengths) not force closure?  Compiled (:func:`_fails_loop`) where
+    numba runs, else :func:`_fails_numpy` (the reference)."""
     pts, nrm = bd.contacts(np.broadcast_to(ring[..., None], s.shape), s,
                            np.broadcast_to(mid[..., None], s.shape))
+    if _LOOPS.available():
+        out = np.empty(s.shape[0], dtype=bool)
+        c, sn = (1.0, 0.0) if half is None else (float(np.cos(half)), float(np.sin(half)))
+        ok, _ = _LOOPS.run("_fails_loop", np.ascontiguousarray(pts),
+                           np.ascontiguousarray(nrm), c, sn, half is not None, TOL, out)
+        if ok:
+            return out
+    return _fails_numpy(pts, nrm, half)
+
+
+def _fails_numpy(pts: FloatArray, nrm: FloatArray, half: float | None) -> np.ndarray:
+    """Per node: is one grasp of the product of its fingers' test points (``pts``,
+    ``nrm``: shape (N, k, m, 2)) not force closure?  Batched numpy over every grasp."""
+    k, m = pts.shape[1], pts.shape[2]
     combos = np.array(list(itertools.product(range(m), repeat=k)))   # (m**k, k)
     fingers = np.arange(k)
     gp = pts[:, fingers[None, :], combos]                     # (N, m**k, k, 2)

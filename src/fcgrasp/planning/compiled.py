@@ -24,20 +24,23 @@ def compile_kernels() -> dict[str, float]:
     fingers (:mod:`fcgrasp.core.kernels`), the two-finger stretch search
     (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
     (:mod:`fcgrasp.core._simplex`), three fingers with friction
-    (:mod:`fcgrasp.grippers._concurrency`) and the parallel jaw's pose model and proofs
-    (:mod:`fcgrasp.grippers.jaw._kernels`).  Returns the seconds each took (near zero
+    (:mod:`fcgrasp.grippers._concurrency`), the parallel jaw's pose model and proofs
+    (:mod:`fcgrasp.grippers.jaw._kernels`) and the optimality bound's test of a box of
+    regions (:mod:`fcgrasp.model.bounds`).  Returns the seconds each took (near zero
     once cached); without numba (or with ``FCGRASP_JIT=0``) nothing is compiled and
     every entry is 0.
 
-    >>> sorted(compile_kernels())
-    ['four fingers', 'parallel jaw', 'stretches', 'three fingers', 'two fingers']
+    >>> sorted(compile_kernels())  # doctest: +NORMALIZE_WHITESPACE
+    ['four fingers', 'optimality bound', 'parallel jaw', 'stretches', 'three fingers',
+     'two fingers']
     """
     from ..core.kernels import jit_setting
+    from ..model.bounds import refutes
     from ..model.polygon import Polygon
     from .planner import plan
 
     out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0,
-           "parallel jaw": 0.0}
+           "parallel jaw": 0.0, "optimality bound": 0.0}
     if jit_setting() is False:
         return out
     try:
@@ -57,6 +60,7 @@ def compile_kernels() -> dict[str, float]:
             ("three fingers", lambda: plan(small, fingers=3, mu=0.3, top=1)),
             ("four fingers", lambda: plan(small, fingers=4, top=1)),
             ("parallel jaw", lambda: _jaw()),
+            ("optimality bound", lambda: refutes(small, 3, 60.0, mu=0.3, max_nodes=200)),
         ]
         for name, run in runs:
             t0 = time.perf_counter()
