@@ -158,6 +158,36 @@ def test_compiled_jaw_plans_are_the_numpy_plans(name, monkeypatch):
         assert (g.mode, g.hole, g.kinds, g.features) == (r.mode, r.hole, r.kinds, r.features)
 
 
+def test_compiled_proofs_drop_the_dominated_candidates_as_numpy_does(monkeypatch):
+    """Plates with finely flattened fillets, where the dominating vertex decides most
+    candidates (``_certify._dominated``): the compiled proofs give numpy's answers on
+    boxes around holding poses and on random boxes."""
+    from .test_jaw import _filleted_plate
+
+    rng = np.random.default_rng(17)
+    seen = proved = 0
+    for _ in range(2):
+        part = _filleted_plate(rng)
+        jaw = fc.ParallelJaw(stroke=(0.0, 1.5 * part.size), pad_width=0.1 * part.size,
+                             mu=float(rng.uniform(0.3, 0.8)))
+        th = rng.uniform(0, 2 * np.pi, 400)
+        c = rng.uniform(-0.5, 0.5, 400) * part.size
+        holds = _poses.jaw_poses(part, jaw, th, c, 2.0).holds
+        for k in list(np.flatnonzero(holds)[:5]) + list(np.flatnonzero(~holds)[:2]):
+            w = float(rng.uniform(0.002, 0.02))
+            box_t, box_c = (th[k] - w, th[k] + w), (c[k] - w * part.size, c[k] + w * part.size)
+            got = _certify.certify_box(part, jaw, box_t, box_c, 2.0, max_boxes=300)
+            with monkeypatch.context() as m:
+                _numpy_only(m)
+                ref = _certify.certify_box(part, jaw, box_t, box_c, 2.0, max_boxes=300)
+            assert (got is None) == (ref is None)
+            if ref is not None:
+                np.testing.assert_allclose(got, ref, rtol=0, atol=1e-9 * part.size)
+            seen += 1
+            proved += ref is not None
+    assert seen >= 10 and proved >= 4, (seen, proved)
+
+
 @pytest.mark.parametrize("seed, parts", [(15, 5), pytest.param(16, 60, marks=pytest.mark.slow)])
 def test_compiled_certify_box_is_the_numpy_subdivision(seed, parts, monkeypatch):
     """The compiled proof goes depth first over the edges near each box; numpy goes

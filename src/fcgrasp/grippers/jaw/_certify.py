@@ -115,10 +115,13 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     py_lo, _ = _sin_range(sign * pts[..., 0], sign * pts[..., 1], t0, t1)
     inside = good & (px_lo >= c1 - half) & (px_hi <= c0 + half)
     lower = np.maximum(lower, np.max(np.where(inside, py_lo, -np.inf), axis=1))
-    # vertices that may be in the strip and reach the lower bound (one entry per point:
-    # an edge's end is the next edge's start)
-    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower[:, None])
     uniq, inv = np.unique(ends, axis=0, return_inverse=True)
+    zero = CONTACT_TOL * polygon.size                   # dx = 0 at a critical angle
+    dominated = _dominated(uniq, inv.ravel(), always, y_lo, sign, t0, t1, 2 * zero)
+    # vertices that may be in the strip and reach the lower bound (one entry per point:
+    # an edge's end is the next edge's start), and are not always below another
+    vert = ok2 & (x_hi >= c0 - half) & (x_lo <= c1 + half) & (y_hi >= lower[:, None])
+    vert &= ~dominated(np.broadcast_to(ends, (B,) + ends.shape))
     vmask = np.zeros((B, len(uniq)), dtype=bool)
     rows, cols = np.nonzero(vert)
     vmask[rows, inv.ravel()[cols]] = True
@@ -141,7 +144,6 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     dy_lo, dy_hi = _sin_range(sign * (b[:, 0] - a[:, 0]), sign * (b[:, 1] - a[:, 1]), t0, t1)
     # (an edge along u at the box's edge, dx = 0, has its extreme at a vertex: its cut is
     # dropped with the side it leans to inside the box, soundly; a level edge keeps both)
-    zero = CONTACT_TOL * polygon.size                   # dx = 0 at a critical angle
     rise_sign = np.where(dy_lo > 0, 1, np.where(dy_hi < 0, -1, 0)) * \
         np.where(dxr_lo >= -zero, 1, np.where(dxr_hi <= zero, -1, 0))
     # the edge may turn along u: its cut can be anywhere on it
@@ -164,6 +166,7 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         _, h1 = _sin_range(sign * p1[..., 0], sign * p1[..., 1], t0, t1)
         hh = np.maximum(h0, h1)
         sel &= hh >= lower[:, None]
+        sel &= ~(dominated(p0) & dominated(p1))     # the cut's points lie between its ends
         high = np.maximum(high, np.max(np.where(sel, hh, -np.inf), axis=1))
         P0.append(p0)
         P1.append(p1)
@@ -182,6 +185,34 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
 
     return _Candidates(pick(P0), pick(P1), pick(cen_f), pick(half_f), use_all[r, order],
                        lower, high, ok)
+
+
+def _dominated(uniq: FloatArray, inv: np.ndarray, always: np.ndarray, y_lo: FloatArray,
+               sign: float, t0: FloatArray, t1: FloatArray, gap: float) -> Any:
+    """A test of points (B, n, 2) over each box (``t0``, ``t1``: (B, 1)): is the point
+    lower (``sign`` times its height along ``u``) by more than ``gap`` at every angle of
+    the box than the *dominating vertex*, the vertex surely in the strip at every pose
+    (``always``, (B, 2m) over the edges' ends, ``y_lo`` their heights' lower bounds)
+    whose height's lower bound is largest (ties: the first of the distinct points
+    ``uniq``, ``inv`` the ends' indices among them)?  Such a point never touches the
+    pad: the stop is at least the dominating vertex's height.  The difference of the
+    two heights is bounded as one ``a cos t + b sin t`` (exact, :func:`_sin_range`),
+    where bounding each height alone would widen both by the box's angle times the
+    distance from the centroid: on a finely flattened curve every neighbour of the
+    contact would stay a candidate down to tiny boxes."""
+    key = np.where(always, y_lo, -np.inf)
+    best = key.max(axis=1, keepdims=True)
+    big = np.iinfo(np.int64).max
+    first = np.where(always & (key == best), inv[None, :], big).min(axis=1)
+    has = first < big
+    w = uniq[np.where(has, first, 0)]                                       # (B, 2)
+
+    def test(points: FloatArray) -> np.ndarray:
+        d_lo, _ = _sin_range(sign * (w[:, None, 0] - points[..., 0]),
+                             sign * (w[:, None, 1] - points[..., 1]), t0, t1)
+        return np.asarray(has[:, None] & (d_lo > gap))
+
+    return test
 
 
 def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> np.ndarray:

@@ -380,6 +380,7 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
     # which edges the pad may meet (maybe) and surely faces (surely); per edge
     tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
     sin_m, cos_m = math.sin(tm), math.cos(tm)
+    w_y, w_u = -np.inf, -1          # the dominating vertex (``_certify._dominated``)
     for k in range(n):
         e = ids[k]
         f_lo, f_hi = _vrange(fn, e, t0, t1, trig)
@@ -394,6 +395,9 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
         for idx in (e, m + e):
             if surely and ranges[idx, 0] >= c1 - half and ranges[idx, 1] <= c0 + half:
                 lower = _nan_max(lower, ranges[idx, 2])
+                y = ranges[idx, 2]
+                if y > w_y or (y == w_y and inv[idx] < w_u):
+                    w_y, w_u = y, inv[idx]
         xa_m = -a[e, 0] * sin_m + a[e, 1] * cos_m
         xb_m = -b[e, 0] * sin_m + b[e, 1] * cos_m
         dx_m = xb_m - xa_m
@@ -419,7 +423,9 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
     for k in range(n):
         for idx in (ids[k], m + ids[k]):
             if facing[idx % m, 0] and ranges[idx, 1] >= c0 - half \
-                    and ranges[idx, 0] <= c1 + half and ranges[idx, 3] >= lower:
+                    and ranges[idx, 0] <= c1 + half and ranges[idx, 3] >= lower \
+                    and not _below(uniq, w_u, uniq[inv[idx], 0], uniq[inv[idx], 1], sign,
+                                   t0, t1, 2 * zero):
                 if not vmask[inv[idx]]:
                     vmask[inv[idx]] = True
                     touched[n_touched] = inv[idx]
@@ -476,6 +482,9 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
             hh = max(h0, h1)
             if not hh >= lower:
                 continue
+            if _below(uniq, w_u, x0, y0, sign, t0, t1, 2 * zero) \
+                    and _below(uniq, w_u, x1, y1, sign, t0, t1, 2 * zero):
+                continue
             high = _nan_max(high, hh)
             if count < K_MAX:
                 p0[count, 0], p0[count, 1] = x0, y0
@@ -483,6 +492,16 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
                 centre[count], hw[count] = math.atan2(-nrm[e, 1], -nrm[e, 0]), 0.0
             count += 1
     return lower, high, count
+
+
+def _below(uniq: Any, w: int, px: float, py: float, sign: float, t0: float, t1: float,
+           gap: float) -> bool:
+    """``_certify._dominated`` for one point: lower than the dominating vertex ``uniq[w]``
+    (none: ``w`` -1) by more than ``gap`` at every angle of ``[t0, t1]``."""
+    if w < 0:
+        return False
+    d_lo, _ = _sin_range(sign * (uniq[w, 0] - px), sign * (uniq[w, 1] - py), t0, t1)
+    return d_lo > gap
 
 
 def _arc_holds(ax: float, ay: float, bx: float, by: float, cx: float, cy: float,
@@ -969,9 +988,9 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 
 _LOOPS = CompiledLoops(globals(), (
     _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop, _sin_range,
-    _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _arc_holds,
-    _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine, _quantities,
-    _kink, _cell, _slices_loop))
+    _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
+    _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine,
+    _quantities, _kink, _cell, _slices_loop))
 
 
 def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
