@@ -119,6 +119,69 @@ def _numpy_only(monkeypatch):
     monkeypatch.setattr(_kernels, "available", lambda: False)
 
 
+def test_a_slice_across_a_window_is_read_from_the_slices(monkeypatch):
+    """``holds_across`` (the growth's question: does the exact slice at each angle hold
+    at every offset of a window?) gives, compiled with its early stop at the first piece
+    that does not hold and by numpy, what reading :func:`holding_offsets` gives: one
+    interval from end to end within the contact tolerance (numpy's slices the reference
+    on random parts with holes; the compiled ones, tested equal to them above, on
+    filleted plates of a few hundred edges).  Windows inside, across and outside the
+    holding slices, at random angles and where an edge turns parallel to the pads."""
+    from fcgrasp.core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL
+
+    from .test_jaw import _filleted_plate
+
+    def slices(part, jaw, th, hole, window, numpy):
+        with monkeypatch.context() as m:
+            if numpy:
+                _numpy_only(m)
+            return _slices.holding_offsets(part, jaw, th, 2.0, hole, window)
+
+    rng = np.random.default_rng(18)
+    seen = {True: 0, False: 0}
+    stopped = 0
+    for k in range(9):
+        plate = k % 3 == 2
+        if plate:
+            part = _filleted_plate(rng)
+            jaw = fc.ParallelJaw(stroke=(0.0, 1.5 * part.size), pad_width=0.1 * part.size,
+                                 mu=float(rng.uniform(0.3, 0.8)))
+        else:
+            part, jaw = _part_and_jaw(rng)
+        d = part.ends - part.starts
+        crit = np.arctan2(d[:, 1], d[:, 0]) + np.pi / 2
+        tol = CONTACT_TOL * part.size
+        for hole in _holes(part):
+            th = np.r_[rng.uniform(0, 2 * np.pi, 8), crit[:3]]
+            whole = slices(part, jaw, th, hole, None, not plate)
+            for iv in [w for w in whole if len(w)][:3]:
+                lo, hi = iv[0]
+                for c0, c1 in ((lo + 0.2 * (hi - lo), hi - 0.2 * (hi - lo)),
+                               (lo - 0.1 * part.size, lo + 0.5 * (hi - lo)),
+                               (lo, hi), (hi + 0.01 * part.size, hi + 0.2 * part.size)):
+                    ref = [len(w) == 1 and w[0, 0] <= c0 + tol and w[0, 1] >= c1 - tol
+                           for w in slices(part, jaw, th, hole, (c0, c1), not plate)]
+                    got = _slices.holds_across(part, jaw, th, 2.0, hole, (c0, c1))
+                    assert got.tolist() == ref
+                    if not plate:
+                        with monkeypatch.context() as m:
+                            _numpy_only(m)
+                            by_numpy = _slices.holds_across(part, jaw, th, 2.0, hole,
+                                                            (c0, c1))
+                        assert by_numpy.tolist() == ref
+                    for v in ref:
+                        seen[v] += 1
+                    failed = np.zeros(th.size, dtype=bool)
+                    ring, ct, clo, chi = _slices._cells(part, jaw, th, hole, (c0, c1))
+                    _kernels.slices(ct, clo, chi, th,
+                                    *_poses._pose_args(part, jaw, 2.0, hole, ring),
+                                    SLICE_TOL * part.size, ROUND_TOL * part.size, tol,
+                                    _poses.NEAR_STRIP * tol, stop_gap=tol, failed=failed)
+                    assert not np.any(failed & np.array(ref))     # never a holding angle
+                    stopped += int(failed.sum())
+    assert min(seen.values()) >= 40 and stopped >= 20, (seen, stopped)
+
+
 def test_compiled_slices_are_the_numpy_slices(monkeypatch):
     rng = np.random.default_rng(14)
     pieces = 0

@@ -747,14 +747,17 @@ def prove(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float
 def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
                  half: float, tol: float, internal: bool, q: Any, stroke0: float,
                  stroke1: float, beta: float, flip: float, round_tol: float,
-                 slice_tol: float, tiny: float, atol: float, near: float) -> Any:
+                 slice_tol: float, tiny: float, atol: float, near: float, stop_gap: float,
+                 failed: Any) -> Any:
     """``_slices.holding_offsets``'s cells (sorted by angle), each decided to the end (a
     stack instead of numpy's rounds): a cell affine at three points is cut at its
     slacks' roots and its pieces decided at their middles; one that is not is split
     (``_slices._kinks``) until it is shorter than ``4 slice_tol``, then decided at its
     middle.  Each cell's poses read only the edges that may meet its strips (within
     ``near``), in their order.  Returns the holding pieces (N, 3): ``(angle index, lo,
-    hi)``."""
+    hi)``.  With ``stop_gap`` > 0, an angle with a piece longer than that which does not
+    hold is given up at once (``failed[angle]`` True; its pieces are then incomplete):
+    its slice cannot be one interval across the cells (``_slices.holds_across``)."""
     E = a.shape[0]
     K = K_MAX
     S = 2 * K * K + 2
@@ -790,6 +793,10 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
         stack_hi = list(cell_hi[first:last])
         first = last
         while len(stack_lo):
+            if failed[t]:
+                stack_lo.clear()
+                stack_hi.clear()
+                break
             lo, hi = stack_lo.pop(), stack_hi.pop()
             n = 0
             for e in range(E):
@@ -798,10 +805,12 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
                     gb[n, 0], gb[n, 1] = b[e, 0], b[e, 1]
                     gf[n, 0], gf[n, 1] = f[e, 0], f[e, 1]
                     n += 1
-            _cell(t, theta, lo, hi, ga[:n], gb[:n], gf[:n], half, tol, internal, q, stroke0,
-                  stroke1, beta, flip, round_tol, slice_tol, tiny, atol, top, bottom, ok_a,
-                  ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks, scratch,
-                  where, qs, stack_lo, stack_hi, out_t, out_lo, out_hi)
+            if _cell(t, theta, lo, hi, ga[:n], gb[:n], gf[:n], half, tol, internal, q,
+                     stroke0, stroke1, beta, flip, round_tol, slice_tol, tiny, atol, top,
+                     bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
+                     slacks, scratch, where, qs, stack_lo, stack_hi, out_t, out_lo, out_hi,
+                     stop_gap):
+                failed[t] = True
     rows = np.empty((len(out_t), 3))
     for k in range(len(out_t)):
         rows[k, 0], rows[k, 1], rows[k, 2] = out_t[k], out_lo[k], out_hi[k]
@@ -814,9 +823,11 @@ def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, ha
           top: Any, bottom: Any, ok_a: Any, ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any,
           psi_b: Any, col_a: Any, col_b: Any, holds: Any, slacks: Any, scratch: Any,
           where: Any, qs: Any, stack_lo: Any, stack_hi: Any, out_t: Any, out_lo: Any,
-          out_hi: Any) -> None:
+          out_hi: Any, stop_gap: float) -> bool:
     """One cell ``[lo, hi]`` of the angle ``t`` (:func:`_slices_loop`): its holding
-    pieces appended to ``out_*``, or its two parts pushed on the stack."""
+    pieces appended to ``out_*``, or its two parts pushed on the stack.  Returns whether
+    a piece longer than ``stop_gap`` (> 0) was found not to hold."""
+    gap = False
     S = slacks.shape[1]
     inset = min((hi - lo) / 4, slice_tol)
     pts = (lo + inset, (lo + hi) / 2, hi - inset)
@@ -845,11 +856,15 @@ def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, ha
                     out_t.append(t)
                     out_lo.append(cuts[k])
                     out_hi.append(cuts[k + 1])
+                elif stop_gap > 0 and cuts[k + 1] - cuts[k] > stop_gap:
+                    gap = True
     elif hi - lo <= 4 * slice_tol:
         if holds[1]:
             out_t.append(t)
             out_lo.append(lo)
             out_hi.append(hi)
+        elif stop_gap > 0 and hi - lo > stop_gap:
+            gap = True
     else:
         # two more points, a step in from each end (``_slices._kinks``)
         e0, e2 = lo + 2 * inset, hi - 2 * inset
@@ -869,6 +884,7 @@ def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, ha
         stack_hi.append(cut)
         stack_lo.append(cut)
         stack_hi.append(hi)
+    return gap
 
 
 def _quantities(top: Any, bottom: Any, lat_a: Any, lat_b: Any, qs: Any, i: int,
@@ -964,11 +980,15 @@ def _affine3(v0: float, v1: float, v2: float, atol: float) -> bool:
 
 def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
            half: float, tol: float, q: Any, stroke: tuple[float, float], beta: float,
-           round_tol: float, slice_tol: float, tiny: float, atol: float, near: float
-           ) -> Any:
+           round_tol: float, slice_tol: float, tiny: float, atol: float, near: float,
+           stop_gap: float = 0.0, failed: Any = None) -> Any:
     """The holding pieces of the cells (``_slices.holding_offsets``; sorted by angle),
-    compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run."""
+    compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run.
+    ``stop_gap`` > 0: an angle is given up at its first piece longer than that which does
+    not hold (``failed``, a boolean array over the angles, set there)."""
     internal = q is not None
+    if failed is None:
+        failed = np.zeros(len(th), dtype=np.bool_)
     qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
     out: list[Any] = []
     if not _run("_slices_loop",
@@ -979,7 +999,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
                 np.ascontiguousarray(b, dtype=float), np.ascontiguousarray(f, dtype=float),
                 float(half), float(tol), internal, qq, float(stroke[0]), float(stroke[1]),
                 float(beta), -1.0 if internal else 1.0, float(round_tol), float(slice_tol),
-                float(tiny), float(atol), float(near), answer=out):
+                float(tiny), float(atol), float(near), float(stop_gap), failed, answer=out):
         return None
     return out[0]
 

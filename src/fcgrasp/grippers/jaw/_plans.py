@@ -35,6 +35,7 @@ from ._poses import (
 )
 from ._slices import (
     holding_offsets,
+    holds_across,
 )
 
 
@@ -333,11 +334,9 @@ def _reach(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
 
 def _holds_across(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
                   thetas: FloatArray, c0: float, c1: float) -> np.ndarray:
-    """Whether the exact slice at each angle holds at every offset of ``[c0, c1]``."""
-    tol = CONTACT_TOL * polygon.size
-    return np.array([iv.shape[0] == 1 and iv[0, 0] <= c0 + tol and iv[0, 1] >= c1 - tol
-                     for iv in holding_offsets(polygon, jaw, thetas, margin, hole,
-                                               (c0, c1))])
+    """Whether the exact slice at each angle holds at every offset of ``[c0, c1]``
+    (:func:`._slices.holds_across`)."""
+    return holds_across(polygon, jaw, thetas, margin, hole, (c0, c1))
 
 
 def _grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,

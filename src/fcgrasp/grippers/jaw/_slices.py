@@ -3,7 +3,7 @@ that hold as intervals (:func:`holding_offsets`)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -68,9 +68,49 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
     th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
     if not np.all(np.isfinite(th)):
         raise ValueError(f"theta must be finite angles, got {theta!r}")
+    ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, offsets)
+    rows = _holding_pieces(polygon, jaw, th, margin, hole, ring, cell_t, cell_lo, cell_hi)
+    # pieces apart by less than the contact tolerance are one (at a vertex entering the
+    # strip a contact's span starts from zero: its slack's root is the cell's end, give
+    # or take rounding)
+    return _merge_intervals(rows, th.size, CONTACT_TOL * polygon.size)
+
+
+def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
+                 hole: int | None, offsets: tuple[float, float]) -> np.ndarray:
+    """Whether the exact slice (:func:`holding_offsets`) at each angle of ``theta`` holds
+    at every offset of ``offsets = (c0, c1)``: one interval from ``c0`` to ``c1`` (each
+    within the contact tolerance).  The same answers as reading :func:`holding_offsets`;
+    the compiled loop gives an angle up at its first piece longer than the tolerance that
+    does not hold (the merged slice then has a gap there, or misses an end)."""
+    margin = _check_jaw_args(polygon, jaw, margin)
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
+    tol = CONTACT_TOL * polygon.size
+    c0, c1 = (float(v) for v in offsets)
+    failed = np.zeros(th.size, dtype=bool)
+    rows = None
+    if _kernels.available():
+        ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, (c0, c1))
+        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th,
+                               *_pose_args(polygon, jaw, margin, hole, ring),
+                               SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
+                               CONTACT_TOL * polygon.size,
+                               NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol,
+                               failed=failed)
+    slices = (_merge_intervals(rows, th.size, tol) if rows is not None
+              else holding_offsets(polygon, jaw, th, margin, hole, (c0, c1)))
+    return np.array([not failed[k] and iv.shape[0] == 1 and iv[0, 0] <= c0 + tol
+                     and iv[0, 1] >= c1 - tol for k, iv in enumerate(slices)], dtype=bool)
+
+
+def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
+           offsets: tuple[float, float] | None
+           ) -> tuple[np.ndarray, np.ndarray, FloatArray, FloatArray]:
+    """The edges the slices at angles ``th`` read (near their strips) and their cells
+    (:func:`holding_offsets`): per cell its angle's index and offset range, sorted by
+    angle."""
     ring = _grip_edges(polygon, hole)
-    pts = np.unique(np.concatenate([polygon.starts[ring], polygon.ends[ring]]), axis=0)
-    rel = pts - polygon.centroid
+    rel = _grip_points(polygon, hole, ring)
     X = -np.sin(th)[:, None] * rel[:, 0] + np.cos(th)[:, None] * rel[:, 1]    # (T, V)
     half = jaw.pad_width / 2
     if offsets is None:
@@ -105,11 +145,18 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
         # only the edges that may meet a strip of these angles and offsets
         ring = _near_strip(polygon, ring, float(th.min()), float(th.max()),
                            float(w_lo.min()) + half, float(w_hi.max()) - half, half)
-    rows = _holding_pieces(polygon, jaw, th, margin, hole, ring, cell_t, cell_lo, cell_hi)
-    # pieces apart by less than the contact tolerance are one (at a vertex entering the
-    # strip a contact's span starts from zero: its slack's root is the cell's end, give
-    # or take rounding)
-    return _merge_intervals(rows, th.size, CONTACT_TOL * polygon.size)
+    return ring, cell_t, cell_lo, cell_hi
+
+
+def _grip_points(polygon: Polygon, hole: int | None, ring: np.ndarray) -> FloatArray:
+    """The distinct vertices of the grip's edges ``ring`` from the centroid, computed
+    once per part and grip (the growth of a box asks for thousands of slices)."""
+    cache = polygon.__dict__.setdefault("_jaw_grip_points", {})
+    got = cache.get(hole)
+    if got is None:
+        pts = np.unique(np.concatenate([polygon.starts[ring], polygon.ends[ring]]), axis=0)
+        got = cache[hole] = pts - polygon.centroid
+    return cast("FloatArray", got)
 
 
 def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
