@@ -135,6 +135,7 @@ def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
     candidates += [("ref", 0.5 * (a0 + float(np.arctan2(v[j, 1], v[j, 0])))) for j in far]
     tree = shapely.STRtree(shapely.points(v))
     out: list[tuple[str, float]] = []
+    keys: set[tuple[str, float]] = set()   # those found, by their angle rounded
     for kind, ang in candidates:
         c, s = np.cos(ang), np.sin(ang)
         m = np.array([[c, -s], [s, c]]) if kind == "rot" else \
@@ -143,8 +144,8 @@ def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
         _, dist = tree.query_nearest(shapely.points(w), return_distance=True)
         if len(dist) == len(w) and float(np.max(dist)) <= eps:
             key = (kind, round(float(np.mod(ang, np.pi if kind == "ref" else 2 * np.pi)), 9))
-            if all((k, round(float(np.mod(a, np.pi if k == "ref" else 2 * np.pi)), 9)) != key
-                   for k, a in out):
+            if key not in keys:
+                keys.add(key)
                 out.append((kind, ang))
     return out
 
