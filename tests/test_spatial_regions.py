@@ -84,6 +84,39 @@ def test_regions_equal_the_analytic_optimum():
     assert prism.radius == pytest.approx(25 * t / 2, rel=1e-6)
 
 
+def test_the_second_level_grows_the_other_octagon_as_far_as_it_holds():
+    """Leximin (definition 7.1's second level) on a frustum whose small top (a 64-gon of
+    radius 2) limits the first level: the octagons of radius ``r`` (the top's fit, 2 to
+    0.12 % since the 64-gon's inradius is 2 cos(pi / 64)), then the bottom one grown to
+    ``h tan(alpha) - r``: the widest corner chord, ``r`` plus the grown radius across,
+    must stay inside the cone over the height ``h``.  Its regions hold at every pair of
+    corners; one a little larger does not (the cone program's optimum is reached)."""
+    mu, margin, h = 0.5, 0.5, 20.0
+    t = math.tan(math.atan(mu) - math.radians(margin))
+    a = np.linspace(0, 2 * np.pi, 64, endpoint=False)
+    ring = np.c_[np.cos(a), np.sin(a)]
+    pts = np.r_[np.c_[2 * ring, np.full(64, h)], np.c_[15 * ring, np.zeros(64)]]
+    solid = solid_from_mesh(trimesh.convex.convex_hull(pts), "mm", "frustum")
+    plan = next(p for p in soft_pair_plans(solid, mu, top=5)
+                if abs(p.normals[0][2]) > 0.999 and abs(p.normals[1][2]) > 0.999)
+    r = plan.radius
+    assert 2 * math.cos(math.pi / 64) * (1 - 1e-6) <= r <= 2 * (1 + 1e-6)
+    small, large = sorted(plan.radii)
+    assert small == r and large == pytest.approx(h * t - r, rel=1e-4)
+    assert plan.to_dict()["radii"] == list(plan.radii)
+    P = _grasps(np.random.default_rng(3), plan, 20)
+    assert two_soft_closure(P, np.broadcast_to(plan.normals, P.shape), mu).all()
+    # the grown octagon 0.1 % larger about its centre: some corner pair leaves the cone
+    # narrowed by the margin
+    k = int(np.argmax(plan.radii))
+    bigger = plan.regions.copy()
+    bigger[k] = plan.centers[k] + 1.001 * (plan.regions[k] - plan.centers[k])
+    d = bigger[1][None, :, :] - bigger[0][:, None, :]
+    cos_a = math.cos(math.atan(mu) - math.radians(margin))
+    inside = (d @ plan.normals[0]) > cos_a * np.linalg.norm(d, axis=-1)
+    assert not inside.all()
+
+
 def _every_pair(solid, mu, margin=0.5):
     """The reference: the cone program on every pair of pieces of every pair of facets
     (the search before its bounds and fits), sorted."""

@@ -120,13 +120,16 @@ def _print_solid_table(report: dict[str, Any], out: Any) -> None:
     units = report["units"]
     params = report["parameters"]
     jaw = params.get("contact_type") == "jaw"
+    soft = params.get("contact_type") == "soft"
     print(f"rank  facets          radius ({units})" + ("  opening" if jaw else "")
-          + "  centres", file=out)
+          + ("  radii (leximin)" if soft else "") + "  centres", file=out)
     for g in report["grasps"]:
         centres = "  ".join("(" + ", ".join(f"{v:.4g}" for v in c) + ")"
                             for c in g["centers"])
         facets = " ".join(str(f) for f in g["facets"])
         opening = f"  {g['opening']:>7.4g}" if jaw else ""
+        if soft:
+            opening = "  " + f"{', '.join(f'{v:.4g}' for v in g['radii']):<16s}"
         print(f"{g['rank']:>4}  {facets:<14s}  {g['radius']:>12.4g}{opening}  {centres}",
               file=out)
     if params.get("contact_type") == "friction":

@@ -99,10 +99,17 @@ class OctagonPlan(SolidPlan):
 
 @dataclass(frozen=True)
 class SoftPairPlan(OctagonPlan):
-    """Regions of two soft fingers (:class:`OctagonPlan`: two facets, two octagons)."""
+    """Regions of two soft fingers (:class:`OctagonPlan`: two facets, two octagons).
+    ``radius`` is the smaller octagon's circumradius (the plans' measure, definition
+    7.1's first level); ``radii`` both, the other grown as far as it holds (the second
+    level: :func:`_second_level`)."""
+
+    radii: tuple[float, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        return self._with_similar(self._octagon_dict("soft"))
+        out = self._octagon_dict("soft")
+        out["radii"] = [float(v) for v in (self.radii or (self.radius, self.radius))]
+        return self._with_similar(out)
 
 
 def checked_cone(mu: Any, margin: Any, solid: Any = None) -> tuple[float, float, float]:
@@ -170,7 +177,8 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
                       margin: Any = DEFAULT_MARGIN_DEG, pieces: Any = (0, 0)
                       ) -> SoftPairPlan | None:
     """The largest octagon regions (module docstring) of two soft fingers on two
-    facets of ``solid`` (their convex pieces ``pieces``), or None when no regions hold.
+    facets of ``solid`` (their convex pieces ``pieces``), the second octagon then grown
+    as far as it holds (leximin, :func:`_second_level`), or None when no regions hold.
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> box = demo_solid("box")                         # 40 x 20 x 10 mm
@@ -196,16 +204,24 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
         return None
     got = _pair_program(solid, (i, j), (a, b), alpha,
                         (_halfplanes(f1.pieces[a]), _halfplanes(f2.pieces[b])))
-    return None if got is None else _plan(solid, (i, j), (a, b), *got, mu_v, margin_v)
+    return None if got is None else _plan(solid, (i, j), (a, b), *got, mu_v, margin_v,
+                                          grow=True)
 
 
 def _plan(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int], c1: FloatArray,
-          c2: FloatArray, r: float, mu: float, margin: float) -> SoftPairPlan:
+          c2: FloatArray, r: float, mu: float, margin: float, grow: bool = False
+          ) -> SoftPairPlan:
+    """The plan of the first level's octagons (radius ``r``); with ``grow``, the second
+    level grown (:func:`_second_level`)."""
+    r1 = r2 = r
+    if grow:
+        alpha = math.atan(mu) - math.radians(margin)
+        c1, c2, (r1, r2) = _second_level(solid, facets, pieces, c1, c2, r, alpha)
     f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
     Q1, Q2 = _octagon_axes(f1, f2)
-    regions = np.stack([c1 + r * Q1, c2 + r * Q2])
+    regions = np.stack([c1 + r1 * Q1, c2 + r2 * Q2])
     return SoftPairPlan(facets, pieces, r, np.stack([c1, c2]), regions,
-                        np.stack([f1.normal, f2.normal]), mu, margin)
+                        np.stack([f1.normal, f2.normal]), mu, margin, radii=(r1, r2))
 
 
 def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int],
@@ -262,20 +278,117 @@ def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
 
 def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
            facets: tuple[Facet, Facet], halfplanes: tuple[Halfplanes, Halfplanes],
-           alpha: float, r: float) -> bool:
-    """The octagons of radius ``r`` about ``c1`` and ``c2``, checked in floats: every
-    corner difference within ``alpha`` of ``n_1`` and of ``-n_2`` (strictly), every
-    corner inside its piece."""
-    d = (c2 + r * Q2)[None, :, :] - (c1 + r * Q1)[:, None, :]          # (8, 8, 3)
+           alpha: float, r: float, r2: float | None = None) -> bool:
+    """The octagons of radius ``r`` about ``c1`` and ``c2`` (``r2``: the second's, when
+    it differs), checked in floats: every corner difference within ``alpha`` of ``n_1``
+    and of ``-n_2`` (strictly), every corner inside its piece."""
+    r2 = r if r2 is None else r2
+    d = (c2 + r2 * Q2)[None, :, :] - (c1 + r * Q1)[:, None, :]         # (8, 8, 3)
     length = np.linalg.norm(d, axis=-1)
     for axis in (facets[0].normal, -facets[1].normal):
         if not np.all(d @ axis > math.cos(alpha) * length):
             return False
-    for f, (E, h), c, Q in ((facets[0], halfplanes[0], c1, Q1),
-                            (facets[1], halfplanes[1], c2, Q2)):
-        if not np.all(f.to_2d(c + r * Q) @ E.T <= h):
+    for f, (E, h), c, Q, rr in ((facets[0], halfplanes[0], c1, Q1, r),
+                                (facets[1], halfplanes[1], c2, Q2, r2)):
+        if not np.all(f.to_2d(c + rr * Q) @ E.T <= h):
             return False
     return True
+
+
+def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int],
+                  c1: FloatArray, c2: FloatArray, r: float, alpha: float
+                  ) -> tuple[FloatArray, FloatArray, tuple[float, float]]:
+    """Definition 7.1's second level (leximin) for two octagons of the first level's
+    radius ``r``: one octagon kept at ``r``, the other as large as it can be (its
+    centre and the kept one's free), both ways tried, the larger growth kept (the first
+    on a tie, within :data:`~fcgrasp.core.tolerances.TOL`).  Each is the cone program
+    of :func:`_pair_program` with the kept radius a constant, its answer confirmed in
+    floats (:func:`_holds`, shrunk by bisection towards ``r`` where it sits a rounding
+    outside).  Returns the centres and the two radii (``(r, r)`` when neither grows)."""
+    f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
+    halfplanes = (_halfplanes(f1.pieces[pieces[0]]), _halfplanes(f2.pieces[pieces[1]]))
+    Q1, Q2 = _octagon_axes(f1, f2)
+    best = (c1, c2, (r, r))
+    for side in (0, 1):
+        got = _grow_program(solid, facets, halfplanes, alpha, r, side)
+        if got is None:
+            continue
+        d1, d2, g = got
+
+        def holds(x: float, d1: FloatArray = d1, d2: FloatArray = d2, side: int = side
+                  ) -> bool:
+            r1, r2 = (x, r) if side == 0 else (r, x)
+            return _holds(d1, d2, Q1, Q2, (f1, f2), halfplanes, alpha, r1, r2)
+
+        if not holds(r):
+            continue
+        if not holds(g):
+            lo, hi = r, g
+            for _ in range(60):
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if holds(mid) else (lo, mid)
+            g = lo
+        if g > max(best[2]) * (1 + TOL):
+            best = (d1, d2, (g, r) if side == 0 else (r, g))
+    return best
+
+
+def _grow_program(solid: Solid, facets: tuple[int, int],
+                  halfplanes: tuple[Halfplanes, Halfplanes], alpha: float, r: float,
+                  side: int) -> tuple[FloatArray, FloatArray, float] | None:
+    """The cone program of :func:`_pair_program` with octagon ``1 - side`` of radius
+    ``r`` (fixed) and octagon ``side`` of the largest radius ``g`` (variables ``c1, c2,
+    g``): the centres (3-D) and ``g``, or None when it has no solution."""
+    import clarabel
+
+    f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
+    Q1, Q2 = _octagon_axes(f1, f2)
+    rows: list[FloatArray] = []
+    rhs: list[float] = []
+    lin = 0
+    for k, (f, (E, h), col, Q) in enumerate(((f1, halfplanes[0], 0, Q1),
+                                             (f2, halfplanes[1], 2, Q2))):
+        q2 = Q @ f.axes.T
+        for e, hh in zip(E, h, strict=True):
+            for q in q2:                                  # e.(c + rad q) <= h
+                row = np.zeros(5)
+                row[col:col + 2] = e
+                if k == side:
+                    row[4] = e @ q
+                    rows.append(row)
+                    rhs.append(float(hh))
+                else:
+                    rows.append(row)
+                    rhs.append(float(hh - r * (e @ q)))
+                lin += 1
+    cones: list[Any] = [clarabel.NonnegativeConeT(lin + 1)]
+    row = np.zeros(5)
+    row[4] = -1.0                                         # g >= r
+    rows.append(row)
+    rhs.append(-r)
+    base = f2.origin - f1.origin
+    for axis in (f1.normal, -f2.normal):
+        for q1 in Q1:
+            for q2 in Q2:
+                # x = base + c2 A2 - c1 A1 + r2 q2 - r1 q1, one radius fixed
+                M = np.zeros((3, 5))
+                M[:, 0:2] = -f1.axes.T
+                M[:, 2:4] = f2.axes.T
+                M[:, 4] = -q1 if side == 0 else q2
+                b = base + (r * q2 if side == 0 else -r * q1)
+                rows.append(-(axis @ M) / math.cos(alpha))
+                rhs.append(float(axis @ b) / math.cos(alpha))
+                for k in range(3):
+                    rows.append(-M[k])
+                    rhs.append(float(b[k]))
+                cones.append(clarabel.SecondOrderConeT(4))
+    q = np.zeros(5)
+    q[4] = -1.0
+    sol = solve_linear(q, rows, rhs, cones)
+    if not str(sol.status).startswith("Solved"):
+        return None
+    z = np.asarray(sol.x, float)
+    return f1.to_3d(z[0:2]), f2.to_3d(z[2:4]), float(z[4])
 
 
 def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
@@ -621,7 +734,10 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             bisect.insort(plans, _plan(solid, facets, pieces, *sol, mu_v, margin_v), key=key)
             if top is not None:
                 del plans[top:]
-    return plans
+    # the second level of the plans kept (their measure, the first, ranks them)
+    return [_plan(solid, (p.facets[0], p.facets[1]), (p.pieces[0], p.pieces[1]),
+                  p.centers[0], p.centers[1], p.radius, mu_v, margin_v, grow=True)
+            for p in plans]
 
 
 @dataclass
