@@ -309,7 +309,17 @@ def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
     halfplanes = (_halfplanes(f1.pieces[pieces[0]]), _halfplanes(f2.pieces[pieces[1]]))
     Q1, Q2 = _octagon_axes(f1, f2)
     best = (c1, c2, (r, r))
+    # bounds that skip the program where nothing can grow: an octagon's fit in its piece
+    # alone; on parallel facets a distance h apart, h tan(alpha) - r (two antipodal
+    # corners, r + g apart across, must stay inside the cone over the height h)
+    parallel = float(f1.normal @ f2.normal) < -1 + TOL
+    across = (math.tan(alpha) * abs(float((f2.origin - f1.origin) @ f1.normal)) - r
+              if parallel else math.inf)
     for side in (0, 1):
+        f, Q = (f1, Q1) if side == 0 else (f2, Q2)
+        fit = _fit(halfplanes[side], Q @ f.axes.T)[0]
+        if min(fit, across) <= r * (1 + TOL):
+            continue
         got = _grow_program(solid, facets, halfplanes, alpha, r, side)
         if got is None:
             continue
