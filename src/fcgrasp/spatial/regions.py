@@ -249,31 +249,52 @@ def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
                 lin += 1
     cones: list[Any] = [clarabel.NonnegativeConeT(lin)]
     base = f2.origin - f1.origin
-    for axis in (f1.normal, -f2.normal):
-        for q1 in Q1:
-            for q2 in Q2:
-                # x = base + c2 A2 - c1 A1 + r (q2 - q1); s = (a.x / cos(alpha), x) in SOC
-                M = np.zeros((3, 5))
-                M[:, 0:2] = -f1.axes.T
-                M[:, 2:4] = f2.axes.T
-                M[:, 4] = q2 - q1
-                rows.append(-(axis @ M) / math.cos(alpha))
-                rhs.append(float(axis @ base) / math.cos(alpha))
-                for k in range(3):
-                    rows.append(-M[k])
-                    rhs.append(float(base[k]))
-                cones.append(clarabel.SecondOrderConeT(4))
-    q = np.zeros(5)
-    q[4] = -1.0
-    sol = solve_linear(q, rows, rhs, cones)
-    if not str(sol.status).startswith("Solved"):
+    # x = base + c2 A2 - c1 A1 + r (q2 - q1)
+    _cone_rows(f1, f2, alpha, [(base, q2 - q1) for q1 in Q1 for q2 in Q2], rows, rhs,
+               cones)
+    z = _largest_last(rows, rhs, cones)
+    if z is None:
         return None
-    z = np.asarray(sol.x, float)
     c1, c2 = f1.to_3d(z[0:2]), f2.to_3d(z[2:4])
     r = _certified_radius(c1, c2, Q1, Q2, (f1, f2), halfplanes, alpha, float(z[4]))
     if r <= CONE_PROGRAM_TOL * solid.size:
         return None
     return c1, c2, r
+
+
+def _largest_last(rows: list[FloatArray], rhs: list[float], cones: list[Any]
+                  ) -> FloatArray | None:
+    """The cone program's solution with its last variable (a radius) largest, or None
+    when Clarabel does not solve it."""
+    q = np.zeros(len(rows[0]))
+    q[-1] = -1.0
+    sol = solve_linear(q, rows, rhs, cones)
+    if not str(sol.status).startswith("Solved"):
+        return None
+    return np.asarray(sol.x, float)
+
+
+def _cone_rows(f1: Facet, f2: Facet, alpha: float,
+               pairs: list[tuple[FloatArray, FloatArray]], rows: list[FloatArray],
+               rhs: list[float], cones: list[Any]) -> None:
+    """Append to a cone program in ``(c1 (2), c2 (2), g)`` both friction cones' second-order
+    constraints on each corner difference ``x = b + c2 A2 - c1 A1 + g m`` (one ``(b, m)``
+    per pair of corners): ``(a . x / cos(alpha), x)`` in the cone, ``a`` each facet's
+    inward normal (the second's reversed)."""
+    import clarabel
+
+    for axis in (f1.normal, -f2.normal):
+        for b, m in pairs:
+            M = np.zeros((3, 5))
+            M[:, 0:2] = -f1.axes.T
+            M[:, 2:4] = f2.axes.T
+            M[:, 4] = m
+            rows.append(-(axis @ M) / math.cos(alpha))
+            rhs.append(float(axis @ b) / math.cos(alpha))
+            for k in range(3):
+                rows.append(-M[k])
+                rhs.append(float(b[k]))
+            cones.append(clarabel.SecondOrderConeT(4))
 
 
 def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
@@ -377,28 +398,11 @@ def _grow_program(solid: Solid, facets: tuple[int, int],
     rows.append(row)
     rhs.append(-r)
     base = f2.origin - f1.origin
-    for axis in (f1.normal, -f2.normal):
-        for q1 in Q1:
-            for q2 in Q2:
-                # x = base + c2 A2 - c1 A1 + r2 q2 - r1 q1, one radius fixed
-                M = np.zeros((3, 5))
-                M[:, 0:2] = -f1.axes.T
-                M[:, 2:4] = f2.axes.T
-                M[:, 4] = -q1 if side == 0 else q2
-                b = base + (r * q2 if side == 0 else -r * q1)
-                rows.append(-(axis @ M) / math.cos(alpha))
-                rhs.append(float(axis @ b) / math.cos(alpha))
-                for k in range(3):
-                    rows.append(-M[k])
-                    rhs.append(float(b[k]))
-                cones.append(clarabel.SecondOrderConeT(4))
-    q = np.zeros(5)
-    q[4] = -1.0
-    sol = solve_linear(q, rows, rhs, cones)
-    if not str(sol.status).startswith("Solved"):
-        return None
-    z = np.asarray(sol.x, float)
-    return f1.to_3d(z[0:2]), f2.to_3d(z[2:4]), float(z[4])
+    # x = base + c2 A2 - c1 A1 + r2 q2 - r1 q1, one radius fixed
+    _cone_rows(f1, f2, alpha, [(base + r * q2, -q1) if side == 0 else (base - r * q1, q2)
+                               for q1 in Q1 for q2 in Q2], rows, rhs, cones)
+    z = _largest_last(rows, rhs, cones)
+    return None if z is None else (f1.to_3d(z[0:2]), f2.to_3d(z[2:4]), float(z[4]))
 
 
 def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
