@@ -174,11 +174,11 @@ def _octagon_axes(f1: Facet, f2: Facet) -> tuple[FloatArray, FloatArray]:
 
 
 def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
-                      margin: Any = DEFAULT_MARGIN_DEG, pieces: Any = (0, 0)
-                      ) -> SoftPairPlan | None:
+                      margin: Any = DEFAULT_MARGIN_DEG, pieces: Any = (0, 0),
+                      leximin: bool = True) -> SoftPairPlan | None:
     """The largest octagon regions (module docstring) of two soft fingers on two
-    facets of ``solid`` (their convex pieces ``pieces``), the second octagon then grown
-    as far as it holds (leximin, :func:`_second_level`), or None when no regions hold.
+    facets of ``solid`` (their convex pieces ``pieces``), with ``leximin`` one octagon
+    then grown as far as it holds (:func:`_second_level`), or None when no regions hold.
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> box = demo_solid("box")                         # 40 x 20 x 10 mm
@@ -205,7 +205,7 @@ def soft_pair_regions(solid: Solid, facets: Any, mu: Any,
     got = _pair_program(solid, (i, j), (a, b), alpha,
                         (_halfplanes(f1.pieces[a]), _halfplanes(f2.pieces[b])))
     return None if got is None else _plan(solid, (i, j), (a, b), *got, mu_v, margin_v,
-                                          grow=True)
+                                          grow=leximin)
 
 
 def _plan(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int], c1: FloatArray,
@@ -677,7 +677,8 @@ def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,
 
 
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
-                    margin: Any = DEFAULT_MARGIN_DEG) -> list[SoftPairPlan]:
+                    margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True
+                    ) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
     docstring), by best-first search over every pair of convex pieces whose cones can
     meet: the pairs' bounds batched, round by round (:func:`_pairs`,
@@ -685,13 +686,17 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     pair's bound tightened (:func:`_refine`: the octagons' exact fits and heights) and,
     when it is still the largest, the pair solved (:func:`_solve`: the fits themselves
     when they hold, which is then optimal, else the cone program); the search stops
-    when no bound can enter the top ``top`` (None: every pair).
+    when no bound can enter the top ``top`` (None: every pair).  With ``leximin`` (the
+    default) each plan's second level is grown (:func:`_second_level`; ``radius``, the
+    first level, ranks them either way).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 4) for p in soft_pair_plans(demo_solid("box"), mu=0.3, top=3)]
     [5.0, 2.9051, 1.4526]
     """
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
+    if not isinstance(leximin, bool):
+        raise TypeError(f"leximin must be a bool, got {leximin!r}")
     if top is not None:
         top = check_int(top, "top", minimum=1)
     if alpha <= 0:
@@ -750,7 +755,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
                 del plans[top:]
     # the second level of the plans kept (their measure, the first, ranks them)
     return [_plan(solid, (p.facets[0], p.facets[1]), (p.pieces[0], p.pieces[1]),
-                  p.centers[0], p.centers[1], p.radius, mu_v, margin_v, grow=True)
+                  p.centers[0], p.centers[1], p.radius, mu_v, margin_v, grow=leximin)
             for p in plans]
 
 
