@@ -123,7 +123,9 @@ def test_a_slice_across_a_window_is_read_from_the_slices(monkeypatch):
     """``holds_across`` (the growth's question: does the exact slice at each angle hold
     at every offset of a window?) gives, compiled with its early stop at the first piece
     that does not hold and by numpy, what reading :func:`holding_offsets` gives: one
-    interval from end to end within the contact tolerance (numpy's slices the reference
+    interval from end to end within the contact tolerance; so does ``near_intervals``
+    (the far end of the interval through either end of the window, each angle read from
+    that end) (numpy's slices the reference
     on random parts with holes; the compiled ones, tested equal to them above, on
     filleted plates of a few hundred edges).  Windows inside, across and outside the
     holding slices, at random angles and where an edge turns parallel to the pads."""
@@ -163,6 +165,17 @@ def test_a_slice_across_a_window_is_read_from_the_slices(monkeypatch):
                            for w in slices(part, jaw, th, hole, (c0, c1), not plate)]
                     got = _slices.holds_across(part, jaw, th, 2.0, hole, (c0, c1))
                     assert got.tolist() == ref
+                    # the interval through either end (the growth's reach)
+                    whole_w = slices(part, jaw, th, hole, (c0, c1), not plate)
+                    for side in (1, -1):
+                        want = np.full(th.size, np.nan)
+                        for a, w in enumerate(whole_w):
+                            at = (w[:, 0] <= c0 + tol) if side > 0 else (w[:, 1] >= c1 - tol)
+                            if at.any():
+                                want[a] = w[at][0, 1] if side > 0 else w[at][-1, 0]
+                        near = _slices.near_intervals(part, jaw, th, 2.0, hole, (c0, c1),
+                                                      side)
+                        np.testing.assert_array_equal(near, want)
                     if not plate:
                         with monkeypatch.context() as m:
                             _numpy_only(m)

@@ -748,7 +748,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
                  half: float, tol: float, internal: bool, q: Any, stroke0: float,
                  stroke1: float, beta: float, flip: float, round_tol: float,
                  slice_tol: float, tiny: float, atol: float, near: float, stop_gap: float,
-                 failed: Any) -> Any:
+                 failed: Any, upward: bool) -> Any:
     """``_slices.holding_offsets``'s cells (sorted by angle), each decided to the end (a
     stack instead of numpy's rounds): a cell affine at three points is cut at its
     slacks' roots and its pieces decided at their middles; one that is not is split
@@ -757,7 +757,10 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     ``near``), in their order.  Returns the holding pieces (N, 3): ``(angle index, lo,
     hi)``.  With ``stop_gap`` > 0, an angle with a piece longer than that which does not
     hold is given up at once (``failed[angle]`` True; its pieces are then incomplete):
-    its slice cannot be one interval across the cells (``_slices.holds_across``)."""
+    its slice cannot be one interval across the cells (``_slices.holds_across``).
+    ``upward``: each angle's cells are read from the lowest offset up (else from the
+    highest down), so that a stop leaves the interval through that end complete
+    (``_slices.first_interval``)."""
     E = a.shape[0]
     K = K_MAX
     S = 2 * K * K + 2
@@ -789,8 +792,12 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
             xa = -ts * a[e, 0] + tc * a[e, 1]
             xb = -ts * b[e, 0] + tc * b[e, 1]
             x_lo[e], x_hi[e] = min(xa, xb), max(xa, xb)
-        stack_lo = list(cell_lo[first:last])
-        stack_hi = list(cell_hi[first:last])
+        if upward:
+            stack_lo = list(cell_lo[first:last][::-1])
+            stack_hi = list(cell_hi[first:last][::-1])
+        else:
+            stack_lo = list(cell_lo[first:last])
+            stack_hi = list(cell_hi[first:last])
         first = last
         while len(stack_lo):
             if failed[t]:
@@ -809,7 +816,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
                      stroke0, stroke1, beta, flip, round_tol, slice_tol, tiny, atol, top,
                      bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
                      slacks, scratch, where, qs, stack_lo, stack_hi, out_t, out_lo, out_hi,
-                     stop_gap):
+                     stop_gap, upward):
                 failed[t] = True
     rows = np.empty((len(out_t), 3))
     for k in range(len(out_t)):
@@ -823,10 +830,11 @@ def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, ha
           top: Any, bottom: Any, ok_a: Any, ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any,
           psi_b: Any, col_a: Any, col_b: Any, holds: Any, slacks: Any, scratch: Any,
           where: Any, qs: Any, stack_lo: Any, stack_hi: Any, out_t: Any, out_lo: Any,
-          out_hi: Any, stop_gap: float) -> bool:
+          out_hi: Any, stop_gap: float, upward: bool) -> bool:
     """One cell ``[lo, hi]`` of the angle ``t`` (:func:`_slices_loop`): its holding
-    pieces appended to ``out_*``, or its two parts pushed on the stack.  Returns whether
-    a piece longer than ``stop_gap`` (> 0) was found not to hold."""
+    pieces appended to ``out_*``, or its two parts pushed on the stack (the lower one
+    read first when ``upward``).  Returns whether a piece longer than ``stop_gap`` (> 0)
+    was found not to hold."""
     gap = False
     S = slacks.shape[1]
     inset = min((hi - lo) / 4, slice_tol)
@@ -880,10 +888,16 @@ def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, ha
         _quantities(top, bottom, lat_a, lat_b, qs, 0, 1)
         _quantities(top, bottom, lat_a, lat_b, qs, 1, 3)
         cut = _kink(pts[0], e0, pts[1], e2, pts[2], qs, lo, hi, inset, atol)
-        stack_lo.append(lo)
-        stack_hi.append(cut)
-        stack_lo.append(cut)
-        stack_hi.append(hi)
+        if upward:
+            stack_lo.append(cut)
+            stack_hi.append(hi)
+            stack_lo.append(lo)
+            stack_hi.append(cut)
+        else:
+            stack_lo.append(lo)
+            stack_hi.append(cut)
+            stack_lo.append(cut)
+            stack_hi.append(hi)
     return gap
 
 
@@ -981,11 +995,12 @@ def _affine3(v0: float, v1: float, v2: float, atol: float) -> bool:
 def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
            half: float, tol: float, q: Any, stroke: tuple[float, float], beta: float,
            round_tol: float, slice_tol: float, tiny: float, atol: float, near: float,
-           stop_gap: float = 0.0, failed: Any = None) -> Any:
+           stop_gap: float = 0.0, failed: Any = None, upward: bool = False) -> Any:
     """The holding pieces of the cells (``_slices.holding_offsets``; sorted by angle),
     compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run.
     ``stop_gap`` > 0: an angle is given up at its first piece longer than that which does
-    not hold (``failed``, a boolean array over the angles, set there)."""
+    not hold (``failed``, a boolean array over the angles, set there), each angle read
+    from its lowest offset up with ``upward`` (else from the highest down)."""
     internal = q is not None
     if failed is None:
         failed = np.zeros(len(th), dtype=np.bool_)
@@ -999,7 +1014,8 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
                 np.ascontiguousarray(b, dtype=float), np.ascontiguousarray(f, dtype=float),
                 float(half), float(tol), internal, qq, float(stroke[0]), float(stroke[1]),
                 float(beta), -1.0 if internal else 1.0, float(round_tol), float(slice_tol),
-                float(tiny), float(atol), float(near), float(stop_gap), failed, answer=out):
+                float(tiny), float(atol), float(near), float(stop_gap), failed,
+                bool(upward), answer=out):
         return None
     return out[0]
 

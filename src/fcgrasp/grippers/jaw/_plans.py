@@ -34,8 +34,8 @@ from ._poses import (
     jaw_poses,
 )
 from ._slices import (
-    holding_offsets,
     holds_across,
+    near_intervals,
 )
 
 
@@ -252,10 +252,10 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     With ``certify`` (the default) each box is also *proved* by :func:`certify_box` (shrunk
     by up to :data:`CERTIFY_SHRINKS` grid steps until the proof succeeds within
     :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is dropped and the next one
-    sought), then grown to the exact boundary of the set (:func:`holding_offsets`), moved in
-    by :data:`GROW_BACKOFF` and proved again, kept where it measures more: every returned
-    plan then has ``certified`` True. ``certify=False`` returns the boxes verified on the
-    fine grid only.
+    sought), then grown to the exact boundary of the set
+    (:func:`~fcgrasp.grippers.jaw.holding_offsets`), moved in by :data:`GROW_BACKOFF` and
+    proved again, kept where it measures more: every returned plan then has ``certified``
+    True. ``certify=False`` returns the boxes verified on the fine grid only.
 
     >>> from fcgrasp.io.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -309,25 +309,22 @@ GROW_BACKOFF = ((0.25, 5.0), (0.5, 2.5))
 def _reach(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
            thetas: FloatArray, anchor: float, step: float, side: int) -> float | None:
     """How far from ``anchor`` (an offset at which every angle of ``thetas`` holds) the
-    exact slices (:func:`holding_offsets`) hold at every one of ``thetas``, towards
-    ``side`` (+1: larger offsets): the nearest end of the slices' intervals through
-    ``anchor``.  Windows of ``2 * step`` are added until it is found (None: no interval
-    through the anchor at some angle)."""
+    exact slices (:func:`~fcgrasp.grippers.jaw.holding_offsets`) hold at every one of
+    ``thetas``, towards ``side`` (+1: larger offsets): the nearest end of the slices'
+    intervals through ``anchor`` (:func:`._slices.near_intervals`).  Windows of
+    ``2 * step`` are added until it is found (None: no interval through the anchor at
+    some angle)."""
     tol = CONTACT_TOL * polygon.size
     far = anchor
     reach_max = polygon.radius + jaw.pad_width
     while True:
         near, far = far, far + side * 2 * step
         window = (min(near, far), max(near, far))
-        slices = holding_offsets(polygon, jaw, thetas, margin, hole, window)
-        ends = []
-        for iv in slices:
-            # the interval through the window's end next to the anchor
-            at = (iv[:, 0] <= window[0] + tol) if side > 0 else (iv[:, 1] >= window[1] - tol)
-            if not at.any():
-                return None if near == anchor else near
-            ends.append(iv[at][0, 1] if side > 0 else iv[at][-1, 0])
-        end = min(ends) if side > 0 else max(ends)
+        # the interval through the window's end next to the anchor, at each angle
+        ends = near_intervals(polygon, jaw, thetas, margin, hole, window, side)
+        if np.isnan(ends).any():
+            return None if near == anchor else near
+        end = float(ends.min() if side > 0 else ends.max())
         if abs(end - far) > tol or abs(far) > reach_max:
             return end
 
@@ -345,9 +342,9 @@ def _grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
     """A box found on the grid grown to the exact boundary of the holding set, the
     dimension that limits its measure first: its offset range to the nearest ends of the
     exact slices at :data:`CHECK_DENSITY` angles per grid step across it
-    (:func:`holding_offsets`), and its angle range, with the offset range fixed, by
-    bisection (to 1/4096 of a fine step) to the first angle whose slice does not hold
-    across it.  None when the slices disagree with the grid."""
+    (:func:`~fcgrasp.grippers.jaw.holding_offsets`), and its angle range, with the offset
+    range fixed, by bisection (to 1/4096 of a fine step) to the first angle whose slice
+    does not hold across it.  None when the slices disagree with the grid."""
     (t0, t1), (c0, c1) = th, off
     radius = polygon.radius
     fine = dth / CHECK_DENSITY

@@ -103,6 +103,38 @@ def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
                      and iv[0, 1] >= c1 - tol for k, iv in enumerate(slices)], dtype=bool)
 
 
+def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
+                   hole: int | None, window: tuple[float, float], side: int) -> FloatArray:
+    """Per angle of ``theta``, the far end of the exact slice's interval (within
+    ``window``) that starts at the window's end away from ``side`` (+1: its low end,
+    the interval's high end returned; -1: its high end, the interval's low end), NaN
+    where no interval reaches that end within the contact tolerance.  The same answers
+    as reading :func:`holding_offsets`; the compiled loop reads each angle's cells from
+    that end and stops at its first piece longer than the tolerance that does not hold
+    (the interval ends there)."""
+    margin = _check_jaw_args(polygon, jaw, margin)
+    th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
+    tol = CONTACT_TOL * polygon.size
+    w0, w1 = (float(v) for v in window)
+    rows = None
+    if _kernels.available():
+        ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, (w0, w1))
+        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th,
+                               *_pose_args(polygon, jaw, margin, hole, ring),
+                               SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
+                               CONTACT_TOL * polygon.size,
+                               NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol,
+                               failed=np.zeros(th.size, dtype=bool), upward=side > 0)
+    slices = (_merge_intervals(rows, th.size, tol) if rows is not None
+              else holding_offsets(polygon, jaw, th, margin, hole, (w0, w1)))
+    out = np.full(th.size, np.nan)
+    for k, iv in enumerate(slices):
+        at = (iv[:, 0] <= w0 + tol) if side > 0 else (iv[:, 1] >= w1 - tol)
+        if at.any():
+            out[k] = iv[at][0, 1] if side > 0 else iv[at][-1, 0]
+    return out
+
+
 def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
            offsets: tuple[float, float] | None
            ) -> tuple[np.ndarray, np.ndarray, FloatArray, FloatArray]:
