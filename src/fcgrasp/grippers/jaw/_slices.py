@@ -88,15 +88,7 @@ def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
     tol = CONTACT_TOL * polygon.size
     c0, c1 = (float(v) for v in offsets)
     failed = np.zeros(th.size, dtype=bool)
-    rows = None
-    if _kernels.available():
-        ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, (c0, c1))
-        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th,
-                               *_pose_args(polygon, jaw, margin, hole, ring),
-                               SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
-                               CONTACT_TOL * polygon.size,
-                               NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol,
-                               failed=failed)
+    rows = _stopping_pieces(polygon, jaw, th, margin, hole, (c0, c1), failed, False)
     slices = (_merge_intervals(rows, th.size, tol) if rows is not None
               else holding_offsets(polygon, jaw, th, margin, hole, (c0, c1)))
     return np.array([not failed[k] and iv.shape[0] == 1 and iv[0, 0] <= c0 + tol
@@ -116,15 +108,8 @@ def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float
     th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
     tol = CONTACT_TOL * polygon.size
     w0, w1 = (float(v) for v in window)
-    rows = None
-    if _kernels.available():
-        ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, (w0, w1))
-        rows = _kernels.slices(cell_t, cell_lo, cell_hi, th,
-                               *_pose_args(polygon, jaw, margin, hole, ring),
-                               SLICE_TOL * polygon.size, ROUND_TOL * polygon.size,
-                               CONTACT_TOL * polygon.size,
-                               NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol,
-                               failed=np.zeros(th.size, dtype=bool), upward=side > 0)
+    rows = _stopping_pieces(polygon, jaw, th, margin, hole, (w0, w1),
+                            np.zeros(th.size, dtype=bool), side > 0)
     slices = (_merge_intervals(rows, th.size, tol) if rows is not None
               else holding_offsets(polygon, jaw, th, margin, hole, (w0, w1)))
     out = np.full(th.size, np.nan)
@@ -133,6 +118,24 @@ def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float
         if at.any():
             out[k] = iv[at][0, 1] if side > 0 else iv[at][-1, 0]
     return out
+
+
+def _stopping_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
+                     hole: int | None, window: tuple[float, float], failed: np.ndarray,
+                     upward: bool) -> FloatArray | None:
+    """The holding pieces of the slices at ``th`` within ``window`` by the compiled loop,
+    each angle given up at its first piece longer than the contact tolerance that does
+    not hold (``failed`` set there), read from the low end up with ``upward``; None
+    where the loop does not run."""
+    if not _kernels.available():
+        return None
+    ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, window)
+    tol = CONTACT_TOL * polygon.size
+    return cast("FloatArray | None", _kernels.slices(
+        cell_t, cell_lo, cell_hi, th, *_pose_args(polygon, jaw, margin, hole, ring),
+        SLICE_TOL * polygon.size, ROUND_TOL * polygon.size, tol,
+        NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol, failed=failed,
+        upward=upward))
 
 
 def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
