@@ -471,17 +471,8 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
                     n_out += 1
         # the window grows by row r + k: intersect the runs
         row = (r + k) % ma
-        a, b, n2 = 0, ptr[row], 0
-        while a < nc and b < ptr[row + 1]:
-            lo = max(cs[a], first[b])
-            hi = min(ce[a], last[b])
-            if lo <= hi:
-                ns[n2], ne[n2] = lo, hi
-                n2 += 1
-            if ce[a] < last[b]:
-                a += 1
-            else:
-                b += 1
+        ns, ne, n2 = _intersect(0, nc, cs, ce, ptr[row], ptr[row + 1], first, last, ns, ne,
+                                0)
         for j in range(n2):
             cs[j], ce[j] = ns[j], ne[j]
         nc = n2

@@ -286,7 +286,7 @@ def _fails_loop(pts: FloatArray, nrm: FloatArray, c: float, s: float, friction: 
                     if above or below:
                         found = True
                         break
-                if found or fails:
+                if found:
                     break
             if found or fails:
                 out[a] = True

@@ -234,20 +234,8 @@ def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
     f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
     Q1, Q2 = _octagon_axes(f1, f2)
     # variables z = (c1 (2), c2 (2), r); the corners p = origin + c A + r Q
-    rows: list[FloatArray] = []
-    rhs: list[float] = []
-    lin = 0
-    for f, (E, h), col, Q in ((f1, halfplanes[0], 0, Q1), (f2, halfplanes[1], 2, Q2)):
-        q2 = Q @ f.axes.T                                         # corners in 2-D (8, 2)
-        for e, hh in zip(E, h, strict=True):
-            for q in q2:                                           # e.(c + r q) <= h
-                row = np.zeros(5)
-                row[col:col + 2] = e
-                row[4] = e @ q
-                rows.append(row)
-                rhs.append(float(hh))
-                lin += 1
-    cones: list[Any] = [clarabel.NonnegativeConeT(lin)]
+    rows, rhs = _piece_rows((f1, f2), (Q1, Q2), halfplanes)
+    cones: list[Any] = [clarabel.NonnegativeConeT(len(rows))]
     base = f2.origin - f1.origin
     # x = base + c2 A2 - c1 A1 + r (q2 - q1)
     _cone_rows(f1, f2, alpha, [(base, q2 - q1) for q1 in Q1 for q2 in Q2], rows, rhs,
@@ -260,6 +248,43 @@ def _pair_program(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
     if r <= CONE_PROGRAM_TOL * solid.size:
         return None
     return c1, c2, r
+
+
+def _piece_rows(facets: tuple[Facet, Facet], axes: tuple[FloatArray, FloatArray],
+                halfplanes: tuple[Halfplanes, Halfplanes],
+                fixed: tuple[int, float] | None = None
+                ) -> tuple[list[FloatArray], list[float]]:
+    """The rows of a cone program in ``(c1 (2), c2 (2), g)`` keeping each octagon's
+    corners inside its piece: ``e . (c + g q) <= h`` per edge ``e`` of the piece and
+    corner ``q``; ``fixed = (k, r)``: octagon ``k`` of the constant radius ``r`` instead
+    (its rows ``e . c <= h - r e . q``)."""
+    rows: list[FloatArray] = []
+    rhs: list[float] = []
+    for k, (f, (E, h), Q) in enumerate(zip(facets, halfplanes, axes, strict=True)):
+        q2 = Q @ f.axes.T                                         # corners in 2-D (8, 2)
+        for e, hh in zip(E, h, strict=True):
+            for q in q2:
+                row = np.zeros(5)
+                row[2 * k:2 * k + 2] = e
+                if fixed is not None and fixed[0] == k:
+                    rhs.append(float(hh - fixed[1] * (e @ q)))
+                else:
+                    row[4] = e @ q
+                    rhs.append(float(hh))
+                rows.append(row)
+    return rows, rhs
+
+
+def _largest_holding(holds: Any, lo: float, hi: float) -> float:
+    """Bisection between a radius ``lo`` that ``holds`` and one ``hi`` that may not: the
+    largest found to hold (60 halvings)."""
+    for _ in range(60):
+        mid = 0.5 * (lo + hi)
+        if holds(mid):
+            lo = mid
+        else:
+            hi = mid
+    return lo
 
 
 def _largest_last(rows: list[FloatArray], rhs: list[float], cones: list[Any]
@@ -354,11 +379,7 @@ def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
         if not holds(r):
             continue
         if not holds(g):
-            lo, hi = r, g
-            for _ in range(60):
-                mid = 0.5 * (lo + hi)
-                lo, hi = (mid, hi) if holds(mid) else (lo, mid)
-            g = lo
+            g = _largest_holding(holds, r, g)
         if g > max(best[2]) * (1 + TOL):
             best = (d1, d2, (g, r) if side == 0 else (r, g))
     return best
@@ -374,25 +395,8 @@ def _grow_program(solid: Solid, facets: tuple[int, int],
 
     f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
     Q1, Q2 = _octagon_axes(f1, f2)
-    rows: list[FloatArray] = []
-    rhs: list[float] = []
-    lin = 0
-    for k, (f, (E, h), col, Q) in enumerate(((f1, halfplanes[0], 0, Q1),
-                                             (f2, halfplanes[1], 2, Q2))):
-        q2 = Q @ f.axes.T
-        for e, hh in zip(E, h, strict=True):
-            for q in q2:                                  # e.(c + rad q) <= h
-                row = np.zeros(5)
-                row[col:col + 2] = e
-                if k == side:
-                    row[4] = e @ q
-                    rows.append(row)
-                    rhs.append(float(hh))
-                else:
-                    rows.append(row)
-                    rhs.append(float(hh - r * (e @ q)))
-                lin += 1
-    cones: list[Any] = [clarabel.NonnegativeConeT(lin + 1)]
+    rows, rhs = _piece_rows((f1, f2), (Q1, Q2), halfplanes, fixed=(1 - side, r))
+    cones: list[Any] = [clarabel.NonnegativeConeT(len(rows) + 1)]
     row = np.zeros(5)
     row[4] = -1.0                                         # g >= r
     rows.append(row)
@@ -413,16 +417,10 @@ def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatA
     for shrink in _SHRINKS:                               # the usual rounding first
         if _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, r * (1 - shrink)):
             return r * (1 - shrink)
-    lo, hi = 0.0, r
-    if not _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, lo):
+    if not _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, 0.0):
         return 0.0
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        if _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, mid):
-            lo = mid
-        else:
-            hi = mid
-    return lo
+    return _largest_holding(lambda x: _holds(c1, c2, Q1, Q2, facets, halfplanes, alpha, x),
+                            0.0, r)
 
 
 

@@ -760,7 +760,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     its slice cannot be one interval across the cells (``_slices.holds_across``).
     ``upward``: each angle's cells are read from the lowest offset up (else from the
     highest down), so that a stop leaves the interval through that end complete
-    (``_slices.first_interval``)."""
+    (``_slices.near_intervals``)."""
     E = a.shape[0]
     K = K_MAX
     S = 2 * K * K + 2
@@ -801,9 +801,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
         first = last
         while len(stack_lo):
             if failed[t]:
-                stack_lo.clear()
-                stack_hi.clear()
-                break
+                break                   # the angle given up: its cells left unread
             lo, hi = stack_lo.pop(), stack_hi.pop()
             n = 0
             for e in range(E):
