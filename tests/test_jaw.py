@@ -724,3 +724,87 @@ def test_no_box_is_an_image_of_another(name, symmetries):
             moved = [b for b in images(q)
                      if overlap(q, b) < 0.99 * np.ptp(q.theta) * np.ptp(q.offset)]
             assert all(overlap(p, b) <= 0.5 * area for b in moved), (p.theta, q.theta)
+
+
+def _raster_box_above(part, jaw, step_deg, floor):
+    """A box of the exact holding set on a raster (the slices of ``holding_offsets``
+    every ``step_deg`` over the whole turn; a box: a run of raster angles and an offset
+    interval inside every one of their slices) whose measure ``min(offset range, angle
+    range * radius)`` exceeds ``floor``: ``(measure, first angle, last angle)``, or None.
+    Written apart from the planner's raster (interval lists intersected one angle at a
+    time), pruned by ``floor`` only."""
+    th = np.radians(np.arange(0.0, 360.0, step_deg))
+    slices = [[tuple(r) for r in s] for s in holding_offsets(part, jaw, th)]
+    n, dth, radius = th.size, np.radians(step_deg), part.radius
+
+    def meet(a, b):
+        out, i, j = [], 0, 0
+        while i < len(a) and j < len(b):
+            lo, hi = max(a[i][0], b[j][0]), min(a[i][1], b[j][1])
+            if lo < hi:
+                out.append((lo, hi))
+            if a[i][1] < b[j][1]:
+                i += 1
+            else:
+                j += 1
+        return out
+
+    for i in range(n):
+        cur, k = slices[i], 0
+        while cur and k < n // 2:
+            longest = max(h - lo for lo, h in cur)
+            if longest <= floor:
+                break                   # the intervals only shrink as the run grows
+            if min(longest, k * dth * radius) > floor:
+                return min(longest, k * dth * radius), th[i], th[(i + k) % n]
+            k += 1
+            cur = meet(cur, slices[(i + k) % n])
+    return None
+
+
+RASTER_JAWS = [ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5),
+               ParallelJaw(stroke=(10, 60), pad_width=12, mu=0.4)]
+
+
+@pytest.mark.parametrize("name", ["triangle", *(
+    pytest.param(n, marks=pytest.mark.slow)
+    for n in ("blob", "quad", "bracket", "washer", "rectangle"))])
+def test_the_top_box_is_within_one_percent_of_the_exact_sets_largest(name):
+    """Issue 31: the best box is within 1 % of the largest box of the exact holding set
+    by the measure, checked against a raster of exact slices every 0.1 degree over the
+    whole turn (no raster box measures more than the top box / 0.99).  The grid's box
+    grown to the boundary was 8 % short on the triangle (4.20 against 4.58) and 7 % on
+    the rectangle with the wider pads."""
+    part = demo_part(name)
+    for jaw in RASTER_JAWS:
+        best = jaw_plans(part, jaw, top=1, internal=False)[0]
+        assert best.certified
+        assert _raster_box_above(part, jaw, 0.1, best.measure / 0.99) is None, jaw
+
+
+@pytest.mark.parametrize("name", ["quad", *(
+    pytest.param(n, marks=pytest.mark.slow)
+    for n in ("blob", "triangle", "bracket", "rectangle", "washer"))])
+def test_returned_boxes_do_not_overlap_nor_their_images(name):
+    """Issue 31: no returned box overlaps another or its image under the part's and the
+    jaw's symmetries (a box grown or refined into a plan found before is not kept; the
+    quad's rank 2 used to contain its rank 1)."""
+    from fcgrasp.model.distinct import box_images, part_symmetries
+
+    part = demo_part(name)
+    symmetries = part_symmetries(part)
+    jaws = RASTER_JAWS if name != "washer" else RASTER_JAWS[:1]
+    for jaw in jaws:
+        plans = jaw_plans(part, jaw, top=6)
+        for i, p in enumerate(plans):
+            for q in plans[i + 1:]:
+                if p.hole != q.hole:
+                    continue
+                area = min(np.ptp(p.theta) * np.ptp(p.offset),
+                           np.ptp(q.theta) * np.ptp(q.offset))
+                for t0, t1, c0, c1 in box_images(q.theta, q.offset, symmetries
+                                                 if q.hole is None else [("rot", 0.0)]):
+                    dc = min(p.offset[1], c1) - max(p.offset[0], c0)
+                    dt = max(min(p.theta[1], t1 + turn) - max(p.theta[0], t0 + turn)
+                             for turn in 2 * np.pi * np.arange(-2, 3))
+                    assert max(dc, 0) * max(dt, 0) <= 1e-6 * area, (p.theta, q.theta)

@@ -45,9 +45,16 @@ its offset range to the nearest ends of the slices at :data:`CHECK_DENSITY` angl
 grid step across it, its angle range by bisection on the slices; the box on the
 boundary cannot be proved (its sub-boxes would have to shrink to nothing there), so it
 is moved in by a quarter of a grid step (else a half, :data:`GROW_BACKOFF`), proved, and
-kept where it measures more than the grid's box.  The boxes are therefore maximal up to
-that back-off in the directions grown, not the global optimum over all boxes of the
-exact set: the box's shape (which rows of angles) is still chosen on the grid.
+kept where it measures more than the grid's box.  The box's shape is then searched on
+the exact set itself: on a raster of the exact slices' intervals through an anchor
+offset (every quarter grid step, finer near the run's ends: a five-hundredth of the
+box's measure), the run of angles and the offset interval inside all of them with the
+largest measure (then the largest area) near the grid's box, apart from the plans found
+before and their images; moved in from the raster's boundary by 0.25 % of each side
+(else 0.5 %, 1 %) and proved, it replaces the box where it measures more.  On the
+built-in parts the top box is within 1 % of the largest box of a 0.1-degree raster of
+the exact set (it was up to 8 % short), and no returned box overlaps another or its
+images.
 :func:`jaw_plans` returns proved boxes unless asked not to (``certify=False``: boxes
 verified on the fine grid only, neither proved nor grown).
 
