@@ -40,21 +40,22 @@ grid points too (sound, not complete; a box it cannot prove is shrunk, then drop
 **The exact set.**  At a fixed closing angle the set's slice is computed exactly
 (:func:`holding_offsets`: every quantity of the model is piecewise affine in the offset,
 so the slice's ends are roots of the verdict's slacks, found in closed form, or kinks of
-a pad's stop, located by halving).  A proved box is grown to the set's exact boundary:
-its offset range to the nearest ends of the slices at :data:`CHECK_DENSITY` angles per
-grid step across it, its angle range by bisection on the slices; the box on the
-boundary cannot be proved (its sub-boxes would have to shrink to nothing there), so it
-is moved in by a quarter of a grid step (else a half, :data:`GROW_BACKOFF`), proved, and
-kept where it measures more than the grid's box.  The box's shape is then searched on
-the exact set itself: on a raster of the exact slices' intervals through an anchor
-offset (every quarter grid step, finer near the run's ends: a five-hundredth of the
-box's measure), the run of angles and the offset interval inside all of them with the
-largest measure (then the largest area) near the grid's box, apart from the plans found
-before and their images; moved in from the raster's boundary by 0.25 % of each side
-(else 0.5 %, 1 %) and proved, it replaces the box where it measures more.  On the
-built-in parts the top box is within 1 % of the largest box of a 0.1-degree raster of
-the exact set (it was up to 8 % short), and no returned box overlaps another or its
-images.
+a pad's stop, located by halving).  The box's shape is searched on the exact set itself
+(for the ``REFINE_TOP`` best boxes of each grip): on a raster of the exact
+slices' intervals through an anchor offset (every grid step, finer near the run's ends:
+a five-hundredth of the box's measure), the run of angles and the offset interval inside
+all of them with the largest measure (then the largest area) near the grid's box, apart
+from the plans found before and their images; moved in from the raster's boundary by
+0.25 % of each side (else 0.5 %, 1 %) and proved, it replaces the grid's box where it
+measures more.  Where it does not, or gains under 5 %, the grid's box is also grown to
+the set's exact boundary: its offset range to the nearest ends of the slices at
+:data:`CHECK_DENSITY` angles per grid step across it, its angle range by bisection on
+the slices; the box on the boundary cannot be proved (its sub-boxes would have to
+shrink to nothing there), so it is moved in by a quarter of a grid step (else a half,
+:data:`GROW_BACKOFF`), proved, and kept where it measures more and overlaps no plan found
+before.  On the built-in parts the top box is within 1 % of the largest box of a
+0.1-degree raster of the exact set (the grown grid box was up to 8 % short), and no
+returned box overlaps another or its images.
 :func:`jaw_plans` returns proved boxes unless asked not to (``certify=False``: boxes
 verified on the fine grid only, neither proved nor grown).
 

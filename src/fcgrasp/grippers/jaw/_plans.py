@@ -411,7 +411,17 @@ def _proved_grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int |
 #: The raster of exact slices a box is refined on (:func:`_refined`): an angle step whose
 #: arc at the part's radius is this fraction of the grid box's measure (at least
 #: ``1/REFINE_DENSITY`` of a grid step, at most a quarter of one).
-REFINE_STEP, REFINE_DENSITY = 0.002, 32
+REFINE_STEP, REFINE_DENSITY = 0.002, 8
+#: The best boxes of each grip (external, or in each hole) searched on the raster; the
+#: rest are grown from the grid (the raster's slices cost most on curved outlines).
+REFINE_TOP = 3
+#: The grid box is also grown (:func:`_proved_grown`) where the raster's box gains less
+#: than this fraction over it, and the larger kept.
+GROW_TOO = 0.05
+#: The raster is widened while its best run reaches an end, until the run's angle range
+#: (as an arc at the part's radius) is this many times its offset range: longer runs add
+#: area, not measure.
+REFINE_SPAN = 2.0
 #: A refined box is moved in from the raster's boundary by these fractions of each
 #: side at each end, in turn, until it is proved, each try with that many times
 #: :data:`CERTIFY_BOXES` sub-boxes: it keeps at least 99.5 % of its measure, else 99 %,
@@ -420,24 +430,41 @@ REFINE_BACKOFF = ((0.0025, 25.0), (0.005, 10.0), (0.01, 5.0))
 
 
 def _ends(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
-          lines: FloatArray, anchor: float, side: int) -> FloatArray:
+          lines: FloatArray, anchor: float, width: float, side: int) -> FloatArray:
     """Per angle of ``lines``, the end towards ``side`` (+1: larger offsets) of the
     exact slice's interval through ``anchor`` (:func:`._slices.near_intervals`, which
-    reads each angle's cells from the anchor on and stops where the interval ends); NaN
-    where the slice does not hold at ``anchor``."""
-    far = side * (polygon.radius + jaw.pad_width)        # no pad touches beyond
-    if (far - anchor) * side <= 0:
-        return np.full(lines.size, np.nan)
-    return near_intervals(polygon, jaw, lines, margin, hole,
-                          (min(anchor, far), max(anchor, far)), side)
+    reads each angle's cells from the anchor on and stops where the interval ends: in a
+    window of ``width``, then, for the angles whose interval reaches its end, one four
+    times wider, up to where no pad touches); NaN where the slice does not hold at
+    ``anchor``."""
+    tol = CONTACT_TOL * polygon.size
+    limit = side * (polygon.radius + jaw.pad_width)        # no pad touches beyond
+    out = np.full(lines.size, np.nan)
+    todo = np.arange(lines.size)
+    near = anchor
+    while todo.size and (limit - near) * side > 0:
+        far = near + side * width
+        if (far - limit) * side >= 0:
+            far = limit
+        ends = near_intervals(polygon, jaw, lines[todo], margin, hole,
+                              (min(near, far), max(near, far)), side)
+        done = np.isnan(ends) | (np.abs(ends - far) > tol) | (far == limit)
+        # NaN past the first window: the interval ended at the window's near end
+        got = np.where(np.isnan(ends), np.nan if near == anchor else near, ends)
+        out[todo[done]] = got[done]
+        todo = todo[~done]
+        near, width = far, 4 * width
+    return out
 
 
 def _best_run(lines: FloatArray, lo: FloatArray, hi: FloatArray, radius: float,
-              max_span: float) -> tuple[float, int, int, float, float] | None:
+              max_span: float, pad: float = 0.0
+              ) -> tuple[float, int, int, float, float] | None:
     """The box of largest measure whose angles are a run ``lines[i .. j]`` and whose
     offsets the run's intervals ``[lo, hi]`` (NaN: none) all contain, of largest area
     among those of that measure (to :data:`RANK_TOL`): ``(measure, i, j, c0, c1)``,
-    or None; its angle range under ``max_span``."""
+    or None; its angle range under ``max_span``.  ``pad``: each run's angle range
+    counted that much longer."""
     best: tuple[float, float, int, int, float, float] | None = None
     held = ~np.isnan(lo) & ~np.isnan(hi)
     for i in np.flatnonzero(held):
@@ -445,7 +472,7 @@ def _best_run(lines: FloatArray, lo: FloatArray, hi: FloatArray, radius: float,
         c0 = np.maximum.accumulate(lo[i:stop])
         c1 = np.minimum.accumulate(hi[i:stop])
         span = lines[i:stop] - lines[i]
-        score = np.where(span < max_span, np.minimum(c1 - c0, span * radius), -1.0)
+        score = np.where(span < max_span, np.minimum(c1 - c0, (span + pad) * radius), -1.0)
         top = float(score.max())
         if top <= 0 or (best is not None and top < best[0] * (1 - RANK_TOL)):
             continue
@@ -473,36 +500,42 @@ def _clip(lines: FloatArray, lo: FloatArray, hi: FloatArray, anchor: float,
 
 
 def _through(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
-             lines: FloatArray, anchor: float,
+             lines: FloatArray, anchor: float, width: float,
              taken: list[tuple[float, float, float, float]]
              ) -> tuple[FloatArray, FloatArray]:
     """The exact slices' intervals ``(lo, hi)`` through ``anchor`` at the angles
-    ``lines`` (:func:`_ends`), less the boxes ``taken``."""
-    lo = _ends(polygon, jaw, margin, hole, lines, anchor, -1)
-    hi = _ends(polygon, jaw, margin, hole, lines, anchor, +1)
+    ``lines`` (:func:`_ends`, its first windows ``width``), less the boxes ``taken``."""
+    lo = _ends(polygon, jaw, margin, hole, lines, anchor, width, -1)
+    hi = _ends(polygon, jaw, margin, hole, lines, anchor, width, +1)
     _clip(lines, lo, hi, anchor, taken)
     return lo, hi
 
 
 def _refined(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
              th: tuple[float, float], off: tuple[float, float], dth: float, dc: float,
-             taken: list[tuple[float, float, float, float]] = ()  # type: ignore[assignment]
+             taken: list[tuple[float, float, float, float]] = (),  # type: ignore[assignment]
+             floor: float = 0.0
              ) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """The largest box by the measure near a grid box, on a raster of the exact slices
     (:func:`~fcgrasp.grippers.jaw.holding_offsets`, their intervals through an anchor
     offset; :func:`_best_run`), apart from the boxes ``taken`` (the plans found so far
-    and their images): first every quarter grid step from two grid steps before the box
-    to two after (its middle offset the anchor), widened, twice as far each time, while
-    the best run reaches an end; then, within two quarter steps of that run's ends,
-    every :data:`REFINE_STEP` of its measure (as an arc at the part's radius).  Every angle
-    and offset of the box returned holds on the raster, not between
-    (:func:`_proved_refined` proves it).  None when no run holds."""
+    and their images): first every grid step from two grid steps before the box to two
+    after (its middle offset the anchor), widened, twice as far each time, while the
+    best run reaches an end and is shorter than :data:`REFINE_SPAN` times its offset
+    range; then, within a grid step of that run's ends, every :data:`REFINE_STEP` of its
+    measure (as an arc at the part's radius; at least ``1/REFINE_DENSITY`` of a grid
+    step).  Every angle and offset of the box returned holds on the raster, not between
+    (:func:`_proved_refined` proves it).  None when no run holds, or when no run could
+    measure more than ``floor`` (a finer run contains a run of the grid's angles at most
+    two steps shorter)."""
     radius = polygon.radius
-    coarse = dth / 2
+    coarse = dth
     max_span = np.pi - 2 * dth                      # certify_box: under half a turn
     anchor = (off[0] + off[1]) / 2
     lines = np.arange(th[0] - 2 * dth, th[1] + 2 * dth + coarse / 2, coarse)
-    lo, hi = _through(polygon, jaw, margin, hole, lines, anchor, taken)
+    # (the first windows reach a little past the grid box's offsets)
+    width = (off[1] - off[0]) / 2 + 2 * dc
+    lo, hi = _through(polygon, jaw, margin, hole, lines, anchor, width, taken)
     grow = 8
     while True:
         run = _best_run(lines, lo, hi, radius, max_span)
@@ -512,24 +545,31 @@ def _refined(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None
         ahead = coarse * np.arange(1.0, grow + 1)
         new: list[FloatArray] = [lines[0] - ahead[::-1] if i == 0 else ahead[:0],
                                  lines[-1] + ahead if j == lines.size - 1 else ahead[:0]]
-        if not (new[0].size or new[1].size) or lines[-1] - lines[0] >= max_span:
+        if not (new[0].size or new[1].size) or lines[-1] - lines[0] >= max_span \
+                or (lines[j] - lines[i]) * radius >= REFINE_SPAN * (c1 - c0):
             break
-        parts = [_through(polygon, jaw, margin, hole, t, anchor, taken) for t in new]
+        parts = [_through(polygon, jaw, margin, hole, t, anchor, width, taken) for t in new]
         lines = np.concatenate([new[0], lines, new[1]])
         lo = np.concatenate([parts[0][0], lo, parts[1][0]])
         hi = np.concatenate([parts[0][1], hi, parts[1][1]])
         grow *= 2
     box = (float(lines[i]), float(lines[j])), (c0, c1)
+    # a finer run contains a run of these angles at most two steps shorter, whose
+    # intervals contain its own
+    bound = _best_run(lines, lo, hi, radius, max_span, 2 * coarse)
+    if max(coarse * radius, bound[0] if bound is not None else 0.0) <= floor:
+        return None
     step = min(max(REFINE_STEP * m / radius, dth / REFINE_DENSITY), coarse)
     if step > coarse / 2:
         return box
     # finer near the run's two ends (the coarse angles between are kept: the run's
     # intervals through the anchor are the same ones)
-    a, b = max(i - 2, 0), min(j + 2, lines.size - 1)
-    ends = [np.arange(lines[a], lines[min(a + 4, b)], step),
-            np.arange(lines[max(b - 4, a + 4)], lines[b] + step / 2, step)]
-    keep = np.arange(min(a + 4, b), max(b - 4, a + 4))
-    got = [_through(polygon, jaw, margin, hole, t, anchor, taken) for t in ends]
+    a, b = max(i - 1, 0), min(j + 1, lines.size - 1)
+    ends = [np.arange(lines[a], lines[min(a + 2, b)], step),
+            np.arange(lines[max(b - 2, a + 2)], lines[b] + step / 2, step)]
+    keep = np.arange(min(a + 2, b), max(b - 2, a + 2))
+    got = [_through(polygon, jaw, margin, hole, t, anchor, (c1 - c0) / 2 + 2 * dc, taken)
+           for t in ends]
     fine = np.concatenate([ends[0], lines[keep], ends[1]])
     run = _best_run(fine, np.concatenate([got[0][0], lo[keep], got[1][0]]),
                     np.concatenate([got[0][1], hi[keep], got[1][1]]), radius, max_span)
@@ -563,7 +603,9 @@ def _proved_refined(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int
     grid box's middle (a pose that fails at one angle, which no raster sees, may lie in
     the rest).  None when neither is proved, or when it would not measure more than
     ``floor``."""
-    found = _refined(polygon, jaw, margin, hole, th, off, dth, dc, taken)
+    # (what cannot measure more than the floor once moved in is not refined)
+    found = _refined(polygon, jaw, margin, hole, th, off, dth, dc, taken,
+                     floor / (1 - 2 * REFINE_BACKOFF[0][0]))
     if found is None:
         return None
     radius = polygon.radius
@@ -640,24 +682,26 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
         if box is None:
             continue
         if certify:
-            # the grid box proved (shrunk by grid steps), then grown to the exact
-            # boundary and proved, kept where that measures more (the back-off from
-            # the boundary can cost more than the growth gives)
+            # the grid box proved (shrunk by grid steps); then, for the REFINE_TOP
+            # first, the largest box near it on a raster of the exact slices, apart from
+            # the plans so far, proved, kept where it measures more (the back-off from
+            # the boundary can cost more than the search gives); where there is none
+            # or it gains little, the grid box grown to the exact boundary and proved
             proved = _proved(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
-            if proved is not None:
-                grown = _proved_grown(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
-                # (grown into a plan found before, or its image, it is not kept)
-                if grown is not None and _measure(*grown, radius) > _measure(*proved, radius) \
-                        and _clear_of(grown, taken):
-                    proved = grown
             if proved is None:
                 continue
-            # the largest box near it on a raster of the exact slices apart from the
-            # plans so far, proved, where it measures more
-            refined = _proved_refined(polygon, jaw, margin, hole, box[0], box[1], dth, dc,
-                                      taken, _measure(*proved, radius))
-            if refined is not None:
-                proved = refined
+            floor = _measure(*proved, radius)
+            better = None if len(plans) >= REFINE_TOP else _proved_refined(
+                polygon, jaw, margin, hole, box[0], box[1], dth, dc, taken, floor)
+            if better is None or _measure(*better, radius) < floor * (1 + GROW_TOO):
+                grown = _proved_grown(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+                # (grown into a plan found before, or its image, it is not kept)
+                if grown is not None and _clear_of(grown, taken) and _measure(
+                        *grown, radius) > max(floor, _measure(*better, radius)
+                                              if better is not None else 0.0):
+                    better = grown
+            if better is not None:
+                proved = better
             # the opening range over the proved box's checked poses
             box = _checked_box(polygon, jaw, margin, hole, np.array(proved[0]),
                                np.array(proved[1]), dth, dc)
