@@ -71,3 +71,24 @@ def test_the_jaw_is_imported_on_first_use():
             "print('ok')")
     r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+
+
+def test_a_plane_part_plans_without_the_solids_programs():
+    """``fcgrasp plan demo:blob`` asks the mesh reader whether the part is a solid, which
+    needs :mod:`fcgrasp.spatial.solid` only: the package imports each of its modules on
+    first use (the soft fingers' cone programs and the triples cost 16 ms of every plane
+    plan's start-up); every public name still resolves to its module's."""
+    code = ("import sys\n"
+            "from fcgrasp.apps.cli import main\n"
+            "assert main(['plan', 'demo:blob', '--quiet']) in (0, None)\n"
+            "heavy = [m for m in ('fcgrasp.spatial.regions', 'fcgrasp.spatial.triples',\n"
+            "                     'fcgrasp.spatial.jaw', 'fcgrasp.spatial.quality')\n"
+            "         if m in sys.modules]\n"
+            "assert not heavy, heavy\n"
+            "import fcgrasp.spatial as s\n"
+            "assert sorted(s._LAZY) == sorted(s.__all__) == dir(s)\n"
+            "assert s.soft_pair_plans is sys.modules['fcgrasp.spatial.regions'].soft_pair_plans\n"
+            "assert not hasattr(s, 'no_such_name')\n"
+            "print('ok')")
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr

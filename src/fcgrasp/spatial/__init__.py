@@ -19,19 +19,45 @@
 
 from __future__ import annotations
 
-from .closure import SpatialClosure, closure_margin, spatial_force_closure, two_soft_closure
-from .contacts import SpatialContact, contact_frames, contact_maps, contact_wrench_generators
-from .jaw import SolidJawPlan, solid_jaw_plans, solid_jaw_region
-from .quality import SpatialQuality, spatial_quality
-from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
-from .solid import Facet, Solid, demo_solid, solid_from_mesh
-from .triples import (
-    PointTriplePlan,
-    PointTripleSearch,
-    perturbation_radius,
-    point_triple_plans,
-    point_triple_regions,
-)
+from importlib import import_module as _import_module
+from typing import TYPE_CHECKING as _TYPE_CHECKING
+from typing import Any as _Any
+
+#: Each public name and the submodule that defines it: imported on first use, so that a
+#: module needing one of them (the mesh reader needs :mod:`.solid`) does not import the
+#: cone programs of every gripper (a plane part's plan never does).
+_LAZY = {
+    **dict.fromkeys(("SpatialClosure", "closure_margin", "spatial_force_closure",
+                     "two_soft_closure"), "closure"),
+    **dict.fromkeys(("SpatialContact", "contact_frames", "contact_maps",
+                     "contact_wrench_generators"), "contacts"),
+    **dict.fromkeys(("SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"), "jaw"),
+    **dict.fromkeys(("SpatialQuality", "spatial_quality"), "quality"),
+    **dict.fromkeys(("SoftPairPlan", "soft_pair_plans", "soft_pair_regions"), "regions"),
+    **dict.fromkeys(("Facet", "Solid", "demo_solid", "solid_from_mesh"), "solid"),
+    **dict.fromkeys(("PointTriplePlan", "PointTripleSearch", "perturbation_radius",
+                     "point_triple_plans", "point_triple_regions"), "triples"),
+}
+
+if _TYPE_CHECKING:
+    from .closure import SpatialClosure, closure_margin, spatial_force_closure, two_soft_closure
+    from .contacts import (
+        SpatialContact,
+        contact_frames,
+        contact_maps,
+        contact_wrench_generators,
+    )
+    from .jaw import SolidJawPlan, solid_jaw_plans, solid_jaw_region
+    from .quality import SpatialQuality, spatial_quality
+    from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
+    from .solid import Facet, Solid, demo_solid, solid_from_mesh
+    from .triples import (
+        PointTriplePlan,
+        PointTripleSearch,
+        perturbation_radius,
+        point_triple_plans,
+        point_triple_regions,
+    )
 
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
@@ -40,3 +66,15 @@ __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_g
            "PointTriplePlan", "PointTripleSearch", "perturbation_radius",
            "point_triple_plans", "point_triple_regions", "SolidJawPlan",
            "solid_jaw_plans", "solid_jaw_region"]
+
+
+def __getattr__(name: str) -> _Any:
+    if name in _LAZY:
+        value = getattr(_import_module(f".{_LAZY[name]}", __name__), name)
+        globals()[name] = value
+        return value
+    raise AttributeError(f"module 'fcgrasp.spatial' has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)
