@@ -510,3 +510,33 @@ def test_a_bound_without_friction_is_refused_by_name(client):
                                        "options": {"gripper": "3", "mu": 0, "bound": True}})
     assert r.status_code == 400, r.text
     assert r.json()["field"] == "bound" and "--bound" in r.json()["error"]
+
+
+def test_a_part_sent_again_is_not_checked_again(monkeypatch):
+    """The page sends its part with every plan: the same JSON gives the polygon checked
+    before (a 2,000-edge outline takes 25 ms to check); a part that differs in a number
+    or only in its types (``true`` for ``1``) is checked anew, and a bad one is still
+    refused."""
+    from fcgrasp.apps import _explorer_data as data
+    from fcgrasp.errors import RequestError
+
+    checked = []
+    real = data._polygon_of
+    monkeypatch.setattr(data, "_polygon_of", lambda d: checked.append(1) or real(d))
+    monkeypatch.setattr(data, "_CHECKED", type(data._CHECKED)())
+    square = {"outer": [[0, 0], [1, 0], [1, 1], [0, 1]], "holes": [], "units": "mm"}
+    first = data.polygon_of(square)
+    again = data.polygon_of(json.loads(json.dumps(square)))
+    assert again is first and len(checked) == 1
+    moved = json.loads(json.dumps(square))
+    moved["outer"][2] = [1, 2]
+    assert data.polygon_of(moved)[0].vertices.max() == 2 and len(checked) == 2
+    typed = json.loads(json.dumps(square))
+    typed["outer"][1] = [True, 0]
+    with pytest.raises(RequestError):
+        data.polygon_of(typed)
+    with pytest.raises(RequestError):
+        data.polygon_of(typed)          # refused again, never kept
+    for k in range(data._CHECKED_SIZE + 2):
+        data.polygon_of({**square, "outer": [[0, 0], [1 + k, 0], [1, 1], [0, 1]]})
+    assert len(data._CHECKED) == data._CHECKED_SIZE
