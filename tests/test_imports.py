@@ -59,6 +59,12 @@ def test_the_public_names_are_one_list():
     assert not {"Any", "TYPE_CHECKING", "import_module"} & set(dir(fcgrasp))
 
 
+def _prints_ok(code):
+    """Run ``code`` in a fresh interpreter: it must print ``ok``."""
+    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+
+
 def test_the_jaw_is_imported_on_first_use():
     """A plan of point fingers does not import the jaw; asking the package for it (as
     ``hasattr`` and Sphinx do, before anything imported it) imports it once, with no
@@ -69,8 +75,7 @@ def test_the_jaw_is_imported_on_first_use():
             "assert hasattr(g, 'jaw') and g.ParallelJaw is g.jaw.ParallelJaw\n"
             "assert not hasattr(g, 'no_such_gripper')\n"
             "print('ok')")
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+    _prints_ok(code)
 
 
 def test_a_plane_part_plans_without_the_solids_programs():
@@ -90,5 +95,4 @@ def test_a_plane_part_plans_without_the_solids_programs():
             "assert s.soft_pair_plans is sys.modules['fcgrasp.spatial.regions'].soft_pair_plans\n"
             "assert not hasattr(s, 'no_such_name')\n"
             "print('ok')")
-    r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
-    assert r.returncode == 0 and r.stdout.strip() == "ok", r.stderr
+    _prints_ok(code)

@@ -19,10 +19,9 @@ the command line's ``--version`` answers at once.
 
 from __future__ import annotations
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
 
+from .core._lazy import lazy_names as _lazy_names
 from .core.tolerances import TOL
 
 if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
@@ -234,12 +233,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> _Any:
-    if name in _LAZY:
-        value = getattr(_import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'fcgrasp' has no attribute {name!r}")
+__getattr__ = _lazy_names(__name__, _LAZY, globals())
 
 
 def __dir__() -> list[str]:

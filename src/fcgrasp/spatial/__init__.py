@@ -19,9 +19,9 @@
 
 from __future__ import annotations
 
-from importlib import import_module as _import_module
 from typing import TYPE_CHECKING as _TYPE_CHECKING
-from typing import Any as _Any
+
+from ..core._lazy import lazy_names as _lazy_names
 
 #: Each public name and the submodule that defines it: imported on first use, so that a
 #: module needing one of them (the mesh reader needs :mod:`.solid`) does not import the
@@ -68,12 +68,7 @@ __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_g
            "solid_jaw_plans", "solid_jaw_region"]
 
 
-def __getattr__(name: str) -> _Any:
-    if name in _LAZY:
-        value = getattr(_import_module(f".{_LAZY[name]}", __name__), name)
-        globals()[name] = value
-        return value
-    raise AttributeError(f"module 'fcgrasp.spatial' has no attribute {name!r}")
+__getattr__ = _lazy_names(__name__, _LAZY, globals())
 
 
 def __dir__() -> list[str]:
