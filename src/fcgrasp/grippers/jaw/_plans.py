@@ -513,8 +513,7 @@ def _through(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None
 
 def _refined(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
              th: tuple[float, float], off: tuple[float, float], dth: float, dc: float,
-             taken: list[tuple[float, float, float, float]] = (),  # type: ignore[assignment]
-             floor: float = 0.0
+             taken: list[tuple[float, float, float, float]], floor: float = 0.0
              ) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """The largest box by the measure near a grid box, on a raster of the exact slices
     (:func:`~fcgrasp.grippers.jaw.holding_offsets`, their intervals through an anchor
