@@ -1049,10 +1049,10 @@ class StretchSearch:
         if self.beta <= 0:
             return []
         rings, polygon = self.rings, self.polygon
-        excl = _Exclusion(rings, polygon, [(p.regions, p.region_edges) for p in exclude
-                                           if len(p.regions) == 2], fraction_v,
-                          [(p.region_edges, p.mode) for p in seen
-                           if len(p.region_edges) == 2])
+        kept = [(p.regions, p.region_edges) for p in exclude if len(p.regions) == 2]
+        read = [(p.region_edges, p.mode) for p in seen if len(p.region_edges) == 2]
+        # (nothing to exclude: no map of the edges, 36 ms on 10,000 edges)
+        excl = _Exclusion(rings, polygon, kept, fraction_v, read) if kept or read else None
         found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
                         excl or None, self._memo)
         if not found:
