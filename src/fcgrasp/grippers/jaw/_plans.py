@@ -252,10 +252,12 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     With ``certify`` (the default) each box is also *proved* by :func:`certify_box` (shrunk
     by up to :data:`CERTIFY_SHRINKS` grid steps until the proof succeeds within
     :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is dropped and the next one
-    sought), then grown to the exact boundary of the set
-    (:func:`~fcgrasp.grippers.jaw.holding_offsets`), moved in by :data:`GROW_BACKOFF` and
-    proved again, kept where it measures more: every returned plan then has ``certified``
-    True. ``certify=False`` returns the boxes verified on the fine grid only.
+    sought); then the largest box near it on a raster of the exact set
+    (:func:`~fcgrasp.grippers.jaw.holding_offsets`; for the :data:`REFINE_TOP` best of
+    each grip), moved in by :data:`REFINE_BACKOFF`, or the box grown to the set's exact
+    boundary, moved in by :data:`GROW_BACKOFF`, is proved and kept where it measures more
+    and overlaps no box returned before nor its images: every returned plan then has
+    ``certified`` True. ``certify=False`` returns the boxes verified on the fine grid only.
 
     >>> from fcgrasp.io.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -263,7 +265,7 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     >>> [round(float(np.degrees(t)), 1) % 180 for t in best.theta], best.kinds
     ([77.9, 102.1], ('edge', 'edge'))
     >>> best.certified, round(best.offset[1], 2)       # proved: every pose of the box holds
-    (True, 39.78)
+    (True, 39.73)
     >>> grid = jaw_plans(demo_part("rectangle"), jaw, top=1, certify=False)[0]
     >>> [round(float(np.degrees(t))) % 180 for t in grid.theta], grid.certified
     ([78, 102], False)
