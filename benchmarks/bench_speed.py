@@ -81,11 +81,14 @@ def lp_regions(poly, e1, e2, mu):
 
 def previous_kernels():
     # the previous compiled search, kept here as the baseline: every cell of each row's
-    # window of angles read (the window scan), every row's windows widened
+    # window of angles read (the window scan), every row's windows widened, every edge's
+    # single-edge windows read
     from fcgrasp.model import _stretch_kernels as K
-    windows = K.windows
+    from fcgrasp.model import stretches as S
+    windows, single = K.windows, S._single
     K.vertex_runs_tree = K.vertex_runs_scan
     K.windows = lambda *a: windows(*a[:10])
+    S._single = lambda *a: single(*a[:6])
 
 part_for = {"star1k": lambda: star(1000, 0.01), "ellipse10k": lambda: ellipse(10000),
             "blob100k": lambda: blob(100000), "star100k": lambda: star(100000, 0.001),

@@ -434,12 +434,58 @@ def test_pruned_windows_give_the_same_floor(seed, monkeypatch):
                     np.testing.assert_array_equal(g, w)
 
 
+@pytest.mark.parametrize("seed", seeds(4, 300))
+def test_pruned_single_edge_windows_give_the_same_floor(seed, monkeypatch):
+    """The single-edge windows read longest edge first and skipping an edge no longer
+    than the ``keep``-th lower bound found so far (one per key) or the search's value
+    before: every lower bound kept is the full one, each one left out is at most that
+    cut, and the ``keep``-th largest per key (with the value before) is the same."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(seed)
+    kind = KINDS[seed % len(KINDS)]
+    poly = Polygon(outline(rng, kind, int(rng.integers(30, 300 if kind == "regular" else 1500))))
+    beta = _beta(float(rng.choice([0.15, 0.3, 0.6, 1.2])), float(rng.choice([0.0, 0.5])))
+    rings = _rings(poly)
+    ring, keys = rings[0], S._Keys(rings)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+
+    def per_key(job, a, p, v):
+        best = {}
+        for k, val in zip(keys(job, a, p).tolist(), v.tolist(), strict=True):
+            best[k] = max(best.get(k, 0.0), val)
+        return list(best.values())
+
+    pruned = 0
+    for sigma in (1.0, -1.0):
+        job = (0, 0, sigma, "squeeze" if sigma > 0 else "expand")
+        iv = _Intervals(ring, ring, sigma, beta)
+        for same in (True, False):
+            (a, p, v), _ = S._single(iv, ring, ring, same, 0.0, False)
+            full = dict(zip(zip(a.tolist(), p.tolist(), strict=True), v.tolist(), strict=True))
+            for keep in (1, 3, 10):
+                kth_full = _kth(per_key(job, a, p, v), keep)
+                for value in (0.0, 0.5 * kth_full, kth_full):
+                    bound = SimpleNamespace(value=value, k=keep)
+                    (a2, p2, v2), _ = S._single(iv, ring, ring, same, 0.0, False, bound,
+                                                (0, 0))
+                    got = dict(zip(zip(a2.tolist(), p2.tolist(), strict=True), v2.tolist(),
+                                   strict=True))
+                    kth = max(value, kth_full)
+                    assert max(value, _kth(per_key(job, a2, p2, v2), keep)) == kth
+                    assert all(full[w] == val for w, val in got.items())
+                    assert all(w in got for w, val in full.items() if val > kth)
+                    pruned += len(full) - len(got)
+    assert pruned > 0 or kind == "collinear" or len(full) < 20
+
+
 def _previous_kernels(monkeypatch):
     """The previous compiled search, kept as the reference: the window scan for the
-    runs, every row's windows widened from the first."""
-    windows = _stretch_kernels.windows
+    runs, every row's windows widened from the first, every single-edge window read."""
+    windows, single = _stretch_kernels.windows, S._single
     monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", _stretch_kernels.vertex_runs_scan)
     monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
+    monkeypatch.setattr(S, "_single", lambda *a: single(*a[:6]))
 
 
 @pytest.mark.parametrize("seed", seeds(1, 24))

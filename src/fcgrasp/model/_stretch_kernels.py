@@ -631,9 +631,33 @@ def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, 
     return lo, hi
 
 
+def _top_add(topv: Any, topk: Any, key: int, v: float) -> None:
+    """Keep in ``topv`` (ascending) the largest values seen, at most one per key
+    (``topk``): ``v`` under ``key``."""
+    n = topv.size
+    j = -1
+    for q in range(n):
+        if topk[q] == key:
+            j = q
+            break
+    if j < 0:
+        if v <= topv[0]:
+            return
+        j = 0
+        topk[0] = key
+    elif v <= topv[j]:
+        return
+    topv[j] = v
+    while j + 1 < n and topv[j + 1] < topv[j]:
+        topv[j], topv[j + 1] = topv[j + 1], topv[j]
+        topk[j], topk[j + 1] = topk[j + 1], topk[j]
+        j += 1
+
+
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
             bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
-            sigma: float, eps: float, floor: float, collect: bool, same: bool) -> Any:
+            sigma: float, eps: float, floor: float, collect: bool, same: bool,
+            value: float, keep: int, ox: int, oy: int) -> Any:
     """Stretch 1 on one edge ``A``, stretch 2 with interior vertices ``p .. p+k-1``
     (``_windows_single`` of the numpy search, edge by edge).
 
@@ -642,8 +666,16 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
     two force directions are opposite within ``width``, so only those vertices are
     computed (``va``, ``angle_b``, ``order``: as in :func:`_vertex_runs`; ``gy`` in ring
     order here).  Returns the lower bounds ``(A, p, value)`` (the largest over ``k``)
-    and, with ``collect``, the configurations whose bound reaches ``floor``."""
+    and, with ``collect``, the configurations whose bound reaches ``floor``.
+
+    Without ``collect`` and with ``keep > 0`` (``A`` then longest first): an edge no
+    longer than ``T`` is skipped, ``T`` the ``keep``-th largest of the lower bounds found
+    so far, one per key (``min(ox + A, oy + p)``, the search's keys), or ``value`` if
+    higher: its lower bounds are at most its length, never above the search's final
+    ``keep``-th value, so the floor they give is the same."""
     mb = bx.size
+    topv = np.zeros(max(keep, 1))
+    topk = np.full(max(keep, 1), -1, np.int64)
     lo = np.full(mb, 0.0)
     hi = np.full(mb, -np.inf)
     touched = np.empty(mb, np.int64)
@@ -652,6 +684,8 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
     oA, oC, okC = np.empty(cap, np.int64), np.empty(cap, np.int64), np.empty(cap, np.int64)
     n_w, n_out = 0, 0
     for e in A:
+        if not collect and keep > 0 and L[e] <= max(value, topv[0]):
+            continue
         nt = 0
         for turn in range(-1, 2):
             qlo, qhi = 0, mb
@@ -696,6 +730,8 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
                 wv = _grow(wv, n_w + 1)
                 wa[n_w], wp[n_w], wv[n_w] = e, p, best
                 n_w += 1
+                if keep > 0:
+                    _top_add(topv, topk, min(ox + e, oy + p), best)
         for j in range(nt):                 # the columns back to empty
             lo[touched[j]], hi[touched[j]] = 0.0, -np.inf
     return wa[:n_w], wp[:n_w], wv[:n_w], oA[:n_out], oC[:n_out], okC[:n_out]
@@ -972,7 +1008,7 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _windows,
-                                   _interval, _window_boxes, _single, _solve_rows,
+                                   _interval, _window_boxes, _top_add, _single, _solve_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 

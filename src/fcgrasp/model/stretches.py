@@ -409,19 +409,25 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
     return _windows_both(runs, ra, rb, same, floor, collect)
 
 
-def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool
+def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
+            bound: _Bound | None = None, offsets: tuple[int, int] = (0, 0)
             ) -> tuple[tuple[np.ndarray, np.ndarray, FloatArray], _Configs]:
-    """:func:`_windows_single`, compiled for large rings."""
+    """:func:`_windows_single`, compiled for large rings (without ``collect``, pruned by
+    ``bound``'s value: the edges it skips could not raise it; ``offsets``: the rings'
+    first keys, :class:`_Keys`)."""
     if not stretch_kernels_for(ra.m * rb.m):
         return _windows_single(iv, ra, rb, same, floor, collect)
     A = np.flatnonzero(ra.L >= floor)
+    value, keep = (bound.value, bound.k) if bound is not None and not collect else (0.0, 0)
+    if keep:
+        A = A[np.argsort(-ra.L[A], kind="stable")]          # the longest first
     width = 2 * iv.beta + ANGLE_SLACK
     order, angle_b = _by_angle(rb)
     va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
     wa, wp, wv, iA, iC, kC = _stretch_kernels.single(
         A, ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L,
         iv.gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), iv.gy, order, angle_b, width, rb.U,
-        iv.sigma, _EPS, floor, collect, same)
+        iv.sigma, _EPS, floor, collect, same, value, keep, *offsets)
     cfg = _Configs(iA, np.zeros(iA.size, int), iC, kC)
     return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
 
@@ -461,8 +467,10 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
                     bound.add(keys.first(job, rows), best[rows])
-            (a, p, v), single = _single(intervals[x, y, sigma], ra, rb, x == y,
-                                        bound.floor, collect)
+            (a, p, v), single = _single(
+                intervals[x, y, sigma], ra, rb, x == y, bound.floor, collect,
+                bound if prebound and bound.fixed is None else None,
+                (int(keys.offset[x]), int(keys.offset[y])))
             if not collect and prebound:
                 bound.add(keys(job, a, p), v)
             if collect:
