@@ -484,6 +484,29 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
 _SHORT = 64
 
 
+def _top_add(topv: Any, topk: Any, key: int, v: float) -> None:
+    """Keep in ``topv`` (ascending) the largest values seen, at most one per key
+    (``topk``): ``v`` under ``key``."""
+    n = topv.size
+    j = -1
+    for q in range(n):
+        if topk[q] == key:
+            j = q
+            break
+    if j < 0:
+        if v <= topv[0]:
+            return
+        j = 0
+        topk[0] = key
+    elif v <= topv[j]:
+        return
+    topv[j] = v
+    while j + 1 < n and topv[j + 1] < topv[j]:
+        topv[j], topv[j + 1] = topv[j + 1], topv[j]
+        topk[j], topk[j + 1] = topk[j + 1], topk[j]
+        j += 1
+
+
 def _buffers(mb: int) -> Any:
     """Work arrays of :func:`_windows`: room for the runs of a window (``cs``, ``ce``),
     of the next one (``ns``, ``ne``), their cyclic runs (``rp0``, ``rlen``), and the
@@ -570,6 +593,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     for r in range(ma):
         upper[r] = _row_bound(tptr, tf, tl, r, ma, mb, k_max, Ua, Ub, cs, ce, rp0, rlen)
     top = np.zeros(keep)                        # the keep largest read, ascending
+    top_rows = np.full(keep, -1, np.int64)      # (each row its own key)
     for r in np.argsort(-upper):
         thresh = max(value, top[0])
         if upper[r] * (1 + ROUND_TOL) <= thresh:
@@ -578,12 +602,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
             floor, collect, same, best, thresh, oA, okA, oC, okC, n_out)
-        if best[r] > top[0]:
-            j = 0
-            while j + 1 < keep and top[j + 1] < best[r]:
-                top[j] = top[j + 1]
-                j += 1
-            top[j] = best[r]
+        _top_add(top, top_rows, r, best[r])
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
@@ -629,29 +648,6 @@ def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, 
             a_max, b_min = max(a_max, a), min(b_min, b)
         lo[i], hi[i] = a_max, b_min
     return lo, hi
-
-
-def _top_add(topv: Any, topk: Any, key: int, v: float) -> None:
-    """Keep in ``topv`` (ascending) the largest values seen, at most one per key
-    (``topk``): ``v`` under ``key``."""
-    n = topv.size
-    j = -1
-    for q in range(n):
-        if topk[q] == key:
-            j = q
-            break
-    if j < 0:
-        if v <= topv[0]:
-            return
-        j = 0
-        topk[0] = key
-    elif v <= topv[j]:
-        return
-    topv[j] = v
-    while j + 1 < n and topv[j + 1] < topv[j]:
-        topv[j], topv[j + 1] = topv[j + 1], topv[j]
-        topk[j], topk[j + 1] = topk[j + 1], topk[j]
-        j += 1
 
 
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
@@ -1007,8 +1003,8 @@ TABLE_CELLS = 50_000_000
 _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
-                                   _every_row, _windows,
-                                   _interval, _window_boxes, _top_add, _single, _solve_rows,
+                                   _every_row, _top_add, _windows,
+                                   _interval, _window_boxes, _single, _solve_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 
