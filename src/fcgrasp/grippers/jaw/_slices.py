@@ -88,9 +88,7 @@ def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
     tol = CONTACT_TOL * polygon.size
     c0, c1 = (float(v) for v in offsets)
     failed = np.zeros(th.size, dtype=bool)
-    rows = _stopping_pieces(polygon, jaw, th, margin, hole, (c0, c1), failed, False)
-    slices = (_merge_intervals(rows, th.size, tol) if rows is not None
-              else holding_offsets(polygon, jaw, th, margin, hole, (c0, c1)))
+    slices = _stopping_slices(polygon, jaw, th, margin, hole, (c0, c1), failed, False)
     return np.array([not failed[k] and iv.shape[0] == 1 and iv[0, 0] <= c0 + tol
                      and iv[0, 1] >= c1 - tol for k, iv in enumerate(slices)], dtype=bool)
 
@@ -108,10 +106,8 @@ def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float
     th = np.atleast_1d(np.asarray(theta, dtype=float)).ravel()
     tol = CONTACT_TOL * polygon.size
     w0, w1 = (float(v) for v in window)
-    rows = _stopping_pieces(polygon, jaw, th, margin, hole, (w0, w1),
-                            np.zeros(th.size, dtype=bool), side > 0)
-    slices = (_merge_intervals(rows, th.size, tol) if rows is not None
-              else holding_offsets(polygon, jaw, th, margin, hole, (w0, w1)))
+    slices = _stopping_slices(polygon, jaw, th, margin, hole, (w0, w1),
+                              np.zeros(th.size, dtype=bool), side > 0)
     out = np.full(th.size, np.nan)
     for k, iv in enumerate(slices):
         at = (iv[:, 0] <= w0 + tol) if side > 0 else (iv[:, 1] >= w1 - tol)
@@ -120,22 +116,25 @@ def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float
     return out
 
 
-def _stopping_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
+def _stopping_slices(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
                      hole: int | None, window: tuple[float, float], failed: np.ndarray,
-                     upward: bool) -> FloatArray | None:
-    """The holding pieces of the slices at ``th`` within ``window`` by the compiled loop,
-    each angle given up at its first piece longer than the contact tolerance that does
-    not hold (``failed`` set there), read from the low end up with ``upward``; None
-    where the loop does not run."""
-    if not _kernels.available():
-        return None
-    ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, window)
+                     upward: bool) -> list[FloatArray]:
+    """The slices at ``th`` within ``window`` (merged as :func:`holding_offsets` merges
+    them), by the compiled loop each angle given up at its first piece longer than the
+    contact tolerance that does not hold (``failed`` set there), read from the low end up
+    with ``upward``; where the loop does not run, :func:`holding_offsets` whole."""
     tol = CONTACT_TOL * polygon.size
-    return cast("FloatArray | None", _kernels.slices(
-        cell_t, cell_lo, cell_hi, th, *_pose_args(polygon, jaw, margin, hole, ring),
-        SLICE_TOL * polygon.size, ROUND_TOL * polygon.size, tol,
-        NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol, failed=failed,
-        upward=upward))
+    rows = None
+    if _kernels.available():
+        ring, cell_t, cell_lo, cell_hi = _cells(polygon, jaw, th, hole, window)
+        rows = _kernels.slices(
+            cell_t, cell_lo, cell_hi, th, *_pose_args(polygon, jaw, margin, hole, ring),
+            SLICE_TOL * polygon.size, ROUND_TOL * polygon.size, tol,
+            NEAR_STRIP * CONTACT_TOL * polygon.size, stop_gap=tol, failed=failed,
+            upward=upward)
+    if rows is None:
+        return holding_offsets(polygon, jaw, th, margin, hole, window)
+    return _merge_intervals(rows, th.size, tol)
 
 
 def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
