@@ -348,3 +348,84 @@ def test_two_region_second_stage_closed_form_equals_general_solver():
         b = _max_level(p, lb0, fr.astype(bool), _order(p))
         assert np.allclose(a, b, rtol=1e-9, atol=1e-12)
         assert 0.2 < (a > 0).mean() < 0.9
+
+
+def _four_region_problems(rng, polys=40, rows=48):
+    """Knapsack problems of four fingers (and three with gravity: a fixed point) on random
+    polygons (regular ones tie their greedy ratios), every pairing, margins from 0; and
+    random ones with zero weights, negative budgets and inactive regions."""
+    from fcgrasp.model._regiongeom import four_finger_problems
+    from fcgrasp.model.regions import KnapsackProblem
+    from fcgrasp.pipeline._candidates import PAIRINGS, features
+
+    out = []
+    for _ in range(polys):
+        poly = random_polygon(rng)
+        F = features(poly, 0.0, None)
+        feats = rng.integers(0, len(F.a), size=(rows, 4))
+        a, b, center = F.a[feats], F.b[feats], F.center[feats]
+        grav = rng.random(rows) < 0.25                # the fourth finger: gravity's point
+        a[grav, 3] = b[grav, 3] = poly.centroid
+        center[grav, 3] = rng.uniform(-np.pi, np.pi, grav.sum())
+        margin = float(rng.choice([0.0, np.radians(rng.uniform(0.1, 5))]))
+        for P in PAIRINGS:
+            perm = np.broadcast_to(P, (rows, 4)).copy()
+            out += list(four_finger_problems(a, b, center, perm, margin)[0])
+    for n in (3, 4, 5):
+        B = 2000
+        L = rng.uniform(0.1, 3, (B, n))
+        w1, w2 = rng.uniform(0, 2, (2, B, n))
+        w1[rng.random((B, n)) < 0.15] = 0
+        w2[rng.random((B, n)) < 0.15] = 0
+        active = rng.random((B, n)) > 0.1
+        w1[~active] = w2[~active] = 0
+        K1, K2 = rng.uniform(-0.5, 4, (2, B))
+        out.append(KnapsackProblem(L, w1, w2, K1, K2, np.zeros((B, n), bool), active,
+                                   np.ones(B, bool)))
+    return out
+
+
+def test_compiled_leximin_equals_the_numpy_solver(monkeypatch):
+    """The compiled knapsack loop (fcgrasp.model._leximin_kernels) gives numpy's leximin
+    levels and first level (the reference, FCGRASP_JIT=0) to rounding, on problems of
+    random parts and random ones: ties of the greedy order, zero weights, fixed points."""
+    from fcgrasp.core.tolerances import LEXIMIN_STEP, SOLVER_TOL
+    from fcgrasp.model._leximin_kernels import leximin_rows
+    from fcgrasp.model.regions import leximin, max_min_length
+
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    rows = positive = multi = 0
+    for p in _four_region_problems(np.random.default_rng(31)):
+        ref_t, ref_lv = max_min_length(p), leximin(p)
+        got_t = leximin_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, SOLVER_TOL,
+                             LEXIMIN_STEP, True)[:, 0]
+        got_lv = leximin_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, SOLVER_TOL,
+                              LEXIMIN_STEP, False)
+        tol = 1e-9 * np.maximum(p.L.max(axis=1), 1.0)
+        assert np.all(np.abs(got_t - ref_t) <= tol), np.max(np.abs(got_t - ref_t))
+        assert np.all(np.abs(got_lv - ref_lv) <= tol[:, None])
+        rows += p.batch
+        positive += int(np.sum(ref_t > 0))
+        # rows whose later levels exceed the first: the stages beyond the first ran
+        multi += int(np.sum(np.any(ref_lv > ref_t[:, None] + 1e-6, axis=1) & (ref_t > 0)))
+    assert rows > 10_000 and positive > 0.1 * rows and multi > 500, (rows, positive, multi)
+
+
+@pytest.mark.parametrize("fingers, gravity", [(4, None), (3, (0.0, -1.0))])
+def test_frictionless_plans_are_the_same_compiled_or_not(monkeypatch, fingers, gravity):
+    """Four frictionless fingers (three with gravity) plan the same regions whether the
+    knapsack solver runs by numpy or compiled (region ends to 1e-9 of the part)."""
+    rng = np.random.default_rng(32 + fingers)
+    for k in range(6):
+        poly = random_polygon(rng)
+        kw = dict(fingers=fingers, gravity=gravity, top=4, along_boundary=bool(k % 2))
+        out = {}
+        for setting in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", setting)
+            out[setting] = plan(poly, **kw)
+        assert len(out["0"]) == len(out["1"])
+        for p, q in zip(out["0"], out["1"], strict=True):
+            assert p.edges == q.edges and p.mode == q.mode
+            assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=1e-9 * poly.size)
+            for r, s in zip(p.regions, q.regions, strict=True):
+                assert np.allclose(r, s, rtol=1e-9, atol=1e-9 * poly.size)

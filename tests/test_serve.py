@@ -495,8 +495,13 @@ def test_the_optimality_bound_is_that_of_fcgrasp_plan(client, tmp_path, name, op
     assert ans["state"] == "done", ans
     assert "--bound" in ans["argv"]
     cli = _cli_report(tmp_path, vertices, ans["argv"])
-    got = ans["report"]["optimality"]
-    assert got == cli["optimality"] and got["upper_bound"] is not None
+    got, want = ans["report"]["optimality"], cli["optimality"]
+    # the page's planning processes run the compiled knapsack loop, a short command
+    # numpy's: the plans agree to rounding, and so does the bound (its count of boxes
+    # may differ where a box's test meets the best plan's length within rounding)
+    assert got["upper_bound"] is not None
+    assert got["upper_bound"] == pytest.approx(want["upper_bound"], rel=1e-9)
+    assert got["gap"] == pytest.approx(want["gap"], rel=1e-9, abs=1e-12)
     best = max(g["min_region_length"] for g in ans["report"]["grasps"])
     assert got["upper_bound"] >= best
     # another gripper leaves the page's bound unused, as it leaves the jaw's options

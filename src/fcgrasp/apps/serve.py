@@ -178,7 +178,10 @@ class Jobs:
         import multiprocessing
 
         self._ctx = multiprocessing.get_context("forkserver")
-        self._ctx.set_forkserver_preload(["fcgrasp.apps.serve", "fcgrasp.planning"])
+        # the fork server also compiles (or loads) numba's kernels, once for every
+        # planning process (fcgrasp.apps._warm)
+        self._ctx.set_forkserver_preload(["fcgrasp.apps.serve", "fcgrasp.planning",
+                                          "fcgrasp.apps._warm"])
         self._jobs: dict[str, Job] = {}
         self._idle: list[_Process] = []
         self._ids = itertools.count(1)

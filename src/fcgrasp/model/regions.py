@@ -315,9 +315,27 @@ def max_min_length(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     ``tol``: relative slack of the solver (:data:`fcgrasp.core.tolerances.SOLVER_TOL`)."""
     if p.L.shape[1] == 2:
         return _max_min_two(p, tol)
+    got = _compiled(p, tol, first_only=True)
+    if got is not None:
+        return got[:, 0].copy()
     order = _order(p)
     free = p.active.copy()
     return _max_level(p, np.zeros_like(p.L), free, order, tol)
+
+
+def _compiled(p: KnapsackProblem, tol: float, first_only: bool) -> FloatArray | None:
+    """:func:`leximin` (``first_only``: its first level) by the compiled loop of
+    :mod:`fcgrasp.model._leximin_kernels`, where this process runs compiled kernels
+    (:func:`fcgrasp.core.kernels.use_jit`: loaded already, or a large search); None:
+    numpy."""
+    from ..core.kernels import use_jit
+
+    if p.batch == 0 or not use_jit(p.batch):
+        return None
+    from ._leximin_kernels import leximin_rows
+
+    return cast("FloatArray | None", leximin_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active,
+                                                  tol, LEXIMIN_STEP, first_only))
 
 
 def _leximin_two(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
@@ -340,6 +358,9 @@ def leximin(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     ``tol``: relative slack of the solver (:data:`fcgrasp.core.tolerances.SOLVER_TOL`)."""
     if p.L.shape[1] == 2 and bool(np.all(p.active)):
         return _leximin_two(p, tol)
+    got = _compiled(p, tol, first_only=False)
+    if got is not None:
+        return got
     order = _order(p)
     levels = np.zeros_like(p.L)
     free = p.active.copy()

@@ -1,0 +1,268 @@
+"""The knapsack solver of :mod:`fcgrasp.model.regions` compiled, one row at a time
+(issue 30: four fingers, or three with gravity, at interactive speed).
+
+:func:`fcgrasp.model.regions.leximin` and :func:`~fcgrasp.model.regions.max_min_length`
+solve definition 7.1's leximin order on batches of the knapsack form of theorem 7.1 with
+numpy, a few dozen calls per stage on arrays of four columns: on the small batches of a
+plan (tens of rows) the calls cost more than the arithmetic.  The loops below evaluate
+the same expressions, row by row, in plain Python that numba compiles (the greedy order,
+the greedy fill, the breakpoints of the slack ``D(t)`` and its root, the stage-by-stage
+growth test); sums are taken in column order, so the two agree to rounding (tested to
+1e-12 of the part against the numpy solver, which stays the reference and runs with
+``FCGRASP_JIT=0``)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core.kernels import CompiledLoops
+from ..core.tolerances import TINY
+
+
+def _order_row(w1: Any, w2: Any, active: Any, order: Any) -> None:
+    """The greedy order of knapsack 1 (largest ``w2 / w1`` first; ``w1 = 0``: first of
+    all; inactive: last), stable: :func:`fcgrasp.model.regions._order`."""
+    n = w1.shape[0]
+    key = np.empty(n)
+    for i in range(n):
+        if not active[i]:
+            key[i] = math.inf                       # -(-inf)
+        elif w1[i] > 0:
+            key[i] = -(w2[i] / w1[i])
+        else:
+            key[i] = -math.inf
+        order[i] = i
+    for i in range(1, n):                           # insertion sort: stable
+        j = i
+        while j > 0 and key[order[j]] < key[order[j - 1]]:
+            order[j], order[j - 1] = order[j - 1], order[j]
+            j -= 1
+
+
+def _fill_row(L: Any, w1: Any, w2: Any, K1: float, active: Any, lb: Any, order: Any,
+              x: Any) -> tuple[float, float]:
+    """Greedy fill of knapsack 1 from ``lb`` (into ``x``): the budget's slack at ``lb``
+    and ``sum w2 x`` (:func:`fcgrasp.model.regions._fill`)."""
+    n = L.shape[0]
+    slack = K1
+    for i in range(n):
+        lbi = lb[i] if active[i] else 0.0
+        x[i] = lbi
+        slack -= w1[i] * lbi
+    run = 0.0
+    for j in range(n):
+        i = order[j]
+        Li = L[i] if active[i] else 0.0
+        cap = Li - x[i]
+        cost = w1[i] * cap
+        run += cost
+        room = slack - (run - cost)
+        if room < 0.0:
+            room = 0.0
+        take = min(cap, room / w1[i]) if w1[i] > 0 else cap
+        if take > 0.0:
+            x[i] += take
+    value = 0.0
+    for i in range(n):
+        value += w2[i] * x[i]
+    return slack, value
+
+
+def _wscale_row(L: Any, w1: Any, w2: Any) -> float:
+    s = 0.0
+    for i in range(L.shape[0]):
+        s += (w1[i] + w2[i]) * L[i]
+    return max(s, TINY)
+
+
+def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, lb: Any,
+                  order: Any, eps: float, x: Any) -> bool:
+    """Is there a box of regions at least ``lb`` long (:func:`~.regions._feasible`)?"""
+    n = L.shape[0]
+    for i in range(n):
+        if active[i] and not lb[i] <= L[i] + eps:
+            return False
+    slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
+    need = 0.0
+    for i in range(n):
+        need += w2[i] * ((L[i] + lb[i]) if active[i] else 0.0)
+    need -= K2
+    scale = eps * _wscale_row(L, w1, w2)
+    return slack >= -scale and value >= need - scale
+
+
+def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
+                   lbf: Any, free: Any, order: Any, tol: float, x: Any) -> float:
+    """The largest level ``t`` the free regions reach with the fixed ones at ``lbf``
+    (-1: none): :func:`fcgrasp.model.regions._max_level`, the breakpoints of the greedy
+    fill solved for and ``D`` interpolated on its linear piece."""
+    n = L.shape[0]
+    Lz = np.empty(n)
+    lb0 = np.empty(n)
+    fr = np.empty(n)
+    af = 0.0
+    used = 0.0
+    t_cap = math.inf
+    for i in range(n):
+        Lz[i] = L[i] if active[i] else 0.0
+        f = free[i] and active[i]
+        fr[i] = 1.0 if f else 0.0
+        lb0[i] = 0.0 if f else (lbf[i] if active[i] else 0.0)
+        af += w1[i] * fr[i]
+        used += w1[i] * lb0[i]
+        if f and Lz[i] < t_cap:
+            t_cap = Lz[i]
+    r0 = K1 - used
+    if af > 0 and r0 / af < t_cap:
+        t_cap = r0 / af
+    if not math.isfinite(t_cap):
+        t_cap = 0.0
+    c = 0.0
+    for i in range(n):
+        c += w2[i] * Lz[i]
+    c -= K2
+    tolw = tol * _wscale_row(L, w1, w2)
+    m = n + 2
+    pts = np.empty(m)
+    D = np.empty(m)
+    # the ends t = 0 and t = t_cap by the general fill
+    lb = np.empty(n)
+    ends = (0.0, t_cap)
+    d_end = np.empty(2)
+    for e in range(2):
+        for i in range(n):
+            lb[i] = lb0[i] + ends[e] * fr[i]
+        slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
+        need = 0.0
+        for i in range(n):
+            need += w2[i] * ((L[i] if active[i] else 0.0) + (lb[i] if active[i] else 0.0))
+        need -= K2
+        d_end[e] = value - need if slack >= -tolw else -math.inf
+    pts[0], D[0] = 0.0, d_end[0]
+    # the breakpoints, where the fill holds the items before j, full
+    s0 = s1 = s0b = s1b = 0.0
+    for j in range(n):
+        i = order[j]
+        cap0 = Lz[i] - lb0[i]
+        tj = (r0 - s0) / (af - s1)
+        if math.isfinite(tj) and tj > 0 and tj < t_cap:
+            pts[j + 1] = tj
+            D[j + 1] = s0b - tj * s1b - c
+        else:
+            pts[j + 1] = math.inf
+            D[j + 1] = math.inf
+        s0 += w1[i] * cap0
+        s1 += w1[i] * fr[i]
+        s0b += w2[i] * cap0
+        s1b += w2[i] * fr[i]
+    pts[m - 1], D[m - 1] = t_cap, d_end[1]
+    # sorted by t (stable), the invalid ones (inf) last with the value at t_cap
+    idx = np.empty(m, np.int64)
+    for k in range(m):
+        idx[k] = k
+    for k in range(1, m):
+        j = k
+        while j > 0 and pts[idx[j]] < pts[idx[j - 1]]:
+            idx[j], idx[j - 1] = idx[j - 1], idx[j]
+            j -= 1
+    P = np.empty(m)
+    Q = np.empty(m)
+    for k in range(m):
+        if math.isfinite(pts[idx[k]]):
+            P[k], Q[k] = pts[idx[k]], D[idx[k]]
+        else:
+            P[k], Q[k] = t_cap, d_end[1]
+    if not (Q[0] >= -tolw and t_cap >= 0):
+        return -1.0
+    for i in range(n):
+        if active[i] and not lb0[i] <= Lz[i] + tol * Lz[i]:
+            return -1.0
+    last = m - 1
+    for k in range(m - 1, -1, -1):
+        if Q[k] >= -tolw:
+            last = k
+            break
+    nxt = min(last + 1, m - 1)
+    d_a, d_b = Q[last], Q[nxt]
+    frac = 0.0
+    if nxt > last and math.isfinite(d_b) and d_a - d_b > 0:
+        frac = min(max(d_a / (d_a - d_b), 0.0), 1.0)
+    return float(P[last] + frac * (P[nxt] - P[last]))
+
+
+def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
+                  step: float, first_only: bool, out: Any) -> None:
+    """Leximin levels of every row into ``out`` (B, n): -1 rows where none is
+    possible (:func:`fcgrasp.model.regions.leximin`); ``first_only``: the first level
+    alone, in ``out[:, 0]`` (:func:`~fcgrasp.model.regions.max_min_length`)."""
+    B, n = L.shape
+    order = np.empty(n, np.int64)
+    free = np.empty(n, np.bool_)
+    levels = np.empty(n)
+    trial = np.empty(n)
+    grow = np.empty(n, np.bool_)
+    x = np.empty(n)
+    for b in range(B):
+        _order_row(w1[b], w2[b], active[b], order)
+        for i in range(n):
+            free[i] = active[b, i]
+            levels[i] = 0.0
+        if first_only:
+            out[b, 0] = _max_level_row(L[b], w1[b], w2[b], K1[b], K2[b], active[b], levels,
+                                       free, order, tol, x)
+            continue
+        dead = False
+        first = True
+        scale = TINY
+        for i in range(n):
+            scale = max(scale, L[b, i])
+        for _ in range(n):
+            anyfree = False
+            for i in range(n):
+                anyfree = anyfree or free[i]
+            if not anyfree:
+                break
+            t = _max_level_row(L[b], w1[b], w2[b], K1[b], K2[b], active[b], levels, free,
+                               order, tol, x)
+            if first:
+                dead = t < 0
+                first = False
+            t = max(t, 0.0)
+            for i in range(n):
+                if free[i]:
+                    levels[i] = t
+            # which free regions cannot grow beyond t while the others stay?
+            blocked_any = False
+            for i in range(n):
+                for k in range(n):
+                    trial[k] = levels[k]
+                trial[i] += step * scale
+                grow[i] = _feasible_row(L[b], w1[b], w2[b], K1[b], K2[b], active[b], trial,
+                                        order, 0.1 * tol * scale, x)
+                if free[i] and not grow[i]:
+                    blocked_any = True
+            for i in range(n):
+                if free[i] and (not grow[i] or not blocked_any):
+                    free[i] = False          # blocked (none: a numerical stall, all)
+        for i in range(n):
+            out[b, i] = -1.0 if dead else (levels[i] if active[b, i] else 0.0)
+
+
+_LOOPS = CompiledLoops(globals(), (_order_row, _fill_row, _wscale_row, _feasible_row,
+                                   _max_level_row, _leximin_loop))
+
+
+def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
+                 step: float, first_only: bool) -> Any:
+    """The compiled loop on a batch (None where it cannot run: numpy then)."""
+    B, n = L.shape
+    out = np.zeros((B, n))
+    ok, _ = _LOOPS.run("_leximin_loop", np.ascontiguousarray(L, float),
+                       np.ascontiguousarray(w1, float), np.ascontiguousarray(w2, float),
+                       np.ascontiguousarray(K1, float), np.ascontiguousarray(K2, float),
+                       np.ascontiguousarray(active, np.bool_), float(tol), float(step),
+                       bool(first_only), out)
+    return out if ok else None
