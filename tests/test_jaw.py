@@ -32,8 +32,11 @@ def _frame(part, theta):
     return u, n
 
 
-def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
-    """(holds, opening) of one pose, from shapely's clip of the part to the strip."""
+def independent_pose(part, jaw, theta, c, margin_deg, hole=None, contacts=False):
+    """(holds, opening) of one pose, from shapely's clip of the part to the strip;
+    ``contacts``: instead, the contacts ``(points, normals, pads)`` in the strip frame
+    (lateral, height; outward normals: a finger pushes along ``-n``; each point's pad,
+    0 the upper, 1 the lower), None where a pad touches nothing."""
     u, n = _frame(part, theta)
 
     def tf(ring):
@@ -41,14 +44,14 @@ def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
         return np.c_[r @ n, r @ u]
 
     if hole is not None:
-        return _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole)
+        return _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole, contacts)
 
     shape = shapely.Polygon(tf(part.vertices), [tf(h) for h in part.holes])
     w = jaw.pad_width / 2
     strip = shapely.box(c - w, -1e3 * part.size, c + w, 1e3 * part.size)
     cut = shape.intersection(strip)
     if cut.is_empty:
-        return False, np.nan
+        return None if contacts else (False, np.nan)
     pts = shapely.get_coordinates(cut.boundary)
     tol = 1e-9 * part.size
     top, bottom = pts[:, 1].max(), pts[:, 1].min()
@@ -57,9 +60,10 @@ def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
     normals = np.c_[part.normals @ n, part.normals @ u]
     starts = np.c_[(part.starts - part.centroid) @ n, (part.starts - part.centroid) @ u]
     ends = np.c_[(part.ends - part.centroid) @ n, (part.ends - part.centroid) @ u]
-    points, nrm = [], []
-    for y, pad_normal in ((top, (0.0, 1.0)), (bottom, (0.0, -1.0))):
+    points, nrm, pads = [], [], []
+    for pad, (y, pad_normal) in enumerate(((top, (0.0, 1.0)), (bottom, (0.0, -1.0)))):
         for p in np.unique(pts[np.abs(pts[:, 1] - y) <= tol], axis=0):
+            pads.append(pad)
             on_side = min(abs(p[0] - (c - w)), abs(p[0] - (c + w))) <= tol
             is_vertex = np.min(np.hypot(*(verts - p).T)) <= tol
             normal = pad_normal
@@ -73,6 +77,8 @@ def independent_pose(part, jaw, theta, c, margin_deg, hole=None):
                     normal = tuple(normals[e])
             points.append(p)
             nrm.append(normal)
+    if contacts:
+        return np.array(points), np.array(nrm, float), np.array(pads)
     opening = top - bottom
     mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
     fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0
@@ -93,7 +99,7 @@ def _hole_edge_normal(part, hole, p, tf, u, n):
     return nrm if shapely.Polygon(ring).contains(shapely.Point(probe)) else -nrm  # into the hole
 
 
-def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
+def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole, contacts=False):
     """Jaws opening inside a hole from the insertion point's height: shapely clips the
     hole to the strip; the closed jaws' segment must lie inside the clip, and each pad
     stops at the nearest vertex of the clip's piece holding it, above (below) that
@@ -107,16 +113,17 @@ def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
     big = 1e3 * part.size
     segment = shapely.LineString([(c - w, y_q), (c + w, y_q)])
     if not shape.contains(segment):
-        return False, np.nan
+        return None if contacts else (False, np.nan)
     cut = shape.intersection(shapely.box(c - w, -big, c + w, big))
     piece = next(g for g in getattr(cut, "geoms", [cut]) if g.contains(segment))
     pts = shapely.get_coordinates(piece.exterior)
     tol = 1e-9 * part.size
     top = pts[pts[:, 1] > y_q, 1].min()
     bottom = pts[pts[:, 1] < y_q, 1].max()
-    points, nrm = [], []
-    for y, pad_normal in ((top, (0.0, -1.0)), (bottom, (0.0, 1.0))):
+    points, nrm, pads = [], [], []
+    for pad, (y, pad_normal) in enumerate(((top, (0.0, -1.0)), (bottom, (0.0, 1.0)))):
         for p in np.unique(pts[np.abs(pts[:, 1] - y) <= tol], axis=0):
+            pads.append(pad)
             on_side = min(abs(p[0] - (c - w)), abs(p[0] - (c + w))) <= tol
             is_vertex = np.min(np.hypot(*(ring - p).T)) <= tol
             normal = pad_normal
@@ -128,6 +135,8 @@ def _independent_internal(part, jaw, tf, u, n, c, margin_deg, hole):
                     normal = tuple(e_n)
             points.append(p)
             nrm.append(normal)
+    if contacts:
+        return np.array(points), np.array(nrm, float), np.array(pads)
     opening = top - bottom
     mu = np.tan(np.arctan(jaw.mu) - np.radians(margin_deg))
     fc_ok = closure_margin_lp(grasp_wrenches(np.array(points), np.array(nrm), mu)) > 0

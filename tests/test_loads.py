@@ -306,7 +306,8 @@ def test_load_and_payload_errors_name_the_argument():
 
 def test_plan_document_reports_the_payload_of_each_plan():
     """A request with a load: each grasp's certified payload in the JSON, equal to
-    region_payload's; the load's options need --mass; the jaw refuses a load."""
+    region_payload's; the load's options need --mass (the jaw's boxes:
+    tests/test_jaw_payload.py)."""
     from fcgrasp.errors import RequestError
     from fcgrasp.planning import PlanRequest, plan_document
 
@@ -320,8 +321,6 @@ def test_plan_document_reports_the_payload_of_each_plan():
         assert g["payload"]["worst_grasp_scale"] == pytest.approx(want.upper)
     with pytest.raises(RequestError, match="--mass"):
         PlanRequest(part="demo:quad", force_limit=10.0)
-    with pytest.raises(RequestError, match="jaw"):
-        PlanRequest(part="demo:quad", gripper="jaw", stroke=(5.0, 60.0), pad=8.0, mass=1.0)
     assert "--mass" in PlanRequest(part="demo:quad", mass=0.5).to_argv()
 
 

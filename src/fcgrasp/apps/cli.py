@@ -108,6 +108,7 @@ def cmd_plan(args: Any) -> int:
             _print_solid_table(doc.report, sys.stdout)
         elif args.gripper == "jaw":
             _print_jaw_table(doc.plans, doc.units, sys.stdout)
+            _print_load_and_placement(doc.report, sys.stdout)
         else:
             _print_table(doc.plans, doc.units, sys.stdout)
             _print_load_and_placement(doc.report, sys.stdout)
@@ -189,13 +190,17 @@ def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:
     load = report["parameters"].get("load")
     if load is None:
         return
-    print(f"load {load['mass_kg']:g} kg (every grasp of the regions carries at least "
-          f"this multiple of it; certified):", file=out)
+    jaw = report["parameters"].get("gripper") == "parallel_jaw"
+    what = "pose" if jaw else "grasp"
+    every = "every pose of the box" if jaw else "every grasp of the regions"
+    print(f"load {load['mass_kg']:g} kg ({every} carries at least this multiple of it; "
+          f"certified):", file=out)
     for k, g in enumerate(report["grasps"], 1):
         p = g["payload"]
         scale = "any" if p["scale"] is None else f"{p['scale']:.3g}x"
         worst = "" if p["worst_grasp_scale"] is None else \
-            f" (worst grasp found {p['worst_grasp_scale']:.3g}x, gap {100 * p['gap']:.1f} %)"
+            f" (worst {what} found " \
+            f"{p['worst_grasp_scale']:.3g}x, gap {100 * p['gap']:.1f} %)"
         print(f"  {k:>2}  {scale}{worst}", file=out)
 
 

@@ -486,9 +486,14 @@ def _pieces(region: FloatArray, inward: FloatArray, mu: float) -> list[_Piece]:
 
 
 def _box_scale(rows: list[tuple[FloatArray, FloatArray]], widths: FloatArray,
-               W: FloatArray, per: FloatArray, total: float) -> float:
+               W: FloatArray, per: FloatArray, total: float,
+               eps: FloatArray | None = None) -> float:
     """The certified scale of a box (the module docstring's lower bound): ``rows`` the
-    cone edges' wrenches at its corners, ``widths`` its width along each finger."""
+    cone edges' wrenches at its corners, ``widths`` its width along each finger.
+    ``eps``: a finger may also sit up to ``eps_i`` along its edge off the corners'
+    combination (a parallel jaw's pad corner as the angle turns): its normal force,
+    at most ``cbar_i + d_i``, then adds a torque of at most ``eps_i (cbar_i + d_i)``,
+    which ``E`` covers too."""
     from scipy.optimize import linprog  # on first use
     from scipy.sparse import coo_matrix
 
@@ -532,8 +537,11 @@ def _box_scale(rows: list[tuple[FloatArray, FloatArray]], widths: FloatArray,
                         b_ub.append(float(per[i]))
                     if np.isfinite(total):
                         ub += [(row_total, a, 1.0), (row_total, b, 1.0)]
-        r0 = len(b_ub)                      # sum_i w_i d_i <= E
-        ub += [(r0, dvar + i, float(widths[i])) for i in range(k)] + [(r0, evar, -1.0)]
+        r0 = len(b_ub)                      # sum_i w_i d_i (+ eps_i (cbar_i + d_i)) <= E
+        ub += [(r0, dvar + i, float(widths[i]) + (0.0 if eps is None else float(eps[i])))
+               for i in range(k)] + [(r0, evar, -1.0)]
+        if eps is not None:
+            ub += [(r0, cbar + i, float(eps[i])) for i in range(k) if eps[i] > 0]
         b_ub.append(0.0)
 
     def matrix(items: list[tuple[int, int, float]], rows_n: int) -> Any:

@@ -167,22 +167,26 @@ def _with_payload(polygon: Polygon, gripper: Any, options: SearchOptions, distin
 
     if not isinstance(load, Load):
         raise TypeError(f"load must be a fcgrasp.Load, got {type(load).__name__}")
-    if gripper.name == "jaw":
-        raise ValueError("load: loads are carried by point fingers' regions; the parallel "
-                         "jaw's boxes do not report them yet, got a ParallelJaw")
+    jaw = gripper.name == "jaw"
     by_payload = options.rank_by == "payload"
     if by_payload:
         pool = None if options.top is None else PAYLOAD_POOL * options.top
         options = replace(options, rank_by="min_region", top=pool)
     plans = _distinct(polygon, gripper, options, distinct)
+    if jaw:                   # a box of poses: every pose of it (its pads' limits)
+        from ..grippers.jaw import jaw_payload
     for p in plans:
-        p.payload = region_payload(polygon, p, load, force_limit=force_limit,
-                                   total_limit=total_force)
+        p.payload = jaw_payload(polygon, p, load, force_limit=force_limit,
+                                total_limit=total_force) if jaw else \
+            region_payload(polygon, p, load, force_limit=force_limit,
+                           total_limit=total_force)
     if not by_payload:
         return plans
     score = MEASURES["payload"].score(plans)
-    order = sorted(range(len(plans)), key=lambda i: (rank_key(plans[i], polygon, "payload",
-                                                              float(score[i])), i))
+    # boxes: the larger certified scale first, then the jaw's own order (its measure)
+    order = sorted(range(len(plans)), key=lambda i: (
+        (-float(f"{score[i]:.9g}"),) if jaw else
+        rank_key(plans[i], polygon, "payload", float(score[i])), i))
     top = len(plans) if options.top is None else options.top // PAYLOAD_POOL
     return [plans[i] for i in order[:top]]
 

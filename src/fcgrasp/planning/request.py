@@ -227,9 +227,6 @@ class PlanRequest:
                 if getattr(self, name) is not None:
                     raise _fail(name, f"--{name.replace('_', '-')} describes a load: give "
                                       f"its --mass too")
-        elif self.gripper == "jaw":
-            raise _fail("mass", "--mass: loads are carried by point fingers' regions; the "
-                                "parallel jaw's boxes do not report them yet")
         if self.placement_sigma is not None and (not self.placement_sigma > 0
                                                   or self.gripper == "jaw"
                                                   or self.fingers not in (None, 2)):

@@ -60,6 +60,14 @@ class _Candidates:
     lo: FloatArray
     hi: FloatArray
     ok: np.ndarray
+    #: what each candidate is (the payload's bound follows it over the box): 0 a vertex
+    #: (``index`` into ``points``, from the centroid), 1 or 2 the cut of the grip's edge
+    #: ``index`` by the strip's side at ``-w/2`` or ``+w/2`` (the pad's corner on it)
+    kind: np.ndarray | None = None
+    index: np.ndarray | None = None
+    points: FloatArray | None = None
+    #: how many candidates (B,), those beyond :data:`MAX_CONTACTS` not listed
+    count: np.ndarray | None = None
 
 
 def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
@@ -134,6 +142,8 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     cen_f = [np.broadcast_to(face[:, None], vmask.shape)]
     half_f = [np.broadcast_to(face_half[:, None], vmask.shape)]
     use = [vmask]
+    kinds = [np.zeros(vmask.shape, np.int64)]
+    idx = [np.broadcast_to(np.arange(len(uniq)), vmask.shape)]
     # edge cuts by the strip's sides: the pad's corner on the edge (the lateral ranges of
     # the edges' ends are those of the vertices above: starts first, then ends)
     xa_lo, xa_hi = x_lo[:, :m], x_hi[:, :m]
@@ -173,6 +183,8 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         cen_f.append(np.broadcast_to(edge_force, sel.shape))
         half_f.append(np.zeros(sel.shape))
         use.append(sel)
+        kinds.append(np.full(sel.shape, 1 if side < 0 else 2, np.int64))
+        idx.append(np.broadcast_to(np.arange(m), sel.shape))
     use_all = np.concatenate(use, axis=1)
     count = use_all.sum(axis=1)
     ok = np.isfinite(lower) & (count >= 1) & (count <= MAX_CONTACTS)
@@ -184,7 +196,7 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         return np.concatenate(parts, axis=1)[r, order]
 
     return _Candidates(pick(P0), pick(P1), pick(cen_f), pick(half_f), use_all[r, order],
-                       lower, high, ok)
+                       lower, high, ok, pick(kinds), pick(idx), uniq, count)
 
 
 def _dominated(uniq: FloatArray, inv: np.ndarray, always: np.ndarray, y_lo: FloatArray,

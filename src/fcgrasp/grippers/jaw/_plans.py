@@ -99,7 +99,8 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
                        ("--gravity", options.get("gravity") is not None),
                        ("--workspace", options.get("workspace") is not None),
                        ("--finger-radius", bool(options.get("finger_radius"))),
-                       ("--rank-by", options.get("rank_by", "min_region") != "min_region"),
+                       ("--rank-by", options.get("rank_by", "min_region")
+                        not in ("min_region", "payload")),
                        ("--single-edge", bool(options.get("single_edge")))):
         if given:
             raise ValueError(f"{opt} is an option of point fingers, not of --gripper jaw")
@@ -152,6 +153,10 @@ class JawPlan:
     features: tuple[list[int], list[int]] = ([], [])
     #: with distinct plans: how many lower-ranked boxes this one stands for
     similar: int = 0
+    #: with a load (``plan(..., load=)``): the scale of it every pose of the box carries
+    #: (:func:`fcgrasp.grippers.jaw.jaw_payload`, a
+    #: :class:`~fcgrasp.model.loads.RegionPayload`); in the JSON as ``payload``
+    payload: Any = field(default=None, repr=False, compare=False)
 
     @property
     def centre(self) -> tuple[float, float]:
@@ -167,7 +172,9 @@ class JawPlan:
 
     def to_dict(self) -> dict[str, Any]:
         """A JSON-ready description (angles also in degrees)."""
-        extra = {"similar": self.similar} if self.similar else {}
+        extra: dict[str, Any] = {"similar": self.similar} if self.similar else {}
+        if self.payload is not None:
+            extra["payload"] = self.payload.to_dict()
         return json_ready({**extra,
             "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
             "insert": self.insert,
