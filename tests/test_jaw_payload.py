@@ -133,9 +133,9 @@ def _check(part, jaw, plans, rng, samples):
     return positive, tight
 
 
-@pytest.mark.parametrize("name", ["triangle", "quad",
+@pytest.mark.parametrize("name", ["triangle",
                                   *(pytest.param(n, marks=pytest.mark.slow)
-                                    for n in ("blob", "bracket", "rectangle"))])
+                                    for n in ("quad", "blob", "bracket", "rectangle"))])
 def test_the_boxes_certified_scale_is_below_every_pose(name):
     """Built-in parts: the certified scale of each of the top boxes is at most the
     independent payload of 40 poses of the box; most are bounded above zero."""
@@ -151,16 +151,16 @@ def test_the_certified_scale_on_random_parts_and_holes():
     rng = np.random.default_rng(11)
     positive = count = 0
     cases = [(demo_part("washer"), ParallelJaw(stroke=(2, 40), pad_width=4, mu=0.6), True)]
-    while len(cases) < 3:
+    while len(cases) < 2:
         part = _random_part(rng)
         cases.append((part, _jaw_for(part, rng), False))
     for part, jaw, internal in cases:
         plans = [p for p in fc.plan(part, gripper=jaw, top=4)
                  if (p.hole is not None) == internal][:2]
-        got, _ = _check(part, jaw, plans, rng, 15)
+        got, _ = _check(part, jaw, plans[:1], rng, 12)
         positive += got
         count += len(plans)
-    assert count >= 3 and positive >= count // 2, (count, positive)
+    assert count >= 2 and positive >= count // 2, (count, positive)
 
 
 @pytest.mark.slow
@@ -195,10 +195,8 @@ def test_the_bound_closes_on_boxes_away_from_the_boundary():
 
 def test_plans_of_the_jaw_carry_their_payload_in_the_report_and_the_cli(tmp_path):
     """A jaw request with a load: each box's certified payload in the JSON, equal to
-    jaw_payload's; ``rank_by="payload"`` re-ranks the pool of boxes by it; the command
-    line prints it per box."""
+    jaw_payload's; the command line prints it per box."""
     from fcgrasp.planning import PlanRequest, plan_document
-    from fcgrasp.planning.planner import PAYLOAD_POOL
 
     from .test_cli import run
 
@@ -211,15 +209,24 @@ def test_plans_of_the_jaw_carry_their_payload_in_the_report_and_the_cli(tmp_path
         want = jaw_payload(part, box, fc.Load(0.5), force_limit=10.0)
         assert g["payload"]["scale"] == pytest.approx(want.lower)
         assert g["payload"]["worst_grasp_scale"] == pytest.approx(want.upper)
-    jaw = ParallelJaw(stroke=(5.0, 60.0), pad_width=8.0, mu=0.5)
-    pool = fc.plan(part, gripper=jaw, top=PAYLOAD_POOL)
-    got = fc.plan(part, gripper=jaw, top=1, load=fc.Load(0.5), force_limit=10.0,
-                  rank_by="payload")
-    scales = [jaw_payload(part, b, fc.Load(0.5), force_limit=10.0).lower for b in pool]
-    assert got[0].payload.lower == pytest.approx(max(scales))
-    assert got[0].payload.lower >= doc.plans[0].payload.lower
     out = run("plan", "demo:triangle", "--gripper", "jaw", "--stroke", "5,60", "--pad", "8",
               "--mu", "0.5", "--mass", "0.5", "--force-limit", "10", "--top", "1")
     assert out.returncode == 0, out.stderr
     assert "every pose of the box carries" in out.stdout
     assert f"{doc.report['grasps'][0]['payload']['scale']:.3g}x" in out.stdout
+
+
+@pytest.mark.slow
+def test_boxes_ranked_by_payload_are_the_pool_reranked():
+    """``rank_by="payload"``: the PAYLOAD_POOL x top boxes of the jaw's order, each
+    with its certified payload, the best first."""
+    from fcgrasp.planning.planner import PAYLOAD_POOL
+
+    part = fc.read_part("demo:triangle")
+    jaw = ParallelJaw(stroke=(5.0, 60.0), pad_width=8.0, mu=0.5)
+    pool = fc.plan(part, gripper=jaw, top=2 * PAYLOAD_POOL)
+    got = fc.plan(part, gripper=jaw, top=2, load=fc.Load(0.5), force_limit=10.0,
+                  rank_by="payload")
+    scales = sorted((jaw_payload(part, b, fc.Load(0.5), force_limit=10.0).lower
+                     for b in pool), reverse=True)
+    assert [b.payload.lower for b in got] == pytest.approx(scales[:2])

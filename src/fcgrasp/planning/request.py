@@ -299,18 +299,20 @@ class PlanRequest:
                         "--soft) or three fingers with friction (--fingers 3 --mu MU); two "
                         "point fingers never hold a solid (nothing resists the turn about "
                         "the line between them)")
-        if kind is not None and (self.gravity is not None or self.mass is not None
-                                 or self.mu_high is not None or self.single_edge
-                                 or self.placement_sigma is not None
-                                 or self.pose_sigma is not None
-                                 or self.stiffness is not None or self.bound
-                                 or self.certify is not None):
+        given = [flag for flag, on in (
+            ("--gravity", self.gravity is not None), ("--mass", self.mass is not None),
+            ("--mu LOW:HIGH", self.mu_high is not None), ("--single-edge", self.single_edge),
+            ("--placement-sigma", self.placement_sigma is not None),
+            ("--pose-sigma", self.pose_sigma is not None),
+            ("--stiffness", self.stiffness is not None), ("--bound", self.bound),
+            ("--certify", self.certify is not None)) if on]
+        if kind is not None and given:
             who = {"soft": ("soft", "--soft: two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
                    "jaw": ("gripper", "--gripper jaw: a parallel jaw (--stroke, --pad)")}
             name, what = who[kind]
             raise _fail(name, f"{what} on a solid take --mu, --top, --margin and --distinct "
-                              f"only so far")
+                              f"only so far, not {' '.join(given)}")
 
     def solid_kind(self) -> str | None:
         """How a solid part is grasped: ``"soft"`` (two soft fingers), ``"friction"``

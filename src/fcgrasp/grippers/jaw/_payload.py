@@ -42,6 +42,7 @@ from typing import Any
 import numpy as np
 
 from ...core._checks import FloatArray, check_int, check_scalar
+from ...core.tolerances import ROUND_TOL
 from ...model.loads import (
     Load,
     RegionPayload,
@@ -139,9 +140,9 @@ def _pose_scale(polygon: Polygon, plan: Any, theta: float, offset: float, load: 
                                   (r.bottom[0], r.lat_b[0], r.psi_b[0],
                                    theta + np.pi if internal else theta)):
         ok = np.flatnonzero(np.isfinite(lats[:, 0]))
-        tiny = 1e-12 * polygon.size
         # a vertex is listed once per edge that meets there: one point, one force
-        if not len(ok) or np.ptp(lats[ok]) > tiny or np.ptp(psi[ok]) > 1e-12:
+        if not len(ok) or np.ptp(lats[ok]) > ROUND_TOL * polygon.size \
+                or np.ptp(psi[ok]) > ROUND_TOL:
             return None
         k = int(ok[0])
         pts.append(polygon.centroid + stop * u + lats[k, 0] * lat)
