@@ -411,7 +411,8 @@ def test_compiled_leximin_equals_the_numpy_solver(monkeypatch):
     assert rows > 10_000 and positive > 0.1 * rows and multi > 500, (rows, positive, multi)
 
 
-@pytest.mark.parametrize("fingers, gravity", [(4, None), (3, (0.0, -1.0))])
+@pytest.mark.parametrize("fingers, gravity", [(4, None), pytest.param(3, (0.0, -1.0),
+                                                                     marks=pytest.mark.slow)])
 def test_frictionless_plans_are_the_same_compiled_or_not(monkeypatch, fingers, gravity):
     """Four frictionless fingers (three with gravity) plan the same regions whether the
     knapsack solver runs by numpy or compiled (region ends to 1e-9 of the part)."""

@@ -169,8 +169,9 @@ def _random_convex(seed):
                                        for s in range(1, 25))])
 def test_every_grasp_of_the_regions_is_force_closure(seed):
     rng = np.random.default_rng(seed)
-    solids = [demo_solid(n) for n in ("box", "prism", "angle", "mug")] if seed == 0 \
-        else [_random_convex(seed)]
+    # the mug (the slowest to plan) with the slow seeds
+    solids = [demo_solid(n) for n in ("box", "prism", "angle")] if seed == 0 \
+        else [demo_solid("mug"), _random_convex(seed)] if seed == 1 else [_random_convex(seed)]
     corners, inside = (20, 6) if seed == 0 else (512, 40)
     checked = 0
     for solid in solids:
