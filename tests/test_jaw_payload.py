@@ -1,14 +1,13 @@
 """The load a parallel jaw's box carries (issue 32, fcgrasp.grippers.jaw.jaw_payload): the
 certified scale never exceeds the payload of any pose of the box, each computed without
 fcgrasp (shapely's clip of the part to the strip for the contacts, as test_jaw's pose
-model does, and a linear program over the contact forces written here, a pad's points
+model does, and test_loads' linear program over the contact forces, a pad's points
 sharing its force limit)."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.grippers.jaw import ParallelJaw
@@ -16,6 +15,7 @@ from fcgrasp.grippers.jaw._payload import jaw_payload
 from fcgrasp.io.parts import demo_part
 
 from .test_jaw import _frame, _jaw_for, _random_part, independent_pose
+from .test_loads import _reference_scale
 
 G = 9.80665
 
@@ -32,61 +32,6 @@ def _load_wrenches(mass, com, accel, torque):
     return np.array(out)
 
 
-def _pose_scale(points, pushes, pads, mu, W, per, total):
-    """Largest s such that forces f_i (one per contact point: inside its cone about its
-    push direction) resist s times every load vertex: the normal forces of each pad's
-    points sum to at most ``per``, all of them to at most ``total``."""
-    k, V = len(points), len(W)
-    n = pushes / np.hypot(*pushes.T)[:, None]
-    t = np.c_[-n[:, 1], n[:, 0]]
-    nvar = 1 + V * k * 2
-
-    def f(v, i):
-        return 1 + (v * k + i) * 2
-    A_eq, b_eq, A_ub, b_ub = [], [], [], []
-    for v in range(V):
-        for r in range(3):
-            row = np.zeros(nvar)
-            row[0] = W[v, r]
-            for i in range(k):
-                if r < 2:
-                    row[f(v, i) + r] = 1.0
-                else:
-                    row[f(v, i)] = -points[i, 1]
-                    row[f(v, i) + 1] = points[i, 0]
-            A_eq.append(row)
-            b_eq.append(0.0)
-        tot = np.zeros(nvar)
-        pad_rows = {0: np.zeros(nvar), 1: np.zeros(nvar)}
-        for i in range(k):
-            nn = np.zeros(nvar)
-            nn[f(v, i):f(v, i) + 2] = n[i]
-            tt = np.zeros(nvar)
-            tt[f(v, i):f(v, i) + 2] = t[i]
-            A_ub += [-nn, tt - mu * nn, -tt - mu * nn]
-            b_ub += [0.0, 0.0, 0.0]
-            pad_rows[int(pads[i])] += nn
-            tot += nn
-        for pad in (0, 1):
-            if np.isfinite(per[pad]):
-                A_ub.append(pad_rows[pad])
-                b_ub.append(per[pad])
-        if np.isfinite(total):
-            A_ub.append(tot)
-            b_ub.append(total)
-    cost = np.zeros(nvar)
-    cost[0] = -1
-    res = linprog(cost, A_ub=np.array(A_ub), b_ub=np.array(b_ub), A_eq=np.array(A_eq),
-                  b_eq=np.array(b_eq), bounds=[(0, None)] + [(None, None)] * (nvar - 1),
-                  method="highs")
-    if res.status == 3:
-        return np.inf
-    if res.status == 2:                 # only s = 0 can be infeasible: nothing resisted
-        return 0.0
-    assert res.status == 0, res.message
-    return -res.fun
-
-
 def _independent_scale(part, jaw, theta, c, hole, W, per, total):
     got = independent_pose(part, jaw, theta, c, 0.5, hole, contacts=True)
     if got is None:
@@ -95,7 +40,9 @@ def _independent_scale(part, jaw, theta, c, hole, W, per, total):
     u, n = _frame(part, theta)
     points = part.centroid + pts[:, :1] * n + pts[:, 1:] * u
     pushes = -(nrm[:, :1] * n + nrm[:, 1:] * u)
-    return _pose_scale(points, pushes, pads, jaw.mu, W, per, total)
+    # the linear program of test_loads, a pad's points sharing its limit
+    return _reference_scale(points, pushes, jaw.mu, W, np.asarray(per, float), total,
+                            groups=pads)
 
 
 def _check(part, jaw, plans, rng, samples):

@@ -16,10 +16,13 @@ from fcgrasp.model.loads import Load, grasp_payload, region_payload
 from .shapes import random_polygon
 
 
-def _reference_scale(points, normals, mu, W, per, total):
+def _reference_scale(points, normals, mu, W, per, total, groups=None):
     """Largest s with forces f_i = (fx, fy) per contact and load vertex: n.f >= 0,
-    |t.f| <= mu n.f, n.f <= per_i, sum n.f <= total, sum f = -s F, sum p x f = -s tau."""
+    |t.f| <= mu n.f, n.f <= per_i, sum n.f <= total, sum f = -s F, sum p x f = -s tau.
+    ``groups``: the contacts' fingers (a parallel jaw's pad touching at two points), the
+    normal forces of a finger's contacts summing to at most its ``per``."""
     k, V = len(points), len(W)
+    groups = np.arange(k) if groups is None else np.asarray(groups)
     n = normals / np.hypot(*normals.T)[:, None]
     t = np.c_[-n[:, 1], n[:, 0]]
     nvar = 1 + V * k * 2
@@ -40,6 +43,7 @@ def _reference_scale(points, normals, mu, W, per, total):
             A_eq.append(row)
             b_eq.append(0.0)
         tot = np.zeros(nvar)
+        finger = np.zeros((len(per), nvar))
         for i in range(k):
             nn = np.zeros(nvar)
             nn[f(v, i):f(v, i) + 2] = n[i]
@@ -47,10 +51,12 @@ def _reference_scale(points, normals, mu, W, per, total):
             tt[f(v, i):f(v, i) + 2] = t[i]
             A_ub += [-nn, tt - mu * nn, -tt - mu * nn]
             b_ub += [0.0, 0.0, 0.0]
-            if np.isfinite(per[i]):
-                A_ub.append(nn)
-                b_ub.append(per[i])
+            finger[groups[i]] += nn
             tot += nn
+        for g in range(len(per)):
+            if np.isfinite(per[g]):
+                A_ub.append(finger[g])
+                b_ub.append(per[g])
         if np.isfinite(total):
             A_ub.append(tot)
             b_ub.append(total)

@@ -37,7 +37,7 @@ sub-boxes were bounded.
 from __future__ import annotations
 
 import heapq
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -59,13 +59,26 @@ from ._poses import MAX_CONTACTS, _grip_edges, _sin_range, insertion_point, jaw_
 __all__ = ["jaw_payload"]
 
 
+class _PadPiece(NamedTuple):
+    """One pad's candidate feature over a sub-box, as the box program reads it: where it
+    sits at the joint corners (the offsets ``c0`` and ``c1`` at the middle angle), the
+    direction it pushes, its cone's half-angle, its width along its edge between the
+    corners, ``eps`` (its drift along the edge as the angle turns) and the divisor of the
+    force limit (a vertex's normal force grows as the pad's face turns)."""
+
+    p0: FloatArray
+    p1: FloatArray
+    push: FloatArray
+    half: float
+    width: float
+    eps: float
+    grow: float
+
+
 def _piece(polygon: Polygon, edges: np.ndarray, cand: _Candidates, b: int, i: int,
-           sign: float, box: FloatArray, beta: float, half_pad: float
-           ) -> tuple[FloatArray, FloatArray, FloatArray, float, float, float, float] | None:
-    """One pad's candidate ``i`` of sub-box ``b`` as the box program reads it: its points
-    at the joint corners ``c0`` and ``c1`` (middle angle), its push direction, the cone's
-    half-angle, its width along its edge between the corners, ``eps`` and the force
-    limit's divisor; None where its common cone is empty (the bound is then 0)."""
+           sign: float, box: FloatArray, beta: float, half_pad: float) -> _PadPiece | None:
+    """The pad's candidate ``i`` of sub-box ``b`` (:class:`_PadPiece`); None where its
+    common cone is empty or its drift unbounded (the bound is then 0)."""
     t0, t1, c0, c1 = box
     tm, dt = 0.5 * (t0 + t1), t1 - t0
     g = polygon.centroid
@@ -78,7 +91,8 @@ def _piece(polygon: Polygon, edges: np.ndarray, cand: _Candidates, b: int, i: in
             return None
         grow = np.cos(max(half - 0.5 * dt, 0.0)) / np.cos(half)
         p = cand.points[index] + g
-        return p, p, np.array([np.cos(face), np.sin(face)]), half, 0.0, 0.0, float(grow)
+        return _PadPiece(p, p, np.array([np.cos(face), np.sin(face)]), half, 0.0, 0.0,
+                         float(grow))
     e = int(edges[index])
     a, d = polygon.starts[e], polygon.ends[e] - polygon.starts[e]
     side = -half_pad if kind == 1 else half_pad
@@ -103,23 +117,21 @@ def _piece(polygon: Polygon, edges: np.ndarray, cand: _Candidates, b: int, i: in
         height = max(height, abs(float(y_lo)), abs(float(y_hi)))
     eps = dl * height / dmin * 0.5 * dt
     n = -polygon.normals[e]
-    return (a + tau0 * d, a + tau1 * d, n, beta, abs(tau1 - tau0) * dl, eps, 1.0)
+    return _PadPiece(a + tau0 * d, a + tau1 * d, n, beta, abs(tau1 - tau0) * dl, eps, 1.0)
 
 
-def _pair_bound(pa: Any, pb: Any, W: FloatArray, per: FloatArray, total: float) -> float:
+def _pair_bound(pa: _PadPiece | None, pb: _PadPiece | None, W: FloatArray, per: FloatArray,
+                total: float) -> float:
     """The box program's scale for one pair of candidates (:func:`_piece`)."""
-    if pa is None or pb is None:
+    if pa is None or pb is None or not np.isfinite(pa.eps + pb.eps):
         return 0.0
-    if not np.isfinite(pa[5] + pb[5]):
-        return 0.0
-    n = np.array([pa[2], pb[2]])
-    E = _cone_edges(n, np.array([pa[3], pb[3]]))
-    widths = np.array([pa[4], pb[4]])
-    eps = np.array([pa[5], pb[5]])
-    grow = np.array([pa[6], pb[6]])
-    corners = [np.array([pa[0], pb[0]])]
+    E = _cone_edges(np.array([pa.push, pb.push]), np.array([pa.half, pb.half]))
+    widths = np.array([pa.width, pb.width])
+    eps = np.array([pa.eps, pb.eps])
+    grow = np.array([pa.grow, pb.grow])
+    corners = [np.array([pa.p0, pb.p0])]
     if widths.max() > 0:
-        corners.append(np.array([pa[1], pb[1]]))
+        corners.append(np.array([pa.p1, pb.p1]))
     rows = [(_wrench_edges(p, E), p) for p in corners]
     return _box_scale(rows, widths, W, per / grow, total / float(grow.max()),
                       eps if eps.max() > 0 else None)
@@ -246,8 +258,8 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
                             # candidates from a wide strip: the usual rule)
                             by_angle = None
                             if pa is not None and pb is not None \
-                                    and pa[4] + pa[5] + pb[4] + pb[5] > 0:
-                                by_angle = pa[5] + pb[5] > pa[4] + pb[4]
+                                    and pa.width + pa.eps + pb.width + pb.eps > 0:
+                                by_angle = pa.eps + pb.eps > pa.width + pb.width
                         if low <= 0:
                             break
                     if low <= 0:
