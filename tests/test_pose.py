@@ -165,3 +165,18 @@ def test_cli_pose_sigma(tmp_path, capsys):
         err = capsys.readouterr().err.strip().splitlines()
         assert len(err) == 1 and "pose" in err[0]
         assert not (tmp_path / "bad.json").exists()
+
+
+def test_robustness_is_the_exact_integral_or_the_estimate():
+    """fc.robustness (issue 32's name): two fingers under a placement error alone, the
+    exact integral (no samples, no error); with a pose error, pose_probability's
+    estimate; with neither, a clear error."""
+    part = fc.read_part("demo:quad")
+    best = fc.plan(part, fingers=2, mu=0.4, top=1)[0]
+    r = fc.robustness(part, best, placement_sigma=1.5, mu_range=(0.3, 0.5))
+    assert r.probability == fc.placement_probability(part, best, 1.5, mu_range=(0.3, 0.5))
+    assert r.probability < 1 and (r.error, r.samples) == (0.0, 0)
+    est = fc.robustness(part, best, pose_sigma=(2.0, 2.0, 3.0), placement_sigma=0.5, seed=3)
+    assert est == pose_probability(part, best, (2.0, 2.0, 3.0), placement_sigma=0.5, seed=3)
+    with pytest.raises(ValueError, match="placement_sigma"):
+        fc.robustness(part, best)

@@ -98,7 +98,12 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.polygon import (
         Polygon,
     )
-    from .model.robustness import Estimate, placement_probability, pose_probability
+    from .model.robustness import (
+        Estimate,
+        placement_probability,
+        pose_probability,
+        robustness,
+    )
     from .model.stability import (
         PlanStability,
         Stability,
@@ -208,6 +213,7 @@ _LAZY = {
     "region_payload": "model.loads",
     "placement_probability": "model.robustness",
     "pose_probability": "model.robustness",
+    "robustness": "model.robustness",
     "Estimate": "model.robustness",
     "Stability": "model.stability",
     "grasp_stability": "model.stability",
