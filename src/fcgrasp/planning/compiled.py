@@ -23,7 +23,8 @@ def compile_kernels() -> dict[str, float]:
     """Compile (or load from the cache) every compiled kernel: the closed forms of two
     fingers (:mod:`fcgrasp.core.kernels`), the two-finger stretch search
     (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
-    (:mod:`fcgrasp.core._simplex`), three fingers with friction
+    (:mod:`fcgrasp.core._simplex`), the knapsack solver of four fingers and three with
+    gravity (:mod:`fcgrasp.model._leximin_kernels`), three fingers with friction
     (:mod:`fcgrasp.grippers._concurrency`), the parallel jaw's pose model and proofs
     (:mod:`fcgrasp.grippers.jaw._kernels`) and the optimality bound's test of a box of
     regions (:mod:`fcgrasp.model.bounds`).  Returns the seconds each took (near zero
