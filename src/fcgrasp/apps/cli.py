@@ -381,8 +381,12 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
                ("blob", 3, 0.5, None, "three fingers with friction"),
                ("washer", 2, 0.2, None, "two fingers with friction on a part with a hole"),
                ("cam", 2, 0.3, None, "regions along the boundary of a curved part")]
-    jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6),
-             f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}")
+    # the curved part's plans distinct alternatives (issue 31: its ranked list is one
+    # grasp shifted along the curve, drawn six times)
+    jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6,
+                         distinct=0.5 if name == "cam" else 0.0),
+             f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}"
+             + (" (distinct alternatives)" if name == "cam" else ""))
             for name, n, mu, g, title in fingers]
     # a parallel-jaw gripper: boxes of jaw poses (closing angle, offset) that hold
     jobs.append((PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10.0, 50.0),
