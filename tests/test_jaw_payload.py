@@ -177,3 +177,19 @@ def test_boxes_ranked_by_payload_are_the_pool_reranked():
     scales = sorted((jaw_payload(part, b, fc.Load(0.5), force_limit=10.0).lower
                      for b in pool), reverse=True)
     assert [b.payload.lower for b in got] == pytest.approx(scales[:2])
+
+
+def test_bad_arguments_name_themselves():
+    part = demo_part("triangle")
+    box = fc.plan(part, gripper=ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5), top=1)[0]
+    fingers = fc.plan(part, fingers=3, mu=0.5, top=1)[0]
+    for plan in ("plan", fingers):
+        with pytest.raises(TypeError, match="plan must be a parallel jaw's box"):
+            jaw_payload(part, plan, fc.Load(1.0))
+    with pytest.raises(TypeError, match="load"):
+        jaw_payload(part, box, "load")
+    for kw, word in ((dict(force_limit=-1), "force_limit"), (dict(gap=-1), "gap"),
+                     (dict(max_boxes=0), "max_boxes"), (dict(total_limit=0), "total_limit"),
+                     (dict(force_limit=[1, 2, 3]), "force_limit")):
+        with pytest.raises(ValueError, match=word):
+            jaw_payload(part, box, fc.Load(1.0), **kw)

@@ -29,9 +29,10 @@ that **every** pose of the box carries, by branch and bound over sub-boxes of po
   (``cos(max(alpha' - dtheta / 2, 0)) / cos(alpha')``).
 
 The worst pose met (the box's corners and each sub-box's centre pose, with their exact
-contacts) gives the upper bound; the sub-box of least bound is halved (along its angle or its offset, the
-longer at the part's radius) until ``1 - lower / upper <= gap`` or ``max_boxes``
-sub-boxes were bounded.
+contacts) gives the upper bound; the sub-box of least bound is halved (along its angle
+where the corners' drift loosens its worst pair more than their spread over the offsets,
+else along its offset; without either, the longer side at the part's radius) until
+``1 - lower / upper <= gap`` or ``max_boxes`` sub-boxes were bounded.
 """
 
 from __future__ import annotations
@@ -188,8 +189,12 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
     (0.953, 0.962, True)
     """
     from ...model.polygon import check_polygon
+    from ._plans import JawPlan
 
     polygon = check_polygon(polygon)
+    if not isinstance(plan, JawPlan):
+        raise TypeError(f"plan must be a parallel jaw's box (a JawPlan; point fingers' "
+                        f"plans: fcgrasp.region_payload), got {type(plan).__name__}")
     if not isinstance(load, Load):
         raise TypeError(f"load must be a fcgrasp Load, got {type(load).__name__}")
     gap_v = check_scalar(gap, "gap", nonnegative=True)
@@ -202,7 +207,7 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
     edges = np.flatnonzero(ring)
     half_pad = jaw.pad_width / 2
     sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
-    q = insertion_point(polygon, plan.hole) - polygon.centroid if internal else None
+    q = None if plan.hole is None else insertion_point(polygon, plan.hole) - polygon.centroid
     beta = float(np.arctan(jaw.mu))
     t0, t1 = (float(v) for v in plan.theta)
     c0, c1 = (float(v) for v in plan.offset)
