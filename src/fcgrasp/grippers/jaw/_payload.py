@@ -259,10 +259,10 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
                             low = got
                             # halve what loosens the worst pair most: the corners'
                             # drift as the angle turns, or their spread over the offsets
-                            # (neither: a pair that may not occur together, its
-                            # candidates from a wide strip: the usual rule)
+                            # (a pair that holds nothing may not occur at all, its
+                            # candidates from a wide sub-box: the usual rule)
                             by_angle = None
-                            if pa is not None and pb is not None \
+                            if pa is not None and pb is not None and got > 0 \
                                     and pa.width + pa.eps + pb.width + pb.eps > 0:
                                 by_angle = pa.eps + pb.eps > pa.width + pb.width
                         if low <= 0:
