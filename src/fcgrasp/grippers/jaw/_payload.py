@@ -28,11 +28,12 @@ that **every** pose of the box carries, by branch and bound over sub-boxes of po
   ``force_limit`` divided by the most it grows along any face direction of the sub-box
   (``cos(max(alpha' - dtheta / 2, 0)) / cos(alpha')``).
 
-The worst pose met (the box's corners and each sub-box's centre pose, with their exact
-contacts) gives the upper bound; the sub-box of least bound is halved (along its angle
-where the corners' drift loosens its worst pair more than their spread over the offsets,
-else along its offset; without either, the longer side at the part's radius) until
-``1 - lower / upper <= gap`` or ``max_boxes`` sub-boxes were bounded.
+The worst pose met (:data:`PERIMETER` poses along each side of the box, and each
+sub-box's centre pose, with their exact contacts) gives the upper bound; the sub-box of
+least bound is halved (along its angle where the corners' drift loosens its worst pair
+more than their spread over the offsets, else along its offset; without either, the
+longer side at the part's radius) until ``1 - lower / upper <= gap`` or ``max_boxes``
+sub-boxes were bounded.
 """
 
 from __future__ import annotations
@@ -58,6 +59,9 @@ from ._certify import _Candidates, _hole_sides, _pad_candidates
 from ._poses import MAX_CONTACTS, _grip_edges, _sin_range, insertion_point, jaw_poses
 
 __all__ = ["jaw_payload"]
+
+#: Poses along each side of the box (its corners included) read for the upper bound.
+PERIMETER = 5
 
 
 class _PadPiece(NamedTuple):
@@ -271,12 +275,17 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
                         break
             heapq.heappush(heap, (float(low), count, box, by_angle))
 
-    # the box's corners: its worst poses are often there (at the edge of the holding set)
-    for t in (t0, t1):
-        for c in (c0, c1):
-            at = _pose_scale(polygon, plan, t, c, load, force_limit, total_limit)
-            if at is not None and at[0] < upper:
-                upper, worst = at
+    # the box's sides: its worst poses are often there (at the edge of the holding set),
+    # PERIMETER poses along each, the corners among them
+    f = np.linspace(0.0, 1.0, PERIMETER)
+    sides = np.r_[np.c_[t0 + f * (t1 - t0), np.full(PERIMETER, c0)],
+                  np.c_[t0 + f * (t1 - t0), np.full(PERIMETER, c1)],
+                  np.c_[np.full(PERIMETER, t0), c0 + f * (c1 - c0)],
+                  np.c_[np.full(PERIMETER, t1), c0 + f * (c1 - c0)]]
+    for t, c in sides:
+        at = _pose_scale(polygon, plan, float(t), float(c), load, force_limit, total_limit)
+        if at is not None and at[0] < upper:
+            upper, worst = at
     bound(todo)
     while heap and count < max_boxes:
         low, _, box, by_angle = heap[0]
