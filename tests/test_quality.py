@@ -24,6 +24,60 @@ def test_ball_radius_matches_qhull(k, rng):
         assert ball_radius(pts) == pytest.approx(qhull_radius(pts), rel=1e-9, abs=1e-12)
 
 
+def _enumerated_radius(points, tol=1e-12):
+    """The previous ball_radius for every number of points (the reference of its qhull
+    path): every plane through three points with all the others on one side."""
+    from itertools import combinations
+
+    from fcgrasp.core._geom import unique_rows
+    from fcgrasp.core.tolerances import DEGENERATE_TOL, RANK_RTOL, TINY
+
+    P = unique_rows(np.asarray(points, float))
+    if len(P) < 4:
+        return 0.0
+    scale = max(float(np.max(np.abs(P))), TINY)
+    Q = P / scale
+    if np.linalg.matrix_rank(Q - Q.mean(axis=0), tol=RANK_RTOL) < 3:
+        return 0.0
+    t = np.array(list(combinations(range(len(Q)), 3)))
+    a, b, c = Q[t[:, 0]], Q[t[:, 1]], Q[t[:, 2]]
+    n = np.cross(b - a, c - a)
+    nn = np.linalg.norm(n, axis=1)
+    keep = nn > RANK_RTOL
+    a, n = a[keep], n[keep] / nn[keep, None]
+    side = np.einsum("tkd,td->tk", Q[None, :, :] - a[:, None, :], n)
+    below = np.all(side <= DEGENERATE_TOL, axis=1)
+    above = np.all(side >= -DEGENERATE_TOL, axis=1)
+    n = np.where(above[:, None] & ~below[:, None], -n, n)
+    support = below | above
+    if not support.any():
+        return 0.0
+    return float(max(0.0, np.einsum("ij,ij->i", a[support], n[support]).min())) * scale
+
+
+@pytest.mark.parametrize("k", [13, 16, 27, 40])
+def test_ball_radius_of_many_points_is_the_enumerations(k, rng):
+    """From HULL_POINTS points the facets come from qhull: the same radius as every
+    plane through three points, on random clouds, clouds on a sphere (every point a
+    vertex), the origin near a facet or outside, repeated points and tiny scales."""
+    from fcgrasp.model.quality import HULL_POINTS
+
+    assert k > HULL_POINTS
+    inside = 0
+    for i in range(60):
+        pts = rng.normal(size=(k, 3))
+        if i % 3 == 1:
+            pts /= np.linalg.norm(pts, axis=1)[:, None]
+        shift = rng.normal(scale=[0.3, 1.0, 3.0][i % 3], size=3)
+        pts = (pts + shift) * 10.0 ** rng.uniform(-6, 6)
+        if i % 5 == 0:
+            pts = np.vstack([pts, pts[:3]])
+        want = _enumerated_radius(pts)
+        assert ball_radius(pts) == pytest.approx(want, rel=1e-9, abs=1e-12 * np.abs(pts).max())
+        inside += want > 0
+    assert 10 <= inside < 60
+
+
 def test_ball_radius_degenerate():
     flat = np.array([[1, 0, 0], [0, 1, 0], [-1, 0, 0], [0, -1, 0]], float)
     assert ball_radius(flat) == 0.0
