@@ -168,6 +168,24 @@ def run(row):
             for w in ws:
                 lp_closure(np.asarray(w))
         return (time.perf_counter() - t0) / len(grasps)
+    if row == "pairs1k":
+        # the closed form of every pair of features of a 1,000-edge blob (algorithm 7.1's
+        # largest smallest region and the better mode), one call, compiled unless
+        # FCGRASP_JIT=0 (the numpy baseline)
+        from fcgrasp.core.kernels import pair_scores
+        from fcgrasp.core.tolerances import SOLVER_TOL
+        from fcgrasp.pipeline._candidates import features
+
+        if os.environ.get("FCGRASP_JIT") != "0":   # compiled, whatever the batch's size
+            os.environ["FCGRASP_JIT"] = "1"
+        F = features(blob(1000), 0.3)
+        i, j = np.triu_indices(len(F.a), 1)
+        i, j = i.astype(np.int64), j.astype(np.int64)
+        margin = float(np.radians(0.5))
+        pair_scores(F.a, F.b, F.center, F.half, i[:10], j[:10], margin, SOLVER_TOL)
+        t0 = time.process_time()
+        pair_scores(F.a, F.b, F.center, F.half, i, j, margin, SOLVER_TOL)
+        return (time.process_time() - t0) / i.size
     if row in ("regions", "regions_lp"):
         sq = fc.Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
         n = 200
@@ -205,6 +223,8 @@ ROWS = [
     ("f4_500", "4 fingers single-edge, smooth 500-edge blob", 5.0, "s", None),
     ("f4_100", "4 fingers along the boundary, 100-edge blob", 1.0, "s", "jit0"),
     ("f4_blob", "4 fingers, the six-edge blob, in process (wall)", 0.001, "s", None),
+    ("pairs1k", "closed form per edge pair, all pairs of a 1,000-edge blob (CPU, one core)",
+     10e-9, "s", "jit0"),
     ("closure", "`Grasp.is_force_closure()`, one grasp (wall)", 20e-6, "s", "closure_lp"),
     ("regions", "`independent_regions`, one edge pair (wall)", 20e-6, "s", "regions_lp"),
 ]
@@ -239,6 +259,8 @@ def startup() -> float:
 
 
 def fmt(x: float) -> str:
+    if x < 1e-6:
+        return f"{x * 1e9:.1f} ns"
     return f"{x * 1e6:.1f} us" if x < 1e-3 else f"{x * 1e3:.1f} ms" if x < 0.1 else f"{x:.2f} s"
 
 
@@ -257,7 +279,8 @@ def main() -> None:
         if base == "jit0":
             b = measure(key, jit="0")
             label = ("HiGHS programs" if key[:2] in ("f3", "f4")
-                     else "numpy pose model" if key.startswith("jaw") else "numpy search")
+                     else "numpy pose model" if key.startswith("jaw")
+                     else "numpy" if key == "pairs1k" else "numpy search")
         elif base == "previous":
             b = measure(key, previous=True)
             label = "the previous compiled search"
