@@ -817,3 +817,30 @@ def test_returned_boxes_do_not_overlap_nor_their_images(name):
                     dt = max(min(p.theta[1], t1 + turn) - max(p.theta[0], t0 + turn)
                              for turn in 2 * np.pi * np.arange(-2, 3))
                     assert max(dc, 0) * max(dt, 0) <= 1e-6 * area, (p.theta, q.theta)
+
+
+@pytest.mark.parametrize("name", ["quad", pytest.param("rectangle", marks=pytest.mark.slow)])
+def test_the_pareto_list_trades_one_side_for_the_other(name):
+    """jaw_pareto (issue 31's Pareto list): proved boxes, none beaten on both sides by
+    another (down the list the angle range falls and the offset range grows), every
+    sampled pose holding by the independent model; on the quad a box with twice the top
+    plan's offset range at nearly its angle range."""
+    from fcgrasp.grippers.jaw import jaw_pareto
+
+    part = demo_part(name)
+    jaw = ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5)
+    front = fc.jaw_pareto(part, jaw)
+    assert front is not None and len(front) >= 3
+    sides = np.array([(p.theta[1] - p.theta[0], p.offset[1] - p.offset[0]) for p in front])
+    assert np.all(np.diff(sides[:, 0]) < 0) and np.all(np.diff(sides[:, 1]) > 0)
+    rng = np.random.default_rng(3)
+    for p in front:
+        assert p.certified
+        for t, c in p.sample(12, rng):
+            assert independent_pose(part, jaw, t, c, 0.5)[0], (p.theta, p.offset, t, c)
+    if name == "quad":
+        top = fc.plan(part, gripper=jaw, top=1)[0]
+        da, dc = top.theta[1] - top.theta[0], top.offset[1] - top.offset[0]
+        assert any(a >= 0.9 * da and c >= 1.9 * dc for a, c in sides)
+    with pytest.raises(ValueError, match="weights"):
+        jaw_pareto(part, jaw, weights=[1.0, -2.0])

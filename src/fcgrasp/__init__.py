@@ -68,7 +68,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         virtual_work,
         wrench_from_force,
     )
-    from .grippers.jaw import JawPlan, ParallelJaw, jaw_payload, jaw_plans
+    from .grippers.jaw import JawPlan, ParallelJaw, jaw_pareto, jaw_payload, jaw_plans
     from .io.meshes import read_solid
     from .io.parts import (
         Part,
@@ -164,6 +164,7 @@ _LAZY = {
     "JawPlan": "grippers.jaw",
     "jaw_plans": "grippers.jaw",
     "jaw_payload": "grippers.jaw",
+    "jaw_pareto": "grippers.jaw",
     "Polygon": "model.polygon",
     "CONTRARY": "core.screws",
     "RECIPROCAL": "core.screws",

@@ -715,25 +715,101 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                                np.array(proved[1]), dth, dc)
             if box is None:
                 continue
-        (t0, t1), (c0, c1), opening, features = box
+        (t0, t1), (c0, c1), _, _ = box
         # the box as grown (past the grid box found) and its images are off the grid
         # too: a later box would overlap it or mirror it
         _clear_images(H, np.array([t0, t1]), np.array([c0, c1]), symmetries, dth, offsets)
         taken += box_images((float(t0), float(t1)), (float(c0), float(c1)), symmetries)
-        tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
-        r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
-        pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
-               _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]
-        kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
-                 _kind(r.lat_b[0], r.psi_b[0], polygon.size))
-        plans.append(JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts,
-                             kinds, (float(r.top[0]), float(r.bottom[0])),
-                             _measure((t0, t1), (c0, c1), radius), jaw,
-                             polygon.centroid.copy(), radius,
-                             "external" if hole is None else "internal", hole, certify,
-                             None if hole is None else insertion_point(polygon, hole),
-                             features))
+        plans.append(_plan_of(polygon, jaw, margin, hole, box, certify))
     return plans
+
+
+def _plan_of(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+             box: Any, certified: bool) -> JawPlan:
+    """The :class:`JawPlan` of a checked box (:func:`_checked_box`: its ranges, opening
+    and features), with the contacts at its centre pose."""
+    (t0, t1), (c0, c1), opening, features = box
+    tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
+    r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
+    pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
+           _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]
+    kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
+             _kind(r.lat_b[0], r.psi_b[0], polygon.size))
+    radius = polygon.radius
+    return JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts, kinds,
+                   (float(r.top[0]), float(r.bottom[0])), _measure((t0, t1), (c0, c1), radius),
+                   jaw, polygon.centroid.copy(), radius,
+                   "external" if hole is None else "internal", hole, certified,
+                   None if hole is None else insertion_point(polygon, hole), features)
+
+
+#: The weights :func:`jaw_pareto` gives the angle side against the offset side: for
+#: each, the box of largest ``min(c1 - c0, w radius (t1 - t0))``.
+PARETO_WEIGHTS = tuple(2.0 ** k for k in range(-3, 4))
+
+
+def jaw_pareto(polygon: Polygon, jaw: ParallelJaw, margin: float = DEFAULT_MARGIN_DEG,
+               hole: int | None = None, weights: Any = PARETO_WEIGHTS) -> list[JawPlan]:
+    """Boxes that trade the closing angle's range against the offset's (issue 31's
+    Pareto list, for a user who cares about one side): for each weight ``w`` of
+    ``weights``, the box of the pose grid with the largest ``min(c1 - c0, w R (t1 -
+    t0))`` (``R`` the part's radius), checked on the fine grid and proved by
+    :func:`certify_box` (shrunk by grid steps; with ``jaw.certify``), then those no
+    other beats on both sides; by angle range, largest first.  A grip on the outline,
+    or (``hole``) inside that hole.  The boxes are the grid's, proved, not grown to the
+    exact set as :func:`jaw_plans`' are; each box's ``measure`` is the usual one.
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    >>> front = jaw_pareto(demo_part("rectangle"), jaw)
+    >>> sides = [(round(float(np.degrees(p.theta[1] - p.theta[0])), 1),
+    ...           round(p.offset[1] - p.offset[0], 1)) for p in front]
+    >>> sides[0][0] > sides[-1][0] and sides[0][1] < sides[-1][1]  # one side for the other
+    True
+    """
+    margin = _check_jaw_args(polygon, jaw, margin)
+    ws = np.atleast_1d(np.asarray(weights, float)).ravel()
+    if ws.size == 0 or not np.all(np.isfinite(ws) & (ws > 0)):
+        raise ValueError(f"weights must be positive numbers, got {weights!r}")
+    radius = polygon.radius
+    K = int(round(360 / THETA_STEP_DEG))
+    M = OFFSET_STEPS
+    thetas = np.arange(K) * (2 * np.pi / K)
+    reach = radius + jaw.pad_width / 2
+    offsets = np.linspace(-reach, reach, M)
+    dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
+    H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
+    found: list[JawPlan] = []
+    for w in ws:
+        score, k0, k1, j0, j1 = _box_scores(H.copy(), dth, dc, radius * float(w), K // 2)
+        if score <= 0:
+            continue
+        box = _checked_box(polygon, jaw, margin, hole,
+                           thetas[k0] + np.array([0, k1 - k0]) * dth, offsets[[j0, j1]],
+                           dth, dc)
+        if box is None:
+            continue
+        if jaw.certify:
+            proved = _proved(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
+            if proved is None:
+                continue
+            box = _checked_box(polygon, jaw, margin, hole, np.array(proved[0]),
+                               np.array(proved[1]), dth, dc)
+            if box is None:
+                continue
+        found.append(_plan_of(polygon, jaw, margin, hole, box, jaw.certify))
+
+    def sides(p: JawPlan) -> tuple[float, float]:
+        return p.theta[1] - p.theta[0], p.offset[1] - p.offset[0]
+
+    front: list[JawPlan] = []
+    for p in sorted(found, key=lambda q: (-sides(q)[0], -sides(q)[1])):
+        a, c = sides(p)
+        # beaten (or matched: a mirror, the same box again) by one kept before
+        if not any(sides(q)[0] >= a - TOL and sides(q)[1] >= c - TOL * polygon.size
+                   for q in front):
+            front.append(p)
+    return front
 
 
 #: A part with more edges than this evaluates the pose grid in tiles (each tile's poses
