@@ -660,17 +660,25 @@ def _measure(theta: tuple[float, float], offset: tuple[float, float], radius: fl
     return min(offset[1] - offset[0], (theta[1] - theta[0]) * radius)
 
 
+def _grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None
+          ) -> tuple[FloatArray, FloatArray, np.ndarray]:
+    """The pose grid a grip's boxes are sought on: its closing angles (every
+    :data:`THETA_STEP_DEG`), its offsets (:data:`OFFSET_STEPS` across the part and a
+    pad) and whether each pose holds."""
+    K = int(round(360 / THETA_STEP_DEG))
+    thetas = np.arange(K, dtype=float) * (2 * np.pi / K)
+    reach = polygon.radius + jaw.pad_width / 2
+    offsets = np.linspace(-reach, reach, OFFSET_STEPS)
+    return thetas, offsets, _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
+
+
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                 hole: int | None, certify: bool = True) -> list[JawPlan]:
     """The best boxes of one grip (external, or internal in ``hole``)."""
     radius = polygon.radius
-    K = int(round(360 / THETA_STEP_DEG))
-    M = OFFSET_STEPS
-    thetas = np.arange(K) * (2 * np.pi / K)
-    reach = radius + jaw.pad_width / 2
-    offsets = np.linspace(-reach, reach, M)
+    thetas, offsets, H = _grid(polygon, jaw, margin, hole)
+    K, M = thetas.size, offsets.size
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
-    H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
     # inside a hole only the identity (a symmetry may map the hole onto another)
     symmetries = part_symmetries(polygon) if hole is None else [("rot", 0.0)]
     plans: list[JawPlan] = []
@@ -772,13 +780,9 @@ def jaw_pareto(polygon: Polygon, jaw: ParallelJaw, margin: float = DEFAULT_MARGI
     if ws.size == 0 or not np.all(np.isfinite(ws) & (ws > 0)):
         raise ValueError(f"weights must be positive numbers, got {weights!r}")
     radius = polygon.radius
-    K = int(round(360 / THETA_STEP_DEG))
-    M = OFFSET_STEPS
-    thetas = np.arange(K) * (2 * np.pi / K)
-    reach = radius + jaw.pad_width / 2
-    offsets = np.linspace(-reach, reach, M)
+    thetas, offsets, H = _grid(polygon, jaw, margin, hole)
+    K = thetas.size
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
-    H = _pose_grid(polygon, jaw, margin, hole, thetas, offsets)
     found: list[JawPlan] = []
     for w in ws:
         score, k0, k1, j0, j1 = _box_scores(H.copy(), dth, dc, radius * float(w), K // 2)
