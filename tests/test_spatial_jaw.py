@@ -112,8 +112,9 @@ def _axes_inside(rng, solid, plan, n):
                                        for s in range(1, 30))])
 def test_every_axis_of_the_regions_holds(seed):
     rng = np.random.default_rng(seed)
-    solids = [demo_solid(n) for n in ("box", "angle", "mug")] if seed == 0 \
-        else [_extruded(seed)]
+    # the mug (the slowest) with the slow seeds
+    solids = [demo_solid(n) for n in ("box", "angle")] if seed == 0 \
+        else [demo_solid("mug"), _extruded(seed)] if seed == 1 else [_extruded(seed)]
     checked = 0
     for solid in solids:
         for plan in solid_jaw_plans(solid, STROKE, PAD, MU, top=4, margin=MARGIN):
