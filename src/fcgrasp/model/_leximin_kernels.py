@@ -78,6 +78,15 @@ def _wscale_row(L: Any, w1: Any, w2: Any) -> float:
     return max(s, TINY)
 
 
+def _need_row(L: Any, w2: Any, K2: float, active: Any, lb: Any) -> float:
+    """What knapsack 2 needs at lengths ``lb``: ``sum w2 (L + lb) - K2`` over the active
+    regions."""
+    need = 0.0
+    for i in range(L.shape[0]):
+        need += w2[i] * ((L[i] + lb[i]) if active[i] else 0.0)
+    return need - K2
+
+
 def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, lb: Any,
                   order: Any, eps: float, x: Any) -> bool:
     """Is there a box of regions at least ``lb`` long (:func:`~.regions._feasible`)?"""
@@ -86,10 +95,7 @@ def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, l
         if active[i] and not lb[i] <= L[i] + eps:
             return False
     slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
-    need = 0.0
-    for i in range(n):
-        need += w2[i] * ((L[i] + lb[i]) if active[i] else 0.0)
-    need -= K2
+    need = _need_row(L, w2, K2, active, lb)
     scale = eps * _wscale_row(L, w1, w2)
     return slack >= -scale and value >= need - scale
 
@@ -136,11 +142,8 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
         for i in range(n):
             lb[i] = lb0[i] + ends[e] * fr[i]
         slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
-        need = 0.0
-        for i in range(n):
-            need += w2[i] * ((L[i] if active[i] else 0.0) + (lb[i] if active[i] else 0.0))
-        need -= K2
-        d_end[e] = value - need if slack >= -tolw else -math.inf
+        d_end[e] = value - _need_row(L, w2, K2, active, lb) if slack >= -tolw \
+            else -math.inf
     pts[0], D[0] = 0.0, d_end[0]
     # the breakpoints, where the fill holds the items before j, full
     s0 = s1 = s0b = s1b = 0.0
@@ -251,8 +254,8 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
             out[b, i] = -1.0 if dead else (levels[i] if active[b, i] else 0.0)
 
 
-_LOOPS = CompiledLoops(globals(), (_order_row, _fill_row, _wscale_row, _feasible_row,
-                                   _max_level_row, _leximin_loop))
+_LOOPS = CompiledLoops(globals(), (_order_row, _fill_row, _wscale_row, _need_row,
+                                   _feasible_row, _max_level_row, _leximin_loop))
 
 
 def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,

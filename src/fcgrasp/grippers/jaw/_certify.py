@@ -283,6 +283,39 @@ def _edges(polygon: Polygon, ring: np.ndarray
     return a, b, polygon.normals[ring], uniq, inv.ravel()
 
 
+def _pad_signs(internal: bool) -> tuple[float, float]:
+    """The signs of pads A and B (:func:`_pad_candidates`' ``sign``): outside, A holds the
+    extreme of ``+y`` and B of ``-y``; inside a hole the other way round."""
+    return (-1.0, 1.0) if internal else (1.0, -1.0)
+
+
+def _pads(polygon: Polygon, ring: np.ndarray, boxes: FloatArray, half: float,
+          q: FloatArray | None) -> tuple[_Candidates, _Candidates, np.ndarray]:
+    """Both pads' candidates over each box (B, 4), and whether the closed jaws' segment
+    is free at every pose of it (always outside; inside a hole with insertion point
+    ``q`` from the centroid, each edge that may meet the strip wholly above or below the
+    insertion height, pad A meeting only edges above, pad B below)."""
+    sa, sb = _pad_signs(q is not None)
+    if q is None:
+        return (_pad_candidates(polygon, ring, sa, False, boxes, half),
+                _pad_candidates(polygon, ring, sb, False, boxes, half),
+                np.ones(len(boxes), dtype=bool))
+    up, down, free = _hole_sides(polygon, ring, q, boxes, half)
+    return (_pad_candidates(polygon, ring, sa, True, boxes, half, up),
+            _pad_candidates(polygon, ring, sb, True, boxes, half, down), free)
+
+
+def _angle_cuts(polygon: Polygon, ring: np.ndarray, t0: float, t1: float) -> FloatArray:
+    """``t0``, the critical angles strictly between (where an edge of ``ring`` turns
+    parallel to the closing direction: its facing and its lateral direction change sign
+    there) and ``t1``, sorted: no sub-box of a proof or a payload straddles one."""
+    d = polygon.ends[ring] - polygon.starts[ring]
+    crit = np.mod(np.arctan2(d[:, 1], d[:, 0]), np.pi)
+    crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
+                                                             int(np.ceil(t1 / np.pi)) + 1)])
+    return np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
+
+
 def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: FloatArray,
                 beta: float, q: FloatArray | None
                 ) -> tuple[np.ndarray, FloatArray, FloatArray]:
@@ -306,20 +339,9 @@ def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw,
                       ) -> tuple[np.ndarray, FloatArray, FloatArray]:
     """:func:`_box_proofs` by numpy (the reference of the compiled loop)."""
     internal = q is not None
-    half = jaw.pad_width / 2
-    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
-    if q is not None:
-        # the closed jaws' segment free at every pose (each edge that may meet the
-        # strip wholly above or below the insertion height); pad A meets only edges
-        # above, pad B below
-        up, down, free = _hole_sides(polygon, ring, q, boxes, half)
-        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half, up)
-        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half, down)
-        proved = ca.ok & cb.ok & free
-    else:
-        ca = _pad_candidates(polygon, ring, sa, internal, boxes, half)
-        cb = _pad_candidates(polygon, ring, sb, internal, boxes, half)
-        proved = ca.ok & cb.ok
+    sa, sb = _pad_signs(internal)
+    ca, cb, free = _pads(polygon, ring, boxes, jaw.pad_width / 2, q)
+    proved = ca.ok & cb.ok & free
     # the stops as heights along u: sign * stop lies in [lo, hi]
     a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
     b_lo, b_hi = np.minimum(sb * cb.lo, sb * cb.hi), np.maximum(sb * cb.lo, sb * cb.hi)
@@ -374,13 +396,8 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
         return None
     radius = polygon.radius
     q = None if hole is None else insertion_point(polygon, hole) - polygon.centroid
-    # cut the box at the critical angles, where an edge turns parallel to u (its facing
-    # and its lateral direction change sign there): no sub-box straddles one
-    d = polygon.ends[ring] - polygon.starts[ring]
-    crit = np.mod(np.arctan2(d[:, 1], d[:, 0]), np.pi)
-    crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
-                                                             int(np.ceil(t1 / np.pi)) + 1)])
-    cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
+    # cut the box at the critical angles: no sub-box straddles one
+    cuts = _angle_cuts(polygon, ring, t0, t1)
     todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
                             np.full(cuts.size - 1, c1)])
     if _kernels.available():

@@ -55,7 +55,8 @@ from ...model.loads import (
     grasp_payload,
 )
 from ...model.polygon import Polygon
-from ._certify import _Candidates, _hole_sides, _pad_candidates
+from ._certify import _angle_cuts, _Candidates, _pad_signs, _pads
+from ._plans import JawPlan, _contact_points
 from ._poses import MAX_CONTACTS, _grip_edges, _sin_range, insertion_point, jaw_poses
 
 __all__ = ["jaw_payload"]
@@ -81,7 +82,7 @@ class _PadPiece(NamedTuple):
 
 
 def _piece(polygon: Polygon, edges: np.ndarray, cand: _Candidates, b: int, i: int,
-           sign: float, box: FloatArray, beta: float, half_pad: float) -> _PadPiece | None:
+           box: FloatArray, beta: float, half_pad: float) -> _PadPiece | None:
     """The pad's candidate ``i`` of sub-box ``b`` (:class:`_PadPiece`); None where its
     common cone is empty or its drift unbounded (the bound is then 0)."""
     t0, t1, c0, c1 = box
@@ -89,12 +90,14 @@ def _piece(polygon: Polygon, edges: np.ndarray, cand: _Candidates, b: int, i: in
     g = polygon.centroid
     assert cand.kind is not None and cand.index is not None and cand.points is not None
     kind, index = int(cand.kind[b, i]), int(cand.index[b, i])
-    if kind == 0:                                   # a vertex: under the pad's face
-        face = tm + (0.0 if sign < 0 else np.pi)
-        half = beta - 0.5 * dt
+    if kind == 0:
+        # a vertex under the pad's face: its force's direction is the face's, over an
+        # arc (the candidate's centre and half-width: the sub-box's middle angle, dt / 2)
+        face, turn = float(cand.centre[b, i]), float(cand.half[b, i])
+        half = beta - turn
         if half < 0:
             return None
-        grow = np.cos(max(half - 0.5 * dt, 0.0)) / np.cos(half)
+        grow = np.cos(max(half - turn, 0.0)) / np.cos(half)
         p = cand.points[index] + g
         return _PadPiece(p, p, np.array([np.cos(face), np.sin(face)]), half, 0.0, 0.0,
                          float(grow))
@@ -148,24 +151,20 @@ def _pose_scale(polygon: Polygon, plan: Any, theta: float, offset: float, load: 
     (:func:`jaw_poses`), and the contacts; None where a pad touches more than one point
     (a face flush with the pad: a set of measure zero, left to the lower bound)."""
     r = jaw_poses(polygon, plan.jaw, [theta], [offset], hole=plan.hole)
-    u = np.array([np.cos(theta), np.sin(theta)])
-    lat = np.array([-u[1], u[0]])
-    internal = plan.hole is not None
+    sa, sb = _pad_signs(plan.hole is not None)
     pts, dirs = [], []
-    for stop, lats, psi, face in ((r.top[0], r.lat_a[0], r.psi_a[0],
-                                   theta if internal else theta + np.pi),
-                                  (r.bottom[0], r.lat_b[0], r.psi_b[0],
-                                   theta + np.pi if internal else theta)):
+    for stop, lats, psi, sign in ((r.top[0], r.lat_a[0], r.psi_a[0], sa),
+                                  (r.bottom[0], r.lat_b[0], r.psi_b[0], sb)):
         ok = np.flatnonzero(np.isfinite(lats[:, 0]))
         # a vertex is listed once per edge that meets there: one point, one force
         if not len(ok) or np.ptp(lats[ok]) > ROUND_TOL * polygon.size \
                 or np.ptp(psi[ok]) > ROUND_TOL:
             return None
         k = int(ok[0])
-        pts.append(polygon.centroid + stop * u + lats[k, 0] * lat)
-        # psi turns the pad's force towards +l (the lateral axis): from +u anticlockwise,
-        # from -u clockwise
-        ang = face + psi[k] if face == theta else face - psi[k]
+        pts.append(_contact_points(polygon, theta, lats[k:k + 1], float(stop))[0])
+        # the pad pushes along +u (sign < 0) or -u, and psi turns its force towards +l
+        # (the lateral axis): from +u anticlockwise, from -u clockwise
+        ang = theta + psi[k] if sign < 0 else theta + np.pi - psi[k]
         dirs.append([np.cos(ang), np.sin(ang)])
     P = np.array(pts)
     got = grasp_payload(P, np.array(dirs), plan.jaw.mu, load, force_limit=force_limit,
@@ -193,7 +192,6 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
     (0.953, 0.962, True)
     """
     from ...model.polygon import check_polygon
-    from ._plans import JawPlan
 
     polygon = check_polygon(polygon)
     if not isinstance(plan, JawPlan):
@@ -206,21 +204,15 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
     per, total = _limits(force_limit, total_limit, 2)
     W = load.wrenches(polygon.centroid)             # an ellipse's circumscribed polygon
     jaw = plan.jaw
-    internal = plan.hole is not None
     ring = _grip_edges(polygon, plan.hole)
     edges = np.flatnonzero(ring)
     half_pad = jaw.pad_width / 2
-    sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
     q = None if plan.hole is None else insertion_point(polygon, plan.hole) - polygon.centroid
     beta = float(np.arctan(jaw.mu))
     t0, t1 = (float(v) for v in plan.theta)
     c0, c1 = (float(v) for v in plan.offset)
     # no sub-box straddles a critical angle (an edge parallel to the closing direction)
-    d = polygon.ends[ring] - polygon.starts[ring]
-    crit = np.mod(np.arctan2(d[:, 1], d[:, 0]), np.pi)
-    crit = np.concatenate([crit + k * np.pi for k in range(int(np.floor(t0 / np.pi)) - 1,
-                                                             int(np.ceil(t1 / np.pi)) + 1)])
-    cuts = np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
+    cuts = _angle_cuts(polygon, ring, t0, t1)
     todo = [np.array([a, b, c0, c1]) for a, b in zip(cuts[:-1], cuts[1:], strict=True)]
     upper, worst = np.inf, np.zeros((2, 2))
     heap: list[tuple[float, int, FloatArray, bool | None]] = []
@@ -229,16 +221,7 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
 
     def bound(boxes: list[FloatArray]) -> None:
         nonlocal upper, worst, count
-        B = np.array(boxes)
-        if q is not None:
-            up, down, free = _hole_sides(polygon, ring, q, B, half_pad)
-            ca = _pad_candidates(polygon, ring, sa, True, B, half_pad, up)
-            cb = _pad_candidates(polygon, ring, sb, True, B, half_pad, down)
-            ok = free
-        else:
-            ca = _pad_candidates(polygon, ring, sa, False, B, half_pad)
-            cb = _pad_candidates(polygon, ring, sb, False, B, half_pad)
-            ok = np.ones(len(B), bool)
+        ca, cb, ok = _pads(polygon, ring, np.array(boxes), half_pad, q)
         # every candidate listed (a superset without the proofs' lower bound of the stop,
         # which needs narrow offsets: the payload's sub-boxes need not be)
         assert ca.count is not None and cb.count is not None
@@ -255,9 +238,9 @@ def jaw_payload(polygon: Polygon, plan: Any, load: Load, force_limit: Any = None
                 low = 0.0
             else:
                 for i in np.flatnonzero(ca.valid[b]):
-                    pa = _piece(polygon, edges, ca, b, int(i), sa, box, beta, half_pad)
+                    pa = _piece(polygon, edges, ca, b, int(i), box, beta, half_pad)
                     for j in np.flatnonzero(cb.valid[b]):
-                        pb = _piece(polygon, edges, cb, b, int(j), sb, box, beta, half_pad)
+                        pb = _piece(polygon, edges, cb, b, int(j), box, beta, half_pad)
                         got = _pair_bound(pa, pb, W, per, total)
                         if got < low:
                             low = got
