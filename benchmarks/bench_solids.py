@@ -29,8 +29,8 @@ import time
 import numpy as np
 import trimesh
 
-from fcgrasp.spatial import closure_margin
-from fcgrasp.spatial.regions import soft_pair_plans, soft_pair_regions
+from fcgrasp.spatial import closure_margin, soft_pair_plans
+from fcgrasp.spatial.regions import soft_pair_regions
 from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 from fcgrasp.spatial.triples import point_triple_plans, point_triple_regions
 

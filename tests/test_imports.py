@@ -92,7 +92,7 @@ def test_a_plane_part_plans_without_the_solids_programs():
             "assert not heavy, heavy\n"
             "import fcgrasp.spatial as s\n"
             "assert sorted(s._LAZY) == sorted(s.__all__) == dir(s)\n"
-            "assert s.soft_pair_plans is sys.modules['fcgrasp.spatial.regions'].soft_pair_plans\n"
+            "assert s.soft_pair_plans is sys.modules['fcgrasp.spatial.surfaces'].soft_pair_plans\n"
             "assert not hasattr(s, 'no_such_name')\n"
             "print('ok')")
     _prints_ok(code)

@@ -9,8 +9,17 @@ import json
 import numpy as np
 import pytest
 
-from fcgrasp.spatial import point_triple_plans, soft_pair_plans, solid_jaw_plans
-from fcgrasp.spatial.alternatives import distinct_solid_plans, same_solid_alternative
+from fcgrasp.spatial import (
+    facet_pair_plans,
+    point_triple_plans,
+    soft_pair_plans,
+    solid_jaw_plans,
+)
+from fcgrasp.spatial.alternatives import (
+    distinct_solid_plans,
+    same_solid_alternative,
+    top_distinct,
+)
 from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 
 trimesh = pytest.importorskip("trimesh")
@@ -35,7 +44,7 @@ def ranked():
     """Ranked plans of every solid gripper on tessellated surfaces (near-copies)."""
     ico = solid_from_mesh(trimesh.creation.icosphere(subdivisions=1, radius=20.0))
     cyl = demo_solid("cylinder")
-    return [soft_pair_plans(ico, 0.5, top=80),
+    return [facet_pair_plans(ico, 0.5, top=80),
             point_triple_plans(cyl, 0.5, top=15, refine=False).plans,
             solid_jaw_plans(cyl, (5, 50), 1, 0.5, top=None)]
 
@@ -71,6 +80,7 @@ def test_the_command_line_keeps_top_distinct_plans(tmp_path):
     doc = json.loads(out.read_text())
     assert doc["parameters"]["distinct"] == 0.5 and len(doc["grasps"]) == 4
     assert any(g.get("similar") for g in doc["grasps"])
-    every = soft_pair_plans(demo_solid("cylinder"), 0.5, top=None)
-    want = distinct_solid_plans(every, 0.5)[:4]
+    cyl = demo_solid("cylinder")
+    want = top_distinct(lambda n: soft_pair_plans(cyl, 0.5, top=n), 4, 0.5)
+    assert len(want) == 4
     assert [g["facets"] for g in doc["grasps"]] == [list(p.facets) for p in want]

@@ -11,8 +11,8 @@ import numpy as np
 import pytest
 
 from fcgrasp.io.meshes import read_solid
-from fcgrasp.spatial import closure_margin, two_soft_closure
-from fcgrasp.spatial.regions import soft_pair_plans, soft_pair_regions
+from fcgrasp.spatial import closure_margin, soft_pair_plans, two_soft_closure
+from fcgrasp.spatial.regions import facet_pair_plans, soft_pair_regions
 from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 
 trimesh = pytest.importorskip("trimesh")
@@ -43,7 +43,7 @@ def test_every_grasp_of_the_regions_is_force_closure(seed):
     checked = 0
     for solid in solids:
         mu = float(rng.choice([0.3, 0.6]))
-        for plan in soft_pair_plans(solid, mu, top=4):
+        for plan in facet_pair_plans(solid, mu, top=4):
             P = _grasps(rng, plan, 40)
             N = np.broadcast_to(plan.normals, P.shape)
             # the closed form at the cone's own edge (no margin) ...
@@ -59,7 +59,7 @@ def test_every_grasp_of_the_regions_is_force_closure(seed):
                 from shapely import points
                 assert poly.contains(points(facet.to_2d(reg))).all()
             checked += 1
-        if not soft_pair_plans(solid, mu, top=1):      # then no pair of facets holds any
+        if not facet_pair_plans(solid, mu, top=1):   # no pair of facets holds
             n = len(solid.facets)
             assert all(soft_pair_regions(solid, (i, j), mu) is None
                        for i in range(n) for j in range(n) if i != j)
@@ -73,14 +73,14 @@ def test_regions_equal_the_analytic_optimum():
     t = math.tan(math.atan(mu) - math.radians(margin))
     box = demo_solid("box")                                  # 40 x 20 x 10
     got = {tuple(sorted(int(np.argmax(np.abs(box.facets[f].normal))) for f in p.facets)):
-           p.radius for p in soft_pair_plans(box, mu, top=None, leximin=False)}
+           p.radius for p in facet_pair_plans(box, mu, top=None, leximin=False)}
     want = {(0, 0): min(40 * t / 2, 10 / 2), (1, 1): min(20 * t / 2, 10 / 2),
             (2, 2): min(10 * t / 2, 20 / 2)}
     assert got == pytest.approx(want, rel=1e-7)
-    cyl = soft_pair_plans(demo_solid("cylinder"), mu, top=1)[0]      # the two caps
+    cyl = facet_pair_plans(demo_solid("cylinder"), mu, top=1)[0]      # the two caps
     assert cyl.radius == pytest.approx(30 * t / 2, rel=1e-6)
     assert abs(cyl.normals[0] @ cyl.normals[1] + 1) < 1e-9
-    prism = soft_pair_plans(demo_solid("prism"), mu, top=1)[0]       # the ends, 25 apart
+    prism = facet_pair_plans(demo_solid("prism"), mu, top=1)[0]       # the ends, 25 apart
     assert prism.radius == pytest.approx(25 * t / 2, rel=1e-6)
 
 
@@ -97,7 +97,7 @@ def test_the_second_level_grows_the_other_octagon_as_far_as_it_holds():
     ring = np.c_[np.cos(a), np.sin(a)]
     pts = np.r_[np.c_[2 * ring, np.full(64, h)], np.c_[15 * ring, np.zeros(64)]]
     solid = solid_from_mesh(trimesh.convex.convex_hull(pts), "mm", "frustum")
-    plan = next(p for p in soft_pair_plans(solid, mu, top=5)
+    plan = next(p for p in facet_pair_plans(solid, mu, top=5)
                 if abs(p.normals[0][2]) > 0.999 and abs(p.normals[1][2]) > 0.999)
     r = plan.radius
     assert 2 * math.cos(math.pi / 64) * (1 - 1e-6) <= r <= 2 * (1 + 1e-6)
@@ -164,10 +164,10 @@ def test_bounded_search_equals_every_pair(seed):
     for mu in (float(rng.choice([0.2, 0.4])), float(rng.choice([0.8, 1.5]))):
         every = _every_pair(solid, mu)
         for top in (1, 5):
-            some = soft_pair_plans(solid, mu, top=top)
+            some = facet_pair_plans(solid, mu, top=top)
             assert [p.radius for p in some] == pytest.approx(
                 [p.radius for p in every[:top]], rel=1e-6, abs=1e-9 * solid.size)
-        everything = soft_pair_plans(solid, mu, top=None, leximin=False)   # first levels
+        everything = facet_pair_plans(solid, mu, top=None, leximin=False)   # first levels
         assert len(everything) == len(every)
         assert [p.radius for p in everything] == pytest.approx(
             [p.radius for p in every], rel=1e-6, abs=1e-9 * solid.size)
@@ -244,7 +244,7 @@ def test_meshes_are_read_and_checked(tmp_path):
     trimesh.creation.box((30.0, 10.0, 10.0)).export(path)
     solid = read_solid(str(path))
     assert len(solid.facets) == 6 and solid.units == "mm"
-    assert soft_pair_plans(solid, 0.5, top=1)[0].radius == pytest.approx(5.0, rel=1e-6)
+    assert facet_pair_plans(solid, 0.5, top=1)[0].radius == pytest.approx(5.0, rel=1e-6)
     open_mesh = trimesh.creation.box((1, 1, 1))
     open_mesh.update_faces(np.arange(10))
     with pytest.raises(ValueError, match="watertight"):

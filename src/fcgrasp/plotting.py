@@ -412,8 +412,9 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
                       panel: int = 3, outputs: Any = None) -> None:
     """Regions of two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`) or three
     fingers with friction (:func:`fcgrasp.spatial.point_triple_plans`) on a solid: one
-    3-D panel per plan (at most ``panel``): the mesh, the octagon regions, the fingers'
-    approach (the inward normals at the centres) and the lines between the centres."""
+    3-D panel per plan (at most ``panel``): the mesh, the octagon regions (a region
+    across the facets of a curved surface by its outline on it), the fingers' approach
+    (the inward normals at the centres) and the lines between the centres."""
     plt = _pyplot()
     from mpl_toolkits.mplot3d.art3d import Poly3DCollection
 
@@ -427,7 +428,9 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
         ax.add_collection3d(Poly3DCollection(tris, facecolor="0.85", edgecolor="0.6",
                                              linewidth=0.2, alpha=0.25))
         if plan is not None:
-            for reg, c, n, color in zip(plan.regions, plan.centers, plan.normals,
+            # a region across facets is drawn by its outline on the curved surface
+            drawn = getattr(plan, "outlines", ()) or plan.regions
+            for reg, c, n, color in zip(drawn, plan.centers, plan.normals,
                                         _FINGER_COLORS, strict=False):
                 ax.add_collection3d(Poly3DCollection([reg], facecolor=color, alpha=0.8,
                                                      edgecolor=color))
@@ -437,7 +440,8 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
                 else plan.centers
             ax.plot(*ring.T, color="0.2", linestyle=":", linewidth=1)
             facets = ", ".join(str(f) for f in plan.facets)
-            ax.set_title(f"{k + 1}: facets {facets}  r {plan.radius:.3g}", fontsize=9)
+            where = "across facets from" if getattr(plan, "outlines", ()) else "facets"
+            ax.set_title(f"{k + 1}: {where} {facets}  r {plan.radius:.3g}", fontsize=9)
         mid = 0.5 * (lo + hi)
         for setter, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid, strict=True):
             setter(m - 0.6 * span, m + 0.6 * span)

@@ -154,7 +154,8 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNIT
            "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",
            "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
            "INRADIUS_STEP", "FIT_ROUNDING", "PROJECTED_AXIS", "PLANAR_TOL",
-           "ROUNDING_SHRINK"]
+           "ROUNDING_SHRINK", "SURFACE_TOL", "SURFACE_STEP",
+           "SURFACE_CENTRE"]
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
@@ -183,6 +184,19 @@ PLANAR_TOL = 1e-6
 #: Solid grasps: the octagons' fits in triangles computed in a batch are bounds for the
 #: exact fits once raised by this fraction (their rounding).
 FIT_ROUNDING = 1e-9
+
+#: Solid grasps across facets (:mod:`fcgrasp.spatial.surfaces`): relative rounding of
+#: a patch's projected triangles (their union's area against the sum of theirs, its
+#: collinear corners, the check that a convex piece lies inside it) and of a facing
+#: line along a plane.
+SURFACE_TOL = 1e-9
+
+#: Solid grasps across facets: a region's radius is bisected to this fraction.
+SURFACE_STEP = 1e-6
+
+#: Solid grasps across facets: a patch's inscribed centre (where its convex piece is cut
+#: from: any point well inside will do) is found to this fraction of its size.
+SURFACE_CENTRE = 1e-2
 
 #: Solid grasps: below this length, a facet's first axis projected into another facet's
 #: plane is not a direction; the octagon turns along that facet's own axis instead.

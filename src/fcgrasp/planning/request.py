@@ -568,7 +568,7 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
         title = "a parallel jaw"
         mu = jaw.mu
     elif kind == "soft":
-        from ..spatial.regions import soft_pair_plans
+        from ..spatial.surfaces import soft_pair_plans
 
         plans = top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=request.margin),
                              request.top, request.distinct)

@@ -10,6 +10,8 @@
   facets, and the built-in solids;
 - :mod:`~fcgrasp.spatial.regions`: independent regions of two soft fingers on a pair of
   facets (one cone program each) and the search over every pair;
+- :mod:`~fcgrasp.spatial.surfaces`: certified regions of two soft fingers across the
+  facets of curved surfaces, and both searches ranked together (``soft_pair_plans``);
 - :mod:`~fcgrasp.spatial.triples`: certified regions of three point fingers with
   friction on three facets, and the search over triples;
 - :mod:`~fcgrasp.spatial.jaw`: a parallel jaw's region of closing axes on two opposite
@@ -33,7 +35,8 @@ _LAZY = {
                      "contact_wrench_generators"), "contacts"),
     **dict.fromkeys(("SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"), "jaw"),
     **dict.fromkeys(("SpatialQuality", "spatial_quality"), "quality"),
-    **dict.fromkeys(("SoftPairPlan", "soft_pair_plans", "soft_pair_regions"), "regions"),
+    **dict.fromkeys(("SoftPairPlan", "facet_pair_plans", "soft_pair_regions"), "regions"),
+    **dict.fromkeys(("SurfacePairPlan", "soft_pair_plans", "surface_pair_plans"), "surfaces"),
     **dict.fromkeys(("Facet", "Solid", "demo_solid", "solid_from_mesh"), "solid"),
     **dict.fromkeys(("PointTriplePlan", "PointTripleSearch", "perturbation_radius",
                      "point_triple_plans", "point_triple_regions"), "triples"),
@@ -49,8 +52,9 @@ if _TYPE_CHECKING:
     )
     from .jaw import SolidJawPlan, solid_jaw_plans, solid_jaw_region
     from .quality import SpatialQuality, spatial_quality
-    from .regions import SoftPairPlan, soft_pair_plans, soft_pair_regions
+    from .regions import SoftPairPlan, facet_pair_plans, soft_pair_regions
     from .solid import Facet, Solid, demo_solid, solid_from_mesh
+    from .surfaces import SurfacePairPlan, soft_pair_plans, surface_pair_plans
     from .triples import (
         PointTriplePlan,
         PointTripleSearch,
@@ -62,7 +66,8 @@ if _TYPE_CHECKING:
 __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_generators",
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
            "SpatialQuality", "spatial_quality", "SoftPairPlan", "soft_pair_plans",
-           "soft_pair_regions", "Facet", "Solid", "demo_solid", "solid_from_mesh",
+           "soft_pair_regions", "facet_pair_plans", "SurfacePairPlan", "surface_pair_plans",
+           "Facet", "Solid", "demo_solid", "solid_from_mesh",
            "PointTriplePlan", "PointTripleSearch", "perturbation_radius",
            "point_triple_plans", "point_triple_regions", "SolidJawPlan",
            "solid_jaw_plans", "solid_jaw_region"]

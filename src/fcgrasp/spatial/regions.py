@@ -22,7 +22,7 @@ function).  The program is exact for this family of regions: no larger pair of s
 octagons holds.  Measure: ``r`` (the paper's "largest smallest region", for discs of
 contact).
 
-:func:`soft_pair_plans` searches every pair of facets' convex pieces whose cones can
+:func:`facet_pair_plans` searches every pair of facets' convex pieces whose cones can
 meet (their normals within ``2 alpha`` of opposite), best bound first, and stops when
 the next bound cannot enter the top ``top``.  Three upper bounds on ``r``, batched over
 all pairs at once: the pieces' inscribed circles over ``cos(pi / 8)`` (an octagon of
@@ -60,7 +60,7 @@ from ._program import solve_linear
 from .alternatives import SolidPlan
 from .solid import Facet, Solid
 
-__all__ = ["OctagonPlan", "SoftPairPlan", "soft_pair_regions", "soft_pair_plans", "OCTAGON",
+__all__ = ["OctagonPlan", "SoftPairPlan", "soft_pair_regions", "facet_pair_plans", "OCTAGON",
            "DEFAULT_MARGIN_DEG"]
 
 #: Corners of the unit regular octagon (first along the first axis).
@@ -287,35 +287,39 @@ def _largest_holding(holds: Any, lo: float, hi: float) -> float:
     return lo
 
 
-def _largest_last(rows: list[FloatArray], rhs: list[float], cones: list[Any]
-                  ) -> FloatArray | None:
+def _largest_last(rows: list[FloatArray], rhs: list[float], cones: list[Any],
+                  almost: bool = False) -> FloatArray | None:
     """The cone program's solution with its last variable (a radius) largest, or None
-    when Clarabel does not solve it."""
+    when Clarabel does not solve it (``almost``: nor nearly, for a caller that checks
+    the answer itself)."""
     q = np.zeros(len(rows[0]))
     q[-1] = -1.0
     sol = solve_linear(q, rows, rhs, cones)
-    if not str(sol.status).startswith("Solved"):
+    status = str(sol.status)
+    if not (status.startswith("Solved") or almost and status.startswith("AlmostSolved")):
         return None
     return np.asarray(sol.x, float)
 
 
-def _cone_rows(f1: Facet, f2: Facet, alpha: float,
+def _cone_rows(f1: Facet, f2: Facet, alpha: float | tuple[float, float],
                pairs: list[tuple[FloatArray, FloatArray]], rows: list[FloatArray],
                rhs: list[float], cones: list[Any]) -> None:
     """Append to a cone program in ``(c1 (2), c2 (2), g)`` both friction cones' second-order
     constraints on each corner difference ``x = b + c2 A2 - c1 A1 + g m`` (one ``(b, m)``
     per pair of corners): ``(a . x / cos(alpha), x)`` in the cone, ``a`` each facet's
-    inward normal (the second's reversed)."""
+    inward normal (the second's reversed); ``alpha`` one half-angle, or one per facet."""
     import clarabel
 
-    for axis in (f1.normal, -f2.normal):
+    alphas = (alpha, alpha) if isinstance(alpha, float | int) else alpha
+    for axis, half in ((f1.normal, alphas[0]), (-f2.normal, alphas[1])):
+        cos_half = math.cos(half)
         for b, m in pairs:
             M = np.zeros((3, 5))
             M[:, 0:2] = -f1.axes.T
             M[:, 2:4] = f2.axes.T
             M[:, 4] = m
-            rows.append(-(axis @ M) / math.cos(alpha))
-            rhs.append(float(axis @ b) / math.cos(alpha))
+            rows.append(-(axis @ M) / cos_half)
+            rhs.append(float(axis @ b) / cos_half)
             for k in range(3):
                 rows.append(-M[k])
                 rhs.append(float(b[k]))
@@ -674,9 +678,9 @@ def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,
                          (int(table.local[pa]), int(table.local[pb])), alpha, halfplanes)
 
 
-def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
-                    margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True
-                    ) -> list[SoftPairPlan]:
+def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
+                     margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True
+                     ) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
     docstring), by best-first search over every pair of convex pieces whose cones can
     meet: the pairs' bounds batched, round by round (:func:`_pairs`,
@@ -689,7 +693,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     first level, ranks them either way).
 
     >>> from fcgrasp.spatial.solid import demo_solid
-    >>> [round(p.radius, 4) for p in soft_pair_plans(demo_solid("box"), mu=0.3, top=3)]
+    >>> [round(p.radius, 4) for p in facet_pair_plans(demo_solid("box"), mu=0.3, top=3)]
     [5.0, 2.9051, 1.4526]
     """
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)

@@ -1,0 +1,562 @@
+r"""Regions of two soft fingers across the facets of a curved surface (issue 33: a curved
+surface is the facets of its tessellation, and a region held inside one of them is a
+sliver on a finely tessellated cylinder; the paper's regions of contact "along curved
+outlines", section 7, in three dimensions).
+
+**A patch** is a connected set of the mesh's triangles whose inward normals lie within
+``beta`` of a reference normal ``n_0`` (its seed triangle's), grown from the seed across
+shared edges.  It is drawn in the plane through the seed's centroid across ``n_0``: each
+patch point projects into the union ``U`` of its triangles' projections, at a height
+(along ``n_0``) within the patch's ``[low, high]``.
+
+**A region** is a regular octagon ``P`` (as in :mod:`.regions`) inside the **kernel** of
+``U`` (the intersection of the inner half-planes of its edges: convex and inside ``U``;
+``U`` itself when it is convex); a finger may touch any patch point that projects into
+``P``.  Those points lie in the prism ``P x [low, high]``, and the surface's normal at
+each of them is within ``beta`` of ``n_0``.
+
+**The condition (sufficient).**  A friction cone of half-angle ``alpha`` about a normal
+within ``beta`` of ``n_0`` contains the cone of half-angle ``alpha - beta`` about ``n_0``.
+Two soft fingers hold when the segment joining them lies inside both friction cones
+(:func:`~fcgrasp.spatial.closure.two_soft_closure`), so they hold anywhere in two regions
+when every difference of the two prisms' corners (16 each) lies in the cone of
+``alpha - beta_1`` about ``n_{0,1}`` and of ``alpha - beta_2`` about ``-n_{0,2}``: both
+cones are convex, and the differences of the prisms are the convex hull of their
+corners' (:mod:`.regions`).  The largest pair of octagons under that condition is one
+second-order cone program (Clarabel), solved directly by the octagons' own fits in the
+kernels where those pass the float check.  The regions are **certified** (every grasp in
+them holds), not proved the largest: the condition is sufficient, not necessary, and the
+patches are a finite family.
+
+**The family.**  A smaller ``beta`` keeps more of the cone, a larger one more of the
+surface: each seed's patch is tried at ``beta = alpha / 4, alpha / 2, 3 alpha / 4``.
+Seeds cover the mesh: a triangle is a seed unless it lies in the smallest patch of a
+seed before it (at most :data:`MAX_SEEDS`; the covering patch is widened until they
+fit).  A patch of one facet is left to :mod:`.regions` (exact there).  Pairs of patches
+are taken best bound first, the bound tightened by the octagons' fits before a pair is
+solved, and the search stops when no bound can enter the top ``top``.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, IntArray
+from ..core.tolerances import (
+    CONE_PROGRAM_TOL,
+    FIT_ROUNDING,
+    SURFACE_CENTRE,
+    SURFACE_STEP,
+    SURFACE_TOL,
+)
+from .contacts import contact_frames
+from .regions import (
+    _SHRINKS,
+    DEFAULT_MARGIN_DEG,
+    Halfplanes,
+    SoftPairPlan,
+    _cone_rows,
+    _fit,
+    _largest_last,
+    _octagon_axes,
+    _piece_rows,
+    _ring_halfplanes,
+    checked_cone,
+    facet_pair_plans,
+)
+from .solid import Facet, Solid
+
+__all__ = ["SurfacePairPlan", "surface_pair_plans", "soft_pair_plans", "SPREADS",
+           "MAX_SEEDS"]
+
+#: The patches' spreads ``beta``, as fractions of the cone's half-angle ``alpha``.
+SPREADS = (0.25, 0.5, 0.75)
+
+#: The most seeds of patches on one solid.
+MAX_SEEDS = 32
+
+#: Points drawn along each side of an octagon for its outline on the surface.
+OUTLINE_STEPS = 6
+
+_COS8 = math.cos(math.pi / 8)
+
+
+@dataclass(frozen=True)
+class SurfacePairPlan(SoftPairPlan):
+    """Regions of two soft fingers across facets (module docstring): a
+    :class:`~fcgrasp.spatial.SoftPairPlan` whose ``facets`` are the seeds' facets,
+    ``normals`` the patches' reference normals ``n_0``, ``regions`` the octagons'
+    corners lifted onto the surface and ``radius`` their circumradius (in the plane
+    across ``n_0``), with ``surfaces`` (the facets each region covers), ``triangles``
+    (the mesh triangles of each patch: a finger may touch any of their points that
+    projects into the octagon), ``spread`` (each patch's ``beta``, degrees) and
+    ``outlines`` (each region's boundary on the surface, 3-D points)."""
+
+    surfaces: tuple[tuple[int, ...], ...] = ()
+    triangles: tuple[IntArray, ...] = field(default=(), repr=False)
+    spread: tuple[float, ...] = ()
+    outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        out = super().to_dict()
+        out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
+                    "spread_deg": list(self.spread),
+                    "outlines": [o.tolist() for o in self.outlines]})
+        return out
+
+
+@dataclass
+class _Patch:
+    """One patch (module docstring): its seed triangle and spread ``beta``, reference
+    frame (a :class:`~fcgrasp.spatial.solid.Facet` across ``n_0``), triangles, heights
+    ``[low, high]``, projected vertices (m, 2) and, once asked, the kernel's
+    half-planes."""
+
+    seed: int
+    beta: float
+    frame: Facet
+    triangles: IntArray
+    low: float
+    high: float
+    flat: FloatArray
+    width_bound: float
+    kernel: Halfplanes | None = None
+    fit: tuple[float, FloatArray] | None = None
+
+
+def _graph(solid: Solid) -> tuple[FloatArray, list[list[int]], IntArray]:
+    """The mesh's inward unit normals (F, 3), each triangle's neighbours across its
+    edges, and the facet of each triangle."""
+    mesh = solid.mesh
+    normals = -np.asarray(mesh.face_normals, float)
+    adj: list[list[int]] = [[] for _ in range(len(normals))]
+    for a, b in np.asarray(mesh.face_adjacency).reshape(-1, 2).tolist():
+        adj[a].append(b)
+        adj[b].append(a)
+    facet_of = np.empty(len(normals), np.intp)
+    for f in solid.facets:
+        facet_of[list(f.faces)] = f.index
+    return normals, adj, facet_of
+
+
+def _grow(seed: int, near: list[bool], adj: list[list[int]]) -> list[int]:
+    """The triangles reached from ``seed`` across edges, every one (the seed too) ``near``
+    the patch's axis (within its spread); empty when the seed is not."""
+    if not near[seed]:
+        return []
+    seen = {seed}
+    todo = [seed]
+    while todo:
+        for u in adj[todo.pop()]:
+            if near[u] and u not in seen:
+                seen.add(u)
+                todo.append(u)
+    return sorted(seen)
+
+
+def _seeds(normals: FloatArray, adj: list[list[int]], areas: FloatArray, beta: float
+           ) -> list[int]:
+    """Seeds covering the mesh, largest triangle first: each triangle not in the patch
+    (spread ``beta``) of a seed before it; the spread widened by half until there are
+    at most :data:`MAX_SEEDS`."""
+    order = np.argsort(-areas, kind="stable").tolist()
+    while True:
+        covered = np.zeros(len(normals), bool)
+        seeds: list[int] = []
+        for t in order:
+            if covered[t]:
+                continue
+            seeds.append(t)
+            if len(seeds) > MAX_SEEDS:
+                break
+            covered[_grow(t, (normals @ normals[t] >= math.cos(beta)).tolist(),
+                          adj)] = True
+        if len(seeds) <= MAX_SEEDS or beta >= math.pi / 2:
+            return seeds
+        beta = min(1.5 * beta, math.pi / 2)
+
+
+def _patch(solid: Solid, seed: int, beta: float, triangles: list[int], axis: FloatArray
+           ) -> _Patch:
+    """The patch of ``triangles`` grown from ``seed`` within ``beta`` of ``axis`` (its
+    ``n_0``), drawn in the plane across ``axis`` through the seed's centroid."""
+    vertices = np.asarray(solid.mesh.vertices, float)
+    faces = np.asarray(solid.mesh.faces)
+    t1, t2 = contact_frames(axis[None, :])
+    axes = np.stack([t1[0], t2[0]])
+    origin = vertices[faces[seed]].mean(axis=0)
+    frame = Facet(seed, tuple(triangles), axis, origin, axes, None)
+    used = vertices[np.unique(faces[triangles])] - origin
+    height = used @ axis
+    flat = used @ axes.T
+    angles = np.arange(8) * math.pi / 8
+    proj = flat @ np.c_[np.cos(angles), np.sin(angles)].T
+    width = float(np.min(proj.max(axis=0) - proj.min(axis=0)))
+    return _Patch(seed, beta, frame, np.asarray(triangles, np.intp), float(height.min()),
+                  float(height.max()), flat, width / (2 * _COS8))
+
+
+def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
+    """A convex piece of the union ``U`` of the patch's projected triangles, as
+    half-planes: ``U``'s convex hull cut at each reflex corner ``v`` (and each corner of a
+    hole) by the line through ``v`` across the direction from ``U``'s inscribed centre;
+    checked inside ``U`` by shapely, else ``U``'s kernel (every edge of its boundary as a
+    half-plane, the polygon on its left: inside ``U`` always)."""
+    import shapely
+    from shapely.geometry.polygon import orient
+
+    if patch.kernel is not None:
+        return patch.kernel
+    vertices = np.asarray(solid.mesh.vertices, float)
+    faces = np.asarray(solid.mesh.faces)
+    tri = (vertices[faces[patch.triangles]] - patch.frame.origin) @ patch.frame.axes.T
+    polys = shapely.polygons(tri)
+    union = shapely.coverage_union_all(polys)          # edge-matched: the fast union
+    if abs(union.area - float(np.sum(shapely.area(polys)))) > SURFACE_TOL * union.area:
+        union = shapely.union_all(polys)               # they overlap: the full one
+    union = union.simplify(SURFACE_TOL * solid.size)
+    if union.geom_type != "Polygon":          # touching at points: the seed's part
+        seed = shapely.Point(0.0, 0.0)
+        union = min(union.geoms, key=lambda g: g.distance(seed))
+    union = orient(union, 1.0)
+    hull = _ring_halfplanes(np.asarray(orient(union.convex_hull, 1.0).exterior.coords)[:-1])
+    centre = np.asarray(shapely.maximum_inscribed_circle(
+        union, SURFACE_CENTRE * math.sqrt(union.area)).coords[0])
+    ring = np.asarray(union.exterior.coords)[:-1]
+    before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
+    reflex = ring[before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0] < 0]
+    cuts = np.concatenate([reflex, *(np.asarray(h.coords)[:-1] for h in union.interiors)])
+    away = cuts - centre
+    length = np.hypot(away[:, 0], away[:, 1])
+    ok = length > 0
+    E = np.concatenate([hull[0], away[ok] / length[ok, None]])
+    h = np.concatenate([hull[1], np.einsum("ij,ij->i", E[len(hull[0]):], cuts[ok])])
+    piece = _clip(E, h)
+    if piece is not None and union.buffer(SURFACE_TOL * solid.size).contains(piece):
+        patch.kernel = (E, h)
+        return patch.kernel
+    E_, h_ = [], []
+    for r in (union.exterior, *union.interiors):
+        e, hh = _ring_halfplanes(np.asarray(r.coords)[:-1])
+        E_.append(e)
+        h_.append(hh)
+    patch.kernel = (np.concatenate(E_), np.concatenate(h_))
+    return patch.kernel
+
+
+def _clip(E: FloatArray, h: FloatArray) -> Any:
+    """The bounded polygon ``E x <= h`` as a shapely polygon (each half-plane a large box,
+    intersected in turn), or None when it is empty."""
+    poly = None
+    for a, b in zip(E, h, strict=True):
+        box = _halfplane_box(a, float(b))
+        poly = box if poly is None else poly.intersection(box)
+        if poly.is_empty:
+            return None
+    return poly if poly is not None and poly.geom_type == "Polygon" else None
+
+
+def _halfplane_box(e: FloatArray, h: float) -> Any:
+    """The half-plane ``e . x <= h`` (``e`` a unit vector) cut to a square 2e6 wide."""
+    import shapely
+
+    big = 1e6
+    t = np.array([-e[1], e[0]])
+    base = e * h
+    return shapely.Polygon([base + big * t, base - big * t, base - big * t - 2 * big * e,
+                            base + big * t - 2 * big * e])
+
+
+def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
+           patches: tuple[_Patch, _Patch], alphas: tuple[float, float], r: float) -> bool:
+    """The module's condition checked in floats: every difference of the two prisms'
+    corners (octagons of circumradius ``r`` about ``c1``, ``c2``, 3-D) strictly inside
+    both narrowed cones, every octagon corner inside its kernel."""
+    p, q = patches
+    P1 = _prism(c1 + r * Q1, p)
+    P2 = _prism(c2 + r * Q2, q)
+    d = P2[None, :, :] - P1[:, None, :]
+    length = np.linalg.norm(d, axis=-1)
+    for axis, a in ((p.frame.normal, alphas[0]), (-q.frame.normal, alphas[1])):
+        if not np.all(d @ axis > math.cos(a) * length):
+            return False
+    for c, Q, pt in ((c1, Q1, p), (c2, Q2, q)):
+        E, h = pt.kernel  # type: ignore[misc]
+        if not np.all(pt.frame.to_2d(c + r * Q) @ E.T <= h):
+            return False
+    return True
+
+
+def _prism(corners: FloatArray, patch: _Patch) -> FloatArray:
+    """The octagon's corners (in the patch's plane) at both heights (16, 3)."""
+    n0 = patch.frame.normal
+    return np.concatenate([corners + patch.low * n0, corners + patch.high * n0])
+
+
+def _program(p: _Patch, q: _Patch, alphas: tuple[float, float]
+             ) -> tuple[FloatArray, FloatArray, float] | None:
+    """The largest octagons under the module's condition: one cone program as
+    :func:`~fcgrasp.spatial.regions._pair_program`, over the prisms' corners."""
+    import clarabel
+
+    fp, fq = p.frame, q.frame
+    Q1, Q2 = _octagon_axes(fp, fq)
+    halfplanes = (p.kernel, q.kernel)
+    rows, rhs = _piece_rows((fp, fq), (Q1, Q2), halfplanes)  # type: ignore[arg-type]
+    cones: list[Any] = [clarabel.NonnegativeConeT(len(rows))]
+    base = fq.origin - fp.origin
+    shifts = [hq * fq.normal - hp * fp.normal for hp in (p.low, p.high)
+              for hq in (q.low, q.high)]
+    _cone_rows(fp, fq, alphas, [(base + s, q2 - q1) for s in shifts for q1 in Q1
+                                for q2 in Q2], rows, rhs, cones)
+    z = _largest_last(rows, rhs, cones, almost=True)        # certified after
+    if z is None:
+        return None
+    return fp.to_3d(z[0:2]), fq.to_3d(z[2:4]), float(z[4])
+
+
+def _certified(c1: FloatArray, c2: FloatArray, p: _Patch, q: _Patch,
+               alphas: tuple[float, float], r: float) -> float:
+    """The radius ``r`` or the largest below it that :func:`_holds` confirms."""
+    Q1, Q2 = _octagon_axes(p.frame, q.frame)
+
+    def holds(x: float) -> bool:
+        return _holds(c1, c2, Q1, Q2, (p, q), alphas, x)
+
+    for shrink in _SHRINKS:
+        if holds(r * (1 - shrink)):
+            return r * (1 - shrink)
+    if not holds(0.0):
+        return 0.0
+    lo, hi = 0.0, r
+    while hi - lo > SURFACE_STEP * r:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if holds(mid) else (lo, mid)
+    return lo
+
+
+def _lift(solid: Solid, patch: _Patch, xy: FloatArray) -> FloatArray:
+    """Points (k, 2) of the patch's plane lifted onto its triangles along ``n_0`` (the
+    first triangle whose projection holds each point; the nearest for a point a rounding
+    outside every one)."""
+    vertices = np.asarray(solid.mesh.vertices, float)
+    faces = np.asarray(solid.mesh.faces)
+    f = patch.frame
+    tri3 = vertices[faces[patch.triangles]] - f.origin                  # (m, 3, 3)
+    tri = tri3 @ f.axes.T                                               # (m, 3, 2)
+    h = tri3 @ f.normal                                                 # (m, 3)
+    a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
+    det = (b[:, 0] - a[:, 0]) * (c[:, 1] - a[:, 1]) - (b[:, 1] - a[:, 1]) * (c[:, 0] - a[:, 0])
+    x = xy[:, None, :] - a[None, :, :]                                  # (k, m, 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        u = (x[..., 0] * (c[:, 1] - a[:, 1]) - x[..., 1] * (c[:, 0] - a[:, 0])) / det
+        v = ((b[:, 0] - a[:, 0]) * x[..., 1] - (b[:, 1] - a[:, 1]) * x[..., 0]) / det
+    w = np.stack([1 - u - v, u, v], axis=-1)                             # (k, m, 3)
+    worst = np.nan_to_num(w.min(axis=-1), nan=-np.inf)
+    pick = np.argmax(worst, axis=1)
+    wk = np.clip(w[np.arange(len(xy)), pick], 0, 1)
+    wk /= wk.sum(axis=1, keepdims=True)
+    height = np.einsum("kj,kj->k", wk, h[pick])
+    return np.asarray(f.to_3d(xy) + height[:, None] * f.normal)
+
+
+def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatArray,
+                  r: float, mu: float, margin: float, facet_of: IntArray
+                  ) -> SurfacePairPlan:
+    Q1, Q2 = _octagon_axes(p.frame, q.frame)
+    regions, centers, outlines = [], [], []
+    steps = np.arange(OUTLINE_STEPS) / OUTLINE_STEPS
+    for patch, c, Q in ((p, c1, Q1), (q, c2, Q2)):
+        corners = patch.frame.to_2d(c + r * Q)
+        ring = corners[:, None, :] + steps[None, :, None] * (
+            np.roll(corners, -1, axis=0) - corners)[:, None, :]
+        regions.append(_lift(solid, patch, corners))
+        centers.append(_lift(solid, patch, patch.frame.to_2d(c)[None, :])[0])
+        outlines.append(_lift(solid, patch, ring.reshape(-1, 2)))
+    surfaces = tuple(tuple(sorted({int(v) for v in facet_of[t.triangles]})) for t in (p, q))
+    facets = (int(facet_of[p.seed]), int(facet_of[q.seed]))
+    return SurfacePairPlan(facets, (-1, -1), r, np.stack(centers), np.stack(regions),
+                           np.stack([p.frame.normal, q.frame.normal]), mu, margin,
+                           radii=(r, r), surfaces=surfaces,
+                           triangles=(p.triangles, q.triangles),
+                           spread=(math.degrees(p.beta), math.degrees(q.beta)),
+                           outlines=tuple(outlines))
+
+
+def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
+                    margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True,
+                    across: bool = True) -> list[SoftPairPlan]:
+    """The best regions of two soft fingers on ``solid``, largest first: the exact
+    regions on pairs of facets (:func:`~fcgrasp.spatial.regions.facet_pair_plans`, with
+    ``leximin`` their second level grown) and, with ``across`` (the default), the
+    certified regions across the facets of curved surfaces (:func:`surface_pair_plans`,
+    searched only above the facets' ``top``-th), ranked together by ``radius``.
+
+    >>> from fcgrasp.spatial.solid import demo_solid
+    >>> [round(p.radius, 2) for p in soft_pair_plans(demo_solid("mug"), mu=0.5, top=2)]
+    [7.96, 7.96]
+    >>> type(soft_pair_plans(demo_solid("mug"), mu=0.5, top=1)[0]).__name__
+    'SurfacePairPlan'
+    """
+    if not isinstance(across, bool):
+        raise TypeError(f"across must be a bool, got {across!r}")
+    out = facet_pair_plans(solid, mu, top, margin, leximin)
+    if not across:
+        return out
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
+    last = out[top - 1].radius if top is not None and len(out) >= top else 0.0
+    return sorted([*out, *surface_pair_plans(solid, mu_v, alpha, top, margin_v, last)],
+                  key=lambda p: -p.radius)[:top]
+
+
+def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
+                       margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0
+                       ) -> list[SurfacePairPlan]:
+    """The best regions of two soft fingers across facets (module docstring), largest
+    first, at most ``top`` (None: every pair of patches), each larger than ``floor``:
+    ``mu`` and ``margin`` as :func:`~fcgrasp.spatial.soft_pair_plans` checked them,
+    ``alpha = atan(mu) - margin`` in radians.  An empty list where no patch spans two
+    facets (a box, a prism)."""
+    if alpha <= 0:
+        return []
+    normals, adj, facet_of = _graph(solid)
+    areas = np.asarray(solid.mesh.area_faces, float)
+    seeds = np.array(_seeds(normals, adj, areas, SPREADS[0] * alpha), np.intp)
+    # pairs of seeds whose normals are within 2 alpha of opposite; each pair's patches
+    # about the bisector ``d`` of its normals (``-d`` for the second), spread from the
+    # seeds' own tilt ``theta`` towards alpha
+    ns = normals[seeds]
+    ii, jj = np.nonzero(np.triu(-(ns @ ns.T) > math.cos(min(2 * alpha, math.pi)), 1))
+    # and each seed with the triangle facing it most squarely (its normal the most
+    # nearly opposite), the pair a smooth surface grasps best across
+    facing = np.argmin(ns @ normals.T, axis=1)
+    keep = -np.einsum("ij,ij->i", ns, normals[facing]) > math.cos(min(2 * alpha, math.pi))
+    first = np.concatenate([seeds[ii], seeds[keep]])
+    second = np.concatenate([seeds[jj], facing[keep]])
+    d = normals[first] - normals[second]
+    d /= np.linalg.norm(d, axis=1)[:, None]
+    theta = np.arccos(np.clip(np.einsum("ij,ij->i", normals[first], d), -1, 1))
+    beta = (theta[:, None] + np.asarray(SPREADS)[None, :] * (alpha - theta)[:, None]).ravel()
+    # a first bound, before any patch is grown: the solid's extent along d for H
+    reach = np.asarray(solid.mesh.vertices, float) @ d.T
+    extent = np.repeat(reach.max(axis=0) - reach.min(axis=0), len(SPREADS))
+    bound = extent * np.tan(alpha - beta) / (2 * _COS8)
+    floor = max(floor, CONE_PROGRAM_TOL * solid.size)
+    heap = [(-float(bound[k]), 0, k) for k in np.flatnonzero(bound > floor).tolist()]
+    heapq.heapify(heap)
+    pairs: dict[int, tuple[_Patch, _Patch]] = {}
+    found: list[tuple[float, int, FloatArray, FloatArray]] = []
+    while heap:
+        neg, stage, k = heapq.heappop(heap)
+        limit = found[top - 1][0] if top is not None and len(found) >= top else floor
+        if -neg <= limit:
+            break
+        if stage == 0:                        # grow the patches, bound by their extent
+            m = k // len(SPREADS)
+            axis, b = d[m], float(beta[k])
+            along = normals @ axis
+            i, j = int(first[m]), int(second[m])
+            a = _grow(i, (along >= math.cos(b)).tolist(), adj)
+            c = _grow(j, (-along >= math.cos(b)).tolist(), adj)
+            if not a or not c or \
+                    len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
+                continue                      # one facet each: :mod:`.regions`' exact case
+            pairs[k] = (_patch(solid, i, b, a, axis), _patch(solid, j, b, c, -axis))
+            tight = min(-neg, _pair_bound(*pairs[k], alpha))
+            if tight > limit:
+                heapq.heappush(heap, (-tight, 1, k))
+            continue
+        p, q = pairs[k]
+        alphas = (alpha - p.beta, alpha - q.beta)
+        Q1, Q2 = _octagon_axes(p.frame, q.frame)
+        s1, t1 = _fit(_kernel(solid, p), Q1 @ p.frame.axes.T)
+        s2, t2 = _fit(_kernel(solid, q), Q2 @ q.frame.axes.T)
+        if stage == 1:                        # tighten by the octagons' fits, then queue
+            tight = min(-neg, s1 * (1 + FIT_ROUNDING), s2 * (1 + FIT_ROUNDING))
+            if tight > limit:
+                heapq.heappush(heap, (-tight, 2, k))
+            continue
+        # a lower bound the cone program improves for the pairs kept: the octagons as
+        # large as they hold about the fits' centres, or about one fit's centre and the
+        # point facing it on the other patch
+        r, c1, c2 = _facing(p, q, alphas, (t1, t2), -neg)
+        if r > limit:
+            found.append((r, k, c1, c2))
+            found.sort(key=lambda x: -x[0])
+            del found[top or len(found):]
+    plans = []
+    for r, k, c1, c2 in found:
+        p, q = pairs[k]
+        alphas = (alpha - p.beta, alpha - q.beta)
+        got = _program(p, q, alphas)
+        if got is not None:
+            d1, d2, g = got
+            g = _certified(d1, d2, p, q, alphas, g)
+            if g > r:
+                r, c1, c2 = g, d1, d2
+        plans.append(_surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of))
+    return sorted(plans, key=lambda x: -x.radius)
+
+
+def _facing(p: _Patch, q: _Patch, alphas: tuple[float, float],
+            fits: tuple[FloatArray, FloatArray], bound: float
+            ) -> tuple[float, FloatArray, FloatArray]:
+    """The largest octagons that hold about three choices of centres (the fits' own;
+    one fit's centre and the point of the other plane it faces along the bisector of
+    ``n_0`` and ``-n_0``): the radius and both centres (3-D)."""
+    fp, fq = p.frame, q.frame
+    Q1, Q2 = _octagon_axes(fp, fq)
+    axis = fp.normal - fq.normal
+    axis = axis / np.linalg.norm(axis)
+    a1, a2 = fp.to_3d(fits[0]), fq.to_3d(fits[1])
+    best = (0.0, a1, a2)
+    for c1, c2 in ((a1, a2), (a1, _facing_point(a1, axis, fq)),
+                   (_facing_point(a2, -axis, fp), a2)):
+        if c1 is None or c2 is None:
+            continue
+        room = min(_room(p, c1, Q1), _room(q, c2, Q2), bound)
+        if room <= best[0]:
+            continue
+        r = _certified(c1, c2, p, q, alphas, room)
+        if r > best[0]:
+            best = (r, c1, c2)
+    return best
+
+
+def _facing_point(c: FloatArray, axis: FloatArray, frame: Facet) -> FloatArray | None:
+    """Where the line from ``c`` along ``axis`` meets ``frame``'s plane (None when it runs
+    along it)."""
+    along = float(axis @ frame.normal)
+    if abs(along) < SURFACE_TOL:
+        return None
+    return np.asarray(c + (float((frame.origin - c) @ frame.normal) / along) * axis)
+
+
+def _room(patch: _Patch, c: FloatArray, Q: FloatArray) -> float:
+    """The largest octagon about ``c`` (3-D, in the patch's plane) inside its kernel."""
+    E, h = patch.kernel  # type: ignore[misc]
+    k = (E @ (Q @ patch.frame.axes.T).T).max(axis=1)
+    return max(float(np.min((h - E @ patch.frame.to_2d(c)) / k)), 0.0)
+
+
+def _pair_bound(p: _Patch, q: _Patch, alpha: float) -> float:
+    """An upper bound on the octagons' radius on two patches (P first, Q second): the
+    narrower patch's width over the octagon's least width ``2 r cos(pi / 8)``; and the
+    cones.  Along a direction ``u`` in both planes (across both normals) each octagon is
+    at least ``2 r cos(pi / 8)`` wide, so the differences of Q's corners and P's span ``4
+    r cos(pi / 8)`` across ``n_0`` of P, and lie in the cone of ``alpha - beta`` about it
+    below the height ``H`` of Q's highest corner over P's lowest: ``r <= H tan(alpha -
+    beta) / (2 cos(pi / 8))``; the same for P over Q."""
+    cone = math.inf
+    for a, b in ((p, q), (q, p)):
+        f, g = a.frame, b.frame
+        high = float(np.max((g.origin + b.flat @ g.axes) @ f.normal)) \
+            + max(b.low * float(g.normal @ f.normal), b.high * float(g.normal @ f.normal))
+        rise = high - float(f.origin @ f.normal) - a.low
+        cone = min(cone, rise * math.tan(alpha - a.beta) / (2 * _COS8))
+    return min(p.width_bound, q.width_bound, cone)

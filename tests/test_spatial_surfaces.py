@@ -1,0 +1,165 @@
+"""Regions of two soft fingers across the facets of curved surfaces (issue 33): every
+grasp of every region, found on the mesh by casting rays (not by the planner's lifting),
+with the normal of the triangle it lands on, passes the closed form at the cone's own
+edge and the 6-D cone program; the regions are far larger than one facet allows on
+curved solids, and nothing changes where no surface is curved."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from fcgrasp.spatial import closure_margin, soft_pair_plans, two_soft_closure
+from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
+from fcgrasp.spatial.surfaces import SurfacePairPlan, surface_pair_plans
+
+trimesh = pytest.importorskip("trimesh")
+
+
+def _cast(mesh, triangles, starts, direction):
+    """Every hit (point, triangle) of rays from ``starts`` along ``direction`` on the
+    given triangles (Moller-Trumbore, written here): a list per ray."""
+    tri = np.asarray(mesh.vertices)[np.asarray(mesh.faces)[triangles]]
+    a, e1, e2 = tri[:, 0], tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0]
+    pvec = np.cross(direction, e2)                                  # (m, 3)
+    det = np.einsum("ij,ij->i", e1, pvec)
+    hits = []
+    for s in starts:
+        t = s - a
+        u = np.einsum("ij,ij->i", t, pvec) / det
+        q = np.cross(t, e1)
+        v = (q @ direction) / det
+        dist = np.einsum("ij,ij->i", e2, q) / det
+        eps = 1e-9
+        ok = (u >= -eps) & (v >= -eps) & (u + v <= 1 + eps) & (np.abs(det) > 1e-15)
+        hits.append([(s + dist[k] * direction, int(triangles[k])) for k in np.flatnonzero(ok)])
+    return hits
+
+
+def _region_points(rng, solid, plan, k, n):
+    """Points of region ``k`` on the surface with their inward normals: rays along the
+    patch's axis through the octagon's corners, points along its outline, and ``n``
+    random points inside it (the octagon in the plane across the axis)."""
+    axis = plan.normals[k]
+    corners = plan.regions[k]
+    ring = np.concatenate([corners, plan.outlines[k]])
+    inside = rng.dirichlet(np.ones(8), size=n) @ corners
+    pts = np.concatenate([ring, inside])
+    starts = pts - 2 * solid.size * axis
+    out_p, out_n = [], []
+    normals = -np.asarray(solid.mesh.face_normals)
+    for hits in _cast(solid.mesh, plan.triangles[k], starts, axis):
+        assert hits, "a point of the octagon is not over the patch"
+        for p, t in hits:
+            out_p.append(p)
+            out_n.append(normals[t])
+    return np.array(out_p), np.array(out_n)
+
+
+def _solids():
+    return {
+        "cylinder": demo_solid("cylinder"),
+        "mug": demo_solid("mug"),
+        "sphere": solid_from_mesh(trimesh.creation.icosphere(subdivisions=3, radius=20.0)),
+        "fine cylinder": solid_from_mesh(trimesh.creation.cylinder(radius=8.0, height=50.0,
+                                                                   sections=200)),
+        "capsule": solid_from_mesh(trimesh.creation.capsule(height=30.0, radius=10.0,
+                                                            count=[24, 24])),
+    }
+
+
+def _random_smooth(seed):
+    """A convex hull of points on a random ellipsoid (many nearly smooth facets)."""
+    rng = np.random.default_rng(seed)
+    pts = rng.normal(size=(int(rng.integers(60, 200)), 3))
+    pts /= np.linalg.norm(pts, axis=1)[:, None]
+    pts *= rng.uniform(5, 25, 3)
+    return solid_from_mesh(trimesh.convex.convex_hull(pts), "mm", f"ellipsoid{seed}")
+
+
+def _check_plans(rng, solid, mu, plans, inside=30):
+    checked = 0
+    for plan in plans:
+        assert isinstance(plan, SurfacePairPlan)
+        P1, N1 = _region_points(rng, solid, plan, 0, inside)
+        P2, N2 = _region_points(rng, solid, plan, 1, inside)
+        # every pair of the two regions' points (outlines and samples inside)
+        i, j = (a.ravel() for a in np.meshgrid(np.arange(len(P1)), np.arange(len(P2))))
+        P = np.stack([P1[i], P2[j]], axis=1)
+        N = np.stack([N1[i], N2[j]], axis=1)
+        assert two_soft_closure(P, N, mu).all()           # at the cone's own edge
+        for k in rng.choice(len(P), 4, replace=False):    # torsional friction included
+            assert closure_margin(P[k], N[k], mu, 0.5).closure
+        assert plan.radius > 0 and set(plan.surfaces[0]) and set(plan.surfaces[1])
+        checked += 1
+    return checked
+
+
+@pytest.mark.parametrize("name", ["cylinder", "mug", "sphere", "fine cylinder", "capsule"])
+def test_every_grasp_across_facets_holds_on_curved_solids(name):
+    solid = _solids()[name]
+    rng = np.random.default_rng(len(name))
+    for mu in (0.3, 0.6):
+        alpha = math.atan(mu) - math.radians(0.5)
+        plans = surface_pair_plans(solid, mu, alpha, top=4)
+        assert plans, f"{name}: no region across facets"
+        assert _check_plans(rng, solid, mu, plans) == len(plans)
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 30))])
+def test_every_grasp_across_facets_holds_on_random_smooth_solids(seed):
+    rng = np.random.default_rng(seed)
+    solid = _random_smooth(seed)
+    mu = float(rng.choice([0.25, 0.5, 1.0]))
+    plans = surface_pair_plans(solid, mu, math.atan(mu) - math.radians(0.5), top=3)
+    _check_plans(rng, solid, mu, plans, inside=15)
+
+
+def test_regions_across_facets_are_far_larger_than_one_facet_allows():
+    """On a 200-sided cylinder the side's facets are 0.25 mm strips: the exact facet
+    regions there are slivers, the regions across facets are millimetres wide, below the
+    bound of a true cylinder (two discs of radius ``rho`` on the side, facing across the
+    diameter ``2 R``: some pair of their points is ``2 rho`` apart along the axis, so
+    ``rho <= R tan(alpha)``), and they are ranked with the facets' own (the caps)."""
+    R, mu = 8.0, 0.5
+    alpha = math.atan(mu) - math.radians(0.5)
+    solid = _solids()["fine cylinder"]
+    strip = 2 * R * math.sin(math.pi / 200)            # a side facet's width
+    one_facet = strip / (2 * math.cos(math.pi / 8))    # the widest octagon in it
+    across = surface_pair_plans(solid, mu, alpha, top=3)
+    assert all(isinstance(p, SurfacePairPlan) for p in across)
+    assert across[0].radius > 10 * one_facet
+    assert across[0].radius * math.cos(math.pi / 8) <= R * math.tan(alpha)
+    mixed = soft_pair_plans(solid, mu, top=3)
+    assert [p.radius for p in mixed] == sorted([p.radius for p in mixed], reverse=True)
+    assert any(isinstance(p, SurfacePairPlan) for p in mixed)
+
+
+def test_nothing_changes_where_no_surface_is_curved():
+    for name in ("box", "prism", "angle"):
+        solid = demo_solid(name)
+        assert surface_pair_plans(solid, 0.5, math.atan(0.5), top=5) == []
+        got = soft_pair_plans(solid, 0.5, top=5)
+        want = soft_pair_plans(solid, 0.5, top=5, across=False)
+        assert [(p.facets, p.radius) for p in got] == [(p.facets, p.radius) for p in want]
+
+
+def test_a_plan_across_facets_in_json_and_on_the_command_line(tmp_path):
+    import json
+
+    from fcgrasp.apps.cli import main
+
+    out = tmp_path / "mug.json"
+    assert main(["plan", "demo:mug", "--fingers", "2", "--soft", "--mu", "0.5", "--top", "3",
+                 "--json", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    want = soft_pair_plans(demo_solid("mug"), 0.5, top=3)
+    assert [g["radius"] for g in doc["grasps"]] == pytest.approx([p.radius for p in want])
+    g = doc["grasps"][0]
+    assert g["across_facets"] and len(g["surfaces"]) == 2 and len(g["outlines"][0]) > 8
+    assert len(g["spread_deg"]) == 2 and all(0 < s < 26.6 for s in g["spread_deg"])
+    with pytest.raises(TypeError, match="across"):
+        soft_pair_plans(demo_solid("mug"), 0.5, across="yes")
