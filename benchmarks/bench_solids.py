@@ -1,9 +1,11 @@
 """Two soft fingers on meshes with thousands of facets (issue 33: "a 5,000-facet mesh
 plans in under 2 s").
 
-For icospheres and tessellated cylinders of growing size, prints the time to cut the
-mesh into facets (``solid_from_mesh``) and to plan (``soft_pair_plans``, top 5), the
-issue's target, and the previous search run in the same process as the baseline: every
+For icospheres, tessellated cylinders of growing size and the mug, prints the time to cut
+the mesh into facets (``solid_from_mesh``), to plan on facets (``facet_pair_plans``, top
+5) and with the regions across facets of curved surfaces (``soft_pair_plans``, the
+default), the issue's target, the best radius on facets and across them, and the
+previous facet search run in the same process as the baseline: every
 pair of opposite pieces ordered by the inscribed-circle bound and solved by the cone
 program (``soft_pair_regions``) until the bound falls below the top five.  The baseline
 runs only up to ``--baseline-facets`` (it takes a minute on 1,280 triangles); both
@@ -30,8 +32,9 @@ import numpy as np
 import trimesh
 
 from fcgrasp.spatial import closure_margin, soft_pair_plans
-from fcgrasp.spatial.regions import soft_pair_regions
+from fcgrasp.spatial.regions import facet_pair_plans, soft_pair_regions
 from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
+from fcgrasp.spatial.surfaces import surface_pair_plans
 from fcgrasp.spatial.triples import point_triple_plans, point_triple_regions
 
 MU, TOP = 0.5, 5
@@ -164,12 +167,17 @@ def soft_fingers(args) -> None:
     meshes += [(f"cylinder, {n} sections",
                 lambda n=n: trimesh.creation.cylinder(radius=10.0, height=30.0, sections=n))
                for n in (256, 2500)]
+    meshes += [("demo:mug", lambda: demo_solid("mug").mesh)]
     print(f"two soft fingers, mu {MU}, top {TOP}; target {TARGET_S} s for 5,000 facets")
-    print(f"{'mesh':32s} {'facets':>7s} {'read s':>8s} {'plan s':>8s} {'total s':>8s} "
-          f"{'target':>7s} {'previous s':>10s} {'speed-up':>9s} {'same':>5s}")
+    print("facets: the exact regions on pairs of facets (facet_pair_plans); all: with the "
+          "regions across facets of curved surfaces too (soft_pair_plans, the default)")
+    print(f"{'mesh':32s} {'facets':>7s} {'read s':>7s} {'facets s':>8s} {'all s':>7s} "
+          f"{'total s':>8s} {'target':>7s} {'previous s':>10s} {'speed-up':>9s} "
+          f"{'same':>5s} {'r facets':>9s} {'r across':>9s}")
     for name, make in meshes:
         mesh = make()
         solid, read = _timed(lambda mesh=mesh: solid_from_mesh(mesh))
+        facets, facet_t = _timed(lambda solid=solid: facet_pair_plans(solid, MU, top=TOP))
         plans, plan = _timed(lambda solid=solid: soft_pair_plans(solid, MU, top=TOP))
         total = read + plan
         if 2000 <= len(solid.facets) <= 6000:          # the issue's size
@@ -178,13 +186,17 @@ def soft_fingers(args) -> None:
             target = "-"
         if len(solid.facets) <= args.baseline_facets:
             old, old_t = _timed(lambda solid=solid: previous_search(solid, MU, TOP))
-            same = np.allclose([p.radius for p in plans], [p.radius for p in old],
+            same = np.allclose([p.radius for p in facets], [p.radius for p in old],
                                rtol=1e-6)
-            prev, ratio, agree = f"{old_t:10.2f}", f"{old_t / plan:8.0f}x", str(same)
+            prev, ratio, agree = f"{old_t:10.2f}", f"{old_t / facet_t:8.0f}x", str(same)
         else:
             prev, ratio, agree = f"{'not run':>10s}", f"{'':>9s}", ""
-        print(f"{name:32s} {len(solid.facets):7d} {read:8.3f} {plan:8.3f} {total:8.3f} "
-              f"{target:>7s} {prev} {ratio} {agree:>5s}")
+        across = [p.radius for p in surface_pair_plans(
+            solid, MU, math.atan(MU) - math.radians(0.5), top=1)]
+        r_across = f"{across[0]:9.3g}" if across else f"{'-':>9s}"
+        print(f"{name:32s} {len(solid.facets):7d} {read:7.3f} {facet_t:8.3f} {plan:7.3f} "
+              f"{total:8.3f} {target:>7s} {prev} {ratio} {agree:>5s} "
+              f"{facets[0].radius:9.3g} {r_across}")
 
 
 if __name__ == "__main__":

@@ -93,8 +93,25 @@ def _check_plans(rng, solid, mu, plans, inside=30):
         for k in rng.choice(len(P), 4, replace=False):    # torsional friction included
             assert closure_margin(P[k], N[k], mu, 0.5).closure
         assert plan.radius > 0 and set(plan.surfaces[0]) and set(plan.surfaces[1])
+        for k in range(2):
+            _check_surface_triangles(solid, plan, k)
         checked += 1
     return checked
+
+
+def _check_surface_triangles(solid, plan, k):
+    """The region's triangles lie on the patch (a ray along the axis through each
+    one's centroid meets the patch there) and cover the octagon: their areas across
+    the axis add up to the regular octagon's, ``2 sqrt(2) r^2``."""
+    axis = plan.normals[k]
+    tris = plan.surface_triangles[k]
+    cent = tris.mean(axis=1)
+    for c, hits in zip(cent, _cast(solid.mesh, plan.triangles[k],
+                                   cent - 2 * solid.size * axis, axis), strict=True):
+        assert min(np.linalg.norm(p - c) for p, _ in hits) < 1e-7 * solid.size
+    e1, e2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
+    across = np.abs(np.cross(e1, e2) @ axis) / 2
+    assert across.sum() == pytest.approx(2 * math.sqrt(2) * plan.radius ** 2, rel=1e-6)
 
 
 @pytest.mark.parametrize("name", ["cylinder", "mug", "sphere", "fine cylinder", "capsule"])
@@ -160,6 +177,49 @@ def test_a_plan_across_facets_in_json_and_on_the_command_line(tmp_path):
     assert [g["radius"] for g in doc["grasps"]] == pytest.approx([p.radius for p in want])
     g = doc["grasps"][0]
     assert g["across_facets"] and len(g["surfaces"]) == 2 and len(g["outlines"][0]) > 8
+    assert np.allclose(g["surface_triangles"][1], want[0].surface_triangles[1])
     assert len(g["spread_deg"]) == 2 and all(0 < s < 26.6 for s in g["spread_deg"])
     with pytest.raises(TypeError, match="across"):
         soft_pair_plans(demo_solid("mug"), 0.5, across="yes")
+
+
+@pytest.mark.parametrize("name", ["sphere", pytest.param("mug", marks=pytest.mark.slow),
+                                  pytest.param("capsule", marks=pytest.mark.slow)])
+def test_the_bounds_hold_and_the_gap_is_kept(name):
+    """Every pair's bound (extent, widths, cones, inscribed circles) is at least the
+    cone program's radius on it; the search with its default gap keeps plans within
+    ``1 + GAP`` of the search without one (the best of the whole family)."""
+    from fcgrasp.spatial import surfaces as S
+
+    solid = _solids()[name]
+    mu = 0.5
+    alpha = math.atan(mu) - math.radians(0.5)
+    normals, adj, _ = S._graph(solid)
+    rng = np.random.default_rng(7)
+    seeds = S._seeds(normals, adj, np.asarray(solid.mesh.area_faces), alpha / 4)
+    checked = 0
+    for i in rng.choice(seeds, 6, replace=False):
+        j = int(np.argmin(normals @ normals[i]))
+        d = normals[i] - normals[j]
+        d /= np.linalg.norm(d)
+        for f in S.SPREADS:
+            beta = f * alpha
+            along = normals @ d
+            a = S._grow(int(i), (along >= math.cos(beta)).tolist(), adj)
+            b = S._grow(j, (-along >= math.cos(beta)).tolist(), adj)
+            if not a or not b:
+                continue
+            p, q = S._patch(solid, int(i), beta, a, d), S._patch(solid, j, beta, b, -d)
+            S._kernel(solid, p), S._kernel(solid, q)
+            bound = min(S._pair_bound(p, q, alpha), p.inradius / math.cos(math.pi / 8),
+                        q.inradius / math.cos(math.pi / 8))
+            got = S._program(p, q, (alpha - beta, alpha - beta))
+            if got is None:
+                continue
+            r = S._certified(got[0], got[1], p, q, (alpha - beta,) * 2, got[2])
+            assert r <= bound * (1 + 1e-9)
+            checked += 1
+    assert checked >= 3
+    best = surface_pair_plans(solid, mu, alpha, top=2, gap=0.0)
+    kept = surface_pair_plans(solid, mu, alpha, top=2)
+    assert kept[0].radius * (1 + S.GAP) >= best[0].radius * (1 - 1e-9)

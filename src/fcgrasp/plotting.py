@@ -428,19 +428,20 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
         ax.add_collection3d(Poly3DCollection(tris, facecolor="0.85", edgecolor="0.6",
                                              linewidth=0.2, alpha=0.25))
         if plan is not None:
-            # a region across facets is drawn by its outline on the curved surface
-            drawn = getattr(plan, "outlines", ()) or plan.regions
+            # a region across facets is drawn by its triangles on the curved surface
+            drawn = getattr(plan, "surface_triangles", ()) or [[r] for r in plan.regions]
             for reg, c, n, color in zip(drawn, plan.centers, plan.normals,
                                         _FINGER_COLORS, strict=False):
-                ax.add_collection3d(Poly3DCollection([reg], facecolor=color, alpha=0.8,
-                                                     edgecolor=color))
+                ax.add_collection3d(Poly3DCollection(list(reg), facecolor=color, alpha=0.8,
+                                                     edgecolor=color, linewidth=0.3))
                 tail = c - 0.35 * span * n
                 ax.quiver(*tail, *(0.3 * span * n), color=color, linewidth=1.5)
             ring = np.vstack([plan.centers, plan.centers[:1]]) if len(plan.centers) > 2 \
                 else plan.centers
             ax.plot(*ring.T, color="0.2", linestyle=":", linewidth=1)
             facets = ", ".join(str(f) for f in plan.facets)
-            where = "across facets from" if getattr(plan, "outlines", ()) else "facets"
+            where = "across facets from" if getattr(plan, "surface_triangles", ()) \
+                else "facets"
             ax.set_title(f"{k + 1}: {where} {facets}  r {plan.radius:.3g}", fontsize=9)
         mid = 0.5 * (lo + hi)
         for setter, m in zip((ax.set_xlim, ax.set_ylim, ax.set_zlim), mid, strict=True):

@@ -49,7 +49,6 @@ import numpy as np
 from ..core._checks import FloatArray, IntArray
 from ..core.tolerances import (
     CONE_PROGRAM_TOL,
-    FIT_ROUNDING,
     SURFACE_CENTRE,
     SURFACE_STEP,
     SURFACE_TOL,
@@ -72,10 +71,14 @@ from .regions import (
 from .solid import Facet, Solid
 
 __all__ = ["SurfacePairPlan", "surface_pair_plans", "soft_pair_plans", "SPREADS",
-           "MAX_SEEDS"]
+           "MAX_SEEDS", "GAP"]
 
 #: The patches' spreads ``beta``, as fractions of the cone's half-angle ``alpha``.
 SPREADS = (0.25, 0.5, 0.75)
+
+#: The search across facets stops when no pair of patches left can beat the plans kept
+#: by more than this fraction (on a symmetric solid, every pair around it ties).
+GAP = 0.1
 
 #: The most seeds of patches on one solid.
 MAX_SEEDS = 32
@@ -94,19 +97,22 @@ class SurfacePairPlan(SoftPairPlan):
     corners lifted onto the surface and ``radius`` their circumradius (in the plane
     across ``n_0``), with ``surfaces`` (the facets each region covers), ``triangles``
     (the mesh triangles of each patch: a finger may touch any of their points that
-    projects into the octagon), ``spread`` (each patch's ``beta``, degrees) and
-    ``outlines`` (each region's boundary on the surface, 3-D points)."""
+    projects into the octagon), ``spread`` (each patch's ``beta``, degrees),
+    ``outlines`` (each region's boundary on the surface, 3-D points) and
+    ``surface_triangles`` (each region on the surface, triangles (k, 3, 3))."""
 
     surfaces: tuple[tuple[int, ...], ...] = ()
     triangles: tuple[IntArray, ...] = field(default=(), repr=False)
     spread: tuple[float, ...] = ()
     outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
+    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         out = super().to_dict()
         out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
                     "spread_deg": list(self.spread),
-                    "outlines": [o.tolist() for o in self.outlines]})
+                    "outlines": [o.tolist() for o in self.outlines],
+                    "surface_triangles": [t.tolist() for t in self.surface_triangles]})
         return out
 
 
@@ -114,8 +120,9 @@ class SurfacePairPlan(SoftPairPlan):
 class _Patch:
     """One patch (module docstring): its seed triangle and spread ``beta``, reference
     frame (a :class:`~fcgrasp.spatial.solid.Facet` across ``n_0``), triangles, heights
-    ``[low, high]``, projected vertices (m, 2) and, once asked, the kernel's
-    half-planes."""
+    ``[low, high]``, projected vertices (m, 2) and, once asked (:func:`_kernel`), its
+    convex piece's half-planes, the centre of the projection's largest inscribed circle
+    and a bound on that circle's radius."""
 
     seed: int
     beta: float
@@ -126,7 +133,8 @@ class _Patch:
     flat: FloatArray
     width_bound: float
     kernel: Halfplanes | None = None
-    fit: tuple[float, FloatArray] | None = None
+    centre: FloatArray = field(default_factory=lambda: np.zeros(2))
+    inradius: float = math.inf
 
 
 def _graph(solid: Solid) -> tuple[FloatArray, list[list[int]], IntArray]:
@@ -225,8 +233,10 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
         union = min(union.geoms, key=lambda g: g.distance(seed))
     union = orient(union, 1.0)
     hull = _ring_halfplanes(np.asarray(orient(union.convex_hull, 1.0).exterior.coords)[:-1])
-    centre = np.asarray(shapely.maximum_inscribed_circle(
-        union, SURFACE_CENTRE * math.sqrt(union.area)).coords[0])
+    step = SURFACE_CENTRE * math.sqrt(union.area)
+    circle = shapely.maximum_inscribed_circle(union, step)
+    centre = np.asarray(circle.coords[0])
+    patch.centre, patch.inradius = centre, float(circle.length) + step
     ring = np.asarray(union.exterior.coords)[:-1]
     before, after = ring - np.roll(ring, 1, axis=0), np.roll(ring, -1, axis=0) - ring
     reflex = ring[before[:, 0] * after[:, 1] - before[:, 1] * after[:, 0] < 0]
@@ -369,7 +379,7 @@ def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatA
                   r: float, mu: float, margin: float, facet_of: IntArray
                   ) -> SurfacePairPlan:
     Q1, Q2 = _octagon_axes(p.frame, q.frame)
-    regions, centers, outlines = [], [], []
+    regions, centers, outlines, pieces = [], [], [], []
     steps = np.arange(OUTLINE_STEPS) / OUTLINE_STEPS
     for patch, c, Q in ((p, c1, Q1), (q, c2, Q2)):
         corners = patch.frame.to_2d(c + r * Q)
@@ -378,6 +388,7 @@ def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatA
         regions.append(_lift(solid, patch, corners))
         centers.append(_lift(solid, patch, patch.frame.to_2d(c)[None, :])[0])
         outlines.append(_lift(solid, patch, ring.reshape(-1, 2)))
+        pieces.append(_on_surface(solid, patch, corners))
     surfaces = tuple(tuple(sorted({int(v) for v in facet_of[t.triangles]})) for t in (p, q))
     facets = (int(facet_of[p.seed]), int(facet_of[q.seed]))
     return SurfacePairPlan(facets, (-1, -1), r, np.stack(centers), np.stack(regions),
@@ -385,7 +396,31 @@ def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatA
                            radii=(r, r), surfaces=surfaces,
                            triangles=(p.triangles, q.triangles),
                            spread=(math.degrees(p.beta), math.degrees(q.beta)),
-                           outlines=tuple(outlines))
+                           outlines=tuple(outlines), surface_triangles=tuple(pieces))
+
+
+def _on_surface(solid: Solid, patch: _Patch, corners: FloatArray) -> FloatArray:
+    """The region on the surface as triangles (k, 3, 3): each patch triangle's
+    projection clipped to the octagon (``corners``, 2-D), fanned, and lifted back onto
+    that triangle's plane."""
+    import shapely
+
+    vertices = np.asarray(solid.mesh.vertices, float)
+    faces = np.asarray(solid.mesh.faces)
+    f = patch.frame
+    tri3 = vertices[faces[patch.triangles]]
+    clipped = shapely.intersection(shapely.polygons((tri3 - f.origin) @ f.axes.T),
+                                   shapely.Polygon(corners))
+    out = []
+    for t, poly in zip(tri3, clipped, strict=True):
+        if poly.is_empty or poly.geom_type != "Polygon" or poly.area <= 0:
+            continue
+        ring = f.to_3d(np.asarray(poly.exterior.coords)[:-1])
+        # up along n_0 onto the triangle's plane
+        n = np.cross(t[1] - t[0], t[2] - t[0])
+        ring = ring + (((t[0] - ring) @ n) / float(f.normal @ n))[:, None] * f.normal
+        out += [(ring[0], ring[i], ring[i + 1]) for i in range(1, len(ring) - 1)]
+    return np.asarray(out, float).reshape(-1, 3, 3)
 
 
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
@@ -415,10 +450,13 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
 
 
 def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
-                       margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0
-                       ) -> list[SurfacePairPlan]:
+                       margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0,
+                       gap: float = GAP) -> list[SurfacePairPlan]:
     """The best regions of two soft fingers across facets (module docstring), largest
-    first, at most ``top`` (None: every pair of patches), each larger than ``floor``:
+    first, at most ``top`` (None: every pair of patches), each larger than ``floor``;
+    the search stops when no pair of patches left has a bound above ``1 + gap`` times
+    the ``top``-th kept (``gap=0``: the best of the whole family, for the lower bound of
+    each pair that the search computes before the cone program polishes those kept):
     ``mu`` and ``margin`` as :func:`~fcgrasp.spatial.soft_pair_plans` checked them,
     ``alpha = atan(mu) - margin`` in radians.  An empty list where no patch spans two
     facets (a box, a prism)."""
@@ -445,7 +483,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     # a first bound, before any patch is grown: the solid's extent along d for H
     reach = np.asarray(solid.mesh.vertices, float) @ d.T
     extent = np.repeat(reach.max(axis=0) - reach.min(axis=0), len(SPREADS))
-    bound = extent * np.tan(alpha - beta) / (2 * _COS8)
+    bound = extent * np.tan(alpha - beta) / 2
     floor = max(floor, CONE_PROGRAM_TOL * solid.size)
     heap = [(-float(bound[k]), 0, k) for k in np.flatnonzero(bound > floor).tolist()]
     heapq.heapify(heap)
@@ -453,8 +491,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     found: list[tuple[float, int, FloatArray, FloatArray]] = []
     while heap:
         neg, stage, k = heapq.heappop(heap)
-        limit = found[top - 1][0] if top is not None and len(found) >= top else floor
-        if -neg <= limit:
+        full = top is not None and len(found) >= top
+        limit = found[top - 1][0] if full else floor          # type: ignore[index]
+        if -neg <= (limit * (1 + gap) if full else floor):
             break
         if stage == 0:                        # grow the patches, bound by their extent
             m = k // len(SPREADS)
@@ -473,18 +512,21 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             continue
         p, q = pairs[k]
         alphas = (alpha - p.beta, alpha - q.beta)
-        Q1, Q2 = _octagon_axes(p.frame, q.frame)
-        s1, t1 = _fit(_kernel(solid, p), Q1 @ p.frame.axes.T)
-        s2, t2 = _fit(_kernel(solid, q), Q2 @ q.frame.axes.T)
-        if stage == 1:                        # tighten by the octagons' fits, then queue
-            tight = min(-neg, s1 * (1 + FIT_ROUNDING), s2 * (1 + FIT_ROUNDING))
+        _kernel(solid, p), _kernel(solid, q)
+        if stage == 1:            # tighten by the projections' inscribed circles, queue
+            tight = min(-neg, p.inradius / _COS8, q.inradius / _COS8)
             if tight > limit:
                 heapq.heappush(heap, (-tight, 2, k))
             continue
         # a lower bound the cone program improves for the pairs kept: the octagons as
-        # large as they hold about the fits' centres, or about one fit's centre and the
+        # large as they hold about the inscribed centres, or about one of them and the
         # point facing it on the other patch
-        r, c1, c2 = _facing(p, q, alphas, (t1, t2), -neg)
+        r, c1, c2 = _facing(p, q, alphas, (p.centre, q.centre), -neg)
+        if r <= 0:                # the centres outside the convex pieces: their fits'
+            Q1, Q2 = _octagon_axes(p.frame, q.frame)
+            t1 = _fit(p.kernel, Q1 @ p.frame.axes.T)[1]  # type: ignore[arg-type]
+            t2 = _fit(q.kernel, Q2 @ q.frame.axes.T)[1]  # type: ignore[arg-type]
+            r, c1, c2 = _facing(p, q, alphas, (t1, t2), -neg)
         if r > limit:
             found.append((r, k, c1, c2))
             found.sort(key=lambda x: -x[0])
@@ -506,9 +548,10 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
 def _facing(p: _Patch, q: _Patch, alphas: tuple[float, float],
             fits: tuple[FloatArray, FloatArray], bound: float
             ) -> tuple[float, FloatArray, FloatArray]:
-    """The largest octagons that hold about three choices of centres (the fits' own;
-    one fit's centre and the point of the other plane it faces along the bisector of
-    ``n_0`` and ``-n_0``): the radius and both centres (3-D)."""
+    """The largest octagons (at most ``bound``) that hold about three choices of
+    centres: ``fits`` (2-D, one in each patch's plane); one of them and the point of
+    the other plane it faces along the bisector of ``n_0`` and ``-n_0``.  The radius and
+    both centres (3-D)."""
     fp, fq = p.frame, q.frame
     Q1, Q2 = _octagon_axes(fp, fq)
     axis = fp.normal - fq.normal
@@ -545,18 +588,20 @@ def _room(patch: _Patch, c: FloatArray, Q: FloatArray) -> float:
 
 
 def _pair_bound(p: _Patch, q: _Patch, alpha: float) -> float:
-    """An upper bound on the octagons' radius on two patches (P first, Q second): the
-    narrower patch's width over the octagon's least width ``2 r cos(pi / 8)``; and the
-    cones.  Along a direction ``u`` in both planes (across both normals) each octagon is
-    at least ``2 r cos(pi / 8)`` wide, so the differences of Q's corners and P's span ``4
-    r cos(pi / 8)`` across ``n_0`` of P, and lie in the cone of ``alpha - beta`` about it
-    below the height ``H`` of Q's highest corner over P's lowest: ``r <= H tan(alpha -
-    beta) / (2 cos(pi / 8))``; the same for P over Q."""
+    """An upper bound on the octagons' radius on two patches (P first, Q second, their
+    planes parallel: ``n_0`` of Q is ``-n_0`` of P): the narrower patch's width over the
+    octagon's least width ``2 r cos(pi / 8)``; and the cones.  The octagons are turned
+    alike (:func:`~fcgrasp.spatial.regions._octagon_axes`), so for a corner direction
+    ``u`` of both, the corner differences ``(c_2 - r u) - (c_1 + r u)`` and ``(c_2 + r u)
+    - (c_1 - r u)`` are ``4 r`` apart across ``n_0``: one of them is at least ``2 r`` off
+    the axis, inside the cone of ``alpha - beta`` below the height ``H`` of Q's highest
+    prism corner over P's lowest, so ``r <= H tan(alpha - beta) / 2``; the same for P
+    over Q."""
     cone = math.inf
     for a, b in ((p, q), (q, p)):
         f, g = a.frame, b.frame
         high = float(np.max((g.origin + b.flat @ g.axes) @ f.normal)) \
             + max(b.low * float(g.normal @ f.normal), b.high * float(g.normal @ f.normal))
         rise = high - float(f.origin @ f.normal) - a.low
-        cone = min(cone, rise * math.tan(alpha - a.beta) / (2 * _COS8))
+        cone = min(cone, rise * math.tan(alpha - a.beta) / 2)
     return min(p.width_bound, q.width_bound, cone)

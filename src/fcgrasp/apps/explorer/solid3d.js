@@ -138,16 +138,23 @@ const Solid3D = (() => {
     return out;
   }
 
-  // a plan's regions (polygons on facets, triangulated and lifted off their facet along
-  // the outward normal), the contact centres, and each finger's approach
+  // a plan's regions (polygons on facets, triangulated, or a region's own triangles on a
+  // curved surface; lifted off the surface along the outward normal), the contact
+  // centres, and each finger's approach
   function planRows(plan) {
     const lift = V.part.size * 2e-3, tri = [], pts = [], lines = [];
     plan.regions.forEach((poly, k) => {
       const col = rgb(COLORS[k % COLORS.length]);
       const n = plan.normals[k];                 // inward: the finger pushes along it
       const up = (p) => add(p, mul(n, -lift));
-      for (const t of triangulate(poly, n)) {
-        for (const i of t) tri.push([...up(poly[i]), ...n, ...col]);
+      if (plan.surface_triangles) {              // a region across a curved surface
+        for (const t of plan.surface_triangles[k]) {
+          for (const p of t) tri.push([...up(p), ...n, ...col]);
+        }
+      } else {
+        for (const t of triangulate(poly, n)) {
+          for (const i of t) tri.push([...up(poly[i]), ...n, ...col]);
+        }
       }
       const c = plan.centers[k];
       pts.push([...up(c), 0, 0, 0, 0.1, 0.1, 0.1]);
