@@ -492,7 +492,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     while heap:
         neg, stage, k = heapq.heappop(heap)
         full = top is not None and len(found) >= top
-        limit = found[top - 1][0] if full else floor          # type: ignore[index]
+        limit = found[-1][0] if full else floor               # the top-th kept
         if -neg <= (limit * (1 + gap) if full else floor):
             break
         if stage == 0:                        # grow the patches, bound by their extent
