@@ -425,15 +425,17 @@ def solid_plan_figure(solid: Any, plans: list[Any], path: str, title: str | None
     span = float(np.max(hi - lo))
     for k, plan in enumerate(shown):
         ax = fig.add_subplot(1, len(shown), k + 1, projection="3d")
+        ax.computed_zorder = False            # the regions over the mesh, seen through it
         ax.add_collection3d(Poly3DCollection(tris, facecolor="0.85", edgecolor="0.6",
-                                             linewidth=0.2, alpha=0.25))
+                                             linewidth=0.2, alpha=0.25, zorder=1))
         if plan is not None:
             # a region across facets is drawn by its triangles on the curved surface
             drawn = getattr(plan, "surface_triangles", ()) or [[r] for r in plan.regions]
             for reg, c, n, color in zip(drawn, plan.centers, plan.normals,
                                         _FINGER_COLORS, strict=False):
                 ax.add_collection3d(Poly3DCollection(list(reg), facecolor=color, alpha=0.8,
-                                                     edgecolor=color, linewidth=0.3))
+                                                     edgecolor=color, linewidth=0.3,
+                                                     zorder=3))
                 tail = c - 0.35 * span * n
                 ax.quiver(*tail, *(0.3 * span * n), color=color, linewidth=1.5)
             ring = np.vstack([plan.centers, plan.centers[:1]]) if len(plan.centers) > 2 \
