@@ -559,6 +559,48 @@ def _colours_right(driver):
     return [s["facing"] for s in seen]
 
 
+_SURFACE_COLOURS = """
+    const S = explorer.state, v = explorer.solid3d, plan = S.plans[S.selected];
+    const eye = v.state().eye;
+    return plan.surface_triangles.map((tris, k) => {
+      const n = plan.normals[k];
+      return tris.map((t) => {
+        const c = [0, 1, 2].map((i) => (t[0][i] + t[1][i] + t[2][i]) / 3);
+        const out = -(n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]));
+        const q = v.project(c);
+        return {facing: out > 0, pixel: v.pixel(q[0], q[1])};
+      });
+    });"""
+
+
+def test_regions_across_facets_are_drawn_on_the_mugs_wall(server, browser, tmp_path):
+    """``demo:mug`` in the explorer: its plans are ``fcgrasp plan``'s, regions across the
+    facets of its wall first; each region is drawn by its own triangles on the curved
+    surface, in its finger's colour where it faces the camera."""
+    d = browser
+    open_demo(d, server, "mug")
+    assert d.execute_script("return explorer.solid3d.state().error") is None
+    mu = d.execute_script("return document.getElementById('mu').value")
+    out = tmp_path / "mug.json"
+    assert main(["plan", "demo:mug", "--fingers", "2", "--soft", "--mu", str(mu),
+                 "--top", "10", "--json", str(out), "--quiet"]) == 0
+    want = json.loads(out.read_text())["grasps"]
+    items = d.find_elements(By.CSS_SELECTOR, "#plans li")
+    assert np.allclose([float(li.get_attribute("data-radius")) for li in items],
+                       [g["radius"] for g in want], rtol=1e-9)
+    assert want[0].get("across_facets")
+    seen = d.execute_script(_SURFACE_COLOURS)
+    shown = 0
+    for k, region in enumerate(seen):
+        ch = (0, 2, 1)[k]                     # red, blue: COLORS of the page
+        for s in region:
+            px = s["pixel"][:3]
+            if s["facing"] and px[ch] > 1.3 * max(v for i, v in enumerate(px) if i != ch) + 10:
+                shown += 1
+    facing = sum(s["facing"] for region in seen for s in region)
+    assert facing and shown >= 0.9 * facing, (shown, facing)
+
+
 def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, downloads,
                                                               tmp_path):
     """A built-in solid in the explorer: its plans are those of ``fcgrasp plan demo:box
