@@ -4,16 +4,16 @@ sliver on a finely tessellated cylinder; the paper's regions of contact "along c
 outlines", section 7, in three dimensions).
 
 **A patch** is a connected set of the mesh's triangles whose inward normals lie within
-``beta`` of a reference normal ``n_0`` (its seed triangle's), grown from the seed across
-shared edges.  It is drawn in the plane through the seed's centroid across ``n_0``: each
-patch point projects into the union ``U`` of its triangles' projections, at a height
-(along ``n_0``) within the patch's ``[low, high]``.
+``beta`` of an axis ``n_0``, grown from a seed triangle across shared edges.  It is
+drawn in the plane through the seed's centroid across ``n_0``: each patch point projects
+into the union ``U`` of its triangles' projections, at a height (along ``n_0``) within
+the patch's ``[low, high]``.
 
-**A region** is a regular octagon ``P`` (as in :mod:`.regions`) inside the **kernel** of
-``U`` (the intersection of the inner half-planes of its edges: convex and inside ``U``;
-``U`` itself when it is convex); a finger may touch any patch point that projects into
-``P``.  Those points lie in the prism ``P x [low, high]``, and the surface's normal at
-each of them is within ``beta`` of ``n_0``.
+**A region** is a regular octagon ``P`` (as in :mod:`.regions`) inside a convex piece of
+``U`` (:func:`_kernel`: ``U``'s hull cut at its reflex corners, checked inside ``U``, else
+``U``'s kernel); a finger may touch any patch point that projects into ``P``.  Those
+points lie in the prism ``P x [low, high]``, and the surface's normal at each of them is
+within ``beta`` of ``n_0``.
 
 **The condition (sufficient).**  A friction cone of half-angle ``alpha`` about a normal
 within ``beta`` of ``n_0`` contains the cone of half-angle ``alpha - beta`` about ``n_0``.
@@ -23,18 +23,26 @@ when every difference of the two prisms' corners (16 each) lies in the cone of
 ``alpha - beta_1`` about ``n_{0,1}`` and of ``alpha - beta_2`` about ``-n_{0,2}``: both
 cones are convex, and the differences of the prisms are the convex hull of their
 corners' (:mod:`.regions`).  The largest pair of octagons under that condition is one
-second-order cone program (Clarabel), solved directly by the octagons' own fits in the
-kernels where those pass the float check.  The regions are **certified** (every grasp in
-them holds), not proved the largest: the condition is sufficient, not necessary, and the
-patches are a finite family.
+second-order cone program (Clarabel), its answer confirmed in floats.  The regions are
+**certified** (every grasp in them holds), not proved the largest: the condition is
+sufficient, not necessary, and the patches are a finite family.
 
-**The family.**  A smaller ``beta`` keeps more of the cone, a larger one more of the
-surface: each seed's patch is tried at ``beta = alpha / 4, alpha / 2, 3 alpha / 4``.
-Seeds cover the mesh: a triangle is a seed unless it lies in the smallest patch of a
-seed before it (at most :data:`MAX_SEEDS`; the covering patch is widened until they
-fit).  A patch of one facet is left to :mod:`.regions` (exact there).  Pairs of patches
-are taken best bound first, the bound tightened by the octagons' fits before a pair is
-solved, and the search stops when no bound can enter the top ``top``.
+**The family.**  Seeds cover the mesh: a triangle is a seed unless it lies in the patch
+(spread ``alpha / 4`` about its own normal) of a seed before it, largest first (at most
+:data:`MAX_SEEDS`; the covering patch is widened until they fit).  Two seeds whose
+normals are within ``2 alpha`` of opposite, and each seed with the triangle facing it
+most squarely, make a pair; its patches lie about the bisector ``d`` of their normals
+(``-d`` for the second, so their planes are parallel), at ``beta`` a quarter, half and
+three quarters of the way from the seeds' own tilt from ``d`` to ``alpha`` (a smaller
+``beta`` keeps more of the cone, a larger one more of the surface).  A pair whose two
+patches cover two facets in all is left to :mod:`.regions` (exact there).
+
+**The search.**  Pairs are taken best bound first (the solid's extent along ``d``, the
+patches' widths and heights, their projections' inscribed circles), each solved first
+for a lower bound (octagons about the inscribed centres, or one of them and the point
+facing it), and the search stops when no pair left can beat the ``top`` kept by more
+than :data:`GAP`; the cone program then polishes each kept pair whose lower bound is
+further than that below its bound.
 """
 
 from __future__ import annotations
@@ -488,7 +496,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     heap = [(-float(bound[k]), 0, k) for k in np.flatnonzero(bound > floor).tolist()]
     heapq.heapify(heap)
     pairs: dict[int, tuple[_Patch, _Patch]] = {}
-    found: list[tuple[float, int, FloatArray, FloatArray]] = []
+    found: list[tuple[float, int, FloatArray, FloatArray, float]] = []
     while heap:
         neg, stage, k = heapq.heappop(heap)
         full = top is not None and len(found) >= top
@@ -528,14 +536,16 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             t2 = _fit(q.kernel, Q2 @ q.frame.axes.T)[1]  # type: ignore[arg-type]
             r, c1, c2 = _facing(p, q, alphas, (t1, t2), -neg)
         if r > limit:
-            found.append((r, k, c1, c2))
+            found.append((r, k, c1, c2, -neg))
             found.sort(key=lambda x: -x[0])
             del found[top or len(found):]
     plans = []
-    for r, k, c1, c2 in found:
+    for r, k, c1, c2, bound in found:
         p, q = pairs[k]
         alphas = (alpha - p.beta, alpha - q.beta)
-        got = _program(p, q, alphas)
+        # the cone program where the lower bound may fall short of the pair's best by
+        # more than the gap
+        got = _program(p, q, alphas) if r * (1 + gap) < bound else None
         if got is not None:
             d1, d2, g = got
             g = _certified(d1, d2, p, q, alphas, g)
