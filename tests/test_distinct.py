@@ -105,8 +105,9 @@ def test_a_curved_outline_has_one_grasp_shifted_and_plan_finds_others():
         [(p.edges, p.lengths.tolist()) for p in ten]
 
 
-@pytest.mark.parametrize("kw", [dict(fingers=3, mu=0.4), dict(fingers=4),
-                                dict(fingers=3, gravity=(0, -1))], ids=["3", "4", "3g"])
+@pytest.mark.parametrize("kw", [pytest.param(dict(fingers=3, mu=0.4), marks=pytest.mark.slow),
+                                dict(fingers=4), dict(fingers=3, gravity=(0, -1))],
+                         ids=["3", "4", "3g"])
 def test_deeper_rounds_keep_the_plans_of_suppression_along_the_whole_list(kw):
     """Grippers without a distinct search of their own: however the rounds grow, the
     plans kept are suppression's along the ranked list at the full depth

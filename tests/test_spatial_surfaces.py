@@ -114,7 +114,9 @@ def _check_surface_triangles(solid, plan, k):
     assert across.sum() == pytest.approx(2 * math.sqrt(2) * plan.radius ** 2, rel=1e-6)
 
 
-@pytest.mark.parametrize("name", ["cylinder", "mug", "sphere", "fine cylinder", "capsule"])
+@pytest.mark.parametrize("name", ["cylinder", "mug", "sphere",
+                                  *(pytest.param(n, marks=pytest.mark.slow)
+                                    for n in ("fine cylinder", "capsule"))])
 def test_every_grasp_across_facets_holds_on_curved_solids(name):
     solid = _solids()[name]
     rng = np.random.default_rng(len(name))
