@@ -225,3 +225,18 @@ def test_the_bounds_hold_and_the_gap_is_kept(name):
     best = surface_pair_plans(solid, mu, alpha, top=2, gap=0.0)
     kept = surface_pair_plans(solid, mu, alpha, top=2)
     assert kept[0].radius * (1 + S.GAP) >= best[0].radius * (1 - 1e-9)
+
+
+def test_regions_across_facets_scale_with_the_part():
+    """In metres or in micrometres the same cylinder gives the same regions, scaled
+    (no absolute length hides in the search: tolerances are relative to the part)."""
+    mu = 0.5
+    alpha = math.atan(mu) - math.radians(0.5)
+    mesh = demo_solid("cylinder").mesh
+    base = surface_pair_plans(solid_from_mesh(mesh), mu, alpha, top=2)
+    for scale in (1e-3, 1e3):
+        scaled = mesh.copy()
+        scaled.apply_scale(scale)
+        got = surface_pair_plans(solid_from_mesh(scaled), mu, alpha, top=2)
+        assert [p.radius for p in got] == pytest.approx([p.radius * scale for p in base],
+                                                        rel=1e-6)

@@ -254,7 +254,7 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
     ok = length > 0
     E = np.concatenate([hull[0], away[ok] / length[ok, None]])
     h = np.concatenate([hull[1], np.einsum("ij,ij->i", E[len(hull[0]):], cuts[ok])])
-    piece = _clip(E, h)
+    piece = _clip(union.convex_hull, E[len(hull[0]):], h[len(hull[0]):])
     if piece is not None and union.buffer(SURFACE_TOL * solid.size).contains(piece):
         patch.kernel = (E, h)
         return patch.kernel
@@ -267,27 +267,23 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
     return patch.kernel
 
 
-def _clip(E: FloatArray, h: FloatArray) -> Any:
-    """The bounded polygon ``E x <= h`` as a shapely polygon (each half-plane a large box,
-    intersected in turn), or None when it is empty."""
-    poly = None
-    for a, b in zip(E, h, strict=True):
-        box = _halfplane_box(a, float(b))
-        poly = box if poly is None else poly.intersection(box)
-        if poly.is_empty:
-            return None
-    return poly if poly is not None and poly.geom_type == "Polygon" else None
-
-
-def _halfplane_box(e: FloatArray, h: float) -> Any:
-    """The half-plane ``e . x <= h`` (``e`` a unit vector) cut to a square 2e6 wide."""
+def _clip(hull: Any, E: FloatArray, h: FloatArray) -> Any:
+    """The convex polygon ``hull`` cut by the half-planes ``E x <= h`` (each a box
+    covering the hull, intersected in turn), or None when nothing is left."""
     import shapely
 
-    big = 1e6
-    t = np.array([-e[1], e[0]])
-    base = e * h
-    return shapely.Polygon([base + big * t, base - big * t, base - big * t - 2 * big * e,
-                            base + big * t - 2 * big * e])
+    lo_x, lo_y, hi_x, hi_y = hull.bounds
+    big = 4.0 * (abs(lo_x) + abs(lo_y) + abs(hi_x) + abs(hi_y) + 1e-300)
+    poly = hull
+    for e, c in zip(E, h, strict=True):
+        t = np.array([-e[1], e[0]])
+        base = e * c
+        box = shapely.Polygon([base + big * t, base - big * t, base - big * t - 2 * big * e,
+                               base + big * t - 2 * big * e])
+        poly = poly.intersection(box)
+        if poly.is_empty:
+            return None
+    return poly if poly.geom_type == "Polygon" else None
 
 
 def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
