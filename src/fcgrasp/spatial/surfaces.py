@@ -39,10 +39,10 @@ patches cover two facets in all is left to :mod:`.regions` (exact there).
 
 **The search.**  Pairs are taken best bound first (the solid's extent along ``d``, the
 patches' widths and heights, their projections' inscribed circles), each solved first
-for a lower bound (octagons about the inscribed centres, or one of them and the point
-facing it), and the search stops when no pair left can beat the ``top`` kept by more
-than :data:`GAP`; the cone program then polishes each kept pair whose lower bound is
-further than that below its bound.
+for a lower bound (octagons about the convex pieces' centroids or the projections'
+inscribed centres, or one of them and the point facing it), and the search stops when
+no pair left can beat the ``top`` kept by more than :data:`GAP`; the cone program then
+polishes each kept pair whose lower bound is further than that below its bound.
 """
 
 from __future__ import annotations
@@ -129,8 +129,8 @@ class _Patch:
     """One patch (module docstring): its seed triangle and spread ``beta``, reference
     frame (a :class:`~fcgrasp.spatial.solid.Facet` across ``n_0``), triangles, heights
     ``[low, high]``, projected vertices (m, 2) and, once asked (:func:`_kernel`), its
-    convex piece's half-planes, the centre of the projection's largest inscribed circle
-    and a bound on that circle's radius."""
+    convex piece's half-planes and centroid (``middle``), the centre of the projection's
+    largest inscribed circle and a bound on that circle's radius."""
 
     seed: int
     beta: float
@@ -142,6 +142,7 @@ class _Patch:
     width_bound: float
     kernel: Halfplanes | None = None
     centre: FloatArray = field(default_factory=lambda: np.zeros(2))
+    middle: FloatArray = field(default_factory=lambda: np.zeros(2))
     inradius: float = math.inf
 
 
@@ -257,7 +258,9 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
     piece = _clip(union.convex_hull, E[len(hull[0]):], h[len(hull[0]):])
     if piece is not None and union.buffer(SURFACE_TOL * solid.size).contains(piece):
         patch.kernel = (E, h)
+        patch.middle = np.asarray(piece.centroid.coords[0])
         return patch.kernel
+    patch.middle = centre
     E_, h_ = [], []
     for r in (union.exterior, *union.interiors):
         e, hh = _ring_halfplanes(np.asarray(r.coords)[:-1])
@@ -525,7 +528,10 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
         # a lower bound the cone program improves for the pairs kept: the octagons as
         # large as they hold about the inscribed centres, or about one of them and the
         # point facing it on the other patch
-        r, c1, c2 = _facing(p, q, alphas, (p.centre, q.centre), -neg)
+        # (the pieces' centroids first: between equal octagons, the one in the middle)
+        r, c1, c2 = max(_facing(p, q, alphas, (p.middle, q.middle), -neg),
+                        _facing(p, q, alphas, (p.centre, q.centre), -neg),
+                        key=lambda x: x[0])
         if r <= 0:                # the centres outside the convex pieces: their fits'
             Q1, Q2 = _octagon_axes(p.frame, q.frame)
             t1 = _fit(p.kernel, Q1 @ p.frame.axes.T)[1]  # type: ignore[arg-type]
