@@ -60,6 +60,7 @@ from ..core.tolerances import (
     SURFACE_CENTRE,
     SURFACE_STEP,
     SURFACE_TOL,
+    TINY,
 )
 from .contacts import contact_frames
 from .regions import (
@@ -276,7 +277,7 @@ def _clip(hull: Any, E: FloatArray, h: FloatArray) -> Any:
     import shapely
 
     lo_x, lo_y, hi_x, hi_y = hull.bounds
-    big = 4.0 * (abs(lo_x) + abs(lo_y) + abs(hi_x) + abs(hi_y) + 1e-300)
+    big = 4.0 * (abs(lo_x) + abs(lo_y) + abs(hi_x) + abs(hi_y) + TINY)
     poly = hull
     for e, c in zip(E, h, strict=True):
         t = np.array([-e[1], e[0]])
