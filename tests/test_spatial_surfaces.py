@@ -240,3 +240,60 @@ def test_regions_across_facets_scale_with_the_part():
         got = surface_pair_plans(solid_from_mesh(scaled), mu, alpha, top=2)
         assert [p.radius for p in got] == pytest.approx([p.radius * scale for p in base],
                                                         rel=1e-6)
+
+
+@pytest.mark.parametrize("name", ["sphere", "mug", pytest.param("fine cylinder",
+                                                                 marks=pytest.mark.slow)])
+def test_every_triple_across_facets_holds(name):
+    """Three fingers with friction across facets: triples of the regions' points (found
+    on the mesh by rays, with their triangles' normals: outlines, corners and points
+    inside) pass the exact 6-D cone program at the cone narrowed by the margin alone."""
+    from fcgrasp.spatial.surfaces import SurfaceTriplePlan, surface_triple_plans
+
+    solid = _solids()[name]
+    rng = np.random.default_rng(3)
+    mu = 0.5
+    alpha = math.atan(mu) - math.radians(0.5)
+    plans = surface_triple_plans(solid, mu, alpha, top=2)
+    assert plans and all(isinstance(p, SurfaceTriplePlan) for p in plans)
+    for plan in plans:
+        regions = [_region_points(rng, solid, plan, k, 10) for k in range(3)]
+        # the certificate's premises: every point within delta of its contact (the
+        # corners at delta, to rounding: delta is already less the hull's rounding),
+        # every normal within the patch's spread of its axis
+        for k, (P, N) in enumerate(regions):
+            reach = np.linalg.norm(P - plan.centers[k], axis=1)
+            assert np.all(reach <= plan.delta * (1 + 1e-9))
+            angle = np.degrees(np.arccos(np.clip(N @ plan.normals[k], -1, 1)))
+            assert np.all(angle <= plan.spread[k] + 1e-6)
+        for _ in range(60):
+            picks = [rng.integers(len(P)) for P, _ in regions]
+            P = np.array([regions[k][0][i] for k, i in enumerate(picks)])
+            N = np.array([regions[k][1][i] for k, i in enumerate(picks)])
+            assert closure_margin(P, N, math.tan(alpha)).closure
+        for k in range(3):
+            _check_surface_triangles(solid, plan, k)
+        assert plan.radius <= plan.delta
+
+
+def test_three_fingers_across_facets_on_the_command_line(tmp_path):
+    """``fcgrasp plan demo:cylinder --fingers 3`` ranks regions across facets with the
+    facet triples (:func:`three_finger_plans`), and writes them in the JSON."""
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.spatial import point_triple_plans, three_finger_plans
+
+    out = tmp_path / "cyl3.json"
+    assert main(["plan", "demo:cylinder", "--fingers", "3", "--mu", "0.5", "--top", "3",
+                 "--json", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    cyl = demo_solid("cylinder")
+    want = three_finger_plans(cyl, 0.5, top=3)
+    assert [g["radius"] for g in doc["grasps"]] == pytest.approx([p.radius for p in want.plans])
+    assert doc["grasps"][0]["across_facets"] and len(doc["grasps"][0]["surfaces"]) == 3
+    assert want.plans[0].radius > point_triple_plans(cyl, 0.5, top=1).plans[0].radius
+    assert three_finger_plans(cyl, 0.5, top=3, across=False).plans[0].radius == \
+        point_triple_plans(cyl, 0.5, top=1).plans[0].radius
+    with pytest.raises(TypeError, match="across"):
+        three_finger_plans(cyl, 0.5, across=1)

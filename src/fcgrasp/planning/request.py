@@ -538,7 +538,7 @@ def template_request(options: dict[str, Any]) -> PlanRequest:
 
 def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
     """Two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`), three point fingers
-    with friction (:func:`fcgrasp.spatial.point_triple_plans`) or a parallel jaw
+    with friction (:func:`fcgrasp.spatial.three_finger_plans`) or a parallel jaw
     (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
     ``fcgrasp plan part.stl --fingers 2 --soft``, ``--fingers 3`` or ``--gripper jaw``."""
     from ..io.meshes import read_solid
@@ -577,12 +577,12 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
         what = "two facets hold two soft fingers"
         title = "two soft fingers"
     else:
-        from ..spatial.triples import point_triple_plans
+        from ..spatial.surfaces import three_finger_plans
 
         searches: list[Any] = []
 
         def triples(n: int | None) -> list[Any]:
-            searches.append(point_triple_plans(solid, mu, top=n, margin=request.margin))
+            searches.append(three_finger_plans(solid, mu, top=n, margin=request.margin))
             return list(searches[-1].plans)
 
         plans = top_distinct(triples, request.top, request.distinct)

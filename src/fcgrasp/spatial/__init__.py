@@ -10,8 +10,9 @@
   facets, and the built-in solids;
 - :mod:`~fcgrasp.spatial.regions`: independent regions of two soft fingers on a pair of
   facets (one cone program each) and the search over every pair;
-- :mod:`~fcgrasp.spatial.surfaces`: certified regions of two soft fingers across the
-  facets of curved surfaces, and both searches ranked together (``soft_pair_plans``);
+- :mod:`~fcgrasp.spatial.surfaces`: certified regions of two soft fingers and of three
+  fingers with friction across the facets of curved surfaces, each ranked with its
+  facet search (``soft_pair_plans``, ``three_finger_plans``);
 - :mod:`~fcgrasp.spatial.triples`: certified regions of three point fingers with
   friction on three facets, and the search over triples;
 - :mod:`~fcgrasp.spatial.jaw`: a parallel jaw's region of closing axes on two opposite
@@ -36,7 +37,9 @@ _LAZY = {
     **dict.fromkeys(("SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"), "jaw"),
     **dict.fromkeys(("SpatialQuality", "spatial_quality"), "quality"),
     **dict.fromkeys(("SoftPairPlan", "facet_pair_plans", "soft_pair_regions"), "regions"),
-    **dict.fromkeys(("SurfacePairPlan", "soft_pair_plans", "surface_pair_plans"), "surfaces"),
+    **dict.fromkeys(("SurfacePairPlan", "soft_pair_plans", "surface_pair_plans",
+                     "SurfaceTriplePlan", "surface_triple_plans", "three_finger_plans"),
+                    "surfaces"),
     **dict.fromkeys(("Facet", "Solid", "demo_solid", "solid_from_mesh"), "solid"),
     **dict.fromkeys(("PointTriplePlan", "PointTripleSearch", "perturbation_radius",
                      "point_triple_plans", "point_triple_regions"), "triples"),
@@ -54,7 +57,14 @@ if _TYPE_CHECKING:
     from .quality import SpatialQuality, spatial_quality
     from .regions import SoftPairPlan, facet_pair_plans, soft_pair_regions
     from .solid import Facet, Solid, demo_solid, solid_from_mesh
-    from .surfaces import SurfacePairPlan, soft_pair_plans, surface_pair_plans
+    from .surfaces import (
+        SurfacePairPlan,
+        SurfaceTriplePlan,
+        soft_pair_plans,
+        surface_pair_plans,
+        surface_triple_plans,
+        three_finger_plans,
+    )
     from .triples import (
         PointTriplePlan,
         PointTripleSearch,
@@ -67,6 +77,7 @@ __all__ = ["SpatialContact", "contact_frames", "contact_maps", "contact_wrench_g
            "SpatialClosure", "closure_margin", "spatial_force_closure", "two_soft_closure",
            "SpatialQuality", "spatial_quality", "SoftPairPlan", "soft_pair_plans",
            "soft_pair_regions", "facet_pair_plans", "SurfacePairPlan", "surface_pair_plans",
+           "SurfaceTriplePlan", "surface_triple_plans", "three_finger_plans",
            "Facet", "Solid", "demo_solid", "solid_from_mesh",
            "PointTriplePlan", "PointTripleSearch", "perturbation_radius",
            "point_triple_plans", "point_triple_regions", "SolidJawPlan",

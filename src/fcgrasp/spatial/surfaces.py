@@ -50,6 +50,7 @@ from __future__ import annotations
 import heapq
 import math
 from dataclasses import dataclass, field
+from itertools import combinations
 from typing import Any
 
 import numpy as np
@@ -61,11 +62,13 @@ from ..core.tolerances import (
     SURFACE_STEP,
     SURFACE_TOL,
     TINY,
+    TOL,
 )
 from .contacts import contact_frames
 from .regions import (
     _SHRINKS,
     DEFAULT_MARGIN_DEG,
+    OCTAGON,
     Halfplanes,
     SoftPairPlan,
     _cone_rows,
@@ -78,9 +81,18 @@ from .regions import (
     facet_pair_plans,
 )
 from .solid import Facet, Solid
+from .triples import (
+    PYRAMID_EDGES,
+    PointTriplePlan,
+    PointTripleSearch,
+    _slice_radius,
+    _unbalance,
+    point_triple_plans,
+)
 
-__all__ = ["SurfacePairPlan", "surface_pair_plans", "soft_pair_plans", "SPREADS",
-           "MAX_SEEDS", "GAP"]
+__all__ = ["SurfacePairPlan", "surface_pair_plans", "soft_pair_plans", "SurfaceTriplePlan",
+           "surface_triple_plans", "three_finger_plans", "SPREADS", "MAX_SEEDS", "GAP",
+           "TRIPLE_CANDIDATES"]
 
 #: The patches' spreads ``beta``, as fractions of the cone's half-angle ``alpha``.
 SPREADS = (0.25, 0.5, 0.75)
@@ -88,6 +100,10 @@ SPREADS = (0.25, 0.5, 0.75)
 #: The search across facets stops when no pair of patches left can beat the plans kept
 #: by more than this fraction (on a symmetric solid, every pair around it ties).
 GAP = 0.1
+
+#: Triples of seeds certified across facets (:func:`surface_triple_plans`), those whose
+#: normals balance a force with the most slack over the widest reach first.
+TRIPLE_CANDIDATES = 48
 
 #: The most seeds of patches on one solid.
 MAX_SEEDS = 32
@@ -202,7 +218,10 @@ def _seeds(normals: FloatArray, adj: list[list[int]], areas: FloatArray, beta: f
 def _patch(solid: Solid, seed: int, beta: float, triangles: list[int], axis: FloatArray
            ) -> _Patch:
     """The patch of ``triangles`` grown from ``seed`` within ``beta`` of ``axis`` (its
-    ``n_0``), drawn in the plane across ``axis`` through the seed's centroid."""
+    ``n_0``), drawn in the plane across ``axis`` through the seed's centroid; its spread
+    the largest angle of its triangles' normals from the axis (at most ``beta``)."""
+    inward = -np.asarray(solid.mesh.face_normals, float)[triangles]
+    beta = min(beta, math.acos(min(max(float(np.min(inward @ axis)), -1.0), 1.0)))
     vertices = np.asarray(solid.mesh.vertices, float)
     faces = np.asarray(solid.mesh.faces)
     t1, t2 = contact_frames(axis[None, :])
@@ -410,7 +429,7 @@ def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatA
 def _on_surface(solid: Solid, patch: _Patch, corners: FloatArray) -> FloatArray:
     """The region on the surface as triangles (k, 3, 3): each patch triangle's
     projection clipped to the octagon (``corners``, 2-D), fanned, and lifted back onto
-    that triangle's plane."""
+    that triangle's plane along ``n_0`` (batched)."""
     import shapely
 
     vertices = np.asarray(solid.mesh.vertices, float)
@@ -419,16 +438,25 @@ def _on_surface(solid: Solid, patch: _Patch, corners: FloatArray) -> FloatArray:
     tri3 = vertices[faces[patch.triangles]]
     clipped = shapely.intersection(shapely.polygons((tri3 - f.origin) @ f.axes.T),
                                    shapely.Polygon(corners))
-    out = []
-    for t, poly in zip(tri3, clipped, strict=True):
-        if poly.is_empty or poly.geom_type != "Polygon" or poly.area <= 0:
-            continue
-        ring = f.to_3d(np.asarray(poly.exterior.coords)[:-1])
-        # up along n_0 onto the triangle's plane
-        n = np.cross(t[1] - t[0], t[2] - t[0])
-        ring = ring + (((t[0] - ring) @ n) / float(f.normal @ n))[:, None] * f.normal
-        out += [(ring[0], ring[i], ring[i + 1]) for i in range(1, len(ring) - 1)]
-    return np.asarray(out, float).reshape(-1, 3, 3)
+    idx = np.flatnonzero((shapely.get_type_id(clipped) == 3) & (shapely.area(clipped) > 0))
+    if not len(idx):
+        return np.zeros((0, 3, 3))
+    coords, which = shapely.get_coordinates(clipped[idx], return_index=True)
+    counts = np.bincount(which, minlength=len(idx))
+    keep = np.ones(len(coords), bool)
+    keep[np.cumsum(counts) - 1] = False               # each ring's closing point
+    coords, which, counts = coords[keep], which[keep], counts - 1
+    starts = np.cumsum(counts) - counts
+    t = tri3[idx]
+    n = np.cross(t[:, 1] - t[:, 0], t[:, 2] - t[:, 0])[which]
+    pts = f.to_3d(coords)
+    pts = pts + (np.einsum("ij,ij->i", t[which, 0] - pts, n) / (n @ f.normal))[:, None] \
+        * f.normal                                      # up along n_0 onto each triangle
+    fan = counts - 2                                    # triangles of each polygon's fan
+    poly = np.repeat(np.arange(len(idx)), fan)
+    k = np.arange(int(fan.sum())) - np.repeat(np.cumsum(fan) - fan, fan)
+    first = starts[poly]
+    return np.stack([pts[first], pts[first + k + 1], pts[first + k + 2]], axis=1)
 
 
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
@@ -442,7 +470,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 2) for p in soft_pair_plans(demo_solid("mug"), mu=0.5, top=2)]
-    [7.96, 7.96]
+    [9.03, 9.03]
     >>> type(soft_pair_plans(demo_solid("mug"), mu=0.5, top=1)[0]).__name__
     'SurfacePairPlan'
     """
@@ -618,3 +646,191 @@ def _pair_bound(p: _Patch, q: _Patch, alpha: float) -> float:
         rise = high - float(f.origin @ f.normal) - a.low
         cone = min(cone, rise * math.tan(alpha - a.beta) / 2)
     return min(p.width_bound, q.width_bound, cone)
+
+
+# ----------------------------------------------------------------------------- triples
+
+
+@dataclass(frozen=True)
+class SurfaceTriplePlan(PointTriplePlan):
+    """Certified regions of three point fingers with friction across facets
+    (:func:`surface_triple_plans`): a :class:`~fcgrasp.spatial.PointTriplePlan` whose
+    ``facets`` are the seeds' facets, ``normals`` the patches' axes ``n_0``,
+    ``regions`` the octagons' corners lifted onto the surface, ``centers`` the
+    certificate's points (each octagon's centre at its patch's middle height) and
+    ``delta`` its radius, with ``surfaces``, ``triangles``, ``spread``, ``outlines`` and
+    ``surface_triangles`` as :class:`SurfacePairPlan` has them."""
+
+    surfaces: tuple[tuple[int, ...], ...] = ()
+    triangles: tuple[IntArray, ...] = field(default=(), repr=False)
+    spread: tuple[float, ...] = ()
+    outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
+    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
+
+    def to_dict(self) -> dict[str, Any]:
+        out = super().to_dict()
+        out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
+                    "spread_deg": list(self.spread),
+                    "outlines": [o.tolist() for o in self.outlines],
+                    "surface_triangles": [t.tolist() for t in self.surface_triangles]})
+        return out
+
+
+def _triple_radius(patches: tuple[_Patch, ...], mids: list[FloatArray], alpha: float
+                   ) -> tuple[float, float, FloatArray]:
+    """The certified circumradius of three octagons about the 2-D centres ``mids`` (one
+    per patch, turned along each patch's first axis), the certificate's radius ``delta``
+    and its three points (3, 3).  The certificate
+    (:func:`~fcgrasp.spatial.triples.perturbation_radius`'s, theorem 3.1 in 6-D) is
+    taken with each contact's pyramid in the cone of ``alpha - beta`` about ``n_0`` (so
+    inside the friction cone of every normal of the patch) at the octagon's centre
+    raised to the middle of the patch's heights; a patch point over the octagon is then
+    within ``sqrt(r^2 + H^2)`` of it (``H`` half the patch's height range), so ``r`` is at
+    most ``sqrt(delta^2 - H^2)`` and the octagon's room in its convex piece."""
+    points = np.array([p.frame.to_3d(m) + 0.5 * (p.low + p.high) * p.frame.normal
+                       for p, m in zip(patches, mids, strict=True)])
+    normals = np.array([p.frame.normal for p in patches])
+    delta = _certificate_across(points, normals, np.array([alpha - p.beta for p in patches]))
+    r = delta
+    for p, m in zip(patches, mids, strict=True):
+        half = 0.5 * (p.high - p.low)
+        if delta <= half:
+            return 0.0, delta, points
+        r = min(r, math.sqrt(delta * delta - half * half),
+                _room(p, p.frame.to_3d(m), _own_octagon(p)))
+    return max(r, 0.0), delta, points
+
+
+def _own_octagon(p: _Patch) -> FloatArray:
+    """The unit octagon's corners (8, 3) in the patch's plane, turned along its first
+    axis."""
+    return np.asarray(OCTAGON @ p.frame.axes)
+
+
+def _certificate_across(points: FloatArray, normals: FloatArray, alphas: FloatArray
+                        ) -> float:
+    """:func:`~fcgrasp.spatial.triples._certificate` with a cone half-angle per contact."""
+    t1, t2 = contact_frames(normals)
+    a = 2 * np.pi * np.arange(PYRAMID_EDGES) / PYRAMID_EDGES
+    cos_a, tan_a = np.cos(alphas)[:, None, None], np.tan(alphas)[:, None, None]
+    f = cos_a * (normals[:, None, :] + tan_a * (
+        np.cos(a)[:, None] * t1[:, None, :] + np.sin(a)[:, None] * t2[:, None, :]))
+    arm = points - points.mean(axis=0)
+    reach = float(np.max(np.linalg.norm(arm, axis=1)))
+    m = np.cross(arm[:, None, :], f) / max(reach, TOL)
+    w = np.concatenate([f, m], axis=-1).reshape(-1, 6)
+    return reach * _slice_radius(w)
+
+
+def three_finger_plans(solid: Solid, mu: Any, top: int | None = 10,
+                       margin: Any = DEFAULT_MARGIN_DEG, across: bool = True
+                       ) -> PointTripleSearch:
+    """Certified regions of three point fingers with friction on ``solid``, largest
+    first: on triples of facets (:func:`~fcgrasp.spatial.point_triple_plans`) and, with
+    ``across`` (the default), across the facets of curved surfaces
+    (:func:`surface_triple_plans`, above the facets' ``top``-th), ranked together by
+    ``radius``; ``certified`` and ``exhaustive`` are the facet search's.
+
+    >>> from fcgrasp.spatial.solid import demo_solid
+    >>> got = three_finger_plans(demo_solid("mug"), mu=0.5, top=2)
+    >>> [type(p).__name__ for p in got.plans]
+    ['SurfaceTriplePlan', 'SurfaceTriplePlan']
+    """
+    if not isinstance(across, bool):
+        raise TypeError(f"across must be a bool, got {across!r}")
+    search = point_triple_plans(solid, mu, top=top, margin=margin)
+    if not across:
+        return search
+    mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
+    plans: list[Any] = list(search.plans)
+    last = plans[top - 1].radius if top is not None and len(plans) >= top else 0.0
+    plans = sorted([*plans, *surface_triple_plans(solid, mu_v, alpha, top, margin_v, last)],
+                   key=lambda p: -p.radius)[:top]
+    return PointTripleSearch(plans, search.certified, search.exhaustive)
+
+
+def surface_triple_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
+                         margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0,
+                         candidates: int = TRIPLE_CANDIDATES) -> list[SurfaceTriplePlan]:
+    """Certified regions of three point fingers with friction across the facets of
+    curved surfaces, largest first, at most ``top``, each larger than ``floor``:
+    ``alpha = atan(mu) - margin`` (radians).  Triples of seeds (module docstring) are
+    ranked by how well their normals balance a force (the slack ``sin(alpha)`` less
+    :func:`~fcgrasp.spatial.triples._unbalance`) times the inscribed radius of their
+    triangle (the certificate's radius grows with both); the first ``candidates`` are
+    certified
+    (:func:`_triple_radius`) with each seed's patch about its own normal at the three
+    spreads, the largest kept.  A lower bound: not every triple is certified."""
+    if alpha <= 0:
+        return []
+    normals, adj, facet_of = _graph(solid)
+    areas = np.asarray(solid.mesh.area_faces, float)
+    seeds = np.array(_seeds(normals, adj, areas, SPREADS[0] * alpha), np.intp)
+    if len(seeds) < 3:
+        return []
+    vertices = np.asarray(solid.mesh.vertices, float)
+    faces = np.asarray(solid.mesh.faces)
+    where = vertices[faces[seeds]].mean(axis=1)
+    trio = np.array(list(combinations(range(len(seeds)), 3)), np.intp)
+    slack = math.sin(alpha) - _unbalance(normals[seeds][trio])
+    pts = where[trio]
+    sides = np.linalg.norm(pts - np.roll(pts, 1, axis=1), axis=2)
+    area = 0.5 * np.linalg.norm(np.cross(pts[:, 1] - pts[:, 0], pts[:, 2] - pts[:, 0]),
+                                axis=1)
+    score = slack * 2 * area / np.maximum(sides.sum(axis=1), TINY)   # their inradius
+    keep = np.flatnonzero(slack > 0)
+    keep = keep[np.argsort(-score[keep], kind="stable")][:candidates]
+    made: dict[tuple[int, float], _Patch | None] = {}
+
+    def patch(seed: int, f: float) -> _Patch | None:
+        if (seed, f) not in made:
+            tris = _grow(seed, (normals @ normals[seed] >= math.cos(f * alpha)).tolist(),
+                         adj)
+            got = _patch(solid, seed, f * alpha, tris, normals[seed])
+            _kernel(solid, got)
+            made[seed, f] = got
+        return made[seed, f]
+
+    floor = max(floor, CONE_PROGRAM_TOL * solid.size)
+    found: list[tuple[float, tuple[_Patch, ...], float, FloatArray]] = []
+    for t in keep.tolist():
+        best: tuple[float, tuple[_Patch, ...], float, FloatArray] | None = None
+        for f in SPREADS:
+            trip = tuple(patch(int(seeds[x]), f) for x in trio[t])
+            if any(p is None for p in trip):
+                continue
+            sets = [set(p.triangles.tolist()) for p in trip]    # type: ignore[union-attr]
+            if sets[0] & sets[1] or sets[1] & sets[2] or sets[0] & sets[2]:
+                continue                       # two fingers would share a triangle
+            r, delta, points = _triple_radius(trip, [p.middle for p in trip],  # type: ignore
+                                              alpha)
+            if r > floor and (best is None or r > best[0]):
+                best = (r, trip, delta, points)         # type: ignore[assignment]
+        if best is not None and all(len(set(facet_of[p.triangles].tolist())) >= 1
+                                    for p in best[1]):
+            found.append(best)
+    found.sort(key=lambda e: -e[0])
+    return [_triple_plan(solid, list(trip), r, delta, points, mu, margin, facet_of)
+            for r, trip, delta, points in found[:top]]
+
+
+def _triple_plan(solid: Solid, trip: list[_Patch], r: float, delta: float,
+                 points: FloatArray, mu: float, margin: float, facet_of: IntArray
+                 ) -> SurfaceTriplePlan:
+    regions, outlines, pieces = [], [], []
+    steps = np.arange(OUTLINE_STEPS) / OUTLINE_STEPS
+    for p in trip:
+        corners = p.middle + r * (OCTAGON @ p.frame.axes @ p.frame.axes.T)
+        ring = corners[:, None, :] + steps[None, :, None] * (
+            np.roll(corners, -1, axis=0) - corners)[:, None, :]
+        regions.append(_lift(solid, p, corners))
+        outlines.append(_lift(solid, p, ring.reshape(-1, 2)))
+        pieces.append(_on_surface(solid, p, corners))
+    return SurfaceTriplePlan(
+        tuple(int(facet_of[p.seed]) for p in trip), (-1, -1, -1), r, points,
+        np.stack(regions), np.array([p.frame.normal for p in trip]), mu, margin,
+        delta=delta, surfaces=tuple(tuple(sorted({int(v) for v in facet_of[p.triangles]}))
+                                    for p in trip),
+        triangles=tuple(p.triangles for p in trip),
+        spread=tuple(math.degrees(p.beta) for p in trip), outlines=tuple(outlines),
+        surface_triangles=tuple(pieces))

@@ -290,9 +290,15 @@ def _certify(solid: Solid, table: Any, rows: tuple[int, int, int], alpha: float,
 def _balance(normals: FloatArray, alpha: float) -> Any:
     """Whether the friction cones of half-angle ``alpha`` about three inward
     ``normals`` (T, 3, 3) span the forces (no direction ``u`` every cone force opposes:
-    ``u . n_i <= -sin(alpha)`` for all three), batched: the largest ``min_i u . m_i``
-    over unit ``u`` (``m = -n``) is reached at one ``m_i``, the normalised sum of two,
-    or the point equidistant from all three."""
+    ``u . n_i <= -sin(alpha)`` for all three), batched (:func:`_unbalance`)."""
+    return _unbalance(normals) < math.sin(alpha)
+
+
+def _unbalance(normals: FloatArray) -> FloatArray:
+    """The largest ``min_i u . m_i`` over unit ``u`` (``m = -n``, three inward
+    ``normals`` (T, 3, 3)), batched: reached at one ``m_i``, the normalised sum of two,
+    or the point equidistant from all three.  The cones of half-angle ``alpha`` balance
+    a force when it is below ``sin(alpha)``."""
     m = -normals
     cands = [m[:, 0], m[:, 1], m[:, 2], m[:, 0] + m[:, 1], m[:, 1] + m[:, 2],
              m[:, 0] + m[:, 2]]
@@ -305,7 +311,7 @@ def _balance(normals: FloatArray, alpha: float) -> Any:
         u = u / np.where(ok, length, 1.0)[:, None]
         val = np.min(np.einsum("tj,tkj->tk", u, m), axis=1)
         best = np.where(ok, np.maximum(best, val), best)
-    return best < math.sin(alpha)
+    return best
 
 
 def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
