@@ -34,7 +34,7 @@ import trimesh
 from fcgrasp.spatial import closure_margin, soft_pair_plans
 from fcgrasp.spatial.regions import facet_pair_plans, soft_pair_regions
 from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
-from fcgrasp.spatial.surfaces import surface_pair_plans
+from fcgrasp.spatial.surfaces import surface_pair_plans, three_finger_plans
 from fcgrasp.spatial.triples import point_triple_plans, point_triple_regions
 
 MU, TOP = 0.5, 5
@@ -117,10 +117,14 @@ def three_fingers() -> None:
                for k in (3, 4, 5)]
     solids += [("cylinder, 2500 sections", lambda: solid_from_mesh(
         trimesh.creation.cylinder(radius=10.0, height=30.0, sections=2500)))]
-    print(f"\nthree fingers with friction, mu {MU}, top {TOP}: certified regions")
+    solids += [("demo:mug", lambda: demo_solid("mug"))]
+    print(f"\nthree fingers with friction, mu {MU}, top {TOP}: certified regions on facets "
+          f"(point_triple_plans); across: with the regions across facets too "
+          f"(three_finger_plans, the CLI's)")
     print(f"{'solid':28s} {'facets':>7s} {'total s':>8s} {'target':>7s} {'triples':>8s} "
           f"{'exh.':>5s} {'best r':>8s} {'failing':>8s} {'cert/fail':>9s} "
-          f"{'every triple s':>14s} {'speed-up':>9s} {'same':>5s}")
+          f"{'every triple s':>14s} {'speed-up':>9s} {'same':>5s} {'across s':>9s} "
+          f"{'r across':>9s}")
     for name, make in solids:
         (solid, got), total = _timed(lambda make=make: (lambda s: (
             s, point_triple_plans(s, MU, top=TOP)))(make()))
@@ -138,8 +142,11 @@ def three_fingers() -> None:
         else:
             base = f"{'not run':>14s} {'':>9s} {'':>5s}"
         r = f"{best.radius:8.3g}" if best is not None else f"{'-':>8s}"
+        both, both_t = _timed(lambda solid=solid: three_finger_plans(solid, MU, top=TOP))
+        r_both = f"{both.plans[0].radius:9.3g}" if both.plans else f"{'-':>9s}"
         print(f"{name:28s} {len(solid.facets):7d} {total:8.3f} {target:>7s} "
-              f"{got.certified:8d} {str(got.exhaustive):>5s} {r} {gap} {base}")
+              f"{got.certified:8d} {str(got.exhaustive):>5s} {r} {gap} {base} "
+              f"{both_t:9.3f} {r_both}")
 
 
 def _timed(fn):

@@ -12,15 +12,15 @@ import math
 import numpy as np
 import pytest
 
-from fcgrasp.spatial import closure_margin, point_triple_plans, soft_pair_plans
+from fcgrasp.spatial import closure_margin, soft_pair_plans, three_finger_plans
 from fcgrasp.spatial.jaw import solid_jaw_plans
 from fcgrasp.spatial.solid import solid_from_mesh
-from fcgrasp.spatial.surfaces import SurfacePairPlan
+from fcgrasp.spatial.surfaces import SurfacePairPlan, SurfaceTriplePlan
 
 from .test_spatial_jaw import _axes_inside
 from .test_spatial_jaw import _holds as jaw_holds
 from .test_spatial_regions import _grasps as pair_grasps
-from .test_spatial_surfaces import _check_plans
+from .test_spatial_surfaces import _check_plans, _region_points
 from .test_spatial_triples import _grasps as triple_grasps
 
 trimesh = pytest.importorskip("trimesh")
@@ -87,9 +87,17 @@ def _check_every_gripper(solid, rng):
         assert two_soft_closure(P, np.broadcast_to(plan.normals, P.shape), mu).all()
         checked += 1
     tight = math.tan(math.atan(mu) - math.radians(0.5))
-    for plan in point_triple_plans(solid, mu, top=2, margin=0.5).plans:
-        for P in triple_grasps(rng, plan, 20, 4):
-            assert closure_margin(P, plan.normals, tight).closure
+    for plan in three_finger_plans(solid, mu, top=2, margin=0.5).plans:
+        if isinstance(plan, SurfaceTriplePlan):    # points found on the mesh by rays
+            regions = [_region_points(rng, solid, plan, k, 4) for k in range(3)]
+            for _ in range(20):
+                pick = [rng.integers(len(P)) for P, _ in regions]
+                P = np.array([regions[k][0][i] for k, i in enumerate(pick)])
+                N = np.array([regions[k][1][i] for k, i in enumerate(pick)])
+                assert closure_margin(P, N, tight).closure
+        else:
+            for P in triple_grasps(rng, plan, 20, 4):
+                assert closure_margin(P, plan.normals, tight).closure
         checked += 1
     for plan in solid_jaw_plans(solid, (2, 120), 6, mu, top=2, margin=0.5):
         for x in _axes_inside(rng, solid, plan, 8):
