@@ -9,7 +9,7 @@ drawn in the plane through the seed's centroid across ``n_0``: each patch point 
 into the union ``U`` of its triangles' projections, at a height (along ``n_0``) within
 the patch's ``[low, high]``.
 
-**A region** is a regular octagon ``P`` (as in :mod:`.regions`) inside a convex piece of
+**A region** is a regular octagon ``P`` (as in :mod:`~fcgrasp.spatial.regions`) inside a convex piece of
 ``U`` (:func:`_kernel`: ``U``'s hull cut at its reflex corners, checked inside ``U``, else
 ``U``'s kernel); a finger may touch any patch point that projects into ``P``.  Those
 points lie in the prism ``P x [low, high]``, and the surface's normal at each of them is
@@ -22,7 +22,7 @@ Two soft fingers hold when the segment joining them lies inside both friction co
 when every difference of the two prisms' corners (16 each) lies in the cone of
 ``alpha - beta_1`` about ``n_{0,1}`` and of ``alpha - beta_2`` about ``-n_{0,2}``: both
 cones are convex, and the differences of the prisms are the convex hull of their
-corners' (:mod:`.regions`).  The largest pair of octagons under that condition is one
+corners' (:mod:`~fcgrasp.spatial.regions`).  The largest pair of octagons under that condition is one
 second-order cone program (Clarabel), its answer confirmed in floats.  The regions are
 **certified** (every grasp in them holds), not proved the largest: the condition is
 sufficient, not necessary, and the patches are a finite family.
@@ -35,7 +35,7 @@ most squarely, make a pair; its patches lie about the bisector ``d`` of their no
 (``-d`` for the second, so their planes are parallel), at ``beta`` a quarter, half and
 three quarters of the way from the seeds' own tilt from ``d`` to ``alpha`` (a smaller
 ``beta`` keeps more of the cone, a larger one more of the surface).  A pair whose two
-patches cover two facets in all is left to :mod:`.regions` (exact there).
+patches cover two facets in all is left to :mod:`~fcgrasp.spatial.regions` (exact there).
 
 **The search.**  Pairs are taken best bound first (the solid's extent along ``d``, the
 patches' widths and heights, their projections' inscribed circles), each solved first
@@ -540,7 +540,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             c = _grow(j, (-along >= math.cos(b)).tolist(), adj)
             if not a or not c or \
                     len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
-                continue                      # one facet each: :mod:`.regions`' exact case
+                continue                      # one facet each: :mod:`~fcgrasp.spatial.regions`' exact case
             pairs[k] = (_patch(solid, i, b, a, axis), _patch(solid, j, b, c, -axis))
             tight = min(-neg, _pair_bound(*pairs[k], alpha))
             if tight > limit:
