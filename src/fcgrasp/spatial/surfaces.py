@@ -9,9 +9,9 @@ drawn in the plane through the seed's centroid across ``n_0``: each patch point 
 into the union ``U`` of its triangles' projections, at a height (along ``n_0``) within
 the patch's ``[low, high]``.
 
-**A region** is a regular octagon ``P`` (as in :mod:`~fcgrasp.spatial.regions`) inside a convex piece of
-``U`` (:func:`_kernel`: ``U``'s hull cut at its reflex corners, checked inside ``U``, else
-``U``'s kernel); a finger may touch any patch point that projects into ``P``.  Those
+**A region** is a regular octagon ``P`` (as in :mod:`~fcgrasp.spatial.regions`) inside
+a convex piece of ``U`` (:func:`_kernel`: ``U``'s hull cut at its reflex corners, checked
+inside ``U``, else ``U``'s kernel); a finger may touch any patch point that projects into ``P``.  Those
 points lie in the prism ``P x [low, high]``, and the surface's normal at each of them is
 within ``beta`` of ``n_0``.
 
@@ -22,8 +22,8 @@ Two soft fingers hold when the segment joining them lies inside both friction co
 when every difference of the two prisms' corners (16 each) lies in the cone of
 ``alpha - beta_1`` about ``n_{0,1}`` and of ``alpha - beta_2`` about ``-n_{0,2}``: both
 cones are convex, and the differences of the prisms are the convex hull of their
-corners' (:mod:`~fcgrasp.spatial.regions`).  The largest pair of octagons under that condition is one
-second-order cone program (Clarabel), its answer confirmed in floats.  The regions are
+corners' (:mod:`~fcgrasp.spatial.regions`).  The largest pair of octagons under that
+condition is one second-order cone program (Clarabel), its answer confirmed in floats.  The regions are
 **certified** (every grasp in them holds), not proved the largest: the condition is
 sufficient, not necessary, and the patches are a finite family.
 
@@ -540,7 +540,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             c = _grow(j, (-along >= math.cos(b)).tolist(), adj)
             if not a or not c or \
                     len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
-                continue                      # one facet each: :mod:`~fcgrasp.spatial.regions`' exact case
+                continue                      # one facet each: the exact case of regions.py
             pairs[k] = (_patch(solid, i, b, a, axis), _patch(solid, j, b, c, -axis))
             tight = min(-neg, _pair_bound(*pairs[k], alpha))
             if tight > limit:
