@@ -11,9 +11,9 @@ the patch's ``[low, high]``.
 
 **A region** is a regular octagon ``P`` (as in :mod:`~fcgrasp.spatial.regions`) inside
 a convex piece of ``U`` (:func:`_kernel`: ``U``'s hull cut at its reflex corners, checked
-inside ``U``, else ``U``'s kernel); a finger may touch any patch point that projects into ``P``.  Those
-points lie in the prism ``P x [low, high]``, and the surface's normal at each of them is
-within ``beta`` of ``n_0``.
+inside ``U``, else ``U``'s kernel); a finger may touch any patch point that projects
+into ``P``.  Those points lie in the prism ``P x [low, high]``, and the surface's normal
+at each of them is within ``beta`` of ``n_0``.
 
 **The condition (sufficient).**  A friction cone of half-angle ``alpha`` about a normal
 within ``beta`` of ``n_0`` contains the cone of half-angle ``alpha - beta`` about ``n_0``.
@@ -23,9 +23,9 @@ when every difference of the two prisms' corners (16 each) lies in the cone of
 ``alpha - beta_1`` about ``n_{0,1}`` and of ``alpha - beta_2`` about ``-n_{0,2}``: both
 cones are convex, and the differences of the prisms are the convex hull of their
 corners' (:mod:`~fcgrasp.spatial.regions`).  The largest pair of octagons under that
-condition is one second-order cone program (Clarabel), its answer confirmed in floats.  The regions are
-**certified** (every grasp in them holds), not proved the largest: the condition is
-sufficient, not necessary, and the patches are a finite family.
+condition is one second-order cone program (Clarabel), its answer confirmed in floats.
+The regions are **certified** (every grasp in them holds), not proved the largest: the
+condition is sufficient, not necessary, and the patches are a finite family.
 
 **The family.**  Seeds cover the mesh: a triangle is a seed unless it lies in the patch
 (spread ``alpha / 4`` about its own normal) of a seed before it, largest first (at most
