@@ -211,7 +211,7 @@ MOVES = ("translate", "rotate", "scale", "mirror", "start")
 
 
 @pytest.mark.parametrize("kind", MOVES)
-@pytest.mark.parametrize("fingers", [2, 3, 4])
+@pytest.mark.parametrize("fingers", [2, 3, pytest.param(4, marks=pytest.mark.slow)])
 def test_plans_invariant(kind, fingers):
     # seeded by position: hash() of a string changes from one process to the next
     rng = np.random.default_rng([MOVES.index(kind), fingers])
