@@ -106,8 +106,8 @@ def _check_every_gripper(solid, rng):
     return checked
 
 
-@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
-                                       for s in range(1, 12))])
+@pytest.mark.parametrize("seed", [pytest.param(s, marks=pytest.mark.slow)
+                                  for s in range(12)])
 def test_every_gripper_holds_on_brackets_made_by_booleans(seed):
     rng = np.random.default_rng(seed)
     assert _check_every_gripper(_bracket(seed), rng) >= 2
