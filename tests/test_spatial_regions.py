@@ -355,3 +355,37 @@ def test_the_mug_is_a_cup_with_a_handle():
                                                  rel=1e-9)
     lo, hi = mug.mesh.bounds
     assert np.allclose(lo, [-40, -40, 0]) and np.allclose(hi, [72, 40, 90])
+
+
+@pytest.mark.parametrize("cases", [300, pytest.param(5000, marks=pytest.mark.slow)])
+def test_the_vertex_fit_equals_highs(cases):
+    """The octagon's fit in a convex piece of four to ten edges by the vertices of its
+    three-variable program equals HiGHS' optimum, on seeded convex polygons (hulls of
+    random points, thin ones, near-parallel edges) and turned octagons; its centre is
+    feasible."""
+    from scipy.optimize import linprog
+    from shapely import MultiPoint
+
+    from fcgrasp.spatial import regions as R
+
+    rng = np.random.default_rng(cases)
+    done = 0
+    for _ in range(cases):
+        pts = rng.normal(size=(int(rng.integers(4, 14)), 2)) * rng.uniform(0.01, 100, 2)
+        poly = MultiPoint(pts).convex_hull
+        if poly.geom_type != "Polygon" or poly.area < 1e-9:
+            continue
+        E, h = R._halfplanes(poly)
+        if not 4 <= len(E) <= R._VERTEX_FIT_EDGES:
+            continue
+        phi = rng.uniform(0, 2 * math.pi)
+        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
+                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        k = (E @ corners.T).max(axis=1)
+        s, t = R._vertex_fit(E, h, k)
+        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
+                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-9 * np.abs(pts).max())
+        assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
+        done += 1
+    assert done > cases // 3
