@@ -111,7 +111,8 @@ def _check_surface_triangles(solid, plan, k):
         assert min(np.linalg.norm(p - c) for p, _ in hits) < 1e-7 * solid.size
     e1, e2 = tris[:, 1] - tris[:, 0], tris[:, 2] - tris[:, 0]
     across = np.abs(np.cross(e1, e2) @ axis) / 2
-    assert across.sum() == pytest.approx(2 * math.sqrt(2) * plan.radius ** 2, rel=1e-6)
+    r = plan.radii[k] if getattr(plan, "radii", ()) else plan.radius
+    assert across.sum() == pytest.approx(2 * math.sqrt(2) * r ** 2, rel=1e-6)
 
 
 @pytest.mark.parametrize("name", ["cylinder", "mug", "sphere",
@@ -299,3 +300,18 @@ def test_three_fingers_across_facets_on_the_command_line(tmp_path):
         point_triple_plans(cyl, 0.5, top=1).plans[0].radius
     with pytest.raises(TypeError, match="across"):
         three_finger_plans(cyl, 0.5, across=1)
+
+
+def test_the_second_level_across_facets_grows_one_region():
+    """Leximin across facets (definition 7.1's second level): on the mug one region of
+    the top plan grows past the first level's radius, the other keeps it, and every pair
+    of their points found on the mesh by rays holds (:func:`_check_plans`, whose
+    triangles' areas are checked against each region's own radius)."""
+    solid = demo_solid("mug")
+    mu = 0.5
+    plan = soft_pair_plans(solid, mu, top=1)[0]
+    assert isinstance(plan, SurfacePairPlan) and max(plan.radii) > plan.radius * 1.01
+    assert min(plan.radii) == plan.radius
+    _check_plans(np.random.default_rng(5), solid, mu, [plan], inside=20)
+    flat = soft_pair_plans(solid, mu, top=1, leximin=False)[0]
+    assert flat.radii == (flat.radius, flat.radius) and flat.radius == plan.radius

@@ -310,21 +310,24 @@ def _clip(hull: Any, E: FloatArray, h: FloatArray) -> Any:
 
 
 def _holds(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatArray,
-           patches: tuple[_Patch, _Patch], alphas: tuple[float, float], r: float) -> bool:
+           patches: tuple[_Patch, _Patch], alphas: tuple[float, float], r: float,
+           r2: float | None = None) -> bool:
     """The module's condition checked in floats: every difference of the two prisms'
-    corners (octagons of circumradius ``r`` about ``c1``, ``c2``, 3-D) strictly inside
-    both narrowed cones, every octagon corner inside its kernel."""
+    corners (octagons of circumradius ``r`` about ``c1`` and ``r2``, default ``r``, about
+    ``c2``, 3-D) strictly inside both narrowed cones, every octagon corner inside its
+    convex piece."""
     p, q = patches
+    r2 = r if r2 is None else r2
     P1 = _prism(c1 + r * Q1, p)
-    P2 = _prism(c2 + r * Q2, q)
+    P2 = _prism(c2 + r2 * Q2, q)
     d = P2[None, :, :] - P1[:, None, :]
     length = np.linalg.norm(d, axis=-1)
     for axis, a in ((p.frame.normal, alphas[0]), (-q.frame.normal, alphas[1])):
         if not np.all(d @ axis > math.cos(a) * length):
             return False
-    for c, Q, pt in ((c1, Q1, p), (c2, Q2, q)):
+    for c, Q, pt, rr in ((c1, Q1, p, r), (c2, Q2, q, r2)):
         E, h = pt.kernel  # type: ignore[misc]
-        if not np.all(pt.frame.to_2d(c + r * Q) @ E.T <= h):
+        if not np.all(pt.frame.to_2d(c + rr * Q) @ E.T <= h):
             return False
     return True
 
@@ -403,13 +406,16 @@ def _lift(solid: Solid, patch: _Patch, xy: FloatArray) -> FloatArray:
 
 
 def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatArray,
-                  r: float, mu: float, margin: float, facet_of: IntArray
-                  ) -> SurfacePairPlan:
+                  r: float, mu: float, margin: float, facet_of: IntArray,
+                  radii: tuple[float, float] | None = None) -> SurfacePairPlan:
+    """The plan of octagons of radius ``r`` (the measure) about ``c1`` and ``c2``, or of
+    ``radii`` when the second level grew one of them."""
     Q1, Q2 = _octagon_axes(p.frame, q.frame)
+    radii = (r, r) if radii is None else radii
     regions, centers, outlines, pieces = [], [], [], []
     steps = np.arange(OUTLINE_STEPS) / OUTLINE_STEPS
-    for patch, c, Q in ((p, c1, Q1), (q, c2, Q2)):
-        corners = patch.frame.to_2d(c + r * Q)
+    for patch, c, Q, rr in ((p, c1, Q1, radii[0]), (q, c2, Q2, radii[1])):
+        corners = patch.frame.to_2d(c + rr * Q)
         ring = corners[:, None, :] + steps[None, :, None] * (
             np.roll(corners, -1, axis=0) - corners)[:, None, :]
         regions.append(_lift(solid, patch, corners))
@@ -420,10 +426,61 @@ def _surface_plan(solid: Solid, p: _Patch, q: _Patch, c1: FloatArray, c2: FloatA
     facets = (int(facet_of[p.seed]), int(facet_of[q.seed]))
     return SurfacePairPlan(facets, (-1, -1), r, np.stack(centers), np.stack(regions),
                            np.stack([p.frame.normal, q.frame.normal]), mu, margin,
-                           radii=(r, r), surfaces=surfaces,
+                           radii=radii, surfaces=surfaces,
                            triangles=(p.triangles, q.triangles),
                            spread=(math.degrees(p.beta), math.degrees(q.beta)),
                            outlines=tuple(outlines), surface_triangles=tuple(pieces))
+
+
+def _second_level(p: _Patch, q: _Patch, c1: FloatArray, c2: FloatArray, r: float,
+                  alphas: tuple[float, float]
+                  ) -> tuple[FloatArray, FloatArray, tuple[float, float]]:
+    """Definition 7.1's second level (leximin) across facets, as
+    :func:`~fcgrasp.spatial.regions._second_level` on facets: one octagon kept at the
+    first level's ``r``, the other as large as the module's condition lets it (the cone
+    program with the kept radius a constant), both ways tried, the larger growth kept
+    once confirmed in floats (bisected towards ``r`` where it sits a rounding outside).
+    Returns the centres and the two radii (``(r, r)`` when neither grows)."""
+    import clarabel
+
+    fp, fq = p.frame, q.frame
+    Q1, Q2 = _octagon_axes(fp, fq)
+    best = (c1, c2, (r, r))
+    base = fq.origin - fp.origin
+    shifts = [hq * fq.normal - hp * fp.normal for hp in (p.low, p.high)
+              for hq in (q.low, q.high)]
+    for side in (0, 1):
+        rows, rhs = _piece_rows((fp, fq), (Q1, Q2), (p.kernel, q.kernel),  # type: ignore
+                                fixed=(1 - side, r))
+        cones: list[Any] = [clarabel.NonnegativeConeT(len(rows) + 1)]
+        row = np.zeros(5)
+        row[4] = -1.0                                   # g >= r
+        rows.append(row)
+        rhs.append(-r)
+        pairs = [(base + sh + r * b, -a) if side == 0 else (base + sh - r * a, b)
+                 for sh in shifts for a in Q1 for b in Q2]
+        _cone_rows(fp, fq, alphas, pairs, rows, rhs, cones)
+        z = _largest_last(rows, rhs, cones, almost=True)
+        if z is None:
+            continue
+        d1, d2, g = fp.to_3d(z[0:2]), fq.to_3d(z[2:4]), float(z[4])
+
+        def holds(x: float, d1: FloatArray = d1, d2: FloatArray = d2, side: int = side
+                  ) -> bool:
+            r1, r2 = (x, r) if side == 0 else (r, x)
+            return _holds(d1, d2, Q1, Q2, (p, q), alphas, r1, r2)
+
+        if g <= r or not holds(r):
+            continue
+        if not holds(g):
+            lo, hi = r, g
+            while hi - lo > SURFACE_STEP * g:
+                mid = 0.5 * (lo + hi)
+                lo, hi = (mid, hi) if holds(mid) else (lo, mid)
+            g = lo
+        if g > max(best[2]) * (1 + SURFACE_STEP):
+            best = (d1, d2, (g, r) if side == 0 else (r, g))
+    return best
 
 
 def _on_surface(solid: Solid, patch: _Patch, corners: FloatArray) -> FloatArray:
@@ -481,18 +538,20 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
         return out
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     last = out[top - 1].radius if top is not None and len(out) >= top else 0.0
-    return sorted([*out, *surface_pair_plans(solid, mu_v, alpha, top, margin_v, last)],
+    return sorted([*out, *surface_pair_plans(solid, mu_v, alpha, top, margin_v, last,
+                                             leximin=leximin)],
                   key=lambda p: -p.radius)[:top]
 
 
 def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
                        margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0,
-                       gap: float = GAP) -> list[SurfacePairPlan]:
+                       gap: float = GAP, leximin: bool = True) -> list[SurfacePairPlan]:
     """The best regions of two soft fingers across facets (module docstring), largest
     first, at most ``top`` (None: every pair of patches), each larger than ``floor``;
     the search stops when no pair of patches left has a bound above ``1 + gap`` times
     the ``top``-th kept (``gap=0``: the best of the whole family, for the lower bound of
-    each pair that the search computes before the cone program polishes those kept):
+    each pair that the search computes before the cone program polishes those kept);
+    with ``leximin``, each plan's second level grown (:func:`_second_level`):
     ``mu`` and ``margin`` as :func:`~fcgrasp.spatial.soft_pair_plans` checked them,
     ``alpha = atan(mu) - margin`` in radians.  An empty list where no patch spans two
     facets (a box, a prism)."""
@@ -582,7 +641,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             g = _certified(d1, d2, p, q, alphas, g)
             if g > r:
                 r, c1, c2 = g, d1, d2
-        plans.append(_surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of))
+        c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if leximin \
+            else (c1, c2, (r, r))
+        plans.append(_surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of, radii))
     return sorted(plans, key=lambda x: -x.radius)
 
 
