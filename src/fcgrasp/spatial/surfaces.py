@@ -133,12 +133,17 @@ class SurfacePairPlan(SoftPairPlan):
     surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
 
     def to_dict(self) -> dict[str, Any]:
-        out = super().to_dict()
-        out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
-                    "spread_deg": list(self.spread),
-                    "outlines": [o.tolist() for o in self.outlines],
-                    "surface_triangles": [t.tolist() for t in self.surface_triangles]})
-        return out
+        return _across_dict(self, super().to_dict())
+
+
+def _across_dict(plan: Any, out: dict[str, Any]) -> dict[str, Any]:
+    """A plan's JSON ``out`` with what a plan across facets adds (its ``surfaces``,
+    ``spread_deg``, ``outlines`` and ``surface_triangles``)."""
+    out.update({"across_facets": True, "surfaces": [list(s) for s in plan.surfaces],
+                "spread_deg": list(plan.spread),
+                "outlines": [o.tolist() for o in plan.outlines],
+                "surface_triangles": [t.tolist() for t in plan.surface_triangles]})
+    return out
 
 
 @dataclass
@@ -729,12 +734,7 @@ class SurfaceTriplePlan(PointTriplePlan):
     surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
 
     def to_dict(self) -> dict[str, Any]:
-        out = super().to_dict()
-        out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
-                    "spread_deg": list(self.spread),
-                    "outlines": [o.tolist() for o in self.outlines],
-                    "surface_triangles": [t.tolist() for t in self.surface_triangles]})
-        return out
+        return _across_dict(self, super().to_dict())
 
 
 def _triple_radius(patches: tuple[_Patch, ...], mids: list[FloatArray], alpha: float
