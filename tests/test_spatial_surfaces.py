@@ -214,7 +214,8 @@ def test_the_bounds_hold_and_the_gap_is_kept(name):
             b = S._grow(j, (-along >= math.cos(beta)).tolist(), adj)
             if not a or not b:
                 continue
-            p, q = S._patch(solid, int(i), beta, a, d), S._patch(solid, j, beta, b, -d)
+            p = S._patch(solid, int(i), beta, a, normals, d)
+            q = S._patch(solid, j, beta, b, normals, -d)
             S._kernel(solid, p), S._kernel(solid, q)
             bound = min(S._pair_bound(p, q, alpha), p.inradius / math.cos(math.pi / 8),
                         q.inradius / math.cos(math.pi / 8))

@@ -62,7 +62,6 @@ from ..core.tolerances import (
     SURFACE_STEP,
     SURFACE_TOL,
     TINY,
-    TOL,
 )
 from .contacts import contact_frames
 from .regions import (
@@ -82,10 +81,9 @@ from .regions import (
 )
 from .solid import Facet, Solid
 from .triples import (
-    PYRAMID_EDGES,
     PointTriplePlan,
     PointTripleSearch,
-    _slice_radius,
+    _certificate,
     _unbalance,
     point_triple_plans,
 )
@@ -220,13 +218,15 @@ def _seeds(normals: FloatArray, adj: list[list[int]], areas: FloatArray, beta: f
         beta = min(1.5 * beta, math.pi / 2)
 
 
-def _patch(solid: Solid, seed: int, beta: float, triangles: list[int], axis: FloatArray
-           ) -> _Patch:
+def _patch(solid: Solid, seed: int, beta: float, triangles: list[int], normals: FloatArray,
+           axis: FloatArray | None = None) -> _Patch:
     """The patch of ``triangles`` grown from ``seed`` within ``beta`` of ``axis`` (its
-    ``n_0``), drawn in the plane across ``axis`` through the seed's centroid; its spread
-    the largest angle of its triangles' normals from the axis (at most ``beta``)."""
-    inward = -np.asarray(solid.mesh.face_normals, float)[triangles]
-    beta = min(beta, math.acos(min(max(float(np.min(inward @ axis)), -1.0), 1.0)))
+    ``n_0``; the seed's normal by default), drawn in the plane across ``axis`` through the
+    seed's centroid; its spread the largest angle of its triangles' inward ``normals``
+    (:func:`_graph`'s) from the axis (at most ``beta``)."""
+    axis = normals[seed] if axis is None else axis
+    beta = min(beta, math.acos(min(max(float(np.min(normals[triangles] @ axis)), -1.0),
+                                   1.0)))
     vertices = np.asarray(solid.mesh.vertices, float)
     faces = np.asarray(solid.mesh.faces)
     t1, t2 = contact_frames(axis[None, :])
@@ -378,8 +378,14 @@ def _certified(c1: FloatArray, c2: FloatArray, p: _Patch, q: _Patch,
             return r * (1 - shrink)
     if not holds(0.0):
         return 0.0
-    lo, hi = 0.0, r
-    while hi - lo > SURFACE_STEP * r:
+    return _bisect(holds, 0.0, r)
+
+
+def _bisect(holds: Any, lo: float, hi: float) -> float:
+    """The largest radius found to hold between ``lo`` (which does) and ``hi`` (which
+    may not), halving to :data:`~fcgrasp.core.tolerances.SURFACE_STEP` of ``hi``."""
+    step = SURFACE_STEP * hi
+    while hi - lo > step:
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if holds(mid) else (lo, mid)
     return lo
@@ -461,14 +467,7 @@ def _second_level(p: _Patch, q: _Patch, c1: FloatArray, c2: FloatArray, r: float
             r1, r2 = (x, r) if side == 0 else (r, x)
             return _holds(c1, c2, Q1, Q2, (p, q), alphas, r1, r2)
 
-        if holds(top):
-            g = top
-        else:
-            lo, hi = r, top
-            while hi - lo > SURFACE_STEP * top:
-                mid = 0.5 * (lo + hi)
-                lo, hi = (mid, hi) if holds(mid) else (lo, mid)
-            g = lo
+        g = top if holds(top) else _bisect(holds, r, top)
         if g > max(best) * (1 + SURFACE_STEP):
             best = (g, r) if side == 0 else (r, g)
     return c1, c2, best
@@ -528,10 +527,16 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     if not across:
         return out
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
-    last = out[top - 1].radius if top is not None and len(out) >= top else 0.0
-    return sorted([*out, *surface_pair_plans(solid, mu_v, alpha, top, margin_v, last,
-                                             leximin=leximin)],
-                  key=lambda p: -p.radius)[:top]
+    return _ranked_with(out, top, lambda last: surface_pair_plans(
+        solid, mu_v, alpha, top, margin_v, last, leximin=leximin))
+
+
+def _ranked_with(plans: list[Any], top: int | None, across: Any) -> list[Any]:
+    """A facet search's ``plans`` ranked by ``radius`` with those ``across(last)`` finds
+    above ``last``, the facets' ``top``-th radius (0 when they are fewer), the best
+    ``top`` kept."""
+    last = plans[top - 1].radius if top is not None and len(plans) >= top else 0.0
+    return sorted([*plans, *across(last)], key=lambda p: -p.radius)[:top]
 
 
 def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
@@ -591,7 +596,8 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             if not a or not c or \
                     len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
                 continue                      # one facet each: the exact case of regions.py
-            pairs[k] = (_patch(solid, i, b, a, axis), _patch(solid, j, b, c, -axis))
+            pairs[k] = (_patch(solid, i, b, a, normals, axis),
+                        _patch(solid, j, b, c, normals, -axis))
             tight = min(-neg, _pair_bound(*pairs[k], alpha))
             if tight > limit:
                 heapq.heappush(heap, (-tight, 1, k))
@@ -737,7 +743,7 @@ def _triple_radius(patches: tuple[_Patch, ...], mids: list[FloatArray], alpha: f
     points = np.array([p.frame.to_3d(m) + 0.5 * (p.low + p.high) * p.frame.normal
                        for p, m in zip(patches, mids, strict=True)])
     normals = np.array([p.frame.normal for p in patches])
-    delta = _certificate_across(points, normals, np.array([alpha - p.beta for p in patches]))
+    delta = _certificate(points, normals, np.array([alpha - p.beta for p in patches]))
     r = delta
     for p, m in zip(patches, mids, strict=True):
         half = 0.5 * (p.high - p.low)
@@ -752,21 +758,6 @@ def _own_octagon(p: _Patch) -> FloatArray:
     """The unit octagon's corners (8, 3) in the patch's plane, turned along its first
     axis."""
     return np.asarray(OCTAGON @ p.frame.axes)
-
-
-def _certificate_across(points: FloatArray, normals: FloatArray, alphas: FloatArray
-                        ) -> float:
-    """:func:`~fcgrasp.spatial.triples._certificate` with a cone half-angle per contact."""
-    t1, t2 = contact_frames(normals)
-    a = 2 * np.pi * np.arange(PYRAMID_EDGES) / PYRAMID_EDGES
-    cos_a, tan_a = np.cos(alphas)[:, None, None], np.tan(alphas)[:, None, None]
-    f = cos_a * (normals[:, None, :] + tan_a * (
-        np.cos(a)[:, None] * t1[:, None, :] + np.sin(a)[:, None] * t2[:, None, :]))
-    arm = points - points.mean(axis=0)
-    reach = float(np.max(np.linalg.norm(arm, axis=1)))
-    m = np.cross(arm[:, None, :], f) / max(reach, TOL)
-    w = np.concatenate([f, m], axis=-1).reshape(-1, 6)
-    return reach * _slice_radius(w)
 
 
 def three_finger_plans(solid: Solid, mu: Any, top: int | None = 10,
@@ -789,10 +780,8 @@ def three_finger_plans(solid: Solid, mu: Any, top: int | None = 10,
     if not across:
         return search
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
-    plans: list[Any] = list(search.plans)
-    last = plans[top - 1].radius if top is not None and len(plans) >= top else 0.0
-    plans = sorted([*plans, *surface_triple_plans(solid, mu_v, alpha, top, margin_v, last)],
-                   key=lambda p: -p.radius)[:top]
+    plans = _ranked_with(list(search.plans), top, lambda last: surface_triple_plans(
+        solid, mu_v, alpha, top, margin_v, last))
     return PointTripleSearch(plans, search.certified, search.exhaustive)
 
 
@@ -827,13 +816,13 @@ def surface_triple_plans(solid: Solid, mu: float, alpha: float, top: int | None 
     score = slack * 2 * area / np.maximum(sides.sum(axis=1), TINY)   # their inradius
     keep = np.flatnonzero(slack > 0)
     keep = keep[np.argsort(-score[keep], kind="stable")][:candidates]
-    made: dict[tuple[int, float], _Patch | None] = {}
+    made: dict[tuple[int, float], _Patch] = {}
 
-    def patch(seed: int, f: float) -> _Patch | None:
+    def patch(seed: int, f: float) -> _Patch:
         if (seed, f) not in made:
             tris = _grow(seed, (normals @ normals[seed] >= math.cos(f * alpha)).tolist(),
                          adj)
-            got = _patch(solid, seed, f * alpha, tris, normals[seed])
+            got = _patch(solid, seed, f * alpha, tris, normals)
             _kernel(solid, got)
             made[seed, f] = got
         return made[seed, f]
@@ -844,17 +833,13 @@ def surface_triple_plans(solid: Solid, mu: float, alpha: float, top: int | None 
         best: tuple[float, tuple[_Patch, ...], float, FloatArray] | None = None
         for f in SPREADS:
             trip = tuple(patch(int(seeds[x]), f) for x in trio[t])
-            if any(p is None for p in trip):
-                continue
-            sets = [set(p.triangles.tolist()) for p in trip]    # type: ignore[union-attr]
+            sets = [set(p.triangles.tolist()) for p in trip]
             if sets[0] & sets[1] or sets[1] & sets[2] or sets[0] & sets[2]:
                 continue                       # two fingers would share a triangle
-            r, delta, points = _triple_radius(trip, [p.middle for p in trip],  # type: ignore
-                                              alpha)
+            r, delta, points = _triple_radius(trip, [p.middle for p in trip], alpha)
             if r > floor and (best is None or r > best[0]):
-                best = (r, trip, delta, points)         # type: ignore[assignment]
-        if best is not None and all(len(set(facet_of[p.triangles].tolist())) >= 1
-                                    for p in best[1]):
+                best = (r, trip, delta, points)
+        if best is not None:
             found.append(best)
     found.sort(key=lambda e: -e[0])
     return [_triple_plan(solid, list(trip), r, delta, points, mu, margin, facet_of)

@@ -100,14 +100,20 @@ class PointTripleSearch:
     exhaustive: bool
 
 
-def _generators(points: FloatArray, normals: FloatArray, alpha: float) -> FloatArray:
+def _generators(points: FloatArray, normals: FloatArray, alpha: Any) -> FloatArray:
     """The inscribed pyramids' wrench generators (..., 3 * PYRAMID_EDGES, 6): unit forces
     ``(n + tan(alpha) (cos a t_1 + sin a t_2)) cos(alpha)`` and their moments about the
     contacts' mean over the contacts' reach ``L`` (their largest distance from it; the
-    slice's radius is then in units of ``L``)."""
+    slice's radius is then in units of ``L``); ``alpha`` one half-angle, or one per
+    contact (..., 3)."""
     t1, t2 = contact_frames(normals)
     a = 2 * np.pi * np.arange(PYRAMID_EDGES) / PYRAMID_EDGES
-    f = math.cos(alpha) * (normals[..., None, :] + math.tan(alpha) * (
+    if np.ndim(alpha) == 0:
+        cos_a, tan_a = math.cos(alpha), math.tan(alpha)
+    else:
+        cos_a = np.cos(np.asarray(alpha, float))[..., None, None]
+        tan_a = np.tan(np.asarray(alpha, float))[..., None, None]
+    f = cos_a * (normals[..., None, :] + tan_a * (
         np.cos(a)[:, None] * t1[..., None, :] + np.sin(a)[:, None] * t2[..., None, :]))
     arm = points - points.mean(axis=-2, keepdims=True)
     m = np.cross(arm[..., None, :], f)
@@ -118,8 +124,9 @@ def _generators(points: FloatArray, normals: FloatArray, alpha: float) -> FloatA
     return w.reshape(*w.shape[:-3], -1, 6)
 
 
-def _certificate(points: FloatArray, normals: FloatArray, alpha: float) -> float:
-    """The certified radius (module docstring) of three contacts, in lengths."""
+def _certificate(points: FloatArray, normals: FloatArray, alpha: Any) -> float:
+    """The certified radius (module docstring) of three contacts, in lengths (``alpha``
+    one half-angle, or one per contact)."""
     reach = float(np.max(np.linalg.norm(points - points.mean(axis=0), axis=1)))
     return reach * _slice_radius(_generators(points, normals, alpha))
 
