@@ -188,8 +188,11 @@ def run(row):
         return (time.process_time() - t0) / i.size
     if row in ("regions", "regions_lp"):
         sq = fc.Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
-        n = 200
-        # the first call of a process imports the planner (about 50 ms, once)
+        n = 1000
+        # a long-lived process: the kernels loaded (fc.compile_kernels(), as both README
+        # commands run it; without it the first 200 calls run on Python floats, about
+        # 40 us each, and the 200th loads them); the first call imports the planner
+        fc.compile_kernels()
         fc.independent_regions(sq, (0, 2), mu=0.3)
         lp_regions(sq, 0, 2, 0.3)
         t0 = time.perf_counter()

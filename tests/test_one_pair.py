@@ -14,6 +14,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.grippers.fingers import _in_order, point_fingers
+from fcgrasp.model import one_pair
 from fcgrasp.pipeline import plan_spec
 from tests.oracle import closure_margin_lp, grasp_wrenches
 from tests.shapes import parallel_polygon, random_polygon
@@ -83,10 +84,45 @@ def _compare(seed, count):
     assert positive > count // 4, positive
 
 
+@pytest.fixture(params=["floats", "compiled"])
+def way(request, monkeypatch):
+    """Each way of :func:`fcgrasp.model.one_pair.pair_regions`: on Python floats, or
+    compiled by numba (the same functions); the compiled way must not have fallen back."""
+    compiled = request.param == "compiled"
+    if compiled:
+        pytest.importorskip("numba")
+    monkeypatch.setattr(one_pair, "_use_compiled", lambda: compiled)
+    yield request.param
+    assert not (compiled and one_pair.COMPILED.broken)
+    assert one_pair.COMPILED.loaded or not compiled
+
+
 @pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
                                       for s in range(1, 11))])
-def test_one_pair_equals_the_pipeline(seed):
+def test_one_pair_equals_the_pipeline(seed, way):
     _compare(seed, 400 if seed == 0 else 1000)
+
+
+def test_one_pair_both_ways_agree():
+    """The compiled and the float ways of the same functions: the same mode, lengths
+    and ends on seeded pairs (numba's libm may differ from Python's in a last bit)."""
+    pytest.importorskip("numba")
+    rng = np.random.default_rng(11)
+    found = 0
+    for n in range(300):
+        poly = parallel_polygon(rng) if n % 3 == 0 else random_polygon(rng)
+        i, j = (int(x) for x in rng.choice(np.flatnonzero(poly.usable), 2, replace=False))
+        (ax1, ay1, bx1, by1, nx1, ny1), (ax2, ay2, bx2, by2, nx2, ny2) = (
+            poly.edge_floats[i], poly.edge_floats[j])
+        args = (ax1, ay1, bx1, by1, ax2, ay2, bx2, by2, math.atan2(-ny1, -nx1),
+                math.atan2(-ny2, -nx2), math.atan(float(rng.uniform(0.05, 2))),
+                math.radians(float(rng.choice([0.0, 0.5, 3.0]))), 1e-9)
+        ok, got = one_pair.COMPILED.run("_pair_core", *args)
+        ref = one_pair._plain()(*args)
+        assert ok and got[0] == ref[0], (got, ref)
+        assert np.allclose(got[1:], ref[1:], rtol=0, atol=1e-9 * poly.size), (got, ref)
+        found += ref[0] >= 0
+    assert found > 50, found
 
 
 def test_one_pair_regions_hold_at_every_corner():

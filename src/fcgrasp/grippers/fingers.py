@@ -24,12 +24,12 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from ..core._checks import check_mu_scalar
+from ..core._checks import check_margin, check_mu_scalar, check_tol
 from ..core.tolerances import SOLVER_TOL
 from ..model.frictionless_stretches import frictionless_stretch_regions
 from ..model.graspsets import Vertex
 from ..model.hand import Hand
-from ..model.one_pair import pair_regions
+from ..model.one_pair import pair_core
 from ..model.plans import GraspPlan
 from ..model.polygon import Polygon
 from ..model.regions import DEFAULT_MARGIN_DEG
@@ -235,14 +235,22 @@ def regions_on(polygon: Polygon, edges: Any, mu: float = 0.0,
                gravity: Any = None, tol: float = SOLVER_TOL) -> GraspPlan | None:
     """Optimal independent regions of point fingers on the given edges or stretches
     (definition 7.1; :func:`fcgrasp.independent_regions` documents the arguments)."""
+    if hand is None and gravity is None and type(edges) in (tuple, list) \
+            and len(edges) == 2 and type(edges[0]) is int and type(edges[1]) is int \
+            and edges[0] != edges[1] and 0 <= min(edges) and max(edges) < polygon.n_edges \
+            and polygon.usable[edges[0]] and polygon.usable[edges[1]]:
+        # one edge pair of valid indices (the common call, checked here without numpy;
+        # anything else takes the checks below): the closed forms on numbers
+        return _one_pair(polygon, check_mu_scalar(mu, "mu"), check_margin(margin),
+                         check_tol(tol), list(edges))
     if not isinstance(edges, (str, bytes)) and len(edges) in (2, 3, 4) and all(
             np.ndim(e) == 1 for e in edges):
         return _stretch_regions(polygon, edges, mu, margin, hand, gravity)
     idx = _edge_indices(polygon, edges)
     if len(idx) == 2 and hand is None and gravity is None and idx[0] != idx[1]:
-        # one edge pair: the closed forms on floats (the same checks as below)
-        return _one_pair(polygon, plan_spec(fingers=2, mu=mu, top=1, margin=margin,
-                                            tol=tol), idx)
+        # one edge pair: the closed forms on numbers (the same checks as above)
+        spec = plan_spec(fingers=2, mu=mu, top=1, margin=margin, tol=tol)
+        return _one_pair(polygon, spec.mu, spec.margin, spec.tol, idx)
     gripper = _gripper_on(idx, mu, hand, gravity)
     spec = plan_spec(fingers=gripper.fingers, mu=gripper.mu, top=1, hand=hand,
                      margin=margin, gravity=gripper.gravity, tol=tol)
@@ -289,42 +297,47 @@ def _gripper_on(idx: list[int], mu: float, hand: Hand | None,
     return point_fingers(n, 0.0 if frictionless else mu, gravity, hand)
 
 
-def _one_pair(polygon: Polygon, spec: PlanSpec, idx: list[int]) -> GraspPlan | None:
-    """Two fingers with friction on one edge pair, without a hand: the regions of
-    :func:`fcgrasp.model.one_pair.pair_regions` (plain floats; the same plan as
+def _one_pair(polygon: Polygon, mu: float, margin: float, tol: float, idx: list[int]
+              ) -> GraspPlan | None:
+    """Two fingers with friction on one edge pair of usable edges, without a hand (``mu``,
+    ``margin`` and ``tol`` checked): the regions of
+    :func:`fcgrasp.model.one_pair.pair_regions` (numbers, not arrays; the same plan as
     :meth:`_PointFingers.search_edges`, which the tests keep as the reference), the
     fingers in the order asked for."""
-    i, j = sorted(idx)
-    if not (polygon.usable[i] and polygon.usable[j]):
+    i, j = (idx[0], idx[1]) if idx[0] < idx[1] else (idx[1], idx[0])
+    rows = polygon.edge_floats
+    (ax1, ay1, bx1, by1, nx1, ny1), (ax2, ay2, bx2, by2, nx2, ny2) = rows[i], rows[j]
+    mode, l1, l2, lo1, hi1, lo2, hi2 = pair_core(
+        ax1, ay1, bx1, by1, ax2, ay2, bx2, by2, math.atan2(-ny1, -nx1),
+        math.atan2(-ny2, -nx2), math.atan(mu), math.radians(margin), tol)
+    if mode < 0:
         return None
-    segs, centers = [], []
-    for e in (i, j):
-        ax, ay = polygon.starts[e].tolist()
-        tx, ty = polygon.tangents[e].tolist()
-        nx, ny = polygon.normals[e].tolist()
-        length = float(polygon.lengths[e])
-        segs.append((ax, ay, ax + length * tx, ay + length * ty))
-        centers.append(math.atan2(-ny, -nx))
-    found = pair_regions(segs[0], segs[1], centers[0], centers[1], math.atan(spec.mu),
-                         math.radians(spec.margin), spec.tol)
-    if found is None:
-        return None
-    mode, levels, params = found
-    regions, contacts = [], []
-    for (ax, ay, bx, by), (lo, hi) in zip(segs, params, strict=True):
+    order = 1 if idx[0] == i else -1    # the fingers in the order asked for
+    ends: list[float] = []
+    lengths: list[float] = []
+    contacts: list[float] = []
+    normals: list[float] = []
+    for (ax, ay, bx, by, nx, ny), lo, hi, level in ((rows[i], lo1, hi1, l1),
+                                                   (rows[j], lo2, hi2, l2))[::order]:
         dx, dy = bx - ax, by - ay
         d = math.hypot(dx, dy)
         ux, uy = dx / d, dy / d
-        p, q = (ax + lo * ux, ay + lo * uy), (ax + hi * ux, ay + hi * uy)
-        regions.append(np.array([p, q]))
-        contacts.append(((p[0] + q[0]) / 2, (p[1] + q[1]) / 2))
-    order = (0, 1) if idx[0] == i else (1, 0)
-    return GraspPlan((idx[0], idx[1]), [regions[k] for k in order],
-                     np.array([levels[k] for k in order]),
-                     np.array([contacts[k] for k in order]), polygon.normals[idx],
-                     "friction", spec.mu, ("squeeze", "expand")[mode], spec.margin, None,
+        px, py, qx, qy = ax + lo * ux, ay + lo * uy, ax + hi * ux, ay + hi * uy
+        ends += (px, py, qx, qy)
+        lengths.append(level)
+        contacts += ((px + qx) / 2, (py + qy) / 2)
+        normals += (nx, ny)
+    # one array, the plan's fields its contiguous pieces
+    a = np.array(ends + lengths + contacts + normals)
+    return GraspPlan((idx[0], idx[1]), a[:8].reshape(2, 2, 2), a[8:10],
+                     a[10:14].reshape(2, 2), a[14:].reshape(2, 2), "friction", mu,
+                     ("squeeze", "expand")[mode], margin, None,
                      centroid=polygon.centroid.copy(), radius=polygon.radius,
-                     disturbance=spec.disturbance)
+                     disturbance=_DISTURBANCE)
+
+
+#: The quality's default disturbance (:class:`~fcgrasp.pipeline.PlanSpec`'s).
+_DISTURBANCE = PlanSpec().disturbance
 
 
 def _in_order(p: GraspPlan, idx: list[int]) -> GraspPlan:

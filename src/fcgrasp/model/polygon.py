@@ -241,6 +241,14 @@ class Polygon:
 
         return characteristic_length(self.vertices, self.centroid)
 
+    @cached_property
+    def edge_floats(self) -> list[tuple[float, ...]]:
+        """Per edge ``(ax, ay, bx, by, nx, ny)`` as Python floats: its start, its end
+        along the tangent, and its outward normal, for the per-call paths (one edge pair
+        in plain floats: no numpy call per edge), computed once."""
+        b = self.starts + self.lengths[:, None] * self.tangents
+        return [tuple(r) for r in np.column_stack([self.starts, b, self.normals]).tolist()]
+
     @property
     def n_edges(self) -> int:
         """Number of edges, zero-length ones included."""

@@ -21,7 +21,8 @@ __all__ = ["compile_kernels"]
 
 def compile_kernels() -> dict[str, float]:
     """Compile (or load from the cache) every compiled kernel: the closed forms of two
-    fingers (:mod:`fcgrasp.core.kernels`), the two-finger stretch search
+    fingers (:mod:`fcgrasp.core.kernels`; one edge pair's regions,
+    :mod:`fcgrasp.model.one_pair`), the two-finger stretch search
     (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
     (:mod:`fcgrasp.core._simplex`), the knapsack solver of four fingers and three with
     gravity (:mod:`fcgrasp.model._leximin_kernels`), three fingers with friction
@@ -38,7 +39,7 @@ def compile_kernels() -> dict[str, float]:
     from ..core.kernels import jit_setting
     from ..model.bounds import refutes
     from ..model.polygon import Polygon
-    from .planner import plan
+    from .planner import independent_regions, plan
 
     out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0,
            "parallel jaw": 0.0, "optimality bound": 0.0}
@@ -56,7 +57,8 @@ def compile_kernels() -> dict[str, float]:
     os.environ["FCGRASP_JIT"] = "1"         # every path compiled, whatever the size
     try:
         runs: list[tuple[str, Any]] = [
-            ("two fingers", lambda: plan(blob, fingers=2, mu=0.3, along_boundary=False)),
+            ("two fingers", lambda: (plan(blob, fingers=2, mu=0.3, along_boundary=False),
+                                     independent_regions(blob, (0, 20), mu=0.3))),
             ("stretches", lambda: _stretches(blob)),
             ("three fingers", lambda: plan(small, fingers=3, mu=0.3, top=1)),
             ("four fingers", lambda: plan(small, fingers=4, top=1)),
