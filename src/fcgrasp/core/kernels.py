@@ -250,6 +250,14 @@ def pair_modes(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: An
     0 on a tie).  Each finger's segment is given by its start ``a`` and
     :func:`segment` of it (computed once per feature, not per pair)."""
     k1x, k1y, k2x, k2y = _cone_edges(cen, hm)
+    return _modes_of(ax1, ay1, L1, vx1, vy1, n1, ax2, ay2, L2, vx2, vy2, n2,
+                     k1x, k1y, k2x, k2y, hm, tol)
+
+
+def _modes_of(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any,
+              ay2: Any, L2: Any, vx2: Any, vy2: Any, n2: Any, k1x: Any, k1y: Any,
+              k2x: Any, k2y: Any, hm: Any, tol: float) -> tuple[Any, Any]:
+    """:func:`pair_modes` given the shrunk sector's unit edges ``k1``, ``k2``."""
     v0 = _mode_value(ax1, ay1, L1, vx1, vy1, n1, ax2, ay2, L2, vx2, vy2, n2,
                      k1x, k1y, k2x, k2y, hm, tol)
     v1 = _mode_value(ax1, ay1, L1, vx1, vy1, n1, ax2, ay2, L2, vx2, vy2, n2,
@@ -257,20 +265,48 @@ def pair_modes(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: An
     return np.maximum(v0, v1), _select(v1 > v0, 1, 0)
 
 
+def shrunk_edges(center: Any, half: Any, margin: float) -> Any:
+    """Per cone (force directions ``center -+ half``), the unit vectors at
+    ``center - half + margin`` and ``center + half - margin``, shape (F, 4): the edges of
+    every pair's shrunk sector (theorem 6.4) are among them and their opposites
+    (:func:`_sector_edges`), so a pair needs no cosine."""
+    lo, hi = center - half + margin, center + half - margin
+    return np.column_stack([np.cos(lo), np.sin(lo), np.cos(hi), np.sin(hi)])
+
+
+def _sector_edges(c1: Any, h1: Any, c2: Any, h2: Any, margin: float, e1: Any, e2: Any
+                  ) -> tuple[Any, Any, Any, Any, Any]:
+    """:func:`pair_sector`'s shrunk half-width ``hm`` (the same arithmetic) and its unit
+    edges ``k1``, ``k2`` from the cones' :func:`shrunk_edges` ``e1``, ``e2``: the sector's
+    clockwise end is cone 1's (``c1 - h1``) or the opposite of cone 2's
+    (``c2 + pi - h2``), whichever is further on; its other end likewise."""
+    delta = _wrap(c2 + np.pi - c1)
+    lo = np.maximum(-h1, delta - h2)
+    hi = np.minimum(h1, delta + h2)
+    hm = (hi - lo) / 2 - margin
+    first_lo, first_hi = -h1 >= delta - h2, h1 <= delta + h2
+    k1x = _select(first_lo, e1[0], -e2[0])
+    k1y = _select(first_lo, e1[1], -e2[1])
+    k2x = _select(first_hi, e1[2], -e2[2])
+    k2y = _select(first_hi, e1[3], -e2[3])
+    return hm, k1x, k1y, k2x, k2y
+
+
 # ----------------------------------------------------------------------------- loops
 # Compiled only: they gather each row's inputs and call the formulas above.
 
 
-def _pair_scores_loop(seg: Any, center: Any, half: Any, i: Any, j: Any, margin: float,
-                      tol: float, score: Any, mode: Any, hm_out: Any) -> None:
+def _pair_scores_loop(seg: Any, center: Any, half: Any, edges: Any, i: Any, j: Any,
+                      margin: float, tol: float, score: Any, mode: Any, hm_out: Any) -> None:
     for k in range(i.shape[0]):
         p, q = i[k], j[k]
-        cen, hm = pair_sector(center[p], half[p], center[q], half[q], margin)
+        hm, k1x, k1y, k2x, k2y = _sector_edges(center[p], half[p], center[q], half[q],
+                                               margin, edges[p], edges[q])
         hm_out[k] = hm
         if hm > 0:
-            s, m = pair_modes(seg[p, 0], seg[p, 1], seg[p, 2], seg[p, 3], seg[p, 4],
-                              seg[p, 5], seg[q, 0], seg[q, 1], seg[q, 2], seg[q, 3],
-                              seg[q, 4], seg[q, 5], cen, hm, tol)
+            s, m = _modes_of(seg[p, 0], seg[p, 1], seg[p, 2], seg[p, 3], seg[p, 4],
+                             seg[p, 5], seg[q, 0], seg[q, 1], seg[q, 2], seg[q, 3],
+                             seg[q, 4], seg[q, 5], k1x, k1y, k2x, k2y, hm, tol)
             score[k] = s
             mode[k] = m
         else:
@@ -298,7 +334,7 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
 
 _FORMULAS = ("_select", "_wrap", "arc_meet", "pair_sector", "_coefficient", "segment",
              "_cone_edges", "pair_problem", "_signed_problem", "_greedy_slack", "two_level",
-             "_mode_value", "pair_modes")
+             "_mode_value", "pair_modes", "_modes_of", "_sector_edges")
 _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop")
 
 
@@ -522,9 +558,10 @@ def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArr
         mode = np.empty(i.size, dtype=np.int64)
         hm = np.empty(i.size)
         # contiguous and writable (read-only inputs copied): one compiled signature
-        if _run("_pair_scores_loop", seg, np.require(center, float, ("C", "W")),
-                np.require(half, float, ("C", "W")), i, j, float(margin), float(tol), score,
-                mode, hm):
+        center = np.require(center, float, ("C", "W"))
+        half = np.require(half, float, ("C", "W"))
+        if _run("_pair_scores_loop", seg, center, half, shrunk_edges(center, half, margin),
+                i, j, float(margin), float(tol), score, mode, hm):
             return score, mode, hm
     with np.errstate(divide="ignore", invalid="ignore"):
         cen, hm = pair_sector(center[i], half[i], center[j], half[j], margin)
