@@ -724,7 +724,12 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
         supers = supers[supers[:, [1, 3]].max(axis=1) > 0]
         if not len(supers):
             continue
-        idx = np.unique(np.concatenate(parts))
+        # the union of the parts, sorted (a mask: numpy's hashed unique takes 0.7 s on
+        # the 800,000 configurations a curved outline defers)
+        mask = np.zeros(len(J.t), bool)
+        for part in parts:
+            mask[part] = True
+        idx = np.flatnonzero(mask)
         # a beater's smallest region exceeds the found one's (at least the floor) by
         # the tie tolerance, and its box bounds it
         idx = idx[np.isnan(J.t[idx]) & (J.box[idx] > floor * (1 + TIE))]
