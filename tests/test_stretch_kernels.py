@@ -276,9 +276,12 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
 
 
 @pytest.mark.parametrize("seed", seeds(5, 80))
-def test_compiled_end_intervals_are_the_numpy_ones(seed):
+def test_compiled_end_intervals_are_the_numpy_ones(seed, monkeypatch):
     """The intersection of an edge's intervals against a window of vertices (the ends'
-    boxes of every configuration's system), compiled and by numpy."""
+    boxes of every configuration's system), compiled and by numpy; compiled with the
+    cells kept in a table (read from it the second time) and without."""
+    from fcgrasp.model import _stretch_windows
+
     poly, mu, margin = part(seed)
     beta = _beta(mu, margin)
     rings = _rings(poly)
@@ -291,9 +294,15 @@ def test_compiled_end_intervals_are_the_numpy_ones(seed):
             start = rng.integers(0, rings[y].m, n)
             count = rng.integers(0, min(rings[y].m, 12), n)
             got = iv.window(edge, start, count, compiled=True)
+            assert iv._memo is not None and np.isfinite(iv._memo[0]).any()
+            again = iv.window(edge, start, count, compiled=True)
+            with monkeypatch.context() as m:
+                m.setattr(_stretch_windows, "MEMO_CELLS", 0)
+                direct = iv.window(edge, start, count, compiled=True)
             want = iv.window(edge, start, count)
-            for g, w in zip(got, want, strict=True):
-                np.testing.assert_array_equal(g, w)
+            for g, a, d, w in zip(got, again, direct, want, strict=True):
+                for way in (g, a, d):
+                    np.testing.assert_array_equal(way, w)
             assert np.any(got[0] <= got[1]) and np.any(got[0] > got[1])
 
 

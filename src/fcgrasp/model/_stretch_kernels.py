@@ -650,6 +650,33 @@ def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, 
     return lo, hi
 
 
+def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
+                       ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
+                       eps: float, tlo: Any, thi: Any) -> Any:
+    """:func:`_window_boxes` reading each cell ``(e, w)`` from the tables ``tlo``,
+    ``thi`` (ma, mb), computed by :func:`_interval` on first use (NaN: not yet): the
+    same numbers (the intersection is a max and a min, in any order), each cell once
+    however many configurations' windows hold it."""
+    n, mb = edge.size, bx.size
+    lo, hi = np.zeros(n), np.full(n, np.inf)
+    for i in range(n):
+        if count[i] <= 0:
+            continue
+        e = edge[i]
+        a_max, b_min = -np.inf, np.inf
+        for k in range(count[i]):
+            w = (start[i] + k) % mb
+            a = tlo[e, w]
+            if np.isnan(a):
+                a, b = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps, e, w)
+                tlo[e, w], thi[e, w] = a, b
+            else:
+                b = thi[e, w]
+            a_max, b_min = max(a_max, a), min(b_min, b)
+        lo[i], hi[i] = a_max, b_min
+    return lo, hi
+
+
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
             bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
             sigma: float, eps: float, floor: float, collect: bool, same: bool,
@@ -1004,7 +1031,8 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _top_add, _windows,
-                                   _interval, _window_boxes, _single, _solve_rows,
+                                   _interval, _window_boxes, _window_boxes_memo, _single,
+                                   _solve_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 
@@ -1070,6 +1098,11 @@ def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
 def window_boxes(*args: Any) -> Any:
     """Compiled :func:`_window_boxes`."""
     return _load()["_window_boxes"](*args)
+
+
+def window_boxes_memo(*args: Any) -> Any:
+    """Compiled :func:`_window_boxes_memo`."""
+    return _load()["_window_boxes_memo"](*args)
 
 
 def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:

@@ -101,6 +101,11 @@ def _vertex_matrix(ra: _Ring, rb: _Ring, sigma: float, beta: float) -> np.ndarra
     return out
 
 
+#: The largest table of cells (edges x vertices) :meth:`_Intervals.window` keeps
+#: (16 bytes a cell: 64 MB).
+MEMO_CELLS = 4_000_000
+
+
 class _Intervals:
     """``[lo, hi][e, w]``: positions on edge ``e`` (ring a, arc length from its start)
     where a contact holds against vertex ``w`` of ring b with both its fan normals
@@ -111,6 +116,13 @@ class _Intervals:
         self.ra, self.rb, self.sigma, self.beta = ra, rb, sigma, beta
         self.gx = np.stack(_gens_x(ra.f, beta), axis=1)                      # (ma, 2, 2)
         self.gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
+        # the compiled windows' inputs, and their cells as computed (NaN: not yet), kept
+        # while the table stays small (a distinct search reads the same cells in every
+        # round, for the thousands of configurations whose windows share them)
+        self._flat = (ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(),
+                      ra.t[:, 1].copy(), ra.L, self.gx, rb.a[:, 0].copy(), rb.a[:, 1].copy(),
+                      self.gy)
+        self._memo: tuple[FloatArray, FloatArray] | None = None
 
     def cells(self, e: np.ndarray, w: np.ndarray) -> tuple[FloatArray, FloatArray]:
         """The intervals of the cells ``(e, w)`` (integer arrays, broadcast together)."""
@@ -144,12 +156,16 @@ class _Intervals:
         ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
         (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`)."""
         if compiled:
-            ra, rb = self.ra, self.rb
-            return cast("tuple[FloatArray, FloatArray]", _stretch_kernels.window_boxes(
-                np.asarray(edge, np.int64), np.asarray(start, np.int64),
-                np.asarray(count, np.int64), ra.a[:, 0].copy(), ra.a[:, 1].copy(),
-                ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L, self.gx, rb.a[:, 0].copy(),
-                rb.a[:, 1].copy(), self.gy, self.sigma, _EPS))
+            args = (np.asarray(edge, np.int64), np.asarray(start, np.int64),
+                    np.asarray(count, np.int64), *self._flat, self.sigma, _EPS)
+            if self.ra.m * self.rb.m > MEMO_CELLS:
+                return cast("tuple[FloatArray, FloatArray]",
+                            _stretch_kernels.window_boxes(*args))
+            if self._memo is None:
+                shape = (self.ra.m, self.rb.m)
+                self._memo = (np.full(shape, np.nan), np.full(shape, np.nan))
+            return cast("tuple[FloatArray, FloatArray]",
+                        _stretch_kernels.window_boxes_memo(*args, *self._memo))
         lo, hi = np.zeros(edge.size), np.full(edge.size, np.inf)
         has = np.flatnonzero(count > 0)
         if has.size:
