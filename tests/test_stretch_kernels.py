@@ -519,3 +519,37 @@ def test_large_outlines_give_the_previous_kernels_plans(seed, monkeypatch):
     _previous_kernels(monkeypatch)
     _assert_same_plans(fast, _plans(poly, mu, margin, 10), poly.size)
     assert fast
+
+
+@pytest.mark.parametrize("same", [False, True])
+def test_inside_any_compiled_is_the_numpy_test_and_brute_force(same):
+    """Configurations inside one of the supers (the distinct search's deferred ones), by
+    the compiled loop, by numpy, and by a brute force written here; starts past a ring's
+    end (cyclic), supers that wrap, and one ring either way round."""
+    from fcgrasp.model._stretch_windows import _Configs
+    from fcgrasp.model.stretches import _inside_any
+
+    rng = np.random.default_rng(5 + same)
+    ma, mb = 37, (37 if same else 23)
+    n = 3000
+    c = _Configs(rng.integers(0, 2 * ma, n), rng.integers(0, 9, n), rng.integers(0, 2 * mb, n),
+                 rng.integers(0, 9, n))
+    supers = np.c_[rng.integers(0, 2 * ma, 25), rng.integers(0, 15, 25),
+                   rng.integers(0, 2 * mb, 25), rng.integers(0, 15, 25)]
+    got = _inside_any(c, supers, ma, mb, same, compiled=True)
+    want = _inside_any(c, supers, ma, mb, same)
+
+    def inside(i, k, i2, k2, m):
+        return (i - i2) % m + k <= k2
+
+    brute = np.zeros(n, bool)
+    for q in range(n):
+        for iA, kA, iC, kC in supers:
+            ways = [(c.iA[q], c.kA[q], c.iC[q], c.kC[q])]
+            if same:
+                ways.append((c.iC[q], c.kC[q], c.iA[q], c.kA[q]))
+            brute[q] |= any(inside(a, ka, iA, kA, ma) and inside(cc, kc, iC, kC, mb)
+                            for a, ka, cc, kc in ways)
+    np.testing.assert_array_equal(got, brute)
+    np.testing.assert_array_equal(want, brute)
+    assert 0.02 < brute.mean() < 0.9

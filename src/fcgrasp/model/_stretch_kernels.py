@@ -677,6 +677,27 @@ def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: 
     return lo, hi
 
 
+def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, by: Any, sa: Any, supers: Any,
+                   ma: int, mb: int, out: Any) -> None:
+    """``stretches._inside_any``'s loop, one way round: ``out[i]`` set where
+    configuration ``i`` (first start ``a`` reduced, ``by`` its order, ``sa = a[by]``)
+    lies inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically."""
+    for s in range(supers.shape[0]):
+        iA, kA, iC, kC = supers[s, 0], supers[s, 1], supers[s, 2], supers[s, 3]
+        lo = iA % ma
+        for part in range(2):
+            if part == 0:
+                s0, s1 = lo, min(lo + kA + 1, ma)
+            elif lo + kA < ma:
+                break
+            else:
+                s0, s1 = 0, lo + kA + 1 - ma
+            for q in range(np.searchsorted(sa, s0), np.searchsorted(sa, s1)):
+                i = by[q]
+                if (a[i] - iA) % ma + ka[i] <= kA and (cc[i] - iC) % mb + kc[i] <= kC:
+                    out[i] = True
+
+
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
             bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
             sigma: float, eps: float, floor: float, collect: bool, same: bool,
@@ -1032,7 +1053,7 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
-                                   _solve_rows,
+                                   _solve_rows, _inside_supers,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 
@@ -1098,6 +1119,11 @@ def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
 def window_boxes(*args: Any) -> Any:
     """Compiled :func:`_window_boxes`."""
     return _load()["_window_boxes"](*args)
+
+
+def inside_supers(*args: Any) -> None:
+    """Compiled :func:`_inside_supers`."""
+    _load()["_inside_supers"](*args)
 
 
 def window_boxes_memo(*args: Any) -> Any:

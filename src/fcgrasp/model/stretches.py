@@ -688,17 +688,24 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     return found
 
 
-def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool
-                ) -> np.ndarray:
+def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,
+                compiled: bool = False) -> np.ndarray:
     """Which configurations ``c`` lie inside one of ``supers`` (rows ``iA, kA, iC,
     kC``; cyclically; on one ring either way round): for each super, only the
-    configurations whose first start lies in its first stretch are read (sorted)."""
+    configurations whose first start lies in its first stretch are read (sorted;
+    ``compiled``: by :func:`fcgrasp.model._stretch_kernels.inside_supers`, the same
+    test)."""
     out = np.zeros(len(c.iA), bool)
     for flip in ((False, True) if same else (False,)):
         a, ka, cc, kc = (c.iC, c.kC, c.iA, c.kA) if flip else (c.iA, c.kA, c.iC, c.kC)
         a = a % ma
         by = np.argsort(a, kind="stable")
         sa = a[by]
+        if compiled:
+            _stretch_kernels.inside_supers(
+                *(np.ascontiguousarray(v, np.int64) for v in (a, ka, cc, kc, by, sa)),
+                np.ascontiguousarray(supers, np.int64), int(ma), int(mb), out)
+            continue
         for iA, kA, iC, kC in supers:
             lo = iA % ma
             spans = ((lo, lo + kA + 1),) if lo + kA < ma else \
@@ -734,7 +741,7 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
         # the tie tolerance, and its box bounds it
         idx = idx[np.isnan(J.t[idx]) & (J.box[idx] > floor * (1 + TIE))]
         todo = idx[_inside_any(J.cfg.take(idx), supers, rings[job[0]].m, rings[job[1]].m,
-                               job[0] == job[1])]
+                               job[0] == job[1], J.compiled)]
         _solve_in(rings, job, J, todo, beta, intervals, scale)
         done = np.concatenate(parts)
         done = done[J.t[done] > 0]
