@@ -553,3 +553,57 @@ def test_inside_any_compiled_is_the_numpy_test_and_brute_force(same):
     np.testing.assert_array_equal(got, brute)
     np.testing.assert_array_equal(want, brute)
     assert 0.02 < brute.mean() < 0.9
+
+
+@pytest.mark.parametrize("fraction", [0.3, 0.5, 0.9])
+def test_exclusion_tests_compiled_are_the_numpy_ones(fraction, monkeypatch):
+    """The distinct search's exclusion (which configurations are surely a kept plan's
+    alternative, and from which smallest region on), by the fused compiled loop and by
+    numpy's matrices: the same numbers, on configurations of a curved outline and of a
+    part with a hole, around and far from the kept plans, of every smallest region."""
+    import fcgrasp as fc
+
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    rng = np.random.default_rng(int(fraction * 10))
+    checked = 0
+    for name in ("cam", "washer"):
+        checked += _exclusion_both_ways(fc.read_part("demo:" + name), fraction, rng,
+                                        monkeypatch)
+    assert checked > 100, checked
+
+
+def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
+    import fcgrasp as fc
+    from fcgrasp.model import stretches
+    from fcgrasp.model._stretch_windows import _Configs
+
+    kept = [(p.regions, p.region_edges) for p in fc.plan(poly, fingers=2, mu=0.4, top=4)]
+    rings = _rings(poly)
+    excl = stretches._Exclusion(rings, poly, kept, fraction)
+    checked = 0
+    where = stretches._positions(rings)
+    near = [[where[int(e[0])] for e in edges] for _, edges in kept]    # (ring, position)
+    for x in range(len(rings)):
+        for y in range(len(rings)):
+            n = 4000
+            k = 60 if rings[x].m > 100 else 6
+            cfg = _Configs(rng.integers(0, 2 * rings[x].m, n), rng.integers(0, k, n),
+                           rng.integers(0, 2 * rings[y].m, n), rng.integers(0, k, n))
+            # half of them about a kept plan's regions
+            for q in range(0, n, 2):
+                (ra, pa), (rc, pc) = near[q % len(near)]
+                if (ra, rc) == (x, y):
+                    cfg.iA[q] = pa + rng.integers(-k // 2, 3) + rings[x].m
+                    cfg.iC[q] = pc + rng.integers(-k // 2, 3) + rings[y].m
+            t = rng.uniform(0, 1.2, n) * poly.size / 8
+            job = (x, y, 1.0, "squeeze")
+            results = []
+            for cells in (0, 10 ** 12):             # fused, then numpy
+                monkeypatch.setattr(stretches, "FUSED_CELLS", cells)
+                results.append((excl.threshold(rings, job, cfg),
+                                excl.similar(rings, job, cfg, t)))
+            (tf, sf), (tn, sn) = results
+            np.testing.assert_array_equal(tf, tn)
+            np.testing.assert_array_equal(sf, sn)
+            checked += int(np.isfinite(tn).sum()) + int(sn.sum())
+    return checked

@@ -677,6 +677,37 @@ def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: 
     return lo, hi
 
 
+def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
+    """``stretches._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
+    ``[u0, u1]``: the same operations in the same order."""
+    common = 0.0
+    for j in range(3):
+        shift = (-per, 0.0, per)[j]
+        common += max(0.0, min(a1, u1 + shift) - max(a0, u0 + shift))
+    return (a1 - a0) - common
+
+
+def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, ay0: Any,
+                    ay1: Any, perx: float, pery: float, tol: float, keep: float, t: Any,
+                    threshold: bool, out: Any) -> None:
+    """``stretches._Exclusion.threshold`` (``threshold``: ``out`` lowered to each
+    configuration's least ``tau`` over the kept plans' columns) or ``.similar``
+    (``out`` set where some column's both arcs outside are below
+    ``keep * min(t, partner) - tol``), fused over rows and columns: the same numbers."""
+    for r in range(a0x.size):
+        for c in range(ax0.size):
+            ox = _outside_one(a0x[r], a1x[r], ax0[c], ax1[c], perx)
+            oy = _outside_one(a0y[r], a1y[r], ay0[c], ay1[c], pery)
+            la, lc = ax1[c] - ax0[c], ay1[c] - ay0[c]
+            if threshold:
+                ta, tc = (ox + tol) / keep, (oy + tol) / keep
+                if la > ta and lc > tc:
+                    out[r] = min(out[r], max(ta, tc))
+            elif ox < keep * min(t[r], la) - tol and oy < keep * min(t[r], lc) - tol:
+                out[r] = 1.0
+                break
+
+
 def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, by: Any, sa: Any, supers: Any,
                    ma: int, mb: int, out: Any) -> None:
     """``stretches._inside_any``'s loop, one way round: ``out[i]`` set where
@@ -1053,7 +1084,8 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
-                                   _solve_rows, _inside_supers,
+                                   _solve_rows, _inside_supers, _outside_one,
+                                   _exclusion_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 
@@ -1119,6 +1151,11 @@ def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
 def window_boxes(*args: Any) -> Any:
     """Compiled :func:`_window_boxes`."""
     return _load()["_window_boxes"](*args)
+
+
+def exclusion_rows(*args: Any) -> None:
+    """Compiled :func:`_exclusion_rows`."""
+    _load()["_exclusion_rows"](*args)
 
 
 def inside_supers(*args: Any) -> None:

@@ -242,6 +242,32 @@ class _Exclusion:
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
         return cast("FloatArray", (a1 - a0) - common)
 
+    def _fused(self, rings: list[_Ring], x: int, y: int, cfg: _Configs,
+               arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
+               out: np.ndarray) -> bool:
+        """:meth:`threshold` (``threshold``) or :meth:`similar` of many configurations
+        by the compiled loop (the same numbers, without a matrix of configurations by
+        kept plans for each step), writing ``out``; False (nothing done) when the
+        matrix is small or the loops do not run."""
+        if len(cfg.iA) * len(arcs[0]) < FUSED_CELLS \
+                or not stretch_kernels_for(rings[x].m * rings[y].m):
+            return False
+        ends = []
+        for ring, i, k in ((rings[x], cfg.iA, cfg.kA), (rings[y], cfg.iC, cfg.kC)):
+            i = np.asarray(i) % ring.m
+            ends += [ring.U[i], ring.U[i + np.asarray(k) + 1]]
+        if threshold:
+            work = out
+        else:
+            work = np.zeros(len(out))
+        _stretch_kernels.exclusion_rows(
+            *(np.ascontiguousarray(v, float) for v in (*ends, *arcs)),
+            float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]), float(self.tol),
+            float(1 - self.fraction), np.ascontiguousarray(t, float), threshold, work)
+        if not threshold:
+            out |= work > 0
+        return True
+
     def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
         """The kept plans' arcs on rings ``x`` (first region) and ``y`` (second), each
         plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan."""
@@ -265,6 +291,8 @@ class _Exclusion:
             out |= np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
+            return out
+        if self._fused(rings, x, y, cfg, arcs, np.asarray(t, float), False, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
         f, tc = self.fraction, np.asarray(t)[:, None]
@@ -292,6 +320,8 @@ class _Exclusion:
         keep = 1 - self.fraction
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
+            return out
+        if self._fused(rings, x, y, cfg, arcs, out, True, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
         ta = (self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1) + self.tol) / keep
@@ -331,6 +361,10 @@ KERNEL_CELLS = 1_500_000
 #: size of the rings (a noisy outline can leave tens of thousands).
 KERNEL_CONFIGS = 20_000
 
+
+#: Cells (configurations x kept plans' columns) from which the exclusion's tests run
+#: compiled (:meth:`_Exclusion._fused`).
+FUSED_CELLS = 20_000
 
 #: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
 #: filter compares every pair: 41,000 configurations of an icon took 37 s).

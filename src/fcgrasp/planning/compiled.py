@@ -90,6 +90,13 @@ def _stretches(blob: Any) -> None:
     _stretch_kernels._load()["_beaten"](*cols, np.array([1.0, 2.0]), 10, 10, False,
                                         float(RANK_TOL), np.arange(2, dtype=np.int64),
                                         np.ones(2, bool))
+    # the distinct search's tests (exclusion of a kept plan's alternatives, deferred
+    # configurations inside a found one), with the types of their calls
+    z, zi = np.zeros(1), np.zeros(1, np.int64)
+    _stretch_kernels.exclusion_rows(z, z, z, z, z, z, z, z, 1.0, 1.0, 0.0, 0.5, z, True,
+                                    z.copy())
+    _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
+                                   np.zeros(1, bool))
     # the fused scores of every feature pair (a top-k search's candidates)
     from ..core.kernels import pair_scores
     from ..pipeline._candidates import features
