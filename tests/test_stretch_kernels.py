@@ -607,3 +607,14 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             np.testing.assert_array_equal(sf, sn)
             checked += int(np.isfinite(tn).sum()) + int(sn.sum())
     return checked
+
+
+def test_member_is_isin():
+    """The exclusion's look-up of configurations already read: np.isin by binary search."""
+    from fcgrasp.model.stretches import _member
+
+    rng = np.random.default_rng(3)
+    for size in (1, 2, 50, 3000):
+        known = np.unique(rng.integers(0, 5000, size))
+        codes = rng.integers(-10, 5010, 20000)
+        np.testing.assert_array_equal(_member(codes, known), np.isin(codes, known))

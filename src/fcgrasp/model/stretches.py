@@ -165,6 +165,13 @@ def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
     return {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
 
 
+def _member(codes: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """``np.isin(codes, known)`` for ``known`` sorted and unique: a binary search
+    each, without sorting ``codes`` (hundreds of thousands, read in every round)."""
+    at = np.minimum(np.searchsorted(known, codes), len(known) - 1)
+    return cast("np.ndarray", known[at] == codes)
+
+
 class _Exclusion:
     """Plans already kept (``distinct=``): a configuration whose regions, whatever
     their placement inside its stretches, overlap a kept plan's regions by more than
@@ -193,7 +200,7 @@ class _Exclusion:
                     found.setdefault((r1, r2, mode), []).append(int(self._codes(
                         rings, r1, r2, np.array([a]), np.array([k1]), np.array([c]),
                         np.array([k2]))[0]))
-        self.seen = {key: np.array(v, np.int64) for key, v in found.items()}
+        self.seen = {key: np.unique(np.array(v, np.int64)) for key, v in found.items()}
         self.fraction = float(fraction)
         self.tol = ROUND_TOL * polygon.size
         self.plans: list[list[tuple[int, float, float]]] = []
@@ -288,7 +295,7 @@ class _Exclusion:
         out = np.zeros(len(t), bool)
         known = self.seen.get((x, y, job[3]))
         if known is not None:
-            out |= np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
+            out |= _member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
@@ -316,7 +323,7 @@ class _Exclusion:
         out = np.full(len(cfg.iA), np.inf)
         known = self.seen.get((x, y, job[3]))
         if known is not None:
-            out[np.isin(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)] = 0.0
+            out[_member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)] = 0.0
         keep = 1 - self.fraction
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
