@@ -213,3 +213,26 @@ def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     for x, y in zip(got, want, strict=True):
         assert np.array_equal(x, y)
     assert not kernels.compiled()
+
+
+@pytest.mark.parametrize("k", [3, 4, 5])
+def test_direction_closure_compiled_is_the_numpy_test(k, monkeypatch):
+    """Force-direction closure (theorem 4.2) of a batch compiled, against
+    ``force_direction_closure`` by numpy: the same booleans on random forces and on
+    degenerate ones (axis-aligned, so opposite and parallel pairs are exact; zero
+    forces; directions a hair off parallel)."""
+    from fcgrasp.core.closure import force_direction_closure
+
+    pytest.importorskip("numba")
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    rng = np.random.default_rng(40 + k)
+    ang = rng.uniform(0, 2 * np.pi, (30000, k))
+    ang[::3] = np.round(ang[::3] / (np.pi / 2)) * (np.pi / 2)
+    ang[1::5, 1] = ang[1::5, 0] + np.pi + rng.choice([0.0, 1e-13, -1e-13, 1e-6], 6000)
+    f = np.stack([np.cos(ang), np.sin(ang)], axis=-1) * rng.uniform(0.1, 10, (30000, k, 1))
+    f[::7, 0] = 0.0
+    got = kernels.direction_closure(f)
+    assert kernels.compiled()
+    want = force_direction_closure(f)
+    np.testing.assert_array_equal(got, want)
+    assert 0.05 < want.mean() < 0.95

@@ -47,7 +47,7 @@ import numpy as np
 
 from ._angles import wrap_floor as _wrap  # compiled over this module's namespace
 from ._checks import FloatArray
-from .tolerances import SOLVER_TOL, TINY
+from .tolerances import SOLVER_TOL, TINY, TOL
 
 __all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "CompiledLoops",
            "plain", "arc_meet",
@@ -332,10 +332,56 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
                            active[k], tol)
 
 
+def _direction_closure_loop(f: Any, tol: float, out: Any) -> None:
+    """:func:`fcgrasp.core.closure.force_direction_closure` of every row of ``f`` (B, k,
+    2), the same operations row by row: each force made unit, then a strict triangle,
+    or (four or more) two anti-parallel pairs not parallel to each other."""
+    k = f.shape[1]
+    u = np.empty((k, 2))
+    for r in range(f.shape[0]):
+        for i in range(k):
+            x, y = f[r, i, 0], f[r, i, 1]
+            n = np.sqrt(x * x + y * y)
+            u[i, 0] = x / n if n > 0 else 0.0
+            u[i, 1] = y / n if n > 0 else 0.0
+        ok = False
+        for a in range(k):
+            for b in range(a + 1, k):
+                for c in range(b + 1, k):
+                    s1 = u[a, 0] * u[b, 1] - u[a, 1] * u[b, 0]
+                    s2 = u[b, 0] * u[c, 1] - u[b, 1] * u[c, 0]
+                    s3 = u[c, 0] * u[a, 1] - u[c, 1] * u[a, 0]
+                    if (s1 > tol and s2 > tol and s3 > tol) or \
+                            (s1 < -tol and s2 < -tol and s3 < -tol):
+                        ok = True
+        if not ok and k >= 4:
+            for a in range(k):
+                for b in range(a + 1, k):
+                    if not _anti(u, a, b, tol):
+                        continue
+                    # a later pair (in the order of the pairs' combinations)
+                    for c in range(a, k):
+                        for d in range(c + 1, k):
+                            if c == a and d <= b or not _anti(u, c, d, tol):
+                                continue
+                            if abs(u[a, 0] * u[c, 1] - u[a, 1] * u[c, 0]) > tol:
+                                ok = True
+        out[r] = ok
+
+
+def _anti(u: Any, a: int, b: int, tol: float) -> bool:
+    """Forces ``a`` and ``b`` of the unit rows ``u`` are non-zero and anti-parallel."""
+    na = np.sqrt(u[a, 0] * u[a, 0] + u[a, 1] * u[a, 1])
+    nb = np.sqrt(u[b, 0] * u[b, 0] + u[b, 1] * u[b, 1])
+    return bool(na > 0 and nb > 0 and abs(u[a, 0] * u[b, 1] - u[a, 1] * u[b, 0]) <= tol
+                and u[a, 0] * u[b, 0] + u[a, 1] * u[b, 1] < 0)
+
+
 _FORMULAS = ("_select", "_wrap", "arc_meet", "pair_sector", "_coefficient", "segment",
              "_cone_edges", "pair_problem", "_signed_problem", "_greedy_slack", "two_level",
              "_mode_value", "pair_modes", "_modes_of", "_sector_edges")
-_LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop")
+_LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop", "_anti",
+          "_direction_closure_loop")
 
 
 # ----------------------------------------------------------------------------- plain floats
@@ -573,6 +619,20 @@ def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArr
                           sq[3], sq[4], sq[5], cen[ok], hm[ok], tol)
     score[ok], mode[ok] = s, m
     return score, mode, hm
+
+
+def direction_closure(forces: FloatArray, tol: float = TOL) -> np.ndarray:
+    """:func:`fcgrasp.core.closure.force_direction_closure` of a batch of force sets
+    (B, k, 2), compiled where the batch repays it (:func:`use_jit`; the same
+    booleans), by numpy else."""
+    from .closure import force_direction_closure
+
+    f = np.ascontiguousarray(forces, dtype=float)
+    if f.ndim == 3 and f.shape[0] and use_jit(f.shape[0]):
+        out = np.empty(f.shape[0], dtype=np.bool_)
+        if _run("_direction_closure_loop", f, float(tol), out):
+            return out
+    return force_direction_closure(f, tol)
 
 
 def pair_problems(a1: FloatArray, b1: FloatArray, a2: FloatArray, b2: FloatArray,

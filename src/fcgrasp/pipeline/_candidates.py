@@ -18,8 +18,7 @@ from ..core._checks import (
     FloatArray,
     check_int,
 )
-from ..core.closure import force_direction_closure
-from ..core.kernels import pair_scores
+from ..core.kernels import direction_closure, pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
 from ..errors import SearchTooLarge
@@ -309,12 +308,16 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
     g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
     real = feats >= 0
     fi = np.where(real, feats, 0)
+    # the force directions first (each feature's once), the rows that hold none cut
+    # before the segments are gathered (the same numbers: cos and sin of each angle)
+    center = np.where(real, F.center[fi], g_ang)
+    angles = np.append(F.center, g_ang)             # gravity's last
+    unit = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
+    dirs = unit[np.where(real, feats, len(F.center))]
+    ok = direction_closure(dirs) if B else np.zeros(0, bool)
+    feats, real, fi, center, dirs = feats[ok], real[ok], fi[ok], center[ok], dirs[ok]
     a = np.where(real[..., None], F.a[fi], centroid)
     b = np.where(real[..., None], F.b[fi], centroid)
-    center = np.where(real, F.center[fi], g_ang)
-    dirs = np.stack([np.cos(center), np.sin(center)], axis=-1)
-    ok = force_direction_closure(dirs) if B else np.zeros(0, bool)
-    feats, a, b, center, dirs = feats[ok], a[ok], b[ok], center[ok], dirs[ok]
     B = len(feats)
     # every pairing whose two sectors are non-null describes the same grasp set
     # (corollary 5.1); the margin is taken on the sector of the pairing that gives the
