@@ -221,7 +221,7 @@ def test_direction_closure_compiled_is_the_numpy_test(k, monkeypatch):
     ``force_direction_closure`` by numpy: the same booleans on random forces and on
     degenerate ones (axis-aligned, so opposite and parallel pairs are exact; zero
     forces; directions a hair off parallel)."""
-    from fcgrasp.core.closure import force_direction_closure
+    from fcgrasp.core.closure import direction_closure, force_direction_closure
 
     pytest.importorskip("numba")
     monkeypatch.setenv("FCGRASP_JIT", "1")
@@ -231,7 +231,7 @@ def test_direction_closure_compiled_is_the_numpy_test(k, monkeypatch):
     ang[1::5, 1] = ang[1::5, 0] + np.pi + rng.choice([0.0, 1e-13, -1e-13, 1e-6], 6000)
     f = np.stack([np.cos(ang), np.sin(ang)], axis=-1) * rng.uniform(0.1, 10, (30000, k, 1))
     f[::7, 0] = 0.0
-    got = kernels.direction_closure(f)
+    got = direction_closure(f)
     assert kernels.compiled()
     want = force_direction_closure(f)
     np.testing.assert_array_equal(got, want)

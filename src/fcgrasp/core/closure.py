@@ -40,6 +40,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from . import kernels
 from ._checks import FloatArray, check_array, check_mu, check_tol
 from ._geom import cross2 as _cross2
 from .sectors import PAIRINGS, line_meet
@@ -49,6 +50,7 @@ __all__ = [
     "is_force_closure",
     "closure_escape",
     "force_direction_closure",
+    "direction_closure",
     "torque_closure",
     "friction_pair_closure",
     "friction_pair_modes",
@@ -376,6 +378,18 @@ def force_direction_closure(forces: Any, tol: float = TOL) -> np.ndarray:
         cross_pairs = np.abs(_cross2(a[..., pp[:, 0], :], a[..., pp[:, 1], :])) > tol
         out |= np.any(anti[..., pp[:, 0]] & anti[..., pp[:, 1]] & cross_pairs, axis=-1)
     return out
+
+
+def direction_closure(forces: FloatArray, tol: float = TOL) -> np.ndarray:
+    """:func:`force_direction_closure` of a batch of force sets (B, k, 2), by the
+    compiled loop (``kernels._direction_closure_loop``, the same booleans) where the batch repays it (:func:`fcgrasp.core.kernels.use_jit`), by
+    numpy else."""
+    f = np.ascontiguousarray(forces, dtype=float)
+    if f.ndim == 3 and f.shape[0] and kernels.use_jit(f.shape[0]):
+        out = np.empty(f.shape[0], dtype=np.bool_)
+        if kernels._run("_direction_closure_loop", f, float(tol), out):
+            return out
+    return force_direction_closure(f, tol)
 
 
 # ----------------------------------------------------------------------------- theorem 5.2

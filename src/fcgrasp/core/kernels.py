@@ -47,7 +47,7 @@ import numpy as np
 
 from ._angles import wrap_floor as _wrap  # compiled over this module's namespace
 from ._checks import FloatArray
-from .tolerances import SOLVER_TOL, TINY, TOL
+from .tolerances import SOLVER_TOL, TINY
 
 __all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "CompiledLoops",
            "plain", "arc_meet",
@@ -619,20 +619,6 @@ def pair_scores(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArr
                           sq[3], sq[4], sq[5], cen[ok], hm[ok], tol)
     score[ok], mode[ok] = s, m
     return score, mode, hm
-
-
-def direction_closure(forces: FloatArray, tol: float = TOL) -> np.ndarray:
-    """:func:`fcgrasp.core.closure.force_direction_closure` of a batch of force sets
-    (B, k, 2), compiled where the batch repays it (:func:`use_jit`; the same
-    booleans), by numpy else."""
-    from .closure import force_direction_closure
-
-    f = np.ascontiguousarray(forces, dtype=float)
-    if f.ndim == 3 and f.shape[0] and use_jit(f.shape[0]):
-        out = np.empty(f.shape[0], dtype=np.bool_)
-        if _run("_direction_closure_loop", f, float(tol), out):
-            return out
-    return force_direction_closure(f, tol)
 
 
 def pair_problems(a1: FloatArray, b1: FloatArray, a2: FloatArray, b2: FloatArray,

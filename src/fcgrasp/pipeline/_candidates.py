@@ -18,7 +18,8 @@ from ..core._checks import (
     FloatArray,
     check_int,
 )
-from ..core.kernels import direction_closure, pair_scores
+from ..core.closure import direction_closure
+from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
 from ..errors import SearchTooLarge
