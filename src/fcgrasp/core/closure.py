@@ -382,8 +382,8 @@ def force_direction_closure(forces: Any, tol: float = TOL) -> np.ndarray:
 
 def direction_closure(forces: FloatArray, tol: float = TOL) -> np.ndarray:
     """:func:`force_direction_closure` of a batch of force sets (B, k, 2), by the
-    compiled loop (``kernels._direction_closure_loop``, the same booleans) where the batch repays it (:func:`fcgrasp.core.kernels.use_jit`), by
-    numpy else."""
+    compiled loop (``kernels._direction_closure_loop``, the same booleans) where the
+    batch repays it (:func:`fcgrasp.core.kernels.use_jit`), by numpy else."""
     f = np.ascontiguousarray(forces, dtype=float)
     if f.ndim == 3 and f.shape[0] and kernels.use_jit(f.shape[0]):
         out = np.empty(f.shape[0], dtype=np.bool_)
