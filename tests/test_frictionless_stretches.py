@@ -201,8 +201,9 @@ def test_bad_arguments_of_the_module():
         grow_stretches(poly, [[0, 1, 3, 4]], max_steps=-1)
 
 
-@pytest.mark.parametrize("kind", [pytest.param("ellipse", marks=pytest.mark.slow), "blob",
-                                  "quad", "bracket"])
+@pytest.mark.parametrize("kind", [pytest.param("ellipse", marks=pytest.mark.slow),
+                                  pytest.param("blob", marks=pytest.mark.slow), "quad",
+                                  "bracket"])
 def test_plans_by_the_compiled_simplex_equal_highs(kind, monkeypatch):
     """Four fingers along the boundary with the growth's programs solved by the compiled
     simplex (fcgrasp.core._simplex) and by HiGHS (``FCGRASP_JIT=0``, the reference):
@@ -284,7 +285,7 @@ def test_programs_solved_on_generated_rows_are_solved(seed):
     assert solved >= 100 and infeasible >= 10
 
 
-@pytest.mark.parametrize("jit", ["1", "0"])
+@pytest.mark.parametrize("jit", ["1", pytest.param("0", marks=pytest.mark.slow)])
 def test_grown_regions_do_not_depend_on_the_scale(jit, monkeypatch):
     """The growth's programs are solved in units of the longest edge, rows scaled to a
     largest coefficient of 1, by the compiled simplex and by HiGHS alike: three

@@ -73,8 +73,8 @@ def _moved_landings(part, plan, sig, n, rng, standoff):
     return out
 
 
-@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
-                                          for s in range(2, 12))])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 12))])
 def test_pose_error_matches_an_independent_monte_carlo(seed):
     part, plans, rng = _plans(seed)
     n = 4000
