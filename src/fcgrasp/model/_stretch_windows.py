@@ -101,9 +101,9 @@ def _vertex_matrix(ra: _Ring, rb: _Ring, sigma: float, beta: float) -> np.ndarra
     return out
 
 
-#: The largest table of cells (edges x vertices) :meth:`_Intervals.window` keeps
-#: (16 bytes a cell: 64 MB).
-MEMO_CELLS = 4_000_000
+#: The largest table of cells (edges x vertices) :meth:`_Intervals.window` keeps, per
+#: ring pair and sign (16 bytes a cell: 24 MB; a ring of about 1,200 edges).
+MEMO_CELLS = 1_500_000
 
 
 class _Intervals:
@@ -154,7 +154,8 @@ class _Intervals:
                compiled: bool = False) -> tuple[FloatArray, FloatArray]:
         """For each edge, the intersection of its intervals against vertices
         ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
-        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`)."""
+        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`, or its
+        ``_memo`` form reading the cells from a table up to :data:`MEMO_CELLS`)."""
         if compiled:
             args = (np.asarray(edge, np.int64), np.asarray(start, np.int64),
                     np.asarray(count, np.int64), *self._flat, self.sigma, _EPS)
