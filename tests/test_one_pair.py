@@ -81,7 +81,7 @@ def _compare(seed, count):
         margin = (0.0, 0.5, float(rng.uniform(0, 10)), _near_margin(poly, i, j, mu, rng))[kind]
         got = fc.independent_regions(poly, (i, j), mu=mu, margin=margin)
         positive += _same(got, _reference(poly, (i, j), mu, margin), poly)
-    assert positive > count // 4, positive
+    assert positive > count // 5, positive     # enough pairs with regions compared
 
 
 @pytest.fixture(params=["floats", "compiled"])
