@@ -192,12 +192,8 @@ def _plain() -> Any:
     return _plain_core
 
 
-def _compiled_formulas() -> dict[str, Any] | None:
-    return kernels._loops()
-
-
 #: :func:`_pair_core` compiled over the compiled formulas (loaded with them).
-COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, _compiled_formulas)
+COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, kernels._loops)
 
 
 def _use_compiled() -> bool:

@@ -263,10 +263,7 @@ class _Exclusion:
         for ring, i, k in ((rings[x], cfg.iA, cfg.kA), (rings[y], cfg.iC, cfg.kC)):
             i = np.asarray(i) % ring.m
             ends += [ring.U[i], ring.U[i + np.asarray(k) + 1]]
-        if threshold:
-            work = out
-        else:
-            work = np.zeros(len(out))
+        work = out if threshold else np.zeros(len(out))    # similar: a flag per row
         _stretch_kernels.exclusion_rows(
             *(np.ascontiguousarray(v, float) for v in (*ends, *arcs)),
             float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]), float(self.tol),
