@@ -261,3 +261,34 @@ def test_distinct_search_equals_suppression_of_every_plan(seed):
     for p, q in zip(got, want, strict=True):
         assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
         assert set(p.similar) <= set(q.similar)
+
+
+def test_internal_grips_use_the_symmetries_that_keep_their_hole():
+    """A symmetry that keeps a hole and the point the jaws go in at maps an internal
+    grip's boxes onto the same grasps (the washer's centred hole: its four turns); one
+    that takes the hole to another, or moves the point, does not. The jaw's own search
+    then returns no two boxes that are images of each other, internal ones included
+    (the washer's internal boxes 90 degrees apart were two of its top ten)."""
+    from fcgrasp.grippers.jaw import insertion_point
+    from fcgrasp.model.distinct import grip_symmetries, part_symmetries, same_box
+
+    part = fc.read_part("demo:washer")
+    jaw = fc.ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5)
+    plans = fc.plan(part, gripper=jaw, top=10)
+    assert any(p.mode == "internal" for p in plans)
+    assert len(grip_symmetries(part, insertion_point(part, 0))) == len(part_symmetries(part))
+    for i, p in enumerate(plans):
+        syms = grip_symmetries(part, p.insert)
+        for q in plans[i + 1:]:
+            assert not same_box(p, q, 0.5, syms) and not same_box(q, p, 0.5, syms), (p, q)
+    # a plate with two square holes side by side: the turn by pi and the mirror across
+    # the vertical axis swap them; the mirror across the horizontal axis keeps each
+    square = np.array([[-4.0, -4], [4, -4], [4, 4], [-4, 4]])
+    plate = fc.Polygon([[-30, -15], [30, -15], [30, 15], [-30, 15]],
+                       holes=[square + [-15, 0], square + [15, 0]])
+    assert len(part_symmetries(plate)) == 4
+    for h in (0, 1):
+        kept = grip_symmetries(plate, insertion_point(plate, h))
+        assert len(kept) == 2 and ("rot", 0.0) in kept, kept
+        assert all(k == "rot" and a == 0.0 or k == "ref" and abs(np.sin(a)) < 1e-9
+                   for k, a in kept), kept

@@ -22,12 +22,12 @@ from typing import Any
 import numpy as np
 import shapely
 
-from ..core.tolerances import ROUND_TOL, TOL
+from ..core.tolerances import ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppression",
            "distinct_plans",
-           "part_symmetries", "box_images", "same_box", "distinct_boxes"]
+           "part_symmetries", "grip_symmetries", "box_images", "same_box", "distinct_boxes"]
 
 #: The documented default of ``distinct=`` / ``--distinct``: half of the shorter region.
 DEFAULT_DISTINCT = 0.5
@@ -137,10 +137,7 @@ def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
     out: list[tuple[str, float]] = []
     keys: set[tuple[str, float]] = set()   # those found, by their angle rounded
     for kind, ang in candidates:
-        c, s = np.cos(ang), np.sin(ang)
-        m = np.array([[c, -s], [s, c]]) if kind == "rot" else \
-            np.array([[np.cos(2 * ang), np.sin(2 * ang)], [np.sin(2 * ang), -np.cos(2 * ang)]])
-        w = v @ m.T
+        w = v @ _matrix(kind, ang).T
         _, dist = tree.query_nearest(shapely.points(w), return_distance=True)
         if len(dist) == len(w) and float(np.max(dist)) <= eps:
             key = (kind, round(float(np.mod(ang, np.pi if kind == "ref" else 2 * np.pi)), 9))
@@ -148,6 +145,38 @@ def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
                 keys.add(key)
                 out.append((kind, ang))
     return out
+
+
+def _matrix(kind: str, ang: float) -> np.ndarray:
+    """The linear part of a symmetry of :func:`part_symmetries` (about the centroid)."""
+    c, s = np.cos(ang), np.sin(ang)
+    return np.array([[c, -s], [s, c]]) if kind == "rot" else \
+        np.array([[np.cos(2 * ang), np.sin(2 * ang)], [np.sin(2 * ang), -np.cos(2 * ang)]])
+
+
+def grip_symmetries(polygon: Any, insert: Any = None, tol: float = 10 * SLICE_TOL
+                    ) -> list[tuple[str, float]]:
+    """The symmetries under which a grip's boxes have images (:func:`box_images`): all of
+    :func:`part_symmetries` for an external grip (``insert`` None); for an internal grip,
+    those that fix its insertion point ``insert`` (within ``tol`` of the part's size,
+    the point's own accuracy), so that they map its hole onto itself and the jaws go in
+    at the same point (a symmetry that takes the hole to another one, or moves the point,
+    gives poses that start elsewhere).
+
+    >>> from fcgrasp.io.parts import demo_part
+    >>> part = demo_part("washer")                   # a ring: the hole on the centroid
+    >>> len(grip_symmetries(part)) == len(grip_symmetries(part, part.centroid))
+    True
+    >>> grip_symmetries(part, part.centroid + [1.0, 0.0])  # off the centre: the identity
+    [('rot', 0.0)]
+    """
+    syms = part_symmetries(polygon)
+    if insert is None:
+        return syms
+    v = np.asarray(insert, float) - np.asarray(polygon.centroid, float)
+    eps = tol * float(polygon.size)
+    return [(kind, ang) for kind, ang in syms
+            if float(np.hypot(*(_matrix(kind, ang) @ v - v))) <= eps]
 
 
 def box_images(theta: tuple[float, float], offset: tuple[float, float],
@@ -219,12 +248,15 @@ def distinct_boxes(polygon: Any, plans: list[Any], fraction: float,
         raise ValueError(f"distinct must be a fraction in [0, 1], got {fraction!r}")
     if fraction == 0:
         return list(plans)
-    syms = part_symmetries(polygon)
+    syms: dict[Any, list[tuple[str, float]]] = {}     # per grip (:func:`grip_symmetries`)
     groups: list[list[Any]] = []         # each kept box first, then those it stands for
     for p in plans:
+        if p.hole not in syms:
+            syms[p.hole] = grip_symmetries(polygon, getattr(p, "insert", None))
         # the same alternative as any box of a group (a band of adjacent slices is one)
         group = next((g for g in groups
-                      if any(same_box(q, p, fraction, syms, adjacent) for q in g)), None)
+                      if any(same_box(q, p, fraction, syms[p.hole], adjacent) for q in g)),
+                     None)
         if group is not None:
             group.append(p)
             continue

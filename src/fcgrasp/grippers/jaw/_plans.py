@@ -13,7 +13,12 @@ import numpy as np
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL, RANK_TOL, TOL
-from ...model.distinct import _interval_overlap, box_images, distinct_boxes, part_symmetries
+from ...model.distinct import (
+    _interval_overlap,
+    box_images,
+    distinct_boxes,
+    grip_symmetries,
+)
 from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import DEFAULT_MU, register
@@ -253,9 +258,10 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     docstring): external grips, and with ``internal`` grips inside each hole (the jaws
     put in at its :func:`insertion_point`).  For each grip, each found box's poses are
     removed from the grid before the next is sought, with their mirror (``theta + pi``,
-    ``-c``: the same grasp, pads swapped) and, for external grips, their images under the
-    part's symmetries (:func:`fcgrasp.model.distinct.part_symmetries`: the same grasp
-    turned or mirrored); a returned box as grown is removed too, with its images.
+    ``-c``: the same grasp, pads swapped) and their images under the part's symmetries
+    (:func:`fcgrasp.model.distinct.grip_symmetries`: the same grasp turned or mirrored;
+    for an internal grip, those that keep its hole and insertion point); a returned box
+    as grown is removed too, with its images.
     With ``certify`` (the default) each box is also *proved* by :func:`certify_box` (shrunk
     by up to :data:`CERTIFY_SHRINKS` grid steps until the proof succeeds within
     :data:`CERTIFY_BOXES` sub-boxes; a box it cannot prove is dropped and the next one
@@ -679,8 +685,9 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     thetas, offsets, H = _grid(polygon, jaw, margin, hole)
     K, M = thetas.size, offsets.size
     dth, dc = 2 * np.pi / K, offsets[1] - offsets[0]
-    # inside a hole only the identity (a symmetry may map the hole onto another)
-    symmetries = part_symmetries(polygon) if hole is None else [("rot", 0.0)]
+    # inside a hole, the symmetries that keep the hole and the point the jaws go in at
+    symmetries = grip_symmetries(polygon, None if hole is None
+                                 else insertion_point(polygon, hole))
     plans: list[JawPlan] = []
     taken: list[tuple[float, float, float, float]] = []    # the plans' boxes and images
     while len(plans) < top:
