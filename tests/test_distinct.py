@@ -111,16 +111,20 @@ def test_a_curved_outline_has_one_grasp_shifted_and_plan_finds_others():
 def test_deeper_rounds_keep_the_plans_of_suppression_along_the_whole_list(kw):
     """Grippers without a distinct search of their own: however the rounds grow, the
     plans kept are suppression's along the ranked list at the full depth
-    (``DISTINCT_DEPTH`` times ``top``, asked for at once), on demo:cam (one grasp fills
-    the list: the rounds reach the depth), the blob (and the bracket without friction)."""
+    (``DISTINCT_DEPTH`` times ``top``, or the gripper's ``distinct_depth``, asked for at
+    once), on demo:cam (one grasp fills the list: the rounds reach the depth), the blob
+    (and the bracket without friction)."""
+    from fcgrasp.grippers.fingers import point_fingers
     from fcgrasp.planning.planner import DISTINCT_DEPTH
 
+    depth = getattr(point_fingers(kw["fingers"], kw.get("mu", 0.0), kw.get("gravity")),
+                    "distinct_depth", DISTINCT_DEPTH)
     rng = np.random.default_rng(5)
     names = ["cam", "blob"] if kw.get("mu") else ["blob", "bracket"]
     for part in map(fc.read_part, (f"demo:{n}" for n in names)):
         top, fraction = int(rng.integers(2, 5)), float(rng.choice([0.3, 0.5]))
         got = fc.plan(part, top=top, distinct=fraction, **kw)
-        whole = fc.plan(part, top=DISTINCT_DEPTH * top, **kw)
+        whole = fc.plan(part, top=depth * top, **kw)
         want = distinct_plans(whole, fraction, part.size)[:top]
         assert [p.edges for p in got] == [p.edges for p in want]
         for p, q in zip(got, want, strict=True):
@@ -292,3 +296,19 @@ def test_internal_grips_use_the_symmetries_that_keep_their_hole():
         assert len(kept) == 2 and ("rot", 0.0) in kept, kept
         assert all(k == "rot" and a == 0.0 or k == "ref" and abs(np.sin(a)) < 1e-9
                    for k, a in kept), kept
+
+
+def test_suppression_with_a_limit_keeps_the_head_and_what_it_stands_for():
+    """``distinct_plans(limit=)``: the first ``limit`` kept plans of suppression along the
+    whole list, each with every plan it stands for (the planner's rounds use it)."""
+    part = fc.read_part("demo:cam")
+    # a grasp's copies along the curve, then single-edge plans elsewhere (suppression
+    # reads any list in its order)
+    plans = fc.plan(part, fingers=2, mu=0.3, top=60) + \
+        fc.plan(part, fingers=2, mu=0.3, top=60, along_boundary=False)
+    whole = distinct_plans(plans, 0.5, part.size)
+    assert len(whole) > 5 and len(whole[0].similar) > 50
+    for limit in (1, 2, 5):
+        head = distinct_plans(plans, 0.5, part.size, limit=limit)
+        assert [(p.edges, p.similar) for p in head] == \
+            [(p.edges, p.similar) for p in whole[:limit]]

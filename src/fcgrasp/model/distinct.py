@@ -49,6 +49,10 @@ def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float)
     if short <= tol:                            # a point region (gravity): coincide
         return la <= tol and lb <= tol and \
             float(np.hypot(*(np.mean(a, axis=0) - np.mean(b, axis=0)))) <= tol
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    # boxes apart by more than the tolerance: nothing in common (most pairs of a list)
+    if np.any(a.min(axis=0) > b.max(axis=0) + tol) or np.any(b.min(axis=0) > a.max(axis=0) + tol):
+        return False
     return region_overlap(a, b, tol) > fraction * short
 
 
@@ -57,9 +61,15 @@ def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float) ->
     k = len(p.regions)
     if k != len(q.regions):
         return False
-    hit = [[_overlaps(p.regions[i], q.regions[j], float(p.lengths[i]), float(q.lengths[j]),
-                      fraction, tol) for j in range(k)] for i in range(k)]
-    return any(all(hit[i][perm[i]] for i in range(k)) for perm in permutations(range(k)))
+    hit: dict[tuple[int, int], bool] = {}     # each pair of regions tested once, if asked
+
+    def overlap(i: int, j: int) -> bool:
+        if (i, j) not in hit:
+            hit[i, j] = _overlaps(p.regions[i], q.regions[j], float(p.lengths[i]),
+                                  float(q.lengths[j]), fraction, tol)
+        return hit[i, j]
+
+    return any(all(overlap(i, perm[i]) for i in range(k)) for perm in permutations(range(k)))
 
 
 class Suppression:
@@ -73,16 +83,21 @@ class Suppression:
         self.kept: list[Any] = []
         self._stands: dict[int, list[tuple[int, ...]]] = {}
 
-    def add(self, p: Any) -> bool:
+    def add(self, p: Any, keep: bool = True) -> bool:
         """Whether ``p`` was kept (plans that are not :class:`~fcgrasp.GraspPlan`, such
-        as a jaw's boxes, are)."""
+        as a jaw's boxes, are); with ``keep`` False, ``p`` is only filed under the plan
+        it is the same alternative as, if any (the kept plans are enough)."""
         if isinstance(p, GraspPlan):
             twin = next((q for q in self.kept if isinstance(q, GraspPlan)
                          and same_alternative(q, p, self.fraction, self.tol)), None)
             if twin is not None:
                 self._stands[id(twin)].append(tuple(p.edges))
                 return False
+            if not keep:
+                return False
             self._stands[id(p)] = []
+        elif not keep:
+            return False
         self.kept.append(p)
         return True
 
@@ -92,11 +107,15 @@ class Suppression:
                 else p for p in self.kept]
 
 
-def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
+def distinct_plans(plans: list[Any], fraction: float, size: float,
+                   limit: int | None = None) -> list[Any]:
     """The ranked ``plans`` less those that are the same alternative as a better one,
     each kept plan's ``similar`` listing the edges of the plans it stands for.  Plans
     that are not :class:`~fcgrasp.GraspPlan` (a jaw's boxes) are kept as they are.
-    ``size`` is the part's size (the tolerance is :data:`ROUND_TOL` of it).
+    ``size`` is the part's size (the tolerance is :data:`ROUND_TOL` of it).  With
+    ``limit``, the first ``limit`` kept plans only, the same as without (suppression in
+    rank order keeps a plan by the plans kept before it), each with every plan it
+    stands for; the plans after them are compared with those alone.
 
     >>> import fcgrasp as fc
     >>> part = fc.read_part("demo:cam")                 # a curved outline of 360 edges
@@ -111,7 +130,7 @@ def distinct_plans(plans: list[Any], fraction: float, size: float) -> list[Any]:
         return list(plans)
     suppression = Suppression(fraction, size)
     for p in plans:
-        suppression.add(p)
+        suppression.add(p, keep=limit is None or len(suppression.kept) < limit)
     return suppression.plans()
 
 

@@ -200,7 +200,8 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
     (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for more plans
     until ``top`` distinct ones are found, it has no more, or it was asked for
-    :data:`DISTINCT_DEPTH` times ``top``.  Each round asks for at least twice as many,
+    :data:`DISTINCT_DEPTH` times ``top`` (a gripper's ``distinct_depth`` where it has
+    one).  Each round asks for at least twice as many,
     and for as many as the last round's share of distinct plans says ``top`` need, twice
     over, or, where that is half the depth, for all of it (a search's time grows slowly
     with ``top``: on a curved outline, where one grasp fills the ranked list with its
@@ -222,10 +223,10 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     # a gripper may say what distinct means for its plans (the jaw: boxes up to the
     # part's symmetries); regions of contact otherwise
     suppress = getattr(gripper, "distinct_plans", None) or \
-        (lambda poly, ps, f: distinct_plans(ps, f, poly.size))
+        (lambda poly, ps, f: distinct_plans(ps, f, poly.size, limit=options.top))
     top, ask = options.top, options.top
     kept = suppress(polygon, plans, fraction)
-    cap = DISTINCT_DEPTH * (top or 0)
+    cap = getattr(gripper, "distinct_depth", DISTINCT_DEPTH) * (top or 0)
     while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
             and ask < cap:
         need = max(2 * ask, -(-2 * ask * top // max(len(kept), 1)))   # 2 ask top / kept
