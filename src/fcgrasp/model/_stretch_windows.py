@@ -123,6 +123,7 @@ class _Intervals:
                       ra.t[:, 1].copy(), ra.L, self.gx, rb.a[:, 0].copy(), rb.a[:, 1].copy(),
                       self.gy)
         self._memo: tuple[FloatArray, FloatArray] | None = None
+        self._asked = 0                     # cells the compiled windows were asked for
 
     def cells(self, e: np.ndarray, w: np.ndarray) -> tuple[FloatArray, FloatArray]:
         """The intervals of the cells ``(e, w)`` (integer arrays, broadcast together)."""
@@ -155,11 +156,17 @@ class _Intervals:
         """For each edge, the intersection of its intervals against vertices
         ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
         (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`, or its
-        ``_memo`` form reading the cells from a table up to :data:`MEMO_CELLS`)."""
+        ``_memo`` form reading the cells from a table up to :data:`MEMO_CELLS`, once the
+        windows have asked for an eighth of them)."""
         if compiled:
             args = (np.asarray(edge, np.int64), np.asarray(start, np.int64),
                     np.asarray(count, np.int64), *self._flat, self.sigma, _EPS)
-            if self.ra.m * self.rb.m > MEMO_CELLS:
+            cells = self.ra.m * self.rb.m
+            self._asked += int(np.sum(args[2]))
+            # the table once the windows have read an eighth of its cells: filling it
+            # costs about that (a noisy star's search reads under 1 %, a smooth curve's
+            # more than half, a distinct search's each cell many times)
+            if cells > MEMO_CELLS or (self._memo is None and 8 * self._asked < cells):
                 return cast("tuple[FloatArray, FloatArray]",
                             _stretch_kernels.window_boxes(*args))
             if self._memo is None:
