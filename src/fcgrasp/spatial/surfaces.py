@@ -69,6 +69,7 @@ from .regions import (
     DEFAULT_MARGIN_DEG,
     OCTAGON,
     Halfplanes,
+    OctagonPlan,
     SoftPairPlan,
     _cone_rows,
     _fit,
@@ -113,7 +114,31 @@ _COS8 = math.cos(math.pi / 8)
 
 
 @dataclass(frozen=True)
-class SurfacePairPlan(SoftPairPlan):
+class _AcrossFacets(OctagonPlan):
+    """What a plan across facets adds to its octagons (:class:`SurfacePairPlan`,
+    :class:`SurfaceTriplePlan`; listed first among their bases, so these fields come
+    after the plan's own): ``surfaces`` (the facets each region covers), ``triangles``
+    (the mesh triangles of each patch), ``spread`` (each patch's ``beta``, degrees),
+    ``outlines`` (each region's boundary on the surface) and ``surface_triangles``
+    (each region on the surface, triangles (k, 3, 3))."""
+
+    surfaces: tuple[tuple[int, ...], ...] = ()
+    triangles: tuple[IntArray, ...] = field(default=(), repr=False)
+    spread: tuple[float, ...] = ()
+    outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
+    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
+
+    def _with_across(self, out: dict[str, Any]) -> dict[str, Any]:
+        """The plan's JSON ``out`` with these (``spread_deg`` for ``spread``)."""
+        out.update({"across_facets": True, "surfaces": [list(s) for s in self.surfaces],
+                    "spread_deg": list(self.spread),
+                    "outlines": [o.tolist() for o in self.outlines],
+                    "surface_triangles": [t.tolist() for t in self.surface_triangles]})
+        return out
+
+
+@dataclass(frozen=True)
+class SurfacePairPlan(_AcrossFacets, SoftPairPlan):
     """Regions of two soft fingers across facets (module docstring): a
     :class:`~fcgrasp.spatial.SoftPairPlan` whose ``facets`` are the seeds' facets,
     ``normals`` the patches' reference normals ``n_0``, ``regions`` the octagons'
@@ -124,24 +149,8 @@ class SurfacePairPlan(SoftPairPlan):
     ``outlines`` (each region's boundary on the surface, 3-D points) and
     ``surface_triangles`` (each region on the surface, triangles (k, 3, 3))."""
 
-    surfaces: tuple[tuple[int, ...], ...] = ()
-    triangles: tuple[IntArray, ...] = field(default=(), repr=False)
-    spread: tuple[float, ...] = ()
-    outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
-    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
-
     def to_dict(self) -> dict[str, Any]:
-        return _across_dict(self, super().to_dict())
-
-
-def _across_dict(plan: Any, out: dict[str, Any]) -> dict[str, Any]:
-    """A plan's JSON ``out`` with what a plan across facets adds (its ``surfaces``,
-    ``spread_deg``, ``outlines`` and ``surface_triangles``)."""
-    out.update({"across_facets": True, "surfaces": [list(s) for s in plan.surfaces],
-                "spread_deg": list(plan.spread),
-                "outlines": [o.tolist() for o in plan.outlines],
-                "surface_triangles": [t.tolist() for t in plan.surface_triangles]})
-    return out
+        return self._with_across(super().to_dict())
 
 
 @dataclass
@@ -710,7 +719,7 @@ def _pair_bound(p: _Patch, q: _Patch, alpha: float) -> float:
 
 
 @dataclass(frozen=True)
-class SurfaceTriplePlan(PointTriplePlan):
+class SurfaceTriplePlan(_AcrossFacets, PointTriplePlan):
     """Certified regions of three point fingers with friction across facets
     (:func:`surface_triple_plans`): a :class:`~fcgrasp.spatial.PointTriplePlan` whose
     ``facets`` are the seeds' facets, ``normals`` the patches' axes ``n_0``,
@@ -719,14 +728,8 @@ class SurfaceTriplePlan(PointTriplePlan):
     ``delta`` its radius, with ``surfaces``, ``triangles``, ``spread``, ``outlines`` and
     ``surface_triangles`` as :class:`SurfacePairPlan` has them."""
 
-    surfaces: tuple[tuple[int, ...], ...] = ()
-    triangles: tuple[IntArray, ...] = field(default=(), repr=False)
-    spread: tuple[float, ...] = ()
-    outlines: tuple[FloatArray, ...] = field(default=(), repr=False)
-    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
-
     def to_dict(self) -> dict[str, Any]:
-        return _across_dict(self, super().to_dict())
+        return self._with_across(super().to_dict())
 
 
 def _triple_radius(patches: tuple[_Patch, ...], mids: list[FloatArray], alpha: float
