@@ -73,6 +73,79 @@ def test_compiled_poses_are_the_numpy_model():
     assert cases >= 20000 and agree >= 500
 
 
+def _grid_of(rng, part, jaw):
+    """A grid of poses: evenly spaced offsets (sometimes one, or all equal), angles
+    random or at the critical ones, offsets sometimes where a vertex meets the strip."""
+    K = int(rng.integers(1, 12))
+    th, _ = _poses_of(rng, part, jaw, 3 * K)
+    th = rng.choice(th, K)
+    kind = rng.integers(0, 4)
+    M = 1 if kind == 0 else int(rng.integers(2, 40))
+    if kind == 1:                           # a strip's edge on a vertex
+        v = part.vertices[rng.integers(0, len(part.vertices))] - part.centroid
+        x = -np.sin(th[0]) * v[0] + np.cos(th[0]) * v[1] + jaw.pad_width / 2
+        c = x + np.arange(M) * rng.uniform(0.001, 0.05) * part.size
+    elif kind == 2:                         # every offset the same
+        c = np.full(M, rng.uniform(-0.5, 0.5) * part.size)
+    else:
+        c = np.linspace(*np.sort(rng.uniform(-0.8, 0.8, 2) * part.size), M)
+    return th, c
+
+
+def test_compiled_grid_reads_the_poses_of_every_edge():
+    """The compiled grid (each pose reading only the edges near its strip) gives every
+    pose the verdict, opening and pad edges of the pose loop over every edge."""
+    rng = np.random.default_rng(17)
+    poses = held = 0
+    for _ in range(200):
+        part, jaw = _part_and_jaw(rng)
+        for hole in _holes(part):
+            th, c = _grid_of(rng, part, jaw)
+            ring = _poses._grip_edges(part, hole)
+            args = _poses._pose_args(part, jaw, 2.0, hole, ring)
+            H, opening, e_a, e_b = _kernels.grid(th, c, *args, details=True)
+            tt, cc = np.meshgrid(th, c, indexing="ij")
+            out = _kernels.poses(tt.ravel(), cc.ravel(), *args)
+            top, bottom, col_a, col_b, holds = out[0], out[1], out[8], out[9], out[10]
+            assert np.array_equal(H.ravel(), holds)
+            np.testing.assert_array_equal(opening.ravel(), top - bottom)
+            np.testing.assert_array_equal(e_a.reshape(-1, _kernels.K_MAX), col_a)
+            np.testing.assert_array_equal(e_b.reshape(-1, _kernels.K_MAX), col_b)
+            assert np.array_equal(_kernels.grid(th, c, *args), H)
+            poses += H.size
+            held += int(H.sum())
+    assert poses >= 20000 and held >= 500
+
+
+@pytest.mark.parametrize("name", ["washer", "bracket", "cam"])
+def test_compiled_pose_grid_and_fine_check_are_the_batches(name):
+    """The jaw's pose grid and each box's fine check, by the compiled grid and by
+    :func:`jaw_poses` in batches (tiles of the edges near their strips)."""
+    part = demo_part(name)
+    rng = np.random.default_rng(18)
+    for jaw in (ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5),
+                ParallelJaw(stroke=(0, 1.2 * part.size), pad_width=0.1 * part.size,
+                            mu=0.3)):
+        for hole in _holes(part):
+            thetas, offsets, H = _plans._grid(part, jaw, 2.0, hole)
+            assert np.array_equal(
+                H, _plans._pose_grid_batches(part, jaw, 2.0, hole, thetas, offsets))
+            dth, dc = thetas[1] - thetas[0], offsets[1] - offsets[0]
+            # boxes of the grid's holding poses, and random ones
+            rows, cols = np.nonzero(H)
+            for k in range(12):
+                if k < 6 and rows.size:
+                    i = int(rng.integers(0, rows.size))
+                    t0, c0 = thetas[rows[i]], offsets[cols[i]]
+                else:
+                    t0, c0 = rng.uniform(0, 2 * np.pi), rng.uniform(-1, 1) * part.radius
+                th = np.array([t0, t0 + dth * int(rng.integers(0, 8))])
+                off = np.array([c0, c0 + dc * int(rng.integers(0, 8))])
+                assert _plans._checked_box(part, jaw, 2.0, hole, th, off, dth, dc) == \
+                    _plans._checked_box(part, jaw, 2.0, hole, th, off, dth, dc,
+                                        compiled_grid=False)
+
+
 def test_compiled_box_search_is_the_numpy_search():
     rng = np.random.default_rng(12)
     for t in range(1500):

@@ -158,6 +158,96 @@ def _poses_loop(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float
                   col_a, col_b, holds, slacks, scratch)
 
 
+def _grid_loop(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
+               internal: bool, q: Any, stroke0: float, stroke1: float, beta: float,
+               flip: float, round_tol: float, H: Any, details: bool, opening: Any,
+               edge_a: Any, edge_b: Any) -> None:
+    """Whether each pose of the grid ``th x c`` holds (``H``, (K, M)); with
+    ``details``, its opening (``opening``, (K, M)) and the edges (indices of ``a``)
+    each pad touches (``edge_a``, ``edge_b``, (K, M, K_MAX), -1 for none), as
+    :func:`_poses_loop` decides it, but each pose reads only the edges that may meet its
+    strip: per closing angle, every edge's span across the closing direction is
+    computed once and filed under the columns (offsets, ``c`` evenly spaced and
+    increasing) whose strips it may meet, one column to each side spare.  The edges a
+    pose does not read never meet its strip, and :func:`_pose_one` passes over them
+    (no stop, no feature, neither above nor below the closed jaws, no crossing of the
+    ray from their middle), so the verdicts are those of every edge, in the same
+    order."""
+    K, M, E = th.shape[0], c.shape[0], a.shape[0]
+    KK = K_MAX
+    top, bottom = np.empty(1), np.empty(1)
+    ok_a, ok_b = np.zeros(1, np.bool_), np.zeros(1, np.bool_)
+    lat_a, lat_b = np.empty((1, KK, 2)), np.empty((1, KK, 2))
+    psi_a, psi_b = np.empty((1, KK)), np.empty((1, KK))
+    col_a, col_b = np.empty((1, KK), np.int64), np.empty((1, KK), np.int64)
+    holds = np.zeros(1, np.bool_)
+    slacks = np.empty((1, 2 * KK * KK + 2))
+    scratch = np.empty((4, E))
+    j_lo = np.empty(E, np.int64)
+    j_hi = np.empty(E, np.int64)
+    count = np.zeros(M + 1, np.int64)
+    fill = np.empty(M, np.int64)
+    sa, sb, sf = np.empty((E, 2)), np.empty((E, 2)), np.empty((E, 2))
+    dc = (c[M - 1] - c[0]) / (M - 1) if M > 1 else 0.0
+    spread = dc > 0 and math.isfinite(dc)      # else every edge is read at every pose
+    for k in range(K):
+        tc, ts = math.cos(th[k]), math.sin(th[k])
+        for j in range(M + 1):
+            count[j] = 0
+        for e in range(E):
+            xa = -ts * a[e, 0] + tc * a[e, 1]
+            xb = -ts * b[e, 0] + tc * b[e, 1]
+            lo_x, hi_x = min(xa, xb), max(xa, xb)
+            # columns whose strip [c - half, c + half] may meet [lo_x, hi_x]
+            lo, hi = 0, M - 1
+            if spread:
+                u = (lo_x - half - c[0]) / dc
+                v = (hi_x + half - c[0]) / dc
+                if u > M:
+                    lo = M
+                elif u > 0:
+                    lo = max(int(math.floor(u)) - 1, 0)
+                if v < -1:
+                    hi = -1
+                elif v < M:
+                    hi = min(int(math.ceil(v)) + 1, M - 1)
+            j_lo[e], j_hi[e] = lo, hi
+            if lo <= hi:
+                count[lo] += 1
+                count[hi + 1] -= 1
+        # how many edges each column reads, and where its list starts
+        run = 0
+        total = 0
+        for j in range(M):
+            run += count[j]
+            fill[j] = total
+            total += run
+        lists = np.empty(max(total, 1), np.int64)
+        for e in range(E):             # ascending: each column's list in edge order
+            for j in range(j_lo[e], j_hi[e] + 1):
+                lists[fill[j]] = e
+                fill[j] += 1
+        start = 0
+        for j in range(M):
+            n = fill[j] - start
+            for i in range(n):
+                e = lists[start + i]
+                sa[i, 0], sa[i, 1] = a[e, 0], a[e, 1]
+                sb[i, 0], sb[i, 1] = b[e, 0], b[e, 1]
+                sf[i, 0], sf[i, 1] = f[e, 0], f[e, 1]
+            _pose_one(0, th[k], c[j], sa[:n], sb[:n], sf[:n], half, tol, internal, q,
+                      stroke0, stroke1, beta, flip, round_tol, top, bottom, ok_a, ok_b,
+                      lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks,
+                      scratch[:, :n])
+            H[k, j] = holds[0]
+            if details:
+                opening[k, j] = top[0] - bottom[0]
+                for i in range(KK):
+                    edge_a[k, j, i] = lists[start + col_a[0, i]] if col_a[0, i] >= 0 else -1
+                    edge_b[k, j, i] = lists[start + col_b[0, i]] if col_b[0, i] >= 0 else -1
+            start = fill[j]
+
+
 def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: float,
               tol: float, internal: bool, q: Any, stroke0: float, stroke1: float,
               beta: float, flip: float, round_tol: float, top: Any, bottom: Any, ok_a: Any,
@@ -245,6 +335,32 @@ def poses(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
         return None
     return (top, bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
             slacks)
+
+
+def grid(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float, q: Any,
+         stroke: tuple[float, float], beta: float, round_tol: float,
+         details: bool = False) -> Any:
+    """Whether each pose of the grid ``th x c`` (``c`` evenly spaced, increasing) holds,
+    (K, M) booleans (:func:`_grid_loop`: the verdicts of :func:`poses`, each pose
+    reading only the edges near its strip); with ``details``, ``(holds, opening,
+    edge_a, edge_b)`` (the edges as indices of ``a``, -1 for none); None when the
+    compiled loop cannot run."""
+    K, M = len(th), len(c)
+    H = np.zeros((K, M), dtype=np.bool_)
+    shape = (K, M) if details else (1, 1)
+    opening = np.full(shape, np.nan)
+    edge_a = np.full((*shape, K_MAX), -1, np.int64)
+    edge_b = np.full((*shape, K_MAX), -1, np.int64)
+    internal = q is not None
+    qq = np.zeros(2) if q is None else np.ascontiguousarray(q, dtype=float)
+    if not _run("_grid_loop", np.ascontiguousarray(th, dtype=float),
+                np.ascontiguousarray(c, dtype=float), np.ascontiguousarray(a, dtype=float),
+                np.ascontiguousarray(b, dtype=float), np.ascontiguousarray(f, dtype=float),
+                float(half), float(tol), internal, qq, float(stroke[0]), float(stroke[1]),
+                float(beta), -1.0 if internal else 1.0, float(round_tol), H, bool(details),
+                opening, edge_a, edge_b):
+        return None
+    return (H, opening, edge_a, edge_b) if details else H
 
 
 def _box_loop(H: Any, dth: float, dc: float, radius: float, max_rows: int,
@@ -1021,8 +1137,8 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 # ----------------------------------------------------------------------------- loading
 
 _LOOPS = CompiledLoops(globals(), (
-    _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _box_loop, _sin_range,
-    _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
+    _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _grid_loop, _box_loop,
+    _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
     _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine,
     _quantities, _kink, _cell, _slices_loop))
 

@@ -35,6 +35,8 @@ from ._poses import (
     THETA_STEP_DEG,
     JawParameters,
     _check_jaw_args,
+    _grip_edges,
+    _pose_args,
     insertion_point,
     jaw_poses,
 )
@@ -832,7 +834,23 @@ TILE = (16, 20)
 
 def _pose_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
                thetas: np.ndarray, offsets: np.ndarray) -> np.ndarray:
-    """Whether each pose of the grid ``thetas x offsets`` holds (K, M)."""
+    """Whether each pose of the grid ``thetas x offsets`` holds (K, M): by the compiled
+    grid loop (:func:`._kernels.grid`, each pose reading the edges near its strip) where
+    it runs, else by :func:`_pose_grid_batches`, the reference."""
+    if _kernels.available():
+        a, b, f, half, tol, q, stroke, beta, round_tol = _pose_args(
+            polygon, jaw, margin, hole, _grip_edges(polygon, hole))
+        H = _kernels.grid(thetas, offsets, a, b, f, half, tol, q, stroke, beta, round_tol)
+        if H is not None:
+            return H
+    return _pose_grid_batches(polygon, jaw, margin, hole, thetas, offsets)
+
+
+def _pose_grid_batches(polygon: Polygon, jaw: ParallelJaw, margin: float,
+                       hole: int | None, thetas: np.ndarray, offsets: np.ndarray
+                       ) -> np.ndarray:
+    """:func:`_pose_grid` by :func:`jaw_poses` in batches (tiles of the grid, each with
+    the edges near its strips, on a part of many edges)."""
     K, M = thetas.size, offsets.size
     if polygon.n_edges <= TILE_AFTER_EDGES:
         tt, cc = np.meshgrid(thetas, offsets, indexing="ij")
@@ -850,18 +868,35 @@ def _pose_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | No
 
 
 def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
-                 th: FloatArray, off: FloatArray, dth: float, dc: float
+                 th: FloatArray, off: FloatArray, dth: float, dc: float,
+                 compiled_grid: bool = True
                  ) -> tuple[tuple[float, float], tuple[float, float],
                             tuple[float, float], tuple[list[int], list[int]]] | None:
     """Shrink a box by grid steps until every pose of a grid :data:`CHECK_DENSITY`
     times finer holds; returns ``(theta range, offset range, opening range, the edges
-    each pad touches at those poses)`` or None."""
+    each pad touches at those poses)`` or None.  The fine grid is evaluated by the
+    compiled grid loop (:func:`._kernels.grid`) where it runs and ``compiled_grid``,
+    else by :func:`jaw_poses` in batches (the reference: the same answer)."""
     (t0, t1), (c0, c1) = th, off
+    args = _pose_args(polygon, jaw, margin, hole, _grip_edges(polygon, hole)) \
+        if compiled_grid and _kernels.available() else None
     for _ in range(4):
         if t1 < t0 or c1 < c0:
             return None
         nt = max(2, int(round((t1 - t0) / dth)) * CHECK_DENSITY + 1)
         nc = max(2, int(round((c1 - c0) / dc)) * CHECK_DENSITY + 1)
+        got = None if args is None else _kernels.grid(
+            np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), *args, details=True)
+        if got is not None:
+            # the compiled grid: every pose's verdict, opening and pads' edges at once
+            holds, opening_, e_a, e_b = got
+            if holds.all():
+                ids = np.flatnonzero(_grip_edges(polygon, hole))
+                return ((t0, t1), (c0, c1), (float(opening_.min()), float(opening_.max())),
+                        (sorted(set(ids[e_a[e_a >= 0]].tolist())),
+                         sorted(set(ids[e_b[e_b >= 0]].tolist()))))
+            t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
+            continue
         grid = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
         tt, cc = grid[0].ravel(), grid[1].ravel()
         opening = [np.inf, -np.inf]
