@@ -66,7 +66,8 @@ from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import CHECK_TOL, NOISE_ROW, RANK_TOL, ROUND_TOL, TINY
+from ..core.tolerances import CHECK_TOL, NOISE_ROW, RANK_TOL, ROUND_TOL, TINY, TOL
+from . import _frictionless_kernels
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
@@ -120,9 +121,44 @@ class _Config:
 
 
 def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.ndarray,
-            mode: str, margin: float, gravity: FloatArray | None) -> _Config | None:
+            mode: str, margin: float, gravity: FloatArray | None,
+            compiled: bool = True) -> _Config | None:
     """Theorem 7.1 on every combination of covered edges (the vertex lemma), or None
-    when some combination's pairing is null or its sector narrower than the margin."""
+    when some combination's pairing is null or its sector narrower than the margin.
+    The rows come from the compiled loop of :mod:`._frictionless_kernels` where it runs
+    and ``compiled``, else from numpy (:func:`_rows_numpy`, the reference)."""
+    k = len(edges)
+    s = 1.0 if mode == "+C" else -1.0
+    got = _frictionless_kernels.system_rows(
+        polygon, edges, gravity, pairing, float(margin_radians(margin)), s, TOL) \
+        if compiled else None
+    if got is False:
+        return None
+    rows = got if got is not None else _rows_numpy(polygon, edges, gravity, pairing,
+                                                   margin, s)
+    if rows is None:
+        return None
+    A, bvec = rows
+    # rows without a variable are checked here, not handed to the solver
+    fixed = ~np.any(A != 0, axis=1)
+    if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
+        return None
+    bounds = []
+    const = np.zeros(k)
+    for f, st in enumerate(edges):
+        Lf, Ll = float(polygon.lengths[st[0]]), float(polygon.lengths[st[-1]])
+        bounds += [(0.0, Lf), (0.0, Ll)]
+        if len(st) > 1:
+            const[f] = Lf + float(sum(polygon.lengths[list(st[1:-1])]))
+    return _Config(edges, A[~fixed], bvec[~fixed], bounds, const)
+
+
+def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: Any,
+                pairing: np.ndarray, margin: float, s: float
+                ) -> tuple[FloatArray, FloatArray] | None:
+    """Theorem 7.1's two rows per combination of covered edges, by numpy: ``(A, rhs)``,
+    or None when some combination's pairing is null or its sector narrower than the
+    margin."""
     k = len(edges)
     # every combination, in the order of itertools.product (the last finger fastest)
     combos = np.indices([len(e) for e in edges]).reshape(k, -1).T
@@ -150,7 +186,6 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
         a, b, center, perm, margin_radians(margin))
     if not np.all(valid & (hm > 0)):
         return None
-    s = 1.0 if mode == "+C" else -1.0
     k1, k2 = s * k1, s * k2
     nv = 2 * k
     rows_A, rows_b = [], []
@@ -175,20 +210,7 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
             rhs = rhs - g * const
         rows_A.append(A)
         rows_b.append(rhs)
-    A = np.concatenate(rows_A)
-    bvec = np.concatenate(rows_b)
-    # rows without a variable are checked here, not handed to the solver
-    fixed = ~np.any(A != 0, axis=1)
-    if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
-        return None
-    bounds = []
-    const = np.zeros(k)
-    for f, st in enumerate(edges):
-        Lf, Ll = float(polygon.lengths[st[0]]), float(polygon.lengths[st[-1]])
-        bounds += [(0.0, Lf), (0.0, Ll)]
-        if len(st) > 1:
-            const[f] = Lf + float(sum(polygon.lengths[list(st[1:-1])]))
-    return _Config(edges, A[~fixed], bvec[~fixed], bounds, const)
+    return np.concatenate(rows_A), np.concatenate(rows_b)
 
 
 def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
@@ -298,7 +320,7 @@ def _rows_generated(c: FloatArray, A: FloatArray, b: FloatArray, n_cut: int
     per_round = ROWS_PER_ROUND * A.shape[1]
     active = np.zeros(len(A), dtype=bool)
     active[n_cut:] = True
-    active[np.argsort(b[:n_cut], kind="stable")[:per_round]] = True
+    active[_smallest(b[:n_cut], per_round)] = True
     while True:
         rows = np.flatnonzero(active)
         st, y = _simplex.lp_max(c, A[rows], b[rows], feas=feas)
@@ -306,11 +328,23 @@ def _rows_generated(c: FloatArray, A: FloatArray, b: FloatArray, n_cut: int
             return st, y
         over = A[:n_cut] @ y - b[:n_cut]
         over[active[:n_cut]] = -np.inf
-        worst = np.argsort(-over, kind="stable")[:per_round]
+        worst = _smallest(-over, per_round)
         worst = worst[over[worst] > feas]
         if not worst.size:
             return st, y
         active[worst] = True
+
+
+def _smallest(v: FloatArray, k: int) -> np.ndarray:
+    """``np.argsort(v, kind="stable")[:k]`` without sorting all of ``v``: the values up
+    to the ``k``-th smallest (ties included, in index order) sorted stably."""
+    if len(v) <= k:
+        return np.argsort(v, kind="stable")
+    kth = np.partition(v, k - 1)[k - 1]
+    if np.isnan(kth):
+        return np.argsort(v, kind="stable")[:k]
+    near = np.flatnonzero(v <= kth)
+    return near[np.argsort(v[near], kind="stable")[:k]]
 
 
 def _lengths(cfg: _Config, x: FloatArray) -> FloatArray:

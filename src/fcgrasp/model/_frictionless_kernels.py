@@ -1,0 +1,210 @@
+"""The rows of a frictionless configuration's program, compiled (issue 30: a per-call
+path without per-call overhead).
+
+:func:`fcgrasp.model.frictionless_stretches._system` builds, for every combination of
+covered edges (the vertex lemma), theorem 7.1's two rows: the affine maps of the fingers'
+meets ``P12``, ``P34`` (:func:`fcgrasp.model._regiongeom.four_finger_geometry`), the
+shrunk sector's edges, and each finger's coefficient on the variable its region's end
+is.  In numpy that is a hundred calls on arrays of a few rows, and the growth of four
+fingers' regions builds thousands of such programs (``icons/bell.svg``: 4,000 programs,
+10 of its 17 s).  :func:`system_rows` runs the same formulas, in the same order, in one
+compiled loop over the combinations; the numpy ``_system`` stays the reference (the
+tests compare the rows on thousands of seeded configurations, bit for bit).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core import kernels
+
+#: The kinds of a finger's edge in its stretch (``frictionless_stretches``'s order).
+_SINGLE, _FIRST, _LAST, _INSIDE = 0, 1, 2, 3
+
+
+def _wrap_mod(x: float) -> float:
+    """:func:`fcgrasp.core._angles.wrap` of a number (the same ``mod``: Python's and
+    numpy's floored remainder agree to the bit)."""
+    return (x + math.pi) % (2.0 * math.pi) - math.pi
+
+
+def _pair_arc(ca: float, cb: float) -> tuple[float, float]:
+    """:func:`fcgrasp.core.sectors.pair_arc` of numbers."""
+    gap = _wrap_mod(cb - ca)
+    return _wrap_mod(ca + gap / 2), abs(gap) / 2
+
+
+def _wrap_floor(x: float) -> float:
+    """:func:`fcgrasp.core._angles.wrap_floor` of a number (what ``arc_meet`` wraps
+    with, in numpy too)."""
+    return x - 2.0 * math.pi * np.floor((x + math.pi) / (2.0 * math.pi))
+
+
+def _arc_meet(c1: float, h1: float, c2: float, h2: float) -> tuple[float, float]:
+    """:func:`fcgrasp.core.kernels.arc_meet` of numbers."""
+    delta = _wrap_floor(c2 - c1)
+    lo = max(-h1, delta - h2)
+    hi = min(h1, delta + h2)
+    return _wrap_floor(c1 + (lo + hi) / 2), (hi - lo) / 2
+
+
+def _meets(ea: Any, eb: Any, ec: Any, lo_i: int, hi_i: int, lo_j: int, hi_j: int,
+           tol: float, out: Any) -> None:
+    """The meets of the lines of force of every edge ``i`` of one finger (rows
+    ``lo_i:hi_i`` of the edges) with every edge ``j`` of another (``lo_j:hi_j``), as
+    ``four_finger_geometry`` computes them for a pair of fingers: per pair (``i``
+    slowest) the meet, the velocities of the first and second finger's positions, the
+    pair's arc (centre, half-width), whether the forces are not parallel, and the two
+    edges' lengths (``out`` rows of 12)."""
+    r = 0
+    for i in range(lo_i, hi_i):
+        fix, fiy = math.cos(ec[i]), math.sin(ec[i])
+        dxi, dyi = eb[i, 0] - ea[i, 0], eb[i, 1] - ea[i, 1]
+        Li = math.hypot(dxi, dyi)
+        di = Li if Li > 0 else 1.0
+        tix = dxi / di if Li > 0 else 0.0
+        tiy = dyi / di if Li > 0 else 0.0
+        for j in range(lo_j, hi_j):
+            fjx, fjy = math.cos(ec[j]), math.sin(ec[j])
+            dxj, dyj = eb[j, 0] - ea[j, 0], eb[j, 1] - ea[j, 1]
+            Lj = math.hypot(dxj, dyj)
+            dj = Lj if Lj > 0 else 1.0
+            tjx = dxj / dj if Lj > 0 else 0.0
+            tjy = dyj / dj if Lj > 0 else 0.0
+            den = fix * fjy - fiy * fjx
+            wx, wy = ea[j, 0] - ea[i, 0], ea[j, 1] - ea[i, 1]
+            sm = (wx * fjy - wy * fjx) / den
+            ga = (tix * fjy - tiy * fjx) / den
+            gb = (tjx * fjy - tjy * fjx) / den
+            out[r, 0] = ea[i, 0] + sm * fix
+            out[r, 1] = ea[i, 1] + sm * fiy
+            out[r, 2] = tix - ga * fix if Li > 0 else 0.0
+            out[r, 3] = tiy - ga * fiy if Li > 0 else 0.0
+            out[r, 4] = gb * fix if Lj > 0 else 0.0
+            out[r, 5] = gb * fiy if Lj > 0 else 0.0
+            out[r, 6], out[r, 7] = _pair_arc(ec[i], ec[j])
+            out[r, 8] = 1.0 if abs(den) > tol else 0.0
+            out[r, 9], out[r, 10] = Li, Lj
+            r += 1
+
+
+def _kind(pos: int, n: int) -> int:
+    """The kind of the ``pos``-th of ``n`` edges of a stretch."""
+    if n == 1:
+        return _SINGLE
+    if pos == 0:
+        return _FIRST
+    return _LAST if pos == n - 1 else _INSIDE
+
+
+def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: float,
+                 s: float, k: int, tol: float, A: Any, rhs: Any) -> bool:
+    """Rows ``A`` (2C, 2k) and right-hand sides ``rhs`` (2C) of every combination of
+    the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f + 1]`` of the
+    segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of gravity is
+    one point; combinations in the order of ``itertools.product``, the last finger
+    fastest).  The meets of each pair of fingers are computed once per pair of edges
+    (:func:`_meets`).  False (rows not all written) where a combination's pairing is
+    null or its sector no wider than the margin."""
+    n = np.empty(4, np.int64)
+    for f in range(4):
+        n[f] = start[f + 1] - start[f]
+    p0, p1, p2, p3 = pairing[0], pairing[1], pairing[2], pairing[3]
+    m12 = np.empty((n[p0] * n[p1], 12))
+    m34 = np.empty((n[p2] * n[p3], 12))
+    _meets(ea, eb, ec, start[p0], start[p0 + 1], start[p1], start[p1 + 1], tol, m12)
+    _meets(ea, eb, ec, start[p2], start[p2 + 1], start[p3], start[p3 + 1], tol, m34)
+    C = rhs.shape[0] // 2
+    pos = np.zeros(4, np.int64)
+    vel = np.empty((4, 2))
+    L = np.empty(4)
+    for r in range(C):
+        # finger positions of combination r (the last real finger fastest)
+        rest = r
+        for f in range(k - 1, -1, -1):
+            pos[f] = rest % n[f]
+            rest //= n[f]
+        a12 = m12[pos[p0] * n[p1] + pos[p1]]
+        a34 = m34[pos[p2] * n[p3] + pos[p3]]
+        valid = a12[8] > 0 and a34[8] > 0
+        cen, half = _arc_meet(a12[6], a12[7], a34[6] + math.pi, a34[7])
+        hm = half - margin if valid else -1.0
+        if not hm > 0:
+            return False
+        vel[0, 0], vel[0, 1], vel[1, 0], vel[1, 1] = a12[2], a12[3], a12[4], a12[5]
+        vel[2, 0], vel[2, 1], vel[3, 0], vel[3, 1] = a34[2], a34[3], a34[4], a34[5]
+        L[0], L[1], L[2], L[3] = a12[9], a12[10], a34[9], a34[10]
+        k1x, k1y = s * math.cos(cen - hm), s * math.sin(cen - hm)
+        k2x, k2y = s * math.cos(cen + hm), s * math.sin(cen + hm)
+        for side in range(2):               # phi = k1 x . , then -(k2 x .)
+            row = side * C + r
+            if side == 0:
+                kx, ky, sg = k1x, k1y, 1.0
+            else:
+                kx, ky, sg = k2x, k2y, -1.0
+            v34 = kx * a34[1] - ky * a34[0]
+            v12 = kx * a12[1] - ky * a12[0]
+            value = (v34 if sg > 0 else -v34) - (v12 if sg > 0 else -v12)
+            for col in range(A.shape[1]):
+                A[row, col] = 0.0
+            for p in range(4):
+                fi = pairing[p]
+                if fi >= k:                 # gravity: a fixed point
+                    continue
+                cv = kx * vel[p, 1] - ky * vel[p, 0]
+                if sg < 0:
+                    cv = -cv
+                use_hi = cv > 0 if p < 2 else cv <= 0
+                g = cv if p < 2 else -cv
+                kd = _kind(pos[fi], n[fi])
+                hi_var = use_hi and (kd == _SINGLE or kd == _LAST)
+                lo_var = (not use_hi) and (kd == _SINGLE or kd == _FIRST)
+                const = L[p] if use_hi and (kd == _FIRST or kd == _INSIDE) else 0.0
+                A[row, 2 * fi + 1] += g if hi_var else 0.0
+                A[row, 2 * fi] += g if lo_var else 0.0
+                value = value - g * const
+            rhs[row] = value
+    return True
+
+
+_FUNCS = (_wrap_mod, _pair_arc, _wrap_floor, _arc_meet, _meets, _kind, _system_loop)
+COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS)
+
+
+def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
+                s: float, tol: float) -> tuple[Any, Any] | bool | None:
+    """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
+    stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
+    check of the rows without a variable, by the compiled loop; False where some
+    combination's pairing is null or its sector too narrow (no program), None where the
+    loop does not run (numpy then)."""
+    if not COMPILED.available():
+        return None
+    k = len(edges)
+    idx = np.fromiter((e for st in edges for e in st), np.int64)
+    n = [len(st) for st in edges]
+    ea, eb = polygon.starts[idx], polygon.ends[idx]
+    nrm = polygon.normals[idx]
+    ec = np.arctan2(-nrm[:, 1], -nrm[:, 0])
+    if gravity is not None:
+        cen = np.asarray(polygon.centroid, float)[None]
+        ea, eb = np.r_[ea, cen], np.r_[eb, cen]
+        ec = np.r_[ec, np.arctan2(gravity[1], gravity[0])]
+        n.append(1)
+    start = np.zeros(5, np.int64)
+    start[1:len(n) + 1] = np.cumsum(n)
+    start[len(n) + 1:] = start[len(n)]
+    C = int(np.prod(n[:k]))
+    A = np.empty((2 * C, 2 * k))
+    rhs = np.empty(2 * C)
+    ok, whole = COMPILED.run("_system_loop", np.ascontiguousarray(ea, dtype=float),
+                             np.ascontiguousarray(eb, dtype=float),
+                             np.ascontiguousarray(ec, dtype=float), start,
+                             np.ascontiguousarray(pairing, dtype=np.int64), float(margin),
+                             float(s), int(k), float(tol), A, rhs)
+    if not ok:
+        return None
+    return (A, rhs) if whole else False

@@ -1,0 +1,93 @@
+"""The compiled rows of frictionless configurations (issue 30) against numpy's, bit for
+bit: on the programs the growth of four fingers (and three with gravity) builds on the
+built-in parts, and on seeded random configurations, null pairings and narrow sectors
+included; and the partial sort of the row generation against numpy's stable sort."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.core.sectors import PAIRINGS
+from fcgrasp.io.parts import demo_part
+from fcgrasp.model import _frictionless_kernels, frictionless_stretches
+from fcgrasp.model.frictionless_stretches import _smallest, _system
+
+from .shapes import random_polygon
+
+pytestmark = pytest.mark.skipif(not _frictionless_kernels.COMPILED.available(),
+                                reason="numba not available")
+
+
+def _same(args):
+    """Both ways give the same program (or both none); returns whether there is one."""
+    got = _system(*args)
+    ref = _system(*args, compiled=False)
+    assert (got is None) == (ref is None), args[1:]
+    if ref is None:
+        return False
+    np.testing.assert_array_equal(got.A, ref.A)
+    np.testing.assert_array_equal(got.b, ref.b)
+    assert got.bounds == ref.bounds
+    np.testing.assert_array_equal(got.const, ref.const)
+    return True
+
+
+def test_compiled_rows_of_the_growths_programs(monkeypatch):
+    calls = []
+    original = frictionless_stretches._system
+
+    def record(*args, **kwargs):
+        calls.append(args)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(frictionless_stretches, "_system", record)
+    for name in ("blob", "quad", "bracket", "washer"):
+        part = demo_part(name)
+        fc.plan(part, fingers=4, top=2)
+        fc.plan(part, fingers=3, gravity=(0, -1), top=2)
+    monkeypatch.undo()
+    assert len(calls) >= 300
+    programs = sum(_same(args) for args in calls)
+    assert programs >= 200
+
+
+def test_compiled_rows_of_random_configurations():
+    rng = np.random.default_rng(21)
+    cases = programs = 0
+    for _ in range(150):
+        part = random_polygon(rng, str(rng.choice(["convex", "star", "regular", "holes",
+                                                   "rectangle"])))
+        m = part.n_edges
+        for _ in range(12):
+            gravity = rng.random() < 0.3
+            k = 3 if gravity else 4
+            if rng.random() < 0.5:
+                # fingers near the four quarter turns: most pairings hold
+                ang = np.arctan2(-part.normals[:, 1], -part.normals[:, 0])
+                want = rng.uniform(0, 2 * np.pi) + np.arange(k) * 2 * np.pi / k
+                firsts = [int(np.argmin(np.abs(np.angle(np.exp(1j * (ang - w))))))
+                          for w in want]
+            else:
+                firsts = [int(rng.integers(0, m)) for _ in range(k)]
+            edges = tuple(tuple((e0 + i) % m for i in range(int(rng.integers(1, 5))))
+                          for e0 in firsts)
+            args = (part, edges, PAIRINGS[rng.integers(0, 3)], str(rng.choice(["+C", "-C"])),
+                    float(rng.choice([0.0, 0.5, 3.0, 10.0])),
+                    np.array([0.0, -1.0]) if gravity else None)
+            programs += _same(args)
+            cases += 1
+    assert cases >= 1500 and programs >= 50
+
+
+def test_smallest_is_the_stable_sorts_head():
+    rng = np.random.default_rng(22)
+    for t in range(5000):
+        n, k = int(rng.integers(0, 80)), int(rng.integers(1, 24))
+        v = rng.integers(-3, 4, n).astype(float) if t % 2 else rng.random(n)
+        if t % 5 == 0 and n:
+            v[rng.integers(0, n, 3)] = np.nan
+        if t % 7 == 0 and n:
+            v[rng.integers(0, n, 2)] = -np.inf
+        np.testing.assert_array_equal(_smallest(v, k), np.argsort(v, kind="stable")[:k])
