@@ -117,7 +117,7 @@ def test_compiled_grid_reads_the_poses_of_every_edge():
     assert poses >= 20000 and held >= 500
 
 
-@pytest.mark.parametrize("name", ["washer", "bracket", "cam"])
+@pytest.mark.parametrize("name", ["washer", "bracket", pytest.param("cam", marks=pytest.mark.slow)])
 def test_compiled_pose_grid_and_fine_check_are_the_batches(name):
     """The jaw's pose grid and each box's fine check, by the compiled grid and by
     :func:`jaw_poses` in batches (tiles of the edges near their strips)."""

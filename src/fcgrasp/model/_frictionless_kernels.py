@@ -15,7 +15,7 @@ tests compare the rows on thousands of seeded configurations, bit for bit).
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -40,7 +40,7 @@ def _pair_arc(ca: float, cb: float) -> tuple[float, float]:
 def _wrap_floor(x: float) -> float:
     """:func:`fcgrasp.core._angles.wrap_floor` of a number (what ``arc_meet`` wraps
     with, in numpy too)."""
-    return x - 2.0 * math.pi * np.floor((x + math.pi) / (2.0 * math.pi))
+    return float(x - 2.0 * math.pi * np.floor((x + math.pi) / (2.0 * math.pi)))
 
 
 def _arc_meet(c1: float, h1: float, c2: float, h2: float) -> tuple[float, float]:
@@ -175,7 +175,7 @@ COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS)
 
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
-                s: float, tol: float) -> tuple[Any, Any] | bool | None:
+                s: float, tol: float) -> tuple[Any, Any] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
     stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
     check of the rows without a variable, by the compiled loop; False where some
