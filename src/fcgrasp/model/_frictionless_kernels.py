@@ -51,6 +51,16 @@ def _arc_meet(c1: float, h1: float, c2: float, h2: float) -> tuple[float, float]
     return _wrap_floor(c1 + (lo + hi) / 2), (hi - lo) / 2
 
 
+def _edge(e: int, ea: Any, eb: Any, ec: Any) -> tuple[float, float, float, float, float]:
+    """Edge ``e``'s force direction, length and unit tangent (``(0, 0)`` for a point),
+    as ``four_finger_geometry`` computes them."""
+    fx, fy = math.cos(ec[e]), math.sin(ec[e])
+    dx, dy = eb[e, 0] - ea[e, 0], eb[e, 1] - ea[e, 1]
+    L = math.hypot(dx, dy)
+    d = L if L > 0 else 1.0
+    return fx, fy, L, dx / d if L > 0 else 0.0, dy / d if L > 0 else 0.0
+
+
 def _meets(ea: Any, eb: Any, ec: Any, lo_i: int, hi_i: int, lo_j: int, hi_j: int,
            tol: float, out: Any) -> None:
     """The meets of the lines of force of every edge ``i`` of one finger (rows
@@ -58,22 +68,12 @@ def _meets(ea: Any, eb: Any, ec: Any, lo_i: int, hi_i: int, lo_j: int, hi_j: int
     ``four_finger_geometry`` computes them for a pair of fingers: per pair (``i``
     slowest) the meet, the velocities of the first and second finger's positions, the
     pair's arc (centre, half-width), whether the forces are not parallel, and the two
-    edges' lengths (``out`` rows of 12)."""
+    edges' lengths (``out`` rows of 11)."""
     r = 0
     for i in range(lo_i, hi_i):
-        fix, fiy = math.cos(ec[i]), math.sin(ec[i])
-        dxi, dyi = eb[i, 0] - ea[i, 0], eb[i, 1] - ea[i, 1]
-        Li = math.hypot(dxi, dyi)
-        di = Li if Li > 0 else 1.0
-        tix = dxi / di if Li > 0 else 0.0
-        tiy = dyi / di if Li > 0 else 0.0
+        fix, fiy, Li, tix, tiy = _edge(i, ea, eb, ec)
         for j in range(lo_j, hi_j):
-            fjx, fjy = math.cos(ec[j]), math.sin(ec[j])
-            dxj, dyj = eb[j, 0] - ea[j, 0], eb[j, 1] - ea[j, 1]
-            Lj = math.hypot(dxj, dyj)
-            dj = Lj if Lj > 0 else 1.0
-            tjx = dxj / dj if Lj > 0 else 0.0
-            tjy = dyj / dj if Lj > 0 else 0.0
+            fjx, fjy, Lj, tjx, tjy = _edge(j, ea, eb, ec)
             den = fix * fjy - fiy * fjx
             wx, wy = ea[j, 0] - ea[i, 0], ea[j, 1] - ea[i, 1]
             sm = (wx * fjy - wy * fjx) / den
@@ -113,8 +113,8 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     for f in range(4):
         n[f] = start[f + 1] - start[f]
     p0, p1, p2, p3 = pairing[0], pairing[1], pairing[2], pairing[3]
-    m12 = np.empty((n[p0] * n[p1], 12))
-    m34 = np.empty((n[p2] * n[p3], 12))
+    m12 = np.empty((n[p0] * n[p1], 11))
+    m34 = np.empty((n[p2] * n[p3], 11))
     _meets(ea, eb, ec, start[p0], start[p0 + 1], start[p1], start[p1 + 1], tol, m12)
     _meets(ea, eb, ec, start[p2], start[p2 + 1], start[p3], start[p3 + 1], tol, m34)
     C = rhs.shape[0] // 2
@@ -170,7 +170,8 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     return True
 
 
-_FUNCS = (_wrap_mod, _pair_arc, _wrap_floor, _arc_meet, _meets, _kind, _system_loop)
+_FUNCS = (_wrap_mod, _pair_arc, _wrap_floor, _arc_meet, _edge, _meets, _kind,
+          _system_loop)
 COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS)
 
 
