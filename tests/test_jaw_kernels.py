@@ -291,7 +291,8 @@ def test_compiled_slices_are_the_numpy_slices(monkeypatch):
 @pytest.mark.parametrize("name", [pytest.param("washer", marks=pytest.mark.slow),
                                   pytest.param("quad", marks=pytest.mark.slow),
                                   pytest.param("triangle", marks=pytest.mark.slow),
-                                  "rectangle", "blob"])
+                                  pytest.param("rectangle", marks=pytest.mark.slow),
+                                  "blob"])
 def test_compiled_jaw_plans_are_the_numpy_plans(name, monkeypatch):
     part = demo_part(name)
     jaw = ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5)
