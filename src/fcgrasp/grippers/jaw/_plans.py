@@ -837,13 +837,26 @@ def _pose_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | No
     """Whether each pose of the grid ``thetas x offsets`` holds (K, M): by the compiled
     grid loop (:func:`._kernels.grid`, each pose reading the edges near its strip) where
     it runs, else by :func:`_pose_grid_batches`, the reference."""
-    if _kernels.available():
-        a, b, f, half, tol, q, stroke, beta, round_tol = _pose_args(
-            polygon, jaw, margin, hole, _grip_edges(polygon, hole))
-        H = _kernels.grid(thetas, offsets, a, b, f, half, tol, q, stroke, beta, round_tol)
-        if H is not None:
-            return H
-    return _pose_grid_batches(polygon, jaw, margin, hole, thetas, offsets)
+    H = _compiled_grid(polygon, jaw, margin, hole, thetas, offsets)
+    return H if H is not None else _pose_grid_batches(polygon, jaw, margin, hole, thetas,
+                                                      offsets)
+
+
+def _compiled_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+                   thetas: FloatArray, offsets: FloatArray, details: bool = False) -> Any:
+    """:func:`._kernels.grid` on the grip's edges (with ``details``, the edges each pad
+    touches as the part's edges, -1 for none, as :func:`jaw_poses` gives them); None
+    where the compiled loop does not run."""
+    if not _kernels.available():
+        return None
+    ring = _grip_edges(polygon, hole)
+    got = _kernels.grid(thetas, offsets, *_pose_args(polygon, jaw, margin, hole, ring),
+                        details=details)
+    if got is None or not details:
+        return got
+    H, opening, e_a, e_b = got
+    ids = np.flatnonzero(ring)
+    return H, opening, np.where(e_a >= 0, ids[e_a], -1), np.where(e_b >= 0, ids[e_b], -1)
 
 
 def _pose_grid_batches(polygon: Polygon, jaw: ParallelJaw, margin: float,
@@ -878,41 +891,44 @@ def _checked_box(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | 
     compiled grid loop (:func:`._kernels.grid`) where it runs and ``compiled_grid``,
     else by :func:`jaw_poses` in batches (the reference: the same answer)."""
     (t0, t1), (c0, c1) = th, off
-    args = _pose_args(polygon, jaw, margin, hole, _grip_edges(polygon, hole)) \
-        if compiled_grid and _kernels.available() else None
     for _ in range(4):
         if t1 < t0 or c1 < c0:
             return None
         nt = max(2, int(round((t1 - t0) / dth)) * CHECK_DENSITY + 1)
         nc = max(2, int(round((c1 - c0) / dc)) * CHECK_DENSITY + 1)
-        got = None if args is None else _kernels.grid(
-            np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), *args, details=True)
-        if got is not None:
-            # the compiled grid: every pose's verdict, opening and pads' edges at once
-            holds, opening_, e_a, e_b = got
-            if holds.all():
-                ids = np.flatnonzero(_grip_edges(polygon, hole))
-                return ((t0, t1), (c0, c1), (float(opening_.min()), float(opening_.max())),
-                        (sorted(set(ids[e_a[e_a >= 0]].tolist())),
-                         sorted(set(ids[e_b[e_b >= 0]].tolist()))))
-            t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
-            continue
-        grid = np.meshgrid(np.linspace(t0, t1, nt), np.linspace(c0, c1, nc), indexing="ij")
-        tt, cc = grid[0].ravel(), grid[1].ravel()
-        opening = [np.inf, -np.inf]
-        edges: tuple[set[int], set[int]] = (set(), set())
-        # in batches, stopping at the first pose that fails
-        for i in range(0, tt.size, POSE_BATCH):
-            r = jaw_poses(polygon, jaw, tt[i:i + POSE_BATCH], cc[i:i + POSE_BATCH], margin,
-                          hole)
-            if not np.all(r.holds):
-                break
-            opening = [min(opening[0], float(r.opening.min())),
-                       max(opening[1], float(r.opening.max()))]
-            edges[0].update(r.edge_a[r.edge_a >= 0].tolist())
-            edges[1].update(r.edge_b[r.edge_b >= 0].tolist())
-        else:
-            return ((t0, t1), (c0, c1), (opening[0], opening[1]),
-                    (sorted(edges[0]), sorted(edges[1])))
+        held = _fine_grid(polygon, jaw, margin, hole, np.linspace(t0, t1, nt),
+                          np.linspace(c0, c1, nc), compiled_grid)
+        if held is not None:
+            return ((t0, t1), (c0, c1), *held)
         t0, t1, c0, c1 = t0 + dth, t1 - dth, c0 + dc, c1 - dc
     return None
+
+
+def _fine_grid(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+               thetas: FloatArray, offsets: FloatArray, compiled: bool = True
+               ) -> tuple[tuple[float, float], tuple[list[int], list[int]]] | None:
+    """The opening range over every pose of the grid ``thetas x offsets`` and the edges
+    each pad touches there, or None where some pose does not hold: by the compiled grid
+    loop (:func:`_compiled_grid`) where it runs and ``compiled``, else by
+    :func:`jaw_poses` in batches, stopping at the first batch that fails (the
+    reference)."""
+    got = _compiled_grid(polygon, jaw, margin, hole, thetas, offsets, details=True) \
+        if compiled else None
+    if got is not None:
+        holds, opening, e_a, e_b = got
+        if not holds.all():
+            return None
+        return ((float(opening.min()), float(opening.max())),
+                (sorted(set(e_a[e_a >= 0].tolist())), sorted(set(e_b[e_b >= 0].tolist()))))
+    grid = np.meshgrid(thetas, offsets, indexing="ij")
+    tt, cc = grid[0].ravel(), grid[1].ravel()
+    lo, hi = np.inf, -np.inf
+    edges: tuple[set[int], set[int]] = (set(), set())
+    for i in range(0, tt.size, POSE_BATCH):
+        r = jaw_poses(polygon, jaw, tt[i:i + POSE_BATCH], cc[i:i + POSE_BATCH], margin, hole)
+        if not np.all(r.holds):
+            return None
+        lo, hi = min(lo, float(r.opening.min())), max(hi, float(r.opening.max()))
+        edges[0].update(r.edge_a[r.edge_a >= 0].tolist())
+        edges[1].update(r.edge_b[r.edge_b >= 0].tolist())
+    return (lo, hi), (sorted(edges[0]), sorted(edges[1]))
