@@ -20,6 +20,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..core import kernels
+from ..core.kernels import arc_meet
 
 #: The kinds of a finger's edge in its stretch (``frictionless_stretches``'s order).
 _SINGLE, _FIRST, _LAST, _INSIDE = 0, 1, 2, 3
@@ -35,20 +36,6 @@ def _pair_arc(ca: float, cb: float) -> tuple[float, float]:
     """:func:`fcgrasp.core.sectors.pair_arc` of numbers."""
     gap = _wrap_mod(cb - ca)
     return _wrap_mod(ca + gap / 2), abs(gap) / 2
-
-
-def _wrap_floor(x: float) -> float:
-    """:func:`fcgrasp.core._angles.wrap_floor` of a number (what ``arc_meet`` wraps
-    with, in numpy too)."""
-    return float(x - 2.0 * math.pi * np.floor((x + math.pi) / (2.0 * math.pi)))
-
-
-def _arc_meet(c1: float, h1: float, c2: float, h2: float) -> tuple[float, float]:
-    """:func:`fcgrasp.core.kernels.arc_meet` of numbers."""
-    delta = _wrap_floor(c2 - c1)
-    lo = max(-h1, delta - h2)
-    hi = min(h1, delta + h2)
-    return _wrap_floor(c1 + (lo + hi) / 2), (hi - lo) / 2
 
 
 def _edge(e: int, ea: Any, eb: Any, ec: Any) -> tuple[float, float, float, float, float]:
@@ -102,11 +89,11 @@ def _kind(pos: int, n: int) -> int:
 
 def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: float,
                  s: float, k: int, tol: float, A: Any, rhs: Any) -> bool:
-    """Rows ``A`` (2C, 2k) and right-hand sides ``rhs`` (2C) of every combination of
-    the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f + 1]`` of the
-    segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of gravity is
-    one point; combinations in the order of ``itertools.product``, the last finger
-    fastest).  The meets of each pair of fingers are computed once per pair of edges
+    """Rows ``A`` (2C, 2k; given zeroed) and right-hand sides ``rhs`` (2C) of every
+    combination of the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f
+    + 1]`` of the segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of
+    gravity is one point; combinations in the order of ``itertools.product``, the last
+    finger fastest).  The meets of each pair of fingers are computed once per pair of edges
     (:func:`_meets`).  False (rows not all written) where a combination's pairing is
     null or its sector no wider than the margin."""
     n = np.empty(4, np.int64)
@@ -130,7 +117,7 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
         a12 = m12[pos[p0] * n[p1] + pos[p1]]
         a34 = m34[pos[p2] * n[p3] + pos[p3]]
         valid = a12[8] > 0 and a34[8] > 0
-        cen, half = _arc_meet(a12[6], a12[7], a34[6] + math.pi, a34[7])
+        cen, half = arc_meet(a12[6], a12[7], a34[6] + math.pi, a34[7])
         hm = half - margin if valid else -1.0
         if not hm > 0:
             return False
@@ -148,8 +135,6 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
             v34 = kx * a34[1] - ky * a34[0]
             v12 = kx * a12[1] - ky * a12[0]
             value = (v34 if sg > 0 else -v34) - (v12 if sg > 0 else -v12)
-            for col in range(A.shape[1]):
-                A[row, col] = 0.0
             for p in range(4):
                 fi = pairing[p]
                 if fi >= k:                 # gravity: a fixed point
@@ -170,9 +155,9 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     return True
 
 
-_FUNCS = (_wrap_mod, _pair_arc, _wrap_floor, _arc_meet, _edge, _meets, _kind,
-          _system_loop)
-COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS)
+_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _system_loop)
+#: compiled over the compiled formulas of :mod:`fcgrasp.core.kernels` (``arc_meet``)
+COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, kernels._loops)
 
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
@@ -199,7 +184,7 @@ def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: fl
     start[1:len(n) + 1] = np.cumsum(n)
     start[len(n) + 1:] = start[len(n)]
     C = int(np.prod(n[:k]))
-    A = np.empty((2 * C, 2 * k))
+    A = np.zeros((2 * C, 2 * k))
     rhs = np.empty(2 * C)
     ok, whole = COMPILED.run("_system_loop", np.ascontiguousarray(ea, dtype=float),
                              np.ascontiguousarray(eb, dtype=float),
