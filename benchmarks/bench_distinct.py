@@ -33,6 +33,14 @@ def _cpu(part, fraction, kw):
     return time.process_time() - t0, len(plans)
 
 
+def _row(name, label, part, kw, fraction):
+    """One line of the table: the ranked list, then distinct plans, of one part."""
+    base, _ = _cpu(part, 0.0, kw)
+    got, n = _cpu(part, fraction, kw)
+    print(f"| {name} | {label} | {base:.3f} | {got:.3f} | "
+          f"{got / max(base, 1e-9):.1f}x | {n} |", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--parts", default="cam,blob,washer,quad")
@@ -45,20 +53,14 @@ def main() -> None:
     for name in args.parts.split(","):
         part = fc.read_part(f"demo:{name}")
         for label, kw in GRIPPERS.items():
-            base, _ = _cpu(part, 0.0, kw)
-            got, n = _cpu(part, args.fraction, kw)
-            print(f"| {name} | {label} | {base:.3f} | {got:.3f} | "
-                  f"{got / max(base, 1e-9):.1f}x | {n} |", flush=True)
+            _row(name, label, part, kw, args.fraction)
     if args.smooth:
         a = np.linspace(0, 2 * np.pi, args.smooth, endpoint=False)
         r = 50 + 8 * np.sin(3 * a) + 5 * np.cos(7 * a)
         for name, xy in ((f"ellipse {args.smooth}", np.c_[40 * np.cos(a), 25 * np.sin(a)]),
                          (f"blob {args.smooth}", np.c_[r * np.cos(a), r * np.sin(a)])):
-            label, kw = "2 fingers, mu 0.3", GRIPPERS["2 fingers, mu 0.3"]
-            base, _ = _cpu(fc.Polygon(xy), 0.0, kw)
-            got, n = _cpu(fc.Polygon(xy), args.fraction, kw)
-            print(f"| {name} | {label} | {base:.3f} | {got:.3f} | "
-                  f"{got / max(base, 1e-9):.1f}x | {n} |", flush=True)
+            label = "2 fingers, mu 0.3"
+            _row(name, label, fc.Polygon(xy), GRIPPERS[label], args.fraction)
 
 
 if __name__ == "__main__":
