@@ -580,6 +580,9 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
     kept = [(p.regions, p.region_edges) for p in fc.plan(poly, fingers=2, mu=0.4, top=4)]
     rings = _rings(poly)
     excl = stretches._Exclusion(rings, poly, kept, fraction)
+    beta = np.arctan(0.4) - np.radians(2.0)
+    ivs = {(a, b, 1.0): _Intervals(rings[a], rings[b], 1.0, beta)
+           for a in range(len(rings)) for b in range(len(rings))}
     checked = 0
     where = stretches._positions(rings)
     near = [[where[int(e[0])] for e in edges] for _, edges in kept]    # (ring, position)
@@ -600,8 +603,8 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             results = []
             for cells in (0, 10 ** 12):             # fused, then numpy
                 monkeypatch.setattr(stretches, "FUSED_CELLS", cells)
-                results.append((excl.threshold(rings, job, cfg),
-                                excl.similar(rings, job, cfg, t)))
+                results.append((excl.threshold(rings, job, cfg, ivs),
+                                excl.similar(rings, job, cfg, t, ivs)))
             (tf, sf), (tn, sn) = results
             np.testing.assert_array_equal(tf, tn)
             np.testing.assert_array_equal(sf, sn)

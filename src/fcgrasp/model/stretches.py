@@ -64,6 +64,7 @@ from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._stretch_lp import (
     _box_bound,
+    _ends,
     _solve,
     _system,
 )
@@ -176,8 +177,9 @@ class _Exclusion:
     """Plans already kept (``distinct=``): a configuration whose regions, whatever
     their placement inside its stretches, overlap a kept plan's regions by more than
     ``fraction`` of the shorter (:func:`fcgrasp.model.distinct.same_alternative`) is the
-    same alternative as that plan.  Its regions lie inside its stretches and are at
-    least ``t`` long, so when the arc of each stretch outside its partner region is
+    same alternative as that plan.  Its regions lie inside its stretches, between the
+    ends its end edges' intervals allow (:meth:`_spans`), and are at least ``t`` long,
+    so when the arc of each span outside its partner region is
     below ``(1 - fraction) min(t, partner's length)`` the overlap of the regions is
     above ``fraction`` of the shorter, surely: such configurations are solved (a
     configuration they beat is still no plan) but neither raise the search's bound nor
@@ -237,35 +239,49 @@ class _Exclusion:
         return cast("np.ndarray", ((np.asarray(iA, np.int64) % ma * (ma + 1) + kA) * mb
                                    + np.asarray(iC, np.int64) % mb) * (mb + 1) + kC)
 
-    def _outside(self, ring: _Ring, i: np.ndarray, k: np.ndarray, u0: FloatArray,
+    @staticmethod
+    def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
+               intervals: dict[Any, _Intervals]) -> tuple[FloatArray, ...]:
+        """The arcs the regions of each configuration can reach on its two rings,
+        ``a0x, a1x, a0y, a1y``: from the lowest start its first edge's interval allows
+        to the highest end its last edge's allows (every pair of regions that holds on
+        those edges has its end points in those intervals, :func:`_ends`; a stretch that
+        ends on a long edge reaches only the part of it that holds against the other
+        stretch's interior vertices).  An empty interval (no region pair holds) gives an
+        empty arc."""
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        (lo0, _, _, hi1, ulo0, _, _, uhi1), (off_s, off_u) = _ends(
+            ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
+            stretch_kernels_for(ra.m * rb.m))
+        a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
+        a0, c0 = a + lo0, c + ulo0
+        return a0, np.maximum(a + off_s + hi1, a0), c0, np.maximum(c + off_u + uhi1, c0)
+
+    @staticmethod
+    def _outside(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
                  u1: FloatArray) -> FloatArray:
-        """Arc of the stretches (edges i .. i + k, rows) outside the arcs [u0, u1]
-        (columns)."""
-        per = float(ring.U[ring.m])
-        a0 = ring.U[np.asarray(i) % ring.m][:, None]
-        a1 = ring.U[np.asarray(i) % ring.m + np.asarray(k) + 1][:, None]
+        """Arc of the spans ``[a0, a1]`` (rows) outside the arcs [u0, u1] (columns) on a
+        ring of perimeter ``per``."""
+        a0, a1 = a0[:, None], a1[:, None]
         common = np.zeros((a0.shape[0], len(u0)))
         for shift in (-per, 0.0, per):
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
         return cast("FloatArray", (a1 - a0) - common)
 
-    def _fused(self, rings: list[_Ring], x: int, y: int, cfg: _Configs,
+    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
                out: np.ndarray) -> bool:
         """:meth:`threshold` (``threshold``) or :meth:`similar` of many configurations
         by the compiled loop (the same numbers, without a matrix of configurations by
         kept plans for each step), writing ``out``; False (nothing done) when the
         matrix is small or the loops do not run."""
-        if len(cfg.iA) * len(arcs[0]) < FUSED_CELLS \
+        if len(spans[0]) * len(arcs[0]) < FUSED_CELLS \
                 or not stretch_kernels_for(rings[x].m * rings[y].m):
             return False
-        ends = []
-        for ring, i, k in ((rings[x], cfg.iA, cfg.kA), (rings[y], cfg.iC, cfg.kC)):
-            i = np.asarray(i) % ring.m
-            ends += [ring.U[i], ring.U[i + np.asarray(k) + 1]]
         work = out if threshold else np.zeros(len(out))    # similar: a flag per row
         _stretch_kernels.exclusion_rows(
-            *(np.ascontiguousarray(v, float) for v in (*ends, *arcs)),
+            *(np.ascontiguousarray(v, float) for v in (*spans, *arcs)),
             float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]), float(self.tol),
             float(1 - self.fraction), np.ascontiguousarray(t, float), threshold, work)
         if not threshold:
@@ -285,9 +301,9 @@ class _Exclusion:
         return got or None
 
     def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-                t: FloatArray) -> np.ndarray:
+                t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
         """Which configurations of ``job`` (smallest regions ``t``) are surely the same
-        alternative as a kept plan."""
+        alternative as a kept plan (their regions inside :meth:`_spans`)."""
         x, y = job[0], job[1]
         out = np.zeros(len(t), bool)
         known = self.seen.get((x, y, job[3]))
@@ -296,19 +312,20 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        if self._fused(rings, x, y, cfg, arcs, np.asarray(t, float), False, out):
+        a0x, a1x, a0y, a1y = spans = self._spans(rings, job, cfg, intervals)
+        if self._fused(rings, x, y, spans, arcs, np.asarray(t, float), False, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
         f, tc = self.fraction, np.asarray(t)[:, None]
         la, lc = ax1 - ax0, ay1 - ay0
-        out |= ((self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1)
-                 < (1 - f) * np.minimum(tc, la) - self.tol)
-                & (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1)
+        px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
+        out |= ((self._outside(px, a0x, a1x, ax0, ax1) < (1 - f) * np.minimum(tc, la) - self.tol)
+                & (self._outside(py, a0y, a1y, ay0, ay1)
                    < (1 - f) * np.minimum(tc, lc) - self.tol)).any(axis=1)
         return out
 
     def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
-                  cfg: _Configs) -> FloatArray:
+                  cfg: _Configs, intervals: dict[Any, _Intervals]) -> FloatArray:
         """For each configuration of ``job``, a length above which it is surely the same
         alternative as a kept plan (:meth:`similar` with any smallest region ``t``
         greater than it; ``inf``: none).  ``similar`` asks, for each kept plan, that
@@ -325,11 +342,13 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
             return out
-        if self._fused(rings, x, y, cfg, arcs, out, True, out):
+        a0x, a1x, a0y, a1y = spans = self._spans(rings, job, cfg, intervals)
+        if self._fused(rings, x, y, spans, arcs, out, True, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
-        ta = (self._outside(rings[x], cfg.iA, cfg.kA, ax0, ax1) + self.tol) / keep
-        tc = (self._outside(rings[y], cfg.iC, cfg.kC, ay0, ay1) + self.tol) / keep
+        px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
+        ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
+        tc = (self._outside(py, a0y, a1y, ay0, ay1) + self.tol) / keep
         tau = np.where((ax1 - ax0 > ta) & (ay1 - ay0 > tc), np.maximum(ta, tc), np.inf)
         return cast("FloatArray", np.minimum(out, tau.min(axis=1)))
 
@@ -634,8 +653,8 @@ class _Run:
         part = cfg.take(chunk)
         t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
         ok = np.flatnonzero(t > 0)
-        sim = self.exclude.similar(self.rings, job, part.take(ok), t[ok]) if self.exclude \
-            else np.zeros(ok.size, bool)
+        sim = self.exclude.similar(self.rings, job, part.take(ok), t[ok], self.intervals) \
+            if self.exclude else np.zeros(ok.size, bool)
         if self.similar is not None and sim.any():
             self.similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
             ok, sim = ok[~sim], sim[~sim]
@@ -699,7 +718,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 # a kept plan's copies: a plan only below their threshold, so they
                 # wait for it (most never reach the floor)
                 fresh = np.isnan(J.t[chunk])
-                tau = exclude.threshold(rings, job, cfg.take(chunk[fresh]))
+                tau = exclude.threshold(rings, job, cfg.take(chunk[fresh]), intervals)
                 later = np.zeros(chunk.size, bool)
                 later[fresh] = tau * (1 + DEFER_PAD) < box[chunk[fresh]]
                 if later.any():
