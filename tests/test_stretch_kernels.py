@@ -603,6 +603,7 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             results = []
             for cells in (0, 10 ** 12):             # fused, then numpy
                 monkeypatch.setattr(stretches, "FUSED_CELLS", cells)
+                monkeypatch.setattr(stretches, "FUSED_SIMILAR", cells)
                 results.append((excl.threshold(rings, job, cfg, ivs),
                                 excl.similar(rings, job, cfg, t, ivs)))
             (tf, sf), (tn, sn) = results
@@ -610,6 +611,69 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             np.testing.assert_array_equal(sf, sn)
             checked += int(np.isfinite(tn).sum()) + int(sn.sum())
     return checked
+
+
+def _excess_cases(rng, n):
+    """Regions' ends ``(s0, s1, e0, e1)``, smallest regions ``t`` and arcs ``[k0, k1]``,
+    near-degenerate ones included: a start or end fixed to a point, ``t`` exactly the
+    longest region, an arc of zero length, ends on the arc's ends, no region at all."""
+    s0 = rng.uniform(0, 4, n)
+    s1 = s0 + rng.choice([0.0, 0.5, 2.0], n) * rng.uniform(0, 1, n)
+    e0 = s0 + rng.uniform(-1, 4, n)
+    e1 = np.maximum(e0, s0) + rng.choice([0.0, 1.0, 3.0], n) * rng.uniform(0, 1, n)
+    t = rng.uniform(0, 1, n) * (e1 - s0)
+    t[::7] = (e1 - s0)[::7]                         # one region only: [s0, e1]
+    t[::11] = (e1 - s0)[::11] + 0.5                 # none
+    k0 = rng.uniform(-1, 7, n)
+    k1 = k0 + rng.choice([0.0, 0.3, 2.0, 6.0], n) * rng.uniform(0, 1, n)
+    for j, v in ((0, s0), (1, s1), (2, e0), (3, e1)):  # arc ends on the regions' ends
+        pick = rng.uniform(0, 1, n) < 0.1
+        (k0 if j % 2 == 0 else k1)[pick] = v[pick]
+    k1 = np.maximum(k1, k0)
+    return np.stack([s0, s1, e0, e1], axis=1), t, k0, k1
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 20))])
+def test_least_excess_is_the_least_over_every_region(seed):
+    """The distinct search's exact copy test (``_Exclusion._least_excess``: the least of
+    ``overlap - fraction * min(length, partner's)`` over every region whose ends lie in
+    their intervals and that is at least ``t`` long) against a dense raster of regions
+    written here: never above the raster's least (it is the least), and below it by
+    at most the raster's step times the function's slope (and the loosening ``eps``
+    of the bounds, which the search sets to its tolerance: a region ``[a, a + t]``
+    may measure ``t`` less a rounding); the compiled loop's cell (``_least_excess``)
+    gives the same number bit for bit."""
+    rng = np.random.default_rng(seed)
+    n = 300
+    s, t, k0, k1 = _excess_cases(rng, n)
+    least_ = _stretch_kernels._load()["_least_excess"]
+    for f in (0.25, 0.5, 0.8):
+        eps = 1e-9
+        got = np.array([S._Exclusion._least_excess(s[q:q + 1], t[q:q + 1], k0[q:q + 1],
+                                                   k1[q:q + 1], f, eps)[0, 0]
+                        for q in range(n)])
+        cell = np.array([least_(*s[q], t[q], k0[q], k1[q], f, eps) for q in range(n)])
+        np.testing.assert_array_equal(got, cell)
+        g = np.linspace(0, 1, 161)
+        for q in range(n):
+            a = s[q, 0] + g[:, None] * (s[q, 1] - s[q, 0])
+            b = s[q, 2] + g[None, :] * (s[q, 3] - s[q, 2])
+            a, b = np.broadcast_arrays(a, b)
+            # the raster, and the shortest regions exactly (b = a + t), where they fit
+            a = np.r_[a.ravel(), a[:, 0], b[0] - t[q]]
+            b = np.r_[b.ravel(), a[:161] + t[q], b[0]]
+            ok = (b - a >= t[q]) & (a >= s[q, 0]) & (a <= s[q, 1]) & (b >= s[q, 2]) & \
+                (b <= s[q, 3])
+            if not ok.any():
+                assert got[q] == -np.inf or t[q] > s[q, 3] - s[q, 0] - 1e-9, q
+                continue
+            a, b = a[ok], b[ok]
+            raster = (np.maximum(0.0, np.minimum(b, k1[q]) - np.maximum(a, k0[q]))
+                      - f * np.minimum(b - a, k1[q] - k0[q])).min()
+            step = max(s[q, 1] - s[q, 0], s[q, 3] - s[q, 2]) / 160
+            assert got[q] <= raster + 1e-12, (q, got[q], raster)
+            assert got[q] >= raster - 2 * (1 + f) * (step + eps), (q, got[q], raster)
 
 
 def test_member_is_isin():

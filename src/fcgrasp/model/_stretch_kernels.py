@@ -688,23 +688,79 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
 
 
 def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, ay0: Any,
-                    ay1: Any, perx: float, pery: float, tol: float, keep: float, t: Any,
-                    threshold: bool, out: Any) -> None:
-    """``stretches._Exclusion.threshold`` (``threshold``: ``out`` lowered to each
-    configuration's least ``tau`` over the kept plans' columns) or ``.similar``
-    (``out`` set where some column's both arcs outside are below
-    ``keep * min(t, partner) - tol``), fused over rows and columns: the same numbers."""
+                    ay1: Any, perx: float, pery: float, tol: float, keep: float,
+                    out: Any) -> None:
+    """``stretches._Exclusion.threshold``: ``out`` lowered to each configuration's least
+    ``tau`` over the kept plans' columns, fused over rows and columns: the same
+    numbers."""
     for r in range(a0x.size):
         for c in range(ax0.size):
             ox = _outside_one(a0x[r], a1x[r], ax0[c], ax1[c], perx)
             oy = _outside_one(a0y[r], a1y[r], ay0[c], ay1[c], pery)
             la, lc = ax1[c] - ax0[c], ay1[c] - ay0[c]
-            if threshold:
-                ta, tc = (ox + tol) / keep, (oy + tol) / keep
-                if la > ta and lc > tc:
-                    out[r] = min(out[r], max(ta, tc))
-            elif ox < keep * min(t[r], la) - tol and oy < keep * min(t[r], lc) - tol:
-                out[r] = 1.0
+            ta, tc = (ox + tol) / keep, (oy + tol) / keep
+            if la > ta and lc > tc:
+                out[r] = min(out[r], max(ta, tc))
+
+
+def _excess_at(s: float, e: float, s0: float, s1: float, e0: float, e1: float, t: float,
+               k0: float, k1: float, f: float, eps: float) -> float:
+    """``overlap([s, e], [k0, k1]) - f min(e - s, k1 - k0)`` where ``[s, e]`` is one of
+    the regions of :func:`_least_excess` (each bound loosened by ``eps``), else inf."""
+    if s < s0 - eps or s > s1 + eps or e < e0 - eps or e > e1 + eps or e - s < t - eps:
+        return np.inf
+    return max(0.0, min(e, k1) - max(s, k0)) - f * min(e - s, k1 - k0)
+
+
+def _least_excess(s0: float, s1: float, e0: float, e1: float, t: float, k0: float,
+                  k1: float, f: float, eps: float) -> float:
+    """The least of ``overlap([s, e], [k0, k1]) - f min(e - s, k1 - k0)`` over the
+    regions ``[s, e]`` with ``s`` in ``[s0, s1]``, ``e`` in ``[e0, e1]`` and ``e - s >=
+    t``: the function is continuous and linear between the lines ``s = s0, s1, k0, k1``,
+    ``e = e0, e1, k0, k1`` and ``e - s = t, k1 - k0``, so its least is at a crossing of
+    two of them inside (-inf: no region).  ``stretches._Exclusion._least_excess`` of
+    one cell: the same operations."""
+    best = np.inf
+    for a in range(4):
+        sa = (s0, s1, k0, k1)[a]
+        for b in range(4):
+            best = min(best, _excess_at(sa, (e0, e1, k0, k1)[b], s0, s1, e0, e1, t, k0, k1,
+                                        f, eps))
+        for d in range(2):
+            best = min(best, _excess_at(sa, sa + (t, k1 - k0)[d], s0, s1, e0, e1, t, k0,
+                                        k1, f, eps))
+    for b in range(4):
+        eb = (e0, e1, k0, k1)[b]
+        for d in range(2):
+            best = min(best, _excess_at(eb - (t, k1 - k0)[d], eb, s0, s1, e0, e1, t, k0,
+                                        k1, f, eps))
+    return -np.inf if best == np.inf else best
+
+
+def _surely_copy(s0: float, s1: float, e0: float, e1: float, t: float, k0: float, k1: float,
+                 per: float, f: float, tol: float) -> bool:
+    """Every region of :func:`_least_excess` overlaps the arc ``[k0, k1]`` (or its turn
+    by ``-per`` or ``per``) by more than ``f`` of the shorter, plus ``tol``."""
+    for j in range(3):
+        shift = (-per, 0.0, per)[j]
+        if _least_excess(s0, s1, e0, e1, t, k0 + shift, k1 + shift, f, tol) > tol:
+            return True
+    return False
+
+
+def _similar_rows(sx: Any, sy: Any, ax0: Any, ax1: Any, ay0: Any, ay1: Any, perx: float,
+                  pery: float, tol: float, f: float, t: Any, out: Any) -> None:
+    """``stretches._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
+    column, every region pair configuration ``r`` allows (its ends' intervals ``sx[r]``,
+    ``sy[r]``: first start, last start, first end, last end on each ring; smallest
+    region ``t[r]``) overlaps that plan's on both sides (:func:`_surely_copy`)."""
+    for r in range(t.size):
+        for c in range(ax0.size):
+            if _surely_copy(sx[r, 0], sx[r, 1], sx[r, 2], sx[r, 3], t[r] - tol, ax0[c], ax1[c],
+                            perx, f, tol) and \
+                    _surely_copy(sy[r, 0], sy[r, 1], sy[r, 2], sy[r, 3], t[r] - tol, ay0[c],
+                                 ay1[c], pery, f, tol):
+                out[r] = True
                 break
 
 
@@ -1085,7 +1141,8 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
                                    _solve_rows, _inside_supers, _outside_one,
-                                   _exclusion_rows,
+                                   _exclusion_rows, _excess_at, _least_excess, _surely_copy,
+                                   _similar_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
                                    _beaten_tables))
 
@@ -1156,6 +1213,11 @@ def window_boxes(*args: Any) -> Any:
 def exclusion_rows(*args: Any) -> None:
     """Compiled :func:`_exclusion_rows`."""
     _load()["_exclusion_rows"](*args)
+
+
+def similar_rows(*args: Any) -> None:
+    """Compiled :func:`_similar_rows`."""
+    _load()["_similar_rows"](*args)
 
 
 def inside_supers(*args: Any) -> None:

@@ -175,16 +175,18 @@ def _member(codes: np.ndarray, known: np.ndarray) -> np.ndarray:
 
 class _Exclusion:
     """Plans already kept (``distinct=``): a configuration whose regions, whatever
-    their placement inside its stretches, overlap a kept plan's regions by more than
-    ``fraction`` of the shorter (:func:`fcgrasp.model.distinct.same_alternative`) is the
-    same alternative as that plan.  Its regions lie inside its stretches, between the
-    ends its end edges' intervals allow (:meth:`_spans`), and are at least ``t`` long,
-    so when the arc of each span outside its partner region is
-    below ``(1 - fraction) min(t, partner's length)`` the overlap of the regions is
-    above ``fraction`` of the shorter, surely: such configurations are solved (a
-    configuration they beat is still no plan) but neither raise the search's bound nor
-    are returned; so are the configurations of the plans ``seen`` (already read by the
-    caller: their covered edges and mode)."""
+    their placement, overlap a kept plan's regions by more than ``fraction`` of the
+    shorter (:func:`fcgrasp.model.distinct.same_alternative`) is the same alternative as
+    that plan.  Its regions start and end inside its end edges' intervals
+    (:meth:`_spans`) and are at least ``t`` long; the least overlap over all such
+    regions is exact (:meth:`_least_excess`), so :meth:`similar` says "surely a copy"
+    only of configurations whose every placement is one.  Such configurations are
+    solved (a configuration they beat is still no plan) but neither raise the search's
+    bound nor are returned; so are the configurations of the plans ``seen`` (already
+    read by the caller: their covered edges and mode).  Before a configuration is
+    solved, :meth:`threshold` bounds the ``t`` above which it is surely a copy: when
+    the arc from its first start to its last end outside the partner region is below
+    ``(1 - fraction) min(t, partner's length)``."""
 
     def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
                  fraction: float, seen: Any = ()) -> None:
@@ -241,22 +243,58 @@ class _Exclusion:
 
     @staticmethod
     def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-               intervals: dict[Any, _Intervals]) -> tuple[FloatArray, ...]:
-        """The arcs the regions of each configuration can reach on its two rings,
-        ``a0x, a1x, a0y, a1y``: from the lowest start its first edge's interval allows
-        to the highest end its last edge's allows (every pair of regions that holds on
-        those edges has its end points in those intervals, :func:`_ends`; a stretch that
-        ends on a long edge reaches only the part of it that holds against the other
-        stretch's interior vertices).  An empty interval (no region pair holds) gives an
-        empty arc."""
+               intervals: dict[Any, _Intervals]) -> tuple[FloatArray, FloatArray]:
+        """Where the regions of each configuration can start and end on its two rings,
+        ``(n, 4)`` each: first start, last start, first end, last end, as arc lengths
+        (every pair of regions that holds on those edges has its end points in its end
+        edges' intervals, :func:`_ends`; a stretch that ends on a long edge reaches only
+        the part of it that holds against the other stretch's interior vertices).  An
+        empty interval (no region pair holds) gives a last start or end of -inf."""
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
-        (lo0, _, _, hi1, ulo0, _, _, uhi1), (off_s, off_u) = _ends(
+        (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
             ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
             stretch_kernels_for(ra.m * rb.m))
         a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
-        a0, c0 = a + lo0, c + ulo0
-        return a0, np.maximum(a + off_s + hi1, a0), c0, np.maximum(c + off_u + uhi1, c0)
+        return (np.stack([a + lo0, a + hi0, a + off_s + lo1, a + off_s + hi1], axis=1),
+                np.stack([c + ulo0, c + uhi0, c + off_u + ulo1, c + off_u + uhi1], axis=1))
+
+    @staticmethod
+    def _least_excess(s: FloatArray, t: FloatArray, k0: FloatArray, k1: FloatArray,
+                      f: float, eps: float) -> FloatArray:
+        """For each configuration (rows: ``s`` as :meth:`_spans`, smallest region
+        ``t``) and arc ``[k0, k1]`` (columns), the least of ``overlap([a, b], [k0, k1]) -
+        f min(b - a, k1 - k0)`` over its regions ``[a, b]`` (start and end in their
+        intervals, at least ``t`` long; each bound loosened by ``eps``).  The function is
+        continuous and linear between the lines ``a = s0, s1, k0, k1``, ``b = e0, e1,
+        k0, k1`` and ``b - a = t, k1 - k0``, so the least is at a crossing of two of them
+        inside: every crossing is evaluated (-inf: no region)."""
+        s0, s1, e0, e1 = (s[:, j, None] for j in range(4))
+        tt, ln = t[:, None], k1 - k0
+        starts, ends, gaps = (s0, s1, k0, k1), (e0, e1, k0, k1), (tt, ln)
+        crossings = [(a, b) for a in starts for b in ends] + \
+            [(a, a + d) for a in starts for d in gaps] + [(b - d, b) for b in ends for d in gaps]
+        best = np.full((s.shape[0], k0.size), np.inf)
+        for a, b in crossings:
+            a, b = np.broadcast_arrays(a, b)
+            inside = ~((a < s0 - eps) | (a > s1 + eps) | (b < e0 - eps) | (b > e1 + eps)
+                       | (b - a < tt - eps))
+            value = np.maximum(0.0, np.minimum(b, k1) - np.maximum(a, k0)) \
+                - f * np.minimum(b - a, ln)
+            best = np.where(inside, np.minimum(best, value), best)
+        best[best == np.inf] = -np.inf
+        return cast("FloatArray", best)
+
+    def _surely_copy(self, per: float, s: FloatArray, t: FloatArray, k0: FloatArray,
+                     k1: FloatArray) -> np.ndarray:
+        """Whether every region of each configuration (rows) on one ring overlaps the
+        arc ``[k0, k1]`` (columns; or its turn by a perimeter ``per``) by more than
+        ``fraction`` of the shorter, plus the tolerance (:meth:`_least_excess`)."""
+        out = np.zeros((s.shape[0], k0.size), bool)
+        for shift in (-per, 0.0, per):
+            out |= self._least_excess(s, t, k0 + shift, k1 + shift, self.fraction,
+                                      self.tol) > self.tol
+        return out
 
     @staticmethod
     def _outside(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
@@ -269,23 +307,31 @@ class _Exclusion:
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
         return cast("FloatArray", (a1 - a0) - common)
 
-    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
+    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, FloatArray],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
                out: np.ndarray) -> bool:
         """:meth:`threshold` (``threshold``) or :meth:`similar` of many configurations
         by the compiled loop (the same numbers, without a matrix of configurations by
         kept plans for each step), writing ``out``; False (nothing done) when the
         matrix is small or the loops do not run."""
-        if len(spans[0]) * len(arcs[0]) < FUSED_CELLS \
+        if len(spans[0]) * len(arcs[0]) < (FUSED_CELLS if threshold else FUSED_SIMILAR) \
                 or not stretch_kernels_for(rings[x].m * rings[y].m):
             return False
-        work = out if threshold else np.zeros(len(out))    # similar: a flag per row
-        _stretch_kernels.exclusion_rows(
-            *(np.ascontiguousarray(v, float) for v in (*spans, *arcs)),
-            float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]), float(self.tol),
-            float(1 - self.fraction), np.ascontiguousarray(t, float), threshold, work)
-        if not threshold:
-            out |= work > 0
+        per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
+        arcs = tuple(np.ascontiguousarray(v, float) for v in arcs)
+        if threshold:
+            sx, sy = spans
+            _stretch_kernels.exclusion_rows(
+                *(np.ascontiguousarray(v, float) for v in (
+                    sx[:, 0], np.maximum(sx[:, 3], sx[:, 0]), sy[:, 0],
+                    np.maximum(sy[:, 3], sy[:, 0]))),
+                *arcs, *per, float(self.tol), float(1 - self.fraction), out)
+            return True
+        work = np.zeros(len(out), bool)
+        _stretch_kernels.similar_rows(
+            *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per, float(self.tol),
+            float(self.fraction), np.ascontiguousarray(t, float), work)
+        out |= work
         return True
 
     def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
@@ -312,16 +358,14 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        a0x, a1x, a0y, a1y = spans = self._spans(rings, job, cfg, intervals)
+        spans = self._spans(rings, job, cfg, intervals)
         if self._fused(rings, x, y, spans, arcs, np.asarray(t, float), False, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
-        f, tc = self.fraction, np.asarray(t)[:, None]
-        la, lc = ax1 - ax0, ay1 - ay0
-        px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
-        out |= ((self._outside(px, a0x, a1x, ax0, ax1) < (1 - f) * np.minimum(tc, la) - self.tol)
-                & (self._outside(py, a0y, a1y, ay0, ay1)
-                   < (1 - f) * np.minimum(tc, lc) - self.tol)).any(axis=1)
+        tt = np.asarray(t, float) - self.tol
+        out |= (self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1)
+                & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
+                ).any(axis=1)
         return out
 
     def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
@@ -342,9 +386,11 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
             return out
-        a0x, a1x, a0y, a1y = spans = self._spans(rings, job, cfg, intervals)
+        spans = self._spans(rings, job, cfg, intervals)
         if self._fused(rings, x, y, spans, arcs, out, True, out):
             return out
+        (a0x, _, _, a1x), (a0y, _, _, a1y) = spans[0].T, spans[1].T
+        a1x, a1y = np.maximum(a1x, a0x), np.maximum(a1y, a0y)
         ax0, ax1, ay0, ay1 = arcs
         px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
         ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
@@ -386,8 +432,9 @@ KERNEL_CONFIGS = 20_000
 
 
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run
-#: compiled (:meth:`_Exclusion._fused`).
-FUSED_CELLS = 20_000
+#: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
+#: (48 crossings of lines per cell and turn: compiled from a few cells on).
+FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
 
 #: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
 #: filter compares every pair: 41,000 configurations of an icon took 37 s).
