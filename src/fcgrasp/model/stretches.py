@@ -305,7 +305,7 @@ class _Exclusion:
         common = np.zeros((a0.shape[0], len(u0)))
         for shift in (-per, 0.0, per):
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
-        return cast("FloatArray", (a1 - a0) - common)
+        return (a1 - a0) - common
 
     def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, FloatArray],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
