@@ -6,6 +6,10 @@ with every gripper at default options, as a user would (``fcgrasp.load_part`` th
 is stopped and reported as over it.  Prints the table of every run, then the worst.
 
     python benchmarks/bench_corpus.py [--limit 30] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
+                                      [--distinct F]
+
+``--distinct F`` plans with ``distinct=F`` (distinct alternatives, issue 31) instead of
+the default.
 
 Target (issue 30): every run within 2 s of CPU.
 """
@@ -25,7 +29,7 @@ TARGET = 2.0
 CHILD = r"""
 import json, sys, time
 import fcgrasp as fc
-path, gripper = sys.argv[1], sys.argv[2]
+path, gripper, distinct = sys.argv[1], sys.argv[2], sys.argv[3]
 t0 = time.process_time()
 part = fc.load_part(path)
 read = time.process_time() - t0
@@ -37,6 +41,8 @@ kw = {"2f": dict(fingers=2, mu=0.3), "3f": dict(fingers=3, mu=0.3),
       # a jaw that opens wider than the part, with pads a tenth of its size
       "jaw": dict(gripper=fc.ParallelJaw(stroke=(0.0, 1.2 * size), pad_width=0.1 * size,
                                          mu=0.3))}[gripper]
+if distinct:
+    kw["distinct"] = float(distinct)
 t0 = time.process_time()
 plans = fc.plan(poly, **kw)
 print(json.dumps({"edges": poly.n_edges, "read": read, "cpu": time.process_time() - t0,
@@ -52,9 +58,9 @@ def files(pattern: str) -> list[Path]:
                   and pattern in str(p.relative_to(CORPUS)))
 
 
-def run(path: Path, gripper: str, limit: float) -> dict[str, object]:
+def run(path: Path, gripper: str, limit: float, distinct: str = "") -> dict[str, object]:
     try:
-        out = subprocess.run([sys.executable, "-c", CHILD, str(path), gripper],
+        out = subprocess.run([sys.executable, "-c", CHILD, str(path), gripper, distinct],
                              capture_output=True, text=True, timeout=limit)
     except subprocess.TimeoutExpired:
         return {"cpu": None, "note": f"stopped after {limit:g} s"}
@@ -70,6 +76,7 @@ def main() -> None:
     ap.add_argument("--grippers", default=",".join(GRIPPERS))
     ap.add_argument("--files", default="", help="only files whose path contains this")
     ap.add_argument("--worst", type=int, default=10)
+    ap.add_argument("--distinct", default="", help="plan with distinct=F (default: as fc.plan)")
     args = ap.parse_args()
     grippers = [g for g in args.grippers.split(",") if g]
     rows = []
@@ -77,7 +84,7 @@ def main() -> None:
     print("| --- | --- | --- | --- | --- | --- |")
     for path in files(args.files):
         for g in grippers:
-            r = run(path, g, args.limit)
+            r = run(path, g, args.limit, args.distinct)
             name = path.relative_to(CORPUS).as_posix()
             cpu = r["cpu"]
             rows.append((float("inf") if cpu is None else float(cpu), name, g, r))

@@ -63,6 +63,7 @@ from ..core.kernels import jit_setting
 from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._stretch_lp import (
+    BOX_REACH,
     _box_bound,
     _ends,
     _solve,
@@ -243,18 +244,20 @@ class _Exclusion:
 
     @staticmethod
     def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-               intervals: dict[Any, _Intervals]) -> tuple[FloatArray, FloatArray]:
+               intervals: dict[Any, _Intervals], reach: int | None = None
+               ) -> tuple[FloatArray, FloatArray]:
         """Where the regions of each configuration can start and end on its two rings,
         ``(n, 4)`` each: first start, last start, first end, last end, as arc lengths
         (every pair of regions that holds on those edges has its end points in its end
         edges' intervals, :func:`_ends`; a stretch that ends on a long edge reaches only
         the part of it that holds against the other stretch's interior vertices).  An
-        empty interval (no region pair holds) gives a last start or end of -inf."""
+        empty interval (no region pair holds) gives a last start or end of -inf.  With
+        ``reach``, intervals that contain those (:func:`_ends`'s, cheaper)."""
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
         (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
             ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
-            stretch_kernels_for(ra.m * rb.m))
+            stretch_kernels_for(ra.m * rb.m), reach)
         a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
         return (np.stack([a + lo0, a + hi0, a + off_s + lo1, a + off_s + hi1], axis=1),
                 np.stack([c + ulo0, c + uhi0, c + off_u + ulo1, c + off_u + uhi1], axis=1))
@@ -386,7 +389,9 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
             return out
-        spans = self._spans(rings, job, cfg, intervals)
+        # before the configurations are solved, many of them: the intervals against a
+        # few of the other stretch's interior vertices (they contain the exact ones)
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
         if self._fused(rings, x, y, spans, arcs, out, True, out):
             return out
         (a0x, _, _, a1x), (a0y, _, _, a1y) = spans[0].T, spans[1].T
