@@ -39,7 +39,8 @@ def _plans(seed):
     rng = np.random.default_rng(seed)
     parts = [fc.Polygon(star(rng, n=int(rng.integers(20, 60)))) for _ in range(2)]
     parts.append(random_polygon(rng, "star"))
-    return tuple((part, fc.plan(part, fingers=2, mu=float(rng.uniform(0.2, 0.6)), top=25))
+    return tuple((part, fc.plan(part, fingers=2, mu=float(rng.uniform(0.2, 0.6)), top=25,
+                                distinct=0))
                  for part in parts)
 
 
@@ -90,10 +91,11 @@ def test_suppression_keeps_distinct_plans_and_accounts_for_the_rest(seed, fracti
 
 
 def test_a_curved_outline_has_one_grasp_shifted_and_plan_finds_others():
-    """On demo:cam the ten best plans are one grasp shifted by an edge: with distinct=0.5
-    they are one alternative, and plan() searches deeper for the others."""
+    """On demo:cam the ten best plans of the ranked list (distinct=0, the default) are
+    one grasp shifted by an edge: with distinct=0.5 they are one alternative, and plan()
+    searches deeper for the others."""
     cam = fc.read_part("demo:cam")
-    ten = fc.plan(cam, fingers=2, mu=0.3, top=10)
+    ten = fc.plan(cam, fingers=2, mu=0.3, top=10, distinct=0)
     assert len(distinct_plans(ten, 0.5, cam.size)) == 1
     alt = fc.plan(cam, fingers=2, mu=0.3, top=2, distinct=0.5)
     assert alt[0].edges == ten[0].edges and len(alt[0].similar) >= 9
@@ -124,7 +126,7 @@ def test_deeper_rounds_keep_the_plans_of_suppression_along_the_whole_list(kw):
     for part in map(fc.read_part, (f"demo:{n}" for n in names)):
         top, fraction = int(rng.integers(2, 5)), float(rng.choice([0.3, 0.5]))
         got = fc.plan(part, top=top, distinct=fraction, **kw)
-        whole = fc.plan(part, top=depth * top, **kw)
+        whole = fc.plan(part, top=depth * top, distinct=0, **kw)
         want = distinct_plans(whole, fraction, part.size)[:top]
         assert [p.edges for p in got] == [p.edges for p in want]
         for p, q in zip(got, want, strict=True):
@@ -267,6 +269,37 @@ def test_distinct_search_equals_suppression_of_every_plan(seed):
         assert set(p.similar) <= set(q.similar)
 
 
+@pytest.mark.parametrize("seed", [4, 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                    for s in range(5, 60))])
+def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeypatch):
+    """The distinct search's memo collects only configurations long enough to reach a
+    share of the best plan (MEMO_SHARE), and collects again lower when a round's
+    ``top``-th falls below it: with the share at 0.9 (every search lowers it, most of
+    them more than once) the plans are still suppression's along the whole list."""
+    from fcgrasp.grippers._boundary import boundary_plans
+    from fcgrasp.model import stretches
+    from fcgrasp.pipeline import plan_spec
+
+    lowered = []
+    monkeypatch.setattr(stretches, "MEMO_SHARE", 0.9)
+    original = stretches._Memo.lower
+    monkeypatch.setattr(stretches._Memo, "lower",
+                        lambda self, f: (lowered.append(f), original(self, f))[1])
+    rng = np.random.default_rng(seed)
+    part = _smooth(rng, int(rng.integers(24, 48)))
+    mu = float(rng.uniform(0.2, 0.5))
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    top = int(rng.integers(3, 8))
+    every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
+    want = distinct_plans(every, fraction, part.size)[:top]
+    got = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction)
+    if seed in (4, 78):
+        assert len(lowered) >= 2, lowered             # the first floor, then lower
+    assert [p.edges for p in got] == [p.edges for p in want]
+    for p, q in zip(got, want, strict=True):
+        assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
+
+
 def test_internal_grips_use_the_symmetries_that_keep_their_hole():
     """A symmetry that keeps a hole and the point the jaws go in at maps an internal
     grip's boxes onto the same grasps (the washer's centred hole: its four turns); one
@@ -304,8 +337,8 @@ def test_suppression_with_a_limit_keeps_the_head_and_what_it_stands_for():
     part = fc.read_part("demo:cam")
     # a grasp's copies along the curve, then single-edge plans elsewhere (suppression
     # reads any list in its order)
-    plans = fc.plan(part, fingers=2, mu=0.3, top=60) + \
-        fc.plan(part, fingers=2, mu=0.3, top=60, along_boundary=False)
+    plans = fc.plan(part, fingers=2, mu=0.3, top=60, distinct=0) + \
+        fc.plan(part, fingers=2, mu=0.3, top=60, along_boundary=False, distinct=0)
     whole = distinct_plans(plans, 0.5, part.size)
     assert len(whole) > 5 and len(whole[0].similar) > 50
     for limit in (1, 2, 5):

@@ -102,8 +102,9 @@ def _vertex_matrix(ra: _Ring, rb: _Ring, sigma: float, beta: float) -> np.ndarra
 
 
 #: The largest table of cells (edges x vertices) :meth:`_Intervals.window` keeps, per
-#: ring pair and sign (16 bytes a cell: 24 MB; a ring of about 1,200 edges).
-MEMO_CELLS = 1_500_000
+#: ring pair and sign (16 bytes a cell: 67 MB; a ring of about 2,000 edges: a distinct
+#: search on a smooth outline reads each cell many times).
+MEMO_CELLS = 4_200_000
 
 
 class _Intervals:

@@ -252,12 +252,21 @@ class _Exclusion:
         edges' intervals, :func:`_ends`; a stretch that ends on a long edge reaches only
         the part of it that holds against the other stretch's interior vertices).  An
         empty interval (no region pair holds) gives a last start or end of -inf.  With
-        ``reach``, intervals that contain those (:func:`_ends`'s, cheaper)."""
+        ``reach``, intervals that contain those (:func:`_ends`'s, cheaper); ``reach=0``:
+        the whole end edges (no interval read: the whole stretches)."""
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
-        (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
-            ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
-            stretch_kernels_for(ra.m * rb.m), reach)
+        if reach == 0:
+            A, B = np.asarray(cfg.iA) % ra.m, (np.asarray(cfg.iA) + cfg.kA) % ra.m
+            C, D = np.asarray(cfg.iC) % rb.m, (np.asarray(cfg.iC) + cfg.kC) % rb.m
+            lo0, hi0, lo1, hi1 = np.zeros(A.size), ra.L[A], np.zeros(A.size), ra.L[B]
+            ulo0, uhi0, ulo1, uhi1 = np.zeros(C.size), rb.L[C], np.zeros(C.size), rb.L[D]
+            off_s = np.where(cfg.kA > 0, ra.L[A] + _inner(ra, cfg.iA, cfg.kA), 0.0)
+            off_u = np.where(cfg.kC > 0, rb.L[C] + _inner(rb, cfg.iC, cfg.kC), 0.0)
+        else:
+            (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
+                ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
+                stretch_kernels_for(ra.m * rb.m), reach)
         a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
         return (np.stack([a + lo0, a + hi0, a + off_s + lo1, a + off_s + hi1], axis=1),
                 np.stack([c + ulo0, c + uhi0, c + off_u + ulo1, c + off_u + uhi1], axis=1))
@@ -361,7 +370,7 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        spans = self._spans(rings, job, cfg, intervals)
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
         if self._fused(rings, x, y, spans, arcs, np.asarray(t, float), False, out):
             return out
         ax0, ax1, ay0, ay1 = arcs
@@ -389,9 +398,9 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
             return out
-        # before the configurations are solved, many of them: the intervals against a
-        # few of the other stretch's interior vertices (they contain the exact ones)
-        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        # before the configurations are solved (all of them, in chunks of thousands): the
+        # whole stretches, no interval read
+        spans = self._spans(rings, job, cfg, intervals, 0)
         if self._fused(rings, x, y, spans, arcs, out, True, out):
             return out
         (a0x, _, _, a1x), (a0y, _, _, a1y) = spans[0].T, spans[1].T
@@ -605,12 +614,21 @@ class _Job:
 
 class _Memo:
     """What the runs of one search share (the rounds of ``distinct=``, whose floors
-    differ): every configuration collected once, without a floor, and each one's
-    solution once solved."""
+    differ): every configuration whose arc length reaches ``floor`` collected once, and
+    each one's solution once solved.  A run whose ``top``-th configuration falls below
+    ``floor`` may have missed one: the caller lowers the floor (:meth:`lower`) and runs
+    again (:meth:`StretchSearch.pairs`); at or above it nothing is missed (a
+    configuration below the floor can neither reach the ``top`` nor beat one that does
+    in :func:`_own_optimum`)."""
 
-    def __init__(self) -> None:
+    def __init__(self, floor: float = 0.0) -> None:
+        self.floor = floor
         self.prepared: list[tuple[Any, _Configs]] | None = None
         self.jobs: dict[Any, _Job] = {}
+
+    def lower(self, floor: float) -> None:
+        """Collect again, down to ``floor``."""
+        self.__init__(floor)  # type: ignore[misc]
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
@@ -747,7 +765,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         elif job in memo.jobs:
             J = memo.jobs[job]
         else:
-            J = memo.jobs[job] = _job(rings, job, cfg, intervals, 0.0, lazy=True)
+            J = memo.jobs[job] = _job(rings, job, cfg, intervals, memo.floor, lazy=True)
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
         run = _Run(rings, job, J, beta, intervals, scale, exclude, similar, found, bound,
@@ -889,10 +907,12 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         bound = _Bound(want or 1, 2 * keys.total, fixed)
         if memo is not None and memo.prepared is not None:
             prepared = memo.prepared
+        elif memo is not None:
+            prepared = memo.prepared = _candidates(
+                rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
+                prebound=False)
         else:
             prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude)
-            if memo is not None and bound.floor == 0.0:
-                memo.prepared = prepared
         similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
@@ -1165,6 +1185,9 @@ class StretchSearch:
         self.runs = {(x, y): _vertex_runs(rings[x], rings[y], self.beta)
                      for x in range(len(rings)) for y in range(x, len(rings))}
         self._memo = _Memo()
+        #: the best smallest region (the first run without exclusion), from which the
+        #: memo's floor starts (:data:`MEMO_SHARE`)
+        self._best: float | None = None
 
     def pairs(self, top: Any = 5, ties: bool = False, exclude: Any = (),
               fraction: float = 0.5, seen: Any = ()) -> list[StretchPair]:
@@ -1182,8 +1205,26 @@ class StretchSearch:
         read = [(p.region_edges, p.mode) for p in seen if len(p.region_edges) == 2]
         # (nothing to exclude: no map of the edges, 36 ms on 10,000 edges)
         excl = _Exclusion(rings, polygon, kept, fraction_v, read) if kept or read else None
-        found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
-                        excl or None, self._memo)
+        memo = self._memo
+        if excl and memo.prepared is None and self._best is not None and memo.floor == 0.0:
+            memo.lower(MEMO_SHARE * self._best)
+        while True:
+            found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
+                            excl or None, memo)
+            if not excl or memo.floor == 0.0:
+                break
+            # the top-th found at or above the memo's floor: nothing missed; below it,
+            # collect down to it; fewer than top found: down to a quarter
+            if top_v is not None and len(found) >= top_v:
+                need = found[top_v - 1].t * (1 - TIE)
+                if need >= memo.floor:
+                    break
+                low = need * (1 - TIE)
+            else:
+                low = memo.floor / 4
+            memo.lower(low if low > 1e-3 * (self._best or 0.0) else 0.0)
+        if not excl and found:
+            self._best = found[0].t if self._best is None else max(self._best, found[0].t)
         if not found:
             return []
         if top_v is not None:
@@ -1191,6 +1232,13 @@ class StretchSearch:
             found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
         found = _finish(rings, self.beta, found, self.intervals, polygon)
         return _pairs(rings, found if ties or top_v is None else found[:top_v])
+
+
+#: The distinct search's memo (:class:`_Memo`) first collects the configurations whose arc
+#: length reaches this share of the best smallest region (lowered when a run's
+#: ``top``-th falls below it): a smooth outline of 2,000 edges has tens of millions of
+#: configurations, most far below any plan kept.
+MEMO_SHARE = 0.15
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
