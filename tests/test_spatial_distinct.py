@@ -25,15 +25,23 @@ from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 trimesh = pytest.importorskip("trimesh")
 
 
+def _angle(u, v):
+    """Degrees between two vectors."""
+    c = np.dot(u, v) / (np.linalg.norm(u) * np.linalg.norm(v))
+    return float(np.degrees(np.arccos(np.clip(c, -1.0, 1.0))))
+
+
 def _near(p, q, fraction):
     """The rule written out: some pairing of the fingers with every pair of centres
-    closer than the sum of the radii over the fraction (brute force over pairings)."""
+    closer than the sum of the radii over the fraction, and normals less than 45
+    degrees apart (brute force over pairings)."""
     import itertools
 
     if len(p.centers) != len(q.centers):
         return False
     for perm in itertools.permutations(range(len(p.centers))):
         if all(np.linalg.norm(p.centers[i] - q.centers[j]) * fraction < p.radius + q.radius
+               and _angle(p.normals[i], q.normals[j]) < 45.0
                for i, j in enumerate(perm)):
             return True
     return False

@@ -6,9 +6,13 @@ Two plans of a solid (two soft fingers, three fingers with friction, or a parall
 jaw's two facets) are **the same alternative** at ``fraction`` when their fingers can be
 paired so that every pair of regions' centres is closer than ``(r_p + r_q) / fraction``
 (``r`` the plans' radii): the regions grown by ``1 / fraction`` about their centres
-overlap.  At ``fraction = 1`` the regions themselves overlap; smaller fractions merge
-plans further apart, as the polygon's rule (:mod:`fcgrasp.model.distinct`) merges
-smaller overlaps.  ``fraction = 0`` keeps every plan.
+overlap; and, where the plans carry their inward ``normals``, every pair's normals
+are within :data:`SAME_SIDE_DEG` of each other (a grasp on the next facet of a
+tessellated curve turns its normals by a facet's angle; a block gripped across its
+width and across its height is two grasps, however close the faces' centres).  At
+``fraction = 1`` the regions themselves overlap; smaller fractions merge plans further
+apart, as the polygon's rule (:mod:`fcgrasp.model.distinct`) merges smaller overlaps.
+``fraction = 0`` keeps every plan.
 
 :func:`distinct_solid_plans` keeps, in rank order, each plan that is not the same
 alternative as a plan kept before, and records on each kept plan the facets of the
@@ -23,7 +27,11 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans"]
+__all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans", "SAME_SIDE_DEG"]
+
+#: Paired fingers of the same alternative press within this angle of each other
+#: (degrees between their inward normals).
+SAME_SIDE_DEG = 45.0
 
 
 class SolidPlan:
@@ -55,6 +63,12 @@ def same_solid_alternative(p: Any, q: Any, fraction: float) -> bool:
     >>> b = P(centers=np.array([[10.0, 3, 0], [0, 3, 0]]), radius=1.0)
     >>> same_solid_alternative(a, b, 0.5), same_solid_alternative(a, b, 1.0)
     (True, False)
+    >>> z = P(centers=np.array([[0.0, 0, 5], [0, 0, -5]]), radius=3.0,
+    ...       normals=np.array([[0.0, 0, -1], [0, 0, 1]]))
+    >>> y = P(centers=np.array([[0.0, 10, 0], [0, -10, 0]]), radius=3.0,
+    ...       normals=np.array([[0.0, -1, 0], [0, 1, 0]]))
+    >>> same_solid_alternative(z, y, 0.5)     # centres within reach, faces at 90 degrees
+    False
     """
     if fraction <= 0:
         return False
@@ -64,6 +78,11 @@ def same_solid_alternative(p: Any, q: Any, fraction: float) -> bool:
     reach = (p.radius + q.radius) / fraction
     d = np.linalg.norm(p.centers[:, None, :] - q.centers[None, :, :], axis=-1)
     near = d < reach
+    np_, nq = getattr(p, "normals", None), getattr(q, "normals", None)
+    if np_ is not None and nq is not None:
+        a = np.asarray(np_, float) / np.linalg.norm(np_, axis=-1, keepdims=True)
+        b = np.asarray(nq, float) / np.linalg.norm(nq, axis=-1, keepdims=True)
+        near &= a @ b.T > np.cos(np.radians(SAME_SIDE_DEG))
     return any(all(near[i, perm[i]] for i in range(k)) for perm in permutations(range(k)))
 
 
