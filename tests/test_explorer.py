@@ -318,9 +318,10 @@ def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
     assert figure.count('class="region"') == len(report["grasps"][0]["regions"])
     assert 'class="vertex"' not in figure
 
-    # a slow plan (three fingers on 300 edges) shows progress and is cancelled
+    # a slow plan (three fingers on 1,500 edges: tens of seconds, so it cannot end
+    # before the click, however busy the machine) shows progress and is cancelled
     big = tmp_path / "big.json"
-    big.write_text(json.dumps({"vertices": _star(300).tolist()}))
+    big.write_text(json.dumps({"vertices": _star(1500).tolist()}))
     set_value(browser, "gripper", "3")
     browser.find_element(By.ID, "file").send_keys(str(big))
     wait(browser, "document.getElementById('statustext').textContent.includes('/')")
