@@ -242,15 +242,11 @@ def _smooth(rng, n):
                             float(rng.uniform(15, 30)) * r * np.sin(a)])
 
 
-@pytest.mark.parametrize("seed", [*range(3), 78, *(pytest.param(s, marks=pytest.mark.slow)
-                                                     for s in range(3, 200) if s != 78)])
-def test_distinct_search_equals_suppression_of_every_plan(seed):
-    """Two fingers along the boundary with ``distinct=``: the search that leaves each
-    kept plan's copies out (fcgrasp.grippers._boundary.distinct_boundary_plans) gives
-    the plans that suppression along the *whole* ranked list gives (every
-    configuration of the part, ``top=None``), same edges and region lengths, on seeded
-    smooth outlines where a grasp has dozens of shifted copies (seed 78 by default: a
-    kept plan's copy there is deferred and must still beat its super-configuration)."""
+def _searched_and_suppressed(seed):
+    """A seeded smooth outline (a grasp has dozens of shifted copies) planned with
+    ``distinct=`` by the search that leaves each kept plan's copies out, and suppression
+    along the *whole* ranked list (every configuration, ``top=None``): ``(part, got,
+    want)``, asserted the same edges and region lengths."""
     from fcgrasp.grippers._boundary import boundary_plans
     from fcgrasp.pipeline import plan_spec
 
@@ -262,10 +258,24 @@ def test_distinct_search_equals_suppression_of_every_plan(seed):
     every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
     want = distinct_plans(every, fraction, part.size)[:top]
     got = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction)
-    assert len(want) > 1
     assert [p.edges for p in got] == [p.edges for p in want]
     for p, q in zip(got, want, strict=True):
         assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
+    return part, got, want
+
+
+@pytest.mark.parametrize("seed", [*range(3), 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                                     for s in range(3, 200) if s != 78)])
+def test_distinct_search_equals_suppression_of_every_plan(seed):
+    """Two fingers along the boundary with ``distinct=``: the search that leaves each
+    kept plan's copies out (fcgrasp.grippers._boundary.distinct_boundary_plans) gives
+    the plans that suppression along the *whole* ranked list gives (every
+    configuration of the part, ``top=None``), same edges and region lengths, on seeded
+    smooth outlines where a grasp has dozens of shifted copies (seed 78 by default: a
+    kept plan's copy there is deferred and must still beat its super-configuration)."""
+    _, got, want = _searched_and_suppressed(seed)
+    assert len(want) > 1
+    for p, q in zip(got, want, strict=True):
         assert set(p.similar) <= set(q.similar)
 
 
@@ -276,28 +286,16 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
     share of the best plan (MEMO_SHARE), and collects again lower when a round's
     ``top``-th falls below it: with the share at 0.9 (every search lowers it, most of
     them more than once) the plans are still suppression's along the whole list."""
-    from fcgrasp.grippers._boundary import boundary_plans
     from fcgrasp.model import stretches
-    from fcgrasp.pipeline import plan_spec
 
     lowered = []
     monkeypatch.setattr(stretches, "MEMO_SHARE", 0.9)
     original = stretches._Memo.lower
     monkeypatch.setattr(stretches._Memo, "lower",
                         lambda self, f: (lowered.append(f), original(self, f))[1])
-    rng = np.random.default_rng(seed)
-    part = _smooth(rng, int(rng.integers(24, 48)))
-    mu = float(rng.uniform(0.2, 0.5))
-    fraction = float(rng.choice([0.25, 0.5, 0.8]))
-    top = int(rng.integers(3, 8))
-    every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
-    want = distinct_plans(every, fraction, part.size)[:top]
-    got = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction)
+    _searched_and_suppressed(seed)
     if seed in (4, 78):
         assert len(lowered) >= 2, lowered             # the first floor, then lower
-    assert [p.edges for p in got] == [p.edges for p in want]
-    for p, q in zip(got, want, strict=True):
-        assert np.allclose(p.lengths, q.lengths, rtol=0, atol=1e-9 * part.size)
 
 
 def test_internal_grips_use_the_symmetries_that_keep_their_hole():
