@@ -195,17 +195,21 @@ class _Exclusion:
         #: configurations excluded as such (plans already read), per ring pair and
         #: mode: the codes (:meth:`_codes`) of their starts and interior vertices, on
         #: one ring both ways round
-        found: dict[tuple[int, int, str], list[int]] = {}
+        found: dict[tuple[int, int, str], list[tuple[int, int, int, int]]] = {}
         for edges, mode in seen:
-            if all(int(e) in where for st in edges for e in st):
+            # a region covers consecutive edges of one ring (or one edge): its two end
+            # edges say whether it is on the rings (the rounds read thousands of plans
+            # of hundreds of edges each)
+            if all(int(st[0]) in where and int(st[-1]) in where for st in edges):
                 (x, pa), (y, pc) = where[int(edges[0][0])], where[int(edges[1][0])]
                 ka, kc = len(edges[0]) - 1, len(edges[1]) - 1
                 for (r1, a, k1), (r2, c, k2) in (((x, pa, ka), (y, pc, kc)),
                                                  ((y, pc, kc), (x, pa, ka))):
-                    found.setdefault((r1, r2, mode), []).append(int(self._codes(
-                        rings, r1, r2, np.array([a]), np.array([k1]), np.array([c]),
-                        np.array([k2]))[0]))
-        self.seen = {key: np.unique(np.array(v, np.int64)) for key, v in found.items()}
+                    found.setdefault((r1, r2, mode), []).append((a, k1, c, k2))
+        self.seen: dict[tuple[int, int, str], np.ndarray] = {}
+        for (r1, r2, mode), rows in found.items():
+            a, k1, c, k2 = np.array(rows, np.int64).T
+            self.seen[r1, r2, mode] = np.unique(self._codes(rings, r1, r2, a, k1, c, k2))
         self.fraction = float(fraction)
         self.tol = ROUND_TOL * polygon.size
         self.plans: list[list[tuple[int, float, float]]] = []
