@@ -5,15 +5,19 @@ boundary search for distinct plans directly (each kept plan's copies left out); 
 other grippers ask their search for more plans until ten distinct ones are found.
 
     python benchmarks/bench_distinct.py [--parts cam,blob] [--fraction 0.5] [--smooth 1000]
+                                        [--corpus icons/shield.svg,icons/cloud.svg]
 
 ``--smooth N`` adds an ellipse and a blob of ``N`` equal-angle edges, two fingers only
 (where one grasp's shifted copies fill the ranked list: the hard case of the search).
+``--corpus FILES`` adds files of ``benchmarks/corpus`` (paths inside it), two fingers
+only (flattened curves of the icons: hundreds of edges, a grasp's copies by the dozen).
 """
 
 from __future__ import annotations
 
 import argparse
 import time
+from pathlib import Path
 
 import numpy as np
 
@@ -46,6 +50,7 @@ def main() -> None:
     ap.add_argument("--parts", default="cam,blob,washer,quad")
     ap.add_argument("--fraction", type=float, default=0.5)
     ap.add_argument("--smooth", type=int, default=0)
+    ap.add_argument("--corpus", default="", help="files of benchmarks/corpus, comma-separated")
     args = ap.parse_args()
     fc.compile_kernels()
     print("| part | gripper | ranked list (s) | distinct (s) | ratio | distinct plans |")
@@ -61,6 +66,11 @@ def main() -> None:
                          (f"blob {args.smooth}", np.c_[r * np.cos(a), r * np.sin(a)])):
             label = "2 fingers, mu 0.3"
             _row(name, label, fc.Polygon(xy), GRIPPERS[label], args.fraction)
+    corpus = Path(__file__).with_name("corpus")
+    for name in filter(None, args.corpus.split(",")):
+        label = "2 fingers, mu 0.3"
+        _row(name, label, fc.load_part(str(corpus / name)).polygon, GRIPPERS[label],
+             args.fraction)
 
 
 if __name__ == "__main__":
