@@ -451,7 +451,7 @@ KERNEL_CONFIGS = 20_000
 
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run
 #: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
-#: (48 crossings of lines per cell and turn: compiled from a few cells on).
+#: (32 crossings of lines per cell and turn: compiled from a few cells on).
 FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
 
 #: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
