@@ -257,20 +257,12 @@ class _Exclusion:
         the part of it that holds against the other stretch's interior vertices).  An
         empty interval (no region pair holds) gives a last start or end of -inf.  With
         ``reach``, intervals that contain those (:func:`_ends`'s, cheaper); ``reach=0``:
-        the whole end edges (no interval read: the whole stretches)."""
+        against no vertex, the whole end edges (the whole stretches)."""
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
-        if reach == 0:
-            A, B = np.asarray(cfg.iA) % ra.m, (np.asarray(cfg.iA) + cfg.kA) % ra.m
-            C, D = np.asarray(cfg.iC) % rb.m, (np.asarray(cfg.iC) + cfg.kC) % rb.m
-            lo0, hi0, lo1, hi1 = np.zeros(A.size), ra.L[A], np.zeros(A.size), ra.L[B]
-            ulo0, uhi0, ulo1, uhi1 = np.zeros(C.size), rb.L[C], np.zeros(C.size), rb.L[D]
-            off_s = np.where(cfg.kA > 0, ra.L[A] + _inner(ra, cfg.iA, cfg.kA), 0.0)
-            off_u = np.where(cfg.kC > 0, rb.L[C] + _inner(rb, cfg.iC, cfg.kC), 0.0)
-        else:
-            (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
-                ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
-                stretch_kernels_for(ra.m * rb.m), reach)
+        (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
+            ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
+            stretch_kernels_for(ra.m * rb.m), reach)
         a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
         return (np.stack([a + lo0, a + hi0, a + off_s + lo1, a + off_s + hi1], axis=1),
                 np.stack([c + ulo0, c + uhi0, c + off_u + ulo1, c + off_u + uhi1], axis=1))
@@ -323,11 +315,12 @@ class _Exclusion:
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
         return (a1 - a0) - common
 
-    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, FloatArray],
+    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
                out: np.ndarray) -> bool:
-        """:meth:`threshold` (``threshold``) or :meth:`similar` of many configurations
-        by the compiled loop (the same numbers, without a matrix of configurations by
+        """:meth:`threshold` (``threshold``: ``spans`` the arcs ``a0x, a1x, a0y, a1y``) or
+        :meth:`similar` (``spans`` as :meth:`_spans`) of many configurations by the
+        compiled loop (the same numbers, without a matrix of configurations by
         kept plans for each step), writing ``out``; False (nothing done) when the
         matrix is small or the loops do not run."""
         if len(spans[0]) * len(arcs[0]) < (FUSED_CELLS if threshold else FUSED_SIMILAR) \
@@ -336,12 +329,9 @@ class _Exclusion:
         per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
         arcs = tuple(np.ascontiguousarray(v, float) for v in arcs)
         if threshold:
-            sx, sy = spans
             _stretch_kernels.exclusion_rows(
-                *(np.ascontiguousarray(v, float) for v in (
-                    sx[:, 0], np.maximum(sx[:, 3], sx[:, 0]), sy[:, 0],
-                    np.maximum(sy[:, 3], sy[:, 0]))),
-                *arcs, *per, float(self.tol), float(1 - self.fraction), out)
+                *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per,
+                float(self.tol), float(1 - self.fraction), out)
             return True
         work = np.zeros(len(out), bool)
         _stretch_kernels.similar_rows(
@@ -403,12 +393,11 @@ class _Exclusion:
         if keep <= 0 or arcs is None or not len(out):
             return out
         # before the configurations are solved (all of them, in chunks of thousands): the
-        # whole stretches, no interval read
-        spans = self._spans(rings, job, cfg, intervals, 0)
+        # whole stretches, from the first edge's start to the last edge's end
+        sx, sy = self._spans(rings, job, cfg, intervals, 0)
+        a0x, a1x, a0y, a1y = spans = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
         if self._fused(rings, x, y, spans, arcs, out, True, out):
             return out
-        (a0x, _, _, a1x), (a0y, _, _, a1y) = spans[0].T, spans[1].T
-        a1x, a1y = np.maximum(a1x, a0x), np.maximum(a1y, a0y)
         ax0, ax1, ay0, ay1 = arcs
         px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
         ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
@@ -632,7 +621,7 @@ class _Memo:
 
     def lower(self, floor: float) -> None:
         """Collect again, down to ``floor``."""
-        self.__init__(floor)  # type: ignore[misc]
+        self.floor, self.prepared, self.jobs = floor, None, {}
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
@@ -1226,6 +1215,7 @@ class StretchSearch:
                 low = need * (1 - TIE)
             else:
                 low = memo.floor / 4
+            # below a thousandth of the best plan: every configuration
             memo.lower(low if low > 1e-3 * (self._best or 0.0) else 0.0)
         if not excl and found:
             self._best = found[0].t if self._best is None else max(self._best, found[0].t)
