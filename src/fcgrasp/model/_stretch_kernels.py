@@ -764,25 +764,84 @@ def _similar_rows(sx: Any, sy: Any, ax0: Any, ax1: Any, ay0: Any, ay1: Any, perx
                 break
 
 
-def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, by: Any, sa: Any, supers: Any,
-                   ma: int, mb: int, out: Any) -> None:
-    """``stretches._inside_any``'s loop, one way round: ``out[i]`` set where
-    configuration ``i`` (first start ``a`` reduced, ``by`` its order, ``sa = a[by]``)
-    lies inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically."""
-    for s in range(supers.shape[0]):
-        iA, kA, iC, kC = supers[s, 0], supers[s, 1], supers[s, 2], supers[s, 3]
-        lo = iA % ma
-        for part in range(2):
-            if part == 0:
-                s0, s1 = lo, min(lo + kA + 1, ma)
-            elif lo + kA < ma:
-                break
-            else:
-                s0, s1 = 0, lo + kA + 1 - ma
-            for q in range(np.searchsorted(sa, s0), np.searchsorted(sa, s1)):
-                i = by[q]
-                if (a[i] - iA) % ma + ka[i] <= kA and (cc[i] - iC) % mb + kc[i] <= kC:
-                    out[i] = True
+def _by_start(a: Any, ka: Any, ma: int) -> Any:
+    """The order of configurations by first start ``a`` (in ``[0, ma)``), then by
+    decreasing ``ka`` (each from 0), ties by index: two counting sorts, linear where a
+    sort of the hundreds of thousands of configurations a distinct search defers is
+    not."""
+    n = a.size
+    top = 0
+    for i in range(n):
+        top = max(top, ka[i])
+    count = np.zeros(top + 2, np.int64)
+    for i in range(n):
+        count[top - ka[i] + 1] += 1
+    for k in range(1, top + 2):
+        count[k] += count[k - 1]
+    first = np.empty(n, np.int64)
+    for i in range(n):
+        k = top - ka[i]
+        first[count[k]] = i
+        count[k] += 1
+    count = np.zeros(ma + 1, np.int64)
+    for i in range(n):
+        count[a[i] + 1] += 1
+    for k in range(1, ma + 1):
+        count[k] += count[k - 1]
+    out = np.empty(n, np.int64)
+    for q in range(n):
+        i = first[q]
+        out[count[a[i]]] = i
+        count[a[i]] += 1
+    return out
+
+
+def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, ep: Any, eroom: Any, es: Any,
+                   supers: Any, ma: int, mb: int, out: Any) -> None:
+    """``stretches._inside_any``'s test, one way round, as one sweep over the first
+    starts: ``out[i]`` set where configuration ``i`` (first start ``a`` reduced) lies
+    inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically.
+
+    The configurations are read by first start, then by decreasing ``ka``
+    (:func:`_by_start`); ``ep, eroom, es``: each super's entry at each first start
+    ``p`` its first stretch covers (``p = iA + d``, the room left for ``ka``: ``kA -
+    d``, the super), by ``p``, then by decreasing room.  At each ``p`` the supers whose room admits the configuration's
+    ``ka`` are added in turn to ``reach`` (at each second start, the most interior
+    vertices a second stretch starting there may have inside one of them), so each
+    configuration is read once and each super once per first start it covers: the
+    same test as reading, for every super, every configuration that starts in its
+    first stretch (which is quadratic where hundreds of supers share long stretches)."""
+    by = _by_start(a, ka, ma)
+    n, m = by.size, ep.size
+    reach = np.zeros(mb, np.int64)
+    stamp = np.full(mb, -1, np.int64)
+    i = 0
+    e = 0
+    while i < n:
+        p = a[by[i]]
+        j = i
+        while j < n and a[by[j]] == p:
+            j += 1
+        while e < m and ep[e] < p:
+            e += 1
+        g = e
+        for q in range(i, j):
+            c = by[q]
+            while g < m and ep[g] == p and eroom[g] >= ka[c]:
+                s = es[g]
+                iC, kC = supers[s, 2], supers[s, 3]
+                for d in range(kC + 1):
+                    x = (iC + d) % mb
+                    if stamp[x] != p:
+                        stamp[x] = p
+                        reach[x] = kC - d
+                    elif kC - d > reach[x]:
+                        reach[x] = kC - d
+                g += 1
+            x = cc[c] % mb
+            if stamp[x] == p and kc[c] <= reach[x]:
+                out[c] = True
+        i = j
 
 
 def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
@@ -1140,7 +1199,7 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
-                                   _solve_rows, _inside_supers, _outside_one,
+                                   _solve_rows, _by_start, _inside_supers, _outside_one,
                                    _exclusion_rows, _excess_at, _least_excess, _surely_copy,
                                    _similar_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,

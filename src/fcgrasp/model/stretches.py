@@ -813,19 +813,28 @@ def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,
     """Which configurations ``c`` lie inside one of ``supers`` (rows ``iA, kA, iC,
     kC``; cyclically; on one ring either way round): for each super, only the
     configurations whose first start lies in its first stretch are read (sorted;
-    ``compiled``: by :func:`fcgrasp.model._stretch_kernels.inside_supers`, the same
-    test)."""
+    ``compiled``: the same test by one sweep over the first starts,
+    :func:`fcgrasp.model._stretch_kernels.inside_supers`)."""
     out = np.zeros(len(c.iA), bool)
     for flip in ((False, True) if same else (False,)):
         a, ka, cc, kc = (c.iC, c.kC, c.iA, c.kA) if flip else (c.iA, c.kA, c.iC, c.kC)
         a = a % ma
+        if compiled:
+            sup = np.ascontiguousarray(supers, np.int64).reshape(-1, 4)
+            # each super's entry at each first start its first stretch covers, with the
+            # room it leaves for a configuration's interior vertices there
+            rep = sup[:, 1] + 1
+            es = np.repeat(np.arange(len(sup)), rep)
+            d = np.arange(es.size) - np.repeat(np.cumsum(rep) - rep, rep)
+            ep, eroom = (sup[es, 0] + d) % ma, sup[es, 1] - d
+            entries = np.lexsort((-eroom, ep))
+            _stretch_kernels.inside_supers(
+                *(np.ascontiguousarray(v, np.int64) for v in (
+                    a, ka, cc, kc, ep[entries], eroom[entries], es[entries])), sup,
+                int(ma), int(mb), out)
+            continue
         by = np.argsort(a, kind="stable")
         sa = a[by]
-        if compiled:
-            _stretch_kernels.inside_supers(
-                *(np.ascontiguousarray(v, np.int64) for v in (a, ka, cc, kc, by, sa)),
-                np.ascontiguousarray(supers, np.int64), int(ma), int(mb), out)
-            continue
         for iA, kA, iC, kC in supers:
             lo = iA % ma
             spans = ((lo, lo + kA + 1),) if lo + kA < ma else \

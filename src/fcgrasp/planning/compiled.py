@@ -96,7 +96,7 @@ def _stretches(blob: Any) -> None:
     _stretch_kernels.exclusion_rows(z, z, z, z, z, z, z, z, 1.0, 1.0, 0.0, 0.5, z.copy())
     _stretch_kernels.similar_rows(np.zeros((1, 4)), np.zeros((1, 4)), z, z, z, z, 1.0, 1.0,
                                   0.0, 0.5, z, np.zeros(1, bool))
-    _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
+    _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
                                    np.zeros(1, bool))
     # the fused scores of every feature pair (a top-k search's candidates)
     from ..core.kernels import pair_scores
