@@ -805,12 +805,13 @@ def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, ep: Any, eroom: Any, es: A
     The configurations are read by first start, then by decreasing ``ka``
     (:func:`_by_start`); ``ep, eroom, es``: each super's entry at each first start
     ``p`` its first stretch covers (``p = iA + d``, the room left for ``ka``: ``kA -
-    d``, the super), by ``p``, then by decreasing room.  At each ``p`` the supers whose room admits the configuration's
-    ``ka`` are added in turn to ``reach`` (at each second start, the most interior
-    vertices a second stretch starting there may have inside one of them), so each
-    configuration is read once and each super once per first start it covers: the
-    same test as reading, for every super, every configuration that starts in its
-    first stretch (which is quadratic where hundreds of supers share long stretches)."""
+    d``, the super), by ``p``, then by decreasing room.  At each ``p`` the supers whose
+    room admits the configuration's ``ka`` are added in turn to ``reach`` (at each
+    second start, the most interior vertices a second stretch starting there may have
+    inside one of them), so each configuration is read once and each super once per
+    first start it covers: the same test as reading, for every super, every
+    configuration that starts in its first stretch (which is quadratic where hundreds
+    of supers share long stretches)."""
     by = _by_start(a, ka, ma)
     n, m = by.size, ep.size
     reach = np.zeros(mb, np.int64)
