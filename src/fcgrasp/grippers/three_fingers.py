@@ -156,7 +156,13 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         floor = sorted((float(min(p.lengths)) for p in pairs), reverse=True)[keep - 1] \
             - 2 * RANK_TOL * size
     pair_floor = floor
+    # the rows that may rank, in the order found: while fewer than keep, all of them;
+    # then those within the tie tolerance of the keep-th largest level (``levels``
+    # theirs; sorted once at the end: on a flattened circle thousands tie, and sorting
+    # and counting them at each batch cost more than solving the batch)
     found: list[tuple[float, tuple[int, ...], _Block]] = []
+    levels = np.zeros(0)
+    full = False
     # the GROW_SEEDS best rows to grow along the boundary, exact ties (to PIECE_TIE of
     # the size) in the order found: (-level step, order, level, row, block)
     seeds: list[tuple[int, int, float, tuple[int, ...], _Block]] = []
@@ -188,7 +194,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                 got = [(lv * size, tuple(int(f) for f in row), blk)
                        for row, (blk, lv) in zip(sub, res, strict=True)
                        if blk is not None and lv > 0]
-                found += [g for g in got if keep is None or g[0] >= floor]
+                new = [g for g in got if keep is None or g[0] >= floor]
+                found += new
+                if keep is not None and new:
+                    levels = np.concatenate([levels, [g[0] for g in new]])
                 if grow:
                     # two fingers side by side on one edge are not grown along it
                     for lv, row, blk in got:
@@ -201,14 +210,20 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                     if keep is not None and len(seeds) == GROW_SEEDS:
                         seed_step = -seeds[-1][0]
                 if keep is not None and len(found) >= keep:
-                    found.sort(key=lambda r: -r[0])
-                    del found[keep + _ties(found, keep, size):]
-                    floor = max(pair_floor, found[keep - 1][0] - 2 * RANK_TOL * size)
+                    last = float(np.partition(levels, levels.size - keep)[levels.size - keep])
+                    cut = last - 2 * RANK_TOL * size        # the keep-th and its ties
+                    hold = levels >= cut
+                    if not hold.all():
+                        found = [found[k] for k in np.flatnonzero(hold)]
+                        levels = levels[hold]
+                    floor, full = max(pair_floor, cut), True
             done += step
             if progress is not None:
                 progress(min(done, total), total)
             if keep is not None and len(bnd) and not useful(bnd[-1:])[0]:
                 break
+    if full:
+        found.sort(key=lambda r: -r[0])
     plans = []
     for lv, row, blk in found:
         if keep is not None and lv < floor:
@@ -420,12 +435,6 @@ def _tie_step(length: Any, size: float) -> Any:
     """Lengths in steps of :data:`~fcgrasp.core.tolerances.PIECE_TIE` of the part's size:
     two levels of one step tie (the order found decides between them)."""
     return np.round(np.asarray(length) / size / PIECE_TIE)
-
-
-def _ties(found: list[tuple[float, tuple[int, ...], _Block]], keep: int, size: float) -> int:
-    """How many rows after the ``keep``-th tie with it."""
-    last = found[keep - 1][0]
-    return sum(1 for r in found[keep:] if r[0] >= last - 2 * RANK_TOL * size)
 
 
 def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[GraspPlan]:
