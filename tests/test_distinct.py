@@ -343,3 +343,42 @@ def test_suppression_with_a_limit_keeps_the_head_and_what_it_stands_for():
         head = distinct_plans(plans, 0.5, part.size, limit=limit)
         assert [(p.edges, p.similar) for p in head] == \
             [(p.edges, p.similar) for p in whole[:limit]]
+
+
+@pytest.mark.parametrize("seed, fraction", [
+    (0, 0.5), *(pytest.param(s, f, marks=pytest.mark.slow) for s in range(8)
+                for f in (0.2, 0.5, 0.9) if (s, f) != (0, 0.5))])
+def test_suppression_reads_only_plans_whose_boxes_pair_and_keeps_the_same(seed, fraction):
+    """Suppression reads, for each plan, only the kept plans whose regions' boxes pair
+    with its own: the same plans kept, each standing for the same plans, as suppression
+    that tests every kept plan in order (written here) on whole ranked lists of two,
+    three with gravity and four fingers (regions of point fingers, gravity's point)."""
+    from fcgrasp.core.tolerances import ROUND_TOL
+    from fcgrasp.model.distinct import Suppression
+
+    rng = np.random.default_rng(300 + seed)
+    n = int(rng.integers(11, 15))
+    a = np.sort(rng.uniform(0, 2 * np.pi, n))
+    r = 30 + rng.uniform(2, 5) * np.sin(3 * a + rng.uniform(0, 6)) + 2 * np.cos(5 * a)
+    part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])     # regions along the boundary
+    tol = ROUND_TOL * part.size
+    lists = [fc.plan(part, fingers=2, mu=0.4, top=None),
+             fc.plan(part, fingers=3, gravity=(0, -1), top=None),
+             fc.plan(part, fingers=4, top=None)]
+    checked = 0
+    for plans in lists:
+        kept, stands = [], {}
+        for p in plans:
+            twin = next((q for q in kept if same_alternative(q, p, fraction, tol)), None)
+            if twin is None:
+                kept.append(p)
+                stands[id(p)] = []
+            else:
+                stands[id(twin)].append(tuple(p.edges))
+        suppression = Suppression(fraction, part.size)
+        for p in plans:
+            suppression.add(p)
+        assert [id(p) for p in suppression.kept] == [id(p) for p in kept]
+        assert [p.similar for p in suppression.plans()] == [tuple(stands[id(p)]) for p in kept]
+        checked += len(plans) - len(kept)
+    assert checked >= 5

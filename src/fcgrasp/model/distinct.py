@@ -22,6 +22,7 @@ from typing import Any
 import numpy as np
 import shapely
 
+from ..core._checks import FloatArray
 from ..core.tolerances import ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
 
@@ -82,24 +83,66 @@ class Suppression:
         self.fraction, self.tol = fraction, ROUND_TOL * size
         self.kept: list[Any] = []
         self._stands: dict[int, list[tuple[int, ...]]] = {}
+        #: per number of regions: the kept plans' places in ``kept`` and their regions'
+        #: boxes (n, regions, 4: x and y least, then greatest), rows beyond n spare
+        self._boxes: dict[int, tuple[list[int], FloatArray]] = {}
+
+    @staticmethod
+    def _region_boxes(p: GraspPlan) -> FloatArray:
+        return np.array([np.r_[np.min(r, axis=0), np.max(r, axis=0)]
+                         for r in (np.asarray(r, float) for r in p.regions)]).reshape(-1, 4)
+
+    def _may_match(self, p: GraspPlan, box: FloatArray) -> list[int]:
+        """The places in ``kept`` of the plans that may be ``p``'s alternative, in order:
+        those whose regions' boxes pair with ``p``'s, each within the tolerance (two
+        regions whose boxes are further apart do not overlap, :func:`_overlaps`), tested
+        for every kept plan at once."""
+        k = len(p.regions)
+        if k not in self._boxes:
+            return []
+        places, boxes = self._boxes[k]
+        B, tol = boxes[:len(places)], self.tol
+        # near[q, i, j]: p's region i and kept plan q's region j within the tolerance
+        apart = np.logical_or((box[None, :, None, :2] > B[:, None, :, 2:] + tol).any(axis=-1),
+                              (B[:, None, :, :2] > box[None, :, None, 2:] + tol).any(axis=-1))
+        near = np.logical_not(apart)
+        rows = np.arange(k)
+        may = np.zeros(len(places), bool)
+        for perm in permutations(range(k)):
+            may |= near[:, rows, list(perm)].all(axis=1)
+        return [places[q] for q in np.flatnonzero(may)]
 
     def add(self, p: Any, keep: bool = True) -> bool:
         """Whether ``p`` was kept (plans that are not :class:`~fcgrasp.GraspPlan`, such
         as a jaw's boxes, are); with ``keep`` False, ``p`` is only filed under the plan
-        it is the same alternative as, if any (the kept plans are enough)."""
+        it is the same alternative as, if any (the kept plans are enough).  The first
+        kept plan it is the same alternative as, read among those whose boxes allow it
+        (:meth:`_may_match`)."""
         if isinstance(p, GraspPlan):
-            twin = next((q for q in self.kept if isinstance(q, GraspPlan)
-                         and same_alternative(q, p, self.fraction, self.tol)), None)
+            box = self._region_boxes(p)
+            twin = next((self.kept[q] for q in self._may_match(p, box)
+                         if same_alternative(self.kept[q], p, self.fraction, self.tol)),
+                        None)
             if twin is not None:
                 self._stands[id(twin)].append(tuple(p.edges))
                 return False
             if not keep:
                 return False
             self._stands[id(p)] = []
+            self._file(len(p.regions), box)
         elif not keep:
             return False
         self.kept.append(p)
         return True
+
+    def _file(self, k: int, box: FloatArray) -> None:
+        """File the boxes of the plan about to be kept (its place: ``len(kept)``)."""
+        places, boxes = self._boxes.get(k, ([], np.empty((8, k, 4))))
+        if len(places) == len(boxes):
+            boxes = np.concatenate([boxes, np.empty_like(boxes)])
+        boxes[len(places)] = box
+        places.append(len(self.kept))
+        self._boxes[k] = (places, boxes)
 
     def plans(self) -> list[Any]:
         # copies: the plans given are left as they are
