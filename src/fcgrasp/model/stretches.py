@@ -816,22 +816,23 @@ def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,
     ``compiled``: the same test by one sweep over the first starts,
     :func:`fcgrasp.model._stretch_kernels.inside_supers`)."""
     out = np.zeros(len(c.iA), bool)
+    if compiled:
+        sup = np.ascontiguousarray(supers, np.int64).reshape(-1, 4)
+        # each super's entry at each first start its first stretch covers, with the room
+        # it leaves for a configuration's interior vertices there (both ways round)
+        rep = sup[:, 1] + 1
+        es = np.repeat(np.arange(len(sup)), rep)
+        d = np.arange(es.size) - np.repeat(np.cumsum(rep) - rep, rep)
+        ep, eroom = (sup[es, 0] + d) % ma, sup[es, 1] - d
+        entries = np.lexsort((-eroom, ep))
+        ep, eroom, es = ep[entries], eroom[entries], es[entries]
     for flip in ((False, True) if same else (False,)):
         a, ka, cc, kc = (c.iC, c.kC, c.iA, c.kA) if flip else (c.iA, c.kA, c.iC, c.kC)
         a = a % ma
         if compiled:
-            sup = np.ascontiguousarray(supers, np.int64).reshape(-1, 4)
-            # each super's entry at each first start its first stretch covers, with the
-            # room it leaves for a configuration's interior vertices there
-            rep = sup[:, 1] + 1
-            es = np.repeat(np.arange(len(sup)), rep)
-            d = np.arange(es.size) - np.repeat(np.cumsum(rep) - rep, rep)
-            ep, eroom = (sup[es, 0] + d) % ma, sup[es, 1] - d
-            entries = np.lexsort((-eroom, ep))
             _stretch_kernels.inside_supers(
-                *(np.ascontiguousarray(v, np.int64) for v in (
-                    a, ka, cc, kc, ep[entries], eroom[entries], es[entries])), sup,
-                int(ma), int(mb), out)
+                *(np.ascontiguousarray(v, np.int64) for v in (a, ka, cc, kc, ep, eroom, es)),
+                sup, int(ma), int(mb), out)
             continue
         by = np.argsort(a, kind="stable")
         sa = a[by]
