@@ -162,7 +162,6 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     # and counting them at each batch cost more than solving the batch)
     found: list[tuple[float, tuple[int, ...], _Block]] = []
     levels = np.zeros(0)
-    full = False
     # the GROW_SEEDS best rows to grow along the boundary, exact ties (to PIECE_TIE of
     # the size) in the order found: (-level step, order, level, row, block)
     seeds: list[tuple[int, int, float, tuple[int, ...], _Block]] = []
@@ -216,13 +215,13 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                     if not hold.all():
                         found = [found[k] for k in np.flatnonzero(hold)]
                         levels = levels[hold]
-                    floor, full = max(pair_floor, cut), True
+                    floor = max(pair_floor, cut)
             done += step
             if progress is not None:
                 progress(min(done, total), total)
             if keep is not None and len(bnd) and not useful(bnd[-1:])[0]:
                 break
-    if full:
+    if keep is not None and len(found) >= keep:    # cut: never fewer than keep again
         found.sort(key=lambda r: -r[0])
     plans = []
     for lv, row, blk in found:
