@@ -691,3 +691,41 @@ def test_member_is_isin():
         known = np.unique(rng.integers(0, 5000, size))
         codes = rng.integers(-10, 5010, 20000)
         np.testing.assert_array_equal(_member(codes, known), np.isin(codes, known))
+
+
+@pytest.mark.parametrize("seed", seeds(4, 160))
+def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
+    """Where the lower bounds fill fewer keys than ``top`` (one key holds many of the top
+    configurations of a smooth outline), the floor guessed from the keys' values gives
+    the plans of the search without a guess (which collects every configuration): the
+    same configurations, ties included, regions to 1e-9 of the part's size.  The cases
+    ask for half of the keys or all of them, so that most fill fewer keys than they ask
+    for: the first search must guess exactly then."""
+    rng = np.random.default_rng(7000 + seed)
+    kind = ("ellipse", "cam", "rounded", "regular", "noisy", "star")[seed % 6]
+    poly = Polygon(outline(rng, kind, int(rng.integers(16, 60))))
+    mu, margin = float(rng.choice([0.15, 0.3, 0.6])), float(rng.choice([0.0, 0.5]))
+    monkeypatch.setenv("FCGRASP_JIT", "1" if seed % 2 else "0")
+    taken = []
+    candidates = S._candidates
+
+    def spy(rings, bound, *args, **kw):
+        guesses = kw.get("guesses")
+        fixed = bound.fixed
+        out = candidates(rings, bound, *args, **kw)
+        if guesses is not None:     # the first search: it guesses where the keys allow
+            seen = np.sort(bound.best[bound.best > 0])[::-1]
+            m = min(bound.k, seen.size)
+            ranks = [-(-m // 4), -(-m // 2)] + ([seen.size] if seen.size < bound.k else [])
+            above = [g for g in (seen[r - 1] * (1 - S.TIE) for r in ranks if r)
+                     if g > bound.value * (1 - S.TIE)]
+            taken.append(bool(above))
+            assert bound.fixed == fixed and bound.start == (above[0] if above else 0.0)
+        return out
+
+    monkeypatch.setattr(S, "_candidates", spy)
+    keys = 2 * sum(r.m for r in _rings(poly))
+    top = int(rng.integers(1, 3) * keys // 2)          # half of every key, or all
+    fast = _plans(poly, mu, margin, top)
+    monkeypatch.setattr(S, "_GUESS", False)
+    _assert_same_plans(fast, _plans(poly, mu, margin, top), poly.size)

@@ -321,13 +321,16 @@ class _Bound:
     same pair from either stretch) only raises its own key, never counts twice.
 
     With ``fixed``, the floor is that number and never rises (a search that must solve
-    every configuration reaching it)."""
+    every configuration reaching it); with ``start``, the floor is at least that number
+    (a guess, checked by the search) and rises with the value above it."""
 
-    def __init__(self, k: int, keys: int, fixed: float | None = None) -> None:
+    def __init__(self, k: int, keys: int, fixed: float | None = None,
+                 start: float = 0.0) -> None:
         self.k = k
         self.best = np.zeros(keys)
         self._value = 0.0
         self.fixed = fixed
+        self.start = start
 
     def add(self, keys: Any, values: Any) -> None:
         if self.fixed is not None:
@@ -347,7 +350,9 @@ class _Bound:
 
     @property
     def floor(self) -> float:
-        return self.value * (1 - TIE) if self.fixed is None else self.fixed
+        if self.fixed is not None:
+            return self.fixed
+        return max(self.start, self.value * (1 - TIE))
 
 
 def _windows_both(runs: tuple[np.ndarray, np.ndarray, np.ndarray], ra: _Ring, rb: _Ring,

@@ -559,14 +559,48 @@ def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
     return order, angle[order]
 
 
+def _guessed_floors(bound: _Bound) -> list[float]:
+    """The floors :func:`_candidates` guesses from the bound's keys, highest first, each
+    above the bound's own floor."""
+    seen = np.sort(bound.best[bound.best > 0])[::-1]
+    if not seen.size:
+        return []
+    m = min(bound.k, seen.size)
+    ranks = [-(-m // 4), -(-m // 2)] + ([seen.size] if seen.size < bound.k else [])
+    out: list[float] = []
+    for r in ranks:
+        g = float(seen[r - 1]) * (1 - TIE)
+        if g > bound.floor and (not out or g < out[-1]):
+            out.append(g)
+    return out
+
+
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
-                runs: dict[Any, Any], keys: _Keys, prebound: bool = True
+                runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
+                guesses: list[float] | None = None, lower: bool = True
                 ) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations, one per key).  ``prebound`` False: the
-    vertex-aligned stretches do not raise the bound (an excluded plan's copies would)."""
+    vertex-aligned stretches do not raise the bound (an excluded plan's copies would);
+    with a fixed floor, without ``prebound`` or without ``lower``, they are not
+    computed.
+
+    ``guesses`` (an empty list): floors above the bound's own, guessed from the keys'
+    values, are put in it, highest first, and the bound starts at the first
+    (``bound.start``).  One key holds many of the top configurations of a smooth
+    outline, so the ``top``-th key is far below the ``top``-th configuration (and 0
+    where fewer keys are filled): the keys a quarter and half of the way down (of
+    ``top`` or of those filled), and the last filled when fewer than ``top``.
+    :func:`_search` checks that the ``top``-th found reaches the floor, and takes the
+    next guess when not."""
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
+        if not collect and (not (prebound and lower) or bound.fixed is not None):
+            continue                        # no lower bound would count
+        if collect and guesses is not None and bound.fixed is None:
+            guesses[:] = _guessed_floors(bound)
+            if guesses:
+                bound.start = guesses.pop(0)
         for job in _jobs(len(rings)):
             x, y, sigma, _ = job
             ra, rb = rings[x], rings[y]
@@ -881,6 +915,8 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
 
 #: Searches :func:`_search` runs at most before it solves every configuration.
 _ATTEMPTS = 5
+#: Whether the first search guesses floors from its keys' values (:func:`_candidates`).
+_GUESS = True
 
 
 def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
@@ -904,10 +940,14 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     if not exclude:
         memo = None
     want, fixed = top, None
-    for attempt in range(_ATTEMPTS):
-        if top is None or attempt == _ATTEMPTS - 1:
+    # floors guessed by the first search (_candidates), tried in turn while too high
+    guesses: list[float] | None = [] if _GUESS and top is not None else None
+    guessing, start = False, 0.0
+    attempts = _ATTEMPTS + (3 if _GUESS else 0)
+    for attempt in range(attempts):
+        if top is None or attempt == attempts - 1:
             fixed = 0.0
-        bound = _Bound(want or 1, 2 * keys.total, fixed)
+        bound = _Bound(want or 1, 2 * keys.total, fixed, start)
         if memo is not None and memo.prepared is not None:
             prepared = memo.prepared
         elif memo is not None:
@@ -915,7 +955,11 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
                 rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
                 prebound=False)
         else:
-            prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude)
+            prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude,
+                                   guesses=guesses if attempt == 0 else None,
+                                   lower=not start)
+        if attempt == 0:
+            guessing = bound.start > 0
         similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
@@ -931,7 +975,11 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             kth = found[top - 1].t * (1 - TIE)
             if bound.floor <= kth:
                 break
-            fixed = kth
+            fixed, start, guessing = kth, 0.0, False
+        elif guessing and guesses:          # the next guess (then the bound's own)
+            start = guesses.pop(0)
+        elif guessing:
+            start, guessing = 0.0, False
         else:
             want, fixed = 4 * (want or 1), None
     return found
