@@ -395,7 +395,7 @@ def test_branch_and_bound_is_exact_along_the_boundary(kind):
          "blob": 30 + 4 * np.sin(3 * a) + 2 * np.cos(5 * a)}[kind]
     part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
     every = three_finger_plans(part, plan_spec(fingers=3, mu=0.4, top=None))
-    # above KEEP_PAIRS the two-finger plans give no floor: the running top's own cut
+    # above KEEP_PAIRS the two-finger list is read further (its floor holds for top 30)
     for top in (1, 3, 10, 30):
         pruned = three_finger_plans(part, plan_spec(fingers=3, mu=0.4, top=top))
         assert [(p.mode, p.region_edges) for p in pruned] == \
@@ -522,3 +522,43 @@ def test_side_by_side_regions_are_the_best_split(seed):
     plan = fc.plan(part, fingers=3, mu=0.5, top=1)[0]
     for g, nrm in zip(*_plan_grasps(plan, part, rng, 64), strict=True):
         assert closure_margin_lp(grasp_wrenches(g, nrm, 0.5)) > 0
+
+
+@pytest.mark.parametrize("seed", [3, 34, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in range(40) if s not in (3, 34))])
+def test_pair_plans_read_every_pair_that_can_rank(seed):
+    """The two-finger list is read as far as a pair can rank: every pair plan that ranks
+    among the best ``keep`` of all pair plans (by the leximin order, ties with the
+    ``keep``-th included) is among those read.  Elongated and smooth outlines of 30-60
+    edges, where the third finger's free stretch, not the two fingers, often sets a
+    pair's smallest region, so the list must be read past the ``keep``-th two-finger
+    plan (by default a stadium and an ellipse where reading it once misses a pair)."""
+    from fcgrasp.grippers import three_fingers as T
+    from fcgrasp.pipeline import features
+
+    rng = np.random.default_rng(500 + seed)
+    n = int(rng.integers(30, 60))
+    if seed % 2:                # a stadium: the free stretch (an end) is the shortest
+        h = np.linspace(-np.pi / 2, np.pi / 2, n // 2)
+        w, r = rng.uniform(20, 60), rng.uniform(4, 10)
+        pts = np.concatenate([np.c_[w + r * np.cos(h), r * np.sin(h)],
+                              np.c_[-w - r * np.cos(h), -r * np.sin(h)]])
+    else:
+        a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+        ecc = rng.uniform(0.15, 0.7)
+        r = 1 / np.sqrt(np.cos(a) ** 2 + (np.sin(a) / ecc) ** 2) * (1 + 0.05 * np.sin(3 * a))
+        pts = 40 * np.c_[r * np.cos(a), r * np.sin(a)]
+    part = fc.Polygon(pts)
+    mu = float(rng.choice([0.2, 0.4, 0.8]))
+    spec = plan_spec(fingers=3, mu=mu, top=None)
+    F = features(part, mu, None, None)
+    every = T._pair_plans(part, spec, None, F, None)
+    keyed = sorted((leximin_key(p.lengths, part.size), p.region_edges) for p in every)
+    for keep in (3, 12, 30):
+        got = {p.region_edges for p in T._pair_plans(part, spec, None, F, keep)}
+        if len(keyed) > keep:
+            last = keyed[keep - 1][0]
+            want = {e for k, e in keyed if k <= last}
+        else:
+            want = {e for _, e in keyed}
+        assert want <= got

@@ -20,7 +20,8 @@ from . import _concurrency
 #: How the half-turn excess between two neighbouring cones is split between them (the
 #: share taken from the first arc's start): each split gives one convex piece.
 SPLITS = _concurrency.SPLITS
-#: Two-finger plans (fingers holding on their own) tried with a third finger anywhere.
+#: Two-finger plans (fingers holding on their own) read first, to be tried with a third
+#: finger anywhere (more where they may rank: ``three_fingers._pair_plans``).
 KEEP_PAIRS = 20
 #: Rows of candidate triples solved per linear program (blocks of one sparse LP).
 LP_ROWS = 24

@@ -77,7 +77,7 @@ from ..pipeline import (
     search_size,
 )
 from . import _concurrency
-from ._boundary import boundary_plans, ranked_unique, regions_plan
+from ._boundary import ranked_unique, regions_plan, stretch_plans_read
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
            "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
@@ -124,12 +124,13 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     :func:`~fcgrasp.pipeline.candidates` by decreasing bound (the shortest feature): each
     gets its best concurrent piece (:func:`concurrent_regions`), and the stream stops when
     no later triple can reach the ``top``-th smallest region found (branch and bound,
-    exact for the pieces).  The :data:`KEEP_PAIRS` best two-finger plans with the third
-    finger anywhere on the longest feature of another edge (mode ``"pair"``) are
-    candidates too.  Ranked as :func:`fcgrasp.pipeline.rank` ranks: the measure
-    ``spec.rank_by`` (of the :data:`KEEP_FOR_MEASURE` best by smallest region when it is
-    not ``min_region``), the leximin order, the geometric key.  ``progress(done,
-    total)`` counts candidate triples.
+    exact for the pieces).  The two-finger plans with the third finger anywhere on the
+    longest feature of another edge (mode ``"pair"``) are candidates too, read down the
+    two-finger list as far as one can rank (:func:`_pair_plans`).  Ranked as
+    :func:`fcgrasp.pipeline.rank` ranks: the measure ``spec.rank_by`` (of the
+    :data:`KEEP_FOR_MEASURE` best by smallest region when it is not ``min_region``),
+    the leximin order, the geometric key.  ``progress(done, total)`` counts candidate
+    triples.
 
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
@@ -150,7 +151,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     # two fingers that hold on their own, first: a triple whose smallest region cannot
     # reach the top-th of them cannot rank (on a smooth outline of equal edges, where
     # every triple's bound ties, this is what ends the search)
-    pairs = _pair_plans(polygon, spec, edges, F)
+    pairs = _pair_plans(polygon, spec, edges, F, keep)
     floor = 0.0
     if keep is not None and len(pairs) >= keep:
         floor = sorted((float(min(p.lengths)) for p in pairs), reverse=True)[keep - 1] \
@@ -436,41 +437,67 @@ def _tie_step(length: Any, size: float) -> Any:
     return np.round(np.asarray(length) / size / PIECE_TIE)
 
 
-def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any) -> list[GraspPlan]:
+def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
+                keep: int | None) -> list[GraspPlan]:
     """Two fingers that hold on their own (the exact two-finger plans) and a third
     anywhere on the longest feature of another edge: force closure whatever the third
     finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
     an outline where a region can cover a vertex) the two are the exact two-finger
-    stretches (:func:`fcgrasp.pipeline.boundary_plans`) and the third runs along the
+    stretches (:func:`._boundary.stretch_plans_read`) and the third runs along the
     longest stretch of edges neither touches (:func:`free_stretch`): three fingers then
-    never do worse than the two-finger stretches with the third finger so placed."""
+    never do worse than the two-finger stretches with the third finger so placed.
+
+    Every two-finger plan is a candidate; ``keep`` given, the ranked two-finger list is
+    read (at least :data:`KEEP_PAIRS` of it, twice as many each time) until no plan
+    after it can reach the ``keep``-th smallest region of those read (a pair's smallest
+    region is at most its two fingers', which only falls along the list), so the pairs
+    returned are all that can rank among the best ``keep`` or tie with the last."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return []
     boundary = (spec.along_boundary and spec.hand is None and edges is None
                 and crosses_a_vertex(polygon, spec.mu, spec.margin))
-    two = replace(spec, fingers=2, top=KEEP_PAIRS, rank_by="min_region",
-                  along_boundary=boundary)
     lengths = np.hypot(*(F.b - F.a).T)
-    out = []
+    size = polygon.size
+    ask = None if keep is None else max(KEEP_PAIRS, keep)
+    while True:
+        two = replace(spec, fingers=2, top=ask, rank_by="min_region",
+                      along_boundary=boundary)
+        if boundary:
+            got, every, last = stretch_plans_read(polygon, two)
+        else:
+            got = search(polygon, two, edges=edges)
+            every = ask is None or len(got) < ask
+            last = min((float(min(p.lengths)) for p in got), default=0.0)
+        out = [q for q in (_with_third(polygon, spec, p, F, lengths, boundary) for p in got)
+               if q is not None]
+        if keep is None or ask is None or every:
+            return out                   # the whole list
+        best = sorted((float(min(q.lengths)) for q in out), reverse=True)
+        # a configuration not read is within the tie tolerance of the last read
+        if len(best) >= keep and last / (1 - RANK_TOL) < best[keep - 1] - 4 * RANK_TOL * size:
+            return out
+        ask = 2 * max(ask, len(got))
+
+
+def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths: FloatArray,
+                boundary: bool) -> GraspPlan | None:
+    """The two-finger plan ``p`` with a third finger anywhere on the longest stretch
+    (``boundary``) or feature of the edges it does not touch; None where there is
+    none."""
     if boundary:
-        for p in boundary_plans(polygon, two):
-            run = free_stretch(polygon, {e for st in p.region_edges for e in st})
-            if run is None:
-                continue
-            line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
-            out.append(regions_plan(polygon, spec, [*p.regions, line],
-                                    (*p.region_edges, run),
-                                    [*p.lengths, float(polygon.lengths[list(run)].sum())],
-                                    "friction", "pair"))
-        return out
-    for p in search(polygon, two, edges=edges):
-        other = np.flatnonzero(~np.isin(F.edge, p.edges))
-        if not other.size:
-            continue
-        f = int(other[np.argmax(lengths[other])])
-        ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
-        out.append(_plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair"))
-    return out
+        run = free_stretch(polygon, {e for st in p.region_edges for e in st})
+        if run is None:
+            return None
+        line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
+        return regions_plan(polygon, spec, [*p.regions, line], (*p.region_edges, run),
+                            [*p.lengths, float(polygon.lengths[list(run)].sum())],
+                            "friction", "pair")
+    other = np.flatnonzero(~np.isin(F.edge, p.edges))
+    if not other.size:
+        return None
+    f = int(other[np.argmax(lengths[other])])
+    ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
+    return _plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair")
 
 
 def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
