@@ -562,3 +562,64 @@ def test_pair_plans_read_every_pair_that_can_rank(seed):
         else:
             want = {e for _, e in keyed}
         assert want <= got
+
+
+def _free_stretch_reference(polygon, covered):
+    """free_stretch as first written: each ring walked edge by edge from just after its
+    first covered edge (or its shortest), runs split at covered edges, the first
+    strictly longest kept."""
+    covered = set(covered)
+    best, best_len = None, -1.0
+    for r in np.unique(polygon.rings):
+        usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
+        if usable.size < 2:
+            continue
+        taken = [int(e) for e in usable if int(e) in covered]
+        first = taken[0] if taken else int(usable[np.argmin(polygon.lengths[usable])])
+        order = [polygon.next_edge(first)]
+        while len(order) < usable.size:
+            order.append(polygon.next_edge(order[-1]))
+        runs = [[]]
+        for e in order[:-1] if not taken else order:
+            if e in covered:
+                runs.append([])
+            else:
+                runs[-1].append(e)
+        for run in runs:
+            length = float(polygon.lengths[run].sum()) if run else 0.0
+            if run and length > best_len:
+                best, best_len = tuple(run), length
+    return best
+
+
+@pytest.mark.parametrize("seed", [0, 1, 9, *(pytest.param(s, marks=pytest.mark.slow)
+                                            for s in range(30) if s not in (0, 1, 9))])
+def test_free_stretch_is_the_edge_by_edge_walk(seed):
+    """The free stretches read in numpy are those of the edge-by-edge walk they replace,
+    on parts with holes, regular rings (equal runs: the first met) and repeated
+    vertices (an unusable edge), for random covered sets of every size (seed 9, by
+    default: a regular ring with a hole, where the walk starts decides between
+    equal runs)."""
+    from fcgrasp.grippers.three_fingers import _FreeStretches, free_stretch
+
+    rng = np.random.default_rng(900 + seed)
+    n = int(rng.integers(6, 40))
+    th = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 30 * (1 + (0 if seed % 3 == 0 else 0.2) * rng.uniform(-1, 1, n))
+    outer = np.c_[r * np.cos(th), r * np.sin(th)]
+    if seed % 4 == 1:                       # a repeated vertex: an unusable edge
+        outer = np.r_[outer[:3], outer[2:]]
+    holes = []
+    if seed % 2:
+        m = int(rng.integers(3, 9))
+        ht = np.linspace(0, 2 * np.pi, m, endpoint=False)[::-1]
+        holes = [np.c_[5 * np.cos(ht), 5 * np.sin(ht)]]
+    part = fc.Polygon(outer, holes=holes)
+    free = _FreeStretches(part)
+    for k in range(60):
+        size = int(rng.integers(0, part.n_edges + 1)) if k % 3 else int(rng.integers(0, 4))
+        usable = np.flatnonzero(part.usable)
+        covered = {int(e) for e in rng.choice(usable, min(size, usable.size), replace=False)}
+        want = _free_stretch_reference(part, covered)
+        assert free.longest(covered) == want
+        assert free_stretch(part, covered) == want

@@ -459,6 +459,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     lengths = np.hypot(*(F.b - F.a).T)
     size = polygon.size
     ask = None if keep is None else max(KEEP_PAIRS, keep)
+    free = _FreeStretches(polygon) if boundary else None
     while True:
         two = replace(spec, fingers=2, top=ask, rank_by="min_region",
                       along_boundary=boundary)
@@ -468,7 +469,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             got = search(polygon, two, edges=edges)
             every = ask is None or len(got) < ask
             last = min((float(min(p.lengths)) for p in got), default=0.0)
-        out = [q for q in (_with_third(polygon, spec, p, F, lengths, boundary) for p in got)
+        out = [q for q in (_with_third(polygon, spec, p, F, lengths, free) for p in got)
                if q is not None]
         if keep is None or ask is None or every:
             return out                   # the whole list
@@ -480,12 +481,12 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
 
 
 def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths: FloatArray,
-                boundary: bool) -> GraspPlan | None:
+                free: _FreeStretches | None) -> GraspPlan | None:
     """The two-finger plan ``p`` with a third finger anywhere on the longest stretch
-    (``boundary``) or feature of the edges it does not touch; None where there is
-    none."""
-    if boundary:
-        run = free_stretch(polygon, {e for st in p.region_edges for e in st})
+    (``free``, the part's free stretches: along the boundary) or feature of the edges
+    it does not touch; None where there is none."""
+    if free is not None:
+        run = free.longest({e for st in p.region_edges for e in st})
         if run is None:
             return None
         line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
@@ -503,37 +504,70 @@ def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths:
 def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
     """The longest stretch (consecutive usable edges of one ring, in ring order, not the
     whole ring) none of whose edges is in ``covered`` (on a ring no edge of which is
-    covered: all but its shortest edge); None when every edge is.
+    covered: all but its shortest edge); None when every edge is.  Of equally long ones,
+    the first met: rings in order, each walked from just after its first covered edge
+    (or its shortest).
 
     >>> sq = Polygon([[0, 0], [4, 0], [4, 3], [0, 3]])
     >>> free_stretch(sq, {0}), free_stretch(sq, set())
     ((1, 2, 3), (2, 3, 0))
     """
     polygon = check_polygon(polygon)
-    covered = set(polygon.check_edges(list(covered), "covered")) if len(covered) else set()
-    best: tuple[int, ...] | None = None
-    best_len = -1.0
-    for r in np.unique(polygon.rings):
-        usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
-        if usable.size < 2:
-            continue
-        # the ring in order, starting just after a covered edge (or after its shortest)
-        taken = [int(e) for e in usable if int(e) in covered]
-        first = taken[0] if taken else int(usable[np.argmin(polygon.lengths[usable])])
-        order = [polygon.next_edge(first)]
-        while len(order) < usable.size:
-            order.append(polygon.next_edge(order[-1]))
-        runs: list[list[int]] = [[]]
-        for e in order[:-1] if not taken else order:
-            if e in covered:
-                runs.append([])
-            else:
-                runs[-1].append(e)
-        for run in runs:
-            length = float(polygon.lengths[run].sum()) if run else 0.0
-            if run and length > best_len:
-                best, best_len = tuple(run), length
-    return best
+    covered = polygon.check_edges(list(covered), "covered") if len(covered) else []
+    return _FreeStretches(polygon).longest(covered)
+
+
+class _FreeStretches:
+    """:func:`free_stretch` for many sets of covered edges on one part: each ring's
+    usable edges walked once (``next_edge``), then every set read in numpy."""
+
+    def __init__(self, polygon: Polygon) -> None:
+        self.polygon = polygon
+        self.place = np.full(polygon.n_edges, -1)
+        #: per ring: its usable edges in walking order, and its shortest (first of ties)
+        self.rings: list[tuple[np.ndarray, int]] = []
+        for r in np.unique(polygon.rings):
+            usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
+            if usable.size < 2:
+                continue
+            walk = [int(usable[0])]
+            while len(walk) < usable.size:
+                walk.append(polygon.next_edge(walk[-1]))
+            cycle = np.array(walk)
+            self.place[cycle] = np.arange(cycle.size)
+            self.rings.append((cycle, int(usable[np.argmin(polygon.lengths[usable])])))
+
+    def longest(self, covered: Any) -> tuple[int, ...] | None:
+        """The longest free stretch (see :func:`free_stretch`); ``covered`` valid edges."""
+        L = self.polygon.lengths
+        mask = np.zeros(L.size, bool)
+        mask[np.asarray(list(covered), dtype=np.int64)] = True
+        runs: list[tuple[np.ndarray, float]] = []      # every run, in the order met
+        for cycle, shortest in self.rings:
+            hit = mask[cycle]
+            first = int(cycle[hit].min()) if hit.any() else shortest
+            order = np.roll(cycle, -(int(self.place[first]) + 1))   # ends with first
+            seq = order if hit.any() else order[:-1]
+            cut = mask[seq]
+            group = np.cumsum(cut)[~cut]
+            free = seq[~cut]
+            if not free.size:
+                continue
+            starts = np.flatnonzero(np.r_[True, group[1:] != group[:-1]])
+            sums = np.add.reduceat(L[free], starts)
+            runs += zip(np.split(free, starts[1:]), sums.tolist(), strict=True)
+        if not runs:
+            return None
+        top = max(r[1] for r in runs)
+        # the first run met at the greatest length, the lengths summed as the plan sums
+        best: tuple[int, ...] | None = None
+        best_len = -1.0
+        for run, approx in runs:
+            if approx >= top * (1 - 1e-9):
+                length = float(L[run].sum())
+                if length > best_len:
+                    best, best_len = tuple(int(e) for e in run), length
+        return best
 
 
 def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
