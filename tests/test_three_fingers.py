@@ -585,10 +585,10 @@ def _free_stretch_reference(polygon, covered):
                 runs.append([])
             else:
                 runs[-1].append(e)
-        for run in runs:
-            length = float(polygon.lengths[run].sum()) if run else 0.0
-            if run and length > best_len:
-                best, best_len = tuple(run), length
+        for stretch in runs:
+            length = float(polygon.lengths[stretch].sum()) if stretch else 0.0
+            if stretch and length > best_len:
+                best, best_len = tuple(stretch), length
     return best
 
 
