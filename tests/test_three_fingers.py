@@ -526,7 +526,7 @@ def test_side_by_side_regions_are_the_best_split(seed):
 
 @pytest.mark.parametrize("seed", [3, 34, *(pytest.param(s, marks=pytest.mark.slow)
                                           for s in range(40) if s not in (3, 34))])
-def test_pair_plans_read_every_pair_that_can_rank(seed):
+def test_pair_plans_read_every_pair_that_can_rank(seed, monkeypatch):
     """The two-finger list is read as far as a pair can rank: every pair plan that ranks
     among the best ``keep`` of all pair plans (by the leximin order, ties with the
     ``keep``-th included) is among those read.  Elongated and smooth outlines of 30-60
@@ -552,16 +552,33 @@ def test_pair_plans_read_every_pair_that_can_rank(seed):
     mu = float(rng.choice([0.2, 0.4, 0.8]))
     spec = plan_spec(fingers=3, mu=mu, top=None)
     F = features(part, mu, None, None)
-    every = T._pair_plans(part, spec, None, F, None)
+    every = T._pair_plans(part, spec, None, F, None)[0]
     keyed = sorted((leximin_key(p.lengths, part.size), p.region_edges) for p in every)
     for keep in (3, 12, 30):
-        got = {p.region_edges for p in T._pair_plans(part, spec, None, F, keep)}
+        got = {p.region_edges for p in T._pair_plans(part, spec, None, F, keep)[0]}
         if len(keyed) > keep:
             last = keyed[keep - 1][0]
             want = {e for k, e in keyed if k <= last}
         else:
             want = {e for _, e in keyed}
         assert want <= got
+    # in the planner, the pairs read after the triples: every pair that ranks at or
+    # above the keep-th plan of all (triples too) is a candidate
+    calls = []
+    pair_plans = T._pair_plans
+
+    def spy(*args, **kw):
+        out = pair_plans(*args, **kw)
+        calls.append(out[0])
+        return out
+
+    monkeypatch.setattr(T, "_pair_plans", spy)
+    for keep in (3, 12, 30):
+        calls.clear()
+        ranked = T.three_finger_plans(part, plan_spec(fingers=3, mu=mu, top=keep))
+        read = {p.region_edges for p in calls[-1]}
+        kth = leximin_key(ranked[-1].lengths, part.size) if len(ranked) >= keep else None
+        assert {e for k, e in keyed if kth is None or k < kth} <= read
 
 
 def _free_stretch_reference(polygon, covered):

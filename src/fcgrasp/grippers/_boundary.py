@@ -156,13 +156,16 @@ def stretch_plans_read(polygon: Polygon, spec: PlanSpec
                        ) -> tuple[list[GraspPlan], bool, float]:
     """The plans of the ``spec.top`` best two-finger stretch configurations and every
     tie of the last (``spec.top`` None: of all of them), ranked, each grasp once; whether
-    they are all there are; and the least smallest region among the configurations
-    read, which no configuration left unread exceeds (an outline where a region can
-    cover a vertex; ``rank_by`` is ``min_region``)."""
+    they are all there are; and a smallest region every configuration left unread is
+    below (the ``spec.top``-th's, less the search's relative tie tolerance: its ties
+    are all read).  An outline where a region can cover a vertex; ``rank_by`` is
+    ``min_region``."""
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=spec.top, ties=True)
     plans = ranked_unique(polygon, replace(spec, top=None), _stretch_plans(polygon, spec, pairs))
-    every = spec.top is None or len(pairs) < spec.top
-    return plans, every, min((p.min_length for p in pairs), default=0.0)
+    if spec.top is None or len(pairs) < spec.top:
+        return plans, True, 0.0
+    kth = sorted((p.min_length for p in pairs), reverse=True)[spec.top - 1]
+    return plans, False, kth * (1 - RANK_TOL)
 
 
 def _stretch_plans(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair]

@@ -151,7 +151,9 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     # two fingers that hold on their own, first: a triple whose smallest region cannot
     # reach the top-th of them cannot rank (on a smooth outline of equal edges, where
     # every triple's bound ties, this is what ends the search)
-    pairs = _pair_plans(polygon, spec, edges, F, keep)
+    # the first of them (KEEP_PAIRS, or keep); more after the triples, as far as one
+    # can rank among every candidate (_pair_plans)
+    pairs, more = _pair_plans(polygon, spec, edges, F, keep, first=True)
     floor = 0.0
     if keep is not None and len(pairs) >= keep:
         floor = sorted((float(min(p.lengths)) for p in pairs), reverse=True)[keep - 1] \
@@ -237,6 +239,12 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                            "concurrent"))
     if grow:
         plans += _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
+    if more is not None and keep is not None:
+        mins = sorted((float(min(p.lengths)) for p in plans + pairs), reverse=True)
+        level = mins[keep - 1] if len(mins) >= keep else 0.0
+        ask, below = more
+        if below > level:
+            pairs = _pair_plans(polygon, spec, edges, F, keep, level=level, start=ask)[0]
     plans += pairs
     return _ranked(polygon, spec, plans, keep)
 
@@ -438,7 +446,8 @@ def _tie_step(length: Any, size: float) -> Any:
 
 
 def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
-                keep: int | None) -> list[GraspPlan]:
+                keep: int | None, level: float = 0.0, first: bool = False,
+                start: int | None = None) -> tuple[list[GraspPlan], tuple[int, float] | None]:
     """Two fingers that hold on their own (the exact two-finger plans) and a third
     anywhere on the longest feature of another edge: force closure whatever the third
     finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
@@ -448,36 +457,45 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     never do worse than the two-finger stretches with the third finger so placed.
 
     Every two-finger plan is a candidate; ``keep`` given, the ranked two-finger list is
-    read (at least :data:`KEEP_PAIRS` of it, twice as many each time) until no plan
-    after it can reach the ``keep``-th smallest region of those read (a pair's smallest
-    region is at most its two fingers', which only falls along the list), so the pairs
-    returned are all that can rank among the best ``keep`` or tie with the last."""
+    read (at least :data:`KEEP_PAIRS` of it, or from ``start``, twice as many each
+    time) until no plan after it can reach the ``keep``-th smallest region of those
+    read, nor ``level`` (the ``keep``-th of the other candidates, found with the first
+    pairs' floor: a pair's smallest region is at most its two fingers', which only
+    falls along the list), so the pairs returned are all that can rank among the best
+    ``keep`` or tie with the last (to the two-finger search's tie tolerance).  Returns
+    them and, with ``first`` (the first read only), where to read on and the smallest
+    region every pair not read is below (None: nothing left that can rank)."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
-        return []
+        return [], None
     boundary = (spec.along_boundary and spec.hand is None and edges is None
                 and crosses_a_vertex(polygon, spec.mu, spec.margin))
     lengths = np.hypot(*(F.b - F.a).T)
     size = polygon.size
-    ask = None if keep is None else max(KEEP_PAIRS, keep)
+    ask = None if keep is None else start or max(KEEP_PAIRS, keep)
     free = _FreeStretches(polygon) if boundary else None
     while True:
         two = replace(spec, fingers=2, top=ask, rank_by="min_region",
                       along_boundary=boundary)
         if boundary:
-            got, every, last = stretch_plans_read(polygon, two)
+            got, every, below = stretch_plans_read(polygon, two)
         else:
             got = search(polygon, two, edges=edges)
             every = ask is None or len(got) < ask
+            # a plan not read ranks after the last read: no larger, to the rounding
             last = min((float(min(p.lengths)) for p in got), default=0.0)
+            below = last * (1 + RANK_TOL) + 4 * RANK_TOL * size
         out = [q for q in (_with_third(polygon, spec, p, F, lengths, free) for p in got)
                if q is not None]
         if keep is None or ask is None or every:
-            return out                   # the whole list
+            return out, None             # the whole list
         best = sorted((float(min(q.lengths)) for q in out), reverse=True)
-        # a configuration not read is within the tie tolerance of the last read
-        if len(best) >= keep and last / (1 - RANK_TOL) < best[keep - 1] - 4 * RANK_TOL * size:
-            return out
+        reach = max(level, best[keep - 1] if len(best) >= keep else 0.0)
+        # every pair not read is below ``below``: none reaches the keep-th
+        if below <= reach:
+            return out, None
         ask = 2 * max(ask, len(got))
+        if first:
+            return out, (ask, below)
 
 
 def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths: FloatArray,

@@ -448,6 +448,21 @@ FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
 KERNEL_OWN = 2_000
 
 
+#: A search asked for more plans than this (or for all of them) loads the compiled loops
+#: whatever the rings' size: a deep list of a smooth outline solves hundreds of
+#: thousands of configurations (a flattened circle of 512 edges, top 512: 4.6 s in
+#: numpy, 0.5 s compiled).
+KERNEL_TOP = 64
+
+
+def _load_for_depth(top: int | None) -> None:
+    """Load the compiled loops for a search of ``top`` plans (:data:`KERNEL_TOP`), where
+    numba is there and ``FCGRASP_JIT`` leaves the choice to the search."""
+    if (top is None or top > KERNEL_TOP) and jit_setting() is None \
+            and not _stretch_kernels.loaded():
+        _stretch_kernels._LOOPS.get()
+
+
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
@@ -1252,6 +1267,7 @@ class StretchSearch:
         if self.beta <= 0:
             return []
         rings, polygon = self.rings, self.polygon
+        _load_for_depth(top_v)
         kept = [(p.regions, p.region_edges) for p in exclude if len(p.regions) == 2]
         read = [(p.region_edges, p.mode) for p in seen if len(p.region_edges) == 2]
         # (nothing to exclude: no map of the edges, 36 ms on 10,000 edges)
