@@ -581,7 +581,7 @@ class _FreeStretches:
         best: tuple[int, ...] | None = None
         best_len = -1.0
         for run, approx in runs:
-            if approx >= top * (1 - 1e-9):
+            if approx >= top * (1 - RANK_TOL):     # sums in another order: near it
                 length = float(L[run].sum())
                 if length > best_len:
                     best, best_len = tuple(int(e) for e in run), length
