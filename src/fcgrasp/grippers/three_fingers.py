@@ -463,8 +463,9 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     pairs' floor: a pair's smallest region is at most its two fingers', which only
     falls along the list), so the pairs returned are all that can rank among the best
     ``keep`` or tie with the last (to the two-finger search's tie tolerance).  Returns
-    them and, with ``first`` (the first read only), where to read on and the smallest
-    region every pair not read is below (None: nothing left that can rank)."""
+    them and, with ``first`` (the first read that has ``keep`` pairs only), where to
+    read on and the smallest region every pair not read is below (None: nothing left
+    that can rank)."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return [], None
     boundary = (spec.along_boundary and spec.hand is None and edges is None
@@ -494,7 +495,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
         if below <= reach:
             return out, None
         ask = 2 * max(ask, len(got))
-        if first:
+        if first and len(out) >= keep:  # enough for the triples' floor
             return out, (ask, below)
 
 
