@@ -693,14 +693,17 @@ def test_member_is_isin():
         np.testing.assert_array_equal(_member(codes, known), np.isin(codes, known))
 
 
-@pytest.mark.parametrize("seed", seeds(4, 160))
+@pytest.mark.parametrize("seed", [0, 1, 10, 14, *(pytest.param(s, marks=pytest.mark.slow)
+                                              for s in range(160) if s not in (0, 1, 10, 14))])
 def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
     """Where the lower bounds fill fewer keys than ``top`` (one key holds many of the top
     configurations of a smooth outline), the floor guessed from the keys' values gives
     the plans of the search without a guess (which collects every configuration): the
     same configurations, ties included, regions to 1e-9 of the part's size.  The cases
     ask for half of the keys or all of them, so that most fill fewer keys than they ask
-    for: the first search must guess exactly then."""
+    for: the first search must guess exactly then.  Where the guesses keep too few
+    (the own-optimum filter drops most configurations), the floor is halved and fixed:
+    seeds 10 and 14, by default, need that to find ``top``."""
     rng = np.random.default_rng(7000 + seed)
     kind = ("ellipse", "cam", "rounded", "regular", "noisy", "star")[seed % 6]
     poly = Polygon(outline(rng, kind, int(rng.integers(16, 60))))

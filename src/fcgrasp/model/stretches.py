@@ -932,6 +932,10 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
 _ATTEMPTS = 5
 #: Whether the first search guesses floors from its keys' values (:func:`_candidates`).
 _GUESS = True
+#: Times a guessed floor that keeps fewer than ``top`` (the own-optimum filter drops
+#: most of a smooth outline's configurations, while the bound, which counts them, rises
+#: above the floor) is halved and fixed before the bound's own is tried.
+_HALVINGS = 3
 
 
 def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
@@ -957,8 +961,8 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     want, fixed = top, None
     # floors guessed by the first search (_candidates), tried in turn while too high
     guesses: list[float] | None = [] if _GUESS and top is not None else None
-    guessing, start = False, 0.0
-    attempts = _ATTEMPTS + (3 if _GUESS else 0)
+    guessing, start, halve = False, 0.0, 0
+    attempts = _ATTEMPTS + (3 + _HALVINGS if _GUESS else 0)
     for attempt in range(attempts):
         if top is None or attempt == attempts - 1:
             fixed = 0.0
@@ -993,8 +997,10 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             fixed, start, guessing = kth, 0.0, False
         elif guessing and guesses:          # the next guess (then the bound's own)
             start = guesses.pop(0)
+        elif guessing and halve < _HALVINGS:   # then half the last floor, fixed
+            fixed, start, halve = bound.floor / 2, 0.0, halve + 1
         elif guessing:
-            start, guessing = 0.0, False
+            fixed, start, guessing = None, 0.0, False
         else:
             want, fixed = 4 * (want or 1), None
     return found
