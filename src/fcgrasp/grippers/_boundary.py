@@ -242,12 +242,11 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     if not crosses_a_vertex(polygon, spec.mu, spec.margin):
         # no region can cover a vertex: the regions are the single-edge ones
         return ranked_unique(polygon, spec, search(polygon, flat))
-    by_min = spec.rank_by == "min_region"
-    keep = spec.top if by_min or spec.top is None else max(spec.top, KEEP_STRETCHES)
-    pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=by_min)
-    if by_min:
-        plans = _stretch_plans(polygon, spec, pairs)
-    else:
-        multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
-        plans = [stretch_plan(polygon, spec, p) for p in multi] + search(polygon, flat)
+    if spec.rank_by == "min_region":
+        plans = stretch_plans_read(polygon, spec)[0]
+        return plans if spec.top is None else plans[:spec.top]
+    keep = None if spec.top is None else max(spec.top, KEEP_STRETCHES)
+    pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=False)
+    multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
+    plans = [stretch_plan(polygon, spec, p) for p in multi] + search(polygon, flat)
     return ranked_unique(polygon, spec, plans)

@@ -1217,6 +1217,12 @@ def _load() -> dict[str, Any]:
     return loops
 
 
+def available() -> bool:
+    """Do the compiled loops run here (loaded now, on first use)?  Not with
+    ``FCGRASP_JIT=0`` or without a working numba."""
+    return _LOOPS.available()
+
+
 def loaded() -> bool:
     """Whether this process has loaded the compiled loops (then they cost nothing more)."""
     return _LOOPS.loaded
