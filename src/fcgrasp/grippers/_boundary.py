@@ -161,11 +161,19 @@ def stretch_plans_read(polygon: Polygon, spec: PlanSpec
     are all read).  An outline where a region can cover a vertex; ``rank_by`` is
     ``min_region``."""
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=spec.top, ties=True)
-    plans = ranked_unique(polygon, replace(spec, top=None), _stretch_plans(polygon, spec, pairs))
+    plans = two_finger_plans_of(polygon, spec, pairs)
     if spec.top is None or len(pairs) < spec.top:
         return plans, True, 0.0
     kth = sorted((p.min_length for p in pairs), reverse=True)[spec.top - 1]
     return plans, False, kth * (1 - RANK_TOL)
+
+
+def two_finger_plans_of(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair],
+                        given: set[Any] | None = None) -> list[GraspPlan]:
+    """The plans of two-finger stretch configurations, ranked (:func:`ranked_unique`,
+    whatever ``spec.top``), each grasp once (``given``: the grasps given before)."""
+    return ranked_unique(polygon, replace(spec, top=None), _stretch_plans(polygon, spec, pairs),
+                         given)
 
 
 def _stretch_plans(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair]
@@ -211,8 +219,7 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     while len(suppression.kept) < top:
         pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
                                 fraction=fraction, seen=read)
-        ranked = ranked_unique(polygon, replace(spec, top=None),
-                               _stretch_plans(polygon, spec, pairs), given)
+        ranked = two_finger_plans_of(polygon, spec, pairs, given)
         for p in ranked:
             suppression.add(p)
         read += ranked

@@ -48,7 +48,7 @@ from ._boundary import (
     stretch_plan,
 )
 from .base import DEFAULT_MU, SearchOptions, register
-from .three_fingers import three_finger_plans
+from .three_fingers import distinct_three_finger_plans, three_finger_plans
 
 __all__ = ["TwoFingers", "ThreeFingers", "ThreeFrictionless", "FourFingers",
            "point_fingers", "fingers_from_options", "regions_on"]
@@ -189,6 +189,19 @@ class ThreeFingers(_PointFingers):
     def _search(self, polygon: Polygon, spec: PlanSpec,
                 options: SearchOptions) -> list[GraspPlan]:
         return three_finger_plans(polygon, spec, progress=options.progress)
+
+    def distinct_search(self, polygon: Polygon, options: SearchOptions, fraction: float
+                        ) -> list[GraspPlan] | None:
+        """The ``top`` distinct alternatives along the boundary found by a search that
+        leaves out each kept plan's copies
+        (:func:`~fcgrasp.grippers.three_fingers.distinct_three_finger_plans`), or None
+        where the ranked list is suppressed as it comes."""
+        spec = self.spec(options)
+        check_search(polygon, spec)
+        plans = distinct_three_finger_plans(polygon, spec, fraction)
+        if plans is not None and options.progress is not None:
+            options.progress(1, 1)
+        return plans
 
     def search_edges(self, polygon: Polygon, spec: PlanSpec,
                      edges: list[int]) -> list[GraspPlan]:

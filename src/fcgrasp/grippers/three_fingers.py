@@ -66,9 +66,10 @@ import numpy as np
 from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
-from ..model.plans import GraspPlan, leximin_key
+from ..model.distinct import Suppression
+from ..model.plans import GraspPlan, leximin_key, rank_key
 from ..model.polygon import Polygon, check_polygon
-from ..model.stretches import crosses_a_vertex
+from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (
     PlanSpec,
     candidates,
@@ -77,11 +78,17 @@ from ..pipeline import (
     search_size,
 )
 from . import _concurrency
-from ._boundary import ranked_unique, regions_plan, stretch_plans_read
+from ._boundary import (
+    DISTINCT_READ,
+    ranked_unique,
+    regions_plan,
+    stretch_plans_read,
+    two_finger_plans_of,
+)
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
            "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
-           "MAX_CORNERS", "MAX_STEPS"]
+           "MAX_CORNERS", "MAX_STEPS", "distinct_three_finger_plans"]
 from ._concurrent import (
     _SIDES,
     KEEP_PAIRS,
@@ -158,7 +165,29 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     if keep is not None and len(pairs) >= keep:
         floor = sorted((float(min(p.lengths)) for p in pairs), reverse=True)[keep - 1] \
             - 2 * RANK_TOL * size
-    pair_floor = floor
+    plans = _concurrent_plans(polygon, spec, edges, F, keep, floor, grow, progress)[0]
+    if more is not None and keep is not None:
+        mins = sorted((float(min(p.lengths)) for p in plans + pairs), reverse=True)
+        level = mins[keep - 1] if len(mins) >= keep else 0.0
+        ask, below = more
+        if below > level:
+            pairs = _pair_plans(polygon, spec, edges, F, keep, level=level, start=ask)[0]
+    plans += pairs
+    return _ranked(polygon, spec, plans, keep)
+
+
+def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
+                      keep: int | None, pair_floor: float, grow: bool, progress: Any = None
+                      ) -> tuple[list[GraspPlan], float]:
+    """The concurrent plans of :func:`three_finger_plans` (single edges, and with
+    ``grow`` those grown along the boundary from the :data:`GROW_SEEDS` best): every
+    triple whose smallest region reaches ``pair_floor`` and the ``keep``-th largest
+    (all of them where ``keep`` is None and ``pair_floor`` 0), by branch and bound.
+    Returns them and a level every concurrent plan of a single-edge triple left out
+    is below (-inf: none was)."""
+    size = polygon.size
+    floor = pair_floor
+    bounded = keep is not None or floor > 0
     # the rows that may rank, in the order found: while fewer than keep, all of them;
     # then those within the tie tolerance of the keep-th largest level (``levels``
     # theirs; sorted once at the end: on a flattened circle thousands tie, and sorting
@@ -180,7 +209,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         return out
 
     for batch in candidates(polygon, spec, edges):
-        if keep is not None and not useful(np.array([batch.ceiling]))[0]:
+        if bounded and not useful(np.array([batch.ceiling]))[0]:
             break
         rows = np.asarray(batch.feats, dtype=int)
         bound = np.asarray(batch.bound, dtype=float)
@@ -188,7 +217,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         step = KERNEL_ROWS if _concurrency.available() else LP_ROWS
         for start in range(0, len(rows), step):
             sub, bnd = rows[start:start + step], bound[start:start + step]
-            if keep is not None:
+            if bounded:
                 sub = sub[useful(bnd)]
             if len(sub):
                 res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
@@ -209,7 +238,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                         order += 1
                     seeds.sort(key=lambda r: r[:2])
                     del seeds[GROW_SEEDS:]
-                    if keep is not None and len(seeds) == GROW_SEEDS:
+                    if bounded and len(seeds) == GROW_SEEDS:
                         seed_step = -seeds[-1][0]
                 if keep is not None and len(found) >= keep:
                     last = float(np.partition(levels, levels.size - keep)[levels.size - keep])
@@ -222,13 +251,13 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
             done += step
             if progress is not None:
                 progress(min(done, total), total)
-            if keep is not None and len(bnd) and not useful(bnd[-1:])[0]:
+            if bounded and len(bnd) and not useful(bnd[-1:])[0]:
                 break
     if keep is not None and len(found) >= keep:    # cut: never fewer than keep again
         found.sort(key=lambda r: -r[0])
     plans = []
     for lv, row, blk in found:
-        if keep is not None and lv < floor:
+        if bounded and lv < floor:
             continue
         piece = _leximin(blk)
         if piece is None:
@@ -239,14 +268,87 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                            "concurrent"))
     if grow:
         plans += _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
-    if more is not None and keep is not None:
-        mins = sorted((float(min(p.lengths)) for p in plans + pairs), reverse=True)
-        level = mins[keep - 1] if len(mins) >= keep else 0.0
-        ask, below = more
-        if below > level:
-            pairs = _pair_plans(polygon, spec, edges, F, keep, level=level, start=ask)[0]
-    plans += pairs
-    return _ranked(polygon, spec, plans, keep)
+    # bounded: a row left out had a bound below the floor of its time, or a level
+    # below the last
+    return plans, floor if bounded else -np.inf
+
+
+def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float
+                                ) -> list[GraspPlan] | None:
+    """The ``spec.top`` best plans of :func:`three_finger_plans` along the boundary that
+    are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
+    whole ranked list, exactly), or None where this search does not apply (another
+    ``rank_by``, ``top=None``, a hand, no region covering a vertex: the caller then
+    suppresses the ranked list as usual).
+
+    The ranked list merges two sources, each read in rounds, and each with a level
+    every plan it has not given is below:
+
+    * the pair plans (two fingers that hold on their own, a free third), from rounds
+      of the two-finger stretch search that leave out the configurations whose pair
+      plan is surely the same alternative as a plan kept so far
+      (:meth:`~fcgrasp.model.stretches.StretchSearch.pairs` with ``third``: on a curved
+      outline one grasp has hundreds of shifted copies, which filled the list) and
+      those already read; a round's level is its last configuration's (its ties all
+      read), and a pair plan's smallest region is at most its two fingers';
+    * the concurrent plans (:func:`_concurrent_plans`), down to the pairs' level and
+      the ``keep``-th best, ``keep`` doubled when they are what holds the reading back.
+
+    The plans read that rank above both levels (by two rounding steps of the ranking)
+    come before every plan not read, so they are fed to suppression in rank order
+    (:class:`~fcgrasp.model.distinct.Suppression`), until ``top`` are kept; a plan
+    left out is dropped by suppression anyway, and dropped plans change nothing.
+    Each kept plan's ``similar`` lists the plans it stands for among those read."""
+    top = spec.top
+    if top is None or spec.rank_by != "min_region" or fraction <= 0 \
+            or spec.hand is not None or not spec.along_boundary \
+            or not crosses_a_vertex(polygon, spec.mu, spec.margin):
+        return None
+    F = features(polygon, spec.mu, None, None)
+    lengths = np.hypot(*(F.b - F.a).T)
+    size = polygon.size
+    band = 4 * RANK_TOL * size               # above both levels, after the rounding
+    every = replace(spec, top=None)
+    two = replace(spec, fingers=2, top=None, rank_by="min_region")
+    suppression = Suppression(fraction, size)
+    stretches = StretchSearch(polygon, spec.mu, spec.margin)
+    free = _FreeStretches(polygon)
+    read: list[GraspPlan] = []              # two-finger plans read: left out by name
+    given: set[Any] = set()
+    pairs: list[GraspPlan] = []
+    others: list[GraspPlan] = []
+    fed: set[Any] = set()                   # the (key, mode) of the plans fed
+    ask = keep = max(2 * top, DISTINCT_READ)
+    pair_level = other_level = np.inf
+    while len(suppression.kept) < top:
+        if pair_level >= other_level:
+            got = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
+                                  fraction=fraction, seen=read, third=True)
+            new = two_finger_plans_of(polygon, two, got, given)
+            read += new
+            pairs += [q for q in (_with_third(polygon, spec, p, F, lengths, free)
+                                  for p in new) if q is not None]
+            pair_level = -np.inf if len(got) < ask else \
+                sorted((p.min_length for p in got), reverse=True)[ask - 1] * (1 - RANK_TOL)
+        else:
+            keep *= 2
+        if other_level > pair_level:
+            others, other_level = _concurrent_plans(polygon, spec, None, F, keep,
+                                                    pair_level, True)
+            other_level = max(other_level, pair_level)
+        line = max(pair_level, other_level) + band
+        for p in ranked_unique(polygon, every, pairs + others):
+            if float(min(p.lengths)) < line:
+                break
+            key = (rank_key(p, polygon), p.mode)       # ranked_unique's: each grasp once
+            if key in fed:
+                continue
+            fed.add(key)
+            if suppression.add(p) and len(suppression.kept) == top:
+                break
+        if line == -np.inf:
+            break
+    return suppression.plans()[:top]
 
 
 #: Concurrent plans of single edges grown along the boundary (the best ones).

@@ -689,12 +689,14 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
 
 def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, ay0: Any,
                     ay1: Any, perx: float, pery: float, tol: float, keep: float,
-                    out: Any) -> None:
+                    mask: Any, masked: bool, out: Any) -> None:
     """``stretches._Exclusion.threshold``: ``out`` lowered to each configuration's least
-    ``tau`` over the kept plans' columns, fused over rows and columns: the same
-    numbers."""
+    ``tau`` over the kept plans' columns (with ``masked``, those of ``mask[r]`` only),
+    fused over rows and columns: the same numbers."""
     for r in range(a0x.size):
         for c in range(ax0.size):
+            if masked and not mask[r, c]:
+                continue
             ox = _outside_one(a0x[r], a1x[r], ax0[c], ax1[c], perx)
             oy = _outside_one(a0y[r], a1y[r], ay0[c], ay1[c], pery)
             la, lc = ax1[c] - ax0[c], ay1[c] - ay0[c]
@@ -749,13 +751,17 @@ def _surely_copy(s0: float, s1: float, e0: float, e1: float, t: float, k0: float
 
 
 def _similar_rows(sx: Any, sy: Any, ax0: Any, ax1: Any, ay0: Any, ay1: Any, perx: float,
-                  pery: float, tol: float, f: float, t: Any, out: Any) -> None:
+                  pery: float, tol: float, f: float, t: Any, mask: Any, masked: bool,
+                  out: Any) -> None:
     """``stretches._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
-    column, every region pair configuration ``r`` allows (its ends' intervals ``sx[r]``,
-    ``sy[r]``: first start, last start, first end, last end on each ring; smallest
-    region ``t[r]``) overlaps that plan's on both sides (:func:`_surely_copy`)."""
+    column (with ``masked``, one of ``mask[r]``), every region pair configuration ``r``
+    allows (its ends' intervals ``sx[r]``, ``sy[r]``: first start, last start, first
+    end, last end on each ring; smallest region ``t[r]``) overlaps that plan's on both
+    sides (:func:`_surely_copy`)."""
     for r in range(t.size):
         for c in range(ax0.size):
+            if masked and not mask[r, c]:
+                continue
             if _surely_copy(sx[r, 0], sx[r, 1], sx[r, 2], sx[r, 3], t[r] - tol, ax0[c], ax1[c],
                             perx, f, tol) and \
                     _surely_copy(sy[r, 0], sy[r, 1], sy[r, 2], sy[r, 3], t[r] - tol, ay0[c],

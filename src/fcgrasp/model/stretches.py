@@ -62,6 +62,7 @@ from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting
 from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
+from ._free_third import FreeThird
 from ._stretch_lp import (
     BOX_REACH,
     _box_bound,
@@ -187,10 +188,18 @@ class _Exclusion:
     read by the caller: their covered edges and mode).  Before a configuration is
     solved, :meth:`threshold` bounds the ``t`` above which it is surely a copy: when
     the arc from its first start to its last end outside the partner region is below
-    ``(1 - fraction) min(t, partner's length)``."""
+    ``(1 - fraction) min(t, partner's length)``.
+
+    With ``third`` (the distinct search of three fingers with friction), a configuration
+    stands for its *pair* plan, its two regions and a third finger on the longest free
+    stretch (:mod:`fcgrasp.model._free_third`), and the kept plans have three regions: a
+    configuration is surely a kept plan's copy when two of the plan's regions are surely
+    its two regions' partners (as above) and the third finger's free stretch surely
+    overlaps the plan's remaining region by more than ``fraction`` of the shorter
+    (:meth:`_third_mask`)."""
 
     def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
-                 fraction: float, seen: Any = ()) -> None:
+                 fraction: float, seen: Any = (), third: bool = False) -> None:
         where = _positions(rings)
         #: configurations excluded as such (plans already read), per ring pair and
         #: mode: the codes (:meth:`_codes`) of their starts and interior vertices, on
@@ -232,8 +241,10 @@ class _Exclusion:
                 if u1 < u0 - self.tol:                  # wraps past vertex 0
                     u1 += float(ring.U[ring.m])
                 arcs.append((r0, u0, max(u1, u0)))
-            if len(arcs) == 2:
+            if len(arcs) == (3 if third else 2):
                 self.plans.append(arcs)
+        #: the pair plans' third fingers (``third``): their free stretches
+        self.free = FreeThird(rings, polygon, THIRD_PAD * self.tol) if third else None
 
     def __bool__(self) -> bool:
         return bool(self.plans) or bool(self.seen)
@@ -317,40 +328,73 @@ class _Exclusion:
 
     def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
-               out: np.ndarray) -> bool:
+               out: np.ndarray, mask: np.ndarray | None = None) -> bool:
         """:meth:`threshold` (``threshold``: ``spans`` the arcs ``a0x, a1x, a0y, a1y``) or
         :meth:`similar` (``spans`` as :meth:`_spans`) of many configurations by the
         compiled loop (the same numbers, without a matrix of configurations by
-        kept plans for each step), writing ``out``; False (nothing done) when the
-        matrix is small or the loops do not run."""
+        kept plans for each step), writing ``out``; only the cells of ``mask`` (rows by
+        columns) where given; False (nothing done) when the matrix is small or the
+        loops do not run."""
         if len(spans[0]) * len(arcs[0]) < (FUSED_CELLS if threshold else FUSED_SIMILAR) \
                 or not stretch_kernels_for(rings[x].m * rings[y].m):
             return False
         per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
         arcs = tuple(np.ascontiguousarray(v, float) for v in arcs)
+        cells = np.ones((1, 1), bool) if mask is None else np.ascontiguousarray(mask)
         if threshold:
             _stretch_kernels.exclusion_rows(
                 *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per,
-                float(self.tol), float(1 - self.fraction), out)
+                float(self.tol), float(1 - self.fraction), cells, mask is not None, out)
             return True
         work = np.zeros(len(out), bool)
         _stretch_kernels.similar_rows(
             *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per, float(self.tol),
-            float(self.fraction), np.ascontiguousarray(t, float), work)
+            float(self.fraction), np.ascontiguousarray(t, float), cells, mask is not None,
+            work)
         out |= work
         return True
 
     def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
         """The kept plans' arcs on rings ``x`` (first region) and ``y`` (second), each
-        plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan."""
+        plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan; with
+        ``third``, one column per ordered pair of a plan's regions, then the remaining
+        region's ring and arc: ``ax0, ax1, ay0, ay1, ring, k0, k1``."""
         got = self._by_rings.get((x, y))
         if got is None:
-            cols = [(ax0, ax1, ay0, ay1) for arcs in self.plans
-                    for (rx, ax0, ax1), (ry, ay0, ay1) in (arcs, arcs[::-1])
-                    if rx == x and ry == y]
+            cols = [(a[i][1], a[i][2], a[j][1], a[j][2],
+                     *(a[3 - i - j] if len(a) == 3 else ()))
+                    for a in self.plans for i in range(len(a)) for j in range(len(a))
+                    if i != j and a[i][0] == x and a[j][0] == y]
             got = self._by_rings[x, y] = tuple(
                 np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
         return got or None
+
+    def _third_mask(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...]
+                    ) -> np.ndarray:
+        """Which configurations (rows) have a third finger whose free stretch surely
+        overlaps each column's remaining region (``arcs[4:]``) by more than ``fraction``
+        of the shorter: every free stretch the configuration's plan can have
+        (:meth:`FreeThird.of`: at least its sure arc, at most its widest) on that
+        region's ring, the sure arc's overlap above ``fraction`` of the widest's
+        length or the region's, whichever is less, by :data:`THIRD_PAD` tolerances."""
+        assert self.free is not None
+        ring, g0, g1, e0, e1 = self.free.of(x, y, cfg)
+        kr, k0, k1 = arcs[4].astype(np.int64), arcs[5], arcs[6]
+        out = np.zeros((ring.size, kr.size), bool)
+        for r in np.unique(kr):
+            cols, rows = np.flatnonzero(kr == r), np.flatnonzero(ring == r)
+            if not rows.size:
+                continue
+            ring_r = self.free.rings[int(r)]
+            per = float(ring_r.U[ring_r.m])
+            a0, a1 = g0[rows, None], g1[rows, None]
+            common = np.zeros((rows.size, cols.size))
+            for shift in (-per, 0.0, per):
+                common += np.maximum(0.0, np.minimum(a1, k1[cols] + shift)
+                                     - np.maximum(a0, k0[cols] + shift))
+            short = np.minimum((e1 - e0)[rows, None], (k1 - k0)[cols])
+            out[np.ix_(rows, cols)] = common - self.fraction * short > THIRD_PAD * self.tol
+        return out
 
     def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
                 t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
@@ -364,15 +408,34 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
-        if self._fused(rings, x, y, spans, arcs, np.asarray(t, float), False, out):
+        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)
+        if mask is not None:
+            # only the configurations whose third finger can be a copy's
+            live = np.flatnonzero(mask.any(axis=1))
+            if live.size:
+                sub = np.zeros(live.size, bool)
+                self._similar_in(rings, job, cfg.take(live), np.asarray(t, float)[live],
+                                 intervals, arcs[:4], mask[live], sub)
+                out[live] |= sub
             return out
-        ax0, ax1, ay0, ay1 = arcs
-        tt = np.asarray(t, float) - self.tol
-        out |= (self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1)
-                & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
-                ).any(axis=1)
+        self._similar_in(rings, job, cfg, np.asarray(t, float), intervals, arcs, None, out)
         return out
+
+    def _similar_in(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                    cfg: _Configs, t: FloatArray, intervals: dict[Any, _Intervals],
+                    arcs: tuple[FloatArray, ...], mask: np.ndarray | None,
+                    out: np.ndarray) -> None:
+        """:meth:`similar`'s test of the kept plans' columns ``arcs`` (only those of
+        ``mask``, rows by columns, where given), or-ed into ``out``."""
+        x, y = job[0], job[1]
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        if self._fused(rings, x, y, spans, arcs, t, False, out, mask):
+            return
+        ax0, ax1, ay0, ay1 = arcs
+        tt = t - self.tol
+        both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
+            & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
+        out |= (both if mask is None else both & mask).any(axis=1)
 
     def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
                   cfg: _Configs, intervals: dict[Any, _Intervals]) -> FloatArray:
@@ -392,18 +455,28 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if keep <= 0 or arcs is None or not len(out):
             return out
+        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)
+        rows = np.arange(len(out)) if mask is None else np.flatnonzero(mask.any(axis=1))
+        if not rows.size:
+            return out
+        if mask is not None:
+            cfg, mask = cfg.take(rows), mask[rows]
+        sub = out[rows]
         # before the configurations are solved (all of them, in chunks of thousands): the
         # whole stretches, from the first edge's start to the last edge's end
         sx, sy = self._spans(rings, job, cfg, intervals, 0)
         a0x, a1x, a0y, a1y = spans = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
-        if self._fused(rings, x, y, spans, arcs, out, True, out):
-            return out
-        ax0, ax1, ay0, ay1 = arcs
-        px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
-        ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
-        tc = (self._outside(py, a0y, a1y, ay0, ay1) + self.tol) / keep
-        tau = np.where((ax1 - ax0 > ta) & (ay1 - ay0 > tc), np.maximum(ta, tc), np.inf)
-        return cast("FloatArray", np.minimum(out, tau.min(axis=1)))
+        if not self._fused(rings, x, y, spans, arcs[:4], sub, True, sub, mask):
+            ax0, ax1, ay0, ay1 = arcs[:4]
+            px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
+            ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
+            tc = (self._outside(py, a0y, a1y, ay0, ay1) + self.tol) / keep
+            tau = np.where((ax1 - ax0 > ta) & (ay1 - ay0 > tc), np.maximum(ta, tc), np.inf)
+            if mask is not None:
+                tau = np.where(mask, tau, np.inf)
+            sub = np.minimum(sub, tau.min(axis=1))
+        out[rows] = sub
+        return out
 
 
 def _jobs(n_rings: int) -> list[tuple[int, int, float, str]]:
@@ -442,6 +515,12 @@ KERNEL_CONFIGS = 20_000
 #: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
 #: (32 crossings of lines per cell and turn: compiled from a few cells on).
 FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
+
+#: How many rounding tolerances a pair plan's third finger must beat the overlap a copy
+#: needs by (:meth:`_Exclusion._third_mask`), and by which one free stretch must be
+#: longer than another to be surely the third finger's (:class:`FreeThird`): their
+#: lengths are sums of up to thousands of edges, in another order than the plan's.
+THIRD_PAD = 64
 
 #: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
 #: filter compares every pair: 41,000 configurations of an icon took 37 s).
@@ -1262,8 +1341,17 @@ class StretchSearch:
         self._best: float | None = None
 
     def pairs(self, top: Any = 5, ties: bool = False, exclude: Any = (),
-              fraction: float = 0.5, seen: Any = ()) -> list[StretchPair]:
-        """:func:`two_finger_stretches`'s answer (the same arguments)."""
+              fraction: float = 0.5, seen: Any = (), third: bool = False
+              ) -> list[StretchPair]:
+        """:func:`two_finger_stretches`'s answer (the same arguments).
+
+        With ``third``, each configuration stands for the three-finger plan of its two
+        regions and a third finger anywhere on the longest free stretch (mode
+        ``"pair"`` of :mod:`fcgrasp.grippers.three_fingers`), and ``exclude`` holds
+        three-finger plans (three regions each): a configuration is left out when that
+        plan is surely the same alternative as one of them (two of its regions as
+        above, and its free stretch overlapping the third by more than ``fraction`` of
+        the shorter).  ``seen`` still holds two-finger plans."""
         top_v = None if top is None else check_int(top, "top", minimum=1)
         if not isinstance(ties, bool):
             raise TypeError(f"ties must be a bool, got {ties!r}")
@@ -1274,10 +1362,12 @@ class StretchSearch:
             return []
         rings, polygon = self.rings, self.polygon
         _load_for_depth(top_v)
-        kept = [(p.regions, p.region_edges) for p in exclude if len(p.regions) == 2]
+        kept = [(p.regions, p.region_edges) for p in exclude
+                if len(p.regions) == (3 if third else 2)]
         read = [(p.region_edges, p.mode) for p in seen if len(p.region_edges) == 2]
         # (nothing to exclude: no map of the edges, 36 ms on 10,000 edges)
-        excl = _Exclusion(rings, polygon, kept, fraction_v, read) if kept or read else None
+        excl = _Exclusion(rings, polygon, kept, fraction_v, read, third) \
+            if kept or read else None
         memo = self._memo
         if excl and memo.prepared is None and self._best is not None and memo.floor == 0.0:
             memo.lower(MEMO_SHARE * self._best)

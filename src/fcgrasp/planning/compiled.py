@@ -93,9 +93,11 @@ def _stretches(blob: Any) -> None:
     # the distinct search's tests (exclusion of a kept plan's alternatives, deferred
     # configurations inside a found one), with the types of their calls
     z, zi = np.zeros(1), np.zeros(1, np.int64)
-    _stretch_kernels.exclusion_rows(z, z, z, z, z, z, z, z, 1.0, 1.0, 0.0, 0.5, z.copy())
+    cells = np.ones((1, 1), bool)
+    _stretch_kernels.exclusion_rows(z, z, z, z, z, z, z, z, 1.0, 1.0, 0.0, 0.5, cells, False,
+                                    z.copy())
     _stretch_kernels.similar_rows(np.zeros((1, 4)), np.zeros((1, 4)), z, z, z, z, 1.0, 1.0,
-                                  0.0, 0.5, z, np.zeros(1, bool))
+                                  0.0, 0.5, z, cells, False, np.zeros(1, bool))
     _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
                                    np.zeros(1, bool))
     # the fused scores of every feature pair (a top-k search's candidates)

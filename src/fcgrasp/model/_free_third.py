@@ -1,0 +1,104 @@
+"""Where the third finger of a three-finger *pair* plan goes, for many two-finger stretch
+configurations at once (the distinct search of three fingers with friction).
+
+A pair plan is two fingers that hold the part on their own (a two-finger stretch
+configuration) and a third finger anywhere on the longest *free stretch*: consecutive
+usable edges of one ring that neither region covers
+(:func:`fcgrasp.grippers.three_fingers.free_stretch`).  The third region depends only on
+the edges the two regions cover, so it is known before a configuration is solved, up to
+one thing: a region that ends exactly at a vertex does not cover the edge beyond it
+(:func:`fcgrasp.core._geom.trim_vertex_ends`), which frees that edge.  So for each
+configuration :meth:`FreeThird.of` gives an arc every such third covers (the *sure* arc)
+and one it stays inside (the sure arc and the end edges of the regions beside it), and
+only where one free stretch is surely the longest: a ring and the two arcs, or ring -1.
+The distinct search uses them to say "surely the same alternative" of a configuration
+whose third finger surely overlaps a kept plan's region (:class:`~fcgrasp.model.stretches`'s
+``_Exclusion``); -1 only makes it say so less often.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray
+from ._stretch_windows import _Configs, _Ring
+from .polygon import Polygon
+
+
+class FreeThird:
+    """The free stretches of configurations on the stretch search's rings (see the
+    module's docstring); ``tol`` the length by which one free stretch must beat another
+    to be surely the longest (sums in another order differ by rounding)."""
+
+    def __init__(self, rings: list[_Ring], polygon: Polygon, tol: float) -> None:
+        self.rings, self.tol = rings, float(tol)
+        #: per ring: its arc from just after its shortest edge (the first of ties) round
+        #: to just before it, the free stretch of a ring neither region touches
+        self.whole: list[tuple[float, float]] = []
+        for ring in rings:
+            s = (int(np.argmin(ring.L)) + 1) % ring.m        # the edge after it
+            self.whole.append((float(ring.U[s]), float(ring.U[s + ring.m - 1])))
+        # rings the search does not hold (fewer than three usable edges) may still hold
+        # the longest free stretch: all but their shortest edge
+        held = {int(e) for ring in rings for e in ring.edges}
+        self.foreign = 0.0
+        for r in np.unique(polygon.rings):
+            usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
+            if usable.size >= 2 and not held.intersection(usable.tolist()):
+                L = polygon.lengths[usable]
+                self.foreign = max(self.foreign, float(L.sum() - L.min()))
+
+    def _gap(self, x: int, start: Any, count: Any, before: Any, after: Any
+             ) -> tuple[FloatArray, FloatArray, FloatArray, FloatArray]:
+        """The free run of ring ``x`` of ``count`` edges from position ``start``: its arc
+        ``[g0, g1]`` (``g0`` in ``[0, P)``) and that arc widened by the edge before it
+        where ``before`` and the edge after it where ``after`` (freed by a trim)."""
+        ring = self.rings[x]
+        m = ring.m
+        s = np.asarray(start, np.int64) % m
+        n = np.asarray(count, np.int64)
+        g0, g1 = ring.U[s], ring.U[s + n]
+        e0 = np.where(before, ring.U[s + m - 1] - ring.U[m], g0)
+        e1 = np.where(after, ring.U[s + n + 1], g1)
+        return g0, g1, e0, e1
+
+    def of(self, x: int, y: int, cfg: _Configs
+           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """For each configuration of rings ``x`` and ``y``: the ring of its third
+        finger's free stretch (-1 where none is surely the longest), the sure arc
+        ``[g0, g1]`` and the widest arc ``[e0, e1]`` (arc lengths of that ring, ``g0`` in
+        ``[0, P)``, the ends unrolled past it)."""
+        iA, kA = np.asarray(cfg.iA, np.int64), np.asarray(cfg.kA, np.int64)
+        iC, kC = np.asarray(cfg.iC, np.int64), np.asarray(cfg.kC, np.int64)
+        n = iA.size
+        # the candidates: (ring, g0, g1, e0, e1) per configuration
+        cands: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
+        if x == y:
+            m = self.rings[x].m
+            gap1 = (iC - (iA + kA + 1)) % m            # after A, up to C
+            gap2 = (iA - (iC + kC + 1)) % m            # after C, up to A
+            cands.append((x, *self._gap(x, iA + kA + 1, gap1, kA > 0, kC > 0)))
+            cands.append((x, *self._gap(x, iC + kC + 1, gap2, kC > 0, kA > 0)))
+        else:
+            for r, i, k in ((x, iA, kA), (y, iC, kC)):
+                m = self.rings[r].m
+                cands.append((r, *self._gap(r, i + k + 1, m - k - 1, k > 0, k > 0)))
+        for r, (w0, w1) in enumerate(self.whole):
+            if r not in (x, y):
+                g0, g1 = np.full(n, w0), np.full(n, w1)
+                cands.append((r, g0, g1, g0, g1))
+        sure = np.stack([c[2] - c[1] for c in cands])          # (candidates, n)
+        most = np.stack([c[4] - c[3] for c in cands])
+        best = np.argmax(sure, axis=0)
+        cols = np.arange(n)
+        rival = most.copy()
+        rival[best, cols] = -np.inf
+        top = sure[best, cols]
+        # surely the longest: longer than any other could be, and than a foreign ring's
+        ok = (top > rival.max(axis=0, initial=-np.inf) + self.tol) & \
+            (top > self.foreign + self.tol) & (top > 0)
+        ring = np.array([c[0] for c in cands])[best]
+        pick = [np.stack([c[j] for c in cands])[best, cols] for j in range(1, 5)]
+        return (np.where(ok, ring, -1), *pick)
