@@ -11,6 +11,14 @@ other grippers ask their search for more plans until ten distinct ones are found
 (where one grasp's shifted copies fill the ranked list: the hard case of the search).
 ``--corpus FILES`` adds files of ``benchmarks/corpus`` (paths inside it), two fingers
 only (flattened curves of the icons: hundreds of edges, a grasp's copies by the dozen).
+
+``--three FILES`` (files of ``benchmarks/corpus``): three fingers with friction, the
+search that leaves each kept plan's copies out
+(:func:`fcgrasp.grippers.three_fingers.distinct_three_finger_plans`) against the previous
+implementation, kept here as the baseline (suppression along the ranked list, the search
+asked for more plans until ten are distinct or its depth is read: the same gripper
+without its ``distinct_search``), with how many alternatives each found and whether the
+first ones agree.
 """
 
 from __future__ import annotations
@@ -22,6 +30,11 @@ from pathlib import Path
 import numpy as np
 
 import fcgrasp as fc
+from fcgrasp.grippers.fingers import ThreeFingers
+
+#: The previous implementation of ``distinct=`` for three fingers: suppression along the
+#: ranked list (the planner's generic path, taken by a gripper without ``distinct_search``).
+PreviousThreeFingers = type("PreviousThreeFingers", (ThreeFingers,), {"distinct_search": None})
 
 GRIPPERS = {
     "2 fingers, mu 0.3": dict(fingers=2, mu=0.3),
@@ -45,12 +58,27 @@ def _row(name, label, part, kw, fraction):
           f"{got / max(base, 1e-9):.1f}x | {n} |", flush=True)
 
 
+def _three(name, part, fraction):
+    """One line of the three-finger comparison: the previous implementation, then this."""
+    t0 = time.process_time()
+    old = fc.plan(part, gripper=PreviousThreeFingers(mu=0.3), top=10, distinct=fraction)
+    t1 = time.process_time()
+    new = fc.plan(part, fingers=3, mu=0.3, top=10, distinct=fraction)
+    t2 = time.process_time()
+    k = min(len(old), len(new))
+    agree = all(a.region_edges == b.region_edges for a, b in zip(old[:k], new[:k], strict=True))
+    print(f"| {name} | {t1 - t0:.2f} | {t2 - t1:.2f} | {(t2 - t1) / max(t1 - t0, 1e-9):.2f}x | "
+          f"{len(old)} | {len(new)} | {'yes' if agree else 'NO'} |", flush=True)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--parts", default="cam,blob,washer,quad")
     ap.add_argument("--fraction", type=float, default=0.5)
     ap.add_argument("--smooth", type=int, default=0)
     ap.add_argument("--corpus", default="", help="files of benchmarks/corpus, comma-separated")
+    ap.add_argument("--three", default="", help="files of benchmarks/corpus: three fingers, "
+                    "this search against the previous implementation")
     args = ap.parse_args()
     fc.compile_kernels()
     print("| part | gripper | ranked list (s) | distinct (s) | ratio | distinct plans |")
@@ -71,6 +99,13 @@ def main() -> None:
         label = "2 fingers, mu 0.3"
         _row(name, label, fc.load_part(str(corpus / name)).polygon, GRIPPERS[label],
              args.fraction)
+    if args.three:
+        print()
+        print("| file | previous (s) | this search (s) | ratio | previous found | found | "
+              "first ones agree |")
+        print("| --- | --- | --- | --- | --- | --- | --- |")
+        for name in filter(None, args.three.split(",")):
+            _three(name, fc.load_part(str(corpus / name)).polygon, args.fraction)
 
 
 if __name__ == "__main__":

@@ -198,7 +198,7 @@ class ThreeFingers(_PointFingers):
         where the ranked list is suppressed as it comes."""
         spec = self.spec(options)
         check_search(polygon, spec)
-        plans = distinct_three_finger_plans(polygon, spec, fraction)
+        plans = distinct_three_finger_plans(polygon, spec, fraction, self.distinct_depth)
         if plans is not None and options.progress is not None:
             options.progress(1, 1)
         return plans

@@ -177,14 +177,17 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
 
 
 def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
-                      keep: int | None, pair_floor: float, grow: bool, progress: Any = None
-                      ) -> tuple[list[GraspPlan], float]:
+                      keep: int | None, pair_floor: float, grow: bool, progress: Any = None,
+                      grown: list[GraspPlan] | None = None
+                      ) -> tuple[list[GraspPlan], float, list[GraspPlan]]:
     """The concurrent plans of :func:`three_finger_plans` (single edges, and with
     ``grow`` those grown along the boundary from the :data:`GROW_SEEDS` best): every
     triple whose smallest region reaches ``pair_floor`` and the ``keep``-th largest
     (all of them where ``keep`` is None and ``pair_floor`` 0), by branch and bound.
-    Returns them and a level every concurrent plan of a single-edge triple left out
-    is below (-inf: none was)."""
+    Returns them, a level every concurrent plan of a single-edge triple left out is
+    below (-inf: none was), and the grown plans alone: the same whatever ``keep`` and
+    ``pair_floor`` (their seeds are read whatever the floor), so a caller that asks
+    again passes them as ``grown``."""
     size = polygon.size
     floor = pair_floor
     bounded = keep is not None or floor > 0
@@ -266,15 +269,17 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
                          F.a[list(row)] + (piece.hi * size)[:, None] * blk.t0], axis=1)
         plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
                            "concurrent"))
-    if grow:
-        plans += _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
+    if grow and grown is None:
+        grown = _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
+    grown = grown if grow and grown is not None else []
+    plans += grown
     # bounded: a row left out had a bound below the floor of its time, or a level
     # below the last
-    return plans, floor if bounded else -np.inf
+    return plans, floor if bounded else -np.inf, grown
 
 
-def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float
-                                ) -> list[GraspPlan] | None:
+def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
+                                depth: int | None = None) -> list[GraspPlan] | None:
     """The ``spec.top`` best plans of :func:`three_finger_plans` along the boundary that
     are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
     whole ranked list, exactly), or None where this search does not apply (another
@@ -294,11 +299,20 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     * the concurrent plans (:func:`_concurrent_plans`), down to the pairs' level and
       the ``keep``-th best, ``keep`` doubled when they are what holds the reading back.
 
-    The plans read that rank above both levels (by two rounding steps of the ranking)
-    come before every plan not read, so they are fed to suppression in rank order
+    The plans read that reach both levels (the concurrent one by two rounding steps
+    of the ranking; the pairs' by the two-finger search's tie tolerance, as
+    :func:`~fcgrasp.grippers._boundary.distinct_boundary_plans` reads them) come
+    before every plan not read, so they are fed to suppression in rank order
     (:class:`~fcgrasp.model.distinct.Suppression`), until ``top`` are kept; a plan
     left out is dropped by suppression anyway, and dropped plans change nothing.
-    Each kept plan's ``similar`` lists the plans it stands for among those read."""
+    Each kept plan's ``similar`` lists the plans it stands for among those read.
+
+    A round that keeps no new plan reads twice as many the next time; with ``depth``,
+    the reading stops once ``depth`` times ``top`` two-finger plans are read (as the
+    ranked list's depth does for the other grippers): where a third finger's free
+    stretch is not known before the regions are placed (a region may end on a vertex
+    and free the edge beyond), copies are not left out, and a curved outline has
+    thousands of them."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or spec.hand is not None or not spec.along_boundary \
@@ -307,7 +321,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     F = features(polygon, spec.mu, None, None)
     lengths = np.hypot(*(F.b - F.a).T)
     size = polygon.size
-    band = 4 * RANK_TOL * size               # above both levels, after the rounding
+    band = 4 * RANK_TOL * size               # above the concurrent level, after rounding
     every = replace(spec, top=None)
     two = replace(spec, fingers=2, top=None, rank_by="min_region")
     suppression = Suppression(fraction, size)
@@ -318,10 +332,14 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     pairs: list[GraspPlan] = []
     others: list[GraspPlan] = []
     fed: set[Any] = set()                   # the (key, mode) of the plans fed
+    grown: list[GraspPlan] | None = None
     ask = keep = max(2 * top, DISTINCT_READ)
     pair_level = other_level = np.inf
+    cap = np.inf if depth is None else depth * top
     while len(suppression.kept) < top:
-        if pair_level >= other_level:
+        if other_level <= pair_level - band:    # the pairs hold the reading back
+            if len(read) >= cap:
+                break
             got = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
                                   fraction=fraction, seen=read, third=True)
             new = two_finger_plans_of(polygon, two, got, given)
@@ -332,11 +350,13 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                 sorted((p.min_length for p in got), reverse=True)[ask - 1] * (1 - RANK_TOL)
         else:
             keep *= 2
-        if other_level > pair_level:
-            others, other_level = _concurrent_plans(polygon, spec, None, F, keep,
-                                                    pair_level, True)
-            other_level = max(other_level, pair_level)
-        line = max(pair_level, other_level) + band
+        if other_level > pair_level - band:
+            # read a band below the pairs' level: those at it then come first
+            others, other_level, grown = _concurrent_plans(polygon, spec, None, F, keep,
+                                                           pair_level - band, True,
+                                                           grown=grown)
+        line = max(pair_level, other_level + band)
+        had = len(suppression.kept)
         for p in ranked_unique(polygon, every, pairs + others):
             if float(min(p.lengths)) < line:
                 break
@@ -348,6 +368,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                 break
         if line == -np.inf:
             break
+        if len(suppression.kept) == had:
+            ask *= 2                        # copies the search cannot leave out
     return suppression.plans()[:top]
 
 

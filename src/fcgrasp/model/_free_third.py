@@ -64,27 +64,48 @@ class FreeThird:
         e1 = np.where(after, ring.U[s + n + 1], g1)
         return g0, g1, e0, e1
 
-    def of(self, x: int, y: int, cfg: _Configs
+    def trims(self, x: int, y: int, cfg: _Configs, spans: tuple[FloatArray, FloatArray]
+              ) -> tuple[np.ndarray, ...]:
+        """Which end edges of each configuration's regions a trim may free (first and
+        last edge of the first region, then of the second), given where the regions
+        can start and end (``spans``, as the exclusion's: first start, last start, first
+        end, last end, arc lengths unrolled from each first edge's start): a region
+        may lose its first edge only if it can start at that edge's end, its last only
+        if it can end at that edge's start (to :attr:`tol`)."""
+        out = []
+        for r, i, k, sp in ((x, cfg.iA, cfg.kA, spans[0]), (y, cfg.iC, cfg.kC, spans[1])):
+            U = self.rings[r].U
+            i = np.asarray(i, np.int64) % self.rings[r].m
+            k = np.asarray(k, np.int64)
+            out.append((k > 0) & (sp[:, 1] >= U[i + 1] - self.tol))
+            out.append((k > 0) & (sp[:, 2] <= U[i + k] + self.tol))
+        return tuple(out)
+
+    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
            ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
         """For each configuration of rings ``x`` and ``y``: the ring of its third
         finger's free stretch (-1 where none is surely the longest), the sure arc
         ``[g0, g1]`` and the widest arc ``[e0, e1]`` (arc lengths of that ring, ``g0`` in
-        ``[0, P)``, the ends unrolled past it)."""
+        ``[0, P)``, the ends unrolled past it).  ``trims``: which end edges a trim may
+        free (:meth:`trims`; default: every end edge of a region of two edges or more)."""
         iA, kA = np.asarray(cfg.iA, np.int64), np.asarray(cfg.kA, np.int64)
         iC, kC = np.asarray(cfg.iC, np.int64), np.asarray(cfg.kC, np.int64)
         n = iA.size
+        a_first, a_last, c_first, c_last = (kA > 0, kA > 0, kC > 0, kC > 0) \
+            if trims is None else trims
         # the candidates: (ring, g0, g1, e0, e1) per configuration
         cands: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
         if x == y:
             m = self.rings[x].m
             gap1 = (iC - (iA + kA + 1)) % m            # after A, up to C
             gap2 = (iA - (iC + kC + 1)) % m            # after C, up to A
-            cands.append((x, *self._gap(x, iA + kA + 1, gap1, kA > 0, kC > 0)))
-            cands.append((x, *self._gap(x, iC + kC + 1, gap2, kC > 0, kA > 0)))
+            cands.append((x, *self._gap(x, iA + kA + 1, gap1, a_last, c_first)))
+            cands.append((x, *self._gap(x, iC + kC + 1, gap2, c_last, a_first)))
         else:
-            for r, i, k in ((x, iA, kA), (y, iC, kC)):
+            for r, i, k, first, last in ((x, iA, kA, a_first, a_last),
+                                         (y, iC, kC, c_first, c_last)):
                 m = self.rings[r].m
-                cands.append((r, *self._gap(r, i + k + 1, m - k - 1, k > 0, k > 0)))
+                cands.append((r, *self._gap(r, i + k + 1, m - k - 1, last, first)))
         for r, (w0, w1) in enumerate(self.whole):
             if r not in (x, y):
                 g0, g1 = np.full(n, w0), np.full(n, w1)

@@ -369,16 +369,19 @@ class _Exclusion:
                 np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
         return got or None
 
-    def _third_mask(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...]
-                    ) -> np.ndarray:
+    def _third_mask(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],
+                    spans: tuple[FloatArray, FloatArray] | None = None) -> np.ndarray:
         """Which configurations (rows) have a third finger whose free stretch surely
         overlaps each column's remaining region (``arcs[4:]``) by more than ``fraction``
         of the shorter: every free stretch the configuration's plan can have
         (:meth:`FreeThird.of`: at least its sure arc, at most its widest) on that
         region's ring, the sure arc's overlap above ``fraction`` of the widest's
-        length or the region's, whichever is less, by :data:`THIRD_PAD` tolerances."""
+        length or the region's, whichever is less, by :data:`THIRD_PAD` tolerances.
+        ``spans`` (:meth:`_spans`) say which end edges a trim may free
+        (:meth:`FreeThird.trims`; without them, every end edge may be)."""
         assert self.free is not None
-        ring, g0, g1, e0, e1 = self.free.of(x, y, cfg)
+        trims = None if spans is None else self.free.trims(x, y, cfg, spans)
+        ring, g0, g1, e0, e1 = self.free.of(x, y, cfg, trims)
         kr, k0, k1 = arcs[4].astype(np.int64), arcs[5], arcs[6]
         out = np.zeros((ring.size, kr.size), bool)
         for r in np.unique(kr):
@@ -408,27 +411,28 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs, spans)
         if mask is not None:
             # only the configurations whose third finger can be a copy's
             live = np.flatnonzero(mask.any(axis=1))
             if live.size:
                 sub = np.zeros(live.size, bool)
-                self._similar_in(rings, job, cfg.take(live), np.asarray(t, float)[live],
-                                 intervals, arcs[:4], mask[live], sub)
+                self._similar_in(rings, job, (spans[0][live], spans[1][live]),
+                                 np.asarray(t, float)[live], arcs[:4], mask[live], sub)
                 out[live] |= sub
             return out
-        self._similar_in(rings, job, cfg, np.asarray(t, float), intervals, arcs, None, out)
+        self._similar_in(rings, job, spans, np.asarray(t, float), arcs, None, out)
         return out
 
     def _similar_in(self, rings: list[_Ring], job: tuple[int, int, float, str],
-                    cfg: _Configs, t: FloatArray, intervals: dict[Any, _Intervals],
+                    spans: tuple[FloatArray, FloatArray], t: FloatArray,
                     arcs: tuple[FloatArray, ...], mask: np.ndarray | None,
                     out: np.ndarray) -> None:
         """:meth:`similar`'s test of the kept plans' columns ``arcs`` (only those of
-        ``mask``, rows by columns, where given), or-ed into ``out``."""
+        ``mask``, rows by columns, where given) on configurations whose regions lie in
+        ``spans``, or-ed into ``out``."""
         x, y = job[0], job[1]
-        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
         if self._fused(rings, x, y, spans, arcs, t, False, out, mask):
             return
         ax0, ax1, ay0, ay1 = arcs
