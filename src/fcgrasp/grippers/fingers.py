@@ -180,10 +180,11 @@ class ThreeFingers(_PointFingers):
     name: ClassVar[str] = "three_fingers"
     NONE: ClassVar[str] = "no three edges admit three fingers with mu = {mu:g}"
     #: ``distinct=``: the search is asked for at most this many times ``top`` plans
-    #: (:data:`fcgrasp.planning.planner.DISTINCT_DEPTH` for the others): on a curved
-    #: outline the two-finger grasps with a free third finger fill the ranked list with
-    #: hundreds of copies (``demo:cam``: two alternatives among the first 320 plans, ten
-    #: among the first 1,000), and its time grows slowly with ``top``.
+    #: (:data:`fcgrasp.planning.planner.DISTINCT_DEPTH` for the others), and along the
+    #: boundary the distinct search reads at most this many times ``top`` two-finger
+    #: plans (:func:`~fcgrasp.grippers.three_fingers.distinct_three_finger_plans`): on a
+    #: curved outline the two-finger grasps with a free third finger have hundreds of
+    #: copies, some of which that search cannot leave out.
     distinct_depth: ClassVar[int] = 128
 
     def _search(self, polygon: Polygon, spec: PlanSpec,
