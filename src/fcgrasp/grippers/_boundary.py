@@ -162,10 +162,18 @@ def stretch_plans_read(polygon: Polygon, spec: PlanSpec
     ``min_region``."""
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=spec.top, ties=True)
     plans = two_finger_plans_of(polygon, spec, pairs)
-    if spec.top is None or len(pairs) < spec.top:
-        return plans, True, 0.0
-    kth = sorted((p.min_length for p in pairs), reverse=True)[spec.top - 1]
-    return plans, False, kth * (1 - RANK_TOL)
+    below = unread_below(pairs, spec.top)
+    return plans, below is None, 0.0 if below is None else below
+
+
+def unread_below(pairs: list[StretchPair], top: int | None) -> float | None:
+    """A smallest region every configuration left unread by a stretch search asked
+    for ``top`` with ties is below (the ``top``-th's, less the search's relative tie
+    tolerance: its ties are all read); None where the search gave all there are."""
+    if top is None or len(pairs) < top:
+        return None
+    kth = sorted((p.min_length for p in pairs), reverse=True)[top - 1]
+    return float(kth * (1 - RANK_TOL))
 
 
 def two_finger_plans_of(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair],

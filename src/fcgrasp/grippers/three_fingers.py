@@ -84,6 +84,7 @@ from ._boundary import (
     regions_plan,
     stretch_plans_read,
     two_finger_plans_of,
+    unread_below,
 )
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
@@ -269,9 +270,10 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
                          F.a[list(row)] + (piece.hi * size)[:, None] * blk.t0], axis=1)
         plans.append(_plan(polygon, spec, tuple(int(F.edge[f]) for f in row), ends,
                            "concurrent"))
-    if grow and grown is None:
+    if not grow:
+        grown = []
+    elif grown is None:
         grown = _grown_plans(polygon, spec, [(lv, row, blk) for *_, lv, row, blk in seeds], F)
-    grown = grown if grow and grown is not None else []
     plans += grown
     # bounded: a row left out had a bound below the floor of its time, or a level
     # below the last
@@ -346,8 +348,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             read += new
             pairs += [q for q in (_with_third(polygon, spec, p, F, lengths, free)
                                   for p in new) if q is not None]
-            pair_level = -np.inf if len(got) < ask else \
-                sorted((p.min_length for p in got), reverse=True)[ask - 1] * (1 - RANK_TOL)
+            below = unread_below(got, ask)
+            pair_level = -np.inf if below is None else below
         else:
             keep *= 2
         if other_level > pair_level - band:

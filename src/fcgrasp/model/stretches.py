@@ -316,15 +316,22 @@ class _Exclusion:
         return out
 
     @staticmethod
-    def _outside(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
-                 u1: FloatArray) -> FloatArray:
-        """Arc of the spans ``[a0, a1]`` (rows) outside the arcs [u0, u1] (columns) on a
-        ring of perimeter ``per``."""
+    def _common(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
+                u1: FloatArray) -> FloatArray:
+        """Arc the spans ``[a0, a1]`` (rows) share with the arcs [u0, u1] (columns) on a
+        ring of perimeter ``per`` (either turned by a perimeter)."""
         a0, a1 = a0[:, None], a1[:, None]
         common = np.zeros((a0.shape[0], len(u0)))
         for shift in (-per, 0.0, per):
             common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
-        return (a1 - a0) - common
+        return common
+
+    @staticmethod
+    def _outside(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
+                 u1: FloatArray) -> FloatArray:
+        """Arc of the spans ``[a0, a1]`` (rows) outside the arcs [u0, u1] (columns) on a
+        ring of perimeter ``per``."""
+        return (a1 - a0)[:, None] - _Exclusion._common(per, a0, a1, u0, u1)
 
     def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
                arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
@@ -389,12 +396,8 @@ class _Exclusion:
             if not rows.size:
                 continue
             ring_r = self.free.rings[int(r)]
-            per = float(ring_r.U[ring_r.m])
-            a0, a1 = g0[rows, None], g1[rows, None]
-            common = np.zeros((rows.size, cols.size))
-            for shift in (-per, 0.0, per):
-                common += np.maximum(0.0, np.minimum(a1, k1[cols] + shift)
-                                     - np.maximum(a0, k0[cols] + shift))
+            common = self._common(float(ring_r.U[ring_r.m]), g0[rows], g1[rows], k0[cols],
+                                  k1[cols])
             short = np.minimum((e1 - e0)[rows, None], (k1 - k0)[cols])
             out[np.ix_(rows, cols)] = common - self.fraction * short > THIRD_PAD * self.tol
         return out
@@ -665,6 +668,7 @@ def _guessed_floors(bound: _Bound) -> list[float]:
         return []
     m = min(bound.k, seen.size)
     ranks = [-(-m // 4), -(-m // 2)] + ([seen.size] if seen.size < bound.k else [])
+    assert len(ranks) <= _GUESSES
     out: list[float] = []
     for r in ranks:
         g = float(seen[r - 1]) * (1 - TIE)
@@ -1015,6 +1019,9 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
 _ATTEMPTS = 5
 #: Whether the first search guesses floors from its keys' values (:func:`_candidates`).
 _GUESS = True
+#: Floors :func:`_guessed_floors` guesses at most (a quarter and half of the way down
+#: the keys, and the last key filled).
+_GUESSES = 3
 #: Times a guessed floor that keeps fewer than ``top`` (the own-optimum filter drops
 #: most of a smooth outline's configurations, while the bound, which counts them, rises
 #: above the floor) is halved and fixed before the bound's own is tried.
@@ -1045,7 +1052,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     # floors guessed by the first search (_candidates), tried in turn while too high
     guesses: list[float] | None = [] if _GUESS and top is not None else None
     guessing, start, halve = False, 0.0, 0
-    attempts = _ATTEMPTS + (3 + _HALVINGS if _GUESS else 0)
+    attempts = _ATTEMPTS + (_GUESSES + _HALVINGS if _GUESS else 0)
     for attempt in range(attempts):
         if top is None or attempt == attempts - 1:
             fixed = 0.0
