@@ -193,7 +193,7 @@ def test_jaw_boxes_are_distinct_up_to_the_part_symmetries():
 
     part = fc.read_part("demo:rectangle")
     jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
-    every = fc.plan(part, gripper=jaw, top=5)
+    every = fc.plan(part, gripper=jaw, top=5, distinct=0)
     syms = part_symmetries(part)
     # the plain list holds the same alternative twice by the jaw's rule (since the boxes
     # are searched on the exact holding set, as neighbouring slices of one configuration
@@ -215,7 +215,7 @@ def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
     a grid step, or touching other edges, stay."""
     part = fc.read_part("demo:triangle")
     jaw = fc.ParallelJaw(stroke=(5, 90), pad_width=8, mu=0.5)
-    every = fc.plan(part, gripper=jaw, top=6)
+    every = fc.plan(part, gripper=jaw, top=6, distinct=0)
     key = [tuple(tuple(sorted(f)) for f in p.features) for p in every]
     assert len(set(key)) < len(key)               # slices touching the same edges
     kept = fc.plan(part, gripper=jaw, top=6, distinct=0.5)
@@ -230,6 +230,36 @@ def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
         seen.setdefault(k, []).append(p)
     assert any(p.similar >= 2 for p in kept)
     assert kept[0].theta == every[0].theta
+
+
+@pytest.mark.parametrize("name", ["bracket", *(
+    pytest.param(n, marks=pytest.mark.slow) for n in ("blob", "quad", "triangle", "washer",
+                                                      "rectangle"))])
+def test_jaw_boxes_are_distinct_alternatives_by_default(name):
+    """Issue 31: a parallel jaw's default top ten are distinct alternatives, the best of
+    each group of boxes that are one grasp (a mirror image, a turn, a neighbouring slice
+    of one contact configuration), by the jaw's own rule at DEFAULT_DISTINCT; the same
+    boxes as distinct=0.5 asked for, and the ranked list (distinct=0) keeps its first
+    box. Point fingers keep their ranked list by default."""
+    from fcgrasp.model.distinct import DEFAULT_DISTINCT, grip_symmetries, same_box
+
+    part = fc.read_part(f"demo:{name}")
+    jaw = fc.ParallelJaw(stroke=(5, 90), pad_width=8, mu=0.5)
+    plans = fc.plan(part, gripper=jaw)
+    assert len(plans) >= 3
+    assert [(p.theta, p.offset) for p in plans] == \
+        [(p.theta, p.offset) for p in fc.plan(part, gripper=jaw, distinct=DEFAULT_DISTINCT)]
+    assert len(jaw.distinct_plans(part, plans, DEFAULT_DISTINCT)) == len(plans)
+    for i, p in enumerate(plans):
+        syms = grip_symmetries(part, getattr(p, "insert", None))
+        for q in plans[i + 1:]:
+            assert p.hole != q.hole or not same_box(p, q, DEFAULT_DISTINCT, syms) \
+                and not same_box(q, p, DEFAULT_DISTINCT, syms), (p, q)
+    ranked = fc.plan(part, gripper=jaw, top=1, distinct=0)
+    assert (ranked[0].theta, ranked[0].offset) == (plans[0].theta, plans[0].offset)
+    fingers = fc.plan(part, fingers=2, mu=0.3, top=4)
+    assert [p.edges for p in fingers] == \
+        [p.edges for p in fc.plan(part, fingers=2, mu=0.3, top=4, distinct=0)]
 
 
 def _smooth(rng, n):
@@ -309,7 +339,7 @@ def test_internal_grips_use_the_symmetries_that_keep_their_hole():
 
     part = fc.read_part("demo:washer")
     jaw = fc.ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5)
-    plans = fc.plan(part, gripper=jaw, top=10)
+    plans = fc.plan(part, gripper=jaw, top=10, distinct=0)
     assert any(p.mode == "internal" for p in plans)
     assert len(grip_symmetries(part, insertion_point(part, 0))) == len(part_symmetries(part))
     for i, p in enumerate(plans):

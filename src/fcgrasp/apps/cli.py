@@ -580,12 +580,13 @@ def build_parser() -> argparse.ArgumentParser:
                        help="circular workspace of the fingertips")
         p.add_argument("--finger-radius", type=float, default=0.0, metavar="R",
                        help="fingertip radius (default 0)")
-        p.add_argument("--distinct", type=float, default=0.0, metavar="FRACTION",
+        p.add_argument("--distinct", type=float, default=None, metavar="FRACTION",
                        help="keep only distinct alternatives: drop a plan whose regions "
                             "overlap a better plan's by more than FRACTION of the shorter "
                             "(on a solid: whose regions, grown by 1/FRACTION, overlap a "
-                            "better plan's; 0.5 is a good choice; default 0: every plan, "
-                            "as ranked)")
+                            "better plan's; 0.5 is a good choice; 0: every plan, as "
+                            "ranked; default: 0.5 for a parallel jaw, whose mirror and "
+                            "neighbouring boxes are merged, 0 for point fingers)")
         p.add_argument("--mass", type=float, default=None, metavar="KG",
                        help="a load to carry: the part's mass in kg; each plan then reports "
                             "the scale of the load every grasp of its regions carries "

@@ -77,6 +77,14 @@ class Gripper(Protocol):
     in a plan document's JSON;
     ``no_grasp_reason(margin)``: one line saying why a part has no plan;
     ``title``: how a figure names it.
+
+    Optional members, read with ``getattr``: ``default_distinct``, the ``distinct``
+    fraction its plans get when none is given (0, the ranked list, where absent; a
+    parallel jaw's boxes are distinct alternatives by default); ``distinct_plans(polygon,
+    plans, fraction)``, what distinct means for its plans (regions of contact where
+    absent); ``distinct_search(polygon, options, fraction)``, a search for distinct
+    plans of its own (or None where it does not apply); ``distinct_depth``, how many
+    times ``top`` plans ``distinct=`` reads at most.
     """
 
     @property

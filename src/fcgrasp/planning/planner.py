@@ -48,7 +48,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True,
-         gripper: Any = None, map: Any = None, distinct: float = 0.0,
+         gripper: Any = None, map: Any = None, distinct: float | None = None,
          load: Any = None, force_limit: Any = None, total_force: Any = None) -> list[Any]:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
@@ -101,13 +101,16 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         Dask cluster): the single-edge search (:func:`fcgrasp.pipeline.search`) of two
         fingers without stretches, and of three frictionless or four fingers, uses it;
         the answer is the same.
-    distinct : float
-        0 (the default): every plan, as ranked.  A fraction in (0, 1]: the ``top``
+    distinct : float, optional
+        0: every plan, as ranked.  A fraction in (0, 1]: the ``top``
         plans that are distinct alternatives, each standing for the lower-ranked plans
         whose regions overlap its own by more than that fraction (``similar``; see
         :mod:`fcgrasp.model.distinct`; :data:`~fcgrasp.model.distinct.DEFAULT_DISTINCT`
         is 0.5).  The search is asked for more plans until ``top`` distinct ones are
-        found or :data:`DISTINCT_DEPTH` times ``top`` were searched.
+        found or :data:`DISTINCT_DEPTH` times ``top`` were searched.  None (the
+        default): the gripper's :func:`default_distinct` (a parallel jaw's boxes are
+        distinct alternatives, 0.5: its mirror and neighbouring boxes merged; point
+        fingers give the ranked list, 0).
     load : Load, optional
         A load the grasp must carry (:class:`fcgrasp.Load`: mass, centre of mass,
         accelerations, torque; point fingers only): each plan's ``payload`` is the scale
@@ -195,6 +198,21 @@ def _with_payload(polygon: Polygon, gripper: Any, options: SearchOptions, distin
 DISTINCT_DEPTH = 32
 
 
+def default_distinct(gripper: Any) -> float:
+    """The ``distinct`` fraction a gripper's plans get when none is given: its
+    ``default_distinct`` (:class:`~fcgrasp.grippers.base.Gripper`; a parallel jaw's is
+    :data:`~fcgrasp.model.distinct.DEFAULT_DISTINCT`), 0 (the ranked list) where it has
+    none.
+
+    >>> from fcgrasp.grippers.jaw import ParallelJaw
+    >>> default_distinct(ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5))
+    0.5
+    >>> default_distinct(point_fingers(2, 0.3, None, None, True))
+    0.0
+    """
+    return float(getattr(gripper, "default_distinct", 0.0))
+
+
 def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
               distinct: Any) -> list[Any]:
     """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
@@ -208,7 +226,8 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     copies, one long round costs less than many doubling ones).  The plans kept are
     those of suppression along the ranked list, however long the last round's list
     was."""
-    fraction = check_scalar(distinct, "distinct", nonnegative=True)
+    fraction = check_scalar(default_distinct(gripper) if distinct is None else distinct,
+                            "distinct", nonnegative=True)
     if fraction > 1:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {distinct!r}")
     if fraction == 0:

@@ -28,7 +28,7 @@ from ..io.units import FILE_UNITS, UNITS, disturbance_step
 from ..model.loads import ACCEL_SHAPES
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
-from .planner import friction_curve, plan
+from .planner import default_distinct, friction_curve, plan
 
 __all__ = ["PlanRequest", "PlanDocument", "plan_document", "template_request",
            "PLAN_OPTIONS", "READING_OPTIONS", "LOAD_OPTIONS"]
@@ -146,7 +146,7 @@ class PlanRequest:
     workspace: tuple[float, float, float] | None = None
     finger_radius: float = 0.0
     max_memory: int | None = None
-    distinct: float = 0.0
+    distinct: float | None = None
     mass: float | None = None
     com: tuple[float, float] | None = None
     accel: tuple[float, float] | None = None
@@ -179,7 +179,7 @@ class PlanRequest:
             if f.init:
                 value = getattr(self, f.name)
                 if f.name in ("top", "margin", "finger_radius", "part", "gripper",
-                              "rank_by", "single_edge", "y_down", "no_clean", "distinct",
+                              "rank_by", "single_edge", "y_down", "no_clean",
                               "soft", "bound") \
                         and value is None:
                     raise TypeError(f"{f.name} must be given, got None")
@@ -213,7 +213,7 @@ class PlanRequest:
         if self.file_units is not None and self.file_units not in FILE_UNITS:
             raise _fail("file_units", f"--file-units must be one of {', '.join(FILE_UNITS)}, "
                                       f"got {self.file_units!r}")
-        if not 0 <= self.distinct <= 1:
+        if self.distinct is not None and not 0 <= self.distinct <= 1:
             raise _fail("distinct", f"--distinct is a fraction in [0, 1], got {self.distinct:g}")
         for name in ("mass", "force_limit", "total_force"):
             value = getattr(self, name)
@@ -335,6 +335,19 @@ class PlanRequest:
     def gripper_object(self) -> Gripper:
         """The gripper the request names, built from its options (checked)."""
         return self._gripper
+
+    def distinct_fraction(self) -> float:
+        """The ``distinct`` fraction the plans get: the one given, or the gripper's
+        default (:func:`fcgrasp.planning.planner.default_distinct`: 0.5 for a parallel
+        jaw, 0 for point fingers).
+
+        >>> jaw = PlanRequest(part="demo:blob", gripper="jaw", stroke=(5, 60), pad=8)
+        >>> jaw.distinct_fraction()
+        0.5
+        >>> PlanRequest(part="demo:blob", distinct=0.3).distinct_fraction()
+        0.3
+        """
+        return default_distinct(self._gripper) if self.distinct is None else self.distinct
 
     def plan_options(self) -> dict[str, Any]:
         """The planning options (:data:`PLAN_OPTIONS`), as given."""
@@ -471,12 +484,12 @@ def plan_document(request: PlanRequest, part: Any = None,
     plans = plan(polygon, gripper=gripper, top=options.top, rank_by=options.rank_by,
                  margin=options.margin, disturbance=options.disturbance,
                  max_memory=options.max_memory, progress=progress, map=map,
-                 distinct=request.distinct, load=load,
+                 distinct=request.distinct_fraction(), load=load,
                  force_limit=None if load is None else request.force_limit,
                  total_force=None if load is None else request.total_force)
     params = gripper.parameters(options)
-    if request.distinct:
-        params["distinct"] = request.distinct
+    if request.distinct_fraction():
+        params["distinct"] = request.distinct_fraction()
     if load is not None:
         params["load"] = {
             "mass_kg": load.mass, "com": None if load.com is None else list(load.com),
@@ -553,13 +566,14 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
             "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist(),
             "units_note": solid.units_note}
     kind = request.solid_kind()
+    distinct = request.distinct_fraction()
     if kind == "jaw":
         from ..spatial.jaw import solid_jaw_plans
 
         jaw: Any = request.gripper_object()
         plans: list[Any] = top_distinct(
             lambda n: solid_jaw_plans(solid, jaw.stroke, jaw.pad_width, jaw.mu, top=n,
-                                      margin=request.margin), request.top, request.distinct)
+                                      margin=request.margin), request.top, distinct)
         params = {"gripper": "jaw", "contact_type": "jaw", "stroke": list(jaw.stroke),
                   "pad": jaw.pad_width, "mu": jaw.mu, "top": request.top,
                   "margin_deg": request.margin}
@@ -571,7 +585,7 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
         from ..spatial.surfaces import soft_pair_plans
 
         plans = top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=request.margin),
-                             request.top, request.distinct)
+                             request.top, distinct)
         params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
                   "margin_deg": request.margin}
         what = "two facets hold two soft fingers"
@@ -585,15 +599,15 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
             searches.append(three_finger_plans(solid, mu, top=n, margin=request.margin))
             return list(searches[-1].plans)
 
-        plans = top_distinct(triples, request.top, request.distinct)
+        plans = top_distinct(triples, request.top, distinct)
         search = searches[-1]
         params = {"fingers": 3, "contact_type": "friction", "mu": mu, "top": request.top,
                   "margin_deg": request.margin, "certified_triples": search.certified,
                   "exhaustive": search.exhaustive}
         what = "three facets hold three fingers with friction"
         title = "three fingers with friction"
-    if request.distinct:
-        params["distinct"] = request.distinct
+    if distinct:
+        params["distinct"] = distinct
     reason = None if plans else f"no {what} with mu {mu:g} and a margin of " \
                                 f"{request.margin:g} degrees"
     report = plan_report(None, plans, params, solid.units, reason,

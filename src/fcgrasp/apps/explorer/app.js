@@ -562,7 +562,7 @@ function options() {
     return v;
   };
   const o = { gripper: g, margin: num("margin", "margin"), top: Math.round(num("top", "plans")) };
-  if ($("distinct").checked) o.distinct = 0.5;
+  o.distinct = $("distinct").checked ? 0.5 : 0;
   if ((g === "3" || g === "4") && !S.solid && $("bound").checked) o.bound = true;
   if (g !== "4" && g !== "3g") o.mu = num("mu", "mu");
   if (g === "jaw") {
@@ -1066,6 +1066,9 @@ async function init() {
   }
   $("gripper").addEventListener("change", () => {
     document.body.dataset.gripper = $("gripper").value;
+    // each gripper's default (fcgrasp.plan's distinct=None): a jaw's boxes are distinct
+    // alternatives (its mirror and neighbouring boxes merged), fingers' plans as ranked
+    $("distinct").checked = $("gripper").value === "jaw";
     schedulePlan(); runCheck();
   });
   $("overlay").addEventListener("change", render);

@@ -14,6 +14,7 @@ from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.tolerances import CONTACT_TOL, RANK_TOL, TOL
 from ...model.distinct import (
+    DEFAULT_DISTINCT,
     _interval_overlap,
     box_images,
     distinct_boxes,
@@ -56,6 +57,10 @@ class ParallelJaw(JawParameters):
     """
 
     name: ClassVar[str] = "jaw"
+    #: ``distinct=`` when none is given (issue 31): the boxes are distinct
+    #: alternatives, mirror images and neighbouring slices of one contact configuration
+    #: merged (:meth:`distinct_plans`); ``distinct=0`` gives every box, as ranked
+    default_distinct: ClassVar[float] = DEFAULT_DISTINCT
 
     # the gripper interface (fcgrasp.grippers.base.Gripper)
     def distinct_plans(self, polygon: Polygon, plans: list[JawPlan],
