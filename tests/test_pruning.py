@@ -110,6 +110,119 @@ def test_ties_at_the_floor_are_all_kept():
         assert _key(got) == _key(want)
 
 
+def _flattened(rng):
+    """A part of flattened arcs and long sides, as curves come out of an SVG or a DXF:
+    each arc's edges equal (to float error: a rotation of one chord), so every row on
+    them ties on its smallest region, and the rows are told apart by their second one
+    (the leximin key of the search's last plan, TopK.key). A rounded rectangle, a D
+    (a half disc and its diameter), a stadium or a heart-like cusp; the corners' arcs
+    of a few equal edges, sometimes some arcs exactly equal to one another, sometimes
+    one chord a hair longer (1e-10 of the size: at the ranking's rounding)."""
+    kind = rng.choice(["rounded", "D", "stadium", "cusp"])
+    k = int(rng.integers(3, 7))
+
+    def arc(cx, cy, r, a0, a1):
+        t = a0 + (a1 - a0) * np.arange(k + 1) / k
+        return np.c_[cx + r * np.cos(t), cy + r * np.sin(t)]
+
+    w, h = float(rng.uniform(20, 60)), float(rng.uniform(8, 30))
+    r = float(rng.uniform(2, min(w, h) / 2 - 0.5))
+    if kind == "rounded":
+        pts = np.vstack([arc(w - r, r, r, -np.pi / 2, 0), arc(w - r, h - r, r, 0, np.pi / 2),
+                         arc(r, h - r, r, np.pi / 2, np.pi), arc(r, r, r, np.pi, 1.5 * np.pi)])
+    elif kind == "D":
+        pts = arc(0, 0, h, 0, np.pi)
+    elif kind == "stadium":
+        pts = np.vstack([arc(w, 0, h, -np.pi / 2, np.pi / 2), arc(0, 0, h, np.pi / 2,
+                                                                1.5 * np.pi)])
+    else:
+        pts = np.vstack([arc(h, 0, h, -np.pi / 4, np.pi), arc(-h, 0, h, 0, 1.25 * np.pi),
+                         [[0.0, -2.5 * h]]])
+    _, first = np.unique(np.round(pts, 9), axis=0, return_index=True)
+    pts = pts[np.sort(first)]
+    if rng.random() < 0.3:                      # one vertex moved out by a hair
+        j = int(rng.integers(len(pts)))
+        pts[j] *= 1 + 1e-10
+    return fc.Polygon(pts)
+
+
+#: A known inexactness, not of the key's pruning (the key applies to min_region only):
+#: ranked by resistance with KEEP_FOR_MEASURE at 4, this part's chord a hair longer
+#: (1.155810189 against 1.155810186) gives another fourth row kept than solving every
+#: row does; not seen with the default KEEP_FOR_MEASURE (seeds 0-10 checked).
+_RESISTANCE_NEAR_TIE = pytest.mark.xfail(strict=True, reason="resistance, near tie at the "
+                                         "KEEP_FOR_MEASURE-th row (issue 30's notes)")
+
+
+@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow) if s != 11
+                                        else pytest.param(s, marks=[pytest.mark.slow,
+                                                                    _RESISTANCE_NEAR_TIE])
+                                        for s in range(2, 60))])
+def test_pruned_top_k_on_flattened_arcs_is_the_exhaustive_top_k(seed):
+    """Three frictionless fingers with gravity and four: on arcs of equal edges every
+    row ties the top's smallest region, and the search leaves out the rows whose
+    bounds cannot reach the top's last leximin key (only the long features can hold
+    the second region; a curve icon's 75 s became 0.14 s); the same top as solving
+    every row, ties included, for several tops and batch sizes, and by another
+    measure (which the key does not apply to)."""
+    rng = np.random.default_rng(seed)
+    part = _flattened(rng)
+    for job in JOBS[2:]:
+        _check(part, job, int(rng.choice([1, 3, 10])), "min_region", sizes=(1, 64))
+    _check(part, JOBS[3], 3, "resistance", sizes=(1, 64))
+
+
+def test_a_row_left_out_by_the_key_is_worse_than_it():
+    """lex_survivors against the ranking's own key (leximin_key): 3,000 random bounds
+    (lengths drawn from a few values, so that they tie the key, and a hair off them),
+    each left-out row's regions drawn under its bounds are strictly worse than the key
+    by leximin_key; and a row whose bounds equal the key survives."""
+    from fcgrasp.core._geom import leximin_key
+    from fcgrasp.pipeline._candidates import lex_survivors
+
+    rng = np.random.default_rng(5)
+    size = 40.0
+    for _ in range(3000):
+        m = int(rng.integers(2, 5))
+        vals = rng.choice([1.0, 2.0, 3.5, 7.0], m) * (1 + rng.choice([0, 1e-11, -1e-11, 1e-8],
+                                                                    m))
+        key_lengths = np.sort(rng.choice([1.0, 2.0, 3.5, 7.0], m))
+        key = -np.array(leximin_key(key_lengths, size))
+        bounds = np.sort(vals)[None, :]
+        assert lex_survivors(np.sort(key_lengths)[None, :], key, size)[0]
+        if lex_survivors(bounds, key, size)[0]:
+            continue
+        for _ in range(5):                       # regions at most their bounds
+            regions = bounds[0] * rng.choice([1.0, rng.uniform(0.5, 1)], m)
+            assert leximin_key(regions, size) > leximin_key(key_lengths, size)
+
+
+def test_key_prunes_where_only_the_second_region_tells_rows_apart(monkeypatch):
+    """The pruning by the top's last key is used (this fails if TopK.key is never
+    read): a rounded rectangle whose corner arcs have many equal edges, four fingers;
+    with the key the search solves a fraction of the rows it solves without."""
+    a = np.linspace(0, np.pi / 2, 9)
+    arcs = [np.c_[cx + 2 * np.cos(a + q), cy + 2 * np.sin(a + q)]
+            for (cx, cy), q in zip([(38, 2), (38, 18), (2, 18), (2, 2)],
+                                   [-np.pi / 2, 0, np.pi / 2, np.pi], strict=True)]
+    part = fc.Polygon(np.vstack(arcs))
+    spec = plan_spec(fingers=4, top=3)
+    counted = []
+    real_solve = _search.solve
+
+    def counting(polygon, spec, sets, *args, **kw):
+        counted.append(len(sets.feats))
+        return real_solve(polygon, spec, sets, *args, **kw)
+
+    monkeypatch.setattr(_search, "solve", counting)
+    got = search(part, spec)
+    with_key = sum(counted)
+    counted.clear()
+    monkeypatch.setattr(_search.TopK, "key", property(lambda self: None))
+    assert _key(search(part, spec)) == _key(got)
+    assert with_key < 0.1 * sum(counted), (with_key, sum(counted))
+
+
 @pytest.mark.parametrize("fingers", [2, 3, 4])
 def test_the_search_prunes(fingers, monkeypatch):
     """On a finely flattened outline the pruned search solves a small part of the rows

@@ -5,7 +5,7 @@ of :mod:`fcgrasp.pipeline`; sections 6 and 7.2)."""
 from __future__ import annotations
 
 import bisect
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 from math import comb
@@ -18,6 +18,7 @@ from ..core._checks import (
     FloatArray,
     check_int,
 )
+from ..core._geom import RANK_DIGITS
 from ..core.closure import direction_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
@@ -236,6 +237,53 @@ def _row_bound(lengths: FloatArray, rows: np.ndarray, twin: int | None) -> Float
 
 
 
+def _row_bounds(lengths: FloatArray, rows: np.ndarray, twin: int | None) -> FloatArray:
+    """Upper bounds of each row's region lengths, sorted ascending (one column per real
+    finger; gravity, -1, has no region): no region is longer than its feature, and of
+    two fingers on one feature (first and ``twin``) one has at most half of it, the
+    other at most all of it.  A row's sorted regions are at most these, component by
+    component (pair each region with its own bound), so its leximin key is never better
+    than theirs (:func:`lex_survivors`)."""
+    real = rows[0] >= 0 if len(rows) else np.zeros(0, bool)
+    L = lengths[np.maximum(rows[:, real], 0)]
+    if twin is not None:
+        same = rows[:, 0] == rows[:, twin]
+        L[same, 0] *= 0.5
+    return np.sort(L, axis=1)
+
+
+def _bound_pad(size: float) -> float:
+    """What a region's length may exceed its feature's by: float error (the solver
+    caps its levels at the features' lengths), far below the ranking's rounding."""
+    return 10 * SOLVER_TOL * size
+
+
+def lex_survivors(bounds: FloatArray, key: FloatArray | None, size: float) -> np.ndarray:
+    """Which rows (their :func:`_row_bounds`) may still reach or tie the leximin key
+    ``key`` (the running top's last, :attr:`~fcgrasp.pipeline.TopK.key`: its region
+    lengths sorted ascending, over ``size``, rounded as
+    :func:`~fcgrasp.core._geom.leximin_key` rounds).  Rounding keeps order, so a row is
+    surely worse when, at the first length where its bound and the key round apart,
+    the bound rounds below (its regions are at most the bounds: the solver's levels
+    are capped by the features' lengths; each bound is padded by :func:`_bound_pad`
+    for the float error).  None keeps every row.
+
+    >>> size = 10.0
+    >>> key = np.array([0.1, 0.5])                # regions 1 and 5 of a part of size 10
+    >>> lex_survivors(np.array([[1.0, 4.0], [1.0, 6.0], [2.0, 2.0], [0.5, 9.0]]), key, size)
+    array([False,  True,  True, False])
+    """
+    if key is None or not len(bounds):
+        return np.ones(len(bounds), bool)
+    b = np.round((bounds + _bound_pad(size)) / size, RANK_DIGITS)
+    alive = np.ones(len(b), bool)
+    open_ = np.ones(len(b), bool)          # every length so far rounds to the key's
+    for j in range(min(b.shape[1], key.size)):
+        alive &= ~(open_ & (b[:, j] < key[j]))
+        open_ &= b[:, j] == key[j]
+    return alive
+
+
 def _spans_plane(angles: FloatArray) -> bool:
     """Whether directions at sorted ``angles`` in [0, 2 pi) may positively span the plane
     (no gap between neighbours, cyclically, wider than half a turn plus the slack)."""
@@ -246,7 +294,8 @@ def _spans_plane(angles: FloatArray) -> bool:
 
 
 def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
-                  first: int) -> Iterator[EdgeSets]:
+                  first: int, key: Callable[[float], FloatArray | None] | None = None,
+                  part_size: float = 1.0) -> Iterator[EdgeSets]:
     """Every candidate row, streamed by decreasing bound (branch and bound).
 
     Features are sorted by decreasing length; a row's *last* feature in that order is its
@@ -254,10 +303,24 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     features all come before ``s``'s has a bound at least the length at ``s``.  Batches
     grow from ``first`` rows, doubling, to ``size``, so that a search whose top is found
     early stops after little work.
+
+    ``key(level)``: the running top's last leximin key (:attr:`~fcgrasp.pipeline.TopK.key`)
+    where a smallest region of ``level`` (over the part's size, rounded) can at best tie
+    its first, else None (and None until the top is full).  Where the shortest feature's
+    length can at best tie the key's smallest region, the rows that cannot reach or tie
+    the key (:func:`lex_survivors`) are left out, and a row can only tie it if its
+    second smallest region ties or beats the key's second, and that region is at most
+    the second shortest feature's length (halving a feature for two fingers only
+    lowers it): the other features are then drawn from the
+    positions long enough for that (on a flattened curve, where every short edge ties
+    the top's smallest region, the few long edges), not from every position before
+    ``s``.
     """
     lengths = np.hypot(*(F.b - F.a).T)
     n = lengths.size
     order = np.lexsort((np.arange(n), -lengths))
+    # each position's length as a leximin key rounds it (padded as lex_survivors pads)
+    rounded = np.round((lengths[order] + _bound_pad(part_size)) / part_size, RANK_DIGITS)
     g = spec.gravity
     widths = spec.shape.widths if three_edge else spec.shape.widths[:1]
     twin = spec.shape.twin if three_edge else None
@@ -276,14 +339,28 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
             bisect.insort(seen, float(wrap_positive(F.center[order[s]])))
             if not _spans_plane(np.array(seen)):
                 continue
+        # the key where the shortest feature can at best tie its smallest region
+        current = key(float(rounded[s])) if key is not None else None
+        if current is not None and rounded[s] < current[0]:
+            break           # no row from here on reaches the key's smallest region
+        pool = s
+        if current is not None and current.size > 1:
+            # the other features must reach the key's second region
+            pool = min(s, int(np.searchsorted(-rounded, -current[1], side="right")))
         for r in widths:
-            for block in _combos(s, r):
+            for block in _combos(pool, r):
                 t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
                                                  axis=1)], axis=1)
                 t = _distinct_edges(F, t)
                 if not len(t):
                     continue
-                buf.append(_layouts(t, spec.shape, spec.fingers))
+                rows_s = _layouts(t, spec.shape, spec.fingers)
+                if current is not None:
+                    rows_s = rows_s[lex_survivors(_row_bounds(lengths, rows_s, twin),
+                                                  current, part_size)]
+                    if not len(rows_s):
+                        continue
+                buf.append(rows_s)
                 count += len(buf[-1])
                 while count >= target:
                     rows = np.concatenate(buf)
@@ -505,7 +582,9 @@ def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
 
 
 def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
-               batch_size: int | None = None) -> Iterator[EdgeSets]:
+               batch_size: int | None = None,
+               key: Callable[[float], FloatArray | None] | None = None
+               ) -> Iterator[EdgeSets]:
     """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows,
     by decreasing upper bound of their smallest region (:class:`EdgeSets`).
 
@@ -517,7 +596,8 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     layouts doubling that edge).  With a ``top``, batches
     start small and double up to ``batch_size``, so a search that finds its top among
     the first rows stops after little work (:func:`search`); the stream itself always
-    holds every row.
+    holds every row, unless ``key`` (a search's running top,
+    :attr:`~fcgrasp.pipeline.TopK.key`) leaves out the rows that cannot reach its last.
     """
     F = features(polygon, spec.mu, spec.hand, edges)
     size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
@@ -530,7 +610,7 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         twice = [e for e in set(idx) if idx.count(e) == 2]
         doubled = twice[0] if twice else None
         three_edge = doubled is not None
-    for sets in _ordered_rows(F, spec, three_edge, size, first):
+    for sets in _ordered_rows(F, spec, three_edge, size, first, key, polygon.size):
         if doubled is not None:
             rows = sets.feats
             twin = spec.shape.twin

@@ -3,19 +3,30 @@ of :mod:`fcgrasp.pipeline`; section 7.3 and 8)."""
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Iterator
+from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
 from functools import partial
 from typing import Any
 
 import numpy as np
 
+from ..core._checks import FloatArray
+from ..core._geom import RANK_DIGITS
 from ..core.tolerances import RANK_TOL
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
 from . import _spec  # the search's tunables, read when used
-from ._candidates import EdgeSets, _reduce_rows, candidates, features, search_size
+from ._candidates import (
+    EdgeSets,
+    _bound_pad,
+    _reduce_rows,
+    _row_bounds,
+    candidates,
+    features,
+    lex_survivors,
+    search_size,
+)
 from ._solve import Solved, _build_plans, _select, _smallest_region, solve
 from ._spec import (
     MAP_WINDOW,
@@ -49,6 +60,8 @@ class TopK:
         self._parts: list[Solved] = []
         self._held = 0
         self._floor = 0.0
+        self._key: FloatArray | None = None
+        self._key_stale = False
 
     def add(self, solved: Solved) -> None:
         """Fold in a solved batch (from any process, in any order)."""
@@ -71,6 +84,37 @@ class TopK:
             # rounding of the ranking (leximin_key) is within RANK_TOL * size: a row
             # below this cannot tie the keep-th row
             self._floor = max(self._floor, -kth - 2 * RANK_TOL * self.polygon.size)
+            self._key_stale = self.spec.rank_by == "min_region"
+
+    @property
+    def key(self) -> FloatArray | None:
+        """The leximin key of the top's last row (ranked by the smallest region, once
+        the top is full; None before, or with another measure): its region lengths
+        sorted ascending, over the part's size, rounded as
+        :func:`~fcgrasp.core._geom.leximin_key` rounds.  A row whose bounds cannot reach
+        or tie it cannot enter the top (:func:`~fcgrasp.pipeline._candidates.lex_survivors`:
+        on a flattened curve every short edge ties the top's smallest region, and the
+        second smallest tells the rows apart)."""
+        if self._key_stale:
+            self._key_stale = False
+            parts = [np.sort(np.where(p.cands.feats >= 0, p.lengths, np.inf), axis=1)
+                     for p in self._parts]
+            real = {int((p.cands.feats[0] >= 0).sum()) for p in self._parts}
+            if len(real) == 1:          # rows of one layout (gravity's column or none)
+                m = real.pop()
+                L = np.concatenate([x[:, :m] for x in parts])
+                L = L[np.all(L > 0, axis=1)]
+                keep = self.keep or 0
+                if len(L) >= keep > 0:
+                    # the keep-th key's first length is the keep-th largest first
+                    # length; only rows at or above it can come before it
+                    first = np.round(L[:, 0] / self.polygon.size, RANK_DIGITS)
+                    kth = np.partition(first, len(first) - keep)[len(first) - keep]
+                    up = L[first >= kth]
+                    keys = np.round(up / self.polygon.size, RANK_DIGITS)
+                    order = np.lexsort(keys.T[::-1])         # the first length first
+                    self._key = keys[order[len(keys) - keep]]
+        return self._key
 
     @property
     def floor(self) -> float:
@@ -140,10 +184,25 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         f = top.floor + (tie if strict and top.floor > 0 else 0.0)
         return max(f, floor)
 
+    lex = spec.top is not None and spec.rank_by == "min_region"
+    step = 10.0 ** -RANK_DIGITS
+
+    def key(level: float) -> FloatArray | None:
+        # the top's last key where a smallest region at ``level`` can at best tie its
+        # first (a rounding step's slack: None only prunes less)
+        if not lex or top.floor <= 0 or \
+                level > (top.floor + 2 * RANK_TOL * polygon.size) / polygon.size + step:
+            return None
+        k = top.key
+        return k if k is not None and level <= k[0] else None
+
     def fold() -> None:
         nonlocal done
         at = current()
         live = [b for b in window if b.ceiling >= at]
+        if lex:                # the top's last key may have risen since the rows came
+            live = [b for b in (_lex_pruned(b, key, lengths, twin, polygon.size)
+                                for b in live) if len(b.feats)]
         if map is None:
             results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=at)
                                          for b in live]
@@ -156,7 +215,10 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         if progress is not None:
             progress(min(done, total), total)
 
-    for batch in candidates(polygon, spec, edges, batch_size):
+    F = features(polygon, spec.mu, spec.hand, edges)
+    lengths = np.hypot(*(F.b - F.a).T)
+    twin = spec.shape.twin if spec.shape.three_edge else None
+    for batch in candidates(polygon, spec, edges, batch_size, key=key):
         if batch.ceiling < current():
             break
         window.append(batch)
@@ -167,6 +229,20 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def _lex_pruned(batch: EdgeSets, key: Callable[[float], FloatArray | None],
+                lengths: FloatArray, twin: int | None, size: float) -> EdgeSets:
+    """The rows of a batch that may still reach or tie the running top's last key
+    (``key(level)`` at the batch's ceiling: None, every row, above the tie)."""
+    k = key(float(np.round((batch.ceiling + _bound_pad(size)) / size, RANK_DIGITS)))
+    if k is None or not len(batch.feats):
+        return batch
+    keep = lex_survivors(_row_bounds(lengths, batch.feats, twin), k, size)
+    if keep.all():
+        return batch
+    return EdgeSets(batch.feats[keep], None if batch.bound is None else batch.bound[keep],
+                    batch.ceiling)
 
 
 def every_plan(polygon: Polygon, spec: PlanSpec, edges: Any = None,
