@@ -726,6 +726,10 @@ def test_the_optimality_bound_is_shown_as_fcgrasp_plan_prints_it(server, browser
     assert d.find_element(By.ID, "bound").is_displayed()
     Select(d.find_element(By.ID, "gripper")).select_by_value("jaw")
     assert not d.find_element(By.ID, "bound").is_displayed()
+    # each gripper's default distinct=: the jaw's boxes distinct, fingers' plans as ranked
+    assert d.find_element(By.ID, "distinct").is_selected()
+    Select(d.find_element(By.ID, "gripper")).select_by_value("4")
+    assert not d.find_element(By.ID, "distinct").is_selected()
 
 
 def test_the_3d_view_triangulates_regions_that_are_not_convex(server, browser):
