@@ -158,13 +158,12 @@ def test_every_configuration_left_out_is_a_kept_plans_copy(seed):
     left = {(p.region_edges, p.mode) for p in two_finger_plans_of(
         poly, two, search.pairs(top=None, exclude=kept, fraction=fraction, third=True))}
     F = features(poly, mu, None, None)
-    lengths = np.hypot(*(F.b - F.a).T)
     free = _FreeStretches(poly)
     out = [p for p in every if (p.region_edges, p.mode) not in left]
     # the default seeds leave some out, else the test would not see an unsound exclusion
     assert out or seed > 1
     for p in out:
-        q = _with_third(poly, spec, p, F, lengths, free)
+        q = _with_third(poly, spec, p, F, free)
         assert q is not None
         assert any(same_alternative(k, q, fraction, 1e-12 * poly.size) for k in kept), \
             p.region_edges

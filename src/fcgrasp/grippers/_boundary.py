@@ -85,17 +85,25 @@ def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan],
     """Plans in :func:`rank_key` order (the best ``spec.top``), a grasp reached by two
     configurations of one mode once (``seen``: the keys of grasps already given, which
     this call adds to)."""
-    scores = MEASURES[spec.rank_by].score(plans) if plans else np.zeros(0)
-    keyed = sorted((rank_key(p, polygon, spec.rank_by, float(q)), k)
+    out = [p for _, p in ranked_keyed(polygon, spec.rank_by, plans, seen)]
+    return out if spec.top is None else out[:spec.top]
+
+
+def ranked_keyed(polygon: Polygon, rank_by: str, plans: list[GraspPlan],
+                 seen: set[Any] | None = None) -> list[tuple[Any, GraspPlan]]:
+    """:func:`ranked_unique`'s plans (all of them), each with its grasp's key
+    ``(rank_key, mode)``, the one ``seen`` holds."""
+    scores = MEASURES[rank_by].score(plans) if plans else np.zeros(0)
+    keyed = sorted((rank_key(p, polygon, rank_by, float(q)), k)
                    for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
-    out: list[GraspPlan] = []
+    out: list[tuple[Any, GraspPlan]] = []
     seen = set() if seen is None else seen
     for key, k in keyed:
         if (key, plans[k].mode) in seen:
             continue
         seen.add((key, plans[k].mode))
-        out.append(plans[k])
-    return out if spec.top is None else out[:spec.top]
+        out.append(((key, plans[k].mode), plans[k]))
+    return out
 
 
 def _reaches_a_vertex(polygon: Polygon, p: GraspPlan) -> bool:

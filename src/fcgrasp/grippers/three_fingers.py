@@ -67,7 +67,7 @@ from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.distinct import Suppression
-from ..model.plans import GraspPlan, leximin_key, rank_key
+from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (
@@ -80,6 +80,7 @@ from ..pipeline import (
 from . import _concurrency
 from ._boundary import (
     DISTINCT_READ,
+    ranked_keyed,
     ranked_unique,
     regions_plan,
     stretch_plans_read,
@@ -321,10 +322,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             or not crosses_a_vertex(polygon, spec.mu, spec.margin):
         return None
     F = features(polygon, spec.mu, None, None)
-    lengths = np.hypot(*(F.b - F.a).T)
     size = polygon.size
     band = 4 * RANK_TOL * size               # above the concurrent level, after rounding
-    every = replace(spec, top=None)
     two = replace(spec, fingers=2, top=None, rank_by="min_region")
     suppression = Suppression(fraction, size)
     stretches = StretchSearch(polygon, spec.mu, spec.margin)
@@ -346,8 +345,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                                   fraction=fraction, seen=read, third=True)
             new = two_finger_plans_of(polygon, two, got, given)
             read += new
-            pairs += [q for q in (_with_third(polygon, spec, p, F, lengths, free)
-                                  for p in new) if q is not None]
+            pairs += [q for q in (_with_third(polygon, spec, p, F, free) for p in new)
+                      if q is not None]
             below = unread_below(got, ask)
             pair_level = -np.inf if below is None else below
         else:
@@ -359,11 +358,10 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                                                            grown=grown)
         line = max(pair_level, other_level + band)
         had = len(suppression.kept)
-        for p in ranked_unique(polygon, every, pairs + others):
+        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others):
             if float(min(p.lengths)) < line:
                 break
-            key = (rank_key(p, polygon), p.mode)       # ranked_unique's: each grasp once
-            if key in fed:
+            if key in fed:                  # each grasp once, across the rounds
                 continue
             fed.add(key)
             if suppression.add(p) and len(suppression.kept) == top:
@@ -596,7 +594,6 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
         return [], None
     boundary = (spec.along_boundary and spec.hand is None and edges is None
                 and crosses_a_vertex(polygon, spec.mu, spec.margin))
-    lengths = np.hypot(*(F.b - F.a).T)
     size = polygon.size
     ask = None if keep is None else start or max(KEEP_PAIRS, keep)
     free = _FreeStretches(polygon) if boundary else None
@@ -611,7 +608,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             # a plan not read ranks after the last read: no larger, to the rounding
             last = min((float(min(p.lengths)) for p in got), default=0.0)
             below = last * (1 + RANK_TOL) + 4 * RANK_TOL * size
-        out = [q for q in (_with_third(polygon, spec, p, F, lengths, free) for p in got)
+        out = [q for q in (_with_third(polygon, spec, p, F, free) for p in got)
                if q is not None]
         if keep is None or ask is None or every:
             return out, None             # the whole list
@@ -625,7 +622,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             return out, (ask, below)
 
 
-def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths: FloatArray,
+def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any,
                 free: _FreeStretches | None) -> GraspPlan | None:
     """The two-finger plan ``p`` with a third finger anywhere on the longest stretch
     (``free``, the part's free stretches: along the boundary) or feature of the edges
@@ -641,7 +638,7 @@ def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any, lengths:
     other = np.flatnonzero(~np.isin(F.edge, p.edges))
     if not other.size:
         return None
-    f = int(other[np.argmax(lengths[other])])
+    f = int(other[np.argmax(F.lengths[other])])
     ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
     return _plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair")
 

@@ -59,6 +59,10 @@ class Features:
     offset: FloatArray      # (F,) arc length of a along the parent edge
     center: FloatArray      # (F,) angle of -n
     half: FloatArray        # (F,) friction half-angle
+    lengths: FloatArray = field(init=False)     # (F,) |b - a|
+
+    def __post_init__(self) -> None:
+        self.lengths = np.hypot(*(self.b - self.a).T)
 def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
              edges: Any = None) -> Features:
     """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
@@ -97,7 +101,7 @@ def _features(polygon: Polygon, mu: float, hand: Hand | None,
     n = polygon.normals[ei]
     center = np.arctan2(-n[:, 1], -n[:, 0])
     out = Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
-    for arr in (out.edge, out.a, out.b, out.offset, out.center, out.half):
+    for arr in (out.edge, out.a, out.b, out.offset, out.center, out.half, out.lengths):
         arr.flags.writeable = False
     return out
 
@@ -316,7 +320,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     the top's smallest region, the few long edges), not from every position before
     ``s``.
     """
-    lengths = np.hypot(*(F.b - F.a).T)
+    lengths = F.lengths
     n = lengths.size
     order = np.lexsort((np.arange(n), -lengths))
     # each position's length as a leximin key rounds it (padded as lex_survivors pads)

@@ -215,8 +215,7 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         if progress is not None:
             progress(min(done, total), total)
 
-    F = features(polygon, spec.mu, spec.hand, edges)
-    lengths = np.hypot(*(F.b - F.a).T)
+    lengths = features(polygon, spec.mu, spec.hand, edges).lengths
     twin = spec.shape.twin if spec.shape.three_edge else None
     for batch in candidates(polygon, spec, edges, batch_size, key=key):
         if batch.ceiling < current():
