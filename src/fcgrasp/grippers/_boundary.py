@@ -32,6 +32,7 @@ from ..pipeline import (
     search,
     solve,
 )
+from ._distinct_rows import RowCopies
 
 # ----------------------------------------------------------------------------- stretches
 
@@ -134,6 +135,25 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
         raise ValueError("grown_plans plans three or four fingers without a hand "
                          "(spec.grows is False)")
     flat = replace(spec, along_boundary=False)
+    seeds, grown = _grown(polygon, spec, map)
+    # a single-edge plan below the top-th of the plans found so far (grown, and the
+    # seeds: single-edge plans of the exact search) cannot rank (on a smooth outline of
+    # equal edges, where every row ties on its bound, this ends the search at once)
+    floor = 0.0
+    if spec.top is not None and spec.rank_by == "min_region" \
+            and len(grown) + len(seeds) >= spec.top:
+        distinct = ranked_unique(polygon, replace(spec, top=None), grown + seeds)
+        if len(distinct) >= spec.top:
+            floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
+    plans = search(polygon, flat, progress=progress, map=map, floor=floor)
+    return ranked_unique(polygon, spec, plans + grown)
+
+
+def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None
+           ) -> tuple[list[GraspPlan], list[GraspPlan]]:
+    """:func:`grown_plans`'s seeds (the :data:`GROW_SEEDS` best single-edge plans) and
+    the plans grown from them along the boundary."""
+    flat = replace(spec, along_boundary=False)
     # the seeds: the GROW_SEEDS best single-edge plans, whatever the top (exact ties on
     # the smallest region in the order found)
     seeds = search(polygon, replace(flat, top=GROW_SEEDS),
@@ -147,17 +167,67 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
                              keep_single=False, polish=POLISH)
         grown = [frictionless_plan(polygon, spec, r) for r in got
                  if r is not None and max(len(e) for e in r.region_edges) > 1]
-    # a single-edge plan below the top-th of the plans found so far (grown, and the
-    # seeds: single-edge plans of the exact search) cannot rank (on a smooth outline of
-    # equal edges, where every row ties on its bound, this ends the search at once)
-    floor = 0.0
-    if spec.top is not None and spec.rank_by == "min_region" \
-            and len(grown) + len(seeds) >= spec.top:
-        distinct = ranked_unique(polygon, replace(spec, top=None), grown + seeds)
-        if len(distinct) >= spec.top:
-            floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
-    plans = search(polygon, flat, progress=progress, map=map, floor=floor)
-    return ranked_unique(polygon, spec, plans + grown)
+    return seeds, grown
+
+
+#: Below this ``distinct`` fraction :func:`distinct_single_edge_plans` leaves out the
+#: rows inside kept regions unsolved (:class:`~fcgrasp.grippers._distinct_rows.RowCopies`:
+#: a region inside another overlaps it by the whole of it, which a fraction of 1 does
+#: not exceed).
+SURE_FRACTION = 0.99
+
+
+def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
+                               progress: Any = None, map: Any = None
+                               ) -> list[GraspPlan] | None:
+    """The ``spec.top`` best single-edge plans (three or four frictionless fingers:
+    with the plans grown along the boundary, as :func:`grown_plans` ranks them) that
+    are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
+    whole ranked list, exactly), or None where this search does not apply (another
+    ``rank_by``, ``top=None``, a hand, a fraction above :data:`SURE_FRACTION`: the
+    caller then suppresses the ranked list as usual).
+
+    Rounds of the single-edge search, each leaving out the rows read before and the
+    rows whose every plan is surely the same alternative as a plan kept so far
+    (:class:`~fcgrasp.grippers._distinct_rows.RowCopies`: on a curved outline a grown
+    plan's regions cover hundreds of edges, whose rows would fill the ranked list).  A
+    round gives the next plans of the ranked list less those suppression drops
+    anyway, down to its last; the grown plans that rank before that last are fed with
+    them, in rank order, to :class:`~fcgrasp.model.distinct.Suppression`, so the plans
+    kept are those of suppression along the whole list.  Each kept plan's ``similar``
+    lists the plans it stands for among those read (at least :data:`DISTINCT_READ`
+    single-edge plans, twice ``top``, a round); copies left out unread are not
+    listed."""
+    top = spec.top
+    if top is None or spec.rank_by != "min_region" or spec.hand is not None \
+            or not 0 < fraction <= SURE_FRACTION:
+        return None
+    flat = replace(spec, along_boundary=False)
+    suppression = Suppression(fraction, polygon.size)
+    seen: set[Any] = set()              # one grasp reached twice (grown, single): once
+    waiting = ranked_keyed(polygon, spec.rank_by, _grown(polygon, spec, map)[1], seen) \
+        if spec.grows else []
+    read: list[Any] = []
+    ask = max(2 * top, DISTINCT_READ)
+    while len(suppression.kept) < top:
+        copies = RowCopies(polygon, suppression.kept, read, suppression.tol)
+        single = search(polygon, replace(flat, top=ask), map=map, exclude=copies)
+        read += [p.edges for p in single]
+        came = ranked_keyed(polygon, spec.rank_by, single, seen)
+        merged = sorted(waiting + came, key=lambda kp: kp[0])
+        if len(single) < ask:           # every row left was read
+            now, waiting = merged, []
+        else:                           # the grown plans after the round's last wait
+            last = ranked_keyed(polygon, spec.rank_by, single[-1:])[0][0]
+            now = [kp for kp in merged if kp[0] <= last]
+            waiting = [kp for kp in merged if kp[0] > last]
+        for _, p in now:
+            suppression.add(p)
+        if len(single) < ask:
+            break
+    if progress is not None:
+        progress(1, 1)
+    return suppression.plans()[:top]
 
 
 def stretch_plans_read(polygon: Polygon, spec: PlanSpec

@@ -43,6 +43,7 @@ from ..pipeline import (
 from ._boundary import (
     boundary_plans,
     distinct_boundary_plans,
+    distinct_single_edge_plans,
     frictionless_plan,
     grown_plans,
     stretch_plan,
@@ -106,6 +107,17 @@ class _PointFingers:
             return grown_plans(polygon, spec, options.progress, map=options.map)
         return search(polygon, spec, progress=options.progress, map=options.map)
 
+    def distinct_search(self, polygon: Polygon, options: SearchOptions, fraction: float
+                        ) -> list[GraspPlan] | None:
+        """The ``top`` distinct alternatives found by rounds of the single-edge search
+        that leave out each kept plan's copies
+        (:func:`~fcgrasp.grippers._boundary.distinct_single_edge_plans`), or None where
+        the ranked list is suppressed as it comes."""
+        spec = self.spec(options)
+        check_search(polygon, spec)
+        return distinct_single_edge_plans(polygon, spec, fraction, options.progress,
+                                          options.map)
+
     def search_edges(self, polygon: Polygon, spec: PlanSpec,
                      edges: list[int]) -> list[GraspPlan]:
         """The single-edge search restricted to these edges (independent regions)."""
@@ -159,10 +171,12 @@ class TwoFingers(_PointFingers):
         ranked list is suppressed as it comes."""
         spec = self.spec(options)
         if not spec.stretches:
-            return None
+            return super().distinct_search(polygon, options, fraction)
         check_search(polygon, spec)
         plans = distinct_boundary_plans(polygon, spec, fraction)
-        if plans is not None and options.progress is not None:
+        if plans is None:               # no region crosses a vertex: the single edges'
+            return super().distinct_search(polygon, options, fraction)
+        if options.progress is not None:
             options.progress(1, 1)
         return plans
 

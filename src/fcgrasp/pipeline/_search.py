@@ -148,7 +148,8 @@ class TopK:
 
 def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
            batch_size: int | None = None, map: Any = None, floor: float = 0.0,
-           strict: bool = False) -> list[GraspPlan]:
+           strict: bool = False,
+           exclude: Callable[[np.ndarray], np.ndarray] | None = None) -> list[GraspPlan]:
     """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
     decreasing bound, :func:`solve` drops the rows below the running top's
     :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
@@ -166,7 +167,10 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     plans at least that good elsewhere; rows below it are not solved).  ``strict``: a
     row that can at best tie the top's last on its smallest region is not solved either
     (exact ties are then kept in the order found, not all of them: on a flattened circle
-    every row ties, and the search ends at once).
+    every row ties, and the search ends at once).  ``exclude(feats)``: which rows of a
+    batch (True) are left out unsolved, as if they were not candidates (the rows a
+    distinct search has read, or whose every plan is the same alternative as one it
+    kept: :class:`~fcgrasp.grippers._distinct_rows.RowCopies`).
 
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
@@ -200,6 +204,8 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         nonlocal done
         at = current()
         live = [b for b in window if b.ceiling >= at]
+        if exclude is not None:
+            live = [b for b in (_left_in(b, exclude) for b in live) if len(b.feats)]
         if lex:                # the top's last key may have risen since the rows came
             live = [b for b in (_lex_pruned(b, key, lengths, twin, polygon.size)
                                 for b in live) if len(b.feats)]
@@ -228,6 +234,18 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def _left_in(batch: EdgeSets, exclude: Callable[[np.ndarray], np.ndarray]) -> EdgeSets:
+    """The rows of a batch that ``exclude`` does not leave out."""
+    if not len(batch.feats):
+        return batch
+    out = np.asarray(exclude(batch.feats), bool)
+    if not out.any():
+        return batch
+    keep = ~out
+    return EdgeSets(batch.feats[keep], None if batch.bound is None else batch.bound[keep],
+                    batch.ceiling)
 
 
 def _lex_pruned(batch: EdgeSets, key: Callable[[float], FloatArray | None],
