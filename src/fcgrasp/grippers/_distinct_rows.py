@@ -37,10 +37,11 @@ class RowCopies:
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec, search
     >>> part = demo_part("quad")
-    >>> best = search(part, plan_spec(fingers=4, top=1))
-    >>> copies = RowCopies(part, [], [best[0].edges], 1e-9)
+    >>> [p.edges for p in search(part, plan_spec(fingers=4, top=2))]
+    [(0, 1, 2, 3), (3, 0, 3, 1)]
+    >>> copies = RowCopies(part, [], [(0, 1, 2, 3)], 1e-9)     # the best row read
     >>> [p.edges for p in search(part, plan_spec(fingers=4, top=1), exclude=copies)]
-    []
+    [(3, 0, 3, 1)]
     """
 
     def __init__(self, polygon: Polygon, kept: list[GraspPlan], read: list[Any],
