@@ -221,7 +221,7 @@ def test_best_piece_of_each_row_matches(seed, monkeypatch):
         assert held > 5 and doubled > 0
 
 
-@pytest.mark.parametrize("kind", ["ellipse", "star"])
+@pytest.mark.parametrize("kind", ["ellipse", pytest.param("star", marks=pytest.mark.slow)])
 def test_growth_along_the_boundary_matches(kind, monkeypatch):
     """Stretches grown by the kernel (an auxiliary variable per finger and facet) and by
     HiGHS: the same stretches, the same levels."""

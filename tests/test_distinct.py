@@ -143,9 +143,13 @@ def test_distinct_is_checked_and_reported(tmp_path):
     doc = plan_document(PlanRequest(part="demo:cam", top=2, distinct=0.5))
     assert doc.report["parameters"]["distinct"] == 0.5
     assert len(doc.report["grasps"][0]["similar"]) >= 9
-    plain = plan_document(PlanRequest(part="demo:cam", top=2))
+    plain = plan_document(PlanRequest(part="demo:cam", top=2, distinct=0))
     assert "distinct" not in plain.report["parameters"]
     assert all("similar" not in g for g in plain.report["grasps"])
+    default = plan_document(PlanRequest(part="demo:cam", top=2))      # distinct=None
+    assert default.report["parameters"]["distinct"] == 0.5
+    assert [g["edges"] for g in default.report["grasps"]] == \
+        [g["edges"] for g in doc.report["grasps"]]
 
 
 def _image(poly, kind, ang):

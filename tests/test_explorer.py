@@ -404,6 +404,11 @@ def test_a_real_part_handles_numbers_scale_zoom_and_pan(server, browser, tmp_pat
     wait_plan(browser, 0)
     path = tmp_path / "half-disc.json"
     path.write_text(json.dumps(d_part()))
+    # the ranked list (distinct alternatives of two fingers along a 2,000-edge arc read
+    # thousands of shifted copies, about ten seconds; not what this test is about)
+    seq = plan_seq(browser)
+    browser.find_element(By.ID, "distinct").click()
+    wait_plan(browser, seq)
     seq = plan_seq(browser)
     browser.find_element(By.ID, "file").send_keys(str(path))
     wait_plan(browser, seq)
@@ -667,11 +672,13 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     view = np.array([np.cos(st["pitch"]) * np.cos(st["yaw"]),
                      np.cos(st["pitch"]) * np.sin(st["yaw"]), np.sin(st["pitch"])])
     assert sum(float(view @ -np.array(n)) > 0.2 for n in inward) == 2
-    # distinct alternatives only: the page asks for --distinct 0.5
+    # distinct alternatives only (ticked, every gripper's default): the page asks for
+    # --distinct 0.5; unticked, for every plan as ranked
+    assert d.execute_script("return explorer.state.report.parameters.distinct") == 0.5
     after = plan_seq(d)
     d.find_element(By.ID, "distinct").click()
     wait_plan(d, after)
-    assert d.execute_script("return explorer.state.report.parameters.distinct") == 0.5
+    assert d.execute_script("return explorer.state.report.parameters.distinct") is None
     d.find_element(By.ID, "distinct").click()
     # back to a planar part: the outline, every gripper
     after = plan_seq(d)
@@ -726,10 +733,13 @@ def test_the_optimality_bound_is_shown_as_fcgrasp_plan_prints_it(server, browser
     assert d.find_element(By.ID, "bound").is_displayed()
     Select(d.find_element(By.ID, "gripper")).select_by_value("jaw")
     assert not d.find_element(By.ID, "bound").is_displayed()
-    # each gripper's default distinct=: the jaw's boxes distinct, fingers' plans as ranked
+    # each gripper's default distinct= (0.5 for every gripper): picking one ticks
+    # 'distinct alternatives only' again after a user unticked it
     assert d.find_element(By.ID, "distinct").is_selected()
-    Select(d.find_element(By.ID, "gripper")).select_by_value("4")
+    d.find_element(By.ID, "distinct").click()
     assert not d.find_element(By.ID, "distinct").is_selected()
+    Select(d.find_element(By.ID, "gripper")).select_by_value("4")
+    assert d.find_element(By.ID, "distinct").is_selected()
 
 
 def test_the_3d_view_triangulates_regions_that_are_not_convex(server, browser):

@@ -47,7 +47,7 @@ def _reports():
         for fingers, mu, rank_by in JOBS:
             if fingers > 2 and poly.n_edges > 12:
                 continue
-            plans = fc.plan(poly, **grip(fingers, mu), top=4, rank_by=rank_by)
+            plans = fc.plan(poly, **grip(fingers, mu), top=4, rank_by=rank_by, distinct=0)
             params = {"fingers": fingers, "mu": mu, "top": 4, "rank_by": rank_by}
             out[f"{name} {fingers} {mu} {rank_by}"] = json.loads(
                 dumps(plan_report(poly, plans, params, "mm")))

@@ -173,12 +173,13 @@ def test_three_finger_search_stops_early(monkeypatch):
         return real(polygon, spec, sets, *args, **kw)
 
     monkeypatch.setattr(pipeline, "solve", counting)
-    got = fc.plan(part, fingers=3, gravity=(0, -1), top=2,
+    got = fc.plan(part, fingers=3, gravity=(0, -1), top=2, distinct=0,
                   progress=lambda d, t: calls.append((d, t)), along_boundary=False)
     monkeypatch.undo()
     total = calls[-1][1]
     assert calls[-1][0] == total and sum(rows) < total / 2
-    every = fc.plan(part, fingers=3, gravity=(0, -1), top=None, along_boundary=False)
+    every = fc.plan(part, fingers=3, gravity=(0, -1), top=None, along_boundary=False,
+                    distinct=0)
     assert _key(got) == _key(every[:2])
 
 

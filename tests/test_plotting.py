@@ -131,7 +131,9 @@ FIGURE_CASES = [("washer", dict(fingers=2, mu=0.2)), ("cam", dict(fingers=2, mu=
                 ("rectangle", dict(fingers=2, mu=0.3))]
 
 
-@pytest.mark.parametrize("name, grip", FIGURE_CASES, ids=[c[0] for c in FIGURE_CASES])
+@pytest.mark.parametrize("name, grip", [
+    c if c[0] in ("washer", "cam", "bracket") else pytest.param(*c, marks=pytest.mark.slow)
+    for c in FIGURE_CASES], ids=[c[0] for c in FIGURE_CASES])
 def test_figure_text_never_overlaps(tmp_path, monkeypatch, name, grip):
     """Rendered figures of plans: the edge numbers overlap neither one another, nor the
     outline, the regions or the V's, and stay inside their drawing, under the V's; each

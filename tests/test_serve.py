@@ -159,7 +159,9 @@ def test_gravity_check(client):
 
 def test_a_slow_plan_reports_progress_and_can_be_cancelled(client):
     part = {"outer": _star(300).tolist()}
-    r1 = client.post("/api/plan", json={"part": part, "options": {"gripper": "3", "mu": 0.3}})
+    # the ranked list (distinct=0): three fingers' search reports each batch solved
+    r1 = client.post("/api/plan", json={"part": part, "options": {"gripper": "3", "mu": 0.3,
+                                                                  "distinct": 0}})
     ans = r1.json()
     assert ans["state"] == "running"
     seen = []

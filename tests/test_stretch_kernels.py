@@ -254,6 +254,7 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
     across = (iA + m // 2 + rng.integers(-2, 3, n)) % m
     cfg = _Configs(iA, kA, np.where(np.arange(n) % 2 == 0, far, across), kC)
     counts = []
+    proved = [0, 0]         # infeasible, below the floor
     for sigma in (1.0, -1.0):
         iv = _Intervals(ring, ring, sigma, beta)
         rows = _system(ring, ring, cfg, sigma, beta, iv, iv)
@@ -269,10 +270,23 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
         counts.append(int(feasible.sum()))
         for g, w in zip(got, want, strict=True):
             np.testing.assert_allclose(g, w, rtol=0, atol=1e-12 * poly.size)
+        # with a floor: NaN only where the largest t is below it (or none holds), the
+        # same numbers elsewhere; infeasible systems and feasible ones below proved so
+        for q in (0.2, 0.5, 0.9):
+            floor = float(np.quantile(want[0][feasible], q)) if feasible.any() else 1.0
+            cut = solve_rows(rows, ub, S.ROUND_TOL * poly.size, S._EPS, floor)
+            skipped = np.isnan(cut[0])
+            assert np.all(want[0][skipped] < floor)
+            for g, c in zip(got, cut, strict=True):
+                np.testing.assert_array_equal(c[~skipped], g[~skipped])
+            proved[0] += int(np.count_nonzero(skipped & ~feasible))
+            proved[1] += int(np.count_nonzero(skipped & feasible))
     # infeasible systems met, and feasible ones but on noisy outlines (there, at a small
     # mu, no configuration of the sample may hold: seeds 18, 25, 53)
     assert sum(counts) < 2 * n
     assert sum(counts) > 0 or KINDS[seed % len(KINDS)] == "noisy"
+    assert proved[0] > 0
+    assert proved[1] > 0 or sum(counts) < 20
 
 
 @pytest.mark.parametrize("seed", seeds(3, 80))
@@ -561,7 +575,8 @@ def test_inside_any_compiled_is_the_numpy_test_and_brute_force(seed):
     assert brute.any() and (ma < 37 or not brute.all())
 
 
-@pytest.mark.parametrize("fraction", [0.3, 0.5, 0.9])
+@pytest.mark.parametrize("fraction", [0.5, *(pytest.param(f, marks=pytest.mark.slow)
+                                      for f in (0.3, 0.9))])
 def test_exclusion_tests_compiled_are_the_numpy_ones(fraction, monkeypatch):
     """The distinct search's exclusion (which configurations are surely a kept plan's
     alternative, and from which smallest region on), by the fused compiled loop and by
@@ -693,8 +708,8 @@ def test_member_is_isin():
         np.testing.assert_array_equal(_member(codes, known), np.isin(codes, known))
 
 
-@pytest.mark.parametrize("seed", [0, 1, 10, 14, *(pytest.param(s, marks=pytest.mark.slow)
-                                              for s in range(160) if s not in (0, 1, 10, 14))])
+@pytest.mark.parametrize("seed", [10, *(pytest.param(s, marks=pytest.mark.slow)
+                                        for s in range(160) if s != 10)])
 def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
     """Where the lower bounds fill fewer keys than ``top`` (one key holds many of the top
     configurations of a smooth outline), the floor guessed from the keys' values gives

@@ -109,7 +109,7 @@ def _random_cases(seed, count):
     return found
 
 
-@pytest.mark.parametrize("seed", range(3))
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow) for s in (1, 2))])
 def test_regions_force_closure_by_wrench_lp(seed):
     assert _random_cases(100 + seed, 25) > 5
 
@@ -382,7 +382,8 @@ def test_branch_and_bound_is_exact(seed):
                 assert np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=1e-9 * part.size)
 
 
-@pytest.mark.parametrize("kind", ["regular", "ellipse", "blob"])
+@pytest.mark.parametrize("kind", ["ellipse", *(pytest.param(k, marks=pytest.mark.slow)
+                                             for k in ("regular", "blob"))])
 def test_branch_and_bound_is_exact_along_the_boundary(kind):
     """On smooth outlines, where every triple of equal edges ties on its bound and the
     two-finger plans end the search, and on a regular polygon with exact ties: the top

@@ -381,12 +381,10 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
                ("blob", 3, 0.5, None, "three fingers with friction"),
                ("washer", 2, 0.2, None, "two fingers with friction on a part with a hole"),
                ("cam", 2, 0.3, None, "regions along the boundary of a curved part")]
-    # the curved part's plans distinct alternatives (issue 31: its ranked list is one
-    # grasp shifted along the curve, drawn six times)
-    jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6,
-                         distinct=0.5 if name == "cam" else 0.0),
-             f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}"
-             + (" (distinct alternatives)" if name == "cam" else ""))
+    # the plans distinct alternatives, as by default (issue 31: the curved part's
+    # ranked list is one grasp shifted along the curve, drawn six times)
+    jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6),
+             f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}")
             for name, n, mu, g, title in fingers]
     # a parallel-jaw gripper: boxes of jaw poses (closing angle, offset) that hold
     jobs.append((PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10.0, 50.0),
@@ -585,8 +583,8 @@ def build_parser() -> argparse.ArgumentParser:
                             "overlap a better plan's by more than FRACTION of the shorter "
                             "(on a solid: whose regions, grown by 1/FRACTION, overlap a "
                             "better plan's; 0.5 is a good choice; 0: every plan, as "
-                            "ranked; default: 0.5 for a parallel jaw, whose mirror and "
-                            "neighbouring boxes are merged, 0 for point fingers)")
+                            "ranked; default 0.5: a plan shifted along the outline by "
+                            "an edge, a jaw's mirror and neighbouring boxes, are merged)")
         p.add_argument("--mass", type=float, default=None, metavar="KG",
                        help="a load to carry: the part's mass in kg; each plan then reports "
                             "the scale of the load every grasp of its regions carries "

@@ -134,6 +134,12 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     if not spec.grows:
         raise ValueError("grown_plans plans three or four fingers without a hand "
                          "(spec.grows is False)")
+    return _grown_ranked(polygon, spec, progress, map)[0]
+
+
+def _grown_ranked(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None
+                  ) -> tuple[list[GraspPlan], list[GraspPlan]]:
+    """:func:`grown_plans`'s plans, and every grown plan (ranked or not)."""
     flat = replace(spec, along_boundary=False)
     seeds, grown = _grown(polygon, spec, map)
     # a single-edge plan below the top-th of the plans found so far (grown, and the
@@ -146,7 +152,7 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
         if len(distinct) >= spec.top:
             floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
     plans = search(polygon, flat, progress=progress, map=map, floor=floor)
-    return ranked_unique(polygon, spec, plans + grown)
+    return ranked_unique(polygon, spec, plans + grown), grown
 
 
 def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None
@@ -187,8 +193,12 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     ``rank_by``, ``top=None``, a hand, a fraction above :data:`SURE_FRACTION`: the
     caller then suppresses the ranked list as usual).
 
-    Rounds of the single-edge search, each leaving out the rows read before and the
-    rows whose every plan is surely the same alternative as a plan kept so far
+    The first round reads the ranked list's first ``top`` plans as the gripper ranks
+    them (with the floors that end its search early; on most parts they are distinct
+    already: a gear's ten best plans are grown ones, and asking for twenty would read
+    its thousands of tied single-edge rows).  Then rounds of the single-edge search,
+    each leaving out the rows read before and the rows whose every plan is surely the
+    same alternative as a plan kept so far
     (:class:`~fcgrasp.grippers._distinct_rows.RowCopies`: on a curved outline a grown
     plan's regions cover hundreds of edges, whose rows would fill the ranked list).  A
     round gives the next plans of the ranked list less those suppression drops
@@ -197,36 +207,55 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     kept are those of suppression along the whole list.  Each kept plan's ``similar``
     lists the plans it stands for among those read (at least :data:`DISTINCT_READ`
     single-edge plans, twice ``top``, a round); copies left out unread are not
-    listed."""
+    listed.  ``progress(kept, top)`` before each round after the first, and at the
+    end."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or spec.hand is not None \
             or not 0 < fraction <= SURE_FRACTION:
         return None
     flat = replace(spec, along_boundary=False)
     suppression = Suppression(fraction, polygon.size)
-    seen: set[Any] = set()              # one grasp reached twice (grown, single): once
-    waiting = ranked_keyed(polygon, spec.rank_by, _grown(polygon, spec, map)[1], seen) \
-        if spec.grows else []
-    read: list[Any] = []
     ask = max(2 * top, DISTINCT_READ)
-    while len(suppression.kept) < top:
+    # the first round: the ranked list's first plans, as the gripper ranks them (its
+    # floors end the search early; most parts' first plans are distinct already)
+    if spec.grows:
+        first, grown = _grown_ranked(polygon, spec, map=map)
+    else:
+        first, grown = search(polygon, flat, map=map), []
+    seen: set[Any] = set()              # one grasp reached twice (grown, single): once
+    came = ranked_keyed(polygon, spec.rank_by, first, seen)
+    for _, p in came:
+        suppression.add(p)
+    read = [p.edges for p in first if max(len(e) for e in p.region_edges) == 1]
+    more = len(first) == top
+    # the grown plans not read rank after the first round's last
+    waiting = ranked_keyed(polygon, spec.rank_by, grown, seen)
+    while more and len(suppression.kept) < top:
+        if progress is not None:        # plans kept of top, before each round
+            progress(len(suppression.kept), top)
+        # a row below the ask-th waiting grown plan's smallest region ranks after it
+        floor = float(min(waiting[ask - 1][1].lengths)) - 2 * RANK_TOL * polygon.size \
+            if len(waiting) >= ask else 0.0
         copies = RowCopies(polygon, suppression.kept, read, suppression.tol)
-        single = search(polygon, replace(flat, top=ask), map=map, exclude=copies)
-        read += [p.edges for p in single]
-        came = ranked_keyed(polygon, spec.rank_by, single, seen)
+        single = search(polygon, replace(flat, top=ask), map=map, exclude=copies,
+                        floor=max(floor, 0.0))
+        came = ranked_keyed(polygon, spec.rank_by, single, set(seen))
         merged = sorted(waiting + came, key=lambda kp: kp[0])
-        if len(single) < ask:           # every row left was read
-            now, waiting = merged, []
-        else:                           # the grown plans after the round's last wait
-            last = ranked_keyed(polygon, spec.rank_by, single[-1:])[0][0]
-            now = [kp for kp in merged if kp[0] <= last]
-            waiting = [kp for kp in merged if kp[0] > last]
-        for _, p in now:
+        if len(single) == ask:          # the rows not read rank after the last
+            last = came[-1][0]
+        elif floor > 0:                 # ... after the ask-th waiting grown plan
+            last = waiting[ask - 1][0]
+        else:                           # every row left was read
+            last, more = merged[-1][0] if merged else None, False
+        now = [kp for kp in merged if last is not None and kp[0] <= last]
+        waiting = [kp for kp in merged if last is None or kp[0] > last]
+        for key, p in now:
+            seen.add(key)
+            if max(len(e) for e in p.region_edges) == 1:
+                read.append(p.edges)    # read: left out of the next rounds
             suppression.add(p)
-        if len(single) < ask:
-            break
     if progress is not None:
-        progress(1, 1)
+        progress(top, top)
     return suppression.plans()[:top]
 
 
@@ -276,7 +305,8 @@ def _stretch_plans(polygon: Polygon, spec: PlanSpec, pairs: list[StretchPair]
 DISTINCT_READ = 10
 
 
-def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
+def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
+                            progress: Any = None, depth: int | None = None
                             ) -> list[GraspPlan] | None:
     """The ``spec.top`` best two-finger plans along the boundary that are distinct
     alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the whole ranked
@@ -292,7 +322,11 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     whole list (:class:`~fcgrasp.model.distinct.Suppression`, fed round by round).
     Each kept plan's ``similar`` lists the plans it stands for among those the rounds
     read (at least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out
-    unread are not listed."""
+    unread are not listed.  With ``depth``, the reading stops once ``depth`` times
+    ``top`` plans are read, with the plans kept so far (on a smooth outline, a region
+    on a long edge can be placed anywhere along it before the plan is finished, so its
+    shifted copies are not left out: a 2,000-edge half disc reads 7,000 plans for ten
+    alternatives).  ``progress(kept, top)`` after each round."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or not crosses_a_vertex(polygon, spec.mu, spec.margin):
@@ -309,8 +343,10 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float
         for p in ranked:
             suppression.add(p)
         read += ranked
-        if len(pairs) < ask:
-            break                       # every plan left was read
+        if progress is not None:
+            progress(min(len(suppression.kept), top), top)
+        if len(pairs) < ask or (depth is not None and len(read) >= depth * top):
+            break                       # every plan left was read (or enough)
         # the plans read are left out by name, so each round reads further down
     return suppression.plans()[:top]
 

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..core._checks import check_margin, check_mu_scalar, check_tol
 from ..core.tolerances import SOLVER_TOL
+from ..model.distinct import DEFAULT_DISTINCT
 from ..model.frictionless_stretches import frictionless_stretch_regions
 from ..model.graspsets import Vertex
 from ..model.hand import Hand
@@ -69,6 +70,9 @@ class _PointFingers:
     gravity: tuple[float, float] | None = None
     hand: Hand | None = None
     along_boundary: bool = True
+    #: ``distinct=None``: the top plans are distinct alternatives (issue 31: a curved
+    #: outline's ranked list is one grasp shifted along it)
+    default_distinct: ClassVar[float] = DEFAULT_DISTINCT
 
     def __post_init__(self) -> None:
         spec = plan_spec(fingers=self.fingers, mu=self.mu, gravity=self.gravity,
@@ -153,6 +157,10 @@ class TwoFingers(_PointFingers):
     fingers: ClassVar[int] = 2
     name: ClassVar[str] = "two_fingers"
     NONE: ClassVar[str] = "no pair of edges admits two fingers with mu = {mu:g}"
+    #: ``distinct=`` along the boundary reads at most this many times ``top`` plans
+    #: (:func:`~fcgrasp.grippers._boundary.distinct_boundary_plans`): on a smooth
+    #: outline some copies cannot be left out before they are read.
+    distinct_depth: ClassVar[int] = 128
 
     def _search(self, polygon: Polygon, spec: PlanSpec,
                 options: SearchOptions) -> list[GraspPlan]:
@@ -173,11 +181,10 @@ class TwoFingers(_PointFingers):
         if not spec.stretches:
             return super().distinct_search(polygon, options, fraction)
         check_search(polygon, spec)
-        plans = distinct_boundary_plans(polygon, spec, fraction)
+        plans = distinct_boundary_plans(polygon, spec, fraction, options.progress,
+                                        self.distinct_depth)
         if plans is None:               # no region crosses a vertex: the single edges'
             return super().distinct_search(polygon, options, fraction)
-        if options.progress is not None:
-            options.progress(1, 1)
         return plans
 
     def no_grasp_reason(self, margin: float) -> str:
@@ -213,10 +220,8 @@ class ThreeFingers(_PointFingers):
         where the ranked list is suppressed as it comes."""
         spec = self.spec(options)
         check_search(polygon, spec)
-        plans = distinct_three_finger_plans(polygon, spec, fraction, self.distinct_depth)
-        if plans is not None and options.progress is not None:
-            options.progress(1, 1)
-        return plans
+        return distinct_three_finger_plans(polygon, spec, fraction, self.distinct_depth,
+                                           options.progress)
 
     def search_edges(self, polygon: Polygon, spec: PlanSpec,
                      edges: list[int]) -> list[GraspPlan]:

@@ -282,7 +282,8 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
 
 
 def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
-                                depth: int | None = None) -> list[GraspPlan] | None:
+                                depth: int | None = None, progress: Any = None
+                                ) -> list[GraspPlan] | None:
     """The ``spec.top`` best plans of :func:`three_finger_plans` along the boundary that
     are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
     whole ranked list, exactly), or None where this search does not apply (another
@@ -315,7 +316,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     ranked list's depth does for the other grippers): where a third finger's free
     stretch is not known before the regions are placed (a region may end on a vertex
     and free the edge beyond), copies are not left out, and a curved outline has
-    thousands of them."""
+    thousands of them.  ``progress(kept, top)`` after each round and each batch of the
+    concurrent search."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or spec.hand is not None or not spec.along_boundary \
@@ -337,6 +339,9 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     ask = keep = max(2 * top, DISTINCT_READ)
     pair_level = other_level = np.inf
     cap = np.inf if depth is None else depth * top
+    # each batch of the concurrent search a chance to report (and to be cancelled)
+    beat = None if progress is None else \
+        (lambda done, total: progress(len(suppression.kept), top))
     while len(suppression.kept) < top:
         if other_level <= pair_level - band:    # the pairs hold the reading back
             if len(read) >= cap:
@@ -354,7 +359,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         if other_level > pair_level - band:
             # read a band below the pairs' level: those at it then come first
             others, other_level, grown = _concurrent_plans(polygon, spec, None, F, keep,
-                                                           pair_level - band, True,
+                                                           pair_level - band, True, beat,
                                                            grown=grown)
         line = max(pair_level, other_level + band)
         had = len(suppression.kept)
@@ -366,6 +371,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             fed.add(key)
             if suppression.add(p) and len(suppression.kept) == top:
                 break
+        if progress is not None:        # plans kept of top, after each round
+            progress(len(suppression.kept), top)
         if line == -np.inf:
             break
         if len(suppression.kept) == had:

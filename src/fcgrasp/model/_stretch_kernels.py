@@ -934,13 +934,83 @@ def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any
     return wa[:n_w], wp[:n_w], wv[:n_w], oA[:n_out], oC[:n_out], okC[:n_out]
 
 
-def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
+#: Steps :func:`_below` takes at most along the lower bounds of ``t``.
+_BELOW_STEPS = 16
+
+
+def _below(el: Any, m: int, floor: float, tol: float, eps: float) -> bool:
+    """Whether the eliminated system's largest ``t`` is surely below ``floor`` (> 0), or
+    the system has none, proved by bounds of ``t`` that the full pass of
+    :func:`_solve_rows` also takes, each computed by the same operations (so its
+    ``hi`` is at most the least upper bound found here and its ``lo`` at least the
+    greatest lower bound): an upper bound below ``floor``, a lower bound above an upper
+    one by more than ``tol``, or a flat bound below ``-tol``.
+
+    The bounds come from the rows without ``u0`` and from pairs of rows bounding ``u0``
+    from below and above: at ``t`` (first ``floor`` or the greatest lower bound found),
+    the pair furthest apart; where it is apart and parted further as ``t`` grows, its
+    crossing is a lower bound, from which the next step starts (the gap between the
+    highest lower and lowest upper row is concave in ``t``: a cutting-plane walk up to
+    the first ``t`` where ``u0`` may fit).  False (solve in full) where no proof comes
+    within :data:`_BELOW_STEPS` steps; each step one pass over the rows, where the
+    full pass reads every pair."""
+    lo, hi = -np.inf, np.inf
+    for p in range(m):                  # the rows without u0
+        c1 = el[p, 1]
+        if not (c1 > eps or c1 < -eps):
+            c0, ct = el[p, 0], el[p, 2]
+            if ct < -eps:
+                hi = min(hi, -c0 / ct)
+            elif ct > eps:
+                lo = max(lo, -c0 / ct)
+            elif c0 < -tol:
+                return True
+    if hi < floor or lo > hi + tol:
+        return True
+    t = max(floor, lo)
+    for _ in range(_BELOW_STEPS):
+        lo_v, hi_v = -np.inf, np.inf
+        lo_p, hi_q = -1, -1
+        for p in range(m):
+            c1 = el[p, 1]
+            if c1 > eps:
+                v = -el[p, 0] / c1 + (-el[p, 2] / c1) * t
+                if v > lo_v:
+                    lo_v, lo_p = v, p
+            elif c1 < -eps:
+                v = -el[p, 0] / c1 + (-el[p, 2] / c1) * t
+                if v < hi_v:
+                    hi_v, hi_q = v, p
+        if lo_p < 0 or hi_q < 0 or not lo_v > hi_v:
+            return False                # u0 may fit at t
+        cp, cq = el[lo_p, 1], el[hi_q, 1]
+        d = -el[lo_p, 2] / cp - (-el[hi_q, 2] / cq)
+        e = -el[hi_q, 0] / cq - (-el[lo_p, 0] / cp)
+        if d > eps:
+            hi = min(hi, e / d)
+            return bool(hi < floor or lo > hi + tol)
+        if not d < -eps:
+            return bool(e < -tol)
+        x = e / d
+        if not x > t:
+            return False                # no progress (rounding)
+        lo = max(lo, x)
+        if lo > hi + tol:
+            return True
+        t = lo
+    return False
+
+
+def _solve_rows(rows: Any, ub: Any, tol: float, eps: float, floor: float = 0.0) -> Any:
     """``_stretch_lp._solve`` one configuration at a time: the same Fourier-Motzkin
     elimination of ``s0`` (every row with a positive coefficient added to every row with
     a negative one, each divided by its coefficient's magnitude), the same bounds of
     ``t`` from every pair of the rows left, the same read-back of ``u0`` and ``s0``
     (the middle of their intervals), operation for operation: no ``B x R^2 x R^2``
-    array, and the rows of a configuration stay in cache."""
+    array, and the rows of a configuration stay in cache.  With ``floor`` > 0, a
+    configuration whose largest ``t`` is surely below it (:func:`_below`) gets NaN
+    (not solved: it can neither reach a search's top nor beat a configuration that
+    does)."""
     B, R, _ = rows.shape
     t_out, s_out, u_out = np.empty(B), np.empty(B), np.empty(B)
     rr = np.empty((R + 1, 4))
@@ -967,6 +1037,9 @@ def _solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
             if not (rr[i, 1] > eps or rr[i, 1] < -eps):
                 el[m, 0], el[m, 1], el[m, 2] = rr[i, 0], rr[i, 2], rr[i, 3]
                 m += 1
+        if floor > 0 and _below(el, m, floor, tol, eps):
+            t_out[b], s_out[b], u_out[b] = np.nan, np.nan, np.nan
+            continue
         hi, lo, flat = np.inf, -np.inf, np.inf
         for p in range(m):
             cp = el[p, 1]
@@ -1206,7 +1279,7 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _cyclic, _measures, _row_bound, _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
-                                   _solve_rows, _by_start, _inside_supers, _outside_one,
+                                   _below, _solve_rows, _by_start, _inside_supers, _outside_one,
                                    _exclusion_rows, _excess_at, _least_excess, _surely_copy,
                                    _similar_rows,
                                    _scan_inside, _beaten, _group_tables, _any_inside,
@@ -1271,10 +1344,10 @@ def single(*args: Any) -> Any:
     return _load()["_single"](*args)
 
 
-def solve_rows(rows: Any, ub: Any, tol: float, eps: float) -> Any:
+def solve_rows(rows: Any, ub: Any, tol: float, eps: float, floor: float = 0.0) -> Any:
     """Compiled :func:`_solve_rows`."""
     return _load()["_solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
-                                 float(tol), float(eps))
+                                 float(tol), float(eps), float(floor))
 
 
 def window_boxes(*args: Any) -> Any:

@@ -162,7 +162,7 @@ def distinct_plans(plans: list[Any], fraction: float, size: float,
 
     >>> import fcgrasp as fc
     >>> part = fc.read_part("demo:cam")                 # a curved outline of 360 edges
-    >>> plans = fc.plan(part, fingers=2, mu=0.3, top=10)
+    >>> plans = fc.plan(part, fingers=2, mu=0.3, top=10, distinct=0)   # as ranked
     >>> kept = distinct_plans(plans, 0.5, part.size)
     >>> len(plans), len(kept), len(kept[0].similar)     # ten shifts of one grasp
     (10, 1, 9)

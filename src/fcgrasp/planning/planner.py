@@ -108,9 +108,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         :mod:`fcgrasp.model.distinct`; :data:`~fcgrasp.model.distinct.DEFAULT_DISTINCT`
         is 0.5).  The search is asked for more plans until ``top`` distinct ones are
         found or :data:`DISTINCT_DEPTH` times ``top`` were searched.  None (the
-        default): the gripper's :func:`default_distinct` (a parallel jaw's boxes are
-        distinct alternatives, 0.5: its mirror and neighbouring boxes merged; point
-        fingers give the ranked list, 0).
+        default): the gripper's :func:`default_distinct`, 0.5 for every built-in
+        gripper (a parallel jaw's mirror and neighbouring boxes merged; point fingers'
+        plans shifted along the outline by an edge merged).
     load : Load, optional
         A load the grasp must carry (:class:`fcgrasp.Load`: mass, centre of mass,
         accelerations, torque; point fingers only): each plan's ``payload`` is the scale
@@ -208,7 +208,7 @@ def default_distinct(gripper: Any) -> float:
     >>> default_distinct(ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5))
     0.5
     >>> default_distinct(point_fingers(2, 0.3, None, None, True))
-    0.0
+    0.5
     """
     return float(getattr(gripper, "default_distinct", 0.0))
 

@@ -338,8 +338,8 @@ class PlanRequest:
 
     def distinct_fraction(self) -> float:
         """The ``distinct`` fraction the plans get: the one given, or the gripper's
-        default (:func:`fcgrasp.planning.planner.default_distinct`: 0.5 for a parallel
-        jaw, 0 for point fingers).
+        default (:func:`fcgrasp.planning.planner.default_distinct`: 0.5 for every
+        built-in gripper).
 
         >>> jaw = PlanRequest(part="demo:blob", gripper="jaw", stroke=(5, 60), pad=8)
         >>> jaw.distinct_fraction()

@@ -1066,9 +1066,9 @@ async function init() {
   }
   $("gripper").addEventListener("change", () => {
     document.body.dataset.gripper = $("gripper").value;
-    // each gripper's default (fcgrasp.plan's distinct=None): a jaw's boxes are distinct
-    // alternatives (its mirror and neighbouring boxes merged), fingers' plans as ranked
-    $("distinct").checked = $("gripper").value === "jaw";
+    // each gripper's default (fcgrasp.plan's distinct=None): distinct alternatives (a
+    // jaw's mirror and neighbouring boxes merged, fingers' plans shifted by an edge)
+    $("distinct").checked = true;
     schedulePlan(); runCheck();
   });
   $("overlay").addEventListener("change", render);
