@@ -418,3 +418,50 @@ def test_suppression_reads_only_plans_whose_boxes_pair_and_keeps_the_same(seed, 
         assert [p.similar for p in suppression.plans()] == [tuple(stands[id(p)]) for p in kept]
         checked += len(plans) - len(kept)
     assert checked >= 5
+
+
+_POINT_GRIPPERS = {"2f": dict(fingers=2, mu=0.3), "3f": dict(fingers=3, mu=0.4),
+                   "3g": dict(fingers=3, gravity=(0.0, -1.0)), "4f": dict(fingers=4)}
+_DEFAULT_CASES = [("cam", "2f"), ("bracket", "3g"), ("triangle", "4f"), ("blob", "3f")]
+
+
+def _pairwise_distinct(plans, size):
+    for i, p in enumerate(plans):
+        for q in plans[:i]:
+            assert not same_alternative(q, p, 0.5, 1e-12 * size), (q.edges, p.edges)
+
+
+@pytest.mark.parametrize(("name", "grip"), [
+    *_DEFAULT_CASES, *(pytest.param(n, g, marks=pytest.mark.slow)
+                       for n in ("blob", "triangle", "quad", "bracket", "washer", "rectangle",
+                                 "cam") for g in _POINT_GRIPPERS
+                       if (n, g) not in _DEFAULT_CASES)])
+def test_point_fingers_plans_are_distinct_alternatives_by_default(name, grip):
+    """Issue 31: by default (distinct=None) the top ten plans of every point-finger
+    gripper are pairwise distinct by the documented rule (no two the same alternative
+    at half the shorter region), the plans of distinct=0.5, and where the ranked list
+    has copies, fewer of them are copies than in the ranked list (demo:cam, two
+    fingers: its ranked ten are one grasp)."""
+    part = fc.read_part(f"demo:{name}")
+    kw = _POINT_GRIPPERS[grip]
+    got = fc.plan(part, top=10, **kw)
+    _pairwise_distinct(got, part.size)
+    assert [p.edges for p in got] == [p.edges for p in fc.plan(part, top=10, distinct=0.5,
+                                                                 **kw)]
+    ranked = fc.plan(part, top=10, distinct=0, **kw)
+    assert got[0].edges == ranked[0].edges
+    if (name, grip) == ("cam", "2f"):
+        assert len(distinct_plans(ranked, 0.5, part.size)) < len(got)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("grip", list(_POINT_GRIPPERS))
+@pytest.mark.parametrize("path", ["icons/heart.svg", "dxf/forms.dxf", "gears/teeth-20.dxf",
+                                  "countries/CHE.geo.json"])
+def test_corpus_plans_are_distinct_alternatives_by_default(path, grip):
+    """The same on public drawings of the real-file corpus (benchmarks/corpus)."""
+    from pathlib import Path
+
+    corpus = Path(__file__).parent.parent / "benchmarks" / "corpus"
+    part = fc.load_part(str(corpus / path)).polygon
+    _pairwise_distinct(fc.plan(part, **_POINT_GRIPPERS[grip]), part.size)
