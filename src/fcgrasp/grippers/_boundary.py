@@ -239,20 +239,23 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
         copies = RowCopies(polygon, suppression.kept, read, suppression.tol)
         single = search(polygon, replace(flat, top=ask), map=map, exclude=copies,
                         floor=max(floor, 0.0))
-        came = ranked_keyed(polygon, spec.rank_by, single, set(seen))
-        merged = sorted(waiting + came, key=lambda kp: kp[0])
+        keyed = ranked_keyed(polygon, spec.rank_by, single)
+        # each grasp once: not one read before, nor a waiting grown plan's
+        merged = sorted(waiting + ranked_keyed(polygon, spec.rank_by, single, set(seen)),
+                        key=lambda kp: kp[0])
         if len(single) == ask:          # the rows not read rank after the last
-            last = came[-1][0]
+            last = keyed[-1][0]
         elif floor > 0:                 # ... after the ask-th waiting grown plan
             last = waiting[ask - 1][0]
         else:                           # every row left was read
             last, more = merged[-1][0] if merged else None, False
+        # read (left out of the next rounds): the rows up to the last, a grasp that
+        # is also a grown plan's among them
+        read += [p.edges for key, p in keyed if last is not None and key <= last]
         now = [kp for kp in merged if last is not None and kp[0] <= last]
         waiting = [kp for kp in merged if last is None or kp[0] > last]
         for key, p in now:
             seen.add(key)
-            if max(len(e) for e in p.region_edges) == 1:
-                read.append(p.edges)    # read: left out of the next rounds
             suppression.add(p)
     if progress is not None:
         progress(top, top)
