@@ -115,6 +115,7 @@ def test_local_batch_equals_plan_json(folder, local_results, tmp_path):
         assert len(res["hash"]) == 64 and res["seconds"] >= 0
 
 
+@pytest.mark.slow
 def test_a_second_run_does_nothing(folder, local_results):
     _, out = local_results
     before = out.read_bytes()

@@ -51,7 +51,8 @@ def _lp_cases(rng, count):
         yield rng.normal(size=n), A, b
 
 
-@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, 1])
 def test_dense_simplex_matches_highs(seed):
     """Status, optimum and feasibility of the simplex against HiGHS on 1,500 programs."""
     rng = np.random.default_rng(seed)

@@ -323,6 +323,7 @@ def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
     big = tmp_path / "big.json"
     big.write_text(json.dumps({"vertices": _star(1500).tolist()}))
     set_value(browser, "gripper", "3")
+    browser.find_element(By.ID, "distinct").click()     # the ranked search's batches
     browser.find_element(By.ID, "file").send_keys(str(big))
     wait(browser, "document.getElementById('statustext').textContent.includes('/')")
     browser.find_element(By.ID, "cancel").click()

@@ -117,6 +117,7 @@ def test_rows_left_out_are_the_kept_plans_copies(n):
     assert hits > 40
 
 
+@pytest.mark.slow
 def test_forms_like_part_gets_ten_alternatives_where_the_list_had_one():
     """A ring of flattened arcs where the best plan's regions are grown along eight
     edges each: the ranked list's next hundreds of plans lie inside them; the
