@@ -79,8 +79,9 @@ class Gripper(Protocol):
     ``title``: how a figure names it.
 
     Optional members, read with ``getattr``: ``default_distinct``, the ``distinct``
-    fraction its plans get when none is given (0, the ranked list, where absent; a
-    parallel jaw's boxes are distinct alternatives by default); ``distinct_plans(polygon,
+    fraction its plans get when none is given (0, the ranked list, where absent; every
+    built-in gripper's is 0.5: its plans are distinct alternatives by default);
+    ``distinct_plans(polygon,
     plans, fraction)``, what distinct means for its plans (regions of contact where
     absent); ``distinct_search(polygon, options, fraction)``, a search for distinct
     plans of its own (or None where it does not apply); ``distinct_depth``, how many
