@@ -479,6 +479,11 @@ class EdgeSets:
     bound: FloatArray | None = None
     ceiling: float = float("inf")
 
+    def take(self, keep: np.ndarray) -> EdgeSets:
+        """The rows ``keep`` (a mask or indices) with their bounds, the same ceiling."""
+        return EdgeSets(self.feats[keep], None if self.bound is None else self.bound[keep],
+                        self.ceiling)
+
 
 @dataclass(frozen=True)
 class SearchSize:
@@ -622,7 +627,7 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
             if not keep.any():
                 continue
             assert sets.bound is not None
-            sets = EdgeSets(rows[keep], sets.bound[keep], sets.ceiling)
+            sets = sets.take(keep)
         yield sets
 
 

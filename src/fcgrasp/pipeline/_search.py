@@ -241,11 +241,7 @@ def _left_in(batch: EdgeSets, exclude: Callable[[np.ndarray], np.ndarray]) -> Ed
     if not len(batch.feats):
         return batch
     out = np.asarray(exclude(batch.feats), bool)
-    if not out.any():
-        return batch
-    keep = ~out
-    return EdgeSets(batch.feats[keep], None if batch.bound is None else batch.bound[keep],
-                    batch.ceiling)
+    return batch.take(~out) if out.any() else batch
 
 
 def _lex_pruned(batch: EdgeSets, key: Callable[[float], FloatArray | None],
@@ -258,8 +254,7 @@ def _lex_pruned(batch: EdgeSets, key: Callable[[float], FloatArray | None],
     keep = lex_survivors(_row_bounds(lengths, batch.feats, twin), k, size)
     if keep.all():
         return batch
-    return EdgeSets(batch.feats[keep], None if batch.bound is None else batch.bound[keep],
-                    batch.ceiling)
+    return batch.take(keep)
 
 
 def every_plan(polygon: Polygon, spec: PlanSpec, edges: Any = None,

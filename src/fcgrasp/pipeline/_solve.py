@@ -335,7 +335,7 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
         floor = 0.0
     if floor > 0 and sets.bound is not None:
         reach = sets.bound >= floor
-        sets = EdgeSets(sets.feats[reach], sets.bound[reach], sets.ceiling)
+        sets = sets.take(reach)
     c = grasp_geometry(polygon, spec, sets, edges, floor)
     margin = spec.margin_rad
     good = np.flatnonzero((c.score > 0) & (c.score >= floor))
