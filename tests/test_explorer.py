@@ -580,6 +580,7 @@ _SURFACE_COLOURS = """
     });"""
 
 
+@pytest.mark.slow       # the default suite's time: the solid's turn and plan stay
 def test_regions_across_facets_are_drawn_on_the_mugs_wall(server, browser, tmp_path):
     """``demo:mug`` in the explorer: its plans are ``fcgrasp plan``'s, regions across the
     facets of its wall first; each region is drawn by its own triangles on the curved

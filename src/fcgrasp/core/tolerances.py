@@ -139,6 +139,10 @@ CLEAN_TOL = 1e-7
 #: DXF: ends of entities closer than this, relative to the drawing's extents, meet.
 GAP_REL = 1e-6
 
+#: Flattening: samples of a curve closer than this to the last one kept, relative to the
+#: curve's extent, are one point (their chord's direction would be rounding noise).
+CURVE_RESOLUTION = 1e-11
+
 #: Finest curve flattening tolerance accepted, relative to the element's size: finer
 #: would only multiply edges (a circle at 1e-6 already has about 2,000).
 FLATTEN_FINEST = 1e-6
@@ -147,7 +151,8 @@ FLATTEN_FINEST = 1e-6
 #: size of the file's largest piece, is a sliver of the drawing, not a part.
 SLIVER_REL = 1e-4
 
-__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "MAX_MAGNITUDE",
+__all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESOLUTION",
+           "MAX_MAGNITUDE",
            "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",

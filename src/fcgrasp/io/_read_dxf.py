@@ -4,6 +4,7 @@ end, blocks expanded, nested into parts and holes."""
 from __future__ import annotations
 
 import io
+import math
 from collections.abc import Callable
 from typing import Any
 
@@ -14,7 +15,7 @@ from shapely.geometry import Polygon as ShapelyPolygon
 from ..core._geom import signed_area
 from ..core.tolerances import GAP_REL, TINY
 from ..model.outline import fill_rings
-from ._drawing import Drawing, Shape, TolOf, flatten_curve
+from ._drawing import CurvePoints, Drawing, Shape, TolOf, flatten_curve
 
 #: $INSUNITS codes and their unit names (0, unitless, says nothing).
 INSUNITS = {1: "in", 2: "ft", 3: "mi", 4: "mm", 5: "cm", 6: "m", 7: "km", 8: "uin",
@@ -47,12 +48,19 @@ def _canonical(ring: np.ndarray) -> np.ndarray:
     return np.roll(ring, -int(np.lexsort((ring[:, 0], ring[:, 1]))[0]), axis=0)
 
 
-def _bezier_point(curve: Any) -> Callable[[float], complex]:
-    """``t -> point`` of an ezdxf Bezier curve, as a complex number."""
-    def point(t: float) -> complex:
-        p = curve.point(t)
-        return complex(p.x, p.y)
-    return point
+def _bezier_points(curve: Any) -> CurvePoints:
+    """``ts -> points`` of an ezdxf Bezier curve (quadratic or cubic, Bernstein form of
+    its control points), as complex numbers."""
+    ctrl = np.array([complex(v.x, v.y) for v in curve.control_points])
+    deg = len(ctrl) - 1
+    coef = [math.comb(deg, i) for i in range(deg + 1)]
+
+    def points(ts: np.ndarray) -> np.ndarray:
+        t = np.asarray(ts, dtype=float)[:, None]
+        i = np.arange(deg + 1)
+        basis = np.array(coef) * t ** i * (1.0 - t) ** (deg - i)
+        return basis @ ctrl
+    return points
 
 
 def _flatten_path(path: Any, tol: float) -> np.ndarray:
@@ -73,7 +81,7 @@ def _flatten_path(path: Any, tol: float) -> np.ndarray:
             curve = None
             pts.append(complex(end.x, end.y))
         if curve is not None:
-            flatten_curve(_bezier_point(curve), tol, pts)
+            flatten_curve(_bezier_points(curve), tol, pts)
         start = end
     return np.array([[z.real, z.imag] for z in pts])
 

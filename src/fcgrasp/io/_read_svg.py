@@ -3,14 +3,13 @@
 from __future__ import annotations
 
 import io
-from collections.abc import Callable
 from typing import Any
 
 import numpy as np
 import shapely
 
 from ..model.outline import fill_rings
-from ._drawing import Drawing, Shape, TolOf, flatten_curve
+from ._drawing import CurvePoints, Drawing, Shape, TolOf, flatten_curve
 
 #: CSS pixels per inch: the unit of SVG user space after its viewBox and width/height.
 PPI = 96.0
@@ -23,9 +22,13 @@ def _z(point: Any) -> complex:
     return complex(float(point.x), float(point.y))
 
 
-def _curve_point(seg: Any) -> Callable[[float], complex]:
-    """``t -> point`` of an svgelements segment, as a complex number."""
-    return lambda t: _z(seg.point(t))
+def _curve_points(seg: Any) -> CurvePoints:
+    """``ts -> points`` of an svgelements segment (its vectorized ``npoint``), as complex
+    numbers."""
+    def points(ts: np.ndarray) -> np.ndarray:
+        xy = np.asarray(seg.npoint(ts), dtype=float).reshape(-1, 2)
+        return xy[:, 0] + 1j * xy[:, 1]
+    return points
 
 
 def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
@@ -55,7 +58,7 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
             if isinstance(s, Line):
                 cur.append(_z(s.end))
             else:
-                flatten_curve(_curve_point(s), tol, cur)
+                flatten_curve(_curve_points(s), tol, cur)
     finish(cur, False)
     return rings
 
