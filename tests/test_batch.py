@@ -274,6 +274,7 @@ def test_a_folder_is_walked_and_only_part_files_are_parts(tmp_path):
     assert batch.part_files(str(tmp_path / "**" / "*")) == sorted(want)
 
 
+@pytest.mark.slow       # the default suite's time (3 minutes on two cores)
 def test_meshes_among_drawings_are_planned_for_the_batchs_gripper(tmp_path):
     """A folder of a drawing and two meshes (one in a subfolder): the meshes are planned
     for two soft fingers with the batch's friction and top, exactly as ``fcgrasp plan

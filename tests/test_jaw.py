@@ -320,6 +320,7 @@ def test_bad_jaws():
         jaw_plans(demo_part("quad"), "jaw")
 
 
+@pytest.mark.slow       # the default suite's time (3 minutes on two cores)
 def test_plan_with_a_gripper_and_the_cli(tmp_path, capsys):
     jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=12, mu=0.4)
     plans = fc.plan(demo_part("rectangle"), gripper=jaw, top=2)

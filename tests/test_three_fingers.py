@@ -434,6 +434,7 @@ def test_a_mu_the_planner_cannot_use_is_an_error():
     assert fc.plan(demo_part("triangle"), fingers=3, gravity=(0, -1), top=1)[0].gravity
 
 
+@pytest.mark.slow       # the default suite's time (3 minutes on two cores)
 def test_cli_three_fingers_and_gravity(tmp_path):
     out = tmp_path / "p.json"
     r = run("plan", "demo:blob", "--fingers", "3", "--mu", "0.5", "--top", "2", "--json", out)
