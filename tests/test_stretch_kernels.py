@@ -198,6 +198,25 @@ def test_compiled_search_gives_the_numpy_plans(seed, monkeypatch):
     _assert_same_plans(fast, _plans(poly, mu, margin, 8), poly.size)
 
 
+@pytest.mark.parametrize("seed", seeds(2, 200))
+def test_a_search_that_turns_compiled_half_way_gives_the_numpy_plans(seed, monkeypatch):
+    """Issue 30: past :data:`NUMPY_SOLVE_BUDGET` of numpy solves a process solves the rest
+    of its configurations compiled, in the middle of a job: the plans stay those of the
+    numpy search."""
+    poly, mu, margin = part(seed)
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    want = _plans(poly, mu, margin, 8)
+    monkeypatch.setenv("FCGRASP_JIT", "auto")
+    monkeypatch.setattr(S._stretch_kernels, "loaded", lambda: False)
+    monkeypatch.setattr(S, "NUMPY_SOLVE_BUDGET", 0.0)
+    monkeypatch.setattr(S, "_numpy_spent", [0.0])
+    calls = []
+    solve = S._solve_any
+    monkeypatch.setattr(S, "_solve_any", lambda *a: calls.append(a[-1]) or solve(*a))
+    _assert_same_plans(_plans(poly, mu, margin, 8), want, poly.size)
+    assert calls == sorted(calls) and calls[0] is False and (len(calls) == 1 or calls[-1])
+
+
 @pytest.mark.parametrize("seed", seeds(1, 300))
 def test_top_k_is_the_head_of_every_configuration(seed, monkeypatch):
     """The bound prunes, but the top ``k`` (ties included) are the first of all the

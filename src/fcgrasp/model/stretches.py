@@ -51,6 +51,7 @@ module) and sample every returned pair of regions with the general test.
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Any, cast
 
@@ -513,6 +514,14 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
 #: ``FCGRASP_JIT=1`` always.
 KERNEL_CELLS = 1_500_000
 
+#: CPU seconds of batched numpy solves (:func:`~fcgrasp.model._stretch_lp._solve`) after
+#: which a process solves the rest compiled: on an outline of a few hundred edges whose
+#: stretches hold many vertices (an icon's rounded corners) each chunk of configurations
+#: costs tens of milliseconds of Fourier-Motzkin, and numba's start-up is soon repaid.
+#: The two solve the same (``tests/test_stretch_kernels.py``).
+NUMPY_SOLVE_BUDGET = 0.4
+_numpy_spent = [0.0]
+
 #: Configurations of one job to solve from which the compiled solve runs, whatever the
 #: size of the rings (a noisy outline can leave tens of thousands).
 KERNEL_CONFIGS = 20_000
@@ -552,11 +561,14 @@ def _load_for_depth(top: int | None) -> None:
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
-    :func:`fcgrasp.pipeline.check_search` asks too)."""
+    :func:`fcgrasp.pipeline.check_search` asks too): once loaded, from
+    :data:`KERNEL_CELLS`, or once this process spent :data:`NUMPY_SOLVE_BUDGET` in
+    numpy solves."""
     setting = jit_setting()
     if setting is not None:
         return setting
-    return _stretch_kernels.loaded() or cells >= KERNEL_CELLS
+    return _stretch_kernels.loaded() or cells >= KERNEL_CELLS or \
+        _numpy_spent[0] > NUMPY_SOLVE_BUDGET
 
 
 class _Keys:
@@ -650,7 +662,11 @@ def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool
     if compiled:
         t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS)
         return t, s0, u0
-    return _solve(rows, ub, scale)
+    start = time.process_time()
+    try:
+        return _solve(rows, ub, scale)
+    finally:
+        _numpy_spent[0] += time.process_time() - start
 
 
 def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
@@ -822,6 +838,8 @@ def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: flo
     if not todo.size:
         return
     x, y, sigma, _ = job
+    if not J.compiled and stretch_kernels_for(0):     # the numpy budget spent
+        J.compiled = True
     rows = _system(rings[x], rings[y], J.cfg.take(todo), sigma, beta, intervals[x, y, sigma],
                    intervals[y, x, sigma], compiled=J.compiled)
     J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale, J.compiled)
