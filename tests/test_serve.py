@@ -425,7 +425,8 @@ def _solid_cli(tmp_path, source, argv):
 @pytest.mark.parametrize("options, argv", [
     ({"gripper": "2", "mu": 0.3, "top": 3}, ["--fingers", "2", "--soft", "--mu", "0.3",
                                              "--top", "3"]),
-    ({"gripper": "3", "mu": 0.5, "top": 2}, ["--fingers", "3", "--mu", "0.5", "--top", "2"]),
+    pytest.param({"gripper": "3", "mu": 0.5, "top": 2},
+                 ["--fingers", "3", "--mu", "0.5", "--top", "2"], marks=pytest.mark.slow),
     ({"gripper": "jaw", "mu": 0.5, "stroke": [5, 50], "pad": 8, "top": 3},
      ["--gripper", "jaw", "--mu", "0.5", "--stroke", "5,50", "--pad", "8", "--top", "3"]),
     ({"gripper": "2", "mu": 0.3, "top": 3, "distinct": 0.5},

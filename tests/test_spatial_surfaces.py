@@ -280,6 +280,7 @@ def test_every_triple_across_facets_holds(name):
         assert plan.radius <= plan.delta
 
 
+@pytest.mark.slow       # the default suite's time: test_spatial_triples runs the CLI
 def test_three_fingers_across_facets_on_the_command_line(tmp_path):
     """``fcgrasp plan demo:cylinder --fingers 3`` ranks regions across facets with the
     facet triples (:func:`three_finger_plans`), and writes them in the JSON."""
