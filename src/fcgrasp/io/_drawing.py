@@ -92,11 +92,12 @@ def flatten_curve(points: CurvePoints, tol: float, out: list[complex],
     ``tol`` of the curve (issue 30: flattening that follows the geometry).  ``params``,
     if given, gets the parameter of every point appended.
 
-    The curve is sampled densely (:func:`_dense`); the samples' turn is summed along
-    every stretch between corners and cut into the fewest pieces of equal turn that keep
-    each piece within the limit, and a piece whose chord strays more than ``tol`` from
-    its samples is halved.  A circular arc of 90 degrees gets 93 edges (the binary
-    halving before gave 128: every piece turned 0.7 degrees)."""
+    The curve is sampled densely (:func:`_dense`); the samples' turn is summed and cut
+    into the fewest pieces that keep each piece's turn within the limit, at equal turn
+    where that many allow it (:func:`_equal_turn_cuts`), and a piece whose chord strays
+    more than ``tol`` from its samples is cut again, each part reaching as far as it
+    can (:func:`_split_by_tol`).  A circular arc of 90 degrees gets 92 edges (the
+    binary halving before gave 128: every piece turned 0.7 degrees)."""
     limit = math.radians(MAX_TURN_DEG)
     step = _SAMPLE_TURN * limit
     ts, z, own = _dense(points, tol, step)
