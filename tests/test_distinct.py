@@ -399,9 +399,9 @@ def test_suppression_reads_only_plans_whose_boxes_pair_and_keeps_the_same(seed, 
     r = 30 + rng.uniform(2, 5) * np.sin(3 * a + rng.uniform(0, 6)) + 2 * np.cos(5 * a)
     part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])     # regions along the boundary
     tol = ROUND_TOL * part.size
-    lists = [fc.plan(part, fingers=2, mu=0.4, top=None),
-             fc.plan(part, fingers=3, gravity=(0, -1), top=None),
-             fc.plan(part, fingers=4, top=None)]
+    lists = [fc.plan(part, fingers=2, mu=0.4, top=None, distinct=0),     # ranked lists
+             fc.plan(part, fingers=3, gravity=(0, -1), top=None, distinct=0),
+             fc.plan(part, fingers=4, top=None, distinct=0)]
     checked = 0
     for plans in lists:
         kept, stands = [], {}
