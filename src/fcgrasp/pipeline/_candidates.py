@@ -188,6 +188,12 @@ def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
     return t[ok]
 
 
+#: Rows per block of :func:`_combos` (triples): the blocks of consecutive first positions
+#: are joined up to this many, in the same order (on a flattened curve a position's own
+#: block is a handful of rows, and the numpy calls per block were the cost).
+COMBO_BLOCK = 4096
+
+
 def _combos(s: int, r: int) -> Iterator[np.ndarray]:
     """Every increasing ``r``-tuple (r = 1, 2 or 3) of ``range(s)``, in blocks."""
     if r == 1:
@@ -199,13 +205,20 @@ def _combos(s: int, r: int) -> Iterator[np.ndarray]:
         if a.size:
             yield np.stack([a, b], axis=1)
         return
+    parts, rows = [], 0
     for first in range(s - 2):
         a, b = np.triu_indices(s - first - 1, 1)
         block = np.empty((a.size, 3), dtype=int)
         block[:, 0] = first
         block[:, 1] = a + first + 1
         block[:, 2] = b + first + 1
-        yield block
+        parts.append(block)
+        rows += a.size
+        if rows >= COMBO_BLOCK:     # blocks of several first positions: fewer numpy calls
+            yield np.concatenate(parts)
+            parts, rows = [], 0
+    if parts:
+        yield np.concatenate(parts)
 
 
 def _layouts(t: np.ndarray, shape: SearchShape, fingers: int) -> np.ndarray:
