@@ -241,7 +241,7 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
                         floor=max(floor, 0.0))
         keyed = ranked_keyed(polygon, spec.rank_by, single)
         # each grasp once: not one read before, nor a waiting grown plan's
-        merged = sorted(waiting + ranked_keyed(polygon, spec.rank_by, single, set(seen)),
+        merged = sorted(waiting + [kp for kp in keyed if kp[0] not in seen],
                         key=lambda kp: kp[0])
         if len(single) == ask:          # the rows not read rank after the last
             last = keyed[-1][0]

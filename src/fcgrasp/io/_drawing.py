@@ -65,8 +65,8 @@ def _dense(points: CurvePoints, tol: float,
             (dev > (1.0 - _TOL_SHARE) * tol)
         if not split.any():
             break
-        at = np.flatnonzero(split) + 1
-        ts, z = np.insert(ts, at, tm[split]), np.insert(z, at, zm[split])
+        where = np.flatnonzero(split) + 1
+        ts, z = np.insert(ts, where, tm[split]), np.insert(z, where, zm[split])
     # samples closer than rounding to the last one kept (a stationary point's noise,
     # whose chords point anywhere) are dropped; the curve's end stays
     res = CURVE_RESOLUTION * max(float(np.abs(z - z[0]).max()), float(np.abs(z[0])))
