@@ -350,3 +350,59 @@ def test_candidate_stream_does_not_depend_on_the_combination_blocks(block, monke
         want = [(b.feats.tolist(), b.ceiling) for b in candidates(part, spec, batch_size=50)]
         monkeypatch.setattr(_candidates, "COMBO_BLOCK", block)
         assert got == want and len(got) > 1
+
+
+def _tied_part(rng):
+    """A flattened-curve-like part: arcs of equal edges (every short edge ties) and a few
+    long ones, the ties the compiled rows skip over."""
+    n = int(rng.integers(12, 40))
+    a = np.sort(rng.choice(np.arange(n) * 2 * np.pi / n, size=int(rng.integers(6, n + 1)),
+                           replace=False)) + rng.uniform(0, 1)
+    return fc.Polygon(np.column_stack([np.cos(a), np.sin(a)]))
+
+
+@pytest.mark.parametrize("cases", [pytest.param(60, id="seeded"),
+                                   pytest.param(2000, id="sweep", marks=pytest.mark.slow)])
+def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
+    """Issue 30: once the top is full, the rows of each position that may reach its key
+    are found by one compiled loop that skips the tuples a lower one already rules out
+    (:func:`fcgrasp.pipeline._rows_kernels.survivors`).  Against the numpy path
+    (``FCGRASP_JIT=0``: every tuple sorted, laid out, bounded and filtered by
+    :func:`~fcgrasp.pipeline._candidates.lex_survivors`), on seeded parts with ties
+    (arcs of equal edges, regular polygons) and keys drawn from the parts' own
+    rounded bounds (halved, cut short, tied): the same batches, row for row."""
+    from fcgrasp.core._geom import RANK_DIGITS
+    from fcgrasp.pipeline._candidates import _bound_pad, _row_bounds, features
+
+    jobs = ({"fingers": 4}, {"fingers": 3, "gravity": (0, -1)}, {"fingers": 3, "mu": 0.3})
+    checked = kept = 0
+    for seed in range(cases):
+        rng = np.random.default_rng(seed)
+        part = _tied_part(rng) if seed % 2 else random_polygon(rng)
+        job = jobs[seed % 3]
+        spec = plan_spec(top=3, **job)
+        F = features(part, spec.mu)
+        m = 4 if job["fingers"] == 4 else 3
+        if rng.random() < 0.5:          # a row's own bounds: ties at every level
+            rows = np.concatenate([b.feats for b in candidates(part, spec)])
+            row = rows[rng.integers(len(rows))][None]
+            twin = spec.shape.twin if spec.shape.three_edge else None
+            pick = _row_bounds(F.lengths, row, twin)[0]
+        else:
+            lengths = np.sort(F.lengths)[::-1]
+            pick = np.sort(rng.choice(lengths[:max(m, len(lengths) // 2)], size=m))
+            if rng.random() < 0.3:
+                pick[0] *= 0.5
+        key = np.round((np.sort(pick) + _bound_pad(part.size)) / part.size, RANK_DIGITS)
+        key = key[:int(rng.integers(1, m + 1))]
+        reach = key[0] * (1 + rng.random())
+        streams = []
+        for jit in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", jit)
+            streams.append([(b.feats.tolist(), b.ceiling, b.bound.tolist())
+                            for b in candidates(part, spec, batch_size=64,
+                                                key=lambda lv: key if lv <= reach else None)])
+        assert streams[0] == streams[1], (seed, job)
+        checked += 1
+        kept += sum(len(b[0]) for b in streams[0]) > 0
+    assert kept > checked // 2

@@ -33,7 +33,7 @@ from ..model.regions import (
     max_min_length,
 )
 from ..model.stretches import stretch_kernels_for
-from . import _spec  # the search's tunables, read when used
+from . import _rows_kernels, _spec  # _spec: the search's tunables, read when used
 from ._spec import (
     KEEP_STRETCHES,
     KEPT_ROW_BYTES,
@@ -338,6 +338,11 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     order = np.lexsort((np.arange(n), -lengths))
     # each position's length as a leximin key rounds it (padded as lex_survivors pads)
     rounded = np.round((lengths[order] + _bound_pad(part_size)) / part_size, RANK_DIGITS)
+    # the same of half of each (two fingers on one feature), for the compiled rows
+    rounded_half = np.round((lengths[order] * 0.5 + _bound_pad(part_size)) / part_size,
+                            RANK_DIGITS)
+    order_i = np.ascontiguousarray(order, dtype=np.int64)
+    edge_i = np.ascontiguousarray(F.edge, dtype=np.int64)
     g = spec.gravity
     widths = spec.shape.widths if three_edge else spec.shape.widths[:1]
     twin = spec.shape.twin if three_edge else None
@@ -365,6 +370,24 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
             # the other features must reach the key's second region
             pool = min(s, int(np.searchsorted(-rounded, -current[1], side="right")))
         for r in widths:
+            if current is not None:
+                # the rows that may reach the key, by one compiled loop (or None)
+                rows_s = _rows_kernels.survivors(
+                    order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
+                    spec.fingers, spec.shape.twin, np.ascontiguousarray(current, dtype=float),
+                    comb(pool, r))
+                if rows_s is not None:
+                    if len(rows_s):
+                        buf.append(rows_s)
+                        count += len(rows_s)
+                    while count >= target:
+                        rows = np.concatenate(buf)
+                        yield EdgeSets(rows[:target],
+                                       _row_bound(lengths, rows[:target], twin), ceiling)
+                        buf, count = [rows[target:]], len(rows) - target
+                        ceiling = float(lengths[order[s]])
+                        target = min(2 * target, size)
+                    continue
             for block in _combos(pool, r):
                 t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
                                                  axis=1)], axis=1)

@@ -61,7 +61,7 @@ def compile_kernels() -> dict[str, float]:
                                      independent_regions(blob, (0, 20), mu=0.3))),
             ("stretches", lambda: _stretches(blob)),
             ("three fingers", lambda: plan(small, fingers=3, mu=0.3, top=1)),
-            ("four fingers", lambda: plan(small, fingers=4, top=1)),
+            ("four fingers", lambda: _four(small)),
             ("parallel jaw", lambda: _jaw()),
             ("optimality bound", lambda: refutes(small, 3, 60.0, mu=0.3, max_nodes=200)),
         ]
@@ -107,6 +107,19 @@ def _stretches(blob: Any) -> None:
     F = features(blob, 0.3)
     i = np.arange(len(F.a), dtype=np.intp)
     pair_scores(F.a, F.b, F.center, F.half, i, i[::-1].copy(), 0.0, RANK_TOL)
+
+
+def _four(small: Any) -> None:
+    from ..pipeline._rows_kernels import survivors
+    from .planner import plan
+
+    plan(small, fingers=4, top=1)
+
+    # the candidate rows that may reach a full top's key, with the types of the search's
+    order, z = np.arange(6, dtype=np.int64), np.linspace(1.0, 0.5, 6)
+    edge = order.copy()
+    edge.flags.writeable = False        # the features' edges are read-only
+    survivors(order, edge, z, z / 2, 5, 5, 3, "as_is", 4, 2, z[:4], 10)
 
 
 def _jaw() -> None:
