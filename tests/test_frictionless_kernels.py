@@ -91,3 +91,69 @@ def test_smallest_is_the_stable_sorts_head():
         if t % 7 == 0 and n:
             v[rng.integers(0, n, 2)] = -np.inf
         np.testing.assert_array_equal(_smallest(v, k), np.argsort(v, kind="stable")[:k])
+
+
+def test_compiled_first_k_is_the_stable_sorts_head():
+    """The compiled program's selection of the rows to add (one pass, no sort) against
+    numpy's stable sort: ties in index order, nan last, -inf first."""
+    first_k = _frictionless_kernels.COMPILED.get()["_first_k"]
+    rng = np.random.default_rng(23)
+    for t in range(5000):
+        n, k = int(rng.integers(0, 80)), int(rng.integers(1, 24))
+        v = rng.integers(-3, 4, n).astype(float) if t % 2 else rng.random(n)
+        if t % 5 == 0 and n:
+            v[rng.integers(0, n, 3)] = np.nan
+        if t % 7 == 0 and n:
+            v[rng.integers(0, n, 2)] = -np.inf
+        np.testing.assert_array_equal(first_k(v, k), np.argsort(v, kind="stable")[:k])
+
+
+def _programs(parts, monkeypatch):
+    calls = []
+    original = frictionless_stretches._lp
+
+    def record(cfg, objective, floors, t_var):
+        calls.append((cfg, objective.copy(), floors.copy(), t_var))
+        return original(cfg, objective, floors, t_var)
+
+    monkeypatch.setattr(frictionless_stretches, "_lp", record)
+    for part in parts:
+        fc.plan(part, fingers=4, top=3)
+        fc.plan(part, fingers=3, gravity=(0, -1), top=3)
+    monkeypatch.undo()
+    return calls
+
+
+@pytest.mark.parametrize("parts", [pytest.param(4, id="seeded"),
+                                   pytest.param(40, id="sweep", marks=pytest.mark.slow)])
+def test_growths_programs_solved_in_one_compiled_call_equal_numpys(parts, monkeypatch):
+    """Issue 30: the growth's programs (``frictionless_stretches._lp``) built, scaled and
+    solved by row generation in one compiled call (``_frictionless_kernels.lp_rows``)
+    against the numpy steps (``COMPILED_LP`` False, the reference): the same answer,
+    bit for bit, on every program four fingers and three with gravity solve on the
+    built-in parts and on smooth outlines (tall programs: row generation), noise rows
+    and infeasible programs included."""
+    rng = np.random.default_rng(31)
+    shapes = [demo_part(name) for name in ("blob", "quad", "bracket")]
+    for _ in range(parts):
+        n = int(rng.integers(16, 60))
+        t = np.sort(rng.uniform(0, 2 * np.pi, n))
+        r = 30 + rng.uniform(1, 6) * np.sin(3 * t + rng.uniform(0, 6)) + \
+            rng.uniform(0, 3) * np.cos(5 * t)
+        shapes.append(fc.Polygon(np.c_[r * np.cos(t), r * np.sin(t)]))
+    calls = _programs(shapes, monkeypatch)
+    tall = sum(len(c[0].A) + 2 * len(c[0].edges) > frictionless_stretches.DIRECT_ROWS
+               for c in calls)
+    assert len(calls) >= 200 and tall >= 20
+    solved = 0
+    for args in calls:
+        monkeypatch.setattr(frictionless_stretches, "COMPILED_LP", True)
+        got = frictionless_stretches._lp(*args)
+        monkeypatch.setattr(frictionless_stretches, "COMPILED_LP", False)
+        ref = frictionless_stretches._lp(*args)
+        assert (got is None) == (ref is None)
+        if ref is not None:
+            assert got[0] == ref[0]
+            np.testing.assert_array_equal(got[1], ref[1])
+            solved += 1
+    assert solved >= 100

@@ -19,7 +19,8 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..core import kernels
+from ..core import _simplex, kernels
+from ..core._simplex import _lp_max
 from ..core.kernels import arc_meet
 
 #: The kinds of a finger's edge in its stretch (``frictionless_stretches``'s order).
@@ -155,9 +156,179 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     return True
 
 
-_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _system_loop)
-#: compiled over the compiled formulas of :mod:`fcgrasp.core.kernels` (``arc_meet``)
-COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, kernels._loops)
+def _before(a: float, b: float) -> bool:
+    """Whether ``a`` sorts strictly before ``b`` (nan last, as numpy sorts)."""
+    return a < b or (not np.isnan(a) and np.isnan(b))
+
+
+def _first_k(v: Any, k: int) -> Any:
+    """``np.argsort(v, kind="stable")[:k]``: the ``k`` smallest, ties in index order
+    (``frictionless_stretches._smallest``), by one pass keeping the ``k`` best in
+    order (a program's rows are thousands, ``k`` a few tens)."""
+    n = min(k, v.size)
+    out = np.empty(n, np.int64)
+    size = 0
+    for i in range(v.size):
+        x = v[i]
+        if size == n:
+            if not _before(x, v[out[n - 1]]):
+                continue
+            size -= 1                  # the last one drops out
+        # after every one it does not sort before (ties: the earlier index first)
+        p = size
+        while p > 0 and _before(x, v[out[p - 1]]):
+            out[p] = out[p - 1]
+            p -= 1
+        out[p] = i
+        size += 1
+    return out
+
+
+def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,
+             unit: float, noise_row: float, tiny: float, check_tol: float, eps: float,
+             direct_rows: int, per_var: int, y_out: Any) -> int:
+    """``frictionless_stretches._lp_simplex`` of one configuration's program, in one
+    compiled call, the same steps in the same order: its rows ``A0 x <= b0`` and the
+    fingers' length rows (``floors``: nan where the length is at least ``t``), in units
+    of ``unit``, each row scaled to a largest coefficient of 1, the upper bounds ``ub``
+    as rows; solved by the dense simplex on the rows the solution needs
+    (``_rows_generated``).  Returns 0 (``y_out`` the solution, in units), 1 infeasible,
+    2 undecided (a noise row, the simplex out of iterations or unbounded, an answer
+    that misses the rows): HiGHS then."""
+    m0, nx = A0.shape
+    k = nx // 2
+    cols = nx + 1 if t_var else nx
+    m = m0 + k
+    M = np.zeros((m + nx, cols))
+    rhs = np.empty(m + nx)
+    norm = np.empty(m)
+    for i in range(m):
+        if i < m0:
+            for j in range(nx):
+                M[i, j] = A0[i, j] * unit
+            rhs[i] = b0[i]
+        else:
+            f = i - m0
+            M[i, 2 * f] = 1.0 * unit
+            M[i, 2 * f + 1] = -1.0 * unit
+            if np.isnan(floors[f]):
+                if t_var:
+                    M[i, nx] = 1.0 * unit
+                rhs[i] = const[f]
+            else:
+                rhs[i] = const[f] - floors[f]
+        big = 0.0
+        for j in range(cols):
+            big = max(big, abs(M[i, j]))
+        norm[i] = big
+    top = 0.0
+    for i in range(m):
+        top = max(top, norm[i])
+    for i in range(m):
+        if norm[i] <= noise_row * max(top, tiny):
+            return 2
+    for i in range(m):
+        for j in range(cols):
+            M[i, j] = M[i, j] / norm[i]
+        rhs[i] = rhs[i] / norm[i]
+    for j in range(nx):
+        M[m + j, j] = 1.0
+        rhs[m + j] = ub[j] / unit
+    feas = check_tol / 10
+    rows_all = m + nx
+    active = np.zeros(rows_all, np.bool_)
+    if rows_all <= direct_rows or m0 <= 0:
+        active[:] = True
+    else:
+        active[m0:] = True
+        per_round = per_var * cols
+        for i in _first_k(rhs[:m0], per_round):
+            active[i] = True
+    y = np.zeros(cols)
+    while True:
+        nr = 0
+        for i in range(rows_all):
+            if active[i]:
+                nr += 1
+        Ar = np.empty((nr, cols))
+        br = np.empty(nr)
+        r = 0
+        for i in range(rows_all):
+            if active[i]:
+                for j in range(cols):
+                    Ar[r, j] = M[i, j]
+                br[r] = rhs[i]
+                r += 1
+        dual = np.zeros(nr)
+        st = _lp_max(c, Ar, br, nr, cols, y, dual, eps, feas)
+        if st != 0 or nr == rows_all:
+            break
+        over = np.empty(m0)
+        for i in range(m0):
+            if active[i]:
+                over[i] = np.inf           # -over: never among the worst
+            else:
+                acc = 0.0
+                for j in range(cols):
+                    acc += M[i, j] * y[j]
+                over[i] = -(acc - rhs[i])
+        more = False
+        for i in _first_k(over, per_var * cols):
+            if -over[i] > feas:
+                active[i] = True
+                more = True
+        if not more:
+            break
+    if st == 1:
+        return 1
+    if st != 0:
+        return 2
+    for i in range(rows_all):
+        acc = 0.0
+        for j in range(cols):
+            acc += M[i, j] * y[j]
+        if acc > rhs[i] + check_tol:
+            return 2
+    for j in range(cols):
+        y_out[j] = y[j]
+    return 0
+
+
+_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _system_loop, _before, _first_k,
+          _lp_loop)
+
+
+def _with_simplex() -> dict[str, Any] | None:
+    """The compiled formulas of :mod:`fcgrasp.core.kernels` and the dense simplex of
+    :mod:`fcgrasp.core._simplex` (``_lp_max``), None where they do not run."""
+    core, simplex = kernels._loops(), _simplex.compiled()
+    if core is None or simplex is None:
+        return None
+    return {**core, "_lp_max": simplex["_lp_max"]}
+
+
+#: compiled over the compiled formulas of :mod:`fcgrasp.core.kernels` (``arc_meet``) and
+#: the dense simplex
+COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
+
+
+def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,
+            unit: float, noise_row: float, tiny: float, check_tol: float, eps: float,
+            direct_rows: int, per_var: int) -> tuple[int, Any] | None:
+    """:func:`_lp_loop`'s ``(status, y)``, None where the loop does not run."""
+    if not COMPILED.available():
+        return None
+    cols = A0.shape[1] + 1 if t_var else A0.shape[1]
+    y = np.zeros(cols)
+    ok, st = COMPILED.run("_lp_loop", np.ascontiguousarray(A0, dtype=float),
+                          np.ascontiguousarray(b0, dtype=float),
+                          np.ascontiguousarray(const, dtype=float),
+                          np.ascontiguousarray(floors, dtype=float),
+                          np.ascontiguousarray(ub, dtype=float),
+                          np.ascontiguousarray(c, dtype=float), bool(t_var), float(unit),
+                          float(noise_row), float(tiny), float(check_tol), float(eps),
+                          int(direct_rows), int(per_var), y)
+    return (int(st), y) if ok else None
 
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,

@@ -66,7 +66,15 @@ from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
 from ..core._geom import trim_vertex_ends
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import CHECK_TOL, NOISE_ROW, RANK_TOL, ROUND_TOL, TINY, TOL
+from ..core.tolerances import (
+    CHECK_TOL,
+    NOISE_ROW,
+    RANK_TOL,
+    ROUND_TOL,
+    SIMPLEX_PIVOT,
+    TINY,
+    TOL,
+)
 from . import _frictionless_kernels
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
@@ -219,6 +227,21 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
     or at least ``t`` where ``floors[f]`` is nan (``t_var``)."""
     k = len(cfg.edges)
     nv = 2 * k + 1
+    simplex = _simplex.compiled() is not None
+    if simplex and COMPILED_LP:
+        # the same program, built, scaled and solved in one compiled call
+        ub = np.array([hi for _, hi in cfg.bounds])
+        unit = max(float(ub.max()), TINY)
+        cols = 2 * k + 1 if t_var else 2 * k
+        one = _frictionless_kernels.lp_rows(
+            cfg.A, cfg.b, cfg.const, floors, ub, objective[:cols], t_var, unit, NOISE_ROW,
+            TINY, CHECK_TOL, SIMPLEX_PIVOT, DIRECT_ROWS, ROWS_PER_ROUND)
+        if one is not None and one[0] == _simplex.INFEASIBLE:
+            return None
+        if one is not None and one[0] == _simplex.OPTIMAL:
+            x = one[1] * unit if t_var else np.r_[one[1] * unit, 0.0]
+            return float(objective @ x), x
+        simplex = one is None           # undecided by the simplex: HiGHS decides
     rows = [np.c_[cfg.A, np.zeros(len(cfg.A))]]
     rhs = [cfg.b]
     for f in range(k):
@@ -231,7 +254,7 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
             rhs.append(np.array([cfg.const[f] - floors[f]]))
         rows.append(r[None])
     A, b = np.concatenate(rows), np.concatenate(rhs)
-    if _simplex.compiled() is not None:
+    if simplex:
         got = _lp_simplex(cfg, A, b, objective, t_var)
         if got is None or isinstance(got, tuple):
             return got
@@ -295,6 +318,11 @@ def _lp_simplex(cfg: _Config, A: FloatArray, b: FloatArray, objective: FloatArra
     x = y * unit if t_var else np.r_[y * unit, 0.0]
     return float(objective @ x), x
 
+
+#: Whether :func:`_lp` runs its program in one compiled call
+#: (:func:`fcgrasp.model._frictionless_kernels.lp_rows`) where numba runs; False: the
+#: numpy steps (the reference, kept for the tests).
+COMPILED_LP = True
 
 #: A program with more rows than this is solved on a subset of them, the rows its
 #: solution violates added until it violates none (:func:`_rows_generated`).
