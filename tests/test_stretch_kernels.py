@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+import fcgrasp as fc
 from fcgrasp.core.contacts import rotate
 from fcgrasp.model import _stretch_kernels
 from fcgrasp.model import stretches as S
@@ -212,9 +213,67 @@ def test_a_search_that_turns_compiled_half_way_gives_the_numpy_plans(seed, monke
     monkeypatch.setattr(S, "_numpy_spent", [0.0])
     calls = []
     solve = S._solve_any
-    monkeypatch.setattr(S, "_solve_any", lambda *a: calls.append(a[-1]) or solve(*a))
+    monkeypatch.setattr(S, "_solve_any",
+                        lambda *a, **k: calls.append(a[3]) or solve(*a, **k))
     _assert_same_plans(_plans(poly, mu, margin, 8), want, poly.size)
     assert calls == sorted(calls) and calls[0] is False and (len(calls) == 1 or calls[-1])
+
+
+def _plan_tuples(poly, **kw):
+    return [(p.region_edges, p.mode, p.lengths, p.regions) for p in fc.plan(poly, **kw)]
+
+
+@pytest.mark.parametrize("seed", seeds(3, 150))
+def test_configurations_proved_below_the_floor_change_no_plan(seed, monkeypatch):
+    """Issue 30: the compiled solve leaves unsolved the configurations it proves below
+    the run's floor (the bound's, or the distinct rounds' memo's), and a later round
+    solves them only where its floor is lower (``FLOOR_SOLVE``).  The plans of two
+    fingers and of three with friction at default options (distinct rounds along the
+    boundary) are those of every configuration solved in full."""
+    poly, mu, margin = part(seed)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    proved = []
+    solve = S._stretch_kernels.solve_rows
+
+    def counted(*a):
+        out = solve(*a)
+        proved.append(int(np.isnan(out[0]).sum()))
+        return out
+
+    monkeypatch.setattr(S._stretch_kernels, "solve_rows", counted)
+    jobs = [dict(fingers=2, mu=mu, margin=margin)] + \
+        ([dict(fingers=3, mu=mu, margin=margin)] if seed % 3 == 0 else [])
+    for job in jobs:
+        got = _plan_tuples(poly, **job)
+        monkeypatch.setattr(S, "FLOOR_SOLVE", 0)
+        want = _plan_tuples(poly, **job)
+        monkeypatch.setattr(S, "FLOOR_SOLVE", 1)
+        _assert_same_plans(got, want, poly.size)
+    if seed < 3:
+        assert sum(proved) > 0          # the floor did leave some unsolved
+
+
+@pytest.mark.parametrize("seed", [18, *(pytest.param(s, marks=pytest.mark.slow)
+                                        for s in range(120) if s != 18)])
+def test_rounds_sharing_a_memo_solve_again_what_their_lower_floor_needs(seed, monkeypatch):
+    """Issue 30: rounds of one distinct search share their solved configurations
+    (``_Memo``), those proved below one round's floor left unsolved; a later round
+    whose floor is lower solves them again.  Three rounds (the best, then with a plan
+    read, then more plans) give what a fresh search gives the last round.  (Seed 18
+    caught a round skipping what an earlier, higher floor had left.)"""
+    poly, mu, margin = part(seed)
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    first = S.two_finger_stretches(poly, mu, margin, top=1)
+    assert first
+
+    def last_round(rounds):
+        search = S.StretchSearch(poly, mu, margin)
+        search.pairs(top=1)
+        for top in rounds:
+            got = search.pairs(top=top, seen=first, ties=True)
+        return [(p.region_edges, p.mode, p.lengths, p.regions) for p in got]
+
+    _assert_same_plans(last_round((1, 12)), last_round((12,)), poly.size)
 
 
 @pytest.mark.parametrize("seed", seeds(1, 300))

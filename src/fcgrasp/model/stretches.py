@@ -656,11 +656,13 @@ def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, coll
     return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
 
 
-def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool
-               ) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """:func:`~fcgrasp.model._stretch_lp._solve`, or its compiled loop."""
+def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool,
+               floor: float = 0.0) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """:func:`~fcgrasp.model._stretch_lp._solve`, or its compiled loop; there, with
+    ``floor`` > 0, a configuration whose largest ``t`` is surely below it gets NaN
+    (unsolved: see :func:`_solve_in`)."""
     if compiled:
-        t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS)
+        t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS, floor)
         return t, s0, u0
     start = time.process_time()
     try:
@@ -755,6 +757,8 @@ class _Job:
     t: FloatArray
     s0: FloatArray
     u0: FloatArray
+    #: the floor each unsolved configuration was proved below (0: none)
+    below: FloatArray
 
 
 class _Memo:
@@ -792,7 +796,7 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
     if lazy:
         nan = np.full(ub.size, np.nan)
         return _Job(cfg, ub, nan.copy(), np.argsort(-ub, kind="stable"), compiled, nan,
-                    nan.copy(), nan.copy())
+                    nan.copy(), nan.copy(), np.zeros(ub.size))
     # the ends' boxes bound a configuration far below its arc length where the ends are
     # confined: solved in that order, pruned by it (the arc length stays the program's
     # cap, so each configuration's solution is unchanged)
@@ -800,7 +804,7 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
                                     intervals[y, x, sigma], compiled))
     nan = np.full(ub.size, np.nan)
     return _Job(cfg, ub, box, np.argsort(-box, kind="stable"), compiled, nan,
-                nan.copy(), nan.copy())
+                nan.copy(), nan.copy(), np.zeros(ub.size))
 
 
 def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
@@ -813,6 +817,10 @@ def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
             rings[x], rings[y], J.cfg.take(todo), intervals[x, y, sigma],
             intervals[y, x, sigma], J.compiled))
 
+
+#: Whether the compiled solve leaves the configurations it proves below the run's floor
+#: unsolved (1; 0: every configuration solved in full, the reference).
+FLOOR_SOLVE = 1
 
 #: Configurations :func:`_solve_jobs` reads at a time: the first chunk (the floor
 #: rises with each), and the largest a lazy job's chunks grow to (each twice the last:
@@ -832,9 +840,13 @@ def _chunks(order: np.ndarray, grow: bool) -> Any:
 
 
 def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: float,
-              intervals: dict[Any, _Intervals], scale: float) -> None:
+              intervals: dict[Any, _Intervals], scale: float, floor: float = 0.0) -> None:
     """Solve the configurations ``todo`` of ``job`` into its arrays ``J.t``, ``J.s0``,
-    ``J.u0``."""
+    ``J.u0``.  With ``floor`` (the run's: the bound's, or the memo's, below which a run's
+    answer is not taken; a configuration below it can neither reach an answer taken
+    nor beat one of its configurations), the compiled solve leaves those it proves
+    below it NaN, unsolved (:func:`~fcgrasp.model._stretch_kernels._below`): not kept,
+    and solved again by a later run whose floor is lower."""
     if not todo.size:
         return
     x, y, sigma, _ = job
@@ -842,7 +854,10 @@ def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: flo
         J.compiled = True
     rows = _system(rings[x], rings[y], J.cfg.take(todo), sigma, beta, intervals[x, y, sigma],
                    intervals[y, x, sigma], compiled=J.compiled)
-    J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale, J.compiled)
+    J.t[todo], J.s0[todo], J.u0[todo] = _solve_any(rows, J.ub[todo], scale, J.compiled,
+                                                   floor)
+    if floor > 0:
+        J.below[todo[np.isnan(J.t[todo])]] = floor
 
 
 @dataclass
@@ -860,13 +875,18 @@ class _Run:
     found: list[_Found]
     bound: _Bound
     keys: _Keys
+    #: the memo's floor (0 without one): below it the run's answer is not taken
+    least: float = 0.0
 
     def settle(self, chunk: np.ndarray) -> None:
         """Solve what of ``chunk`` is not yet solved, then file (a kept plan's copies in
         ``similar``), keep and count (the bound) the chunk."""
         J, job, cfg = self.J, self.job, self.J.cfg
-        _solve_in(self.rings, job, J, chunk[np.isnan(J.t[chunk])], self.beta,
-                  self.intervals, self.scale)
+        floor = FLOOR_SOLVE * max(self.bound.floor, self.least)
+        # not solved yet, nor proved below this floor by an earlier run
+        proved = J.below[chunk]         # below that floor, so below this one if higher
+        todo = chunk[np.isnan(J.t[chunk]) & ~((proved > 0) & (proved <= floor))]
+        _solve_in(self.rings, job, J, todo, self.beta, self.intervals, self.scale, floor)
         part = cfg.take(chunk)
         t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
         ok = np.flatnonzero(t > 0)
@@ -916,7 +936,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
         run = _Run(rings, job, J, beta, intervals, scale, exclude, similar, found, bound,
-                   keys)
+                   keys, 0.0 if memo is None else memo.floor)
         later_idx: list[np.ndarray] = []
         later_tau: list[FloatArray] = []
         for chunk in _chunks(order, memo is not None):
