@@ -324,13 +324,26 @@ def _evaluate_batched(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: Flo
 
 
 def _merge_intervals(rows: FloatArray, count: int, tol: float) -> list[FloatArray]:
-    """Rows ``(index, lo, hi)`` joined into sorted disjoint intervals per index (pieces
-    that touch within ``tol`` are one)."""
-    out: list[list[list[float]]] = [[] for _ in range(count)]
-    for k, lo, hi in rows[np.lexsort((rows[:, 1], rows[:, 0]))]:
-        cur = out[int(k)]
-        if cur and lo <= cur[-1][1] + tol:
-            cur[-1][1] = max(cur[-1][1], hi)
-        else:
-            cur.append([lo, hi])
-    return [np.array(c, dtype=float).reshape(-1, 2) for c in out]
+    """Rows ``(index, lo, hi)`` (``lo <= hi``) joined into sorted disjoint intervals per
+    index (pieces that touch within ``tol`` are one), with whole-array operations: in
+    order of (index, lo), a piece starts a new interval where its ``lo`` is beyond the
+    highest ``hi`` before it of its index by more than ``tol``; an interval ends at the
+    highest ``hi`` of its pieces.  That running highest is exact: a running maximum of
+    integer keys, the index times the row count plus the rank of ``hi``."""
+    n = len(rows)
+    if n == 0:
+        return [np.zeros((0, 2)) for _ in range(count)]
+    r = rows[np.lexsort((rows[:, 1], rows[:, 0]))]
+    k = r[:, 0].astype(np.int64)
+    lo, hi = r[:, 1], r[:, 2]
+    by_hi = np.argsort(hi, kind="stable")
+    rank = np.empty(n, np.int64)
+    rank[by_hi] = np.arange(n)
+    top = hi[by_hi][np.maximum.accumulate(k * n + rank) - k * n]   # highest hi so far
+    first = np.ones(n, bool)
+    first[1:] = (k[1:] != k[:-1]) | (lo[1:] > top[:-1] + tol)
+    starts = np.flatnonzero(first)
+    ends = np.r_[starts[1:], n] - 1
+    pieces = np.stack([lo[starts], top[ends]], axis=1)
+    bounds = np.searchsorted(k[starts], np.arange(count + 1))
+    return [pieces[bounds[i]:bounds[i + 1]] for i in range(count)]
