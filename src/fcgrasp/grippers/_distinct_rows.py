@@ -74,8 +74,16 @@ class RowCopies:
         rows = rows[:, :k]
         if self.read:
             e = np.sort(self.edge[np.maximum(rows, 0)], axis=1)
-            for r in np.flatnonzero(same & np.isin(e[:, 0], self._first)):
-                out[r] = tuple(int(v) for v in e[r]) in self.read
+            base = int(self.edge.max(initial=0)) + 1
+            if float(base) ** k < 2.0 ** 62:
+                # each sorted edge tuple as one integer (digits in base ``base``)
+                read = np.array([r for r in self.read if len(r) == k], np.int64)
+                if len(read):
+                    weights = base ** np.arange(k - 1, -1, -1, dtype=np.int64)
+                    out[same] = np.isin(e[same].astype(np.int64) @ weights, read @ weights)
+            else:
+                for r in np.flatnonzero(same & np.isin(e[:, 0], self._first)):
+                    out[r] = tuple(int(v) for v in e[r]) in self.read
         cols = np.arange(k)
         for table in self.inside:
             if table.shape[1] != k:
