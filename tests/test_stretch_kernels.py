@@ -457,6 +457,45 @@ def test_own_optimum_filter_matches_every_pair(seed):
         assert np.array_equal(scan, want)
 
 
+def test_own_optimum_filter_remembers_sets_not_orders(monkeypatch):
+    """Issue 30: the rounds of a distinct search ask the own-optimum filter about the
+    same configurations in another order; :func:`~fcgrasp.model._stretch_kernels.beaten`
+    remembers the answer per set: a permuted set gets the answers permuted, a set with
+    one region changed gets its own answers (the definition over every pair)."""
+    monkeypatch.setattr(_stretch_kernels, "BEATEN_MEMO_ROWS", 1)
+    monkeypatch.setattr(_stretch_kernels, "_beaten_memo", {})
+    rng = np.random.default_rng(61)
+
+    def definition(c, t, m, same):
+        def inside(i, k, i2, k2):
+            return (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :]
+        sub = inside(c[:, 0], c[:, 1], c[:, 0], c[:, 1]) & inside(c[:, 2], c[:, 3], c[:, 2],
+                                                                  c[:, 3])
+        if same:
+            sub |= inside(c[:, 0], c[:, 1], c[:, 2], c[:, 3]) & \
+                inside(c[:, 2], c[:, 3], c[:, 0], c[:, 1])
+        return ~(sub & (t[:, None] > t[None, :] * (1 + S.TIE))).any(axis=0)
+
+    hits = 0
+    for _ in range(60):
+        m, same, F = int(rng.integers(5, 30)), bool(rng.random() < 0.5), int(rng.integers(2, 120))
+        c = np.c_[rng.integers(0, m, F), rng.integers(0, m // 2, F), rng.integers(0, m, F),
+                  rng.integers(0, m // 2, F)]
+        t = np.round(rng.random(F), 1)
+        first = _stretch_kernels.beaten(c, t, m, m, same, S.TIE)
+        assert np.array_equal(first, definition(c, t, m, same))
+        perm = rng.permutation(F)
+        before = len(_stretch_kernels._beaten_memo)
+        assert np.array_equal(_stretch_kernels.beaten(c[perm], t[perm], m, m, same, S.TIE),
+                              first[perm])
+        hits += len(_stretch_kernels._beaten_memo) == before
+        t2 = t.copy()
+        t2[rng.integers(F)] = 2.0                 # one region longer than every other
+        assert np.array_equal(_stretch_kernels.beaten(c, t2, m, m, same, S.TIE),
+                              definition(c, t2, m, same))
+    assert hits == 60                             # each permuted set was remembered
+
+
 def _scan_runs(monkeypatch, ra, rb, beta):
     """The runs by the window scan (the previous kernel, kept as the reference): every
     cell of each row's window of angles read."""

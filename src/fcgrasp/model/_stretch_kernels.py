@@ -32,6 +32,7 @@ search uses these loops only on rings large enough to repay it
 
 from __future__ import annotations
 
+import hashlib
 from typing import Any
 
 import numpy as np
@@ -1382,7 +1383,36 @@ def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
     c = np.array(c, np.int64)
     c[:, 0] %= ma                               # starts as ring positions
     c[:, 2] %= mb
-    t = np.asarray(t, float)
+    t = np.ascontiguousarray(t, float)
+    if len(c) < BEATEN_MEMO_ROWS:
+        return _beaten_keep(c, t, ma, mb, same, tie)
+    # the rounds of a distinct search ask again about the same configurations, in
+    # another order: each one's answer depends on the set only, so the set is
+    # remembered sorted
+    o = np.lexsort((t, c[:, 3], c[:, 2], c[:, 1], c[:, 0]))
+    h = hashlib.blake2b(np.ascontiguousarray(c[o]).tobytes(), digest_size=16)
+    h.update(np.ascontiguousarray(t[o]).tobytes())
+    h.update(repr((int(ma), int(mb), bool(same), float(tie))).encode())
+    digest = h.digest()
+    keep = np.empty(len(c), bool)
+    if digest in _beaten_memo:
+        keep[o] = _beaten_memo[digest]
+        return keep
+    keep = _beaten_keep(c, t, ma, mb, same, tie)
+    _beaten_memo[digest] = keep[o]
+    while len(_beaten_memo) > BEATEN_MEMO_SIZE:
+        del _beaten_memo[next(iter(_beaten_memo))]
+    return keep
+
+
+#: Configurations from which :func:`beaten` remembers its answer (by a digest of its
+#: arguments), and how many answers it keeps.
+BEATEN_MEMO_ROWS, BEATEN_MEMO_SIZE = 50_000, 4
+_beaten_memo: dict[bytes, np.ndarray] = {}
+
+
+def _beaten_keep(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
+    """:func:`beaten` of ring positions ``c``, computed."""
     keep = np.ones(len(c), bool)
     cols = [np.ascontiguousarray(c[:, j]) for j in range(4)]
     if _load()["_beaten_tables"](*cols, t, int(ma), int(mb), bool(same), float(tie), keep):
