@@ -81,8 +81,13 @@ def test_compiled_rows_of_random_configurations():
     assert cases >= 1500 and programs >= 50
 
 
-def test_smallest_is_the_stable_sorts_head():
-    rng = np.random.default_rng(22)
+@pytest.mark.parametrize("compiled", [False, True])
+def test_smallest_is_the_stable_sorts_head(compiled):
+    """The row generation's pick of the rows to add against numpy's stable sort: ties
+    in index order, nan last, -inf first; numpy's partial sort (``_smallest``) and the
+    compiled program's one pass (``_first_k``)."""
+    pick = _frictionless_kernels.COMPILED.get()["_first_k"] if compiled else _smallest
+    rng = np.random.default_rng(22 + compiled)
     for t in range(5000):
         n, k = int(rng.integers(0, 80)), int(rng.integers(1, 24))
         v = rng.integers(-3, 4, n).astype(float) if t % 2 else rng.random(n)
@@ -90,22 +95,7 @@ def test_smallest_is_the_stable_sorts_head():
             v[rng.integers(0, n, 3)] = np.nan
         if t % 7 == 0 and n:
             v[rng.integers(0, n, 2)] = -np.inf
-        np.testing.assert_array_equal(_smallest(v, k), np.argsort(v, kind="stable")[:k])
-
-
-def test_compiled_first_k_is_the_stable_sorts_head():
-    """The compiled program's selection of the rows to add (one pass, no sort) against
-    numpy's stable sort: ties in index order, nan last, -inf first."""
-    first_k = _frictionless_kernels.COMPILED.get()["_first_k"]
-    rng = np.random.default_rng(23)
-    for t in range(5000):
-        n, k = int(rng.integers(0, 80)), int(rng.integers(1, 24))
-        v = rng.integers(-3, 4, n).astype(float) if t % 2 else rng.random(n)
-        if t % 5 == 0 and n:
-            v[rng.integers(0, n, 3)] = np.nan
-        if t % 7 == 0 and n:
-            v[rng.integers(0, n, 2)] = -np.inf
-        np.testing.assert_array_equal(first_k(v, k), np.argsort(v, kind="stable")[:k])
+        np.testing.assert_array_equal(pick(v, k), np.argsort(v, kind="stable")[:k])
 
 
 def _programs(parts, monkeypatch):

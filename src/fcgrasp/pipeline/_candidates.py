@@ -370,36 +370,15 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
             # the other features must reach the key's second region
             pool = min(s, int(np.searchsorted(-rounded, -current[1], side="right")))
         for r in widths:
-            if current is not None:
-                # the rows that may reach the key, by one compiled loop (or None)
-                rows_s = _rows_kernels.survivors(
-                    order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
-                    spec.fingers, spec.shape.twin, np.ascontiguousarray(current, dtype=float),
-                    comb(pool, r))
-                if rows_s is not None:
-                    if len(rows_s):
-                        buf.append(rows_s)
-                        count += len(rows_s)
-                    while count >= target:
-                        rows = np.concatenate(buf)
-                        yield EdgeSets(rows[:target],
-                                       _row_bound(lengths, rows[:target], twin), ceiling)
-                        buf, count = [rows[target:]], len(rows) - target
-                        ceiling = float(lengths[order[s]])
-                        target = min(2 * target, size)
+            # the rows that may reach the key: by one compiled loop, else numpy blocks
+            got = None if current is None else _rows_kernels.survivors(
+                order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
+                spec.fingers, spec.shape.twin, np.ascontiguousarray(current, dtype=float),
+                comb(pool, r))
+            for rows_s in ([got] if got is not None else
+                           _row_blocks(F, spec, order, s, pool, r, current, twin, part_size)):
+                if not len(rows_s):
                     continue
-            for block in _combos(pool, r):
-                t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)],
-                                                 axis=1)], axis=1)
-                t = _distinct_edges(F, t)
-                if not len(t):
-                    continue
-                rows_s = _layouts(t, spec.shape, spec.fingers)
-                if current is not None:
-                    rows_s = rows_s[lex_survivors(_row_bounds(lengths, rows_s, twin),
-                                                  current, part_size)]
-                    if not len(rows_s):
-                        continue
                 buf.append(rows_s)
                 count += len(buf[-1])
                 while count >= target:
@@ -413,6 +392,26 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     if count:
         rows = np.concatenate(buf)
         yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling)
+
+
+def _row_blocks(F: Features, spec: PlanSpec, order: np.ndarray, s: int, pool: int, r: int,
+                current: FloatArray | None, twin: int | None, part_size: float
+                ) -> Iterator[np.ndarray]:
+    """The rows of position ``s`` (``r`` positions drawn from ``range(pool)``), in numpy
+    blocks: the features sorted, on distinct edges, laid out, and with a ``current``
+    key only those whose bounds may reach or tie it (:func:`lex_survivors`); the
+    reference of :func:`fcgrasp.pipeline._rows_kernels.survivors`."""
+    for block in _combos(pool, r):
+        t = np.sort(order[np.concatenate([block, np.full((len(block), 1), s)], axis=1)],
+                    axis=1)
+        t = _distinct_edges(F, t)
+        if not len(t):
+            continue
+        rows_s = _layouts(t, spec.shape, spec.fingers)
+        if current is not None:
+            rows_s = rows_s[lex_survivors(_row_bounds(F.lengths, rows_s, twin), current,
+                                          part_size)]
+        yield rows_s
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
