@@ -404,3 +404,41 @@ def test_merged_slices_equal_the_loop():
         assert len(got) == len(want) == count
         for a, b in zip(got, want, strict=True):
             np.testing.assert_array_equal(a, b)
+
+
+@pytest.mark.parametrize("cases", [pytest.param(40, id="seeded"),
+                                   pytest.param(400, id="sweep", marks=pytest.mark.slow)])
+def test_compiled_slices_in_a_narrow_window_read_every_edge_a_pad_reaches(cases,
+                                                                           monkeypatch):
+    """The compiled slices of a window read only the edges near the pads' strip; the
+    pads' middles run over the window, so an edge up to half a pad outside it is read
+    too (it was dropped: the jaw's grown boxes on ``icons/star.svg`` stopped 5 % short
+    of numpy's).  Windows narrower than a pad, near the part's features, on seeded
+    star-shaped parts with wide pads: the compiled slices and ``near_intervals`` are
+    numpy's (every edge read)."""
+    from fcgrasp.core.tolerances import CONTACT_TOL
+    from fcgrasp.grippers.jaw._slices import holding_offsets, near_intervals
+
+    rng = np.random.default_rng(71)
+    differ = 0
+    for _ in range(cases):
+        part = random_polygon(rng, "star")
+        jaw = ParallelJaw(stroke=(0.0, 1.2 * part.size),
+                          pad_width=float(rng.uniform(0.1, 0.4)) * part.size, mu=0.3)
+        th = np.sort(rng.uniform(0, 2 * np.pi, 1)) + np.linspace(0, 0.3, 6)
+        c = float(rng.uniform(-0.4, 0.4)) * part.size
+        window = (c, c + float(rng.uniform(0.01, 0.5)) * jaw.pad_width)
+        tol = CONTACT_TOL * part.size
+        got = holding_offsets(part, jaw, th, 2.0, None, window)
+        ends = [near_intervals(part, jaw, th, 2.0, None, window, s) for s in (1, -1)]
+        with monkeypatch.context() as m:
+            _numpy_only(m)
+            want = holding_offsets(part, jaw, th, 2.0, None, window)
+            want_ends = [near_intervals(part, jaw, th, 2.0, None, window, s) for s in (1, -1)]
+        for g, w in zip(got, want, strict=True):
+            assert g.shape == w.shape
+            np.testing.assert_allclose(g, w, rtol=0, atol=tol)
+        for g, w in zip(ends, want_ends, strict=True):
+            np.testing.assert_allclose(g, w, rtol=0, atol=tol)
+        differ += any(len(w) for w in want)
+    assert differ > cases // 4             # windows with holding offsets among them

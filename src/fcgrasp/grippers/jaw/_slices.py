@@ -176,9 +176,10 @@ def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
     cells = np.nonzero(keep)
     cell_t, cell_lo, cell_hi = cells[0], brk[:, :-1][cells], brk[:, 1:][cells]
     if th.size and np.ptp(th) < np.pi / 2:
-        # only the edges that may meet a strip of these angles and offsets
+        # only the edges that may meet a strip of these angles and offsets: the pads'
+        # middles run over [w_lo, w_hi] (half a pad either side of it is the strip's)
         ring = _near_strip(polygon, ring, float(th.min()), float(th.max()),
-                           float(w_lo.min()) + half, float(w_hi.max()) - half, half)
+                           float(w_lo.min()), float(w_hi.max()), half)
     return ring, cell_t, cell_lo, cell_hi
 
 
