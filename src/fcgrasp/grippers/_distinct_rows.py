@@ -60,7 +60,23 @@ class RowCopies:
             if table.any(axis=0).all():         # every region has an edge on it
                 self.inside.append(table)
         self.read = {tuple(sorted(int(e) for e in r)) for r in read}
+        self._base = int(self.edge.max(initial=0)) + 1
+        #: per length, the sorted edge tuples read, each as one integer (digits in base
+        #: ``_base``), where such integers fit in 64 bits
+        self._read_keys: dict[int, np.ndarray] = {}
+        for k in {len(r) for r in self.read}:
+            if self._fits(k):
+                self._read_keys[k] = np.array([r for r in self.read if len(r) == k],
+                                              np.int64) @ self._weights(k)
         self._first = np.array(sorted({r[0] for r in self.read if r}), int)
+
+    def _fits(self, k: int) -> bool:
+        """Whether a tuple of ``k`` edges as one integer fits in 64 bits."""
+        return float(self._base) ** k < 2.0 ** 62
+
+    def _weights(self, k: int) -> np.ndarray:
+        """The digits' weights of a tuple of ``k`` edges as one integer."""
+        return self._base ** np.arange(k - 1, -1, -1, dtype=np.int64)
 
     def __call__(self, feats: np.ndarray) -> np.ndarray:
         feats = np.asarray(feats)
@@ -74,13 +90,10 @@ class RowCopies:
         rows = rows[:, :k]
         if self.read:
             e = np.sort(self.edge[np.maximum(rows, 0)], axis=1)
-            base = int(self.edge.max(initial=0)) + 1
-            if float(base) ** k < 2.0 ** 62:
-                # each sorted edge tuple as one integer (digits in base ``base``)
-                read = np.array([r for r in self.read if len(r) == k], np.int64)
-                if len(read):
-                    weights = base ** np.arange(k - 1, -1, -1, dtype=np.int64)
-                    out[same] = np.isin(e[same].astype(np.int64) @ weights, read @ weights)
+            if self._fits(k):
+                keys = self._read_keys.get(k)
+                if keys is not None:
+                    out[same] = np.isin(e[same].astype(np.int64) @ self._weights(k), keys)
             else:
                 for r in np.flatnonzero(same & np.isin(e[:, 0], self._first)):
                     out[r] = tuple(int(v) for v in e[r]) in self.read

@@ -236,12 +236,12 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
         rhs[m + j] = ub[j] / unit
     feas = check_tol / 10
     rows_all = m + nx
+    per_round = per_var * cols
     active = np.zeros(rows_all, np.bool_)
     if rows_all <= direct_rows or m0 <= 0:
         active[:] = True
     else:
         active[m0:] = True
-        per_round = per_var * cols
         for i in _first_k(rhs[:m0], per_round):
             active[i] = True
     y = np.zeros(cols)
@@ -273,7 +273,7 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
                     acc += M[i, j] * y[j]
                 over[i] = -(acc - rhs[i])
         more = False
-        for i in _first_k(over, per_var * cols):
+        for i in _first_k(over, per_round):
             if -over[i] > feas:
                 active[i] = True
                 more = True

@@ -114,7 +114,6 @@ def _four(small: Any) -> None:
     from .planner import plan
 
     plan(small, fingers=4, top=1)
-
     # the candidate rows that may reach a full top's key, with the types of the search's
     order, z = np.arange(6, dtype=np.int64), np.linspace(1.0, 0.5, 6)
     edge = order.copy()
