@@ -167,3 +167,42 @@ def test_every_configuration_left_out_is_a_kept_plans_copy(seed):
         assert q is not None
         assert any(same_alternative(k, q, fraction, 1e-12 * poly.size) for k in kept), \
             p.region_edges
+
+
+def _plans_equal(got, ref):
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    for a, b in zip(got, ref, strict=True):
+        assert a.mode == b.mode
+        for x, y in zip(a.regions, b.regions, strict=True):
+            assert np.array_equal(x, y)
+
+
+# the rounds of the distinct search ask again with a lower floor and a larger keep
+@pytest.mark.parametrize("seed", [0, 4, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in range(1, 40) if s != 4)])
+def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypatch):
+    from fcgrasp.grippers import three_fingers as tf
+
+    poly, rng = _outline(seed)
+    mu = float(rng.choice([0.2, 0.3, 0.5]))
+    spec = plan_spec(fingers=3, mu=mu, gravity=None, top=10)
+    F = features(poly, spec.mu, None, None)
+    solved = tf._Solved()
+    calls = []
+    best = tf._best_blocks
+    monkeypatch.setattr(tf, "_best_blocks", lambda a, *r: calls.append(len(a)) or best(a, *r))
+    keep, floor = int(rng.integers(4, 12)), float(rng.uniform(0.02, 0.08)) * poly.size
+    rounds = [(keep, floor), (2 * keep, floor / 2), (2 * keep, floor / 2), (4 * keep, 0.0)]
+    for keep, floor in rounds:
+        got = tf._concurrent_plans(poly, spec, None, F, keep, floor, True, solved=solved)
+        ref = tf._concurrent_plans(poly, spec, None, F, keep, floor, True)
+        _plans_equal(got[0], ref[0])
+        assert got[1] == ref[1]
+        _plans_equal(got[2], ref[2])
+        calls.clear()
+    # a round asking what the round before asked solves no row again
+    solved2 = tf._Solved()
+    tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
+    calls.clear()
+    tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
+    assert sum(calls) == 0

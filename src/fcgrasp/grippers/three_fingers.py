@@ -180,7 +180,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
 
 def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
                       keep: int | None, pair_floor: float, grow: bool, progress: Any = None,
-                      grown: list[GraspPlan] | None = None
+                      grown: list[GraspPlan] | None = None, solved: _Solved | None = None
                       ) -> tuple[list[GraspPlan], float, list[GraspPlan]]:
     """The concurrent plans of :func:`three_finger_plans` (single edges, and with
     ``grow`` those grown along the boundary from the :data:`GROW_SEEDS` best): every
@@ -189,7 +189,9 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     Returns them, a level every concurrent plan of a single-edge triple left out is
     below (-inf: none was), and the grown plans alone: the same whatever ``keep`` and
     ``pair_floor`` (their seeds are read whatever the floor), so a caller that asks
-    again passes them as ``grown``."""
+    again passes them as ``grown``, and ``solved`` (:class:`_Solved`), the rows solved
+    and the pieces placed by the calls before, which a call reads instead of solving
+    them again."""
     size = polygon.size
     floor = pair_floor
     bounded = keep is not None or floor > 0
@@ -225,8 +227,9 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             if bounded:
                 sub = sub[useful(bnd)]
             if len(sub):
-                res = _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
-                                   spec.margin_rad, size)
+                res = solved.rows(F, sub, spec.margin_rad, size) if solved is not None \
+                    else _best_blocks(F.a[sub], F.b[sub], F.center[sub], F.half[sub],
+                                      spec.margin_rad, size)
                 got = [(lv * size, tuple(int(f) for f in row), blk)
                        for row, (blk, lv) in zip(sub, res, strict=True)
                        if blk is not None and lv > 0]
@@ -264,7 +267,7 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     for lv, row, blk in found:
         if bounded and lv < floor:
             continue
-        piece = _leximin(blk)
+        piece = solved.piece(row, blk) if solved is not None else _leximin(blk)
         if piece is None:
             continue
         ends = np.stack([F.a[list(row)] + (piece.lo * size)[:, None] * blk.t0,
@@ -279,6 +282,38 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     # bounded: a row left out had a bound below the floor of its time, or a level
     # below the last
     return plans, floor if bounded else -np.inf, grown
+
+
+class _Solved:
+    """What the rounds of :func:`distinct_three_finger_plans` solve again: each round
+    runs :func:`_concurrent_plans` from the start, with a lower floor and a larger
+    ``keep``, so it meets the rows of the rounds before.  A row's best piece
+    (:func:`~fcgrasp.grippers._concurrent._best_blocks`) and its leximin placement
+    (:func:`~fcgrasp.grippers._concurrent._leximin`) depend on its three features
+    only, so they are kept by the row's feature indices and read back as they were."""
+
+    def __init__(self) -> None:
+        self._rows: dict[tuple[int, ...], tuple[_Block | None, float]] = {}
+        self._pieces: dict[tuple[int, ...], Any] = {}
+
+    def rows(self, F: Any, sub: np.ndarray, margin: float, size: float
+             ) -> list[tuple[_Block | None, float]]:
+        """:func:`_best_blocks` of the rows ``sub`` (feature indices, (R, 3)), each
+        solved once."""
+        keys = [tuple(r) for r in sub.tolist()]
+        todo = [k for k, key in enumerate(keys) if key not in self._rows]
+        if todo:
+            idx = sub[todo]
+            got = _best_blocks(F.a[idx], F.b[idx], F.center[idx], F.half[idx], margin, size)
+            for k, res in zip(todo, got, strict=True):
+                self._rows[keys[k]] = res
+        return [self._rows[key] for key in keys]
+
+    def piece(self, row: tuple[int, ...], blk: _Block) -> Any:
+        """:func:`_leximin` of the best piece ``blk`` of ``row``, placed once."""
+        if row not in self._pieces:
+            self._pieces[row] = _leximin(blk)
+        return self._pieces[row]
 
 
 def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
@@ -336,6 +371,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     others: list[GraspPlan] = []
     fed: set[Any] = set()                   # the (key, mode) of the plans fed
     grown: list[GraspPlan] | None = None
+    solved = _Solved()
     ask = keep = max(2 * top, DISTINCT_READ)
     pair_level = other_level = np.inf
     cap = np.inf if depth is None else depth * top
@@ -360,7 +396,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             # read a band below the pairs' level: those at it then come first
             others, other_level, grown = _concurrent_plans(polygon, spec, None, F, keep,
                                                            pair_level - band, True, beat,
-                                                           grown=grown)
+                                                           grown=grown, solved=solved)
         line = max(pair_level, other_level + band)
         had = len(suppression.kept)
         for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others):
