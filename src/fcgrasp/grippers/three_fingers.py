@@ -69,7 +69,7 @@ from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.distinct import Suppression
 from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon, check_polygon
-from ..model.stretches import StretchSearch, crosses_a_vertex
+from ..model.stretches import StretchSearch, crosses_a_vertex, load_kernels
 from ..pipeline import (
     PlanSpec,
     candidates,
@@ -153,6 +153,8 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                          "(fingers=3, gravity=None)")
     F = features(polygon, spec.mu, spec.hand, edges)
     size = polygon.size
+    if spec.along_boundary and _concurrency.available():
+        load_kernels()                  # numba runs anyway: the stretch search too
     keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
                                           max(spec.top, KEEP_FOR_MEASURE))
     grow = (spec.along_boundary and spec.hand is None and edges is None
@@ -360,6 +362,8 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         return None
     F = features(polygon, spec.mu, None, None)
     size = polygon.size
+    if _concurrency.available():            # numba runs anyway: the stretch search too
+        load_kernels()
     band = 4 * RANK_TOL * size               # above the concurrent level, after rounding
     two = replace(spec, fingers=2, top=None, rank_by="min_region")
     suppression = Suppression(fraction, size)

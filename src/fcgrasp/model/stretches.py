@@ -553,8 +553,17 @@ KERNEL_TOP = 64
 def _load_for_depth(top: int | None) -> None:
     """Load the compiled loops for a search of ``top`` plans (:data:`KERNEL_TOP`), where
     numba is there and ``FCGRASP_JIT`` leaves the choice to the search."""
-    if (top is None or top > KERNEL_TOP) and jit_setting() is None \
-            and not _stretch_kernels.loaded():
+    if top is None or top > KERNEL_TOP:
+        load_kernels()
+
+
+def load_kernels() -> None:
+    """Load the compiled loops now, where numba is there and ``FCGRASP_JIT`` leaves the
+    choice to the search: for a caller that pays numba's start-up anyway (three fingers
+    with friction solve their rows compiled), so that the search does not first spend
+    :data:`NUMPY_SOLVE_BUDGET` in numpy to learn that it repays it.  Once numba runs,
+    loading these loops from its cache costs a few tens of milliseconds."""
+    if jit_setting() is None and not _stretch_kernels.loaded():
         _stretch_kernels.available()
 
 
