@@ -20,9 +20,11 @@ pytestmark = pytest.mark.skipif(not _frictionless_kernels.COMPILED.available(),
                                 reason="numba not available")
 
 
-def _same(args):
-    """Both ways give the same program (or both none); returns whether there is one."""
-    got = _system(*args)
+def _same(args, facts=None):
+    """Both ways give the same program (or both none); returns whether there is one.
+    ``facts``: the stretches' lengths as a search remembers them, for the compiled
+    way (the reference computes them)."""
+    got = _system(*args, facts=facts)
     ref = _system(*args, compiled=False)
     assert (got is None) == (ref is None), args[1:]
     if ref is None:
@@ -39,7 +41,7 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
     original = frictionless_stretches._system
 
     def record(*args, **kwargs):
-        calls.append(args)
+        calls.append((args, kwargs.get("facts")))
         return original(*args, **kwargs)
 
     monkeypatch.setattr(frictionless_stretches, "_system", record)
@@ -49,7 +51,9 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
         fc.plan(part, fingers=3, gravity=(0, -1), top=2)
     monkeypatch.undo()
     assert len(calls) >= 300
-    programs = sum(_same(args) for args in calls)
+    # the growth's search remembers its stretches' lengths
+    assert all(facts is not None for _, facts in calls)
+    programs = sum(_same(args, facts) for args, facts in calls)
     assert programs >= 200
 
 
@@ -60,6 +64,7 @@ def test_compiled_rows_of_random_configurations():
         part = random_polygon(rng, str(rng.choice(["convex", "star", "regular", "holes",
                                                    "rectangle"])))
         m = part.n_edges
+        search = frictionless_stretches._Search(part, 0.0, None)   # shared by the rows
         for _ in range(12):
             gravity = rng.random() < 0.3
             k = 3 if gravity else 4
@@ -76,7 +81,7 @@ def test_compiled_rows_of_random_configurations():
             args = (part, edges, PAIRINGS[rng.integers(0, 3)], str(rng.choice(["+C", "-C"])),
                     float(rng.choice([0.0, 0.5, 3.0, 10.0])),
                     np.array([0.0, -1.0]) if gravity else None)
-            programs += _same(args)
+            programs += _same(args, search.facts if rng.random() < 0.5 else None)
             cases += 1
     assert cases >= 1500 and programs >= 50
 

@@ -54,6 +54,7 @@ general force-closure test.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -128,13 +129,27 @@ class _Config:
     const: FloatArray
 
 
+def _stretch_facts(polygon: Polygon, st: tuple[int, ...]
+                   ) -> tuple[float, float, float, float]:
+    """A stretch's first and last edges' lengths, the length of the edges before its
+    last (a region's constant, 0 for one edge) and its arc length (a bound on the
+    region it holds)."""
+    L = polygon.lengths
+    Lf, Ll = float(L[st[0]]), float(L[st[-1]])
+    const = Lf + float(sum(L[list(st[1:-1])])) if len(st) > 1 else 0.0
+    return Lf, Ll, const, float(L[list(st)].sum())
+
+
 def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.ndarray,
             mode: str, margin: float, gravity: FloatArray | None,
-            compiled: bool = True) -> _Config | None:
+            compiled: bool = True, facts: Callable[[tuple[int, ...]], Any] | None = None
+            ) -> _Config | None:
     """Theorem 7.1 on every combination of covered edges (the vertex lemma), or None
     when some combination's pairing is null or its sector narrower than the margin.
     The rows come from the compiled loop of :mod:`._frictionless_kernels` where it runs
-    and ``compiled``, else from numpy (:func:`_rows_numpy`, the reference)."""
+    and ``compiled``, else from numpy (:func:`_rows_numpy`, the reference).
+    ``facts(stretch)``: :func:`_stretch_facts` of a stretch, remembered by a search
+    that meets each stretch in many configurations."""
     k = len(edges)
     s = 1.0 if mode == "+C" else -1.0
     got = _frictionless_kernels.system_rows(
@@ -148,17 +163,17 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
         return None
     A, bvec = rows
     # rows without a variable are checked here, not handed to the solver
-    fixed = ~np.any(A != 0, axis=1)
-    if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
-        return None
+    fixed = ~A.any(axis=1)
+    if fixed.any():
+        if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
+            return None
+        A, bvec = A[~fixed], bvec[~fixed]
     bounds = []
     const = np.zeros(k)
     for f, st in enumerate(edges):
-        Lf, Ll = float(polygon.lengths[st[0]]), float(polygon.lengths[st[-1]])
+        Lf, Ll, const[f], _ = facts(st) if facts is not None else _stretch_facts(polygon, st)
         bounds += [(0.0, Lf), (0.0, Ll)]
-        if len(st) > 1:
-            const[f] = Lf + float(sum(polygon.lengths[list(st[1:-1])]))
-    return _Config(edges, A[~fixed], bvec[~fixed], bounds, const)
+    return _Config(edges, A, bvec, bounds, const)
 
 
 def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: Any,
@@ -487,20 +502,29 @@ class _Search:
         self.polygon, self.margin, self.gravity = polygon, margin, gravity
         self.level: dict[tuple[Any, ...], tuple[_Config, float] | None] = {}
         self.totals: dict[tuple[Any, ...], float] = {}
+        self._facts: dict[tuple[int, ...], tuple[float, float, float, float]] = {}
+
+    def facts(self, st: tuple[int, ...]) -> tuple[float, float, float, float]:
+        """:func:`_stretch_facts` of a stretch, once per search (a stretch is met again
+        in every move of the other regions)."""
+        got = self._facts.get(st)
+        if got is None:
+            got = self._facts[st] = _stretch_facts(self.polygon, st)
+        return got
 
     def solve(self, edges: tuple[tuple[int, ...], ...], pairing: int, mode: str
               ) -> tuple[_Config, float] | None:
         key = (edges, pairing, mode)
         if key not in self.level:
             cfg = _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
-                          self.gravity)
+                          self.gravity, facts=self.facts)
             t = None if cfg is None else _first_level(cfg)
             self.level[key] = None if cfg is None or t is None else (cfg, t)
         return self.level[key]
 
     def reach(self, edges: tuple[tuple[int, ...], ...]) -> float:
         """The shortest stretch's arc length: a bound on the smallest region."""
-        return float(min(self.polygon.lengths[list(st)].sum() for st in edges))
+        return min(self.facts(st)[3] for st in edges)
 
     def total(self, key: tuple[Any, ...], cfg: _Config, t: float) -> float:
         if key not in self.totals:
@@ -652,7 +676,7 @@ def _slides(polygon: Polygon, st: tuple[int, ...]) -> list[tuple[tuple[int, ...]
 
 
 def _size(edges: tuple[tuple[int, ...], ...]) -> int:
-    return int(np.prod([len(st) for st in edges]))
+    return math.prod(len(st) for st in edges)
 
 
 def _seeds(polygon: Polygon, edge_sets: Any, margin: Any, gravity: Any
