@@ -195,6 +195,27 @@ def test_a_large_search_switches_to_the_compiled_kernels():
     assert np.allclose(runs[0][1], runs[1][1], rtol=1e-9)
 
 
+def test_numba_started_by_other_loops_runs_the_kernels_compiled_at_once():
+    """Once any compiled loops of the package started numba in a process, the searches
+    that wait for their work to repay its start-up run compiled at once (the core
+    kernels, the stretch search); before, they wait."""
+    code = ("import json, fcgrasp as fc\nfrom fcgrasp.core import kernels\n"
+            "from fcgrasp.model import stretches, _frictionless_kernels\n"
+            "def state():\n"
+            "    return [kernels.started(), kernels.use_jit(1),\n"
+            "            stretches.stretch_kernels_for(1)]\n"
+            "before = state()\n"
+            "kernels._rows_by_numpy = 0\n"
+            "_frictionless_kernels.COMPILED.get()\n"
+            "print(json.dumps([before, state()]))")
+    env = {"PATH": "/usr/bin:/bin"}
+    before, after = json.loads(subprocess.run([sys.executable, "-c", code],
+                                              capture_output=True, text=True, check=True,
+                                              env=env).stdout)
+    assert before == [False, False, False]
+    assert after == [True, True, True]
+
+
 def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     """A numba that fails (a typing error, say) never breaks a plan: numpy runs instead."""
     def boom(*args):

@@ -437,6 +437,8 @@ def plain() -> types.SimpleNamespace:
 
 _compiled: dict[str, Any] | None = None
 _no_numba = False
+#: numba imported by this package's compiled loops in this process (:func:`started`)
+_numba_started = False
 _rows_by_numpy = 0
 _compiling = threading.Lock()
 
@@ -456,17 +458,28 @@ def jit_setting() -> bool | None:
 
 def use_jit(rows: int) -> bool:
     """Does a batch of ``rows`` rows run compiled?  Yes once this process has loaded the
-    compiled kernels, or has run :data:`JIT_AFTER_ROWS` rows by numpy (this batch
-    included: a batch that runs by numpy is counted); never with ``FCGRASP_JIT=0`` or
-    without numba; always with ``FCGRASP_JIT=1``."""
+    compiled kernels, or any compiled loops of the package (:func:`started`: numba's
+    start-up is paid, and these load from its cache in milliseconds), or has run
+    :data:`JIT_AFTER_ROWS` rows by numpy (this batch included: a batch that runs by
+    numpy is counted); never with ``FCGRASP_JIT=0`` or without numba; always with
+    ``FCGRASP_JIT=1``."""
     global _rows_by_numpy
     setting = jit_setting()
     if setting is False or _no_numba:
         return False
-    if setting is True or _compiled is not None:
+    if setting is True or _compiled is not None or _numba_started:
         return True
     _rows_by_numpy += rows
     return _rows_by_numpy > JIT_AFTER_ROWS
+
+
+def started() -> bool:
+    """Whether numba started in this process for the package's compiled loops (these
+    kernels or any :class:`CompiledLoops`): its start-up (about 0.5 s of CPU, to import
+    it and its target) is then paid, and loading more loops from its cache costs
+    milliseconds, so the searches that wait for their work to repay the start-up
+    (:func:`use_jit`, the stretch search's, the survivor rows') run compiled at once."""
+    return _numba_started
 
 
 def _loops() -> dict[str, Any] | None:
@@ -475,7 +488,7 @@ def _loops() -> dict[str, Any] | None:
     Every function is rebuilt over one shared namespace whose names are the compiled
     functions, so the loops call compiled formulas; the machine code is cached on disk
     beside this file."""
-    global _compiled, _no_numba
+    global _compiled, _no_numba, _numba_started
     with _compiling:
         if _compiled is not None or _no_numba:
             return _compiled
@@ -484,6 +497,7 @@ def _loops() -> dict[str, Any] | None:
         except ImportError:
             _no_numba = True
             return None
+        _numba_started = True
         module = sys.modules[__name__]
         _compiled = njit_all(numba, dict(globals()), [
             (name, getattr(module, "_select_scalar" if name == "_select" else name))
@@ -532,6 +546,8 @@ class CompiledLoops:
                 except ImportError:
                     self.broken = True
                     return None
+                global _numba_started
+                _numba_started = True
                 names = dict(self._namespace)
                 if self._extra is not None:
                     more = self._extra()

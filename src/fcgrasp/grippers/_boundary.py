@@ -12,7 +12,7 @@ import numpy as np
 from ..core._geom import midpoints
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.distinct import Suppression
-from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches
+from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches, load_kernels
 from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
@@ -160,6 +160,7 @@ def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None
     """:func:`grown_plans`'s seeds (the :data:`GROW_SEEDS` best single-edge plans) and
     the plans grown from them along the boundary."""
     flat = replace(spec, along_boundary=False)
+    load_kernels()                      # the growth runs compiled: the seeds' search too
     # the seeds: the GROW_SEEDS best single-edge plans, whatever the top (exact ties on
     # the smallest region in the order found)
     seeds = search(polygon, replace(flat, top=GROW_SEEDS),

@@ -695,6 +695,16 @@ def _seeds(polygon: Polygon, edge_sets: Any, margin: Any, gravity: Any
     return search, out
 
 
+def load_kernels() -> bool:
+    """Load the growth's compiled programs now (and with them numba and the compiled
+    kernels of :mod:`fcgrasp.core.kernels`), where numba is there and ``FCGRASP_JIT``
+    leaves the choice to the searches: four fingers and three with gravity grow their
+    best single-edge plans by them, so the single-edge search before the growth runs
+    compiled too, instead of first running :data:`~fcgrasp.core.kernels.JIT_AFTER_ROWS`
+    rows by numpy to learn that numba's start-up repays itself.  Whether they run."""
+    return _frictionless_kernels.COMPILED.available()
+
+
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
                    gravity: Any = None, max_steps: int = 400, keep_single: bool = True,
                    polish: int = 0) -> list[FrictionlessStretches | None]:

@@ -60,7 +60,7 @@ import numpy as np
 from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
-from ..core.kernels import jit_setting
+from ..core.kernels import jit_setting, started
 from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
 from ._free_third import FreeThird
@@ -570,13 +570,14 @@ def load_kernels() -> None:
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
-    :func:`fcgrasp.pipeline.check_search` asks too): once loaded, from
+    :func:`fcgrasp.pipeline.check_search` asks too): once loaded, once numba started
+    in this process for other loops (:func:`fcgrasp.core.kernels.started`), from
     :data:`KERNEL_CELLS`, or once this process spent :data:`NUMPY_SOLVE_BUDGET` in
     numpy solves."""
     setting = jit_setting()
     if setting is not None:
         return setting
-    return _stretch_kernels.loaded() or cells >= KERNEL_CELLS or \
+    return _stretch_kernels.loaded() or started() or cells >= KERNEL_CELLS or \
         _numpy_spent[0] > NUMPY_SOLVE_BUDGET
 
 

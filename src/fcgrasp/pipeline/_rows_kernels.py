@@ -189,15 +189,17 @@ def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray
     bounds may reach or tie ``key``, in the order of the numpy path of
     :func:`~fcgrasp.pipeline._candidates._ordered_rows`; None where the compiled loop
     does not run (without numba, ``FCGRASP_JIT=0``, or below :data:`KERNEL_ROWS`
-    ``combos`` before it is loaded): the numpy path then.
+    ``combos`` before it is loaded or numba started, :func:`fcgrasp.core.kernels.started`):
+    the numpy path then.
 
     ``order``: the features by position (decreasing length); ``edge``: each feature's
     edge; ``R``, ``RH``: each position's bound (its feature's length, and half of it)
     as the ranking rounds it (:func:`~fcgrasp.pipeline._candidates.lex_survivors`)."""
-    from ..core.kernels import jit_setting
+    from ..core.kernels import jit_setting, started
 
     setting = jit_setting()
-    if setting is False or (setting is None and not _LOOPS.loaded and combos < KERNEL_ROWS):
+    if setting is False or (setting is None and not _LOOPS.loaded and not started()
+                            and combos < KERNEL_ROWS):
         return None
     if not _LOOPS.available():
         return None
