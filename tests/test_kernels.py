@@ -205,7 +205,6 @@ def test_numba_started_by_other_loops_runs_the_kernels_compiled_at_once():
             "    return [kernels.started(), kernels.use_jit(1),\n"
             "            stretches.stretch_kernels_for(1)]\n"
             "before = state()\n"
-            "kernels._rows_by_numpy = 0\n"
             "_frictionless_kernels.COMPILED.get()\n"
             "print(json.dumps([before, state()]))")
     env = {"PATH": "/usr/bin:/bin"}
