@@ -5,7 +5,8 @@ with every gripper at default options, as a user would (``fcgrasp.load_part`` th
 (the planning call; the import and the file's reading apart), with a limit after which it
 is stopped and reported as over it.  The compiled kernels are compiled (or loaded from
 numba's cache) once before the runs, as ``python3 tasks.py`` does after an install.
-Prints the table of every run, then the worst.
+Prints the table of every run, a summary per gripper (runs within the target, over
+it, stopped; the sum of CPU, a stopped run counted as the limit), then the worst.
 
     python benchmarks/bench_corpus.py [--limit 30] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
                                       [--distinct F]
@@ -106,6 +107,20 @@ def main() -> None:
     print(f"\n{len(rows)} runs on {len({r[1] for r in rows})} files; {len(over)} over "
           f"{TARGET:g} s (or stopped/failed); median CPU "
           f"{sorted(r[0] for r in done)[len(done) // 2] if done else float('nan'):.2f} s")
+    # per gripper: runs within the target, over it, stopped or failed; the sum of CPU
+    # counts a stopped run as the limit
+    print(f"\n| gripper | within {TARGET:g} s | over | stopped or failed | sum of CPU s |")
+    print("| --- | --- | --- | --- | --- |")
+    for g in grippers:
+        mine = [r[0] for r in rows if r[2] == g]
+        ok = sum(c <= TARGET for c in mine)
+        gone = sum(c == float("inf") for c in mine)
+        total = sum(min(c, args.limit) for c in mine)
+        print(f"| {GRIPPERS[g]} | {ok} | {len(mine) - ok - gone} | {gone} | {total:.1f} |")
+    print(f"| all | {sum(r[0] <= TARGET for r in rows)} | "
+          f"{sum(TARGET < r[0] < float('inf') for r in rows)} | "
+          f"{sum(r[0] == float('inf') for r in rows)} | "
+          f"{sum(min(r[0], args.limit) for r in rows):.1f} |")
     print("\nworst:")
     for cpu, name, g, r in sorted(rows, key=lambda r: -r[0])[:args.worst]:
         print(f"  {'stopped' if cpu == float('inf') else f'{cpu:.2f} s':>10}  {name} "
