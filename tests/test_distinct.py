@@ -61,6 +61,30 @@ def test_region_overlap_matches_a_sampled_estimate(seed):
     assert checked > 200
 
 
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                      for s in range(1, 6))])
+def test_remembered_overlaps_are_region_overlaps_bit_for_bit(seed):
+    """Suppression's overlaps, each pair of regions computed once and each region
+    buffered once (``_Overlaps``), are :func:`region_overlap`'s, asked in any order and
+    again, both ways round (the overlap is not symmetric to the bit)."""
+    from fcgrasp.model.distinct import _Overlaps
+
+    rng = np.random.default_rng(seed)
+    asked = 0
+    for part, plans in _plans(seed):
+        tol = 1e-9 * part.size
+        regions = [np.asarray(r, float) for p in plans for r in p.regions][:30]
+        measure = _Overlaps(tol)
+        pairs = [(i, j) for i in range(len(regions)) for j in range(len(regions))]
+        for k in [*rng.permutation(len(pairs)), *rng.permutation(len(pairs))]:
+            i, j = pairs[k]
+            assert measure(regions[i], regions[j]) == region_overlap(regions[i], regions[j],
+                                                                     tol)
+            asked += 1
+        assert len(measure._pairs) <= len(pairs)
+    assert asked > 2000
+
+
 @pytest.mark.parametrize("fraction", [0.2, 0.5, 0.9])
 @pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_suppression_keeps_distinct_plans_and_accounts_for_the_rest(seed, fraction):
