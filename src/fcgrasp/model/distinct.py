@@ -53,11 +53,15 @@ class _Overlaps:
 
     def __init__(self, tol: float) -> None:
         self.tol = tol
-        self._zones: dict[bytes, Any] = {}
-        self._pairs: dict[tuple[bytes, bytes], float] = {}
+        self._ids: dict[bytes, int] = {}        # each region's points once, numbered
+        self._zones: dict[int, Any] = {}
+        self._pairs: dict[tuple[int, int], float] = {}
+
+    def _id(self, region: FloatArray) -> int:
+        return self._ids.setdefault(region.tobytes(), len(self._ids))
 
     def __call__(self, a: FloatArray, b: FloatArray) -> float:
-        ka, kb = a.tobytes(), b.tobytes()
+        ka, kb = self._id(a), self._id(b)
         got = self._pairs.get((ka, kb))
         if got is None:
             zone = self._zones.get(kb)
