@@ -457,17 +457,17 @@ def jit_setting() -> bool | None:
 
 
 def use_jit(rows: int) -> bool:
-    """Does a batch of ``rows`` rows run compiled?  Yes once this process has loaded the
-    compiled kernels, or any compiled loops of the package (:func:`started`: numba's
-    start-up is paid, and these load from its cache in milliseconds), or has run
-    :data:`JIT_AFTER_ROWS` rows by numpy (this batch included: a batch that runs by
-    numpy is counted); never with ``FCGRASP_JIT=0`` or without numba; always with
-    ``FCGRASP_JIT=1``."""
+    """Does a batch of ``rows`` rows run compiled?  Yes once numba started in this
+    process for any of the package's compiled loops, these kernels included
+    (:func:`started`: its start-up is paid, and the kernels load from its cache in
+    milliseconds), or once it has run :data:`JIT_AFTER_ROWS` rows by numpy (this batch
+    included: a batch that runs by numpy is counted); never with ``FCGRASP_JIT=0`` or
+    without numba; always with ``FCGRASP_JIT=1``."""
     global _rows_by_numpy
     setting = jit_setting()
     if setting is False or _no_numba:
         return False
-    if setting is True or _compiled is not None or _numba_started:
+    if setting is True or _numba_started:
         return True
     _rows_by_numpy += rows
     return _rows_by_numpy > JIT_AFTER_ROWS

@@ -69,7 +69,7 @@ from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.distinct import Suppression
 from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon, check_polygon
-from ..model.stretches import StretchSearch, crosses_a_vertex, load_kernels
+from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (
     PlanSpec,
     candidates,
@@ -153,8 +153,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                          "(fingers=3, gravity=None)")
     F = features(polygon, spec.mu, spec.hand, edges)
     size = polygon.size
-    if spec.along_boundary and _concurrency.available():
-        load_kernels()                  # numba runs anyway: the stretch search too
+    if spec.along_boundary:
+        # numba starts now (the rows run compiled): then so does the stretch search,
+        # from its first configuration (fcgrasp.core.kernels.started)
+        _concurrency.available()
     keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
                                           max(spec.top, KEEP_FOR_MEASURE))
     grow = (spec.along_boundary and spec.hand is None and edges is None
@@ -362,8 +364,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         return None
     F = features(polygon, spec.mu, None, None)
     size = polygon.size
-    if _concurrency.available():            # numba runs anyway: the stretch search too
-        load_kernels()
+    _concurrency.available()                 # numba starts: the stretch search compiled
     band = 4 * RANK_TOL * size               # above the concurrent level, after rounding
     two = replace(spec, fingers=2, top=None, rank_by="min_region")
     suppression = Suppression(fraction, size)

@@ -1394,8 +1394,8 @@ def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
     h.update(np.ascontiguousarray(t[o]).tobytes())
     h.update(repr((int(ma), int(mb), bool(same), float(tie))).encode())
     digest = h.digest()
-    keep = np.empty(len(c), bool)
     if digest in _beaten_memo:
+        keep = np.empty(len(c), bool)
         keep[o] = _beaten_memo[digest]
         return keep
     keep = _beaten_keep(c, t, ma, mb, same, tie)

@@ -41,8 +41,17 @@ def region_overlap(a: Any, b: Any, tol: float) -> float:
     >>> region_overlap([[0, 0], [4, 0]], [[3, 0], [6, 0]], 1e-9)
     1.0
     """
-    la, lb = shapely.LineString(np.asarray(a, float)), shapely.LineString(np.asarray(b, float))
-    return float(shapely.intersection(la, shapely.buffer(lb, tol, cap_style="flat")).length)
+    return _common(np.asarray(a, float), _zone(np.asarray(b, float), tol))
+
+
+def _zone(b: FloatArray, tol: float) -> Any:
+    """The points within ``tol`` of the polyline ``b`` (flat ends: none beyond them)."""
+    return shapely.buffer(shapely.LineString(b), tol, cap_style="flat")
+
+
+def _common(a: FloatArray, zone: Any) -> float:
+    """Length of the polyline ``a`` inside ``zone``."""
+    return float(shapely.intersection(shapely.LineString(a), zone).length)
 
 
 class _Overlaps:
@@ -66,10 +75,8 @@ class _Overlaps:
         if got is None:
             zone = self._zones.get(kb)
             if zone is None:
-                zone = self._zones[kb] = shapely.buffer(shapely.LineString(b), self.tol,
-                                                        cap_style="flat")
-            got = self._pairs[ka, kb] = float(
-                shapely.intersection(shapely.LineString(a), zone).length)
+                zone = self._zones[kb] = _zone(b, self.tol)
+            got = self._pairs[ka, kb] = _common(a, zone)
         return got
 
 

@@ -553,31 +553,22 @@ KERNEL_TOP = 64
 def _load_for_depth(top: int | None) -> None:
     """Load the compiled loops for a search of ``top`` plans (:data:`KERNEL_TOP`), where
     numba is there and ``FCGRASP_JIT`` leaves the choice to the search."""
-    if top is None or top > KERNEL_TOP:
-        load_kernels()
-
-
-def load_kernels() -> None:
-    """Load the compiled loops now, where numba is there and ``FCGRASP_JIT`` leaves the
-    choice to the search: for a caller that pays numba's start-up anyway (three fingers
-    with friction solve their rows compiled), so that the search does not first spend
-    :data:`NUMPY_SOLVE_BUDGET` in numpy to learn that it repays it.  Once numba runs,
-    loading these loops from its cache costs a few tens of milliseconds."""
-    if jit_setting() is None and not _stretch_kernels.loaded():
+    if (top is None or top > KERNEL_TOP) and jit_setting() is None \
+            and not _stretch_kernels.loaded():
         _stretch_kernels.available()
 
 
 def stretch_kernels_for(cells: int) -> bool:
     """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
     so holds no array of every pair: the memory estimate of
-    :func:`fcgrasp.pipeline.check_search` asks too): once loaded, once numba started
-    in this process for other loops (:func:`fcgrasp.core.kernels.started`), from
-    :data:`KERNEL_CELLS`, or once this process spent :data:`NUMPY_SOLVE_BUDGET` in
-    numpy solves."""
+    :func:`fcgrasp.pipeline.check_search` asks too): once numba started in this
+    process for any of the package's loops, these included
+    (:func:`fcgrasp.core.kernels.started`), from :data:`KERNEL_CELLS`, or once this
+    process spent :data:`NUMPY_SOLVE_BUDGET` in numpy solves."""
     setting = jit_setting()
     if setting is not None:
         return setting
-    return _stretch_kernels.loaded() or started() or cells >= KERNEL_CELLS or \
+    return started() or cells >= KERNEL_CELLS or \
         _numpy_spent[0] > NUMPY_SOLVE_BUDGET
 
 

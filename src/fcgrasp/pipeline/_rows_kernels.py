@@ -189,8 +189,8 @@ def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray
     bounds may reach or tie ``key``, in the order of the numpy path of
     :func:`~fcgrasp.pipeline._candidates._ordered_rows`; None where the compiled loop
     does not run (without numba, ``FCGRASP_JIT=0``, or below :data:`KERNEL_ROWS`
-    ``combos`` before it is loaded or numba started, :func:`fcgrasp.core.kernels.started`):
-    the numpy path then.
+    ``combos`` before numba started in this process, this loop's or another's:
+    :func:`fcgrasp.core.kernels.started`): the numpy path then.
 
     ``order``: the features by position (decreasing length); ``edge``: each feature's
     edge; ``R``, ``RH``: each position's bound (its feature's length, and half of it)
@@ -198,8 +198,7 @@ def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray
     from ..core.kernels import jit_setting, started
 
     setting = jit_setting()
-    if setting is False or (setting is None and not _LOOPS.loaded and not started()
-                            and combos < KERNEL_ROWS):
+    if setting is False or (setting is None and not started() and combos < KERNEL_ROWS):
         return None
     if not _LOOPS.available():
         return None
