@@ -215,6 +215,33 @@ def test_numba_started_by_other_loops_runs_the_kernels_compiled_at_once():
     assert after == [True, True, True]
 
 
+def test_numba_starts_without_importing_scipy_linalg_and_keeps_its_blas():
+    """numba started by the package's loops does not import ``scipy.linalg`` (its BLAS
+    check's import, 0.15 s of the start-up), and leaves numba as its own import would:
+    ``arraymath`` says BLAS is there, ``ensure_blas`` is numba's own again, and a jitted
+    ``np.dot`` compiles and runs (importing scipy's BLAS then)."""
+    code = ("import json, sys, numpy as np\nimport fcgrasp as fc\n"
+            "from fcgrasp.model import _frictionless_kernels\n"
+            "_frictionless_kernels.COMPILED.get()\n"
+            "fc.plan(fc.load_part('demo:quad').polygon, fingers=4, top=1)\n"
+            "from numba.np import arraymath, linalg\n"
+            "import numba\n"
+            "state = ['scipy.linalg' in sys.modules, arraymath._HAVE_BLAS,\n"
+            "         arraymath.ensure_blas is linalg.ensure_blas,\n"
+            "         linalg.ensure_blas.__module__]\n"
+            "dot = numba.njit(lambda a, b: np.dot(a, b))\n"
+            "x = np.arange(6.0).reshape(2, 3)\n"
+            "state += [float(dot(x, x.T).sum()), 'scipy.linalg' in sys.modules]\n"
+            "print(json.dumps(state))")
+    env = {"PATH": "/usr/bin:/bin", "FCGRASP_JIT": "1"}
+    got = json.loads(subprocess.run([sys.executable, "-c", code], capture_output=True,
+                                    text=True, check=True, env=env).stdout)
+    assert got[:4] == [False, True, True, "numba.np.linalg"]
+    assert got[4] == float((np.arange(6.0).reshape(2, 3) @ np.arange(6.0).reshape(2, 3).T)
+                           .sum())
+    assert got[5] is True
+
+
 def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     """A numba that fails (a typing error, say) never breaks a plan: numpy runs instead."""
     def boom(*args):

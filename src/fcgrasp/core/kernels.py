@@ -49,7 +49,8 @@ from ._angles import wrap_floor as _wrap  # compiled over this module's namespac
 from ._checks import FloatArray
 from .tolerances import SOLVER_TOL, TINY
 
-__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "njit_all", "CompiledLoops",
+__all__ = ["JIT_AFTER_ROWS", "jit_setting", "use_jit", "compiled", "import_numba", "njit_all",
+           "CompiledLoops",
            "plain", "arc_meet",
            "segment", "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
            "pair_problems", "two_levels", "PROBLEM_FIELDS"]
@@ -482,6 +483,52 @@ def started() -> bool:
     return _numba_started
 
 
+_importing = threading.Lock()
+
+
+def import_numba() -> Any:
+    """numba, imported for the package's loops; None without it.
+
+    numba's CPU target imports ``numba.np.arraymath`` on the first compile or cache load
+    of a process, and that module asks at its import whether BLAS is there by importing
+    ``scipy.linalg`` (about 0.15 s of numba's 0.5 s start-up: scipy's array-API layer; no
+    loop of this package calls BLAS).  scipy is a dependency of this package, so the
+    answer is known: ``arraymath`` is imported here with numba's ``ensure_blas``
+    answering without the import, then ``ensure_blas`` is put back, so that numba's
+    state is the one its own import gives (``_HAVE_BLAS`` True), and a jitted
+    ``np.dot`` imports ``scipy.linalg`` when it is compiled.  Where scipy is missing, or
+    numba's modules are not laid out so (another version), numba is imported as is."""
+    try:
+        import numba
+    except ImportError:
+        return None
+    with _importing:
+        if "numba.np.arraymath" in sys.modules:
+            return numba
+        import importlib.util
+
+        try:
+            from numba.np import linalg
+        except ImportError:             # pragma: no cover - another numba's layout
+            return numba
+        real = getattr(linalg, "ensure_blas", None)
+        if real is None or importlib.util.find_spec("scipy") is None:
+            return numba
+        linalg.ensure_blas = _blas_there  # type: ignore[attr-defined]
+        try:
+            from numba.np import arraymath
+        finally:
+            linalg.ensure_blas = real     # type: ignore[attr-defined]
+        if getattr(arraymath, "ensure_blas", None) is _blas_there:
+            arraymath.ensure_blas = real  # type: ignore[attr-defined]
+    return numba
+
+
+def _blas_there() -> None:
+    """numba's ``ensure_blas`` while :func:`import_numba` imports ``arraymath``: BLAS is
+    there (scipy is)."""
+
+
 def _loops() -> dict[str, Any] | None:
     """The formulas and loops compiled by numba (once per process; None without numba).
 
@@ -492,9 +539,8 @@ def _loops() -> dict[str, Any] | None:
     with _compiling:
         if _compiled is not None or _no_numba:
             return _compiled
-        try:
-            import numba
-        except ImportError:
+        numba = import_numba()
+        if numba is None:
             _no_numba = True
             return None
         _numba_started = True
@@ -541,9 +587,8 @@ class CompiledLoops:
         """The compiled loops by name; None without numba (or ``extra``'s names)."""
         with self._lock:
             if not self._loaded and not self.broken:
-                try:
-                    import numba
-                except ImportError:
+                numba = import_numba()
+                if numba is None:
                     self.broken = True
                     return None
                 global _numba_started
