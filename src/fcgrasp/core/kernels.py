@@ -514,13 +514,13 @@ def import_numba() -> Any:
         real = getattr(linalg, "ensure_blas", None)
         if real is None or importlib.util.find_spec("scipy") is None:
             return numba
-        linalg.ensure_blas = _blas_there  # type: ignore[attr-defined]
+        linalg.ensure_blas = _blas_there
         try:
             from numba.np import arraymath
         finally:
-            linalg.ensure_blas = real     # type: ignore[attr-defined]
+            linalg.ensure_blas = real
         if getattr(arraymath, "ensure_blas", None) is _blas_there:
-            arraymath.ensure_blas = real  # type: ignore[attr-defined]
+            arraymath.ensure_blas = real
     return numba
 
 
