@@ -20,11 +20,11 @@ pytestmark = pytest.mark.skipif(not _frictionless_kernels.COMPILED.available(),
                                 reason="numba not available")
 
 
-def _same(args, facts=None):
+def _same(args, facts=None, arrays=None):
     """Both ways give the same program (or both none); returns whether there is one.
-    ``facts``: the stretches' lengths as a search remembers them, for the compiled
-    way (the reference computes them)."""
-    got = _system(*args, facts=facts)
+    ``facts``: the stretches' lengths as a search remembers them, ``arrays`` the edges'
+    rows it gathers from, for the compiled way (the reference computes them)."""
+    got = _system(*args, facts=facts, arrays=arrays)
     ref = _system(*args, compiled=False)
     assert (got is None) == (ref is None), args[1:]
     if ref is None:
@@ -41,7 +41,7 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
     original = frictionless_stretches._system
 
     def record(*args, **kwargs):
-        calls.append((args, kwargs.get("facts")))
+        calls.append((args, kwargs.get("facts"), kwargs.get("arrays")))
         return original(*args, **kwargs)
 
     monkeypatch.setattr(frictionless_stretches, "_system", record)
@@ -51,9 +51,9 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
         fc.plan(part, fingers=3, gravity=(0, -1), top=2)
     monkeypatch.undo()
     assert len(calls) >= 300
-    # the growth's search remembers its stretches' lengths
-    assert all(facts is not None for _, facts in calls)
-    programs = sum(_same(args, facts) for args, facts in calls)
+    # the growth's search remembers its stretches' lengths and its edges' rows
+    assert all(facts is not None and arrays is not None for _, facts, arrays in calls)
+    programs = sum(_same(args, facts, arrays) for args, facts, arrays in calls)
     assert programs >= 200
 
 
@@ -81,7 +81,9 @@ def test_compiled_rows_of_random_configurations():
             args = (part, edges, PAIRINGS[rng.integers(0, 3)], str(rng.choice(["+C", "-C"])),
                     float(rng.choice([0.0, 0.5, 3.0, 10.0])),
                     np.array([0.0, -1.0]) if gravity else None)
-            programs += _same(args, search.facts if rng.random() < 0.5 else None)
+            arrays = _frictionless_kernels.edge_arrays(part, args[5]) \
+                if rng.random() < 0.5 else None
+            programs += _same(args, search.facts if rng.random() < 0.5 else None, arrays)
             cases += 1
     assert cases >= 1500 and programs >= 50
 

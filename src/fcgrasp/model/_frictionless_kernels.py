@@ -331,35 +331,48 @@ def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: b
     return (int(st), y) if ok else None
 
 
-def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
-                s: float, tol: float) -> tuple[Any, Any] | Literal[False] | None:
-    """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
-    stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
-    check of the rows without a variable, by the compiled loop; False where some
-    combination's pairing is null or its sector too narrow (no program), None where the
-    loop does not run (numpy then)."""
-    if not COMPILED.available():
-        return None
-    k = len(edges)
-    idx = np.fromiter((e for st in edges for e in st), np.int64)
-    n = [len(st) for st in edges]
-    ea, eb = polygon.starts[idx], polygon.ends[idx]
-    nrm = polygon.normals[idx]
+def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
+    """Every edge's start, end and force angle (the inward normal's), as
+    :func:`system_rows` reads them (a search builds them once: its thousands of programs
+    then only gather their edges' rows); with ``gravity``, one more row: the centroid (a
+    point) and gravity's angle."""
+    ea, eb, nrm = polygon.starts, polygon.ends, polygon.normals
     ec = np.arctan2(-nrm[:, 1], -nrm[:, 0])
     if gravity is not None:
         cen = np.asarray(polygon.centroid, float)[None]
         ea, eb = np.r_[ea, cen], np.r_[eb, cen]
         ec = np.r_[ec, np.arctan2(gravity[1], gravity[0])]
+    return (np.ascontiguousarray(ea, dtype=float), np.ascontiguousarray(eb, dtype=float),
+            np.ascontiguousarray(ec, dtype=float))
+
+
+def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
+                s: float, tol: float, arrays: Any = None
+                ) -> tuple[Any, Any] | Literal[False] | None:
+    """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
+    stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
+    check of the rows without a variable, by the compiled loop; False where some
+    combination's pairing is null or its sector too narrow (no program), None where the
+    loop does not run (numpy then).  ``arrays``: :func:`edge_arrays` of the part and
+    gravity, built once by a search."""
+    if not COMPILED.available():
+        return None
+    k = len(edges)
+    ea_all, eb_all, ec_all = edge_arrays(polygon, gravity) if arrays is None else arrays
+    idx = [e for st in edges for e in st]
+    n = [len(st) for st in edges]
+    if gravity is not None:
+        idx.append(polygon.n_edges)     # the centroid's row
         n.append(1)
+    at = np.array(idx, np.int64)
+    ea, eb, ec = ea_all[at], eb_all[at], ec_all[at]
     start = np.zeros(5, np.int64)
     start[1:len(n) + 1] = np.cumsum(n)
     start[len(n) + 1:] = start[len(n)]
-    C = int(np.prod(n[:k]))
+    C = math.prod(n[:k])
     A = np.zeros((2 * C, 2 * k))
     rhs = np.empty(2 * C)
-    ok, whole = COMPILED.run("_system_loop", np.ascontiguousarray(ea, dtype=float),
-                             np.ascontiguousarray(eb, dtype=float),
-                             np.ascontiguousarray(ec, dtype=float), start,
+    ok, whole = COMPILED.run("_system_loop", ea, eb, ec, start,
                              np.ascontiguousarray(pairing, dtype=np.int64), float(margin),
                              float(s), int(k), float(tol), A, rhs)
     if not ok:

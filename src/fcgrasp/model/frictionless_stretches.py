@@ -142,19 +142,20 @@ def _stretch_facts(polygon: Polygon, st: tuple[int, ...]
 
 def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.ndarray,
             mode: str, margin: float, gravity: FloatArray | None,
-            compiled: bool = True, facts: Callable[[tuple[int, ...]], Any] | None = None
-            ) -> _Config | None:
+            compiled: bool = True, facts: Callable[[tuple[int, ...]], Any] | None = None,
+            arrays: Any = None) -> _Config | None:
     """Theorem 7.1 on every combination of covered edges (the vertex lemma), or None
     when some combination's pairing is null or its sector narrower than the margin.
     The rows come from the compiled loop of :mod:`._frictionless_kernels` where it runs
     and ``compiled``, else from numpy (:func:`_rows_numpy`, the reference).
     ``facts(stretch)``: :func:`_stretch_facts` of a stretch, remembered by a search
-    that meets each stretch in many configurations."""
+    that meets each stretch in many configurations; ``arrays``: the compiled loop's
+    :func:`~._frictionless_kernels.edge_arrays`, built once by such a search."""
     k = len(edges)
     s = 1.0 if mode == "+C" else -1.0
     got = _frictionless_kernels.system_rows(
-        polygon, edges, gravity, pairing, float(margin_radians(margin)), s, TOL) \
-        if compiled else None
+        polygon, edges, gravity, pairing, float(margin_radians(margin)), s, TOL,
+        arrays) if compiled else None
     if got is False:
         return None
     rows = got if got is not None else _rows_numpy(polygon, edges, gravity, pairing,
@@ -503,6 +504,7 @@ class _Search:
         self.level: dict[tuple[Any, ...], tuple[_Config, float] | None] = {}
         self.totals: dict[tuple[Any, ...], float] = {}
         self._facts: dict[tuple[int, ...], tuple[float, float, float, float]] = {}
+        self._arrays: Any = None
 
     def facts(self, st: tuple[int, ...]) -> tuple[float, float, float, float]:
         """:func:`_stretch_facts` of a stretch, once per search (a stretch is met again
@@ -512,12 +514,19 @@ class _Search:
             got = self._facts[st] = _stretch_facts(self.polygon, st)
         return got
 
+    def arrays(self) -> Any:
+        """The compiled rows' :func:`~._frictionless_kernels.edge_arrays`, once per
+        search."""
+        if self._arrays is None:
+            self._arrays = _frictionless_kernels.edge_arrays(self.polygon, self.gravity)
+        return self._arrays
+
     def solve(self, edges: tuple[tuple[int, ...], ...], pairing: int, mode: str
               ) -> tuple[_Config, float] | None:
         key = (edges, pairing, mode)
         if key not in self.level:
             cfg = _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
-                          self.gravity, facts=self.facts)
+                          self.gravity, facts=self.facts, arrays=self.arrays())
             t = None if cfg is None else _first_level(cfg)
             self.level[key] = None if cfg is None or t is None else (cfg, t)
         return self.level[key]
