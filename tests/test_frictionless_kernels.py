@@ -9,12 +9,17 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
+from fcgrasp.core._angles import margin_radians
 from fcgrasp.core.sectors import PAIRINGS
+from fcgrasp.core.tolerances import TOL
 from fcgrasp.io.parts import demo_part
 from fcgrasp.model import _frictionless_kernels, frictionless_stretches
 from fcgrasp.model.frictionless_stretches import _smallest, _system
 
 from .shapes import random_polygon
+
+#: whether each program compared had a row without a variable
+FIXED: list[bool] = []
 
 pytestmark = pytest.mark.skipif(not _frictionless_kernels.COMPILED.available(),
                                 reason="numba not available")
@@ -27,6 +32,15 @@ def _same(args, facts=None, arrays=None):
     got = _system(*args, facts=facts, arrays=arrays)
     ref = _system(*args, compiled=False)
     assert (got is None) == (ref is None), args[1:]
+    # the compiled loop says whether some row has no variable (then checked, not solved)
+    polygon, edges, pairing, mode, margin, gravity = args
+    rows = _frictionless_kernels.system_rows(polygon, edges, gravity, pairing,
+                                             float(margin_radians(margin)),
+                                             1.0 if mode == "+C" else -1.0, TOL, arrays)
+    if rows:
+        A, _, some_fixed = rows
+        assert some_fixed == bool((~A.any(axis=1)).any())
+        FIXED.append(some_fixed)
     if ref is None:
         return False
     np.testing.assert_array_equal(got.A, ref.A)
@@ -60,6 +74,7 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
 def test_compiled_rows_of_random_configurations():
     rng = np.random.default_rng(21)
     cases = programs = 0
+    FIXED.clear()
     for _ in range(150):
         part = random_polygon(rng, str(rng.choice(["convex", "star", "regular", "holes",
                                                    "rectangle"])))
@@ -86,6 +101,8 @@ def test_compiled_rows_of_random_configurations():
             programs += _same(args, search.facts if rng.random() < 0.5 else None, arrays)
             cases += 1
     assert cases >= 1500 and programs >= 50
+    # rows without a variable (every finger inside its stretch) met, and rows without
+    assert 0 < sum(FIXED) < len(FIXED)
 
 
 @pytest.mark.parametrize("compiled", [False, True])

@@ -89,14 +89,15 @@ def _kind(pos: int, n: int) -> int:
 
 
 def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: float,
-                 s: float, k: int, tol: float, A: Any, rhs: Any) -> bool:
+                 s: float, k: int, tol: float, A: Any, rhs: Any) -> int:
     """Rows ``A`` (2C, 2k; given zeroed) and right-hand sides ``rhs`` (2C) of every
     combination of the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f
     + 1]`` of the segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of
     gravity is one point; combinations in the order of ``itertools.product``, the last
     finger fastest).  The meets of each pair of fingers are computed once per pair of edges
-    (:func:`_meets`).  False (rows not all written) where a combination's pairing is
-    null or its sector no wider than the margin."""
+    (:func:`_meets`).  Returns 0 (rows not all written) where a combination's pairing is
+    null or its sector no wider than the margin, else 1, or 2 where some row has no
+    variable (every coefficient zero)."""
     n = np.empty(4, np.int64)
     for f in range(4):
         n[f] = start[f + 1] - start[f]
@@ -109,6 +110,7 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     pos = np.zeros(4, np.int64)
     vel = np.empty((4, 2))
     L = np.empty(4)
+    fixed = False
     for r in range(C):
         # finger positions of combination r (the last real finger fastest)
         rest = r
@@ -121,7 +123,7 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
         cen, half = arc_meet(a12[6], a12[7], a34[6] + math.pi, a34[7])
         hm = half - margin if valid else -1.0
         if not hm > 0:
-            return False
+            return 0
         vel[0, 0], vel[0, 1], vel[1, 0], vel[1, 1] = a12[2], a12[3], a12[4], a12[5]
         vel[2, 0], vel[2, 1], vel[3, 0], vel[3, 1] = a34[2], a34[3], a34[4], a34[5]
         L[0], L[1], L[2], L[3] = a12[9], a12[10], a34[9], a34[10]
@@ -153,7 +155,13 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
                 A[row, 2 * fi] += g if lo_var else 0.0
                 value = value - g * const
             rhs[row] = value
-    return True
+            if not fixed:
+                fixed = True
+                for j in range(2 * k):
+                    if A[row, j] != 0:
+                        fixed = False
+                        break
+    return 2 if fixed else 1
 
 
 def _before(a: float, b: float) -> bool:
@@ -348,13 +356,13 @@ def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
                 s: float, tol: float, arrays: Any = None
-                ) -> tuple[Any, Any] | Literal[False] | None:
+                ) -> tuple[Any, Any, bool] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
     stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
-    check of the rows without a variable, by the compiled loop; False where some
-    combination's pairing is null or its sector too narrow (no program), None where the
-    loop does not run (numpy then).  ``arrays``: :func:`edge_arrays` of the part and
-    gravity, built once by a search."""
+    check of the rows without a variable, and whether there is such a row, by the
+    compiled loop; False where some combination's pairing is null or its sector too
+    narrow (no program), None where the loop does not run (numpy then).  ``arrays``:
+    :func:`edge_arrays` of the part and gravity, built once by a search."""
     if not COMPILED.available():
         return None
     k = len(edges)
@@ -377,4 +385,4 @@ def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: fl
                              float(s), int(k), float(tol), A, rhs)
     if not ok:
         return None
-    return (A, rhs) if whole else False
+    return (A, rhs, whole == 2) if whole else False

@@ -158,17 +158,22 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
         arrays) if compiled else None
     if got is False:
         return None
-    rows = got if got is not None else _rows_numpy(polygon, edges, gravity, pairing,
-                                                   margin, s)
-    if rows is None:
-        return None
-    A, bvec = rows
-    # rows without a variable are checked here, not handed to the solver
-    fixed = ~A.any(axis=1)
-    if fixed.any():
-        if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
+    if got is not None:
+        A, bvec, some_fixed = got
+    else:
+        rows = _rows_numpy(polygon, edges, gravity, pairing, margin, s)
+        if rows is None:
             return None
-        A, bvec = A[~fixed], bvec[~fixed]
+        A, bvec = rows
+        some_fixed = True
+    # rows without a variable (the compiled loop says whether there are any) are
+    # checked here, not handed to the solver
+    if some_fixed:
+        fixed = ~A.any(axis=1)
+        if fixed.any():
+            if np.any(bvec[fixed] < -RANK_TOL * polygon.size):
+                return None
+            A, bvec = A[~fixed], bvec[~fixed]
     bounds = []
     const = np.zeros(k)
     for f, st in enumerate(edges):
