@@ -251,8 +251,9 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
     simplex = _simplex.compiled() is not None
     if simplex and COMPILED_LP:
         # the same program, built, scaled and solved in one compiled call
-        ub = np.array([hi for _, hi in cfg.bounds])
-        unit = max(float(ub.max()), TINY)
+        his = [hi for _, hi in cfg.bounds]
+        ub = np.array(his)
+        unit = max(float(max(his)), TINY)
         cols = 2 * k + 1 if t_var else 2 * k
         one = _frictionless_kernels.lp_rows(
             cfg.A, cfg.b, cfg.const, floors, ub, objective[:cols], t_var, unit, NOISE_ROW,
