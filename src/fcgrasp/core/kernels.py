@@ -335,8 +335,7 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
 
 def _direction_closure_loop(f: Any, tol: float, out: Any) -> None:
     """:func:`fcgrasp.core.closure.force_direction_closure` of every row of ``f`` (B, k,
-    2), the same operations row by row: each force made unit, then a strict triangle,
-    or (four or more) two anti-parallel pairs not parallel to each other."""
+    2), the same operations row by row (:func:`_closed`)."""
     k = f.shape[1]
     u = np.empty((k, 2))
     for r in range(f.shape[0]):
@@ -345,29 +344,50 @@ def _direction_closure_loop(f: Any, tol: float, out: Any) -> None:
             n = np.sqrt(x * x + y * y)
             u[i, 0] = x / n if n > 0 else 0.0
             u[i, 1] = y / n if n > 0 else 0.0
-        ok = False
+        out[r] = _closed(u, k, tol)
+
+
+def _rows_closure_loop(unit: Any, rows: Any, tol: float, out: Any) -> None:
+    """:func:`_direction_closure_loop` of the forces ``unit[rows[r]]`` (rows of indices
+    into one table of forces), without gathering them: row ``r``'s forces are read from
+    the table, then the same operations."""
+    k = rows.shape[1]
+    u = np.empty((k, 2))
+    for r in range(rows.shape[0]):
+        for i in range(k):
+            x, y = unit[rows[r, i], 0], unit[rows[r, i], 1]
+            n = np.sqrt(x * x + y * y)
+            u[i, 0] = x / n if n > 0 else 0.0
+            u[i, 1] = y / n if n > 0 else 0.0
+        out[r] = _closed(u, k, tol)
+
+
+def _closed(u: Any, k: int, tol: float) -> bool:
+    """Force-direction closure of ``k`` unit forces ``u`` (theorem 4.2): a strict
+    triangle, or (four or more) two anti-parallel pairs not parallel to each other."""
+    ok = False
+    for a in range(k):
+        for b in range(a + 1, k):
+            for c in range(b + 1, k):
+                s1 = u[a, 0] * u[b, 1] - u[a, 1] * u[b, 0]
+                s2 = u[b, 0] * u[c, 1] - u[b, 1] * u[c, 0]
+                s3 = u[c, 0] * u[a, 1] - u[c, 1] * u[a, 0]
+                if (s1 > tol and s2 > tol and s3 > tol) or \
+                        (s1 < -tol and s2 < -tol and s3 < -tol):
+                    ok = True
+    if not ok and k >= 4:
         for a in range(k):
             for b in range(a + 1, k):
-                for c in range(b + 1, k):
-                    s1 = u[a, 0] * u[b, 1] - u[a, 1] * u[b, 0]
-                    s2 = u[b, 0] * u[c, 1] - u[b, 1] * u[c, 0]
-                    s3 = u[c, 0] * u[a, 1] - u[c, 1] * u[a, 0]
-                    if (s1 > tol and s2 > tol and s3 > tol) or \
-                            (s1 < -tol and s2 < -tol and s3 < -tol):
-                        ok = True
-        if not ok and k >= 4:
-            for a in range(k):
-                for b in range(a + 1, k):
-                    if not _anti(u, a, b, tol):
-                        continue
-                    # a later pair (in the order of the pairs' combinations)
-                    for c in range(a, k):
-                        for d in range(c + 1, k):
-                            if c == a and d <= b or not _anti(u, c, d, tol):
-                                continue
-                            if abs(u[a, 0] * u[c, 1] - u[a, 1] * u[c, 0]) > tol:
-                                ok = True
-        out[r] = ok
+                if not _anti(u, a, b, tol):
+                    continue
+                # a later pair (in the order of the pairs' combinations)
+                for c in range(a, k):
+                    for d in range(c + 1, k):
+                        if c == a and d <= b or not _anti(u, c, d, tol):
+                            continue
+                        if abs(u[a, 0] * u[c, 1] - u[a, 1] * u[c, 0]) > tol:
+                            ok = True
+    return ok
 
 
 def _anti(u: Any, a: int, b: int, tol: float) -> bool:
@@ -382,7 +402,7 @@ _FORMULAS = ("_select", "_wrap", "arc_meet", "pair_sector", "_coefficient", "seg
              "_cone_edges", "pair_problem", "_signed_problem", "_greedy_slack", "two_level",
              "_mode_value", "pair_modes", "_modes_of", "_sector_edges")
 _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop", "_anti",
-          "_direction_closure_loop")
+          "_closed", "_direction_closure_loop", "_rows_closure_loop")
 
 
 # ----------------------------------------------------------------------------- plain floats

@@ -13,13 +13,14 @@ from typing import Any
 
 import numpy as np
 
+from ..core import kernels
 from ..core._angles import wrap_positive
 from ..core._checks import (
     FloatArray,
     check_int,
 )
 from ..core._geom import RANK_DIGITS
-from ..core.closure import direction_closure
+from ..core.closure import rows_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
@@ -414,6 +415,30 @@ def _row_blocks(F: Features, spec: PlanSpec, order: np.ndarray, s: int, pool: in
         yield rows_s
 
 
+def _force_table(F: Features, g_ang: float) -> FloatArray:
+    """Each feature's unit force, and gravity's last (``g_ang``)."""
+    angles = np.append(F.center, g_ang)
+    return np.stack([np.cos(angles), np.sin(angles)], axis=-1)
+
+
+def holding_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any = None
+                 ) -> np.ndarray | None:
+    """Which rows of four frictionless fingers (or three with gravity) pass the
+    force-direction test (theorem 4.2) that :func:`grasp_geometry` starts with, by the
+    compiled loop; None for other fingers, or where the loop is not running already
+    (:func:`fcgrasp.core.kernels.started`: a search then leaves the test to
+    :func:`grasp_geometry`, as before).  A row that fails it gives no candidate, so a
+    search may drop it before anything else reads it (most rows of a curved outline's
+    four-finger search do: ``icons/heart.svg`` 97 %)."""
+    if spec.shape.pairs or spec.shape.lp or not kernels.started() or not len(feats):
+        return None
+    F = features(polygon, spec.mu, spec.hand, edges)
+    g_ang = 0.0 if spec.gravity is None else float(np.arctan2(spec.gravity[1],
+                                                            spec.gravity[0]))
+    rows = np.asarray(feats, dtype=int).reshape(len(feats), -1)
+    return rows_closure(_force_table(F, g_ang), np.where(rows >= 0, rows, len(F.center)))
+
+
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
                      centroid: FloatArray, feats: np.ndarray, tol: float = SOLVER_TOL,
                      floor: float = 0.0) -> Candidates:
@@ -423,16 +448,16 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
     tied value, is the same whichever pairing is kept)."""
     B = len(feats)
     g_ang = 0.0 if gravity is None else float(np.arctan2(gravity[1], gravity[0]))
+    # the force directions first (each feature's once), the rows that hold none cut
+    # before anything is gathered (the same numbers: cos and sin of each angle)
+    unit = _force_table(F, g_ang)
+    ok = rows_closure(unit, np.where(feats >= 0, feats, len(F.center))) if B \
+        else np.zeros(0, bool)
+    feats = feats[ok]
     real = feats >= 0
     fi = np.where(real, feats, 0)
-    # the force directions first (each feature's once), the rows that hold none cut
-    # before the segments are gathered (the same numbers: cos and sin of each angle)
     center = np.where(real, F.center[fi], g_ang)
-    angles = np.append(F.center, g_ang)             # gravity's last
-    unit = np.stack([np.cos(angles), np.sin(angles)], axis=-1)
     dirs = unit[np.where(real, feats, len(F.center))]
-    ok = direction_closure(dirs) if B else np.zeros(0, bool)
-    feats, real, fi, center, dirs = feats[ok], real[ok], fi[ok], center[ok], dirs[ok]
     a = np.where(real[..., None], F.a[fi], centroid)
     b = np.where(real[..., None], F.b[fi], centroid)
     B = len(feats)

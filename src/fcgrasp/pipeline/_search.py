@@ -24,6 +24,7 @@ from ._candidates import (
     _row_bounds,
     candidates,
     features,
+    holding_rows,
     lex_survivors,
     search_size,
 )
@@ -200,15 +201,31 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         k = top.key
         return k if k is not None and level <= k[0] else None
 
-    def fold() -> None:
+    # rows that pass the force-direction test, waiting to be solved together (the
+    # answer of a search that is not strict does not depend on how rows are batched)
+    gathered: list[EdgeSets] = []
+    gather = map is None and not strict
+
+    def fold(last: bool = False) -> None:
         nonlocal done
         at = current()
         live = [b for b in window if b.ceiling >= at]
+        # rows whose forces cannot hold give no candidate: dropped before the rest
+        held = [(b, holding_rows(polygon, spec, b.feats, edges)) for b in live]
+        live = [b if keep is None or keep.all() else b.take(keep) for b, keep in held]
+        live = [b for b in live if len(b.feats)]
         if exclude is not None:
             live = [b for b in (_left_in(b, exclude) for b in live) if len(b.feats)]
         if lex:                # the top's last key may have risen since the rows came
             live = [b for b in (_lex_pruned(b, key, lengths, twin, polygon.size)
                                 for b in live) if len(b.feats)]
+        if gather and any(keep is not None for _, keep in held):
+            gathered.extend(live)
+            if not last and sum(len(b.feats) for b in gathered) < _spec.GATHER_ROWS:
+                live = []
+            else:
+                live = [_joined(gathered)] if gathered else []
+                gathered.clear()
         if map is None:
             results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=at)
                                          for b in live]
@@ -229,11 +246,21 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         window.append(batch)
         if map is None or len(window) >= MAP_WINDOW:
             fold()
-    if window:
-        fold()
+    if window or gathered:
+        fold(last=True)
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def _joined(batches: list[EdgeSets]) -> EdgeSets:
+    """Batches as one (their rows in order, each with its bound)."""
+    if len(batches) == 1:
+        return batches[0]
+    bounds = [b.bound for b in batches if b.bound is not None]
+    return EdgeSets(np.concatenate([b.feats for b in batches]),
+                    np.concatenate(bounds) if len(bounds) == len(batches) else None,
+                    max(b.ceiling for b in batches))
 
 
 def _left_in(batch: EdgeSets, exclude: Callable[[np.ndarray], np.ndarray]) -> EdgeSets:
