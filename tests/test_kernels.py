@@ -283,3 +283,16 @@ def test_direction_closure_compiled_is_the_numpy_test(k, monkeypatch):
     want = force_direction_closure(f)
     np.testing.assert_array_equal(got, want)
     assert 0.05 < want.mean() < 0.95
+
+    # rows of indices into a table of forces: the same booleans, compiled and not
+    from fcgrasp.core.closure import rows_closure
+
+    table = f.reshape(-1, 2)
+    rows = rng.integers(0, len(table), (30000, k))
+    rows[::4] = np.arange(30000 * k).reshape(-1, k)[::4]      # every row of f as it is
+    want_rows = force_direction_closure(table[rows])
+    np.testing.assert_array_equal(rows_closure(table, rows), want_rows)
+    np.testing.assert_array_equal(rows_closure(table, rows[::4]), want[::4])
+    monkeypatch.setenv("FCGRASP_JIT", "0")
+    np.testing.assert_array_equal(rows_closure(table, rows), want_rows)
+    assert 0.05 < want_rows.mean() < 0.95

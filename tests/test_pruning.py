@@ -9,6 +9,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp import pipeline
+from fcgrasp.core import kernels
 from fcgrasp.pipeline import _search, _spec, candidates, plan_spec, rank, search, solve
 from fcgrasp.planning.planner import RANKINGS
 
@@ -170,6 +171,37 @@ def test_pruned_top_k_on_flattened_arcs_is_the_exhaustive_top_k(seed):
     for job in JOBS[2:]:
         _check(part, job, int(rng.choice([1, 3, 10])), "min_region", sizes=(1, 64))
     _check(part, JOBS[3], 3, "resistance", sizes=(1, 64))
+
+
+@pytest.mark.parametrize("gather", [1, 5, 10 ** 9])
+def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gather,
+                                                                              monkeypatch):
+    """Issue 30: four frictionless fingers and three with gravity, a search drops the
+    rows whose forces cannot hold (theorem 4.2, compiled over rows of feature indices)
+    before anything else reads them, and, when not strict, solves the rest in groups of
+    ``GATHER_ROWS`` across batches (every row alone, a few, all at the end): the same
+    top as solving every row, on the corpus and on flattened arcs (ties), for batches of
+    one row and of 64; a strict search gives the same plans as without the test."""
+    calls = []
+    original = _search.holding_rows
+
+    def holding(*args, **kwargs):
+        keep = original(*args, **kwargs)
+        calls.append(keep is not None and not keep.all())
+        return keep
+
+    monkeypatch.setattr(_search, "holding_rows", holding)
+    monkeypatch.setattr(_spec, "GATHER_ROWS", gather)
+    rng = np.random.default_rng(77)
+    for part in [*_corpus(3)[::2], _flattened(rng), _flattened(rng)]:
+        for job in JOBS[2:]:
+            monkeypatch.setattr(kernels, "started", lambda: True)   # the test applies
+            _check(part, job, int(rng.choice([1, 3, 10])), "min_region", sizes=(1, 64))
+            spec = plan_spec(top=3, **job)
+            strict = _key(search(part, spec, batch_size=16, strict=True))
+            monkeypatch.setattr(kernels, "started", lambda: False)  # no test: as before
+            assert _key(search(part, spec, batch_size=16, strict=True)) == strict
+    assert sum(calls) > 20          # rows were dropped
 
 
 def test_a_row_left_out_by_the_key_is_worse_than_it():

@@ -201,8 +201,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         k = top.key
         return k if k is not None and level <= k[0] else None
 
-    # rows that pass the force-direction test, waiting to be solved together (the
-    # answer of a search that is not strict does not depend on how rows are batched)
+    # rows that pass the force-direction test, once the top is full, waiting to be
+    # solved together (the answer of a search that is not strict does not depend on how
+    # its rows are batched)
     gathered: list[EdgeSets] = []
     gather = map is None and not strict
 
@@ -219,7 +220,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         if lex:                # the top's last key may have risen since the rows came
             live = [b for b in (_lex_pruned(b, key, lengths, twin, polygon.size)
                                 for b in live) if len(b.feats)]
-        if gather and any(keep is not None for _, keep in held):
+        # (once the top is full: until then each batch's rows raise its floor and key)
+        if gather and (gathered or top.floor > 0 and
+                       any(keep is not None for _, keep in held)):
             gathered.extend(live)
             if not last and sum(len(b.feats) for b in gathered) < _spec.GATHER_ROWS:
                 live = []
