@@ -137,6 +137,15 @@ def run(row):
         t0 = time.process_time()
         fc.plan(poly, fingers=4, along_boundary=False)
         return time.process_time() - t0
+    if row == "f4_circle500":
+        # a regular 500-gon, a flattened circle: every set of four edges ties on the
+        # search's bound (the edge length), and every normal meets the centre
+        a = np.linspace(0, 2 * np.pi, 500, endpoint=False)
+        poly = fc.Polygon(np.c_[50 * np.cos(a), 50 * np.sin(a)])
+        fc.plan(blob(12), fingers=4, along_boundary=False, top=1)   # numba's code loaded
+        t0 = time.process_time()
+        fc.plan(poly, fingers=4, along_boundary=False)
+        return time.process_time() - t0
     if row == "f4_100":
         poly = blob(100)
         if os.environ.get("FCGRASP_JIT") != "0":   # warm: numba's cached code loaded
@@ -224,6 +233,8 @@ ROWS = [
     ("f3_200", "3 fingers with friction, 200-edge blob", 1.0, "s", "jit0"),
     ("f3_cam", "3 fingers with friction, `demo:cam`", 2.0, "s", "jit0"),
     ("f4_500", "4 fingers single-edge, smooth 500-edge blob", 5.0, "s", None),
+    ("f4_circle500", "4 fingers single-edge, a regular 500-gon (every set of four edges "
+     "ties on the bound)", 5.0, "s", None),
     ("f4_100", "4 fingers along the boundary, 100-edge blob", 1.0, "s", "jit0"),
     ("f4_blob", "4 fingers, the six-edge blob, in process (wall)", 0.001, "s", None),
     ("pairs1k", "closed form per edge pair, all pairs of a 1,000-edge blob (CPU, one core)",
@@ -234,17 +245,24 @@ ROWS = [
 
 #: Rows whose baseline or workload takes minutes: left out by ``--quick``.
 SLOW = {"star10k", "ellipse10k", "blob10k", "blob100k", "star100k", "jaw_cam", "jaw_washer",
-        "f3_cam", "f4_500"}
+        "f3_cam", "f4_500", "f4_circle500"}
+#: CPU seconds after which a row's process is stopped (reported as stopped, not met).
+LIMIT = 120.0
 
 
 def measure(row: str, jit: str | None = None, previous: bool = False) -> float:
+    """The row's figure, measured in a fresh process; inf where it was stopped after
+    :data:`LIMIT` seconds."""
     env = dict(os.environ, FCGRASP_BENCH_DIR=os.path.dirname(os.path.abspath(__file__)))
     if jit is not None:
         env["FCGRASP_JIT"] = jit
     if previous:
         env["FCGRASP_BENCH_PREVIOUS"] = "1"
-    out = subprocess.run([sys.executable, "-c", CHILD, row], capture_output=True, text=True,
-                         env=env)
+    try:
+        out = subprocess.run([sys.executable, "-c", CHILD, row], capture_output=True,
+                             text=True, env=env, timeout=LIMIT)
+    except subprocess.TimeoutExpired:
+        return float("inf")
     if out.returncode:
         raise SystemExit(f"row {row} failed:\n{out.stderr[-2000:]}")
     return float(json.loads(out.stdout.strip().splitlines()[-1]))
@@ -262,6 +280,8 @@ def startup() -> float:
 
 
 def fmt(x: float) -> str:
+    if x == float("inf"):
+        return f"stopped after {LIMIT:g} s"
     if x < 1e-6:
         return f"{x * 1e9:.1f} ns"
     return f"{x * 1e6:.1f} us" if x < 1e-3 else f"{x * 1e3:.1f} ms" if x < 0.1 else f"{x:.2f} s"

@@ -11,9 +11,11 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
+from fcgrasp.grippers import _boundary
 from fcgrasp.grippers._distinct_rows import RowCopies
 from fcgrasp.model.distinct import distinct_plans, same_alternative
-from fcgrasp.pipeline import features, plan_spec, search
+from fcgrasp.pipeline import _search, features, plan_spec, search
+from fcgrasp.pipeline._solve import RowScores
 
 from .test_pruning import _flattened
 
@@ -60,6 +62,59 @@ def test_distinct_rounds_equal_suppression_of_every_plan(seed):
     for i, p in enumerate(got):
         for q in got[:i]:
             assert not same_alternative(q, p, fraction, 1e-12 * part.size)
+
+
+def test_row_scores_remember_what_was_added():
+    """Issue 30's memo of the rows' scores: each row's score as added (the first where a
+    row was added twice), nan for a row never added, gravity's -1 a feature like any;
+    features beyond its key's 15 bits are not remembered."""
+    rng = np.random.default_rng(8)
+    memo = RowScores()
+    rows = rng.integers(-1, 3000, (5000, 4))
+    rows[::7, 3] = -1
+    score = rng.uniform(-1, 5, 5000)
+    memo.add(rows[:3000], score[:3000])
+    memo.add(rows[3000:], score[3000:])
+    got = memo.known(rows)
+    first = {}
+    for r, v in zip(map(tuple, rows), score, strict=True):
+        first.setdefault(r, v)
+    np.testing.assert_array_equal(got, [first[tuple(r)] for r in rows])
+    assert np.isnan(memo.known(rows[:50] + 4000)).all()
+    memo.add(np.array([[40000, 1, 2, 3]]), np.array([1.0]))
+    assert np.isnan(memo.known(np.array([[40000, 1, 2, 3]]))).all()
+
+
+@pytest.mark.parametrize("seed", [0, 3, 5, *(pytest.param(s, marks=pytest.mark.slow)
+                                            for s in range(6, 40))])
+def test_rounds_sharing_their_rows_scores_give_the_plans_of_fresh_rounds(seed,
+                                                                          monkeypatch):
+    """The distinct search's rounds share the scores of the rows they solve (a row an
+    earlier round knows to be below the floor is not solved again): the same plans as
+    rounds that remember nothing, and rows were left out so."""
+    part, kw, fraction, top = _case(seed)
+    dropped = []
+    original = _search._reaching
+
+    def reaching(batch, memo, floor, size):
+        out = original(batch, memo, floor, size)
+        dropped.append(len(batch.feats) - len(out.feats))
+        return out
+
+    monkeypatch.setattr(_search, "_reaching", reaching)
+    got = fc.plan(part, top=top, distinct=fraction, **kw)
+
+    class Forgetting(RowScores):
+        def add(self, feats, score):
+            pass
+
+    monkeypatch.setattr(_boundary, "RowScores", Forgetting)
+    want = fc.plan(part, top=top, distinct=fraction, **kw)
+    assert [_key(p, part.size) for p in got] == [_key(p, part.size) for p in want]
+    for p, q in zip(got, want, strict=True):
+        assert np.array_equal(np.concatenate(p.regions), np.concatenate(q.regions))
+        assert p.similar == q.similar
+    assert seed != 0 or sum(dropped) > 0
 
 
 def _on_region(part, edge, region, tol):

@@ -32,6 +32,7 @@ from ..pipeline import (
     search,
     solve,
 )
+from ..pipeline._solve import RowScores
 from ._distinct_rows import RowCopies
 
 # ----------------------------------------------------------------------------- stretches
@@ -137,11 +138,13 @@ def grown_plans(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any
     return _grown_ranked(polygon, spec, progress, map)[0]
 
 
-def _grown_ranked(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None
+def _grown_ranked(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: Any = None,
+                  scores: RowScores | None = None
                   ) -> tuple[list[GraspPlan], list[GraspPlan]]:
-    """:func:`grown_plans`'s plans, and every grown plan (ranked or not)."""
+    """:func:`grown_plans`'s plans, and every grown plan (ranked or not); ``scores``
+    remembers the rows its searches solve (:func:`search`)."""
     flat = replace(spec, along_boundary=False)
-    seeds, grown = _grown(polygon, spec, map)
+    seeds, grown = _grown(polygon, spec, map, scores)
     # a single-edge plan below the top-th of the plans found so far (grown, and the
     # seeds: single-edge plans of the exact search) cannot rank (on a smooth outline of
     # equal edges, where every row ties on its bound, this ends the search at once)
@@ -151,12 +154,12 @@ def _grown_ranked(polygon: Polygon, spec: PlanSpec, progress: Any = None, map: A
         distinct = ranked_unique(polygon, replace(spec, top=None), grown + seeds)
         if len(distinct) >= spec.top:
             floor = float(min(distinct[spec.top - 1].lengths)) - 2 * RANK_TOL * polygon.size
-    plans = search(polygon, flat, progress=progress, map=map, floor=floor)
+    plans = search(polygon, flat, progress=progress, map=map, floor=floor, scores=scores)
     return ranked_unique(polygon, spec, plans + grown), grown
 
 
-def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None
-           ) -> tuple[list[GraspPlan], list[GraspPlan]]:
+def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None,
+           scores: RowScores | None = None) -> tuple[list[GraspPlan], list[GraspPlan]]:
     """:func:`grown_plans`'s seeds (the :data:`GROW_SEEDS` best single-edge plans) and
     the plans grown from them along the boundary."""
     flat = replace(spec, along_boundary=False)
@@ -164,7 +167,7 @@ def _grown(polygon: Polygon, spec: PlanSpec, map: Any = None
     # the seeds: the GROW_SEEDS best single-edge plans, whatever the top (exact ties on
     # the smallest region in the order found)
     seeds = search(polygon, replace(flat, top=GROW_SEEDS),
-                   map=map, strict=True)
+                   map=map, strict=True, scores=scores)
     rows = [p.edges for p in seeds[:GROW_SEEDS]
             if len(set(p.edges)) == len(p.edges) and _reaches_a_vertex(polygon, p)]
     grown: list[GraspPlan] = []
@@ -217,12 +220,14 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
     flat = replace(spec, along_boundary=False)
     suppression = Suppression(fraction, polygon.size)
     ask = max(2 * top, DISTINCT_READ)
+    # the rows' scores, remembered from round to round (the rounds read the same rows)
+    scores = RowScores()
     # the first round: the ranked list's first plans, as the gripper ranks them (its
     # floors end the search early; most parts' first plans are distinct already)
     if spec.grows:
-        first, grown = _grown_ranked(polygon, spec, map=map)
+        first, grown = _grown_ranked(polygon, spec, map=map, scores=scores)
     else:
-        first, grown = search(polygon, flat, map=map), []
+        first, grown = search(polygon, flat, map=map, scores=scores), []
     seen: set[Any] = set()              # one grasp reached twice (grown, single): once
     came = ranked_keyed(polygon, spec.rank_by, first, seen)
     for _, p in came:
@@ -239,7 +244,7 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
             if len(waiting) >= ask else 0.0
         copies = RowCopies(polygon, suppression.kept, read, suppression.tol)
         single = search(polygon, replace(flat, top=ask), map=map, exclude=copies,
-                        floor=max(floor, 0.0))
+                        floor=max(floor, 0.0), scores=scores)
         keyed = ranked_keyed(polygon, spec.rank_by, single)
         # each grasp once: not one read before, nor a waiting grown plan's
         merged = sorted(waiting + [kp for kp in keyed if kp[0] not in seen],

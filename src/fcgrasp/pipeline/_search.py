@@ -28,7 +28,7 @@ from ._candidates import (
     lex_survivors,
     search_size,
 )
-from ._solve import Solved, _build_plans, _select, _smallest_region, solve
+from ._solve import RowScores, Solved, _build_plans, _select, _smallest_region, solve
 from ._spec import (
     MAP_WINDOW,
     PlanSpec,
@@ -150,7 +150,8 @@ class TopK:
 def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = None,
            batch_size: int | None = None, map: Any = None, floor: float = 0.0,
            strict: bool = False,
-           exclude: Callable[[np.ndarray], np.ndarray] | None = None) -> list[GraspPlan]:
+           exclude: Callable[[np.ndarray], np.ndarray] | None = None,
+           scores: RowScores | None = None) -> list[GraspPlan]:
     """The single-edge search, exact branch and bound: :func:`candidates` streams rows by
     decreasing bound, :func:`solve` drops the rows below the running top's
     :attr:`TopK.floor`, and the stream stops at the first batch whose ceiling is below
@@ -171,7 +172,11 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     every row ties, and the search ends at once).  ``exclude(feats)``: which rows of a
     batch (True) are left out unsolved, as if they were not candidates (the rows a
     distinct search has read, or whose every plan is the same alternative as one it
-    kept: :class:`~fcgrasp.grippers._distinct_rows.RowCopies`).
+    kept: :class:`~fcgrasp.grippers._distinct_rows.RowCopies`).  ``scores``: a
+    :class:`~fcgrasp.pipeline._solve.RowScores` shared with earlier searches of the
+    same part and spec (but ``top``): the rows it knows to be below the floor are
+    dropped unsolved, and the rows solved here are added to it (without a ``map``: with
+    one the rows are solved elsewhere).
 
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
@@ -206,6 +211,7 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     # its rows are batched)
     gathered: list[EdgeSets] = []
     gather = map is None and not strict
+    memo = scores if map is None else None
 
     def fold(last: bool = False) -> None:
         nonlocal done
@@ -220,6 +226,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         if lex:                # the top's last key may have risen since the rows came
             live = [b for b in (_lex_pruned(b, key, lengths, twin, polygon.size)
                                 for b in live) if len(b.feats)]
+        if memo is not None:   # rows an earlier search solved, below the floor
+            live = [b for b in (_reaching(b, memo, at, polygon.size) for b in live)
+                    if len(b.feats)]
         # (once the top is full: until then each batch's rows raise its floor and key)
         if gather and (gathered or top.floor > 0 and
                        any(keep is not None for _, keep in held)):
@@ -230,8 +239,8 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
                 live = [_joined(gathered)] if gathered else []
                 gathered.clear()
         if map is None:
-            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=at)
-                                         for b in live]
+            results: Iterable[Solved] = [solve(polygon, spec, b, edges, floor=at,
+                                               scores=memo) for b in live]
         else:
             results = map(partial(solve, polygon, spec, edges=edges, floor=at), live)
         for solved in results:
@@ -254,6 +263,14 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def _reaching(batch: EdgeSets, memo: RowScores, floor: float, size: float) -> EdgeSets:
+    """The rows of a batch but those the memo knows :func:`solve` would drop: a score
+    that holds nothing, or one below ``floor`` by more than rounding."""
+    known = memo.known(batch.feats)
+    drop = (known < 0) | (known < floor - RANK_TOL * size)
+    return batch.take(~drop) if drop.any() else batch
 
 
 def _joined(batches: list[EdgeSets]) -> EdgeSets:

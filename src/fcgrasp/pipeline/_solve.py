@@ -300,6 +300,59 @@ class Solved:
                       self.mode[idx])
 
 
+class RowScores:
+    """The stage-1 scores (the largest smallest region: :func:`grasp_geometry`'s
+    ``score``, exact, -1 where a row holds nothing) of the rows that searches of one
+    part and one spec's geometry have solved, remembered so that a later search drops
+    a row whose score cannot reach its floor without computing its geometry again (a
+    distinct search of four frictionless fingers reads in its rounds the rows its
+    first round read: ``icons/heart.svg`` 120,000 rows twice).  A row's score depends
+    on its features only, not on the batch it comes in nor on the floor, so dropping
+    what the memo says is below the floor drops what :func:`solve` would."""
+
+    def __init__(self) -> None:
+        self._keys: list[np.ndarray] = []
+        self._values: list[FloatArray] = []
+        self._sorted: tuple[np.ndarray, FloatArray] | None = None
+
+    @staticmethod
+    def _key(feats: np.ndarray) -> np.ndarray | None:
+        """One integer per row (16 bits per finger's feature, gravity's -1 as 0); None
+        where the features do not fit."""
+        f = np.asarray(feats, dtype=np.int64)
+        if f.ndim != 2 or f.shape[1] > 4 or (f.size and int(f.max()) >= 2 ** 15 - 1):
+            return None
+        key = np.zeros(len(f), np.int64)
+        for j in range(f.shape[1]):
+            key |= (f[:, j] + 1) << (16 * j)
+        return key
+
+    def add(self, feats: np.ndarray, score: FloatArray) -> None:
+        """Remember the scores of solved rows."""
+        key = self._key(feats)
+        if key is not None and len(key):
+            self._keys.append(key)
+            self._values.append(np.asarray(score, dtype=float))
+            self._sorted = None
+
+    def known(self, feats: np.ndarray) -> FloatArray:
+        """The remembered score of each row (nan where none is)."""
+        out = np.full(len(feats), np.nan)
+        key = self._key(feats)
+        if key is None or not self._keys or not len(key):
+            return out
+        if self._sorted is None:
+            keys, values = np.concatenate(self._keys), np.concatenate(self._values)
+            order = np.argsort(keys, kind="stable")
+            self._sorted = keys[order], values[order]
+            self._keys, self._values = [self._sorted[0]], [self._sorted[1]]
+        keys, values = self._sorted
+        at = np.minimum(np.searchsorted(keys, key), len(keys) - 1)
+        hit = keys[at] == key
+        out[hit] = values[at[hit]]
+        return out
+
+
 def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
             ) -> np.ndarray:
     """Rows (sorted) with positive regions, the ``top`` best by leximin and their ties."""
@@ -319,7 +372,8 @@ def _smallest_region(feats: np.ndarray, lengths: FloatArray) -> FloatArray:
 
 
 def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
-          progress: Any = None, floor: float = 0.0) -> Solved:
+          progress: Any = None, floor: float = 0.0, scores: RowScores | None = None
+          ) -> Solved:
     """Grasp sets and optimal regions of a batch of candidate edge sets.
 
     With ``spec.top``, only the rows that can still reach the top (ties included) get
@@ -328,7 +382,8 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
     tops holds the global top, so :func:`rank` of the solved batches is the same as of
     one batch.  ``floor`` (:attr:`TopK.floor`): rows whose smallest region cannot reach
     it are dropped unsolved, first by the batch's bounds (before any geometry), then by
-    their stage-1 bound; 0 keeps every row.
+    their stage-1 bound; 0 keeps every row.  ``scores``: a :class:`RowScores` that
+    remembers the stage-1 score of every row whose geometry is computed here.
     """
     floor = check_scalar(floor, "floor", nonnegative=True)
     if spec.top is None:
@@ -337,6 +392,8 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
         reach = sets.bound >= floor
         sets = sets.take(reach)
     c = grasp_geometry(polygon, spec, sets, edges, floor)
+    if scores is not None:
+        scores.add(c.feats, c.score)
     margin = spec.margin_rad
     good = np.flatnonzero((c.score > 0) & (c.score >= floor))
     order = good[np.lexsort((np.arange(good.size), -c.score[good]))]
