@@ -173,13 +173,14 @@ def test_pruned_top_k_on_flattened_arcs_is_the_exhaustive_top_k(seed):
     _check(part, JOBS[3], 3, "resistance", sizes=(1, 64))
 
 
-@pytest.mark.parametrize("gather", [1, 5, 10 ** 9])
+@pytest.mark.parametrize("gather", [1, 5, 64, pytest.param(10 ** 9, marks=pytest.mark.slow)])
 def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gather,
                                                                               monkeypatch):
     """Issue 30: four frictionless fingers and three with gravity, a search drops the
     rows whose forces cannot hold (theorem 4.2, compiled over rows of feature indices)
     before anything else reads them, and, when not strict, solves the rest in groups of
-    ``GATHER_ROWS`` across batches (every row alone, a few, all at the end): the same
+    ``GATHER_ROWS`` across batches (every row alone, a few, more; all at the end under
+    ``-m slow``: the floor then stays low and every row is solved): the same
     top as solving every row, on the corpus and on flattened arcs (ties), for batches of
     one row and of 64; a strict search gives the same plans as without the test."""
     calls = []
@@ -402,7 +403,8 @@ def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
     (``FCGRASP_JIT=0``: every tuple sorted, laid out, bounded and filtered by
     :func:`~fcgrasp.pipeline._candidates.lex_survivors`), on seeded parts with ties
     (arcs of equal edges, regular polygons) and keys drawn from the parts' own
-    rounded bounds (halved, cut short, tied): the same batches, row for row."""
+    rounded bounds (halved, cut short, tied): the same batches, row for row; and
+    without a key, where the compiled loop gives every row once numba runs."""
     from fcgrasp.core._geom import RANK_DIGITS
     from fcgrasp.pipeline._candidates import _bound_pad, _row_bounds, features
 
@@ -435,6 +437,13 @@ def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
                             for b in candidates(part, spec, batch_size=64,
                                                 key=lambda lv: key if lv <= reach else None)])
         assert streams[0] == streams[1], (seed, job)
+        # and with no key: every row, by the compiled loop (a key every row reaches)
+        plain, size = [], int(rng.choice([7, 64]))
+        for jit in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", jit)
+            plain.append([(b.feats.tolist(), b.ceiling) for b in
+                          candidates(part, spec, batch_size=size)])
+        assert plain[0] == plain[1], (seed, job)
         checked += 1
         kept += sum(len(b[0]) for b in streams[0]) > 0
     assert kept > checked // 2

@@ -351,6 +351,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
     seen = [] if g is None else [float(wrap_positive(np.arctan2(g[1], g[0])))]
+    compiled_rows = kernels.jit_setting() is True or kernels.started()
     buf: list[np.ndarray] = []
     count = 0
     target = min(first, size)
@@ -370,12 +371,14 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
         if current is not None and current.size > 1:
             # the other features must reach the key's second region
             pool = min(s, int(np.searchsorted(-rounded, -current[1], side="right")))
+        # without a key every row: by the compiled loop too (with a key every row
+        # reaches) where it runs anyway, numba started in this process
+        reach = current if current is not None else _EVERY_ROW if compiled_rows else None
         for r in widths:
             # the rows that may reach the key: by one compiled loop, else numpy blocks
-            got = None if current is None else _rows_kernels.survivors(
+            got = None if reach is None else _rows_kernels.survivors(
                 order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
-                spec.fingers, spec.shape.twin, np.ascontiguousarray(current, dtype=float),
-                comb(pool, r))
+                spec.fingers, spec.shape.twin, reach, comb(pool, r))
             for rows_s in ([got] if got is not None else
                            _row_blocks(F, spec, order, s, pool, r, current, twin, part_size)):
                 if not len(rows_s):
@@ -393,6 +396,12 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     if count:
         rows = np.concatenate(buf)
         yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling)
+
+
+#: The key of :func:`_ordered_rows`' compiled rows where the search has none: every row
+#: reaches it (:func:`lex_survivors` keeps all), so the loop gives every row, in the
+#: numpy path's order.
+_EVERY_ROW = np.array([-np.inf])
 
 
 def _row_blocks(F: Features, spec: PlanSpec, order: np.ndarray, s: int, pool: int, r: int,
