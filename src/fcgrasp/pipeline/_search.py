@@ -178,6 +178,12 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     dropped unsolved, and the rows solved here are added to it (without a ``map``: with
     one the rows are solved elsewhere).
 
+    Four frictionless fingers (or three with gravity), once numba runs in the process:
+    the rows that fail the force-direction test are dropped before anything else reads
+    them (:func:`~fcgrasp.pipeline._candidates.holding_rows`), and a search that is not
+    ``strict`` and has no ``map`` solves the rows left in groups of ``GATHER_ROWS``
+    across batches once its top is full (its answer does not depend on the batching).
+
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
     >>> [p.edges for p in search(demo_part("quad"), plan_spec(fingers=4, top=1))]
