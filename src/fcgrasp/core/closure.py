@@ -381,23 +381,22 @@ def force_direction_closure(forces: Any, tol: float = TOL) -> np.ndarray:
 
 
 def direction_closure(forces: FloatArray, tol: float = TOL) -> np.ndarray:
-    """:func:`force_direction_closure` of a batch of force sets (B, k, 2), by the
-    compiled loop (``kernels._direction_closure_loop``, the same booleans) where the
-    batch repays it (:func:`fcgrasp.core.kernels.use_jit`), by numpy else."""
+    """:func:`force_direction_closure` of a batch of force sets (B, k, 2): the same
+    booleans, by :func:`rows_closure` with the forces as their own table (compiled where
+    the batch repays it, :func:`fcgrasp.core.kernels.use_jit`; numpy else)."""
     f = np.ascontiguousarray(forces, dtype=float)
-    if f.ndim == 3 and f.shape[0] and kernels.use_jit(f.shape[0]):
-        out = np.empty(f.shape[0], dtype=np.bool_)
-        if kernels._run("_direction_closure_loop", f, float(tol), out):
-            return out
-    return force_direction_closure(f, tol)
+    if f.ndim != 3:
+        return force_direction_closure(f, tol)
+    B, k = f.shape[:2]
+    return rows_closure(f.reshape(-1, 2), np.arange(B * k).reshape(B, k), tol)
 
 
 def rows_closure(unit: FloatArray, rows: np.ndarray, tol: float = TOL) -> np.ndarray:
-    """:func:`direction_closure` of the force sets ``unit[rows]`` (``rows``: (B, k)
-    indices into the table of forces ``unit``), the same booleans; the compiled loop
-    reads each row's forces from the table instead of gathering them (a search's rows
-    are millions, most of which fail the test), where :func:`direction_closure` would
-    run compiled."""
+    """:func:`force_direction_closure` of the force sets ``unit[rows]`` (``rows``: (B, k)
+    indices into the table of forces ``unit``), the same booleans: by the compiled loop,
+    which reads each row's forces from the table instead of gathering them (a search's
+    rows are millions, most of which fail the test), where the batch repays it
+    (:func:`fcgrasp.core.kernels.use_jit`), by numpy else."""
     u = np.ascontiguousarray(unit, dtype=float)
     r = np.ascontiguousarray(rows, dtype=np.int64)
     if r.ndim == 2 and r.shape[0] and kernels.use_jit(r.shape[0]):

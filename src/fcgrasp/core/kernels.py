@@ -333,24 +333,11 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
                            active[k], tol)
 
 
-def _direction_closure_loop(f: Any, tol: float, out: Any) -> None:
-    """:func:`fcgrasp.core.closure.force_direction_closure` of every row of ``f`` (B, k,
-    2), the same operations row by row (:func:`_closed`)."""
-    k = f.shape[1]
-    u = np.empty((k, 2))
-    for r in range(f.shape[0]):
-        for i in range(k):
-            x, y = f[r, i, 0], f[r, i, 1]
-            n = np.sqrt(x * x + y * y)
-            u[i, 0] = x / n if n > 0 else 0.0
-            u[i, 1] = y / n if n > 0 else 0.0
-        out[r] = _closed(u, k, tol)
-
-
 def _rows_closure_loop(unit: Any, rows: Any, tol: float, out: Any) -> None:
-    """:func:`_direction_closure_loop` of the forces ``unit[rows[r]]`` (rows of indices
-    into one table of forces), without gathering them: row ``r``'s forces are read from
-    the table, then the same operations."""
+    """:func:`fcgrasp.core.closure.force_direction_closure` of the forces
+    ``unit[rows[r]]`` of every row (rows of indices into one table of forces), the same
+    operations row by row without gathering them: each force read from the table and
+    made unit, then :func:`_closed`."""
     k = rows.shape[1]
     u = np.empty((k, 2))
     for r in range(rows.shape[0]):
@@ -402,7 +389,7 @@ _FORMULAS = ("_select", "_wrap", "arc_meet", "pair_sector", "_coefficient", "seg
              "_cone_edges", "pair_problem", "_signed_problem", "_greedy_slack", "two_level",
              "_mode_value", "pair_modes", "_modes_of", "_sector_edges")
 _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop", "_anti",
-          "_closed", "_direction_closure_loop", "_rows_closure_loop")
+          "_closed", "_rows_closure_loop")
 
 
 # ----------------------------------------------------------------------------- plain floats
