@@ -504,11 +504,14 @@ def import_numba() -> Any:
     answering without the import, then ``ensure_blas`` is put back, so that numba's
     state is the one its own import gives (``_HAVE_BLAS`` True), and a jitted
     ``np.dot`` imports ``scipy.linalg`` when it is compiled.  Where scipy is missing, or
-    numba's modules are not laid out so (another version), numba is imported as is."""
+    numba's modules are not laid out so (another version), numba is imported as is.
+    From then on numba has started for the package's loops (:func:`started`)."""
+    global _numba_started
     try:
         import numba
     except ImportError:
         return None
+    _numba_started = True
     with _importing:
         if "numba.np.arraymath" in sys.modules:
             return numba
@@ -542,7 +545,7 @@ def _loops() -> dict[str, Any] | None:
     Every function is rebuilt over one shared namespace whose names are the compiled
     functions, so the loops call compiled formulas; the machine code is cached on disk
     beside this file."""
-    global _compiled, _no_numba, _numba_started
+    global _compiled, _no_numba
     with _compiling:
         if _compiled is not None or _no_numba:
             return _compiled
@@ -550,7 +553,6 @@ def _loops() -> dict[str, Any] | None:
         if numba is None:
             _no_numba = True
             return None
-        _numba_started = True
         module = sys.modules[__name__]
         _compiled = njit_all(numba, dict(globals()), [
             (name, getattr(module, "_select_scalar" if name == "_select" else name))
@@ -598,8 +600,6 @@ class CompiledLoops:
                 if numba is None:
                     self.broken = True
                     return None
-                global _numba_started
-                _numba_started = True
                 names = dict(self._namespace)
                 if self._extra is not None:
                     more = self._extra()
