@@ -357,6 +357,61 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
         assert len(lowered) >= 2, lowered             # the first floor, then lower
 
 
+@pytest.mark.parametrize("seed", range(3))
+def test_a_distinct_rounds_bound_is_the_kth_largest_configuration(seed):
+    """A distinct round's bound counts each configuration (``_Bound(each=True)``: its
+    rows add no lower bounds): its value is the ``k``-th largest value added so far (0
+    before ``k``), read against a sort after every chunk, chunks of any size, values
+    tied and repeated; the per-key bound stays at most one per key."""
+    from fcgrasp.model._stretch_windows import TIE, _Bound
+
+    rng = np.random.default_rng(seed)
+    for _ in range(200):
+        k = int(rng.integers(1, 30))
+        each, keyed = _Bound(k, 7, each=True), _Bound(k, 7)
+        added = []
+        for _ in range(int(rng.integers(1, 12))):
+            n = int(rng.integers(0, 40))
+            v = rng.choice([0.0, 0.5, 1.0, 2.0], n) if rng.random() < 0.3 \
+                else rng.uniform(0, 3, n)
+            keys = rng.integers(0, 7, n)
+            each.add(keys, v)
+            keyed.add(keys, v)
+            added += v.tolist()
+            want = sorted(added, reverse=True)[k - 1] if len(added) >= k else 0.0
+            assert each.value == want
+            assert keyed.value <= want
+            assert each.floor == want * (1 - TIE)
+
+
+@pytest.mark.parametrize("seed", [0, 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                         for s in range(1, 40))])
+def test_distinct_rounds_with_the_per_key_bound_give_the_same_plans(seed, monkeypatch):
+    """The previous bound of a distinct round (one value per key: on a curved outline
+    the kept plans leave most keys empty, so its floor stayed 0 and the round solved
+    every configuration) is kept as the reference: the plans, their regions and what
+    they stand for are the same, two fingers and three."""
+    from fcgrasp.model import stretches
+
+    rng = np.random.default_rng(seed)
+    part = _smooth(rng, int(rng.integers(24, 60)))
+    mu = float(rng.uniform(0.2, 0.5))
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    kw = [dict(fingers=2, mu=mu, top=int(rng.integers(3, 8)), distinct=fraction),
+          dict(fingers=3, mu=mu, top=int(rng.integers(3, 8)), distinct=fraction)]
+    got = [fc.plan(part, **k) for k in kw]
+    bound = stretches._Bound
+    monkeypatch.setattr(stretches, "_Bound",
+                        lambda *a, each=False, **k: bound(*a, **k))
+    want = [fc.plan(part, **k) for k in kw]
+    for g, w in zip(got, want, strict=True):
+        assert [p.edges for p in g] == [p.edges for p in w]
+        for p, q in zip(g, w, strict=True):
+            assert p.similar == q.similar
+            for a, b in zip(p.regions, q.regions, strict=True):
+                assert np.array_equal(a, b)
+
+
 def test_internal_grips_use_the_symmetries_that_keep_their_hole():
     """A symmetry that keeps a hole and the point the jaws go in at maps an internal
     grip's boxes onto the same grasps (the washer's centred hole: its four turns); one

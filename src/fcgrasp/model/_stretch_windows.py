@@ -322,12 +322,19 @@ class _Bound:
 
     With ``fixed``, the floor is that number and never rises (a search that must solve
     every configuration reaching it); with ``start``, the floor is at least that number
-    (a guess, checked by the search) and rises with the value above it."""
+    (a guess, checked by the search) and rises with the value above it.
+
+    With ``each``, every value added is a configuration of its own (a search without
+    lower bounds, which adds each configuration once): the ``k``-th largest value,
+    keys ignored.  A key holds many configurations of a curved outline, and one whose
+    plans leave most keys out (the rounds of a distinct search) would otherwise keep
+    its floor at 0 and solve every configuration."""
 
     def __init__(self, k: int, keys: int, fixed: float | None = None,
-                 start: float = 0.0) -> None:
+                 start: float = 0.0, each: bool = False) -> None:
         self.k = k
-        self.best = np.zeros(keys)
+        self.each = each
+        self.best = np.zeros(0 if each else keys)
         self._value = 0.0
         self.fixed = fixed
         self.start = start
@@ -339,7 +346,13 @@ class _Bound:
         sel = v > self._value
         if not sel.any():
             return
-        np.maximum.at(self.best, np.asarray(keys).ravel()[sel], v[sel])
+        if self.each:                   # the k largest values so far
+            best = np.concatenate([self.best, v[sel]])
+            if best.size > self.k:
+                best = np.partition(best, best.size - self.k)[best.size - self.k:]
+            self.best = best
+        else:
+            np.maximum.at(self.best, np.asarray(keys).ravel()[sel], v[sel])
         n = self.best.size
         if n >= self.k:
             self._value = float(np.partition(self.best, n - self.k)[n - self.k])

@@ -1095,7 +1095,8 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     for attempt in range(attempts):
         if top is None or attempt == attempts - 1:
             fixed = 0.0
-        bound = _Bound(want or 1, 2 * keys.total, fixed, start)
+        # an excluded plan's copies add no lower bounds: each configuration counts once
+        bound = _Bound(want or 1, 2 * keys.total, fixed, start, each=bool(exclude))
         if memo is not None and memo.prepared is not None:
             prepared = memo.prepared
         elif memo is not None:
