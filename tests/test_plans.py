@@ -41,3 +41,26 @@ def test_to_dict_is_json_ready():
 
     d = fc.plan(PART, fingers=4, top=1)[0].to_dict()
     assert json.loads(json.dumps(d)) == d and d["contact_type"] == "frictionless"
+
+
+def test_a_plans_contacts_halfway_are_alongs_bit_for_bit():
+    """The representative contact of a region (``midpoints``, a plan's few regions, with few
+    numpy calls) is :func:`~fcgrasp.core._geom.along` at one half, bit for bit, with
+    its segment: seeded polylines of 2-299 points at scales 1e-6 to 1e4 and offsets, with
+    repeated points and lines of one repeated point."""
+    from fcgrasp.core._geom import _halfway, along, midpoints
+
+    rng = np.random.default_rng(7)
+    for _ in range(5000):
+        m = int(rng.integers(2, 12) if rng.random() < 0.8 else rng.integers(12, 300))
+        line = rng.normal(size=(m, 2)) * 10 ** rng.uniform(-6, 4) \
+            + rng.normal(size=2) * 10 ** rng.uniform(-3, 5)
+        if rng.random() < 0.3:
+            line[int(rng.integers(1, m))] = line[int(rng.integers(0, m))]
+        if rng.random() < 0.05:
+            line[:] = line[0]
+        p, k = along(line, 0.5)
+        q, j = _halfway(line)
+        assert (q, j) == ((p[0], p[1]), int(k)), line
+        pts, edges = midpoints([line], [tuple(range(10, 10 + m - 1))])
+        assert pts[0].tolist() == p.tolist() and edges == (10 + int(k),)

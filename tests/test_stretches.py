@@ -329,3 +329,47 @@ def test_crosses_a_vertex_is_the_fan_condition():
             if 2 * np.pi / n < beta / 2:          # well inside: the best covers vertices
                 best = two_finger_stretches(part, mu, 0.5, top=1)[0]
                 assert max(len(e) for e in best.region_edges) > 1
+
+
+def _previous_polyline(ring, i, k, s0, t):
+    """The region polyline as it was built before issue 30's round (a numpy row per
+    vertex, then one array of them): the reference of ``_polyline``."""
+    from fcgrasp.core._geom import trim_vertex_ends
+    from fcgrasp.core.tolerances import ROUND_TOL
+
+    m = ring.m
+    first = ring.a[i % m] + s0 * ring.t[i % m]
+    verts = [ring.a[(i + j) % m] for j in range(1, k + 1)]
+    end_edge = (i + k) % m
+    if k == 0:
+        last = first + t * ring.t[i % m]
+    else:
+        off = ring.L[i % m] - s0 + float(ring.U[i % m + m + k] - ring.U[i % m + m + 1])
+        last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
+    pts = np.array([first, *verts, last])
+    edges = [int(ring.edges[(i + j) % m]) for j in range(k + 1)]
+    return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
+
+
+def test_region_polylines_are_the_previous_ones_bit_for_bit():
+    """A stretch's region polyline (``_polyline``: the interior vertices gathered at
+    once) is the previous implementation's, points bit for bit and edges as Python
+    ints: seeded outlines of 3-59 edges, starts around the ring and beyond, regions
+    from a vertex (trimmed) and crossing up to every vertex."""
+    from fcgrasp.model._stretch_windows import _rings
+    from fcgrasp.model.stretches import _polyline
+
+    rng = np.random.default_rng(3)
+    for _ in range(150):
+        m = int(rng.integers(3, 60))
+        a = np.sort(rng.uniform(0, 2 * np.pi, m))
+        ring = _rings(Polygon(np.c_[np.cos(a) * rng.uniform(1, 50),
+                                    np.sin(a) * rng.uniform(1, 50)]))[0]
+        for _ in range(40):
+            i, k = int(rng.integers(0, 3 * ring.m)), int(rng.integers(0, ring.m - 1))
+            s0 = 0.0 if rng.random() < 0.2 else float(rng.uniform(0, ring.L[i % ring.m]))
+            t = float(rng.uniform(0, 10))
+            p, e = _polyline(ring, i, k, s0, t)
+            q, f = _previous_polyline(ring, i, k, s0, t)
+            assert np.array_equal(p, q) and e == f
+            assert all(type(x) is int for x in e)

@@ -52,7 +52,7 @@ module) and sample every returned pair of regions with the general test.
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any, cast
 
 import numpy as np
@@ -84,7 +84,6 @@ from ._stretch_windows import (
     _fan,
     _gens_x,
     _gens_y,
-    _inner,
     _Intervals,
     _pairs_single,
     _Ring,
@@ -135,16 +134,19 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
               ) -> tuple[FloatArray, tuple[int, ...]]:
     """Points of the stretch starting at s0 on edge i, length t, k interior vertices."""
     m = ring.m
-    first = ring.a[i % m] + s0 * ring.t[i % m]
-    verts = [ring.a[(i + j) % m] for j in range(1, k + 1)]
+    at = (i + np.arange(k + 1)) % m                 # the edges covered, in ring order
+    pts = np.empty((k + 2, 2))
+    pts[0] = first = ring.a[i % m] + s0 * ring.t[i % m]
+    pts[1:k + 1] = ring.a[at[1:]]                   # the interior vertices
     end_edge = (i + k) % m
     if k == 0:
-        last = first + t * ring.t[i % m]
+        pts[-1] = first + t * ring.t[i % m]
     else:
-        off = ring.L[i % m] - s0 + float(_inner(ring, np.array([i]), np.array([k]))[0])
-        last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
-    pts = np.array([first, *verts, last])
-    edges = [int(ring.edges[(i + j) % m]) for j in range(k + 1)]
+        # _inner of the one stretch, read from the arc positions as it reads them
+        j = i % m + m
+        off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
+        pts[-1] = ring.a[end_edge] + (t - off) * ring.t[end_edge]
+    edges = ring.edges[at].tolist()
     # the vertex is held with both normals, so either is its end normal
     return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
@@ -162,6 +164,8 @@ class _Found:
     lengths: tuple[float, float] = (0.0, 0.0)
     #: the same alternative as a plan the caller excludes (:class:`_Exclusion`)
     similar: bool = False
+    #: :func:`_pairs`' placement, with the ``(s0, u0, lengths)`` it was placed at
+    placed: tuple[Any, StretchPair] | None = field(default=None, repr=False, compare=False)
 
 
 def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
@@ -1266,13 +1270,18 @@ def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dic
 
 
 def _pairs(rings: list[_Ring], found: list[_Found]) -> list[StretchPair]:
+    """Each configuration's regions, placed once for its placement (:func:`_canonical`
+    asks for them, then the caller)."""
     out = []
     for f in found:
-        x, y, _, mode = f.job
-        iA, kA, iC, kC = f.cfg
-        p1, e1 = _polyline(rings[x], iA, kA, f.s0, f.lengths[0])
-        p2, e2 = _polyline(rings[y], iC, kC, f.u0, f.lengths[1])
-        out.append(StretchPair((p1, p2), (e1, e2), f.lengths, mode))
+        at = (f.s0, f.u0, f.lengths)
+        if f.placed is None or f.placed[0] != at:
+            x, y, _, mode = f.job
+            iA, kA, iC, kC = f.cfg
+            p1, e1 = _polyline(rings[x], iA, kA, f.s0, f.lengths[0])
+            p2, e2 = _polyline(rings[y], iC, kC, f.u0, f.lengths[1])
+            f.placed = (at, StretchPair((p1, p2), (e1, e2), f.lengths, mode))
+        out.append(f.placed[1])
     return out
 
 
