@@ -28,6 +28,7 @@ from ._candidates import (
     lex_survivors,
     search_size,
 )
+from ._pair_rows import PairRows
 from ._solve import RowScores, Solved, _build_plans, _select, _smallest_region, solve
 from ._spec import (
     MAP_WINDOW,
@@ -258,7 +259,10 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
 
     lengths = features(polygon, spec.mu, spec.hand, edges).lengths
     twin = spec.shape.twin if spec.shape.three_edge else None
-    for batch in candidates(polygon, spec, edges, batch_size, key=key):
+    paired = _paired(polygon, spec, edges, exclude, floor)
+    stream = candidates(polygon, spec, edges, batch_size, key=key) if paired is None \
+        else iter(paired)
+    for batch in stream:
         if batch.ceiling < current():
             break
         window.append(batch)
@@ -269,6 +273,50 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     if progress is not None and done < total:
         progress(total, total)
     return top.plans()
+
+
+def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
+            exclude: Callable[[np.ndarray], np.ndarray] | None, floor: float
+            ) -> list[EdgeSets] | None:
+    """Four frictionless fingers on a part with millions of rows whose best rows are
+    pairs of nearly opposite edges (a regular polygon, :mod:`._pair_rows`): the seed
+    rows, then every other row that may reach the floor their ``top``-th gives (solved
+    here, the rows ``exclude`` leaves out left out, less the ranking's rounding, as
+    :class:`TopK` sets it); None where that floor is too low for the pairs to hold
+    every such row, and the search streams every row as before.  Every row left out is
+    below that floor, so a search that is not strict keeps the same plans (a strict one
+    keeps exact ties in the order found: the seed rows first)."""
+    if not PairRows.applies(spec, polygon, edges):
+        return None
+    pairs = PairRows(polygon, spec, edges)
+    if pairs.hopeless:                  # (most parts: their feet are far off the edges)
+        return None
+    top = spec.top or 1
+    seed = pairs.seed(4 * top)
+    rows = seed
+    if exclude is not None and len(rows.feats):
+        out = np.asarray(exclude(rows.feats), bool)
+        rows = rows.take(~out) if out.any() else rows
+    level = floor
+    if len(rows.feats) >= top:
+        got = solve(polygon, replace(spec, top=None), rows, edges)
+        mins = _smallest_region(got.cands.feats, got.lengths)
+        if len(mins) >= top:
+            kth = float(np.partition(-mins, top - 1)[top - 1])
+            level = max(level, -kth - 2 * RANK_TOL * polygon.size)
+    rest = pairs.reaching(level)
+    if rest is None:
+        return None
+    # by decreasing bound, in growing batches: the floor the first ones raise drops
+    # the later ones before their geometry (solve), or ends the stream (their ceiling)
+    bound = rest.bound if rest.bound is not None else np.full(len(rest.feats), np.inf)
+    by = np.argsort(-bound, kind="stable")
+    batches, start, size = [seed], 0, _spec.GATHER_ROWS
+    while start < by.size:
+        part = rest.take(np.sort(by[start:start + size]))
+        batches.append(EdgeSets(part.feats, part.bound, float(bound[by[start]])))
+        start, size = start + size, 2 * size
+    return batches
 
 
 def _reaching(batch: EdgeSets, memo: RowScores, floor: float, size: float) -> EdgeSets:

@@ -110,6 +110,7 @@ def _stretches(blob: Any) -> None:
 
 
 def _four(small: Any) -> None:
+    from ..model.polygon import Polygon
     from ..pipeline._rows_kernels import survivors
     from .planner import plan
 
@@ -119,6 +120,16 @@ def _four(small: Any) -> None:
     edge = order.copy()
     edge.flags.writeable = False        # the features' edges are read-only
     survivors(order, edge, z, z / 2, 5, 5, 3, "as_is", 4, 2, z[:4], 10)
+    # the rows of a regular polygon from pairs of opposite edges, and their bounds
+    from ..pipeline._pair_rows import PairRows, coupled_bounds
+    from ..pipeline._spec import plan_spec
+
+    a = np.linspace(0, 2 * np.pi, 12, endpoint=False)
+    pairs = PairRows(Polygon(np.c_[np.cos(a), np.sin(a)]),
+                     plan_spec(fingers=4, along_boundary=False))
+    pairs.seed(1)
+    pairs.reaching(0.99 * pairs.gamma)
+    coupled_bounds(pairs.n, pairs.g, pairs.L, np.array([[0, 3, 6, 9]]))
 
 
 def _jaw() -> None:

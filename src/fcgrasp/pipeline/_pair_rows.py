@@ -1,0 +1,322 @@
+"""Four frictionless fingers on a regular polygon: the rows that can reach a floor, from
+pairs of nearly opposite edges (issue 30: ``icons/circle.svg``, the regular 500-gon).
+
+On a regular polygon every edge's normal passes through the centre, so every row of
+four edges has the same bound (:func:`~fcgrasp.pipeline._candidates._row_bound`, and
+the stage-1 score: half an edge), while the best rows, two exactly opposite pairs,
+reach a little less (the margin).  The branch and bound then solves every one of
+``C(n, 4)`` rows.  This module bounds a row by the *coupling* of its two force
+circuits, and shows that a row near half an edge is made of two pairs of nearly
+opposite edges, so that the rows reaching a high floor are found among pairs of pairs.
+
+**The bound** (margin-free; the search's regions, with the margin and one pairing of
+theorem 7.1, are no longer).  Let edge ``i`` have unit force ``n_i``, length ``L_i``,
+and ``g_i`` the foot of a point ``c`` on it (arc length from its start ``a_i``).  A
+rotation of sense + about a point ``x`` is not resisted by contacts at ``s_i`` when
+every torque ``s_i - g_i(x)`` is >= 0; with regions ``[a_i, b_i]`` some placement lets
+it through when ``g_i(x) <= b_i`` for every ``i`` (and sense -: ``g_i(x) >= a_i``).
+``g_i(x)`` is affine in ``x`` with gradient the tangent, so by Farkas' lemma every
+placement holds exactly when there are positive dependencies ``rho``, ``sigma`` of the
+forces (``sum rho_i n_i = 0``) with ``sum rho_i (b_i - g_i) < 0 < sum sigma_i (a_i -
+g_i)`` (the sums do not depend on ``c``).  They can be taken among the two extreme rays
+of the forces' dependencies, and they differ (else ``sum rho_i (b_i - a_i) < 0``).
+Half of each inequality, normalised (``p = rho / 2|rho|``, ``q = sigma / 2|sigma|``),
+summed, each region taken at its least (``b_i - a_i >= t``, ``0 <= a_i``, ``b_i <=
+L_i``):
+
+    t  <  sum |p_i - q_i| gamma_i / sum max(p_i, q_i),
+
+``gamma_i = g_i`` where ``p_i >= q_i``, else ``L_i - g_i``: :func:`coupled_bounds`
+(both assignments of the rays, the larger).
+
+**The pairs.**  With ``Gamma >= max(g_i, L_i - g_i)`` over the edges and ``sum
+max(p_i, q_i) <= 1``, a row reaching ``t >= F`` has ``sum_i min(rho^_i, sigma^_i) <
+eps = 2 (1 - F / Gamma)`` (normalised rays).  Where ``eps < 1/4``: the rays' supports
+(two or three forces each, all four together) share at most two forces ``u``, ``v``;
+a ray's weights on a triple are the sines between the other two, so ``rho^_u + rho^_v
+= 1 - rho^_k >= 1/2`` (the triangle inequality) and both shared forces cannot be light
+in one ray; so ``u`` is light in one ray and ``v`` in the other, and a light weight
+(``< eps``) means the other two forces of its triple have a cross product below
+``2 eps / (1 - eps)`` and a negative dot product (at or above it they would weigh at
+least ``1 / (1 + sqrt 2)``).  The row is then two disjoint pairs of nearly opposite
+forces: :meth:`PairRows.reaching` enumerates the pairs of such pairs and keeps those
+whose :func:`coupled_bounds` reach ``F``.  Two fingers on one edge share a force, so
+their rays share the other two with equal weights (``sum min >= 1/2``): such rows
+never reach ``F`` where ``eps < 1/4``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray
+from ..core.kernels import CompiledLoops
+from ..model.polygon import Polygon
+from ._candidates import EdgeSets, features
+from ._spec import PlanSpec
+
+#: Weights of a circuit's forces within this (cross products of unit forces) count as
+#: zero: the circuit is kept, so a bound is never lost to rounding.
+RAY_TOL = 1e-12
+#: What the bound of a row and the floor are padded by (relative), for rounding.
+PAD = 1e-9
+#: Seed rows: at least this many of the best bounds among pairs of each edge's most
+#: nearly opposite partner.
+SEED_ROWS = 256
+#: Features from which the pairs are not tried (their table of partners).
+MAX_FEATURES = 20_000
+#: Rows of four edges (``C(n, 4)``) from which the pairs are tried: below, the stream of
+#: every row is quick, and a strict search keeps its exact ties as it met them.
+MIN_ROWS = 5_000_000
+
+
+def _circuits(n: Any, row: Any, rays: Any, tol: float) -> int:
+    """The positive dependencies of the forces ``n[row]`` of each triple (the fourth
+    dropped), normalised to sum 1, into ``rays`` (4, 4): row ``d`` for the triple
+    without force ``d``, all zero where the triple has none.  Returns how many."""
+    count = 0
+    for d in range(4):
+        i0, i1, i2 = (1, 2, 3) if d == 0 else (0, 2, 3) if d == 1 else \
+            (0, 1, 3) if d == 2 else (0, 1, 2)
+        a, b, c = row[i0], row[i1], row[i2]
+        wa = n[b, 0] * n[c, 1] - n[b, 1] * n[c, 0]
+        wb = n[c, 0] * n[a, 1] - n[c, 1] * n[a, 0]
+        wc = n[a, 0] * n[b, 1] - n[a, 1] * n[b, 0]
+        if wa + wb + wc < 0:
+            wa, wb, wc = -wa, -wb, -wc
+        for k in range(4):
+            rays[d, k] = 0.0
+        s = wa + wb + wc
+        if wa >= -tol and wb >= -tol and wc >= -tol and s > tol:
+            wa, wb, wc = max(wa, 0.0), max(wb, 0.0), max(wc, 0.0)
+            s = wa + wb + wc
+            rays[d, i0], rays[d, i1], rays[d, i2] = wa / s, wb / s, wc / s
+            count += 1
+    return count
+
+
+def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float) -> float:
+    """:func:`coupled_bounds` of one row (its four features ``row``)."""
+    if _circuits(n, row, rays, tol) < 2:
+        return 0.0
+    # the two most different circuits (a pair's circuit is found twice)
+    best, bi, bj = -1.0, 0, 0
+    for i in range(4):
+        if rays[i, 0] + rays[i, 1] + rays[i, 2] + rays[i, 3] <= 0:
+            continue
+        for j in range(i + 1, 4):
+            if rays[j, 0] + rays[j, 1] + rays[j, 2] + rays[j, 3] <= 0:
+                continue
+            d = 0.0
+            for k in range(4):
+                d += abs(rays[i, k] - rays[j, k])
+            if d > best:
+                best, bi, bj = d, i, j
+    if best <= 1e-9:
+        return 0.0
+    out = 0.0
+    for side in range(2):
+        num, den = 0.0, 0.0
+        for k in range(4):
+            p = rays[bi, k] / 2 if side == 0 else rays[bj, k] / 2
+            q = rays[bj, k] / 2 if side == 0 else rays[bi, k] / 2
+            f = row[k]
+            gam = g[f] if p >= q else L[f] - g[f]
+            num += abs(p - q) * gam
+            den += max(p, q)
+        out = max(out, num / den)
+    return out
+
+
+def _bounds_loop(n: Any, g: Any, L: Any, rows: Any, tol: float, out: Any) -> None:
+    rays = np.empty((4, 4))
+    for r in range(rows.shape[0]):
+        out[r] = _coupled(n, g, L, rows[r], rays, tol)
+
+
+def _pairs_loop(pa: Any, pb: Any, n: Any, g: Any, L: Any, floor: float, tol: float,
+                rows: Any, bound: Any) -> Any:
+    """Every row of two disjoint pairs ``(pa[i], pb[i])``, ``(pa[j], pb[j])`` (``i <
+    j``), its features sorted, whose :func:`_coupled` bound reaches ``floor``; returns
+    ``(rows, bounds, count)``, the arrays grown as needed."""
+    rays = np.empty((4, 4))
+    row = np.empty(4, np.int64)
+    m = 0
+    for i in range(pa.shape[0]):
+        for j in range(i + 1, pa.shape[0]):
+            a, b, c, d = pa[i], pb[i], pa[j], pb[j]
+            if a == c or a == d or b == c or b == d:
+                continue
+            row[0], row[1], row[2], row[3] = a, b, c, d
+            for x in range(1, 4):          # sorted, as the stream's rows are
+                y = row[x]
+                z = x - 1
+                while z >= 0 and row[z] > y:
+                    row[z + 1] = row[z]
+                    z -= 1
+                row[z + 1] = y
+            v = _coupled(n, g, L, row, rays, tol)
+            if v < floor:
+                continue
+            if m == rows.shape[0]:
+                bigger = np.empty((2 * m, 4), np.int64)
+                bigger[:m] = rows[:m]
+                rows = bigger
+                more = np.empty(2 * m)
+                more[:m] = bound[:m]
+                bound = more
+            for x in range(4):
+                rows[m, x] = row[x]
+            bound[m] = v
+            m += 1
+    return rows, bound, m
+
+
+_LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _pairs_loop))
+
+
+def coupled_bounds(n: FloatArray, g: FloatArray, L: FloatArray, rows: np.ndarray
+                   ) -> FloatArray:
+    """An upper bound of each row's smallest region, four frictionless fingers on four
+    edges, by the coupling of its two force circuits (the module's docstring): ``n``
+    (E, 2) unit forces, ``g`` (E,) the feet of one point (arc length from each edge's
+    start), ``L`` (E,) the lengths, ``rows`` (R, 4) feature indices.  0 where the forces
+    do not positively span the plane.  Compiled where numba runs, else the same loop
+    in Python."""
+    rows = np.ascontiguousarray(rows, dtype=np.int64).reshape(-1, 4)
+    out = np.empty(len(rows))
+    args = (np.ascontiguousarray(n, dtype=float), np.ascontiguousarray(g, dtype=float),
+            np.ascontiguousarray(L, dtype=float), rows, RAY_TOL, out)
+    ok, _ = _LOOPS.run("_bounds_loop", *args)
+    if not ok:
+        _bounds_loop(*args)
+    return out
+
+
+class PairRows:
+    """The rows of four frictionless fingers (single-edge, no gravity) that may reach a
+    floor, from pairs of nearly opposite edges (the module's docstring): a few
+    :meth:`seed` rows to raise the search's floor, then :meth:`reaching` every row
+    that can reach it, or None where the floor is too low for the pairs to hold them
+    all (the search then streams every row as before).
+
+    ``c`` is the part's centroid; ``Gamma`` the largest ``max(g, L - g)``."""
+
+    def __init__(self, polygon: Polygon, spec: PlanSpec, edges: Any = None) -> None:
+        F = features(polygon, spec.mu, spec.hand, edges)
+        self.n = np.stack([np.cos(F.center), np.sin(F.center)], axis=1)
+        d = F.b - F.a
+        self.L = np.hypot(d[:, 0], d[:, 1])
+        t = d / np.where(self.L > 0, self.L, 1.0)[:, None]
+        c = np.asarray(polygon.centroid, dtype=float)
+        self.g = np.einsum("ij,ij->i", c[None, :] - F.a, t)
+        self.gamma = float(np.max(np.maximum(self.g, self.L - self.g))) if len(F.a) else 0.0
+        self.angle = np.mod(F.center, 2 * np.pi)
+        self.seeded: np.ndarray | None = None
+        #: no region is longer than its edge, so no row reaches the fourth longest
+        #: edge; the pairs answer from 7/8 of ``Gamma`` only
+        self.hopeless = self.L.size < 4 or \
+            7 / 8 * self.gamma >= float(np.sort(self.L)[-4]) * (1 + PAD)
+
+    @staticmethod
+    def applies(spec: PlanSpec, polygon: Polygon, edges: Any = None) -> bool:
+        """Four frictionless fingers on single edges, no gravity, no hand, a top, ranked
+        by the smallest region, at least :data:`MIN_ROWS` rows, numba running (the
+        pairs' loop)."""
+        return (spec.fingers == 4 and spec.contact_type == "frictionless"
+                and spec.gravity is None and spec.hand is None and spec.top is not None
+                and spec.rank_by == "min_region" and not spec.along_boundary
+                and 4 <= polygon.n_edges <= MAX_FEATURES
+                and math.comb(polygon.n_edges, 4) >= MIN_ROWS and _LOOPS.available())
+
+    def _pairs(self, half_width: float) -> tuple[np.ndarray, np.ndarray]:
+        """The pairs ``x < y`` of forces with a negative dot product and a cross product
+        below ``sin(half_width)`` (at most ``half_width`` from opposite; found from the
+        sorted angles, then tested exactly)."""
+        ang = self.angle
+        order = np.argsort(ang, kind="stable")
+        s = ang[order]
+        lo = np.searchsorted(s, np.mod(s + np.pi - half_width - 1e-9, 2 * np.pi))
+        hi = np.searchsorted(s, np.mod(s + np.pi + half_width + 1e-9, 2 * np.pi),
+                             side="right")
+        count = np.where(hi >= lo, hi - lo, hi + s.size - lo)
+        x = np.repeat(np.arange(s.size), count)
+        start = np.repeat(lo, count)
+        k = np.arange(x.size) - np.repeat(np.cumsum(count) - count, count)
+        y = (start + k) % s.size
+        a, b = order[x], order[y]
+        n = self.n
+        cross = np.abs(n[a, 0] * n[b, 1] - n[a, 1] * n[b, 0])
+        keep = (a < b) & (np.einsum("ij,ij->i", n[a], n[b]) < 0) \
+            & (cross < math.sin(half_width))
+        return a[keep], b[keep]
+
+    def _rows(self, pa: np.ndarray, pb: np.ndarray, floor: float
+              ) -> tuple[np.ndarray, FloatArray]:
+        ok, got = _LOOPS.run("_pairs_loop", np.ascontiguousarray(pa, np.int64),
+                             np.ascontiguousarray(pb, np.int64), self.n, self.g, self.L,
+                             float(floor), RAY_TOL, np.empty((64, 4), np.int64),
+                             np.empty(64))
+        if not ok:
+            return np.zeros((0, 4), np.int64), np.zeros(0)
+        rows, bound, m = got
+        # a row of two pairs may be two other pairs as well: each once
+        _, first = np.unique(pair_keys(rows[:m], self.n.shape[0]), return_index=True)
+        return rows[first], bound[first]
+
+    def _nearest(self) -> tuple[np.ndarray, np.ndarray]:
+        """Each force's two most nearly opposite partners (by angle), as pairs ``x <
+        y`` with a negative dot product, each once."""
+        ang = self.angle
+        order = np.argsort(ang, kind="stable")
+        s = ang[order]
+        at = np.searchsorted(s, np.mod(s + np.pi, 2 * np.pi))
+        x = np.repeat(np.arange(s.size), 2)
+        y = np.stack([at - 1, at], axis=1).ravel() % s.size
+        a, b = order[x], order[y]
+        a, b = np.minimum(a, b), np.maximum(a, b)
+        keep = (a < b) & (np.einsum("ij,ij->i", self.n[a], self.n[b]) < 0)
+        pairs = np.unique(np.stack([a[keep], b[keep]], axis=1), axis=0)
+        return pairs[:, 0], pairs[:, 1]
+
+    def seed(self, count: int) -> EdgeSets:
+        """The ``count`` rows (at least :data:`SEED_ROWS`) of the best bounds among the
+        pairs of each force's most nearly opposite partners; their ceiling is none."""
+        if self.angle.size < 4:
+            self.seeded = np.zeros((0, 4), np.int64)
+            return EdgeSets(self.seeded, np.zeros(0), np.inf)
+        rows, bound = self._rows(*self._nearest(), 0.0)
+        keep = np.argsort(-bound, kind="stable")[:max(count, SEED_ROWS)]
+        rows, bound = rows[keep], bound[keep]
+        order = np.lexsort(rows.T[::-1])
+        self.seeded = rows[order]
+        return EdgeSets(rows[order], bound[order], np.inf)
+
+    def reaching(self, floor: float) -> EdgeSets | None:
+        """Every row whose smallest region may reach ``floor`` (its coupled bound does),
+        but the :meth:`seed` rows; None where ``floor`` is too low for the pairs to hold
+        them all (``eps >= 1/4``)."""
+        if floor <= 0 or self.gamma <= 0:
+            return None
+        eps = 2 * (1 - floor * (1 - PAD) / self.gamma) + PAD
+        if eps >= 0.25:
+            return None
+        eps = max(eps, 0.0)
+        pa, pb = self._pairs(math.asin(min(2 * eps / (1 - eps), 1.0)) + 1e-9)
+        rows, bound = self._rows(pa, pb, floor * (1 - PAD))
+        if self.seeded is not None and len(self.seeded) and len(rows):
+            seen = pair_keys(self.seeded, self.n.shape[0])
+            fresh = ~np.isin(pair_keys(rows, self.n.shape[0]), seen)
+            rows, bound = rows[fresh], bound[fresh]
+        order = np.lexsort(rows.T[::-1])
+        return EdgeSets(rows[order], bound[order],
+                        float(bound.max()) if bound.size else -np.inf)
+
+
+def pair_keys(rows: np.ndarray, base: int) -> np.ndarray:
+    """Each sorted row as one integer (features in base ``base``)."""
+    r = rows.astype(np.int64)
+    return ((r[:, 0] * base + r[:, 1]) * base + r[:, 2]) * base + r[:, 3]
