@@ -219,3 +219,12 @@ PARALLEL_FACETS = 1e-4
 #: A test contact of the optimality bound (:mod:`fcgrasp.model.bounds`) closer than this
 #: fraction of the part's size to a vertex is moved inside its edge, so it has one normal.
 VERTEX_HAIR = 1e-9
+
+#: Four frictionless fingers' pairs of opposite edges (:mod:`fcgrasp.pipeline._pair_rows`):
+#: a force circuit's weight (a cross product of unit forces) within this of zero still
+#: counts, so that rounding never loses a row's bound.
+PAIR_RAY_TOL = 1e-12
+
+#: The same: what a row's bound and the floor are padded by (relative), and the pairs'
+#: window of angles (radians), for rounding.
+PAIR_PAD = 1e-9

@@ -54,15 +54,16 @@ import numpy as np
 
 from ..core._checks import FloatArray
 from ..core.kernels import CompiledLoops
+from ..core.tolerances import PAIR_PAD, PAIR_RAY_TOL
 from ..model.polygon import Polygon
 from ._candidates import EdgeSets, features
 from ._spec import PlanSpec
 
 #: Weights of a circuit's forces within this (cross products of unit forces) count as
 #: zero: the circuit is kept, so a bound is never lost to rounding.
-RAY_TOL = 1e-12
+RAY_TOL = PAIR_RAY_TOL
 #: What the bound of a row and the floor are padded by (relative), for rounding.
-PAD = 1e-9
+PAD = PAIR_PAD
 #: Seed rows: at least this many of the best bounds among pairs of each edge's most
 #: nearly opposite partner.
 SEED_ROWS = 256
@@ -115,7 +116,7 @@ def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float) -> float:
                 d += abs(rays[i, k] - rays[j, k])
             if d > best:
                 best, bi, bj = d, i, j
-    if best <= 1e-9:
+    if best <= PAD:
         return 0.0
     out = 0.0
     for side in range(2):
@@ -239,8 +240,8 @@ class PairRows:
         ang = self.angle
         order = np.argsort(ang, kind="stable")
         s = ang[order]
-        lo = np.searchsorted(s, np.mod(s + np.pi - half_width - 1e-9, 2 * np.pi))
-        hi = np.searchsorted(s, np.mod(s + np.pi + half_width + 1e-9, 2 * np.pi),
+        lo = np.searchsorted(s, np.mod(s + np.pi - half_width - PAD, 2 * np.pi))
+        hi = np.searchsorted(s, np.mod(s + np.pi + half_width + PAD, 2 * np.pi),
                              side="right")
         count = np.where(hi >= lo, hi - lo, hi + s.size - lo)
         x = np.repeat(np.arange(s.size), count)
@@ -305,7 +306,7 @@ class PairRows:
         if eps >= 0.25:
             return None
         eps = max(eps, 0.0)
-        pa, pb = self._pairs(math.asin(min(2 * eps / (1 - eps), 1.0)) + 1e-9)
+        pa, pb = self._pairs(math.asin(min(2 * eps / (1 - eps), 1.0)) + PAD)
         rows, bound = self._rows(pa, pb, floor * (1 - PAD))
         if self.seeded is not None and len(self.seeded) and len(rows):
             seen = pair_keys(self.seeded, self.n.shape[0])
