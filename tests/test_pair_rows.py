@@ -84,7 +84,7 @@ def test_the_coupled_bound_is_at_least_every_rows_smallest_region(seed):
         float(np.max(value / bound))
     plain = np.empty(len(rows))
     _pair_rows._bounds_loop(n, g, L, np.ascontiguousarray(rows, np.int64),
-                            _pair_rows.RAY_TOL, plain)
+                            _pair_rows.RAY_TOL, -1, plain)
     np.testing.assert_allclose(coupled_bounds(n, g, L, rows), plain, rtol=1e-12, atol=0)
 
 
@@ -228,16 +228,19 @@ def test_strict_and_floored_searches_through_the_pairs(n, monkeypatch):
     assert read and all(read)
 
 
-def test_the_pairs_apply_only_to_four_frictionless_fingers_on_single_edges():
-    """Where the pairs do not apply the search streams every row: with gravity, along
-    the boundary, without a top, ranked by another measure."""
+def test_the_pairs_apply_only_to_frictionless_fingers_on_single_edges():
+    """Four frictionless fingers or three and gravity, on single edges; where the pairs
+    do not apply the search streams every row: along the boundary, without a top,
+    ranked by another measure, two fingers."""
     poly = _ngon(12)
     assert PairRows.applies(plan_spec(fingers=4, along_boundary=False), poly)
     with pytest.MonkeyPatch.context() as m:      # by default: millions of rows only
         m.setattr(_pair_rows, "MIN_ROWS", _MIN_ROWS)
         assert not PairRows.applies(plan_spec(fingers=4, along_boundary=False), poly)
         assert PairRows.applies(plan_spec(fingers=4, along_boundary=False), _ngon(120))
-    for kw in (dict(fingers=3, gravity=(0, -1), along_boundary=False),
+    assert PairRows.applies(plan_spec(fingers=3, gravity=(0, -1), along_boundary=False),
+                            poly)
+    for kw in (dict(fingers=3, gravity=(0, -1)),
                dict(fingers=4), dict(fingers=4, along_boundary=False, top=None),
                dict(fingers=4, along_boundary=False, rank_by="resistance"),
                dict(fingers=2, mu=0.3, along_boundary=False)):
@@ -259,3 +262,76 @@ def test_a_regular_polygon_of_many_edges_is_planned_from_the_pairs():
     assert 0.49 * edge < min(best.lengths) < 0.5 * edge
     F = features(poly, 0.0, None)
     assert F.lengths.size == 120
+
+
+GRAVITY = [(0, -1), (0.3, -1), (1, 0.2)]
+
+
+@pytest.mark.parametrize("seed", [*range(6), *(pytest.param(s, marks=pytest.mark.slow)
+                                              for s in range(6, 60))])
+def test_the_coupled_bound_of_three_fingers_and_gravity(seed):
+    """Three frictionless fingers and gravity (a fixed force at the centroid, the point
+    the feet are taken from: its terms vanish): every row's smallest region, solved,
+    is at most its coupled bound; seeded parts and gravity directions."""
+    poly = _parts(seed)
+    spec = plan_spec(fingers=3, gravity=GRAVITY[seed % 3], top=None, along_boundary=False)
+    pairs = PairRows(poly, spec)
+    rows = np.concatenate([b.feats for b in candidates(poly, spec)])
+    rows = rows[np.all(np.diff(np.sort(rows[:, :3], axis=1), axis=1) > 0, axis=1)]
+    got = solve(poly, spec, EdgeSets(rows))
+    feats = got.cands.feats.copy()
+    feats[feats < 0] = pairs.fixed
+    bound = coupled_bounds(pairs.kn, pairs.kg, pairs.kL, feats, pairs.fixed)
+    value = np.where(got.cands.feats >= 0, got.lengths, np.inf).min(axis=1)
+    assert len(value) > 0
+    assert np.all(value <= bound * (1 + 1e-9) + 1e-12 * poly.size), \
+        float(np.max(value / bound))
+
+
+@pytest.mark.parametrize("n", [12, 30, 41, *(pytest.param(n, marks=pytest.mark.slow)
+                                             for n in (8, 16, 24, 40, 60))])
+@pytest.mark.parametrize("jitter", [0.0, 1e-3])
+def test_every_row_of_gravity_whose_bound_reaches_a_floor_is_read(n, jitter):
+    """The lemma with gravity: a row near ``Gamma`` has a force nearly opposite to
+    gravity (whichever force the circuits share); every row of three edges whose
+    coupled bound reaches the floor is read, floors from 0.999 down to 0.7 of
+    ``Gamma``, each once."""
+    import itertools
+
+    poly = _ngon(n, jitter=jitter, seed=n)
+    for down in GRAVITY:
+        pairs = PairRows(poly, plan_spec(fingers=3, gravity=down, top=10,
+                                         along_boundary=False))
+        pairs.seed(8)
+        rows = np.array([[*r, pairs.fixed] for r in itertools.combinations(range(n), 3)])
+        bound = coupled_bounds(pairs.kn, pairs.kg, pairs.kL, rows, pairs.fixed)
+        for share in (0.999, 0.99, 0.97, 0.95, 0.93, 0.9, 0.876, 0.8, 0.7):
+            floor = share * pairs.gamma
+            got = pairs.reaching(floor)
+            assert (got is None) == (share < 7 / 8)
+            if got is None:
+                continue
+            assert np.all(got.feats[:, 3] == -1)
+            feats = np.concatenate([pairs.seeded, got.feats])
+            feats[feats < 0] = pairs.fixed
+            read = pair_keys(feats, n + 1)
+            assert len(np.unique(read)) == len(read)
+            want = pair_keys(rows[bound >= floor], n + 1)
+            assert np.all(np.isin(want, read)), (down, share)
+
+
+@pytest.mark.parametrize("seed", [*range(4), *(pytest.param(s, marks=pytest.mark.slow)
+                                              for s in range(4, 40))])
+def test_three_fingers_and_gravity_through_the_pairs_give_the_previous_plans(
+        seed, monkeypatch):
+    """``fc.plan`` of three frictionless fingers and gravity, single-edge and by
+    default, with the pairs and with every row streamed: the same plans."""
+    rng = np.random.default_rng(seed)
+    n = int(rng.integers(6, 49))
+    poly = _ngon(n, turn=float(rng.uniform(0, 1))) if seed % 3 != 2 else _parts(seed)
+    down = GRAVITY[seed % 3]
+    for kw in (dict(fingers=3, gravity=down, along_boundary=False,
+                    top=int(rng.integers(1, 13)), distinct=0),
+               dict(fingers=3, gravity=down)):
+        _same_plans(_plans(poly, kw, True, monkeypatch), _plans(poly, kw, False, monkeypatch),
+                    poly.size)

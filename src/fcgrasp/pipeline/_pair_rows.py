@@ -1,4 +1,4 @@
-"""Four frictionless fingers on a regular polygon: the rows that can reach a floor, from
+"""Frictionless fingers on a regular polygon: the rows that can reach a floor, from
 pairs of nearly opposite edges (issue 30: ``icons/circle.svg``, the regular 500-gon).
 
 On a regular polygon every edge's normal passes through the centre, so every row of
@@ -43,6 +43,16 @@ forces: :meth:`PairRows.reaching` enumerates the pairs of such pairs and keeps t
 whose :func:`coupled_bounds` reach ``F``.  Two fingers on one edge share a force, so
 their rays share the other two with equal weights (``sum min >= 1/2``): such rows
 never reach ``F`` where ``eps < 1/4``.
+
+**Three fingers and gravity.**  Gravity is a fixed force at the centroid, the point
+``c`` the feet are taken from: its terms vanish, and the sums above run over the three
+fingers only (``sum max <= 1`` still), so ``sum min < eps`` over the fingers.  Where
+gravity is light in neither ray (a shared force), the case above gives two pairs, one
+of them gravity's; where it is shared, only the other shared force counts, and its
+light weight makes gravity and a finger nearly opposite; where a ray is a pair, one
+of the two pairs holds gravity or the other is nearly opposite to it.  So a row near
+``Gamma`` has a finger nearly opposite to gravity (the same width), and the rows read
+are those fingers with any two others.
 """
 
 from __future__ import annotations
@@ -99,8 +109,9 @@ def _circuits(n: Any, row: Any, rays: Any, tol: float) -> int:
     return count
 
 
-def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float) -> float:
-    """:func:`coupled_bounds` of one row (its four features ``row``)."""
+def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float, fixed: int) -> float:
+    """:func:`coupled_bounds` of one row (its four features ``row``; ``fixed``: the
+    index of gravity's force, a fixed point with no region, -1 for none)."""
     if _circuits(n, row, rays, tol) < 2:
         return 0.0
     # the two most different circuits (a pair's circuit is found twice)
@@ -125,6 +136,8 @@ def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float) -> float:
             p = rays[bi, k] / 2 if side == 0 else rays[bj, k] / 2
             q = rays[bj, k] / 2 if side == 0 else rays[bi, k] / 2
             f = row[k]
+            if f == fixed:              # gravity at the point c: its terms vanish
+                continue
             gam = g[f] if p >= q else L[f] - g[f]
             num += abs(p - q) * gam
             den += max(p, q)
@@ -132,10 +145,61 @@ def _coupled(n: Any, g: Any, L: Any, row: Any, rays: Any, tol: float) -> float:
     return out
 
 
-def _bounds_loop(n: Any, g: Any, L: Any, rows: Any, tol: float, out: Any) -> None:
+def _bounds_loop(n: Any, g: Any, L: Any, rows: Any, tol: float, fixed: int,
+                 out: Any) -> None:
     rays = np.empty((4, 4))
     for r in range(rows.shape[0]):
-        out[r] = _coupled(n, g, L, rows[r], rays, tol)
+        out[r] = _coupled(n, g, L, rows[r], rays, tol, fixed)
+
+
+def _kept(row: Any, v: float, m: int, rows: Any, bound: Any) -> Any:
+    """Append a row and its bound (the arrays grown as needed); returns them."""
+    if m == rows.shape[0]:
+        bigger = np.empty((2 * m, 4), np.int64)
+        bigger[:m] = rows[:m]
+        rows = bigger
+        more = np.empty(2 * m)
+        more[:m] = bound[:m]
+        bound = more
+    for x in range(4):
+        rows[m, x] = row[x]
+    bound[m] = v
+    return rows, bound
+
+
+def _sort4(row: Any) -> None:
+    for x in range(1, 4):
+        y = row[x]
+        z = x - 1
+        while z >= 0 and row[z] > y:
+            row[z + 1] = row[z]
+            z -= 1
+        row[z + 1] = y
+
+
+def _gravity_loop(xs: Any, m_feat: int, n: Any, g: Any, L: Any, floor: float, tol: float,
+                  rows: Any, bound: Any) -> Any:
+    """Three fingers and gravity (its force the last, ``m_feat``): every row of a
+    feature of ``xs`` and two others, sorted, gravity last, whose :func:`_coupled`
+    bound reaches ``floor``; ``(rows, bounds, count)``."""
+    rays = np.empty((4, 4))
+    row = np.empty(4, np.int64)
+    m = 0
+    for x in xs:
+        for y in range(m_feat):
+            if y == x:
+                continue
+            for z in range(y + 1, m_feat):
+                if z == x:
+                    continue
+                row[0], row[1], row[2], row[3] = x, y, z, m_feat
+                _sort4(row)             # gravity's index is the largest: it stays last
+                v = _coupled(n, g, L, row, rays, tol, m_feat)
+                if v < floor:
+                    continue
+                rows, bound = _kept(row, v, m, rows, bound)
+                m += 1
+    return rows, bound, m
 
 
 def _pairs_loop(pa: Any, pb: Any, n: Any, g: Any, L: Any, floor: float, tol: float,
@@ -152,45 +216,32 @@ def _pairs_loop(pa: Any, pb: Any, n: Any, g: Any, L: Any, floor: float, tol: flo
             if a == c or a == d or b == c or b == d:
                 continue
             row[0], row[1], row[2], row[3] = a, b, c, d
-            for x in range(1, 4):          # sorted, as the stream's rows are
-                y = row[x]
-                z = x - 1
-                while z >= 0 and row[z] > y:
-                    row[z + 1] = row[z]
-                    z -= 1
-                row[z + 1] = y
-            v = _coupled(n, g, L, row, rays, tol)
+            _sort4(row)                 # sorted, as the stream's rows are
+            v = _coupled(n, g, L, row, rays, tol, -1)
             if v < floor:
                 continue
-            if m == rows.shape[0]:
-                bigger = np.empty((2 * m, 4), np.int64)
-                bigger[:m] = rows[:m]
-                rows = bigger
-                more = np.empty(2 * m)
-                more[:m] = bound[:m]
-                bound = more
-            for x in range(4):
-                rows[m, x] = row[x]
-            bound[m] = v
+            rows, bound = _kept(row, v, m, rows, bound)
             m += 1
     return rows, bound, m
 
 
-_LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _pairs_loop))
+_LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _kept, _sort4,
+                                   _gravity_loop, _pairs_loop))
 
 
-def coupled_bounds(n: FloatArray, g: FloatArray, L: FloatArray, rows: np.ndarray
-                   ) -> FloatArray:
+def coupled_bounds(n: FloatArray, g: FloatArray, L: FloatArray, rows: np.ndarray,
+                   fixed: int = -1) -> FloatArray:
     """An upper bound of each row's smallest region, four frictionless fingers on four
     edges, by the coupling of its two force circuits (the module's docstring): ``n``
     (E, 2) unit forces, ``g`` (E,) the feet of one point (arc length from each edge's
-    start), ``L`` (E,) the lengths, ``rows`` (R, 4) feature indices.  0 where the forces
-    do not positively span the plane.  Compiled where numba runs, else the same loop
-    in Python."""
+    start), ``L`` (E,) the lengths, ``rows`` (R, 4) feature indices; ``fixed``: the
+    index of gravity's force (a fixed point at ``c``: no region, out of the sums), -1
+    for none.  0 where the forces do not positively span the plane.  Compiled where
+    numba runs, else the same loop in Python."""
     rows = np.ascontiguousarray(rows, dtype=np.int64).reshape(-1, 4)
     out = np.empty(len(rows))
     args = (np.ascontiguousarray(n, dtype=float), np.ascontiguousarray(g, dtype=float),
-            np.ascontiguousarray(L, dtype=float), rows, RAY_TOL, out)
+            np.ascontiguousarray(L, dtype=float), rows, RAY_TOL, int(fixed), out)
     ok, _ = _LOOPS.run("_bounds_loop", *args)
     if not ok:
         _bounds_loop(*args)
@@ -198,8 +249,8 @@ def coupled_bounds(n: FloatArray, g: FloatArray, L: FloatArray, rows: np.ndarray
 
 
 class PairRows:
-    """The rows of four frictionless fingers (single-edge, no gravity) that may reach a
-    floor, from pairs of nearly opposite edges (the module's docstring): a few
+    """The rows of four frictionless fingers, or three and gravity (single-edge), that
+    may reach a floor, from pairs of nearly opposite edges (the module's docstring): a few
     :meth:`seed` rows to raise the search's floor, then :meth:`reaching` every row
     that can reach it, or None where the floor is too low for the pairs to hold them
     all (the search then streams every row as before).
@@ -217,21 +268,61 @@ class PairRows:
         self.gamma = float(np.max(np.maximum(self.g, self.L - self.g))) if len(F.a) else 0.0
         self.angle = np.mod(F.center, 2 * np.pi)
         self.seeded: np.ndarray | None = None
-        #: no region is longer than its edge, so no row reaches the fourth longest
+        m = self.L.size
+        #: three fingers and gravity: gravity's force the last of the kernels' tables
+        #: (a fixed point at the centroid ``c``: no region, its foot 0), else -1
+        self.fixed = m if spec.gravity is not None else -1
+        self.kn, self.kg, self.kL = self.n, self.g, self.L
+        if self.fixed >= 0:
+            d = np.asarray(spec.gravity, dtype=float)
+            self.down = d / np.hypot(d[0], d[1])
+            self.kn = np.ascontiguousarray(np.vstack([self.n, self.down]))
+            self.kg, self.kL = np.append(self.g, 0.0), np.append(self.L, 0.0)
+        #: no region is longer than its edge, so no row reaches its fingers' shortest
         #: edge; the pairs answer from 7/8 of ``Gamma`` only
-        self.hopeless = self.L.size < 4 or \
-            7 / 8 * self.gamma >= float(np.sort(self.L)[-4]) * (1 + PAD)
+        real = 3 if self.fixed >= 0 else 4
+        self.hopeless = m < real or \
+            7 / 8 * self.gamma >= float(np.sort(self.L)[-real]) * (1 + PAD)
 
     @staticmethod
     def applies(spec: PlanSpec, polygon: Polygon, edges: Any = None) -> bool:
-        """Four frictionless fingers on single edges, no gravity, no hand, a top, ranked
-        by the smallest region, at least :data:`MIN_ROWS` rows, numba running (the
-        pairs' loop)."""
-        return (spec.fingers == 4 and spec.contact_type == "frictionless"
-                and spec.gravity is None and spec.hand is None and spec.top is not None
+        """Four frictionless fingers, or three and gravity, on single edges, no hand, a
+        top, ranked by the smallest region, at least :data:`MIN_ROWS` rows, numba
+        running (the pairs' loops)."""
+        real = 3 if spec.gravity is not None else 4
+        return (spec.fingers == real and spec.contact_type == "frictionless"
+                and spec.hand is None and spec.top is not None
                 and spec.rank_by == "min_region" and not spec.along_boundary
                 and 4 <= polygon.n_edges <= MAX_FEATURES
-                and math.comb(polygon.n_edges, 4) >= MIN_ROWS and _LOOPS.available())
+                and math.comb(polygon.n_edges, real) >= MIN_ROWS and _LOOPS.available())
+
+    def _out(self, rows: np.ndarray) -> np.ndarray:
+        """The kernels' rows as the stream's (gravity -1)."""
+        if self.fixed >= 0 and len(rows):
+            rows = rows.copy()
+            rows[rows == self.fixed] = -1
+        return rows
+
+    def _gravity_rows(self, xs: np.ndarray, floor: float) -> tuple[np.ndarray, FloatArray]:
+        ok, got = _LOOPS.run("_gravity_loop", np.ascontiguousarray(xs, np.int64),
+                             int(self.fixed), self.kn, self.kg, self.kL, float(floor),
+                             RAY_TOL, np.empty((64, 4), np.int64), np.empty(64))
+        if not ok:
+            return np.zeros((0, 4), np.int64), np.zeros(0)
+        rows, bound, m = got
+        # a row with two forces of ``xs`` comes twice: each once
+        _, first = np.unique(pair_keys(rows[:m], self.fixed + 1), return_index=True)
+        return rows[first], bound[first]
+
+    def _opposite_gravity(self, half_width: float | None) -> np.ndarray:
+        """The forces within ``half_width`` of opposite to gravity (None: the two
+        nearest), with a negative dot product."""
+        dot = self.n @ self.down
+        cross = np.abs(self.n[:, 0] * self.down[1] - self.n[:, 1] * self.down[0])
+        up = np.flatnonzero(dot < 0)
+        if half_width is None:
+            return up[np.argsort(cross[up], kind="stable")[:2]]
+        return up[cross[up] < math.sin(half_width)]
 
     def _pairs(self, half_width: float) -> tuple[np.ndarray, np.ndarray]:
         """The pairs ``x < y`` of forces with a negative dot product and a cross product
@@ -285,16 +376,18 @@ class PairRows:
 
     def seed(self, count: int) -> EdgeSets:
         """The ``count`` rows (at least :data:`SEED_ROWS`) of the best bounds among the
-        pairs of each force's most nearly opposite partners; their ceiling is none."""
-        if self.angle.size < 4:
+        pairs of each force's most nearly opposite partners (with gravity: the rows of
+        the two forces most nearly opposite to it); their ceiling is none."""
+        if self.angle.size < (3 if self.fixed >= 0 else 4):
             self.seeded = np.zeros((0, 4), np.int64)
             return EdgeSets(self.seeded, np.zeros(0), np.inf)
-        rows, bound = self._rows(*self._nearest(), 0.0)
+        rows, bound = self._gravity_rows(self._opposite_gravity(None), 0.0) \
+            if self.fixed >= 0 else self._rows(*self._nearest(), 0.0)
         keep = np.argsort(-bound, kind="stable")[:max(count, SEED_ROWS)]
         rows, bound = rows[keep], bound[keep]
         order = np.lexsort(rows.T[::-1])
         self.seeded = rows[order]
-        return EdgeSets(rows[order], bound[order], np.inf)
+        return EdgeSets(self._out(rows[order]), bound[order], np.inf)
 
     def reaching(self, floor: float) -> EdgeSets | None:
         """Every row whose smallest region may reach ``floor`` (its coupled bound does),
@@ -306,14 +399,18 @@ class PairRows:
         if eps >= 0.25:
             return None
         eps = max(eps, 0.0)
-        pa, pb = self._pairs(math.asin(min(2 * eps / (1 - eps), 1.0)) + PAD)
-        rows, bound = self._rows(pa, pb, floor * (1 - PAD))
+        width = math.asin(min(2 * eps / (1 - eps), 1.0)) + PAD
+        if self.fixed >= 0:     # a force nearly opposite to gravity, and any two others
+            rows, bound = self._gravity_rows(self._opposite_gravity(width),
+                                             floor * (1 - PAD))
+        else:
+            rows, bound = self._rows(*self._pairs(width), floor * (1 - PAD))
+        base = self.kn.shape[0]
         if self.seeded is not None and len(self.seeded) and len(rows):
-            seen = pair_keys(self.seeded, self.n.shape[0])
-            fresh = ~np.isin(pair_keys(rows, self.n.shape[0]), seen)
+            fresh = ~np.isin(pair_keys(rows, base), pair_keys(self.seeded, base))
             rows, bound = rows[fresh], bound[fresh]
         order = np.lexsort(rows.T[::-1])
-        return EdgeSets(rows[order], bound[order],
+        return EdgeSets(self._out(rows[order]), bound[order],
                         float(bound.max()) if bound.size else -np.inf)
 
 

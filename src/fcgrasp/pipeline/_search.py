@@ -184,6 +184,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     them (:func:`~fcgrasp.pipeline._candidates.holding_rows`), and a search that is not
     ``strict`` and has no ``map`` solves the rows left in groups of ``GATHER_ROWS``
     across batches once its top is full (its answer does not depend on the batching).
+    On a part of millions of rows whose best rows are pairs of nearly opposite edges (a
+    regular polygon), the search reads the rows those pairs give instead of every row
+    (:func:`_paired`), when they hold every row that may reach the floor.
 
     >>> from fcgrasp.io.parts import demo_part
     >>> from fcgrasp.pipeline import plan_spec
@@ -278,8 +281,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
 def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
             exclude: Callable[[np.ndarray], np.ndarray] | None, floor: float
             ) -> list[EdgeSets] | None:
-    """Four frictionless fingers on a part with millions of rows whose best rows are
-    pairs of nearly opposite edges (a regular polygon, :mod:`._pair_rows`): the seed
+    """Four frictionless fingers (or three and gravity) on a part with millions of rows
+    whose best rows are pairs of nearly opposite edges (a regular polygon,
+    :mod:`._pair_rows`): the seed
     rows, then every other row that may reach the floor their ``top``-th gives (solved
     here, the rows ``exclude`` leaves out left out, less the ranking's rounding, as
     :class:`TopK` sets it); None where that floor is too low for the pairs to hold

@@ -130,6 +130,11 @@ def _four(small: Any) -> None:
     pairs.seed(1)
     pairs.reaching(0.99 * pairs.gamma)
     coupled_bounds(pairs.n, pairs.g, pairs.L, np.array([[0, 3, 6, 9]]))
+    # and of three fingers with gravity
+    pairs = PairRows(Polygon(np.c_[np.cos(a), np.sin(a)]),
+                     plan_spec(fingers=3, gravity=(0, -1), along_boundary=False))
+    pairs.seed(1)
+    pairs.reaching(0.99 * pairs.gamma)
 
 
 def _jaw() -> None:
