@@ -11,7 +11,8 @@ opposite edges, so that the rows reaching a high floor are found among pairs of 
 
 **The bound** (margin-free; the search's regions, with the margin and one pairing of
 theorem 7.1, are no longer).  Let edge ``i`` have unit force ``n_i``, length ``L_i``,
-and ``g_i`` the foot of a point ``c`` on it (arc length from its start ``a_i``).  A
+and ``g_i`` the foot of a point ``c`` on it (arc length along the force turned back a
+quarter turn, the same turn for every edge, from the edge's first end that way).  A
 rotation of sense + about a point ``x`` is not resisted by contacts at ``s_i`` when
 every torque ``s_i - g_i(x)`` is >= 0; with regions ``[a_i, b_i]`` some placement lets
 it through when ``g_i(x) <= b_i`` for every ``i`` (and sense -: ``g_i(x) >= a_i``).
@@ -262,9 +263,12 @@ class PairRows:
         self.n = np.stack([np.cos(F.center), np.sin(F.center)], axis=1)
         d = F.b - F.a
         self.L = np.hypot(d[:, 0], d[:, 1])
-        t = d / np.where(self.L > 0, self.L, 1.0)[:, None]
+        # the tangent the torques are read along: the force turned back a quarter turn,
+        # the same for every edge (a hole's edges run the other way round)
+        t = np.stack([self.n[:, 1], -self.n[:, 0]], axis=1)
+        ends = np.stack([np.einsum("ij,ij->i", F.a, t), np.einsum("ij,ij->i", F.b, t)])
         c = np.asarray(polygon.centroid, dtype=float)
-        self.g = np.einsum("ij,ij->i", c[None, :] - F.a, t)
+        self.g = t @ c - ends.min(axis=0)
         self.gamma = float(np.max(np.maximum(self.g, self.L - self.g))) if len(F.a) else 0.0
         self.angle = np.mod(F.center, 2 * np.pi)
         self.seeded: np.ndarray | None = None
