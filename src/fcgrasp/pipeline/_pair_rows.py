@@ -68,6 +68,7 @@ from ..core.kernels import CompiledLoops
 from ..core.tolerances import PAIR_PAD, PAIR_RAY_TOL
 from ..model.polygon import Polygon
 from ._candidates import EdgeSets, features
+from ._rows_kernels import sort_first
 from ._spec import PlanSpec
 
 #: Weights of a circuit's forces within this (cross products of unit forces) count as
@@ -168,16 +169,6 @@ def _kept(row: Any, v: float, m: int, rows: Any, bound: Any) -> Any:
     return rows, bound
 
 
-def _sort4(row: Any) -> None:
-    for x in range(1, 4):
-        y = row[x]
-        z = x - 1
-        while z >= 0 and row[z] > y:
-            row[z + 1] = row[z]
-            z -= 1
-        row[z + 1] = y
-
-
 def _gravity_loop(xs: Any, m_feat: int, n: Any, g: Any, L: Any, floor: float, tol: float,
                   rows: Any, bound: Any) -> Any:
     """Three fingers and gravity (its force the last, ``m_feat``): every row of a
@@ -194,7 +185,7 @@ def _gravity_loop(xs: Any, m_feat: int, n: Any, g: Any, L: Any, floor: float, to
                 if z == x:
                     continue
                 row[0], row[1], row[2], row[3] = x, y, z, m_feat
-                _sort4(row)             # gravity's index is the largest: it stays last
+                sort_first(row, 4)      # gravity's index is the largest: it stays last
                 v = _coupled(n, g, L, row, rays, tol, m_feat)
                 if v < floor:
                     continue
@@ -217,7 +208,7 @@ def _pairs_loop(pa: Any, pb: Any, n: Any, g: Any, L: Any, floor: float, tol: flo
             if a == c or a == d or b == c or b == d:
                 continue
             row[0], row[1], row[2], row[3] = a, b, c, d
-            _sort4(row)                 # sorted, as the stream's rows are
+            sort_first(row, 4)          # sorted, as the stream's rows are
             v = _coupled(n, g, L, row, rays, tol, -1)
             if v < floor:
                 continue
@@ -226,7 +217,7 @@ def _pairs_loop(pa: Any, pb: Any, n: Any, g: Any, L: Any, floor: float, tol: flo
     return rows, bound, m
 
 
-_LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _kept, _sort4,
+_LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _kept, sort_first,
                                    _gravity_loop, _pairs_loop))
 
 

@@ -53,6 +53,17 @@ def _row_of(t: Any, w: int, layout: int, x: int, twin: int, row: Any) -> int:
     return c
 
 
+def sort_first(v: Any, w: int) -> None:
+    """Sort ``v[:w]`` in place (insertion: a row's few features)."""
+    for c in range(1, w):
+        y = v[c]
+        d = c - 1
+        while d >= 0 and v[d] > y:
+            v[d + 1] = v[d]
+            d -= 1
+        v[d + 1] = y
+
+
 def _alive(v: Any, real: int, key: Any) -> bool:
     """:func:`~fcgrasp.pipeline._candidates.lex_survivors` of one row's rounded bounds
     ``v`` (ascending, ``real`` of them)."""
@@ -139,13 +150,7 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
                 for c in range(r):
                     t[c] = order[pos[c]]
                 t[r] = order[s]
-                for c in range(1, w):
-                    y = t[c]
-                    d = c - 1
-                    while d >= 0 and t[d] > y:
-                        t[d + 1] = t[d]
-                        d -= 1
-                    t[d + 1] = y
+                sort_first(t, w)
                 ok = True
                 for a in range(w):
                     for b in range(a + 1, w):
@@ -175,7 +180,7 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
     return out, n
 
 
-_LOOPS = CompiledLoops(globals(), (_row_of, _alive, _bounds, _survivor_loop))
+_LOOPS = CompiledLoops(globals(), (_row_of, sort_first, _alive, _bounds, _survivor_loop))
 
 #: Combinations of one position from which :func:`survivors` runs compiled before the
 #: loop is loaded in this process (loading it costs about 0.1 s from numba's cache).
