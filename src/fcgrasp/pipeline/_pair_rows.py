@@ -282,14 +282,19 @@ class PairRows:
     @staticmethod
     def applies(spec: PlanSpec, polygon: Polygon, edges: Any = None) -> bool:
         """Four frictionless fingers, or three and gravity, on single edges, no hand, a
-        top, ranked by the smallest region, at least :data:`MIN_ROWS` rows, numba
-        running (the pairs' loops)."""
+        top, ranked by the smallest region, at least :data:`MIN_ROWS` rows (numba, for
+        the pairs' loops, is asked only past :attr:`hopeless`: :meth:`loops`)."""
         real = 3 if spec.gravity is not None else 4
         return (spec.fingers == real and spec.contact_type == "frictionless"
                 and spec.hand is None and spec.top is not None
                 and spec.rank_by == "min_region" and not spec.along_boundary
                 and 4 <= polygon.n_edges <= MAX_FEATURES
-                and math.comb(polygon.n_edges, real) >= MIN_ROWS and _LOOPS.available())
+                and math.comb(polygon.n_edges, real) >= MIN_ROWS)
+
+    @staticmethod
+    def loops() -> bool:
+        """Whether the pairs' compiled loops run here (numba started if not yet)."""
+        return _LOOPS.available()
 
     def _out(self, rows: np.ndarray) -> np.ndarray:
         """The kernels' rows as the stream's (gravity -1)."""

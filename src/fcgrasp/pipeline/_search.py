@@ -293,7 +293,8 @@ def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
     if not PairRows.applies(spec, polygon, edges):
         return None
     pairs = PairRows(polygon, spec, edges)
-    if pairs.hopeless:                  # (most parts: their feet are far off the edges)
+    # most parts: their feet are far off the edges (and numba is not started for them)
+    if pairs.hopeless or not pairs.loops():
         return None
     top = spec.top or 1
     seed = pairs.seed(4 * top)
