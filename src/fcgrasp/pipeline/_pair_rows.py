@@ -48,12 +48,13 @@ never reach ``F`` where ``eps < 1/4``.
 **Three fingers and gravity.**  Gravity is a fixed force at the centroid, the point
 ``c`` the feet are taken from: its terms vanish, and the sums above run over the three
 fingers only (``sum max <= 1`` still), so ``sum min < eps`` over the fingers.  Where
-gravity is light in neither ray (a shared force), the case above gives two pairs, one
-of them gravity's; where it is shared, only the other shared force counts, and its
-light weight makes gravity and a finger nearly opposite; where a ray is a pair, one
-of the two pairs holds gravity or the other is nearly opposite to it.  So a row near
-``Gamma`` has a finger nearly opposite to gravity (the same width), and the rows read
-are those fingers with any two others.
+gravity is not one of the two shared forces, the case above gives two pairs, one of
+them gravity's; where it is, only the other shared force counts, and its light weight
+makes gravity and a finger nearly opposite; where a ray is a pair, either it holds
+gravity, or the other ray's triple holds gravity and a finger nearly opposite to it
+(its shared force light).  So a row near ``Gamma`` has a finger nearly
+opposite to gravity (the same width), and the rows read are those fingers with any
+two others (tested against every row's bound, as above).
 """
 
 from __future__ import annotations

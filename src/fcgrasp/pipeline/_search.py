@@ -283,13 +283,13 @@ def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
             ) -> list[EdgeSets] | None:
     """Four frictionless fingers (or three and gravity) on a part with millions of rows
     whose best rows are pairs of nearly opposite edges (a regular polygon,
-    :mod:`._pair_rows`): the seed
-    rows, then every other row that may reach the floor their ``top``-th gives (solved
-    here, the rows ``exclude`` leaves out left out, less the ranking's rounding, as
-    :class:`TopK` sets it); None where that floor is too low for the pairs to hold
-    every such row, and the search streams every row as before.  Every row left out is
-    below that floor, so a search that is not strict keeps the same plans (a strict one
-    keeps exact ties in the order found: the seed rows first)."""
+    :mod:`._pair_rows`): the seed rows, then every other row that may reach the floor
+    their ``top``-th gives (solved here, the rows ``exclude`` leaves out left out, less
+    the ranking's rounding, as :class:`TopK` sets it), by decreasing bound in batches;
+    None where that floor is too low for the pairs to hold every such row, and the
+    search streams every row as before.  Every row left out is below that floor, so a
+    search that is not strict keeps the same plans (a strict one keeps exact ties in the
+    order found: the seed rows first)."""
     if not PairRows.applies(spec, polygon, edges):
         return None
     pairs = PairRows(polygon, spec, edges)
