@@ -78,12 +78,14 @@ RAY_TOL = PAIR_RAY_TOL
 #: What the bound of a row and the floor are padded by (relative), for rounding.
 PAD = PAIR_PAD
 #: Seed rows: at least this many of the best bounds among pairs of each edge's most
-#: nearly opposite partner.
+#: nearly opposite partners (with gravity: the rows of the two edges most nearly
+#: opposite to it).
 SEED_ROWS = 256
 #: Features from which the pairs are not tried (their table of partners).
 MAX_FEATURES = 20_000
-#: Rows of four edges (``C(n, 4)``) from which the pairs are tried: below, the stream of
-#: every row is quick, and a strict search keeps its exact ties as it met them.
+#: Rows (``C(n, 4)``, with gravity ``C(n, 3)``) from which the pairs are tried: below,
+#: the stream of every row is quick, and a strict search keeps its exact ties as it
+#: met them.
 MIN_ROWS = 5_000_000
 
 
