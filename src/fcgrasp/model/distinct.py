@@ -95,27 +95,24 @@ class _Overlaps:
 
 
 def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float,
-              overlap: _Overlaps | None = None) -> bool:
+              overlap: _Overlaps) -> bool:
     short = min(la, lb)
     if short <= tol:                            # a point region (gravity): coincide
         return la <= tol and lb <= tol and \
             float(np.hypot(*(np.mean(a, axis=0) - np.mean(b, axis=0)))) <= tol
-    a, b = np.asarray(a, float), np.asarray(b, float)
-    if overlap is not None:                     # which tests the boxes first
-        return overlap(a, b) > fraction * short
-    # boxes apart by more than the tolerance: nothing in common (most pairs of a list)
-    if np.any(a.min(axis=0) > b.max(axis=0) + tol) or np.any(b.min(axis=0) > a.max(axis=0) + tol):
-        return False
-    return region_overlap(a, b, tol) > fraction * short
+    # (boxes apart by more than the tolerance: nothing in common, most pairs of a list)
+    return overlap(np.asarray(a, float), np.asarray(b, float)) > fraction * short
 
 
 def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float,
                      measure: _Overlaps | None = None) -> bool:
     """Whether two plans are the same alternative (see the module's docstring);
-    ``measure``: :func:`region_overlap` at ``tol``, remembered (:class:`_Overlaps`)."""
+    ``measure``: :func:`region_overlap` at ``tol``, remembered (:class:`_Overlaps`;
+    one for this call where none is given)."""
     k = len(p.regions)
     if k != len(q.regions):
         return False
+    measure = _Overlaps(tol) if measure is None else measure
     hit: dict[tuple[int, int], bool] = {}     # each pair of regions tested once, if asked
 
     def overlap(i: int, j: int) -> bool:
