@@ -306,16 +306,22 @@ class PairRows:
             rows[rows == self.fixed] = -1
         return rows
 
-    def _gravity_rows(self, xs: np.ndarray, floor: float) -> tuple[np.ndarray, FloatArray]:
-        ok, got = _LOOPS.run("_gravity_loop", np.ascontiguousarray(xs, np.int64),
-                             int(self.fixed), self.kn, self.kg, self.kL, float(floor),
-                             RAY_TOL, np.empty((64, 4), np.int64), np.empty(64))
+    def _loop_rows(self, name: str, *args: Any) -> tuple[np.ndarray, FloatArray]:
+        """The rows and bounds of one of the pairs' loops (its leading arguments
+        ``args``), each row once, in the order of their features (a row of two pairs
+        may be two other pairs as well; a row with gravity, two of its fingers nearly
+        opposite to it)."""
+        ok, got = _LOOPS.run(name, *args, np.empty((64, 4), np.int64), np.empty(64))
         if not ok:
             return np.zeros((0, 4), np.int64), np.zeros(0)
         rows, bound, m = got
-        # a row with two forces of ``xs`` comes twice: each once
-        _, first = np.unique(pair_keys(rows[:m], self.fixed + 1), return_index=True)
+        _, first = np.unique(pair_keys(rows[:m], self.kn.shape[0]), return_index=True)
         return rows[first], bound[first]
+
+    def _gravity_rows(self, xs: np.ndarray, floor: float) -> tuple[np.ndarray, FloatArray]:
+        return self._loop_rows("_gravity_loop", np.ascontiguousarray(xs, np.int64),
+                               int(self.fixed), self.kn, self.kg, self.kL, float(floor),
+                               RAY_TOL)
 
     def _opposite_gravity(self, half_width: float | None) -> np.ndarray:
         """The forces within ``half_width`` of opposite to gravity (None: the two
@@ -351,16 +357,9 @@ class PairRows:
 
     def _rows(self, pa: np.ndarray, pb: np.ndarray, floor: float
               ) -> tuple[np.ndarray, FloatArray]:
-        ok, got = _LOOPS.run("_pairs_loop", np.ascontiguousarray(pa, np.int64),
-                             np.ascontiguousarray(pb, np.int64), self.n, self.g, self.L,
-                             float(floor), RAY_TOL, np.empty((64, 4), np.int64),
-                             np.empty(64))
-        if not ok:
-            return np.zeros((0, 4), np.int64), np.zeros(0)
-        rows, bound, m = got
-        # a row of two pairs may be two other pairs as well: each once
-        _, first = np.unique(pair_keys(rows[:m], self.n.shape[0]), return_index=True)
-        return rows[first], bound[first]
+        return self._loop_rows("_pairs_loop", np.ascontiguousarray(pa, np.int64),
+                               np.ascontiguousarray(pb, np.int64), self.n, self.g, self.L,
+                               float(floor), RAY_TOL)
 
     def _nearest(self) -> tuple[np.ndarray, np.ndarray]:
         """Each force's two most nearly opposite partners (by angle), as pairs ``x <

@@ -125,16 +125,14 @@ def _four(small: Any) -> None:
     from ..pipeline._spec import plan_spec
 
     a = np.linspace(0, 2 * np.pi, 12, endpoint=False)
-    pairs = PairRows(Polygon(np.c_[np.cos(a), np.sin(a)]),
-                     plan_spec(fingers=4, along_boundary=False))
-    pairs.seed(1)
-    pairs.reaching(0.99 * pairs.gamma)
+    ring = Polygon(np.c_[np.cos(a), np.sin(a)])
+    # (four fingers, then three with gravity)
+    for spec in (plan_spec(fingers=4, along_boundary=False),
+                 plan_spec(fingers=3, gravity=(0, -1), along_boundary=False)):
+        pairs = PairRows(ring, spec)
+        pairs.seed(1)
+        pairs.reaching(0.99 * pairs.gamma)
     coupled_bounds(pairs.n, pairs.g, pairs.L, np.array([[0, 3, 6, 9]]))
-    # and of three fingers with gravity
-    pairs = PairRows(Polygon(np.c_[np.cos(a), np.sin(a)]),
-                     plan_spec(fingers=3, gravity=(0, -1), along_boundary=False))
-    pairs.seed(1)
-    pairs.reaching(0.99 * pairs.gamma)
 
 
 def _jaw() -> None:
