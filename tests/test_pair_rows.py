@@ -41,13 +41,38 @@ def _annulus(rng, n):
                       holes=[np.c_[r * np.cos(b), r * np.sin(b)] + off])
 
 
+def _two_arcs(k, off, turn=0.0, radius=10.0):
+    """Two halves of a regular ``2k``-gon, the second's centre moved by ``off``, joined
+    by two short edges (``icons/key.svg``: a circle drawn as two arcs whose centres
+    differ by about an edge, and a tiny edge between them): no point is the foot of
+    every edge's middle, and the short edges' feet are far off them."""
+    a = np.linspace(0, np.pi, k + 1)
+    up = np.c_[radius * np.cos(a), radius * np.sin(a)]
+    down = np.c_[radius * np.cos(a + np.pi), radius * np.sin(a + np.pi)] + np.asarray(off)
+    c, s = np.cos(turn), np.sin(turn)
+    return fc.Polygon(np.r_[up, down] @ np.array([[c, s], [-s, c]]))
+
+
+def _random_arcs(rng):
+    """:func:`_two_arcs` of 5-17 edges a half, the centres apart by 0.01-1.2 edges
+    (the second's moved down, so that the outline stays simple)."""
+    k = int(rng.integers(5, 18))
+    edge = 2 * 10.0 * np.sin(np.pi / (2 * k))
+    angle = float(rng.uniform(np.pi + 0.2, 2 * np.pi - 0.2))    # down: a simple outline
+    off = float(rng.choice([0.01, 0.05, 0.3, 0.7, 1.2])) * edge
+    return _two_arcs(k, off * np.array([np.cos(angle), np.sin(angle)]),
+                     turn=float(rng.uniform(0, 1)))
+
+
 def _parts(seed):
-    """Regular polygons (odd and even, turned), nearly regular ones, random ones, and
-    regular ones with a hole."""
+    """Regular polygons (odd and even, turned), nearly regular ones, random ones,
+    regular ones with a hole, and circles of two arcs whose centres differ."""
     rng = np.random.default_rng(seed)
     n = int(rng.integers(5, 37))
     if seed % 8 == 5:
         return _annulus(rng, n)
+    if seed % 8 == 7:
+        return _random_arcs(rng)
     kind = seed % 4
     if kind == 0:
         return _ngon(n, turn=float(rng.uniform(0, 1)), radius=float(rng.uniform(1, 100)))
@@ -134,6 +159,145 @@ def test_every_row_reaching_a_floor_is_read(n, jitter):
                                   keys)), (n, jitter, k)
     if n >= 8 and n % 2 == 0 and jitter <= 1e-4:     # opposite edges: the pairs answer
         assert answered > 0
+
+
+# the second half's centre moved by (x, y); at (-0.7, -0.2) the pairs do not answer
+ARCS = [(8, (0.0, -0.1)), (12, (0.3, -0.5)), (16, (0.05, -0.02)),
+        *(pytest.param(k, off, marks=pytest.mark.slow)
+          for k in (9, 14, 17) for off in ((0.0, -0.1), (0.3, -0.5), (0.5, -1.0),
+                                           (-0.7, -0.2)))]
+
+
+@pytest.mark.parametrize(("k", "off"), ARCS)
+def test_every_row_of_two_arcs_reaching_a_floor_is_read(k, off):
+    """Circles of two arcs whose centres differ (:func:`_two_arcs`): every row solved,
+    for the floors of the 1st, 5th, 10th and 40th best rows and just below them, every
+    row reaching the floor is a seed row or read, each once; the pairs answer (the best
+    rows: two pairs of opposite edges, as far off each other's lines as the centres
+    let them, above half an edge)."""
+    poly = _two_arcs(k, off, turn=0.2)
+    spec = plan_spec(fingers=4, top=None, along_boundary=False)
+    rows, value = _every_row(poly, spec)
+    pairs = PairRows(poly, plan_spec(fingers=4, top=10, along_boundary=False))
+    assert not pairs.hopeless
+    seed = pairs.seed(8)
+    answered = 0
+    best = np.sort(value)[::-1]
+    for j in (1, 5, 10, 40):
+        for floor in (best[j - 1], best[j - 1] * (1 - 1e-3)):
+            got = pairs.reaching(floor)
+            if got is None:
+                continue
+            answered += 1
+            read = pair_keys(np.sort(np.concatenate([seed.feats, got.feats]), axis=1),
+                             pairs.n.shape[0])
+            assert len(np.unique(read)) == len(read)
+            want = pair_keys(np.sort(rows[value >= floor], axis=1), pairs.n.shape[0])
+            assert np.all(np.isin(want, read)), (k, off, j)
+    if off != (-0.7, -0.2):
+        assert answered >= 4
+
+
+@pytest.mark.parametrize(("k", "off"), ARCS)
+def test_every_row_of_two_arcs_whose_bound_reaches_a_floor_is_read(k, off):
+    """The lemma on two arcs: ``Gamma`` over the edges as long as the floor (a short
+    edge's foot may be far off it), one pair carrying each circuit (``t < rho . g``,
+    ``t < sigma . (L - g)``): every row of four edges whose bound reaches the floor is
+    read, for floors from 0.999 down to 0.7 of that ``Gamma``; each row read once, its
+    bound at the floor.  Rows are read only where the floor is above 7/8 of it."""
+    import itertools
+
+    poly = _two_arcs(k, off, turn=0.2)
+    n = poly.n_edges
+    pairs = PairRows(poly, plan_spec(fingers=4, top=10, along_boundary=False))
+    pairs.seed(8)
+    rows = np.array(list(itertools.combinations(range(n), 4)))
+    bound = coupled_bounds(pairs.n, pairs.g, pairs.L, rows)
+    long = float(np.sort(pairs.L)[2])       # the shortest of the arcs' edges
+    gamma = pairs.gamma_at(long)
+    answered = 0
+    for share in (0.999, 0.99, 0.97, 0.95, 0.93, 0.9, 0.885, 0.876, 0.8, 0.7):
+        floor = share * gamma
+        got = pairs.reaching(floor)
+        if floor <= long:
+            assert (got is None) == (share < 7 / 8)
+        if got is None:
+            continue
+        answered += 1
+        assert np.all(got.bound >= floor * (1 - 1e-9))
+        read = pair_keys(np.concatenate([pairs.seeded, got.feats]), n)
+        assert len(np.unique(read)) == len(read)
+        want = pair_keys(rows[bound >= floor], n)
+        assert np.all(np.isin(want, read)), (share, int(np.sum(~np.isin(want, read))))
+    assert answered >= 5
+
+
+def test_a_circuit_is_bounded_by_its_heavy_pair():
+    """The lemma's step to one pair per circuit (:meth:`PairRows._sides`): a positive
+    dependency ``rho`` of a nearly opposite pair ``(a, b)`` and a light third force
+    ``x`` (``rho_x < eps``) has ``rho . g`` at most the pair's bound ``(g_a + g_b) / 2 +
+    eps max(0, max g - min(g_a, g_b))``, and ``rho . (L - g)`` at most its sigma side's,
+    for any feet and lengths (2,000 seeded triples; without the light force's share
+    most fail)."""
+    rng = np.random.default_rng(5)
+    pairs = PairRows(_ngon(8), plan_spec(fingers=4, top=10, along_boundary=False))
+    checked = 0
+    for _ in range(2000):
+        t = rng.uniform(0, 2 * np.pi)
+        ang = np.array([t, t + np.pi + rng.uniform(-0.3, 0.3), rng.uniform(0, 2 * np.pi)])
+        n = np.c_[np.cos(ang), np.sin(ang)]
+        w = np.array([n[i, 0] * n[j, 1] - n[i, 1] * n[j, 0] for i, j in ((1, 2), (2, 0), (0, 1))])
+        w = w if w.sum() > 0 else -w
+        if np.any(w < 0) or w[2] >= 0.25 * w.sum():
+            continue
+        rho = w / w.sum()
+        pairs.g = rng.uniform(-1, 2, 3)
+        pairs.L = pairs.g + rng.uniform(0, 3, 3)
+        for side, v in ((0, pairs.g), (1, pairs.L - pairs.g)):
+            value = float(rho @ v)
+            if np.any(pairs.L < value):       # x would not be in a row reaching it
+                continue
+            got = pairs._sides(np.array([0]), np.array([1]), rho[2] * (1 + 1e-12),
+                               value)[side]
+            assert got[0], (ang, rho, pairs.g, pairs.L, side)
+            checked += 1
+    assert checked > 500
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_a_hopeless_part_has_no_floor_the_pairs_answer(seed):
+    """:attr:`PairRows.hopeless`, the quick test before numba: where it holds, no floor
+    up to the fourth longest edge (the third with gravity) lets the pairs answer;
+    regular polygons and two arcs a little apart are not hopeless."""
+    rng = np.random.default_rng(seed)
+    poly = [_parts(seed), random_polygon(rng), _random_arcs(rng)][seed % 3]
+    for kw in (dict(fingers=4), dict(fingers=3, gravity=(0.2, -1))):
+        pairs = PairRows(poly, plan_spec(**kw, top=10, along_boundary=False))
+        real = 3 if "gravity" in kw else 4
+        if pairs.hopeless and pairs.L.size >= real:
+            for floor in np.unique(pairs.L)[::-1]:
+                if floor <= np.sort(pairs.L)[-real]:
+                    assert pairs.reaching(floor) is None, (seed, kw, floor)
+    for poly in (_ngon(int(rng.integers(8, 40))),
+                 _two_arcs(int(rng.integers(5, 18)), (0.3, -0.5), turn=0.3)):
+        assert not PairRows(poly, plan_spec(fingers=4, top=10,
+                                            along_boundary=False)).hopeless
+
+
+@pytest.mark.parametrize("seed", [*range(3), *(pytest.param(s, marks=pytest.mark.slow)
+                                              for s in range(3, 30))])
+def test_two_arcs_through_the_pairs_give_the_previous_plans(seed, monkeypatch):
+    """``fc.plan`` on circles of two arcs, four frictionless fingers and three with
+    gravity, single-edge and by default: with the pairs and with every row streamed,
+    the same plans."""
+    rng = np.random.default_rng(seed)
+    poly = _random_arcs(rng)
+    for kw in (dict(fingers=4, along_boundary=False, top=int(rng.integers(1, 13)),
+                    distinct=0), dict(fingers=4),
+               dict(fingers=3, gravity=GRAVITY[seed % 3], along_boundary=False,
+                    top=int(rng.integers(1, 13)), distinct=0)):
+        _same_plans(_plans(poly, kw, True, monkeypatch), _plans(poly, kw, False, monkeypatch),
+                    poly.size)
 
 
 @pytest.mark.parametrize("n", [8, 12, 30, 40, *(pytest.param(n, marks=pytest.mark.slow)
