@@ -25,11 +25,12 @@ pytestmark = pytest.mark.skipif(not _frictionless_kernels.COMPILED.available(),
                                 reason="numba not available")
 
 
-def _same(args, facts=None, arrays=None):
+def _same(args, facts=None, arrays=None, parent=None):
     """Both ways give the same program (or both none); returns whether there is one.
     ``facts``: the stretches' lengths as a search remembers them, ``arrays`` the edges'
-    rows it gathers from, for the compiled way (the reference computes them)."""
-    got = _system(*args, facts=facts, arrays=arrays)
+    rows it gathers from, ``parent`` a configuration one move away whose rows it copies,
+    for the compiled way (the reference computes them)."""
+    got = _system(*args, facts=facts, arrays=arrays, parent=parent)
     ref = _system(*args, compiled=False)
     assert (got is None) == (ref is None), args[1:]
     # the compiled loop says whether some row has no variable (then checked, not solved)
@@ -55,7 +56,7 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
     original = frictionless_stretches._system
 
     def record(*args, **kwargs):
-        calls.append((args, kwargs.get("facts"), kwargs.get("arrays")))
+        calls.append((args, kwargs.get("facts"), kwargs.get("arrays"), kwargs.get("parent")))
         return original(*args, **kwargs)
 
     monkeypatch.setattr(frictionless_stretches, "_system", record)
@@ -66,9 +67,46 @@ def test_compiled_rows_of_the_growths_programs(monkeypatch):
     monkeypatch.undo()
     assert len(calls) >= 300
     # the growth's search remembers its stretches' lengths and its edges' rows
-    assert all(facts is not None and arrays is not None for _, facts, arrays in calls)
-    programs = sum(_same(args, facts, arrays) for args, facts, arrays in calls)
+    assert all(facts is not None and arrays is not None for _, facts, arrays, _ in calls)
+    # most of the growth's programs are built from a configuration one move away
+    assert sum(parent is not None for *_, parent in calls) >= len(calls) // 3
+    programs = sum(_same(*call) for call in calls)
     assert programs >= 200
+
+
+def test_rows_copied_from_a_configuration_one_move_away():
+    """A configuration built from one a move away (its rows of the combinations both
+    have copied) against numpy's, bit for bit: every move (longer, slid, shorter, and
+    two regions slid at once) of seeded configurations of random parts, both
+    orientations, every pairing, with and without gravity."""
+    rng = np.random.default_rng(23)
+    programs = copied = 0
+    for _ in range(60):
+        part = random_polygon(rng, str(rng.choice(["convex", "star", "regular", "holes"])))
+        m = part.n_edges
+        ang = np.arctan2(-part.normals[:, 1], -part.normals[:, 0])
+        for _ in range(20):
+            gravity = rng.random() < 0.3
+            k = 3 if gravity else 4
+            want = rng.uniform(0, 2 * np.pi) + np.arange(k) * 2 * np.pi / k
+            firsts = [int(np.argmin(np.abs(np.angle(np.exp(1j * (ang - w))))))
+                      for w in want]
+            edges = tuple(tuple((e0 + i) % m for i in range(int(rng.integers(1, 4))))
+                          for e0 in firsts)
+            if len({e for st in edges for e in st}) < sum(map(len, edges)):
+                continue
+            args = (part, edges, PAIRINGS[rng.integers(0, 3)], str(rng.choice(["+C", "-C"])),
+                    float(rng.choice([0.0, 0.5, 3.0])),
+                    np.array([0.0, -1.0]) if gravity else None)
+            parent = _system(*args)
+            if parent is None:
+                continue
+            moves = frictionless_stretches._moves(part, edges) + \
+                frictionless_stretches._pair_moves(part, edges)
+            for new in moves:
+                programs += _same((part, new, *args[2:]), parent=parent)
+                copied += 1
+    assert copied >= 1000 and programs >= 300
 
 
 def test_compiled_rows_of_random_configurations():

@@ -232,6 +232,33 @@ def test_every_row_of_two_arcs_whose_bound_reaches_a_floor_is_read(k, off):
     assert answered >= 5
 
 
+@pytest.mark.parametrize("kind", ["ngon", "arcs", "gravity"])
+def test_a_higher_floor_reads_the_rows_a_fresh_reading_would(kind):
+    """:meth:`PairRows.reaching` keeps the rows of the lowest floor read, and takes a
+    higher floor's among them: for floors up and down (each once more), the rows and
+    bounds of a fresh :class:`PairRows` at each floor, in the same order."""
+    spec = plan_spec(fingers=4, top=10, along_boundary=False) if kind != "gravity" \
+        else plan_spec(fingers=3, gravity=(0.3, -1), top=10, along_boundary=False)
+    poly = _two_arcs(12, (0.3, -0.5), turn=0.2) if kind == "arcs" else _ngon(24, turn=0.1)
+    pairs = PairRows(poly, spec)
+    pairs.seed(8)
+    gamma = pairs.gamma_at(float(np.sort(pairs.L)[2]))
+    answered = 0
+    for share in (0.95, 0.97, 0.999, 0.9, 0.93, 0.99, 0.95, 0.88):
+        floor = share * gamma
+        fresh = PairRows(poly, spec)
+        fresh.seed(8)
+        want, got = fresh.reaching(floor), pairs.reaching(floor)
+        assert (want is None) == (got is None), share
+        if want is None:
+            continue
+        answered += 1
+        np.testing.assert_array_equal(got.feats, want.feats)
+        np.testing.assert_array_equal(got.bound, want.bound)
+        assert got.ceiling == want.ceiling
+    assert answered >= 6
+
+
 def test_a_circuit_is_bounded_by_its_heavy_pair():
     """The lemma's step to one pair per circuit (:meth:`PairRows._sides`): a positive
     dependency ``rho`` of a nearly opposite pair ``(a, b)`` and a light third force

@@ -89,7 +89,8 @@ def _kind(pos: int, n: int) -> int:
 
 
 def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: float,
-                 s: float, k: int, tol: float, A: Any, rhs: Any) -> int:
+                 s: float, k: int, tol: float, ids: Any, pA: Any, prhs: Any, pids: Any,
+                 pstart: Any, A: Any, rhs: Any) -> int:
     """Rows ``A`` (2C, 2k; given zeroed) and right-hand sides ``rhs`` (2C) of every
     combination of the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f
     + 1]`` of the segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of
@@ -97,7 +98,14 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     finger fastest).  The meets of each pair of fingers are computed once per pair of edges
     (:func:`_meets`).  Returns 0 (rows not all written) where a combination's pairing is
     null or its sector no wider than the margin, else 1, or 2 where some row has no
-    variable (every coefficient zero)."""
+    variable (every coefficient zero).
+
+    ``ids``: the part's edge of each row of ``ea``.  ``pA``, ``prhs``: the rows of a
+    configuration one move away (none: no rows), its fingers' edges ``pids[pstart[f]:
+    pstart[f + 1]]``.  A combination whose every edge is there with the same kind in its
+    stretch (first, last, inside, single) has the same two rows there (they depend on
+    the edges, their kinds, the pairing, the margin and the orientation only): they are
+    copied, not computed."""
     n = np.empty(4, np.int64)
     for f in range(4):
         n[f] = start[f + 1] - start[f]
@@ -111,12 +119,50 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     vel = np.empty((4, 2))
     L = np.empty(4)
     fixed = False
+    PC = prhs.shape[0] // 2
+    # each edge's position one move away, where its kind is the same there (else -1)
+    width = 1
+    for f in range(k):
+        width = max(width, n[f])
+    pmap = np.full((4, width), -1, np.int64)
+    pn = np.ones(4, np.int64)
+    if PC > 0:
+        for f in range(k):
+            pn[f] = pstart[f + 1] - pstart[f]
+            for p in range(n[f]):
+                e, kd = ids[start[f] + p], _kind(p, n[f])
+                for q in range(pn[f]):
+                    if pids[pstart[f] + q] == e and _kind(q, pn[f]) == kd:
+                        pmap[f, p] = q
+                        break
     for r in range(C):
         # finger positions of combination r (the last real finger fastest)
         rest = r
         for f in range(k - 1, -1, -1):
             pos[f] = rest % n[f]
             rest //= n[f]
+        if PC > 0:
+            # the same combination one move away: its rows, copied
+            q = 0
+            for f in range(k):
+                at = pmap[f, pos[f]]
+                if at < 0:
+                    q = -1
+                    break
+                q = q * pn[f] + at
+            if q >= 0:
+                for side in range(2):
+                    row, prow = side * C + r, side * PC + q
+                    for j in range(2 * k):
+                        A[row, j] = pA[prow, j]
+                    rhs[row] = prhs[prow]
+                    if not fixed:
+                        fixed = True
+                        for j in range(2 * k):
+                            if A[row, j] != 0:
+                                fixed = False
+                                break
+                continue
         a12 = m12[pos[p0] * n[p1] + pos[p1]]
         a34 = m34[pos[p2] * n[p3] + pos[p3]]
         valid = a12[8] > 0 and a34[8] > 0
@@ -354,15 +400,20 @@ def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
             np.ascontiguousarray(ec, dtype=float))
 
 
+_NO_ROWS = (np.zeros(0), np.zeros(0, np.int64), np.zeros(5, np.int64))
+
+
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
-                s: float, tol: float, arrays: Any = None
+                s: float, tol: float, arrays: Any = None, parent: Any = None
                 ) -> tuple[Any, Any, bool] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
     stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
     check of the rows without a variable, and whether there is such a row, by the
     compiled loop; False where some combination's pairing is null or its sector too
     narrow (no program), None where the loop does not run (numpy then).  ``arrays``:
-    :func:`edge_arrays` of the part and gravity, built once by a search."""
+    :func:`edge_arrays` of the part and gravity, built once by a search; ``parent``:
+    ``(stretches, A, rhs)`` of a configuration of the same pairing and orientation one
+    move away, whose rows of the combinations it shares are copied (the same numbers)."""
     if not COMPILED.available():
         return None
     k = len(edges)
@@ -380,9 +431,17 @@ def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: fl
     C = math.prod(n[:k])
     A = np.zeros((2 * C, 2 * k))
     rhs = np.empty(2 * C)
+    if parent is None:
+        pA, (prhs, pids, pstart) = np.zeros((0, 2 * k)), _NO_ROWS
+    else:
+        pst, pA, prhs = parent
+        pids = np.array([e for st in pst for e in st], np.int64)
+        pstart = np.zeros(5, np.int64)
+        pstart[1:k + 1] = np.cumsum([len(st) for st in pst])
     ok, whole = COMPILED.run("_system_loop", ea, eb, ec, start,
                              np.ascontiguousarray(pairing, dtype=np.int64), float(margin),
-                             float(s), int(k), float(tol), A, rhs)
+                             float(s), int(k), float(tol), at, pA, prhs, pids, pstart, A,
+                             rhs)
     if not ok:
         return None
     return (A, rhs, whole == 2) if whole else False

@@ -127,6 +127,9 @@ class _Config:
     b: FloatArray
     bounds: list[tuple[float, float]]
     const: FloatArray
+    #: the compiled loop's rows before those without a variable are left out (a move
+    #: from here copies the rows of the combinations it keeps), None from numpy
+    rows: tuple[FloatArray, FloatArray] | None = None
 
 
 def _stretch_facts(polygon: Polygon, st: tuple[int, ...]
@@ -143,23 +146,29 @@ def _stretch_facts(polygon: Polygon, st: tuple[int, ...]
 def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.ndarray,
             mode: str, margin: float, gravity: FloatArray | None,
             compiled: bool = True, facts: Callable[[tuple[int, ...]], Any] | None = None,
-            arrays: Any = None) -> _Config | None:
+            arrays: Any = None, parent: _Config | None = None) -> _Config | None:
     """Theorem 7.1 on every combination of covered edges (the vertex lemma), or None
     when some combination's pairing is null or its sector narrower than the margin.
     The rows come from the compiled loop of :mod:`._frictionless_kernels` where it runs
     and ``compiled``, else from numpy (:func:`_rows_numpy`, the reference).
     ``facts(stretch)``: :func:`_stretch_facts` of a stretch, remembered by a search
     that meets each stretch in many configurations; ``arrays``: the compiled loop's
-    :func:`~._frictionless_kernels.edge_arrays`, built once by such a search."""
+    :func:`~._frictionless_kernels.edge_arrays`, built once by such a search;
+    ``parent``: a configuration of the same pairing and orientation one move away,
+    whose rows of the combinations both have are copied (the same numbers)."""
     k = len(edges)
     s = 1.0 if mode == "+C" else -1.0
+    from_parent = None if parent is None or parent.rows is None else \
+        (parent.edges, *parent.rows)
     got = _frictionless_kernels.system_rows(
         polygon, edges, gravity, pairing, float(margin_radians(margin)), s, TOL,
-        arrays) if compiled else None
+        arrays, from_parent) if compiled else None
     if got is False:
         return None
+    rows = None
     if got is not None:
         A, bvec, some_fixed = got
+        rows = (A, bvec)
     else:
         rows = _rows_numpy(polygon, edges, gravity, pairing, margin, s)
         if rows is None:
@@ -179,7 +188,7 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     for f, st in enumerate(edges):
         Lf, Ll, const[f], _ = facts(st) if facts is not None else _stretch_facts(polygon, st)
         bounds += [(0.0, Lf), (0.0, Ll)]
-    return _Config(edges, A, bvec, bounds, const)
+    return _Config(edges, A, bvec, bounds, const, rows)
 
 
 def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: Any,
@@ -527,12 +536,17 @@ class _Search:
             self._arrays = _frictionless_kernels.edge_arrays(self.polygon, self.gravity)
         return self._arrays
 
-    def solve(self, edges: tuple[tuple[int, ...], ...], pairing: int, mode: str
-              ) -> tuple[_Config, float] | None:
+    def solve(self, edges: tuple[tuple[int, ...], ...], pairing: int, mode: str,
+              parent: tuple[Any, ...] | None = None) -> tuple[_Config, float] | None:
+        """The configuration's system and first level (None: no regions), once;
+        ``parent``: the key of a solved configuration one move away (the same pairing
+        and orientation), whose rows it shares are copied."""
         key = (edges, pairing, mode)
         if key not in self.level:
+            got = None if parent is None else self.level.get(parent)
             cfg = _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
-                          self.gravity, facts=self.facts, arrays=self.arrays())
+                          self.gravity, facts=self.facts, arrays=self.arrays(),
+                          parent=None if got is None else got[0])
             t = None if cfg is None else _first_level(cfg)
             self.level[key] = None if cfg is None or t is None else (cfg, t)
         return self.level[key]
@@ -611,7 +625,7 @@ class _Search:
             if self.reach(new) < ahead * (1 - RANK_TOL):
                 continue
             cand = (new, key[1], key[2])
-            if self.solve(*cand) is not None and \
+            if self.solve(*cand, parent=key) is not None and \
                     self.better(cand, key if step is None else step):
                 step = cand
         return step

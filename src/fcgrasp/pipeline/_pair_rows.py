@@ -307,6 +307,9 @@ class PairRows:
         self.gamma = float(np.max(self.far)) if len(F.a) else 0.0
         self.angle = np.mod(F.center, 2 * np.pi)
         self.seeded: np.ndarray | None = None
+        #: the rows of the lowest floor read so far (with the seed rows then left out):
+        #: a higher floor's are among them
+        self._read: tuple[Any, float, np.ndarray, FloatArray] | None = None
         m = self.L.size
         #: three fingers and gravity: gravity's force the last of the kernels' tables
         #: (a fixed point at the centroid ``c``: no region, its foot 0), else -1
@@ -474,6 +477,15 @@ class PairRows:
         if eps >= 0.25:
             return None
         eps = max(eps, 0.0)
+        read = self._read
+        if read is not None and read[0] is self.seeded and floor >= read[1]:
+            # a lower floor's rows hold these: the same rows as read afresh (each of the
+            # enumeration's sets only grows as the floor falls), filtered as the loops do
+            _, _, rows, bound = read
+            keep = bound >= floor * (1 - PAD)
+            rows, bound = rows[keep], bound[keep]
+            return EdgeSets(self._out(rows), bound,
+                            float(bound.max()) if bound.size else -np.inf)
         width = math.asin(min(2 * eps / (1 - eps), 1.0)) + PAD
         if self.fixed >= 0:     # a force nearly opposite to gravity, and any two others
             rows, bound = self._gravity_rows(self._opposite_gravity(width),
@@ -493,8 +505,9 @@ class PairRows:
             fresh = ~np.isin(pair_keys(rows, base), pair_keys(self.seeded, base))
             rows, bound = rows[fresh], bound[fresh]
         order = np.lexsort(rows.T[::-1])
-        return EdgeSets(self._out(rows[order]), bound[order],
-                        float(bound.max()) if bound.size else -np.inf)
+        rows, bound = rows[order], bound[order]
+        self._read = (self.seeded, floor, rows, bound)
+        return EdgeSets(self._out(rows), bound, float(bound.max()) if bound.size else -np.inf)
 
 
 def pair_keys(rows: np.ndarray, base: int) -> np.ndarray:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import replace
-from functools import partial
+from functools import lru_cache, partial
 from typing import Any
 
 import numpy as np
@@ -28,7 +28,7 @@ from ._candidates import (
     lex_survivors,
     search_size,
 )
-from ._pair_rows import PairRows
+from ._pair_rows import SEED_ROWS, PairRows
 from ._solve import RowScores, Solved, _build_plans, _select, _smallest_region, solve
 from ._spec import (
     MAP_WINDOW,
@@ -278,6 +278,25 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     return top.plans()
 
 
+@lru_cache(maxsize=4)
+def _seeded(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...] | None, count: int
+            ) -> tuple[PairRows, EdgeSets, np.ndarray, FloatArray] | None:
+    """A part's :class:`PairRows` (``spec`` without a top), its ``count`` seed rows and
+    each seed row's smallest region, solved (the rows that hold), once per part: the
+    searches of one plan (the grown plans' seeds, the ranked list, each distinct round)
+    take their floors from the same rows; None where the pairs cannot answer (most
+    parts: their feet are far off the edges)."""
+    pairs = PairRows(polygon, spec, edges)
+    if pairs.hopeless:
+        return None
+    seed = pairs.seed(count)
+    got = solve(polygon, spec, seed, edges)
+    feats, mins = got.cands.feats, _smallest_region(got.cands.feats, got.lengths)
+    for arr in (seed.feats, feats, mins):       # shared by the searches: read only
+        arr.flags.writeable = False
+    return pairs, seed, feats, mins
+
+
 def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
             exclude: Callable[[np.ndarray], np.ndarray] | None, floor: float
             ) -> list[EdgeSets] | None:
@@ -292,23 +311,24 @@ def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
     order found: the seed rows first)."""
     if not PairRows.applies(spec, polygon, edges):
         return None
-    pairs = PairRows(polygon, spec, edges)
-    # most parts: their feet are far off the edges (and numba is not started for them)
-    if pairs.hopeless or not pairs.loops():
+    # numba, for the pairs' loops, is asked for only past the quick test (most parts
+    # fail it: their feet are far off the edges)
+    if PairRows(polygon, spec, edges).hopeless or not PairRows.loops():
         return None
     top = spec.top or 1
-    seed = pairs.seed(4 * top)
-    rows = seed
-    if exclude is not None and len(rows.feats):
-        out = np.asarray(exclude(rows.feats), bool)
-        rows = rows.take(~out) if out.any() else rows
+    got = _seeded(polygon, replace(spec, top=None),
+                  None if edges is None else tuple(int(e) for e in edges),
+                  max(4 * top, SEED_ROWS))
+    if got is None:
+        return None
+    pairs, seed, feats, mins = got
+    if exclude is not None and len(feats):
+        out = np.asarray(exclude(feats), bool)
+        mins = mins[~out] if out.any() else mins
     level = floor
-    if len(rows.feats) >= top:
-        got = solve(polygon, replace(spec, top=None), rows, edges)
-        mins = _smallest_region(got.cands.feats, got.lengths)
-        if len(mins) >= top:
-            kth = float(np.partition(-mins, top - 1)[top - 1])
-            level = max(level, -kth - 2 * RANK_TOL * polygon.size)
+    if len(mins) >= top:
+        kth = float(np.partition(-mins, top - 1)[top - 1])
+        level = max(level, -kth - 2 * RANK_TOL * polygon.size)
     rest = pairs.reaching(level)
     if rest is None:
         return None
