@@ -161,6 +161,17 @@ def test_every_row_reaching_a_floor_is_read(n, jitter):
         assert answered > 0
 
 
+def _reads_every_row_reaching(pairs, got, rows, bound, floor, share):
+    """The rows read at ``floor`` (``got``, and the seed rows): each once, each with a
+    bound at the floor, and every row of ``rows`` whose ``bound`` reaches it among them."""
+    n = pairs.n.shape[0]
+    assert np.all(got.bound >= floor * (1 - 1e-9))
+    read = pair_keys(np.concatenate([pairs.seeded, got.feats]), n)
+    assert len(np.unique(read)) == len(read)
+    want = pair_keys(rows[bound >= floor], n)
+    assert np.all(np.isin(want, read)), (share, int(np.sum(~np.isin(want, read))))
+
+
 # the second half's centre moved by (x, y); at (-0.7, -0.2) the pairs do not answer
 ARCS = [(8, (0.0, -0.1)), (12, (0.3, -0.5)), (16, (0.05, -0.02)),
         *(pytest.param(k, off, marks=pytest.mark.slow)
@@ -224,11 +235,7 @@ def test_every_row_of_two_arcs_whose_bound_reaches_a_floor_is_read(k, off):
         if got is None:
             continue
         answered += 1
-        assert np.all(got.bound >= floor * (1 - 1e-9))
-        read = pair_keys(np.concatenate([pairs.seeded, got.feats]), n)
-        assert len(np.unique(read)) == len(read)
-        want = pair_keys(rows[bound >= floor], n)
-        assert np.all(np.isin(want, read)), (share, int(np.sum(~np.isin(want, read))))
+        _reads_every_row_reaching(pairs, got, rows, bound, floor, share)
     assert answered >= 5
 
 
@@ -352,11 +359,7 @@ def test_every_row_whose_coupled_bound_reaches_a_floor_is_read(n, jitter):
         if got is None:
             continue
         answered += 1
-        assert np.all(got.bound >= floor * (1 - 1e-9))
-        read = pair_keys(np.concatenate([pairs.seeded, got.feats]), n)
-        assert len(np.unique(read)) == len(read)
-        want = pair_keys(rows[bound >= floor], n)
-        assert np.all(np.isin(want, read)), (share, int(np.sum(~np.isin(want, read))))
+        _reads_every_row_reaching(pairs, got, rows, bound, floor, share)
     # (jittered by 3e-3, a foot may fall off its edge: Gamma is then above every edge,
     # and so are the highest floors)
     assert answered >= (6 if jitter < 3e-3 else 3)

@@ -156,12 +156,7 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
                     for j in range(2 * k):
                         A[row, j] = pA[prow, j]
                     rhs[row] = prhs[prow]
-                    if not fixed:
-                        fixed = True
-                        for j in range(2 * k):
-                            if A[row, j] != 0:
-                                fixed = False
-                                break
+                    fixed = fixed or _no_variable(A, row, 2 * k)
                 continue
         a12 = m12[pos[p0] * n[p1] + pos[p1]]
         a34 = m34[pos[p2] * n[p3] + pos[p3]]
@@ -201,13 +196,16 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
                 A[row, 2 * fi] += g if lo_var else 0.0
                 value = value - g * const
             rhs[row] = value
-            if not fixed:
-                fixed = True
-                for j in range(2 * k):
-                    if A[row, j] != 0:
-                        fixed = False
-                        break
+            fixed = fixed or _no_variable(A, row, 2 * k)
     return 2 if fixed else 1
+
+
+def _no_variable(A: Any, row: int, width: int) -> bool:
+    """Whether row ``row`` of ``A`` has every coefficient zero."""
+    for j in range(width):
+        if A[row, j] != 0:
+            return False
+    return True
 
 
 def _before(a: float, b: float) -> bool:
@@ -348,8 +346,8 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
     return 0
 
 
-_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _system_loop, _before, _first_k,
-          _lp_loop)
+_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _no_variable, _system_loop, _before,
+          _first_k, _lp_loop)
 
 
 def _with_simplex() -> dict[str, Any] | None:
