@@ -266,7 +266,8 @@ _LOOPS = CompiledLoops(globals(), (_circuits, _coupled, _bounds_loop, _kept, sor
 def coupled_bounds(n: FloatArray, g: FloatArray, L: FloatArray, rows: np.ndarray,
                    fixed: int = -1) -> FloatArray:
     """An upper bound of each row's smallest region, four frictionless fingers on four
-    edges, by the coupling of its two force circuits (the module's docstring): ``n``
+    edges, by the coupling of its two force circuits, each circuit alone and its
+    shortest edge, the least of them (the module's docstring): ``n``
     (E, 2) unit forces, ``g`` (E,) the feet of one point (arc length from each edge's
     start), ``L`` (E,) the lengths, ``rows`` (R, 4) feature indices; ``fixed``: the
     index of gravity's force (a fixed point at ``c``: no region, out of the sums), -1
