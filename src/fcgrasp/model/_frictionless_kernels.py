@@ -208,6 +208,37 @@ def _no_variable(A: Any, row: int, width: int) -> bool:
     return True
 
 
+def _system_rows(ea_all: Any, eb_all: Any, ec_all: Any, layout: Any, pairing: Any,
+                 margin: float, s: float, k: int, tol: float, pA: Any, prhs: Any,
+                 playout: Any) -> Any:
+    """:func:`_system_loop` on the fingers' edges gathered from every edge's rows
+    (``layout``: the four fingers' edge counts, then their edges in order; ``playout``
+    the same of the configuration one move away, its counts 0 for none), its rows
+    allocated here: ``(status, A, rhs)``."""
+    start = np.zeros(5, np.int64)
+    for f in range(4):
+        start[f + 1] = start[f] + layout[f]
+    ids = layout[4:]
+    m = start[4]
+    ea, eb, ec = np.empty((m, 2)), np.empty((m, 2)), np.empty(m)
+    for i in range(m):
+        e = ids[i]
+        ea[i, 0], ea[i, 1] = ea_all[e, 0], ea_all[e, 1]
+        eb[i, 0], eb[i, 1] = eb_all[e, 0], eb_all[e, 1]
+        ec[i] = ec_all[e]
+    C = 1
+    for f in range(k):
+        C *= layout[f]
+    A = np.zeros((2 * C, 2 * k))
+    rhs = np.empty(2 * C)
+    pstart = np.zeros(5, np.int64)
+    for f in range(4):
+        pstart[f + 1] = pstart[f] + playout[f]
+    status = _system_loop(ea, eb, ec, start, pairing, margin, s, k, tol, ids, pA, prhs,
+                          playout[4:], pstart, A, rhs)
+    return status, A, rhs
+
+
 def _before(a: float, b: float) -> bool:
     """Whether ``a`` sorts strictly before ``b`` (nan last, as numpy sorts)."""
     return a < b or (not np.isnan(a) and np.isnan(b))
@@ -346,8 +377,8 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
     return 0
 
 
-_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _no_variable, _system_loop, _before,
-          _first_k, _lp_loop)
+_FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _no_variable, _system_loop,
+          _system_rows, _before, _first_k, _lp_loop)
 
 
 def _with_simplex() -> dict[str, Any] | None:
@@ -398,7 +429,8 @@ def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
             np.ascontiguousarray(ec, dtype=float))
 
 
-_NO_ROWS = (np.zeros(0), np.zeros(0, np.int64), np.zeros(5, np.int64))
+#: no configuration one move away: no rows, its fingers' edge counts 0
+_NO_ROWS, _NO_PARENT = np.zeros(0), np.zeros(4, np.int64)
 
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
@@ -416,30 +448,22 @@ def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: fl
         return None
     k = len(edges)
     ea_all, eb_all, ec_all = edge_arrays(polygon, gravity) if arrays is None else arrays
-    idx = [e for st in edges for e in st]
-    n = [len(st) for st in edges]
+    sizes = [len(st) for st in edges]
+    ids = [e for st in edges for e in st]
     if gravity is not None:
-        idx.append(polygon.n_edges)     # the centroid's row
-        n.append(1)
-    at = np.array(idx, np.int64)
-    ea, eb, ec = ea_all[at], eb_all[at], ec_all[at]
-    start = np.zeros(5, np.int64)
-    start[1:len(n) + 1] = np.cumsum(n)
-    start[len(n) + 1:] = start[len(n)]
-    C = math.prod(n[:k])
-    A = np.zeros((2 * C, 2 * k))
-    rhs = np.empty(2 * C)
+        sizes.append(1)
+        ids.append(polygon.n_edges)     # the centroid's row
+    layout = np.array(sizes + [0] * (4 - len(sizes)) + ids, np.int64)
     if parent is None:
-        pA, (prhs, pids, pstart) = np.zeros((0, 2 * k)), _NO_ROWS
+        pA, prhs, playout = np.zeros((0, 2 * k)), _NO_ROWS, _NO_PARENT
     else:
         pst, pA, prhs = parent
-        pids = np.array([e for st in pst for e in st], np.int64)
-        pstart = np.zeros(5, np.int64)
-        pstart[1:k + 1] = np.cumsum([len(st) for st in pst])
-    ok, whole = COMPILED.run("_system_loop", ea, eb, ec, start,
-                             np.ascontiguousarray(pairing, dtype=np.int64), float(margin),
-                             float(s), int(k), float(tol), at, pA, prhs, pids, pstart, A,
-                             rhs)
+        playout = np.array([len(st) for st in pst] + [0] * (4 - k) +
+                           [e for st in pst for e in st], np.int64)
+    ok, got = COMPILED.run("_system_rows", ea_all, eb_all, ec_all, layout,
+                           np.ascontiguousarray(pairing, dtype=np.int64), float(margin),
+                           float(s), int(k), float(tol), pA, prhs, playout)
     if not ok:
         return None
+    whole, A, rhs = got
     return (A, rhs, whole == 2) if whole else False
