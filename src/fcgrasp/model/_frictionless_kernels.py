@@ -282,24 +282,29 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
     k = nx // 2
     cols = nx + 1 if t_var else nx
     m = m0 + k
-    M = np.zeros((m + nx, cols))
+    # (the rows of A0 scaled as they are written: each product A0 * unit, then over
+    # its row's largest, the numbers of a copy scaled afterwards, in two passes not four)
+    M = np.empty((m + nx, cols))
     rhs = np.empty(m + nx)
     norm = np.empty(m)
-    for i in range(m):
-        if i < m0:
-            for j in range(nx):
-                M[i, j] = A0[i, j] * unit
-            rhs[i] = b0[i]
+    for i in range(m0):
+        big = 0.0
+        for j in range(nx):
+            big = max(big, abs(A0[i, j] * unit))
+        norm[i] = big
+        rhs[i] = b0[i]
+    for i in range(m0, m):
+        f = i - m0
+        for j in range(cols):
+            M[i, j] = 0.0
+        M[i, 2 * f] = 1.0 * unit
+        M[i, 2 * f + 1] = -1.0 * unit
+        if np.isnan(floors[f]):
+            if t_var:
+                M[i, nx] = 1.0 * unit
+            rhs[i] = const[f]
         else:
-            f = i - m0
-            M[i, 2 * f] = 1.0 * unit
-            M[i, 2 * f + 1] = -1.0 * unit
-            if np.isnan(floors[f]):
-                if t_var:
-                    M[i, nx] = 1.0 * unit
-                rhs[i] = const[f]
-            else:
-                rhs[i] = const[f] - floors[f]
+            rhs[i] = const[f] - floors[f]
         big = 0.0
         for j in range(cols):
             big = max(big, abs(M[i, j]))
@@ -310,11 +315,19 @@ def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: 
     for i in range(m):
         if norm[i] <= noise_row * max(top, tiny):
             return 2
-    for i in range(m):
+    for i in range(m0):
+        for j in range(nx):
+            M[i, j] = A0[i, j] * unit / norm[i]
+        if t_var:
+            M[i, nx] = 0.0 / norm[i]
+    for i in range(m0, m):
         for j in range(cols):
             M[i, j] = M[i, j] / norm[i]
+    for i in range(m):
         rhs[i] = rhs[i] / norm[i]
     for j in range(nx):
+        for col in range(cols):
+            M[m + j, col] = 0.0
         M[m + j, j] = 1.0
         rhs[m + j] = ub[j] / unit
     feas = check_tol / 10
