@@ -410,9 +410,12 @@ COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
 
 def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,
             unit: float, noise_row: float, tiny: float, check_tol: float, eps: float,
-            direct_rows: int, per_var: int) -> tuple[int, Any] | None:
-    """:func:`_lp_loop`'s ``(status, y)``, None where the loop does not run."""
-    if not COMPILED.available():
+            direct_rows: int, per_var: int, checked: bool = False
+            ) -> tuple[int, Any] | None:
+    """:func:`_lp_loop`'s ``(status, y)``, None where the loop does not run
+    (``checked``: the caller has asked whether compiled loops run here, this call
+    does not ask again)."""
+    if not checked and not COMPILED.available():
         return None
     cols = A0.shape[1] + 1 if t_var else A0.shape[1]
     y = np.zeros(cols)
@@ -447,8 +450,8 @@ _NO_ROWS, _NO_PARENT = np.zeros(0), np.zeros(4, np.int64)
 
 
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
-                s: float, tol: float, arrays: Any = None, parent: Any = None
-                ) -> tuple[Any, Any, bool] | Literal[False] | None:
+                s: float, tol: float, arrays: Any = None, parent: Any = None,
+                checked: bool = False) -> tuple[Any, Any, bool] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
     stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
     check of the rows without a variable, and whether there is such a row, by the
@@ -456,8 +459,9 @@ def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: fl
     narrow (no program), None where the loop does not run (numpy then).  ``arrays``:
     :func:`edge_arrays` of the part and gravity, built once by a search; ``parent``:
     ``(stretches, A, rhs)`` of a configuration of the same pairing and orientation one
-    move away, whose rows of the combinations it shares are copied (the same numbers)."""
-    if not COMPILED.available():
+    move away, whose rows of the combinations it shares are copied (the same numbers);
+    ``checked``: the caller (a search) has asked whether the loop runs here."""
+    if not checked and not COMPILED.available():
         return None
     k = len(edges)
     ea_all, eb_all, ec_all = edge_arrays(polygon, gravity) if arrays is None else arrays

@@ -146,7 +146,8 @@ def _stretch_facts(polygon: Polygon, st: tuple[int, ...]
 def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.ndarray,
             mode: str, margin: float, gravity: FloatArray | None,
             compiled: bool = True, facts: Callable[[tuple[int, ...]], Any] | None = None,
-            arrays: Any = None, parent: _Config | None = None) -> _Config | None:
+            arrays: Any = None, parent: _Config | None = None, checked: bool = False
+            ) -> _Config | None:
     """Theorem 7.1 on every combination of covered edges (the vertex lemma), or None
     when some combination's pairing is null or its sector narrower than the margin.
     The rows come from the compiled loop of :mod:`._frictionless_kernels` where it runs
@@ -155,14 +156,15 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     that meets each stretch in many configurations; ``arrays``: the compiled loop's
     :func:`~._frictionless_kernels.edge_arrays`, built once by such a search;
     ``parent``: a configuration of the same pairing and orientation one move away,
-    whose rows of the combinations both have are copied (the same numbers)."""
+    whose rows of the combinations both have are copied (the same numbers);
+    ``checked``: ``compiled`` says the compiled loop runs (a search asked once)."""
     k = len(edges)
     s = 1.0 if mode == "+C" else -1.0
     from_parent = None if parent is None or parent.rows is None else \
         (parent.edges, *parent.rows)
     got = _frictionless_kernels.system_rows(
         polygon, edges, gravity, pairing, float(margin_radians(margin)), s, TOL,
-        arrays, from_parent) if compiled else None
+        arrays, from_parent, checked) if compiled else None
     if got is False:
         return None
     rows = None
@@ -266,7 +268,7 @@ def _lp(cfg: _Config, objective: FloatArray, floors: FloatArray, t_var: bool
         cols = 2 * k + 1 if t_var else 2 * k
         one = _frictionless_kernels.lp_rows(
             cfg.A, cfg.b, cfg.const, floors, ub, objective[:cols], t_var, unit, NOISE_ROW,
-            TINY, CHECK_TOL, SIMPLEX_PIVOT, DIRECT_ROWS, ROWS_PER_ROUND)
+            TINY, CHECK_TOL, SIMPLEX_PIVOT, DIRECT_ROWS, ROWS_PER_ROUND, checked=True)
         if one is not None and one[0] == _simplex.INFEASIBLE:
             return None
         if one is not None and one[0] == _simplex.OPTIMAL:
@@ -520,6 +522,8 @@ class _Search:
         self.totals: dict[tuple[Any, ...], float] = {}
         self._facts: dict[tuple[int, ...], tuple[float, float, float, float]] = {}
         self._arrays: Any = None
+        #: whether the programs' rows come from the compiled loop (asked once)
+        self.compiled = _frictionless_kernels.COMPILED.available()
 
     def facts(self, st: tuple[int, ...]) -> tuple[float, float, float, float]:
         """:func:`_stretch_facts` of a stretch, once per search (a stretch is met again
@@ -545,8 +549,9 @@ class _Search:
         if key not in self.level:
             got = None if parent is None else self.level.get(parent)
             cfg = _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
-                          self.gravity, facts=self.facts, arrays=self.arrays(),
-                          parent=None if got is None else got[0])
+                          self.gravity, compiled=self.compiled, facts=self.facts,
+                          arrays=self.arrays(), parent=None if got is None else got[0],
+                          checked=True)
             t = None if cfg is None else _first_level(cfg)
             self.level[key] = None if cfg is None or t is None else (cfg, t)
         return self.level[key]
