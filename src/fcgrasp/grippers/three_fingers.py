@@ -743,7 +743,7 @@ class _FreeStretches:
             free = seq[~cut]
             if not free.size:
                 continue
-            starts = np.flatnonzero(np.r_[True, group[1:] != group[:-1]])
+            starts = np.flatnonzero(np.concatenate(([True], group[1:] != group[:-1])))
             sums = np.add.reduceat(L[free], starts)
             runs += zip(np.split(free, starts[1:]), sums.tolist(), strict=True)
         if not runs:
@@ -756,7 +756,7 @@ class _FreeStretches:
             if approx >= top * (1 - RANK_TOL):     # sums in another order: near it
                 length = float(L[run].sum())
                 if length > best_len:
-                    best, best_len = tuple(int(e) for e in run), length
+                    best, best_len = tuple(run.tolist()), length
         return best
 
 

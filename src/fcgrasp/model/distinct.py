@@ -141,7 +141,7 @@ class Suppression:
 
     @staticmethod
     def _region_boxes(p: GraspPlan) -> FloatArray:
-        return np.array([np.r_[np.min(r, axis=0), np.max(r, axis=0)]
+        return np.array([np.concatenate((np.min(r, axis=0), np.max(r, axis=0)))
                          for r in (np.asarray(r, float) for r in p.regions)]).reshape(-1, 4)
 
     def _may_match(self, p: GraspPlan, box: FloatArray) -> list[int]:

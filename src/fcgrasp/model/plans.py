@@ -96,7 +96,7 @@ class GraspPlan:
         self.regions = tuple(np.asarray(r, dtype=float).reshape(-1, 2) for r in self.regions)
         if not self.region_edges:
             self.region_edges = tuple((int(e),) for e in self.edges)
-        self.region_edges = tuple(tuple(int(e) for e in r) for r in self.region_edges)
+        self.region_edges = tuple(tuple(map(int, r)) for r in self.region_edges)
 
     @property
     def ends(self) -> FloatArray:
