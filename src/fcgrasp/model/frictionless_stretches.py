@@ -167,10 +167,10 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
         arrays, from_parent, checked) if compiled else None
     if got is False:
         return None
-    rows = None
+    compiled_rows = None
     if got is not None:
         A, bvec, some_fixed = got
-        rows = (A, bvec)
+        compiled_rows = (A, bvec)
     else:
         rows = _rows_numpy(polygon, edges, gravity, pairing, margin, s)
         if rows is None:
@@ -190,7 +190,7 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     for f, st in enumerate(edges):
         Lf, Ll, const[f], _ = facts(st) if facts is not None else _stretch_facts(polygon, st)
         bounds += [(0.0, Lf), (0.0, Ll)]
-    return _Config(edges, A, bvec, bounds, const, rows)
+    return _Config(edges, A, bvec, bounds, const, compiled_rows)
 
 
 def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: Any,

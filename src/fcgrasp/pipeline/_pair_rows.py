@@ -456,7 +456,7 @@ class PairRows:
     def _sides(self, pa: np.ndarray, pb: np.ndarray, eps: float, floor: float
                ) -> tuple[np.ndarray, np.ndarray]:
         """Which pairs ``(pa, pb)`` can carry each circuit of a row reaching ``floor``
-        (the module's docstring, "one circuit"): the circuit of ``rho`` (``t < rho .
+        (the module's docstring, "one pair per circuit"): the circuit of ``rho`` (``t < rho .
         g``), and that of ``sigma`` (``t < sigma . (L - g)``), as masks."""
         long = self.L >= floor * (1 - PAD)
         out = []

@@ -279,16 +279,22 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
 
 
 @lru_cache(maxsize=4)
+def _part_pairs(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...] | None,
+                count: int) -> PairRows:
+    """A part's :class:`PairRows` (``spec`` without a top), once per part (its quick
+    test, :attr:`PairRows.hopeless`, asked by every search of a plan); ``count``: the
+    seed rows :func:`_seeded` takes from it."""
+    return PairRows(polygon, spec, edges)
+
+
+@lru_cache(maxsize=4)
 def _seeded(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...] | None, count: int
-            ) -> tuple[PairRows, EdgeSets, np.ndarray, FloatArray] | None:
-    """A part's :class:`PairRows` (``spec`` without a top), its ``count`` seed rows and
-    each seed row's smallest region, solved (the rows that hold), once per part: the
-    searches of one plan (the grown plans' seeds, the ranked list, each distinct round)
-    take their floors from the same rows; None where the pairs cannot answer (most
-    parts: their feet are far off the edges)."""
-    pairs = PairRows(polygon, spec, edges)
-    if pairs.hopeless:
-        return None
+            ) -> tuple[PairRows, EdgeSets, np.ndarray, FloatArray]:
+    """A part's :class:`PairRows` (:func:`_part_pairs`, past its quick test), its
+    ``count`` seed rows and each seed row's smallest region, solved (the rows that
+    hold), once per part: the searches of one plan (the grown plans' seeds, the ranked
+    list, each distinct round) take their floors from the same rows."""
+    pairs = _part_pairs(polygon, spec, edges, count)
     seed = pairs.seed(count)
     got = solve(polygon, spec, seed, edges)
     feats, mins = got.cands.feats, _smallest_region(got.cands.feats, got.lengths)
@@ -311,17 +317,14 @@ def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
     order found: the seed rows first)."""
     if not PairRows.applies(spec, polygon, edges):
         return None
+    top = spec.top or 1
+    which = (polygon, replace(spec, top=None),
+             None if edges is None else tuple(int(e) for e in edges), max(4 * top, SEED_ROWS))
     # numba, for the pairs' loops, is asked for only past the quick test (most parts
     # fail it: their feet are far off the edges)
-    if PairRows(polygon, spec, edges).hopeless or not PairRows.loops():
+    if _part_pairs(*which).hopeless or not PairRows.loops():
         return None
-    top = spec.top or 1
-    got = _seeded(polygon, replace(spec, top=None),
-                  None if edges is None else tuple(int(e) for e in edges),
-                  max(4 * top, SEED_ROWS))
-    if got is None:
-        return None
-    pairs, seed, feats, mins = got
+    pairs, seed, feats, mins = _seeded(*which)
     if exclude is not None and len(feats):
         out = np.asarray(exclude(feats), bool)
         mins = mins[~out] if out.any() else mins
@@ -334,7 +337,8 @@ def _paired(polygon: Polygon, spec: PlanSpec, edges: Any,
         return None
     # by decreasing bound, in growing batches: the floor the first ones raise drops
     # the later ones before their geometry (solve), or ends the stream (their ceiling)
-    bound = rest.bound if rest.bound is not None else np.full(len(rest.feats), np.inf)
+    bound = rest.bound
+    assert bound is not None            # reaching bounds every row it reads
     by = np.argsort(-bound, kind="stable")
     batches, start, size = [seed], 0, _spec.GATHER_ROWS
     while start < by.size:
