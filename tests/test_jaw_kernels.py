@@ -442,3 +442,75 @@ def test_compiled_slices_in_a_narrow_window_read_every_edge_a_pad_reaches(cases,
             np.testing.assert_allclose(g, w, rtol=0, atol=tol)
         differ += any(len(w) for w in want)
     assert differ > cases // 4             # windows with holding offsets among them
+
+
+def _comb(rng):
+    """A comb: teeth whose tips are level to within a few contact tolerances (some
+    exactly level, some a hair above or below), the pads' stop tied over many edges."""
+    k = int(rng.integers(5, 30))
+    size = 50.0
+    tips = 20.0 + rng.choice([0.0, 1.0, -1.0, 3.0, -3.0, 1e3], k) * 1e-9 * size
+    x = np.linspace(-20.0, 20.0, 2 * k + 1)
+    pts = [(x[0], -10.0)]
+    for i in range(k):
+        pts += [(x[2 * i], tips[i]), (x[2 * i + 1], tips[i]), (x[2 * i + 1], 10.0)]
+    pts += [(x[-1], 10.0), (x[-1], -10.0)]
+    ring = np.array(pts)
+    ring = ring[np.r_[True, np.any(np.diff(ring, axis=0) != 0, axis=1)]]
+    th = float(rng.uniform(0, 2 * np.pi))
+    rot = np.array([[np.cos(th), -np.sin(th)], [np.sin(th), np.cos(th)]])
+    return fc.Polygon(ring @ rot.T + 100 * rng.normal(size=2)), th
+
+
+@pytest.mark.parametrize("cases", [pytest.param(60, id="seeded"),
+                                   pytest.param(600, id="sweep", marks=pytest.mark.slow)])
+def test_pruned_slices_are_every_edges_slices_bit_for_bit(cases):
+    """The compiled slices of an external grip read, per cell, only the edges that may
+    come within the contact tolerance of a pad's stop (``prune``, the default): their
+    pieces, and the angles given up, are those of reading every edge near the strip, bit
+    for bit.  Seeded random parts, filleted plates (hundreds of edges in a strip, most
+    of them pruned) and combs whose teeth's tips are level to within a few tolerances
+    (the stop tied over many edges, some just out of reach), at random and critical
+    angles, whole and in windows, with and without the early stop."""
+    from fcgrasp.core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL
+
+    from .test_jaw import _filleted_plate
+
+    rng = np.random.default_rng(72)
+    pieces = stops = 0
+    for k in range(cases):
+        kind = k % 3
+        if kind == 0:
+            part, jaw = _part_and_jaw(rng)
+            crit = np.arctan2(*(part.ends - part.starts).T[::-1]) + np.pi / 2
+        elif kind == 1:
+            part = _filleted_plate(rng)
+            jaw = fc.ParallelJaw(stroke=(0.0, 1.5 * part.size),
+                                 pad_width=float(rng.uniform(0.05, 0.4)) * part.size,
+                                 mu=float(rng.uniform(0.3, 0.8)))
+            crit = np.arctan2(*(part.ends - part.starts).T[::-1]) + np.pi / 2
+        else:
+            part, turn = _comb(rng)
+            jaw = fc.ParallelJaw(stroke=(0.0, 1.5 * part.size),
+                                 pad_width=float(rng.uniform(0.05, 0.6)) * part.size,
+                                 mu=float(rng.uniform(0.3, 0.8)))
+            crit = turn + np.array([np.pi / 2, -np.pi / 2])
+        th = np.r_[rng.uniform(0, 2 * np.pi, 4), rng.choice(crit, 3),
+                   rng.choice(crit, 2) + rng.choice([-1, 1], 2) * 1e-9]
+        tol = CONTACT_TOL * part.size
+        c = float(rng.uniform(-0.3, 0.3)) * part.size
+        for window in (None, (c, c + float(rng.uniform(0.01, 0.5)) * part.size)):
+            ring, ct, clo, chi = _slices._cells(part, jaw, th, None, window)
+            args = (ct, clo, chi, th, *_poses._pose_args(part, jaw, 2.0, None, ring),
+                    SLICE_TOL * part.size, ROUND_TOL * part.size, tol,
+                    _poses.NEAR_STRIP * tol)
+            for gap, upward in ((0.0, False), (tol, True), (tol, False)):
+                got_failed, want_failed = np.zeros(th.size, bool), np.zeros(th.size, bool)
+                got = _kernels.slices(*args, stop_gap=gap, failed=got_failed, upward=upward)
+                want = _kernels.slices(*args, stop_gap=gap, failed=want_failed,
+                                       upward=upward, prune=False)
+                np.testing.assert_array_equal(got, want)
+                np.testing.assert_array_equal(got_failed, want_failed)
+                pieces += len(want)
+                stops += int(want_failed.sum())
+    assert pieces > 20 * cases and stops > cases // 2, (pieces, stops)

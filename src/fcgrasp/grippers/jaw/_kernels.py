@@ -284,6 +284,10 @@ def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: floa
                   lat_b, psi_b, col_b, h_lo, h_hi)
     opening = top[p] - bottom[p]
     any_pair = False
+    # the cone's edges where both forces are along the closing direction (psi 0, the
+    # usual case), computed once
+    tan_hi = math.tan(min(beta, math.pi / 2 - round_tol))
+    tan_lo = math.tan(max(-beta, -math.pi / 2 + round_tol))
     for i in range(K):
         for j in range(K):
             pa = flip * psi_a[p, i]
@@ -291,10 +295,10 @@ def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: floa
             lo = max(pa, pb) - beta
             hi = min(pa, pb) + beta
             if lo < hi:         # False where a feature is missing (NaN)
-                s_hi = opening * math.tan(min(hi, math.pi / 2 - round_tol)) \
-                    - (lat_b[p, j, 0] - lat_a[p, i, 1])
-                s_lo = (lat_b[p, j, 1] - lat_a[p, i, 0]) \
-                    - opening * math.tan(max(lo, -math.pi / 2 + round_tol))
+                t_hi = tan_hi if hi == beta else math.tan(min(hi, math.pi / 2 - round_tol))
+                t_lo = tan_lo if lo == -beta else math.tan(max(lo, -math.pi / 2 + round_tol))
+                s_hi = opening * t_hi - (lat_b[p, j, 0] - lat_a[p, i, 1])
+                s_lo = (lat_b[p, j, 1] - lat_a[p, i, 0]) - opening * t_lo
                 slacks[p, i * K + j] = s_hi
                 slacks[p, K * K + i * K + j] = s_lo
                 if s_hi > 0 and s_lo > 0:
@@ -864,7 +868,7 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
                  half: float, tol: float, internal: bool, q: Any, stroke0: float,
                  stroke1: float, beta: float, flip: float, round_tol: float,
                  slice_tol: float, tiny: float, atol: float, near: float, stop_gap: float,
-                 failed: Any, upward: bool) -> Any:
+                 failed: Any, upward: bool, prune: bool) -> Any:
     """``_slices.holding_offsets``'s cells (sorted by angle), each decided to the end (a
     stack instead of numpy's rounds): a cell affine at three points is cut at its
     slacks' roots and its pieces decided at their middles; one that is not is split
@@ -876,7 +880,13 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     its slice cannot be one interval across the cells (``_slices.holds_across``).
     ``upward``: each angle's cells are read from the lowest offset up (else from the
     highest down), so that a stop leaves the interval through that end complete
-    (``_slices.near_intervals``)."""
+    (``_slices.near_intervals``).
+
+    ``prune`` (an external grip): a cell's poses read only the edges that may come
+    within ``tol`` of a pad's stop somewhere in the cell (:func:`_stop_reach`), in their
+    order; an edge left out is below the stop by more than ``tol`` at every pose of the
+    cell, so it gives neither the stop (a maximum of the edges' heights) nor a feature
+    (an edge within ``tol`` of it): the pieces are those of every edge, bit for bit."""
     E = a.shape[0]
     K = K_MAX
     S = 2 * K * K + 2
@@ -891,7 +901,9 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     where = np.empty(S + 2)
     qs = np.empty((5, 2 + 4 * K))
     x_lo, x_hi = np.empty(E), np.empty(E)
+    xy = np.empty((E, 7))
     ga, gb, gf = np.empty((E, 2)), np.empty((E, 2)), np.empty((E, 2))
+    near_ids = np.empty(E, np.int64)
     out_t, out_lo, out_hi = [0], [0.0], [0.0]
     out_t.pop()
     out_lo.pop()
@@ -908,6 +920,12 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
             xa = -ts * a[e, 0] + tc * a[e, 1]
             xb = -ts * b[e, 0] + tc * b[e, 1]
             x_lo[e], x_hi[e] = min(xa, xb), max(xa, xb)
+            xy[e, 0], xy[e, 1] = xa, xb
+            ya = tc * a[e, 0] + ts * a[e, 1]
+            yb = tc * b[e, 0] + ts * b[e, 1]
+            xy[e, 2], xy[e, 3] = ya, yb
+            xy[e, 4] = (yb - ya) / (xb - xa) if abs(xb - xa) > tol else np.nan
+            xy[e, 5], xy[e, 6] = max(ya, yb), max(-ya, -yb)
         if upward:
             stack_lo = list(cell_lo[first:last][::-1])
             stack_hi = list(cell_hi[first:last][::-1])
@@ -919,13 +937,19 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
             if failed[t]:
                 break                   # the angle given up: its cells left unread
             lo, hi = stack_lo.pop(), stack_hi.pop()
-            n = 0
+            m = 0
             for e in range(E):
                 if x_hi[e] >= lo - half - near and x_lo[e] <= hi + half + near:
-                    ga[n, 0], ga[n, 1] = a[e, 0], a[e, 1]
-                    gb[n, 0], gb[n, 1] = b[e, 0], b[e, 1]
-                    gf[n, 0], gf[n, 1] = f[e, 0], f[e, 1]
-                    n += 1
+                    near_ids[m] = e
+                    m += 1
+            if prune:
+                m = _stop_reach(near_ids, m, x_lo, x_hi, xy, lo, hi, half, tol)
+            for n in range(m):
+                e = near_ids[n]
+                ga[n, 0], ga[n, 1] = a[e, 0], a[e, 1]
+                gb[n, 0], gb[n, 1] = b[e, 0], b[e, 1]
+                gf[n, 0], gf[n, 1] = f[e, 0], f[e, 1]
+            n = m
             if _cell(t, theta, lo, hi, ga[:n], gb[:n], gf[:n], half, tol, internal, q,
                      stroke0, stroke1, beta, flip, round_tol, slice_tol, tiny, atol, top,
                      bottom, ok_a, ok_b, lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds,
@@ -936,6 +960,67 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
     for k in range(len(out_t)):
         rows[k, 0], rows[k, 1], rows[k, 2] = out_t[k], out_lo[k], out_hi[k]
     return rows
+
+
+def _stop_reach(ids: Any, m: int, x_lo: Any, x_hi: Any, xy: Any, lo: float, hi: float,
+                half: float, tol: float) -> int:
+    """The edges among ``ids[:m]`` (in order) that may come within ``tol`` of either
+    pad's stop at some pose of the cell ``[lo, hi]`` (:func:`_slices_loop`'s
+    ``prune``), moved to the front of ``ids``; returns how many.  ``xy``: per edge its
+    ends across (``xa, xb``) and along (``ya, yb``) the closing direction, its slope
+    (NaN where :func:`_pad_loop` takes it as level across, ``|xb - xa| <= tol``), and
+    its highest ``y`` and ``-y``.
+
+    A lower bound of each stop over the cell: an edge that meets every pose's strip
+    (``x_hi >= hi - half`` and ``x_lo <= lo + half``, the strips' ends being monotone in
+    the offset) raises the stop to at least its height over the part of it every strip
+    covers (a pad's stop is the highest point of the edges in its strip), or its lowest
+    end where no part is in every strip.  An upper bound of each edge's height: its
+    highest over the union of the strips (``[lo - half, hi + half]``).  An edge whose
+    upper bound is below both lower bounds by more than twice ``tol`` (one ``tol`` the
+    contact's, one for rounding: the coordinates are within the part's size of the
+    centroid and ``tol`` is a billionth of it) is never within ``tol`` of a stop."""
+    s_hi, s_lo = hi - half, lo + half
+    u_lo, u_hi = lo - half, hi + half
+    low_top, low_bottom = -np.inf, -np.inf
+    for k in range(m):
+        e = ids[k]
+        if x_hi[e] < s_hi or x_lo[e] > s_lo \
+                or (xy[e, 5] <= low_top and xy[e, 6] <= low_bottom):
+            continue
+        slope = xy[e, 4]
+        if slope != slope:
+            top, bottom = xy[e, 5], xy[e, 6]
+        else:
+            p0, p1 = max(x_lo[e], s_hi), min(x_hi[e], s_lo)
+            if p0 <= p1:        # a part of the edge in every strip
+                xa, ya = xy[e, 0], xy[e, 2]
+                y0, y1 = ya + (p0 - xa) * slope, ya + (p1 - xa) * slope
+                top, bottom = max(y0, y1), max(-y0, -y1)
+            else:               # some point of it in each strip
+                top, bottom = -xy[e, 6], -xy[e, 5]
+        low_top, low_bottom = max(low_top, top), max(low_bottom, bottom)
+    if low_top == -np.inf or low_bottom == -np.inf:
+        return m
+    low_top -= 2 * tol
+    low_bottom -= 2 * tol
+    n = 0
+    for k in range(m):
+        e = ids[k]
+        if xy[e, 5] < low_top and xy[e, 6] < low_bottom:
+            continue
+        slope = xy[e, 4]
+        if slope != slope:
+            up, down = xy[e, 5], xy[e, 6]
+        else:
+            xa, ya = xy[e, 0], xy[e, 2]
+            p0, p1 = max(x_lo[e], u_lo), min(x_hi[e], u_hi)
+            y0, y1 = ya + (p0 - xa) * slope, ya + (p1 - xa) * slope
+            up, down = max(y0, y1), max(-y0, -y1)
+        if up >= low_top or down >= low_bottom:
+            ids[n] = e
+            n += 1
+    return n
 
 
 def _cell(t: int, theta: float, lo: float, hi: float, a: Any, b: Any, f: Any, half: float,
@@ -1109,7 +1194,8 @@ def _affine3(v0: float, v1: float, v2: float, atol: float) -> bool:
 def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: Any,
            half: float, tol: float, q: Any, stroke: tuple[float, float], beta: float,
            round_tol: float, slice_tol: float, tiny: float, atol: float, near: float,
-           stop_gap: float = 0.0, failed: Any = None, upward: bool = False) -> Any:
+           stop_gap: float = 0.0, failed: Any = None, upward: bool = False,
+           prune: bool = True) -> Any:
     """The holding pieces of the cells (``_slices.holding_offsets``; sorted by angle),
     compiled: rows ``(angle index, lo, hi)``; None when the loop cannot run.
     ``stop_gap`` > 0: an angle is given up at its first piece longer than that which does
@@ -1129,7 +1215,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
                 float(half), float(tol), internal, qq, float(stroke[0]), float(stroke[1]),
                 float(beta), -1.0 if internal else 1.0, float(round_tol), float(slice_tol),
                 float(tiny), float(atol), float(near), float(stop_gap), failed,
-                bool(upward), answer=out):
+                bool(upward), bool(prune) and not internal, answer=out):
         return None
     return out[0]
 
@@ -1140,7 +1226,7 @@ _LOOPS = CompiledLoops(globals(), (
     _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _grid_loop, _box_loop,
     _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
     _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine,
-    _quantities, _kink, _cell, _slices_loop))
+    _quantities, _kink, _stop_reach, _cell, _slices_loop))
 
 
 def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
