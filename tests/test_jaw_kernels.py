@@ -514,3 +514,38 @@ def test_pruned_slices_are_every_edges_slices_bit_for_bit(cases):
                 pieces += len(want)
                 stops += int(want_failed.sum())
     assert pieces > 20 * cases and stops > cases // 2, (pieces, stops)
+
+
+def test_both_outer_pads_in_one_pass_are_each_pad_alone():
+    """An external grip's pads are found in one pass over the edges (``_outer_pads``,
+    the positions computed once for both): bit for bit what :func:`_pad_loop` finds for
+    each pad alone (its stop, validity, features' spans, force angles and columns), at
+    random poses, at critical angles and where a vertex enters the strip."""
+    K = _kernels.K_MAX
+    rng = np.random.default_rng(73)
+    poses = touching = 0
+    for _ in range(40):
+        part, jaw = _part_and_jaw(rng)
+        ring = _poses._grip_edges(part, None)
+        a, b, f, half, tol = _poses._pose_args(part, jaw, 2.0, None, ring)[:5]
+        th, c = _poses_of(rng, part, jaw, 60)
+        E = a.shape[0]
+        for t, x in zip(th, c, strict=True):
+            tc, ts = float(np.cos(t)), float(np.sin(t))
+            got = [np.empty(1), np.zeros(1, bool), np.empty((1, K, 2)), np.empty((1, K)),
+                   np.empty((1, K), np.int64)]
+            got_b = [np.empty(1), np.zeros(1, bool), np.empty((1, K, 2)), np.empty((1, K)),
+                     np.empty((1, K), np.int64)]
+            assert _kernels._run("_outer_pads", 0, tc, ts, float(x), a, b, f, half, tol,
+                                 *got, *got_b, np.empty((4, E)))
+            for sign, fsign, mine in ((1.0, -1.0, got), (-1.0, 1.0, got_b)):
+                want = [np.empty(1), np.zeros(1, bool), np.empty((1, K, 2)),
+                        np.empty((1, K)), np.empty((1, K), np.int64)]
+                assert _kernels._run("_pad_loop", 0, tc, ts, float(x), a, b, f, half, tol,
+                                     sign, fsign, np.ones(E), *want, np.empty(E),
+                                     np.empty(E))
+                for g, w in zip(mine, want, strict=True):
+                    assert g.tobytes() == w.tobytes()
+                touching += int(np.sum(want[4] >= 0))
+            poses += 1
+    assert poses == 2400 and touching > 2000

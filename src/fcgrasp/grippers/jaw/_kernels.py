@@ -59,6 +59,20 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
             h_lo[e] = ya + (cl_lo - xa) * slope
             h_hi[e] = ya + (cl_hi - xa) * slope
         stop = max(stop, h_lo[e], h_hi[e])
+    _features(p, th_c, th_s, c, a, b, f, half, tol, sign, fsign, stop, h_lo, h_hi,
+              stop_out, ok_out, lat, psi, col)
+
+
+def _features(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any,
+              half: float, tol: float, sign: float, fsign: float, stop: float, h_lo: Any,
+              h_hi: Any, stop_out: Any, ok_out: Any, lat: Any, psi: Any,
+              col: Any) -> None:
+    """The end of :func:`_pad_loop`: the pad's stop ``stop`` (the highest of the edges'
+    heights ``h_lo``, ``h_hi`` at the ends of their parts in the strip, -inf or NaN for
+    an edge out of it) and its first :data:`K_MAX` touching edges (within ``tol`` of
+    it), in order: their lateral spans, force angles and columns."""
+    s0, s1 = c - half, c + half
+    E = a.shape[0]
     count = 0
     finite = stop > -np.inf
     for e in range(E):
@@ -97,6 +111,48 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
         lat[p, k, 0], lat[p, k, 1], psi[p, k], col[p, k] = np.nan, np.nan, np.nan, -1
     stop_out[p] = sign * stop
     ok_out[p] = finite and count <= K_MAX
+
+
+def _outer_pads(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any,
+                half: float, tol: float, top: Any, ok_a: Any, lat_a: Any, psi_a: Any,
+                col_a: Any, bottom: Any, ok_b: Any, lat_b: Any, psi_b: Any, col_b: Any,
+                scratch: Any) -> None:
+    """Both pads of an external grip at pose ``p``: :func:`_pad_loop` for the upper pad
+    (``sign`` 1) and the lower (-1), the edges' positions computed once for both, the
+    same numbers (each pad's heights by its own formula).  ``scratch`` (4, E)."""
+    s0, s1 = c - half, c + half
+    E = a.shape[0]
+    h_lo, h_hi, g_lo, g_hi = scratch[0], scratch[1], scratch[2], scratch[3]
+    stop_a, stop_b = -np.inf, -np.inf
+    for e in range(E):
+        xa = -th_s * a[e, 0] + th_c * a[e, 1]
+        xb = -th_s * b[e, 0] + th_c * b[e, 1]
+        lo_x, hi_x = min(xa, xb), max(xa, xb)
+        if not (hi_x >= s0 and lo_x <= s1):
+            h_lo[e], h_hi[e], g_lo[e], g_hi[e] = -np.inf, -np.inf, -np.inf, -np.inf
+            continue
+        ya = th_c * a[e, 0] + th_s * a[e, 1]
+        yb = th_c * b[e, 0] + th_s * b[e, 1]
+        na, nb = -1.0 * ya, -1.0 * yb
+        dx = xb - xa
+        if abs(dx) <= tol:
+            h_lo[e] = h_hi[e] = max(ya, yb)
+            g_lo[e] = g_hi[e] = max(na, nb)
+        else:
+            cl_lo = min(max(lo_x, s0), s1)
+            cl_hi = min(max(hi_x, s0), s1)
+            slope = (yb - ya) / dx
+            h_lo[e] = ya + (cl_lo - xa) * slope
+            h_hi[e] = ya + (cl_hi - xa) * slope
+            slope = (nb - na) / dx
+            g_lo[e] = na + (cl_lo - xa) * slope
+            g_hi[e] = na + (cl_hi - xa) * slope
+        stop_a = max(stop_a, h_lo[e], h_hi[e])
+        stop_b = max(stop_b, g_lo[e], g_hi[e])
+    _features(p, th_c, th_s, c, a, b, f, half, tol, 1.0, -1.0, stop_a, h_lo, h_hi, top,
+              ok_a, lat_a, psi_a, col_a)
+    _features(p, th_c, th_s, c, a, b, f, half, tol, -1.0, 1.0, stop_b, g_lo, g_hi, bottom,
+              ok_b, lat_b, psi_b, col_b)
 
 
 def _hole_sides(th_c: float, th_s: float, c: float, a: Any, b: Any, half: float,
@@ -276,12 +332,8 @@ def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: floa
                   lat_b, psi_b, col_b, h_lo, h_hi)
         ok_a[p] = ok_a[p] and free and _inside_ring(tc, ts, a, b, c, y_q)
     else:
-        for e in range(E):
-            above[e] = 1.0
-        _pad_loop(p, tc, ts, c, a, b, f, half, tol, 1.0, -1.0, above, top, ok_a,
-                  lat_a, psi_a, col_a, h_lo, h_hi)
-        _pad_loop(p, tc, ts, c, a, b, f, half, tol, -1.0, 1.0, above, bottom, ok_b,
-                  lat_b, psi_b, col_b, h_lo, h_hi)
+        _outer_pads(p, tc, ts, c, a, b, f, half, tol, top, ok_a, lat_a, psi_a, col_a,
+                    bottom, ok_b, lat_b, psi_b, col_b, scratch)
     opening = top[p] - bottom[p]
     any_pair = False
     # the cone's edges where both forces are along the closing direction (psi 0, the
@@ -476,7 +528,7 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
                 uniq: Any, inv: Any, sign: float, internal: bool, ahead: Any, half: float,
                 zero: float, contact_tol: float, ys: Any, xs: Any, dxr: Any, dy: Any,
                 fn: Any, ranges: Any, vmask: Any, touched: Any, facing: Any, p0: Any,
-                p1: Any, centre: Any, hw: Any) -> tuple[float, float, int]:
+                p1: Any, centre: Any, hw: Any, x_known: bool) -> tuple[float, float, int]:
     """``_certify._pad_candidates`` for one box ``(t0, t1, c0, c1)`` (``trig``: the
     cosines and sines of its ends) over the edges ``ids[:n]`` (increasing; every edge
     that may meet the strip over the box among them): the first :data:`K_MAX` candidate
@@ -486,17 +538,19 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
     and how many candidates there are.  :func:`_polar` tables: ``ys``, ``xs`` (2m) the
     heights (``sign`` times) and lateral positions of the edges' ends (starts, then
     ends), ``dxr``, ``dy`` (m) of the edges' directions, ``fn`` (m) of the normals this
-    pad's facing is read from.  ``ranges`` (2m, 4), ``vmask`` (U,; all False, left so),
-    ``touched`` (2m,), ``facing`` (m, 2): scratch."""
+    pad's facing is read from.  ``ranges`` (2m, 4): the ends' lateral and height
+    ranges over the box, the lateral ones already there with ``x_known`` (the same for
+    both pads);  ``vmask`` (U,; all False, left so), ``touched`` (2m,), ``facing``
+    (m, 2): scratch."""
     t0, t1, c0, c1 = box[0], box[1], box[2], box[3]
     m = a.shape[0]
     lower = -np.inf
     for k in range(n):
         for idx in (ids[k], m + ids[k]):
             y_lo, y_hi = _vrange(ys, idx, t0, t1, trig)
-            x_lo, x_hi = _vrange(xs, idx, t0, t1, trig)
-            ranges[idx, 0], ranges[idx, 1], ranges[idx, 2], ranges[idx, 3] = \
-                x_lo, x_hi, y_lo, y_hi
+            if not x_known:
+                ranges[idx, 0], ranges[idx, 1] = _vrange(xs, idx, t0, t1, trig)
+            ranges[idx, 2], ranges[idx, 3] = y_lo, y_hi
     # which edges the pad may meet (maybe) and surely faces (surely); per edge
     tm, cm = (t0 + t1) / 2, (c0 + c1) / 2
     sin_m, cos_m = math.sin(tm), math.cos(tm)
@@ -679,7 +733,7 @@ def _tables(a: Any, b: Any, nrm: Any, uniq: Any, internal: bool) -> Any:
 def _prove_box(box: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any, uniq: Any,
                inv: Any, half: float, zero: float, contact_tol: float, tol: float,
                internal: bool, q: Any, beta: float, stroke0: float, stroke1: float,
-               tables: Any) -> tuple[bool, float, float]:
+               tables: Any, x_known: bool) -> tuple[bool, float, float]:
     """``_certify._box_proofs_numpy`` for one box over the edges ``ids[:n]``: whether it
     is proved (both pads' candidates few, the opening's enclosure within the stroke,
     every pair of candidates force closure over the box; inside a hole, the closed
@@ -709,10 +763,10 @@ def _prove_box(box: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any, uniq: Any,
     ca, ha, cb, hb = arcs[0], arcs[1], arcs[2], arcs[3]
     lo_a, hi_a, n_a = _candidates(box, trig, ids, n, a, b, nrm, uniq, inv, sa, internal,
                                   up, half, zero, contact_tol, ys_a, xs, dxr, dy_a, fn_a,
-                                  ranges, vmask, touched, facing, pa0, pa1, ca, ha)
+                                  ranges, vmask, touched, facing, pa0, pa1, ca, ha, x_known)
     lo_b, hi_b, n_b = _candidates(box, trig, ids, n, a, b, nrm, uniq, inv, sb, internal,
                                   down, half, zero, contact_tol, ys_b, xs, dxr, dy_b, fn_b,
-                                  ranges, vmask, touched, facing, pb0, pb1, cb, hb)
+                                  ranges, vmask, touched, facing, pb0, pb1, cb, hb, True)
     ok = free and lo_a > -np.inf and 1 <= n_a <= K_MAX and lo_b > -np.inf \
         and 1 <= n_b <= K_MAX
     al, ah = _nan_min(sa * lo_a, sa * hi_a), _nan_max(sa * lo_a, sa * hi_a)
@@ -742,7 +796,7 @@ def _prove_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half:
     for k in range(boxes.shape[0]):
         proved[k], o_lo[k], o_hi[k] = _prove_box(
             boxes[k], ids, ids.shape[0], a, b, nrm, uniq, inv, half, zero, contact_tol, tol,
-            internal, q, beta, stroke0, stroke1, tables)
+            internal, q, beta, stroke0, stroke1, tables, False)
 
 
 #: Levels of halving the depth-first proof goes to (a box halved this often is below
@@ -764,7 +818,7 @@ def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, hal
     when more than ``max_boxes`` boxes are needed or a centre pose fails."""
     m = a.shape[0]
     tables = _tables(a, b, nrm, uniq, internal)
-    xs = tables[2]
+    xs, ranges = tables[2], tables[8]
     lists = np.empty((MAX_DEPTH + 1, m), dtype=np.int64)
     counts = np.zeros(MAX_DEPTH + 1, dtype=np.int64)
     ga, gb, gf = np.empty((m, 2)), np.empty((m, 2)), np.empty((m, 2))
@@ -794,7 +848,8 @@ def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, hal
         box[0], box[1], box[2], box[3] = t0, t1, c0, c1
         trig[0], trig[1], trig[2], trig[3] = (math.cos(t0), math.sin(t0), math.cos(t1),
                                               math.sin(t1))
-        # the parent's edges that may meet this box's strip
+        # the parent's edges that may meet this box's strip (their ends' lateral ranges
+        # kept for the proof)
         n = 0
         for k in range(counts[depth - 1]):
             e = lists[depth - 1, k]
@@ -803,11 +858,13 @@ def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, hal
             if max(xa_hi, xb_hi) >= c0 - half - near and min(xa_lo, xb_lo) <= c1 + half + near:
                 lists[depth, n] = e
                 n += 1
+                ranges[e, 0], ranges[e, 1] = xa_lo, xa_hi
+                ranges[m + e, 0], ranges[m + e, 1] = xb_lo, xb_hi
         counts[depth] = n
         ids = lists[depth]
         ok, o_lo, o_hi = _prove_box(box, ids, n, a, b, nrm, uniq, inv, half, zero,
                                     contact_tol, tol, internal, q, beta, stroke0, stroke1,
-                                    tables)
+                                    tables, True)
         if internal or not ok:
             for k in range(n):
                 e = ids[k]
@@ -1223,7 +1280,8 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 # ----------------------------------------------------------------------------- loading
 
 _LOOPS = CompiledLoops(globals(), (
-    _pad_loop, _hole_sides, _inside_ring, _pose_one, _poses_loop, _grid_loop, _box_loop,
+    _features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pose_one, _poses_loop,
+    _grid_loop, _box_loop,
     _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
     _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine,
     _quantities, _kink, _stop_reach, _cell, _slices_loop))
