@@ -542,8 +542,7 @@ def test_both_outer_pads_in_one_pass_are_each_pad_alone():
                 want = [np.empty(1), np.zeros(1, bool), np.empty((1, K, 2)),
                         np.empty((1, K)), np.empty((1, K), np.int64)]
                 assert _kernels._run("_pad_loop", 0, tc, ts, float(x), a, b, f, half, tol,
-                                     sign, fsign, np.ones(E), *want, np.empty(E),
-                                     np.empty(E))
+                                     sign, fsign, -1, *want, np.empty((2, E)), 0)
                 for g, w in zip(mine, want, strict=True):
                     assert g.tobytes() == w.tobytes()
                 touching += int(np.sum(want[4] >= 0))

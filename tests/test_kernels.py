@@ -296,3 +296,31 @@ def test_direction_closure_compiled_is_the_numpy_test(k, monkeypatch):
     monkeypatch.setenv("FCGRASP_JIT", "0")
     np.testing.assert_array_equal(rows_closure(table, rows), want_rows)
     assert 0.05 < want_rows.mean() < 0.95
+
+
+def _scale_rows(x, out, k):
+    for i in range(x.shape[0]):
+        out[i] = k * x[i]
+
+
+def _scale_all(x):
+    out = np.empty_like(x)
+    for k in range(3):
+        _scale_rows(x, out, 1.0 + k)
+    return out
+
+
+@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+def test_a_borrowing_loop_runs_without_reference_counts_and_gives_the_same_numbers():
+    """``njit_all``'s ``borrowing``: the named loops are compiled with numba's runtime
+    off (no reference counts on the arrays they are given), the others as before, and a
+    caller that allocates still calls them: the same numbers as the plain loop."""
+    numba = kernels.import_numba()
+    space = {"np": np}
+    loops = kernels.njit_all(numba, space, [("_scale_rows", _scale_rows),
+                                            ("_scale_all", _scale_all)],
+                             frozenset({"_scale_rows"}))
+    x = np.random.default_rng(3).normal(size=50)
+    np.testing.assert_array_equal(loops["_scale_all"](x), _scale_all(x))
+    assert loops["_scale_rows"].targetoptions.get("_nrt") is False
+    assert "_nrt" not in loops["_scale_all"].targetoptions

@@ -560,20 +560,35 @@ def _loops() -> dict[str, Any] | None:
         return _compiled
 
 
-def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
-             ) -> dict[str, Any]:
+def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]],
+             borrowing: frozenset[str] = frozenset()) -> dict[str, Any]:
     """Compile plain-Python functions with numba, each rebuilt over ``namespace`` and
     stored there under its name, so that compiled functions call compiled ones (here
     and in :mod:`fcgrasp.model._stretch_kernels`).  The machine code is cached on disk
     beside the functions' module; where there is nowhere to write it (a read-only
-    install), compiled without a cache.  Returns ``namespace``."""
+    install), compiled without a cache.  Returns ``namespace``.
+
+    The functions named in ``borrowing`` are compiled without numba's reference counts
+    (its runtime off: ``_nrt=False``): they allocate nothing and only read and write the
+    arrays they are given, which their caller holds for the call, and a small function
+    called per pose or per edge otherwise pays an atomic increment and decrement per
+    array argument per call (a third of the jaw's pose loop).  Where this numba does
+    not take the option, they are compiled as the others."""
     for name, func in funcs:
         clone = types.FunctionType(func.__code__, namespace, func.__name__, func.__defaults__)
         clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
+        options: dict[str, Any] = {"error_model": "numpy"}
+        if name in borrowing:
+            options["_nrt"] = False
         try:
-            namespace[name] = numba.njit(cache=True, error_model="numpy")(clone)
+            jit = numba.njit(cache=True, **options)
+        except (KeyError, TypeError, ValueError):   # no such option here
+            options.pop("_nrt", None)
+            jit = numba.njit(cache=True, **options)
+        try:
+            namespace[name] = jit(clone)
         except RuntimeError:            # nowhere to cache (a read-only install): compile
-            namespace[name] = numba.njit(error_model="numpy")(clone)
+            namespace[name] = numba.njit(**options)(clone)
     return namespace
 
 
@@ -585,8 +600,10 @@ class CompiledLoops:
     parallel jaw and the two-finger stretch search."""
 
     def __init__(self, namespace: dict[str, Any], funcs: tuple[Any, ...],
-                 extra: Any = None) -> None:
+                 extra: Any = None, borrowing: tuple[Any, ...] = ()) -> None:
         self._namespace, self._funcs, self._extra = namespace, funcs, extra
+        #: the names compiled without reference counts (:func:`njit_all`)
+        self._borrowing = frozenset(f.__name__ for f in borrowing)
         self._lock = threading.Lock()
         self._loaded: dict[str, Any] = {}
         #: numba missing, or a loop that failed to compile: numpy from then on
@@ -607,7 +624,8 @@ class CompiledLoops:
                         return None
                     names.update(more)
                 self._loaded.update(njit_all(numba, names,
-                                             [(f.__name__, f) for f in self._funcs]))
+                                             [(f.__name__, f) for f in self._funcs],
+                                             self._borrowing))
             return self._loaded or None
 
     @property

@@ -26,14 +26,16 @@ K_MAX = 4
 
 
 def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any,
-              half: float, tol: float, sign: float, fsign: float, use: Any,
-              stop_out: Any, ok_out: Any, lat: Any, psi: Any, col: Any, h_lo: Any,
-              h_hi: Any) -> None:
+              half: float, tol: float, sign: float, fsign: float, use: int,
+              stop_out: Any, ok_out: Any, lat: Any, psi: Any, col: Any, hs: Any,
+              r: int) -> None:
     """One pad at pose ``p`` (``_poses._pad``): the stop (``sign`` times the extreme of
     ``sign * y``), whether it is valid, and its first :data:`K_MAX` touching edges'
-    lateral spans, force angles and columns.  ``use``: the edges it may meet (None:
-    all); ``fsign``: the sign of the force's ``u`` component in ``arctan2``; ``h_lo``,
-    ``h_hi``: scratch (E,)."""
+    lateral spans, force angles and columns.  ``use``: the row of ``hs`` that marks the
+    edges it may meet (> 0), -1 for all; ``fsign``: the sign of the force's ``u``
+    component in ``arctan2``; rows ``r`` and ``r + 1`` of ``hs``: scratch (E,) (rows
+    of one array, not views: a compiled function that makes no view and allocates
+    nothing runs without reference counts, :func:`~fcgrasp.core.kernels.njit_all`)."""
     s0, s1 = c - half, c + half
     E = a.shape[0]
     stop = -np.inf
@@ -41,10 +43,10 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
         xa = -th_s * a[e, 0] + th_c * a[e, 1]
         xb = -th_s * b[e, 0] + th_c * b[e, 1]
         lo_x, hi_x = min(xa, xb), max(xa, xb)
-        inside = hi_x >= s0 and lo_x <= s1 and use[e] > 0
+        inside = hi_x >= s0 and lo_x <= s1 and (use < 0 or hs[use, e] > 0)
         if not inside:
-            h_lo[e] = -np.inf
-            h_hi[e] = -np.inf
+            hs[r, e] = -np.inf
+            hs[r + 1, e] = -np.inf
             continue
         ya = sign * (th_c * a[e, 0] + th_s * a[e, 1])
         yb = sign * (th_c * b[e, 0] + th_s * b[e, 1])
@@ -52,32 +54,31 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
         cl_hi = min(max(hi_x, s0), s1)
         dx = xb - xa
         if abs(dx) <= tol:
-            h_lo[e] = max(ya, yb)
-            h_hi[e] = max(ya, yb)
+            hs[r, e] = max(ya, yb)
+            hs[r + 1, e] = max(ya, yb)
         else:
             slope = (yb - ya) / dx
-            h_lo[e] = ya + (cl_lo - xa) * slope
-            h_hi[e] = ya + (cl_hi - xa) * slope
-        stop = max(stop, h_lo[e], h_hi[e])
-    _features(p, th_c, th_s, c, a, b, f, half, tol, sign, fsign, stop, h_lo, h_hi,
-              stop_out, ok_out, lat, psi, col)
+            hs[r, e] = ya + (cl_lo - xa) * slope
+            hs[r + 1, e] = ya + (cl_hi - xa) * slope
+        stop = max(stop, hs[r, e], hs[r + 1, e])
+    _features(p, th_c, th_s, c, a, b, f, half, tol, sign, fsign, stop, hs, r, stop_out,
+              ok_out, lat, psi, col)
 
 
 def _features(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any,
-              half: float, tol: float, sign: float, fsign: float, stop: float, h_lo: Any,
-              h_hi: Any, stop_out: Any, ok_out: Any, lat: Any, psi: Any,
-              col: Any) -> None:
+              half: float, tol: float, sign: float, fsign: float, stop: float, hs: Any,
+              r: int, stop_out: Any, ok_out: Any, lat: Any, psi: Any, col: Any) -> None:
     """The end of :func:`_pad_loop`: the pad's stop ``stop`` (the highest of the edges'
-    heights ``h_lo``, ``h_hi`` at the ends of their parts in the strip, -inf or NaN for
-    an edge out of it) and its first :data:`K_MAX` touching edges (within ``tol`` of
-    it), in order: their lateral spans, force angles and columns."""
+    heights at the ends of their parts in the strip, rows ``r`` and ``r + 1`` of ``hs``,
+    -inf for an edge out of it) and its first :data:`K_MAX` touching edges (within
+    ``tol`` of it), in order: their lateral spans, force angles and columns."""
     s0, s1 = c - half, c + half
     E = a.shape[0]
     count = 0
     finite = stop > -np.inf
     for e in range(E):
-        at_lo = h_lo[e] >= stop - tol
-        at_hi = h_hi[e] >= stop - tol
+        at_lo = hs[r, e] >= stop - tol
+        at_hi = hs[r + 1, e] >= stop - tol
         if not (finite and (at_lo or at_hi)):
             continue
         if count < K_MAX:
@@ -122,44 +123,45 @@ def _outer_pads(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: A
     same numbers (each pad's heights by its own formula).  ``scratch`` (4, E)."""
     s0, s1 = c - half, c + half
     E = a.shape[0]
-    h_lo, h_hi, g_lo, g_hi = scratch[0], scratch[1], scratch[2], scratch[3]
     stop_a, stop_b = -np.inf, -np.inf
     for e in range(E):
         xa = -th_s * a[e, 0] + th_c * a[e, 1]
         xb = -th_s * b[e, 0] + th_c * b[e, 1]
         lo_x, hi_x = min(xa, xb), max(xa, xb)
         if not (hi_x >= s0 and lo_x <= s1):
-            h_lo[e], h_hi[e], g_lo[e], g_hi[e] = -np.inf, -np.inf, -np.inf, -np.inf
+            for r in range(4):
+                scratch[r, e] = -np.inf
             continue
         ya = th_c * a[e, 0] + th_s * a[e, 1]
         yb = th_c * b[e, 0] + th_s * b[e, 1]
         na, nb = -1.0 * ya, -1.0 * yb
         dx = xb - xa
         if abs(dx) <= tol:
-            h_lo[e] = h_hi[e] = max(ya, yb)
-            g_lo[e] = g_hi[e] = max(na, nb)
+            scratch[0, e] = scratch[1, e] = max(ya, yb)
+            scratch[2, e] = scratch[3, e] = max(na, nb)
         else:
             cl_lo = min(max(lo_x, s0), s1)
             cl_hi = min(max(hi_x, s0), s1)
             slope = (yb - ya) / dx
-            h_lo[e] = ya + (cl_lo - xa) * slope
-            h_hi[e] = ya + (cl_hi - xa) * slope
+            scratch[0, e] = ya + (cl_lo - xa) * slope
+            scratch[1, e] = ya + (cl_hi - xa) * slope
             slope = (nb - na) / dx
-            g_lo[e] = na + (cl_lo - xa) * slope
-            g_hi[e] = na + (cl_hi - xa) * slope
-        stop_a = max(stop_a, h_lo[e], h_hi[e])
-        stop_b = max(stop_b, g_lo[e], g_hi[e])
-    _features(p, th_c, th_s, c, a, b, f, half, tol, 1.0, -1.0, stop_a, h_lo, h_hi, top,
+            scratch[2, e] = na + (cl_lo - xa) * slope
+            scratch[3, e] = na + (cl_hi - xa) * slope
+        stop_a = max(stop_a, scratch[0, e], scratch[1, e])
+        stop_b = max(stop_b, scratch[2, e], scratch[3, e])
+    _features(p, th_c, th_s, c, a, b, f, half, tol, 1.0, -1.0, stop_a, scratch, 0, top,
               ok_a, lat_a, psi_a, col_a)
-    _features(p, th_c, th_s, c, a, b, f, half, tol, -1.0, 1.0, stop_b, g_lo, g_hi, bottom,
+    _features(p, th_c, th_s, c, a, b, f, half, tol, -1.0, 1.0, stop_b, scratch, 2, bottom,
               ok_b, lat_b, psi_b, col_b)
 
 
 def _hole_sides(th_c: float, th_s: float, c: float, a: Any, b: Any, half: float,
-                tol: float, level: float, above: Any, below: Any) -> bool:
+                tol: float, level: float, sides: Any) -> bool:
     """``_poses._sides_of`` at one pose: which edges meet the strip wholly above the
-    height ``level``, which wholly below (into ``above``, ``below``), and whether the
-    strip's segment at that height is free (every edge meeting it one or the other)."""
+    height ``level``, which wholly below (into rows 2 and 3 of ``sides``), and whether
+    the strip's segment at that height is free (every edge meeting it one or the
+    other)."""
     s0, s1 = c - half, c + half
     free = True
     for e in range(a.shape[0]):
@@ -177,8 +179,8 @@ def _hole_sides(th_c: float, th_s: float, c: float, a: Any, b: Any, half: float,
             h1 = ya + (min(max(hi_x, s0), s1) - xa) * slope
         up = meets and min(h0, h1) > level + tol
         down = meets and max(h0, h1) < level - tol
-        above[e] = 1.0 if up else 0.0
-        below[e] = 1.0 if down else 0.0
+        sides[2, e] = 1.0 if up else 0.0
+        sides[3, e] = 1.0 if down else 0.0
         if meets and not up and not down:
             free = False
     return free
@@ -291,10 +293,10 @@ def _grid_loop(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float,
                 sa[i, 0], sa[i, 1] = a[e, 0], a[e, 1]
                 sb[i, 0], sb[i, 1] = b[e, 0], b[e, 1]
                 sf[i, 0], sf[i, 1] = f[e, 0], f[e, 1]
-            _pose_one(0, th[k], c[j], sa[:n], sb[:n], sf[:n], half, tol, internal, q,
-                      stroke0, stroke1, beta, flip, round_tol, top, bottom, ok_a, ok_b,
-                      lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks,
-                      scratch[:, :n])
+            _pose_at(0, tc, ts, c[j], sa[:n], sb[:n], sf[:n], half, tol, internal, q,
+                     stroke0, stroke1, beta, flip, round_tol, top, bottom, ok_a, ok_b,
+                     lat_a, lat_b, psi_a, psi_b, col_a, col_b, holds, slacks,
+                     scratch[:, :n])
             H[k, j] = holds[0]
             if details:
                 opening[k, j] = top[0] - bottom[0]
@@ -312,24 +314,34 @@ def _pose_one(p: int, theta: float, c: float, a: Any, b: Any, f: Any, half: floa
     """The pose ``(theta, c)`` into row ``p`` of the outputs: both pads, the verdict and
     its slacks (``_poses._evaluate``; NaN and -1 where a feature is missing).
     ``scratch`` (4, E)."""
+    _pose_at(p, math.cos(theta), math.sin(theta), c, a, b, f, half, tol, internal, q,
+             stroke0, stroke1, beta, flip, round_tol, top, bottom, ok_a, ok_b, lat_a, lat_b,
+             psi_a, psi_b, col_a, col_b, holds, slacks, scratch)
+
+
+def _pose_at(p: int, tc: float, ts: float, c: float, a: Any, b: Any, f: Any, half: float,
+             tol: float, internal: bool, q: Any, stroke0: float, stroke1: float,
+             beta: float, flip: float, round_tol: float, top: Any, bottom: Any, ok_a: Any,
+             ok_b: Any, lat_a: Any, lat_b: Any, psi_a: Any, psi_b: Any, col_a: Any,
+             col_b: Any, holds: Any, slacks: Any, scratch: Any) -> None:
+    """:func:`_pose_one` given the cosine ``tc`` and sine ``ts`` of its angle (a grid's
+    row computes them once)."""
     E = a.shape[0]
     K = K_MAX
-    h_lo, h_hi = scratch[0], scratch[1]
-    above, below = scratch[2], scratch[3]
-    tc, ts = math.cos(theta), math.sin(theta)
     for s in range(2 * K * K + 2):
         slacks[p, s] = np.nan
     if internal:
+        # rows 2 and 3 of scratch: the edges each pad may meet, above and below
         y_q = tc * q[0] + ts * q[1]
-        free = _hole_sides(tc, ts, c, a, b, half, tol, y_q, above, below)
+        free = _hole_sides(tc, ts, c, a, b, half, tol, y_q, scratch)
         for e in range(E):
             fy = tc * f[e, 0] + ts * f[e, 1]
-            above[e] = 1.0 if fy > 0 and above[e] > 0 else 0.0
-            below[e] = 1.0 if fy < 0 and below[e] > 0 else 0.0
-        _pad_loop(p, tc, ts, c, a, b, f, half, tol, -1.0, 1.0, above, top, ok_a,
-                  lat_a, psi_a, col_a, h_lo, h_hi)
-        _pad_loop(p, tc, ts, c, a, b, f, half, tol, 1.0, -1.0, below, bottom, ok_b,
-                  lat_b, psi_b, col_b, h_lo, h_hi)
+            scratch[2, e] = 1.0 if fy > 0 and scratch[2, e] > 0 else 0.0
+            scratch[3, e] = 1.0 if fy < 0 and scratch[3, e] > 0 else 0.0
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, -1.0, 1.0, 2, top, ok_a,
+                  lat_a, psi_a, col_a, scratch, 0)
+        _pad_loop(p, tc, ts, c, a, b, f, half, tol, 1.0, -1.0, 3, bottom, ok_b,
+                  lat_b, psi_b, col_b, scratch, 0)
         ok_a[p] = ok_a[p] and free and _inside_ring(tc, ts, a, b, c, y_q)
     else:
         _outer_pads(p, tc, ts, c, a, b, f, half, tol, top, ok_a, lat_a, psi_a, col_a,
@@ -1279,12 +1291,15 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 
 # ----------------------------------------------------------------------------- loading
 
+#: The loops called per pose, per edge or per cell that allocate nothing and make no
+#: view: compiled without reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+_BORROWING = (_features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pose_at,
+              _pose_one, _sin_range, _range, _wrap_positive, _vrange, _nan_min, _nan_max,
+              _below, _arc_holds, _kind, _affine3, _affine, _quantities, _kink, _stop_reach)
+
 _LOOPS = CompiledLoops(globals(), (
-    _features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pose_one, _poses_loop,
-    _grid_loop, _box_loop,
-    _sin_range, _range, _wrap_positive, _polar, _vrange, _nan_min, _nan_max, _candidates, _below,
-    _arc_holds, _tables, _prove_box, _prove_loop, _certify_loop, _kind, _affine3, _affine,
-    _quantities, _kink, _stop_reach, _cell, _slices_loop))
+    *_BORROWING, _poses_loop, _grid_loop, _box_loop, _polar, _candidates, _tables,
+    _prove_box, _prove_loop, _certify_loop, _cell, _slices_loop), borrowing=_BORROWING)
 
 
 def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
