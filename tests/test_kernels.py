@@ -324,3 +324,32 @@ def test_a_borrowing_loop_runs_without_reference_counts_and_gives_the_same_numbe
     np.testing.assert_array_equal(loops["_scale_all"](x), _scale_all(x))
     assert loops["_scale_rows"].targetoptions.get("_nrt") is False
     assert "_nrt" not in loops["_scale_all"].targetoptions
+
+
+def _triple(x, out):
+    for i in range(x.shape[0]):
+        out[i] = 3.0 * x[i] + 1.0
+
+
+@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+def test_a_loop_loads_from_the_cache_without_refreshing_numba(monkeypatch):
+    """``njit_all``'s dispatchers load their machine code from numba's cache without
+    numba's registry refresh (``_light_loads``): a second dispatcher of the same loop
+    (a new process's, in effect) is a cache hit through the light class, never calls
+    the target context's ``refresh``, and gives the loop's numbers."""
+    numba = kernels.import_numba()
+    x = np.random.default_rng(4).normal(size=40)
+    first = kernels.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
+    want = np.empty_like(x)
+    first(x, want)                           # compiled (and cached) or loaded
+    refreshed = []
+    ctx = type(first.targetctx)
+    monkeypatch.setattr(ctx, "refresh", lambda self: refreshed.append(1))
+    second = kernels.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
+    assert type(second._cache).__name__ == "_LightCache"
+    got = np.empty_like(x)
+    second(x, got)
+    assert second.stats.cache_hits and not second.stats.cache_misses
+    assert refreshed == []
+    np.testing.assert_array_equal(got, 3.0 * x + 1.0)
+    np.testing.assert_array_equal(got, want)

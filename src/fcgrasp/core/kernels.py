@@ -589,7 +589,58 @@ def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
             namespace[name] = jit(clone)
         except RuntimeError:            # nowhere to cache (a read-only install): compile
             namespace[name] = numba.njit(**options)(clone)
+        _light_loads(namespace[name])
     return namespace
+
+
+_LIGHT: dict[type, Any] = {}
+
+
+def _light_loads(dispatcher: Any) -> None:
+    """Load ``dispatcher``'s machine code from numba's cache without refreshing numba's
+    registries.
+
+    numba's cache refreshes the target context before every load (``Cache.
+    load_overload``): the first load of a process imports and installs every
+    implementation numba has (its numpy, typed containers, random, ...: about 0.25 s of
+    a fresh process's CPU, more than loading all of a gripper's loops).  A loop loaded
+    from the cache is machine code already; all it needs is numba's runtime (the
+    reference counts and allocator its code calls), which is initialized here as the
+    refresh would.  Only the package's own dispatchers load so (their cache's class
+    swapped for a subclass); a compile, on a miss, refreshes as before (numba's
+    compiler does), and where numba's cache is not laid out so (another version), or
+    the runtime cannot start, the cache loads as it does."""
+    cache = getattr(dispatcher, "_cache", None)
+    base = type(cache)
+    if base not in _LIGHT:
+        _LIGHT[base] = _light_class(base)
+    light = _LIGHT[base]
+    if light is not None:
+        cache.__class__ = light
+
+
+def _light_class(base: type) -> Any:
+    """The subclass of numba's cache class ``base`` whose loads skip the refresh
+    (:func:`_light_loads`), None where ``base`` is not laid out so."""
+    try:
+        from numba.core.runtime import rtsys
+    except ImportError:                 # pragma: no cover - another numba's layout
+        return None
+    if not all(hasattr(base, name) for name in
+               ("load_overload", "_load_overload", "_guard_against_spurious_io_errors")):
+        return None
+
+    class _LightCache(base):            # type: ignore[misc]
+        def load_overload(self, sig: Any, target_context: Any) -> Any:
+            try:
+                rtsys.initialize(target_context)
+            except Exception:           # pragma: no cover - numba's own load then
+                return super().load_overload(sig, target_context)
+            with self._guard_against_spurious_io_errors():
+                return self._load_overload(sig, target_context)
+            return None                 # the guard swallowed an error: not loaded
+
+    return _LightCache
 
 
 class CompiledLoops:
