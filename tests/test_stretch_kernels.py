@@ -864,3 +864,33 @@ def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
     fast = _plans(poly, mu, margin, top)
     monkeypatch.setattr(S, "_GUESS", False)
     _assert_same_plans(fast, _plans(poly, mu, margin, top), poly.size)
+
+
+def test_a_stretchs_ends_are_its_polylines_ends():
+    """``_stretch_ends`` (the two ends the ranking's geometric key reads, for the
+    canonical placement) is bit for bit the first and last point of ``_polyline``'s
+    region, trimming included: stretches from anywhere on an edge to anywhere along
+    the ring, on every kind of outline, many starting or ending exactly at a vertex (or
+    a hair from it) where the polyline drops its piece of the edge beyond."""
+    rng = np.random.default_rng(81)
+    trimmed = 0
+    for case in range(60):
+        poly = Polygon(outline(rng, KINDS[case % len(KINDS)], int(rng.integers(8, 60))))
+        ring = _rings(poly)[0]
+        m = ring.m
+        for _ in range(40):
+            i, k = int(rng.integers(0, 3 * m)), int(rng.integers(0, min(m - 1, 6)))
+            L = float(ring.L[i % m])
+            s0 = float(rng.choice([0.0, L, L * (1 - 1e-14), rng.uniform(0, L)]))
+            # the stretch's length from s0 to a point of its last edge (or its ends)
+            j = i % m + m
+            to_last = L - s0 + float(ring.U[j + k] - ring.U[j + 1]) if k else -s0
+            last = float(ring.L[(i + k) % m])
+            t = to_last + float(rng.choice([0.0, 1e-14 * last, last, rng.uniform(0, last)]))
+            if k == 0:
+                t = float(rng.uniform(0, L - s0)) if L > s0 else 0.0
+            pts, _ = S._polyline(ring, i, k, s0, t)
+            got = S._stretch_ends(ring, i, k, s0, t)
+            assert got.tobytes() == np.stack((pts[0], pts[-1])).tobytes()
+            trimmed += len(pts) < k + 2
+    assert trimmed > 200

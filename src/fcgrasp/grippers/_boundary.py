@@ -92,11 +92,24 @@ def ranked_unique(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan],
 
 
 def ranked_keyed(polygon: Polygon, rank_by: str, plans: list[GraspPlan],
-                 seen: set[Any] | None = None) -> list[tuple[Any, GraspPlan]]:
+                 seen: set[Any] | None = None, keys: dict[int, Any] | None = None
+                 ) -> list[tuple[Any, GraspPlan]]:
     """:func:`ranked_unique`'s plans (all of them), each with its grasp's key
-    ``(rank_key, mode)``, the one ``seen`` holds."""
+    ``(rank_key, mode)``, the one ``seen`` holds.  ``keys``: each plan's rank key as
+    an earlier call computed it (by ``id``, with the plan and its score, so that a new
+    plan at a reused address is keyed afresh), filled here: a search that ranks a
+    growing list each round keys each plan once."""
     scores = MEASURES[rank_by].score(plans) if plans else np.zeros(0)
-    keyed = sorted((rank_key(p, polygon, rank_by, float(q)), k)
+
+    def key_of(p: GraspPlan, q: float) -> Any:
+        if keys is None:
+            return rank_key(p, polygon, rank_by, q)
+        got = keys.get(id(p))
+        if got is None or got[0] is not p or got[1] != q:
+            got = keys[id(p)] = (p, q, rank_key(p, polygon, rank_by, q))
+        return got[2]
+
+    keyed = sorted((key_of(p, float(q)), k)
                    for k, (p, q) in enumerate(zip(plans, scores, strict=True)))
     out: list[tuple[Any, GraspPlan]] = []
     seen = set() if seen is None else seen

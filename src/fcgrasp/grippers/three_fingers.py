@@ -377,6 +377,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     fed: set[Any] = set()                   # the (key, mode) of the plans fed
     grown: list[GraspPlan] | None = None
     solved = _Solved()
+    keys: dict[int, Any] = {}              # each plan's rank key, once (ranked_keyed)
     ask = keep = max(2 * top, DISTINCT_READ)
     pair_level = other_level = np.inf
     cap = np.inf if depth is None else depth * top
@@ -404,7 +405,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                                                            grown=grown, solved=solved)
         line = max(pair_level, other_level + band)
         had = len(suppression.kept)
-        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others):
+        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others, keys=keys):
             if float(min(p.lengths)) < line:
                 break
             if key in fed:                  # each grasp once, across the rounds

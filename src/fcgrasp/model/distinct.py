@@ -141,8 +141,14 @@ class Suppression:
 
     @staticmethod
     def _region_boxes(p: GraspPlan) -> FloatArray:
-        return np.array([np.concatenate((np.min(r, axis=0), np.max(r, axis=0)))
-                         for r in (np.asarray(r, float) for r in p.regions)]).reshape(-1, 4)
+        """Each region's box (regions, 4: x and y least, then greatest), the regions'
+        points read in one array (a plan's few regions: numpy's calls cost more than
+        the arithmetic)."""
+        regions = [np.asarray(r, float).reshape(-1, 2) for r in p.regions]
+        starts = np.cumsum([0] + [len(r) for r in regions[:-1]])
+        pts = np.concatenate(regions)
+        return np.concatenate((np.minimum.reduceat(pts, starts, axis=0),
+                               np.maximum.reduceat(pts, starts, axis=0)), axis=1)
 
     def _may_match(self, p: GraspPlan, box: FloatArray) -> list[int]:
         """The places in ``kept`` of the plans that may be ``p``'s alternative, in order:

@@ -151,6 +151,28 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
     return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
 
+def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float) -> FloatArray:
+    """The two ends of :func:`_polyline`'s stretch (2, 2), by its arithmetic and its
+    trimming (``trim_vertex_ends``), without the points between: all the ranking's
+    geometric key reads of a region (:func:`_canonical`)."""
+    m = ring.m
+    first = ring.a[i % m] + s0 * ring.t[i % m]
+    end_edge = (i + k) % m
+    if k == 0:
+        return np.stack((first, first + t * ring.t[i % m]))
+    j = i % m + m
+    off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
+    last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
+    tiny = ROUND_TOL * float(ring.U[m])
+    inner_first, inner_last = ring.a[(i + 1) % m], ring.a[end_edge]
+    covered = k + 1
+    if np.hypot(*(inner_first - first)) <= tiny:            # trim_vertex_ends' first
+        first, covered = inner_first, covered - 1
+    if covered > 1 and np.hypot(*(last - inner_last)) <= tiny:
+        last = inner_last
+    return np.stack((first, last))
+
+
 @dataclass
 class _Found:
     """A solved configuration: ring pair and mode (the job), covered edges, the common
@@ -1241,10 +1263,14 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     out = list(found)
 
     def key(f: _Found) -> tuple[Any, ...]:
-        # the ranking's own order: leximin, then the geometric tie-break
-        pair = _pairs(rings, [f])[0]
-        return (leximin_key(np.array(pair.lengths), polygon.size),
-                geometric_key(pair.regions, polygon))
+        # the ranking's own order: leximin, then the geometric tie-break, which reads
+        # only the regions' ends (their polylines are placed for the one kept)
+        x, y, _, _ = f.job
+        iA, kA, iC, kC = f.cfg
+        ends = (_stretch_ends(rings[x], iA, kA, f.s0, f.lengths[0]),
+                _stretch_ends(rings[y], iC, kC, f.u0, f.lengths[1]))
+        return (leximin_key(np.array(f.lengths), polygon.size),
+                geometric_key(ends, polygon))
 
     for j, g in zip(same, swapped, strict=True):
         if key(g) < key(found[j]):
