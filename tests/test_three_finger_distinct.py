@@ -189,8 +189,8 @@ def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypa
     F = features(poly, spec.mu, None, None)
     solved = tf._Solved()
     calls = []
-    best = tf._best_blocks
-    monkeypatch.setattr(tf, "_best_blocks", lambda a, *r: calls.append(len(a)) or best(a, *r))
+    best = tf.best_found            # the rounds' solver (the fresh rounds: _best_blocks)
+    monkeypatch.setattr(tf, "best_found", lambda a, *r: calls.append(len(a)) or best(a, *r))
     keep, floor = int(rng.integers(4, 12)), float(rng.uniform(0.02, 0.08)) * poly.size
     rounds = [(keep, floor), (2 * keep, floor / 2), (2 * keep, floor / 2), (4 * keep, 0.0)]
     for keep, floor in rounds:
@@ -203,6 +203,7 @@ def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypa
     # a round asking what the round before asked solves no row again
     solved2 = tf._Solved()
     tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
+    assert sum(calls) > 0
     calls.clear()
     tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
     assert sum(calls) == 0

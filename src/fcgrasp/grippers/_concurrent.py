@@ -366,6 +366,17 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
     """Per row of three features, the piece with the largest smallest region and that
     region's length in units of ``size`` (-1 where no piece holds a grasp).  A row whose
     first two features are one (:func:`shared_first`) keeps their regions apart."""
+    out: list[tuple[_Block | None, float]] = [(None, -1.0)] * len(a)
+    for r, blk, level in best_found(a, b, center, half, margin, size):
+        out[r] = (blk, level)
+    return out
+
+
+def best_found(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatArray,
+               margin: float, size: float) -> list[tuple[int, _Block, float]]:
+    """:func:`_best_blocks` of the rows where a piece holds a grasp, each ``(row,
+    block, level)`` in order: a batch of which few hold makes no entry for the others
+    (the three-finger rounds read millions of rows, a few thousand hold)."""
     d = b - a
     L = np.hypot(d[..., 0], d[..., 1])
     t = d / np.where(L > 0, L, 1.0)[..., None]
@@ -375,9 +386,9 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
         got = _concurrency.best_rows(an, t, Ln, center, half, margin, order)
         if got is not None:
             found, level, lo, hi, sg = got
-            return [(_Block.on_edges(an[r], t[r], Ln[r], lo[r], hi[r], sg[r], r, order[r]),
-                     float(level[r])) if found[r] else (None, -1.0) for r in range(len(a))]
-    out: list[tuple[_Block | None, float]] = []
+            return [(r, _Block.on_edges(an[r], t[r], Ln[r], lo[r], hi[r], sg[r], r, order[r]),
+                     float(level[r])) for r in np.flatnonzero(found).tolist()]
+    out: list[tuple[int, _Block, float]] = []
     for start in range(0, len(a), LP_ROWS):
         stop = min(start + LP_ROWS, len(a))
         blocks = [blk for r in range(start, stop)
@@ -391,9 +402,7 @@ def _best_blocks(a: FloatArray, b: FloatArray, center: FloatArray, half: FloatAr
             row = per.get(r)
             if row:
                 v, blk = row[first_best([v for v, _ in row])]
-                out.append((blk, v))
-            else:
-                out.append((None, -1.0))
+                out.append((r, blk, v))
     return out
 
 
