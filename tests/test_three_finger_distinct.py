@@ -200,10 +200,16 @@ def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypa
         assert got[1] == ref[1]
         _plans_equal(got[2], ref[2])
         calls.clear()
-    # a round asking what the round before asked solves no row again
+    # a round asking what the round before asked solves no row again, nor makes a
+    # batch of candidates again
+    made = []
+    stream = tf.candidates
+    monkeypatch.setattr(tf, "candidates",
+                        lambda *a: (made.append(1) or b for b in stream(*a)))
     solved2 = tf._Solved()
     tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
-    assert sum(calls) > 0
+    assert sum(calls) > 0 and made
     calls.clear()
+    made.clear()
     tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
-    assert sum(calls) == 0
+    assert sum(calls) == 0 and not made

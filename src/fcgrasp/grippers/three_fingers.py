@@ -57,6 +57,7 @@ Units: lengths in the part's units, ``margin`` in radians in this module's funct
 
 from __future__ import annotations
 
+from collections.abc import Iterator
 from dataclasses import replace
 from itertools import product
 from typing import Any
@@ -220,7 +221,9 @@ def _concurrent_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             out |= (_tie_step(bnd, size) > seed_step) if seed_step is not None else True
         return out
 
-    for number, batch in enumerate(candidates(polygon, spec, edges)):
+    stream = candidates(polygon, spec, edges) if solved is None else \
+        solved.batches(polygon, spec, edges)
+    for number, batch in enumerate(stream):
         if bounded and not useful(np.array([batch.ceiling]))[0]:
             break
         rows = np.asarray(batch.feats, dtype=int)
@@ -307,6 +310,27 @@ class _Solved:
         #: them are solved, and the pieces of those that hold, by place
         self._chunks: dict[tuple[int, int], tuple[np.ndarray, np.ndarray,
                                                   dict[int, tuple[_Block, float]]]] = {}
+        #: the candidates' stream (and what it was asked of), the batches made so far
+        self._stream: tuple[Any, Iterator[Any]] | None = None
+        self._made: list[Any] = []
+
+    def batches(self, polygon: Polygon, spec: PlanSpec, edges: Any) -> Iterator[Any]:
+        """:func:`~fcgrasp.pipeline.candidates` of the part, each batch made once: a
+        round reads the batches the rounds before made, then goes on with the stream
+        where they left it (the stream depends on its arguments only)."""
+        asked = (polygon, spec, None if edges is None else tuple(int(e) for e in edges))
+        if self._stream is None or self._stream[0][0] is not polygon \
+                or self._stream[0][1:] != asked[1:]:
+            self._stream, self._made = (asked, candidates(polygon, spec, edges)), []
+        k = 0
+        while True:
+            if k == len(self._made):
+                batch = next(self._stream[1], None)
+                if batch is None:
+                    return
+                self._made.append(batch)
+            yield self._made[k]
+            k += 1
 
     def holding(self, F: Any, key: tuple[int, int], chunk: np.ndarray,
                 pick: np.ndarray | None, margin: float, size: float
