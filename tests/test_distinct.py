@@ -545,3 +545,96 @@ def test_corpus_plans_are_distinct_alternatives_by_default(path, grip):
     corpus = Path(__file__).parent.parent / "benchmarks" / "corpus"
     part = fc.load_part(str(corpus / path)).polygon
     _pairwise_distinct(fc.plan(part, **_POINT_GRIPPERS[grip]), part.size)
+
+
+def _boundary_regions(rng, poly):
+    """Pairs of regions along ``poly``'s boundary with the edges of their segments:
+    one from anywhere, the other the same shifted a little, a lot, by whole edges,
+    ending at a vertex, or elsewhere on the ring."""
+    from fcgrasp.model import stretches as S
+    from fcgrasp.model._stretch_windows import _rings
+
+    ring = _rings(poly)[0]
+    m = ring.m
+
+    def region(i, k, s0, frac):
+        L = float(ring.L[i % m])
+        s0 = min(max(s0, 0.0), L)
+        j = i % m + m
+        to_last = L - s0 + float(ring.U[j + k] - ring.U[j + 1]) if k else -s0
+        last = float(ring.L[(i + k) % m])
+        t = to_last + frac * last if k else (L - s0) * frac
+        return S._polyline(ring, i, k, s0, t)
+
+    for _ in range(12):
+        i, k = int(rng.integers(0, m)), int(rng.integers(0, min(m - 2, 8)))
+        s0, frac = float(rng.uniform(0, ring.L[i])), float(rng.uniform(0, 1))
+        a = region(i, k, s0, frac)
+        how = rng.integers(0, 5)
+        if how == 0:            # a hair, or a little, along
+            d = float(rng.choice([1e-13, 1e-9, 1e-4, 0.05])) * float(ring.L[i])
+            b = region(i, k, s0 + d, frac)
+        elif how == 1:          # whole edges on
+            b = region(i + int(rng.integers(-2, 3)), k, s0, frac)
+        elif how == 2:          # ending at a vertex
+            b = region(i, k, float(rng.choice([0.0, float(ring.L[i])])),
+                       float(rng.choice([0.0, 1.0])))
+        elif how == 3:          # longer or shorter by whole edges
+            b = region(i, max(k + int(rng.integers(-2, 3)), 0), s0, frac)
+        else:                   # anywhere
+            b = region(int(rng.integers(0, m)), int(rng.integers(0, min(m - 2, 8))),
+                       float(rng.uniform(0, 1)) * float(ring.L[0]), float(rng.uniform(0, 1)))
+        yield a, b
+
+
+@pytest.mark.parametrize("cases", [pytest.param(150, id="seeded"),
+                                   pytest.param(1500, id="sweep", marks=pytest.mark.slow)])
+def test_the_shared_pieces_bound_the_overlap_from_below(cases):
+    """What two boundary regions' pieces on the same edges surely have in common
+    (``_shared_length``, read from the regions' edges) is at most the overlap the
+    buffer measures (``region_overlap``), on seeded outlines of every kind (exact ties,
+    collinear runs, noise), near the origin and far from it, for regions shifted by a
+    hair, a little, whole edges, ending at vertices, or elsewhere; and it is that
+    overlap to within a few tolerances wherever they share an edge, so the search
+    reads most same alternatives without the buffer.  Then ``same_alternative`` gives
+    the same answers with the regions' edges (the bound first) and without them."""
+    from fcgrasp.core.tolerances import ROUND_TOL
+    from fcgrasp.model import distinct as D
+
+    from .test_stretch_kernels import KINDS, outline
+
+    rng = np.random.default_rng(91)
+    tight = shared = pairs = 0
+    answers = {True: 0, False: 0}
+    for case in range(cases):
+        pts = outline(rng, KINDS[case % len(KINDS)], int(rng.integers(8, 80)))
+        pts = pts * float(rng.choice([1.0, 1e-3, 1e3])) + float(rng.choice([0.0, 1e4])) \
+            * rng.normal(size=2)
+        poly = fc.Polygon(pts)
+        tol = ROUND_TOL * poly.size
+        for (a, ea), (b, eb) in _boundary_regions(rng, poly):
+            pa, pb = D._pieces(a, ea), D._pieces(b, eb)
+            assert pa is not None and pb is not None
+            lb = D._shared_length(pa, pb, tol)
+            exact = region_overlap(a, b, tol)
+            assert lb <= exact, (lb, exact)
+            pairs += 1
+            if lb > 0:
+                shared += 1
+                tight += exact - lb <= 1e-9 * poly.size
+            # the decision, with the regions' edges and without
+            la = float(np.sum(np.hypot(*np.diff(a, axis=0).T)))
+            lb_len = float(np.sum(np.hypot(*np.diff(b, axis=0).T)))
+            plans = []
+            for labelled in (True, False):
+                kw = {"region_edges": (ea, eb)} if labelled else {}
+                plans.append([fc.GraspPlan((ea[0], eb[0]), (r1, r2), np.array([l1, l2]),
+                                           np.zeros((2, 2)), np.zeros((2, 2)), "friction",
+                                           0.5, "squeeze", 0.0, **kw)
+                              for r1, r2, l1, l2 in ((a, b, la, lb_len), (b, a, lb_len, la))])
+            for fraction in (0.25, 0.5, 0.9):
+                got = same_alternative(*plans[0], fraction, tol)
+                assert got == same_alternative(*plans[1], fraction, tol)
+                answers[got] += 1
+    assert shared > pairs // 3 and tight > 0.9 * shared, (pairs, shared, tight)
+    assert min(answers.values()) > cases, answers

@@ -15,6 +15,7 @@ as a plan already kept, and records on each kept plan the plans it stands for
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from itertools import permutations
 from typing import Any
@@ -69,6 +70,25 @@ class _Overlaps:
         self._boxes: list[tuple[float, float, float, float]] = []
         self._zones: dict[int, Any] = {}
         self._pairs: dict[tuple[int, int], float] = {}
+        self._shared: dict[tuple[int, int], float] = {}
+        self._pieces: dict[int, tuple[Any, ...] | None] = {}
+
+    def shared(self, a: FloatArray, ea: Any, b: FloatArray, eb: Any) -> float:
+        """A lower bound of :meth:`__call__` ``(a, b)`` without the buffer
+        (:func:`_shared_length`; ``ea``, ``eb`` the regions' edges), each region read
+        once and each pair of regions measured once."""
+        ka, kb = self._id(a), self._id(b)
+        got = self._shared.get((ka, kb))
+        if got is None:
+            pa, pb = self._read(ka, a, ea), self._read(kb, b, eb)
+            got = 0.0 if pa is None or pb is None else _shared_length(pa, pb, self.tol)
+            self._shared[ka, kb] = got
+        return got
+
+    def _read(self, k: int, region: FloatArray, edges: Any) -> tuple[Any, ...] | None:
+        if k not in self._pieces:
+            self._pieces[k] = _pieces(region, edges)
+        return self._pieces[k]
 
     def _id(self, region: FloatArray) -> int:
         key = region.tobytes()
@@ -94,14 +114,86 @@ class _Overlaps:
         return got
 
 
+def _pieces(region: FloatArray, edges: Any) -> tuple[Any, ...] | None:
+    """What :func:`_shared_length` reads of a region: its points as tuples, its
+    segments' lengths, each edge's segment (``edges``: the edge of each segment, in
+    order) and the largest coordinate; None where the labels do not fit the points (not
+    one edge per segment, an edge twice)."""
+    pts = [tuple(p) for p in region.tolist()]
+    if len(pts) != len(edges) + 1 or not len(edges):
+        return None
+    where = {int(e): k for k, e in enumerate(edges)}
+    if len(where) != len(edges):
+        return None
+    lengths = [math.hypot(x1 - x0, y1 - y0)
+               for (x0, y0), (x1, y1) in zip(pts[:-1], pts[1:], strict=True)]
+    return pts, lengths, where, float(np.abs(region).max())
+
+
+def _shared_length(a: tuple[Any, ...], b: tuple[Any, ...], tol: float) -> float:
+    """A lower bound of :func:`region_overlap` ``(a, b, tol)`` (the length of region
+    ``a`` within ``tol`` of region ``b``) from their pieces on the same edges (each
+    region read by :func:`_pieces`).
+
+    Two pieces on one edge are read as one line when every end of the shorter is within
+    a tenth of ``tol`` of the longer's line (a region's points lie on its edges to the
+    floats' rounding; the pieces inside both regions are the same whole edge, its
+    vertices' very floats): where they overlap along it, ``a`` is within ``tol`` of
+    ``b``, inside its buffer (whose boundary is at least 0.98 ``tol`` away but at
+    ``b``'s flat ends), so the buffer's intersection counts that length; ``2 tol`` less
+    per piece covers the ends.  Nothing is counted where a piece is off the other's line
+    or too short to give its direction, or where the coordinates are so far from the
+    origin that their rounding is not small against ``tol`` (the buffer itself is then
+    rounded).  0 when nothing is shared."""
+    pa, la, where_a, reach_a = a
+    pb, _, where_b, reach_b = b
+    if max(reach_a, reach_b) * 1e-15 > 0.01 * tol:
+        return 0.0
+    total = 0.0
+    for e, k in where_a.items():
+        m = where_b.get(e)
+        if m is None:
+            continue
+        a0, a1, b0, b1 = pa[k], pa[k + 1], pb[m], pb[m + 1]
+        if a0 == b0 and a1 == b1:           # one whole edge in both
+            common = la[k]
+        else:
+            (ax0, ay0), (ax1, ay1), (bx0, by0), (bx1, by1) = a0, a1, b0, b1
+            lb = math.hypot(bx1 - bx0, by1 - by0)
+            # the longer piece is the line (its direction the better known)
+            if la[k] >= lb:
+                ox, oy, L, dx, dy = ax0, ay0, la[k], ax1 - ax0, ay1 - ay0
+                (px, py), (qx, qy) = b0, b1
+            else:
+                ox, oy, L, dx, dy = bx0, by0, lb, bx1 - bx0, by1 - by0
+                (px, py), (qx, qy) = a0, a1
+            if L <= 1e3 * tol:
+                continue
+            ux, uy = dx / L, dy / L
+            if abs(ux * (py - oy) - uy * (px - ox)) > 0.1 * tol \
+                    or abs(ux * (qy - oy) - uy * (qx - ox)) > 0.1 * tol:
+                continue
+            ta0, ta1 = ux * (ax0 - ox) + uy * (ay0 - oy), ux * (ax1 - ox) + uy * (ay1 - oy)
+            tb0, tb1 = ux * (bx0 - ox) + uy * (by0 - oy), ux * (bx1 - ox) + uy * (by1 - oy)
+            common = min(max(ta0, ta1), max(tb0, tb1)) - max(min(ta0, ta1), min(tb0, tb1))
+        if common > 2 * tol:
+            total += common - 2 * tol
+    return total
+
+
 def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float,
-              overlap: _Overlaps) -> bool:
+              overlap: _Overlaps, ea: Any = None, eb: Any = None) -> bool:
     short = min(la, lb)
     if short <= tol:                            # a point region (gravity): coincide
         return la <= tol and lb <= tol and \
             float(np.hypot(*(np.mean(a, axis=0) - np.mean(b, axis=0)))) <= tol
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    # what the pieces on shared edges surely have in common decides most pairs that
+    # are the same alternative without the buffer (:func:`_shared_length`)
+    if ea is not None and eb is not None and overlap.shared(a, ea, b, eb) > fraction * short:
+        return True
     # (boxes apart by more than the tolerance: nothing in common, most pairs of a list)
-    return overlap(np.asarray(a, float), np.asarray(b, float)) > fraction * short
+    return overlap(a, b) > fraction * short
 
 
 def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float,
@@ -115,10 +207,14 @@ def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float,
     measure = _Overlaps(tol) if measure is None else measure
     hit: dict[tuple[int, int], bool] = {}     # each pair of regions tested once, if asked
 
+    labelled = len(p.region_edges) == k and len(q.region_edges) == k
+
     def overlap(i: int, j: int) -> bool:
         if (i, j) not in hit:
             hit[i, j] = _overlaps(p.regions[i], q.regions[j], float(p.lengths[i]),
-                                  float(q.lengths[j]), fraction, tol, measure)
+                                  float(q.lengths[j]), fraction, tol, measure,
+                                  p.region_edges[i] if labelled else None,
+                                  q.region_edges[j] if labelled else None)
         return hit[i, j]
 
     return any(all(overlap(i, perm[i]) for i in range(k)) for perm in permutations(range(k)))
