@@ -41,3 +41,39 @@ def test_quality_inputs_are_explicit():
 def test_top_none_returns_every_plan():
     every = fc.plan(BLOB, fingers=2, mu=0.3, top=None)
     assert len(every) >= 3 and len(fc.plan(BLOB, fingers=2, mu=0.3, top=2)) == 2
+
+
+def test_a_plan_runs_with_the_cyclic_collector_paused_and_puts_it_back(monkeypatch):
+    """``plan`` pauses Python's cyclic collector while it searches (its garbage is
+    freed by reference counts) and puts it back as it found it: on after a plan, after
+    a plan that raised, after plans in several threads at once; off where the caller
+    turned it off."""
+    import gc
+    import threading
+
+    from fcgrasp.planning import planner
+
+    seen = []
+    search = planner._distinct
+    monkeypatch.setattr(planner, "_distinct",
+                        lambda *a: seen.append(gc.isenabled()) or search(*a))
+    part = fc.read_part("demo:blob")
+    assert gc.isenabled()
+    fc.plan(part, fingers=2, mu=0.3, top=2)
+    assert seen == [False] and gc.isenabled()
+    with pytest.raises(ValueError, match="distinct"):
+        fc.plan(part, fingers=2, mu=0.3, distinct=2.0)
+    assert gc.isenabled()
+    threads = [threading.Thread(target=fc.plan, args=(part,), kwargs=dict(mu=0.3, top=1))
+               for _ in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert seen[-4:] == [False] * 4 and gc.isenabled()
+    gc.disable()
+    try:
+        fc.plan(part, fingers=2, mu=0.3, top=1)
+        assert not gc.isenabled()
+    finally:
+        gc.enable()

@@ -20,6 +20,10 @@ frictionless contact at the centroid, section 3.1).
 
 from __future__ import annotations
 
+import gc
+import threading
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -40,6 +44,36 @@ __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_ke
 
 #: Names of the ranking measures (see :mod:`fcgrasp.model.ranking`).
 RANKINGS = tuple(MEASURES)
+
+_paused = 0                     # plans running with the cyclic collector paused
+_pause_lock = threading.Lock()
+_collector_was_on = False
+
+
+@contextmanager
+def collector_paused() -> Iterator[None]:
+    """Python's cyclic garbage collector paused while a plan runs, then as it was.
+
+    A search allocates millions of short-lived arrays, tuples and plans, freed by
+    their reference counts (none is built into a cycle), and each 700 allocations the
+    collector would walk the young objects, and now and then the whole heap (numba's
+    many objects in a process that loaded the kernels): 2 to 5 % of a fresh process's
+    plan on the corpus.  Cycles made meanwhile are collected once it runs again.  Plans
+    in several threads pause it once; the last to finish puts it back as the first
+    found it (a caller that disabled it keeps it disabled)."""
+    global _paused, _collector_was_on
+    with _pause_lock:
+        if _paused == 0:
+            _collector_was_on = gc.isenabled()
+            gc.disable()
+        _paused += 1
+    try:
+        yield
+    finally:
+        with _pause_lock:
+            _paused -= 1
+            if _paused == 0 and _collector_was_on:
+                gc.enable()
 
 
 def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
@@ -151,9 +185,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             if value is not None:
                 raise ValueError(f"{name}={value!r} needs a load (load=fcgrasp.Load(mass, "
                                  f"...)), got load=None")
-        return _distinct(polygon, gripper, options, distinct)
-    return _with_payload(polygon, gripper, options, distinct, load, force_limit,
-                         total_force)
+        with collector_paused():
+            return _distinct(polygon, gripper, options, distinct)
+    with collector_paused():
+        return _with_payload(polygon, gripper, options, distinct, load, force_limit,
+                             total_force)
 
 
 #: ``rank_by="payload"``: the plans with the largest smallest regions, this many times
