@@ -411,7 +411,8 @@ def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]
     G = rows[:, subsets]                                                     # (B, S, n, n)
     h = rhs[:, subsets]                                                      # (B, S, n)
     det = np.linalg.det(G)
-    scale = np.maximum(np.abs(G).max(axis=(2, 3)) ** n, TINY)
+    # each matrix's largest entry: the largest of its rows' (read once per row)
+    scale = np.maximum(np.abs(rows).max(axis=2)[:, subsets].max(axis=2) ** n, TINY)
     ok = np.abs(det) > SOLVER_TOL * scale
     G = np.where(ok[..., None, None], G, np.eye(n))
     x = np.linalg.solve(G, h[..., None])[..., 0]                             # (B, S, n)
