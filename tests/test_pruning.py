@@ -447,3 +447,31 @@ def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
         checked += 1
         kept += sum(len(b[0]) for b in streams[0]) > 0
     assert kept > checked // 2
+
+
+def test_a_rows_bound_is_the_smallest_of_its_regions_bounds():
+    """``_row_bound`` (taken column by column) is, bit for bit, the previous reduction
+    along each row, kept here: rows of two, three and four fingers, with gravity (-1,
+    no region) and a feature doubled (the first and the twin share it, one of them
+    has at most half), lengths tied, zero and huge."""
+    from fcgrasp.pipeline._candidates import _row_bound
+
+    def reference(lengths, rows, twin):
+        L = np.where(rows >= 0, lengths[np.maximum(rows, 0)], np.inf)
+        if twin is not None:
+            same = rows[:, 0] == rows[:, twin]
+            L[same, 0] *= 0.5
+            L[same, twin] = L[same, 0]
+        return L.min(axis=1)
+
+    rng = np.random.default_rng(95)
+    for _ in range(300):
+        F = int(rng.integers(1, 40))
+        lengths = rng.choice([0.0, 1.0, 1e12, 3.5], F) * rng.uniform(0.5, 1.5, F)
+        k = int(rng.integers(2, 5))
+        rows = rng.integers(-1 if k == 3 else 0, F, (int(rng.integers(0, 500)), k))
+        twin = None if k == 2 or rng.random() < 0.3 else int(rng.integers(1, k))
+        if twin is not None and len(rows):
+            rows[: len(rows) // 2, twin] = rows[: len(rows) // 2, 0]
+        got, want = _row_bound(lengths, rows, twin), reference(lengths, rows, twin)
+        assert got.shape == want.shape and got.tobytes() == want.tobytes()
