@@ -254,8 +254,12 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
             out[b, i] = -1.0 if dead else (levels[i] if active[b, i] else 0.0)
 
 
-_LOOPS = CompiledLoops(globals(), (_order_row, _fill_row, _wscale_row, _need_row,
-                                   _feasible_row, _max_level_row, _leximin_loop))
+#: The per-row helpers that allocate nothing and make no view: compiled without
+#: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+_BORROWING = (_fill_row, _wscale_row, _need_row, _feasible_row)
+
+_LOOPS = CompiledLoops(globals(), (_order_row, *_BORROWING, _max_level_row, _leximin_loop),
+                       borrowing=_BORROWING)
 
 
 def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,

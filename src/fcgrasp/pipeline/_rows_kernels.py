@@ -180,7 +180,11 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
     return out, n
 
 
-_LOOPS = CompiledLoops(globals(), (_row_of, sort_first, _alive, _bounds, _survivor_loop))
+#: The per-row helpers, which allocate nothing and make no view: compiled without
+#: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+_BORROWING = (_row_of, sort_first, _alive, _bounds)
+
+_LOOPS = CompiledLoops(globals(), (*_BORROWING, _survivor_loop), borrowing=_BORROWING)
 
 #: Combinations of one position from which :func:`survivors` runs compiled before the
 #: loop is loaded in this process (loading it costs about 0.1 s from numba's cache).
