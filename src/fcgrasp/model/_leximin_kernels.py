@@ -22,11 +22,11 @@ from ..core.kernels import CompiledLoops
 from ..core.tolerances import TINY
 
 
-def _order_row(w1: Any, w2: Any, active: Any, order: Any) -> None:
+def _order_row(w1: Any, w2: Any, active: Any, order: Any, key: Any) -> None:
     """The greedy order of knapsack 1 (largest ``w2 / w1`` first; ``w1 = 0``: first of
-    all; inactive: last), stable: :func:`fcgrasp.model.regions._order`."""
+    all; inactive: last), stable: :func:`fcgrasp.model.regions._order`.  ``key`` (n,):
+    scratch."""
     n = w1.shape[0]
-    key = np.empty(n)
     for i in range(n):
         if not active[i]:
             key[i] = math.inf                       # -(-inf)
@@ -101,26 +101,27 @@ def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, l
 
 
 def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
-                   lbf: Any, free: Any, order: Any, tol: float, x: Any) -> float:
+                   lbf: Any, free: Any, order: Any, tol: float, x: Any, lb: Any, w: Any,
+                   idx: Any) -> float:
     """The largest level ``t`` the free regions reach with the fixed ones at ``lbf``
     (-1: none): :func:`fcgrasp.model.regions._max_level`, the breakpoints of the greedy
-    fill solved for and ``D`` interpolated on its linear piece."""
+    fill solved for and ``D`` interpolated on its linear piece.  Scratch, the caller's
+    (a row allocates nothing, so it runs without reference counts): ``lb`` (n,), ``w``
+    (7, n + 2) rows for the regions' lengths, fixed levels and free flags, then the
+    breakpoints, their values and both sorted; ``idx`` (n + 2,) ints."""
     n = L.shape[0]
-    Lz = np.empty(n)
-    lb0 = np.empty(n)
-    fr = np.empty(n)
     af = 0.0
     used = 0.0
     t_cap = math.inf
     for i in range(n):
-        Lz[i] = L[i] if active[i] else 0.0
+        w[0, i] = L[i] if active[i] else 0.0
         f = free[i] and active[i]
-        fr[i] = 1.0 if f else 0.0
-        lb0[i] = 0.0 if f else (lbf[i] if active[i] else 0.0)
-        af += w1[i] * fr[i]
-        used += w1[i] * lb0[i]
-        if f and Lz[i] < t_cap:
-            t_cap = Lz[i]
+        w[2, i] = 1.0 if f else 0.0
+        w[1, i] = 0.0 if f else (lbf[i] if active[i] else 0.0)
+        af += w1[i] * w[2, i]
+        used += w1[i] * w[1, i]
+        if f and w[0, i] < t_cap:
+            t_cap = w[0, i]
     r0 = K1 - used
     if af > 0 and r0 / af < t_cap:
         t_cap = r0 / af
@@ -128,72 +129,69 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
         t_cap = 0.0
     c = 0.0
     for i in range(n):
-        c += w2[i] * Lz[i]
+        c += w2[i] * w[0, i]
     c -= K2
     tolw = tol * _wscale_row(L, w1, w2)
     m = n + 2
-    pts = np.empty(m)
-    D = np.empty(m)
     # the ends t = 0 and t = t_cap by the general fill
-    lb = np.empty(n)
-    ends = (0.0, t_cap)
-    d_end = np.empty(2)
+    d_end0 = d_end1 = 0.0
     for e in range(2):
+        end = 0.0 if e == 0 else t_cap
         for i in range(n):
-            lb[i] = lb0[i] + ends[e] * fr[i]
+            lb[i] = w[1, i] + end * w[2, i]
         slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
-        d_end[e] = value - _need_row(L, w2, K2, active, lb) if slack >= -tolw \
-            else -math.inf
-    pts[0], D[0] = 0.0, d_end[0]
+        d = value - _need_row(L, w2, K2, active, lb) if slack >= -tolw else -math.inf
+        if e == 0:
+            d_end0 = d
+        else:
+            d_end1 = d
+    w[3, 0], w[4, 0] = 0.0, d_end0
     # the breakpoints, where the fill holds the items before j, full
     s0 = s1 = s0b = s1b = 0.0
     for j in range(n):
         i = order[j]
-        cap0 = Lz[i] - lb0[i]
+        cap0 = w[0, i] - w[1, i]
         tj = (r0 - s0) / (af - s1)
         if math.isfinite(tj) and tj > 0 and tj < t_cap:
-            pts[j + 1] = tj
-            D[j + 1] = s0b - tj * s1b - c
+            w[3, j + 1] = tj
+            w[4, j + 1] = s0b - tj * s1b - c
         else:
-            pts[j + 1] = math.inf
-            D[j + 1] = math.inf
+            w[3, j + 1] = math.inf
+            w[4, j + 1] = math.inf
         s0 += w1[i] * cap0
-        s1 += w1[i] * fr[i]
+        s1 += w1[i] * w[2, i]
         s0b += w2[i] * cap0
-        s1b += w2[i] * fr[i]
-    pts[m - 1], D[m - 1] = t_cap, d_end[1]
+        s1b += w2[i] * w[2, i]
+    w[3, m - 1], w[4, m - 1] = t_cap, d_end1
     # sorted by t (stable), the invalid ones (inf) last with the value at t_cap
-    idx = np.empty(m, np.int64)
     for k in range(m):
         idx[k] = k
     for k in range(1, m):
         j = k
-        while j > 0 and pts[idx[j]] < pts[idx[j - 1]]:
+        while j > 0 and w[3, idx[j]] < w[3, idx[j - 1]]:
             idx[j], idx[j - 1] = idx[j - 1], idx[j]
             j -= 1
-    P = np.empty(m)
-    Q = np.empty(m)
     for k in range(m):
-        if math.isfinite(pts[idx[k]]):
-            P[k], Q[k] = pts[idx[k]], D[idx[k]]
+        if math.isfinite(w[3, idx[k]]):
+            w[5, k], w[6, k] = w[3, idx[k]], w[4, idx[k]]
         else:
-            P[k], Q[k] = t_cap, d_end[1]
-    if not (Q[0] >= -tolw and t_cap >= 0):
+            w[5, k], w[6, k] = t_cap, d_end1
+    if not (w[6, 0] >= -tolw and t_cap >= 0):
         return -1.0
     for i in range(n):
-        if active[i] and not lb0[i] <= Lz[i] + tol * Lz[i]:
+        if active[i] and not w[1, i] <= w[0, i] + tol * w[0, i]:
             return -1.0
     last = m - 1
     for k in range(m - 1, -1, -1):
-        if Q[k] >= -tolw:
+        if w[6, k] >= -tolw:
             last = k
             break
     nxt = min(last + 1, m - 1)
-    d_a, d_b = Q[last], Q[nxt]
+    d_a, d_b = w[6, last], w[6, nxt]
     frac = 0.0
     if nxt > last and math.isfinite(d_b) and d_a - d_b > 0:
         frac = min(max(d_a / (d_a - d_b), 0.0), 1.0)
-    return float(P[last] + frac * (P[nxt] - P[last]))
+    return float(w[5, last] + frac * (w[5, nxt] - w[5, last]))
 
 
 def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
@@ -208,14 +206,16 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
     trial = np.empty(n)
     grow = np.empty(n, np.bool_)
     x = np.empty(n)
+    key, lb, w = np.empty(n), np.empty(n), np.empty((7, n + 2))
+    idx = np.empty(n + 2, np.int64)
     for b in range(B):
-        _order_row(w1[b], w2[b], active[b], order)
+        _order_row(w1[b], w2[b], active[b], order, key)
         for i in range(n):
             free[i] = active[b, i]
             levels[i] = 0.0
         if first_only:
             out[b, 0] = _max_level_row(L[b], w1[b], w2[b], K1[b], K2[b], active[b], levels,
-                                       free, order, tol, x)
+                                       free, order, tol, x, lb, w, idx)
             continue
         dead = False
         first = True
@@ -229,7 +229,7 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
             if not anyfree:
                 break
             t = _max_level_row(L[b], w1[b], w2[b], K1[b], K2[b], active[b], levels, free,
-                               order, tol, x)
+                               order, tol, x, lb, w, idx)
             if first:
                 dead = t < 0
                 first = False
@@ -256,10 +256,9 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
 
 #: The per-row helpers that allocate nothing and make no view: compiled without
 #: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
-_BORROWING = (_fill_row, _wscale_row, _need_row, _feasible_row)
+_BORROWING = (_order_row, _fill_row, _wscale_row, _need_row, _feasible_row, _max_level_row)
 
-_LOOPS = CompiledLoops(globals(), (_order_row, *_BORROWING, _max_level_row, _leximin_loop),
-                       borrowing=_BORROWING)
+_LOOPS = CompiledLoops(globals(), (*_BORROWING, _leximin_loop), borrowing=_BORROWING)
 
 
 def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
