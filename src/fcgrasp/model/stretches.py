@@ -566,7 +566,7 @@ THIRD_PAD = 64
 
 #: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
 #: filter compares every pair: 41,000 configurations of an icon took 37 s).
-KERNEL_OWN = 2_000
+KERNEL_OWN = 256
 
 
 #: A search asked for more plans than this (or for all of them) loads the compiled loops
