@@ -228,3 +228,8 @@ PAIR_RAY_TOL = 1e-12
 #: The same: what a row's bound and the floor are padded by (relative), and the pairs'
 #: window of angles (radians), for rounding.
 PAIR_PAD = 1e-9
+
+#: A bound on the relative rounding of a float coordinate (a few units in the last place
+#: of a double, 2.2e-16): :func:`fcgrasp.model.distinct._shared_length` reads two regions'
+#: shared pieces only where the coordinates' rounding is small against the buffer's width.
+COORD_ROUNDING = 1e-15

@@ -24,7 +24,7 @@ import numpy as np
 import shapely
 
 from ..core._checks import FloatArray
-from ..core.tolerances import ROUND_TOL, SLICE_TOL, TOL
+from ..core.tolerances import COORD_ROUNDING, ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppression",
@@ -147,7 +147,7 @@ def _shared_length(a: tuple[Any, ...], b: tuple[Any, ...], tol: float) -> float:
     rounded).  0 when nothing is shared."""
     pa, la, where_a, reach_a = a
     pb, _, where_b, reach_b = b
-    if max(reach_a, reach_b) * 1e-15 > 0.01 * tol:
+    if max(reach_a, reach_b) * COORD_ROUNDING > 0.01 * tol:
         return 0.0
     total = 0.0
     for e, k in where_a.items():
