@@ -317,10 +317,11 @@ class _Solved:
     def batches(self, polygon: Polygon, spec: PlanSpec, edges: Any) -> Iterator[Any]:
         """:func:`~fcgrasp.pipeline.candidates` of the part, each batch made once: a
         round reads the batches the rounds before made, then goes on with the stream
-        where they left it (the stream depends on its arguments only)."""
+        where they left it (the stream depends on its arguments only: the same part and
+        spec objects, the rounds', and the same edges)."""
         asked = (polygon, spec, None if edges is None else tuple(int(e) for e in edges))
         if self._stream is None or self._stream[0][0] is not polygon \
-                or self._stream[0][1:] != asked[1:]:
+                or self._stream[0][1] is not spec or self._stream[0][2] != asked[2]:
             self._stream, self._made = (asked, candidates(polygon, spec, edges)), []
         k = 0
         while True:
