@@ -336,16 +336,20 @@ def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: An
 def _rows_closure_loop(unit: Any, rows: Any, tol: float, out: Any) -> None:
     """:func:`fcgrasp.core.closure.force_direction_closure` of the forces
     ``unit[rows[r]]`` of every row (rows of indices into one table of forces), the same
-    operations row by row without gathering them: each force read from the table and
-    made unit, then :func:`_closed`."""
+    operations row by row without gathering them: each force of the table made unit
+    once (the same operations whichever row reads it), then each row's read and
+    :func:`_closed`."""
     k = rows.shape[1]
+    table = np.empty((unit.shape[0], 2))
+    for f in range(unit.shape[0]):
+        x, y = unit[f, 0], unit[f, 1]
+        n = np.sqrt(x * x + y * y)
+        table[f, 0] = x / n if n > 0 else 0.0
+        table[f, 1] = y / n if n > 0 else 0.0
     u = np.empty((k, 2))
     for r in range(rows.shape[0]):
         for i in range(k):
-            x, y = unit[rows[r, i], 0], unit[rows[r, i], 1]
-            n = np.sqrt(x * x + y * y)
-            u[i, 0] = x / n if n > 0 else 0.0
-            u[i, 1] = y / n if n > 0 else 0.0
+            u[i, 0], u[i, 1] = table[rows[r, i], 0], table[rows[r, i], 1]
         out[r] = _closed(u, k, tol)
 
 
