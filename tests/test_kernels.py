@@ -326,6 +326,22 @@ def test_a_borrowing_loop_runs_without_reference_counts_and_gives_the_same_numbe
     assert "_nrt" not in loops["_scale_all"].targetoptions
 
 
+@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+def test_a_numba_without_the_option_compiles_the_borrowing_loops_as_the_others(
+        monkeypatch):
+    """Where numba's CPU target has no ``_nrt`` option (it would fail only at the first
+    call, leaving every loop to numpy), ``borrowing`` loops are compiled as the others,
+    and run."""
+    numba = kernels.import_numba()
+    monkeypatch.setattr(kernels, "_takes_nrt_option", lambda: False)
+    loops = kernels.njit_all(numba, {"np": np}, [("_scale_rows", _scale_rows),
+                                                 ("_scale_all", _scale_all)],
+                             frozenset({"_scale_rows"}))
+    assert "_nrt" not in loops["_scale_rows"].targetoptions
+    x = np.arange(5.0)
+    np.testing.assert_array_equal(loops["_scale_all"](x), _scale_all(x))
+
+
 def _triple(x, out):
     for i in range(x.shape[0]):
         out[i] = 3.0 * x[i] + 1.0

@@ -577,24 +577,31 @@ def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
     arrays they are given, which their caller holds for the call, and a small function
     called per pose or per edge otherwise pays an atomic increment and decrement per
     array argument per call (a third of the jaw's pose loop).  Where this numba does
-    not take the option, they are compiled as the others."""
+    not take the option (an unknown option fails only at the first call, which would
+    leave every loop to numpy), they are compiled as the others."""
+    borrow = _takes_nrt_option()
     for name, func in funcs:
         clone = types.FunctionType(func.__code__, namespace, func.__name__, func.__defaults__)
         clone.__module__, clone.__qualname__ = func.__module__, func.__qualname__
         options: dict[str, Any] = {"error_model": "numpy"}
-        if name in borrowing:
+        if borrow and name in borrowing:
             options["_nrt"] = False
         try:
-            jit = numba.njit(cache=True, **options)
-        except (KeyError, TypeError, ValueError):   # no such option here
-            options.pop("_nrt", None)
-            jit = numba.njit(cache=True, **options)
-        try:
-            namespace[name] = jit(clone)
+            namespace[name] = numba.njit(cache=True, **options)(clone)
         except RuntimeError:            # nowhere to cache (a read-only install): compile
             namespace[name] = numba.njit(**options)(clone)
         _light_loads(namespace[name])
     return namespace
+
+
+def _takes_nrt_option() -> bool:
+    """Whether this numba's CPU target takes ``_nrt`` (:func:`njit_all`'s
+    ``borrowing``), read from its table of options."""
+    try:
+        from numba.core.cpu import CPUTargetOptions
+    except ImportError:                 # pragma: no cover - another numba's layout
+        return False
+    return hasattr(CPUTargetOptions, "_nrt")
 
 
 _LIGHT: dict[type, Any] = {}
