@@ -130,41 +130,43 @@ class StretchPair:
 # ----------------------------------------------------------------------------- search
 
 
+def _span(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatArray, FloatArray]:
+    """The first and last point of the stretch starting at ``s0`` on edge ``i``, length
+    ``t``, ``k`` interior vertices (before any trimming)."""
+    m = ring.m
+    first = ring.a[i % m] + s0 * ring.t[i % m]
+    if k == 0:
+        return first, first + t * ring.t[i % m]
+    # _inner of the one stretch, read from the arc positions as it reads them
+    end_edge = (i + k) % m
+    j = i % m + m
+    off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
+    return first, ring.a[end_edge] + (t - off) * ring.t[end_edge]
+
+
 def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
               ) -> tuple[FloatArray, tuple[int, ...]]:
     """Points of the stretch starting at s0 on edge i, length t, k interior vertices."""
     m = ring.m
     at = (i + np.arange(k + 1)) % m                 # the edges covered, in ring order
     pts = np.empty((k + 2, 2))
-    pts[0] = first = ring.a[i % m] + s0 * ring.t[i % m]
+    pts[0], pts[-1] = _span(ring, i, k, s0, t)
     pts[1:k + 1] = ring.a[at[1:]]                   # the interior vertices
-    end_edge = (i + k) % m
-    if k == 0:
-        pts[-1] = first + t * ring.t[i % m]
-    else:
-        # _inner of the one stretch, read from the arc positions as it reads them
-        j = i % m + m
-        off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
-        pts[-1] = ring.a[end_edge] + (t - off) * ring.t[end_edge]
     edges = ring.edges[at].tolist()
     # the vertex is held with both normals, so either is its end normal
     return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
 
 def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float) -> FloatArray:
-    """The two ends of :func:`_polyline`'s stretch (2, 2), by its arithmetic and its
-    trimming (``trim_vertex_ends``), without the points between: all the ranking's
+    """The two ends of :func:`_polyline`'s stretch (2, 2), trimmed as
+    ``trim_vertex_ends`` trims it, without the points between: all the ranking's
     geometric key reads of a region (:func:`_canonical`)."""
-    m = ring.m
-    first = ring.a[i % m] + s0 * ring.t[i % m]
-    end_edge = (i + k) % m
+    first, last = _span(ring, i, k, s0, t)
     if k == 0:
-        return np.stack((first, first + t * ring.t[i % m]))
-    j = i % m + m
-    off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
-    last = ring.a[end_edge] + (t - off) * ring.t[end_edge]
+        return np.stack((first, last))
+    m = ring.m
     tiny = ROUND_TOL * float(ring.U[m])
-    inner_first, inner_last = ring.a[(i + 1) % m], ring.a[end_edge]
+    inner_first, inner_last = ring.a[(i + 1) % m], ring.a[(i + k) % m]
     covered = k + 1
     if np.hypot(*(inner_first - first)) <= tiny:            # trim_vertex_ends' first
         first, covered = inner_first, covered - 1
