@@ -100,6 +100,13 @@ def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, l
     return slack >= -scale and value >= need - scale
 
 
+#: The rows of :func:`_max_level_row`'s scratch: the regions' lengths (0 where not
+#: active), the fixed ones' levels, the free flags, then the fill's breakpoints ``t``
+#: and ``D`` there, and both sorted by ``t``.
+_LZ, _LB0, _FREE, _PTS, _D, _P, _Q = range(7)
+_SCRATCH_ROWS = 7
+
+
 def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
                    lbf: Any, free: Any, order: Any, tol: float, x: Any, lb: Any, w: Any,
                    idx: Any) -> float:
@@ -107,21 +114,21 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
     (-1: none): :func:`fcgrasp.model.regions._max_level`, the breakpoints of the greedy
     fill solved for and ``D`` interpolated on its linear piece.  Scratch, the caller's
     (a row allocates nothing, so it runs without reference counts): ``lb`` (n,), ``w``
-    (7, n + 2) rows for the regions' lengths, fixed levels and free flags, then the
-    breakpoints, their values and both sorted; ``idx`` (n + 2,) ints."""
+    (:data:`_SCRATCH_ROWS`, n + 2), its rows :data:`_LZ` to :data:`_Q`; ``idx`` (n + 2,)
+    ints."""
     n = L.shape[0]
     af = 0.0
     used = 0.0
     t_cap = math.inf
     for i in range(n):
-        w[0, i] = L[i] if active[i] else 0.0
+        w[_LZ, i] = L[i] if active[i] else 0.0
         f = free[i] and active[i]
-        w[2, i] = 1.0 if f else 0.0
-        w[1, i] = 0.0 if f else (lbf[i] if active[i] else 0.0)
-        af += w1[i] * w[2, i]
-        used += w1[i] * w[1, i]
-        if f and w[0, i] < t_cap:
-            t_cap = w[0, i]
+        w[_FREE, i] = 1.0 if f else 0.0
+        w[_LB0, i] = 0.0 if f else (lbf[i] if active[i] else 0.0)
+        af += w1[i] * w[_FREE, i]
+        used += w1[i] * w[_LB0, i]
+        if f and w[_LZ, i] < t_cap:
+            t_cap = w[_LZ, i]
     r0 = K1 - used
     if af > 0 and r0 / af < t_cap:
         t_cap = r0 / af
@@ -129,7 +136,7 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
         t_cap = 0.0
     c = 0.0
     for i in range(n):
-        c += w2[i] * w[0, i]
+        c += w2[i] * w[_LZ, i]
     c -= K2
     tolw = tol * _wscale_row(L, w1, w2)
     m = n + 2
@@ -138,60 +145,60 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
     for e in range(2):
         end = 0.0 if e == 0 else t_cap
         for i in range(n):
-            lb[i] = w[1, i] + end * w[2, i]
+            lb[i] = w[_LB0, i] + end * w[_FREE, i]
         slack, value = _fill_row(L, w1, w2, K1, active, lb, order, x)
         d = value - _need_row(L, w2, K2, active, lb) if slack >= -tolw else -math.inf
         if e == 0:
             d_end0 = d
         else:
             d_end1 = d
-    w[3, 0], w[4, 0] = 0.0, d_end0
+    w[_PTS, 0], w[_D, 0] = 0.0, d_end0
     # the breakpoints, where the fill holds the items before j, full
     s0 = s1 = s0b = s1b = 0.0
     for j in range(n):
         i = order[j]
-        cap0 = w[0, i] - w[1, i]
+        cap0 = w[_LZ, i] - w[_LB0, i]
         tj = (r0 - s0) / (af - s1)
         if math.isfinite(tj) and tj > 0 and tj < t_cap:
-            w[3, j + 1] = tj
-            w[4, j + 1] = s0b - tj * s1b - c
+            w[_PTS, j + 1] = tj
+            w[_D, j + 1] = s0b - tj * s1b - c
         else:
-            w[3, j + 1] = math.inf
-            w[4, j + 1] = math.inf
+            w[_PTS, j + 1] = math.inf
+            w[_D, j + 1] = math.inf
         s0 += w1[i] * cap0
-        s1 += w1[i] * w[2, i]
+        s1 += w1[i] * w[_FREE, i]
         s0b += w2[i] * cap0
-        s1b += w2[i] * w[2, i]
-    w[3, m - 1], w[4, m - 1] = t_cap, d_end1
+        s1b += w2[i] * w[_FREE, i]
+    w[_PTS, m - 1], w[_D, m - 1] = t_cap, d_end1
     # sorted by t (stable), the invalid ones (inf) last with the value at t_cap
     for k in range(m):
         idx[k] = k
     for k in range(1, m):
         j = k
-        while j > 0 and w[3, idx[j]] < w[3, idx[j - 1]]:
+        while j > 0 and w[_PTS, idx[j]] < w[_PTS, idx[j - 1]]:
             idx[j], idx[j - 1] = idx[j - 1], idx[j]
             j -= 1
     for k in range(m):
-        if math.isfinite(w[3, idx[k]]):
-            w[5, k], w[6, k] = w[3, idx[k]], w[4, idx[k]]
+        if math.isfinite(w[_PTS, idx[k]]):
+            w[_P, k], w[_Q, k] = w[_PTS, idx[k]], w[_D, idx[k]]
         else:
-            w[5, k], w[6, k] = t_cap, d_end1
-    if not (w[6, 0] >= -tolw and t_cap >= 0):
+            w[_P, k], w[_Q, k] = t_cap, d_end1
+    if not (w[_Q, 0] >= -tolw and t_cap >= 0):
         return -1.0
     for i in range(n):
-        if active[i] and not w[1, i] <= w[0, i] + tol * w[0, i]:
+        if active[i] and not w[_LB0, i] <= w[_LZ, i] + tol * w[_LZ, i]:
             return -1.0
     last = m - 1
     for k in range(m - 1, -1, -1):
-        if w[6, k] >= -tolw:
+        if w[_Q, k] >= -tolw:
             last = k
             break
     nxt = min(last + 1, m - 1)
-    d_a, d_b = w[6, last], w[6, nxt]
+    d_a, d_b = w[_Q, last], w[_Q, nxt]
     frac = 0.0
     if nxt > last and math.isfinite(d_b) and d_a - d_b > 0:
         frac = min(max(d_a / (d_a - d_b), 0.0), 1.0)
-    return float(w[5, last] + frac * (w[5, nxt] - w[5, last]))
+    return float(w[_P, last] + frac * (w[_P, nxt] - w[_P, last]))
 
 
 def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
@@ -206,7 +213,7 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
     trial = np.empty(n)
     grow = np.empty(n, np.bool_)
     x = np.empty(n)
-    key, lb, w = np.empty(n), np.empty(n), np.empty((7, n + 2))
+    key, lb, w = np.empty(n), np.empty(n), np.empty((_SCRATCH_ROWS, n + 2))
     idx = np.empty(n + 2, np.int64)
     for b in range(B):
         _order_row(w1[b], w2[b], active[b], order, key)
