@@ -989,12 +989,13 @@ def _slices_loop(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: An
             xa = -ts * a[e, 0] + tc * a[e, 1]
             xb = -ts * b[e, 0] + tc * b[e, 1]
             x_lo[e], x_hi[e] = min(xa, xb), max(xa, xb)
-            xy[e, 0], xy[e, 1] = xa, xb
-            ya = tc * a[e, 0] + ts * a[e, 1]
-            yb = tc * b[e, 0] + ts * b[e, 1]
-            xy[e, 2], xy[e, 3] = ya, yb
-            xy[e, 4] = (yb - ya) / (xb - xa) if abs(xb - xa) > tol else np.nan
-            xy[e, 5], xy[e, 6] = max(ya, yb), max(-ya, -yb)
+            if prune:               # what _stop_reach reads of the edge at this angle
+                xy[e, 0], xy[e, 1] = xa, xb
+                ya = tc * a[e, 0] + ts * a[e, 1]
+                yb = tc * b[e, 0] + ts * b[e, 1]
+                xy[e, 2], xy[e, 3] = ya, yb
+                xy[e, 4] = (yb - ya) / (xb - xa) if abs(xb - xa) > tol else np.nan
+                xy[e, 5], xy[e, 6] = max(ya, yb), max(-ya, -yb)
         if upward:
             stack_lo = list(cell_lo[first:last][::-1])
             stack_hi = list(cell_hi[first:last][::-1])
