@@ -45,6 +45,31 @@ DEFER_PAD = 1e-9
 #: weighted edge lengths), and a coefficient this small relative to its velocity is zero.
 SOLVER_TOL = 1e-12
 
+#: Four frictionless fingers' estimate of a row's score (:mod:`fcgrasp.model._quad_estimates`):
+#: the knapsacks' budgets are raised by this times the problem's scale (the solver's
+#: slack is :data:`SOLVER_TOL`: a larger budget only raises the level), a row is left
+#: out only when its estimate is below the floor by more than ``ESTIMATE_PAD`` of the
+#: part's size, and a pair's sine (against :data:`TOL`) or the shrunk sector's
+#: half-width (radians, against 0) within ``ESTIMATE_BAND`` of its threshold, or a
+#: coefficient within ``ESTIMATE_ZERO_BAND`` (relative) of the solver's rounding to
+#: zero, makes the estimate infinite (all far above the rounding of what they compare).
+ESTIMATE_TOL = 1e-6
+ESTIMATE_PAD = 1e-7
+ESTIMATE_BAND = 1e-12
+ESTIMATE_ZERO_BAND = 0.5
+
+#: The compiled placement (:func:`fcgrasp.model.regions.place_regions_sure`) is sure to
+#: find numpy's vertices when no active set's determinant is between
+#: ``PLACE_NOISE_DET`` (below: singular up to rounding, for numpy too, far below the
+#: singular test's :data:`SOLVER_TOL`) and ``PLACE_SURE_DET`` of its scale (a
+#: near-singular set: its vertex is rounding), and no vertex is within
+#: ``PLACE_SURE_BAND`` of a test's tolerance of that tolerance; a placement compared
+#: with a threshold is sure when its margin exceeds ``PLACE_SURE_GAP`` of the edge.
+PLACE_NOISE_DET = 1e-14
+PLACE_SURE_DET = 1e-6
+PLACE_SURE_BAND = 0.1
+PLACE_SURE_GAP = 1e-7
+
 #: Relative step of the leximin stages: a region "can grow" when it reaches this much
 #: (times the longest edge) beyond the current level.
 LEXIMIN_STEP = 1e-9
@@ -153,7 +178,10 @@ SLIVER_REL = 1e-4
 
 __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESOLUTION",
            "MAX_MAGNITUDE",
-           "SOLVER_TOL", "LEXIMIN_STEP", "FACE_TOL", "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
+           "SOLVER_TOL", "ESTIMATE_TOL", "ESTIMATE_PAD", "ESTIMATE_BAND", "ESTIMATE_ZERO_BAND",
+           "PLACE_NOISE_DET",
+           "PLACE_SURE_DET", "PLACE_SURE_BAND", "PLACE_SURE_GAP", "LEXIMIN_STEP", "FACE_TOL",
+           "RANK_TOL", "ON_EDGE_TOL", "COLLINEAR_TOL",
            "TINY", "ROUND_TOL", "RANK_RTOL", "CONTACT_TOL", "SLICE_TOL", "LP_TOL", "CHECK_TOL",
            "LEVEL_TIE", "SIMPLEX_PIVOT", "SIMPLEX_SLACK", "NULL_TOL", "PARALLEL_TOL",
            "PIECE_TIE", "NOISE_ROW", "SPAN_SLACK", "ANGLE_CAP_GAP", "CLEAN_TOL", "GAP_REL",

@@ -261,11 +261,158 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
             out[b, i] = -1.0 if dead else (levels[i] if active[b, i] else 0.0)
 
 
+def _solve_small(G: Any, h: Any, x: Any) -> float:
+    """Gaussian elimination with partial pivoting of ``G x = h`` (n, n), in place
+    (``G`` and ``h`` overwritten): the determinant, and ``x`` where it is not zero."""
+    n = G.shape[0]
+    det = 1.0
+    for k in range(n):
+        p = k
+        for i in range(k + 1, n):
+            if abs(G[i, k]) > abs(G[p, k]):
+                p = i
+        if G[p, k] == 0.0:
+            return 0.0
+        if p != k:
+            det = -det
+            for j in range(n):
+                G[k, j], G[p, j] = G[p, j], G[k, j]
+            h[k], h[p] = h[p], h[k]
+        det *= G[k, k]
+        for i in range(k + 1, n):
+            f = G[i, k] / G[k, k]
+            for j in range(k, n):
+                G[i, j] -= f * G[k, j]
+            h[i] -= f * h[k]
+    for i in range(n - 1, -1, -1):
+        v = h[i]
+        for j in range(i + 1, n):
+            v -= G[i, j] * x[j]
+        x[i] = v / G[i, i]
+    return det
+
+
+def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: Any,
+                 subsets: Any, solver_tol: float, face_tol: float, noise_det: float,
+                 sure_det: float, band: float, out: Any, found: Any, sure: Any) -> None:
+    """:func:`fcgrasp.model.regions._centre` of every row into ``out`` (B, n), with
+    ``found``, and whether the row is ``sure``: no subset's determinant between
+    ``noise_det`` and ``sure_det`` of its scale (below: singular up to rounding, as
+    numpy finds it too; above: far from the singular test's ``solver_tol``, and a
+    vertex that rounding moves little), and no vertex's test within ``band`` of its
+    tolerance, so that numpy's vertices are the same and the mean agrees to
+    rounding.  ``subsets`` (S, n): the candidate active
+    sets, in ``_centre``'s order."""
+    B, n = L.shape
+    m = 2 * n + 2
+    A = np.zeros((m, n))
+    rhs = np.empty(m)
+    G = np.empty((n, n))
+    h = np.empty(n)
+    x = np.empty(n)
+    acc = np.empty(n)
+    lo = np.empty(n)
+    Lz = np.empty(n)
+    rowmax = np.empty(m)
+    for b in range(B):
+        ok_row = True
+        r2 = 0.0
+        big = TINY
+        ws = 0.0
+        for i in range(n):
+            Lz[i] = L[b, i] if active[b, i] else 0.0
+            lo[i] = lb[b, i] if active[b, i] else 0.0
+            r2 += w2[b, i] * (Lz[i] + lo[i])
+            big = max(big, Lz[i])
+            ws += (w1[b, i] + w2[b, i]) * L[b, i]
+        r2 -= K2[b]
+        tol = face_tol * big
+        wtol = face_tol * max(ws, TINY)
+        for i in range(m):
+            for j in range(n):
+                A[i, j] = 0.0
+        for i in range(n):
+            A[i, i] = 1.0
+            A[n + i, i] = 1.0
+            A[2 * n, i] = w1[b, i]
+            A[2 * n + 1, i] = w2[b, i]
+            rhs[i], rhs[n + i] = lo[i], Lz[i]
+        rhs[2 * n], rhs[2 * n + 1] = K1[b], r2
+        for i in range(m):
+            v = 0.0
+            for j in range(n):
+                v = max(v, abs(A[i, j]))
+            rowmax[i] = v
+        cnt = 0
+        for i in range(n):
+            acc[i] = 0.0
+        for s in range(subsets.shape[0]):
+            v = 0.0
+            for k in range(n):
+                row = subsets[s, k]
+                v = max(v, rowmax[row])
+                for j in range(n):
+                    G[k, j] = A[row, j]
+                h[k] = rhs[row]
+            scale = max(v ** n, TINY)
+            det = _solve_small(G, h, x)
+            if abs(det) > noise_det * scale and abs(det) <= sure_det * scale:
+                ok_row = False              # near-singular: numpy's test or vertex may differ
+            if abs(det) <= solver_tol * scale:
+                continue
+            feas = True
+            d1 = 0.0
+            d2 = 0.0
+            for i in range(n):
+                e_lo = x[i] - (lo[i] - tol)
+                e_hi = (Lz[i] + tol) - x[i]
+                if abs(e_lo) <= band * tol or abs(e_hi) <= band * tol:
+                    ok_row = False
+                if e_lo < 0 or e_hi < 0:
+                    feas = False
+                d1 += x[i] * w1[b, i]
+                d2 += x[i] * w2[b, i]
+            e1 = (K1[b] + wtol) - d1
+            e2 = d2 - (r2 - wtol)
+            if abs(e1) <= band * wtol or abs(e2) <= band * wtol:
+                ok_row = False
+            if e1 < 0 or e2 < 0:
+                feas = False
+            if feas:
+                cnt += 1
+                for i in range(n):
+                    acc[i] += x[i]
+        for i in range(n):
+            v = acc[i] / max(cnt, 1)
+            out[b, i] = min(max(v, lo[i]), Lz[i])
+        found[b] = cnt > 0
+        sure[b] = ok_row
+
+
 #: The per-row helpers that allocate nothing and make no view: compiled without
 #: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
-_BORROWING = (_order_row, _fill_row, _wscale_row, _need_row, _feasible_row, _max_level_row)
+_BORROWING = (_order_row, _fill_row, _wscale_row, _need_row, _feasible_row, _max_level_row,
+              _solve_small)
 
-_LOOPS = CompiledLoops(globals(), (*_BORROWING, _leximin_loop), borrowing=_BORROWING)
+_LOOPS = CompiledLoops(globals(), (*_BORROWING, _leximin_loop, _centre_loop),
+                       borrowing=_BORROWING)
+
+
+def centre_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: Any,
+                subsets: Any, solver_tol: float, face_tol: float, noise_det: float,
+                sure_det: float, band: float) -> tuple[Any, Any, Any] | None:
+    """:func:`_centre_loop` on a batch: ``(centre, found, sure)``, None where it
+    cannot run."""
+    B, n = L.shape
+    out, found, sure = np.zeros((B, n)), np.zeros(B, np.bool_), np.zeros(B, np.bool_)
+    ok, _ = _LOOPS.run("_centre_loop", np.ascontiguousarray(L, float),
+                       np.ascontiguousarray(w1, float), np.ascontiguousarray(w2, float),
+                       np.ascontiguousarray(K1, float), np.ascontiguousarray(K2, float),
+                       np.ascontiguousarray(active, np.bool_), np.ascontiguousarray(lb, float),
+                       np.ascontiguousarray(subsets, np.int64), float(solver_tol),
+                       float(face_tol), float(noise_det), float(sure_det), float(band),
+                       out, found, sure)
+    return (out, found, sure) if ok else None
 
 
 def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,

@@ -64,7 +64,15 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core._geom import cross2 as _cross
 from ..core.kernels import two_levels
-from ..core.tolerances import FACE_TOL, LEXIMIN_STEP, SOLVER_TOL, TINY
+from ..core.tolerances import (
+    FACE_TOL,
+    LEXIMIN_STEP,
+    PLACE_NOISE_DET,
+    PLACE_SURE_BAND,
+    PLACE_SURE_DET,
+    SOLVER_TOL,
+    TINY,
+)
 
 __all__ = [
     "KnapsackProblem",
@@ -394,6 +402,20 @@ def leximin(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     return levels
 
 
+class _Subsets(dict):  # type: ignore[type-arg]
+    """The candidate active sets of :func:`_centre` for ``n`` regions: every ``n`` of
+    its ``2 n + 2`` constraint rows, in :func:`itertools.combinations` order."""
+
+    def __missing__(self, n: int) -> np.ndarray:
+        got = np.array(list(combinations(range(2 * n + 2), n)), dtype=int)
+        got.flags.writeable = False
+        self[n] = got
+        return got
+
+
+_SUBSETS = _Subsets()
+
+
 def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]:
     """Mean of the vertices of {x in [lb, L] : w1.x <= K1, w2.x >= R2}: a canonical interior
     point of the optimal face (its midpoint when the face is a segment)."""
@@ -407,7 +429,7 @@ def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]
     rows = np.concatenate([np.broadcast_to(eye, (B, n, n)), np.broadcast_to(eye, (B, n, n)),
                            p.w1[:, None, :], p.w2[:, None, :]], axis=1)     # (B, 2n+2, n)
     rhs = np.concatenate([lo, L, p.K1[:, None], r2[:, None]], axis=1)       # (B, 2n+2)
-    subsets = np.array(list(combinations(range(2 * n + 2), n)), dtype=int)  # (S, n)
+    subsets = _SUBSETS[n]                                                   # (S, n)
     G = rows[:, subsets]                                                     # (B, S, n, n)
     h = rhs[:, subsets]                                                      # (B, S, n)
     det = np.linalg.det(G)
@@ -434,9 +456,34 @@ def place_regions(p: KnapsackProblem, levels: FloatArray) -> FloatArray:
     placements, the mean of the vertices of the optimal face is chosen (the midpoint when
     the regions can slide, as between parallel edges), so ties are broken symmetrically.
     """
-    L = np.where(p.active, p.L, 0.0)
     lb = np.where(p.active, np.maximum(levels, 0.0), 0.0)
     x, found = _centre(p, lb)
+    return _ends(p, lb, x, found)
+
+
+def place_regions_sure(p: KnapsackProblem, levels: FloatArray
+                       ) -> tuple[FloatArray, np.ndarray] | None:
+    """:func:`place_regions` by the compiled vertex enumeration
+    (:func:`fcgrasp.model._leximin_kernels.centre_rows`), and which rows are sure to
+    agree with it to rounding (no near-singular active set, no vertex within a band of
+    a test's tolerance: the same vertices); None where the loop does not run."""
+    lb = np.where(p.active, np.maximum(levels, 0.0), 0.0)
+    from ._leximin_kernels import centre_rows
+
+    got = centre_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, lb, _SUBSETS[p.L.shape[1]],
+                      SOLVER_TOL, FACE_TOL, PLACE_NOISE_DET, PLACE_SURE_DET,
+                      PLACE_SURE_BAND)
+    if got is None:
+        return None
+    x, found, sure = got
+    return _ends(p, lb, x, found), sure
+
+
+def _ends(p: KnapsackProblem, lb: FloatArray, x: FloatArray, found: np.ndarray
+          ) -> FloatArray:
+    """:func:`place_regions`' region ends of the face's centre ``x`` (the greedy
+    point where the face has no vertex: ``found`` False)."""
+    L = np.where(p.active, p.L, 0.0)
     if not np.all(found):
         xg, _, _ = _fill(p, lb, _order(p))        # the greedy point is feasible too
         x = np.where(found[:, None], x, xg)

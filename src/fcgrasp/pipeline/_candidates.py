@@ -25,6 +25,7 @@ from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
 from ..errors import SearchTooLarge
+from ..model import _quad_estimates
 from ..model._regiongeom import four_finger_problems, two_finger_problems
 from ..model.hand import Hand
 from ..model.polygon import Polygon
@@ -451,6 +452,25 @@ def holding_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any
                                                             spec.gravity[0]))
     rows = np.asarray(feats, dtype=int).reshape(len(feats), -1)
     return rows_closure(_force_table(F, g_ang), np.where(rows >= 0, rows, len(F.center)))
+
+
+def quad_estimates(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any = None
+                   ) -> FloatArray | None:
+    """Four frictionless fingers (or three with gravity): each row's estimate of its
+    stage-1 score, never below the score :func:`grasp_geometry` gives it
+    (:mod:`fcgrasp.model._quad_estimates`, compiled); None for other fingers, or where
+    the loop is not running already (:func:`fcgrasp.core.kernels.started`)."""
+    if spec.shape.pairs or spec.shape.lp or not kernels.started() or not len(feats):
+        return None
+    F = features(polygon, spec.mu, spec.hand, edges)
+    g_ang = 0.0 if spec.gravity is None else float(np.arctan2(spec.gravity[1],
+                                                            spec.gravity[0]))
+    rows = np.asarray(feats, dtype=int).reshape(len(feats), -1)
+    c = polygon.centroid
+    return _quad_estimates.estimates(np.vstack([F.a, c]), np.vstack([F.b, c]),
+                                     np.append(F.center, g_ang),
+                                     np.where(rows >= 0, rows, len(F.center)),
+                                     spec.margin_rad)
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,

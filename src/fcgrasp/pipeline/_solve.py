@@ -5,7 +5,7 @@ algorithm 7.1)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -15,7 +15,8 @@ from ..core._checks import (
     check_scalar,
 )
 from ..core.sectors import PAIRINGS
-from ..core.tolerances import RANK_TOL
+from ..core.tolerances import ESTIMATE_PAD, PLACE_SURE_GAP, RANK_TOL
+from ..model._quad_estimates import below as estimate_below
 from ..model._regiongeom import four_finger_problems, two_finger_problems
 from ..model.plans import GraspPlan, geometric_key, leximin_key
 from ..model.polygon import Polygon
@@ -24,6 +25,7 @@ from ..model.regions import (
     leximin,
     max_min_length,
     place_regions,
+    place_regions_sure,
 )
 from . import _spec  # the search's tunables, read when used
 from ._candidates import (
@@ -34,6 +36,7 @@ from ._candidates import (
     _keep_best,
     _lex_greater,
     grasp_geometry,
+    quad_estimates,
 )
 from ._spec import (
     PlanSpec,
@@ -58,18 +61,55 @@ def _problems(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
 def _place(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
            lengths: FloatArray, mode: np.ndarray, margin: float) -> FloatArray:
     """Region parameters (R, n, 2), finger order, for the chosen levels and modes."""
+    return _placed(c, rows, a, b, lengths, mode, margin, False)[0]
+
+
+def _placed(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+            lengths: FloatArray, mode: np.ndarray, margin: float, compiled: bool
+            ) -> tuple[FloatArray, np.ndarray]:
+    """:func:`_place`'s parameters and which rows are sure (all, by numpy);
+    ``compiled``: placed by :func:`~fcgrasp.model.regions.place_regions_sure` where it
+    runs, sure where it says so."""
     probs = _problems(c, rows, a, b, margin)
     perm = c.perm[rows]
     ridx = np.arange(len(rows))[:, None]
     lev_p = np.maximum(lengths, 0.0)[ridx, perm]          # problem order
     inv = np.argsort(perm, axis=1)
     params = np.zeros(a.shape[:2] + (2,))
+    sure = np.ones(len(rows), bool)
     for m, pr in enumerate(probs):
         sel = mode == m
         if sel.any():
-            pp = place_regions(pr.take(np.flatnonzero(sel)), lev_p[sel])
+            sub = pr.take(np.flatnonzero(sel))
+            got = place_regions_sure(sub, lev_p[sel]) if compiled else None
+            if got is None:
+                pp = place_regions(sub, lev_p[sel])
+            else:
+                pp, sure[sel] = got
             params[sel] = pp[np.arange(sel.sum())[:, None], inv[sel]]
-    return params
+    return params, sure
+
+
+def _overlapping(c: Candidates, rows: np.ndarray, a: FloatArray, b: FloatArray,
+                 lengths: FloatArray, mode: np.ndarray, margin: float) -> np.ndarray:
+    """Whether the regions of fingers 0 and 2 (one feature) overlap where
+    :func:`_place` puts them: by the compiled placement where it is sure and the
+    overlap (or gap) exceeds :data:`~fcgrasp.core.tolerances.PLACE_SURE_GAP` of the
+    feature, by :func:`_place` elsewhere (the same booleans)."""
+    params, sure = _placed(c, rows, a, b, lengths, mode, margin, True)
+
+    def gap(pp: FloatArray) -> FloatArray:
+        return cast("FloatArray", np.minimum(pp[:, 0, 1], pp[:, 2, 1])
+                    - np.maximum(pp[:, 0, 0], pp[:, 2, 0]))
+
+    g = gap(params)
+    feature = np.hypot(*(b[:, 0] - a[:, 0]).T)
+    sure &= np.abs(g) > PLACE_SURE_GAP * feature
+    if not sure.all():
+        redo = np.flatnonzero(~sure)
+        g[redo] = gap(_place(c, rows[redo], a[redo], b[redo], lengths[redo], mode[redo],
+                             margin))
+    return cast("np.ndarray", g > 0)
 
 
 def _split_search(c: Candidates, rows: np.ndarray, margin: float, iters: int = 80
@@ -129,9 +169,8 @@ def _levels(c: Candidates, rows: np.ndarray, margin: float
         same &= lengths.min(axis=1) > 0
         if same.any():
             sub = np.flatnonzero(same)
-            params = _place(c, rows[sub], a[sub], b[sub], lengths[sub], mode[sub], margin)
-            over = np.minimum(params[:, 0, 1], params[:, 2, 1]) > \
-                np.maximum(params[:, 0, 0], params[:, 2, 0])
+            over = _overlapping(c, rows[sub], a[sub], b[sub], lengths[sub], mode[sub],
+                                margin)
             fix = sub[over]
             if fix.size:
                 sa, sb = _split_search(c, rows[fix], margin)
@@ -306,9 +345,11 @@ class RowScores:
     part and one spec's geometry have solved, remembered so that a later search drops
     a row whose score cannot reach its floor without computing its geometry again (a
     distinct search of four frictionless fingers reads in its rounds the rows its
-    first round read: ``icons/heart.svg`` 120,000 rows twice).  A row's score depends
-    on its features only, not on the batch it comes in nor on the floor, so dropping
-    what the memo says is below the floor drops what :func:`solve` would."""
+    first round read: ``icons/heart.svg`` 120,000 rows twice), and upper bounds of the
+    scores of the rows a search left out by their estimate (:func:`_estimated`).  A
+    row's score depends on its features only, not on the batch it comes in nor on the
+    floor, so dropping what the memo says is below the floor (a bound below it: the
+    score is too) drops what :func:`solve` would."""
 
     def __init__(self) -> None:
         self._keys: list[np.ndarray] = []
@@ -328,7 +369,7 @@ class RowScores:
         return key
 
     def add(self, feats: np.ndarray, score: FloatArray) -> None:
-        """Remember the scores of solved rows."""
+        """Remember the scores of solved rows (or bounds of them)."""
         key = self._key(feats)
         if key is not None and len(key):
             self._keys.append(key)
@@ -336,7 +377,7 @@ class RowScores:
             self._sorted = None
 
     def known(self, feats: np.ndarray) -> FloatArray:
-        """The remembered score of each row (nan where none is)."""
+        """The remembered score of each row, or a bound of it (nan where none is)."""
         out = np.full(len(feats), np.nan)
         key = self._key(feats)
         if key is None or not self._keys or not len(key):
@@ -371,6 +412,24 @@ def _smallest_region(feats: np.ndarray, lengths: FloatArray) -> FloatArray:
     return np.where(feats >= 0, lengths, np.inf).min(axis=1)
 
 
+def _estimated(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any, floor: float,
+               scores: RowScores | None) -> EdgeSets:
+    """The rows of four frictionless fingers (or three with gravity) but those whose
+    compiled estimate (:func:`~fcgrasp.pipeline._candidates.quad_estimates`, never below
+    the score) is below ``floor`` by more than its pad: :func:`grasp_geometry` would
+    score them below it.  ``scores`` remembers each left-out row's estimate plus the
+    pad, a bound of its score (:class:`RowScores`)."""
+    est = quad_estimates(polygon, spec, sets.feats, edges)
+    if est is None:
+        return sets
+    out = estimate_below(est, floor, polygon.size)
+    if not out.any():
+        return sets
+    if scores is not None:
+        scores.add(sets.feats[out], est[out] + ESTIMATE_PAD * polygon.size)
+    return sets.take(~out)
+
+
 def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
           progress: Any = None, floor: float = 0.0, scores: RowScores | None = None
           ) -> Solved:
@@ -391,6 +450,8 @@ def solve(polygon: Polygon, spec: PlanSpec, sets: EdgeSets, edges: Any = None,
     if floor > 0 and sets.bound is not None:
         reach = sets.bound >= floor
         sets = sets.take(reach)
+    if floor > 0:
+        sets = _estimated(polygon, spec, sets, edges, floor, scores)
     c = grasp_geometry(polygon, spec, sets, edges, floor)
     if scores is not None:
         scores.add(c.feats, c.score)

@@ -133,6 +133,15 @@ def _four(small: Any) -> None:
         pairs.seed(1)
         pairs.reaching(0.99 * pairs.gamma)
     coupled_bounds(pairs.n, pairs.g, pairs.L, np.array([[0, 3, 6, 9]]))
+    # a row's estimate (the rows a search leaves out below its floor) and the compiled
+    # placement (two fingers on one edge), with the types of the search's calls
+    from ..model.regions import KnapsackProblem, place_regions_sure
+    from ..pipeline._candidates import quad_estimates
+
+    quad_estimates(ring, plan_spec(fingers=4, along_boundary=False), np.array([[0, 3, 6, 9]]))
+    one, yes = np.ones((1, 4)), np.ones((1, 4), bool)
+    place_regions_sure(KnapsackProblem(one, one, one, np.ones(1), np.ones(1), yes, yes,
+                                       np.ones(1, bool)), 0.1 * one)
 
 
 def _jaw() -> None:
