@@ -184,14 +184,20 @@ def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gat
     top as solving every row, on the corpus and on flattened arcs (ties), for batches of
     one row and of 64; a strict search gives the same plans as without the test."""
     calls = []
-    original = _search.holding_rows
+    original, stream = _search.holding_rows, _search.candidates
 
     def holding(*args, **kwargs):
         keep = original(*args, **kwargs)
         calls.append(keep is not None and not keep.all())
         return keep
 
+    def candidates_held(*args, **kwargs):     # rows dropped as the stream makes them
+        for b in stream(*args, **kwargs):
+            calls.append(b.held and b.read > len(b.feats))
+            yield b
+
     monkeypatch.setattr(_search, "holding_rows", holding)
+    monkeypatch.setattr(_search, "candidates", candidates_held)
     monkeypatch.setattr(_spec, "GATHER_ROWS", gather)
     rng = np.random.default_rng(77)
     for part in [*_corpus(3)[::2], _flattened(rng), _flattened(rng)]:
@@ -203,6 +209,49 @@ def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gat
             monkeypatch.setattr(kernels, "started", lambda: False)  # no test: as before
             assert _key(search(part, spec, batch_size=16, strict=True)) == strict
     assert sum(calls) > 20          # rows were dropped
+
+
+def _median_key(level):
+    """A search's running key at the regions ``level`` (over the part's size): a row
+    whose shortest feature can at best tie ``level`` is measured against it."""
+    key = np.array([level, level])
+    return lambda x: key if x <= level + 1e-9 else None
+
+
+@pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("compiled", [True, False], ids=["loop", "numpy"])
+def test_a_held_stream_is_the_stream_less_the_rows_that_fail_the_force_test(seed, compiled,
+                                                                            monkeypatch):
+    """``candidates(..., held=True)``: batch for batch, the rows of the stream without it
+    that pass the force-direction test (holding_rows), with their bounds, the same
+    ceilings and how many rows each batch stands for; four fingers (every layout) and
+    three with gravity, with and without a key that prunes (the stream's from a
+    search's top), by the compiled loop and by numpy's blocks; and it drops rows."""
+    from fcgrasp.pipeline import _rows_kernels
+    from fcgrasp.pipeline._candidates import holding_rows
+
+    monkeypatch.setattr(kernels, "started", lambda: True)
+    if not compiled:
+        monkeypatch.setattr(_rows_kernels, "holding_survivors", lambda *a, **k: None)
+    rng = np.random.default_rng(seed)
+    dropped = 0
+    for part in [*_corpus(seed)[::2], _flattened(rng)]:
+        for job in JOBS[2:]:
+            spec = plan_spec(top=3, **job)
+            # a key a search's top might have: every row's bound against it
+            level = float(np.median(part.lengths)) / part.size
+            for key in (None, _median_key(level)):
+                plain = list(candidates(part, spec, batch_size=40, key=key))
+                held = list(candidates(part, spec, batch_size=40, key=key, held=True))
+                assert len(plain) == len(held)
+                for p, h in zip(plain, held, strict=True):
+                    keep = holding_rows(part, spec, p.feats)
+                    assert h.held and not p.held and h.read == len(p.feats)
+                    assert np.array_equal(h.feats, p.feats[keep])
+                    assert np.array_equal(h.bound, p.bound[keep])
+                    assert h.ceiling == p.ceiling
+                    dropped += len(p.feats) - len(h.feats)
+    assert dropped > 1000
 
 
 def test_a_row_left_out_by_the_key_is_worse_than_it():

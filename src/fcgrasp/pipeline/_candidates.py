@@ -23,7 +23,7 @@ from ..core._geom import RANK_DIGITS
 from ..core.closure import rows_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY
+from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY, TOL
 from ..errors import SearchTooLarge
 from ..model import _quad_estimates
 from ..model._regiongeom import four_finger_problems, two_finger_problems
@@ -319,7 +319,7 @@ def _spans_plane(angles: FloatArray) -> bool:
 
 def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
                   first: int, key: Callable[[float], FloatArray | None] | None = None,
-                  part_size: float = 1.0) -> Iterator[EdgeSets]:
+                  part_size: float = 1.0, held: bool = False) -> Iterator[EdgeSets]:
     """Every candidate row, streamed by decreasing bound (branch and bound).
 
     Features are sorted by decreasing length; a row's *last* feature in that order is its
@@ -339,6 +339,10 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     positions long enough for that (on a flattened curve, where every short edge ties
     the top's smallest region, the few long edges), not from every position before
     ``s``.
+
+    ``held``: only the rows whose forces pass the force-direction test (theorem 4.2),
+    in batches that hold the rows that passed of the batches without it (each batch's
+    ``read``: the rows it stands for).
     """
     lengths = F.lengths
     n = lengths.size
@@ -358,8 +362,15 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
     seen = [] if g is None else [float(wrap_positive(np.arctan2(g[1], g[0])))]
     compiled_rows = kernels.jit_setting() is True or kernels.started()
+    # the rows that fail the force-direction test left out as they are made (by the
+    # compiled loop, else by rows_closure on numpy's blocks), each batch the rows held
+    # of the batch it would be without the test
+    forces = _force_table(F, 0.0 if g is None else float(np.arctan2(g[1], g[0]))) \
+        if held else None
+    table = None if forces is None else _unit(forces)
     buf: list[np.ndarray] = []
-    count = 0
+    where: list[np.ndarray] = []        # each buffered row's place among the rows read
+    count = 0                           # rows read (held or not) in the buffer
     target = min(first, size)
     ceiling = np.inf
     for s in range(n):
@@ -382,26 +393,50 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
         reach = current if current is not None else _EVERY_ROW if compiled_rows else None
         for r in widths:
             # the rows that may reach the key: by one compiled loop, else numpy blocks
-            got = None if reach is None else _rows_kernels.survivors(
+            got = None if reach is None else _rows_kernels.holding_survivors(
                 order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
-                spec.fingers, spec.shape.twin, reach, comb(pool, r))
-            for rows_s in ([got] if got is not None else
-                           _row_blocks(F, spec, order, s, pool, r, current, twin, part_size)):
-                if not len(rows_s):
+                spec.fingers, spec.shape.twin, reach, comb(pool, r), table, TOL)
+            for rows_s, at, read in ([got] if got is not None else
+                                     (_held(rows_b, forces) for rows_b in
+                                      _row_blocks(F, spec, order, s, pool, r, current, twin,
+                                                  part_size))):
+                if not read:
                     continue
                 buf.append(rows_s)
-                count += len(buf[-1])
+                where.append(at + count)
+                count += read
                 while count >= target:
-                    rows = np.concatenate(buf)
-                    yield EdgeSets(rows[:target], _row_bound(lengths, rows[:target], twin),
-                                   ceiling)
+                    rows, at = np.concatenate(buf), np.concatenate(where)
+                    cut = int(np.searchsorted(at, target))
+                    yield EdgeSets(rows[:cut], _row_bound(lengths, rows[:cut], twin),
+                                   ceiling, held=table is not None, read=target)
                     # the rows left over come from position s: bounded by its length
-                    buf, count = [rows[target:]], len(rows) - target
+                    buf, where, count = [rows[cut:]], [at[cut:] - target], count - target
                     ceiling = float(lengths[order[s]])
                     target = min(2 * target, size)
     if count:
         rows = np.concatenate(buf)
-        yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling)
+        yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling, held=table is not None,
+                       read=count)
+
+
+def _unit(forces: FloatArray) -> FloatArray:
+    """A table of forces made unit as :func:`~fcgrasp.core.closure.rows_closure` makes
+    its table (the same operations, so the same numbers)."""
+    n = np.sqrt(forces[:, 0] * forces[:, 0] + forces[:, 1] * forces[:, 1])
+    safe = np.where(n > 0, n, 1.0)
+    return np.ascontiguousarray(np.where((n > 0)[:, None], forces / safe[:, None], 0.0))
+
+
+def _held(rows: np.ndarray, forces: FloatArray | None
+          ) -> tuple[np.ndarray, np.ndarray, int]:
+    """A numpy block's rows whose ``forces`` (each feature's, gravity's last) pass the
+    force-direction test (all without a table), their places in the block, and the
+    block's size."""
+    if forces is None or not len(rows):
+        return rows, np.arange(len(rows)), len(rows)
+    ok = rows_closure(forces, np.where(rows >= 0, rows, len(forces) - 1))
+    return rows[ok], np.flatnonzero(ok), len(rows)
 
 
 #: The key of :func:`_ordered_rows`' compiled rows where the search has none: every row
@@ -572,11 +607,16 @@ class EdgeSets:
     feats: np.ndarray
     bound: FloatArray | None = None
     ceiling: float = float("inf")
+    #: every row passes the force-direction test (a stream that left out the others)
+    held: bool = False
+    #: the rows of the stream this batch stands for, those left out by the
+    #: force-direction test included (None: its rows)
+    read: int | None = None
 
     def take(self, keep: np.ndarray) -> EdgeSets:
         """The rows ``keep`` (a mask or indices) with their bounds, the same ceiling."""
         return EdgeSets(self.feats[keep], None if self.bound is None else self.bound[keep],
-                        self.ceiling)
+                        self.ceiling, self.held)
 
 
 @dataclass(frozen=True)
@@ -686,8 +726,8 @@ def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
 
 def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
                batch_size: int | None = None,
-               key: Callable[[float], FloatArray | None] | None = None
-               ) -> Iterator[EdgeSets]:
+               key: Callable[[float], FloatArray | None] | None = None,
+               held: bool = False) -> Iterator[EdgeSets]:
     """Stream the candidate edge sets of a part in batches of at most ``batch_size`` rows,
     by decreasing upper bound of their smallest region (:class:`EdgeSets`).
 
@@ -701,8 +741,13 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     the first rows stops after little work (:func:`search`); the stream itself always
     holds every row, unless ``key`` (a search's running top,
     :attr:`~fcgrasp.pipeline.TopK.key`) leaves out the rows that cannot reach its last.
+    ``held``: four frictionless fingers (or three with gravity), once numba runs in the
+    process, the rows that fail the force-direction test are left out as they are made
+    (:func:`holding_rows`' test; each batch holds the rows that pass of the batch
+    without it, :attr:`EdgeSets.held`); elsewhere ignored.
     """
     F = features(polygon, spec.mu, spec.hand, edges)
+    held = held and not (spec.shape.pairs or spec.shape.lp) and kernels.started()
     size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
         check_int(batch_size, "batch_size", minimum=1)
     first = size if spec.top is None else _spec.FIRST_BATCH
@@ -713,7 +758,7 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
         twice = [e for e in set(idx) if idx.count(e) == 2]
         doubled = twice[0] if twice else None
         three_edge = doubled is not None
-    for sets in _ordered_rows(F, spec, three_edge, size, first, key, polygon.size):
+    for sets in _ordered_rows(F, spec, three_edge, size, first, key, polygon.size, held):
         if doubled is not None:
             rows = sets.feats
             twin = spec.shape.twin

@@ -19,7 +19,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.kernels import CompiledLoops
+from ..core import kernels
+from ..core.kernels import CompiledLoops, _closed
 
 #: The layouts of :func:`fcgrasp.pipeline._candidates._layouts`.
 AS_IS, GRAVITY, DOUBLED = 0, 1, 2
@@ -106,11 +107,19 @@ def _bounds(pos: Any, r: int, s: int, R: Any, RH: Any, doubled: bool, x: int, or
 
 
 def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r: int,
-                   layout: int, fingers: int, twin: int, key: Any, out: Any) -> Any:
+                   layout: int, fingers: int, twin: int, key: Any, out: Any, table: Any,
+                   tol: float, where: Any) -> Any:
     """Every increasing ``r``-tuple of positions ``range(pool)`` with position ``s``:
     its features sorted, on distinct edges, laid out, kept where its bounds may reach or
     tie ``key``; rows in the numpy path's order (a doubled layout's ``x`` slowest).
-    Returns ``(rows, count)`` (``out`` grown as needed).
+    Returns ``(rows, where, count, read)`` (``out`` and ``where`` grown as needed).
+
+    With a ``table`` of unit forces (each feature's, gravity's last; empty: no test),
+    only the rows whose forces pass the force-direction test (theorem 4.2,
+    :func:`fcgrasp.core.kernels._closed` with ``tol``, as
+    :func:`fcgrasp.core.closure.rows_closure` reads them) are given, each with its
+    place among the rows the loop would give without the test (``where``); ``read``
+    counts those.
 
     The tuples run in lexicographic order, and a tuple's bounds only fall as a position
     rises: once a tuple is below the key, so is every later one that keeps its first
@@ -127,9 +136,13 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
     t = np.empty(4, np.int64)
     row = np.empty(5, np.int64)
     v = np.empty(5)
+    u = np.empty((5, 2))
+    test = table.shape[0] > 0
+    last = table.shape[0] - 1
     n = 0
+    read = 0
     if r > pool:
-        return out, n
+        return out, where, n, read
     for x in range(n_x):
         for c in range(r):
             pos[c] = c
@@ -161,12 +174,23 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
                     ok = _alive(v, m, key)
                 if ok:
                     width = _row_of(t, w, lay, x, twin, row)
+                    read += 1
+                    if test:
+                        for c in range(width):
+                            f = row[c] if row[c] >= 0 else last
+                            u[c, 0], u[c, 1] = table[f, 0], table[f, 1]
+                        ok = _closed(u, width, tol)
+                if ok:
                     if n == out.shape[0]:
                         bigger = np.empty((2 * out.shape[0], out.shape[1]), np.int64)
                         bigger[:n] = out[:n]
                         out = bigger
+                        more = np.empty(2 * where.shape[0], np.int64)
+                        more[:n] = where[:n]
+                        where = more
                     for c in range(width):
                         out[n, c] = row[c]
+                    where[n] = read - 1
                     n += 1
             # advance level ``skip`` (lexicographic, as numpy's triu_indices)
             c = skip
@@ -177,14 +201,26 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
             pos[c] += 1
             for d in range(c + 1, r):
                 pos[d] = pos[d - 1] + 1
-    return out, n
+    return out, where, n, read
 
 
 #: The per-row helpers, which allocate nothing and make no view: compiled without
 #: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
 _BORROWING = (_row_of, sort_first, _alive, _bounds)
 
-_LOOPS = CompiledLoops(globals(), (*_BORROWING, _survivor_loop), borrowing=_BORROWING)
+
+
+def _with_closure() -> dict[str, Any] | None:
+    """The compiled force-direction test of :mod:`fcgrasp.core.kernels` (``_closed``)."""
+    core = kernels._loops()
+    return None if core is None else {"_closed": core["_closed"]}
+
+
+_LOOPS = CompiledLoops(globals(), (*_BORROWING, _survivor_loop), _with_closure,
+                       borrowing=_BORROWING)
+
+#: No force test (:func:`_survivor_loop`'s empty table).
+_NO_TABLE = np.zeros((0, 2))
 
 #: Combinations of one position from which :func:`survivors` runs compiled before the
 #: loop is loaded in this process (loading it costs about 0.1 s from numba's cache).
@@ -194,6 +230,16 @@ KERNEL_ROWS = 200_000
 def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray, s: int,
               pool: int, r: int, layout: str, fingers: int, twin: int, key: np.ndarray,
               combos: int) -> np.ndarray | None:
+    """:func:`holding_survivors` without the force test: the rows alone."""
+    got = holding_survivors(order, edge, R, RH, s, pool, r, layout, fingers, twin, key,
+                            combos)
+    return None if got is None else got[0]
+
+
+def holding_survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray,
+                      s: int, pool: int, r: int, layout: str, fingers: int, twin: int,
+                      key: np.ndarray, combos: int, table: np.ndarray | None = None,
+                      tol: float = 0.0) -> tuple[np.ndarray, np.ndarray, int] | None:
     """The rows of position ``s`` (``r`` positions drawn from ``range(pool)``) whose
     bounds may reach or tie ``key``, in the order of the numpy path of
     :func:`~fcgrasp.pipeline._candidates._ordered_rows`; None where the compiled loop
@@ -203,7 +249,12 @@ def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray
 
     ``order``: the features by position (decreasing length); ``edge``: each feature's
     edge; ``R``, ``RH``: each position's bound (its feature's length, and half of it)
-    as the ranking rounds it (:func:`~fcgrasp.pipeline._candidates.lex_survivors`)."""
+    as the ranking rounds it (:func:`~fcgrasp.pipeline._candidates.lex_survivors`).
+
+    With a ``table`` of unit forces (:func:`~fcgrasp.core.closure.rows_closure`'s, made
+    unit as it makes them) only the rows that pass the force-direction test with
+    ``tol``; returns ``(rows, where, read)``: the rows, the place of each among the
+    rows without the test, and how many those are."""
     from ..core.kernels import jit_setting, started
 
     setting = jit_setting()
@@ -216,9 +267,11 @@ def survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np.ndarray
     width = r + 1 if code == AS_IS or (code == DOUBLED and r + 1 == fingers) else r + 2
     ok, res = _LOOPS.run("_survivor_loop", order, edge, R, RH, int(s), int(pool), int(r),
                          code, int(fingers), int(twin), key,
-                         np.empty((64, width), np.int64))
+                         np.empty((64, width), np.int64),
+                         _NO_TABLE if table is None else table, float(tol),
+                         np.empty(64, np.int64))
     if not ok:
         return None
-    rows, n = res
+    rows, where, n, read = res
     out: np.ndarray = rows[:n, :width]
-    return out
+    return out, where[:n], int(read)

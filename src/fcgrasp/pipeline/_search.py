@@ -181,7 +181,9 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
 
     Four frictionless fingers (or three with gravity), once numba runs in the process:
     the rows that fail the force-direction test are dropped before anything else reads
-    them (:func:`~fcgrasp.pipeline._candidates.holding_rows`), and a search that is not
+    them (:func:`~fcgrasp.pipeline._candidates.holding_rows`: as the stream makes them,
+    ``candidates(..., held=True)``, each batch holding the rows that pass of the batch
+    it would be without the test), and a search that is not
     ``strict`` and has no ``map`` solves the rows left in groups of ``GATHER_ROWS``
     across batches once its top is full (its answer does not depend on the batching).
     On a part of millions of rows whose best rows are pairs of nearly opposite edges (a
@@ -228,7 +230,8 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
         at = current()
         live = [b for b in window if b.ceiling >= at]
         # rows whose forces cannot hold give no candidate: dropped before the rest
-        held = [(b, holding_rows(polygon, spec, b.feats, edges)) for b in live]
+        held = [(b, np.ones(len(b.feats), bool) if b.held else
+                 holding_rows(polygon, spec, b.feats, edges)) for b in live]
         live = [b if keep is None or keep.all() else b.take(keep) for b, keep in held]
         live = [b for b in live if len(b.feats)]
         if exclude is not None:
@@ -255,7 +258,7 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
             results = map(partial(solve, polygon, spec, edges=edges, floor=at), live)
         for solved in results:
             top.add(solved)
-        done += sum(len(b.feats) for b in window)
+        done += sum(len(b.feats) if b.read is None else b.read for b in window)
         window.clear()
         if progress is not None:
             progress(min(done, total), total)
@@ -263,8 +266,8 @@ def search(polygon: Polygon, spec: PlanSpec, edges: Any = None, progress: Any = 
     lengths = features(polygon, spec.mu, spec.hand, edges).lengths
     twin = spec.shape.twin if spec.shape.three_edge else None
     paired = _paired(polygon, spec, edges, exclude, floor)
-    stream = candidates(polygon, spec, edges, batch_size, key=key) if paired is None \
-        else iter(paired)
+    stream = candidates(polygon, spec, edges, batch_size, key=key, held=True) \
+        if paired is None else iter(paired)
     for batch in stream:
         if batch.ceiling < current():
             break

@@ -14,6 +14,7 @@ from ..core._checks import (
     FloatArray,
     check_scalar,
 )
+from ..core._geom import RANK_DIGITS
 from ..core.sectors import PAIRINGS
 from ..core.tolerances import ESTIMATE_PAD, PLACE_SURE_GAP, RANK_TOL
 from ..model._quad_estimates import below as estimate_below
@@ -396,14 +397,32 @@ class RowScores:
 
 def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
             ) -> np.ndarray:
-    """Rows (sorted) with positive regions, the ``top`` best by leximin and their ties."""
+    """Rows (sorted) with positive regions, the ``top`` best by leximin and their ties.
+
+    Where every row has as many real fingers (a search's rows do), the leximin keys
+    (:func:`~fcgrasp.core._geom.leximin_key`'s numbers) are compared as columns, by
+    :func:`numpy.lexsort` (ties by row, as sorting ``(key, row)`` pairs orders them);
+    else row by row."""
     real = feats >= 0
     ok = np.all((lengths > 0) | ~real, axis=1)
-    keys = [(leximin_key(lengths[r][real[r]], size), r) for r in np.flatnonzero(ok)]
-    keys.sort()
-    if top is not None and len(keys) > top:
-        keys = [kr for kr in keys if kr[0] <= keys[top - 1][0]]
-    return np.array(sorted(r for _, r in keys), dtype=int)
+    rows = np.flatnonzero(ok)
+    if top is None or rows.size <= top:
+        return rows
+    if bool(np.all(real == real[:1])):
+        # each row's key: its real lengths sorted, over the size, rounded, negated
+        keys = -np.round(np.sort(lengths[np.ix_(rows, np.flatnonzero(real[0]))], axis=1)
+                         / size, RANK_DIGITS)
+        by = np.lexsort((rows, *keys.T[::-1]))
+        last = keys[by[top - 1]]
+        # the rows whose key is at most the top-th's (lexicographically): the first
+        # column where a key differs from it decides
+        diff = keys != last
+        first = np.argmax(diff, axis=1)
+        at = np.arange(len(keys))
+        keep = ~diff.any(axis=1) | (keys[at, first] < last[first])
+        return rows[keep]
+    keyed = sorted((leximin_key(lengths[r][real[r]], size), r) for r in rows)
+    return np.array(sorted(r for k, r in keyed if k <= keyed[top - 1][0]), dtype=int)
 
 
 def _smallest_region(feats: np.ndarray, lengths: FloatArray) -> FloatArray:
