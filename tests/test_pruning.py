@@ -226,9 +226,10 @@ def test_a_held_stream_is_the_stream_less_the_rows_that_fail_the_force_test(seed
     that pass the force-direction test (holding_rows), with their bounds, the same
     ceilings and how many rows each batch stands for; four fingers (every layout) and
     three with gravity, with and without a key that prunes (the stream's from a
-    search's top), by the compiled loop and by numpy's blocks; and it drops rows."""
+    search's top), by the compiled loop and by numpy's blocks, and streamed again from
+    the rows the features keep of the loop's; and it drops rows."""
     from fcgrasp.pipeline import _rows_kernels
-    from fcgrasp.pipeline._candidates import holding_rows
+    from fcgrasp.pipeline._candidates import features, holding_rows
 
     monkeypatch.setattr(kernels, "started", lambda: True)
     if not compiled:
@@ -242,9 +243,16 @@ def test_a_held_stream_is_the_stream_less_the_rows_that_fail_the_force_test(seed
             level = float(np.median(part.lengths)) / part.size
             for key in (None, _median_key(level)):
                 plain = list(candidates(part, spec, batch_size=40, key=key))
+                features(part, spec.mu).made.clear()
                 held = list(candidates(part, spec, batch_size=40, key=key, held=True))
-                assert len(plain) == len(held)
-                for p, h in zip(plain, held, strict=True):
+                # again, from the rows the features keep of the loop's
+                again = list(candidates(part, spec, batch_size=40, key=key, held=True))
+                assert len(plain) == len(held) == len(again)
+                made = features(part, spec.mu).made
+                assert not made if not compiled else \
+                    bool(made) or not any(len(p.feats) for p in plain)
+                for p, h, g in zip(plain, held, again, strict=True):
+                    assert np.array_equal(g.feats, h.feats) and g.read == h.read
                     keep = holding_rows(part, spec, p.feats)
                     assert h.held and not p.held and h.read == len(p.feats)
                     assert np.array_equal(h.feats, p.feats[keep])

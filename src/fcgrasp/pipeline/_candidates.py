@@ -9,7 +9,7 @@ from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 from functools import lru_cache
 from math import comb
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -62,9 +62,13 @@ class Features:
     center: FloatArray      # (F,) angle of -n
     half: FloatArray        # (F,) friction half-angle
     lengths: FloatArray = field(init=False)     # (F,) |b - a|
+    #: the rows the compiled stream made of these features, by the call's arguments
+    #: (:func:`_made_rows`: the searches of one plan stream the same rows)
+    made: dict[Any, Any] = field(init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.lengths = np.hypot(*(self.b - self.a).T)
+        self.made = {}
 def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
              edges: Any = None) -> Features:
     """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
@@ -393,9 +397,9 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
         reach = current if current is not None else _EVERY_ROW if compiled_rows else None
         for r in widths:
             # the rows that may reach the key: by one compiled loop, else numpy blocks
-            got = None if reach is None else _rows_kernels.holding_survivors(
-                order_i, edge_i, rounded, rounded_half, s, pool, r, spec.shape.layout,
-                spec.fingers, spec.shape.twin, reach, comb(pool, r), table, TOL)
+            got = None if reach is None else _made_rows(
+                F, order_i, edge_i, rounded, rounded_half, s, pool, r, spec, reach, table,
+                part_size)
             for rows_s, at, read in ([got] if got is not None else
                                      (_held(rows_b, forces) for rows_b in
                                       _row_blocks(F, spec, order, s, pool, r, current, twin,
@@ -418,6 +422,37 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
         rows = np.concatenate(buf)
         yield EdgeSets(rows, _row_bound(lengths, rows, twin), ceiling, held=table is not None,
                        read=count)
+
+
+#: The rows a part's features keep of the compiled stream (:func:`_made_rows`), at most.
+MADE_ROWS = 500_000
+
+
+def _made_rows(F: Features, order: np.ndarray, edge: np.ndarray, rounded: FloatArray,
+               rounded_half: FloatArray, s: int, pool: int, r: int, spec: PlanSpec,
+               reach: FloatArray, table: FloatArray | None, part_size: float
+               ) -> tuple[np.ndarray, np.ndarray, int] | None:
+    """:func:`fcgrasp.pipeline._rows_kernels.holding_survivors` of one position, kept
+    on the features (:attr:`Features.made`, up to :data:`MADE_ROWS` rows) by its
+    arguments: a distinct search's rounds and the ranked list's search stream the same
+    rows of a part (``icons/heart.svg``: 4.6 million rows twice), and the loop is a
+    function of them (the features' order, bounds and forces follow from ``F``, the
+    spec's layout and gravity, and the part's size)."""
+    key = (s, pool, r, spec.shape.layout, spec.fingers, spec.shape.twin, spec.gravity,
+           reach.tobytes(), table is None, part_size)
+    got = F.made.get(key)
+    if got is not None:
+        return cast("tuple[np.ndarray, np.ndarray, int]", got)
+    got = _rows_kernels.holding_survivors(order, edge, rounded, rounded_half, s, pool, r,
+                                          spec.shape.layout, spec.fingers, spec.shape.twin,
+                                          reach, comb(pool, r), table, TOL)
+    if got is not None:
+        kept = F.made.get("rows", 0) + len(got[0])
+        if kept <= MADE_ROWS:
+            for arr in got[:2]:
+                arr.flags.writeable = False
+            F.made[key], F.made["rows"] = got, kept
+    return got
 
 
 def _unit(forces: FloatArray) -> FloatArray:
