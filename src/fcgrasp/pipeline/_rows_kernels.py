@@ -15,6 +15,7 @@ batch for batch and row for row).
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -138,6 +139,9 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
     v = np.empty(5)
     u = np.empty((5, 2))
     test = table.shape[0] > 0
+    # a key every row reaches (:data:`~fcgrasp.pipeline._candidates._EVERY_ROW`): no
+    # bounds to compare
+    every = key.shape[0] == 1 and key[0] == -math.inf
     last = table.shape[0] - 1
     n = 0
     read = 0
@@ -147,9 +151,9 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
         for c in range(r):
             pos[c] = c
         while True:
-            m = _bounds(pos, r, s, R, RH, doubled, -1, order, t, v)
             skip = -1                   # the level to advance (r - 1: the next tuple)
-            if not _alive(v, m, key):
+            if not every and not _alive(v, _bounds(pos, r, s, R, RH, doubled, -1, order, t, v),
+                                        key):
                 # the first level from which the positions follow without gaps
                 d = r - 1
                 while d > 0 and pos[d] == pos[d - 1] + 1:
@@ -169,9 +173,8 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
                     for b in range(a + 1, w):
                         if edge[t[a]] == edge[t[b]]:
                             ok = False
-                if ok and doubled:
-                    m = _bounds(pos, r, s, R, RH, True, x, order, t, v)
-                    ok = _alive(v, m, key)
+                if ok and doubled and not every:
+                    ok = _alive(v, _bounds(pos, r, s, R, RH, True, x, order, t, v), key)
                 if ok:
                     width = _row_of(t, w, lay, x, twin, row)
                     read += 1
