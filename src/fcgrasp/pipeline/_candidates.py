@@ -425,7 +425,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
 
 
 #: The rows a part's features keep of the compiled stream (:func:`_made_rows`), at most.
-MADE_ROWS = 500_000
+MADE_ROWS = 250_000
 
 
 def _made_rows(F: Features, order: np.ndarray, edge: np.ndarray, rounded: FloatArray,
