@@ -67,7 +67,7 @@ ESTIMATE_ZERO_BAND = 0.5
 #: with a threshold is sure when its margin exceeds ``PLACE_SURE_GAP`` of the edge.
 PLACE_NOISE_DET = 1e-14
 PLACE_SURE_DET = 1e-6
-PLACE_SURE_BAND = 0.1
+PLACE_SURE_BAND = 0.5
 PLACE_SURE_GAP = 1e-7
 
 #: Relative step of the leximin stages: a region "can grow" when it reaches this much

@@ -449,8 +449,10 @@ def _made_rows(F: Features, order: np.ndarray, edge: np.ndarray, rounded: FloatA
     if got is not None:
         kept = F.made.get("rows", 0) + len(got[0])
         if kept <= MADE_ROWS:
-            for arr in got[:2]:
-                arr.flags.writeable = False
+            # copies (the loop's are views of its grown buffers), read only
+            rows, where = got[0].copy(), got[1].copy()
+            rows.flags.writeable = where.flags.writeable = False
+            got = rows, where, got[2]
             F.made[key], F.made["rows"] = got, kept
     return got
 
