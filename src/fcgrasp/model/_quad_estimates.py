@@ -81,6 +81,21 @@ def _problem_row(o12x: float, o12y: float, o34x: float, o34y: float, vel: Any, L
     return K1, K2, undecided
 
 
+def _meet_row(i: int, fx: Any, fy: Any, ax: Any, ay: Any, tx: Any, ty: Any, vel: Any
+              ) -> tuple[float, float]:
+    """Where the lines of force of fingers ``i`` and ``i + 1`` meet with both at their
+    segments' starts, and the meet's velocity as each slides (rows ``i``, ``i + 1`` of
+    ``vel``): :func:`fcgrasp.core.sectors.meet_and_velocities` of numbers."""
+    j = i + 1
+    den = fx[i] * fy[j] - fy[i] * fx[j]
+    s = ((ax[j] - ax[i]) * fy[j] - (ay[j] - ay[i]) * fx[j]) / den
+    c = (tx[i] * fy[j] - ty[i] * fx[j]) / den
+    vel[i, 0], vel[i, 1] = tx[i] - c * fx[i], ty[i] - c * fy[i]
+    c = (tx[j] * fy[j] - ty[j] * fx[j]) / den
+    vel[j, 0], vel[j, 1] = c * fx[i], c * fy[i]
+    return ax[i] + s * fx[i], ay[i] + s * fy[i]
+
+
 def _dual_level(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any) -> float:
     """The largest level ``t`` every active region reaches (:func:`fcgrasp.model.
     regions.max_min_length`, negative where none), by duality: ``t`` is feasible iff
@@ -164,20 +179,8 @@ def _estimate_loop(ea: Any, eb: Any, ec: Any, rows: Any, pairings: Any, margin: 
                 best = math.inf
                 break
             # P12 and P34 with every finger at its segment's start, and their velocities
-            den = fx[0] * fy[1] - fy[0] * fx[1]
-            s = ((ax[1] - ax[0]) * fy[1] - (ay[1] - ay[0]) * fx[1]) / den
-            o12x, o12y = ax[0] + s * fx[0], ay[0] + s * fy[0]
-            c = (tx[0] * fy[1] - ty[0] * fx[1]) / den
-            vel[0, 0], vel[0, 1] = tx[0] - c * fx[0], ty[0] - c * fy[0]
-            c = (tx[1] * fy[1] - ty[1] * fx[1]) / den
-            vel[1, 0], vel[1, 1] = c * fx[0], c * fy[0]
-            den = fx[2] * fy[3] - fy[2] * fx[3]
-            s = ((ax[3] - ax[2]) * fy[3] - (ay[3] - ay[2]) * fx[3]) / den
-            o34x, o34y = ax[2] + s * fx[2], ay[2] + s * fy[2]
-            c = (tx[2] * fy[3] - ty[2] * fx[3]) / den
-            vel[2, 0], vel[2, 1] = tx[2] - c * fx[2], ty[2] - c * fy[2]
-            c = (tx[3] * fy[3] - ty[3] * fx[3]) / den
-            vel[3, 0], vel[3, 1] = c * fx[2], c * fy[2]
+            o12x, o12y = _meet_row(0, fx, fy, ax, ay, tx, ty, vel)
+            o34x, o34y = _meet_row(2, fx, fy, ax, ay, tx, ty, vel)
             for k in range(n):
                 if not L[k] > 0:
                     vel[k, 0] = vel[k, 1] = 0.0
@@ -199,7 +202,7 @@ def _estimate_loop(ea: Any, eb: Any, ec: Any, rows: Any, pairings: Any, margin: 
         out[r] = best
 
 
-_BORROWING = (_problem_row, _dual_level)
+_BORROWING = (_problem_row, _meet_row, _dual_level)
 _FUNCS = (*_BORROWING, _estimate_loop)
 
 

@@ -517,13 +517,25 @@ def holding_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any
     :func:`grasp_geometry`, as before).  A row that fails it gives no candidate, so a
     search may drop it before anything else reads it (most rows of a curved outline's
     four-finger search do: ``icons/heart.svg`` 97 %)."""
+    got = _quad_rows(polygon, spec, feats, edges)
+    if got is None:
+        return None
+    F, g_ang, rows = got
+    return rows_closure(_force_table(F, g_ang), rows)
+
+
+def _quad_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any
+               ) -> tuple[Features, float, np.ndarray] | None:
+    """Four frictionless fingers (or three with gravity), once numba runs in the
+    process: the features, gravity's angle and the rows as indices into the features'
+    tables with gravity's last (-1 read as it); None else (or no rows)."""
     if spec.shape.pairs or spec.shape.lp or not kernels.started() or not len(feats):
         return None
     F = features(polygon, spec.mu, spec.hand, edges)
     g_ang = 0.0 if spec.gravity is None else float(np.arctan2(spec.gravity[1],
                                                             spec.gravity[0]))
     rows = np.asarray(feats, dtype=int).reshape(len(feats), -1)
-    return rows_closure(_force_table(F, g_ang), np.where(rows >= 0, rows, len(F.center)))
+    return F, g_ang, np.where(rows >= 0, rows, len(F.center))
 
 
 def quad_estimates(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any = None
@@ -532,17 +544,13 @@ def quad_estimates(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: A
     stage-1 score, never below the score :func:`grasp_geometry` gives it
     (:mod:`fcgrasp.model._quad_estimates`, compiled); None for other fingers, or where
     the loop is not running already (:func:`fcgrasp.core.kernels.started`)."""
-    if spec.shape.pairs or spec.shape.lp or not kernels.started() or not len(feats):
+    got = _quad_rows(polygon, spec, feats, edges)
+    if got is None:
         return None
-    F = features(polygon, spec.mu, spec.hand, edges)
-    g_ang = 0.0 if spec.gravity is None else float(np.arctan2(spec.gravity[1],
-                                                            spec.gravity[0]))
-    rows = np.asarray(feats, dtype=int).reshape(len(feats), -1)
+    F, g_ang, rows = got
     c = polygon.centroid
     return _quad_estimates.estimates(np.vstack([F.a, c]), np.vstack([F.b, c]),
-                                     np.append(F.center, g_ang),
-                                     np.where(rows >= 0, rows, len(F.center)),
-                                     spec.margin_rad)
+                                     np.append(F.center, g_ang), rows, spec.margin_rad)
 
 
 def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
