@@ -638,3 +638,36 @@ def test_the_shared_pieces_bound_the_overlap_from_below(cases):
                 answers[got] += 1
     assert shared > pairs // 3 and tight > 0.9 * shared, (pairs, shared, tight)
     assert min(answers.values()) > cases, answers
+
+
+def test_a_shared_measure_decides_as_a_fresh_one():
+    """``_Overlaps.decide`` keeps each answer by what it reads: over a ranked list's
+    plans (regions along the boundary, repeated across copies) compared in every
+    order, a measure shared by all the comparisons gives the answers of a new measure
+    per comparison, and most answers come from the kept ones."""
+    from fcgrasp.core.tolerances import ROUND_TOL
+    from fcgrasp.model.distinct import _Overlaps
+
+    rng = np.random.default_rng(9)
+    a = np.sort(rng.uniform(0, 2 * np.pi, 40))
+    r = 30 + 3 * np.sin(3 * a + 1.0) + 2 * np.cos(5 * a)
+    part = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+    tol = ROUND_TOL * part.size
+    plans = fc.plan(part, fingers=2, mu=0.4, top=30, distinct=0)
+    class Counted(_Overlaps):
+        asked = 0
+
+        def decide(self, *args, **kwargs):
+            Counted.asked += 1
+            return super().decide(*args, **kwargs)
+
+    shared = Counted(tol)
+    answers = set()
+    for p in plans:
+        for q in plans:
+            for fraction in (0.2, 0.5):
+                got = same_alternative(p, q, fraction, tol, shared)
+                assert got == same_alternative(p, q, fraction, tol, _Overlaps(tol))
+                answers.add(got)
+    assert answers == {True, False}
+    assert len(shared._decided) < 0.5 * Counted.asked
