@@ -291,7 +291,7 @@ class Suppression:
                               (B[:, None, :, :2] > box[None, :, None, 2:] + tol).any(axis=-1))
         near = np.logical_not(apart)
         # every pairing of the regions at once: near[q, i, perm[i]] for each perm
-        may = near[:, np.arange(k), _perms(k)].all(axis=2).any(axis=1)
+        may = np.any(np.all(near[:, np.arange(k), _perms(k)], axis=2), axis=1)
         return [places[q] for q in np.flatnonzero(may)]
 
     def add(self, p: Any, keep: bool = True) -> bool:
