@@ -74,7 +74,7 @@ def test_the_estimate_is_never_below_the_score(seed, started):
 def test_a_search_with_estimates_finds_the_same_plans(seed, monkeypatch):
     """Searches with a floor (tops of 1 and 10; strict ones too) give the same plans
     with and without the estimate, which leaves rows out (half the jobs on each part;
-    all of them under ``-m slow``)."""
+    all of them under ``-m slow``), and with a hand."""
     monkeypatch.setattr(kernels, "started", lambda: True)
     left_out = []
     original = _solve.estimate_below
@@ -96,6 +96,17 @@ def test_a_search_with_estimates_finds_the_same_plans(seed, monkeypatch):
                     without = [_key(search(part, spec)),
                                _key(search(part, spec, batch_size=8, strict=True))]
                 assert with_est == without, (job, top)
+    # a hand's reachable pieces of edges are the features (section 8.2)
+    import fcgrasp as fc
+
+    part = fc.read_part("demo:blob")
+    hand = fc.Hand(workspace=(30, 20, 60), finger_radius=2)
+    for job in JOBS[:2]:
+        spec = plan_spec(top=5, hand=hand, along_boundary=False, **job)
+        with_est = _key(search(part, spec))
+        with monkeypatch.context() as m:
+            m.setattr(_solve, "quad_estimates", lambda *a, **k: None)
+            assert _key(search(part, spec)) == with_est, job
     assert sum(left_out) > 100
 
 
