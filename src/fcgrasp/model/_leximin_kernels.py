@@ -305,7 +305,13 @@ def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: An
     sets, in ``_centre``'s order."""
     B, n = L.shape
     m = 2 * n + 2
+    # the constraint rows: x_m = lo_m, x_m = L_m (unit rows, the same for every row of
+    # the batch), then w1 and w2 (the row's); each row's largest entry
     A = np.zeros((m, n))
+    rowmax = np.ones(m)
+    for i in range(n):
+        A[i, i] = 1.0
+        A[n + i, i] = 1.0
     rhs = np.empty(m)
     G = np.empty((n, n))
     h = np.empty(n)
@@ -313,7 +319,6 @@ def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: An
     acc = np.empty(n)
     lo = np.empty(n)
     Lz = np.empty(n)
-    rowmax = np.empty(m)
     for b in range(B):
         ok_row = True
         r2 = 0.0
@@ -328,21 +333,14 @@ def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: An
         r2 -= K2[b]
         tol = face_tol * big
         wtol = face_tol * max(ws, TINY)
-        for i in range(m):
-            for j in range(n):
-                A[i, j] = 0.0
+        rowmax[2 * n] = rowmax[2 * n + 1] = 0.0
         for i in range(n):
-            A[i, i] = 1.0
-            A[n + i, i] = 1.0
             A[2 * n, i] = w1[b, i]
             A[2 * n + 1, i] = w2[b, i]
+            rowmax[2 * n] = max(rowmax[2 * n], abs(w1[b, i]))
+            rowmax[2 * n + 1] = max(rowmax[2 * n + 1], abs(w2[b, i]))
             rhs[i], rhs[n + i] = lo[i], Lz[i]
         rhs[2 * n], rhs[2 * n + 1] = K1[b], r2
-        for i in range(m):
-            v = 0.0
-            for j in range(n):
-                v = max(v, abs(A[i, j]))
-            rowmax[i] = v
         cnt = 0
         for i in range(n):
             acc[i] = 0.0
