@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
+from functools import cache
 from itertools import permutations
 from typing import Any
 
@@ -213,16 +214,12 @@ def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float,
     return overlap(a, b) > fraction * short
 
 
-_PERMS: dict[int, np.ndarray] = {}
-
-
+@cache
 def _perms(k: int) -> np.ndarray:
     """Every permutation of ``range(k)``, one a row (:func:`itertools.permutations`'
-    order), made once per ``k``."""
-    got = _PERMS.get(k)
-    if got is None:
-        got = _PERMS[k] = np.array(list(permutations(range(k))), dtype=np.intp
-                                   ).reshape(-1, k)
+    order), made once per ``k`` (read only: shared by every call)."""
+    got = np.array(list(permutations(range(k))), dtype=np.intp).reshape(-1, k)
+    got.flags.writeable = False
     return got
 
 

@@ -56,6 +56,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cache
 from itertools import combinations
 from typing import Any, cast
 
@@ -402,18 +403,14 @@ def leximin(p: KnapsackProblem, tol: float = SOLVER_TOL) -> FloatArray:
     return levels
 
 
-class _Subsets(dict):  # type: ignore[type-arg]
+@cache
+def _subsets(n: int) -> np.ndarray:
     """The candidate active sets of :func:`_centre` for ``n`` regions: every ``n`` of
-    its ``2 n + 2`` constraint rows, in :func:`itertools.combinations` order."""
-
-    def __missing__(self, n: int) -> np.ndarray:
-        got = np.array(list(combinations(range(2 * n + 2), n)), dtype=int)
-        got.flags.writeable = False
-        self[n] = got
-        return got
-
-
-_SUBSETS = _Subsets()
+    its ``2 n + 2`` constraint rows, in :func:`itertools.combinations` order (read
+    only: shared by every call)."""
+    got = np.array(list(combinations(range(2 * n + 2), n)), dtype=int)
+    got.flags.writeable = False
+    return got
 
 
 def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]:
@@ -429,7 +426,7 @@ def _centre(p: KnapsackProblem, lb: FloatArray) -> tuple[FloatArray, np.ndarray]
     rows = np.concatenate([np.broadcast_to(eye, (B, n, n)), np.broadcast_to(eye, (B, n, n)),
                            p.w1[:, None, :], p.w2[:, None, :]], axis=1)     # (B, 2n+2, n)
     rhs = np.concatenate([lo, L, p.K1[:, None], r2[:, None]], axis=1)       # (B, 2n+2)
-    subsets = _SUBSETS[n]                                                   # (S, n)
+    subsets = _subsets(n)                                                   # (S, n)
     G = rows[:, subsets]                                                     # (B, S, n, n)
     h = rhs[:, subsets]                                                      # (B, S, n)
     det = np.linalg.det(G)
@@ -470,7 +467,7 @@ def place_regions_sure(p: KnapsackProblem, levels: FloatArray
     lb = np.where(p.active, np.maximum(levels, 0.0), 0.0)
     from ._leximin_kernels import centre_rows
 
-    got = centre_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, lb, _SUBSETS[p.L.shape[1]],
+    got = centre_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, lb, _subsets(p.L.shape[1]),
                       SOLVER_TOL, FACE_TOL, PLACE_NOISE_DET, PLACE_SURE_DET,
                       PLACE_SURE_BAND)
     if got is None:

@@ -212,7 +212,6 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
 _BORROWING = (_row_of, sort_first, _alive, _bounds)
 
 
-
 def _with_closure() -> dict[str, Any] | None:
     """The compiled force-direction test of :mod:`fcgrasp.core.kernels` (``_closed``)."""
     core = kernels._loops()
