@@ -104,9 +104,42 @@ def trim_vertex_ends(pts: FloatArray, edges: Any, tiny: float
     return pts, tuple(edges)
 
 
-def leximin_key(lengths: FloatArray, size: float) -> tuple[float, ...]:
-    """Sort key of the leximin order (definition 7.1): smaller is better."""
+def leximin_key(lengths: Any, size: float) -> tuple[float, ...]:
+    """Sort key of the leximin order (definition 7.1): smaller is better.
+
+    Each length over ``size``, rounded to :data:`RANK_DIGITS` decimals as
+    ``numpy.round`` rounds (times ``10**RANK_DIGITS``, to the nearest even integer,
+    divided back), in plain floats: a plan's few lengths, where numpy's calls cost more
+    than the arithmetic (:func:`_leximin_key_numpy` where a length is not finite)."""
+    values = sorted(np.asarray(lengths, float).ravel().tolist())
+    size = float(size)
+    out = []
+    for v in values:
+        r = _round(v / size)
+        if r is None:
+            return _leximin_key_numpy(lengths, size)
+        out.append(-r)
+    return tuple(out)
+
+
+def _leximin_key_numpy(lengths: Any, size: float) -> tuple[float, ...]:
+    """:func:`leximin_key` in numpy (its first form, kept for the lengths that are not
+    finite)."""
     return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, RANK_DIGITS))
+
+
+#: ``10 ** RANK_DIGITS`` as ``numpy.round`` makes it (:func:`_round`).
+_SCALE = float(10 ** RANK_DIGITS)
+
+
+def _round(v: float) -> float | None:
+    """``numpy.round(v, RANK_DIGITS)`` of one float (``rint(v * 10**d) / 10**d``; Python's
+    ``round`` rounds half to even as ``rint`` does, and its integer converts back
+    exactly), plus 0 (no negative zero); None where ``v`` is not finite."""
+    y = v * _SCALE
+    if y - y != 0.0:                    # inf or nan
+        return None
+    return round(y) / _SCALE + 0.0
 
 
 def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
@@ -116,7 +149,39 @@ def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
     regions are sorted, and the coordinates (relative to the part's centroid and size,
     rounded to 1e-9) are read in that order.  Used to break ties between equally good
     plans or placements.
+
+    In plain floats, as :func:`_geometric_key_numpy` (its first form) computes it with
+    numpy: a plan's few regions, where numpy's calls cost more than the arithmetic.
     """
+    ends = []
+    for r in regions:
+        r = np.asarray(r, float)
+        if r.ndim != 2 or r.shape[1] != 2 or not len(r):
+            return _geometric_key_numpy(regions, polygon)
+        ends.append((r[0].tolist(), r[-1].tolist()))
+    got = ends_key(ends, polygon)
+    return _geometric_key_numpy(regions, polygon) if got is None else got
+
+
+def ends_key(ends: Any, polygon: Any) -> tuple[float, ...] | None:
+    """:func:`geometric_key` of regions given by their two ends, plain float pairs
+    ``[((x0, y0), (x1, y1)), ...]``; None where a coordinate is not finite."""
+    cx, cy = (float(c) for c in polygon.centroid)
+    size = float(polygon.size)
+    segs = []
+    for (x0, y0), (x1, y1) in ends:
+        a = (_round((x0 - cx) / size), _round((y0 - cy) / size))
+        b = (_round((x1 - cx) / size), _round((y1 - cy) / size))
+        if None in a or None in b:
+            return None
+        segs.append((a, b) if a <= b else (b, a))
+    segs.sort()
+    return tuple(x for seg in segs for pt in seg for x in pt)  # type: ignore[misc]
+
+
+def _geometric_key_numpy(regions: Any, polygon: Any) -> tuple[float, ...]:
+    """:func:`geometric_key` in numpy (its first form, kept for the regions that are not
+    point arrays or not finite)."""
     ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])
     rel = np.round((ends.reshape(-1, 2, 2) - polygon.centroid) / polygon.size, RANK_DIGITS) + 0.0
     segs = sorted(tuple(sorted(map(tuple, r.tolist()))) for r in rel)

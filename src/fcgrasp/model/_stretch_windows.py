@@ -5,6 +5,7 @@ covers) bounded and pruned (part of :mod:`fcgrasp.model.stretches`)."""
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any, cast
 
 import numpy as np
@@ -38,6 +39,12 @@ class _Ring:
     @property
     def m(self) -> int:
         return int(self.edges.size)
+
+    @cached_property
+    def floats(self) -> tuple[list[list[float]], list[list[float]], list[float], list[float]]:
+        """``a``, ``t``, ``L`` and ``U`` as Python lists, for the plain-float code that
+        reads a point or two per call."""
+        return self.a.tolist(), self.t.tolist(), self.L.tolist(), self.U.tolist()
 
 
 def _rings(polygon: Polygon) -> list[_Ring]:

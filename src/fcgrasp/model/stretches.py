@@ -59,7 +59,7 @@ import numpy as np
 
 from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core._geom import geometric_key, leximin_key, midpoints, trim_vertex_ends
+from ..core._geom import ends_key, geometric_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting, started
 from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
@@ -157,22 +157,32 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
     return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
 
-def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float) -> FloatArray:
-    """The two ends of :func:`_polyline`'s stretch (2, 2), trimmed as
-    ``trim_vertex_ends`` trims it, without the points between: all the ranking's
-    geometric key reads of a region (:func:`_canonical`)."""
-    first, last = _span(ring, i, k, s0, t)
-    if k == 0:
-        return np.stack((first, last))
+def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The two ends of :func:`_polyline`'s stretch, trimmed as ``trim_vertex_ends``
+    trims it, without the points between: all the ranking's geometric key reads of a
+    region (:func:`_canonical`).  Plain floats (:attr:`_Ring.floats`), the operations
+    of :func:`_span` and ``trim_vertex_ends`` in their order, so the same numbers."""
+    A, T, L, U = ring.floats
     m = ring.m
-    tiny = ROUND_TOL * float(ring.U[m])
-    inner_first, inner_last = ring.a[(i + 1) % m], ring.a[(i + k) % m]
+    (ax, ay), (tx, ty) = A[i % m], T[i % m]
+    first = (ax + s0 * tx, ay + s0 * ty)
+    if k == 0:
+        return first, (first[0] + t * tx, first[1] + t * ty)
+    end_edge = (i + k) % m
+    j = i % m + m
+    off = L[i % m] - s0 + (U[j + k] - U[j + 1])
+    (ex, ey), (fx, fy) = A[end_edge], T[end_edge]
+    last = (ex + (t - off) * fx, ey + (t - off) * fy)
+    tiny = ROUND_TOL * U[m]
+    inner_first, inner_last = A[(i + 1) % m], A[(i + k) % m]
     covered = k + 1
-    if np.hypot(*(inner_first - first)) <= tiny:            # trim_vertex_ends' first
-        first, covered = inner_first, covered - 1
-    if covered > 1 and np.hypot(*(last - inner_last)) <= tiny:
-        last = inner_last
-    return np.stack((first, last))
+    # numpy's hypot, as trim_vertex_ends measures
+    if np.hypot(inner_first[0] - first[0], inner_first[1] - first[1]) <= tiny:
+        first, covered = (inner_first[0], inner_first[1]), covered - 1
+    if covered > 1 and np.hypot(last[0] - inner_last[0], last[1] - inner_last[1]) <= tiny:
+        last = (inner_last[0], inner_last[1])
+    return first, last
 
 
 @dataclass
@@ -1271,8 +1281,9 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
         iA, kA, iC, kC = f.cfg
         ends = (_stretch_ends(rings[x], iA, kA, f.s0, f.lengths[0]),
                 _stretch_ends(rings[y], iC, kC, f.u0, f.lengths[1]))
-        return (leximin_key(np.array(f.lengths), polygon.size),
-                geometric_key(ends, polygon))
+        geo = ends_key(ends, polygon)
+        return (leximin_key(f.lengths, polygon.size),
+                geometric_key(np.array(ends), polygon) if geo is None else geo)
 
     for j, g in zip(same, swapped, strict=True):
         if key(g) < key(found[j]):
