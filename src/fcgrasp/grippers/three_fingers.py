@@ -758,13 +758,19 @@ def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
 
 class _FreeStretches:
     """:func:`free_stretch` for many sets of covered edges on one part: each ring's
-    usable edges walked once (``next_edge``), then every set read in numpy."""
+    usable edges walked once (``next_edge``), then every set read from the places of
+    its covered edges (a plan covers a few runs of edges: the free runs are the gaps
+    between them)."""
 
     def __init__(self, polygon: Polygon) -> None:
         self.polygon = polygon
-        self.place = np.full(polygon.n_edges, -1)
-        #: per ring: its usable edges in walking order, and its shortest (first of ties)
-        self.rings: list[tuple[np.ndarray, int]] = []
+        #: per edge: the number of its ring in ``rings`` (-1: none kept) and its place
+        self.ring_of = np.full(polygon.n_edges, -1)
+        self.place = np.zeros(polygon.n_edges, dtype=np.int64)
+        #: per ring: its usable edges in walking order, twice over, the place of its
+        #: shortest (first of ties), and the running sums of its lengths along two turns
+        self.rings: list[tuple[np.ndarray, int, list[float]]] = []
+        L = polygon.lengths
         for r in np.unique(polygon.rings):
             usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
             if usable.size < 2:
@@ -773,36 +779,49 @@ class _FreeStretches:
             while len(walk) < usable.size:
                 walk.append(polygon.next_edge(walk[-1]))
             cycle = np.array(walk)
+            self.ring_of[cycle] = len(self.rings)
             self.place[cycle] = np.arange(cycle.size)
-            self.rings.append((cycle, int(usable[np.argmin(polygon.lengths[usable])])))
+            shortest = int(usable[np.argmin(L[usable])])
+            sums = np.concatenate(([0.0], np.cumsum(np.tile(L[cycle], 2)))).tolist()
+            self.rings.append((np.tile(cycle, 2), int(self.place[shortest]), sums))
 
     def longest(self, covered: Any) -> tuple[int, ...] | None:
-        """The longest free stretch (see :func:`free_stretch`); ``covered`` valid edges."""
-        L = self.polygon.lengths
-        mask = np.zeros(L.size, bool)
-        mask[np.asarray(list(covered), dtype=np.int64)] = True
-        runs: list[tuple[np.ndarray, float]] = []      # every run, in the order met
-        for cycle, shortest in self.rings:
-            hit = mask[cycle]
-            first = int(cycle[hit].min()) if hit.any() else shortest
-            order = np.roll(cycle, -(int(self.place[first]) + 1))   # ends with first
-            seq = order if hit.any() else order[:-1]
-            cut = mask[seq]
-            group = np.cumsum(cut)[~cut]
-            free = seq[~cut]
-            if not free.size:
-                continue
-            starts = np.flatnonzero(np.concatenate(([True], group[1:] != group[:-1])))
-            sums = np.add.reduceat(L[free], starts)
-            runs += zip(np.split(free, starts[1:]), sums.tolist(), strict=True)
+        """The longest free stretch (see :func:`free_stretch`); ``covered`` valid edges.
+
+        Each ring is walked from just after its covered edge of least number (or its
+        shortest edge, where none is covered: then all but that edge), and its free
+        runs are the gaps between its covered places in that order.  A run's length is
+        first read from the running sums (to their rounding), then the runs within
+        :data:`~fcgrasp.core.tolerances.RANK_TOL` of the longest are summed as the
+        plan sums them (numpy's sum of their lengths), and the first met of the
+        longest is kept."""
+        edges = np.fromiter(covered, dtype=np.int64)
+        ring, place = self.ring_of[edges], self.place[edges]
+        runs: list[tuple[np.ndarray, int, int, float]] = []  # walk, start, count, approx
+        for k, (walk, shortest, sums) in enumerate(self.rings):
+            m = walk.size // 2
+            mine = ring == k
+            if mine.any():
+                first = int(edges[mine].argmin())           # least edge number
+                start = int(place[mine][first]) + 1
+                rel = np.sort((place[mine] - start) % m)    # the last is m - 1
+                gaps = np.flatnonzero(np.diff(rel, prepend=-1) > 1)
+                prev = np.concatenate(([-1], rel))[gaps]
+                for a, n in zip(((start + prev + 1) % m).tolist(),
+                                (rel[gaps] - prev - 1).tolist(), strict=True):
+                    runs.append((walk, a, n, sums[a + n] - sums[a]))
+            else:
+                a = (shortest + 1) % m
+                runs.append((walk, a, m - 1, sums[a + m - 1] - sums[a]))
         if not runs:
             return None
-        top = max(r[1] for r in runs)
-        # the first run met at the greatest length, the lengths summed as the plan sums
+        top = max(r[3] for r in runs)
+        L = self.polygon.lengths
         best: tuple[int, ...] | None = None
         best_len = -1.0
-        for run, approx in runs:
-            if approx >= top * (1 - RANK_TOL):     # sums in another order: near it
+        for walk, a, n, approx in runs:
+            if approx >= top * (1 - RANK_TOL):     # summed in another order: near it
+                run = walk[a:a + n]
                 length = float(L[run].sum())
                 if length > best_len:
                     best, best_len = tuple(run.tolist()), length
