@@ -188,7 +188,13 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESO
            "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
            "INRADIUS_STEP", "FIT_ROUNDING", "PROJECTED_AXIS", "PLANAR_TOL",
            "ROUNDING_SHRINK", "SURFACE_TOL", "SURFACE_STEP",
-           "SURFACE_CENTRE"]
+           "SURFACE_CENTRE", "REACH_PAD"]
+
+#: Distinct alternatives: the upper bound of a region's overlap with another (its
+#: length inside the other's box, :meth:`fcgrasp.model.distinct._Overlaps.reach`) is
+#: raised by this fraction of itself (and by the overlap's tolerance): far above the
+#: rounding of the clipped lengths and of the lengths shapely measures.
+REACH_PAD = 1e-9
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
 #: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it

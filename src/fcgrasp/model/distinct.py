@@ -25,7 +25,7 @@ import numpy as np
 import shapely
 
 from ..core._checks import FloatArray
-from ..core.tolerances import COORD_ROUNDING, ROUND_TOL, SLICE_TOL, TOL
+from ..core.tolerances import COORD_ROUNDING, REACH_PAD, ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppression",
@@ -73,23 +73,45 @@ class _Overlaps:
         self._pairs: dict[tuple[int, int], float] = {}
         self._shared: dict[tuple[int, int], float] = {}
         self._pieces: dict[int, tuple[Any, ...] | None] = {}
-        #: :func:`_overlaps`' answers by what they read (:meth:`decide`)
-        self._decided: dict[tuple[Any, ...], bool] = {}
+        #: each region as :func:`_overlaps` reads it (its points, length and edges),
+        #: numbered once (:meth:`region`), and the numbers by what they stand for
+        self._regions: list[tuple[FloatArray, float, tuple[int, ...] | None]] = []
+        self._numbers: dict[tuple[Any, ...], int] = {}
+        #: :func:`_overlaps`' answers by the regions' numbers and the fraction
+        self._decided: dict[tuple[int, int, float], bool] = {}
+        #: each region's segments as :meth:`reach` reads them, by the region's id
+        self._segments: dict[int, tuple[Any, ...]] = {}
 
-    def decide(self, a: Any, b: Any, la: float, lb: float, fraction: float,
-               ea: Any = None, eb: Any = None) -> bool:
-        """:func:`_overlaps` of two regions with this measure, each answer kept by what
-        it reads (the regions' points, lengths and edges, the fraction): a ranked list's
-        copies repeat the same regions (three fingers on ``icons/droplet.svg``: 15,000
-        tests of about 3,000 pairs)."""
-        a, b = np.asarray(a, float), np.asarray(b, float)
-        key = (self._id(a), self._id(b), la, lb, fraction,
-               None if ea is None else tuple(ea), None if eb is None else tuple(eb))
+    def region(self, a: Any, length: float, edges: Any = None) -> int:
+        """The number of a region as :meth:`decide_regions` reads it: its points, its
+        length and its edges (None: not labelled); one number for the same three."""
+        a = np.asarray(a, float)
+        labels = None if edges is None else tuple(edges)
+        key = (self._id(a), float(length), labels)
+        got = self._numbers.get(key)
+        if got is None:
+            got = self._numbers[key] = len(self._regions)
+            self._regions.append((a, float(length), labels))
+        return got
+
+    def decide_regions(self, ra: int, rb: int, fraction: float) -> bool:
+        """:func:`_overlaps` of two regions numbered by :meth:`region`, each answer kept:
+        a ranked list's copies repeat the same regions (three fingers on
+        ``icons/droplet.svg``: 15,000 tests of about 3,000 pairs)."""
+        key = (ra, rb, fraction)
         got = self._decided.get(key)
         if got is None:
+            (a, la, ea), (b, lb, eb) = self._regions[ra], self._regions[rb]
             got = self._decided[key] = _overlaps(a, b, la, lb, fraction, self.tol, self,
                                                  ea, eb)
         return got
+
+    def decide(self, a: Any, b: Any, la: float, lb: float, fraction: float,
+               ea: Any = None, eb: Any = None) -> bool:
+        """:func:`_overlaps` of two regions with this measure (:meth:`decide_regions`:
+        each answer kept by what it reads, the regions' points, lengths and edges, and
+        the fraction)."""
+        return self.decide_regions(self.region(a, la, ea), self.region(b, lb, eb), fraction)
 
     def shared(self, a: FloatArray, ea: Any, b: FloatArray, eb: Any) -> float:
         """A lower bound of :meth:`__call__` ``(a, b)`` without the buffer
@@ -116,6 +138,45 @@ class _Overlaps:
             lo, hi = region.min(axis=0), region.max(axis=0)
             self._boxes.append((float(lo[0]), float(lo[1]), float(hi[0]), float(hi[1])))
         return got
+
+    def reach(self, a: FloatArray, b: FloatArray) -> float:
+        """An upper bound of :meth:`__call__` ``(a, b)``: the length of ``a`` inside the
+        box of ``b`` grown by twice the tolerance (the zone of ``b`` lies inside it),
+        raised by :data:`~fcgrasp.core.tolerances.REACH_PAD` of itself and by the
+        tolerance, far above the rounding of either length.  Most pairs of a ranked
+        list's regions that are near but not the same alternative are decided by it
+        without a buffer (three fingers on ``icons/droplet.svg``: 2,573 of 2,585).
+        Each segment of ``a`` whose box meets the box is clipped to it (Liang and
+        Barsky)."""
+        ka, kb = self._id(a), self._id(b)
+        segs = self._segments.get(ka)
+        if segs is None:
+            d = a[1:] - a[:-1]
+            segs = self._segments[ka] = (np.minimum(a[:-1], a[1:]), np.maximum(a[:-1], a[1:]),
+                                         np.hypot(d[:, 0], d[:, 1]).tolist(), a.tolist())
+        lo, hi, lengths, pts = segs
+        pad = 2 * self.tol
+        bx0, by0, bx1, by1 = self._boxes[kb]
+        x0, y0, x1, y1 = bx0 - pad, by0 - pad, bx1 + pad, by1 + pad
+        meet = np.flatnonzero((hi[:, 0] >= x0) & (lo[:, 0] <= x1)
+                              & (hi[:, 1] >= y0) & (lo[:, 1] <= y1))
+        total = 0.0
+        for k in meet.tolist():
+            (px, py), (qx, qy) = pts[k], pts[k + 1]
+            dx, dy = qx - px, qy - py
+            t0, t1 = 0.0, 1.0
+            for den, num in ((-dx, px - x0), (dx, x1 - px), (-dy, py - y0), (dy, y1 - py)):
+                if den == 0.0:
+                    if num < 0.0:
+                        t1 = -1.0           # parallel to a side, outside it
+                        break
+                elif den < 0.0:
+                    t0 = max(t0, num / den)
+                else:
+                    t1 = min(t1, num / den)
+            if t1 > t0:
+                total += (t1 - t0) * lengths[k]
+        return total * (1 + REACH_PAD) + self.tol
 
     def __call__(self, a: FloatArray, b: FloatArray) -> float:
         ka, kb = self._id(a), self._id(b)
@@ -210,6 +271,10 @@ def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float,
     # are the same alternative without the buffer (:func:`_shared_length`)
     if ea is not None and eb is not None and overlap.shared(a, ea, b, eb) > fraction * short:
         return True
+    # what ``a`` can have in common at most (its length inside ``b``'s box) decides
+    # most of the others without the buffer (:meth:`_Overlaps.reach`)
+    if len(a) > 1 and overlap.reach(a, b) <= fraction * short:
+        return False
     # (boxes apart by more than the tolerance: nothing in common, most pairs of a list)
     return overlap(a, b) > fraction * short
 
@@ -232,19 +297,33 @@ def same_alternative(p: GraspPlan, q: GraspPlan, fraction: float, tol: float,
     if k != len(q.regions):
         return False
     measure = _Overlaps(tol) if measure is None else measure
-    hit: dict[tuple[int, int], bool] = {}     # each pair of regions tested once, if asked
-
     labelled = len(p.region_edges) == k and len(q.region_edges) == k
+    return _paired(measure, _numbers(measure, p, labelled), _numbers(measure, q, labelled),
+                   fraction)
 
-    def overlap(i: int, j: int) -> bool:
-        if (i, j) not in hit:
-            hit[i, j] = measure.decide(p.regions[i], q.regions[j], float(p.lengths[i]),
-                                       float(q.lengths[j]), fraction,
-                                       p.region_edges[i] if labelled else None,
-                                       q.region_edges[j] if labelled else None)
-        return hit[i, j]
 
-    return any(all(overlap(i, perm[i]) for i in range(k)) for perm in permutations(range(k)))
+def _numbers(measure: _Overlaps, p: GraspPlan, labelled: bool) -> list[int]:
+    """The numbers of ``p``'s regions in ``measure`` (:meth:`_Overlaps.region`), with
+    their edges where ``labelled``."""
+    return [measure.region(r, float(n), e if labelled else None)
+            for r, n, e in zip(p.regions, p.lengths,
+                               p.region_edges if labelled else [None] * len(p.regions),
+                               strict=True)]
+
+
+def _paired(measure: _Overlaps, rp: list[int], rq: list[int], fraction: float) -> bool:
+    """:func:`same_alternative` of two plans by their regions' numbers: some pairing
+    (:func:`itertools.permutations`' order) overlaps region by region, each pair of
+    regions decided once (:meth:`_Overlaps.decide_regions`) and only where asked."""
+    decide = measure.decide_regions
+    return any(all(decide(rp[i], rq[j], fraction) for i, j in enumerate(perm))
+               for perm in _perm_tuples(len(rp)))
+
+
+@cache
+def _perm_tuples(k: int) -> tuple[tuple[int, ...], ...]:
+    """Every permutation of ``range(k)``, in :func:`itertools.permutations`' order."""
+    return tuple(permutations(range(k)))
 
 
 class Suppression:
@@ -257,6 +336,8 @@ class Suppression:
         self.fraction, self.tol = fraction, ROUND_TOL * size
         self._overlap = _Overlaps(self.tol)
         self.kept: list[Any] = []
+        #: the kept plans' region numbers (:func:`_numbers`), by place and labelling
+        self._kept_numbers: dict[tuple[int, bool], list[int]] = {}
         self._stands: dict[int, list[tuple[int, ...]]] = {}
         #: per number of regions: the kept plans' places in ``kept`` and their regions'
         #: boxes (n, regions, 4: x and y least, then greatest), rows beyond n spare
@@ -299,10 +380,21 @@ class Suppression:
         (:meth:`_may_match`)."""
         if isinstance(p, GraspPlan):
             box = self._region_boxes(p)
-            twin = next((self.kept[q] for q in self._may_match(p, box)
-                         if same_alternative(self.kept[q], p, self.fraction, self.tol,
-                                             self._overlap)),
-                        None)
+            twin = None
+            mine: dict[bool, list[int]] = {}    # p's region numbers, labelled or not
+            for q in self._may_match(p, box):
+                kept = self.kept[q]
+                labelled = len(p.region_edges) == len(p.regions) == \
+                    len(kept.region_edges)
+                if labelled not in mine:
+                    mine[labelled] = _numbers(self._overlap, p, labelled)
+                theirs = self._kept_numbers.get((q, labelled))
+                if theirs is None:
+                    theirs = self._kept_numbers[q, labelled] = \
+                        _numbers(self._overlap, kept, labelled)
+                if _paired(self._overlap, theirs, mine[labelled], self.fraction):
+                    twin = kept
+                    break
             if twin is not None:
                 self._stands[id(twin)].append(tuple(p.edges))
                 return False
