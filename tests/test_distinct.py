@@ -587,6 +587,21 @@ def _boundary_regions(rng, poly):
         yield a, b
 
 
+def _seeded_outlines(rng, cases):
+    """Seeded outlines of every kind (exact ties, collinear runs, noise), scaled and
+    moved near the origin or far from it, each with the overlap's tolerance."""
+    from fcgrasp.core.tolerances import ROUND_TOL
+
+    from .test_stretch_kernels import KINDS, outline
+
+    for case in range(cases):
+        pts = outline(rng, KINDS[case % len(KINDS)], int(rng.integers(8, 80)))
+        pts = pts * float(rng.choice([1.0, 1e-3, 1e3])) + float(rng.choice([0.0, 1e4])) \
+            * rng.normal(size=2)
+        poly = fc.Polygon(pts)
+        yield poly, ROUND_TOL * poly.size
+
+
 @pytest.mark.parametrize("cases", [pytest.param(150, id="seeded"),
                                    pytest.param(1500, id="sweep", marks=pytest.mark.slow)])
 def test_the_shared_pieces_bound_the_overlap_from_below(cases):
@@ -598,20 +613,12 @@ def test_the_shared_pieces_bound_the_overlap_from_below(cases):
     overlap to within a few tolerances wherever they share an edge, so the search
     reads most same alternatives without the buffer.  Then ``same_alternative`` gives
     the same answers with the regions' edges (the bound first) and without them."""
-    from fcgrasp.core.tolerances import ROUND_TOL
     from fcgrasp.model import distinct as D
-
-    from .test_stretch_kernels import KINDS, outline
 
     rng = np.random.default_rng(91)
     tight = shared = pairs = 0
     answers = {True: 0, False: 0}
-    for case in range(cases):
-        pts = outline(rng, KINDS[case % len(KINDS)], int(rng.integers(8, 80)))
-        pts = pts * float(rng.choice([1.0, 1e-3, 1e3])) + float(rng.choice([0.0, 1e4])) \
-            * rng.normal(size=2)
-        poly = fc.Polygon(pts)
-        tol = ROUND_TOL * poly.size
+    for poly, tol in _seeded_outlines(rng, cases):
         for (a, ea), (b, eb) in _boundary_regions(rng, poly):
             pa, pb = D._pieces(a, ea), D._pieces(b, eb)
             assert pa is not None and pb is not None
@@ -704,20 +711,12 @@ def test_the_reach_bounds_the_overlap_from_above(cases):
     so ``_overlaps``, which reads it first, decides as the buffer alone does, at
     fractions 0.25, 0.5 and 0.9; and it decides most pairs that are near and not the
     same alternative."""
-    from fcgrasp.core.tolerances import ROUND_TOL
     from fcgrasp.model import distinct as D
-
-    from .test_stretch_kernels import KINDS, outline
 
     rng = np.random.default_rng(93)
     decided = near_false = pairs = 0
     answers = {True: 0, False: 0}
-    for case in range(cases):
-        pts = outline(rng, KINDS[case % len(KINDS)], int(rng.integers(8, 80)))
-        pts = pts * float(rng.choice([1.0, 1e-3, 1e3])) + float(rng.choice([0.0, 1e4])) \
-            * rng.normal(size=2)
-        poly = fc.Polygon(pts)
-        tol = ROUND_TOL * poly.size
+    for poly, tol in _seeded_outlines(rng, cases):
         both = [(a, b, ea, eb) for (a, ea), (b, eb) in _boundary_regions(rng, poly)]
         both += [(a, b, None, None) for a, b in _random_polylines(rng, poly)]
         for a, b, ea, eb in both:

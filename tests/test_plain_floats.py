@@ -8,7 +8,6 @@ from __future__ import annotations
 import numpy as np
 
 from fcgrasp.core import _geom
-from fcgrasp.model.polygon import Polygon
 
 
 class _Part:
@@ -76,16 +75,14 @@ def test_stretch_ends_are_the_previous_ends() -> None:
     """Outlines of 3-59 edges, starts around the ring and beyond, regions from a vertex
     and ending at one (trimmed), crossing up to every vertex; and the ends of the
     region polyline itself."""
-    from fcgrasp.model._stretch_windows import _rings
     from fcgrasp.model.stretches import _polyline, _stretch_ends
+
+    from .test_stretches import random_ring
 
     rng = np.random.default_rng(5)
     trimmed = 0
     for _ in range(150):
-        m = int(rng.integers(3, 60))
-        a = np.sort(rng.uniform(0, 2 * np.pi, m))
-        ring = _rings(Polygon(np.c_[np.cos(a) * rng.uniform(1, 50),
-                                    np.sin(a) * rng.uniform(1, 50)]))[0]
+        ring = random_ring(rng)
         for _ in range(40):
             i, k = int(rng.integers(0, 3 * ring.m)), int(rng.integers(0, ring.m - 1))
             L = float(ring.L[i % ring.m])

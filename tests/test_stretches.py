@@ -351,20 +351,27 @@ def _previous_polyline(ring, i, k, s0, t):
     return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
 
 
+def random_ring(rng):
+    """The ring of a seeded outline of 3-59 edges (an ellipse's points at random
+    angles), as the stretch search reads it."""
+    from fcgrasp.model._stretch_windows import _rings
+
+    m = int(rng.integers(3, 60))
+    a = np.sort(rng.uniform(0, 2 * np.pi, m))
+    return _rings(Polygon(np.c_[np.cos(a) * rng.uniform(1, 50),
+                                np.sin(a) * rng.uniform(1, 50)]))[0]
+
+
 def test_region_polylines_are_the_previous_ones_bit_for_bit():
     """A stretch's region polyline (``_polyline``: the interior vertices gathered at
     once) is the previous implementation's, points bit for bit and edges as Python
     ints: seeded outlines of 3-59 edges, starts around the ring and beyond, regions
     from a vertex (trimmed) and crossing up to every vertex."""
-    from fcgrasp.model._stretch_windows import _rings
     from fcgrasp.model.stretches import _polyline
 
     rng = np.random.default_rng(3)
     for _ in range(150):
-        m = int(rng.integers(3, 60))
-        a = np.sort(rng.uniform(0, 2 * np.pi, m))
-        ring = _rings(Polygon(np.c_[np.cos(a) * rng.uniform(1, 50),
-                                    np.sin(a) * rng.uniform(1, 50)]))[0]
+        ring = random_ring(rng)
         for _ in range(40):
             i, k = int(rng.integers(0, 3 * ring.m)), int(rng.integers(0, ring.m - 1))
             s0 = 0.0 if rng.random() < 0.2 else float(rng.uniform(0, ring.L[i % ring.m]))
