@@ -890,7 +890,7 @@ def test_a_stretchs_ends_are_its_polylines_ends():
             if k == 0:
                 t = float(rng.uniform(0, L - s0)) if L > s0 else 0.0
             pts, _ = S._polyline(ring, i, k, s0, t)
-            got = S._stretch_ends(ring, i, k, s0, t)
+            got = np.array(S._stretch_ends(ring, i, k, s0, t))
             assert got.tobytes() == np.stack((pts[0], pts[-1])).tobytes()
             trimmed += len(pts) < k + 2
     assert trimmed > 200
