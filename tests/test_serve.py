@@ -183,6 +183,38 @@ def test_a_slow_plan_reports_progress_and_can_be_cancelled(client):
     assert "report" not in ans
 
 
+def test_a_long_poll_answers_when_the_plan_ends(client):
+    """``GET /api/jobs/ID?wait=S`` (the page's poll) waits while the plan runs, at most
+    ``S`` seconds, and answers as soon as it ends (done, or cancelled); a bad ``wait``
+    is a bad request naming it."""
+    part = {"outer": _star(300).tolist()}
+    slow = client.post("/api/plan", json={"part": part, "options": {
+        "gripper": "3", "mu": 0.3, "distinct": 0}}).json()
+    assert slow["state"] == "running"
+    t0 = time.monotonic()
+    ans = client.get(f"/api/jobs/{slow['job']}?wait=0.2").json()
+    assert ans["state"] == "running" and time.monotonic() - t0 >= 0.2
+    client.delete(f"/api/jobs/{slow['job']}")
+    for _ in range(600):            # a hung job only: each poll ends when it does
+        ans = client.get(f"/api/jobs/{slow['job']}?wait=1").json()
+        if ans["seconds"] is not None:
+            break
+    assert ans["state"] == "cancelled" and ans["seconds"] is not None
+    quick = client.post("/api/plan", json={"part": {"outer": _star(12).tolist()},
+                                           "options": {"gripper": "2", "mu": 0.5}}).json()
+    for _ in range(600):
+        if quick["state"] != "running":
+            break
+        quick = client.get(f"/api/jobs/{quick['job']}?wait=1").json()
+    assert quick["state"] == "done" and quick["report"]["grasps"]
+    again = client.get(f"/api/jobs/{quick['job']}?wait=1").json()
+    assert again["state"] == "done"
+    for bad in ("x", "-1", "2", "nan", ""):
+        r = client.get(f"/api/jobs/{quick['job']}?wait={bad}")
+        assert r.status_code == 400, (bad, r.text)
+        assert r.json()["field"] == "wait" and "wait must be" in r.json()["error"]
+
+
 def test_uploads_in_every_format(client, tmp_path):
     names = make_parts(tmp_path / "parts")
     for name in names:

@@ -32,9 +32,11 @@ with status 400, 404 or 413; the server answers every request and never stops on
     answers within :data:`ANSWER_WITHIN` seconds: the finished result, or
     ``{"job": id, "state": "running", "progress": [done, total]}`` to poll (429 when
     eight plans run already);
-``GET /api/jobs/ID``, ``DELETE /api/jobs/ID``
+``GET /api/jobs/ID[?wait=SECONDS]``, ``DELETE /api/jobs/ID``
     a plan's state (``running``, ``done``, ``error``, ``cancelled``), and cancelling it
-    (its process is killed at once, whatever planner runs);
+    (its process is killed at once, whatever planner runs); with ``wait`` (at most
+    :data:`MAX_WAIT`), the state is given as soon as the plan ends, or after that long
+    (a long poll: the page sees a plan the moment it is done, not at its next poll);
 ``POST /api/check`` ``{"part": ..., "contacts": [...], "gravity": null}``
     the verdict on a grasp, the failed closure and the escape twist ``(omega, vx, vy)``.
 """
@@ -73,6 +75,8 @@ MAX_UPLOAD = 8 * 2 ** 20
 MAX_REQUEST = 4 * 2 ** 20
 #: How long ``POST /api/plan`` waits for the result before answering with a job to poll.
 ANSWER_WITHIN = 0.05
+#: The longest ``wait`` of ``GET /api/jobs/ID?wait=SECONDS`` (seconds).
+MAX_WAIT = 1.0
 #: Finished jobs kept for polling (the oldest are forgotten first).
 KEEP_JOBS = 32
 
@@ -99,6 +103,21 @@ class Job:
         elif self.state == "error":
             out["error"] = self.error
         return out
+
+
+def _wait_of(raw: str | None) -> float:
+    """The ``wait`` of ``GET /api/jobs/ID?wait=SECONDS``: 0 when not given, else a number
+    of seconds in ``[0, MAX_WAIT]`` (:class:`~fcgrasp.errors.RequestError` otherwise)."""
+    if raw is None:
+        return 0.0
+    try:
+        wait = float(raw)
+    except ValueError:
+        wait = float("nan")
+    if not 0.0 <= wait <= MAX_WAIT:            # nan too
+        raise RequestError(f"wait must be a number of seconds from 0 to {MAX_WAIT:g}, "
+                           f"got {_short(raw)}", "wait")
+    return wait
 
 
 def plan_result(polygon: Any, units: str, request: Any,
@@ -420,7 +439,11 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return JSONResponse(job.answer())
 
     async def job_state(request: Request) -> Response:
-        return JSONResponse(jobs.get(request.path_params["id"]).answer())
+        job = jobs.get(request.path_params["id"])
+        wait = _wait_of(request.query_params.get("wait"))
+        if wait > 0 and not job.done.is_set():
+            await asyncio.to_thread(job.done.wait, wait)
+        return JSONResponse(job.answer())
 
     async def job_cancel(request: Request) -> Response:
         return JSONResponse(jobs.cancel(request.path_params["id"]).answer())

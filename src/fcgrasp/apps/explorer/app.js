@@ -41,7 +41,6 @@ async function request(method, url, body, raw) {
   return data;
 }
 
-const sleep = (ms) => new Promise((ok) => setTimeout(ok, ms));
 const clone = (x) => JSON.parse(JSON.stringify(x));
 
 function message(text, note) {
@@ -620,8 +619,9 @@ async function runPlan() {
       const [done, total] = ans.progress;
       if (total > 0) { $("progress").max = total; $("progress").value = done; }
       $("statustext").textContent = total > 0 ? `planning… ${done} / ${total}` : "planning…";
-      await sleep(100);
-      ans = await request("GET", `/api/jobs/${ans.job}`);
+      // a long poll: the answer comes the moment the plan ends (or after 0.1 s, to
+      // show the progress)
+      ans = await request("GET", `/api/jobs/${ans.job}?wait=0.1`);
     }
   } catch (e) {
     if (seq !== S.seq) return;
