@@ -273,7 +273,7 @@ def _overlaps(a: Any, b: Any, la: float, lb: float, fraction: float, tol: float,
         return True
     # what ``a`` can have in common at most (its length inside ``b``'s box) decides
     # most of the others without the buffer (:meth:`_Overlaps.reach`)
-    if len(a) > 1 and overlap.reach(a, b) <= fraction * short:
+    if a.ndim == 2 and len(a) > 1 and overlap.reach(a, b) <= fraction * short:
         return False
     # (boxes apart by more than the tolerance: nothing in common, most pairs of a list)
     return overlap(a, b) > fraction * short
