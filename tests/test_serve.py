@@ -187,7 +187,8 @@ def test_a_long_poll_answers_when_the_plan_ends(client):
     """``GET /api/jobs/ID?wait=S`` (the page's poll) waits while the plan runs, at most
     ``S`` seconds, and answers as soon as it ends (done, or cancelled); a bad ``wait``
     is a bad request naming it."""
-    part = {"outer": _star(300).tolist()}
+    # seconds of planning (12 s here; cancelled below): it runs on through the wait
+    part = {"outer": _star(1000).tolist()}
     slow = client.post("/api/plan", json={"part": part, "options": {
         "gripper": "3", "mu": 0.3, "distinct": 0}}).json()
     assert slow["state"] == "running"
