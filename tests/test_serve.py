@@ -175,7 +175,7 @@ def test_a_slow_plan_reports_progress_and_can_be_cancelled(client):
     assert seen[-1][1] > 0, "no progress reported"
     cancelled = client.delete(f"/api/jobs/{ans['job']}").json()
     assert cancelled["state"] == "cancelled"
-    for _ in range(200):            # the search stops at its next progress report
+    for _ in range(12000):          # a hung process only: it is killed at once
         time.sleep(0.05)
         ans = client.get(f"/api/jobs/{ans['job']}").json()
         if ans["seconds"] is not None:
