@@ -53,14 +53,17 @@ def test_keys_are_the_numpy_keys() -> None:
 
 
 def _previous_stretch_ends(ring, i, k, s0, t):
-    """``stretches._stretch_ends`` before it read plain floats (numpy points)."""
+    """``stretches._stretch_ends`` before it read plain floats (numpy points, its
+    ``_span`` written in)."""
     from fcgrasp.core.tolerances import ROUND_TOL
-    from fcgrasp.model.stretches import _span
 
-    first, last = _span(ring, i, k, s0, t)
-    if k == 0:
-        return np.stack((first, last))
     m = ring.m
+    first = ring.a[i % m] + s0 * ring.t[i % m]
+    if k == 0:
+        return np.stack((first, first + t * ring.t[i % m]))
+    j = i % m + m
+    off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
+    last = ring.a[(i + k) % m] + (t - off) * ring.t[(i + k) % m]
     tiny = ROUND_TOL * float(ring.U[m])
     inner_first, inner_last = ring.a[(i + 1) % m], ring.a[(i + k) % m]
     covered = k + 1

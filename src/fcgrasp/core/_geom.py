@@ -127,7 +127,14 @@ def leximin_key(lengths: Any, size: float) -> tuple[float, ...]:
 def _leximin_key_numpy(lengths: Any, size: float) -> tuple[float, ...]:
     """:func:`leximin_key` in numpy (its first form, kept for the lengths that are not
     finite)."""
-    return tuple(-np.round(np.sort(np.asarray(lengths, float)) / size, RANK_DIGITS))
+    return tuple(leximin_columns(np.asarray(lengths, float), size))
+
+
+def leximin_columns(lengths: FloatArray, size: float) -> FloatArray:
+    """:func:`leximin_key`'s numbers of each row of ``lengths`` (the last axis): sorted,
+    over ``size``, rounded to :data:`RANK_DIGITS` decimals, negated; rows compared
+    column by column (:func:`numpy.lexsort`) order as their keys do."""
+    return -np.round(np.sort(lengths, axis=-1) / size, RANK_DIGITS)
 
 
 #: ``10 ** RANK_DIGITS`` as ``numpy.round`` makes it (:func:`_round`).
@@ -161,13 +168,13 @@ def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
         if r.ndim != 2 or r.shape[1] != 2 or not len(r):
             return _geometric_key_numpy(regions, polygon)
         ends.append((r[0].tolist(), r[-1].tolist()))
-    got = ends_key(ends, polygon)
-    return _geometric_key_numpy(regions, polygon) if got is None else got
+    return ends_key(ends, polygon)
 
 
-def ends_key(ends: Any, polygon: Any) -> tuple[float, ...] | None:
+def ends_key(ends: Any, polygon: Any) -> tuple[float, ...]:
     """:func:`geometric_key` of regions given by their two ends, plain float pairs
-    ``[((x0, y0), (x1, y1)), ...]``; None where a coordinate is not finite."""
+    ``[((x0, y0), (x1, y1)), ...]`` (:func:`_geometric_key_numpy` of them where a
+    coordinate is not finite: it reads only the ends)."""
     cx, cy = (float(c) for c in polygon.centroid)
     size = float(polygon.size)
     segs = []
@@ -175,7 +182,7 @@ def ends_key(ends: Any, polygon: Any) -> tuple[float, ...] | None:
         a = (_round((x0 - cx) / size), _round((y0 - cy) / size))
         b = (_round((x1 - cx) / size), _round((y1 - cy) / size))
         if None in a or None in b:
-            return None
+            return _geometric_key_numpy(ends, polygon)
         segs.append((a, b) if a <= b else (b, a))
     segs.sort()
     return tuple(x for seg in segs for pt in seg for x in pt)  # type: ignore[misc]

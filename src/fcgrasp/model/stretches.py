@@ -59,7 +59,7 @@ import numpy as np
 
 from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core._geom import ends_key, geometric_key, leximin_key, midpoints, trim_vertex_ends
+from ..core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
 from ..core.kernels import jit_setting, started
 from ..core.tolerances import ANGLE_SLACK, DEFER_PAD, ROUND_TOL, TOL
 from . import _stretch_kernels
@@ -130,18 +130,24 @@ class StretchPair:
 # ----------------------------------------------------------------------------- search
 
 
-def _span(ring: _Ring, i: int, k: int, s0: float, t: float) -> tuple[FloatArray, FloatArray]:
+def _span(ring: _Ring, i: int, k: int, s0: float, t: float
+          ) -> tuple[tuple[float, float], tuple[float, float]]:
     """The first and last point of the stretch starting at ``s0`` on edge ``i``, length
-    ``t``, ``k`` interior vertices (before any trimming)."""
+    ``t``, ``k`` interior vertices (before any trimming), in plain floats
+    (:attr:`_Ring.floats`: a point or two per call, where numpy's calls cost more than
+    the arithmetic; numpy's operations on the points, one coordinate at a time)."""
+    A, T, L, U = ring.floats
     m = ring.m
-    first = ring.a[i % m] + s0 * ring.t[i % m]
+    (ax, ay), (tx, ty) = A[i % m], T[i % m]
+    first = (ax + s0 * tx, ay + s0 * ty)
     if k == 0:
-        return first, first + t * ring.t[i % m]
+        return first, (first[0] + t * tx, first[1] + t * ty)
     # _inner of the one stretch, read from the arc positions as it reads them
     end_edge = (i + k) % m
     j = i % m + m
-    off = ring.L[i % m] - s0 + float(ring.U[j + k] - ring.U[j + 1])
-    return first, ring.a[end_edge] + (t - off) * ring.t[end_edge]
+    off = L[i % m] - s0 + (U[j + k] - U[j + 1])
+    (ex, ey), (fx, fy) = A[end_edge], T[end_edge]
+    return first, (ex + (t - off) * fx, ey + (t - off) * fy)
 
 
 def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
@@ -159,25 +165,16 @@ def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
 
 def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float
                   ) -> tuple[tuple[float, float], tuple[float, float]]:
-    """The two ends of :func:`_polyline`'s stretch, trimmed as ``trim_vertex_ends``
-    trims it, without the points between: all the ranking's geometric key reads of a
-    region (:func:`_canonical`).  Plain floats (:attr:`_Ring.floats`), the operations
-    of :func:`_span` and ``trim_vertex_ends`` in their order, so the same numbers."""
-    A, T, L, U = ring.floats
-    m = ring.m
-    (ax, ay), (tx, ty) = A[i % m], T[i % m]
-    first = (ax + s0 * tx, ay + s0 * ty)
+    """The two ends of :func:`_polyline`'s stretch (:func:`_span`), trimmed as
+    ``trim_vertex_ends`` trims it (numpy's hypot), without the points between: all the
+    ranking's geometric key reads of a region (:func:`_canonical`)."""
+    first, last = _span(ring, i, k, s0, t)
     if k == 0:
-        return first, (first[0] + t * tx, first[1] + t * ty)
-    end_edge = (i + k) % m
-    j = i % m + m
-    off = L[i % m] - s0 + (U[j + k] - U[j + 1])
-    (ex, ey), (fx, fy) = A[end_edge], T[end_edge]
-    last = (ex + (t - off) * fx, ey + (t - off) * fy)
-    tiny = ROUND_TOL * U[m]
+        return first, last
+    A, m = ring.floats[0], ring.m
+    tiny = ROUND_TOL * ring.floats[3][m]
     inner_first, inner_last = A[(i + 1) % m], A[(i + k) % m]
     covered = k + 1
-    # numpy's hypot, as trim_vertex_ends measures
     if np.hypot(inner_first[0] - first[0], inner_first[1] - first[1]) <= tiny:
         first, covered = (inner_first[0], inner_first[1]), covered - 1
     if covered > 1 and np.hypot(last[0] - inner_last[0], last[1] - inner_last[1]) <= tiny:
@@ -1281,9 +1278,7 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
         iA, kA, iC, kC = f.cfg
         ends = (_stretch_ends(rings[x], iA, kA, f.s0, f.lengths[0]),
                 _stretch_ends(rings[y], iC, kC, f.u0, f.lengths[1]))
-        geo = ends_key(ends, polygon)
-        return (leximin_key(f.lengths, polygon.size),
-                geometric_key(np.array(ends), polygon) if geo is None else geo)
+        return leximin_key(f.lengths, polygon.size), ends_key(ends, polygon)
 
     for j, g in zip(same, swapped, strict=True):
         if key(g) < key(found[j]):
