@@ -14,7 +14,7 @@ from ..core._checks import (
     FloatArray,
     check_scalar,
 )
-from ..core._geom import RANK_DIGITS
+from ..core._geom import leximin_columns
 from ..core.sectors import PAIRINGS
 from ..core.tolerances import ESTIMATE_PAD, PLACE_SURE_GAP, RANK_TOL
 from ..model._quad_estimates import below as estimate_below
@@ -400,7 +400,7 @@ def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
     """Rows (sorted) with positive regions, the ``top`` best by leximin and their ties.
 
     Where every row has as many real fingers (a search's rows do), the leximin keys
-    (:func:`~fcgrasp.core._geom.leximin_key`'s numbers) are compared as columns, by
+    (:func:`~fcgrasp.core._geom.leximin_columns`) are compared as columns, by
     :func:`numpy.lexsort` (ties by row, as sorting ``(key, row)`` pairs orders them);
     else row by row."""
     real = feats >= 0
@@ -409,9 +409,7 @@ def _select(lengths: FloatArray, feats: np.ndarray, size: float, top: int | None
     if top is None or rows.size <= top:
         return rows
     if bool(np.all(real == real[:1])):
-        # each row's key: its real lengths sorted, over the size, rounded, negated
-        keys = -np.round(np.sort(lengths[np.ix_(rows, np.flatnonzero(real[0]))], axis=1)
-                         / size, RANK_DIGITS)
+        keys = leximin_columns(lengths[np.ix_(rows, np.flatnonzero(real[0]))], size)
         by = np.lexsort((rows, *keys.T[::-1]))
         last = keys[by[top - 1]]
         # the rows whose key is at most the top-th's (lexicographically): the first
