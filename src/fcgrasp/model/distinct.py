@@ -71,7 +71,6 @@ class _Overlaps:
         self._boxes: list[tuple[float, float, float, float]] = []
         self._zones: dict[int, Any] = {}
         self._pairs: dict[tuple[int, int], float] = {}
-        self._shared: dict[tuple[int, int], float] = {}
         self._pieces: dict[int, tuple[Any, ...] | None] = {}
         #: each region as :func:`_overlaps` reads it (its points, length and edges),
         #: numbered once (:meth:`region`), and the numbers by what they stand for
@@ -116,14 +115,9 @@ class _Overlaps:
     def shared(self, a: FloatArray, ea: Any, b: FloatArray, eb: Any) -> float:
         """A lower bound of :meth:`__call__` ``(a, b)`` without the buffer
         (:func:`_shared_length`; ``ea``, ``eb`` the regions' edges), each region read
-        once and each pair of regions measured once."""
-        ka, kb = self._id(a), self._id(b)
-        got = self._shared.get((ka, kb))
-        if got is None:
-            pa, pb = self._read(ka, a, ea), self._read(kb, b, eb)
-            got = 0.0 if pa is None or pb is None else _shared_length(pa, pb, self.tol)
-            self._shared[ka, kb] = got
-        return got
+        once (each pair is asked once: :meth:`decide_regions` keeps the answers)."""
+        pa, pb = self._read(self._id(a), a, ea), self._read(self._id(b), b, eb)
+        return 0.0 if pa is None or pb is None else _shared_length(pa, pb, self.tol)
 
     def _read(self, k: int, region: FloatArray, edges: Any) -> tuple[Any, ...] | None:
         if k not in self._pieces:
