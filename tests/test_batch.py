@@ -320,3 +320,38 @@ def test_meshes_among_drawings_are_planned_for_the_batchs_gripper(tmp_path):
     assert [g["radius"] for g in got[block]["grasps"]] == pytest.approx(
         [p.radius for p in want3], rel=1e-12)
     assert all(len(g["facets"]) == 3 for g in got[block]["grasps"])
+
+
+def test_identical_files_are_two_parts(tmp_path):
+    """Results are keyed by path and content: a folder holding two identical files gets
+    a line for each, and a second run skips both."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    body = json.dumps({"vertices": _ring(np.random.default_rng(4)).tolist()})
+    (folder / "a.json").write_text(body)
+    (folder / "b.json").write_text(body)
+    out = tmp_path / "res.jsonl"
+    assert main(["batch", str(folder), "--out", str(out), "--workers", "1", *OPTIONS,
+                 "--quiet"]) == 0
+    lines = _lines(out)
+    assert sorted(os.path.basename(p) for p in lines) == ["a.json", "b.json"]
+    a, b = (lines[str(folder / n)] for n in ("a.json", "b.json"))
+    assert a["hash"] == b["hash"] and a["grasps"] == b["grasps"]
+    summary = batch.run_batch([str(folder / "a.json"), str(folder / "b.json")], str(out),
+                              workers=1, fingers=2, mu=0.4, top=3)
+    assert (summary.planned, summary.skipped) == (0, 2)
+
+
+def test_a_batchs_outputs_are_not_read_as_parts(tmp_path):
+    """A results file and a figures folder inside the input folder: a second run reads
+    neither as a part."""
+    folder = tmp_path / "in"
+    folder.mkdir()
+    (folder / "a.json").write_text(json.dumps({"vertices": _ring(
+        np.random.default_rng(5)).tolist()}))
+    out, figures = folder / "results.json", folder / "figures"
+    for _ in range(2):
+        assert main(["batch", str(folder), "--out", str(out), "--figures", str(figures),
+                     "--workers", "1", *OPTIONS, "--quiet"]) == 0
+    assert list(_lines(out)) == [str(folder / "a.json")]
+    assert [p.suffix for p in figures.iterdir()] == [".png"]

@@ -237,6 +237,8 @@ FAILURES = [
     (["plan", "demo:rectangle", "--fingers", "5"], "invalid choice"),
     (["plan", "demo:rectangle", "--plot", "{tmp}/x.gif"], "--plot"),
     (["check", "demo:rectangle", "--contacts", "{tmp}/missing.json"], "no such file"),
+    (["plan", "demo:rectangle", "--plot", "{tmp}/no/such/dir/x.png"], "does not exist"),
+    (["plan", "demo:rectangle", "--time-limit", "-2"], "--time-limit"),
 ]
 
 
@@ -267,6 +269,7 @@ def test_failures_one_line_exit_2_no_output(tmp_path, capsys, k):
     assert "Traceback" not in r.stderr
     assert not out.exists() and not fig.exists()
     assert not any(p.name.startswith(".out") for p in tmp_path.iterdir())
+    assert not (tmp_path / "no").exists()            # no output folder made
 
 
 def test_failed_plot_leaves_no_partial_json(tmp_path, monkeypatch, capsys):

@@ -116,3 +116,18 @@ def test_one_grasp_in_floats_at_the_tolerance(scale):
         assert one == bool(fc.is_force_closure(g.wrenches)), d
         seen.add(one)
     assert seen == {True, False}
+
+
+@pytest.mark.parametrize("mu", [1e6, 1e9, 1e10, 1e16, 1e100])
+def test_an_antipodal_grasp_holds_at_any_large_friction(mu):
+    """Cones of a huge ``mu`` are built at :data:`~fcgrasp.core.tolerances.MU_CLOSED`
+    (their sides are within the tests' tolerance of the tangent above it): the antipodal grasp
+    holds, as the closed form of theorem 6.3 says, and two fingers on the same side of
+    a square still do not."""
+    held = fc.Grasp([fc.FrictionPoint([0, 0.5], [-1, 0], mu),
+                     fc.FrictionPoint([1, 0.5], [1, 0], mu)])
+    assert held.is_force_closure()
+    assert fc.friction_pair_closure([0, 0.5], [-1, 0], [1, 0.5], [1, 0], mu=mu)
+    same_side = fc.Grasp([fc.FrictionPoint([0, 0.2], [-1, 0], mu),
+                          fc.FrictionPoint([0, 0.8], [-1, 0], mu)])
+    assert not same_side.is_force_closure()

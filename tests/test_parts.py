@@ -47,3 +47,24 @@ def test_read_contacts_soft_finger(tmp_path):
     f.write_text(json.dumps({"contacts": [{"type": "soft", "vertex": 2, "mu": 0.3}]}))
     contacts, _ = read_contacts(f, part)
     assert isinstance(contacts[0], fc.SoftFinger)
+
+
+def test_a_number_is_an_index_before_the_layer_named_0(tmp_path):
+    """Every CAD file's default layer is named "0": ``--part 0`` is the part at index 0,
+    and ``id:0`` the largest part on that layer."""
+    import ezdxf
+
+    from fcgrasp.io.parts import list_parts, load_part
+
+    doc = ezdxf.new()
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (4, 0), (4, 4), (0, 4)], close=True)
+    msp.add_lwpolyline([(10, 0), (40, 0), (40, 20), (10, 20)], close=True)
+    path = tmp_path / "two.dxf"
+    doc.saveas(path)
+    parts = list_parts(str(path))
+    assert [p.layer for p in parts] == ["0", "0"]
+    small = min(range(2), key=lambda k: parts[k].area)
+    assert load_part(str(path), str(small)).index == small
+    assert load_part(str(path), small).index == small
+    assert load_part(str(path), "id:0").area == max(p.area for p in parts)

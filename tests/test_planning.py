@@ -77,3 +77,35 @@ def test_a_plan_runs_with_the_cyclic_collector_paused_and_puts_it_back(monkeypat
         assert not gc.isenabled()
     finally:
         gc.enable()
+
+
+def test_the_short_form_defaults_to_the_command_lines_friction():
+    """``fc.plan(part)`` plans two fingers at the command line's mu (0.3), not mu = 0 (no
+    two-finger grasp at all); frictionless grippers still default to 0."""
+    import shapely
+
+    from fcgrasp.grippers.base import DEFAULT_MU
+
+    box = shapely.box(0, 0, 40, 10)
+    got = fc.plan(box, top=3)
+    want = fc.plan(box, mu=DEFAULT_MU, top=3)
+    assert got and [p.edges for p in got] == [p.edges for p in want]
+    assert all(p.mu == DEFAULT_MU for p in got)
+    assert fc.plan(box, fingers=4, top=1)[0].contact_type == "frictionless"
+    with pytest.raises(ValueError, match="mu"):
+        fc.plan(box, fingers=4, mu=0.3)
+
+
+def test_an_array_and_a_multipolygon_are_parts():
+    """What the readers take, the planner takes: an array of vertices, and a
+    MultiPolygon's largest polygon."""
+    import shapely
+
+    v = np.array([[0, 0], [40, 0], [40, 10], [0, 10]], float)
+    ref = fc.plan(fc.Polygon(v), mu=0.4, top=2)
+    assert [p.edges for p in fc.plan(v, mu=0.4, top=2)] == [p.edges for p in ref]
+    multi = shapely.MultiPolygon([shapely.box(100, 0, 101, 1), shapely.Polygon(v)])
+    got = fc.plan(multi, mu=0.4, top=2)
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    with pytest.raises(TypeError, match="polygon"):
+        fc.plan("not a part")

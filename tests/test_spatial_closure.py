@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from scipy.optimize import linprog
 
+import fcgrasp as fc
 from fcgrasp.spatial import (
     closure_margin,
     contact_frames,
@@ -304,3 +305,17 @@ def test_spatial_errors_name_the_argument():
         closure_margin([[0, 0], [1, 0]], [[1, 0], [-1, 0]], 0.3)
     with pytest.raises(ValueError, match="facets"):
         spatial_quality([[0, 0, 0], [1, 0, 0]], [[1, 0, 0], [-1, 0, 0]], 0.3, facets=2)
+
+
+@pytest.mark.parametrize("mu", [0.5, [0.5, 0.6]])
+def test_one_grasp_of_shape_k_by_3(mu):
+    """One grasp, shape (k, 3) as the docstring allows: a 0-d answer, the same as the
+    batch of one's, through the closed form and through the general test."""
+    p = np.array([[-1.0, 0, 0], [1.0, 0, 0]])
+    n = np.array([[1.0, 0, 0], [-1.0, 0, 0]])
+    one = fc.spatial_force_closure(p, n, mu=mu, torsion=0.1)
+    batch = fc.spatial_force_closure(p[None], n[None], mu=mu, torsion=0.1)
+    assert np.shape(one) == () and batch.shape == (1,)
+    assert bool(one) == bool(batch[0]) is True
+    tilted = fc.spatial_force_closure(p, [[1.0, 0, 0], [0, 0, 1.0]], mu=mu, torsion=0.1)
+    assert np.shape(tilted) == () and not tilted

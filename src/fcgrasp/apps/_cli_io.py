@@ -29,6 +29,20 @@ _SIZES = {"": 1, "b": 1, "k": 2 ** 10, "kb": 2 ** 10, "m": 2 ** 20, "mb": 2 ** 2
           "g": 2 ** 30, "gb": 2 ** 30, "t": 2 ** 40, "tb": 2 ** 40}
 
 
+def _seconds(text: str) -> float:
+    """A time limit: seconds >= 0 (0: no limit)."""
+    import math
+
+    try:
+        value = float(text)
+    except ValueError:
+        value = float("nan")
+    if not value >= 0 or not math.isfinite(value):
+        raise CliError(f"--time-limit must be a number of seconds >= 0 (0: no limit), got "
+                       f"{text!r}")
+    return value
+
+
 def _memory(text: str) -> int:
     """A memory size: bytes, or a number with K, M, G or T (powers of 1024)."""
     t = text.strip().lower().replace("i", "")

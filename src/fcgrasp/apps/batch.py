@@ -18,14 +18,15 @@ plan``), so a batch's results are exactly what ``plan --json`` gives.
   is cooperative: it is checked between candidate batches of the search.
 * **Nothing lost, nothing done twice**: :func:`run_batch` appends each result to a JSON
   Lines file as it finishes (written, flushed and synced line by line), and skips the
-  parts whose content hash and parameters already have a line, so a batch that was
+  parts whose path, content hash and parameters already have a line, so a batch that was
   interrupted finishes the rest when run again; a torn last line (a kill while
   writing) is cut off first.
 
 A result is a dict: ``path``, ``hash`` (SHA-256 of the file's bytes, or of the polygon's
 coordinates), ``parameters`` (the request's options,
-:meth:`~fcgrasp.planning.PlanRequest.options`), ``grasps`` and ``reason`` (as in
-``plan --json``), ``units``, ``seconds`` and ``error`` (None, or one line).
+:meth:`~fcgrasp.planning.PlanRequest.options`), ``grasps``, ``reason``, ``complete``
+and, for a search that stopped early, ``gap`` (as in ``plan --json``), ``units``,
+``seconds`` and ``error`` (None, or one line).
 """
 
 from __future__ import annotations
@@ -132,6 +133,9 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
         doc = plan_document(task.request, part=part, progress=progress, map=map)
         out["grasps"] = doc.report["grasps"]
         out["reason"] = doc.report["reason"]
+        out["complete"] = doc.report.get("complete", True)
+        if "gap" in doc.report:
+            out["gap"] = doc.report["gap"]
         out["units"] = doc.units
         if task.figures:
             from ..plotting import document_figure
@@ -462,8 +466,26 @@ class BatchSummary:
         return "\n".join(f"{k:<24} {v}" for k, v in rows)
 
 
-def _done(out: str, retry_failed: bool = False) -> dict[tuple[str, str], bool]:
-    """The (hash, parameters) already in a results file, each with whether its result is
+def is_results_file(path: str) -> bool:
+    """Whether a file is a batch's results (its first line a result: ``path``, ``hash``
+    and ``parameters``), read no further than its first 64 KiB."""
+    try:
+        with open(path, "rb") as f:
+            first = f.read(65536).split(b"\n", 1)[0]
+        r = json.loads(first)
+    except (OSError, ValueError):
+        return False
+    return isinstance(r, dict) and {"path", "hash", "parameters"} <= set(r)
+
+
+def _key(path: Any, digest: Any, parameters: Any) -> tuple[str, str, str]:
+    """What makes a result the result of a task: the part's path, its content and the
+    parameters (two identical files are two parts, each with its own line)."""
+    return (str(path), str(digest), json.dumps(parameters, sort_keys=True))
+
+
+def _done(out: str, retry_failed: bool = False) -> dict[tuple[str, str, str], bool]:
+    """The (path, hash, parameters) already in a results file, each with whether its result is
     an error.  A torn last line (a kill while writing) is cut off; with
     ``retry_failed`` the failed results are removed (the file rewritten atomically)."""
     if not os.path.exists(out):
@@ -474,7 +496,7 @@ def _done(out: str, retry_failed: bool = False) -> dict[tuple[str, str], bool]:
         if end < len(data):                 # a line cut short by a kill: drop it
             f.truncate(end)
             data = data[:end]
-    done: dict[tuple[str, str], bool] = {}
+    done: dict[tuple[str, str, str], bool] = {}
     kept = []
     for line in data.splitlines(keepends=True):
         try:
@@ -484,7 +506,7 @@ def _done(out: str, retry_failed: bool = False) -> dict[tuple[str, str], bool]:
         if retry_failed and r.get("error") is not None:
             continue
         kept.append(line)
-        done[(r.get("hash"), json.dumps(r.get("parameters"), sort_keys=True))] = \
+        done[_key(r.get("path"), r.get("hash"), r.get("parameters"))] = \
             r.get("error") is not None
     if retry_failed and len(kept) < len(data.splitlines()):
         from ..io.outputs import OutputSet
@@ -500,7 +522,7 @@ def run_batch(parts: list[Any], out: str, *, workers: int | None = None,
               **options: Any) -> BatchSummary:
     """Plan ``parts`` into the JSON Lines file ``out``: results appended as they finish
     (each line written whole, flushed and synced), the parts already there with the same
-    content and parameters skipped (with ``retry_failed``, those whose result is an error
+    path, content and parameters skipped (with ``retry_failed``, those whose result is an error
     are planned again, their old line removed).  ``progress(done, total)`` is called as
     parts finish.  Returns a :class:`BatchSummary`.  ``out`` must not be one of the parts
     (a ValueError, through symlinks and hard links too: results never overwrite a part)."""
@@ -511,7 +533,7 @@ def run_batch(parts: list[Any], out: str, *, workers: int | None = None,
     done = _done(out, retry_failed)
     todo, summary = [], BatchSummary()
     for task in _prepared(parts, options, part_timeout, figures):
-        key = (task.digest, json.dumps(task.parameters, sort_keys=True))
+        key = _key(task.path, task.digest, task.parameters)
         if key in done:
             summary.skipped += 1
             summary.failed_before += done[key]

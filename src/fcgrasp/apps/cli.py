@@ -31,6 +31,7 @@ from ._cli_io import (
     _print_table,
     _progress,
     _reading,
+    _seconds,
     _stderr,
     _write_outputs,
 )
@@ -52,10 +53,11 @@ def plan_options(args: Any) -> dict[str, Any]:
     """The typed planning and reading options of parsed ``plan`` (or ``batch``)
     arguments, as :class:`~fcgrasp.planning.PlanRequest` keywords: ``--stroke 10,50``
     becomes ``stroke=(10.0, 50.0)``, ``--max-memory 2G`` bytes."""
-    from ..planning import LOAD_OPTIONS, PLAN_OPTIONS, READING_OPTIONS
+    from ..planning import LOAD_OPTIONS, PLAN_OPTIONS, READING_OPTIONS, SEARCH_OPTIONS
 
     options: dict[str, Any] = {k: getattr(args, k, None)
-                               for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS)}
+                               for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS,
+                                         *SEARCH_OPTIONS)}
     options["soft"] = bool(getattr(args, "soft", False))
     options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
@@ -64,6 +66,8 @@ def plan_options(args: Any) -> dict[str, Any]:
             options[key] = _floats(options[key], n, "--" + key)
     if options["max_memory"] is not None:
         options["max_memory"] = _memory(options["max_memory"])
+    if options["time_limit"] is not None:
+        options["time_limit"] = _seconds(options["time_limit"])
     return options
 
 
@@ -112,7 +116,33 @@ def cmd_plan(args: Any) -> int:
         else:
             _print_table(doc.plans, doc.units, sys.stdout)
             _print_load_and_placement(doc.report, sys.stdout)
+    note = incomplete_note(doc.report)
+    if note is not None and not args.quiet:
+        print(note, file=sys.stderr if _json_out(args) else sys.stdout)
     return 0
+
+
+def incomplete_note(report: dict[str, Any]) -> str | None:
+    """The line that says a search stopped early (the report's ``gap``), or None.
+
+    >>> print(incomplete_note({"complete": False, "units": "mm", "parameters": {"top": 10},
+    ...       "gap": {"stopped_by": "time_limit", "found": 3, "bound": 7.25}}))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    search stopped at its time limit (--time-limit): 3 of 10 plans proved, exact; every
+    further distinct alternative has a smallest region of at most 7.25 mm
+    """
+    gap = report.get("gap")
+    if report.get("complete", True) or gap is None:
+        return None
+    why = {"time_limit": "at its time limit (--time-limit)",
+           "max_memory": "at its memory budget (--max-memory)",
+           "depth": "at the most plans a distinct search reads"}.get(gap["stopped_by"],
+                                                                      "early")
+    top = report.get("parameters", {}).get("top")
+    rest = "no bound on the rest was proved" if gap["bound"] is None else \
+        f"every further distinct alternative has a smallest region of at most " \
+        f"{gap['bound']:.4g} {report.get('units', '')}".rstrip()
+    return f"search stopped {why}: {gap['found']} of {top} plans proved, exact; {rest}"
 
 
 def _print_solid_table(report: dict[str, Any], out: Any) -> None:
@@ -213,7 +243,9 @@ def cmd_batch(args: Any) -> int:
     if args.part_timeout is not None and not args.part_timeout > 0:
         raise CliError(f"--part-timeout must be a number of seconds > 0, got "
                        f"{args.part_timeout:g}")
-    paths = part_files(args.input)
+    # the batch's own outputs are never read as parts (a rerun of a folder that holds
+    # its results file or its figures)
+    paths = [p for p in part_files(args.input) if not _is_output(p, args.out, args.figures)]
     if not paths:
         raise CliError(f"no part files in {args.input!r} (a folder of .json, .svg, .dxf, "
                        f"image, mesh ... files, or a glob pattern)")
@@ -242,6 +274,21 @@ def cmd_batch(args: Any) -> int:
         print(summary.table())
     return 1 if summary.failed or summary.failed_before else 0
 
+
+
+def _is_output(path: str, out: str, figures: str | None) -> bool:
+    """Whether a part file found for a batch is one of its outputs: the results file of
+    an earlier run (a part named as ``--out`` is still a part, and the batch refuses to
+    overwrite it), or a file inside the figures folder."""
+    real = os.path.realpath(path)
+    if os.path.exists(out) and os.path.samefile(path, out):
+        from .batch import is_results_file
+
+        return is_results_file(out)
+    if figures is None:
+        return False
+    folder = os.path.realpath(figures)
+    return os.path.commonpath([real, folder]) == folder
 
 
 def cmd_check(args: Any) -> int:
@@ -505,7 +552,8 @@ def build_parser() -> argparse.ArgumentParser:
         g.add_argument("--part", "--id", dest="select", metavar="N|ID",
                        help="which part of the file: its index (see fcgrasp parts) or an id "
                             "(SVG element or group id, DXF handle or layer, GeoJSON feature "
-                            "id or name); default the largest")
+                            "id or name; id:NAME for an id made of digits, such as the "
+                            "layer id:0); default the largest")
         g.add_argument("--units", choices=UNIT_CHOICES, default=None,
                        help="units to read the part in (default mm; an image without "
                             "--pixel-size stays in pixels)")
@@ -627,6 +675,10 @@ def build_parser() -> argparse.ArgumentParser:
         p.add_argument("--max-memory", default=None, metavar="SIZE",
                        help="memory budget of the search, such as 500M or 4G (default 2G); a "
                             "search that cannot fit stops at once and says what would")
+        p.add_argument("--time-limit", default=None, metavar="SECONDS",
+                       help="wall-clock seconds the search may spend looking for distinct "
+                            "alternatives (default 10; 0: no limit); stopped early it "
+                            "prints the plans it proved and a bound on the rest")
 
     p = sub.add_parser("plan", help="ranked grasp plans of a part",
                        description="Plan force-closure grasps: the best edge sets with their "

@@ -32,7 +32,7 @@ import numpy as np
 from ._checks import FloatArray, check_direction, check_mu_scalar, check_point
 from .convexes import Cone
 from .screws import wrench_from_force
-from .tolerances import ON_EDGE_TOL
+from .tolerances import MU_CLOSED, ON_EDGE_TOL
 
 __all__ = [
     "Contact",
@@ -69,7 +69,8 @@ def friction_cone_edges(normal: Any, mu: Any) -> FloatArray:
     ndarray, shape (..., 2, 2)
     """
     n = np.asarray(normal, dtype=float)
-    phi = np.arctan(np.asarray(mu, dtype=float))
+    # above MU_CLOSED a cone's sides are nearly the tangent's: built narrower, never wider
+    phi = np.arctan(np.minimum(np.asarray(mu, dtype=float), MU_CLOSED))
     return np.stack([rotate(-n, phi), rotate(-n, -phi)], axis=-2)
 
 

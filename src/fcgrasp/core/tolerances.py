@@ -19,6 +19,13 @@ from __future__ import annotations
 #: characteristic length of the configuration.
 TOL = 1e-9
 
+#: The largest friction coefficient a friction cone is built with: a cone of ``mu`` above
+#: it has sides within ``1 / mu`` radians of the contact's tangent, where the closure
+#: tests' sines (:data:`TOL`) cannot tell them from a half-plane's, so an antipodal
+#: grasp at ``mu = 1e10`` would read as degenerate.  Built with ``MU_CLOSED`` instead,
+#: the cone is a little narrower than asked: never a false force closure.
+MU_CLOSED = 1e6
+
 #: Tolerance used by the convex-cone algebra of :mod:`fcgrasp.core.convexes` (membership
 #: residuals, rank decisions) on unit-normalised generators.
 CONE_TOL = 1e-9

@@ -10,10 +10,11 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
+from ..core.budget import BudgetExhausted, exhausted
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.distinct import Suppression
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches, load_kernels
-from ..model.plans import GraspPlan, rank_key
+from ..model.plans import GraspPlan, PlanList, incomplete, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
 from ..model.stretches import (
@@ -329,7 +330,7 @@ DISTINCT_READ = 10
 
 def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
                             progress: Any = None, depth: int | None = None
-                            ) -> list[GraspPlan] | None:
+                            ) -> PlanList | None:
     """The ``spec.top`` best two-finger plans along the boundary that are distinct
     alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the whole ranked
     list, exactly), or None where this search does not apply (another ``rank_by``,
@@ -344,11 +345,19 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     whole list (:class:`~fcgrasp.model.distinct.Suppression`, fed round by round).
     Each kept plan's ``similar`` lists the plans it stands for among those the rounds
     read (at least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out
-    unread are not listed.  With ``depth``, the reading stops once ``depth`` times
-    ``top`` plans are read, with the plans kept so far (on a smooth outline, a region
-    on a long edge can be placed anywhere along it before the plan is finished, so its
-    shifted copies are not left out: a 2,000-edge half disc reads 7,000 plans for ten
-    alternatives).  ``progress(kept, top)`` after each round."""
+    unread are not listed.  ``progress(kept, top)`` after each round.
+
+    The search stops early when the time budget ends (:func:`fcgrasp.core.budget.
+    deadline`: between rounds, or inside one, whose work is then dropped; the first
+    round, the ranked search, always finishes), when a round's collection of
+    configurations would exceed ``spec.max_memory``, or with ``depth`` once ``depth``
+    times ``top`` plans are read (on a smooth outline, a region on a long edge can be
+    placed anywhere along it before the plan is finished, so its shifted copies are
+    not left out: a 2,000-edge half disc reads 7,000 plans for ten alternatives).  The
+    plans kept by the finished rounds are then returned, an exact prefix of the
+    complete answer, incomplete (:class:`~fcgrasp.model.plans.PlanList`), with the
+    last finished round's level as the bound: every configuration left unread is
+    below it, so every further alternative is."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or not crosses_a_vertex(polygon, spec.mu, spec.margin):
@@ -357,20 +366,36 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     read: list[GraspPlan] = []
     given: set[Any] = set()             # one grasp reached by two configurations: once
     ask = max(2 * top, DISTINCT_READ)
-    stretches = StretchSearch(polygon, spec.mu, spec.margin)
+    stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory)
+    level: float | None = None          # every configuration left unread is below it
+    stopped: str | None = None
     while len(suppression.kept) < top:
-        pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
-                                fraction=fraction, seen=read)
+        try:
+            pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
+                                    fraction=fraction, seen=read)
+        except BudgetExhausted as exc:
+            stopped = str(exc) or "time_limit"
+            break
         ranked = two_finger_plans_of(polygon, spec, pairs, given)
         for p in ranked:
             suppression.add(p)
         read += ranked
+        level = unread_below(pairs, ask)
         if progress is not None:
             progress(min(len(suppression.kept), top), top)
-        if len(pairs) < ask or (depth is not None and len(read) >= depth * top):
-            break                       # every plan left was read (or enough)
+        if level is None:
+            break                       # every plan left was read
+        if len(suppression.kept) >= top:
+            break
+        if depth is not None and len(read) >= depth * top:
+            stopped = "depth"
+            break
+        if exhausted():
+            stopped = "time_limit"
+            break
         # the plans read are left out by name, so each round reads further down
-    return suppression.plans()[:top]
+    kept = suppression.plans()[:top]
+    return PlanList(kept) if stopped is None else incomplete(kept, stopped, level)
 
 
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:

@@ -66,9 +66,10 @@ import numpy as np
 
 from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
+from ..core.budget import BudgetExhausted, exhausted
 from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.distinct import Suppression
-from ..model.plans import GraspPlan, leximin_key
+from ..model.plans import GraspPlan, PlanList, incomplete, leximin_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (
@@ -370,7 +371,7 @@ class _Solved:
 
 def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
                                 depth: int | None = None, progress: Any = None
-                                ) -> list[GraspPlan] | None:
+                                ) -> PlanList | None:
     """The ``spec.top`` best plans of :func:`three_finger_plans` along the boundary that
     are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
     whole ranked list, exactly), or None where this search does not apply (another
@@ -404,7 +405,11 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     stretch is not known before the regions are placed (a region may end on a vertex
     and free the edge beyond), copies are not left out, and a curved outline has
     thousands of them.  ``progress(kept, top)`` after each round and each batch of the
-    concurrent search."""
+    concurrent search.  The reading also stops when the time budget ends
+    (:func:`fcgrasp.core.budget.deadline`) or a round's collection would exceed
+    ``spec.max_memory``; stopped early, the plans kept are an exact prefix of the
+    complete answer, returned incomplete (:class:`~fcgrasp.model.plans.PlanList`) with
+    the last round's level as the bound on every further alternative."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or spec.hand is not None or not spec.along_boundary \
@@ -416,7 +421,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     band = 4 * RANK_TOL * size               # above the concurrent level, after rounding
     two = replace(spec, fingers=2, top=None, rank_by="min_region")
     suppression = Suppression(fraction, size)
-    stretches = StretchSearch(polygon, spec.mu, spec.margin)
+    stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory)
     free = _FreeStretches(polygon)
     read: list[GraspPlan] = []              # two-finger plans read: left out by name
     given: set[Any] = set()
@@ -432,12 +437,19 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     # each batch of the concurrent search a chance to report (and to be cancelled)
     beat = None if progress is None else \
         (lambda done, total: progress(len(suppression.kept), top))
+    stopped: str | None = None
+    level = np.inf                      # every plan not fed is below it
     while len(suppression.kept) < top:
         if other_level <= pair_level - band:    # the pairs hold the reading back
             if len(read) >= cap:
+                stopped = "depth"
                 break
-            got = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
-                                  fraction=fraction, seen=read, third=True)
+            try:
+                got = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
+                                      fraction=fraction, seen=read, third=True)
+            except BudgetExhausted as exc:
+                stopped = str(exc) or "time_limit"
+                break
             new = two_finger_plans_of(polygon, two, got, given)
             read += new
             pairs += [q for q in (_with_third(polygon, spec, p, F, free) for p in new)
@@ -461,13 +473,20 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             fed.add(key)
             if suppression.add(p) and len(suppression.kept) == top:
                 break
+        level = line
         if progress is not None:        # plans kept of top, after each round
             progress(len(suppression.kept), top)
-        if line == -np.inf:
+        if line == -np.inf or len(suppression.kept) >= top:
+            break
+        if exhausted():
+            stopped = "time_limit"
             break
         if len(suppression.kept) == had:
             ask *= 2                        # copies the search cannot leave out
-    return suppression.plans()[:top]
+    kept = suppression.plans()[:top]
+    if stopped is None:
+        return PlanList(kept)
+    return incomplete(kept, stopped, float(level) if np.isfinite(level) else None)
 
 
 #: Concurrent plans of single edges grown along the boundary (the best ones).

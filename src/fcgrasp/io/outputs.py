@@ -28,7 +28,7 @@ def _stale(target: Path) -> list[Path]:
 
 def _temp_for(target: Path) -> str:
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
+        # no folder is made: an output in a folder that does not exist is an error
         for old in _stale(target):          # left behind by a run that was killed
             old.unlink(missing_ok=True)
         fd, tmp = tempfile.mkstemp(prefix=f".{target.name}{_TAG}", suffix=target.suffix,
@@ -147,6 +147,9 @@ def check_outputs(json: str | None, plot: str | None, inputs: list[str]) -> None
             continue
         if path == "-" or path.endswith(os.sep) or os.path.isdir(path):
             raise RequestError(f"{opt} must be a file name, got {path!r}", opt[2:])
+        folder = os.path.dirname(path) or "."
+        if not os.path.isdir(folder):
+            raise RequestError(f"{opt} {path}: the folder {folder} does not exist", opt[2:])
     try:
         refuse_overwriting(outs, inputs)
     except ValueError as exc:

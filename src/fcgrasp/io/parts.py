@@ -442,18 +442,21 @@ def _without_slivers(d: Drawing) -> Drawing:
 
 
 def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
-    """The part asked for: by index (an int or a string of digits), by id (an element id,
-    group id, handle, layer, feature id or name: the largest of those it selects), or by
-    default the largest usable part that is not a background.  ``chosen`` says why."""
+    """The part asked for: by index (an int or a string of digits, always an index: every
+    CAD file's default layer is named "0"), by id (an element id, group id, handle,
+    layer, feature id or name: the largest of those it selects; ``id:NAME`` for an id
+    made of digits), or by default the largest usable part that is not a background.
+    ``chosen`` says why."""
     if not parts:
         raise ValueError("the file holds no part")
     src = parts[0].source
     n = len(parts)
     if isinstance(part, bool) or (part is not None and not isinstance(part, (int, str))):
         raise TypeError(f"part must be an index or an id, got {part!r}")
-    if isinstance(part, str) and part.strip().isdigit() and \
-            not any(part in p.tags for p in parts):
+    if isinstance(part, str) and part.strip().isdigit():
         part = int(part)
+    elif isinstance(part, str) and part.startswith("id:"):
+        part = part[3:]
     if isinstance(part, int):
         if not 0 <= part < n:
             raise ValueError(f"{src}: part {part} does not exist: the file holds {n} "

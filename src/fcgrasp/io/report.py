@@ -15,7 +15,7 @@ Layout of a plan report (``format_version`` 2)::
                   "contacts": [[x, y], ...], "normals": [[nx, ny], ...],
                   "quality": {"min_region": ..., "resistance": ..., "resistance_approx": ...,
                               "epsilon_l1": ..., "epsilon_linf": ...}}, ...],
-      "reason": null,
+      "reason": null, "complete": true,
       "source": {"file": "part.svg", "format": "svg", "index": 2, "parts_in_file": 3,
                  "id": "gear", "layer": null, "chosen": "the largest of 3 parts",
                  "units": "mm", "file_units": "px", "units_note": "...", "scale": 0.2646,
@@ -33,9 +33,15 @@ lengths.  Version 1 had two-point regions on one edge each and no ``region_edges
 (absent for parts built in Python) records how the part was read: the file, which of its
 parts, the units it was in and the scale applied, the flip of y-down sources, the
 flattening tolerance and the clean-up (see :class:`fcgrasp.io.parts.Part`).  Options
-that ask for more add their entries: ``--bound`` an ``"optimality"`` object
-(``upper_bound``: no regions that long hold, ``gap``: ``1 -`` the best plan's smallest
-region over it, ``nodes``: :meth:`fcgrasp.UpperBound.to_dict`).
+``complete`` is false when the search stopped early (its time limit, its memory
+budget or the depth of a distinct search): the grasps are then an exact prefix of the
+complete answer, and ``gap`` says why it stopped (``stopped_by``: ``"time_limit"``,
+``"max_memory"`` or ``"depth"``), how many grasps it proved (``found``) and ``bound``:
+every further alternative's smallest region is at most that long (null where the search
+proved no such length); a report without ``complete`` (written before it existed) is
+read as complete.  Options that ask for more add their entries: ``--bound`` an
+``"optimality"`` object (``upper_bound``: no regions that long hold, ``gap``: ``1 -``
+the best plan's smallest region over it, ``nodes``: :meth:`fcgrasp.UpperBound.to_dict`).
 """
 
 from __future__ import annotations
@@ -64,6 +70,8 @@ def migrate_report(report: dict[str, Any]) -> dict[str, Any]:
         raise ValueError(f"report has format_version {version!r}; this fcgrasp reads "
                          f"versions 1 to {FORMAT_VERSION}")
     out = json.loads(json.dumps(report))
+    if "grasps" in out:
+        out.setdefault("complete", True)
     if version == 1:
         for g in out.get("grasps", []):
             g["region_edges"] = [[e] for e in g["edges"]]
@@ -94,7 +102,11 @@ def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], unit
         grasps.append(d)
     out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
            "part": part_dict(polygon) if part is None else part, "parameters": parameters,
-           "grasps": grasps, "reason": None if plans else (reason or "no force-closure grasp")}
+           "grasps": grasps, "reason": None if plans else (reason or "no force-closure grasp"),
+           "complete": bool(getattr(plans, "complete", True))}
+    gap = getattr(plans, "gap", None)
+    if callable(gap) and gap() is not None:
+        out["gap"] = gap()
     if source is not None:
         out["source"] = source
     return out

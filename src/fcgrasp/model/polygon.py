@@ -365,24 +365,42 @@ class Polygon:
         return f"Polygon({self.vertices.tolist()}, holes={[h.tolist() for h in self.holes]})"
 
 
+def _from_rings(coordinates: Any) -> Polygon:
+    """A Polygon of GeoJSON rings (each ring's last point repeating its first)."""
+    rings = [np.asarray(r, dtype=float)[:-1, :2] for r in coordinates]
+    return Polygon(rings[0], rings[1:])
+
+
 def check_polygon(value: Any, name: str = "polygon") -> Polygon:
     """``value`` as a :class:`Polygon`: a Polygon as it is; a shapely Polygon, or any
     object with a ``__geo_interface__`` of type Polygon (GeoJSON's coordinates, the last
-    point repeating the first), converted.  Anything else: a :class:`TypeError` naming
-    the argument and what it received (the one check of every function taking a part).
+    point repeating the first), converted; a MultiPolygon's largest polygon (as the
+    readers take a file's largest part); an array of vertices, shape (n, 2), the
+    outline.  Anything else: a :class:`TypeError` naming the argument and what it
+    received (the one check of every function taking a part).
 
     >>> import shapely
     >>> check_polygon(shapely.box(0, 0, 10, 5)).n_edges
     4
+    >>> check_polygon(np.array([[0, 0], [4, 0], [0, 3]])).n_edges
+    3
+    >>> check_polygon(shapely.MultiPolygon([shapely.box(0, 0, 1, 1),
+    ...                                     shapely.box(5, 0, 9, 4)])).area
+    16.0
     """
     if isinstance(value, Polygon):
         return value
+    if isinstance(value, np.ndarray) and value.ndim == 2 and value.shape[1] == 2:
+        return Polygon(value)
     geo = getattr(value, "__geo_interface__", None)
     if isinstance(geo, dict) and geo.get("type") == "Polygon" and geo.get("coordinates"):
-        rings = [np.asarray(r, dtype=float)[:-1, :2] for r in geo["coordinates"]]
-        return Polygon(rings[0], rings[1:])
+        return _from_rings(geo["coordinates"])
+    if isinstance(geo, dict) and geo.get("type") == "MultiPolygon" and geo.get("coordinates"):
+        return max((_from_rings(c) for c in geo["coordinates"] if c),
+                   key=lambda p: p.area)
     what = type(value).__name__
     if isinstance(geo, dict):
         what += f" (a {geo.get('type')} geometry)"
-    raise TypeError(f"{name} must be a fcgrasp Polygon, a shapely Polygon or an object "
-                    f"with a Polygon __geo_interface__, got {what}")
+    raise TypeError(f"{name} must be a fcgrasp Polygon, a shapely Polygon or MultiPolygon, "
+                    f"an object with such a __geo_interface__ or an array of vertices of "
+                    f"shape (n, 2), got {what}")

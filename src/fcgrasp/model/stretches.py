@@ -57,6 +57,7 @@ from typing import Any, cast
 
 import numpy as np
 
+from ..core import budget
 from ..core._angles import shrunk_half_angle
 from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
@@ -733,8 +734,8 @@ def _guessed_floors(bound: _Bound) -> list[float]:
 
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
                 runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
-                guesses: list[float] | None = None, lower: bool = True
-                ) -> list[tuple[Any, _Configs]]:
+                guesses: list[float] | None = None, lower: bool = True,
+                max_configs: int | None = None) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations, one per key).  ``prebound`` False: the
     vertex-aligned stretches do not raise the bound (an excluded plan's copies would);
@@ -748,7 +749,12 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
     where fewer keys are filled): the keys a quarter and half of the way down (of
     ``top`` or of those filled), and the last filled when fewer than ``top``.
     :func:`_search` checks that the ``top``-th found reaches the floor, and takes the
-    next guess when not."""
+    next guess when not.
+
+    ``max_configs``: the most configurations to collect; one job's collection that
+    takes the count over it ends the search (:class:`~fcgrasp.core.budget.
+    BudgetExhausted`, ``"max_memory"``), before the next job's."""
+    count = 0
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
         if not collect and (not (prebound and lower) or bound.fixed is not None):
@@ -777,6 +783,9 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             if collect:
                 pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
                 prepared.append((job, _Configs.cat([both, single, pairs])))
+                count += int(prepared[-1][1].iA.size)
+                if max_configs is not None and count > max_configs:
+                    raise budget.BudgetExhausted("max_memory")
     return prepared
 
 
@@ -797,6 +806,13 @@ class _Job:
     below: FloatArray
 
 
+#: Bytes a collected configuration takes at the peak, the unit of :attr:`_Memo.max_bytes`:
+#: four int64 of the configuration, seven arrays of :class:`_Job`, and the collection's
+#: concatenation and sorts (measured: a 1,000-edge smooth outline at mu 1.0 grows by
+#: about 124 bytes per configuration collected).
+CONFIG_BYTES = 128
+
+
 class _Memo:
     """What the runs of one search share (the rounds of ``distinct=``, whose floors
     differ): every configuration whose arc length reaches ``floor`` collected once, and
@@ -806,10 +822,20 @@ class _Memo:
     configuration below the floor can neither reach the ``top`` nor beat one that does
     in :func:`_own_optimum`)."""
 
-    def __init__(self, floor: float = 0.0) -> None:
+    def __init__(self, floor: float = 0.0, max_bytes: int | None = None) -> None:
         self.floor = floor
         self.prepared: list[tuple[Any, _Configs]] | None = None
         self.jobs: dict[Any, _Job] = {}
+        #: the most bytes the configurations collected and their solutions may take
+        #: (:data:`CONFIG_BYTES` each): a collection over it ends the search
+        #: (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"max_memory"``;
+        #: :func:`_candidates`)
+        self.max_bytes = max_bytes
+
+    @property
+    def max_configs(self) -> int | None:
+        """The most configurations a collection may hold (``max_bytes``)."""
+        return None if self.max_bytes is None else self.max_bytes // CONFIG_BYTES
 
     def lower(self, floor: float) -> None:
         """Collect again, down to ``floor``."""
@@ -976,6 +1002,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         later_idx: list[np.ndarray] = []
         later_tau: list[FloatArray] = []
         for chunk in _chunks(order, memo is not None):
+            if exclude:                     # a distinct round: the budget may end it
+                budget.check()
             if memo is not None:            # lazy: by arc length, boxes as they come
                 if ub[chunk[0]] < bound.floor:
                     break
@@ -1066,6 +1094,7 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
     configuration reaching ``floor`` in :func:`_own_optimum` (those inside it, either
     way round on one ring), and file the feasible ones in ``similar`` as beaters."""
     for job, (J, parts) in deferred.items():
+        budget.check()
         supers = np.array([f.cfg for f in found if f.job == job and f.t >= floor],
                           dtype=np.int64).reshape(-1, 4)
         supers = supers[supers[:, [1, 3]].max(axis=1) > 0]
@@ -1137,7 +1166,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         elif memo is not None:
             prepared = memo.prepared = _candidates(
                 rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
-                prebound=False)
+                prebound=False, max_configs=memo.max_configs)
         else:
             prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude,
                                    guesses=guesses if attempt == 0 else None,
@@ -1418,8 +1447,11 @@ class StretchSearch:
     [((1,), (3,))]
     """
 
-    def __init__(self, polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> None:
+    def __init__(self, polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
+                 max_bytes: int | None = None) -> None:
         self.beta = _check_args(polygon, mu, margin)
+        self.max_bytes = None if max_bytes is None else check_int(max_bytes, "max_bytes",
+                                                                  minimum=1)
         self.polygon = check_polygon(polygon)
         self.rings = rings = _rings(self.polygon)
         if self.beta <= 0:
@@ -1429,7 +1461,7 @@ class StretchSearch:
                           for x, y, sigma, _ in _jobs(len(rings))}
         self.runs = {(x, y): _vertex_runs(rings[x], rings[y], self.beta)
                      for x in range(len(rings)) for y in range(x, len(rings))}
-        self._memo = _Memo()
+        self._memo = _Memo(max_bytes=self.max_bytes)
         #: the best smallest region (the first run without exclusion), from which the
         #: memo's floor starts (:data:`MEMO_SHARE`)
         self._best: float | None = None
@@ -1466,6 +1498,8 @@ class StretchSearch:
         if excl and memo.prepared is None and self._best is not None and memo.floor == 0.0:
             memo.lower(MEMO_SHARE * self._best)
         while True:
+            if excl:
+                budget.check()
             found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
                             excl or None, memo)
             if not excl or memo.floor == 0.0:

@@ -23,6 +23,7 @@ from .request import (
     LOAD_OPTIONS,
     PLAN_OPTIONS,
     READING_OPTIONS,
+    SEARCH_OPTIONS,
     PlanDocument,
     PlanRequest,
     plan_document,
@@ -31,5 +32,5 @@ from .request import (
 
 __all__ = ["GraspPlan", "plan", "independent_regions", "RANKINGS", "geometric_key",
            "rank_key", "PlanRequest", "PlanDocument", "plan_document", "PLAN_OPTIONS",
-           "READING_OPTIONS", "LOAD_OPTIONS", "FrictionCurve", "friction_curve",
+           "READING_OPTIONS", "LOAD_OPTIONS", "SEARCH_OPTIONS", "FrictionCurve", "friction_curve",
            "template_request"]

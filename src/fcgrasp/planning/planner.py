@@ -28,12 +28,13 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core._checks import check_int, check_scalar
+from ..core.budget import DEFAULT_TIME_LIMIT, BudgetExhausted, check_time_limit, deadline, exhausted
 from ..core.tolerances import SOLVER_TOL
-from ..grippers.base import Gripper, SearchOptions
+from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions
 from ..grippers.fingers import point_fingers, regions_on
 from ..model.distinct import distinct_plans
 from ..model.hand import Hand
-from ..model.plans import GraspPlan, geometric_key, rank_key
+from ..model.plans import GraspPlan, PlanList, geometric_key, incomplete, rank_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG
@@ -76,27 +77,32 @@ def collector_paused() -> Iterator[None]:
                 gc.enable()
 
 
-def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 10,
+def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int | None = 10,
          rank_by: str = "min_region", hand: Hand | None = None,
          margin: float = DEFAULT_MARGIN_DEG, gravity: Any = None,
          disturbance: tuple[float, float] = (10.0, 15.0),
          progress: Any = None, tol: float = SOLVER_TOL,
          max_memory: int | None = None, along_boundary: bool = True,
          gripper: Any = None, map: Any = None, distinct: float | None = None,
-         load: Any = None, force_limit: Any = None, total_force: Any = None) -> list[Any]:
+         load: Any = None, force_limit: Any = None, total_force: Any = None,
+         time_limit: Any = DEFAULT_TIME_LIMIT) -> PlanList:
     """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
 
     Parameters
     ----------
     polygon : Polygon
+        Or anything :func:`~fcgrasp.model.polygon.check_polygon` takes: a shapely
+        Polygon or MultiPolygon (its largest polygon), an array of vertices.
     fingers : {2, 3, 4}
         2: two fingers with friction ``mu``; 3: three fingers with friction ``mu``
         (:mod:`fcgrasp.grippers.three_fingers`), or with ``gravity`` three frictionless fingers
         and gravity; 4: four frictionless fingers on four edges or on three edges (two
         on one edge).
-    mu : float
+    mu : float, optional
         Friction coefficient (two fingers, three without gravity; with four fingers or
-        gravity it must be 0: a ``mu`` the planner cannot use is an error).
+        gravity it must be 0: a ``mu`` the planner cannot use is an error).  None (the
+        default): :data:`fcgrasp.grippers.base.DEFAULT_MU` (0.3, as ``fcgrasp plan``)
+        for fingers with friction, 0 for frictionless ones.
     top : int or None
         How many plans to return (None: all).
     rank_by : {"min_region", "resistance", "epsilon", "payload"}
@@ -151,6 +157,14 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
         of it every grasp of its regions carries (:func:`fcgrasp.region_payload`, a
         certified lower bound with its gap), within ``force_limit`` (newtons per finger:
         one value or one per finger) and ``total_force`` (the sum of the normal forces).
+    time_limit : float or None
+        Wall-clock seconds the search may take to look for distinct alternatives
+        (default :data:`fcgrasp.core.budget.DEFAULT_TIME_LIMIT`; None: no limit).  The
+        first answer, the ranked search, always finishes; the rounds after it stop at
+        the limit, and the plans are then an exact prefix of the complete answer with
+        ``complete`` False and a ``bound`` on every further alternative
+        (:class:`~fcgrasp.model.plans.PlanList`).  ``max_memory`` ends those rounds the
+        same way.
     along_boundary : bool
         Without a hand, regions are stretches of the boundary that may cover several
         edges and the vertices between them: for two fingers the exact optimum
@@ -160,8 +174,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
 
     Returns
     -------
-    list of GraspPlan (of JawPlan with a ``gripper``)
-        Best first; empty when the part admits no such grasp.
+    PlanList of GraspPlan (of JawPlan with a ``gripper``)
+        Best first; empty when the part admits no such grasp.  A list, with
+        ``complete`` and ``bound`` (:class:`~fcgrasp.model.plans.PlanList`).
 
     Examples
     --------
@@ -171,10 +186,13 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
     ((1, 3), 1.0)
     """
     polygon = check_polygon(polygon)
+    limit = check_time_limit(time_limit)
     if gripper is None:
+        if mu is None:                      # the command line's default, with friction
+            mu = DEFAULT_MU if fingers in (2, 3) and gravity is None else 0.0
         gripper = point_fingers(fingers, mu, gravity, hand, along_boundary)
     else:
-        _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, 0.0), hand=(hand, None),
+        _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, None), hand=(hand, None),
                            gravity=(gravity, None), along_boundary=(along_boundary, True))
     options = SearchOptions(top=top, rank_by=rank_by, margin=margin,
                             disturbance=_check_disturbance(disturbance), tol=tol,
@@ -185,9 +203,9 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float = 0.0, top: int | None = 
             if value is not None:
                 raise ValueError(f"{name}={value!r} needs a load (load=fcgrasp.Load(mass, "
                                  f"...)), got load=None")
-        with collector_paused():
+        with collector_paused(), deadline(limit):
             return _distinct(polygon, gripper, options, distinct)
-    with collector_paused():
+    with collector_paused(), deadline(limit):
         return _with_payload(polygon, gripper, options, distinct, load, force_limit,
                              total_force)
 
@@ -198,7 +216,7 @@ PAYLOAD_POOL = 4
 
 
 def _with_payload(polygon: Polygon, gripper: Any, options: SearchOptions, distinct: Any,
-                  load: Any, force_limit: Any, total_force: Any) -> list[Any]:
+                  load: Any, force_limit: Any, total_force: Any) -> PlanList:
     """The plans with each one's certified payload (:func:`fcgrasp.region_payload`);
     ranked by it for ``rank_by="payload"``: the :data:`PAYLOAD_POOL` times ``top`` plans
     with the largest smallest regions, re-ranked (ties: the smallest region order)."""
@@ -221,13 +239,15 @@ def _with_payload(polygon: Polygon, gripper: Any, options: SearchOptions, distin
                            total_limit=total_force)
     if not by_payload:
         return plans
+    if not plans.complete:            # a pool cut short: its bound is not on payloads
+        plans = incomplete(plans, plans.stopped or "time_limit", None)
     score = MEASURES["payload"].score(plans)
     # boxes: the larger certified scale first, then the jaw's own order (its measure)
     order = sorted(range(len(plans)), key=lambda i: (
         (-float(f"{score[i]:.9g}"),) if jaw else
         rank_key(plans[i], polygon, "payload", float(score[i])), i))
     top = len(plans) if options.top is None else options.top // PAYLOAD_POOL
-    return [plans[i] for i in order[:top]]
+    return plans.same_answer([plans[i] for i in order[:top]])
 
 
 #: ``distinct=``: the search is asked for at most this many times ``top`` plans.
@@ -250,7 +270,7 @@ def default_distinct(gripper: Any) -> float:
 
 
 def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
-              distinct: Any) -> list[Any]:
+              distinct: Any) -> PlanList:
     """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
     (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for more plans
     until ``top`` distinct ones are found, it has no more, or it was asked for
@@ -261,19 +281,25 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     with ``top``: on a curved outline, where one grasp fills the ranked list with its
     copies, one long round costs less than many doubling ones).  The plans kept are
     those of suppression along the ranked list, however long the last round's list
-    was."""
+    was.
+
+    The rounds after the first stop when the time budget ends
+    (:func:`fcgrasp.core.budget.deadline`) or at the depth; the plans kept are then an
+    exact prefix of the complete answer, incomplete, with the last plan read's smallest
+    region as the bound where the plans are ranked by it (every plan not read is below
+    it)."""
     fraction = check_scalar(default_distinct(gripper) if distinct is None else distinct,
                             "distinct", nonnegative=True)
     if fraction > 1:
         raise ValueError(f"distinct must be a fraction in [0, 1], got {distinct!r}")
     if fraction == 0:
-        return list(gripper.plan(polygon, options))
+        return PlanList(gripper.plan(polygon, options))
     # a gripper may search for distinct plans itself (two fingers along the boundary:
     # each kept plan's shifted copies left out of the search)
     direct = getattr(gripper, "distinct_search", None)
     found = direct(polygon, options, fraction) if direct is not None else None
     if found is not None:
-        return list(found)
+        return found if isinstance(found, PlanList) else PlanList(found)
     plans = list(gripper.plan(polygon, options))
     # a gripper may say what distinct means for its plans (the jaw: boxes up to the
     # part's symmetries); regions of contact otherwise
@@ -282,13 +308,30 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     top, ask = options.top, options.top
     kept = suppress(polygon, plans, fraction)
     cap = getattr(gripper, "distinct_depth", DISTINCT_DEPTH) * (top or 0)
-    while top is not None and ask is not None and len(kept) < top and len(plans) == ask \
-            and ask < cap:
+    stopped = None
+    while top is not None and ask is not None and len(kept) < top and len(plans) == ask:
+        if ask >= cap:
+            stopped = "depth"
+            break
+        if exhausted():
+            stopped = "time_limit"
+            break
         need = max(2 * ask, -(-2 * ask * top // max(len(kept), 1)))   # 2 ask top / kept
         ask = cap if 2 * need >= cap else need     # half the depth: the whole of it
-        plans = list(gripper.plan(polygon, replace(options, top=ask)))
-        kept = suppress(polygon, plans, fraction)
-    return kept[:top] if top is not None else kept
+        try:
+            more = list(gripper.plan(polygon, replace(options, top=ask)))
+        except BudgetExhausted:
+            stopped = "time_limit"
+            break
+        plans, kept = more, suppress(polygon, more, fraction)
+    kept = kept[:top] if top is not None else kept
+    if stopped is None:
+        return PlanList(kept)
+    last = plans[-1] if plans else None
+    # point fingers ranked by the smallest region: every plan not read is below the last
+    if options.rank_by == "min_region" and isinstance(last, GraspPlan):
+        return incomplete(kept, stopped, float(last.min_length))
+    return incomplete(kept, stopped, None)
 
 
 def _short_form_unused(gripper: Any, **given: tuple[Any, Any]) -> None:

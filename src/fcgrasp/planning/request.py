@@ -19,6 +19,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
 from ..core._checks import check_margin
+from ..core.budget import DEFAULT_TIME_LIMIT
 from ..errors import RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
 from ..io.outputs import check_outputs
@@ -31,7 +32,7 @@ from ..model.regions import DEFAULT_MARGIN_DEG
 from .planner import default_distinct, friction_curve, plan
 
 __all__ = ["PlanRequest", "PlanDocument", "plan_document", "template_request",
-           "PLAN_OPTIONS", "READING_OPTIONS", "LOAD_OPTIONS"]
+           "PLAN_OPTIONS", "READING_OPTIONS", "LOAD_OPTIONS", "SEARCH_OPTIONS"]
 
 #: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
 READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
@@ -40,6 +41,9 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
                 "max_memory", "distinct")
+#: The options of a request that bound the search: ``time_limit`` in seconds (None: the
+#: default, :data:`fcgrasp.core.budget.DEFAULT_TIME_LIMIT`; 0: no limit).
+SEARCH_OPTIONS = ("time_limit",)
 #: The options of a request that give a load to carry (:class:`fcgrasp.Load`: each plan
 #: then reports the scale of it its regions carry, :func:`fcgrasp.region_payload`) and a
 #: placement error (each plan's probability of holding,
@@ -79,7 +83,7 @@ _KINDS: dict[str, Any] = {
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
     "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
     "force_limit": "float", "total_force": "float", "stiffness": "float",
-    "grip_force": "float",
+    "grip_force": "float", "time_limit": "float",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "bound": "bool", "soft": "bool",
@@ -146,6 +150,7 @@ class PlanRequest:
     workspace: tuple[float, float, float] | None = None
     finger_radius: float = 0.0
     max_memory: int | None = None
+    time_limit: float | None = None
     distinct: float | None = None
     mass: float | None = None
     com: tuple[float, float] | None = None
@@ -268,6 +273,9 @@ class PlanRequest:
         if self.accel_shape not in ACCEL_SHAPES:
             raise _fail("accel_shape", f"--accel-shape is {' or '.join(ACCEL_SHAPES)}, got "
                                        f"{self.accel_shape!r}")
+        if self.time_limit is not None and not self.time_limit >= 0:
+            raise _fail("time_limit", f"--time-limit is a number of seconds >= 0 (0: no "
+                                      f"limit), got {self.time_limit:g}")
         if self.max_memory is not None and self.max_memory < 1:
             raise _fail("max_memory", f"--max-memory must be a positive size, got "
                                       f"{self.max_memory}")
@@ -348,6 +356,16 @@ class PlanRequest:
         0.3
         """
         return default_distinct(self._gripper) if self.distinct is None else self.distinct
+
+    def search_time_limit(self) -> float | None:
+        """The time budget of the search in seconds (None: no limit).
+
+        >>> PlanRequest().search_time_limit(), PlanRequest(time_limit=0).search_time_limit()
+        (10.0, None)
+        """
+        if self.time_limit is None:
+            return DEFAULT_TIME_LIMIT
+        return None if self.time_limit == 0 else self.time_limit
 
     def plan_options(self) -> dict[str, Any]:
         """The planning options (:data:`PLAN_OPTIONS`), as given."""
@@ -486,7 +504,8 @@ def plan_document(request: PlanRequest, part: Any = None,
                  max_memory=options.max_memory, progress=progress, map=map,
                  distinct=request.distinct_fraction(), load=load,
                  force_limit=None if load is None else request.force_limit,
-                 total_force=None if load is None else request.total_force)
+                 total_force=None if load is None else request.total_force,
+                 time_limit=request.search_time_limit())
     params = gripper.parameters(options)
     if request.distinct_fraction():
         params["distinct"] = request.distinct_fraction()

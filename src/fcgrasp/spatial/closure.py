@@ -235,19 +235,19 @@ def spatial_force_closure(points: Any, normals: Any, mu: Any = 0.0, torsion: Any
     p, n, m, tor = check_spatial_contacts(points, normals, mu, torsion)
     batch = p.shape[:-2]
     k = p.shape[-2]
-    if k == 2:
-        soft = np.all(tor > 0, axis=-1)
-        same = np.all(m == m[..., :1], axis=-1)
-        out = np.zeros(batch, dtype=bool)
-        fast = soft & same
-        if np.any(fast):
-            out[fast] = two_soft_closure(p[fast], n[fast], m[fast][..., 0])
-        rest = soft & ~same
-        for idx in zip(*np.nonzero(rest), strict=True):
-            out[idx] = closure_margin(p[idx], n[idx], m[idx], tor[idx]).closure
-        return out
+    # a flat batch (one grasp of shape (k, 3) is a batch of one)
     flat_p, flat_n = p.reshape(-1, k, 3), n.reshape(-1, k, 3)
     flat_m, flat_t = m.reshape(-1, k), tor.reshape(-1, k)
+    if k == 2:
+        soft = np.all(flat_t > 0, axis=-1)
+        same = np.all(flat_m == flat_m[:, :1], axis=-1)
+        out = np.zeros(flat_p.shape[0], dtype=bool)
+        fast = soft & same
+        if np.any(fast):
+            out[fast] = two_soft_closure(flat_p[fast], flat_n[fast], flat_m[fast][:, 0])
+        for i in np.flatnonzero(soft & ~same):
+            out[i] = closure_margin(flat_p[i], flat_n[i], flat_m[i], flat_t[i]).closure
+        return out.reshape(batch)
     out = np.array([closure_margin(flat_p[i], flat_n[i], flat_m[i], flat_t[i]).closure
                     for i in range(flat_p.shape[0])], dtype=bool)
     return out.reshape(batch)

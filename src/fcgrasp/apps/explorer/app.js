@@ -684,6 +684,7 @@ function accept(ans) {
     list.appendChild(li);
   });
   $("optimum").textContent = optimumText(ans.report);
+  $("incomplete").textContent = incompleteText(ans.report);
   if (S.solid && !S.solid.aimed && S.plans.length) {
     S.solid.aimed = true;                  // the first plans of a solid: face the best
     Solid3D.aim(S.plans[0]);
@@ -702,6 +703,21 @@ function optimumText(report) {
   return `optimum: no regions of ${report.parameters.fingers} fingers each ` +
     `${g4(b.upper_bound)} ${report.units} long or more hold (proved over ${b.nodes} boxes ` +
     `of positions); the best plan's ${g4(best)} is within ${(100 * b.gap).toFixed(1)} % of that`;
+}
+
+// a search stopped early (the report's "gap"), as fcgrasp plan prints it
+function incompleteText(report) {
+  const g = report.gap;
+  if (report.complete !== false || !g) return "";
+  const why = {time_limit: "at its time limit (--time-limit)",
+               max_memory: "at its memory budget (--max-memory)",
+               depth: "at the most plans a distinct search reads"}[g.stopped_by] || "early";
+  const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
+  const rest = g.bound === null ? "no bound on the rest was proved"
+    : `every further distinct alternative has a smallest region of at most ${g4(g.bound)} ` +
+      `${report.units}`;
+  return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans proved, ` +
+    `exact; ${rest}`;
 }
 
 function select(k) {

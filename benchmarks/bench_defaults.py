@@ -1,0 +1,146 @@
+"""The default plan over the grid users meet: each run in a fresh process exactly as the
+command line runs it (``fcgrasp plan FILE ... --json OUT``, nothing but the gripper's
+options given), timed in CPU seconds and peak memory of that process, beside two
+baselines measured in the same invocation:
+
+* **complete**: the same command with ``--time-limit 0`` (no budget: the distinct search
+  run to its end, as every run was before the budget), stopped by this script after
+  ``--cap`` seconds of wall-clock time (the cell then reads ``>CAP``);
+* **ranked**: ``--distinct 0`` (the ranked list, no distinct alternatives).
+
+The default's column says how many plans it proved and whether its answer is complete;
+``time_limit`` and ``max_memory`` stops print their bound.
+
+    python benchmarks/bench_defaults.py [--sizes 1000,10000] [--mu 0.2,0.3,0.5,1.0]
+                                        [--grippers 2f,3f,4f,jaw] [--shapes smooth,noisy]
+                                        [--files dxf/forms.dxf,gears/teeth-32.dxf]
+                                        [--cap 120] [--no-baselines]
+
+The outlines: ``smooth`` an ellipse with a third harmonic (120 x 70 mm), ``noisy`` a
+five-lobed star with 0.5 % radial noise (100 mm across), each with the given number of
+equal-angle edges; ``--files`` adds corpus files (``benchmarks/corpus``), read as the
+command line reads them.  Prints a Markdown table.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+FCGRASP = Path(sys.executable).with_name("fcgrasp")
+
+GRIPPERS = {
+    "2f": [],
+    "3f": ["--fingers", "3"],
+    "4f": ["--fingers", "4"],
+    "jaw": ["--gripper", "jaw", "--stroke", "5,130", "--pad", "8"],
+}
+
+
+def outline(shape: str, n: int) -> dict[str, list[list[float]]]:
+    import numpy as np
+
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    if shape == "smooth":
+        r = 1 + 0.1 * np.cos(3 * a)
+        xy = np.c_[60 * r * np.cos(a), 35 * r * np.sin(a)]
+    else:
+        rng = np.random.default_rng(0)
+        r = 50 * (1 + 0.3 * np.sin(5 * a)) * (1 + 0.005 * rng.standard_normal(n))
+        xy = np.c_[r * np.cos(a), r * np.sin(a)]
+    return {"vertices": xy.tolist()}
+
+
+def run(argv: list[str], cap: float | None) -> dict[str, object]:
+    """One command in a fresh process: its CPU seconds and peak memory (its own, from
+    ``wait4``), and what its JSON report says; None fields where it was stopped."""
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "plan.json")
+        proc = subprocess.Popen([str(FCGRASP), *argv, "--json", out, "--quiet"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        start = time.monotonic()
+        while True:
+            pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
+            if pid:
+                break
+            if cap is not None and time.monotonic() - start > cap:
+                proc.kill()
+                proc.wait()
+                return {"cpu": None, "mb": None, "capped": True}
+            time.sleep(0.01)
+        err = proc.stderr.read().decode() if proc.stderr else ""
+        proc.stderr and proc.stderr.close()
+        if os.waitstatus_to_exitcode(status) != 0:
+            return {"cpu": None, "mb": None, "error": err.strip().splitlines()[-1:]}
+        report = json.loads(Path(out).read_text())
+    return {"cpu": usage.ru_utime + usage.ru_stime, "mb": usage.ru_maxrss / 1024,
+            "plans": len(report["grasps"]), "complete": report.get("complete", True),
+            "gap": report.get("gap")}
+
+
+def cell(r: dict[str, object], cap: float | None) -> str:
+    if r.get("capped"):
+        return f">{cap:g} s"
+    if r.get("error"):
+        return f"error: {r['error']}"
+    return f"{r['cpu']:.2f} s, {r['mb']:.0f} MB"
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--sizes", default="1000,10000")
+    ap.add_argument("--mu", default="0.2,0.3,0.5,1.0")
+    ap.add_argument("--grippers", default="2f,3f,4f,jaw")
+    ap.add_argument("--shapes", default="smooth,noisy")
+    ap.add_argument("--files", default="")
+    ap.add_argument("--cap", type=float, default=120.0)
+    ap.add_argument("--no-baselines", action="store_true")
+    args = ap.parse_args()
+    # numba's cache compiled once, so that no row pays for it
+    subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
+                   check=True)
+    parts: list[tuple[str, str]] = []
+    with tempfile.TemporaryDirectory() as tmp:
+        for shape in filter(None, args.shapes.split(",")):
+            for n in map(int, filter(None, args.sizes.split(","))):
+                path = os.path.join(tmp, f"{shape}-{n}.json")
+                Path(path).write_text(json.dumps(outline(shape, n)))
+                parts.append((f"{shape} {n:,}", path))
+        for f in filter(None, args.files.split(",")):
+            parts.append((f, str(HERE / "corpus" / f)))
+        print("| part | gripper | mu | default (CPU, peak) | plans | complete | "
+              "complete search | ratio | ranked | ratio |")
+        print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+        for label, path in parts:
+            for g in filter(None, args.grippers.split(",")):
+                for mu in filter(None, args.mu.split(",")):
+                    if g == "4f" and mu != args.mu.split(",")[0]:
+                        continue                # frictionless: one row per part
+                    argv = ["plan", path, *GRIPPERS[g]]
+                    if g != "4f":
+                        argv += ["--mu", mu]
+                    d = run(argv, None)
+                    done = "yes" if d.get("complete") else \
+                        f"no: {d['gap']['stopped_by']}, bound {d['gap']['bound']}" \
+                        if d.get("gap") else "-"
+                    row = [label, g, "-" if g == "4f" else mu, cell(d, None),
+                           str(d.get("plans", "-")), done]
+                    if not args.no_baselines:
+                        for extra in (["--time-limit", "0"], ["--distinct", "0"]):
+                            b = run(argv + extra, args.cap)
+                            ratio = "-" if b.get("cpu") is None or d.get("cpu") is None \
+                                else f"{d['cpu'] / max(b['cpu'], 1e-9):.2f}"
+                            row += [cell(b, args.cap), ratio]
+                    print("| " + " | ".join(row) + " |", flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,127 @@
+"""Time budgets of a search: a deadline the search reads where it can stop with an
+honest partial answer.
+
+A planner that runs under :func:`deadline` checks it (:func:`check`) between units of
+work whose results it can keep: a round of the distinct search, a chunk of
+configurations.  When the deadline has passed, :class:`BudgetExhausted` unwinds to the
+level that knows what its finished rounds prove, which returns them with a bound on
+what a complete search could still find (:class:`fcgrasp.model.plans.PlanList`), as a
+MIP solver returns its incumbent with its gap.
+
+The deadline is a context variable: a plan made in a thread (the explorer, a batch)
+has its own, and nested deadlines keep the earlier one.
+
+>>> with deadline(None):
+...     check()                     # no budget: never stops
+>>> with deadline(0.0):
+...     exhausted()
+True
+>>> with deadline(None, checks=1):
+...     exhausted(), exhausted()
+(False, True)
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
+from contextvars import ContextVar
+
+__all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
+           "remaining", "check_time_limit"]
+
+#: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
+#: of wall-clock time, for interactive use: the search's first answer is always
+#: complete, and the rounds that look for further distinct alternatives stop at it.
+DEFAULT_TIME_LIMIT = 10.0
+
+class _Budget:
+    """One :func:`deadline`: when it ends (monotonic seconds, None: never), how many
+    more checks it allows (None: any), and the deadline around it."""
+
+    __slots__ = ("at", "checks", "outer")
+
+    def __init__(self, at: float | None, checks: int | None, outer: _Budget | None) -> None:
+        self.at, self.checks, self.outer = at, checks, outer
+
+    def ended(self, count: bool) -> bool:
+        """Whether this budget or one around it has ended (``count``: a check spends one
+        of each one's checks)."""
+        b: _Budget | None = self
+        over = False
+        now = None
+        while b is not None:
+            if b.at is not None:
+                now = time.monotonic() if now is None else now
+                over = over or now >= b.at
+            if b.checks is not None:
+                over = over or b.checks <= 0
+                if count and b.checks > 0:
+                    b.checks -= 1
+            b = b.outer
+        return over
+
+
+_CURRENT: ContextVar[_Budget | None] = ContextVar("fcgrasp_budget", default=None)
+
+
+class BudgetExhausted(Exception):
+    """The search's budget ended: raised by :func:`check`, caught by the search that
+    keeps what its finished rounds prove (never seen by a user).  Its message says
+    which budget (``"time_limit"`` or ``"max_memory"``; empty: the time limit)."""
+
+
+def check_time_limit(value: object, name: str = "time_limit") -> float | None:
+    """A time limit in seconds: a positive number, or None (no limit).
+
+    >>> check_time_limit(2), check_time_limit(None)
+    (2.0, None)
+    """
+    if value is None:
+        return None
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise TypeError(f"{name} must be a number of seconds or None, got {value!r}")
+    v = float(value)
+    if not v > 0 or math.isnan(v):
+        raise ValueError(f"{name} must be a positive number of seconds, got {value!r}")
+    return v
+
+
+@contextmanager
+def deadline(seconds: float | None, checks: int | None = None) -> Iterator[None]:
+    """Run the block under a budget of ``seconds`` of wall-clock time from now (None: no
+    time limit of its own) and of ``checks`` budget checks (None: any; a count makes a
+    partial answer reproducible, whatever the machine's speed, as the tests need).  An
+    enclosing deadline still holds: the first to end ends both."""
+    at = None if seconds is None else time.monotonic() + seconds
+    token = _CURRENT.set(_Budget(at, checks, _CURRENT.get()))
+    try:
+        yield
+    finally:
+        _CURRENT.reset(token)
+
+
+def remaining() -> float:
+    """Seconds left of the current time budget (infinity without one)."""
+    b, left = _CURRENT.get(), math.inf
+    now = time.monotonic()
+    while b is not None:
+        if b.at is not None:
+            left = min(left, b.at - now)
+        b = b.outer
+    return left
+
+
+def exhausted() -> bool:
+    """Whether the current budget has ended (a budget check: it spends one check)."""
+    b = _CURRENT.get()
+    return b is not None and b.ended(count=True)
+
+
+def check() -> None:
+    """Raise :class:`BudgetExhausted` once the current budget has ended (a budget
+    check)."""
+    if exhausted():
+        raise BudgetExhausted("time_limit")

@@ -1,0 +1,210 @@
+"""Budgets of the search (``time_limit``, ``max_memory``): a search stopped early returns
+an exact prefix of the complete answer and a bound on the rest that the complete search
+never beats.
+
+The stops are made reproducible by a budget of checks
+(:func:`fcgrasp.core.budget.deadline` with ``checks``): every count of checks from 0 up
+to the complete search is tried, so each way a search can stop (between rounds, inside
+one, at the depth) is met on every case, whatever the machine's speed.
+"""
+
+from __future__ import annotations
+
+import io
+import json
+from contextlib import redirect_stdout
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.apps.cli import main
+from fcgrasp.core.budget import BudgetExhausted, check, check_time_limit, deadline, exhausted
+from fcgrasp.io.report import migrate_report
+from fcgrasp.model.plans import PlanList
+
+
+def _wavy(rng, n=None):
+    """A seeded smooth outline with lobes and a little noise: a grasp on it has shifted
+    copies, so the distinct search reads in rounds."""
+    n = int(rng.integers(50, 150)) if n is None else n
+    th = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    lobes, amp = int(rng.integers(2, 5)), rng.uniform(0.05, 0.25)
+    r = 1 + amp * np.cos(lobes * th + rng.uniform(0, 6)) + 0.01 * rng.standard_normal(n)
+    a, b = rng.uniform(20, 60), rng.uniform(15, 40)
+    return fc.Polygon(np.c_[a * r * np.cos(th), b * r * np.sin(th)])
+
+
+def _same(p, q):
+    """Two plans are the same grasp: the edges their regions cover, the mode, the
+    lengths (to a relative 1e-9)."""
+    return p.region_edges == q.region_edges and p.mode == q.mode and \
+        np.allclose(p.lengths, q.lengths, rtol=1e-9, atol=0)
+
+
+def _check_partial(full, part):
+    """``part`` is an exact prefix of ``full`` and its bound is above every plan of
+    ``full`` after it."""
+    assert isinstance(part, PlanList)
+    if part.complete:
+        assert len(part) == len(full) and all(map(_same, full, part))
+        return
+    assert part.stopped in ("time_limit", "max_memory", "depth")
+    assert len(part) <= len(full)
+    assert all(map(_same, full, part))
+    rest = [p.min_length for p in full[len(part):]]
+    if part.bound is not None and rest:
+        assert max(rest) <= part.bound * (1 + 1e-9)
+
+
+def _every_stop(plan_it, full, most=400):
+    """Plan under budgets of 0, 1, 2 ... checks until one completes; each answer
+    checked against ``full``.  The number of distinct partial answers seen."""
+    seen = set()
+    for checks in range(most):
+        with deadline(None, checks=checks):
+            part = plan_it()
+        _check_partial(full, part)
+        seen.add((len(part), part.complete))
+        if part.complete:
+            return seen
+    raise AssertionError(f"not complete after {most} checks")
+
+
+def test_deadline_nests_and_counts():
+    with deadline(None):
+        check()
+        assert not exhausted()
+    with deadline(None, checks=2):
+        assert not exhausted() and not exhausted() and exhausted()
+        with deadline(100.0):               # the outer budget still holds
+            assert exhausted()
+            with pytest.raises(BudgetExhausted):
+                check()
+    with deadline(0.0):
+        assert exhausted()
+    with deadline(3600.0, checks=None), deadline(None, checks=1):
+        assert not exhausted() and exhausted()
+
+
+@pytest.mark.parametrize("bad", [0, -1.0, float("nan")])
+def test_time_limit_refused(bad):
+    with pytest.raises(ValueError, match="time_limit"):
+        check_time_limit(bad)
+    with pytest.raises(ValueError, match="time_limit"):
+        fc.plan(fc.read_part("demo:blob"), mu=0.3, time_limit=bad)
+
+
+def test_time_limit_type_refused():
+    with pytest.raises(TypeError, match="time_limit"):
+        fc.plan(fc.read_part("demo:blob"), mu=0.3, time_limit="10")
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_two_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed):
+    rng = np.random.default_rng(seed)
+    poly = _wavy(rng)
+    mu = float(rng.choice([0.3, 0.5, 0.8]))
+    top = int(rng.integers(3, 7))
+
+    def plan_it():
+        return fc.plan(poly, fingers=2, mu=mu, top=top, time_limit=None)
+
+    full = plan_it()
+    assert full.complete and full.bound is None
+    seen = _every_stop(plan_it, full)
+    assert (len(full), True) in seen
+    assert any(not complete for _, complete in seen)
+
+
+def test_two_fingers_stop_at_the_time_limit_by_the_clock():
+    """A real clock: a budget far below one distinct round of a 600-edge outline at mu
+    1.0 stops after the ranked search, whose best plan is proved."""
+    rng = np.random.default_rng(7)
+    poly = _wavy(rng, 600)
+    part = fc.plan(poly, fingers=2, mu=1.0, top=10, time_limit=1e-6)
+    assert not part.complete and part.stopped == "time_limit" and len(part) >= 1
+    best = fc.plan(poly, fingers=2, mu=1.0, top=1, distinct=0)[0]
+    assert _same(part[0], best)
+    assert part.bound is not None and part.bound <= best.min_length * (1 + 1e-9)
+
+
+def test_two_fingers_memory_budget_stops_the_rounds(monkeypatch):
+    """The smallest memory budget (16 MiB) and configurations counted as 1 MB each: the
+    first distinct round's collection does not fit."""
+    from fcgrasp.model import stretches
+
+    rng = np.random.default_rng(3)
+    poly = _wavy(rng, 120)
+    full = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None)
+    monkeypatch.setattr(stretches, "CONFIG_BYTES", 2 ** 20)
+    part = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None, max_memory=2 ** 24)
+    _check_partial(full, part)
+    assert not part.complete and part.stopped == "max_memory"
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed):
+    rng = np.random.default_rng(100 + seed)
+    poly = _wavy(rng, int(rng.integers(40, 80)))
+    mu = float(rng.choice([0.5, 0.8]))
+
+    def plan_it():
+        return fc.plan(poly, fingers=3, mu=mu, top=4, time_limit=None)
+
+    full = plan_it()
+    assert full.complete
+    _every_stop(plan_it, full)
+
+
+@pytest.mark.parametrize("fingers", [4, 3])
+def test_rounds_of_the_ranked_list_stopped_early(fingers):
+    """Grippers whose distinct plans come from suppressing ever longer ranked lists:
+    stopped between two lists, the plans kept are the complete answer's first."""
+    poly = fc.read_part("demo:cam")
+    kw = dict(fingers=fingers, top=6, time_limit=None)
+    if fingers == 3:
+        kw["gravity"] = (0, -1)
+
+    def plan_it():
+        return fc.plan(poly, **kw)
+
+    full = plan_it()
+    _every_stop(plan_it, full, most=50)
+
+
+def test_the_report_says_incomplete_and_the_cli_prints_it(tmp_path):
+    rng = np.random.default_rng(11)
+    poly = _wavy(rng, 120)
+    src = tmp_path / "wavy.json"
+    src.write_text(json.dumps({"vertices": poly.vertices.tolist()}))
+    out = tmp_path / "plan.json"
+    text = io.StringIO()
+    with deadline(None, checks=0), redirect_stdout(text):
+        assert main(["plan", str(src), "--mu", "0.5", "--top", "5", "--json", str(out)]) == 0
+    report = json.loads(out.read_text())
+    assert report["complete"] is False
+    assert report["gap"]["stopped_by"] == "time_limit"
+    assert report["gap"]["found"] == len(report["grasps"]) < 5
+    assert report["gap"]["bound"] <= report["grasps"][-1]["min_region_length"] * (1 + 1e-9)
+    assert "search stopped at its time limit" in text.getvalue()
+    # complete: said in the report, no gap, no line
+    text = io.StringIO()
+    with redirect_stdout(text):
+        assert main(["plan", str(src), "--mu", "0.5", "--top", "5", "--json", str(out),
+                     "--time-limit", "0"]) == 0
+    report = json.loads(out.read_text())
+    assert report["complete"] is True and "gap" not in report
+    assert "search stopped" not in text.getvalue()
+
+
+@pytest.mark.parametrize("bad", ["-1", "soon", "inf", "nan"])
+def test_cli_refuses_a_bad_time_limit(bad, capsys):
+    assert main(["plan", "demo:blob", "--time-limit", bad]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--time-limit" in err[0]
+
+
+def test_a_report_without_complete_is_read_as_complete():
+    old = {"format_version": 2, "grasps": []}
+    assert migrate_report(old)["complete"] is True
