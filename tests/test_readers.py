@@ -121,6 +121,27 @@ def test_dxf_gap_tolerance(tmp_path):
     assert read_part(f, gap=0.02).area == pytest.approx(100.0, rel=1e-3)
 
 
+@pytest.mark.parametrize("closed", [False, True])
+def test_dxf_polylines_closing_a_hair_off_are_holes(tmp_path, closed):
+    """A disc with four hexagonal holes, each drawn as a polyline whose last vertex
+    repeats its first 1e-6 off (flagged closed or not): four holes of a hexagon's area,
+    no sliver ring; without any other open entity the reader has no edges to chain."""
+    doc, msp = dxf_doc()
+    msp.add_circle((0, 0), 11)
+    a = np.linspace(0, 2 * np.pi, 7)[:-1]
+    for cx, cy in [(5, 0), (-5, 0), (0, 5), (0, -5)]:
+        pts = [(cx + 2 * math.cos(t), cy + 2 * math.sin(t)) for t in a]
+        msp.add_lwpolyline(pts + [(cx + 2 + 1e-6, cy)], close=closed)
+    f = tmp_path / "bottle.dxf"
+    doc.saveas(f)
+    parts = list_parts(f)
+    assert len(parts) == 1
+    poly = parts[0].polygon
+    assert len(poly.holes) == 4
+    hexagon = 1.5 * math.sqrt(3) * 2 ** 2
+    assert poly.area == pytest.approx(math.pi * 11 ** 2 - 4 * hexagon, rel=1e-3)
+
+
 # ----------------------------------------------------------------------------- SVG
 
 

@@ -43,7 +43,7 @@ def _seconds(text: str) -> float:
     return value
 
 
-def _memory(text: str) -> int:
+def _memory(text: str, name: str = "--max-memory") -> int:
     """A memory size: bytes, or a number with K, M, G or T (powers of 1024)."""
     t = text.strip().lower().replace("i", "")
     num = t.rstrip("kmgtb")
@@ -53,7 +53,7 @@ def _memory(text: str) -> int:
     except ValueError:
         value = float("nan")
     if unit not in _SIZES or not value > 0 or value == float("inf"):
-        raise CliError(f"--max-memory must be a size such as 500M or 2G, got {text!r}")
+        raise CliError(f"{name} must be a size such as 500M or 2G, got {text!r}")
     return int(value * _SIZES[unit])
 
 
@@ -99,7 +99,10 @@ def _reading(args: Any) -> dict[str, Any]:
     return {"units": args.units, "file_units": args.file_units, "flatten": args.flatten,
             "layer": args.layer, "gap": args.gap, "pixel_size": args.pixel_size,
             "threshold": args.threshold, "y_down": args.y_down, "clean": not args.no_clean,
-            "simplify": args.simplify}
+            "simplify": args.simplify,
+            "max_bytes": None if args.max_bytes is None else _memory(args.max_bytes,
+                                                                     "--max-bytes"),
+            "max_elements": args.max_elements, "max_vertices": args.max_vertices}
 
 
 def _load(args: Any, say: Any = "stderr") -> Any:

@@ -14,6 +14,7 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -66,6 +67,8 @@ def plan_options(args: Any) -> dict[str, Any]:
             options[key] = _floats(options[key], n, "--" + key)
     if options["max_memory"] is not None:
         options["max_memory"] = _memory(options["max_memory"])
+    if options["max_bytes"] is not None:
+        options["max_bytes"] = _memory(options["max_bytes"], "--max-bytes")
     if options["time_limit"] is not None:
         options["time_limit"] = _seconds(options["time_limit"])
     return options
@@ -370,10 +373,15 @@ def cmd_parts(args: Any) -> int:
 def _solid_parts(args: Any) -> int:
     """``fcgrasp parts part.stl``: the mesh's connected bodies (the default: the largest
     watertight one)."""
+    from ..io.limits import DEFAULT_LIMITS, Limits
     from ..io.meshes import read_bodies
     from ..io.report import dumps
 
-    bodies, units, note = read_bodies(args.part, args.units, args.file_units)
+    reading = _reading(args)
+    bodies, units, note = read_bodies(args.part, args.units, args.file_units,
+                                      Limits(*(reading[k] or getattr(DEFAULT_LIMITS, k)
+                                               for k in ("max_bytes", "max_elements",
+                                                         "max_vertices"))))
     default = next((b.index for b in bodies if b.watertight), 0)
     if args.json:
         doc = {"source": args.part, "units": units, "units_note": note, "default": default,
@@ -579,6 +587,15 @@ def build_parser() -> argparse.ArgumentParser:
                        help="simplify the outline to within TOL (in --units), topology kept")
         g.add_argument("--no-clean", action="store_true",
                        help="keep collinear runs and sub-tolerance edges as drawn")
+        g.add_argument("--max-bytes", default=None, metavar="SIZE",
+                       help="the largest file read, such as 64M or 1G (default 256M)")
+        g.add_argument("--max-elements", type=int, default=None, metavar="N",
+                       help="the most elements a drawing may hold once its references are "
+                            "expanded (SVG <use>, DXF blocks), and the most parts (default "
+                            "20000)")
+        g.add_argument("--max-vertices", type=int, default=None, metavar="N",
+                       help="the most vertices of a drawing's outlines after flattening, "
+                            "and of a mesh's triangles (default 500000)")
         if json_help is None:
             return
         p.add_argument("--json", metavar="OUT.json", help=json_help)
@@ -795,7 +812,11 @@ def main(argv: list[str] | None = None) -> int:
         parser.print_help()
         return EXIT_USAGE
     try:
-        return int(args.func(args))
+        # a reader's or numpy's runtime warnings on a broken input are not the one line
+        # the user reads (its failure is); a command that succeeds has none to say
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            return int(args.func(args))
     except (CliError, ValueError, TypeError) as exc:
         msg = " ".join(str(exc).split())
         print(f"fcgrasp: error: {msg}", file=sys.stderr)

@@ -16,6 +16,7 @@ from ..core._geom import signed_area
 from ..core.tolerances import GAP_REL, TINY
 from ..model.outline import fill_rings
 from ._drawing import CurvePoints, Drawing, Shape, TolOf, flatten_curve
+from .limits import DEFAULT_LIMITS, Limits
 
 #: $INSUNITS codes and their unit names (0, unitless, says nothing).
 INSUNITS = {1: "in", 2: "ft", 3: "mi", 4: "mm", 5: "cm", 6: "m", 7: "km", 8: "uin",
@@ -36,6 +37,34 @@ def _expand(entities: Any, depth: int = 0) -> Any:
                 yield v
         else:
             yield e
+
+
+def _expanded_count(entities: Any, doc: Any, limit: int,
+                    memo: dict[str, int] | None = None, depth: int = 0) -> int:
+    """How many entities :func:`_expand` would give, counted without expanding: each
+    block's count once, times its INSERTs (and a MINSERT's rows and columns); the count
+    stops once it passes ``limit``.  A block that inserts itself (directly or through
+    others) is refused, a ValueError, as CAD programs refuse it."""
+    memo = {} if memo is None else memo
+    n = 0
+    for e in entities:
+        if e.dxftype() == "INSERT" and depth < 32:
+            name = str(e.dxf.get("name", ""))
+            if memo.get(name, 0) < 0:
+                raise ValueError(f"block {name!r} inserts itself")
+            if name not in memo:
+                memo[name] = -1                     # being counted
+                block = doc.blocks.get(name)
+                memo[name] = 0 if block is None else \
+                    _expanded_count(block, doc, limit, memo, depth + 1)
+            copies = max(1, int(e.dxf.get("row_count", 1) or 1)) * \
+                max(1, int(e.dxf.get("column_count", 1) or 1))
+            n += copies * memo[name]
+        else:
+            n += 1
+        if n > limit:
+            break
+    return n
 
 
 def _canonical(ring: np.ndarray) -> np.ndarray:
@@ -96,7 +125,8 @@ def _extents(entities: list[Any]) -> float:
 
 
 def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
-             gap_of: Callable[[str | None], float | None] | None = None) -> Drawing:
+             gap_of: Callable[[str | None], float | None] | None = None,
+             limits: Limits = DEFAULT_LIMITS) -> Drawing:
     """Loops of a DXF's modelspace (or of ``layer``): closed LWPOLYLINE, POLYLINE, CIRCLE,
     ELLIPSE and SPLINE entities, and chains of LINE, ARC, ELLIPSE, SPLINE and open
     polylines joined end to end (ezdxf's edgesmith and edgeminer) within ``gap_of(units)``
@@ -104,7 +134,8 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
     paths of Bezier curves) is flattened by one rule, the SVG reader's: at most the
     tolerance between curve and chord and at most
     :data:`~fcgrasp.io._drawing.MAX_TURN_DEG` of turn per edge; loops are nested into parts
-    and holes by the even-odd rule."""
+    and holes by the even-odd rule.  Block references are counted before they are
+    expanded: more than ``limits.max_elements`` entities in all is refused."""
     try:
         from ezdxf import edgeminer as em
         from ezdxf import edgesmith as es
@@ -120,6 +151,8 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
     units = INSUNITS.get(code)
     note = f"$INSUNITS {code} ({units})" if units else \
         f"$INSUNITS {code} (unitless: taken as the units asked)"
+    limits.elements(_expanded_count(doc.modelspace(), doc, limits.max_elements),
+                    "the DXF's entities with its block references expanded")
     ents = [e for e in _expand(doc.modelspace()) if e.dxftype() in _CURVES]
     layers = sorted({e.dxf.get("layer", "0") for e in ents})
     if layer is not None:
@@ -145,25 +178,34 @@ def read_dxf(data: bytes, tol_of: TolOf, layer: str | None = None,
         first = min(members, key=lambda e: order[id(e)])
         found.append((order[id(first)], _canonical(_flatten_path(p, tol)), first, tol))
 
-    open_ents = []
+    edges = []
+    loose = 0
     for e in ents:
         if es.is_closed_entity(e):
             add(dxfpath.make_path(e), [e])
+            continue
+        edge = es.make_edge_2d(e, gap_tol=gap_tol)
+        if edge is not None:
+            edges.append(edge)
+            continue
+        # not flagged closed, yet its ends meet within the gap (a polyline whose last
+        # vertex repeats its first, a hair off): a loop of its own, as ezdxf sees it
+        p = dxfpath.make_path(e)
+        if len(p) and p.start.isclose(p.end, abs_tol=gap_tol):
+            add(p, [e])
         else:
-            open_ents.append(e)
+            loose += 1
     notes: list[str] = []
-    if open_ents:
-        edges = list(es.edges_from_entities_2d(open_ents, gap_tol=gap_tol))
+    if edges:
         deposit = em.Deposit(edges, gap_tol=gap_tol)
-        loose = 0
         for chain in em.find_all_simple_chains(deposit):
             if em.is_loop(chain, gap_tol=gap_tol):
                 add(es.path2d_from_chain(chain), [edge.payload for edge in chain])
             else:
                 loose += len(chain)
-        if loose:
-            notes.append(f"{loose} entities not in a closed loop (gap tolerance "
-                         f"{gap_tol:.3g}) were left out")
+    if loose:
+        notes.append(f"{loose} entities not in a closed loop (gap tolerance "
+                     f"{gap_tol:.3g}) were left out")
     # loops in file order (of their first entity), each from its lowest vertex, counter-
     # clockwise: the same file gives the same parts and edge numbers on every run
     for _, ring, first, tol in sorted(found, key=lambda f: f[0]):

@@ -9,6 +9,7 @@ import numpy as np
 
 from ..model.outline import fill_rings
 from ._drawing import Drawing, Shape, TolOf
+from .limits import MAX_PIXELS, LimitExceeded
 
 #: Blobs smaller than this fraction of the largest one (or than 9 pixels) are noise.
 MIN_BLOB = 1e-3
@@ -51,6 +52,16 @@ def read_image(data: bytes, tol_of: TolOf, threshold: float | None = None) -> Dr
     except ImportError as exc:  # pragma: no cover - depends on the install
         raise ValueError("reading images needs scikit-image: pip install "
                          "'fcgrasp[image]'") from exc
+    try:
+        from PIL import Image
+
+        with Image.open(io.BytesIO(data)) as probe:      # the header only: no decoding
+            w, h = probe.size
+    except Exception as exc:  # pillow raises several kinds on broken headers
+        raise ValueError(f"not a readable image ({str(exc).splitlines()[0][:120]})") from exc
+    if w * h > MAX_PIXELS:
+        raise LimitExceeded(f"the image's pixels: {w} x {h}, more than {MAX_PIXELS:,} "
+                            f"(a fixed limit)")
     try:
         img: Any = iio.imread(io.BytesIO(data), index=0, plugin="pillow")
     except Exception as exc:  # imageio raises several kinds

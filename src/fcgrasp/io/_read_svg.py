@@ -10,6 +10,7 @@ import shapely
 
 from ..model.outline import fill_rings
 from ._drawing import CurvePoints, Drawing, Shape, TolOf, flatten_curve
+from .limits import DEFAULT_LIMITS, Limits
 
 #: CSS pixels per inch: the unit of SVG user space after its viewBox and width/height.
 PPI = 96.0
@@ -64,11 +65,13 @@ def _rings(path: Any, tol: float, filled: bool) -> list[np.ndarray]:
 
 
 def _walk(group: Any, ancestors: tuple[str, ...]) -> Any:
-    from svgelements import Group
+    """Every shape below ``group`` with the ids of the groups around it; a ``<use>``
+    holds its copy of what it refers to, as a group does."""
+    from svgelements import Group, Use
     from svgelements import Shape as SvgShape
 
     for child in group:
-        if isinstance(child, Group):
+        if isinstance(child, (Group, Use)):
             gid = child.values.get("id")
             yield from _walk(child, ancestors + ((gid,) if gid else ()))
         elif isinstance(child, SvgShape):
@@ -80,15 +83,62 @@ def _visible(value: Any) -> bool:
         getattr(value, "alpha", 255) != 0
 
 
-def read_svg(data: bytes, tol_of: TolOf) -> Drawing:
+def _expanded_count(data: bytes, limit: int) -> int:
+    """How many elements an SVG draws once its ``<use>`` references are expanded,
+    counted on the XML without expanding (each referenced element's count once); the
+    count stops once it passes ``limit``.  A reference to itself or an ancestor is
+    refused (a ValueError), as is XML nested too deep to count."""
+    import xml.etree.ElementTree as ET
+
+    try:
+        root = ET.fromstring(data)
+    except ET.ParseError as exc:
+        raise ValueError(f"not a readable SVG ({exc})") from None
+    ids = {el.get("id"): el for el in root.iter() if el.get("id")}
+    memo: dict[int, int] = {}
+    open_: set[int] = set()
+
+    def size(el: Any) -> int:
+        key = id(el)
+        if key in memo:
+            return memo[key]
+        if key in open_:
+            raise ValueError("not a readable SVG (a <use> refers to itself or an "
+                             "element around it)")
+        open_.add(key)
+        n = 1
+        for child in el:
+            n += size(child)
+            if n > limit:
+                break
+        if el.tag.rsplit("}", 1)[-1] == "use" and n <= limit:
+            href = el.get("href") or el.get("{http://www.w3.org/1999/xlink}href") or ""
+            target = ids.get(href[1:]) if href.startswith("#") else None
+            if target is not None:
+                n += size(target)
+        open_.discard(key)
+        memo[key] = n
+        return n
+
+    try:
+        return size(root)
+    except RecursionError:
+        raise ValueError("not a readable SVG (elements nested too deep)") from None
+
+
+def read_svg(data: bytes, tol_of: TolOf, limits: Limits = DEFAULT_LIMITS) -> Drawing:
     """Shapes of an SVG: paths, polygons, rects, circles, ellipses; transforms applied,
     curves flattened, subpaths filled by the element's ``fill-rule`` (``evenodd`` for
-    outlines drawn without fill), in CSS px (96 per inch) with y down."""
+    outlines drawn without fill), in CSS px (96 per inch) with y down.  The elements
+    are counted with their ``<use>`` copies before anything is expanded: more than
+    ``limits.max_elements`` is refused."""
     try:
         from svgelements import SVG
         from svgelements import Path as SvgPath
     except ImportError as exc:  # pragma: no cover - depends on the install
         raise ValueError("reading SVG needs svgelements: pip install 'fcgrasp[svg]'") from exc
+    limits.elements(_expanded_count(data, limits.max_elements),
+                    "the SVG's elements with its <use> copies")
     try:
         svg = SVG.parse(io.BytesIO(data), reify=True, ppi=PPI)
     except Exception as exc:  # svgelements raises many kinds of errors on bad XML

@@ -9,6 +9,8 @@ checked and cut into facets by :func:`fcgrasp.spatial.solid.solid_from_mesh`.
 
 from __future__ import annotations
 
+import os
+import warnings
 from dataclasses import dataclass, field, replace
 from typing import Any
 
@@ -16,6 +18,7 @@ import numpy as np
 
 from ..core._checks import FloatArray
 from ..spatial.solid import DEMO_SOLIDS, Solid, demo_mesh, demo_solid, solid_from_mesh
+from .limits import Limits
 from .units import FILE_UNITS, UNITS, check_units, conversion
 
 __all__ = ["Body", "read_bodies", "read_solid", "is_solid_source", "MESH_SUFFIXES"]
@@ -65,23 +68,51 @@ def _file_scale(loaded: Any, source: str, units: str, file_units: str | None
     return 1.0, f"no units in the file: coordinates taken as {units}"
 
 
-def read_bodies(source: str, units: str | None = None, file_units: str | None = None
-                ) -> tuple[list[Body], str, str]:
+def _load_mesh(source: str, limits: Limits) -> Any:
+    """trimesh's mesh of a file, its vertices merged by position (an exported OBJ splits
+    them by normal and texture coordinate, which would open every seam), within
+    ``limits`` (the file's bytes, its triangles).  Any failure of the format's reader is
+    a ValueError naming the file."""
+    import trimesh
+
+    try:
+        size = os.path.getsize(source)
+    except OSError as exc:
+        raise ValueError(f"{source}: cannot read ({exc.strerror or exc})") from None
+    limits.bytes(size, f"{source}: the file's bytes")
+    try:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")         # a reader's warnings: the error says
+            with np.errstate(all="ignore"):
+                loaded = trimesh.load(source, force="mesh")
+    except ImportError as exc:
+        raise ValueError(f"{source}: reading this format needs {exc.name or 'a package'}: "
+                         f"pip install 'fcgrasp[solid]'") from None
+    except MemoryError:
+        raise ValueError(f"{source}: not a readable mesh (it asks for more memory than "
+                         f"there is)") from None
+    except Exception as exc:        # trimesh's readers raise many kinds on broken files
+        text = str(exc).splitlines()[0][:120] if str(exc) else type(exc).__name__
+        raise ValueError(f"{source}: not a readable mesh ({text})") from None
+    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
+        raise ValueError(f"{source}: no triangles in the file")
+    limits.vertices(len(loaded.faces), f"{source}: the mesh's triangles")
+    loaded.merge_vertices(merge_tex=True, merge_norm=True)
+    return loaded
+
+
+def read_bodies(source: str, units: str | None = None, file_units: str | None = None,
+                limits: Limits | None = None) -> tuple[list[Body], str, str]:
     """The connected bodies of a mesh file (anything trimesh reads: STL, OBJ, PLY, GLB,
     3MF, OFF), converted to ``units`` (default mm) from the file's own units (GLB, 3MF
     record them; ``file_units`` overrides; none: taken as ``units``), largest volume
-    first; the units and a note on where they came from."""
-    import trimesh
-
+    first; the units and a note on where they came from.  Vertices are merged by
+    position; ``limits`` (:mod:`fcgrasp.io.limits`) bounds the file's bytes and
+    triangles."""
     if not isinstance(source, str):
         raise TypeError(f"source must be a path, got {type(source).__name__}")
     units = check_units("mm" if units is None else units, "units", UNITS)
-    try:
-        loaded = trimesh.load(source, force="mesh")
-    except (OSError, ValueError) as exc:
-        raise ValueError(f"{source}: not a readable mesh ({exc})") from None
-    if not isinstance(loaded, trimesh.Trimesh) or len(loaded.faces) == 0:
-        raise ValueError(f"{source}: no triangles in the file")
+    loaded = _load_mesh(source, Limits.of(limits))
     scale, note = _file_scale(loaded, source, units, file_units)
     if scale != 1.0:
         loaded.apply_scale(scale)
@@ -94,7 +125,8 @@ def read_bodies(source: str, units: str | None = None, file_units: str | None = 
 
 
 def read_solid(source: str, units: str | None = None, repair: bool = False,
-               file_units: str | None = None, select: int | str | None = None) -> Solid:
+               file_units: str | None = None, select: int | str | None = None,
+               limits: Limits | None = None) -> Solid:
     """A solid from a mesh file or ``demo:NAME``: the body ``select`` (an index of
     :func:`read_bodies`; default the largest watertight one) in ``units`` (default mm;
     ``file_units`` as in :func:`read_bodies`), checked and cut into facets."""
@@ -107,7 +139,7 @@ def read_solid(source: str, units: str | None = None, repair: bool = False,
         mesh = demo_mesh(source[5:])
         mesh.apply_scale(conversion("mm", target))
         return solid_from_mesh(mesh, target, source)
-    bodies, target, note = read_bodies(source, units, file_units)
+    bodies, target, note = read_bodies(source, units, file_units, limits)
     if select is None:
         closed = [b for b in bodies if b.watertight] or bodies
         body = closed[0]

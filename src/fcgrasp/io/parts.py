@@ -64,6 +64,7 @@ from .demo import (
     DEMO_PARTS,
     demo_part,
 )
+from .limits import DEFAULT_LIMITS, Limits
 from .units import FILE_UNITS, UNITS, check_units, conversion
 
 __all__ = ["read_part", "load_part", "list_parts", "choose_part", "Part", "read_contacts",
@@ -187,18 +188,24 @@ def sniff_format(name: str, head: bytes) -> str:
                      "image: .png, .gif, .jpg, .bmp, .tif, .webp)")
 
 
-def _read_bytes(spec: str) -> bytes:
+def _read_bytes(spec: str, limits: Limits = DEFAULT_LIMITS) -> bytes:
+    """The bytes of a file or of standard input (``-``), no more than ``limits.max_bytes``
+    read (an endless stream such as ``/dev/zero`` is refused at the limit)."""
     if spec == "-":
-        return sys.stdin.buffer.read()
-    p = Path(spec)
-    if not p.exists():
-        raise ValueError(f"{spec}: no such file")
-    if p.is_dir():
-        raise ValueError(f"{spec}: is a folder, not a part file")
-    try:
-        return p.read_bytes()
-    except OSError as exc:
-        raise ValueError(f"{spec}: cannot read ({exc.strerror or exc})") from None
+        data = sys.stdin.buffer.read(limits.max_bytes + 1)
+    else:
+        p = Path(spec)
+        if not p.exists():
+            raise ValueError(f"{spec}: no such file")
+        if p.is_dir():
+            raise ValueError(f"{spec}: is a folder, not a part file")
+        try:
+            with open(p, "rb") as f:
+                data = f.read(limits.max_bytes + 1)
+        except OSError as exc:
+            raise ValueError(f"{spec}: cannot read ({exc.strerror or exc})") from None
+    limits.bytes(len(data), f"{spec}: the file's bytes")
+    return data
 
 
 def _positive(value: Any, name: str) -> float | None:
@@ -217,11 +224,12 @@ class _Options:
     y_down: bool
     clean: bool
     simplify: float | None
+    limits: Limits = DEFAULT_LIMITS
 
 
 def _options(units: Any, file_units: Any, flatten: Any, layer: Any, gap: Any,
              pixel_size: Any, threshold: Any, y_down: Any, clean: Any,
-             simplify: Any) -> _Options:
+             simplify: Any, limits: Limits = DEFAULT_LIMITS) -> _Options:
     if units is not None:
         check_units(units, "units", UNITS)
     if file_units is not None:
@@ -238,7 +246,7 @@ def _options(units: Any, file_units: Any, flatten: Any, layer: Any, gap: Any,
                     _positive(gap, "gap (--gap)"), _positive(pixel_size,
                                                                "pixel_size (--pixel-size)"),
                     None if threshold is None else float(threshold), bool(y_down),
-                    bool(clean), _positive(simplify, "simplify (--simplify)"))
+                    bool(clean), _positive(simplify, "simplify (--simplify)"), limits)
 
 
 def _scale(fmt: str, file_units: str | None, opt: _Options) -> tuple[str, float]:
@@ -255,6 +263,22 @@ def _scale(fmt: str, file_units: str | None, opt: _Options) -> tuple[str, float]
     if file_units is None or file_units == units:
         return units, 1.0
     return units, conversion(file_units, units)
+
+
+def _pairs_in(value: Any) -> int:
+    """How many coordinate pairs a JSON value can hold: its numbers, halved (counted
+    before any geometry is built)."""
+    count, stack = 0, [value]
+    while stack:
+        v = stack.pop()
+        if isinstance(v, list):
+            if v and not isinstance(v[0], (list, dict)):
+                count += len(v)
+            else:
+                stack.extend(v)
+        elif isinstance(v, dict):
+            stack.extend(v.values())
+    return count // 2
 
 
 def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
@@ -285,13 +309,15 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
         return max(size, TINY) * FLATTEN_DEFAULT
 
     if fmt == "json":
-        return _json_drawing(read_json(data, spec), spec)
+        value = read_json(data, spec)
+        opt.limits.vertices(_pairs_in(value), "the JSON's vertices")
+        return _json_drawing(value, spec)
     if fmt == "wkt":
         return _wkt_drawing(_text(data, spec), spec)
     if fmt == "svg":
         from ._read_svg import read_svg
 
-        return read_svg(data, tol_of)
+        return read_svg(data, tol_of, opt.limits)
     if fmt == "dxf":
         from ._read_dxf import read_dxf
 
@@ -300,12 +326,18 @@ def _drawing(data: bytes, spec: str, fmt: str, opt: _Options) -> Drawing:
                 return None
             return opt.gap / _scale(fmt, opt.file_units or file_units, opt)[1]
 
-        return read_dxf(data, tol_of, opt.layer, gap_of)
+        return read_dxf(data, tol_of, opt.layer, gap_of, opt.limits)
     from ._read_image import read_image
 
     return read_image(data, tol_of, opt.threshold)
 
 
+
+
+def _vertex_count(shape: Shape) -> int:
+    """Vertices of a shape's rings (its exterior and holes)."""
+    geom = shape.polygon          # each ring's last point repeats its first
+    return len(geom.exterior.coords) - 1 + sum(len(r.coords) - 1 for r in geom.interiors)
 
 
 def _part(shape: Shape, k: int, count: int, spec: str, fmt: str, d: Drawing,
@@ -349,7 +381,9 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
                layer: str | None = None, gap: float | None = None,
                pixel_size: float | None = None, threshold: float | None = None,
                y_down: bool = False, clean: bool = True,
-               simplify: float | None = None) -> list[Part]:
+               simplify: float | None = None, max_bytes: int | None = None,
+               max_elements: int | None = None,
+               max_vertices: int | None = None) -> list[Part]:
     """Every part of a file, in file order (see the module docstring for the formats).
 
     Parameters
@@ -382,6 +416,10 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
         Merge collinear runs and drop sub-tolerance edges (default True).
     simplify : float, optional
         Douglas-Peucker tolerance in ``units``, topology preserved.
+    max_bytes, max_elements, max_vertices : int, optional
+        The readers' limits (:mod:`fcgrasp.io.limits`; None: the defaults, 256 MiB,
+        20,000 elements, 500,000 vertices): a file past one is refused with a
+        :class:`~fcgrasp.io.limits.LimitExceeded`, before the work it would cause.
 
     Returns
     -------
@@ -391,8 +429,12 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
     if not isinstance(source, (str, os.PathLike)):
         raise TypeError(f"part must be a path, '-' or 'demo:NAME', got {source!r}")
     spec = os.fspath(source)
+    d0 = DEFAULT_LIMITS
+    limits = Limits(d0.max_bytes if max_bytes is None else max_bytes,
+                    d0.max_elements if max_elements is None else max_elements,
+                    d0.max_vertices if max_vertices is None else max_vertices)
     opt = _options(units, file_units, flatten, layer, gap, pixel_size, threshold, y_down,
-                   clean, simplify)
+                   clean, simplify, limits)
     if spec.startswith("demo:"):
         if any(v is not None for v in (file_units, flatten, layer, gap, pixel_size,
                                        threshold, simplify)) or y_down:
@@ -405,10 +447,14 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
             poly = Polygon(poly.vertices * scale, [h * scale for h in poly.holes])
         return [Part(poly, spec, "demo", units=u, file_units="mm",
                      units_note="built-in parts are in mm", scale=scale)]
-    data = _read_bytes(spec)
+    data = _read_bytes(spec, limits)
     try:
         fmt = sniff_format(spec, data[:512])
-        d = _without_slivers(_drawing(data, spec, fmt, opt))
+        d = _drawing(data, spec, fmt, opt)
+        limits.elements(len(d.shapes), "the file's parts")
+        limits.vertices(sum(_vertex_count(s) for s in d.shapes),
+                        "the vertices of the file's outlines")
+        d = _without_slivers(d)
         return [_part(s, k, len(d.shapes), spec, fmt, d, opt) for k, s in enumerate(d.shapes)]
     except (ValueError, TypeError) as exc:
         msg = str(exc)

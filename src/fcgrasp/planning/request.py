@@ -22,6 +22,7 @@ from ..core._checks import check_margin
 from ..core.budget import DEFAULT_TIME_LIMIT
 from ..errors import RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
+from ..io.limits import DEFAULT_LIMITS, Limits
 from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
@@ -36,7 +37,8 @@ __all__ = ["PlanRequest", "PlanDocument", "plan_document", "template_request",
 
 #: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
 READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
-                   "threshold", "y_down", "simplify", "no_clean")
+                   "threshold", "y_down", "simplify", "no_clean", "max_bytes",
+                   "max_elements", "max_vertices")
 #: The options of a request that say how to plan (the gripper's and the search's).
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
@@ -83,7 +85,8 @@ _KINDS: dict[str, Any] = {
     "margin": "float", "finger_radius": "float", "flatten": "float", "gap": "float",
     "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
     "force_limit": "float", "total_force": "float", "stiffness": "float",
-    "grip_force": "float", "time_limit": "float",
+    "grip_force": "float", "time_limit": "float", "max_bytes": "int",
+    "max_elements": "int", "max_vertices": "int",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "bound": "bool", "soft": "bool",
@@ -175,6 +178,9 @@ class PlanRequest:
     y_down: bool = False
     simplify: float | None = None
     no_clean: bool = False
+    max_bytes: int | None = None
+    max_elements: int | None = None
+    max_vertices: int | None = None
     json: str | None = None
     plot: str | None = None
     _gripper: Any = field(default=None, init=False, repr=False, compare=False)
@@ -387,6 +393,13 @@ class PlanRequest:
         return Load(self.mass, com=self.com, accel=self.accel or (0.0, 0.0),
                     accel_shape=self.accel_shape)
 
+    def limits(self) -> Limits:
+        """The readers' limits the request gives (:mod:`fcgrasp.io.limits`)."""
+        d = DEFAULT_LIMITS
+        return Limits(d.max_bytes if self.max_bytes is None else self.max_bytes,
+                      d.max_elements if self.max_elements is None else self.max_elements,
+                      d.max_vertices if self.max_vertices is None else self.max_vertices)
+
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
         kw = {k: getattr(self, k) for k in READING_OPTIONS if k not in ("select",
@@ -578,7 +591,7 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
 
     if solid is None:
         solid = read_solid(request.part, units=request.units, file_units=request.file_units,
-                           select=request.select)
+                           select=request.select, limits=request.limits())
     mu = DEFAULT_MU if request.mu is None else request.mu
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
