@@ -91,15 +91,22 @@ def _extruded(seed):
     return solid_from_mesh(mesh, "mm", f"steps{seed}")
 
 
-def _axes_inside(rng, solid, plan, n):
-    """The region's centre, its corners pulled in by a hair, and ``n`` random points."""
+def _region_polygon(solid, plan):
+    """The region on the first facet, in its frame: the outer ring and its holes."""
     a = solid.facets[plan.facets[0]]
-    ring = a.to_2d(plan.regions[0])
-    poly = shapely.Polygon(ring)
+    return shapely.Polygon(a.to_2d(plan.regions[0]), [a.to_2d(h) for h in plan.holes[0]])
+
+
+def _axes_inside(rng, solid, plan, n):
+    """The region's centre, its corners pulled in by a hair (around its holes too), and
+    ``n`` random points."""
+    a = solid.facets[plan.facets[0]]
+    poly = _region_polygon(solid, plan)
     shrunk = poly.buffer(-1e-6 * solid.size)
     pts = [a.to_2d(plan.centers[0])]
-    if not shrunk.is_empty:
-        pts += list(np.asarray(shapely.get_coordinates(shrunk.exterior))[:-1])
+    for piece in shapely.get_parts(shrunk):
+        for ring in (piece.exterior, *piece.interiors):
+            pts += list(np.asarray(shapely.get_coordinates(ring))[:-1])
     lo_x, lo_y, hi_x, hi_y = poly.bounds
     while len(pts) < n + 1:
         p = rng.uniform([lo_x, lo_y], [hi_x, hi_y])
@@ -123,6 +130,7 @@ def test_every_axis_of_the_regions_holds(seed):
             # the region is not needlessly small: just outside it, an axis fails
             a = solid.facets[plan.facets[0]]
             poly = shapely.Polygon(a.to_2d(plan.regions[0]))
+            assert plan.area == pytest.approx(_region_polygon(solid, plan).area, rel=1e-9)
             ring = shapely.get_coordinates(poly.buffer(1e-3 * solid.size).exterior)
             lo_x, lo_y, hi_x, hi_y = a.polygon.bounds
             outside = [p for p in ring[:: max(1, len(ring) // 8)]]
@@ -190,3 +198,50 @@ def test_cli_plans_the_jaw_on_a_mesh(tmp_path, capsys):
                  "--mass", "1"]) == 2
     err = capsys.readouterr().err
     assert "--mass" in err and len(err.strip().splitlines()) == 1
+
+
+def _plate_with_holes(seed):
+    """A seeded plate with one to three round through-holes (a CAD part's bolt holes):
+    the jaw squeezing its faces has regions with holes."""
+    rng = np.random.default_rng(seed)
+    w, d = rng.uniform(30, 60, 2)
+    holes, tries = [], 0
+    while len(holes) < int(rng.integers(1, 4)) and tries < 50:
+        tries += 1
+        r = float(rng.uniform(2, 6))
+        c = shapely.Point(rng.uniform(r + 3, w - r - 3), rng.uniform(r + 3, d - r - 3))
+        disc = c.buffer(r, 16)
+        if all(disc.distance(h) > 2 for h in holes):
+            holes.append(disc)
+    poly = shapely.Polygon([(0, 0), (w, 0), (w, d), (0, d)],
+                           [list(h.exterior.coords)[::-1] for h in holes])
+    mesh = trimesh.creation.extrude_polygon(poly, float(rng.uniform(4, 15)))
+    return solid_from_mesh(mesh, "mm", f"plate{seed}"), len(holes)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_regions_keep_their_holes(seed):
+    """The regions on a plate with through-holes: the holes are in the plan (its rings,
+    its triangles, its area); every sampled axis (inside, at the corners, around each
+    hole) meets both faces and holds, and the axes through a hole's middle meet no part
+    at all and are not in the region (rays cast here)."""
+    rng = np.random.default_rng(seed)
+    solid, n_holes = _plate_with_holes(seed)
+    plans = solid_jaw_plans(solid, STROKE, PAD, MU, top=3, margin=MARGIN)
+    faces = [p for p in plans if len(p.holes[0])]
+    assert faces, "the faces with the holes give a plan"
+    for plan in faces:
+        assert len(plan.holes[0]) == len(plan.holes[1]) <= n_holes
+        region = _region_polygon(solid, plan)
+        assert plan.area == pytest.approx(region.area, rel=1e-9)
+        a = solid.facets[plan.facets[0]]
+        tris = plan.surface_triangles[0]
+        assert float(sum(0.5 * np.linalg.norm(np.cross(t[1] - t[0], t[2] - t[0]))
+                         for t in tris)) == pytest.approx(region.area, rel=1e-9)
+        for x in _axes_inside(rng, solid, plan, 20):
+            assert _holds(solid, plan, x)
+        for hole in plan.holes[0]:
+            middle = hole.mean(axis=0)
+            assert not region.contains(shapely.Point(a.to_2d(middle)))
+            far = 2 * solid.size
+            assert _first_hit(solid.mesh, middle - far * plan.axis, plan.axis) == math.inf

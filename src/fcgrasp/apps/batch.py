@@ -52,10 +52,31 @@ GROUP_SIZE = 8
 #: Polygons with this many edges are split across a cluster's workers.
 LARGE_EDGES = 500
 
-def part_files(pattern: str) -> list[str]:
+def part_files(pattern: str, outputs: tuple[str | None, str | None] = (None, None)
+               ) -> list[str]:
     """The part files of a folder and its subfolders, or of a glob pattern: every file of
     a format fcgrasp reads (by its extension: a README or a table beside the parts is
-    not a part), hidden files and folders left out, sorted."""
+    not a part), hidden files and folders left out, sorted.  ``outputs``: a batch's
+    results file and figures folder, never read as parts (:func:`is_output`)."""
+    found = _part_files(pattern)
+    out, figures = outputs
+    return [p for p in found if out is None or not is_output(p, out, figures)]
+
+
+def is_output(path: str, out: str, figures: str | None) -> bool:
+    """Whether a part file found for a batch is one of its outputs: the results file of
+    an earlier run (a part named as the results file is still a part, and the batch
+    refuses to overwrite it), or a file inside the figures folder."""
+    if os.path.exists(out) and os.path.samefile(path, out):
+        return is_results_file(out)
+    if figures is None:
+        return False
+    folder = os.path.realpath(figures)
+    return os.path.commonpath([os.path.realpath(path), folder]) == folder
+
+
+def _part_files(pattern: str) -> list[str]:
+    """:func:`part_files` without the outputs left out."""
     from ..io.meshes import MESH_SUFFIXES
     from ..io.parts import FORMATS
 

@@ -248,7 +248,7 @@ def cmd_batch(args: Any) -> int:
                        f"{args.part_timeout:g}")
     # the batch's own outputs are never read as parts (a rerun of a folder that holds
     # its results file or its figures)
-    paths = [p for p in part_files(args.input) if not _is_output(p, args.out, args.figures)]
+    paths = part_files(args.input, outputs=(args.out, args.figures))
     if not paths:
         raise CliError(f"no part files in {args.input!r} (a folder of .json, .svg, .dxf, "
                        f"image, mesh ... files, or a glob pattern)")
@@ -277,21 +277,6 @@ def cmd_batch(args: Any) -> int:
         print(summary.table())
     return 1 if summary.failed or summary.failed_before else 0
 
-
-
-def _is_output(path: str, out: str, figures: str | None) -> bool:
-    """Whether a part file found for a batch is one of its outputs: the results file of
-    an earlier run (a part named as ``--out`` is still a part, and the batch refuses to
-    overwrite it), or a file inside the figures folder."""
-    real = os.path.realpath(path)
-    if os.path.exists(out) and os.path.samefile(path, out):
-        from .batch import is_results_file
-
-        return is_results_file(out)
-    if figures is None:
-        return False
-    folder = os.path.realpath(figures)
-    return os.path.commonpath([real, folder]) == folder
 
 
 def cmd_check(args: Any) -> int:

@@ -78,7 +78,7 @@ def _load_mesh(source: str, limits: Limits) -> Any:
     try:
         size = os.path.getsize(source)
     except OSError as exc:
-        raise ValueError(f"{source}: cannot read ({exc.strerror or exc})") from None
+        raise ValueError(f"{source}: not a readable mesh ({exc.strerror or exc})") from None
     limits.bytes(size, f"{source}: the file's bytes")
     try:
         with warnings.catch_warnings():

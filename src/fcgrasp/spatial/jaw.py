@@ -48,8 +48,11 @@ class SolidJawPlan(SolidPlan):
     """A parallel jaw's region on two opposite facets: ``facets`` (``A``, ``B``), the
     closing ``axis`` (``A``'s inward normal), the ``opening`` between the facets,
     ``radius`` (the region's inscribed radius), ``area``, ``centers`` (2, 3: the best
-    axis point on ``A`` and on ``B``), ``regions`` (two rings of 3-D points: the region
-    on ``A`` and on ``B``), inward ``normals`` (2, 3), ``mu``, ``margin``, ``pad``."""
+    axis point on ``A`` and on ``B``), ``regions`` (two rings of 3-D points: the outer
+    boundary of the region on ``A`` and on ``B``), ``holes`` (for each region, the rings
+    of the holes in it: closing axes through a hole meet no part, and are not in the
+    region), ``surface_triangles`` (each region, holes left out, as triangles (k, 3, 3)),
+    inward ``normals`` (2, 3), ``mu``, ``margin``, ``pad``."""
 
     facets: tuple[int, int]
     axis: FloatArray = field(repr=False)
@@ -64,12 +67,18 @@ class SolidJawPlan(SolidPlan):
     margin: float = DEFAULT_MARGIN_DEG
     pad: float = 0.0
     similar: tuple[tuple[int, ...], ...] = field(default=(), repr=False, compare=False)
+    holes: tuple[tuple[FloatArray, ...], tuple[FloatArray, ...]] = field(
+        default=((), ()), repr=False)
+    surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
 
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"facets": list(self.facets), "axis": self.axis.tolist(),
                              "opening": self.opening, "radius": self.radius, "area": self.area,
                              "centers": self.centers.tolist(),
                              "regions": [r.tolist() for r in self.regions],
+                             "holes": [[h.tolist() for h in side] for side in self.holes],
+                             "surface_triangles": [t.tolist()
+                                                   for t in self.surface_triangles],
                              "normals": self.normals.tolist(), "mu": self.mu,
                              "margin_deg": self.margin, "pad": self.pad,
                              "contact_type": "jaw"}
@@ -221,10 +230,18 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
     if piece is None or r <= 0:
         return None
     ca = a.to_3d(centre)
+    shift = h * axis
     ring_a = a.to_3d(np.asarray(piece.exterior.coords)[:-1])
+    holes_a = tuple(a.to_3d(np.asarray(r.coords)[:-1]) for r in piece.interiors)
+    # the region as triangles, its holes left out (what a figure or a viewer fills)
+    tris = shapely.get_parts(shapely.constrained_delaunay_triangles(piece))
+    flat = np.array([np.asarray(t.exterior.coords)[:3] for t in tris], float).reshape(-1, 2)
+    tri_a = a.to_3d(flat).reshape(-1, 3, 3)
     return SolidJawPlan((i, j), axis, h, r, float(piece.area),
-                        np.stack([ca, ca + h * axis]), (ring_a, ring_a + h * axis),
-                        np.stack([a.normal, b.normal]), mu, margin, pad)
+                        np.stack([ca, ca + shift]), (ring_a, ring_a + shift),
+                        np.stack([a.normal, b.normal]), mu, margin, pad,
+                        holes=(holes_a, tuple(q + shift for q in holes_a)),
+                        surface_triangles=(tri_a, tri_a + shift))
 
 
 def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | None = 10,
@@ -239,6 +256,8 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
     >>> [round(p.radius, 3) for p in solid_jaw_plans(demo_solid("box"), (5, 50), 8, 0.5)]
     [10.0, 5.0, 5.0]
     """
+    import shapely
+
     stroke_v, pad_v, mu_v, margin_v, alpha = _check(solid, stroke, pad, mu, margin)
     if top is not None:
         top = check_int(top, "top", minimum=1)
@@ -254,7 +273,12 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         bound = min(inradius[i], inradius[j])
         if top is not None and len(plans) >= top and plans[top - 1].radius >= bound:
             break
-        got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)
+        try:
+            got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)
+        except shapely.errors.GEOSException:
+            # GEOS cannot build this pair's overlap (degenerate facets of a real CAD
+            # mesh): no region is claimed for it
+            got = None
         if got is not None:
             plans.append(got)
             plans.sort(key=lambda p: (-p.radius, p.facets))
