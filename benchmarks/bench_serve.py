@@ -44,9 +44,23 @@ def star(n: int, seed: int = 1) -> list[list[float]]:
     return np.c_[r * np.cos(ang), r * np.sin(ang)].round(6).tolist()
 
 
+#: the session token of a page the server served, as the page sends it (:func:`token`)
+TOKEN: dict[str, str] = {}
+
+
+def token(base: str) -> None:
+    """Take a session token from the page, as the browser does."""
+    import re
+
+    with urllib.request.urlopen(base) as r:
+        html = r.read().decode()
+    TOKEN["X-Fcgrasp-Token"] = re.search(r'name="fcgrasp-token" content="([^"]+)"',
+                                         html).group(1)
+
+
 def call(url: str, method: str = "GET", body: bytes | None = None) -> tuple[float, dict]:
     req = urllib.request.Request(url, data=body, method=method,
-                                 headers={"Content-Type": "application/json"})
+                                 headers={"Content-Type": "application/json", **TOKEN})
     t0 = time.perf_counter()
     with urllib.request.urlopen(req) as r:
         data = json.loads(r.read())
@@ -110,6 +124,7 @@ def main() -> None:
                              "0"], stdout=subprocess.PIPE, text=True)
     base = proc.stdout.readline().split()[2]
     try:
+        token(base)
         rows = []
         for n in SIZES:
             part = {"outer": star(n), "units": "mm"}

@@ -780,3 +780,56 @@ def test_the_3d_view_triangulates_regions_that_are_not_convex(server, browser):
             area += tri.area
             assert poly.buffer(1e-9).contains(tri), (flat.tolist(), t)
         assert area == pytest.approx(poly.area, rel=1e-9)
+
+
+def test_a_page_of_another_origin_can_neither_read_nor_plan(server, browser, tmp_path):
+    """A web page the user visits (served here from another port of the loopback: another
+    origin) tries the explorer's API as a hostile page would: it cannot read the part or
+    the page (the browser's same-origin policy, and the server grants no CORS), and its
+    no-cors text/plain POST, which the browser does send, carries no session token, so
+    the server refuses it (tests/test_serve.py checks that refusal starts no job).  The
+    explorer's own page still plans."""
+    import http.server
+    import threading
+
+    (tmp_path / "evil.html").write_text(f"""<!doctype html><title>evil</title><script>
+    const E = {json.dumps(server)};
+    const out = {{}};
+    async function go() {{
+      for (const [k, url] of [["state", E + "api/state"], ["page", E],
+                               ["part", E + "api/demo/blob"]]) {{
+        try {{ const r = await fetch(url); out[k] = "read " + (await r.text()).length; }}
+        catch (e) {{ out[k] = "blocked"; }}
+      }}
+      try {{
+        const r = await fetch(E + "api/plan", {{method: "POST", mode: "no-cors",
+          headers: {{"Content-Type": "text/plain"}},
+          body: JSON.stringify({{part: {{outer: [[0, 0], [10, 0], [0, 10]]}}, options: {{}}}})}});
+        out.plan = r.type;
+      }} catch (e) {{ out.plan = "blocked"; }}
+      document.body.dataset.out = JSON.stringify(out);
+    }}
+    go();
+    </script><body></body>""")
+
+    class Quiet(http.server.SimpleHTTPRequestHandler):
+        def __init__(self, *a, **k):
+            super().__init__(*a, directory=str(tmp_path), **k)
+
+        def log_message(self, *a):
+            pass
+
+    evil = http.server.ThreadingHTTPServer(("127.0.0.1", 0), Quiet)
+    threading.Thread(target=evil.serve_forever, daemon=True).start()
+    try:
+        browser.get(f"http://127.0.0.1:{evil.server_address[1]}/evil.html")
+        out = json.loads(wait(browser, "document.body.dataset.out"))
+    finally:
+        evil.shutdown()
+    assert out["state"] == out["page"] == out["part"] == "blocked", out
+    assert out["plan"] in ("opaque", "blocked"), out
+    # the explorer's own page plans as before
+    browser.get(server)
+    wait(browser, "document.body.dataset.planSeq !== undefined && "
+                  "Number(document.body.dataset.planSeq) > 0")
+    assert page_plans(browser)

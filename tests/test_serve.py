@@ -5,6 +5,7 @@ progress and can be cancelled, and no request, however malformed, stops the serv
 from __future__ import annotations
 
 import json
+import re
 import time
 
 import numpy as np
@@ -26,9 +27,16 @@ from .test_batch import _ring, make_parts  # noqa: E402
 BLOB = load_part("demo:blob").polygon.vertices.tolist()
 
 
+def page_token(client):
+    """The session token the explorer writes into a page it serves."""
+    html = client.get("/").text
+    return re.search(r'name="fcgrasp-token" content="([^"]+)"', html).group(1)
+
+
 @pytest.fixture(scope="module")
 def client():
-    with TestClient(create_app(max_upload=64 * 1024)) as c:
+    with TestClient(create_app(max_upload=64 * 1024), base_url="http://127.0.0.1:8000") as c:
+        c.headers["X-Fcgrasp-Token"] = page_token(c)
         yield c
 
 
@@ -582,3 +590,83 @@ def test_a_part_sent_again_is_not_checked_again(monkeypatch):
     for k in range(data._CHECKED_SIZE + 2):
         data.polygon_of({**square, "outer": [[0, 0], [1 + k, 0], [1, 1], [0, 1]]})
     assert len(data._CHECKED) == data._CHECKED_SIZE
+
+
+# ----------------------------------------------------------------------------- security
+
+def _bare(client):
+    """Headers without the page's session token (the client's own is overridden)."""
+    return {"X-Fcgrasp-Token": ""}
+
+
+@pytest.mark.parametrize("host", ["evil.example", "evil.example:8000", "10.0.0.1:8000",
+                                  "127.0.0.1.evil.example"])
+def test_a_dns_rebinding_host_is_refused(client, host):
+    """A page whose name resolves to the loopback still names its own host: refused on
+    every path, the page (with its token), the files and the API."""
+    for path in ("/", "/static/app.js", "/api/state"):
+        r = client.get(path, headers={"Host": host})
+        assert r.status_code == 403, (path, r.status_code)
+        assert r.json()["field"] == "origin" and "fcgrasp-token" not in r.text
+
+
+@pytest.mark.parametrize("origin", ["http://evil.example", "http://127.0.0.1:9999",
+                                    "https://127.0.0.1:8000", "null"])
+def test_a_request_from_another_origin_is_refused(client, origin):
+    r = client.post("/api/plan", json={"part": {"outer": BLOB}, "options": {"gripper": "2"}},
+                    headers={"Origin": origin})
+    assert r.status_code == 403 and r.json()["field"] == "origin"
+    ok = client.get("/api/state", headers={"Origin": "http://127.0.0.1:8000"})
+    assert ok.status_code == 200
+
+
+def test_the_api_needs_the_pages_session_token(client):
+    """A text/plain POST (what a cross-origin form or no-cors fetch can send) without the
+    token starts nothing; a made-up token neither."""
+    bare = _bare(client)
+    body = json.dumps({"part": {"outer": BLOB}, "options": {"gripper": "2"}})
+    for headers in (bare, {**bare, "X-Fcgrasp-Token": "guess"}):
+        r = client.post("/api/plan", content=body,
+                        headers={**headers, "Content-Type": "text/plain"})
+        assert r.status_code == 403 and r.json()["field"] == "token"
+        for method, path in (("GET", "/api/state"), ("GET", "/api/demo/blob"),
+                             ("POST", "/api/part?name=x.json"), ("POST", "/api/check"),
+                             ("GET", "/api/jobs/x"), ("DELETE", "/api/jobs/x")):
+            r = client.request(method, path, headers=headers, content=b"{}")
+            assert r.status_code == 403, (method, path)
+    assert client.get("/").status_code == 200      # the page itself needs no token
+
+
+def test_jobs_are_unguessable_and_belong_to_their_session(client):
+    other = {"X-Fcgrasp-Token": page_token(client)}
+    ids = []
+    for _ in range(2):
+        r = client.post("/api/plan", json={"part": {"outer": BLOB},
+                                           "options": {"gripper": "2", "top": 1}})
+        ids.append(r.json()["job"])
+    assert ids[0] != ids[1] and all(len(i) >= 20 and not i.isdigit() for i in ids)
+    for job in ids:
+        assert client.get(f"/api/jobs/{job}", headers=other).status_code == 404
+        assert client.delete(f"/api/jobs/{job}", headers=other).status_code == 404
+        assert client.get(f"/api/jobs/{job}?wait=1").status_code == 200
+
+
+def test_an_upload_is_read_in_a_process_killed_at_its_time(client, monkeypatch):
+    """The reading process is killed past READ_SECONDS (here none at all): the answer is
+    one error naming the file, and the server plans on."""
+    from fcgrasp.apps import serve
+
+    monkeypatch.setattr(serve, "READ_SECONDS", 0.0)
+    r = client.post("/api/part?name=slow.json",
+                    content=json.dumps({"vertices": BLOB}).encode())
+    assert r.status_code == 413 and "slow.json" in r.json()["error"]
+    monkeypatch.undo()
+    ok = client.post("/api/part?name=fine.json", content=json.dumps({"vertices": BLOB}))
+    assert ok.status_code == 200 and ok.json()["name"] == "fine.json"
+
+
+def test_an_expanding_upload_is_refused_by_the_readers_limits(client):
+    from .test_hostile import _use_bomb
+
+    r = client.post("/api/part?name=bomb.svg", content=_use_bomb().encode())
+    assert r.status_code == 400 and "--max-elements" in r.json()["error"]

@@ -15,8 +15,20 @@ motion.  Everything it computes comes from the same public functions as the comm
   edges ``e'_i`` of theorem 6.3 for two fingers, the parallelograms ``Pi_12``, ``Pi_34``
   and the two-sided sector ``C`` of algorithm 6.1 for four (three against gravity).
 
+The explorer is a local web app, secured as one (Jupyter's model): every request's
+``Host`` must name an address the server serves (a DNS-rebinding page's host is
+refused), a request with an ``Origin`` must come from the server's own, and every API
+call carries the session token of the page it was served in (``X-Fcgrasp-Token``; a new
+one per page load, written into the page): a page on another origin can neither read
+that token nor send it (a custom header asks the browser's preflight, which the server
+never grants).  Job ids are unguessable and belong to the session that started them.
+Uploads are read in a process of their own, killed past :data:`READ_SECONDS` and capped
+at :data:`READ_MEMORY` bytes, and a request body must arrive within
+:data:`BODY_SECONDS`.
+
 The HTTP interface (JSON in and out; errors are ``{"error": message, "field": name}``
-with status 400, 404 or 413; the server answers every request and never stops on one):
+with status 400, 403, 404 or 413; the server answers every request and never stops on
+one):
 
 ``GET /api/state``
     the starting part, the built-in parts, the ranking measures and the limits;
@@ -45,10 +57,11 @@ from __future__ import annotations
 
 import asyncio
 import contextlib
-import itertools
 import os
+import secrets
 import threading
 import time
+from collections import OrderedDict
 from dataclasses import dataclass, field
 from importlib.resources import files
 from typing import Any
@@ -79,6 +92,17 @@ ANSWER_WITHIN = 0.05
 MAX_WAIT = 1.0
 #: Finished jobs kept for polling (the oldest are forgotten first).
 KEEP_JOBS = 32
+#: Host names the server answers to by default (it listens on the loopback): a request
+#: naming another host (a DNS-rebinding page's) is refused.
+LOCAL_HOSTS = ("127.0.0.1", "localhost", "::1")
+#: Session tokens remembered (one per page load; the oldest are forgotten first).
+KEEP_SESSIONS = 256
+#: Seconds a request's body may take to arrive (a slow client is cut off).
+BODY_SECONDS = 30.0
+#: Seconds and bytes of memory the process reading an upload may take.
+READ_SECONDS, READ_MEMORY = 30.0, 2 * 2 ** 30
+#: The request header that carries the page's session token.
+TOKEN_HEADER = "x-fcgrasp-token"
 
 
 @dataclass
@@ -86,6 +110,7 @@ class Job:
     """One plan being computed in a process of its own."""
 
     id: str
+    owner: str = ""
     state: str = "running"
     progress: tuple[int, int] = (0, 0)
     result: dict[str, Any] | None = None
@@ -203,7 +228,6 @@ class Jobs:
                                           "fcgrasp.apps._warm"])
         self._jobs: dict[str, Job] = {}
         self._idle: list[_Process] = []
-        self._ids = itertools.count(1)
         self._lock = threading.Lock()
         self.workers = workers
         self._closed = False
@@ -223,9 +247,10 @@ class Jobs:
         with self._lock:
             self._idle += fresh
 
-    def start(self, polygon: Any, units: str, request: Any) -> Job:
-        """Start planning ``request`` (a :func:`plan_request`) on ``polygon``; a page's
-        options dict is checked first (a bad option is an answer now, not a job)."""
+    def start(self, polygon: Any, units: str, request: Any, owner: str = "") -> Job:
+        """Start planning ``request`` (a :func:`plan_request`) on ``polygon`` for the
+        session ``owner``; a page's options dict is checked first (a bad option is an
+        answer now, not a job).  The job's id is unguessable."""
         if isinstance(request, dict):
             request = plan_request(request)
         with self._lock:
@@ -233,7 +258,7 @@ class Jobs:
             if busy >= self.workers:
                 raise RequestError(f"{busy} plans are running already: cancel one or wait",
                                    "job", 429)
-            job = Job(id=str(next(self._ids)))
+            job = Job(id=secrets.token_urlsafe(16), owner=owner)
             self._jobs[job.id] = job
             finished = [k for k, j in self._jobs.items() if j.done.is_set()]
             for k in finished[:max(0, len(self._jobs) - KEEP_JOBS)]:
@@ -285,20 +310,47 @@ class Jobs:
         threading.Thread(target=watch, name=f"fcgrasp-job-{job.id}", daemon=True).start()
         return job
 
-    def get(self, job_id: str) -> Job:
+    def get(self, job_id: str, owner: str | None = None) -> Job:
+        """The job ``job_id`` of the session ``owner`` (None: any session's)."""
         with self._lock:
             job = self._jobs.get(job_id)
-        if job is None:
+        if job is None or (owner is not None and job.owner != owner):
             raise RequestError(f"no job {job_id!r} (finished jobs are kept for a while)",
                                "job", 404)
         return job
 
-    def cancel(self, job_id: str) -> Job:
-        job = self.get(job_id)
+    def cancel(self, job_id: str, owner: str | None = None) -> Job:
+        job = self.get(job_id, owner)
         if not job.done.is_set():
             job.state = "cancelled"
             job.process.kill()
         return job
+
+    def read(self, body: bytes, name: str) -> dict[str, Any]:
+        """:func:`~fcgrasp.apps._explorer_data.read_upload` in a process of its own,
+        killed past :data:`READ_SECONDS` and capped at :data:`READ_MEMORY` bytes: a file
+        that would take the server's memory or time takes only its own process."""
+        mine, theirs = self._ctx.Pipe()
+        proc = self._ctx.Process(target=_reader, args=(theirs, body, name), daemon=True,
+                                 name="fcgrasp-reader")
+        proc.start()
+        theirs.close()
+        try:
+            if not mine.poll(READ_SECONDS):
+                raise RequestError(f"cannot read {os.path.basename(name) or 'upload'}: "
+                                   f"reading took more than {READ_SECONDS:g} s", "file", 413)
+            kind, value = mine.recv()
+        except (EOFError, OSError):
+            raise RequestError(f"cannot read {os.path.basename(name) or 'upload'}: the "
+                               f"reader stopped (more than {READ_MEMORY // 2 ** 20} MB of "
+                               f"memory?)", "file", 413) from None
+        finally:
+            proc.kill()
+            proc.join(5)
+            mine.close()
+        if kind == "error":
+            raise RequestError(value, "file")
+        return value
 
     def close(self) -> None:
         """Stop every planning process (the server is stopping)."""
@@ -315,15 +367,103 @@ class Jobs:
             w.conn.close()
 
 
+def _reader(conn: Any, body: bytes, name: str) -> None:
+    """An upload's reading process: its memory capped, its answer sent once."""
+    try:
+        import resource
+
+        resource.setrlimit(resource.RLIMIT_AS, (READ_MEMORY, READ_MEMORY))
+    except (ImportError, ValueError, OSError):    # not on this platform: time still bounds
+        pass
+    try:
+        conn.send(("done", read_upload(body, name)))
+    except RequestError as exc:
+        conn.send(("error", str(exc)))
+    except MemoryError:
+        conn.send(("error", f"cannot read {os.path.basename(name) or 'upload'}: more than "
+                            f"{READ_MEMORY // 2 ** 20} MB of memory"))
+    except Exception as exc:  # noqa: BLE001 - reported to the page
+        conn.send(("error", f"cannot read {os.path.basename(name) or 'upload'}: "
+                            f"{type(exc).__name__}: {exc}"))
+
+
+class _Sessions:
+    """The session tokens the server gave its pages (one per page load), the newest
+    :data:`KEEP_SESSIONS`."""
+
+    def __init__(self) -> None:
+        self._tokens: OrderedDict[str, None] = OrderedDict()
+        self._lock = threading.Lock()
+
+    def new(self) -> str:
+        token = secrets.token_urlsafe(24)
+        with self._lock:
+            self._tokens[token] = None
+            while len(self._tokens) > KEEP_SESSIONS:
+                self._tokens.popitem(last=False)
+        return token
+
+    def __contains__(self, token: object) -> bool:
+        with self._lock:
+            return isinstance(token, str) and token in self._tokens
+
+
+def _host_name(value: str) -> str:
+    """The host name of a ``Host`` header or of an origin's authority, without its port
+    (``[::1]:8000`` -> ``::1``), lower case."""
+    value = value.strip().lower()
+    if value.startswith("["):
+        return value[1:value.find("]")] if "]" in value else value
+    return value.rsplit(":", 1)[0] if value.count(":") == 1 else value
+
+
+def _refusal(scope_headers: dict[str, str], allowed: tuple[str, ...] | None) -> str | None:
+    """Why a request must be refused (its ``Host`` or its ``Origin``), or None
+    (``allowed`` None: any host, the server listening on every address)."""
+    host = scope_headers.get("host", "")
+    if allowed is not None and _host_name(host) not in allowed:
+        return f"host {host!r} is not an address this server serves"
+    origin = scope_headers.get("origin")
+    if origin is not None:
+        scheme, _, authority = origin.partition("://")
+        if scheme != "http" or authority.lower() != host.lower():
+            return f"requests from {origin!r} are not accepted (only from the page itself)"
+    return None
+
+
+class _Guard:
+    """ASGI middleware: every HTTP request's ``Host`` and ``Origin`` checked
+    (:func:`_refusal`), a 403 otherwise, pages, files and API alike."""
+
+    def __init__(self, app: Any, allowed: tuple[str, ...] | None) -> None:
+        self.app, self.allowed = app, allowed
+
+    async def __call__(self, scope: Any, receive: Any, send: Any) -> None:
+        if scope["type"] == "http":
+            headers = {k.decode("latin-1").lower(): v.decode("latin-1")
+                       for k, v in scope["headers"]}
+            why = _refusal(headers, self.allowed)
+            if why is not None:
+                from starlette.responses import JSONResponse
+
+                await JSONResponse({"error": why, "field": "origin"}, status_code=403)(
+                    scope, receive, send)
+                return
+        await self.app(scope, receive, send)
+
+
 # ----------------------------------------------------------------------------- the app
 
 
-def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
+def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
+               allowed_hosts: tuple[str, ...] | None = LOCAL_HOSTS) -> Any:
     """The explorer as an ASGI application (Starlette).  ``start`` is the first part shown:
-    a :class:`fcgrasp.io.parts.Part` (default ``demo:blob``)."""
+    a :class:`fcgrasp.io.parts.Part` (default ``demo:blob``); ``allowed_hosts``: the host
+    names requests may name (default the loopback's; None: any, for a server listening
+    on every address, where the session token still guards the API)."""
     from starlette.applications import Starlette
     from starlette.requests import Request
-    from starlette.responses import FileResponse, JSONResponse, Response
+    from starlette.responses import HTMLResponse, JSONResponse, Response
     from starlette.routing import Mount, Route
     from starlette.staticfiles import StaticFiles
 
@@ -336,6 +476,10 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
     first = part_json(start.polygon, start.units, start.source, start.notes)
     static = str(files("fcgrasp") / "apps" / "explorer")
     jobs = Jobs()
+    sessions = _Sessions()
+    allowed = None if allowed_hosts is None else tuple(_host_name(h) for h in allowed_hosts)
+    with open(os.path.join(static, "index.html"), encoding="utf-8") as fh:
+        page = fh.read()
 
     def error(exc: RequestError) -> JSONResponse:
         return JSONResponse({"error": " ".join(str(exc).split()), "field": exc.field},
@@ -347,12 +491,21 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
             raise RequestError(f"the request is too large ({length} bytes; at most "
                                f"{limit} are accepted)", "file", 413)
         chunks, size = [], 0
-        async for chunk in request.stream():
-            size += len(chunk)
-            if size > limit:
-                raise RequestError(f"the request is too large (more than {limit} bytes)",
-                                   "file", 413)
-            chunks.append(chunk)
+
+        async def receive() -> None:
+            nonlocal size
+            async for chunk in request.stream():
+                size += len(chunk)
+                if size > limit:
+                    raise RequestError(f"the request is too large (more than {limit} "
+                                       f"bytes)", "file", 413)
+                chunks.append(chunk)
+
+        try:                                  # a slow client is cut off
+            await asyncio.wait_for(receive(), BODY_SECONDS)
+        except TimeoutError:
+            raise RequestError(f"the request's body took more than {BODY_SECONDS:g} s to "
+                               f"arrive", "file", 408) from None
         return b"".join(chunks)
 
     async def json_of(request: Request, keys: set[str]) -> dict[str, Any]:
@@ -369,9 +522,19 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
                                f"{', '.join(sorted(keys))})")
         return data
 
-    def guarded(handler: Any) -> Any:
+    def session(request: Request) -> str:
+        """The page's session token (403 without a valid one)."""
+        token = request.headers.get(TOKEN_HEADER, "")
+        if token not in sessions:
+            raise RequestError("this request carries no session token of this server's "
+                               "pages (reload the page)", "token", 403)
+        return token
+
+    def guarded(handler: Any, api: bool = True) -> Any:
         async def endpoint(request: Request) -> Response:
             try:
+                if api:
+                    request.state.session = session(request)
                 return await handler(request)
             except RequestError as exc:
                 return error(exc)
@@ -383,7 +546,12 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return endpoint
 
     async def index(request: Request) -> Response:
-        return FileResponse(os.path.join(static, "index.html"), media_type="text/html")
+        # the page's own session token, written into it: no other origin can read it
+        html = page.replace('<meta name="fcgrasp-token" content="">',
+                            f'<meta name="fcgrasp-token" content="{sessions.new()}">')
+        return HTMLResponse(html, headers={"Cache-Control": "no-store",
+                                           "X-Frame-Options": "DENY",
+                                           "Referrer-Policy": "no-referrer"})
 
     async def favicon(request: Request) -> Response:
         return Response(status_code=204)
@@ -411,7 +579,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         body = await body_of(request, max_upload)
         if not body:
             raise RequestError("the file is empty", "file")
-        out = await asyncio.to_thread(read_upload, body, name)
+        out = await asyncio.to_thread(jobs.read, body, name)
         return JSONResponse(out)
 
     async def plan(request: Request) -> Response:
@@ -429,24 +597,26 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         else:
             polygon, units = await asyncio.to_thread(polygon_of, part)
             request_ = await asyncio.to_thread(plan_request, options)
+        owner = request.state.session
         if old is not None:                   # the page's previous plan, now stale
             try:
-                await asyncio.to_thread(jobs.cancel, str(old))
+                await asyncio.to_thread(jobs.cancel, str(old), owner)
             except RequestError:
                 pass
-        job = await asyncio.to_thread(jobs.start, polygon, units, request_)
+        job = await asyncio.to_thread(jobs.start, polygon, units, request_, owner)
         await asyncio.to_thread(job.done.wait, ANSWER_WITHIN)
         return JSONResponse(job.answer())
 
     async def job_state(request: Request) -> Response:
-        job = jobs.get(request.path_params["id"])
+        job = jobs.get(request.path_params["id"], request.state.session)
         wait = _wait_of(request.query_params.get("wait"))
         if wait > 0 and not job.done.is_set():
             await asyncio.to_thread(job.done.wait, wait)
         return JSONResponse(job.answer())
 
     async def job_cancel(request: Request) -> Response:
-        return JSONResponse(jobs.cancel(request.path_params["id"]).answer())
+        return JSONResponse(jobs.cancel(request.path_params["id"],
+                                        request.state.session).answer())
 
     async def check(request: Request) -> Response:
         data = await json_of(request, {"part", "contacts", "gravity"})
@@ -454,8 +624,8 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         return JSONResponse(await asyncio.to_thread(check_result, polygon, data))
 
     routes = [
-        Route("/", guarded(index)),
-        Route("/favicon.ico", guarded(favicon)),
+        Route("/", guarded(index, api=False)),
+        Route("/favicon.ico", guarded(favicon, api=False)),
         Route("/api/state", guarded(state)),
         Route("/api/demo/{name}", guarded(demo)),
         Route("/api/part", guarded(upload), methods=["POST"]),
@@ -471,7 +641,10 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD) -> Any:
         yield
         jobs.close()
 
-    return Starlette(routes=routes, lifespan=lifespan)
+    from starlette.middleware import Middleware
+
+    return Starlette(routes=routes, lifespan=lifespan,
+                     middleware=[Middleware(_Guard, allowed=allowed)])
 
 
 def serve(start: Any = None, host: str = "127.0.0.1", port: int = 8000,
@@ -482,7 +655,9 @@ def serve(start: Any = None, host: str = "127.0.0.1", port: int = 8000,
 
     import uvicorn
 
-    app = create_app(start)
+    wildcard = host in ("0.0.0.0", "::", "")
+    app = create_app(start, allowed_hosts=None if wildcard else
+                     tuple(dict.fromkeys((*LOCAL_HOSTS, host))))
     sock = socket.socket(socket.AF_INET6 if ":" in host else socket.AF_INET)
     sock.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)
     sock.bind((host, port))

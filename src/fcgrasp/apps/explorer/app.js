@@ -22,8 +22,11 @@ const S = {
 
 // ------------------------------------------------------------------ server
 
+// the session token the server wrote into this page: every API call carries it
+const TOKEN = document.querySelector('meta[name="fcgrasp-token"]').content;
+
 async function request(method, url, body, raw) {
-  const opts = { method, headers: {} };
+  const opts = { method, headers: { "X-Fcgrasp-Token": TOKEN } };
   if (body !== undefined) {
     if (raw) { opts.body = body; } else {
       opts.body = JSON.stringify(body);
