@@ -824,8 +824,9 @@ def test_returned_boxes_do_not_overlap_nor_their_images(name):
 def test_the_pareto_list_trades_one_side_for_the_other(name):
     """jaw_pareto (issue 31's Pareto list): proved boxes, none beaten on both sides by
     another (down the list the angle range falls and the offset range grows), every
-    sampled pose holding by the independent model; on the quad a box with twice the top
-    plan's offset range at nearly its angle range."""
+    sampled pose holding by the independent model; on the quad a real trade: the last
+    box has five times the first's offset range, the first twice the last's angles, and
+    one box has at least nine tenths of the top plan's angle range."""
     from fcgrasp.grippers.jaw import jaw_pareto
 
     part = demo_part(name)
@@ -841,7 +842,23 @@ def test_the_pareto_list_trades_one_side_for_the_other(name):
             assert independent_pose(part, jaw, t, c, 0.5)[0], (p.theta, p.offset, t, c)
     if name == "quad":
         top = fc.plan(part, gripper=jaw, top=1)[0]
-        da, dc = top.theta[1] - top.theta[0], top.offset[1] - top.offset[0]
-        assert any(a >= 0.9 * da and c >= 1.9 * dc for a, c in sides)
+        da = top.theta[1] - top.theta[0]
+        assert sides[-1, 1] >= 5 * sides[0, 1] and sides[0, 0] >= 2 * sides[-1, 0]
+        assert any(a >= 0.9 * da for a, _ in sides)
     with pytest.raises(ValueError, match="weights"):
         jaw_pareto(part, jaw, weights=[1.0, -2.0])
+
+
+@pytest.mark.parametrize("n", [96, 368])
+def test_the_jaw_holds_a_flattened_disc(n):
+    """Every DXF CIRCLE is read as a disc of hundreds of edges: a box of the jaw on it
+    sweeps a vertex every fraction of a degree, and its proof needs a budget for each
+    group of slabs between critical angles (with one budget for the whole box no box
+    was proved: "no pose of the jaw holds the part").  The boxes are proved, and every
+    sampled pose holds by the independent model."""
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    disc = fc.Polygon(np.c_[11 * np.cos(a), 11 * np.sin(a)])
+    jaw = ParallelJaw(stroke=(1.1, 26.4), pad_width=4.4, mu=0.5)
+    plans = _check_plans(disc, jaw, np.random.default_rng(n), n=30)
+    assert plans and plans[0].certified
+    assert plans[0].theta[1] - plans[0].theta[0] > np.radians(30)

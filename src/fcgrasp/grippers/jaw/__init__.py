@@ -70,7 +70,7 @@ from __future__ import annotations
 from ...core.tolerances import SLICE_TOL
 from ._certify import certify_box
 from ._payload import jaw_payload
-from ._plans import JawPlan, ParallelJaw, jaw_from_options, jaw_pareto, jaw_plans
+from ._plans import JawPlan, ParallelJaw, grid_anchor, jaw_from_options, jaw_pareto, jaw_plans
 from ._poses import (
     CERTIFY_BOXES,
     CERTIFY_SHRINKS,
@@ -87,5 +87,5 @@ from ._slices import holding_offsets
 __all__ = ["ParallelJaw", "jaw_from_options", "JawPlan", "PoseContacts", "convex_holes",
            "jaw_poses",
            "holding_offsets", "insertion_point", "jaw_plans", "jaw_pareto", "certify_box",
-           "jaw_payload", "THETA_STEP_DEG",
+           "jaw_payload", "grid_anchor", "THETA_STEP_DEG",
            "SLICE_TOL", "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]

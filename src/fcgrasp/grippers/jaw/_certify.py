@@ -355,6 +355,10 @@ def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw,
 #: Sub-boxes :func:`certify_box` examines at a time.
 CERTIFY_BATCH = 512
 
+#: :func:`certify_box`'s budget of sub-boxes counts for this many slabs between critical
+#: angles (a box cut into more has that budget again for each such group).
+SLABS_PER_BUDGET = 8
+
 
 def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
                 margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
@@ -367,7 +371,10 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     few, every pair of them is force closure over all its positions and directions
     (theorem 6.3 on arcs of directions), and the opening's enclosure is within the
     stroke.  Returns that enclosure of the opening over the box, or None when the proof
-    fails within ``max_boxes`` sub-boxes, or when a sub-box's centre pose does not hold
+    fails within ``max_boxes`` sub-boxes for every :data:`SLABS_PER_BUDGET` slabs the
+    critical angles cut the box into (a box on a curved outline sweeps a vertex every
+    fraction of a degree, and each slab needs its own proof: a disc of 368 edges takes
+    about 20,000 sub-boxes over 72 degrees), or when a sub-box's centre pose does not hold
     (then the box does not hold either).  Sound, not complete: None does not say that
     some pose fails.  The sub-boxes are examined in batches, level by level (compiled,
     :func:`._kernels.certify`: depth first, each reading only its parent's edges near its
@@ -400,6 +407,7 @@ def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     cuts = _angle_cuts(polygon, ring, t0, t1)
     todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
                             np.full(cuts.size - 1, c1)])
+    max_boxes *= max(1, -(-len(todo) // SLABS_PER_BUDGET))
     if _kernels.available():
         found = _kernels.certify(todo, *_edges(polygon, ring), jaw.pad_width / 2,
                                  CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
