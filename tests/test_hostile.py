@@ -256,3 +256,23 @@ def test_a_3mf_is_read(tmp_path):
     from fcgrasp.io.meshes import read_solid
 
     assert math.isclose(abs(read_solid(str(f)).mesh.volume), 1000.0, rel_tol=1e-9)
+
+
+def test_a_mesh_the_message_says_to_repair_is_repaired_by_the_option(tmp_path, capsys):
+    """A mesh with one triangle turned over: refused with the option that fixes it named,
+    planned with that option."""
+    import trimesh
+
+    box = trimesh.creation.box((20, 10, 5))
+    faces = box.faces.copy()
+    faces[0] = faces[0][::-1]
+    lines = [f"v {a} {b} {c}" for a, b, c in box.vertices]
+    lines += [f"f {i + 1} {j + 1} {k + 1}" for i, j, k in faces]
+    f = tmp_path / "flipped.obj"
+    f.write_text("\n".join(lines) + "\n")
+    assert main(["plan", str(f), "--fingers", "2", "--soft", "--quiet"]) == 2
+    assert "--repair" in capsys.readouterr().err
+    out = tmp_path / "plan.json"
+    assert main(["plan", str(f), "--fingers", "2", "--soft", "--repair", "--json", str(out),
+                 "--quiet"]) == 0
+    assert json.loads(out.read_text())["grasps"]

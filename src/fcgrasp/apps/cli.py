@@ -60,6 +60,7 @@ def plan_options(args: Any) -> dict[str, Any]:
                                for k in (*PLAN_OPTIONS, *READING_OPTIONS, *LOAD_OPTIONS,
                                          *SEARCH_OPTIONS)}
     options["soft"] = bool(getattr(args, "soft", False))
+    options["repair"] = bool(getattr(args, "repair", False))
     options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
                    ("accel", 2), ("pose_sigma", 3)):
@@ -572,6 +573,9 @@ def build_parser() -> argparse.ArgumentParser:
                        help="simplify the outline to within TOL (in --units), topology kept")
         g.add_argument("--no-clean", action="store_true",
                        help="keep collinear runs and sub-tolerance edges as drawn")
+        g.add_argument("--repair", action="store_true",
+                       help="meshes: merge duplicate vertices, drop degenerate triangles, "
+                            "fix the winding (holes in the surface are not closed)")
         g.add_argument("--max-bytes", default=None, metavar="SIZE",
                        help="the largest file read, such as 64M or 1G (default 256M)")
         g.add_argument("--max-elements", type=int, default=None, metavar="N",

@@ -38,7 +38,7 @@ __all__ = ["PlanRequest", "PlanDocument", "plan_document", "template_request",
 #: The options of a request that say how to read its part (:func:`fcgrasp.io.parts.load_part`).
 READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "pixel_size",
                    "threshold", "y_down", "simplify", "no_clean", "max_bytes",
-                   "max_elements", "max_vertices")
+                   "max_elements", "max_vertices", "repair")
 #: The options of a request that say how to plan (the gripper's and the search's).
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
@@ -90,6 +90,7 @@ _KINDS: dict[str, Any] = {
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "bound": "bool", "soft": "bool",
+    "repair": "bool",
     "y_down": "bool", "no_clean": "bool",
     "gravity": ("floats", 2), "stroke": ("floats", 2), "workspace": ("floats", 3),
     "part": "str", "gripper": "str", "rank_by": "str", "select": "str", "units": "str",
@@ -181,6 +182,7 @@ class PlanRequest:
     max_bytes: int | None = None
     max_elements: int | None = None
     max_vertices: int | None = None
+    repair: bool = False
     json: str | None = None
     plot: str | None = None
     _gripper: Any = field(default=None, init=False, repr=False, compare=False)
@@ -191,7 +193,7 @@ class PlanRequest:
                 value = getattr(self, f.name)
                 if f.name in ("top", "margin", "finger_radius", "part", "gripper",
                               "rank_by", "single_edge", "y_down", "no_clean",
-                              "soft", "bound") \
+                              "soft", "bound", "repair") \
                         and value is None:
                     raise TypeError(f"{f.name} must be given, got None")
                 object.__setattr__(self, f.name, _check_kind(f.name, value))
@@ -403,7 +405,8 @@ class PlanRequest:
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
         kw = {k: getattr(self, k) for k in READING_OPTIONS if k not in ("select",
-                                                                         "no_clean")}
+                                                                         "no_clean",
+                                                                         "repair")}
         kw["clean"] = not self.no_clean
         return kw
 
@@ -591,7 +594,8 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
 
     if solid is None:
         solid = read_solid(request.part, units=request.units, file_units=request.file_units,
-                           select=request.select, limits=request.limits())
+                           select=request.select, limits=request.limits(),
+                           repair=request.repair)
     mu = DEFAULT_MU if request.mu is None else request.mu
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),

@@ -105,13 +105,13 @@ def solid_from_mesh(mesh: Any, units: str = "mm", source: str = "",
     where = source or "mesh"
     if not mesh.is_watertight:
         raise ValueError(f"{where}: the mesh is not watertight (it has open edges): a solid "
-                         f"part needs a closed surface (repair=True cannot close holes)")
+                         f"part needs a closed surface (--repair cannot close holes)")
     if not mesh.is_winding_consistent:
         raise ValueError(f"{where}: the triangles' winding is not consistent "
-                         f"(repair=True fixes it)")
+                         f"(--repair, repair=True, fixes it)")
     if np.any(mesh.area_faces <= TOL * mesh.scale ** 2):
         raise ValueError(f"{where}: the mesh has degenerate (zero-area) triangles "
-                         f"(repair=True drops them)")
+                         f"(--repair, repair=True, drops them)")
     if mesh.volume < 0:
         mesh.invert()
     return Solid(mesh, units, _facets(mesh), np.asarray(mesh.center_mass, float),
