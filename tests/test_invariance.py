@@ -1,8 +1,7 @@
 """The plans do not depend on the frame: the top ten plans of every built-in part and
-gripper are the same (their measures, in order) after a rotation, a translation, a scaling by 1e-3 or 1e3 and a reversal of the
-vertex order.  The parallel jaw's pose grid starts from the part's own direction
-(:func:`fcgrasp.grippers.jaw.grid_anchor`); before, a rotation by 37 degrees changed
-the boxes found.
+gripper are the same (their measures, in order) after a rotation, a translation, a
+scaling by 1e-3 or 1e3 and a reversal of the vertex order.  The parallel jaw's pose grid
+starts from the part's own direction (:func:`fcgrasp.grippers.jaw.grid_anchor`).
 
 The default suite runs every part and gripper under a rotation and a reversal and a
 seeded sample of the rest; ``-m slow`` runs every transform of every part.
