@@ -208,3 +208,35 @@ def test_cli_refuses_a_bad_time_limit(bad, capsys):
 def test_a_report_without_complete_is_read_as_complete():
     old = {"format_version": 2, "grasps": []}
     assert migrate_report(old)["complete"] is True
+
+
+@pytest.mark.parametrize("seed", range(2))
+def test_a_solid_jaw_stopped_early_gives_an_exact_prefix_and_a_sound_bound(seed):
+    """The parallel jaw on a plate with bolt holes, stopped after every count of budget
+    checks: the plans are the complete answer's first and no later plan's radius is
+    above the bound; the document says so."""
+    from fcgrasp.spatial.jaw import solid_jaw_plans
+
+    from .test_spatial_jaw import _plate_with_holes
+
+    solid, _ = _plate_with_holes(10 + seed)
+
+    def plan_it():
+        return solid_jaw_plans(solid, (1.0, 80.0), 3.0, 0.5, top=6)
+
+    full = plan_it()
+    assert full.complete and len(full) >= 2
+    partials = 0
+    for checks in range(400):
+        with deadline(None, checks=checks):
+            part = plan_it()
+        assert len(part) <= len(full)
+        for p, q in zip(part, full, strict=False):
+            assert p.facets == q.facets and p.radius == pytest.approx(q.radius, rel=1e-12)
+        if part.complete:
+            assert len(part) == len(full)
+            break
+        partials += 1
+        assert part.measure == "region radius"
+        assert all(q.radius <= part.bound * (1 + 1e-12) for q in full[len(part):])
+    assert partials >= 1

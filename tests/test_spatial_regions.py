@@ -389,3 +389,52 @@ def test_the_vertex_fit_equals_highs(cases):
         assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
         done += 1
     assert done > cases // 3
+
+
+def _convex_pieces_every_piece(poly):
+    """The greedy merge trying every piece for every triangle: the reference of
+    :func:`fcgrasp.spatial.solid._convex_pieces`, which tries only the pieces whose
+    bounding box meets the triangle's."""
+    import shapely
+
+    from fcgrasp.core.tolerances import TOL
+
+    if poly.area >= poly.convex_hull.area * (1 - TOL):
+        return [poly]
+    tris = sorted(shapely.constrained_delaunay_triangles(poly).geoms, key=lambda t: -t.area)
+    pieces = []
+    for t in tris:
+        for i, p in enumerate(pieces):
+            u = p.union(t)
+            if u.geom_type == "Polygon" and u.area >= u.convex_hull.area * (1 - TOL):
+                pieces[i] = u
+                break
+        else:
+            pieces.append(t)
+    return sorted(pieces, key=lambda p: -p.area)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_convex_pieces_equal_the_merge_over_every_piece(seed):
+    """Facets with holes and notches (seeded): the same convex pieces, in the same order,
+    as the merge that tries every piece."""
+    import shapely
+
+    from fcgrasp.spatial.solid import _convex_pieces
+
+    rng = np.random.default_rng(seed)
+    w, h = rng.uniform(20, 60, 2)
+    holes = []
+    for _ in range(int(rng.integers(1, 12))):
+        r = float(rng.uniform(0.5, 3))
+        c = shapely.Point(rng.uniform(r + 1, w - r - 1), rng.uniform(r + 1, h - r - 1))
+        disc = c.buffer(r, int(rng.integers(3, 12)))
+        if all(disc.distance(o) > 0.5 for o in holes):
+            holes.append(disc)
+    outer = shapely.Polygon([(0, 0), (w, 0), (w, h), (w / 2, h * 0.6), (0, h)])
+    poly = shapely.Polygon(outer.exterior.coords,
+                           [list(o.exterior.coords)[::-1] for o in holes
+                            if outer.contains(o)])
+    mine, ref = _convex_pieces(poly), _convex_pieces_every_piece(poly)
+    assert len(mine) == len(ref)
+    assert all(a.equals_exact(b, 0.0) for a, b in zip(mine, ref, strict=True))

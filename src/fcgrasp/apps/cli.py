@@ -144,7 +144,8 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
                                                                       "early")
     top = report.get("parameters", {}).get("top")
     rest = "no bound on the rest was proved" if gap["bound"] is None else \
-        f"every further distinct alternative has a smallest region of at most " \
+        f"every further distinct alternative has a " \
+        f"{gap.get('measure', 'smallest region')} of at most " \
         f"{gap['bound']:.4g} {report.get('units', '')}".rstrip()
     return f"search stopped {why}: {gap['found']} of {top} plans proved, exact; {rest}"
 

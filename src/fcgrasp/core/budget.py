@@ -28,9 +28,10 @@ import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
+from typing import Any
 
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
-           "remaining", "check_time_limit"]
+           "remaining", "check_time_limit", "PlanList", "incomplete"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
 #: of wall-clock time, for interactive use: the search's first answer is always
@@ -125,3 +126,49 @@ def check() -> None:
     check)."""
     if exhausted():
         raise BudgetExhausted("time_limit")
+
+
+class PlanList(list):  # type: ignore[type-arg]
+    """Plans, best first, with what the search proved about the plans it did not return.
+
+    ``complete`` True: these are the exact answer (every plan asked for that exists).
+    False: the search stopped early (``stopped``: ``"time_limit"``, the budget of
+    :func:`fcgrasp.core.budget.deadline`; ``"depth"``, the most plans a distinct search
+    reads), and the plans are still an exact prefix of the complete answer, in order;
+    ``bound`` is then a length no plan the complete search would add after them
+    exceeds: every further alternative's smallest region is at most ``bound`` (None
+    where the search proved none), the gap of an anytime search as a MIP solver reports
+    its own.
+
+    >>> plans = PlanList([], complete=False, bound=2.5, stopped="time_limit")
+    >>> plans.complete, plans.gap()["bound"]
+    (False, 2.5)
+    """
+
+    def __init__(self, plans: Any = (), complete: bool = True, bound: float | None = None,
+                 stopped: str | None = None, measure: str = "smallest region") -> None:
+        super().__init__(plans)
+        self.complete = bool(complete)
+        self.bound = None if bound is None else float(bound)
+        self.stopped = stopped
+        #: what ``bound`` bounds: the plans' ranking measure
+        self.measure = measure
+
+    def gap(self) -> dict[str, Any] | None:
+        """What the JSON report says of an incomplete search (None when complete):
+        why it stopped, the plans it proved and the bound on the rest."""
+        if self.complete:
+            return None
+        return {"stopped_by": self.stopped, "found": len(self), "bound": self.bound,
+                "measure": self.measure}
+
+    def same_answer(self, plans: Any) -> PlanList:
+        """Other plans with this list's completeness and bound."""
+        return PlanList(plans, self.complete, self.bound, self.stopped, self.measure)
+
+
+def incomplete(plans: Any, stopped: str, bound: float | None,
+               measure: str = "smallest region") -> PlanList:
+    """The plans of a search that stopped early (``stopped``), every further plan's
+    ``measure`` at most ``bound``."""
+    return PlanList(plans, complete=False, bound=bound, stopped=stopped, measure=measure)

@@ -10,11 +10,11 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
-from ..core.budget import BudgetExhausted, exhausted
+from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.distinct import Suppression
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches, load_kernels
-from ..model.plans import GraspPlan, PlanList, incomplete, rank_key
+from ..model.plans import GraspPlan, rank_key
 from ..model.polygon import Polygon
 from ..model.ranking import MEASURES
 from ..model.stretches import (

@@ -66,10 +66,10 @@ import numpy as np
 
 from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
-from ..core.budget import BudgetExhausted, exhausted
+from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
 from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
 from ..model.distinct import Suppression
-from ..model.plans import GraspPlan, PlanList, incomplete, leximin_key
+from ..model.plans import GraspPlan, leximin_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (

@@ -18,6 +18,7 @@ from ..core._checks import FloatArray
 from ..core._geom import RANK_DIGITS as _DIGITS
 from ..core._geom import along, geometric_key, leximin_key
 from ..core._json import json_ready
+from ..core.budget import PlanList
 from ..core.contacts import FrictionlessPoint, FrictionPoint, Gravity
 from ..core.grasp import Grasp
 from ..core.tolerances import TINY
@@ -28,47 +29,6 @@ from .ranking import MEASURES
 __all__ = ["GraspPlan", "PlanList", "leximin_key", "geometric_key", "rank_key",
            "check_point_plan"]
 
-
-class PlanList(list):  # type: ignore[type-arg]
-    """Plans, best first, with what the search proved about the plans it did not return.
-
-    ``complete`` True: these are the exact answer (every plan asked for that exists).
-    False: the search stopped early (``stopped``: ``"time_limit"``, the budget of
-    :func:`fcgrasp.core.budget.deadline`; ``"depth"``, the most plans a distinct search
-    reads), and the plans are still an exact prefix of the complete answer, in order;
-    ``bound`` is then a length no plan the complete search would add after them
-    exceeds: every further alternative's smallest region is at most ``bound`` (None
-    where the search proved none), the gap of an anytime search as a MIP solver reports
-    its own.
-
-    >>> plans = PlanList([], complete=False, bound=2.5, stopped="time_limit")
-    >>> plans.complete, plans.gap()["bound"]
-    (False, 2.5)
-    """
-
-    def __init__(self, plans: Any = (), complete: bool = True, bound: float | None = None,
-                 stopped: str | None = None) -> None:
-        super().__init__(plans)
-        self.complete = bool(complete)
-        self.bound = None if bound is None else float(bound)
-        self.stopped = stopped
-
-    def gap(self) -> dict[str, Any] | None:
-        """What the JSON report says of an incomplete search (None when complete):
-        why it stopped, the plans it proved and the bound on the rest."""
-        if self.complete:
-            return None
-        return {"stopped_by": self.stopped, "found": len(self), "bound": self.bound}
-
-    def same_answer(self, plans: Any) -> PlanList:
-        """Other plans with this list's completeness and bound."""
-        return PlanList(plans, self.complete, self.bound, self.stopped)
-
-
-def incomplete(plans: Any, stopped: str, bound: float | None) -> PlanList:
-    """The plans of a search that stopped early (``stopped``), every further plan's
-    smallest region at most ``bound``."""
-    return PlanList(plans, complete=False, bound=bound, stopped=stopped)
 
 @dataclass
 class GraspPlan:

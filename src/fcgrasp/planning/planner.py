@@ -28,13 +28,21 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core._checks import check_int, check_scalar
-from ..core.budget import DEFAULT_TIME_LIMIT, BudgetExhausted, check_time_limit, deadline, exhausted
+from ..core.budget import (
+    DEFAULT_TIME_LIMIT,
+    BudgetExhausted,
+    PlanList,
+    check_time_limit,
+    deadline,
+    exhausted,
+    incomplete,
+)
 from ..core.tolerances import SOLVER_TOL
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions
 from ..grippers.fingers import point_fingers, regions_on
 from ..model.distinct import distinct_plans
 from ..model.hand import Hand
-from ..model.plans import GraspPlan, PlanList, geometric_key, incomplete, rank_key
+from ..model.plans import GraspPlan, geometric_key, rank_key
 from ..model.polygon import Polygon, check_polygon
 from ..model.ranking import MEASURES
 from ..model.regions import DEFAULT_MARGIN_DEG

@@ -19,7 +19,7 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
 from ..core._checks import check_margin
-from ..core.budget import DEFAULT_TIME_LIMIT
+from ..core.budget import DEFAULT_TIME_LIMIT, deadline
 from ..errors import RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
 from ..io.limits import DEFAULT_LIMITS, Limits
@@ -498,7 +498,8 @@ def plan_document(request: PlanRequest, part: Any = None,
     if not isinstance(request, PlanRequest):
         raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
     if request.is_solid():
-        return _solid_document(request, part)
+        with deadline(request.search_time_limit()):
+            return _solid_document(request, part)
     gripper = request.gripper_object()
     part = request.load(say) if part is None else part
     polygon, units = part.polygon, part.units
@@ -531,7 +532,8 @@ def plan_document(request: PlanRequest, part: Any = None,
             "accel_m_s2": list(load.accel), "accel_shape": load.accel_shape,
             "gravity_m_s2": list(load.gravity),
             "force_limit_n": request.force_limit, "total_force_n": request.total_force}
-    reason = None if plans else gripper.no_grasp_reason(request.margin)
+    reason = None if plans else _stopped_reason(plans) or \
+        gripper.no_grasp_reason(request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
     mu_range = None
     if request.mu_high is not None:
@@ -575,6 +577,16 @@ def plan_document(request: PlanRequest, part: Any = None,
             margin=options.margin, lower=best).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {gripper.title}")
+
+
+def _stopped_reason(plans: Any) -> str | None:
+    """Why a search that stopped early has no plan (None: it did not stop early)."""
+    if getattr(plans, "complete", True):
+        return None
+    why = {"time_limit": "its time limit (--time-limit raises it)",
+           "max_memory": "its memory budget (--max-memory raises it)"}.get(
+        plans.stopped, "the most plans it reads")
+    return f"the search stopped at {why} before it proved a plan"
 
 
 def template_request(options: dict[str, Any]) -> PlanRequest:
@@ -644,10 +656,11 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
         title = "three fingers with friction"
     if distinct:
         params["distinct"] = distinct
-    reason = None if plans else f"no {what} with mu {mu:g} and a margin of " \
+    reason = None if plans else _stopped_reason(plans) or \
+        f"no {what} with mu {mu:g} and a margin of " \
                                 f"{request.margin:g} degrees"
     report = plan_report(None, plans, params, solid.units, reason,
                          source={"path": request.part}, part=part)
     # a solid's document carries the solid where a planar one has its polygon
-    return PlanDocument(report, list(plans), solid, solid.units, reason,
+    return PlanDocument(report, plans, solid, solid.units, reason,
                         f"{request.part}: {title}")

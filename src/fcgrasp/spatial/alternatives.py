@@ -27,6 +27,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core.budget import PlanList, exhausted, incomplete
+
 __all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans", "SAME_SIDE_DEG"]
 
 #: Paired fingers of the same alternative press within this angle of each other
@@ -106,16 +108,34 @@ def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
     return [replace(p, similar=tuple(s)) for p, s in zip(kept, stands, strict=True)]
 
 
-def top_distinct(search: Any, top: int | None, fraction: float) -> list[Any]:
+def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
     None for every plan): asked for four times more plans than it keeps, and four
-    times more again until ``top`` are kept or the search has no more."""
+    times more again until ``top`` are kept or the search has no more.  A search that
+    stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time budget
+    that ends between two rounds, ends the rounds: the plans kept are the answer's
+    first, incomplete, with the bound of the search's (the last plan read's radius
+    between rounds: every plan not read is below it)."""
     if fraction == 0 or top is None:
-        return distinct_solid_plans(search(top), fraction)
+        plans = search(top)
+        kept = distinct_solid_plans(plans, fraction)
+        return _like(plans, kept)
     n = 4 * top
     while True:
         plans = search(n)
         kept = distinct_solid_plans(plans, fraction)
-        if len(kept) >= top or len(plans) < n:
-            return kept[:top]
+        if len(kept) >= top or (len(plans) < n and getattr(plans, "complete", True)):
+            return PlanList(kept[:top])
+        if not getattr(plans, "complete", True):
+            return _like(plans, kept[:top])
+        if exhausted():
+            return incomplete(kept[:top], "time_limit", float(plans[-1].radius),
+                              "region radius")
         n *= 4
+
+
+def _like(plans: Any, kept: list[Any]) -> PlanList:
+    """``kept`` with the completeness and bound of the search's ``plans``."""
+    if isinstance(plans, PlanList):
+        return plans.same_answer(kept)
+    return PlanList(kept)

@@ -30,11 +30,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_scalar
+from ..core.budget import PlanList, exhausted, incomplete
 from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL
 from .alternatives import SolidPlan
 from .regions import DEFAULT_MARGIN_DEG, checked_cone, inscribed_radius_bound
@@ -102,34 +103,85 @@ def _check(solid: Any, stroke: Any, pad: Any, mu: Any, margin: Any
 def _opposite_pairs(solid: Solid, tilt: float) -> list[tuple[int, int]]:
     """Pairs of facets (lower index first) whose inward normals are opposite within
     ``tilt`` radians, the second in front of the first (across the part)."""
+    from scipy.spatial import cKDTree
+
     normals = np.array([f.normal for f in solid.facets])
-    ii, jj = np.nonzero(np.triu(-(normals @ normals.T) >= math.cos(tilt), 1))
+    # the candidates by a tree of the normals (a mesh of thousands of facets: no F x F
+    # matrix), then the exact test on each: the same pairs, in the same order
+    reach = math.sqrt(max(0.0, 2.0 - 2.0 * math.cos(tilt))) * (1 + 1e-9) + 1e-12
+    near = cKDTree(normals).query_ball_point(-normals, reach)
+    cand = sorted((i, j) for i, js in enumerate(near) for j in js if j > i)
+    keep = [(i, j) for i, j in cand if -(normals[i] @ normals[j]) >= math.cos(tilt)]
     out = []
-    for i, j in zip(ii.tolist(), jj.tolist(), strict=True):
+    for i, j in keep:
         a, b = solid.facets[i], solid.facets[j]
         if (b.origin - a.origin) @ a.normal > 0:
             out.append((i, j))
     return out
 
 
-def _outside(solid: Solid, facet: Facet, level: float) -> Any:
+def _facing(solid: Solid, pairs: list[tuple[int, int]], stroke: tuple[float, float]
+            ) -> list[tuple[int, int]]:
+    """The pairs that can give a region (necessary conditions, all pairs at once): the
+    opening along the pair's axis within the stroke (with the rounding of
+    :func:`_region`'s), and the two facets' bounding circles overlapping seen along the
+    axis (else the facets' shadows do not meet).  A part with hundreds of holes has
+    hundreds of thousands of opposite pairs of wall facets, most far apart."""
+    if not pairs:
+        return pairs
+    facets = solid.facets
+    ij = np.array(pairs, dtype=np.int64)
+    normal = np.array([f.normal for f in facets])
+    origin = np.array([f.origin for f in facets])
+    centre, radius = np.empty((len(facets), 3)), np.empty(len(facets))
+    for k, f in enumerate(facets):
+        ring = np.asarray(f.polygon.exterior.coords)[:-1]
+        c = ring.mean(axis=0)
+        centre[k] = f.to_3d(c)
+        radius[k] = float(np.max(np.hypot(*(ring - c).T)))
+    a, b = ij[:, 0], ij[:, 1]
+    axis = normal[a] - normal[b]
+    axis /= np.linalg.norm(axis, axis=1)[:, None]
+    h = np.einsum("ij,ij->i", origin[b] - origin[a], axis)
+    d = centre[b] - centre[a]
+    across = np.linalg.norm(d - np.einsum("ij,ij->i", d, axis)[:, None] * axis, axis=1)
+    slack = 1e-6 * solid.size
+    ok = (h >= stroke[0] - slack) & (h <= stroke[1] + slack) \
+        & (across <= radius[a] + radius[b] + slack)
+    return [pairs[k] for k in np.flatnonzero(ok)]
+
+
+def _outside(solid: Solid, facet: Facet, level: float, near: Any = None) -> Any:
     """The part outside ``facet``'s plane (its pad's side, beyond ``level`` below it),
     projected into the facet's 2-D frame along its normal: the triangles clipped to
-    that half-space (shapely, a union), or None."""
+    that half-space (shapely, a union), or None.  ``near(tris)``: a mask of the
+    triangles (T, 3, 3) that can matter (their projections meet the region's window);
+    the others are left out."""
     import shapely
 
-    V = solid.mesh.vertices
-    tris = V[solid.mesh.faces]                                          # (T, 3, 3)
+    V = np.asarray(solid.mesh.vertices, float)
+    tris = V[np.asarray(solid.mesh.faces)]                              # (T, 3, 3)
     s = (tris - facet.origin) @ facet.normal                            # (T, 3)
     hit = np.any(s < -level, axis=1)
+    if near is not None and hit.any():
+        hit[hit] = near(tris[hit])
     if not hit.any():
         return None
-    polys = []
-    for tri, lev in zip(tris[hit], s[hit], strict=True):
-        ring = _clip(tri, lev)
-        if len(ring) >= 3:
-            polys.append(shapely.Polygon(facet.to_2d(ring)))
-    polys = [p for p in polys if p.is_valid and p.area > 0]
+    tris, s = tris[hit], s[hit]
+    # a triangle wholly on the pad's side is its own shadow (the clip keeps its three
+    # corners in order): those are made at once, the few the plane cuts one by one, in
+    # the triangles' order
+    whole = np.all(s <= 0, axis=1)
+    shadows = np.empty(len(tris), dtype=object)
+    shadows[whole] = shapely.polygons(facet.to_2d(tris[whole].reshape(-1, 3))
+                                      .reshape(-1, 3, 2))
+    for k in np.flatnonzero(~whole):
+        ring = _clip(tris[k], s[k])
+        shadows[k] = shapely.Polygon(facet.to_2d(ring)) if len(ring) >= 3 else None
+    made = np.array([p is not None for p in shadows], dtype=bool)
+    keep = np.zeros(len(tris), dtype=bool)
+    keep[made] = shapely.is_valid(shadows[made]) & (shapely.area(shadows[made]) > 0)
+    polys = list(shadows[keep])
     return shapely.union_all(polys) if polys else None
 
 
@@ -219,9 +271,32 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
             for p in shapely.get_parts(geom) if isinstance(p, shapely.Polygon)])
 
     region = shapely.intersection(a.polygon, into_a(b.polygon))
+    if region.is_empty:
+        return None
     level = PLANAR_TOL * solid.size
+    # only triangles whose shadow comes within the pad's half width of the region's box
+    # can cut it (their shadows' boxes hold their clipped shadows)
+    lo_x, lo_y, hi_x, hi_y = region.bounds
+    grow = pad / 2 + PLANAR_TOL * solid.size
+
+    def window(to_a: Any) -> Any:
+        def near(tris: FloatArray) -> np.ndarray:
+            q = to_a(tris.reshape(-1, 3)).reshape(-1, 3, 2)
+            return cast("np.ndarray",
+                        (q[..., 0].min(axis=1) <= hi_x + grow)
+                        & (q[..., 0].max(axis=1) >= lo_x - grow)
+                        & (q[..., 1].min(axis=1) <= hi_y + grow)
+                        & (q[..., 1].max(axis=1) >= lo_y - grow))
+        return near
+
+    def b_into_a(pts: FloatArray) -> FloatArray:
+        on_b = b.to_3d(b.to_2d(pts))
+        return a.to_2d(on_b - np.outer((on_b - a.origin) @ a.normal, axis)
+                       / float(axis @ a.normal))
+
     for facet in (a, b):
-        blocked = _outside(solid, facet, level)
+        blocked = _outside(solid, facet, level,
+                           window(a.to_2d if facet is a else b_into_a))
         if blocked is not None:
             if facet is b:
                 blocked = into_a(blocked)
@@ -245,12 +320,15 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
 
 
 def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | None = 10,
-                    margin: Any = DEFAULT_MARGIN_DEG) -> list[SolidJawPlan]:
+                    margin: Any = DEFAULT_MARGIN_DEG) -> PlanList:
     """The best regions of a parallel jaw on ``solid`` (module docstring), largest
     inscribed radius first: every pair of opposite parallel facets whose opening is in
     the stroke, taken by their bound (the smaller of the two facets' inscribed
     circles, an upper bound on the overlap's) until the bound cannot enter the top
-    ``top`` (None: every pair).
+    ``top`` (None: every pair).  When the time budget ends
+    (:func:`fcgrasp.core.budget.deadline`), the plans above the next pair's bound are
+    returned, incomplete, with that bound on every other region's radius
+    (:class:`~fcgrasp.core.budget.PlanList`).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 3) for p in solid_jaw_plans(demo_solid("box"), (5, 50), 8, 0.5)]
@@ -261,9 +339,9 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
     stroke_v, pad_v, mu_v, margin_v, alpha = _check(solid, stroke, pad, mu, margin)
     if top is not None:
         top = check_int(top, "top", minimum=1)
-    pairs = _opposite_pairs(solid, PARALLEL_FACETS)
+    pairs = _facing(solid, _opposite_pairs(solid, PARALLEL_FACETS), stroke_v)
     if not pairs or alpha <= 0:
-        return []
+        return PlanList()
     used = sorted({k for p in pairs for k in p})
     geoms = np.array([solid.facets[k].polygon for k in used], dtype=object)
     inradius = dict(zip(used, inscribed_radius_bound(geoms).tolist(), strict=True))
@@ -273,6 +351,12 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         bound = min(inradius[i], inradius[j])
         if top is not None and len(plans) >= top and plans[top - 1].radius >= bound:
             break
+        if exhausted():
+            # every pair left is below its bound: the plans above it are the answer's
+            # first, exactly
+            proved = [p for p in plans if p.radius > bound]
+            return incomplete(proved if top is None else proved[:top], "time_limit", bound,
+                              "region radius")
         try:
             got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)
         except shapely.errors.GEOSException:
@@ -282,4 +366,4 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         if got is not None:
             plans.append(got)
             plans.sort(key=lambda p: (-p.radius, p.facets))
-    return plans if top is None else plans[:top]
+    return PlanList(plans if top is None else plans[:top])

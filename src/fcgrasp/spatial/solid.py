@@ -204,13 +204,24 @@ def _convex_pieces(poly: Any) -> list[Any]:
         return [poly]
     tris = sorted(constrained_delaunay_triangles(poly).geoms, key=lambda t: -t.area)
     pieces: list[Any] = []
+    # each piece's bounding box: a triangle is tried only against the pieces whose box
+    # meets its own (closed boxes: one sharing an edge is tried), in the same order,
+    # since a union with any other is not one polygon (a facet with hundreds of holes
+    # has thousands of triangles: trying every piece made the merge quadratic)
+    boxes = np.empty((len(tris), 4))
     for t in tris:
-        for i, p in enumerate(pieces):
-            u = p.union(t)
+        tb = t.bounds
+        near = np.flatnonzero((boxes[:len(pieces), 0] <= tb[2]) & (boxes[:len(pieces), 2] >= tb[0])
+                               & (boxes[:len(pieces), 1] <= tb[3])
+                               & (boxes[:len(pieces), 3] >= tb[1]))
+        for i in near:
+            u = pieces[i].union(t)
             if u.geom_type == "Polygon" and u.area >= u.convex_hull.area * (1 - TOL):
                 pieces[i] = u
+                boxes[i] = u.bounds
                 break
         else:
+            boxes[len(pieces)] = tb
             pieces.append(t)
     return sorted(pieces, key=lambda p: -p.area)
 

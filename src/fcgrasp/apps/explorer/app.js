@@ -717,7 +717,7 @@ function incompleteText(report) {
                depth: "at the most plans a distinct search reads"}[g.stopped_by] || "early";
   const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
   const rest = g.bound === null ? "no bound on the rest was proved"
-    : `every further distinct alternative has a smallest region of at most ${g4(g.bound)} ` +
+    : `every further distinct alternative has a ${g.measure || "smallest region"} of at most ${g4(g.bound)} ` +
       `${report.units}`;
   return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans proved, ` +
     `exact; ${rest}`;
