@@ -36,7 +36,7 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_scalar
 from ..core.budget import PlanList, exhausted, incomplete
-from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL
+from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL, ROUND_TOL, TOL
 from .alternatives import SolidPlan
 from .regions import DEFAULT_MARGIN_DEG, checked_cone, inscribed_radius_bound
 from .solid import Facet, Solid
@@ -108,7 +108,7 @@ def _opposite_pairs(solid: Solid, tilt: float) -> list[tuple[int, int]]:
     normals = np.array([f.normal for f in solid.facets])
     # the candidates by a tree of the normals (a mesh of thousands of facets: no F x F
     # matrix), then the exact test on each: the same pairs, in the same order
-    reach = math.sqrt(max(0.0, 2.0 - 2.0 * math.cos(tilt))) * (1 + 1e-9) + 1e-12
+    reach = math.sqrt(max(0.0, 2.0 - 2.0 * math.cos(tilt))) * (1 + TOL) + ROUND_TOL
     near = cKDTree(normals).query_ball_point(-normals, reach)
     cand = sorted((i, j) for i, js in enumerate(near) for j in js if j > i)
     keep = [(i, j) for i, j in cand if -(normals[i] @ normals[j]) >= math.cos(tilt)]
@@ -145,7 +145,7 @@ def _facing(solid: Solid, pairs: list[tuple[int, int]], stroke: tuple[float, flo
     h = np.einsum("ij,ij->i", origin[b] - origin[a], axis)
     d = centre[b] - centre[a]
     across = np.linalg.norm(d - np.einsum("ij,ij->i", d, axis)[:, None] * axis, axis=1)
-    slack = 1e-6 * solid.size
+    slack = PLANAR_TOL * solid.size
     ok = (h >= stroke[0] - slack) & (h <= stroke[1] + slack) \
         & (across <= radius[a] + radius[b] + slack)
     return [pairs[k] for k in np.flatnonzero(ok)]

@@ -690,7 +690,7 @@ def grid_anchor(polygon: Polygon) -> float:
     -89.625
     """
     L = np.where(polygon.usable, polygon.lengths, -np.inf)
-    k = int(np.flatnonzero(L >= L.max() * (1 - 1e-9))[0])
+    k = int(np.flatnonzero(L >= L.max() * (1 - TOL))[0])
     n = polygon.normals[k]
     return float(np.arctan2(n[1], n[0])) + 0.75 * np.radians(THETA_STEP_DEG)
 
