@@ -833,3 +833,39 @@ def test_a_page_of_another_origin_can_neither_read_nor_plan(server, browser, tmp
     wait(browser, "document.body.dataset.planSeq !== undefined && "
                   "Number(document.body.dataset.planSeq) > 0")
     assert page_plans(browser)
+
+
+def test_a_file_of_several_parts_offers_them_and_sizes_the_jaw(server, browser, tmp_path):
+    """A drawing of two parts: the page takes the largest, lists both (as fcgrasp parts
+    does) and takes the other when it is picked; the jaw's stroke and pads follow the
+    part's size until the user sets them."""
+    import ezdxf
+    from selenium.webdriver.support.ui import Select
+
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (4, 0), (4, 4), (0, 4)], close=True)
+    msp.add_lwpolyline([(10, 0), (40, 0), (30, 20), (10, 20)], close=True)
+    path = tmp_path / "two.dxf"
+    doc.saveas(path)
+    browser.get(server)
+    wait(browser, "document.body.dataset.planSeq !== undefined")
+    before = plan_seq(browser)
+    browser.find_element(By.ID, "file").send_keys(str(path))
+    wait(browser, "document.body.dataset.parts === 'many'")
+    wait_plan(browser, before)
+    pick = Select(browser.find_element(By.ID, "partpick"))
+    assert len(pick.options) == 2
+    assert "4 edges" in browser.find_element(By.ID, "partinfo").text
+    size = browser.execute_script("return explorer.state.part.outer.length")
+    assert size == 4
+    big = float(browser.find_element(By.ID, "stroke1").get_attribute("value"))
+    other = next(o.get_attribute("value") for o in pick.options if not o.is_selected())
+    before = plan_seq(browser)
+    pick.select_by_value(other)
+    wait_plan(browser, before)
+    outer = np.array(browser.execute_script("return explorer.state.part.outer"))
+    assert np.allclose(np.ptp(outer, axis=0), [4, 4])          # the small square
+    small = float(browser.find_element(By.ID, "stroke1").get_attribute("value"))
+    assert small < big                                           # sized to the part

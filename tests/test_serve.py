@@ -670,3 +670,35 @@ def test_an_expanding_upload_is_refused_by_the_readers_limits(client):
 
     r = client.post("/api/part?name=bomb.svg", content=_use_bomb().encode())
     assert r.status_code == 400 and "--max-elements" in r.json()["error"]
+
+
+def test_an_upload_lists_its_parts_and_takes_the_one_asked_in_its_units(client):
+    """A drawing of two parts: the largest by default, every part listed as fcgrasp
+    parts lists them; ``part`` takes another, ``units`` converts (a bracket DXF's small
+    rectangle was the only way in)."""
+    import io
+
+    import ezdxf
+
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4                       # millimetres
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (4, 0), (4, 4), (0, 4)], close=True)
+    msp.add_lwpolyline([(10, 0), (40, 0), (40, 20), (10, 20)], close=True)
+    text = io.StringIO()
+    doc.write(text)
+    body = text.getvalue().encode()
+    r = client.post("/api/part?name=two.dxf", content=body)
+    assert r.status_code == 200, r.text
+    got = r.json()
+    assert len(got["parts"]) == 2 and all(p["usable"] for p in got["parts"])
+    big = max(got["parts"], key=lambda p: p["area"])
+    small = min(got["parts"], key=lambda p: p["area"])
+    assert got["part"] == big["index"] and got["units"] == "mm"
+    r = client.post(f"/api/part?name=two.dxf&part={small['index']}&units=in", content=body)
+    other = r.json()
+    assert other["part"] == small["index"] and other["units"] == "in"
+    side = np.ptp(np.array(other["outer"]), axis=0)
+    assert np.allclose(side, [4 / 25.4, 4 / 25.4], rtol=1e-9)
+    bad = client.post("/api/part?name=two.dxf&units=furlong", content=body)
+    assert bad.status_code == 400 and bad.json()["field"] == "units"

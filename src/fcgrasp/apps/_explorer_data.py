@@ -182,13 +182,21 @@ def _polygon_of(data: Any) -> tuple[Any, str]:
         raise RequestError(f"the outline is not valid: {exc}", "part") from None
 
 
-def read_upload(body: bytes, name: str) -> dict[str, Any]:
-    """The default part of an uploaded file (any format ``fcgrasp plan`` reads; the
-    largest part, as the command line chooses), as :func:`part_json`."""
+def read_upload(body: bytes, name: str, part: str | None = None,
+                units: str | None = None) -> dict[str, Any]:
+    """A part of an uploaded file (any format ``fcgrasp plan`` reads), as
+    :func:`part_json`: ``part`` (an index or an id, as ``--part``; default the largest,
+    as the command line chooses) in ``units`` (as ``--units``; default mm), with the
+    file's ``parts`` listed (index, id, layer, edges, area, whether usable, as
+    ``fcgrasp parts`` lists them) and the index of the one taken."""
     from ..io.meshes import MESH_SUFFIXES, read_solid
     from ..io.parts import FORMATS, choose_part, list_parts
+    from ..io.units import UNITS
 
     base = os.path.basename(name) or "upload"
+    if units is not None and units not in UNITS:
+        raise RequestError(f"units must be one of {', '.join(UNITS)}, got {_short(units)}",
+                           "units")
     suffix = os.path.splitext(base)[1].lower()
     if suffix not in FORMATS and suffix not in MESH_SUFFIXES:
         suffix = ""            # the reader sniffs the content
@@ -198,14 +206,21 @@ def read_upload(body: bytes, name: str) -> dict[str, Any]:
             fh.write(body)
         try:
             if suffix in MESH_SUFFIXES:       # a solid: its largest watertight body
-                solid = read_solid(path)
+                solid = read_solid(path, units=units, select=part)
                 solid = replace(solid, source=base)
                 return solid_json(solid, base)
-            part = choose_part(list_parts(path))
+            parts = list_parts(path, units=units)
+            chosen = choose_part(parts, part)
         except (ValueError, TypeError, OSError) as exc:
             msg = str(exc).replace(path, base)
             raise RequestError(f"cannot read {base}: {msg}", "file") from None
-    return part_json(part.polygon, part.units, base, part.notes)
+    out = part_json(chosen.polygon, chosen.units, base, chosen.notes)
+    out["part"] = chosen.index
+    out["parts"] = [{"index": p.index, "id": p.id, "layer": p.layer,
+                     "edges": None if p.polygon is None else p.polygon.n_edges,
+                     "area": float(p.area), "usable": p.polygon is not None}
+                    for p in parts]
+    return out
 
 
 # ----------------------------------------------------------------------------- plans

@@ -32,8 +32,11 @@ one):
 
 ``GET /api/state``
     the starting part, the built-in parts, the ranking measures and the limits;
-``GET /api/demo/NAME``, ``POST /api/part?name=FILE`` (the file's bytes as the body)
-    a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}``; or a
+``GET /api/demo/NAME``, ``POST /api/part?name=FILE[&part=N|ID][&units=U]`` (the file's
+    bytes as the body)
+    a part: ``{"outer": [[x, y], ...], "holes": [...], "units": ..., "name": ...}`` (of a
+    file, also its ``parts``, as ``fcgrasp parts`` lists them, and the ``part`` taken:
+    the largest unless ``part`` names another; in ``units``, default mm); or a
     solid (a built-in solid, a mesh file): ``{"solid": true, "source": ..., "vertices":
     [[x, y, z], ...], "faces": [[i, j, k], ...], "units": ..., ...}``, which the page
     sends back to plan it (a built-in one is read again by its name) with the grippers
@@ -326,13 +329,14 @@ class Jobs:
             job.process.kill()
         return job
 
-    def read(self, body: bytes, name: str) -> dict[str, Any]:
+    def read(self, body: bytes, name: str, part: str | None = None,
+             units: str | None = None) -> dict[str, Any]:
         """:func:`~fcgrasp.apps._explorer_data.read_upload` in a process of its own,
         killed past :data:`READ_SECONDS` and capped at :data:`READ_MEMORY` bytes: a file
         that would take the server's memory or time takes only its own process."""
         mine, theirs = self._ctx.Pipe()
-        proc = self._ctx.Process(target=_reader, args=(theirs, body, name), daemon=True,
-                                 name="fcgrasp-reader")
+        proc = self._ctx.Process(target=_reader, args=(theirs, body, name, part, units),
+                                 daemon=True, name="fcgrasp-reader")
         proc.start()
         theirs.close()
         try:
@@ -367,7 +371,8 @@ class Jobs:
             w.conn.close()
 
 
-def _reader(conn: Any, body: bytes, name: str) -> None:
+def _reader(conn: Any, body: bytes, name: str, part: str | None = None,
+            units: str | None = None) -> None:
     """An upload's reading process: its memory capped, its answer sent once."""
     try:
         import resource
@@ -376,7 +381,7 @@ def _reader(conn: Any, body: bytes, name: str) -> None:
     except (ImportError, ValueError, OSError):    # not on this platform: time still bounds
         pass
     try:
-        conn.send(("done", read_upload(body, name)))
+        conn.send(("done", read_upload(body, name, part, units)))
     except RequestError as exc:
         conn.send(("error", str(exc)))
     except MemoryError:
@@ -468,6 +473,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
     from starlette.staticfiles import StaticFiles
 
     from ..io.parts import DEMO_PARTS, load_part, read_json
+    from ..io.units import UNITS
     from ..model.ranking import MEASURES
     from ..spatial.solid import DEMO_SOLIDS, demo_solid
 
@@ -576,10 +582,15 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
 
     async def upload(request: Request) -> Response:
         name = request.query_params.get("name", "upload")
+        part = request.query_params.get("part")
+        units = request.query_params.get("units")
+        if units is not None and units not in UNITS:
+            raise RequestError(f"units must be one of {', '.join(UNITS)}, got "
+                               f"{_short(units)}", "units")
         body = await body_of(request, max_upload)
         if not body:
             raise RequestError("the file is empty", "file")
-        out = await asyncio.to_thread(jobs.read, body, name)
+        out = await asyncio.to_thread(jobs.read, body, name, part, units)
         return JSONResponse(out)
 
     async def plan(request: Request) -> Response:

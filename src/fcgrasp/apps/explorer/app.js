@@ -836,6 +836,7 @@ function setSolid(part, note) {
 }
 
 function setPart(part, note) {
+  sizeJaw(part.size);
   if (part.solid) { setSolid(part, note); return; }
   if (S.solid) {
     S.solid = null;
@@ -1034,18 +1035,49 @@ function setMode(mode) {
   render();
 }
 
-async function loadFile(file) {
+// the file loaded last: another of its parts, or other units, reads it again
+async function loadFile(file, which) {
   if (file.size > S.maxUpload) {
     message(`${file.name} is too large (${file.size} bytes; at most ${S.maxUpload})`);
     return;
   }
+  let url = `/api/part?name=${encodeURIComponent(file.name)}` +
+    `&units=${encodeURIComponent($("units").value)}`;
+  if (which !== undefined) url += `&part=${encodeURIComponent(which)}`;
   try {
-    const part = await request("POST", `/api/part?name=${encodeURIComponent(file.name)}`,
-      await file.arrayBuffer(), true);
+    const part = await request("POST", url, await file.arrayBuffer(), true);
+    S.file = file;
+    showParts(part);
     setPart(part, (part.notes || []).join("; "));
   } catch (e) {
     message(`${e.message} (kept the current part)`);
   }
+}
+
+// the parts of the file loaded (as fcgrasp parts lists them), the one shown selected
+function showParts(part) {
+  const pick = $("partpick");
+  pick.textContent = "";
+  const parts = part.parts || [];
+  for (const p of parts) {
+    const o = document.createElement("option");
+    o.value = String(p.index);
+    o.disabled = !p.usable;
+    o.textContent = `${p.index}: ${p.id || "-"}${p.layer ? ` (layer ${p.layer})` : ""}, ` +
+      `${p.edges === null ? "not usable" : `${p.edges} edges`}, area ${fmt(p.area)}`;
+    pick.appendChild(o);
+  }
+  pick.value = String(part.part);
+  document.body.dataset.parts = parts.length > 1 ? "many" : "one";
+}
+
+// the jaw's stroke and pads sized to the part, until the user sets them
+function sizeJaw(size) {
+  if (S.jawEdited || !(size > 0)) return;
+  const round = (v) => Number(v.toPrecision(2));
+  $("stroke0").value = String(round(0.05 * size));
+  $("stroke1").value = String(round(1.5 * size));
+  $("pad").value = String(round(0.1 * size));
 }
 
 async function init() {
@@ -1070,6 +1102,8 @@ async function init() {
   document.body.dataset.gripper = $("gripper").value;
   $("demo").addEventListener("change", async () => {
     if (!$("demo").value) return;
+    S.file = null;                       // a built-in part: no file's parts to pick
+    document.body.dataset.parts = "one";
     try { setPart(await request("GET", `/api/demo/${$("demo").value}`)); } catch (e) {
       message(e.message);
     }
@@ -1079,6 +1113,17 @@ async function init() {
     if (f) loadFile(f);
     $("file").value = "";
   });
+  $("partpick").addEventListener("change", () => {
+    if (S.file) loadFile(S.file, $("partpick").value);
+  });
+  $("units").addEventListener("change", () => {
+    if (S.file) loadFile(S.file, $("partpick").value || undefined);
+  });
+  for (const id of ["stroke0", "stroke1", "pad"]) {
+    for (const ev of ["input", "change"]) {
+      $(id).addEventListener(ev, () => { S.jawEdited = true; });
+    }
+  }
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
                     "certify", "distinct", "bound"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
