@@ -1497,11 +1497,29 @@ class StretchSearch:
         memo = self._memo
         if excl and memo.prepared is None and self._best is not None and memo.floor == 0.0:
             memo.lower(MEMO_SHARE * self._best)
+        # the highest floor whose collection did not fit the memory budget: a run that
+        # needs to collect down to it or below cannot be made
+        overflow = -np.inf
         while True:
             if excl:
                 budget.check()
-            found = _search(rings, self.beta, self.intervals, self.runs, top_v, polygon.size,
-                            excl or None, memo)
+            try:
+                found = _search(rings, self.beta, self.intervals, self.runs, top_v,
+                                polygon.size, excl or None, memo)
+            except budget.BudgetExhausted as exc:
+                best = self._best
+                if str(exc) != "max_memory" or not excl or best is None \
+                        or memo.floor <= 0.0:
+                    raise
+                # the collection down to this floor does not fit: collect from higher
+                # up (half way to the best plan), which the floor's rule keeps exact
+                # (a run whose answer needs more lowers it again, if that fits)
+                overflow = max(overflow, memo.floor)
+                higher = memo.floor + (best - memo.floor) / 2
+                if higher >= best * (1 - MEMO_SHARE):
+                    raise
+                memo.lower(higher)
+                continue
             if not excl or memo.floor == 0.0:
                 break
             # the top-th found at or above the memo's floor: nothing missed; below it,
@@ -1513,6 +1531,8 @@ class StretchSearch:
                 low = need * (1 - TIE)
             else:
                 low = memo.floor / 4
+            if low <= overflow:         # what the answer needs does not fit the budget
+                raise budget.BudgetExhausted("max_memory")
             # below a thousandth of the best plan: every configuration
             memo.lower(low if low > 1e-3 * (self._best or 0.0) else 0.0)
         if not excl and found:
