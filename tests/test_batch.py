@@ -355,3 +355,29 @@ def test_a_batchs_outputs_are_not_read_as_parts(tmp_path):
                      "--workers", "1", *OPTIONS, "--quiet"]) == 0
     assert list(_lines(out)) == [str(folder / "a.json")]
     assert [p.suffix for p in figures.iterdir()] == [".png"]
+
+
+def test_a_part_that_never_ends_reading_times_out_on_a_cluster(tmp_path, monkeypatch):
+    """On a Dask cluster, a part whose file never ends (a pipe nobody writes to: the read
+    blocks, no check of the planner's runs) is recorded as timed out after its
+    part_timeout and the grace, and the other parts of its group are planned."""
+    pytest.importorskip("distributed")
+    from distributed import Client, LocalCluster
+
+    monkeypatch.setattr(batch, "TIMEOUT_GRACE", 0.5)
+    pipe = tmp_path / "never.json"
+    os.mkfifo(pipe)
+    good = tmp_path / "good.json"
+    good.write_text(json.dumps({"vertices": _ring(np.random.default_rng(2)).tolist()}))
+    with LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as client:
+        start = time.perf_counter()
+        res = {r["path"]: r for r in batch.plan_many([str(pipe), str(good)], client=client,
+                                                     fingers=2, mu=0.4, top=2,
+                                                     part_timeout=NEVER_ENDING_LIMIT)}
+        took = time.perf_counter() - start
+    assert "timeout" in res[str(pipe)]["error"]
+    assert res[str(good)]["error"] is None and res[str(good)]["grasps"]
+    assert took < 600                   # a generous limit: only a hang fails it
+    with open(pipe, "wb"):              # the blocked reader's open returns: it ends
+        pass

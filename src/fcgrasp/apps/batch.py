@@ -109,6 +109,11 @@ def _content_hash(item: Any) -> str:
     if name.startswith("demo:"):
         h.update(name.encode())
         return h.hexdigest()
+    if os.path.exists(name) and not os.path.isfile(name):
+        # a pipe or a device has no content to hash (reading it may never end): keyed
+        # by its path, it is read only by its part's worker, under its timeout
+        h.update(b"special:" + name.encode())
+        return h.hexdigest()
     with open(name, "rb") as f:
         for block in iter(lambda: f.read(1 << 20), b""):
             h.update(block)
@@ -171,8 +176,32 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
     return out
 
 
+#: Seconds a part on a cluster may run past its ``part_timeout`` (the planner's own
+#: check ends a plan first) before it is recorded as timed out and its group goes on.
+TIMEOUT_GRACE = 5.0
+
+
 def _plan_group(tasks: list[_Task]) -> list[dict[str, Any]]:
-    return [_plan_one(t) for t in tasks]
+    """Plan a cluster task's parts one after the other; a part with a timeout in a
+    thread of its own, given up once it runs past its timeout and :data:`TIMEOUT_GRACE`
+    (a read that never ends, of a pipe, has no check of its own): it is recorded as
+    timed out and the group's other parts are planned."""
+    import threading
+
+    out = []
+    for t in tasks:
+        if t.deadline is None:
+            out.append(_plan_one(t))
+            continue
+        got: list[dict[str, Any]] = []
+        t0 = time.perf_counter()
+        worker = threading.Thread(target=lambda t=t, got=got: got.append(_plan_one(t)),
+                                  daemon=True, name="fcgrasp-part")
+        worker.start()
+        worker.join(t.deadline + TIMEOUT_GRACE)
+        out.append(got[0] if got else _failed(
+            t, f"part timeout: more than {t.deadline:g} s", time.perf_counter() - t0))
+    return out
 
 
 # ----------------------------------------------------------------------------- local pool
