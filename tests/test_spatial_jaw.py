@@ -245,3 +245,25 @@ def test_regions_keep_their_holes(seed):
             assert not region.contains(shapely.Point(a.to_2d(middle)))
             far = 2 * solid.size
             assert _first_hit(solid.mesh, middle - far * plan.axis, plan.axis) == math.inf
+
+
+def test_a_pair_geos_cannot_build_gives_no_region(monkeypatch):
+    """Real CAD meshes have facets whose overlap GEOS cannot compute ("Scale factor must
+    be non-zero", "unable to assign free hole to a shell"): that pair gives no region,
+    the others are planned, and nothing escapes as an error."""
+    from fcgrasp.spatial import jaw
+
+    solid = demo_solid("box")
+    want = solid_jaw_plans(solid, STROKE, PAD, MU, top=4, margin=MARGIN)
+    broken = want[0].facets
+    real = jaw._region
+
+    def fails_on_one(solid_, i, j, *args):
+        if (i, j) == broken:
+            raise shapely.errors.GEOSException("TopologyException: Scale factor must be "
+                                               "non-zero")
+        return real(solid_, i, j, *args)
+
+    monkeypatch.setattr(jaw, "_region", fails_on_one)
+    got = solid_jaw_plans(solid, STROKE, PAD, MU, top=4, margin=MARGIN)
+    assert [p.facets for p in got] == [p.facets for p in want if p.facets != broken]
