@@ -52,6 +52,8 @@ module) and sample every returned pair of regions with the general test.
 from __future__ import annotations
 
 import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 from typing import Any, cast
 
@@ -1118,6 +1120,54 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
             similar.setdefault(job, (J, []))[1].append(done)
 
 
+def _address_held() -> int | None:
+    """The process's address space in bytes (Linux), None where it cannot be read."""
+    try:
+        import resource
+
+        with open("/proc/self/statm") as fh:
+            return int(fh.read().split()[0]) * resource.getpagesize()
+    except (ImportError, OSError, ValueError):
+        return None
+
+
+@contextmanager
+def _address_space(max_bytes: int | None, base: int | None = None) -> Iterator[None]:
+    """The block's new memory capped at ``max_bytes`` more than the process's address
+    space now (Linux, ``RLIMIT_AS``; elsewhere nothing is capped): one job's collection
+    of a smooth outline can ask for gigabytes at once, inside a compiled loop, before
+    its count can be checked.  ``base``: the address space to count from (default now:
+    the search's rounds count from where the first began, not from what the last
+    kept).  An allocation past the cap ends the search
+    (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"max_memory"``), and the limit in
+    force before is put back.  (While the block runs, every thread of the process is
+    under the cap.)"""
+    held = _address_held() if base is None else base
+    try:
+        import resource
+
+        before = resource.getrlimit(resource.RLIMIT_AS)
+    except (ImportError, OSError, ValueError):
+        before = None
+    if max_bytes is None or before is None or held is None:
+        yield
+        return
+    cap = held + max_bytes
+    if before[0] != resource.RLIM_INFINITY:
+        cap = min(cap, before[0])
+    try:
+        resource.setrlimit(resource.RLIMIT_AS, (cap, before[1]))
+    except (ValueError, OSError):
+        yield
+        return
+    try:
+        yield
+    except MemoryError:
+        raise budget.BudgetExhausted("max_memory") from None
+    finally:
+        resource.setrlimit(resource.RLIMIT_AS, before)
+
+
 #: Searches :func:`_search` runs at most before it solves every configuration.
 _ATTEMPTS = 5
 #: Whether the first search guesses floors from its keys' values (:func:`_candidates`).
@@ -1462,6 +1512,9 @@ class StretchSearch:
         self.runs = {(x, y): _vertex_runs(rings[x], rings[y], self.beta)
                      for x in range(len(rings)) for y in range(x, len(rings))}
         self._memo = _Memo(max_bytes=self.max_bytes)
+        #: the address space when the first distinct round began: every round's memory
+        #: budget counts from it (:func:`_address_space`)
+        self._held: int | None = None
         #: the best smallest region (the first run without exclusion), from which the
         #: memo's floor starts (:data:`MEMO_SHARE`)
         self._best: float | None = None
@@ -1504,8 +1557,13 @@ class StretchSearch:
             if excl:
                 budget.check()
             try:
-                found = _search(rings, self.beta, self.intervals, self.runs, top_v,
-                                polygon.size, excl or None, memo)
+                # a round of the distinct search under the memory budget (its collection
+                # of a smooth outline can ask for gigabytes at once)
+                if excl and self._held is None:
+                    self._held = _address_held()
+                with _address_space(memo.max_bytes if excl else None, self._held):
+                    found = _search(rings, self.beta, self.intervals, self.runs, top_v,
+                                    polygon.size, excl or None, memo)
             except budget.BudgetExhausted as exc:
                 best = self._best
                 if str(exc) != "max_memory" or not excl or best is None \
