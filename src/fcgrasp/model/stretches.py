@@ -1556,6 +1556,7 @@ class StretchSearch:
         while True:
             if excl:
                 budget.check()
+            began = time.monotonic()
             try:
                 # a round of the distinct search under the memory budget (its collection
                 # of a smooth outline can ask for gigabytes at once)
@@ -1574,7 +1575,9 @@ class StretchSearch:
                 # (a run whose answer needs more lowers it again, if that fits)
                 overflow = max(overflow, memo.floor)
                 higher = memo.floor + (best - memo.floor) / 2
-                if higher >= best * (1 - MEMO_SHARE):
+                # (not when the time left would not see another such attempt through)
+                if higher >= best * (1 - MEMO_SHARE) or \
+                        budget.remaining() < time.monotonic() - began:
                     raise
                 memo.lower(higher)
                 continue
