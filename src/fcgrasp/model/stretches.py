@@ -1037,6 +1037,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             # the floor, every one after it does
             short = 0
             for s in range(0, idx.size, CHUNK):
+                budget.check()              # a distinct round: the budget may end it
                 e = min(s + CHUNK, idx.size)
                 short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD) >= bound.floor))
                 run.settle(idx[s:short])
