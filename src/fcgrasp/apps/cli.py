@@ -138,10 +138,9 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
     gap = report.get("gap")
     if report.get("complete", True) or gap is None:
         return None
-    why = {"time_limit": "at its time limit (--time-limit)",
-           "max_memory": "at its memory budget (--max-memory)",
-           "depth": "at the most plans a distinct search reads"}.get(gap["stopped_by"],
-                                                                      "early")
+    from ..core.budget import stopped_words
+
+    why = f"at {stopped_words(gap['stopped_by'])}"
     top = report.get("parameters", {}).get("top")
     rest = "no bound on the rest was proved" if gap["bound"] is None else \
         f"every further distinct alternative has a " \
@@ -360,15 +359,15 @@ def cmd_parts(args: Any) -> int:
 def _solid_parts(args: Any) -> int:
     """``fcgrasp parts part.stl``: the mesh's connected bodies (the default: the largest
     watertight one)."""
-    from ..io.limits import DEFAULT_LIMITS, Limits
+    from ..io.limits import Limits
     from ..io.meshes import read_bodies
     from ..io.report import dumps
 
     reading = _reading(args)
     bodies, units, note = read_bodies(args.part, args.units, args.file_units,
-                                      Limits(*(reading[k] or getattr(DEFAULT_LIMITS, k)
-                                               for k in ("max_bytes", "max_elements",
-                                                         "max_vertices"))))
+                                      Limits.given(reading["max_bytes"],
+                                                   reading["max_elements"],
+                                                   reading["max_vertices"]))
     default = next((b.index for b in bodies if b.watertight), 0)
     if args.json:
         doc = {"source": args.part, "units": units, "units_note": note, "default": default,

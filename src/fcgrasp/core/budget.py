@@ -31,7 +31,8 @@ from contextvars import ContextVar
 from typing import Any
 
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
-           "remaining", "check_time_limit", "PlanList", "incomplete"]
+           "remaining", "check_time_limit", "PlanList", "incomplete", "STOPPED_BY",
+           "stopped_words"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
 #: of wall-clock time, for interactive use: the search's first answer is always
@@ -66,6 +67,26 @@ class _Budget:
 
 
 _CURRENT: ContextVar[_Budget | None] = ContextVar("fcgrasp_budget", default=None)
+
+
+#: Why a search stopped early, as a report's ``gap`` says it (``stopped_by``): the
+#: words, and the option that raises the budget.
+STOPPED_BY = {"time_limit": ("its time limit", "--time-limit"),
+              "max_memory": ("its memory budget", "--max-memory"),
+              "depth": ("the most plans a distinct search reads", None)}
+
+
+def stopped_words(stopped: str | None, raises: bool = False) -> str:
+    """Why a search stopped (:data:`STOPPED_BY`), with its option: ``"its time limit
+    (--time-limit)"``, or with ``raises`` ``"its time limit (--time-limit raises it)"``.
+
+    >>> stopped_words("max_memory", raises=True)
+    'its memory budget (--max-memory raises it)'
+    """
+    words, option = STOPPED_BY.get(stopped or "", ("its budget", None))
+    if option is None:
+        return words
+    return f"{words} ({option}{' raises it' if raises else ''})"
 
 
 class BudgetExhausted(Exception):

@@ -54,6 +54,15 @@ class Limits:
             check_int(getattr(self, name), name, minimum=1)
 
     @staticmethod
+    def given(max_bytes: int | None = None, max_elements: int | None = None,
+              max_vertices: int | None = None) -> Limits:
+        """The limits given, the defaults for those that are None."""
+        d = DEFAULT_LIMITS
+        return Limits(d.max_bytes if max_bytes is None else max_bytes,
+                      d.max_elements if max_elements is None else max_elements,
+                      d.max_vertices if max_vertices is None else max_vertices)
+
+    @staticmethod
     def of(value: Any) -> Limits:
         """``value`` as Limits: None gives the defaults."""
         if value is None:

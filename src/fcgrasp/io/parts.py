@@ -429,10 +429,7 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
     if not isinstance(source, (str, os.PathLike)):
         raise TypeError(f"part must be a path, '-' or 'demo:NAME', got {source!r}")
     spec = os.fspath(source)
-    d0 = DEFAULT_LIMITS
-    limits = Limits(d0.max_bytes if max_bytes is None else max_bytes,
-                    d0.max_elements if max_elements is None else max_elements,
-                    d0.max_vertices if max_vertices is None else max_vertices)
+    limits = Limits.given(max_bytes, max_elements, max_vertices)
     opt = _options(units, file_units, flatten, layer, gap, pixel_size, threshold, y_down,
                    clean, simplify, limits)
     if spec.startswith("demo:"):

@@ -19,10 +19,10 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
 from ..core._checks import check_margin
-from ..core.budget import DEFAULT_TIME_LIMIT, deadline
+from ..core.budget import DEFAULT_TIME_LIMIT, deadline, stopped_words
 from ..errors import RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
-from ..io.limits import DEFAULT_LIMITS, Limits
+from ..io.limits import Limits
 from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
 from ..io.report import duration, plan_report
@@ -397,10 +397,7 @@ class PlanRequest:
 
     def limits(self) -> Limits:
         """The readers' limits the request gives (:mod:`fcgrasp.io.limits`)."""
-        d = DEFAULT_LIMITS
-        return Limits(d.max_bytes if self.max_bytes is None else self.max_bytes,
-                      d.max_elements if self.max_elements is None else self.max_elements,
-                      d.max_vertices if self.max_vertices is None else self.max_vertices)
+        return Limits.given(self.max_bytes, self.max_elements, self.max_vertices)
 
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
@@ -583,10 +580,8 @@ def _stopped_reason(plans: Any) -> str | None:
     """Why a search that stopped early has no plan (None: it did not stop early)."""
     if getattr(plans, "complete", True):
         return None
-    why = {"time_limit": "its time limit (--time-limit raises it)",
-           "max_memory": "its memory budget (--max-memory raises it)"}.get(
-        plans.stopped, "the most plans it reads")
-    return f"the search stopped at {why} before it proved a plan"
+    return f"the search stopped at {stopped_words(plans.stopped, raises=True)} before it " \
+        f"proved a plan"
 
 
 def template_request(options: dict[str, Any]) -> PlanRequest:
