@@ -325,7 +325,9 @@ def test_load_a_file_export_and_cancel(server, browser, downloads, tmp_path):
     set_value(browser, "gripper", "3")
     browser.find_element(By.ID, "distinct").click()     # the ranked search's batches
     browser.find_element(By.ID, "file").send_keys(str(big))
-    wait(browser, "document.getElementById('statustext').textContent.includes('/')")
+    # the big part shown (the sidebar's layout settled) and its plan under way
+    wait(browser, "document.getElementById('partinfo').textContent.includes('big.json')"
+                  " && document.getElementById('statustext').textContent.includes('/')")
     browser.find_element(By.ID, "cancel").click()
     wait(browser, "document.body.dataset.busy === '0'")
     assert browser.find_element(By.ID, "statustext").text == "cancelled"

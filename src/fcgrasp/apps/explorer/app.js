@@ -1156,6 +1156,7 @@ async function init() {
   });
   $("clear-fingers").addEventListener("click", () => { S.fingers = []; render(); runCheck(); });
   $("cancel").addEventListener("click", () => {
+    clearTimeout(S.planTimer);       // a plan scheduled but not yet sent is cancelled too
     S.seq++;
     if (S.job) cancelJob(S.job);
     S.job = null;
