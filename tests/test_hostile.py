@@ -131,8 +131,73 @@ HOSTILE = [
     ("big.stl", _stl_claims(0), ["--max-bytes", "10"], "--max-bytes"),
 ]
 
+def _blank_png(value, size, cut=None):
+    import io
+
+    from PIL import Image
+
+    b = io.BytesIO()
+    Image.fromarray(np.full((size, size), value, np.uint8)).save(b, "PNG")
+    return b.getvalue()[:cut]
+
+
+def _dxf_loop(points):
+    return _dxf(lambda doc: doc.modelspace().add_lwpolyline(points, close=True))
+
+
+#: broken files of every format: truncated, of another format, out of range, empty,
+#: degenerate, or pointing outside themselves (external entities and buffers)
+BROKEN = [
+    ("huge-coords.svg", SVG.format('<path d="M 0 0 L 1e308 0 L 1e308 1e308 Z"/>'), [],
+     "documented range"),
+    ("nan.svg", SVG.format('<path d="M 0 0 L nan 0 L 10 10 Z"/>'), [], "no closed path"),
+    ("html.svg", "<html><body>hello</body></html>", [], "not an SVG"),
+    ("truncated.svg", '<svg xmlns="http://www.w3.org/2000/svg"><path d="M 0 0 L 10', [],
+     "not a readable SVG"),
+    ("xxe.svg", '<?xml version="1.0"?><!DOCTYPE svg [<!ENTITY x SYSTEM "file:///etc/passwd">'
+     ']><svg xmlns="http://www.w3.org/2000/svg"><text>&x;</text></svg>', [], "SVG"),
+    ("external-use.svg", SVG.format('<use xlink:href="file:///etc/hosts#a"/>'
+                                    '<use href="http://example.com/a.svg#b"/>'), [],
+     "no closed path"),
+    ("no-shapes.svg", SVG.format(""), [], "no closed path"),
+    ("flat.svg", SVG.format('<path d="M 0 0 L 10 0 L 20 0 Z"/>'), [], "no closed path"),
+    ("scale-zero.svg", SVG.format('<g transform="scale(0)"><rect width="10" height="10"/>'
+                                  '</g>'), [], "no closed path"),
+    ("garbage.dxf", bytes(range(256)) * 8, [], "not a readable DXF"),
+    ("empty.dxf", _dxf(lambda doc: None), [], "no closed loop"),
+    ("huge-coords.dxf", _dxf_loop([(0, 0), (1e300, 0), (1e300, 1e300)]), [],
+     "documented range"),
+    ("open-lines.dxf", _dxf(lambda doc: [doc.modelspace().add_line((0, 0), (10, 0)),
+                                         doc.modelspace().add_line((20, 5), (30, 9))]), [],
+     "no closed loop"),
+    ("truncated.dxf", _dxf_loop([(0, 0), (10, 0), (10, 10)])[:9000], [], ""),
+    ("nested.json", "[" * 100000 + "]" * 100000, [], "nested too deeply"),
+    ("nan.json", '{"vertices": [[0, 0], [NaN, 0], [1, 1]]}', [], "non-finite"),
+    ("inf.json", '{"vertices": [[0, 0], [1e999, 0], [1, 1]]}', [], "non-finite"),
+    ("big-coords.json", '{"vertices": [[0, 0], [1e200, 0], [1e200, 1e200]]}', [],
+     "documented range"),
+    ("wrong-type.json", '{"vertices": "abc"}', [], "vertices"),
+    ("two-vertices.json", '{"vertices": [[0, 0], [1, 0]]}', [], "at least 3"),
+    ("bowtie.json", '{"vertices": [[0, 0], [10, 10], [10, 0], [0, 10]]}', [], "not simple"),
+    ("same-point.json", '{"vertices": [[1, 1], [1, 1], [1, 1], [1, 1]]}', [], "at least 3"),
+    ("bad.wkt", "POLYGON ((0 0, 1 1", [], "not valid WKT"),
+    ("point.wkt", "POINT (1 2)", [], "no polygon"),
+    ("big-coords.wkt", "POLYGON ((0 0, 1e200 0, 1e200 1e200, 0 0))", [], "documented range"),
+    ("garbage.jpg", b"\xff\xd8\xff\xe0" + b"\x00" * 50, [], "not a readable image"),
+    ("blank.png", _blank_png(255, 20), [], "no contrast"),
+    ("truncated.png", _blank_png(0, 64, cut=60), [], "not a readable image"),
+    ("ascii-bad.stl", "solid x\nfacet normal 0 0 0\nouter loop\nvertex a b c\nendloop\n"
+     "endfacet\nendsolid\n", [], "not a readable mesh"),
+    ("bad-counts.off", "OFF\n100000000 1 0\n0 0 0\n", [], "not a readable mesh"),
+    ("external.gltf", json.dumps({"asset": {"version": "2.0"}, "buffers": [
+        {"uri": "file:///etc/passwd", "byteLength": 100}]}), [], "not a readable mesh"),
+    ("zero-area.stl", "solid z\n" + "facet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0"
+     "\nvertex 2 0 0\nendloop\nendfacet\n" * 4 + "endsolid z\n", [], "not watertight"),
+]
+HOSTILE += BROKEN
+
 #: meshes whose bodies can be listed (``fcgrasp parts``), though no plan can use them
-LISTED = {"nan.obj", "open.obj"}
+LISTED = {"nan.obj", "open.obj", "zero-area.stl"}
 
 #: how each file is read: every command that reads a part, and the grippers
 COMMANDS = [
@@ -162,8 +227,9 @@ def test_there_are_at_least_150_hostile_runs():
     """This module's runs and the broken files and options of ``test_cli_fuzz``."""
     from .test_cli_fuzz import BAD_CONTACTS, BAD_OPTIONS, part_files
 
+    assert len(HOSTILE) >= 50                     # files
     here = len(HOSTILE) * len(COMMANDS) + len(BAD_LIMITS)
-    assert here >= 100
+    assert here >= 250
     assert here + len(part_files()) + len(BAD_OPTIONS) + len(BAD_CONTACTS) >= 150
 
 
@@ -173,7 +239,7 @@ def test_hostile_files_one_line_exit_2(hostile, tmp_path, capsys, k):
     f = hostile / name
     out = tmp_path / "out"
     out.mkdir()
-    solid = name.rsplit(".", 1)[-1] in ("obj", "ply", "3mf", "glb", "stl")
+    solid = name.rsplit(".", 1)[-1] in ("obj", "ply", "3mf", "glb", "gltf", "stl", "off")
     for command in COMMANDS:
         if solid and command[0] == "check":
             continue                     # contacts are planar

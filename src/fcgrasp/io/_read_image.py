@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import io
+import re
 from typing import Any
 
 import numpy as np
@@ -58,7 +59,10 @@ def read_image(data: bytes, tol_of: TolOf, threshold: float | None = None) -> Dr
         with Image.open(io.BytesIO(data)) as probe:      # the header only: no decoding
             w, h = probe.size
     except Exception as exc:  # pillow raises several kinds on broken headers
-        raise ValueError(f"not a readable image ({str(exc).splitlines()[0][:120]})") from exc
+        # (pillow's "cannot identify image file <_io.BytesIO object at 0x...>" names an
+        # address that changes from run to run)
+        why = re.sub(r"\s*<[^>]*object at 0x[0-9a-f]+>", "", str(exc).splitlines()[0])
+        raise ValueError(f"not a readable image ({why[:120]})") from exc
     if w * h > MAX_PIXELS:
         raise LimitExceeded(f"the image's pixels: {w} x {h}, more than {MAX_PIXELS:,} "
                             f"(a fixed limit)")

@@ -143,6 +143,8 @@ def read_svg(data: bytes, tol_of: TolOf, limits: Limits = DEFAULT_LIMITS) -> Dra
         svg = SVG.parse(io.BytesIO(data), reify=True, ppi=PPI)
     except Exception as exc:  # svgelements raises many kinds of errors on bad XML
         raise ValueError(f"not a readable SVG ({str(exc).splitlines()[0][:120]})") from exc
+    if not isinstance(svg, SVG):            # another XML document (its root not <svg>)
+        raise ValueError("not an SVG: its root element is not <svg>")
     shapes: list[Shape] = []
     for k, (el, ancestors) in enumerate(_walk(svg, ())):
         filled = _visible(el.fill)

@@ -27,7 +27,7 @@ from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import signed_area
-from ..core.tolerances import CLEAN_TOL
+from ..core.tolerances import CLEAN_TOL, MAX_MAGNITUDE
 from .polygon import Polygon, check_polygon
 
 __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ring",
@@ -57,6 +57,16 @@ def winding_numbers(points: Any, ring: Any) -> np.ndarray:
 
 def _ring_ok(r: FloatArray) -> bool:
     return len(np.unique(r, axis=0)) >= 3 and abs(signed_area(r)) > 0
+
+
+def _check_range(ring: FloatArray) -> None:
+    """A ring with a coordinate that is not a number or beyond fcgrasp's documented
+    range (:data:`~fcgrasp.core.tolerances.MAX_MAGNITUDE`) is an error naming it (its
+    area would overflow, and the ring would drop out unsaid)."""
+    big = float(np.max(np.abs(ring))) if ring.size else 0.0
+    if not big <= MAX_MAGNITUDE:
+        raise ValueError(f"a ring has a coordinate of magnitude {big:.3g}, above "
+                         f"fcgrasp's documented range ({MAX_MAGNITUDE:g}): rescale the part")
 
 
 def fill_rings(rings: list[Any], rule: str = "evenodd") -> list[ShapelyPolygon]:
@@ -93,6 +103,7 @@ def fill_rings(rings: list[Any], rule: str = "evenodd") -> list[ShapelyPolygon]:
         a = np.asarray(r, dtype=float).reshape(-1, 2)
         if len(a) >= 2 and np.array_equal(a[0], a[-1]):
             a = a[:-1]
+        _check_range(a)
         if len(a) >= 3 and _ring_ok(a):
             arrs.append(a)
     if not arrs:
