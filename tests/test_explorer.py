@@ -871,3 +871,26 @@ def test_a_file_of_several_parts_offers_them_and_sizes_the_jaw(server, browser, 
     assert np.allclose(np.ptp(outer, axis=0), [4, 4])          # the small square
     small = float(browser.find_element(By.ID, "stroke1").get_attribute("value"))
     assert small < big                                           # sized to the part
+
+
+def test_the_time_limit_stops_the_search_and_the_page_says_so(server, browser, tmp_path):
+    """The page's time limit reaches the search (``--time-limit``): a search it stops
+    shows the plans proved and why it stopped, as fcgrasp plan prints it."""
+    from .test_serve import _smooth
+
+    path = tmp_path / "smooth.json"
+    path.write_text(json.dumps({"vertices": _smooth()}))
+    browser.get(server)
+    wait_plan(browser, 0)
+    # the options set without a change event: the upload's plan is the only one to read them
+    browser.execute_script("document.getElementById('timelimit').value = '0.01';"
+                           "document.getElementById('mu').value = '1.0';")
+    before = plan_seq(browser)
+    browser.find_element(By.ID, "file").send_keys(str(path))
+    wait(browser, "document.getElementById('partinfo').textContent.includes('smooth.json')")
+    wait_plan(browser, before)
+    report = browser.execute_script("return explorer.state.report")
+    assert report["complete"] is False and report["gap"]["stopped_by"] == "time_limit"
+    text = browser.find_element(By.ID, "incomplete").text
+    assert text.startswith("search stopped at its time limit (--time-limit): "
+                           f"{report['gap']['found']} of 10 plans proved")

@@ -17,9 +17,11 @@ pytest.importorskip("httpx2")
 from starlette.testclient import TestClient  # noqa: E402
 
 from fcgrasp import Grasp, Polygon  # noqa: E402
+from fcgrasp.apps._explorer_data import plan_request  # noqa: E402
 from fcgrasp.apps.cli import main  # noqa: E402
 from fcgrasp.apps.serve import create_app  # noqa: E402
 from fcgrasp.core.contacts import FrictionlessPoint, FrictionPoint  # noqa: E402
+from fcgrasp.errors import RequestError  # noqa: E402
 from fcgrasp.io.parts import load_part  # noqa: E402
 
 from .test_batch import _ring, make_parts  # noqa: E402
@@ -702,3 +704,28 @@ def test_an_upload_lists_its_parts_and_takes_the_one_asked_in_its_units(client):
     assert np.allclose(side, [4 / 25.4, 4 / 25.4], rtol=1e-9)
     bad = client.post("/api/part?name=two.dxf&units=furlong", content=body)
     assert bad.status_code == 400 and bad.json()["field"] == "units"
+
+
+def _smooth(n=1000):
+    """An ellipse with a third harmonic, ``n`` edges (120 x 70 mm): at mu 1.0 its ten
+    distinct alternatives take the complete search many seconds."""
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    r = 1 + 0.08 * np.cos(3 * a)
+    return np.c_[60 * r * np.cos(a), 35 * r * np.sin(a)].round(9).tolist()
+
+
+def test_the_page_time_limit_is_fcgrasp_plans(client, tmp_path):
+    """The page's time limit is ``--time-limit``: a search it stops says so in the
+    report (``complete`` false, the gap)."""
+    options = {"gripper": "2", "mu": 1.0, "top": 10, "distinct": 0.5, "time_limit": 0.01}
+    ans = _plan(client, {"outer": _smooth(), "units": "mm"}, options)
+    assert ans["state"] == "done", ans
+    argv = ans["argv"]
+    assert argv[argv.index("--time-limit") + 1] == "0.01"
+    report = ans["report"]
+    assert report["complete"] is False
+    assert report["gap"]["stopped_by"] == "time_limit"
+    assert report["gap"]["found"] == len(report["grasps"]) < 10
+    assert report["parameters"]["top"] == 10
+    with pytest.raises(RequestError, match="time"):
+        plan_request({"gripper": "2", "time_limit": -1})

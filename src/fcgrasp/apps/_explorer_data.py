@@ -30,10 +30,10 @@ GRIPPERS: dict[str, dict[str, Any]] = {
 #: friction, a parallel jaw with pads (:mod:`fcgrasp.spatial`).
 SOLID_GRIPPERS: dict[str, dict[str, Any]] = {
     "2": {"fingers": 2, "soft": True}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
-_SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct"),
-                  "3": ("mu", "margin", "top", "distinct"),
-                  "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct")}
-_COMMON = ("margin", "rank_by", "top", "distinct")
+_SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct", "time_limit"),
+                  "3": ("mu", "margin", "top", "distinct", "time_limit"),
+                  "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct", "time_limit")}
+_COMMON = ("margin", "rank_by", "top", "distinct", "time_limit")
 #: The page's options each of its gripper choices uses (the page sends them all).
 _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
                  "3": ("mu", "along_boundary", "bound", *_COMMON),
@@ -232,7 +232,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
          "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1],
-         "distinct": 0.5, "bound": true}
+         "distinct": 0.5, "bound": true, "time_limit": 10}
 
     checked whole here, before a job starts, with the command line's messages (a
     :class:`~fcgrasp.errors.RequestError` naming the option).  The page sends every
@@ -258,7 +258,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
 
 #: The keys of the page's options.
 _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-          "gravity", "certify", "distinct", "bound")
+          "gravity", "certify", "distinct", "bound", "time_limit")
 
 
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:

@@ -565,6 +565,7 @@ function options() {
   };
   const o = { gripper: g, margin: num("margin", "margin"), top: Math.round(num("top", "plans")) };
   o.distinct = $("distinct").checked ? 0.5 : 0;
+  o.time_limit = num("timelimit", "time limit");
   if ((g === "3" || g === "4") && !S.solid && $("bound").checked) o.bound = true;
   if (g !== "4" && g !== "3g") o.mu = num("mu", "mu");
   if (g === "jaw") {
@@ -1125,7 +1126,7 @@ async function init() {
     }
   }
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
-                    "certify", "distinct", "bound"]) {
+                    "certify", "distinct", "bound", "timelimit"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
