@@ -100,7 +100,8 @@ def test_time_limit_type_refused():
         fc.plan(fc.read_part("demo:blob"), mu=0.3, time_limit="10")
 
 
-@pytest.mark.parametrize("seed", range(12))
+@pytest.mark.parametrize("seed", [*range(5), *(pytest.param(s, marks=pytest.mark.slow)
+                                                for s in range(5, 12))])
 def test_two_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed):
     rng = np.random.default_rng(seed)
     poly = _wavy(rng)
@@ -143,7 +144,8 @@ def test_two_fingers_memory_budget_stops_the_rounds(monkeypatch):
     assert not part.complete and part.stopped == "max_memory"
 
 
-@pytest.mark.parametrize("seed", [0, 2, pytest.param(1, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in (1, 2))])
 def test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed):
     rng = np.random.default_rng(100 + seed)
     poly = _wavy(rng, int(rng.integers(40, 80)))

@@ -293,7 +293,9 @@ def test_internal_grips_in_the_washer():
         jaw_poses(part, jaw, [0.0], [0.0], hole=3)
 
 
-@pytest.mark.parametrize("name", ["rectangle", "blob", "quad", "triangle", "bracket"])
+@pytest.mark.parametrize("name", ["rectangle", "triangle",
+                                  *(pytest.param(n, marks=pytest.mark.slow)
+                                    for n in ("blob", "quad", "bracket"))])
 def test_built_in_parts(name):
     part = demo_part(name)
     jaw = ParallelJaw(stroke=(10, 60), pad_width=12, mu=0.4)

@@ -57,7 +57,8 @@ def ranked():
             solid_jaw_plans(cyl, (5, 50), 1, 0.5, top=None)]
 
 
-@pytest.mark.parametrize("fraction", [0.25, 0.5, 1.0])
+@pytest.mark.parametrize("fraction", [0.5, *(pytest.param(f, marks=pytest.mark.slow)
+                                        for f in (0.25, 1.0))])
 def test_kept_plans_are_distinct_and_stand_for_the_others(ranked, fraction):
     cases = ranked
     for plans in cases:

@@ -219,7 +219,8 @@ def _plate_with_holes(seed):
     return solid_from_mesh(mesh, "mm", f"plate{seed}"), len(holes)
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in (1, 2, 3))])
 def test_regions_keep_their_holes(seed):
     """The regions on a plate with through-holes: the holes are in the plan (its rings,
     its triangles, its area); every sampled axis (inside, at the corners, around each
