@@ -103,6 +103,8 @@ def main(argv: list[str]) -> int:
         return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode
     if cmd == "test":
         ensure_browser()
+        # a compiled loop that fails fails the suite (it would run by numpy, unseen)
+        env["FCGRASP_REQUIRE_JIT"] = "1"
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
         # (work stealing: a worker left idle takes queued tests from the other)
         par = [] if any(a == "-n" or a.startswith(("-n", "--numprocesses")) for a in rest) \

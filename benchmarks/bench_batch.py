@@ -1,4 +1,4 @@
-"""Catalogue planning (issue 15): parts per second of ``fc.plan_many`` on generated part
+"""Catalogue planning: parts per second of ``fc.plan_many`` on generated part
 files, with the local process pool and with a Dask LocalCluster, 1 and 2 workers.
 
 The parts are random star-shaped outlines written as JSON files (``--edges`` edges each,

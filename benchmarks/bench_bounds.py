@@ -1,4 +1,4 @@
-"""Optimality bounds (issue 32): for three fingers with friction and four frictionless
+"""Optimality bounds: for three fingers with friction and four frictionless
 fingers on the built-in parts (and a 24-edge ellipse), the best plan's smallest region,
 the proved upper bound on any plan's (:func:`fcgrasp.optimum_upper_bound`), the gap
 ``1 - plan / bound`` and the seconds the bound took (the plan's own seconds beside it).

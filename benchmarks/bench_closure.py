@@ -1,4 +1,4 @@
-"""How many two-contact friction grasps per second each test decides (issue 2).
+"""How many two-contact friction grasps per second each test decides.
 
 Prints, for batches of random grasps, the rate of the batched theorem 6.3 test
 (``friction_pair_closure``), of the batched general test (``is_force_closure`` on

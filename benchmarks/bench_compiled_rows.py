@@ -1,4 +1,4 @@
-"""This round's compiled loops against the numpy they replace (issue 30), in one process,
+"""This round's compiled loops against the numpy they replace, in one process,
 each way in turn (best of ``--repeat`` runs, CPU seconds), with whether the plans are the
 same: the rows of four frictionless fingers' programs (and three with gravity;
 ``fcgrasp.model._frictionless_kernels``) and the jaw's pose grid

@@ -1,4 +1,4 @@
-"""Issue 30's real-file corpus: every file of ``benchmarks/corpus`` (public drawings nobody
+"""The real-file corpus: every file of ``benchmarks/corpus`` (public drawings nobody
 here drew: CAD plates and polylines, icons, country outlines; see its SOURCES.md) planned
 with every gripper at default options, as a user would (``fcgrasp.load_part`` then
 ``fcgrasp.plan``).  Each (file, gripper) runs in a fresh process, timed in CPU seconds
@@ -11,10 +11,10 @@ it, stopped; the sum of CPU, a stopped run counted as the limit), then the worst
     python benchmarks/bench_corpus.py [--limit 30] [--grippers 2f,3f,3g,4f,jaw] [--files PAT]
                                       [--distinct F]
 
-``--distinct F`` plans with ``distinct=F`` (distinct alternatives, issue 31) instead of
+``--distinct F`` plans with ``distinct=F`` (distinct alternatives) instead of
 the default.
 
-Target (issue 30): every run within 2 s of CPU.
+Target: every run within 2 s of CPU.
 """
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Distinct alternatives (issue 31): CPU seconds of ``fc.plan(..., top=10, distinct=0.5)``
+"""Distinct alternatives: CPU seconds of ``fc.plan(..., top=10, distinct=0.5)``
 against the ranked list (``distinct=0``, the baseline, same process) on the built-in
 parts, per gripper, with how many distinct plans were found.  Two fingers along the
 boundary search for distinct plans directly (each kept plan's copies left out); the

@@ -1,4 +1,4 @@
-"""Issue 30, flattening that follows the geometry: the edges a curved drawing becomes,
+"""Flattening that follows the geometry: the edges a curved drawing becomes,
 the CPU seconds of reading it and of planning it with two fingers (default options),
 with the equal-turn flattening of :func:`fcgrasp.io._drawing.flatten_curve` against the
 binary halving it replaced (``tests/previous_flatten.py``, the baseline), in one process.
@@ -7,7 +7,7 @@ binary halving it replaced (``tests/previous_flatten.py``, the baseline), in one
 
 Inputs: every SVG and DXF of ``benchmarks/corpus`` with curves, and a traced outline (a
 gear-like shape of 600 short cubic Bezier pieces, as a tracer such as potrace writes
-them: the halving cut every piece in four at least).  Target (issue 30): a tiny icon
+them: the halving cut every piece in four at least).  Target: a tiny icon
 gets hundreds of edges, not thousands, the regions within 1% (``tests/test_flatten.py``).
 """
 

@@ -1,4 +1,4 @@
-"""Three and four frictionless fingers along the boundary (issue 12): the gap of the grown
+"""Three and four frictionless fingers along the boundary: the gap of the grown
 plans (``fc.plan``'s default, a proven safe lower bound) to the exhaustive optimum over
 every configuration that holds (``all_frictionless_stretches`` started from every
 single-edge set that holds), on small curved outlines of the test corpus's families

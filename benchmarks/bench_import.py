@@ -1,4 +1,4 @@
-"""Start-up cost: ``import fcgrasp`` against ``import numpy, shapely`` (issue 10 target:
+"""Start-up cost: ``import fcgrasp`` against ``import numpy, shapely`` (target:
 under 1.5x), and a small ``fcgrasp plan`` as a process.  Median of fresh interpreters."""
 
 from __future__ import annotations

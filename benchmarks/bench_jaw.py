@@ -1,4 +1,4 @@
-"""The parallel-jaw gripper (issue 14): the exact slices of the holding set, and plans.
+"""The parallel-jaw gripper: the exact slices of the holding set, and plans.
 
 For each built-in part (stroke 5-60, pads 8 wide, mu 0.5): the time of the exact slices
 of 720 closing angles (``holding_offsets``), of a plan of the top 5 boxes proved and grown

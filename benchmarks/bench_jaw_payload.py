@@ -1,4 +1,4 @@
-"""The load a parallel jaw's box carries (issue 32, ``fcgrasp.jaw_payload``): for the top
+"""The load a parallel jaw's box carries (``fcgrasp.jaw_payload``): for the top
 boxes of each built-in part (stroke 5-60, pads 8 wide, mu 0.5; 0.5 kg, 10 N per pad), the
 certified scale, the worst pose met, the gap, the sub-boxes and the seconds, beside the
 baseline measured in the same run: the least payload of 100 random poses of the box (an

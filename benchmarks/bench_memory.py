@@ -1,9 +1,8 @@
-"""Memory of large searches (issue 11): a four-finger plan of a 300-vertex traced-like
+"""Memory of large searches: a four-finger plan of a 300-vertex traced-like
 outline, as a process, with its peak resident memory.  A search that cannot fit is refused
 at once; one that fits streams within ``--max-memory`` (run for at most ``SECONDS``, then
-interrupted).  Before issue 11 the same run allocated about 11 GB and died with "internal
-error: MemoryError"; before issue 13's exact pruning it ran for hours (interrupted here);
-now it finishes in seconds.
+interrupted); without the streaming the same run allocates about 11 GB, and without the
+exact pruning it runs for hours.
 
 Run: ``.venv/bin/python benchmarks/bench_memory.py``.
 """

@@ -1,4 +1,4 @@
-"""Speed of optimal independent regions and plans (issue 4), against the LP baseline.
+"""Speed of optimal independent regions and plans, against the LP baseline.
 
 For each workload it prints fcgrasp's time, the time of the same optimum computed by
 the linear program a user would write (region end points as variables, every corner

@@ -1,4 +1,4 @@
-"""Scale of parts (issue 6): two-finger plans of finely flattened outlines on single edges
+"""Scale of parts: two-finger plans of finely flattened outlines on single edges
 (the exact branch and bound of ``fcgrasp.pipeline.search``), with the time and the peak
 memory of each run (each size in a fresh process, peak resident set size).  Regions along
 the boundary at these sizes: ``bench_stretches.py``.

@@ -1,4 +1,4 @@
-"""Scale (issue 13): every row of the issue's table, new against old, each run in a fresh
+"""Scale: every row of the issue's table, new against old, each run in a fresh
 process (seconds of the call, peak resident memory of the process).
 
 *new* is what a user gets: ``fc.plan(...)``, whose single-edge search is the exact branch

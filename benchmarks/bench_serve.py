@@ -1,5 +1,5 @@
 """How fast the explorer (``fcgrasp serve``) answers, for parts of 6, 50, 200 and 2,000
-edges (issue 30's target: every interaction within 100 ms on the 2,000-edge part).
+edges (the target: every interaction within 100 ms on the 2,000-edge part).
 
 Server side: each request timed from the client over loopback against ``fcgrasp serve``
 started as a user starts it (median of repeats): the first answer of ``POST /api/plan``
@@ -26,7 +26,7 @@ import numpy as np
 
 #: Edges of the parts measured.
 SIZES = (6, 50, 200, 2000)
-#: Issue 30's target for an interaction (seconds).
+#: The target for an interaction (seconds).
 TARGET = 0.1
 
 
@@ -171,7 +171,7 @@ def main() -> None:
         answers.append(frames[max(SIZES)])
     worst = max(answers)
     print()
-    print(f"target (issue 30): every interaction done within {ms(TARGET)} ms on "
+    print(f"target: every interaction done within {ms(TARGET)} ms on "
           f"{max(SIZES):,} edges (plans to their end): worst {ms(worst)} ms, "
           f"{'met' if worst <= TARGET else 'not met'}")
 

@@ -1,4 +1,4 @@
-"""Two soft fingers on meshes with thousands of facets (issue 33: "a 5,000-facet mesh
+"""Two soft fingers on meshes with thousands of facets ("a 5,000-facet mesh
 plans in under 2 s").
 
 For icospheres, tessellated cylinders of growing size and the mug, prints the time to cut

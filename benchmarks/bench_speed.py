@@ -1,4 +1,4 @@
-"""Issue 30's table: real parts at interactive speed.  Each workload runs in a fresh
+"""The table: real parts at interactive speed.  Each workload runs in a fresh
 process (the package imported and numba's cache loaded before the clock starts, unless
 the row is the start-up itself), timed in CPU seconds, beside its target and a baseline
 measured in the same run:
@@ -31,7 +31,7 @@ import json, os, resource, sys, time
 import numpy as np
 import fcgrasp as fc
 sys.path.insert(0, os.environ["FCGRASP_BENCH_DIR"])
-from bench_closure import lp_closure      # the LP a user would write (issue 2's baseline)
+from bench_closure import lp_closure      # the LP a user would write (the baseline)
 
 def star(n, noise, seed=0):
     rng = np.random.default_rng(seed)

@@ -1,4 +1,4 @@
-"""Regions along the boundary (issue 12): two-finger plans of curved outlines, each run
+"""Regions along the boundary: two-finger plans of curved outlines, each run
 in a fresh process, with its time (seconds, the planning call alone), peak resident
 memory of the process and the smallest region of the best plan, for the single-edge
 regions (``fc.plan(..., along_boundary=False)``, before) and the regions along the

@@ -1,4 +1,4 @@
-"""Three fingers with friction (issue 14): time per plan, the best smallest region against
+"""Three fingers with friction: time per plan, the best smallest region against
 two fingers, and the gap of the safe bound.
 
 The planner's regions are a safe lower bound (convex pieces of the closure set,

@@ -1,6 +1,6 @@
 """The planner arguments of the grippers the older tests were written for: two fingers
 with friction ``mu``, three frictionless fingers and gravity (straight down), four
-frictionless fingers.  Since issue 14 a ``mu`` that a planner cannot use is an error and
+frictionless fingers.  A ``mu`` that a planner cannot use is an error and
 ``fingers=3`` alone means three fingers with friction (tests/test_three_fingers.py)."""
 
 

@@ -1,4 +1,4 @@
-"""The tie-break of four-finger plans before it was batched (issue 30: one placement per
+"""The tie-break of four-finger plans before it was batched (one placement per
 tied option and row, in a Python loop), kept as the reference of
 :func:`fcgrasp.pipeline._solve._break_ties` (``tests/test_pipeline.py``).  Its first stage
 (which options reach the same smallest region) was not changed by the batching and is

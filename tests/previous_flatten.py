@@ -1,4 +1,4 @@
-"""The flattening of curves before issue 30 (binary halving), kept as the reference the
+"""The flattening of curves by binary halving, kept as the reference the
 tests compare the equal-turn flattening of :mod:`fcgrasp.io._drawing` with."""
 
 from __future__ import annotations

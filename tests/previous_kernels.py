@@ -1,6 +1,6 @@
 """The two-finger closed forms as they were before :mod:`fcgrasp.core.kernels` (commit 185015f,
 pure numpy): the oracle of ``tests/test_kernels.py`` ("kernels vs the previous
-implementation identical to 1e-12 relative", issue 13).  Frozen: do not edit."""
+implementation identical to 1e-12 relative").  Frozen: do not edit."""
 
 from __future__ import annotations
 

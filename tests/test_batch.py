@@ -1,4 +1,4 @@
-"""``fcgrasp batch`` and ``plan_many`` (issue 15): a folder of parts in every input format,
+"""``fcgrasp batch`` and ``plan_many``: a folder of parts in every input format,
 some broken on purpose, planned by the local pool and by a Dask LocalCluster; results
 equal ``fcgrasp plan --json``; a second run does nothing; a batch killed half-way and run
 again ends with the same file as one never interrupted."""
@@ -16,6 +16,7 @@ import pytest
 import fcgrasp as fc
 from fcgrasp.apps import batch
 from fcgrasp.apps.cli import main
+from fcgrasp.io.schema import validate
 
 from .test_cli import run
 
@@ -110,6 +111,7 @@ def test_local_batch_equals_plan_json(folder, local_results, tmp_path):
         want = tmp_path / f"{name}.plan.json"
         assert main(["plan", path, *OPTIONS, "--json", str(want), "--quiet"]) == 0
         report = json.loads(want.read_text())
+        validate(report)                    # the batch's grasps are the report's
         assert res["grasps"] == report["grasps"] and res["reason"] == report["reason"]
         assert res["parameters"]["fingers"] == 2 and res["parameters"]["mu"] == 0.4
         assert len(res["hash"]) == 64 and res["seconds"] >= 0

@@ -1,4 +1,4 @@
-"""The upper bound on the best smallest region (issue 32, optimality bounds): its one-sided
+"""The upper bound on the best smallest region (optimality bounds): its one-sided
 closure test against the general one, its soundness against every plan the planner and
 the exhaustive stretch search prove, its tightness where the search is known to be
 optimal, and the request, CLI and JSON around it."""

@@ -108,7 +108,7 @@ def test_plan_command_matches_library(tmp_path, fmt):
     assert r.returncode == 0, r.stderr
     assert "rank" in r.stdout and r.stderr == ""
     data = json.loads(out.read_text())
-    assert data["format_version"] == 2 and data["units"] == "mm"
+    assert data["format_version"] == 3 and data["units"] == "mm"
     poly = Polygon(OUTLINE)
     assert np.allclose(data["part"]["vertices"], poly.vertices, atol=1e-9)
     assert data["grasps"] == library_grasps(poly, fingers=2, mu=0.4, top=3)

@@ -1,4 +1,4 @@
-"""The CLI under malformed input (issue 9): at least a hundred broken files of every
+"""The CLI under malformed input: at least a hundred broken files of every
 format and broken option sets.  Each must give exit code 2, exactly one line on stderr,
 no traceback, no output file left behind, and the inputs unchanged."""
 
@@ -124,7 +124,7 @@ BAD_OPTIONS = [
     ["--plot", "OUT/fig.txt"], ["--plot", "OUT/fig"], ["--rank-by", "beauty"],
     ["--units", "furlong"], ["--id", "x"], ["--bogus"], ["--json", "OUT/"],
     ["--workspace", "1000,1000,1"],
-    # reading options (issue 11): wrong for the format, out of range, unknown
+    # reading options: wrong for the format, out of range, unknown
     ["--part", "7"], ["--part", "-1"], ["--layer", "CUT"], ["--gap", "0.1"],
     ["--pixel-size", "0.1"], ["--threshold", "0.5"], ["--units", "px"],
     ["--file-units", "furlong"], ["--simplify", "0"], ["--simplify", "1e9"],

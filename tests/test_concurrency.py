@@ -1,4 +1,4 @@
-"""Three fingers with friction without HiGHS (fcgrasp.grippers._concurrency, issue 30)
+"""Three fingers with friction without HiGHS (fcgrasp.grippers._concurrency)
 against the HiGHS programs it replaces, kept in the package as the reference
 (``FCGRASP_JIT=0``): the dense simplex against HiGHS on random programs, degenerate ones
 included; the closed form of the concurrency region (Helly, Farkas) against a program

@@ -1,4 +1,4 @@
-"""Regression tests of the input contract (issue 9): each named after the defect it keeps
+"""Regression tests of the input contract: each named after the defect it keeps
 fixed.  Library functions raise ValueError/TypeError naming the argument; the CLI prints
 one line and exits 2, writes nothing on failure and never overwrites an input."""
 

@@ -239,7 +239,7 @@ def test_jaw_boxes_are_distinct_up_to_the_part_symmetries():
 
 def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
     """On demo:triangle the boxes ranked 2-6 were adjacent 6.5-degree slices of one
-    slanted band of poses (the same edges under each pad, issue 31): with distinct=
+    slanted band of poses (the same edges under each pad): with distinct=
     they are one alternative, the best standing for the rest; boxes apart by more than
     a grid step, or touching other edges, stay."""
     part = fc.read_part("demo:triangle")
@@ -265,7 +265,7 @@ def test_adjacent_jaw_boxes_of_one_contact_are_one_alternative():
     pytest.param(n, marks=pytest.mark.slow) for n in ("blob", "quad", "triangle", "washer",
                                                       "rectangle"))])
 def test_jaw_boxes_are_distinct_alternatives_by_default(name):
-    """Issue 31: a parallel jaw's default top ten are distinct alternatives, the best of
+    """A parallel jaw's default top ten are distinct alternatives, the best of
     each group of boxes that are one grasp (a mirror image, a turn, a neighbouring slice
     of one contact configuration), by the jaw's own rule at DEFAULT_DISTINCT; the same
     boxes as distinct=0.5 asked for, and the ranked list (distinct=0) keeps its first
@@ -517,7 +517,7 @@ def _pairwise_distinct(plans, size):
                                  "cam") for g in _POINT_GRIPPERS
                        if (n, g) not in _DEFAULT_CASES)])
 def test_point_fingers_plans_are_distinct_alternatives_by_default(name, grip):
-    """Issue 31: by default (distinct=None) the top ten plans of every point-finger
+    """By default (distinct=None) the top ten plans of every point-finger
     gripper are pairwise distinct by the documented rule (no two the same alternative
     at half the shorter region), the plans of distinct=0.5, and where the ranked list
     has copies, fewer of them are copies than in the ranked list (demo:cam, two

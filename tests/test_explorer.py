@@ -402,7 +402,7 @@ def _boxes_clear(labels, segs, regions=()):
 
 
 def test_a_real_part_handles_numbers_scale_zoom_and_pan(server, browser, tmp_path):
-    """Issue 31: a 2,003-edge part is drawn for a person, not as a chain of beads."""
+    """A 2,003-edge part is drawn for a person, not as a chain of beads."""
     browser.get(server)
     wait_plan(browser, 0)
     path = tmp_path / "half-disc.json"
@@ -546,8 +546,8 @@ _REGION_COLOURS = """
     const S = explorer.state, v = explorer.solid3d, plan = S.plans[S.selected];
     const eye = v.state().eye;
     return plan.regions.map((r, k) => {
-      const c = plan.centers[k], n = plan.normals[k];     // inward: the outside is -n
-      const out = -(n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]));
+      const c = plan.centers[k], n = plan.normals[k];     // the report's: outward
+      const out = n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]);
       // a point of the region between its centre (under the contact's marker) and a corner
       const p = [0, 1, 2].map((i) => c[i] + 0.6 * (r[0][i] - c[i]));
       const q = v.project(p);
@@ -670,12 +670,13 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
         assert list(im.size) == size
     assert not d.find_element(By.ID, "export-svg").is_displayed()
     # the view faces as many regions as it can: three fingers on the sides of a prism
-    inward = [[-np.cos(a), -np.sin(a), 0.0] for a in (0.3, 0.3 + 2.1, 0.3 + 4.2)]
-    assert d.execute_script("return explorer.solid3d.aim({normals: arguments[0]});", inward)
+    # (a report's normals point out of the part)
+    outward = [[np.cos(a), np.sin(a), 0.0] for a in (0.3, 0.3 + 2.1, 0.3 + 4.2)]
+    assert d.execute_script("return explorer.solid3d.aim({normals: arguments[0]});", outward)
     st = d.execute_script("return explorer.solid3d.state()")
     view = np.array([np.cos(st["pitch"]) * np.cos(st["yaw"]),
                      np.cos(st["pitch"]) * np.sin(st["yaw"]), np.sin(st["pitch"])])
-    assert sum(float(view @ -np.array(n)) > 0.2 for n in inward) == 2
+    assert sum(float(view @ np.array(n)) > 0.2 for n in outward) == 2
     # distinct alternatives only (ticked, every gripper's default): the page asks for
     # --distinct 0.5; unticked, for every plan as ranked
     assert d.execute_script("return explorer.state.report.parameters.distinct") == 0.5

@@ -1,5 +1,5 @@
 """Curves are flattened finely enough that regions along the boundary do not depend on
-the flattening tolerance (issue 12): the same regions, to 2%, at ``--flatten`` of 1/200
+the flattening tolerance: the same regions, to 2%, at ``--flatten`` of 1/200
 and of 1/5,000 of the part's size, for SVG paths (Bezier curves, arcs), SVG ellipses and
 DXF arcs; and no piece of a flattened curve turns more than the limit."""
 
@@ -68,7 +68,7 @@ def test_every_curve_piece_turns_at_most_the_limit():
 
 
 def test_a_curve_finer_than_the_tolerance_is_not_cut_much_finer_than_it():
-    """Issue 30: the turn rule gives way where the pieces would be shorter than a quarter
+    """The turn rule gives way where the pieces would be shorter than a quarter
     of the tolerance (a fillet smaller than the tolerance gets a few edges, not 180)."""
     from fcgrasp.io._drawing import flatten_curve
 
@@ -80,7 +80,7 @@ def test_a_curve_finer_than_the_tolerance_is_not_cut_much_finer_than_it():
         assert len(edges) <= np.pi * r / (tol / 8) + 2
 
 
-# --- issue 30: pieces of equal turn, against the binary halving kept as the reference ---
+# --- pieces of equal turn, against the binary halving kept as the reference ---
 
 def _bezier(ctrl):
     ctrl = np.asarray(ctrl, dtype=complex)
@@ -146,7 +146,7 @@ def _distance_to_polyline(q, pts):
 @pytest.mark.parametrize("seed, count", [(0, 25), pytest.param(1, 400, marks=pytest.mark.slow),
                                          pytest.param(2, 400, marks=pytest.mark.slow)])
 def test_equal_turn_flattening_keeps_both_rules_with_fewer_edges(seed, count):
-    """Issue 30: every piece's chord within ``tol`` of the curve and within
+    """Every piece's chord within ``tol`` of the curve and within
     :data:`MAX_TURN_DEG` of its tangent all along it (but where it is no longer than a
     quarter of ``tol``: a cusp, a curve finer than the tolerance), with fewer edges than
     the halving kept as reference."""
@@ -178,7 +178,7 @@ def test_equal_turn_flattening_keeps_both_rules_with_fewer_edges(seed, count):
 
 @pytest.mark.parametrize("mu", [0.3, pytest.param(0.6, marks=pytest.mark.slow)])
 def test_two_finger_regions_stay_with_the_halving_and_the_curve(drawing, mu, monkeypatch):
-    """Issue 30: with the equal-turn flattening the two-finger plan's smallest region on
+    """With the equal-turn flattening the two-finger plan's smallest region on
     the curved test parts is within 1% of the binary halving's (the rule per piece is
     the same, the pieces fewer), and every region as near the curve's own (a flattening
     ten times finer in turn) as the halving's, to 1%."""

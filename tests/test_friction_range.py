@@ -1,4 +1,4 @@
-"""Friction known only to a range (issue 32): plans made at its low end hold for every mu
+"""Friction known only to a range: plans made at its low end hold for every mu
 of it, checked by an LP over the contact wrenches (tests/oracle.py, no fcgrasp code) at
 grasps sampled in the regions; the best region against mu; the CLI's ``--mu LOW:HIGH``."""
 

@@ -1,5 +1,5 @@
-"""Distinct alternatives of three frictionless fingers with gravity and of four fingers
-(issue 31): the rounds of the single-edge search that leave out the rows read and the
+"""Distinct alternatives of three frictionless fingers with gravity and of four fingers:
+the rounds of the single-edge search that leave out the rows read and the
 rows inside a kept plan's regions (fcgrasp.grippers._boundary.distinct_single_edge_plans,
 fcgrasp.grippers._distinct_rows.RowCopies) give the plans of suppression along the
 *whole* ranked list (every plan of the part, ``top=None``), on seeded parts where
@@ -65,7 +65,7 @@ def test_distinct_rounds_equal_suppression_of_every_plan(seed):
 
 
 def test_row_scores_remember_what_was_added():
-    """Issue 30's memo of the rows' scores: each row's score as added (the first where a
+    """The memo of the rows' scores: each row's score as added (the first where a
     row was added twice), nan for a row never added, gravity's -1 a feature like any;
     features beyond its key's 15 bits are not remembered."""
     rng = np.random.default_rng(8)
@@ -189,7 +189,7 @@ def test_forms_like_part_gets_ten_alternatives_where_the_list_had_one():
 
 
 def test_rows_read_are_left_out_as_by_their_edge_tuples():
-    """Issue 30: the rows a distinct search has read are found by one integer per
+    """The rows a distinct search has read are found by one integer per
     sorted edge tuple (``RowCopies``' whole-array test) exactly where the tuple of the
     row's sorted edges is among those read (the set lookup it replaced): 400 seeded
     batches of four fingers, of three with gravity (-1) and mixed counts, repeated

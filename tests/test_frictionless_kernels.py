@@ -1,4 +1,4 @@
-"""The compiled rows of frictionless configurations (issue 30) against numpy's, bit for
+"""The compiled rows of frictionless configurations against numpy's, bit for
 bit: on the programs the growth of four fingers (and three with gravity) builds on the
 built-in parts, and on seeded random configurations, null pairings and narrow sectors
 included; and the partial sort of the row generation against numpy's stable sort."""
@@ -179,7 +179,7 @@ def _programs(parts, monkeypatch):
 @pytest.mark.parametrize("parts", [pytest.param(1, id="seeded"),
                                    pytest.param(40, id="sweep", marks=pytest.mark.slow)])
 def test_growths_programs_solved_in_one_compiled_call_equal_numpys(parts, monkeypatch):
-    """Issue 30: the growth's programs (``frictionless_stretches._lp``) built, scaled and
+    """The growth's programs (``frictionless_stretches._lp``) built, scaled and
     solved by row generation in one compiled call (``_frictionless_kernels.lp_rows``)
     against the numpy steps (``COMPILED_LP`` False, the reference): the same answer,
     bit for bit, on every program four fingers and three with gravity solve on the

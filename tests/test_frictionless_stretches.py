@@ -291,7 +291,7 @@ def test_grown_regions_do_not_depend_on_the_scale(jit, monkeypatch):
     largest coefficient of 1, by the compiled simplex and by HiGHS alike: three
     frictionless fingers with gravity on a country outline (Lesotho) gave rank 3 a
     smallest region 3.4e-5 shorter (relative) at scale 1e-3 with HiGHS's absolute
-    tolerances (issue 32)."""
+    tolerances."""
     from pathlib import Path
 
     monkeypatch.setenv("FCGRASP_JIT", jit)
@@ -310,7 +310,7 @@ def test_grown_regions_do_not_depend_on_the_scale(jit, monkeypatch):
 
 
 def test_pairs_of_moves_reach_the_symmetric_optimum_of_an_ellipse():
-    """Issue 32's case: on a 24-edge ellipse, regions on edges 1-4, 7-10, 13-16 and
+    """The case: on a 24-edge ellipse, regions on edges 1-4, 7-10, 13-16 and
     19-22 are reached from the grown plan only by sliding two regions at once (each
     slide alone shortens the smallest region): growth one move at a time stops at 0.94
     of them, the plan (its best growth polished by pairs of moves) reaches them, and

@@ -1,7 +1,7 @@
 """Golden plans: the built-in parts and a seeded set of random parts, planned for every
-gripper, must give the same JSON reports as when the file was recorded (issue 10: the
+gripper, must give the same JSON reports as when the file was recorded (the
 pipeline may be restructured, its answers may not change).  The file was recorded in
-report format 1, before regions ran along the boundary (issue 12): read through
+report format 1, before regions ran along the boundary: read through
 ``migrate_report``, the plans must still be the same (these outlines are made of long
 edges, where no region gains by crossing a vertex).
 

@@ -1,4 +1,4 @@
-"""``import fcgrasp`` stays light (issue 10): no scipy.optimize, matplotlib or reader
+"""``import fcgrasp`` stays light: no scipy.optimize, matplotlib or reader
 library until used; the version literal matches the package metadata."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""The parallel-jaw gripper (issue 14): the pose model against an independent one (shapely
+"""The parallel-jaw gripper: the pose model against an independent one (shapely
 clips the part to the pads' strip; the contacts go through the wrench LP of
 tests/oracle.py), and every sampled pose of every returned box holds and fits the stroke."""
 
@@ -694,7 +694,7 @@ def test_planned_boxes_reach_the_exact_boundary():
      + [("ref", 0.1 * np.pi / 6 + k * np.pi / 4) for k in range(4)]),
 ])
 def test_no_box_is_an_image_of_another(name, symmetries):
-    """The rectangle's ranks 2 and 3 were mirror images of one box (issue 31): a box's
+    """The rectangle's ranks 2 and 3 were mirror images of one box: a box's
     images under the part's symmetries are taken off the grid with it (the grid box
     found, and the box as grown).  Checked with the rectangle's symmetries written out
     by hand (half turn, reflections across the axes) and the washer's, and the jaw's
@@ -782,7 +782,7 @@ RASTER_JAWS = [ParallelJaw(stroke=(5, 60), pad_width=8, mu=0.5),
     pytest.param(n, marks=pytest.mark.slow)
     for n in ("blob", "quad", "bracket", "washer", "rectangle"))])
 def test_the_top_box_is_within_one_percent_of_the_exact_sets_largest(name):
-    """Issue 31: the best box is within 1 % of the largest box of the exact holding set
+    """The best box is within 1 % of the largest box of the exact holding set
     by the measure, checked against a raster of exact slices every 0.1 degree over the
     whole turn (no raster box measures more than the top box / 0.99).  The grid's box
     grown to the boundary was 8 % short on the triangle (4.20 against 4.58) and 7 % on
@@ -798,7 +798,7 @@ def test_the_top_box_is_within_one_percent_of_the_exact_sets_largest(name):
     pytest.param(n, marks=pytest.mark.slow)
     for n in ("blob", "triangle", "bracket", "rectangle", "washer"))])
 def test_returned_boxes_do_not_overlap_nor_their_images(name):
-    """Issue 31: no returned box overlaps another or its image under the part's and the
+    """No returned box overlaps another or its image under the part's and the
     jaw's symmetries (a box grown or refined into a plan found before is not kept; the
     quad's rank 2 used to contain its rank 1)."""
     from fcgrasp.model.distinct import box_images, part_symmetries
@@ -824,7 +824,7 @@ def test_returned_boxes_do_not_overlap_nor_their_images(name):
 
 @pytest.mark.parametrize("name", ["quad", pytest.param("rectangle", marks=pytest.mark.slow)])
 def test_the_pareto_list_trades_one_side_for_the_other(name):
-    """jaw_pareto (issue 31's Pareto list): proved boxes, none beaten on both sides by
+    """jaw_pareto (the Pareto list): proved boxes, none beaten on both sides by
     another (down the list the angle range falls and the offset range grows), every
     sampled pose holding by the independent model; on the quad a real trade: the last
     box has five times the first's offset range, the first twice the last's angles, and

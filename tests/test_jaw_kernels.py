@@ -1,4 +1,4 @@
-"""The parallel jaw's compiled loops (issue 30: ``fcgrasp.grippers.jaw._kernels``) against
+"""The parallel jaw's compiled loops (``fcgrasp.grippers.jaw._kernels``) against
 the numpy model they replace, kept as the reference: the pose model (verdicts, stops,
 contacts, slacks), the largest box of the pose grid, the proofs of boxes and the exact
 slices, on seeded random parts with holes (internal grips too), at critical angles (an
@@ -387,7 +387,7 @@ def _merge_intervals_loop(rows, count, tol):
 
 
 def test_merged_slices_equal_the_loop():
-    """Issue 30: the jaw's slices of each pose joined into disjoint intervals by
+    """The jaw's slices of each pose joined into disjoint intervals by
     whole-array operations (a running maximum of exact integer keys) against the loop
     that joined them one piece at a time: the same intervals, bit for bit, on 3,000
     seeded cases with touching, nested, repeated and zero-length pieces."""

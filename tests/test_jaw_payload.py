@@ -1,4 +1,4 @@
-"""The load a parallel jaw's box carries (issue 32, fcgrasp.grippers.jaw.jaw_payload): the
+"""The load a parallel jaw's box carries (fcgrasp.grippers.jaw.jaw_payload): the
 certified scale never exceeds the payload of any pose of the box, each computed without
 fcgrasp (shapely's clip of the part to the strip for the contacts, as test_jaw's pose
 model does, and test_loads' linear program over the contact forces, a pad's points

@@ -1,4 +1,4 @@
-"""The fused kernels (issue 13) against the previous pure-numpy implementation
+"""The fused kernels against the previous pure-numpy implementation
 (``tests/previous_kernels.py``), numpy mode and compiled mode, on seeded random edge sets,
 near-degenerate ones included; and whole plans equal in both modes."""
 
@@ -256,7 +256,10 @@ def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     monkeypatch.setenv("FCGRASP_JIT", "1")
     monkeypatch.setattr(kernels, "_loops", lambda: {"_pair_scores_loop": boom})
     monkeypatch.setattr(kernels, "_no_numba", False)
-    got = kernels.pair_scores(a, b, c, h, i, j, 0.01)
+    monkeypatch.setattr(kernels, "_fallen", set())
+    monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
+    with pytest.warns(kernels.KernelFallbackWarning, match="_pair_scores_loop"):
+        got = kernels.pair_scores(a, b, c, h, i, j, 0.01)
     for x, y in zip(got, want, strict=True):
         assert np.array_equal(x, y)
     assert not kernels.compiled()
@@ -369,3 +372,28 @@ def test_a_loop_loads_from_the_cache_without_refreshing_numba(monkeypatch):
     assert refreshed == []
     np.testing.assert_array_equal(got, 3.0 * x + 1.0)
     np.testing.assert_array_equal(got, want)
+
+
+def test_a_loop_that_fails_to_compile_warns_once_or_fails_when_required(monkeypatch):
+    """A compiled loop that numba cannot type falls back to numpy with one warning per
+    loop; with ``FCGRASP_REQUIRE_JIT=1`` (the suite's setting) it raises instead."""
+    from fcgrasp.core import kernels
+
+    def bad(x):
+        raise TypeError("cannot type")
+
+    loops = kernels.CompiledLoops({}, ())
+    monkeypatch.setattr(loops, "get", lambda: {"bad_loop": bad})
+    monkeypatch.setattr(kernels, "_fallen", set())
+    monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
+    with pytest.warns(kernels.KernelFallbackWarning, match="bad_loop"):
+        assert loops.run("bad_loop", 1) == (False, None)
+    assert loops.broken
+    import warnings
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        kernels.fell_back("bad_loop", TypeError("again"))     # said once only
+    monkeypatch.setenv("FCGRASP_REQUIRE_JIT", "1")
+    with pytest.raises(RuntimeError, match="FCGRASP_REQUIRE_JIT"):
+        kernels.fell_back("bad_loop", TypeError("again"))

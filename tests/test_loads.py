@@ -1,4 +1,4 @@
-"""Loads with finger force limits (fcgrasp.model.loads, issue 32): the payload of one
+"""Loads with finger force limits (fcgrasp.model.loads): the payload of one
 grasp against an independent linear program written over the finger forces' components
 (the module parametrises the cones by their edges), the least-peak-force distribution
 checked for equilibrium, cones and limits, and the certified scale of a plan's regions

@@ -1,4 +1,4 @@
-"""One edge pair in plain floats (issue 30: ``independent_regions`` on two edges) against
+"""One edge pair in plain floats (``independent_regions`` on two edges) against
 the batched pipeline it replaced, kept as the reference (candidates -> solve -> rank on
 the two edges): the same plan on thousands of seeded pairs, exactly parallel and
 near-degenerate ones included (region ends to 1e-9 of the part's size).  Against an

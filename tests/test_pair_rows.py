@@ -1,4 +1,4 @@
-"""Four frictionless fingers on regular polygons (issue 30): the coupled bound of a row
+"""Four frictionless fingers on regular polygons: the coupled bound of a row
 (:func:`fcgrasp.pipeline._pair_rows.coupled_bounds`) is at least the smallest region the
 region solver gives it, every row that reaches a floor is among the pairs of nearly
 opposite edges the search then reads (:meth:`PairRows.reaching`, checked against every

@@ -1,4 +1,4 @@
-"""No false force closure on parts with exactly parallel edges, margin 0 included (issue 9).
+"""No false force closure on parts with exactly parallel edges, margin 0 included.
 
 At ``margin=0`` the returned regions are the closure of force-closure sets: every grasp
 strictly inside the box of regions is force closure, and only grasps with a finger at a

@@ -1,4 +1,4 @@
-"""The public pipeline (issue 10): candidates -> solve -> rank gives plan()'s answer, in
+"""The public pipeline: candidates -> solve -> rank gives plan()'s answer, in
 any batch size, with batches pickled and solved in other processes."""
 
 from __future__ import annotations
@@ -77,7 +77,7 @@ def test_plan_spec_is_checked_and_picklable():
         list(candidates(fc.read_part("demo:blob"), spec, batch_size=1.5))
 
 
-# ------------------------------------------------------------------ memory (issue 11)
+# ------------------------------------------------------------------ memory
 
 
 @pytest.mark.parametrize("size", [1, 5, 1000])

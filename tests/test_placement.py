@@ -1,5 +1,5 @@
 """Placement errors: the probability that a two-finger plan holds under Gaussian errors
-along the boundary (fcgrasp.model.robustness, issue 32): the exact integral over the force-closure
+along the boundary (fcgrasp.model.robustness): the exact integral over the force-closure
 polygons of the edge pairs against a Monte Carlo estimate of a million landings decided
 by ``friction_pair_closure`` (theorem 6.3 as the library's batch test states it; no code
 shared with the polygons), within 4.5 standard errors."""

@@ -1,4 +1,4 @@
-"""Plain-float forms of per-plan helpers (issue 30: a plan's few numbers, where numpy's
+"""Plain-float forms of per-plan helpers (a plan's few numbers, where numpy's
 calls cost more than the arithmetic) against their previous numpy forms, kept here or
 beside them: the same numbers, bit for bit, on seeded cases, values at the rounding's
 halfway points included."""

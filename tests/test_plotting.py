@@ -95,7 +95,7 @@ def test_panel_legends_do_not_overlap_titles_and_axes_have_units(tmp_path):
     plt.close(fig)
 
 
-# ------------------------------------------------------------- layout (issue 31)
+# ------------------------------------------------------------- layout
 
 def _drawn(monkeypatch, draw):
     """The figure a plotting function made, kept open and drawn."""

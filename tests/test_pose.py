@@ -1,4 +1,4 @@
-"""Pose errors (fcgrasp.pose_probability, issue 32): the quasi-Monte Carlo estimate of
+"""Pose errors (fcgrasp.pose_probability): the quasi-Monte Carlo estimate of
 the probability that a plan holds when the part sits off its pose, against an independent
 Monte Carlo (the part moved with numpy and shapely, each finger's approach line cut with
 the moved outline by shapely, contacts decided by ``friction_pair_closure``: no code
@@ -168,7 +168,7 @@ def test_cli_pose_sigma(tmp_path, capsys):
 
 
 def test_robustness_is_the_exact_integral_or_the_estimate():
-    """fc.robustness (issue 32's name): two fingers under a placement error alone, the
+    """fc.robustness (the name): two fingers under a placement error alone, the
     exact integral (no samples, no error); with a pose error, pose_probability's
     estimate; with neither, a clear error."""
     part = fc.read_part("demo:quad")

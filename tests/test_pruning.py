@@ -1,4 +1,4 @@
-"""Exact branch and bound (issue 13): the pruned search gives the same top-k as solving
+"""Exact branch and bound: the pruned search gives the same top-k as solving
 every candidate row, for every gripper and every ranking measure, on the test corpus;
 and it does prune."""
 
@@ -152,7 +152,7 @@ def _flattened(rng):
 #: (1.155810189 against 1.155810186) gives another fourth row kept than solving every
 #: row does; not seen with the default KEEP_FOR_MEASURE (seeds 0-10 checked).
 _RESISTANCE_NEAR_TIE = pytest.mark.xfail(strict=True, reason="resistance, near tie at the "
-                                         "KEEP_FOR_MEASURE-th row (issue 30's notes)")
+                                         "KEEP_FOR_MEASURE-th row (the notes)")
 
 
 @pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow) if s != 11
@@ -177,7 +177,7 @@ def test_pruned_top_k_on_flattened_arcs_is_the_exhaustive_top_k(seed):
                                         for g in (1, 64, 10 ** 9))])
 def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gather,
                                                                               monkeypatch):
-    """Issue 30: four frictionless fingers and three with gravity, a search drops the
+    """Four frictionless fingers and three with gravity, a search drops the
     rows whose forces cannot hold (theorem 4.2, compiled over rows of feature indices)
     before anything else reads them, and, when not strict, solves the rest in groups of
     ``GATHER_ROWS`` across batches (every row alone, a few, more; all at the end under
@@ -421,7 +421,7 @@ print(json.dumps(out))
 
 @pytest.mark.parametrize("block", [1, 7, 4096])
 def test_candidate_stream_does_not_depend_on_the_combination_blocks(block, monkeypatch):
-    """Issue 30: the triples of :func:`~fcgrasp.pipeline._candidates._combos` come in
+    """The triples of :func:`~fcgrasp.pipeline._candidates._combos` come in
     blocks of several first positions (fewer numpy calls on a flattened curve): every
     increasing triple once, in order, and the candidate stream of four fingers the same
     batches, row for row, as with a block per first position (``COMBO_BLOCK`` 1)."""
@@ -455,7 +455,7 @@ def _tied_part(rng):
 @pytest.mark.parametrize("cases", [pytest.param(60, id="seeded"),
                                    pytest.param(2000, id="sweep", marks=pytest.mark.slow)])
 def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
-    """Issue 30: once the top is full, the rows of each position that may reach its key
+    """Once the top is full, the rows of each position that may reach its key
     are found by one compiled loop that skips the tuples a lower one already rules out
     (:func:`fcgrasp.pipeline._rows_kernels.survivors`).  Against the numpy path
     (``FCGRASP_JIT=0``: every tuple sorted, laid out, bounded and filtered by

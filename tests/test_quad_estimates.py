@@ -1,4 +1,4 @@
-"""Issue 30: four frictionless fingers (and three with gravity) leave out the rows whose
+"""Four frictionless fingers (and three with gravity) leave out the rows whose
 compiled estimate is below a search's floor before building their geometry, and
 decide whether two fingers on one edge overlap by a compiled placement where it is
 sure.  Both are shortcuts with a reference that shares none of their code: the numpy

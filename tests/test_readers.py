@@ -1,4 +1,4 @@
-"""Real drawing files (issue 11): every form a user brings, generated with ezdxf's writer,
+"""Real drawing files: every form a user brings, generated with ezdxf's writer,
 imageio, and by hand for SVG, JSON and WKT; what is read (outline, holes, units, which part)
 is compared with the known part, and each format runs end to end through fcgrasp plan."""
 
@@ -172,7 +172,7 @@ def test_svg_units_px_and_real_units(tmp_path):
 
 
 def test_svg_parts_sit_on_the_page_with_y_up(tmp_path):
-    """Issue 31: an SVG part keeps the page's positive coordinates, y up from its
+    """An SVG part keeps the page's positive coordinates, y up from its
     bottom edge (an icon's viewBox, a page in mm, a page without a size)."""
     px = 25.4 / 96                                          # mm per CSS px
     for attrs, h, mm in (('width="24" height="24" viewBox="0 0 24 24"', 24, px),

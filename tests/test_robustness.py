@@ -1,4 +1,4 @@
-"""Robustness (issue 6): never a wrong "force closure", degenerate geometry, invariance
+"""Robustness: never a wrong "force closure", degenerate geometry, invariance
 under rigid motions, scaling, mirroring and renumbering, extreme coordinates."""
 
 from __future__ import annotations

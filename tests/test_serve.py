@@ -23,6 +23,7 @@ from fcgrasp.apps.serve import create_app  # noqa: E402
 from fcgrasp.core.contacts import FrictionlessPoint, FrictionPoint  # noqa: E402
 from fcgrasp.errors import RequestError  # noqa: E402
 from fcgrasp.io.parts import load_part  # noqa: E402
+from fcgrasp.io.schema import validate  # noqa: E402
 
 from .test_batch import _ring, make_parts  # noqa: E402
 
@@ -85,6 +86,7 @@ def test_plans_are_those_of_fcgrasp_plan(client, tmp_path, options, both):
     for vertices in parts if both else parts[CASES.index(options) % 2:][:1]:
         ans = _plan(client, {"outer": vertices, "units": "mm"}, options)
         assert ans["state"] == "done", ans
+        validate(ans["report"])
         cli = _cli_report(tmp_path, vertices, ans["argv"])
         assert ans["report"]["grasps"] == cli["grasps"]
         assert ans["report"]["parameters"] == cli["parameters"]
@@ -488,6 +490,7 @@ def test_solids_plan_as_fcgrasp_plan_does(client, tmp_path, options, argv):
     for sent in (part, dict(part, source=f"{name}.stl")):     # by name; by its triangles
         ans = _plan(client, sent, options)
         assert ans["state"] == "done", ans
+        validate(ans["report"])
         got = ans["report"]["grasps"]
         assert [g["facets"] for g in got] == [g["facets"] for g in want]
         for g, w in zip(got, want, strict=True):

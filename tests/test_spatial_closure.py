@@ -1,4 +1,4 @@
-"""Force closure and quality of solid grasps (issue 33), against methods that share no
+"""Force closure and quality of solid grasps, against methods that share no
 code with fcgrasp.spatial: linear programs over linearised cones written here (an inner
 pyramid proves force closure, an outer one refutes it), a second-order cone program over
 the dual cones (no wrench the contacts cannot oppose), and facets of the wrench hull

@@ -1,4 +1,4 @@
-"""Issue 33's seeded corpus of meshes beyond the built-in solids: brackets made by
+"""The seeded corpus of meshes beyond the built-in solids: brackets made by
 constructive geometry (plates with holes and slots, L and T brackets with fillets: 2-D
 booleans extruded) and convex decompositions of curved parts (a torus and a capsule cut
 into sectors, each sector's hull a body of its own).  Every gripper's plans on each

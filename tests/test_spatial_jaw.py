@@ -1,4 +1,4 @@
-"""A parallel jaw with flat pads on solids (issue 33): every axis of every returned
+"""A parallel jaw with flat pads on solids: every axis of every returned
 region meets both facets, holds (the 6-D cone program, soft contacts), and its pads
 reach their facets before any other part of the solid (rays cast here, Moller-Trumbore,
 against every triangle); axes just outside the region fail one of these; the box gives

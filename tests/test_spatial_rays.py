@@ -150,7 +150,7 @@ def _surface_samples(rng, triangles, size, n):
 def _region_points(rng, grasp, k, size, n):
     """The samples of the ``k``-th region of a report's grasp, and the direction in which
     each is cast onto the mesh (the region's inward normal there)."""
-    claimed = _unit(grasp["normals"][k])
+    claimed = -_unit(grasp["normals"][k])          # the report's normals point out
     tris = grasp.get("surface_triangles")
     if tris is not None and len(tris[k]):
         P, T = _surface_samples(rng, tris[k], size, n)
@@ -339,7 +339,7 @@ def test_the_ray_test_can_fail():
     tri = _mesh("angle_block.STL")
     size = _size(tri)
     grasp = _report("angle_block.STL", fingers=2, soft=True, top=1)["grasps"][0]
-    moved = dict(grasp, regions=[(np.asarray(grasp["regions"][0]) - 0.1 * size *
+    moved = dict(grasp, regions=[(np.asarray(grasp["regions"][0]) + 0.1 * size *
                                   np.asarray(grasp["normals"][0])).tolist(),
                                  grasp["regions"][1]])
     moved.pop("surface_triangles", None)

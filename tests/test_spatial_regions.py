@@ -1,4 +1,4 @@
-"""Regions of two soft fingers on solids (issue 33): every grasp of the regions (every
+"""Regions of two soft fingers on solids: every grasp of the regions (every
 pair of corners and sampled points) passes the 6-D force-closure test, the regions on a
 box, a cylinder and a prism equal their analytic optimum, the bounded search equals
 solving every pair, and meshes are read and checked."""

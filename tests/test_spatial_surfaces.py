@@ -1,4 +1,4 @@
-"""Regions of two soft fingers across the facets of curved surfaces (issue 33): every
+"""Regions of two soft fingers across the facets of curved surfaces: every
 grasp of every region, found on the mesh by casting rays (not by the planner's lifting),
 with the normal of the triangle it lands on, passes the closed form at the cone's own
 edge and the 6-D cone program; the regions are far larger than one facet allows on

@@ -1,4 +1,4 @@
-"""Three point fingers with friction on solids (issue 33): the certified radius is sound
+"""Three point fingers with friction on solids: the certified radius is sound
 (every grasp moved by less than it passes the exact cone program) and equals the
 zero-force slice's inradius as an LP computes it; every grasp of the returned regions is
 in force closure; the search equals certifying every triple; the filter on the normals

@@ -1,4 +1,4 @@
-"""Grasp stability with fingers as springs (fcgrasp.model.stability, issue 32): the
+"""Grasp stability with fingers as springs (fcgrasp.model.stability): the
 stiffness matrix against central differences of the potential energy computed from the
 moved part (the edge's line moved rigidly, the fingertips fixed), on seeded random
 grasps in equilibrium; the classic cases by hand."""
@@ -133,7 +133,7 @@ def test_stability_errors_name_the_argument():
         grasp_stiffness([[0, 0], [1, 0]], [[-1, 0], [1, 0]], 1.0, 1.0, about=[1, 2, 3])
 
 
-# ------------------------------------------------------------------ plans (issue 32)
+# ------------------------------------------------------------------ plans
 
 def test_two_finger_preload_is_the_squeeze_along_the_chord():
     """Two fingers can only balance along the line between them: f_i = lam cos(a_i),

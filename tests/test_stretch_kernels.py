@@ -201,7 +201,7 @@ def test_compiled_search_gives_the_numpy_plans(seed, monkeypatch):
 
 @pytest.mark.parametrize("seed", seeds(2, 200))
 def test_a_search_that_turns_compiled_half_way_gives_the_numpy_plans(seed, monkeypatch):
-    """Issue 30: past :data:`NUMPY_SOLVE_BUDGET` of numpy solves a process solves the rest
+    """Past :data:`NUMPY_SOLVE_BUDGET` of numpy solves a process solves the rest
     of its configurations compiled, in the middle of a job: the plans stay those of the
     numpy search."""
     poly, mu, margin = part(seed)
@@ -225,7 +225,7 @@ def _plan_tuples(poly, **kw):
 
 @pytest.mark.parametrize("seed", seeds(3, 150))
 def test_configurations_proved_below_the_floor_change_no_plan(seed, monkeypatch):
-    """Issue 30: the compiled solve leaves unsolved the configurations it proves below
+    """The compiled solve leaves unsolved the configurations it proves below
     the run's floor (the bound's, or the distinct rounds' memo's), and a later round
     solves them only where its floor is lower (``FLOOR_SOLVE``).  The plans of two
     fingers and of three with friction at default options (distinct rounds along the
@@ -256,7 +256,7 @@ def test_configurations_proved_below_the_floor_change_no_plan(seed, monkeypatch)
 @pytest.mark.parametrize("seed", [18, *(pytest.param(s, marks=pytest.mark.slow)
                                         for s in range(120) if s != 18)])
 def test_rounds_sharing_a_memo_solve_again_what_their_lower_floor_needs(seed, monkeypatch):
-    """Issue 30: rounds of one distinct search share their solved configurations
+    """Rounds of one distinct search share their solved configurations
     (``_Memo``), those proved below one round's floor left unsolved; a later round
     whose floor is lower solves them again.  Three rounds (the best, then with a plan
     read, then more plans) give what a fresh search gives the last round.  (Seed 18
@@ -458,7 +458,7 @@ def test_own_optimum_filter_matches_every_pair(seed):
 
 
 def test_own_optimum_filter_remembers_sets_not_orders(monkeypatch):
-    """Issue 30: the rounds of a distinct search ask the own-optimum filter about the
+    """The rounds of a distinct search ask the own-optimum filter about the
     same configurations in another order; :func:`~fcgrasp.model._stretch_kernels.beaten`
     remembers the answer per set: a permuted set gets the answers permuted, a set with
     one region changed gets its own answers (the definition over every pair)."""

@@ -332,7 +332,7 @@ def test_crosses_a_vertex_is_the_fan_condition():
 
 
 def _previous_polyline(ring, i, k, s0, t):
-    """The region polyline as it was built before issue 30's round (a numpy row per
+    """The region polyline as it was built before the round (a numpy row per
     vertex, then one array of them): the reference of ``_polyline``."""
     from fcgrasp.core._geom import trim_vertex_ends
     from fcgrasp.core.tolerances import ROUND_TOL

@@ -1,4 +1,4 @@
-"""Three fingers with friction, ``distinct=`` (issue 31): the search that leaves a kept
+"""Three fingers with friction, ``distinct=``: the search that leaves a kept
 plan's copies out of the two-finger stretch search
 (:func:`fcgrasp.grippers.three_fingers.distinct_three_finger_plans`) keeps the plans
 that suppression keeps along the ranked list, read in full by the generic path; the

@@ -1,4 +1,4 @@
-"""Three fingers with friction (issue 14): every grasp of the planned regions is force
+"""Three fingers with friction: every grasp of the planned regions is force
 closure by the general wrench test of tests/oracle.py (an LP over the contact wrenches,
 written without fcgrasp), the sub-arcs span, the branch and bound is exact, and a third
 finger never makes things worse."""

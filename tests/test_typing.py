@@ -1,4 +1,4 @@
-"""The package ships ``py.typed``: ``mypy src`` must report no error (issue 10)."""
+"""The package ships ``py.typed``: ``mypy src`` must report no error."""
 
 from __future__ import annotations
 

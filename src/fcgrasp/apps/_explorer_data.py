@@ -251,9 +251,9 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
         return PlanRequest(part=name, **kw)
     except RequestError:
         raise
-    except (TypeError, ValueError) as exc:    # a value of the wrong type: its option first
-        first = str(exc).split(" ", 1)[0]
-        raise RequestError(str(exc), first if first in _KNOWN else "options") from None
+    except (TypeError, ValueError) as exc:    # a value of the wrong type: its option
+        field = getattr(exc, "field", None)
+        raise RequestError(str(exc), field if field in _KNOWN else "options") from None
 
 
 #: The keys of the page's options.

@@ -1,4 +1,4 @@
-"""Planning a catalogue of parts: ``fcgrasp batch`` and :func:`plan_many` (issue 15).
+"""Planning a catalogue of parts: ``fcgrasp batch`` and :func:`plan_many`.
 
 Every part is planned by :func:`fcgrasp.planning.plan_document` on a
 :class:`~fcgrasp.planning.PlanRequest` (the function and the request behind ``fcgrasp

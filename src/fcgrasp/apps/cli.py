@@ -422,7 +422,7 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
                ("blob", 3, 0.5, None, "three fingers with friction"),
                ("washer", 2, 0.2, None, "two fingers with friction on a part with a hole"),
                ("cam", 2, 0.3, None, "regions along the boundary of a curved part")]
-    # the plans distinct alternatives, as by default (issue 31: the curved part's
+    # the plans distinct alternatives, as by default (the curved part's
     # ranked list is one grasp shifted along the curve, drawn six times)
     jobs = [(PlanRequest(part=f"demo:{name}", fingers=n, mu=mu, gravity=g, top=6),
              f"{name}-{n}f" + ("g" if g is not None else ""), f"demo:{name} - {title}")
@@ -431,7 +431,7 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
     jobs.append((PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10.0, 50.0),
                              pad=8.0, mu=0.5, top=3), "rectangle-jaw",
                  "demo:rectangle - a parallel jaw (stroke 10-50 mm, 8 mm pads, mu 0.5)"))
-    # a solid: two soft fingers' regions on the facets of a mesh (issue 33)
+    # a solid: two soft fingers' regions on the facets of a mesh
     jobs.append((PlanRequest(part="demo:angle", fingers=2, soft=True, mu=0.5, top=4),
                  "angle-soft", "demo:angle - two soft fingers on a solid (mu 0.5)"))
     jobs.append((PlanRequest(part="demo:prism", fingers=3, mu=0.5, top=3),

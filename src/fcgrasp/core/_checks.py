@@ -1,9 +1,11 @@
 """Validation at the boundary: turn user input into float64 arrays or raise.
 
 Every public function of fcgrasp calls one of these ``check_*`` helpers on its
-arguments.  Errors are :class:`ValueError` (wrong shape, non-finite, out of range)
-or :class:`TypeError` (not numbers at all) and always name the argument and quote
-the value received, in the manner of pytransform3d's ``check_matrix``.
+arguments.  Errors are :class:`~fcgrasp.errors.ArgumentError` (a :class:`ValueError`:
+wrong shape, non-finite, out of range) or :class:`~fcgrasp.errors.ArgumentTypeError` (a
+:class:`TypeError`: not numbers at all), carrying the argument as their ``field``; the
+message names it and quotes the value received, in the manner of pytransform3d's
+``check_matrix``.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ..errors import ArgumentError, ArgumentTypeError
 from .tolerances import MAX_MAGNITUDE
 
 if TYPE_CHECKING:       # numpy.typing costs a plan's start-up; annotations only need it
@@ -49,20 +52,20 @@ def check_array(value: Any, name: str, *, last: int | tuple[int, ...] | None = N
     """
     arr = numeric_array(value, name)
     if arr.ndim < min_ndim:
-        raise ValueError(f"{name} must have at least {min_ndim} dimension(s), "
-                         f"got shape {arr.shape}: {_short(value)}")
+        raise ArgumentError(f"{name} must have at least {min_ndim} dimension(s), "
+                            f"got shape {arr.shape}: {_short(value)}", name)
     if last is not None:
         want = (last,) if isinstance(last, int) else tuple(last)
         if arr.ndim < len(want) or arr.shape[arr.ndim - len(want):] != want:
             shape_txt = "(..., " + ", ".join(str(w) for w in want) + ")"
-            raise ValueError(f"{name} must have shape {shape_txt}, got shape {arr.shape}: "
-                             f"{_short(value)}")
+            raise ArgumentError(f"{name} must have shape {shape_txt}, got shape {arr.shape}: "
+                                f"{_short(value)}", name)
     # one pass: NaN and infinity also fail the comparison with the documented range
     if finite and not np.all(np.abs(arr) <= MAX_MAGNITUDE):
         if not np.all(np.isfinite(arr)):
-            raise ValueError(f"{name} must be finite, got {_short(value)}")
-        raise ValueError(f"{name} must have magnitudes at most {MAX_MAGNITUDE:g} (fcgrasp's "
-                         f"documented range), got {_short(value)}")
+            raise ArgumentError(f"{name} must be finite, got {_short(value)}", name)
+        raise ArgumentError(f"{name} must have magnitudes at most {MAX_MAGNITUDE:g} (fcgrasp's "
+                            f"documented range), got {_short(value)}", name)
     return arr
 
 
@@ -86,28 +89,30 @@ def _holds_bool(value: Any) -> bool:
 def numeric_array(value: Any, name: str) -> FloatArray:
     """``value`` as float64, refusing strings and booleans (which numpy would convert)."""
     if isinstance(value, (str, bytes)):
-        raise TypeError(f"{name} must be numeric, got {_short(value)}")
+        raise ArgumentTypeError(f"{name} must be numeric, got {_short(value)}", name)
     try:
         raw = np.asarray(value)
     except ValueError as exc:       # ragged nesting
-        raise ValueError(f"{name} must be a regular array of numbers, got "
-                         f"{_short(value)}") from exc
+        raise ArgumentError(f"{name} must be a regular array of numbers, got "
+                            f"{_short(value)}", name) from exc
     if raw.dtype.kind in "USb" or (raw.dtype.kind == "O" and not all(
             _is_number(x) for x in raw.ravel())) or (isinstance(value, (list, tuple))
                                                      and _holds_bool(value)):
-        raise TypeError(f"{name} must hold numbers (not strings or booleans), got "
-                        f"{_short(value)}")
+        raise ArgumentTypeError(f"{name} must hold numbers (not strings or booleans), got "
+                                f"{_short(value)}", name)
     try:
         return np.asarray(raw, dtype=np.float64)
     except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be an array of numbers, got {_short(value)}") from exc
+        raise ArgumentTypeError(f"{name} must be an array of numbers, got {_short(value)}",
+                                name) from exc
 
 
 def check_point(value: Any, name: str = "point") -> FloatArray:
     """A planar point, shape (2,)."""
     arr = check_array(value, name, last=2)
     if arr.ndim != 1:
-        raise ValueError(f"{name} must have shape (2,), got shape {arr.shape}: {_short(value)}")
+        raise ArgumentError(f"{name} must have shape (2,), got shape {arr.shape}: "
+                            f"{_short(value)}", name)
     return arr
 
 
@@ -117,11 +122,12 @@ def check_contact_points(points: Any, normals: Any) -> tuple[FloatArray, FloatAr
     p = check_array(points, "points", last=2)
     n = check_array(normals, "normals", last=2)
     if p.ndim != 2 or p.shape != n.shape or not len(p):
-        raise ValueError(f"points and normals must both be (k, 2) arrays, got shapes "
-                         f"{p.shape} and {n.shape}")
+        raise ArgumentError(f"points and normals must both be (k, 2) arrays, got shapes "
+                            f"{p.shape} and {n.shape}", "points")
     norm = np.hypot(n[:, 0], n[:, 1])
     if np.any(norm <= 0) or not np.all(np.isfinite(norm)) or not np.all(np.isfinite(p)):
-        raise ValueError(f"normals must be non-zero and points finite, got {_short(normals)}")
+        raise ArgumentError(f"normals must be non-zero and points finite, got "
+                            f"{_short(normals)}", "normals")
     return p, n / norm[:, None]
 
 
@@ -130,7 +136,7 @@ def check_direction(value: Any, name: str = "normal") -> FloatArray:
     arr = check_point(value, name)
     norm = float(np.hypot(arr[0], arr[1]))
     if norm == 0.0 or not np.isfinite(norm):
-        raise ValueError(f"{name} must be a non-zero vector, got {_short(value)}")
+        raise ArgumentError(f"{name} must be a non-zero vector, got {_short(value)}", name)
     return arr / norm
 
 
@@ -140,18 +146,18 @@ def check_directions(value: Any, name: str = "normals") -> FloatArray:
     norm = np.hypot(arr[..., 0], arr[..., 1])
     if np.any(norm == 0.0):
         bad = np.argwhere(norm == 0.0)[0]
-        raise ValueError(f"{name} must be non-zero vectors, got a zero vector at index "
-                         f"{tuple(int(i) for i in bad)}")
+        raise ArgumentError(f"{name} must be non-zero vectors, got a zero vector at index "
+                            f"{tuple(int(i) for i in bad)}", name)
     return arr / norm[..., None]
 
 
 def check_mu(value: Any, name: str = "mu") -> FloatArray:
     """Coulomb friction coefficients: finite and >= 0 (any shape)."""
     if isinstance(value, bool):
-        raise TypeError(f"{name} must be a number, got {_short(value)}")
+        raise ArgumentTypeError(f"{name} must be a number, got {_short(value)}", name)
     arr = check_array(value, name)
     if np.any(arr < 0):
-        raise ValueError(f"{name} must be >= 0, got {_short(value)}")
+        raise ArgumentError(f"{name} must be >= 0, got {_short(value)}", name)
     return arr
 
 
@@ -161,7 +167,7 @@ def check_mu_scalar(value: Any, name: str = "mu") -> float:
         return float(value)
     if not _is_number(value) and not (isinstance(value, np.ndarray) and value.ndim == 0
                                       and _is_number(value.item())):
-        raise TypeError(f"{name} must be a single number, got {_short(value)}")
+        raise ArgumentTypeError(f"{name} must be a single number, got {_short(value)}", name)
     return float(check_mu(value, name))
 
 
@@ -169,12 +175,12 @@ def check_int(value: Any, name: str, *, choices: tuple[int, ...] | None = None,
               minimum: int | None = None) -> int:
     """An integer (not a bool, not a float), optionally one of ``choices`` or >= minimum."""
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
-        raise TypeError(f"{name} must be an integer, got {_short(value)}")
+        raise ArgumentTypeError(f"{name} must be an integer, got {_short(value)}", name)
     v = int(value)
     if choices is not None and v not in choices:
-        raise ValueError(f"{name} must be one of {', '.join(map(str, choices))}, got {v}")
+        raise ArgumentError(f"{name} must be one of {', '.join(map(str, choices))}, got {v}", name)
     if minimum is not None and v < minimum:
-        raise ValueError(f"{name} must be >= {minimum}, got {v}")
+        raise ArgumentError(f"{name} must be >= {minimum}, got {v}", name)
     return v
 
 
@@ -184,22 +190,22 @@ def check_scalar(value: Any, name: str, *, positive: bool = False,
     if type(value) in (float, int) and -math.inf < value < math.inf:   # quick, as below
         x = float(value)
         if (positive and not x > 0) or (nonnegative and not x >= 0):
-            raise ValueError(f"{name} must be {'> 0' if positive else '>= 0'}, got "
-                             f"{_short(value)}")
+            raise ArgumentError(f"{name} must be {'> 0' if positive else '>= 0'}, got "
+                                f"{_short(value)}", name)
         return x
     if isinstance(value, (bool, np.bool_, str, bytes)) or (not np.isscalar(value)
                                                             and np.ndim(value) != 0):
-        raise TypeError(f"{name} must be a real number, got {_short(value)}")
+        raise ArgumentTypeError(f"{name} must be a real number, got {_short(value)}", name)
     try:
         x = float(value)
     except (TypeError, ValueError) as exc:
-        raise TypeError(f"{name} must be a real number, got {_short(value)}") from exc
+        raise ArgumentTypeError(f"{name} must be a real number, got {_short(value)}", name) from exc
     if not np.isfinite(x):
-        raise ValueError(f"{name} must be finite, got {_short(value)}")
+        raise ArgumentError(f"{name} must be finite, got {_short(value)}", name)
     if positive and not x > 0:
-        raise ValueError(f"{name} must be > 0, got {_short(value)}")
+        raise ArgumentError(f"{name} must be > 0, got {_short(value)}", name)
     if nonnegative and not x >= 0:
-        raise ValueError(f"{name} must be >= 0, got {_short(value)}")
+        raise ArgumentError(f"{name} must be >= 0, got {_short(value)}", name)
     return x
 
 
@@ -212,5 +218,5 @@ def check_margin(value: Any, name: str = "margin") -> float:
     """A safety margin in degrees, in ``[0, 90)``: the one check of every margin."""
     m = check_scalar(value, name, nonnegative=True)
     if m >= 90.0:
-        raise ValueError(f"{name} is an angle in degrees below 90, got {value!r}")
+        raise ArgumentError(f"{name} is an angle in degrees below 90, got {value!r}", name)
     return m

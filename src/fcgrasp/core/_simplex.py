@@ -1,4 +1,4 @@
-"""A dense simplex for the many small linear programs of the planners (issue 30):
+"""A dense simplex for the many small linear programs of the planners:
 ``max c.x`` subject to ``A x <= b``, ``x >= 0``, with a few dozen rows and columns, where
 a call of HiGHS through scipy costs about a millisecond of setting up.  Two phases (one
 artificial variable raised to the most violated row), Bland's rule for the entering

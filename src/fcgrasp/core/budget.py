@@ -30,6 +30,8 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any
 
+from ..errors import FcgraspError
+
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
            "remaining", "check_time_limit", "PlanList", "incomplete", "STOPPED_BY",
            "stopped_words"]
@@ -89,7 +91,7 @@ def stopped_words(stopped: str | None, raises: bool = False) -> str:
     return f"{words} ({option}{' raises it' if raises else ''})"
 
 
-class BudgetExhausted(Exception):
+class BudgetExhausted(FcgraspError):
     """The search's budget ended: raised by :func:`check`, caught by the search that
     keeps what its finished rounds prove (never seen by a user).  Its message says
     which budget (``"time_limit"`` or ``"max_memory"``; empty: the time limit)."""

@@ -1,4 +1,4 @@
-r"""Fused kernels for the closed forms of two fingers (issue 13: algorithm 7.1, theorem 7.1).
+r"""Fused kernels for the closed forms of two fingers (algorithm 7.1, theorem 7.1).
 
 Each closed form is written **once**, as an *elementwise* function of numbers built from
 numpy's ufuncs only (arithmetic, comparisons, ``np.where``, ``np.minimum`` ...).  The same
@@ -41,6 +41,7 @@ import os
 import sys
 import threading
 import types
+import warnings
 from typing import Any
 
 import numpy as np
@@ -421,8 +422,8 @@ _plain: types.SimpleNamespace | None = None
 def plain() -> types.SimpleNamespace:
     """The formulas above rebuilt to run on Python floats (``np`` bound to :mod:`math`
     and plain comparisons, :func:`_select` a branch): the same expressions in the same
-    order as the batched and the compiled ways, for the per-call paths (issue 30:
-    :func:`fcgrasp.model.one_pair.pair_regions`).
+    order as the batched and the compiled ways, for the per-call paths
+    (:func:`fcgrasp.model.one_pair.pair_regions`).
 
     >>> c, hm = plain().pair_sector(0.0, 0.5, math.pi + 0.4, 0.5, 0.1)
     >>> round(c, 6), round(hm, 6)
@@ -709,7 +710,8 @@ class CompiledLoops:
             return False, None
         try:
             return True, loops[name](*args)
-        except Exception:               # numba's typing or lowering errors
+        except Exception as exc:        # numba's typing or lowering errors
+            fell_back(name, exc)
             self.broken = True
             return False, None
 
@@ -717,6 +719,29 @@ class CompiledLoops:
 def compiled() -> bool:
     """Whether this process runs the kernels compiled (loaded, and working)."""
     return _compiled is not None and not _no_numba
+
+
+class KernelFallbackWarning(UserWarning):
+    """A compiled loop failed (numba could not type or lower it) and its module runs
+    by numpy from then on: the plans are the same, 5 to 30 times slower."""
+
+
+#: The loops that fell back to numpy in this process (each warned of once).
+_fallen: set[str] = set()
+
+
+def fell_back(name: str, exc: BaseException) -> None:
+    """Say once per loop that ``name`` fell back to numpy (:class:`KernelFallbackWarning`);
+    with ``FCGRASP_REQUIRE_JIT=1`` (the suite's setting: a numba upgrade that breaks a
+    loop must fail it, not slow every plan) raise instead."""
+    if os.environ.get("FCGRASP_REQUIRE_JIT", "").strip() in ("1", "yes", "true", "on"):
+        raise RuntimeError(f"the compiled loop {name} failed and FCGRASP_REQUIRE_JIT is set: "
+                           f"{type(exc).__name__}: {str(exc).splitlines()[0][:200]}") from exc
+    if name not in _fallen:
+        _fallen.add(name)
+        warnings.warn(f"fcgrasp's compiled loop {name} failed ({type(exc).__name__}); "
+                      "running by numpy from now on (the same plans, slower)",
+                      KernelFallbackWarning, stacklevel=3)
 
 
 def _run(name: str, *args: Any) -> bool:
@@ -728,7 +753,8 @@ def _run(name: str, *args: Any) -> bool:
         return False
     try:
         loops[name](*args)
-    except Exception:                   # numba's typing or lowering errors
+    except Exception as exc:            # numba's typing or lowering errors
+        fell_back(name, exc)
         _no_numba = True
         return False
     return True

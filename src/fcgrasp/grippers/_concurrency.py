@@ -1,4 +1,4 @@
-r"""Three fingers with friction without a general LP solver (issue 30; part of
+r"""Three fingers with friction without a general LP solver (part of
 :mod:`fcgrasp.grippers.three_fingers`).
 
 A convex piece of concurrent grasps (:mod:`fcgrasp.grippers._concurrent`) asks, for each

@@ -1,5 +1,5 @@
 """Rows of the single-edge search that a search for distinct alternatives leaves out
-unsolved (issue 31; :func:`~fcgrasp.grippers._boundary.distinct_single_edge_plans`).
+unsolved (:func:`~fcgrasp.grippers._boundary.distinct_single_edge_plans`).
 
 A row of the single-edge search puts each finger on one feature: without a hand, one
 whole edge.  Its plan's regions lie on those edges, wherever the solver places them.

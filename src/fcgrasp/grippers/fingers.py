@@ -70,7 +70,7 @@ class _PointFingers:
     gravity: tuple[float, float] | None = None
     hand: Hand | None = None
     along_boundary: bool = True
-    #: ``distinct=None``: the top plans are distinct alternatives (issue 31: a curved
+    #: ``distinct=None``: the top plans are distinct alternatives (a curved
     #: outline's ranked list is one grasp shifted along it)
     default_distinct: ClassVar[float] = DEFAULT_DISTINCT
 

@@ -1,4 +1,4 @@
-r"""Three fingers with friction: independent regions of concurrent grasps (issue 14).
+r"""Three fingers with friction: independent regions of concurrent grasps.
 
 Three point fingers with friction ``mu`` hold a planar part when their forces can be in
 *non-marginal equilibrium*: three lines of force, each strictly inside its friction

@@ -14,7 +14,7 @@ from ..core.tolerances import CURVE_RESOLUTION
 #: Largest turn of the tangent along one flattened edge, in degrees: curves are cut into
 #: pieces within the flattening tolerance of their chords that turn at most this much, so
 #: that the contact normals follow the curve and regions along the boundary do not depend
-#: on the tolerance (issue 12: within 2% at 1/200 and 1/5000 of the size).  An edge's
+#: on the tolerance (within 2% at 1/200 and 1/5000 of the size).  An edge's
 #: normal is then within this turn of the curve's normal at every point it stands for
 #: (within half of it on a circular arc: the default safety margin, 0.5 degrees).
 MAX_TURN_DEG = 1.0
@@ -89,7 +89,7 @@ def flatten_curve(points: CurvePoints, tol: float, out: list[complex],
                   params: list[float] | None = None) -> None:
     """Append the points of a curve after its start, with as few edges as the two rules
     allow: each piece's tangent turns at most :data:`MAX_TURN_DEG` and its chord is within
-    ``tol`` of the curve (issue 30: flattening that follows the geometry).  ``params``,
+    ``tol`` of the curve (flattening that follows the geometry).  ``params``,
     if given, gets the parameter of every point appended.
 
     The curve is sampled densely (:func:`_dense`); the samples' turn is summed and cut

@@ -21,6 +21,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ..core._checks import check_int
+from ..errors import FcgraspError
 
 __all__ = ["Limits", "LimitExceeded", "DEFAULT_LIMITS", "MAX_PIXELS"]
 
@@ -28,7 +29,7 @@ __all__ = ["Limits", "LimitExceeded", "DEFAULT_LIMITS", "MAX_PIXELS"]
 MAX_PIXELS = 100_000_000
 
 
-class LimitExceeded(ValueError):
+class LimitExceeded(FcgraspError, ValueError):
     """A file past one of the readers' limits (:class:`Limits`); the message names the
     limit and the option that raises it."""
 

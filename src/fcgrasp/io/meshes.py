@@ -1,4 +1,4 @@
-"""Mesh files: the bodies of a file and a solid part read from one (issue 33).
+"""Mesh files: the bodies of a file and a solid part read from one.
 
 Anything trimesh reads (STL, OBJ, PLY, GLB, 3MF, OFF) is split into its connected
 **bodies**, converted to the units asked (``--units``, default millimetres) from the

@@ -1,9 +1,9 @@
 """JSON reports of plans and checks: versioned, deterministic (sorted keys, rounded floats).
 
-Layout of a plan report (``format_version`` 2)::
+Layout of a plan report (``format_version`` 3)::
 
     {
-      "fcgrasp": "0.1.0", "format_version": 2, "units": "mm",
+      "fcgrasp": "0.1.0", "format_version": 3, "units": "mm",
       "part": {"vertices": [[x, y], ...], "holes": [...], "edges": E},
       "parameters": {"fingers": 2, "mu": 0.3, "top": 10, "rank_by": "min_region",
                      "margin_deg": 0.5, "workspace": null, "finger_radius": 0.0,
@@ -27,8 +27,10 @@ Layout of a plan report (``format_version`` 2)::
 give, per finger, the edge of its representative contact (``contacts``, the point
 halfway along its region); ``regions`` are polylines along the boundary through the
 vertices they cover, ``region_edges`` the edges they cover and ``region_lengths`` arc
-lengths.  Version 1 had two-point regions on one edge each and no ``region_edges``:
-:func:`migrate_report` reads a version-1 report as version 2;
+lengths.  A solid's report (``part.solid``) has each plan's facets, centres, regions
+in 3-D and ``normals`` pointing out of the part, as every report's do.  Version 1 had
+two-point regions on one edge each and no ``region_edges``, version 2 a solid's normals
+pointing into it: :func:`migrate_report` reads either as version 3;
 ``grasps`` is empty when no grasp exists, and ``reason`` then says why.  ``source``
 (absent for parts built in Python) records how the part was read: the file, which of its
 parts, the units it was in and the scale applied, the flip of y-down sources, the
@@ -52,21 +54,27 @@ from typing import Any
 from .. import __version__
 from ..core._json import json_ready
 
-FORMAT_VERSION = 2
+FORMAT_VERSION = 3
 
 
 def migrate_report(report: dict[str, Any]) -> dict[str, Any]:
     """A report of any earlier ``format_version`` as the current version (a copy).
 
     Version 1 -> 2: every grasp's region (two end points on one edge) is a two-point
-    polyline and gets ``region_edges`` ``[[edge], ...]``; nothing else changed.
+    polyline and gets ``region_edges`` ``[[edge], ...]``.  Version 2 -> 3: a solid's
+    grasps (``part.solid``) have outward normals, as a planar part's always had (version
+    2 wrote a solid's pointing into it).
 
     >>> old = {"format_version": 1, "grasps": [{"edges": [1, 3], "regions": []}]}
     >>> migrate_report(old)["grasps"][0]["region_edges"], migrate_report(old)["format_version"]
-    ([[1], [3]], 2)
+    ([[1], [3]], 3)
+    >>> solid = {"format_version": 2, "part": {"solid": True},
+    ...          "grasps": [{"normals": [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]]}]}
+    >>> migrate_report(solid)["grasps"][0]["normals"]
+    [[-1.0, -0.0, -0.0], [1.0, -0.0, -0.0]]
     """
     version = report.get("format_version")
-    if version not in (1, FORMAT_VERSION):
+    if version not in (1, 2, FORMAT_VERSION):
         raise ValueError(f"report has format_version {version!r}; this fcgrasp reads "
                          f"versions 1 to {FORMAT_VERSION}")
     out = json.loads(json.dumps(report))
@@ -75,7 +83,11 @@ def migrate_report(report: dict[str, Any]) -> dict[str, Any]:
     if version == 1:
         for g in out.get("grasps", []):
             g["region_edges"] = [[e] for e in g["edges"]]
-        out["format_version"] = 2
+    if version in (1, 2) and (out.get("part") or {}).get("solid"):
+        for g in out.get("grasps", []):
+            if "normals" in g:
+                g["normals"] = [[-float(x) for x in n] for n in g["normals"]]
+    out["format_version"] = FORMAT_VERSION
     return out
 
 

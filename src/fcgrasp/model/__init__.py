@@ -13,5 +13,5 @@
 - :mod:`~fcgrasp.model.loads`: loads with finger force limits, for a grasp and over a
   plan's regions; :mod:`~fcgrasp.model.robustness`: the probability that a two-finger
   plan holds under placement errors; :mod:`~fcgrasp.model.stability`: fingers as
-  springs, the grasp stiffness and its stability (issue 32).
+  springs, the grasp stiffness and its stability.
 """

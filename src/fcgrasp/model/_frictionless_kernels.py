@@ -1,4 +1,4 @@
-"""The rows of a frictionless configuration's program, compiled (issue 30: a per-call
+"""The rows of a frictionless configuration's program, compiled (a per-call
 path without per-call overhead).
 
 :func:`fcgrasp.model.frictionless_stretches._system` builds, for every combination of

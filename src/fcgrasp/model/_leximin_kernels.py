@@ -1,5 +1,5 @@
 """The knapsack solver of :mod:`fcgrasp.model.regions` compiled, one row at a time
-(issue 30: four fingers, or three with gravity, at interactive speed).
+(four fingers, or three with gravity, at interactive speed).
 
 :func:`fcgrasp.model.regions.leximin` and :func:`~fcgrasp.model.regions.max_min_length`
 solve definition 7.1's leximin order on batches of the knapsack form of theorem 7.1 with

@@ -1,6 +1,6 @@
 """Stage 1 of four frictionless fingers (or three with gravity) estimated in one compiled
 loop, to leave out the rows of a top-k search that cannot reach its floor before their
-geometry is built (issue 30).
+geometry is built.
 
 :func:`fcgrasp.pipeline._candidates._quad_candidates` scores a row by the largest
 smallest region over its pairings and modes (theorem 7.1: the knapsack problems of

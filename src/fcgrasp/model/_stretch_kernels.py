@@ -1,4 +1,4 @@
-"""Compiled loops of the two-finger stretch search for large rings (issue 30; part of
+"""Compiled loops of the two-finger stretch search for large rings (part of
 :mod:`fcgrasp.model.stretches`).
 
 The numpy search of :mod:`fcgrasp.model._stretch_windows` holds the vertex matrix ``M``

@@ -1,4 +1,4 @@
-r"""An upper bound on the best smallest region of any plan (issue 32: optimality bounds).
+r"""An upper bound on the best smallest region of any plan (optimality bounds).
 
 Three fingers with friction and four frictionless fingers along the boundary are planned
 as a *safe lower bound* (convex pieces of the closure set; stretches grown from the best

@@ -1,4 +1,4 @@
-r"""Regions along the boundary for three and four frictionless fingers (issue 12).
+r"""Regions along the boundary for three and four frictionless fingers.
 
 A *stretch* is a connected piece of one boundary ring (see :mod:`fcgrasp.model.stretches`);
 strictly inside an edge a finger pushes along the edge's inward normal, at a vertex

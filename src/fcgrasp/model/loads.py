@@ -1,4 +1,4 @@
-r"""Loads a grasp must carry, with fingers that push only so hard (issue 32).
+r"""Loads a grasp must carry, with fingers that push only so hard.
 
 Force closure says a grasp resists *any* wrench with *some* finger forces; a gripper's
 fingers push at most so many newtons.  This module answers "will it hold this part?":

@@ -1,5 +1,5 @@
 """Optimal independent regions of two fingers with friction on one edge pair, per call
-(algorithm 7.1, theorem 7.1; issue 30: a per-call path without per-call overhead).
+(algorithm 7.1, theorem 7.1; a per-call path without per-call overhead).
 
 :func:`fcgrasp.independent_regions` on two edges asks one question about one pair; the
 batched pipeline answers it with a few hundred numpy calls on arrays of one row (about

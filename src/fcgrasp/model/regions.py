@@ -175,7 +175,7 @@ def build_problem(side: np.ndarray, origin12: FloatArray, origin34: FloatArray,
     # edge is parallel to the motion of P12 or P34) has its one binding end set by
     # constraint 2; constraint 1's free extension is then the *other* end.  Reading the
     # side from the sign of a zero would put both extensions on the same end and place
-    # the region on the wrong side (issue 9: false closure at margin 0, parallel edges).
+    # the region on the wrong side (false closure at margin 0, parallel edges).
     upper1 = np.where(w[0] > 0, up[0], ~up[1])
     # A constraint that no region can move and that is tight (P34 - P12 on a cone edge
     # whatever the fingers do) holds with equality everywhere: a tie, never closure.

@@ -1,4 +1,4 @@
-r"""How likely a two-finger plan is to hold when the fingers land off target (issue 32).
+r"""How likely a two-finger plan is to hold when the fingers land off target.
 
 Each finger lands with a Gaussian error of standard deviation ``placement_sigma`` (the
 part's units) *along the boundary* around its region's centre (the plan's representative
@@ -321,7 +321,7 @@ def pose_probability(polygon: Any, plan: Any, pose_sigma: Any,
                      placement_sigma: Any = None, mu_range: Any = None, mu: Any = None,
                      samples: int = 8192, replicas: int = 16, seed: int = 0) -> Estimate:
     """Probability that a plan's grasp holds when the part sits with a Gaussian pose
-    error (issue 32): ``pose_sigma`` a distance (x and y) or ``(sx, sy, s_theta_deg)``,
+    error: ``pose_sigma`` a distance (x and y) or ``(sx, sy, s_theta_deg)``,
     the rotation about the part's centroid.  Each finger closes along its approach line
     (through its representative contact, against the outward normal there, from
     ``6`` deviations out) and lands where that line first enters the displaced part
@@ -403,8 +403,8 @@ def pose_probability(polygon: Any, plan: Any, pose_sigma: Any,
 def robustness(polygon: Any, plan: Any, placement_sigma: Any = None, pose_sigma: Any = None,
                mu_range: Any = None, mu: Any = None, samples: int = 8192,
                replicas: int = 16, seed: int = 0) -> Estimate:
-    """The probability that a plan's grasp holds under the given uncertainty (issue 32's
-    ``fc.robustness``): each finger landing with a Gaussian error of ``placement_sigma``
+    """The probability that a plan's grasp holds under the given uncertainty
+    (``fc.robustness``): each finger landing with a Gaussian error of ``placement_sigma``
     along the boundary around its region's centre, the part's pose off by a Gaussian of
     ``pose_sigma`` (a distance, or ``(sx, sy, s_theta_deg)``), friction uniform in
     ``mu_range`` (or ``mu`` instead of the plan's).  Two fingers without a pose error:

@@ -1,4 +1,4 @@
-r"""Is a grasp stable? Fingers as springs (issue 32; the paper's section 8.2 and
+r"""Is a grasp stable? Fingers as springs (the paper's section 8.2 and
 Nguyen's "constructing stable grasps"; Cutkosky and Kao's grasp stiffness).
 
 Each finger is a linear spring pressing its tip on the part: stiffness ``k`` along the
@@ -199,7 +199,7 @@ def least_stiffness(points: Any, normals: Any, preload: Any, margin: Any = 1.0,
     return hi
 
 
-# ------------------------------------------------------------------ plans (issue 32)
+# ------------------------------------------------------------------ plans
 
 def squeeze_preload(points: Any, normals: Any, mu: Any, grip_force: Any = 1.0,
                     about: Any = None) -> tuple[FloatArray, FloatArray]:

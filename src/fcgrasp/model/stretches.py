@@ -1,4 +1,4 @@
-r"""Regions that run along the boundary: two fingers with friction (issue 12).
+r"""Regions that run along the boundary: two fingers with friction.
 
 A *stretch* is a connected piece of one boundary ring, from a point on one edge to a
 point on another, covering the edges and vertices between them.  Two stretches

@@ -1,5 +1,5 @@
 """Frictionless fingers on a regular polygon: the rows that can reach a floor, from
-pairs of nearly opposite edges (issue 30: ``icons/circle.svg``, the regular 500-gon).
+pairs of nearly opposite edges (``icons/circle.svg``, the regular 500-gon).
 
 On a regular polygon every edge's normal passes through the centre, so every row of
 four edges has the same bound (:func:`~fcgrasp.pipeline._candidates._row_bound`, and

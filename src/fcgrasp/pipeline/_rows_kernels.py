@@ -1,4 +1,4 @@
-"""The candidate rows that may still reach the running top, compiled (issue 30: four
+"""The candidate rows that may still reach the running top, compiled (four
 fingers on a flattened curve).
 
 Once the top of a four-finger search (or three with gravity) is full, every row the

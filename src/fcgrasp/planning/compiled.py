@@ -1,4 +1,4 @@
-"""Compile every numba kernel of the planners ahead of time (issue 30).
+"""Compile every numba kernel of the planners ahead of time.
 
 numba compiles a kernel on its first call and caches the machine code on disk beside its
 module; a process that finds the cache loads it (about 0.3-0.5 s once) instead of

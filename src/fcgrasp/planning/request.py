@@ -20,7 +20,7 @@ from typing import Any
 
 from ..core._checks import check_margin
 from ..core.budget import DEFAULT_TIME_LIMIT, deadline, stopped_words
-from ..errors import RequestError
+from ..errors import ArgumentTypeError, RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
 from ..io.limits import Limits
 from ..io.outputs import check_outputs
@@ -65,7 +65,7 @@ def _number(name: str, value: Any, *, integer: bool = False) -> None:
     kinds = (int,) if integer else (int, float)
     if isinstance(value, bool) or not isinstance(value, kinds):
         what = "a whole number" if integer else "a number"
-        raise TypeError(f"{name} must be {what}, got {value!r}")
+        raise ArgumentTypeError(f"{name} must be {what}, got {value!r}", name)
     if not integer and not math.isfinite(value):
         raise _fail(name, f"--{name.replace('_', '-')} must be a finite number, got {value!r}")
 
@@ -73,7 +73,7 @@ def _number(name: str, value: Any, *, integer: bool = False) -> None:
 def _numbers(name: str, value: Any, n: int) -> tuple[float, ...]:
     if isinstance(value, (str, bytes)) or not isinstance(value, (list, tuple)) \
             or len(value) != n:
-        raise TypeError(f"{name} must be a sequence of {n} numbers, got {value!r}")
+        raise ArgumentTypeError(f"{name} must be a sequence of {n} numbers, got {value!r}", name)
     for v in value:
         _number(name, v)
     return tuple(float(v) for v in value)
@@ -108,9 +108,9 @@ def _check_kind(name: str, value: Any) -> Any:
         _number(name, value, integer=kind == "int")
         return int(value) if kind == "int" else float(value)
     if kind == "bool" and not isinstance(value, bool):
-        raise TypeError(f"{name} must be true or false, got {value!r}")
+        raise ArgumentTypeError(f"{name} must be true or false, got {value!r}", name)
     if kind == "str" and not isinstance(value, str):
-        raise TypeError(f"{name} must be a string, got {value!r}")
+        raise ArgumentTypeError(f"{name} must be a string, got {value!r}", name)
     return value
 
 

@@ -1,4 +1,4 @@
-"""Solid parts (issue 33): contacts, force closure and grasp quality in six dimensions.
+"""Solid parts: contacts, force closure and grasp quality in six dimensions.
 
 - :mod:`~fcgrasp.spatial.contacts`: frictionless points, points with friction and soft
   fingers on a solid, their wrench maps and linearised cones;

@@ -1,4 +1,4 @@
-"""Distinct alternatives among a solid's ranked plans (issue 31's rule, on solids): the
+"""Distinct alternatives among a solid's ranked plans (the rule, on solids): the
 top ``k`` should be ``k`` different grasps, not one grasp moved to the next facet of a
 tessellated surface.
 

@@ -1,5 +1,5 @@
 r"""Force closure of grasps of solid parts, in the six dimensions of spatial wrenches
-(issue 33; the paper's definition 2.4 and theorem 3.1, in 3-D).
+(the paper's definition 2.4 and theorem 3.1, in 3-D).
 
 A grasp is in **force closure** when its contacts' wrench cones sum to all of
 :math:`\mathbb{R}^6`.  Writing ``G`` for the linear map from the contacts' local forces

@@ -1,4 +1,4 @@
-r"""Contacts on a solid part and the wrenches they apply (issue 33; the paper's section 3
+r"""Contacts on a solid part and the wrenches they apply (the paper's section 3
 and its conclusion's "grasps of 3D objects").
 
 A contact touches the part at ``point`` and pushes along the **inward** unit ``normal``

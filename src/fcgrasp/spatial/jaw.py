@@ -1,4 +1,4 @@
-r"""A parallel jaw with flat pads on a solid (issue 33): the region of closing axes on a
+r"""A parallel jaw with flat pads on a solid: the region of closing axes on a
 pair of parallel faces such that the pads close flush on both faces and the grasp holds.
 
 **The model.**  The jaw closes two round flat pads (diameter ``pad``) along an axis
@@ -80,7 +80,7 @@ class SolidJawPlan(SolidPlan):
                              "holes": [[h.tolist() for h in side] for side in self.holes],
                              "surface_triangles": [t.tolist()
                                                    for t in self.surface_triangles],
-                             "normals": self.normals.tolist(), "mu": self.mu,
+                             "normals": (-self.normals).tolist(), "mu": self.mu,
                              "margin_deg": self.margin, "pad": self.pad,
                              "contact_type": "jaw"}
         return self._with_similar(d)

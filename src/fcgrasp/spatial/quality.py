@@ -1,5 +1,5 @@
 r"""Grasp quality of solid grasps: Ferrari-Canny's epsilon and the volume of the grasp
-wrench space (issue 33; the 3-D counterpart of :mod:`fcgrasp.model.quality`).
+wrench space (the 3-D counterpart of :mod:`fcgrasp.model.quality`).
 
 Each contact's cone is linearised by the pyramid of
 :func:`~fcgrasp.spatial.contacts.contact_wrench_generators` (``facets`` edges, forces

@@ -1,4 +1,4 @@
-r"""Independent regions of contact for two soft fingers on a solid (issue 33: the 3-D
+r"""Independent regions of contact for two soft fingers on a solid (the 3-D
 analogue of the paper's section 7 for the primitive its conclusion names first).
 
 Two soft fingers at ``p_1`` and ``p_2`` are in force closure exactly when the segment
@@ -93,7 +93,9 @@ class OctagonPlan(SolidPlan):
         """The JSON both kinds of plan share (``similar`` added by :meth:`to_dict`)."""
         return {"facets": list(self.facets), "pieces": list(self.pieces),
                 "radius": self.radius, "centers": self.centers.tolist(),
-                "regions": self.regions.tolist(), "normals": self.normals.tolist(),
+                "regions": self.regions.tolist(),
+                # the JSON's normals point out of the part, as the planar reports' do
+                "normals": (-self.normals).tolist(),
                 "mu": self.mu, "margin_deg": self.margin, "contact_type": contact_type}
 
 

@@ -1,4 +1,4 @@
-"""Solid parts: a triangle mesh checked and cut into planar facets (issue 33).
+"""Solid parts: a triangle mesh checked and cut into planar facets.
 
 A :class:`Solid` holds a watertight, consistently wound triangle mesh (read with trimesh:
 STL, OBJ, PLY, GLB, 3MF...) and its **facets**: maximal sets of adjacent coplanar

@@ -1,4 +1,4 @@
-r"""Regions of two soft fingers across the facets of a curved surface (issue 33: a curved
+r"""Regions of two soft fingers across the facets of a curved surface (a curved
 surface is the facets of its tessellation, and a region held inside one of them is a
 sliver on a finely tessellated cylinder; the paper's regions of contact "along curved
 outlines", section 7, in three dimensions).

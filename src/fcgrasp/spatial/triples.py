@@ -1,4 +1,4 @@
-r"""Independent regions of three point contacts with friction on a solid (issue 33: the
+r"""Independent regions of three point contacts with friction on a solid (the
 second primitive of the paper's conclusion, "grasps with three point contacts with
 friction").
 

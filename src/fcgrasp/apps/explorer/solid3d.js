@@ -145,7 +145,7 @@ const Solid3D = (() => {
     const lift = V.part.size * 2e-3, tri = [], pts = [], lines = [];
     plan.regions.forEach((poly, k) => {
       const col = rgb(COLORS[k % COLORS.length]);
-      const n = plan.normals[k];                 // inward: the finger pushes along it
+      const n = mul(plan.normals[k], -1);        // inward: the finger pushes along it
       const up = (p) => add(p, mul(n, -lift));
       if (plan.surface_triangles) {              // a region across a curved surface
         for (const t of plan.surface_triangles[k]) {
@@ -252,7 +252,7 @@ const Solid3D = (() => {
     // region's outward normal and the bisectors of two of them (turned a little
     // upwards), the direction that sees the most regions, then the most squarely
     aim(plan) {
-      const out = plan.normals.map((n) => mul(n, -1));
+      const out = plan.normals.map((n) => [...n]);     // the report's: outward
       const cands = [...out];
       out.forEach((a, i) => out.slice(i + 1).forEach((b) => {
         const m = add(a, b);

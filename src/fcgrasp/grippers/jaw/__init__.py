@@ -1,4 +1,4 @@
-r"""A parallel-jaw gripper: where two flat pads on one slide can close on a part (issue 14).
+r"""A parallel-jaw gripper: where two flat pads on one slide can close on a part.
 
 **Model.**  Two flat pads of width ``pad_width``, parallel, close along the direction
 ``u = (cos theta, sin theta)``, centred on the line at lateral offset ``c`` from the

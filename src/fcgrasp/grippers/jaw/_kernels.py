@@ -1,4 +1,4 @@
-"""The parallel jaw's pose model compiled (issue 30): :func:`poses` evaluates a batch of
+"""The parallel jaw's pose model compiled: :func:`poses` evaluates a batch of
 poses in one loop, pose by pose and edge by edge, with the same formulas, in the same
 order, as the numpy model of :mod:`._poses` (``_pad``, ``_sides_of``, ``_inside``,
 ``_verdict``), which stays the reference (``FCGRASP_JIT=0``, and the tests: verdicts

@@ -1,4 +1,4 @@
-r"""The load a parallel jaw carries over a whole box of poses (issue 32: "the guaranteed
+r"""The load a parallel jaw carries over a whole box of poses ("the guaranteed
 scale over every grasp of its regions (or jaw box)").
 
 At a pose each pad presses the part at one feature (:func:`~._poses.jaw_poses`): a

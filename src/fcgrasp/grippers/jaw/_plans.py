@@ -57,7 +57,7 @@ class ParallelJaw(JawParameters):
     """
 
     name: ClassVar[str] = "jaw"
-    #: ``distinct=`` when none is given (issue 31): the boxes are distinct
+    #: ``distinct=`` when none is given: the boxes are distinct
     #: alternatives, mirror images and neighbouring slices of one contact configuration
     #: merged (:meth:`distinct_plans`); ``distinct=0`` gives every box, as ranked
     default_distinct: ClassVar[float] = DEFAULT_DISTINCT
@@ -796,7 +796,7 @@ PARETO_WEIGHTS = tuple(2.0 ** k for k in range(-3, 4))
 
 def jaw_pareto(polygon: Polygon, jaw: ParallelJaw, margin: float = DEFAULT_MARGIN_DEG,
                hole: int | None = None, weights: Any = PARETO_WEIGHTS) -> list[JawPlan]:
-    """Boxes that trade the closing angle's range against the offset's (issue 31's
+    """Boxes that trade the closing angle's range against the offset's (a
     Pareto list, for a user who cares about one side): for each weight ``w`` of
     ``weights``, the box of the pose grid with the largest ``min(c1 - c0, w R (t1 -
     t0))`` (``R`` the part's radius), checked on the fine grid and proved by
