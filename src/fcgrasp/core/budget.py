@@ -176,6 +176,9 @@ class PlanList(list):  # type: ignore[type-arg]
         self.stopped = stopped
         #: what ``bound`` bounds: the plans' ranking measure
         self.measure = measure
+        #: what a search says of itself for the report's parameters (a solid's three
+        #: fingers: the triples certified and whether the search was exhaustive)
+        self.details: dict[str, Any] = {}
 
     def gap(self) -> dict[str, Any] | None:
         """What the JSON report says of an incomplete search (None when complete):

@@ -85,7 +85,10 @@ class Gripper(Protocol):
     plans, fraction)``, what distinct means for its plans (regions of contact where
     absent); ``distinct_search(polygon, options, fraction)``, a search for distinct
     plans of its own (or None where it does not apply); ``distinct_depth``, how many
-    times ``top`` plans ``distinct=`` reads at most.
+    times ``top`` plans ``distinct=`` reads at most.  A gripper that plans solid parts
+    has ``solid_plans(solid, options, fraction)``, ``solid_parameters(options)``,
+    ``solid_title`` and ``solid_no_grasp_reason(margin)``
+    (:mod:`fcgrasp.grippers.solids`); one without them refuses a solid by name.
     """
 
     @property

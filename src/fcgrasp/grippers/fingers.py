@@ -25,6 +25,7 @@ from typing import Any, ClassVar
 import numpy as np
 
 from ..core._checks import check_margin, check_mu_scalar, check_tol
+from ..core.budget import PlanList
 from ..core.tolerances import SOLVER_TOL
 from ..model.distinct import DEFAULT_DISTINCT
 from ..model.frictionless_stretches import frictionless_stretch_regions
@@ -192,6 +193,27 @@ class TwoFingers(_PointFingers):
             return "two fingers need friction: with mu = 0 no two-finger grasp is force closure"
         return super().no_grasp_reason(margin)
 
+    # on a solid: two soft fingers (fcgrasp.grippers.solids)
+    solid_title: ClassVar[str] = "two soft fingers"
+
+    def solid_plans(self, solid: Any, options: SearchOptions, fraction: float) -> PlanList:
+        """Two soft fingers with friction ``mu`` on a solid, on facets and across the
+        facets of curved surfaces (:func:`fcgrasp.spatial.soft_pair_plans`)."""
+        from ..spatial.alternatives import top_distinct
+        from ..spatial.surfaces import soft_pair_plans
+
+        return top_distinct(lambda n: soft_pair_plans(solid, self.mu, top=n,
+                                                      margin=options.margin),
+                            options.top, fraction)
+
+    def solid_parameters(self, options: SearchOptions) -> dict[str, Any]:
+        return {"fingers": 2, "contact_type": "soft", "mu": self.mu, "top": options.top,
+                "margin_deg": options.margin}
+
+    def solid_no_grasp_reason(self, margin: float) -> str:
+        return (f"no two facets hold two soft fingers with mu {self.mu:g} and a margin of "
+                f"{margin:g} degrees")
+
 
 @dataclass(frozen=True)
 class ThreeFingers(_PointFingers):
@@ -226,6 +248,36 @@ class ThreeFingers(_PointFingers):
     def search_edges(self, polygon: Polygon, spec: PlanSpec,
                      edges: list[int]) -> list[GraspPlan]:
         return three_finger_plans(polygon, spec, edges=edges)
+
+    # on a solid: three point fingers with friction (fcgrasp.grippers.solids)
+    solid_title: ClassVar[str] = "three fingers with friction"
+
+    def solid_plans(self, solid: Any, options: SearchOptions, fraction: float) -> PlanList:
+        """Three point fingers with friction ``mu`` on a solid: certified regions on
+        three facets or across them (:func:`fcgrasp.spatial.three_finger_plans`); the
+        plans' ``details`` say how many triples the last search certified and whether it
+        was exhaustive."""
+        from ..spatial.alternatives import top_distinct
+        from ..spatial.surfaces import three_finger_plans as solid_triples
+
+        searches: list[Any] = []
+
+        def triples(n: int | None) -> list[Any]:
+            searches.append(solid_triples(solid, self.mu, top=n, margin=options.margin))
+            return list(searches[-1].plans)
+
+        plans = top_distinct(triples, options.top, fraction)
+        plans.details = {"certified_triples": searches[-1].certified,
+                         "exhaustive": searches[-1].exhaustive}
+        return plans
+
+    def solid_parameters(self, options: SearchOptions) -> dict[str, Any]:
+        return {"fingers": 3, "contact_type": "friction", "mu": self.mu, "top": options.top,
+                "margin_deg": options.margin}
+
+    def solid_no_grasp_reason(self, margin: float) -> str:
+        return (f"no three facets hold three fingers with friction with mu {self.mu:g} and "
+                f"a margin of {margin:g} degrees")
 
 
 @dataclass(frozen=True)

@@ -94,13 +94,18 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
          gripper: Any = None, map: Any = None, distinct: float | None = None,
          load: Any = None, force_limit: Any = None, total_force: Any = None,
          time_limit: Any = DEFAULT_TIME_LIMIT) -> PlanList:
-    """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8).
+    """Ranked grasp plans of a polygon (sections 7.2, 7.3 and 8), or of a solid.
 
     Parameters
     ----------
-    polygon : Polygon
+    polygon : Polygon or Solid
         Or anything :func:`~fcgrasp.model.polygon.check_polygon` takes: a shapely
-        Polygon or MultiPolygon (its largest polygon), an array of vertices.
+        Polygon or MultiPolygon (its largest polygon), an array of vertices.  A solid
+        (:class:`fcgrasp.spatial.Solid`, or a watertight ``trimesh.Trimesh``, its
+        lengths taken as millimetres) is planned by the same grippers
+        (:mod:`fcgrasp.grippers.solids`): two fingers with friction as soft fingers,
+        three fingers with friction, a parallel jaw; ``mu``, ``top``, ``margin``,
+        ``distinct`` and ``time_limit`` apply.
     fingers : {2, 3, 4}
         2: two fingers with friction ``mu``; 3: three fingers with friction ``mu``
         (:mod:`fcgrasp.grippers.three_fingers`), or with ``gravity`` three frictionless fingers
@@ -193,8 +198,32 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
     >>> best.edges, round(best.min_length, 4)      # the short sides face each other
     ((1, 3), 1.0)
     """
-    polygon = check_polygon(polygon)
     limit = check_time_limit(time_limit)
+    solid = _as_solid(polygon)
+    if solid is not None:
+        unused = {"rank_by": (rank_by, "min_region"), "hand": (hand, None),
+                  "gravity": (gravity, None), "load": (load, None),
+                  "force_limit": (force_limit, None), "total_force": (total_force, None),
+                  "map": (map, None), "along_boundary": (along_boundary, True),
+                  "max_memory": (max_memory, None)}
+        for name, (value, default) in unused.items():
+            if value is not default and value != default:
+                raise ValueError(f"{name}={value!r} is not used on a solid (its plans take "
+                                 f"fingers or gripper, mu, top, margin, distinct and "
+                                 f"time_limit)")
+        if gripper is None:
+            if mu is None:
+                mu = DEFAULT_MU if fingers in (2, 3) else 0.0
+            gripper = point_fingers(fingers, mu, None, None, True)
+        else:
+            _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, None))
+        from ..grippers.solids import solid_plans
+
+        with collector_paused(), deadline(limit):
+            return solid_plans(gripper, solid, SearchOptions(top=top, margin=margin),
+                               check_scalar(default_distinct(gripper) if distinct is None
+                                            else distinct, "distinct", nonnegative=True))
+    polygon = check_polygon(polygon)
     if gripper is None:
         if mu is None:                      # the command line's default, with friction
             mu = DEFAULT_MU if fingers in (2, 3) and gravity is None else 0.0
@@ -216,6 +245,21 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
     with collector_paused(), deadline(limit):
         return _with_payload(polygon, gripper, options, distinct, load, force_limit,
                              total_force)
+
+
+def _as_solid(part: Any) -> Any:
+    """``part`` as a :class:`fcgrasp.spatial.Solid` when it is one (or a trimesh mesh),
+    None for a planar part (the solids' modules are imported only for a solid)."""
+    module = type(part).__module__
+    if module.startswith("fcgrasp.spatial"):
+        from ..spatial.solid import Solid
+
+        return part if isinstance(part, Solid) else None
+    if module.startswith("trimesh"):
+        from ..spatial.solid import solid_from_mesh
+
+        return solid_from_mesh(part, "mm", "mesh")
+    return None
 
 
 #: ``rank_by="payload"``: the plans with the largest smallest regions, this many times

@@ -596,64 +596,33 @@ def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
     with friction (:func:`fcgrasp.spatial.three_finger_plans`) or a parallel jaw
     (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
     ``fcgrasp plan part.stl --fingers 2 --soft``, ``--fingers 3`` or ``--gripper jaw``."""
+    from ..grippers.solids import (
+        solid_no_grasp_reason,
+        solid_parameters,
+        solid_plans,
+        solid_title,
+    )
     from ..io.meshes import read_solid
-    from ..spatial.alternatives import top_distinct
 
     if solid is None:
         solid = read_solid(request.part, units=request.units, file_units=request.file_units,
                            select=request.select, limits=request.limits(),
                            repair=request.repair)
-    mu = DEFAULT_MU if request.mu is None else request.mu
     lo, hi = solid.mesh.bounds
     part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
             "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist(),
             "units_note": solid.units_note}
-    kind = request.solid_kind()
+    # the gripper plans the solid its own way (fcgrasp.grippers.solids)
+    gripper = request.gripper_object()
+    options = SearchOptions(top=request.top, margin=request.margin)
     distinct = request.distinct_fraction()
-    if kind == "jaw":
-        from ..spatial.jaw import solid_jaw_plans
-
-        jaw: Any = request.gripper_object()
-        plans: list[Any] = top_distinct(
-            lambda n: solid_jaw_plans(solid, jaw.stroke, jaw.pad_width, jaw.mu, top=n,
-                                      margin=request.margin), request.top, distinct)
-        params = {"gripper": "jaw", "contact_type": "jaw", "stroke": list(jaw.stroke),
-                  "pad": jaw.pad_width, "mu": jaw.mu, "top": request.top,
-                  "margin_deg": request.margin}
-        what = (f"two opposite parallel facets {jaw.stroke[0]:g} to {jaw.stroke[1]:g} apart "
-                f"(the stroke) take the jaw's {jaw.pad_width:g} pads")
-        title = "a parallel jaw"
-        mu = jaw.mu
-    elif kind == "soft":
-        from ..spatial.surfaces import soft_pair_plans
-
-        plans = top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=request.margin),
-                             request.top, distinct)
-        params = {"fingers": 2, "contact_type": "soft", "mu": mu, "top": request.top,
-                  "margin_deg": request.margin}
-        what = "two facets hold two soft fingers"
-        title = "two soft fingers"
-    else:
-        from ..spatial.surfaces import three_finger_plans
-
-        searches: list[Any] = []
-
-        def triples(n: int | None) -> list[Any]:
-            searches.append(three_finger_plans(solid, mu, top=n, margin=request.margin))
-            return list(searches[-1].plans)
-
-        plans = top_distinct(triples, request.top, distinct)
-        search = searches[-1]
-        params = {"fingers": 3, "contact_type": "friction", "mu": mu, "top": request.top,
-                  "margin_deg": request.margin, "certified_triples": search.certified,
-                  "exhaustive": search.exhaustive}
-        what = "three facets hold three fingers with friction"
-        title = "three fingers with friction"
+    plans = solid_plans(gripper, solid, options, distinct)
+    params = solid_parameters(gripper, options, plans)
+    title = solid_title(gripper)
     if distinct:
         params["distinct"] = distinct
     reason = None if plans else _stopped_reason(plans) or \
-        f"no {what} with mu {mu:g} and a margin of " \
-                                f"{request.margin:g} degrees"
+        solid_no_grasp_reason(gripper, request.margin)
     report = plan_report(None, plans, params, solid.units, reason,
                          source={"path": request.part}, part=part)
     # a solid's document carries the solid where a planar one has its polygon

@@ -12,6 +12,7 @@ import numpy as np
 
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
+from ...core.budget import PlanList
 from ...core.tolerances import CONTACT_TOL, RANK_TOL, TOL
 from ...model.distinct import (
     DEFAULT_DISTINCT,
@@ -101,6 +102,29 @@ class ParallelJaw(JawParameters):
     @property
     def title(self) -> str:
         return "parallel jaw"
+
+    # on a solid: flat pads on opposite parallel facets (fcgrasp.grippers.solids)
+    solid_title: ClassVar[str] = "a parallel jaw"
+
+    def solid_plans(self, solid: Any, options: Any, fraction: float) -> PlanList:
+        """The regions of closing axes on pairs of opposite parallel facets
+        (:func:`fcgrasp.spatial.jaw.solid_jaw_plans`)."""
+        from ...spatial.alternatives import top_distinct
+        from ...spatial.jaw import solid_jaw_plans
+
+        return top_distinct(lambda n: solid_jaw_plans(solid, self.stroke, self.pad_width,
+                                                      self.mu, top=n, margin=options.margin),
+                            options.top, fraction)
+
+    def solid_parameters(self, options: Any) -> dict[str, Any]:
+        return {"gripper": "jaw", "contact_type": "jaw", "stroke": list(self.stroke),
+                "pad": self.pad_width, "mu": self.mu, "top": options.top,
+                "margin_deg": options.margin}
+
+    def solid_no_grasp_reason(self, margin: float) -> str:
+        return (f"no two opposite parallel facets {self.stroke[0]:g} to {self.stroke[1]:g} "
+                f"apart (the stroke) take the jaw's {self.pad_width:g} pads with mu "
+                f"{self.mu:g} and a margin of {margin:g} degrees")
 
 
 def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:

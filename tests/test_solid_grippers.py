@@ -1,0 +1,62 @@
+"""Solids through the same planner and grippers as planar parts: ``fc.plan(solid,
+...)`` gives the plans of ``fcgrasp plan part.stl`` for every gripper that plans solids
+(two soft fingers, three fingers with friction, the parallel jaw), and the grippers
+that plan planar parts only say so (the time budget on solids: ``test_budget``)."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.apps.cli import main
+from fcgrasp.grippers.solids import plans_solids
+from fcgrasp.spatial.solid import demo_solid
+
+trimesh = pytest.importorskip("trimesh")
+
+CASES = [("box", dict(fingers=2, mu=0.3), ["--fingers", "2", "--soft", "--mu", "0.3"]),
+         ("prism", dict(fingers=3, mu=0.5), ["--fingers", "3", "--mu", "0.5"]),
+         ("angle", dict(gripper=fc.ParallelJaw(stroke=(5, 50), pad_width=8, mu=0.5)),
+          ["--gripper", "jaw", "--stroke", "5,50", "--pad", "8", "--mu", "0.5"])]
+
+
+@pytest.mark.parametrize(("name", "kw", "argv"), CASES, ids=[c[0] for c in CASES])
+def test_fc_plan_of_a_solid_is_fcgrasp_plan_of_it(tmp_path, name, kw, argv):
+    plans = fc.plan(demo_solid(name), top=3, **kw)
+    out = tmp_path / "plan.json"
+    assert main(["plan", f"demo:{name}", *argv, "--top", "3", "--json", str(out),
+                 "--quiet"]) == 0
+    report = json.loads(out.read_text())
+    assert plans and plans.complete
+    assert [list(p.facets) for p in plans] == [g["facets"] for g in report["grasps"]]
+    assert [p.radius for p in plans] == pytest.approx([g["radius"] for g in report["grasps"]],
+                                                      rel=1e-11)
+
+
+def test_a_trimesh_mesh_is_a_solid_in_millimetres():
+    box = trimesh.creation.box((40, 20, 10))
+    best = fc.plan(box, fingers=2, mu=0.3, top=1)[0]
+    assert best.radius == pytest.approx(fc.plan(demo_solid("box"), top=1)[0].radius)
+
+
+@pytest.mark.parametrize(("kw", "words"), [
+    (dict(fingers=4), "4 fingers plan planar parts only"),
+    (dict(fingers=3, gravity=(0.0, -1.0)), "gravity"),
+    (dict(fingers=2, rank_by="epsilon"), "rank_by"),
+    (dict(fingers=2, hand=fc.Hand(finger_radius=1.0)), "hand"),
+])
+def test_what_a_solid_does_not_take_is_refused_by_name(kw, words):
+    with pytest.raises(ValueError, match=words):
+        fc.plan(demo_solid("box"), **kw)
+
+
+def test_every_built_in_gripper_says_whether_it_plans_solids():
+    from fcgrasp.grippers.fingers import point_fingers
+
+    assert plans_solids(point_fingers(2, 0.3, None, None, True))
+    assert plans_solids(point_fingers(3, 0.3, None, None, True))
+    assert plans_solids(fc.ParallelJaw(stroke=(1, 2), pad_width=1, mu=0.3))
+    assert not plans_solids(point_fingers(4, 0.0, None, None, True))
+    assert not plans_solids(point_fingers(3, 0.0, (0.0, -1.0), None, True))
