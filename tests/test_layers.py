@@ -12,7 +12,7 @@ from pathlib import Path
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
 LAYERS = ["errors", "core", "spatial", "model", "io", "pipeline", "grippers", "planning",
-          "plotting", "apps"]
+          "physics", "plotting", "apps"]
 LEVEL = {name: k for k, name in enumerate(LAYERS)}
 APPS = ("cli", "batch", "serve")
 

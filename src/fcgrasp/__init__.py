@@ -10,6 +10,7 @@ Subpackages show the architecture (imports only go down this list):
 - :mod:`fcgrasp.pipeline`: the point fingers' search, candidates -> solve -> rank;
 - :mod:`fcgrasp.grippers`: one object per gripper behind one interface, and the registry;
 - :mod:`fcgrasp.planning`: :class:`~fcgrasp.planning.PlanRequest` and :func:`plan`;
+- :mod:`fcgrasp.physics`: the stress test of plans in MuJoCo (an optional extra);
 - :mod:`fcgrasp.plotting`: figures (matplotlib, imported inside its functions);
 - :mod:`fcgrasp.apps`: the command line, the batch runner and the explorer.
 
@@ -114,6 +115,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         squeeze_preload,
     )
     from .model.stretches import StretchPair, two_finger_stretches
+    from .physics import simulate
     from .planning import (
         FrictionCurve,
         GraspPlan,
@@ -161,6 +163,7 @@ _LAZY = {
     "Hand": "model.hand",
     "ParallelJaw": "grippers.jaw",
     "plan_many": "apps.batch",
+    "simulate": "physics",
     "JawPlan": "grippers.jaw",
     "jaw_plans": "grippers.jaw",
     "jaw_payload": "grippers.jaw",

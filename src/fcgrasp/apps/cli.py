@@ -713,6 +713,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="draw the part, the contact forces and the escape motion")
     c.set_defaults(func=cmd_check)
 
+    from ._cli_simulate import add_parser as simulate_parser
+
+    simulate_parser(sub, _Parser)
+
     ls = sub.add_parser("parts", help="the parts a file holds (index, id, layer, size, area)",
                         description="List the parts of a file, as fcgrasp plan would read "
                                     "them; --part N|ID picks one, the default is the "
@@ -817,6 +821,12 @@ def main(argv: list[str] | None = None) -> int:
     except KeyboardInterrupt:
         print("fcgrasp: interrupted", file=sys.stderr)
         return 130
+    except ImportError as exc:
+        # an optional dependency the command needs (the message names its extra)
+        if "pip install" not in str(exc):
+            raise
+        print(f"fcgrasp: error: {' '.join(str(exc).split())}", file=sys.stderr)
+        return EXIT_USAGE
     except Exception as exc:  # noqa: BLE001 - the promise is: never a traceback
         print(f"fcgrasp: internal error: {type(exc).__name__}: {' '.join(str(exc).split())}",
               file=sys.stderr)

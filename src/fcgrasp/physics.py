@@ -1,0 +1,486 @@
+r"""A physics stress test of planned grasps: the part and the fingers in MuJoCo, loads
+ramped up until the part slips (the paper's section 8: how much a grasp resists).
+
+fcgrasp proves that every grasp of a plan's regions is force closure and certifies the
+load it carries with force-limited fingers (:func:`fcgrasp.grasp_payload`).  This module
+checks those figures in a physics simulator that shares none of that code: for each
+grasp sampled in a plan's regions (the regions' ends included) and each of a few seeded
+disturbance directions, it reports whether the part held, the load at which it slipped
+and how far it moved, beside the certified payload.
+
+**The model** (SI units inside; lengths in the part's units outside).  The planar part
+is extruded into a prism of uniform density moving in its plane (two slides and a hinge:
+no gravity in the plane).  Each finger is a sphere on a slide along its contact's inward
+normal, driven by a stiff position servo: the squeeze phase sets each finger's preload
+to a force that balances the others (a linear program over the friction cones: the
+internal forces of the grasp, the largest smallest one, scaled so the largest is
+``grip_force``; none exists when the grasp cannot be squeezed), and the servo saturates
+at twice that.  Fingers that hold their position up to a limit of force are what the
+certificate assumes: it is computed with each finger's preload as its force limit, so
+the simulated fingers can always supply it (they can push harder, up to the
+saturation).  The disturbance is a wrench of fixed direction (a force at the centre of
+mass and a torque, per newton) ramped from 0 to ``ramp`` times the certified payload
+over ``ramp_time`` seconds; the part **slipped** when it moved more than
+``SLIP_DISPLACEMENT`` of the part's size or turned more than ``SLIP_ROTATION_DEG``.
+
+**Settings that make the answer physics, not artefacts:** elliptic friction cones (the
+Coulomb cone itself, not a pyramid); the noslip solver (MuJoCo's regularised friction
+creeps without it: a grasp below its limit would slowly slide); stiff contacts
+(``solref`` 2 ms, ``solimp`` 0.95-0.99) and friction as stiff as the normal
+(``impratio`` 10); a 0.5 ms time step, a quarter of the contact's time constant; the
+servo's stiffness puts the full preload at 0.2 % of the part's size (the fingers' own
+motion stays well below the slip threshold) with critical damping.
+
+**What it can and cannot tell:** it checks loads, not the exact ends of the regions (a
+grasp at a region's end is at the margin of its friction cone, and a simulator's
+contact is soft); a non-force-closure control slips under the disturbance along its
+escape motion at loads far below any grip force.  MuJoCo is an optional dependency
+(``pip install mujoco``, the ``sim`` extra).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .core._checks import FloatArray, check_int, check_scalar
+from .errors import ArgumentError
+
+__all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
+           "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
+           "animate"]
+
+#: The part slipped when its centre moved more than this share of its size ...
+SLIP_DISPLACEMENT = 0.01
+#: ... or it turned more than this many degrees.
+SLIP_ROTATION_DEG = 1.0
+#: Simulation settings (see the module docstring for why each).
+TIMESTEP = 5e-4
+SETTLE_TIME = 0.2
+RAMP_TIME = 1.0
+#: The finger servo's full preload at this share of the part's size.
+SERVO_COMPLIANCE = 2e-3
+#: Part density (kg/m^3, aluminium), prism thickness (share of the part's size) and the
+#: fingertips' radius (share of the size).
+DENSITY = 2700.0
+THICKNESS = 0.2
+TIP_RADIUS = 0.01
+FINGER_MASS = 0.1
+#: Millimetres and the other units a report may use, in metres.
+_METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254, "px": 0.25e-3}
+
+
+@dataclass
+class StressResult:
+    """One grasp under one disturbance: the contacts (part units) and their outward
+    normals, the grip forces (N, per finger), the certified payload along the
+    disturbance (N; 0 for a grasp that is not force closure), the load at which the
+    part slipped (N; None: it held up to the ramp's end), how far it moved (part units;
+    rotation in degrees) at the end, how far the squeeze moved it, and the direction
+    (force and torque per newton, torque in N x part unit)."""
+
+    contacts: FloatArray
+    normals: FloatArray
+    grip_force: FloatArray
+    certified_payload: float
+    slip_load: float | None
+    displacement: float
+    rotation_deg: float
+    settle_motion: float
+    direction: FloatArray
+    history: FloatArray = field(repr=False, default_factory=lambda: np.zeros((0, 6)))
+
+    @property
+    def held(self) -> bool:
+        """Whether the part held up to its certified payload (no slip at or below it)."""
+        return self.slip_load is None or self.slip_load >= self.certified_payload
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"contacts": self.contacts.tolist(), "normals": self.normals.tolist(),
+                "grip_force": self.grip_force.tolist(),
+                "certified_payload": self.certified_payload, "slip_load": self.slip_load,
+                "displacement": self.displacement, "rotation_deg": self.rotation_deg,
+                "settle_motion": self.settle_motion,
+                "wrench_direction": {"force": self.direction[:2].tolist(),
+                                     "torque": float(self.direction[2])}}
+
+
+def _mujoco() -> Any:
+    try:
+        import mujoco  # type: ignore[import-untyped]
+    except ImportError as exc:  # pragma: no cover - depends on the install
+        raise ImportError("the stress test needs MuJoCo: pip install 'fcgrasp[sim]'") \
+            from exc
+    return mujoco
+
+
+# ----------------------------------------------------------------------------- grasps
+
+def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generator,
+                  normals: Any = None) -> list[tuple[FloatArray, FloatArray]]:
+    """``count`` grasps of one point per region (a polyline along the boundary): the
+    regions' starts, their ends, their middles, then seeded points; each with the
+    outward normal of the edge it lies on (points within a hair of a vertex the region
+    covers are moved off it along the region).  A region that is a point (a given
+    contact) keeps its own normal (``normals``, one per region)."""
+    import shapely
+
+    poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
+    eps = 1e-6 * polygon.size
+    lines = [np.asarray(r, float) for r in regions]
+    cum = [np.r_[0.0, np.cumsum(np.hypot(*np.diff(r, axis=0).T))] for r in lines]
+    fixed = [0.0, 1.0, 0.5]
+    out = []
+    for k in range(count):
+        u = fixed[k] if k < len(fixed) else None
+        pts, nrm = [], []
+        for j, (r, c) in enumerate(zip(lines, cum, strict=True)):
+            L = c[-1]
+            if L <= 2 * eps and normals is not None:
+                given = np.asarray(normals[j], float)
+                pts.append(r[0])
+                nrm.append(given / np.linalg.norm(given))
+                continue
+            s = (u if u is not None else float(rng.uniform())) * L
+            s = min(max(s, eps), L - eps) if L > 2 * eps else L / 2
+            i = int(np.clip(np.searchsorted(c, s, side="right") - 1, 0, len(r) - 2))
+            if L > 4 * eps:                       # off the vertices the region covers
+                s = min(max(s, c[i] + eps), c[i + 1] - eps)
+            t = (s - c[i]) / max(c[i + 1] - c[i], 1e-300)
+            p = r[i] + t * (r[i + 1] - r[i])
+            d = r[i + 1] - r[i]
+            n = np.array([d[1], -d[0]]) / max(float(np.hypot(*d)), 1e-300)
+            if poly.contains(shapely.Point(p + eps * 10 * n)):
+                n = -n                            # outward: away from the part
+            pts.append(p)
+            nrm.append(n)
+        out.append((np.array(pts), np.array(nrm)))
+    return out
+
+
+def _edges(points: FloatArray, normals: FloatArray, mu: float) -> tuple[FloatArray, ...]:
+    """Each finger's force edges (its friction cone's two edges; the normal alone
+    without friction), the finger of each, and the wrenches they exert."""
+    forces, owner = [], []
+    half = math.atan(mu)
+    for i, n in enumerate(normals):
+        f = -n / np.linalg.norm(n)
+        for a in ((half, -half) if mu > 0 else (0.0,)):
+            c, s = math.cos(a), math.sin(a)
+            forces.append([c * f[0] - s * f[1], s * f[0] + c * f[1]])
+            owner.append(i)
+    F = np.array(forces)
+    o = np.array(owner)
+    P = points[o]
+    W = np.c_[F, P[:, 0] * F[:, 1] - P[:, 1] * F[:, 0]]
+    return F, o, W
+
+
+def squeeze_forces(points: Any, normals: Any, mu: float, grip_force: float
+                   ) -> FloatArray | None:
+    """The normal forces of a squeeze that holds the part still: finger forces in their
+    friction cones with zero net wrench whose smallest normal force is as large as it
+    can be (a linear program), scaled so the largest is ``grip_force``; None when no
+    squeeze has every normal force positive (the grasp cannot be squeezed)."""
+    from scipy.optimize import linprog
+
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    F, o, W = _edges(p, n, mu)
+    k, m = len(p), len(F)
+    inward = -n / np.linalg.norm(n, axis=1)[:, None]
+    normal_part = np.einsum("ij,ij->i", F, inward[o])       # each edge's normal share
+    scale = max(float(np.max(np.abs(p))), 1e-300)
+    Wn = W.copy()
+    Wn[:, 2] /= scale
+    # variables: edge coefficients c (m), t; maximise t
+    A_eq = np.zeros((3, m + 1))
+    A_eq[:, :m] = Wn.T
+    A_ub, b_ub = [], []
+    for i in range(k):
+        row = np.zeros(m + 1)
+        row[:m] = -((o == i) * normal_part)
+        row[m] = 1.0                                         # t <= normal_i
+        A_ub.append(row)
+        b_ub.append(0.0)
+        row = np.zeros(m + 1)
+        row[:m] = (o == i) * normal_part                     # normal_i <= 1
+        A_ub.append(row)
+        b_ub.append(1.0)
+    c = np.zeros(m + 1)
+    c[m] = -1.0
+    res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(3),
+                  bounds=[(0, None)] * m + [(None, None)], method="highs")
+    if res.status != 0 or res.x[m] <= 1e-6:
+        return None
+    normal = np.array([float(np.sum(res.x[:m][o == i] * normal_part[o == i]))
+                       for i in range(k)])
+    return np.asarray(grip_force * normal / normal.max(), float)
+
+
+# ----------------------------------------------------------------------------- model
+
+def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
+           preload: FloatArray, metres: float) -> tuple[Any, FloatArray]:
+    """The MJCF model: the part's triangles extruded, a finger per contact; and each
+    finger's servo stiffness (N/m)."""
+    import shapely
+    from shapely.ops import triangulate
+
+    mujoco = _mujoco()
+    poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
+    size = polygon.size * metres
+    h = THICKNESS * size
+    friction = f'friction="{max(mu, 1e-9):.9g} 0.005 0.0001" condim="{3 if mu > 0 else 1}"'
+    assets, geoms = [], []
+    for k, tri in enumerate(t for t in triangulate(poly)
+                            if poly.contains(t.representative_point())):
+        xy = np.asarray(tri.exterior.coords)[:3] * metres
+        v = np.vstack([np.c_[xy, np.full(3, -h / 2)], np.c_[xy, np.full(3, h / 2)]])
+        assets.append(f'<mesh name="p{k}" vertex="{" ".join(f"{x:.12g}" for x in v.ravel())}"/>')
+        geoms.append(f'<geom type="mesh" mesh="p{k}" density="{DENSITY}" {friction}/>')
+    r = TIP_RADIUS * size
+    kp = preload / (SERVO_COMPLIANCE * size)
+    fingers, actuators = [], []
+    for i, (c, n) in enumerate(zip(points, normals, strict=True)):
+        n = n / np.linalg.norm(n)
+        pos = c * metres + r * n
+        damping = 2 * math.sqrt(kp[i] * FINGER_MASS)
+        fingers.append(
+            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} 0">'
+            f'<joint name="j{i}" type="slide" axis="{-n[0]:.12g} {-n[1]:.12g} 0" '
+            f'damping="{damping:.9g}"/>'
+            f'<geom type="sphere" size="{r:.9g}" mass="{FINGER_MASS}" {friction}/></body>')
+        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
+                         f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
+                         f'forcelimited="true"/>')
+    xml = (f'<mujoco><option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
+           f'impratio="10" noslip_iterations="20"/>'
+           f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>'
+           f'<asset>{"".join(assets)}</asset><worldbody><body name="part">'
+           f'<joint name="px" type="slide" axis="1 0 0"/>'
+           f'<joint name="py" type="slide" axis="0 1 0"/>'
+           f'<joint name="pz" type="hinge" axis="0 0 1"/>{"".join(geoms)}</body>'
+           f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
+           f'</mujoco>')
+    return mujoco.MjModel.from_xml_string(xml), kp
+
+
+def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
+                grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
+                certified: float | None = None, record: bool = False) -> StressResult:
+    """One grasp (points and outward normals, part units) under a disturbance of
+    ``direction`` (force and torque per newton, torque in N x part unit) ramped to
+    ``ramp`` times the certified payload (or to ``grip_force`` where that is 0): the
+    load at which the part slipped, or None where it held (module docstring).
+    ``record``: keep the part's pose and the load every 5 ms (``history``: time, load,
+    displacement, rotation in degrees, and the displacement's x and y)."""
+    from .model.loads import Load, grasp_payload
+
+    mujoco = _mujoco()
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1)[:, None]
+    u = np.asarray(direction, float)
+    metres = _METRES.get(units, 1e-3)
+    preload = squeeze_forces(p, n, mu, grip_force)
+    if preload is None:                       # not squeezable: every finger alike
+        preload = np.full(len(p), float(grip_force))
+        cert = 0.0
+    elif certified is not None:
+        cert = float(certified)
+    else:
+        cx, cy = (float(v) for v in polygon.centroid)
+        load = Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
+                    torque=(float(u[2]), float(u[2])))
+        cert = float(grasp_payload(p, -n, mu, load, force_limit=list(preload)).scale)
+    model, kp = _model(polygon, p, n, mu, preload, metres)
+    data = mujoco.MjData(model)
+    data.ctrl[:] = preload / kp
+    steps = int(SETTLE_TIME / TIMESTEP)
+    for _ in range(steps // 2):
+        mujoco.mj_step(model, data)
+    # the servos' targets corrected so each finger's squeeze is its preload
+    data.ctrl[:] += (preload - data.actuator_force) / kp
+    for _ in range(steps - steps // 2):
+        mujoco.mj_step(model, data)
+    q0 = data.qpos[:3].copy()
+    settle = float(math.hypot(q0[0], q0[1])) / metres
+    body = model.body("part").id
+    size = polygon.size * metres
+    top = ramp * cert if cert > 0 else float(grip_force)
+    n_ramp = int(RAMP_TIME / TIMESTEP)
+    slip, hist = None, []
+    if math.hypot(q0[0], q0[1]) > SLIP_DISPLACEMENT * size or \
+            abs(q0[2]) > math.radians(SLIP_ROTATION_DEG):
+        # the squeeze alone moved the part (a grasp that is not in equilibrium): it
+        # slipped at no load, whatever pose the servos then hold it in
+        slip, n_ramp = 0.0, 0
+    for k in range(1, n_ramp + 1):
+        load_now = top * k / n_ramp
+        data.xfrc_applied[body, :] = 0.0
+        data.xfrc_applied[body, 0:2] = load_now * u[:2]
+        data.xfrc_applied[body, 5] = load_now * u[2] * metres
+        mujoco.mj_step(model, data)
+        dq = data.qpos[:3] - q0
+        moved, turned = math.hypot(dq[0], dq[1]), abs(dq[2])
+        if record and k % 10 == 0:
+            hist.append((k * TIMESTEP, load_now, moved / metres, math.degrees(dq[2]),
+                         dq[0] / metres, dq[1] / metres))
+        if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
+            slip = load_now
+            break
+    dq = data.qpos[:3] - q0
+    return StressResult(p, n, preload, cert, slip, float(math.hypot(dq[0], dq[1])) / metres,
+                        float(math.degrees(abs(dq[2]))), settle, u,
+                        np.array(hist).reshape(-1, 6))
+
+
+def _directions(rng: np.random.Generator, count: int, size: float) -> FloatArray:
+    """``count`` seeded unit disturbance directions: a force and a torque whose arm is
+    the part's size (``|(fx, fy, tau / size)| = 1``)."""
+    u = rng.normal(size=(count, 3))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    u[:, 2] *= size
+    return u
+
+
+def control(points: Any, normals: Any, mu: float) -> tuple[FloatArray, FloatArray, float]:
+    """A grasp that is not force closure made from one that is: the same contacts
+    without friction (two or three fingers: never force closure in the plane), or,
+    without friction already, the first finger taken away (three frictionless fingers
+    never are either)."""
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    if mu > 0:
+        return p, n, 0.0
+    return p[1:], n[1:], 0.0
+
+
+def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> FloatArray:
+    """A disturbance (force and torque per newton, as :func:`stress_test` takes it) that
+    pushes the part along a motion the grasp does not resist (the escape twist of
+    :func:`fcgrasp.closure_escape`, theorem 6.1); an ``ArgumentError`` for a grasp in
+    force closure."""
+    from .core.closure import closure_escape
+
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    _, _, W = _edges(p, n / np.linalg.norm(n, axis=1)[:, None], mu)
+    closed, escape = closure_escape(W)
+    if bool(closed):
+        raise ArgumentError("the grasp is force closure: it has no escape", "points")
+    omega, vx, vy = (float(v) for v in escape)
+    size = polygon.size
+    f = np.array([vx, vy])                      # work f . v + tau omega > 0
+    tau_origin = omega * size * size
+    cx, cy = (float(v) for v in polygon.centroid)
+    u = np.array([f[0], f[1], tau_origin - (cx * f[1] - cy * f[0])])
+    return u / math.sqrt(u[0] ** 2 + u[1] ** 2 + (u[2] / size) ** 2)
+
+
+def _one(args: tuple[Any, ...]) -> StressResult:
+    return stress_test(*args)
+
+
+def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
+             directions: int = 2, seed: int = 0, units: str = "mm",
+             workers: int | None = None,
+             progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
+    """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, or
+    a report's grasp: regions, normals and mu): ``samples`` grasps in its regions
+    (:func:`sample_grasps`: ends and middle first), each under ``directions`` seeded
+    disturbances, run on ``workers`` processes (default: every core).  One summary per
+    plan: its rank, the grasps (:meth:`StressResult.to_dict`), how many held up to
+    their certified payload and the smallest ratio of slip load to certified payload."""
+    check_int(samples, "samples", minimum=1)
+    check_int(directions, "directions", minimum=1)
+    check_scalar(grip_force, "grip_force", positive=True)
+    rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
+    jobs, owners = [], []
+    for r, plan in enumerate(plans):
+        regions = plan["regions"] if isinstance(plan, dict) else plan.regions
+        mu = float(plan["mu"] if isinstance(plan, dict) else plan.mu)
+        if isinstance(plan, dict) and "facets" in plan or not len(regions) or \
+                np.asarray(regions[0]).shape[-1] != 2:
+            raise ArgumentError("the stress test runs point fingers on planar parts: "
+                                f"plan {r + 1} is not one", "plans")
+        given = plan["normals"] if isinstance(plan, dict) else plan.normals
+        for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
+            for u in _directions(rng, directions, polygon.size):
+                jobs.append((polygon, pts, nrm, mu, u, grip_force, 3.0, units))
+                owners.append(r)
+    results: list[StressResult] = []
+    if workers == 1 or len(jobs) < 4:
+        for k, job in enumerate(jobs):
+            results.append(_one(job))
+            if progress is not None:
+                progress(k + 1, len(jobs))
+    else:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            for k, res in enumerate(pool.map(_one, jobs, chunksize=4)):
+                results.append(res)
+                if progress is not None:
+                    progress(k + 1, len(jobs))
+    out = []
+    for r in range(len(plans)):
+        mine = [res for res, o in zip(results, owners, strict=True) if o == r]
+        ratios = [res.slip_load / res.certified_payload for res in mine
+                  if res.slip_load is not None and res.certified_payload > 0]
+        dirs = np.unique(np.array([m.direction for m in mine]).round(12), axis=0)
+        out.append({"rank": r + 1, "grasps": [{"rank": r + 1, **m.to_dict()} for m in mine],
+                    "held": sum(m.held for m in mine), "runs": len(mine),
+                    "worst_ratio": min(ratios) if ratios else None,
+                    "wrench_directions": [{"force": d[:2].tolist(), "torque": float(d[2])}
+                                          for d in dirs]})
+    return out
+
+
+# ----------------------------------------------------------------------------- pictures
+
+def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
+            frames: int = 24) -> None:
+    """An animated GIF of one stress test recorded with ``record=True``, in ``frames``
+    frames: the part displaced (magnified so a slip shows) under the rising load, the
+    fingers, and the load against the part's displacement beside it."""
+    import imageio.v3 as iio
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    h = result.history
+    if not len(h):
+        raise ArgumentError("result has no history: run stress_test(..., record=True)",
+                            "result")
+    check_int(frames, "frames", minimum=1)
+    images = []
+    v = np.vstack([polygon.vertices, polygon.vertices[:1]])
+    for k in np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int)):
+        t, load, moved, turned, dx, dy = h[k]
+        fig, (ax, bx) = plt.subplots(1, 2, figsize=(8, 3.6), dpi=80)
+        ax.plot(v[:, 0], v[:, 1], color="0.6", lw=1)
+        a = math.radians(turned) * 10
+        c = np.asarray(polygon.centroid)
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        shift = np.array([dx, dy]) * 10
+        w = (v - c) @ rot.T + c + shift
+        ax.fill(w[:, 0], w[:, 1], color="0.8")
+        for p, n in zip(result.contacts, result.normals, strict=True):
+            ax.plot(*p, "o", color="tab:red")
+            ax.arrow(*(p + 0.15 * polygon.size * n), *(-0.1 * polygon.size * n),
+                     head_width=0.02 * polygon.size, color="tab:red")
+        ax.set_aspect("equal")
+        ax.set_title(f"load {load:.2f} N (motion x10)")
+        bx.plot(h[:k + 1, 1], h[:k + 1, 2], color="tab:blue")
+        bx.axvline(result.certified_payload, color="tab:green", ls="--",
+                   label="certified payload")
+        bx.set_xlabel("load (N)")
+        bx.set_ylabel(f"displacement ({units})")
+        bx.legend(loc="upper left")
+        fig.tight_layout()
+        fig.canvas.draw()
+        images.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())  # type: ignore[attr-defined]
+        plt.close(fig)
+    iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)

@@ -1,0 +1,167 @@
+"""The physics stress test (fcgrasp.physics, MuJoCo): grasps sampled in the plans'
+regions hold up to their certified payload, controls that are not force closure slip,
+the squeeze is in equilibrium, and a seeded run repeats exactly.  The simulator shares
+no code with the certificate (fcgrasp.grasp_payload) it is compared with."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.apps.cli import main
+from fcgrasp.io.parts import demo_part
+
+mujoco = pytest.importorskip("mujoco")
+
+from fcgrasp.physics import (  # noqa: E402
+    animate,
+    control,
+    escape_direction,
+    sample_grasps,
+    simulate,
+    squeeze_forces,
+    stress_test,
+)
+
+CASES = [("blob", dict(fingers=2, mu=0.5)), ("blob", dict(fingers=3, mu=0.5)),
+         ("quad", dict(fingers=4))]
+SLOW_CASES = [("cam", dict(fingers=2, mu=0.3)), ("bracket", dict(fingers=3, mu=0.4)),
+              ("rectangle", dict(fingers=4)), ("triangle", dict(fingers=2, mu=0.3)),
+              ("washer", dict(fingers=2, mu=0.5)), ("quad", dict(fingers=3, mu=0.3))]
+
+
+def _held(cases, samples):
+    runs = held = 0
+    for name, kw in cases:
+        poly = demo_part(name)
+        out = simulate(poly, fc.plan(poly, top=2, **kw), samples=samples, directions=2,
+                       seed=3, workers=1)
+        runs += sum(o["runs"] for o in out)
+        held += sum(o["held"] for o in out)
+        for o in out:
+            for g in o["grasps"]:
+                assert g["certified_payload"] > 0 and g["settle_motion"] < 0.01 * poly.size
+    return held, runs
+
+
+def test_grasps_in_the_regions_hold_up_to_their_certified_payload():
+    """At least 95 % of the runs (grasps at the regions' ends, middles and seeded
+    points, two seeded disturbances each, on two and three fingers with friction and
+    four frictionless fingers) hold every load below the certified payload."""
+    held, runs = _held(CASES, 4)
+    assert runs == 48 and held >= 0.95 * runs, (held, runs)
+
+
+@pytest.mark.slow
+def test_grasps_in_the_regions_hold_on_every_built_in_part():
+    held, runs = _held(CASES + SLOW_CASES, 10)
+    assert held >= 0.95 * runs, (held, runs)
+
+
+@pytest.mark.parametrize(("name", "kw"), CASES)
+def test_controls_that_are_not_force_closure_slip(name, kw):
+    poly = demo_part(name)
+    plan = fc.plan(poly, top=1, **kw)[0]
+    rng = np.random.default_rng(5)
+    for pts, nrm in sample_grasps(poly, plan.regions, 3, rng):
+        cp, cn, cmu = control(pts, nrm, plan.mu)
+        wrenches = [fc.FrictionPoint(p, n, cmu) if cmu > 0 else fc.FrictionlessPoint(p, n)
+                    for p, n in zip(cp, cn, strict=True)]
+        assert not fc.Grasp(wrenches).is_force_closure()
+        res = stress_test(poly, cp, cn, cmu, escape_direction(poly, cp, cn, cmu))
+        assert res.slip_load is not None and res.slip_load < 0.1 * 10.0
+
+
+def test_the_squeeze_is_in_equilibrium_within_the_cones():
+    """The squeeze's forces: positive normal forces, the largest the grip force, and
+    (with tangential forces within the cones) a zero net wrench, checked by an LP of
+    this test's own."""
+    from scipy.optimize import linprog
+
+    rng = np.random.default_rng(11)
+    poly = demo_part("blob")
+    for kw in (dict(fingers=2, mu=0.5), dict(fingers=3, mu=0.4), dict(fingers=4)):
+        plan = fc.plan(poly, top=1, **kw)[0]
+        for pts, nrm in sample_grasps(poly, plan.regions, 4, rng):
+            f = squeeze_forces(pts, nrm, plan.mu, 7.0)
+            assert f is not None and f.max() == pytest.approx(7.0) and f.min() > 0
+            # tangential forces t_i with |t_i| <= mu f_i balancing the normal forces
+            inward = -nrm
+            tang = np.c_[-inward[:, 1], inward[:, 0]]
+            k = len(pts)
+            F0 = (f[:, None] * inward).sum(axis=0)
+            T0 = float(np.sum(f * (pts[:, 0] * inward[:, 1] - pts[:, 1] * inward[:, 0])))
+            A = np.vstack([tang[:, 0], tang[:, 1],
+                           pts[:, 0] * tang[:, 1] - pts[:, 1] * tang[:, 0]])
+            res = linprog(np.zeros(k), A_eq=A, b_eq=-np.r_[F0, T0],
+                          bounds=[(-plan.mu * fi, plan.mu * fi) for fi in f],
+                          method="highs")
+            assert res.status == 0
+    # two frictionless fingers on parallel edges squeeze in equilibrium (not closure);
+    # on edges that are not parallel they cannot
+    assert squeeze_forces([[0, 0], [10, 0]], [[-1, 0], [1, 0]], 0.0, 5.0) is not None
+    assert squeeze_forces([[0, 0], [10, 0]], [[-1, 0], [0.8, 0.6]], 0.0, 5.0) is None
+
+
+def test_a_seeded_run_repeats_exactly():
+    poly = demo_part("blob")
+    plan = fc.plan(poly, fingers=2, mu=0.5, top=1)[0]
+    a = simulate(poly, [plan], samples=2, directions=1, seed=4, workers=1)
+    b = simulate(poly, [plan], samples=2, directions=1, seed=4, workers=1)
+    assert a == b
+
+
+def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
+    plan = tmp_path / "plan.json"
+    assert main(["plan", "demo:blob", "--mu", "0.5", "--top", "2", "--json", str(plan),
+                 "--quiet"]) == 0
+    out = tmp_path / "stress.json"
+    gif = tmp_path / "stress.gif"
+    assert main(["simulate", str(plan), "--samples", "2", "--directions", "1",
+                 "--workers", "1", "--json", str(out), "--gif", str(gif)]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["kind"] == "stress_test" and len(doc["plans"]) == 2
+    g = doc["plans"][0]["grasps"][0]
+    for key in ("rank", "contacts", "grip_force", "certified_payload", "slip_load",
+                "displacement", "wrench_direction"):
+        assert key in g
+    assert doc["plans"][0]["wrench_directions"]
+    assert all(c["slipped"] for c in doc["controls"])
+    assert gif.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    assert "controls (not force closure)" in capsys.readouterr().out
+    contacts = tmp_path / "grasp.json"
+    contacts.write_text(json.dumps({"contacts": [{"point": [0, 15], "mu": 0.5},
+                                                 {"point": [80, 16], "mu": 0.5}]}))
+    assert main(["simulate", "demo:rectangle", "--contacts", str(contacts), "--samples", "1",
+                 "--directions", "2", "--workers", "1", "--quiet"]) == 0
+
+
+@pytest.mark.parametrize(("argv", "words"), [
+    (["simulate", "demo:blob"], "not a plan report"),
+    (["simulate", "{jaw}"], "parallel jaw"),
+    (["simulate", "{plan}", "--samples", "0"], "--samples"),
+    (["simulate", "{plan}", "--grip-force", "-1"], "--grip-force"),
+])
+def test_simulate_refuses_in_one_line(tmp_path, capsys, argv, words):
+    plan = tmp_path / "plan.json"
+    main(["plan", "demo:blob", "--top", "1", "--json", str(plan), "--quiet"])
+    jaw = tmp_path / "jaw.json"
+    main(["plan", "demo:rectangle", "--gripper", "jaw", "--stroke", "5,60", "--pad", "8",
+          "--top", "1", "--json", str(jaw), "--quiet"])
+    capsys.readouterr()
+    code = main([a.format(plan=plan, jaw=jaw) for a in argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and words in err[0], err
+
+
+def test_the_animation_is_drawn(tmp_path):
+    poly = demo_part("blob")
+    plan = fc.plan(poly, fingers=2, mu=0.5, top=1)[0]
+    pts, nrm = sample_grasps(poly, plan.regions, 1, np.random.default_rng(0))[0]
+    res = stress_test(poly, pts, nrm, 0.5, [1.0, 0.0, 0.0], record=True)
+    assert len(res.history) > 5
+    animate(poly, res, str(tmp_path / "a.gif"), frames=3)
+    assert (tmp_path / "a.gif").stat().st_size > 1000
