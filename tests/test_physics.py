@@ -165,3 +165,22 @@ def test_the_animation_is_drawn(tmp_path):
     assert len(res.history) > 5
     animate(poly, res, str(tmp_path / "a.gif"), frames=3)
     assert (tmp_path / "a.gif").stat().st_size > 1000
+
+
+def test_the_prism_inertia_is_the_closed_form_of_a_box_and_of_a_disc():
+    from fcgrasp.physics import PART_MASS, _prism_inertia
+
+    w, d, h = 0.08, 0.03, 0.01
+    tris = [np.array([[0, 0], [w, 0], [w, d]]), np.array([[0, 0], [w, d], [0, d]])]
+    mass, com, inertia = _prism_inertia(tris, h)
+    m = PART_MASS
+    assert mass == pytest.approx(m) and com == pytest.approx([w / 2, d / 2])
+    assert inertia == pytest.approx([m * (d * d + h * h) / 12, m * (w * w + h * h) / 12,
+                                     m * (w * w + d * d) / 12])
+    # a 400-gon about its centre: a disc's m r^2 / 2, to the polygon's rounding
+    a = np.linspace(0, 2 * np.pi, 401)[:-1]
+    ring = 0.05 * np.c_[np.cos(a), np.sin(a)] + [0.2, -0.1]
+    fan = [np.array([ring.mean(axis=0), ring[i], ring[(i + 1) % 400]]) for i in range(400)]
+    mass, com, inertia = _prism_inertia(fan, h)
+    assert com == pytest.approx([0.2, -0.1])
+    assert inertia[2] == pytest.approx(mass * 0.05 ** 2 / 2, rel=1e-4)

@@ -65,12 +65,17 @@ SETTLE_TIME = 0.2
 RAMP_TIME = 1.0
 #: The finger servo's full preload at this share of the part's size.
 SERVO_COMPLIANCE = 2e-3
-#: Part density (kg/m^3, aluminium), prism thickness (share of the part's size) and the
-#: fingertips' radius (share of the size).
-DENSITY = 2700.0
+#: The part's mass (kg, whatever its size: the test is quasi-static, and a part of a
+#: few milligrams between fingers of a tenth of a kilogram makes the dynamics stiff),
+#: its prism's thickness (share of its size) and the fingertips' radius (share of the
+#: size).
+PART_MASS = 0.2
 THICKNESS = 0.2
-TIP_RADIUS = 0.01
+TIP_RADIUS = 0.002
+#: A finger's mass (kg): at least this, and enough that its servo's period spans
+#: :data:`SERVO_STEPS` time steps.
 FINGER_MASS = 0.1
+SERVO_STEPS = 20
 #: Millimetres and the other units a report may use, in metres.
 _METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254, "px": 0.25e-3}
 
@@ -125,9 +130,12 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
                   normals: Any = None) -> list[tuple[FloatArray, FloatArray]]:
     """``count`` grasps of one point per region (a polyline along the boundary): the
     regions' starts, their ends, their middles, then seeded points; each with the
-    outward normal of the edge it lies on (points within a hair of a vertex the region
-    covers are moved off it along the region).  A region that is a point (a given
-    contact) keeps its own normal (``normals``, one per region)."""
+    outward normal of the edge it lies on.  Points are kept three fingertip radii off
+    the vertices of the region's polyline (its ends included), moved along the region
+    (a third of the edge at most): a fingertip on a corner touches both edges, where the
+    certificate reads the contact on one.  A region that is a point (a given contact)
+    keeps its own normal (``normals``, one per region), as does a region no longer than
+    six fingertip radii (a corner)."""
     import shapely
 
     poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
@@ -141,16 +149,18 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
         pts, nrm = [], []
         for j, (r, c) in enumerate(zip(lines, cum, strict=True)):
             L = c[-1]
-            if L <= 2 * eps and normals is not None:
+            if L <= 6 * TIP_RADIUS * polygon.size and normals is not None:
+                # a region no longer than a fingertip: a corner, held with the plan's
+                # normal there (a fingertip on a corner pushes along the fan's)
                 given = np.asarray(normals[j], float)
-                pts.append(r[0])
+                pts.append(r[0] + (r[-1] - r[0]) / 2 if len(r) == 2 else r[len(r) // 2])
                 nrm.append(given / np.linalg.norm(given))
                 continue
             s = (u if u is not None else float(rng.uniform())) * L
             s = min(max(s, eps), L - eps) if L > 2 * eps else L / 2
             i = int(np.clip(np.searchsorted(c, s, side="right") - 1, 0, len(r) - 2))
-            if L > 4 * eps:                       # off the vertices the region covers
-                s = min(max(s, c[i] + eps), c[i + 1] - eps)
+            off = min(3 * TIP_RADIUS * polygon.size, (c[i + 1] - c[i]) / 3)
+            s = min(max(s, c[i] + off), c[i + 1] - off)
             t = (s - c[i]) / max(c[i + 1] - c[i], 1e-300)
             p = r[i] + t * (r[i + 1] - r[i])
             d = r[i + 1] - r[i]
@@ -224,12 +234,37 @@ def squeeze_forces(points: Any, normals: Any, mu: float, grip_force: float
 
 # ----------------------------------------------------------------------------- model
 
+def _prism_inertia(tris: list[FloatArray], h: float) -> tuple[float, FloatArray, FloatArray]:
+    """Mass, centre of mass and principal moments (x, y, z; about axes through the
+    centre of mass, the product of inertia of the plane neglected) of the part's
+    triangles extruded ``h`` thick, of uniform density and mass :data:`PART_MASS`,
+    exact per triangle."""
+    area = mx = my = sxx = syy = 0.0
+    for t in tris:
+        (ux, uy), (vx, vy) = t[1] - t[0], t[2] - t[0]
+        a = 0.5 * abs(float(ux * vy - uy * vx))
+        c = t.mean(axis=0)
+        area += a
+        mx += a * c[0]
+        my += a * c[1]
+        # the second moments of a triangle: a/12 (sum x_i^2 + (sum x_i)^2)
+        sxx += a / 12 * (float(np.sum(t[:, 0] ** 2)) + float(np.sum(t[:, 0])) ** 2)
+        syy += a / 12 * (float(np.sum(t[:, 1] ** 2)) + float(np.sum(t[:, 1])) ** 2)
+    cx, cy = mx / area, my / area
+    ixx_area = syy - area * cy * cy           # about the centroid's x axis: y^2
+    iyy_area = sxx - area * cx * cx
+    rho = PART_MASS / area
+    mass = PART_MASS
+    thick = mass * h * h / 12
+    return mass, np.array([cx, cy]), np.array([rho * ixx_area + thick, rho * iyy_area + thick,
+                                               rho * (ixx_area + iyy_area)])
+
+
 def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
            preload: FloatArray, metres: float) -> tuple[Any, FloatArray]:
-    """The MJCF model: the part's triangles extruded, a finger per contact; and each
-    finger's servo stiffness (N/m)."""
+    """The MJCF model: the part's triangles (a constrained Delaunay triangulation)
+    extruded, a finger per contact; and each finger's servo stiffness (N/m)."""
     import shapely
-    from shapely.ops import triangulate
 
     mujoco = _mujoco()
     poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
@@ -237,31 +272,45 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     h = THICKNESS * size
     friction = f'friction="{max(mu, 1e-9):.9g} 0.005 0.0001" condim="{3 if mu > 0 else 1}"'
     assets, geoms = [], []
-    for k, tri in enumerate(t for t in triangulate(poly)
-                            if poly.contains(t.representative_point())):
-        xy = np.asarray(tri.exterior.coords)[:3] * metres
+    # the part as triangles that follow its edges and holes (MuJoCo collides convex
+    # pieces); a sliver of no volume is left out, its edges shared by its neighbours
+    pieces = shapely.get_parts(shapely.constrained_delaunay_triangles(poly))
+    floor = 1e-9 * polygon.size ** 2
+    tris = [np.asarray(t.exterior.coords)[:3] * metres for t in pieces if t.area > floor]
+    for k, xy in enumerate(tris):
         v = np.vstack([np.c_[xy, np.full(3, -h / 2)], np.c_[xy, np.full(3, h / 2)]])
-        assets.append(f'<mesh name="p{k}" vertex="{" ".join(f"{x:.12g}" for x in v.ravel())}"/>')
-        geoms.append(f'<geom type="mesh" mesh="p{k}" density="{DENSITY}" {friction}/>')
+        coords = " ".join(f"{x:.12g}" for x in v.ravel())
+        # (its inertia is the part's, given whole: a sliver's volume is not needed)
+        assets.append(f'<mesh name="p{k}" inertia="shell" vertex="{coords}"/>')
+        geoms.append(f'<geom type="mesh" mesh="p{k}" mass="0" {friction}/>')
+    mass, com, inertia = _prism_inertia(tris, h)
     r = TIP_RADIUS * size
     kp = preload / (SERVO_COMPLIANCE * size)
+    # each finger heavy enough that its servo's period spans SERVO_STEPS time steps
+    masses = np.maximum(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
     fingers, actuators = [], []
     for i, (c, n) in enumerate(zip(points, normals, strict=True)):
         n = n / np.linalg.norm(n)
         pos = c * metres + r * n
-        damping = 2 * math.sqrt(kp[i] * FINGER_MASS)
+        mf = float(masses[i])
+        tip = f"{0.4 * mf * r * r:.9g}"              # a solid sphere's moment
+        damping = 2 * math.sqrt(kp[i] * mf)
         fingers.append(
             f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} 0">'
+            f'<inertial pos="0 0 0" mass="{mf:.9g}" diaginertia="{tip} {tip} {tip}"/>'
             f'<joint name="j{i}" type="slide" axis="{-n[0]:.12g} {-n[1]:.12g} 0" '
             f'damping="{damping:.9g}"/>'
-            f'<geom type="sphere" size="{r:.9g}" mass="{FINGER_MASS}" {friction}/></body>')
+            f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
         actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
                          f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
                          f'forcelimited="true"/>')
-    xml = (f'<mujoco><option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
+    xml = (f'<mujoco><compiler inertiafromgeom="false"/>'
+           f'<option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
            f'impratio="10" noslip_iterations="20"/>'
            f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>'
            f'<asset>{"".join(assets)}</asset><worldbody><body name="part">'
+           f'<inertial pos="{com[0]:.12g} {com[1]:.12g} 0" mass="{mass:.12g}" '
+           f'diaginertia="{inertia[0]:.12g} {inertia[1]:.12g} {inertia[2]:.12g}"/>'
            f'<joint name="px" type="slide" axis="1 0 0"/>'
            f'<joint name="py" type="slide" axis="0 1 0"/>'
            f'<joint name="pz" type="hinge" axis="0 0 1"/>{"".join(geoms)}</body>'
