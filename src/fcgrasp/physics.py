@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from .core._checks import FloatArray, check_int, check_scalar
+from .core.tolerances import ON_EDGE_TOL, SQUEEZE_TOL, TINY, TOL
 from .errors import ArgumentError
 
 __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
@@ -76,6 +77,10 @@ TIP_RADIUS = 0.002
 #: :data:`SERVO_STEPS` time steps.
 FINGER_MASS = 0.1
 SERVO_STEPS = 20
+#: MuJoCo's torsional and rolling friction coefficients of the contacts (the motion is
+#: planar: neither acts, but MuJoCo takes three coefficients).
+SPIN_FRICTION = 0.005
+ROLL_FRICTION = 0.0001
 #: Millimetres and the other units a report may use, in metres.
 _METRES = {"mm": 1e-3, "cm": 1e-2, "m": 1.0, "in": 0.0254, "px": 0.25e-3}
 
@@ -139,7 +144,7 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
     import shapely
 
     poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
-    eps = 1e-6 * polygon.size
+    eps = ON_EDGE_TOL * polygon.size
     lines = [np.asarray(r, float) for r in regions]
     cum = [np.r_[0.0, np.cumsum(np.hypot(*np.diff(r, axis=0).T))] for r in lines]
     fixed = [0.0, 1.0, 0.5]
@@ -161,10 +166,10 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
             i = int(np.clip(np.searchsorted(c, s, side="right") - 1, 0, len(r) - 2))
             off = min(3 * TIP_RADIUS * polygon.size, (c[i + 1] - c[i]) / 3)
             s = min(max(s, c[i] + off), c[i + 1] - off)
-            t = (s - c[i]) / max(c[i + 1] - c[i], 1e-300)
+            t = (s - c[i]) / max(c[i + 1] - c[i], TINY)
             p = r[i] + t * (r[i + 1] - r[i])
             d = r[i + 1] - r[i]
-            n = np.array([d[1], -d[0]]) / max(float(np.hypot(*d)), 1e-300)
+            n = np.array([d[1], -d[0]]) / max(float(np.hypot(*d)), TINY)
             if poly.contains(shapely.Point(p + eps * 10 * n)):
                 n = -n                            # outward: away from the part
             pts.append(p)
@@ -204,7 +209,7 @@ def squeeze_forces(points: Any, normals: Any, mu: float, grip_force: float
     k, m = len(p), len(F)
     inward = -n / np.linalg.norm(n, axis=1)[:, None]
     normal_part = np.einsum("ij,ij->i", F, inward[o])       # each edge's normal share
-    scale = max(float(np.max(np.abs(p))), 1e-300)
+    scale = max(float(np.max(np.abs(p))), TINY)
     Wn = W.copy()
     Wn[:, 2] /= scale
     # variables: edge coefficients c (m), t; maximise t
@@ -225,7 +230,7 @@ def squeeze_forces(points: Any, normals: Any, mu: float, grip_force: float
     c[m] = -1.0
     res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(3),
                   bounds=[(0, None)] * m + [(None, None)], method="highs")
-    if res.status != 0 or res.x[m] <= 1e-6:
+    if res.status != 0 or res.x[m] <= SQUEEZE_TOL:
         return None
     normal = np.array([float(np.sum(res.x[:m][o == i] * normal_part[o == i]))
                        for i in range(k)])
@@ -270,12 +275,14 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
     size = polygon.size * metres
     h = THICKNESS * size
-    friction = f'friction="{max(mu, 1e-9):.9g} 0.005 0.0001" condim="{3 if mu > 0 else 1}"'
+    # (MuJoCo's torsional and rolling friction: small, for the planar contacts' sake)
+    friction = (f'friction="{max(mu, TOL):.9g} {SPIN_FRICTION} {ROLL_FRICTION}" '
+                f'condim="{3 if mu > 0 else 1}"')
     assets, geoms = [], []
     # the part as triangles that follow its edges and holes (MuJoCo collides convex
     # pieces); a sliver of no volume is left out, its edges shared by its neighbours
     pieces = shapely.get_parts(shapely.constrained_delaunay_triangles(poly))
-    floor = 1e-9 * polygon.size ** 2
+    floor = TOL * polygon.size ** 2
     tris = [np.asarray(t.exterior.coords)[:3] * metres for t in pieces if t.area > floor]
     for k, xy in enumerate(tris):
         v = np.vstack([np.c_[xy, np.full(3, -h / 2)], np.c_[xy, np.full(3, h / 2)]])
@@ -334,7 +341,7 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     p, n = np.asarray(points, float), np.asarray(normals, float)
     n = n / np.linalg.norm(n, axis=1)[:, None]
     u = np.asarray(direction, float)
-    metres = _METRES.get(units, 1e-3)
+    metres = _METRES.get(units, _METRES["mm"])
     preload = squeeze_forces(p, n, mu, grip_force)
     if preload is None:                       # not squeezable: every finger alike
         preload = np.full(len(p), float(grip_force))

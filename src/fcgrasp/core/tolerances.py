@@ -195,7 +195,7 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESO
            "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
            "INRADIUS_STEP", "FIT_ROUNDING", "PROJECTED_AXIS", "PLANAR_TOL",
            "ROUNDING_SHRINK", "SURFACE_TOL", "SURFACE_STEP",
-           "SURFACE_CENTRE", "REACH_PAD"]
+           "SURFACE_CENTRE", "REACH_PAD", "SQUEEZE_TOL"]
 
 #: Distinct alternatives: the upper bound of a region's overlap with another (its
 #: length inside the other's box, :meth:`fcgrasp.model.distinct._Overlaps.reach`) is
@@ -274,3 +274,8 @@ PAIR_PAD = 1e-9
 #: of a double, 2.2e-16): :func:`fcgrasp.model.distinct._shared_length` reads two regions'
 #: shared pieces only where the coordinates' rounding is small against the buffer's width.
 COORD_ROUNDING = 1e-15
+
+#: The stress test's squeeze (:func:`fcgrasp.physics.squeeze_forces`): a grasp whose
+#: smallest normal force in equilibrium is at most this share of the largest cannot be
+#: squeezed.
+SQUEEZE_TOL = 1e-6
