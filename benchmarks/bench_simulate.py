@@ -1,7 +1,8 @@
 """The physics stress test over the built-in parts and the drawings of the corpus: for each
 part and gripper, the top plans' grasps sampled in their regions (ends and middles
 first) under seeded disturbances in MuJoCo (:mod:`fcgrasp.physics`), and controls that
-are not force closure pushed along their escape motion.
+are not force closure pushed along their escape motion (the same contacts without
+friction, or a frictionless finger fewer; the jaw's poses without friction).
 
 Prints, per part and gripper: the runs, how many held every load up to their certified
 payload, the load at slip over the certified payload (least and median; a run that held
@@ -23,16 +24,31 @@ import numpy as np
 
 import fcgrasp as fc
 from fcgrasp.io.parts import demo_part, load_part
-from fcgrasp.physics import control, escape_direction, sample_grasps, simulate, stress_test
+from fcgrasp.physics import (
+    control,
+    escape_direction,
+    jaw_contacts,
+    jaw_of,
+    jaw_stress_test,
+    sample_grasps,
+    sample_poses,
+    simulate,
+    stress_test,
+)
 
 HERE = Path(__file__).resolve().parent
 GRIPPERS = {"2f": dict(fingers=2, mu=0.5), "3f": dict(fingers=3, mu=0.5),
-            "4f": dict(fingers=4)}
+            "4f": dict(fingers=4), "jaw": None}
 PARTS = ["blob", "quad", "triangle", "rectangle", "bracket", "cam", "washer"]
 
 
 def row(name: str, poly: object, gripper: str, args: argparse.Namespace) -> str:
-    plans = fc.plan(poly, top=args.top, **GRIPPERS[gripper])
+    kw = GRIPPERS[gripper]
+    if kw is None:                      # a jaw sized to the part
+        size = poly.size
+        kw = dict(gripper=fc.ParallelJaw(stroke=(0.05 * size, 1.5 * size),
+                                         pad_width=0.1 * size, mu=0.5))
+    plans = fc.plan(poly, top=args.top, **kw)
     if not plans:
         return f"| {name} | {gripper} | no plan | | | | |"
     start = time.process_time()
@@ -46,6 +62,17 @@ def row(name: str, poly: object, gripper: str, args: argparse.Namespace) -> str:
     rng = np.random.default_rng(2)
     slipped = total = 0
     for p in plans:
+        jaw = jaw_of(p)
+        if jaw is not None:             # the same poses without friction
+            for theta, offset in sample_poses((jaw[1], jaw[2]), 3, rng):
+                got = jaw_contacts(poly, jaw[0], theta, offset)
+                res = None if got is None else jaw_stress_test(
+                    poly, jaw[0], theta, offset, escape_direction(poly, got[0], got[1], 0.0),
+                    mu=0.0)
+                if res is not None:
+                    slipped += res.slip_load is not None
+                    total += 1
+            continue
         for pts, nrm in sample_grasps(poly, p.regions, 3, rng):
             cp, cn, cmu = control(pts, nrm, p.mu)
             res = stress_test(poly, cp, cn, cmu, escape_direction(poly, cp, cn, cmu))
@@ -62,6 +89,7 @@ def main() -> None:
     ap.add_argument("--directions", type=int, default=2)
     ap.add_argument("--top", type=int, default=2)
     ap.add_argument("--files", default="icons/hexagon.svg,icons/shield.svg,gears/teeth-12.dxf")
+    ap.add_argument("--grippers", default=",".join(GRIPPERS))
     args = ap.parse_args()
     print("| part | gripper | runs | held to the certified payload | slip / certified "
           "(least / median) | controls slipped | CPU per run |")
@@ -70,7 +98,7 @@ def main() -> None:
     parts += [(f, load_part(str(HERE / "corpus" / f)).polygon)
               for f in args.files.split(",") if f]
     for name, poly in parts:
-        for gripper in GRIPPERS:
+        for gripper in args.grippers.split(","):
             print(row(name, poly, gripper, args), flush=True)
 
 

@@ -141,18 +141,18 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
 
 @pytest.mark.parametrize(("argv", "words"), [
     (["simulate", "demo:blob"], "not a plan report"),
-    (["simulate", "{jaw}"], "parallel jaw"),
+    (["simulate", "{solid}"], "planar parts"),
     (["simulate", "{plan}", "--samples", "0"], "--samples"),
     (["simulate", "{plan}", "--grip-force", "-1"], "--grip-force"),
 ])
 def test_simulate_refuses_in_one_line(tmp_path, capsys, argv, words):
     plan = tmp_path / "plan.json"
     main(["plan", "demo:blob", "--top", "1", "--json", str(plan), "--quiet"])
-    jaw = tmp_path / "jaw.json"
-    main(["plan", "demo:rectangle", "--gripper", "jaw", "--stroke", "5,60", "--pad", "8",
-          "--top", "1", "--json", str(jaw), "--quiet"])
+    solid = tmp_path / "solid.json"
+    main(["plan", "demo:box", "--fingers", "2", "--soft", "--top", "1", "--json", str(solid),
+          "--quiet"])
     capsys.readouterr()
-    code = main([a.format(plan=plan, jaw=jaw) for a in argv])
+    code = main([a.format(plan=plan, solid=solid) for a in argv])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and words in err[0], err
 
@@ -184,3 +184,22 @@ def test_the_prism_inertia_is_the_closed_form_of_a_box_and_of_a_disc():
     mass, com, inertia = _prism_inertia(fan, h)
     assert com == pytest.approx([0.2, -0.1])
     assert inertia[2] == pytest.approx(mass * 0.05 ** 2 / 2, rel=1e-4)
+
+
+@pytest.mark.parametrize("name", ["quad", pytest.param("blob", marks=pytest.mark.slow),
+                                  pytest.param("triangle", marks=pytest.mark.slow)])
+def test_the_jaws_poses_hold_and_without_friction_slip(tmp_path, name):
+    """The parallel jaw: poses of its boxes (centre, corners, seeded) hold up to their
+    certified payload; the same poses without friction slip (here through the command
+    line, which runs those controls)."""
+    plan = tmp_path / "jaw.json"
+    assert main(["plan", f"demo:{name}", "--gripper", "jaw", "--stroke", "5,60", "--pad",
+                 "8", "--mu", "0.5", "--top", "2", "--json", str(plan), "--quiet"]) == 0
+    out = tmp_path / "stress.json"
+    assert main(["simulate", str(plan), "--samples", "4", "--directions", "2",
+                 "--workers", "1", "--json", str(out), "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    runs = sum(p["runs"] for p in doc["plans"])
+    held = sum(p["held"] for p in doc["plans"])
+    assert runs >= 12 and held >= 0.95 * runs, (held, runs)
+    assert doc["controls"] and all(c["slipped"] for c in doc["controls"])

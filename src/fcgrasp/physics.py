@@ -54,7 +54,7 @@ from .errors import ArgumentError
 
 __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
-           "animate"]
+           "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses"]
 
 #: The part slipped when its centre moved more than this share of its size ...
 SLIP_DISPLACEMENT = 0.01
@@ -77,6 +77,8 @@ TIP_RADIUS = 0.002
 #: :data:`SERVO_STEPS` time steps.
 FINGER_MASS = 0.1
 SERVO_STEPS = 20
+#: A jaw pad's depth along the closing direction (share of the part's size).
+PAD_DEPTH = 0.05
 #: MuJoCo's torsional and rolling friction coefficients of the contacts (the motion is
 #: planar: neither acts, but MuJoCo takes three coefficients).
 SPIN_FRICTION = 0.005
@@ -266,9 +268,11 @@ def _prism_inertia(tris: list[FloatArray], h: float) -> tuple[float, FloatArray,
 
 
 def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
-           preload: FloatArray, metres: float) -> tuple[Any, FloatArray]:
+           preload: FloatArray, metres: float, pads: Any = None) -> tuple[Any, FloatArray]:
     """The MJCF model: the part's triangles (a constrained Delaunay triangulation)
-    extruded, a finger per contact; and each finger's servo stiffness (N/m)."""
+    extruded, a finger per contact (or, with ``pads`` = ``(jaw, theta, offset, top,
+    bottom, grip)``, the jaw's two flat pads); and each finger's servo stiffness
+    (N/m)."""
     import shapely
 
     mujoco = _mujoco()
@@ -311,6 +315,8 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
         actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
                          f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
                          f'forcelimited="true"/>')
+    if pads is not None:
+        fingers, actuators = _pad_bodies(polygon, pads, metres, h, friction)
     xml = (f'<mujoco><compiler inertiafromgeom="false"/>'
            f'<option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
            f'impratio="10" noslip_iterations="20"/>'
@@ -326,6 +332,38 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     return mujoco.MjModel.from_xml_string(xml), kp
 
 
+def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str
+                ) -> tuple[list[str], list[str]]:
+    """The jaw's pads as MJCF bodies: boxes :data:`PAD_DEPTH` of the part's size deep,
+    the pad's width wide, their faces at the pads' stops, each on a slide along the
+    closing direction driven by a servo that squeezes with ``grip`` and saturates at
+    twice it."""
+    jaw, theta, offset, top, bottom, grip = pads
+    size = polygon.size * metres
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    c0 = np.asarray(polygon.centroid, float) * metres
+    depth = PAD_DEPTH * size
+    kp = grip / (SERVO_COMPLIANCE * size)
+    mass = max(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
+    quat = f"{math.cos(theta / 2):.12g} 0 0 {math.sin(theta / 2):.12g}"
+    box = f"{depth / 2:.9g} {jaw.pad_width * metres / 2:.9g} {0.6 * h:.9g}"
+    moment = f"{mass * (depth ** 2 + (jaw.pad_width * metres) ** 2) / 12:.9g}"
+    bodies, actuators = [], []
+    for i, (stop, side) in enumerate(((top, 1.0), (bottom, -1.0))):
+        pos = c0 + offset * metres * n + (stop * metres + side * depth / 2) * u
+        bodies.append(
+            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} 0" quat="{quat}">'
+            f'<inertial pos="0 0 0" mass="{mass:.9g}" diaginertia="{moment} {moment} '
+            f'{moment}"/>'
+            f'<joint name="j{i}" type="slide" axis="{-side:.0f} 0 0" '
+            f'damping="{2 * math.sqrt(kp * mass):.9g}"/>'
+            f'<geom type="box" size="{box}" {friction}/></body>')
+        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp:.9g}" '
+                         f'forcerange="{-2 * grip:.9g} {2 * grip:.9g}" forcelimited="true"/>')
+    return bodies, actuators
+
+
 def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
                 grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
                 certified: float | None = None, record: bool = False) -> StressResult:
@@ -337,7 +375,6 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     displacement, rotation in degrees, and the displacement's x and y)."""
     from .model.loads import Load, grasp_payload
 
-    mujoco = _mujoco()
     p, n = np.asarray(points, float), np.asarray(normals, float)
     n = n / np.linalg.norm(n, axis=1)[:, None]
     u = np.asarray(direction, float)
@@ -354,6 +391,15 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
                     torque=(float(u[2]), float(u[2])))
         cert = float(grasp_payload(p, -n, mu, load, force_limit=list(preload)).scale)
     model, kp = _model(polygon, p, n, mu, preload, metres)
+    return _run(model, polygon, preload, kp, metres, u, cert, ramp, grip_force, record, p,
+                n, preload)
+
+
+def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: float,
+         u: FloatArray, cert: float, ramp: float, grip_force: float, record: bool,
+         p: FloatArray, n: FloatArray, grips: FloatArray) -> StressResult:
+    """The squeeze, then the ramp of the disturbance ``u`` until the part slips."""
+    mujoco = _mujoco()
     data = mujoco.MjData(model)
     data.ctrl[:] = preload / kp
     steps = int(SETTLE_TIME / TIMESTEP)
@@ -390,9 +436,81 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
             slip = load_now
             break
     dq = data.qpos[:3] - q0
-    return StressResult(p, n, preload, cert, slip, float(math.hypot(dq[0], dq[1])) / metres,
+    return StressResult(p, n, grips, cert, slip, float(math.hypot(dq[0], dq[1])) / metres,
                         float(math.degrees(abs(dq[2]))), settle, u,
                         np.array(hist).reshape(-1, 6))
+
+
+# ----------------------------------------------------------------------------- the jaw
+
+def jaw_contacts(polygon: Any, jaw: Any, theta: float, offset: float
+                 ) -> tuple[FloatArray, FloatArray, FloatArray, float, float] | None:
+    """What the jaw's pads touch at the pose ``(theta, offset)``
+    (:func:`fcgrasp.grippers.jaw.jaw_poses`): the contact points, the part's outward
+    normals there (a pad pushes along the pad's normal, or a pad's corner along the
+    edge's), which pad each is on (0: pad A, 1: pad B), and the pads' stops along
+    ``u``; None where the pose does not hold."""
+    from .grippers.jaw import jaw_poses
+
+    pc = jaw_poses(polygon, jaw, [theta], [offset])
+    if not bool(pc.holds[0]):
+        return None
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    c0 = np.asarray(polygon.centroid, float)
+    pts, nrm, pad = [], [], []
+    for k, (stop, lat, psi, push) in enumerate(((pc.top[0], pc.lat_a[0], pc.psi_a[0], -u),
+                                                (pc.bottom[0], pc.lat_b[0], pc.psi_b[0], u))):
+        for (lo, hi), a in zip(lat, psi, strict=True):
+            if not np.isfinite(lo):
+                continue
+            f = math.cos(a) * push + math.sin(a) * n       # the contact force's line
+            for x in np.unique([lo, hi]):
+                pts.append(c0 + stop * u + x * n)
+                nrm.append(-f)
+                pad.append(k)
+    return (np.array(pts), np.array(nrm), np.array(pad), float(pc.top[0]),
+            float(pc.bottom[0]))
+
+
+def _jaw_model(polygon: Any, jaw: Any, theta: float, offset: float, top: float,
+               bottom: float, mu: float, grip: float, metres: float) -> tuple[Any, float]:
+    """The part and the jaw's two flat pads (boxes on slides along the closing
+    direction, each a stiff servo), as :func:`_model` builds fingers."""
+    model, _ = _model(polygon, np.zeros((0, 2)), np.zeros((0, 2)), mu, np.zeros(0),
+                      metres, pads=(jaw, theta, offset, top, bottom, grip))
+    size = polygon.size * metres
+    return model, grip / (SERVO_COMPLIANCE * size)
+
+
+def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, direction: Any,
+                    grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
+                    mu: float | None = None, record: bool = False) -> StressResult | None:
+    """One pose of a parallel jaw (flat pads of ``jaw.pad_width``, friction ``jaw.mu``
+    or ``mu``) under a disturbance, as :func:`stress_test` runs fingers: each pad
+    squeezes with ``grip_force``; the certified payload is that of the pose's contacts
+    (:func:`fcgrasp.grasp_payload`, each pad's force shared by its contact points).
+    None where the pose does not hold by the jaw's own model."""
+    from .model.loads import Load, grasp_payload
+
+    got = jaw_contacts(polygon, jaw, theta, offset)
+    if got is None:
+        return None
+    pts, nrm, pad, top, bottom = got
+    mu_v = float(jaw.mu if mu is None else mu)
+    u = np.asarray(direction, float)
+    per = [grip_force / int(np.sum(pad == k)) for k in pad]
+    cx, cy = (float(v) for v in polygon.centroid)
+    load = Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
+                torque=(float(u[2]), float(u[2])))
+    cert = float(grasp_payload(pts, -nrm, mu_v, load, force_limit=per).scale) \
+        if mu_v > 0 else 0.0
+    metres = _METRES.get(units, _METRES["mm"])
+    model, kp = _jaw_model(polygon, jaw, theta, offset, top, bottom, mu_v, grip_force,
+                           metres)
+    preload = np.full(2, float(grip_force))
+    return _run(model, polygon, preload, np.full(2, kp), metres, u, cert, ramp,
+                grip_force, record, pts, nrm, np.asarray(per, float))
 
 
 def _directions(rng: np.random.Generator, count: int, size: float) -> FloatArray:
@@ -436,26 +554,75 @@ def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> Floa
     return u / math.sqrt(u[0] ** 2 + u[1] ** 2 + (u[2] / size) ** 2)
 
 
-def _one(args: tuple[Any, ...]) -> StressResult:
-    return stress_test(*args)
+def _one(args: tuple[Any, ...]) -> StressResult | None:
+    if args[0] == "jaw":
+        return jaw_stress_test(*args[1:])
+    return stress_test(*args[1:])
+
+
+def jaw_of(plan: Any) -> tuple[Any, tuple[float, float], tuple[float, float]] | None:
+    """A jaw plan's jaw and its box of poses (``theta``, ``offset``), from a
+    :class:`~fcgrasp.grippers.jaw.JawPlan` or a report's grasp; None for fingers.  An
+    internal grip (opening in a hole) is refused."""
+    if isinstance(plan, dict):
+        if plan.get("gripper") != "parallel_jaw":
+            return None
+        if plan.get("mode", "external") != "external":
+            raise ArgumentError("the stress test runs the jaw's external grips so far, not "
+                                "one opening in a hole", "plans")
+        from .grippers.jaw import ParallelJaw
+
+        jaw = ParallelJaw(stroke=tuple(plan["stroke"]), pad_width=plan["pad_width"],
+                          mu=plan["mu"])
+        return jaw, tuple(plan["theta_rad"]), tuple(plan["offset"])
+    if not hasattr(plan, "jaw"):
+        return None
+    if plan.mode != "external":
+        raise ArgumentError("the stress test runs the jaw's external grips so far, not one "
+                            "opening in a hole", "plans")
+    return plan.jaw, tuple(plan.theta), tuple(plan.offset)
+
+
+def sample_poses(box: tuple[tuple[float, float], tuple[float, float]], count: int,
+                 rng: np.random.Generator) -> list[tuple[float, float]]:
+    """``count`` poses of a jaw's box: its centre, its corners pulled in by 2 % of each
+    side, then seeded poses inside."""
+    (t0, t1), (c0, c1) = box
+    dt, dc = 0.02 * (t1 - t0), 0.02 * (c1 - c0)
+    fixed = [((t0 + t1) / 2, (c0 + c1) / 2), (t0 + dt, c0 + dc), (t1 - dt, c1 - dc),
+             (t0 + dt, c1 - dc), (t1 - dt, c0 + dc)]
+    out = fixed[:count]
+    while len(out) < count:
+        out.append((float(rng.uniform(t0, t1)), float(rng.uniform(c0, c1))))
+    return out
 
 
 def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
              directions: int = 2, seed: int = 0, units: str = "mm",
              workers: int | None = None,
              progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
-    """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, or
-    a report's grasp: regions, normals and mu): ``samples`` grasps in its regions
-    (:func:`sample_grasps`: ends and middle first), each under ``directions`` seeded
-    disturbances, run on ``workers`` processes (default: every core).  One summary per
-    plan: its rank, the grasps (:meth:`StressResult.to_dict`), how many held up to
-    their certified payload and the smallest ratio of slip load to certified payload."""
+    """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, a
+    :class:`~fcgrasp.JawPlan`, or a report's grasp of either): ``samples`` grasps in
+    its regions (:func:`sample_grasps`: ends and middle first) or poses of its box
+    (:func:`sample_poses`), each under ``directions`` seeded disturbances, run on
+    ``workers`` processes (default: every core).  One summary per plan: its rank, the
+    grasps (:meth:`StressResult.to_dict`), how many held up to their certified payload
+    and the smallest ratio of slip load to certified payload."""
     check_int(samples, "samples", minimum=1)
     check_int(directions, "directions", minimum=1)
     check_scalar(grip_force, "grip_force", positive=True)
     rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
-    jobs, owners = [], []
+    jobs: list[tuple[Any, ...]] = []
+    owners: list[int] = []
     for r, plan in enumerate(plans):
+        jaw = jaw_of(plan)
+        if jaw is not None:
+            for theta, offset in sample_poses((jaw[1], jaw[2]), samples, rng):
+                for u in _directions(rng, directions, polygon.size):
+                    jobs.append(("jaw", polygon, jaw[0], theta, offset, u, grip_force, 3.0,
+                                 units))
+                    owners.append(r)
+            continue
         regions = plan["regions"] if isinstance(plan, dict) else plan.regions
         mu = float(plan["mu"] if isinstance(plan, dict) else plan.mu)
         if isinstance(plan, dict) and "facets" in plan or not len(regions) or \
@@ -465,9 +632,9 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
         given = plan["normals"] if isinstance(plan, dict) else plan.normals
         for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
             for u in _directions(rng, directions, polygon.size):
-                jobs.append((polygon, pts, nrm, mu, u, grip_force, 3.0, units))
+                jobs.append(("fingers", polygon, pts, nrm, mu, u, grip_force, 3.0, units))
                 owners.append(r)
-    results: list[StressResult] = []
+    results: list[StressResult | None] = []
     if workers == 1 or len(jobs) < 4:
         for k, job in enumerate(jobs):
             results.append(_one(job))
@@ -481,7 +648,9 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
                     progress(k + 1, len(jobs))
     out = []
     for r in range(len(plans)):
-        mine = [res for res, o in zip(results, owners, strict=True) if o == r]
+        # (a jaw's pose that does not hold by its own model is left out)
+        mine = [res for res, o in zip(results, owners, strict=True)
+                if o == r and res is not None]
         ratios = [res.slip_load / res.certified_payload for res in mine
                   if res.slip_load is not None and res.certified_payload > 0]
         dirs = np.unique(np.array([m.direction for m in mine]).round(12), axis=0)

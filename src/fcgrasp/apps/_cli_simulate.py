@@ -83,9 +83,11 @@ def _plans_of(args: Any) -> tuple[Any, list[Any], str]:
                            "source")
         polygon = Polygon(part["vertices"], part.get("holes") or [])
         grasps = report["grasps"]
-        if any("regions" not in g or "normals" not in g for g in grasps):
-            raise CliError("the stress test runs point fingers so far: the report's grasps "
-                           "are a parallel jaw's boxes", "source")
+        for g in grasps:
+            if g.get("gripper") != "parallel_jaw" and ("regions" not in g
+                                                        or "normals" not in g):
+                raise CliError("the stress test runs point fingers and the parallel jaw: "
+                               "the report's grasps are neither", "source")
         return polygon, grasps, str(report.get("units") or "mm")
     if not args.contacts:
         raise CliError(f"{args.source} is not a plan report: give a report of fcgrasp plan "
@@ -117,7 +119,11 @@ def cmd_simulate(args: Any) -> int:
         SLIP_ROTATION_DEG,
         control,
         escape_direction,
+        jaw_contacts,
+        jaw_of,
+        jaw_stress_test,
         sample_grasps,
+        sample_poses,
         simulate,
         stress_test,
     )
@@ -138,6 +144,19 @@ def cmd_simulate(args: Any) -> int:
     rng = np.random.default_rng(args.seed + 1)
     controls = []
     for r, plan in enumerate(plans):
+        jaw = jaw_of(plan)
+        if jaw is not None:             # the same poses without friction
+            for theta, offset in sample_poses((jaw[1], jaw[2]), 3, rng):
+                got = jaw_contacts(polygon, jaw[0], theta, offset)
+                if got is None:
+                    continue
+                res_j = jaw_stress_test(polygon, jaw[0], theta, offset,
+                                        escape_direction(polygon, got[0], got[1], 0.0),
+                                        grip_force=args.grip_force, units=units, mu=0.0)
+                if res_j is not None:
+                    controls.append({"rank": r + 1, "mu": 0.0, **res_j.to_dict(),
+                                     "slipped": res_j.slip_load is not None})
+            continue
         for pts, nrm in sample_grasps(polygon, plan["regions"], 3, rng, plan["normals"]):
             cp, cn, cmu = control(pts, nrm, float(plan["mu"]))
             res = stress_test(polygon, cp, cn, cmu, escape_direction(polygon, cp, cn, cmu),
@@ -153,13 +172,20 @@ def cmd_simulate(args: Any) -> int:
     def gif(out: Any) -> None:
         from ..physics import animate
 
-        pts, nrm = sample_grasps(polygon, plans[0]["regions"], 3, np.random.default_rng(0),
-                                 plans[0]["normals"])[2]
         first: dict[str, Any] = results[0]["grasps"][0]["wrench_direction"]
         u = np.array([*first["force"], first["torque"]])
-        res = stress_test(polygon, pts, nrm, float(plans[0]["mu"]), u,
-                          grip_force=args.grip_force, units=units, record=True)
-        out.add(args.gif, lambda tmp: animate(polygon, res, tmp, units=units))
+        jaw = jaw_of(plans[0])
+        if jaw is not None:
+            theta, offset = sample_poses((jaw[1], jaw[2]), 1, rng)[0]
+            res = jaw_stress_test(polygon, jaw[0], theta, offset, u,
+                                  grip_force=args.grip_force, units=units, record=True)
+        else:
+            pts, nrm = sample_grasps(polygon, plans[0]["regions"], 3,
+                                     np.random.default_rng(0), plans[0]["normals"])[2]
+            res = stress_test(polygon, pts, nrm, float(plans[0]["mu"]), u,
+                              grip_force=args.grip_force, units=units, record=True)
+        if res is not None:
+            out.add(args.gif, lambda tmp: animate(polygon, res, tmp, units=units))
 
     _write_outputs([(args.json, dumps(doc))] if args.json else [],
                    gif if args.gif else None)
