@@ -141,7 +141,7 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
 
 @pytest.mark.parametrize(("argv", "words"), [
     (["simulate", "demo:blob"], "not a plan report"),
-    (["simulate", "{solid}"], "planar parts"),
+    (["simulate", "{solid}", "--gif", "x.gif"], "planar parts"),
     (["simulate", "{plan}", "--samples", "0"], "--samples"),
     (["simulate", "{plan}", "--grip-force", "-1"], "--grip-force"),
 ])
@@ -203,3 +203,40 @@ def test_the_jaws_poses_hold_and_without_friction_slip(tmp_path, name):
     held = sum(p["held"] for p in doc["plans"])
     assert runs >= 12 and held >= 0.95 * runs, (held, runs)
     assert doc["controls"] and all(c["slipped"] for c in doc["controls"])
+
+
+@pytest.mark.parametrize(("name", "argv"), [
+    ("box", ["--fingers", "2", "--soft"]), ("prism", ["--fingers", "3"]),
+    pytest.param("cylinder", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
+    pytest.param("box", ["--fingers", "3"], marks=pytest.mark.slow)])
+def test_solids_hold_up_to_their_certified_payload_and_controls_slip(tmp_path, name, argv):
+    """Convex solids, soft fingers and three fingers with friction: the regions' grasps
+    hold to their certified payload (the Ferrari-Canny L1 measure times the least
+    squeeze), the same contacts without friction slip."""
+    plan = tmp_path / "plan.json"
+    assert main(["plan", f"demo:{name}", *argv, "--mu", "0.5", "--top", "2", "--json",
+                 str(plan), "--quiet"]) == 0
+    out = tmp_path / "stress.json"
+    assert main(["simulate", str(plan), "--samples", "3", "--directions", "2", "--workers",
+                 "1", "--json", str(out), "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    runs = sum(p["runs"] for p in doc["plans"])
+    held = sum(p["held"] for p in doc["plans"])
+    assert runs == 12 and held >= 0.95 * runs, (held, runs)
+    for p in doc["plans"]:
+        for g in p["grasps"]:
+            assert g["certified_payload"] > 0 and len(g["wrench_direction"]["torque"]) == 3
+    assert doc["controls"] and all(c["slipped"] for c in doc["controls"])
+
+
+def test_a_non_convex_solid_and_the_solid_jaw_are_refused_in_one_line(tmp_path, capsys):
+    for part, argv, words in (("demo:angle", ["--fingers", "3"], "convex"),
+                              ("demo:box", ["--gripper", "jaw", "--stroke", "5,60",
+                                            "--pad", "4"], "not the jaw")):
+        plan = tmp_path / "plan.json"
+        assert main(["plan", part, *argv, "--mu", "0.5", "--top", "1", "--json", str(plan),
+                     "--quiet"]) == 0
+        capsys.readouterr()
+        code = main(["simulate", str(plan), "--samples", "1", "--workers", "1", "--quiet"])
+        err = capsys.readouterr().err.strip().splitlines()
+        assert code == 2 and len(err) == 1 and words in err[0], err

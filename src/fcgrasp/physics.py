@@ -54,7 +54,9 @@ from .errors import ArgumentError
 
 __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
-           "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses"]
+           "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
+           "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
+           "solid_escape"]
 
 #: The part slipped when its centre moved more than this share of its size ...
 SLIP_DISPLACEMENT = 0.01
@@ -118,8 +120,15 @@ class StressResult:
                 "certified_payload": self.certified_payload, "slip_load": self.slip_load,
                 "displacement": self.displacement, "rotation_deg": self.rotation_deg,
                 "settle_motion": self.settle_motion,
-                "wrench_direction": {"force": self.direction[:2].tolist(),
-                                     "torque": float(self.direction[2])}}
+                "wrench_direction": _wrench_dict(self.direction)}
+
+
+def _wrench_dict(d: FloatArray) -> dict[str, Any]:
+    """A disturbance direction as the JSON says it: force and torque per newton (a
+    planar torque is a number, a solid's a vector)."""
+    if len(d) == 6:
+        return {"force": d[:3].tolist(), "torque": d[3:].tolist()}
+    return {"force": d[:2].tolist(), "torque": float(d[2])}
 
 
 def _mujoco() -> Any:
@@ -513,6 +522,223 @@ def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, directi
                 grip_force, record, pts, nrm, np.asarray(per, float))
 
 
+# ----------------------------------------------------------------------------- solids
+
+#: A soft fingertip's torsional friction: the moment about the normal it resists per
+#: newton of normal force, as a share of the part's size (MuJoCo's torsional friction
+#: coefficient, and the certificate's ``torsion``).
+TORSION = 0.005
+
+
+def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_force: float,
+                  center: Any, radius: float) -> FloatArray | None:
+    """:func:`squeeze_forces` on a solid: the normal forces of fingers (point contacts
+    with friction, or soft with ``torsion``) in equilibrium within their pyramids of
+    :func:`fcgrasp.spatial.contacts.contact_wrench_generators` (unit normal components),
+    the smallest as large as it can be, scaled so the largest is ``grip_force``."""
+    from scipy.optimize import linprog
+
+    from .spatial.contacts import contact_wrench_generators
+
+    gens = contact_wrench_generators(points, inward, mu, torsion, center=center,
+                                     radius=radius)                  # (k, g, 6)
+    k, g = gens.shape[:2]
+    m = k * g
+    A_eq = np.zeros((6, m + 1))
+    A_eq[:, :m] = gens.reshape(m, 6).T
+    A_ub, b_ub = [], []
+    for i in range(k):
+        row = np.zeros(m + 1)
+        row[i * g:(i + 1) * g] = -1.0
+        row[m] = 1.0                                       # t <= normal_i
+        A_ub.append(row)
+        b_ub.append(0.0)
+        row = np.zeros(m + 1)
+        row[i * g:(i + 1) * g] = 1.0                       # normal_i <= 1
+        A_ub.append(row)
+        b_ub.append(1.0)
+    c = np.zeros(m + 1)
+    c[m] = -1.0
+    res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(6),
+                  bounds=[(0, None)] * m + [(None, None)], method="highs")
+    if res.status != 0 or res.x[m] <= SQUEEZE_TOL:
+        return None
+    normal = res.x[:m].reshape(k, g).sum(axis=1)
+    return np.asarray(grip_force * normal / normal.max(), float)
+
+
+def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
+                      soft: bool = False, grip_force: float = 10.0, ramp: float = 3.0,
+                      record: bool = False) -> StressResult:
+    """One grasp of a convex solid (points and outward normals in the solid's units;
+    ``soft``: soft fingers with :data:`TORSION`) under a disturbance ``direction`` (a
+    force and a torque per newton, ``(fx, fy, fz, tx, ty, tz)``, the torque in N x the
+    solid's unit), as :func:`stress_test` runs a planar part: the part free in space
+    (no gravity), each finger a sphere on a servoed slide along its inward normal.  The
+    certified payload is the grasp's Ferrari-Canny L1 measure
+    (:func:`fcgrasp.spatial.spatial_quality`, pyramids inscribed in the cones; torques
+    over the part's size) times the smallest squeeze: the normal forces of a wrench
+    within the measure's ball sum to at most that, so no finger exceeds its own."""
+    from .spatial.quality import spatial_quality
+
+    mujoco = _mujoco()
+    mesh = solid.mesh
+    if not bool(mesh.is_convex):
+        raise ArgumentError("the stress test of a solid needs a convex mesh so far (MuJoCo "
+                            "collides a mesh's convex hull)", "solid")
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1)[:, None]
+    u = np.asarray(direction, float)
+    metres = _METRES.get(str(solid.units), _METRES["mm"])
+    size_u = float(np.linalg.norm(mesh.extents))
+    size = size_u * metres
+    centre = np.asarray(solid.center, float)
+    gamma = TORSION * size_u if soft else 0.0
+    preload = solid_squeeze(p, -n, mu, gamma, grip_force, centre, size_u)
+    if preload is None:
+        preload = np.full(len(p), float(grip_force))
+        cert = 0.0
+    else:
+        eps = spatial_quality(p, -n, mu, gamma, center=centre, radius=size_u).epsilon_l1
+        cert = float(eps * preload.min())
+    kp = preload / (SERVO_COMPLIANCE * size)
+    masses = np.maximum(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
+    r = TIP_RADIUS * size
+    spin = gamma * metres
+    friction = (f'friction="{max(mu, TOL):.9g} {max(spin, TOL):.9g} {ROLL_FRICTION}" '
+                f'condim="{(4 if soft else 3) if mu > 0 else 1}"')
+    v = np.asarray(mesh.vertices, float) * metres
+    verts = " ".join(f"{x:.12g}" for x in v.ravel())
+    faces = " ".join(str(int(i)) for i in np.asarray(mesh.faces).ravel())
+    fingers, actuators = [], []
+    for i, (c, nn) in enumerate(zip(p, n, strict=True)):
+        pos = c * metres + r * nn
+        mf = float(masses[i])
+        tip = f"{0.4 * mf * r * r:.9g}"
+        fingers.append(
+            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} {pos[2]:.12g}">'
+            f'<inertial pos="0 0 0" mass="{mf:.9g}" diaginertia="{tip} {tip} {tip}"/>'
+            f'<joint name="j{i}" type="slide" axis="{-nn[0]:.12g} {-nn[1]:.12g} '
+            f'{-nn[2]:.12g}" damping="{2 * math.sqrt(kp[i] * mf):.9g}"/>'
+            f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
+        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
+                         f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
+                         f'forcelimited="true"/>')
+    xml = (f'<mujoco><option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
+           f'impratio="10" noslip_iterations="20"/>'
+           f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>'
+           f'<asset><mesh name="part" vertex="{verts}" face="{faces}"/></asset>'
+           f'<worldbody><body name="part"><freejoint/>'
+           f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/></body>'
+           f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
+           f'</mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    data.ctrl[:] = preload / kp
+    steps = int(SETTLE_TIME / TIMESTEP)
+    for _ in range(steps // 2):
+        mujoco.mj_step(model, data)
+    data.ctrl[:] += (preload - data.actuator_force) / kp
+    for _ in range(steps - steps // 2):
+        mujoco.mj_step(model, data)
+    body = model.body("part").id
+    x0, q0 = data.xpos[body].copy(), data.xquat[body].copy()
+
+    def motion() -> tuple[float, float]:
+        dq = float(abs(np.dot(data.xquat[body], q0)))
+        return float(np.linalg.norm(data.xpos[body] - x0)), 2 * math.acos(min(dq, 1.0))
+
+    settle = float(np.linalg.norm(x0 - model.qpos0[:3]))
+    top = ramp * cert if cert > 0 else float(grip_force)
+    n_ramp = int(RAMP_TIME / TIMESTEP)
+    slip = None
+    if settle > SLIP_DISPLACEMENT * size:
+        slip, n_ramp = 0.0, 0
+    for k in range(1, n_ramp + 1):
+        load_now = top * k / n_ramp
+        data.xfrc_applied[body, :3] = load_now * u[:3]
+        data.xfrc_applied[body, 3:] = load_now * u[3:] * metres
+        mujoco.mj_step(model, data)
+        moved, turned = motion()
+        if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
+            slip = load_now
+            break
+    moved, turned = motion()
+    return StressResult(p, n, preload, cert, slip, moved / metres, math.degrees(turned),
+                        settle / metres, u)
+
+
+def solid_plan_of(plan: Any) -> tuple[list[FloatArray], list[FloatArray], float, bool]:
+    """A solid's finger plan (a plan object or a report's grasp) as its regions'
+    corners, the regions' outward normals (per corner for a region across facets), its
+    friction and whether the fingers are soft; a jaw is refused."""
+    get = (lambda k, d=None: plan.get(k, d)) if isinstance(plan, dict) else \
+        (lambda k, d=None: getattr(plan, k, d))
+    kind = get("contact_type")
+    if isinstance(plan, dict):
+        outward = [np.asarray(nn, float) for nn in plan["normals"]]
+    else:                                     # a plan object's normals point inward
+        outward = [-np.asarray(nn, float) for nn in plan.normals]
+        kind = "soft" if type(plan).__name__.startswith(("SoftPair", "SurfacePair")) \
+            else "jaw" if hasattr(plan, "axis") else "friction"
+    if kind == "jaw":
+        raise ArgumentError("the stress test of a solid runs fingers so far, not the jaw",
+                            "plans")
+    regions = [np.asarray(r, float) for r in get("regions")]
+    return regions, outward, float(get("mu")), kind == "soft"
+
+
+def sample_solid_grasps(plan: Any, count: int, rng: np.random.Generator
+                        ) -> list[tuple[FloatArray, FloatArray]]:
+    """``count`` grasps of a solid's finger plan: the regions' centres, then each
+    region's corners pulled a tenth of the way to its centre, then seeded points (convex
+    combinations of the corners); each with its region's outward normal."""
+    regions, outward, _, _ = solid_plan_of(plan)
+    out = []
+    for k in range(count):
+        pts = []
+        for reg in regions:
+            centre = reg.mean(axis=0)
+            if k == 0:
+                pts.append(centre)
+            elif k <= len(reg):
+                pts.append(reg[k - 1] + 0.1 * (centre - reg[k - 1]))
+            else:
+                w = rng.dirichlet(np.ones(len(reg)))
+                pts.append(w @ reg)
+        out.append((np.array(pts), np.array([nn / np.linalg.norm(nn) for nn in outward])))
+    return out
+
+
+def solid_escape(solid: Any, points: Any, normals: Any, mu: float, soft: bool) -> FloatArray:
+    """A disturbance (force and torque per newton, as :func:`solid_stress_test` takes
+    it) that the grasp does not resist (:func:`fcgrasp.spatial.closure_margin`'s
+    ``unresisted`` wrench); an ``ArgumentError`` for a grasp in force closure."""
+    from .spatial.closure import closure_margin
+
+    size_u = float(np.linalg.norm(solid.mesh.extents))
+    gamma = TORSION * size_u if soft else 0.0
+    verdict = closure_margin(points, -np.asarray(normals, float), mu, gamma,
+                             center=np.asarray(solid.center, float), radius=size_u)
+    if verdict.closure or verdict.unresisted is None:
+        raise ArgumentError("the grasp is force closure: it has no escape", "points")
+    w = np.asarray(verdict.unresisted, float)
+    return np.r_[w[:3], w[3:] * size_u]
+
+
+def _is_solid(part: Any) -> bool:
+    return type(part).__module__.startswith("fcgrasp.spatial")
+
+
+def _directions6(rng: np.random.Generator, count: int, size: float) -> FloatArray:
+    """``count`` seeded unit disturbances on a solid: a force and a torque whose arm is
+    the part's size (``|(f, tau / size)| = 1``)."""
+    u = rng.normal(size=(count, 6))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    u[:, 3:] *= size
+    return u
+
+
 def _directions(rng: np.random.Generator, count: int, size: float) -> FloatArray:
     """``count`` seeded unit disturbance directions: a force and a torque whose arm is
     the part's size (``|(fx, fy, tau / size)| = 1``)."""
@@ -557,6 +783,8 @@ def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> Floa
 def _one(args: tuple[Any, ...]) -> StressResult | None:
     if args[0] == "jaw":
         return jaw_stress_test(*args[1:])
+    if args[0] == "solid":
+        return solid_stress_test(*args[1:])
     return stress_test(*args[1:])
 
 
@@ -614,7 +842,16 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
     jobs: list[tuple[Any, ...]] = []
     owners: list[int] = []
+    solid = _is_solid(polygon)
     for r, plan in enumerate(plans):
+        if solid:
+            _, _, mu_s, soft = solid_plan_of(plan)
+            size_u = float(np.linalg.norm(polygon.mesh.extents))
+            for pts, nrm in sample_solid_grasps(plan, samples, rng):
+                for u in _directions6(rng, directions, size_u):
+                    jobs.append(("solid", polygon, pts, nrm, mu_s, u, soft, grip_force, 3.0))
+                    owners.append(r)
+            continue
         jaw = jaw_of(plan)
         if jaw is not None:
             for theta, offset in sample_poses((jaw[1], jaw[2]), samples, rng):
@@ -657,8 +894,7 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
         out.append({"rank": r + 1, "grasps": [{"rank": r + 1, **m.to_dict()} for m in mine],
                     "held": sum(m.held for m in mine), "runs": len(mine),
                     "worst_ratio": min(ratios) if ratios else None,
-                    "wrench_directions": [{"force": d[:2].tolist(), "torque": float(d[2])}
-                                          for d in dirs]})
+                    "wrench_directions": [_wrench_dict(d) for d in dirs]})
     return out
 
 

@@ -79,8 +79,14 @@ def _plans_of(args: Any) -> tuple[Any, list[Any], str]:
             raise CliError("--contacts goes with a part, not with a plan report", "contacts")
         part = report.get("part") or {}
         if part.get("solid"):
-            raise CliError("the stress test runs planar parts so far, not a solid's report",
-                           "source")
+            from ..io.meshes import read_solid
+
+            path = (report.get("source") or {}).get("path")
+            if not path:
+                raise CliError("the solid's report does not say where its mesh is (source."
+                               "path)", "source")
+            solid = read_solid(path, units=report.get("units"))
+            return solid, report["grasps"], str(report.get("units") or "mm")
         polygon = Polygon(part["vertices"], part.get("holes") or [])
         grasps = report["grasps"]
         for g in grasps:
@@ -124,7 +130,10 @@ def cmd_simulate(args: Any) -> int:
         jaw_stress_test,
         sample_grasps,
         sample_poses,
+        sample_solid_grasps,
         simulate,
+        solid_escape,
+        solid_stress_test,
         stress_test,
     )
 
@@ -136,6 +145,9 @@ def cmd_simulate(args: Any) -> int:
         raise CliError(f"--grip-force must be a positive number of newtons, got "
                        f"{args.grip_force}", "grip_force")
     polygon, plans, units = _plans_of(args)
+    solid = not hasattr(polygon, "vertices")
+    if solid and args.gif:
+        raise CliError("--gif draws planar parts so far, not a solid", "gif")
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
                        workers=args.workers)
@@ -144,6 +156,14 @@ def cmd_simulate(args: Any) -> int:
     rng = np.random.default_rng(args.seed + 1)
     controls = []
     for r, plan in enumerate(plans):
+        if solid:                       # the same contacts without friction
+            for pts, nrm in sample_solid_grasps(plan, 3, rng):
+                res_s = solid_stress_test(polygon, pts, nrm, 0.0,
+                                          solid_escape(polygon, pts, nrm, 0.0, False),
+                                          grip_force=args.grip_force)
+                controls.append({"rank": r + 1, "mu": 0.0, **res_s.to_dict(),
+                                 "slipped": res_s.slip_load is not None})
+            continue
         jaw = jaw_of(plan)
         if jaw is not None:             # the same poses without friction
             for theta, offset in sample_poses((jaw[1], jaw[2]), 3, rng):
