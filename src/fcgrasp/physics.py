@@ -213,37 +213,45 @@ def squeeze_forces(points: Any, normals: Any, mu: float, grip_force: float
     friction cones with zero net wrench whose smallest normal force is as large as it
     can be (a linear program), scaled so the largest is ``grip_force``; None when no
     squeeze has every normal force positive (the grasp cannot be squeezed)."""
-    from scipy.optimize import linprog
-
     p, n = np.asarray(points, float), np.asarray(normals, float)
     F, o, W = _edges(p, n, mu)
-    k, m = len(p), len(F)
     inward = -n / np.linalg.norm(n, axis=1)[:, None]
-    normal_part = np.einsum("ij,ij->i", F, inward[o])       # each edge's normal share
-    scale = max(float(np.max(np.abs(p))), TINY)
     Wn = W.copy()
-    Wn[:, 2] /= scale
-    # variables: edge coefficients c (m), t; maximise t
-    A_eq = np.zeros((3, m + 1))
-    A_eq[:, :m] = Wn.T
+    Wn[:, 2] /= max(float(np.max(np.abs(p))), TINY)
+    # each edge's share of its finger's normal force
+    return _internal(Wn, np.einsum("ij,ij->i", F, inward[o]), o, len(p), grip_force)
+
+
+def _internal(columns: FloatArray, share: FloatArray, owner: FloatArray, k: int,
+              grip_force: float) -> FloatArray | None:
+    """The linear program of a squeeze: coefficients ``c >= 0`` of the force edges
+    ``columns`` (m, d: their wrenches) with zero net wrench, each finger's normal force
+    ``sum c share`` over its edges (``owner``) at most 1 and at least ``t``, ``t`` as
+    large as it can be; the normal forces scaled so the largest is ``grip_force``, or
+    None where ``t`` is not positive."""
+    from scipy.optimize import linprog
+
+    m, d = columns.shape
+    A_eq = np.zeros((d, m + 1))
+    A_eq[:, :m] = columns.T
     A_ub, b_ub = [], []
     for i in range(k):
         row = np.zeros(m + 1)
-        row[:m] = -((o == i) * normal_part)
+        row[:m] = -((owner == i) * share)
         row[m] = 1.0                                         # t <= normal_i
         A_ub.append(row)
         b_ub.append(0.0)
         row = np.zeros(m + 1)
-        row[:m] = (o == i) * normal_part                     # normal_i <= 1
+        row[:m] = (owner == i) * share                       # normal_i <= 1
         A_ub.append(row)
         b_ub.append(1.0)
     c = np.zeros(m + 1)
     c[m] = -1.0
-    res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(3),
+    res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(d),
                   bounds=[(0, None)] * m + [(None, None)], method="highs")
     if res.status != 0 or res.x[m] <= SQUEEZE_TOL:
         return None
-    normal = np.array([float(np.sum(res.x[:m][o == i] * normal_part[o == i]))
+    normal = np.array([float(np.sum(res.x[:m][owner == i] * share[owner == i]))
                        for i in range(k)])
     return np.asarray(grip_force * normal / normal.max(), float)
 
@@ -536,35 +544,14 @@ def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_forc
     with friction, or soft with ``torsion``) in equilibrium within their pyramids of
     :func:`fcgrasp.spatial.contacts.contact_wrench_generators` (unit normal components),
     the smallest as large as it can be, scaled so the largest is ``grip_force``."""
-    from scipy.optimize import linprog
-
     from .spatial.contacts import contact_wrench_generators
 
     gens = contact_wrench_generators(points, inward, mu, torsion, center=center,
                                      radius=radius)                  # (k, g, 6)
     k, g = gens.shape[:2]
-    m = k * g
-    A_eq = np.zeros((6, m + 1))
-    A_eq[:, :m] = gens.reshape(m, 6).T
-    A_ub, b_ub = [], []
-    for i in range(k):
-        row = np.zeros(m + 1)
-        row[i * g:(i + 1) * g] = -1.0
-        row[m] = 1.0                                       # t <= normal_i
-        A_ub.append(row)
-        b_ub.append(0.0)
-        row = np.zeros(m + 1)
-        row[i * g:(i + 1) * g] = 1.0                       # normal_i <= 1
-        A_ub.append(row)
-        b_ub.append(1.0)
-    c = np.zeros(m + 1)
-    c[m] = -1.0
-    res = linprog(c, A_ub=np.array(A_ub), b_ub=b_ub, A_eq=A_eq, b_eq=np.zeros(6),
-                  bounds=[(0, None)] * m + [(None, None)], method="highs")
-    if res.status != 0 or res.x[m] <= SQUEEZE_TOL:
-        return None
-    normal = res.x[:m].reshape(k, g).sum(axis=1)
-    return np.asarray(grip_force * normal / normal.max(), float)
+    # the generators' normal components are 1
+    return _internal(gens.reshape(k * g, 6), np.ones(k * g), np.repeat(np.arange(k), g), k,
+                     grip_force)
 
 
 def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
