@@ -4,7 +4,7 @@ bounds over sub-boxes, sound, not complete."""
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -17,6 +17,7 @@ from . import _kernels
 from ._poses import (
     MAX_CONTACTS,
     NEAR_STRIP,
+    JawParameters,
     _check_jaw_args,
     _grip_edges,
     _near_strip,
@@ -24,10 +25,6 @@ from ._poses import (
     insertion_point,
     jaw_poses,
 )
-
-if TYPE_CHECKING:
-    from ._plans import ParallelJaw
-
 
 # ----------------------------------------------------------------------------- certificates
 
@@ -316,7 +313,7 @@ def _angle_cuts(polygon: Polygon, ring: np.ndarray, t0: float, t1: float) -> Flo
     return np.unique(np.r_[t0, crit[(crit > t0) & (crit < t1)], t1])
 
 
-def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: FloatArray,
+def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: JawParameters, boxes: FloatArray,
                 beta: float, q: FloatArray | None
                 ) -> tuple[np.ndarray, FloatArray, FloatArray]:
     """For each box (B, 4) of a batch: whether it is proved (the features each pad may
@@ -334,7 +331,7 @@ def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw, boxes: Flo
     return _box_proofs_numpy(polygon, ring, jaw, boxes, beta, q)
 
 
-def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: ParallelJaw,
+def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: JawParameters,
                       boxes: FloatArray, beta: float, q: FloatArray | None
                       ) -> tuple[np.ndarray, FloatArray, FloatArray]:
     """:func:`_box_proofs` by numpy (the reference of the compiled loop)."""
@@ -360,7 +357,7 @@ CERTIFY_BATCH = 512
 SLABS_PER_BUDGET = 8
 
 
-def certify_box(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
+def certify_box(polygon: Polygon, jaw: JawParameters, theta: Any, offset: Any,
                 margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
                 max_boxes: int = 4096) -> tuple[float, float] | None:
     """Prove that **every** pose of the box ``theta = (t0, t1)``, ``offset = (c0, c1)``

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import functools
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 import numpy as np
 
@@ -15,10 +15,6 @@ from ...core.tolerances import CONTACT_TOL, ROUND_TOL, SLICE_TOL, TOL
 from ...model.polygon import Polygon, check_polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from . import _kernels
-
-if TYPE_CHECKING:
-    from ._plans import ParallelJaw
-
 
 #: Angular step of the pose grid (degrees).
 THETA_STEP_DEG = 0.5
@@ -246,7 +242,7 @@ def _pole(ring: bytes, size: float) -> tuple[float, float]:
     return float(pt.x), float(pt.y)
 
 
-def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
+def jaw_poses(polygon: Polygon, jaw: JawParameters, theta: Any, offset: Any,
               margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None) -> PoseContacts:
     """The contacts and the verdict of the jaw at a batch of poses (the model of this
     module's docstring), exact at each pose.
@@ -276,7 +272,7 @@ def jaw_poses(polygon: Polygon, jaw: ParallelJaw, theta: Any, offset: Any,
     return _evaluate(polygon, jaw, th, c, margin, hole)[0]
 
 
-def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+def _evaluate(polygon: Polygon, jaw: JawParameters, th: FloatArray, c: FloatArray,
               margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
     """:func:`jaw_poses` on checked arrays, with the verdict's slacks (:func:`_verdict`):
     by the compiled loop of :mod:`._kernels` where it runs, else by numpy
@@ -294,7 +290,7 @@ def _evaluate(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
     return _evaluate_numpy(polygon, jaw, th, c, margin, hole, ring)
 
 
-def _pose_args(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
+def _pose_args(polygon: Polygon, jaw: JawParameters, margin: float, hole: int | None,
                ring: np.ndarray
                ) -> tuple[FloatArray, FloatArray, FloatArray, float, float, FloatArray | None,
                           tuple[float, float], float, float]:
@@ -328,7 +324,7 @@ def _contacts(ring: np.ndarray, top: FloatArray, bottom: FloatArray, ok_a: np.nd
                         np.where(e_b >= 0, ids[e_b], -1))
 
 
-def _evaluate_numpy(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+def _evaluate_numpy(polygon: Polygon, jaw: JawParameters, th: FloatArray, c: FloatArray,
                     margin: float, hole: int | None, ring: np.ndarray
                     ) -> tuple[PoseContacts, FloatArray]:
     """:func:`_evaluate` by numpy over the edges ``ring`` (the reference of the compiled
@@ -427,7 +423,7 @@ def _inside(y_a: FloatArray, y_b: FloatArray, x_a: FloatArray, x_b: FloatArray,
 
 
 def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: FloatArray,
-             psi_b: FloatArray, ok_a: np.ndarray, ok_b: np.ndarray, jaw: ParallelJaw,
+             psi_b: FloatArray, ok_a: np.ndarray, ok_b: np.ndarray, jaw: JawParameters,
              margin: float, internal: bool) -> tuple[np.ndarray, FloatArray]:
     """Whether the poses hold, from what the pads touch (theorem 6.3 and the stroke), and
     the slacks the verdict is made of, (P, 2 K**2 + 2): per pair of features the two

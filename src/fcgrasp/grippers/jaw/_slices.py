@@ -3,7 +3,7 @@ that hold as intervals (:func:`holding_offsets`)."""
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, cast
+from typing import Any, cast
 
 import numpy as np
 
@@ -15,6 +15,7 @@ from . import _kernels
 from ._poses import (
     NEAR_STRIP,
     POSE_BATCH,
+    JawParameters,
     PoseContacts,
     _check_jaw_args,
     _evaluate,
@@ -24,11 +25,8 @@ from ._poses import (
     insertion_point,
 )
 
-if TYPE_CHECKING:
-    from ._plans import ParallelJaw
 
-
-def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
+def holding_offsets(polygon: Polygon, jaw: JawParameters, theta: Any,
                     margin: float = DEFAULT_MARGIN_DEG, hole: int | None = None,
                     offsets: tuple[float, float] | None = None) -> list[FloatArray]:
     """The exact slices of the set of holding poses: for each closing angle of ``theta``
@@ -76,7 +74,7 @@ def holding_offsets(polygon: Polygon, jaw: ParallelJaw, theta: Any,
     return _merge_intervals(rows, th.size, CONTACT_TOL * polygon.size)
 
 
-def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
+def holds_across(polygon: Polygon, jaw: JawParameters, theta: Any, margin: float,
                  hole: int | None, offsets: tuple[float, float]) -> np.ndarray:
     """Whether the exact slice (:func:`holding_offsets`) at each angle of ``theta`` holds
     at every offset of ``offsets = (c0, c1)``: one interval from ``c0`` to ``c1`` (each
@@ -93,7 +91,7 @@ def holds_across(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
                      and iv[0, 1] >= c1 - tol for k, iv in enumerate(slices)], dtype=bool)
 
 
-def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float,
+def near_intervals(polygon: Polygon, jaw: JawParameters, theta: Any, margin: float,
                    hole: int | None, window: tuple[float, float], side: int) -> FloatArray:
     """Per angle of ``theta``, the far end of the exact slice's interval (within
     ``window``) that starts at the window's end away from ``side`` (+1: its low end,
@@ -116,7 +114,7 @@ def near_intervals(polygon: Polygon, jaw: ParallelJaw, theta: Any, margin: float
     return out
 
 
-def _stopping_slices(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
+def _stopping_slices(polygon: Polygon, jaw: JawParameters, th: FloatArray, margin: float,
                      hole: int | None, window: tuple[float, float], failed: np.ndarray,
                      upward: bool) -> list[FloatArray]:
     """The slices at ``th`` within ``window`` (merged as :func:`holding_offsets` merges
@@ -137,7 +135,7 @@ def _stopping_slices(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin:
     return _merge_intervals(rows, th.size, tol)
 
 
-def _cells(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, hole: int | None,
+def _cells(polygon: Polygon, jaw: JawParameters, th: FloatArray, hole: int | None,
            offsets: tuple[float, float] | None
            ) -> tuple[np.ndarray, np.ndarray, FloatArray, FloatArray]:
     """The edges the slices at angles ``th`` read (near their strips) and their cells
@@ -194,7 +192,7 @@ def _grip_points(polygon: Polygon, hole: int | None, ring: np.ndarray) -> FloatA
     return cast("FloatArray", got)
 
 
-def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: float,
+def _holding_pieces(polygon: Polygon, jaw: JawParameters, th: FloatArray, margin: float,
                     hole: int | None, ring: np.ndarray, cell_t: np.ndarray,
                     cell_lo: FloatArray, cell_hi: FloatArray) -> FloatArray:
     """The holding pieces ``(angle index, lo, hi)`` of the cells (the method of
@@ -211,7 +209,7 @@ def _holding_pieces(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, margin: 
     return _holding_pieces_numpy(polygon, jaw, th, margin, hole, cell_t, cell_lo, cell_hi)
 
 
-def _holding_pieces_numpy(polygon: Polygon, jaw: ParallelJaw, th: FloatArray,
+def _holding_pieces_numpy(polygon: Polygon, jaw: JawParameters, th: FloatArray,
                           margin: float, hole: int | None, cell_t: np.ndarray,
                           cell_lo: FloatArray, cell_hi: FloatArray) -> FloatArray:
     """:func:`_holding_pieces` by numpy, the cells of a round side by side."""
@@ -312,7 +310,7 @@ def _kinks(p0: FloatArray, e0: FloatArray, p1: FloatArray, e2: FloatArray, p2: F
 
 
 
-def _evaluate_batched(polygon: Polygon, jaw: ParallelJaw, th: FloatArray, c: FloatArray,
+def _evaluate_batched(polygon: Polygon, jaw: JawParameters, th: FloatArray, c: FloatArray,
                       margin: float, hole: int | None) -> tuple[PoseContacts, FloatArray]:
     """:func:`_evaluate` in batches of :data:`POSE_BATCH` poses, joined."""
     parts = [_evaluate(polygon, jaw, th[i:i + POSE_BATCH], c[i:i + POSE_BATCH], margin, hole)
