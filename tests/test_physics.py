@@ -142,6 +142,8 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
 @pytest.mark.parametrize(("argv", "words"), [
     (["simulate", "demo:blob"], "not a plan report"),
     (["simulate", "{solid}", "--gif", "x.gif"], "planar parts"),
+    (["simulate", "{empty}"], "no plan to simulate"),
+    (["simulate", "{broken}"], "grasps/0"),
     (["simulate", "{plan}", "--samples", "0"], "--samples"),
     (["simulate", "{plan}", "--grip-force", "-1"], "--grip-force"),
 ])
@@ -151,8 +153,14 @@ def test_simulate_refuses_in_one_line(tmp_path, capsys, argv, words):
     solid = tmp_path / "solid.json"
     main(["plan", "demo:box", "--fingers", "2", "--soft", "--top", "1", "--json", str(solid),
           "--quiet"])
+    report = json.loads(plan.read_text())
+    empty = tmp_path / "empty.json"
+    empty.write_text(json.dumps(dict(report, grasps=[], reason="none")))
+    broken = tmp_path / "broken.json"
+    report["grasps"][0]["mu"] = "a"
+    broken.write_text(json.dumps(report))
     capsys.readouterr()
-    code = main([a.format(plan=plan, solid=solid) for a in argv])
+    code = main([a.format(plan=plan, solid=solid, empty=empty, broken=broken) for a in argv])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and words in err[0], err
 

@@ -61,9 +61,16 @@ def _read_report(path: str) -> dict[str, Any] | None:
     if not isinstance(doc, dict) or "grasps" not in doc or "format_version" not in doc:
         return None
     try:
-        return migrate_report(doc)
+        report = migrate_report(doc)
     except ValueError as exc:
         raise CliError(f"{path}: {exc}", "source") from None
+    from ..io.schema import validate
+
+    try:
+        validate(report)                    # every field named where one does not fit
+    except ValueError as exc:
+        raise CliError(f"{path}: {exc}", "source") from None
+    return report
 
 
 def _plans_of(args: Any) -> tuple[Any, list[Any], str]:
@@ -145,6 +152,8 @@ def cmd_simulate(args: Any) -> int:
         raise CliError(f"--grip-force must be a positive number of newtons, got "
                        f"{args.grip_force}", "grip_force")
     polygon, plans, units = _plans_of(args)
+    if not plans:
+        raise CliError(f"{args.source}: the report has no plan to simulate", "source")
     solid = not hasattr(polygon, "vertices")
     if solid and args.gif:
         raise CliError("--gif draws planar parts so far, not a solid", "gif")
