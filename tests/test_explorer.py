@@ -168,8 +168,8 @@ def open_demo(driver, server, name):
     from selenium.webdriver.support.ui import Select
 
     driver.get(server)
-    wait(driver, "window.explorer && explorer.state.part && "
-                 "document.body.dataset.busy === '0'")
+    # the page's first plan done (not merely not yet begun): only the pick's plan is left
+    wait_plan(driver, 0)
     after = plan_seq(driver)
     Select(driver.find_element(By.ID, "demo")).select_by_value(name)
     wait_plan(driver, after)
