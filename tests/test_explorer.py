@@ -853,7 +853,7 @@ def test_a_file_of_several_parts_offers_them_and_sizes_the_jaw(server, browser, 
     path = tmp_path / "two.dxf"
     doc.saveas(path)
     browser.get(server)
-    wait(browser, "document.body.dataset.planSeq !== undefined")
+    wait_plan(browser, 0)                 # the page's first plan done
     before = plan_seq(browser)
     browser.find_element(By.ID, "file").send_keys(str(path))
     wait(browser, "document.body.dataset.parts === 'many'")
@@ -867,6 +867,9 @@ def test_a_file_of_several_parts_offers_them_and_sizes_the_jaw(server, browser, 
     other = next(o.get_attribute("value") for o in pick.options if not o.is_selected())
     before = plan_seq(browser)
     pick.select_by_value(other)
+    # the other part read (the small square: 4 mm across)
+    wait(browser, "(() => { const xs = explorer.state.part.outer.map((p) => p[0]); "
+                  "return Math.max(...xs) - Math.min(...xs) < 5; })()")
     wait_plan(browser, before)
     outer = np.array(browser.execute_script("return explorer.state.part.outer"))
     assert np.allclose(np.ptp(outer, axis=0), [4, 4])          # the small square
