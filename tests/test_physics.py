@@ -119,9 +119,8 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
     assert main(["plan", "demo:blob", "--mu", "0.5", "--top", "2", "--json", str(plan),
                  "--quiet"]) == 0
     out = tmp_path / "stress.json"
-    gif = tmp_path / "stress.gif"
     assert main(["simulate", str(plan), "--samples", "2", "--directions", "1",
-                 "--workers", "1", "--json", str(out), "--gif", str(gif)]) == 0
+                 "--workers", "1", "--json", str(out)]) == 0
     doc = json.loads(out.read_text())
     assert doc["kind"] == "stress_test" and len(doc["plans"]) == 2
     g = doc["plans"][0]["grasps"][0]
@@ -130,7 +129,6 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
         assert key in g
     assert doc["plans"][0]["wrench_directions"]
     assert all(c["slipped"] for c in doc["controls"])
-    assert gif.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
     assert "controls (not force closure)" in capsys.readouterr().out
     contacts = tmp_path / "grasp.json"
     contacts.write_text(json.dumps({"contacts": [{"point": [0, 15], "mu": 0.5},
@@ -172,7 +170,7 @@ def test_the_animation_is_drawn(tmp_path):
     res = stress_test(poly, pts, nrm, 0.5, [1.0, 0.0, 0.0], record=True)
     assert len(res.history) > 5
     animate(poly, res, str(tmp_path / "a.gif"), frames=3)
-    assert (tmp_path / "a.gif").stat().st_size > 1000
+    assert (tmp_path / "a.gif").read_bytes()[:6] in (b"GIF87a", b"GIF89a")
 
 
 def test_the_prism_inertia_is_the_closed_form_of_a_box_and_of_a_disc():
@@ -214,7 +212,8 @@ def test_the_jaws_poses_hold_and_without_friction_slip(tmp_path, name):
 
 
 @pytest.mark.parametrize(("name", "argv"), [
-    ("box", ["--fingers", "2", "--soft"]), ("prism", ["--fingers", "3"]),
+    ("box", ["--fingers", "2", "--soft"]),
+    pytest.param("prism", ["--fingers", "3"], marks=pytest.mark.slow),
     pytest.param("cylinder", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
     pytest.param("box", ["--fingers", "3"], marks=pytest.mark.slow)])
 def test_solids_hold_up_to_their_certified_payload_and_controls_slip(tmp_path, name, argv):
