@@ -269,7 +269,7 @@ def distinct_single_edge_plans(polygon: Polygon, spec: PlanSpec, fraction: float
             last = waiting[ask - 1][0]
         else:                           # every row left was read
             last, more = merged[-1][0] if merged else None, False
-        # read (left out of the next rounds): the rows up to the last, a grasp that
+        # read (left out of the searches that follow): the rows up to the last, a grasp that
         # is also a grown plan's among them
         read += [p.edges for key, p in keyed if last is not None and key <= last]
         now = [kp for kp in merged if last is not None and kp[0] <= last]

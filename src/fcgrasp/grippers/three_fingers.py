@@ -409,7 +409,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     (:func:`fcgrasp.core.budget.deadline`) or a round's collection would exceed
     ``spec.max_memory``; stopped early, the plans kept are an exact prefix of the
     complete answer, returned incomplete (:class:`~fcgrasp.model.plans.PlanList`) with
-    the last round's level as the bound on every further alternative."""
+    the level of the last finished search as the bound on every further alternative."""
     top = spec.top
     if top is None or spec.rank_by != "min_region" or fraction <= 0 \
             or spec.hand is not None or not spec.along_boundary \

@@ -327,15 +327,15 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for more plans
     until ``top`` distinct ones are found, it has no more, or it was asked for
     :data:`DISTINCT_DEPTH` times ``top`` (a gripper's ``distinct_depth`` where it has
-    one).  Each round asks for at least twice as many,
-    and for as many as the last round's share of distinct plans says ``top`` need, twice
-    over, or, where that is half the depth, for all of it (a search's time grows slowly
-    with ``top``: on a curved outline, where one grasp fills the ranked list with its
-    copies, one long round costs less than many doubling ones).  The plans kept are
-    those of suppression along the ranked list, however long the last round's list
-    was.
+    one).  Each request asks for at least twice as many plans as the one before, and
+    for as many as the share of distinct plans in the last list read says ``top``
+    need, twice over, or, where that is half the depth, for all of it (a search's time
+    grows slowly with ``top``: on a curved outline, where one grasp fills the ranked
+    list with its copies, one long request costs less than many doubling ones).  The
+    plans kept are those of suppression along the ranked list, however long the last
+    list read was.
 
-    The rounds after the first stop when the time budget ends
+    The requests after the first stop when the time budget ends
     (:func:`fcgrasp.core.budget.deadline`) or at the depth; the plans kept are then an
     exact prefix of the complete answer, incomplete, with the last plan read's smallest
     region as the bound where the plans are ranked by it (every plan not read is below
