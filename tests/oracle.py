@@ -163,23 +163,25 @@ def grasp_wrenches(points, normals, mu):
 
 
 def closure_margin_lp(wrenches):
-    """How strictly the wrenches positively span the plane's wrench space (HiGHS).
+    """How strictly the wrenches positively span their space (the plane's, 3-D; a
+    solid's, 6-D) (HiGHS).
 
     max t  s.t.  sum_i l_i w_i = 0,  sum_i l_i = 1,  l_i >= t, with the unit wrenches;
-    a grasp is force closure iff t > 0 and the wrenches have rank 3.  Returns t; 0 (a tie,
-    the limit of closure grasps at best) for rank below 3; -1 when the LP is infeasible.
+    a grasp is force closure iff t > 0 and the wrenches have full rank.  Returns t; 0 (a
+    tie, the limit of closure grasps at best) for a lower rank; -1 when the LP is
+    infeasible.
     """
     w = np.asarray(wrenches, float)
     w = w / np.linalg.norm(w, axis=1)[:, None]
-    if np.linalg.matrix_rank(w, tol=1e-10) < 3:
+    k, d = w.shape
+    if np.linalg.matrix_rank(w, tol=1e-10) < d:
         return 0.0
-    k = len(w)
     c = np.zeros(k + 1)
     c[-1] = -1.0
-    a_eq = np.zeros((4, k + 1))
-    a_eq[:3, :k] = w.T
-    a_eq[3, :k] = 1.0
-    b_eq = np.array([0.0, 0.0, 0.0, 1.0])
+    a_eq = np.zeros((d + 1, k + 1))
+    a_eq[:d, :k] = w.T
+    a_eq[d, :k] = 1.0
+    b_eq = np.r_[np.zeros(d), 1.0]
     a_ub = np.hstack([-np.eye(k), np.ones((k, 1))])
     res = linprog(c, A_ub=a_ub, b_ub=np.zeros(k), A_eq=a_eq, b_eq=b_eq,
                   bounds=[(0, None)] * k + [(None, None)], method="highs")

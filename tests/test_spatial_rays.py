@@ -14,7 +14,7 @@ edges and seeded points inside.  Nothing of fcgrasp decides a sample:
 - **holds**: two soft fingers when the segment between the contacts lies strictly inside
   both friction cones (the classical condition for soft contacts); three fingers with
   friction when the 6-D wrenches of their friction pyramids (32 sides, inscribed in the
-  cones) positively span the wrench space, an LP (HiGHS); the jaw when rays along its
+  cones) positively span the wrench space, the oracle's LP (HiGHS); the jaw when rays along its
   closing axis from outside the part meet it first at the two contacts, whose normals
   hold the axis inside their cones.
 """
@@ -27,9 +27,10 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 from fcgrasp.planning.request import PlanRequest, plan_document
+
+from .oracle import closure_margin_lp
 
 trimesh = pytest.importorskip("trimesh")
 shapely = pytest.importorskip("shapely")
@@ -202,23 +203,6 @@ def _wrenches(points, inward, mu, centre, size):
     return np.array(rows)
 
 
-def _spans(w):
-    """The LP margin with which the wrenches positively span R^6 (> 0: force closure)."""
-    w = w / np.linalg.norm(w, axis=1)[:, None]
-    if np.linalg.matrix_rank(w, tol=1e-10) < 6:
-        return 0.0
-    k = len(w)
-    c = np.zeros(k + 1)
-    c[-1] = -1.0
-    a_eq = np.zeros((7, k + 1))
-    a_eq[:6, :k] = w.T
-    a_eq[6, :k] = 1.0
-    res = linprog(c, A_ub=np.hstack([-np.eye(k), np.ones((k, 1))]), b_ub=np.zeros(k),
-                  A_eq=a_eq, b_eq=np.r_[np.zeros(6), 1.0],
-                  bounds=[(0, None)] * k + [(None, None)], method="highs")
-    return float(-res.fun) if res.status == 0 else -1.0
-
-
 def _report(name, **options):
     doc = plan_document(PlanRequest(part=str(CORPUS / name), mu=MU, **options))
     return json.loads(json.dumps(doc.report))
@@ -253,7 +237,7 @@ def _check_triple(rng, tri, size, grasp):
         points = np.array([regions[k][0][i] for k, i in enumerate(pick)])
         for normals in _every(regions, pick):
             w = _wrenches(points, [-n for n in normals], MU, points.mean(axis=0), size)
-            assert _spans(w) > 0, points
+            assert closure_margin_lp(w) > 0, points
             count += 1
     return count
 
