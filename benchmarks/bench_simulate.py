@@ -20,21 +20,9 @@ import statistics
 import time
 from pathlib import Path
 
-import numpy as np
-
 import fcgrasp as fc
 from fcgrasp.io.parts import demo_part, load_part
-from fcgrasp.physics import (
-    control,
-    escape_direction,
-    jaw_contacts,
-    jaw_of,
-    jaw_stress_test,
-    sample_grasps,
-    sample_poses,
-    simulate,
-    stress_test,
-)
+from fcgrasp.physics import control_runs, simulate
 
 HERE = Path(__file__).resolve().parent
 GRIPPERS = {"2f": dict(fingers=2, mu=0.5), "3f": dict(fingers=3, mu=0.5),
@@ -59,25 +47,8 @@ def row(name: str, poly: object, gripper: str, args: argparse.Namespace) -> str:
     held = sum(o["held"] for o in out)
     ratios = [(g["slip_load"] if g["slip_load"] is not None else 3 * g["certified_payload"])
               / g["certified_payload"] for o in out for g in o["grasps"]]
-    rng = np.random.default_rng(2)
-    slipped = total = 0
-    for p in plans:
-        jaw = jaw_of(p)
-        if jaw is not None:             # the same poses without friction
-            for theta, offset in sample_poses((jaw[1], jaw[2]), 3, rng):
-                got = jaw_contacts(poly, jaw[0], theta, offset)
-                res = None if got is None else jaw_stress_test(
-                    poly, jaw[0], theta, offset, escape_direction(poly, got[0], got[1], 0.0),
-                    mu=0.0)
-                if res is not None:
-                    slipped += res.slip_load is not None
-                    total += 1
-            continue
-        for pts, nrm in sample_grasps(poly, p.regions, 3, rng):
-            cp, cn, cmu = control(pts, nrm, p.mu)
-            res = stress_test(poly, cp, cn, cmu, escape_direction(poly, cp, cn, cmu))
-            slipped += res.slip_load is not None
-            total += 1
+    controls = control_runs(poly, plans, seed=2)
+    slipped, total = sum(c["slipped"] for c in controls), len(controls)
     return (f"| {name} | {gripper} | {runs} | {held} ({100 * held / runs:.0f} %) | "
             f"{min(ratios):.2f} / {statistics.median(ratios):.2f} | {slipped} of {total} | "
             f"{cpu / runs * 1000:.0f} ms |")

@@ -44,6 +44,7 @@ import math
 from collections.abc import Callable
 from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -56,7 +57,7 @@ __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "Stress
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
-           "solid_escape"]
+           "solid_escape", "control_runs"]
 
 #: The part slipped when its centre moved more than this share of its size ...
 SLIP_DISPLACEMENT = 0.01
@@ -284,6 +285,59 @@ def _prism_inertia(tris: list[FloatArray], h: float) -> tuple[float, FloatArray,
                                                rho * (ixx_area + iyy_area)])
 
 
+#: The simulator's settings (module docstring), shared by every model.
+_SETTINGS = (f'<option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" impratio="10" '
+             f'noslip_iterations="20"/>'
+             f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>')
+
+
+def _servo_mass(kp: Any) -> Any:
+    """A finger's mass: at least :data:`FINGER_MASS`, and heavy enough that its servo's
+    period spans :data:`SERVO_STEPS` time steps."""
+    return np.maximum(FINGER_MASS, np.asarray(kp) * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
+
+
+def _servo(i: int, kp: float, preload: float) -> str:
+    """Finger ``i``'s position servo, saturating at twice its squeeze."""
+    return (f'<position name="a{i}" joint="j{i}" kp="{kp:.9g}" '
+            f'forcerange="{-2 * preload:.9g} {2 * preload:.9g}" forcelimited="true"/>')
+
+
+def _finger_bodies(points: FloatArray, normals: FloatArray, r: float, kp: FloatArray,
+                   preload: FloatArray, friction: str) -> tuple[list[str], list[str]]:
+    """Spherical fingertips of radius ``r`` touching the part at ``points`` (metres,
+    3-D), each on a slide along its inward normal driven by its servo."""
+    masses = _servo_mass(kp)
+    bodies, actuators = [], []
+    for i, (c, n) in enumerate(zip(points, normals, strict=True)):
+        pos = c + r * n
+        mf = float(masses[i])
+        tip = f"{0.4 * mf * r * r:.9g}"              # a solid sphere's moment
+        bodies.append(
+            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} {pos[2]:.12g}">'
+            f'<inertial pos="0 0 0" mass="{mf:.9g}" diaginertia="{tip} {tip} {tip}"/>'
+            f'<joint name="j{i}" type="slide" axis="{-n[0]:.12g} {-n[1]:.12g} '
+            f'{-n[2]:.12g}" damping="{2 * math.sqrt(kp[i] * mf):.9g}"/>'
+            f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
+        actuators.append(_servo(i, float(kp[i]), float(preload[i])))
+    return bodies, actuators
+
+
+def _settle(model: Any, preload: FloatArray, kp: FloatArray) -> Any:
+    """The squeeze: each servo's target set for its preload, then corrected half way
+    so that each finger's squeeze is its preload once the contacts have sunk in."""
+    mujoco = _mujoco()
+    data = mujoco.MjData(model)
+    data.ctrl[:] = preload / kp
+    steps = int(SETTLE_TIME / TIMESTEP)
+    for _ in range(steps // 2):
+        mujoco.mj_step(model, data)
+    data.ctrl[:] += (preload - data.actuator_force) / kp
+    for _ in range(steps - steps // 2):
+        mujoco.mj_step(model, data)
+    return data
+
+
 def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
            preload: FloatArray, metres: float, pads: Any = None) -> tuple[Any, FloatArray]:
     """The MJCF model: the part's triangles (a constrained Delaunay triangulation)
@@ -314,30 +368,13 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     mass, com, inertia = _prism_inertia(tris, h)
     r = TIP_RADIUS * size
     kp = preload / (SERVO_COMPLIANCE * size)
-    # each finger heavy enough that its servo's period spans SERVO_STEPS time steps
-    masses = np.maximum(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
-    fingers, actuators = [], []
-    for i, (c, n) in enumerate(zip(points, normals, strict=True)):
-        n = n / np.linalg.norm(n)
-        pos = c * metres + r * n
-        mf = float(masses[i])
-        tip = f"{0.4 * mf * r * r:.9g}"              # a solid sphere's moment
-        damping = 2 * math.sqrt(kp[i] * mf)
-        fingers.append(
-            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} 0">'
-            f'<inertial pos="0 0 0" mass="{mf:.9g}" diaginertia="{tip} {tip} {tip}"/>'
-            f'<joint name="j{i}" type="slide" axis="{-n[0]:.12g} {-n[1]:.12g} 0" '
-            f'damping="{damping:.9g}"/>'
-            f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
-        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
-                         f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
-                         f'forcelimited="true"/>')
+    unit = normals / np.maximum(np.linalg.norm(normals, axis=1), TINY)[:, None]
+    fingers, actuators = _finger_bodies(np.c_[points * metres, np.zeros(len(points))],
+                                        np.c_[unit, np.zeros(len(unit))], r, kp, preload,
+                                        friction)
     if pads is not None:
         fingers, actuators = _pad_bodies(polygon, pads, metres, h, friction)
-    xml = (f'<mujoco><compiler inertiafromgeom="false"/>'
-           f'<option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
-           f'impratio="10" noslip_iterations="20"/>'
-           f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>'
+    xml = (f'<mujoco><compiler inertiafromgeom="false"/>{_SETTINGS}'
            f'<asset>{"".join(assets)}</asset><worldbody><body name="part">'
            f'<inertial pos="{com[0]:.12g} {com[1]:.12g} 0" mass="{mass:.12g}" '
            f'diaginertia="{inertia[0]:.12g} {inertia[1]:.12g} {inertia[2]:.12g}"/>'
@@ -362,7 +399,7 @@ def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str
     c0 = np.asarray(polygon.centroid, float) * metres
     depth = PAD_DEPTH * size
     kp = grip / (SERVO_COMPLIANCE * size)
-    mass = max(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
+    mass = float(_servo_mass(kp))
     quat = f"{math.cos(theta / 2):.12g} 0 0 {math.sin(theta / 2):.12g}"
     box = f"{depth / 2:.9g} {jaw.pad_width * metres / 2:.9g} {0.6 * h:.9g}"
     moment = f"{mass * (depth ** 2 + (jaw.pad_width * metres) ** 2) / 12:.9g}"
@@ -376,8 +413,7 @@ def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str
             f'<joint name="j{i}" type="slide" axis="{-side:.0f} 0 0" '
             f'damping="{2 * math.sqrt(kp * mass):.9g}"/>'
             f'<geom type="box" size="{box}" {friction}/></body>')
-        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp:.9g}" '
-                         f'forcerange="{-2 * grip:.9g} {2 * grip:.9g}" forcelimited="true"/>')
+        actuators.append(_servo(i, kp, grip))
     return bodies, actuators
 
 
@@ -417,15 +453,7 @@ def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: 
          p: FloatArray, n: FloatArray, grips: FloatArray) -> StressResult:
     """The squeeze, then the ramp of the disturbance ``u`` until the part slips."""
     mujoco = _mujoco()
-    data = mujoco.MjData(model)
-    data.ctrl[:] = preload / kp
-    steps = int(SETTLE_TIME / TIMESTEP)
-    for _ in range(steps // 2):
-        mujoco.mj_step(model, data)
-    # the servos' targets corrected so each finger's squeeze is its preload
-    data.ctrl[:] += (preload - data.actuator_force) / kp
-    for _ in range(steps - steps // 2):
-        mujoco.mj_step(model, data)
+    data = _settle(model, preload, kp)
     q0 = data.qpos[:3].copy()
     settle = float(math.hypot(q0[0], q0[1])) / metres
     body = model.body("part").id
@@ -589,45 +617,22 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
         eps = spatial_quality(p, -n, mu, gamma, center=centre, radius=size_u).epsilon_l1
         cert = float(eps * preload.min())
     kp = preload / (SERVO_COMPLIANCE * size)
-    masses = np.maximum(FINGER_MASS, kp * (SERVO_STEPS * TIMESTEP / (2 * math.pi)) ** 2)
-    r = TIP_RADIUS * size
     spin = gamma * metres
     friction = (f'friction="{max(mu, TOL):.9g} {max(spin, TOL):.9g} {ROLL_FRICTION}" '
                 f'condim="{(4 if soft else 3) if mu > 0 else 1}"')
     v = np.asarray(mesh.vertices, float) * metres
     verts = " ".join(f"{x:.12g}" for x in v.ravel())
     faces = " ".join(str(int(i)) for i in np.asarray(mesh.faces).ravel())
-    fingers, actuators = [], []
-    for i, (c, nn) in enumerate(zip(p, n, strict=True)):
-        pos = c * metres + r * nn
-        mf = float(masses[i])
-        tip = f"{0.4 * mf * r * r:.9g}"
-        fingers.append(
-            f'<body name="f{i}" pos="{pos[0]:.12g} {pos[1]:.12g} {pos[2]:.12g}">'
-            f'<inertial pos="0 0 0" mass="{mf:.9g}" diaginertia="{tip} {tip} {tip}"/>'
-            f'<joint name="j{i}" type="slide" axis="{-nn[0]:.12g} {-nn[1]:.12g} '
-            f'{-nn[2]:.12g}" damping="{2 * math.sqrt(kp[i] * mf):.9g}"/>'
-            f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
-        actuators.append(f'<position name="a{i}" joint="j{i}" kp="{kp[i]:.9g}" '
-                         f'forcerange="{-2 * preload[i]:.9g} {2 * preload[i]:.9g}" '
-                         f'forcelimited="true"/>')
-    xml = (f'<mujoco><option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" '
-           f'impratio="10" noslip_iterations="20"/>'
-           f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>'
+    fingers, actuators = _finger_bodies(p * metres, n, TIP_RADIUS * size, kp, preload,
+                                        friction)
+    xml = (f'<mujoco>{_SETTINGS}'
            f'<asset><mesh name="part" vertex="{verts}" face="{faces}"/></asset>'
            f'<worldbody><body name="part"><freejoint/>'
            f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/></body>'
            f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
            f'</mujoco>')
     model = mujoco.MjModel.from_xml_string(xml)
-    data = mujoco.MjData(model)
-    data.ctrl[:] = preload / kp
-    steps = int(SETTLE_TIME / TIMESTEP)
-    for _ in range(steps // 2):
-        mujoco.mj_step(model, data)
-    data.ctrl[:] += (preload - data.actuator_force) / kp
-    for _ in range(steps - steps // 2):
-        mujoco.mj_step(model, data)
+    data = _settle(model, preload, kp)
     body = model.body("part").id
     x0, q0 = data.xpos[body].copy(), data.xquat[body].copy()
 
@@ -765,6 +770,46 @@ def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> Floa
     cx, cy = (float(v) for v in polygon.centroid)
     u = np.array([f[0], f[1], tau_origin - (cx * f[1] - cy * f[0])])
     return u / math.sqrt(u[0] ** 2 + u[1] ** 2 + (u[2] / size) ** 2)
+
+
+def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int = 0,
+                 units: str = "mm", count: int = 3) -> list[dict[str, Any]]:
+    """The controls of each plan (a plan object or a report's grasp): ``count`` of its
+    grasps made not force closure (:func:`control`; a jaw's poses and a solid's grasps
+    without friction), each pushed along a wrench it does not resist; per control its
+    plan's ``rank``, its ``mu``, :meth:`StressResult.to_dict` and whether it
+    ``slipped``."""
+    rng = np.random.default_rng(seed)
+    out = []
+
+    def add(r: int, mu: float, res: StressResult | None) -> None:
+        if res is not None:
+            out.append({"rank": r + 1, "mu": mu, **res.to_dict(),
+                        "slipped": res.slip_load is not None})
+
+    for r, plan in enumerate(plans):
+        if _is_solid(part):             # the same contacts without friction
+            for pts, nrm in sample_solid_grasps(plan, count, rng):
+                add(r, 0.0, solid_stress_test(part, pts, nrm, 0.0,
+                                              solid_escape(part, pts, nrm, 0.0, False),
+                                              grip_force=grip_force))
+            continue
+        jaw = jaw_of(plan)
+        if jaw is not None:             # the same poses without friction
+            for theta, offset in sample_poses((jaw[1], jaw[2]), count, rng):
+                got = jaw_contacts(part, jaw[0], theta, offset)
+                if got is not None:
+                    add(r, 0.0, jaw_stress_test(part, jaw[0], theta, offset,
+                                                escape_direction(part, got[0], got[1], 0.0),
+                                                grip_force=grip_force, units=units, mu=0.0))
+            continue
+        get: Callable[[str], Any] = plan.__getitem__ if isinstance(plan, dict) else \
+            partial(getattr, plan)
+        for pts, nrm in sample_grasps(part, get("regions"), count, rng, get("normals")):
+            cp, cn, cmu = control(pts, nrm, float(get("mu")))
+            add(r, cmu, stress_test(part, cp, cn, cmu, escape_direction(part, cp, cn, cmu),
+                                    grip_force=grip_force, units=units))
+    return out
 
 
 def _one(args: tuple[Any, ...]) -> StressResult | None:

@@ -130,17 +130,12 @@ def cmd_simulate(args: Any) -> int:
     from ..physics import (
         SLIP_DISPLACEMENT,
         SLIP_ROTATION_DEG,
-        control,
-        escape_direction,
-        jaw_contacts,
+        control_runs,
         jaw_of,
         jaw_stress_test,
         sample_grasps,
         sample_poses,
-        sample_solid_grasps,
         simulate,
-        solid_escape,
-        solid_stress_test,
         stress_test,
     )
 
@@ -160,38 +155,8 @@ def cmd_simulate(args: Any) -> int:
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
                        workers=args.workers)
-    # the controls: each plan's first grasps made not force closure, pushed along their
-    # escape motion
-    rng = np.random.default_rng(args.seed + 1)
-    controls = []
-    for r, plan in enumerate(plans):
-        if solid:                       # the same contacts without friction
-            for pts, nrm in sample_solid_grasps(plan, 3, rng):
-                res_s = solid_stress_test(polygon, pts, nrm, 0.0,
-                                          solid_escape(polygon, pts, nrm, 0.0, False),
-                                          grip_force=args.grip_force)
-                controls.append({"rank": r + 1, "mu": 0.0, **res_s.to_dict(),
-                                 "slipped": res_s.slip_load is not None})
-            continue
-        jaw = jaw_of(plan)
-        if jaw is not None:             # the same poses without friction
-            for theta, offset in sample_poses((jaw[1], jaw[2]), 3, rng):
-                got = jaw_contacts(polygon, jaw[0], theta, offset)
-                if got is None:
-                    continue
-                res_j = jaw_stress_test(polygon, jaw[0], theta, offset,
-                                        escape_direction(polygon, got[0], got[1], 0.0),
-                                        grip_force=args.grip_force, units=units, mu=0.0)
-                if res_j is not None:
-                    controls.append({"rank": r + 1, "mu": 0.0, **res_j.to_dict(),
-                                     "slipped": res_j.slip_load is not None})
-            continue
-        for pts, nrm in sample_grasps(polygon, plan["regions"], 3, rng, plan["normals"]):
-            cp, cn, cmu = control(pts, nrm, float(plan["mu"]))
-            res = stress_test(polygon, cp, cn, cmu, escape_direction(polygon, cp, cn, cmu),
-                              grip_force=args.grip_force, units=units)
-            controls.append({"rank": r + 1, "mu": cmu, **res.to_dict(),
-                             "slipped": res.slip_load is not None})
+    controls = control_runs(polygon, plans, grip_force=args.grip_force, seed=args.seed + 1,
+                            units=units)
     doc = {"fcgrasp": __version__, "kind": "stress_test", "version": SIMULATE_VERSION,
            "units": units, "seed": args.seed, "grip_force_n": args.grip_force,
            "settings": {"slip_displacement": SLIP_DISPLACEMENT,
@@ -205,7 +170,7 @@ def cmd_simulate(args: Any) -> int:
         u = np.array([*first["force"], first["torque"]])
         jaw = jaw_of(plans[0])
         if jaw is not None:
-            theta, offset = sample_poses((jaw[1], jaw[2]), 1, rng)[0]
+            theta, offset = sample_poses((jaw[1], jaw[2]), 1, np.random.default_rng(0))[0]
             res = jaw_stress_test(polygon, jaw[0], theta, offset, u,
                                   grip_force=args.grip_force, units=units, record=True)
         else:
