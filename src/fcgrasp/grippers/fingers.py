@@ -74,6 +74,9 @@ class _PointFingers:
     #: ``distinct=None``: the top plans are distinct alternatives (a curved
     #: outline's ranked list is one grasp shifted along it)
     default_distinct: ClassVar[float] = DEFAULT_DISTINCT
+    #: on a solid (the grippers with ``solid_plans``): the contact model and why none holds
+    solid_contact: ClassVar[str] = "friction"
+    SOLID_NONE: ClassVar[str] = "no facets hold the fingers"
 
     def __post_init__(self) -> None:
         spec = plan_spec(fingers=self.fingers, mu=self.mu, gravity=self.gravity,
@@ -150,6 +153,14 @@ class _PointFingers:
     def title(self) -> str:
         return f"{self.fingers} fingers"
 
+    # the grippers that plan solids (those with ``solid_plans``) share these
+    def solid_parameters(self, options: SearchOptions) -> dict[str, Any]:
+        return {"fingers": self.fingers, "contact_type": self.solid_contact, "mu": self.mu,
+                "top": options.top, "margin_deg": options.margin}
+
+    def solid_no_grasp_reason(self, margin: float) -> str:
+        return f"{self.SOLID_NONE} with mu {self.mu:g} and a margin of {margin:g} degrees"
+
 
 @dataclass(frozen=True)
 class TwoFingers(_PointFingers):
@@ -195,6 +206,8 @@ class TwoFingers(_PointFingers):
 
     # on a solid: two soft fingers (fcgrasp.grippers.solids)
     solid_title: ClassVar[str] = "two soft fingers"
+    solid_contact: ClassVar[str] = "soft"
+    SOLID_NONE: ClassVar[str] = "no two facets hold two soft fingers"
 
     def solid_plans(self, solid: Any, options: SearchOptions, fraction: float) -> PlanList:
         """Two soft fingers with friction ``mu`` on a solid, on facets and across the
@@ -206,13 +219,6 @@ class TwoFingers(_PointFingers):
                                                       margin=options.margin),
                             options.top, fraction)
 
-    def solid_parameters(self, options: SearchOptions) -> dict[str, Any]:
-        return {"fingers": 2, "contact_type": "soft", "mu": self.mu, "top": options.top,
-                "margin_deg": options.margin}
-
-    def solid_no_grasp_reason(self, margin: float) -> str:
-        return (f"no two facets hold two soft fingers with mu {self.mu:g} and a margin of "
-                f"{margin:g} degrees")
 
 
 @dataclass(frozen=True)
@@ -251,6 +257,7 @@ class ThreeFingers(_PointFingers):
 
     # on a solid: three point fingers with friction (fcgrasp.grippers.solids)
     solid_title: ClassVar[str] = "three fingers with friction"
+    SOLID_NONE: ClassVar[str] = "no three facets hold three fingers with friction"
 
     def solid_plans(self, solid: Any, options: SearchOptions, fraction: float) -> PlanList:
         """Three point fingers with friction ``mu`` on a solid: certified regions on
@@ -271,13 +278,6 @@ class ThreeFingers(_PointFingers):
                          "exhaustive": searches[-1].exhaustive}
         return plans
 
-    def solid_parameters(self, options: SearchOptions) -> dict[str, Any]:
-        return {"fingers": 3, "contact_type": "friction", "mu": self.mu, "top": options.top,
-                "margin_deg": options.margin}
-
-    def solid_no_grasp_reason(self, margin: float) -> str:
-        return (f"no three facets hold three fingers with friction with mu {self.mu:g} and "
-                f"a margin of {margin:g} degrees")
 
 
 @dataclass(frozen=True)
