@@ -37,7 +37,6 @@ element, the vertex), so the command line can print it on one line.
 
 from __future__ import annotations
 
-import math
 import os
 import sys
 from dataclasses import dataclass, field, replace
@@ -454,7 +453,6 @@ def list_parts(source: str | os.PathLike[str], *, units: str | None = None,
                         "the vertices of the file's outlines")
         if not d.shapes:
             raise ValueError("no closed outline found")
-        _check_finite(d)
         d = _without_slivers(d)
         return [_part(s, k, len(d.shapes), spec, fmt, d, opt) for k, s in enumerate(d.shapes)]
     except (ValueError, TypeError) as exc:
@@ -486,19 +484,6 @@ def _without_slivers(d: Drawing) -> Drawing:
     return replace(d, shapes=kept, notes=[*d.notes, f"{gone} sliver{'s' * (gone > 1)} "
                                           f"(thinner than {SLIVER_REL:g} of the largest "
                                           f"part) left out"])
-
-
-def _check_finite(d: Drawing) -> None:
-    """Coordinates whose outline's area or extent overflows a float (a drawing with
-    coordinates near 1e300) are refused: no measure of such a part is a number."""
-    for s in d.shapes:
-        poly = s.polygon
-        if not (np.all(np.isfinite(poly.bounds)) and math.isfinite(poly.area)
-                and math.isfinite(poly.length)):
-            name = f" {s.id}" if s.id else ""
-            raise ValueError(f"coordinates out of range: the outline{name} reaches "
-                             f"{max(abs(v) for v in poly.bounds):.3g}, and its area "
-                             "overflows a float")
 
 
 def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
