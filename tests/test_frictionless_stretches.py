@@ -337,3 +337,23 @@ def test_the_polished_ellipse_plan_is_not_refuted_by_the_bound():
     poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
     best = fc.plan(poly, fingers=4, top=1)[0]
     assert optimum_upper_bound(poly, 4, 0.0, lower=best.min_length).value >= best.min_length
+
+
+@pytest.mark.parametrize("seed", seeds(2, 12))
+def test_growth_keeps_few_systems_and_gives_the_same_plans(seed, monkeypatch):
+    """A growth keeps at most KEEP_SYSTEMS systems (its memory bounded whatever the
+    part); a system asked for again is rebuilt, so a cache of one gives the plans of a
+    cache that keeps every system."""
+    import fcgrasp.model.frictionless_stretches as fs
+
+    poly, _ = _curved(seed)
+    rows = [p.edges for p in fc.plan(poly, fingers=4, top=3, along_boundary=False)]
+    monkeypatch.setattr(fs, "KEEP_SYSTEMS", 10 ** 9)
+    every = grow_stretches(poly, rows, polish=1)
+    monkeypatch.setattr(fs, "KEEP_SYSTEMS", 1)
+    few = grow_stretches(poly, rows, polish=1)
+    for a, b in zip(every, few, strict=True):
+        assert (a is None) == (b is None)
+        if a is not None:
+            assert a.region_edges == b.region_edges and a.pairing == b.pairing
+            np.testing.assert_array_equal(np.asarray(a.lengths), np.asarray(b.lengths))

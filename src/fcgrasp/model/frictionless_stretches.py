@@ -55,6 +55,7 @@ general force-closure test.
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
@@ -87,6 +88,10 @@ __all__ = ["FrictionlessStretches", "frictionless_stretch_regions", "grow_stretc
 #: A configuration is solved only when its combinations of covered edges (one per
 #: finger) are at most this many (one pair of inequalities each).
 MAX_COMBINATIONS = 4096
+
+#: Systems a search keeps (:class:`_Search`): the memory of a growth is bounded by this
+#: many systems of :data:`MAX_COMBINATIONS` combinations, whatever the part.
+KEEP_SYSTEMS = 64
 
 #: Kinds of covered edge in a region: the only one, the first, the last, inside.
 _SINGLE, _FIRST, _LAST, _INSIDE = range(4)
@@ -518,7 +523,12 @@ class _Search:
 
     def __init__(self, polygon: Polygon, margin: float, gravity: FloatArray | None) -> None:
         self.polygon, self.margin, self.gravity = polygon, margin, gravity
-        self.level: dict[tuple[Any, ...], tuple[_Config, float] | None] = {}
+        #: each configuration's first level (None: no regions)
+        self.level: dict[tuple[Any, ...], float | None] = {}
+        #: the systems of the configurations solved last, at most :data:`KEEP_SYSTEMS`
+        #: (a system holds two rows per combination of covered edges, up to
+        #: :data:`MAX_COMBINATIONS`; one is rebuilt when asked for again)
+        self._systems: OrderedDict[tuple[Any, ...], _Config] = OrderedDict()
         self.totals: dict[tuple[Any, ...], float] = {}
         self._facts: dict[tuple[int, ...], tuple[float, float, float, float]] = {}
         self._arrays: Any = None
@@ -547,22 +557,46 @@ class _Search:
         and orientation), whose rows it shares are copied."""
         key = (edges, pairing, mode)
         if key not in self.level:
-            got = None if parent is None else self.level.get(parent)
-            cfg = _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
-                          self.gravity, compiled=self.compiled, facts=self.facts,
-                          arrays=self.arrays(), parent=None if got is None else got[0],
-                          checked=True)
+            cfg = self._build(key, parent)
             t = None if cfg is None else _first_level(cfg)
-            self.level[key] = None if cfg is None or t is None else (cfg, t)
-        return self.level[key]
+            self.level[key] = t
+            if cfg is not None and t is not None:
+                self._keep(key, cfg)
+        t = self.level[key]
+        return None if t is None else (self.system(key), t)
+
+    def _build(self, key: tuple[Any, ...], parent: tuple[Any, ...] | None = None
+               ) -> _Config | None:
+        """The system of a configuration (``parent``'s rows copied where it is kept)."""
+        edges, pairing, mode = key
+        near = None if parent is None else self._systems.get(parent)
+        return _system(self.polygon, edges, PAIRINGS[pairing], mode, self.margin,
+                       self.gravity, compiled=self.compiled, facts=self.facts,
+                       arrays=self.arrays(), parent=near, checked=True)
+
+    def _keep(self, key: tuple[Any, ...], cfg: _Config) -> None:
+        self._systems[key] = cfg
+        self._systems.move_to_end(key)
+        while len(self._systems) > KEEP_SYSTEMS:
+            self._systems.popitem(last=False)
+
+    def system(self, key: tuple[Any, ...]) -> _Config:
+        """The system of a configuration that holds regions (rebuilt if not kept: the
+        same rows)."""
+        cfg = self._systems.get(key)
+        if cfg is None:
+            cfg = self._build(key)
+            assert cfg is not None
+        self._keep(key, cfg)
+        return cfg
 
     def reach(self, edges: tuple[tuple[int, ...], ...]) -> float:
         """The shortest stretch's arc length: a bound on the smallest region."""
         return min(self.facts(st)[3] for st in edges)
 
-    def total(self, key: tuple[Any, ...], cfg: _Config, t: float) -> float:
+    def total(self, key: tuple[Any, ...], t: float) -> float:
         if key not in self.totals:
-            self.totals[key] = _total(cfg, t)
+            self.totals[key] = _total(self.system(key), t)
         return self.totals[key]
 
     def better(self, a: tuple[Any, ...], b: tuple[Any, ...] | None) -> bool:
@@ -570,13 +604,13 @@ class _Search:
         region, or, tied, a longer total."""
         if b is None:
             return True
-        ca, ta = self.level[a]  # type: ignore[misc]
-        cb, tb = self.level[b]  # type: ignore[misc]
+        ta, tb = self.level[a], self.level[b]
+        assert ta is not None and tb is not None
         if ta > tb * (1 + RANK_TOL):
             return True
         if ta < tb * (1 - RANK_TOL):
             return False
-        return self.total(a, ca, ta) > self.total(b, cb, tb) * (1 + RANK_TOL)
+        return self.total(a, ta) > self.total(b, tb) * (1 + RANK_TOL)
 
     def seed(self, edges: tuple[tuple[int, ...], ...]) -> tuple[Any, ...] | None:
         """The pairing and orientation with the best single-edge configuration."""
@@ -626,7 +660,8 @@ class _Search:
         for new in moves:
             if (not single and _size(new) == 1) or _size(new) > MAX_COMBINATIONS:
                 continue
-            ahead = self.level[key if step is None else step][1]  # type: ignore[index]
+            ahead = self.level[key if step is None else step]
+            assert ahead is not None
             if self.reach(new) < ahead * (1 - RANK_TOL):
                 continue
             cand = (new, key[1], key[2])
@@ -636,7 +671,7 @@ class _Search:
         return step
 
     def result(self, key: tuple[Any, ...]) -> FrictionlessStretches | None:
-        cfg = self.level[key][0]  # type: ignore[index]
+        cfg = self.system(key)
         x = _leximin(cfg)
         return None if x is None else _result(self.polygon, cfg, x, PAIRINGS[key[1]], key[2])
 
