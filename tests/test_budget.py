@@ -50,6 +50,12 @@ def _check_partial(full, part):
         assert len(part) == len(full) and all(map(_same, full, part))
         return
     assert part.stopped in ("time_limit", "max_memory", "depth")
+    if not part.exact:
+        # a search cut short inside (a growth): plans that hold, no bound claimed
+        # (test_a_growth_cut_short_gives_plans_that_hold)
+        assert part.bound is None and part.gap()["exact"] is False
+        assert len(part) <= len(full)
+        return
     assert len(part) <= len(full)
     assert all(map(_same, full, part))
     rest = [p.min_length for p in full[len(part):]]
@@ -242,3 +248,38 @@ def test_a_solid_jaw_stopped_early_gives_an_exact_prefix_and_a_sound_bound(seed)
         assert part.measure == "region radius"
         assert all(q.radius <= part.bound * (1 + 1e-12) for q in full[len(part):])
     assert partials >= 1
+
+
+@pytest.mark.parametrize("checks", [0, 3, 40])
+def test_a_growth_cut_short_gives_plans_that_hold(checks):
+    """Four fingers grown along the boundary, the growth stopped by the budget: the
+    answer says it is not exact (no bound), and every plan holds (sampled grasps of
+    its regions, vertex fans included, through the wrench LP)."""
+    from .test_frictionless_stretches import _check_plan_holds
+
+    rng = np.random.default_rng(checks)
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    poly = fc.Polygon(np.c_[40 * np.cos(t), 25 * np.sin(t)])
+    full = fc.plan(poly, fingers=4, top=3, time_limit=None)
+    with deadline(None, checks=checks):
+        part = fc.plan(poly, fingers=4, top=3, time_limit=None)
+    if checks < 10:                     # the growth needs more checks than that
+        assert not part.complete and not part.exact and part.gap()["bound"] is None
+    else:
+        assert part.complete and all(map(_same, full, part))
+    for p in part:
+        _check_plan_holds(p, poly, rng, grasps=60)
+
+
+def test_the_jaw_cut_short_keeps_the_boxes_it_proved():
+    """The jaw seeks boxes one after another while the budget lasts (the first always):
+    stopped, it returns those it proved (each the complete search's box of the same
+    turn), not exact, no bound claimed."""
+    poly = fc.read_part("demo:rectangle")
+    jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    full = fc.plan(poly, gripper=jaw, top=3, distinct=0, time_limit=None)
+    with deadline(None, checks=0):
+        part = fc.plan(poly, gripper=jaw, top=3, distinct=0, time_limit=None)
+    assert len(full) == 3 and len(part) == 1
+    assert not part.complete and not part.exact and part.gap()["bound"] is None
+    assert part[0].theta == full[0].theta and part[0].offset == full[0].offset

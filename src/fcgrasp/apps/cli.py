@@ -142,6 +142,9 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
 
     why = f"at {stopped_words(gap['stopped_by'])}"
     top = report.get("parameters", {}).get("top")
+    if not gap.get("exact", True):
+        return (f"search stopped {why}: {gap['found']} of {top} plans, each proved to hold; "
+                f"a complete search may rank others first")
     rest = "no bound on the rest was proved" if gap["bound"] is None else \
         f"every further distinct alternative has a " \
         f"{gap.get('measure', 'smallest region')} of at most " \

@@ -33,8 +33,8 @@ from typing import Any
 from ..errors import FcgraspError
 
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
-           "remaining", "check_time_limit", "PlanList", "incomplete", "STOPPED_BY",
-           "stopped_words"]
+           "remaining", "interruptible", "poll", "cut_short", "settle", "check_time_limit",
+           "PlanList", "incomplete", "STOPPED_BY", "stopped_words"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
 #: of wall-clock time, for interactive use: the search's first answer is always
@@ -43,12 +43,15 @@ DEFAULT_TIME_LIMIT = 10.0
 
 class _Budget:
     """One :func:`deadline`: when it ends (monotonic seconds, None: never), how many
-    more checks it allows (None: any), and the deadline around it."""
+    more checks it allows (None: any), the deadline around it, and why a search under
+    it returned less than a complete search would (:func:`cut_short`; None: none
+    did)."""
 
-    __slots__ = ("at", "checks", "outer")
+    __slots__ = ("at", "checks", "outer", "cut")
 
     def __init__(self, at: float | None, checks: int | None, outer: _Budget | None) -> None:
         self.at, self.checks, self.outer = at, checks, outer
+        self.cut: str | None = None
 
     def ended(self, count: bool) -> bool:
         """Whether this budget or one around it has ended (``count``: a check spends one
@@ -114,17 +117,54 @@ def check_time_limit(value: object, name: str = "time_limit") -> float | None:
 
 
 @contextmanager
-def deadline(seconds: float | None, checks: int | None = None) -> Iterator[None]:
+def deadline(seconds: float | None, checks: int | None = None) -> Iterator[_Budget]:
     """Run the block under a budget of ``seconds`` of wall-clock time from now (None: no
     time limit of its own) and of ``checks`` budget checks (None: any; a count makes a
     partial answer reproducible, whatever the machine's speed, as the tests need).  An
-    enclosing deadline still holds: the first to end ends both."""
+    enclosing deadline still holds: the first to end ends both.  The budget is given
+    to the block: its ``cut`` says whether a search under it was cut short
+    (:func:`cut_short`)."""
     at = None if seconds is None else time.monotonic() + seconds
-    token = _CURRENT.set(_Budget(at, checks, _CURRENT.get()))
+    budget = _Budget(at, checks, _CURRENT.get())
+    token = _CURRENT.set(budget)
+    try:
+        yield budget
+    finally:
+        _CURRENT.reset(token)
+
+
+_INTERRUPTIBLE: ContextVar[bool] = ContextVar("fcgrasp_interruptible", default=False)
+
+
+@contextmanager
+def interruptible() -> Iterator[None]:
+    """Inside the block, :func:`poll` checks the budget: a search whose caller keeps
+    an answer without it (a deeper read of a ranked list) may be ended there."""
+    token = _INTERRUPTIBLE.set(True)
     try:
         yield
     finally:
-        _CURRENT.reset(token)
+        _INTERRUPTIBLE.reset(token)
+
+
+def poll() -> None:
+    """:func:`check` inside :func:`interruptible`; nothing elsewhere (a search that
+    must finish, such as the first answer, is not ended)."""
+    if _INTERRUPTIBLE.get():
+        check()
+
+
+def cut_short(reason: str = "time_limit") -> None:
+    """Record that a search stopped at its budget and returned what it had: plans that
+    hold, each proved, but fewer, or found by less of the search, than a complete
+    search would give (a heuristic's growth stopped, the jaw's boxes sought no
+    further).  Recorded on the current deadline and those around it; the planner
+    then says the answer is incomplete (:func:`fcgrasp.plan`)."""
+    b = _CURRENT.get()
+    while b is not None:
+        if b.cut is None:
+            b.cut = reason
+        b = b.outer
 
 
 def remaining() -> float:
@@ -161,7 +201,8 @@ class PlanList(list):  # type: ignore[type-arg]
     ``bound`` is then a length no plan the complete search would add after them
     exceeds: every further alternative's smallest region is at most ``bound`` (None
     where the search proved none), the gap of an anytime search as a MIP solver reports
-    its own.
+    its own.  ``exact`` False: a search was cut short inside (:func:`cut_short`): every
+    plan holds, but a complete search may rank others before them or find them larger.
 
     >>> plans = PlanList([], complete=False, bound=2.5, stopped="time_limit")
     >>> plans.complete, plans.gap()["bound"]
@@ -169,9 +210,12 @@ class PlanList(list):  # type: ignore[type-arg]
     """
 
     def __init__(self, plans: Any = (), complete: bool = True, bound: float | None = None,
-                 stopped: str | None = None, measure: str = "smallest region") -> None:
+                 stopped: str | None = None, measure: str = "smallest region",
+                 exact: bool = True) -> None:
         super().__init__(plans)
         self.complete = bool(complete)
+        #: the plans are an exact prefix of the complete answer (False: :func:`cut_short`)
+        self.exact = bool(exact) or self.complete
         self.bound = None if bound is None else float(bound)
         self.stopped = stopped
         #: what ``bound`` bounds: the plans' ranking measure
@@ -186,15 +230,28 @@ class PlanList(list):  # type: ignore[type-arg]
         if self.complete:
             return None
         return {"stopped_by": self.stopped, "found": len(self), "bound": self.bound,
-                "measure": self.measure}
+                "measure": self.measure, "exact": self.exact}
 
     def same_answer(self, plans: Any) -> PlanList:
         """Other plans with this list's completeness and bound."""
-        return PlanList(plans, self.complete, self.bound, self.stopped, self.measure)
+        return PlanList(plans, self.complete, self.bound, self.stopped, self.measure,
+                        self.exact)
 
 
 def incomplete(plans: Any, stopped: str, bound: float | None,
-               measure: str = "smallest region") -> PlanList:
+               measure: str = "smallest region", exact: bool = True) -> PlanList:
     """The plans of a search that stopped early (``stopped``), every further plan's
-    ``measure`` at most ``bound``."""
-    return PlanList(plans, complete=False, bound=bound, stopped=stopped, measure=measure)
+    ``measure`` at most ``bound`` (``exact`` False: not an exact prefix, the bound
+    None)."""
+    return PlanList(plans, complete=False, bound=bound if exact else None, stopped=stopped,
+                    measure=measure, exact=exact)
+
+
+def settle(plans: Any, budget: _Budget) -> Any:
+    """``plans`` (a :class:`PlanList`, or plans) as the answer of a search run under
+    ``budget``: incomplete, not exact, where a search inside was cut short
+    (:func:`cut_short`)."""
+    if budget.cut is None:
+        return plans
+    got = plans if isinstance(plans, PlanList) else PlanList(plans)
+    return incomplete(got, got.stopped or budget.cut, None, got.measure, exact=False)

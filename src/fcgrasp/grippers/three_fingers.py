@@ -64,6 +64,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core import budget
 from ..core._angles import wrap
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
@@ -486,6 +487,18 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     kept = suppression.plans()[:top]
     if stopped is None:
         return PlanList(kept)
+    if len(kept) < top:
+        # the plans read below the level, in their order: each holds, but a plan not
+        # read may rank before them (not an exact prefix)
+        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others, keys=keys):
+            if key in fed:
+                continue
+            fed.add(key)
+            if suppression.add(p) and len(suppression.kept) == top:
+                break
+        more = suppression.plans()[:top]
+        if len(more) > len(kept):
+            return incomplete(more, stopped, None, exact=False)
     return incomplete(kept, stopped, float(level) if np.isfinite(level) else None)
 
 
@@ -713,10 +726,20 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     size = polygon.size
     ask = None if keep is None else start or max(KEEP_PAIRS, keep)
     free = _FreeStretches(polygon) if boundary else None
+    out: list[GraspPlan] = []
     while True:
         two = replace(spec, fingers=2, top=ask, rank_by="min_region",
                       along_boundary=boundary)
-        if boundary:
+        if boundary and out:
+            # a deeper read: the time budget may end it, and the pairs read are kept
+            # (each plan holds; a complete read may rank others first)
+            try:
+                with budget.interruptible():
+                    got, every, below = stretch_plans_read(polygon, two)
+            except budget.BudgetExhausted:
+                budget.cut_short()
+                return out, None
+        elif boundary:
             got, every, below = stretch_plans_read(polygon, two)
         else:
             got = search(polygon, two, edges=edges)
@@ -732,6 +755,9 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
         reach = max(level, best[keep - 1] if len(best) >= keep else 0.0)
         # every pair not read is below ``below``: none reaches the keep-th
         if below <= reach:
+            return out, None
+        if budget.exhausted():
+            budget.cut_short()
             return out, None
         ask = 2 * max(ask, len(got))
         if first and len(out) >= keep:  # enough for the triples' floor

@@ -62,7 +62,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core import _simplex
+from ..core import _simplex, budget
 from ..core._angles import margin_radians
 from ..core._checks import FloatArray, check_scalar
 from ..core._geom import cross2 as _cross
@@ -774,6 +774,15 @@ def load_kernels() -> bool:
     return _frictionless_kernels.COMPILED.available()
 
 
+def _budget_left() -> bool:
+    """Whether the time budget lets a growth go on (a budget check); recorded as cut
+    short when not."""
+    if budget.exhausted():
+        budget.cut_short()
+        return False
+    return True
+
+
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
                    gravity: Any = None, max_steps: int = 400, keep_single: bool = True,
                    polish: int = 0) -> list[FrictionlessStretches | None]:
@@ -799,14 +808,21 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     if not isinstance(polish, int) or polish < 0:
         raise ValueError(f"polish must be an integer >= 0, got {polish!r}")
     search, seeds = _seeds(polygon, edge_sets, margin, gravity)
-    keys = [None if key is None else search.grow(key, max_steps) for _, key in seeds]
+    # each seed grown while the time budget lasts (:func:`fcgrasp.core.budget.cut_short`:
+    # a seed not grown is its single-edge plan, which holds)
+    keys = []
+    for _, key in seeds:
+        if key is not None and _budget_left():
+            key = search.grow(key, max_steps)
+        keys.append(key)
     # the best grown (distinct configurations, best first) polished
     best: list[tuple[Any, ...]] = []
     for key in keys:
         if key is not None and key not in best:
             at = next((i for i, b in enumerate(best) if search.better(key, b)), len(best))
             best.insert(at, key)
-    polished = {key: search.polish(key, max_steps) for key in best[:polish]}
+    polished = {key: search.polish(key, max_steps) for key in best[:polish]
+                if _budget_left()}
     out: list[FrictionlessStretches | None] = []
     for key in keys:
         if key is not None:

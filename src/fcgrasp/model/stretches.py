@@ -1006,6 +1006,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         for chunk in _chunks(order, memo is not None):
             if exclude:                     # a distinct round: the budget may end it
                 budget.check()
+            else:                           # a deeper read of the ranked list may end
+                budget.poll()
             if memo is not None:            # lazy: by arc length, boxes as they come
                 if ub[chunk[0]] < bound.floor:
                     break

@@ -36,6 +36,7 @@ from ..core.budget import (
     deadline,
     exhausted,
     incomplete,
+    settle,
 )
 from ..core.tolerances import SOLVER_TOL
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions
@@ -219,10 +220,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
             _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, None))
         from ..grippers.solids import solid_plans
 
-        with collector_paused(), deadline(limit):
-            return solid_plans(gripper, solid, SearchOptions(top=top, margin=margin),
-                               check_scalar(default_distinct(gripper) if distinct is None
-                                            else distinct, "distinct", nonnegative=True))
+        with collector_paused(), deadline(limit) as spent:
+            return settle(solid_plans(gripper, solid, SearchOptions(top=top, margin=margin),
+                                      check_scalar(default_distinct(gripper) if distinct is None
+                                                   else distinct, "distinct",
+                                                   nonnegative=True)), spent)
     polygon = check_polygon(polygon)
     if gripper is None:
         if mu is None:                      # the command line's default, with friction
@@ -240,11 +242,11 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
             if value is not None:
                 raise ValueError(f"{name}={value!r} needs a load (load=fcgrasp.Load(mass, "
                                  f"...)), got load=None")
-        with collector_paused(), deadline(limit):
-            return _distinct(polygon, gripper, options, distinct)
-    with collector_paused(), deadline(limit):
-        return _with_payload(polygon, gripper, options, distinct, load, force_limit,
-                             total_force)
+        with collector_paused(), deadline(limit) as spent:
+            return settle(_distinct(polygon, gripper, options, distinct), spent)
+    with collector_paused(), deadline(limit) as spent:
+        return settle(_with_payload(polygon, gripper, options, distinct, load, force_limit,
+                                    total_force), spent)
 
 
 def _as_solid(part: Any) -> Any:

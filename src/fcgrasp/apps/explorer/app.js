@@ -703,6 +703,9 @@ function optimumText(report) {
   if (!b) return "";
   if (b.upper_bound === null) return "optimum: no upper bound proved within the search's budget";
   const best = Math.max(0, ...report.grasps.map((g) => g.min_region_length));
+  if (g.exact === false)
+    return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans, each proved ` +
+      `to hold; a complete search may rank others first`;
   const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
   return `optimum: no regions of ${report.parameters.fingers} fingers each ` +
     `${g4(b.upper_bound)} ${report.units} long or more hold (proved over ${b.nodes} boxes ` +
@@ -716,6 +719,9 @@ function incompleteText(report) {
   const why = {time_limit: "at its time limit (--time-limit)",
                max_memory: "at its memory budget (--max-memory)",
                depth: "at the most plans a distinct search reads"}[g.stopped_by] || "early";
+  if (g.exact === false)
+    return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans, each proved ` +
+      `to hold; a complete search may rank others first`;
   const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
   const rest = g.bound === null ? "no bound on the rest was proved"
     : `every further distinct alternative has a ${g.measure || "smallest region"} of at most ${g4(g.bound)} ` +

@@ -10,6 +10,7 @@ from typing import Any, ClassVar
 
 import numpy as np
 
+from ...core import budget
 from ...core._checks import FloatArray, check_int
 from ...core._json import json_ready
 from ...core.budget import PlanList
@@ -338,8 +339,8 @@ def _proved(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None,
         c = (off[0] + k * dc, off[1] - k * dc)
         if t[1] < t[0] or c[1] < c[0]:
             return None
-        budget = CERTIFY_BOXES if k else CERTIFY_BOXES // 8
-        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=budget):
+        boxes = CERTIFY_BOXES if k else CERTIFY_BOXES // 8
+        if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=boxes):
             return t, c
     return None
 
@@ -443,13 +444,13 @@ def _proved_grown(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int |
     if grown is None:
         return None
     (t0, t1), (c0, c1) = grown
-    for f, budget in GROW_BACKOFF:
+    for f, boxes in GROW_BACKOFF:
         t = (t0 + f * dth, t1 - f * dth)
         c = (c0 + f * dc, c1 - f * dc)
         if t[1] < t[0] or c[1] < c[0]:
             return None
         if certify_box(polygon, jaw, t, c, margin, hole,
-                       max_boxes=int(budget * CERTIFY_BOXES)):
+                       max_boxes=int(boxes * CERTIFY_BOXES)):
             return t, c
     return None
 
@@ -661,13 +662,13 @@ def _proved_refined(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int
         mid = min(max((th[0] + th[1]) / 2, t0 + need / 2), t1 - need / 2)
         tries.append((mid - need / 2, mid + need / 2))
     for a0, a1 in tries:
-        for f, budget in REFINE_BACKOFF:
+        for f, boxes in REFINE_BACKOFF:
             t = (a0 + f * (a1 - a0), a1 - f * (a1 - a0))
             c = (c0 + f * (c1 - c0), c1 - f * (c1 - c0))
             if t[1] <= t[0] or c[1] <= c[0] or _measure(t, c, radius) <= floor:
                 break
             if certify_box(polygon, jaw, t, c, margin, hole,
-                           max_boxes=int(budget * CERTIFY_BOXES)):
+                           max_boxes=int(boxes * CERTIFY_BOXES)):
                 return t, c
     return None
 
@@ -745,6 +746,9 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     plans: list[JawPlan] = []
     taken: list[tuple[float, float, float, float]] = []    # the plans' boxes and images
     while len(plans) < top:
+        if plans and budget.exhausted():    # the time budget: the boxes proved so far
+            budget.cut_short()
+            break
         score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
         if score <= 0:
             break
