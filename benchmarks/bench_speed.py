@@ -84,11 +84,11 @@ def previous_kernels():
     # window of angles read (the window scan), every row's windows widened, every edge's
     # single-edge windows read
     from fcgrasp.model import _stretch_kernels as K
-    from fcgrasp.model import stretches as S
-    windows, single = K.windows, S._single
+    from fcgrasp.model import _stretch_search as Q
+    windows, single = K.windows, Q._single
     K.vertex_runs_tree = K.vertex_runs_scan
     K.windows = lambda *a: windows(*a[:10])
-    S._single = lambda *a: single(*a[:6])
+    Q._single = lambda *a: single(*a[:6])
 
 part_for = {"star1k": lambda: star(1000, 0.01), "ellipse10k": lambda: ellipse(10000),
             "blob100k": lambda: blob(100000), "star100k": lambda: star(100000, 0.001),

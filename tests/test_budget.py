@@ -139,12 +139,12 @@ def test_two_fingers_stop_at_the_time_limit_by_the_clock():
 def test_two_fingers_memory_budget_stops_the_rounds(monkeypatch):
     """The smallest memory budget (16 MiB) and configurations counted as 1 MB each: the
     first distinct round's collection does not fit."""
-    from fcgrasp.model import stretches
+    from fcgrasp.model import _stretch_solve
 
     rng = np.random.default_rng(3)
     poly = _wavy(rng, 120)
     full = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None)
-    monkeypatch.setattr(stretches, "CONFIG_BYTES", 2 ** 20)
+    monkeypatch.setattr(_stretch_solve, "CONFIG_BYTES", 2 ** 20)
     part = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None, max_memory=2 ** 24)
     _check_partial(full, part)
     assert not part.complete and part.stopped == "max_memory"
@@ -283,3 +283,22 @@ def test_the_jaw_cut_short_keeps_the_boxes_it_proved():
     assert len(full) == 3 and len(part) == 1
     assert not part.complete and not part.exact and part.gap()["bound"] is None
     assert part[0].theta == full[0].theta and part[0].offset == full[0].offset
+
+
+def test_the_cli_says_a_search_cut_short_is_not_exact(tmp_path):
+    """A growth stopped by the budget: the report's gap says ``exact: false`` with no
+    bound, and the command line prints that every plan holds but a complete search may
+    rank others first (not the exact prefix's line)."""
+    t = np.linspace(0, 2 * np.pi, 60, endpoint=False)
+    src = tmp_path / "ellipse.json"
+    src.write_text(json.dumps({"vertices": np.c_[40 * np.cos(t), 25 * np.sin(t)].tolist()}))
+    out = tmp_path / "plan.json"
+    text = io.StringIO()
+    with deadline(None, checks=0), redirect_stdout(text):
+        assert main(["plan", str(src), "--fingers", "4", "--top", "3",
+                     "--json", str(out)]) == 0
+    report = json.loads(out.read_text())
+    assert report["complete"] is False and report["gap"]["exact"] is False
+    assert report["gap"]["bound"] is None
+    assert "plans, each proved to hold; a complete search may rank others first" \
+        in text.getvalue()

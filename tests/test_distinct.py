@@ -400,8 +400,10 @@ def test_distinct_rounds_with_the_per_key_bound_give_the_same_plans(seed, monkey
     kw = [dict(fingers=2, mu=mu, top=int(rng.integers(3, 8)), distinct=fraction),
           dict(fingers=3, mu=mu, top=int(rng.integers(3, 8)), distinct=fraction)]
     got = [fc.plan(part, **k) for k in kw]
+    from fcgrasp.model import _stretch_search
+
     bound = stretches._Bound
-    monkeypatch.setattr(stretches, "_Bound",
+    monkeypatch.setattr(_stretch_search, "_Bound",
                         lambda *a, each=False, **k: bound(*a, **k))
     want = [fc.plan(part, **k) for k in kw]
     for g, w in zip(got, want, strict=True):
@@ -551,7 +553,7 @@ def _boundary_regions(rng, poly):
     """Pairs of regions along ``poly``'s boundary with the edges of their segments:
     one from anywhere, the other the same shifted a little, a lot, by whole edges,
     ending at a vertex, or elsewhere on the ring."""
-    from fcgrasp.model import stretches as S
+    from fcgrasp.model._stretch_search import _polyline
     from fcgrasp.model._stretch_windows import _rings
 
     ring = _rings(poly)[0]
@@ -564,7 +566,7 @@ def _boundary_regions(rng, poly):
         to_last = L - s0 + float(ring.U[j + k] - ring.U[j + 1]) if k else -s0
         last = float(ring.L[(i + k) % m])
         t = to_last + frac * last if k else (L - s0) * frac
-        return S._polyline(ring, i, k, s0, t)
+        return _polyline(ring, i, k, s0, t)
 
     for _ in range(12):
         i, k = int(rng.integers(0, m)), int(rng.integers(0, min(m - 2, 8)))

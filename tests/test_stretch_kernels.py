@@ -12,7 +12,11 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.core.contacts import rotate
+from fcgrasp.model import _stretch_exclusion as X
 from fcgrasp.model import _stretch_kernels
+from fcgrasp.model import _stretch_search as Q
+from fcgrasp.model import _stretch_solve as V
+from fcgrasp.model import _stretch_windows as W
 from fcgrasp.model import stretches as S
 from fcgrasp.model._stretch_windows import _Intervals, _rings, _windows_both, _windows_single
 from fcgrasp.model.polygon import Polygon
@@ -139,13 +143,13 @@ def test_windows_are_the_numpy_windows(seed, monkeypatch):
         M = _dense(runs[sigma], ra.m, rb.m)
         brute = _brute_lower_bounds(M, ra, rb, True)
         monkeypatch.setenv("FCGRASP_JIT", "1")
-        best, _ = S._both(runs[sigma], ra, rb, True, 0.0, False)
+        best, _ = Q._both(runs[sigma], ra, rb, True, 0.0, False)
         np.testing.assert_allclose(best, brute, rtol=0, atol=1e-12 * poly.size)
         # the numpy search reads fewer window lengths: its bounds are never higher
         slow, _ = _windows_both(runs[sigma], ra, rb, True, 0.0, False)
         assert np.all(slow <= best + 1e-12 * poly.size)
         for floor in (0.0, 0.5 * best.max(initial=0.0), best.max(initial=0.0)):
-            _, fast = S._both(runs[sigma], ra, rb, True, floor, True)
+            _, fast = Q._both(runs[sigma], ra, rb, True, floor, True)
             _, want = _windows_both(runs[sigma], ra, rb, True, floor, True)
             assert _config_set(fast, ra.m, rb.m) == _config_set(want, ra.m, rb.m)
 
@@ -162,7 +166,7 @@ def test_single_edge_windows_are_the_numpy_ones(seed, monkeypatch):
             lengths = rings[x].L
             for floor in (0.0, float(np.median(lengths)), float(lengths.max())):
                 monkeypatch.setenv("FCGRASP_JIT", "1")
-                (a, p, v), fast = S._single(iv, rings[x], rings[y], x == y, floor, True)
+                (a, p, v), fast = Q._single(iv, rings[x], rings[y], x == y, floor, True)
                 (a2, p2, v2), want = _windows_single(iv, rings[x], rings[y], x == y, floor,
                                                      True)
                 m_a, m_b = rings[x].m, rings[y].m
@@ -208,13 +212,14 @@ def test_a_search_that_turns_compiled_half_way_gives_the_numpy_plans(seed, monke
     monkeypatch.setenv("FCGRASP_JIT", "0")
     want = _plans(poly, mu, margin, 8)
     monkeypatch.setenv("FCGRASP_JIT", "auto")
-    monkeypatch.setattr(S, "started", lambda: False)     # numba not started
-    monkeypatch.setattr(S, "NUMPY_SOLVE_BUDGET", 0.0)
-    monkeypatch.setattr(S, "_numpy_spent", [0.0])
+    monkeypatch.setattr(W, "started", lambda: False)     # numba not started
+    monkeypatch.setattr(W, "NUMPY_SOLVE_BUDGET", 0.0)
+    monkeypatch.setattr(W, "_numpy_spent", [0.0])
     calls = []
-    solve = S._solve_any
-    monkeypatch.setattr(S, "_solve_any",
-                        lambda *a, **k: calls.append(a[3]) or solve(*a, **k))
+    solve = V._solve_any
+    for module in (V, Q):               # the first level's solves, and the second's
+        monkeypatch.setattr(module, "_solve_any",
+                            lambda *a, **k: calls.append(a[3]) or solve(*a, **k))
     _assert_same_plans(_plans(poly, mu, margin, 8), want, poly.size)
     assert calls == sorted(calls) and calls[0] is False and (len(calls) == 1 or calls[-1])
 
@@ -233,21 +238,21 @@ def test_configurations_proved_below_the_floor_change_no_plan(seed, monkeypatch)
     poly, mu, margin = part(seed)
     monkeypatch.setenv("FCGRASP_JIT", "1")
     proved = []
-    solve = S._stretch_kernels.solve_rows
+    solve = _stretch_kernels.solve_rows
 
     def counted(*a):
         out = solve(*a)
         proved.append(int(np.isnan(out[0]).sum()))
         return out
 
-    monkeypatch.setattr(S._stretch_kernels, "solve_rows", counted)
+    monkeypatch.setattr(_stretch_kernels, "solve_rows", counted)
     jobs = [dict(fingers=2, mu=mu, margin=margin)] + \
         ([dict(fingers=3, mu=mu, margin=margin)] if seed % 3 == 0 else [])
     for job in jobs:
         got = _plan_tuples(poly, **job)
-        monkeypatch.setattr(S, "FLOOR_SOLVE", 0)
+        monkeypatch.setattr(V, "FLOOR_SOLVE", 0)
         want = _plan_tuples(poly, **job)
-        monkeypatch.setattr(S, "FLOOR_SOLVE", 1)
+        monkeypatch.setattr(V, "FLOOR_SOLVE", 1)
         _assert_same_plans(got, want, poly.size)
     if seed < 3:
         assert sum(proved) > 0          # the floor did leave some unsolved
@@ -338,7 +343,7 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
         rows = _system(ring, ring, cfg, sigma, beta, iv, iv)
         ub = _stretch_bound(ring, ring, cfg)
         want = _solve(rows, ub, poly.size)
-        got = solve_rows(rows, ub, S.ROUND_TOL * poly.size, S._EPS)
+        got = solve_rows(rows, ub, S.ROUND_TOL * poly.size, W._EPS)
         feasible = want[0] > 0
         np.testing.assert_array_equal(got[0] > 0, feasible)
         # the ends' boxes bound the optimum (the search prunes and orders by them)
@@ -352,7 +357,7 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
         # same numbers elsewhere; infeasible systems and feasible ones below proved so
         for q in (0.2, 0.5, 0.9):
             floor = float(np.quantile(want[0][feasible], q)) if feasible.any() else 1.0
-            cut = solve_rows(rows, ub, S.ROUND_TOL * poly.size, S._EPS, floor)
+            cut = solve_rows(rows, ub, S.ROUND_TOL * poly.size, W._EPS, floor)
             skipped = np.isnan(cut[0])
             assert np.all(want[0][skipped] < floor)
             for g, c in zip(got, cut, strict=True):
@@ -602,13 +607,13 @@ def test_pruned_single_edge_windows_give_the_same_floor(seed, monkeypatch):
         job = (0, 0, sigma, "squeeze" if sigma > 0 else "expand")
         iv = _Intervals(ring, ring, sigma, beta)
         for same in (True, False):
-            (a, p, v), _ = S._single(iv, ring, ring, same, 0.0, False)
+            (a, p, v), _ = Q._single(iv, ring, ring, same, 0.0, False)
             full = dict(zip(zip(a.tolist(), p.tolist(), strict=True), v.tolist(), strict=True))
             for keep in (1, 3, 10):
                 kth_full = _kth(per_key(job, a, p, v), keep)
                 for value in (0.0, 0.5 * kth_full, kth_full):
                     bound = SimpleNamespace(value=value, k=keep)
-                    (a2, p2, v2), _ = S._single(iv, ring, ring, same, 0.0, False, bound,
+                    (a2, p2, v2), _ = Q._single(iv, ring, ring, same, 0.0, False, bound,
                                                 (0, 0))
                     got = dict(zip(zip(a2.tolist(), p2.tolist(), strict=True), v2.tolist(),
                                    strict=True))
@@ -623,10 +628,10 @@ def test_pruned_single_edge_windows_give_the_same_floor(seed, monkeypatch):
 def _previous_kernels(monkeypatch):
     """The previous compiled search, kept as the reference: the window scan for the
     runs, every row's windows widened from the first, every single-edge window read."""
-    windows, single = _stretch_kernels.windows, S._single
+    windows, single = _stretch_kernels.windows, Q._single
     monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", _stretch_kernels.vertex_runs_scan)
     monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
-    monkeypatch.setattr(S, "_single", lambda *a: single(*a[:6]))
+    monkeypatch.setattr(Q, "_single", lambda *a: single(*a[:6]))
 
 
 @pytest.mark.parametrize("seed", seeds(1, 24))
@@ -660,8 +665,8 @@ def test_inside_any_compiled_is_the_numpy_test_and_brute_force(seed):
     here; starts past a ring's end (cyclic), supers that wrap, supers sharing a first
     stretch (the sweep adds them at one start in the order of their room), supers of
     no interior vertex, and one ring either way round."""
+    from fcgrasp.model._stretch_solve import _inside_any
     from fcgrasp.model._stretch_windows import _Configs
-    from fcgrasp.model.stretches import _inside_any
 
     rng = np.random.default_rng(5 + seed)
     same = bool(seed % 2)
@@ -740,8 +745,8 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             job = (x, y, 1.0, "squeeze")
             results = []
             for cells in (0, 10 ** 12):             # fused, then numpy
-                monkeypatch.setattr(stretches, "FUSED_CELLS", cells)
-                monkeypatch.setattr(stretches, "FUSED_SIMILAR", cells)
+                monkeypatch.setattr(X, "FUSED_CELLS", cells)
+                monkeypatch.setattr(X, "FUSED_SIMILAR", cells)
                 results.append((excl.threshold(rings, job, cfg, ivs),
                                 excl.similar(rings, job, cfg, t, ivs)))
             (tf, sf), (tn, sn) = results
@@ -816,7 +821,7 @@ def test_least_excess_is_the_least_over_every_region(seed):
 
 def test_member_is_isin():
     """The exclusion's look-up of configurations already read: np.isin by binary search."""
-    from fcgrasp.model.stretches import _member
+    from fcgrasp.model._stretch_exclusion import _member
 
     rng = np.random.default_rng(3)
     for size in (1, 2, 50, 3000):
@@ -842,7 +847,7 @@ def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
     mu, margin = float(rng.choice([0.15, 0.3, 0.6])), float(rng.choice([0.0, 0.5]))
     monkeypatch.setenv("FCGRASP_JIT", "1" if seed % 2 else "0")
     taken = []
-    candidates = S._candidates
+    candidates = Q._candidates
 
     def spy(rings, bound, *args, **kw):
         guesses = kw.get("guesses")
@@ -858,11 +863,11 @@ def test_guessed_floors_give_the_plans_of_no_guess(seed, monkeypatch):
             assert bound.fixed == fixed and bound.start == (above[0] if above else 0.0)
         return out
 
-    monkeypatch.setattr(S, "_candidates", spy)
+    monkeypatch.setattr(Q, "_candidates", spy)
     keys = 2 * sum(r.m for r in _rings(poly))
     top = int(rng.integers(1, 3) * keys // 2)          # half of every key, or all
     fast = _plans(poly, mu, margin, top)
-    monkeypatch.setattr(S, "_GUESS", False)
+    monkeypatch.setattr(Q, "_GUESS", False)
     _assert_same_plans(fast, _plans(poly, mu, margin, top), poly.size)
 
 
@@ -889,8 +894,8 @@ def test_a_stretchs_ends_are_its_polylines_ends():
             t = to_last + float(rng.choice([0.0, 1e-14 * last, last, rng.uniform(0, last)]))
             if k == 0:
                 t = float(rng.uniform(0, L - s0)) if L > s0 else 0.0
-            pts, _ = S._polyline(ring, i, k, s0, t)
-            got = np.array(S._stretch_ends(ring, i, k, s0, t))
+            pts, _ = Q._polyline(ring, i, k, s0, t)
+            got = np.array(Q._stretch_ends(ring, i, k, s0, t))
             assert got.tobytes() == np.stack((pts[0], pts[-1])).tobytes()
             trimmed += len(pts) < k + 2
     assert trimmed > 200

@@ -41,10 +41,10 @@ DEGENERATE_TOL = 1e-12
 #: not limit resolution: a lever arm is still resolved down to ``TOL`` times the floor.
 LENGTH_RESOLUTION = 1e-5
 
-#: Relative pad on a distinct search's threshold (:meth:`fcgrasp.model.stretches._Exclusion.
-#: threshold`) before a configuration is deferred: far above the rounding of the
-#: threshold, so a deferred configuration whose smallest region exceeds it is surely a
-#: kept plan's copy by the exclusion's own test too.
+#: Relative pad on a distinct search's threshold
+#: (:meth:`fcgrasp.model._stretch_exclusion._Exclusion.threshold`) before a configuration
+#: is deferred: far above the rounding of the threshold, so a deferred configuration
+#: whose smallest region exceeds it is surely a kept plan's copy by the exclusion's own test too.
 DEFER_PAD = 1e-9
 
 #: Relative slack of the exact region solver (:mod:`fcgrasp.model.regions`): knapsack budgets

@@ -679,7 +679,7 @@ def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: 
 
 
 def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
-    """``stretches._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
+    """``_stretch_exclusion._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
     ``[u0, u1]``: the same operations in the same order."""
     common = 0.0
     for j in range(3):
@@ -691,7 +691,7 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
 def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, ay0: Any,
                     ay1: Any, perx: float, pery: float, tol: float, keep: float,
                     mask: Any, masked: bool, out: Any) -> None:
-    """``stretches._Exclusion.threshold``: ``out`` lowered to each configuration's least
+    """``_stretch_exclusion._Exclusion.threshold``: ``out`` lowered to each configuration's least
     ``tau`` over the kept plans' columns (with ``masked``, those of ``mask[r]`` only),
     fused over rows and columns: the same numbers."""
     for r in range(a0x.size):
@@ -721,7 +721,7 @@ def _least_excess(s0: float, s1: float, e0: float, e1: float, t: float, k0: floa
     regions ``[s, e]`` with ``s`` in ``[s0, s1]``, ``e`` in ``[e0, e1]`` and ``e - s >=
     t``: the function is continuous and linear between the lines ``s = s0, s1, k0, k1``,
     ``e = e0, e1, k0, k1`` and ``e - s = t, k1 - k0``, so its least is at a crossing of
-    two of them inside (-inf: no region).  ``stretches._Exclusion._least_excess`` of
+    two of them inside (-inf: no region).  ``_stretch_exclusion._Exclusion._least_excess`` of
     one cell: the same operations."""
     best = np.inf
     for a in range(4):
@@ -754,7 +754,7 @@ def _surely_copy(s0: float, s1: float, e0: float, e1: float, t: float, k0: float
 def _similar_rows(sx: Any, sy: Any, ax0: Any, ax1: Any, ay0: Any, ay1: Any, perx: float,
                   pery: float, tol: float, f: float, t: Any, mask: Any, masked: bool,
                   out: Any) -> None:
-    """``stretches._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
+    """``_stretch_exclusion._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
     column (with ``masked``, one of ``mask[r]``), every region pair configuration ``r``
     allows (its ends' intervals ``sx[r]``, ``sy[r]``: first start, last start, first
     end, last end on each ring; smallest region ``t[r]``) overlaps that plan's on both
@@ -805,7 +805,7 @@ def _by_start(a: Any, ka: Any, ma: int) -> Any:
 
 def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, ep: Any, eroom: Any, es: Any,
                    supers: Any, ma: int, mb: int, out: Any) -> None:
-    """``stretches._inside_any``'s test, one way round, as one sweep over the first
+    """``_stretch_solve._inside_any``'s test, one way round, as one sweep over the first
     starts: ``out[i]`` set where configuration ``i`` (first start ``a`` reduced) lies
     inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically.
 
@@ -1128,7 +1128,7 @@ def _scan_inside(order: Any, starts: Any, next_start: Any, lo: int, span: int, m
 
 def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: bool,
             tie: float, order: Any, keep: Any) -> None:
-    """:func:`fcgrasp.model.stretches._own_optimum` of one job, without its matrix of
+    """:func:`fcgrasp.model._stretch_search._own_optimum` of one job, without its matrix of
     every (sub, super) pair: ``keep[s]`` False where a configuration inside ``s`` (on
     both rings; on one ring, either way round) has a smallest region longer than
     ``t[s] (1 + tie)``.  Candidates are read from the configurations sorted by the

@@ -13,6 +13,7 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core._geom import cross2 as _cross
 from ..core.contacts import rotate
+from ..core.kernels import jit_setting, started
 from ..core.tolerances import RANK_TOL, ROUND_TOL
 from . import _stretch_kernels
 from .polygon import Polygon
@@ -518,3 +519,61 @@ def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
         a, c = a[keep], c[keep]
     z = np.zeros(a.size, int)
     return _Configs(a, z, c, z)
+
+
+#: Vertex pairs (``m_a * m_b``) from which the search runs the compiled loops of
+#: :mod:`fcgrasp.model._stretch_kernels`: numba's start-up (about 0.4 s of CPU once per
+#: process, to import it and load the cached code) is then less than what they save.
+#: Once loaded, they run for every part; ``FCGRASP_JIT=0`` never runs them,
+#: ``FCGRASP_JIT=1`` always.
+KERNEL_CELLS = 1_500_000
+
+
+#: CPU seconds of batched numpy solves (:func:`~fcgrasp.model._stretch_lp._solve`) after
+#: which a process solves the rest compiled: on an outline of a few hundred edges whose
+#: stretches hold many vertices (an icon's rounded corners) each chunk of configurations
+#: costs tens of milliseconds of Fourier-Motzkin, and numba's start-up is soon repaid.
+#: The two solve the same (``tests/test_stretch_kernels.py``).
+NUMPY_SOLVE_BUDGET = 0.4
+
+
+_numpy_spent = [0.0]
+
+
+#: Configurations of one job to solve from which the compiled solve runs, whatever the
+#: size of the rings (a noisy outline can leave tens of thousands).
+KERNEL_CONFIGS = 20_000
+
+
+#: Configurations of one job from which :func:`_own_optimum` runs compiled (the numpy
+#: filter compares every pair: 41,000 configurations of an icon took 37 s).
+KERNEL_OWN = 256
+
+
+#: A search asked for more plans than this (or for all of them) loads the compiled loops
+#: whatever the rings' size: a deep list of a smooth outline solves hundreds of
+#: thousands of configurations (three fingers on ``icons/circle.svg``, whose pairs are
+#: read to 512 two-finger plans: 6.6 s of CPU in numpy, 1.0 s compiled).
+KERNEL_TOP = 64
+
+
+def _load_for_depth(top: int | None) -> None:
+    """Load the compiled loops for a search of ``top`` plans (:data:`KERNEL_TOP`), where
+    numba is there and ``FCGRASP_JIT`` leaves the choice to the search."""
+    if (top is None or top > KERNEL_TOP) and jit_setting() is None \
+            and not _stretch_kernels.loaded():
+        _stretch_kernels.available()
+
+
+def stretch_kernels_for(cells: int) -> bool:
+    """Whether the stretch search of rings of ``cells`` vertex pairs runs compiled (and
+    so holds no array of every pair: the memory estimate of
+    :func:`fcgrasp.pipeline.check_search` asks too): once numba started in this
+    process for any of the package's loops, these included
+    (:func:`fcgrasp.core.kernels.started`), from :data:`KERNEL_CELLS`, or once this
+    process spent :data:`NUMPY_SOLVE_BUDGET` in numpy solves."""
+    setting = jit_setting()
+    if setting is not None:
+        return setting
+    return started() or cells >= KERNEL_CELLS or \
+        _numpy_spent[0] > NUMPY_SOLVE_BUDGET

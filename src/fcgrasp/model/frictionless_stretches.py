@@ -551,8 +551,9 @@ class _Search:
         return self._arrays
 
     def solve(self, edges: tuple[tuple[int, ...], ...], pairing: int, mode: str,
-              parent: tuple[Any, ...] | None = None) -> tuple[_Config, float] | None:
-        """The configuration's system and first level (None: no regions), once;
+              parent: tuple[Any, ...] | None = None) -> float | None:
+        """The configuration's first level (None: no regions), solved once (its system
+        then kept among the last :data:`KEEP_SYSTEMS`: :meth:`system`);
         ``parent``: the key of a solved configuration one move away (the same pairing
         and orientation), whose rows it shares are copied."""
         key = (edges, pairing, mode)
@@ -562,8 +563,7 @@ class _Search:
             self.level[key] = t
             if cfg is not None and t is not None:
                 self._keep(key, cfg)
-        t = self.level[key]
-        return None if t is None else (self.system(key), t)
+        return self.level[key]
 
     def _build(self, key: tuple[Any, ...], parent: tuple[Any, ...] | None = None
                ) -> _Config | None:

@@ -703,9 +703,6 @@ function optimumText(report) {
   if (!b) return "";
   if (b.upper_bound === null) return "optimum: no upper bound proved within the search's budget";
   const best = Math.max(0, ...report.grasps.map((g) => g.min_region_length));
-  if (g.exact === false)
-    return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans, each proved ` +
-      `to hold; a complete search may rank others first`;
   const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
   return `optimum: no regions of ${report.parameters.fingers} fingers each ` +
     `${g4(b.upper_bound)} ${report.units} long or more hold (proved over ${b.nodes} boxes ` +

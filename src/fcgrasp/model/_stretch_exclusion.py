@@ -1,0 +1,360 @@
+"""The distinct search's exclusion of the two-finger stretch search: the configurations
+surely the same alternative as a plan kept (part of :mod:`fcgrasp.model.stretches`)."""
+
+from __future__ import annotations
+
+from typing import Any, cast
+
+import numpy as np
+
+from ..core._checks import FloatArray
+from ..core.tolerances import ROUND_TOL
+from . import _stretch_kernels
+from ._free_third import FreeThird
+from ._stretch_lp import (
+    BOX_REACH,
+    _ends,
+)
+from ._stretch_windows import (
+    _Configs,
+    _Intervals,
+    _Ring,
+    stretch_kernels_for,
+)
+from .polygon import Polygon
+
+
+def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
+    """Each usable polygon edge's ring and position in it."""
+    return {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
+
+
+def _member(codes: np.ndarray, known: np.ndarray) -> np.ndarray:
+    """``np.isin(codes, known)`` for ``known`` sorted and unique: a binary search
+    each, without sorting ``codes`` (hundreds of thousands, read in every round)."""
+    at = np.minimum(np.searchsorted(known, codes), len(known) - 1)
+    return cast("np.ndarray", known[at] == codes)
+
+
+class _Exclusion:
+    """Plans already kept (``distinct=``): a configuration whose regions, whatever
+    their placement, overlap a kept plan's regions by more than ``fraction`` of the
+    shorter (:func:`fcgrasp.model.distinct.same_alternative`) is the same alternative as
+    that plan.  Its regions start and end inside its end edges' intervals
+    (:meth:`_spans`) and are at least ``t`` long; the least overlap over all such
+    regions is exact (:meth:`_least_excess`), so :meth:`similar` says "surely a copy"
+    only of configurations whose every placement is one.  Such configurations are
+    solved (a configuration they beat is still no plan) but neither raise the search's
+    bound nor are returned; so are the configurations of the plans ``seen`` (already
+    read by the caller: their covered edges and mode).  Before a configuration is
+    solved, :meth:`threshold` bounds the ``t`` above which it is surely a copy: when
+    the arc from its first start to its last end outside the partner region is below
+    ``(1 - fraction) min(t, partner's length)``.
+
+    With ``third`` (the distinct search of three fingers with friction), a configuration
+    stands for its *pair* plan, its two regions and a third finger on the longest free
+    stretch (:mod:`fcgrasp.model._free_third`), and the kept plans have three regions: a
+    configuration is surely a kept plan's copy when two of the plan's regions are surely
+    its two regions' partners (as above) and the third finger's free stretch surely
+    overlaps the plan's remaining region by more than ``fraction`` of the shorter
+    (:meth:`_third_mask`)."""
+
+    def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
+                 fraction: float, seen: Any = (), third: bool = False) -> None:
+        where = _positions(rings)
+        #: configurations excluded as such (plans already read), per ring pair and
+        #: mode: the codes (:meth:`_codes`) of their starts and interior vertices, on
+        #: one ring both ways round
+        found: dict[tuple[int, int, str], list[tuple[int, int, int, int]]] = {}
+        for edges, mode in seen:
+            # a region covers consecutive edges of one ring (or one edge): its two end
+            # edges say whether it is on the rings (the rounds read thousands of plans
+            # of hundreds of edges each)
+            if all(int(st[0]) in where and int(st[-1]) in where for st in edges):
+                (x, pa), (y, pc) = where[int(edges[0][0])], where[int(edges[1][0])]
+                ka, kc = len(edges[0]) - 1, len(edges[1]) - 1
+                for (r1, a, k1), (r2, c, k2) in (((x, pa, ka), (y, pc, kc)),
+                                                 ((y, pc, kc), (x, pa, ka))):
+                    found.setdefault((r1, r2, mode), []).append((a, k1, c, k2))
+        self.seen: dict[tuple[int, int, str], np.ndarray] = {}
+        for (r1, r2, mode), rows in found.items():
+            a, k1, c, k2 = np.array(rows, np.int64).T
+            self.seen[r1, r2, mode] = np.unique(self._codes(rings, r1, r2, a, k1, c, k2))
+        self.fraction = float(fraction)
+        self.tol = ROUND_TOL * polygon.size
+        self.plans: list[list[tuple[int, float, float]]] = []
+        self._by_rings: dict[tuple[int, int], tuple[FloatArray, ...]] = {}
+        for regions, region_edges in kept:
+            arcs: list[tuple[int, float, float]] = []
+            for pts, edges in zip(regions, region_edges, strict=True):
+                pts = np.asarray(pts, float)
+                if int(edges[0]) not in where or int(edges[-1]) not in where:
+                    arcs = []
+                    break
+                r0, p0 = where[int(edges[0])]
+                r1, p1 = where[int(edges[-1])]
+                ring = rings[r0]
+                u0 = ring.U[p0] + float(np.hypot(*(pts[0] - ring.a[p0])))
+                u1 = ring.U[p1] + float(np.hypot(*(pts[-1] - ring.a[p1])))
+                if r1 != r0:
+                    arcs = []
+                    break
+                if u1 < u0 - self.tol:                  # wraps past vertex 0
+                    u1 += float(ring.U[ring.m])
+                arcs.append((r0, u0, max(u1, u0)))
+            if len(arcs) == (3 if third else 2):
+                self.plans.append(arcs)
+        #: the pair plans' third fingers (``third``): their free stretches
+        self.free = FreeThird(rings, polygon, THIRD_PAD * self.tol) if third else None
+
+    def __bool__(self) -> bool:
+        return bool(self.plans) or bool(self.seen)
+
+    @staticmethod
+    def _codes(rings: list[_Ring], x: int, y: int, iA: Any, kA: Any, iC: Any, kC: Any
+               ) -> np.ndarray:
+        """One integer per configuration of rings ``x`` and ``y`` (starts reduced)."""
+        ma, mb = rings[x].m, rings[y].m
+        return cast("np.ndarray", ((np.asarray(iA, np.int64) % ma * (ma + 1) + kA) * mb
+                                   + np.asarray(iC, np.int64) % mb) * (mb + 1) + kC)
+
+    @staticmethod
+    def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
+               intervals: dict[Any, _Intervals], reach: int | None = None
+               ) -> tuple[FloatArray, FloatArray]:
+        """Where the regions of each configuration can start and end on its two rings,
+        ``(n, 4)`` each: first start, last start, first end, last end, as arc lengths
+        (every pair of regions that holds on those edges has its end points in its end
+        edges' intervals, :func:`_ends`; a stretch that ends on a long edge reaches only
+        the part of it that holds against the other stretch's interior vertices).  An
+        empty interval (no region pair holds) gives a last start or end of -inf.  With
+        ``reach``, intervals that contain those (:func:`_ends`'s, cheaper); ``reach=0``:
+        against no vertex, the whole end edges (the whole stretches)."""
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
+            ra, rb, cfg, intervals[x, y, sigma], intervals[y, x, sigma],
+            stretch_kernels_for(ra.m * rb.m), reach)
+        a, c = ra.U[np.asarray(cfg.iA) % ra.m], rb.U[np.asarray(cfg.iC) % rb.m]
+        return (np.stack([a + lo0, a + hi0, a + off_s + lo1, a + off_s + hi1], axis=1),
+                np.stack([c + ulo0, c + uhi0, c + off_u + ulo1, c + off_u + uhi1], axis=1))
+
+    @staticmethod
+    def _least_excess(s: FloatArray, t: FloatArray, k0: FloatArray, k1: FloatArray,
+                      f: float, eps: float) -> FloatArray:
+        """For each configuration (rows: ``s`` as :meth:`_spans`, smallest region
+        ``t``) and arc ``[k0, k1]`` (columns), the least of ``overlap([a, b], [k0, k1]) -
+        f min(b - a, k1 - k0)`` over its regions ``[a, b]`` (start and end in their
+        intervals, at least ``t`` long; each bound loosened by ``eps``).  The function is
+        continuous and linear between the lines ``a = s0, s1, k0, k1``, ``b = e0, e1,
+        k0, k1`` and ``b - a = t, k1 - k0``, so the least is at a crossing of two of them
+        inside: every crossing is evaluated (-inf: no region)."""
+        s0, s1, e0, e1 = (s[:, j, None] for j in range(4))
+        tt, ln = t[:, None], k1 - k0
+        starts, ends, gaps = (s0, s1, k0, k1), (e0, e1, k0, k1), (tt, ln)
+        crossings = [(a, b) for a in starts for b in ends] + \
+            [(a, a + d) for a in starts for d in gaps] + [(b - d, b) for b in ends for d in gaps]
+        best = np.full((s.shape[0], k0.size), np.inf)
+        for a, b in crossings:
+            a, b = np.broadcast_arrays(a, b)
+            inside = ~((a < s0 - eps) | (a > s1 + eps) | (b < e0 - eps) | (b > e1 + eps)
+                       | (b - a < tt - eps))
+            value = np.maximum(0.0, np.minimum(b, k1) - np.maximum(a, k0)) \
+                - f * np.minimum(b - a, ln)
+            best = np.where(inside, np.minimum(best, value), best)
+        best[best == np.inf] = -np.inf
+        return cast("FloatArray", best)
+
+    def _surely_copy(self, per: float, s: FloatArray, t: FloatArray, k0: FloatArray,
+                     k1: FloatArray) -> np.ndarray:
+        """Whether every region of each configuration (rows) on one ring overlaps the
+        arc ``[k0, k1]`` (columns; or its turn by a perimeter ``per``) by more than
+        ``fraction`` of the shorter, plus the tolerance (:meth:`_least_excess`)."""
+        out = np.zeros((s.shape[0], k0.size), bool)
+        for shift in (-per, 0.0, per):
+            out |= self._least_excess(s, t, k0 + shift, k1 + shift, self.fraction,
+                                      self.tol) > self.tol
+        return out
+
+    @staticmethod
+    def _common(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
+                u1: FloatArray) -> FloatArray:
+        """Arc the spans ``[a0, a1]`` (rows) share with the arcs [u0, u1] (columns) on a
+        ring of perimeter ``per`` (either turned by a perimeter)."""
+        a0, a1 = a0[:, None], a1[:, None]
+        common = np.zeros((a0.shape[0], len(u0)))
+        for shift in (-per, 0.0, per):
+            common += np.maximum(0.0, np.minimum(a1, u1 + shift) - np.maximum(a0, u0 + shift))
+        return common
+
+    @staticmethod
+    def _outside(per: float, a0: FloatArray, a1: FloatArray, u0: FloatArray,
+                 u1: FloatArray) -> FloatArray:
+        """Arc of the spans ``[a0, a1]`` (rows) outside the arcs [u0, u1] (columns) on a
+        ring of perimeter ``per``."""
+        return (a1 - a0)[:, None] - _Exclusion._common(per, a0, a1, u0, u1)
+
+    def _fused(self, rings: list[_Ring], x: int, y: int, spans: tuple[FloatArray, ...],
+               arcs: tuple[FloatArray, ...], t: FloatArray, threshold: bool,
+               out: np.ndarray, mask: np.ndarray | None = None) -> bool:
+        """:meth:`threshold` (``threshold``: ``spans`` the arcs ``a0x, a1x, a0y, a1y``) or
+        :meth:`similar` (``spans`` as :meth:`_spans`) of many configurations by the
+        compiled loop (the same numbers, without a matrix of configurations by
+        kept plans for each step), writing ``out``; only the cells of ``mask`` (rows by
+        columns) where given; False (nothing done) when the matrix is small or the
+        loops do not run."""
+        if len(spans[0]) * len(arcs[0]) < (FUSED_CELLS if threshold else FUSED_SIMILAR) \
+                or not stretch_kernels_for(rings[x].m * rings[y].m):
+            return False
+        per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
+        arcs = tuple(np.ascontiguousarray(v, float) for v in arcs)
+        cells = np.ones((1, 1), bool) if mask is None else np.ascontiguousarray(mask)
+        if threshold:
+            _stretch_kernels.exclusion_rows(
+                *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per,
+                float(self.tol), float(1 - self.fraction), cells, mask is not None, out)
+            return True
+        work = np.zeros(len(out), bool)
+        _stretch_kernels.similar_rows(
+            *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per, float(self.tol),
+            float(self.fraction), np.ascontiguousarray(t, float), cells, mask is not None,
+            work)
+        out |= work
+        return True
+
+    def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
+        """The kept plans' arcs on rings ``x`` (first region) and ``y`` (second), each
+        plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan; with
+        ``third``, one column per ordered pair of a plan's regions, then the remaining
+        region's ring and arc: ``ax0, ax1, ay0, ay1, ring, k0, k1``."""
+        got = self._by_rings.get((x, y))
+        if got is None:
+            cols = [(a[i][1], a[i][2], a[j][1], a[j][2],
+                     *(a[3 - i - j] if len(a) == 3 else ()))
+                    for a in self.plans for i in range(len(a)) for j in range(len(a))
+                    if i != j and a[i][0] == x and a[j][0] == y]
+            got = self._by_rings[x, y] = tuple(
+                np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
+        return got or None
+
+    def _third_mask(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],
+                    spans: tuple[FloatArray, FloatArray] | None = None) -> np.ndarray:
+        """Which configurations (rows) have a third finger whose free stretch surely
+        overlaps each column's remaining region (``arcs[4:]``) by more than ``fraction``
+        of the shorter: every free stretch the configuration's plan can have
+        (:meth:`FreeThird.of`: at least its sure arc, at most its widest) on that
+        region's ring, the sure arc's overlap above ``fraction`` of the widest's
+        length or the region's, whichever is less, by :data:`THIRD_PAD` tolerances.
+        ``spans`` (:meth:`_spans`) say which end edges a trim may free
+        (:meth:`FreeThird.trims`; without them, every end edge may be)."""
+        assert self.free is not None
+        trims = None if spans is None else self.free.trims(x, y, cfg, spans)
+        ring, g0, g1, e0, e1 = self.free.of(x, y, cfg, trims)
+        kr, k0, k1 = arcs[4].astype(np.int64), arcs[5], arcs[6]
+        out = np.zeros((ring.size, kr.size), bool)
+        for r in np.unique(kr):
+            cols, rows = np.flatnonzero(kr == r), np.flatnonzero(ring == r)
+            if not rows.size:
+                continue
+            ring_r = self.free.rings[int(r)]
+            common = self._common(float(ring_r.U[ring_r.m]), g0[rows], g1[rows], k0[cols],
+                                  k1[cols])
+            short = np.minimum((e1 - e0)[rows, None], (k1 - k0)[cols])
+            out[np.ix_(rows, cols)] = common - self.fraction * short > THIRD_PAD * self.tol
+        return out
+
+    def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
+                t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
+        """Which configurations of ``job`` (smallest regions ``t``) are surely the same
+        alternative as a kept plan (their regions inside :meth:`_spans`)."""
+        x, y = job[0], job[1]
+        out = np.zeros(len(t), bool)
+        known = self.seen.get((x, y, job[3]))
+        if known is not None:
+            out |= _member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
+        arcs = self._arcs(x, y)
+        if arcs is None or not len(t):
+            return out
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs, spans)
+        if mask is not None:
+            # only the configurations whose third finger can be a copy's
+            live = np.flatnonzero(mask.any(axis=1))
+            if live.size:
+                sub = np.zeros(live.size, bool)
+                self._similar_in(rings, job, (spans[0][live], spans[1][live]),
+                                 np.asarray(t, float)[live], arcs[:4], mask[live], sub)
+                out[live] |= sub
+            return out
+        self._similar_in(rings, job, spans, np.asarray(t, float), arcs, None, out)
+        return out
+
+    def _similar_in(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                    spans: tuple[FloatArray, FloatArray], t: FloatArray,
+                    arcs: tuple[FloatArray, ...], mask: np.ndarray | None,
+                    out: np.ndarray) -> None:
+        """:meth:`similar`'s test of the kept plans' columns ``arcs`` (only those of
+        ``mask``, rows by columns, where given) on configurations whose regions lie in
+        ``spans``, or-ed into ``out``."""
+        x, y = job[0], job[1]
+        if self._fused(rings, x, y, spans, arcs, t, False, out, mask):
+            return
+        ax0, ax1, ay0, ay1 = arcs
+        tt = t - self.tol
+        both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
+            & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
+        out |= (both if mask is None else both & mask).any(axis=1)
+
+    def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                  cfg: _Configs, intervals: dict[Any, _Intervals]) -> FloatArray:
+        """For each configuration of ``job``, a length above which it is surely the same
+        alternative as a kept plan (:meth:`similar` with any smallest region ``t``
+        greater than it; ``inf``: none).  ``similar`` asks, for each kept plan, that
+        each stretch's arc outside the partner region be below ``(1 - fraction)
+        min(t, partner's length)`` less the tolerance: for ``t`` above ``(outside +
+        tol) / (1 - fraction)`` on both sides, where each partner is longer than that.
+        A configuration already read holds at any ``t > 0``."""
+        x, y = job[0], job[1]
+        out = np.full(len(cfg.iA), np.inf)
+        known = self.seen.get((x, y, job[3]))
+        if known is not None:
+            out[_member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)] = 0.0
+        keep = 1 - self.fraction
+        arcs = self._arcs(x, y)
+        if keep <= 0 or arcs is None or not len(out):
+            return out
+        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)
+        rows = np.arange(len(out)) if mask is None else np.flatnonzero(mask.any(axis=1))
+        if not rows.size:
+            return out
+        if mask is not None:
+            cfg, mask = cfg.take(rows), mask[rows]
+        sub = out[rows]
+        # before the configurations are solved (all of them, in chunks of thousands): the
+        # whole stretches, from the first edge's start to the last edge's end
+        sx, sy = self._spans(rings, job, cfg, intervals, 0)
+        a0x, a1x, a0y, a1y = spans = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
+        if not self._fused(rings, x, y, spans, arcs[:4], sub, True, sub, mask):
+            ax0, ax1, ay0, ay1 = arcs[:4]
+            px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
+            ta = (self._outside(px, a0x, a1x, ax0, ax1) + self.tol) / keep
+            tc = (self._outside(py, a0y, a1y, ay0, ay1) + self.tol) / keep
+            tau = np.where((ax1 - ax0 > ta) & (ay1 - ay0 > tc), np.maximum(ta, tc), np.inf)
+            if mask is not None:
+                tau = np.where(mask, tau, np.inf)
+            sub = np.minimum(sub, tau.min(axis=1))
+        out[rows] = sub
+        return out
+
+
+#: Cells (configurations x kept plans' columns) from which the exclusion's tests run
+#: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
+#: (32 crossings of lines per cell and turn: compiled from a few cells on).
+FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
+
+
+#: How many rounding tolerances a pair plan's third finger must beat the overlap a copy
+#: needs by (:meth:`_Exclusion._third_mask`), and by which one free stretch must be
+#: longer than another to be surely the third finger's (:class:`FreeThird`): their
+#: lengths are sums of up to thousands of edges, in another order than the plan's.
+THIRD_PAD = 64

@@ -1,0 +1,530 @@
+"""The two-finger stretch search: the configurations collected behind the bound, the
+runs until the ``top``-th holds, the leximin levels and the placement (part of
+:mod:`fcgrasp.model.stretches`)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, cast
+
+import numpy as np
+
+from ..core import budget
+from ..core._checks import FloatArray
+from ..core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
+from ..core.kernels import jit_setting
+from ..core.tolerances import ANGLE_SLACK, ROUND_TOL
+from . import _stretch_kernels
+from ._stretch_exclusion import _Exclusion
+from ._stretch_lp import (
+    _system,
+)
+from ._stretch_solve import (
+    _Found,
+    _Job,
+    _jobs,
+    _Keys,
+    _Memo,
+    _solve_any,
+    _solve_deferred,
+    _solve_jobs,
+)
+from ._stretch_windows import (
+    _BLOCK,
+    _EPS,
+    KERNEL_OWN,
+    TIE,
+    _both_kept,
+    _Bound,
+    _Configs,
+    _disjoint,
+    _empty,
+    _ext,
+    _fan,
+    _gens_x,
+    _gens_y,
+    _Intervals,
+    _pairs_single,
+    _Ring,
+    _row_intervals,
+    _turns,
+    _vertex_matrix,
+    _windows_both,
+    _windows_single,
+    stretch_kernels_for,
+)
+from .polygon import Polygon
+
+
+@dataclass(frozen=True)
+class StretchPair:
+    """Two independent regions along the boundary (two fingers with friction).
+
+    ``regions[i]`` is the polyline ``(m_i, 2)`` of region ``i`` from one end to the
+    other through the vertices it covers; ``region_edges[i]`` the edges it covers in
+    order; ``lengths[i]`` its arc length; ``mode`` "squeeze" or "expand".
+    """
+
+    regions: tuple[FloatArray, FloatArray]
+    region_edges: tuple[tuple[int, ...], tuple[int, ...]]
+    lengths: tuple[float, float]
+    mode: str
+
+    @property
+    def min_length(self) -> float:
+        return min(self.lengths)
+
+    def midpoints(self) -> tuple[FloatArray, tuple[int, int]]:
+        """Each region's point halfway along it (the representative contact) and the
+        edge holding it."""
+        pts, edges = midpoints(self.regions, self.region_edges)
+        return pts, (edges[0], edges[1])
+
+
+# ----------------------------------------------------------------------------- search
+
+
+def _span(ring: _Ring, i: int, k: int, s0: float, t: float
+          ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The first and last point of the stretch starting at ``s0`` on edge ``i``, length
+    ``t``, ``k`` interior vertices (before any trimming), in plain floats
+    (:attr:`_Ring.floats`: a point or two per call, where numpy's calls cost more than
+    the arithmetic; numpy's operations on the points, one coordinate at a time)."""
+    A, T, L, U = ring.floats
+    m = ring.m
+    (ax, ay), (tx, ty) = A[i % m], T[i % m]
+    first = (ax + s0 * tx, ay + s0 * ty)
+    if k == 0:
+        return first, (first[0] + t * tx, first[1] + t * ty)
+    # _inner of the one stretch, read from the arc positions as it reads them
+    end_edge = (i + k) % m
+    j = i % m + m
+    off = L[i % m] - s0 + (U[j + k] - U[j + 1])
+    (ex, ey), (fx, fy) = A[end_edge], T[end_edge]
+    return first, (ex + (t - off) * fx, ey + (t - off) * fy)
+
+
+def _polyline(ring: _Ring, i: int, k: int, s0: float, t: float
+              ) -> tuple[FloatArray, tuple[int, ...]]:
+    """Points of the stretch starting at s0 on edge i, length t, k interior vertices."""
+    m = ring.m
+    at = (i + np.arange(k + 1)) % m                 # the edges covered, in ring order
+    pts = np.empty((k + 2, 2))
+    pts[0], pts[-1] = _span(ring, i, k, s0, t)
+    pts[1:k + 1] = ring.a[at[1:]]                   # the interior vertices
+    edges = ring.edges[at].tolist()
+    # the vertex is held with both normals, so either is its end normal
+    return trim_vertex_ends(pts, edges, ROUND_TOL * float(ring.U[m]))
+
+
+def _stretch_ends(ring: _Ring, i: int, k: int, s0: float, t: float
+                  ) -> tuple[tuple[float, float], tuple[float, float]]:
+    """The two ends of :func:`_polyline`'s stretch (:func:`_span`), trimmed as
+    ``trim_vertex_ends`` trims it (numpy's hypot), without the points between: all the
+    ranking's geometric key reads of a region (:func:`_canonical`)."""
+    first, last = _span(ring, i, k, s0, t)
+    if k == 0:
+        return first, last
+    A, m = ring.floats[0], ring.m
+    tiny = ROUND_TOL * ring.floats[3][m]
+    inner_first, inner_last = A[(i + 1) % m], A[(i + k) % m]
+    covered = k + 1
+    if np.hypot(inner_first[0] - first[0], inner_first[1] - first[1]) <= tiny:
+        first, covered = (inner_first[0], inner_first[1]), covered - 1
+    if covered > 1 and np.hypot(last[0] - inner_last[0], last[1] - inner_last[1]) <= tiny:
+        last = (inner_last[0], inner_last[1])
+    return first, last
+
+
+def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[int]]
+                ) -> _Configs:
+    """Every configuration inside two runs of ring edges (for each stretch, the ring
+    positions of its edges in order)."""
+    cols = []
+    for pos in runs:
+        first, last = np.triu_indices(len(pos))
+        cols.append((np.asarray(pos)[first], last - first))
+    (ia, ka), (ic, kc) = cols
+    ga = np.repeat(np.arange(ia.size), ic.size)
+    gc = np.tile(np.arange(ic.size), ia.size)
+    cfg = _Configs(ia[ga], ka[ga], ic[gc], kc[gc])
+    return cfg.take(_disjoint(ra, cfg, same))
+
+
+def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
+    """The runs of True of every row of the vertex matrix of each mode, as row pointers,
+    first and last columns (compiled for large rings; :func:`_vertex_matrix` else)."""
+    if stretch_kernels_for(ra.m * rb.m):
+        gx = np.stack([g for f in _fan(ra) for g in _gens_x(f, beta)], axis=1)
+        gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
+        # a cell holds only if the two force directions are opposite within 2 beta (each
+        # within beta of the chord), and a vertex only if its two normals are within
+        # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
+        width = 2 * beta + ANGLE_SLACK
+        va = np.where(_turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
+        # the tree's bounds are decided with a pad far above their rounding (a few ulps
+        # of the largest coordinate)
+        pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
+        out = _stretch_kernels.vertex_runs_tree(
+            ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
+            rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
+            width, pad)
+        return {1.0: out[:3], -1.0: out[3:]}
+    runs = {}
+    for sigma in (1.0, -1.0):
+        row, first, last = _row_intervals(_vertex_matrix(ra, rb, sigma, beta))
+        runs[sigma] = (np.searchsorted(row, np.arange(ra.m + 1)), first, last)
+    return runs
+
+
+def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
+          bound: _Bound | None = None) -> tuple[FloatArray, _Configs]:
+    """:func:`_windows_both`, compiled for large rings (pruned by ``bound``'s value: the
+    lower bounds it leaves out could not raise it)."""
+    ptr, first, last = runs
+    if stretch_kernels_for(ra.m * rb.m):
+        value, keep = (bound.value, bound.k) if bound is not None else (0.0, 0)
+        best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
+                                              collect, same, value, keep)
+        return best, _both_kept(_Configs(*cfg), ra, rb, same)
+    return _windows_both(runs, ra, rb, same, floor, collect)
+
+
+def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
+            bound: _Bound | None = None, offsets: tuple[int, int] = (0, 0)
+            ) -> tuple[tuple[np.ndarray, np.ndarray, FloatArray], _Configs]:
+    """:func:`_windows_single`, compiled for large rings (without ``collect``, pruned by
+    ``bound``'s value: the edges it skips could not raise it; ``offsets``: the rings'
+    first keys, :class:`_Keys`)."""
+    if not stretch_kernels_for(ra.m * rb.m):
+        return _windows_single(iv, ra, rb, same, floor, collect)
+    A = np.flatnonzero(ra.L >= floor)
+    value, keep = (bound.value, bound.k) if bound is not None and not collect else (0.0, 0)
+    if keep:
+        A = A[np.argsort(-ra.L[A], kind="stable")]          # the longest first
+    width = 2 * iv.beta + ANGLE_SLACK
+    order, angle_b = _by_angle(rb)
+    va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
+    wa, wp, wv, iA, iC, kC = _stretch_kernels.single(
+        A, ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L,
+        iv.gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), iv.gy, order, angle_b, width, rb.U,
+        iv.sigma, _EPS, floor, collect, same, value, keep, *offsets)
+    cfg = _Configs(iA, np.zeros(iA.size, int), iC, kC)
+    return (wa, wp, wv), cfg.take(_disjoint(ra, cfg, same))
+
+
+def _by_angle(ring: _Ring) -> tuple[np.ndarray, FloatArray]:
+    """The ring's edges in order of their force direction's angle, and those angles."""
+    angle = np.arctan2(ring.f[:, 1], ring.f[:, 0])
+    order = np.argsort(angle, kind="stable")
+    return order, angle[order]
+
+
+def _guessed_floors(bound: _Bound) -> list[float]:
+    """The floors :func:`_candidates` guesses from the bound's keys, highest first, each
+    above the bound's own floor."""
+    seen = np.sort(bound.best[bound.best > 0])[::-1]
+    if not seen.size:
+        return []
+    m = min(bound.k, seen.size)
+    ranks = [-(-m // 4), -(-m // 2)] + ([seen.size] if seen.size < bound.k else [])
+    assert len(ranks) <= _GUESSES
+    out: list[float] = []
+    for r in ranks:
+        g = float(seen[r - 1]) * (1 - TIE)
+        if g > bound.floor and (not out or g < out[-1]):
+            out.append(g)
+    return out
+
+
+def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
+                runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
+                guesses: list[float] | None = None, lower: bool = True,
+                max_configs: int | None = None) -> list[tuple[Any, _Configs]]:
+    """Every configuration that can reach the bound, per job (exhaustive: the bound
+    only rises with feasible configurations, one per key).  ``prebound`` False: the
+    vertex-aligned stretches do not raise the bound (an excluded plan's copies would);
+    with a fixed floor, without ``prebound`` or without ``lower``, they are not
+    computed.
+
+    ``guesses`` (an empty list): floors above the bound's own, guessed from the keys'
+    values, are put in it, highest first, and the bound starts at the first
+    (``bound.start``).  One key holds many of the top configurations of a smooth
+    outline, so the ``top``-th key is far below the ``top``-th configuration (and 0
+    where fewer keys are filled): the keys a quarter and half of the way down (of
+    ``top`` or of those filled), and the last filled when fewer than ``top``.
+    :func:`_search` checks that the ``top``-th found reaches the floor, and takes the
+    next guess when not.
+
+    ``max_configs``: the most configurations to collect; one job's collection that
+    takes the count over it ends the search (:class:`~fcgrasp.core.budget.
+    BudgetExhausted`, ``"max_memory"``), before the next job's."""
+    count = 0
+    prepared = []
+    for collect in (False, True):          # the lower bound first, then the candidates
+        if not collect and (not (prebound and lower) or bound.fixed is not None):
+            continue                        # no lower bound would count
+        if collect and guesses is not None and bound.fixed is None:
+            guesses[:] = _guessed_floors(bound)
+            if guesses:
+                bound.start = guesses.pop(0)
+        for job in _jobs(len(rings)):
+            x, y, sigma, _ = job
+            ra, rb = rings[x], rings[y]
+            both = _empty()
+            if x <= y:
+                best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect,
+                                   bound if prebound and bound.fixed is None else None)
+                if not collect and prebound:
+                    # stretch 1 comes first (ring x <= y; on one ring, it starts first)
+                    rows = np.flatnonzero(best > 0)
+                    bound.add(keys.first(job, rows), best[rows])
+            (a, p, v), single = _single(
+                intervals[x, y, sigma], ra, rb, x == y, bound.floor, collect,
+                bound if prebound and bound.fixed is None else None,
+                (int(keys.offset[x]), int(keys.offset[y])))
+            if not collect and prebound:
+                bound.add(keys(job, a, p), v)
+            if collect:
+                pairs = _pairs_single(ra, rb, x == y, bound.floor) if x <= y else _empty()
+                prepared.append((job, _Configs.cat([both, single, pairs])))
+                count += int(prepared[-1][1].iA.size)
+                if max_configs is not None and count > max_configs:
+                    raise budget.BudgetExhausted("max_memory")
+    return prepared
+
+
+#: Searches :func:`_search` runs at most before it solves every configuration.
+_ATTEMPTS = 5
+
+
+#: Whether the first search guesses floors from its keys' values (:func:`_candidates`).
+_GUESS = True
+
+
+#: Floors :func:`_guessed_floors` guesses at most (a quarter and half of the way down
+#: the keys, and the last key filled).
+_GUESSES = 3
+
+
+#: Times a guessed floor that keeps fewer than ``top`` (the own-optimum filter drops
+#: most of a smooth outline's configurations, while the bound, which counts them, rises
+#: above the floor) is halved and fixed before the bound's own is tried.
+_HALVINGS = 3
+
+
+def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
+            runs: dict[Any, Any], top: int | None, scale: float,
+            exclude: _Exclusion | None = None, memo: _Memo | None = None) -> list[_Found]:
+    """The configurations optimal on their own edges (:func:`_own_optimum`), largest
+    ``t`` first: all of them (``top`` None), or at least every one that ties the
+    ``top``-th (to the relative tie tolerance).
+
+    The bound counts feasible configurations, but a configuration beaten by one of its
+    own sub-configurations is dropped afterwards, so the ``top``-th kept can fall below
+    the floor the search pruned with.  The search is then run again with the floor
+    fixed at that ``top``-th (every configuration that reaches it solved, its
+    sub-configurations with it), until the floor it pruned with is below the
+    ``top``-th it kept; when fewer than ``top`` are kept, with a bound of four times as
+    many; the last attempt prunes nothing.  ``exclude``: configurations surely the
+    same alternative as a kept plan are left out (after the filter, which they still
+    take part in); they then run without the vertex-aligned lower bound, on every
+    configuration, shared with other runs through ``memo``."""
+    keys = _Keys(rings)
+    if not exclude:
+        memo = None
+    want, fixed = top, None
+    # floors guessed by the first search (_candidates), tried in turn while too high
+    guesses: list[float] | None = [] if _GUESS and top is not None else None
+    guessing, start, halve = False, 0.0, 0
+    attempts = _ATTEMPTS + (_GUESSES + _HALVINGS if _GUESS else 0)
+    for attempt in range(attempts):
+        if top is None or attempt == attempts - 1:
+            fixed = 0.0
+        # an excluded plan's copies add no lower bounds: each configuration counts once
+        bound = _Bound(want or 1, 2 * keys.total, fixed, start, each=bool(exclude))
+        if memo is not None and memo.prepared is not None:
+            prepared = memo.prepared
+        elif memo is not None:
+            prepared = memo.prepared = _candidates(
+                rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
+                prebound=False, max_configs=memo.max_configs)
+        else:
+            prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude,
+                                   guesses=guesses if attempt == 0 else None,
+                                   lower=not start)
+        if attempt == 0:
+            guessing = bound.start > 0
+        similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
+        deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
+        found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
+                            memo, similar, deferred)
+        if deferred:
+            _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
+                            similar)
+        found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
+        found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
+        if top is None or bound.floor == 0.0:
+            break                           # nothing was pruned
+        if len(found) >= top:
+            kth = found[top - 1].t * (1 - TIE)
+            if bound.floor <= kth:
+                break
+            fixed, start, guessing = kth, 0.0, False
+        elif guessing and guesses:          # the next guess (then the bound's own)
+            start = guesses.pop(0)
+        elif guessing and halve < _HALVINGS:   # then half the last floor, fixed
+            fixed, start, halve = bound.floor / 2, 0.0, halve + 1
+        elif guessing:
+            fixed, start, guessing = None, 0.0, False
+        else:
+            want, fixed = 4 * (want or 1), None
+    return found
+
+
+def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
+                  intervals: dict[Any, _Intervals], scale: float) -> None:
+    """The second level of the leximin order (definition 7.1) of each configuration:
+    one region at the optimal smallest length, the other as long as possible (both
+    sides tried; exact, the same three-variable program with one length fixed)."""
+    by_job: dict[Any, list[_Found]] = {}
+    for f in found:
+        by_job.setdefault(f.job, []).append(f)
+    for job, items in by_job.items():
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        compiled = stretch_kernels_for(ra.m * rb.m)
+        cfg = _Configs(*(np.array([f.cfg[j] for f in items]) for j in range(4)))
+        t1 = np.array([f.t for f in items])
+        best_len = t1.copy()
+        best_side = np.full(t1.size, -1)
+        best_s0 = np.array([f.s0 for f in items])
+        best_u0 = np.array([f.u0 for f in items])
+        for side in (0, 1):
+            ub = _ext(rb, cfg.iC, cfg.kC) if side == 0 else _ext(ra, cfg.iA, cfg.kA)
+            rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
+                           intervals[y, x, sigma], fixed=(side, t1), compiled=compiled)
+            t2, s0, u0 = _solve_any(rows, ub, scale, compiled)
+            better = t2 > best_len * (1 + TIE)
+            best_len = np.where(better, t2, best_len)
+            best_side = np.where(better, side, best_side)
+            best_s0 = np.where(better, s0, best_s0)
+            best_u0 = np.where(better, u0, best_u0)
+        for j, f in enumerate(items):
+            f.s0, f.u0 = float(best_s0[j]), float(best_u0[j])
+            long_ = float(best_len[j])
+            f.lengths = ((f.t, long_) if best_side[j] == 0 else (long_, f.t)
+                         if best_side[j] == 1 else (f.t, f.t))
+
+
+def _own_optimum(rings: list[_Ring], found: list[_Found],
+                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                 ) -> list[_Found]:
+    """The configurations that are optimal on their own edges: a configuration whose
+    smallest region is beaten by one of its sub-configurations (fewer edges on either
+    side, all of them found, since they rank higher) is not a plan of those edges.
+    ``similar`` (:func:`_solve_jobs`): configurations found but filed by index, which
+    take part as beaters; only ``found`` is returned."""
+    keep = np.ones(len(found), bool)
+    by_job: dict[Any, list[int]] = {}
+    for j, f in enumerate(found):
+        by_job.setdefault(f.job, []).append(j)
+    for job, idx in by_job.items():
+        ra, rb = rings[job[0]], rings[job[1]]
+        c = np.array([found[j].cfg for j in idx], dtype=np.int64).reshape(-1, 4)
+        t = np.array([found[j].t for j in idx], dtype=float)
+        if similar is not None and job in similar:
+            J, parts = similar[job]
+            extra = np.concatenate(parts)
+            c = np.concatenate([c, np.stack([J.cfg.iA[extra], J.cfg.kA[extra],
+                                             J.cfg.iC[extra], J.cfg.kC[extra]], axis=1)])
+            t = np.concatenate([t, J.t[extra]])
+        if c[:, [1, 3]].max() == 0:
+            continue
+        n = len(idx)
+        if len(c) >= KERNEL_OWN and jit_setting() is not False:
+            keep[np.asarray(idx)] = _stretch_kernels.beaten(c, t, ra.m, rb.m, job[0] == job[1],
+                                                            TIE)[:n]
+            continue
+
+        def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
+                   m: int) -> np.ndarray:
+            # [sub] stretch (rows) inside [super] stretch (columns), cyclically
+            return cast("np.ndarray", (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :])
+
+        at = np.asarray(idx)
+        # supers (the found ones only) in blocks of columns: the (sub, super) matrix
+        # stays about 1M cells; every configuration, filed ones too, a sub
+        step = max(1, (_BLOCK * 32) // len(c))
+        for b in range(0, n, step):
+            cs, ts = c[b:min(b + step, n)], t[b:min(b + step, n)]
+            sub = inside(c[:, 0], c[:, 1], cs[:, 0], cs[:, 1], ra.m) \
+                & inside(c[:, 2], c[:, 3], cs[:, 2], cs[:, 3], rb.m)
+            if job[0] == job[1]:        # one ring: a pair may be stored either way round
+                sub |= inside(c[:, 0], c[:, 1], cs[:, 2], cs[:, 3], ra.m) \
+                    & inside(c[:, 2], c[:, 3], cs[:, 0], cs[:, 1], ra.m)
+            beaten = sub & (t[:, None] > ts[None, :] * (1 + TIE))
+            keep[at[b:min(b + step, n)][beaten.any(axis=0)]] = False
+    return [f for f, k in zip(found, keep, strict=True) if k]
+
+
+def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
+               intervals: dict[Any, _Intervals], polygon: Polygon) -> list[_Found]:
+    """The placement of a pair on one ring, independent of which stretch the search
+    called the first: both ways round are placed, and the one whose end points come
+    first (relative to the part, rounded) is kept, so a renumbered part gets the same
+    regions."""
+    same = [j for j, f in enumerate(found) if f.job[0] == f.job[1]]
+    if not same:
+        return found
+    swapped = [_Found(found[j].job, found[j].cfg[2:] + found[j].cfg[:2], found[j].t,
+                      found[j].u0, found[j].s0) for j in same]
+    _second_level(rings, beta, swapped, intervals, polygon.size)
+    out = list(found)
+
+    def key(f: _Found) -> tuple[Any, ...]:
+        # the ranking's own order: leximin, then the geometric tie-break, which reads
+        # only the regions' ends (their polylines are placed for the one kept)
+        x, y, _, _ = f.job
+        iA, kA, iC, kC = f.cfg
+        ends = (_stretch_ends(rings[x], iA, kA, f.s0, f.lengths[0]),
+                _stretch_ends(rings[y], iC, kC, f.u0, f.lengths[1]))
+        return leximin_key(f.lengths, polygon.size), ends_key(ends, polygon)
+
+    for j, g in zip(same, swapped, strict=True):
+        if key(g) < key(found[j]):
+            out[j] = g
+    return out
+
+
+def _tie_key(rings: list[_Ring], f: _Found) -> tuple[Any, ...]:
+    """The order of exact ties: the job, then the covered edges (whatever order the
+    search met them in)."""
+    iA, kA, iC, kC = f.cfg
+    return (f.job[:2], f.job[3], iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
+
+
+def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, _Intervals],
+            polygon: Polygon) -> list[_Found]:
+    """The second leximin level and the numbering-free placement of the configurations
+    kept, in the leximin order."""
+    _second_level(rings, beta, found, intervals, polygon.size)
+    found = _canonical(rings, beta, found, intervals, polygon)
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), *_tie_key(rings, f)))
+    return found
+
+
+def _pairs(rings: list[_Ring], found: list[_Found]) -> list[StretchPair]:
+    """Each configuration's regions, placed once for its placement (:func:`_canonical`
+    asks for them, then the caller)."""
+    out = []
+    for f in found:
+        at = (f.s0, f.u0, f.lengths)
+        if f.placed is None or f.placed[0] != at:
+            x, y, _, mode = f.job
+            iA, kA, iC, kC = f.cfg
+            p1, e1 = _polyline(rings[x], iA, kA, f.s0, f.lengths[0])
+            p2, e2 = _polyline(rings[y], iC, kC, f.u0, f.lengths[1])
+            f.placed = (at, StretchPair((p1, p2), (e1, e2), f.lengths, mode))
+        out.append(f.placed[1])
+    return out
