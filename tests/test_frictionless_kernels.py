@@ -13,8 +13,8 @@ from fcgrasp.core._angles import margin_radians
 from fcgrasp.core.sectors import PAIRINGS
 from fcgrasp.core.tolerances import TOL
 from fcgrasp.io.parts import demo_part
-from fcgrasp.model import _frictionless_kernels, frictionless_stretches
-from fcgrasp.model.frictionless_stretches import _smallest, _system
+from fcgrasp.model import _frictionless_kernels, _frictionless_program, frictionless_stretches
+from fcgrasp.model._frictionless_program import _smallest, _system
 
 from .shapes import random_polygon
 
@@ -162,13 +162,13 @@ def test_smallest_is_the_stable_sorts_head(compiled):
 
 def _programs(parts, monkeypatch):
     calls = []
-    original = frictionless_stretches._lp
+    original = _frictionless_program._lp
 
     def record(cfg, objective, floors, t_var):
         calls.append((cfg, objective.copy(), floors.copy(), t_var))
         return original(cfg, objective, floors, t_var)
 
-    monkeypatch.setattr(frictionless_stretches, "_lp", record)
+    monkeypatch.setattr(_frictionless_program, "_lp", record)
     for part in parts:
         fc.plan(part, fingers=4, top=3)
         fc.plan(part, fingers=3, gravity=(0, -1), top=3)
@@ -179,7 +179,7 @@ def _programs(parts, monkeypatch):
 @pytest.mark.parametrize("parts", [pytest.param(1, id="seeded"),
                                    pytest.param(40, id="sweep", marks=pytest.mark.slow)])
 def test_growths_programs_solved_in_one_compiled_call_equal_numpys(parts, monkeypatch):
-    """The growth's programs (``frictionless_stretches._lp``) built, scaled and
+    """The growth's programs (``_frictionless_program._lp``) built, scaled and
     solved by row generation in one compiled call (``_frictionless_kernels.lp_rows``)
     against the numpy steps (``COMPILED_LP`` False, the reference): the same answer,
     bit for bit, on every program four fingers and three with gravity solve on the
@@ -194,15 +194,15 @@ def test_growths_programs_solved_in_one_compiled_call_equal_numpys(parts, monkey
             rng.uniform(0, 3) * np.cos(5 * t)
         shapes.append(fc.Polygon(np.c_[r * np.cos(t), r * np.sin(t)]))
     calls = _programs(shapes, monkeypatch)
-    tall = sum(len(c[0].A) + 2 * len(c[0].edges) > frictionless_stretches.DIRECT_ROWS
+    tall = sum(len(c[0].A) + 2 * len(c[0].edges) > _frictionless_program.DIRECT_ROWS
                for c in calls)
     assert len(calls) >= 200 and tall >= 20
     solved = 0
     for args in calls:
-        monkeypatch.setattr(frictionless_stretches, "COMPILED_LP", True)
-        got = frictionless_stretches._lp(*args)
-        monkeypatch.setattr(frictionless_stretches, "COMPILED_LP", False)
-        ref = frictionless_stretches._lp(*args)
+        monkeypatch.setattr(_frictionless_program, "COMPILED_LP", True)
+        got = _frictionless_program._lp(*args)
+        monkeypatch.setattr(_frictionless_program, "COMPILED_LP", False)
+        ref = _frictionless_program._lp(*args)
         assert (got is None) == (ref is None)
         if ref is not None:
             assert got[0] == ref[0]

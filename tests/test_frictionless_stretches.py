@@ -256,7 +256,7 @@ def test_programs_solved_on_generated_rows_are_solved(seed):
     from scipy.optimize import linprog
 
     from fcgrasp.core import _simplex
-    from fcgrasp.model.frictionless_stretches import DIRECT_ROWS, _rows_generated
+    from fcgrasp.model._frictionless_program import DIRECT_ROWS, _rows_generated
 
     rng = np.random.default_rng(seed)
     solved = infeasible = 0

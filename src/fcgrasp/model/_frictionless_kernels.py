@@ -1,7 +1,7 @@
 """The rows of a frictionless configuration's program, compiled (a per-call
 path without per-call overhead).
 
-:func:`fcgrasp.model.frictionless_stretches._system` builds, for every combination of
+:func:`fcgrasp.model._frictionless_program._system` builds, for every combination of
 covered edges (the vertex lemma), theorem 7.1's two rows: the affine maps of the fingers'
 meets ``P12``, ``P34`` (:func:`fcgrasp.model._regiongeom.four_finger_geometry`), the
 shrunk sector's edges, and each finger's coefficient on the variable its region's end
@@ -246,7 +246,7 @@ def _before(a: float, b: float) -> bool:
 
 def _first_k(v: Any, k: int) -> Any:
     """``np.argsort(v, kind="stable")[:k]``: the ``k`` smallest, ties in index order
-    (``frictionless_stretches._smallest``), by one pass keeping the ``k`` best in
+    (``_frictionless_program._smallest``), by one pass keeping the ``k`` best in
     order (a program's rows are thousands, ``k`` a few tens)."""
     n = min(k, v.size)
     out = np.empty(n, np.int64)
@@ -452,7 +452,7 @@ _NO_ROWS, _NO_PARENT = np.zeros(0), np.zeros(4, np.int64)
 def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
                 s: float, tol: float, arrays: Any = None, parent: Any = None,
                 checked: bool = False) -> tuple[Any, Any, bool] | Literal[False] | None:
-    """The rows ``(A, rhs)`` of ``frictionless_stretches._system`` (the fingers'
+    """The rows ``(A, rhs)`` of ``_frictionless_program._system`` (the fingers'
     stretches ``edges``; with ``gravity``, a fourth finger at the centroid) before its
     check of the rows without a variable, and whether there is such a row, by the
     compiled loop; False where some combination's pairing is null or its sector too
