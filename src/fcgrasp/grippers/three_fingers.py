@@ -59,25 +59,21 @@ from __future__ import annotations
 
 from collections.abc import Iterator
 from dataclasses import replace
-from itertools import product
 from typing import Any
 
 import numpy as np
 
-from ..core import budget
-from ..core._angles import wrap
-from ..core._checks import FloatArray, check_mu_scalar, check_scalar
+from ..core._checks import FloatArray
 from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
-from ..core.tolerances import LEVEL_TIE, PIECE_TIE, RANK_TOL
+from ..core.tolerances import RANK_TOL
 from ..model.distinct import Suppression
 from ..model.plans import GraspPlan, leximin_key
-from ..model.polygon import Polygon, check_polygon
+from ..model.polygon import Polygon
 from ..model.stretches import StretchSearch, crosses_a_vertex
 from ..pipeline import (
     PlanSpec,
     candidates,
     features,
-    search,
     search_size,
 )
 from . import _concurrency
@@ -85,8 +81,6 @@ from ._boundary import (
     DISTINCT_READ,
     ranked_keyed,
     ranked_unique,
-    regions_plan,
-    stretch_plans_read,
     two_finger_plans_of,
     unread_below,
 )
@@ -95,33 +89,30 @@ __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans",
            "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
            "MAX_CORNERS", "MAX_STEPS", "distinct_three_finger_plans"]
 from ._concurrent import (
-    _SIDES,
     KEEP_PAIRS,
     LP_ROWS,
     SPLITS,
     Piece,
     _best_blocks,
     _Block,
-    _lengths,
     _leximin,
-    _smallest,
-    _solve_blocks,
     best_found,
     concurrent_regions,
-    first_best,
     spanning_arcs,
 )
-
-
-def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: FloatArray,
-          mode: str) -> GraspPlan:
-    regions = np.asarray(regions, float)
-    return regions_plan(polygon, spec, regions, tuple((e,) for e in edges),
-                        np.hypot(*(regions[:, 1] - regions[:, 0]).T), "friction", mode)
-
+from ._three_growth import (
+    GROW_SEEDS,
+    MAX_CORNERS,
+    MAX_STEPS,
+    _grown_plans,
+    grow_concurrent,
+    stretch_polylines,
+)
+from ._three_pairs import _FreeStretches, _pair_plans, _plan, _tie_step, _with_third, free_stretch
 
 #: Candidate triples per compiled call (:mod:`fcgrasp.grippers._concurrency`).
 KERNEL_ROWS = 1024
+
 
 #: With a measure other than ``min_region``, how many plans (the best by their smallest
 #: region) the measure orders.
@@ -500,377 +491,6 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         if len(more) > len(kept):
             return incomplete(more, stopped, None, exact=False)
     return incomplete(kept, stopped, float(level) if np.isfinite(level) else None)
-
-
-#: Concurrent plans of single edges grown along the boundary (the best ones).
-GROW_SEEDS = 5
-#: A grown configuration has at most this many corner grasps (points per region, multiplied).
-MAX_CORNERS = 216
-#: Growth steps at most (each lengthens the shortest regions by one edge each).
-MAX_STEPS = 60
-
-
-def _stretch_cone(polygon: Polygon, stretch: tuple[int, ...], mu: float
-                  ) -> tuple[float, float]:
-    """The friction cone every contact of a stretch has (centre and half-width of the
-    force directions; negative where none): the intersection of its edges' cones (a
-    fingertip on an interior vertex may push along any normal of the vertex's fan, whose
-    cones all hold that intersection)."""
-    n = polygon.normals[list(stretch)]
-    c = np.arctan2(-n[:, 1], -n[:, 0])
-    d = wrap(c - c[0])
-    phi = float(np.arctan(mu))
-    lo, hi = c[0] + d.max() - phi, c[0] + d.min() + phi
-    return float((lo + hi) / 2), float((hi - lo) / 2)
-
-
-def _stretch_blocks(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], mu: float,
-                    margin: float, sides: Any = None) -> list[_Block]:
-    """The convex pieces of three fingers on three stretches (in units of the part's size):
-    the sub-arcs of :func:`spanning_arcs` of the stretches' common cones times the sides
-    (default all eight)."""
-    size = polygon.size
-    cones = [_stretch_cone(polygon, st, mu) for st in stretches]
-    center = np.array([c for c, _ in cones])
-    half = np.array([h for _, h in cones])
-    if np.any(half <= margin):
-        return []
-    first = [st[0] for st in stretches]
-    last = [st[-1] for st in stretches]
-    L = polygon.lengths
-    const = np.array([0.0 if len(st) == 1 else float(L[list(st[:-1])].sum())
-                      for st in stretches]) / size
-    inner = tuple(polygon.starts[list(st[1:])] / size for st in stretches)
-    args = (polygon.starts[first] / size, polygon.tangents[first], L[first] / size,
-            polygon.starts[last] / size, polygon.tangents[last], L[last] / size, const,
-            inner)
-    return [_Block(*args, lo, hi, np.asarray(sigma, float), 0)
-            for lo, hi in spanning_arcs(center, half, margin)
-            for sigma in (_SIDES if sides is None else sides)]
-
-
-def _stretch_moves(polygon: Polygon, stretches: tuple[tuple[int, ...], ...], grow: Any
-                   ) -> list[tuple[tuple[int, ...], ...]]:
-    """Configurations with every region marked in ``grow`` one edge longer, each at one
-    of its ends (on edges no region covers, never a whole ring): the smallest region can
-    only grow when every region as short does."""
-    used = {e for st in stretches for e in st}
-    options = []
-    for st, g in zip(stretches, grow, strict=True):
-        ring = int(np.sum((polygon.rings == polygon.rings[st[0]]) & polygon.usable))
-        opts = []
-        if g and len(st) + 1 < ring:
-            for new, added in (((polygon.previous_edge(st[0]), *st), polygon.previous_edge(st[0])),
-                               ((*st, polygon.next_edge(st[-1])), polygon.next_edge(st[-1]))):
-                if added not in used and polygon.usable[added]:
-                    opts.append(new)
-        options.append(opts if g else [st])
-    out = []
-    for combo in product(*options):
-        edges = [e for st in combo for e in st]
-        if len(edges) == len(set(edges)):
-            out.append(tuple(combo))
-    return out
-
-
-def _corner_count(stretches: tuple[tuple[int, ...], ...]) -> int:
-    return int(np.prod([len(st) + 1 for st in stretches]))
-
-
-def _best_piece(blocks: list[_Block], xs: list[FloatArray | None]
-                ) -> tuple[float, _Block | None, FloatArray | None]:
-    got = [(_smallest(blk, x), blk, x) for blk, x in zip(blocks, xs, strict=True)
-           if x is not None]
-    return got[first_best([g[0] for g in got])] if got else (-1.0, None, None)
-
-
-def _bottlenecks(blk: _Block, level: float) -> np.ndarray:
-    """The regions of a piece that cannot be longer than ``level`` (the others kept at
-    least that long): the ones that must all grow for the smallest to grow.  Decided by
-    one program per region, so not by which optimal solution a solver returned."""
-    fixed = np.full(3, level)
-    out = np.ones(3, dtype=bool)
-    for i in range(3):
-        x = _solve_blocks([blk], fixed=fixed, grow=i)[0]
-        out[i] = x is None or _lengths(blk, x)[i] <= level * (1 + LEVEL_TIE)
-    return out
-
-
-def grow_concurrent(polygon: Polygon, edges: Any, mu: float, margin: float,
-                    sigma: Any = None) -> tuple[tuple[tuple[int, ...], ...], Piece] | None:
-    """Concurrent regions of three fingers grown along the boundary from three edges.
-
-    Each step solves, in one linear program, every configuration with the regions as
-    short as the smallest one edge longer (:func:`_stretch_moves`; every contact of a
-    stretch keeps the cone common to its edges, so a piece of it is convex as on single
-    edges) with the sides ``sigma`` of the meeting point (default: all eight), and takes
-    the best that lengthens the smallest region; it stops when none does.  The configuration reached
-    is solved over every piece and its levels made leximin-optimal.  Returns the
-    stretches and the :class:`Piece` (positions in the part's units), or None when the
-    edges hold no concurrent grasp.  A safe lower bound, as on single edges: every grasp
-    of the regions is force closure.
-
-    >>> import numpy as np
-    >>> a = np.linspace(0, 2 * np.pi, 60, endpoint=False)
-    >>> part = Polygon(np.c_[40 * np.cos(a), 25 * np.sin(a)])
-    >>> st, piece = grow_concurrent(part, (0, 20, 40), mu=0.5, margin=np.radians(0.5))
-    >>> min(len(s) for s in st) > 1, bool(piece.levels.min() > part.lengths[0])
-    (True, True)
-    """
-    polygon = check_polygon(polygon)
-    idx = polygon.check_edges(edges, "edges")
-    if len(idx) != 3 or len(set(idx)) != 3:
-        raise ValueError(f"edges must be three distinct edges, got {edges!r}")
-    mu = check_mu_scalar(mu, "mu")
-    margin = check_scalar(margin, "margin", nonnegative=True)
-    if sigma is not None and (np.shape(sigma) != (3,) or not np.all(np.abs(sigma) == 1)):
-        raise ValueError(f"sigma must be three sides, each 1 or -1, got {sigma!r}")
-    sides = None if sigma is None else [np.asarray(sigma, float)]
-    cur: tuple[tuple[int, ...], ...] = tuple((e,) for e in idx)
-    blocks = _stretch_blocks(polygon, cur, mu, margin, sides)
-    level, blk, x = _best_piece(blocks, _solve_blocks(blocks)) if blocks else (-1.0, None, None)
-    if blk is None or x is None:
-        return None
-    for _ in range(MAX_STEPS):
-        # the regions as short as the smallest must all grow for it to grow
-        short = _bottlenecks(blk, level)
-        moves = [m for m in _stretch_moves(polygon, cur, short)
-                 if _corner_count(m) <= MAX_CORNERS]
-        per = [_stretch_blocks(polygon, m, mu, margin, [blk.sigma]) for m in moves]
-        flat = [b for bs in per for b in bs]
-        if not flat:
-            break
-        xs = _solve_blocks(flat)
-        better = []
-        k = 0
-        for m, bs in zip(moves, per, strict=True):
-            lv, b, xb = _best_piece(bs, xs[k:k + len(bs)])
-            k += len(bs)
-            if b is not None and xb is not None and lv > level * (1 + RANK_TOL):
-                better.append((lv, m, b, xb))
-        if not better:
-            break
-        level, cur, blk, x = better[first_best([g[0] for g in better])]
-    blocks = _stretch_blocks(polygon, cur, mu, margin)
-    _, blk, _ = _best_piece(blocks, _solve_blocks(blocks))
-    piece = None if blk is None else _leximin(blk)
-    if piece is None:
-        return None
-    size = polygon.size
-    return cur, replace(piece, lo=piece.lo * size, hi=piece.hi * size,
-                        levels=piece.levels * size, witness=piece.witness * size)
-
-
-def _grown_plans(polygon: Polygon, spec: PlanSpec,
-                 found: list[tuple[float, tuple[int, ...], _Block]], F: Any
-                 ) -> list[GraspPlan]:
-    """The :data:`GROW_SEEDS` best concurrent plans of single edges grown along the
-    boundary (:func:`grow_concurrent`): the plans whose regions leave their edges."""
-    out = []
-    seen = set()
-    for _, row, blk in found[:GROW_SEEDS]:
-        got = grow_concurrent(polygon, [int(F.edge[f]) for f in row], spec.mu,
-                              spec.margin_rad, blk.sigma)
-        if got is None or max(len(st) for st in got[0]) == 1 or got[0] in seen:
-            continue                    # two seeds may grow into one configuration
-        stretches, piece = got
-        seen.add(stretches)
-        out.append(regions_plan(polygon, spec, stretch_polylines(polygon, stretches, piece),
-                                stretches, piece.levels, "friction", "concurrent"))
-    return out
-
-
-def stretch_polylines(polygon: Polygon, stretches: Any, piece: Piece) -> list[FloatArray]:
-    """The regions of a :class:`Piece` on stretches as polylines: from ``lo`` on each
-    stretch's first edge through its interior vertices to ``hi`` on its last."""
-    out = []
-    for i, st in enumerate(stretches):
-        a0, t0 = polygon.starts[st[0]], polygon.tangents[st[0]]
-        a1, t1 = polygon.starts[st[-1]], polygon.tangents[st[-1]]
-        out.append(np.concatenate([[a0 + piece.lo[i] * t0], polygon.starts[list(st[1:])],
-                                   [a1 + piece.hi[i] * t1]]))
-    return out
-
-
-def _tie_step(length: Any, size: float) -> Any:
-    """Lengths in steps of :data:`~fcgrasp.core.tolerances.PIECE_TIE` of the part's size:
-    two levels of one step tie (the order found decides between them)."""
-    return np.round(np.asarray(length) / size / PIECE_TIE)
-
-
-def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
-                keep: int | None, level: float = 0.0, first: bool = False,
-                start: int | None = None) -> tuple[list[GraspPlan], tuple[int, float] | None]:
-    """Two fingers that hold on their own (the exact two-finger plans) and a third
-    anywhere on the longest feature of another edge: force closure whatever the third
-    finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
-    an outline where a region can cover a vertex) the two are the exact two-finger
-    stretches (:func:`._boundary.stretch_plans_read`) and the third runs along the
-    longest stretch of edges neither touches (:func:`free_stretch`): three fingers then
-    never do worse than the two-finger stretches with the third finger so placed.
-
-    Every two-finger plan is a candidate; ``keep`` given, the ranked two-finger list is
-    read (at least :data:`KEEP_PAIRS` of it, or from ``start``, twice as many each
-    time) until no plan after it can reach the ``keep``-th smallest region of those
-    read, nor ``level`` (the ``keep``-th of the other candidates, found with the first
-    pairs' floor: a pair's smallest region is at most its two fingers', which only
-    falls along the list), so the pairs returned are all that can rank among the best
-    ``keep`` or tie with the last (to the two-finger search's tie tolerance).  Returns
-    them and, with ``first`` (the first read that has ``keep`` pairs only), where to
-    read on and the smallest region every pair not read is below (None: nothing left
-    that can rank)."""
-    if edges is not None and len(set(int(e) for e in edges)) != 3:
-        return [], None
-    boundary = (spec.along_boundary and spec.hand is None and edges is None
-                and crosses_a_vertex(polygon, spec.mu, spec.margin))
-    size = polygon.size
-    ask = None if keep is None else start or max(KEEP_PAIRS, keep)
-    free = _FreeStretches(polygon) if boundary else None
-    out: list[GraspPlan] = []
-    while True:
-        two = replace(spec, fingers=2, top=ask, rank_by="min_region",
-                      along_boundary=boundary)
-        if boundary and out:
-            # a deeper read: the time budget may end it, and the pairs read are kept
-            # (each plan holds; a complete read may rank others first)
-            try:
-                with budget.interruptible():
-                    got, every, below = stretch_plans_read(polygon, two)
-            except budget.BudgetExhausted:
-                budget.cut_short()
-                return out, None
-        elif boundary:
-            got, every, below = stretch_plans_read(polygon, two)
-        else:
-            got = search(polygon, two, edges=edges)
-            every = ask is None or len(got) < ask
-            # a plan not read ranks after the last read: no larger, to the rounding
-            last = min((float(min(p.lengths)) for p in got), default=0.0)
-            below = last * (1 + RANK_TOL) + 4 * RANK_TOL * size
-        out = [q for q in (_with_third(polygon, spec, p, F, free) for p in got)
-               if q is not None]
-        if keep is None or ask is None or every:
-            return out, None             # the whole list
-        best = sorted((float(min(q.lengths)) for q in out), reverse=True)
-        reach = max(level, best[keep - 1] if len(best) >= keep else 0.0)
-        # every pair not read is below ``below``: none reaches the keep-th
-        if below <= reach:
-            return out, None
-        if budget.exhausted():
-            budget.cut_short()
-            return out, None
-        ask = 2 * max(ask, len(got))
-        if first and len(out) >= keep:  # enough for the triples' floor
-            return out, (ask, below)
-
-
-def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any,
-                free: _FreeStretches | None) -> GraspPlan | None:
-    """The two-finger plan ``p`` with a third finger anywhere on the longest stretch
-    (``free``, the part's free stretches: along the boundary) or feature of the edges
-    it does not touch; None where there is none."""
-    if free is not None:
-        run = free.longest({e for st in p.region_edges for e in st})
-        if run is None:
-            return None
-        line = np.concatenate([polygon.starts[list(run[:1])], polygon.ends[list(run)]])
-        return regions_plan(polygon, spec, [*p.regions, line], (*p.region_edges, run),
-                            [*p.lengths, float(polygon.lengths[list(run)].sum())],
-                            "friction", "pair")
-    other = np.flatnonzero(~np.isin(F.edge, p.edges))
-    if not other.size:
-        return None
-    f = int(other[np.argmax(F.lengths[other])])
-    ends = np.concatenate([p.ends, np.stack([F.a[f], F.b[f]])[None]])
-    return _plan(polygon, spec, (*p.edges, int(F.edge[f])), ends, "pair")
-
-
-def free_stretch(polygon: Polygon, covered: Any) -> tuple[int, ...] | None:
-    """The longest stretch (consecutive usable edges of one ring, in ring order, not the
-    whole ring) none of whose edges is in ``covered`` (on a ring no edge of which is
-    covered: all but its shortest edge); None when every edge is.  Of equally long ones,
-    the first met: rings in order, each walked from just after its first covered edge
-    (or its shortest).
-
-    >>> sq = Polygon([[0, 0], [4, 0], [4, 3], [0, 3]])
-    >>> free_stretch(sq, {0}), free_stretch(sq, set())
-    ((1, 2, 3), (2, 3, 0))
-    """
-    polygon = check_polygon(polygon)
-    covered = polygon.check_edges(list(covered), "covered") if len(covered) else []
-    return _FreeStretches(polygon).longest(covered)
-
-
-class _FreeStretches:
-    """:func:`free_stretch` for many sets of covered edges on one part: each ring's
-    usable edges walked once (``next_edge``), then every set read from the places of
-    its covered edges (a plan covers a few runs of edges: the free runs are the gaps
-    between them)."""
-
-    def __init__(self, polygon: Polygon) -> None:
-        self.polygon = polygon
-        #: per edge: the number of its ring in ``rings`` (-1: none kept) and its place
-        self.ring_of = np.full(polygon.n_edges, -1)
-        self.place = np.zeros(polygon.n_edges, dtype=np.int64)
-        #: per ring: its usable edges in walking order, twice over, the place of its
-        #: shortest (first of ties), and the running sums of its lengths along two turns
-        self.rings: list[tuple[np.ndarray, int, list[float]]] = []
-        L = polygon.lengths
-        for r in np.unique(polygon.rings):
-            usable = np.flatnonzero((polygon.rings == r) & polygon.usable)
-            if usable.size < 2:
-                continue
-            walk = [int(usable[0])]
-            while len(walk) < usable.size:
-                walk.append(polygon.next_edge(walk[-1]))
-            cycle = np.array(walk)
-            self.ring_of[cycle] = len(self.rings)
-            self.place[cycle] = np.arange(cycle.size)
-            shortest = int(usable[np.argmin(L[usable])])
-            sums = np.concatenate(([0.0], np.cumsum(np.tile(L[cycle], 2)))).tolist()
-            self.rings.append((np.tile(cycle, 2), int(self.place[shortest]), sums))
-
-    def longest(self, covered: Any) -> tuple[int, ...] | None:
-        """The longest free stretch (see :func:`free_stretch`); ``covered`` valid edges.
-
-        Each ring is walked from just after its covered edge of least number (or its
-        shortest edge, where none is covered: then all but that edge), and its free
-        runs are the gaps between its covered places in that order.  A run's length is
-        first read from the running sums (to their rounding), then the runs within
-        :data:`~fcgrasp.core.tolerances.RANK_TOL` of the longest are summed as the
-        plan sums them (numpy's sum of their lengths), and the first met of the
-        longest is kept."""
-        edges = np.fromiter(covered, dtype=np.int64)
-        ring, place = self.ring_of[edges], self.place[edges]
-        runs: list[tuple[np.ndarray, int, int, float]] = []  # walk, start, count, approx
-        for k, (walk, shortest, sums) in enumerate(self.rings):
-            m = walk.size // 2
-            mine = ring == k
-            if mine.any():
-                first = int(edges[mine].argmin())           # least edge number
-                start = int(place[mine][first]) + 1
-                rel = np.sort((place[mine] - start) % m)    # the last is m - 1
-                gaps = np.flatnonzero(np.diff(rel, prepend=-1) > 1)
-                prev = np.concatenate(([-1], rel))[gaps]
-                for a, n in zip(((start + prev + 1) % m).tolist(),
-                                (rel[gaps] - prev - 1).tolist(), strict=True):
-                    runs.append((walk, a, n, sums[a + n] - sums[a]))
-            else:
-                a = (shortest + 1) % m
-                runs.append((walk, a, m - 1, sums[a + m - 1] - sums[a]))
-        if not runs:
-            return None
-        top = max(r[3] for r in runs)
-        L = self.polygon.lengths
-        best: tuple[int, ...] | None = None
-        best_len = -1.0
-        for walk, a, n, approx in runs:
-            if approx >= top * (1 - RANK_TOL):     # summed in another order: near it
-                run = walk[a:a + n]
-                length = float(L[run].sum())
-                if length > best_len:
-                    best, best_len = tuple(run.tolist()), length
-        return best
 
 
 def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
