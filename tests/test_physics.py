@@ -174,7 +174,7 @@ def test_the_animation_is_drawn(tmp_path):
 
 
 def test_the_prism_inertia_is_the_closed_form_of_a_box_and_of_a_disc():
-    from fcgrasp.physics import PART_MASS, _prism_inertia
+    from fcgrasp.physics._planar import PART_MASS, _prism_inertia
 
     w, d, h = 0.08, 0.03, 0.01
     tris = [np.array([[0, 0], [w, 0], [w, d]]), np.array([[0, 0], [w, d], [0, d]])]

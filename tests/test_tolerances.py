@@ -37,8 +37,8 @@ def test_answers_do_not_depend_on_units():
 #: Small numbers that are not tolerances: unit factors, and the search's measured seconds
 #: per candidate row (an estimate for the user, never a decision).
 NOT_TOLERANCES = {("io/units.py", "MM_PER"), ("pipeline/_spec.py", "ROW_SECONDS"),
-                  ("physics.py", "TIMESTEP"), ("physics.py", "_METRES"),
-                  ("physics.py", "ROLL_FRICTION")}
+                  ("physics/_planar.py", "TIMESTEP"), ("physics/_planar.py", "_METRES"),
+                  ("physics/_planar.py", "ROLL_FRICTION")}
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 
 

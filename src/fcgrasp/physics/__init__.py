@@ -1,0 +1,74 @@
+r"""A physics stress test of planned grasps: the part and the fingers in MuJoCo, loads
+ramped up until the part slips (the paper's section 8: how much a grasp resists).
+
+fcgrasp proves that every grasp of a plan's regions is force closure and certifies the
+load it carries with force-limited fingers (:func:`fcgrasp.grasp_payload`).  This module
+checks those figures in a physics simulator that shares none of that code: for each
+grasp sampled in a plan's regions (the regions' ends included) and each of a few seeded
+disturbance directions, it reports whether the part held, the load at which it slipped
+and how far it moved, beside the certified payload.
+
+**The model** (SI units inside; lengths in the part's units outside).  The planar part
+is extruded into a prism of uniform density moving in its plane (two slides and a hinge:
+no gravity in the plane).  Each finger is a sphere on a slide along its contact's inward
+normal, driven by a stiff position servo: the squeeze phase sets each finger's preload
+to a force that balances the others (a linear program over the friction cones: the
+internal forces of the grasp, the largest smallest one, scaled so the largest is
+``grip_force``; none exists when the grasp cannot be squeezed), and the servo saturates
+at twice that.  Fingers that hold their position up to a limit of force are what the
+certificate assumes: it is computed with each finger's preload as its force limit, so
+the simulated fingers can always supply it (they can push harder, up to the
+saturation).  The disturbance is a wrench of fixed direction (a force at the centre of
+mass and a torque, per newton) ramped from 0 to ``ramp`` times the certified payload
+over ``ramp_time`` seconds; the part **slipped** when it moved more than
+``SLIP_DISPLACEMENT`` of the part's size or turned more than ``SLIP_ROTATION_DEG``.
+
+**Settings that make the answer physics, not artefacts:** elliptic friction cones (the
+Coulomb cone itself, not a pyramid); the noslip solver (MuJoCo's regularised friction
+creeps without it: a grasp below its limit would slowly slide); stiff contacts
+(``solref`` 2 ms, ``solimp`` 0.95-0.99) and friction as stiff as the normal
+(``impratio`` 10); a 0.5 ms time step, a quarter of the contact's time constant; the
+servo's stiffness puts the full preload at 0.2 % of the part's size (the fingers' own
+motion stays well below the slip threshold) with critical damping.
+
+**What it can and cannot tell:** it checks loads, not the exact ends of the regions (a
+grasp at a region's end is at the margin of its friction cone, and a simulator's
+contact is soft); a non-force-closure control slips under the disturbance along its
+escape motion at loads far below any grip force.  MuJoCo is an optional dependency
+(``pip install mujoco``, the ``sim`` extra).
+"""
+
+from __future__ import annotations
+
+from ._planar import (
+    SLIP_DISPLACEMENT,
+    SLIP_ROTATION_DEG,
+    StressResult,
+    jaw_contacts,
+    jaw_stress_test,
+    sample_grasps,
+    squeeze_forces,
+    stress_test,
+)
+from ._runs import (
+    animate,
+    control,
+    control_runs,
+    escape_direction,
+    jaw_of,
+    sample_poses,
+    simulate,
+)
+from ._solids import (
+    sample_solid_grasps,
+    solid_escape,
+    solid_plan_of,
+    solid_squeeze,
+    solid_stress_test,
+)
+
+__all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
+           "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
+           "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
+           "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
+           "solid_escape", "control_runs"]

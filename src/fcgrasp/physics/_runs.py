@@ -1,0 +1,291 @@
+"""The stress test's runs: sampled grasps of every plan, the controls, the summary and
+the animation (part of :mod:`fcgrasp.physics`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from concurrent.futures import ProcessPoolExecutor
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, check_int, check_scalar
+from ..errors import ArgumentError
+from ._planar import (
+    StressResult,
+    _edges,
+    _wrench_dict,
+    jaw_contacts,
+    jaw_stress_test,
+    sample_grasps,
+    stress_test,
+)
+from ._solids import (
+    sample_solid_grasps,
+    solid_escape,
+    solid_plan_of,
+    solid_stress_test,
+)
+
+
+def _is_solid(part: Any) -> bool:
+    return type(part).__module__.startswith("fcgrasp.spatial")
+
+
+def _directions6(rng: np.random.Generator, count: int, size: float) -> FloatArray:
+    """``count`` seeded unit disturbances on a solid: a force and a torque whose arm is
+    the part's size (``|(f, tau / size)| = 1``)."""
+    u = rng.normal(size=(count, 6))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    u[:, 3:] *= size
+    return u
+
+
+def _directions(rng: np.random.Generator, count: int, size: float) -> FloatArray:
+    """``count`` seeded unit disturbance directions: a force and a torque whose arm is
+    the part's size (``|(fx, fy, tau / size)| = 1``)."""
+    u = rng.normal(size=(count, 3))
+    u /= np.linalg.norm(u, axis=1)[:, None]
+    u[:, 2] *= size
+    return u
+
+
+def control(points: Any, normals: Any, mu: float) -> tuple[FloatArray, FloatArray, float]:
+    """A grasp that is not force closure made from one that is: the same contacts
+    without friction (two or three fingers: never force closure in the plane), or,
+    without friction already, the first finger taken away (three frictionless fingers
+    never are either)."""
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    if mu > 0:
+        return p, n, 0.0
+    return p[1:], n[1:], 0.0
+
+
+def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> FloatArray:
+    """A disturbance (force and torque per newton, as :func:`stress_test` takes it) that
+    pushes the part along a motion the grasp does not resist (the escape twist of
+    :func:`fcgrasp.closure_escape`, theorem 6.1); an ``ArgumentError`` for a grasp in
+    force closure."""
+    from ..core.closure import closure_escape
+
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    _, _, W = _edges(p, n / np.linalg.norm(n, axis=1)[:, None], mu)
+    closed, escape = closure_escape(W)
+    if bool(closed):
+        raise ArgumentError("the grasp is force closure: it has no escape", "points")
+    omega, vx, vy = (float(v) for v in escape)
+    size = polygon.size
+    f = np.array([vx, vy])                      # work f . v + tau omega > 0
+    tau_origin = omega * size * size
+    cx, cy = (float(v) for v in polygon.centroid)
+    u = np.array([f[0], f[1], tau_origin - (cx * f[1] - cy * f[0])])
+    return u / math.sqrt(u[0] ** 2 + u[1] ** 2 + (u[2] / size) ** 2)
+
+
+def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int = 0,
+                 units: str = "mm", count: int = 3) -> list[dict[str, Any]]:
+    """The controls of each plan (a plan object or a report's grasp): ``count`` of its
+    grasps made not force closure (:func:`control`; a jaw's poses and a solid's grasps
+    without friction), each pushed along a wrench it does not resist; per control its
+    plan's ``rank``, its ``mu``, :meth:`StressResult.to_dict` and whether it
+    ``slipped``."""
+    rng = np.random.default_rng(seed)
+    out = []
+
+    def add(r: int, mu: float, res: StressResult | None) -> None:
+        if res is not None:
+            out.append({"rank": r + 1, "mu": mu, **res.to_dict(),
+                        "slipped": res.slip_load is not None})
+
+    for r, plan in enumerate(plans):
+        if _is_solid(part):             # the same contacts without friction
+            for pts, nrm in sample_solid_grasps(plan, count, rng):
+                add(r, 0.0, solid_stress_test(part, pts, nrm, 0.0,
+                                              solid_escape(part, pts, nrm, 0.0, False),
+                                              grip_force=grip_force))
+            continue
+        jaw = jaw_of(plan)
+        if jaw is not None:             # the same poses without friction
+            for theta, offset in sample_poses((jaw[1], jaw[2]), count, rng):
+                got = jaw_contacts(part, jaw[0], theta, offset)
+                if got is not None:
+                    add(r, 0.0, jaw_stress_test(part, jaw[0], theta, offset,
+                                                escape_direction(part, got[0], got[1], 0.0),
+                                                grip_force=grip_force, units=units, mu=0.0))
+            continue
+        get: Callable[[str], Any] = plan.__getitem__ if isinstance(plan, dict) else \
+            partial(getattr, plan)
+        for pts, nrm in sample_grasps(part, get("regions"), count, rng, get("normals")):
+            cp, cn, cmu = control(pts, nrm, float(get("mu")))
+            add(r, cmu, stress_test(part, cp, cn, cmu, escape_direction(part, cp, cn, cmu),
+                                    grip_force=grip_force, units=units))
+    return out
+
+
+def _one(args: tuple[Any, ...]) -> StressResult | None:
+    if args[0] == "jaw":
+        return jaw_stress_test(*args[1:])
+    if args[0] == "solid":
+        return solid_stress_test(*args[1:])
+    return stress_test(*args[1:])
+
+
+def jaw_of(plan: Any) -> tuple[Any, tuple[float, float], tuple[float, float]] | None:
+    """A jaw plan's jaw and its box of poses (``theta``, ``offset``), from a
+    :class:`~fcgrasp.grippers.jaw.JawPlan` or a report's grasp; None for fingers.  An
+    internal grip (opening in a hole) is refused."""
+    if isinstance(plan, dict):
+        if plan.get("gripper") != "parallel_jaw":
+            return None
+        if plan.get("mode", "external") != "external":
+            raise ArgumentError("the stress test runs the jaw's external grips so far, not "
+                                "one opening in a hole", "plans")
+        from ..grippers.jaw import ParallelJaw
+
+        jaw = ParallelJaw(stroke=tuple(plan["stroke"]), pad_width=plan["pad_width"],
+                          mu=plan["mu"])
+        return jaw, tuple(plan["theta_rad"]), tuple(plan["offset"])
+    if not hasattr(plan, "jaw"):
+        return None
+    if plan.mode != "external":
+        raise ArgumentError("the stress test runs the jaw's external grips so far, not one "
+                            "opening in a hole", "plans")
+    return plan.jaw, tuple(plan.theta), tuple(plan.offset)
+
+
+def sample_poses(box: tuple[tuple[float, float], tuple[float, float]], count: int,
+                 rng: np.random.Generator) -> list[tuple[float, float]]:
+    """``count`` poses of a jaw's box: its centre, its corners pulled in by 2 % of each
+    side, then seeded poses inside."""
+    (t0, t1), (c0, c1) = box
+    dt, dc = 0.02 * (t1 - t0), 0.02 * (c1 - c0)
+    fixed = [((t0 + t1) / 2, (c0 + c1) / 2), (t0 + dt, c0 + dc), (t1 - dt, c1 - dc),
+             (t0 + dt, c1 - dc), (t1 - dt, c0 + dc)]
+    out = fixed[:count]
+    while len(out) < count:
+        out.append((float(rng.uniform(t0, t1)), float(rng.uniform(c0, c1))))
+    return out
+
+
+def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
+             directions: int = 2, seed: int = 0, units: str = "mm",
+             workers: int | None = None,
+             progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
+    """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, a
+    :class:`~fcgrasp.JawPlan`, or a report's grasp of either): ``samples`` grasps in
+    its regions (:func:`sample_grasps`: ends and middle first) or poses of its box
+    (:func:`sample_poses`), each under ``directions`` seeded disturbances, run on
+    ``workers`` processes (default: every core).  One summary per plan: its rank, the
+    grasps (:meth:`StressResult.to_dict`), how many held up to their certified payload
+    and the smallest ratio of slip load to certified payload."""
+    check_int(samples, "samples", minimum=1)
+    check_int(directions, "directions", minimum=1)
+    check_scalar(grip_force, "grip_force", positive=True)
+    rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
+    jobs: list[tuple[Any, ...]] = []
+    owners: list[int] = []
+    solid = _is_solid(polygon)
+    for r, plan in enumerate(plans):
+        if solid:
+            _, _, mu_s, soft = solid_plan_of(plan)
+            size_u = float(np.linalg.norm(polygon.mesh.extents))
+            for pts, nrm in sample_solid_grasps(plan, samples, rng):
+                for u in _directions6(rng, directions, size_u):
+                    jobs.append(("solid", polygon, pts, nrm, mu_s, u, soft, grip_force, 3.0))
+                    owners.append(r)
+            continue
+        jaw = jaw_of(plan)
+        if jaw is not None:
+            for theta, offset in sample_poses((jaw[1], jaw[2]), samples, rng):
+                for u in _directions(rng, directions, polygon.size):
+                    jobs.append(("jaw", polygon, jaw[0], theta, offset, u, grip_force, 3.0,
+                                 units))
+                    owners.append(r)
+            continue
+        regions = plan["regions"] if isinstance(plan, dict) else plan.regions
+        mu = float(plan["mu"] if isinstance(plan, dict) else plan.mu)
+        if isinstance(plan, dict) and "facets" in plan or not len(regions) or \
+                np.asarray(regions[0]).shape[-1] != 2:
+            raise ArgumentError("the stress test runs point fingers on planar parts: "
+                                f"plan {r + 1} is not one", "plans")
+        given = plan["normals"] if isinstance(plan, dict) else plan.normals
+        for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
+            for u in _directions(rng, directions, polygon.size):
+                jobs.append(("fingers", polygon, pts, nrm, mu, u, grip_force, 3.0, units))
+                owners.append(r)
+    results: list[StressResult | None] = []
+    if workers == 1 or len(jobs) < 4:
+        for k, job in enumerate(jobs):
+            results.append(_one(job))
+            if progress is not None:
+                progress(k + 1, len(jobs))
+    else:
+        with ProcessPoolExecutor(max_workers=workers) as pool:
+            for k, res in enumerate(pool.map(_one, jobs, chunksize=4)):
+                results.append(res)
+                if progress is not None:
+                    progress(k + 1, len(jobs))
+    out = []
+    for r in range(len(plans)):
+        # (a jaw's pose that does not hold by its own model is left out)
+        mine = [res for res, o in zip(results, owners, strict=True)
+                if o == r and res is not None]
+        ratios = [res.slip_load / res.certified_payload for res in mine
+                  if res.slip_load is not None and res.certified_payload > 0]
+        dirs = np.unique(np.array([m.direction for m in mine]).round(12), axis=0)
+        out.append({"rank": r + 1, "grasps": [{"rank": r + 1, **m.to_dict()} for m in mine],
+                    "held": sum(m.held for m in mine), "runs": len(mine),
+                    "worst_ratio": min(ratios) if ratios else None,
+                    "wrench_directions": [_wrench_dict(d) for d in dirs]})
+    return out
+
+
+# ----------------------------------------------------------------------------- pictures
+
+def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
+            frames: int = 24) -> None:
+    """An animated GIF of one stress test recorded with ``record=True``, in ``frames``
+    frames: the part displaced (magnified so a slip shows) under the rising load, the
+    fingers, and the load against the part's displacement beside it."""
+    import imageio.v3 as iio
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    h = result.history
+    if not len(h):
+        raise ArgumentError("result has no history: run stress_test(..., record=True)",
+                            "result")
+    check_int(frames, "frames", minimum=1)
+    images = []
+    v = np.vstack([polygon.vertices, polygon.vertices[:1]])
+    for k in np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int)):
+        t, load, moved, turned, dx, dy = h[k]
+        fig, (ax, bx) = plt.subplots(1, 2, figsize=(8, 3.6), dpi=80)
+        ax.plot(v[:, 0], v[:, 1], color="0.6", lw=1)
+        a = math.radians(turned) * 10
+        c = np.asarray(polygon.centroid)
+        rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
+        shift = np.array([dx, dy]) * 10
+        w = (v - c) @ rot.T + c + shift
+        ax.fill(w[:, 0], w[:, 1], color="0.8")
+        for p, n in zip(result.contacts, result.normals, strict=True):
+            ax.plot(*p, "o", color="tab:red")
+            ax.arrow(*(p + 0.15 * polygon.size * n), *(-0.1 * polygon.size * n),
+                     head_width=0.02 * polygon.size, color="tab:red")
+        ax.set_aspect("equal")
+        ax.set_title(f"load {load:.2f} N (motion x10)")
+        bx.plot(h[:k + 1, 1], h[:k + 1, 2], color="tab:blue")
+        bx.axvline(result.certified_payload, color="tab:green", ls="--",
+                   label="certified payload")
+        bx.set_xlabel("load (N)")
+        bx.set_ylabel(f"displacement ({units})")
+        bx.legend(loc="upper left")
+        fig.tight_layout()
+        fig.canvas.draw()
+        images.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())  # type: ignore[attr-defined]
+        plt.close(fig)
+    iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)

@@ -1,0 +1,189 @@
+"""The stress test of a convex solid held by point or soft fingers (part of
+:mod:`fcgrasp.physics`)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray
+from ..core.tolerances import TOL
+from ..errors import ArgumentError
+from ._planar import (
+    _METRES,
+    _SETTINGS,
+    PART_MASS,
+    RAMP_TIME,
+    ROLL_FRICTION,
+    SERVO_COMPLIANCE,
+    SLIP_DISPLACEMENT,
+    SLIP_ROTATION_DEG,
+    TIMESTEP,
+    TIP_RADIUS,
+    StressResult,
+    _finger_bodies,
+    _internal,
+    _mujoco,
+    _settle,
+)
+
+# ----------------------------------------------------------------------------- solids
+
+#: A soft fingertip's torsional friction: the moment about the normal it resists per
+#: newton of normal force, as a share of the part's size (MuJoCo's torsional friction
+#: coefficient, and the certificate's ``torsion``).
+TORSION = 0.005
+
+
+def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_force: float,
+                  center: Any, radius: float) -> FloatArray | None:
+    """:func:`squeeze_forces` on a solid: the normal forces of fingers (point contacts
+    with friction, or soft with ``torsion``) in equilibrium within their pyramids of
+    :func:`fcgrasp.spatial.contacts.contact_wrench_generators` (unit normal components),
+    the smallest as large as it can be, scaled so the largest is ``grip_force``."""
+    from ..spatial.contacts import contact_wrench_generators
+
+    gens = contact_wrench_generators(points, inward, mu, torsion, center=center,
+                                     radius=radius)                  # (k, g, 6)
+    k, g = gens.shape[:2]
+    # the generators' normal components are 1
+    return _internal(gens.reshape(k * g, 6), np.ones(k * g), np.repeat(np.arange(k), g), k,
+                     grip_force)
+
+
+def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
+                      soft: bool = False, grip_force: float = 10.0, ramp: float = 3.0,
+                      record: bool = False) -> StressResult:
+    """One grasp of a convex solid (points and outward normals in the solid's units;
+    ``soft``: soft fingers with :data:`TORSION`) under a disturbance ``direction`` (a
+    force and a torque per newton, ``(fx, fy, fz, tx, ty, tz)``, the torque in N x the
+    solid's unit), as :func:`stress_test` runs a planar part: the part free in space
+    (no gravity), each finger a sphere on a servoed slide along its inward normal.  The
+    certified payload is the grasp's Ferrari-Canny L1 measure
+    (:func:`fcgrasp.spatial.spatial_quality`, pyramids inscribed in the cones; torques
+    over the part's size) times the smallest squeeze: the normal forces of a wrench
+    within the measure's ball sum to at most that, so no finger exceeds its own."""
+    from ..spatial.quality import spatial_quality
+
+    mujoco = _mujoco()
+    mesh = solid.mesh
+    if not bool(mesh.is_convex):
+        raise ArgumentError("the stress test of a solid needs a convex mesh so far (MuJoCo "
+                            "collides a mesh's convex hull)", "solid")
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1)[:, None]
+    u = np.asarray(direction, float)
+    metres = _METRES.get(str(solid.units), _METRES["mm"])
+    size_u = float(np.linalg.norm(mesh.extents))
+    size = size_u * metres
+    centre = np.asarray(solid.center, float)
+    gamma = TORSION * size_u if soft else 0.0
+    preload = solid_squeeze(p, -n, mu, gamma, grip_force, centre, size_u)
+    if preload is None:
+        preload = np.full(len(p), float(grip_force))
+        cert = 0.0
+    else:
+        eps = spatial_quality(p, -n, mu, gamma, center=centre, radius=size_u).epsilon_l1
+        cert = float(eps * preload.min())
+    kp = preload / (SERVO_COMPLIANCE * size)
+    spin = gamma * metres
+    friction = (f'friction="{max(mu, TOL):.9g} {max(spin, TOL):.9g} {ROLL_FRICTION}" '
+                f'condim="{(4 if soft else 3) if mu > 0 else 1}"')
+    v = np.asarray(mesh.vertices, float) * metres
+    verts = " ".join(f"{x:.12g}" for x in v.ravel())
+    faces = " ".join(str(int(i)) for i in np.asarray(mesh.faces).ravel())
+    fingers, actuators = _finger_bodies(p * metres, n, TIP_RADIUS * size, kp, preload,
+                                        friction)
+    xml = (f'<mujoco>{_SETTINGS}'
+           f'<asset><mesh name="part" vertex="{verts}" face="{faces}"/></asset>'
+           f'<worldbody><body name="part"><freejoint/>'
+           f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/></body>'
+           f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
+           f'</mujoco>')
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = _settle(model, preload, kp)
+    body = model.body("part").id
+    x0, q0 = data.xpos[body].copy(), data.xquat[body].copy()
+
+    def motion() -> tuple[float, float]:
+        dq = float(abs(np.dot(data.xquat[body], q0)))
+        return float(np.linalg.norm(data.xpos[body] - x0)), 2 * math.acos(min(dq, 1.0))
+
+    settle = float(np.linalg.norm(x0 - model.qpos0[:3]))
+    top = ramp * cert if cert > 0 else float(grip_force)
+    n_ramp = int(RAMP_TIME / TIMESTEP)
+    slip = None
+    if settle > SLIP_DISPLACEMENT * size:
+        slip, n_ramp = 0.0, 0
+    for k in range(1, n_ramp + 1):
+        load_now = top * k / n_ramp
+        data.xfrc_applied[body, :3] = load_now * u[:3]
+        data.xfrc_applied[body, 3:] = load_now * u[3:] * metres
+        mujoco.mj_step(model, data)
+        moved, turned = motion()
+        if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
+            slip = load_now
+            break
+    moved, turned = motion()
+    return StressResult(p, n, preload, cert, slip, moved / metres, math.degrees(turned),
+                        settle / metres, u)
+
+
+def solid_plan_of(plan: Any) -> tuple[list[FloatArray], list[FloatArray], float, bool]:
+    """A solid's finger plan (a plan object or a report's grasp) as its regions'
+    corners, the regions' outward normals (per corner for a region across facets), its
+    friction and whether the fingers are soft; a jaw is refused."""
+    get = (lambda k, d=None: plan.get(k, d)) if isinstance(plan, dict) else \
+        (lambda k, d=None: getattr(plan, k, d))
+    kind = get("contact_type")
+    if isinstance(plan, dict):
+        outward = [np.asarray(nn, float) for nn in plan["normals"]]
+    else:                                     # a plan object's normals point inward
+        outward = [-np.asarray(nn, float) for nn in plan.normals]
+        kind = "soft" if type(plan).__name__.startswith(("SoftPair", "SurfacePair")) \
+            else "jaw" if hasattr(plan, "axis") else "friction"
+    if kind == "jaw":
+        raise ArgumentError("the stress test of a solid runs fingers so far, not the jaw",
+                            "plans")
+    regions = [np.asarray(r, float) for r in get("regions")]
+    return regions, outward, float(get("mu")), kind == "soft"
+
+
+def sample_solid_grasps(plan: Any, count: int, rng: np.random.Generator
+                        ) -> list[tuple[FloatArray, FloatArray]]:
+    """``count`` grasps of a solid's finger plan: the regions' centres, then each
+    region's corners pulled a tenth of the way to its centre, then seeded points (convex
+    combinations of the corners); each with its region's outward normal."""
+    regions, outward, _, _ = solid_plan_of(plan)
+    out = []
+    for k in range(count):
+        pts = []
+        for reg in regions:
+            centre = reg.mean(axis=0)
+            if k == 0:
+                pts.append(centre)
+            elif k <= len(reg):
+                pts.append(reg[k - 1] + 0.1 * (centre - reg[k - 1]))
+            else:
+                w = rng.dirichlet(np.ones(len(reg)))
+                pts.append(w @ reg)
+        out.append((np.array(pts), np.array([nn / np.linalg.norm(nn) for nn in outward])))
+    return out
+
+
+def solid_escape(solid: Any, points: Any, normals: Any, mu: float, soft: bool) -> FloatArray:
+    """A disturbance (force and torque per newton, as :func:`solid_stress_test` takes
+    it) that the grasp does not resist (:func:`fcgrasp.spatial.closure_margin`'s
+    ``unresisted`` wrench); an ``ArgumentError`` for a grasp in force closure."""
+    from ..spatial.closure import closure_margin
+
+    size_u = float(np.linalg.norm(solid.mesh.extents))
+    gamma = TORSION * size_u if soft else 0.0
+    verdict = closure_margin(points, -np.asarray(normals, float), mu, gamma,
+                             center=np.asarray(solid.center, float), radius=size_u)
+    if verdict.closure or verdict.unresisted is None:
+        raise ArgumentError("the grasp is force closure: it has no escape", "points")
+    w = np.asarray(verdict.unresisted, float)
+    return np.r_[w[:3], w[3:] * size_u]
