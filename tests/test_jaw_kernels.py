@@ -10,7 +10,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.core._angles import shrunk_half_angle
-from fcgrasp.grippers.jaw import ParallelJaw, _certify, _kernels, _plans, _poses, _slices
+from fcgrasp.grippers.jaw import ParallelJaw, _certify, _grid, _kernels, _poses, _slices
 from fcgrasp.io.parts import demo_part
 
 from .shapes import random_polygon
@@ -127,9 +127,9 @@ def test_compiled_pose_grid_and_fine_check_are_the_batches(name):
                 ParallelJaw(stroke=(0, 1.2 * part.size), pad_width=0.1 * part.size,
                             mu=0.3)):
         for hole in _holes(part):
-            thetas, offsets, H = _plans._grid(part, jaw, 2.0, hole)
+            thetas, offsets, H = _grid._grid(part, jaw, 2.0, hole)
             assert np.array_equal(
-                H, _plans._pose_grid_batches(part, jaw, 2.0, hole, thetas, offsets))
+                H, _grid._pose_grid_batches(part, jaw, 2.0, hole, thetas, offsets))
             dth, dc = thetas[1] - thetas[0], offsets[1] - offsets[0]
             # boxes of the grid's holding poses, and random ones
             rows, cols = np.nonzero(H)
@@ -141,8 +141,8 @@ def test_compiled_pose_grid_and_fine_check_are_the_batches(name):
                     t0, c0 = rng.uniform(0, 2 * np.pi), rng.uniform(-1, 1) * part.radius
                 th = np.array([t0, t0 + dth * int(rng.integers(0, 8))])
                 off = np.array([c0, c0 + dc * int(rng.integers(0, 8))])
-                assert _plans._checked_box(part, jaw, 2.0, hole, th, off, dth, dc) == \
-                    _plans._checked_box(part, jaw, 2.0, hole, th, off, dth, dc,
+                assert _grid._checked_box(part, jaw, 2.0, hole, th, off, dth, dc) == \
+                    _grid._checked_box(part, jaw, 2.0, hole, th, off, dth, dc,
                                         compiled_grid=False)
 
 
@@ -160,8 +160,8 @@ def test_compiled_box_search_is_the_numpy_search():
         if t % 5 == 0:
             dc = dth * radius           # the two sides tie
         rows = int(rng.integers(1, K // 2 + 2))
-        assert _plans._box_scores(H, dth, dc, radius, rows) \
-            == _plans._box_scores_numpy(H, dth, dc, radius, rows)
+        assert _grid._box_scores(H, dth, dc, radius, rows) \
+            == _grid._box_scores_numpy(H, dth, dc, radius, rows)
 
 
 def test_compiled_proofs_are_the_numpy_proofs():

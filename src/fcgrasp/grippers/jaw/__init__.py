@@ -69,8 +69,9 @@ from __future__ import annotations
 
 from ...core.tolerances import SLICE_TOL
 from ._certify import certify_box
+from ._grid import grid_anchor
 from ._payload import jaw_payload
-from ._plans import JawPlan, ParallelJaw, grid_anchor, jaw_from_options, jaw_pareto, jaw_plans
+from ._plans import JawPlan, ParallelJaw, jaw_from_options, jaw_pareto, jaw_plans
 from ._poses import (
     CERTIFY_BOXES,
     CERTIFY_SHRINKS,

@@ -433,7 +433,7 @@ def grid(th: Any, c: Any, a: Any, b: Any, f: Any, half: float, tol: float, q: An
 
 def _box_loop(H: Any, dth: float, dc: float, radius: float, max_rows: int,
               out: Any) -> None:
-    """``_plans._box_scores_numpy`` as one loop: for each first row, the rows from it
+    """``_grid._box_scores_numpy`` as one loop: for each first row, the rows from it
     AND-ed one by one, the longest run of the intersection read at each; a first row
     stops once its longest run cannot beat the best (runs only shorten), so the best
     box and its ties are those of the numpy search (first row, then first prefix, then
@@ -465,7 +465,7 @@ def _box_loop(H: Any, dth: float, dc: float, radius: float, max_rows: int,
 
 def box_scores(H: Any, dth: float, dc: float, radius: float, max_rows: int
                ) -> tuple[float, int, int, int, int] | None:
-    """The largest box of True cells of the pose grid ``H`` (``_plans._box_scores``),
+    """The largest box of True cells of the pose grid ``H`` (``_grid._box_scores``),
     compiled; None when the loop cannot run."""
     out = np.array([-1.0, 0, 0, 0, 0])
     if not _run("_box_loop", np.ascontiguousarray(H, dtype=np.bool_), float(dth), float(dc),
