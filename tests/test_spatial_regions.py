@@ -178,17 +178,18 @@ def test_bounded_search_equals_every_pair(seed):
 def test_bounds_and_fits_against_the_cone_program(seed):
     """For sampled pairs of pieces: the batched bound is at least the refined one, which
     is at least the cone program's radius; where the fits hold they equal it."""
+    from fcgrasp.spatial import _pieces as P
     from fcgrasp.spatial import regions as R
 
     solid = _search_corpus(seed)
     rng = np.random.default_rng(100 + seed)
     mu = float(rng.uniform(0.2, 1.5))
     alpha = math.atan(mu) - math.radians(0.5)
-    table = R._piece_table(solid)
-    pa, pb = R._pairs(table, np.arange(len(table.facet)), np.zeros(0, np.intp),
+    table = P._piece_table(solid)
+    pa, pb = P._pairs(table, np.arange(len(table.facet)), np.zeros(0, np.intp),
                       math.cos(min(2 * alpha, math.pi)))
     pick = rng.choice(len(pa), min(len(pa), 60), replace=False)
-    bounds = R._pair_bounds(table, pa[pick], pb[pick], alpha)
+    bounds = P._pair_bounds(table, pa[pick], pb[pick], alpha)
     for bound, i, j in zip(bounds, pa[pick], pb[pick], strict=True):
         facets = (int(table.facet[i]), int(table.facet[j]))
         pieces = (int(table.local[i]), int(table.local[j]))
@@ -210,6 +211,7 @@ def test_octagon_fits_equal_an_lp(cases):
     from scipy.optimize import linprog
     from shapely import Polygon
 
+    from fcgrasp.spatial import _pieces as P
     from fcgrasp.spatial import regions as R
 
     rng = np.random.default_rng(cases)
@@ -221,21 +223,21 @@ def test_octagon_fits_equal_an_lp(cases):
         poly = Polygon(tri)
         if poly.area < 1e-9:
             continue
-        E, h = R._halfplanes(poly)
+        E, h = P._halfplanes(poly)
         phi = rng.uniform(0, 2 * math.pi)
         corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
                         np.sin(phi + np.arange(8) * math.pi / 4)]
-        s, t = R._fit((E, h), corners)
+        s, t = P._fit((E, h), corners)
         k = (E @ corners.T).max(axis=1)
         lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
                      bounds=[(None, None), (None, None), (0, None)], method="highs")
         assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-8 * np.abs(tri).max())
         assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
     solid = solid_from_mesh(trimesh.creation.icosphere(subdivisions=2, radius=7.0))
-    table = R._piece_table(solid)
+    table = P._piece_table(solid)
     for f, fit in zip(solid.facets, table.own_fit, strict=True):
         Q1, _ = R._octagon_axes(f, f)
-        assert fit == pytest.approx(R._fit(R._halfplanes(f.pieces[0]), Q1 @ f.axes.T)[0],
+        assert fit == pytest.approx(P._fit(P._halfplanes(f.pieces[0]), Q1 @ f.axes.T)[0],
                                     rel=1e-12)
 
 
@@ -366,7 +368,7 @@ def test_the_vertex_fit_equals_highs(cases):
     from scipy.optimize import linprog
     from shapely import MultiPoint
 
-    from fcgrasp.spatial import regions as R
+    from fcgrasp.spatial import _pieces as P
 
     rng = np.random.default_rng(cases)
     done = 0
@@ -375,14 +377,14 @@ def test_the_vertex_fit_equals_highs(cases):
         poly = MultiPoint(pts).convex_hull
         if poly.geom_type != "Polygon" or poly.area < 1e-9:
             continue
-        E, h = R._halfplanes(poly)
-        if not 4 <= len(E) <= R._VERTEX_FIT_EDGES:
+        E, h = P._halfplanes(poly)
+        if not 4 <= len(E) <= P._VERTEX_FIT_EDGES:
             continue
         phi = rng.uniform(0, 2 * math.pi)
         corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
                         np.sin(phi + np.arange(8) * math.pi / 4)]
         k = (E @ corners.T).max(axis=1)
-        s, t = R._vertex_fit(E, h, k)
+        s, t = P._vertex_fit(E, h, k)
         lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
                      bounds=[(None, None), (None, None), (0, None)], method="highs")
         assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-9 * np.abs(pts).max())

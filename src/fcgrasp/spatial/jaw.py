@@ -37,8 +37,9 @@ import numpy as np
 from ..core._checks import FloatArray, check_int, check_scalar
 from ..core.budget import PlanList, exhausted, incomplete
 from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL, ROUND_TOL, TOL
+from ._pieces import inscribed_radius_bound
 from .alternatives import SolidPlan
-from .regions import DEFAULT_MARGIN_DEG, checked_cone, inscribed_radius_bound
+from .regions import DEFAULT_MARGIN_DEG, checked_cone
 from .solid import Facet, Solid
 
 __all__ = ["SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"]

@@ -51,10 +51,18 @@ from ..core._checks import FloatArray, IntArray, check_int, check_mu_scalar, che
 from ..core.tolerances import (
     CONE_PROGRAM_TOL,
     FIT_ROUNDING,
-    INRADIUS_STEP,
-    PROJECTED_AXIS,
     ROUNDING_SHRINK,
     TOL,
+)
+from ._pieces import (
+    Halfplanes,
+    _fit,
+    _halfplanes,
+    _pair_bounds,
+    _pairs,
+    _piece_fit,
+    _piece_table,
+    _Pieces,
 )
 from ._program import solve_linear
 from .alternatives import SolidPlan
@@ -123,43 +131,6 @@ def checked_cone(mu: Any, margin: Any, solid: Any = None) -> tuple[float, float,
     mu_v = check_mu_scalar(mu, "mu")
     margin_v = check_scalar(margin, "margin", nonnegative=True)
     return mu_v, margin_v, math.atan(mu_v) - math.radians(margin_v)
-
-
-def inscribed_radius_bound(geoms: Any) -> FloatArray:
-    """An upper bound on each polygon's inscribed radius (a numpy array of shapely
-    polygons): shapely's largest inscribed circle, found to within ``INRADIUS_STEP`` of
-    the polygon's extent, plus that tolerance."""
-    import shapely
-
-    lo_x, lo_y, hi_x, hi_y = shapely.bounds(geoms).T
-    tol = INRADIUS_STEP * np.maximum(hi_x - lo_x, hi_y - lo_y)
-    return np.asarray(shapely.length(shapely.maximum_inscribed_circle(geoms, tol)) + tol)
-
-
-#: A convex piece as ``E x <= h``: outward unit normals (m, 2) and offsets (m,).
-Halfplanes = tuple[FloatArray, FloatArray]
-
-
-def _ring(piece: Any) -> FloatArray:
-    """The vertices (m, 2) of a convex shapely polygon, counter-clockwise."""
-    from shapely.geometry.polygon import orient
-
-    return np.asarray(orient(piece, 1.0).exterior.coords)[:-1]
-
-
-def _halfplanes(piece: Any) -> Halfplanes:
-    """``E x <= h`` for a convex shapely polygon."""
-    return _ring_halfplanes(_ring(piece))
-
-
-def _ring_halfplanes(ring: FloatArray) -> Halfplanes:
-    """``E x <= h`` for a counter-clockwise convex ring (zero-length edges dropped)."""
-    d = np.roll(ring, -1, axis=0) - ring
-    length = np.hypot(d[:, 0], d[:, 1])
-    keep = length > 0
-    ring, d, length = ring[keep], d[keep], length[keep]
-    E = np.c_[d[:, 1], -d[:, 0]] / length[:, None]                # outward
-    return E, np.einsum("ij,ij->i", E, ring)
 
 
 def _octagon_axes(f1: Facet, f2: Facet) -> tuple[FloatArray, FloatArray]:
@@ -429,236 +400,11 @@ def _certified_radius(c1: FloatArray, c2: FloatArray, Q1: FloatArray, Q2: FloatA
                             0.0, r)
 
 
-
-@dataclass(frozen=True)
-class _Pieces:
-    """Every convex piece of a solid's facets, flattened: its ``facet`` and index in it
-    (``local``), half-planes, 3-D vertices, centroid and ``reach`` (largest distance of a
-    vertex from it), inscribed radius; ``start`` and ``count`` per facet."""
-
-    facet: IntArray
-    local: IntArray
-    halfplanes: list[Halfplanes]
-    vertices: list[FloatArray]
-    centroid: FloatArray
-    reach: FloatArray
-    inradius: FloatArray
-    start: IntArray
-    count: IntArray
-    triangle: Any = field(repr=False)      # bool (P,)
-    edge_angle: FloatArray = field(repr=False)   # triangles: edges' normal angles (P, 3)
-    edge_weight: FloatArray = field(repr=False)  # triangles: lengths / (2 area) (P, 3)
-    normal: FloatArray = field(repr=False)       # the facet's inward normal (P, 3)
-    origin: FloatArray = field(repr=False)       # ... its plane's origin (P, 3)
-    axes: FloatArray = field(repr=False)         # ... and in-plane axes (P, 2, 3)
-    own_fit: FloatArray = field(repr=False)      # the octagon along the facet's own axis
-    width: list[FloatArray] = field(repr=False)  # the piece's width across each edge
-    narrow_angle: FloatArray = field(repr=False)  # the narrowest widths' normal angles
-    narrow_width: FloatArray = field(repr=False)  # ... and widths (P, NARROW), inf pad
-
-
-def _piece_table(solid: Solid) -> _Pieces:
-    import shapely
-
-    facet, local, hps, rings, verts, polys = [], [], [], [], [], []
-    for f in solid.facets:
-        for k, piece in enumerate(f.pieces):
-            ring = _ring(piece)
-            facet.append(f.index)
-            local.append(k)
-            hps.append(_ring_halfplanes(ring))
-            rings.append(ring)
-            verts.append(f.to_3d(ring))
-            polys.append(piece)
-    geoms = np.array(polys, dtype=object)
-    area, length = shapely.area(geoms), shapely.length(geoms)
-    inradius = 2 * area / length                              # exact for triangles
-    other = np.array([len(v) != 3 for v in verts], bool)
-    if other.any():
-        inradius[other] = inscribed_radius_bound(geoms[other])
-    centroid = np.array([v.mean(axis=0) for v in verts])
-    reach = np.array([np.max(np.linalg.norm(v - c, axis=1))
-                      for v, c in zip(verts, centroid, strict=True)])
-    count = np.array([len(f.pieces) for f in solid.facets], np.intp)
-    start = np.concatenate([[0], np.cumsum(count)[:-1]]).astype(np.intp)
-    triangle = ~other
-    edge_angle = np.zeros((len(verts), 3))
-    edge_weight = np.zeros((len(verts), 3))
-    for k in np.flatnonzero(triangle).tolist():
-        E, h = hps[k]
-        length = _triangle_lengths(E)
-        edge_angle[k] = np.arctan2(E[:, 1], E[:, 0])
-        edge_weight[k] = length / (length @ h)          # sum(l h) is twice the area
-    # the width across each edge (its normal's direction), and the narrowest few
-    width = []
-    narrow_angle = np.zeros((len(verts), _NARROW))
-    narrow_width = np.full((len(verts), _NARROW), np.inf)
-    for k, ((E, h), ring) in enumerate(zip(hps, rings, strict=True)):
-        w = h - (E @ ring.T).min(axis=1)
-        width.append(w)
-        keep = np.argsort(w)[:_NARROW]
-        narrow_angle[k, :len(keep)] = np.arctan2(E[keep, 1], E[keep, 0])
-        narrow_width[k, :len(keep)] = w[keep]
-    table = _Pieces(np.array(facet, np.intp), np.array(local, np.intp), hps, verts,
-                    centroid, reach, inradius, start, count, triangle, edge_angle,
-                    edge_weight, np.array([solid.facets[f].normal for f in facet]),
-                    np.array([solid.facets[f].origin for f in facet]),
-                    np.array([solid.facets[f].axes for f in facet]),
-                    np.zeros(len(verts)), width, narrow_angle, narrow_width)
-    table.own_fit[:] = _fit_bounds(table, np.arange(len(verts)), np.zeros(len(verts)))
-    return table
-
-
-def _triangle_lengths(E: FloatArray) -> FloatArray:
-    """A triangle's edge lengths up to a common factor, from its edges' unit normals
-    (3, 2): each is the sine of the opposite angle (the law of sines), the cross product
-    of the other two normals."""
-    a, b = E[[1, 2, 0]], E[[2, 0, 1]]
-    return np.asarray(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
-
-
-def _support(angle: FloatArray) -> FloatArray:
-    """The unit octagon's support along directions at ``angle`` from its first corner:
-    ``cos`` of the angle to the nearest corner."""
-    d = np.mod(angle, math.pi / 4)
-    return np.asarray(np.cos(np.minimum(d, math.pi / 4 - d)))
-
-
-def _fit_bounds(table: _Pieces, pieces: IntArray, phi: FloatArray) -> FloatArray:
-    """An upper bound on the largest octagon (first corner at angle ``phi`` in the
-    facet's 2-D frame) in each piece, batched: in a triangle the exact fit
-    (:func:`_fit`'s closed form, ``1 / sum(w_i k_i)``, ``k_i`` the octagon's support
-    along edge ``i``'s normal); in any piece, its width across an edge over the
-    octagon's width ``2 k_i`` there (exact for centrally symmetric pieces)."""
-    with np.errstate(divide="ignore"):
-        tri = 1.0 / np.einsum("ij,ij->i", table.edge_weight[pieces],
-                              _support(table.edge_angle[pieces] - phi[:, None]))
-        across = np.min(table.narrow_width[pieces] / (
-            2 * _support(table.narrow_angle[pieces] - phi[:, None])), axis=1)
-    return np.where(table.triangle[pieces], np.minimum(tri, across), across)
-
-
 #: The fractions a solution is shrunk by to absorb its rounding, smallest first.
 _SHRINKS = (0.0, *(ROUNDING_SHRINK / 10.0 ** k for k in (5, 2, 0)))
 
-#: The narrowest widths of each piece kept for the batched bound.
-_NARROW = 4
-
 #: Pieces in the search's first round (each round takes four times more).
 _FIRST_ROUND = 256
-
-#: Piece rows compared at once when looking for opposite facets (memory: rows x facets).
-_ROWS = 512
-
-
-def _pairs(table: _Pieces, new: IntArray, old: IntArray, cos_limit: float
-           ) -> tuple[IntArray, IntArray]:
-    """The pairs of pieces, one in ``new`` and the other in ``old`` or ``new``, on
-    different facets whose (inward) normals are within ``2 alpha`` of opposite
-    (``-n_1 . n_2 > cos_limit``), each once, the piece of the lower facet first."""
-    pool = np.concatenate([old, new])
-    firsts, seconds = [], []
-    for s in range(0, len(new), _ROWS):
-        rows = new[s:s + _ROWS]
-        ii, jj = np.nonzero(-(table.normal[rows] @ table.normal[pool].T) > cos_limit)
-        p, q = rows[ii], pool[jj]
-        fp, fq = table.facet[p], table.facet[q]
-        # a pair of two new pieces is met twice: keep it once
-        keep = (fp != fq) & ((jj < len(old)) | (fp < fq))
-        p, q, fp, fq = p[keep], q[keep], fp[keep], fq[keep]
-        firsts.append(np.where(fp < fq, p, q))
-        seconds.append(np.where(fp < fq, q, p))
-    if not firsts:
-        return np.zeros(0, np.intp), np.zeros(0, np.intp)
-    return np.concatenate(firsts), np.concatenate(seconds)
-
-
-def _pair_bounds(table: _Pieces, pa: IntArray, pb: IntArray, alpha: float) -> FloatArray:
-    """An upper bound on each pair's radius, batched: the smaller inscribed circle over
-    ``cos(pi / 8)`` (an octagon holds the disc of ``r cos(pi / 8)``), the octagons'
-    fits in the pieces (:func:`_fit_bounds`), and ``tan(alpha)`` times the height of
-    each piece above the other's plane (the corners of one region, seen from any corner of the
-    other, span a width of ``2 r`` across the normal at that height: the cone holds
-    them only if ``r <= tan(alpha) * height``)."""
-    disc = np.minimum(table.inradius[pa], table.inradius[pb]) / math.cos(math.pi / 8)
-    h1 = np.einsum("ij,ij->i", table.centroid[pb] - table.origin[pa], table.normal[pa]) \
-        + table.reach[pb]
-    h2 = np.einsum("ij,ij->i", table.centroid[pa] - table.origin[pb], table.normal[pb]) \
-        + table.reach[pa]
-    # the first octagon turned along its facet's first axis (its fit is the piece's
-    # own), the second along that axis projected into its plane (:func:`_octagon_axes`)
-    along = np.einsum("ij,ikj->ik", table.axes[pa, 0], table.axes[pb])   # (pairs, 2)
-    projected = np.hypot(along[:, 0], along[:, 1]) > PROJECTED_AXIS
-    phi = np.arctan2(along[:, 1], along[:, 0])
-    fits = np.minimum(table.own_fit[pa],
-                      np.where(projected, _fit_bounds(table, pb, phi), np.inf))
-    return np.minimum(np.minimum(disc, fits * (1 + FIT_ROUNDING)),
-                      math.tan(alpha) * np.minimum(h1, h2))
-
-
-def _fit(halfplanes: Halfplanes, corners: FloatArray, width: FloatArray | None = None
-         ) -> tuple[float, FloatArray]:
-    """The largest scale ``s`` and centre ``t`` with ``t + s * corners`` inside the piece
-    (a translate of the octagon scaled about its centre): in closed form for a triangle
-    (the three edges tight: ``s = 2 A / sum(l_i k_i)``, ``k_i`` the octagon's support
-    along edge ``i``'s normal); for a centrally symmetric piece (given its ``width``
-    across each edge) about its centre, where the octagon's width meets the piece's
-    (the fit is symmetric too, and convex); else a three-variable LP (HiGHS)."""
-    E, h = halfplanes
-    k = (E @ corners.T).max(axis=1)                  # the octagon's support per edge
-    if width is not None and len(E) % 2 == 0 and len(E) > 3:
-        half = len(E) // 2
-        opposite = np.roll(np.arange(len(E)), -half)
-        if np.allclose(E[opposite], -E, rtol=0, atol=FIT_ROUNDING) and \
-                np.allclose(width[opposite], width, rtol=FIT_ROUNDING, atol=0):
-            # the centre: halfway between each pair of opposite edges
-            c = np.linalg.lstsq(E[:half], (h[:half] - h[half:]) / 2,
-                                rcond=None)[0].astype(float)
-            s = float(np.min((h - E @ c) / k))
-            return max(s, 0.0), c
-    if len(E) == 3:
-        length = _triangle_lengths(E)
-        s = float(length @ h / (length @ k))
-        t = np.linalg.solve(E[:2], h[:2] - s * k[:2])
-        return s, t
-    if len(E) <= _VERTEX_FIT_EDGES:
-        return _vertex_fit(E, h, k)
-    from scipy.optimize import linprog
-
-    res = linprog([0.0, 0.0, -1.0], A_ub=np.c_[E, k], b_ub=h,
-                  bounds=[(None, None), (None, None), (0, None)], method="highs")
-    if res.status != 0:
-        return 0.0, np.zeros(2)
-    return float(res.x[2]), np.asarray(res.x[:2], float)
-
-
-#: Pieces of at most this many edges have their octagon's fit by the vertices of its
-#: linear program (:func:`_vertex_fit`), not by HiGHS (about 1 ms a call).
-_VERTEX_FIT_EDGES = 10
-
-
-def _vertex_fit(E: FloatArray, h: FloatArray, k: FloatArray) -> tuple[float, FloatArray]:
-    """The three-variable program of :func:`_fit` (largest ``s`` with ``E t + s k <=
-    h``) by its vertices: every three constraints tight, solved at once, the feasible
-    one of largest ``s`` (a bounded program's optimum is at a vertex); ``(0, 0)`` when
-    none is feasible with ``s >= 0``."""
-    from itertools import combinations
-
-    A = np.c_[E, k]
-    idx = np.array(list(combinations(range(len(E)), 3)), np.intp)
-    M, b = A[idx], h[idx]
-    det = np.linalg.det(M)
-    scale = float(np.max(np.abs(A))) ** 3
-    ok = np.abs(det) > FIT_ROUNDING * scale
-    if not ok.any():
-        return 0.0, np.zeros(2)
-    z = np.linalg.solve(M[ok], b[ok][..., None])[..., 0]          # (c, 3)
-    slack = FIT_ROUNDING * (float(np.max(np.abs(h))) + float(np.max(np.abs(z))))
-    feasible = np.all(z @ A.T <= h + slack, axis=1) & (z[:, 2] >= 0)
-    if not feasible.any():
-        return 0.0, np.zeros(2)
-    best = z[feasible][int(np.argmax(z[feasible, 2]))]
-    return float(best[2]), np.asarray(best[:2], float)
 
 
 @dataclass
@@ -679,17 +425,6 @@ def _refine(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float) -> _Re
     h1 = float(np.max((table.vertices[pb] - f1.origin) @ f1.normal))
     h2 = float(np.max((table.vertices[pa] - f2.origin) @ f2.normal))
     return _Refined(min(b1, b2, math.tan(alpha) * min(h1, h2)), (fit1, fit2))
-
-
-def _piece_fit(table: _Pieces, piece: int, corners: FloatArray
-               ) -> tuple[float, tuple[float, FloatArray]]:
-    """The octagon's fit in one piece (:func:`_fit`) and an upper bound on it: the
-    widths across every edge (as :func:`_fit_bounds`, every edge), and in a triangle
-    the closed-form fit itself (exact)."""
-    E, _ = table.halfplanes[piece]
-    fit = _fit(table.halfplanes[piece], corners, table.width[piece])
-    across = float(np.min(table.width[piece] / (2 * (E @ corners.T).max(axis=1))))
-    return (min(fit[0], across) if len(E) == 3 else across), fit
 
 
 def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,

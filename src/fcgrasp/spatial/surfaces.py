@@ -63,20 +63,18 @@ from ..core.tolerances import (
     SURFACE_TOL,
     TINY,
 )
+from ._pieces import Halfplanes, _fit, _ring_halfplanes
 from .contacts import contact_frames
 from .regions import (
     _SHRINKS,
     DEFAULT_MARGIN_DEG,
     OCTAGON,
-    Halfplanes,
     OctagonPlan,
     SoftPairPlan,
     _cone_rows,
-    _fit,
     _largest_last,
     _octagon_axes,
     _piece_rows,
-    _ring_halfplanes,
     checked_cone,
     facet_pair_plans,
 )

@@ -49,14 +49,12 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_int
 from ..core.tolerances import HULL_ROUNDING, TOL
+from ._pieces import Halfplanes, _fit, _piece_table
 from .contacts import check_spatial_contacts, contact_frames
 from .regions import (
     DEFAULT_MARGIN_DEG,
     OCTAGON,
-    Halfplanes,
     OctagonPlan,
-    _fit,
-    _piece_table,
     checked_cone,
 )
 from .solid import Solid
