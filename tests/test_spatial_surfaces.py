@@ -194,14 +194,15 @@ def test_the_bounds_hold_and_the_gap_is_kept(name):
     """Every pair's bound (extent, widths, cones, inscribed circles) is at least the
     cone program's radius on it; the search with its default gap keeps plans within
     ``1 + GAP`` of the search without one (the best of the whole family)."""
+    from fcgrasp.spatial import _patches as P
     from fcgrasp.spatial import surfaces as S
 
     solid = _solids()[name]
     mu = 0.5
     alpha = math.atan(mu) - math.radians(0.5)
-    normals, adj, _ = S._graph(solid)
+    normals, adj, _ = P._graph(solid)
     rng = np.random.default_rng(7)
-    seeds = S._seeds(normals, adj, np.asarray(solid.mesh.area_faces), alpha / 4)
+    seeds = P._seeds(normals, adj, np.asarray(solid.mesh.area_faces), alpha / 4)
     checked = 0
     for i in rng.choice(seeds, 6, replace=False):
         j = int(np.argmin(normals @ normals[i]))
@@ -210,8 +211,8 @@ def test_the_bounds_hold_and_the_gap_is_kept(name):
         for f in S.SPREADS:
             beta = f * alpha
             along = normals @ d
-            a = S._grow(int(i), (along >= math.cos(beta)).tolist(), adj)
-            b = S._grow(j, (-along >= math.cos(beta)).tolist(), adj)
+            a = P._grow(int(i), (along >= math.cos(beta)).tolist(), adj)
+            b = P._grow(j, (-along >= math.cos(beta)).tolist(), adj)
             if not a or not b:
                 continue
             p = S._patch(solid, int(i), beta, a, normals, d)
