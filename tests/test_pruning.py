@@ -306,6 +306,10 @@ def test_key_prunes_where_only_the_second_region_tells_rows_apart(monkeypatch):
         return real_solve(polygon, spec, sets, *args, **kw)
 
     monkeypatch.setattr(_search, "solve", counting)
+    # the rows streamed by the compiled generators, as in a process whose numba has
+    # started (run alone, before any other test starts it, the search takes the numpy
+    # rows, which this count does not describe)
+    monkeypatch.setattr(kernels, "started", lambda: True)
     got = search(part, spec)
     with_key = sum(counted)
     counted.clear()
@@ -421,25 +425,25 @@ print(json.dumps(out))
 
 @pytest.mark.parametrize("block", [1, 7, 4096])
 def test_candidate_stream_does_not_depend_on_the_combination_blocks(block, monkeypatch):
-    """The triples of :func:`~fcgrasp.pipeline._candidates._combos` come in
+    """The triples of :func:`~fcgrasp.pipeline._rows._combos` come in
     blocks of several first positions (fewer numpy calls on a flattened curve): every
     increasing triple once, in order, and the candidate stream of four fingers the same
     batches, row for row, as with a block per first position (``COMBO_BLOCK`` 1)."""
     from itertools import combinations
 
-    from fcgrasp.pipeline import _candidates
+    from fcgrasp.pipeline import _rows
 
-    monkeypatch.setattr(_candidates, "COMBO_BLOCK", block)
+    monkeypatch.setattr(_rows, "COMBO_BLOCK", block)
     for s in (0, 1, 3, 4, 9, 40):
-        got = [tuple(r) for b in _candidates._combos(s, 3) for r in b.tolist()]
+        got = [tuple(r) for b in _rows._combos(s, 3) for r in b.tolist()]
         assert got == list(combinations(range(s), 3))
     part = random_polygon(np.random.default_rng(5), "star")
     for job in ({"fingers": 4}, {"fingers": 3, "gravity": (0, -1)}):
         spec = plan_spec(top=3, **job)
         got = [(b.feats.tolist(), b.ceiling) for b in candidates(part, spec, batch_size=50)]
-        monkeypatch.setattr(_candidates, "COMBO_BLOCK", 1)
+        monkeypatch.setattr(_rows, "COMBO_BLOCK", 1)
         want = [(b.feats.tolist(), b.ceiling) for b in candidates(part, spec, batch_size=50)]
-        monkeypatch.setattr(_candidates, "COMBO_BLOCK", block)
+        monkeypatch.setattr(_rows, "COMBO_BLOCK", block)
         assert got == want and len(got) > 1
 
 

@@ -33,15 +33,12 @@ from ..errors import SearchTooLarge
 from ._candidates import (
     Candidates,
     EdgeSets,
-    Features,
-    SearchSize,
     candidates,
-    check_search,
-    features,
     grasp_geometry,
-    search_size,
 )
+from ._features import Features, features
 from ._search import TopK, every_plan, rank, search
+from ._size import SearchSize, check_search, search_size
 from ._solve import Solved, region_levels, solve
 from ._spec import (
     BATCH_SIZE,

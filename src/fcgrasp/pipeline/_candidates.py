@@ -7,7 +7,6 @@ from __future__ import annotations
 import bisect
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
-from functools import lru_cache
 from math import comb
 from typing import Any, cast
 
@@ -23,94 +22,36 @@ from ..core._geom import RANK_DIGITS
 from ..core.closure import rows_closure
 from ..core.kernels import pair_scores
 from ..core.sectors import PAIRINGS, pairing_valid
-from ..core.tolerances import LEXIMIN_STEP, RANK_TOL, SOLVER_TOL, SPAN_SLACK, TINY, TOL
-from ..errors import SearchTooLarge
+from ..core.tolerances import RANK_TOL, SOLVER_TOL, TINY, TOL
 from ..model import _quad_estimates
 from ..model._regiongeom import four_finger_problems, two_finger_problems
-from ..model.hand import Hand
 from ..model.polygon import Polygon
 from ..model.regions import (
     KnapsackProblem,
     leximin,
     max_min_length,
 )
-from ..model.stretches import stretch_kernels_for
 from . import _rows_kernels, _spec  # _spec: the search's tunables, read when used
-from ._spec import (
-    KEEP_STRETCHES,
-    KEPT_ROW_BYTES,
-    ROW_BYTES,
-    ROW_SECONDS,
-    STRETCH_BYTES,
-    STRETCH_KERNEL_BYTES,
-    PlanSpec,
-    SearchShape,
+from ._features import (
+    Features,
+    features,
 )
-
-# ----------------------------------------------------------------------------- features
-
-@dataclass
-class Features:
-    """Contactable pieces of edges (whole edges, or their feasible parts under a hand).
-
-    The fingers of a candidate are indices into these arrays."""
-
-    edge: np.ndarray        # (F,) parent edge
-    a: FloatArray           # (F, 2)
-    b: FloatArray           # (F, 2)
-    offset: FloatArray      # (F,) arc length of a along the parent edge
-    center: FloatArray      # (F,) angle of -n
-    half: FloatArray        # (F,) friction half-angle
-    lengths: FloatArray = field(init=False)     # (F,) |b - a|
-    #: the rows the compiled stream made of these features, by the call's arguments
-    #: (:func:`_made_rows`: the searches of one plan stream the same rows)
-    made: dict[Any, Any] = field(init=False, repr=False, compare=False)
-
-    def __post_init__(self) -> None:
-        self.lengths = np.hypot(*(self.b - self.a).T)
-        self.made = {}
-def features(polygon: Polygon, mu: float = 0.0, hand: Hand | None = None,
-             edges: Any = None) -> Features:
-    """Contactable pieces of the edges (of ``edges`` only, if given): whole usable edges,
-    or their parts a :class:`~fcgrasp.Hand` can reach (section 8.2).
-
-    Every step of the pipeline needs them for every batch, so the last few are kept
-    (the arrays are read-only)."""
-    key = None if edges is None else tuple(sorted({int(e) for e in edges}))
-    return _features(polygon, float(mu), hand, key)
-
-
-@lru_cache(maxsize=8)
-def _features(polygon: Polygon, mu: float, hand: Hand | None,
-              edges: tuple[int, ...] | None) -> Features:
-    rows = []
-    if hand is None:
-        ivs = [[(0.0, float(L))] if polygon.usable[e] else [] for e, L in
-               enumerate(polygon.lengths)]
-    else:
-        ivs = hand.feasible_intervals(polygon, min_length=LEXIMIN_STEP * polygon.size)
-    wanted = None if edges is None else set(int(e) for e in edges)
-    for e, lst in enumerate(ivs):
-        if wanted is not None and e not in wanted:
-            continue
-        for t0, t1 in lst:
-            rows.append((e, t0, t1))
-    if not rows:
-        z = np.zeros((0, 2))
-        return Features(np.zeros(0, int), z, z, np.zeros(0), np.zeros(0), np.zeros(0))
-    ei = np.array([r[0] for r in rows])
-    s0 = np.array([r[1] for r in rows])
-    s1 = np.array([r[2] for r in rows])
-    tan = polygon.tangents[ei]
-    a = polygon.starts[ei] + s0[:, None] * tan
-    b = polygon.starts[ei] + s1[:, None] * tan
-    n = polygon.normals[ei]
-    center = np.arctan2(-n[:, 1], -n[:, 0])
-    out = Features(ei, a, b, s0, center, np.full(len(ei), float(np.arctan(mu))))
-    for arr in (out.edge, out.a, out.b, out.offset, out.center, out.half, out.lengths):
-        arr.flags.writeable = False
-    return out
-
+from ._rows import (
+    _bound_pad,
+    _combos,
+    _distinct_edges,
+    _layouts,
+    _row_bound,
+    _row_bounds,
+    _spans_plane,
+    lex_survivors,
+)
+from ._size import (
+    search_size,
+)
+from ._spec import (
+    PlanSpec,
+)
 
 # ----------------------------------------------------------------------------- candidates
 
@@ -156,13 +97,6 @@ class Candidates:
         return out
 
 
-def _keep_best(score: FloatArray, keep: int) -> np.ndarray:
-    """Indices (sorted) of the ``keep`` best scores and of every score tied with the last
-    of them, so that which of equal candidates survive does not depend on numbering."""
-    thr = np.partition(score, score.size - keep)[score.size - keep]
-    return np.flatnonzero(score >= thr - RANK_TOL * abs(thr))
-
-
 def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
                      tol: float = SOLVER_TOL, floor: float = 0.0) -> Candidates:
     """Two-finger candidates of the feature pairs ``(i, j)`` on distinct edges that have
@@ -182,143 +116,6 @@ def _pair_candidates(F: Features, margin: float, i: np.ndarray, j: np.ndarray,
                    ("squeeze", "expand"), tol=tol)
     c.score, c.best_mode = score, mode
     return c
-
-
-def _distinct_edges(F: Features, t: np.ndarray) -> np.ndarray:
-    e = F.edge[t]
-    k = t.shape[1]
-    ok = np.ones(len(t), dtype=bool)
-    for x in range(k):
-        for y in range(x + 1, k):
-            ok &= e[:, x] != e[:, y]
-    return t[ok]
-
-
-#: Rows per block of :func:`_combos` (triples): the blocks of consecutive first positions
-#: are joined up to this many, in the same order (on a flattened curve a position's own
-#: block is a handful of rows, and the numpy calls per block were the cost).
-COMBO_BLOCK = 4096
-
-
-def _combos(s: int, r: int) -> Iterator[np.ndarray]:
-    """Every increasing ``r``-tuple (r = 1, 2 or 3) of ``range(s)``, in blocks."""
-    if r == 1:
-        if s > 0:
-            yield np.arange(s)[:, None]
-        return
-    if r == 2:
-        a, b = np.triu_indices(s, 1)
-        if a.size:
-            yield np.stack([a, b], axis=1)
-        return
-    parts, rows = [], 0
-    for first in range(s - 2):
-        a, b = np.triu_indices(s - first - 1, 1)
-        block = np.empty((a.size, 3), dtype=int)
-        block[:, 0] = first
-        block[:, 1] = a + first + 1
-        block[:, 2] = b + first + 1
-        parts.append(block)
-        rows += a.size
-        if rows >= COMBO_BLOCK:     # blocks of several first positions: fewer numpy calls
-            yield np.concatenate(parts)
-            parts, rows = [], 0
-    if parts:
-        yield np.concatenate(parts)
-
-
-def _layouts(t: np.ndarray, shape: SearchShape, fingers: int) -> np.ndarray:
-    """Candidate rows of sorted feature tuples ``t`` (:attr:`SearchShape.layout`): as they
-    are; triples plus the gravity contact (-1); with four fingers on three edges (``t`` of
-    width 3) the three layouts doubling each feature (first and third); with three on two
-    edges (width 2) the two layouts doubling each (first and second)."""
-    layout = shape.layout
-    if layout == "gravity":
-        return np.concatenate([t, -np.ones((len(t), 1), int)], axis=1)
-    if layout == "as_is" or t.shape[1] == fingers:
-        return t
-    rows = []
-    for x in range(t.shape[1]):
-        rest = [t[:, y] for y in range(t.shape[1]) if y != x]
-        cols = rest[:shape.twin - 1] + [t[:, x]] + rest[shape.twin - 1:]
-        rows.append(np.stack([t[:, x], *cols], axis=1))
-    return np.concatenate(rows)
-
-
-def _row_bound(lengths: FloatArray, rows: np.ndarray, twin: int | None) -> FloatArray:
-    """Upper bound of the smallest region of each row: no region is longer than its
-    feature, and two fingers on one feature (first and ``twin``: the third of four, the
-    second of three; None where no row doubles one) share it, so one of them has at most
-    half of it.  Gravity (-1) has no region.  (The columns' minimum taken column by
-    column: numpy's reduction along a row of four costs ten times more.)"""
-    ext = np.append(np.asarray(lengths, dtype=float), np.inf)   # the last: no region
-    L = ext[np.where(rows >= 0, rows, -1)]
-    if twin is not None:
-        same = rows[:, 0] == rows[:, twin]
-        L[same, 0] *= 0.5
-        L[same, twin] = L[same, 0]
-    out = L[:, 0].copy()
-    for k in range(1, L.shape[1]):
-        np.minimum(out, L[:, k], out=out)
-    return out
-
-
-
-
-def _row_bounds(lengths: FloatArray, rows: np.ndarray, twin: int | None) -> FloatArray:
-    """Upper bounds of each row's region lengths, sorted ascending (one column per real
-    finger; gravity, -1, has no region): no region is longer than its feature, and of
-    two fingers on one feature (first and ``twin``) one has at most half of it, the
-    other at most all of it.  A row's sorted regions are at most these, component by
-    component (pair each region with its own bound), so its leximin key is never better
-    than theirs (:func:`lex_survivors`)."""
-    real = rows[0] >= 0 if len(rows) else np.zeros(0, bool)
-    L = lengths[np.maximum(rows[:, real], 0)]
-    if twin is not None:
-        same = rows[:, 0] == rows[:, twin]
-        L[same, 0] *= 0.5
-    return np.sort(L, axis=1)
-
-
-def _bound_pad(size: float) -> float:
-    """What a region's length may exceed its feature's by: float error (the solver
-    caps its levels at the features' lengths), far below the ranking's rounding."""
-    return 10 * SOLVER_TOL * size
-
-
-def lex_survivors(bounds: FloatArray, key: FloatArray | None, size: float) -> np.ndarray:
-    """Which rows (their :func:`_row_bounds`) may still reach or tie the leximin key
-    ``key`` (the running top's last, :attr:`~fcgrasp.pipeline.TopK.key`: its region
-    lengths sorted ascending, over ``size``, rounded as
-    :func:`~fcgrasp.core._geom.leximin_key` rounds).  Rounding keeps order, so a row is
-    surely worse when, at the first length where its bound and the key round apart,
-    the bound rounds below (its regions are at most the bounds: the solver's levels
-    are capped by the features' lengths; each bound is padded by :func:`_bound_pad`
-    for the float error).  None keeps every row.
-
-    >>> size = 10.0
-    >>> key = np.array([0.1, 0.5])                # regions 1 and 5 of a part of size 10
-    >>> lex_survivors(np.array([[1.0, 4.0], [1.0, 6.0], [2.0, 2.0], [0.5, 9.0]]), key, size)
-    array([False,  True,  True, False])
-    """
-    if key is None or not len(bounds):
-        return np.ones(len(bounds), bool)
-    b = np.round((bounds + _bound_pad(size)) / size, RANK_DIGITS)
-    alive = np.ones(len(b), bool)
-    open_ = np.ones(len(b), bool)          # every length so far rounds to the key's
-    for j in range(min(b.shape[1], key.size)):
-        alive &= ~(open_ & (b[:, j] < key[j]))
-        open_ &= b[:, j] == key[j]
-    return alive
-
-
-def _spans_plane(angles: FloatArray) -> bool:
-    """Whether directions at sorted ``angles`` in [0, 2 pi) may positively span the plane
-    (no gap between neighbours, cyclically, wider than half a turn plus the slack)."""
-    if angles.size < 3:
-        return False
-    gaps = np.diff(np.concatenate([angles, angles[:1] + 2 * np.pi]))
-    return bool(gaps.max() <= np.pi + SPAN_SLACK)
 
 
 def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
@@ -633,7 +430,6 @@ def _quad_candidates(F: Features, margin: float, gravity: FloatArray | None,
     return c
 
 
-
 # ----------------------------------------------------------------------------- candidates
 
 
@@ -662,111 +458,6 @@ class EdgeSets:
         """The rows ``keep`` (a mask or indices) with their bounds, the same ceiling."""
         return EdgeSets(self.feats[keep], None if self.bound is None else self.bound[keep],
                         self.ceiling, self.held)
-
-
-@dataclass(frozen=True)
-class SearchSize:
-    """How big a search is, before it starts (see :func:`search_size`).
-
-    ``rows``: candidate edge sets (an upper bound when a hand splits edges); ``batch_rows``:
-    rows per streamed batch; ``peak_bytes``: memory of one batch being solved;
-    ``kept_bytes``: memory of what is kept across batches (every row's plan with
-    ``top=None``, else the top of each batch); ``seconds``: a rough time on one core.
-    """
-
-    features: int
-    rows: int
-    batch_rows: int
-    peak_bytes: int
-    kept_bytes: int
-    seconds: float
-    budget: int
-
-    @property
-    def fits(self) -> bool:
-        return self.peak_bytes + self.kept_bytes <= self.budget
-
-
-def _estimate(spec: PlanSpec, n: int) -> tuple[int, int, int, int]:
-    """(rows, batch rows, peak bytes, kept bytes) of a search over ``n`` features."""
-    if spec.stretches:
-        # the stretch search holds a few (n, n) arrays per ring pair; every
-        # configuration of a curved outline (top=None) is about n**3 / 36 of them
-        rows = n ** 3 // 36 if spec.top is None else comb(n, 2)
-        held = rows if spec.top is None else min(rows, 2 * max(spec.top, KEEP_STRETCHES))
-        # large rings run compiled, with nothing of size n x n
-        peak = STRETCH_KERNEL_BYTES * n if stretch_kernels_for(n * n) else STRETCH_BYTES * n * n
-        return rows, rows, peak, held * KEPT_ROW_BYTES
-    rows = spec.shape.rows(n)
-    per = ROW_BYTES[spec.fingers]
-    cap = _spec.TUPLE_BATCH_SIZE if spec.shape.tuple_batches else _spec.BATCH_SIZE
-    batch = int(max(1, min(cap, spec.max_memory // 2 // per)))
-    peak = min(rows, batch) * per
-    if spec.top is None:
-        held = rows
-    else:
-        keep = spec.top if spec.rank_by == "min_region" else _spec.KEEP_FOR_MEASURE
-        held = min(rows, _reduce_rows(spec) + 2 * keep)
-    return rows, batch, peak, held * KEPT_ROW_BYTES
-
-
-def _reduce_rows(spec: PlanSpec) -> int:
-    """Rows :func:`rank` holds beyond its running top before folding them in."""
-    return int(min(_spec.REDUCE_ROWS, max(1000, spec.max_memory // 4 // KEPT_ROW_BYTES)))
-
-
-def search_size(polygon: Polygon, spec: PlanSpec, edges: Any = None) -> SearchSize:
-    """The size of the search :func:`candidates` -> :func:`solve` -> :func:`rank` will do,
-    and the batch size that keeps it within ``spec.max_memory``.
-
-    Batches take at most half the budget (``ROW_BYTES`` per row, at most
-    :data:`BATCH_SIZE` rows of two fingers, :data:`TUPLE_BATCH_SIZE` of three or four);
-    what :func:`rank` keeps across batches must fit as well (``KEPT_ROW_BYTES`` per
-    row): its running top, at most ``REDUCE_ROWS`` (fewer on small
-    budgets) plus twice the top, or with ``top=None`` every row; see :func:`check_search`.
-
-    >>> from fcgrasp.io.parts import demo_part
-    >>> from fcgrasp.pipeline import plan_spec
-    >>> s = search_size(demo_part("quad"), plan_spec(fingers=4))
-    >>> s.rows, s.fits
-    (13, True)
-    """
-    n = len(features(polygon, spec.mu, spec.hand, edges).edge)
-    rows, batch, peak, kept = _estimate(spec, n)
-    return SearchSize(n, rows, batch, peak, kept, rows * ROW_SECONDS[spec.fingers],
-                      spec.max_memory)
-
-
-def _fmt_bytes(b: float) -> str:
-    for unit in ("B", "KB", "MB", "GB", "TB"):
-        if b < 1024:
-            return f"{b:.3g} {unit}"
-        b /= 1024
-    return f"{b:.3g} PB"
-
-
-def check_search(polygon: Polygon, spec: PlanSpec) -> SearchSize:
-    """The :func:`search_size` of a plan, or :class:`SearchTooLarge` (a ValueError) when it
-    cannot fit ``spec.max_memory``, saying what would: how many edges fit, a ``top``, fewer
-    fingers."""
-    size = search_size(polygon, spec)
-    if size.fits:
-        return size
-    fit = 2
-    while fit < size.features and sum(_estimate(spec, fit + 1)[2:]) <= spec.max_memory:
-        fit += 1
-    what = spec.shape.label
-    hint = "plan on single edges (along_boundary=False, --single-edge), or " \
-        if spec.stretches and spec.top is not None else \
-        "give a top (--top K), or " if spec.top is None else \
-        "ask for fewer plans (--top), " if spec.top * KEPT_ROW_BYTES > spec.max_memory // 4 \
-        else ""
-    raise SearchTooLarge(
-        f"a {what} search of this part ({size.features} edges, {size.rows:.3g} candidate "
-        f"edge sets) would need about {_fmt_bytes(size.peak_bytes + size.kept_bytes)}, above "
-        f"the memory budget of {_fmt_bytes(spec.max_memory)} (max_memory, --max-memory): "
-        f"{hint}simplify the outline to at most about {fit} edges (--simplify TOL), or plan "
-        f"with fewer fingers")
 
 
 def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,

@@ -20,7 +20,6 @@ from . import _spec  # the search's tunables, read when used
 from ._candidates import (
     EdgeSets,
     _bound_pad,
-    _reduce_rows,
     _row_bounds,
     candidates,
     features,
@@ -29,6 +28,7 @@ from ._candidates import (
     search_size,
 )
 from ._pair_rows import SEED_ROWS, PairRows
+from ._size import _reduce_rows
 from ._solve import RowScores, Solved, _build_plans, _select, _smallest_region, solve
 from ._spec import (
     MAP_WINDOW,

@@ -34,11 +34,11 @@ from ._candidates import (
     EdgeSets,
     Features,
     _best_levels,
-    _keep_best,
     _lex_greater,
     grasp_geometry,
     quad_estimates,
 )
+from ._rows import _keep_best
 from ._spec import (
     PlanSpec,
 )
