@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.apps import batch
+from fcgrasp.apps import _batch_workers, batch
 from fcgrasp.apps.cli import main
 from fcgrasp.io.schema import validate
 
@@ -183,14 +183,14 @@ NEVER_ENDING_LIMIT = 2.0
 def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
     rng = np.random.default_rng(9)
     polys = [fc.Polygon(_ring(rng, 6)), fc.Polygon(_ring(rng, 7))]
-    real = batch._plan_one
+    real = _batch_workers._plan_one
 
     def flaky(task):                 # inherited by the forked workers
         if task.path == "polygon:1":
             os._exit(3)
         return real(task)
 
-    monkeypatch.setattr(batch, "_plan_one", flaky)
+    monkeypatch.setattr(_batch_workers, "_plan_one", flaky)
     res = {r["path"]: r for r in batch.plan_many(polys, workers=2, fingers=2, mu=0.4, top=2)}
     assert res["polygon:0"]["error"] is None and res["polygon:0"]["grasps"]
     assert "worker died" in res["polygon:1"]["error"]
@@ -198,7 +198,7 @@ def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
     def never_ends(task):
         time.sleep(3600)             # stopped by its deadline, never by finishing
 
-    monkeypatch.setattr(batch, "_plan_one", never_ends)
+    monkeypatch.setattr(_batch_workers, "_plan_one", never_ends)
     res = {r["path"]: r for r in batch.plan_many([polys[0]], workers=1, fingers=2, mu=0.4,
                                                  top=2, part_timeout=NEVER_ENDING_LIMIT)}
     assert "timeout" in res["polygon:0"]["error"]
@@ -245,7 +245,7 @@ def test_a_large_part_is_split_across_the_cluster(monkeypatch):
     polys = [fc.Polygon(_ring(rng, 14)) for _ in range(2)] + [fc.Polygon(_ring(rng, 6))]
     opts = {"fingers": 4, "top": 3, "single_edge": True}
     whole = {r["path"]: r for r in fc.plan_many(polys, workers=1, **opts)}
-    monkeypatch.setattr(batch, "LARGE_EDGES", 10)
+    monkeypatch.setattr(_batch_workers, "LARGE_EDGES", 10)
     monkeypatch.setattr(pipeline, "FIRST_BATCH", 64)       # several batches to share out
     with distributed.Client(processes=False, n_workers=2, threads_per_worker=1,
                             dashboard_address=None) as client:
@@ -366,7 +366,7 @@ def test_a_part_that_never_ends_reading_times_out_on_a_cluster(tmp_path, monkeyp
     pytest.importorskip("distributed")
     from distributed import Client, LocalCluster
 
-    monkeypatch.setattr(batch, "TIMEOUT_GRACE", 0.5)
+    monkeypatch.setattr(_batch_workers, "TIMEOUT_GRACE", 0.5)
     pipe = tmp_path / "never.json"
     os.mkfifo(pipe)
     good = tmp_path / "good.json"

@@ -659,9 +659,9 @@ def test_jobs_are_unguessable_and_belong_to_their_session(client):
 def test_an_upload_is_read_in_a_process_killed_at_its_time(client, monkeypatch):
     """The reading process is killed past READ_SECONDS (here none at all): the answer is
     one error naming the file, and the server plans on."""
-    from fcgrasp.apps import serve
+    from fcgrasp.apps import _serve_jobs
 
-    monkeypatch.setattr(serve, "READ_SECONDS", 0.0)
+    monkeypatch.setattr(_serve_jobs, "READ_SECONDS", 0.0)
     r = client.post("/api/part?name=slow.json",
                     content=json.dumps({"vertices": BLOB}).encode())
     assert r.status_code == 413 and "slow.json" in r.json()["error"]

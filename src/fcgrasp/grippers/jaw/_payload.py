@@ -45,13 +45,11 @@ import numpy as np
 
 from ...core._checks import FloatArray, check_int, check_scalar
 from ...core.tolerances import ROUND_TOL
+from ...model._payload_programs import _cone_edges, _limits, _wrench_edges
 from ...model.loads import (
     Load,
     RegionPayload,
     _box_scale,
-    _cone_edges,
-    _limits,
-    _wrench_edges,
     grasp_payload,
 )
 from ...model.polygon import Polygon
