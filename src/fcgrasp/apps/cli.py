@@ -88,6 +88,8 @@ def cmd_plan(args: Any) -> int:
     request = PlanRequest(part=args.part, json=args.json, plot=args.plot,
                           **plan_options(args))
     _check_plot(args.plot)
+    if args.moveit:
+        _check_moveit(args)
     say = None if args.quiet else _stderr
     doc = plan_document(request, progress=_progress(sys.stderr.isatty() and not args.quiet),
                         say=say)
@@ -97,8 +99,12 @@ def cmd_plan(args: Any) -> int:
 
         document_figure(doc, args.plot, outputs=out)
 
-    _write_outputs([(args.json, dumps(doc.report))] if args.json else [],
-                   figure if args.plot else None)
+    texts = [(args.json, dumps(doc.report))] if args.json else []
+    if args.moveit:
+        from ..io.moveit import grasps_text, moveit_grasps
+
+        texts.append((args.moveit, grasps_text(moveit_grasps(doc.report), args.moveit)))
+    _write_outputs(texts, figure if args.plot else None)
     if not args.quiet and not _json_out(args):
         if not doc.plans:
             print(f"no grasp: {doc.reason}")
@@ -114,6 +120,21 @@ def cmd_plan(args: Any) -> int:
     if note is not None and not args.quiet:
         print(note, file=sys.stderr if _json_out(args) else sys.stdout)
     return 0
+
+
+def _check_moveit(args: Any) -> None:
+    """``--moveit`` before any work: a parallel jaw's plans, a file name that is neither
+    the part nor another output."""
+    from ..io.outputs import check_outputs
+
+    if args.gripper != "jaw":
+        raise CliError("--moveit writes a parallel jaw's grasps (moveit_msgs/Grasp): plan "
+                       "with --gripper jaw")
+    if not args.moveit.lower().endswith((".yaml", ".yml", ".json")):
+        raise CliError(f"--moveit must end in .yaml, .yml or .json, got {args.moveit!r}")
+    check_outputs(args.moveit, None, [args.part])
+    if args.moveit in (args.json, args.plot):
+        raise CliError(f"--moveit {args.moveit} is another output too")
 
 
 def incomplete_note(report: dict[str, Any]) -> str | None:

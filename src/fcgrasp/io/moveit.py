@@ -1,0 +1,224 @@
+"""The jaw plans of a report as MoveIt grasps: ``moveit_msgs/Grasp`` messages written as
+plain data (YAML or JSON), without ROS installed.
+
+A jaw plan (a box of closing angles and offsets on a planar part, or a pair of opposite
+parallel facets on a solid) becomes one grasp at its representative pose, the box's
+centre, where every pose of the box holds:
+
+* **Frames and units** (REP 103): metres; the frame ``frame_id`` is the part's own (the
+  report's coordinates).  A planar part lies in its ``z = 0`` plane, picked from above
+  (the paper's chopsticks), its tool frame at ``height`` above that plane.  The tool
+  frame is the hand's (``ee_frame``, the Franka Hand's ``panda_hand`` by default): its
+  ``y`` axis the closing axis (the fingers move along it), its ``z`` axis the approach
+  direction, ``x = y x z``; the orientation is a unit quaternion ``(x, y, z, w)``.
+* **The fingers' joints**: each of ``joint_names`` at ``joint_per_opening`` times the
+  opening in metres (the Franka Hand: two prismatic joints at half the opening each).
+  An external grip approaches open (the jaw's largest stroke) and closes to the
+  contacts; an internal one (inside a hole) approaches closed (the smallest stroke) and
+  opens to them.
+* **Approach and retreat**: along the tool's ``z`` axis by ``approach`` metres (at least
+  ``min_approach``), and away along the part frame's ``z`` (up) by ``retreat`` (at least
+  ``min_retreat``).
+* ``grasp_quality``: the plan's measure in metres (the box's smallest side, or a solid's
+  pad radius); ``max_contact_force``: the grip force where the report certifies a
+  payload, else 0 (no limit).
+
+The field names are the messages' own (``moveit_msgs/Grasp``, ``GripperTranslation``,
+``trajectory_msgs/JointTrajectory``, ``geometry_msgs/PoseStamped``, ROS 2's
+``builtin_interfaces`` times), listed in :data:`GRASP_FIELDS` and checked by the tests
+against the message definitions.
+
+>>> report = {"units": "mm", "parameters": {"gripper": "parallel_jaw", "stroke": [10, 50]},
+...           "grasps": [{"rank": 1, "gripper": "parallel_jaw", "mode": "external",
+...                       "centre": [1.5707963267948966, 0.0], "centroid": [40.0, 15.0],
+...                       "contacts": {"a": {"stop": 15.0}, "b": {"stop": -15.0}},
+...                       "measure": 18.08}]}
+>>> g = moveit_grasps(report)[0]
+>>> g["grasp_pose"]["pose"]["position"]
+{'x': 0.04, 'y': 0.015, 'z': 0.0}
+>>> g["grasp_posture"]["points"][0]["positions"]
+[0.015, 0.015]
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from ..errors import ArgumentError
+from .units import MM_PER
+
+__all__ = ["moveit_grasps", "grasps_text", "GRASP_FIELDS", "tool_rotation", "quaternion"]
+
+#: The fields of each message as its definition names them (moveit_msgs, trajectory_msgs,
+#: geometry_msgs and std_msgs of ROS 2).
+GRASP_FIELDS = {
+    "moveit_msgs/Grasp": ("id", "pre_grasp_posture", "grasp_posture", "grasp_pose",
+                          "grasp_quality", "pre_grasp_approach", "post_grasp_retreat",
+                          "post_place_retreat", "max_contact_force", "allowed_touch_objects"),
+    "moveit_msgs/GripperTranslation": ("direction", "desired_distance", "min_distance"),
+    "trajectory_msgs/JointTrajectory": ("header", "joint_names", "points"),
+    "trajectory_msgs/JointTrajectoryPoint": ("positions", "velocities", "accelerations",
+                                             "effort", "time_from_start"),
+    "geometry_msgs/PoseStamped": ("header", "pose"),
+    "geometry_msgs/Pose": ("position", "orientation"),
+    "geometry_msgs/Vector3Stamped": ("header", "vector"),
+    "std_msgs/Header": ("stamp", "frame_id"),
+    "builtin_interfaces/Time": ("sec", "nanosec"),
+}
+
+#: The default hand: the Franka Hand's frame and finger joints (franka_description).
+FRANKA_HAND = ("panda_hand", ("panda_finger_joint1", "panda_finger_joint2"), 0.5)
+
+
+def tool_rotation(closing: Any, approach: Any) -> np.ndarray:
+    """The tool frame's axes as columns (3, 3): ``y`` along ``closing``, ``z`` along
+    ``approach`` made perpendicular to it, ``x = y x z`` (right-handed)."""
+    y = np.asarray(closing, float)
+    y = y / np.linalg.norm(y)
+    z = np.asarray(approach, float)
+    z = z - (z @ y) * y
+    z = z / np.linalg.norm(z)
+    return np.stack([np.cross(y, z), y, z], axis=1)
+
+
+def quaternion(R: Any) -> tuple[float, float, float, float]:
+    """The unit quaternion ``(x, y, z, w)`` of a rotation matrix (``w >= 0``), by the
+    largest of its four squared components (exact to rounding)."""
+    R = np.asarray(R, float)
+    t = np.trace(R)
+    squares = [1 + t, 1 + 2 * R[0, 0] - t, 1 + 2 * R[1, 1] - t, 1 + 2 * R[2, 2] - t]
+    k = int(np.argmax(squares))
+    s = 2 * math.sqrt(squares[k])
+    if k == 0:
+        q = (R[2, 1] - R[1, 2], R[0, 2] - R[2, 0], R[1, 0] - R[0, 1], s * s / 4)
+    elif k == 1:
+        q = (s * s / 4, R[0, 1] + R[1, 0], R[0, 2] + R[2, 0], R[2, 1] - R[1, 2])
+    elif k == 2:
+        q = (R[0, 1] + R[1, 0], s * s / 4, R[1, 2] + R[2, 1], R[0, 2] - R[2, 0])
+    else:
+        q = (R[0, 2] + R[2, 0], R[1, 2] + R[2, 1], s * s / 4, R[1, 0] - R[0, 1])
+    v = np.asarray(q) / s
+    v = v / np.linalg.norm(v)
+    return tuple(float(c) for c in (-v if v[3] < 0 else v))  # type: ignore[return-value]
+
+
+def _pose(report: dict[str, Any], grasp: dict[str, Any], height: float
+          ) -> tuple[np.ndarray, np.ndarray, float, str]:
+    """The tool's position and axes (report units), the opening and the grip's mode of
+    one jaw plan."""
+    if "axis" in grasp:                          # a solid: pads on two parallel facets
+        axis = np.asarray(grasp["axis"], float)
+        centers = np.asarray(grasp["centers"], float)
+        down = np.array([0.0, 0.0, -1.0])
+        if np.linalg.norm(down - (down @ axis) * axis) < 0.1:
+            down = np.array([-1.0, 0.0, 0.0])   # a vertical closing axis: from the side
+        return centers.mean(axis=0), tool_rotation(axis, down), float(grasp["opening"]), \
+            "external"
+    theta, offset = (float(v) for v in grasp["centre"])
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    stops = float(grasp["contacts"]["a"]["stop"]), float(grasp["contacts"]["b"]["stop"])
+    xy = np.asarray(grasp["centroid"], float) + (stops[0] + stops[1]) / 2 * u + offset * n
+    return np.r_[xy, height], tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0]), \
+        abs(stops[0] - stops[1]), str(grasp.get("mode", "external"))
+
+
+def _header(frame_id: str) -> dict[str, Any]:
+    return {"stamp": {"sec": 0, "nanosec": 0}, "frame_id": frame_id}
+
+
+def _posture(frame_id: str, joints: tuple[str, ...], position: float, effort: float | None
+             ) -> dict[str, Any]:
+    point = {"positions": [position] * len(joints), "velocities": [], "accelerations": [],
+             "effort": [] if effort is None else [effort] * len(joints),
+             "time_from_start": {"sec": 1, "nanosec": 0}}
+    return {"header": _header(frame_id), "joint_names": list(joints), "points": [point]}
+
+
+def _translation(frame_id: str, direction: Any, desired: float, least: float
+                 ) -> dict[str, Any]:
+    x, y, z = (float(v) for v in direction)
+    return {"direction": {"header": _header(frame_id), "vector": {"x": x, "y": y, "z": z}},
+            "desired_distance": desired, "min_distance": least}
+
+
+def _distance(name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or not math.isfinite(value) or value < 0:
+        raise ArgumentError(f"{name} must be a distance in metres >= 0, got {value!r}", name)
+    return float(value)
+
+
+def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
+                  ee_frame: str = FRANKA_HAND[0], joint_names: Any = FRANKA_HAND[1],
+                  joint_per_opening: float = FRANKA_HAND[2], height: float = 0.0,
+                  approach: float = 0.1, min_approach: float = 0.05,
+                  retreat: float = 0.1, min_retreat: float = 0.05) -> list[dict[str, Any]]:
+    """One ``moveit_msgs/Grasp`` (as a dict) per jaw plan of ``report`` (a ``fcgrasp plan
+    --json`` report of a parallel jaw, planar or on a solid), best first (the module's
+    docstring: frames, units and postures).  Distances in metres; ``height``: the tool
+    frame above a planar part's plane."""
+    if not isinstance(report, dict) or not isinstance(report.get("grasps"), list):
+        raise ArgumentError("report must be a plan report (fcgrasp plan --json), got "
+                            f"{type(report).__name__}", "report")
+    params = report.get("parameters", {})
+    if params.get("gripper") not in ("parallel_jaw", "jaw"):
+        raise ArgumentError(f"MoveIt grasps are a parallel jaw's: the report's gripper is "
+                            f"{params.get('gripper', params.get('fingers'))!r} (plan with "
+                            f"--gripper jaw)", "report")
+    units = str(report.get("units", "mm"))
+    if units not in MM_PER:
+        raise ArgumentError(f"the report's units must be one of {sorted(MM_PER)}, got "
+                            f"{units!r}", "units")
+    metres = MM_PER[units] / 1000.0
+    joints = tuple(str(j) for j in joint_names)
+    if not joints:
+        raise ArgumentError("joint_names must name at least one finger joint", "joint_names")
+    d = {k: _distance(k, v) for k, v in (("height", height), ("approach", approach),
+                                          ("min_approach", min_approach),
+                                          ("retreat", retreat), ("min_retreat", min_retreat))}
+    stroke = [float(v) * metres for v in params.get("stroke", (0.0, 0.0))]
+    out = []
+    for k, grasp in enumerate(report["grasps"]):
+        where, axes, opening, mode = _pose(report, grasp, d["height"] / metres)
+        qx, qy, qz, qw = quaternion(axes)
+        p = where * metres
+        payload = grasp.get("payload") or {}
+        force = payload.get("grip_force_n") if isinstance(payload, dict) else None
+        start = stroke[1] if mode == "external" else stroke[0]
+        out.append({
+            "id": f"fcgrasp-{grasp.get('rank', k + 1)}",
+            "pre_grasp_posture": _posture(ee_frame, joints, joint_per_opening * start, None),
+            "grasp_posture": _posture(ee_frame, joints, joint_per_opening * opening * metres,
+                                      None if force is None else float(force)),
+            "grasp_pose": {"header": _header(frame_id), "pose": {
+                "position": {"x": float(p[0]), "y": float(p[1]), "z": float(p[2])},
+                "orientation": {"x": qx, "y": qy, "z": qz, "w": qw}}},
+            "grasp_quality": float(grasp.get("measure", grasp.get("radius", 0.0))) * metres,
+            "pre_grasp_approach": _translation(ee_frame, (0, 0, 1), d["approach"],
+                                               d["min_approach"]),
+            "post_grasp_retreat": _translation(frame_id, (0, 0, 1), d["retreat"],
+                                               d["min_retreat"]),
+            "post_place_retreat": _translation(ee_frame, (0, 0, -1), d["retreat"],
+                                               d["min_retreat"]),
+            "max_contact_force": 0.0 if force is None else float(force),
+            "allowed_touch_objects": [],
+        })
+    return out
+
+
+def grasps_text(grasps: list[dict[str, Any]], path: str) -> str:
+    """The grasps as the file ``path`` asks: YAML (``.yaml``, ``.yml``; PyYAML) or JSON."""
+    import json
+
+    if path.lower().endswith((".yaml", ".yml")):
+        try:
+            import yaml
+        except ImportError:
+            # JSON is YAML: the same messages, in flow style
+            return json.dumps(grasps, indent=1) + "\n"
+        return str(yaml.safe_dump(grasps, sort_keys=False))
+    return json.dumps(grasps, indent=1) + "\n"
