@@ -328,9 +328,15 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
             if proved is None:
                 continue
             floor = _measure(*proved, radius)
-            better = None if len(plans) >= REFINE_TOP else _proved_refined(
+            # past the time budget (after the first box) the grid's box, proved, is kept
+            # as it is: neither refined nor grown
+            late = bool(plans) and budget.exhausted()
+            if late:
+                budget.cut_short()
+            better = None if len(plans) >= REFINE_TOP or late else _proved_refined(
                 polygon, jaw, margin, hole, box[0], box[1], dth, dc, taken, floor)
-            if better is None or _measure(*better, radius) < floor * (1 + GROW_TOO):
+            if not late and (better is None
+                             or _measure(*better, radius) < floor * (1 + GROW_TOO)):
                 grown = _proved_grown(polygon, jaw, margin, hole, box[0], box[1], dth, dc)
                 # (grown into a plan found before, or its image, it is not kept)
                 if grown is not None and _clear_of(grown, taken) and _measure(
