@@ -302,3 +302,23 @@ def test_the_cli_says_a_search_cut_short_is_not_exact(tmp_path):
     assert report["gap"]["bound"] is None
     assert "plans, each proved to hold; a complete search may rank others first" \
         in text.getvalue()
+
+
+def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it():
+    """A time budget already over: the first box is the grid's box, proved, neither
+    refined nor grown (no larger than the complete search's), said not exact; every
+    sampled pose of it holds by the jaw's pose model."""
+    from fcgrasp.grippers.jaw import jaw_poses
+
+    poly = fc.read_part("demo:rectangle")
+    jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    full = fc.plan(poly, gripper=jaw, top=1, distinct=0, time_limit=None)
+    with deadline(0.0):
+        part = fc.plan(poly, gripper=jaw, top=1, distinct=0, time_limit=None)
+    assert len(part) == 1 and not part.complete and not part.exact
+    box = part[0]
+    assert box.certified and box.measure < full[0].measure
+    rng = np.random.default_rng(5)
+    th = rng.uniform(*box.theta, 400)
+    c = rng.uniform(*box.offset, 400)
+    assert jaw_poses(poly, jaw, th, c, margin=0.5).holds.all()

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ...core import budget
 from ...core._checks import FloatArray
 from ...core.tolerances import CONTACT_TOL, RANK_TOL, TOL
 from ...model.distinct import (
@@ -134,12 +135,24 @@ def _grown(polygon: Polygon, jaw: JawParameters, margin: float, hole: int | None
     return (t0, t1), (c0, c1)
 
 
+def _past_time() -> bool:
+    """Whether the time budget has ended (its clock only, not a counted check): a box
+    is then kept as proved so far, neither refined nor grown further, and the answer
+    says it was cut short (:func:`fcgrasp.core.budget.cut_short`)."""
+    if budget.remaining() > 0:
+        return False
+    budget.cut_short()
+    return True
+
+
 def _proved_grown(polygon: Polygon, jaw: JawParameters, margin: float, hole: int | None,
                   th: tuple[float, float], off: tuple[float, float], dth: float, dc: float
                   ) -> tuple[tuple[float, float], tuple[float, float]] | None:
     """The grown box (:func:`_grown`) moved in from the boundary by each of
     :data:`GROW_BACKOFF` (fractions of a grid step) until :func:`certify_box` proves it;
     None when it cannot (the grid box is then proved instead)."""
+    if _past_time():
+        return None
     grown = _grown(polygon, jaw, margin, hole, th, off, dth, dc)
     if grown is None:
         return None
@@ -147,7 +160,7 @@ def _proved_grown(polygon: Polygon, jaw: JawParameters, margin: float, hole: int
     for f, boxes in GROW_BACKOFF:
         t = (t0 + f * dth, t1 - f * dth)
         c = (c0 + f * dc, c1 - f * dc)
-        if t[1] < t[0] or c[1] < c[0]:
+        if t[1] < t[0] or c[1] < c[0] or _past_time():
             return None
         if certify_box(polygon, jaw, t, c, margin, hole,
                        max_boxes=int(boxes * CERTIFY_BOXES)):
@@ -357,6 +370,8 @@ def _proved_refined(polygon: Polygon, jaw: JawParameters, margin: float, hole: i
     grid box's middle (a pose that fails at one angle, which no raster sees, may lie in
     the rest).  None when neither is proved, or when it would not measure more than
     ``floor``."""
+    if _past_time():
+        return None
     # (what cannot measure more than the floor once moved in is not refined)
     found = _refined(polygon, jaw, margin, hole, th, off, dth, dc, taken,
                      floor / (1 - 2 * REFINE_BACKOFF[0][0]))
@@ -375,6 +390,8 @@ def _proved_refined(polygon: Polygon, jaw: JawParameters, margin: float, hole: i
             c = (c0 + f * (c1 - c0), c1 - f * (c1 - c0))
             if t[1] <= t[0] or c[1] <= c[0] or _measure(t, c, radius) <= floor:
                 break
+            if _past_time():
+                return None
             if certify_box(polygon, jaw, t, c, margin, hole,
                            max_boxes=int(boxes * CERTIFY_BOXES)):
                 return t, c
