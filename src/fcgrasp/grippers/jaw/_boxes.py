@@ -38,7 +38,7 @@ def _proved(polygon: Polygon, jaw: JawParameters, margin: float, hole: int | Non
     for k in range(CERTIFY_SHRINKS + 1):
         t = (th[0] + k * dth, th[1] - k * dth)
         c = (off[0] + k * dc, off[1] - k * dc)
-        if t[1] < t[0] or c[1] < c[0]:
+        if t[1] < t[0] or c[1] < c[0] or (k and _past_time()):
             return None
         boxes = CERTIFY_BOXES if k else CERTIFY_BOXES // 8
         if certify_box(polygon, jaw, t, c, margin, hole, max_boxes=boxes):

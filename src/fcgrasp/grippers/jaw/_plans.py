@@ -302,7 +302,9 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     plans: list[JawPlan] = []
     taken: list[tuple[float, float, float, float]] = []    # the plans' boxes and images
     while len(plans) < top:
-        if plans and budget.exhausted():    # the time budget: the boxes proved so far
+        # the time budget: the boxes proved so far (none, where the grid's boxes could
+        # not be proved in time: the answer then says the search stopped)
+        if (plans and budget.exhausted()) or budget.remaining() <= 0:
             budget.cut_short()
             break
         score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
