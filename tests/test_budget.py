@@ -304,16 +304,20 @@ def test_the_cli_says_a_search_cut_short_is_not_exact(tmp_path):
         in text.getvalue()
 
 
-def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it():
-    """A time budget already over: the first box is the grid's box, proved, neither
-    refined nor grown (no larger than the complete search's), said not exact; every
-    sampled pose of it holds by the jaw's pose model."""
-    from fcgrasp.grippers.jaw import jaw_poses
+def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it(monkeypatch):
+    """The time over once the grid's first box is proved: that box is kept as the grid
+    proved it, neither refined nor grown (no larger than the complete search's), said
+    not exact; every sampled pose of it holds by the jaw's pose model.  Over before
+    that: no plan, and the report says the search stopped before it proved one."""
+    from fcgrasp.core import budget
+    from fcgrasp.grippers.jaw import _boxes, jaw_poses
+    from fcgrasp.planning import PlanRequest, plan_document
 
     poly = fc.read_part("demo:rectangle")
     jaw = fc.ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
     full = fc.plan(poly, gripper=jaw, top=1, distinct=0, time_limit=None)
-    with deadline(0.0):
+    with monkeypatch.context() as m:
+        m.setattr(_boxes, "_past_time", lambda: budget.cut_short() or True)
         part = fc.plan(poly, gripper=jaw, top=1, distinct=0, time_limit=None)
     assert len(part) == 1 and not part.complete and not part.exact
     box = part[0]
@@ -322,3 +326,9 @@ def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it():
     th = rng.uniform(*box.theta, 400)
     c = rng.uniform(*box.offset, 400)
     assert jaw_poses(poly, jaw, th, c, margin=0.5).holds.all()
+    with deadline(0.0):
+        none = fc.plan(poly, gripper=jaw, top=1, distinct=0, time_limit=None)
+        doc = plan_document(PlanRequest(part="demo:rectangle", gripper="jaw", stroke=(10, 50),
+                                        pad=8, mu=0.5, top=1, distinct=0))
+    assert len(none) == 0 and not none.complete and not none.exact
+    assert doc.reason is not None and "stopped at its time limit" in doc.reason
