@@ -122,14 +122,57 @@ def test_a_solid_jaw_plan_closes_along_its_axis():
         assert np.allclose([pos["x"], pos["y"], pos["z"]], mid, atol=1e-12)
 
 
+@pytest.mark.parametrize("name", ["blob", "cam", "washer", "bracket"])
+def test_two_fingers_close_along_their_contacts_inside_both_cones(name):
+    """A two-finger plan as a parallel gripper's grasp: the tool between the two
+    representative contacts, its y axis along the line through them (which lies inside
+    both friction cones: the squeeze is a force both contacts take, checked from the
+    report's normals), the joints at half the opening, approaching wider by the
+    clearance; an expanding plan opens from narrower."""
+    doc = plan_document(PlanRequest(part=f"demo:{name}", fingers=2, mu=0.4, top=5))
+    assert doc.plans
+    for grasp, g in zip(doc.report["grasps"], moveit_grasps(doc.report, clearance=0.01),
+                        strict=True):
+        a, b = (np.asarray(p, float) for p in grasp["contacts"])
+        chord = (a - b) / np.linalg.norm(a - b)
+        for n, d in ((grasp["normals"][0], chord), (grasp["normals"][1], -chord)):
+            inward = -np.asarray(n, float)
+            push = -d if grasp["mode"] == "squeeze" else d      # the finger's force
+            assert push @ inward >= math.cos(math.atan(0.4)) - 1e-9
+        pos = g["grasp_pose"]["pose"]["position"]
+        assert np.allclose([pos["x"], pos["y"], pos["z"]], [*((a + b) / 2000.0), 0.0],
+                           atol=1e-12)
+        q = g["grasp_pose"]["pose"]["orientation"]
+        R = Rotation.from_quat([q["x"], q["y"], q["z"], q["w"]]).as_matrix()
+        assert np.allclose(R[:, 1], [*chord, 0.0], atol=1e-9)
+        assert np.allclose(R[:, 2], [0.0, 0.0, -1.0], atol=1e-9)
+        opening = np.linalg.norm(a - b) / 1000.0
+        assert np.allclose(g["grasp_posture"]["points"][0]["positions"], opening / 2)
+        wide = opening + (0.02 if grasp["mode"] == "squeeze" else -0.02)
+        assert np.allclose(g["pre_grasp_posture"]["points"][0]["positions"],
+                           max(wide, 0.0) / 2)
+
+
+def test_a_soft_pair_closes_through_its_centres():
+    doc = plan_document(PlanRequest(part="demo:box", fingers=2, soft=True, top=2))
+    for g, grasp in zip(moveit_grasps(doc.report), doc.report["grasps"], strict=True):
+        c = np.asarray(grasp["centers"], float)
+        q = g["grasp_pose"]["pose"]["orientation"]
+        R = Rotation.from_quat([q["x"], q["y"], q["z"], q["w"]]).as_matrix()
+        axis = (c[0] - c[1]) / np.linalg.norm(c[0] - c[1])
+        assert np.allclose(R[:, 1], axis, atol=1e-9) and abs(R[:, 2] @ axis) < 1e-9
+        pos = g["grasp_pose"]["pose"]["position"]
+        assert np.allclose([pos["x"], pos["y"], pos["z"]], c.mean(axis=0) / 1000.0)
+
+
 def test_bad_arguments_name_the_field():
     doc = _jaw_documents()[0]
     with pytest.raises(ArgumentError, match="approach") as exc:
         moveit_grasps(doc.report, approach=-1.0)
     assert exc.value.field == "approach"
-    two = plan_document(PlanRequest(part="demo:blob", top=1))
-    with pytest.raises(ArgumentError, match="parallel jaw"):
-        moveit_grasps(two.report)
+    three = plan_document(PlanRequest(part="demo:blob", fingers=3, mu=0.5, top=1))
+    with pytest.raises(ArgumentError, match="parallel gripper"):
+        moveit_grasps(three.report)
 
 
 def test_the_cli_writes_yaml_and_json_alike(tmp_path, capsys):
@@ -141,7 +184,8 @@ def test_the_cli_writes_yaml_and_json_alike(tmp_path, capsys):
     got = yaml.safe_load((tmp_path / "g.yaml").read_text())
     assert got == json.loads((tmp_path / "g.json").read_text()) and len(got) == 2
     capsys.readouterr()
-    assert main(["plan", "demo:rectangle", "--moveit", str(tmp_path / "x.yaml")]) == 2
+    assert main(["plan", "demo:rectangle", "--fingers", "3", "--moveit",
+                 str(tmp_path / "x.yaml")]) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "--gripper jaw" in err[0]
+    assert len(err) == 1 and "--gripper jaw or two fingers" in err[0]
     assert not (tmp_path / "x.yaml").exists()

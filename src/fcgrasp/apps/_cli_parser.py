@@ -207,8 +207,9 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
     planning_args(p)
     p.add_argument("--plot", metavar="OUT.png|OUT.svg|OUT.pdf", help="write a figure")
     p.add_argument("--moveit", metavar="OUT.yaml|OUT.json",
-                   help="write a parallel jaw's plans as moveit_msgs/Grasp messages (metres, "
-                        "the part's frame, the Franka Hand's joints; fcgrasp.io.moveit)")
+                   help="write the plans of a jaw or of two fingers as a parallel gripper's "
+                        "moveit_msgs/Grasp messages (metres, the part's frame, the Franka "
+                        "Hand's joints; fcgrasp.io.moveit)")
     p.set_defaults(func=commands["plan"])
 
     c = sub.add_parser("check", help="the verdict for a given grasp (exit 1: not force "

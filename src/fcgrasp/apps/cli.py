@@ -123,13 +123,13 @@ def cmd_plan(args: Any) -> int:
 
 
 def _check_moveit(args: Any) -> None:
-    """``--moveit`` before any work: a parallel jaw's plans, a file name that is neither
-    the part nor another output."""
+    """``--moveit`` before any work: a parallel gripper's plans (a jaw's, or two
+    fingers'), a file name that is neither the part nor another output."""
     from ..io.outputs import check_outputs
 
-    if args.gripper != "jaw":
-        raise CliError("--moveit writes a parallel jaw's grasps (moveit_msgs/Grasp): plan "
-                       "with --gripper jaw")
+    if args.gripper != "jaw" and args.fingers not in (None, 2):
+        raise CliError("--moveit writes a parallel gripper's grasps (moveit_msgs/Grasp): "
+                       "plan with --gripper jaw or two fingers")
     if not args.moveit.lower().endswith((".yaml", ".yml", ".json")):
         raise CliError(f"--moveit must end in .yaml, .yml or .json, got {args.moveit!r}")
     check_outputs(args.moveit, None, [args.part])

@@ -1,9 +1,14 @@
-"""The jaw plans of a report as MoveIt grasps: ``moveit_msgs/Grasp`` messages written as
-plain data (YAML or JSON), without ROS installed.
+"""The plans of a report as MoveIt grasps of a parallel gripper: ``moveit_msgs/Grasp``
+messages written as plain data (YAML or JSON), without ROS installed.
 
 A jaw plan (a box of closing angles and offsets on a planar part, or a pair of opposite
 parallel facets on a solid) becomes one grasp at its representative pose, the box's
-centre, where every pose of the box holds:
+centre, where every pose of the box holds.  A two-finger plan (point fingers with
+friction on a planar part, or a solid's soft pair) becomes the grasp of a parallel
+gripper with small fingertips closing along the line through its two representative
+contacts: two fingers hold exactly when that line lies in both friction cones (theorem
+6.3), so the gripper's squeeze is along a force the contacts can take; a plan that
+expands (in a hole) is an internal grip.
 
 * **Frames and units** (REP 103): metres; the frame ``frame_id`` is the part's own (the
   report's coordinates).  A planar part lies in its ``z = 0`` plane, picked from above
@@ -13,9 +18,10 @@ centre, where every pose of the box holds:
   direction, ``x = y x z``; the orientation is a unit quaternion ``(x, y, z, w)``.
 * **The fingers' joints**: each of ``joint_names`` at ``joint_per_opening`` times the
   opening in metres (the Franka Hand: two prismatic joints at half the opening each).
-  An external grip approaches open (the jaw's largest stroke) and closes to the
-  contacts; an internal one (inside a hole) approaches closed (the smallest stroke) and
-  opens to them.
+  An external grip approaches open (the jaw's largest stroke; for a two-finger plan the
+  opening plus twice ``clearance``) and closes to the contacts; an internal one (inside
+  a hole) approaches closed (the smallest stroke, or the opening less twice
+  ``clearance``) and opens to them.
 * **Approach and retreat**: along the tool's ``z`` axis by ``approach`` metres (at least
   ``min_approach``), and away along the part frame's ``z`` (up) by ``retreat`` (at least
   ``min_retreat``).
@@ -105,18 +111,40 @@ def quaternion(R: Any) -> tuple[float, float, float, float]:
     return tuple(float(c) for c in (-v if v[3] < 0 else v))  # type: ignore[return-value]
 
 
+def _down(axis: np.ndarray) -> np.ndarray:
+    """The approach to a solid closing along ``axis``: down, from the side where the
+    axis is (nearly) vertical."""
+    down = np.array([0.0, 0.0, -1.0])
+    if np.linalg.norm(down - (down @ axis) * axis) < 0.1:
+        down = np.array([-1.0, 0.0, 0.0])
+    return down
+
+
 def _pose(report: dict[str, Any], grasp: dict[str, Any], height: float
           ) -> tuple[np.ndarray, np.ndarray, float, str]:
     """The tool's position and axes (report units), the opening and the grip's mode of
-    one jaw plan."""
+    one plan."""
+    if "contacts" in grasp and isinstance(grasp["contacts"], list) or "centers" in grasp \
+            and "axis" not in grasp:
+        # two fingers: the line through the two contacts is the closing axis
+        pts = np.asarray(grasp["contacts"] if "contacts" in grasp else grasp["centers"],
+                         float)
+        if pts.shape[0] != 2:
+            raise ArgumentError(f"a parallel gripper takes two-finger plans: plan "
+                                f"{grasp.get('rank')} has {pts.shape[0]} contacts", "report")
+        if pts.shape[1] == 2:                   # a planar part, picked from above
+            pts = np.c_[pts, np.full(2, height)]
+        chord = pts[0] - pts[1]
+        opening = float(np.linalg.norm(chord))
+        approach = _down(chord / opening) if "centers" in grasp else \
+            np.array([0.0, 0.0, -1.0])
+        mode = "internal" if grasp.get("mode") == "expand" else "external"
+        return pts.mean(axis=0), tool_rotation(chord, approach), opening, mode
     if "axis" in grasp:                          # a solid: pads on two parallel facets
         axis = np.asarray(grasp["axis"], float)
         centers = np.asarray(grasp["centers"], float)
-        down = np.array([0.0, 0.0, -1.0])
-        if np.linalg.norm(down - (down @ axis) * axis) < 0.1:
-            down = np.array([-1.0, 0.0, 0.0])   # a vertical closing axis: from the side
-        return centers.mean(axis=0), tool_rotation(axis, down), float(grasp["opening"]), \
-            "external"
+        return centers.mean(axis=0), tool_rotation(axis, _down(axis)), \
+            float(grasp["opening"]), "external"
     theta, offset = (float(v) for v in grasp["centre"])
     u = np.array([math.cos(theta), math.sin(theta)])
     n = np.array([-u[1], u[0]])
@@ -156,19 +184,20 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
                   ee_frame: str = FRANKA_HAND[0], joint_names: Any = FRANKA_HAND[1],
                   joint_per_opening: float = FRANKA_HAND[2], height: float = 0.0,
                   approach: float = 0.1, min_approach: float = 0.05,
-                  retreat: float = 0.1, min_retreat: float = 0.05) -> list[dict[str, Any]]:
-    """One ``moveit_msgs/Grasp`` (as a dict) per jaw plan of ``report`` (a ``fcgrasp plan
-    --json`` report of a parallel jaw, planar or on a solid), best first (the module's
-    docstring: frames, units and postures).  Distances in metres; ``height``: the tool
-    frame above a planar part's plane."""
+                  retreat: float = 0.1, min_retreat: float = 0.05,
+                  clearance: float = 0.01) -> list[dict[str, Any]]:
+    """One ``moveit_msgs/Grasp`` (as a dict) per plan of ``report`` (a ``fcgrasp plan
+    --json`` report of a parallel jaw or of two fingers, planar or on a solid), best
+    first (the module's docstring: frames, units and postures).  Distances in metres;
+    ``height``: the tool frame above a planar part's plane; ``clearance``: how much
+    wider (narrower, inside a hole) than its opening a two-finger grasp approaches."""
     if not isinstance(report, dict) or not isinstance(report.get("grasps"), list):
         raise ArgumentError("report must be a plan report (fcgrasp plan --json), got "
                             f"{type(report).__name__}", "report")
     params = report.get("parameters", {})
-    if params.get("gripper") not in ("parallel_jaw", "jaw"):
-        raise ArgumentError(f"MoveIt grasps are a parallel jaw's: the report's gripper is "
-                            f"{params.get('gripper', params.get('fingers'))!r} (plan with "
-                            f"--gripper jaw)", "report")
+    if params.get("gripper") not in ("parallel_jaw", "jaw") and params.get("fingers") != 2:
+        raise ArgumentError(f"MoveIt grasps are a parallel gripper's: plans of a jaw or of "
+                            f"two fingers, got {params.get('fingers')} fingers", "report")
     units = str(report.get("units", "mm"))
     if units not in MM_PER:
         raise ArgumentError(f"the report's units must be one of {sorted(MM_PER)}, got "
@@ -179,7 +208,8 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
         raise ArgumentError("joint_names must name at least one finger joint", "joint_names")
     d = {k: _distance(k, v) for k, v in (("height", height), ("approach", approach),
                                           ("min_approach", min_approach),
-                                          ("retreat", retreat), ("min_retreat", min_retreat))}
+                                          ("retreat", retreat), ("min_retreat", min_retreat),
+                                          ("clearance", clearance))}
     stroke = [float(v) * metres for v in params.get("stroke", (0.0, 0.0))]
     out = []
     for k, grasp in enumerate(report["grasps"]):
@@ -188,7 +218,11 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
         p = where * metres
         payload = grasp.get("payload") or {}
         force = payload.get("grip_force_n") if isinstance(payload, dict) else None
-        start = stroke[1] if mode == "external" else stroke[0]
+        if "stroke" in params:
+            start = stroke[1] if mode == "external" else stroke[0]
+        else:
+            wide = opening * metres + (2 if mode == "external" else -2) * d["clearance"]
+            start = max(wide, 0.0)
         out.append({
             "id": f"fcgrasp-{grasp.get('rank', k + 1)}",
             "pre_grasp_posture": _posture(ee_frame, joints, joint_per_opening * start, None),
@@ -197,7 +231,8 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
             "grasp_pose": {"header": _header(frame_id), "pose": {
                 "position": {"x": float(p[0]), "y": float(p[1]), "z": float(p[2])},
                 "orientation": {"x": qx, "y": qy, "z": qz, "w": qw}}},
-            "grasp_quality": float(grasp.get("measure", grasp.get("radius", 0.0))) * metres,
+            "grasp_quality": float(grasp.get("measure", grasp.get(
+                "radius", grasp.get("min_region_length", 0.0)))) * metres,
             "pre_grasp_approach": _translation(ee_frame, (0, 0, 1), d["approach"],
                                                d["min_approach"]),
             "post_grasp_retreat": _translation(frame_id, (0, 0, 1), d["retreat"],
