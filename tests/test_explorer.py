@@ -183,6 +183,10 @@ def test_plans_load_drag_and_mu_agree_with_fcgrasp_plan(server, browser, tmp_pat
     same_plans(page_plans(browser), cli_plans(tmp_path, browser, ["--mu", "0.3"]))
     assert browser.find_element(By.CSS_SELECTOR, "#plans li.selected").get_attribute(
         "data-rank") == "1"
+    # two fingers' plans are a parallel gripper's: their MoveIt grasps are offered
+    assert browser.find_element(By.ID, "export-moveit").is_enabled()
+    assert browser.execute_script("return explorer.state.moveit.length") == \
+        len(page_plans(browser))
 
     # the screenshot: each region of plan 1 drawn in its finger's colour along the plan's
     # polyline, and the part's grey inside the outline
@@ -712,6 +716,8 @@ def test_the_optimality_bound_is_shown_as_fcgrasp_plan_prints_it(server, browser
     Select(d.find_element(By.ID, "gripper")).select_by_value("3")
     wait_plan(d, after)
     assert d.find_element(By.ID, "bound").is_displayed()
+    # three fingers' plans are not a parallel gripper's: no MoveIt grasps to export
+    assert not d.find_element(By.ID, "export-moveit").is_enabled()
     assert not d.find_element(By.ID, "optimum").is_displayed()   # empty until asked
     after = plan_seq(d)
     d.find_element(By.ID, "bound").click()

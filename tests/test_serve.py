@@ -732,3 +732,21 @@ def test_the_page_time_limit_is_fcgrasp_plans(client, tmp_path):
     assert report["parameters"]["top"] == 10
     with pytest.raises(RequestError, match="time"):
         plan_request({"gripper": "2", "time_limit": -1})
+
+
+@pytest.mark.parametrize("options, parallel", [
+    ({"gripper": "jaw", "mu": 0.5, "stroke": [5, 60], "pad": 6, "top": 2}, True),
+    ({"gripper": "2", "mu": 0.4, "top": 2}, True),
+    ({"gripper": "3", "mu": 0.4, "along_boundary": False, "top": 2}, False)])
+def test_a_parallel_grippers_plans_come_with_their_moveit_grasps(client, options, parallel):
+    """The page's "MoveIt grasps" export: a jaw's or two fingers' plans answered with
+    what ``fcgrasp plan --moveit`` writes for the same report; other grippers' with
+    none."""
+    from fcgrasp.io.moveit import moveit_grasps
+
+    ans = _plan(client, {"outer": BLOB}, options)
+    assert ans["state"] == "done" and ans["report"]["grasps"]
+    if parallel:
+        assert ans["moveit"] == moveit_grasps(ans["report"])
+    else:
+        assert ans["moveit"] is None

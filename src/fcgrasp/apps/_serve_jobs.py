@@ -95,9 +95,23 @@ def plan_result(polygon: Any, units: str, request: Any,
         doc = plan_document(request, part=part, progress=progress)
         overlays = [json_ready(overlay(polygon, p)) for p in doc.plans]
     # the report's JSON values (what fcgrasp plan --json writes, without the round trip
-    # through text: 7 ms of a 2,000-edge plan)
-    return {"report": json_ready(doc.report), "argv": request.to_argv(),
-            "overlays": overlays}
+    # through text: 7 ms of a 2,000-edge plan), and a parallel gripper's plans as MoveIt
+    # grasps (fcgrasp plan --moveit; None for other grippers)
+    report = json_ready(doc.report)
+    return {"report": report, "argv": request.to_argv(), "overlays": overlays,
+            "moveit": _moveit(report)}
+
+
+def _moveit(report: dict[str, Any]) -> list[dict[str, Any]] | None:
+    """The report's plans as ``fcgrasp plan --moveit`` writes them, where they are a
+    parallel gripper's (a jaw's or two fingers'; :mod:`fcgrasp.io.moveit`)."""
+    from ..io.moveit import moveit_grasps
+
+    params = report.get("parameters", {})
+    if not report.get("grasps") or (params.get("gripper") not in ("parallel_jaw", "jaw")
+                                    and params.get("fingers") != 2):
+        return None
+    return moveit_grasps(report)
 
 
 def _worker(conn: Any) -> None:

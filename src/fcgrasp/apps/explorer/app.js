@@ -655,6 +655,8 @@ function accept(ans) {
   S.report = ans.report;
   S.plans = ans.report.grasps;
   S.overlays = ans.overlays;
+  S.moveit = ans.moveit || null;          // a parallel gripper's plans as MoveIt grasps
+  $("export-moveit").disabled = !S.moveit;
   S.selected = 0;
   const list = $("plans");
   list.textContent = "";
@@ -1172,6 +1174,10 @@ async function init() {
   });
   $("export-svg").addEventListener("click", () => {
     download("fcgrasp-plan.svg", "image/svg+xml", figureSVG());
+  });
+  $("export-moveit").addEventListener("click", () => {
+    if (!S.moveit) { message("MoveIt grasps are a jaw's or two fingers' plans"); return; }
+    download("fcgrasp-grasps.json", "application/json", JSON.stringify(S.moveit, null, 1) + "\n");
   });
   $("export-png").addEventListener("click", () => {       // a solid's 3-D view as it is
     $("view3d").toBlob((blob) => download("fcgrasp-view.png", "image/png", blob));
