@@ -33,8 +33,8 @@ from typing import Any
 from ..errors import FcgraspError
 
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
-           "remaining", "interruptible", "poll", "cut_short", "settle", "check_time_limit",
-           "PlanList", "incomplete", "STOPPED_BY", "stopped_words"]
+           "remaining", "interruptible", "poll", "cut_if_over", "cut_short", "settle",
+           "check_time_limit", "PlanList", "incomplete", "STOPPED_BY", "stopped_words"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
 #: of wall-clock time, for interactive use: the search's first answer is always
@@ -152,6 +152,17 @@ def poll() -> None:
     must finish, such as the first answer, is not ended)."""
     if _INTERRUPTIBLE.get():
         check()
+
+
+def cut_if_over(counted: bool = True) -> bool:
+    """Whether the current budget has ended (a budget check, :func:`exhausted`; with
+    ``counted`` False its clock only, :func:`remaining`, which a reproducible budget of
+    checks does not end); when it has, the search is recorded as cut short
+    (:func:`cut_short`)."""
+    over = exhausted() if counted else remaining() <= 0
+    if over:
+        cut_short()
+    return over
 
 
 def cut_short(reason: str = "time_limit") -> None:

@@ -98,8 +98,7 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
         # every pair not read is below ``below``: none reaches the keep-th
         if below <= reach:
             return out, None
-        if budget.exhausted():
-            budget.cut_short()
+        if budget.cut_if_over():
             return out, None
         ask = 2 * max(ask, len(got))
         if first and len(out) >= keep:  # enough for the triples' floor

@@ -431,6 +431,19 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         (lambda done, total: progress(len(suppression.kept), top))
     stopped: str | None = None
     level = np.inf                      # every plan not fed is below it
+
+    def feed(line: float) -> None:
+        """The plans read down to ``line``, in rank order, to suppression, each grasp
+        once across the rounds, until ``top`` are kept."""
+        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others, keys=keys):
+            if float(min(p.lengths)) < line:
+                break
+            if key in fed:
+                continue
+            fed.add(key)
+            if suppression.add(p) and len(suppression.kept) == top:
+                break
+
     while len(suppression.kept) < top:
         if other_level <= pair_level - band:    # the pairs hold the reading back
             if len(read) >= cap:
@@ -457,14 +470,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                                                            grown=grown, solved=solved)
         line = max(pair_level, other_level + band)
         had = len(suppression.kept)
-        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others, keys=keys):
-            if float(min(p.lengths)) < line:
-                break
-            if key in fed:                  # each grasp once, across the rounds
-                continue
-            fed.add(key)
-            if suppression.add(p) and len(suppression.kept) == top:
-                break
+        feed(line)
         level = line
         if progress is not None:        # plans kept of top, after each round
             progress(len(suppression.kept), top)
@@ -481,12 +487,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     if len(kept) < top:
         # the plans read below the level, in their order: each holds, but a plan not
         # read may rank before them (not an exact prefix)
-        for key, p in ranked_keyed(polygon, spec.rank_by, pairs + others, keys=keys):
-            if key in fed:
-                continue
-            fed.add(key)
-            if suppression.add(p) and len(suppression.kept) == top:
-                break
+        feed(-np.inf)
         more = suppression.plans()[:top]
         if len(more) > len(kept):
             return incomplete(more, stopped, None, exact=False)

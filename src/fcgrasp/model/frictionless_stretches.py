@@ -418,15 +418,6 @@ def load_kernels() -> bool:
     return _frictionless_kernels.COMPILED.available()
 
 
-def _budget_left() -> bool:
-    """Whether the time budget lets a growth go on (a budget check); recorded as cut
-    short when not."""
-    if budget.exhausted():
-        budget.cut_short()
-        return False
-    return True
-
-
 def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
                    gravity: Any = None, max_steps: int = 400, keep_single: bool = True,
                    polish: int = 0) -> list[FrictionlessStretches | None]:
@@ -456,7 +447,7 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
     # a seed not grown is its single-edge plan, which holds)
     keys = []
     for _, key in seeds:
-        if key is not None and _budget_left():
+        if key is not None and not budget.cut_if_over():
             key = search.grow(key, max_steps)
         keys.append(key)
     # the best grown (distinct configurations, best first) polished
@@ -466,7 +457,7 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
             at = next((i for i, b in enumerate(best) if search.better(key, b)), len(best))
             best.insert(at, key)
     polished = {key: search.polish(key, max_steps) for key in best[:polish]
-                if _budget_left()}
+                if not budget.cut_if_over()}
     out: list[FrictionlessStretches | None] = []
     for key in keys:
         if key is not None:

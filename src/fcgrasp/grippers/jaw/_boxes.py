@@ -139,10 +139,7 @@ def _past_time() -> bool:
     """Whether the time budget has ended (its clock only, not a counted check): a box
     is then kept as proved so far, neither refined nor grown further, and the answer
     says it was cut short (:func:`fcgrasp.core.budget.cut_short`)."""
-    if budget.remaining() > 0:
-        return False
-    budget.cut_short()
-    return True
+    return budget.cut_if_over(counted=False)
 
 
 def _proved_grown(polygon: Polygon, jaw: JawParameters, margin: float, hole: int | None,

@@ -304,8 +304,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
     while len(plans) < top:
         # the time budget: the boxes proved so far (none, where the grid's boxes could
         # not be proved in time: the answer then says the search stopped)
-        if (plans and budget.exhausted()) or budget.remaining() <= 0:
-            budget.cut_short()
+        if (plans and budget.cut_if_over()) or budget.cut_if_over(counted=False):
             break
         score, k0, k1, j0, j1 = _box_scores(H, dth, dc, radius, K // 2)
         if score <= 0:
@@ -332,9 +331,7 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
             floor = _measure(*proved, radius)
             # past the time budget (after the first box) the grid's box, proved, is kept
             # as it is: neither refined nor grown
-            late = bool(plans) and budget.exhausted()
-            if late:
-                budget.cut_short()
+            late = bool(plans) and budget.cut_if_over()
             better = None if len(plans) >= REFINE_TOP or late else _proved_refined(
                 polygon, jaw, margin, hole, box[0], box[1], dth, dc, taken, floor)
             if not late and (better is None
