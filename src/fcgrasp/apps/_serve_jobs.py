@@ -105,11 +105,9 @@ def plan_result(polygon: Any, units: str, request: Any,
 def _moveit(report: dict[str, Any]) -> list[dict[str, Any]] | None:
     """The report's plans as ``fcgrasp plan --moveit`` writes them, where they are a
     parallel gripper's (a jaw's or two fingers'; :mod:`fcgrasp.io.moveit`)."""
-    from ..io.moveit import moveit_grasps
+    from ..io.moveit import moveit_grasps, parallel_gripper
 
-    params = report.get("parameters", {})
-    if not report.get("grasps") or (params.get("gripper") not in ("parallel_jaw", "jaw")
-                                    and params.get("fingers") != 2):
+    if not report.get("grasps") or not parallel_gripper(report):
         return None
     return moveit_grasps(report)
 

@@ -56,7 +56,8 @@ import numpy as np
 from ..errors import ArgumentError
 from .units import MM_PER
 
-__all__ = ["moveit_grasps", "grasps_text", "GRASP_FIELDS", "tool_rotation", "quaternion"]
+__all__ = ["moveit_grasps", "parallel_gripper", "grasps_text", "GRASP_FIELDS", "tool_rotation",
+           "quaternion"]
 
 #: The fields of each message as its definition names them (moveit_msgs, trajectory_msgs,
 #: geometry_msgs and std_msgs of ROS 2).
@@ -120,12 +121,10 @@ def _down(axis: np.ndarray) -> np.ndarray:
     return down
 
 
-def _pose(report: dict[str, Any], grasp: dict[str, Any], height: float
-          ) -> tuple[np.ndarray, np.ndarray, float, str]:
+def _pose(grasp: dict[str, Any], height: float) -> tuple[np.ndarray, np.ndarray, float, str]:
     """The tool's position and axes (report units), the opening and the grip's mode of
     one plan."""
-    if "contacts" in grasp and isinstance(grasp["contacts"], list) or "centers" in grasp \
-            and "axis" not in grasp:
+    if isinstance(grasp.get("contacts"), list) or ("centers" in grasp and "axis" not in grasp):
         # two fingers: the line through the two contacts is the closing axis
         pts = np.asarray(grasp["contacts"] if "contacts" in grasp else grasp["centers"],
                          float)
@@ -180,6 +179,12 @@ def _distance(name: str, value: Any) -> float:
     return float(value)
 
 
+def parallel_gripper(report: dict[str, Any]) -> bool:
+    """Whether a report's plans are a parallel gripper's: a jaw's, or two fingers'."""
+    params = report.get("parameters", {})
+    return params.get("gripper") in ("parallel_jaw", "jaw") or params.get("fingers") == 2
+
+
 def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
                   ee_frame: str = FRANKA_HAND[0], joint_names: Any = FRANKA_HAND[1],
                   joint_per_opening: float = FRANKA_HAND[2], height: float = 0.0,
@@ -195,7 +200,7 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
         raise ArgumentError("report must be a plan report (fcgrasp plan --json), got "
                             f"{type(report).__name__}", "report")
     params = report.get("parameters", {})
-    if params.get("gripper") not in ("parallel_jaw", "jaw") and params.get("fingers") != 2:
+    if not parallel_gripper(report):
         raise ArgumentError(f"MoveIt grasps are a parallel gripper's: plans of a jaw or of "
                             f"two fingers, got {params.get('fingers')} fingers", "report")
     units = str(report.get("units", "mm"))
@@ -213,7 +218,7 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
     stroke = [float(v) * metres for v in params.get("stroke", (0.0, 0.0))]
     out = []
     for k, grasp in enumerate(report["grasps"]):
-        where, axes, opening, mode = _pose(report, grasp, d["height"] / metres)
+        where, axes, opening, mode = _pose(grasp, d["height"] / metres)
         qx, qy, qz, qw = quaternion(axes)
         p = where * metres
         payload = grasp.get("payload") or {}
