@@ -741,3 +741,41 @@ def test_the_reach_bounds_the_overlap_from_above(cases):
                     decided += measure.reach(a, b) <= fraction * min(la, lb)
     assert min(answers.values()) > cases, answers
     assert decided > 0.5 * near_false, (decided, near_false)
+
+
+@pytest.mark.parametrize("seed", [13, 32, 55, *(pytest.param(s, marks=pytest.mark.slow)
+                                               for s in range(120) if s not in (13, 32, 55))])
+def test_compiled_collection_leaving_copies_out_equals_suppression(seed, monkeypatch):
+    """The compiled collection of a distinct round leaves out the windows that are surely
+    a kept plan's copies (``_Exclusion.copy_columns``; their beaters solved on demand):
+    the plans are still suppression's along the whole ranked list, and the collection
+    with nothing left out (the reference) gives the same plans and regions."""
+    from fcgrasp.model import _stretch_exclusion, _stretch_search
+
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    left_out = []
+    windows = _stretch_search._stretch_kernels.windows
+
+    def counted(*a, ex=None, exs=None, **k):
+        out = windows(*a, ex=ex, exs=exs, **k)
+        if ex is not None and a[8]:             # a collection that may leave copies out
+            full = windows(*a, **k)
+            left_out.append(full[1].size - out[1].size)
+        return out
+
+    monkeypatch.setattr(_stretch_search._stretch_kernels, "windows", counted)
+    part, got, _ = _searched_and_suppressed(seed)
+    monkeypatch.setattr(_stretch_exclusion._Exclusion, "copy_columns",
+                        lambda self, *a: None)
+    rng = np.random.default_rng(seed)
+    _smooth(rng, int(rng.integers(24, 48)))
+    mu = float(rng.uniform(0.2, 0.5))
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    top = int(rng.integers(3, 8))
+    ref = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction)
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    for p, q in zip(got, ref, strict=True):
+        for a, b in zip(p.regions, q.regions, strict=True):
+            assert np.array_equal(a, b)
+    if seed in (13, 32, 55):                # (32: a left-out copy beats a plan's edges)
+        assert sum(left_out) > 0, left_out

@@ -365,11 +365,11 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     suppression = Suppression(fraction, polygon.size)
     read: list[GraspPlan] = []
     given: set[Any] = set()             # one grasp reached by two configurations: once
-    ask = max(2 * top, DISTINCT_READ)
     stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory)
     level: float | None = None          # every configuration left unread is below it
     stopped: str | None = None
     while len(suppression.kept) < top:
+        ask = max(top - len(suppression.kept), DISTINCT_READ)
         try:
             pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
                                     fraction=fraction, seen=read)

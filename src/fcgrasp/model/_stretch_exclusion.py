@@ -8,7 +8,7 @@ from typing import Any, cast
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.tolerances import ROUND_TOL
+from ..core.tolerances import DEFER_PAD, ROUND_TOL
 from . import _stretch_kernels
 from ._free_third import FreeThird
 from ._stretch_lp import (
@@ -305,6 +305,24 @@ class _Exclusion:
             & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
         out |= (both if mask is None else both & mask).any(axis=1)
 
+    def copy_columns(self, rings: list[_Ring], x: int, y: int, floor: float
+                     ) -> tuple[FloatArray, FloatArray] | None:
+        """The kept plans' arcs on rings ``x`` and ``y`` (rows ``ax0, ax1, ay0, ay1``,
+        :meth:`_arcs`) and the numbers of :meth:`threshold` (``perx, pery, tol, keep``,
+        then ``drop``) for the compiled collection, which leaves out the configurations
+        whose threshold is below ``drop``: surely a copy at any smallest region from
+        ``floor`` on (a relative 1e-9 below it, far above the rounding of the stretches'
+        arcs, which the collection reads from the arc positions directly).  None where
+        nothing is left out (no kept plan on these rings, three fingers' plans)."""
+        arcs = self._arcs(x, y)
+        keep = 1 - self.fraction
+        if arcs is None or len(arcs) != 4 or keep <= 0 or floor <= 0 or self.free is not None:
+            return None
+        per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
+        drop = floor * (1 - COPY_PAD) / (1 + DEFER_PAD)
+        return (np.stack(arcs).astype(float),
+                np.array([*per, self.tol, keep, drop], float))
+
     def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
                   cfg: _Configs, intervals: dict[Any, _Intervals]) -> FloatArray:
         """For each configuration of ``job``, a length above which it is surely the same
@@ -345,6 +363,11 @@ class _Exclusion:
             sub = np.minimum(sub, tau.min(axis=1))
         out[rows] = sub
         return out
+
+
+#: Relative margin below the floor under which the compiled collection leaves a kept
+#: plan's copies out (:meth:`_Exclusion.copy_columns`).
+COPY_PAD = 1e-9
 
 
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run

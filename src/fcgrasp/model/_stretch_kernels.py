@@ -410,17 +410,56 @@ def _row_bound(tptr: Any, tf: Any, tl: Any, r: int, ma: int, mb: int, k_max: int
     return best
 
 
+def _copy_columns(a0: float, a1: float, ex: Any, exs: Any, side: int, app: Any) -> int:
+    """The kept plans' columns of ``ex`` (rows ``ax0, ax1, ay0, ay1``) whose arc on ring
+    ``side`` (0: a) leaves the stretch ``[a0, a1]`` a threshold below ``exs[4]``
+    (``_stretch_exclusion._Exclusion.threshold``'s ``ta``, the same operations; ``exs``:
+    ``perx, pery, tol, keep, drop``), written to ``app``: their count."""
+    n = 0
+    u, per = 2 * side, exs[side]
+    for c in range(ex.shape[1]):
+        ta = (_outside_one(a0, a1, ex[u, c], ex[u + 1, c], per) + exs[2]) / exs[3]
+        if ta < exs[4] and ex[u + 1, c] - ex[u, c] > ta:
+            app[n] = c
+            n += 1
+    return n
+
+
+def _copies_from(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+    """Whether the stretch 2 ``[c0, c1]`` makes a copy with a stretch 1 whose columns
+    are ``app`` (:func:`_copy_columns`): some column's threshold on ring b below
+    ``exs[4]`` as well, so the configuration's least threshold (the larger of the two)
+    is."""
+    for j in range(n_app):
+        c = app[j]
+        tc = (_outside_one(c0, c1, ex[2, c], ex[3, c], exs[1]) + exs[2]) / exs[3]
+        if tc < exs[4] and ex[3, c] - ex[2, c] > tc:
+            return True
+    return False
+
+
 def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0: Any,
                 rlen: Any, ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int,
                 mb: int, floor: float, collect: bool, same: bool, best: Any, thresh: float,
-                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int) -> Any:
+                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int, ex: Any, exs: Any) -> Any:
     """Row ``r`` of :func:`_windows` from window length ``k`` on (its runs ``cs``,
     ``ce``: the AND of rows ``r .. r + k - 1``).  Without ``collect`` the widening stops
-    once no window can beat ``max(best[r], thresh)``."""
+    once no window can beat ``max(best[r], thresh)``.  With ``collect`` and kept plans'
+    arcs ``ex`` (:func:`_copy_columns`), the configurations that are surely a kept
+    plan's copy at any smallest region from ``exs[4]`` on are not collected
+    (:func:`_copies_from`)."""
     i = (r - 1) % ma + ma
+    n_ex = ex.shape[1]
+    app = np.empty(n_ex, np.int64)
     while k < ma - 1 and nc > 0:
         ext_s = Ua[i + k + 1] - Ua[i]
         inner_s = Ua[i + k] - Ua[i + 1]
+        # the kept plans whose arc on ring a holds this stretch 1 closely enough that
+        # its configurations are copies wherever stretch 2 is close to their other arc
+        n_app = 0
+        if collect and n_ex > 0 and ext_s >= floor:
+            a0 = Ua[(r - 1) % ma]
+            n_app = _copy_columns(a0, a0 + ext_s, ex, exs, 0, app)
         # the current window's cyclic runs, the most any stretch 2 inside them reaches
         # and the longest vertex-aligned one: runs only shrink as the window grows,
         # so neither grows with k
@@ -447,6 +486,14 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
                 continue
             need = max(floor, inner_s)
             run_end0 = (rp0[j] + rlen[j] - 1) % mb + mb
+            if n_app > 0 and rlen[j] < mb - 2:
+                # every stretch 2 of the run lies inside its widest: a copy of a plan
+                # that the widest is one of is a copy too (the arc outside only shrinks)
+                jb = (rp0[j] - 1) % mb
+                c0 = Ub[jb]
+                if _copies_from(c0, c0 + (Ub[jb + mb + rlen[j] + 1] - Ub[jb + mb]), ex,
+                                exs, app, n_app):
+                    continue
             for jj in range(rlen[j]):
                 p = (rp0[j] + jj) % mb + mb
                 run_end = run_end0 if run_end0 >= p else run_end0 + mb
@@ -463,6 +510,21 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
                 q_hi = min(q_hi, run_end)
                 if q_hi < q_lo:
                     continue
+                if n_app > 0:
+                    # the copies of one start are the shortest stretches 2 (the arc
+                    # outside a plan's grows with q): the first q that is none
+                    c0 = Ub[(p - 1) % mb]
+                    lo, hi = q_lo, q_hi + 1
+                    while lo < hi:
+                        mid = (lo + hi) // 2
+                        if _copies_from(c0, c0 + (Ub[mid + 1] - Ub[p - 1]), ex, exs, app,
+                                        n_app):
+                            lo = mid + 1
+                        else:
+                            hi = mid
+                    q_lo = lo
+                    if q_hi < q_lo:
+                        continue
                 n_new = n_out + q_hi - q_lo + 1
                 oA, okA = _grow(oA, n_new), _grow(okA, n_new)
                 oC, okC = _grow(oC, n_new), _grow(okC, n_new)
@@ -521,7 +583,7 @@ def _buffers(mb: int) -> Any:
 
 
 def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-               floor: float, collect: bool, same: bool) -> Any:
+               floor: float, collect: bool, same: bool, ex: Any, exs: Any) -> Any:
     """:func:`_windows` reading every row from its first window on."""
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
@@ -533,13 +595,13 @@ def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: i
             nc += 1
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out)
+            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs)
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
 def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
              floor: float, collect: bool, same: bool, value: float, keep: int,
-             short: int) -> Any:
+             short: int, ex: Any, exs: Any) -> Any:
     """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
     search, row by row).
 
@@ -560,7 +622,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     shorter ones collect nothing; their break test only weakens with ``k``).  Where no
     window of ``short`` rows has a run, every row is read as without ``keep``."""
     if keep <= 0 or ma < 4 or ptr[ma] == 0:
-        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs)
     levels = 1
     while (1 << levels) <= ma - 2:
         levels += 1
@@ -568,7 +630,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     k_max = min(ma - 2, (1 << levels) - 1)     # a longer window contains an empty entry
     if k_max < short:
         # short windows only (a noisy outline): reading them all costs less than sorting
-        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same)
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs)
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
     n_out = 0
@@ -588,7 +650,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
             nc = _window_of(tptr, tf, tl, r, k, ma, cs, ce)
             oA, okA, oC, okC, n_out = _window_row(
                 r, k, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out)
+                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs)
         return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
     upper = np.empty(ma)
     for r in range(ma):
@@ -602,7 +664,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
         nc = _window_of(tptr, tf, tl, r, 1, ma, cs, ce)         # the row's own runs
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out)
+            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out, ex, exs)
         _top_add(top, top_rows, r, best[r])
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
@@ -1277,7 +1339,8 @@ TABLE_CELLS = 50_000_000
 
 _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
-                                   _cyclic, _measures, _row_bound, _window_row, _buffers,
+                                   _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
+                                   _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,
                                    _below, _solve_rows, _by_start, _inside_supers, _outside_one,
@@ -1332,12 +1395,14 @@ def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
-            short: int = _SHORT) -> Any:
+            short: int = _SHORT, ex: Any = None, exs: Any = None) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
-    for every caller)."""
+    for every caller; ``ex``, ``exs``: no kept plans where not given)."""
     ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
+    ex = np.zeros((4, 0)) if ex is None else np.ascontiguousarray(ex, float)
+    exs = np.zeros(5) if exs is None else np.ascontiguousarray(exs, float)
     return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same,
-                               float(value), int(keep), int(short))
+                               float(value), int(keep), int(short), ex, exs)
 
 
 def single(*args: Any) -> Any:

@@ -47,6 +47,7 @@ from ._stretch_windows import (
     _pairs_single,
     _Ring,
     _row_intervals,
+    _stretch_bound,
     _turns,
     _vertex_matrix,
     _windows_both,
@@ -178,14 +179,18 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
 
 
 def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
-          bound: _Bound | None = None) -> tuple[FloatArray, _Configs]:
+          bound: _Bound | None = None, copies: tuple[FloatArray, FloatArray] | None = None
+          ) -> tuple[FloatArray, _Configs]:
     """:func:`_windows_both`, compiled for large rings (pruned by ``bound``'s value: the
-    lower bounds it leaves out could not raise it)."""
+    lower bounds it leaves out could not raise it; ``copies``: the kept plans' columns
+    whose surely copies from ``floor`` on the compiled collection leaves out,
+    :meth:`_Exclusion.copy_columns`)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
         value, keep = (bound.value, bound.k) if bound is not None else (0.0, 0)
+        ex, exs = copies if copies is not None else (None, None)
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
-                                              collect, same, value, keep)
+                                              collect, same, value, keep, ex=ex, exs=exs)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
     return _windows_both(runs, ra, rb, same, floor, collect)
 
@@ -240,7 +245,8 @@ def _guessed_floors(bound: _Bound) -> list[float]:
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
                 runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
                 guesses: list[float] | None = None, lower: bool = True,
-                max_configs: int | None = None) -> list[tuple[Any, _Configs]]:
+                max_configs: int | None = None, exclude: _Exclusion | None = None
+                ) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations, one per key).  ``prebound`` False: the
     vertex-aligned stretches do not raise the bound (an excluded plan's copies would);
@@ -258,7 +264,10 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
 
     ``max_configs``: the most configurations to collect; one job's collection that
     takes the count over it ends the search (:class:`~fcgrasp.core.budget.
-    BudgetExhausted`, ``"max_memory"``), before the next job's."""
+    BudgetExhausted`, ``"max_memory"``), before the next job's.  ``exclude``: the
+    windows of both stretches that are surely a kept plan's copies at any smallest
+    region from the floor on are not collected (:meth:`_Exclusion.copy_columns`;
+    :func:`_search` then solves their beaters on demand, :func:`_inner_beaters`)."""
     count = 0
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
@@ -273,8 +282,11 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             ra, rb = rings[x], rings[y]
             both = _empty()
             if x <= y:
+                copies = exclude.copy_columns(rings, x, y, bound.floor) \
+                    if collect and exclude is not None else None
                 best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect,
-                                   bound if prebound and bound.fixed is None else None)
+                                   bound if prebound and bound.fixed is None else None,
+                                   copies)
                 if not collect and prebound:
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
@@ -348,7 +360,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         elif memo is not None:
             prepared = memo.prepared = _candidates(
                 rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
-                prebound=False, max_configs=memo.max_configs)
+                prebound=False, max_configs=memo.max_configs, exclude=exclude)
         else:
             prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude,
                                    guesses=guesses if attempt == 0 else None,
@@ -363,6 +375,9 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
                             similar)
         found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
+        if memo is not None:
+            # the copies the collection left out take part as beaters (as ``similar``)
+            found += _inner_beaters(rings, beta, intervals, scale, found, memo.floor)
         found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
@@ -380,6 +395,72 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         else:
             want, fixed = 4 * (want or 1), None
     return found
+
+
+def _inner_beaters(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
+                   scale: float, found: list[_Found], floor: float) -> list[_Found]:
+    """Every configuration inside a found one reaching ``floor`` that could beat it in
+    :func:`_own_optimum` (its arc bound above the found one's ``t`` by the tie
+    tolerance), solved, as ``similar`` entries: the beaters of the configurations a
+    distinct round's collection leaves out as a kept plan's copies
+    (:meth:`_Exclusion.copy_columns`).  A found configuration's stretches are about as
+    long as its regions, so it holds few such configurations (every one is counted
+    against the time budget)."""
+    by_job: dict[Any, list[np.ndarray]] = {}
+    for f in found:
+        if f.t < floor or f.similar or max(f.cfg[1], f.cfg[3]) == 0:
+            continue
+        x, y, _, _ = f.job
+        need = f.t * (1 + TIE)
+        subs = [_sub_stretches(rings[x], f.cfg[0], f.cfg[1], need),
+                _sub_stretches(rings[y], f.cfg[2], f.cfg[3], need)]
+        if not (subs[0].size and subs[1].size):
+            continue
+        ga = np.repeat(np.arange(len(subs[0])), len(subs[1]))
+        gc = np.tile(np.arange(len(subs[1])), len(subs[0]))
+        by_job.setdefault(f.job, []).append(np.concatenate([subs[0][ga], subs[1][gc]], axis=1))
+    out: list[_Found] = []
+    for job, parts in by_job.items():
+        budget.check()
+        x, y, sigma, _ = job
+        ra, rb = rings[x], rings[y]
+        c = np.unique(np.concatenate(parts), axis=0)
+        cfg = _Configs(c[:, 0], c[:, 1], c[:, 2], c[:, 3])
+        cfg = cfg.take(_disjoint(ra, cfg, x == y))
+        if not cfg.iA.size:
+            continue
+        compiled = stretch_kernels_for(ra.m * rb.m)
+        rows = _system(ra, rb, cfg, sigma, beta, intervals[x, y, sigma],
+                       intervals[y, x, sigma], compiled=compiled)
+        t, s0, u0 = _solve_any(rows, _stretch_bound(ra, rb, cfg), scale, compiled)
+        for j in np.flatnonzero(t > 0):
+            out.append(_Found(job, (int(cfg.iA[j]), int(cfg.kA[j]), int(cfg.iC[j]),
+                                    int(cfg.kC[j])), float(t[j]), float(s0[j]),
+                              float(u0[j]), similar=True))
+    return out
+
+
+def _sub_stretches(ring: _Ring, i: int, k: int, need: float) -> np.ndarray:
+    """The stretches inside edges ``i .. i + k`` of ``ring`` whose arc length reaches
+    ``need``, as rows ``(first edge, interior vertices)``: for each first edge, the
+    last edges from the first that reaches it on."""
+    m = ring.m
+    i0 = i % m + m
+    U = ring.U
+    starts = i0 + np.arange(k + 1)
+    end = U[i0 + k + 1]
+    starts = starts[U[starts] + need <= end]
+    if not starts.size:
+        return np.zeros((0, 2), np.int64)
+    # the first last edge e with U[e + 1] - U[start] >= need, up to the last edge i0 + k
+    first_last = np.searchsorted(U, U[starts] + need, side="left") - 1
+    first_last = np.maximum(first_last, starts)
+    n = i0 + k - first_last + 1
+    keep = n > 0
+    starts, first_last, n = starts[keep], first_last[keep], n[keep]
+    s = np.repeat(starts, n)
+    last = np.repeat(first_last, n) + (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n))
+    return np.stack([s - m, last - s], axis=1).astype(np.int64)
 
 
 def _second_level(rings: list[_Ring], beta: float, found: list[_Found],

@@ -286,7 +286,7 @@ class StretchSearch:
                     break
                 low = need * (1 - TIE)
             else:
-                low = memo.floor / 4
+                low = memo.floor * 0.8
             if low <= overflow:         # what the answer needs does not fit the budget
                 raise budget.BudgetExhausted("max_memory")
             # below a thousandth of the best plan: every configuration
@@ -306,7 +306,7 @@ class StretchSearch:
 #: length reaches this share of the best smallest region (lowered when a run's
 #: ``top``-th falls below it): a smooth outline of 2,000 edges has tens of millions of
 #: configurations, most far below any plan kept.
-MEMO_SHARE = 0.15
+MEMO_SHARE = 0.5
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
