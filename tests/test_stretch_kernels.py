@@ -447,7 +447,8 @@ def test_own_optimum_filter_matches_every_pair(seed):
         cols = [np.ascontiguousarray(c[:, j] % (ma, ma, mb, mb)[j], dtype=np.int64)
                 for j in range(4)]
         _stretch_kernels._load()["_beaten"](*cols, t, ma, mb, same, S.TIE,
-                                            np.lexsort((-t, cols[0])).astype(np.int64), scan)
+                                            np.lexsort((-t, cols[0])).astype(np.int64), scan,
+                                            np.ones(F, bool))
 
         def inside(i, k, i2, k2, m):
             return (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :]
@@ -630,7 +631,7 @@ def _previous_kernels(monkeypatch):
     runs, every row's windows widened from the first, every single-edge window read."""
     windows, single = _stretch_kernels.windows, Q._single
     monkeypatch.setattr(_stretch_kernels, "vertex_runs_tree", _stretch_kernels.vertex_runs_scan)
-    monkeypatch.setattr(_stretch_kernels, "windows", lambda *a: windows(*a[:10]))
+    monkeypatch.setattr(_stretch_kernels, "windows", lambda *a, **k: windows(*a[:10]))
     monkeypatch.setattr(Q, "_single", lambda *a: single(*a[:6]))
 
 

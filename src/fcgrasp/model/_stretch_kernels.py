@@ -1189,7 +1189,7 @@ def _scan_inside(order: Any, starts: Any, next_start: Any, lo: int, span: int, m
 
 
 def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: bool,
-            tie: float, order: Any, keep: Any) -> None:
+            tie: float, order: Any, keep: Any, check: Any) -> None:
     """:func:`fcgrasp.model._stretch_search._own_optimum` of one job, without its matrix of
     every (sub, super) pair: ``keep[s]`` False where a configuration inside ``s`` (on
     both rings; on one ring, either way round) has a smallest region longer than
@@ -1205,6 +1205,8 @@ def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: 
             q = r + 1
         next_start[r] = q
     for s in range(t.shape[0]):
+        if not check[s]:
+            continue
         thr = t[s] * (1 + tie)
         if _scan_inside(order, starts, next_start, iA[s], kA[s], ma, iA, kA, iC, kC, iC[s],
                         kC[s], mb, t, thr):
@@ -1314,7 +1316,7 @@ def _any_inside(ptr: Any, g_iC: Any, ka0: Any, ka1: Any, kc0: Any, kc1: Any, off
 
 
 def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
-                   same: bool, tie: float, keep: Any) -> bool:
+                   same: bool, tie: float, keep: Any, check: Any) -> bool:
     """:func:`_beaten` by table look-ups (:func:`_group_tables`): False, leaving
     ``keep`` as it is, when the tables would pass :data:`TABLE_CELLS`.  Starts are
     ring positions (``0 <= iA < ma``, ``0 <= iC < mb``)."""
@@ -1322,6 +1324,8 @@ def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
     if table.shape[0] != off[-1]:
         return False
     for s in range(t.shape[0]):
+        if not check[s]:
+            continue
         thr = t[s] * (1 + tie)
         if _any_inside(ptr, g_iC, ka0, ka1, kc0, kc1, off, table, iA[s], kA[s], ma, iC[s],
                        kC[s], mb, thr):
@@ -1441,29 +1445,33 @@ def window_boxes_memo(*args: Any) -> Any:
     return _load()["_window_boxes_memo"](*args)
 
 
-def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
+def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float,
+           check: Any = None) -> Any:
     """Compiled :func:`_beaten` of configurations ``c`` (F, 4: first start, its interior
     vertices, second start, its interior vertices) with smallest regions ``t``: the
-    ones to keep."""
+    ones to keep (with ``check``, a mask, only those rows are decided; every row is a
+    beater)."""
     c = np.array(c, np.int64)
     c[:, 0] %= ma                               # starts as ring positions
     c[:, 2] %= mb
     t = np.ascontiguousarray(t, float)
+    check = np.ones(len(c), bool) if check is None else np.ascontiguousarray(check, bool)
     if len(c) < BEATEN_MEMO_ROWS:
-        return _beaten_keep(c, t, ma, mb, same, tie)
+        return _beaten_keep(c, t, ma, mb, same, tie, check)
     # the rounds of a distinct search ask again about the same configurations, in
     # another order: each one's answer depends on the set only, so the set is
     # remembered sorted
     o = np.lexsort((t, c[:, 3], c[:, 2], c[:, 1], c[:, 0]))
     h = hashlib.blake2b(np.ascontiguousarray(c[o]).tobytes(), digest_size=16)
     h.update(np.ascontiguousarray(t[o]).tobytes())
+    h.update(np.ascontiguousarray(check[o]).tobytes())
     h.update(repr((int(ma), int(mb), bool(same), float(tie))).encode())
     digest = h.digest()
     if digest in _beaten_memo:
         keep = np.empty(len(c), bool)
         keep[o] = _beaten_memo[digest]
         return keep
-    keep = _beaten_keep(c, t, ma, mb, same, tie)
+    keep = _beaten_keep(c, t, ma, mb, same, tie, check)
     _beaten_memo[digest] = keep[o]
     while len(_beaten_memo) > BEATEN_MEMO_SIZE:
         del _beaten_memo[next(iter(_beaten_memo))]
@@ -1476,15 +1484,17 @@ BEATEN_MEMO_ROWS, BEATEN_MEMO_SIZE = 50_000, 4
 _beaten_memo: dict[bytes, np.ndarray] = {}
 
 
-def _beaten_keep(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float) -> Any:
+def _beaten_keep(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float,
+                 check: Any) -> Any:
     """:func:`beaten` of ring positions ``c``, computed."""
     keep = np.ones(len(c), bool)
     cols = [np.ascontiguousarray(c[:, j]) for j in range(4)]
-    if _load()["_beaten_tables"](*cols, t, int(ma), int(mb), bool(same), float(tie), keep):
+    if _load()["_beaten_tables"](*cols, t, int(ma), int(mb), bool(same), float(tie), keep,
+                                 check):
         return keep
     order = np.lexsort((-t, c[:, 0]))           # by first start, then the longest first
     _load()["_beaten"](np.ascontiguousarray(c[:, 0]), np.ascontiguousarray(c[:, 1]),
                        np.ascontiguousarray(c[:, 2]), np.ascontiguousarray(c[:, 3]), t,
                        int(ma), int(mb), bool(same), float(tie), order.astype(np.int64),
-                       keep)
+                       keep, check)
     return keep

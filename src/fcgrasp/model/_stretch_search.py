@@ -187,7 +187,9 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
     :meth:`_Exclusion.copy_columns`)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
-        value, keep = (bound.value, bound.k) if bound is not None else (0.0, 0)
+        # (a collection reads each row from its first window long enough, by the
+        # sparse table of runs, whatever the bound)
+        value, keep = (bound.value, bound.k) if bound is not None else (0.0, int(collect))
         ex, exs = copies if copies is not None else (None, None)
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
                                               collect, same, value, keep, ex=ex, exs=exs)
@@ -375,10 +377,16 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
                             similar)
         found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
-        if memo is not None:
-            # the copies the collection left out take part as beaters (as ``similar``)
-            found += _inner_beaters(rings, beta, intervals, scale, found, memo.floor)
-        found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
+        if memo is None:
+            found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
+        else:
+            # the copies the collection left out beat some found configurations: asked
+            # on demand of those that would be returned
+            floor_m = memo.floor
+            found = _own_optimum(
+                rings, found, similar, top,
+                lambda head, f=floor_m: _beaten_on_demand(rings, beta, intervals, scale,
+                                                          head, f))
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
         if len(found) >= top:
@@ -395,6 +403,17 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         else:
             want, fixed = 4 * (want or 1), None
     return found
+
+
+def _beaten_on_demand(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
+                      scale: float, head: list[_Found], floor: float) -> set[int]:
+    """The ``id`` of each configuration of ``head`` beaten by one inside it that the
+    collection left out as a kept plan's copy (:func:`_inner_beaters`)."""
+    extra = _inner_beaters(rings, beta, intervals, scale, head, floor)
+    if not extra:
+        return set()
+    kept = {id(f) for f in _own_optimum(rings, head + extra) if not f.similar}
+    return {id(f) for f in head if id(f) not in kept}
 
 
 def _inner_beaters(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
@@ -499,14 +518,50 @@ def _second_level(rings: list[_Ring], beta: float, found: list[_Found],
 
 
 def _own_optimum(rings: list[_Ring], found: list[_Found],
-                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
-                 ) -> list[_Found]:
+                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
+                 top: int | None = None, demand: Any = None) -> list[_Found]:
     """The configurations that are optimal on their own edges: a configuration whose
     smallest region is beaten by one of its sub-configurations (fewer edges on either
     side, all of them found, since they rank higher) is not a plan of those edges.
     ``similar`` (:func:`_solve_jobs`): configurations found but filed by index, which
-    take part as beaters; only ``found`` is returned."""
-    keep = np.ones(len(found), bool)
+    take part as beaters; only ``found`` is returned.  With ``top`` (``found`` in the
+    search's order), only its head is decided and returned: the first ``top`` own
+    optima and every one that ties the ``top``-th (a distinct round's collection holds
+    thousands of configurations below them, each a beater, none an answer).  ``demand``:
+    a function of the own optima decided (a list) that gives the ``id`` of those beaten
+    by configurations not in ``found`` (asked once per configuration); they are left
+    out, and those behind move up."""
+    if top is None or demand is None and len(found) <= 2 * top:
+        alive = _own_optimum_of(rings, found, np.ones(len(found), bool), similar)
+        return [f for f in alive if not f.similar]
+    limit = min(2 * top, len(found))
+    asked: set[int] = set()
+    beaten: set[int] = set()
+    while True:
+        last = found[limit - 1].t * (1 - TIE) if limit else np.inf
+        check = np.array([f.t >= last for f in found], bool)
+        check[:limit] = True
+        alive = [f for f in _own_optimum_of(rings, found, check, similar) if not f.similar]
+        if demand is not None:
+            new = [f for f in alive if id(f) not in asked]
+            asked.update(id(f) for f in new)
+            if new:
+                beaten |= demand(new)
+            alive = [f for f in alive if id(f) not in beaten]
+        n_checked = int(check.sum())
+        # decided: the top-th own optimum and its ties lie above every row not checked
+        if n_checked == len(found) or (len(alive) >= top and alive[top - 1].t * (1 - TIE)
+                                       > found[n_checked].t):
+            return alive
+        limit = min(2 * limit, len(found))
+
+
+def _own_optimum_of(rings: list[_Ring], found: list[_Found], check: np.ndarray,
+                    similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                    ) -> list[_Found]:
+    """:func:`_own_optimum` of the rows of ``found`` that ``check`` marks (every row a
+    beater), those kept in order."""
+    keep = check.copy()
     by_job: dict[Any, list[int]] = {}
     for j, f in enumerate(found):
         by_job.setdefault(f.job, []).append(j)
@@ -520,12 +575,14 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
             c = np.concatenate([c, np.stack([J.cfg.iA[extra], J.cfg.kA[extra],
                                              J.cfg.iC[extra], J.cfg.kC[extra]], axis=1)])
             t = np.concatenate([t, J.t[extra]])
-        if c[:, [1, 3]].max() == 0:
+        if c[:, [1, 3]].max() == 0 or not check[idx].any():
             continue
         n = len(idx)
         if len(c) >= KERNEL_OWN and jit_setting() is not False:
-            keep[np.asarray(idx)] = _stretch_kernels.beaten(c, t, ra.m, rb.m, job[0] == job[1],
-                                                            TIE)[:n]
+            rows = np.zeros(len(c), bool)
+            rows[:n] = check[idx]
+            keep[np.asarray(idx)] &= _stretch_kernels.beaten(c, t, ra.m, rb.m,
+                                                             job[0] == job[1], TIE, rows)[:n]
             continue
 
         def inside(i: np.ndarray, k: np.ndarray, i2: np.ndarray, k2: np.ndarray,
@@ -534,18 +591,20 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
             return cast("np.ndarray", (i[:, None] - i2[None, :]) % m + k[:, None] <= k2[None, :])
 
         at = np.asarray(idx)
-        # supers (the found ones only) in blocks of columns: the (sub, super) matrix
+        # supers (the found ones checked) in blocks of columns: the (sub, super) matrix
         # stays about 1M cells; every configuration, filed ones too, a sub
+        sel = np.flatnonzero(check[at])
         step = max(1, (_BLOCK * 32) // len(c))
-        for b in range(0, n, step):
-            cs, ts = c[b:min(b + step, n)], t[b:min(b + step, n)]
+        for b0 in range(0, sel.size, step):
+            cols = sel[b0:b0 + step]
+            cs, ts = c[cols], t[cols]
             sub = inside(c[:, 0], c[:, 1], cs[:, 0], cs[:, 1], ra.m) \
                 & inside(c[:, 2], c[:, 3], cs[:, 2], cs[:, 3], rb.m)
             if job[0] == job[1]:        # one ring: a pair may be stored either way round
                 sub |= inside(c[:, 0], c[:, 1], cs[:, 2], cs[:, 3], ra.m) \
                     & inside(c[:, 2], c[:, 3], cs[:, 0], cs[:, 1], ra.m)
             beaten = sub & (t[:, None] > ts[None, :] * (1 + TIE))
-            keep[at[b:min(b + step, n)][beaten.any(axis=0)]] = False
+            keep[at[cols][beaten.any(axis=0)]] = False
     return [f for f, k in zip(found, keep, strict=True) if k]
 
 

@@ -342,12 +342,14 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             by = np.argsort(-tau, kind="stable")
             idx, tau = idx[by], tau[by]
             # the thresholds fall and the floor only rises: once one falls short of
-            # the floor, every one after it does
+            # the floor (or the memo's, below which no answer is taken), every one
+            # after it does
             short = 0
             for s in range(0, idx.size, CHUNK):
                 budget.check()              # a distinct round: the budget may end it
                 e = min(s + CHUNK, idx.size)
-                short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD) >= bound.floor))
+                short = s + int(np.count_nonzero(tau[s:e] * (1 + DEFER_PAD)
+                                                 >= max(bound.floor, run.least)))
                 run.settle(idx[s:short])
                 if short < e:
                     break

@@ -271,7 +271,7 @@ class StretchSearch:
                 overflow = max(overflow, memo.floor)
                 higher = memo.floor + (best - memo.floor) / 2
                 # (not when the time left would not see another such attempt through)
-                if higher >= best * (1 - MEMO_SHARE) or \
+                if higher >= best * OVERFLOW_SHARE or \
                         budget.remaining() < time.monotonic() - began:
                     raise
                 memo.lower(higher)
@@ -279,14 +279,16 @@ class StretchSearch:
             if not excl or memo.floor == 0.0:
                 break
             # the top-th found at or above the memo's floor: nothing missed; below it,
-            # collect down to it; fewer than top found: down to a quarter
+            # collect down to it; fewer than top found: a step down (a small one where
+            # some were: the collection grows steeply as its floor falls, and the
+            # top-th is then just below)
             if top_v is not None and len(found) >= top_v:
                 need = found[top_v - 1].t * (1 - TIE)
                 if need >= memo.floor:
                     break
                 low = need * (1 - TIE)
             else:
-                low = memo.floor * 0.8
+                low = memo.floor * (FLOOR_STEP_SOME if found else FLOOR_STEP_NONE)
             if low <= overflow:         # what the answer needs does not fit the budget
                 raise budget.BudgetExhausted("max_memory")
             # below a thousandth of the best plan: every configuration
@@ -307,6 +309,16 @@ class StretchSearch:
 #: ``top``-th falls below it): a smooth outline of 2,000 edges has tens of millions of
 #: configurations, most far below any plan kept.
 MEMO_SHARE = 0.5
+
+
+#: The share of the best plan above which a distinct round whose collection did not fit
+#: the memory budget is not tried again from a higher floor.
+OVERFLOW_SHARE = 0.85
+
+
+#: The factors a distinct round's memo floor is lowered by when fewer than ``top`` were
+#: found above it: some, none.
+FLOOR_STEP_SOME, FLOOR_STEP_NONE = 0.95, 0.9
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,

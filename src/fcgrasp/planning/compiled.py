@@ -89,7 +89,7 @@ def _stretches(blob: Any) -> None:
     cols = [np.ascontiguousarray(c[:, k], np.int64) for k in range(4)]
     _stretch_kernels._load()["_beaten"](*cols, np.array([1.0, 2.0]), 10, 10, False,
                                         float(RANK_TOL), np.arange(2, dtype=np.int64),
-                                        np.ones(2, bool))
+                                        np.ones(2, bool), np.ones(2, bool))
     # the distinct search's tests (exclusion of a kept plan's alternatives, deferred
     # configurations inside a found one), with the types of their calls
     z, zi = np.zeros(1), np.zeros(1, np.int64)
