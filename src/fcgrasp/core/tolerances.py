@@ -47,6 +47,12 @@ LENGTH_RESOLUTION = 1e-5
 #: whose smallest region exceeds it is surely a kept plan's copy by the exclusion's own test too.
 DEFER_PAD = 1e-9
 
+#: Relative margin below a distinct round's floor under which its compiled collection
+#: leaves a kept plan's copies out (:meth:`fcgrasp.model._stretch_exclusion._Exclusion.
+#: copy_columns`): far above the rounding of the stretches' arcs, which the collection
+#: reads from the arc positions directly.
+COPY_PAD = 1e-9
+
 #: Relative slack of the exact region solver (:mod:`fcgrasp.model.regions`): knapsack budgets
 #: and breakpoints are compared with this times the problem's own scale (the sum of
 #: weighted edge lengths), and a coefficient this small relative to its velocity is zero.

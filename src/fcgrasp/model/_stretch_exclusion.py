@@ -8,7 +8,7 @@ from typing import Any, cast
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.tolerances import DEFER_PAD, ROUND_TOL
+from ..core.tolerances import COPY_PAD, DEFER_PAD, ROUND_TOL
 from . import _stretch_kernels
 from ._free_third import FreeThird
 from ._stretch_lp import (
@@ -363,11 +363,6 @@ class _Exclusion:
             sub = np.minimum(sub, tau.min(axis=1))
         out[rows] = sub
         return out
-
-
-#: Relative margin below the floor under which the compiled collection leaves a kept
-#: plan's copies out (:meth:`_Exclusion.copy_columns`).
-COPY_PAD = 1e-9
 
 
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run
