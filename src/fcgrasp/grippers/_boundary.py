@@ -344,8 +344,8 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     its last, so suppressing in rank order along it gives the same plans as along the
     whole list (:class:`~fcgrasp.model.distinct.Suppression`, fed round by round).
     Each kept plan's ``similar`` lists the plans it stands for among those the rounds
-    read (at least :data:`DISTINCT_READ` plans, twice ``top``, each); copies left out
-    unread are not listed.  ``progress(kept, top)`` after each round.
+    read (each as many as are still missing, at least :data:`DISTINCT_READ`); copies
+    left out unread are not listed.  ``progress(kept, top)`` after each round.
 
     The search stops early when the time budget ends (:func:`fcgrasp.core.budget.
     deadline`: between rounds, or inside one, whose work is then dropped; the first

@@ -311,8 +311,8 @@ class _Exclusion:
         :meth:`_arcs`) and the numbers of :meth:`threshold` (``perx, pery, tol, keep``,
         then ``drop``) for the compiled collection, which leaves out the configurations
         whose threshold is below ``drop``: surely a copy at any smallest region from
-        ``floor`` on (a relative 1e-9 below it, far above the rounding of the stretches'
-        arcs, which the collection reads from the arc positions directly).  None where
+        ``floor`` on (``drop`` is :data:`~fcgrasp.core.tolerances.COPY_PAD` below it,
+        and below :data:`~fcgrasp.core.tolerances.DEFER_PAD`'s margin too).  None where
         nothing is left out (no kept plan on these rings, three fingers' plans)."""
         arcs = self._arcs(x, y)
         keep = 1 - self.fraction

@@ -410,16 +410,14 @@ def _row_bound(tptr: Any, tf: Any, tl: Any, r: int, ma: int, mb: int, k_max: int
     return best
 
 
-def _copy_columns(a0: float, a1: float, ex: Any, exs: Any, side: int, app: Any) -> int:
+def _copy_columns(a0: float, a1: float, ex: Any, exs: Any, app: Any) -> int:
     """The kept plans' columns of ``ex`` (rows ``ax0, ax1, ay0, ay1``) whose arc on ring
-    ``side`` (0: a) leaves the stretch ``[a0, a1]`` a threshold below ``exs[4]``
-    (``_stretch_exclusion._Exclusion.threshold``'s ``ta``, the same operations; ``exs``:
-    ``perx, pery, tol, keep, drop``), written to ``app``: their count."""
+    a leaves the stretch 1 ``[a0, a1]`` a threshold below ``exs[4]``
+    (:func:`_side_threshold`; ``exs``: ``perx, pery, tol, keep, drop``), written to
+    ``app``: their count."""
     n = 0
-    u, per = 2 * side, exs[side]
     for c in range(ex.shape[1]):
-        ta = (_outside_one(a0, a1, ex[u, c], ex[u + 1, c], per) + exs[2]) / exs[3]
-        if ta < exs[4] and ex[u + 1, c] - ex[u, c] > ta:
+        if _copy_side(a0, a1, ex, exs, 0, c):
             app[n] = c
             n += 1
     return n
@@ -431,11 +429,25 @@ def _copies_from(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) 
     ``exs[4]`` as well, so the configuration's least threshold (the larger of the two)
     is."""
     for j in range(n_app):
-        c = app[j]
-        tc = (_outside_one(c0, c1, ex[2, c], ex[3, c], exs[1]) + exs[2]) / exs[3]
-        if tc < exs[4] and ex[3, c] - ex[2, c] > tc:
+        if _copy_side(c0, c1, ex, exs, 1, app[j]):
             return True
     return False
+
+
+def _copy_side(a0: float, a1: float, ex: Any, exs: Any, side: int, c: int) -> bool:
+    """Whether column ``c`` of ``ex`` leaves the stretch ``[a0, a1]`` on ring ``side``
+    (0: a) a threshold below ``exs[4]``, its arc there longer than that threshold."""
+    u = 2 * side
+    ta = _side_threshold(a0, a1, ex[u, c], ex[u + 1, c], exs[side], exs[2], exs[3])
+    return bool(ta < exs[4] and ex[u + 1, c] - ex[u, c] > ta)
+
+
+def _side_threshold(a0: float, a1: float, u0: float, u1: float, per: float, tol: float,
+                    keep: float) -> float:
+    """``_stretch_exclusion._Exclusion.threshold``'s length of one side: the stretch
+    ``[a0, a1]``'s arc outside ``[u0, u1]`` (:func:`_outside_one`) plus ``tol``, over
+    ``keep`` (the same operations)."""
+    return (_outside_one(a0, a1, u0, u1, per) + tol) / keep
 
 
 def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0: Any,
@@ -459,7 +471,7 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
         n_app = 0
         if collect and n_ex > 0 and ext_s >= floor:
             a0 = Ua[(r - 1) % ma]
-            n_app = _copy_columns(a0, a0 + ext_s, ex, exs, 0, app)
+            n_app = _copy_columns(a0, a0 + ext_s, ex, exs, app)
         # the current window's cyclic runs, the most any stretch 2 inside them reaches
         # and the longest vertex-aligned one: runs only shrink as the window grows,
         # so neither grows with k
@@ -760,10 +772,9 @@ def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, 
         for c in range(ax0.size):
             if masked and not mask[r, c]:
                 continue
-            ox = _outside_one(a0x[r], a1x[r], ax0[c], ax1[c], perx)
-            oy = _outside_one(a0y[r], a1y[r], ay0[c], ay1[c], pery)
             la, lc = ax1[c] - ax0[c], ay1[c] - ay0[c]
-            ta, tc = (ox + tol) / keep, (oy + tol) / keep
+            ta = _side_threshold(a0x[r], a1x[r], ax0[c], ax1[c], perx, tol, keep)
+            tc = _side_threshold(a0y[r], a1y[r], ay0[c], ay1[c], pery, tol, keep)
             if la > ta and lc > tc:
                 out[r] = min(out[r], max(ta, tc))
 
@@ -1344,6 +1355,7 @@ TABLE_CELLS = 50_000_000
 _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
+                                   _copy_side, _side_threshold,
                                    _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_memo, _single,

@@ -474,9 +474,7 @@ def _sub_stretches(ring: _Ring, i: int, k: int, need: float) -> np.ndarray:
     # the first last edge e with U[e + 1] - U[start] >= need, up to the last edge i0 + k
     first_last = np.searchsorted(U, U[starts] + need, side="left") - 1
     first_last = np.maximum(first_last, starts)
-    n = i0 + k - first_last + 1
-    keep = n > 0
-    starts, first_last, n = starts[keep], first_last[keep], n[keep]
+    n = i0 + k - first_last + 1             # at least 1: every start reaches ``need``
     s = np.repeat(starts, n)
     last = np.repeat(first_last, n) + (np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n))
     return np.stack([s - m, last - s], axis=1).astype(np.int64)
@@ -535,11 +533,11 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
         alive = _own_optimum_of(rings, found, np.ones(len(found), bool), similar)
         return [f for f in alive if not f.similar]
     limit = min(2 * top, len(found))
+    ts = np.array([f.t for f in found], float)
     asked: set[int] = set()
     beaten: set[int] = set()
     while True:
-        last = found[limit - 1].t * (1 - TIE) if limit else np.inf
-        check = np.array([f.t >= last for f in found], bool)
+        check = ts >= (ts[limit - 1] * (1 - TIE) if limit else np.inf)
         check[:limit] = True
         alive = [f for f in _own_optimum_of(rings, found, check, similar) if not f.similar]
         if demand is not None:
@@ -551,7 +549,7 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
         n_checked = int(check.sum())
         # decided: the top-th own optimum and its ties lie above every row not checked
         if n_checked == len(found) or (len(alive) >= top and alive[top - 1].t * (1 - TIE)
-                                       > found[n_checked].t):
+                                       > ts[n_checked]):
             return alive
         limit = min(2 * limit, len(found))
 
