@@ -373,6 +373,42 @@ def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
 
 
 @pytest.mark.parametrize("seed", seeds(3, 80))
+def test_shared_end_intervals_are_read_cell_by_cell(seed):
+    """The end intervals of windows that share an edge (a configuration's shifted
+    copies), answered from sparse tables of the cells their span covers
+    (``window_boxes_shared``), are those read cell by cell (``window_boxes``, and numpy)
+    bit for bit: windows of every length from 0 to a whole ring, through the ring's
+    last vertex, a few edges each with many windows, and edges with too few or too
+    spread out windows to table."""
+    poly, mu, margin = part(seed)
+    beta = _beta(mu, margin)
+    rings = _rings(poly)
+    rng = np.random.default_rng(seed)
+    for x, y in [(0, 0)] + ([(0, 1)] if len(rings) > 1 else []):
+        mb = rings[y].m
+        for sigma in (1.0, -1.0):
+            iv = _Intervals(rings[x], rings[y], sigma, beta)
+            shared = rng.integers(0, rings[x].m, 4)
+            n = 400
+            edge = np.where(rng.random(n) < 0.9, rng.choice(shared, n),
+                            rng.integers(0, rings[x].m, n))
+            centre = rng.integers(0, mb, rings[x].m)[edge]
+            start = (centre + rng.integers(-6, 7, n)) % mb
+            count = rng.integers(0, min(mb, 16), n)
+            count[rng.random(n) < 0.05] = mb            # whole rings
+            count[rng.random(n) < 0.1] = 0
+            start[rng.random(n) < 0.1] = mb - 1         # through the last vertex
+            args = (edge.astype(np.int64), start.astype(np.int64), count.astype(np.int64),
+                    *iv._flat, sigma, W._EPS)
+            got = _stretch_kernels.window_boxes_shared(*args)
+            want = _stretch_kernels.window_boxes(*args)
+            numpy = iv.window(edge, start, count)
+            for g, w, v in zip(got, want, numpy, strict=True):
+                np.testing.assert_array_equal(g, w)
+                np.testing.assert_array_equal(g, v)
+
+
+@pytest.mark.parametrize("seed", seeds(3, 80))
 def test_compiled_end_intervals_are_the_numpy_ones(seed, monkeypatch):
     """The intersection of an edge's intervals against a window of vertices (the ends'
     boxes of every configuration's system), compiled and by numpy; compiled with the

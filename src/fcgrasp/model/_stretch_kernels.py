@@ -725,6 +725,79 @@ def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, 
     return lo, hi
 
 
+def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
+                         ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
+                         eps: float) -> Any:
+    """:func:`_window_boxes` of a batch whose windows share edges (the shifted copies
+    of a configuration): the windows of one edge, where there are
+    :data:`SHARED_WINDOWS` or more and their span is at most :data:`SHARED_SPAN` times
+    their mean length, read the cells of the span once and answer each window by two
+    look-ups in sparse tables of their running maxima and minima.  A max and a min are
+    exact in any order: the same numbers; other edges' windows are read cell by cell."""
+    n, mb = edge.size, bx.size
+    lo, hi = np.zeros(n), np.full(n, np.inf)
+    order = np.argsort(edge, kind="mergesort")
+    g0 = 0
+    while g0 < n:
+        e = edge[order[g0]]
+        g1 = g0
+        total, first, end = 0, 1 << 62, -(1 << 62)
+        while g1 < n and edge[order[g1]] == e:
+            j = order[g1]
+            if count[j] > 0:
+                s = start[j] % mb
+                first, end = min(first, s), max(end, s + count[j])
+                total += count[j]
+            g1 += 1
+        span = end - first
+        if g1 - g0 < SHARED_WINDOWS or total == 0 or \
+                span * (g1 - g0) > SHARED_SPAN * total or span > 2 * mb:
+            for q in range(g0, g1):             # cell by cell (_window_boxes)
+                j = order[q]
+                if count[j] <= 0:
+                    continue
+                a_max, b_min = -np.inf, np.inf
+                for k in range(count[j]):
+                    a, b = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps, e,
+                                     (start[j] + k) % mb)
+                    a_max, b_min = max(a_max, a), min(b_min, b)
+                lo[j], hi[j] = a_max, b_min
+            g0 = g1
+            continue
+        levels = 1
+        while (1 << levels) <= span:
+            levels += 1
+        tmax = np.empty((levels, span))
+        tmin = np.empty((levels, span))
+        for i in range(span):
+            tmax[0, i], tmin[0, i] = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps,
+                                               e, (first + i) % mb)
+        for v in range(1, levels):
+            h = 1 << (v - 1)
+            for i in range(span - (1 << v) + 1):
+                tmax[v, i] = max(tmax[v - 1, i], tmax[v - 1, i + h])
+                tmin[v, i] = min(tmin[v - 1, i], tmin[v - 1, i + h])
+        for q in range(g0, g1):
+            j = order[q]
+            c = count[j]
+            if c <= 0:
+                continue
+            i = start[j] % mb - first
+            v = 0
+            while (2 << v) <= c:
+                v += 1
+            i2 = i + c - (1 << v)
+            lo[j] = max(tmax[v, i], tmax[v, i2])
+            hi[j] = min(tmin[v, i], tmin[v, i2])
+        g0 = g1
+    return lo, hi
+
+
+#: Windows of one edge from which :func:`_window_boxes_shared` tables their cells, and
+#: how many times the windows' mean length their span may be.
+SHARED_WINDOWS, SHARED_SPAN = 4, 8
+
+
 def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
                        ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
                        eps: float, tlo: Any, thi: Any) -> Any:
@@ -1358,7 +1431,8 @@ _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_run
                                    _copy_side, _side_threshold,
                                    _window_row, _buffers,
                                    _every_row, _top_add, _windows,
-                                   _interval, _window_boxes, _window_boxes_memo, _single,
+                                   _interval, _window_boxes, _window_boxes_shared,
+                                   _window_boxes_memo, _single,
                                    _below, _solve_rows, _by_start, _inside_supers, _outside_one,
                                    _exclusion_rows, _excess_at, _least_excess, _surely_copy,
                                    _similar_rows,
@@ -1450,6 +1524,11 @@ def similar_rows(*args: Any) -> None:
 def inside_supers(*args: Any) -> None:
     """Compiled :func:`_inside_supers`."""
     _load()["_inside_supers"](*args)
+
+
+def window_boxes_shared(*args: Any) -> Any:
+    """Compiled :func:`_window_boxes_shared`."""
+    return _load()["_window_boxes_shared"](*args)
 
 
 def window_boxes_memo(*args: Any) -> Any:

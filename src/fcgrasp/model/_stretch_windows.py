@@ -164,9 +164,10 @@ class _Intervals:
                compiled: bool = False) -> tuple[FloatArray, FloatArray]:
         """For each edge, the intersection of its intervals against vertices
         ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
-        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes`, or its
-        ``_memo`` form reading the cells from a table up to :data:`MEMO_CELLS`, once the
-        windows have asked for an eighth of them)."""
+        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes_shared`,
+        which reads the cells an edge's windows share once, or the ``_memo`` form of
+        ``window_boxes`` reading the cells from a table up to :data:`MEMO_CELLS`, once
+        the windows have asked for an eighth of them)."""
         if compiled:
             args = (np.asarray(edge, np.int64), np.asarray(start, np.int64),
                     np.asarray(count, np.int64), *self._flat, self.sigma, _EPS)
@@ -177,7 +178,7 @@ class _Intervals:
             # more than half, a distinct search's each cell many times)
             if cells > MEMO_CELLS or (self._memo is None and 8 * self._asked < cells):
                 return cast("tuple[FloatArray, FloatArray]",
-                            _stretch_kernels.window_boxes(*args))
+                            _stretch_kernels.window_boxes_shared(*args))
             if self._memo is None:
                 shape = (self.ra.m, self.rb.m)
                 self._memo = (np.full(shape, np.nan), np.full(shape, np.nan))

@@ -98,6 +98,13 @@ def _stretches(blob: Any) -> None:
                                     z.copy())
     _stretch_kernels.similar_rows(np.zeros((1, 4)), np.zeros((1, 4)), z, z, z, z, 1.0, 1.0,
                                   0.0, 0.5, z, cells, False, np.zeros(1, bool))
+    # the end intervals of windows sharing an edge, with the types of the search's calls
+    from ..model._stretch_windows import _EPS, _Intervals, _rings
+
+    ring = _rings(blob)[0]
+    iv = _Intervals(ring, ring, 1.0, 0.2)
+    one = np.ones(1, np.int64)
+    _stretch_kernels.window_boxes_shared(0 * one, one, one, *iv._flat, 1.0, _EPS)
     _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
                                    np.zeros(1, bool))
     # the fused scores of every feature pair (a top-k search's candidates)
