@@ -378,8 +378,8 @@ def test_shared_end_intervals_are_read_cell_by_cell(seed):
     copies), answered from sparse tables of the cells their span covers
     (``window_boxes_shared``), are those read cell by cell (``window_boxes``, and numpy)
     bit for bit: windows of every length from 0 to a whole ring, through the ring's
-    last vertex, a few edges each with many windows, and edges with too few or too
-    spread out windows to table."""
+    last vertex, a few edges each with many windows (tabled), edges with a few windows
+    (their cells read once) and edges with one."""
     poly, mu, margin = part(seed)
     beta = _beta(mu, margin)
     rings = _rings(poly)
@@ -388,10 +388,13 @@ def test_shared_end_intervals_are_read_cell_by_cell(seed):
         mb = rings[y].m
         for sigma in (1.0, -1.0):
             iv = _Intervals(rings[x], rings[y], sigma, beta)
-            shared = rng.integers(0, rings[x].m, 4)
+            shared = rng.integers(0, rings[x].m, 4)         # many windows: tables
+            few = rng.integers(0, rings[x].m, 30)           # a few: the cells read once
             n = 400
-            edge = np.where(rng.random(n) < 0.9, rng.choice(shared, n),
-                            rng.integers(0, rings[x].m, n))
+            u = rng.random(n)
+            edge = np.where(u < 0.6, rng.choice(shared, n),
+                            np.where(u < 0.9, rng.choice(few, n),
+                                     rng.integers(0, rings[x].m, n)))
             centre = rng.integers(0, mb, rings[x].m)[edge]
             start = (centre + rng.integers(-6, 7, n)) % mb
             count = rng.integers(0, min(mb, 16), n)

@@ -729,11 +729,12 @@ def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx
                          ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
                          eps: float) -> Any:
     """:func:`_window_boxes` of a batch whose windows share edges (the shifted copies
-    of a configuration): the windows of one edge, where there are
-    :data:`SHARED_WINDOWS` or more and their span is at most :data:`SHARED_SPAN` times
-    their mean length, read the cells of the span once and answer each window by two
-    look-ups in sparse tables of their running maxima and minima.  A max and a min are
-    exact in any order: the same numbers; other edges' windows are read cell by cell."""
+    of a configuration): the windows of one edge whose span is shorter than their
+    lengths added up read the cells of the span once (:func:`_interval`, most of the
+    cost), then each window's maximum and minimum over them, by two look-ups in sparse
+    tables where their levels cost less than reading every window's cells.  A max and
+    a min are exact in any order: the same numbers; other edges' windows are read cell
+    by cell."""
     n, mb = edge.size, bx.size
     lo, hi = np.zeros(n), np.full(n, np.inf)
     order = np.argsort(edge, kind="mergesort")
@@ -750,8 +751,7 @@ def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx
                 total += count[j]
             g1 += 1
         span = end - first
-        if g1 - g0 < SHARED_WINDOWS or total == 0 or \
-                span * (g1 - g0) > SHARED_SPAN * total or span > 2 * mb:
+        if total == 0 or span >= total or span > 2 * mb:
             for q in range(g0, g1):             # cell by cell (_window_boxes)
                 j = order[q]
                 if count[j] <= 0:
@@ -767,35 +767,38 @@ def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx
         levels = 1
         while (1 << levels) <= span:
             levels += 1
-        tmax = np.empty((levels, span))
-        tmin = np.empty((levels, span))
+        tabled = span * levels < total
+        tmax = np.empty((levels if tabled else 1, span))
+        tmin = np.empty((levels if tabled else 1, span))
         for i in range(span):
             tmax[0, i], tmin[0, i] = _interval(ax, ay, tx, ty, L, gx, bx, by, gy, sigma, eps,
                                                e, (first + i) % mb)
-        for v in range(1, levels):
-            h = 1 << (v - 1)
-            for i in range(span - (1 << v) + 1):
-                tmax[v, i] = max(tmax[v - 1, i], tmax[v - 1, i + h])
-                tmin[v, i] = min(tmin[v - 1, i], tmin[v - 1, i + h])
+        if tabled:
+            for v in range(1, levels):
+                h = 1 << (v - 1)
+                for i in range(span - (1 << v) + 1):
+                    tmax[v, i] = max(tmax[v - 1, i], tmax[v - 1, i + h])
+                    tmin[v, i] = min(tmin[v - 1, i], tmin[v - 1, i + h])
         for q in range(g0, g1):
             j = order[q]
             c = count[j]
             if c <= 0:
                 continue
             i = start[j] % mb - first
-            v = 0
-            while (2 << v) <= c:
-                v += 1
-            i2 = i + c - (1 << v)
-            lo[j] = max(tmax[v, i], tmax[v, i2])
-            hi[j] = min(tmin[v, i], tmin[v, i2])
+            if tabled:
+                v = 0
+                while (2 << v) <= c:
+                    v += 1
+                i2 = i + c - (1 << v)
+                lo[j] = max(tmax[v, i], tmax[v, i2])
+                hi[j] = min(tmin[v, i], tmin[v, i2])
+                continue
+            a_max, b_min = -np.inf, np.inf
+            for k in range(i, i + c):
+                a_max, b_min = max(a_max, tmax[0, k]), min(b_min, tmin[0, k])
+            lo[j], hi[j] = a_max, b_min
         g0 = g1
     return lo, hi
-
-
-#: Windows of one edge from which :func:`_window_boxes_shared` tables their cells, and
-#: how many times the windows' mean length their span may be.
-SHARED_WINDOWS, SHARED_SPAN = 4, 8
 
 
 def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
