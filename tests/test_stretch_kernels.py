@@ -939,3 +939,29 @@ def test_a_stretchs_ends_are_its_polylines_ends():
             assert got.tobytes() == np.stack((pts[0], pts[-1])).tobytes()
             trimmed += len(pts) < k + 2
     assert trimmed > 200
+
+
+@pytest.mark.parametrize("seed", seeds(2, 12))
+def test_a_collection_read_in_blocks_of_rows_is_the_whole_one(seed):
+    """The compiled collection read in blocks of rows (a budget check before each, the
+    sparse table built once) gives the configurations of the collection read at once,
+    in the same order, with and without a kept plan's copies left out."""
+    rng = np.random.default_rng(seed)
+    poly = smooth_outline(rng, "ellipse", int(rng.integers(500, 900)))
+    ss = S.StretchSearch(poly, float(rng.uniform(0.3, 1.0)), 0.5)
+    best = ss.pairs(top=1)[0]
+    excl = X._Exclusion(ss.rings, poly, [(best.regions, best.region_edges)], 0.5)
+    ring = ss.rings[0]
+    floor = best.min_length * float(rng.uniform(0.5, 0.9))
+    for sigma in (1.0, -1.0):
+        ptr, first, last = ss.runs[0, 0][sigma]
+        for copies in (None, excl.copy_columns(ss.rings, 0, 0, floor)):
+            ex, exs = copies if copies is not None else (None, None)
+            calls = []
+            args = (ptr, first, last, ring.U, ring.U, ring.m, ring.m, floor, True, True)
+            whole = _stretch_kernels.windows(*args, 0.0, 1, ex=ex, exs=exs)
+            blocks = _stretch_kernels.windows(*args, 0.0, 1, ex=ex, exs=exs,
+                                              between=lambda c=calls: c.append(1))
+            assert len(calls) == -(-ring.m // _stretch_kernels.COLLECT_ROWS) > 1
+            for w, b in zip(whole[1:], blocks[1:], strict=True):
+                np.testing.assert_array_equal(w, b)

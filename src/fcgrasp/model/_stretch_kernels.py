@@ -595,12 +595,13 @@ def _buffers(mb: int) -> Any:
 
 
 def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-               floor: float, collect: bool, same: bool, ex: Any, exs: Any) -> Any:
-    """:func:`_windows` reading every row from its first window on."""
+               floor: float, collect: bool, same: bool, ex: Any, exs: Any, r0: int,
+               r1: int) -> Any:
+    """:func:`_windows` reading every row of ``r0 .. r1 - 1`` from its first window on."""
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
     n_out = 0
-    for r in range(ma if ptr[ma] > 0 else 0):       # no runs: no window
+    for r in range(r0, r1 if ptr[ma] > 0 else r0):  # no runs: no window
         nc = 0
         for q in range(ptr[r], ptr[r + 1]):
             cs[nc], ce[nc] = first[q], last[q]
@@ -611,9 +612,18 @@ def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: i
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
+def _table(ptr: Any, first: Any, last: Any, ma: int) -> Any:
+    """:func:`_run_table` with as many levels as a window of ``ma - 2`` rows needs."""
+    levels = 1
+    while (1 << levels) <= ma - 2:
+        levels += 1
+    return _run_table(ptr, first, last, ma, levels)
+
+
 def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
              floor: float, collect: bool, same: bool, value: float, keep: int,
-             short: int, ex: Any, exs: Any) -> Any:
+             short: int, ex: Any, exs: Any, r0: int, r1: int, tptr: Any, tf: Any, tl: Any,
+             levels: int) -> Any:
     """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
     search, row by row).
 
@@ -632,22 +642,28 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
     ``keep``-th value, so the floor it gives is the same.  With ``collect`` each row
     starts at the first window long enough for stretch 1 to reach ``floor`` (the
     shorter ones collect nothing; their break test only weakens with ``k``).  Where no
-    window of ``short`` rows has a run, every row is read as without ``keep``."""
+    window of ``short`` rows has a run, every row is read as without ``keep``.
+
+    A collection reads the rows ``r0 .. r1 - 1`` (a block of them: :func:`windows`), with
+    the sparse table ``tptr, tf, tl`` of ``levels`` levels (:func:`_table`; built here
+    where ``levels`` is 0)."""
+    if not collect:
+        r0, r1 = 0, ma
     if keep <= 0 or ma < 4 or ptr[ma] == 0:
-        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs)
-    levels = 1
-    while (1 << levels) <= ma - 2:
-        levels += 1
-    tptr, tf, tl, levels = _run_table(ptr, first, last, ma, levels)
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs,
+                          r0, r1)
+    if levels == 0:
+        tptr, tf, tl, levels = _table(ptr, first, last, ma)
     k_max = min(ma - 2, (1 << levels) - 1)     # a longer window contains an empty entry
     if k_max < short:
         # short windows only (a noisy outline): reading them all costs less than sorting
-        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs)
+        return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs,
+                          r0, r1)
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
     n_out = 0
     if collect:
-        for r in range(ma):
+        for r in range(r0, r1):
             i = (r - 1) % ma + ma
             # the first k whose stretch 1 reaches the floor (by bisection: ext_s grows)
             k, k_hi = 1, k_max + 1
@@ -1431,7 +1447,7 @@ TABLE_CELLS = 50_000_000
 _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
-                                   _copy_side, _side_threshold,
+                                   _copy_side, _side_threshold, _table,
                                    _window_row, _buffers,
                                    _every_row, _top_add, _windows,
                                    _interval, _window_boxes, _window_boxes_shared,
@@ -1488,14 +1504,33 @@ def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
-            short: int = _SHORT, ex: Any = None, exs: Any = None) -> Any:
+            short: int = _SHORT, ex: Any = None, exs: Any = None, between: Any = None
+            ) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
-    for every caller; ``ex``, ``exs``: no kept plans where not given)."""
+    for every caller; ``ex``, ``exs``: no kept plans where not given).  ``between``: a
+    collection reads the rows in blocks (:data:`COLLECT_ROWS`, the sparse table built
+    once) and calls it before each (a budget's check may end the collection there)."""
+    loops = _load()
     ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
     ex = np.zeros((4, 0)) if ex is None else np.ascontiguousarray(ex, float)
     exs = np.zeros(5) if exs is None else np.ascontiguousarray(exs, float)
-    return _load()["_windows"](ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same,
-                               float(value), int(keep), int(short), ex, exs)
+    args = (ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same, float(value),
+            int(keep), int(short), ex, exs)
+    none = (np.zeros((0, 0), np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64), 0)
+    if not collect or between is None:
+        return loops["_windows"](*args, 0, ma, *none)
+    table = loops["_table"](ptr, first, last, ma) if ma >= 4 and ptr[ma] > 0 else none
+    parts = []
+    for r0 in range(0, ma, COLLECT_ROWS):
+        between()
+        parts.append(loops["_windows"](*args, r0, min(r0 + COLLECT_ROWS, ma), *table))
+    return (parts[0][0], *(np.concatenate([p[j] for p in parts]) for j in range(1, 5)))
+
+
+#: Rows of a block of a collection of :func:`windows`, with a budget check before each:
+#: a block of a smooth 10,000-edge outline's collection takes at most a few tenths of a
+#: second, and a ring of fewer rows is one block.
+COLLECT_ROWS = 256
 
 
 def single(*args: Any) -> Any:

@@ -179,12 +179,13 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
 
 
 def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
-          bound: _Bound | None = None, copies: tuple[FloatArray, FloatArray] | None = None
-          ) -> tuple[FloatArray, _Configs]:
+          bound: _Bound | None = None, copies: tuple[FloatArray, FloatArray] | None = None,
+          between: Any = None) -> tuple[FloatArray, _Configs]:
     """:func:`_windows_both`, compiled for large rings (pruned by ``bound``'s value: the
     lower bounds it leaves out could not raise it; ``copies``: the kept plans' columns
     whose surely copies from ``floor`` on the compiled collection leaves out,
-    :meth:`_Exclusion.copy_columns`)."""
+    :meth:`_Exclusion.copy_columns`; ``between``: called between the compiled
+    collection's blocks of rows, :func:`fcgrasp.model._stretch_kernels.windows`)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
         # (a collection reads each row from its first window long enough, by the
@@ -192,7 +193,8 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
         value, keep = (bound.value, bound.k) if bound is not None else (0.0, int(collect))
         ex, exs = copies if copies is not None else (None, None)
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
-                                              collect, same, value, keep, ex=ex, exs=exs)
+                                              collect, same, value, keep, ex=ex, exs=exs,
+                                              between=between)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
     return _windows_both(runs, ra, rb, same, floor, collect)
 
@@ -286,9 +288,11 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             if x <= y:
                 copies = exclude.copy_columns(rings, x, y, bound.floor) \
                     if collect and exclude is not None else None
+                # a distinct round's collection may be ended by the budget; the ranked
+                # search's first answer only inside a deeper read (budget.poll)
                 best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect,
                                    bound if prebound and bound.fixed is None else None,
-                                   copies)
+                                   copies, budget.check if exclude else budget.poll)
                 if not collect and prebound:
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)

@@ -105,6 +105,9 @@ def _stretches(blob: Any) -> None:
     iv = _Intervals(ring, ring, 1.0, 0.2)
     one = np.ones(1, np.int64)
     _stretch_kernels.window_boxes_shared(0 * one, one, one, *iv._flat, 1.0, _EPS)
+    # a collection read in blocks of rows (its sparse table built once)
+    _stretch_kernels._load()["_table"](np.zeros(5, np.int64), np.zeros(0, np.int64),
+                                       np.zeros(0, np.int64), 4)
     _stretch_kernels.inside_supers(zi, zi, zi, zi, zi, zi, zi, np.zeros((1, 4), np.int64), 1, 1,
                                    np.zeros(1, bool))
     # the fused scores of every feature pair (a top-k search's candidates)
