@@ -82,6 +82,9 @@ class PlanRequest:
     margin: float = DEFAULT_MARGIN_DEG
     workspace: tuple[float, float, float] | None = None
     finger_radius: float = 0.0
+    hand: str | None = None
+    thickness: float | None = None
+    table: bool = False
     max_memory: int | None = None
     time_limit: float | None = None
     distinct: float | None = None
@@ -306,7 +309,7 @@ class PlanRequest:
 
     def plan_options(self) -> dict[str, Any]:
         """The planning options (:data:`PLAN_OPTIONS`), as given."""
-        return {k: getattr(self, k) for k in PLAN_OPTIONS}
+        return {**{k: getattr(self, k) for k in PLAN_OPTIONS}, "units": self.units}
 
     def is_solid(self) -> bool:
         """The part is a solid: a mesh file or a built-in solid (``demo:box``...)."""

@@ -21,6 +21,7 @@ from ...model.distinct import (
     distinct_boxes,
     grip_symmetries,
 )
+from ...model.hands import ParallelHand, hand_named
 from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import DEFAULT_MU, register
@@ -39,6 +40,7 @@ from ._grid import (
     _grid,
     _measure,
 )
+from ._pick import Scene, TopPick, pose_of, top_pick
 from ._poses import (
     OFFSET_STEPS,
     THETA_STEP_DEG,
@@ -58,11 +60,56 @@ class ParallelJaw(JawParameters):
     (10.0, 50.0)
     """
 
+    #: the hand's geometry (:class:`~fcgrasp.model.hands.ParallelHand`, in the part's
+    #: units): the part is then a plate picked from above (``scene``), every plan's box
+    #: collision free (:mod:`fcgrasp.grippers.jaw._pick`), each with its pose
+    hand: ParallelHand | None = None
+    #: the plate and the table of a pick with a hand (:class:`Scene`)
+    scene: Scene | None = None
+
     name: ClassVar[str] = "jaw"
     #: ``distinct=`` when none is given: the boxes are distinct
     #: alternatives, mirror images and neighbouring slices of one contact configuration
     #: merged (:meth:`distinct_plans`); ``distinct=0`` gives every box, as ranked
     default_distinct: ClassVar[float] = DEFAULT_DISTINCT
+
+    def __post_init__(self) -> None:
+        super().__post_init__()
+        if self.hand is None:
+            if self.scene is not None:
+                raise ValueError("scene needs a hand: a plate and a table are for a hand "
+                                 "model's pick")
+            return
+        if not isinstance(self.hand, ParallelHand):
+            raise TypeError(f"hand must be a ParallelHand, got {type(self.hand).__name__}")
+        if abs(self.pad_width - self.hand.pad_width) > TOL * self.hand.pad_width:
+            raise ValueError(f"pad_width must be the hand's pad width "
+                             f"({self.hand.pad_width:g}), got {self.pad_width:g}")
+        lo, hi = self.hand.stroke
+        if self.stroke[0] < lo * (1 - TOL) or self.stroke[1] > hi * (1 + TOL):
+            raise ValueError(f"stroke must be within the hand's ({lo:g}, {hi:g}), got "
+                             f"{self.stroke!r}")
+        if self.scene is None:
+            pz0, pz1 = self.hand.pad_span
+            object.__setattr__(self, "scene", Scene(pz1 - pz0))
+        elif not isinstance(self.scene, Scene):
+            raise TypeError(f"scene must be a Scene, got {type(self.scene).__name__}")
+
+    @classmethod
+    def of_hand(cls, hand: ParallelHand, mu: float, scene: Scene | None = None,
+                certify: bool = True) -> ParallelJaw:
+        """The jaw of a hand: its stroke and pad width, picking a plate from above
+        (``scene``; by default a plate as thick as the pad is tall, on no table)."""
+        return cls(stroke=hand.stroke, pad_width=hand.pad_width, mu=mu, certify=certify,
+                   hand=hand, scene=scene)
+
+    @property
+    def pick(self) -> TopPick | str | None:
+        """How the hand picks the plate (:func:`top_pick`), why it cannot, or None
+        without a hand."""
+        if self.hand is None or self.scene is None:
+            return None
+        return top_pick(self.hand, self.scene)
 
     # the gripper interface (fcgrasp.grippers.base.Gripper)
     def distinct_plans(self, polygon: Polygon, plans: list[JawPlan],
@@ -84,18 +131,27 @@ class ParallelJaw(JawParameters):
         if options.rank_by != "min_region":
             raise ValueError(f"a parallel jaw ranks its boxes by their measure: "
                              f"rank_by={options.rank_by!r} would not be used")
+        if isinstance(self.pick, str):
+            return []                   # the hand cannot reach the plate (the reason)
+        # a hand's closed fingers need room in a hole, which the pick does not bound
         return jaw_plans(polygon, self, top=options.top, margin=options.margin,
-                         certify=self.certify)
+                         certify=self.certify, internal=self.hand is None)
 
     def check_part(self, polygon: Polygon, options: Any) -> None:
         """Nothing to refuse before the search."""
 
     def parameters(self, options: Any) -> dict[str, Any]:
-        return {"gripper": "parallel_jaw", "stroke": list(self.stroke),
-                "pad_width": self.pad_width, "mu": self.mu, "top": options.top,
-                "margin_deg": options.margin, "certify": self.certify}
+        out = {"gripper": "parallel_jaw", "stroke": list(self.stroke),
+               "pad_width": self.pad_width, "mu": self.mu, "top": options.top,
+               "margin_deg": options.margin, "certify": self.certify}
+        if self.hand is not None and self.scene is not None:
+            out["hand"] = self.hand.to_dict()
+            out["scene"] = self.scene.to_dict()
+        return out
 
     def no_grasp_reason(self, margin: float) -> str:
+        if isinstance(self.pick, str):
+            return self.pick
         return (f"no pose of the jaw holds the part (stroke {self.stroke[0]:g} to "
                 f"{self.stroke[1]:g}, pads {self.pad_width:g} wide, mu = {self.mu:g}, "
                 f"margin {margin:g} degrees)")
@@ -142,15 +198,48 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
         if given:
             raise ValueError(f"{opt} is an option of point fingers, not of --gripper jaw")
     stroke, pad = options.get("stroke"), options.get("pad")
+    mu = DEFAULT_MU if options.get("mu") is None else options["mu"]
+    hand = options.get("hand")
+    if hand is not None:
+        return _jaw_of_hand(options, hand, mu)
+    for opt, name in (("--thickness", "thickness"), ("--table", "table")):
+        if options.get(name):
+            raise ValueError(f"{opt} is for a pick with a hand: give --hand too")
     if stroke is None or pad is None:
         missing = "--stroke MIN,MAX" if stroke is None else "--pad WIDTH"
         raise ValueError(f"{missing} is needed: --gripper jaw needs --stroke MIN,MAX and "
                          f"--pad WIDTH (in the part's units)")
-    mu = DEFAULT_MU if options.get("mu") is None else options["mu"]
     if not (math.isfinite(mu) and mu > 0):
         raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
     return ParallelJaw(stroke=(stroke[0], stroke[1]), pad_width=pad, mu=mu,
                        certify=options.get("certify") is not False)
+
+
+def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJaw:
+    """The jaw of ``--hand NAME`` (a built-in hand, :data:`~fcgrasp.model.hands.HANDS`),
+    in the part's units, picking a plate ``--thickness`` thick (by default as thick as
+    the pad is tall) from above, on a table with ``--table``."""
+    from ...io.units import MM_PER
+
+    if options.get("stroke") is not None or options.get("pad") is not None:
+        raise ValueError("--stroke and --pad are the hand's: give --hand alone")
+    if not (math.isfinite(mu) and mu > 0):
+        raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
+    try:
+        hand = hand_named(name)
+    except ValueError as exc:
+        raise ValueError(f"--hand {exc}") from None
+    per_mm = 1.0 / MM_PER[options.get("units") or "mm"]
+    hand = hand.scaled(per_mm, options.get("units") or "mm")
+    thickness = options.get("thickness")
+    if thickness is None:
+        pz0, pz1 = hand.pad_span
+        thickness = pz1 - pz0
+    elif not (math.isfinite(thickness) and thickness > 0):
+        raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
+    scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
+                  approach=100.0 * per_mm, retreat=100.0 * per_mm)
+    return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 
 register("jaw", jaw_from_options)
@@ -210,6 +299,9 @@ class JawPlan:
         extra: dict[str, Any] = {"similar": self.similar} if self.similar else {}
         if self.payload is not None:
             extra["payload"] = self.payload.to_dict()
+        pick = self.jaw.pick
+        if isinstance(pick, TopPick):
+            extra.update(self.pick_dict(pick))
         return json_ready({**extra,
             "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
             "insert": self.insert,
@@ -224,6 +316,23 @@ class JawPlan:
             "stroke": list(self.jaw.stroke), "pad_width": self.jaw.pad_width,
             "mu": self.jaw.mu,
         })
+
+
+    def pick_dict(self, pick: TopPick) -> dict[str, Any]:
+        """The pick of the box's centre pose with the jaw's hand: the tool frame's pose
+        (:func:`~fcgrasp.grippers.jaw._pick.pose_of`), the opening it comes down at, the
+        approach and the retreat (part frame, the part's units); every pose of the box is
+        collision free (:mod:`fcgrasp.grippers.jaw._pick`)."""
+        assert self.jaw.hand is not None and self.jaw.scene is not None
+        position, orientation = pose_of(self.centroid, self.centre[0], self.centre[1],
+                                        self.stops, pick.height)
+        return {"pose": {"position": position, "orientation": orientation, "frame": "part"},
+                "pre_grasp_opening": self.jaw.hand.stroke[1],
+                "approach": {"direction": [0.0, 0.0, -1.0], "distance": self.jaw.scene.approach,
+                             "frame": "part"},
+                "retreat": {"direction": [0.0, 0.0, 1.0], "distance": self.jaw.scene.retreat,
+                            "frame": "part"},
+                "collision_free": True, "contact_height": pick.contact_height}
 
 
 def _kind(lat: FloatArray, psi: FloatArray, size: float) -> str:

@@ -1,0 +1,234 @@
+"""The geometry of a parallel gripper's hand: its fingers and palm as boxes in the tool
+frame, the workspace-and-shape extension of section 8.2 for a real hand.
+
+**The tool frame** (the frame MoveIt plans for, REP 103 axes): the origin at the centre
+between the two pads' faces, ``y`` the closing axis (finger 1 on ``+y``, finger 2 on
+``-y``, each moving by half the opening), ``z`` the approach direction (from the palm
+towards the fingertips), ``x = y x z`` along the pads' width.  Lengths in millimetres
+(:meth:`ParallelHand.scaled` gives other units).
+
+A hand is a list of boxes: the palm's, fixed, and finger 1's at opening 0 (its inner
+face on ``y = 0``), which move by ``+opening / 2``; finger 2 is finger 1 mirrored in
+``y``.  The *pad* is the finger's box that touches the part: its width along ``x`` is
+the jaw's ``pad_width``.
+
+Built-in hands (:data:`HANDS`) are read from their makers' published descriptions, with
+their sources and licences.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from ..core._checks import FloatArray, check_scalar
+
+__all__ = ["HandBox", "ParallelHand", "HANDS", "hand_named", "hand_from_params"]
+
+
+def _rot_x(angle: float) -> FloatArray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]])
+
+
+@dataclass(frozen=True)
+class HandBox:
+    """A box of the hand: its name, centre and size (mm) and its rotation (3 x 3) in the
+    tool frame."""
+
+    name: str
+    centre: tuple[float, float, float]
+    size: tuple[float, float, float]
+    rotation: tuple[tuple[float, ...], ...] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+                                               (0.0, 0.0, 1.0))
+
+    def corners(self) -> FloatArray:
+        """The eight corners (8, 3) in the tool frame."""
+        half = np.asarray(self.size, float) / 2
+        signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)],
+                         float)
+        out: FloatArray = np.asarray(self.centre, float) + \
+            (signs * half) @ np.asarray(self.rotation, float).T
+        return out
+
+    def moved(self, dy: float, mirror: bool = False) -> HandBox:
+        """The box moved by ``dy`` along ``y`` (after a mirror in ``y`` if asked)."""
+        x, y, z = self.centre
+        R = np.asarray(self.rotation, float)
+        if mirror:
+            M = np.diag([1.0, -1.0, 1.0])
+            R, y = M @ R @ M, -y
+        return replace(self, centre=(x, y + dy, z),
+                       rotation=tuple(tuple(float(v) for v in row) for row in R))
+
+    def scaled(self, factor: float) -> HandBox:
+        return replace(self, centre=tuple(factor * v for v in self.centre),  # type: ignore[arg-type]
+                       size=tuple(factor * v for v in self.size))  # type: ignore[arg-type]
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "centre": list(self.centre), "size": list(self.size),
+                "rotation": [list(r) for r in self.rotation]}
+
+
+@dataclass(frozen=True)
+class ParallelHand:
+    """A parallel gripper's hand (the module's docstring: frame and boxes).
+
+    ``stroke``: the least and largest opening between the pads' faces; ``pad``: the name
+    of finger 1's box that touches the part; ``joints``: the finger joints' names, and
+    each joint's position per unit of opening (in the joint's own unit per millimetre:
+    the Franka Hand's two prismatic joints move by half the opening in metres, 0.0005);
+    ``source`` and ``licence`` of the description the geometry was read from."""
+
+    name: str
+    stroke: tuple[float, float]
+    palm: tuple[HandBox, ...]
+    finger: tuple[HandBox, ...]
+    pad: str
+    joints: tuple[str, ...] = ()
+    joint_per_opening: float = 0.0005
+    source: str = ""
+    licence: str = ""
+    units: str = "mm"
+    #: the tool frame's parent link in the description (MoveIt's end-effector frame)
+    ee_frame: str = ""
+    notes: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        lo = check_scalar(self.stroke[0], "stroke[0]", nonnegative=True)
+        hi = check_scalar(self.stroke[1], "stroke[1]", positive=True)
+        if hi < lo:
+            raise ValueError(f"stroke must have min_opening <= max_opening, got {self.stroke!r}")
+        if self.pad not in {b.name for b in self.finger}:
+            raise ValueError(f"pad must name one of the finger's boxes "
+                             f"({', '.join(b.name for b in self.finger)}), got {self.pad!r}")
+        object.__setattr__(self, "stroke", (lo, hi))
+        corners = self.pad_box.corners()
+        face = float(corners[:, 1].min())
+        if abs(face) > 1e-9 * max(1.0, float(np.abs(corners).max())):
+            raise ValueError(f"the pad's face must lie on y = 0 (the tool frame's "
+                             f"closing plane at opening 0), got y = {face:g}")
+
+    @property
+    def pad_box(self) -> HandBox:
+        return next(b for b in self.finger if b.name == self.pad)
+
+    @property
+    def pad_width(self) -> float:
+        """The pad's width along ``x``: the jaw's ``pad_width``."""
+        return float(self.pad_box.size[0])
+
+    @property
+    def pad_span(self) -> tuple[float, float]:
+        """The pad's extent along the approach ``z`` (tool frame)."""
+        z = self.pad_box.corners()[:, 2]
+        return float(z.min()), float(z.max())
+
+    def boxes(self, opening: float) -> list[HandBox]:
+        """Every box of the hand at ``opening`` (tool frame): the palm's, finger 1's, then
+        finger 2's."""
+        half = float(opening) / 2
+        return list(self.palm) + [b.moved(half) for b in self.finger] + \
+            [b.moved(-half, mirror=True) for b in self.finger]
+
+    def in_strip(self, box: HandBox) -> bool:
+        """Whether a finger box (of finger 1 at opening 0) lies in the pad's strip and
+        behind the pad's face: within the pad's width along ``x`` and at ``y >= 0``."""
+        c = box.corners()
+        tol = 1e-9 * max(1.0, float(np.abs(c).max()))
+        return bool(np.all(np.abs(c[:, 0]) <= self.pad_width / 2 + tol)
+                    and np.all(c[:, 1] >= -tol))
+
+    def scaled(self, factor: float, units: str) -> ParallelHand:
+        """The hand in other units (``factor`` of those per millimetre)."""
+        f = check_scalar(factor, "factor", positive=True)
+        return replace(self, stroke=(f * self.stroke[0], f * self.stroke[1]),
+                       palm=tuple(b.scaled(f) for b in self.palm),
+                       finger=tuple(b.scaled(f) for b in self.finger), units=units,
+                       joint_per_opening=self.joint_per_opening / f)
+
+    def to_dict(self, opening: float | None = None) -> dict[str, Any]:
+        """JSON-ready: the source and licence, the joints and their limits, and the
+        collision boxes in the tool frame at ``opening`` (the largest by default)."""
+        at = self.stroke[1] if opening is None else float(opening)
+        return {"name": self.name, "source": self.source, "licence": self.licence,
+                "units": self.units, "ee_frame": self.ee_frame,
+                "frame": "tool: origin between the pads' faces, y closing, z approach",
+                "stroke": list(self.stroke), "pad_width": self.pad_width,
+                "joints": [{"name": j, "lower": self.joint_per_opening * self.stroke[0],
+                            "upper": self.joint_per_opening * self.stroke[1],
+                            "per_opening": self.joint_per_opening} for j in self.joints],
+                "opening": at, "boxes": [b.to_dict() for b in self.boxes(at)]}
+
+
+def _franka() -> ParallelHand:
+    """The Franka Hand (``franka_description``, ``end_effectors/common/franka_hand.xacro``
+    and ``meshes/robot_ee/franka_hand_white/collision/hand.stl``): the fingers' four
+    collision boxes as published; the palm as the bounding box of its collision mesh.
+    The tool frame is the description's ``hand_tcp`` (103.4 mm from the flange), whose
+    origin is 0.25 mm from the rubber tips' centre; the finger joints sit 58.4 mm from
+    the flange and move 0 to 40 mm each.  The rubber tip's face stands 0.02 mm in front
+    of its joint's plane: the finger is moved back by that much, so that the opening is
+    the distance between the tips' faces (each joint then at half the opening plus
+    0.02 mm, below any tolerance of the hand)."""
+    z0 = 58.4 - 103.4                   # the finger joint's height in the tool frame
+    dy = 0.02                           # the tip's face on y = 0
+    finger = (
+        HandBox("screw_mount", (0.0, 18.5 + dy, z0 + 11.0), (22.0, 15.0, 20.0)),
+        HandBox("sledge", (0.0, 6.8 + dy, z0 + 2.2), (22.0, 8.8, 3.8)),
+        HandBox("diagonal", (0.0, 15.9 + dy, z0 + 28.35), (17.5, 7.0, 23.5),
+                tuple(tuple(float(v) for v in r) for r in _rot_x(math.pi / 6))),
+        HandBox("tip", (0.0, 7.58 + dy, z0 + 45.25), (17.5, 15.2, 18.5)),
+    )
+    # hand.stl: x -31.64..31.62, y -103.99..100.43, z -25.92..65.96 mm from the flange
+    palm = (HandBox("palm", (-0.01, -1.78, (-25.92 + 65.96) / 2 - 103.4),
+                    (63.26, 204.42, 91.88)),)
+    return ParallelHand(
+        "franka", (0.0, 80.0), palm, finger, "tip",
+        joints=("panda_finger_joint1", "panda_finger_joint2"), joint_per_opening=0.0005,
+        source="https://github.com/frankaemika/franka_description (franka_hand.xacro, "
+               "collision/hand.stl)",
+        licence="Apache-2.0", ee_frame="panda_hand_tcp")
+
+
+#: The built-in hands by name.
+HANDS = {"franka": _franka}
+
+
+def hand_named(name: str) -> ParallelHand:
+    """A built-in hand (:data:`HANDS`)."""
+    if not isinstance(name, str) or name not in HANDS:
+        raise ValueError(f"hand must be one of {', '.join(sorted(HANDS))}, a URDF file or "
+                         f"parameters, got {name!r}")
+    return HANDS[name]()
+
+
+def hand_from_params(stroke: Any, pad_width: float, pad_height: float,
+                     finger_thickness: float, finger_length: float = 50.0,
+                     palm: Any = None, name: str = "parameters") -> ParallelHand:
+    """A hand of two box fingers: each a box ``pad_width`` wide (``x``),
+    ``finger_thickness`` thick (``y``) and ``finger_length`` long (``z``) whose last
+    ``pad_height`` is the pad (the tool frame's origin at the pad's centre), on a palm of
+    size ``palm`` (``x, y, z``; default as wide as the fingers at the largest stroke, 40
+    deep) above the fingers."""
+    w = check_scalar(pad_width, "pad_width", positive=True)
+    h = check_scalar(pad_height, "pad_height", positive=True)
+    t = check_scalar(finger_thickness, "finger_thickness", positive=True)
+    L = check_scalar(finger_length, "finger_length", positive=True)
+    if h > L:
+        raise ValueError(f"pad_height must be at most finger_length ({L:g}), got {pad_height!r}")
+    hi = float(stroke[1])
+    pz = (w, 2 * t + hi, 40.0) if palm is None else tuple(float(v) for v in palm)
+    if len(pz) != 3 or min(pz) <= 0:
+        raise ValueError(f"palm must be three positive sizes (x, y, z), got {palm!r}")
+    top = h / 2 - L                     # the finger's end at the palm
+    finger: tuple[HandBox, ...] = (HandBox("pad", (0.0, t / 2, 0.0), (w, t, h)),)
+    if L > h:
+        finger += (HandBox("finger", (0.0, t / 2, (top - h / 2) / 2), (w, t, L - h)),)
+    palm_box = (HandBox("palm", (0.0, 0.0, top - pz[2] / 2), pz),)
+    return ParallelHand(name, (float(stroke[0]), hi), palm_box, finger, "pad",
+                        joints=("finger_joint",), joint_per_opening=0.001,
+                        source="parameters", licence="")

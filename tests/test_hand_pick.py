@@ -1,0 +1,194 @@
+"""A real hand's pick of a plate from above: every sampled pose of every plan is collision
+free by an independent collision library (python-fcl through trimesh: the plate extruded
+from the outline, the table as a slab, the hand's boxes placed by their own
+transforms), along the whole motion (coming down open, closing, at the contact); and
+the same check finds the collisions the pick's rules are there to avoid."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import fcgrasp as fc
+from fcgrasp.grippers.jaw import ParallelJaw, jaw_poses
+from fcgrasp.grippers.jaw._pick import Scene, TopPick, top_pick
+from fcgrasp.io.moveit import tool_rotation
+from fcgrasp.model.hands import HandBox, ParallelHand, hand_from_params, hand_named
+
+trimesh = pytest.importorskip("trimesh")
+pytest.importorskip("fcl")
+shapely = pytest.importorskip("shapely")
+
+#: how far each box is pulled in on every side before the check: touching at a contact
+#: is no collision (a millionth of a millimetre, far below any plan's size)
+SHRINK = 1e-6
+
+
+def _plate(part: fc.Polygon, thickness: float) -> trimesh.Trimesh:
+    holes = [h for h in getattr(part, "holes", [])]
+    poly = shapely.Polygon(part.vertices, holes)
+    return trimesh.creation.extrude_polygon(poly, thickness)
+
+
+def _manager(part: fc.Polygon, scene: Scene) -> trimesh.collision.CollisionManager:
+    m = trimesh.collision.CollisionManager()
+    m.add_object("plate", _plate(part, scene.thickness))
+    if scene.table:
+        slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
+        slab.apply_translation((0.0, 0.0, -5.0))
+        m.add_object("table", slab)
+    return m
+
+
+def _hand_meshes(hand: ParallelHand, opening: float, origin: np.ndarray,
+                 R: np.ndarray) -> list[trimesh.Trimesh]:
+    out = []
+    for b in hand.boxes(opening):
+        T = np.eye(4)
+        T[:3, :3] = R @ np.asarray(b.rotation)
+        T[:3, 3] = origin + R @ np.asarray(b.centre)
+        out.append(trimesh.creation.box(extents=np.asarray(b.size) - 2 * SHRINK, transform=T))
+    return out
+
+
+def _collides(manager, meshes) -> bool:
+    return any(manager.in_collision_single(m) for m in meshes)
+
+
+def _motion(part, jaw: ParallelJaw, pick: TopPick, theta: float, offset: float):
+    """The hand's placements along one pose's pick: coming down open, closing, at the
+    contact (origin, rotation, opening)."""
+    r = jaw_poses(part, jaw, [theta], [offset])
+    top, bottom = float(r.top[0]), float(r.bottom[0])
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    xy = part.centroid + (top + bottom) / 2 * u + offset * n
+    R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
+    widest = jaw.hand.stroke[1]
+    out = [(np.r_[xy, pick.height + dz], R, widest) for dz in (jaw.scene.approach, 5.0, 0.0)]
+    out += [(np.r_[xy, pick.height], R, o) for o in
+            np.linspace(widest, top - bottom, 4)[1:]]
+    return out, bool(r.holds[0])
+
+
+CASES = [("rectangle", 0.5, 5.0, True), ("bracket", 0.5, 8.0, True),
+         pytest.param("cam", 0.8, 12.0, False, marks=pytest.mark.slow),
+         ("quad", 0.5, 40.0, True), pytest.param("blob", 0.6, 3.0, True, marks=pytest.mark.slow)]
+
+
+@pytest.mark.parametrize("name,mu,thickness,table", CASES)
+def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness, table):
+    part = fc.read_part(f"demo:{name}")
+    hand = hand_named("franka")
+    scene = Scene(thickness, table=table)
+    jaw = ParallelJaw.of_hand(hand, mu, scene)
+    pick = jaw.pick
+    assert isinstance(pick, TopPick)
+    plans = fc.plan(part, gripper=jaw, top=3, time_limit=None)
+    assert plans, name
+    manager = _manager(part, scene)
+    rng = np.random.default_rng(7)
+    checked = 0
+    for p in plans:
+        assert p.mode == "external"
+        for theta, offset in p.sample(25, rng):
+            placements, holds = _motion(part, jaw, pick, theta, offset)
+            assert holds, (name, theta, offset)
+            for origin, R, opening in placements:
+                assert not _collides(manager, _hand_meshes(hand, opening, origin, R)), \
+                    (name, theta, offset, opening, origin)
+                checked += 1
+    assert checked >= 200
+
+
+def test_the_check_sees_the_table_and_a_thick_plate():
+    """The rules the pick avoids are real collisions to the independent check: the hand
+    at the plate's mid-height goes through the table, and on a plate thicker than the
+    fingers' reach below the mounts the mounts go through the plate."""
+    part = fc.read_part("demo:rectangle")
+    hand = hand_named("franka")
+    jaw = ParallelJaw.of_hand(hand, 0.5, Scene(5.0, table=True))
+    plans = fc.plan(part, gripper=jaw, top=1, time_limit=None)
+    theta, offset = plans[0].centre
+    low = TopPick(5.0 / 2 + sum(hand.pad_span) / 2, 5.0)     # the pad centred, no table rule
+    placements, _ = _motion(part, jaw, low, theta, offset)
+    origin, R, opening = placements[-1]
+    assert _collides(_manager(part, jaw.scene), _hand_meshes(hand, opening, origin, R))
+    # a 60 mm plate with a bump just beside the pad's strip: the mounts (22 mm wide, 24
+    # mm above the tool's origin, 11 mm behind the pad's face) go through the bump at the
+    # plate's mid-height, and clear it at the height the rule gives
+    bump = fc.Polygon([[0, 0], [40, 0], [40, 24.5], [60, 24.5], [60, 40], [0, 40]])
+    thick = Scene(60.0, table=False)
+    got = top_pick(hand, thick)
+    assert isinstance(got, TopPick) and got.height >= 60.0 - 24.0 + 1.0 - 1e-9
+    jaw = ParallelJaw.of_hand(hand, 0.5, thick)
+    manager = _manager(bump, thick)
+    offset = 15.0 - float(bump.centroid[1])             # the strip centred on y = 15
+    hits = []
+    for height in (60.0 / 2 + sum(hand.pad_span) / 2, got.height):
+        placements, _ = _motion(bump, jaw, TopPick(height, 1.0), 0.0, offset)
+        origin, R, opening = placements[-1]
+        hits.append(_collides(manager, _hand_meshes(hand, opening, origin, R)))
+    assert hits == [True, False]
+
+
+def test_a_hand_wider_than_its_pad_is_kept_above_the_plate():
+    """A finger box wider than the pad is not in the pad's strip: the pick raises the hand
+    until it is above the plate, or says the pad cannot reach."""
+    hand = hand_from_params((0, 60), pad_width=10, pad_height=10, finger_thickness=5,
+                            finger_length=30)
+    assert all(hand.in_strip(b) for b in hand.finger)
+    wide = ParallelHand("wide", hand.stroke, hand.palm,
+                        hand.finger + (HandBox("mount", (0.0, 4.0, -12.0), (16.0, 8.0, 4.0)),),
+                        "pad")
+    assert not wide.in_strip(wide.finger[-1])
+    ok = top_pick(wide, Scene(4.0, table=False))
+    assert isinstance(ok, TopPick) and ok.height >= -10.0 + 4.0 + 1.0 - 1e-9
+    # a mount as low as the pad: the pad cannot touch the plate's side below it
+    low = ParallelHand("low", hand.stroke, hand.palm,
+                       hand.finger + (HandBox("mount", (0.0, 8.0, 3.0), (16.0, 4.0, 4.0)),),
+                       "pad")
+    reason = top_pick(low, Scene(4.0, table=False))
+    assert isinstance(reason, str) and "do not reach" in reason
+    jaw = ParallelJaw.of_hand(low, 0.5, Scene(4.0, table=False))
+    assert fc.plan(fc.read_part("demo:rectangle"), gripper=jaw, top=1) == []
+    assert jaw.no_grasp_reason(0.5) == reason
+
+
+def test_the_report_has_the_hand_the_scene_and_each_pose(tmp_path):
+    import json
+
+    from fcgrasp.apps.cli import main
+
+    out = tmp_path / "r.json"
+    assert main(["plan", "demo:rectangle", "--gripper", "jaw", "--hand", "franka", "--mu",
+                 "0.5", "--table", "--thickness", "5", "--top", "2", "--json", str(out),
+                 "--quiet"]) == 0
+    r = json.loads(out.read_text())
+    assert r["hand"]["licence"] == "Apache-2.0" and r["hand"]["stroke"] == [0.0, 80.0]
+    assert r["scene"]["table"] == {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}
+    for g in r["grasps"]:
+        q = np.asarray(g["pose"]["orientation"])
+        assert abs(np.linalg.norm(q) - 1) < 1e-12
+        assert g["approach"]["direction"] == [0.0, 0.0, -1.0]
+        assert g["collision_free"] is True and g["contact_height"] > 0
+        # the tool's y axis (the closing axis) is the box centre's closing direction
+        from scipy.spatial.transform import Rotation
+
+        y = Rotation.from_quat(q).as_matrix()[:, 1]
+        theta = sum(g["theta_rad"]) / 2
+        assert abs(abs(y @ [math.cos(theta), math.sin(theta), 0.0]) - 1) < 1e-9
+
+
+@pytest.mark.parametrize("argv,field", [
+    (["--hand", "nope"], "--hand"), (["--hand", "franka", "--stroke", "1,2"], "--stroke"),
+    (["--thickness", "3"], "--thickness"), (["--hand", "franka", "--thickness", "-1"],
+                                             "--thickness")])
+def test_hand_options_are_refused_in_one_line(capsys, argv, field):
+    from fcgrasp.apps.cli import main
+
+    code = main(["plan", "demo:rectangle", "--gripper", "jaw", "--mu", "0.5", *argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and field in err[0], err
