@@ -192,3 +192,129 @@ def test_hand_options_are_refused_in_one_line(capsys, argv, field):
     code = main(["plan", "demo:rectangle", "--gripper", "jaw", "--mu", "0.5", *argv])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and field in err[0], err
+
+
+HANDE = __import__("pathlib").Path(__file__).parent / "data" / "hands" / "robotiq_hande" / \
+    "urdf" / "robotiq_hand_e.urdf"
+
+
+def test_the_built_in_hande_is_its_description_read_again():
+    from fcgrasp.io.urdf import hand_from_urdf
+    from fcgrasp.model.hands import hand_description
+
+    pytest.importorskip("yourdfpy")
+    read = hand_description(hand_from_urdf(HANDE, name="robotiq_hande"))
+    built = hand_description(hand_named("robotiq_hande"))
+    for key in ("stroke", "joint_per_opening", "joint_offset", "ee_offset", "pad", "joints"):
+        assert np.allclose(read[key], built[key], rtol=1e-12, atol=1e-12) \
+            if key not in ("pad", "joints") else read[key] == built[key], key
+    for part in ("palm", "finger"):
+        assert len(read[part]) == len(built[part])
+        for a, b in zip(read[part], built[part], strict=True):
+            assert a["name"] == b["name"]
+            assert np.allclose(a["centre"], b["centre"], atol=1e-9)
+            assert np.allclose(a["size"], b["size"], atol=1e-9)
+    hand = hand_named("robotiq_hande")
+    assert hand.stroke[1] == pytest.approx(50.0, abs=0.01) and hand.pad_width == \
+        pytest.approx(21.0, abs=1e-3)
+    # the joints: open at 0, closed at 25 mm (the description's limits)
+    assert hand.joint_offset == pytest.approx(0.025, abs=1e-6)
+    assert hand.joint_offset + hand.joint_per_opening * hand.stroke[1] == \
+        pytest.approx(0.0, abs=1e-6)
+
+
+@pytest.mark.parametrize("name,thickness,table", [("rectangle", 4.0, True),
+                                                  ("bracket", 25.0, True),
+                                                  pytest.param("cam", 10.0, False,
+                                                               marks=pytest.mark.slow)])
+def test_the_hande_meshes_themselves_clear_the_plate_and_the_table(name, thickness, table):
+    """The hand read from its URDF, placed by yourdfpy's own kinematics with its real
+    collision meshes (not the boxes that cover them): no collision along any sampled
+    pick of any plan."""
+    yourdfpy = pytest.importorskip("yourdfpy")
+    u = yourdfpy.URDF.load(str(HANDE), build_collision_scene_graph=True,
+                           load_collision_meshes=True)
+    hand = hand_named("robotiq_hande")
+    part = fc.read_part(f"demo:{name}")
+    scene = Scene(thickness, table=table)
+    jaw = ParallelJaw.of_hand(hand, 0.5, scene)
+    pick = jaw.pick
+    assert isinstance(pick, TopPick)
+    plans = fc.plan(part, gripper=jaw, top=2, time_limit=None)
+    assert plans
+    manager = _manager(part, scene)
+    tool_T_palm = np.eye(4)
+    tool_T_palm[:3, :3] = np.asarray(hand.ee_axes).T
+    tool_T_palm[:3, 3] = hand.ee_offset
+    (j1, j2), rng, checked = hand.joints, np.random.default_rng(3), 0
+    for p in plans:
+        for theta, offset in p.sample(6, rng):
+            placements, holds = _motion(part, jaw, pick, theta, offset)
+            assert holds
+            for origin, R, opening in placements:
+                # retracted by a thousandth of a millimetre: the pads touch at a contact
+                q = hand.joint_offset + hand.joint_per_opening * min(opening + 2e-3,
+                                                                     hand.stroke[1])
+                u.update_cfg({j1: q, j2: q})
+                world_T_tool = np.eye(4)
+                world_T_tool[:3, :3], world_T_tool[:3, 3] = R, origin
+                meshes = []
+                for node in u.collision_scene.graph.nodes_geometry:
+                    T, geom = u.collision_scene.graph[node]
+                    m = u.collision_scene.geometry[geom].copy()
+                    m.apply_transform(T)
+                    m.apply_scale(1000.0)              # metres to the part's millimetres
+                    m.apply_transform(world_T_tool @ tool_T_palm)
+                    meshes.append(m)
+                assert not _collides(manager, meshes), (name, theta, offset, opening)
+                checked += 1
+    assert checked >= 50
+
+
+def test_the_moveit_grasp_of_a_pick_puts_the_hands_pads_on_the_part(tmp_path):
+    """The exported grasp (the end effector's pose and the finger joints, metres) placed
+    by yourdfpy's kinematics with the description's meshes: neither finger in the plate,
+    and where the pads touch flat (edges, vertices) both within a thousandth of a
+    millimetre of it (on a pad's corner the mesh's chamfer meets the part a little
+    later than its covering box)."""
+    import json
+
+    from fcgrasp.apps.cli import main
+
+    yourdfpy = pytest.importorskip("yourdfpy")
+    out, grasps = tmp_path / "r.json", tmp_path / "g.json"
+    assert main(["plan", "demo:rectangle", "--gripper", "jaw", "--hand", "robotiq_hande",
+                 "--mu", "0.5", "--table", "--thickness", "4", "--top", "2", "--json",
+                 str(out), "--moveit", str(grasps), "--quiet"]) == 0
+    part = fc.read_part("demo:rectangle")
+    manager = _manager(part, Scene(4.0, table=True))
+    u = yourdfpy.URDF.load(str(HANDE), build_collision_scene_graph=True,
+                           load_collision_meshes=True)
+    from scipy.spatial.transform import Rotation
+
+    report = json.loads(out.read_text())
+    for g, plan in zip(json.loads(grasps.read_text()), report["grasps"], strict=True):
+        flat = "corner" not in (plan["contacts"]["a"]["kind"], plan["contacts"]["b"]["kind"])
+        assert g["grasp_pose"]["header"]["frame_id"] == "part"
+        pose = g["grasp_pose"]["pose"]
+        world_T_ee = np.eye(4)
+        o = pose["orientation"]
+        world_T_ee[:3, :3] = Rotation.from_quat([o["x"], o["y"], o["z"], o["w"]]).as_matrix()
+        world_T_ee[:3, 3] = [1000 * pose["position"][k] for k in "xyz"]
+        names = g["grasp_posture"]["joint_names"]
+        q = g["grasp_posture"]["points"][0]["positions"]
+        for retract, near in ((-1e-5, (1e-3, 0.02 if flat else 1.0)),
+                              (0.0, (-1e-9, 1e-3 if flat else 1.0))):
+            # the joints close as they grow: a negative step opens by 2 x 0.01 mm
+            u.update_cfg({n: v + retract for n, v in zip(names, q, strict=True)})
+            gaps = []
+            for node in u.collision_scene.graph.nodes_geometry:
+                T, geom = u.collision_scene.graph[node]
+                if "finger" not in u.collision_scene.graph.transforms.parents[node]:
+                    continue
+                m = u.collision_scene.geometry[geom].copy()
+                m.apply_transform(T)
+                m.apply_scale(1000.0)
+                m.apply_transform(world_T_ee)
+                gaps.append(manager.min_distance_single(m))
+            assert len(gaps) == 2 and all(near[0] <= d <= near[1] for d in gaps), gaps

@@ -189,6 +189,11 @@ FLATTEN_FINEST = 1e-6
 #: size of the file's largest piece, is a sliver of the drawing, not a part.
 SLIVER_REL = 1e-4
 
+#: The relative tolerance of a hand's box lying in its pad's strip
+#: (:meth:`fcgrasp.model.hands.ParallelHand.in_strip`): a description's meshes are stored
+#: in single precision, a relative 6e-8.
+STRIP_TOL = 1e-6
+
 __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESOLUTION",
            "MAX_MAGNITUDE",
            "SOLVER_TOL", "ESTIMATE_TOL", "ESTIMATE_PAD", "ESTIMATE_BAND", "ESTIMATE_ZERO_BAND",
@@ -201,7 +206,7 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESO
            "FLATTEN_FINEST", "SLIVER_REL", "ANGLE_SLACK", "CONE_PROGRAM_TOL",
            "INRADIUS_STEP", "FIT_ROUNDING", "PROJECTED_AXIS", "PLANAR_TOL",
            "ROUNDING_SHRINK", "SURFACE_TOL", "SURFACE_STEP",
-           "SURFACE_CENTRE", "REACH_PAD", "SQUEEZE_TOL"]
+           "SURFACE_CENTRE", "REACH_PAD", "SQUEEZE_TOL", "STRIP_TOL"]
 
 #: Distinct alternatives: the upper bound of a region's overlap with another (its
 #: length inside the other's box, :meth:`fcgrasp.model.distinct._Overlaps.reach`) is

@@ -153,6 +153,19 @@ def _pose(grasp: dict[str, Any], height: float) -> tuple[np.ndarray, np.ndarray,
         abs(stops[0] - stops[1]), str(grasp.get("mode", "external"))
 
 
+def _ee_pose(pose: dict[str, Any], hand: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:
+    """The end effector's position (report units) and axes of a hand's pick: the tool
+    frame's pose (``pose``) composed with where the hand's ``ee_frame`` lies in the tool
+    frame (``ee_offset``, ``ee_axes``: its axes in tool coordinates, as rows)."""
+    from scipy.spatial.transform import Rotation
+
+    R_tool = Rotation.from_quat(np.asarray(pose["orientation"], float)).as_matrix()
+    axes = np.asarray(hand.get("ee_axes", np.eye(3)), float).T
+    where = np.asarray(pose["position"], float) + R_tool @ np.asarray(
+        hand.get("ee_offset", (0.0, 0.0, 0.0)), float)
+    return where, R_tool @ axes
+
+
 def _header(frame_id: str) -> dict[str, Any]:
     return {"stamp": {"sec": 0, "nanosec": 0}, "frame_id": frame_id}
 
@@ -216,9 +229,16 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
                                           ("retreat", retreat), ("min_retreat", min_retreat),
                                           ("clearance", clearance))}
     stroke = [float(v) * metres for v in params.get("stroke", (0.0, 0.0))]
+    hand = report.get("hand")
+    if isinstance(hand, dict):
+        # a hand's pick (fcgrasp.grippers.jaw._pick): its own frame, joints and poses
+        ee_frame = str(hand.get("ee_frame") or ee_frame)
+        joints = tuple(j["name"] for j in hand.get("joints", ())) or joints
     out = []
     for k, grasp in enumerate(report["grasps"]):
         where, axes, opening, mode = _pose(grasp, d["height"] / metres)
+        if isinstance(hand, dict) and isinstance(grasp.get("pose"), dict):
+            where, axes = _ee_pose(grasp["pose"], hand)
         qx, qy, qz, qw = quaternion(axes)
         p = where * metres
         payload = grasp.get("payload") or {}
@@ -228,10 +248,18 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
         else:
             wide = opening * metres + (2 if mode == "external" else -2) * d["clearance"]
             start = max(wide, 0.0)
+        if isinstance(hand, dict):
+            start = float(grasp.get("pre_grasp_opening", hand["stroke"][1]))
+            j = hand["joints"][0] if hand.get("joints") else {}
+            per, at0 = float(j.get("per_opening", 0.0)), float(j.get("at_zero_opening", 0.0))
+            open_q, grip_q = at0 + per * start, at0 + per * opening
+        else:
+            open_q = joint_per_opening * start
+            grip_q = joint_per_opening * opening * metres
         out.append({
             "id": f"fcgrasp-{grasp.get('rank', k + 1)}",
-            "pre_grasp_posture": _posture(ee_frame, joints, joint_per_opening * start, None),
-            "grasp_posture": _posture(ee_frame, joints, joint_per_opening * opening * metres,
+            "pre_grasp_posture": _posture(ee_frame, joints, open_q, None),
+            "grasp_posture": _posture(ee_frame, joints, grip_q,
                                       None if force is None else float(force)),
             "grasp_pose": {"header": _header(frame_id), "pose": {
                 "position": {"x": float(p[0]), "y": float(p[1]), "z": float(p[2])},

@@ -115,7 +115,8 @@ def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], unit
     # a hand's geometry and its scene are the report's own (any reader checks a pose
     # from them)
     parameters = dict(parameters)
-    scene = {k: parameters.pop(k) for k in ("hand", "scene") if k in parameters}
+    scene: dict[str, Any] = {k: parameters.pop(k) for k in ("hand", "scene")
+                             if k in parameters}
     out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
            "part": part_dict(polygon) if part is None else part, "parameters": parameters,
            **scene,

@@ -8,9 +8,9 @@ towards the fingertips), ``x = y x z`` along the pads' width.  Lengths in millim
 (:meth:`ParallelHand.scaled` gives other units).
 
 A hand is a list of boxes: the palm's, fixed, and finger 1's at opening 0 (its inner
-face on ``y = 0``), which move by ``+opening / 2``; finger 2 is finger 1 mirrored in
-``y``.  The *pad* is the finger's box that touches the part: its width along ``x`` is
-the jaw's ``pad_width``.
+face on ``y = 0``), which move by ``+opening / 2``; finger 2 is finger 1 turned half a
+turn about ``z`` (as the descriptions mount it).  The *pad* is the finger's box that
+touches the part: its width along ``x`` is the jaw's ``pad_width``.
 
 Built-in hands (:data:`HANDS`) are read from their makers' published descriptions, with
 their sources and licences.
@@ -19,14 +19,20 @@ their sources and licences.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field, fields, replace
 from typing import Any
 
 import numpy as np
 
 from ..core._checks import FloatArray, check_scalar
+from ..core.tolerances import STRIP_TOL
 
-__all__ = ["HandBox", "ParallelHand", "HANDS", "hand_named", "hand_from_params"]
+__all__ = ["HandBox", "ParallelHand", "HANDS", "hand_named", "hand_from_params",
+           "hand_description", "hand_from_description"]
+
+
+#: Metres per millimetre (a finger joint's unit per the hand's).
+M_PER_MM = 1e-3
 
 
 def _rot_x(angle: float) -> FloatArray:
@@ -54,13 +60,12 @@ class HandBox:
             (signs * half) @ np.asarray(self.rotation, float).T
         return out
 
-    def moved(self, dy: float, mirror: bool = False) -> HandBox:
-        """The box moved by ``dy`` along ``y`` (after a mirror in ``y`` if asked)."""
+    def moved(self, dy: float, turned: bool = False) -> HandBox:
+        """The box moved by ``dy`` along ``y`` (after a half turn about ``z`` if asked)."""
         x, y, z = self.centre
         R = np.asarray(self.rotation, float)
-        if mirror:
-            M = np.diag([1.0, -1.0, 1.0])
-            R, y = M @ R @ M, -y
+        if turned:
+            R, x, y = np.diag([-1.0, -1.0, 1.0]) @ R, -x, -y
         return replace(self, centre=(x, y + dy, z),
                        rotation=tuple(tuple(float(v) for v in row) for row in R))
 
@@ -89,12 +94,20 @@ class ParallelHand:
     finger: tuple[HandBox, ...]
     pad: str
     joints: tuple[str, ...] = ()
-    joint_per_opening: float = 0.0005
+    joint_per_opening: float = 0.5 * M_PER_MM
+    #: the joints' position at opening 0 (``joint = joint_offset + joint_per_opening *
+    #: opening``)
+    joint_offset: float = 0.0
     source: str = ""
     licence: str = ""
     units: str = "mm"
-    #: the tool frame's parent link in the description (MoveIt's end-effector frame)
+    #: the description's link MoveIt plans the grasp pose for (the end effector), and
+    #: where its origin lies in the tool frame and its axes (rows: its x, y, z in tool
+    #: coordinates)
     ee_frame: str = ""
+    ee_offset: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    ee_axes: tuple[tuple[float, ...], ...] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
+                                              (0.0, 0.0, 1.0))
     notes: str = field(default="", compare=False)
 
     def __post_init__(self) -> None:
@@ -108,7 +121,7 @@ class ParallelHand:
         object.__setattr__(self, "stroke", (lo, hi))
         corners = self.pad_box.corners()
         face = float(corners[:, 1].min())
-        if abs(face) > 1e-9 * max(1.0, float(np.abs(corners).max())):
+        if abs(face) > STRIP_TOL * max(1.0, float(np.abs(corners).max())):
             raise ValueError(f"the pad's face must lie on y = 0 (the tool frame's "
                              f"closing plane at opening 0), got y = {face:g}")
 
@@ -132,13 +145,13 @@ class ParallelHand:
         finger 2's."""
         half = float(opening) / 2
         return list(self.palm) + [b.moved(half) for b in self.finger] + \
-            [b.moved(-half, mirror=True) for b in self.finger]
+            [b.moved(-half, turned=True) for b in self.finger]
 
     def in_strip(self, box: HandBox) -> bool:
         """Whether a finger box (of finger 1 at opening 0) lies in the pad's strip and
         behind the pad's face: within the pad's width along ``x`` and at ``y >= 0``."""
         c = box.corners()
-        tol = 1e-9 * max(1.0, float(np.abs(c).max()))
+        tol = STRIP_TOL * max(1.0, float(np.abs(c).max()))
         return bool(np.all(np.abs(c[:, 0]) <= self.pad_width / 2 + tol)
                     and np.all(c[:, 1] >= -tol))
 
@@ -148,20 +161,62 @@ class ParallelHand:
         return replace(self, stroke=(f * self.stroke[0], f * self.stroke[1]),
                        palm=tuple(b.scaled(f) for b in self.palm),
                        finger=tuple(b.scaled(f) for b in self.finger), units=units,
-                       joint_per_opening=self.joint_per_opening / f)
+                       joint_per_opening=self.joint_per_opening / f,
+                       ee_offset=tuple(f * v for v in self.ee_offset))  # type: ignore[arg-type]
 
     def to_dict(self, opening: float | None = None) -> dict[str, Any]:
         """JSON-ready: the source and licence, the joints and their limits, and the
         collision boxes in the tool frame at ``opening`` (the largest by default)."""
         at = self.stroke[1] if opening is None else float(opening)
+        at_lo, at_hi = (self.joint_offset + self.joint_per_opening * v for v in self.stroke)
         return {"name": self.name, "source": self.source, "licence": self.licence,
-                "units": self.units, "ee_frame": self.ee_frame,
+                "units": self.units,
                 "frame": "tool: origin between the pads' faces, y closing, z approach",
+                "ee_frame": self.ee_frame, "ee_offset": list(self.ee_offset),
+                "ee_axes": [list(r) for r in self.ee_axes],
                 "stroke": list(self.stroke), "pad_width": self.pad_width,
-                "joints": [{"name": j, "lower": self.joint_per_opening * self.stroke[0],
-                            "upper": self.joint_per_opening * self.stroke[1],
+                "joints": [{"name": j, "lower": min(at_lo, at_hi), "upper": max(at_lo, at_hi),
+                            "at_zero_opening": self.joint_offset,
                             "per_opening": self.joint_per_opening} for j in self.joints],
                 "opening": at, "boxes": [b.to_dict() for b in self.boxes(at)]}
+
+
+def hand_description(hand: ParallelHand) -> dict[str, Any]:
+    """Every field of a hand as plain data (:func:`hand_from_description` reads it)."""
+    out: dict[str, Any] = {}
+    for f in fields(hand):
+        v = getattr(hand, f.name)
+        if f.name in ("palm", "finger"):
+            v = [b.to_dict() for b in v]
+        elif isinstance(v, tuple):
+            v = [list(r) if isinstance(r, tuple) else r for r in v]
+        out[f.name] = v
+    return out
+
+
+def hand_from_description(data: dict[str, Any]) -> ParallelHand:
+    """The hand of :func:`hand_description`'s data."""
+    def box(d: dict[str, Any]) -> HandBox:
+        return HandBox(str(d["name"]), tuple(map(float, d["centre"])),  # type: ignore[arg-type]
+                       tuple(map(float, d["size"])),  # type: ignore[arg-type]
+                       tuple(tuple(map(float, r)) for r in d["rotation"]))
+
+    kw = dict(data)
+    kw["palm"] = tuple(box(b) for b in data["palm"])
+    kw["finger"] = tuple(box(b) for b in data["finger"])
+    for k in ("stroke", "joints", "ee_offset"):
+        kw[k] = tuple(data[k])
+    kw["ee_axes"] = tuple(tuple(map(float, r)) for r in data["ee_axes"])
+    return ParallelHand(**kw)
+
+
+def _described(name: str) -> ParallelHand:
+    """A built-in hand stored as :func:`hand_description`'s data (``data/NAME.json``)."""
+    import json
+    from importlib.resources import files
+
+    text = files("fcgrasp.model").joinpath(f"data/{name}.json").read_text()
+    return hand_from_description(json.loads(text))
 
 
 def _franka() -> ParallelHand:
@@ -172,8 +227,8 @@ def _franka() -> ParallelHand:
     origin is 0.25 mm from the rubber tips' centre; the finger joints sit 58.4 mm from
     the flange and move 0 to 40 mm each.  The rubber tip's face stands 0.02 mm in front
     of its joint's plane: the finger is moved back by that much, so that the opening is
-    the distance between the tips' faces (each joint then at half the opening plus
-    0.02 mm, below any tolerance of the hand)."""
+    the distance between the tips' faces (each joint at half the opening plus 0.02
+    mm)."""
     z0 = 58.4 - 103.4                   # the finger joint's height in the tool frame
     dy = 0.02                           # the tip's face on y = 0
     finger = (
@@ -188,14 +243,23 @@ def _franka() -> ParallelHand:
                     (63.26, 204.42, 91.88)),)
     return ParallelHand(
         "franka", (0.0, 80.0), palm, finger, "tip",
-        joints=("panda_finger_joint1", "panda_finger_joint2"), joint_per_opening=0.0005,
+        joints=("panda_finger_joint1", "panda_finger_joint2"), joint_per_opening=0.5 * M_PER_MM,
+        joint_offset=0.02 * M_PER_MM,
         source="https://github.com/frankaemika/franka_description (franka_hand.xacro, "
                "collision/hand.stl)",
         licence="Apache-2.0", ee_frame="panda_hand_tcp")
 
 
+def _hande() -> ParallelHand:
+    """The Robotiq Hand-E (ROS-Industrial's ``robotiq_2f_hande_gripper_visualization``,
+    BSD): read from its URDF and collision meshes by
+    :func:`fcgrasp.io.urdf.hand_from_urdf` and stored (the tests read the description
+    again and compare)."""
+    return _described("robotiq_hande")
+
+
 #: The built-in hands by name.
-HANDS = {"franka": _franka}
+HANDS = {"franka": _franka, "robotiq_hande": _hande}
 
 
 def hand_named(name: str) -> ParallelHand:

@@ -21,7 +21,7 @@ from ...model.distinct import (
     distinct_boxes,
     grip_symmetries,
 )
-from ...model.hands import ParallelHand, hand_named
+from ...model.hands import ParallelHand, hand_from_params, hand_named
 from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import DEFAULT_MU, register
@@ -215,20 +215,51 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
                        certify=options.get("certify") is not False)
 
 
+def _hand_of(text: str) -> ParallelHand:
+    """``--hand``: a built-in hand's name (:data:`~fcgrasp.model.hands.HANDS`), a URDF
+    file (:func:`fcgrasp.io.urdf.hand_from_urdf`), or parameters
+    ``stroke=MIN:MAX,pad=W,height=H,thickness=T[,length=L]`` (millimetres,
+    :func:`~fcgrasp.model.hands.hand_from_params`)."""
+    if "=" in text:
+        given: dict[str, str] = {}
+        for item in text.split(","):
+            key, _, value = item.partition("=")
+            given[key.strip()] = value.strip()
+        known = {"stroke", "pad", "height", "thickness", "length"}
+        if set(given) - known or not {"stroke", "pad", "height", "thickness"} <= set(given):
+            raise ValueError(f"--hand parameters are stroke=MIN:MAX,pad=W,height=H,"
+                             f"thickness=T[,length=L], got {text!r}")
+        try:
+            lo, hi = (float(v) for v in given["stroke"].split(":"))
+            values = {k: float(given[k]) for k in known - {"stroke"} if k in given}
+        except ValueError:
+            raise ValueError(f"--hand parameters must be numbers, got {text!r}") from None
+        return hand_from_params((lo, hi), values["pad"], values["height"],
+                                values["thickness"], values.get("length", 50.0))
+    if text.lower().endswith(".urdf"):
+        from ...io.urdf import hand_from_urdf
+
+        try:
+            return hand_from_urdf(text)
+        except ValueError as exc:
+            raise ValueError(f"--{exc}") from None
+    try:
+        return hand_named(text)
+    except ValueError as exc:
+        raise ValueError(f"--hand {exc}") from None
+
+
 def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJaw:
-    """The jaw of ``--hand NAME`` (a built-in hand, :data:`~fcgrasp.model.hands.HANDS`),
-    in the part's units, picking a plate ``--thickness`` thick (by default as thick as
-    the pad is tall) from above, on a table with ``--table``."""
+    """The jaw of ``--hand`` (:func:`_hand_of`), in the part's units, picking a plate
+    ``--thickness`` thick (by default as thick as the pad is tall) from above, on a
+    table with ``--table``."""
     from ...io.units import MM_PER
 
     if options.get("stroke") is not None or options.get("pad") is not None:
         raise ValueError("--stroke and --pad are the hand's: give --hand alone")
     if not (math.isfinite(mu) and mu > 0):
         raise ValueError(f"--mu of a parallel jaw must be a finite number > 0, got {mu:g}")
-    try:
-        hand = hand_named(name)
-    except ValueError as exc:
-        raise ValueError(f"--hand {exc}") from None
+    hand = _hand_of(str(name))
     per_mm = 1.0 / MM_PER[options.get("units") or "mm"]
     hand = hand.scaled(per_mm, options.get("units") or "mm")
     thickness = options.get("thickness")
