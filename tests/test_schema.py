@@ -20,6 +20,7 @@ pytest.importorskip("jsonschema")
 PLANAR = [["--fingers", "2", "--mu", "0.3"], ["--fingers", "3", "--mu", "0.5"],
           ["--fingers", "4"],
           ["--gripper", "jaw", "--stroke", "5,60", "--pad", "8", "--mu", "0.5"],
+          ["--gripper", "jaw", "--hand", "franka", "--mu", "0.5", "--table"],
           pytest.param(["--fingers", "3", "--gravity", "0,-1"], marks=pytest.mark.slow),
           pytest.param(["--fingers", "2", "--mu", "0.3", "--mass", "0.3", "--force-limit",
                         "10"], marks=pytest.mark.slow),
@@ -105,6 +106,22 @@ def test_a_version_2_solid_report_is_migrated_and_validates(tmp_path):
 ])
 def test_a_broken_report_does_not_validate(tmp_path, breaks):
     report = _report(tmp_path, "demo:blob", PLANAR[0])
+    breaks(report)
+    with pytest.raises(ArgumentError, match="schema"):
+        validate(report)
+
+
+@pytest.mark.parametrize("breaks", [
+    lambda r: r.pop("scene"),                                     # a hand without its scene
+    lambda r: r["grasps"][0].pop("pose"),
+    lambda r: r["grasps"][0]["pose"].update(orientation=[0.0, 0.0, 1.0]),
+    lambda r: r["hand"]["boxes"][0].update(size=[1.0, -1.0, 1.0]),
+    lambda r: r["scene"].update(table={"point": [0.0, 0.0, 0.0]}),
+])
+def test_a_broken_pick_does_not_validate(tmp_path, breaks):
+    report = _report(tmp_path, "demo:rectangle", ["--gripper", "jaw", "--hand", "franka",
+                                                  "--mu", "0.5", "--table"])
+    validate(report)
     breaks(report)
     with pytest.raises(ArgumentError, match="schema"):
         validate(report)
