@@ -69,7 +69,8 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         virtual_work,
         wrench_from_force,
     )
-    from .grippers.jaw import JawPlan, ParallelJaw, jaw_pareto, jaw_payload, jaw_plans
+    from .grippers.jaw import JawPlan, ParallelJaw, Scene, jaw_pareto, jaw_payload, jaw_plans
+    from .model.hands import ParallelHand, hand_named
     from .io.meshes import read_solid
     from .io.parts import (
         Part,
@@ -165,6 +166,9 @@ _LAZY = {
     "plan_many": "apps.batch",
     "simulate": "physics",
     "JawPlan": "grippers.jaw",
+    "Scene": "grippers.jaw",
+    "ParallelHand": "model.hands",
+    "hand_named": "model.hands",
     "jaw_plans": "grippers.jaw",
     "jaw_payload": "grippers.jaw",
     "jaw_pareto": "grippers.jaw",

@@ -311,6 +311,8 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
                base - half * n + sgn * thick * u]
         ax.add_patch(MplPolygon(pad, closed=True, facecolor="0.3", edgecolor="k", zorder=4,
                                 label="pads at the centre pose" if k == 0 else None))
+    if getattr(plan.jaw, "hand", None) is not None:
+        _draw_hand(ax, plan, u, n, cen + c * n + (plan.stops[0] + plan.stops[1]) / 2 * u)
     for pts in plan.contacts:
         ax.plot(*np.asarray(pts).T, "o", color="#d62728", ms=4, zorder=5)
     if plan.insert is not None:
@@ -327,6 +329,28 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
     ax.set_title(title or f"box measure {plan.measure:.3g} {units}", fontsize=8)
     _legend(ax, polygon)
     ax.tick_params(labelsize=6)
+
+
+def _draw_hand(ax: Any, plan: Any, u: Any, n: Any, origin: Any) -> None:
+    """The hand of a pick from above (:mod:`fcgrasp.model.hands`) seen from above at the
+    box's centre pose: each finger box's footprint at the grasp's opening (the tool's
+    ``x`` along ``n``, ``y`` along the closing direction ``u``), the palm's dashed."""
+    from matplotlib.patches import Polygon as MplPolygon
+    from scipy.spatial import ConvexHull
+
+    hand = plan.jaw.hand
+    opening = plan.stops[0] - plan.stops[1]
+    n_palm = len(hand.palm)
+    for k, box in enumerate(hand.boxes(opening)):
+        c = box.corners()[:, :2]
+        pts = origin + np.outer(c[:, 0], n) + np.outer(c[:, 1], u)
+        ring = pts[ConvexHull(pts).vertices]
+        palm = k < n_palm
+        ax.add_patch(MplPolygon(ring, closed=True, fill=False, lw=0.6, zorder=4,
+                                edgecolor="0.45" if palm else "0.2",
+                                ls="--" if palm else "-",
+                                label=(f"{hand.name}: palm" if k == 0 else
+                                       f"{hand.name}: fingers" if k == n_palm else None)))
 
 
 def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",

@@ -71,6 +71,7 @@ from ...core.tolerances import SLICE_TOL
 from ._certify import certify_box
 from ._grid import grid_anchor
 from ._payload import jaw_payload
+from ._pick import Scene, TopPick, top_pick
 from ._plans import JawPlan, ParallelJaw, jaw_from_options, jaw_pareto, jaw_plans
 from ._poses import (
     CERTIFY_BOXES,
@@ -88,5 +89,5 @@ from ._slices import holding_offsets
 __all__ = ["ParallelJaw", "jaw_from_options", "JawPlan", "PoseContacts", "convex_holes",
            "jaw_poses",
            "holding_offsets", "insertion_point", "jaw_plans", "jaw_pareto", "certify_box",
-           "jaw_payload", "grid_anchor", "THETA_STEP_DEG",
+           "jaw_payload", "grid_anchor", "THETA_STEP_DEG", "Scene", "TopPick", "top_pick",
            "SLICE_TOL", "OFFSET_STEPS", "CHECK_DENSITY", "CERTIFY_BOXES", "CERTIFY_SHRINKS"]
