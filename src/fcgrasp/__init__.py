@@ -70,7 +70,6 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         wrench_from_force,
     )
     from .grippers.jaw import JawPlan, ParallelJaw, Scene, jaw_pareto, jaw_payload, jaw_plans
-    from .model.hands import ParallelHand, hand_named
     from .io.meshes import read_solid
     from .io.parts import (
         Part,
@@ -91,6 +90,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
     from .model.hand import (
         Hand,
     )
+    from .model.hands import ParallelHand, hand_named
     from .model.loads import Load, Payload, RegionPayload, grasp_payload, region_payload
     from .model.outline import (
         clean_outline,
