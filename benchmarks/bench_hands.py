@@ -1,0 +1,146 @@
+"""A real hand's pick against the bare jaw: how many of the bare jaw's plans the hand
+would hit the part or the table with, and what planning with the hand costs.
+
+    .venv/bin/python benchmarks/bench_hands.py [--hand franka] [--thickness 6]
+                                               [--files dxf/forms.dxf,...]
+
+For each part (the built-in planar parts and the corpus files given), two runs of
+``fcgrasp plan`` in fresh processes, as the CLI runs them (CPU seconds with the process's
+start, from ``wait4``):
+
+* **bare**: the jaw of the hand's stroke and pad width (``--stroke``, ``--pad``), internal
+  grips included;
+* **hand**: ``--hand HAND --table --thickness T``.
+
+Then each bare plan's centre pose is checked with an independent collision library
+(python-fcl through trimesh) as a pick from above with the hand's boxes: the plate of
+thickness ``T`` on a table, the tool frame at the height that centres the pad on the
+plate's side (what a user of the bare jaw would do), an internal grip's fingers inside
+the hole. The table gives the share of the bare plans that collide (they are what the
+hand's model leaves out or moves up) and the ratio of the two runs' times.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import os
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+import numpy as np
+
+HERE = Path(__file__).resolve().parent
+FCGRASP = Path(sys.executable).with_name("fcgrasp")
+BUILT_IN = ["rectangle", "bracket", "quad", "washer", "cam", "blob", "triangle"]
+
+
+def run(argv: list[str]) -> tuple[float | None, dict | None]:
+    with tempfile.TemporaryDirectory() as tmp:
+        out = os.path.join(tmp, "plan.json")
+        proc = subprocess.Popen([str(FCGRASP), *argv, "--json", out, "--quiet"],
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+        _, status, usage = os.wait4(proc.pid, 0)
+        proc.stderr and proc.stderr.close()
+        if os.waitstatus_to_exitcode(status) not in (0, 1):
+            return None, None
+        return usage.ru_utime + usage.ru_stime, json.loads(Path(out).read_text())
+
+
+def collides(part, hand, grasp: dict, thickness: float, height: float) -> bool:
+    """The hand at a bare plan's centre pose, picked from above with its tool frame at
+    ``height``, against the plate and the table (python-fcl)."""
+    import shapely
+    import trimesh
+
+    from fcgrasp.io.moveit import tool_rotation
+
+    theta, offset = grasp["centre"]
+    sa, sb = grasp["contacts"]["a"]["stop"], grasp["contacts"]["b"]["stop"]
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    xy = np.asarray(grasp["centroid"]) + (sa + sb) / 2 * u + offset * n
+    opening = abs(sa - sb)
+    if grasp["mode"] == "internal":
+        # the pads are the fingers' outer faces: the inner ones are a finger's
+        # thickness in from each
+        thick = float(hand.pad_box.size[1])
+        opening -= 2 * thick
+        if opening < 0:
+            return True                     # the fingers do not fit between the stops
+    R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
+    m = trimesh.collision.CollisionManager()
+    m.add_object("plate", trimesh.creation.extrude_polygon(
+        shapely.Polygon(part.vertices, [h for h in part.holes]), thickness))
+    slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
+    slab.apply_translation((0.0, 0.0, -5.0))
+    m.add_object("table", slab)
+    for b in hand.boxes(opening):
+        T = np.eye(4)
+        T[:3, :3] = R @ np.asarray(b.rotation)
+        T[:3, 3] = np.r_[xy, height] + R @ np.asarray(b.centre)
+        if m.in_collision_single(trimesh.creation.box(extents=np.asarray(b.size) - 2e-6,
+                                                      transform=T)):
+            return True
+    return False
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--hand", default="franka")
+    ap.add_argument("--thickness", type=float, default=6.0)
+    ap.add_argument("--mu", default="0.5")
+    ap.add_argument("--top", default="5")
+    ap.add_argument("--files", default="gears/teeth-08.dxf,gears/teeth-12.dxf,"
+                                       "gears/teeth-20.dxf,gears/teeth-32.dxf,icons/heart.svg,"
+                                       "icons/droplet.svg,icons/cloud.svg")
+    args = ap.parse_args()
+    import fcgrasp as fc
+    from fcgrasp.model.hands import hand_named
+
+    hand = hand_named(args.hand)
+    subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
+                   check=True)
+    parts = [f"demo:{n}" for n in BUILT_IN] + \
+        [str(HERE / "corpus" / f) for f in filter(None, args.files.split(","))]
+    print(f"hand {hand.name} (stroke {hand.stroke[0]:g}-{hand.stroke[1]:g} mm, pads "
+          f"{hand.pad_width:g} mm), plate {args.thickness:g} mm on a table, mu {args.mu}, "
+          f"top {args.top}")
+    from fcgrasp.grippers.jaw import Scene, top_pick
+
+    centred = args.thickness / 2 + sum(hand.pad_span) / 2
+    safe = top_pick(hand, Scene(args.thickness, table=True)).height
+    print(f"the bare plans checked with the pad centred on the plate's side (tool at "
+          f"{centred:g} mm) and at the hand model's height ({safe:g} mm)")
+    print("| part | bare plans | colliding, centred | colliding, at the hand's height | "
+          "hand plans | bare CPU | hand CPU | ratio |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    total = hits = lifted = 0
+    for src in parts:
+        base = ["plan", src, "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
+        t_bare, bare = run(base + ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}",
+                                   "--pad", repr(hand.pad_width)])
+        t_hand, with_hand = run(base + ["--hand", args.hand, "--table", "--thickness",
+                                        str(args.thickness)])
+        label = src.replace(str(HERE / "corpus") + "/", "")
+        if bare is None or with_hand is None:
+            print(f"| {label} | error | | | | | |")
+            continue
+        part = fc.read_part(src)
+        got = [collides(part, hand, g, args.thickness, centred) for g in bare["grasps"]]
+        up = [collides(part, hand, g, args.thickness, safe) for g in bare["grasps"]]
+        total, hits, lifted = total + len(got), hits + sum(got), lifted + sum(up)
+        ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
+        print(f"| {label} | {len(got)} | {sum(got)} | {sum(up)} | {len(with_hand['grasps'])} | "
+              f"{t_bare:.2f} s | {t_hand:.2f} s | {ratio} |")
+    print(f"\nof {total} bare plans, {hits} collide with the pad centred on the plate's side "
+          f"({100 * hits / max(total, 1):.0f} %), {lifted} at the hand model's height "
+          f"({100 * lifted / max(total, 1):.0f} %)")
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
