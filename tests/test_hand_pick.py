@@ -318,3 +318,117 @@ def test_the_moveit_grasp_of_a_pick_puts_the_hands_pads_on_the_part(tmp_path):
                 m.apply_transform(world_T_ee)
                 gaps.append(manager.min_distance_single(m))
             assert len(gaps) == 2 and all(near[0] <= d <= near[1] for d in gaps), gaps
+
+
+def _solid_manager(solid, rest):
+    """The mesh, and the table under it in the part's frame (``rest``: the part's pose
+    on the table, None without one)."""
+    m = trimesh.collision.CollisionManager()
+    m.add_object("part", solid.mesh)
+    if rest is not None:
+        slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
+        slab.apply_translation((0.0, 0.0, -5.0))
+        slab.apply_transform(np.linalg.inv(rest))
+        m.add_object("table", slab)
+    return m
+
+
+def _in_region(plan, facet, n, rng):
+    """``n`` axis points sampled in a solid jaw region (its holes left out), and its
+    vertices."""
+    poly = shapely.Polygon(facet.to_2d(np.asarray(plan.regions[0])),
+                           [facet.to_2d(np.asarray(h)) for h in plan.holes[0]])
+    lo_x, lo_y, hi_x, hi_y = poly.bounds
+    pts = []
+    while len(pts) < n:
+        q = rng.uniform((lo_x, lo_y), (hi_x, hi_y))
+        if poly.contains(shapely.Point(q)):
+            pts.append(q)
+    return facet.to_3d(np.array(pts + list(np.asarray(poly.exterior.coords)[:-1])))
+
+
+@pytest.mark.parametrize("name,table", [("angle", False), ("angle", True), ("tall", True),
+                                        pytest.param("box", False, marks=pytest.mark.slow)])
+def test_every_sampled_placement_of_a_solid_region_is_collision_free(name, table):
+    """Axis points sampled in each region (and its corners): the hand's boxes along the
+    approach and the closing, each box on its own (not the hulls the search sweeps),
+    checked by python-fcl against the mesh and the table; the pads end on the facets."""
+    from fcgrasp.grippers.jaw._solid_pick import resting_pose, solid_tool_frame, up_in_part
+    from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
+
+    # a block 30 x 20 x 40: the Franka's fingers reach its sides above the table
+    solid = solid_from_mesh(trimesh.creation.box((30.0, 20.0, 40.0))) if name == "tall" \
+        else demo_solid(name)
+    hand = hand_named("franka")
+    jaw = ParallelJaw.of_hand(hand, 0.5, Scene(1.0, table=table))
+    plans = fc.plan(solid, gripper=jaw, top=3, time_limit=None)
+    assert plans, name
+    rest = resting_pose(solid) if table else None
+    m = _solid_manager(solid, rest)
+    rng, checked = np.random.default_rng(5), 0
+    for p in plans:
+        facet = solid.facets[p.facets[0]]
+        origin, R = solid_tool_frame(p, up_in_part(rest))
+        wide = min(hand.stroke[1], p.opening + 2.0)
+        for v in _in_region(p, facet, 10, rng):
+            at = origin + (v - np.asarray(p.centers[0]))
+            for dz, opening in [(-100.0, wide), (-30.0, wide), (0.0, wide),
+                                (0.0, (wide + p.opening) / 2), (0.0, p.opening + 2e-3)]:
+                meshes = _hand_meshes(hand, opening, at + dz * R[:, 2], R)
+                assert not _collides(m, meshes), (name, p.facets, v, dz, opening)
+                checked += 1
+    assert checked >= 50
+
+
+def test_a_solid_region_without_the_hand_collides():
+    """The regions of the bare jaw on the resting bracket (the hand's pads, no hand):
+    some placement puts the Franka through the table or the part."""
+    from fcgrasp.grippers.jaw._solid_pick import (
+        pad_diameter,
+        resting_pose,
+        solid_tool_frame,
+        up_in_part,
+    )
+    from fcgrasp.spatial.jaw import solid_jaw_plans
+    from fcgrasp.spatial.solid import demo_solid
+
+    solid = demo_solid("angle")
+    hand = hand_named("franka")
+    rest = resting_pose(solid)
+    m = _solid_manager(solid, rest)
+    hits = 0
+    for p in solid_jaw_plans(solid, hand.stroke, pad_diameter(hand), 0.5, top=5):
+        origin, R = solid_tool_frame(p, up_in_part(rest))
+        hits += _collides(m, _hand_meshes(hand, p.opening + 2e-3, origin, R))
+    assert hits >= 1
+
+
+def test_a_solid_picks_report_validates_with_its_resting_pose(tmp_path):
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.io.schema import validate
+
+    pytest.importorskip("jsonschema")
+    out = tmp_path / "r.json"
+    assert main(["plan", "demo:angle", "--gripper", "jaw", "--hand", "franka", "--mu", "0.5",
+                 "--table", "--top", "3", "--json", str(out), "--quiet"]) == 0
+    r = json.loads(out.read_text())
+    validate(r)
+    assert r["hand"]["name"] == "franka" and r["scene"]["table"]["normal"] == [0.0, 0.0, 1.0]
+    # the part's pose on the table puts its lowest point on it, and each pick's retreat
+    # is the table's up, seen in the part's frame
+    from scipy.spatial.transform import Rotation
+
+    q = r["scene"]["part_pose"]["orientation"]
+    R = Rotation.from_quat(q).as_matrix()
+    from fcgrasp.spatial.solid import demo_solid
+
+    pts = np.asarray(demo_solid("angle").mesh.vertices) @ R.T + \
+        np.asarray(r["scene"]["part_pose"]["position"])
+    assert abs(pts[:, 2].min()) < 1e-9
+    for g in r["grasps"]:
+        assert np.allclose(R @ np.asarray(g["retreat"]["direction"]), [0, 0, 1], atol=1e-9)
+        # the approach comes down onto the table, across the closing axis
+        assert (R @ np.asarray(g["approach"]["direction"]))[2] < 0
+        assert abs(np.asarray(g["approach"]["direction"]) @ np.asarray(g["axis"])) < 1e-9

@@ -72,6 +72,9 @@ class SolidJawPlan(SolidPlan):
     holes: tuple[tuple[FloatArray, ...], tuple[FloatArray, ...]] = field(
         default=((), ()), repr=False)
     surface_triangles: tuple[FloatArray, ...] = field(default=(), repr=False)
+    #: with a hand (:mod:`fcgrasp.grippers.jaw._solid_pick`): the pick of the region's
+    #: centre (pose, approach, retreat), in the JSON beside the region
+    pick: dict[str, Any] | None = field(default=None, repr=False, compare=False)
 
     def to_dict(self) -> dict[str, Any]:
         d: dict[str, Any] = {"facets": list(self.facets), "axis": self.axis.tolist(),
@@ -83,7 +86,7 @@ class SolidJawPlan(SolidPlan):
                                                    for t in self.surface_triangles],
                              "normals": (-self.normals).tolist(), "mu": self.mu,
                              "margin_deg": self.margin, "pad": self.pad,
-                             "contact_type": "jaw"}
+                             "contact_type": "jaw", **(self.pick or {})}
         return self._with_similar(d)
 
 

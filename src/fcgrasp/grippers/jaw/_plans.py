@@ -169,16 +169,32 @@ class ParallelJaw(JawParameters):
         from ...spatial.alternatives import top_distinct
         from ...spatial.jaw import solid_jaw_plans
 
+        if self.hand is not None and self.scene is not None:
+            from ._solid_pick import hand_solid_plans
+
+            return hand_solid_plans(self, solid, options.top, options.margin, fraction)
         return top_distinct(lambda n: solid_jaw_plans(solid, self.stroke, self.pad_width,
                                                       self.mu, top=n, margin=options.margin),
                             options.top, fraction)
 
     def solid_parameters(self, options: Any) -> dict[str, Any]:
-        return {"gripper": "jaw", "contact_type": "jaw", "stroke": list(self.stroke),
-                "pad": self.pad_width, "mu": self.mu, "top": options.top,
-                "margin_deg": options.margin}
+        out = {"gripper": "jaw", "contact_type": "jaw", "stroke": list(self.stroke),
+               "pad": self.pad_width, "mu": self.mu, "top": options.top,
+               "margin_deg": options.margin}
+        if self.hand is not None:
+            from ._solid_pick import pad_diameter
+
+            # the round pad that covers the hand's pad (fcgrasp.spatial.jaw's model)
+            out["pad"] = pad_diameter(self.hand)
+            out["hand"] = self.hand.to_dict()
+        return out
 
     def solid_no_grasp_reason(self, margin: float) -> str:
+        if self.hand is not None:
+            return (f"no two opposite parallel facets {self.stroke[0]:g} to "
+                    f"{self.stroke[1]:g} apart take the {self.hand.name} hand's pads with mu "
+                    f"{self.mu:g} and a margin of {margin:g} degrees, the hand clear of the "
+                    f"part{' and the table' if self.scene and self.scene.table else ''}")
         return (f"no two opposite parallel facets {self.stroke[0]:g} to {self.stroke[1]:g} "
                 f"apart (the stroke) take the jaw's {self.pad_width:g} pads with mu "
                 f"{self.mu:g} and a margin of {margin:g} degrees")

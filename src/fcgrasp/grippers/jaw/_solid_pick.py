@@ -1,0 +1,313 @@
+r"""A solid picked by a real hand: the solid alone or resting on a table in its most
+stable pose, the hand's boxes (:class:`~fcgrasp.model.hands.ParallelHand`), and each
+jaw region (:class:`~fcgrasp.spatial.jaw.SolidJawPlan`) kept where every placement of
+the hand in it is collision free.
+
+**The pose.**  Plans, poses and the table are in the part's frame; on a table the part
+rests in its most stable pose (:func:`resting_pose`, the scene's ``part_pose``).  The
+closing axis is the region's; the tool frame's ``y`` points from the midpoint between
+the facets to facet ``A``, its ``z`` (the approach) is the direction across the axis
+nearest to straight down onto the table (sideways where the axis is vertical), its
+origin midway between the two facets at the region's centre.  The hand comes along ``z``
+from ``approach`` away, opened ``2 clearance`` wider than the facets are apart (at most
+its stroke), and closes.
+
+**Why every placement of a region is collision free.**  A placement is the pose moved
+by ``v - c`` for an axis point ``v`` of the region (centre ``c``); the region and the
+hand's boxes are convex or covered by convex hulls, and the hand's motion (the approach,
+the closing) is a segment, so the set a box sweeps over the region and the motion is
+the convex hull of its corners moved by the region's hull's vertices and by the
+motion's ends (a Minkowski sum of convex sets: exact for the hull).  Each such hull is
+tested against the solid and the table by python-fcl; where one meets them, the region
+is cut to the disc of its inscribed circle (its radius, the plan's measure, unchanged)
+and tested again; a region that fails then is dropped.  At the grasp itself the pads,
+and every finger box within the pad's circle around the axis, lie in a column the jaw's
+region keeps clear of material beyond each facet (:mod:`fcgrasp.spatial.jaw`, with the
+pad's diameter the pad box's diagonal), so they are not swept there: they touch the
+facets.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from ...core.tolerances import INRADIUS_STEP, STRIP_TOL
+from ...errors import ArgumentError
+from ...model.hands import ParallelHand
+from ._pick import Scene
+
+__all__ = ["resting_pose", "solid_tool_frame", "collision_free_plan", "pad_diameter",
+           "scene_manager", "pick_dict", "hand_solid_plans"]
+
+#: Sides of the polygon that stands for a region's inscribed disc (circumscribing it).
+DISC_SIDES = 24
+
+
+def pad_diameter(hand: ParallelHand) -> float:
+    """The round pad of the solid jaw that covers the hand's pad box's face."""
+    w, _, h = hand.pad_box.size
+    return float(math.hypot(w, h))
+
+
+def resting_pose(solid: Any) -> np.ndarray:
+    """The solid's most stable resting pose on the plane ``z = 0``
+    (``trimesh.poses.compute_stable_poses``): the transform (4 x 4) from the part's frame
+    to the table's."""
+    mesh = solid.mesh.copy()
+    transforms, _ = mesh.compute_stable_poses()
+    T = np.asarray(transforms[0], float)
+    lowest = float((mesh.vertices @ T[:3, :3].T + T[:3, 3])[:, 2].min())
+    T[2, 3] -= lowest
+    return T
+
+
+def up_in_part(T: np.ndarray | None) -> np.ndarray:
+    """The table's upward normal in the part's frame (``z`` without a table)."""
+    if T is None:
+        return np.array([0.0, 0.0, 1.0])
+    return np.asarray(T[:3, :3], float).T @ np.array([0.0, 0.0, 1.0])
+
+
+def solid_tool_frame(plan: Any, up: Any = (0.0, 0.0, 1.0)) -> tuple[np.ndarray, np.ndarray]:
+    """The tool frame of a region's centre (the module's docstring; ``up`` the table's
+    normal in the part's frame): origin and axes as columns ``x, y, z``."""
+    c = np.asarray(plan.centers, float)
+    origin = c.mean(axis=0)
+    y = c[0] - origin
+    y /= np.linalg.norm(y)
+    down = -np.asarray(up, float)
+    z = down - (down @ y) * y
+    if np.linalg.norm(z) < 0.1:                # a vertical axis: come from the side
+        side = np.eye(3)[int(np.argmin(np.abs(y)))]
+        z = side - (side @ y) * y
+    z /= np.linalg.norm(z)
+    return origin, np.stack([np.cross(y, z), y, z], axis=1)
+
+
+def _fcl() -> Any:
+    try:
+        import fcl  # noqa: F401
+        import trimesh
+    except ImportError:
+        raise ArgumentError("a hand on a solid needs python-fcl and trimesh (pip install "
+                            "'fcgrasp[robot]')", "hand") from None
+    return trimesh
+
+
+def _hull(points: np.ndarray) -> Any:
+    import trimesh
+
+    return trimesh.convex.convex_hull(points)
+
+
+def _in_column(hand: ParallelHand, box: Any, radius: float) -> bool:
+    """A finger box within the pad's circle around the closing axis (tool ``x``, ``z``
+    at most ``radius`` from the pad's centre line) and behind the pad's face."""
+    c = box.corners()
+    px = (np.asarray(hand.pad_box.corners())[:, [0, 2]]).mean(axis=0)
+    tol = STRIP_TOL * max(1.0, float(np.abs(c).max()))
+    return bool(np.all(np.hypot(c[:, 0] - px[0], c[:, 2] - px[1]) <= radius + tol)
+                and np.all(c[:, 1] >= -tol))
+
+
+def scene_manager(solid: Any, rest: np.ndarray | None) -> Any:
+    """python-fcl's collision manager of the solid and the table under it (the table's
+    slab in the part's frame, ``rest`` the part's pose on it), or of the solid alone."""
+    trimesh = _fcl()
+    manager = trimesh.collision.CollisionManager()
+    manager.add_object("part", solid.mesh)
+    if rest is not None:
+        slab = trimesh.creation.box(extents=(1e6, 1e6, 10.0))
+        slab.apply_translation((0.0, 0.0, -5.0))
+        slab.apply_transform(np.linalg.inv(rest))
+        manager.add_object("table", slab)
+    return manager
+
+
+def collision_free_plan(plan: Any, solid: Any, hand: ParallelHand, scene: Scene,
+                        manager: Any, rest: np.ndarray | None = None) -> Any:
+    """The plan with its region cut to where the hand is collision free (the module's
+    docstring; ``manager`` :func:`scene_manager`'s, ``rest`` the part's pose on the
+    table), or None."""
+    origin, R = solid_tool_frame(plan, up_in_part(rest))
+    h = float(plan.opening)
+    wide = min(hand.stroke[1], h + 2 * scene.clearance)
+    if h > hand.stroke[1]:
+        return None
+    facet = solid.facets[plan.facets[0]]
+    centre = np.asarray(plan.centers[0], float)
+    # the boxes at the grasp and at the wide opening, in the tool frame
+    n_palm, n_finger = len(hand.palm), len(hand.finger)
+    radius = pad_diameter(hand) / 2
+    column = [_in_column(hand, b, radius) for b in hand.finger]
+    shrink = STRIP_TOL * solid.size
+
+    def hulls_clear(shift: np.ndarray, origin: np.ndarray, R: np.ndarray) -> bool:
+        """Every box's sweep over the region's hull vertices ``shift`` (k, 3) from the
+        pose ``origin``, ``R`` clear of the part and the table."""
+        approach = np.array([np.zeros(3), -scene.approach * R[:, 2]])
+        for phase in ("approach", "close"):
+            at = hand.boxes(wide)
+            closing = hand.boxes(h)
+            for k, box in enumerate(at):
+                finger = k >= n_palm
+                if phase == "close" and (not finger or column[(k - n_palm) % n_finger]):
+                    continue            # the palm does not move; column boxes touch
+                corners = origin + _corners(box, shrink) @ R.T
+                if phase == "approach":
+                    ends = [corners + a for a in approach]
+                else:
+                    ends = [corners, origin + _corners(closing[k], shrink) @ R.T]
+                pts = np.concatenate([e[:, None, :] + shift[None, :, :] for e in ends])
+                if manager.in_collision_single(_hull(pts.reshape(-1, 3))):
+                    return False
+        return True
+
+    import shapely
+
+    piece = shapely.Polygon(facet.to_2d(np.asarray(plan.regions[0], float)),
+                            [facet.to_2d(np.asarray(hh, float)) for hh in plan.holes[0]])
+    if rest is not None:
+        # the table: a placement moved by v - c lowers the hand by (v - c) . up, so the
+        # placements above the table by ``clearance`` are a half-plane of the region
+        up = up_in_part(rest)
+        floor = float(np.linalg.inv(rest)[:3, 3] @ up)          # the table's height
+        lowest = min(float(np.min((origin + _corners(b, 0.0) @ R.T) @ up))
+                     for b in hand.boxes(wide) + hand.boxes(h))
+        need = floor + scene.clearance - lowest                  # (v - c) . up >= need
+        if need > 0:
+            e = facet.to_2d(centre + up) - facet.to_2d(centre)  # up, seen in A's plane
+            if np.hypot(*e) <= STRIP_TOL:
+                return None                 # the plane is level: no placement rises
+            e = e / float(np.hypot(*e) ** 2)
+            # (v - c) . up = (q - q_c) . e' in A's coordinates, e' the projection of up
+            far = 4 * solid.size
+            q0 = facet.to_2d(centre) + need * e
+            t = np.array([-e[1], e[0]]) / np.hypot(*e)
+            n2 = e / np.hypot(*e)
+            half = shapely.Polygon([q0 - far * t, q0 + far * t, q0 + far * t + far * n2,
+                                    q0 - far * t + far * n2])
+            piece = shapely.intersection(piece, half)
+    for attempt in range(2):
+        if isinstance(piece, shapely.MultiPolygon):
+            piece = max(piece.geoms, key=lambda g: g.area)
+        if not isinstance(piece, shapely.Polygon) or piece.is_empty or piece.area <= 0:
+            return None
+        best = _inscribed(piece)
+        if best is None:
+            return None
+        c2, r = best
+        got = _with_region(plan, facet, piece, c2, r)
+        o2, R2 = solid_tool_frame(got, up_in_part(rest))
+        hull = facet.to_3d(np.asarray(piece.convex_hull.exterior.coords)[:-1])
+        if hulls_clear(hull - np.asarray(got.centers[0]), o2, R2):
+            return got
+        if attempt == 0:
+            # the inscribed disc (a polygon around it), the plan's radius unchanged
+            ang = np.linspace(0, 2 * np.pi, DISC_SIDES, endpoint=False)
+            r_out = r / math.cos(math.pi / DISC_SIDES)
+            piece = shapely.intersection(piece, shapely.Polygon(
+                c2 + r_out * np.c_[np.cos(ang), np.sin(ang)]))
+    return None
+
+
+def _inscribed(piece: Any) -> tuple[np.ndarray, float] | None:
+    """The centre and radius of a polygon's largest inscribed circle (the radius the
+    distance from the centre found to the boundary)."""
+    import shapely
+
+    lo_x, lo_y, hi_x, hi_y = piece.bounds
+    line = shapely.maximum_inscribed_circle(piece, INRADIUS_STEP * max(hi_x - lo_x,
+                                                                        hi_y - lo_y))
+    c = np.asarray(line.coords[0], float)
+    r = float(piece.boundary.distance(shapely.Point(c)))
+    return (c, r) if r > 0 else None
+
+
+def _corners(box: Any, shrink: float) -> np.ndarray:
+    """A box's corners, the box pulled in by ``shrink`` on every side (a pad touching
+    its facet is no collision)."""
+    half = np.maximum(np.asarray(box.size, float) / 2 - shrink, 0.0)
+    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)],
+                     float)
+    return np.asarray(box.centre, float) + (signs * half) @ np.asarray(box.rotation, float).T
+
+
+def _with_region(plan: Any, facet: Any, piece: Any, c2: np.ndarray, r: float) -> Any:
+    """The plan with the region ``piece`` (facet ``A``'s plane), its inscribed centre
+    ``c2`` and radius ``r``."""
+    import shapely
+
+    shift = np.asarray(plan.centers[1], float) - np.asarray(plan.centers[0], float)
+    ring_a = facet.to_3d(np.asarray(piece.exterior.coords)[:-1])
+    holes_a = tuple(facet.to_3d(np.asarray(q.coords)[:-1]) for q in piece.interiors)
+    tris = shapely.get_parts(shapely.constrained_delaunay_triangles(piece))
+    flat = np.array([np.asarray(t.exterior.coords)[:3] for t in tris], float).reshape(-1, 2)
+    tri_a = facet.to_3d(flat).reshape(-1, 3, 3)
+    ca = facet.to_3d(c2)
+    return replace(plan, regions=(ring_a, ring_a + shift), area=float(piece.area),
+                   radius=float(r), centers=np.stack([ca, ca + shift]),
+                   holes=(holes_a, tuple(q + shift for q in holes_a)),
+                   surface_triangles=(tri_a, tri_a + shift))
+
+
+def pick_dict(plan: Any, hand: ParallelHand, scene: Scene,
+              rest: np.ndarray | None = None) -> dict[str, Any]:
+    """The pose, the opening the hand comes at, its approach and retreat, of a region's
+    centre, in the part's frame (``rest``: its pose on the table)."""
+    from ...io.moveit import quaternion
+
+    up = up_in_part(rest)
+    origin, R = solid_tool_frame(plan, up)
+    return {"pose": {"position": [float(v) for v in origin],
+                     "orientation": list(quaternion(R)), "frame": "part"},
+            "pre_grasp_opening": float(min(hand.stroke[1], plan.opening + 2 * scene.clearance)),
+            "approach": {"direction": [float(v) for v in R[:, 2]], "distance": scene.approach,
+                         "frame": "part"},
+            "retreat": {"direction": [float(v) for v in up], "distance": scene.retreat,
+                        "frame": "part"},
+            "collision_free": True}
+
+
+def hand_solid_plans(jaw: Any, solid: Any, top: int, margin: float, fraction: float) -> Any:
+    """The jaw's regions on a solid kept where its hand is collision free
+    (:func:`collision_free_plan`), distinct, best first: the search asked for four times
+    ``top`` and four times more until ``top`` are kept or it has no more."""
+    from ...core.budget import PlanList
+    from ...spatial.alternatives import distinct_solid_plans
+    from ...spatial.jaw import solid_jaw_plans
+
+    hand, scene = jaw.hand, jaw.scene
+    rest = resting_pose(solid) if scene.table else None
+    manager = scene_manager(solid, rest)
+    n = 4 * top
+    while True:
+        raw = solid_jaw_plans(solid, jaw.stroke, pad_diameter(hand), jaw.mu, top=n,
+                              margin=margin)
+        ok = []
+        for p in raw:
+            got = collision_free_plan(p, solid, hand, scene, manager, rest)
+            if got is not None:
+                ok.append(replace(got, pick=pick_dict(got, hand, scene, rest)))
+        # a region cut for the hand may rank lower: by its radius again (stable)
+        ok.sort(key=lambda q: -q.radius)
+        kept = distinct_solid_plans(ok, fraction) if fraction else ok
+        if len(kept) >= top or len(raw) < n or not getattr(raw, "complete", True):
+            out = PlanList(kept[:top])
+            placed = {k: v for k, v in scene.to_dict().items() if k != "thickness"}
+            out.details = {"scene": {**placed, "part_pose": _pose_dict(rest)}}
+            return out
+        n *= 4
+
+
+def _pose_dict(T: np.ndarray | None) -> dict[str, Any]:
+    from ...io.moveit import quaternion
+
+    if T is None:
+        return {"position": [0.0, 0.0, 0.0], "orientation": [0.0, 0.0, 0.0, 1.0]}
+    return {"position": [float(v) for v in T[:3, 3]],
+            "orientation": list(quaternion(np.asarray(T[:3, :3])))}
