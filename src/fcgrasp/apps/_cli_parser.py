@@ -110,14 +110,17 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
                        help="with --gripper jaw: the smallest and largest opening")
         p.add_argument("--pad", type=float, default=None, metavar="WIDTH",
                        help="with --gripper jaw: the width of the flat pads")
-        p.add_argument("--hand", metavar="NAME", default=None,
-                       help="with --gripper jaw: a real hand (franka), whose stroke and pads "
-                            "the jaw takes; the part is then a plate picked from above and "
-                            "every plan is collision free, with its pose")
+        p.add_argument("--hand", metavar="NAME|URDF|PARAMS", default=None,
+                       help="with --gripper jaw: a real hand (franka, robotiq_hande, a URDF "
+                            "file, or stroke=MIN:MAX,pad=W,height=H,thickness=T), whose "
+                            "stroke and pads the jaw takes; the part is picked from above "
+                            "and every plan is collision free, with its pose")
         p.add_argument("--thickness", type=float, default=None, metavar="T",
-                       help="with --hand: the plate's thickness (default: the pad's height)")
+                       help="with --hand on a planar part: the plate's thickness (default: "
+                            "the pad's height)")
         p.add_argument("--table", action="store_true", default=False,
-                       help="with --hand: the plate lies on a table the hand must not touch")
+                       help="with --hand: the part lies on a table the hand must not touch "
+                            "(a solid in its most stable pose)")
         p.add_argument("--certify", action=argparse.BooleanOptionalAction, default=None,
                        help="with --gripper jaw: prove that every pose of each box holds "
                             "(fcgrasp.grippers.jaw.certify_box; the default: boxes it cannot prove "
