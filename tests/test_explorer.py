@@ -904,3 +904,29 @@ def test_the_time_limit_stops_the_search_and_the_page_says_so(server, browser, t
     text = browser.find_element(By.ID, "incomplete").text
     assert text.startswith("search stopped at its time limit (--time-limit): "
                            f"{report['gap']['found']} of 10 plans proved")
+
+
+def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
+    """The jaw with a built-in hand: the page sends the hand's name (never a file), the
+    plans come with poses, and the hand's boxes are drawn around the pads."""
+    from selenium.webdriver.support.ui import Select
+
+    d = browser
+    if not d.current_url.startswith(server):
+        d.get(server)
+    wait(d, "document.body.dataset.planSeq !== undefined && document.body.dataset.busy === '0'")
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "gripper")).select_by_value("jaw")
+    wait_plan(d, after)
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "hand")).select_by_value("franka")
+    wait_plan(d, after)
+    report = d.execute_script("return explorer.state.report;")
+    assert report["hand"]["name"] == "franka" and report["parameters"]["stroke"] == [0, 80]
+    assert all("pose" in g for g in report["grasps"])
+    boxes = d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
+    assert len(boxes) == len(report["hand"]["boxes"])
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "hand")).select_by_value("")
+    wait_plan(d, after)
+    assert not d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")

@@ -432,3 +432,20 @@ def test_a_solid_picks_report_validates_with_its_resting_pose(tmp_path):
         # the approach comes down onto the table, across the closing axis
         assert (R @ np.asarray(g["approach"]["direction"]))[2] < 0
         assert abs(np.asarray(g["approach"]["direction"]) @ np.asarray(g["axis"])) < 1e-9
+
+
+def test_a_page_names_a_built_in_hand_never_a_file():
+    from fcgrasp.apps._explorer_data import plan_request
+    from fcgrasp.errors import RequestError
+
+    req = plan_request({"gripper": "jaw", "hand": "robotiq_hande", "stroke": [1, 2], "pad": 3,
+                        "table": True, "thickness": 5, "mu": 0.5})
+    assert req.hand == "robotiq_hande" and req.stroke is None and req.table
+    for bad in ("tests/data/hands/robotiq_hande/urdf/robotiq_hand_e.urdf",
+                "stroke=0:60,pad=10,height=12,thickness=6", "/etc/passwd"):
+        with pytest.raises(RequestError) as err:
+            plan_request({"gripper": "jaw", "hand": bad, "mu": 0.5})
+        assert err.value.field == "hand"
+    # without a hand the plate's options are not used
+    assert plan_request({"gripper": "jaw", "stroke": [5, 50], "pad": 8, "table": True,
+                         "mu": 0.5}).table is False

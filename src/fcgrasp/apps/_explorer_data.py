@@ -32,14 +32,16 @@ SOLID_GRIPPERS: dict[str, dict[str, Any]] = {
     "2": {"fingers": 2, "soft": True}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
 _SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct", "time_limit"),
                   "3": ("mu", "margin", "top", "distinct", "time_limit"),
-                  "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct", "time_limit")}
+                  "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct", "time_limit",
+                          "hand", "table")}
 _COMMON = ("margin", "rank_by", "top", "distinct", "time_limit")
 #: The page's options each of its gripper choices uses (the page sends them all).
 _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
                  "3": ("mu", "along_boundary", "bound", *_COMMON),
                  "3g": ("gravity", "along_boundary", *_COMMON),
                  "4": ("along_boundary", "bound", *_COMMON),
-                 "jaw": ("mu", "stroke", "pad", "certify", *_COMMON)}
+                 "jaw": ("mu", "stroke", "pad", "certify", "hand", "table", "thickness",
+                         *_COMMON)}
 
 
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
@@ -232,7 +234,10 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
         {"gripper": "2" | "3" | "3g" | "4" | "jaw", "mu": 0.3, "margin": 0.5,
          "rank_by": "min_region", "top": 10, "along_boundary": true,
          "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1],
-         "distinct": 0.5, "bound": true, "time_limit": 10}
+         "distinct": 0.5, "bound": true, "time_limit": 10,
+         "hand": "franka", "table": true, "thickness": 6}
+
+    (with ``hand``, a built-in hand's name, its own stroke and pads are used).
 
     checked whole here, before a job starts, with the command line's messages (a
     :class:`~fcgrasp.errors.RequestError` naming the option).  The page sends every
@@ -258,7 +263,8 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
 
 #: The keys of the page's options.
 _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
-          "gravity", "certify", "distinct", "bound", "time_limit")
+          "gravity", "certify", "distinct", "bound", "time_limit", "hand", "table",
+          "thickness")
 
 
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
@@ -282,6 +288,18 @@ def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
     if "along_boundary" in kw:
         kw["single_edge"] = kw.pop("along_boundary") is False
     kw.update({k: tuple(kw[k]) for k in ("stroke", "gravity") if isinstance(kw.get(k), list)})
+    if kw.get("hand") is not None:
+        # a page names a built-in hand, never a file of the server's
+        from ..model.hands import HANDS
+
+        if kw["hand"] not in HANDS:
+            raise RequestError(f"options.hand must be one of {', '.join(sorted(HANDS))}, "
+                               f"got {_short(kw['hand'])}", "hand")
+        kw.pop("stroke", None)          # the hand's own stroke and pads
+        kw.pop("pad", None)
+    else:
+        kw.pop("table", None)
+        kw.pop("thickness", None)
     top = kw.get("top")
     if top is not None and (isinstance(top, bool) or not isinstance(top, int)
                             or not 1 <= top <= 100):

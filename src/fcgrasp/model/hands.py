@@ -178,7 +178,8 @@ class ParallelHand:
                 "joints": [{"name": j, "lower": min(at_lo, at_hi), "upper": max(at_lo, at_hi),
                             "at_zero_opening": self.joint_offset,
                             "per_opening": self.joint_per_opening} for j in self.joints],
-                "opening": at, "boxes": [b.to_dict() for b in self.boxes(at)]}
+                "opening": at, "finger_boxes": len(self.finger),
+                "boxes": [b.to_dict() for b in self.boxes(at)]}
 
 
 def hand_description(hand: ParallelHand) -> dict[str, Any]:

@@ -501,12 +501,56 @@ function drawJaw(plan) {
       el("circle", { cx: q[0], cy: q[1], r: 3.5, fill: "#d62728", class: "jaw-contact" }, g);
     }
   });
+  if (plan.pose && S.report && S.report.hand) drawHand(plan, S.report.hand, g);
   for (const t of plan.theta_rad) {
     const d = [Math.cos(t) * reach, Math.sin(t) * reach], m = P(c, 0);
     const a = X([m[0] - d[0], m[1] - d[1]]), b = X([m[0] + d[0], m[1] + d[1]]);
     el("line", { x1: a[0], y1: a[1], x2: b[0], y2: b[1], stroke: "#2ca02c",
                  "stroke-dasharray": "6 4", class: "fan" }, g);
   }
+}
+
+// a real hand seen from above at the box's centre pose (the report's hand: its boxes in
+// the tool frame at its largest opening; the fingers moved to the grasp's opening)
+function drawHand(plan, hand, g) {
+  const [x, y, z, w] = plan.pose.orientation, p = plan.pose.position;
+  // the rotation's first two rows (the plane's x and y of each tool axis)
+  const R = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+             [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)]];
+  const opening = plan.contacts.a.stop - plan.contacts.b.stop;
+  const nPalm = hand.boxes.length - 2 * hand.finger_boxes;
+  hand.boxes.forEach((b, k) => {
+    const side = k < nPalm ? 0 : (k < nPalm + hand.finger_boxes ? 1 : -1);
+    const dy = side * (opening - hand.opening) / 2;
+    const corners = [];
+    for (const sx of [-1, 1]) for (const sy of [-1, 1]) for (const sz of [-1, 1]) {
+      const l = [sx * b.size[0] / 2, sy * b.size[1] / 2, sz * b.size[2] / 2];
+      const c = [0, 1, 2].map((i) => b.centre[i] + b.rotation[i][0] * l[0] +
+                 b.rotation[i][1] * l[1] + b.rotation[i][2] * l[2]);
+      c[1] += dy;
+      corners.push(X([p[0] + R[0][0] * c[0] + R[0][1] * c[1] + R[0][2] * c[2],
+                      p[1] + R[1][0] * c[0] + R[1][1] * c[1] + R[1][2] * c[2]]));
+    }
+    el("polygon", { points: hull(corners).map((q) => q.join(",")).join(" "), fill: "none",
+                    stroke: side === 0 ? "#777" : "#333", "stroke-width": 1,
+                    "stroke-dasharray": side === 0 ? "4 3" : "", class: "hand-box" }, g);
+  });
+}
+
+// the convex hull of screen points (monotone chain)
+function hull(points) {
+  const q = points.slice().sort((a, b) => a[0] - b[0] || a[1] - b[1]);
+  const cross = (o, a, b) => (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+  const half = (list) => {
+    const h = [];
+    for (const r of list) {
+      while (h.length >= 2 && cross(h[h.length - 2], h[h.length - 1], r) <= 0) h.pop();
+      h.push(r);
+    }
+    h.pop();
+    return h;
+  };
+  return half(q).concat(half(q.slice().reverse()));
 }
 
 function drawOverlay(ov) {
@@ -572,6 +616,11 @@ function options() {
     o.stroke = [num("stroke0", "stroke"), num("stroke1", "stroke")];
     o.pad = num("pad", "pad width");
     o.certify = $("certify").checked;
+    if ($("hand").value) {
+      o.hand = $("hand").value;
+      o.table = $("table").checked;
+      if (!S.solid) o.thickness = num("thickness", "plate thickness");
+    }
   } else {
     o.along_boundary = $("along").checked;
     o.rank_by = $("rank").value;
@@ -1131,7 +1180,8 @@ async function init() {
     }
   }
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
-                    "certify", "distinct", "bound", "timelimit"]) {
+                    "certify", "distinct", "bound", "timelimit", "hand", "table",
+                    "thickness"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
