@@ -449,3 +449,20 @@ def test_a_page_names_a_built_in_hand_never_a_file():
     # without a hand the plate's options are not used
     assert plan_request({"gripper": "jaw", "stroke": [5, 50], "pad": 8, "table": True,
                          "mu": 0.5}).table is False
+
+
+def test_a_batch_line_of_a_pick_carries_its_hand_and_scene(tmp_path):
+    import json
+
+    from fcgrasp.apps.cli import main
+
+    (tmp_path / "parts").mkdir()
+    (tmp_path / "parts" / "rect.json").write_text(
+        json.dumps({"vertices": [[0, 0], [80, 0], [80, 30], [0, 30]]}))
+    out = tmp_path / "r.jsonl"
+    assert main(["batch", str(tmp_path / "parts"), "--out", str(out), "--gripper", "jaw",
+                 "--hand", "franka", "--mu", "0.5", "--table", "--top", "2",
+                 "--workers", "1"]) == 0
+    (line,) = [json.loads(x) for x in out.read_text().splitlines()]
+    assert line["hand"]["name"] == "franka" and line["scene"]["table"] is not None
+    assert line["grasps"] and all("pose" in g for g in line["grasps"])

@@ -64,8 +64,9 @@ def _plan_one(task: _Task, map: Any = None) -> dict[str, Any]:
         out["grasps"] = doc.report["grasps"]
         out["reason"] = doc.report["reason"]
         out["complete"] = doc.report.get("complete", True)
-        if "gap" in doc.report:
-            out["gap"] = doc.report["gap"]
+        for key in ("gap", "hand", "scene"):   # a pick with a hand: its hand and scene
+            if key in doc.report:
+                out[key] = doc.report[key]
         out["units"] = doc.units
         if task.figures:
             from ..plotting import document_figure
