@@ -922,7 +922,7 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     Select(d.find_element(By.ID, "hand")).select_by_value("franka")
     wait_plan(d, after)
     report = d.execute_script("return explorer.state.report;")
-    assert report["hand"]["name"] == "franka" and report["parameters"]["stroke"] == [0, 80]
+    assert report["hand"]["name"] == "franka" and report["parameters"]["stroke"] == [0, 79.96]
     assert all("pose" in g for g in report["grasps"])
     boxes = d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
     assert len(boxes) == len(report["hand"]["boxes"])

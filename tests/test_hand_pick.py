@@ -167,7 +167,7 @@ def test_the_report_has_the_hand_the_scene_and_each_pose(tmp_path):
                  "0.5", "--table", "--thickness", "5", "--top", "2", "--json", str(out),
                  "--quiet"]) == 0
     r = json.loads(out.read_text())
-    assert r["hand"]["licence"] == "Apache-2.0" and r["hand"]["stroke"] == [0.0, 80.0]
+    assert r["hand"]["licence"] == "Apache-2.0" and r["hand"]["stroke"] == [0.0, 79.96]
     assert r["scene"]["table"] == {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}
     for g in r["grasps"]:
         q = np.asarray(g["pose"]["orientation"])
@@ -466,3 +466,60 @@ def test_a_batch_line_of_a_pick_carries_its_hand_and_scene(tmp_path):
     (line,) = [json.loads(x) for x in out.read_text().splitlines()]
     assert line["hand"]["name"] == "franka" and line["scene"]["table"] is not None
     assert line["grasps"] and all("pose" in g for g in line["grasps"])
+
+
+FRANKA_URDF = HANDE.parents[2] / "franka_boxes" / "franka_hand_boxes.urdf"
+
+
+def test_the_urdf_reader_gives_the_built_in_franka_hand():
+    """The Franka Hand's description expanded into a plain URDF, read by
+    :func:`fcgrasp.io.urdf.hand_from_urdf` (yourdfpy): the same stroke, joints and boxes
+    (every corner, relative to the pad) as the hand written from the xacro."""
+    from fcgrasp.io.urdf import hand_from_urdf
+
+    pytest.importorskip("yourdfpy")
+    read, built = hand_from_urdf(FRANKA_URDF), hand_named("franka")
+    assert read.stroke == pytest.approx(built.stroke, abs=1e-9)
+    assert read.joint_per_opening == pytest.approx(built.joint_per_opening, rel=1e-12)
+    assert read.joint_offset == pytest.approx(built.joint_offset, abs=1e-12)
+    assert read.pad_width == pytest.approx(built.pad_width) and read.joints == built.joints
+
+    def corners(hand, opening):
+        boxes = hand.boxes(opening)
+        pad = np.asarray(hand.boxes(opening)[len(hand.palm) + [b.name for b in hand.finger]
+                                             .index(hand.pad)].centre)
+        return sorted(tuple(np.round(np.sort(b.corners() - pad, axis=0).ravel(), 6))
+                      for b in boxes)
+
+    for opening in (0.0, 31.5, 79.96):
+        assert corners(read, opening) == corners(built, opening)
+
+
+@pytest.mark.parametrize("text,message", [
+    ("<robot name='r'><link name='a'/></robot>", "two prismatic finger joints"),
+    ("not a urdf at all", "not a URDF"),
+    ("""<robot name='r'><link name='p'/>
+        <link name='f1'><collision><geometry><mesh filename='missing.stl'/></geometry>
+        </collision></link><link name='f2'/>
+        <joint name='j1' type='prismatic'><parent link='p'/><child link='f1'/>
+        <axis xyz='0 1 0'/><limit lower='0' upper='0.04' effort='1' velocity='1'/></joint>
+        <joint name='j2' type='prismatic'><parent link='p'/><child link='f2'/>
+        <axis xyz='0 -1 0'/><limit lower='0' upper='0.04' effort='1' velocity='1'/></joint>
+        </robot>""", "missing"),
+    ("""<robot name='r'><link name='p'/><link name='f1'/><link name='f2'/>
+        <joint name='j1' type='revolute'><parent link='p'/><child link='f1'/>
+        <axis xyz='1 0 0'/><limit lower='0' upper='1' effort='1' velocity='1'/></joint>
+        <joint name='j2' type='revolute'><parent link='p'/><child link='f2'/>
+        <axis xyz='1 0 0'/><limit lower='0' upper='1' effort='1' velocity='1'/></joint>
+        </robot>""", "two prismatic finger joints"),
+])
+def test_a_urdf_the_reader_does_not_take_is_one_line(tmp_path, capsys, text, message):
+    from fcgrasp.apps.cli import main
+
+    pytest.importorskip("yourdfpy")
+    path = tmp_path / "hand.urdf"
+    path.write_text(text)
+    code = main(["plan", "demo:rectangle", "--gripper", "jaw", "--mu", "0.5", "--hand",
+                 str(path)])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and message in err[0] and "--hand" in err[0], err

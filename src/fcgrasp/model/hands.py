@@ -228,8 +228,8 @@ def _franka() -> ParallelHand:
     origin is 0.25 mm from the rubber tips' centre; the finger joints sit 58.4 mm from
     the flange and move 0 to 40 mm each.  The rubber tip's face stands 0.02 mm in front
     of its joint's plane: the finger is moved back by that much, so that the opening is
-    the distance between the tips' faces (each joint at half the opening plus 0.02
-    mm)."""
+    the distance between the tips' faces, 0 to 79.96 mm (each joint at half the
+    opening plus 0.02 mm)."""
     z0 = 58.4 - 103.4                   # the finger joint's height in the tool frame
     dy = 0.02                           # the tip's face on y = 0
     finger = (
@@ -243,7 +243,7 @@ def _franka() -> ParallelHand:
     palm = (HandBox("palm", (-0.01, -1.78, (-25.92 + 65.96) / 2 - 103.4),
                     (63.26, 204.42, 91.88)),)
     return ParallelHand(
-        "franka", (0.0, 80.0), palm, finger, "tip",
+        "franka", (0.0, 80.0 - 2 * dy), palm, finger, "tip",
         joints=("panda_finger_joint1", "panda_finger_joint2"), joint_per_opening=0.5 * M_PER_MM,
         joint_offset=0.02 * M_PER_MM,
         source="https://github.com/frankaemika/franka_description (franka_hand.xacro, "
