@@ -213,13 +213,16 @@ def test_the_jaws_poses_hold_and_without_friction_slip(tmp_path, name):
 
 @pytest.mark.parametrize(("name", "argv"), [
     ("box", ["--fingers", "2", "--soft"]),
+    ("angle", ["--fingers", "3"]),
+    pytest.param("angle", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
     pytest.param("prism", ["--fingers", "3"], marks=pytest.mark.slow),
     pytest.param("cylinder", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
     pytest.param("box", ["--fingers", "3"], marks=pytest.mark.slow)])
 def test_solids_hold_up_to_their_certified_payload_and_controls_slip(tmp_path, name, argv):
-    """Convex solids, soft fingers and three fingers with friction: the regions' grasps
-    hold to their certified payload (the Ferrari-Canny L1 measure times the least
-    squeeze), the same contacts without friction slip."""
+    """Solids, soft fingers and three fingers with friction: the regions' grasps hold to
+    their certified payload (the Ferrari-Canny L1 measure times the least squeeze), the
+    same contacts without friction slip; a solid that is not convex (``demo:angle``, an
+    L) as the convex pieces of its facets under the fingers."""
     plan = tmp_path / "plan.json"
     assert main(["plan", f"demo:{name}", *argv, "--mu", "0.5", "--top", "2", "--json",
                  str(plan), "--quiet"]) == 0
@@ -236,10 +239,9 @@ def test_solids_hold_up_to_their_certified_payload_and_controls_slip(tmp_path, n
     assert doc["controls"] and all(c["slipped"] for c in doc["controls"])
 
 
-def test_a_non_convex_solid_and_the_solid_jaw_are_refused_in_one_line(tmp_path, capsys):
-    for part, argv, words in (("demo:angle", ["--fingers", "3"], "convex"),
-                              ("demo:box", ["--gripper", "jaw", "--stroke", "5,60",
-                                            "--pad", "4"], "not the jaw")):
+def test_the_solid_jaw_is_refused_in_one_line(tmp_path, capsys):
+    for part, argv, words in (("demo:box", ["--gripper", "jaw", "--stroke", "5,60",
+                                            "--pad", "4"], "not the jaw"),):
         plan = tmp_path / "plan.json"
         assert main(["plan", part, *argv, "--mu", "0.5", "--top", "1", "--json", str(plan),
                      "--quiet"]) == 0
@@ -247,3 +249,30 @@ def test_a_non_convex_solid_and_the_solid_jaw_are_refused_in_one_line(tmp_path, 
         code = main(["simulate", str(plan), "--samples", "1", "--workers", "1", "--quiet"])
         err = capsys.readouterr().err.strip().splitlines()
         assert code == 2 and len(err) == 1 and words in err[0], err
+
+
+def test_the_pieces_under_a_contact_are_the_part_itself():
+    """The prisms under the fingers of a solid that is not convex lie inside the part (each
+    corner within the mesh or on its surface) and their faces hold the contact."""
+    from fcgrasp.physics._solids import _contact_prisms
+    from fcgrasp.spatial.solid import demo_solid
+
+    solid = demo_solid("angle")
+    size = float(np.linalg.norm(solid.mesh.extents))
+    for point, outward in (([5.0, 5.0, 0.0], [0, 0, -1.0]), ([40.0, 4.0, 10.0], [1.0, 0, 0]),
+                           ([4.0, 30.0, 10.0], [0, 1.0, 0]), ([6.0, 20.0, 10.0], [1.0, 0, 0])):
+        prisms = _contact_prisms(solid, np.array(point), np.array(outward))
+        assert prisms
+        for pr in prisms:
+            inside = solid.mesh.contains(pr - 1e-6 * size * np.array(outward))
+            on = np.abs(solid.mesh.nearest.signed_distance(pr)) <= 1e-9 * size
+            assert np.all(inside | on), (point, pr)
+        # the contact is on one of them (a corner of the hull of its top face)
+        assert any(trimesh_contains(pr, np.array(point)) for pr in prisms)
+
+
+def trimesh_contains(points, q):
+    import trimesh
+
+    hull = trimesh.convex.convex_hull(points)
+    return bool(abs(hull.nearest.signed_distance([q])[0]) <= 1e-9 or hull.contains([q])[0])

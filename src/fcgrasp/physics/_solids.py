@@ -1,5 +1,6 @@
-"""The stress test of a convex solid held by point or soft fingers (part of
-:mod:`fcgrasp.physics`)."""
+"""The stress test of a solid held by point or soft fingers (part of
+:mod:`fcgrasp.physics`): a convex mesh as it is, any other by the convex pieces of its
+facets under the fingers."""
 
 from __future__ import annotations
 
@@ -9,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.tolerances import TOL
+from ..core.tolerances import PLANAR_TOL, TOL
 from ..errors import ArgumentError
 from ._planar import (
     _METRES,
@@ -56,7 +57,7 @@ def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_forc
 def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
                       soft: bool = False, grip_force: float = 10.0, ramp: float = 3.0,
                       record: bool = False) -> StressResult:
-    """One grasp of a convex solid (points and outward normals in the solid's units;
+    """One grasp of a solid (points and outward normals in the solid's units;
     ``soft``: soft fingers with :data:`TORSION`) under a disturbance ``direction`` (a
     force and a torque per newton, ``(fx, fy, fz, tx, ty, tz)``, the torque in N x the
     solid's unit), as :func:`stress_test` runs a planar part: the part free in space
@@ -69,11 +70,13 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
 
     mujoco = _mujoco()
     mesh = solid.mesh
-    if not bool(mesh.is_convex):
-        raise ArgumentError("the stress test of a solid needs a convex mesh so far (MuJoCo "
-                            "collides a mesh's convex hull)", "solid")
     p, n = np.asarray(points, float), np.asarray(normals, float)
     n = n / np.linalg.norm(n, axis=1)[:, None]
+    if not bool(mesh.is_convex):
+        # a point sampled in a region across facets may lie off the surface: the finger
+        # touches where it meets the part along its normal (on a convex mesh the
+        # finger's slide finds it)
+        p = np.array([_meets(solid, q, -m) for q, m in zip(p, n, strict=True)])
     u = np.asarray(direction, float)
     metres = _METRES.get(str(solid.units), _METRES["mm"])
     size_u = float(np.linalg.norm(mesh.extents))
@@ -91,15 +94,11 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     spin = gamma * metres
     friction = (f'friction="{max(mu, TOL):.9g} {max(spin, TOL):.9g} {ROLL_FRICTION}" '
                 f'condim="{(4 if soft else 3) if mu > 0 else 1}"')
-    v = np.asarray(mesh.vertices, float) * metres
-    verts = " ".join(f"{x:.12g}" for x in v.ravel())
-    faces = " ".join(str(int(i)) for i in np.asarray(mesh.faces).ravel())
     fingers, actuators = _finger_bodies(p * metres, n, TIP_RADIUS * size, kp, preload,
                                         friction)
-    xml = (f'<mujoco>{_SETTINGS}'
-           f'<asset><mesh name="part" vertex="{verts}" face="{faces}"/></asset>'
-           f'<worldbody><body name="part"><freejoint/>'
-           f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/></body>'
+    assets, geoms = _part_geoms(solid, p, n, metres, friction)
+    xml = (f'<mujoco>{_SETTINGS}<asset>{assets}</asset>'
+           f'<worldbody><body name="part"><freejoint/>{geoms}</body>'
            f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
            f'</mujoco>')
     model = mujoco.MjModel.from_xml_string(xml)
@@ -129,6 +128,105 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     moved, turned = motion()
     return StressResult(p, n, preload, cert, slip, moved / metres, math.degrees(turned),
                         settle / metres, u)
+
+
+def _mesh_asset(name: str, vertices: Any, faces: Any = None) -> str:
+    verts = " ".join(f"{x:.12g}" for x in np.asarray(vertices, float).ravel())
+    if faces is None:                   # MuJoCo takes the points' convex hull
+        return f'<mesh name="{name}" vertex="{verts}"/>'
+    face = " ".join(str(int(i)) for i in np.asarray(faces).ravel())
+    return f'<mesh name="{name}" vertex="{verts}" face="{face}"/>'
+
+
+def _part_geoms(solid: Any, points: FloatArray, normals: FloatArray, metres: float,
+                friction: str) -> tuple[str, str]:
+    """The part's collision geometry: a convex mesh as it is (MuJoCo collides a mesh's
+    convex hull); a mesh that is not convex as convex prisms under each contact, the
+    convex pieces of the facet under the finger near it
+    (:attr:`fcgrasp.spatial.solid.Facet.pieces`, :func:`_contact_prisms`), with the
+    mesh's own mass and inertia (:data:`PART_MASS`).  The fingers meet the part only at their contacts,
+    and a grasp that slips is seen to before a finger leaves its facet's piece
+    (:data:`SLIP_DISPLACEMENT`)."""
+    mesh = solid.mesh
+    if bool(mesh.is_convex):
+        return (_mesh_asset("part", np.asarray(mesh.vertices) * metres, mesh.faces),
+                f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/>')
+    props = mesh.mass_properties
+    scale = PART_MASS / float(props["volume"])
+    I = np.asarray(props["inertia"], float) * scale * metres ** 2
+    com = np.asarray(props["center_mass"], float) * metres
+    inertial = (f'<inertial pos="{com[0]:.12g} {com[1]:.12g} {com[2]:.12g}" '
+                f'mass="{PART_MASS}" fullinertia="{I[0, 0]:.12g} {I[1, 1]:.12g} '
+                f'{I[2, 2]:.12g} {I[0, 1]:.12g} {I[0, 2]:.12g} {I[1, 2]:.12g}"/>')
+    assets, geoms = [], [inertial]
+    for k, (pt, out) in enumerate(zip(points, normals, strict=True)):
+        for j, prism in enumerate(_contact_prisms(solid, pt, out)):
+            assets.append(_mesh_asset(f"piece{k}_{j}", prism * metres))
+            geoms.append(f'<geom type="mesh" mesh="piece{k}_{j}" {friction}/>')
+    return "".join(assets), "".join(geoms)
+
+
+#: The facet's convex pieces within this share of the part's size of a contact each
+#: make a prism under it (the finger may slide a little before the part is seen to slip).
+NEAR_PIECES = 0.1
+#: The least cosine between a facet's inward normal and a finger's push for the facet's
+#: pieces to make prisms under it: a curved surface's neighbouring facets, not the walls
+#: of a corner the fingertip sits in.
+FACING = 0.5
+
+
+def _contact_prisms(solid: Any, point: FloatArray, outward: FloatArray) -> list[FloatArray]:
+    """The points of the convex prisms under a contact: where the finger, coming along
+    the contact's inward normal, meets the mesh, every convex piece of a facet that
+    faces the finger (:attr:`fcgrasp.spatial.solid.Facet.pieces`) within
+    :data:`NEAR_PIECES` of that point and turned from the push by less than
+    :data:`FACING`'s angle, each with the same piece moved inward by half the
+    part's thickness (a ray's run inside, at the contact and at the piece's centre).
+    On a flat facet they are its pieces around the contact; on a curved surface, the
+    facets of its tessellation around it."""
+    import shapely
+
+    size = float(np.linalg.norm(solid.mesh.extents))
+    inward = -np.asarray(outward, float) / float(np.linalg.norm(outward))
+    hit = _meets(solid, point, inward)
+    at = _thickness(solid, hit, inward)
+    out = []
+    for f in solid.facets:
+        if float(f.normal @ inward) <= FACING:
+            continue                    # a facet the finger does not push on
+        off = float((hit - f.origin) @ f.normal)
+        q = shapely.Point(f.to_2d(hit))
+        for piece in f.pieces:
+            if math.hypot(float(piece.distance(q)), off) > NEAR_PIECES * size:
+                continue
+            ring = f.to_3d(np.asarray(piece.exterior.coords)[:-1])
+            middle = f.to_3d(np.asarray(piece.representative_point().coords)[0])
+            depth = min(at, _thickness(solid, middle, f.normal)) / 2
+            out.append(np.concatenate([ring, ring + depth * f.normal]))
+    return out
+
+
+def _meets(solid: Any, point: FloatArray, inward: FloatArray) -> FloatArray:
+    """Where a finger coming along ``inward`` from outside, through ``point``, first
+    meets the mesh (from :data:`NEAR_PIECES` of the part's size out)."""
+    inward = np.asarray(inward, float) / float(np.linalg.norm(inward))
+    size = float(np.linalg.norm(solid.mesh.extents))
+    start = np.asarray(point, float) - inward * NEAR_PIECES * size
+    hits, _, _ = solid.mesh.ray.intersects_location([start], [inward])
+    if not len(hits):
+        raise ArgumentError("a finger of the grasp meets no part of the solid along its "
+                            "normal", "points")
+    return np.asarray(hits[int(np.argmin(np.linalg.norm(hits - start, axis=1)))], float)
+
+
+def _thickness(solid: Any, point: FloatArray, inward: FloatArray) -> float:
+    """How far a ray from ``point`` into the part along ``inward`` runs before it
+    leaves."""
+    start = point + PLANAR_TOL * float(np.linalg.norm(solid.mesh.extents)) * inward
+    hits, _, _ = solid.mesh.ray.intersects_location([start], [inward])
+    if not len(hits):
+        return float(np.linalg.norm(solid.mesh.extents)) / 10
+    return float(np.min(np.linalg.norm(hits - start, axis=1)))
 
 
 def solid_plan_of(plan: Any) -> tuple[list[FloatArray], list[FloatArray], float, bool]:
