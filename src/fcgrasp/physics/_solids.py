@@ -144,20 +144,21 @@ def _part_geoms(solid: Any, points: FloatArray, normals: FloatArray, metres: flo
     convex hull); a mesh that is not convex as convex prisms under each contact, the
     convex pieces of the facet under the finger near it
     (:attr:`fcgrasp.spatial.solid.Facet.pieces`, :func:`_contact_prisms`), with the
-    mesh's own mass and inertia (:data:`PART_MASS`).  The fingers meet the part only at their contacts,
-    and a grasp that slips is seen to before a finger leaves its facet's piece
-    (:data:`SLIP_DISPLACEMENT`)."""
+    mesh's own mass and inertia (:data:`PART_MASS`).  The fingers meet the part only at
+    their contacts, and a grasp that slips is seen to before a finger leaves its facet's
+    pieces (:data:`SLIP_DISPLACEMENT`)."""
     mesh = solid.mesh
     if bool(mesh.is_convex):
         return (_mesh_asset("part", np.asarray(mesh.vertices) * metres, mesh.faces),
                 f'<geom type="mesh" mesh="part" mass="{PART_MASS}" {friction}/>')
     props = mesh.mass_properties
     scale = PART_MASS / float(props["volume"])
-    I = np.asarray(props["inertia"], float) * scale * metres ** 2
+    inertia = np.asarray(props["inertia"], float) * scale * metres ** 2
     com = np.asarray(props["center_mass"], float) * metres
     inertial = (f'<inertial pos="{com[0]:.12g} {com[1]:.12g} {com[2]:.12g}" '
-                f'mass="{PART_MASS}" fullinertia="{I[0, 0]:.12g} {I[1, 1]:.12g} '
-                f'{I[2, 2]:.12g} {I[0, 1]:.12g} {I[0, 2]:.12g} {I[1, 2]:.12g}"/>')
+                f'mass="{PART_MASS}" fullinertia="{inertia[0, 0]:.12g} {inertia[1, 1]:.12g} '
+                f'{inertia[2, 2]:.12g} {inertia[0, 1]:.12g} {inertia[0, 2]:.12g} '
+                f'{inertia[1, 2]:.12g}"/>')
     assets, geoms = [], [inertial]
     for k, (pt, out) in enumerate(zip(points, normals, strict=True)):
         for j, prism in enumerate(_contact_prisms(solid, pt, out)):
