@@ -62,6 +62,7 @@ from ._runs import (
 from ._solids import (
     sample_solid_grasps,
     solid_escape,
+    solid_jaw_torsion,
     solid_plan_of,
     solid_squeeze,
     solid_stress_test,
@@ -71,4 +72,5 @@ __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "Stress
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
+           "solid_jaw_torsion",
            "solid_escape", "control_runs"]

@@ -25,6 +25,7 @@ from ._planar import (
 from ._solids import (
     sample_solid_grasps,
     solid_escape,
+    solid_jaw_torsion,
     solid_plan_of,
     solid_stress_test,
 )
@@ -190,10 +191,12 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     for r, plan in enumerate(plans):
         if solid:
             _, _, mu_s, soft = solid_plan_of(plan)
+            pads = solid_jaw_torsion(plan)          # a jaw's pads as soft contacts
             size_u = float(np.linalg.norm(polygon.mesh.extents))
             for pts, nrm in sample_solid_grasps(plan, samples, rng):
                 for u in _directions6(rng, directions, size_u):
-                    jobs.append(("solid", polygon, pts, nrm, mu_s, u, soft, grip_force, 3.0))
+                    jobs.append(("solid", polygon, pts, nrm, mu_s, u, soft, grip_force, 3.0,
+                                 False, pads))
                     owners.append(r)
             continue
         jaw = jaw_of(plan)

@@ -56,9 +56,10 @@ def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_forc
 
 def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
                       soft: bool = False, grip_force: float = 10.0, ramp: float = 3.0,
-                      record: bool = False) -> StressResult:
+                      record: bool = False, torsion: float | None = None) -> StressResult:
     """One grasp of a solid (points and outward normals in the solid's units;
-    ``soft``: soft fingers with :data:`TORSION`) under a disturbance ``direction`` (a
+    ``soft``: soft fingers with :data:`TORSION`, or ``torsion``: the moment they resist
+    per newton, in the solid's units) under a disturbance ``direction`` (a
     force and a torque per newton, ``(fx, fy, fz, tx, ty, tz)``, the torque in N x the
     solid's unit), as :func:`stress_test` runs a planar part: the part free in space
     (no gravity), each finger a sphere on a servoed slide along its inward normal.  The
@@ -82,7 +83,7 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     size_u = float(np.linalg.norm(mesh.extents))
     size = size_u * metres
     centre = np.asarray(solid.center, float)
-    gamma = TORSION * size_u if soft else 0.0
+    gamma = (TORSION * size_u if torsion is None else float(torsion)) if soft else 0.0
     preload = solid_squeeze(p, -n, mu, gamma, grip_force, centre, size_u)
     if preload is None:
         preload = np.full(len(p), float(grip_force))
@@ -243,19 +244,37 @@ def solid_plan_of(plan: Any) -> tuple[list[FloatArray], list[FloatArray], float,
         outward = [-np.asarray(nn, float) for nn in plan.normals]
         kind = "soft" if type(plan).__name__.startswith(("SoftPair", "SurfacePair")) \
             else "jaw" if hasattr(plan, "axis") else "friction"
-    if kind == "jaw":
-        raise ArgumentError("the stress test of a solid runs fingers so far, not the jaw",
-                            "plans")
     regions = [np.asarray(r, float) for r in get("regions")]
-    return regions, outward, float(get("mu")), kind == "soft"
+    return regions, outward, float(get("mu")), kind in ("soft", "jaw")
+
+
+def solid_jaw_torsion(plan: Any) -> float | None:
+    """A solid jaw plan's pads as soft contacts: the moment a round flat pad of diameter
+    ``pad`` resists per newton under an even pressure, ``mu pad / 3`` (two thirds of
+    ``mu`` times its radius); None for fingers."""
+    get = (lambda k, d=None: plan.get(k, d)) if isinstance(plan, dict) else \
+        (lambda k, d=None: getattr(plan, k, d))
+    if get("contact_type") != "jaw" and not hasattr(plan, "axis"):
+        return None
+    return float(get("mu")) * float(get("pad")) / 3
 
 
 def sample_solid_grasps(plan: Any, count: int, rng: np.random.Generator
                         ) -> list[tuple[FloatArray, FloatArray]]:
     """``count`` grasps of a solid's finger plan: the regions' centres, then each
     region's corners pulled a tenth of the way to its centre, then seeded points (convex
-    combinations of the corners); each with its region's outward normal."""
+    combinations of the corners); each with its region's outward normal.  A jaw's:
+    those points of its region on the first facet, each with the point of the second
+    on the same closing axis."""
     regions, outward, _, _ = solid_plan_of(plan)
+    if solid_jaw_torsion(plan) is not None:
+        # the jaw: one closing axis through both pads, sampled on the first facet
+        centers = plan["centers"] if isinstance(plan, dict) else plan.centers
+        shift = np.asarray(centers[1], float) - np.asarray(centers[0], float)
+        units = [nn / np.linalg.norm(nn) for nn in outward]
+        return [(np.array([a, a + shift]), np.array(units))
+                for a in _region_points(regions[0], np.asarray(centers[0], float), units[0],
+                                        count, rng)]
     out = []
     for k in range(count):
         pts = []
@@ -269,6 +288,39 @@ def sample_solid_grasps(plan: Any, count: int, rng: np.random.Generator
                 w = rng.dirichlet(np.ones(len(reg)))
                 pts.append(w @ reg)
         out.append((np.array(pts), np.array([nn / np.linalg.norm(nn) for nn in outward])))
+    return out
+
+
+def _region_points(reg: FloatArray, centre: FloatArray, normal: FloatArray, count: int,
+                   rng: np.random.Generator) -> list[FloatArray]:
+    """``count`` points of a planar region (its ring ``reg``, ``centre`` a point inside,
+    ``normal`` its plane's): the centre, its corners pulled a tenth of the way to the
+    centre, then seeded convex combinations of its corners; each inside the region (a
+    region need not be convex: a point outside is drawn again, the centre after a
+    hundred tries)."""
+    import shapely
+
+    a = np.cross(normal, [1.0, 0.0, 0.0] if abs(normal[0]) < 0.9 else [0.0, 1.0, 0.0])
+    a /= np.linalg.norm(a)
+    b = np.cross(normal, a)
+
+    def flat(q: FloatArray) -> Any:
+        return np.stack([(q - centre) @ a, (q - centre) @ b], axis=-1)
+
+    poly = shapely.Polygon(flat(reg)).buffer(0)
+    out: list[FloatArray] = []
+    for k in range(count):
+        if k == 0:
+            out.append(centre)
+            continue
+        q = reg[k - 1] + 0.1 * (centre - reg[k - 1]) if k <= len(reg) else None
+        for _ in range(100):
+            if q is not None and poly.covers(shapely.Point(flat(q))):
+                break
+            q = rng.dirichlet(np.ones(len(reg))) @ reg
+        else:
+            q = centre
+        out.append(q)
     return out
 
 
