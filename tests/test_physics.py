@@ -139,7 +139,6 @@ def test_fcgrasp_simulate_on_a_report_and_on_contacts(tmp_path, capsys):
 
 @pytest.mark.parametrize(("argv", "words"), [
     (["simulate", "demo:blob"], "not a plan report"),
-    (["simulate", "{solid}", "--gif", "x.gif"], "planar parts"),
     (["simulate", "{empty}"], "no plan to simulate"),
     (["simulate", "{broken}"], "grasps/0"),
     (["simulate", "{plan}", "--samples", "0"], "--samples"),
@@ -161,6 +160,30 @@ def test_simulate_refuses_in_one_line(tmp_path, capsys, argv, words):
     code = main([a.format(plan=plan, solid=solid, empty=empty, broken=broken) for a in argv])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and words in err[0], err
+
+
+def test_a_solids_animation_is_drawn(tmp_path):
+    """``--gif`` on a solid's report: the mesh moved as the part moved, frame by frame;
+    the recorded motion is the part's (its rotation a unit quaternion, its shift within
+    the displacement it reports)."""
+    from fcgrasp.physics import sample_solid_grasps, solid_stress_test
+    from fcgrasp.spatial.solid import demo_solid
+
+    plan = tmp_path / "plan.json"
+    assert main(["plan", "demo:angle", "--fingers", "3", "--mu", "0.5", "--top", "1",
+                 "--json", str(plan), "--quiet"]) == 0
+    gif = tmp_path / "a.gif"
+    assert main(["simulate", str(plan), "--samples", "1", "--directions", "1", "--workers",
+                 "1", "--gif", str(gif), "--quiet"]) == 0
+    assert gif.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    solid = demo_solid("angle")
+    grasp = json.loads(plan.read_text())["grasps"][0]
+    pts, nrm = sample_solid_grasps(grasp, 1, np.random.default_rng(0))[0]
+    res = solid_stress_test(solid, pts, nrm, 0.5, [1.0, 0, 0, 0, 0, 0], record=True)
+    h = res.history
+    assert h.shape[1] == 11 and len(h) > 5
+    assert np.allclose(np.linalg.norm(h[:, 7:11], axis=1), 1.0)
+    assert np.all(np.linalg.norm(h[:, 4:7], axis=1) <= h[:, 2] + 1e-12)
 
 
 def test_the_animation_is_drawn(tmp_path):

@@ -150,8 +150,6 @@ def cmd_simulate(args: Any) -> int:
     if not plans:
         raise CliError(f"{args.source}: the report has no plan to simulate", "source")
     solid = not hasattr(polygon, "vertices")
-    if solid and args.gif:
-        raise CliError("--gif draws planar parts so far, not a solid", "gif")
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
                        workers=args.workers)
@@ -167,6 +165,23 @@ def cmd_simulate(args: Any) -> int:
         from ..physics import animate
 
         first: dict[str, Any] = results[0]["grasps"][0]["wrench_direction"]
+        if solid:
+            from ..physics import (
+                animate_solid,
+                sample_solid_grasps,
+                solid_jaw_torsion,
+                solid_plan_of,
+                solid_stress_test,
+            )
+
+            _, _, mu_s, soft = solid_plan_of(plans[0])
+            pts, nrm = sample_solid_grasps(plans[0], 1, np.random.default_rng(0))[0]
+            run = solid_stress_test(polygon, pts, nrm, mu_s,
+                                    np.array([*first["force"], *first["torque"]]), soft,
+                                    grip_force=args.grip_force, record=True,
+                                    torsion=solid_jaw_torsion(plans[0]))
+            out.add(args.gif, lambda tmp: animate_solid(polygon, run, tmp, units=units))
+            return
         u = np.array([*first["force"], first["torque"]])
         jaw = jaw_of(plans[0])
         if jaw is not None:

@@ -52,6 +52,7 @@ from ._planar import (
 )
 from ._runs import (
     animate,
+    animate_solid,
     control,
     control_runs,
     escape_direction,
@@ -72,5 +73,5 @@ __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "Stress
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
-           "solid_jaw_torsion",
+           "solid_jaw_torsion", "animate_solid",
            "solid_escape", "control_runs"]

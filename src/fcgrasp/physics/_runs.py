@@ -247,6 +247,75 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
 
 # ----------------------------------------------------------------------------- pictures
 
+def _finished(fig: Any, bx: Any, h: FloatArray, result: StressResult, units: str
+              ) -> np.ndarray:
+    """A frame of an animation: the load against the displacement so far (``h``) on
+    ``bx`` beside the certified payload, the figure drawn into an image and closed."""
+    import matplotlib.pyplot as plt
+
+    bx.plot(h[:, 1], h[:, 2], color="tab:blue")
+    bx.axvline(result.certified_payload, color="tab:green", ls="--", label="certified payload")
+    bx.set_xlabel("load (N)")
+    bx.set_ylabel(f"displacement ({units})")
+    bx.legend(loc="upper left")
+    fig.tight_layout()
+    fig.canvas.draw()
+    image = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+    plt.close(fig)
+    return image
+
+
+def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm",
+                  frames: int = 24) -> None:
+    """An animated GIF of one stress test of a solid recorded with ``record=True``
+    (:func:`solid_stress_test`), in ``frames`` frames: the mesh moved as the part moved
+    (magnified ten times so a slip shows) under the rising load, its rest pose in
+    outline, the fingers pushing, and the load against the part's displacement beside
+    it."""
+    import imageio.v3 as iio
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from mpl_toolkits.mplot3d.art3d import Poly3DCollection
+    from scipy.spatial.transform import Rotation
+
+    h = result.history
+    if not len(h) or h.shape[1] != 11:
+        raise ArgumentError("result has no history of a solid: run "
+                            "solid_stress_test(..., record=True)", "result")
+    check_int(frames, "frames", minimum=1)
+    mesh = solid.mesh
+    tri = np.asarray(mesh.vertices, float)[np.asarray(mesh.faces)]
+    centre = np.asarray(mesh.center_mass, float)
+    size = float(np.linalg.norm(mesh.extents))
+    lo, hi = mesh.bounds[0] - 0.3 * size, mesh.bounds[1] + 0.3 * size
+    images = []
+    for k in np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int)):
+        load, shift, quat = h[k, 1], h[k, 4:7], h[k, 7:11]
+        # the motion magnified: ten times the shift and the rotation's angle
+        rot = Rotation.from_quat([*quat[1:], quat[0]]).as_rotvec() * 10
+        R = Rotation.from_rotvec(rot).as_matrix()
+        moved = (tri - centre) @ R.T + centre + 10 * shift
+        fig = plt.figure(figsize=(8, 3.6), dpi=80)
+        ax = fig.add_subplot(1, 2, 1, projection="3d")
+        ax.add_collection3d(Poly3DCollection(tri, facecolor="none", edgecolor="0.75", lw=0.3))
+        ax.add_collection3d(Poly3DCollection(moved, facecolor="0.8", edgecolor="0.4", lw=0.3,
+                                             alpha=0.8))
+        for q, nn in zip(result.contacts, result.normals, strict=True):
+            ax.scatter(*q, color="tab:red", s=12)
+            a, b = q + 0.25 * size * nn, q + 0.05 * size * nn
+            ax.plot(*np.c_[a, b], color="tab:red")
+        ax.set_xlim(lo[0], hi[0])
+        ax.set_ylim(lo[1], hi[1])
+        ax.set_zlim(lo[2], hi[2])
+        ax.set_box_aspect(tuple(hi - lo))
+        ax.set_title(f"load {load:.2f} N (motion x10)", fontsize=9)
+        ax.tick_params(labelsize=6)
+        images.append(_finished(fig, fig.add_subplot(1, 2, 2), h[:k + 1], result, units))
+    iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)
+
+
 def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
             frames: int = 24) -> None:
     """An animated GIF of one stress test recorded with ``record=True``, in ``frames``
@@ -281,14 +350,5 @@ def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
                      head_width=0.02 * polygon.size, color="tab:red")
         ax.set_aspect("equal")
         ax.set_title(f"load {load:.2f} N (motion x10)")
-        bx.plot(h[:k + 1, 1], h[:k + 1, 2], color="tab:blue")
-        bx.axvline(result.certified_payload, color="tab:green", ls="--",
-                   label="certified payload")
-        bx.set_xlabel("load (N)")
-        bx.set_ylabel(f"displacement ({units})")
-        bx.legend(loc="upper left")
-        fig.tight_layout()
-        fig.canvas.draw()
-        images.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())  # type: ignore[attr-defined]
-        plt.close(fig)
+        images.append(_finished(fig, bx, h[:k + 1], result, units))
     iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)

@@ -66,7 +66,10 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     certified payload is the grasp's Ferrari-Canny L1 measure
     (:func:`fcgrasp.spatial.spatial_quality`, pyramids inscribed in the cones; torques
     over the part's size) times the smallest squeeze: the normal forces of a wrench
-    within the measure's ball sum to at most that, so no finger exceeds its own."""
+    within the measure's ball sum to at most that, so no finger exceeds its own.
+    ``record``: keep the part's motion every 5 ms (``history``: time, load,
+    displacement, rotation in degrees, the centre's shift x, y, z, the rotation as a
+    unit quaternion w, x, y, z; :func:`animate_solid` draws it)."""
     from ..spatial.quality import spatial_quality
 
     mujoco = _mujoco()
@@ -117,18 +120,26 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     slip = None
     if settle > SLIP_DISPLACEMENT * size:
         slip, n_ramp = 0.0, 0
+    hist: list[tuple[float, ...]] = []
     for k in range(1, n_ramp + 1):
         load_now = top * k / n_ramp
         data.xfrc_applied[body, :3] = load_now * u[:3]
         data.xfrc_applied[body, 3:] = load_now * u[3:] * metres
         mujoco.mj_step(model, data)
         moved, turned = motion()
+        if record and k % 10 == 0:
+            # the part's motion from its squeezed pose: its centre's shift (part units)
+            # and its rotation (a unit quaternion w, x, y, z)
+            dq = np.empty(4)
+            mujoco.mju_mulQuat(dq, data.xquat[body], np.array([q0[0], *(-q0[1:])]))
+            hist.append((k * TIMESTEP, load_now, moved / metres, math.degrees(turned),
+                         *((data.xpos[body] - x0) / metres), *dq))
         if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
             slip = load_now
             break
     moved, turned = motion()
     return StressResult(p, n, preload, cert, slip, moved / metres, math.degrees(turned),
-                        settle / metres, u)
+                        settle / metres, u, np.array(hist).reshape(-1, 11))
 
 
 def _mesh_asset(name: str, vertices: Any, faces: Any = None) -> str:
