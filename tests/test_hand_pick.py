@@ -13,6 +13,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.grippers.jaw import ParallelJaw, jaw_poses
+from fcgrasp.physics import jaw_contacts
 from fcgrasp.grippers.jaw._pick import Scene, TopPick, top_pick
 from fcgrasp.io.moveit import tool_rotation
 from fcgrasp.model.hands import HandBox, ParallelHand, hand_from_params, hand_named
@@ -96,6 +97,11 @@ def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness,
         for theta, offset in p.sample(25, rng):
             placements, holds = _motion(part, jaw, pick, theta, offset)
             assert holds, (name, theta, offset)
+            # force closure by the general test (the wrench cone of the pads' contacts)
+            pts, outward, _, _, _ = jaw_contacts(part, jaw, theta, offset)
+            grasp = fc.Grasp([fc.FrictionPoint(q, -m, mu) for q, m in zip(pts, outward,
+                                                                          strict=True)])
+            assert grasp.is_force_closure(), (name, theta, offset)
             for origin, R, opening in placements:
                 assert not _collides(manager, _hand_meshes(hand, opening, origin, R)), \
                     (name, theta, offset, opening, origin)
