@@ -13,10 +13,10 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.grippers.jaw import ParallelJaw, jaw_poses
-from fcgrasp.physics import jaw_contacts
 from fcgrasp.grippers.jaw._pick import Scene, TopPick, top_pick
 from fcgrasp.io.moveit import tool_rotation
 from fcgrasp.model.hands import HandBox, ParallelHand, hand_from_params, hand_named
+from fcgrasp.physics import jaw_contacts
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("fcl")
