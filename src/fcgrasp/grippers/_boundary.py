@@ -299,10 +299,13 @@ def stretch_plans_read(polygon: Polygon, spec: PlanSpec
 def unread_below(pairs: list[StretchPair], top: int | None) -> float | None:
     """A smallest region every configuration left unread by a stretch search asked
     for ``top`` with ties is below (the ``top``-th's, less the search's relative tie
-    tolerance: its ties are all read); None where the search gave all there are."""
+    tolerance: its ties are all read); None where the search gave all there are.  A
+    search with ``third`` ranks by each pair's ``bound`` (its pair plan's smallest
+    region at most): the level is then the ``top``-th bound."""
     if top is None or len(pairs) < top:
         return None
-    kth = sorted((p.min_length for p in pairs), reverse=True)[top - 1]
+    kth = sorted((p.min_length if p.bound is None else p.bound for p in pairs),
+                 reverse=True)[top - 1]
     return float(kth * (1 - RANK_TOL))
 
 

@@ -18,7 +18,7 @@ whose third finger surely overlaps a kept plan's region (:class:`~fcgrasp.model.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 
@@ -81,19 +81,29 @@ class FreeThird:
             out.append((k > 0) & (sp[:, 2] <= U[i + k] + self.tol))
         return tuple(out)
 
-    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
-           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
-        """For each configuration of rings ``x`` and ``y``: the ring of its third
-        finger's free stretch (-1 where none is surely the longest), the sure arc
-        ``[g0, g1]`` and the widest arc ``[e0, e1]`` (arc lengths of that ring, ``g0`` in
-        ``[0, P)``, the ends unrolled past it).  ``trims``: which end edges a trim may
-        free (:meth:`trims`; default: every end edge of a region of two edges or more)."""
+    def widest(self, x: int, y: int, cfg: _Configs) -> FloatArray:
+        """For each configuration of rings ``x`` and ``y``: a length its third finger's
+        free stretch cannot exceed (every free run with the end edges beside it, and a
+        foreign ring's, by :attr:`tol` more): with the smaller of its two regions, a
+        bound on its pair plan's smallest region."""
+        # every end edge counted as freed, even a one-edge region's: then a configuration
+        # inside another (fewer edges) has at least its bound, so a configuration that
+        # beats another in the own-optimum filter is never below it
+        every = np.ones(np.asarray(cfg.iA).size, bool)
+        cands = self._candidates(x, y, cfg, (every,) * 4)
+        most = np.stack([c[4] - c[3] for c in cands])
+        return cast("FloatArray", np.maximum(most.max(axis=0), self.foreign) + self.tol)
+
+    def _candidates(self, x: int, y: int, cfg: _Configs,
+                    trims: tuple[np.ndarray, ...] | None
+                    ) -> list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]]:
+        """Every free run of each configuration: (ring, g0, g1, e0, e1) as :meth:`of`
+        gives the longest's."""
         iA, kA = np.asarray(cfg.iA, np.int64), np.asarray(cfg.kA, np.int64)
         iC, kC = np.asarray(cfg.iC, np.int64), np.asarray(cfg.kC, np.int64)
         n = iA.size
         a_first, a_last, c_first, c_last = (kA > 0, kA > 0, kC > 0, kC > 0) \
             if trims is None else trims
-        # the candidates: (ring, g0, g1, e0, e1) per configuration
         cands: list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]] = []
         if x == y:
             m = self.rings[x].m
@@ -110,6 +120,18 @@ class FreeThird:
             if r not in (x, y):
                 g0, g1 = np.full(n, w0), np.full(n, w1)
                 cands.append((r, g0, g1, g0, g1))
+        return cands
+
+    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
+           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """For each configuration of rings ``x`` and ``y``: the ring of its third
+        finger's free stretch (-1 where none is surely the longest), the sure arc
+        ``[g0, g1]`` and the widest arc ``[e0, e1]`` (arc lengths of that ring, ``g0`` in
+        ``[0, P)``, the ends unrolled past it).  ``trims``: which end edges a trim may
+        free (:meth:`trims`; default: every end edge of a region of two edges or more)."""
+        n = np.asarray(cfg.iA).size
+        # the candidates: (ring, g0, g1, e0, e1) per configuration
+        cands = self._candidates(x, y, cfg, trims)
         sure = np.stack([c[2] - c[1] for c in cands])          # (candidates, n)
         most = np.stack([c[4] - c[3] for c in cands])
         best = np.argmax(sure, axis=0)

@@ -70,6 +70,9 @@ class StretchPair:
     region_edges: tuple[tuple[int, ...], tuple[int, ...]]
     lengths: tuple[float, float]
     mode: str
+    #: with ``third`` (:meth:`~fcgrasp.model.stretches.StretchSearch.pairs`): a bound on
+    #: its three-finger pair plan's smallest region, the value the search ranked it by
+    bound: float | None = None
 
     @property
     def min_length(self) -> float:
@@ -333,7 +336,8 @@ _HALVINGS = 3
 
 def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
             runs: dict[Any, Any], top: int | None, scale: float,
-            exclude: _Exclusion | None = None, memo: _Memo | None = None) -> list[_Found]:
+            exclude: _Exclusion | None = None, memo: _Memo | None = None,
+            cap: Any = None) -> list[_Found]:
     """The configurations optimal on their own edges (:func:`_own_optimum`), largest
     ``t`` first: all of them (``top`` None), or at least every one that ties the
     ``top``-th (to the relative tie tolerance).
@@ -347,20 +351,24 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     many; the last attempt prunes nothing.  ``exclude``: configurations surely the
     same alternative as a kept plan are left out (after the filter, which they still
     take part in); they then run without the vertex-aligned lower bound, on every
-    configuration, shared with other runs through ``memo``."""
+    configuration, shared with other runs through ``memo``.  ``cap``
+    (:func:`~fcgrasp.model._stretch_solve._solve_jobs`): the configurations are ranked by
+    their ``value``, ``t`` capped, and run without the vertex-aligned lower bound (a
+    bound on ``t``, not on the value); the own-optimum filter still compares ``t``."""
     keys = _Keys(rings)
-    if not exclude:
+    if not exclude and cap is None:
         memo = None
     want, fixed = top, None
     # floors guessed by the first search (_candidates), tried in turn while too high
-    guesses: list[float] | None = [] if _GUESS and top is not None else None
+    guesses: list[float] | None = [] if _GUESS and top is not None and cap is None else None
     guessing, start, halve = False, 0.0, 0
     attempts = _ATTEMPTS + (_GUESSES + _HALVINGS if _GUESS else 0)
     for attempt in range(attempts):
         if top is None or attempt == attempts - 1:
             fixed = 0.0
         # an excluded plan's copies add no lower bounds: each configuration counts once
-        bound = _Bound(want or 1, 2 * keys.total, fixed, start, each=bool(exclude))
+        bound = _Bound(want or 1, 2 * keys.total, fixed, start,
+                       each=bool(exclude) or cap is not None)
         if memo is not None and memo.prepared is not None:
             prepared = memo.prepared
         elif memo is not None:
@@ -368,7 +376,8 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
                 rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
                 prebound=False, max_configs=memo.max_configs, exclude=exclude)
         else:
-            prepared = _candidates(rings, bound, intervals, runs, keys, prebound=not exclude,
+            prepared = _candidates(rings, bound, intervals, runs, keys,
+                                   prebound=not exclude and cap is None,
                                    guesses=guesses if attempt == 0 else None,
                                    lower=not start)
         if attempt == 0:
@@ -376,11 +385,11 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
-                            memo, similar, deferred)
+                            memo, similar, deferred, cap)
         if deferred:
             _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
                             similar)
-        found.sort(key=lambda f: (-f.t, *_tie_key(rings, f)))
+        found.sort(key=lambda f: (-f.value, *_tie_key(rings, f)))
         if memo is None:
             found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
         else:
@@ -394,7 +403,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         if top is None or bound.floor == 0.0:
             break                           # nothing was pruned
         if len(found) >= top:
-            kth = found[top - 1].t * (1 - TIE)
+            kth = found[top - 1].value * (1 - TIE)
             if bound.floor <= kth:
                 break
             fixed, start, guessing = kth, 0.0, False
@@ -537,7 +546,8 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
         alive = _own_optimum_of(rings, found, np.ones(len(found), bool), similar)
         return [f for f in alive if not f.similar]
     limit = min(2 * top, len(found))
-    ts = np.array([f.t for f in found], float)
+    # the order ``found`` is in (the search's ranking value: ``t``, or capped)
+    ts = np.array([f.value for f in found], float)
     asked: set[int] = set()
     beaten: set[int] = set()
     while True:
@@ -552,7 +562,7 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
             alive = [f for f in alive if id(f) not in beaten]
         n_checked = int(check.sum())
         # decided: the top-th own optimum and its ties lie above every row not checked
-        if n_checked == len(found) or (len(alive) >= top and alive[top - 1].t * (1 - TIE)
+        if n_checked == len(found) or (len(alive) >= top and alive[top - 1].value * (1 - TIE)
                                        > ts[n_checked]):
             return alive
         limit = min(2 * limit, len(found))

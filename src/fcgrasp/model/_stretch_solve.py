@@ -51,6 +51,13 @@ class _Found:
     similar: bool = False
     #: :func:`_pairs`' placement, with the ``(s0, u0, lengths)`` it was placed at
     placed: tuple[Any, Any] | None = field(default=None, repr=False, compare=False)
+    #: what the search ranks it by: ``t``, or with a cap (three fingers' pair plans) the
+    #: smaller of ``t`` and the cap, a bound on its pair plan's smallest region
+    value: float = -1.0
+
+    def __post_init__(self) -> None:
+        if self.value < 0:
+            self.value = self.t
 
 
 def _jobs(n_rings: int) -> list[tuple[int, int, float, str]]:
@@ -111,6 +118,8 @@ class _Job:
     u0: FloatArray
     #: the floor each unsolved configuration was proved below (0: none)
     below: FloatArray
+    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), read once
+    caps: FloatArray | None = None
 
 
 #: Bytes a collected configuration takes at the peak, the unit of :attr:`_Memo.max_bytes`:
@@ -247,6 +256,8 @@ class _Run:
     keys: _Keys
     #: the memo's floor (0 without one): below it the run's answer is not taken
     least: float = 0.0
+    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), NaN until read
+    caps: FloatArray | None = None
 
     def settle(self, chunk: np.ndarray) -> None:
         """Solve what of ``chunk`` is not yet solved, then file (a kept plan's copies in
@@ -265,13 +276,15 @@ class _Run:
         if self.similar is not None and sim.any():
             self.similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
             ok, sim = ok[~sim], sim[~sim]
+        value = t if self.caps is None else np.minimum(t, self.caps[chunk])
         for j, same in zip(ok, sim, strict=True):
             c = chunk[j]
             self.found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
                                            int(cfg.kC[c])), float(t[j]), float(s0[j]),
-                                     float(u0[j]), similar=bool(same)))
+                                     float(u0[j]), similar=bool(same),
+                                     value=float(value[j])))
         ok = ok[~sim]
-        self.bound.add(self.keys(job, part.iA[ok], part.iC[ok]), t[ok])
+        self.bound.add(self.keys(job, part.iA[ok], part.iC[ok]), value[ok])
 
 
 def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Configs]],
@@ -279,8 +292,8 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 keys: _Keys, exclude: _Exclusion | None = None,
                 memo: _Memo | None = None,
                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
-                deferred: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
-                ) -> list[_Found]:
+                deferred: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
+                cap: Any = None) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept).  With ``exclude``,
     the configurations that are surely a kept plan's alternative do not raise the
@@ -294,7 +307,12 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     configurations are done, then is solved in the order of the thresholds while they
     reach the floor.  Those left are excluded or below the floor, filed in
     ``deferred``; only :func:`_own_optimum` could read them, as beaters
-    (:func:`_solve_deferred`)."""
+    (:func:`_solve_deferred`).
+
+    ``cap(job, cfg)``: for each configuration a length its value cannot exceed (three
+    fingers' pair plans: the third finger's widest free stretch); the search then ranks,
+    bounds and prunes by the smaller of ``t`` and the cap (a configuration whose cap is
+    below the floor is not solved), each still solved for its own ``t``."""
     found: list[_Found] = []
     for job, cfg in prepared:
         if memo is None:
@@ -305,8 +323,11 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             J = memo.jobs[job] = _job(rings, job, cfg, intervals, memo.floor, lazy=True)
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
+        if cap is not None and J.caps is None:
+            J.caps = np.asarray(cap(job, cfg), float)
+        caps = J.caps if cap is not None else None
         run = _Run(rings, job, J, beta, intervals, scale, exclude, similar, found, bound,
-                   keys, 0.0 if memo is None else memo.floor)
+                   keys, 0.0 if memo is None else memo.floor, caps)
         later_idx: list[np.ndarray] = []
         later_tau: list[FloatArray] = []
         for chunk in _chunks(order, memo is not None):
@@ -318,13 +339,15 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 if ub[chunk[0]] < bound.floor:
                     break
                 _fill_boxes(rings, job, J, chunk, intervals)
-                chunk = chunk[box[chunk] >= bound.floor]
+                chunk = chunk[_capped(box, caps, chunk) >= bound.floor]
                 if chunk.size == 0:
                     continue
             else:
-                chunk = chunk[box[chunk] >= bound.floor]
+                if box[chunk[0]] < bound.floor:
+                    break                   # in the order of the boxes: none after
+                chunk = chunk[_capped(box, caps, chunk) >= bound.floor]
                 if chunk.size == 0:
-                    break
+                    continue
             if deferred is not None and exclude:
                 # a kept plan's copies: a plan only below their threshold, so they
                 # wait for it (most never reach the floor)
@@ -357,6 +380,13 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 assert deferred is not None
                 deferred.setdefault(job, (J, []))[1].append(idx[short:])
     return found
+
+
+def _capped(box: FloatArray, caps: FloatArray | None, chunk: np.ndarray) -> FloatArray:
+    """The bounds of the configurations ``chunk``: their boxes, each no more than its cap
+    (:func:`_solve_jobs`' ``cap``)."""
+    out: FloatArray = box[chunk] if caps is None else np.minimum(box[chunk], caps[chunk])
+    return out
 
 
 def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,

@@ -52,15 +52,17 @@ module) and sample every returned pair of regions with the general test.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
 from ..core import budget
 from ..core._angles import shrunk_half_angle
-from ..core._checks import check_int, check_mu_scalar, check_scalar
+from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core.tolerances import ROUND_TOL, TOL
-from ._stretch_exclusion import _Exclusion, _positions
+from ._free_third import FreeThird
+from ._stretch_exclusion import THIRD_PAD, _Exclusion, _positions
 from ._stretch_search import (
     StretchPair,
     _configs_in,
@@ -213,6 +215,9 @@ class StretchSearch:
         #: the best smallest region (the first run without exclusion), from which the
         #: memo's floor starts (:data:`MEMO_SHARE`)
         self._best: float | None = None
+        #: the caps of the runs with ``third`` (one per search: the memo's jobs keep
+        #: what they read)
+        self._caps: dict[str, Any] = {}
 
     def pairs(self, top: Any = 5, ties: bool = False, exclude: Any = (),
               fraction: float = 0.5, seen: Any = (), third: bool = False
@@ -242,27 +247,41 @@ class StretchSearch:
         # (nothing to exclude: no map of the edges, 36 ms on 10,000 edges)
         excl = _Exclusion(rings, polygon, kept, fraction_v, read, third) \
             if kept or read else None
+        # a pair plan's smallest region is at most its third finger's widest free
+        # stretch: the search ranks by that bound (the same FreeThird as the exclusion's)
+        cap = None
+        if third:
+            free = excl.free if excl is not None and excl.free is not None else \
+                FreeThird(rings, polygon, THIRD_PAD * ROUND_TOL * polygon.size)
+            cap = self._caps.setdefault("third", _WidestFree(free))
         memo = self._memo
-        if excl and memo.prepared is None and self._best is not None and memo.floor == 0.0:
+        # the rounds that share a memo: those that exclude, and those with a cap (their
+        # values have no vertex-aligned lower bound to start from: the memo's floor
+        # starts from the best smallest region of a search without the cap)
+        shared = excl is not None or cap is not None
+        if cap is not None and self._best is None:
+            self.pairs(top=top_v)
+        if shared and memo.prepared is None and self._best is not None and memo.floor == 0.0:
             memo.lower(MEMO_SHARE * self._best)
         # the highest floor whose collection did not fit the memory budget: a run that
         # needs to collect down to it or below cannot be made
         overflow = -np.inf
         while True:
-            if excl:
+            if shared:
                 budget.check()
             began = time.monotonic()
             try:
                 # a round of the distinct search under the memory budget (its collection
                 # of a smooth outline can ask for gigabytes at once)
-                if excl and self._held is None:
+                if shared and self._held is None:
                     self._held = _address_held()
-                with _address_space(memo.max_bytes if excl else None, self._held):
+                with _address_space(memo.max_bytes if shared else None, self._held):
                     found = _search(rings, self.beta, self.intervals, self.runs, top_v,
-                                    polygon.size, excl or None, memo)
+                                    polygon.size, excl or None, memo if shared else None,
+                                    cap)
             except budget.BudgetExhausted as exc:
                 best = self._best
-                if str(exc) != "max_memory" or not excl or best is None \
+                if str(exc) != "max_memory" or not shared or best is None \
                         or memo.floor <= 0.0:
                     raise
                 # the collection down to this floor does not fit: collect from higher
@@ -276,14 +295,14 @@ class StretchSearch:
                     raise
                 memo.lower(higher)
                 continue
-            if not excl or memo.floor == 0.0:
+            if not shared or memo.floor == 0.0:
                 break
             # the top-th found at or above the memo's floor: nothing missed; below it,
             # collect down to it; fewer than top found: a step down (a small one where
             # some were: the collection grows steeply as its floor falls, and the
             # top-th is then just below)
             if top_v is not None and len(found) >= top_v:
-                need = found[top_v - 1].t * (1 - TIE)
+                need = found[top_v - 1].value * (1 - TIE)
                 if need >= memo.floor:
                     break
                 low = need * (1 - TIE)
@@ -293,15 +312,33 @@ class StretchSearch:
                 raise budget.BudgetExhausted("max_memory")
             # below a thousandth of the best plan: every configuration
             memo.lower(low if low > 1e-3 * (self._best or 0.0) else 0.0)
-        if not excl and found:
-            self._best = found[0].t if self._best is None else max(self._best, found[0].t)
+        if not shared and found:
+            best = found[0].t
+            self._best = best if self._best is None else max(self._best, best)
         if not found:
             return []
         if top_v is not None:
-            kth = found[min(top_v, len(found)) - 1].t
-            found = [f for f in found if f.t >= kth * (1 - TIE)] if ties else found[:top_v]
+            kth = found[min(top_v, len(found)) - 1].value
+            found = [f for f in found if f.value >= kth * (1 - TIE)] if ties \
+                else found[:top_v]
         found = _finish(rings, self.beta, found, self.intervals, polygon)
-        return _pairs(rings, found if ties or top_v is None else found[:top_v])
+        pairs = _pairs(rings, found if ties or top_v is None else found[:top_v])
+        if cap is not None:
+            # each pair with the bound it was ranked by (its pair plan's at most)
+            pairs = [replace(p, bound=f.value) for p, f in zip(pairs, found, strict=False)]
+        return pairs
+
+
+class _WidestFree:
+    """The cap of a three-finger round (:func:`~fcgrasp.model._stretch_solve._solve_jobs`'s
+    ``cap``): each configuration's third finger's widest free stretch
+    (:meth:`~fcgrasp.model._free_third.FreeThird.widest`)."""
+
+    def __init__(self, free: FreeThird) -> None:
+        self.free = free
+
+    def __call__(self, job: Any, cfg: Any) -> FloatArray:
+        return self.free.widest(job[0], job[1], cfg)
 
 
 #: The distinct search's memo (:class:`_Memo`) first collects the configurations whose arc
