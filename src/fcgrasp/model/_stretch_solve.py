@@ -118,7 +118,7 @@ class _Job:
     u0: FloatArray
     #: the floor each unsolved configuration was proved below (0: none)
     below: FloatArray
-    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), read once
+    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), NaN until read
     caps: FloatArray | None = None
 
 
@@ -256,7 +256,7 @@ class _Run:
     keys: _Keys
     #: the memo's floor (0 without one): below it the run's answer is not taken
     least: float = 0.0
-    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), NaN until read
+    #: each configuration's cap (:func:`_solve_jobs`' ``cap``), read before it is settled
     caps: FloatArray | None = None
 
     def settle(self, chunk: np.ndarray) -> None:
@@ -324,7 +324,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
         if cap is not None and J.caps is None:
-            J.caps = np.asarray(cap(job, cfg), float)
+            J.caps = np.full(len(J.ub), np.nan)         # read chunk by chunk
         caps = J.caps if cap is not None else None
         run = _Run(rings, job, J, beta, intervals, scale, exclude, similar, found, bound,
                    keys, 0.0 if memo is None else memo.floor, caps)
@@ -339,13 +339,13 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 if ub[chunk[0]] < bound.floor:
                     break
                 _fill_boxes(rings, job, J, chunk, intervals)
-                chunk = chunk[_capped(box, caps, chunk) >= bound.floor]
+                chunk = chunk[_capped(box, caps, chunk, cap, job, cfg) >= bound.floor]
                 if chunk.size == 0:
                     continue
             else:
                 if box[chunk[0]] < bound.floor:
                     break                   # in the order of the boxes: none after
-                chunk = chunk[_capped(box, caps, chunk) >= bound.floor]
+                chunk = chunk[_capped(box, caps, chunk, cap, job, cfg) >= bound.floor]
                 if chunk.size == 0:
                     continue
             if deferred is not None and exclude:
@@ -382,10 +382,17 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     return found
 
 
-def _capped(box: FloatArray, caps: FloatArray | None, chunk: np.ndarray) -> FloatArray:
+def _capped(box: FloatArray, caps: FloatArray | None, chunk: np.ndarray, cap: Any,
+            job: Any, cfg: _Configs) -> FloatArray:
     """The bounds of the configurations ``chunk``: their boxes, each no more than its cap
-    (:func:`_solve_jobs`' ``cap``)."""
-    out: FloatArray = box[chunk] if caps is None else np.minimum(box[chunk], caps[chunk])
+    (:func:`_solve_jobs`' ``cap``, read into ``caps`` for those not read yet)."""
+    if caps is None:
+        bounds: FloatArray = box[chunk]
+        return bounds
+    todo = chunk[np.isnan(caps[chunk])]
+    if todo.size:
+        caps[todo] = cap(job, cfg.take(todo))
+    out: FloatArray = np.minimum(box[chunk], caps[chunk])
     return out
 
 
