@@ -213,3 +213,49 @@ def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypa
     made.clear()
     tf._concurrent_plans(poly, spec, None, F, keep, 0.0, True, solved=solved2)
     assert sum(calls) == 0 and not made
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_the_widest_free_stretch_bounds_every_free_stretch_and_grows_inside(seed):
+    """:meth:`FreeThird.widest`, the bound the search ranks pair plans by: at least every
+    free stretch the configuration's plan can have (every trim of its regions' end
+    edges, by an edge-by-edge walk), and at least a configuration's for each one inside
+    it (fewer edges on either side: a beater in the own-optimum filter is never ranked
+    below what it beats)."""
+    rng = np.random.default_rng(50 + seed)
+    a = np.linspace(0, 2 * np.pi, int(rng.integers(12, 40)), endpoint=False)
+    r = 20 + rng.uniform(0, 4, a.size)
+    holes = []
+    if seed % 2:
+        b = np.linspace(0, 2 * np.pi, int(rng.integers(3, 12)), endpoint=False)
+        holes = [np.c_[rng.uniform(2, 8) * np.cos(b), rng.uniform(2, 8) * np.sin(b)][::-1]]
+    poly = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)], holes=holes)
+    rings = _rings(poly)
+    free = FreeThird(rings, poly, 1e-9 * poly.size)
+    checked = 0
+    for _ in range(300):
+        x, y = (int(v) for v in rng.integers(0, len(rings), 2))
+        ma, mb = rings[x].m, rings[y].m
+        iA, kA = int(rng.integers(0, ma)), int(rng.integers(0, ma // 3))
+        iC, kC = int(rng.integers(0, mb)), int(rng.integers(0, mb // 3))
+        ea = [int(rings[x].edges[(iA + j) % ma]) for j in range(kA + 1)]
+        ec = [int(rings[y].edges[(iC + j) % mb]) for j in range(kC + 1)]
+        if set(ea) & set(ec):
+            continue
+        cfg = _Configs(*(np.array([v]) for v in (iA, kA, iC, kC)))
+        bound = float(free.widest(x, y, cfg)[0])
+        for cut_a in ((0, 0), (1, 0), (0, 1)) if kA else ((0, 0),):
+            for cut_c in ((0, 0), (1, 0), (0, 1)) if kC else ((0, 0),):
+                covered = ea[cut_a[0]:len(ea) - cut_a[1]] + ec[cut_c[0]:len(ec) - cut_c[1]]
+                run = free_stretch(poly, covered)
+                length = 0.0 if run is None else float(poly.lengths[list(run)].sum())
+                assert length <= bound + 1e-9 * poly.size, (run, length, bound)
+                checked += 1
+        # a configuration inside: one edge fewer at either end of either region
+        for sub in ((iA + 1, kA - 1, iC, kC), (iA, kA - 1, iC, kC),
+                    (iA, kA, iC + 1, kC - 1), (iA, kA, iC, kC - 1)):
+            if min(sub[1], sub[3]) < 0:
+                continue
+            inner = _Configs(*(np.array([v]) for v in sub))
+            assert float(free.widest(x, y, inner)[0]) >= bound - 1e-9 * poly.size
+    assert checked > 200
