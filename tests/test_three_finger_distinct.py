@@ -259,3 +259,16 @@ def test_the_widest_free_stretch_bounds_every_free_stretch_and_grows_inside(seed
             inner = _Configs(*(np.array([v]) for v in sub))
             assert float(free.widest(x, y, inner)[0]) >= bound - 1e-9 * poly.size
     assert checked > 200
+
+
+def test_a_first_round_over_the_memory_budget_still_reads_the_pairs():
+    """A first round whose collection by the pair plans' bound does not fit the memory
+    budget ranks by the two fingers' smallest region instead (which needs none): the
+    answer keeps plans, each holding, and says the budget stopped it."""
+    a = np.linspace(0, 2 * np.pi, 1000, endpoint=False)
+    r = 1 + 0.1 * np.cos(3 * a)
+    poly = fc.Polygon(np.c_[60 * r * np.cos(a), 35 * r * np.sin(a)])
+    plans = fc.plan(poly, fingers=3, mu=1.0, top=5, max_memory=16 * 2 ** 20, time_limit=None)
+    assert plans and not plans.complete and plans.gap()["stopped_by"] == "max_memory"
+    for p in plans:
+        assert p.mode in ("pair", "concurrent") and min(p.lengths) > 0

@@ -281,6 +281,11 @@ class StretchSearch:
                                     cap)
             except budget.BudgetExhausted as exc:
                 best = self._best
+                if str(exc) == "max_memory" and excl is None and cap is not None:
+                    # a first round whose capped collection does not fit: the ranking by
+                    # the smallest region alone, which needs none (each pair's smallest
+                    # region bounds its pair plan's too)
+                    return self.pairs(top=top, ties=ties)
                 if str(exc) != "max_memory" or not shared or best is None \
                         or memo.floor <= 0.0:
                     raise
