@@ -529,3 +529,28 @@ def test_a_urdf_the_reader_does_not_take_is_one_line(tmp_path, capsys, text, mes
                  str(path)])
     err = capsys.readouterr().err.strip().splitlines()
     assert code == 2 and len(err) == 1 and message in err[0] and "--hand" in err[0], err
+
+
+def test_a_solid_rests_in_the_stable_pose_asked(tmp_path, capsys):
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.io.schema import validate
+
+    poses = []
+    for rest in ("0", "1"):
+        out = tmp_path / f"r{rest}.json"
+        assert main(["plan", "demo:angle", "--gripper", "jaw", "--hand", "franka", "--mu",
+                     "0.5", "--table", "--rest", rest, "--json", str(out), "--quiet"]) == 0
+        r = json.loads(out.read_text())
+        validate(r)
+        assert r["scene"]["rest"] == int(rest) and 0 < r["scene"]["rest_probability"] <= 1
+        poses.append(r["scene"]["part_pose"]["orientation"])
+    assert not np.allclose(np.abs(poses[0]), np.abs(poses[1]))
+    capsys.readouterr()
+    for argv, words in ((["--table", "--rest", "99"], "rest must be from 0 to"),
+                        (["--rest", "1"], "--rest")):
+        code = main(["plan", "demo:angle", "--gripper", "jaw", "--hand", "franka", "--mu",
+                     "0.5", *argv])
+        err = capsys.readouterr().err.strip().splitlines()
+        assert code == 2 and len(err) == 1 and words in err[0], err

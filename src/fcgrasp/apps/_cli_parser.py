@@ -121,6 +121,9 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
         p.add_argument("--table", action="store_true", default=False,
                        help="with --hand: the part lies on a table the hand must not touch "
                             "(a solid in its most stable pose)")
+        p.add_argument("--rest", type=int, default=None, metavar="K",
+                       help="with --hand --table on a solid: rest in its K-th most likely "
+                            "stable pose (default 0)")
         p.add_argument("--certify", action=argparse.BooleanOptionalAction, default=None,
                        help="with --gripper jaw: prove that every pose of each box holds "
                             "(fcgrasp.grippers.jaw.certify_box; the default: boxes it cannot prove "

@@ -18,7 +18,7 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 #: The options of a request that say how to plan (the gripper's and the search's).
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
-                "max_memory", "distinct", "hand", "thickness", "table")
+                "max_memory", "distinct", "hand", "thickness", "table", "rest")
 
 
 #: The options of a request that bound the search: ``time_limit`` in seconds (None: the
@@ -66,7 +66,7 @@ _KINDS: dict[str, Any] = {
     "distinct": "float", "placement_sigma": "float", "mass": "float", "mu_high": "float",
     "force_limit": "float", "total_force": "float", "stiffness": "float",
     "grip_force": "float", "time_limit": "float", "thickness": "float", "table": "bool",
-    "hand": "str", "max_bytes": "int",
+    "hand": "str", "rest": "int", "max_bytes": "int",
     "max_elements": "int", "max_vertices": "int",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
     "pixel_size": "float", "threshold": "float", "simplify": "float",

@@ -85,6 +85,7 @@ class PlanRequest:
     hand: str | None = None
     thickness: float | None = None
     table: bool = False
+    rest: int | None = None
     max_memory: int | None = None
     time_limit: float | None = None
     distinct: float | None = None

@@ -49,13 +49,17 @@ class Scene:
     """A planar part as a plate ``thickness`` thick, on a ``table`` (the plane ``z =
     0``) or alone; ``clearance``: the least gap kept between the hand and the plate or
     the table; ``approach`` and ``retreat``: how far the hand comes down to the pose and
-    goes up from it (all in the part's units)."""
+    goes up from it (all in the part's units); ``rest``: which stable pose a solid rests
+    in."""
 
     thickness: float
     table: bool = True
     clearance: float = 1.0
     approach: float = 100.0
     retreat: float = 100.0
+    #: a solid on the table: which of its stable poses it rests in (0: the most likely,
+    #: :func:`~fcgrasp.grippers.jaw._solid_pick.resting_pose`)
+    rest: int = 0
 
     def __post_init__(self) -> None:
         for name in ("thickness", "clearance", "approach", "retreat"):
@@ -64,6 +68,8 @@ class Scene:
                                                         nonnegative=True))
         if not isinstance(self.table, bool):
             raise TypeError(f"table must be a bool, got {self.table!r}")
+        if isinstance(self.rest, bool) or not isinstance(self.rest, int) or self.rest < 0:
+            raise ValueError(f"rest must be a whole number >= 0, got {self.rest!r}")
 
     def to_dict(self) -> dict[str, Any]:
         return {"part_pose": {"position": [0.0, 0.0, 0.0], "orientation": [0.0, 0.0, 0.0, 1.0]},
@@ -71,7 +77,7 @@ class Scene:
                 "table": {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}
                 if self.table else None,
                 "clearance": self.clearance, "approach": self.approach,
-                "retreat": self.retreat}
+                "retreat": self.retreat, "rest": self.rest}
 
 
 @dataclass(frozen=True)

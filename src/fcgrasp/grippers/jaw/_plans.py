@@ -218,8 +218,8 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
     hand = options.get("hand")
     if hand is not None:
         return _jaw_of_hand(options, hand, mu)
-    for opt, name in (("--thickness", "thickness"), ("--table", "table")):
-        if options.get(name):
+    for opt, name in (("--thickness", "thickness"), ("--table", "table"), ("--rest", "rest")):
+        if options.get(name) is not None and options.get(name) is not False:
             raise ValueError(f"{opt} is for a pick with a hand: give --hand too")
     if stroke is None or pad is None:
         missing = "--stroke MIN,MAX" if stroke is None else "--pad WIDTH"
@@ -284,8 +284,12 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
         thickness = pz1 - pz0
     elif not (math.isfinite(thickness) and thickness > 0):
         raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
+    rest = options.get("rest")
+    if rest is not None and not options.get("table"):
+        raise ValueError("--rest is a solid's pose on the table: give --table too")
     scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
-                  approach=100.0 * per_mm, retreat=100.0 * per_mm)
+                  approach=100.0 * per_mm, retreat=100.0 * per_mm,
+                  rest=0 if rest is None else rest)
     return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 

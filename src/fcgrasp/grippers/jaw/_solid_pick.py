@@ -53,16 +53,24 @@ def pad_diameter(hand: ParallelHand) -> float:
     return float(math.hypot(w, h))
 
 
-def resting_pose(solid: Any) -> np.ndarray:
-    """The solid's most stable resting pose on the plane ``z = 0``
-    (``trimesh.poses.compute_stable_poses``): the transform (4 x 4) from the part's frame
-    to the table's."""
+def resting_pose(solid: Any, rest: int = 0) -> np.ndarray:
+    """The solid's ``rest``-th most likely resting pose on the plane ``z = 0``
+    (``trimesh.poses.compute_stable_poses``, most likely first): the transform (4 x 4)
+    from the part's frame to the table's."""
+    return _rest(solid, rest)[0]
+
+
+def _rest(solid: Any, rest: int) -> tuple[np.ndarray, float]:
+    """:func:`resting_pose` and its likelihood."""
     mesh = solid.mesh.copy()
-    transforms, _ = mesh.compute_stable_poses()
-    T = np.asarray(transforms[0], float)
+    transforms, probs = mesh.compute_stable_poses()
+    if not 0 <= rest < len(transforms):
+        raise ArgumentError(f"rest must be from 0 to {len(transforms) - 1} (the part's "
+                            f"stable poses), got {rest}", "rest")
+    T = np.asarray(transforms[rest], float)
     lowest = float((mesh.vertices @ T[:3, :3].T + T[:3, 3])[:, 2].min())
     T[2, 3] -= lowest
-    return T
+    return T, float(probs[rest])
 
 
 def up_in_part(T: np.ndarray | None) -> np.ndarray:
@@ -282,7 +290,7 @@ def hand_solid_plans(jaw: Any, solid: Any, top: int, margin: float, fraction: fl
     from ...spatial.jaw import solid_jaw_plans
 
     hand, scene = jaw.hand, jaw.scene
-    rest = resting_pose(solid) if scene.table else None
+    rest, likely = _rest(solid, scene.rest) if scene.table else (None, None)
     manager = scene_manager(solid, rest)
     n = 4 * top
     while True:
@@ -299,6 +307,8 @@ def hand_solid_plans(jaw: Any, solid: Any, top: int, margin: float, fraction: fl
         if len(kept) >= top or len(raw) < n or not getattr(raw, "complete", True):
             out = PlanList(kept[:top])
             placed = {k: v for k, v in scene.to_dict().items() if k != "thickness"}
+            if likely is not None:
+                placed["rest_probability"] = likely
             out.details = {"scene": {**placed, "part_pose": _pose_dict(rest)}}
             return out
         n *= 4
