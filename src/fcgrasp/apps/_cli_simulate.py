@@ -131,12 +131,7 @@ def cmd_simulate(args: Any) -> int:
         SLIP_DISPLACEMENT,
         SLIP_ROTATION_DEG,
         control_runs,
-        jaw_of,
-        jaw_stress_test,
-        sample_grasps,
-        sample_poses,
         simulate,
-        stress_test,
     )
 
     for name, value, low in (("--samples", args.samples, 1), ("--directions",
@@ -149,7 +144,6 @@ def cmd_simulate(args: Any) -> int:
     polygon, plans, units = _plans_of(args)
     if not plans:
         raise CliError(f"{args.source}: the report has no plan to simulate", "source")
-    solid = not hasattr(polygon, "vertices")
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
                        workers=args.workers)
@@ -162,39 +156,12 @@ def cmd_simulate(args: Any) -> int:
            "plans": results, "controls": controls}
 
     def gif(out: Any) -> None:
-        from ..physics import animate
+        from ..physics import recorded_run
 
         first: dict[str, Any] = results[0]["grasps"][0]["wrench_direction"]
-        if solid:
-            from ..physics import (
-                animate_solid,
-                sample_solid_grasps,
-                solid_jaw_torsion,
-                solid_plan_of,
-                solid_stress_test,
-            )
-
-            _, _, mu_s, soft = solid_plan_of(plans[0])
-            pts, nrm = sample_solid_grasps(plans[0], 1, np.random.default_rng(0))[0]
-            run = solid_stress_test(polygon, pts, nrm, mu_s,
-                                    np.array([*first["force"], *first["torque"]]), soft,
-                                    grip_force=args.grip_force, record=True,
-                                    torsion=solid_jaw_torsion(plans[0]))
-            out.add(args.gif, lambda tmp: animate_solid(polygon, run, tmp, units=units))
-            return
-        u = np.array([*first["force"], first["torque"]])
-        jaw = jaw_of(plans[0])
-        if jaw is not None:
-            theta, offset = sample_poses((jaw[1], jaw[2]), 1, np.random.default_rng(0))[0]
-            res = jaw_stress_test(polygon, jaw[0], theta, offset, u,
-                                  grip_force=args.grip_force, units=units, record=True)
-        else:
-            pts, nrm = sample_grasps(polygon, plans[0]["regions"], 3,
-                                     np.random.default_rng(0), plans[0]["normals"])[2]
-            res = stress_test(polygon, pts, nrm, float(plans[0]["mu"]), u,
-                              grip_force=args.grip_force, units=units, record=True)
-        if res is not None:
-            out.add(args.gif, lambda tmp: animate(polygon, res, tmp, units=units))
+        run = recorded_run(polygon, plans[0], first, grip_force=args.grip_force, units=units)
+        if run is not None:
+            out.add(args.gif, run[1])
 
     _write_outputs([(args.json, dumps(doc))] if args.json else [],
                    gif if args.gif else None)

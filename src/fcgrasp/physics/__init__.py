@@ -57,6 +57,7 @@ from ._runs import (
     control_runs,
     escape_direction,
     jaw_of,
+    recorded_run,
     sample_poses,
     simulate,
 )
@@ -73,5 +74,5 @@ __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "Stress
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
-           "solid_jaw_torsion", "animate_solid",
+           "solid_jaw_torsion", "animate_solid", "recorded_run",
            "solid_escape", "control_runs"]

@@ -247,6 +247,40 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
 
 # ----------------------------------------------------------------------------- pictures
 
+def recorded_run(part: Any, plan: Any, direction: dict[str, Any], *,
+                 grip_force: float = 10.0, units: str = "mm"
+                 ) -> tuple[StressResult, Callable[[str], None]] | None:
+    """One grasp of ``plan`` (a report's grasp: a planar part's fingers or box, or a
+    solid's regions) recorded under the disturbance ``direction`` (a result's
+    ``wrench_direction``), and the function that draws it as an animated GIF at a path
+    (:func:`animate`, :func:`animate_solid`); None where the jaw's sampled pose does not
+    hold.  The grasp: a solid's first sampled, a box's first sampled pose, a planar
+    plan's third sampled grasp (the first region's end)."""
+    torque = direction["torque"]
+    if _is_solid(part):
+        _, _, mu_s, soft = solid_plan_of(plan)
+        pts, nrm = sample_solid_grasps(plan, 1, np.random.default_rng(0))[0]
+        run = solid_stress_test(part, pts, nrm, mu_s, np.array([*direction["force"], *torque]),
+                                soft, grip_force=grip_force, record=True,
+                                torsion=solid_jaw_torsion(plan))
+        return run, (lambda path: animate_solid(part, run, path, units=units))
+    u = np.array([*direction["force"], torque])
+    jaw = jaw_of(plan)
+    if jaw is not None:
+        theta, offset = sample_poses((jaw[1], jaw[2]), 1, np.random.default_rng(0))[0]
+        got = jaw_stress_test(part, jaw[0], theta, offset, u, grip_force=grip_force,
+                              units=units, record=True)
+    else:
+        pts, nrm = sample_grasps(part, plan["regions"], 3, np.random.default_rng(0),
+                                 plan["normals"])[2]
+        got = stress_test(part, pts, nrm, float(plan["mu"]), u, grip_force=grip_force,
+                          units=units, record=True)
+    if got is None:
+        return None
+    res = got
+    return res, (lambda path: animate(part, res, path, units=units))
+
+
 def _finished(fig: Any, bx: Any, h: FloatArray, result: StressResult, units: str
               ) -> np.ndarray:
     """A frame of an animation: the load against the displacement so far (``h``) on
