@@ -928,3 +928,20 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     Select(d.find_element(By.ID, "hand")).select_by_value("")
     wait_plan(d, after)
     assert not d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
+
+
+def test_the_selected_plan_is_shaken_in_mujoco(server, browser):
+    """The stress test button: the selected plan's grasps shaken on the server
+    (``/api/stress``, ``fcgrasp simulate``'s), how many held, and the animation."""
+    pytest.importorskip("mujoco")
+    d = browser
+    open_demo(d, server, "rectangle")
+    wait(d, "!document.getElementById('stress').disabled")
+    d.find_element(By.ID, "stress").click()
+    text = wait(d, "document.getElementById('stresstext').textContent.includes('held') && "
+                   "document.getElementById('stresstext').textContent", timeout=120)
+    assert text.startswith("plan 1: ") and "of 4 grasps held" in text, text
+    assert int(d.execute_script("return document.body.dataset.stressHeld")) >= 3
+    assert d.find_element(By.ID, "stressgif").is_displayed()
+    assert d.find_element(By.ID, "stressgif").get_attribute("src").startswith(
+        "data:image/gif;base64,")

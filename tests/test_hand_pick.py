@@ -554,3 +554,18 @@ def test_a_solid_rests_in_the_stable_pose_asked(tmp_path, capsys):
                      "0.5", *argv])
         err = capsys.readouterr().err.strip().splitlines()
         assert code == 2 and len(err) == 1 and words in err[0], err
+
+
+def test_the_explorers_stress_test_refuses_what_it_cannot_run_in_one_line():
+    from fcgrasp.apps._explorer_data import stress_result
+    from fcgrasp.errors import RequestError
+
+    pytest.importorskip("mujoco")
+    part = fc.read_part("demo:rectangle")
+    for bad in ("not a plan", {"regions": "x"}, {}):
+        with pytest.raises(RequestError) as err:
+            stress_result(part, "mm", bad)
+        assert err.value.field == "plan"
+    plan = fc.plan(part, fingers=2, mu=0.5, top=1)[0].to_dict()
+    got = stress_result(part, "mm", {**plan, "rank": 1})
+    assert got["runs"] == 4 and 0 <= got["held"] <= 4 and got["gif"]

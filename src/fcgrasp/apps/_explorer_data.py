@@ -351,6 +351,49 @@ def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
 # ----------------------------------------------------------------------------- checks
 
 
+#: Grasps of a plan the explorer's stress test runs (one disturbance each), and the
+#: frames of its animation: a few seconds of CPU.
+STRESS_SAMPLES, STRESS_FRAMES = 4, 16
+
+
+def stress_result(part: Any, units: str, plan: Any) -> dict[str, Any]:
+    """The explorer's stress test of one plan (a report's grasp) in MuJoCo
+    (:func:`fcgrasp.physics.simulate`): :data:`STRESS_SAMPLES` grasps of it, each under
+    one seeded disturbance, how many held to their certified payload and the least
+    ratio of slip load to certified payload, and the animation of one of them (an
+    animated GIF, base64).  A :class:`RequestError` (field ``plan``) for a plan the test
+    does not take, or without MuJoCo."""
+    import base64
+    import os
+    import tempfile
+
+    if not isinstance(plan, dict):
+        raise RequestError(f"plan must be a plan of the report, got {_short(plan)}", "plan")
+    try:
+        from ..physics import recorded_run, simulate
+
+        rows = simulate(part, [plan], samples=STRESS_SAMPLES, directions=1, seed=0,
+                        units=units, workers=1)
+        row = rows[0]
+        gif = None
+        if row["grasps"]:
+            got = recorded_run(part, plan, row["grasps"][0]["wrench_direction"], units=units)
+            if got is not None:
+                with tempfile.TemporaryDirectory() as tmp:
+                    path = os.path.join(tmp, "stress.gif")
+                    got[1](path)
+                    with open(path, "rb") as fh:
+                        gif = base64.b64encode(fh.read()).decode("ascii")
+    except ImportError:
+        raise RequestError("the stress test needs MuJoCo: pip install 'fcgrasp[sim]'",
+                           "plan") from None
+    except (ValueError, TypeError, KeyError, IndexError) as exc:
+        raise RequestError(f"plan: {' '.join(str(exc).split()) or type(exc).__name__}",
+                           "plan") from None
+    return json_ready({"rank": plan.get("rank"), "runs": row["runs"], "held": row["held"],
+                       "worst_ratio": row["worst_ratio"], "gif": gif})
+
+
 def check_result(polygon: Any, data: dict[str, Any]) -> dict[str, Any]:
     """The verdict on a hand-placed grasp (theorem 6.1 by :meth:`~fcgrasp.Grasp.explain`):
     ``data`` holds ``contacts`` (and optionally ``gravity``) as in a contacts file."""

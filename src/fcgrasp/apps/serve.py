@@ -78,6 +78,7 @@ from ._explorer_data import (
     polygon_of,
     solid_json,
     solid_of,
+    stress_result,
 )
 from ._serve_jobs import (
     ANSWER_WITHIN,
@@ -337,6 +338,16 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
         return JSONResponse(jobs.cancel(request.path_params["id"],
                                         request.state.session).answer())
 
+    async def stress(request: Request) -> Response:
+        data = await json_of(request, {"part", "plan"})
+        part = data.get("part")
+        if isinstance(part, dict) and part.get("solid") is True:
+            polygon, units, _ = await asyncio.to_thread(solid_of, part)
+        else:
+            polygon, units = await asyncio.to_thread(polygon_of, part)
+        return JSONResponse(await asyncio.to_thread(stress_result, polygon, units,
+                                                    data.get("plan")))
+
     async def check(request: Request) -> Response:
         data = await json_of(request, {"part", "contacts", "gravity"})
         polygon, _ = await asyncio.to_thread(polygon_of, data.get("part"))
@@ -352,6 +363,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
         Route("/api/jobs/{id}", guarded(job_state), methods=["GET"]),
         Route("/api/jobs/{id}", guarded(job_cancel), methods=["DELETE"]),
         Route("/api/check", guarded(check), methods=["POST"]),
+        Route("/api/stress", guarded(stress), methods=["POST"]),
         Mount("/static", app=StaticFiles(directory=static), name="static"),
     ]
     @contextlib.asynccontextmanager

@@ -12,7 +12,7 @@ const svg = $("view");
 const S = {
   part: null,        // {outer, holes, units, name}: what is drawn and edited
   good: null,        // the last part the server accepted
-  plans: [], report: null, overlays: [], selected: 0,
+  plans: [], report: null, overlays: [], selected: 0, stressSeq: 0,
   mode: "edit", fingers: [], verdict: null,
   seq: 0, job: null, checkSeq: 0,
   view: null, drag: null, invalid: false, maxUpload: 8 << 20, anim: null,
@@ -706,6 +706,9 @@ function accept(ans) {
   S.overlays = ans.overlays;
   S.moveit = ans.moveit || null;          // a parallel gripper's plans as MoveIt grasps
   $("export-moveit").disabled = !S.moveit;
+  $("stress").disabled = !S.plans.length;
+  $("stresstext").textContent = "";
+  $("stressgif").hidden = true;
   S.selected = 0;
   const list = $("plans");
   list.textContent = "";
@@ -785,6 +788,33 @@ function select(k) {
 }
 
 // ------------------------------------------------------------------ fingers by hand
+
+// the selected plan shaken in MuJoCo (the server's /api/stress: fcgrasp simulate on a
+// few of its grasps), the result and the animation of one shown under the button
+async function runStress() {
+  const plan = S.plans[S.selected];
+  if (!plan) return;
+  const seq = ++S.stressSeq;
+  $("stresstext").textContent = "shaking…";
+  $("stressgif").hidden = true;
+  let ans;
+  try {
+    ans = await request("POST", "/api/stress", { part: partBody(S.part), plan });
+  } catch (e) {
+    if (seq === S.stressSeq) $("stresstext").textContent = e.message;
+    return;
+  }
+  if (seq !== S.stressSeq) return;
+  const worst = ans.worst_ratio === null ? "no slip up to three times it"
+    : `the least slip at ${ans.worst_ratio.toFixed(2)} times it`;
+  $("stresstext").textContent = `plan ${ans.rank}: ${ans.held} of ${ans.runs} grasps held ` +
+    `to their certified payload; ${worst}`;
+  document.body.dataset.stressHeld = String(ans.held);
+  if (ans.gif) {
+    $("stressgif").src = `data:image/gif;base64,${ans.gif}`;
+    $("stressgif").hidden = false;
+  }
+}
 
 async function runCheck() {
   stopEscape();
@@ -1225,6 +1255,7 @@ async function init() {
   $("export-svg").addEventListener("click", () => {
     download("fcgrasp-plan.svg", "image/svg+xml", figureSVG());
   });
+  $("stress").addEventListener("click", runStress);
   $("export-moveit").addEventListener("click", () => {
     if (!S.moveit) { message("MoveIt grasps are a jaw's or two fingers' plans"); return; }
     download("fcgrasp-grasps.json", "application/json", JSON.stringify(S.moveit, null, 1) + "\n");
