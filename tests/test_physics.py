@@ -163,12 +163,25 @@ def test_simulate_refuses_in_one_line(tmp_path, capsys, argv, words):
 
 
 def test_a_solids_animation_is_drawn(tmp_path):
-    """``--gif`` on a solid's report: the mesh moved as the part moved, frame by frame;
-    the recorded motion is the part's (its rotation a unit quaternion, its shift within
-    the displacement it reports)."""
-    from fcgrasp.physics import sample_solid_grasps, solid_stress_test
+    """A solid's recorded stress test: the motion is the part's (its rotation a unit
+    quaternion, its shift within the displacement it reports), drawn frame by frame."""
+    from fcgrasp.physics import animate_solid, sample_solid_grasps, solid_stress_test
     from fcgrasp.spatial.solid import demo_solid
 
+    solid = demo_solid("angle")
+    grasp = fc.plan(solid, fingers=3, mu=0.5, top=1)[0]
+    pts, nrm = sample_solid_grasps(grasp, 1, np.random.default_rng(0))[0]
+    res = solid_stress_test(solid, pts, nrm, 0.5, [1.0, 0, 0, 0, 0, 0], record=True)
+    h = res.history
+    assert h.shape[1] == 11 and len(h) > 5
+    assert np.allclose(np.linalg.norm(h[:, 7:11], axis=1), 1.0)
+    assert np.all(np.linalg.norm(h[:, 4:7], axis=1) <= h[:, 2] + 1e-12)
+    animate_solid(solid, res, str(tmp_path / "a.gif"), frames=3)
+    assert (tmp_path / "a.gif").read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+
+
+@pytest.mark.slow
+def test_simulate_gif_of_a_solids_report(tmp_path):
     plan = tmp_path / "plan.json"
     assert main(["plan", "demo:angle", "--fingers", "3", "--mu", "0.5", "--top", "1",
                  "--json", str(plan), "--quiet"]) == 0
@@ -176,14 +189,6 @@ def test_a_solids_animation_is_drawn(tmp_path):
     assert main(["simulate", str(plan), "--samples", "1", "--directions", "1", "--workers",
                  "1", "--gif", str(gif), "--quiet"]) == 0
     assert gif.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
-    solid = demo_solid("angle")
-    grasp = json.loads(plan.read_text())["grasps"][0]
-    pts, nrm = sample_solid_grasps(grasp, 1, np.random.default_rng(0))[0]
-    res = solid_stress_test(solid, pts, nrm, 0.5, [1.0, 0, 0, 0, 0, 0], record=True)
-    h = res.history
-    assert h.shape[1] == 11 and len(h) > 5
-    assert np.allclose(np.linalg.norm(h[:, 7:11], axis=1), 1.0)
-    assert np.all(np.linalg.norm(h[:, 4:7], axis=1) <= h[:, 2] + 1e-12)
 
 
 def test_the_animation_is_drawn(tmp_path):
