@@ -930,6 +930,7 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     assert not d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
 
 
+@pytest.mark.slow
 def test_the_selected_plan_is_shaken_in_mujoco(server, browser):
     """The stress test button: the selected plan's grasps shaken on the server
     (``/api/stress``, ``fcgrasp simulate``'s), how many held, and the animation."""
