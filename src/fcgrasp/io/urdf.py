@@ -104,9 +104,9 @@ def _geometry_points(geometry: Any, urdf: Path) -> tuple[str, Any]:
 
 def _boxes(kind: str, shape: Any, T: np.ndarray, R_tool: np.ndarray, name: str
            ) -> list[tuple[str, np.ndarray, np.ndarray, np.ndarray]]:
-    """Boxes (name, centre, size, rotation in the palm frame's axes... as tool axes)
-    covering one geometry placed by ``T`` (4 x 4, palm frame, millimetres): a box as it
-    is, a mesh by slabs along the approach."""
+    """Boxes ``(name, centre, size, rotation)`` in the tool frame's axes (``R_tool``: its
+    axes as columns in the palm frame) covering one geometry placed by ``T`` (4 x 4,
+    palm frame, millimetres): a box as it is, a mesh by slabs along the approach."""
     if kind == "box":
         R = R_tool.T @ T[:3, :3]
         return [(name, R_tool.T @ T[:3, 3], shape * 1000.0, R)]
@@ -182,10 +182,14 @@ def hand_from_urdf(path: str | os.PathLike[str], name: str | None = None) -> Par
     fixed_to_palm = {palm_link} | {j.child for j in u.robot.joints
                                    if j.type == "fixed" and j.parent == palm_link}
 
+    shapes: dict[tuple[str, int], tuple[str, Any]] = {}     # each geometry read once
+
     def placed(link: str, base: np.ndarray) -> list[tuple[str, Any, np.ndarray]]:
         out = []
         for k, c in enumerate(by_link.get(link, [])):
-            kind, shape = _geometry_points(c.geometry, urdf)
+            if (link, k) not in shapes:
+                shapes[link, k] = _geometry_points(c.geometry, urdf)
+            kind, shape = shapes[link, k]
             T = base @ (np.eye(4) if c.origin is None else np.asarray(c.origin, float))
             T = T.copy()
             T[:3, 3] *= 1000.0
@@ -198,7 +202,6 @@ def hand_from_urdf(path: str | os.PathLike[str], name: str | None = None) -> Par
         return T
 
     # the tool axes: y towards finger 1 (the side its material is on), z the approach
-    R_palm = np.eye(3)
     z = np.array([0.0, 0.0, 1.0])
     y = np.array([a1[0], a1[1], 0.0]) / math.hypot(a1[0], a1[1])
     R_tool = np.stack([np.cross(y, z), y, z], axis=1)     # tool axes in the palm frame
@@ -206,7 +209,7 @@ def hand_from_urdf(path: str | os.PathLike[str], name: str | None = None) -> Par
     def boxes_of(links: list[tuple[str, Any, np.ndarray]]) -> list[Any]:
         out = []
         for nm, (kind, shape), T in links:
-            out += _boxes(kind, shape, T @ np.diag([1, 1, 1, 1.0]), R_palm @ R_tool, nm)
+            out += _boxes(kind, shape, T, R_tool, nm)
         return out
 
     def pad_of(boxes: list[Any]) -> tuple[float, np.ndarray, np.ndarray, np.ndarray]:
