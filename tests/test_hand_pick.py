@@ -570,3 +570,14 @@ def test_the_explorers_stress_test_refuses_what_it_cannot_run_in_one_line():
     plan = fc.plan(part, fingers=2, mu=0.5, top=1)[0].to_dict()
     got = stress_result(part, "mm", {**plan, "rank": 1})
     assert got["runs"] == 4 and 0 <= got["held"] <= 4 and got["gif"]
+
+
+@pytest.mark.parametrize("argv,field", [(["--hand", "franka"], "--hand"),
+                                        (["--table"], "--table"),
+                                        (["--thickness", "4"], "--thickness")])
+def test_point_fingers_refuse_a_hands_options_in_one_line(capsys, argv, field):
+    from fcgrasp.apps.cli import main
+
+    code = main(["plan", "demo:rectangle", "--fingers", "2", "--mu", "0.5", *argv])
+    err = capsys.readouterr().err.strip().splitlines()
+    assert code == 2 and len(err) == 1 and field in err[0] and "--gripper jaw" in err[0], err

@@ -470,9 +470,12 @@ def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
 
 
 def _no_jaw_options(options: Mapping[str, Any]) -> None:
-    for opt, key in (("--stroke", "stroke"), ("--pad", "pad")):
+    for opt, key in (("--stroke", "stroke"), ("--pad", "pad"), ("--hand", "hand"),
+                     ("--thickness", "thickness"), ("--rest", "rest")):
         if options.get(key) is not None:
             raise ValueError(f"{opt} is an option of --gripper jaw")
+    if options.get("table"):
+        raise ValueError("--table is an option of --gripper jaw (with --hand)")
     if options.get("certify") is not None:
         raise ValueError(f"{'--certify' if options['certify'] else '--no-certify'} is an "
                          f"option of --gripper jaw")
