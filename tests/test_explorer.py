@@ -940,7 +940,7 @@ def test_the_selected_plan_is_shaken_in_mujoco(server, browser):
     wait(d, "!document.getElementById('stress').disabled")
     d.find_element(By.ID, "stress").click()
     text = wait(d, "document.getElementById('stresstext').textContent.includes('held') && "
-                   "document.getElementById('stresstext').textContent", timeout=120)
+                   "document.getElementById('stresstext').textContent", timeout=600)
     assert text.startswith("plan 1: ") and "of 4 grasps held" in text, text
     assert int(d.execute_script("return document.body.dataset.stressHeld")) >= 3
     assert d.find_element(By.ID, "stressgif").is_displayed()
