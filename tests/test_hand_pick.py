@@ -232,7 +232,7 @@ def test_the_built_in_hande_is_its_description_read_again():
 
 @pytest.mark.parametrize("name,thickness,table", [("rectangle", 4.0, True),
                                                   ("bracket", 25.0, True),
-                                                  pytest.param("cam", 10.0, False,
+                                                  pytest.param("quad", 10.0, False,
                                                                marks=pytest.mark.slow)])
 def test_the_hande_meshes_themselves_clear_the_plate_and_the_table(name, thickness, table):
     """The hand read from its URDF, placed by yourdfpy's own kinematics with its real
