@@ -51,9 +51,10 @@ class HandBox:
     rotation: tuple[tuple[float, ...], ...] = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0),
                                                (0.0, 0.0, 1.0))
 
-    def corners(self) -> FloatArray:
-        """The eight corners (8, 3) in the tool frame."""
-        half = np.asarray(self.size, float) / 2
+    def corners(self, shrink: float = 0.0) -> FloatArray:
+        """The eight corners (8, 3) in the tool frame (of the box pulled in by ``shrink``
+        on every side)."""
+        half = np.maximum(np.asarray(self.size, float) / 2 - shrink, 0.0)
         signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)],
                          float)
         out: FloatArray = np.asarray(self.centre, float) + \

@@ -42,7 +42,8 @@ from .alternatives import SolidPlan
 from .regions import DEFAULT_MARGIN_DEG, checked_cone
 from .solid import Facet, Solid
 
-__all__ = ["SolidJawPlan", "solid_jaw_plans", "solid_jaw_region"]
+__all__ = ["SolidJawPlan", "solid_jaw_plans", "solid_jaw_region", "region_fields",
+           "largest_piece"]
 
 
 @dataclass(frozen=True)
@@ -202,7 +203,7 @@ def _clip(tri: FloatArray, level: FloatArray) -> FloatArray:
     return np.array(out)
 
 
-def _largest_piece(region: Any) -> Any:
+def largest_piece(region: Any) -> Any:
     """The part of a (multi)polygon with the largest inscribed circle."""
     import shapely
 
@@ -305,22 +306,32 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
             if facet is b:
                 blocked = into_a(blocked)
             region = shapely.difference(region, shapely.buffer(blocked, pad / 2))
-    piece, r, centre = _largest_piece(region)
+    piece, r, centre = largest_piece(region)
     if piece is None or r <= 0:
         return None
+    return SolidJawPlan((i, j), axis, h, r, normals=np.stack([a.normal, b.normal]), mu=mu,
+                        margin=margin, pad=pad, **region_fields(a, piece, centre, h * axis))
+
+
+def region_fields(a: Facet, piece: Any, centre: Any, shift: Any) -> dict[str, Any]:
+    """The fields of a :class:`SolidJawPlan` that its region decides: ``piece`` (a shapely
+    polygon in facet ``a``'s plane) and its inscribed ``centre`` there, on ``a`` and moved
+    by ``shift`` (3,) onto the second facet: ``area``, ``centers``, ``regions``,
+    ``holes`` and ``surface_triangles``."""
+    import shapely
+
+    shift = np.asarray(shift, float)
     ca = a.to_3d(centre)
-    shift = h * axis
     ring_a = a.to_3d(np.asarray(piece.exterior.coords)[:-1])
-    holes_a = tuple(a.to_3d(np.asarray(r.coords)[:-1]) for r in piece.interiors)
+    holes_a = tuple(a.to_3d(np.asarray(q.coords)[:-1]) for q in piece.interiors)
     # the region as triangles, its holes left out (what a figure or a viewer fills)
     tris = shapely.get_parts(shapely.constrained_delaunay_triangles(piece))
     flat = np.array([np.asarray(t.exterior.coords)[:3] for t in tris], float).reshape(-1, 2)
     tri_a = a.to_3d(flat).reshape(-1, 3, 3)
-    return SolidJawPlan((i, j), axis, h, r, float(piece.area),
-                        np.stack([ca, ca + shift]), (ring_a, ring_a + shift),
-                        np.stack([a.normal, b.normal]), mu, margin, pad,
-                        holes=(holes_a, tuple(q + shift for q in holes_a)),
-                        surface_triangles=(tri_a, tri_a + shift))
+    return {"area": float(piece.area), "centers": np.stack([ca, ca + shift]),
+            "regions": (ring_a, ring_a + shift),
+            "holes": (holes_a, tuple(q + shift for q in holes_a)),
+            "surface_triangles": (tri_a, tri_a + shift)}
 
 
 def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | None = 10,

@@ -35,9 +35,10 @@ from typing import Any
 
 import numpy as np
 
-from ...core.tolerances import INRADIUS_STEP, STRIP_TOL
+from ...core.tolerances import STRIP_TOL
 from ...errors import ArgumentError
 from ...model.hands import ParallelHand
+from ...spatial.jaw import largest_piece, region_fields
 from ._pick import Scene
 
 __all__ = ["resting_pose", "solid_tool_frame", "collision_free_plan", "pad_diameter",
@@ -112,6 +113,12 @@ def _hull(points: np.ndarray) -> Any:
     return trimesh.convex.convex_hull(points)
 
 
+def _wide(hand: ParallelHand, scene: Scene, opening: float) -> float:
+    """The opening the hand comes at: ``2 clearance`` wider than the grasp's, at most
+    its stroke."""
+    return float(min(hand.stroke[1], opening + 2 * scene.clearance))
+
+
 def _in_column(hand: ParallelHand, box: Any, radius: float) -> bool:
     """A finger box within the pad's circle around the closing axis (tool ``x``, ``z``
     at most ``radius`` from the pad's centre line) and behind the pad's face."""
@@ -141,41 +148,37 @@ def collision_free_plan(plan: Any, solid: Any, hand: ParallelHand, scene: Scene,
     """The plan with its region cut to where the hand is collision free (the module's
     docstring; ``manager`` :func:`scene_manager`'s, ``rest`` the part's pose on the
     table), or None."""
+    import shapely
+
     origin, R = solid_tool_frame(plan, up_in_part(rest))
     h = float(plan.opening)
-    wide = min(hand.stroke[1], h + 2 * scene.clearance)
     if h > hand.stroke[1]:
         return None
     facet = solid.facets[plan.facets[0]]
     centre = np.asarray(plan.centers[0], float)
-    # the boxes at the grasp and at the wide opening, in the tool frame
-    n_palm, n_finger = len(hand.palm), len(hand.finger)
-    radius = pad_diameter(hand) / 2
-    column = [_in_column(hand, b, radius) for b in hand.finger]
+    # each box's corners (tool frame, pulled in a hair: a pad touching its facet is no
+    # collision) at the wide opening the hand comes at and at the grasp; the palm does
+    # not move while the hand closes, and the boxes in the pad's column touch
     shrink = STRIP_TOL * solid.size
+    radius = pad_diameter(hand) / 2
+    wide = [b.corners(shrink) for b in hand.boxes(_wide(hand, scene, h))]
+    closed = [b.corners(shrink) for b in hand.boxes(h)]
+    moving = [False] * len(hand.palm) + 2 * [not _in_column(hand, b, radius)
+                                             for b in hand.finger]
 
     def hulls_clear(shift: np.ndarray, origin: np.ndarray, R: np.ndarray) -> bool:
         """Every box's sweep over the region's hull vertices ``shift`` (k, 3) from the
-        pose ``origin``, ``R`` clear of the part and the table."""
-        approach = np.array([np.zeros(3), -scene.approach * R[:, 2]])
-        for phase in ("approach", "close"):
-            at = hand.boxes(wide)
-            closing = hand.boxes(h)
-            for k, box in enumerate(at):
-                finger = k >= n_palm
-                if phase == "close" and (not finger or column[(k - n_palm) % n_finger]):
-                    continue            # the palm does not move; column boxes touch
-                corners = origin + _corners(box, shrink) @ R.T
-                if phase == "approach":
-                    ends = [corners + a for a in approach]
-                else:
-                    ends = [corners, origin + _corners(closing[k], shrink) @ R.T]
-                pts = np.concatenate([e[:, None, :] + shift[None, :, :] for e in ends])
-                if manager.in_collision_single(_hull(pts.reshape(-1, 3))):
-                    return False
+        pose ``origin``, ``R`` clear of the part and the table: coming along the
+        approach at the wide opening, then closing."""
+        approach = -scene.approach * R[:, 2]
+        sweeps = [[origin + c @ R.T + a for a in (0.0, approach)] for c in wide]
+        sweeps += [[origin + c @ R.T, origin + d @ R.T]
+                   for c, d, m in zip(wide, closed, moving, strict=True) if m]
+        for ends in sweeps:
+            pts = np.concatenate([e[:, None, :] + shift[None, :, :] for e in ends])
+            if manager.in_collision_single(_hull(pts.reshape(-1, 3))):
+                return False
         return True
-
-    import shapely
 
     piece = shapely.Polygon(facet.to_2d(np.asarray(plan.regions[0], float)),
                             [facet.to_2d(np.asarray(hh, float)) for hh in plan.holes[0]])
@@ -184,8 +187,8 @@ def collision_free_plan(plan: Any, solid: Any, hand: ParallelHand, scene: Scene,
         # placements above the table by ``clearance`` are a half-plane of the region
         up = up_in_part(rest)
         floor = float(np.linalg.inv(rest)[:3, 3] @ up)          # the table's height
-        lowest = min(float(np.min((origin + _corners(b, 0.0) @ R.T) @ up))
-                     for b in hand.boxes(wide) + hand.boxes(h))
+        lowest = min(float(np.min((origin + b.corners() @ R.T) @ up))
+                     for b in hand.boxes(_wide(hand, scene, h)) + hand.boxes(h))
         need = floor + scene.clearance - lowest                  # (v - c) . up >= need
         if need > 0:
             e = facet.to_2d(centre + up) - facet.to_2d(centre)  # up, seen in A's plane
@@ -205,11 +208,11 @@ def collision_free_plan(plan: Any, solid: Any, hand: ParallelHand, scene: Scene,
             piece = max(piece.geoms, key=lambda g: g.area)
         if not isinstance(piece, shapely.Polygon) or piece.is_empty or piece.area <= 0:
             return None
-        best = _inscribed(piece)
-        if best is None:
+        _, r, c2 = largest_piece(piece)
+        if r <= 0:
             return None
-        c2, r = best
-        got = _with_region(plan, facet, piece, c2, r)
+        shift = np.asarray(plan.centers[1], float) - centre
+        got = replace(plan, radius=float(r), **region_fields(facet, piece, c2, shift))
         o2, R2 = solid_tool_frame(got, up_in_part(rest))
         hull = facet.to_3d(np.asarray(piece.convex_hull.exterior.coords)[:-1])
         if hulls_clear(hull - np.asarray(got.centers[0]), o2, R2):
@@ -223,46 +226,6 @@ def collision_free_plan(plan: Any, solid: Any, hand: ParallelHand, scene: Scene,
     return None
 
 
-def _inscribed(piece: Any) -> tuple[np.ndarray, float] | None:
-    """The centre and radius of a polygon's largest inscribed circle (the radius the
-    distance from the centre found to the boundary)."""
-    import shapely
-
-    lo_x, lo_y, hi_x, hi_y = piece.bounds
-    line = shapely.maximum_inscribed_circle(piece, INRADIUS_STEP * max(hi_x - lo_x,
-                                                                        hi_y - lo_y))
-    c = np.asarray(line.coords[0], float)
-    r = float(piece.boundary.distance(shapely.Point(c)))
-    return (c, r) if r > 0 else None
-
-
-def _corners(box: Any, shrink: float) -> np.ndarray:
-    """A box's corners, the box pulled in by ``shrink`` on every side (a pad touching
-    its facet is no collision)."""
-    half = np.maximum(np.asarray(box.size, float) / 2 - shrink, 0.0)
-    signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)],
-                     float)
-    return np.asarray(box.centre, float) + (signs * half) @ np.asarray(box.rotation, float).T
-
-
-def _with_region(plan: Any, facet: Any, piece: Any, c2: np.ndarray, r: float) -> Any:
-    """The plan with the region ``piece`` (facet ``A``'s plane), its inscribed centre
-    ``c2`` and radius ``r``."""
-    import shapely
-
-    shift = np.asarray(plan.centers[1], float) - np.asarray(plan.centers[0], float)
-    ring_a = facet.to_3d(np.asarray(piece.exterior.coords)[:-1])
-    holes_a = tuple(facet.to_3d(np.asarray(q.coords)[:-1]) for q in piece.interiors)
-    tris = shapely.get_parts(shapely.constrained_delaunay_triangles(piece))
-    flat = np.array([np.asarray(t.exterior.coords)[:3] for t in tris], float).reshape(-1, 2)
-    tri_a = facet.to_3d(flat).reshape(-1, 3, 3)
-    ca = facet.to_3d(c2)
-    return replace(plan, regions=(ring_a, ring_a + shift), area=float(piece.area),
-                   radius=float(r), centers=np.stack([ca, ca + shift]),
-                   holes=(holes_a, tuple(q + shift for q in holes_a)),
-                   surface_triangles=(tri_a, tri_a + shift))
-
-
 def pick_dict(plan: Any, hand: ParallelHand, scene: Scene,
               rest: np.ndarray | None = None) -> dict[str, Any]:
     """The pose, the opening the hand comes at, its approach and retreat, of a region's
@@ -273,7 +236,7 @@ def pick_dict(plan: Any, hand: ParallelHand, scene: Scene,
     origin, R = solid_tool_frame(plan, up)
     return {"pose": {"position": [float(v) for v in origin],
                      "orientation": list(quaternion(R)), "frame": "part"},
-            "pre_grasp_opening": float(min(hand.stroke[1], plan.opening + 2 * scene.clearance)),
+            "pre_grasp_opening": _wide(hand, scene, float(plan.opening)),
             "approach": {"direction": [float(v) for v in R[:, 2]], "distance": scene.approach,
                          "frame": "part"},
             "retreat": {"direction": [float(v) for v in up], "distance": scene.retreat,
