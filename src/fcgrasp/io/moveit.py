@@ -57,7 +57,7 @@ from ..errors import ArgumentError
 from .units import MM_PER
 
 __all__ = ["moveit_grasps", "parallel_gripper", "grasps_text", "GRASP_FIELDS", "tool_rotation",
-           "quaternion"]
+           "quaternion", "jaw_tool_pose"]
 
 #: The fields of each message as its definition names them (moveit_msgs, trajectory_msgs,
 #: geometry_msgs and std_msgs of ROS 2).
@@ -145,12 +145,21 @@ def _pose(grasp: dict[str, Any], height: float) -> tuple[np.ndarray, np.ndarray,
         return centers.mean(axis=0), tool_rotation(axis, _down(axis)), \
             float(grasp["opening"]), "external"
     theta, offset = (float(v) for v in grasp["centre"])
+    stops = float(grasp["contacts"]["a"]["stop"]), float(grasp["contacts"]["b"]["stop"])
+    where, axes = jaw_tool_pose(grasp["centroid"], theta, offset, stops, height)
+    return where, axes, abs(stops[0] - stops[1]), str(grasp.get("mode", "external"))
+
+
+def jaw_tool_pose(centroid: Any, theta: float, offset: float, stops: tuple[float, float],
+                  height: float) -> tuple[np.ndarray, np.ndarray]:
+    """The tool frame of a planar part's jaw pose picked from above (part frame, its
+    units): the origin between the pads' faces (stops ``stops`` along the closing
+    direction ``theta``, ``offset`` across it from ``centroid``) at ``height``, and the
+    axes as columns, ``y`` along the closing direction, ``z`` down."""
     u = np.array([math.cos(theta), math.sin(theta)])
     n = np.array([-u[1], u[0]])
-    stops = float(grasp["contacts"]["a"]["stop"]), float(grasp["contacts"]["b"]["stop"])
-    xy = np.asarray(grasp["centroid"], float) + (stops[0] + stops[1]) / 2 * u + offset * n
-    return np.r_[xy, height], tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0]), \
-        abs(stops[0] - stops[1]), str(grasp.get("mode", "external"))
+    xy = np.asarray(centroid, float) + (stops[0] + stops[1]) / 2 * u + offset * n
+    return np.r_[xy, height], tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
 
 
 def _ee_pose(pose: dict[str, Any], hand: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:

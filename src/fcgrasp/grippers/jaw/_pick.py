@@ -32,11 +32,8 @@ independent collision library (python-fcl through trimesh) on the extruded plate
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from typing import Any
-
-import numpy as np
 
 from ...core._checks import check_scalar
 from ...model.hands import ParallelHand
@@ -114,17 +111,3 @@ def top_pick(hand: ParallelHand, scene: Scene) -> TopPick | str:
                 f"needs the palm and the parts of the fingers wider than the pad "
                 f"{c:g} above it (the pad would then be {-band:g} above the plate)")
     return TopPick(float(height), float(band))
-
-
-def pose_of(centroid: Any, theta: float, offset: float, stops: tuple[float, float],
-            height: float) -> tuple[list[float], list[float]]:
-    """The tool frame's position and orientation (a unit quaternion ``x, y, z, w``) of a
-    top pick at a jaw pose: its origin between the pads' faces at ``height``, ``y``
-    along the closing direction, ``z`` down."""
-    from ...io.moveit import quaternion, tool_rotation
-
-    u = np.array([math.cos(theta), math.sin(theta)])
-    n = np.array([-u[1], u[0]])
-    xy = np.asarray(centroid, float) + (stops[0] + stops[1]) / 2 * u + offset * n
-    R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
-    return [float(xy[0]), float(xy[1]), float(height)], list(quaternion(R))

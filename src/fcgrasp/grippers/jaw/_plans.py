@@ -40,7 +40,7 @@ from ._grid import (
     _grid,
     _measure,
 )
-from ._pick import Scene, TopPick, pose_of, top_pick
+from ._pick import Scene, TopPick, top_pick
 from ._poses import (
     OFFSET_STEPS,
     THETA_STEP_DEG,
@@ -371,12 +371,16 @@ class JawPlan:
 
     def pick_dict(self, pick: TopPick) -> dict[str, Any]:
         """The pick of the box's centre pose with the jaw's hand: the tool frame's pose
-        (:func:`~fcgrasp.grippers.jaw._pick.pose_of`), the opening it comes down at, the
+        (:func:`fcgrasp.io.moveit.jaw_tool_pose`), the opening it comes down at, the
         approach and the retreat (part frame, the part's units); every pose of the box is
         collision free (:mod:`fcgrasp.grippers.jaw._pick`)."""
         assert self.jaw.hand is not None and self.jaw.scene is not None
-        position, orientation = pose_of(self.centroid, self.centre[0], self.centre[1],
-                                        self.stops, pick.height)
+        from ...io.moveit import jaw_tool_pose, quaternion
+
+        where, axes = jaw_tool_pose(self.centroid, self.centre[0], self.centre[1],
+                                    self.stops, pick.height)
+        position = [float(v) for v in where]
+        orientation = list(quaternion(axes))
         return {"pose": {"position": position, "orientation": orientation, "frame": "part"},
                 "pre_grasp_opening": self.jaw.hand.stroke[1],
                 "approach": {"direction": [0.0, 0.0, -1.0], "distance": self.jaw.scene.approach,
