@@ -230,12 +230,14 @@ def hand_from_urdf(path: str | os.PathLike[str], name: str | None = None) -> Par
         face = float(lo_b[mask, 1].min())
         return face, lo_b[mask].min(axis=0), hi_b[mask].max(axis=0), mask
 
-    def faces(q: float) -> tuple[float, float]:
-        f1 = boxes_of(placed(j1.child, finger_at(j1, q)))
+    def face2(q: float) -> float:
+        """Finger 2's pad face at joint value ``q``: seen from its side (y reflected),
+        the largest y of its pad."""
         f2 = boxes_of(placed(j2.child, finger_at(j2, m1 * q + off2)))
-        # finger 2's pad seen from its side (y reflected): its face is its largest y
-        y2 = -pad_of([(n, c * [1, -1, 1], s, R) for n, c, s, R in f2])[0]
-        return pad_of(f1)[0], y2
+        return -pad_of([(n, c * [1, -1, 1], s, R) for n, c, s, R in f2])[0]
+
+    def faces(q: float) -> tuple[float, float]:
+        return pad_of(boxes_of(placed(j1.child, finger_at(j1, q))))[0], face2(q)
 
     # finger 1's material on the tool's +y side (else the axes turned half about z)
     probe = boxes_of(placed(j1.child, finger_at(j1, lo)))
@@ -256,10 +258,10 @@ def hand_from_urdf(path: str | os.PathLike[str], name: str | None = None) -> Par
     # finger 1 at opening 0, and its pad
     f1 = boxes_of(placed(j1.child, finger_at(j1, q_closed)))
     inner, lo_pad, hi_pad, is_pad = pad_of(f1)
-    y1c, y2c = faces(q_closed)
     # the tool frame's origin: between the pads' faces, at the pad's centre across and
     # along the approach
-    mid = np.array([(lo_pad[0] + hi_pad[0]) / 2, (y1c + y2c) / 2, (lo_pad[2] + hi_pad[2]) / 2])
+    mid = np.array([(lo_pad[0] + hi_pad[0]) / 2, (inner + face2(q_closed)) / 2,
+                    (lo_pad[2] + hi_pad[2]) / 2])
 
     def to_tool(items: list[Any], dy: float) -> tuple[HandBox, ...]:
         out = []
