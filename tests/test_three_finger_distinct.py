@@ -87,21 +87,23 @@ def _arc(u0, u1, per):
     return u0 - shift, u1 - shift
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
-    rng = np.random.default_rng(seed)
+def _ringed(rng, holed):
+    """A lumpy disc of 12-40 edges, with a hole (a third ring the regions may not touch)
+    if ``holed``."""
     a = np.linspace(0, 2 * np.pi, int(rng.integers(12, 40)), endpoint=False)
     r = 20 + rng.uniform(0, 4, a.size)
-    outer = np.c_[r * np.cos(a), r * np.sin(a)]
     holes = []
-    if seed % 2:                       # a hole: a third ring the regions may not touch
+    if holed:
         b = np.linspace(0, 2 * np.pi, int(rng.integers(3, 12)), endpoint=False)
         holes = [np.c_[rng.uniform(2, 8) * np.cos(b), rng.uniform(2, 8) * np.sin(b)][::-1]]
-    poly = fc.Polygon(outer, holes=holes)
-    rings = _rings(poly)
-    free = FreeThird(rings, poly, 1e-9 * poly.size)
-    known = checked = 0
-    for _ in range(300):
+    return fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)], holes=holes)
+
+
+def _configurations(rng, rings, n=300):
+    """Up to ``n`` seeded configurations of two stretches that share no edge: the rings
+    ``x``, ``y``, the starts and interior vertices, the edges each covers, as
+    :class:`_Configs` of one."""
+    for _ in range(n):
         x, y = (int(v) for v in rng.integers(0, len(rings), 2))
         ma, mb = rings[x].m, rings[y].m
         iA, kA = int(rng.integers(0, ma)), int(rng.integers(0, ma // 3))
@@ -110,7 +112,18 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
         ec = [int(rings[y].edges[(iC + j) % mb]) for j in range(kC + 1)]
         if set(ea) & set(ec):
             continue
-        cfg = _Configs(*(np.array([v]) for v in (iA, kA, iC, kC)))
+        yield x, y, (iA, kA, iC, kC), ea, ec, _Configs(*(np.array([v]) for v in
+                                                          (iA, kA, iC, kC)))
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
+    rng = np.random.default_rng(seed)
+    poly = _ringed(rng, seed % 2)
+    rings = _rings(poly)
+    free = FreeThird(rings, poly, 1e-9 * poly.size)
+    known = checked = 0
+    for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
         ring, g0, g1, e0, e1 = (v[0] for v in free.of(x, y, cfg))
         if ring < 0:
             continue
@@ -223,26 +236,11 @@ def test_the_widest_free_stretch_bounds_every_free_stretch_and_grows_inside(seed
     it (fewer edges on either side: a beater in the own-optimum filter is never ranked
     below what it beats)."""
     rng = np.random.default_rng(50 + seed)
-    a = np.linspace(0, 2 * np.pi, int(rng.integers(12, 40)), endpoint=False)
-    r = 20 + rng.uniform(0, 4, a.size)
-    holes = []
-    if seed % 2:
-        b = np.linspace(0, 2 * np.pi, int(rng.integers(3, 12)), endpoint=False)
-        holes = [np.c_[rng.uniform(2, 8) * np.cos(b), rng.uniform(2, 8) * np.sin(b)][::-1]]
-    poly = fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)], holes=holes)
+    poly = _ringed(rng, seed % 2)
     rings = _rings(poly)
     free = FreeThird(rings, poly, 1e-9 * poly.size)
     checked = 0
-    for _ in range(300):
-        x, y = (int(v) for v in rng.integers(0, len(rings), 2))
-        ma, mb = rings[x].m, rings[y].m
-        iA, kA = int(rng.integers(0, ma)), int(rng.integers(0, ma // 3))
-        iC, kC = int(rng.integers(0, mb)), int(rng.integers(0, mb // 3))
-        ea = [int(rings[x].edges[(iA + j) % ma]) for j in range(kA + 1)]
-        ec = [int(rings[y].edges[(iC + j) % mb]) for j in range(kC + 1)]
-        if set(ea) & set(ec):
-            continue
-        cfg = _Configs(*(np.array([v]) for v in (iA, kA, iC, kC)))
+    for x, y, (iA, kA, iC, kC), ea, ec, cfg in _configurations(rng, rings):
         bound = float(free.widest(x, y, cfg)[0])
         for cut_a in ((0, 0), (1, 0), (0, 1)) if kA else ((0, 0),):
             for cut_c in ((0, 0), (1, 0), (0, 1)) if kC else ((0, 0),):
