@@ -219,27 +219,34 @@ def _contact_prisms(solid: Any, point: FloatArray, outward: FloatArray) -> list[
     return out
 
 
+def _first_hit(solid: Any, start: FloatArray, direction: FloatArray) -> FloatArray | None:
+    """Where a ray from ``start`` along ``direction`` first meets the mesh (None: it
+    does not)."""
+    hits, _, _ = solid.mesh.ray.intersects_location([start], [direction])
+    if not len(hits):
+        return None
+    return np.asarray(hits[int(np.argmin(np.linalg.norm(hits - start, axis=1)))], float)
+
+
 def _meets(solid: Any, point: FloatArray, inward: FloatArray) -> FloatArray:
     """Where a finger coming along ``inward`` from outside, through ``point``, first
     meets the mesh (from :data:`NEAR_PIECES` of the part's size out)."""
     inward = np.asarray(inward, float) / float(np.linalg.norm(inward))
     size = float(np.linalg.norm(solid.mesh.extents))
-    start = np.asarray(point, float) - inward * NEAR_PIECES * size
-    hits, _, _ = solid.mesh.ray.intersects_location([start], [inward])
-    if not len(hits):
+    hit = _first_hit(solid, np.asarray(point, float) - inward * NEAR_PIECES * size, inward)
+    if hit is None:
         raise ArgumentError("a finger of the grasp meets no part of the solid along its "
                             "normal", "points")
-    return np.asarray(hits[int(np.argmin(np.linalg.norm(hits - start, axis=1)))], float)
+    return hit
 
 
 def _thickness(solid: Any, point: FloatArray, inward: FloatArray) -> float:
     """How far a ray from ``point`` into the part along ``inward`` runs before it
     leaves."""
-    start = point + PLANAR_TOL * float(np.linalg.norm(solid.mesh.extents)) * inward
-    hits, _, _ = solid.mesh.ray.intersects_location([start], [inward])
-    if not len(hits):
-        return float(np.linalg.norm(solid.mesh.extents)) / 10
-    return float(np.min(np.linalg.norm(hits - start, axis=1)))
+    size = float(np.linalg.norm(solid.mesh.extents))
+    start = point + PLANAR_TOL * size * inward
+    hit = _first_hit(solid, start, inward)
+    return size / 10 if hit is None else float(np.linalg.norm(hit - start))
 
 
 def solid_plan_of(plan: Any) -> tuple[list[FloatArray], list[FloatArray], float, bool]:
