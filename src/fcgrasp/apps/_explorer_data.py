@@ -351,9 +351,9 @@ def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
 # ----------------------------------------------------------------------------- checks
 
 
-#: Grasps of a plan the explorer's stress test runs (one disturbance each), and the
-#: frames of its animation: a few seconds of CPU.
-STRESS_SAMPLES, STRESS_FRAMES = 4, 16
+#: Grasps of a plan the explorer's stress test runs (one disturbance each): with the
+#: animation of one, a few seconds of CPU.
+STRESS_SAMPLES = 4
 
 
 def stress_result(part: Any, units: str, plan: Any) -> dict[str, Any]:

@@ -215,9 +215,9 @@ class StretchSearch:
         #: the best smallest region (the first run without exclusion), from which the
         #: memo's floor starts (:data:`MEMO_SHARE`)
         self._best: float | None = None
-        #: the caps of the runs with ``third`` (one per search: the memo's jobs keep
-        #: what they read)
-        self._caps: dict[str, Any] = {}
+        #: the cap of the runs with ``third``, made once (the memo's jobs keep what it
+        #: read)
+        self._third: _WidestFree | None = None
 
     def pairs(self, top: Any = 5, ties: bool = False, exclude: Any = (),
               fraction: float = 0.5, seen: Any = (), third: bool = False
@@ -249,11 +249,11 @@ class StretchSearch:
             if kept or read else None
         # a pair plan's smallest region is at most its third finger's widest free
         # stretch: the search ranks by that bound (the same FreeThird as the exclusion's)
-        cap = None
-        if third:
+        if third and self._third is None:
             free = excl.free if excl is not None and excl.free is not None else \
                 FreeThird(rings, polygon, THIRD_PAD * ROUND_TOL * polygon.size)
-            cap = self._caps.setdefault("third", _WidestFree(free))
+            self._third = _WidestFree(free)
+        cap = self._third if third else None
         memo = self._memo
         # the rounds that share a memo: those that exclude, and those with a cap (their
         # values have no vertex-aligned lower bound to start from: the memo's floor
