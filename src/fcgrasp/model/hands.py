@@ -141,6 +141,12 @@ class ParallelHand:
         z = self.pad_box.corners()[:, 2]
         return float(z.min()), float(z.max())
 
+    @property
+    def pad_height(self) -> float:
+        """The pad's height along the approach: the plate a pick takes by default."""
+        lo, hi = self.pad_span
+        return hi - lo
+
     def boxes(self, opening: float) -> list[HandBox]:
         """Every box of the hand at ``opening`` (tool frame): the palm's, finger 1's, then
         finger 2's."""

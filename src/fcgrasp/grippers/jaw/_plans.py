@@ -90,8 +90,7 @@ class ParallelJaw(JawParameters):
             raise ValueError(f"stroke must be within the hand's ({lo:g}, {hi:g}), got "
                              f"{self.stroke!r}")
         if self.scene is None:
-            pz0, pz1 = self.hand.pad_span
-            object.__setattr__(self, "scene", Scene(pz1 - pz0))
+            object.__setattr__(self, "scene", Scene(self.hand.pad_height))
         elif not isinstance(self.scene, Scene):
             raise TypeError(f"scene must be a Scene, got {type(self.scene).__name__}")
 
@@ -280,8 +279,7 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
     hand = hand.scaled(per_mm, options.get("units") or "mm")
     thickness = options.get("thickness")
     if thickness is None:
-        pz0, pz1 = hand.pad_span
-        thickness = pz1 - pz0
+        thickness = hand.pad_height
     elif not (math.isfinite(thickness) and thickness > 0):
         raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
     rest = options.get("rest")
