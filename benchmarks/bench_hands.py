@@ -50,10 +50,23 @@ def run(argv: list[str]) -> tuple[float | None, dict | None]:
         return usage.ru_utime + usage.ru_stime, json.loads(Path(out).read_text())
 
 
-def collides(part, hand, grasp: dict, thickness: float, height: float) -> bool:
-    """The hand at a bare plan's centre pose, picked from above with its tool frame at
-    ``height``, against the plate and the table (python-fcl)."""
+def scene(part, thickness: float):
+    """python-fcl's collision manager of the plate (the part extruded) on the table."""
     import shapely
+    import trimesh
+
+    m = trimesh.collision.CollisionManager()
+    m.add_object("plate", trimesh.creation.extrude_polygon(
+        shapely.Polygon(part.vertices, [h for h in part.holes]), thickness))
+    slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
+    slab.apply_translation((0.0, 0.0, -5.0))
+    m.add_object("table", slab)
+    return m
+
+
+def collides(m, hand, grasp: dict, height: float) -> bool:
+    """The hand at a bare plan's centre pose, picked from above with its tool frame at
+    ``height``, against the plate and the table (``m``, :func:`scene`'s)."""
     import trimesh
 
     from fcgrasp.io.moveit import tool_rotation
@@ -72,12 +85,6 @@ def collides(part, hand, grasp: dict, thickness: float, height: float) -> bool:
         if opening < 0:
             return True                     # the fingers do not fit between the stops
     R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
-    m = trimesh.collision.CollisionManager()
-    m.add_object("plate", trimesh.creation.extrude_polygon(
-        shapely.Polygon(part.vertices, [h for h in part.holes]), thickness))
-    slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
-    slab.apply_translation((0.0, 0.0, -5.0))
-    m.add_object("table", slab)
     for b in hand.boxes(opening):
         T = np.eye(4)
         T[:3, :3] = R @ np.asarray(b.rotation)
@@ -130,8 +137,9 @@ def main() -> int:
             print(f"| {label} | error | | | | | |")
             continue
         part = fc.read_part(src)
-        got = [collides(part, hand, g, args.thickness, centred) for g in bare["grasps"]]
-        up = [collides(part, hand, g, args.thickness, safe) for g in bare["grasps"]]
+        m = scene(part, args.thickness)
+        got = [collides(m, hand, g, centred) for g in bare["grasps"]]
+        up = [collides(m, hand, g, safe) for g in bare["grasps"]]
         total, hits, lifted = total + len(got), hits + sum(got), lifted + sum(up)
         ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
         print(f"| {label} | {len(got)} | {sum(got)} | {sum(up)} | {len(with_hand['grasps'])} | "
