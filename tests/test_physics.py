@@ -12,12 +12,14 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.apps.cli import main
+from fcgrasp.errors import ArgumentError
 from fcgrasp.io.parts import demo_part
 
 mujoco = pytest.importorskip("mujoco")
 
 from fcgrasp.physics import (  # noqa: E402
     animate,
+    balance_forces,
     control,
     escape_direction,
     sample_grasps,
@@ -30,7 +32,8 @@ CASES = [("blob", dict(fingers=2, mu=0.5)), ("blob", dict(fingers=3, mu=0.5)),
          ("quad", dict(fingers=4))]
 SLOW_CASES = [("cam", dict(fingers=2, mu=0.3)), ("bracket", dict(fingers=3, mu=0.4)),
               ("rectangle", dict(fingers=4)), ("triangle", dict(fingers=2, mu=0.3)),
-              ("washer", dict(fingers=2, mu=0.5)), ("quad", dict(fingers=3, mu=0.3))]
+              ("washer", dict(fingers=2, mu=0.5)), ("quad", dict(fingers=3, mu=0.3)),
+              ("triangle", dict(fingers=3, mu=0.5)), ("washer", dict(fingers=3, mu=0.5))]
 
 
 def _held(cases, samples):
@@ -104,6 +107,64 @@ def test_the_squeeze_is_in_equilibrium_within_the_cones():
     # on edges that are not parallel they cannot
     assert squeeze_forces([[0, 0], [10, 0]], [[-1, 0], [1, 0]], 0.0, 5.0) is not None
     assert squeeze_forces([[0, 0], [10, 0]], [[-1, 0], [0.8, 0.6]], 0.0, 5.0) is None
+
+
+def _tangential_balance(pts, nrm, mu, pushes, wrench):
+    """Whether tangential forces within the cones of the normal forces ``pushes`` make
+    the contacts balance ``wrench`` (about the origin): an LP of this test's own."""
+    from scipy.optimize import linprog
+
+    inward = -nrm / np.linalg.norm(nrm, axis=1)[:, None]
+    tang = np.c_[-inward[:, 1], inward[:, 0]]
+    F0 = (pushes[:, None] * inward).sum(axis=0)
+    T0 = float(np.sum(pushes * (pts[:, 0] * inward[:, 1] - pts[:, 1] * inward[:, 0])))
+    A = np.vstack([tang[:, 0], tang[:, 1], pts[:, 0] * tang[:, 1] - pts[:, 1] * tang[:, 0]])
+    res = linprog(np.zeros(len(pts)), A_eq=A, b_eq=-(np.r_[F0, T0] + wrench),
+                  bounds=[(-mu * f, mu * f) for f in pushes], method="highs")
+    return res.status == 0
+
+
+@pytest.mark.parametrize(("name", "kw"), [("blob", dict(fingers=2, mu=0.5)),
+                                          ("triangle", dict(fingers=3, mu=0.5)),
+                                          ("washer", dict(fingers=3, mu=0.3))])
+def test_the_balancing_forces_hold_the_load_up_to_the_payload(name, kw):
+    """The balancing fingers' forces (grasp force optimisation along the ramp): each
+    level's normal forces within their limits balance its load with tangential forces
+    inside the cones (an LP of this test's own), and the levels reached stop within one
+    step of the payload with those limits (fcgrasp.grasp_payload)."""
+    from fcgrasp.model.loads import Load, grasp_payload
+
+    rng = np.random.default_rng(17)
+    poly = demo_part(name)
+    cx, cy = (float(v) for v in poly.centroid)
+    plan = fc.plan(poly, top=1, **kw)[0]
+    for pts, nrm in sample_grasps(poly, plan.regions, 4, rng):
+        limits = 2 * squeeze_forces(pts, nrm, plan.mu, 10.0)
+        for _ in range(3):
+            u = rng.normal(size=3)
+            u[2] *= poly.size
+            wrench = np.array([u[0], u[1], u[2] + cx * u[1] - cy * u[0]])
+            load = Load(1.0, com=(cx, cy), gravity=(u[0], u[1]), torque=(u[2], u[2]))
+            payload = grasp_payload(pts, -nrm, plan.mu, load, force_limit=list(limits)).scale
+            top = 2 * payload
+            levels, pushes = balance_forces(pts, nrm, plan.mu, limits, wrench, top,
+                                            levels=20)
+            step = top / 20
+            assert len(levels) >= 2
+            assert levels[-1] <= payload * (1 + 1e-6) and levels[-1] > payload - step * 1.001
+            for k, f in zip(levels, pushes, strict=True):
+                assert np.all(f <= limits * (1 + 1e-7)) and np.all(f >= -1e-9 * limits.max())
+                assert _tangential_balance(pts, nrm, plan.mu, f, k * wrench)
+
+
+def test_servo_fingers_run_and_a_bad_control_is_named():
+    poly = demo_part("blob")
+    plan = fc.plan(poly, fingers=3, mu=0.5, top=1)[0]
+    out = simulate(poly, [plan], samples=2, directions=1, seed=2, workers=1,
+                   control="servo")
+    assert out[0]["runs"] == 2
+    with pytest.raises(ArgumentError, match="control"):
+        simulate(poly, [plan], samples=1, directions=1, control="torque")
 
 
 def test_a_seeded_run_repeats_exactly():

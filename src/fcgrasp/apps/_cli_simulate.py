@@ -19,10 +19,10 @@ def add_parser(sub: Any, parser_class: Any) -> None:
         "simulate", help="shake a plan's grasps in MuJoCo until the part slips (fcgrasp[sim])",
         description="The physics stress test: grasps sampled in each plan's regions (their "
                     "ends and middles first), the part extruded and squeezed by fingers "
-                    "on stiff servos, seeded disturbance wrenches ramped up until it "
-                    "slips; the load at slip beside the certified payload. Controls that "
-                    "are not force closure (the same contacts without friction, or a "
-                    "finger fewer) must slip.",
+                    "that balance the load they measure, seeded disturbance wrenches "
+                    "ramped up until it slips; the load at slip beside the certified "
+                    "payload. Controls that are not force closure (the same contacts "
+                    "without friction, or a finger fewer) must slip.",
         epilog="examples:\n  fcgrasp plan demo:blob --mu 0.5 --top 3 --json plan.json\n"
                "  fcgrasp simulate plan.json --json stress.json --seed 1\n"
                "  fcgrasp simulate demo:rectangle --contacts grasp.json --gif grasp.gif",
@@ -40,6 +40,11 @@ def add_parser(sub: Any, parser_class: Any) -> None:
                    help="grasps sampled in each plan's regions (default 20)")
     s.add_argument("--directions", type=int, default=2, metavar="D",
                    help="seeded disturbance directions per grasp (default 2)")
+    s.add_argument("--control", choices=("balance", "servo"), default="balance",
+                   help="how a planar part's fingers push: 'balance', the forces that "
+                        "balance the load they measure, each up to twice its squeeze "
+                        "(default), or 'servo', stiff position servos that share the load "
+                        "as their stiffness does")
     s.add_argument("--seed", type=int, default=0, help="the sampling seed (default 0)")
     s.add_argument("--workers", type=int, default=None,
                    help="processes (default: every core)")
@@ -146,12 +151,12 @@ def cmd_simulate(args: Any) -> int:
         raise CliError(f"{args.source}: the report has no plan to simulate", "source")
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
-                       workers=args.workers)
+                       workers=args.workers, control=args.control)
     controls = control_runs(polygon, plans, grip_force=args.grip_force, seed=args.seed + 1,
                             units=units)
     doc = {"fcgrasp": __version__, "kind": "stress_test", "version": SIMULATE_VERSION,
            "units": units, "seed": args.seed, "grip_force_n": args.grip_force,
-           "settings": {"slip_displacement": SLIP_DISPLACEMENT,
+           "settings": {"control": args.control, "slip_displacement": SLIP_DISPLACEMENT,
                         "slip_rotation_deg": SLIP_ROTATION_DEG, "engine": "mujoco"},
            "plans": results, "controls": controls}
 

@@ -11,25 +11,35 @@ and how far it moved, beside the certified payload.
 **The model** (SI units inside; lengths in the part's units outside).  The planar part
 is extruded into a prism of uniform density moving in its plane (two slides and a hinge:
 no gravity in the plane).  Each finger is a sphere on a slide along its contact's inward
-normal, driven by a stiff position servo: the squeeze phase sets each finger's preload
-to a force that balances the others (a linear program over the friction cones: the
-internal forces of the grasp, the largest smallest one, scaled so the largest is
-``grip_force``; none exists when the grasp cannot be squeezed), and the servo saturates
-at twice that.  Fingers that hold their position up to a limit of force are what the
-certificate assumes: it is computed with each finger's preload as its force limit, so
-the simulated fingers can always supply it (they can push harder, up to the
-saturation).  The disturbance is a wrench of fixed direction (a force at the centre of
-mass and a torque, per newton) ramped from 0 to ``ramp`` times the certified payload
-over ``ramp_time`` seconds; the part **slipped** when it moved more than
-``SLIP_DISPLACEMENT`` of the part's size or turned more than ``SLIP_ROTATION_DEG``.
+normal (a jaw's pads: two boxes on slides along the closing direction).  The squeeze
+first sets each finger's force to its share of a squeeze that balances the others (a
+linear program over the friction cones: the internal forces of the grasp, the largest
+smallest one, scaled so the largest is ``grip_force``; none exists when the grasp cannot
+be squeezed).  The certificate is computed with each finger's squeeze as its force
+limit.  A grasp's contact forces are statically indeterminate (three fingers with
+friction have more unknowns than the plane has equations), and the certificate is that
+of the best ones; so the fingers are force controlled and **balance the load they
+measure** (grasp force optimisation, :func:`balance_forces`: at each load along the ramp
+the forces inside the friction cones, as deep inside as they can be, that balance it),
+each pushing up to twice its squeeze: a grasp whose contacts are what the certificate
+reads holds to twice its certified payload and slips there.  ``control="servo"`` puts
+each finger on a stiff position servo instead (saturating at twice its squeeze), the
+load shared as the stiffness of contacts and servos shares it; frictionless fingers
+always are (force control leaves their part nothing to hold it in place).  The
+disturbance is a wrench of fixed direction (a force at the centre of mass and a torque,
+per newton) ramped from 0 to ``ramp`` times the certified payload over ``ramp_time``
+seconds; the part **slipped** when it moved more than ``SLIP_DISPLACEMENT`` of the
+part's size or turned more than ``SLIP_ROTATION_DEG``.
 
 **Settings that make the answer physics, not artefacts:** elliptic friction cones (the
 Coulomb cone itself, not a pyramid); the noslip solver (MuJoCo's regularised friction
 creeps without it: a grasp below its limit would slowly slide); stiff contacts
-(``solref`` 2 ms, ``solimp`` 0.95-0.99) and friction as stiff as the normal
-(``impratio`` 10); a 0.5 ms time step, a quarter of the contact's time constant; the
-servo's stiffness puts the full preload at 0.2 % of the part's size (the fingers' own
-motion stays well below the slip threshold) with critical damping.
+(``solref`` 1 ms, ``solimp`` 0.95-0.99: fingers close together resist a torque by forces
+that grow as their spacing shrinks, and a softer contact lets the part turn past the
+slip threshold without slipping) and friction as stiff as the normal (``impratio`` 10);
+a 0.25 ms time step, a quarter of the contact's time constant; the servo's stiffness
+puts the full preload at 0.2 % of the part's size (the fingers' own motion stays well
+below the slip threshold) with critical damping.
 
 **What it can and cannot tell:** it checks loads, not the exact ends of the regions (a
 grasp at a region's end is at the margin of its friction cone, and a simulator's
@@ -44,6 +54,7 @@ from ._planar import (
     SLIP_DISPLACEMENT,
     SLIP_ROTATION_DEG,
     StressResult,
+    balance_forces,
     jaw_contacts,
     jaw_stress_test,
     sample_grasps,
@@ -70,7 +81,8 @@ from ._solids import (
     solid_stress_test,
 )
 
-__all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "StressResult",
+__all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "balance_forces",
+           "StressResult",
            "control", "escape_direction", "SLIP_DISPLACEMENT", "SLIP_ROTATION_DEG",
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",

@@ -11,6 +11,7 @@ import numpy as np
 
 from ..core._checks import FloatArray
 from ..core.tolerances import ON_EDGE_TOL, SQUEEZE_TOL, TINY, TOL
+from ..errors import ArgumentError
 
 #: The part slipped when its centre moved more than this share of its size ...
 SLIP_DISPLACEMENT = 0.01
@@ -21,7 +22,15 @@ SLIP_ROTATION_DEG = 1.0
 
 
 #: Simulation settings (see the module docstring for why each).
-TIMESTEP = 5e-4
+TIMESTEP = 2.5e-4
+
+
+#: The contacts' time constant (s; MuJoCo's ``solref``): four time steps.
+CONTACT_TIME = 1e-3
+
+
+#: A recorded run keeps the part's pose every this many steps (5 ms).
+RECORD_EVERY = 20
 
 
 SETTLE_TIME = 0.2
@@ -53,6 +62,12 @@ FINGER_MASS = 0.1
 
 
 SERVO_STEPS = 20
+
+
+#: Load levels at which the balancing fingers' forces are solved along the ramp (the
+#: forces between two levels interpolated: a convex combination of two balancing
+#: forces balances the load between them).
+BALANCE_LEVELS = 24
 
 
 #: A jaw pad's depth along the closing direction (share of the part's size).
@@ -238,6 +253,56 @@ def _internal(columns: FloatArray, share: FloatArray, owner: FloatArray, k: int,
     return np.asarray(grip_force * normal / normal.max(), float)
 
 
+def balance_forces(points: Any, normals: Any, mu: float, limits: Any, load: Any,
+                   top: float, levels: int = BALANCE_LEVELS, fingers: Any = None,
+                   axes: Any = None) -> tuple[FloatArray, FloatArray]:
+    """The forces with which fingers that measure their load hold it (grasp force
+    optimisation): at each of ``levels + 1`` loads ``k load`` from 0 to ``top`` (``load``
+    the disturbance's wrench per newton about the origin, torque in N x part unit), the
+    contact forces in their friction cones that balance it, each finger's push at most
+    its ``limits``, with every force as far inside its cone as it can be (each friction
+    edge's coefficient at least ``s``, ``s`` as large as it can be; a linear program).
+    A finger's push is the sum of its contacts' forces along its ``axes``, where
+    ``fingers[j]`` is the finger of contact ``j`` (a jaw's pads, pushing along the
+    closing direction); by default one finger per contact, pushing along its inward
+    normal.
+    Returns the loads reached and each one's pushes (rows); the loads stop at the first
+    level no such forces balance (the grasp's payload with these limits,
+    :func:`fcgrasp.grasp_payload`, lies between it and the one before)."""
+    from scipy.optimize import linprog
+
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1)[:, None]
+    F, contact, W = _edges(p, n, mu)
+    own = np.arange(len(p)) if fingers is None else np.asarray(fingers, int)
+    push = -n if axes is None else np.asarray(axes, float)
+    o = own[contact]
+    share = np.einsum("ij,ij->i", F, push[o])
+    scale = max(float(np.max(np.abs(p))), TINY)
+    Wn, w = W.copy(), np.array(load, float)
+    Wn[:, 2] /= scale
+    w[2] /= scale
+    m, k = len(F), len(push)
+    A_ub = np.zeros((m + k, m + 1))
+    A_ub[:m, :m] = -np.eye(m)                                # s <= c_e
+    A_ub[:m, m] = 1.0
+    for i in range(k):
+        A_ub[m + i, :m] = (o == i) * share                   # normal_i <= limit_i
+    b_ub = np.r_[np.zeros(m), np.asarray(limits, float)]
+    A_eq = np.c_[Wn.T, np.zeros(3)]
+    c = np.zeros(m + 1)
+    c[m] = -1.0
+    reached, forces = [], []
+    for level in np.linspace(0.0, top, levels + 1):
+        res = linprog(c, A_ub=A_ub, b_ub=b_ub, A_eq=A_eq, b_eq=-level * w,
+                      bounds=[(0, None)] * (m + 1), method="highs")
+        if res.status != 0:
+            break
+        reached.append(level)
+        forces.append([float(np.sum(res.x[:m][o == i] * share[o == i])) for i in range(k)])
+    return np.array(reached), np.array(forces).reshape(-1, k)
+
+
 # ----------------------------------------------------------------------------- model
 
 def _prism_inertia(tris: list[FloatArray], h: float) -> tuple[float, FloatArray, FloatArray]:
@@ -269,7 +334,7 @@ def _prism_inertia(tris: list[FloatArray], h: float) -> tuple[float, FloatArray,
 #: The simulator's settings (module docstring), shared by every model.
 _SETTINGS = (f'<option timestep="{TIMESTEP}" gravity="0 0 0" cone="elliptic" impratio="10" '
              f'noslip_iterations="20"/>'
-             f'<default><geom solref="0.002 1" solimp="0.95 0.99 0.0001"/></default>')
+             f'<default><geom solref="{CONTACT_TIME} 1" solimp="0.95 0.99 0.0001"/></default>')
 
 
 def _servo_mass(kp: Any) -> Any:
@@ -284,10 +349,19 @@ def _servo(i: int, kp: float, preload: float) -> str:
             f'forcerange="{-2 * preload:.9g} {2 * preload:.9g}" forcelimited="true"/>')
 
 
+def _motor(i: int, preload: float) -> str:
+    """Finger ``i``'s force actuator (a balancing finger), pushing up to twice its
+    squeeze."""
+    return (f'<motor name="a{i}" joint="j{i}" gear="1" ctrllimited="true" '
+            f'ctrlrange="0 {2 * preload:.9g}"/>')
+
+
 def _finger_bodies(points: FloatArray, normals: FloatArray, r: float, kp: FloatArray,
-                   preload: FloatArray, friction: str) -> tuple[list[str], list[str]]:
+                   preload: FloatArray, friction: str, balance: bool = False
+                   ) -> tuple[list[str], list[str]]:
     """Spherical fingertips of radius ``r`` touching the part at ``points`` (metres,
-    3-D), each on a slide along its inward normal driven by its servo."""
+    3-D), each on a slide along its inward normal driven by its servo (or, ``balance``,
+    by a force actuator, the servo's damping kept)."""
     masses = _servo_mass(kp)
     bodies, actuators = [], []
     for i, (c, n) in enumerate(zip(points, normals, strict=True)):
@@ -300,7 +374,8 @@ def _finger_bodies(points: FloatArray, normals: FloatArray, r: float, kp: FloatA
             f'<joint name="j{i}" type="slide" axis="{-n[0]:.12g} {-n[1]:.12g} '
             f'{-n[2]:.12g}" damping="{2 * math.sqrt(kp[i] * mf):.9g}"/>'
             f'<geom type="sphere" size="{r:.9g}" {friction}/></body>')
-        actuators.append(_servo(i, float(kp[i]), float(preload[i])))
+        actuators.append(_motor(i, float(preload[i])) if balance else
+                         _servo(i, float(kp[i]), float(preload[i])))
     return bodies, actuators
 
 
@@ -320,11 +395,12 @@ def _settle(model: Any, preload: FloatArray, kp: FloatArray) -> Any:
 
 
 def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
-           preload: FloatArray, metres: float, pads: Any = None) -> tuple[Any, FloatArray]:
+           preload: FloatArray, metres: float, pads: Any = None, balance: bool = False
+           ) -> tuple[Any, FloatArray]:
     """The MJCF model: the part's triangles (a constrained Delaunay triangulation)
-    extruded, a finger per contact (or, with ``pads`` = ``(jaw, theta, offset, top,
-    bottom, grip)``, the jaw's two flat pads); and each finger's servo stiffness
-    (N/m)."""
+    extruded, a finger per contact (force controlled where ``balance``; or, with
+    ``pads`` = ``(jaw, theta, offset, top, bottom, grip)``, the jaw's two flat pads); and
+    each finger's servo stiffness (N/m)."""
     import shapely
 
     mujoco = _mujoco()
@@ -352,9 +428,9 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     unit = normals / np.maximum(np.linalg.norm(normals, axis=1), TINY)[:, None]
     fingers, actuators = _finger_bodies(np.c_[points * metres, np.zeros(len(points))],
                                         np.c_[unit, np.zeros(len(unit))], r, kp, preload,
-                                        friction)
+                                        friction, balance)
     if pads is not None:
-        fingers, actuators = _pad_bodies(polygon, pads, metres, h, friction)
+        fingers, actuators = _pad_bodies(polygon, pads, metres, h, friction, balance)
     xml = (f'<mujoco><compiler inertiafromgeom="false"/>{_SETTINGS}'
            f'<asset>{"".join(assets)}</asset><worldbody><body name="part">'
            f'<inertial pos="{com[0]:.12g} {com[1]:.12g} 0" mass="{mass:.12g}" '
@@ -367,8 +443,8 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
     return mujoco.MjModel.from_xml_string(xml), kp
 
 
-def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str
-                ) -> tuple[list[str], list[str]]:
+def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str,
+                balance: bool = False) -> tuple[list[str], list[str]]:
     """The jaw's pads as MJCF bodies: boxes :data:`PAD_DEPTH` of the part's size deep,
     the pad's width wide, their faces at the pads' stops, each on a slide along the
     closing direction driven by a servo that squeezes with ``grip`` and saturates at
@@ -394,17 +470,40 @@ def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str
             f'<joint name="j{i}" type="slide" axis="{-side:.0f} 0 0" '
             f'damping="{2 * math.sqrt(kp * mass):.9g}"/>'
             f'<geom type="box" size="{box}" {friction}/></body>')
-        actuators.append(_servo(i, kp, grip))
+        actuators.append(_motor(i, grip) if balance else _servo(i, kp, grip))
     return bodies, actuators
+
+
+def _balancing(control: str, mu: float, cert: float) -> bool:
+    """Whether the fingers balance the load (``control``, :func:`stress_test`):
+    ``"balance"`` where there is friction and a positive certificate (nothing to
+    balance otherwise)."""
+    if control not in ("servo", "balance"):
+        raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
+                            "control")
+    return cert > 0 and mu > 0 and control != "servo"
+
+
+def _about_origin(polygon: Any, u: FloatArray) -> FloatArray:
+    """A disturbance (force at the part's centroid and torque, per newton) as a wrench
+    about the origin."""
+    cx, cy = (float(v) for v in polygon.centroid)
+    return np.array([u[0], u[1], u[2] + cx * u[1] - cy * u[0]])
 
 
 def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
                 grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
-                certified: float | None = None, record: bool = False) -> StressResult:
+                certified: float | None = None, record: bool = False,
+                control: str = "balance") -> StressResult:
     """One grasp (points and outward normals, part units) under a disturbance of
     ``direction`` (force and torque per newton, torque in N x part unit) ramped to
     ``ramp`` times the certified payload (or to ``grip_force`` where that is 0): the
     load at which the part slipped, or None where it held (module docstring).
+    ``control``: ``"balance"`` (force-controlled fingers that measure the load and push
+    with the forces of :func:`balance_forces`, each up to twice its squeeze: a grasp's
+    forces are statically indeterminate, and the certificate is that of the best ones)
+    or ``"servo"`` (stiff position servos: the load shared as the stiffness of contacts
+    and servos shares it).
     ``record``: keep the part's pose and the load every 5 ms (``history``: time, load,
     displacement, rotation in degrees, and the displacement's x and y)."""
     from ..model.loads import Load, grasp_payload
@@ -424,17 +523,32 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
         load = Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
                     torque=(float(u[2]), float(u[2])))
         cert = float(grasp_payload(p, -n, mu, load, force_limit=list(preload)).scale)
-    model, kp = _model(polygon, p, n, mu, preload, metres)
+    schedule = None
+    if _balancing(control, mu, cert):
+        schedule = balance_forces(p, n, mu, 2 * preload, _about_origin(polygon, u),
+                                  ramp * cert)
+        if len(schedule[0]) == 0:
+            schedule = None
+    model, kp = _model(polygon, p, n, mu, preload, metres, balance=schedule is not None)
     return _run(model, polygon, preload, kp, metres, u, cert, ramp, grip_force, record, p,
-                n, preload)
+                n, preload, schedule)
 
 
 def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: float,
          u: FloatArray, cert: float, ramp: float, grip_force: float, record: bool,
-         p: FloatArray, n: FloatArray, grips: FloatArray) -> StressResult:
-    """The squeeze, then the ramp of the disturbance ``u`` until the part slips."""
+         p: FloatArray, n: FloatArray, grips: FloatArray,
+         schedule: tuple[FloatArray, FloatArray] | None = None) -> StressResult:
+    """The squeeze, then the ramp of the disturbance ``u`` until the part slips; with a
+    ``schedule`` (:func:`balance_forces`), force-controlled fingers pushing with its
+    forces at the load of the moment (interpolated; past its last load, the last)."""
     mujoco = _mujoco()
-    data = _settle(model, preload, kp)
+    if schedule is None:
+        data = _settle(model, preload, kp)
+    else:
+        data = mujoco.MjData(model)
+        data.ctrl[:] = schedule[1][0]
+        for _ in range(int(SETTLE_TIME / TIMESTEP)):
+            mujoco.mj_step(model, data)
     q0 = data.qpos[:3].copy()
     settle = float(math.hypot(q0[0], q0[1])) / metres
     body = model.body("part").id
@@ -452,10 +566,12 @@ def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: 
         data.xfrc_applied[body, :] = 0.0
         data.xfrc_applied[body, 0:2] = load_now * u[:2]
         data.xfrc_applied[body, 5] = load_now * u[2] * metres
+        if schedule is not None:
+            data.ctrl[:] = [np.interp(load_now, schedule[0], f) for f in schedule[1].T]
         mujoco.mj_step(model, data)
         dq = data.qpos[:3] - q0
         moved, turned = math.hypot(dq[0], dq[1]), abs(dq[2])
-        if record and k % 10 == 0:
+        if record and k % RECORD_EVERY == 0:
             hist.append((k * TIMESTEP, load_now, moved / metres, math.degrees(dq[2]),
                          dq[0] / metres, dq[1] / metres))
         if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
@@ -500,22 +616,27 @@ def jaw_contacts(polygon: Any, jaw: Any, theta: float, offset: float
 
 
 def _jaw_model(polygon: Any, jaw: Any, theta: float, offset: float, top: float,
-               bottom: float, mu: float, grip: float, metres: float) -> tuple[Any, float]:
+               bottom: float, mu: float, grip: float, metres: float, balance: bool = False
+               ) -> tuple[Any, float]:
     """The part and the jaw's two flat pads (boxes on slides along the closing
-    direction, each a stiff servo), as :func:`_model` builds fingers."""
+    direction, each a stiff servo or, ``balance``, force controlled), as :func:`_model`
+    builds fingers."""
     model, _ = _model(polygon, np.zeros((0, 2)), np.zeros((0, 2)), mu, np.zeros(0),
-                      metres, pads=(jaw, theta, offset, top, bottom, grip))
+                      metres, pads=(jaw, theta, offset, top, bottom, grip), balance=balance)
     size = polygon.size * metres
     return model, grip / (SERVO_COMPLIANCE * size)
 
 
 def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, direction: Any,
                     grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
-                    mu: float | None = None, record: bool = False) -> StressResult | None:
+                    mu: float | None = None, record: bool = False,
+                    control: str = "balance") -> StressResult | None:
     """One pose of a parallel jaw (flat pads of ``jaw.pad_width``, friction ``jaw.mu``
     or ``mu``) under a disturbance, as :func:`stress_test` runs fingers: each pad
     squeezes with ``grip_force``; the certified payload is that of the pose's contacts
     (:func:`fcgrasp.grasp_payload`, each pad's force shared by its contact points).
+    ``control`` as :func:`stress_test`'s (``"balance"``: the pads balance the load,
+    each pushing up to twice the grip force).
     None where the pose does not hold by the jaw's own model."""
     from ..model.loads import Load, grasp_payload
 
@@ -532,8 +653,15 @@ def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, directi
     cert = float(grasp_payload(pts, -nrm, mu_v, load, force_limit=per).scale) \
         if mu_v > 0 else 0.0
     metres = _METRES.get(units, _METRES["mm"])
-    model, kp = _jaw_model(polygon, jaw, theta, offset, top, bottom, mu_v, grip_force,
-                           metres)
     preload = np.full(2, float(grip_force))
+    schedule = None
+    if _balancing(control, mu_v, cert):
+        closing = np.array([math.cos(theta), math.sin(theta)])
+        schedule = balance_forces(pts, nrm, mu_v, 2 * preload, _about_origin(polygon, u),
+                                  ramp * cert, fingers=pad, axes=[-closing, closing])
+        if len(schedule[0]) == 0:
+            schedule = None
+    model, kp = _jaw_model(polygon, jaw, theta, offset, top, bottom, mu_v, grip_force,
+                           metres, balance=schedule is not None)
     return _run(model, polygon, preload, np.full(2, kp), metres, u, cert, ramp,
-                grip_force, record, pts, nrm, np.asarray(per, float))
+                grip_force, record, pts, nrm, np.asarray(per, float), schedule)

@@ -125,12 +125,13 @@ def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int =
     return out
 
 
-def _one(args: tuple[Any, ...]) -> StressResult | None:
-    if args[0] == "jaw":
-        return jaw_stress_test(*args[1:])
-    if args[0] == "solid":
-        return solid_stress_test(*args[1:])
-    return stress_test(*args[1:])
+def _one(job: tuple[str, tuple[Any, ...], dict[str, Any]]) -> StressResult | None:
+    kind, args, kwargs = job
+    if kind == "jaw":
+        return jaw_stress_test(*args, **kwargs)
+    if kind == "solid":
+        return solid_stress_test(*args, **kwargs)
+    return stress_test(*args, **kwargs)
 
 
 def jaw_of(plan: Any) -> tuple[Any, tuple[float, float], tuple[float, float]] | None:
@@ -172,7 +173,7 @@ def sample_poses(box: tuple[tuple[float, float], tuple[float, float]], count: in
 
 def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
              directions: int = 2, seed: int = 0, units: str = "mm",
-             workers: int | None = None,
+             workers: int | None = None, control: str = "balance",
              progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
     """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, a
     :class:`~fcgrasp.JawPlan`, or a report's grasp of either): ``samples`` grasps in
@@ -180,12 +181,18 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     (:func:`sample_poses`), each under ``directions`` seeded disturbances, run on
     ``workers`` processes (default: every core).  One summary per plan: its rank, the
     grasps (:meth:`StressResult.to_dict`), how many held up to their certified payload
-    and the smallest ratio of slip load to certified payload."""
+    and the smallest ratio of slip load to certified payload.  ``control``: how a planar
+    part's fingers and pads push (:func:`stress_test`: ``"balance"``, the forces that
+    balance the load they measure, or ``"servo"``, stiff position servos); a solid's
+    fingers are servos."""
     check_int(samples, "samples", minimum=1)
+    if control not in ("balance", "servo"):
+        raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
+                            "control")
     check_int(directions, "directions", minimum=1)
     check_scalar(grip_force, "grip_force", positive=True)
     rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
-    jobs: list[tuple[Any, ...]] = []
+    jobs: list[tuple[str, tuple[Any, ...], dict[str, Any]]] = []
     owners: list[int] = []
     solid = _is_solid(polygon)
     for r, plan in enumerate(plans):
@@ -195,16 +202,16 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
             size_u = float(np.linalg.norm(polygon.mesh.extents))
             for pts, nrm in sample_solid_grasps(plan, samples, rng):
                 for u in _directions6(rng, directions, size_u):
-                    jobs.append(("solid", polygon, pts, nrm, mu_s, u, soft, grip_force, 3.0,
-                                 False, pads))
+                    jobs.append(("solid", (polygon, pts, nrm, mu_s, u, soft, grip_force,
+                                           3.0, False, pads), {}))
                     owners.append(r)
             continue
         jaw = jaw_of(plan)
         if jaw is not None:
             for theta, offset in sample_poses((jaw[1], jaw[2]), samples, rng):
                 for u in _directions(rng, directions, polygon.size):
-                    jobs.append(("jaw", polygon, jaw[0], theta, offset, u, grip_force, 3.0,
-                                 units))
+                    jobs.append(("jaw", (polygon, jaw[0], theta, offset, u, grip_force,
+                                         3.0, units), {"control": control}))
                     owners.append(r)
             continue
         regions = plan["regions"] if isinstance(plan, dict) else plan.regions
@@ -216,7 +223,8 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
         given = plan["normals"] if isinstance(plan, dict) else plan.normals
         for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
             for u in _directions(rng, directions, polygon.size):
-                jobs.append(("fingers", polygon, pts, nrm, mu, u, grip_force, 3.0, units))
+                jobs.append(("fingers", (polygon, pts, nrm, mu, u, grip_force, 3.0, units),
+                             {"control": control}))
                 owners.append(r)
     results: list[StressResult | None] = []
     if workers == 1 or len(jobs) < 4:

@@ -17,6 +17,7 @@ from ._planar import (
     _SETTINGS,
     PART_MASS,
     RAMP_TIME,
+    RECORD_EVERY,
     ROLL_FRICTION,
     SERVO_COMPLIANCE,
     SLIP_DISPLACEMENT,
@@ -127,7 +128,7 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
         data.xfrc_applied[body, 3:] = load_now * u[3:] * metres
         mujoco.mj_step(model, data)
         moved, turned = motion()
-        if record and k % 10 == 0:
+        if record and k % RECORD_EVERY == 0:
             # the part's motion from its squeezed pose: its centre's shift (part units)
             # and its rotation (a unit quaternion w, x, y, z)
             dq = np.empty(4)
