@@ -18,11 +18,13 @@ from fcgrasp.io.parts import demo_part
 mujoco = pytest.importorskip("mujoco")
 
 from fcgrasp.physics import (  # noqa: E402
+    VARIANTS,
     animate,
     balance_forces,
     control,
     escape_direction,
     sample_grasps,
+    sensitivity,
     simulate,
     squeeze_forces,
     stress_test,
@@ -165,6 +167,45 @@ def test_servo_fingers_run_and_a_bad_control_is_named():
     assert out[0]["runs"] == 2
     with pytest.raises(ArgumentError, match="control"):
         simulate(poly, [plan], samples=1, directions=1, control="torque")
+
+
+def test_the_cone_margin_of_two_fingers_is_the_angle_to_their_line():
+    """A two-finger grasp's reported margin to its cones is the half angle less the
+    larger angle between a normal and the line of the contacts (theorem 5.1's test,
+    in closed form), to the bisection's step."""
+    rng = np.random.default_rng(23)
+    poly = demo_part("blob")
+    plan = fc.plan(poly, fingers=2, mu=0.5, top=1)[0]
+    for pts, nrm in sample_grasps(poly, plan.regions, 6, rng):
+        res = stress_test(poly, pts, nrm, 0.5, np.array([1.0, 0.0, 0.0]))
+        d = (pts[1] - pts[0]) / np.linalg.norm(pts[1] - pts[0])
+        worst = max(np.degrees(np.arccos(np.clip(-nrm[0] @ d, -1, 1))),
+                    np.degrees(np.arccos(np.clip(nrm[1] @ d, -1, 1))))
+        expected = max(np.degrees(np.arctan(0.5)) - worst, 0.0)
+        assert res.cone_margin_deg == pytest.approx(expected, abs=0.011)
+        assert res.to_dict()["cone_margin_deg"] == res.cone_margin_deg
+
+
+def test_the_sensitivity_study_runs_every_setting_on_the_same_grasps(tmp_path, capsys):
+    poly = demo_part("blob")
+    plans = fc.plan(poly, fingers=3, mu=0.5, top=1)
+    rows = sensitivity(poly, plans, samples=2, directions=1, seed=1, workers=1)
+    assert [r["variant"] for r in rows] == list(VARIANTS)
+    for r in rows:
+        assert r["runs"] == 2 and r["held"] == 2 and r["slipped"] == r["controls"] > 0
+        assert 1.0 <= r["least_ratio"] <= r["median_ratio"]
+    with pytest.raises(ArgumentError, match="variant"):
+        simulate(poly, plans, samples=1, directions=1, variant="gentle")
+    report = tmp_path / "plan.json"
+    out = tmp_path / "stress.json"
+    assert main(["plan", "demo:blob", "--fingers", "3", "--mu", "0.5", "--top", "1",
+                 "--json", str(report), "--quiet"]) == 0
+    assert main(["simulate", str(report), "--samples", "1", "--directions", "1",
+                 "--workers", "1", "--sensitivity", "--json", str(out)]) == 0
+    doc = json.loads(out.read_text())
+    assert [r["variant"] for r in doc["sensitivity"]] == [v for v in VARIANTS
+                                                          if v != "default"]
+    assert "pyramidal cones" in capsys.readouterr().out
 
 
 def test_a_seeded_run_repeats_exactly():

@@ -45,6 +45,10 @@ def add_parser(sub: Any, parser_class: Any) -> None:
                         "balance the load they measure, each up to twice its squeeze "
                         "(default), or 'servo', stiff position servos that share the load "
                         "as their stiffness does")
+    s.add_argument("--sensitivity", action="store_true",
+                   help="run the same grasps again under each varied setting (softer "
+                        "contacts, finer steps, pyramidal cones, no noslip solver) and "
+                        "print how the answer moves")
     s.add_argument("--seed", type=int, default=0, help="the sampling seed (default 0)")
     s.add_argument("--workers", type=int, default=None,
                    help="processes (default: every core)")
@@ -135,6 +139,7 @@ def cmd_simulate(args: Any) -> int:
     from ..physics import (
         SLIP_DISPLACEMENT,
         SLIP_ROTATION_DEG,
+        VARIANTS,
         control_runs,
         simulate,
     )
@@ -159,6 +164,13 @@ def cmd_simulate(args: Any) -> int:
            "settings": {"control": args.control, "slip_displacement": SLIP_DISPLACEMENT,
                         "slip_rotation_deg": SLIP_ROTATION_DEG, "engine": "mujoco"},
            "plans": results, "controls": controls}
+    if args.sensitivity:
+        from ..physics import sensitivity
+
+        doc["sensitivity"] = sensitivity(
+            polygon, plans, variants=[v for v in VARIANTS if v != "default"],
+            grip_force=args.grip_force, samples=args.samples, directions=args.directions,
+            seed=args.seed, units=units, workers=args.workers, control=args.control)
 
     def gif(out: Any) -> None:
         from ..physics import recorded_run
@@ -177,4 +189,12 @@ def cmd_simulate(args: Any) -> int:
             print(f"{row['rank']:>4}  {row['runs']:>4}  {row['held']:>29}  {worst:>24}")
         slipped = sum(c["slipped"] for c in controls)
         print(f"controls (not force closure): {slipped} of {len(controls)} slipped")
+        if args.sensitivity:
+            print("\nsetting varied     held  slip / certified (least, median)  "
+                  "controls slipped")
+            for v in doc["sensitivity"]:
+                least = "-" if v["least_ratio"] is None else f"{v['least_ratio']:.2f}"
+                med = "-" if v["median_ratio"] is None else f"{v['median_ratio']:.2f}"
+                print(f"{v['variant']:<16} {v['held']:>4}/{v['runs']:<4} {least:>17}, "
+                      f"{med:<15} {v['slipped']} of {v['controls']}")
     return 0

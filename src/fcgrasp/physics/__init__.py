@@ -53,8 +53,10 @@ from __future__ import annotations
 from ._planar import (
     SLIP_DISPLACEMENT,
     SLIP_ROTATION_DEG,
+    VARIANTS,
     StressResult,
     balance_forces,
+    cone_margin,
     jaw_contacts,
     jaw_stress_test,
     sample_grasps,
@@ -70,6 +72,7 @@ from ._runs import (
     jaw_of,
     recorded_run,
     sample_poses,
+    sensitivity,
     simulate,
 )
 from ._solids import (
@@ -87,4 +90,4 @@ __all__ = ["simulate", "stress_test", "sample_grasps", "squeeze_forces", "balanc
            "animate", "jaw_stress_test", "jaw_contacts", "jaw_of", "sample_poses",
            "solid_stress_test", "solid_squeeze", "sample_solid_grasps", "solid_plan_of",
            "solid_jaw_torsion", "animate_solid", "recorded_run",
-           "solid_escape", "control_runs"]
+           "solid_escape", "control_runs", "sensitivity", "VARIANTS", "cone_margin"]

@@ -29,8 +29,19 @@ TIMESTEP = 2.5e-4
 CONTACT_TIME = 1e-3
 
 
-#: A recorded run keeps the part's pose every this many steps (5 ms).
-RECORD_EVERY = 20
+#: A recorded run keeps the part's pose every this long (s).
+RECORD_TIME = 5e-3
+
+
+#: The settings a sensitivity study varies (:func:`vary`), each with what it changes:
+#: the answer is physics where it does not hinge on one of them.
+VARIANTS = {
+    "default": "the settings of the module docstring",
+    "soft contacts": "contacts four times softer (solref 4 ms)",
+    "fine steps": "the time step halved (0.125 ms)",
+    "pyramidal cones": "MuJoCo's pyramidal friction cones for the elliptic ones",
+    "no noslip": "the noslip solver off (MuJoCo's regularised friction alone)",
+}
 
 
 SETTLE_TIME = 0.2
@@ -70,6 +81,10 @@ SERVO_STEPS = 20
 BALANCE_LEVELS = 24
 
 
+#: The precision (degrees) of a grasp's reported margin to its friction cones.
+CONE_MARGIN_STEP = 0.01
+
+
 #: A jaw pad's depth along the closing direction (share of the part's size).
 PAD_DEPTH = 0.05
 
@@ -93,7 +108,8 @@ class StressResult:
     disturbance (N; 0 for a grasp that is not force closure), the load at which the
     part slipped (N; None: it held up to the ramp's end), how far it moved (part units;
     rotation in degrees) at the end, how far the squeeze moved it, and the direction
-    (force and torque per newton, torque in N x part unit)."""
+    (force and torque per newton, torque in N x part unit); and the grasp's margin to
+    its friction cones (:func:`cone_margin`; None without friction)."""
 
     contacts: FloatArray
     normals: FloatArray
@@ -105,6 +121,7 @@ class StressResult:
     settle_motion: float
     direction: FloatArray
     history: FloatArray = field(repr=False, default_factory=lambda: np.zeros((0, 6)))
+    cone_margin_deg: float | None = None
 
     @property
     def held(self) -> bool:
@@ -116,8 +133,40 @@ class StressResult:
                 "grip_force": self.grip_force.tolist(),
                 "certified_payload": self.certified_payload, "slip_load": self.slip_load,
                 "displacement": self.displacement, "rotation_deg": self.rotation_deg,
-                "settle_motion": self.settle_motion,
+                "settle_motion": self.settle_motion, "cone_margin_deg": self.cone_margin_deg,
                 "wrench_direction": _wrench_dict(self.direction)}
+
+
+def cone_margin(closed: Any, mu: float) -> float | None:
+    """The grasp's margin to its friction cones, in degrees: how far every cone's half
+    angle ``atan(mu)`` can narrow with the grasp still force closure (``closed(m)``: is
+    it with friction ``m``), by bisection to :data:`CONE_MARGIN_STEP` degrees; 0 for a
+    grasp that is not force closure, None without friction."""
+    if mu <= 0:
+        return None
+    half = math.atan(mu)
+    if not closed(mu):
+        return 0.0
+    if closed(0.0):
+        return math.degrees(half)
+    lo, hi = 0.0, half                       # closed at a narrowing of lo, not of hi
+    while math.degrees(hi - lo) > CONE_MARGIN_STEP:
+        mid = (lo + hi) / 2
+        if closed(math.tan(half - mid)):
+            lo = mid
+        else:
+            hi = mid
+    return math.degrees(lo)
+
+
+def planar_closed(points: Any, normals: Any) -> Any:
+    """``closed(m)`` of :func:`cone_margin` for point contacts on a planar part (the
+    closure test of theorem 6.1 on the cones' edges)."""
+    from ..core.closure import closure_escape
+
+    p, n = np.asarray(points, float), np.asarray(normals, float)
+    n = n / np.linalg.norm(n, axis=1)[:, None]
+    return lambda m: bool(closure_escape(_edges(p, n, m)[2])[0])
 
 
 def _wrench_dict(d: FloatArray) -> dict[str, Any]:
@@ -379,13 +428,35 @@ def _finger_bodies(points: FloatArray, normals: FloatArray, r: float, kp: FloatA
     return bodies, actuators
 
 
+def vary(model: Any, variant: str) -> Any:
+    """``model`` with the setting of ``variant`` (a key of :data:`VARIANTS`) changed."""
+    mujoco = _mujoco()
+    if variant not in VARIANTS:
+        raise ArgumentError(f"variant must be one of {', '.join(VARIANTS)}, not "
+                            f"{variant!r}", "variant")
+    if variant == "soft contacts":
+        model.geom_solref[:, 0] *= 4
+    elif variant == "fine steps":
+        model.opt.timestep /= 2
+    elif variant == "pyramidal cones":
+        model.opt.cone = mujoco.mjtCone.mjCONE_PYRAMIDAL
+    elif variant == "no noslip":
+        model.opt.noslip_iterations = 0
+    return model
+
+
+def _steps(model: Any, seconds: float) -> int:
+    """The model's time steps in ``seconds``."""
+    return int(round(seconds / float(model.opt.timestep)))
+
+
 def _settle(model: Any, preload: FloatArray, kp: FloatArray) -> Any:
     """The squeeze: each servo's target set for its preload, then corrected half way
     so that each finger's squeeze is its preload once the contacts have sunk in."""
     mujoco = _mujoco()
     data = mujoco.MjData(model)
     data.ctrl[:] = preload / kp
-    steps = int(SETTLE_TIME / TIMESTEP)
+    steps = _steps(model, SETTLE_TIME)
     for _ in range(steps // 2):
         mujoco.mj_step(model, data)
     data.ctrl[:] += (preload - data.actuator_force) / kp
@@ -494,7 +565,7 @@ def _about_origin(polygon: Any, u: FloatArray) -> FloatArray:
 def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
                 grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
                 certified: float | None = None, record: bool = False,
-                control: str = "balance") -> StressResult:
+                control: str = "balance", variant: str = "default") -> StressResult:
     """One grasp (points and outward normals, part units) under a disturbance of
     ``direction`` (force and torque per newton, torque in N x part unit) ramped to
     ``ramp`` times the certified payload (or to ``grip_force`` where that is 0): the
@@ -503,7 +574,8 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     with the forces of :func:`balance_forces`, each up to twice its squeeze: a grasp's
     forces are statically indeterminate, and the certificate is that of the best ones)
     or ``"servo"`` (stiff position servos: the load shared as the stiffness of contacts
-    and servos shares it).
+    and servos shares it).  ``variant``: the simulator's settings, varied
+    (:data:`VARIANTS`).
     ``record``: keep the part's pose and the load every 5 ms (``history``: time, load,
     displacement, rotation in degrees, and the displacement's x and y)."""
     from ..model.loads import Load, grasp_payload
@@ -530,8 +602,11 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
         if len(schedule[0]) == 0:
             schedule = None
     model, kp = _model(polygon, p, n, mu, preload, metres, balance=schedule is not None)
-    return _run(model, polygon, preload, kp, metres, u, cert, ramp, grip_force, record, p,
-                n, preload, schedule)
+    vary(model, variant)
+    out = _run(model, polygon, preload, kp, metres, u, cert, ramp, grip_force, record, p,
+               n, preload, schedule)
+    out.cone_margin_deg = cone_margin(planar_closed(p, n), mu)
+    return out
 
 
 def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: float,
@@ -547,14 +622,15 @@ def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: 
     else:
         data = mujoco.MjData(model)
         data.ctrl[:] = schedule[1][0]
-        for _ in range(int(SETTLE_TIME / TIMESTEP)):
+        for _ in range(_steps(model, SETTLE_TIME)):
             mujoco.mj_step(model, data)
     q0 = data.qpos[:3].copy()
     settle = float(math.hypot(q0[0], q0[1])) / metres
     body = model.body("part").id
     size = polygon.size * metres
     top = ramp * cert if cert > 0 else float(grip_force)
-    n_ramp = int(RAMP_TIME / TIMESTEP)
+    n_ramp = _steps(model, RAMP_TIME)
+    every = _steps(model, RECORD_TIME)
     slip, hist = None, []
     if math.hypot(q0[0], q0[1]) > SLIP_DISPLACEMENT * size or \
             abs(q0[2]) > math.radians(SLIP_ROTATION_DEG):
@@ -571,9 +647,9 @@ def _run(model: Any, polygon: Any, preload: FloatArray, kp: FloatArray, metres: 
         mujoco.mj_step(model, data)
         dq = data.qpos[:3] - q0
         moved, turned = math.hypot(dq[0], dq[1]), abs(dq[2])
-        if record and k % RECORD_EVERY == 0:
-            hist.append((k * TIMESTEP, load_now, moved / metres, math.degrees(dq[2]),
-                         dq[0] / metres, dq[1] / metres))
+        if record and k % every == 0:
+            hist.append((k * float(model.opt.timestep), load_now, moved / metres,
+                         math.degrees(dq[2]), dq[0] / metres, dq[1] / metres))
         if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
             slip = load_now
             break
@@ -630,13 +706,14 @@ def _jaw_model(polygon: Any, jaw: Any, theta: float, offset: float, top: float,
 def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, direction: Any,
                     grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
                     mu: float | None = None, record: bool = False,
-                    control: str = "balance") -> StressResult | None:
+                    control: str = "balance", variant: str = "default"
+                    ) -> StressResult | None:
     """One pose of a parallel jaw (flat pads of ``jaw.pad_width``, friction ``jaw.mu``
     or ``mu``) under a disturbance, as :func:`stress_test` runs fingers: each pad
     squeezes with ``grip_force``; the certified payload is that of the pose's contacts
     (:func:`fcgrasp.grasp_payload`, each pad's force shared by its contact points).
-    ``control`` as :func:`stress_test`'s (``"balance"``: the pads balance the load,
-    each pushing up to twice the grip force).
+    ``control`` and ``variant`` as :func:`stress_test`'s (``"balance"``: the pads
+    balance the load, each pushing up to twice the grip force).
     None where the pose does not hold by the jaw's own model."""
     from ..model.loads import Load, grasp_payload
 
@@ -663,5 +740,8 @@ def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, directi
             schedule = None
     model, kp = _jaw_model(polygon, jaw, theta, offset, top, bottom, mu_v, grip_force,
                            metres, balance=schedule is not None)
-    return _run(model, polygon, preload, np.full(2, kp), metres, u, cert, ramp,
-                grip_force, record, pts, nrm, np.asarray(per, float), schedule)
+    vary(model, variant)
+    out = _run(model, polygon, preload, np.full(2, kp), metres, u, cert, ramp,
+               grip_force, record, pts, nrm, np.asarray(per, float), schedule)
+    out.cone_margin_deg = cone_margin(planar_closed(pts, nrm), mu_v)
+    return out

@@ -14,6 +14,7 @@ import numpy as np
 from ..core._checks import FloatArray, check_int, check_scalar
 from ..errors import ArgumentError
 from ._planar import (
+    VARIANTS,
     StressResult,
     _edges,
     _wrench_dict,
@@ -86,12 +87,13 @@ def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> Floa
 
 
 def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int = 0,
-                 units: str = "mm", count: int = 3) -> list[dict[str, Any]]:
+                 units: str = "mm", count: int = 3, variant: str = "default"
+                 ) -> list[dict[str, Any]]:
     """The controls of each plan (a plan object or a report's grasp): ``count`` of its
     grasps made not force closure (:func:`control`; a jaw's poses and a solid's grasps
     without friction), each pushed along a wrench it does not resist; per control its
     plan's ``rank``, its ``mu``, :meth:`StressResult.to_dict` and whether it
-    ``slipped``."""
+    ``slipped``; ``variant`` as :func:`simulate`'s."""
     rng = np.random.default_rng(seed)
     out = []
 
@@ -105,7 +107,7 @@ def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int =
             for pts, nrm in sample_solid_grasps(plan, count, rng):
                 add(r, 0.0, solid_stress_test(part, pts, nrm, 0.0,
                                               solid_escape(part, pts, nrm, 0.0, False),
-                                              grip_force=grip_force))
+                                              grip_force=grip_force, variant=variant))
             continue
         jaw = jaw_of(plan)
         if jaw is not None:             # the same poses without friction
@@ -114,14 +116,15 @@ def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int =
                 if got is not None:
                     add(r, 0.0, jaw_stress_test(part, jaw[0], theta, offset,
                                                 escape_direction(part, got[0], got[1], 0.0),
-                                                grip_force=grip_force, units=units, mu=0.0))
+                                                grip_force=grip_force, units=units, mu=0.0,
+                                                variant=variant))
             continue
         get: Callable[[str], Any] = plan.__getitem__ if isinstance(plan, dict) else \
             partial(getattr, plan)
         for pts, nrm in sample_grasps(part, get("regions"), count, rng, get("normals")):
             cp, cn, cmu = control(pts, nrm, float(get("mu")))
             add(r, cmu, stress_test(part, cp, cn, cmu, escape_direction(part, cp, cn, cmu),
-                                    grip_force=grip_force, units=units))
+                                    grip_force=grip_force, units=units, variant=variant))
     return out
 
 
@@ -173,7 +176,7 @@ def sample_poses(box: tuple[tuple[float, float], tuple[float, float]], count: in
 
 def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
              directions: int = 2, seed: int = 0, units: str = "mm",
-             workers: int | None = None, control: str = "balance",
+             workers: int | None = None, control: str = "balance", variant: str = "default",
              progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
     """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, a
     :class:`~fcgrasp.JawPlan`, or a report's grasp of either): ``samples`` grasps in
@@ -184,11 +187,15 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     and the smallest ratio of slip load to certified payload.  ``control``: how a planar
     part's fingers and pads push (:func:`stress_test`: ``"balance"``, the forces that
     balance the load they measure, or ``"servo"``, stiff position servos); a solid's
-    fingers are servos."""
+    fingers are servos.  ``variant``: the simulator's settings, varied
+    (:data:`VARIANTS`; :func:`sensitivity` runs them all)."""
     check_int(samples, "samples", minimum=1)
     if control not in ("balance", "servo"):
         raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
                             "control")
+    if variant not in VARIANTS:
+        raise ArgumentError(f"variant must be one of {', '.join(VARIANTS)}, not "
+                            f"{variant!r}", "variant")
     check_int(directions, "directions", minimum=1)
     check_scalar(grip_force, "grip_force", positive=True)
     rng = np.random.default_rng(check_int(seed, "seed", minimum=0))
@@ -203,7 +210,7 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
             for pts, nrm in sample_solid_grasps(plan, samples, rng):
                 for u in _directions6(rng, directions, size_u):
                     jobs.append(("solid", (polygon, pts, nrm, mu_s, u, soft, grip_force,
-                                           3.0, False, pads), {}))
+                                           3.0, False, pads), {"variant": variant}))
                     owners.append(r)
             continue
         jaw = jaw_of(plan)
@@ -211,7 +218,8 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
             for theta, offset in sample_poses((jaw[1], jaw[2]), samples, rng):
                 for u in _directions(rng, directions, polygon.size):
                     jobs.append(("jaw", (polygon, jaw[0], theta, offset, u, grip_force,
-                                         3.0, units), {"control": control}))
+                                         3.0, units),
+                                 {"control": control, "variant": variant}))
                     owners.append(r)
             continue
         regions = plan["regions"] if isinstance(plan, dict) else plan.regions
@@ -224,7 +232,7 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
         for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
             for u in _directions(rng, directions, polygon.size):
                 jobs.append(("fingers", (polygon, pts, nrm, mu, u, grip_force, 3.0, units),
-                             {"control": control}))
+                             {"control": control, "variant": variant}))
                 owners.append(r)
     results: list[StressResult | None] = []
     if workers == 1 or len(jobs) < 4:
@@ -251,6 +259,35 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
                     "worst_ratio": min(ratios) if ratios else None,
                     "wrench_directions": [_wrench_dict(d) for d in dirs]})
     return out
+
+
+def sensitivity(part: Any, plans: Any, *, variants: Any = None, grip_force: float = 10.0,
+                seed: int = 0, units: str = "mm", **options: Any) -> list[dict[str, Any]]:
+    """The stress test of ``plans`` (:func:`simulate`, its ``options``) once under each
+    setting of ``variants`` (default: every one of :data:`VARIANTS`), the same grasps
+    and disturbances each time, with the controls: per variant its name, the
+    ``change`` it makes, the ``runs``, how many ``held`` to their certified payload, the
+    ``least_ratio`` and ``median_ratio`` of slip load to certified payload (a run that
+    held to the end of its ramp counts as the ramp's 3) and how many controls
+    ``slipped`` of ``controls``.  An answer that is physics changes little from one
+    setting to the next."""
+    chosen = list(VARIANTS) if variants is None else list(variants)
+    rows = []
+    for name in chosen:
+        out = simulate(part, plans, grip_force=grip_force, seed=seed, units=units,
+                       variant=name, **options)
+        grasps = [g for o in out for g in o["grasps"] if g["certified_payload"] > 0]
+        ratios = [(g["slip_load"] if g["slip_load"] is not None else
+                   3.0 * g["certified_payload"]) / g["certified_payload"] for g in grasps]
+        ctl = control_runs(part, plans, grip_force=grip_force, seed=seed + 1, units=units,
+                           variant=name)
+        rows.append({"variant": name, "change": VARIANTS[name],
+                     "runs": sum(o["runs"] for o in out),
+                     "held": sum(o["held"] for o in out),
+                     "least_ratio": min(ratios) if ratios else None,
+                     "median_ratio": float(np.median(ratios)) if ratios else None,
+                     "controls": len(ctl), "slipped": sum(c["slipped"] for c in ctl)})
+    return rows
 
 
 # ----------------------------------------------------------------------------- pictures

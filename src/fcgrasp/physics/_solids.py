@@ -17,18 +17,20 @@ from ._planar import (
     _SETTINGS,
     PART_MASS,
     RAMP_TIME,
-    RECORD_EVERY,
+    RECORD_TIME,
     ROLL_FRICTION,
     SERVO_COMPLIANCE,
     SLIP_DISPLACEMENT,
     SLIP_ROTATION_DEG,
-    TIMESTEP,
     TIP_RADIUS,
     StressResult,
     _finger_bodies,
     _internal,
     _mujoco,
     _settle,
+    _steps,
+    cone_margin,
+    vary,
 )
 
 # ----------------------------------------------------------------------------- solids
@@ -57,7 +59,8 @@ def solid_squeeze(points: Any, inward: Any, mu: float, torsion: float, grip_forc
 
 def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, direction: Any,
                       soft: bool = False, grip_force: float = 10.0, ramp: float = 3.0,
-                      record: bool = False, torsion: float | None = None) -> StressResult:
+                      record: bool = False, torsion: float | None = None,
+                      variant: str = "default") -> StressResult:
     """One grasp of a solid (points and outward normals in the solid's units;
     ``soft``: soft fingers with :data:`TORSION`, or ``torsion``: the moment they resist
     per newton, in the solid's units) under a disturbance ``direction`` (a
@@ -70,7 +73,9 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
     within the measure's ball sum to at most that, so no finger exceeds its own.
     ``record``: keep the part's motion every 5 ms (``history``: time, load,
     displacement, rotation in degrees, the centre's shift x, y, z, the rotation as a
-    unit quaternion w, x, y, z; :func:`animate_solid` draws it)."""
+    unit quaternion w, x, y, z; :func:`animate_solid` draws it).  ``variant``: the
+    simulator's settings, varied (:data:`~fcgrasp.physics.VARIANTS`)."""
+    from ..spatial.closure import closure_margin
     from ..spatial.quality import spatial_quality
 
     mujoco = _mujoco()
@@ -106,7 +111,7 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
            f'<worldbody><body name="part"><freejoint/>{geoms}</body>'
            f'{"".join(fingers)}</worldbody><actuator>{"".join(actuators)}</actuator>'
            f'</mujoco>')
-    model = mujoco.MjModel.from_xml_string(xml)
+    model = vary(mujoco.MjModel.from_xml_string(xml), variant)
     data = _settle(model, preload, kp)
     body = model.body("part").id
     x0, q0 = data.xpos[body].copy(), data.xquat[body].copy()
@@ -117,7 +122,8 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
 
     settle = float(np.linalg.norm(x0 - model.qpos0[:3]))
     top = ramp * cert if cert > 0 else float(grip_force)
-    n_ramp = int(RAMP_TIME / TIMESTEP)
+    n_ramp = _steps(model, RAMP_TIME)
+    every = _steps(model, RECORD_TIME)
     slip = None
     if settle > SLIP_DISPLACEMENT * size:
         slip, n_ramp = 0.0, 0
@@ -128,19 +134,25 @@ def solid_stress_test(solid: Any, points: Any, normals: Any, mu: float, directio
         data.xfrc_applied[body, 3:] = load_now * u[3:] * metres
         mujoco.mj_step(model, data)
         moved, turned = motion()
-        if record and k % RECORD_EVERY == 0:
+        if record and k % every == 0:
             # the part's motion from its squeezed pose: its centre's shift (part units)
             # and its rotation (a unit quaternion w, x, y, z)
             dq = np.empty(4)
             mujoco.mju_mulQuat(dq, data.xquat[body], np.array([q0[0], *(-q0[1:])]))
-            hist.append((k * TIMESTEP, load_now, moved / metres, math.degrees(turned),
-                         *((data.xpos[body] - x0) / metres), *dq))
+            hist.append((k * float(model.opt.timestep), load_now, moved / metres,
+                         math.degrees(turned), *((data.xpos[body] - x0) / metres), *dq))
         if moved > SLIP_DISPLACEMENT * size or turned > math.radians(SLIP_ROTATION_DEG):
             slip = load_now
             break
     moved, turned = motion()
+
+    def closed(m: float) -> bool:                # (a finger without friction: no torsion)
+        return bool(closure_margin(p, -n, m, gamma if m > 0 else 0.0, center=centre,
+                                   radius=size_u).closure)
+
     return StressResult(p, n, preload, cert, slip, moved / metres, math.degrees(turned),
-                        settle / metres, u, np.array(hist).reshape(-1, 11))
+                        settle / metres, u, np.array(hist).reshape(-1, 11),
+                        cone_margin(closed, mu))
 
 
 def _mesh_asset(name: str, vertices: Any, faces: Any = None) -> str:
