@@ -572,12 +572,83 @@ def test_the_explorers_stress_test_refuses_what_it_cannot_run_in_one_line():
     assert got["runs"] == 4 and 0 <= got["held"] <= 4 and got["gif"]
 
 
-@pytest.mark.parametrize("argv,field", [(["--hand", "franka"], "--hand"),
-                                        (["--table"], "--table"),
-                                        (["--thickness", "4"], "--thickness")])
-def test_point_fingers_refuse_a_hands_options_in_one_line(capsys, argv, field):
+@pytest.mark.parametrize("argv,field,hint", [
+    (["--hand", "franka"], "--hand", "--gripper jaw"),
+    (["--table"], "--table", "--hand tip="),
+    (["--thickness", "4"], "--thickness", "--hand tip="),
+    (["--hand", "tip=2", "--finger-radius", "2"], "--finger-radius", "--hand tip="),
+    (["--hand", "tip=2,length=3", "--thickness", "6"], "--hand", "long"),
+    (["--hand", "tip=2,width=3"], "--hand", "tip=R"),
+    (["--hand", "tip=2", "--rest", "1"], "--rest", "--gripper jaw")])
+def test_point_fingers_refuse_a_hands_options_in_one_line(capsys, argv, field, hint):
     from fcgrasp.apps.cli import main
 
     code = main(["plan", "demo:rectangle", "--fingers", "2", "--mu", "0.5", *argv])
     err = capsys.readouterr().err.strip().splitlines()
-    assert code == 2 and len(err) == 1 and field in err[0] and "--gripper jaw" in err[0], err
+    assert code == 2 and len(err) == 1 and field in err[0] and hint in err[0], err
+
+
+def _finger(axis_xy, radius: float, z0: float, length: float) -> trimesh.Trimesh:
+    """A finger body: a vertical cylinder (64 sides, inside the true one) from ``z0``
+    up ``length``, its axis at ``axis_xy``."""
+    T = np.eye(4)
+    T[:3, 3] = (axis_xy[0], axis_xy[1], z0 + length / 2)
+    return trimesh.creation.cylinder(radius=radius, height=length, sections=64, transform=T)
+
+
+def _tip_placements(plan, count: int, rng) -> list[tuple[np.ndarray, np.ndarray]]:
+    """Each finger's placements: its region's ends pulled in a thousandth, its middle and
+    seeded points, with the plan's normal (regions on single edges)."""
+    out = []
+    for k in range(count):
+        pts = []
+        for r in plan.regions:
+            r = np.asarray(r, float)
+            t = (1e-3, 1 - 1e-3, 0.5)[k] if k < 3 else float(rng.uniform())
+            pts.append(r[0] + t * (r[-1] - r[0]))
+        out.append((np.array(pts), np.asarray(plan.normals, float)))
+    return out
+
+
+@pytest.mark.parametrize("name,fingers", [("bracket", 2), ("cam", 3), ("washer", 2)])
+def test_point_fingers_on_bodies_are_collision_free_by_fcl(tmp_path, name, fingers):
+    """Point fingers with --hand tip=R picked from a table: every finger body placed
+    along each region (ends, middle, seeded points) and along its descent meets neither
+    the extruded plate nor the table (python-fcl through trimesh); the bare plans' own
+    contacts on the bracket, with the same fingers, meet the plate (the check can
+    fail)."""
+    from fcgrasp.apps.cli import main
+    from fcgrasp.io.schema import validate
+
+    out = tmp_path / "plan.json"
+    assert main(["plan", f"demo:{name}", "--fingers", str(fingers), "--mu", "0.5",
+                 "--hand", "tip=4,length=40", "--table", "--thickness", "6", "--top", "5",
+                 "--json", str(out), "--quiet"]) == 0
+    import json
+
+    doc = json.loads(out.read_text())
+    validate(doc)
+    assert doc["hand"]["tip_radius"] == 4 and doc["scene"]["thickness"] == 6
+    from fcgrasp.io.parts import demo_part
+
+    part = demo_part(name)
+    scene = Scene(6.0, table=True)
+    manager = _manager(part, scene)
+    plans = fc.plan(part, fingers=fingers, mu=0.5, top=5, hand=fc.Hand(finger_radius=4.0))
+    assert plans and len(doc["grasps"]) == len(plans)
+    rng = np.random.default_rng(3)
+    for plan, g in zip(plans, doc["grasps"], strict=True):
+        assert g["collision_free"] and g["contact_height"] == pytest.approx(5.0)
+        for tip, c, n in zip(g["fingertips"], plan.contacts, plan.normals, strict=True):
+            assert tip["position"][:2] == pytest.approx(list(c + 4.0 * n))
+            assert tip["position"][2] == pytest.approx(1.0)
+        for pts, nrm in _tip_placements(plan, 8, rng):
+            for q, n in zip(pts, nrm, strict=True):
+                for z0 in (1.0, 30.0, 101.0):           # at the contact, coming down
+                    assert not manager.in_collision_single(
+                        _finger(q + 4.0 * n, 4.0 * (1 - 1e-6), z0, 40.0)), (plan.edges, q)
+    if name == "bracket":       # the control: its reflex corner takes no finger of 4
+        bare = fc.plan(part, fingers=fingers, mu=0.5, top=20)
+        hits = sum(manager.in_collision_single(_finger(c + 4.0 * n, 4.0, 1.0, 40.0))
+                   for p in bare for c, n in zip(p.contacts, p.normals, strict=True))
+        assert hits > 0

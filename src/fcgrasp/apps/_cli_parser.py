@@ -113,11 +113,12 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
         p.add_argument("--hand", metavar="NAME|URDF|PARAMS", default=None,
                        help="with --gripper jaw: a real hand (franka, robotiq_hande, a URDF "
                             "file, or stroke=MIN:MAX,pad=W,height=H,thickness=T), whose "
-                            "stroke and pads the jaw takes; the part is picked from above "
-                            "and every plan is collision free, with its pose")
+                            "stroke and pads the jaw takes; point fingers: tip=R[,length=L] "
+                            "(vertical finger bodies of radius R); the part is picked from "
+                            "above and every plan is collision free, with its pose")
         p.add_argument("--thickness", type=float, default=None, metavar="T",
                        help="with --hand on a planar part: the plate's thickness (default: "
-                            "the pad's height)")
+                            "the pad's height; 5 mm for point fingers)")
         p.add_argument("--table", action="store_true", default=False,
                        help="with --hand: the part lies on a table the hand must not touch "
                             "(a solid in its most stable pose)")

@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any, ClassVar
 
 import numpy as np
@@ -31,6 +31,7 @@ from ..model.distinct import DEFAULT_DISTINCT
 from ..model.frictionless_stretches import frictionless_stretch_regions
 from ..model.graspsets import Vertex
 from ..model.hand import Hand
+from ..model.hands import FingerTips
 from ..model.one_pair import pair_core
 from ..model.plans import GraspPlan
 from ..model.polygon import Polygon
@@ -71,6 +72,10 @@ class _PointFingers:
     gravity: tuple[float, float] | None = None
     hand: Hand | None = None
     along_boundary: bool = True
+    #: picked from above by fingers on finger bodies (:mod:`._tips_pick`): the fingers
+    #: and the scene (``hand`` then has the tip's radius)
+    tips: FingerTips | None = None
+    scene: Any = None
     #: ``distinct=None``: the top plans are distinct alternatives (a curved
     #: outline's ranked list is one grasp shifted along it)
     default_distinct: ClassVar[float] = DEFAULT_DISTINCT
@@ -107,7 +112,20 @@ class _PointFingers:
     def plan(self, polygon: Polygon, options: SearchOptions) -> list[GraspPlan]:
         spec = self.spec(options)
         check_search(polygon, spec)
-        return self._search(polygon, spec, options)
+        return self._picked(self._search(polygon, spec, options))
+
+    def _picked(self, plans: Any) -> Any:
+        """``plans`` with each one's pick from above, where the fingers have bodies
+        (:func:`~fcgrasp.grippers._tips_pick.tips_pick`)."""
+        if self.tips is None or plans is None:
+            return plans
+        from ._tips_pick import tips_pick, tips_reach
+
+        reach = tips_reach(self.tips, self.scene)
+        assert not isinstance(reach, str)          # refused when the gripper was made
+        for p in plans:
+            p.pick = tips_pick(p, self.tips, self.scene, *reach)
+        return plans
 
     def _search(self, polygon: Polygon, spec: PlanSpec,
                 options: SearchOptions) -> list[GraspPlan]:
@@ -123,8 +141,8 @@ class _PointFingers:
         the ranked list is suppressed as it comes."""
         spec = self.spec(options)
         check_search(polygon, spec)
-        return distinct_single_edge_plans(polygon, spec, fraction, options.progress,
-                                          options.map)
+        return self._picked(distinct_single_edge_plans(polygon, spec, fraction,
+                                                       options.progress, options.map))
 
     def search_edges(self, polygon: Polygon, spec: PlanSpec,
                      edges: list[int]) -> list[GraspPlan]:
@@ -141,7 +159,9 @@ class _PointFingers:
                 "workspace": ws,
                 "finger_radius": 0.0 if self.hand is None else self.hand.finger_radius,
                 "disturbance": {"translation": options.disturbance[0],
-                                "rotation_deg": options.disturbance[1]}}
+                                "rotation_deg": options.disturbance[1]},
+                **({"hand": self.tips.to_dict(), "scene": self.scene.to_dict()}
+                   if self.tips is not None else {})}
 
     def no_grasp_reason(self, margin: float) -> str:
         extra = f" with a margin of {margin:g} degrees"
@@ -470,18 +490,58 @@ def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
 
 
 def _no_jaw_options(options: Mapping[str, Any]) -> None:
-    for opt, key in (("--stroke", "stroke"), ("--pad", "pad"), ("--hand", "hand"),
-                     ("--thickness", "thickness"), ("--rest", "rest")):
+    for opt, key in (("--stroke", "stroke"), ("--pad", "pad"), ("--rest", "rest")):
         if options.get(key) is not None:
             raise ValueError(f"{opt} is an option of --gripper jaw")
-    if options.get("table"):
-        raise ValueError("--table is an option of --gripper jaw (with --hand)")
+    if options.get("hand") is None:
+        for opt, key in (("--thickness", "thickness"), ("--table", "table")):
+            if options.get(key) is not None and options.get(key) is not False:
+                raise ValueError(f"{opt} is for a pick with a hand: give --hand too "
+                                 f"(point fingers: --hand tip=R[,length=L])")
     if options.get("certify") is not None:
         raise ValueError(f"{'--certify' if options['certify'] else '--no-certify'} is an "
                          f"option of --gripper jaw")
 
 
-def _hand(options: Mapping[str, Any]) -> Hand | None:
+#: The plate's thickness (millimetres) point fingers pick from above when none is given.
+DEFAULT_PLATE_MM = 5.0
+
+
+def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
+    """``--hand tip=R[,length=L]`` of point fingers, in the part's units, and the scene
+    they pick from (``--thickness``, ``--table``), or ``(None, None)``."""
+    if options.get("hand") is None:
+        return None, None
+    from ..io.units import MM_PER
+    from ..model.hands import tips_from_params
+    from ._tips_pick import tips_reach
+    from .jaw._pick import Scene
+
+    if options.get("finger_radius"):
+        raise ValueError("--finger-radius is the hand's tip: give --hand tip=R alone")
+    try:
+        tips = tips_from_params(str(options["hand"]))
+    except ValueError as exc:
+        raise ValueError(f"--{exc} (the jaw's hands need --gripper jaw)") from None
+    units = options.get("units") or "mm"
+    per_mm = 1.0 / MM_PER[units]
+    tips = tips.scaled(per_mm, units)
+    thickness = options.get("thickness")
+    if thickness is None:
+        thickness = DEFAULT_PLATE_MM * per_mm
+    elif not (math.isfinite(thickness) and thickness > 0):
+        raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
+    scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
+                  approach=100.0 * per_mm, retreat=100.0 * per_mm)
+    reach = tips_reach(tips, scene)
+    if isinstance(reach, str):
+        raise ValueError(f"--hand: {reach}")
+    return tips, scene
+
+
+def _hand(options: Mapping[str, Any], tips: FingerTips | None = None) -> Hand | None:
+    if tips is not None:
+        return Hand(workspace=options.get("workspace"), finger_radius=tips.radius)
     ws, radius = options.get("workspace"), options.get("finger_radius") or 0.0
     if ws is None and not radius:
         return None
@@ -512,8 +572,10 @@ def fingers_from_options(options: Mapping[str, Any]) -> _PointFingers:
                          f"(drop --mu)")
     if mu < 0 or not math.isfinite(mu):
         raise ValueError(f"--mu must be a finite number >= 0, got {mu:g}")
-    return point_fingers(fingers, mu, gravity, _hand(options),
-                         not options.get("single_edge", False))
+    tips, scene = _tips(options)
+    gripper = point_fingers(fingers, mu, gravity, _hand(options, tips),
+                            not options.get("single_edge", False))
+    return replace(gripper, tips=tips, scene=scene) if tips is not None else gripper
 
 
 register("fingers", fingers_from_options)

@@ -239,6 +239,8 @@ def moveit_grasps(report: dict[str, Any], *, frame_id: str = "part",
                                           ("clearance", clearance))}
     stroke = [float(v) * metres for v in params.get("stroke", (0.0, 0.0))]
     hand = report.get("hand")
+    if isinstance(hand, dict) and hand.get("kind") == "fingertips":
+        hand = None                 # point fingers on bodies: two fingers as a jaw
     if isinstance(hand, dict):
         # a hand's pick (fcgrasp.grippers.jaw._pick): its own frame, joints and poses
         ee_frame = str(hand.get("ee_frame") or ee_frame)

@@ -28,7 +28,7 @@ from ..core._checks import FloatArray, check_scalar
 from ..core.tolerances import STRIP_TOL
 
 __all__ = ["HandBox", "ParallelHand", "HANDS", "hand_named", "hand_from_params",
-           "hand_description", "hand_from_description"]
+           "hand_description", "hand_from_description", "FingerTips", "tips_from_params"]
 
 
 #: Metres per millimetre (a finger joint's unit per the hand's).
@@ -304,3 +304,50 @@ def hand_from_params(stroke: Any, pad_width: float, pad_height: float,
     return ParallelHand(name, (float(stroke[0]), hi), palm_box, finger, "pad",
                         joints=("finger_joint",), joint_per_opening=0.001,
                         source="parameters", licence="")
+
+
+@dataclass(frozen=True)
+class FingerTips:
+    """Point fingers on finger bodies (the paper's chopsticks, section 8.2): each finger a
+    vertical cylinder of ``radius`` (its tip: the contact is on its side, the section's
+    disc of ``finger_radius``) and ``length`` from its flat end up to where the hand
+    holds it; nothing of the hand below that is modelled.  Lengths in the part's units
+    (millimetres as given, :meth:`scaled` for others)."""
+
+    radius: float
+    length: float
+    units: str = "mm"
+    name: str = "fingertips"
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "radius", check_scalar(self.radius, "radius", positive=True))
+        object.__setattr__(self, "length", check_scalar(self.length, "length", positive=True))
+
+    def scaled(self, factor: float, units: str) -> FingerTips:
+        """The same fingers with lengths times ``factor``, in ``units``."""
+        return replace(self, radius=self.radius * factor, length=self.length * factor,
+                       units=units)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"name": self.name, "kind": "fingertips", "units": self.units,
+                "tip_radius": self.radius, "finger_length": self.length,
+                "source": "parameters", "licence": ""}
+
+
+def tips_from_params(text: str) -> FingerTips:
+    """``--hand tip=R[,length=L]`` of point fingers (millimetres; the length 50 by
+    default)."""
+    given: dict[str, str] = {}
+    for item in str(text).split(","):
+        key, _, value = item.partition("=")
+        given[key.strip()] = value.strip()
+    if set(given) - {"tip", "length"} or "tip" not in given:
+        raise ValueError(f"hand of point fingers must be tip=R[,length=L] (millimetres), "
+                         f"got {text!r}")
+    try:
+        radius, length = float(given["tip"]), float(given.get("length", 50.0))
+    except ValueError:
+        raise ValueError(f"hand parameters must be numbers, got {text!r}") from None
+    if not (math.isfinite(radius) and radius > 0 and math.isfinite(length) and length > 0):
+        raise ValueError(f"hand tip and length must be finite numbers > 0, got {text!r}")
+    return FingerTips(radius, length)

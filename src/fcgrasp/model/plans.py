@@ -94,6 +94,9 @@ class GraspPlan:
     #: with a load (``plan(..., load=)``), the scale of it certified over every grasp of
     #: the regions (:class:`~fcgrasp.model.loads.RegionPayload`); in the JSON as ``payload``
     payload: Any = field(default=None, repr=False, compare=False)
+    #: picked from above by fingers on finger bodies: where each comes down, the
+    #: approach and retreat (:func:`fcgrasp.grippers._tips_pick.tips_pick`)
+    pick: Any = field(default=None, repr=False, compare=False)
 
     def __post_init__(self) -> None:
         self.regions = tuple(np.asarray(r, dtype=float).reshape(-1, 2) for r in self.regions)
@@ -215,6 +218,8 @@ class GraspPlan:
             d["similar"] = [list(e) for e in self.similar]
         if self.payload is not None:
             d["payload"] = self.payload.to_dict()
+        if self.pick is not None:
+            d.update(self.pick)
         return cast("dict[str, Any]", json_ready(d))
 
 
