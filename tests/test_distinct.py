@@ -358,6 +358,36 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
         assert len(lowered) >= 2, lowered             # the first floor, then lower
 
 
+@pytest.mark.parametrize("seed", [4, 13, 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                           for s in range(5, 60) if s != 13)])
+@pytest.mark.parametrize("jit", ["1", "0"])
+def test_a_capped_collection_gives_the_plans_of_suppression(seed, jit, monkeypatch):
+    """A distinct round collects at most COLLECT_CAP configurations at once and tries
+    higher floors where more reach its own (half way up to one that found too few), or
+    collects in full where the answer needs that floor: with the cap at 20 (most rounds
+    go over it, compiled or not) the plans are still suppression's along the whole
+    ranked list."""
+    from fcgrasp.core.budget import BudgetExhausted
+    from fcgrasp.model import _stretch_search, stretches
+
+    monkeypatch.setenv("FCGRASP_JIT", jit)
+    monkeypatch.setattr(stretches, "COLLECT_CAP", 20)
+    over = []
+    original = _stretch_search._candidates
+
+    def candidates(*a, **k):
+        try:
+            return original(*a, **k)
+        except BudgetExhausted as exc:
+            over.append(str(exc))
+            raise
+
+    monkeypatch.setattr(_stretch_search, "_candidates", candidates)
+    _searched_and_suppressed(seed)
+    if seed in (4, 13, 78):
+        assert "collection" in over, over
+
+
 @pytest.mark.parametrize("seed", range(3))
 def test_a_distinct_rounds_bound_is_the_kth_largest_configuration(seed):
     """A distinct round's bound counts each configuration (``_Bound(each=True)``: its

@@ -1504,12 +1504,14 @@ def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
 
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
-            short: int = _SHORT, ex: Any = None, exs: Any = None, between: Any = None
-            ) -> Any:
+            short: int = _SHORT, ex: Any = None, exs: Any = None, between: Any = None,
+            cap: int | None = None) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
     for every caller; ``ex``, ``exs``: no kept plans where not given).  ``between``: a
     collection reads the rows in blocks (:data:`COLLECT_ROWS`, the sparse table built
-    once) and calls it before each (a budget's check may end the collection there)."""
+    once) and calls it before each (a budget's check may end the collection there);
+    ``cap``: a collection that holds more windows than this after a block ends there
+    (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"collection"``)."""
     loops = _load()
     ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
     ex = np.zeros((4, 0)) if ex is None else np.ascontiguousarray(ex, float)
@@ -1521,9 +1523,15 @@ def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
         return loops["_windows"](*args, 0, ma, *none)
     table = loops["_table"](ptr, first, last, ma) if ma >= 4 and ptr[ma] > 0 else none
     parts = []
+    held = 0
     for r0 in range(0, ma, COLLECT_ROWS):
         between()
         parts.append(loops["_windows"](*args, r0, min(r0 + COLLECT_ROWS, ma), *table))
+        held += int(parts[-1][1].size)
+        if cap is not None and held > cap:
+            from ..core.budget import BudgetExhausted
+
+            raise BudgetExhausted("collection")
     return (parts[0][0], *(np.concatenate([p[j] for p in parts]) for j in range(1, 5)))
 
 

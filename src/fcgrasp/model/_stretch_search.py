@@ -183,12 +183,13 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
 
 def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bool,
           bound: _Bound | None = None, copies: tuple[FloatArray, FloatArray] | None = None,
-          between: Any = None) -> tuple[FloatArray, _Configs]:
+          between: Any = None, cap: int | None = None) -> tuple[FloatArray, _Configs]:
     """:func:`_windows_both`, compiled for large rings (pruned by ``bound``'s value: the
     lower bounds it leaves out could not raise it; ``copies``: the kept plans' columns
     whose surely copies from ``floor`` on the compiled collection leaves out,
-    :meth:`_Exclusion.copy_columns`; ``between``: called between the compiled
-    collection's blocks of rows, :func:`fcgrasp.model._stretch_kernels.windows`)."""
+    :meth:`_Exclusion.copy_columns`; ``between`` and ``cap``: called between the compiled
+    collection's blocks of rows, and the most windows it may hold,
+    :func:`fcgrasp.model._stretch_kernels.windows`)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
         # (a collection reads each row from its first window long enough, by the
@@ -197,7 +198,7 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
         ex, exs = copies if copies is not None else (None, None)
         best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
                                               collect, same, value, keep, ex=ex, exs=exs,
-                                              between=between)
+                                              between=between, cap=cap)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
     return _windows_both(runs, ra, rb, same, floor, collect)
 
@@ -252,8 +253,8 @@ def _guessed_floors(bound: _Bound) -> list[float]:
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
                 runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
                 guesses: list[float] | None = None, lower: bool = True,
-                max_configs: int | None = None, exclude: _Exclusion | None = None
-                ) -> list[tuple[Any, _Configs]]:
+                max_configs: int | None = None, exclude: _Exclusion | None = None,
+                cap: int | None = None) -> list[tuple[Any, _Configs]]:
     """Every configuration that can reach the bound, per job (exhaustive: the bound
     only rises with feasible configurations, one per key).  ``prebound`` False: the
     vertex-aligned stretches do not raise the bound (an excluded plan's copies would);
@@ -274,7 +275,10 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
     BudgetExhausted`, ``"max_memory"``), before the next job's.  ``exclude``: the
     windows of both stretches that are surely a kept plan's copies at any smallest
     region from the floor on are not collected (:meth:`_Exclusion.copy_columns`;
-    :func:`_search` then solves their beaters on demand, :func:`_inner_beaters`)."""
+    :func:`_search` then solves their beaters on demand, :func:`_inner_beaters`).
+    ``cap``: the most configurations a collection may hold, for speed: more end it
+    (``BudgetExhausted``, ``"collection"``) within a block of rows of going over, and
+    :meth:`~fcgrasp.model.stretches.StretchSearch.pairs` tries another floor."""
     count = 0
     prepared = []
     for collect in (False, True):          # the lower bound first, then the candidates
@@ -295,7 +299,8 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
                 # search's first answer only inside a deeper read (budget.poll)
                 best, both = _both(runs[x, y][sigma], ra, rb, x == y, bound.floor, collect,
                                    bound if prebound and bound.fixed is None else None,
-                                   copies, budget.check if exclude else budget.poll)
+                                   copies, budget.check if exclude else budget.poll,
+                                   None if cap is None or not collect else cap - count)
                 if not collect and prebound:
                     # stretch 1 comes first (ring x <= y; on one ring, it starts first)
                     rows = np.flatnonzero(best > 0)
@@ -312,6 +317,8 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
                 count += int(prepared[-1][1].iA.size)
                 if max_configs is not None and count > max_configs:
                     raise budget.BudgetExhausted("max_memory")
+                if cap is not None and count > cap:
+                    raise budget.BudgetExhausted("collection")
     return prepared
 
 
@@ -374,7 +381,8 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         elif memo is not None:
             prepared = memo.prepared = _candidates(
                 rings, _Bound(1, 2 * keys.total, memo.floor), intervals, runs, keys,
-                prebound=False, max_configs=memo.max_configs, exclude=exclude)
+                prebound=False, max_configs=memo.max_configs, exclude=exclude,
+                cap=memo.cap)
         else:
             prepared = _candidates(rings, bound, intervals, runs, keys,
                                    prebound=not exclude and cap is None,

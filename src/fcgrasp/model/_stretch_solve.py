@@ -147,6 +147,11 @@ class _Memo:
         #: (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"max_memory"``;
         #: :func:`_candidates`)
         self.max_bytes = max_bytes
+        #: the most configurations a collection may hold for speed (None: no limit;
+        #: :data:`fcgrasp.model.stretches.COLLECT_CAP`): a collection over it ends the
+        #: run (``BudgetExhausted``, ``"collection"``) and the caller tries a higher
+        #: floor, or collects in full where none would do
+        self.cap: int | None = None
 
     @property
     def max_configs(self) -> int | None:
