@@ -576,10 +576,10 @@ _SURFACE_COLOURS = """
     const S = explorer.state, v = explorer.solid3d, plan = S.plans[S.selected];
     const eye = v.state().eye;
     return plan.surface_triangles.map((tris, k) => {
-      const n = plan.normals[k];
+      const n = plan.normals[k];                           // the report's: outward
       return tris.map((t) => {
         const c = [0, 1, 2].map((i) => (t[0][i] + t[1][i] + t[2][i]) / 3);
-        const out = -(n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]));
+        const out = n[0] * (eye[0] - c[0]) + n[1] * (eye[1] - c[1]) + n[2] * (eye[2] - c[2]);
         const q = v.project(c);
         return {facing: out > 0, pixel: v.pixel(q[0], q[1])};
       });
@@ -928,6 +928,38 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     Select(d.find_element(By.ID, "hand")).select_by_value("")
     wait_plan(d, after)
     assert not d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
+
+
+def test_a_solids_pick_shows_the_hand_the_table_axes_and_a_scale_in_3d(server, browser):
+    """A solid picked from a table by the Franka Hand: the 3-D view (three.js, vendored
+    from npm) draws the hand's boxes at the selected plan's pose, the table the part
+    rests on, the part frame's axes and a scale bar of a round length; a plan without a
+    hand draws neither hand nor table."""
+    from selenium.webdriver.support.ui import Select
+
+    d = browser
+    open_demo(d, server, "cylinder")
+    st = d.execute_script("return explorer.solid3d.state()")
+    assert st["error"] is None and st["library"].startswith("three.js r")
+    assert {"axes", "scale"} <= set(st["drawn"]) and "hand-box" not in st["drawn"]
+    size = d.execute_script("return explorer.state.solid.size")
+    assert st["scale"]["length"] <= size / 3 and st["scale"]["units"] == "mm"
+    assert str(st["scale"]["length"]).lstrip("0.").rstrip("0") in ("1", "2", "5")
+    assert d.find_element(By.ID, "scale3d").text.startswith(f"scale bar {st['scale']['length']:g}")
+    after = plan_seq(d)
+    Select(d.find_element(By.ID, "gripper")).select_by_value("jaw")
+    wait_plan(d, after)
+    after = plan_seq(d)
+    d.execute_script("document.getElementById('table').checked = true;")
+    Select(d.find_element(By.ID, "hand")).select_by_value("franka")
+    wait_plan(d, after)
+    report = d.execute_script("return explorer.state.report;")
+    assert report["hand"]["name"] == "franka" and report["scene"]["table"] is not None
+    assert report["grasps"] and all("pose" in g for g in report["grasps"])
+    drawn = d.execute_script("return explorer.solid3d.state().drawn")
+    # each box drawn as a translucent solid and its edges
+    assert drawn.count("hand-box") == 2 * len(report["hand"]["boxes"])
+    assert "table" in drawn
 
 
 @pytest.mark.slow

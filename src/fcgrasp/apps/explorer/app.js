@@ -393,7 +393,7 @@ function drawScaleBar() {
 }
 
 function render() {
-  if (S.solid) { Solid3D.draw(S.plans[S.selected]); return; }
+  if (S.solid) { Solid3D.draw(S.plans[S.selected], S.report); return; }
   if (!S.part || !S.view) return;
   svg.textContent = "";
   const defs = el("defs");
@@ -1166,6 +1166,8 @@ function sizeJaw(size) {
 }
 
 async function init() {
+  // the 3-D view is an ES module on three.js (vendor/): loaded before any part is shown
+  await import("/static/solid3d.js");
   const st = await request("GET", "/api/state");
   S.maxUpload = st.max_upload;
   for (const name of st.demos) {
@@ -1269,6 +1271,7 @@ async function init() {
 
 // for tests and the console: the state and the mapping from part to screen
 window.explorer = { state: S, toScreen: (p) => X(p), toPart: (x, y) => toWorld(x, y), figureSVG,
-                    options, crossesAt, dragVertex, zoomAt, render, solid3d: Solid3D };
+                    options, crossesAt, dragVertex, zoomAt, render,
+                    get solid3d() { return window.Solid3D; } };
 
 init().catch((e) => message(`cannot start: ${e.message}`));

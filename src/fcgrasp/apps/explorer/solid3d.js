@@ -1,107 +1,79 @@
-// fcgrasp explorer: the 3-D view of a solid part (a mesh), drawn with WebGL by hand (no
-// library). The page's app.js calls Solid3D.show(part), Solid3D.draw(plan) and
-// Solid3D.hide(); the mouse orbits (drag) and zooms (wheel) about the part's centre.
-"use strict";
+// fcgrasp explorer: the 3-D view of a solid part (a mesh), drawn with three.js (vendored
+// from npm: vendor/README.md). The page's app.js calls Solid3D.show(part),
+// Solid3D.draw(plan, report) and Solid3D.hide(); the mouse orbits (drag) and zooms
+// (wheel) about the part's centre. Beside the part and a plan's regions it draws the
+// hand of a pick at its pose (its collision boxes), the table the part rests on, the
+// part frame's axes and a scale bar.
+import * as THREE from "./vendor/three.module.min.js";
+
+const COLORS = ["#d62728", "#1f77b4", "#2ca02c", "#9467bd"];
 
 const Solid3D = (() => {
   const canvas = document.getElementById("view3d");
-  const V = { gl: null, prog: null, part: null, plan: null, yaw: 0.7, pitch: 0.45,
-              dist: 1, mesh: null, drag: null, matrix: null, eye: [0, 0, 1],
-              error: null };
+  const V = { renderer: null, scene: null, camera: null, part: null, plan: null,
+              report: null, yaw: 0.7, pitch: 0.45, dist: 1, mesh: null, extras: null,
+              drag: null, eye: [0, 0, 1], error: null, scale: null };
 
   // ---------------------------------------------------------------- small 3-D algebra
   const sub = (a, b) => [a[0] - b[0], a[1] - b[1], a[2] - b[2]];
   const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
   const mul = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
   const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const crossV = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-                            a[0] * b[1] - a[1] * b[0]];
   const unit = (a) => { const n = Math.hypot(...a) || 1; return mul(a, 1 / n); };
-
-  // column-major 4x4 matrices, as WebGL takes them
-  function perspective(fovy, aspect, near, far) {
-    const f = 1 / Math.tan(fovy / 2), d = near - far;
-    return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / d, -1,
-            0, 0, (2 * far * near) / d, 0];
-  }
-  function lookAt(eye, at, up) {
-    const z = unit(sub(eye, at)), x = unit(crossV(up, z)), y = crossV(z, x);
-    return [x[0], y[0], z[0], 0, x[1], y[1], z[1], 0, x[2], y[2], z[2], 0,
-            -dot(x, eye), -dot(y, eye), -dot(z, eye), 1];
-  }
-  function times(a, b) {
-    const out = new Array(16).fill(0);
-    for (let c = 0; c < 4; c++) {
-      for (let r = 0; r < 4; r++) {
-        for (let k = 0; k < 4; k++) out[c * 4 + r] += a[k * 4 + r] * b[c * 4 + k];
-      }
-    }
-    return out;
-  }
-  const rgb = (hex) => [1, 3, 5].map((i) => parseInt(hex.slice(i, i + 2), 16) / 255);
-
-  // ---------------------------------------------------------------- WebGL
-  const VERT = `attribute vec3 p; attribute vec3 n; attribute vec3 c;
-    uniform mat4 m; uniform vec3 eye; uniform float lit;
-    varying vec3 col;
-    void main() {
-      gl_Position = m * vec4(p, 1.0);
-      gl_PointSize = 9.0;
-      float d = abs(dot(normalize(n + vec3(1e-9)), normalize(eye - p)));
-      col = lit > 0.5 ? c * (0.35 + 0.65 * d) : c;
-    }`;
-  const FRAG = `precision mediump float; varying vec3 col;
-    void main() { gl_FragColor = vec4(col, 1.0); }`;
+  // a unit quaternion (x, y, z, w) as the rows of its rotation
+  const rotation = ([x, y, z, w]) => [
+    [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+    [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+    [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]];
+  const apply = (R, v) => R.map((r) => dot(r, v));
+  const transpose = (R) => [0, 1, 2].map((j) => R.map((r) => r[j]));
 
   function context() {
-    if (V.gl || V.error) return V.gl;
-    const gl = canvas.getContext("webgl", { preserveDrawingBuffer: true, antialias: true });
-    if (!gl) { V.error = "this browser has no WebGL: the solid cannot be drawn"; return null; }
-    const shader = (type, src) => {
-      const s = gl.createShader(type);
-      gl.shaderSource(s, src);
-      gl.compileShader(s);
-      if (!gl.getShaderParameter(s, gl.COMPILE_STATUS)) throw new Error(gl.getShaderInfoLog(s));
-      return s;
-    };
-    const prog = gl.createProgram();
-    gl.attachShader(prog, shader(gl.VERTEX_SHADER, VERT));
-    gl.attachShader(prog, shader(gl.FRAGMENT_SHADER, FRAG));
-    gl.linkProgram(prog);
-    if (!gl.getProgramParameter(prog, gl.LINK_STATUS)) throw new Error(gl.getProgramInfoLog(prog));
-    V.gl = gl; V.prog = prog;
-    return gl;
+    if (V.renderer || V.error) return V.renderer;
+    try {
+      V.renderer = new THREE.WebGLRenderer({ canvas, antialias: true,
+                                             preserveDrawingBuffer: true });
+    } catch (e) {
+      V.error = "this browser has no WebGL: the solid cannot be drawn";
+      return null;
+    }
+    V.renderer.setClearColor(0xffffff, 1);
+    V.scene = new THREE.Scene();
+    V.camera = new THREE.PerspectiveCamera(45, 1, 0.1, 10);
+    V.camera.up.set(0, 0, 1);
+    // a soft light everywhere and a lamp at the eye: a face turned to the camera is
+    // brightest, one seen edge-on darkest
+    V.scene.add(new THREE.AmbientLight(0xffffff, 1.1));
+    V.lamp = new THREE.DirectionalLight(0xffffff, 2.2);
+    V.scene.add(V.lamp);
+    V.scene.add(V.lamp.target);
+    return V.renderer;
   }
 
-  // one buffer of interleaved (position, normal, colour) rows
-  function buffer(rows) {
-    const gl = V.gl, b = gl.createBuffer();
-    gl.bindBuffer(gl.ARRAY_BUFFER, b);
-    gl.bufferData(gl.ARRAY_BUFFER, new Float32Array(rows.flat()), gl.STATIC_DRAW);
-    return { b, count: rows.length };
-  }
-
-  function drawBuffer(buf, mode, lit) {
-    const gl = V.gl, prog = V.prog;
-    gl.bindBuffer(gl.ARRAY_BUFFER, buf.b);
-    [["p", 0], ["n", 3], ["c", 6]].forEach(([name, off]) => {
-      const at = gl.getAttribLocation(prog, name);
-      gl.enableVertexAttribArray(at);
-      gl.vertexAttribPointer(at, 3, gl.FLOAT, false, 36, off * 4);
+  function dispose(obj) {
+    if (!obj) return;
+    V.scene.remove(obj);
+    obj.traverse((o) => {
+      if (o.geometry) o.geometry.dispose();
+      if (o.material) o.material.dispose();
     });
-    gl.uniform1f(gl.getUniformLocation(prog, "lit"), lit ? 1 : 0);
-    gl.drawArrays(mode, 0, buf.count);
+  }
+
+  function geometry(points, normals) {
+    const g = new THREE.BufferGeometry();
+    g.setAttribute("position", new THREE.Float32BufferAttribute(points.flat(), 3));
+    if (normals) g.setAttribute("normal", new THREE.Float32BufferAttribute(normals.flat(), 3));
+    return g;
   }
 
   // the part's triangles, each with its own normal (flat shading)
-  function meshRows(part) {
-    const grey = [0.78, 0.78, 0.8], rows = [];
-    for (const [i, j, k] of part.faces) {
-      const a = part.vertices[i], b = part.vertices[j], c = part.vertices[k];
-      const n = unit(crossV(sub(b, a), sub(c, a)));
-      rows.push([...a, ...n, ...grey], [...b, ...n, ...grey], [...c, ...n, ...grey]);
-    }
-    return rows;
+  function partMesh(part) {
+    const pts = [];
+    for (const [i, j, k] of part.faces) pts.push(part.vertices[i], part.vertices[j], part.vertices[k]);
+    const g = geometry(pts);
+    g.computeVertexNormals();
+    return new THREE.Mesh(g, new THREE.MeshLambertMaterial({ color: 0xc7c7cc,
+                                                             side: THREE.DoubleSide }));
   }
 
   // triangles (index triples) of a simple polygon in its plane of normal n, by ear
@@ -141,38 +113,137 @@ const Solid3D = (() => {
   // a plan's regions (polygons on facets, triangulated, or a region's own triangles on a
   // curved surface; lifted off the surface along the outward normal), the contact
   // centres, and each finger's approach
-  function planRows(plan) {
-    const lift = V.part.size * 2e-3, tri = [], pts = [], lines = [];
+  function planGroup(plan) {
+    const group = new THREE.Group(), lift = V.part.size * 2e-3;
     plan.regions.forEach((poly, k) => {
-      const col = rgb(COLORS[k % COLORS.length]);
+      const col = new THREE.Color(COLORS[k % COLORS.length]);
       const n = mul(plan.normals[k], -1);        // inward: the finger pushes along it
       const up = (p) => add(p, mul(n, -lift));
+      const tri = [];
       if (plan.surface_triangles) {              // a region across a curved surface
-        for (const t of plan.surface_triangles[k]) {
-          for (const p of t) tri.push([...up(p), ...n, ...col]);
-        }
+        for (const t of plan.surface_triangles[k]) for (const p of t) tri.push(up(p));
       } else {
-        for (const t of triangulate(poly, n)) {
-          for (const i of t) tri.push([...up(poly[i]), ...n, ...col]);
-        }
+        for (const t of triangulate(poly, n)) for (const i of t) tri.push(up(poly[i]));
       }
+      const out = mul(n, -1);
+      const mat = new THREE.MeshLambertMaterial({ color: col, side: THREE.DoubleSide,
+                                                  polygonOffset: true,
+                                                  polygonOffsetFactor: -2,
+                                                  polygonOffsetUnits: -2 });
+      group.add(new THREE.Mesh(geometry(tri, tri.map(() => out)), mat));
       const c = plan.centers[k];
-      pts.push([...up(c), 0, 0, 0, 0.1, 0.1, 0.1]);
       const tail = add(c, mul(n, -0.3 * V.part.size));
-      lines.push([...tail, 0, 0, 0, ...col], [...up(c), 0, 0, 0, ...col]);
+      group.add(new THREE.Line(geometry([tail, up(c)]),
+                               new THREE.LineBasicMaterial({ color: col })));
+      const dot3 = new THREE.Mesh(new THREE.SphereGeometry(V.part.size * 6e-3, 12, 8),
+                                  new THREE.MeshBasicMaterial({ color: 0x1a1a1a }));
+      dot3.position.set(...up(c));
+      group.add(dot3);
     });
-    return { tri, pts, lines };
+    return group;
+  }
+
+  // the hand of a jaw's pick at its pose (the report's boxes in the tool frame at its
+  // largest opening, the fingers moved to the grasp's opening): palm dashed grey,
+  // fingers dark, each a translucent box with its edges
+  function handGroup(plan, hand) {
+    const group = new THREE.Group();
+    if (!plan.pose || !hand || !hand.boxes) return group;
+    const R = rotation(plan.pose.orientation), p = plan.pose.position;
+    const opening = typeof plan.opening === "number" ? plan.opening : hand.opening;
+    const nPalm = hand.boxes.length - 2 * (hand.finger_boxes || 0);
+    hand.boxes.forEach((b, k) => {
+      const side = k < nPalm ? 0 : (k < nPalm + hand.finger_boxes ? 1 : -1);
+      const centre = [...b.centre];
+      centre[1] += side * (opening - hand.opening) / 2;
+      const where = add(p, apply(R, centre));
+      const Rb = R.map((r) => [0, 1, 2].map((j) => dot(r, [b.rotation[0][j], b.rotation[1][j],
+                                                          b.rotation[2][j]])));
+      const m = new THREE.Matrix4().set(Rb[0][0], Rb[0][1], Rb[0][2], where[0],
+                                        Rb[1][0], Rb[1][1], Rb[1][2], where[1],
+                                        Rb[2][0], Rb[2][1], Rb[2][2], where[2], 0, 0, 0, 1);
+      const box = new THREE.BoxGeometry(...b.size);
+      const colour = side === 0 ? 0x8c8c8c : 0x444444;
+      const solid = new THREE.Mesh(box, new THREE.MeshLambertMaterial({
+        color: colour, transparent: true, opacity: 0.35, depthWrite: false }));
+      const edges = new THREE.LineSegments(new THREE.EdgesGeometry(box),
+                                           new THREE.LineBasicMaterial({ color: colour }));
+      for (const o of [solid, edges]) {
+        o.matrixAutoUpdate = false;
+        o.matrix.copy(m);
+        o.name = "hand-box";
+        group.add(o);
+      }
+    });
+    return group;
+  }
+
+  // the table under a part resting on it (the scene's table is the plane z = 0 of the
+  // world; the part's pose on it, `part_pose`, takes the part frame there): a square
+  // twice the part's size with its outline, seen from above and below
+  function tableMesh(scene) {
+    if (!scene || !scene.table) return null;
+    const pose = scene.part_pose || { position: [0, 0, 0], orientation: [0, 0, 0, 1] };
+    const Rt = transpose(rotation(pose.orientation));
+    const n = apply(Rt, scene.table.normal);                 // in the part frame
+    const point = apply(Rt, sub(scene.table.point, pose.position));
+    const c = V.part.center, h = dot(sub(c, point), n);
+    const foot = sub(c, mul(n, h));
+    const a = unit(Math.abs(n[2]) < 0.9 ? [-n[1], n[0], 0] : [1, 0, -n[0] / (n[2] || 1)]);
+    const b = [n[1] * a[2] - n[2] * a[1], n[2] * a[0] - n[0] * a[2], n[0] * a[1] - n[1] * a[0]];
+    const s = V.part.size, q = (u, v) => add(foot, add(mul(a, u * s), mul(b, v * s)));
+    const tri = [q(-1, -1), q(1, -1), q(1, 1), q(-1, -1), q(1, 1), q(-1, 1)];
+    const group = new THREE.Group();
+    const mesh = new THREE.Mesh(geometry(tri, tri.map(() => n)), new THREE.MeshLambertMaterial({
+      color: 0xc8a878, transparent: true, opacity: 0.3, side: THREE.DoubleSide,
+      depthWrite: false }));
+    mesh.name = "table";
+    const rim = [q(-1, -1), q(1, -1), q(1, -1), q(1, 1), q(1, 1), q(-1, 1), q(-1, 1), q(-1, -1)];
+    group.add(mesh, new THREE.LineSegments(geometry(rim),
+                                           new THREE.LineBasicMaterial({ color: 0x8a6d45 })));
+    return group;
+  }
+
+  // the part frame's axes (x red, y green, z blue) beside the part, off its corner so
+  // that they hide no region, and a scale bar of a round length along x under it, its
+  // length written over the canvas
+  function frameGroup() {
+    const group = new THREE.Group(), size = V.part.size;
+    const lo = V.lo;
+    const axes = new THREE.AxesHelper(size / 4);
+    axes.position.set(lo[0] - 0.12 * size, lo[1] - 0.12 * size, lo[2]);
+    axes.name = "axes";
+    group.add(axes);
+    const want = size / 3, p10 = 10 ** Math.floor(Math.log10(want));
+    const len = [5, 2, 1].map((m) => m * p10).find((v) => v <= want) || p10;
+    const y = lo[1] - 0.08 * size, z = lo[2];
+    const bar = [[lo[0], y, z], [lo[0] + len, y, z], [lo[0], y - 0.02 * size, z],
+                 [lo[0], y + 0.02 * size, z], [lo[0] + len, y - 0.02 * size, z],
+                 [lo[0] + len, y + 0.02 * size, z]];
+    const line = new THREE.LineSegments(geometry(bar),
+                                        new THREE.LineBasicMaterial({ color: 0x222222 }));
+    line.name = "scale";
+    group.add(line);
+    V.scale = { length: len, units: V.part.units || "" };
+    let label = document.getElementById("scale3d");
+    if (!label) {
+      label = document.createElement("div");
+      label.id = "scale3d";
+      canvas.parentElement.appendChild(label);
+    }
+    label.textContent = `scale bar ${len} ${V.scale.units}; axes x red, y green, z blue`;
+    label.hidden = false;
+    return group;
   }
 
   function resize() {
     const r = canvas.parentElement.getBoundingClientRect();
     const W = Math.max(Math.round(r.width), 100), H = Math.max(Math.round(r.height), 100);
-    if (canvas.width !== W || canvas.height !== H) { canvas.width = W; canvas.height = H; }
+    if (canvas.width !== W || canvas.height !== H) V.renderer.setSize(W, H, false);
   }
 
   function render() {
-    const gl = context();
-    if (!gl || !V.part) return;
+    if (!context() || !V.part) return;
     resize();
     const W = canvas.width, H = canvas.height;
     const center = V.part.center, R = V.part.size / 2;
@@ -180,42 +251,48 @@ const Solid3D = (() => {
                  Math.sin(V.pitch)];
     const d = 3 * R * V.dist;
     V.eye = add(center, mul(dir, d));
-    V.matrix = times(perspective(Math.PI / 4, W / H, Math.max(d - 2 * R, d * 1e-3), d + 2 * R),
-                     lookAt(V.eye, center, [0, 0, 1]));
-    gl.viewport(0, 0, W, H);
-    gl.clearColor(1, 1, 1, 1);
-    gl.clear(gl.COLOR_BUFFER_BIT | gl.DEPTH_BUFFER_BIT);
-    gl.enable(gl.DEPTH_TEST);
-    gl.useProgram(V.prog);
-    gl.uniformMatrix4fv(gl.getUniformLocation(V.prog, "m"), false, new Float32Array(V.matrix));
-    gl.uniform3fv(gl.getUniformLocation(V.prog, "eye"), new Float32Array(V.eye));
-    if (!V.mesh) V.mesh = buffer(meshRows(V.part));
-    drawBuffer(V.mesh, gl.TRIANGLES, true);
+    const cam = V.camera;
+    cam.aspect = W / H;
+    cam.near = Math.max(d - 2 * R, d * 1e-3);
+    cam.far = d + 2 * R;
+    cam.position.set(...V.eye);
+    cam.lookAt(...center);
+    cam.updateProjectionMatrix();
+    cam.updateMatrixWorld();
+    V.lamp.position.set(...V.eye);
+    V.lamp.target.position.set(...center);
+    if (!V.mesh) { V.mesh = partMesh(V.part); V.scene.add(V.mesh); }
+    dispose(V.extras);
+    V.extras = new THREE.Group();
     if (V.plan) {
-      const { tri, pts, lines } = planRows(V.plan);
-      gl.enable(gl.POLYGON_OFFSET_FILL);
-      gl.polygonOffset(-2, -2);
-      const bufs = [[buffer(tri), gl.TRIANGLES, true], [buffer(lines), gl.LINES, false],
-                    [buffer(pts), gl.POINTS, false]];
-      for (const [b, mode, lit] of bufs) drawBuffer(b, mode, lit);
-      gl.disable(gl.POLYGON_OFFSET_FILL);
-      for (const [b] of bufs) gl.deleteBuffer(b.b);
+      V.extras.add(planGroup(V.plan));
+      if (V.report) V.extras.add(handGroup(V.plan, V.report.hand));
     }
+    const table = V.report ? tableMesh(V.report.scene) : null;
+    if (table) V.extras.add(table);
+    V.extras.add(frameGroup());
+    V.scene.add(V.extras);
+    V.renderer.render(V.scene, cam);
   }
 
   // a point of the part on the canvas (pixels from the top left) and its depth
   function project(p) {
-    const m = V.matrix, v = [p[0], p[1], p[2], 1];
-    const o = [0, 1, 2, 3].map((r) => m[r] * v[0] + m[4 + r] * v[1] + m[8 + r] * v[2] + m[12 + r]);
-    return [(o[0] / o[3] + 1) / 2 * canvas.width, (1 - o[1] / o[3]) / 2 * canvas.height,
-            o[2] / o[3]];
+    const v = new THREE.Vector3(...p).project(V.camera);
+    return [(v.x + 1) / 2 * canvas.width, (1 - v.y) / 2 * canvas.height, v.z];
   }
 
   function pixel(x, y) {
-    const gl = V.gl, px = new Uint8Array(4);
+    const gl = V.renderer.getContext(), px = new Uint8Array(4);
     gl.readPixels(Math.round(x), canvas.height - 1 - Math.round(y), 1, 1, gl.RGBA,
                   gl.UNSIGNED_BYTE, px);
     return Array.from(px);
+  }
+
+  // the names of what is drawn besides the part (for tests): hand boxes, table, axes
+  function drawn() {
+    const names = [];
+    if (V.extras) V.extras.traverse((o) => { if (o.name) names.push(o.name); });
+    return names;
   }
 
   canvas.addEventListener("pointerdown", (ev) => {
@@ -237,16 +314,21 @@ const Solid3D = (() => {
 
   return {
     show(part) {
-      V.part = part; V.plan = null;
-      if (V.mesh && V.gl) V.gl.deleteBuffer(V.mesh.b);
+      V.part = part; V.plan = null; V.report = null;
+      V.lo = part.vertices.reduce((m, v) => m.map((x, i) => Math.min(x, v[i])),
+                                  [Infinity, Infinity, Infinity]);
+      if (context() && V.mesh) { dispose(V.mesh); }
       V.mesh = null;
       canvas.hidden = false;
-      context();
       render();
       return V.error;
     },
-    hide() { V.part = null; V.plan = null; canvas.hidden = true; },
-    draw(plan) { V.plan = plan || null; render(); },
+    hide() {
+      V.part = null; V.plan = null; V.report = null; canvas.hidden = true;
+      const label = document.getElementById("scale3d");
+      if (label) label.hidden = true;
+    },
+    draw(plan, report) { V.plan = plan || null; V.report = report || null; render(); },
     fit() { V.yaw = 0.7; V.pitch = 0.45; V.dist = 1; render(); },
     // look at a plan from where most of its regions face the camera: among each
     // region's outward normal and the bisectors of two of them (turned a little
@@ -276,9 +358,12 @@ const Solid3D = (() => {
     },
     render,
     // for tests and the console
-    state: () => ({ yaw: V.yaw, pitch: V.pitch, dist: V.dist, eye: V.eye, error: V.error }),
+    state: () => ({ yaw: V.yaw, pitch: V.pitch, dist: V.dist, eye: V.eye, error: V.error,
+                    scale: V.scale, drawn: drawn(), library: `three.js r${THREE.REVISION}` }),
     project,
     pixel,
     triangulate,
   };
 })();
+
+window.Solid3D = Solid3D;
