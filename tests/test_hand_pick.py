@@ -557,6 +557,66 @@ def test_a_solid_rests_in_the_stable_pose_asked(tmp_path, capsys):
         assert code == 2 and len(err) == 1 and words in err[0], err
 
 
+def test_a_solid_rests_in_the_orientation_given(tmp_path, capsys):
+    """``--rest-orientation``: the cylinder laid on its side (a quarter turn about x), its
+    lowest point on the table; the report's part pose is that orientation; every sampled
+    placement of the hand along each region is clear of the mesh and the table
+    (python-fcl); a zero quaternion, one without --table and one beside --rest are
+    refused in one line."""
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.grippers.jaw._solid_pick import solid_tool_frame, up_in_part
+    from fcgrasp.io.schema import validate
+    from fcgrasp.spatial.solid import demo_solid
+
+    out = tmp_path / "side.json"
+    q = [0.5, 0.0, 0.0, 0.5]                        # a quarter turn about x, not unit
+    assert main(["plan", "demo:cylinder", "--gripper", "jaw", "--hand", "franka", "--mu",
+                 "0.5", "--table", "--rest-orientation", ",".join(map(str, q)), "--top", "3",
+                 "--json", str(out), "--quiet"]) == 0
+    r = json.loads(out.read_text())
+    validate(r)
+    pose = r["scene"]["part_pose"]
+    assert np.allclose(pose["orientation"], np.array(q) / np.linalg.norm(q))
+    assert r["scene"]["rest"] is None and r["scene"]["rest_orientation"] == \
+        pytest.approx(list(np.array(q) / np.linalg.norm(q)))
+    solid = demo_solid("cylinder")
+    x, y, z, w = pose["orientation"]
+    R = np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                  [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                  [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+    lifted = solid.mesh.vertices @ R.T + pose["position"]
+    assert lifted[:, 2].min() == pytest.approx(0.0, abs=1e-9)
+    rest = np.eye(4)
+    rest[:3, :3], rest[:3, 3] = R, pose["position"]
+    hand = hand_named("franka")
+    jaw = ParallelJaw.of_hand(hand, 0.5, Scene(1.0, table=True, orientation=tuple(q)))
+    plans = fc.plan(solid, gripper=jaw, top=3, time_limit=None)
+    assert len(plans) == len(r["grasps"]) > 0
+    m = _solid_manager(solid, rest)
+    rng, checked = np.random.default_rng(9), 0
+    for p in plans:
+        facet = solid.facets[p.facets[0]]
+        origin, Rt = solid_tool_frame(p, up_in_part(rest))
+        wide = min(hand.stroke[1], p.opening + 2.0)
+        for v in _in_region(p, facet, 6, rng):
+            at = origin + (v - np.asarray(p.centers[0]))
+            for dz, opening in [(-100.0, wide), (0.0, wide), (0.0, p.opening + 2e-3)]:
+                assert not _collides(m, _hand_meshes(hand, opening, at + dz * Rt[:, 2], Rt))
+                checked += 1
+    assert checked >= 20
+    capsys.readouterr()
+    for argv, words in ((["--table", "--rest-orientation", "0,0,0,0"], "not zero"),
+                        (["--rest-orientation", "0,0,0,1"], "--table"),
+                        (["--table", "--rest", "0", "--rest-orientation", "0,0,0,1"],
+                         "give one")):
+        code = main(["plan", "demo:cylinder", "--gripper", "jaw", "--hand", "franka", "--mu",
+                     "0.5", *argv])
+        err = capsys.readouterr().err.strip().splitlines()
+        assert code == 2 and len(err) == 1 and words in err[0], err
+
+
 def test_the_explorers_stress_test_refuses_what_it_cannot_run_in_one_line():
     from fcgrasp.apps._explorer_data import stress_result
     from fcgrasp.errors import RequestError

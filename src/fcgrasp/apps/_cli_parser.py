@@ -122,6 +122,10 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
         p.add_argument("--table", action="store_true", default=False,
                        help="with --hand: the part lies on a table the hand must not touch "
                             "(a solid in its most stable pose)")
+        p.add_argument("--rest-orientation", default=None, metavar="QX,QY,QZ,QW",
+                       help="with --hand --table on a solid: rest in this orientation (a "
+                            "quaternion from the part's frame to the table's), lowered onto "
+                            "the table, instead of a stable pose")
         p.add_argument("--rest", type=int, default=None, metavar="K",
                        help="with --hand --table on a solid: rest in its K-th most likely "
                             "stable pose (default 0)")

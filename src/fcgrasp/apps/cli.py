@@ -53,7 +53,7 @@ def plan_options(args: Any) -> dict[str, Any]:
     options["repair"] = bool(getattr(args, "repair", False))
     options["mu"], options["mu_high"] = _mu(options["mu"])
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
-                   ("accel", 2), ("pose_sigma", 3)):
+                   ("accel", 2), ("pose_sigma", 3), ("rest_orientation", 4)):
         if options[key] is not None:
             options[key] = _floats(options[key], n, "--" + key)
     if options["max_memory"] is not None:

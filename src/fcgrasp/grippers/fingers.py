@@ -490,7 +490,8 @@ def _stretch_regions(polygon: Polygon, stretches: Any, mu: float, margin: float,
 
 
 def _no_jaw_options(options: Mapping[str, Any]) -> None:
-    for opt, key in (("--stroke", "stroke"), ("--pad", "pad"), ("--rest", "rest")):
+    for opt, key in (("--stroke", "stroke"), ("--pad", "pad"), ("--rest", "rest"),
+                     ("--rest-orientation", "rest_orientation")):
         if options.get(key) is not None:
             raise ValueError(f"{opt} is an option of --gripper jaw")
     if options.get("hand") is None:

@@ -86,6 +86,7 @@ class PlanRequest:
     thickness: float | None = None
     table: bool = False
     rest: int | None = None
+    rest_orientation: tuple[float, float, float, float] | None = None
     max_memory: int | None = None
     time_limit: float | None = None
     distinct: float | None = None

@@ -35,7 +35,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
+
 from ...core._checks import check_scalar
+from ...core.tolerances import TOL
 from ...model.hands import ParallelHand
 
 __all__ = ["Scene", "TopPick", "top_pick"]
@@ -57,6 +60,9 @@ class Scene:
     #: a solid on the table: which of its stable poses it rests in (0: the most likely,
     #: :func:`~fcgrasp.grippers.jaw._solid_pick.resting_pose`)
     rest: int = 0
+    #: or the orientation it is given on the table (a unit quaternion x, y, z, w from the
+    #: part's frame to the table's; the part lowered onto the table), None: ``rest``
+    orientation: tuple[float, float, float, float] | None = None
 
     def __post_init__(self) -> None:
         for name in ("thickness", "clearance", "approach", "retreat"):
@@ -67,6 +73,13 @@ class Scene:
             raise TypeError(f"table must be a bool, got {self.table!r}")
         if isinstance(self.rest, bool) or not isinstance(self.rest, int) or self.rest < 0:
             raise ValueError(f"rest must be a whole number >= 0, got {self.rest!r}")
+        if self.orientation is not None:
+            q = np.asarray(self.orientation, float)
+            if q.shape != (4,) or not np.all(np.isfinite(q)) or np.linalg.norm(q) < TOL:
+                raise ValueError(f"orientation must be a quaternion x, y, z, w (not zero), "
+                                 f"got {self.orientation!r}")
+            object.__setattr__(self, "orientation", tuple(float(v) for v in
+                                                          q / np.linalg.norm(q)))
 
     def to_dict(self) -> dict[str, Any]:
         return {"part_pose": {"position": [0.0, 0.0, 0.0], "orientation": [0.0, 0.0, 0.0, 1.0]},
@@ -74,7 +87,10 @@ class Scene:
                 "table": {"point": [0.0, 0.0, 0.0], "normal": [0.0, 0.0, 1.0]}
                 if self.table else None,
                 "clearance": self.clearance, "approach": self.approach,
-                "retreat": self.retreat, "rest": self.rest}
+                "retreat": self.retreat,
+                "rest": self.rest if self.orientation is None else None,
+                "rest_orientation": None if self.orientation is None
+                else list(self.orientation)}
 
 
 @dataclass(frozen=True)

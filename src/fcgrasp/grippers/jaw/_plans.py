@@ -217,7 +217,8 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
     hand = options.get("hand")
     if hand is not None:
         return _jaw_of_hand(options, hand, mu)
-    for opt, name in (("--thickness", "thickness"), ("--table", "table"), ("--rest", "rest")):
+    for opt, name in (("--thickness", "thickness"), ("--table", "table"), ("--rest", "rest"),
+                      ("--rest-orientation", "rest_orientation")):
         if options.get(name) is not None and options.get(name) is not False:
             raise ValueError(f"{opt} is for a pick with a hand: give --hand too")
     if stroke is None or pad is None:
@@ -282,12 +283,16 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
         thickness = hand.pad_height
     elif not (math.isfinite(thickness) and thickness > 0):
         raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
-    rest = options.get("rest")
-    if rest is not None and not options.get("table"):
-        raise ValueError("--rest is a solid's pose on the table: give --table too")
+    rest, turned = options.get("rest"), options.get("rest_orientation")
+    for opt, given in (("--rest", rest), ("--rest-orientation", turned)):
+        if given is not None and not options.get("table"):
+            raise ValueError(f"{opt} is a solid's pose on the table: give --table too")
+    if rest is not None and turned is not None:
+        raise ValueError("--rest and --rest-orientation both place the part on the table: "
+                         "give one")
     scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
                   approach=100.0 * per_mm, retreat=100.0 * per_mm,
-                  rest=0 if rest is None else rest)
+                  rest=0 if rest is None else rest, orientation=turned)
     return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 

@@ -61,9 +61,19 @@ def resting_pose(solid: Any, rest: int = 0) -> np.ndarray:
     return _rest(solid, rest)[0]
 
 
-def _rest(solid: Any, rest: int) -> tuple[np.ndarray, float]:
-    """:func:`resting_pose` and its likelihood."""
+def _rest(solid: Any, rest: int, orientation: Any = None) -> tuple[np.ndarray, float | None]:
+    """:func:`resting_pose` and its likelihood; or, with an ``orientation`` (a unit
+    quaternion x, y, z, w from the part's frame to the table's), the part so turned and
+    lowered onto the table (its likelihood None: given, not computed)."""
     mesh = solid.mesh.copy()
+    if orientation is not None:
+        x, y, z, w = (float(v) for v in orientation)
+        T = np.eye(4)
+        T[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+        T[2, 3] = -float((mesh.vertices @ T[:3, :3].T)[:, 2].min())
+        return T, None
     transforms, probs = mesh.compute_stable_poses()
     if not 0 <= rest < len(transforms):
         raise ArgumentError(f"rest must be from 0 to {len(transforms) - 1} (the part's "
@@ -253,7 +263,7 @@ def hand_solid_plans(jaw: Any, solid: Any, top: int, margin: float, fraction: fl
     from ...spatial.jaw import solid_jaw_plans
 
     hand, scene = jaw.hand, jaw.scene
-    rest, likely = _rest(solid, scene.rest) if scene.table else (None, None)
+    rest, likely = _rest(solid, scene.rest, scene.orientation) if scene.table else (None, None)
     manager = scene_manager(solid, rest)
     n = 4 * top
     while True:
