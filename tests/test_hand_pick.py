@@ -354,13 +354,36 @@ def _in_region(plan, facet, n, rng):
     return facet.to_3d(np.array(pts + list(np.asarray(poly.exterior.coords)[:-1])))
 
 
+def _placements_clear(solid, hand, plans, rest, count: int, seed: int) -> int:
+    """Axis points sampled in each solid region (``count`` and its corners): the hand's
+    boxes along the approach and the closing, each box on its own, asserted clear of
+    the mesh and the table (``rest``: the part's pose on it, or None) by python-fcl;
+    the placements checked."""
+    from fcgrasp.grippers.jaw._solid_pick import solid_tool_frame, up_in_part
+
+    m = _solid_manager(solid, rest)
+    rng, checked = np.random.default_rng(seed), 0
+    for p in plans:
+        facet = solid.facets[p.facets[0]]
+        origin, R = solid_tool_frame(p, up_in_part(rest))
+        wide = min(hand.stroke[1], p.opening + 2.0)
+        for v in _in_region(p, facet, count, rng):
+            at = origin + (v - np.asarray(p.centers[0]))
+            for dz, opening in [(-100.0, wide), (-30.0, wide), (0.0, wide),
+                                (0.0, (wide + p.opening) / 2), (0.0, p.opening + 2e-3)]:
+                meshes = _hand_meshes(hand, opening, at + dz * R[:, 2], R)
+                assert not _collides(m, meshes), (p.facets, v, dz, opening)
+                checked += 1
+    return checked
+
+
 @pytest.mark.parametrize("name,table", [("angle", False), ("angle", True), ("tall", True),
                                         pytest.param("box", False, marks=pytest.mark.slow)])
 def test_every_sampled_placement_of_a_solid_region_is_collision_free(name, table):
     """Axis points sampled in each region (and its corners): the hand's boxes along the
     approach and the closing, each box on its own (not the hulls the search sweeps),
     checked by python-fcl against the mesh and the table; the pads end on the facets."""
-    from fcgrasp.grippers.jaw._solid_pick import resting_pose, solid_tool_frame, up_in_part
+    from fcgrasp.grippers.jaw._solid_pick import resting_pose
     from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 
     # a block 30 x 20 x 40: the Franka's fingers reach its sides above the table
@@ -371,20 +394,7 @@ def test_every_sampled_placement_of_a_solid_region_is_collision_free(name, table
     plans = fc.plan(solid, gripper=jaw, top=3, time_limit=None)
     assert plans, name
     rest = resting_pose(solid) if table else None
-    m = _solid_manager(solid, rest)
-    rng, checked = np.random.default_rng(5), 0
-    for p in plans:
-        facet = solid.facets[p.facets[0]]
-        origin, R = solid_tool_frame(p, up_in_part(rest))
-        wide = min(hand.stroke[1], p.opening + 2.0)
-        for v in _in_region(p, facet, 10, rng):
-            at = origin + (v - np.asarray(p.centers[0]))
-            for dz, opening in [(-100.0, wide), (-30.0, wide), (0.0, wide),
-                                (0.0, (wide + p.opening) / 2), (0.0, p.opening + 2e-3)]:
-                meshes = _hand_meshes(hand, opening, at + dz * R[:, 2], R)
-                assert not _collides(m, meshes), (name, p.facets, v, dz, opening)
-                checked += 1
-    assert checked >= 50
+    assert _placements_clear(solid, hand, plans, rest, 10, 5) >= 50
 
 
 def test_a_solid_region_without_the_hand_collides():
@@ -566,7 +576,6 @@ def test_a_solid_rests_in_the_orientation_given(tmp_path, capsys):
     import json
 
     from fcgrasp.apps.cli import main
-    from fcgrasp.grippers.jaw._solid_pick import solid_tool_frame, up_in_part
     from fcgrasp.io.schema import validate
     from fcgrasp.spatial.solid import demo_solid
 
@@ -594,18 +603,7 @@ def test_a_solid_rests_in_the_orientation_given(tmp_path, capsys):
     jaw = ParallelJaw.of_hand(hand, 0.5, Scene(1.0, table=True, orientation=tuple(q)))
     plans = fc.plan(solid, gripper=jaw, top=3, time_limit=None)
     assert len(plans) == len(r["grasps"]) > 0
-    m = _solid_manager(solid, rest)
-    rng, checked = np.random.default_rng(9), 0
-    for p in plans:
-        facet = solid.facets[p.facets[0]]
-        origin, Rt = solid_tool_frame(p, up_in_part(rest))
-        wide = min(hand.stroke[1], p.opening + 2.0)
-        for v in _in_region(p, facet, 6, rng):
-            at = origin + (v - np.asarray(p.centers[0]))
-            for dz, opening in [(-100.0, wide), (0.0, wide), (0.0, p.opening + 2e-3)]:
-                assert not _collides(m, _hand_meshes(hand, opening, at + dz * Rt[:, 2], Rt))
-                checked += 1
-    assert checked >= 20
+    assert _placements_clear(solid, hand, plans, rest, 6, 9) >= 20
     capsys.readouterr()
     for argv, words in ((["--table", "--rest-orientation", "0,0,0,0"], "not zero"),
                         (["--rest-orientation", "0,0,0,1"], "--table"),
