@@ -3,6 +3,7 @@ would hit the part or the table with, and what planning with the hand costs.
 
     .venv/bin/python benchmarks/bench_hands.py [--hand franka] [--thickness 6]
                                                [--files dxf/forms.dxf,...]
+                                               [--tips 3 [--fingers 3]]
 
 For each part (the built-in planar parts and the corpus files given), two runs of
 ``fcgrasp plan`` in fresh processes, as the CLI runs them (CPU seconds with the process's
@@ -11,6 +12,12 @@ start, from ``wait4``):
 * **bare**: the jaw of the hand's stroke and pad width (``--stroke``, ``--pad``), internal
   grips included;
 * **hand**: ``--hand HAND --table --thickness T``.
+
+With ``--tips R`` the same for point fingers (``--fingers 2``, or ``--fingers`` given):
+**bare** plans against ``--hand tip=R,length=L --table --thickness T``, each plan's
+fingers (vertical cylinders of radius ``R`` over the representative contacts, from
+1 mm above the table) checked against the plate and the table by python-fcl, the
+hand's plans included (none may collide).
 
 Then each bare plan's centre pose is checked with an independent collision library
 (python-fcl through trimesh) as a pick from above with the hand's boxes: the plate of
@@ -95,12 +102,65 @@ def collides(m, hand, grasp: dict, height: float) -> bool:
     return False
 
 
+def tips_collide(m, grasp: dict, radius: float, length: float) -> bool:
+    """A plan's fingers (cylinders of ``radius``, ``length`` long from 1 mm above the
+    table, their axes ``radius`` off the representative contacts along the outward
+    normals) against the plate and the table (``m``, :func:`scene`'s)."""
+    import trimesh
+
+    for c, n in zip(grasp["contacts"], grasp["normals"], strict=True):
+        axis = np.asarray(c) + radius * np.asarray(n) / np.linalg.norm(n)
+        T = np.eye(4)
+        T[:3, 3] = (axis[0], axis[1], 1.0 + length / 2)
+        body = trimesh.creation.cylinder(radius=radius * (1 - 1e-6), height=length,
+                                         sections=64, transform=T)
+        if m.in_collision_single(body):
+            return True
+    return False
+
+
+def tips(args: argparse.Namespace, parts: list[str]) -> int:
+    """The point fingers' table (the module's docstring, ``--tips``)."""
+    import fcgrasp as fc
+
+    R, L = args.tips, 40.0
+    print(f"point fingers: {args.fingers} with tips of radius {R:g} mm, {L:g} mm long, "
+          f"plate {args.thickness:g} mm on a table, mu {args.mu}, top {args.top}")
+    print("| part | bare plans | colliding | hand plans | colliding | bare CPU | hand CPU | "
+          "ratio |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    total = hits = own = 0
+    for src in parts:
+        base = ["plan", src, "--fingers", str(args.fingers), "--mu", args.mu, "--top",
+                args.top]
+        t_bare, bare = run(base)
+        t_hand, with_hand = run(base + ["--hand", f"tip={R:g},length={L:g}", "--table",
+                                        "--thickness", str(args.thickness)])
+        label = src.replace(str(HERE / "corpus") + "/", "")
+        if bare is None or with_hand is None:
+            print(f"| {label} | error | | | | | | |")
+            continue
+        m = scene(fc.read_part(src), args.thickness)
+        got = [tips_collide(m, g, R, L) for g in bare["grasps"]]
+        mine = [tips_collide(m, g, R, L) for g in with_hand["grasps"]]
+        total, hits, own = total + len(got), hits + sum(got), own + sum(mine)
+        ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
+        print(f"| {label} | {len(got)} | {sum(got)} | {len(mine)} | {sum(mine)} | "
+              f"{t_bare:.2f} s | {t_hand:.2f} s | {ratio} |")
+    print(f"\nof {total} bare plans, {hits} put a finger of radius {R:g} into the part "
+          f"({100 * hits / max(total, 1):.0f} %); of the hand's plans, {own} collide")
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--hand", default="franka")
     ap.add_argument("--thickness", type=float, default=6.0)
     ap.add_argument("--mu", default="0.5")
     ap.add_argument("--top", default="5")
+    ap.add_argument("--tips", type=float, default=None, metavar="R",
+                    help="point fingers with tips of this radius (mm) instead of a jaw")
+    ap.add_argument("--fingers", type=int, default=2)
     ap.add_argument("--files", default="gears/teeth-08.dxf,gears/teeth-12.dxf,"
                                        "gears/teeth-20.dxf,gears/teeth-32.dxf,icons/heart.svg,"
                                        "icons/droplet.svg,icons/cloud.svg")
@@ -113,6 +173,8 @@ def main() -> int:
                    check=True)
     parts = [f"demo:{n}" for n in BUILT_IN] + \
         [str(HERE / "corpus" / f) for f in filter(None, args.files.split(","))]
+    if args.tips is not None:
+        return tips(args, parts)
     print(f"hand {hand.name} (stroke {hand.stroke[0]:g}-{hand.stroke[1]:g} mm, pads "
           f"{hand.pad_width:g} mm), plate {args.thickness:g} mm on a table, mu {args.mu}, "
           f"top {args.top}")
