@@ -102,6 +102,30 @@ def collides(m, hand, grasp: dict, height: float) -> bool:
     return False
 
 
+def rows(parts: list[str], thickness: float, base: list[str], bare_args: list[str],
+         hand_args: list[str], cells, n: int) -> list[int]:
+    """For each part the two runs (``base`` with the part, then ``bare_args`` or
+    ``hand_args``), the plate's scene and the row: the ``n`` counts of ``cells(scene,
+    bare report, hand report)``, the two CPU times and their ratio; the counts' sums."""
+    import fcgrasp as fc
+
+    sums = [0] * n
+    for src in parts:
+        argv = [base[0], src, *base[1:]]
+        t_bare, bare = run(argv + bare_args)
+        t_hand, mine = run(argv + hand_args)
+        label = src.replace(str(HERE / "corpus") + "/", "")
+        if bare is None or mine is None:
+            print(f"| {label} | error |" + " |" * (n + 2))
+            continue
+        counts = cells(scene(fc.read_part(src), thickness), bare, mine)
+        sums = [a + b for a, b in zip(sums, counts, strict=True)]
+        ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
+        print(f"| {label} | " + " | ".join(str(c) for c in counts) +
+              f" | {t_bare:.2f} s | {t_hand:.2f} s | {ratio} |")
+    return sums
+
+
 def tips_collide(m, grasp: dict, radius: float, length: float) -> bool:
     """A plan's fingers (cylinders of ``radius``, ``length`` long from 1 mm above the
     table, their axes ``radius`` off the representative contacts along the outward
@@ -121,7 +145,6 @@ def tips_collide(m, grasp: dict, radius: float, length: float) -> bool:
 
 def tips(args: argparse.Namespace, parts: list[str]) -> int:
     """The point fingers' table (the module's docstring, ``--tips``)."""
-    import fcgrasp as fc
 
     R, L = args.tips, 40.0
     print(f"point fingers: {args.fingers} with tips of radius {R:g} mm, {L:g} mm long, "
@@ -129,24 +152,15 @@ def tips(args: argparse.Namespace, parts: list[str]) -> int:
     print("| part | bare plans | colliding | hand plans | colliding | bare CPU | hand CPU | "
           "ratio |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    total = hits = own = 0
-    for src in parts:
-        base = ["plan", src, "--fingers", str(args.fingers), "--mu", args.mu, "--top",
-                args.top]
-        t_bare, bare = run(base)
-        t_hand, with_hand = run(base + ["--hand", f"tip={R:g},length={L:g}", "--table",
-                                        "--thickness", str(args.thickness)])
-        label = src.replace(str(HERE / "corpus") + "/", "")
-        if bare is None or with_hand is None:
-            print(f"| {label} | error | | | | | | |")
-            continue
-        m = scene(fc.read_part(src), args.thickness)
+    base = ["plan", "--fingers", str(args.fingers), "--mu", args.mu, "--top", args.top]
+    hand = ["--hand", f"tip={R:g},length={L:g}", "--table", "--thickness", str(args.thickness)]
+
+    def cells(m, bare: dict, mine: dict) -> list[int]:
         got = [tips_collide(m, g, R, L) for g in bare["grasps"]]
-        mine = [tips_collide(m, g, R, L) for g in with_hand["grasps"]]
-        total, hits, own = total + len(got), hits + sum(got), own + sum(mine)
-        ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
-        print(f"| {label} | {len(got)} | {sum(got)} | {len(mine)} | {sum(mine)} | "
-              f"{t_bare:.2f} s | {t_hand:.2f} s | {ratio} |")
+        own = [tips_collide(m, g, R, L) for g in mine["grasps"]]
+        return [len(got), sum(got), len(own), sum(own)]
+
+    total, hits, _, own = rows(parts, args.thickness, base, [], hand, cells, 4)
     print(f"\nof {total} bare plans, {hits} put a finger of radius {R:g} into the part "
           f"({100 * hits / max(total, 1):.0f} %); of the hand's plans, {own} collide")
     return 0
@@ -165,7 +179,6 @@ def main() -> int:
                                        "gears/teeth-20.dxf,gears/teeth-32.dxf,icons/heart.svg,"
                                        "icons/droplet.svg,icons/cloud.svg")
     args = ap.parse_args()
-    import fcgrasp as fc
     from fcgrasp.model.hands import hand_named
 
     hand = hand_named(args.hand)
@@ -187,25 +200,17 @@ def main() -> int:
     print("| part | bare plans | colliding, centred | colliding, at the hand's height | "
           "hand plans | bare CPU | hand CPU | ratio |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    total = hits = lifted = 0
-    for src in parts:
-        base = ["plan", src, "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
-        t_bare, bare = run(base + ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}",
-                                   "--pad", repr(hand.pad_width)])
-        t_hand, with_hand = run(base + ["--hand", args.hand, "--table", "--thickness",
-                                        str(args.thickness)])
-        label = src.replace(str(HERE / "corpus") + "/", "")
-        if bare is None or with_hand is None:
-            print(f"| {label} | error | | | | | |")
-            continue
-        part = fc.read_part(src)
-        m = scene(part, args.thickness)
+    base = ["plan", "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
+    bare_args = ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}", "--pad",
+                 repr(hand.pad_width)]
+    hand_args = ["--hand", args.hand, "--table", "--thickness", str(args.thickness)]
+
+    def cells(m, bare: dict, mine: dict) -> list[int]:
         got = [collides(m, hand, g, centred) for g in bare["grasps"]]
         up = [collides(m, hand, g, safe) for g in bare["grasps"]]
-        total, hits, lifted = total + len(got), hits + sum(got), lifted + sum(up)
-        ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
-        print(f"| {label} | {len(got)} | {sum(got)} | {sum(up)} | {len(with_hand['grasps'])} | "
-              f"{t_bare:.2f} s | {t_hand:.2f} s | {ratio} |")
+        return [len(got), sum(got), sum(up), len(mine["grasps"])]
+
+    total, hits, lifted, _ = rows(parts, args.thickness, base, bare_args, hand_args, cells, 4)
     print(f"\nof {total} bare plans, {hits} collide with the pad centred on the plate's side "
           f"({100 * hits / max(total, 1):.0f} %), {lifted} at the hand model's height "
           f"({100 * lifted / max(total, 1):.0f} %)")
