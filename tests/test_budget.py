@@ -332,3 +332,35 @@ def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it(monkeyp
                                         pad=8, mu=0.5, top=1, distinct=0))
     assert len(none) == 0 and not none.complete and not none.exact
     assert doc.reason is not None and "stopped at its time limit" in doc.reason
+
+
+def test_a_first_round_the_clock_ends_gives_single_edge_plans_cut_short(monkeypatch):
+    """Two fingers on a large outline whose stretch search's first answer alone takes
+    longer than the budget and its grace (none here; the clock checked between blocks of
+    its rows): the plans of
+    regions on single edges, incomplete and not exact (no bound), each one force
+    closure at its representative contacts and inside the regions (checked by the
+    closure test of theorem 6.1 on sampled grasps), distinct alternatives by default."""
+    from fcgrasp.core import budget
+    from fcgrasp.model import _stretch_kernels
+
+    monkeypatch.setattr(_stretch_kernels, "VERTEX_ROWS", 16)
+    monkeypatch.setattr(budget, "FIRST_ANSWER_GRACE", 0.0)
+    a = np.linspace(0, 2 * np.pi, 600, endpoint=False)
+    r = 1 + 0.1 * np.cos(3 * a)
+    part = fc.Polygon(np.c_[60 * r * np.cos(a), 35 * r * np.sin(a)])
+    rng = np.random.default_rng(4)
+    for distinct in (0.5, 0.0):
+        plans = fc.plan(part, fingers=2, mu=1.0, top=5, distinct=distinct, time_limit=1e-6)
+        assert plans and not plans.complete and plans.gap()["bound"] is None
+        assert not plans.exact
+        for p in plans:
+            assert all(len(e) == 1 for e in p.region_edges)      # on single edges
+            for _ in range(20):
+                t = rng.uniform(size=2)
+                pts = [reg[0] + s * (reg[-1] - reg[0]) for reg, s in zip(p.regions, t, strict=True)]
+                g = fc.Grasp([fc.FrictionPoint(q, n, 1.0)
+                              for q, n in zip(pts, p.normals, strict=True)])
+                assert g.is_force_closure()
+    full = fc.plan(part, fingers=2, mu=1.0, top=5, time_limit=None)
+    assert full.complete

@@ -553,7 +553,9 @@ def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
     """The tree of bounds over ring b's columns (:func:`_vertex_runs_tree`) against the
     window scan that reads every cell, on rings of hundreds to thousands of edges of
     every kind (exact ties of a regular polygon, collinear runs, noise; far from the
-    origin too, where the bounds' rounding is largest): the same runs bit for bit."""
+    origin too, where the bounds' rounding is largest): the same runs bit for bit; and
+    read in blocks of rows (between which a budget's clock may end the search), the
+    same runs again."""
     rng = np.random.default_rng(seed)
     kind = KINDS[seed % len(KINDS)]
     n = int(rng.integers(150, 2500))
@@ -563,6 +565,11 @@ def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
     ring = _rings(poly)[0]
     monkeypatch.setenv("FCGRASP_JIT", "1")
     tree = S._vertex_runs(ring, ring, beta)
+    monkeypatch.setattr(_stretch_kernels, "VERTEX_ROWS", int(rng.integers(7, 300)))
+    blocked = S._vertex_runs(ring, ring, beta)
+    for sigma in (1.0, -1.0):
+        for got, want in zip(blocked[sigma], tree[sigma], strict=True):
+            np.testing.assert_array_equal(got, want)
     scan = _scan_runs(monkeypatch, ring, ring, beta)
     reads = 0
     for sigma in (1.0, -1.0):

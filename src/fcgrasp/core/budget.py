@@ -37,8 +37,9 @@ __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhaus
            "check_time_limit", "PlanList", "incomplete", "STOPPED_BY", "stopped_words"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
-#: of wall-clock time, for interactive use: the search's first answer is always
-#: complete, and the rounds that look for further distinct alternatives stop at it.
+#: of wall-clock time, for interactive use: the search's first answer is complete
+#: (within :data:`FIRST_ANSWER_GRACE` past it), and the rounds that look for further
+#: distinct alternatives stop at it.
 DEFAULT_TIME_LIMIT = 10.0
 
 class _Budget:
@@ -199,6 +200,20 @@ def check() -> None:
     """Raise :class:`BudgetExhausted` once the current budget has ended (a budget
     check)."""
     if exhausted():
+        raise BudgetExhausted("time_limit")
+
+
+#: Seconds past its budget a first answer may take (:func:`check_clock`): a search
+#: that always finishes its first round does, unless that round alone takes longer.
+FIRST_ANSWER_GRACE = 1.0
+
+
+def check_clock() -> None:
+    """Raise :class:`BudgetExhausted` once the current budget's clock has run out by
+    :data:`FIRST_ANSWER_GRACE`, even in a search that otherwise always finishes (the
+    first answer: its caller then gives a quicker one, cut short); a budget of checks
+    is not spent."""
+    if remaining() < -FIRST_ANSWER_GRACE:
         raise BudgetExhausted("time_limit")
 
 

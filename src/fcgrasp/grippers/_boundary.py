@@ -352,11 +352,14 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
 
     The search stops early when the time budget ends (:func:`fcgrasp.core.budget.
     deadline`: between rounds, or inside one, whose work is then dropped; the first
-    round, the ranked search, always finishes), when a round's collection of
-    configurations would exceed ``spec.max_memory``, or with ``depth`` once ``depth``
-    times ``top`` plans are read (on a smooth outline, a region on a long edge can be
-    placed anywhere along it before the plan is finished, so its shifted copies are
-    not left out: a 2,000-edge half disc reads 7,000 plans for ten alternatives).  The
+    round, the ranked search, finishes unless it takes
+    :data:`~fcgrasp.core.budget.FIRST_ANSWER_GRACE` past the budget, and then the
+    plans of regions on single edges are given, :func:`_on_single_edges`), when a
+    round's collection of configurations would exceed ``spec.max_memory``, or with
+    ``depth`` once ``depth`` times ``top`` plans are read (on a smooth outline, a
+    region on a long edge can be placed anywhere along it before the plan is
+    finished, so its shifted copies are not left out: a 2,000-edge half disc reads
+    7,000 plans for ten alternatives).  The
     plans kept by the finished rounds are then returned, an exact prefix of the
     complete answer, incomplete (:class:`~fcgrasp.model.plans.PlanList`), with the
     last finished round's level as the bound: every configuration left unread is
@@ -368,7 +371,10 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     suppression = Suppression(fraction, polygon.size)
     read: list[GraspPlan] = []
     given: set[Any] = set()             # one grasp reached by two configurations: once
-    stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory)
+    try:
+        stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory)
+    except BudgetExhausted:
+        return _on_single_edges(polygon, spec, fraction)
     level: float | None = None          # every configuration left unread is below it
     stopped: str | None = None
     while len(suppression.kept) < top:
@@ -377,6 +383,8 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
             pairs = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
                                     fraction=fraction, seen=read)
         except BudgetExhausted as exc:
+            if not read and str(exc) == "time_limit":
+                return _on_single_edges(polygon, spec, fraction)
             stopped = str(exc) or "time_limit"
             break
         ranked = two_finger_plans_of(polygon, spec, pairs, given)
@@ -401,6 +409,29 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
     return PlanList(kept) if stopped is None else incomplete(kept, stopped, level)
 
 
+def _on_single_edges(polygon: Polygon, spec: PlanSpec, fraction: float = 0.0
+                     ) -> PlanList:
+    """The answer of a two-finger search whose first round the time budget ended (a
+    large outline at a wide cone: the stretch search's first answer alone can take
+    longer than the budget): the plans of regions on single edges (the paper's
+    algorithm 7.1, a small fraction of the cost), distinct alternatives with
+    ``fraction``; the search recorded as cut short, so the answer is incomplete, with no
+    bound (:func:`fcgrasp.core.budget.cut_short`: regions across vertices were not
+    searched)."""
+    from ..core.budget import cut_short
+    from ..model.distinct import distinct_plans
+
+    cut_short()
+    flat = replace(spec, along_boundary=False)
+    if fraction > 0:
+        got = distinct_single_edge_plans(polygon, flat, fraction)
+        if got is None:
+            every = ranked_unique(polygon, flat, search(polygon, replace(flat, top=None)))
+            got = distinct_plans(every, fraction, polygon.size)[:spec.top]
+        return PlanList(got)
+    return PlanList(ranked_unique(polygon, spec, search(polygon, flat)))
+
+
 def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
     """Two-finger plans whose regions run along the boundary (stretches of the rings,
     :mod:`fcgrasp.model.stretches`), ranked as :func:`rank` ranks.
@@ -422,7 +453,12 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
         # no region can cover a vertex: the regions are the single-edge ones
         return ranked_unique(polygon, spec, search(polygon, flat))
     if spec.rank_by == "min_region":
-        plans = stretch_plans_read(polygon, spec)[0]
+        try:
+            plans = stretch_plans_read(polygon, spec)[0]
+        except BudgetExhausted as exc:
+            if str(exc) != "time_limit":
+                raise
+            return _on_single_edges(polygon, spec)
         return plans if spec.top is None else plans[:spec.top]
     keep = None if spec.top is None else max(spec.top, KEEP_STRETCHES)
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=False)

@@ -169,10 +169,10 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
         # the tree's bounds are decided with a pad far above their rounding (a few ulps
         # of the largest coordinate)
         pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
-        out = _stretch_kernels.vertex_runs_tree(
+        out = _stretch_kernels.vertex_runs_blocks(
             ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
             rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
-            width, pad)
+            width, pad, budget.check_clock)
         return {1.0: out[:3], -1.0: out[3:]}
     runs = {}
     for sigma in (1.0, -1.0):
@@ -289,6 +289,7 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             if guesses:
                 bound.start = guesses.pop(0)
         for job in _jobs(len(rings)):
+            budget.check_clock()
             x, y, sigma, _ = job
             ra, rb = rings[x], rings[y]
             both = _empty()

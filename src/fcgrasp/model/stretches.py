@@ -272,7 +272,7 @@ class StretchSearch:
         # found below its floor: no higher floor will do)
         if shared and memo.prepared is None:
             memo.cap = COLLECT_CAP
-        over_cap, too_few, needed = -np.inf, np.inf, False
+        over_cap, too_few, needed, tries = -np.inf, np.inf, False, 0
         while True:
             if shared:
                 budget.check()
@@ -292,10 +292,11 @@ class StretchSearch:
                     # too many configurations reach this floor to collect quickly (a
                     # smooth outline's next alternative and its thousands of shifted
                     # copies): half way up to the lowest floor that found too few, or
-                    # in full where the answer needs this floor or the two meet
-                    over_cap = max(over_cap, memo.floor)
+                    # in full where the answer needs this floor, the two meet or the
+                    # tries run out
+                    over_cap, tries = max(over_cap, memo.floor), tries + 1
                     upper = min(too_few, best if best is not None else np.inf)
-                    if needed or not np.isfinite(upper) or \
+                    if needed or not np.isfinite(upper) or tries > CAP_TRIES or \
                             upper - memo.floor <= CAP_CLOSE * upper:
                         memo.cap = None
                         memo.lower(memo.floor)
@@ -336,8 +337,13 @@ class StretchSearch:
                 too_few = min(too_few, memo.floor)
                 low = memo.floor * (FLOOR_STEP_SOME if found else FLOOR_STEP_NONE)
                 if memo.cap is not None and low <= over_cap:
-                    # (a floor that went over the cap: half way down to it instead)
-                    low = (memo.floor + over_cap) / 2
+                    # (a floor that went over the cap: half way down to it instead, or
+                    # the usual step collected in full once the two meet)
+                    tries += 1
+                    if tries > CAP_TRIES or memo.floor - over_cap <= CAP_CLOSE * memo.floor:
+                        memo.cap = None
+                    else:
+                        low = (memo.floor + over_cap) / 2
             if low <= overflow:         # what the answer needs does not fit the budget
                 raise budget.BudgetExhausted("max_memory")
             # below a thousandth of the best plan: every configuration
@@ -389,6 +395,10 @@ COLLECT_CAP = 500_000
 #: How close (a share of the higher) the floors that went over :data:`COLLECT_CAP` and
 #: found too few may come before the collection is made in full.
 CAP_CLOSE = 1e-3
+
+
+#: Floors a round tries for :data:`COLLECT_CAP` at most before it collects in full.
+CAP_TRIES = 24
 
 
 #: The share of the best plan above which a distinct round whose collection did not fit

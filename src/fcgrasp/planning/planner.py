@@ -174,7 +174,10 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
     time_limit : float or None
         Wall-clock seconds the search may take to look for distinct alternatives
         (default :data:`fcgrasp.core.budget.DEFAULT_TIME_LIMIT`; None: no limit).  The
-        first answer, the ranked search, always finishes; the rounds after it stop at
+        first answer, the ranked search, finishes within
+        :data:`~fcgrasp.core.budget.FIRST_ANSWER_GRACE` past the limit (two fingers
+        whose stretch search would take longer give the plans of regions on single
+        edges instead, incomplete and not exact); the rounds after it stop at
         the limit, and the plans are then an exact prefix of the complete answer with
         ``complete`` False and a ``bound`` on every further alternative
         (:class:`~fcgrasp.model.plans.PlanList`).  ``max_memory`` ends those rounds the
