@@ -1,5 +1,6 @@
-"""The hand model (section 8.2): feasible contacts against a brute-force check with
-shapely distances, and plans whose regions stay inside the feasible parts."""
+"""The hand model (section 8.2): feasible contacts (the tip's disc, and a finger's body
+held in the plane) against a brute-force check with shapely distances, and plans whose
+regions stay inside the feasible parts."""
 
 from __future__ import annotations
 
@@ -28,13 +29,18 @@ def brute_feasible(poly, hand, e, t):
         d = shapely.distance(poly.to_shapely(), shapely.Point(c))
         if d < hand.finger_radius * (1 - 1e-6):
             return False
+    if hand.finger_length > 0:          # the body behind the tip, along the normal
+        body = shapely.LineString([c, c + hand.finger_length * poly.normals[e]])
+        if shapely.distance(poly.to_shapely(), body) < hand.finger_radius * (1 - 1e-6):
+            return False
     return True
 
 
-@pytest.mark.parametrize("seed", range(4))
-def test_feasible_intervals_match_brute_force(seed):
+def _against_brute_force(seed: int) -> tuple[int, int]:
+    """Seeded polygons' feasible intervals against the brute-force check: the samples
+    checked, and those a tip alone takes that a body rules out."""
     rng = np.random.default_rng(seed)
-    checked = 0
+    checked = by_body = 0
     for _ in range(6):
         poly = random_polygon(rng, str(rng.choice(["star", "holes", "convex"])))
         rho = float(rng.uniform(0.01, 0.2)) * poly.size
@@ -42,7 +48,9 @@ def test_feasible_intervals_match_brute_force(seed):
         if rng.random() < 0.5:
             c = poly.centroid + rng.normal(size=2) * 0.2 * poly.size
             ws = (float(c[0]), float(c[1]), float(rng.uniform(0.3, 0.8)) * poly.size)
-        hand = Hand(workspace=ws, finger_radius=rho)
+        # half of them held in the plane: a body behind the tip
+        body = float(rng.uniform(0.1, 1.0)) * poly.size if rng.random() < 0.5 else 0.0
+        hand = Hand(workspace=ws, finger_radius=rho, finger_length=body)
         ivs = hand.feasible_intervals(poly)
         for e in np.flatnonzero(poly.usable):
             for t in np.linspace(0, poly.lengths[e], 41):
@@ -52,7 +60,21 @@ def test_feasible_intervals_match_brute_force(seed):
                     continue
                 assert inside == brute_feasible(poly, hand, e, t), (e, t, ivs[e])
                 checked += 1
-    assert checked > 500
+                if body and not inside:
+                    by_body += brute_feasible(poly, Hand(workspace=ws, finger_radius=rho),
+                                              e, t)
+    return checked, by_body
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_feasible_intervals_match_brute_force(seed):
+    assert _against_brute_force(seed)[0] > 500
+
+
+def test_a_body_in_the_plane_rules_out_contacts_the_tip_alone_would_take():
+    """Over the seeded polygons, some contacts a tip alone takes are ruled out by the
+    finger's body (the brute-force check sees them too: the test can fail)."""
+    assert sum(_against_brute_force(s)[1] for s in range(4)) > 10
 
 
 def test_slot_too_narrow_for_the_finger():

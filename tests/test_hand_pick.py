@@ -710,3 +710,73 @@ def test_point_fingers_on_bodies_are_collision_free_by_fcl(tmp_path, name, finge
         hits = sum(manager.in_collision_single(_finger(c + 4.0 * n, 4.0, 1.0, 40.0))
                    for p in bare for c, n in zip(p.contacts, p.normals, strict=True))
         assert hits > 0
+
+
+#: a C-shaped plate whose pocket (open to the left) takes a fingertip from above but
+#: not a finger lying in the plane across it
+C_PLATE = [(0, 0), (60, 0), (60, 40), (0, 40), (0, 30), (50, 30), (50, 10), (0, 10)]
+
+
+@pytest.mark.parametrize("part,fingers", [("c", 2), ("bracket", 2), ("cam", 3)])
+def test_fingers_held_in_the_plane_sweep_clear_of_the_part(tmp_path, part, fingers):
+    """--in-plane: every finger lying in the plate's plane along its contact's normal,
+    at sampled placements along its region (ends pulled in a thousandth, middle, seeded
+    points), swept from where it comes in to the contact, meets the part only there
+    (shapely: the capsule of its centres' segment, a millionth thinner, against the
+    outline); on the C plate the plans from above put a finger in the pocket, whose
+    sweep in the plane would cross the pocket's lip (the check can fail)."""
+    import json
+
+    from fcgrasp.apps.cli import main
+    from fcgrasp.io.parts import demo_part
+    from fcgrasp.io.schema import validate
+
+    src = tmp_path / "c.json"
+    src.write_text(json.dumps({"vertices": C_PLATE}))
+    name = str(src) if part == "c" else f"demo:{part}"
+    poly = fc.Polygon(C_PLATE) if part == "c" else demo_part(part)
+    shape = shapely.Polygon(poly.vertices, [h for h in getattr(poly, "holes", [])])
+    R, L, away = 3.0, 30.0, 20.0
+
+    def sweeps_clear(plan) -> bool:
+        for r, n in zip(plan.regions, plan.normals, strict=True):
+            r, n = np.asarray(r, float), np.asarray(n, float) / np.linalg.norm(n)
+            for t in (1e-3, 0.5, 1 - 1e-3, *np.random.default_rng(2).uniform(size=5)):
+                c = r[0] + t * (r[-1] - r[0]) + R * n
+                body = shapely.LineString([c, c + (L + away) * n]).buffer(R * (1 - 1e-6))
+                if body.intersection(shape).area > 1e-9 * shape.area:
+                    return False
+        return True
+
+    out = tmp_path / "plan.json"
+    assert main(["plan", name, "--fingers", str(fingers), "--mu", "0.5", "--hand",
+                 f"tip={R:g},length={L:g}", "--in-plane", "--thickness", "10", "--top", "6",
+                 "--json", str(out), "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    validate(doc)
+    assert doc["hand"]["in_plane"] is True and doc["grasps"]
+    for g in doc["grasps"]:
+        for tip, n in zip(g["fingertips"], g["normals"], strict=True):
+            assert tip["position"][2] == pytest.approx(5.0)
+            assert tip["approach"]["direction"][:2] == pytest.approx([-n[0], -n[1]])
+            assert tip["approach"]["distance"] == pytest.approx(away)
+    hand = fc.Hand(finger_radius=R, finger_length=L + away)
+    plans = fc.plan(poly, fingers=fingers, mu=0.5, top=6, hand=hand)
+    assert [list(p.edges) for p in plans] == [g["edges"] for g in doc["grasps"]]
+    assert all(sweeps_clear(p) for p in plans)
+    if part == "c":
+        above = fc.plan(poly, fingers=fingers, mu=0.5, top=6, hand=fc.Hand(finger_radius=R))
+        assert not all(sweeps_clear(p) for p in above)
+
+
+def test_in_plane_fingers_refuse_in_one_line(capsys):
+    from fcgrasp.apps.cli import main
+
+    for argv, words in ((["--in-plane"], "--hand"),
+                        (["--hand", "tip=3", "--in-plane", "--table", "--thickness", "6"],
+                         "off the table"),
+                        (["--gripper", "jaw", "--stroke", "5,50", "--pad", "8", "--in-plane"],
+                         "--in-plane")):
+        code = main(["plan", "demo:rectangle", "--mu", "0.5", *argv])
+        err = capsys.readouterr().err.strip().splitlines()
+        assert code == 2 and len(err) == 1 and words in err[0], err

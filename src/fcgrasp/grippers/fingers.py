@@ -495,7 +495,8 @@ def _no_jaw_options(options: Mapping[str, Any]) -> None:
         if options.get(key) is not None:
             raise ValueError(f"{opt} is an option of --gripper jaw")
     if options.get("hand") is None:
-        for opt, key in (("--thickness", "thickness"), ("--table", "table")):
+        for opt, key in (("--thickness", "thickness"), ("--table", "table"),
+                         ("--in-plane", "in_plane")):
             if options.get(key) is not None and options.get(key) is not False:
                 raise ValueError(f"{opt} is for a pick with a hand: give --hand too "
                                  f"(point fingers: --hand tip=R[,length=L])")
@@ -506,6 +507,10 @@ def _no_jaw_options(options: Mapping[str, Any]) -> None:
 
 #: The plate's thickness (millimetres) point fingers pick from above when none is given.
 DEFAULT_PLATE_MM = 5.0
+
+
+#: How far (millimetres) fingers held in the part's plane come in from.
+IN_PLANE_APPROACH_MM = 20.0
 
 
 def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
@@ -532,17 +537,24 @@ def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
         thickness = DEFAULT_PLATE_MM * per_mm
     elif not (math.isfinite(thickness) and thickness > 0):
         raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
+    in_plane = bool(options.get("in_plane"))
+    away = (IN_PLANE_APPROACH_MM if in_plane else 100.0) * per_mm
     scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
-                  approach=100.0 * per_mm, retreat=100.0 * per_mm)
+                  approach=away, retreat=away)
+    tips = replace(tips, in_plane=in_plane)
     reach = tips_reach(tips, scene)
     if isinstance(reach, str):
         raise ValueError(f"--hand: {reach}")
     return tips, scene
 
 
-def _hand(options: Mapping[str, Any], tips: FingerTips | None = None) -> Hand | None:
+def _hand(options: Mapping[str, Any], tips: FingerTips | None = None,
+          scene: Any = None) -> Hand | None:
     if tips is not None:
-        return Hand(workspace=options.get("workspace"), finger_radius=tips.radius)
+        # held in the plane: the body, and the way it comes in, clear of the part
+        body = tips.length + scene.approach if tips.in_plane else 0.0
+        return Hand(workspace=options.get("workspace"), finger_radius=tips.radius,
+                    finger_length=body)
     ws, radius = options.get("workspace"), options.get("finger_radius") or 0.0
     if ws is None and not radius:
         return None
@@ -574,7 +586,7 @@ def fingers_from_options(options: Mapping[str, Any]) -> _PointFingers:
     if mu < 0 or not math.isfinite(mu):
         raise ValueError(f"--mu must be a finite number >= 0, got {mu:g}")
     tips, scene = _tips(options)
-    gripper = point_fingers(fingers, mu, gravity, _hand(options, tips),
+    gripper = point_fingers(fingers, mu, gravity, _hand(options, tips, scene),
                             not options.get("single_edge", False))
     return replace(gripper, tips=tips, scene=scene) if tips is not None else gripper
 

@@ -311,13 +311,18 @@ class FingerTips:
     """Point fingers on finger bodies (the paper's chopsticks, section 8.2): each finger a
     vertical cylinder of ``radius`` (its tip: the contact is on its side, the section's
     disc of ``finger_radius``) and ``length`` from its flat end up to where the hand
-    holds it; nothing of the hand below that is modelled.  Lengths in the part's units
+    holds it; or, ``in_plane``, a cylinder of that radius lying in the part's plane along
+    its contact's outward normal, ``length`` long behind its round tip.  Nothing of the
+    hand beyond the fingers is modelled.  Lengths in the part's units
     (millimetres as given, :meth:`scaled` for others)."""
 
     radius: float
     length: float
     units: str = "mm"
     name: str = "fingertips"
+    #: held in the part's plane: each finger lies in it along its contact's outward
+    #: normal and comes in along the inward one (else: vertical, from above)
+    in_plane: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "radius", check_scalar(self.radius, "radius", positive=True))
@@ -331,7 +336,7 @@ class FingerTips:
     def to_dict(self) -> dict[str, Any]:
         return {"name": self.name, "kind": "fingertips", "units": self.units,
                 "tip_radius": self.radius, "finger_length": self.length,
-                "source": "parameters", "licence": ""}
+                "in_plane": self.in_plane, "source": "parameters", "licence": ""}
 
 
 def tips_from_params(text: str) -> FingerTips:

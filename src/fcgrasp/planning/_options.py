@@ -19,7 +19,7 @@ READING_OPTIONS = ("select", "units", "file_units", "flatten", "layer", "gap", "
 PLAN_OPTIONS = ("gripper", "stroke", "pad", "certify", "fingers", "mu", "gravity", "top",
                 "single_edge", "rank_by", "margin", "workspace", "finger_radius",
                 "max_memory", "distinct", "hand", "thickness", "table", "rest",
-                "rest_orientation")
+                "rest_orientation", "in_plane")
 
 
 #: The options of a request that bound the search: ``time_limit`` in seconds (None: the
@@ -70,7 +70,7 @@ _KINDS: dict[str, Any] = {
     "hand": "str", "rest": "int", "max_bytes": "int",
     "max_elements": "int", "max_vertices": "int",
     "com": ("floats", 2), "accel": ("floats", 2), "pose_sigma": ("floats", 3),
-    "rest_orientation": ("floats", 4),
+    "rest_orientation": ("floats", 4), "in_plane": "bool",
     "pixel_size": "float", "threshold": "float", "simplify": "float",
     "certify": "bool", "single_edge": "bool", "bound": "bool", "soft": "bool",
     "repair": "bool",

@@ -87,6 +87,7 @@ class PlanRequest:
     table: bool = False
     rest: int | None = None
     rest_orientation: tuple[float, float, float, float] | None = None
+    in_plane: bool = False
     max_memory: int | None = None
     time_limit: float | None = None
     distinct: float | None = None

@@ -203,7 +203,8 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
     """The parallel jaw of a plan request (``--gripper jaw``): ``stroke``, ``pad``,
     ``mu`` (default 0.3), ``certify`` (default True); none of the point fingers'
     options."""
-    for opt, given in (("--fingers", options.get("fingers") is not None),
+    for opt, given in (("--in-plane", bool(options.get("in_plane"))),
+                       ("--fingers", options.get("fingers") is not None),
                        ("--gravity", options.get("gravity") is not None),
                        ("--workspace", options.get("workspace") is not None),
                        ("--finger-radius", bool(options.get("finger_radius"))),
