@@ -418,3 +418,29 @@ def trimesh_contains(points, q):
 
     hull = trimesh.convex.convex_hull(points)
     return bool(abs(hull.nearest.signed_distance([q])[0]) <= 1e-9 or hull.contains([q])[0])
+
+
+def test_a_reports_fingertips_are_the_simulated_ones(tmp_path, monkeypatch):
+    """A plan with ``--hand tip=R`` is shaken with fingertips of that radius (the
+    MJCF's spheres, in metres), the report's settings say so, and its grasps hold."""
+    from fcgrasp.physics import _planar
+
+    seen = []
+    bodies = _planar._finger_bodies
+
+    def spy(points, normals, r, *a, **k):
+        seen.append(r)
+        return bodies(points, normals, r, *a, **k)
+
+    monkeypatch.setattr(_planar, "_finger_bodies", spy)
+    report = tmp_path / "plan.json"
+    out = tmp_path / "stress.json"
+    assert main(["plan", "demo:bracket", "--mu", "0.5", "--hand", "tip=2,length=30",
+                 "--in-plane", "--thickness", "10", "--top", "1", "--json", str(report),
+                 "--quiet"]) == 0
+    assert main(["simulate", str(report), "--samples", "2", "--directions", "1",
+                 "--workers", "1", "--json", str(out), "--quiet"]) == 0
+    doc = json.loads(out.read_text())
+    assert doc["settings"]["tip_radius"] == 2.0
+    assert seen and all(r == pytest.approx(2e-3) for r in seen)
+    assert doc["plans"][0]["held"] == doc["plans"][0]["runs"] == 2

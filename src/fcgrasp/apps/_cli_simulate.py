@@ -131,6 +131,16 @@ def _plans_of(args: Any) -> tuple[Any, list[Any], str]:
     return loaded.polygon, [grasp], loaded.units
 
 
+def _tip_radius(source: str) -> float | None:
+    """The fingertips' radius of a report planned with ``--hand tip=R`` (its units), or
+    None (the stress test's own)."""
+    report = _read_report(source)
+    hand = (report or {}).get("hand")
+    if isinstance(hand, dict) and hand.get("kind") == "fingertips":
+        return float(hand["tip_radius"])
+    return None
+
+
 def cmd_simulate(args: Any) -> int:
     import numpy as np
 
@@ -154,14 +164,16 @@ def cmd_simulate(args: Any) -> int:
     polygon, plans, units = _plans_of(args)
     if not plans:
         raise CliError(f"{args.source}: the report has no plan to simulate", "source")
+    tip = _tip_radius(args.source)
     results = simulate(polygon, plans, grip_force=args.grip_force, samples=args.samples,
                        directions=args.directions, seed=args.seed, units=units,
-                       workers=args.workers, control=args.control)
+                       workers=args.workers, control=args.control, tip_radius=tip)
     controls = control_runs(polygon, plans, grip_force=args.grip_force, seed=args.seed + 1,
-                            units=units)
+                            units=units, tip_radius=tip)
     doc = {"fcgrasp": __version__, "kind": "stress_test", "version": SIMULATE_VERSION,
            "units": units, "seed": args.seed, "grip_force_n": args.grip_force,
-           "settings": {"control": args.control, "slip_displacement": SLIP_DISPLACEMENT,
+           "settings": {"control": args.control, "tip_radius": tip,
+                        "slip_displacement": SLIP_DISPLACEMENT,
                         "slip_rotation_deg": SLIP_ROTATION_DEG, "engine": "mujoco"},
            "plans": results, "controls": controls}
     if args.sensitivity:
@@ -170,7 +182,8 @@ def cmd_simulate(args: Any) -> int:
         doc["sensitivity"] = sensitivity(
             polygon, plans, variants=[v for v in VARIANTS if v != "default"],
             grip_force=args.grip_force, samples=args.samples, directions=args.directions,
-            seed=args.seed, units=units, workers=args.workers, control=args.control)
+            seed=args.seed, units=units, workers=args.workers, control=args.control,
+            tip_radius=tip)
 
     def gif(out: Any) -> None:
         from ..physics import recorded_run

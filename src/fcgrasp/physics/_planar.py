@@ -189,7 +189,8 @@ def _mujoco() -> Any:
 # ----------------------------------------------------------------------------- grasps
 
 def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generator,
-                  normals: Any = None) -> list[tuple[FloatArray, FloatArray]]:
+                  normals: Any = None, tip: float | None = None
+                  ) -> list[tuple[FloatArray, FloatArray]]:
     """``count`` grasps of one point per region (a polyline along the boundary): the
     regions' starts, their ends, their middles, then seeded points; each with the
     outward normal of the edge it lies on.  Points are kept three fingertip radii off
@@ -197,9 +198,11 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
     (a third of the edge at most): a fingertip on a corner touches both edges, where the
     certificate reads the contact on one.  A region that is a point (a given contact)
     keeps its own normal (``normals``, one per region), as does a region no longer than
-    six fingertip radii (a corner)."""
+    six fingertip radii (a corner).  ``tip``: the fingertips' radius (part units;
+    default :data:`TIP_RADIUS` of the part's size)."""
     import shapely
 
+    radius = TIP_RADIUS * polygon.size if tip is None else float(tip)
     poly = shapely.Polygon(polygon.vertices, list(polygon.holes))
     eps = ON_EDGE_TOL * polygon.size
     lines = [np.asarray(r, float) for r in regions]
@@ -211,7 +214,7 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
         pts, nrm = [], []
         for j, (r, c) in enumerate(zip(lines, cum, strict=True)):
             L = c[-1]
-            if L <= 6 * TIP_RADIUS * polygon.size and normals is not None:
+            if L <= 6 * radius and normals is not None:
                 # a region no longer than a fingertip: a corner, held with the plan's
                 # normal there (a fingertip on a corner pushes along the fan's)
                 given = np.asarray(normals[j], float)
@@ -221,7 +224,7 @@ def sample_grasps(polygon: Any, regions: Any, count: int, rng: np.random.Generat
             s = (u if u is not None else float(rng.uniform())) * L
             s = min(max(s, eps), L - eps) if L > 2 * eps else L / 2
             i = int(np.clip(np.searchsorted(c, s, side="right") - 1, 0, len(r) - 2))
-            off = min(3 * TIP_RADIUS * polygon.size, (c[i + 1] - c[i]) / 3)
+            off = min(3 * radius, (c[i + 1] - c[i]) / 3)
             s = min(max(s, c[i] + off), c[i + 1] - off)
             t = (s - c[i]) / max(c[i + 1] - c[i], TINY)
             p = r[i] + t * (r[i + 1] - r[i])
@@ -466,8 +469,8 @@ def _settle(model: Any, preload: FloatArray, kp: FloatArray) -> Any:
 
 
 def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
-           preload: FloatArray, metres: float, pads: Any = None, balance: bool = False
-           ) -> tuple[Any, FloatArray]:
+           preload: FloatArray, metres: float, pads: Any = None, balance: bool = False,
+           tip: float | None = None) -> tuple[Any, FloatArray]:
     """The MJCF model: the part's triangles (a constrained Delaunay triangulation)
     extruded, a finger per contact (force controlled where ``balance``; or, with
     ``pads`` = ``(jaw, theta, offset, top, bottom, grip)``, the jaw's two flat pads); and
@@ -494,7 +497,7 @@ def _model(polygon: Any, points: FloatArray, normals: FloatArray, mu: float,
         assets.append(f'<mesh name="p{k}" inertia="shell" vertex="{coords}"/>')
         geoms.append(f'<geom type="mesh" mesh="p{k}" mass="0" {friction}/>')
     mass, com, inertia = _prism_inertia(tris, h)
-    r = TIP_RADIUS * size
+    r = TIP_RADIUS * size if tip is None else float(tip) * metres
     kp = preload / (SERVO_COMPLIANCE * size)
     unit = normals / np.maximum(np.linalg.norm(normals, axis=1), TINY)[:, None]
     fingers, actuators = _finger_bodies(np.c_[points * metres, np.zeros(len(points))],
@@ -565,7 +568,8 @@ def _about_origin(polygon: Any, u: FloatArray) -> FloatArray:
 def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
                 grip_force: float = 10.0, ramp: float = 3.0, units: str = "mm",
                 certified: float | None = None, record: bool = False,
-                control: str = "balance", variant: str = "default") -> StressResult:
+                control: str = "balance", variant: str = "default",
+                tip_radius: float | None = None) -> StressResult:
     """One grasp (points and outward normals, part units) under a disturbance of
     ``direction`` (force and torque per newton, torque in N x part unit) ramped to
     ``ramp`` times the certified payload (or to ``grip_force`` where that is 0): the
@@ -575,7 +579,8 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     forces are statically indeterminate, and the certificate is that of the best ones)
     or ``"servo"`` (stiff position servos: the load shared as the stiffness of contacts
     and servos shares it).  ``variant``: the simulator's settings, varied
-    (:data:`VARIANTS`).
+    (:data:`VARIANTS`).  ``tip_radius``: the fingertips' (part units; default
+    :data:`TIP_RADIUS` of the part's size; a report's ``--hand tip=R``).
     ``record``: keep the part's pose and the load every 5 ms (``history``: time, load,
     displacement, rotation in degrees, and the displacement's x and y)."""
     from ..model.loads import Load, grasp_payload
@@ -601,7 +606,8 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
                                   ramp * cert)
         if len(schedule[0]) == 0:
             schedule = None
-    model, kp = _model(polygon, p, n, mu, preload, metres, balance=schedule is not None)
+    model, kp = _model(polygon, p, n, mu, preload, metres, balance=schedule is not None,
+                       tip=tip_radius)
     vary(model, variant)
     out = _run(model, polygon, preload, kp, metres, u, cert, ramp, grip_force, record, p,
                n, preload, schedule)

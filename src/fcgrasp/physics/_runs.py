@@ -87,8 +87,8 @@ def escape_direction(polygon: Any, points: Any, normals: Any, mu: float) -> Floa
 
 
 def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int = 0,
-                 units: str = "mm", count: int = 3, variant: str = "default"
-                 ) -> list[dict[str, Any]]:
+                 units: str = "mm", count: int = 3, variant: str = "default",
+                 tip_radius: float | None = None) -> list[dict[str, Any]]:
     """The controls of each plan (a plan object or a report's grasp): ``count`` of its
     grasps made not force closure (:func:`control`; a jaw's poses and a solid's grasps
     without friction), each pushed along a wrench it does not resist; per control its
@@ -121,10 +121,12 @@ def control_runs(part: Any, plans: Any, *, grip_force: float = 10.0, seed: int =
             continue
         get: Callable[[str], Any] = plan.__getitem__ if isinstance(plan, dict) else \
             partial(getattr, plan)
-        for pts, nrm in sample_grasps(part, get("regions"), count, rng, get("normals")):
+        for pts, nrm in sample_grasps(part, get("regions"), count, rng, get("normals"),
+                                      tip_radius):
             cp, cn, cmu = control(pts, nrm, float(get("mu")))
             add(r, cmu, stress_test(part, cp, cn, cmu, escape_direction(part, cp, cn, cmu),
-                                    grip_force=grip_force, units=units, variant=variant))
+                                    grip_force=grip_force, units=units, variant=variant,
+                                    tip_radius=tip_radius))
     return out
 
 
@@ -177,6 +179,7 @@ def sample_poses(box: tuple[tuple[float, float], tuple[float, float]], count: in
 def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int = 20,
              directions: int = 2, seed: int = 0, units: str = "mm",
              workers: int | None = None, control: str = "balance", variant: str = "default",
+             tip_radius: float | None = None,
              progress: Callable[[int, int], None] | None = None) -> list[dict[str, Any]]:
     """The stress test of each plan (a :class:`~fcgrasp.GraspPlan` of point fingers, a
     :class:`~fcgrasp.JawPlan`, or a report's grasp of either): ``samples`` grasps in
@@ -188,7 +191,8 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     part's fingers and pads push (:func:`stress_test`: ``"balance"``, the forces that
     balance the load they measure, or ``"servo"``, stiff position servos); a solid's
     fingers are servos.  ``variant``: the simulator's settings, varied
-    (:data:`VARIANTS`; :func:`sensitivity` runs them all)."""
+    (:data:`VARIANTS`; :func:`sensitivity` runs them all).  ``tip_radius``: a planar
+    part's fingertips' (part units; a report's ``--hand tip=R``)."""
     check_int(samples, "samples", minimum=1)
     if control not in ("balance", "servo"):
         raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
@@ -229,10 +233,11 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
             raise ArgumentError("the stress test runs point fingers on planar parts: "
                                 f"plan {r + 1} is not one", "plans")
         given = plan["normals"] if isinstance(plan, dict) else plan.normals
-        for pts, nrm in sample_grasps(polygon, regions, samples, rng, given):
+        for pts, nrm in sample_grasps(polygon, regions, samples, rng, given, tip_radius):
             for u in _directions(rng, directions, polygon.size):
                 jobs.append(("fingers", (polygon, pts, nrm, mu, u, grip_force, 3.0, units),
-                             {"control": control, "variant": variant}))
+                             {"control": control, "variant": variant,
+                              "tip_radius": tip_radius}))
                 owners.append(r)
     results: list[StressResult | None] = []
     if workers == 1 or len(jobs) < 4:
@@ -280,7 +285,7 @@ def sensitivity(part: Any, plans: Any, *, variants: Any = None, grip_force: floa
         ratios = [(g["slip_load"] if g["slip_load"] is not None else
                    3.0 * g["certified_payload"]) / g["certified_payload"] for g in grasps]
         ctl = control_runs(part, plans, grip_force=grip_force, seed=seed + 1, units=units,
-                           variant=name)
+                           variant=name, tip_radius=options.get("tip_radius"))
         rows.append({"variant": name, "change": VARIANTS[name],
                      "runs": sum(o["runs"] for o in out),
                      "held": sum(o["held"] for o in out),
