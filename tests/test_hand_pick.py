@@ -606,6 +606,7 @@ def test_a_solid_rests_in_the_orientation_given(tmp_path, capsys):
     assert _placements_clear(solid, hand, plans, rest, 6, 9) >= 20
     capsys.readouterr()
     for argv, words in ((["--table", "--rest-orientation", "0,0,0,0"], "not zero"),
+                        (["--table", "--rest-orientation", "1,2"], "--rest-orientation must"),
                         (["--rest-orientation", "0,0,0,1"], "--table"),
                         (["--table", "--rest", "0", "--rest-orientation", "0,0,0,1"],
                          "give one")):
@@ -637,6 +638,7 @@ def test_the_explorers_stress_test_refuses_what_it_cannot_run_in_one_line():
     (["--hand", "tip=2", "--finger-radius", "2"], "--finger-radius", "--hand tip="),
     (["--hand", "tip=2,length=3", "--thickness", "6"], "--hand", "long"),
     (["--hand", "tip=2,width=3"], "--hand", "tip=R"),
+    (["--hand", "tip=-1"], "--hand", "> 0, got 'tip=-1'"),
     (["--hand", "tip=2", "--rest", "1"], "--rest", "--gripper jaw")])
 def test_point_fingers_refuse_a_hands_options_in_one_line(capsys, argv, field, hint):
     from fcgrasp.apps.cli import main

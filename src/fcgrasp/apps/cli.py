@@ -55,7 +55,7 @@ def plan_options(args: Any) -> dict[str, Any]:
     for key, n in (("gravity", 2), ("stroke", 2), ("workspace", 3), ("com", 2),
                    ("accel", 2), ("pose_sigma", 3), ("rest_orientation", 4)):
         if options[key] is not None:
-            options[key] = _floats(options[key], n, "--" + key)
+            options[key] = _floats(options[key], n, "--" + key.replace("_", "-"))
     if options["max_memory"] is not None:
         options["max_memory"] = _memory(options["max_memory"])
     if options["max_bytes"] is not None:

@@ -528,7 +528,8 @@ def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
     try:
         tips = tips_from_params(str(options["hand"]))
     except ValueError as exc:
-        raise ValueError(f"--{exc} (the jaw's hands need --gripper jaw)") from None
+        hint = "" if "tip=" in str(options["hand"]) else " (the jaw's hands need --gripper jaw)"
+        raise ValueError(f"--{exc}{hint}") from None
     units = options.get("units") or "mm"
     per_mm = 1.0 / MM_PER[units]
     tips = tips.scaled(per_mm, units)
