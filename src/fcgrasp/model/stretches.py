@@ -266,12 +266,13 @@ class StretchSearch:
         # the highest floor whose collection did not fit the memory budget: a run that
         # needs to collect down to it or below cannot be made
         overflow = -np.inf
-        # the collection's cap for speed (COLLECT_CAP): the highest floor whose
-        # collection went over it, the lowest floor a run found fewer than ``top`` at,
-        # and whether the floor now tried is one the answer needs (a run's ``top``-th
-        # found below its floor: no higher floor will do)
+        # the collection's cap for speed (COLLECT_CAP; two fingers' rounds: three
+        # fingers' rank by their cap, and higher floors only repeat their collections):
+        # the highest floor whose collection went over it, the lowest floor a run found
+        # fewer than ``top`` at, and whether the floor now tried is one the answer needs
+        # (a run's ``top``-th found below its floor: no higher floor will do)
         if shared and memo.prepared is None:
-            memo.cap = COLLECT_CAP
+            memo.cap = None if third else COLLECT_CAP
         over_cap, too_few, needed, tries = -np.inf, np.inf, False, 0
         while True:
             if shared:
@@ -384,9 +385,9 @@ class _WidestFree:
 MEMO_SHARE = 0.5
 
 
-#: The most configurations a distinct round collects at once (a fraction of a second):
-#: where more reach its floor, a higher floor is tried (half way up to one that found
-#: too few), until the two are within :data:`CAP_CLOSE` of each other; then the
+#: The most configurations a two-finger distinct round collects at once (a fraction of a
+#: second): where more reach its floor, a higher floor is tried (half way up to one that
+#: found too few), until the two are within :data:`CAP_CLOSE` of each other; then the
 #: collection is made in full.  A smooth 10,000-edge outline at mu 1.0 has fifteen
 #: million configurations within a tenth of its second alternative.
 COLLECT_CAP = 500_000
