@@ -521,7 +521,7 @@ def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
     from ..io.units import MM_PER
     from ..model.hands import tips_from_params
     from ._tips_pick import tips_reach
-    from .jaw._pick import Scene
+    from .jaw._pick import plate_scene
 
     if options.get("finger_radius"):
         raise ValueError("--finger-radius is the hand's tip: give --hand tip=R alone")
@@ -533,15 +533,9 @@ def _tips(options: Mapping[str, Any]) -> tuple[FingerTips | None, Any]:
     units = options.get("units") or "mm"
     per_mm = 1.0 / MM_PER[units]
     tips = tips.scaled(per_mm, units)
-    thickness = options.get("thickness")
-    if thickness is None:
-        thickness = DEFAULT_PLATE_MM * per_mm
-    elif not (math.isfinite(thickness) and thickness > 0):
-        raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
     in_plane = bool(options.get("in_plane"))
-    away = (IN_PLANE_APPROACH_MM if in_plane else 100.0) * per_mm
-    scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
-                  approach=away, retreat=away)
+    scene = plate_scene(options, DEFAULT_PLATE_MM * per_mm, per_mm,
+                        IN_PLANE_APPROACH_MM if in_plane else 100.0)
     tips = replace(tips, in_plane=in_plane)
     reach = tips_reach(tips, scene)
     if isinstance(reach, str):

@@ -91,6 +91,14 @@ def tool_rotation(closing: Any, approach: Any) -> np.ndarray:
     return np.stack([np.cross(y, z), y, z], axis=1)
 
 
+def rotation(q: Any) -> np.ndarray:
+    """The rotation matrix of a quaternion ``(x, y, z, w)`` (made unit)."""
+    x, y, z, w = np.asarray(q, float) / np.linalg.norm(np.asarray(q, float))
+    return np.array([[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
+                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
+                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]])
+
+
 def quaternion(R: Any) -> tuple[float, float, float, float]:
     """The unit quaternion ``(x, y, z, w)`` of a rotation matrix (``w >= 0``), by the
     largest of its four squared components (exact to rounding)."""

@@ -28,7 +28,8 @@ from ..core._checks import FloatArray, check_scalar
 from ..core.tolerances import STRIP_TOL
 
 __all__ = ["HandBox", "ParallelHand", "HANDS", "hand_named", "hand_from_params",
-           "hand_description", "hand_from_description", "FingerTips", "tips_from_params"]
+           "hand_description", "hand_from_description", "FingerTips", "tips_from_params",
+           "params_of"]
 
 
 #: Metres per millimetre (a finger joint's unit per the hand's).
@@ -339,13 +340,19 @@ class FingerTips:
                 "in_plane": self.in_plane, "source": "parameters", "licence": ""}
 
 
-def tips_from_params(text: str) -> FingerTips:
-    """``--hand tip=R[,length=L]`` of point fingers (millimetres; the length 50 by
-    default)."""
+def params_of(text: str) -> dict[str, str]:
+    """The ``key=value`` pairs of a comma-separated ``--hand`` parameter form."""
     given: dict[str, str] = {}
     for item in str(text).split(","):
         key, _, value = item.partition("=")
         given[key.strip()] = value.strip()
+    return given
+
+
+def tips_from_params(text: str) -> FingerTips:
+    """``--hand tip=R[,length=L]`` of point fingers (millimetres; the length 50 by
+    default)."""
+    given = params_of(text)
     if set(given) - {"tip", "length"} or "tip" not in given:
         raise ValueError(f"hand of point fingers must be tip=R[,length=L] (millimetres), "
                          f"got {text!r}")

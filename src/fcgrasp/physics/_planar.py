@@ -431,12 +431,27 @@ def _finger_bodies(points: FloatArray, normals: FloatArray, r: float, kp: FloatA
     return bodies, actuators
 
 
-def vary(model: Any, variant: str) -> Any:
-    """``model`` with the setting of ``variant`` (a key of :data:`VARIANTS`) changed."""
-    mujoco = _mujoco()
+def check_variant(variant: str) -> str:
+    """``variant`` where it is a key of :data:`VARIANTS`, else an ``ArgumentError``."""
     if variant not in VARIANTS:
         raise ArgumentError(f"variant must be one of {', '.join(VARIANTS)}, not "
                             f"{variant!r}", "variant")
+    return variant
+
+
+def check_control(control: str) -> str:
+    """``control`` where it is ``"balance"`` or ``"servo"`` (:func:`stress_test`), else
+    an ``ArgumentError``."""
+    if control not in ("balance", "servo"):
+        raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
+                            "control")
+    return control
+
+
+def vary(model: Any, variant: str) -> Any:
+    """``model`` with the setting of ``variant`` (a key of :data:`VARIANTS`) changed."""
+    mujoco = _mujoco()
+    check_variant(variant)
     if variant == "soft contacts":
         model.geom_solref[:, 0] *= 4
     elif variant == "fine steps":
@@ -548,21 +563,29 @@ def _pad_bodies(polygon: Any, pads: Any, metres: float, h: float, friction: str,
     return bodies, actuators
 
 
-def _balancing(control: str, mu: float, cert: float) -> bool:
-    """Whether the fingers balance the load (``control``, :func:`stress_test`):
-    ``"balance"`` where there is friction and a positive certificate (nothing to
-    balance otherwise)."""
-    if control not in ("servo", "balance"):
-        raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
-                            "control")
-    return cert > 0 and mu > 0 and control != "servo"
-
-
-def _about_origin(polygon: Any, u: FloatArray) -> FloatArray:
-    """A disturbance (force at the part's centroid and torque, per newton) as a wrench
-    about the origin."""
+def _schedule(control: str, mu: float, cert: float, polygon: Any, points: FloatArray,
+              normals: FloatArray, limits: FloatArray, u: FloatArray, top: float,
+              **fingers: Any) -> tuple[FloatArray, FloatArray] | None:
+    """The balancing fingers' forces along the ramp to ``top`` (:func:`balance_forces`,
+    ``fingers`` its ``fingers`` and ``axes``) where ``control`` is ``"balance"``, there
+    is friction and a positive certificate, and some level balances; else None (the
+    fingers on servos)."""
+    if check_control(control) == "servo" or not (cert > 0 and mu > 0):
+        return None
     cx, cy = (float(v) for v in polygon.centroid)
-    return np.array([u[0], u[1], u[2] + cx * u[1] - cy * u[0]])
+    wrench = np.array([u[0], u[1], u[2] + cx * u[1] - cy * u[0]])   # about the origin
+    reached, forces = balance_forces(points, normals, mu, limits, wrench, top, **fingers)
+    return (reached, forces) if len(reached) else None
+
+
+def _unit_load(polygon: Any, u: FloatArray) -> Any:
+    """A disturbance of one newton along ``u`` (a force at the part's centroid and a
+    torque) as the certificate takes it (:class:`fcgrasp.Load`)."""
+    from ..model.loads import Load
+
+    cx, cy = (float(v) for v in polygon.centroid)
+    return Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
+                torque=(float(u[2]), float(u[2])))
 
 
 def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: Any,
@@ -583,7 +606,7 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     :data:`TIP_RADIUS` of the part's size; a report's ``--hand tip=R``).
     ``record``: keep the part's pose and the load every 5 ms (``history``: time, load,
     displacement, rotation in degrees, and the displacement's x and y)."""
-    from ..model.loads import Load, grasp_payload
+    from ..model.loads import grasp_payload
 
     p, n = np.asarray(points, float), np.asarray(normals, float)
     n = n / np.linalg.norm(n, axis=1)[:, None]
@@ -596,16 +619,9 @@ def stress_test(polygon: Any, points: Any, normals: Any, mu: float, direction: A
     elif certified is not None:
         cert = float(certified)
     else:
-        cx, cy = (float(v) for v in polygon.centroid)
-        load = Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
-                    torque=(float(u[2]), float(u[2])))
-        cert = float(grasp_payload(p, -n, mu, load, force_limit=list(preload)).scale)
-    schedule = None
-    if _balancing(control, mu, cert):
-        schedule = balance_forces(p, n, mu, 2 * preload, _about_origin(polygon, u),
-                                  ramp * cert)
-        if len(schedule[0]) == 0:
-            schedule = None
+        cert = float(grasp_payload(p, -n, mu, _unit_load(polygon, u),
+                                   force_limit=list(preload)).scale)
+    schedule = _schedule(control, mu, cert, polygon, p, n, 2 * preload, u, ramp * cert)
     model, kp = _model(polygon, p, n, mu, preload, metres, balance=schedule is not None,
                        tip=tip_radius)
     vary(model, variant)
@@ -721,7 +737,7 @@ def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, directi
     ``control`` and ``variant`` as :func:`stress_test`'s (``"balance"``: the pads
     balance the load, each pushing up to twice the grip force).
     None where the pose does not hold by the jaw's own model."""
-    from ..model.loads import Load, grasp_payload
+    from ..model.loads import grasp_payload
 
     got = jaw_contacts(polygon, jaw, theta, offset)
     if got is None:
@@ -730,20 +746,13 @@ def jaw_stress_test(polygon: Any, jaw: Any, theta: float, offset: float, directi
     mu_v = float(jaw.mu if mu is None else mu)
     u = np.asarray(direction, float)
     per = [grip_force / int(np.sum(pad == k)) for k in pad]
-    cx, cy = (float(v) for v in polygon.centroid)
-    load = Load(1.0, com=(cx, cy), gravity=(float(u[0]), float(u[1])),
-                torque=(float(u[2]), float(u[2])))
-    cert = float(grasp_payload(pts, -nrm, mu_v, load, force_limit=per).scale) \
-        if mu_v > 0 else 0.0
+    cert = float(grasp_payload(pts, -nrm, mu_v, _unit_load(polygon, u),
+                               force_limit=per).scale) if mu_v > 0 else 0.0
     metres = _METRES.get(units, _METRES["mm"])
     preload = np.full(2, float(grip_force))
-    schedule = None
-    if _balancing(control, mu_v, cert):
-        closing = np.array([math.cos(theta), math.sin(theta)])
-        schedule = balance_forces(pts, nrm, mu_v, 2 * preload, _about_origin(polygon, u),
-                                  ramp * cert, fingers=pad, axes=[-closing, closing])
-        if len(schedule[0]) == 0:
-            schedule = None
+    closing = np.array([math.cos(theta), math.sin(theta)])
+    schedule = _schedule(control, mu_v, cert, polygon, pts, nrm, 2 * preload, u,
+                         ramp * cert, fingers=pad, axes=[-closing, closing])
     model, kp = _jaw_model(polygon, jaw, theta, offset, top, bottom, mu_v, grip_force,
                            metres, balance=schedule is not None)
     vary(model, variant)

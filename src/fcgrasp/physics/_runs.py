@@ -18,6 +18,8 @@ from ._planar import (
     StressResult,
     _edges,
     _wrench_dict,
+    check_control,
+    check_variant,
     jaw_contacts,
     jaw_stress_test,
     sample_grasps,
@@ -194,12 +196,8 @@ def simulate(polygon: Any, plans: Any, *, grip_force: float = 10.0, samples: int
     (:data:`VARIANTS`; :func:`sensitivity` runs them all).  ``tip_radius``: a planar
     part's fingertips' (part units; a report's ``--hand tip=R``)."""
     check_int(samples, "samples", minimum=1)
-    if control not in ("balance", "servo"):
-        raise ArgumentError(f"control must be 'balance' or 'servo', not {control!r}",
-                            "control")
-    if variant not in VARIANTS:
-        raise ArgumentError(f"variant must be one of {', '.join(VARIANTS)}, not "
-                            f"{variant!r}", "variant")
+    check_control(control)
+    check_variant(variant)
     check_int(directions, "directions", minimum=1)
     check_scalar(grip_force, "grip_force", positive=True)
     rng = np.random.default_rng(check_int(seed, "seed", minimum=0))

@@ -513,10 +513,9 @@ function drawJaw(plan) {
 // a real hand seen from above at the box's centre pose (the report's hand: its boxes in
 // the tool frame at its largest opening; the fingers moved to the grasp's opening)
 function drawHand(plan, hand, g) {
-  const [x, y, z, w] = plan.pose.orientation, p = plan.pose.position;
-  // the rotation's first two rows (the plane's x and y of each tool axis)
-  const R = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-             [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)]];
+  const p = plan.pose.position;
+  // the rotation's first two rows: the plane's x and y of each tool axis
+  const R = Solid3D.rotation(plan.pose.orientation);
   const opening = plan.contacts.a.stop - plan.contacts.b.stop;
   const nPalm = hand.boxes.length - 2 * hand.finger_boxes;
   hand.boxes.forEach((b, k) => {

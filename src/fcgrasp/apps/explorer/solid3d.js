@@ -363,6 +363,7 @@ const Solid3D = (() => {
     project,
     pixel,
     triangulate,
+    rotation,
   };
 })();
 

@@ -32,6 +32,7 @@ independent collision library (python-fcl through trimesh) on the extruded plate
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -41,7 +42,7 @@ from ...core._checks import check_scalar
 from ...core.tolerances import TOL
 from ...model.hands import ParallelHand
 
-__all__ = ["Scene", "TopPick", "top_pick"]
+__all__ = ["Scene", "TopPick", "top_pick", "plate_scene"]
 
 
 @dataclass(frozen=True)
@@ -91,6 +92,21 @@ class Scene:
                 "rest": self.rest if self.orientation is None else None,
                 "rest_orientation": None if self.orientation is None
                 else list(self.orientation)}
+
+
+def plate_scene(options: Any, thickness: float, per_mm: float, away_mm: float = 100.0,
+                **placed: Any) -> Scene:
+    """The scene of a request's pick (``--thickness``, by default ``thickness``, the
+    part's units; ``--table``): a 1 mm clearance and ``away_mm`` of approach and retreat
+    (``per_mm``: the part's units per millimetre); ``placed``: a solid's ``rest`` or
+    ``orientation``."""
+    given = options.get("thickness")
+    if given is not None:
+        if not (math.isfinite(given) and given > 0):
+            raise ValueError(f"--thickness must be a finite number > 0, got {given:g}")
+        thickness = given
+    return Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
+                 approach=away_mm * per_mm, retreat=away_mm * per_mm, **placed)
 
 
 @dataclass(frozen=True)

@@ -21,7 +21,7 @@ from ...model.distinct import (
     distinct_boxes,
     grip_symmetries,
 )
-from ...model.hands import ParallelHand, hand_from_params, hand_named
+from ...model.hands import ParallelHand, hand_from_params, hand_named, params_of
 from ...model.polygon import Polygon
 from ...model.regions import DEFAULT_MARGIN_DEG
 from ..base import DEFAULT_MU, register
@@ -40,7 +40,7 @@ from ._grid import (
     _grid,
     _measure,
 )
-from ._pick import Scene, TopPick, top_pick
+from ._pick import Scene, TopPick, plate_scene, top_pick
 from ._poses import (
     OFFSET_STEPS,
     THETA_STEP_DEG,
@@ -238,10 +238,7 @@ def _hand_of(text: str) -> ParallelHand:
     ``stroke=MIN:MAX,pad=W,height=H,thickness=T[,length=L]`` (millimetres,
     :func:`~fcgrasp.model.hands.hand_from_params`)."""
     if "=" in text:
-        given: dict[str, str] = {}
-        for item in text.split(","):
-            key, _, value = item.partition("=")
-            given[key.strip()] = value.strip()
+        given = params_of(text)
         known = {"stroke", "pad", "height", "thickness", "length"}
         if set(given) - known or not {"stroke", "pad", "height", "thickness"} <= set(given):
             raise ValueError(f"--hand parameters are stroke=MIN:MAX,pad=W,height=H,"
@@ -279,11 +276,6 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
     hand = _hand_of(str(name))
     per_mm = 1.0 / MM_PER[options.get("units") or "mm"]
     hand = hand.scaled(per_mm, options.get("units") or "mm")
-    thickness = options.get("thickness")
-    if thickness is None:
-        thickness = hand.pad_height
-    elif not (math.isfinite(thickness) and thickness > 0):
-        raise ValueError(f"--thickness must be a finite number > 0, got {thickness:g}")
     rest, turned = options.get("rest"), options.get("rest_orientation")
     for opt, given in (("--rest", rest), ("--rest-orientation", turned)):
         if given is not None and not options.get("table"):
@@ -291,9 +283,8 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
     if rest is not None and turned is not None:
         raise ValueError("--rest and --rest-orientation both place the part on the table: "
                          "give one")
-    scene = Scene(thickness, table=bool(options.get("table")), clearance=1.0 * per_mm,
-                  approach=100.0 * per_mm, retreat=100.0 * per_mm,
-                  rest=0 if rest is None else rest, orientation=turned)
+    scene = plate_scene(options, hand.pad_height, per_mm, rest=0 if rest is None else rest,
+                        orientation=turned)
     return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 

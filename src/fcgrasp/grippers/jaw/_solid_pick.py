@@ -67,11 +67,10 @@ def _rest(solid: Any, rest: int, orientation: Any = None) -> tuple[np.ndarray, f
     lowered onto the table (its likelihood None: given, not computed)."""
     mesh = solid.mesh.copy()
     if orientation is not None:
-        x, y, z, w = (float(v) for v in orientation)
+        from ...io.moveit import rotation
+
         T = np.eye(4)
-        T[:3, :3] = [[1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-                     [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-                     [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)]]
+        T[:3, :3] = rotation(orientation)
         T[2, 3] = -float((mesh.vertices @ T[:3, :3].T)[:, 2].min())
         return T, None
     transforms, probs = mesh.compute_stable_poses()
