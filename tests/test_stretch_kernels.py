@@ -972,3 +972,38 @@ def test_a_collection_read_in_blocks_of_rows_is_the_whole_one(seed):
             assert len(calls) == -(-ring.m // _stretch_kernels.COLLECT_ROWS) > 1
             for w, b in zip(whole[1:], blocks[1:], strict=True):
                 np.testing.assert_array_equal(w, b)
+
+
+@pytest.mark.parametrize("seed", seeds(6, 60))
+def test_a_collection_passing_over_copies_in_runs_is_the_one_read_start_by_start(seed):
+    """The compiled collection of a distinct round passes over the starts of stretch 2
+    whose every stretch is a kept plan's copy in runs (``gallop``, the default): it
+    gives the configurations, in order, of the collection that reads every start (the
+    reference), at floors around the kept plans' lengths, with one kept plan or two
+    (the second the first shifted along both rings, or the second best), at fractions
+    where copies are rare and common."""
+    rng = np.random.default_rng(seed)
+    kind = str(rng.choice(["ellipse", "star", "cam"]))
+    poly = smooth_outline(rng, kind, int(rng.integers(300, 800)))
+    ss = S.StretchSearch(poly, float(rng.uniform(0.2, 1.0)), 0.5)
+    found = ss.pairs(top=2)
+    kept = [(p.regions, p.region_edges) for p in found[:int(rng.integers(1, 3))]]
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    excl = X._Exclusion(ss.rings, poly, kept, fraction)
+    ring = ss.rings[0]
+    passed = 0
+    for floor in found[0].min_length * rng.uniform(0.3, 1.0, 3):
+        copies = excl.copy_columns(ss.rings, 0, 0, float(floor))
+        assert copies is not None
+        ex, exs = copies
+        for sigma in (1.0, -1.0):
+            ptr, first, last = ss.runs[0, 0][sigma]
+            args = (ptr, first, last, ring.U, ring.U, ring.m, ring.m, float(floor), True,
+                    True, 0.0, 1)
+            runs = _stretch_kernels.windows(*args, ex=ex, exs=exs)
+            each = _stretch_kernels.windows(*args, ex=ex, exs=exs, gallop=False)
+            for a, b in zip(runs[1:], each[1:], strict=True):
+                np.testing.assert_array_equal(a, b)
+            every = _stretch_kernels.windows(*args)
+            passed += every[1].size - each[1].size
+    assert passed > 0

@@ -442,6 +442,53 @@ def _copy_side(a0: float, a1: float, ex: Any, exs: Any, side: int, c: int) -> bo
     return bool(ta < exs[4] and ex[u + 1, c] - ex[u, c] > ta)
 
 
+def _copy_run(p: int, room: int, ext_s: float, run_end: int, Ub: Any, mb: int, ex: Any,
+              exs: Any, app: Any, n_app: int) -> int:
+    """How many starts after ``p`` (at most ``room``) have every stretch 2 a copy: the
+    largest count ``d`` whose span from ``p``'s start to the farthest end of a stretch 2
+    from ``p + d`` is a copy (:func:`_copy_span`; the ends only grow with the start),
+    by doubling, then bisection."""
+    c0 = Ub[(p - 1) % mb]
+    if room <= 0 or not _copy_until(p, 1, c0, ext_s, run_end, Ub, mb, ex, exs, app, n_app):
+        return 0
+    lo, d = 1, 2
+    while d <= room and _copy_until(p, d, c0, ext_s, run_end, Ub, mb, ex, exs, app, n_app):
+        lo, d = d, 2 * d
+    hi = min(d, room + 1)               # a copy up to lo; not to hi, or hi past room
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if _copy_until(p, mid, c0, ext_s, run_end, Ub, mb, ex, exs, app, n_app):
+            lo = mid
+        else:
+            hi = mid
+    return lo
+
+
+def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: Any, mb: int,
+                ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+    """Whether every stretch 2 from the starts ``p .. p + d`` is a copy: they lie in the
+    span from ``p``'s start ``c0`` to the last edge a stretch from ``p + d`` reaches
+    (:func:`_window_row`'s ``q_hi``: as far as ``ext_s`` past its start's edge, within
+    the run's end ``run_end`` and short of the ring)."""
+    q = min(np.searchsorted(Ub, Ub[p + d] + ext_s, side="right") - 1, run_end,
+            p + d + mb - 3)
+    return _copy_span(c0, c0 + (Ub[q + 1] - Ub[p - 1]), ex, exs, app, n_app)
+
+
+def _copy_span(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+    """:func:`_copies_from` of every stretch 2 inside ``[c0, c1]``: the span widened
+    by the tolerance ``exs[2]`` is a copy by some column whose arc on ring b and the
+    span fit in its perimeter together (then the span's arc outside is the measure of
+    what lies outside the arc, which only shrinks for a stretch inside it)."""
+    pad = exs[2]
+    for j in range(n_app):
+        c = app[j]
+        if (c1 - c0) + 2 * pad + (ex[3, c] - ex[2, c]) <= exs[1] and \
+                _copy_side(c0 - pad, c1 + pad, ex, exs, 1, c):
+            return True
+    return False
+
+
 def _side_threshold(a0: float, a1: float, u0: float, u1: float, per: float, tol: float,
                     keep: float) -> float:
     """``_stretch_exclusion._Exclusion.threshold``'s length of one side: the stretch
@@ -453,13 +500,16 @@ def _side_threshold(a0: float, a1: float, u0: float, u1: float, per: float, tol:
 def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0: Any,
                 rlen: Any, ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int,
                 mb: int, floor: float, collect: bool, same: bool, best: Any, thresh: float,
-                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int, ex: Any, exs: Any) -> Any:
+                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int, ex: Any, exs: Any,
+                gallop: bool) -> Any:
     """Row ``r`` of :func:`_windows` from window length ``k`` on (its runs ``cs``,
     ``ce``: the AND of rows ``r .. r + k - 1``).  Without ``collect`` the widening stops
     once no window can beat ``max(best[r], thresh)``.  With ``collect`` and kept plans'
     arcs ``ex`` (:func:`_copy_columns`), the configurations that are surely a kept
     plan's copy at any smallest region from ``exs[4]`` on are not collected
-    (:func:`_copies_from`)."""
+    (:func:`_copies_from`); with ``gallop``, the starts of stretch 2 whose every
+    stretch is a copy are passed over in runs (:func:`_copy_run`), else one by one
+    (the reference)."""
     i = (r - 1) % ma + ma
     n_ex = ex.shape[1]
     app = np.empty(n_ex, np.int64)
@@ -506,10 +556,12 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
                 if _copies_from(c0, c0 + (Ub[jb + mb + rlen[j] + 1] - Ub[jb + mb]), ex,
                                 exs, app, n_app):
                     continue
-            for jj in range(rlen[j]):
+            jj = -1
+            while jj + 1 < rlen[j]:
+                jj += 1
                 p = (rp0[j] + jj) % mb + mb
-                run_end = run_end0 if run_end0 >= p else run_end0 + mb
-                run_end = min(run_end, p + mb - 3)
+                run_last = run_end0 if run_end0 >= p else run_end0 + mb
+                run_end = min(run_last, p + mb - 3)
                 # stretch 2 from edge p - 1 reaches at most the edges up to run_end,
                 # less with every later p (unless the run is nearly the whole ring)
                 if Ub[run_end + 1] < Ub[p - 1] + need:
@@ -535,6 +587,12 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
                         else:
                             hi = mid
                     q_lo = lo
+                    if q_hi < q_lo and gallop:
+                        # every stretch 2 from p is a copy: so is every one from the
+                        # later starts whose stretches lie in one span that is a copy
+                        # (the arc outside only shrinks), found by galloping
+                        jj += _copy_run(p, rlen[j] - 1 - jj, ext_s, run_last, Ub, mb,
+                                        ex, exs, app, n_app)
                     if q_hi < q_lo:
                         continue
                 n_new = n_out + q_hi - q_lo + 1
@@ -595,8 +653,8 @@ def _buffers(mb: int) -> Any:
 
 
 def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-               floor: float, collect: bool, same: bool, ex: Any, exs: Any, r0: int,
-               r1: int) -> Any:
+               floor: float, collect: bool, same: bool, ex: Any, exs: Any, gallop: bool,
+               r0: int, r1: int) -> Any:
     """:func:`_windows` reading every row of ``r0 .. r1 - 1`` from its first window on."""
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
@@ -608,7 +666,7 @@ def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: i
             nc += 1
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs)
+            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop)
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
@@ -622,8 +680,8 @@ def _table(ptr: Any, first: Any, last: Any, ma: int) -> Any:
 
 def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
              floor: float, collect: bool, same: bool, value: float, keep: int,
-             short: int, ex: Any, exs: Any, r0: int, r1: int, tptr: Any, tf: Any, tl: Any,
-             levels: int) -> Any:
+             short: int, ex: Any, exs: Any, gallop: bool, r0: int, r1: int, tptr: Any,
+             tf: Any, tl: Any, levels: int) -> Any:
     """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
     search, row by row).
 
@@ -651,14 +709,14 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
         r0, r1 = 0, ma
     if keep <= 0 or ma < 4 or ptr[ma] == 0:
         return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs,
-                          r0, r1)
+                          gallop, r0, r1)
     if levels == 0:
         tptr, tf, tl, levels = _table(ptr, first, last, ma)
     k_max = min(ma - 2, (1 << levels) - 1)     # a longer window contains an empty entry
     if k_max < short:
         # short windows only (a noisy outline): reading them all costs less than sorting
         return _every_row(ptr, first, last, Ua, Ub, ma, mb, floor, collect, same, ex, exs,
-                          r0, r1)
+                          gallop, r0, r1)
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
     n_out = 0
@@ -678,7 +736,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
             nc = _window_of(tptr, tf, tl, r, k, ma, cs, ce)
             oA, okA, oC, okC, n_out = _window_row(
                 r, k, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs)
+                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop)
         return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
     upper = np.empty(ma)
     for r in range(ma):
@@ -692,7 +750,7 @@ def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int
         nc = _window_of(tptr, tf, tl, r, 1, ma, cs, ce)         # the row's own runs
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out, ex, exs)
+            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out, ex, exs, gallop)
         _top_add(top, top_rows, r, best[r])
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
@@ -1447,6 +1505,7 @@ TABLE_CELLS = 50_000_000
 _LOOPS = CompiledLoops(globals(), (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
+                                   _copy_run, _copy_until, _copy_span,
                                    _copy_side, _side_threshold, _table,
                                    _window_row, _buffers,
                                    _every_row, _top_add, _windows,
@@ -1537,19 +1596,20 @@ def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
 def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
             floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
             short: int = _SHORT, ex: Any = None, exs: Any = None, between: Any = None,
-            cap: int | None = None) -> Any:
+            cap: int | None = None, gallop: bool = True) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
     for every caller; ``ex``, ``exs``: no kept plans where not given).  ``between``: a
     collection reads the rows in blocks (:data:`COLLECT_ROWS`, the sparse table built
     once) and calls it before each (a budget's check may end the collection there);
     ``cap``: a collection that holds more windows than this after a block ends there
-    (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"collection"``)."""
+    (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"collection"``); ``gallop``
+    False: every start of stretch 2 read one by one (:func:`_window_row`'s reference)."""
     loops = _load()
     ptr, first, last = (np.ascontiguousarray(x, np.int64) for x in (ptr, first, last))
     ex = np.zeros((4, 0)) if ex is None else np.ascontiguousarray(ex, float)
     exs = np.zeros(5) if exs is None else np.ascontiguousarray(exs, float)
     args = (ptr, first, last, Ua, Ub, ma, mb, float(floor), collect, same, float(value),
-            int(keep), int(short), ex, exs)
+            int(keep), int(short), ex, exs, bool(gallop))
     none = (np.zeros((0, 0), np.int64), np.zeros(0, np.int64), np.zeros(0, np.int64), 0)
     if not collect or between is None:
         return loops["_windows"](*args, 0, ma, *none)
