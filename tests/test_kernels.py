@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 import fcgrasp as fc
-from fcgrasp.core import kernels
+from fcgrasp.core import jit, kernels
 from fcgrasp.model._regiongeom import two_finger_problems
 from fcgrasp.model.regions import KnapsackProblem, _two_level
 
@@ -256,7 +256,7 @@ def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     monkeypatch.setenv("FCGRASP_JIT", "1")
     monkeypatch.setattr(kernels, "_loops", lambda: {"_pair_scores_loop": boom})
     monkeypatch.setattr(kernels, "_no_numba", False)
-    monkeypatch.setattr(kernels, "_fallen", set())
+    monkeypatch.setattr(jit, "_fallen", set())
     monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
     with pytest.warns(kernels.KernelFallbackWarning, match="_pair_scores_loop"):
         got = kernels.pair_scores(a, b, c, h, i, j, 0.01)
@@ -384,7 +384,7 @@ def test_a_loop_that_fails_to_compile_warns_once_or_fails_when_required(monkeypa
 
     loops = kernels.CompiledLoops({}, ())
     monkeypatch.setattr(loops, "get", lambda: {"bad_loop": bad})
-    monkeypatch.setattr(kernels, "_fallen", set())
+    monkeypatch.setattr(jit, "_fallen", set())
     monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
     with pytest.warns(kernels.KernelFallbackWarning, match="bad_loop"):
         assert loops.run("bad_loop", 1) == (False, None)

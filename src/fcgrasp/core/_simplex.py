@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from .kernels import CompiledLoops, jit_setting
+from .jit import CompiledLoops, jit_setting
 from .tolerances import LP_TOL, SIMPLEX_PIVOT, SIMPLEX_SLACK
 
 __all__ = ["compiled", "lp_max", "OPTIMAL", "INFEASIBLE", "UNBOUNDED", "ITERATIONS"]

@@ -44,7 +44,7 @@ import numpy as np
 
 from ..core import _simplex
 from ..core._simplex import _lp_max
-from ..core.kernels import CompiledLoops
+from ..core.jit import CompiledLoops
 from ..core.tolerances import (
     CHECK_TOL,
     LP_TOL,

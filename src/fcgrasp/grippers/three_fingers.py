@@ -150,7 +150,7 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     size = polygon.size
     if spec.along_boundary:
         # numba starts now (the rows run compiled): then so does the stretch search,
-        # from its first configuration (fcgrasp.core.kernels.started)
+        # from its first configuration (fcgrasp.core.jit.started)
         _concurrency.available()
     keep = None if spec.top is None else (spec.top if spec.rank_by == "min_region" else
                                           max(spec.top, KEEP_FOR_MEASURE))

@@ -19,7 +19,7 @@ from typing import Any, Literal
 
 import numpy as np
 
-from ..core import _simplex, kernels
+from ..core import _simplex, jit, kernels
 from ..core._simplex import _lp_max
 from ..core.kernels import arc_meet
 
@@ -405,7 +405,7 @@ def _with_simplex() -> dict[str, Any] | None:
 
 #: compiled over the compiled formulas of :mod:`fcgrasp.core.kernels` (``arc_meet``) and
 #: the dense simplex
-COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
+COMPILED = jit.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
 
 
 def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,

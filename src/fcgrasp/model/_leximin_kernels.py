@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.kernels import CompiledLoops
+from ..core.jit import CompiledLoops
 from ..core.tolerances import TINY
 
 
@@ -388,7 +388,7 @@ def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: An
 
 
 #: The per-row helpers that allocate nothing and make no view: compiled without
-#: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+#: reference counts (:func:`~fcgrasp.core.jit.njit_all`).
 _BORROWING = (_order_row, _fill_row, _wscale_row, _need_row, _feasible_row, _max_level_row,
               _solve_small)
 

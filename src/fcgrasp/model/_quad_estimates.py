@@ -32,7 +32,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core import kernels
+from ..core import jit
 from ..core.kernels import arc_meet
 from ..core.sectors import PAIRINGS
 from ..core.tolerances import (
@@ -216,7 +216,7 @@ def _helpers() -> dict[str, Any] | None:
             "arc_meet": frictionless["arc_meet"]}
 
 
-_LOOPS = kernels.CompiledLoops(dict(globals()), _FUNCS, _helpers, borrowing=_BORROWING)
+_LOOPS = jit.CompiledLoops(dict(globals()), _FUNCS, _helpers, borrowing=_BORROWING)
 
 
 def estimates(ea: Any, eb: Any, ec: Any, rows: np.ndarray, margin: float

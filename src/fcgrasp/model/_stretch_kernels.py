@@ -39,7 +39,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core.kernels import CompiledLoops
+from ..core.jit import CompiledLoops
 from . import (
     _stretch_copy_kernels,
     _stretch_end_kernels,
@@ -129,7 +129,7 @@ _LOOPS = CompiledLoops(_NAMESPACE, (_grow, _append, _in_order, _cell, _vertex_ru
 
 
 def _load() -> dict[str, Any]:
-    """The loops compiled (once per process; :class:`fcgrasp.core.kernels.CompiledLoops`).
+    """The loops compiled (once per process; :class:`fcgrasp.core.jit.CompiledLoops`).
     The stretch search runs them only where :func:`~fcgrasp.model.stretches.stretch_kernels_for`
     says so, which needs numba."""
     loops = _LOOPS.get()

@@ -12,7 +12,7 @@ import numpy as np
 from ..core import budget
 from ..core._checks import FloatArray
 from ..core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
-from ..core.kernels import jit_setting
+from ..core.jit import jit_setting
 from ..core.tolerances import ANGLE_SLACK, ROUND_TOL
 from . import _stretch_kernels
 from ._stretch_exclusion import _Exclusion

@@ -13,7 +13,7 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core._geom import cross2 as _cross
 from ..core.contacts import rotate
-from ..core.kernels import jit_setting, started
+from ..core.jit import jit_setting, started
 from ..core.tolerances import RANK_TOL, ROUND_TOL
 from . import _stretch_kernels
 from .polygon import Polygon
@@ -571,7 +571,7 @@ def stretch_kernels_for(cells: int) -> bool:
     so holds no array of every pair: the memory estimate of
     :func:`fcgrasp.pipeline.check_search` asks too): once numba started in this
     process for any of the package's loops, these included
-    (:func:`fcgrasp.core.kernels.started`), from :data:`KERNEL_CELLS`, or once this
+    (:func:`fcgrasp.core.jit.started`), from :data:`KERNEL_CELLS`, or once this
     process spent :data:`NUMPY_SOLVE_BUDGET` in numpy solves."""
     setting = jit_setting()
     if setting is not None:

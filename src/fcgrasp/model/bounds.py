@@ -60,7 +60,7 @@ import numpy as np
 
 from ..core._angles import margin_radians
 from ..core._checks import FloatArray, check_scalar
-from ..core.kernels import CompiledLoops
+from ..core.jit import CompiledLoops
 from ..core.tolerances import TINY, TOL, VERTEX_HAIR
 from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG

@@ -33,7 +33,7 @@ import types
 from itertools import combinations
 from typing import Any, cast
 
-from ..core import kernels
+from ..core import jit, kernels
 from ..core.kernels import pair_problem, pair_sector, two_level
 from ..core.tolerances import FACE_TOL, RANK_TOL, SOLVER_TOL, TINY
 
@@ -193,7 +193,7 @@ def _plain() -> Any:
 
 
 #: :func:`_pair_core` compiled over the compiled formulas (loaded with them).
-COMPILED = kernels.CompiledLoops(dict(globals()), _FUNCS, kernels._loops)
+COMPILED = jit.CompiledLoops(dict(globals()), _FUNCS, kernels._loops)
 
 
 def _use_compiled() -> bool:

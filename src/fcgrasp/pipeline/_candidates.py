@@ -12,7 +12,7 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core import kernels
+from ..core import jit
 from ..core._angles import wrap_positive
 from ..core._checks import (
     FloatArray,
@@ -162,7 +162,7 @@ def _ordered_rows(F: Features, spec: PlanSpec, three_edge: bool, size: int,
     # (theorem 4.2; gravity counts as one): rows whose features all come from positions
     # 0..s whose directions leave a gap of half a turn cannot, so such s are skipped
     seen = [] if g is None else [float(wrap_positive(np.arctan2(g[1], g[0])))]
-    compiled_rows = kernels.jit_setting() is True or kernels.started()
+    compiled_rows = jit.jit_setting() is True or jit.started()
     # the rows that fail the force-direction test left out as they are made (by the
     # compiled loop, else by rows_closure on numpy's blocks), each batch the rows held
     # of the batch it would be without the test
@@ -310,7 +310,7 @@ def holding_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any
     """Which rows of four frictionless fingers (or three with gravity) pass the
     force-direction test (theorem 4.2) that :func:`grasp_geometry` starts with, by the
     compiled loop; None for other fingers, or where the loop is not running already
-    (:func:`fcgrasp.core.kernels.started`: a search then leaves the test to
+    (:func:`fcgrasp.core.jit.started`: a search then leaves the test to
     :func:`grasp_geometry`, as before).  A row that fails it gives no candidate, so a
     search may drop it before anything else reads it (most rows of a curved outline's
     four-finger search do: ``icons/heart.svg`` 97 %)."""
@@ -326,7 +326,7 @@ def _quad_rows(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: Any
     """Four frictionless fingers (or three with gravity), once numba runs in the
     process: the features, gravity's angle and the rows as indices into the features'
     tables with gravity's last (-1 read as it); None else (or no rows)."""
-    if spec.shape.pairs or spec.shape.lp or not kernels.started() or not len(feats):
+    if spec.shape.pairs or spec.shape.lp or not jit.started() or not len(feats):
         return None
     F = features(polygon, spec.mu, spec.hand, edges)
     g_ang = 0.0 if spec.gravity is None else float(np.arctan2(spec.gravity[1],
@@ -340,7 +340,7 @@ def quad_estimates(polygon: Polygon, spec: PlanSpec, feats: np.ndarray, edges: A
     """Four frictionless fingers (or three with gravity): each row's estimate of its
     stage-1 score, never below the score :func:`grasp_geometry` gives it
     (:mod:`fcgrasp.model._quad_estimates`, compiled); None for other fingers, or where
-    the loop is not running already (:func:`fcgrasp.core.kernels.started`)."""
+    the loop is not running already (:func:`fcgrasp.core.jit.started`)."""
     got = _quad_rows(polygon, spec, feats, edges)
     if got is None:
         return None
@@ -483,7 +483,7 @@ def candidates(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     without it, :attr:`EdgeSets.held`); elsewhere ignored.
     """
     F = features(polygon, spec.mu, spec.hand, edges)
-    held = held and not (spec.shape.pairs or spec.shape.lp) and kernels.started()
+    held = held and not (spec.shape.pairs or spec.shape.lp) and jit.started()
     size = search_size(polygon, spec, edges).batch_rows if batch_size is None else \
         check_int(batch_size, "batch_size", minimum=1)
     first = size if spec.top is None else _spec.FIRST_BATCH

@@ -85,7 +85,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray
-from ..core.kernels import CompiledLoops
+from ..core.jit import CompiledLoops
 from ..core.tolerances import PAIR_PAD, PAIR_RAY_TOL
 from ..model.polygon import Polygon
 from ._candidates import EdgeSets, features

@@ -21,7 +21,8 @@ from typing import Any
 import numpy as np
 
 from ..core import kernels
-from ..core.kernels import CompiledLoops, _closed
+from ..core.jit import CompiledLoops
+from ..core.kernels import _closed
 
 #: The layouts of :func:`fcgrasp.pipeline._candidates._layouts`.
 AS_IS, GRAVITY, DOUBLED = 0, 1, 2
@@ -208,7 +209,7 @@ def _survivor_loop(order: Any, edge: Any, R: Any, RH: Any, s: int, pool: int, r:
 
 
 #: The per-row helpers, which allocate nothing and make no view: compiled without
-#: reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+#: reference counts (:func:`~fcgrasp.core.jit.njit_all`).
 _BORROWING = (_row_of, sort_first, _alive, _bounds)
 
 
@@ -247,7 +248,7 @@ def holding_survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np
     :func:`~fcgrasp.pipeline._candidates._ordered_rows`; None where the compiled loop
     does not run (without numba, ``FCGRASP_JIT=0``, or below :data:`KERNEL_ROWS`
     ``combos`` before numba started in this process, this loop's or another's:
-    :func:`fcgrasp.core.kernels.started`): the numpy path then.
+    :func:`fcgrasp.core.jit.started`): the numpy path then.
 
     ``order``: the features by position (decreasing length); ``edge``: each feature's
     edge; ``R``, ``RH``: each position's bound (its feature's length, and half of it)
@@ -257,7 +258,7 @@ def holding_survivors(order: np.ndarray, edge: np.ndarray, R: np.ndarray, RH: np
     unit as it makes them) only the rows that pass the force-direction test with
     ``tol``; returns ``(rows, where, read)``: the rows, the place of each among the
     rows without the test, and how many those are."""
-    from ..core.kernels import jit_setting, started
+    from ..core.jit import jit_setting, started
 
     setting = jit_setting()
     if setting is False or (setting is None and not started() and combos < KERNEL_ROWS):

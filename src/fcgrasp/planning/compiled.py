@@ -36,7 +36,7 @@ def compile_kernels() -> dict[str, float]:
     ['four fingers', 'optimality bound', 'parallel jaw', 'stretches', 'three fingers',
      'two fingers']
     """
-    from ..core.kernels import jit_setting
+    from ..core.jit import jit_setting
     from ..model.bounds import refutes
     from ..model.polygon import Polygon
     from .planner import independent_regions, plan

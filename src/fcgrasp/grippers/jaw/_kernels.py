@@ -18,7 +18,7 @@ from typing import Any
 
 import numpy as np
 
-from ...core.kernels import CompiledLoops
+from ...core.jit import CompiledLoops
 from . import _pose_kernels, _proof_kernels, _slice_kernels
 from ._pose_kernels import (
     K_MAX,
@@ -189,7 +189,7 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 # ----------------------------------------------------------------------------- loading
 
 #: The loops called per pose, per edge or per cell that allocate nothing and make no
-#: view: compiled without reference counts (:func:`~fcgrasp.core.kernels.njit_all`).
+#: view: compiled without reference counts (:func:`~fcgrasp.core.jit.njit_all`).
 _BORROWING = (_features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pose_at,
               _pose_one, _sin_range, _range, _wrap_positive, _vrange, _nan_min, _nan_max,
               _below, _arc_holds, _kind, _affine3, _affine, _quantities, _kink, _stop_reach)

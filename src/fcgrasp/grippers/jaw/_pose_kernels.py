@@ -27,7 +27,7 @@ def _pad_loop(p: int, th_c: float, th_s: float, c: float, a: Any, b: Any, f: Any
     edges it may meet (> 0), -1 for all; ``fsign``: the sign of the force's ``u``
     component in ``arctan2``; rows ``r`` and ``r + 1`` of ``hs``: scratch (E,) (rows
     of one array, not views: a compiled function that makes no view and allocates
-    nothing runs without reference counts, :func:`~fcgrasp.core.kernels.njit_all`)."""
+    nothing runs without reference counts, :func:`~fcgrasp.core.jit.njit_all`)."""
     s0, s1 = c - half, c + half
     E = a.shape[0]
     stop = -np.inf
