@@ -180,7 +180,7 @@ def test_use_jit_follows_the_setting(monkeypatch):
 def test_a_large_search_switches_to_the_compiled_kernels():
     """Once a process has run JIT_AFTER_ROWS rows by numpy, the kernels are compiled (and
     the plans are the same as by numpy alone)."""
-    code = ("import sys, json, numpy as np, fcgrasp as fc\nfrom fcgrasp.core import kernels\n"
+    code = ("import sys, json, numpy as np, fcgrasp as fc\nfrom fcgrasp.core import jit, kernels\n"
             "kernels.JIT_AFTER_ROWS = int(sys.argv[1])\n"
             "a = np.linspace(0, 2 * np.pi, 120, endpoint=False)\n"
             "r = 1 + 0.3 * np.sin(3 * a)\n"
@@ -199,10 +199,10 @@ def test_numba_started_by_other_loops_runs_the_kernels_compiled_at_once():
     """Once any compiled loops of the package started numba in a process, the searches
     that wait for their work to repay its start-up run compiled at once (the core
     kernels, the stretch search); before, they wait."""
-    code = ("import json, fcgrasp as fc\nfrom fcgrasp.core import kernels\n"
+    code = ("import json, fcgrasp as fc\nfrom fcgrasp.core import jit, kernels\n"
             "from fcgrasp.model import stretches, _frictionless_kernels\n"
             "def state():\n"
-            "    return [kernels.started(), kernels.use_jit(1),\n"
+            "    return [jit.started(), kernels.use_jit(1),\n"
             "            stretches.stretch_kernels_for(1)]\n"
             "before = state()\n"
             "_frictionless_kernels.COMPILED.get()\n"
@@ -258,7 +258,7 @@ def test_a_loop_numba_cannot_compile_falls_back_to_numpy(monkeypatch):
     monkeypatch.setattr(kernels, "_no_numba", False)
     monkeypatch.setattr(jit, "_fallen", set())
     monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
-    with pytest.warns(kernels.KernelFallbackWarning, match="_pair_scores_loop"):
+    with pytest.warns(jit.KernelFallbackWarning, match="_pair_scores_loop"):
         got = kernels.pair_scores(a, b, c, h, i, j, 0.01)
     for x, y in zip(got, want, strict=True):
         assert np.array_equal(x, y)
@@ -313,14 +313,14 @@ def _scale_all(x):
     return out
 
 
-@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+@pytest.mark.skipif(jit.import_numba() is None, reason="numba not available")
 def test_a_borrowing_loop_runs_without_reference_counts_and_gives_the_same_numbers():
     """``njit_all``'s ``borrowing``: the named loops are compiled with numba's runtime
     off (no reference counts on the arrays they are given), the others as before, and a
     caller that allocates still calls them: the same numbers as the plain loop."""
-    numba = kernels.import_numba()
+    numba = jit.import_numba()
     space = {"np": np}
-    loops = kernels.njit_all(numba, space, [("_scale_rows", _scale_rows),
+    loops = jit.njit_all(numba, space, [("_scale_rows", _scale_rows),
                                             ("_scale_all", _scale_all)],
                              frozenset({"_scale_rows"}))
     x = np.random.default_rng(3).normal(size=50)
@@ -329,15 +329,15 @@ def test_a_borrowing_loop_runs_without_reference_counts_and_gives_the_same_numbe
     assert "_nrt" not in loops["_scale_all"].targetoptions
 
 
-@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+@pytest.mark.skipif(jit.import_numba() is None, reason="numba not available")
 def test_a_numba_without_the_option_compiles_the_borrowing_loops_as_the_others(
         monkeypatch):
     """Where numba's CPU target has no ``_nrt`` option (it would fail only at the first
     call, leaving every loop to numpy), ``borrowing`` loops are compiled as the others,
     and run."""
-    numba = kernels.import_numba()
-    monkeypatch.setattr(kernels, "_takes_nrt_option", lambda: False)
-    loops = kernels.njit_all(numba, {"np": np}, [("_scale_rows", _scale_rows),
+    numba = jit.import_numba()
+    monkeypatch.setattr(jit, "_takes_nrt_option", lambda: False)
+    loops = jit.njit_all(numba, {"np": np}, [("_scale_rows", _scale_rows),
                                                  ("_scale_all", _scale_all)],
                              frozenset({"_scale_rows"}))
     assert "_nrt" not in loops["_scale_rows"].targetoptions
@@ -350,21 +350,21 @@ def _triple(x, out):
         out[i] = 3.0 * x[i] + 1.0
 
 
-@pytest.mark.skipif(kernels.import_numba() is None, reason="numba not available")
+@pytest.mark.skipif(jit.import_numba() is None, reason="numba not available")
 def test_a_loop_loads_from_the_cache_without_refreshing_numba(monkeypatch):
     """``njit_all``'s dispatchers load their machine code from numba's cache without
     numba's registry refresh (``_light_loads``): a second dispatcher of the same loop
     (a new process's, in effect) is a cache hit through the light class, never calls
     the target context's ``refresh``, and gives the loop's numbers."""
-    numba = kernels.import_numba()
+    numba = jit.import_numba()
     x = np.random.default_rng(4).normal(size=40)
-    first = kernels.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
+    first = jit.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
     want = np.empty_like(x)
     first(x, want)                           # compiled (and cached) or loaded
     refreshed = []
     ctx = type(first.targetctx)
     monkeypatch.setattr(ctx, "refresh", lambda self: refreshed.append(1))
-    second = kernels.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
+    second = jit.njit_all(numba, {}, [("_triple", _triple)])["_triple"]
     assert type(second._cache).__name__ == "_LightCache"
     got = np.empty_like(x)
     second(x, got)
@@ -377,23 +377,23 @@ def test_a_loop_loads_from_the_cache_without_refreshing_numba(monkeypatch):
 def test_a_loop_that_fails_to_compile_warns_once_or_fails_when_required(monkeypatch):
     """A compiled loop that numba cannot type falls back to numpy with one warning per
     loop; with ``FCGRASP_REQUIRE_JIT=1`` (the suite's setting) it raises instead."""
-    from fcgrasp.core import kernels
+    from fcgrasp.core import jit
 
     def bad(x):
         raise TypeError("cannot type")
 
-    loops = kernels.CompiledLoops({}, ())
+    loops = jit.CompiledLoops({}, ())
     monkeypatch.setattr(loops, "get", lambda: {"bad_loop": bad})
     monkeypatch.setattr(jit, "_fallen", set())
     monkeypatch.delenv("FCGRASP_REQUIRE_JIT", raising=False)
-    with pytest.warns(kernels.KernelFallbackWarning, match="bad_loop"):
+    with pytest.warns(jit.KernelFallbackWarning, match="bad_loop"):
         assert loops.run("bad_loop", 1) == (False, None)
     assert loops.broken
     import warnings
 
     with warnings.catch_warnings():
         warnings.simplefilter("error")
-        kernels.fell_back("bad_loop", TypeError("again"))     # said once only
+        jit.fell_back("bad_loop", TypeError("again"))     # said once only
     monkeypatch.setenv("FCGRASP_REQUIRE_JIT", "1")
     with pytest.raises(RuntimeError, match="FCGRASP_REQUIRE_JIT"):
-        kernels.fell_back("bad_loop", TypeError("again"))
+        jit.fell_back("bad_loop", TypeError("again"))
