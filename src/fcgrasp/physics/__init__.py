@@ -50,17 +50,14 @@ escape motion at loads far below any grip force.  MuJoCo is an optional dependen
 
 from __future__ import annotations
 
+from ._forces import balance_forces, cone_margin, sample_grasps, squeeze_forces
 from ._planar import (
     SLIP_DISPLACEMENT,
     SLIP_ROTATION_DEG,
     VARIANTS,
     StressResult,
-    balance_forces,
-    cone_margin,
     jaw_contacts,
     jaw_stress_test,
-    sample_grasps,
-    squeeze_forces,
     stress_test,
 )
 from ._runs import (

@@ -13,16 +13,15 @@ import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_scalar
 from ..errors import ArgumentError
+from ._forces import _edges, sample_grasps
 from ._planar import (
     VARIANTS,
     StressResult,
-    _edges,
     _wrench_dict,
     check_control,
     check_variant,
     jaw_contacts,
     jaw_stress_test,
-    sample_grasps,
     stress_test,
 )
 from ._solids import (

@@ -12,6 +12,7 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core.tolerances import PLANAR_TOL, TOL
 from ..errors import ArgumentError
+from ._forces import TIP_RADIUS, _internal, cone_margin
 from ._planar import (
     _METRES,
     _SETTINGS,
@@ -22,14 +23,11 @@ from ._planar import (
     SERVO_COMPLIANCE,
     SLIP_DISPLACEMENT,
     SLIP_ROTATION_DEG,
-    TIP_RADIUS,
     StressResult,
     _finger_bodies,
-    _internal,
     _mujoco,
     _settle,
     _steps,
-    cone_margin,
     vary,
 )
 
