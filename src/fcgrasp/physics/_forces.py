@@ -13,6 +13,7 @@ import numpy as np
 from ..core._checks import FloatArray
 from ..core.tolerances import ON_EDGE_TOL, SQUEEZE_TOL, TINY
 
+#: The fingertips' radius (share of the part's size) where the report gives none.
 TIP_RADIUS = 0.002
 
 

@@ -57,8 +57,7 @@ SERVO_COMPLIANCE = 2e-3
 
 #: The part's mass (kg, whatever its size: the test is quasi-static, and a part of a
 #: few milligrams between fingers of a tenth of a kilogram makes the dynamics stiff),
-#: its prism's thickness (share of its size) and the fingertips' radius (share of the
-#: size).
+#: and its prism's thickness (share of its size).
 PART_MASS = 0.2
 
 
