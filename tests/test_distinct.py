@@ -586,7 +586,7 @@ def _boundary_regions(rng, poly):
     """Pairs of regions along ``poly``'s boundary with the edges of their segments:
     one from anywhere, the other the same shifted a little, a lot, by whole edges,
     ending at a vertex, or elsewhere on the ring."""
-    from fcgrasp.model._stretch_search import _polyline
+    from fcgrasp.model._stretch_pairs import _polyline
     from fcgrasp.model._stretch_windows import _rings
 
     ring = _rings(poly)[0]

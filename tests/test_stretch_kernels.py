@@ -14,6 +14,7 @@ import fcgrasp as fc
 from fcgrasp.core.contacts import rotate
 from fcgrasp.model import _stretch_exclusion as X
 from fcgrasp.model import _stretch_kernels
+from fcgrasp.model import _stretch_pairs as P
 from fcgrasp.model import _stretch_search as Q
 from fcgrasp.model import _stretch_solve as V
 from fcgrasp.model import _stretch_windows as W
@@ -941,8 +942,8 @@ def test_a_stretchs_ends_are_its_polylines_ends():
             t = to_last + float(rng.choice([0.0, 1e-14 * last, last, rng.uniform(0, last)]))
             if k == 0:
                 t = float(rng.uniform(0, L - s0)) if L > s0 else 0.0
-            pts, _ = Q._polyline(ring, i, k, s0, t)
-            got = np.array(Q._stretch_ends(ring, i, k, s0, t))
+            pts, _ = P._polyline(ring, i, k, s0, t)
+            got = np.array(P._stretch_ends(ring, i, k, s0, t))
             assert got.tobytes() == np.stack((pts[0], pts[-1])).tobytes()
             trimmed += len(pts) < k + 2
     assert trimmed > 200

@@ -367,7 +367,7 @@ def test_region_polylines_are_the_previous_ones_bit_for_bit():
     once) is the previous implementation's, points bit for bit and edges as Python
     ints: seeded outlines of 3-59 edges, starts around the ring and beyond, regions
     from a vertex (trimmed) and crossing up to every vertex."""
-    from fcgrasp.model._stretch_search import _polyline
+    from fcgrasp.model._stretch_pairs import _polyline
 
     rng = np.random.default_rng(3)
     for _ in range(150):
