@@ -154,3 +154,16 @@ def test_front_ends_never_import_one_another_and_use_the_public_api():
                                                  if n != "__version__")):
                 bad.append(f"{app} imports private {dep} {names}")
     assert not bad, bad
+
+
+#: The most lines a module may have: one role each, readable in one sitting.
+MAX_LINES = 600
+
+
+def test_no_module_is_longer_than_a_role():
+    """Every source module is at most :data:`MAX_LINES` lines (the numba loops included:
+    they sit in modules by role, compiled over one namespace by the module that loads
+    them)."""
+    long = {_module(p): n for p in _sources()
+            if (n := len(p.read_text().splitlines())) > MAX_LINES}
+    assert not long, long

@@ -70,9 +70,10 @@ from __future__ import annotations
 from ...core.tolerances import SLICE_TOL
 from ._certify import certify_box
 from ._grid import grid_anchor
+from ._pareto import jaw_pareto
 from ._payload import jaw_payload
 from ._pick import Scene, TopPick, top_pick
-from ._plans import JawPlan, ParallelJaw, jaw_from_options, jaw_pareto, jaw_plans
+from ._plans import JawPlan, ParallelJaw, jaw_from_options, jaw_plans
 from ._poses import (
     CERTIFY_BOXES,
     CERTIFY_SHRINKS,
