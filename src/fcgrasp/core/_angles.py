@@ -11,16 +11,20 @@ near-degenerate parts).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["wrap", "wrap_positive", "wrap_floor", "margin_radians", "shrunk_half_angle"]
 
 _TWO_PI = 2.0 * np.pi
 
 
-def wrap(angle: Any) -> Any:
+def wrap(angle: ArrayLike) -> Any:
     """Angles (radians) wrapped to ``[-pi, pi)``.
 
     >>> float(wrap(3 * np.pi / 2)), float(wrap(np.pi))
@@ -29,7 +33,7 @@ def wrap(angle: Any) -> Any:
     return (np.asarray(angle) + np.pi) % _TWO_PI - np.pi
 
 
-def wrap_positive(angle: Any) -> Any:
+def wrap_positive(angle: ArrayLike) -> Any:
     """Angles (radians) wrapped to ``[0, 2 pi)``: directions as counter-clockwise turns
     from the x axis.
 
@@ -48,13 +52,13 @@ def wrap_floor(angle: Any) -> Any:
     return angle - _TWO_PI * np.floor((angle + np.pi) / _TWO_PI)
 
 
-def margin_radians(margin: Any) -> Any:
+def margin_radians(margin: ArrayLike) -> Any:
     """A safety margin given in degrees (as every public function takes it), in radians:
     the one conversion of margins."""
     return np.radians(margin)
 
 
-def shrunk_half_angle(mu: Any, margin: Any) -> Any:
+def shrunk_half_angle(mu: ArrayLike, margin: ArrayLike) -> Any:
     """The half-angle ``atan(mu) - margin`` (radians; ``margin`` in degrees) of a friction
     cone shrunk by the safety margin: a force inside it is inside the cone by at least
     the margin (theorem 6.3 with a margin).

@@ -23,8 +23,9 @@ if TYPE_CHECKING:       # numpy.typing costs a plan's start-up; annotations only
 
     FloatArray = NDArray[np.float64]
     IntArray = NDArray[np.intp]
+    BoolArray = NDArray[np.bool_]
 else:
-    FloatArray = IntArray = np.ndarray
+    FloatArray = IntArray = BoolArray = np.ndarray
 
 
 def _short(value: Any, limit: int = 80) -> str:

@@ -3,13 +3,18 @@
 from __future__ import annotations
 
 from bisect import bisect_right
+from collections.abc import Iterable, Sequence
 from itertools import accumulate
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ._checks import FloatArray
 from .tolerances import RANK_TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 #: Decimal digits of the ranking's rounding (:data:`~fcgrasp.core.tolerances.RANK_TOL`).
 RANK_DIGITS = int(round(-np.log10(RANK_TOL)))
@@ -34,13 +39,13 @@ def unique_rows(a: FloatArray) -> FloatArray:
     return cast("FloatArray", srt[keep])
 
 
-def direction(angle: Any) -> FloatArray:
+def direction(angle: ArrayLike) -> FloatArray:
     """Unit vectors (..., 2) at the given angles (radians)."""
     angle = np.asarray(angle, dtype=float)
     return np.stack([np.cos(angle), np.sin(angle)], axis=-1)
 
 
-def signed_area(ring: Any) -> float:
+def signed_area(ring: ArrayLike) -> float:
     """Signed area of a closed ring (n, 2), positive when counter-clockwise (shoelace
     about the ring's mean, so large offsets do not cancel it)."""
     r = np.asarray(ring, dtype=float)
@@ -48,7 +53,7 @@ def signed_area(ring: Any) -> float:
     return 0.5 * float(np.sum(x * np.roll(y, -1) - np.roll(x, -1) * y))
 
 
-def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
+def along(line: ArrayLike, u: ArrayLike) -> tuple[FloatArray, np.ndarray]:
     """Points at fractions ``u`` (any shape) of the arc length of a polyline (m, 2),
     and the index of the segment holding each."""
     line = np.asarray(line, dtype=float)
@@ -62,7 +67,8 @@ def along(line: Any, u: Any) -> tuple[FloatArray, np.ndarray]:
     return line[k] + frac[..., None] * seg[k], k
 
 
-def midpoints(regions: Any, region_edges: Any) -> tuple[FloatArray, tuple[int, ...]]:
+def midpoints(regions: Iterable[ArrayLike],
+              region_edges: Iterable[Sequence[int]]) -> tuple[FloatArray, tuple[int, ...]]:
     """Each region's point halfway along its polyline (the representative contact) and
     the edge holding it, from the edges each region covers in order."""
     pts, edges = [], []
@@ -73,7 +79,7 @@ def midpoints(regions: Any, region_edges: Any) -> tuple[FloatArray, tuple[int, .
     return np.array(pts), tuple(edges)
 
 
-def _halfway(line: Any) -> tuple[tuple[float, float], int]:
+def _halfway(line: ArrayLike) -> tuple[tuple[float, float], int]:
     """:func:`along` at ``u = 0.5`` of one polyline, with two numpy calls instead of a
     dozen (a plan's few regions: numpy's calls cost more than the arithmetic): the same
     operations in the same order (the running sum is numpy's, one addition after
@@ -93,7 +99,7 @@ def _halfway(line: Any) -> tuple[tuple[float, float], int]:
     return (x + frac * (x1 - x), y + frac * (y1 - y)), k
 
 
-def trim_vertex_ends(pts: FloatArray, edges: Any, tiny: float
+def trim_vertex_ends(pts: FloatArray, edges: Iterable[int], tiny: float
                      ) -> tuple[FloatArray, tuple[int, ...]]:
     """A region polyline through the edges it covers, without a piece of length at most
     ``tiny`` at either end: a region that starts or ends exactly at a vertex does not
@@ -106,7 +112,7 @@ def trim_vertex_ends(pts: FloatArray, edges: Any, tiny: float
     return pts, tuple(edges)
 
 
-def leximin_key(lengths: Any, size: float) -> tuple[float, ...]:
+def leximin_key(lengths: ArrayLike, size: float) -> tuple[float, ...]:
     """Sort key of the leximin order (definition 7.1): smaller is better.
 
     Each length over ``size``, rounded to :data:`RANK_DIGITS` decimals as
@@ -124,7 +130,7 @@ def leximin_key(lengths: Any, size: float) -> tuple[float, ...]:
     return tuple(out)
 
 
-def _leximin_key_numpy(lengths: Any, size: float) -> tuple[float, ...]:
+def _leximin_key_numpy(lengths: ArrayLike, size: float) -> tuple[float, ...]:
     """:func:`leximin_key` in numpy (its first form, kept for the lengths that are not
     finite)."""
     return tuple(leximin_columns(np.asarray(lengths, float), size))
@@ -151,7 +157,7 @@ def _round(v: float) -> float | None:
     return round(y) / _SCALE + 0.0
 
 
-def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
+def geometric_key(regions: Iterable[ArrayLike], polygon: Any) -> tuple[float, ...]:
     """A key of a set of regions that does not depend on how the part is numbered.
 
     Each region's two ends (of a polyline: its first and last points) are sorted, the
@@ -171,7 +177,7 @@ def geometric_key(regions: Any, polygon: Any) -> tuple[float, ...]:
     return ends_key(ends, polygon)
 
 
-def ends_key(ends: Any, polygon: Any) -> tuple[float, ...]:
+def ends_key(ends: Iterable[Any], polygon: Any) -> tuple[float, ...]:
     """:func:`geometric_key` of regions given by their two ends, plain float pairs
     ``[((x0, y0), (x1, y1)), ...]`` (:func:`_geometric_key_numpy` of them where a
     coordinate is not finite: it reads only the ends)."""
@@ -188,7 +194,7 @@ def ends_key(ends: Any, polygon: Any) -> tuple[float, ...]:
     return tuple(x for seg in segs for pt in seg for x in pt)  # type: ignore[misc]
 
 
-def _geometric_key_numpy(regions: Any, polygon: Any) -> tuple[float, ...]:
+def _geometric_key_numpy(regions: Iterable[ArrayLike], polygon: Any) -> tuple[float, ...]:
     """:func:`geometric_key` in numpy (its first form, kept for the regions that are not
     point arrays or not finite)."""
     ends = np.array([[r[0], r[-1]] for r in (np.asarray(x, float) for x in regions)])

@@ -35,8 +35,9 @@ Two places where the paper's "vice versa" needs care, documented and tested:
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from itertools import combinations
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -45,6 +46,10 @@ from ._checks import FloatArray, check_array, check_mu, check_tol
 from ._geom import cross2 as _cross2
 from .sectors import PAIRINGS, line_meet
 from .tolerances import DEGENERATE_TOL, LENGTH_RESOLUTION, TINY, TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = [
     "is_force_closure",
@@ -159,7 +164,7 @@ def _closure_chunk(u: FloatArray, tol: float) -> tuple[np.ndarray, FloatArray]:
     return closure, y
 
 
-def closure_escape(wrenches: Any, tol: float = TOL) -> tuple[np.ndarray, FloatArray]:
+def closure_escape(wrenches: ArrayLike, tol: float = TOL) -> tuple[np.ndarray, FloatArray]:
     r"""General force-closure test with a witness (theorem 6.1).
 
     A grasp is force closure when its wrench convexe is the whole space, i.e. when no
@@ -289,7 +294,7 @@ def closure_one(wrenches: list[tuple[float, float, float]], tol: float = TOL) ->
     return any_valid
 
 
-def is_force_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
+def is_force_closure(wrenches: ArrayLike, tol: float = TOL) -> np.ndarray:
     """General force-closure test (theorem 6.1): is the wrench convexe total?
 
     Parameters
@@ -328,7 +333,7 @@ def is_force_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
 # ----------------------------------------------------------------------------- theorem 4.2
 
 
-def force_direction_closure(forces: Any, tol: float = TOL) -> np.ndarray:
+def force_direction_closure(forces: ArrayLike, tol: float = TOL) -> np.ndarray:
     """Force-direction closure by corollary 4.1 (theorem 4.2).
 
     The forces can generate any direction iff three of them have end points drawing a
@@ -416,7 +421,7 @@ def _in_open_cone(fa: FloatArray, fb: FloatArray, sab: FloatArray, d: FloatArray
     return (sab * _cross2(fa, d) > tol) & (sab * _cross2(d, fb) > tol)
 
 
-def _pairing_test(p: FloatArray, f: FloatArray, order: Any, tol: float) -> np.ndarray:
+def _pairing_test(p: FloatArray, f: FloatArray, order: Sequence[int], tol: float) -> np.ndarray:
     a, b, c, d = (int(i) for i in order)
     pa, pb, pc, pd = p[..., a, :], p[..., b, :], p[..., c, :], p[..., d, :]
     fa, fb, fc, fd = f[..., a, :], f[..., b, :], f[..., c, :], f[..., d, :]
@@ -439,7 +444,7 @@ def _pairing_test(p: FloatArray, f: FloatArray, order: Any, tol: float) -> np.nd
     return cast("np.ndarray", ok & ((out_12 & into_34) | (into_12 & out_34)))
 
 
-def torque_closure(points: Any, forces: Any, tol: float = TOL) -> np.ndarray:
+def torque_closure(points: ArrayLike, forces: ArrayLike, tol: float = TOL) -> np.ndarray:
     r"""Torque closure of pure forces by corollary 5.2 (theorem 5.2).
 
     Four forces generate clockwise and counter-clockwise torques iff for some pairing
@@ -508,8 +513,9 @@ def _angle(a: FloatArray, b: FloatArray) -> FloatArray:
     return cast("FloatArray", np.arctan2(np.abs(_cross2(a, b)), np.sum(a * b, axis=-1)))
 
 
-def friction_pair_modes(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
-                        mu_q: Any = None, tol: float = TOL) -> tuple[np.ndarray, np.ndarray]:
+def friction_pair_modes(p: Any, normal_p: ArrayLike, q: Any, normal_q: ArrayLike,
+                        mu: ArrayLike, mu_q: ArrayLike | None = None, tol: float = TOL
+                        ) -> tuple[np.ndarray, np.ndarray]:
     """Theorem 6.3 split by mode: (squeezing, expanding) boolean arrays.
 
     *Squeezing*: the finger at P pushes towards Q and the one at Q towards P (the
@@ -546,8 +552,9 @@ def friction_pair_modes(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
     return squeeze, expand
 
 
-def friction_pair_closure(p: Any, normal_p: Any, q: Any, normal_q: Any, mu: Any,
-                          mu_q: Any = None, tol: float = TOL) -> np.ndarray:
+def friction_pair_closure(p: ArrayLike, normal_p: ArrayLike, q: ArrayLike, normal_q: ArrayLike,
+                          mu: ArrayLike,
+                          mu_q: ArrayLike | None = None, tol: float = TOL) -> np.ndarray:
     """Two point contacts with friction by theorem 6.3.
 
     The grasp at P and Q is force closure iff the segment PQ points out of the friction

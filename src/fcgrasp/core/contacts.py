@@ -25,7 +25,7 @@ Gravity             the weight through the centre of gravity (end of 3.1)       
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -33,6 +33,10 @@ from ._checks import FloatArray, check_direction, check_mu_scalar, check_point
 from .convexes import Cone
 from .screws import wrench_from_force
 from .tolerances import MU_CLOSED, ON_EDGE_TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = [
     "Contact",
@@ -47,14 +51,14 @@ __all__ = [
 ]
 
 
-def rotate(v: Any, angle: Any) -> FloatArray:
+def rotate(v: ArrayLike, angle: ArrayLike) -> FloatArray:
     """Rotate planar vectors ``v`` (..., 2) counter-clockwise by ``angle`` (radians)."""
     v = np.asarray(v, dtype=float)
     c, s = np.cos(angle), np.sin(angle)
     return np.stack([c * v[..., 0] - s * v[..., 1], s * v[..., 0] + c * v[..., 1]], axis=-1)
 
 
-def friction_cone_edges(normal: Any, mu: Any) -> FloatArray:
+def friction_cone_edges(normal: ArrayLike, mu: ArrayLike) -> FloatArray:
     """The two edge directions ``rot(-n, +phi)``, ``rot(-n, -phi)`` of the friction cone.
 
     Parameters
@@ -74,7 +78,7 @@ def friction_cone_edges(normal: Any, mu: Any) -> FloatArray:
     return np.stack([rotate(-n, phi), rotate(-n, -phi)], axis=-2)
 
 
-def _check_edge(a: Any, b: Any, normal: Any) -> tuple[FloatArray, FloatArray, FloatArray]:
+def _check_edge(a: Any, b: Any, normal: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
     a = check_point(a, "a")
     b = check_point(b, "b")
     n = check_direction(normal, "normal")
@@ -123,7 +127,7 @@ class FrictionlessPoint(Contact):
     [[-0.0, -1.0, 0.0]]
     """
 
-    def __init__(self, point: Any, normal: Any) -> None:
+    def __init__(self, point: ArrayLike, normal: ArrayLike) -> None:
         self.point = check_point(point, "point")
         self.normal = check_direction(normal, "normal")
         self.points = self.point[None, :]
@@ -136,7 +140,7 @@ class FrictionlessPoint(Contact):
 class FrictionPoint(Contact):
     """Point contact with Coulomb friction: the two edges of the friction cone (figure 4.b)."""
 
-    def __init__(self, point: Any, normal: Any, mu: Any) -> None:
+    def __init__(self, point: ArrayLike, normal: ArrayLike, mu: ArrayLike) -> None:
         self.point = check_point(point, "point")
         self.normal = check_direction(normal, "normal")
         self.mu = check_mu_scalar(mu, "mu")
@@ -150,7 +154,7 @@ class FrictionPoint(Contact):
 class FrictionlessEdge(Contact):
     """Frictionless edge contact from ``a`` to ``b``: ``-n`` through both ends (figure 4.c)."""
 
-    def __init__(self, a: Any, b: Any, normal: Any) -> None:
+    def __init__(self, a: ArrayLike, b: ArrayLike, normal: ArrayLike) -> None:
         self.a, self.b, self.normal = _check_edge(a, b, normal)
         self.points = np.stack([self.a, self.b])
         self.forces = np.repeat(-self.normal[None, :], 2, axis=0)
@@ -162,7 +166,7 @@ class FrictionlessEdge(Contact):
 class FrictionEdge(Contact):
     """Edge contact with friction: friction cones at both end points (figure 4.d)."""
 
-    def __init__(self, a: Any, b: Any, normal: Any, mu: Any) -> None:
+    def __init__(self, a: ArrayLike, b: ArrayLike, normal: ArrayLike, mu: ArrayLike) -> None:
         self.a, self.b, self.normal = _check_edge(a, b, normal)
         self.mu = check_mu_scalar(mu, "mu")
         edges = friction_cone_edges(self.normal, self.mu)
@@ -183,7 +187,7 @@ class SoftFinger(Contact):
     set has six.
     """
 
-    def __init__(self, a: Any, b: Any, normal: Any, mu: Any) -> None:
+    def __init__(self, a: ArrayLike, b: ArrayLike, normal: ArrayLike, mu: ArrayLike) -> None:
         self._parts = [FrictionEdge(a, b, normal, mu)]
         self.mu = self._parts[0].mu
         self._collect()
@@ -193,8 +197,9 @@ class SoftFinger(Contact):
         self.forces = np.concatenate([p.forces for p in self._parts])
 
     @classmethod
-    def corner(cls, a: Any, vertex: Any, b: Any, normal_a: Any, normal_b: Any,
-               mu: Any) -> SoftFinger:
+    def corner(cls, a: ArrayLike, vertex: ArrayLike, b: ArrayLike, normal_a: ArrayLike,
+               normal_b: ArrayLike,
+               mu: ArrayLike) -> SoftFinger:
         """A soft finger wrapped around the corner ``vertex``, touching ``a``-``vertex`` and
         ``vertex``-``b``, with the outward normals of the two sides."""
         obj = cls.__new__(cls)
@@ -213,7 +218,7 @@ class Gravity(Contact):
     ``direction`` is the direction of the weight (default ``(0, -1)``).
     """
 
-    def __init__(self, center: Any, direction: Any = (0.0, -1.0)) -> None:
+    def __init__(self, center: ArrayLike, direction: ArrayLike = (0.0, -1.0)) -> None:
         self.center = check_point(center, "center")
         self.direction = check_direction(direction, "direction")
         self.points = self.center[None, :]

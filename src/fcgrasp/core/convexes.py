@@ -34,12 +34,16 @@ membership is a non-negative least-squares problem (``scipy.optimize.nnls``).
 from __future__ import annotations
 
 from itertools import combinations
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ._checks import FloatArray, check_array, check_tol
 from .tolerances import CONE_TOL, DEGENERATE_TOL, ROUND_TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["Cone", "SPACES"]
 
@@ -196,7 +200,8 @@ class Cone:
 
     __hash__ = None  # type: ignore[assignment]
 
-    def __init__(self, generators: Any, space: str | None = None, *, lines: Any = None,
+    def __init__(self, generators: ArrayLike, space: str | None = None, *,
+                 lines: ArrayLike | None = None,
                  dim: int | None = None, tol: float = CONE_TOL) -> None:
         if space not in SPACES:
             raise ValueError(f"space must be one of {sorted(map(str, SPACES))}, got {space!r}")
@@ -320,7 +325,7 @@ class Cone:
         rays, lines = halfspace_rays(self._unit().reshape(-1, self.dim), self.dim, self.tol)
         return bool(rays.shape[0] == 0 and lines.shape[0] == 0)
 
-    def contains(self, v: Any) -> Any:
+    def contains(self, v: ArrayLike) -> Any:
         """Membership of ``v`` (shape (d,) or (n, d)); returns a bool or a bool array."""
         arr = check_array(v, "v", last=self.dim)
         unit = self._unit()
@@ -328,7 +333,7 @@ class Cone:
         out = np.array([_in_cone(unit, x, self.tol) for x in flat], dtype=bool)
         return bool(out[0]) if arr.ndim == 1 else out.reshape(arr.shape[:-1])
 
-    def __contains__(self, v: Any) -> bool:
+    def __contains__(self, v: ArrayLike) -> bool:
         return bool(self.contains(v))
 
     def issubset(self, other: Cone) -> bool:

@@ -24,12 +24,16 @@ All functions broadcast over leading axes: a batch of one is just an array.
 
 from __future__ import annotations
 
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ._checks import FloatArray, check_array, check_tol
 from .tolerances import TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = [
     "wrench_from_force",
@@ -55,7 +59,7 @@ REPELLING = "repelling"
 CONTRARY = "contrary"
 
 
-def wrench_from_force(force: Any, point: Any) -> FloatArray:
+def wrench_from_force(force: ArrayLike, point: ArrayLike) -> FloatArray:
     """Planar wrench of a force whose line of action passes through ``point`` (eq. 3, 11).
 
     Parameters
@@ -80,7 +84,7 @@ def wrench_from_force(force: Any, point: Any) -> FloatArray:
     return np.concatenate([f, tau[..., None]], axis=-1)
 
 
-def twist_about_point(center: Any, omega: Any = 1.0) -> FloatArray:
+def twist_about_point(center: ArrayLike, omega: ArrayLike = 1.0) -> FloatArray:
     """Planar twist of a rotation at rate ``omega`` about ``center`` (eq. 2, 10).
 
     The velocity of the origin is ``omega * z x (0 - c) = omega * (cy, -cx)``.
@@ -109,13 +113,13 @@ def twist_translation(v: Any) -> FloatArray:
     return np.concatenate([np.zeros(v.shape[:-1] + (1,)), v], axis=-1)
 
 
-def twist_transpose(twist: Any) -> FloatArray:
+def twist_transpose(twist: ArrayLike) -> FloatArray:
     """Spatial transpose of a planar twist: ``(omega, vx, vy) -> (vx, vy, omega)``."""
     t = check_array(twist, "twist", last=3)
     return t[..., [1, 2, 0]]
 
 
-def virtual_work(wrench: Any, twist: Any) -> FloatArray:
+def virtual_work(wrench: ArrayLike, twist: ArrayLike) -> FloatArray:
     r"""Virtual work :math:`w \cdot t^s = f_x v_x + f_y v_y + \tau\omega` (eq. 4).
 
     Broadcasts ``wrench`` (..., 3) against ``twist`` (..., 3).
@@ -130,7 +134,7 @@ def virtual_work(wrench: Any, twist: Any) -> FloatArray:
     return w[..., 0] * t[..., 1] + w[..., 1] * t[..., 2] + w[..., 2] * t[..., 0]
 
 
-def classify_twist_wrench(twist: Any, wrench: Any, tol: float = TOL) -> np.ndarray:
+def classify_twist_wrench(twist: ArrayLike, wrench: ArrayLike, tol: float = TOL) -> np.ndarray:
     """Classify (twist, wrench) pairs as reciprocal, repelling or contrary (definition 2.2).
 
     The work is compared with ``tol * (|f| |v| + |tau| |omega|)``, so the decision does
@@ -157,7 +161,7 @@ def classify_twist_wrench(twist: Any, wrench: Any, tol: float = TOL) -> np.ndarr
     return out
 
 
-def velocity_at(twist: Any, point: Any) -> FloatArray:
+def velocity_at(twist: ArrayLike, point: ArrayLike) -> FloatArray:
     """Velocity of the body point at ``point`` under ``twist``: ``v + omega z x p``."""
     t = check_array(twist, "twist", last=3)
     p = check_array(point, "point", last=2)
@@ -165,7 +169,7 @@ def velocity_at(twist: Any, point: Any) -> FloatArray:
                     axis=-1)
 
 
-def rotation_center(twist: Any) -> FloatArray:
+def rotation_center(twist: ArrayLike) -> FloatArray:
     """Instantaneous centre of rotation ``(-vy/omega, vx/omega)``; NaN for translations."""
     t = check_array(twist, "twist", last=3)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -176,7 +180,7 @@ def rotation_center(twist: Any) -> FloatArray:
 # ----------------------------------------------------------------------------- spatial
 
 
-def spatial_wrench_from_force(force: Any, point: Any) -> FloatArray:
+def spatial_wrench_from_force(force: ArrayLike, point: ArrayLike) -> FloatArray:
     """Spatial wrench ``[f | r x f]`` of a 3-D force through ``point`` (eq. 1, 3)."""
     f = check_array(force, "force", last=3)
     r = check_array(point, "point", last=3)
@@ -184,7 +188,8 @@ def spatial_wrench_from_force(force: Any, point: Any) -> FloatArray:
     return np.concatenate([f, np.cross(r, f)], axis=-1)
 
 
-def spatial_twist_about_axis(direction: Any, point: Any, omega: Any = 1.0) -> FloatArray:
+def spatial_twist_about_axis(direction: ArrayLike, point: ArrayLike,
+                             omega: ArrayLike = 1.0) -> FloatArray:
     """Spatial twist ``[w | r x w]`` of a rotation about the axis through ``point`` (eq. 2)."""
     d = check_array(direction, "direction", last=3)
     r = check_array(point, "point", last=3)
@@ -197,19 +202,19 @@ def spatial_twist_about_axis(direction: Any, point: Any, omega: Any = 1.0) -> Fl
     return np.concatenate([w, np.cross(r, w)], axis=-1)
 
 
-def spatial_twist_translation(v: Any) -> FloatArray:
+def spatial_twist_translation(v: ArrayLike) -> FloatArray:
     """Spatial twist ``[0 | v]`` of a pure translation (a free vector)."""
     v = check_array(v, "v", last=3)
     return np.concatenate([np.zeros_like(v), v], axis=-1)
 
 
-def spatial_transpose(s: Any) -> FloatArray:
+def spatial_transpose(s: ArrayLike) -> FloatArray:
     """Swap the upper and lower halves of a spatial vector: ``[a | b] -> [b | a]``."""
     s = check_array(s, "s", last=6)
     return np.concatenate([s[..., 3:], s[..., :3]], axis=-1)
 
 
-def spatial_virtual_work(wrench: Any, twist: Any) -> FloatArray:
+def spatial_virtual_work(wrench: ArrayLike, twist: ArrayLike) -> FloatArray:
     """Virtual work ``f . dx + m . dalpha`` of a spatial wrench against a twist (eq. 4)."""
     w = check_array(wrench, "wrench", last=6)
     t = check_array(twist, "twist", last=6)

@@ -18,7 +18,7 @@ Everything here is batched over leading axes and shared by the grasp-set objects
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -27,6 +27,10 @@ from ._checks import FloatArray
 from ._geom import cross2
 from .kernels import arc_meet
 from .tolerances import TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["PAIRINGS", "line_meet", "meet_and_velocities", "pair_arc", "arc_intersection",
            "pairing_sector", "pairing_valid"]
@@ -59,14 +63,15 @@ def meet_and_velocities(pa: FloatArray, ta: FloatArray, fa: FloatArray,
     return x, va, vb
 
 
-def pair_arc(center_a: Any, center_b: Any) -> tuple[FloatArray, FloatArray]:
+def pair_arc(center_a: ArrayLike, center_b: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """The sector ``C_ab`` spanned by force directions at angles ``center_a`` and
     ``center_b`` (radians): (centre, half-width), the half-width below pi/2."""
     gap = wrap(np.asarray(center_b, float) - np.asarray(center_a, float))
     return wrap(np.asarray(center_a, float) + gap / 2), np.abs(gap) / 2
 
 
-def arc_intersection(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[FloatArray, FloatArray]:
+def arc_intersection(c1: ArrayLike, h1: ArrayLike, c2: ArrayLike,
+                     h2: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """Intersection of arcs of directions (centre, half-width), each narrower than pi.
 
     Returns the centre and half-width of the intersection; the half-width is negative
@@ -80,7 +85,7 @@ def arc_intersection(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[FloatArray, Fl
     return arc_meet(c1, h1, c2, h2)
 
 
-def pairing_valid(directions: FloatArray, pairing: Any, tol: float = TOL) -> np.ndarray:
+def pairing_valid(directions: FloatArray, pairing: ArrayLike, tol: float = TOL) -> np.ndarray:
     """Are both sectors ``C_ab`` and ``C_cd`` of ``pairing`` non-null (the two forces of a
     pair not parallel, within ``tol`` as the sine of their angle)?
 
@@ -92,7 +97,7 @@ def pairing_valid(directions: FloatArray, pairing: Any, tol: float = TOL) -> np.
             & (np.abs(cross2(d[..., 2, :], d[..., 3, :])) > tol))
 
 
-def pairing_sector(centers: Any, pairing: Any) -> tuple[FloatArray, FloatArray]:
+def pairing_sector(centers: ArrayLike, pairing: ArrayLike) -> tuple[FloatArray, FloatArray]:
     """``C = C_ab & -C_cd`` of four force directions at angles ``centers`` (..., 4) for
     ``pairing`` (theorem 6.2): (centre, half-width), negative where empty."""
     c = np.take_along_axis(np.asarray(centers, float),
