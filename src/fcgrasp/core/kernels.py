@@ -46,7 +46,7 @@ from typing import Any
 import numpy as np
 
 from ._angles import wrap_floor as _wrap  # compiled over this module's namespace
-from ._checks import FloatArray
+from ._checks import BoolArray, FloatArray
 from .jit import (
     fell_back,
     import_numba,
@@ -60,6 +60,12 @@ __all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled",
            "plain", "arc_meet",
            "segment", "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
            "pair_problems", "two_levels", "PROBLEM_FIELDS"]
+
+#: A number or an array of numbers: the formulas run on both (a batch broadcast by numpy,
+#: one row in a compiled loop, one grasp on Python floats).
+Real = float | FloatArray
+#: A truth value or an array of them (the formulas' conditions).
+Cond = bool | BoolArray
 
 #: Rows a process runs by numpy before the kernels are compiled (numpy takes about
 #: 0.2-0.3 us a row, so about as long as the first compiled call of a process costs:
@@ -76,17 +82,17 @@ _TWO_PI = 2.0 * np.pi
 # ----------------------------------------------------------------------------- formulas
 
 
-def _select(cond: Any, x: Any, y: Any) -> Any:
+def _select(cond: Cond, x: Real, y: Real) -> Any:
     """``x`` where ``cond``, else ``y`` (``np.where``; a plain branch when compiled)."""
     return np.where(cond, x, y)
 
 
-def _select_scalar(cond: Any, x: Any, y: Any) -> Any:
+def _select_scalar(cond: Cond, x: Real, y: Real) -> Any:
     """:func:`_select` of numbers: what the compiled formulas call."""
     return x if cond else y
 
 
-def arc_meet(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[Any, Any]:
+def arc_meet(c1: Real, h1: Real, c2: Real, h2: Real) -> tuple[Any, Any]:
     """Intersection of arcs of directions (centre, half-width), each narrower than pi:
     centre and half-width, the half-width negative where the open arcs do not meet
     (:func:`fcgrasp.core.sectors.arc_intersection`)."""
@@ -96,7 +102,7 @@ def arc_meet(c1: Any, h1: Any, c2: Any, h2: Any) -> tuple[Any, Any]:
     return _wrap(c1 + (lo + hi) / 2), (hi - lo) / 2
 
 
-def pair_sector(c1: Any, h1: Any, c2: Any, h2: Any, margin: Any) -> tuple[Any, Any]:
+def pair_sector(c1: Real, h1: Real, c2: Real, h2: Real, margin: Real) -> tuple[Any, Any]:
     """The sector ``C = V1 & -V2`` of two friction cones (theorem 6.4), shrunk by ``margin``.
 
     ``c, h``: centre and half-width of each cone's force directions (radians).  Returns
@@ -110,13 +116,13 @@ def pair_sector(c1: Any, h1: Any, c2: Any, h2: Any, margin: Any) -> tuple[Any, A
     return cen, half - margin
 
 
-def _coefficient(vx: Any, vy: Any, ux: Any, uy: Any, vlen: Any, tol: float) -> Any:
+def _coefficient(vx: Real, vy: Real, ux: Real, uy: Real, vlen: Real, tol: float) -> Any:
     """``u x v`` of a cone edge ``u`` and a velocity ``v``; zero up to rounding is zero."""
     g = ux * vy - uy * vx
     return _select(np.abs(g) <= tol * vlen, 0.0, g)
 
 
-def segment(ax: Any, ay: Any, bx: Any, by: Any) -> tuple[Any, Any, Any, Any]:
+def segment(ax: Real, ay: Real, bx: Real, by: Real) -> tuple[Any, Any, Any, Any]:
     """Length, unit tangent (``(0, 0)`` for a point) and the tangent's norm of ``a b``."""
     L = np.hypot(bx - ax, by - ay)
     d = _select(L > 0, L, 1.0)
@@ -124,13 +130,13 @@ def segment(ax: Any, ay: Any, bx: Any, by: Any) -> tuple[Any, Any, Any, Any]:
     return L, vx, vy, np.hypot(vx, vy)
 
 
-def _cone_edges(cen: Any, hm: Any) -> tuple[Any, Any, Any, Any]:
+def _cone_edges(cen: Real, hm: Real) -> tuple[Any, Any, Any, Any]:
     """The unit edges ``k1`` (clockwise) and ``k2`` of the sector ``cen -+ hm``."""
     return np.cos(cen - hm), np.sin(cen - hm), np.cos(cen + hm), np.sin(cen + hm)
 
 
-def pair_problem(ax1: Any, ay1: Any, bx1: Any, by1: Any, ax2: Any, ay2: Any, bx2: Any,
-                 by2: Any, cen: Any, hm: Any, sign: float, tol: float = SOLVER_TOL
+def pair_problem(ax1: Real, ay1: Real, bx1: Real, by1: Real, ax2: Real, ay2: Real, bx2: Real,
+                 by2: Real, cen: Real, hm: Real, sign: float, tol: float = SOLVER_TOL
                  ) -> tuple[Any, ...]:
     """The region problem of two fingers on segments ``a1 b1`` and ``a2 b2`` (theorem 7.1
     with ``P12 = P`` and ``P34 = Q``, algorithm 7.1), for the shrunk sector of centre
@@ -147,9 +153,9 @@ def pair_problem(ax1: Any, ay1: Any, bx1: Any, by1: Any, ax2: Any, ay2: Any, bx2
                            sign * k1x, sign * k1y, sign * k2x, sign * k2y, hm, tol)
 
 
-def _signed_problem(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any,
-                    ay2: Any, L2: Any, vx2: Any, vy2: Any, n2: Any, k1x: Any, k1y: Any,
-                    k2x: Any, k2y: Any, hm: Any, tol: float) -> tuple[Any, ...]:
+def _signed_problem(ax1: Real, ay1: Real, L1: Real, vx1: Real, vy1: Real, n1: Real, ax2: Real,
+                    ay2: Real, L2: Real, vx2: Real, vy2: Real, n2: Real, k1x: Real, k1y: Real,
+                    k2x: Real, k2y: Real, hm: Real, tol: float) -> tuple[Any, ...]:
     """:func:`pair_problem` from the segments' lengths and tangents and the cone's edges
     taken with the mode's sign."""
     # phi_1(x) = k1 x x and phi_2(x) = x x k2 = (-k2) x x
@@ -184,8 +190,8 @@ def _signed_problem(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax
             separable)
 
 
-def _greedy_slack(t: Any, r0: Any, af: Any, ap: Any, aq: Any, bp: Any, bq: Any, Lp: Any,
-                  Lq: Any, fp: Any, fq: Any, c: Any) -> Any:
+def _greedy_slack(t: Real, r0: Real, af: Real, ap: Real, aq: Real, bp: Real, bq: Real, Lp: Real,
+                  Lq: Real, fp: Real, fq: Real, c: Real) -> Any:
     """Slack of knapsack 2 at the greedy optimum of knapsack 1, at level ``t``."""
     R = r0 - t * af
     capp, capq = Lp - t * fp, Lq - t * fq
@@ -195,8 +201,8 @@ def _greedy_slack(t: Any, r0: Any, af: Any, ap: Any, aq: Any, bp: Any, bq: Any, 
     return bp * np.maximum(fillp, 0.0) + bq * np.maximum(fillq, 0.0) - c
 
 
-def two_level(a1: Any, a2: Any, b1: Any, b2: Any, L1: Any, L2: Any, K1: Any, K2: Any,
-              lb1: Any, lb2: Any, f1: Any, f2: Any, active: Any, tol: float = SOLVER_TOL
+def two_level(a1: Real, a2: Real, b1: Real, b2: Real, L1: Real, L2: Real, K1: Real, K2: Real,
+              lb1: Real, lb2: Real, f1: Real, f2: Real, active: Cond, tol: float = SOLVER_TOL
               ) -> Any:
     """The largest ``t`` such that region ``i`` reaches ``lb_i + t f_i`` (algorithm 7.1
     in closed form; :func:`fcgrasp.model.regions.max_min_length` for two regions).
@@ -238,9 +244,9 @@ def two_level(a1: Any, a2: Any, b1: Any, b2: Any, L1: Any, L2: Any, K1: Any, K2:
     return _select(ok, t, -1.0)
 
 
-def _mode_value(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any,
-                ay2: Any, L2: Any, vx2: Any, vy2: Any, n2: Any, k1x: Any, k1y: Any,
-                k2x: Any, k2y: Any, hm: Any, tol: float) -> Any:
+def _mode_value(ax1: Real, ay1: Real, L1: Real, vx1: Real, vy1: Real, n1: Real, ax2: Real,
+                ay2: Real, L2: Real, vx2: Real, vy2: Real, n2: Real, k1x: Real, k1y: Real,
+                k2x: Real, k2y: Real, hm: Real, tol: float) -> Any:
     """The largest smallest region of one mode (-1: none)."""
     _, _, w11, w12, w21, w22, K1, K2, _, _, sep = _signed_problem(
         ax1, ay1, L1, vx1, vy1, n1, ax2, ay2, L2, vx2, vy2, n2, k1x, k1y, k2x, k2y, hm, tol)
@@ -249,8 +255,8 @@ def _mode_value(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: A
     return _select(sep, t, -1.0)
 
 
-def pair_modes(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any,
-               ay2: Any, L2: Any, vx2: Any, vy2: Any, n2: Any, cen: Any, hm: Any,
+def pair_modes(ax1: Real, ay1: Real, L1: Real, vx1: Real, vy1: Real, n1: Real, ax2: Real,
+               ay2: Real, L2: Real, vx2: Real, vy2: Real, n2: Real, cen: Real, hm: Real,
                tol: float = SOLVER_TOL) -> tuple[Any, Any]:
     """Stage 1 of the leximin order of two fingers: the largest smallest region over both
     modes (squeeze, expand; -1 where neither has regions) and the better mode (0 or 1;
@@ -261,9 +267,9 @@ def pair_modes(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: An
                      k1x, k1y, k2x, k2y, hm, tol)
 
 
-def _modes_of(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any,
-              ay2: Any, L2: Any, vx2: Any, vy2: Any, n2: Any, k1x: Any, k1y: Any,
-              k2x: Any, k2y: Any, hm: Any, tol: float) -> tuple[Any, Any]:
+def _modes_of(ax1: Real, ay1: Real, L1: Real, vx1: Real, vy1: Real, n1: Real, ax2: Real,
+              ay2: Real, L2: Real, vx2: Real, vy2: Real, n2: Real, k1x: Real, k1y: Real,
+              k2x: Real, k2y: Real, hm: Real, tol: float) -> tuple[Any, Any]:
     """:func:`pair_modes` given the shrunk sector's unit edges ``k1``, ``k2``."""
     v0 = _mode_value(ax1, ay1, L1, vx1, vy1, n1, ax2, ay2, L2, vx2, vy2, n2,
                      k1x, k1y, k2x, k2y, hm, tol)
@@ -272,7 +278,7 @@ def _modes_of(ax1: Any, ay1: Any, L1: Any, vx1: Any, vy1: Any, n1: Any, ax2: Any
     return np.maximum(v0, v1), _select(v1 > v0, 1, 0)
 
 
-def shrunk_edges(center: Any, half: Any, margin: float) -> Any:
+def shrunk_edges(center: Real, half: Real, margin: float) -> Any:
     """Per cone (force directions ``center -+ half``), the unit vectors at
     ``center - half + margin`` and ``center + half - margin``, shape (F, 4): the edges of
     every pair's shrunk sector (theorem 6.4) are among them and their opposites
@@ -281,7 +287,8 @@ def shrunk_edges(center: Any, half: Any, margin: float) -> Any:
     return np.column_stack([np.cos(lo), np.sin(lo), np.cos(hi), np.sin(hi)])
 
 
-def _sector_edges(c1: Any, h1: Any, c2: Any, h2: Any, margin: float, e1: Any, e2: Any
+def _sector_edges(c1: Real, h1: Real, c2: Real, h2: Real, margin: float,
+                  e1: tuple[Real, ...], e2: tuple[Real, ...]
                   ) -> tuple[Any, Any, Any, Any, Any]:
     """:func:`pair_sector`'s shrunk half-width ``hm`` (the same arithmetic) and its unit
     edges ``k1``, ``k2`` from the cones' :func:`shrunk_edges` ``e1``, ``e2``: the sector's
@@ -405,11 +412,11 @@ _LOOPS = ("_pair_scores_loop", "_pair_problems_loop", "_two_levels_loop", "_anti
 # ----------------------------------------------------------------------------- plain floats
 
 
-def _larger(x: Any, y: Any) -> Any:
+def _larger(x: Real, y: Real) -> Any:
     return x if x >= y else y
 
 
-def _smaller(x: Any, y: Any) -> Any:
+def _smaller(x: Real, y: Real) -> Any:
     return x if x <= y else y
 
 
