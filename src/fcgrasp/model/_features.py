@@ -5,7 +5,7 @@ centroid) and the field-of-view constraint between two of them (part of
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -17,6 +17,10 @@ from ..core.sectors import (
 )
 from ..core.tolerances import ANGLE_CAP_GAP, TINY
 from .polygon import Polygon
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 FORCE_DIRECTION = "force-direction"
 FIELD_OF_VIEW = "field-of-view"
@@ -107,7 +111,7 @@ def vertex_feature(poly: Polygon, k: int, mu: float) -> Feature:
     return Feature("vertex", int(k), p, p, float(center), float(half))
 
 
-def gravity_feature(poly: Polygon, direction: Any = (0.0, -1.0)) -> Feature:
+def gravity_feature(poly: Polygon, direction: ArrayLike = (0.0, -1.0)) -> Feature:
     g = check_direction(direction, "gravity")
     c = poly.centroid
     return Feature("gravity", None, c, c, float(np.arctan2(g[1], g[0])), 0.0)

@@ -22,6 +22,7 @@ import numpy as np
 from ..core import _simplex, jit, kernels
 from ..core._simplex import _lp_max
 from ..core.kernels import arc_meet
+from .polygon import Polygon
 
 #: The kinds of a finger's edge in its stretch (``frictionless_stretches``'s order).
 _SINGLE, _FIRST, _LAST, _INSIDE = 0, 1, 2, 3
@@ -430,7 +431,7 @@ def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: b
     return (int(st), y) if ok else None
 
 
-def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
+def edge_arrays(polygon: Polygon, gravity: Any) -> tuple[Any, Any, Any]:
     """Every edge's start, end and force angle (the inward normal's), as
     :func:`system_rows` reads them (a search builds them once: its thousands of programs
     then only gather their edges' rows); with ``gravity``, one more row: the centroid (a
@@ -449,7 +450,7 @@ def edge_arrays(polygon: Any, gravity: Any) -> tuple[Any, Any, Any]:
 _NO_ROWS, _NO_PARENT = np.zeros(0), np.zeros(4, np.int64)
 
 
-def system_rows(polygon: Any, edges: Any, gravity: Any, pairing: Any, margin: float,
+def system_rows(polygon: Polygon, edges: Any, gravity: Any, pairing: Any, margin: float,
                 s: float, tol: float, arrays: Any = None, parent: Any = None,
                 checked: bool = False) -> tuple[Any, Any, bool] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``_frictionless_program._system`` (the fingers'

@@ -6,7 +6,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -25,6 +25,10 @@ from ..core.tolerances import (
 from . import _frictionless_kernels
 from ._regiongeom import four_finger_geometry
 from .polygon import Polygon
+
+if TYPE_CHECKING:
+    pass
+
 
 #: Kinds of covered edge in a region: the only one, the first, the last, inside.
 _SINGLE, _FIRST, _LAST, _INSIDE = range(4)
@@ -108,7 +112,7 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     return _Config(edges, A, bvec, bounds, const, compiled_rows)
 
 
-def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: Any,
+def _rows_numpy(polygon: Polygon, edges: tuple[tuple[int, ...], ...], gravity: FloatArray | None,
                 pairing: np.ndarray, margin: float, s: float
                 ) -> tuple[FloatArray, FloatArray] | None:
     """Theorem 7.1's two rows per combination of covered edges, by numpy: ``(A, rhs)``,

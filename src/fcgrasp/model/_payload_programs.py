@@ -4,7 +4,7 @@ with friction resist, over its vertices or facets (part of :mod:`fcgrasp.model.l
 from __future__ import annotations
 
 import itertools
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -13,10 +13,15 @@ from ..core._checks import (
     check_scalar,
 )
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+
 # ----------------------------------------------------------------------------- one grasp
 
 
-def _limits(force_limit: Any, total_limit: Any, k: int) -> tuple[FloatArray, float]:
+def _limits(force_limit: ArrayLike | None, total_limit: ArrayLike | None, k: int
+            ) -> tuple[FloatArray, float]:
     per = np.full(k, np.inf)
     if force_limit is not None:
         try:

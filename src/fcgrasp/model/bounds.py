@@ -54,7 +54,7 @@ from __future__ import annotations
 import itertools
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -64,6 +64,10 @@ from ..core.jit import CompiledLoops
 from ..core.tolerances import TINY, TOL, VERTEX_HAIR
 from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["UpperBound", "optimum_upper_bound", "refutes", "clearly_not_closure"]
 
@@ -194,7 +198,7 @@ def _wrenches(points: FloatArray, normals: FloatArray, half: float | None) -> Fl
 _PAIRS: dict[int, tuple[np.ndarray, np.ndarray, np.ndarray]] = {}
 
 
-def clearly_not_closure(wrenches: Any, tol: float = TOL) -> np.ndarray:
+def clearly_not_closure(wrenches: ArrayLike, tol: float = TOL) -> np.ndarray:
     """Is the wrench convexe not total (theorem 6.1)?  True where the plane through the
     origin and two (non-parallel) of the wrenches has every other wrench on one side of
     it, ties within ``tol`` (on unit wrenches) counted on that side as the general test
@@ -476,8 +480,9 @@ def refutes(polygon: Polygon, fingers: int, length: float, mu: float = 0.0,
     return True, seen
 
 
-def optimum_upper_bound(polygon: Any, fingers: int, mu: Any = 0.0, margin: Any = None,
-                        lower: Any = 0.0, gap: Any = 0.01,
+def optimum_upper_bound(polygon: Polygon, fingers: int, mu: ArrayLike = 0.0,
+                        margin: ArrayLike | None = None,
+                        lower: ArrayLike = 0.0, gap: ArrayLike = 0.01,
                         max_nodes: int = MAX_NODES) -> UpperBound:
     """A certified upper bound on the best smallest region (definition 7.1) of any plan
     of ``fingers`` point fingers (3 or 4; ``mu`` 0: frictionless) whose regions are arcs

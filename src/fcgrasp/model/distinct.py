@@ -19,7 +19,7 @@ import math
 from dataclasses import replace
 from functools import cache
 from itertools import permutations
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import shapely
@@ -27,6 +27,11 @@ import shapely
 from ..core._checks import FloatArray
 from ..core.tolerances import COORD_ROUNDING, REACH_PAD, ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
+from .polygon import Polygon
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppression",
            "distinct_plans",
@@ -443,7 +448,7 @@ def distinct_plans(plans: list[Any], fraction: float, size: float,
     return suppression.plans()
 
 
-def part_symmetries(polygon: Any, tol: float = TOL) -> list[tuple[str, float]]:
+def part_symmetries(polygon: Polygon, tol: float = TOL) -> list[tuple[str, float]]:
     """The isometries about the centroid that map the part onto itself: ``("rot",
     alpha)`` (a rotation by ``alpha``; the identity is ``("rot", 0.0)``) and ``("ref",
     phi)`` (the reflection across the line through the centroid at angle ``phi``), every
@@ -482,7 +487,7 @@ def _matrix(kind: str, ang: float) -> np.ndarray:
         np.array([[np.cos(2 * ang), np.sin(2 * ang)], [np.sin(2 * ang), -np.cos(2 * ang)]])
 
 
-def grip_symmetries(polygon: Any, insert: Any = None, tol: float = 10 * SLICE_TOL
+def grip_symmetries(polygon: Polygon, insert: ArrayLike | None = None, tol: float = 10 * SLICE_TOL
                     ) -> list[tuple[str, float]]:
     """The symmetries under which a grip's boxes have images (:func:`box_images`): all of
     :func:`part_symmetries` for an external grip (``insert`` None); for an internal grip,
@@ -565,7 +570,7 @@ def same_box(p: Any, q: Any, fraction: float, symmetries: list[tuple[str, float]
     return False
 
 
-def distinct_boxes(polygon: Any, plans: list[Any], fraction: float,
+def distinct_boxes(polygon: Polygon, plans: list[Any], fraction: float,
                    adjacent: tuple[float, float] | None = None) -> list[Any]:
     """The ranked jaw boxes less those that are the same alternative as a better one
     (:func:`same_box`, up to the part's symmetries; with ``adjacent``, neighbouring boxes

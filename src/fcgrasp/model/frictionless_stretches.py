@@ -57,7 +57,7 @@ from __future__ import annotations
 import math
 from collections import OrderedDict
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -82,6 +82,10 @@ from ._frictionless_program import (
 )
 from .polygon import Polygon
 from .regions import DEFAULT_MARGIN_DEG
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["FrictionlessStretches", "frictionless_stretch_regions", "grow_stretches",
            "all_frictionless_stretches", "MAX_COMBINATIONS"]
@@ -137,7 +141,7 @@ def _result(polygon: Polygon, cfg: _Config, x: FloatArray, pairing: np.ndarray,
                                  tuple(int(p) for p in pairing), mode)
 
 
-def _check(polygon: Any, region_edges: Any, margin: Any, gravity: Any
+def _check(polygon: Polygon, region_edges: Any, margin: ArrayLike, gravity: ArrayLike | None
            ) -> tuple[tuple[tuple[int, ...], ...], float, FloatArray | None]:
     if not isinstance(polygon, Polygon):
         raise TypeError(f"polygon must be a fcgrasp.Polygon, got {type(polygon).__name__}")
@@ -321,7 +325,8 @@ class _Search:
 
 
 def frictionless_stretch_regions(polygon: Polygon, region_edges: Any,
-                                 margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = None
+                                 margin: ArrayLike = DEFAULT_MARGIN_DEG,
+                                 gravity: ArrayLike | None = None
                                  ) -> FrictionlessStretches | None:
     """Optimal independent regions covering exactly the given stretches (definition
     7.1 with the vertex lemma of this module), frictionless fingers.
@@ -392,7 +397,7 @@ def _size(edges: tuple[tuple[int, ...], ...]) -> int:
     return math.prod(len(st) for st in edges)
 
 
-def _seeds(polygon: Polygon, edge_sets: Any, margin: Any, gravity: Any
+def _seeds(polygon: Polygon, edge_sets: Any, margin: ArrayLike, gravity: ArrayLike | None
            ) -> tuple[_Search, list[tuple[tuple[tuple[int, ...], ...], Any]]]:
     """One search for the rows of single edges, and each row's configuration with its
     best pairing and orientation (None where it holds no regions)."""
@@ -418,8 +423,8 @@ def load_kernels() -> bool:
     return _frictionless_kernels.COMPILED.available()
 
 
-def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGIN_DEG,
-                   gravity: Any = None, max_steps: int = 400, keep_single: bool = True,
+def grow_stretches(polygon: Polygon, edge_sets: Any, margin: ArrayLike = DEFAULT_MARGIN_DEG,
+                   gravity: ArrayLike | None = None, max_steps: int = 400, keep_single: bool = True,
                    polish: int = 0) -> list[FrictionlessStretches | None]:
     """Grow single-edge regions along the boundary (the search of this module's
     docstring).
@@ -469,7 +474,8 @@ def grow_stretches(polygon: Polygon, edge_sets: Any, margin: Any = DEFAULT_MARGI
 
 
 def all_frictionless_stretches(polygon: Polygon, edge_sets: Any,
-                               margin: Any = DEFAULT_MARGIN_DEG, gravity: Any = None,
+                               margin: ArrayLike = DEFAULT_MARGIN_DEG,
+                               gravity: ArrayLike | None = None,
                                limit: int = 200_000) -> FrictionlessStretches | None:
     """The best configuration that holds and covers one of the given single-edge sets
     (rows of edges, one per finger), over every pairing and cone orientation:

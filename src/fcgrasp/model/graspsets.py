@@ -29,7 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Iterator, Sequence
 from itertools import combinations
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import shapely
@@ -49,18 +49,9 @@ from ..core.sectors import (
 from ..core.tolerances import ROUND_TOL, TINY, TOL
 from .polygon import Polygon, check_polygon
 
-__all__ = [
-    "Feature",
-    "Vertex",
-    "FrictionGraspSet",
-    "FrictionlessGraspSet",
-    "grasp_set",
-    "three_edge_grasp_sets",
-    "grasp_sets",
-    "FORCE_DIRECTION",
-    "FIELD_OF_VIEW",
-    "SOFT_HALF_ANGLE_CAP",
-]
+__all__ = ["Feature", "Vertex", "FrictionGraspSet", "FrictionlessGraspSet", "grasp_set",
+           "three_edge_grasp_sets", "grasp_sets", "FORCE_DIRECTION", "FIELD_OF_VIEW",
+           "SOFT_HALF_ANGLE_CAP"]
 from ._features import (
     FIELD_OF_VIEW,
     FORCE_DIRECTION,
@@ -73,6 +64,10 @@ from ._features import (
     gravity_feature,
     vertex_feature,
 )
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 # ----------------------------------------------------------------------------- two fingers
 
@@ -461,7 +456,8 @@ def _features(poly: Polygon, items: Sequence[Any], mu: float) -> list[Feature]:
 
 
 def grasp_set(polygon: Polygon, edges: Sequence[Any], mu: float = 0.0,
-              gravity: Any = None, tol: float = TOL) -> FrictionGraspSet | FrictionlessGraspSet:
+              gravity: ArrayLike | None = None,
+              tol: float = TOL) -> FrictionGraspSet | FrictionlessGraspSet:
     """The complete set of force-closure grasps on the given edges.
 
     Parameters
@@ -528,7 +524,7 @@ def _spans_all_directions(dirs: FloatArray, tol: float) -> np.ndarray:
 
 
 def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool = False,
-               gravity: Any = None, tol: float = TOL
+               gravity: ArrayLike | None = None, tol: float = TOL
                ) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
     """Iterate over every non-empty grasp set of the polygon (complexity 6.1).
 
@@ -547,7 +543,7 @@ def grasp_sets(polygon: Polygon, fingers: int = 2, mu: float = 0.0, soft: bool =
                               tol)
 
 
-def _pair_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+def _pair_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: ArrayLike | None,
                tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
     """Two fingers: every pair of edges (and of soft fingers at convex vertices)."""
     feats: list[Any] = [int(i) for i in idx]
@@ -560,7 +556,7 @@ def _pair_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity
             yield gs
 
 
-def _quad_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+def _quad_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: ArrayLike | None,
                tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
     """Four frictionless fingers: 4-tuples, and three edges with one taken twice."""
     if mu != 0.0:
@@ -580,7 +576,8 @@ def _quad_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity
                 yield gs
 
 
-def _gravity_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool, gravity: Any,
+def _gravity_sets(polygon: Polygon, idx: np.ndarray, mu: float, soft: bool,
+                  gravity: ArrayLike | None,
                   tol: float) -> Iterator[FrictionGraspSet | FrictionlessGraspSet]:
     """Three frictionless fingers and gravity (default straight down)."""
     g = check_direction((0.0, -1.0) if gravity is None else gravity, "gravity")

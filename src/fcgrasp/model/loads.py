@@ -70,7 +70,7 @@ from __future__ import annotations
 
 import itertools
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -90,6 +90,11 @@ from ._payload_programs import (
     _scale,
     _wrench_edges,
 )
+from .polygon import Polygon
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["Load", "Payload", "RegionPayload", "grasp_payload", "region_payload",
            "ACCEL_SHAPES"]
@@ -172,7 +177,7 @@ class Load:
         flattened to a segment or a point)."""
         return self.accel_shape == "box" or min(self.accel) == 0.0
 
-    def _affine(self, com: Any) -> tuple[FloatArray, FloatArray]:
+    def _affine(self, com: ArrayLike | None) -> tuple[FloatArray, FloatArray]:
         """The wrench at zero acceleration and torque ``w0`` (3,) and the map ``M``
         (3, 2) of the acceleration's unit coordinates: ``w = w0 + M u + (0, 0, tau)``."""
         c = self.com if self.com is not None else com
@@ -185,7 +190,7 @@ class Load:
         M = np.array([[-m * ax, 0.0], [0.0, -m * ay], [cy * m * ax, -cx * m * ay]])
         return w0, M
 
-    def wrenches(self, com: Any = None, outer: bool = True,
+    def wrenches(self, com: ArrayLike | None = None, outer: bool = True,
                  sides: int = ELLIPSE_SIDES) -> FloatArray:
         """The vertices ``(fx, fy, tau)`` of the set of wrenches the load applies to the
         part (the fingers supply their opposite), duplicates removed; ``com`` where the
@@ -203,7 +208,7 @@ class Load:
         out = [b + [0.0, 0.0, tau] for b in base for tau in self.torque]
         return np.unique(np.round(np.array(out), 12), axis=0)
 
-    def support(self, h: Any, com: Any = None) -> FloatArray:
+    def support(self, h: ArrayLike, com: ArrayLike | None = None) -> FloatArray:
         """The support function of the load's wrenches, ``max h . w`` over the set, for
         each row ``h`` (n, 3): in closed form (the box's corners, or the ellipse's
         ``|M^T h|``, plus the torque range's end)."""
@@ -261,7 +266,7 @@ class RegionPayload:
                 "gap": float(self.gap), "boxes": int(self.boxes)}
 
 
-def _facet_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: float
+def _facet_scale(E: FloatArray, load: Load, com: ArrayLike | None, per: FloatArray, total: float
                  ) -> float | None:
     """The exact largest scale of ``load`` (any convex set with a support function)
     that one grasp resists: the fingers' wrenches within the limits are a polytope
@@ -291,7 +296,7 @@ def _facet_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: fl
     return float(np.min(b[pos] / sigma[pos]))
 
 
-def _load_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: float,
+def _load_scale(E: FloatArray, load: Load, com: ArrayLike | None, per: FloatArray, total: float,
                 upper: bool = False, vertices: FloatArray | None = None) -> float:
     """The largest scale of ``load`` one grasp resists: the program over the load's
     vertices (a polytope; ``vertices``: ``load.wrenches(com)`` when the caller has
@@ -311,8 +316,9 @@ def _load_scale(E: FloatArray, load: Load, com: Any, per: FloatArray, total: flo
     return _scale(E, load.wrenches(com, outer=not upper), per, total)
 
 
-def grasp_payload(points: Any, normals: Any, mu: Any, load: Load, force_limit: Any = None,
-                  total_limit: Any = None, com: Any = None) -> Payload:
+def grasp_payload(points: ArrayLike, normals: ArrayLike, mu: ArrayLike, load: Load,
+                  force_limit: ArrayLike | None = None,
+                  total_limit: ArrayLike | None = None, com: ArrayLike | None = None) -> Payload:
     """The largest scale of ``load`` one grasp resists within the finger force limits
     (see the module docstring), and the least-peak-force distribution for the load.
 
@@ -470,8 +476,8 @@ def _box_rows(pieces: tuple[_Piece, ...], lo: FloatArray, hi: FloatArray
     return rows
 
 
-def region_payload(polygon: Any, plan: Any, load: Load, force_limit: Any = None,
-                   total_limit: Any = None, gap: float = 0.01, max_boxes: int = 200
+def region_payload(polygon: Polygon, plan: Any, load: Load, force_limit: ArrayLike | None = None,
+                   total_limit: ArrayLike | None = None, gap: float = 0.01, max_boxes: int = 200
                    ) -> RegionPayload:
     """The scale of ``load`` guaranteed over every grasp of a plan's regions (one finger
     anywhere in each region), within the finger force limits: a certified lower bound

@@ -18,7 +18,7 @@ coarser, optional Douglas-Peucker simplification (``--simplify``), topology pres
 
 from __future__ import annotations
 
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import shapely
@@ -30,6 +30,10 @@ from ..core._geom import signed_area
 from ..core.tolerances import CLEAN_TOL, MAX_MAGNITUDE
 from .polygon import Polygon, check_polygon
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+
 __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ring",
            "clean_outline", "simplify_outline"]
 
@@ -37,7 +41,7 @@ __all__ = ["CLEAN_TOL", "FILL_RULES", "fill_rings", "winding_numbers", "clean_ri
 FILL_RULES = ("nonzero", "evenodd")
 
 
-def winding_numbers(points: Any, ring: Any) -> np.ndarray:
+def winding_numbers(points: ArrayLike, ring: ArrayLike) -> np.ndarray:
     """Winding number of the closed ring around each point, shape (P,) (int).
 
     Positive for counter-clockwise rings; a point on the ring gets an arbitrary side.
@@ -129,7 +133,7 @@ def fill_rings(rings: list[Any], rule: str = "evenodd") -> list[ShapelyPolygon]:
     return sorted(parts, key=lambda p: -p.area)
 
 
-def clean_ring(ring: Any, tol: float) -> FloatArray:
+def clean_ring(ring: ArrayLike, tol: float) -> FloatArray:
     """The ring without the vertices that lie within ``tol`` of the segment joining their
     neighbours (collinear runs merged, edges shorter than ``tol`` dropped).
 

@@ -10,7 +10,7 @@ not depend on how the part's vertices are numbered.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
@@ -25,6 +25,10 @@ from ..core.tolerances import TINY
 from .polygon import Polygon, check_polygon
 from .quality import quality_of
 from .ranking import MEASURES
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["GraspPlan", "PlanList", "leximin_key", "geometric_key", "rank_key",
            "check_point_plan"]
@@ -124,7 +128,7 @@ class GraspPlan:
             out.append(sign * cand)
         return tuple(out)
 
-    def normals_at(self, points: Any) -> FloatArray:
+    def normals_at(self, points: ArrayLike) -> FloatArray:
         """Outward normal at a finger position in each region (the nearest segment's;
         at a vertex inside a region either edge's), shape (fingers, 2)."""
         pts = np.asarray(points, dtype=float).reshape(self.fingers, 2)
@@ -162,7 +166,7 @@ class GraspPlan:
     def fingers(self) -> int:
         return len(self.edges)
 
-    def contacts_for(self, points: Any, normals: Any = None) -> list[Any]:
+    def contacts_for(self, points: ArrayLike, normals: ArrayLike | None = None) -> list[Any]:
         """The contacts of a grasp with the fingers at ``points`` (normals: the
         region's edge at each point unless given)."""
         pts = np.asarray(points, dtype=float)
@@ -177,7 +181,7 @@ class GraspPlan:
             out.append(Gravity(self.gravity["center"], self.gravity["direction"]))
         return out
 
-    def grasp(self, points: Any = None) -> Grasp:
+    def grasp(self, points: ArrayLike | None = None) -> Grasp:
         """The :class:`~fcgrasp.Grasp` at ``points`` (default: the representative grasp)."""
         if points is None:
             return Grasp(self.contacts_for(self.contacts, self.normals))
@@ -249,7 +253,7 @@ def rank_key(p: GraspPlan, polygon: Polygon, rank_by: str = "min_region",
     return (-q, lex, geo)
 
 
-def check_point_plan(polygon: Any, plan: Any, no_gravity: str | None = None) -> Polygon:
+def check_point_plan(polygon: Polygon, plan: Any, no_gravity: str | None = None) -> Polygon:
     """``polygon`` checked, and ``plan`` a :class:`GraspPlan` of point fingers (else
     TypeError); with ``no_gravity`` (why), a plan that relies on gravity is refused
     (ValueError).  What the functions judging a plan's grasps (its payload, its chance

@@ -29,7 +29,7 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 import shapely
@@ -38,6 +38,10 @@ from shapely.geometry import Polygon as ShapelyPolygon
 from ..core._checks import FloatArray, _short, numeric_array
 from ..core._geom import signed_area, unique_rows
 from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, TINY
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["Polygon", "Edge", "check_polygon"]
 
@@ -158,7 +162,7 @@ class Polygon:
     ([-1.0, 0.0], 1.0)
     """
 
-    def __init__(self, vertices: Any, holes: Sequence[Any] = ()) -> None:
+    def __init__(self, vertices: ArrayLike, holes: Sequence[Any] = ()) -> None:
         outer = _check_ring(vertices, "vertices")
         if isinstance(holes, (str, bytes)) or not isinstance(holes, (Sequence, np.ndarray)):
             raise TypeError(f"holes must be a list of rings (each of shape (m, 2)), got "
@@ -321,7 +325,7 @@ class Polygon:
         turn = (n_in[:, 0] * n_out[:, 1] - n_in[:, 1] * n_out[:, 0]) * self._object_left
         return cast("FloatArray", (turn > 0) & self.usable)
 
-    def distance_to_edges(self, point: Any) -> FloatArray:
+    def distance_to_edges(self, point: ArrayLike) -> FloatArray:
         """Distance from ``point`` to every edge, shape (E,) (inf for zero-length edges)."""
         pt = np.asarray(point, dtype=float)
         d = self.ends - self.starts
@@ -356,7 +360,7 @@ class Polygon:
     def to_shapely(self) -> ShapelyPolygon:
         return self._shapely
 
-    def contains(self, points: Any) -> np.ndarray:
+    def contains(self, points: ArrayLike) -> np.ndarray:
         """Whether points lie in the part (boundary included)."""
         pts = np.asarray(points, dtype=float)
         return cast("np.ndarray", shapely.covers(self._shapely, shapely.points(pts)))

@@ -31,13 +31,17 @@ r"""Grasp quality (paper section 8.1), computed at a plan's representative grasp
 from __future__ import annotations
 
 from itertools import combinations, product
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 import numpy as np
 
 from ..core._checks import FloatArray
 from ..core._geom import unique_rows
 from ..core.tolerances import DEGENERATE_TOL, RANK_RTOL, ROUND_TOL, TINY
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["epsilon_metrics", "resistance_metrics", "characteristic_length", "ball_radius"]
 
@@ -197,7 +201,7 @@ def resistance_metrics(points: FloatArray, forces: FloatArray, finger: np.ndarra
             "resistance_approx": 1.0 / approx if approx > 0 else float("inf")}
 
 
-def quality_of(points: Any, forces: Any, finger: Any, centroid: Any, rho: float,
+def quality_of(points: ArrayLike, forces: ArrayLike, finger: Any, centroid: ArrayLike, rho: float,
                translation: float, rotation_deg: float, real: Any = None) -> dict[str, float]:
     """Every quality measure of one grasp (section 8.1; see the module docstring).
 

@@ -31,13 +31,20 @@ True
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..core._checks import FloatArray, check_mu_scalar, check_scalar
 from ..core.tolerances import LP_TOL, TOL
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+    from .polygon import Polygon
+
 
 __all__ = ["placement_probability", "pair_probability", "pose_probability", "Estimate",
            "robustness"]
@@ -120,8 +127,9 @@ def _cone_halfplanes(f: FloatArray, beta: float) -> list[tuple[FloatArray, float
     return [(np.array([-lo[1], lo[0]]), 0.0), (np.array([hi[1], -hi[0]]), 0.0)]
 
 
-def pair_probability(a1: Any, t1: Any, f1: Any, lo1: float, hi1: float, a2: Any, t2: Any,
-                     f2: Any, lo2: float, hi2: float, mu: float, sigma: float) -> float:
+def pair_probability(a1: ArrayLike, t1: ArrayLike, f1: ArrayLike, lo1: float, hi1: float,
+                     a2: ArrayLike, t2: ArrayLike,
+                     f2: ArrayLike, lo2: float, hi2: float, mu: float, sigma: float) -> float:
     """Probability that fingers at ``a_i + s_i t_i`` (``s_i ~ N(0, sigma^2)``), kept
     where ``lo_i < s_i < hi_i`` (their edge), pushing along ``f_i`` with friction ``mu``,
     are force closure (squeezing or expanding)."""
@@ -147,7 +155,7 @@ def pair_probability(a1: Any, t1: Any, f1: Any, lo1: float, hi1: float, a2: Any,
     return total
 
 
-def _ring_walk(polygon: Any, edge: int, point: FloatArray, sigma: float
+def _ring_walk(polygon: Polygon, edge: int, point: FloatArray, sigma: float
                ) -> list[tuple[int, float, float]]:
     """The edges of ``edge``'s ring within REACH deviations of ``point`` along it:
     ``(edge, lo, hi)`` with the landing offset ``s`` on that edge for ``lo < s < hi``
@@ -173,8 +181,9 @@ def _ring_walk(polygon: Any, edge: int, point: FloatArray, sigma: float
     return [(e, lo, hi) for e, lo, hi in out if hi > -reach and lo < reach]
 
 
-def placement_probability(polygon: Any, plan: Any, placement_sigma: Any,
-                          mu_range: Any = None, mu: Any = None) -> float:
+def placement_probability(polygon: Polygon, plan: Any, placement_sigma: ArrayLike | None,
+                          mu_range: Sequence[float] | None = None,
+                          mu: ArrayLike | None = None) -> float:
     """Probability that a two-finger plan holds when each finger lands with a Gaussian
     error of ``placement_sigma`` along the boundary around its representative contact
     (see the module docstring); ``mu_range=(low, high)``: friction uniform in it;
@@ -239,7 +248,7 @@ class Estimate:
                 "samples": self.samples, "replicas": self.replicas}
 
 
-def _pose_sigmas(pose_sigma: Any) -> tuple[float, float, float]:
+def _pose_sigmas(pose_sigma: ArrayLike) -> tuple[float, float, float]:
     """``pose_sigma``: a distance (x and y) or ``(sx, sy, s_theta_deg)``."""
     if np.ndim(pose_sigma) == 0:
         s = check_scalar(pose_sigma, "pose_sigma", nonnegative=True)
@@ -255,7 +264,7 @@ def _pose_sigmas(pose_sigma: Any) -> tuple[float, float, float]:
     return out
 
 
-def _land(polygon: Any, origin: FloatArray, direction: FloatArray
+def _land(polygon: Polygon, origin: FloatArray, direction: FloatArray
           ) -> tuple[FloatArray, np.ndarray]:
     """Where rays (origin, direction: (S, 2)) first enter the part's material, and the
     edge they enter by (-1: the ray misses, or starts inside the material)."""
@@ -276,7 +285,7 @@ def _land(polygon: Any, origin: FloatArray, direction: FloatArray
     return origin + np.where(np.isfinite(tmin), tmin, 0.0)[:, None] * direction, edge
 
 
-def _slide(polygon: Any, point: FloatArray, edge: np.ndarray, shift: FloatArray
+def _slide(polygon: Polygon, point: FloatArray, edge: np.ndarray, shift: FloatArray
            ) -> tuple[FloatArray, np.ndarray]:
     """Points moved by ``shift`` (arc length, along the edges' direction) round their
     rings from ``point`` on ``edge``."""
@@ -295,7 +304,7 @@ def _slide(polygon: Any, point: FloatArray, edge: np.ndarray, shift: FloatArray
     return out, new
 
 
-def _closure(polygon: Any, points: FloatArray, edges: np.ndarray, mu: FloatArray
+def _closure(polygon: Polygon, points: FloatArray, edges: np.ndarray, mu: FloatArray
              ) -> np.ndarray:
     """Force closure of grasps (S, k) of point contacts at ``points`` (S, k, 2) on
     ``edges``, friction ``mu`` (S,) (0: frictionless): the friction cones' edges as
@@ -317,8 +326,9 @@ def _closure(polygon: Any, points: FloatArray, edges: np.ndarray, mu: FloatArray
     return closed
 
 
-def pose_probability(polygon: Any, plan: Any, pose_sigma: Any,
-                     placement_sigma: Any = None, mu_range: Any = None, mu: Any = None,
+def pose_probability(polygon: Polygon, plan: Any, pose_sigma: ArrayLike,
+                     placement_sigma: ArrayLike | None = None,
+                     mu_range: Sequence[float] | None = None, mu: ArrayLike | None = None,
                      samples: int = 8192, replicas: int = 16, seed: int = 0) -> Estimate:
     """Probability that a plan's grasp holds when the part sits with a Gaussian pose
     error: ``pose_sigma`` a distance (x and y) or ``(sx, sy, s_theta_deg)``,
@@ -400,8 +410,10 @@ def pose_probability(polygon: Any, plan: Any, pose_sigma: Any,
     return Estimate(m, half, n_per * replicas, replicas)
 
 
-def robustness(polygon: Any, plan: Any, placement_sigma: Any = None, pose_sigma: Any = None,
-               mu_range: Any = None, mu: Any = None, samples: int = 8192,
+def robustness(polygon: Polygon, plan: Any, placement_sigma: ArrayLike | None = None,
+               pose_sigma: ArrayLike | None = None,
+               mu_range: Sequence[float] | None = None, mu: ArrayLike | None = None,
+               samples: int = 8192,
                replicas: int = 16, seed: int = 0) -> Estimate:
     """The probability that a plan's grasp holds under the given uncertainty
     (``fc.robustness``): each finger landing with a Gaussian error of ``placement_sigma``

@@ -41,12 +41,17 @@ against central differences of the energy computed from the moved geometry.
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..core._checks import FloatArray, check_array, check_contact_points, check_scalar
 from ..core.tolerances import CHECK_TOL, TINY, TOL
+from .polygon import Polygon
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
 
 __all__ = ["Stability", "grasp_stiffness", "grasp_stability", "least_stiffness",
            "squeeze_preload", "PlanStability", "plan_stability"]
@@ -64,7 +69,8 @@ def _per_finger(value: Any, name: str, k: int, nonnegative: bool = True) -> Floa
     return np.broadcast_to(a.ravel(), (k,)).astype(float)
 
 
-def _geometry(points: Any, normals: Any, about: Any) -> tuple[FloatArray, FloatArray]:
+def _geometry(points: ArrayLike, normals: ArrayLike, about: ArrayLike | None
+              ) -> tuple[FloatArray, FloatArray]:
     p, n = check_contact_points(points, normals)
     c = np.zeros(2) if about is None else check_array(about, "about", last=2)
     if c.shape != (2,):
@@ -72,9 +78,9 @@ def _geometry(points: Any, normals: Any, about: Any) -> tuple[FloatArray, FloatA
     return p - c, n
 
 
-def grasp_stiffness(points: Any, normals: Any, stiffness: Any, preload: Any,
-                    tangential: Any = 0.0, tangential_preload: Any = 0.0,
-                    finger_radius: Any = 0.0, about: Any = None) -> FloatArray:
+def grasp_stiffness(points: ArrayLike, normals: ArrayLike, stiffness: ArrayLike, preload: ArrayLike,
+                    tangential: ArrayLike = 0.0, tangential_preload: ArrayLike = 0.0,
+                    finger_radius: ArrayLike = 0.0, about: ArrayLike | None = None) -> FloatArray:
     """The grasp stiffness matrix ``K`` (3 x 3, in ``(dx, dy, dtheta)`` about
     ``about``; see the module docstring).
 
@@ -127,9 +133,9 @@ class Stability:
         return float(self.eigenvalues[0])
 
 
-def grasp_stability(points: Any, normals: Any, stiffness: Any, preload: Any,
-                    tangential: Any = 0.0, tangential_preload: Any = 0.0,
-                    finger_radius: Any = 0.0, about: Any = None,
+def grasp_stability(points: ArrayLike, normals: ArrayLike, stiffness: ArrayLike, preload: ArrayLike,
+                    tangential: ArrayLike = 0.0, tangential_preload: ArrayLike = 0.0,
+                    finger_radius: ArrayLike = 0.0, about: ArrayLike | None = None,
                     tol: float = CHECK_TOL) -> Stability:
     """Whether a grasp of fingers as springs sits at a strict minimum of its energy
     (:func:`grasp_stiffness` positive definite), with the reason; the preload must be
@@ -170,9 +176,10 @@ def grasp_stability(points: Any, normals: Any, stiffness: Any, preload: Any,
     return Stability(K, vals, weak, stable, off, reason)
 
 
-def least_stiffness(points: Any, normals: Any, preload: Any, margin: Any = 1.0,
-                    tangential_ratio: Any = 0.0, tangential_preload: Any = 0.0,
-                    finger_radius: Any = 0.0, about: Any = None) -> float:
+def least_stiffness(points: ArrayLike, normals: ArrayLike, preload: ArrayLike,
+                    margin: ArrayLike = 1.0,
+                    tangential_ratio: ArrayLike = 0.0, tangential_preload: ArrayLike = 0.0,
+                    finger_radius: ArrayLike = 0.0, about: ArrayLike | None = None) -> float:
     """The least common finger stiffness ``k`` (tangential ``tangential_ratio * k``)
     that makes the grasp's stiffness at least ``margin`` in every direction (the
     smallest eigenvalue of :func:`grasp_stiffness`; it rises with ``k``, so bisection
@@ -201,8 +208,9 @@ def least_stiffness(points: Any, normals: Any, preload: Any, margin: Any = 1.0,
 
 # ------------------------------------------------------------------ plans
 
-def squeeze_preload(points: Any, normals: Any, mu: Any, grip_force: Any = 1.0,
-                    about: Any = None) -> tuple[FloatArray, FloatArray]:
+def squeeze_preload(points: ArrayLike, normals: ArrayLike, mu: ArrayLike,
+                    grip_force: ArrayLike = 1.0,
+                    about: ArrayLike | None = None) -> tuple[FloatArray, FloatArray]:
     """The fingers' forces at rest in a grasp that squeezes the part and nothing else:
     normal forces ``f`` (summing to ``grip_force``) and tangential ``g`` (``|g| <= mu f``)
     whose wrenches cancel, with the smallest normal force as large as it can be (an LP,
@@ -271,9 +279,10 @@ class PlanStability:
 DEFAULT_GRIP_FORCE = 10.0
 
 
-def plan_stability(polygon: Any, plan: Any, stiffness: Any,
-                   grip_force: Any = DEFAULT_GRIP_FORCE,
-                   tangential: Any = None, finger_radius: Any = 0.0) -> PlanStability:
+def plan_stability(polygon: Polygon, plan: Any, stiffness: ArrayLike,
+                   grip_force: ArrayLike = DEFAULT_GRIP_FORCE,
+                   tangential: ArrayLike | None = None,
+                   finger_radius: ArrayLike = 0.0) -> PlanStability:
     """Whether a plan's grasps are stable with fingers as springs of ``stiffness``
     (N per unit of the part) squeezing with ``grip_force`` newtons in all (section 8.2;
     :func:`grasp_stability` about the centroid, the preload of :func:`squeeze_preload`):
@@ -291,7 +300,7 @@ def plan_stability(polygon: Any, plan: Any, stiffness: Any,
         check_scalar(tangential, "tangential", nonnegative=True)
     about = np.asarray(polygon.centroid, float)
 
-    def one(points: Any, normals: Any) -> tuple[Stability, FloatArray, FloatArray]:
+    def one(points: ArrayLike, normals: ArrayLike) -> tuple[Stability, FloatArray, FloatArray]:
         f, g = squeeze_preload(points, normals, mu, grip_force, about)
         st = grasp_stability(points, normals, k_n, f, k_t, g, finger_radius, about)
         return st, f, g

@@ -53,7 +53,7 @@ from __future__ import annotations
 
 import time
 from dataclasses import replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -85,11 +85,15 @@ from ._stretch_windows import stretch_kernels_for as stretch_kernels_for
 from .polygon import Polygon, check_polygon
 from .regions import DEFAULT_MARGIN_DEG
 
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
+
+
 __all__ = ["StretchPair", "StretchSearch", "two_finger_stretches", "stretch_regions",
            "crosses_a_vertex"]
 
 
-def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
+def _check_args(polygon: Polygon, mu: ArrayLike, margin: ArrayLike) -> float:
     """The half-angle ``beta = atan(mu) - margin`` of the shrunk friction cones."""
     polygon = check_polygon(polygon)
     mu_v = check_mu_scalar(mu, "mu")
@@ -97,7 +101,8 @@ def _check_args(polygon: Any, mu: Any, margin: Any) -> float:
     return float(shrunk_half_angle(mu_v, margin_v))
 
 
-def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG) -> bool:
+def crosses_a_vertex(polygon: Polygon, mu: ArrayLike,
+                     margin: ArrayLike = DEFAULT_MARGIN_DEG) -> bool:
     """Whether a region of two fingers with friction can cover some vertex.
 
     A vertex inside a region pushes along both its edges' normals, and for any chord to
@@ -125,7 +130,7 @@ def crosses_a_vertex(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG
     return False
 
 
-def two_finger_stretches(polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
+def two_finger_stretches(polygon: Polygon, mu: ArrayLike, margin: ArrayLike = DEFAULT_MARGIN_DEG,
                          top: Any = 5, ties: bool = False, exclude: Any = (),
                          fraction: float = 0.5, seen: Any = ()) -> list[StretchPair]:
     """Optimal independent regions along the boundary for two fingers with friction.
@@ -188,7 +193,7 @@ class StretchSearch:
     [((1,), (3,))]
     """
 
-    def __init__(self, polygon: Polygon, mu: Any, margin: Any = DEFAULT_MARGIN_DEG,
+    def __init__(self, polygon: Polygon, mu: ArrayLike, margin: ArrayLike = DEFAULT_MARGIN_DEG,
                  max_bytes: int | None = None) -> None:
         self.beta = _check_args(polygon, mu, margin)
         self.max_bytes = None if max_bytes is None else check_int(max_bytes, "max_bytes",
@@ -406,8 +411,8 @@ OVERFLOW_SHARE = 0.85
 FLOOR_STEP_SOME, FLOOR_STEP_NONE = 0.95, 0.9
 
 
-def stretch_regions(polygon: Polygon, stretches: Any, mu: Any,
-                    margin: Any = DEFAULT_MARGIN_DEG) -> StretchPair | None:
+def stretch_regions(polygon: Polygon, stretches: Any, mu: ArrayLike,
+                    margin: ArrayLike = DEFAULT_MARGIN_DEG) -> StretchPair | None:
     """Optimal independent regions inside two given stretches (definition 7.1).
 
     ``stretches``: for each finger, the consecutive edges of one ring it may cover, in
