@@ -9,7 +9,7 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp import pipeline
-from fcgrasp.core import kernels
+from fcgrasp.core import jit
 from fcgrasp.pipeline import _search, _spec, candidates, plan_spec, rank, search, solve
 from fcgrasp.planning.planner import RANKINGS
 
@@ -203,11 +203,11 @@ def test_rows_dropped_by_their_forces_and_gathered_give_the_exhaustive_top_k(gat
     rng = np.random.default_rng(77)
     for part in [*_corpus(3)[::2], _flattened(rng), _flattened(rng)]:
         for job in JOBS[2:]:
-            monkeypatch.setattr(kernels, "started", lambda: True)   # the test applies
+            monkeypatch.setattr(jit, "started", lambda: True)   # the test applies
             _check(part, job, int(rng.choice([1, 3, 10])), "min_region", sizes=(1, 64))
             spec = plan_spec(top=3, **job)
             strict = _key(search(part, spec, batch_size=16, strict=True))
-            monkeypatch.setattr(kernels, "started", lambda: False)  # no test: as before
+            monkeypatch.setattr(jit, "started", lambda: False)  # no test: as before
             assert _key(search(part, spec, batch_size=16, strict=True)) == strict
     assert sum(calls) > 20          # rows were dropped
 
@@ -232,7 +232,7 @@ def test_a_held_stream_is_the_stream_less_the_rows_that_fail_the_force_test(seed
     from fcgrasp.pipeline import _rows_kernels
     from fcgrasp.pipeline._candidates import features, holding_rows
 
-    monkeypatch.setattr(kernels, "started", lambda: True)
+    monkeypatch.setattr(jit, "started", lambda: True)
     if not compiled:
         monkeypatch.setattr(_rows_kernels, "holding_survivors", lambda *a, **k: None)
     rng = np.random.default_rng(seed)
@@ -309,7 +309,7 @@ def test_key_prunes_where_only_the_second_region_tells_rows_apart(monkeypatch):
     # the rows streamed by the compiled generators, as in a process whose numba has
     # started (run alone, before any other test starts it, the search takes the numpy
     # rows, which this count does not describe)
-    monkeypatch.setattr(kernels, "started", lambda: True)
+    monkeypatch.setattr(jit, "started", lambda: True)
     got = search(part, spec)
     with_key = sum(counted)
     counted.clear()
@@ -493,16 +493,16 @@ def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
         key = key[:int(rng.integers(1, m + 1))]
         reach = key[0] * (1 + rng.random())
         streams = []
-        for jit in ("0", "1"):
-            monkeypatch.setenv("FCGRASP_JIT", jit)
+        for setting in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", setting)
             streams.append([(b.feats.tolist(), b.ceiling, b.bound.tolist())
                             for b in candidates(part, spec, batch_size=64,
                                                 key=lambda lv: key if lv <= reach else None)])
         assert streams[0] == streams[1], (seed, job)
         # and with no key: every row, by the compiled loop (a key every row reaches)
         plain, size = [], int(rng.choice([7, 64]))
-        for jit in ("0", "1"):
-            monkeypatch.setenv("FCGRASP_JIT", jit)
+        for setting in ("0", "1"):
+            monkeypatch.setenv("FCGRASP_JIT", setting)
             plain.append([(b.feats.tolist(), b.ceiling) for b in
                           candidates(part, spec, batch_size=size)])
         assert plain[0] == plain[1], (seed, job)

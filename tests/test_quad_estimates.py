@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from fcgrasp.core import kernels
+from fcgrasp.core import jit
 from fcgrasp.core.tolerances import ESTIMATE_PAD
 from fcgrasp.model import regions
 from fcgrasp.pipeline import _solve, candidates, plan_spec, search
@@ -43,7 +43,7 @@ def _rows(part, spec, most=4000, seed=0):
 @pytest.fixture
 def started(monkeypatch):
     """The estimate runs where numba started in the process (as in a search)."""
-    monkeypatch.setattr(kernels, "started", lambda: True)
+    monkeypatch.setattr(jit, "started", lambda: True)
 
 
 @pytest.mark.parametrize("seed", [0, 1, pytest.param(2, marks=pytest.mark.slow),
@@ -75,7 +75,7 @@ def test_a_search_with_estimates_finds_the_same_plans(seed, monkeypatch):
     """Searches with a floor (tops of 1 and 10; strict ones too) give the same plans
     with and without the estimate, which leaves rows out (half the jobs on each part;
     all of them under ``-m slow``), and with a hand."""
-    monkeypatch.setattr(kernels, "started", lambda: True)
+    monkeypatch.setattr(jit, "started", lambda: True)
     left_out = []
     original = _solve.estimate_below
 
@@ -188,9 +188,9 @@ def test_the_estimate_applies_to_frictionless_rows_once_numba_runs(monkeypatch):
     part = random_polygon(np.random.default_rng(3), "convex")
     spec = plan_spec(fingers=4)
     rows = _rows(part, spec, most=20)
-    monkeypatch.setattr(kernels, "started", lambda: False)
+    monkeypatch.setattr(jit, "started", lambda: False)
     assert quad_estimates(part, spec, rows) is None
-    monkeypatch.setattr(kernels, "started", lambda: True)
+    monkeypatch.setattr(jit, "started", lambda: True)
     assert quad_estimates(part, plan_spec(fingers=2, mu=0.3), rows[:, :2]) is None
     est = quad_estimates(part, spec, rows)
     assert est is not None and est.shape == (len(rows),)

@@ -17,6 +17,7 @@ from typing import Any
 
 import numpy as np
 
+from ._checks import FloatArray, IntArray
 from .jit import CompiledLoops, jit_setting
 from .tolerances import LP_TOL, SIMPLEX_PIVOT, SIMPLEX_SLACK
 
@@ -26,7 +27,7 @@ __all__ = ["compiled", "lp_max", "OPTIMAL", "INFEASIBLE", "UNBOUNDED", "ITERATIO
 OPTIMAL, INFEASIBLE, UNBOUNDED, ITERATIONS = 0, 1, 2, 3
 
 
-def _pivot(T: Any, r: int, e: int) -> None:
+def _pivot(T: FloatArray, r: int, e: int) -> None:
     rows, cols = T.shape
     inv = 1.0 / T[r, e]
     for j in range(cols):
@@ -41,7 +42,8 @@ def _pivot(T: Any, r: int, e: int) -> None:
                 T[i, e] = 0.0
 
 
-def _iterate(T: Any, basis: Any, skip: int, eps: float, slack: float, max_iter: int) -> int:
+def _iterate(T: FloatArray, basis: IntArray, skip: int, eps: float, slack: float, max_iter: int
+             ) -> int:
     """Primal simplex on a feasible tableau (last row the reduced costs of a maximum,
     last column the right-hand sides), Bland's rule: 0 optimal, 2 unbounded, 3 out of
     iterations."""
@@ -77,8 +79,8 @@ def _iterate(T: Any, basis: Any, skip: int, eps: float, slack: float, max_iter: 
     return 3
 
 
-def _lp_max(c: Any, A: Any, b: Any, m: int, n: int, x: Any, y: Any, eps: float,
-            feas: float) -> int:
+def _lp_max(c: FloatArray, A: FloatArray, b: FloatArray, m: int, n: int, x: FloatArray,
+            y: FloatArray, eps: float, feas: float) -> int:
     """``max c.x`` subject to ``A[:m, :n] x <= b[:m]``, ``x >= 0`` (two phases: one
     artificial variable raised to the most violated row, Bland's rule): 0 optimal (``x``
     filled, and ``y[:m]`` with the rows' multipliers: the reduced costs of their slacks),

@@ -46,19 +46,12 @@ from typing import Any
 import numpy as np
 
 from ._angles import wrap_floor as _wrap  # compiled over this module's namespace
-from ._checks import BoolArray, FloatArray
-from .jit import (
-    fell_back,
-    import_numba,
-    jit_setting,
-    njit_all,
-    started,
-)
+from ._checks import BoolArray, FloatArray, IntArray
+from .jit import fell_back, import_numba, jit_setting, njit_all, started
 from .tolerances import SOLVER_TOL, TINY
 
-__all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled",
-           "plain", "arc_meet",
-           "segment", "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
+__all__ = ["JIT_AFTER_ROWS", "use_jit", "compiled", "plain", "arc_meet", "segment",
+           "pair_sector", "pair_problem", "two_level", "pair_modes", "pair_scores",
            "pair_problems", "two_levels", "PROBLEM_FIELDS"]
 
 #: A number or an array of numbers: the formulas run on both (a batch broadcast by numpy,
@@ -310,8 +303,9 @@ def _sector_edges(c1: Real, h1: Real, c2: Real, h2: Real, margin: float,
 # Compiled only: they gather each row's inputs and call the formulas above.
 
 
-def _pair_scores_loop(seg: Any, center: Any, half: Any, edges: Any, i: Any, j: Any,
-                      margin: float, tol: float, score: Any, mode: Any, hm_out: Any) -> None:
+def _pair_scores_loop(seg: FloatArray, center: FloatArray, half: FloatArray, edges: FloatArray,
+                      i: IntArray, j: IntArray, margin: float, tol: float, score: FloatArray,
+                      mode: IntArray, hm_out: FloatArray) -> None:
     for k in range(i.shape[0]):
         p, q = i[k], j[k]
         hm, k1x, k1y, k2x, k2y = _sector_edges(center[p], half[p], center[q], half[q],
@@ -328,8 +322,9 @@ def _pair_scores_loop(seg: Any, center: Any, half: Any, edges: Any, i: Any, j: A
             mode[k] = 0
 
 
-def _pair_problems_loop(a1: Any, b1: Any, a2: Any, b2: Any, cen: Any, hm: Any,
-                        sign: float, tol: float, out: Any, flags: Any) -> None:
+def _pair_problems_loop(a1: FloatArray, b1: FloatArray, a2: FloatArray, b2: FloatArray,
+                        cen: FloatArray, hm: FloatArray, sign: float, tol: float, out: FloatArray,
+                        flags: BoolArray) -> None:
     for k in range(cen.shape[0]):
         r = pair_problem(a1[k, 0], a1[k, 1], b1[k, 0], b1[k, 1], a2[k, 0], a2[k, 1],
                          b2[k, 0], b2[k, 1], cen[k], hm[k], sign, tol)
@@ -338,15 +333,16 @@ def _pair_problems_loop(a1: Any, b1: Any, a2: Any, b2: Any, cen: Any, hm: Any,
         flags[0, k], flags[1, k], flags[2, k] = r[8], r[9], r[10]
 
 
-def _two_levels_loop(w1: Any, w2: Any, L: Any, K1: Any, K2: Any, lb: Any, fr: Any,
-                     active: Any, tol: float, out: Any) -> None:
+def _two_levels_loop(w1: FloatArray, w2: FloatArray, L: FloatArray, K1: FloatArray, K2: FloatArray,
+                     lb: FloatArray, fr: FloatArray, active: BoolArray, tol: float, out: FloatArray
+                     ) -> None:
     for k in range(K1.shape[0]):
         out[k] = two_level(w1[k, 0], w1[k, 1], w2[k, 0], w2[k, 1], L[k, 0], L[k, 1],
                            K1[k], K2[k], lb[k, 0], lb[k, 1], fr[k, 0], fr[k, 1],
                            active[k], tol)
 
 
-def _rows_closure_loop(unit: Any, rows: Any, tol: float, out: Any) -> None:
+def _rows_closure_loop(unit: FloatArray, rows: IntArray, tol: float, out: BoolArray) -> None:
     """:func:`fcgrasp.core.closure.force_direction_closure` of the forces
     ``unit[rows[r]]`` of every row (rows of indices into one table of forces), the same
     operations row by row without gathering them: each force of the table made unit
@@ -366,7 +362,7 @@ def _rows_closure_loop(unit: Any, rows: Any, tol: float, out: Any) -> None:
         out[r] = _closed(u, k, tol)
 
 
-def _closed(u: Any, k: int, tol: float) -> bool:
+def _closed(u: FloatArray, k: int, tol: float) -> bool:
     """Force-direction closure of ``k`` unit forces ``u`` (theorem 4.2): a strict
     triangle, or (four or more) two anti-parallel pairs not parallel to each other."""
     ok = False
@@ -394,7 +390,7 @@ def _closed(u: Any, k: int, tol: float) -> bool:
     return ok
 
 
-def _anti(u: Any, a: int, b: int, tol: float) -> bool:
+def _anti(u: FloatArray, a: int, b: int, tol: float) -> bool:
     """Forces ``a`` and ``b`` of the unit rows ``u`` are non-zero and anti-parallel."""
     na = np.sqrt(u[a, 0] * u[a, 0] + u[a, 1] * u[a, 1])
     nb = np.sqrt(u[b, 0] * u[b, 0] + u[b, 1] * u[b, 1])

@@ -20,6 +20,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..core import _simplex, jit, kernels
+from ..core._checks import FloatArray, IntArray
 from ..core._simplex import _lp_max
 from ..core.kernels import arc_meet
 from .polygon import Polygon
@@ -40,7 +41,8 @@ def _pair_arc(ca: float, cb: float) -> tuple[float, float]:
     return _wrap_mod(ca + gap / 2), abs(gap) / 2
 
 
-def _edge(e: int, ea: Any, eb: Any, ec: Any) -> tuple[float, float, float, float, float]:
+def _edge(e: int, ea: FloatArray, eb: FloatArray, ec: FloatArray
+          ) -> tuple[float, float, float, float, float]:
     """Edge ``e``'s force direction, length and unit tangent (``(0, 0)`` for a point),
     as ``four_finger_geometry`` computes them."""
     fx, fy = math.cos(ec[e]), math.sin(ec[e])
@@ -50,8 +52,8 @@ def _edge(e: int, ea: Any, eb: Any, ec: Any) -> tuple[float, float, float, float
     return fx, fy, L, dx / d if L > 0 else 0.0, dy / d if L > 0 else 0.0
 
 
-def _meets(ea: Any, eb: Any, ec: Any, lo_i: int, hi_i: int, lo_j: int, hi_j: int,
-           tol: float, out: Any) -> None:
+def _meets(ea: FloatArray, eb: FloatArray, ec: FloatArray, lo_i: int, hi_i: int, lo_j: int,
+           hi_j: int, tol: float, out: FloatArray) -> None:
     """The meets of the lines of force of every edge ``i`` of one finger (rows
     ``lo_i:hi_i`` of the edges) with every edge ``j`` of another (``lo_j:hi_j``), as
     ``four_finger_geometry`` computes them for a pair of fingers: per pair (``i``
@@ -89,9 +91,10 @@ def _kind(pos: int, n: int) -> int:
     return _LAST if pos == n - 1 else _INSIDE
 
 
-def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: float,
-                 s: float, k: int, tol: float, ids: Any, pA: Any, prhs: Any, pids: Any,
-                 pstart: Any, A: Any, rhs: Any) -> int:
+def _system_loop(ea: FloatArray, eb: FloatArray, ec: FloatArray, start: IntArray,
+                 pairing: IntArray, margin: float, s: float, k: int, tol: float, ids: Any,
+                 pA: FloatArray, prhs: FloatArray, pids: Any, pstart: IntArray, A: FloatArray,
+                 rhs: FloatArray) -> int:
     """Rows ``A`` (2C, 2k; given zeroed) and right-hand sides ``rhs`` (2C) of every
     combination of the fingers' edges (finger ``f``'s edges are rows ``start[f]:start[f
     + 1]`` of the segment ends ``ea``, ``eb`` and force angles ``ec``; a fourth finger of
@@ -201,7 +204,7 @@ def _system_loop(ea: Any, eb: Any, ec: Any, start: Any, pairing: Any, margin: fl
     return 2 if fixed else 1
 
 
-def _no_variable(A: Any, row: int, width: int) -> bool:
+def _no_variable(A: FloatArray, row: int, width: int) -> bool:
     """Whether row ``row`` of ``A`` has every coefficient zero."""
     for j in range(width):
         if A[row, j] != 0:
@@ -209,9 +212,9 @@ def _no_variable(A: Any, row: int, width: int) -> bool:
     return True
 
 
-def _system_rows(ea_all: Any, eb_all: Any, ec_all: Any, layout: Any, pairing: Any,
-                 margin: float, s: float, k: int, tol: float, pA: Any, prhs: Any,
-                 playout: Any) -> Any:
+def _system_rows(ea_all: FloatArray, eb_all: FloatArray, ec_all: FloatArray, layout: IntArray,
+                 pairing: IntArray, margin: float, s: float, k: int, tol: float, pA: FloatArray,
+                 prhs: FloatArray, playout: IntArray) -> Any:
     """:func:`_system_loop` on the fingers' edges gathered from every edge's rows
     (``layout``: the four fingers' edge counts, then their edges in order; ``playout``
     the same of the configuration one move away, its counts 0 for none), its rows
@@ -245,7 +248,7 @@ def _before(a: float, b: float) -> bool:
     return a < b or (not np.isnan(a) and np.isnan(b))
 
 
-def _first_k(v: Any, k: int) -> Any:
+def _first_k(v: FloatArray, k: int) -> Any:
     """``np.argsort(v, kind="stable")[:k]``: the ``k`` smallest, ties in index order
     (``_frictionless_program._smallest``), by one pass keeping the ``k`` best in
     order (a program's rows are thousands, ``k`` a few tens)."""
@@ -268,9 +271,10 @@ def _first_k(v: Any, k: int) -> Any:
     return out
 
 
-def _lp_loop(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,
-             unit: float, noise_row: float, tiny: float, check_tol: float, eps: float,
-             direct_rows: int, per_var: int, y_out: Any) -> int:
+def _lp_loop(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArray, ub: FloatArray,
+             c: FloatArray, t_var: bool, unit: float, noise_row: float, tiny: float,
+             check_tol: float, eps: float, direct_rows: int, per_var: int, y_out: FloatArray
+             ) -> int:
     """``frictionless_stretches._lp_simplex`` of one configuration's program, in one
     compiled call, the same steps in the same order: its rows ``A0 x <= b0`` and the
     fingers' length rows (``floors``: nan where the length is at least ``t``), in units
@@ -409,9 +413,9 @@ def _with_simplex() -> dict[str, Any] | None:
 COMPILED = jit.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
 
 
-def lp_rows(A0: Any, b0: Any, const: Any, floors: Any, ub: Any, c: Any, t_var: bool,
-            unit: float, noise_row: float, tiny: float, check_tol: float, eps: float,
-            direct_rows: int, per_var: int, checked: bool = False
+def lp_rows(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArray, ub: FloatArray,
+            c: FloatArray, t_var: bool, unit: float, noise_row: float, tiny: float,
+            check_tol: float, eps: float, direct_rows: int, per_var: int, checked: bool = False
             ) -> tuple[int, Any] | None:
     """:func:`_lp_loop`'s ``(status, y)``, None where the loop does not run
     (``checked``: the caller has asked whether compiled loops run here, this call
@@ -450,7 +454,7 @@ def edge_arrays(polygon: Polygon, gravity: Any) -> tuple[Any, Any, Any]:
 _NO_ROWS, _NO_PARENT = np.zeros(0), np.zeros(4, np.int64)
 
 
-def system_rows(polygon: Polygon, edges: Any, gravity: Any, pairing: Any, margin: float,
+def system_rows(polygon: Polygon, edges: Any, gravity: Any, pairing: IntArray, margin: float,
                 s: float, tol: float, arrays: Any = None, parent: Any = None,
                 checked: bool = False) -> tuple[Any, Any, bool] | Literal[False] | None:
     """The rows ``(A, rhs)`` of ``_frictionless_program._system`` (the fingers'

@@ -18,11 +18,13 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
 from ..core.jit import CompiledLoops
 from ..core.tolerances import TINY
 
 
-def _order_row(w1: Any, w2: Any, active: Any, order: Any, key: Any) -> None:
+def _order_row(w1: FloatArray, w2: FloatArray, active: BoolArray, order: IntArray, key: FloatArray
+               ) -> None:
     """The greedy order of knapsack 1 (largest ``w2 / w1`` first; ``w1 = 0``: first of
     all; inactive: last), stable: :func:`fcgrasp.model.regions._order`.  ``key`` (n,):
     scratch."""
@@ -42,8 +44,8 @@ def _order_row(w1: Any, w2: Any, active: Any, order: Any, key: Any) -> None:
             j -= 1
 
 
-def _fill_row(L: Any, w1: Any, w2: Any, K1: float, active: Any, lb: Any, order: Any,
-              x: Any) -> tuple[float, float]:
+def _fill_row(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: float, active: BoolArray,
+              lb: FloatArray, order: IntArray, x: FloatArray) -> tuple[float, float]:
     """Greedy fill of knapsack 1 from ``lb`` (into ``x``): the budget's slack at ``lb``
     and ``sum w2 x`` (:func:`fcgrasp.model.regions._fill`)."""
     n = L.shape[0]
@@ -71,14 +73,14 @@ def _fill_row(L: Any, w1: Any, w2: Any, K1: float, active: Any, lb: Any, order: 
     return slack, value
 
 
-def _wscale_row(L: Any, w1: Any, w2: Any) -> float:
+def _wscale_row(L: FloatArray, w1: FloatArray, w2: FloatArray) -> float:
     s = 0.0
     for i in range(L.shape[0]):
         s += (w1[i] + w2[i]) * L[i]
     return max(s, TINY)
 
 
-def _need_row(L: Any, w2: Any, K2: float, active: Any, lb: Any) -> float:
+def _need_row(L: FloatArray, w2: FloatArray, K2: float, active: BoolArray, lb: FloatArray) -> float:
     """What knapsack 2 needs at lengths ``lb``: ``sum w2 (L + lb) - K2`` over the active
     regions."""
     need = 0.0
@@ -87,8 +89,9 @@ def _need_row(L: Any, w2: Any, K2: float, active: Any, lb: Any) -> float:
     return need - K2
 
 
-def _feasible_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any, lb: Any,
-                  order: Any, eps: float, x: Any) -> bool:
+def _feasible_row(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: float, K2: float,
+                  active: BoolArray, lb: FloatArray, order: IntArray, eps: float, x: FloatArray
+                  ) -> bool:
     """Is there a box of regions at least ``lb`` long (:func:`~.regions._feasible`)?"""
     n = L.shape[0]
     for i in range(n):
@@ -107,9 +110,10 @@ _LZ, _LB0, _FREE, _PTS, _D, _P, _Q = range(7)
 _SCRATCH_ROWS = 7
 
 
-def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
-                   lbf: Any, free: Any, order: Any, tol: float, x: Any, lb: Any, w: Any,
-                   idx: Any) -> float:
+def _max_level_row(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: float, K2: float,
+                   active: BoolArray, lbf: FloatArray, free: BoolArray, order: IntArray,
+                   tol: float, x: FloatArray, lb: FloatArray, w: FloatArray, idx: IntArray
+                   ) -> float:
     """The largest level ``t`` the free regions reach with the fixed ones at ``lbf``
     (-1: none): :func:`fcgrasp.model.regions._max_level`, the breakpoints of the greedy
     fill solved for and ``D`` interpolated on its linear piece.  Scratch, the caller's
@@ -201,8 +205,9 @@ def _max_level_row(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any,
     return float(w[_P, last] + frac * (w[_P, nxt] - w[_P, last]))
 
 
-def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
-                  step: float, first_only: bool, out: Any) -> None:
+def _leximin_loop(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: FloatArray, K2: FloatArray,
+                  active: BoolArray, tol: float, step: float, first_only: bool, out: FloatArray
+                  ) -> None:
     """Leximin levels of every row into ``out`` (B, n): -1 rows where none is
     possible (:func:`fcgrasp.model.regions.leximin`); ``first_only``: the first level
     alone, in ``out[:, 0]`` (:func:`~fcgrasp.model.regions.max_min_length`)."""
@@ -261,7 +266,7 @@ def _leximin_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: 
             out[b, i] = -1.0 if dead else (levels[i] if active[b, i] else 0.0)
 
 
-def _solve_small(G: Any, h: Any, x: Any) -> float:
+def _solve_small(G: FloatArray, h: FloatArray, x: FloatArray) -> float:
     """Gaussian elimination with partial pivoting of ``G x = h`` (n, n), in place
     (``G`` and ``h`` overwritten): the determinant, and ``x`` where it is not zero."""
     n = G.shape[0]
@@ -292,9 +297,10 @@ def _solve_small(G: Any, h: Any, x: Any) -> float:
     return det
 
 
-def _centre_loop(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: Any,
-                 subsets: Any, solver_tol: float, face_tol: float, noise_det: float,
-                 sure_det: float, band: float, out: Any, found: Any, sure: Any) -> None:
+def _centre_loop(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: FloatArray, K2: FloatArray,
+                 active: BoolArray, lb: FloatArray, subsets: IntArray, solver_tol: float,
+                 face_tol: float, noise_det: float, sure_det: float, band: float, out: FloatArray,
+                 found: BoolArray, sure: BoolArray) -> None:
     """:func:`fcgrasp.model.regions._centre` of every row into ``out`` (B, n), with
     ``found``, and whether the row is ``sure``: no subset's determinant between
     ``noise_det`` and ``sure_det`` of its scale (below: singular up to rounding, as
@@ -396,9 +402,9 @@ _LOOPS = CompiledLoops(globals(), (*_BORROWING, _leximin_loop, _centre_loop),
                        borrowing=_BORROWING)
 
 
-def centre_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: Any,
-                subsets: Any, solver_tol: float, face_tol: float, noise_det: float,
-                sure_det: float, band: float) -> tuple[Any, Any, Any] | None:
+def centre_rows(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: Any, K2: Any, active: BoolArray,
+                lb: FloatArray, subsets: IntArray, solver_tol: float, face_tol: float,
+                noise_det: float, sure_det: float, band: float) -> tuple[Any, Any, Any] | None:
     """:func:`_centre_loop` on a batch: ``(centre, found, sure)``, None where it
     cannot run."""
     B, n = L.shape
@@ -413,8 +419,8 @@ def centre_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, lb: Any
     return (out, found, sure) if ok else None
 
 
-def leximin_rows(L: Any, w1: Any, w2: Any, K1: Any, K2: Any, active: Any, tol: float,
-                 step: float, first_only: bool) -> Any:
+def leximin_rows(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: Any, K2: Any,
+                 active: BoolArray, tol: float, step: float, first_only: bool) -> Any:
     """The compiled loop on a batch (None where it cannot run: numpy then)."""
     B, n = L.shape
     out = np.zeros((B, n))

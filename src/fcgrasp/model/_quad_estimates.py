@@ -33,6 +33,7 @@ from typing import Any
 import numpy as np
 
 from ..core import jit
+from ..core._checks import BoolArray, FloatArray, IntArray
 from ..core.kernels import arc_meet
 from ..core.sectors import PAIRINGS
 from ..core.tolerances import (
@@ -48,9 +49,10 @@ from . import _frictionless_kernels
 from ._frictionless_kernels import _edge, _pair_arc
 
 
-def _problem_row(o12x: float, o12y: float, o34x: float, o34y: float, vel: Any, L: Any,
-                 k1x: float, k1y: float, k2x: float, k2y: float, zero_tol: float,
-                 band: float, w1: Any, w2: Any, active: Any) -> tuple[float, float, bool]:
+def _problem_row(o12x: float, o12y: float, o34x: float, o34y: float, vel: FloatArray,
+                 L: FloatArray, k1x: float, k1y: float, k2x: float, k2y: float, zero_tol: float,
+                 band: float, w1: FloatArray, w2: FloatArray, active: BoolArray
+                 ) -> tuple[float, float, bool]:
     """:func:`fcgrasp.model.regions.build_problem`'s weights and budgets of one row
     (fingers 0, 1 meet in ``P12``, 2, 3 in ``P34``; a coefficient within ``zero_tol``
     of its velocity's length is zero): ``w1``, ``w2``, ``active`` filled, ``(K1, K2,
@@ -81,8 +83,8 @@ def _problem_row(o12x: float, o12y: float, o34x: float, o34y: float, vel: Any, L
     return K1, K2, undecided
 
 
-def _meet_row(i: int, fx: Any, fy: Any, ax: Any, ay: Any, tx: Any, ty: Any, vel: Any
-              ) -> tuple[float, float]:
+def _meet_row(i: int, fx: FloatArray, fy: FloatArray, ax: FloatArray, ay: FloatArray,
+              tx: FloatArray, ty: FloatArray, vel: FloatArray) -> tuple[float, float]:
     """Where the lines of force of fingers ``i`` and ``i + 1`` meet with both at their
     segments' starts, and the meet's velocity as each slides (rows ``i``, ``i + 1`` of
     ``vel``): :func:`fcgrasp.core.sectors.meet_and_velocities` of numbers."""
@@ -96,7 +98,8 @@ def _meet_row(i: int, fx: Any, fy: Any, ax: Any, ay: Any, tx: Any, ty: Any, vel:
     return ax[i] + s * fx[i], ay[i] + s * fy[i]
 
 
-def _dual_level(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any) -> float:
+def _dual_level(L: FloatArray, w1: FloatArray, w2: FloatArray, K1: float, K2: float,
+                active: BoolArray) -> float:
     """The largest level ``t`` every active region reaches (:func:`fcgrasp.model.
     regions.max_min_length`, negative where none), by duality: ``t`` is feasible iff
     some box ``t <= x <= L`` meets ``w1 . x <= K1`` and ``w2 . x >= w2 . (L + t) -
@@ -136,9 +139,9 @@ def _dual_level(L: Any, w1: Any, w2: Any, K1: float, K2: float, active: Any) -> 
     return best
 
 
-def _estimate_loop(ea: Any, eb: Any, ec: Any, rows: Any, pairings: Any, margin: float,
-                   sine_tol: float, band: float, zero_tol: float, band_rel: float,
-                   knapsack_tol: float, out: Any) -> None:
+def _estimate_loop(ea: FloatArray, eb: FloatArray, ec: FloatArray, rows: IntArray,
+                   pairings: IntArray, margin: float, sine_tol: float, band: float,
+                   zero_tol: float, band_rel: float, knapsack_tol: float, out: FloatArray) -> None:
     """Each row's estimate into ``out``: the largest smallest region over its pairings
     and modes, never below :func:`~fcgrasp.pipeline._candidates._quad_candidates`'
     score (-inf: no pairing has a sector; inf: a pairing undecided).  ``ea, eb, ec``:

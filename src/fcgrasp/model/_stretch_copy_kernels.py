@@ -8,12 +8,12 @@ through that module's wrappers."""
 
 from __future__ import annotations
 
-from typing import Any
-
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
 
-def _copy_columns(a0: float, a1: float, ex: Any, exs: Any, app: Any) -> int:
+
+def _copy_columns(a0: float, a1: float, ex: FloatArray, exs: FloatArray, app: IntArray) -> int:
     """The kept plans' columns of ``ex`` (rows ``ax0, ax1, ay0, ay1``) whose arc on ring
     a leaves the stretch 1 ``[a0, a1]`` a threshold below ``exs[4]``
     (:func:`_side_threshold`; ``exs``: ``perx, pery, tol, keep, drop``), written to
@@ -26,7 +26,8 @@ def _copy_columns(a0: float, a1: float, ex: Any, exs: Any, app: Any) -> int:
     return n
 
 
-def _copies_from(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+def _copies_from(c0: float, c1: float, ex: FloatArray, exs: FloatArray, app: IntArray, n_app: int
+                 ) -> bool:
     """Whether the stretch 2 ``[c0, c1]`` makes a copy with a stretch 1 whose columns
     are ``app`` (:func:`_copy_columns`): some column's threshold on ring b below
     ``exs[4]`` as well, so the configuration's least threshold (the larger of the two)
@@ -37,7 +38,7 @@ def _copies_from(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) 
     return False
 
 
-def _copy_side(a0: float, a1: float, ex: Any, exs: Any, side: int, c: int) -> bool:
+def _copy_side(a0: float, a1: float, ex: FloatArray, exs: FloatArray, side: int, c: int) -> bool:
     """Whether column ``c`` of ``ex`` leaves the stretch ``[a0, a1]`` on ring ``side``
     (0: a) a threshold below ``exs[4]``, its arc there longer than that threshold."""
     u = 2 * side
@@ -45,8 +46,8 @@ def _copy_side(a0: float, a1: float, ex: Any, exs: Any, side: int, c: int) -> bo
     return bool(ta < exs[4] and ex[u + 1, c] - ex[u, c] > ta)
 
 
-def _copy_run(p: int, room: int, ext_s: float, run_end: int, Ub: Any, mb: int, ex: Any,
-              exs: Any, app: Any, n_app: int) -> int:
+def _copy_run(p: int, room: int, ext_s: float, run_end: int, Ub: FloatArray, mb: int,
+              ex: FloatArray, exs: FloatArray, app: IntArray, n_app: int) -> int:
     """How many starts after ``p`` (at most ``room``) have every stretch 2 a copy: the
     largest count ``d`` whose span from ``p``'s start to the farthest end of a stretch 2
     from ``p + d`` is a copy (:func:`_copy_span`; the ends only grow with the start),
@@ -67,8 +68,8 @@ def _copy_run(p: int, room: int, ext_s: float, run_end: int, Ub: Any, mb: int, e
     return lo
 
 
-def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: Any, mb: int,
-                ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: FloatArray, mb: int,
+                ex: FloatArray, exs: FloatArray, app: IntArray, n_app: int) -> bool:
     """Whether every stretch 2 from the starts ``p .. p + d`` is a copy: they lie in the
     span from ``p``'s start ``c0`` to the last edge a stretch from ``p + d`` reaches
     (:func:`_window_row`'s ``q_hi``: as far as ``ext_s`` past its start's edge, within
@@ -78,7 +79,8 @@ def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: Any, 
     return _copy_span(c0, c0 + (Ub[q + 1] - Ub[p - 1]), ex, exs, app, n_app)
 
 
-def _copy_span(c0: float, c1: float, ex: Any, exs: Any, app: Any, n_app: int) -> bool:
+def _copy_span(c0: float, c1: float, ex: FloatArray, exs: FloatArray, app: IntArray, n_app: int
+               ) -> bool:
     """:func:`_copies_from` of every stretch 2 inside ``[c0, c1]``: the span widened
     by the tolerance ``exs[2]`` is a copy by some column whose arc on ring b and the
     span fit in its perimeter together (then the span's arc outside is the measure of
@@ -110,9 +112,10 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
     return (a1 - a0) - common
 
 
-def _exclusion_rows(a0x: Any, a1x: Any, a0y: Any, a1y: Any, ax0: Any, ax1: Any, ay0: Any,
-                    ay1: Any, perx: float, pery: float, tol: float, keep: float,
-                    mask: Any, masked: bool, out: Any) -> None:
+def _exclusion_rows(a0x: FloatArray, a1x: FloatArray, a0y: FloatArray, a1y: FloatArray,
+                    ax0: FloatArray, ax1: FloatArray, ay0: FloatArray, ay1: FloatArray,
+                    perx: float, pery: float, tol: float, keep: float, mask: BoolArray,
+                    masked: bool, out: FloatArray) -> None:
     """``_stretch_exclusion._Exclusion.threshold``: ``out`` lowered to each configuration's least
     ``tau`` over the kept plans' columns (with ``masked``, those of ``mask[r]`` only),
     fused over rows and columns: the same numbers."""
@@ -172,9 +175,9 @@ def _surely_copy(s0: float, s1: float, e0: float, e1: float, t: float, k0: float
     return False
 
 
-def _similar_rows(sx: Any, sy: Any, ax0: Any, ax1: Any, ay0: Any, ay1: Any, perx: float,
-                  pery: float, tol: float, f: float, t: Any, mask: Any, masked: bool,
-                  out: Any) -> None:
+def _similar_rows(sx: FloatArray, sy: FloatArray, ax0: FloatArray, ax1: FloatArray,
+                  ay0: FloatArray, ay1: FloatArray, perx: float, pery: float, tol: float, f: float,
+                  t: FloatArray, mask: BoolArray, masked: bool, out: BoolArray) -> None:
     """``_stretch_exclusion._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
     column (with ``masked``, one of ``mask[r]``), every region pair configuration ``r``
     allows (its ends' intervals ``sx[r]``, ``sy[r]``: first start, last start, first

@@ -13,12 +13,14 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
 from ._stretch_run_kernels import _grow
 from ._stretch_window_kernels import _top_add
 
 
-def _interval(ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, bx: Any, by: Any,
-              gy: Any, sigma: float, eps: float, e: int, w: int) -> Any:
+def _interval(ax: FloatArray, ay: FloatArray, tx: FloatArray, ty: FloatArray, L: FloatArray,
+              gx: FloatArray, bx: FloatArray, by: FloatArray, gy: FloatArray, sigma: float,
+              eps: float, e: int, w: int) -> Any:
     """The positions on edge ``e`` (ring a) that hold against vertex ``w`` (ring b)
     with both its normals: ``_Intervals.cells`` of one cell, the same operations
     (empty where the first exceeds the second)."""
@@ -61,9 +63,10 @@ def _window_boxes(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any, 
     return lo, hi
 
 
-def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
-                         ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
-                         eps: float) -> Any:
+def _window_boxes_shared(edge: IntArray, start: IntArray, count: IntArray, ax: FloatArray,
+                         ay: FloatArray, tx: FloatArray, ty: FloatArray, L: FloatArray,
+                         gx: FloatArray, bx: FloatArray, by: FloatArray, gy: FloatArray,
+                         sigma: float, eps: float) -> Any:
     """:func:`_window_boxes` of a batch whose windows share edges (the shifted copies
     of a configuration): the windows of one edge whose span is shorter than their
     lengths added up read the cells of the span once (:func:`_interval`, most of the
@@ -137,9 +140,10 @@ def _window_boxes_shared(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx
     return lo, hi
 
 
-def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: Any,
-                       ty: Any, L: Any, gx: Any, bx: Any, by: Any, gy: Any, sigma: float,
-                       eps: float, tlo: Any, thi: Any) -> Any:
+def _window_boxes_memo(edge: IntArray, start: IntArray, count: IntArray, ax: FloatArray,
+                       ay: FloatArray, tx: FloatArray, ty: FloatArray, L: FloatArray,
+                       gx: FloatArray, bx: FloatArray, by: FloatArray, gy: FloatArray,
+                       sigma: float, eps: float, tlo: FloatArray, thi: FloatArray) -> Any:
     """:func:`_window_boxes` reading each cell ``(e, w)`` from the tables ``tlo``,
     ``thi`` (ma, mb), computed by :func:`_interval` on first use (NaN: not yet): the
     same numbers (the intersection is a max and a min, in any order), each cell once
@@ -164,7 +168,7 @@ def _window_boxes_memo(edge: Any, start: Any, count: Any, ax: Any, ay: Any, tx: 
     return lo, hi
 
 
-def _by_start(a: Any, ka: Any, ma: int) -> Any:
+def _by_start(a: IntArray, ka: IntArray, ma: int) -> Any:
     """The order of configurations by first start ``a`` (in ``[0, ma)``), then by
     decreasing ``ka`` (each from 0), ties by index: two counting sorts, linear where a
     sort of the hundreds of thousands of configurations a distinct search defers is
@@ -196,8 +200,9 @@ def _by_start(a: Any, ka: Any, ma: int) -> Any:
     return out
 
 
-def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, ep: Any, eroom: Any, es: Any,
-                   supers: Any, ma: int, mb: int, out: Any) -> None:
+def _inside_supers(a: IntArray, ka: IntArray, cc: IntArray, kc: IntArray, ep: IntArray,
+                   eroom: IntArray, es: IntArray, supers: IntArray, ma: int, mb: int,
+                   out: BoolArray) -> None:
     """``_stretch_solve._inside_any``'s test, one way round, as one sweep over the first
     starts: ``out[i]`` set where configuration ``i`` (first start ``a`` reduced) lies
     inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically.
@@ -245,10 +250,11 @@ def _inside_supers(a: Any, ka: Any, cc: Any, kc: Any, ep: Any, eroom: Any, es: A
         i = j
 
 
-def _single(A: Any, ax: Any, ay: Any, tx: Any, ty: Any, L: Any, gx: Any, va: Any,
-            bx: Any, by: Any, gy: Any, order: Any, angle_b: Any, width: float, Ub: Any,
-            sigma: float, eps: float, floor: float, collect: bool, same: bool,
-            value: float, keep: int, ox: int, oy: int) -> Any:
+def _single(A: IntArray, ax: FloatArray, ay: FloatArray, tx: FloatArray, ty: FloatArray,
+            L: FloatArray, gx: FloatArray, va: FloatArray, bx: FloatArray, by: FloatArray,
+            gy: FloatArray, order: IntArray, angle_b: FloatArray, width: float, Ub: FloatArray,
+            sigma: float, eps: float, floor: float, collect: bool, same: bool, value: float,
+            keep: int, ox: int, oy: int) -> Any:
     """Stretch 1 on one edge ``A``, stretch 2 with interior vertices ``p .. p+k-1``
     (``_windows_single`` of the numpy search, edge by edge).
 

@@ -39,6 +39,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
 from ..core.jit import CompiledLoops
 from . import (
     _stretch_copy_kernels,
@@ -149,14 +150,16 @@ def loaded() -> bool:
     return _LOOPS.loaded
 
 
-def vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, order: Any,
-                angle_b: Any, width: float) -> Any:
+def vertex_runs(ax: FloatArray, ay: FloatArray, gx: FloatArray, va: FloatArray, bx: FloatArray,
+                by: FloatArray, gy: FloatArray, order: IntArray, angle_b: FloatArray, width: float
+                ) -> Any:
     """Compiled :func:`_vertex_runs`."""
     return _load()["_vertex_runs"](ax, ay, gx, va, bx, by, gy, order, angle_b, float(width))
 
 
-def vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
-                     angle: Any, width: float, pad: float) -> Any:
+def vertex_runs_tree(ax: FloatArray, ay: FloatArray, gx: FloatArray, va: FloatArray,
+                     bx: FloatArray, by: FloatArray, gy: FloatArray, angle: FloatArray,
+                     width: float, pad: float) -> Any:
     """Compiled :func:`_vertex_runs_tree`."""
     return _load()["_vertex_runs_tree"](ax, ay, gx, va, bx, by, gy, angle, float(width),
                                         float(pad))
@@ -167,8 +170,9 @@ def vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
 VERTEX_ROWS = 4096
 
 
-def vertex_runs_blocks(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
-                       angle: Any, width: float, pad: float, between: Any) -> Any:
+def vertex_runs_blocks(ax: FloatArray, ay: FloatArray, gx: FloatArray, va: FloatArray,
+                       bx: FloatArray, by: FloatArray, gy: FloatArray, angle: FloatArray,
+                       width: float, pad: float, between: Any) -> Any:
     """:func:`vertex_runs_tree` over blocks of :data:`VERTEX_ROWS` rows, calling
     ``between`` before each block after the first (a budget's clock may end it there):
     the same runs (each row's runs depend on that row alone)."""
@@ -194,8 +198,9 @@ def vertex_runs_blocks(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy:
     return tuple(out)
 
 
-def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
-                     angle: Any, width: float, pad: float) -> Any:
+def vertex_runs_scan(ax: FloatArray, ay: FloatArray, gx: FloatArray, va: FloatArray,
+                     bx: FloatArray, by: FloatArray, gy: FloatArray, angle: FloatArray,
+                     width: float, pad: float) -> Any:
     """:func:`vertex_runs_tree`'s runs by the window scan (:func:`vertex_runs`, the
     previous kernel, kept as the reference; ``pad`` unused): ring b sorted by angle."""
     order = np.argsort(angle, kind="stable")
@@ -203,10 +208,11 @@ def vertex_runs_scan(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: A
                        angle[order], width)
 
 
-def windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-            floor: float, collect: bool, same: bool, value: float = 0.0, keep: int = 0,
-            short: int = _SHORT, ex: Any = None, exs: Any = None, between: Any = None,
-            cap: int | None = None, gallop: bool = True) -> Any:
+def windows(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub: FloatArray,
+            ma: int, mb: int, floor: float, collect: bool, same: bool, value: float = 0.0,
+            keep: int = 0, short: int = _SHORT, ex: FloatArray | None = None,
+            exs: FloatArray | None = None, between: Any = None, cap: int | None = None,
+            gallop: bool = True) -> Any:
     """Compiled :func:`_windows` (index arrays made contiguous: one compiled signature
     for every caller; ``ex``, ``exs``: no kept plans where not given).  ``between``: a
     collection reads the rows in blocks (:data:`COLLECT_ROWS`, the sparse table built
@@ -248,7 +254,7 @@ def single(*args: Any) -> Any:
     return _load()["_single"](*args)
 
 
-def solve_rows(rows: Any, ub: Any, tol: float, eps: float, floor: float = 0.0) -> Any:
+def solve_rows(rows: FloatArray, ub: FloatArray, tol: float, eps: float, floor: float = 0.0) -> Any:
     """Compiled :func:`_solve_rows`."""
     return _load()["_solve_rows"](np.ascontiguousarray(rows, float), np.asarray(ub, float),
                                  float(tol), float(eps), float(floor))
@@ -284,8 +290,8 @@ def window_boxes_memo(*args: Any) -> Any:
     return _load()["_window_boxes_memo"](*args)
 
 
-def beaten(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float,
-           check: Any = None) -> Any:
+def beaten(c: IntArray, t: FloatArray, ma: int, mb: int, same: bool, tie: float,
+           check: BoolArray | None = None) -> BoolArray:
     """Compiled :func:`_beaten` of configurations ``c`` (F, 4: first start, its interior
     vertices, second start, its interior vertices) with smallest regions ``t``: the
     ones to keep (with ``check``, a mask, only those rows are decided; every row is a
@@ -323,8 +329,8 @@ BEATEN_MEMO_ROWS, BEATEN_MEMO_SIZE = 50_000, 4
 _beaten_memo: dict[bytes, np.ndarray] = {}
 
 
-def _beaten_keep(c: Any, t: Any, ma: int, mb: int, same: bool, tie: float,
-                 check: Any) -> Any:
+def _beaten_keep(c: IntArray, t: FloatArray, ma: int, mb: int, same: bool, tie: float,
+                 check: BoolArray | None) -> BoolArray:
     """:func:`beaten` of ring positions ``c``, computed."""
     keep = np.ones(len(c), bool)
     cols = [np.ascontiguousarray(c[:, j]) for j in range(4)]

@@ -13,8 +13,10 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
 
-def _grow(a: Any, n: int) -> Any:
+
+def _grow(a: FloatArray | IntArray, n: int) -> Any:
     """``a`` with room for at least ``n`` elements (doubling)."""
     if n <= a.size:
         return a
@@ -23,13 +25,13 @@ def _grow(a: Any, n: int) -> Any:
     return out
 
 
-def _append(first: Any, last: Any, n: int, a: int, b: int) -> Any:
+def _append(first: IntArray, last: IntArray, n: int, a: int, b: int) -> Any:
     first, last = _grow(first, n + 1), _grow(last, n + 1)
     first[n], last[n] = a, b
     return first, last
 
 
-def _in_order(c: Any, mark: Any) -> Any:
+def _in_order(c: Any, mark: BoolArray) -> Any:
     """The distinct column numbers ``c`` in increasing order: by marking them when they
     span little more than their number (a smooth outline's), else by sorting."""
     if c.size == 0:
@@ -49,7 +51,8 @@ def _in_order(c: Any, mark: Any) -> Any:
     return out[:n]
 
 
-def _cell(ax: Any, ay: Any, gx: Any, v: int, bx: Any, by: Any, gy: Any, q: int) -> Any:
+def _cell(ax: FloatArray, ay: FloatArray, gx: FloatArray, v: int, bx: FloatArray, by: FloatArray,
+          gy: FloatArray, q: int) -> Any:
     """Cell ``(v, q)`` of the vertex matrix: the least and the largest of the eight cross
     products ``cross(g, d)`` of the chord ``d`` from vertex ``v`` to vertex ``q``
     (without a branch: ``M+`` holds where all are >= 0, ``M-`` where all are <= 0, the
@@ -124,7 +127,7 @@ def _vertex_runs(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any, 
 _LEAF = 16
 
 
-def _column_tree(bx: Any, by: Any, gy: Any, angle: Any) -> Any:
+def _column_tree(bx: FloatArray, by: FloatArray, gy: FloatArray, angle: FloatArray) -> Any:
     """Bounds over blocks of consecutive columns (a complete binary tree over blocks of
     :data:`_LEAF`, node 1 the root, node ``i``'s children ``2i`` and ``2i + 1``): per node
     its box of points, its range of force angles and, per generator ``j`` of ring b, the
@@ -155,8 +158,9 @@ def _column_tree(bx: Any, by: Any, gy: Any, angle: Any) -> Any:
     return lo, hi, size
 
 
-def _vertex_runs_tree(ax: Any, ay: Any, gx: Any, va: Any, bx: Any, by: Any, gy: Any,
-                      angle: Any, width: float, pad: float) -> Any:
+def _vertex_runs_tree(ax: FloatArray, ay: FloatArray, gx: FloatArray, va: FloatArray,
+                      bx: FloatArray, by: FloatArray, gy: FloatArray, angle: FloatArray,
+                      width: float, pad: float) -> Any:
     """:func:`_vertex_runs` without reading every cell of a row's window: ring b's
     columns in their own order (``angle`` their force angles, not sorted), under a tree
     of bounds (:func:`_column_tree`).  A node whose every cell surely holds (each cross

@@ -13,6 +13,8 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import BoolArray, FloatArray, IntArray
+
 #: Cells of the own-optimum filter's tables (:func:`_group_tables`) above which it
 #: scans configurations by start instead (:func:`_beaten`).
 TABLE_CELLS = 50_000_000
@@ -22,7 +24,7 @@ TABLE_CELLS = 50_000_000
 _BELOW_STEPS = 16
 
 
-def _below(el: Any, m: int, floor: float, tol: float, eps: float) -> bool:
+def _below(el: FloatArray, m: int, floor: float, tol: float, eps: float) -> bool:
     """Whether the eliminated system's largest ``t`` is surely below ``floor`` (> 0), or
     the system has none, proved by bounds of ``t`` that the full pass of
     :func:`_solve_rows` also takes, each computed by the same operations (so its
@@ -85,7 +87,8 @@ def _below(el: Any, m: int, floor: float, tol: float, eps: float) -> bool:
     return False
 
 
-def _solve_rows(rows: Any, ub: Any, tol: float, eps: float, floor: float = 0.0) -> Any:
+def _solve_rows(rows: FloatArray, ub: FloatArray, tol: float, eps: float, floor: float = 0.0
+                ) -> Any:
     """``_stretch_lp._solve`` one configuration at a time: the same Fourier-Motzkin
     elimination of ``s0`` (every row with a positive coefficient added to every row with
     a negative one, each divided by its coefficient's magnitude), the same bounds of
@@ -178,7 +181,7 @@ def _solve_rows(rows: Any, ub: Any, tol: float, eps: float, floor: float = 0.0) 
     return t_out, s_out, u_out
 
 
-def _scan_inside(order: Any, starts: Any, next_start: Any, lo: int, span: int, m: int,
+def _scan_inside(order: Any, starts: Any, next_start: IntArray, lo: int, span: int, m: int,
                  iA: Any, kA: Any, iC: Any, kC: Any, lo2: int, span2: int, m2: int, t: Any,
                  thr: float) -> bool:
     """Is some configuration ``u`` whose first stretch starts in the cyclic range
@@ -237,7 +240,8 @@ def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: 
             keep[s] = False
 
 
-def _group_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int) -> Any:
+def _group_tables(iA: IntArray, kA: IntArray, iC: IntArray, kC: IntArray, t: FloatArray, ma: int,
+                  mb: int) -> Any:
     """The configurations grouped by their two start edges ``(iA, iC)`` (groups with
     ``iA = p`` are ``ptr[p] .. ptr[p + 1]``, by ``iC``), each with a table over its
     ``(kA, kC)`` of the largest ``t`` at most that long on both sides (a prefix
@@ -299,9 +303,9 @@ def _group_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int) 
     return ptr, g_iC, ka0, ka1, kc0, kc1, off, table
 
 
-def _any_inside(ptr: Any, g_iC: Any, ka0: Any, ka1: Any, kc0: Any, kc1: Any, off: Any,
-                table: Any, lo: int, span: int, ma: int, lo2: int, span2: int, mb: int,
-                thr: float) -> bool:
+def _any_inside(ptr: IntArray, g_iC: IntArray, ka0: IntArray, ka1: IntArray, kc0: IntArray,
+                kc1: IntArray, off: IntArray, table: FloatArray, lo: int, span: int, ma: int,
+                lo2: int, span2: int, mb: int, thr: float) -> bool:
     """Is some configuration with its first stretch inside ``[lo, lo + span]`` (a ring
     of ``ma``, cyclically), its second inside ``[lo2, lo2 + span2]`` (of ``mb``) and a
     smallest region above ``thr``?  One look-up in the table of each start pair."""
@@ -336,8 +340,8 @@ def _any_inside(ptr: Any, g_iC: Any, ka0: Any, ka1: Any, kc0: Any, kc1: Any, off
     return False
 
 
-def _beaten_tables(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int,
-                   same: bool, tie: float, keep: Any, check: Any) -> bool:
+def _beaten_tables(iA: IntArray, kA: IntArray, iC: IntArray, kC: IntArray, t: FloatArray, ma: int,
+                   mb: int, same: bool, tie: float, keep: BoolArray, check: BoolArray) -> bool:
     """:func:`_beaten` by table look-ups (:func:`_group_tables`): False, leaving
     ``keep`` as it is, when the tables would pass :data:`TABLE_CELLS`.  Starts are
     ring positions (``0 <= iA < ma``, ``0 <= iC < mb``)."""

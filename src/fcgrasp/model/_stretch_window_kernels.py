@@ -13,13 +13,14 @@ from typing import Any
 
 import numpy as np
 
+from ..core._checks import FloatArray, IntArray
 from ..core.tolerances import ROUND_TOL
 from ._stretch_copy_kernels import _copies_from, _copy_columns, _copy_run
 from ._stretch_run_kernels import _append, _grow
 
 
-def _intersect(a0: int, a1: int, fa: Any, la: Any, b0: int, b1: int, fb: Any, lb: Any,
-               out_f: Any, out_l: Any, n: int) -> Any:
+def _intersect(a0: int, a1: int, fa: IntArray, la: IntArray, b0: int, b1: int, fb: IntArray,
+               lb: IntArray, out_f: IntArray, out_l: IntArray, n: int) -> Any:
     """The runs common to two sorted lists of runs (``fa[a0:a1]``, ``la[a0:a1]`` and the
     same of b), appended to ``out_f``, ``out_l`` from position ``n`` (two monotone
     pointers; maximal runs stay maximal): the arrays (grown) and the new count."""
@@ -36,7 +37,7 @@ def _intersect(a0: int, a1: int, fa: Any, la: Any, b0: int, b1: int, fb: Any, lb
     return out_f, out_l, n
 
 
-def _run_table(ptr: Any, first: Any, last: Any, ma: int, levels: int) -> Any:
+def _run_table(ptr: IntArray, first: IntArray, last: IntArray, ma: int, levels: int) -> Any:
     """The runs of the AND of rows ``r .. r + 2^j - 1`` (cyclic) for every row ``r`` and
     level ``j < levels``: row pointers ``tptr[j]`` into one pair of arrays (a sparse table:
     any window of rows is the AND of two overlapping entries).  Levels stop after the
@@ -60,7 +61,8 @@ def _run_table(ptr: Any, first: Any, last: Any, ma: int, levels: int) -> Any:
     return tptr, tf, tl, levels
 
 
-def _window_of(tptr: Any, tf: Any, tl: Any, r: int, k: int, ma: int, cs: Any, ce: Any) -> Any:
+def _window_of(tptr: IntArray, tf: IntArray, tl: IntArray, r: int, k: int, ma: int, cs: IntArray,
+               ce: IntArray) -> Any:
     """The runs of the AND of rows ``r .. r + k - 1`` (cyclic) into ``cs``, ``ce``, read
     from the sparse table: their count."""
     j = 0
@@ -72,7 +74,7 @@ def _window_of(tptr: Any, tf: Any, tl: Any, r: int, k: int, ma: int, cs: Any, ce
     return n
 
 
-def _cyclic(cs: Any, ce: Any, nc: int, mb: int, rp0: Any, rlen: Any) -> int:
+def _cyclic(cs: IntArray, ce: IntArray, nc: int, mb: int, rp0: IntArray, rlen: IntArray) -> int:
     """A window's runs as cyclic runs (a run through the last column goes on into the
     first): starts ``rp0`` and lengths ``rlen``, their count."""
     nr = 0
@@ -88,7 +90,7 @@ def _cyclic(cs: Any, ce: Any, nc: int, mb: int, rp0: Any, rlen: Any) -> int:
     return nr
 
 
-def _measures(rp0: Any, rlen: Any, nr: int, mb: int, Ub: Any) -> Any:
+def _measures(rp0: IntArray, rlen: IntArray, nr: int, mb: int, Ub: FloatArray) -> Any:
     """The most any stretch 2 inside these cyclic runs reaches (its edges), and the
     longest vertex-aligned one (its interior vertices)."""
     reach, vert = 0.0, 0.0
@@ -99,8 +101,9 @@ def _measures(rp0: Any, rlen: Any, nr: int, mb: int, Ub: Any) -> Any:
     return reach, vert
 
 
-def _row_bound(tptr: Any, tf: Any, tl: Any, r: int, ma: int, mb: int, k_max: int, Ua: Any,
-               Ub: Any, cs: Any, ce: Any, rp0: Any, rlen: Any) -> float:
+def _row_bound(tptr: IntArray, tf: IntArray, tl: IntArray, r: int, ma: int, mb: int, k_max: int,
+               Ua: FloatArray, Ub: FloatArray, cs: IntArray, ce: IntArray, rp0: IntArray,
+               rlen: IntArray) -> float:
     """An upper bound on row ``r``'s lower bound (:func:`_window_row` without
     ``collect``): the largest ``min(inner_s, vert)`` over the window lengths ``k``,
     every run counted (on one ring too).  ``inner_s`` grows with ``k`` and ``vert``
@@ -131,10 +134,11 @@ def _row_bound(tptr: Any, tf: Any, tl: Any, r: int, ma: int, mb: int, k_max: int
     return best
 
 
-def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0: Any,
-                rlen: Any, ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int,
-                mb: int, floor: float, collect: bool, same: bool, best: Any, thresh: float,
-                oA: Any, okA: Any, oC: Any, okC: Any, n_out: int, ex: Any, exs: Any,
+def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArray, ne: IntArray,
+                rp0: IntArray, rlen: IntArray, ptr: IntArray, first: IntArray, last: IntArray,
+                Ua: FloatArray, Ub: FloatArray, ma: int, mb: int, floor: float, collect: bool,
+                same: bool, best: FloatArray, thresh: float, oA: IntArray, okA: IntArray,
+                oC: IntArray, okC: IntArray, n_out: int, ex: FloatArray, exs: FloatArray,
                 gallop: bool) -> Any:
     """Row ``r`` of :func:`_windows` from window length ``k`` on (its runs ``cs``,
     ``ce``: the AND of rows ``r .. r + k - 1``).  Without ``collect`` the widening stops
@@ -251,7 +255,7 @@ def _window_row(r: int, k: int, nc: int, cs: Any, ce: Any, ns: Any, ne: Any, rp0
 _SHORT = 64
 
 
-def _top_add(topv: Any, topk: Any, key: int, v: float) -> None:
+def _top_add(topv: FloatArray, topk: IntArray, key: int, v: float) -> None:
     """Keep in ``topv`` (ascending) the largest values seen, at most one per key
     (``topk``): ``v`` under ``key``."""
     n = topv.size
@@ -286,9 +290,9 @@ def _buffers(mb: int) -> Any:
     return cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC
 
 
-def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-               floor: float, collect: bool, same: bool, ex: Any, exs: Any, gallop: bool,
-               r0: int, r1: int) -> Any:
+def _every_row(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub: FloatArray,
+               ma: int, mb: int, floor: float, collect: bool, same: bool, ex: FloatArray,
+               exs: FloatArray, gallop: bool, r0: int, r1: int) -> Any:
     """:func:`_windows` reading every row of ``r0 .. r1 - 1`` from its first window on."""
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
@@ -304,7 +308,7 @@ def _every_row(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: i
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
-def _table(ptr: Any, first: Any, last: Any, ma: int) -> Any:
+def _table(ptr: IntArray, first: IntArray, last: IntArray, ma: int) -> Any:
     """:func:`_run_table` with as many levels as a window of ``ma - 2`` rows needs."""
     levels = 1
     while (1 << levels) <= ma - 2:
@@ -312,10 +316,10 @@ def _table(ptr: Any, first: Any, last: Any, ma: int) -> Any:
     return _run_table(ptr, first, last, ma, levels)
 
 
-def _windows(ptr: Any, first: Any, last: Any, Ua: Any, Ub: Any, ma: int, mb: int,
-             floor: float, collect: bool, same: bool, value: float, keep: int,
-             short: int, ex: Any, exs: Any, gallop: bool, r0: int, r1: int, tptr: Any,
-             tf: Any, tl: Any, levels: int) -> Any:
+def _windows(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub: FloatArray,
+             ma: int, mb: int, floor: float, collect: bool, same: bool, value: float, keep: int,
+             short: int, ex: FloatArray, exs: FloatArray, gallop: bool, r0: int, r1: int,
+             tptr: IntArray, tf: IntArray, tl: IntArray, levels: int) -> Any:
     """Windows of interior vertices of both stretches (``_windows_both`` of the numpy
     search, row by row).
 
