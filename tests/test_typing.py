@@ -29,3 +29,28 @@ def test_core_and_model_are_held_to_strict():
     assert strict and all(strict[0].get(k) for k in (
         "disallow_untyped_defs", "disallow_any_generics", "warn_return_any",
         "disallow_untyped_calls", "no_implicit_reexport"))
+
+
+#: The largest share of parameters of ``core`` and ``model`` annotated ``Any``.
+MAX_ANY_SHARE = 0.10
+
+
+@pytest.mark.parametrize("package", ["core", "model"])
+def test_few_parameters_are_any(package):
+    """Parameters carry their types (arrays by dtype, numbers, array-likes at the edge, the
+    part's Polygon); ``Any`` is left where a value really is anything (the checks of
+    user input, a formula that runs on numbers and arrays alike) and stays below
+    :data:`MAX_ANY_SHARE` of the parameters of ``core`` and of ``model``."""
+    import ast
+
+    total = typed_any = 0
+    for path in sorted((ROOT / "src" / "fcgrasp" / package).glob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                args = node.args
+                for a in [*args.posonlyargs, *args.args, *args.kwonlyargs]:
+                    if a.arg in ("self", "cls"):
+                        continue
+                    total += 1
+                    typed_any += a.annotation is not None and ast.unparse(a.annotation) == "Any"
+    assert typed_any <= MAX_ANY_SHARE * total, (package, typed_any, total)
