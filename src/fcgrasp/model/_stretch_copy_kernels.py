@@ -68,6 +68,51 @@ def _copy_run(p: int, room: int, ext_s: float, run_end: int, Ub: FloatArray, mb:
     return lo
 
 
+def _copy_lengths(r: int, k: int, k_max: int, nr: int, rp0: IntArray, rlen: IntArray,
+                  Ua: FloatArray, Ub: FloatArray, ma: int, mb: int, ex: FloatArray,
+                  exs: FloatArray, app: IntArray, n_app: int) -> int:
+    """The last window length of row ``r`` from ``k`` on (at most ``k_max``) whose every
+    configuration is a copy of one kept plan's column, or ``k - 1``: a column of
+    ``app`` (stretch 1 of length ``k`` holds its arc on ring a) that makes the widest
+    stretch 2 of every one of the window's cyclic runs ``rp0, rlen`` a copy on ring b.
+    The runs only shrink as the window grows, so they stay copies by that column for as
+    long as stretch 1 does, which holds up to a length found by doubling, then
+    bisection (stretch 1's arc outside only grows)."""
+    i = (r - 1) % ma + ma
+    a0 = Ua[(r - 1) % ma]
+    for jc in range(n_app):
+        c = app[jc]
+        every = True
+        for j in range(nr):
+            if min(rlen[j], mb - 2) < 1:
+                continue
+            if rlen[j] >= mb - 2:
+                every = False
+                break
+            jb = (rp0[j] - 1) % mb
+            c0 = Ub[jb]
+            if not _copy_side(c0, c0 + (Ub[jb + mb + rlen[j] + 1] - Ub[jb + mb]), ex, exs, 1,
+                              c):
+                every = False
+                break
+        if not every:
+            continue
+        # stretch 1 of length k holds: the longest that still does, up to k_max
+        lo, d = k, 1
+        while lo + d <= k_max and _copy_side(a0, a0 + (Ua[i + lo + d + 1] - Ua[i]), ex, exs,
+                                             0, c):
+            lo, d = lo + d, 2 * d
+        hi = min(lo + d, k_max + 1)             # holds at lo; not at hi, or hi past k_max
+        while hi - lo > 1:
+            mid = (lo + hi) // 2
+            if _copy_side(a0, a0 + (Ua[i + mid + 1] - Ua[i]), ex, exs, 0, c):
+                lo = mid
+            else:
+                hi = mid
+        return lo
+    return k - 1
+
+
 def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: FloatArray, mb: int,
                 ex: FloatArray, exs: FloatArray, app: IntArray, n_app: int) -> bool:
     """Whether every stretch 2 from the starts ``p .. p + d`` is a copy: they lie in the

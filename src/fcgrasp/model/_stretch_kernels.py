@@ -51,6 +51,7 @@ from . import (
 from ._stretch_copy_kernels import (
     _copies_from,
     _copy_columns,
+    _copy_lengths,
     _copy_run,
     _copy_side,
     _copy_span,
@@ -116,7 +117,7 @@ for _module in (_stretch_run_kernels, _stretch_window_kernels, _stretch_copy_ker
 _LOOPS = CompiledLoops(_NAMESPACE, (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
                                    _vertex_runs_tree, _intersect, _run_table, _window_of,
                                    _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
-                                   _copy_run, _copy_until, _copy_span,
+                                   _copy_run, _copy_until, _copy_span, _copy_lengths,
                                    _copy_side, _side_threshold, _table,
                                    _window_row, _buffers,
                                    _every_row, _top_add, _windows,

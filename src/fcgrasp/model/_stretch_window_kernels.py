@@ -15,7 +15,7 @@ import numpy as np
 
 from ..core._checks import FloatArray, IntArray
 from ..core.tolerances import ROUND_TOL
-from ._stretch_copy_kernels import _copies_from, _copy_columns, _copy_run
+from ._stretch_copy_kernels import _copies_from, _copy_columns, _copy_lengths, _copy_run
 from ._stretch_run_kernels import _append, _grow
 
 
@@ -139,15 +139,17 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
                 Ua: FloatArray, Ub: FloatArray, ma: int, mb: int, floor: float, collect: bool,
                 same: bool, best: FloatArray, thresh: float, oA: IntArray, okA: IntArray,
                 oC: IntArray, okC: IntArray, n_out: int, ex: FloatArray, exs: FloatArray,
-                gallop: bool) -> Any:
+                gallop: bool, tptr: IntArray, tf: IntArray, tl: IntArray, k_max: int) -> Any:
     """Row ``r`` of :func:`_windows` from window length ``k`` on (its runs ``cs``,
     ``ce``: the AND of rows ``r .. r + k - 1``).  Without ``collect`` the widening stops
     once no window can beat ``max(best[r], thresh)``.  With ``collect`` and kept plans'
     arcs ``ex`` (:func:`_copy_columns`), the configurations that are surely a kept
     plan's copy at any smallest region from ``exs[4]`` on are not collected
     (:func:`_copies_from`); with ``gallop``, the starts of stretch 2 whose every
-    stretch is a copy are passed over in runs (:func:`_copy_run`), else one by one
-    (the reference)."""
+    stretch is a copy are passed over in runs (:func:`_copy_run`), and so are the
+    window lengths whose every configuration is one (:func:`_copy_lengths`; the window
+    after them read from the sparse table ``tptr, tf, tl``, which holds windows of up
+    to ``k_max`` rows; ``k_max`` 0: none), else each is read (the reference)."""
     i = (r - 1) % ma + ma
     n_ex = ex.shape[1]
     app = np.empty(n_ex, np.int64)
@@ -172,6 +174,17 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
                 break
         elif reach < floor * (1 - ROUND_TOL) or vert <= max(best[r], thresh):
             break                   # no later lower bound can beat this row's
+        if collect and gallop and n_app > 0 and k_max > 0:
+            upto = _copy_lengths(r, k, k_max, nr, rp0, rlen, Ua, Ub, ma, mb, ex, exs, app,
+                                 n_app)
+            if upto >= k:
+                # every configuration of the window lengths k .. last is a copy: on
+                # from the next, its runs read from the sparse table
+                k = upto + 1
+                if k >= ma - 1 or k > k_max:
+                    break
+                nc = _window_of(tptr, tf, tl, r, k, ma, cs, ce)
+                continue
         for j in range(nr):
             rr = min(rlen[j], mb - 2)
             if rr < 1:
@@ -296,6 +309,7 @@ def _every_row(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, U
     """:func:`_windows` reading every row of ``r0 .. r1 - 1`` from its first window on."""
     best = np.zeros(ma)
     cs, ce, ns, ne, rp0, rlen, oA, okA, oC, okC = _buffers(mb)
+    no_table = np.zeros((1, 1), np.int64)         # (no window read from a table)
     n_out = 0
     for r in range(r0, r1 if ptr[ma] > 0 else r0):  # no runs: no window
         nc = 0
@@ -304,7 +318,8 @@ def _every_row(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, U
             nc += 1
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop)
+            floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop,
+            no_table, first, last, 0)
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
 
 
@@ -374,7 +389,8 @@ def _windows(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub:
             nc = _window_of(tptr, tf, tl, r, k, ma, cs, ce)
             oA, okA, oC, okC, n_out = _window_row(
                 r, k, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop)
+                floor, collect, same, best, 0.0, oA, okA, oC, okC, n_out, ex, exs, gallop,
+                tptr, tf, tl, k_max)
         return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
     upper = np.empty(ma)
     for r in range(ma):
@@ -388,6 +404,7 @@ def _windows(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub:
         nc = _window_of(tptr, tf, tl, r, 1, ma, cs, ce)         # the row's own runs
         oA, okA, oC, okC, n_out = _window_row(
             r, 1, nc, cs, ce, ns, ne, rp0, rlen, ptr, first, last, Ua, Ub, ma, mb,
-            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out, ex, exs, gallop)
+            floor, collect, same, best, thresh, oA, okA, oC, okC, n_out, ex, exs, gallop,
+            tptr, tf, tl, k_max)
         _top_add(top, top_rows, r, best[r])
     return best, oA[:n_out], okA[:n_out], oC[:n_out], okC[:n_out]
