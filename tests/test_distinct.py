@@ -812,3 +812,37 @@ def test_compiled_collection_leaving_copies_out_equals_suppression(seed, monkeyp
             assert np.array_equal(a, b)
     if seed in (13, 32, 55):                # (32: a left-out copy beats a plan's edges)
         assert sum(left_out) > 0, left_out
+
+
+@pytest.mark.parametrize("seed", [0, 4, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in range(40) if s not in (0, 4))])
+def test_a_lower_floors_collection_takes_what_the_last_solved(seed, monkeypatch):
+    """A distinct round whose floor falls collects again and takes each configuration's
+    solution and boxes from the last collection (``_Memo.lower``, ``CARRY``): the plans
+    and regions are those of rounds that solve every collection anew (the reference),
+    on smooth outlines where the floors fall, and the carried solutions are read."""
+    from fcgrasp.model import _stretch_solve
+
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0, 2 * np.pi, int(rng.integers(300, 700)), endpoint=False)
+    r = 1 + rng.uniform(0.02, 0.15) * np.cos(3 * a + rng.uniform(0, 2 * np.pi))
+    part = fc.Polygon(np.c_[60 * r * np.cos(a), rng.uniform(25, 45) * r * np.sin(a)])
+    mu = float(rng.uniform(0.4, 1.0))
+    top = int(rng.integers(3, 7))
+    restored = []
+    into = _stretch_solve._Carried.into
+
+    def counted(self, J):
+        restored.append(int(np.count_nonzero(~np.isnan(self.t))))
+        return into(self, J)
+
+    monkeypatch.setattr(_stretch_solve._Carried, "into", counted)
+    got = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
+    monkeypatch.setattr(_stretch_solve, "CARRY", 0)
+    ref = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    for p, q in zip(got, ref, strict=True):
+        for x, y in zip(p.regions, q.regions, strict=True):
+            assert np.array_equal(x, y)
+    if seed in (0, 4):                      # (floors that fall: solutions carried)
+        assert sum(restored) > 0, restored

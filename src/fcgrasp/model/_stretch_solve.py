@@ -122,6 +122,57 @@ class _Job:
     caps: FloatArray | None = None
 
 
+_KEY = np.dtype([("iA", np.int64), ("kA", np.int64), ("iC", np.int64), ("kC", np.int64)])
+
+
+def _config_keys(cfg: _Configs) -> np.ndarray:
+    """One sortable key per configuration (its four numbers, compared in order)."""
+    keys = np.empty(len(cfg.iA), _KEY)
+    keys["iA"], keys["kA"], keys["iC"], keys["kC"] = cfg.iA, cfg.kA, cfg.iC, cfg.kC
+    return keys
+
+
+@dataclass
+class _Carried:
+    """What a job's configurations gave, carried from one collection to the next of a
+    :class:`_Memo` (those solved, proved below a floor or bounded by their boxes), by
+    sorted configuration keys."""
+
+    keys: np.ndarray
+    t: FloatArray
+    s0: FloatArray
+    u0: FloatArray
+    below: FloatArray
+    box: FloatArray
+    caps: FloatArray | None
+
+    @staticmethod
+    def of(J: _Job) -> _Carried:
+        read = ~np.isnan(J.t) | (J.below > 0) | ~np.isnan(J.box)
+        if J.caps is not None:
+            read |= ~np.isnan(J.caps)
+        idx = np.flatnonzero(read)
+        keys = _config_keys(J.cfg.take(idx))
+        by = np.argsort(keys, kind="stable")
+        idx = idx[by]
+        return _Carried(keys[by], J.t[idx], J.s0[idx], J.u0[idx], J.below[idx], J.box[idx],
+                        None if J.caps is None else J.caps[idx])
+
+    def into(self, J: _Job) -> None:
+        if not self.keys.size:
+            return
+        keys = _config_keys(J.cfg)
+        at = np.minimum(np.searchsorted(self.keys, keys), self.keys.size - 1)
+        hit = np.flatnonzero(self.keys[at] == keys)
+        src = at[hit]
+        J.t[hit], J.s0[hit], J.u0[hit] = self.t[src], self.s0[src], self.u0[src]
+        J.below[hit], J.box[hit] = self.below[src], self.box[src]
+        if self.caps is not None:
+            if J.caps is None:
+                J.caps = np.full(len(J.ub), np.nan)
+            J.caps[hit] = self.caps[src]
+
+
 #: Bytes a collected configuration takes at the peak, the unit of :attr:`_Memo.max_bytes`:
 #: four int64 of the configuration, seven arrays of :class:`_Job`, and the collection's
 #: concatenation and sorts (measured: a 1,000-edge smooth outline at mu 1.0 grows by
@@ -152,6 +203,9 @@ class _Memo:
         #: run (``BudgetExhausted``, ``"collection"``) and the caller tries a higher
         #: floor, or collects in full where none would do
         self.cap: int | None = None
+        #: each job's solutions and boxes of the last collection, for the next
+        #: (:meth:`lower`)
+        self.carried: dict[Any, _Carried] = {}
 
     @property
     def max_configs(self) -> int | None:
@@ -159,8 +213,20 @@ class _Memo:
         return None if self.max_bytes is None else self.max_bytes // CONFIG_BYTES
 
     def lower(self, floor: float) -> None:
-        """Collect again, down to ``floor``."""
+        """Collect again, down to ``floor``: what the configurations solved or bounded so
+        far gave is carried into the new collection (:meth:`restore`), each solved
+        once whatever the floors it is collected at."""
+        if self.jobs and CARRY:
+            self.carried = {job: _Carried.of(J) for job, J in self.jobs.items()}
         self.floor, self.prepared, self.jobs = floor, None, {}
+
+    def restore(self, job: Any, J: _Job) -> None:
+        """Fill a new collection's job ``J`` with what an earlier collection of the same
+        job solved and bounded (the same numbers: each configuration's solution and
+        boxes depend on it alone)."""
+        carried = self.carried.get(job)
+        if carried is not None:
+            carried.into(J)
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
@@ -204,6 +270,11 @@ def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
 #: Whether the compiled solve leaves the configurations it proves below the run's floor
 #: unsolved (1; 0: every configuration solved in full, the reference).
 FLOOR_SOLVE = 1
+
+
+#: Whether a memo's new collection takes what the last one solved (1; 0: every
+#: collection solves its configurations anew, the reference).
+CARRY = 1
 
 
 #: Configurations :func:`_solve_jobs` reads at a time: the first chunk (the floor
@@ -326,6 +397,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             J = memo.jobs[job]
         else:
             J = memo.jobs[job] = _job(rings, job, cfg, intervals, memo.floor, lazy=True)
+            memo.restore(job, J)
         cfg, ub, box, order = J.cfg, J.ub, J.box, J.order
 
         if cap is not None and J.caps is None:
