@@ -149,7 +149,9 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
     stretch is a copy are passed over in runs (:func:`_copy_run`), and so are the
     window lengths whose every configuration is one (:func:`_copy_lengths`; the window
     after them read from the sparse table ``tptr, tf, tl``, which holds windows of up
-    to ``k_max`` rows; ``k_max`` 0: none), else each is read (the reference)."""
+    to ``k_max`` rows; ``k_max`` 0: none), and on one ring (``same``) only the
+    configurations the search keeps are made (:func:`_both_kept`'s: disjoint stretches,
+    each unordered pair once), else each is read and made (the reference)."""
     i = (r - 1) % ma + ma
     n_ex = ex.shape[1]
     app = np.empty(n_ex, np.int64)
@@ -244,6 +246,15 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
                         # (the arc outside only shrinks), found by galloping
                         jj += _copy_run(p, rlen[j] - 1 - jj, ext_s, run_last, Ub, mb,
                                         ex, exs, app, n_app)
+                    if q_hi < q_lo:
+                        continue
+                if same and gallop:
+                    # on one ring, each unordered pair of disjoint stretches once (the
+                    # search's own filter, :func:`_both_kept`, applied as they are made)
+                    rel = (p - r) % mb
+                    if rel <= k or (r - 1) % mb >= (p - 1) % mb:
+                        continue
+                    q_hi = min(q_hi, p + mb - rel - 2)
                     if q_hi < q_lo:
                         continue
                 n_new = n_out + q_hi - q_lo + 1
