@@ -440,3 +440,25 @@ def test_convex_pieces_equal_the_merge_over_every_piece(seed):
     mine, ref = _convex_pieces(poly), _convex_pieces_every_piece(poly)
     assert len(mine) == len(ref)
     assert all(a.equals_exact(b, 0.0) for a, b in zip(mine, ref, strict=True))
+
+
+@pytest.mark.parametrize("seed", [1, 2, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in (0, *range(3, 16)))])
+def test_searches_sharing_a_memo_give_the_plans_of_searches_alone(seed):
+    """The searches of one solid asked for more and more plans (as the distinct
+    alternatives ask them) sharing a memo of each pair's refined bound and solution
+    give, round after round, the plans of searches that share nothing, and the later
+    rounds read what the earlier computed."""
+    solid = _search_corpus(seed)
+    rng = np.random.default_rng(seed)
+    mu = float(rng.uniform(0.3, 0.9))
+    memo: dict = {}
+    for top in (3, 12, 48):
+        shared = soft_pair_plans(solid, mu, top=top, memo=memo)
+        alone = soft_pair_plans(solid, mu, top=top)
+        assert [(p.facets, p.pieces) for p in shared] == [(p.facets, p.pieces) for p in alone]
+        for p, q in zip(shared, alone, strict=True):
+            assert p.radius == q.radius
+            for a, b in zip(p.centers, q.centers, strict=True):
+                np.testing.assert_array_equal(a, b)
+    assert "table" in memo and any(k[0] == "solve" for k in memo if isinstance(k, tuple))

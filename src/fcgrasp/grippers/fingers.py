@@ -235,8 +235,9 @@ class TwoFingers(_PointFingers):
         from ..spatial.alternatives import top_distinct
         from ..spatial.surfaces import soft_pair_plans
 
+        memo: dict[Any, Any] = {}          # the rounds share each pair's work
         return top_distinct(lambda n: soft_pair_plans(solid, self.mu, top=n,
-                                                      margin=options.margin),
+                                                      margin=options.margin, memo=memo),
                             options.top, fraction)
 
 

@@ -447,8 +447,8 @@ def _solve(solid: Solid, table: _Pieces, pa: int, pb: int, alpha: float,
 
 
 def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
-                     margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True
-                     ) -> list[SoftPairPlan]:
+                     margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True,
+                     memo: dict[Any, Any] | None = None) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first (module
     docstring), by best-first search over every pair of convex pieces whose cones can
     meet: the pairs' bounds batched, round by round (:func:`_pairs`,
@@ -458,7 +458,10 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     when they hold, which is then optimal, else the cone program); the search stops
     when no bound can enter the top ``top`` (None: every pair).  With ``leximin`` (the
     default) each plan's second level is grown (:func:`_second_level`; ``radius``, the
-    first level, ranks them either way).
+    first level, ranks them either way).  ``memo``: a dict the searches of one solid
+    share (a caller asking for more plans, :func:`fcgrasp.spatial.alternatives.top_distinct`):
+    the pieces' table and each pair's refined bound and solution, computed once (each
+    depends on the pair and the cone alone, so the plans are the same).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 4) for p in facet_pair_plans(demo_solid("box"), mu=0.3, top=3)]
@@ -471,7 +474,12 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
         top = check_int(top, "top", minimum=1)
     if alpha <= 0:
         return []
-    table = _piece_table(solid)
+    if memo is None:
+        table = _piece_table(solid)
+    else:
+        if "table" not in memo:
+            memo["table"] = _piece_table(solid)
+        table = memo["table"]
     cos_limit = math.cos(min(2 * alpha, math.pi))
     floor = CONE_PROGRAM_TOL * solid.size
     # rounds over the pieces, largest inscribed circle first: a pair not yet met has a
@@ -511,12 +519,22 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             break
         if run is not None and raw > ref:      # tighten the bound; solve when still first
             i, j = run.pop()
-            got = _refine(solid, table, i, j, alpha)
+            if memo is None:
+                got = _refine(solid, table, i, j, alpha)
+            else:
+                if ("refine", alpha, i, j) not in memo:
+                    memo[("refine", alpha, i, j)] = _refine(solid, table, i, j, alpha)
+                got = memo[("refine", alpha, i, j)]
             heapq.heappush(heap, (-got.bound, seq, i, j, got))
             seq += 1
             continue
         _, _, i, j, got = heapq.heappop(heap)
-        sol = _solve(solid, table, i, j, alpha, got)
+        if memo is None:
+            sol = _solve(solid, table, i, j, alpha, got)
+        else:
+            if ("solve", alpha, i, j) not in memo:
+                memo[("solve", alpha, i, j)] = _solve(solid, table, i, j, alpha, got)
+            sol = memo[("solve", alpha, i, j)]
         if sol is not None:
             facets = (int(table.facet[i]), int(table.facet[j]))
             pieces = (int(table.local[i]), int(table.local[j]))
