@@ -442,8 +442,8 @@ def test_convex_pieces_equal_the_merge_over_every_piece(seed):
     assert all(a.equals_exact(b, 0.0) for a, b in zip(mine, ref, strict=True))
 
 
-@pytest.mark.parametrize("seed", [1, 2, *(pytest.param(s, marks=pytest.mark.slow)
-                                          for s in (0, *range(3, 16)))])
+@pytest.mark.parametrize("seed", [2, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in (0, 1, *range(3, 16)))])
 def test_searches_sharing_a_memo_give_the_plans_of_searches_alone(seed):
     """The searches of one solid asked for more and more plans (as the distinct
     alternatives ask them) sharing a memo of each pair's refined bound and solution

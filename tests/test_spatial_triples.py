@@ -284,13 +284,13 @@ def test_a_separating_direction_spares_the_hull_and_changes_no_radius(seed):
     """The slice's radius with the separating direction's shortcut (``_separated``: 0 at
     once) is the radius read from the 6-D hull (the reference) on 1,000 seeded triples
     of every kind (nearly collinear contacts, coplanar normals, contacts nearly
-    opposite, scales 1e-3 to 1e3, narrow and wide cones), and the shortcut decides a
-    good share of those that fail."""
+    opposite, scales 1e-3 to 1e3, narrow and wide cones; 400 by default), and the
+    shortcut decides a good share of those that fail."""
     from fcgrasp.spatial import triples as T
 
     rng = np.random.default_rng(seed)
     spared = failed = 0
-    for _ in range(1000):
+    for _ in range(400 if seed == 0 else 1000):
         p, n, mu = _random_grasp(rng)
         if rng.random() < 0.3:                      # some far from holding
             n = n * np.where(rng.random(3) < 0.5, 1.0, -1.0)[:, None]
