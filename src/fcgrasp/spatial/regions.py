@@ -42,6 +42,7 @@ from __future__ import annotations
 import bisect
 import heapq
 import math
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -474,12 +475,7 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
         top = check_int(top, "top", minimum=1)
     if alpha <= 0:
         return []
-    if memo is None:
-        table = _piece_table(solid)
-    else:
-        if "table" not in memo:
-            memo["table"] = _piece_table(solid)
-        table = memo["table"]
+    table: _Pieces = _once(memo, "table", _piece_table, solid)
     cos_limit = math.cos(min(2 * alpha, math.pi))
     floor = CONE_PROGRAM_TOL * solid.size
     # rounds over the pieces, largest inscribed circle first: a pair not yet met has a
@@ -519,22 +515,13 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             break
         if run is not None and raw > ref:      # tighten the bound; solve when still first
             i, j = run.pop()
-            if memo is None:
-                got = _refine(solid, table, i, j, alpha)
-            else:
-                if ("refine", alpha, i, j) not in memo:
-                    memo[("refine", alpha, i, j)] = _refine(solid, table, i, j, alpha)
-                got = memo[("refine", alpha, i, j)]
+            got = _once(memo, ("refine", alpha, i, j), _refine, solid, table, i, j, alpha)
             heapq.heappush(heap, (-got.bound, seq, i, j, got))
             seq += 1
             continue
         _, _, i, j, got = heapq.heappop(heap)
-        if memo is None:
-            sol = _solve(solid, table, i, j, alpha, got)
-        else:
-            if ("solve", alpha, i, j) not in memo:
-                memo[("solve", alpha, i, j)] = _solve(solid, table, i, j, alpha, got)
-            sol = memo[("solve", alpha, i, j)]
+        sol: tuple[FloatArray, FloatArray, float] | None = _once(
+            memo, ("solve", alpha, i, j), _solve, solid, table, i, j, alpha, got)
         if sol is not None:
             facets = (int(table.facet[i]), int(table.facet[j]))
             pieces = (int(table.local[i]), int(table.local[j]))
@@ -545,6 +532,17 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     return [_plan(solid, (p.facets[0], p.facets[1]), (p.pieces[0], p.pieces[1]),
                   p.centers[0], p.centers[1], p.radius, mu_v, margin_v, grow=leximin)
             for p in plans]
+
+
+def _once(memo: dict[Any, Any] | None, key: Any, make: Callable[..., Any], *args: Any
+          ) -> Any:
+    """``make(*args)``, kept in ``memo`` under ``key`` and read from there again (no
+    memo: made every time)."""
+    if memo is None:
+        return make(*args)
+    if key not in memo:
+        memo[key] = make(*args)
+    return memo[key]
 
 
 @dataclass
