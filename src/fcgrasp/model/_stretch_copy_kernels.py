@@ -89,10 +89,8 @@ def _copy_lengths(r: int, k: int, k_max: int, nr: int, rp0: IntArray, rlen: IntA
             if rlen[j] >= mb - 2:
                 every = False
                 break
-            jb = (rp0[j] - 1) % mb
-            c0 = Ub[jb]
-            if not _copy_side(c0, c0 + (Ub[jb + mb + rlen[j] + 1] - Ub[jb + mb]), ex, exs, 1,
-                              c):
+            c0, c1 = _run_span(rp0[j], rlen[j], Ub, mb)
+            if not _copy_side(c0, c1, ex, exs, 1, c):
                 every = False
                 break
         if not every:
@@ -111,6 +109,15 @@ def _copy_lengths(r: int, k: int, k_max: int, nr: int, rp0: IntArray, rlen: IntA
                 hi = mid
         return lo
     return k - 1
+
+
+def _run_span(start: int, length: int, Ub: FloatArray, mb: int) -> tuple[float, float]:
+    """The widest stretch 2 of a cyclic run of ``length`` start vertices from ``start``
+    (its edges from ``start - 1`` through ``length + 1`` of them) as an arc on ring b:
+    every stretch 2 of the run lies inside it."""
+    jb = (start - 1) % mb
+    c0 = Ub[jb]
+    return c0, c0 + (Ub[jb + mb + length + 1] - Ub[jb + mb])
 
 
 def _copy_until(p: int, d: int, c0: float, ext_s: float, run_end: int, Ub: FloatArray, mb: int,

@@ -15,7 +15,13 @@ import numpy as np
 
 from ..core._checks import FloatArray, IntArray
 from ..core.tolerances import ROUND_TOL
-from ._stretch_copy_kernels import _copies_from, _copy_columns, _copy_lengths, _copy_run
+from ._stretch_copy_kernels import (
+    _copies_from,
+    _copy_columns,
+    _copy_lengths,
+    _copy_run,
+    _run_span,
+)
 from ._stretch_run_kernels import _append, _grow
 
 
@@ -180,7 +186,7 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
             upto = _copy_lengths(r, k, k_max, nr, rp0, rlen, Ua, Ub, ma, mb, ex, exs, app,
                                  n_app)
             if upto >= k:
-                # every configuration of the window lengths k .. last is a copy: on
+                # every configuration of the window lengths k .. upto is a copy: on
                 # from the next, its runs read from the sparse table
                 k = upto + 1
                 if k >= ma - 1 or k > k_max:
@@ -204,10 +210,8 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
             if n_app > 0 and rlen[j] < mb - 2:
                 # every stretch 2 of the run lies inside its widest: a copy of a plan
                 # that the widest is one of is a copy too (the arc outside only shrinks)
-                jb = (rp0[j] - 1) % mb
-                c0 = Ub[jb]
-                if _copies_from(c0, c0 + (Ub[jb + mb + rlen[j] + 1] - Ub[jb + mb]), ex,
-                                exs, app, n_app):
+                c0, c1 = _run_span(rp0[j], rlen[j], Ub, mb)
+                if _copies_from(c0, c1, ex, exs, app, n_app):
                     continue
             jj = -1
             while jj + 1 < rlen[j]:
