@@ -221,6 +221,19 @@ class CompiledLoops:
                                              self._borrowing))
             return self._loaded or None
 
+    @classmethod
+    def of_modules(cls, modules: tuple[types.ModuleType, ...],
+                   borrowing: tuple[Any, ...] = ()) -> CompiledLoops:
+        """The loops of ``modules``: every function each defines, compiled over one
+        namespace of their globals, so that a loop of one calls the compiled loops of
+        the others."""
+        namespace: dict[str, Any] = {}
+        for module in modules:
+            namespace.update(vars(module))
+        funcs = tuple(f for module in modules for f in vars(module).values()
+                      if isinstance(f, types.FunctionType) and f.__module__ == module.__name__)
+        return cls(namespace, funcs, borrowing=borrowing)
+
     @property
     def loaded(self) -> bool:
         """Whether this process has compiled (or loaded) the loops already."""

@@ -48,87 +48,11 @@ from . import (
     _stretch_solve_kernels,
     _stretch_window_kernels,
 )
-from ._stretch_copy_kernels import (
-    _copies_from,
-    _copy_columns,
-    _copy_lengths,
-    _copy_run,
-    _copy_side,
-    _copy_span,
-    _copy_until,
-    _excess_at,
-    _exclusion_rows,
-    _least_excess,
-    _outside_one,
-    _run_span,
-    _side_threshold,
-    _similar_rows,
-    _surely_copy,
-)
-from ._stretch_end_kernels import (
-    _by_start,
-    _inside_supers,
-    _interval,
-    _single,
-    _window_boxes,
-    _window_boxes_memo,
-    _window_boxes_shared,
-)
-from ._stretch_run_kernels import (
-    _append,
-    _cell,
-    _column_tree,
-    _grow,
-    _in_order,
-    _vertex_runs,
-    _vertex_runs_tree,
-)
-from ._stretch_solve_kernels import (
-    _any_inside,
-    _beaten,
-    _beaten_tables,
-    _below,
-    _group_tables,
-    _scan_inside,
-    _solve_rows,
-)
-from ._stretch_window_kernels import (
-    _SHORT,
-    _buffers,
-    _cyclic,
-    _every_row,
-    _intersect,
-    _measures,
-    _row_bound,
-    _run_table,
-    _table,
-    _top_add,
-    _window_of,
-    _window_row,
-    _windows,
-)
+from ._stretch_window_kernels import _SHORT
 
-#: One namespace for every loop of the search (each compiled over it, so that compiled
-#: loops call compiled ones): the modules' globals.
-_NAMESPACE: dict[str, Any] = {}
-for _module in (_stretch_run_kernels, _stretch_window_kernels, _stretch_copy_kernels,
-                _stretch_end_kernels, _stretch_solve_kernels):
-    _NAMESPACE.update(vars(_module))
-
-_LOOPS = CompiledLoops(_NAMESPACE, (_grow, _append, _in_order, _cell, _vertex_runs, _column_tree,
-                                   _vertex_runs_tree, _intersect, _run_table, _window_of,
-                                   _cyclic, _measures, _row_bound, _copy_columns, _copies_from,
-                                   _copy_run, _copy_until, _copy_span, _copy_lengths, _run_span,
-                                   _copy_side, _side_threshold, _table,
-                                   _window_row, _buffers,
-                                   _every_row, _top_add, _windows,
-                                   _interval, _window_boxes, _window_boxes_shared,
-                                   _window_boxes_memo, _single,
-                                   _below, _solve_rows, _by_start, _inside_supers, _outside_one,
-                                   _exclusion_rows, _excess_at, _least_excess, _surely_copy,
-                                   _similar_rows,
-                                   _scan_inside, _beaten, _group_tables, _any_inside,
-                                   _beaten_tables))
+_LOOPS = CompiledLoops.of_modules((_stretch_run_kernels, _stretch_window_kernels,
+                                   _stretch_copy_kernels, _stretch_end_kernels,
+                                   _stretch_solve_kernels))
 
 
 def _load() -> dict[str, Any]:

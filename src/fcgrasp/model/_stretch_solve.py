@@ -300,7 +300,7 @@ def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: flo
     ``J.u0``.  With ``floor`` (the run's: the bound's, or the memo's, below which a run's
     answer is not taken; a configuration below it can neither reach an answer taken
     nor beat one of its configurations), the compiled solve leaves those it proves
-    below it NaN, unsolved (:func:`~fcgrasp.model._stretch_kernels._below`): not kept,
+    below it NaN, unsolved (:func:`~fcgrasp.model._stretch_solve_kernels._below`): not kept,
     and solved again by a later run whose floor is lower."""
     if not todo.size:
         return

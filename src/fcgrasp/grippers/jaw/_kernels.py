@@ -22,41 +22,30 @@ from ...core.jit import CompiledLoops
 from . import _pose_kernels, _proof_kernels, _slice_kernels
 from ._pose_kernels import (
     K_MAX,
-    _box_loop,
     _features,
-    _grid_loop,
     _hole_sides,
     _inside_ring,
     _outer_pads,
     _pad_loop,
     _pose_at,
     _pose_one,
-    _poses_loop,
 )
 from ._proof_kernels import (
     _arc_holds,
     _below,
-    _candidates,
-    _certify_loop,
     _nan_max,
     _nan_min,
-    _polar,
-    _prove_box,
-    _prove_loop,
     _range,
     _sin_range,
-    _tables,
     _vrange,
     _wrap_positive,
 )
 from ._slice_kernels import (
     _affine,
     _affine3,
-    _cell,
     _kind,
     _kink,
     _quantities,
-    _slices_loop,
     _stop_reach,
 )
 
@@ -194,15 +183,8 @@ _BORROWING = (_features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pos
               _pose_one, _sin_range, _range, _wrap_positive, _vrange, _nan_min, _nan_max,
               _below, _arc_holds, _kind, _affine3, _affine, _quantities, _kink, _stop_reach)
 
-#: One namespace for every loop of the jaw (each compiled over it, so that compiled loops
-#: call compiled ones): the modules' globals.
-_NAMESPACE: dict[str, Any] = {}
-for _module in (_pose_kernels, _proof_kernels, _slice_kernels):
-    _NAMESPACE.update(vars(_module))
-
-_LOOPS = CompiledLoops(_NAMESPACE, (
-    *_BORROWING, _poses_loop, _grid_loop, _box_loop, _polar, _candidates, _tables,
-    _prove_box, _prove_loop, _certify_loop, _cell, _slices_loop), borrowing=_BORROWING)
+_LOOPS = CompiledLoops.of_modules((_pose_kernels, _proof_kernels, _slice_kernels),
+                                   borrowing=_BORROWING)
 
 
 def _run(name: str, *args: Any, answer: list[Any] | None = None) -> bool:
