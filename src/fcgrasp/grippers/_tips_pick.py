@@ -76,24 +76,17 @@ def tips_pick(plan: Any, tips: FingerTips, scene: Any, end: float, band: float
     axis = pts + tips.radius * nrm
     if tips.in_plane:
         # each finger comes in along its inward normal, in the plane, from `approach`
-        # away, and leaves the way it came
+        # away, and leaves the way it came (over the retreat distance)
         fingers = []
         for (x, y), (nx, ny) in zip(axis, nrm, strict=True):
             fingers.append({
                 "position": [float(x), float(y), float(end)],
                 "pre_grasp": [float(x + scene.approach * nx), float(y + scene.approach * ny),
                               float(end)],
-                "approach": {"direction": [float(-nx), float(-ny), 0.0],
-                             "distance": scene.approach, "frame": "part"},
-                "retreat": {"direction": [float(nx), float(ny), 0.0],
-                            "distance": scene.approach, "frame": "part"}})
+                **scene.motions((-nx, -ny, 0.0), (nx, ny, 0.0))})
         return {"fingertips": fingers, "collision_free": True, "contact_height": band}
     fingertips = [{"position": [float(x), float(y), float(end)],
                    "pre_grasp": [float(x), float(y), float(end + scene.approach)]}
                   for x, y in axis]
-    return {"fingertips": fingertips,
-            "approach": {"direction": [0.0, 0.0, -1.0], "distance": scene.approach,
-                         "frame": "part"},
-            "retreat": {"direction": [0.0, 0.0, 1.0], "distance": scene.retreat,
-                        "frame": "part"},
+    return {"fingertips": fingertips, **scene.motions((0.0, 0.0, -1.0), (0.0, 0.0, 1.0)),
             "collision_free": True, "contact_height": band}

@@ -82,6 +82,15 @@ class Scene:
             object.__setattr__(self, "orientation", tuple(float(v) for v in
                                                           q / np.linalg.norm(q)))
 
+    def motions(self, approach: Any, retreat: Any) -> dict[str, Any]:
+        """A pick's ``approach`` and ``retreat`` of the report: the hand comes in along
+        ``approach`` over this scene's approach distance and leaves along ``retreat``
+        over its retreat distance (part frame)."""
+        return {"approach": {"direction": [float(v) for v in approach],
+                             "distance": self.approach, "frame": "part"},
+                "retreat": {"direction": [float(v) for v in retreat],
+                            "distance": self.retreat, "frame": "part"}}
+
     def to_dict(self) -> dict[str, Any]:
         return {"part_pose": {"position": [0.0, 0.0, 0.0], "orientation": [0.0, 0.0, 0.0, 1.0]},
                 "thickness": self.thickness,

@@ -378,10 +378,7 @@ class JawPlan:
         orientation = list(quaternion(axes))
         return {"pose": {"position": position, "orientation": orientation, "frame": "part"},
                 "pre_grasp_opening": self.jaw.hand.stroke[1],
-                "approach": {"direction": [0.0, 0.0, -1.0], "distance": self.jaw.scene.approach,
-                             "frame": "part"},
-                "retreat": {"direction": [0.0, 0.0, 1.0], "distance": self.jaw.scene.retreat,
-                            "frame": "part"},
+                **self.jaw.scene.motions((0.0, 0.0, -1.0), (0.0, 0.0, 1.0)),
                 "collision_free": True, "contact_height": pick.contact_height}
 
 

@@ -246,10 +246,7 @@ def pick_dict(plan: Any, hand: ParallelHand, scene: Scene,
     return {"pose": {"position": [float(v) for v in origin],
                      "orientation": list(quaternion(R)), "frame": "part"},
             "pre_grasp_opening": _wide(hand, scene, float(plan.opening)),
-            "approach": {"direction": [float(v) for v in R[:, 2]], "distance": scene.approach,
-                         "frame": "part"},
-            "retreat": {"direction": [float(v) for v in up], "distance": scene.retreat,
-                        "frame": "part"},
+            **scene.motions(R[:, 2], up),
             "collision_free": True}
 
 
