@@ -4,6 +4,7 @@ would hit the part or the table with, and what planning with the hand costs.
     .venv/bin/python benchmarks/bench_hands.py [--hand franka] [--thickness 6]
                                                [--files dxf/forms.dxf,...]
                                                [--tips 3 [--fingers 3]]
+                                               [--in-plane]
 
 For each part (the built-in planar parts and the corpus files given), two runs of
 ``fcgrasp plan`` in fresh processes, as the CLI runs them (CPU seconds with the process's
@@ -18,6 +19,12 @@ With ``--tips R`` the same for point fingers (``--fingers 2``, or ``--fingers`` 
 fingers (vertical cylinders of radius ``R`` over the representative contacts, from
 1 mm above the table) checked against the plate and the table by python-fcl, the
 hand's plans included (none may collide).
+
+With ``--in-plane`` the jaw's hand holds the plate in its plane (``--hand HAND
+--in-plane``, the plate as thick as the pad is wide, no table) against the bare jaw of the
+hand's stroke and pad height: each bare plan's centre pose is checked with the hand's
+boxes lying in the plane, its palm on either side of the pads' strip (colliding: on both
+sides), each hand plan's on its own side (none may collide).
 
 Then each bare plan's centre pose is checked with an independent collision library
 (python-fcl through trimesh) as a pick from above with the hand's boxes: the plate of
@@ -57,7 +64,7 @@ def run(argv: list[str]) -> tuple[float | None, dict | None]:
         return usage.ru_utime + usage.ru_stime, json.loads(Path(out).read_text())
 
 
-def scene(part, thickness: float):
+def scene(part, thickness: float, table: bool = True):
     """python-fcl's collision manager of the plate (the part extruded) on the table."""
     import shapely
     import trimesh
@@ -65,16 +72,31 @@ def scene(part, thickness: float):
     m = trimesh.collision.CollisionManager()
     m.add_object("plate", trimesh.creation.extrude_polygon(
         shapely.Polygon(part.vertices, [h for h in part.holes]), thickness))
-    slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
-    slab.apply_translation((0.0, 0.0, -5.0))
-    m.add_object("table", slab)
+    if table:
+        slab = trimesh.creation.box(extents=(1e4, 1e4, 10.0))
+        slab.apply_translation((0.0, 0.0, -5.0))
+        m.add_object("table", slab)
     return m
+
+
+def hand_hits(m, hand, opening: float, origin, R) -> bool:
+    """Whether the hand's boxes at ``opening``, its tool frame at ``origin`` turned by
+    ``R``, meet the plate or the table (``m``)."""
+    import trimesh
+
+    for b in hand.boxes(opening):
+        T = np.eye(4)
+        T[:3, :3] = R @ np.asarray(b.rotation)
+        T[:3, 3] = origin + R @ np.asarray(b.centre)
+        if m.in_collision_single(trimesh.creation.box(extents=np.asarray(b.size) - 2e-6,
+                                                      transform=T)):
+            return True
+    return False
 
 
 def collides(m, hand, grasp: dict, height: float) -> bool:
     """The hand at a bare plan's centre pose, picked from above with its tool frame at
     ``height``, against the plate and the table (``m``, :func:`scene`'s)."""
-    import trimesh
 
     from fcgrasp.io.moveit import tool_rotation
 
@@ -92,18 +114,30 @@ def collides(m, hand, grasp: dict, height: float) -> bool:
         if opening < 0:
             return True                     # the fingers do not fit between the stops
     R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
-    for b in hand.boxes(opening):
-        T = np.eye(4)
-        T[:3, :3] = R @ np.asarray(b.rotation)
-        T[:3, 3] = np.r_[xy, height] + R @ np.asarray(b.centre)
-        if m.in_collision_single(trimesh.creation.box(extents=np.asarray(b.size) - 2e-6,
-                                                      transform=T)):
-            return True
-    return False
+    return hand_hits(m, hand, opening, np.r_[xy, height], R)
+
+
+def plane_collides(m, hand, grasp: dict, side: int, height: float) -> bool:
+    """The hand lying in the plate's plane at a plan's centre pose, its palm on ``side``
+    of the pads' strip (``+1``: ``+n``) and its tool frame at ``height``, against the
+    plate (``m``); an internal grip counts as colliding."""
+
+    from fcgrasp.io.moveit import tool_rotation
+
+    if grasp["mode"] == "internal":
+        return True
+    theta, offset = grasp["centre"]
+    sa, sb = grasp["contacts"]["a"]["stop"], grasp["contacts"]["b"]["stop"]
+    u = np.array([math.cos(theta), math.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    zc = sum(hand.pad_span) / 2
+    xy = np.asarray(grasp["centroid"]) + (sa + sb) / 2 * u + (offset + side * zc) * n
+    R = tool_rotation(np.r_[u, 0.0], np.r_[-side * n, 0.0])
+    return hand_hits(m, hand, abs(sa - sb), np.r_[xy, height], R)
 
 
 def rows(parts: list[str], thickness: float, base: list[str], bare_args: list[str],
-         hand_args: list[str], cells, n: int) -> list[int]:
+         hand_args: list[str], cells, n: int, table: bool = True) -> list[int]:
     """For each part the two runs (``base`` with the part, then ``bare_args`` or
     ``hand_args``), the plate's scene and the row: the ``n`` counts of ``cells(scene,
     bare report, hand report)``, the two CPU times and their ratio; the counts' sums."""
@@ -118,7 +152,7 @@ def rows(parts: list[str], thickness: float, base: list[str], bare_args: list[st
         if bare is None or mine is None:
             print(f"| {label} | error |" + " |" * (n + 2))
             continue
-        counts = cells(scene(fc.read_part(src), thickness), bare, mine)
+        counts = cells(scene(fc.read_part(src), thickness, table), bare, mine)
         sums = [a + b for a, b in zip(sums, counts, strict=True)]
         ratio = "-" if not t_bare else f"{t_hand / t_bare:.2f}"
         print(f"| {label} | " + " | ".join(str(c) for c in counts) +
@@ -166,6 +200,33 @@ def tips(args: argparse.Namespace, parts: list[str]) -> int:
     return 0
 
 
+def in_plane(args: argparse.Namespace, hand, parts: list[str]) -> int:
+    """The jaw's hand holding the plate in its plane (the module's docstring)."""
+    T = hand.pad_width
+    print(f"hand {hand.name} held in the plate's plane (strip: the pad's height "
+          f"{hand.pad_height:g} mm), plate {T:g} mm, no table, mu {args.mu}, top {args.top}")
+    print("| part | bare plans | colliding on both sides | hand plans | colliding | bare CPU | "
+          "hand CPU | ratio |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    base = ["plan", "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
+    bare_args = ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}", "--pad",
+                 repr(hand.pad_height)]
+    hand_args = ["--hand", args.hand, "--in-plane"]
+
+    def cells(m, bare: dict, mine: dict) -> list[int]:
+        got = [all(plane_collides(m, hand, g, s, T / 2) for s in (1, -1))
+               for g in bare["grasps"]]
+        own = [plane_collides(m, hand, g, g["side"], g["pose"]["position"][2])
+               for g in mine["grasps"]]
+        return [len(got), sum(got), len(own), sum(own)]
+
+    total, hits, _, own = rows(parts, T, base, bare_args, hand_args, cells, 4, table=False)
+    print(f"\nof {total} bare plans, {hits} collide held in the plane whichever side the "
+          f"palm is on ({100 * hits / max(total, 1):.0f} %); of the hand's plans, {own} "
+          f"collide")
+    return 0
+
+
 def main() -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--hand", default="franka")
@@ -175,6 +236,8 @@ def main() -> int:
     ap.add_argument("--tips", type=float, default=None, metavar="R",
                     help="point fingers with tips of this radius (mm) instead of a jaw")
     ap.add_argument("--fingers", type=int, default=2)
+    ap.add_argument("--in-plane", action="store_true",
+                    help="the jaw's hand holding the plate in its plane")
     ap.add_argument("--files", default="gears/teeth-08.dxf,gears/teeth-12.dxf,"
                                        "gears/teeth-20.dxf,gears/teeth-32.dxf,icons/heart.svg,"
                                        "icons/droplet.svg,icons/cloud.svg")
@@ -188,6 +251,8 @@ def main() -> int:
         [str(HERE / "corpus" / f) for f in filter(None, args.files.split(","))]
     if args.tips is not None:
         return tips(args, parts)
+    if args.in_plane:
+        return in_plane(args, hand, parts)
     print(f"hand {hand.name} (stroke {hand.stroke[0]:g}-{hand.stroke[1]:g} mm, pads "
           f"{hand.pad_width:g} mm), plate {args.thickness:g} mm on a table, mu {args.mu}, "
           f"top {args.top}")

@@ -74,6 +74,14 @@ def _motion(part, jaw: ParallelJaw, pick: TopPick, theta: float, offset: float):
     return out, bool(r.holds[0])
 
 
+def _closes(part, jaw: ParallelJaw, mu: float, theta: float, offset: float) -> bool:
+    """Force closure of a jaw pose by the general test (the wrench cone of the pads'
+    contacts)."""
+    pts, outward, _, _, _ = jaw_contacts(part, jaw, theta, offset)
+    return fc.Grasp([fc.FrictionPoint(q, -m, mu) for q, m in zip(pts, outward, strict=True)]
+                    ).is_force_closure()
+
+
 CASES = [("rectangle", 0.5, 5.0, True), ("bracket", 0.5, 8.0, True),
          pytest.param("cam", 0.8, 12.0, False, marks=pytest.mark.slow),
          pytest.param("quad", 0.5, 40.0, True, marks=pytest.mark.slow),
@@ -98,11 +106,7 @@ def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness,
         for theta, offset in p.sample(20, rng):
             placements, holds = _motion(part, jaw, pick, theta, offset)
             assert holds, (name, theta, offset)
-            # force closure by the general test (the wrench cone of the pads' contacts)
-            pts, outward, _, _, _ = jaw_contacts(part, jaw, theta, offset)
-            grasp = fc.Grasp([fc.FrictionPoint(q, -m, mu) for q, m in zip(pts, outward,
-                                                                          strict=True)])
-            assert grasp.is_force_closure(), (name, theta, offset)
+            assert _closes(part, jaw, mu, theta, offset), (name, theta, offset)
             for origin, R, opening in placements:
                 assert not _collides(manager, _hand_meshes(hand, opening, origin, R)), \
                     (name, theta, offset, opening, origin)

@@ -123,9 +123,10 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
                        help="with --hand: the part lies on a table the hand must not touch "
                             "(a solid in its most stable pose)")
         p.add_argument("--in-plane", action="store_true", default=False,
-                       help="with point fingers and --hand tip=R[,length=L]: the part held "
-                            "in its plane, each finger lying in it along its contact's "
-                            "normal and coming in along it (default: from above)")
+                       help="with --hand: the part held in its plane (default: picked "
+                            "from above); point fingers (--hand tip=R[,length=L]) lie in it "
+                            "along their contacts' normals, the jaw's hand lies in it with "
+                            "its palm on one side of the pads' strip")
         p.add_argument("--rest-orientation", default=None, metavar="QX,QY,QZ,QW",
                        help="with --hand --table on a solid: rest in this orientation (a "
                             "quaternion from the part's frame to the table's), lowered onto "

@@ -64,14 +64,18 @@ class Scene:
     #: or the orientation it is given on the table (a unit quaternion x, y, z, w from the
     #: part's frame to the table's; the part lowered onto the table), None: ``rest``
     orientation: tuple[float, float, float, float] | None = None
+    #: a planar part held in its plane (:mod:`fcgrasp.grippers.jaw._plane_pick`), not
+    #: picked from above
+    in_plane: bool = False
 
     def __post_init__(self) -> None:
         for name in ("thickness", "clearance", "approach", "retreat"):
             object.__setattr__(self, name, check_scalar(getattr(self, name), name,
                                                         positive=name == "thickness",
                                                         nonnegative=True))
-        if not isinstance(self.table, bool):
-            raise TypeError(f"table must be a bool, got {self.table!r}")
+        for name in ("table", "in_plane"):
+            if not isinstance(getattr(self, name), bool):
+                raise TypeError(f"{name} must be a bool, got {getattr(self, name)!r}")
         if isinstance(self.rest, bool) or not isinstance(self.rest, int) or self.rest < 0:
             raise ValueError(f"rest must be a whole number >= 0, got {self.rest!r}")
         if self.orientation is not None:
@@ -100,7 +104,8 @@ class Scene:
                 "retreat": self.retreat,
                 "rest": self.rest if self.orientation is None else None,
                 "rest_orientation": None if self.orientation is None
-                else list(self.orientation)}
+                else list(self.orientation),
+                "held": "in_plane" if self.in_plane else "from_above"}
 
 
 def plate_scene(options: Any, thickness: float, per_mm: float, away_mm: float = 100.0,

@@ -41,11 +41,13 @@ from ._grid import (
     _measure,
 )
 from ._pick import Scene, TopPick, plate_scene, top_pick
+from ._plane_pick import PlaneReach, plane_pick_dict, plane_plans, plane_reach
 from ._poses import (
     OFFSET_STEPS,
     THETA_STEP_DEG,
     JawParameters,
     _check_jaw_args,
+    _contact_points,
     insertion_point,
     jaw_poses,
 )
@@ -82,9 +84,13 @@ class ParallelJaw(JawParameters):
             return
         if not isinstance(self.hand, ParallelHand):
             raise TypeError(f"hand must be a ParallelHand, got {type(self.hand).__name__}")
-        if abs(self.pad_width - self.hand.pad_width) > TOL * self.hand.pad_width:
-            raise ValueError(f"pad_width must be the hand's pad width "
-                             f"({self.hand.pad_width:g}), got {self.pad_width:g}")
+        # held in the plane the strip is the pad's height along the approach
+        in_plane = self.scene is not None and self.scene.in_plane
+        pad = self.hand.pad_height if in_plane else self.hand.pad_width
+        if abs(self.pad_width - pad) > TOL * pad:
+            raise ValueError(f"pad_width must be the hand's pad "
+                             f"{'height' if in_plane else 'width'} ({pad:g}), got "
+                             f"{self.pad_width:g}")
         lo, hi = self.hand.stroke
         if self.stroke[0] < lo * (1 - TOL) or self.stroke[1] > hi * (1 + TOL):
             raise ValueError(f"stroke must be within the hand's ({lo:g}, {hi:g}), got "
@@ -99,15 +105,18 @@ class ParallelJaw(JawParameters):
                 certify: bool = True) -> ParallelJaw:
         """The jaw of a hand: its stroke and pad width, picking a plate from above
         (``scene``; by default a plate as thick as the pad is tall, on no table)."""
-        return cls(stroke=hand.stroke, pad_width=hand.pad_width, mu=mu, certify=certify,
-                   hand=hand, scene=scene)
+        pad = hand.pad_height if scene is not None and scene.in_plane else hand.pad_width
+        return cls(stroke=hand.stroke, pad_width=pad, mu=mu, certify=certify, hand=hand,
+                   scene=scene)
 
     @property
-    def pick(self) -> TopPick | str | None:
-        """How the hand picks the plate (:func:`top_pick`), why it cannot, or None
-        without a hand."""
+    def pick(self) -> TopPick | PlaneReach | str | None:
+        """How the hand picks the plate (:func:`top_pick`; held in its plane,
+        :func:`plane_reach`), why it cannot, or None without a hand."""
         if self.hand is None or self.scene is None:
             return None
+        if self.scene.in_plane:
+            return plane_reach(self.hand, self.scene)
         return top_pick(self.hand, self.scene)
 
     # the gripper interface (fcgrasp.grippers.base.Gripper)
@@ -132,6 +141,11 @@ class ParallelJaw(JawParameters):
                              f"rank_by={options.rank_by!r} would not be used")
         if isinstance(self.pick, str):
             return []                   # the hand cannot reach the plate (the reason)
+        if isinstance(self.pick, PlaneReach):
+            return plane_plans(polygon, self, self.pick, options.top, options.margin,
+                               lambda ask: jaw_plans(polygon, self, top=ask,
+                                                     margin=options.margin,
+                                                     certify=self.certify, internal=False))
         # a hand's closed fingers need room in a hole, which the pick does not bound
         return jaw_plans(polygon, self, top=options.top, margin=options.margin,
                          certify=self.certify, internal=self.hand is None)
@@ -168,6 +182,9 @@ class ParallelJaw(JawParameters):
         from ...spatial.alternatives import top_distinct
         from ...spatial.jaw import solid_jaw_plans
 
+        if self.scene is not None and self.scene.in_plane:
+            raise ValueError("--in-plane holds a planar part in its plane: a solid is "
+                             "picked from its own surface (leave --in-plane out)")
         if self.hand is not None and self.scene is not None:
             from ._solid_pick import hand_solid_plans
 
@@ -203,8 +220,7 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
     """The parallel jaw of a plan request (``--gripper jaw``): ``stroke``, ``pad``,
     ``mu`` (default 0.3), ``certify`` (default True); none of the point fingers'
     options."""
-    for opt, given in (("--in-plane", bool(options.get("in_plane"))),
-                       ("--fingers", options.get("fingers") is not None),
+    for opt, given in (("--fingers", options.get("fingers") is not None),
                        ("--gravity", options.get("gravity") is not None),
                        ("--workspace", options.get("workspace") is not None),
                        ("--finger-radius", bool(options.get("finger_radius"))),
@@ -219,7 +235,7 @@ def jaw_from_options(options: Mapping[str, Any]) -> ParallelJaw:
     if hand is not None:
         return _jaw_of_hand(options, hand, mu)
     for opt, name in (("--thickness", "thickness"), ("--table", "table"), ("--rest", "rest"),
-                      ("--rest-orientation", "rest_orientation")):
+                      ("--rest-orientation", "rest_orientation"), ("--in-plane", "in_plane")):
         if options.get(name) is not None and options.get(name) is not False:
             raise ValueError(f"{opt} is for a pick with a hand: give --hand too")
     if stroke is None or pad is None:
@@ -283,8 +299,11 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
     if rest is not None and turned is not None:
         raise ValueError("--rest and --rest-orientation both place the part on the table: "
                          "give one")
-    scene = plate_scene(options, hand.pad_height, per_mm, rest=0 if rest is None else rest,
-                        orientation=turned)
+    # held in its plane, the pad's width covers the plate's thickness
+    in_plane = bool(options.get("in_plane"))
+    scene = plate_scene(options, hand.pad_width if in_plane else hand.pad_height, per_mm,
+                        rest=0 if rest is None else rest, orientation=turned,
+                        in_plane=in_plane)
     return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 
@@ -323,6 +342,9 @@ class JawPlan:
     features: tuple[list[int], list[int]] = ([], [])
     #: with distinct plans: how many lower-ranked boxes this one stands for
     similar: int = 0
+    #: held in the plane by a hand: the side of the strip the hand lies on (``+1``:
+    #: ``+n``, coming in along ``-n``; :mod:`fcgrasp.grippers.jaw._plane_pick`), else 0
+    side: int = 0
     #: with a load (``plan(..., load=)``): the scale of it every pose of the box carries
     #: (:func:`fcgrasp.grippers.jaw.jaw_payload`, a
     #: :class:`~fcgrasp.model.loads.RegionPayload`); in the JSON as ``payload``
@@ -348,6 +370,8 @@ class JawPlan:
         pick = self.jaw.pick
         if isinstance(pick, TopPick):
             extra.update(self.pick_dict(pick))
+        elif isinstance(pick, PlaneReach):
+            extra.update(plane_pick_dict(self, pick))
         return json_ready({**extra,
             "gripper": "parallel_jaw", "mode": self.mode, "hole": self.hole,
             "insert": self.insert,
@@ -388,15 +412,6 @@ def _kind(lat: FloatArray, psi: FloatArray, size: float) -> str:
     if np.any(np.abs(psi[real]) > 0):
         return "corner"
     return "edge" if np.any(lat[real, 1] - lat[real, 0] > CONTACT_TOL * size) else "vertex"
-
-
-def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
-                    ) -> FloatArray:
-    u = np.array([np.cos(theta), np.sin(theta)])
-    n = np.array([-u[1], u[0]])
-    ends = lat[np.isfinite(lat[:, 0])]
-    pts = [polygon.centroid + stop * u + x * n for row in ends for x in np.unique(row)]
-    return np.array(pts).reshape(-1, 2)
 
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,

@@ -460,3 +460,14 @@ def _verdict(opening: FloatArray, lat_a: FloatArray, lat_b: FloatArray, psi_a: F
     slacks = np.concatenate([s_hi.reshape(P, -1), s_lo.reshape(P, -1), s_min[:, None],
                              s_max[:, None]], axis=1)
     return holds, slacks
+
+
+def _contact_points(polygon: Polygon, theta: float, lat: FloatArray, stop: float
+                    ) -> FloatArray:
+    """A pad's contact points at one pose: its stop ``stop`` along ``u`` and each end of
+    its contacts' extents ``lat`` along ``n`` (rows of finite ends)."""
+    u = np.array([np.cos(theta), np.sin(theta)])
+    n = np.array([-u[1], u[0]])
+    ends = lat[np.isfinite(lat[:, 0])]
+    pts = [polygon.centroid + stop * u + x * n for row in ends for x in np.unique(row)]
+    return np.array(pts).reshape(-1, 2)
