@@ -132,6 +132,7 @@ def test_a_second_run_does_nothing(folder, local_results):
     assert len(other.read_text().splitlines()) == 20
 
 
+@pytest.mark.slow
 def test_dask_local_cluster_gives_the_same_results(folder, local_results, tmp_path):
     pytest.importorskip("distributed")
     _, out = local_results

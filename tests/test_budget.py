@@ -165,7 +165,7 @@ def test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed
     _every_stop(plan_it, full)
 
 
-@pytest.mark.parametrize("fingers", [4, 3])
+@pytest.mark.parametrize("fingers", [pytest.param(4, marks=pytest.mark.slow), 3])
 def test_rounds_of_the_ranked_list_stopped_early(fingers):
     """Grippers whose distinct plans come from suppressing ever longer ranked lists:
     stopped between two lists, the plans kept are the complete answer's first."""

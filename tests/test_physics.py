@@ -186,6 +186,7 @@ def test_the_cone_margin_of_two_fingers_is_the_angle_to_their_line():
         assert res.to_dict()["cone_margin_deg"] == res.cone_margin_deg
 
 
+@pytest.mark.slow
 def test_the_sensitivity_study_runs_every_setting_on_the_same_grasps(tmp_path, capsys):
     poly = demo_part("blob")
     plans = fc.plan(poly, fingers=3, mu=0.5, top=1)

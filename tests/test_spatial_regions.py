@@ -265,8 +265,8 @@ def test_meshes_are_read_and_checked(tmp_path):
 
 def test_cli_plans_soft_fingers_on_a_mesh(tmp_path, capsys):
     """``fcgrasp plan part.stl --fingers 2 --soft``: the JSON's regions are the library's,
-    the figure is written, and a solid without --soft (or --soft on a polygon) is a
-    one-line error."""
+    the figure is written; the same without --soft, and --soft on a polygon changes
+    nothing."""
     import json
 
     from fcgrasp.apps.cli import main
@@ -282,10 +282,15 @@ def test_cli_plans_soft_fingers_on_a_mesh(tmp_path, capsys):
     assert np.allclose(doc["grasps"][0]["regions"], want[0].regions)
     assert fig.stat().st_size > 0
     capsys.readouterr()
-    for argv in (["plan", str(path)], ["plan", "demo:blob", "--soft"]):
-        assert main(argv) != 0
-        err = capsys.readouterr().err
-        assert "--soft" in err and len(err.strip().splitlines()) == 1
+    # two fingers on a solid are soft fingers without --soft; on a planar part --soft
+    # changes nothing
+    plain = tmp_path / "plain.json"
+    assert main(["plan", str(path), "--mu", "0.5", "--top", "2", "--json", str(plain)]) == 0
+    assert json.loads(plain.read_text())["grasps"] == doc["grasps"]
+    assert main(["plan", "demo:blob", "--soft", "--json", str(plain)]) == 0
+    soft = json.loads(plain.read_text())["grasps"]
+    assert main(["plan", "demo:blob", "--json", str(plain)]) == 0
+    assert soft == json.loads(plain.read_text())["grasps"]
 
 
 def test_bodies_units_and_the_parts_command(tmp_path, capsys):

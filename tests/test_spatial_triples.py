@@ -272,10 +272,18 @@ def test_cli_plans_three_fingers_on_a_mesh(tmp_path, capsys):
     g = doc["grasps"][0]
     assert len(g["facets"]) == 3 and g["contact_type"] == "friction"
     assert np.asarray(g["regions"]).shape == (3, 8, 3)
+    # two fingers on a solid are soft fingers, --soft given or not
+    plain, soft = tmp_path / "plain.json", tmp_path / "soft.json"
+    assert main(["plan", str(path), "--fingers", "2", "--top", "2", "--json", str(plain)]) == 0
+    assert main(["plan", str(path), "--fingers", "2", "--soft", "--top", "2", "--json",
+                 str(soft)]) == 0
+    got, want = json.loads(plain.read_text()), json.loads(soft.read_text())
+    assert got["grasps"] == want["grasps"] and got["grasps"][0]["contact_type"] == "soft"
     capsys.readouterr()
-    assert main(["plan", str(path), "--fingers", "2"]) == 2
+    assert main(["plan", str(path), "--fingers", "4"]) == 2
     err = capsys.readouterr().err
-    assert "two point fingers never hold a solid" in err and len(err.strip().splitlines()) == 1
+    assert "frictionless fingers hold planar parts only" in err \
+        and len(err.strip().splitlines()) == 1
 
 
 @pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)

@@ -147,10 +147,12 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
                             "known only to lie in it: plans that hold for every mu of it, "
                             "and the best region against mu")
         p.add_argument("--soft", action="store_true",
-                       help="with a solid part (a mesh, or demo:box, demo:cylinder, "
-                            "demo:prism, demo:angle) and --fingers 2: two soft fingers, "
-                            "regions on two facets (a solid with --fingers 3: three point "
-                            "fingers with friction, certified regions on three facets)")
+                       help="soft fingers: on a solid part (a mesh, or demo:box, "
+                            "demo:cylinder, demo:prism, demo:angle) two fingers are soft "
+                            "fingers with or without it (regions on two facets; --fingers 3: "
+                            "three point fingers with friction, certified regions on three "
+                            "facets); on a planar part it changes nothing (the torsion of a "
+                            "soft finger turns about an axis in the plane)")
         p.add_argument("--gravity", metavar="GX,GY", default=None,
                        help="with --fingers 3: three frictionless fingers holding the part "
                             "against gravity in this direction, such as 0,-1")

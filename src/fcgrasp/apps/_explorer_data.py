@@ -29,7 +29,7 @@ GRIPPERS: dict[str, dict[str, Any]] = {
 #: The page's gripper choices on a solid (a mesh): two soft fingers, three fingers with
 #: friction, a parallel jaw with pads (:mod:`fcgrasp.spatial`).
 SOLID_GRIPPERS: dict[str, dict[str, Any]] = {
-    "2": {"fingers": 2, "soft": True}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
+    "2": {"fingers": 2}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
 _SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct", "time_limit"),
                   "3": ("mu", "margin", "top", "distinct", "time_limit"),
                   "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct", "time_limit",

@@ -125,7 +125,6 @@ def _content_hash(item: Any) -> str:
 
 def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | None,
            figures: str | None) -> list[_Task]:
-    from ..io.meshes import is_solid_source
     from ..model.polygon import Polygon
     from ..planning import template_request
 
@@ -143,13 +142,10 @@ def _tasks(parts: Iterable[Any], options: dict[str, Any], part_timeout: float | 
         if isinstance(item, Polygon):
             request = template
         else:
-            # a mesh among drawings is planned with the batch's friction, top and margin
-            # for two soft fingers (two fingers) or three point fingers with friction; a
-            # drawing among meshes for point fingers (or its own error)
-            solid = is_solid_source(path)
-            soft = solid and template.gripper == "fingers" and template.fingers in (None, 2)
+            # a mesh among drawings is planned by the batch's gripper as it plans solids
+            # (two fingers as soft fingers), a drawing among meshes as it plans drawings
             try:
-                request = template.replace(part=path, soft=soft)
+                request = template.replace(part=path)
             except ValueError as exc:
                 request, refused = template, str(exc)
         out.append(_Task(k, path, item if isinstance(item, Polygon) else path, request,

@@ -235,21 +235,18 @@ class PlanRequest:
         return what
 
     def _check_solid(self) -> None:
-        """A solid part takes two soft fingers (``soft``), three fingers with friction or a
-        parallel jaw, with ``mu``, ``top``, ``margin`` and ``distinct`` (and the jaw's
-        ``stroke`` and ``pad``) only so far; ``soft`` takes a solid."""
+        """A solid part takes two fingers with friction (soft fingers: ``soft`` says so, and
+        two fingers on a solid are soft whether it is given or not), three fingers with
+        friction or a parallel jaw, with ``mu``, ``top``, ``margin`` and ``distinct`` (and
+        the jaw's ``stroke`` and ``pad``) only so far.  On a planar part ``soft`` changes
+        nothing: a soft finger's torsional friction turns about the contact's normal, an
+        axis in the plane, which no planar motion turns about."""
         kind = self.solid_kind()
-        if self.soft and not self.is_solid():
-            raise _fail("soft", f"--soft: soft fingers are planned on solid parts (a mesh: "
-                                f".stl, .obj, .ply, .glb, .3mf, .off, or demo:box...), got "
-                                f"{self.part!r}")
         if self.is_solid() and kind is None:
-            raise _fail("soft" if self.gripper == "fingers" and self.fingers in (None, 2)
-                        else "fingers" if self.gripper == "fingers" else "gripper",
-                        "a solid part (a mesh) is planned for two soft fingers (--fingers 2 "
-                        "--soft) or three fingers with friction (--fingers 3 --mu MU); two "
-                        "point fingers never hold a solid (nothing resists the turn about "
-                        "the line between them)")
+            raise _fail("fingers" if self.gripper == "fingers" else "gripper",
+                        "a solid part (a mesh) is planned for two soft fingers (--fingers 2) "
+                        "or three fingers with friction (--fingers 3 --mu MU), or a parallel "
+                        "jaw (--gripper jaw); frictionless fingers hold planar parts only")
         given = [flag for flag, on in (
             ("--gravity", self.gravity is not None), ("--mass", self.mass is not None),
             ("--mu LOW:HIGH", self.mu_high is not None), ("--single-edge", self.single_edge),
@@ -258,7 +255,7 @@ class PlanRequest:
             ("--stiffness", self.stiffness is not None), ("--bound", self.bound),
             ("--certify", self.certify is not None)) if on]
         if kind is not None and given:
-            who = {"soft": ("soft", "--soft: two soft fingers"),
+            who = {"soft": ("fingers", "two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
                    "jaw": ("gripper", "--gripper jaw: a parallel jaw (--stroke, --pad)")}
             name, what = who[kind]
@@ -275,9 +272,11 @@ class PlanRequest:
             return "jaw"
         if self.gripper != "fingers":
             return None
-        if self.soft:
-            return "soft" if self.fingers in (None, 2) else None
-        return "friction" if self.fingers == 3 else None
+        # two point fingers never hold a solid (nothing resists the turn about the line
+        # between them): on a solid two fingers are soft fingers
+        if self.fingers in (None, 2):
+            return "soft"
+        return "friction" if self.fingers == 3 and not self.soft else None
 
     def _check_outputs(self) -> None:
         check_outputs(self.json, self.plot, [self.part])
@@ -520,10 +519,9 @@ def _stopped_reason(plans: Any) -> str | None:
 
 
 def template_request(options: dict[str, Any]) -> PlanRequest:
-    """A batch's options as one request, checked before any work on a built-in part of
-    the kind they plan (a solid with ``soft``); each part's request is this one with its
-    part (a mesh among drawings: with ``soft`` turned on)."""
-    return PlanRequest(part="demo:box" if options.get("soft") else "demo:quad", **options)
+    """A batch's options as one request, checked before any work on a built-in part;
+    each part's request is this one with its part."""
+    return PlanRequest(part="demo:quad", **options)
 
 
 def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
