@@ -332,18 +332,30 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
 
 
 def _draw_hand(ax: Any, plan: Any, u: Any, n: Any, origin: Any) -> None:
-    """The hand of a pick from above (:mod:`fcgrasp.model.hands`) seen from above at the
-    box's centre pose: each finger box's footprint at the grasp's opening (the tool's
-    ``x`` along ``n``, ``y`` along the closing direction ``u``), the palm's dashed."""
+    """The hand (:mod:`fcgrasp.model.hands`) seen from above at the box's centre pose:
+    each finger box's footprint at the grasp's opening, the palm's dashed.  Picked from
+    above, the tool's ``y`` is along the closing direction ``u`` and its ``z`` points down;
+    held in the plane (``plan.side``), its ``z`` is the approach ``-side n`` and the tool's
+    origin stands where the pad's centre meets the strip's centre line."""
     from matplotlib.patches import Polygon as MplPolygon
     from scipy.spatial import ConvexHull
+
+    from .io.moveit import tool_rotation
 
     hand = plan.jaw.hand
     opening = plan.stops[0] - plan.stops[1]
     n_palm = len(hand.palm)
+    side = getattr(plan, "side", 0)
+    if side:
+        origin = origin + side * sum(hand.pad_span) / 2 * n
+        R = tool_rotation(np.r_[u, 0.0], np.r_[-side * n, 0.0])[:2]
+    else:
+        R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])[:2]
+    seen = []
     for k, box in enumerate(hand.boxes(opening)):
-        c = box.corners()[:, :2]
-        pts = origin + np.outer(c[:, 0], n) + np.outer(c[:, 1], u)
+        pts = origin + box.corners() @ R.T
+        if k >= n_palm:
+            seen.append(pts)
         ring = pts[ConvexHull(pts).vertices]
         palm = k < n_palm
         ax.add_patch(MplPolygon(ring, closed=True, fill=False, lw=0.6, zorder=4,
@@ -351,6 +363,12 @@ def _draw_hand(ax: Any, plan: Any, u: Any, n: Any, origin: Any) -> None:
                                 ls="--" if palm else "-",
                                 label=(f"{hand.name}: palm" if k == 0 else
                                        f"{hand.name}: fingers" if k == n_palm else None)))
+    if side:
+        # held in the plane the fingers reach past the part: the view takes them in
+        pts = np.vstack(seen)
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        ax.set_xlim(min(x0, pts[:, 0].min()), max(x1, pts[:, 0].max()))
+        ax.set_ylim(min(y0, pts[:, 1].min()), max(y1, pts[:, 1].max()))
 
 
 def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",

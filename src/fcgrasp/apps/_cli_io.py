@@ -139,37 +139,8 @@ def _write_outputs(outputs: list[tuple[str, str]], figure: Any = None) -> None:
         sys.stdout.flush()
 
 
-def _print_table(plans: list[Any], units: str, out: Any) -> None:
-    if not plans:
-        return
-    # the resistance is 1 / work (section 8.1): per unit force and per unit of length
-    print(f"{'rank':>4}  {'edges':<20} {'min region':>11}  {'regions (' + units + ')':<24} "
-          f"{'resistance (1/' + units + ')':>18} {'eps L1':>8}", file=out)
-    for k, p in enumerate(plans):
-        q = p.quality
-        regs = ", ".join(f"{x:.3g}" for x in p.lengths)
-        # a region along the boundary shows the edges it covers, first-last
-        edges = " ".join(str(r[0]) if len(r) == 1 else f"{r[0]}-{r[-1]}"
-                         for r in p.region_edges)
-        print(f"{k + 1:>4}  {edges:<20} {p.min_length:>11.4g}  {regs:<24} "
-              f"{q['resistance']:>18.4g} {q['epsilon_l1']:>8.4g}", file=out)
-
-
 def _stderr(text: str) -> None:
     print(text, file=sys.stderr)
-
-
-def _print_jaw_table(plans: list[Any], units: str, out: Any) -> None:
-    import math
-
-    print(f"{'rank':>4}  {'grip':<9} {'closing (deg)':<16} {'offset (' + units + ')':<20} "
-          f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}", file=out)
-    for k, p in enumerate(plans):
-        t = [math.degrees(x) for x in p.theta]
-        print(f"{k + 1:>4}  {p.mode:<9} {t[0]:6.1f} to {t[1]:<6.1f} "
-              f"{p.offset[0]:7.3g} to {p.offset[1]:<7.3g} "
-              f"{p.opening[0]:6.3g} to {p.opening[1]:<6.3g} "
-              f"{p.kinds[0] + '/' + p.kinds[1]:<16} {p.measure:8.3g}", file=out)
 
 
 def _batch_progress(enabled: bool) -> Any:

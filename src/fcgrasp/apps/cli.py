@@ -29,8 +29,6 @@ from ._cli_io import (
     _json_out,
     _load,
     _memory,
-    _print_jaw_table,
-    _print_table,
     _progress,
     _reading,
     _seconds,
@@ -38,6 +36,7 @@ from ._cli_io import (
     _write_outputs,
 )
 from ._cli_parser import EXIT_INTERNAL, EXIT_NOT_CLOSURE, EXIT_USAGE
+from ._cli_tables import plan_table
 
 
 def plan_options(args: Any) -> dict[str, Any]:
@@ -108,13 +107,9 @@ def cmd_plan(args: Any) -> int:
     if not args.quiet and not _json_out(args):
         if not doc.plans:
             print(f"no grasp: {doc.reason}")
-        elif request.is_solid():
-            _print_solid_table(doc.report, sys.stdout)
-        elif args.gripper == "jaw":
-            _print_jaw_table(doc.plans, doc.units, sys.stdout)
-            _print_load_and_placement(doc.report, sys.stdout)
         else:
-            _print_table(doc.plans, doc.units, sys.stdout)
+            for line in plan_table(doc.report):
+                print(line)
             _print_load_and_placement(doc.report, sys.stdout)
     note = incomplete_note(doc.report)
     if note is not None and not args.quiet:
@@ -161,34 +156,6 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
         f"{gap.get('measure', 'smallest region')} of at most " \
         f"{gap['bound']:.4g} {report.get('units', '')}".rstrip()
     return f"search stopped {why}: {gap['found']} of {top} plans proved, exact; {rest}"
-
-
-def _print_solid_table(report: dict[str, Any], out: Any) -> None:
-    """Two soft fingers, three fingers with friction or a parallel jaw on a solid: one
-    line per plan."""
-    units = report["units"]
-    params = report["parameters"]
-    jaw = params.get("contact_type") == "jaw"
-    soft = params.get("contact_type") == "soft"
-    print(f"rank  facets          radius ({units})" + ("  opening" if jaw else "")
-          + ("  radii (leximin)" if soft else "") + "  centres", file=out)
-    for g in report["grasps"]:
-        centres = "  ".join("(" + ", ".join(f"{v:.4g}" for v in c) + ")"
-                            for c in g["centers"])
-        facets = " ".join(str(f) for f in g["facets"])
-        opening = f"  {g['opening']:>7.4g}" if jaw else ""
-        if soft:
-            opening = "  " + f"{', '.join(f'{v:.4g}' for v in g['radii']):<16s}"
-        print(f"{g['rank']:>4}  {facets:<14s}  {g['radius']:>12.4g}{opening}  {centres}",
-              file=out)
-    if params.get("contact_type") == "friction":
-        how = "every triple of pieces the bound left open" if params["exhaustive"] else \
-            f"the first {params['certified_triples']} triples of pieces (not exhaustive)"
-        print(f"three fingers: certified regions (a lower bound on the largest), searched "
-              f"{how}", file=out)
-    elif jaw:
-        print("parallel jaw: the closing axis anywhere in the region on the first facet "
-              "(radius: its inscribed circle); the pads close flush on both facets", file=out)
 
 
 def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:

@@ -1,0 +1,94 @@
+"""The command line's table of a plan report: one line per plan, with the columns of the
+plan's kind (point fingers on a planar part, the jaw's boxes, regions on a solid's
+facets), read from the report itself (the JSON contract), so that the command line
+prints every gripper on every part through one function (part of
+:mod:`fcgrasp.apps.cli`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+__all__ = ["plan_table"]
+
+
+def _fingers(report: dict[str, Any]) -> list[str]:
+    """Point fingers on a planar part: the edges, the regions and their quality."""
+    units = report["units"]
+    # the resistance is 1 / work (section 8.1): per unit force and per unit of length
+    lines = [f"{'rank':>4}  {'edges':<20} {'min region':>11}  {'regions (' + units + ')':<24} "
+             f"{'resistance (1/' + units + ')':>18} {'eps L1':>8}"]
+    for k, g in enumerate(report["grasps"]):
+        q = g["quality"]
+        regs = ", ".join(f"{x:.3g}" for x in g["region_lengths"])
+        # a region along the boundary shows the edges it covers, first-last
+        edges = " ".join(str(r[0]) if len(r) == 1 else f"{r[0]}-{r[-1]}"
+                         for r in g["region_edges"])
+        lines.append(f"{k + 1:>4}  {edges:<20} {g['min_region_length']:>11.4g}  {regs:<24} "
+                     f"{q['resistance']:>18.4g} {q['epsilon_l1']:>8.4g}")
+    return lines
+
+
+def _jaw_boxes(report: dict[str, Any]) -> list[str]:
+    """The parallel jaw on a planar part: its boxes of closing angles and offsets."""
+    units = report["units"]
+    lines = [f"{'rank':>4}  {'grip':<9} {'closing (deg)':<16} {'offset (' + units + ')':<20} "
+             f"{'opening (' + units + ')':<18} {'contacts':<16} {'measure':>8}"]
+    for k, g in enumerate(report["grasps"]):
+        t = [math.degrees(x) for x in g["theta_rad"]]
+        (c0, c1), (o0, o1) = g["offset"], g["opening"]
+        kinds = g["contacts"]["a"]["kind"] + "/" + g["contacts"]["b"]["kind"]
+        lines.append(f"{k + 1:>4}  {g['mode']:<9} {t[0]:6.1f} to {t[1]:<6.1f} "
+                     f"{c0:7.3g} to {c1:<7.3g} {o0:6.3g} to {o1:<6.3g} "
+                     f"{kinds:<16} {g['measure']:8.3g}")
+    return lines
+
+
+def _facets(report: dict[str, Any]) -> list[str]:
+    """Two soft fingers, three fingers with friction or a parallel jaw on a solid: the
+    facets, the regions' radius and centres."""
+    units = report["units"]
+    params = report["parameters"]
+    jaw = params.get("contact_type") == "jaw"
+    soft = params.get("contact_type") == "soft"
+    lines = [f"rank  facets          radius ({units})" + ("  opening" if jaw else "")
+             + ("  radii (leximin)" if soft else "") + "  centres"]
+    for g in report["grasps"]:
+        centres = "  ".join("(" + ", ".join(f"{v:.4g}" for v in c) + ")"
+                            for c in g["centers"])
+        facets = " ".join(str(f) for f in g["facets"])
+        opening = f"  {g['opening']:>7.4g}" if jaw else ""
+        if soft:
+            opening = "  " + f"{', '.join(f'{v:.4g}' for v in g['radii']):<16s}"
+        lines.append(f"{g['rank']:>4}  {facets:<14s}  {g['radius']:>12.4g}{opening}  "
+                     f"{centres}")
+    if params.get("contact_type") == "friction":
+        how = "every triple of pieces the bound left open" if params["exhaustive"] else \
+            f"the first {params['certified_triples']} triples of pieces (not exhaustive)"
+        lines.append(f"three fingers: certified regions (a lower bound on the largest), "
+                     f"searched {how}")
+    elif jaw:
+        lines.append("parallel jaw: the closing axis anywhere in the region on the first "
+                     "facet (radius: its inscribed circle); the pads close flush on both "
+                     "facets")
+    return lines
+
+
+#: Each plan kind's table (:func:`plan_kind`).
+TABLES: dict[str, Callable[[dict[str, Any]], list[str]]] = {
+    "fingers": _fingers, "jaw_boxes": _jaw_boxes, "facets": _facets}
+
+
+def plan_kind(grasp: dict[str, Any]) -> str:
+    """A report's plan kind, from the fields of one of its grasps: regions on a solid's
+    ``facets``, the jaw's boxes (``gripper`` ``parallel_jaw``) or point fingers."""
+    if "facets" in grasp:
+        return "facets"
+    return "jaw_boxes" if grasp.get("gripper") == "parallel_jaw" else "fingers"
+
+
+def plan_table(report: dict[str, Any]) -> list[str]:
+    """The lines of a plan report's table (none without a plan)."""
+    grasps = report["grasps"]
+    return TABLES[plan_kind(grasps[0])](report) if grasps else []
