@@ -434,7 +434,7 @@ def test_parts_and_options_are_checked_off_the_event_loop(client, monkeypatch):
     import fcgrasp.apps.serve as serve
 
     where = []
-    real_polygon_of, real_plan_request = serve.polygon_of, serve.plan_request
+    real_page_part, real_plan_request = serve.page_part, serve.plan_request
 
     def on_loop() -> bool:
         try:
@@ -443,15 +443,15 @@ def test_parts_and_options_are_checked_off_the_event_loop(client, monkeypatch):
             return False
         return True
 
-    def polygon_of(data):
+    def page_part(data):
         where.append(("part", on_loop()))
-        return real_polygon_of(data)
+        return real_page_part(data)
 
     def plan_request(options, *args):
         where.append(("options", on_loop()))
         return real_plan_request(options, *args)
 
-    monkeypatch.setattr(serve, "polygon_of", polygon_of)
+    monkeypatch.setattr(serve, "page_part", page_part)
     monkeypatch.setattr(serve, "plan_request", plan_request)
     ans = _plan(client, {"outer": BLOB}, {"gripper": "2", "mu": 0.3, "top": 1})
     assert ans["report"]["grasps"]

@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["plan_table"]
+__all__ = ["plan_table", "listing_table"]
 
 
 def _fingers(report: dict[str, Any]) -> list[str]:
@@ -92,3 +92,57 @@ def plan_table(report: dict[str, Any]) -> list[str]:
     """The lines of a plan report's table (none without a plan)."""
     grasps = report["grasps"]
     return TABLES[plan_kind(grasps[0])](report) if grasps else []
+
+
+def _parts(doc: dict[str, Any]) -> list[str]:
+    """A drawing's parts: each outline's edges, holes, size and area."""
+    parts = doc["parts"]
+    if not parts:
+        return []
+    first = parts[0]
+    lines = [f"{first['file']}: {len(parts)} part{'s' * (len(parts) != 1)} "
+             f"({first['format']}, units {first['units']}: {first['units_note']}); * = the "
+             f"default (the largest)",
+             f"  {'index':>5}  {'id':<18} {'layer':<10} {'edges':>6} {'holes':>5}  "
+             f"{'width x height':>22}  {'area':>11}"]
+    for p in parts:
+        mark = "*" if p["index"] == doc["default"] else " "
+        ident = (p["id"] or "-")[:18]
+        layer = (p["layer"] or "-")[:10]
+        if p["part"] is None:
+            lines.append(f"{mark} {p['index']:>5}  {ident:<18} {layer:<10} not usable: "
+                         f"{p['error']}")
+            continue
+        v = [list(map(float, q)) for q in p["part"]["vertices"]]
+        w = max(q[0] for q in v) - min(q[0] for q in v)
+        h = max(q[1] for q in v) - min(q[1] for q in v)
+        extra = "  (background)" if p["background"] else ""
+        lines.append(f"{mark} {p['index']:>5}  {ident:<18} {layer:<10} "
+                     f"{p['part']['edges']:>6} {len(p['part']['holes']):>5}  "
+                     f"{f'{w:.4g} x {h:.4g}':>22}  {p['area']:>11.4g}{extra}")
+    lines += [f"note: {note}" for note in doc.get("notes", [])]
+    return lines
+
+
+def _bodies(doc: dict[str, Any]) -> list[str]:
+    """A mesh file's bodies: triangles, watertight, size and volume."""
+    bodies = doc["bodies"]
+    lines = [f"{doc['source']}: {len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} "
+             f"(mesh, units {doc['units']}: {doc['units_note']}); * = the default (the "
+             f"largest watertight)",
+             f"  {'index':>5}  {'triangles':>9}  {'watertight':>10}  {'size':>26}  "
+             f"{'volume':>11}"]
+    for b in bodies:
+        mark = "*" if b["index"] == doc["default"] else " "
+        (x0, y0, z0), (x1, y1, z1) = b["bounds"]
+        size = f"{x1 - x0:.4g} x {y1 - y0:.4g} x {z1 - z0:.4g}"
+        lines.append(f"{mark} {b['index']:>5}  {b['triangles']:>9}  "
+                     f"{'yes' if b['watertight'] else 'no':>10}  {size:>26}  "
+                     f"{b['volume']:>11.4g}")
+    return lines
+
+
+def listing_table(doc: dict[str, Any]) -> list[str]:
+    """The lines of ``fcgrasp parts``'s table (:func:`fcgrasp.io.report.part_listing`):
+    a drawing's parts or a mesh's bodies."""
+    return _bodies(doc) if "bodies" in doc else _parts(doc)

@@ -45,7 +45,10 @@ _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
 
 
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
-    """A part as the page holds it: rings, units and a few measures for drawing."""
+    """A part as the page holds it: a planar part's rings, units and a few measures for
+    drawing; a solid's triangles (:func:`solid_json`)."""
+    if not hasattr(polygon, "holes"):
+        return solid_json(polygon, name)
     return json_ready({"outer": polygon.vertices, "holes": list(polygon.holes),
                        "units": units, "name": name, "edges": polygon.n_edges,
                        "size": polygon.size, "centroid": polygon.centroid,
@@ -99,6 +102,42 @@ def solid_of(data: dict[str, Any]) -> tuple[Any, str, str]:
         return solid_from_mesh(mesh, units, source), units, source
     except (ValueError, TypeError) as exc:
         raise RequestError(f"the solid is not valid: {exc}", "part") from None
+
+
+def page_part(data: Any) -> tuple[Any, str, str]:
+    """The part the page sends with a plan or a stress test, whichever it holds: a
+    planar outline (:func:`polygon_of`, planned as ``explorer``) or a solid
+    (:func:`solid_of`, planned from its source): the part (a :class:`~fcgrasp.Polygon`
+    or a :class:`~fcgrasp.spatial.solid.Solid`), its units and its source."""
+    if isinstance(data, dict) and data.get("solid") is True:
+        return solid_of(data)
+    polygon, units = polygon_of(data)
+    return polygon, units, "explorer"
+
+
+def as_part(shape: Any, source: str, units: str) -> Any:
+    """The page's part (:func:`page_part`) as :func:`~fcgrasp.planning.plan_document`
+    takes it: a solid as it is, an outline as a part read from the page."""
+    from ..io.parts import Part
+
+    if not hasattr(shape, "holes"):
+        return shape
+    return Part(polygon=shape, source=source, format="explorer", units=units)
+
+
+def demo_json(name: str) -> dict[str, Any]:
+    """A built-in part or solid as the page holds it (:func:`part_json`), or a
+    :class:`RequestError` naming them all (404)."""
+    from ..io.parts import DEMO_PARTS, load_part
+    from ..spatial.solid import DEMO_SOLIDS, demo_solid
+
+    if name in DEMO_SOLIDS:
+        return part_json(demo_solid(name), "mm", f"demo:{name}")
+    if name not in DEMO_PARTS:
+        raise RequestError(f"no built-in part {name!r} (one of "
+                           f"{', '.join([*DEMO_PARTS, *DEMO_SOLIDS])})", "part", 404)
+    p = load_part(f"demo:{name}")
+    return part_json(p.polygon, p.units, p.source, p.notes)
 
 
 def _is_pair(value: Any) -> TypeGuard[list[float]]:
@@ -209,8 +248,7 @@ def read_upload(body: bytes, name: str, part: str | None = None,
         try:
             if suffix in MESH_SUFFIXES:       # a solid: its largest watertight body
                 solid = read_solid(path, units=units, select=part)
-                solid = replace(solid, source=base)
-                return solid_json(solid, base)
+                return part_json(replace(solid, source=base), solid.units, base)
             parts = list_parts(path, units=units)
             chosen = choose_part(parts, part)
         except (ValueError, TypeError, OSError) as exc:
@@ -249,8 +287,10 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
     from ..io.meshes import is_solid_source
     from ..planning import PlanRequest
 
-    kw = _request_options(options, is_solid_source(name))
-    if units is not None:
+    solid = is_solid_source(name)
+    kw = _request_options(options, solid)
+    if units is not None and solid:
+        # a mesh is read again in its units; an outline carries its own
         kw["units"] = units
     try:
         return PlanRequest(part=name, **kw)
@@ -316,7 +356,7 @@ def overlay(polygon: Any, plan: Any) -> dict[str, Any] | None:
     ``half`` in radians)."""
     from ..model.graspsets import FrictionGraspSet, grasp_set
 
-    if not hasattr(plan, "edges"):            # a parallel-jaw box: no grasp set
+    if not hasattr(plan, "edges"):            # a jaw's box, a solid's regions: none
         return None
     edges = list(plan.edges)
     try:

@@ -15,6 +15,7 @@ from ..errors import RequestError
 from ..io.report import json_ready
 from ._explorer_data import (
     _short,
+    as_part,
     check_result,
     overlay,
     plan_request,
@@ -81,19 +82,15 @@ def plan_result(polygon: Any, units: str, request: Any,
                 progress: Any = None) -> dict[str, Any]:
     """Plan a part as ``fcgrasp plan`` does (:func:`fcgrasp.planning.plan_document` on
     the :func:`plan_request` of the page's options): the JSON report, the equivalent
-    command-line options, the drawing data of every plan and its grasp-set overlay.
-    ``polygon`` is a :class:`~fcgrasp.spatial.solid.Solid` where the request's part is
-    a solid."""
-    from ..io.parts import Part
+    command-line options, the drawing data of every plan and its grasp-set overlay (None
+    for a plan with none: the jaw's boxes, a solid's regions).  ``polygon`` is the part
+    the page holds (:func:`~fcgrasp.apps._explorer_data.page_part`: an outline or a
+    solid)."""
     from ..planning import plan_document
 
-    if request.is_solid():                    # a solid (polygon is its Solid): no overlays
-        doc = plan_document(request, part=polygon, progress=progress)
-        overlays: list[Any] = [None] * len(doc.plans)
-    else:
-        part = Part(polygon=polygon, source=request.part, format="explorer", units=units)
-        doc = plan_document(request, part=part, progress=progress)
-        overlays = [json_ready(overlay(polygon, p)) for p in doc.plans]
+    doc = plan_document(request, part=as_part(polygon, request.part, units),
+                        progress=progress)
+    overlays = [json_ready(overlay(doc.polygon, p)) for p in doc.plans]
     # the report's JSON values (what fcgrasp plan --json writes, without the round trip
     # through text: 7 ms of a 2,000-edge plan), and a parallel gripper's plans as MoveIt
     # grasps (fcgrasp plan --moveit; None for other grippers)

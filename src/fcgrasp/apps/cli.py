@@ -36,7 +36,7 @@ from ._cli_io import (
     _write_outputs,
 )
 from ._cli_parser import EXIT_INTERNAL, EXIT_NOT_CLOSURE, EXIT_USAGE
-from ._cli_tables import plan_table
+from ._cli_tables import listing_table, plan_table
 
 
 def plan_options(args: Any) -> dict[str, Any]:
@@ -299,74 +299,15 @@ def cmd_check(args: Any) -> int:
 
 
 def cmd_parts(args: Any) -> int:
-    from ..io.meshes import is_solid_source
-    from ..io.parts import choose_part, list_parts
-    from ..io.report import dumps, parts_report
+    from ..io.report import dumps, part_listing
 
     _check_outputs(args, [args.part])
-    if is_solid_source(args.part) and not args.part.startswith("demo:"):
-        return _solid_parts(args)
-    parts = list_parts(args.part, **_reading(args))
-    try:
-        default = choose_part(parts).index
-    except ValueError:
-        default = -1
+    doc = part_listing(args.part, **_reading(args))
     if args.json:
-        _write_outputs([(args.json, dumps(parts_report(parts, default)))])
-    if args.quiet or _json_out(args):
-        return 0
-    units = parts[0].units if parts else ""
-    print(f"{parts[0].source}: {len(parts)} part{'s' * (len(parts) != 1)} ({parts[0].format}, "
-          f"units {units}: {parts[0].units_note}); * = the default (the largest)")
-    print(f"  {'index':>5}  {'id':<18} {'layer':<10} {'edges':>6} {'holes':>5}  "
-          f"{'width x height':>22}  {'area':>11}")
-    for p in parts:
-        mark = "*" if p.index == default else " "
-        ident = (p.id or "-")[:18]
-        layer = (p.layer or "-")[:10]
-        if p.polygon is None:
-            print(f"{mark} {p.index:>5}  {ident:<18} {layer:<10} not usable: {p.error}")
-            continue
-        w, h = p.polygon.vertices.max(axis=0) - p.polygon.vertices.min(axis=0)
-        extra = "  (background)" if p.background else ""
-        print(f"{mark} {p.index:>5}  {ident:<18} {layer:<10} {p.polygon.n_edges:>6} "
-              f"{len(p.polygon.holes):>5}  {f'{w:.4g} x {h:.4g}':>22}  "
-              f"{p.polygon.area:>11.4g}{extra}")
-    for note in parts[0].notes if parts else ():
-        print(f"note: {note}")
-    return 0
-
-
-def _solid_parts(args: Any) -> int:
-    """``fcgrasp parts part.stl``: the mesh's connected bodies (the default: the largest
-    watertight one)."""
-    from ..io.limits import Limits
-    from ..io.meshes import read_bodies
-    from ..io.report import dumps
-
-    reading = _reading(args)
-    bodies, units, note = read_bodies(args.part, args.units, args.file_units,
-                                      Limits.given(reading["max_bytes"],
-                                                   reading["max_elements"],
-                                                   reading["max_vertices"]))
-    default = next((b.index for b in bodies if b.watertight), 0)
-    if args.json:
-        doc = {"source": args.part, "units": units, "units_note": note, "default": default,
-               "bodies": [{"index": b.index, "triangles": b.triangles,
-                           "watertight": b.watertight, "volume": b.volume,
-                           "bounds": b.bounds.tolist()} for b in bodies]}
         _write_outputs([(args.json, dumps(doc))])
-    if args.quiet or _json_out(args):
-        return 0
-    print(f"{args.part}: {len(bodies)} bod{'ies' if len(bodies) != 1 else 'y'} (mesh, units "
-          f"{units}: {note}); * = the default (the largest watertight)")
-    print(f"  {'index':>5}  {'triangles':>9}  {'watertight':>10}  {'size':>26}  "
-          f"{'volume':>11}")
-    for b in bodies:
-        mark = "*" if b.index == default else " "
-        w, h, d = b.bounds[1] - b.bounds[0]
-        print(f"{mark} {b.index:>5}  {b.triangles:>9}  {'yes' if b.watertight else 'no':>10}  "
-              f"{f'{w:.4g} x {h:.4g} x {d:.4g}':>26}  {b.volume:>11.4g}")
+    if not args.quiet and not _json_out(args):
+        for line in listing_table(doc):
+            print(line)
     return 0
 
 

@@ -73,11 +73,11 @@ from ._explorer_data import (
     SOLID_GRIPPERS,
     _short,
     check_result,
+    demo_json,
+    page_part,
     part_json,
     plan_request,
     polygon_of,
-    solid_json,
-    solid_of,
     stress_result,
 )
 from ._serve_jobs import (
@@ -184,7 +184,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
     from ..io.parts import DEMO_PARTS, load_part, read_json
     from ..io.units import UNITS
     from ..model.ranking import MEASURES
-    from ..spatial.solid import DEMO_SOLIDS, demo_solid
+    from ..spatial.solid import DEMO_SOLIDS
 
     if start is None:
         start = load_part("demo:blob")
@@ -279,15 +279,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
                              "max_upload": max_upload, "answer_within": ANSWER_WITHIN})
 
     async def demo(request: Request) -> Response:
-        name = request.path_params["name"]
-        if name in DEMO_SOLIDS:
-            solid = await asyncio.to_thread(demo_solid, name)
-            return JSONResponse(solid_json(solid, f"demo:{name}"))
-        if name not in DEMO_PARTS:
-            raise RequestError(f"no built-in part {name!r} (one of "
-                               f"{', '.join([*DEMO_PARTS, *DEMO_SOLIDS])})", "part", 404)
-        p = load_part(f"demo:{name}")
-        return JSONResponse(part_json(p.polygon, p.units, p.source, p.notes))
+        return JSONResponse(await asyncio.to_thread(demo_json, request.path_params["name"]))
 
     async def upload(request: Request) -> Response:
         name = request.query_params.get("name", "upload")
@@ -311,12 +303,8 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
         # checking a large outline and the options is work: never on the event loop
         part = data.get("part")
         options = data.get("options", {})
-        if isinstance(part, dict) and part.get("solid") is True:
-            polygon, units, source = await asyncio.to_thread(solid_of, part)
-            request_ = await asyncio.to_thread(plan_request, options, source, units)
-        else:
-            polygon, units = await asyncio.to_thread(polygon_of, part)
-            request_ = await asyncio.to_thread(plan_request, options)
+        polygon, units, source = await asyncio.to_thread(page_part, part)
+        request_ = await asyncio.to_thread(plan_request, options, source, units)
         owner = request.state.session
         if old is not None:                   # the page's previous plan, now stale
             try:
@@ -340,11 +328,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
 
     async def stress(request: Request) -> Response:
         data = await json_of(request, {"part", "plan"})
-        part = data.get("part")
-        if isinstance(part, dict) and part.get("solid") is True:
-            polygon, units, _ = await asyncio.to_thread(solid_of, part)
-        else:
-            polygon, units = await asyncio.to_thread(polygon_of, part)
+        polygon, units, _ = await asyncio.to_thread(page_part, data.get("part"))
         return JSONResponse(await asyncio.to_thread(stress_result, polygon, units,
                                                     data.get("plan")))
 

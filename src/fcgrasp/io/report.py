@@ -156,7 +156,40 @@ def parts_report(parts: list[Any], default: int) -> dict[str, Any]:
         d["area"] = None if p.polygon is None else p.polygon.area
         items.append(d)
     return {"fcgrasp": __version__, "format_version": FORMAT_VERSION,
-            "units": parts[0].units if parts else None, "default": default, "parts": items}
+            "units": parts[0].units if parts else None, "default": default, "parts": items,
+            "notes": list(parts[0].notes) if parts else []}
+
+
+def bodies_report(source: str, bodies: list[Any], units: str, note: str) -> dict[str, Any]:
+    """The report of ``fcgrasp parts`` on a mesh: its connected bodies (triangles,
+    watertight, volume, bounds) and the default, the largest watertight one."""
+    default = next((b.index for b in bodies if b.watertight), 0)
+    return {"source": source, "units": units, "units_note": note, "default": default,
+            "bodies": [{"index": b.index, "triangles": b.triangles,
+                        "watertight": b.watertight, "volume": b.volume,
+                        "bounds": b.bounds.tolist()} for b in bodies]}
+
+
+def part_listing(source: str, **reading: Any) -> dict[str, Any]:
+    """The report of ``fcgrasp parts``: a drawing's parts (:func:`parts_report`, the
+    reading options those of :func:`fcgrasp.io.parts.list_parts`) or a mesh file's
+    bodies (:func:`bodies_report`)."""
+    from .limits import Limits
+    from .meshes import is_solid_source, read_bodies
+    from .parts import choose_part, list_parts
+
+    if is_solid_source(source) and not source.startswith("demo:"):
+        limits = Limits.given(reading.get("max_bytes"), reading.get("max_elements"),
+                              reading.get("max_vertices"))
+        bodies, units, note = read_bodies(source, reading.get("units"),
+                                          reading.get("file_units"), limits)
+        return bodies_report(source, bodies, units, note)
+    parts = list_parts(source, **reading)
+    try:
+        default = choose_part(parts).index
+    except ValueError:
+        default = -1
+    return parts_report(parts, default)
 
 
 def demo_summary(plans: list[dict[str, Any]], units: str) -> dict[str, Any]:
