@@ -87,30 +87,21 @@ def _plans_of(args: Any) -> tuple[Any, list[Any], str]:
     --contacts) and the units."""
     import numpy as np
 
-    from ..model.polygon import Polygon
 
     report = _read_report(args.source)
     if report is not None:
         if args.contacts:
             raise CliError("--contacts goes with a part, not with a plan report", "contacts")
-        part = report.get("part") or {}
-        if part.get("solid"):
-            from ..io.meshes import read_solid
+        from ..io.report import report_part
 
-            path = (report.get("source") or {}).get("path")
-            if not path:
-                raise CliError("the solid's report does not say where its mesh is (source."
-                               "path)", "source")
-            solid = read_solid(path, units=report.get("units"))
-            return solid, report["grasps"], str(report.get("units") or "mm")
-        polygon = Polygon(part["vertices"], part.get("holes") or [])
+        shape, units = report_part(report)
         grasps = report["grasps"]
         for g in grasps:
             if g.get("gripper") != "parallel_jaw" and ("regions" not in g
                                                         or "normals" not in g):
                 raise CliError("the stress test runs point fingers and the parallel jaw: "
                                "the report's grasps are neither", "source")
-        return polygon, grasps, str(report.get("units") or "mm")
+        return shape, grasps, units
     if not args.contacts:
         raise CliError(f"{args.source} is not a plan report: give a report of fcgrasp plan "
                        "--json, or a part with --contacts", "source")

@@ -160,6 +160,27 @@ def parts_report(parts: list[Any], default: int) -> dict[str, Any]:
             "notes": list(parts[0].notes) if parts else []}
 
 
+def report_part(report: dict[str, Any]) -> tuple[Any, str]:
+    """The part a plan report was planned on, and its units: a planar part's polygon
+    from the report's ``part``, a solid read again from its ``source.path`` (an
+    :class:`~fcgrasp.errors.ArgumentError` on ``source`` where the report does not say)."""
+    from ..errors import ArgumentError
+
+    units = str(report.get("units") or "mm")
+    part = report.get("part") or {}
+    if part.get("solid"):
+        from .meshes import read_solid
+
+        path = (report.get("source") or {}).get("path")
+        if not path:
+            raise ArgumentError("the solid's report does not say where its mesh is "
+                                "(source.path)", "source")
+        return read_solid(path, units=report.get("units")), units
+    from ..model.polygon import Polygon
+
+    return Polygon(part["vertices"], part.get("holes") or []), units
+
+
 def bodies_report(source: str, bodies: list[Any], units: str, note: str) -> dict[str, Any]:
     """The report of ``fcgrasp parts`` on a mesh: its connected bodies (triangles,
     watertight, volume, bounds) and the default, the largest watertight one."""
