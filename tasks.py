@@ -78,6 +78,16 @@ def compile_kernels(env: dict[str, str]) -> None:
                    env=env, check=True)
 
 
+def warm_caches(env: dict[str, str]) -> None:
+    """The bytecode of the package and the tests, and matplotlib's font cache, made once
+    before the suite: a fresh clone would otherwise make them in every test worker and in
+    every command the tests start."""
+    subprocess.run([str(PY), "-m", "compileall", "-q", "src", "tests", "benchmarks"],
+                   cwd=ROOT, env=env, check=True, stdout=subprocess.DEVNULL)
+    subprocess.run([str(PY), "-c", "import matplotlib.font_manager"], cwd=ROOT, env=env,
+                   check=True)
+
+
 def build_docs(out: str, env: dict[str, str], quiet: bool = True) -> int:
     """The documentation (docs/: the guide, the API reference from the docstrings, the
     design notes, the gallery) built with Sphinx into ``out``, every warning an error."""
@@ -103,6 +113,7 @@ def main(argv: list[str]) -> int:
         return subprocess.run([str(BIN / "fcgrasp"), "demo", *args], cwd=ROOT, env=env).returncode
     if cmd == "test":
         ensure_browser()
+        warm_caches(env)
         # a compiled loop that fails fails the suite (it would run by numpy, unseen)
         env["FCGRASP_REQUIRE_JIT"] = "1"
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
