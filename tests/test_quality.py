@@ -55,15 +55,19 @@ def _enumerated_radius(points, tol=1e-12):
     return float(max(0.0, np.einsum("ij,ij->i", a[support], n[support]).min())) * scale
 
 
-@pytest.mark.parametrize("k", [13, 16, 27, 40])
-def test_ball_radius_of_many_points_is_the_enumerations(k, rng):
-    """From HULL_POINTS points the facets come from qhull: the same radius as every
-    plane through three points, on random clouds, clouds on a sphere (every point a
-    vertex), the origin near a facet or outside, repeated points and tiny scales."""
-    from fcgrasp.model.quality import HULL_POINTS
+def _qhull_radius(pts):
+    """The radius from qhull's facets (scipy): the reference of the enumeration."""
+    from scipy.spatial import ConvexHull
 
-    assert k > HULL_POINTS
-    inside = 0
+    P = np.unique(np.asarray(pts, float), axis=0)
+    scale = float(np.abs(P).max())
+    eq = ConvexHull(P / scale).equations
+    return max(0.0, float((-eq[:, 3]).min())) * scale
+
+
+def _clouds(k, rng):
+    """Random clouds of ``k`` points, clouds on a sphere (every point a vertex), the
+    origin near a facet or outside, repeated points and tiny and huge scales."""
     for i in range(60):
         pts = rng.normal(size=(k, 3))
         if i % 3 == 1:
@@ -72,6 +76,35 @@ def test_ball_radius_of_many_points_is_the_enumerations(k, rng):
         pts = (pts + shift) * 10.0 ** rng.uniform(-6, 6)
         if i % 5 == 0:
             pts = np.vstack([pts, pts[:3]])
+        yield pts
+
+
+@pytest.mark.parametrize("k", [13, 16, 27, 32])
+def test_ball_radius_by_enumeration_is_qhulls(k, rng):
+    """Up to HULL_POINTS points (four frictionless fingers' 16 L-infinity sums, three
+    fingers with friction's 27) the facets are enumerated without scipy: the same
+    radius as qhull's facets."""
+    from fcgrasp.model.quality import HULL_POINTS
+
+    assert k <= HULL_POINTS
+    inside = 0
+    for pts in _clouds(k, rng):
+        want = _qhull_radius(pts)
+        assert ball_radius(pts) == pytest.approx(want, rel=1e-9, abs=1e-12 * np.abs(pts).max())
+        inside += want > 0
+    assert 10 <= inside < 60
+
+
+@pytest.mark.parametrize("k", [33, 40, 64])
+def test_ball_radius_of_many_points_is_the_enumerations(k, rng):
+    """From HULL_POINTS points the facets come from qhull: the same radius as every
+    plane through three points, on random clouds, clouds on a sphere (every point a
+    vertex), the origin near a facet or outside, repeated points and tiny scales."""
+    from fcgrasp.model.quality import HULL_POINTS
+
+    assert k > HULL_POINTS
+    inside = 0
+    for pts in _clouds(k, rng):
         want = _enumerated_radius(pts)
         assert ball_radius(pts) == pytest.approx(want, rel=1e-9, abs=1e-12 * np.abs(pts).max())
         inside += want > 0

@@ -60,9 +60,10 @@ def _scaled_wrenches(points: FloatArray, forces: FloatArray, centroid: FloatArra
 
 #: Points from which :func:`ball_radius` reads the hull's facets from qhull (scipy's
 #: ``ConvexHull``) instead of trying every plane through three of them, whose work
-#: grows as ``k^4`` (27 points, three fingers with friction's L-infinity sums: 2.5 ms
-#: against 0.1 ms).
-HULL_POINTS = 12
+#: grows as ``k^4``: four frictionless fingers' 16 L-infinity sums and three fingers
+#: with friction's 27 are enumerated (2.5 ms for 27 points, qhull 0.1 ms, but importing
+#: ``scipy.spatial`` costs a fresh process 0.2-0.3 s of CPU, a third of a small plan's).
+HULL_POINTS = 32
 
 
 def ball_radius(points: FloatArray, tol: float = DEGENERATE_TOL) -> float:
