@@ -266,43 +266,38 @@ def plane_cut(polygon: Polygon, hand: ParallelHand, scene: Scene, reach: PlaneRe
     return None if best is None else best[1]
 
 
-#: Held in the plane, the jaw's search is asked for up to this many times ``top`` boxes
-#: when the cuts drop some.
+#: Held in the plane, the jaw's search finds at most this many times ``top`` boxes while
+#: the cuts drop some.
 PLANE_ASK = 4
 
 
 def plane_plans(polygon: Polygon, jaw: Any, reach: PlaneReach, top: int, margin: float,
-                search: Callable[[int], list[Any]]) -> list[Any]:
-    """The jaw's ``top`` best boxes held in the plane: the search's boxes
-    (``search(ask)``: the jaw's ``ask`` best boxes of external grips), each cut by
-    :func:`plane_cut` and re-centred (its contacts at the cut box's centre pose), best
-    first; the search is asked for twice as many while the cuts drop boxes, up to
-    :data:`PLANE_ASK` times ``top``."""
+                search: Callable[..., list[Any]]) -> list[Any]:
+    """The jaw's ``top`` best boxes held in the plane, best first: each box the search
+    finds (``search(keep, most)``: the jaw's boxes of external grips, each made by
+    ``keep``, until ``top`` are kept or ``most`` found) cut by :func:`plane_cut` and
+    re-centred (its contacts at the cut box's centre pose), or left out where no pose is
+    proved clear; at most :data:`PLANE_ASK` times ``top`` boxes are found."""
     from dataclasses import replace
 
     from ._grid import _measure
     from ._poses import _contact_points, jaw_poses
 
-    ask = top
-    while True:
-        boxes = search(ask)
-        out = []
-        for p in boxes:
-            cut = plane_cut(polygon, jaw.hand, jaw.scene, reach, p.theta, p.offset,
-                            jaw.pad_width)
-            if cut is None:
-                continue
-            tc, cc = (cut.theta[0] + cut.theta[1]) / 2, (cut.offset[0] + cut.offset[1]) / 2
-            r = jaw_poses(polygon, jaw, [tc], [cc], margin)
-            out.append(replace(
-                p, theta=cut.theta, offset=cut.offset, side=cut.side,
-                measure=_measure(cut.theta, cut.offset, polygon.radius),
-                stops=(float(r.top[0]), float(r.bottom[0])),
-                contacts=[_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
-                          _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]))
-        if len(out) >= top or len(boxes) < ask or ask >= PLANE_ASK * top:
-            break
-        ask *= 2
+    def keep(p: Any) -> Any:
+        cut = plane_cut(polygon, jaw.hand, jaw.scene, reach, p.theta, p.offset,
+                        jaw.pad_width)
+        if cut is None:
+            return None
+        tc, cc = (cut.theta[0] + cut.theta[1]) / 2, (cut.offset[0] + cut.offset[1]) / 2
+        r = jaw_poses(polygon, jaw, [tc], [cc], margin)
+        return replace(p, theta=cut.theta, offset=cut.offset, side=cut.side,
+                       measure=_measure(cut.theta, cut.offset, polygon.radius),
+                       stops=(float(r.top[0]), float(r.bottom[0])),
+                       contacts=[_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
+                                 _contact_points(polygon, tc, r.lat_b[0],
+                                                 float(r.bottom[0]))])
+
+    out = search(keep, PLANE_ASK * top)
     out.sort(key=lambda p: -p.measure)
     return out[:top]
 

@@ -4,7 +4,7 @@ boxes of holding poses, proved and grown (:func:`jaw_plans`, :class:`JawPlan`)."
 from __future__ import annotations
 
 import math
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from typing import Any, ClassVar
 
@@ -143,9 +143,10 @@ class ParallelJaw(JawParameters):
             return []                   # the hand cannot reach the plate (the reason)
         if isinstance(self.pick, PlaneReach):
             return plane_plans(polygon, self, self.pick, options.top, options.margin,
-                               lambda ask: jaw_plans(polygon, self, top=ask,
-                                                     margin=options.margin,
-                                                     certify=self.certify, internal=False))
+                               lambda keep, most: jaw_plans(
+                                   polygon, self, top=options.top, margin=options.margin,
+                                   certify=self.certify, internal=False, keep=keep,
+                                   most=most))
         # a hand's closed fingers need room in a hole, which the pick does not bound
         return jaw_plans(polygon, self, top=options.top, margin=options.margin,
                          certify=self.certify, internal=self.hand is None)
@@ -416,7 +417,8 @@ def _kind(lat: FloatArray, psi: FloatArray, size: float) -> str:
 
 def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
               margin: float = DEFAULT_MARGIN_DEG, internal: bool = True,
-              certify: bool = True) -> list[JawPlan]:
+              certify: bool = True, keep: Callable[[JawPlan], JawPlan | None] | None = None,
+              most: int | None = None) -> list[JawPlan]:
     """The ``top`` largest boxes of jaw poses that hold, best first (see the module's
     docstring): external grips, and with ``internal`` grips inside each hole (the jaws
     put in at its :func:`insertion_point`).  For each grip, each found box's poses are
@@ -434,6 +436,9 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     boundary, moved in by :data:`GROW_BACKOFF`, is proved and kept where it measures more
     and overlaps no box returned before nor its images: every returned plan then has
     ``certified`` True. ``certify=False`` returns the boxes verified on the fine grid only.
+    ``keep(plan)`` makes each box found into the plan returned, or leaves it out (None;
+    its poses still taken), until ``top`` are kept or ``most`` boxes were found (a hand
+    held in the plane cuts each box to its collision-free poses).
 
     >>> from fcgrasp.io.parts import demo_part
     >>> jaw = ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
@@ -455,14 +460,19 @@ def jaw_plans(polygon: Polygon, jaw: ParallelJaw, top: int = 5,
     holes: list[int | None] = [None]
     if internal:
         holes += list(range(len(polygon.holes)))
-    plans = [p for h in holes for p in _grip_plans(polygon, jaw, top, margin, h, certify)]
+    plans = [p for h in holes
+             for p in _grip_plans(polygon, jaw, top, margin, h, certify, keep, most)]
     plans.sort(key=lambda p: -p.measure)
     return plans[:top]
 
 
 def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
-                hole: int | None, certify: bool = True) -> list[JawPlan]:
-    """The best boxes of one grip (external, or internal in ``hole``)."""
+                hole: int | None, certify: bool = True,
+                keep: Callable[[JawPlan], JawPlan | None] | None = None,
+                most: int | None = None) -> list[JawPlan]:
+    """The best boxes of one grip (external, or internal in ``hole``); with ``keep``,
+    each box found as ``keep`` makes it (None: left out, its poses still taken), until
+    ``top`` are kept or ``most`` boxes were found."""
     radius = polygon.radius
     thetas, offsets, H = _grid(polygon, jaw, margin, hole)
     K, M = thetas.size, offsets.size
@@ -472,7 +482,8 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
                                  else insertion_point(polygon, hole))
     plans: list[JawPlan] = []
     taken: list[tuple[float, float, float, float]] = []    # the plans' boxes and images
-    while len(plans) < top:
+    found = 0
+    while len(plans) < top and (most is None or found < most):
         # the time budget: the boxes proved so far (none, where the grid's boxes could
         # not be proved in time: the answer then says the search stopped)
         if (plans and budget.cut_if_over()) or budget.cut_if_over(counted=False):
@@ -526,7 +537,11 @@ def _grip_plans(polygon: Polygon, jaw: ParallelJaw, top: int, margin: float,
         _clear_images(H, np.array([t0, t1]), np.array([c0, c1]), symmetries, dth, offsets,
                       thetas[0])
         taken += box_images((float(t0), float(t1)), (float(c0), float(c1)), symmetries)
-        plans.append(_plan_of(polygon, jaw, margin, hole, box, certify))
+        found += 1
+        plan = _plan_of(polygon, jaw, margin, hole, box, certify)
+        kept = plan if keep is None else keep(plan)
+        if kept is not None:
+            plans.append(kept)
     return plans
 
 
