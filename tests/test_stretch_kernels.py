@@ -763,14 +763,32 @@ def test_exclusion_tests_compiled_are_the_numpy_ones(fraction, monkeypatch):
     assert checked > 100, checked
 
 
-def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
+@pytest.mark.parametrize("fraction", [0.5, pytest.param(0.3, marks=pytest.mark.slow)])
+def test_the_third_fingers_exclusion_compiled_is_numpys(fraction, monkeypatch):
+    """Three fingers' distinct search: which configurations' third finger surely
+    overlaps a kept plan's remaining region (``_Exclusion._third_mask``), and so the
+    thresholds and copies it masks, by the fused compiled loop and by numpy's
+    matrices: the same numbers."""
+    import fcgrasp as fc
+
+    monkeypatch.setenv("FCGRASP_JIT", "1")
+    rng = np.random.default_rng(int(fraction * 10) + 1)
+    checked = 0
+    for name in ("cam", "washer"):
+        checked += _exclusion_both_ways(fc.read_part("demo:" + name), fraction, rng,
+                                        monkeypatch, third=True)
+    assert checked > 100, checked
+
+
+def _exclusion_both_ways(poly, fraction, rng, monkeypatch, third=False):
     import fcgrasp as fc
     from fcgrasp.model import stretches
     from fcgrasp.model._stretch_windows import _Configs
 
-    kept = [(p.regions, p.region_edges) for p in fc.plan(poly, fingers=2, mu=0.4, top=4)]
+    plans = fc.plan(poly, fingers=3 if third else 2, mu=0.4, top=4)
+    kept = [(p.regions, p.region_edges) for p in plans]
     rings = _rings(poly)
-    excl = stretches._Exclusion(rings, poly, kept, fraction)
+    excl = stretches._Exclusion(rings, poly, kept, fraction, third=third)
     beta = np.arctan(0.4) - np.radians(2.0)
     ivs = {(a, b, 1.0): _Intervals(rings[a], rings[b], 1.0, beta)
            for a in range(len(rings)) for b in range(len(rings))}
@@ -785,7 +803,7 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
                            rng.integers(0, 2 * rings[y].m, n), rng.integers(0, k, n))
             # half of them about a kept plan's regions
             for q in range(0, n, 2):
-                (ra, pa), (rc, pc) = near[q % len(near)]
+                (ra, pa), (rc, pc) = near[q % len(near)][:2]
                 if (ra, rc) == (x, y):
                     cfg.iA[q] = pa + rng.integers(-k // 2, 3) + rings[x].m
                     cfg.iC[q] = pc + rng.integers(-k // 2, 3) + rings[y].m
@@ -793,14 +811,20 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch):
             job = (x, y, 1.0, "squeeze")
             results = []
             for cells in (0, 10 ** 12):             # fused, then numpy
-                monkeypatch.setattr(X, "FUSED_CELLS", cells)
-                monkeypatch.setattr(X, "FUSED_SIMILAR", cells)
+                monkeypatch.setattr(X, "FUSED_THIRD" if third else "FUSED_CELLS", cells)
+                if not third:
+                    monkeypatch.setattr(X, "FUSED_SIMILAR", cells)
+                arcs = excl._arcs(x, y) if third else None
                 results.append((excl.threshold(rings, job, cfg, ivs),
-                                excl.similar(rings, job, cfg, t, ivs)))
-            (tf, sf), (tn, sn) = results
+                                excl.similar(rings, job, cfg, t, ivs),
+                                None if arcs is None else excl._third_mask(x, y, cfg, arcs)))
+            (tf, sf, mf), (tn, sn, mn) = results
             np.testing.assert_array_equal(tf, tn)
             np.testing.assert_array_equal(sf, sn)
             checked += int(np.isfinite(tn).sum()) + int(sn.sum())
+            if mn is not None:                      # the third finger's own test
+                np.testing.assert_array_equal(mf, mn)
+                checked += int(mn.sum())
     return checked
 
 

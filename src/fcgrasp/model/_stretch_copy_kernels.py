@@ -154,14 +154,36 @@ def _side_threshold(a0: float, a1: float, u0: float, u1: float, per: float, tol:
     return (_outside_one(a0, a1, u0, u1, per) + tol) / keep
 
 
-def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
-    """``_stretch_exclusion._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
+def _common_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
+    """``_stretch_exclusion._Exclusion._common`` of one stretch ``[a0, a1]`` and one arc
     ``[u0, u1]``: the same operations in the same order."""
     common = 0.0
     for j in range(3):
         shift = (-per, 0.0, per)[j]
         common += max(0.0, min(a1, u1 + shift) - max(a0, u0 + shift))
-    return (a1 - a0) - common
+    return common
+
+
+def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
+    """``_stretch_exclusion._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
+    ``[u0, u1]``: the same operations in the same order."""
+    return (a1 - a0) - _common_one(a0, a1, u0, u1, per)
+
+
+def _third_rows(ring: IntArray, g0: FloatArray, g1: FloatArray, e0: FloatArray,
+                e1: FloatArray, kr: IntArray, k0: FloatArray, k1: FloatArray,
+                per: FloatArray, fraction: float, pad: float, out: BoolArray) -> None:
+    """``_stretch_exclusion._Exclusion._third_mask`` fused over rows (configurations:
+    the third finger's ring, sure arc ``[g0, g1]`` and widest ``[e0, e1]``) and columns
+    (the kept plans' remaining regions: ring ``kr``, arc ``[k0, k1]``; ``per`` each
+    ring's perimeter): the same numbers, without a matrix of each."""
+    for r in range(ring.size):
+        for c in range(kr.size):
+            if kr[c] != ring[r]:
+                continue
+            common = _common_one(g0[r], g1[r], k0[c], k1[c], per[kr[c]])
+            short = min(e1[r] - e0[r], k1[c] - k0[c])
+            out[r, c] = common - fraction * short > pad
 
 
 def _exclusion_rows(a0x: FloatArray, a1x: FloatArray, a0y: FloatArray, a1y: FloatArray,

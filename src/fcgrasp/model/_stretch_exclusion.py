@@ -252,6 +252,15 @@ class _Exclusion:
         ring, g0, g1, e0, e1 = self.free.of(x, y, cfg, trims)
         kr, k0, k1 = arcs[4].astype(np.int64), arcs[5], arcs[6]
         out = np.zeros((ring.size, kr.size), bool)
+        if ring.size * kr.size >= FUSED_THIRD and stretch_kernels_for(ring.size * kr.size):
+            # the same numbers, compiled, without a matrix of each
+            per = np.array([float(q.U[q.m]) for q in self.free.rings])
+            _stretch_kernels.third_rows(
+                np.ascontiguousarray(ring, np.int64),
+                *(np.ascontiguousarray(v, float) for v in (g0, g1, e0, e1)),
+                np.ascontiguousarray(kr), *(np.ascontiguousarray(v, float) for v in (k0, k1)),
+                per, float(self.fraction), float(THIRD_PAD * self.tol), out)
+            return out
         for r in np.unique(kr):
             cols, rows = np.flatnonzero(kr == r), np.flatnonzero(ring == r)
             if not rows.size:
@@ -367,8 +376,9 @@ class _Exclusion:
 
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run
 #: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
-#: (32 crossings of lines per cell and turn: compiled from a few cells on).
-FUSED_CELLS, FUSED_SIMILAR = 20_000, 16
+#: (32 crossings of lines per cell and turn: compiled from a few cells on), and the
+#: third finger's test (:meth:`_Exclusion._third_mask`).
+FUSED_CELLS, FUSED_SIMILAR, FUSED_THIRD = 20_000, 16, 20_000
 
 
 #: How many rounding tolerances a pair plan's third finger must beat the overlap a copy

@@ -201,6 +201,11 @@ def similar_rows(*args: Any) -> None:
     _load()["_similar_rows"](*args)
 
 
+def third_rows(*args: Any) -> None:
+    """Compiled :func:`_third_rows`."""
+    _load()["_third_rows"](*args)
+
+
 def inside_supers(*args: Any) -> None:
     """Compiled :func:`_inside_supers`."""
     _load()["_inside_supers"](*args)
