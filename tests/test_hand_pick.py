@@ -82,7 +82,8 @@ def _closes(part, jaw: ParallelJaw, mu: float, theta: float, offset: float) -> b
                     ).is_force_closure()
 
 
-CASES = [("rectangle", 0.5, 5.0, True), ("bracket", 0.5, 8.0, True),
+CASES = [pytest.param("rectangle", 0.5, 5.0, True, marks=pytest.mark.slow),
+         ("bracket", 0.5, 8.0, True),
          pytest.param("cam", 0.8, 12.0, False, marks=pytest.mark.slow),
          pytest.param("quad", 0.5, 40.0, True, marks=pytest.mark.slow),
          pytest.param("blob", 0.6, 3.0, True, marks=pytest.mark.slow)]
