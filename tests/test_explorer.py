@@ -910,7 +910,8 @@ def test_the_time_limit_stops_the_search_and_the_page_says_so(server, browser, t
 
 def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     """The jaw with a built-in hand: the page sends the hand's name (never a file), the
-    plans come with poses, and the hand's boxes are drawn around the pads."""
+    plans come with poses, and the hand's boxes are drawn around the pads; held in the
+    plate's plane, likewise."""
     from selenium.webdriver.support.ui import Select
 
     d = browser
@@ -926,6 +927,20 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     assert report["grasps"] and all("pose" in g for g in report["grasps"])
     boxes = d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
     assert len(boxes) == len(report["hand"]["boxes"])
+    # held in the plate's plane: the plans of fcgrasp plan --in-plane, the hand drawn at
+    # each pose (its approach in the plane)
+    after = plan_seq(d)
+    d.find_element(By.ID, "inplane").click()
+    wait_plan(d, after)
+    answer = d.execute_script("return explorer.state.report;")
+    assert answer["scene"]["held"] == "in_plane" and answer["grasps"]
+    assert all(g["held"] == "in_plane" and g["approach"]["direction"][2] == 0
+               for g in answer["grasps"])
+    assert len(d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")) == \
+        len(answer["hand"]["boxes"])
+    after = plan_seq(d)
+    d.find_element(By.ID, "inplane").click()
+    wait_plan(d, after)
     after = plan_seq(d)
     Select(d.find_element(By.ID, "hand")).select_by_value("")
     wait_plan(d, after)

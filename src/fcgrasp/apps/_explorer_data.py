@@ -41,7 +41,7 @@ _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
                  "3g": ("gravity", "along_boundary", *_COMMON),
                  "4": ("along_boundary", "bound", *_COMMON),
                  "jaw": ("mu", "stroke", "pad", "certify", "hand", "table", "thickness",
-                         *_COMMON)}
+                         "in_plane", *_COMMON)}
 
 
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
@@ -273,7 +273,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
          "rank_by": "min_region", "top": 10, "along_boundary": true,
          "stroke": [10, 50], "pad": 8, "certify": true, "gravity": [0, -1],
          "distinct": 0.5, "bound": true, "time_limit": 10,
-         "hand": "franka", "table": true, "thickness": 6}
+         "hand": "franka", "table": true, "thickness": 6, "in_plane": false}
 
     (with ``hand``, a built-in hand's name, its own stroke and pads are used).
 
@@ -304,7 +304,7 @@ def plan_request(options: Any, name: str = "explorer", units: str | None = None)
 #: The keys of the page's options.
 _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke", "pad",
           "gravity", "certify", "distinct", "bound", "time_limit", "hand", "table",
-          "thickness")
+          "thickness", "in_plane")
 
 
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
@@ -340,6 +340,7 @@ def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
     else:
         kw.pop("table", None)
         kw.pop("thickness", None)
+        kw.pop("in_plane", None)
     top = kw.get("top")
     if top is not None and (isinstance(top, bool) or not isinstance(top, int)
                             or not 1 <= top <= 100):

@@ -618,7 +618,11 @@ function options() {
     if ($("hand").value) {
       o.hand = $("hand").value;
       o.table = $("table").checked;
-      if (!S.solid) o.thickness = num("thickness", "plate thickness");
+      if (!S.solid) {
+        o.thickness = num("thickness", "plate thickness");
+        // the hand lying in the plate's plane, its palm on one side of the pads' strip
+        o.in_plane = $("inplane").checked;
+      }
     }
   } else {
     o.along_boundary = $("along").checked;
@@ -1212,7 +1216,7 @@ async function init() {
   }
   for (const id of ["mu", "margin", "top", "stroke0", "stroke1", "pad", "rank", "along",
                     "certify", "distinct", "bound", "timelimit", "hand", "table",
-                    "thickness"]) {
+                    "thickness", "inplane"]) {
     $(id).addEventListener("change", () => { schedulePlan(); runCheck(); });
   }
   $("gripper").addEventListener("change", () => {
