@@ -77,7 +77,6 @@ def plane_reach(hand: ParallelHand, scene: Scene) -> PlaneReach | str:
     side x``: the height is the plate's mid-thickness, raised until every box clears the
     table by ``clearance``, as long as the pad still covers part of the plate's side."""
     T, clr = scene.thickness, scene.clearance
-    pad_lo, pad_hi = _x_range(hand.pad_box, False)
     boxes = [(b, False) for b in hand.palm + hand.finger] + [(b, True) for b in hand.finger]
     height, band = {}, {}
     for side in (1, -1):
@@ -85,8 +84,12 @@ def plane_reach(hand: ParallelHand, scene: Scene) -> PlaneReach | str:
         if scene.table:
             top = max(side * x for b, turned in boxes for x in _x_range(b, turned))
             z0 = max(z0, top + clr)
-        lo, hi = sorted((z0 - side * pad_lo, z0 - side * pad_hi))
-        cover = min(T, hi) - max(0.0, lo)
+        # each pad's band of the plate's side (finger 2's pad turned: its x reversed)
+        cover = math.inf
+        for turned in (False, True):
+            x0, x1 = _x_range(hand.pad_box, turned)
+            lo, hi = sorted((z0 - side * x0, z0 - side * x1))
+            cover = min(cover, min(T, hi) - max(0.0, lo))
         if cover <= 0:
             return (f"the hand's pads do not reach the plate's side held in its plane: on "
                     f"the table the hand's lowest point must be {clr:g} above it, which "
