@@ -114,7 +114,7 @@ def _parts(rng, n):
     return out
 
 
-@pytest.mark.parametrize("fingers, n", [(3, 2), (4, 2),
+@pytest.mark.parametrize("fingers, n", [pytest.param(3, 2, marks=pytest.mark.slow), (4, 2),
                                         pytest.param(3, 40, marks=pytest.mark.slow),
                                         pytest.param(4, 40, marks=pytest.mark.slow)])
 def test_no_plan_is_refuted(fingers, n):

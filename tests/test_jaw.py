@@ -851,7 +851,7 @@ def test_the_pareto_list_trades_one_side_for_the_other(name):
         jaw_pareto(part, jaw, weights=[1.0, -2.0])
 
 
-@pytest.mark.parametrize("n", [96, 368])
+@pytest.mark.parametrize("n", [96, pytest.param(368, marks=pytest.mark.slow)])
 def test_the_jaw_holds_a_flattened_disc(n):
     """Every DXF CIRCLE is read as a disc of hundreds of edges: a box of the jaw on it
     sweeps a vertex every fraction of a degree, and its proof needs a budget for each
