@@ -321,3 +321,31 @@ def test_the_resistance_column_says_its_unit(capsys):
         assert main(["plan", "demo:blob", "--units", units, "--top", "1"]) == 0
         header = capsys.readouterr().out.splitlines()[0]
         assert f"resistance (1/{units})" in header and f"regions ({units})" in header
+
+
+def test_the_parts_command_lists_a_drawings_parts_and_notes(tmp_path, capsys):
+    """``fcgrasp parts`` on a drawing of two outlines and a stray open line: the table
+    (the default marked, each outline's edges, holes and size) and the JSON (every part,
+    the default, the reader's note on what it left out) say the same."""
+    import ezdxf
+
+    doc = ezdxf.new()
+    doc.header["$INSUNITS"] = 4                          # millimetres
+    msp = doc.modelspace()
+    msp.add_lwpolyline([(0, 0), (40, 0), (40, 20), (0, 20)], close=True)
+    msp.add_lwpolyline([(60, 0), (70, 0), (70, 10)], close=True)
+    msp.add_line((100, 0), (120, 5))                     # open: left out, with a note
+    path = tmp_path / "two.dxf"
+    doc.saveas(path)
+    out = tmp_path / "parts.json"
+    assert main(["parts", str(path), "--json", str(out)]) == 0
+    text = capsys.readouterr().out.splitlines()
+    report = json.loads(out.read_text())
+    assert report["default"] == 0 and len(report["parts"]) == 2
+    assert [p["part"]["edges"] for p in report["parts"]] == [4, 3]
+    assert report["notes"] and any("left out" in n for n in report["notes"])
+    assert text[0].startswith(f"{path}: 2 parts (dxf")
+    rows = [t for t in text[2:] if not t.startswith("note:")]
+    assert rows[0].startswith("*") and rows[1].startswith(" ")
+    assert "40 x 20" in rows[0] and "10 x 10" in rows[1]
+    assert [t[len("note: "):] for t in text if t.startswith("note: ")] == report["notes"]
