@@ -10,7 +10,7 @@ import math
 from collections.abc import Callable
 from typing import Any
 
-__all__ = ["plan_table", "listing_table"]
+__all__ = ["plan_table", "listing_table", "report_kind", "demo_entry"]
 
 
 def _fingers(report: dict[str, Any]) -> list[str]:
@@ -86,6 +86,59 @@ def plan_kind(grasp: dict[str, Any]) -> str:
     if "facets" in grasp:
         return "facets"
     return "jaw_boxes" if grasp.get("gripper") == "parallel_jaw" else "fingers"
+
+
+def report_kind(report: dict[str, Any]) -> str:
+    """A report's plan kind (:func:`plan_kind`), from its parameters where it has no
+    plan: a solid's grippers name their ``contact_type``, the planar jaw is the
+    ``parallel_jaw``."""
+    if report["grasps"]:
+        return plan_kind(report["grasps"][0])
+    params = report["parameters"]
+    if "contact_type" in params:
+        return "facets"
+    return "jaw_boxes" if params.get("gripper") == "parallel_jaw" else "fingers"
+
+
+def demo_entry(part: str, report: dict[str, Any], reason: str | None
+               ) -> tuple[dict[str, Any], str]:
+    """``fcgrasp demo``'s summary entry of one plan report (its best plan's measure and
+    where it is, by the plan's kind) and the line printed for it."""
+    params = report["parameters"]
+    best = report["grasps"][0] if report["grasps"] else None
+    kind = report_kind(report)
+    entry: dict[str, Any] = {}
+    if kind == "facets":
+        contact = params["contact_type"]
+        who = "jaw" if contact == "jaw" else f"{params['fingers']} {contact}"
+        entry.update({"gripper": params.get("gripper", "fingers"),
+                      "fingers": params.get("fingers"), "contact_type": contact,
+                      "mu": params["mu"],
+                      "best_facets": None if best is None else list(best["facets"]),
+                      "best_radius": None if best is None else best["radius"]})
+        if best is None:
+            return entry, f"{part:14s} {who:10s} no grasp: {reason}"
+        shape = "a region" if contact == "jaw" else "octagons"
+        return entry, (f"{part:14s} {who:10s} best facets {list(best['facets'])!s:16s}"
+                       f"{shape} of radius {best['radius']:.3g} mm")
+    if kind == "jaw_boxes":
+        entry.update({"gripper": params["gripper"], "mu": params["mu"],
+                      "best_theta_deg": None if best is None else list(best["theta_deg"]),
+                      "best_offset": None if best is None else list(best["offset"]),
+                      "best_measure": None if best is None else best["measure"]})
+        if best is None:
+            return entry, f"{part:14s} jaw        no grasp: {reason}"
+        (t0, t1), (c0, c1) = best["theta_deg"], best["offset"]
+        return entry, (f"{part:14s} jaw        closing {t0:.1f}-{t1:.1f} deg, "
+                       f"offsets {c0:.1f}-{c1:.1f} mm")
+    n = params["fingers"]
+    entry.update({"fingers": n, "mu": params["mu"],
+                  "best_edges": None if best is None else list(best["edges"]),
+                  "best_min_region": None if best is None else best["min_region_length"]})
+    if best is None:
+        return entry, f"{part:14s} {n} fingers  no grasp: {reason}"
+    return entry, (f"{part:14s} {n} fingers  best edges {list(best['edges'])!s:16s} "
+                   f"min region {best['min_region_length']:7.3f} mm")
 
 
 def plan_table(report: dict[str, Any]) -> list[str]:

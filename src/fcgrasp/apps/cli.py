@@ -36,7 +36,7 @@ from ._cli_io import (
     _write_outputs,
 )
 from ._cli_parser import EXIT_INTERNAL, EXIT_NOT_CLOSURE, EXIT_USAGE
-from ._cli_tables import listing_table, plan_table
+from ._cli_tables import demo_entry, listing_table, plan_table
 
 
 def plan_options(args: Any) -> dict[str, Any]:
@@ -365,45 +365,11 @@ def _demo_jobs() -> list[tuple[Any, str, str]]:
 
 
 def _demo_entry(request: Any, doc: Any, stem: str) -> tuple[dict[str, Any], str]:
-    """The demo summary's entry for one plan, and the line printed for it."""
-    import math
-
-    best = doc.plans[0] if doc.plans else None
-    entry: dict[str, Any] = {"part": request.part, "json": f"{stem}.json",
-                             "figure": f"{stem}.png"}
-    params = doc.report["parameters"]
-    if doc.report["part"].get("solid"):
-        kind = params["contact_type"]
-        who = "jaw" if kind == "jaw" else f"{params['fingers']} {kind}"
-        entry.update({"gripper": params.get("gripper", "fingers"),
-                      "fingers": params.get("fingers"), "contact_type": kind,
-                      "mu": params["mu"],
-                      "best_facets": None if best is None else list(best.facets),
-                      "best_radius": None if best is None else best.radius})
-        if best is None:
-            return entry, f"{request.part:14s} {who:10s} no grasp: {doc.reason}"
-        shape = "a region" if kind == "jaw" else "octagons"
-        return entry, (f"{request.part:14s} {who:10s} best facets {list(best.facets)!s:16s}"
-                       f"{shape} of radius {best.radius:.3g} mm")
-    if "fingers" not in params:
-        entry.update({"gripper": params["gripper"], "mu": params["mu"],
-                      "best_theta_deg": None if best is None else
-                      [math.degrees(x) for x in best.theta],
-                      "best_offset": None if best is None else list(best.offset),
-                      "best_measure": None if best is None else best.measure})
-        if best is None:
-            return entry, f"{request.part:14s} jaw        no grasp: {doc.reason}"
-        t0, t1 = (math.degrees(x) for x in best.theta)
-        return entry, (f"{request.part:14s} jaw        closing {t0:.1f}-{t1:.1f} deg, "
-                       f"offsets {best.offset[0]:.1f}-{best.offset[1]:.1f} mm")
-    n = params["fingers"]
-    entry.update({"fingers": n, "mu": params["mu"],
-                  "best_edges": None if best is None else list(best.edges),
-                  "best_min_region": None if best is None else best.min_length})
-    if best is None:
-        return entry, f"{request.part:14s} {n} fingers  no grasp: {doc.reason}"
-    return entry, (f"{request.part:14s} {n} fingers  best edges {list(best.edges)!s:16s} "
-                   f"min region {best.min_length:7.3f} mm")
+    """The demo summary's entry for one plan (:func:`~fcgrasp.apps._cli_tables.
+    demo_entry`), and the line printed for it."""
+    entry, line = demo_entry(request.part, doc.report, doc.reason)
+    return {"part": request.part, "json": f"{stem}.json", "figure": f"{stem}.png",
+            **entry}, line
 
 
 def cmd_demo(args: Any) -> int:
