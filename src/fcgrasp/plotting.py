@@ -312,7 +312,7 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
         ax.add_patch(MplPolygon(pad, closed=True, facecolor="0.3", edgecolor="k", zorder=4,
                                 label="pads at the centre pose" if k == 0 else None))
     if getattr(plan.jaw, "hand", None) is not None:
-        _draw_hand(ax, plan, u, n, cen + c * n + (plan.stops[0] + plan.stops[1]) / 2 * u)
+        _draw_hand(ax, plan)
     for pts in plan.contacts:
         ax.plot(*np.asarray(pts).T, "o", color="#d62728", ms=4, zorder=5)
     if plan.insert is not None:
@@ -331,26 +331,23 @@ def draw_jaw_plan(ax: Any, polygon: Any, plan: Any, title: str | None = None,
     ax.tick_params(labelsize=6)
 
 
-def _draw_hand(ax: Any, plan: Any, u: Any, n: Any, origin: Any) -> None:
-    """The hand (:mod:`fcgrasp.model.hands`) seen from above at the box's centre pose:
-    each finger box's footprint at the grasp's opening, the palm's dashed.  Picked from
-    above, the tool's ``y`` is along the closing direction ``u`` and its ``z`` points down;
-    held in the plane (``plan.side``), its ``z`` is the approach ``-side n`` and the tool's
-    origin stands where the pad's centre meets the strip's centre line."""
+def _draw_hand(ax: Any, plan: Any) -> None:
+    """The hand (:mod:`fcgrasp.model.hands`) seen from above at the box's centre pose
+    (its tool frame, :func:`fcgrasp.io.moveit.jaw_tool_pose`: picked from above, or held
+    in the plane on ``plan.side`` of the strip): each finger box's footprint at the
+    grasp's opening, the palm's dashed."""
     from matplotlib.patches import Polygon as MplPolygon
     from scipy.spatial import ConvexHull
 
-    from .io.moveit import tool_rotation
+    from .io.moveit import jaw_tool_pose
 
     hand = plan.jaw.hand
     opening = plan.stops[0] - plan.stops[1]
     n_palm = len(hand.palm)
     side = getattr(plan, "side", 0)
-    if side:
-        origin = origin + side * sum(hand.pad_span) / 2 * n
-        R = tool_rotation(np.r_[u, 0.0], np.r_[-side * n, 0.0])[:2]
-    else:
-        R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])[:2]
+    where, axes = jaw_tool_pose(plan.centroid, plan.centre[0], plan.centre[1], plan.stops,
+                                0.0, side, sum(hand.pad_span) / 2)
+    origin, R = where[:2], axes[:2]
     seen = []
     for k, box in enumerate(hand.boxes(opening)):
         pts = origin + box.corners() @ R.T

@@ -159,15 +159,21 @@ def _pose(grasp: dict[str, Any], height: float) -> tuple[np.ndarray, np.ndarray,
 
 
 def jaw_tool_pose(centroid: Any, theta: float, offset: float, stops: tuple[float, float],
-                  height: float) -> tuple[np.ndarray, np.ndarray]:
-    """The tool frame of a planar part's jaw pose picked from above (part frame, its
-    units): the origin between the pads' faces (stops ``stops`` along the closing
-    direction ``theta``, ``offset`` across it from ``centroid``) at ``height``, and the
-    axes as columns, ``y`` along the closing direction, ``z`` down."""
+                  height: float, side: int = 0, pad_centre: float = 0.0
+                  ) -> tuple[np.ndarray, np.ndarray]:
+    """The tool frame of a planar part's jaw pose (part frame, its units): the origin
+    between the pads' faces (stops ``stops`` along the closing direction ``theta`` =
+    ``u``, ``offset`` across it along ``n`` from ``centroid``) at ``height``, and the axes
+    as columns, ``y`` along ``u``.  Picked from above (``side`` 0) ``z`` points down;
+    held in the plate's plane with the hand on the ``side`` of the strip (+1: ``+n``),
+    ``z`` is ``-side n`` and the origin stands back along it so that the pad's centre
+    (at tool ``z`` = ``pad_centre``) lies on the strip's centre line."""
     u = np.array([math.cos(theta), math.sin(theta)])
     n = np.array([-u[1], u[0]])
-    xy = np.asarray(centroid, float) + (stops[0] + stops[1]) / 2 * u + offset * n
-    return np.r_[xy, height], tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
+    across = offset + side * pad_centre
+    xy = np.asarray(centroid, float) + (stops[0] + stops[1]) / 2 * u + across * n
+    approach = [0.0, 0.0, -1.0] if side == 0 else np.r_[-side * n, 0.0]
+    return np.r_[xy, height], tool_rotation(np.r_[u, 0.0], approach)
 
 
 def _ee_pose(pose: dict[str, Any], hand: dict[str, Any]) -> tuple[np.ndarray, np.ndarray]:

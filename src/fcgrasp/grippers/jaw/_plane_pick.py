@@ -309,18 +309,16 @@ def plane_pick_dict(plan: Any, reach: PlaneReach) -> dict[str, Any]:
     """The pick of a box's centre pose held in the plane: the tool frame's pose, the
     opening it comes in at, the approach and the retreat (part frame, the part's units);
     every pose of the box is collision free (the module's docstring)."""
-    from ...io.moveit import quaternion, tool_rotation
+    from ...io.moveit import jaw_tool_pose, quaternion
 
     hand, scene = plan.jaw.hand, plan.jaw.scene
     side = plan.side
     theta, offset = plan.centre
-    u = np.array([math.cos(theta), math.sin(theta)])
-    n = np.array([-u[1], u[0]])
-    zc = sum(hand.pad_span) / 2
-    xy = np.asarray(plan.centroid, float) + sum(plan.stops) / 2 * u + (offset + side * zc) * n
-    axes = tool_rotation(np.r_[u, 0.0], np.r_[-side * n, 0.0])
-    return {"pose": {"position": [float(v) for v in np.r_[xy, reach.height[side]]],
+    where, axes = jaw_tool_pose(plan.centroid, theta, offset, plan.stops,
+                                reach.height[side], side, sum(hand.pad_span) / 2)
+    approach = axes[:, 2]
+    return {"pose": {"position": [float(v) for v in where],
                      "orientation": list(quaternion(axes)), "frame": "part"},
             "pre_grasp_opening": hand.stroke[1], "held": "in_plane", "side": side,
-            **scene.motions((-side * n[0], -side * n[1], 0.0), (side * n[0], side * n[1], 0.0)),
+            **scene.motions(approach, -approach),
             "collision_free": True, "contact_height": reach.contact_height[side]}
