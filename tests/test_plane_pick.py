@@ -24,6 +24,7 @@ pytest.importorskip("fcl")
 shapely = pytest.importorskip("shapely")
 
 from fcgrasp.grippers.jaw._plane_pick import _bands, _cell_clear  # noqa: E402
+from fcgrasp.grippers.jaw._plans import _kind  # noqa: E402
 from fcgrasp.grippers.jaw._poses import _grip_edges  # noqa: E402
 from tests.shapes import star  # noqa: E402
 from tests.test_hand_pick import SHRINK, _closes, _collides, _manager  # noqa: E402
@@ -109,6 +110,11 @@ def test_every_sampled_pose_of_a_plan_in_the_plane_is_collision_free(name, mu, t
     checked = 0
     for p in plans:
         assert p.side in (1, -1) and p.mode == "external"
+        # a cut box describes its own centre pose: where the pads stop, how they touch
+        r = jaw_poses(part, jaw, [p.centre[0]], [p.centre[1]])
+        assert p.stops == (float(r.top[0]), float(r.bottom[0]))
+        assert p.kinds == (_kind(r.lat_a[0], r.psi_a[0], part.size),
+                           _kind(r.lat_b[0], r.psi_b[0], part.size)), (name, p.kinds)
         for theta, offset in p.sample(8, rng):
             assert jaw_poses(part, jaw, [theta], [offset]).holds[0], (name, theta, offset)
             assert _closes(part, jaw, mu, theta, offset), (name, theta, offset)

@@ -279,26 +279,15 @@ def plane_plans(polygon: Polygon, jaw: Any, reach: PlaneReach, top: int, margin:
     """The jaw's ``top`` best boxes held in the plane, best first: each box the search
     finds (``search(keep, most)``: the jaw's boxes of external grips, each made by
     ``keep``, until ``top`` are kept or ``most`` found) cut by :func:`plane_cut` and
-    re-centred (its contacts at the cut box's centre pose), or left out where no pose is
-    proved clear; at most :data:`PLANE_ASK` times ``top`` boxes are found."""
-    from dataclasses import replace
-
-    from ._grid import _measure
-    from ._poses import _contact_points, jaw_poses
+    re-centred (``JawPlan.cut_to``: its contacts at the cut box's centre pose), or left
+    out where no pose is proved clear; at most :data:`PLANE_ASK` times ``top`` boxes are
+    found."""
 
     def keep(p: Any) -> Any:
         cut = plane_cut(polygon, jaw.hand, jaw.scene, reach, p.theta, p.offset,
                         jaw.pad_width)
-        if cut is None:
-            return None
-        tc, cc = (cut.theta[0] + cut.theta[1]) / 2, (cut.offset[0] + cut.offset[1]) / 2
-        r = jaw_poses(polygon, jaw, [tc], [cc], margin)
-        return replace(p, theta=cut.theta, offset=cut.offset, side=cut.side,
-                       measure=_measure(cut.theta, cut.offset, polygon.radius),
-                       stops=(float(r.top[0]), float(r.bottom[0])),
-                       contacts=[_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
-                                 _contact_points(polygon, tc, r.lat_b[0],
-                                                 float(r.bottom[0]))])
+        return None if cut is None else p.cut_to(polygon, cut.theta, cut.offset, margin,
+                                                 cut.side)
 
     out = search(keep, PLANE_ASK * top)
     out.sort(key=lambda p: -p.measure)

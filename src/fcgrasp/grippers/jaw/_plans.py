@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, ClassVar
 
 import numpy as np
@@ -356,6 +356,18 @@ class JawPlan:
         """The box's centre pose ``(theta, offset)``."""
         return (sum(self.theta) / 2, sum(self.offset) / 2)
 
+    def cut_to(self, polygon: Polygon, theta: tuple[float, float],
+               offset: tuple[float, float], margin: float, side: int = 0) -> JawPlan:
+        """The plan of a sub-box of this one (a hand held in the plane on ``side``:
+        :mod:`fcgrasp.grippers.jaw._plane_pick`): its measure, and its contacts at its
+        own centre pose; the opening range and the features stay this box's (they hold
+        over the sub-box too)."""
+        pts, kinds, stops = _centre_contacts(polygon, self.jaw, sum(theta) / 2,
+                                             sum(offset) / 2, margin, self.hole)
+        return replace(self, theta=theta, offset=offset, side=side, contacts=pts,
+                       kinds=kinds, stops=stops,
+                       measure=_measure(theta, offset, polygon.radius))
+
     def sample(self, n: int, rng: np.random.Generator | None = None) -> FloatArray:
         """``n`` poses uniform in the box, shape (n, 2): ``(theta, offset)``."""
         rng = np.random.default_rng() if rng is None else rng
@@ -550,17 +562,26 @@ def _plan_of(polygon: Polygon, jaw: ParallelJaw, margin: float, hole: int | None
     """The :class:`JawPlan` of a checked box (:func:`_checked_box`: its ranges, opening
     and features), with the contacts at its centre pose."""
     (t0, t1), (c0, c1), opening, features = box
-    tc, ccen = (t0 + t1) / 2, (c0 + c1) / 2
-    r = jaw_poses(polygon, jaw, [tc], [ccen], margin, hole)
-    pts = [_contact_points(polygon, tc, r.lat_a[0], float(r.top[0])),
-           _contact_points(polygon, tc, r.lat_b[0], float(r.bottom[0]))]
-    kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
-             _kind(r.lat_b[0], r.psi_b[0], polygon.size))
+    pts, kinds, stops = _centre_contacts(polygon, jaw, (t0 + t1) / 2, (c0 + c1) / 2, margin,
+                                         hole)
     radius = polygon.radius
     return JawPlan((float(t0), float(t1)), (float(c0), float(c1)), opening, pts, kinds,
-                   (float(r.top[0]), float(r.bottom[0])), _measure((t0, t1), (c0, c1), radius),
+                   stops, _measure((t0, t1), (c0, c1), radius),
                    jaw, polygon.centroid.copy(), radius,
                    "external" if hole is None else "internal", hole, certified,
                    None if hole is None else insertion_point(polygon, hole), features)
+
+
+def _centre_contacts(polygon: Polygon, jaw: ParallelJaw, theta: float, offset: float,
+                     margin: float, hole: int | None
+                     ) -> tuple[list[FloatArray], tuple[str, str], tuple[float, float]]:
+    """A box's contacts at its centre pose ``(theta, offset)``: each pad's contact
+    points, how each touches (:func:`_kind`) and where each stops."""
+    r = jaw_poses(polygon, jaw, [theta], [offset], margin, hole)
+    pts = [_contact_points(polygon, theta, r.lat_a[0], float(r.top[0])),
+           _contact_points(polygon, theta, r.lat_b[0], float(r.bottom[0]))]
+    kinds = (_kind(r.lat_a[0], r.psi_a[0], polygon.size),
+             _kind(r.lat_b[0], r.psi_b[0], polygon.size))
+    return pts, kinds, (float(r.top[0]), float(r.bottom[0]))
 
 
