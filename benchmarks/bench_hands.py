@@ -200,6 +200,13 @@ def tips(args: argparse.Namespace, parts: list[str]) -> int:
     return 0
 
 
+def jaw_runs(args: argparse.Namespace, stroke, pad: float) -> tuple[list[str], list[str]]:
+    """The jaw's ``fcgrasp plan`` options, and the bare jaw's: the hand's stroke and the
+    pad the hand's strip is as wide as (``pad``)."""
+    base = ["plan", "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
+    return base, ["--stroke", f"{stroke[0]:g},{stroke[1]:g}", "--pad", repr(pad)]
+
+
 def in_plane(args: argparse.Namespace, hand, parts: list[str]) -> int:
     """The jaw's hand holding the plate in its plane (the module's docstring)."""
     T = hand.pad_width
@@ -208,9 +215,7 @@ def in_plane(args: argparse.Namespace, hand, parts: list[str]) -> int:
     print("| part | bare plans | colliding on both sides | hand plans | colliding | bare CPU | "
           "hand CPU | ratio |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    base = ["plan", "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
-    bare_args = ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}", "--pad",
-                 repr(hand.pad_height)]
+    base, bare_args = jaw_runs(args, hand.stroke, hand.pad_height)
     hand_args = ["--hand", args.hand, "--in-plane"]
 
     def cells(m, bare: dict, mine: dict) -> list[int]:
@@ -265,9 +270,7 @@ def main() -> int:
     print("| part | bare plans | colliding, centred | colliding, at the hand's height | "
           "hand plans | bare CPU | hand CPU | ratio |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
-    base = ["plan", "--gripper", "jaw", "--mu", args.mu, "--top", args.top]
-    bare_args = ["--stroke", f"{hand.stroke[0]:g},{hand.stroke[1]:g}", "--pad",
-                 repr(hand.pad_width)]
+    base, bare_args = jaw_runs(args, hand.stroke, hand.pad_width)
     hand_args = ["--hand", args.hand, "--table", "--thickness", str(args.thickness)]
 
     def cells(m, bare: dict, mine: dict) -> list[int]:

@@ -79,33 +79,24 @@ def _clouds(k, rng):
         yield pts
 
 
-@pytest.mark.parametrize("k", [13, 16, 27, 32])
-def test_ball_radius_by_enumeration_is_qhulls(k, rng):
+#: Cloud sizes on both sides of HULL_POINTS.
+CLOUDS = (13, 16, 27, 32, 33, 40, 64)
+
+
+@pytest.mark.parametrize("k", CLOUDS)
+def test_ball_radius_is_the_other_methods(k, rng):
     """Up to HULL_POINTS points (four frictionless fingers' 16 L-infinity sums, three
-    fingers with friction's 27) the facets are enumerated without scipy: the same
-    radius as qhull's facets."""
+    fingers with friction's 27) the facets are enumerated without scipy: the same radius
+    as qhull's facets; from HULL_POINTS points they come from qhull: the same radius as
+    every plane through three points.  On random clouds, clouds on a sphere (every point
+    a vertex), the origin near a facet or outside, repeated points and tiny scales."""
     from fcgrasp.model.quality import HULL_POINTS
 
-    assert k <= HULL_POINTS
+    assert min(CLOUDS) <= HULL_POINTS < max(CLOUDS)        # both ways are tested
+    reference = _qhull_radius if k <= HULL_POINTS else _enumerated_radius
     inside = 0
     for pts in _clouds(k, rng):
-        want = _qhull_radius(pts)
-        assert ball_radius(pts) == pytest.approx(want, rel=1e-9, abs=1e-12 * np.abs(pts).max())
-        inside += want > 0
-    assert 10 <= inside < 60
-
-
-@pytest.mark.parametrize("k", [33, 40, 64])
-def test_ball_radius_of_many_points_is_the_enumerations(k, rng):
-    """From HULL_POINTS points the facets come from qhull: the same radius as every
-    plane through three points, on random clouds, clouds on a sphere (every point a
-    vertex), the origin near a facet or outside, repeated points and tiny scales."""
-    from fcgrasp.model.quality import HULL_POINTS
-
-    assert k > HULL_POINTS
-    inside = 0
-    for pts in _clouds(k, rng):
-        want = _enumerated_radius(pts)
+        want = reference(pts)
         assert ball_radius(pts) == pytest.approx(want, rel=1e-9, abs=1e-12 * np.abs(pts).max())
         inside += want > 0
     assert 10 <= inside < 60
