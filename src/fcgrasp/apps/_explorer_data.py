@@ -47,7 +47,9 @@ _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
     """A part as the page holds it: a planar part's rings, units and a few measures for
     drawing; a solid's triangles (:func:`solid_json`)."""
-    if not hasattr(polygon, "holes"):
+    from ..model.polygon import Polygon
+
+    if not isinstance(polygon, Polygon):
         return solid_json(polygon, name)
     return json_ready({"outer": polygon.vertices, "holes": list(polygon.holes),
                        "units": units, "name": name, "edges": polygon.n_edges,
@@ -119,8 +121,9 @@ def as_part(shape: Any, source: str, units: str) -> Any:
     """The page's part (:func:`page_part`) as :func:`~fcgrasp.planning.plan_document`
     takes it: a solid as it is, an outline as a part read from the page."""
     from ..io.parts import Part
+    from ..model.polygon import Polygon
 
-    if not hasattr(shape, "holes"):
+    if not isinstance(shape, Polygon):
         return shape
     return Part(polygon=shape, source=source, format="explorer", units=units)
 

@@ -21,7 +21,8 @@ from ..spatial.solid import DEMO_SOLIDS, Solid, demo_mesh, demo_solid, solid_fro
 from .limits import Limits
 from .units import FILE_UNITS, UNITS, check_units, conversion
 
-__all__ = ["Body", "read_bodies", "read_solid", "is_solid_source", "MESH_SUFFIXES"]
+__all__ = ["Body", "read_bodies", "default_body", "read_solid", "is_solid_source",
+           "MESH_SUFFIXES"]
 
 #: File suffixes read as meshes (by trimesh).
 MESH_SUFFIXES = (".stl", ".obj", ".ply", ".glb", ".gltf", ".3mf", ".off")
@@ -101,6 +102,12 @@ def _load_mesh(source: str, limits: Limits) -> Any:
     return loaded
 
 
+def default_body(bodies: list[Body]) -> Body:
+    """The body a mesh file is planned on when none is chosen: the largest watertight
+    one (:func:`read_bodies` lists them largest first), else the largest."""
+    return next((b for b in bodies if b.watertight), bodies[0])
+
+
 def read_bodies(source: str, units: str | None = None, file_units: str | None = None,
                 limits: Limits | None = None) -> tuple[list[Body], str, str]:
     """The connected bodies of a mesh file (anything trimesh reads: STL, OBJ, PLY, GLB,
@@ -141,8 +148,7 @@ def read_solid(source: str, units: str | None = None, repair: bool = False,
         return solid_from_mesh(mesh, target, source)
     bodies, target, note = read_bodies(source, units, file_units, limits)
     if select is None:
-        closed = [b for b in bodies if b.watertight] or bodies
-        body = closed[0]
+        body = default_body(bodies)
     else:
         try:
             k = int(select)

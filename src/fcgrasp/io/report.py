@@ -184,7 +184,9 @@ def report_part(report: dict[str, Any]) -> tuple[Any, str]:
 def bodies_report(source: str, bodies: list[Any], units: str, note: str) -> dict[str, Any]:
     """The report of ``fcgrasp parts`` on a mesh: its connected bodies (triangles,
     watertight, volume, bounds) and the default, the largest watertight one."""
-    default = next((b.index for b in bodies if b.watertight), 0)
+    from .meshes import default_body
+
+    default = default_body(bodies).index if bodies else 0
     return {"source": source, "units": units, "units_note": note, "default": default,
             "bodies": [{"index": b.index, "triangles": b.triangles,
                         "watertight": b.watertight, "volume": b.volume,
