@@ -139,10 +139,11 @@ class ParallelJaw(JawParameters):
         if options.rank_by != "min_region":
             raise ValueError(f"a parallel jaw ranks its boxes by their measure: "
                              f"rank_by={options.rank_by!r} would not be used")
-        if isinstance(self.pick, str):
+        pick = self.pick
+        if isinstance(pick, str):
             return []                   # the hand cannot reach the plate (the reason)
-        if isinstance(self.pick, PlaneReach):
-            return plane_plans(polygon, self, self.pick, options.top, options.margin,
+        if isinstance(pick, PlaneReach):
+            return plane_plans(polygon, self, pick, options.top, options.margin,
                                lambda keep, most: jaw_plans(
                                    polygon, self, top=options.top, margin=options.margin,
                                    certify=self.certify, internal=False, keep=keep,
@@ -164,8 +165,9 @@ class ParallelJaw(JawParameters):
         return out
 
     def no_grasp_reason(self, margin: float) -> str:
-        if isinstance(self.pick, str):
-            return self.pick
+        pick = self.pick
+        if isinstance(pick, str):
+            return pick
         return (f"no pose of the jaw holds the part (stroke {self.stroke[0]:g} to "
                 f"{self.stroke[1]:g}, pads {self.pad_width:g} wide, mu = {self.mu:g}, "
                 f"margin {margin:g} degrees)")
