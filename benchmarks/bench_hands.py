@@ -38,7 +38,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import math
 import os
 import subprocess
 import sys
@@ -94,18 +93,23 @@ def hand_hits(m, hand, opening: float, origin, R) -> bool:
     return False
 
 
+def _frame(hand, grasp: dict, height: float, side: int = 0):
+    """The tool frame (origin, axes) of a bare plan's centre pose
+    (:func:`fcgrasp.io.moveit.jaw_tool_pose`: picked from above, or held in the plane on
+    ``side`` of the strip) and the opening between its stops."""
+    from fcgrasp.io.moveit import jaw_tool_pose
+
+    theta, offset = grasp["centre"]
+    stops = (grasp["contacts"]["a"]["stop"], grasp["contacts"]["b"]["stop"])
+    origin, R = jaw_tool_pose(grasp["centroid"], theta, offset, stops, height, side,
+                              sum(hand.pad_span) / 2)
+    return origin, R, abs(stops[0] - stops[1])
+
+
 def collides(m, hand, grasp: dict, height: float) -> bool:
     """The hand at a bare plan's centre pose, picked from above with its tool frame at
     ``height``, against the plate and the table (``m``, :func:`scene`'s)."""
-
-    from fcgrasp.io.moveit import tool_rotation
-
-    theta, offset = grasp["centre"]
-    sa, sb = grasp["contacts"]["a"]["stop"], grasp["contacts"]["b"]["stop"]
-    u = np.array([math.cos(theta), math.sin(theta)])
-    n = np.array([-u[1], u[0]])
-    xy = np.asarray(grasp["centroid"]) + (sa + sb) / 2 * u + offset * n
-    opening = abs(sa - sb)
+    origin, R, opening = _frame(hand, grasp, height)
     if grasp["mode"] == "internal":
         # the pads are the fingers' outer faces: the inner ones are a finger's
         # thickness in from each
@@ -113,27 +117,17 @@ def collides(m, hand, grasp: dict, height: float) -> bool:
         opening -= 2 * thick
         if opening < 0:
             return True                     # the fingers do not fit between the stops
-    R = tool_rotation(np.r_[u, 0.0], [0.0, 0.0, -1.0])
-    return hand_hits(m, hand, opening, np.r_[xy, height], R)
+    return hand_hits(m, hand, opening, origin, R)
 
 
 def plane_collides(m, hand, grasp: dict, side: int, height: float) -> bool:
     """The hand lying in the plate's plane at a plan's centre pose, its palm on ``side``
     of the pads' strip (``+1``: ``+n``) and its tool frame at ``height``, against the
     plate (``m``); an internal grip counts as colliding."""
-
-    from fcgrasp.io.moveit import tool_rotation
-
     if grasp["mode"] == "internal":
         return True
-    theta, offset = grasp["centre"]
-    sa, sb = grasp["contacts"]["a"]["stop"], grasp["contacts"]["b"]["stop"]
-    u = np.array([math.cos(theta), math.sin(theta)])
-    n = np.array([-u[1], u[0]])
-    zc = sum(hand.pad_span) / 2
-    xy = np.asarray(grasp["centroid"]) + (sa + sb) / 2 * u + (offset + side * zc) * n
-    R = tool_rotation(np.r_[u, 0.0], np.r_[-side * n, 0.0])
-    return hand_hits(m, hand, abs(sa - sb), np.r_[xy, height], R)
+    origin, R, opening = _frame(hand, grasp, height, side)
+    return hand_hits(m, hand, opening, origin, R)
 
 
 def rows(parts: list[str], thickness: float, base: list[str], bare_args: list[str],
