@@ -864,3 +864,65 @@ def test_the_jaw_holds_a_flattened_disc(n):
     plans = _check_plans(disc, jaw, np.random.default_rng(n), n=30)
     assert plans and plans[0].certified
     assert plans[0].theta[1] - plans[0].theta[0] > np.radians(30)
+
+
+def _pooled_cases(seed, n_parts, pooled=True, boxes_per_part=6):
+    """Boxes of a few degrees and percent of the part around random holding poses of
+    finely flattened curves and filleted plates, where a pad sweeps many vertices (its
+    candidates pooled, ``_certify.POOLED``), proved by certify_box (half of them grown
+    past the holding set) and each proved box checked at random poses and its corners by
+    the independent model.  Returns (tried, proved, proved only with the pool)."""
+    from fcgrasp.grippers.jaw import _certify, certify_box
+
+    rng = np.random.default_rng(700 + seed)
+    tried = proved = only_pooled = 0
+    for k in range(n_parts):
+        part = (_curved_part, _filleted_plate)[k % 2](rng)
+        jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
+                          pad_width=float(rng.uniform(0.02, 0.2)) * part.size,
+                          mu=float(rng.uniform(0.3, 1.0)))
+        th = rng.uniform(0, 2 * np.pi, 600)
+        c = rng.uniform(-0.5, 0.5, 600) * part.size
+        holds = jaw_poses(part, jaw, th, c, 0.5).holds
+        for j in np.flatnonzero(holds)[:boxes_per_part]:
+            dt = float(rng.uniform(0.005, 0.1))
+            dc = float(rng.uniform(0.005, 0.1)) * part.size
+            box_t = (th[j] - dt * rng.random(), th[j] + dt * rng.random())
+            box_c = (c[j] - dc * rng.random(), c[j] + dc * rng.random())
+            tried += 1
+            _certify.POOLED = pooled
+            try:
+                got = certify_box(part, jaw, box_t, box_c, 0.5, max_boxes=400)
+                _certify.POOLED = False
+                plain = certify_box(part, jaw, box_t, box_c, 0.5, max_boxes=400)
+            finally:
+                _certify.POOLED = True
+            # what the proof of individual candidates proves, the pooled one does too
+            assert plain is None or got is not None, (seed, box_t, box_c)
+            if got is None:
+                continue
+            proved += 1
+            only_pooled += plain is None
+            tt = np.r_[rng.uniform(*box_t, 12), [box_t[a] for a in (0, 0, 1, 1)]]
+            cc = np.r_[rng.uniform(*box_c, 12), [box_c[b] for b in (0, 1, 0, 1)]]
+            for t, x in zip(tt, cc, strict=True):
+                ok, opening = independent_pose(part, jaw, t, x, 0.5)
+                assert ok, (seed, t, x)
+                assert got[0] - 1e-9 * part.size <= opening <= got[1] + 1e-9 * part.size
+    return tried, proved, only_pooled
+
+
+def test_pooled_proofs_hold_on_flattened_curves():
+    """A pad with more than four candidates over a sub-box is proved with them pooled
+    (the box of their points, the arc of their forces): boxes of degrees on curves of
+    hundreds of edges are proved in hundreds of sub-boxes, every sampled pose holding by
+    the independent model, and every box the individual candidates prove is proved."""
+    tried, proved, only_pooled = _pooled_cases(1, 10)
+    assert tried >= 50 and proved >= tried // 3 and only_pooled >= 5, \
+        (tried, proved, only_pooled)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("seed", [0, *range(2, 12)])
+def test_pooled_proofs_hold_on_flattened_curves_slow(seed):
+    _pooled_cases(seed, 10)

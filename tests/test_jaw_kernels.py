@@ -548,3 +548,35 @@ def test_both_outer_pads_in_one_pass_are_each_pad_alone():
                 touching += int(np.sum(want[4] >= 0))
             poses += 1
     assert poses == 2400 and touching > 2000
+
+
+def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves():
+    """On finely flattened curves and filleted plates, where a pad's candidates are
+    pooled over most boxes a few degrees wide, the compiled proof gives numpy's verdict
+    and opening enclosure box for box."""
+    from .test_jaw import _curved_part, _filleted_plate
+
+    rng = np.random.default_rng(17)
+    pooled = proved = 0
+    for k in range(6):
+        part = (_curved_part, _filleted_plate)[k % 2](rng)
+        jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
+                          pad_width=float(rng.uniform(0.02, 0.3)) * part.size,
+                          mu=float(rng.uniform(0.3, 1.0)))
+        beta = float(shrunk_half_angle(jaw.mu, 0.5))
+        ring = _poses._grip_edges(part, None)
+        th, c = _poses_of(rng, part, jaw, 400)
+        w = rng.choice([1e-3, 1e-2, 0.05, 0.2], th.size) * rng.random(th.size)
+        cw = rng.choice([1e-3, 1e-2, 0.1], th.size) * rng.random(th.size) * part.size
+        boxes = np.c_[th, th + w, c, c + cw]
+        ok_ref, lo_ref, hi_ref = _certify._box_proofs_numpy(part, ring, jaw, boxes, beta,
+                                                            None)
+        ok, lo, hi = _certify._box_proofs(part, ring, jaw, boxes, beta, None)
+        assert np.array_equal(ok, ok_ref)
+        np.testing.assert_allclose(lo[ok], lo_ref[ok], rtol=0, atol=1e-9 * part.size)
+        np.testing.assert_allclose(hi[ok], hi_ref[ok], rtol=0, atol=1e-9 * part.size)
+        ca, cb, _ = _certify._pads(part, ring, boxes, jaw.pad_width / 2, None)
+        many = (ca.count > _poses.MAX_CONTACTS) | (cb.count > _poses.MAX_CONTACTS)
+        pooled += int((ok & many).sum())
+        proved += int(ok.sum())
+    assert pooled >= 100 and proved >= 500, (pooled, proved)

@@ -65,6 +65,12 @@ class _Candidates:
     points: FloatArray | None = None
     #: how many candidates (B,), those beyond :data:`MAX_CONTACTS` not listed
     count: np.ndarray | None = None
+    #: all the candidates pooled (:data:`POOLED`): the corners of the box holding
+    #: their points (B, 4, 2) and the arc holding their forces (``pool_centre``,
+    #: ``pool_half`` (B,))
+    pool: FloatArray | None = None
+    pool_centre: FloatArray | None = None
+    pool_half: FloatArray | None = None
 
 
 def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
@@ -184,7 +190,13 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         idx.append(np.broadcast_to(np.arange(m), sel.shape))
     use_all = np.concatenate(use, axis=1)
     count = use_all.sum(axis=1)
-    ok = np.isfinite(lower) & (count >= 1) & (count <= MAX_CONTACTS)
+    ok = np.isfinite(lower) & (count >= 1)
+    if not POOLED:
+        ok &= count <= MAX_CONTACTS
+    pool, pool_centre, pool_half = _pooled(np.concatenate(P0, axis=1),
+                                           np.concatenate(P1, axis=1),
+                                           np.concatenate(cen_f, axis=1),
+                                           np.concatenate(half_f, axis=1), use_all, face)
     # the candidates first, at most MAX_CONTACTS of them
     order = np.argsort(~use_all, axis=1, kind="stable")[:, :MAX_CONTACTS]
     r = np.arange(B)[:, None]
@@ -193,7 +205,42 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
         return np.concatenate(parts, axis=1)[r, order]
 
     return _Candidates(pick(P0), pick(P1), pick(cen_f), pick(half_f), use_all[r, order],
-                       lower, high, ok, pick(kinds), pick(idx), uniq, count)
+                       lower, high, ok, pick(kinds), pick(idx), uniq, count, pool,
+                       pool_centre, pool_half)
+
+
+#: Whether a pad with more than :data:`MAX_CONTACTS` candidates over a box is proved
+#: with its candidates pooled (:func:`_pooled`: any of the points with any of the
+#: forces), rather than left unproved: on a finely flattened curve a box of poses
+#: sweeps many vertices under each pad, and the proof would otherwise cut it until
+#: each pad has at most four (a smooth 1,000-edge outline at mu 1.0: 100,000 sub-boxes
+#: for a box of 55 degrees).  False: the proof of individual candidates alone, the
+#: reference (wherever it proves a box, the pooled proof does too: a pad with at most
+#: four candidates is read the same way).
+POOLED = True
+
+
+def _pooled(p0: FloatArray, p1: FloatArray, centre: FloatArray, half: FloatArray,
+            use: np.ndarray, face: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
+    """The candidates ``use`` (B, N) of each box pooled into one: the corners (B, 4, 2)
+    of the axis-aligned box holding their segments ``p0``-``p1`` (B, N, 2), and the
+    arc ``(centre, half)`` (B,) holding their forces' arcs, measured from the pad's face
+    ``face`` (B,) (an arc across the face's opposite direction reads as nearly a whole
+    turn, which no pair test passes: sound, and the forces a pad exerts all point
+    within about a quarter turn of its face).  No candidate: NaN."""
+    inf = np.where(use[..., None], 0.0, np.inf)
+    lo = np.minimum(p0, p1) + inf
+    hi = np.maximum(p0, p1) - inf
+    x_lo, y_lo = lo[..., 0].min(axis=1), lo[..., 1].min(axis=1)
+    x_hi, y_hi = hi[..., 0].max(axis=1), hi[..., 1].max(axis=1)
+    corners = np.stack([np.stack([x_lo, y_lo], 1), np.stack([x_hi, y_lo], 1),
+                        np.stack([x_lo, y_hi], 1), np.stack([x_hi, y_hi], 1)], axis=1)
+    rel = wrap(centre - face[:, None])
+    a_lo = np.where(use, rel - half, np.inf).min(axis=1)
+    a_hi = np.where(use, rel + half, -np.inf).max(axis=1)
+    with np.errstate(invalid="ignore"):
+        return (np.where(use.any(axis=1)[:, None, None], corners, np.nan),
+                face + (a_lo + a_hi) / 2, (a_hi - a_lo) / 2)
 
 
 def _dominated(uniq: FloatArray, inv: np.ndarray, always: np.ndarray, y_lo: FloatArray,
@@ -224,28 +271,39 @@ def _dominated(uniq: FloatArray, inv: np.ndarray, always: np.ndarray, y_lo: Floa
     return test
 
 
+def _items(c: _Candidates) -> list[tuple[FloatArray, FloatArray, FloatArray, np.ndarray]]:
+    """A pad's candidates as the pair test reads them, each ``(corners (B, k, 2), force
+    arc's centre, half (B,), valid (B,))``: its listed candidates (the two ends of each
+    segment) where it has at most :data:`MAX_CONTACTS`, else their pool
+    (:func:`_pooled`)."""
+    many = c.count > MAX_CONTACTS if c.count is not None else np.zeros(len(c.lo), bool)
+    out = [(np.stack([c.p0[:, i], c.p1[:, i]], axis=1), c.centre[:, i], c.half[:, i],
+            c.valid[:, i] & ~many) for i in range(c.valid.shape[1])]
+    if POOLED and c.pool is not None:
+        out.append((c.pool, c.pool_centre, c.pool_half, many))
+    return out
+
+
 def _pairs_hold(ca: _Candidates, cb: _Candidates, beta: float, expand: bool) -> np.ndarray:
     """Per box: every pair of candidate contacts is force closure at every pose of it
     (theorem 6.3: the segment joining the contacts lies strictly inside both friction
     cones, with the directions of both ranging over arcs; squeezing for an external grip,
     expanding inside a hole).  The directions of a pair's chords are the smallest arc
-    holding its four corner chords (the chords of two segments form a convex set); none
-    when the set may hold the origin."""
+    holding the differences of their corners (the chords of two convex sets form a
+    convex set, the hull of those differences); none when the set may hold the origin.
+    A pad with more than :data:`MAX_CONTACTS` candidates is read as their pool."""
     turn = np.pi if expand else 0.0
     holds = np.ones(len(ca.lo), dtype=bool)
-    for i in range(ca.valid.shape[1]):
-        for j in range(cb.valid.shape[1]):
-            corners = np.stack([cb.p0[:, j] - ca.p0[:, i], cb.p0[:, j] - ca.p1[:, i],
-                                cb.p1[:, j] - ca.p0[:, i], cb.p1[:, j] - ca.p1[:, i]],
-                               axis=1)                                         # (B, 4, 2)
-            d, hd, no_arc = _arc_of(corners)
-            # squeezing, A's force is within beta of every direction A -> B and B's of
-            # B -> A; expanding, of the opposite directions
-            fail = (no_arc
-                    | (np.abs(wrap(d + turn - ca.centre[:, i])) + hd + ca.half[:, i] >= beta)
-                    | (np.abs(wrap(d + np.pi + turn - cb.centre[:, j])) + hd
-                       + cb.half[:, j] >= beta))
-            holds &= ~(ca.valid[:, i] & cb.valid[:, j] & fail)
+    for pa, ca_c, ca_h, va in _items(ca):
+        for pb, cb_c, cb_h, vb in _items(cb):
+            corners = (pb[:, None, :, :] - pa[:, :, None, :]).reshape(len(pa), -1, 2)
+            with np.errstate(invalid="ignore"):
+                d, hd, no_arc = _arc_of(corners)
+                # squeezing, A's force is within beta of every direction A -> B and B's
+                # of B -> A; expanding, of the opposite directions
+                fail = (no_arc | (np.abs(wrap(d + turn - ca_c)) + hd + ca_h >= beta)
+                        | (np.abs(wrap(d + np.pi + turn - cb_c)) + hd + cb_h >= beta))
+            holds &= ~(va & vb & fail)
     return holds
 
 
@@ -325,7 +383,7 @@ def _box_proofs(polygon: Polygon, ring: np.ndarray, jaw: JawParameters, boxes: F
     if _kernels.available():
         out = _kernels.prove(boxes, *_edges(polygon, ring), jaw.pad_width / 2,
                              CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
-                             jaw.stroke)
+                             jaw.stroke, POOLED)
         if out is not None:
             return out
     return _box_proofs_numpy(polygon, ring, jaw, boxes, beta, q)
@@ -408,7 +466,7 @@ def certify_box(polygon: Polygon, jaw: JawParameters, theta: Any, offset: Any,
     if _kernels.available():
         found = _kernels.certify(todo, *_edges(polygon, ring), jaw.pad_width / 2,
                                  CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
-                                 jaw.stroke, max_boxes, radius,
+                                 jaw.stroke, POOLED, max_boxes, radius,
                                  NEAR_STRIP * CONTACT_TOL * polygon.size, ROUND_TOL)
         if found is not None:
             return (found[1], found[2]) if found[0] else None

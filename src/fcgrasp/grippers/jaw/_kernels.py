@@ -31,10 +31,12 @@ from ._pose_kernels import (
     _pose_one,
 )
 from ._proof_kernels import (
-    _arc_holds,
+    _as_corners,
     _below,
+    _corners_hold,
     _nan_max,
     _nan_min,
+    _pool_add,
     _range,
     _sin_range,
     _vrange,
@@ -120,7 +122,7 @@ def box_scores(H: Any, dth: float, dc: float, radius: float, max_rows: int
 
 def _proof_args(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
                 zero: float, contact_tol: float, tol: float, q: Any, beta: float,
-                stroke: tuple[float, float]) -> tuple[Any, ...]:
+                stroke: tuple[float, float], pooled: bool) -> tuple[Any, ...]:
     """The arguments :func:`_prove_loop` and :func:`_certify_loop` begin with, typed."""
     def floats(x: Any) -> Any:
         return np.ascontiguousarray(x, dtype=float)
@@ -129,18 +131,18 @@ def _proof_args(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half:
     return (floats(boxes), floats(a), floats(b), floats(nrm), floats(uniq),
             np.ascontiguousarray(inv, dtype=np.int64), float(half), float(zero),
             float(contact_tol), float(tol), q is not None, qq, float(beta),
-            float(stroke[0]), float(stroke[1]))
+            float(stroke[0]), float(stroke[1]), bool(pooled))
 
 
 def prove(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
           zero: float, contact_tol: float, tol: float, q: Any, beta: float,
-          stroke: tuple[float, float]) -> tuple[Any, Any, Any] | None:
+          stroke: tuple[float, float], pooled: bool) -> tuple[Any, Any, Any] | None:
     """The proofs of a batch of boxes (``_certify._box_proofs_numpy``): ``(proved,
     o_lo, o_hi)``, compiled; None when the loop cannot run."""
     B = boxes.shape[0]
     proved, o_lo, o_hi = np.zeros(B, bool), np.empty(B), np.empty(B)
     if not _run("_prove_loop", *_proof_args(boxes, a, b, nrm, uniq, inv, half, zero,
-                                            contact_tol, tol, q, beta, stroke),
+                                            contact_tol, tol, q, beta, stroke, pooled),
                 proved, o_lo, o_hi):
         return None
     return proved, o_lo, o_hi
@@ -181,7 +183,8 @@ def slices(cell_t: Any, cell_lo: Any, cell_hi: Any, th: Any, a: Any, b: Any, f: 
 #: view: compiled without reference counts (:func:`~fcgrasp.core.jit.njit_all`).
 _BORROWING = (_features, _pad_loop, _outer_pads, _hole_sides, _inside_ring, _pose_at,
               _pose_one, _sin_range, _range, _wrap_positive, _vrange, _nan_min, _nan_max,
-              _below, _arc_holds, _kind, _affine3, _affine, _quantities, _kink, _stop_reach)
+              _below, _corners_hold, _as_corners, _pool_add, _kind, _affine3, _affine,
+              _quantities, _kink, _stop_reach)
 
 _LOOPS = CompiledLoops.of_modules((_pose_kernels, _proof_kernels, _slice_kernels),
                                    borrowing=_BORROWING)
@@ -204,14 +207,14 @@ def available() -> bool:
 
 def certify(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
             zero: float, contact_tol: float, tol: float, q: Any, beta: float,
-            stroke: tuple[float, float], max_boxes: int, radius: float, near: float,
-            round_tol: float) -> tuple[bool, float, float, int] | None:
+            stroke: tuple[float, float], pooled: bool, max_boxes: int, radius: float,
+            near: float, round_tol: float) -> tuple[bool, float, float, int] | None:
     """``_certify.certify_box``'s subdivision from the boxes ``boxes`` (B, 4), compiled
     (:func:`_certify_loop`): ``(proved, lo, hi, boxes examined)``; None when the loop
     cannot run."""
     out = np.zeros(4)
     if not _run("_certify_loop", *_proof_args(boxes, a, b, nrm, uniq, inv, half, zero,
-                                              contact_tol, tol, q, beta, stroke),
+                                              contact_tol, tol, q, beta, stroke, pooled),
                 int(max_boxes), float(radius), float(near), float(round_tol), out):
         return None
     return bool(out[0]), float(out[1]), float(out[2]), int(out[3])

@@ -82,7 +82,8 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
                 uniq: Any, inv: Any, sign: float, internal: bool, ahead: Any, half: float,
                 zero: float, contact_tol: float, ys: Any, xs: Any, dxr: Any, dy: Any,
                 fn: Any, ranges: Any, vmask: Any, touched: Any, facing: Any, p0: Any,
-                p1: Any, centre: Any, hw: Any, x_known: bool) -> tuple[float, float, int]:
+                p1: Any, centre: Any, hw: Any, x_known: bool, pool: Any
+                ) -> tuple[float, float, int]:
     """``_certify._pad_candidates`` for one box ``(t0, t1, c0, c1)`` (``trig``: the
     cosines and sines of its ends) over the edges ``ids[:n]`` (increasing; every edge
     that may meet the strip over the box among them): the first :data:`K_MAX` candidate
@@ -95,7 +96,9 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
     pad's facing is read from.  ``ranges`` (2m, 4): the ends' lateral and height
     ranges over the box, the lateral ones already there with ``x_known`` (the same for
     both pads);  ``vmask`` (U,; all False, left so), ``touched`` (2m,), ``facing``
-    (m, 2): scratch."""
+    (m, 2): scratch.  ``pool`` (6,): every candidate pooled (``_certify._pooled``),
+    the box of their points ``(x_lo, x_hi, y_lo, y_hi)`` and the arc of their forces
+    from the pad's face ``(lo, hi)``."""
     t0, t1, c0, c1 = box[0], box[1], box[2], box[3]
     m = a.shape[0]
     lower = -np.inf
@@ -161,8 +164,12 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
                 high = _nan_max(high, ranges[idx, 3])
     count = 0
     face = (t0 + t1) / 2 + (0.0 if sign < 0 else math.pi)
+    pool[0], pool[1], pool[2], pool[3] = np.inf, -np.inf, np.inf, -np.inf
+    pool[4], pool[5] = np.inf, -np.inf
     for u in np.sort(touched[:n_touched]):
         vmask[u] = False
+        _pool_add(pool, uniq[u, 0], uniq[u, 1], uniq[u, 0], uniq[u, 1], 0.0,
+                  (t1 - t0) / 2)
         if count < K_MAX:
             p0[count, 0], p0[count, 1] = uniq[u, 0], uniq[u, 1]
             p1[count, 0], p1[count, 1] = uniq[u, 0], uniq[u, 1]
@@ -214,12 +221,29 @@ def _candidates(box: Any, trig: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any,
                     and _below(uniq, w_u, x1, y1, sign, t0, t1, 2 * zero):
                 continue
             high = _nan_max(high, hh)
+            force = math.atan2(-nrm[e, 1], -nrm[e, 0])
+            _pool_add(pool, x0, y0, x1, y1, (force - face + math.pi) % _TWO_PI - math.pi, 0.0)
             if count < K_MAX:
                 p0[count, 0], p0[count, 1] = x0, y0
                 p1[count, 0], p1[count, 1] = x1, y1
-                centre[count], hw[count] = math.atan2(-nrm[e, 1], -nrm[e, 0]), 0.0
+                centre[count], hw[count] = force, 0.0
             count += 1
+    # (the pool's arc from the face, as an absolute centre and half-width)
+    lo, hi = pool[4], pool[5]
+    pool[4], pool[5] = face + (lo + hi) / 2, (hi - lo) / 2
     return lower, high, count
+
+
+def _pool_add(pool: Any, x0: float, y0: float, x1: float, y1: float, rel: float,
+              half: float) -> None:
+    """Add the segment ``(x0, y0)-(x1, y1)`` and the force arc ``rel +- half`` (from the
+    pad's face) to the pool of :func:`_candidates`."""
+    pool[0] = min(pool[0], x0, x1)
+    pool[1] = max(pool[1], x0, x1)
+    pool[2] = min(pool[2], y0, y1)
+    pool[3] = max(pool[3], y0, y1)
+    pool[4] = min(pool[4], rel - half)
+    pool[5] = max(pool[5], rel + half)
 
 
 def _below(uniq: Any, w: int, px: float, py: float, sign: float, t0: float, t1: float,
@@ -232,18 +256,21 @@ def _below(uniq: Any, w: int, px: float, py: float, sign: float, t0: float, t1: 
     return d_lo > gap
 
 
-def _arc_holds(ax: float, ay: float, bx: float, by: float, cx: float, cy: float,
-               dx: float, dy: float, turn: float, ca: float, ha: float, cb: float,
-               hb: float, beta: float, tol: float) -> bool:
-    """``_certify._pairs_hold`` for one pair: the smallest arc holding the four corner
-    chords (``_arc_of``), each force within ``beta`` of every chord's direction."""
-    a0 = math.atan2(ay, ax)
+def _corners_hold(pa: Any, na: int, pb: Any, nb: int, turn: float, ca: float, ha: float,
+                  cb: float, hb: float, beta: float, tol: float) -> bool:
+    """``_certify._pairs_hold`` for one pair of candidates (or pools), given by the
+    corners of their convex point sets ``pa[:na]``, ``pb[:nb]``: the smallest arc
+    holding the differences of the corners (``_arc_of``; the first, ``pb[0] - pa[0]``,
+    its reference), each force within ``beta`` of every chord's direction."""
+    a0 = math.atan2(pb[0, 1] - pa[0, 1], pb[0, 0] - pa[0, 0])
     lo, hi = 0.0, 0.0
-    shortest = math.hypot(ax, ay)
-    for vx, vy in ((bx, by), (cx, cy), (dx, dy)):
-        rel = (math.atan2(vy, vx) - a0 + math.pi) % _TWO_PI - math.pi
-        lo, hi = min(lo, rel), max(hi, rel)
-        shortest = min(shortest, math.hypot(vx, vy))
+    shortest = np.inf
+    for i in range(na):
+        for j in range(nb):
+            vx, vy = pb[j, 0] - pa[i, 0], pb[j, 1] - pa[i, 1]
+            rel = (math.atan2(vy, vx) - a0 + math.pi) % _TWO_PI - math.pi
+            lo, hi = min(lo, rel), max(hi, rel)
+            shortest = min(shortest, math.hypot(vx, vy))
     if hi - lo >= math.pi - tol or shortest <= 0:
         return False
     d, hd = a0 + (lo + hi) / 2, (hi - lo) / 2
@@ -252,12 +279,26 @@ def _arc_holds(ax: float, ay: float, bx: float, by: float, cx: float, cy: float,
     return abs((d + math.pi + turn - cb + math.pi) % _TWO_PI - math.pi) + hd + hb < beta
 
 
+def _as_corners(out: Any, k: int, p0: Any, p1: Any, pool: Any) -> int:
+    """The corners of candidate ``k`` (its segment's two ends) into ``out``, or, with
+    ``k`` -1, of the pool's box (four): how many."""
+    if k >= 0:
+        out[0, 0], out[0, 1] = p0[k, 0], p0[k, 1]
+        out[1, 0], out[1, 1] = p1[k, 0], p1[k, 1]
+        return 2
+    out[0, 0], out[0, 1] = pool[0], pool[2]
+    out[1, 0], out[1, 1] = pool[1], pool[2]
+    out[2, 0], out[2, 1] = pool[0], pool[3]
+    out[3, 0], out[3, 1] = pool[1], pool[3]
+    return 4
+
+
 class _Tables:
     """(Documentation only: what :func:`_tables` returns, in order.)  The polar tables of
     the fixed vectors (:func:`_polar`): the ends' heights for pads A and B, their
     lateral positions, the edges' directions (lateral, and heights per pad), the normals
     each pad's facing is read from; then the scratch of :func:`_candidates` and
-    :func:`_prove_box`."""
+    :func:`_prove_box` (the pads' pools and their corners last)."""
 
 
 def _tables(a: Any, b: Any, nrm: Any, uniq: Any, internal: bool) -> Any:
@@ -281,19 +322,20 @@ def _tables(a: Any, b: Any, nrm: Any, uniq: Any, internal: bool) -> Any:
             np.zeros(uniq.shape[0], dtype=np.bool_), np.empty(2 * m, dtype=np.int64),
             np.empty((m, 2), dtype=np.bool_), np.ones(m, dtype=np.bool_),
             np.ones(m, dtype=np.bool_), np.empty(4), np.zeros((4, K_MAX, 2)),
-            np.zeros((4, K_MAX)))
+            np.zeros((4, K_MAX)), np.empty((2, 6)), np.empty((2, 4, 2)))
 
 
 def _prove_box(box: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any, uniq: Any,
                inv: Any, half: float, zero: float, contact_tol: float, tol: float,
                internal: bool, q: Any, beta: float, stroke0: float, stroke1: float,
-               tables: Any, x_known: bool) -> tuple[bool, float, float]:
+               tables: Any, x_known: bool, pooled: bool) -> tuple[bool, float, float]:
     """``_certify._box_proofs_numpy`` for one box over the edges ``ids[:n]``: whether it
-    is proved (both pads' candidates few, the opening's enclosure within the stroke,
-    every pair of candidates force closure over the box; inside a hole, the closed
-    jaws' segment free; the centre pose is the caller's) and that enclosure."""
+    is proved (both pads' candidates few, or ``pooled``, the opening's enclosure within
+    the stroke, every pair of candidates force closure over the box, a pad with more
+    than :data:`K_MAX` read as their pool; inside a hole, the closed jaws' segment free;
+    the centre pose is the caller's) and that enclosure."""
     (ys_a, ys_b, xs, dxr, dy_a, dy_b, fn_a, fn_b, ranges, vmask, touched, facing, up,
-     down, trig, pts, arcs) = tables
+     down, trig, pts, arcs, pools, corners) = tables
     m = a.shape[0]
     sa, sb = (-1.0, 1.0) if internal else (1.0, -1.0)
     t0, t1, c0, c1 = box[0], box[1], box[2], box[3]
@@ -317,40 +359,50 @@ def _prove_box(box: Any, ids: Any, n: int, a: Any, b: Any, nrm: Any, uniq: Any,
     ca, ha, cb, hb = arcs[0], arcs[1], arcs[2], arcs[3]
     lo_a, hi_a, n_a = _candidates(box, trig, ids, n, a, b, nrm, uniq, inv, sa, internal,
                                   up, half, zero, contact_tol, ys_a, xs, dxr, dy_a, fn_a,
-                                  ranges, vmask, touched, facing, pa0, pa1, ca, ha, x_known)
+                                  ranges, vmask, touched, facing, pa0, pa1, ca, ha, x_known,
+                                  pools[0])
     lo_b, hi_b, n_b = _candidates(box, trig, ids, n, a, b, nrm, uniq, inv, sb, internal,
                                   down, half, zero, contact_tol, ys_b, xs, dxr, dy_b, fn_b,
-                                  ranges, vmask, touched, facing, pb0, pb1, cb, hb, True)
-    ok = free and lo_a > -np.inf and 1 <= n_a <= K_MAX and lo_b > -np.inf \
-        and 1 <= n_b <= K_MAX
+                                  ranges, vmask, touched, facing, pb0, pb1, cb, hb, True,
+                                  pools[1])
+    ok = free and lo_a > -np.inf and n_a >= 1 and lo_b > -np.inf and n_b >= 1 \
+        and (pooled or (n_a <= K_MAX and n_b <= K_MAX))
     al, ah = _nan_min(sa * lo_a, sa * hi_a), _nan_max(sa * lo_a, sa * hi_a)
     bl, bh = _nan_min(sb * lo_b, sb * hi_b), _nan_max(sb * lo_b, sb * hi_b)
     o_lo, o_hi = al - bh, ah - bl
     ok = ok and stroke0 <= o_lo and o_hi <= stroke1
     turn = math.pi if internal else 0.0
-    for i in range(n_a if ok else 0):
-        for j in range(n_b):
-            if not _arc_holds(pb0[j, 0] - pa0[i, 0], pb0[j, 1] - pa0[i, 1],
-                              pb0[j, 0] - pa1[i, 0], pb0[j, 1] - pa1[i, 1],
-                              pb1[j, 0] - pa0[i, 0], pb1[j, 1] - pa0[i, 1],
-                              pb1[j, 0] - pa1[i, 0], pb1[j, 1] - pa1[i, 1], turn,
-                              ca[i], ha[i], cb[j], hb[j], beta, tol):
+    # each pad's items: its candidates, or -1 for their pool
+    items_a = n_a if n_a <= K_MAX else 1
+    items_b = n_b if n_b <= K_MAX else 1
+    for i in range(items_a if ok else 0):
+        ia = i if n_a <= K_MAX else -1
+        k_a = _as_corners(corners[0], ia, pa0, pa1, pools[0])
+        c_a, h_a = (ca[i], ha[i]) if ia >= 0 else (pools[0, 4], pools[0, 5])
+        for j in range(items_b):
+            jb = j if n_b <= K_MAX else -1
+            k_b = _as_corners(corners[1], jb, pb0, pb1, pools[1])
+            c_b, h_b = (cb[j], hb[j]) if jb >= 0 else (pools[1, 4], pools[1, 5])
+            if not _corners_hold(corners[0], k_a, corners[1], k_b, turn, c_a, h_a, c_b,
+                                 h_b, beta, tol):
                 ok = False
                 break
+        if not ok:
+            break
     return ok, o_lo, o_hi
 
 
 def _prove_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
                 zero: float, contact_tol: float, tol: float, internal: bool, q: Any,
-                beta: float, stroke0: float, stroke1: float, proved: Any, o_lo: Any,
-                o_hi: Any) -> None:
+                beta: float, stroke0: float, stroke1: float, pooled: bool, proved: Any,
+                o_lo: Any, o_hi: Any) -> None:
     """:func:`_prove_box` for each box of a batch, over every edge."""
     tables = _tables(a, b, nrm, uniq, internal)
     ids = np.arange(a.shape[0])
     for k in range(boxes.shape[0]):
         proved[k], o_lo[k], o_hi[k] = _prove_box(
             boxes[k], ids, ids.shape[0], a, b, nrm, uniq, inv, half, zero, contact_tol, tol,
-            internal, q, beta, stroke0, stroke1, tables, False)
+            internal, q, beta, stroke0, stroke1, tables, False, pooled)
 
 
 #: Levels of halving the depth-first proof goes to (a box halved this often is below
@@ -360,7 +412,7 @@ MAX_DEPTH = 120
 
 def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, half: float,
                   zero: float, contact_tol: float, tol: float, internal: bool, q: Any,
-                  beta: float, stroke0: float, stroke1: float, max_boxes: int,
+                  beta: float, stroke0: float, stroke1: float, pooled: bool, max_boxes: int,
                   radius: float, near: float, round_tol: float, out: Any) -> None:
     """``_certify.certify_box``'s subdivision, depth first: each box is proved
     (:func:`_prove_box`) or its centre pose is decided (:func:`_pose_one`: a failing
@@ -418,7 +470,7 @@ def _certify_loop(boxes: Any, a: Any, b: Any, nrm: Any, uniq: Any, inv: Any, hal
         ids = lists[depth]
         ok, o_lo, o_hi = _prove_box(box, ids, n, a, b, nrm, uniq, inv, half, zero,
                                     contact_tol, tol, internal, q, beta, stroke0, stroke1,
-                                    tables, True)
+                                    tables, True, pooled)
         if internal or not ok:
             for k in range(n):
                 e = ids[k]
