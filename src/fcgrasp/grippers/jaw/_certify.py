@@ -239,7 +239,7 @@ def _pooled(p0: FloatArray, p1: FloatArray, centre: FloatArray, half: FloatArray
     a_lo = np.where(use, rel - half, np.inf).min(axis=1)
     a_hi = np.where(use, rel + half, -np.inf).max(axis=1)
     with np.errstate(invalid="ignore"):
-        return (np.where(use.any(axis=1)[:, None, None], corners, np.nan),
+        return (np.where(np.any(use, axis=1)[:, None, None], corners, np.nan),
                 face + (a_lo + a_hi) / 2, (a_hi - a_lo) / 2)
 
 
@@ -276,10 +276,13 @@ def _items(c: _Candidates) -> list[tuple[FloatArray, FloatArray, FloatArray, np.
     arc's centre, half (B,), valid (B,))``: its listed candidates (the two ends of each
     segment) where it has at most :data:`MAX_CONTACTS`, else their pool
     (:func:`_pooled`)."""
-    many = c.count > MAX_CONTACTS if c.count is not None else np.zeros(len(c.lo), bool)
-    out = [(np.stack([c.p0[:, i], c.p1[:, i]], axis=1), c.centre[:, i], c.half[:, i],
+    many = np.asarray(c.count > MAX_CONTACTS) if c.count is not None \
+        else np.zeros(len(c.lo), bool)
+    out: list[tuple[FloatArray, FloatArray, FloatArray, np.ndarray]] = [
+        (np.stack([c.p0[:, i], c.p1[:, i]], axis=1), c.centre[:, i], c.half[:, i],
             c.valid[:, i] & ~many) for i in range(c.valid.shape[1])]
-    if POOLED and c.pool is not None:
+    if POOLED and c.pool is not None and c.pool_centre is not None \
+            and c.pool_half is not None:
         out.append((c.pool, c.pool_centre, c.pool_half, many))
     return out
 
