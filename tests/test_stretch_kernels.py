@@ -1036,3 +1036,42 @@ def test_a_collection_passing_over_copies_in_runs_is_the_one_read_start_by_start
             every = _stretch_kernels.windows(*args, gallop=False)
             passed += every[1].size - each[1].size
     assert passed > 0
+
+
+@pytest.mark.parametrize("third", [False, True])
+def test_thresholds_kept_across_rounds_are_each_rounds_own(third):
+    """The rounds of one collection keep each configuration's threshold of the kept
+    plans (``_Exclusion.thresholds``) and read only the plans kept since: round after
+    round (one, two, then four plans kept, then a list that is not the earlier one
+    continued, which starts again), on random subsets of a job's configurations, the
+    thresholds are those the round's own exclusion computes from scratch."""
+    from types import SimpleNamespace
+
+    from fcgrasp.model import stretches
+    from fcgrasp.model._stretch_windows import _Configs
+
+    poly = fc.read_part("demo:cam")
+    rng = np.random.default_rng(31 + third)
+    plans = fc.plan(poly, fingers=3 if third else 2, mu=0.4, top=6)
+    kept = [(p.regions, p.region_edges) for p in plans]
+    rings = _rings(poly)
+    beta = np.arctan(0.4) - np.radians(2.0)
+    ivs = {(a, b, 1.0): _Intervals(rings[a], rings[b], 1.0, beta)
+           for a in range(len(rings)) for b in range(len(rings))}
+    where = stretches._positions(rings)
+    (x, pa), (y, pc) = (where[int(e[0])] for e in kept[0][1][:2])
+    n, k = 3000, 40
+    cfg = _Configs(pa + rng.integers(-k, k, n) + rings[x].m, rng.integers(0, k, n),
+                   pc + rng.integers(-k, k, n) + rings[y].m, rng.integers(0, k, n))
+    J = SimpleNamespace(cfg=cfg, taus=None)
+    job = (x, y, 1.0, "squeeze")
+    finite = 0
+    for upto in ([0], [0, 1], [0, 1, 2, 3], [1, 2], [1, 2, 4, 5]):
+        excl = stretches._Exclusion(rings, poly, [kept[i] for i in upto], 0.5, third=third)
+        for _ in range(2):
+            idx = np.sort(rng.choice(n, n // 2, replace=False))
+            got = excl.thresholds(rings, job, J, idx, ivs)
+            want = excl.threshold(rings, job, cfg.take(idx), ivs)
+            np.testing.assert_array_equal(got, want)
+            finite += int(np.isfinite(want).sum())
+    assert finite > 1000, finite

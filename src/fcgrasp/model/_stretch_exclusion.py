@@ -222,18 +222,19 @@ class _Exclusion:
         out |= work
         return True
 
-    def _arcs(self, x: int, y: int) -> tuple[FloatArray, ...] | None:
+    def _arcs(self, x: int, y: int, start: int = 0) -> tuple[FloatArray, ...] | None:
         """The kept plans' arcs on rings ``x`` (first region) and ``y`` (second), each
         plan both ways round: ``ax0, ax1, ay0, ay1``, one column per plan; with
         ``third``, one column per ordered pair of a plan's regions, then the remaining
-        region's ring and arc: ``ax0, ax1, ay0, ay1, ring, k0, k1``."""
-        got = self._by_rings.get((x, y))
+        region's ring and arc: ``ax0, ax1, ay0, ay1, ring, k0, k1``.  ``start``: the
+        plans from that one on."""
+        got = self._by_rings.get((x, y, start))
         if got is None:
             cols = [(a[i][1], a[i][2], a[j][1], a[j][2],
                      *(a[3 - i - j] if len(a) == 3 else ()))
-                    for a in self.plans for i in range(len(a)) for j in range(len(a))
+                    for a in self.plans[start:] for i in range(len(a)) for j in range(len(a))
                     if i != j and a[i][0] == x and a[j][0] == y]
-            got = self._by_rings[x, y] = tuple(
+            got = self._by_rings[x, y, start] = tuple(
                 np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
         return got or None
 
@@ -341,13 +342,57 @@ class _Exclusion:
         min(t, partner's length)`` less the tolerance: for ``t`` above ``(outside +
         tol) / (1 - fraction)`` on both sides, where each partner is longer than that.
         A configuration already read holds at any ``t > 0``."""
+        out = self._seen_threshold(rings, job, cfg)
+        return np.minimum(out, self._plans_threshold(rings, job, cfg, intervals, 0))
+
+    def thresholds(self, rings: list[_Ring], job: tuple[int, int, float, str], J: Any,
+                   idx: np.ndarray, intervals: dict[Any, _Intervals]) -> FloatArray:
+        """:meth:`threshold` of the configurations ``idx`` of the collected job ``J``
+        (:class:`~fcgrasp.model._stretch_solve._Job`), the same numbers: the kept plans'
+        part of each is kept on ``J`` with the plans it covers, and a later round (whose
+        kept plans begin with those) reads only the plans kept since.  The rounds of
+        one collection threshold its unsolved configurations again and again
+        (``icons/message-circle.svg``, three fingers: 3.6 million rows, 341,000
+        configurations)."""
+        cfg = J.cfg.take(idx)
+        out = self._seen_threshold(rings, job, cfg)
+        key = (self.fraction, self.tol)
+        taus = J.taus
+        if taus is None or taus[0] != key or \
+                [tuple(p) for p in self.plans[:len(taus[1])]] != taus[1]:
+            taus = J.taus = (key, [], np.full(len(J.cfg.iA), np.inf),
+                             np.zeros(len(J.cfg.iA), np.int64))
+        _, plans, value, covered = taus
+        while len(plans) < len(self.plans):
+            plans.append(tuple(self.plans[len(plans)]))
+        every = len(plans)
+        for start in np.unique(covered[idx]):
+            if start == every:
+                continue
+            rows = idx[covered[idx] == start]
+            value[rows] = np.minimum(value[rows], self._plans_threshold(
+                rings, job, J.cfg.take(rows), intervals, int(start)))
+            covered[rows] = every
+        return np.minimum(out, value[idx])
+
+    def _seen_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                        cfg: _Configs) -> FloatArray:
+        """:meth:`threshold`'s part of the plans already read: 0 for each of them."""
         x, y = job[0], job[1]
         out = np.full(len(cfg.iA), np.inf)
         known = self.seen.get((x, y, job[3]))
         if known is not None:
             out[_member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)] = 0.0
+        return out
+
+    def _plans_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                         cfg: _Configs, intervals: dict[Any, _Intervals], start: int
+                         ) -> FloatArray:
+        """:meth:`threshold`'s part of the kept plans from ``start`` on."""
+        x, y = job[0], job[1]
+        out = np.full(len(cfg.iA), np.inf)
         keep = 1 - self.fraction
-        arcs = self._arcs(x, y)
+        arcs = self._arcs(x, y, start)
         if keep <= 0 or arcs is None or not len(out):
             return out
         mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)

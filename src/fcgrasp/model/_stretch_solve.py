@@ -120,6 +120,9 @@ class _Job:
     below: FloatArray
     #: each configuration's cap (:func:`_solve_jobs`' ``cap``), NaN until read
     caps: FloatArray | None = None
+    #: the kept plans' thresholds of each configuration (:meth:`_Exclusion.thresholds`,
+    #: which the rounds of one collection share)
+    taus: Any = None
 
 
 _KEY = np.dtype([("iA", np.int64), ("kA", np.int64), ("iC", np.int64), ("kC", np.int64)])
@@ -429,7 +432,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 # a kept plan's copies: a plan only below their threshold, so they
                 # wait for it (most never reach the floor)
                 fresh = np.isnan(J.t[chunk])
-                tau = exclude.threshold(rings, job, cfg.take(chunk[fresh]), intervals)
+                tau = exclude.thresholds(rings, job, J, chunk[fresh], intervals)
                 later = np.zeros(chunk.size, bool)
                 later[fresh] = tau * (1 + DEFER_PAD) < box[chunk[fresh]]
                 if later.any():
