@@ -83,7 +83,7 @@ class _Exclusion:
         self.fraction = float(fraction)
         self.tol = ROUND_TOL * polygon.size
         self.plans: list[list[tuple[int, float, float]]] = []
-        self._by_rings: dict[tuple[int, int], tuple[FloatArray, ...]] = {}
+        self._by_rings: dict[tuple[int, int, int], tuple[FloatArray, ...]] = {}
         for regions, region_edges in kept:
             arcs: list[tuple[int, float, float]] = []
             for pts, edges in zip(regions, region_edges, strict=True):
@@ -373,7 +373,8 @@ class _Exclusion:
             value[rows] = np.minimum(value[rows], self._plans_threshold(
                 rings, job, J.cfg.take(rows), intervals, int(start)))
             covered[rows] = every
-        return np.minimum(out, value[idx])
+        got: FloatArray = np.minimum(out, value[idx])
+        return got
 
     def _seen_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
                         cfg: _Configs) -> FloatArray:
