@@ -310,3 +310,65 @@ def test_a_separating_direction_spares_the_hull_and_changes_no_radius(seed):
             assert want == 0.0
             spared += 1
     assert spared > 0.3 * failed > 0, (spared, failed)
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 6))])
+def test_the_facet_bound_is_never_below_the_hulls_radius(seed):
+    """The bound of the slice's radius from other hulls' facets (``_facet_bound``) is
+    never below the radius the hull gives (the reference), whatever the facets: those
+    of the same contacts moved a little (as a triple's refinement reads them), of
+    another triple, or random directions (a negative bound read as 0, the radius of a
+    hull without the origin); and from the nearby hull it is close."""
+    from fcgrasp.spatial import triples as T
+
+    rng = np.random.default_rng(50 + seed)
+    close = tight = 0
+    for _ in range(300):
+        p, n, mu = _random_grasp(rng)
+        w = T._generators(p, n, _alpha(mu))
+        want, _ = T._hull_slice(w)
+        moved = p + rng.normal(size=p.shape) * rng.choice([1e-3, 1e-2, 0.1]) \
+            * float(np.ptp(p))
+        _, near = T._hull_slice(T._generators(moved, n, _alpha(mu)))
+        q, m, mu2 = _random_grasp(rng)
+        _, other = T._hull_slice(T._generators(q, m, _alpha(mu2)))
+        for facets in (near, other, rng.normal(size=(50, 6))):
+            if facets is None:
+                continue
+            # (a negative bound: the origin is outside, the radius 0)
+            bound = max(T._facet_bound(w, facets), 0.0)
+            assert bound >= want - 1e-12 * max(1.0, abs(want)), (bound, want)
+        if near is not None and want > 0:
+            close += 1
+            tight += T._facet_bound(w, near) <= 1.5 * want
+    assert close > 50 and tight > 0.5 * close, (close, tight)
+
+
+def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(monkeypatch):
+    """The refinement that skips the hulls the facet bound rules out takes the same
+    moves: three fingers' plans on meshes with and without it are equal."""
+    import fcgrasp as fc
+    from fcgrasp.spatial import triples as T
+
+    spared = []
+    hull = T._hull_slice
+    for solid in (demo_solid("box"), demo_solid("cylinder"), _random_convex(3),
+                  _random_convex(4)):
+        got = []
+        for on in (False, True):
+            calls = [0]
+
+            def counted(w, calls=calls):
+                calls[0] += 1
+                return hull(w)
+
+            monkeypatch.setattr(T, "FACET_BOUND", on)
+            monkeypatch.setattr(T, "_hull_slice", counted)
+            got.append(([p.to_dict() for p in fc.plan(solid, fingers=3, mu=0.5, top=5)],
+                        calls[0]))
+        (off, n_off), (on_, n_on) = got
+        assert json.dumps(off, sort_keys=True, default=str) == \
+            json.dumps(on_, sort_keys=True, default=str)
+        spared.append(n_off - n_on)
+    assert sum(spared) > 0, spared
