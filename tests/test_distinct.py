@@ -846,3 +846,55 @@ def test_a_lower_floors_collection_takes_what_the_last_solved(seed, monkeypatch)
             assert np.array_equal(x, y)
     if seed in (0, 4):                      # (floors that fall: solutions carried)
         assert sum(restored) > 0, restored
+
+
+def test_configurations_carried_by_codes_are_those_carried_by_records(monkeypatch):
+    """A collection's configurations are filed by one integer each (``_Codes``, mixed
+    radix over the ranges met) where they fit: the codes sort as the records do, two
+    are equal only for the same configuration, one outside the ranges has none, and a
+    job takes from the last collection exactly what the records' lookup gives it, on
+    seeded collections that share some configurations (negative numbers, a number past
+    the ranges, repeats included)."""
+    from fcgrasp.model import _stretch_solve as V
+    from fcgrasp.model._stretch_windows import _Configs
+
+    rng = np.random.default_rng(5)
+
+    def job(cfg):
+        n = len(cfg.iA)
+        t = np.where(rng.random(n) < 0.5, rng.uniform(0, 9, n), np.nan)
+        return V._Job(cfg, rng.uniform(0, 9, n), np.where(rng.random(n) < 0.3,
+                                                           rng.uniform(0, 9, n), np.nan),
+                      np.arange(n), False, t, rng.uniform(0, 1, n), rng.uniform(0, 1, n),
+                      np.where(rng.random(n) < 0.2, 1.0, 0.0))
+
+    hits = 0
+    for _ in range(20):
+        n = int(rng.integers(1, 3000))
+        hi = int(rng.choice([3, 50, 20000]))
+        old = _Configs(*(rng.integers(-hi // 3, hi, n) for _ in range(4)))
+        keep = rng.random(n) < 0.5
+        m = int(rng.integers(1, 3000))
+        fresh = _Configs(*(rng.integers(-hi // 3, hi + hi // 2, m) for _ in range(4)))
+        new = _Configs.cat([old.take(np.flatnonzero(keep)), fresh])
+        codes = V._Codes.of(old)
+        c, inside = codes.codes(old)
+        assert inside.all()
+        rec = V._config_keys(old)
+        assert np.array_equal(np.argsort(c, kind="stable"), np.argsort(rec, kind="stable"))
+        before = job(old)
+        got = []
+        for on in (True, False):
+            monkeypatch.setattr(V, "CODES", on)
+            carried = V._Carried.of(before)
+            assert (carried.codes is not None) == on
+            J = job(new)
+            J.t[:], J.below[:], J.box[:] = np.nan, 0.0, np.nan
+            carried.into(J)
+            got.append((J.t.copy(), J.below.copy(), J.box.copy()))
+        (t1, b1, x1), (t2, b2, x2) = got
+        np.testing.assert_array_equal(t1, t2)
+        np.testing.assert_array_equal(b1, b2)
+        np.testing.assert_array_equal(x1, x2)
+        hits += int(np.count_nonzero(~np.isnan(t1)))
+    assert hits > 1000, hits
