@@ -119,12 +119,13 @@ def page_part(data: Any) -> tuple[Any, str, str]:
 
 def as_part(shape: Any, source: str, units: str) -> Any:
     """The page's part (:func:`page_part`) as :func:`~fcgrasp.planning.plan_document`
-    takes it: a solid as it is, an outline as a part read from the page."""
+    takes it: a part read from the page, an outline or a solid."""
     from ..io.parts import Part
     from ..model.polygon import Polygon
 
     if not isinstance(shape, Polygon):
-        return shape
+        return Part(None, source, "mesh", units=units, units_note=shape.units_note,
+                    solid=shape)
     return Part(polygon=shape, source=source, format="explorer", units=units)
 
 

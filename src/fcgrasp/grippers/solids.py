@@ -27,7 +27,8 @@ from ..core.budget import PlanList
 from .base import SearchOptions
 
 __all__ = ["solid_plans", "solid_parameters", "plans_solids", "check_solid_options",
-           "solid_title", "solid_no_grasp_reason"]
+           "solid_title", "solid_no_grasp_reason", "is_solid", "check_on", "parameters_on",
+           "title_on", "no_grasp_reason_on"]
 
 
 def plans_solids(gripper: Any) -> bool:
@@ -83,3 +84,42 @@ def solid_title(gripper: Any) -> str:
 def solid_no_grasp_reason(gripper: Any, margin: float) -> str:
     """One line saying why a solid has no plan for the gripper."""
     return str(gripper.solid_no_grasp_reason(margin))
+
+
+# ----------------------------------------------------------------------------- either kind
+
+def is_solid(part: Any) -> bool:
+    """Whether ``part`` (what a gripper plans: a :class:`~fcgrasp.Polygon` or a
+    :class:`~fcgrasp.spatial.solid.Solid`) is a solid."""
+    from ..model.polygon import Polygon
+
+    return not isinstance(part, Polygon)
+
+
+def check_on(gripper: Any, part: Any, options: SearchOptions) -> Any:
+    """The gripper's refusal of a part it cannot plan before any search, and the
+    search's size (``check_part``); a solid's search has no size to tell (None)."""
+    if is_solid(part):
+        return None
+    return gripper.check_part(part, options)
+
+
+def parameters_on(gripper: Any, part: Any, options: SearchOptions, plans: Any = None
+                  ) -> dict[str, Any]:
+    """The parameters a report of the gripper's plans of ``part`` records."""
+    if is_solid(part):
+        return solid_parameters(gripper, options, plans)
+    params: dict[str, Any] = gripper.parameters(options)
+    return params
+
+
+def title_on(gripper: Any, part: Any) -> str:
+    """How a figure and the command line name the gripper on ``part``."""
+    return solid_title(gripper) if is_solid(part) else str(gripper.title)
+
+
+def no_grasp_reason_on(gripper: Any, part: Any, margin: float) -> str:
+    """One line saying why ``part`` has no plan for the gripper."""
+    if is_solid(part):
+        return solid_no_grasp_reason(gripper, margin)
+    return str(gripper.no_grasp_reason(margin))

@@ -82,12 +82,16 @@ IMAGE_TOLERANCE_PX = 1.0
 
 @dataclass(frozen=True)
 class Part:
-    """One part of a file, as read: the polygon and how it was obtained.
+    """One part of a file, as read: the polygon (or the solid) and how it was obtained.
 
     Attributes
     ----------
     polygon : Polygon or None
-        None when this part of the file is not a valid outline (``error`` says why).
+        None when this part of the file is not a valid outline (``error`` says why), or
+        for a solid.
+    solid : Solid or None
+        A mesh's part (:class:`fcgrasp.spatial.solid.Solid`), read by
+        :func:`fcgrasp.io.meshes.read_solid`; None for a planar part.
     source, format : str
         The path (``-`` for standard input, ``demo:NAME``) and the format read.
     index : int
@@ -131,6 +135,12 @@ class Part:
     error: str | None = None
     chosen: str = ""
     notes: tuple[str, ...] = field(default_factory=tuple)
+    solid: Any = None
+
+    @property
+    def shape(self) -> Any:
+        """What is planned: the polygon, or the solid (None: not usable)."""
+        return self.polygon if self.solid is None else self.solid
 
     def notices(self) -> list[str]:
         """What a front end tells the user about this part: which one of the file was
@@ -143,7 +153,10 @@ class Part:
         return out + [f"fcgrasp: {self.source}: {note}" for note in self.notes]
 
     def to_dict(self) -> dict[str, Any]:
-        """Where the part came from, for the JSON reports."""
+        """Where the part came from, for the JSON reports (a solid: its ``path``, which
+        :func:`fcgrasp.io.report.report_part` reads it again from)."""
+        if self.solid is not None:
+            return {"path": self.source}
         return {"file": self.source, "format": self.format, "index": self.index,
                 "parts_in_file": self.count, "id": self.id, "layer": self.layer,
                 "chosen": self.chosen, "units": self.units, "file_units": self.file_units,

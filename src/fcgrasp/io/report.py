@@ -96,9 +96,18 @@ def dumps(report: dict[str, Any]) -> str:
     return json.dumps(json_ready(report), sort_keys=True, indent=2, allow_nan=False) + "\n"
 
 
-def part_dict(polygon: Any) -> dict[str, Any]:
-    return {"vertices": polygon.vertices, "holes": list(polygon.holes),
-            "edges": polygon.n_edges}
+def part_dict(shape: Any) -> dict[str, Any]:
+    """The report's ``part``: a polygon's rings and edges, or a solid's facets,
+    triangles, bounds and centre of mass."""
+    from ..model.polygon import Polygon
+
+    if isinstance(shape, Polygon):
+        return {"vertices": shape.vertices, "holes": list(shape.holes),
+                "edges": shape.n_edges}
+    lo, hi = shape.mesh.bounds
+    return {"solid": True, "facets": len(shape.facets), "triangles": int(len(shape.mesh.faces)),
+            "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": shape.center.tolist(),
+            "units_note": shape.units_note}
 
 
 def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], units: str,

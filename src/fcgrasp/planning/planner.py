@@ -154,7 +154,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
         ``map(function, batches)`` to solve candidate batches elsewhere (processes, a
         Dask cluster): the single-edge search (:func:`fcgrasp.pipeline.search`) of two
         fingers without stretches, and of three frictionless or four fingers, uses it;
-        the answer is the same.
+        the answer is the same (a solid's searches have no such batches: unused).
     distinct : float, optional
         0: every plan, as ranked.  A fraction in (0, 1]: the ``top``
         plans that are distinct alternatives, each standing for the lower-ranked plans
@@ -208,7 +208,7 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
         unused = {"rank_by": (rank_by, "min_region"), "hand": (hand, None),
                   "gravity": (gravity, None), "load": (load, None),
                   "force_limit": (force_limit, None), "total_force": (total_force, None),
-                  "map": (map, None), "along_boundary": (along_boundary, True),
+                  "along_boundary": (along_boundary, True),
                   "max_memory": (max_memory, None)}
         for name, (value, default) in unused.items():
             if value is not default and value != default:

@@ -18,9 +18,10 @@ from dataclasses import asdict, dataclass, field, fields, replace
 from typing import Any
 
 from ..core._checks import check_margin
-from ..core.budget import DEFAULT_TIME_LIMIT, deadline, stopped_words
+from ..core.budget import DEFAULT_TIME_LIMIT, stopped_words
 from ..errors import RequestError
 from ..grippers.base import DEFAULT_MU, Gripper, SearchOptions, gripper_from_options
+from ..grippers.solids import check_on, no_grasp_reason_on, parameters_on, title_on
 from ..io.limits import Limits
 from ..io.outputs import check_outputs
 from ..io.parts import Part, load_part
@@ -253,7 +254,8 @@ class PlanRequest:
             ("--placement-sigma", self.placement_sigma is not None),
             ("--pose-sigma", self.pose_sigma is not None),
             ("--stiffness", self.stiffness is not None), ("--bound", self.bound),
-            ("--certify", self.certify is not None)) if on]
+            ("--certify", self.certify is not None),
+            ("--max-memory", self.max_memory is not None)) if on]
         if kind is not None and given:
             who = {"soft": ("fingers", "two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
@@ -387,8 +389,16 @@ class PlanRequest:
         return replace(self, **changes)
 
     def load(self, say: Callable[[str], None] | None = None) -> Part:
-        """Read the request's part; when the file holds several, which one was taken and
-        the reader's notes are said with ``say``."""
+        """Read the request's part (a drawing's outline, or a mesh's solid: its
+        ``shape``); when the file holds several, which one was taken and the reader's
+        notes are said with ``say``."""
+        if self.is_solid():
+            from ..io.meshes import read_solid
+
+            solid = read_solid(self.part, units=self.units, file_units=self.file_units,
+                               select=self.select, limits=self.limits(), repair=self.repair)
+            return Part(None, self.part, "mesh", units=solid.units,
+                        units_note=solid.units_note, solid=solid)
         part = load_part(self.part, self.select, **self.reading())
         if say is not None:
             for line in part.notices():
@@ -413,9 +423,8 @@ def plan_document(request: PlanRequest, part: Any = None,
                   progress: Callable[[int, int], None] | None = None,
                   say: Callable[[str], None] | None = None, map: Any = None) -> PlanDocument:
     """Plan a request: read its part (or take ``part``, a
-    :class:`~fcgrasp.io.parts.Part` already read; for a solid's request a
-    :class:`~fcgrasp.spatial.solid.Solid`, as the explorer sends it), plan it with its
-    gripper and build the JSON document ``fcgrasp plan --json`` writes.
+    :class:`~fcgrasp.io.parts.Part` already read: an outline or a solid), plan it with
+    its gripper and build the JSON document ``fcgrasp plan --json`` writes.
     ``progress(done, total)`` is told how the search goes, ``say(text)`` gets notes
     (which part of a file was taken, a long search's estimate), ``map`` solves
     candidate batches elsewhere (see :func:`fcgrasp.plan`).  Every front end plans
@@ -428,18 +437,15 @@ def plan_document(request: PlanRequest, part: Any = None,
     """
     if not isinstance(request, PlanRequest):
         raise TypeError(f"request must be a PlanRequest, got {type(request).__name__}")
-    if request.is_solid():
-        with deadline(request.search_time_limit()):
-            return _solid_document(request, part)
     gripper = request.gripper_object()
     part = request.load(say) if part is None else part
-    polygon, units = part.polygon, part.units
+    polygon, units = part.shape, part.units
     if polygon is None:
         raise ValueError(f"{part.source}: part {part.index} is not usable: {part.error}")
     options = request.search_options(units, progress, map)
     # ranked by payload, the search ranks by the smallest region (fcgrasp.plan re-ranks)
-    size = gripper.check_part(polygon, replace(options, rank_by="min_region")
-                              if options.rank_by == "payload" else options)
+    size = check_on(gripper, polygon, replace(options, rank_by="min_region")
+                    if options.rank_by == "payload" else options)
     # with a top and the smallest region, the exact pruning stops far sooner than
     # solving every candidate (seconds where this estimate says hours)
     pruned = options.top is not None and options.rank_by == "min_region"
@@ -454,7 +460,7 @@ def plan_document(request: PlanRequest, part: Any = None,
                  force_limit=None if load is None else request.force_limit,
                  total_force=None if load is None else request.total_force,
                  time_limit=request.search_time_limit())
-    params = gripper.parameters(options)
+    params = parameters_on(gripper, polygon, options, plans)
     if request.distinct_fraction():
         params["distinct"] = request.distinct_fraction()
     if load is not None:
@@ -464,7 +470,7 @@ def plan_document(request: PlanRequest, part: Any = None,
             "gravity_m_s2": list(load.gravity),
             "force_limit_n": request.force_limit, "total_force_n": request.total_force}
     reason = None if plans else _stopped_reason(plans) or \
-        gripper.no_grasp_reason(request.margin)
+        no_grasp_reason_on(gripper, polygon, request.margin)
     report = plan_report(polygon, plans, params, units, reason, source=part.to_dict())
     mu_range = None
     if request.mu_high is not None:
@@ -507,7 +513,7 @@ def plan_document(request: PlanRequest, part: Any = None,
             polygon, fingers_.fingers, fingers_.mu if fingers_.fingers == 3 else 0.0,
             margin=options.margin, lower=best).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
-                        f"{request.part}: {gripper.title}")
+                        f"{request.part}: {title_on(gripper, polygon)}")
 
 
 def _stopped_reason(plans: Any) -> str | None:
@@ -522,42 +528,3 @@ def template_request(options: dict[str, Any]) -> PlanRequest:
     """A batch's options as one request, checked before any work on a built-in part;
     each part's request is this one with its part."""
     return PlanRequest(part="demo:quad", **options)
-
-
-def _solid_document(request: PlanRequest, solid: Any = None) -> PlanDocument:
-    """Two soft fingers (:func:`fcgrasp.spatial.soft_pair_plans`), three point fingers
-    with friction (:func:`fcgrasp.spatial.three_finger_plans`) or a parallel jaw
-    (:func:`fcgrasp.spatial.solid_jaw_plans`) on a solid: the JSON document of
-    ``fcgrasp plan part.stl --fingers 2 --soft``, ``--fingers 3`` or ``--gripper jaw``."""
-    from ..grippers.solids import (
-        solid_no_grasp_reason,
-        solid_parameters,
-        solid_plans,
-        solid_title,
-    )
-    from ..io.meshes import read_solid
-
-    if solid is None:
-        solid = read_solid(request.part, units=request.units, file_units=request.file_units,
-                           select=request.select, limits=request.limits(),
-                           repair=request.repair)
-    lo, hi = solid.mesh.bounds
-    part = {"solid": True, "facets": len(solid.facets), "triangles": int(len(solid.mesh.faces)),
-            "bounds": [lo.tolist(), hi.tolist()], "center_of_mass": solid.center.tolist(),
-            "units_note": solid.units_note}
-    # the gripper plans the solid its own way (fcgrasp.grippers.solids)
-    gripper = request.gripper_object()
-    options = SearchOptions(top=request.top, margin=request.margin)
-    distinct = request.distinct_fraction()
-    plans = solid_plans(gripper, solid, options, distinct)
-    params = solid_parameters(gripper, options, plans)
-    title = solid_title(gripper)
-    if distinct:
-        params["distinct"] = distinct
-    reason = None if plans else _stopped_reason(plans) or \
-        solid_no_grasp_reason(gripper, request.margin)
-    report = plan_report(None, plans, params, solid.units, reason,
-                         source={"path": request.part}, part=part)
-    # a solid's document carries the solid where a planar one has its polygon
-    return PlanDocument(report, plans, solid, solid.units, reason,
-                        f"{request.part}: {title}")
