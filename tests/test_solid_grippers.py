@@ -60,3 +60,38 @@ def test_every_built_in_gripper_says_whether_it_plans_solids():
     assert plans_solids(fc.ParallelJaw(stroke=(1, 2), pad_width=1, mu=0.3))
     assert not plans_solids(point_fingers(4, 0.0, None, None, True))
     assert not plans_solids(point_fingers(3, 0.0, (0.0, -1.0), None, True))
+
+
+@pytest.mark.parametrize("kind", [{"fingers": 2}, {"fingers": 3, "mu": 0.5},
+                                  {"gripper": "jaw", "stroke": (5.0, 60.0), "pad": 8.0}])
+def test_a_solid_request_takes_the_options_its_gripper_takes_there(kind):
+    """A request on a solid is checked against the options its gripper's solid plans
+    take (``solid_options``): each of the others, given, is refused naming its field,
+    and the explorer offers on a solid the choices whose gripper plans solids, with
+    those options."""
+    from fcgrasp.apps._explorer_data import solid_choices
+    from fcgrasp.errors import RequestError
+    from fcgrasp.grippers.base import gripper_type
+    from fcgrasp.planning import PlanRequest
+
+    cls = gripper_type(kind.get("gripper", "fingers"), kind)
+    takes = set(cls.solid_options)
+    assert {"mu", "top", "margin", "distinct"} <= takes
+    PlanRequest(part="demo:box", **kind)
+    others = {"max_memory": 10 ** 9, "rank_by": "epsilon", "single_edge": True,
+              "certify": True, "thickness": 3.0, "mass": 1.0, "bound": True,
+              "in_plane": True, "finger_radius": 1.0}
+    refused = 0
+    for name, value in others.items():
+        if name in takes:
+            continue
+        with pytest.raises(RequestError) as err:
+            PlanRequest(part="demo:box", **kind, **{name: value})
+        assert "on a solid" in str(err.value) and err.value.field == name, (name, err.value)
+        refused += 1
+    assert refused >= 7
+    choices = solid_choices()
+    assert set(choices) == {"2", "3", "jaw"}
+    assert all(set(v) <= {"mu", "margin", "top", "distinct", "time_limit", "stroke", "pad",
+                          "hand", "table", "rest", "rest_orientation"}
+               for v in choices.values())

@@ -26,14 +26,6 @@ from ..io.report import json_ready
 GRIPPERS: dict[str, dict[str, Any]] = {
     "2": {"fingers": 2}, "3": {"fingers": 3}, "3g": {"fingers": 3, "gravity": (0.0, -1.0)},
     "4": {"fingers": 4}, "jaw": {"gripper": "jaw", "certify": True}}
-#: The page's gripper choices on a solid (a mesh): two soft fingers, three fingers with
-#: friction, a parallel jaw with pads (:mod:`fcgrasp.spatial`).
-SOLID_GRIPPERS: dict[str, dict[str, Any]] = {
-    "2": {"fingers": 2}, "3": {"fingers": 3}, "jaw": {"gripper": "jaw"}}
-_SOLID_OPTIONS = {"2": ("mu", "margin", "top", "distinct", "time_limit"),
-                  "3": ("mu", "margin", "top", "distinct", "time_limit"),
-                  "jaw": ("mu", "stroke", "pad", "margin", "top", "distinct", "time_limit",
-                          "hand", "table")}
 _COMMON = ("margin", "rank_by", "top", "distinct", "time_limit")
 #: The page's options each of its gripper choices uses (the page sends them all).
 _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
@@ -42,6 +34,22 @@ _PAGE_OPTIONS = {"2": ("mu", "along_boundary", *_COMMON),
                  "4": ("along_boundary", "bound", *_COMMON),
                  "jaw": ("mu", "stroke", "pad", "certify", "hand", "table", "thickness",
                          "in_plane", *_COMMON)}
+
+
+def solid_choices() -> dict[str, tuple[str, ...]]:
+    """The page's gripper choices that plan a solid (a mesh: two soft fingers, three
+    fingers with friction, a parallel jaw), each with the options its gripper takes
+    there: asked of the grippers (:func:`~fcgrasp.grippers.solids.plans_solids`, their
+    ``solid_options``)."""
+    from ..grippers.base import gripper_type
+    from ..grippers.solids import plans_solids
+
+    out = {}
+    for key, kind in GRIPPERS.items():
+        cls = gripper_type(kind.get("gripper", "fingers"), kind)
+        if cls is not None and plans_solids(cls):
+            out[key] = tuple(getattr(cls, "solid_options", ()))
+    return out
 
 
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
@@ -313,7 +321,8 @@ _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke
 
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
     """The page's options as :class:`~fcgrasp.planning.PlanRequest` keywords (those of
-    the chosen gripper only; on a ``solid``, :data:`SOLID_GRIPPERS`), or a RequestError
+    the chosen gripper only; on a ``solid``, those it takes there: :func:`solid_choices`),
+    or a RequestError
     for an unknown key, gripper or top."""
     if not isinstance(options, dict):
         raise RequestError(f"options must be an object, got {_short(options)}", "options")
@@ -322,12 +331,14 @@ def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
         raise RequestError(f"options: unknown option {extra[0]!r} (expected "
                            f"{', '.join(sorted(_KNOWN))})", "options")
     gripper = options.get("gripper", "2")
-    choices, used = (SOLID_GRIPPERS, _SOLID_OPTIONS) if solid else (GRIPPERS, _PAGE_OPTIONS)
-    if gripper not in choices:
+    used = solid_choices() if solid else _PAGE_OPTIONS
+    if gripper not in used:
         what = "on a solid " if solid else ""
-        raise RequestError(f"options.gripper {what}must be one of {', '.join(choices)}, "
+        raise RequestError(f"options.gripper {what}must be one of {', '.join(used)}, "
                            f"got {_short(gripper)}", "gripper")
-    kw: dict[str, Any] = dict(choices[gripper])
+    # the choice's kind, and its fixed options the gripper takes on this part
+    kw: dict[str, Any] = {k: v for k, v in GRIPPERS[gripper].items()
+                          if k in ("gripper", "fingers", "gravity") or k in used[gripper]}
     kw.update({k: options[k] for k in used[gripper] if options.get(k) is not None})
     if "along_boundary" in kw:
         kw["single_edge"] = kw.pop("along_boundary") is False

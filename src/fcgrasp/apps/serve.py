@@ -70,7 +70,6 @@ from typing import Any
 from ..errors import RequestError
 from ._explorer_data import (
     GRIPPERS,
-    SOLID_GRIPPERS,
     _short,
     check_result,
     demo_json,
@@ -78,6 +77,7 @@ from ._explorer_data import (
     part_json,
     plan_request,
     polygon_of,
+    solid_choices,
     stress_result,
 )
 from ._serve_jobs import (
@@ -275,7 +275,7 @@ def create_app(start: Any = None, max_upload: int = MAX_UPLOAD,
         return JSONResponse({"part": first, "demos": list(DEMO_PARTS),
                              "solids": list(DEMO_SOLIDS), "measures": list(MEASURES),
                              "grippers": list(GRIPPERS),
-                             "solid_grippers": list(SOLID_GRIPPERS),
+                             "solid_grippers": list(solid_choices()),
                              "max_upload": max_upload, "answer_within": ANSWER_WITHIN})
 
     async def demo(request: Request) -> Response:

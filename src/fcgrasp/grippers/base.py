@@ -136,6 +136,23 @@ def _register_built_in(name: str | None = None) -> None:
             importlib.import_module(module)
 
 
+def gripper_type(name: str, options: Mapping[str, Any]) -> type | None:
+    """The class of the built-in gripper ``gripper_from_options(name, options)`` would
+    build, chosen by its kind's options alone (``fingers``, ``gravity``), its parameters
+    unread: what a front end asks of a gripper before they are given (whether it plans
+    solids, the options it takes there).  None for a registered gripper of another
+    name (only its builder knows)."""
+    if name == "fingers":
+        from .fingers import fingers_type
+
+        return fingers_type(options)
+    if name == "jaw":
+        from .jaw import ParallelJaw
+
+        return ParallelJaw
+    return None
+
+
 def gripper_from_options(name: str, options: Mapping[str, Any]) -> Gripper:
     """The gripper a request names, built from its options (see :func:`register`; the
     built-in grippers register when first named)."""

@@ -82,6 +82,9 @@ class _PointFingers:
     #: on a solid (the grippers with ``solid_plans``): the contact model and why none holds
     solid_contact: ClassVar[str] = "friction"
     SOLID_NONE: ClassVar[str] = "no facets hold the fingers"
+    #: the plan request's options a solid's plans take (the others are refused there)
+    solid_options: ClassVar[tuple[str, ...]] = ("mu", "margin", "top", "distinct",
+                                                "time_limit")
 
     def __post_init__(self) -> None:
         spec = plan_spec(fingers=self.fingers, mu=self.mu, gravity=self.gravity,
@@ -325,6 +328,16 @@ class FourFingers(_PointFingers):
 _BY_COUNT: dict[tuple[int, bool], type[_PointFingers]] = {
     (2, False): TwoFingers, (3, False): ThreeFingers, (3, True): ThreeFrictionless,
     (4, False): FourFingers}
+
+
+def fingers_type(options: Any) -> type[_PointFingers]:
+    """The class of the point fingers a request's ``fingers`` and ``gravity`` choose
+    (2 when not given), its other options unread."""
+    fingers = options.get("fingers")
+    key = (2 if fingers is None else int(fingers), options.get("gravity") is not None)
+    if key not in _BY_COUNT:
+        raise ValueError(f"fingers must be 2, 3 or 4 (3 with gravity), got {fingers!r}")
+    return _BY_COUNT[key]
 
 
 def point_fingers(fingers: Any = 2, mu: Any = 0.0, gravity: Any = None,

@@ -236,33 +236,42 @@ class PlanRequest:
         return what
 
     def _check_solid(self) -> None:
-        """A solid part takes two fingers with friction (soft fingers: ``soft`` says so, and
-        two fingers on a solid are soft whether it is given or not), three fingers with
-        friction or a parallel jaw, with ``mu``, ``top``, ``margin`` and ``distinct`` (and
-        the jaw's ``stroke`` and ``pad``) only so far.  On a planar part ``soft`` changes
-        nothing: a soft finger's torsional friction turns about the contact's normal, an
-        axis in the plane, which no planar motion turns about."""
+        """A solid part takes the grippers that plan solids (two fingers with friction,
+        as soft fingers: ``soft`` says so, and two fingers on a solid are soft whether
+        it is given or not; three fingers with friction; a parallel jaw), each with the
+        options its solid plans take (the gripper's ``solid_options``); any other given
+        is refused, named.  On a planar part ``soft`` changes nothing: a soft finger's
+        torsional friction turns about the contact's normal, an axis in the plane, which
+        no planar motion turns about."""
+        if not self.is_solid():
+            return
+        from ..grippers.base import gripper_type
+        from ..grippers.solids import plans_solids
+
         kind = self.solid_kind()
-        if self.is_solid() and kind is None:
+        options = {**self.plan_options(), "soft": self.soft}
+        cls = None if kind is None else gripper_type(self.gripper, options)
+        if kind is None or cls is None or not plans_solids(cls):
             raise _fail("fingers" if self.gripper == "fingers" else "gripper",
                         "a solid part (a mesh) is planned for two soft fingers (--fingers 2) "
                         "or three fingers with friction (--fingers 3 --mu MU), or a parallel "
                         "jaw (--gripper jaw); frictionless fingers hold planar parts only")
-        given = [flag for flag, on in (
-            ("--gravity", self.gravity is not None), ("--mass", self.mass is not None),
-            ("--mu LOW:HIGH", self.mu_high is not None), ("--single-edge", self.single_edge),
-            ("--placement-sigma", self.placement_sigma is not None),
-            ("--pose-sigma", self.pose_sigma is not None),
-            ("--stiffness", self.stiffness is not None), ("--bound", self.bound),
-            ("--certify", self.certify is not None),
-            ("--max-memory", self.max_memory is not None)) if on]
-        if kind is not None and given:
+        takes = set(getattr(cls, "solid_options", ()))
+        defaults = {f.name: f.default for f in fields(self) if f.init}
+        given = [name for name in (*PLAN_OPTIONS, *LOAD_OPTIONS)
+                 if name not in takes and name not in ("gripper", "fingers")
+                 and getattr(self, name) != defaults[name]]
+        if given:
             who = {"soft": ("fingers", "two soft fingers"),
                    "friction": ("fingers", "--fingers 3: three fingers"),
-                   "jaw": ("gripper", "--gripper jaw: a parallel jaw (--stroke, --pad)")}
+                   "jaw": ("gripper", "--gripper jaw: a parallel jaw")}
             name, what = who[kind]
-            raise _fail(name, f"{what} on a solid take --mu, --top, --margin and --distinct "
-                              f"only so far, not {' '.join(given)}")
+            flags = [f"--{o.replace('_', '-')}" for o in (*PLAN_OPTIONS, *SEARCH_OPTIONS)
+                     if o in takes]
+            named = ["--mu LOW:HIGH" if g == "mu_high" else "--" + g.replace("_", "-")
+                     for g in given]
+            raise _fail(given[0], f"{what} on a solid take{_listed(flags)} only, not "
+                                  f"{' '.join(named)}")
 
     def solid_kind(self) -> str | None:
         """How a solid part is grasped: ``"soft"`` (two soft fingers), ``"friction"``
@@ -514,6 +523,13 @@ def plan_document(request: PlanRequest, part: Any = None,
             margin=options.margin, lower=best).to_dict()
     return PlanDocument(report, plans, polygon, units, reason,
                         f"{request.part}: {title_on(gripper, polygon)}")
+
+
+def _listed(flags: list[str]) -> str:
+    """`` --a, --b and --c`` (nothing for no flags)."""
+    if not flags:
+        return ""
+    return " " + (flags[0] if len(flags) == 1 else ", ".join(flags[:-1]) + " and " + flags[-1])
 
 
 def _stopped_reason(plans: Any) -> str | None:
