@@ -821,7 +821,7 @@ def test_a_lower_floors_collection_takes_what_the_last_solved(seed, monkeypatch)
     solution and boxes from the last collection (``_Memo.lower``, ``CARRY``): the plans
     and regions are those of rounds that solve every collection anew (the reference),
     on smooth outlines where the floors fall, and the carried solutions are read."""
-    from fcgrasp.model import _stretch_solve
+    from fcgrasp.model import _stretch_memo
 
     rng = np.random.default_rng(seed)
     a = np.linspace(0, 2 * np.pi, int(rng.integers(300, 700)), endpoint=False)
@@ -830,15 +830,15 @@ def test_a_lower_floors_collection_takes_what_the_last_solved(seed, monkeypatch)
     mu = float(rng.uniform(0.4, 1.0))
     top = int(rng.integers(3, 7))
     restored = []
-    into = _stretch_solve._Carried.into
+    into = _stretch_memo._Carried.into
 
     def counted(self, J):
         restored.append(int(np.count_nonzero(~np.isnan(self.t))))
         return into(self, J)
 
-    monkeypatch.setattr(_stretch_solve._Carried, "into", counted)
+    monkeypatch.setattr(_stretch_memo._Carried, "into", counted)
     got = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
-    monkeypatch.setattr(_stretch_solve, "CARRY", 0)
+    monkeypatch.setattr(_stretch_memo, "CARRY", 0)
     ref = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
     assert [p.edges for p in got] == [p.edges for p in ref]
     for p, q in zip(got, ref, strict=True):
@@ -855,7 +855,7 @@ def test_configurations_carried_by_codes_are_those_carried_by_records(monkeypatc
     job takes from the last collection exactly what the records' lookup gives it, on
     seeded collections that share some configurations (negative numbers, a number past
     the ranges, repeats included)."""
-    from fcgrasp.model import _stretch_solve as V
+    from fcgrasp.model import _stretch_memo as V
     from fcgrasp.model._stretch_windows import _Configs
 
     rng = np.random.default_rng(5)

@@ -69,6 +69,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         virtual_work,
         wrench_from_force,
     )
+    from .core.values import Friction, Margin
     from .grippers.jaw import JawPlan, ParallelJaw, Scene, jaw_pareto, jaw_payload, jaw_plans
     from .io.meshes import read_solid
     from .io.parts import (
@@ -159,6 +160,8 @@ _LAZY = {
     "Gravity": "core.contacts",
     "SoftFinger": "core.contacts",
     "Cone": "core.convexes",
+    "Friction": "core.values",
+    "Margin": "core.values",
     "ClosureReport": "core.grasp",
     "Grasp": "core.grasp",
     "Hand": "model.hand",

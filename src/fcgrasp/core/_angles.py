@@ -15,6 +15,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .values import Friction, Margin
+
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
@@ -54,7 +56,10 @@ def wrap_floor(angle: Any) -> Any:
 
 def margin_radians(margin: ArrayLike) -> Any:
     """A safety margin given in degrees (as every public function takes it), in radians:
-    the one conversion of margins."""
+    the one conversion of margins (a :class:`~fcgrasp.core.values.Margin` gives its
+    own)."""
+    if isinstance(margin, Margin):
+        return margin.radians
     return np.radians(margin)
 
 
@@ -66,4 +71,6 @@ def shrunk_half_angle(mu: ArrayLike, margin: ArrayLike) -> Any:
     >>> round(float(np.degrees(shrunk_half_angle(1.0, 5.0))), 9)
     40.0
     """
+    if isinstance(mu, Friction):
+        mu = mu.mu
     return np.arctan(mu) - margin_radians(margin)

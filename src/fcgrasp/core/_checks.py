@@ -163,8 +163,11 @@ def check_mu(value: Any, name: str = "mu") -> FloatArray:
 
 
 def check_mu_scalar(value: Any, name: str = "mu") -> float:
-    """One Coulomb friction coefficient: a finite number >= 0."""
+    """One Coulomb friction coefficient: a finite number >= 0 (a
+    :class:`~fcgrasp.core.values.Friction`, checked when made, gives its ``mu``)."""
     if type(value) in (float, int) and 0 <= value < math.inf:   # the common case, quick
+        return float(value)
+    if getattr(value, "CHECKED", None) == "mu":     # a Friction: checked when made
         return float(value)
     if not _is_number(value) and not (isinstance(value, np.ndarray) and value.ndim == 0
                                       and _is_number(value.item())):
@@ -216,7 +219,10 @@ def check_tol(value: Any, name: str = "tol") -> float:
 
 
 def check_margin(value: Any, name: str = "margin") -> float:
-    """A safety margin in degrees, in ``[0, 90)``: the one check of every margin."""
+    """A safety margin in degrees, in ``[0, 90)``: the one check of every margin (a
+    :class:`~fcgrasp.core.values.Margin`, checked when made, gives its degrees)."""
+    if getattr(value, "CHECKED", None) == "margin":     # a Margin: checked when made
+        return float(value)
     m = check_scalar(value, name, nonnegative=True)
     if m >= 90.0:
         raise ArgumentError(f"{name} is an angle in degrees below 90, got {value!r}", name)

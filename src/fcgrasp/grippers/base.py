@@ -112,15 +112,26 @@ class Gripper(Protocol):
 REGISTRY: dict[str, Callable[[Mapping[str, Any]], Gripper]] = {}
 
 
-def register(name: str, builder: Callable[[Mapping[str, Any]], Gripper]) -> None:
+#: The classes of the registered grippers, by name: ``TYPES[name](options)`` is the
+#: class the builder makes, chosen by the options of its kind alone (:func:`gripper_type`).
+TYPES: dict[str, Callable[[Mapping[str, Any]], type | None]] = {}
+
+
+def register(name: str, builder: Callable[[Mapping[str, Any]], Gripper],
+             kind: Callable[[Mapping[str, Any]], type | None] | None = None) -> None:
     """Make ``name`` a gripper of plan requests (``--gripper NAME``), built by
     ``builder(options)`` from the request's options (a mapping of option name to value,
-    None where not given)."""
+    None where not given); ``kind(options)``: the class it builds, from the options
+    that choose it alone (:func:`gripper_type`)."""
     if not isinstance(name, str) or not name:
         raise ValueError(f"name must be a non-empty string, got {name!r}")
     if not callable(builder):
         raise TypeError(f"builder must be callable, got {builder!r}")
+    if kind is not None and not callable(kind):
+        raise TypeError(f"kind must be callable or None, got {kind!r}")
     REGISTRY[name] = builder
+    if kind is not None:
+        TYPES[name] = kind
 
 
 #: The built-in grippers' modules, imported (and so registered) when a request first
@@ -137,20 +148,14 @@ def _register_built_in(name: str | None = None) -> None:
 
 
 def gripper_type(name: str, options: Mapping[str, Any]) -> type | None:
-    """The class of the built-in gripper ``gripper_from_options(name, options)`` would
-    build, chosen by its kind's options alone (``fingers``, ``gravity``), its parameters
+    """The class of the gripper ``gripper_from_options(name, options)`` would build,
+    chosen by its kind's options alone (``fingers``, ``gravity``), its parameters
     unread: what a front end asks of a gripper before they are given (whether it plans
-    solids, the options it takes there).  None for a registered gripper of another
-    name (only its builder knows)."""
-    if name == "fingers":
-        from .fingers import fingers_type
-
-        return fingers_type(options)
-    if name == "jaw":
-        from .jaw import ParallelJaw
-
-        return ParallelJaw
-    return None
+    solids, the options it takes there).  None for a gripper registered without its
+    ``kind``."""
+    _register_built_in(name if name in BUILT_IN else None)
+    kind = TYPES.get(name)
+    return None if kind is None else kind(options)
 
 
 def gripper_from_options(name: str, options: Mapping[str, Any]) -> Gripper:

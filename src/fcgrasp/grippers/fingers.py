@@ -330,14 +330,11 @@ _BY_COUNT: dict[tuple[int, bool], type[_PointFingers]] = {
     (4, False): FourFingers}
 
 
-def fingers_type(options: Any) -> type[_PointFingers]:
-    """The class of the point fingers a request's ``fingers`` and ``gravity`` choose
-    (2 when not given), its other options unread."""
+def fingers_type(options: Any) -> type[_PointFingers] | None:
+    """The class of the point fingers a request's ``fingers`` (2 when not given) and
+    ``gravity`` choose, its other options unread (None: no such fingers)."""
     fingers = options.get("fingers")
-    key = (2 if fingers is None else int(fingers), options.get("gravity") is not None)
-    if key not in _BY_COUNT:
-        raise ValueError(f"fingers must be 2, 3 or 4 (3 with gravity), got {fingers!r}")
-    return _BY_COUNT[key]
+    return _BY_COUNT.get((2 if fingers is None else fingers, options.get("gravity") is not None))
 
 
 def point_fingers(fingers: Any = 2, mu: Any = 0.0, gravity: Any = None,
@@ -600,4 +597,4 @@ def fingers_from_options(options: Mapping[str, Any]) -> _PointFingers:
     return replace(gripper, tips=tips, scene=scene) if tips is not None else gripper
 
 
-register("fingers", fingers_from_options)
+register("fingers", fingers_from_options, fingers_type)

@@ -18,13 +18,12 @@ from ._stretch_exclusion import _Exclusion
 from ._stretch_lp import (
     _system,
 )
+from ._stretch_memo import _Job, _Memo
 from ._stretch_pairs import _tie_key
 from ._stretch_solve import (
     _Found,
-    _Job,
     _jobs,
     _Keys,
-    _Memo,
     _solve_any,
     _solve_deferred,
     _solve_jobs,

@@ -63,6 +63,7 @@ from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
 from ..core.tolerances import ROUND_TOL, TOL
 from ._free_third import FreeThird
 from ._stretch_exclusion import THIRD_PAD, _Exclusion, _positions
+from ._stretch_memo import _Memo
 from ._stretch_pairs import StretchPair, _finish, _pairs
 from ._stretch_search import _configs_in, _search, _vertex_runs
 from ._stretch_solve import (
@@ -70,7 +71,6 @@ from ._stretch_solve import (
     _address_space,
     _jobs,
     _Keys,
-    _Memo,
     _solve_jobs,
 )
 from ._stretch_windows import (

@@ -314,7 +314,7 @@ def _jaw_of_hand(options: Mapping[str, Any], name: Any, mu: float) -> ParallelJa
     return ParallelJaw.of_hand(hand, mu, scene, certify=options.get("certify") is not False)
 
 
-register("jaw", jaw_from_options)
+register("jaw", jaw_from_options, lambda options: ParallelJaw)
 
 
 @dataclass
