@@ -139,12 +139,12 @@ def test_two_fingers_stop_at_the_time_limit_by_the_clock():
 def test_two_fingers_memory_budget_stops_the_rounds(monkeypatch):
     """The smallest memory budget (16 MiB) and configurations counted as 1 MB each: the
     first distinct round's collection does not fit."""
-    from fcgrasp.model import _stretch_solve
+    from fcgrasp.model import _stretch_memo
 
     rng = np.random.default_rng(3)
     poly = _wavy(rng, 120)
     full = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None)
-    monkeypatch.setattr(_stretch_solve, "CONFIG_BYTES", 2 ** 20)
+    monkeypatch.setattr(_stretch_memo, "CONFIG_BYTES", 2 ** 20)
     part = fc.plan(poly, fingers=2, mu=0.5, top=6, time_limit=None, max_memory=2 ** 24)
     _check_partial(full, part)
     assert not part.complete and part.stopped == "max_memory"

@@ -223,7 +223,7 @@ def test_a_plane_pick_report_validates_and_exports_to_moveit(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("argv,words", [
-    (["demo:box", "--gripper", "jaw", "--hand", "franka", "--in-plane"], "planar part"),
+    (["demo:box", "--gripper", "jaw", "--hand", "franka", "--in-plane"], "not --in-plane"),
     (["demo:rectangle", "--gripper", "jaw", "--stroke", "10,50", "--pad", "8",
       "--in-plane"], "--hand"),
 ])
