@@ -467,3 +467,35 @@ def test_searches_sharing_a_memo_give_the_plans_of_searches_alone(seed):
             for a, b in zip(p.centers, q.centers, strict=True):
                 np.testing.assert_array_equal(a, b)
     assert "table" in memo and any(k[0] == "solve" for k in memo if isinstance(k, tuple))
+
+
+def test_cone_rows_of_every_pair_at_once_are_those_of_one_pair_at_a_time():
+    """The soft pair's cone program: the rows, right-hand sides and cones of every pair
+    of corners built at once (``_cone_rows``) are those built one pair at a time (the
+    reference, ``tests/previous_cone_rows.py``), number for number, on facets of seeded
+    convex solids, one half-angle or one per facet, with shifts as the patches use."""
+    from fcgrasp.spatial.regions import _cone_rows
+
+    from .previous_cone_rows import cone_rows_loop
+
+    rng = np.random.default_rng(11)
+    checked = 0
+    for seed in range(6):
+        solid = _random_convex(seed)
+        facets = solid.facets
+        for _ in range(5):
+            f1, f2 = (facets[int(i)] for i in rng.choice(len(facets), 2, replace=False))
+            pairs = [(rng.normal(size=3) * rng.choice([1e-3, 1.0, 1e3]), rng.normal(size=3))
+                     for _ in range(int(rng.integers(0, 70)))]
+            alpha = float(rng.uniform(0.05, 1.2)) if rng.random() < 0.5 else \
+                (float(rng.uniform(0.05, 1.2)), float(rng.uniform(0.05, 1.2)))
+            got, want = ([], [], []), ([], [], [])
+            _cone_rows(f1, f2, alpha, pairs, *got)
+            cone_rows_loop(f1, f2, alpha, pairs, *want)
+            assert len(got[0]) == len(want[0]) == 8 * len(pairs)
+            assert all(np.array_equal(a, b) for a, b in zip(got[0], want[0], strict=True))
+            assert got[1] == want[1]
+            assert [c.__class__ for c in got[2]] == [c.__class__ for c in want[2]]
+            assert len(got[2]) == len(want[2])
+            checked += len(pairs)
+    assert checked > 500
