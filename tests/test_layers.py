@@ -9,6 +9,8 @@ import ast
 from collections import defaultdict
 from pathlib import Path
 
+import pytest
+
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
 LAYERS = ["errors", "core", "spatial", "model", "io", "pipeline", "grippers", "planning",
@@ -167,3 +169,38 @@ def test_no_module_is_longer_than_a_role():
     long = {_module(p): n for p in _sources()
             if (n := len(p.read_text().splitlines())) > MAX_LINES}
     assert not long, long
+
+
+#: The largest share of the parameters of ``core`` and ``model`` (the layers held to
+#: ``mypy --strict``) annotated with ``Any``.
+MAX_ANY = 0.10
+
+
+def _parameters(paths):
+    """Every annotated function parameter of ``paths`` (self and cls left out), and
+    those whose annotation names ``Any``."""
+
+
+    total = any_ = 0
+    for p in paths:
+        for node in ast.walk(ast.parse(p.read_text())):
+            if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            a = node.args
+            for arg in (*a.posonlyargs, *a.args, *a.kwonlyargs,
+                        *([a.vararg] if a.vararg else []), *([a.kwarg] if a.kwarg else [])):
+                if arg.arg in ("self", "cls"):
+                    continue
+                total += 1
+                any_ += arg.annotation is not None and "Any" in ast.unparse(arg.annotation)
+    return total, any_
+
+
+@pytest.mark.parametrize("layer", ["core", "model"])
+def test_few_parameters_are_any(layer):
+    """Public types, not ``Any``: under :data:`MAX_ANY` of the parameters of the layers
+    held to ``--strict`` (a parameter written ``Any`` takes anything unchecked by mypy).
+    The counter counts: a module of ``Any`` parameters alone is all ``Any``."""
+    paths = [p for p in _sources() if _module(p).split(".")[1:2] == [layer]]
+    total, any_ = _parameters(paths)
+    assert total > 300 and any_ <= MAX_ANY * total, (layer, any_, total)

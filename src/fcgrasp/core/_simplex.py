@@ -13,13 +13,16 @@ its own constraints before it is trusted.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ._checks import FloatArray, IntArray
 from .jit import CompiledLoops, jit_setting
 from .tolerances import LP_TOL, SIMPLEX_PIVOT, SIMPLEX_SLACK
+
+if TYPE_CHECKING:
+    from numpy.typing import ArrayLike
 
 __all__ = ["compiled", "lp_max", "OPTIMAL", "INFEASIBLE", "UNBOUNDED", "ITERATIONS"]
 
@@ -150,8 +153,8 @@ def compiled() -> dict[str, Any] | None:
     return _LOOPS.get()
 
 
-def lp_max(c: Any, A: Any, b: Any, eps: float = SIMPLEX_PIVOT, feas: float = LP_TOL
-           ) -> tuple[int, np.ndarray]:
+def lp_max(c: ArrayLike, A: ArrayLike, b: ArrayLike, eps: float = SIMPLEX_PIVOT,
+           feas: float = LP_TOL) -> tuple[int, np.ndarray]:
     """``max c.x`` subject to ``A x <= b``, ``x >= 0``: ``(status, x)`` with the statuses
     :data:`OPTIMAL` (``x`` filled), :data:`INFEASIBLE`, :data:`UNBOUNDED`,
     :data:`ITERATIONS`; run compiled when numba is there (:func:`compiled`), else as

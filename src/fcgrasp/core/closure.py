@@ -37,7 +37,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from itertools import combinations
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -513,7 +513,7 @@ def _angle(a: FloatArray, b: FloatArray) -> FloatArray:
     return cast("FloatArray", np.arctan2(np.abs(_cross2(a, b)), np.sum(a * b, axis=-1)))
 
 
-def friction_pair_modes(p: Any, normal_p: ArrayLike, q: Any, normal_q: ArrayLike,
+def friction_pair_modes(p: ArrayLike, normal_p: ArrayLike, q: ArrayLike, normal_q: ArrayLike,
                         mu: ArrayLike, mu_q: ArrayLike | None = None, tol: float = TOL
                         ) -> tuple[np.ndarray, np.ndarray]:
     """Theorem 6.3 split by mode: (squeezing, expanding) boolean arrays.

@@ -25,7 +25,7 @@ Gravity             the weight through the centre of gravity (end of 3.1)       
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -78,7 +78,8 @@ def friction_cone_edges(normal: ArrayLike, mu: ArrayLike) -> FloatArray:
     return np.stack([rotate(-n, phi), rotate(-n, -phi)], axis=-2)
 
 
-def _check_edge(a: Any, b: Any, normal: ArrayLike) -> tuple[FloatArray, FloatArray, FloatArray]:
+def _check_edge(a: ArrayLike, b: ArrayLike, normal: ArrayLike
+                ) -> tuple[FloatArray, FloatArray, FloatArray]:
     a = check_point(a, "a")
     b = check_point(b, "b")
     n = check_direction(normal, "normal")

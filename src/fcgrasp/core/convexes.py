@@ -86,7 +86,7 @@ def _dedupe(rays: FloatArray, tol: float) -> FloatArray:
     return np.array(out).reshape(-1, rays.shape[1])
 
 
-def halfspace_rays(a: Any, dim: int | None = None, tol: float = CONE_TOL
+def halfspace_rays(a: ArrayLike, dim: int | None = None, tol: float = CONE_TOL
                    ) -> tuple[FloatArray, FloatArray]:
     r"""Minimal generators of the cone :math:`\{y \in R^d : A y \ge 0\}`.
 

@@ -24,7 +24,7 @@ All functions broadcast over leading axes: a batch of one is just an array.
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, cast
 
 import numpy as np
 
@@ -101,7 +101,7 @@ def twist_about_point(center: ArrayLike, omega: ArrayLike = 1.0) -> FloatArray:
     return np.stack([w, w * c[..., 1], -w * c[..., 0]], axis=-1)
 
 
-def twist_translation(v: Any) -> FloatArray:
+def twist_translation(v: ArrayLike) -> FloatArray:
     """Planar twist of a pure translation with velocity ``v``: ``(0, vx, vy)``.
 
     Examples

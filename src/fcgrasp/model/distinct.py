@@ -16,6 +16,7 @@ as a plan already kept, and records on each kept plan the plans it stands for
 from __future__ import annotations
 
 import math
+from collections.abc import Iterable
 from dataclasses import replace
 from functools import cache
 from itertools import permutations
@@ -41,7 +42,7 @@ __all__ = ["DEFAULT_DISTINCT", "region_overlap", "same_alternative", "Suppressio
 DEFAULT_DISTINCT = 0.5
 
 
-def region_overlap(a: Any, b: Any, tol: float) -> float:
+def region_overlap(a: ArrayLike, b: ArrayLike, tol: float) -> float:
     """Length of the common part of two region polylines along the boundary (points
     within ``tol`` of each other are on both).
 
@@ -86,7 +87,7 @@ class _Overlaps:
         #: each region's segments as :meth:`reach` reads them, by the region's id
         self._segments: dict[int, tuple[Any, ...]] = {}
 
-    def region(self, a: Any, length: float, edges: Any = None) -> int:
+    def region(self, a: ArrayLike, length: float, edges: Iterable[int] | None = None) -> int:
         """The number of a region as :meth:`decide_regions` reads it: its points, its
         length and its edges (None: not labelled); one number for the same three."""
         a = np.asarray(a, float)
@@ -110,8 +111,8 @@ class _Overlaps:
                                                  ea, eb)
         return got
 
-    def decide(self, a: Any, b: Any, la: float, lb: float, fraction: float,
-               ea: Any = None, eb: Any = None) -> bool:
+    def decide(self, a: ArrayLike, b: ArrayLike, la: float, lb: float, fraction: float,
+               ea: Iterable[int] | None = None, eb: Iterable[int] | None = None) -> bool:
         """:func:`_overlaps` of two regions with this measure (:meth:`decide_regions`:
         each answer kept by what it reads, the regions' points, lengths and edges, and
         the fraction)."""
