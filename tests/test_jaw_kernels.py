@@ -580,3 +580,121 @@ def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves():
         pooled += int((ok & many).sum())
         proved += int(ok.sum())
     assert pooled >= 100 and proved >= 500, (pooled, proved)
+
+
+def test_proofs_and_slices_read_in_pieces_are_read_whole(monkeypatch):
+    """The compiled proof runs its slabs a few at a time (``CERTIFY_SLABS``, each run
+    given the sub-boxes the runs before left) and the slices their angles a few at a
+    time (``SLICE_CHUNK``), the time budget checked between: with one slab and two
+    angles at a time, certify_box's answers on boxes of seeded curved outlines (proved
+    or not, within few sub-boxes or many) and the jaw's plans are those of one run."""
+    from .test_jaw import _curved_part
+
+    rng = np.random.default_rng(23)
+    seen = proved = refused = 0
+    for _ in range(3):
+        part = _curved_part(rng)
+        jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
+                          pad_width=float(rng.uniform(0.05, 0.2)) * part.size,
+                          mu=float(rng.uniform(0.4, 1.0)))
+        th, c = _poses_of(rng, part, jaw, 12)
+        widths = rng.choice([0.01, 0.1, 0.4], th.size)
+        budgets = rng.choice([20, 400, 4000], th.size)
+        answers = []
+        for slabs, chunk in ((10 ** 6, 10 ** 6), (1, 2)):
+            monkeypatch.setattr(_certify, "CERTIFY_SLABS", slabs)
+            monkeypatch.setattr(_slices, "SLICE_CHUNK", chunk)
+            got = [_certify.certify_box(part, jaw, (t, t + w), (x, x + 0.05 * part.size),
+                                        0.5, max_boxes=int(budget))
+                   for t, x, w, budget in zip(th, c, widths, budgets, strict=True)]
+            plans = [p.to_dict() for p in fc.jaw_plans(part, jaw, top=2)]
+            answers.append((got, plans))
+        (whole, p_whole), (pieces, p_pieces) = answers
+        assert p_whole == p_pieces
+        for a, b in zip(whole, pieces, strict=True):
+            assert (a is None) == (b is None)
+            if a is not None:
+                assert a == b
+            seen += 1
+            proved += a is not None
+            refused += a is None
+    assert seen >= 30 and proved >= 3 and refused >= 3, (seen, proved, refused)
+
+
+def test_a_jaw_whose_clock_ends_inside_a_proof_keeps_only_proved_boxes(monkeypatch):
+    """The clock ending inside the proofs and the slices (the checks between their runs
+    of slabs and angles): the boxes kept are proved, every sampled pose of each holds,
+    and the answer says the search stopped (not exact)."""
+    from fcgrasp.core import budget
+
+    from .test_jaw import _curved_part
+
+    rng = np.random.default_rng(4)
+    part = _curved_part(rng)
+    jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size), pad_width=0.1 * part.size,
+                      mu=0.8)
+    real = budget.cut_if_over
+    for ends_after in (0, 3, 12, 40):
+        calls = [0]
+
+        def clock(counted=True, calls=calls, ends_after=ends_after):
+            if counted:
+                return real(counted)
+            calls[0] += 1
+            if calls[0] > ends_after:
+                budget.cut_short()
+                return True
+            return False
+
+        monkeypatch.setattr(budget, "cut_if_over", clock)
+        plans = fc.plan(part, gripper=jaw, top=4, distinct=0, time_limit=None)
+        assert not plans.complete
+        for p in plans:
+            assert p.certified
+            th = rng.uniform(*p.theta, 60)
+            c = rng.uniform(*p.offset, 60)
+            assert _poses.jaw_poses(part, jaw, th, c, margin=0.5).holds.all()
+
+
+def test_a_proof_in_runs_of_slabs_spends_one_budget_of_sub_boxes():
+    """The runs of slabs of one proof share its budget of sub-boxes: with the budget
+    the whole proof needs, less one, and more, a run of one slab at a time gives the
+    whole proof's answer (refused below what it needs, proved from it on)."""
+    from fcgrasp.core._angles import shrunk_half_angle as half_angle
+
+    from .test_jaw import _curved_part
+
+    rng = np.random.default_rng(29)
+    checked = 0
+    for _ in range(4):
+        part = _curved_part(rng)
+        jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
+                          pad_width=0.1 * part.size, mu=0.8)
+        ring = _poses._grip_edges(part, None)
+        beta = float(half_angle(jaw.mu, 0.5))
+        th, c = _poses_of(rng, part, jaw, 40)
+        holds = _poses.jaw_poses(part, jaw, th, c, 0.5).holds
+        for t, x in zip(th[holds][:6], c[holds][:6], strict=True):
+            t0, t1, c0, c1 = t, t + 0.2, x - 0.01 * part.size, x + 0.01 * part.size
+            cuts = _certify._angle_cuts(part, ring, t0, t1)
+            todo = np.column_stack([cuts[:-1], cuts[1:], np.full(cuts.size - 1, c0),
+                                    np.full(cuts.size - 1, c1)])
+            whole = _certify._certify_compiled(part, ring, jaw, todo, None, beta, 10 ** 7,
+                                               part.radius)
+            if not whole[0] or len(todo) < 3:
+                continue
+            used = whole[3]
+            for b in (used - 1, used, used + 1):
+                answers = []
+                for slabs in (10 ** 6, 1):
+                    _certify.CERTIFY_SLABS = slabs
+                    try:
+                        answers.append(_certify._certify_compiled(
+                            part, ring, jaw, todo, None, beta, b, part.radius)[:3])
+                    finally:
+                        _certify.CERTIFY_SLABS = 64
+                (ok, lo, hi), (ok1, lo1, hi1) = answers
+                assert ok == ok1 == (b >= used)
+                assert not ok or (lo, hi) == (lo1, hi1)
+                checked += 1
+    assert checked >= 9, checked

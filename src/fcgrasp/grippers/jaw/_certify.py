@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from ...core import budget
 from ...core._angles import shrunk_half_angle, wrap
 from ...core._checks import FloatArray, check_int
 from ...core.tolerances import CONTACT_TOL, ROUND_TOL, TOL
@@ -413,6 +414,38 @@ def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: JawParameters,
 #: Sub-boxes :func:`certify_box` examines at a time.
 CERTIFY_BATCH = 512
 
+#: Slabs the compiled proof (:func:`_certify_compiled`) reads at a time, the time budget
+#: checked between: the slabs are proved one after another, depth first, so the
+#: proof is the same in pieces, and a box of a 10,000-edge outline (thousands of slabs,
+#: seconds) stops soon after the budget ends.
+CERTIFY_SLABS = 64
+
+
+def _certify_compiled(polygon: Polygon, ring: np.ndarray, jaw: JawParameters,
+                      todo: FloatArray, q: FloatArray | None, beta: float, max_boxes: int,
+                      radius: float) -> tuple[bool, float, float, int] | None:
+    """:func:`certify_box`'s compiled subdivision of the slabs ``todo``, in runs of
+    :data:`CERTIFY_SLABS` slabs, each given the sub-boxes the runs before left of
+    ``max_boxes`` (the same sub-boxes examined, so the same answer); not proved once the
+    time budget has ended before a run (the search is then recorded as cut short).
+    None where the compiled loop does not run."""
+    edges = _edges(polygon, ring)
+    lo, hi, used = np.inf, -np.inf, 0
+    for i in range(0, len(todo), CERTIFY_SLABS):
+        if budget.cut_if_over(counted=False):
+            return False, lo, hi, used
+        found = _kernels.certify(todo[i:i + CERTIFY_SLABS], *edges, jaw.pad_width / 2,
+                                 CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
+                                 jaw.stroke, POOLED, max_boxes - used, radius,
+                                 NEAR_STRIP * CONTACT_TOL * polygon.size, ROUND_TOL)
+        if found is None:
+            return None
+        used += found[3]
+        if not found[0]:
+            return False, lo, hi, used
+        lo, hi = min(lo, found[1]), max(hi, found[2])
+    return True, lo, hi, used
+
 #: :func:`certify_box`'s budget of sub-boxes counts for this many slabs between critical
 #: angles (a box cut into more has that budget again for each such group).
 SLABS_PER_BUDGET = 8
@@ -467,10 +500,7 @@ def certify_box(polygon: Polygon, jaw: JawParameters, theta: Any, offset: Any,
                             np.full(cuts.size - 1, c1)])
     max_boxes *= max(1, -(-len(todo) // SLABS_PER_BUDGET))
     if _kernels.available():
-        found = _kernels.certify(todo, *_edges(polygon, ring), jaw.pad_width / 2,
-                                 CONTACT_TOL * polygon.size, CONTACT_TOL, TOL, q, beta,
-                                 jaw.stroke, POOLED, max_boxes, radius,
-                                 NEAR_STRIP * CONTACT_TOL * polygon.size, ROUND_TOL)
+        found = _certify_compiled(polygon, ring, jaw, todo, q, beta, max_boxes, radius)
         if found is not None:
             return (found[1], found[2]) if found[0] else None
     lo_open, hi_open = np.inf, -np.inf

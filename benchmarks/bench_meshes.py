@@ -1,0 +1,72 @@
+"""Every mesh of the corpus (``benchmarks/corpus/meshes``: CAD parts with pockets and
+holes, a round part) with every gripper that plans solids, each run in a fresh process
+as the command line runs it (``fcgrasp plan MESH ... --json OUT``): CPU seconds and
+peak memory of the process, the plans returned and whether the answer is complete,
+beside the ranked list (``--distinct 0``) measured in the same invocation, as a ratio.
+
+    python benchmarks/bench_meshes.py [--mu 0.5] [--grippers 2f,3f,jaw] [--files round]
+
+The jaw's stroke and pads follow each mesh's size (its stroke from 2 % to 150 % of the
+largest extent, pads 10 % of it: the meshes come in millimetres and in inches).
+Prints a Markdown table and how many runs take more than 2 s.
+"""
+
+from __future__ import annotations
+
+import argparse
+import subprocess
+import sys
+from pathlib import Path
+
+from bench_defaults import cell, run
+
+HERE = Path(__file__).resolve().parent
+MESHES = HERE / "corpus" / "meshes"
+
+
+def gripper_args(g: str, size: float) -> list[str]:
+    if g == "2f":
+        return ["--fingers", "2"]
+    if g == "3f":
+        return ["--fingers", "3"]
+    return ["--gripper", "jaw", "--stroke", f"{0.02 * size:.6g},{1.5 * size:.6g}",
+            "--pad", f"{0.1 * size:.6g}"]
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--mu", default="0.5")
+    ap.add_argument("--grippers", default="2f,3f,jaw")
+    ap.add_argument("--files", default="", help="only meshes whose name contains this")
+    args = ap.parse_args()
+    import trimesh
+
+    subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
+                   check=True)
+    files = sorted(p for p in MESHES.iterdir()
+                   if p.suffix.lower() in (".stl", ".ply", ".obj", ".off")
+                   and args.files in p.name)
+    print("| mesh | triangles | gripper | default (CPU, peak) | plans | complete | "
+          "ranked | ratio |")
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    over = total = 0
+    for path in files:
+        mesh = trimesh.load(str(path), force="mesh")
+        size = float(max(mesh.extents))
+        for g in filter(None, args.grippers.split(",")):
+            argv = ["plan", str(path), *gripper_args(g, size), "--mu", args.mu]
+            d = run(argv, None)
+            b = run(argv + ["--distinct", "0"], None)
+            ratio = "-" if d.get("cpu") is None or b.get("cpu") is None \
+                else f"{d['cpu'] / max(b['cpu'], 1e-9):.2f}"
+            total += 1
+            over += d.get("cpu") is None or d["cpu"] > 2.0
+            print(f"| {path.name} | {len(mesh.faces)} | {g} | {cell(d, None)} | "
+                  f"{d.get('plans', '-')} | {'yes' if d.get('complete') else 'no'} | "
+                  f"{cell(b, None)} | {ratio} |", flush=True)
+    print(f"\n{total - over} of {total} runs within 2 s of CPU")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
