@@ -550,7 +550,8 @@ def test_both_outer_pads_in_one_pass_are_each_pad_alone():
     assert poses == 2400 and touching > 2000
 
 
-def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves():
+@pytest.mark.parametrize("parts", [3, pytest.param(8, marks=pytest.mark.slow)])
+def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves(parts):
     """On finely flattened curves and filleted plates, where a pad's candidates are
     pooled over most boxes a few degrees wide, the compiled proof gives numpy's verdict
     and opening enclosure box for box."""
@@ -558,7 +559,7 @@ def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves():
 
     rng = np.random.default_rng(17)
     pooled = proved = 0
-    for k in range(6):
+    for k in range(parts):
         part = (_curved_part, _filleted_plate)[k % 2](rng)
         jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
                           pad_width=float(rng.uniform(0.02, 0.3)) * part.size,
@@ -579,10 +580,11 @@ def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves():
         many = (ca.count > _poses.MAX_CONTACTS) | (cb.count > _poses.MAX_CONTACTS)
         pooled += int((ok & many).sum())
         proved += int(ok.sum())
-    assert pooled >= 100 and proved >= 500, (pooled, proved)
+    assert pooled >= 15 * parts and proved >= 80 * parts, (pooled, proved)
 
 
-def test_proofs_and_slices_read_in_pieces_are_read_whole(monkeypatch):
+@pytest.mark.parametrize("parts", [1, pytest.param(4, marks=pytest.mark.slow)])
+def test_proofs_and_slices_read_in_pieces_are_read_whole(parts, monkeypatch):
     """The compiled proof runs its slabs a few at a time (``CERTIFY_SLABS``, each run
     given the sub-boxes the runs before left) and the slices their angles a few at a
     time (``SLICE_CHUNK``), the time budget checked between: with one slab and two
@@ -592,12 +594,12 @@ def test_proofs_and_slices_read_in_pieces_are_read_whole(monkeypatch):
 
     rng = np.random.default_rng(23)
     seen = proved = refused = 0
-    for _ in range(3):
+    for _ in range(parts):
         part = _curved_part(rng)
         jaw = ParallelJaw(stroke=(0.05 * part.size, 1.5 * part.size),
                           pad_width=float(rng.uniform(0.05, 0.2)) * part.size,
                           mu=float(rng.uniform(0.4, 1.0)))
-        th, c = _poses_of(rng, part, jaw, 12)
+        th, c = _poses_of(rng, part, jaw, 30)
         widths = rng.choice([0.01, 0.1, 0.4], th.size)
         budgets = rng.choice([20, 400, 4000], th.size)
         answers = []
@@ -607,7 +609,7 @@ def test_proofs_and_slices_read_in_pieces_are_read_whole(monkeypatch):
             got = [_certify.certify_box(part, jaw, (t, t + w), (x, x + 0.05 * part.size),
                                         0.5, max_boxes=int(budget))
                    for t, x, w, budget in zip(th, c, widths, budgets, strict=True)]
-            plans = [p.to_dict() for p in fc.jaw_plans(part, jaw, top=2)]
+            plans = [p.to_dict() for p in fc.jaw_plans(part, jaw, top=1)]
             answers.append((got, plans))
         (whole, p_whole), (pieces, p_pieces) = answers
         assert p_whole == p_pieces

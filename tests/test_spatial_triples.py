@@ -345,7 +345,9 @@ def test_the_facet_bound_is_never_below_the_hulls_radius(seed):
     assert close > 50 and tight > 0.5 * close, (close, tight)
 
 
-def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(monkeypatch):
+@pytest.mark.parametrize("names", [("cylinder", 4), pytest.param(
+    ("box", 3), marks=pytest.mark.slow)])
+def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(names, monkeypatch):
     """The refinement that skips the hulls the facet bound rules out takes the same
     moves: three fingers' plans on meshes with and without it are equal."""
     import fcgrasp as fc
@@ -353,8 +355,7 @@ def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(monkeypat
 
     spared = []
     hull = T._hull_slice
-    for solid in (demo_solid("box"), demo_solid("cylinder"), _random_convex(3),
-                  _random_convex(4)):
+    for solid in (demo_solid(names[0]), _random_convex(names[1])):
         got = []
         for on in (False, True):
             calls = [0]
