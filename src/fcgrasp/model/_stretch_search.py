@@ -440,10 +440,12 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
     ts = np.array([f.value for f in found], float)
     asked: set[int] = set()
     beaten: set[int] = set()
+    groups = _job_groups(found, similar)
     while True:
         check = ts >= (ts[limit - 1] * (1 - TIE) if limit else np.inf)
         check[:limit] = True
-        alive = [f for f in _own_optimum_of(rings, found, check, similar) if not f.similar]
+        alive = [f for f in _own_optimum_of(rings, found, check, similar, groups)
+                 if not f.similar]
         if demand is not None:
             new = [f for f in alive if id(f) not in asked]
             asked.update(id(f) for f in new)
@@ -458,17 +460,17 @@ def _own_optimum(rings: list[_Ring], found: list[_Found],
         limit = min(2 * limit, len(found))
 
 
-def _own_optimum_of(rings: list[_Ring], found: list[_Found], check: np.ndarray,
-                    similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
-                    ) -> list[_Found]:
-    """:func:`_own_optimum` of the rows of ``found`` that ``check`` marks (every row a
-    beater), those kept in order."""
-    keep = check.copy()
+def _job_groups(found: list[_Found],
+                similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None
+                ) -> list[tuple[Any, list[int], np.ndarray, FloatArray]]:
+    """The rows of ``found`` by job, each job's configurations and ``t`` as arrays (its
+    rows first, then those ``similar`` files under it): what :func:`_own_optimum_of`
+    reads, made once for the calls of one :func:`_own_optimum`."""
     by_job: dict[Any, list[int]] = {}
     for j, f in enumerate(found):
         by_job.setdefault(f.job, []).append(j)
+    out = []
     for job, idx in by_job.items():
-        ra, rb = rings[job[0]], rings[job[1]]
         c = np.array([found[j].cfg for j in idx], dtype=np.int64).reshape(-1, 4)
         t = np.array([found[j].t for j in idx], dtype=float)
         if similar is not None and job in similar:
@@ -477,6 +479,20 @@ def _own_optimum_of(rings: list[_Ring], found: list[_Found], check: np.ndarray,
             c = np.concatenate([c, np.stack([J.cfg.iA[extra], J.cfg.kA[extra],
                                              J.cfg.iC[extra], J.cfg.kC[extra]], axis=1)])
             t = np.concatenate([t, J.t[extra]])
+        out.append((job, idx, c, t))
+    return out
+
+
+def _own_optimum_of(rings: list[_Ring], found: list[_Found], check: np.ndarray,
+                    similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
+                    groups: list[tuple[Any, list[int], np.ndarray, FloatArray]] | None = None
+                    ) -> list[_Found]:
+    """:func:`_own_optimum` of the rows of ``found`` that ``check`` marks (every row a
+    beater), those kept in order; ``groups``: :func:`_job_groups` of ``found`` and
+    ``similar``, made by the caller."""
+    keep = check.copy()
+    for job, idx, c, t in _job_groups(found, similar) if groups is None else groups:
+        ra, rb = rings[job[0]], rings[job[1]]
         if c[:, [1, 3]].max() == 0 or not check[idx].any():
             continue
         n = len(idx)
