@@ -1075,3 +1075,57 @@ def test_thresholds_kept_across_rounds_are_each_rounds_own(third):
             np.testing.assert_array_equal(got, want)
             finite += int(np.isfinite(want).sum())
     assert finite > 1000, finite
+
+
+@pytest.mark.parametrize("m", [(7, 9), (3000, 5000), (60_000, 100_000), (100_000, 100_000)])
+def test_the_exclusions_codes_tell_configurations_apart_on_long_rings(m):
+    """The codes of configurations a distinct round has read (``_Exclusion._codes``)
+    and their lookup (``_member``): equal only for the same configuration (starts
+    taken round their ring) and found exactly, on rings of a few edges to 100,000 (where
+    one int64 cannot hold a code: a record of two instead)."""
+    from types import SimpleNamespace
+
+    rng = np.random.default_rng(sum(m))
+    rings = [SimpleNamespace(m=m[0]), SimpleNamespace(m=m[1])]
+    n = 4000
+
+    def draw():
+        return (rng.integers(0, 2 * m[0], n), rng.integers(0, min(m[0], 60), n),
+                rng.integers(0, 2 * m[1], n), rng.integers(0, min(m[1], 60), n))
+
+    seen, asked = draw(), draw()
+    # half of those asked are ones seen, some with their starts a turn further round
+    half = rng.random(n) < 0.5
+    for a, b, ring in zip(asked, seen, (m[0], 1, m[1], 1), strict=True):
+        a[half] = b[half] + (ring if ring > 1 else 0) * rng.integers(0, 2, half.sum()) \
+            * (b[half] < ring)
+    known = np.unique(X._Exclusion._codes(rings, 0, 1, *seen))
+    got = X._member(X._Exclusion._codes(rings, 0, 1, *asked), known)
+    as_set = {(int(a) % m[0], int(k), int(c) % m[1], int(l)) for a, k, c, l in zip(*seen)}
+    want = np.array([(int(a) % m[0], int(k), int(c) % m[1], int(l)) in as_set
+                     for a, k, c, l in zip(*asked)])
+    np.testing.assert_array_equal(got, want)
+    assert want.sum() >= n // 3 and (~want).sum() >= n // 10
+
+
+def test_two_configurations_a_wrapped_int64_would_confuse_have_two_codes():
+    """On rings of 100,000 edges a code ``first * mb (mb + 1) + second`` passes 2**63:
+    two configurations whose codes differ by 2**64 exactly (built here) would wrap to
+    one int64; their codes differ, and neither is read as the other."""
+    from types import SimpleNamespace
+
+    ma = mb = 100_000
+    rings = [SimpleNamespace(m=ma), SimpleNamespace(m=mb)]
+    K = mb * (mb + 1)
+    df = -(-2 ** 64 // K)                   # df K - 2**64 = r, 0 <= r < K
+    r = df * K - 2 ** 64
+    f1, s1 = 12_345, r + 17
+    f2, s2 = f1 + df, s1 - r
+    assert (f2 * K + s2) - (f1 * K + s1) == 2 ** 64 and f2 < ma * (ma + 1)
+    # a code's parts: first = iA (ma + 1) + kA, second = iC (mb + 1) + kC
+    iA, kA = np.divmod(np.array([f1, f2]), ma + 1)
+    iC, kC = np.divmod(np.array([s1, s2]), mb + 1)
+    codes = X._Exclusion._codes(rings, 0, 1, iA, kA, iC, kC)
+    assert codes[0] != codes[1]
+    known = np.unique(codes[:1])
+    assert X._member(codes, known).tolist() == [True, False]

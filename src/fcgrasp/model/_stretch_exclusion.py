@@ -29,6 +29,10 @@ def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
     return {int(e): (r, p) for r, ring in enumerate(rings) for p, e in enumerate(ring.edges)}
 
 
+#: A configuration's code on rings too long for one int64 (:meth:`_Exclusion._codes`).
+_PAIR = np.dtype([("first", np.int64), ("second", np.int64)])
+
+
 def _member(codes: np.ndarray, known: np.ndarray) -> np.ndarray:
     """``np.isin(codes, known)`` for ``known`` sorted and unique: a binary search
     each, without sorting ``codes`` (hundreds of thousands, read in every round)."""
@@ -113,10 +117,19 @@ class _Exclusion:
     @staticmethod
     def _codes(rings: list[_Ring], x: int, y: int, iA: Any, kA: Any, iC: Any, kC: Any
                ) -> np.ndarray:
-        """One integer per configuration of rings ``x`` and ``y`` (starts reduced)."""
+        """One code per configuration of rings ``x`` and ``y`` (starts reduced), sortable
+        and equal only for the same configuration: an integer, or where the rings are
+        too long for one int64 (``ma (ma + 1) mb (mb + 1)`` past 2**62: tens of
+        thousands of edges each) a record of two, the first stretch's and the
+        second's."""
         ma, mb = rings[x].m, rings[y].m
-        return cast("np.ndarray", ((np.asarray(iA, np.int64) % ma * (ma + 1) + kA) * mb
-                                   + np.asarray(iC, np.int64) % mb) * (mb + 1) + kC)
+        first = np.asarray(iA, np.int64) % ma * (ma + 1) + np.asarray(kA, np.int64)
+        second = np.asarray(iC, np.int64) % mb * (mb + 1) + np.asarray(kC, np.int64)
+        if float(ma) * (ma + 1) * mb * (mb + 1) < 2.0 ** 62:
+            return cast("np.ndarray", first * (mb * (mb + 1)) + second)
+        out = np.empty(first.shape, _PAIR)
+        out["first"], out["second"] = first, second
+        return out
 
     @staticmethod
     def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
