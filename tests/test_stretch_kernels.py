@@ -1101,9 +1101,12 @@ def test_the_exclusions_codes_tell_configurations_apart_on_long_rings(m):
             * (b[half] < ring)
     known = np.unique(X._Exclusion._codes(rings, 0, 1, *seen))
     got = X._member(X._Exclusion._codes(rings, 0, 1, *asked), known)
-    as_set = {(int(a) % m[0], int(k), int(c) % m[1], int(l)) for a, k, c, l in zip(*seen)}
-    want = np.array([(int(a) % m[0], int(k), int(c) % m[1], int(l)) in as_set
-                     for a, k, c, l in zip(*asked)])
+    def reduced(rows):
+        return [(int(a) % m[0], int(ka), int(c) % m[1], int(kc))
+                for a, ka, c, kc in zip(*rows, strict=True)]
+
+    as_set = set(reduced(seen))
+    want = np.array([row in as_set for row in reduced(asked)])
     np.testing.assert_array_equal(got, want)
     assert want.sum() >= n // 3 and (~want).sum() >= n // 10
 
