@@ -5,6 +5,11 @@ peak memory of the process, the plans returned and whether the answer is complet
 beside the ranked list (``--distinct 0``) measured in the same invocation, as a ratio.
 
     python benchmarks/bench_meshes.py [--mu 0.5] [--grippers 2f,3f,jaw] [--files round]
+                                      [--torus 10000,100000]
+
+``--torus`` adds tori of about those many triangles (major radius 40 mm, minor 12 mm,
+``trimesh.creation.torus``): a curved solid of 10,000 to 100,000 triangles with no two
+facets parallel.
 
 The jaw's stroke and pads follow each mesh's size (its stroke from 2 % to 150 % of the
 largest extent, pads 10 % of it: the meshes come in millimetres and in inches).
@@ -38,14 +43,26 @@ def main() -> int:
     ap.add_argument("--mu", default="0.5")
     ap.add_argument("--grippers", default="2f,3f,jaw")
     ap.add_argument("--files", default="", help="only meshes whose name contains this")
+    ap.add_argument("--torus", default="", help="tori of about these many triangles")
     args = ap.parse_args()
+    import tempfile
+
     import trimesh
+
+    tmp = tempfile.TemporaryDirectory()
 
     subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
                    check=True)
     files = sorted(p for p in MESHES.iterdir()
                    if p.suffix.lower() in (".stl", ".ply", ".obj", ".off")
                    and args.files in p.name)
+    for n in map(int, filter(None, args.torus.split(","))):
+        minor = max(8, int(round((n / 10) ** 0.5)))         # 2 * major * minor = n
+        major = max(8, n // (2 * minor))
+        path = Path(tmp.name) / f"torus-{2 * major * minor}.stl"
+        trimesh.creation.torus(major_radius=40, minor_radius=12, major_sections=major,
+                               minor_sections=minor).export(str(path))
+        files.append(path)
     print("| mesh | triangles | gripper | default (CPU, peak) | plans | complete | "
           "ranked | ratio |")
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")
