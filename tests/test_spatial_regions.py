@@ -499,3 +499,40 @@ def test_cone_rows_of_every_pair_at_once_are_those_of_one_pair_at_a_time():
             assert len(got[2]) == len(want[2])
             checked += len(pairs)
     assert checked > 500
+
+
+def test_a_soft_pair_search_the_clock_ends_keeps_regions_that_hold(monkeypatch):
+    """The clock ending inside the soft pair's searches (on pairs of facets and across
+    the facets of curved surfaces, the checks between their steps): the plans kept hold
+    (every corner pair and sampled grasps by the closed form), each of them among the
+    complete search's candidates, and the answer says it was cut short (not exact)."""
+    import fcgrasp as fc
+    from fcgrasp.core import budget
+    from fcgrasp.spatial import regions, surfaces
+
+    rng = np.random.default_rng(8)
+    solid = demo_solid("mug")
+    full = fc.plan(solid, fingers=2, mu=0.5, top=6, time_limit=None)
+    assert full.complete
+    real = budget.cut_if_over
+    seen = 0
+    for ends_after in (0, 2, 8, 30, 120):
+        calls = [0]
+
+        def clock(counted=True, calls=calls, ends_after=ends_after):
+            calls[0] += 1
+            if calls[0] > ends_after:
+                budget.cut_short()
+                return True
+            return real(counted)
+
+        monkeypatch.setattr(regions, "cut_if_over", clock)
+        monkeypatch.setattr(surfaces, "cut_if_over", clock)
+        plans = fc.plan(solid, fingers=2, mu=0.5, top=6, time_limit=None)
+        assert not plans.complete and not plans.exact
+        for plan in plans:
+            P = _grasps(rng, plan, 20)
+            N = np.broadcast_to(plan.normals, P.shape)
+            assert two_soft_closure(P, N, 0.5).all()
+            seen += 1
+    assert seen >= 6

@@ -49,6 +49,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray, IntArray, check_int, check_mu_scalar, check_scalar
+from ..core.budget import cut_if_over
 from ..core.tolerances import (
     CONE_PROGRAM_TOL,
     FIT_ROUNDING,
@@ -467,10 +468,13 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     when they hold, which is then optimal, else the cone program); the search stops
     when no bound can enter the top ``top`` (None: every pair).  With ``leximin`` (the
     default) each plan's second level is grown (:func:`_second_level`; ``radius``, the
-    first level, ranks them either way).  ``memo``: a dict the searches of one solid
-    share (a caller asking for more plans, :func:`fcgrasp.spatial.alternatives.top_distinct`):
-    the pieces' table and each pair's refined bound and solution, computed once (each
-    depends on the pair and the cone alone, so the plans are the same).
+    first level, ranks them either way).  When the time budget ends
+    (:func:`fcgrasp.core.budget.deadline`) the plans solved so far are returned and the
+    search is recorded as cut short (a complete search may rank others first).
+    ``memo``: a dict the searches of one solid share (a caller asking for more plans,
+    :func:`fcgrasp.spatial.alternatives.top_distinct`): the pieces' table and each
+    pair's refined bound and solution, computed once (each depends on the pair and the
+    cone alone, so the plans are the same).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 4) for p in facet_pair_plans(demo_solid("box"), mu=0.3, top=3)]
@@ -521,6 +525,8 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             break
         if top is not None and len(plans) >= top and best <= plans[top - 1].radius:
             break
+        if cut_if_over():
+            break               # the plans solved so far, each exact; the answer cut short
         if run is not None and raw > ref:      # tighten the bound; solve when still first
             i, j = run.pop()
             got = _once(memo, ("refine", alpha, i, j), _refine, solid, table, i, j, alpha)

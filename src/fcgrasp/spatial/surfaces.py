@@ -56,6 +56,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray, IntArray
+from ..core.budget import cut_if_over
 from ..core.tolerances import (
     CONE_PROGRAM_TOL,
     SURFACE_STEP,
@@ -258,7 +259,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     first, at most ``top`` (None: every pair of patches), each larger than ``floor``;
     the search stops when no pair of patches left has a bound above ``1 + gap`` times
     the ``top``-th kept (``gap=0``: the best of the whole family, for the lower bound of
-    each pair that the search computes before the cone program polishes those kept);
+    each pair that the search computes before the cone program polishes those kept; when
+    the time budget ends, those found so far, neither polished nor grown, the search
+    recorded as cut short);
     with ``leximin``, each plan's second level grown (:func:`_second_level`):
     ``mu`` and ``margin`` as :func:`~fcgrasp.spatial.soft_pair_plans` checked them,
     ``alpha = atan(mu) - margin`` in radians.  An empty list where no patch spans two
@@ -293,6 +296,8 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     pairs: dict[int, tuple[_Patch, _Patch]] = {}
     found: list[tuple[float, int, FloatArray, FloatArray, float]] = []
     while heap:
+        if cut_if_over():
+            break               # the pairs found so far, each certified; cut short
         neg, stage, k = heapq.heappop(heap)
         full = top is not None and len(found) >= top
         limit = found[-1][0] if full else floor               # the top-th kept
@@ -342,15 +347,18 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     for r, k, c1, c2, bound in found:
         p, q = pairs[k]
         alphas = (alpha - p.beta, alpha - q.beta)
+        # past the time budget a pair is kept as its lower bound certified it: neither
+        # polished nor grown
+        late = cut_if_over()
         # the cone program where the lower bound may fall short of the pair's best by
         # more than the gap
-        got = _program(p, q, alphas) if r * (1 + gap) < bound else None
+        got = _program(p, q, alphas) if r * (1 + gap) < bound and not late else None
         if got is not None:
             d1, d2, g = got
             g = _certified(d1, d2, p, q, alphas, g)
             if g > r:
                 r, c1, c2 = g, d1, d2
-        c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if leximin \
+        c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if leximin and not late \
             else (c1, c2, (r, r))
         plans.append(_surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of, radii))
     return sorted(plans, key=lambda x: -x.radius)
