@@ -373,3 +373,38 @@ def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(names, mo
             json.dumps(on_, sort_keys=True, default=str)
         spared.append(n_off - n_on)
     assert sum(spared) > 0, spared
+
+
+def test_a_triple_search_the_clock_ends_keeps_regions_that_hold(monkeypatch):
+    """The clock ending inside three fingers' search of a solid (looked at every few
+    triples certified, and before each plan's refinement): the plans kept hold at every
+    sampled grasp by the cone program, and the answer says it was cut short."""
+    import fcgrasp as fc
+    from fcgrasp.core import budget
+    from fcgrasp.spatial import triples as T
+
+    rng = np.random.default_rng(6)
+    solid = _random_convex(5)
+    real = budget.cut_if_over
+    seen = 0
+    for ends_after in (0, 1, 3, 12):
+        calls = [0]
+
+        def clock(counted=True, calls=calls, ends_after=ends_after):
+            calls[0] += 1
+            if calls[0] > ends_after:
+                budget.cut_short()
+                return True
+            return real(counted)
+
+        monkeypatch.setattr(T, "cut_if_over", clock)
+        plans = fc.plan(solid, fingers=3, mu=0.6, top=4, time_limit=None)
+        assert not plans.complete and not plans.exact
+        for plan in plans:
+            if not hasattr(plan, "delta"):
+                continue                    # a plan across facets (not this search's)
+            for P in _grasps(rng, plan, 16, 4):
+                assert closure_margin(P, plan.normals, math.tan(_alpha(0.6))).closure
+            assert plan.radius <= plan.delta
+            seen += 1
+    assert seen >= 3, seen

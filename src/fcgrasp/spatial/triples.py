@@ -48,6 +48,7 @@ from typing import Any
 import numpy as np
 
 from ..core._checks import FloatArray, check_int
+from ..core.budget import cut_if_over
 from ..core.tolerances import HULL_ROUNDING, TOL
 from ._pieces import Halfplanes, _fit, _piece_table
 from .contacts import check_spatial_contacts, contact_frames
@@ -209,6 +210,10 @@ def _hull_slice(w: FloatArray) -> tuple[float, FloatArray | None]:
 #: top 10) the bound is within 9 % of the radius for half the moves, and a quarter of
 #: the hulls are spared.
 FACET_BOUND = True
+
+#: Triples :func:`point_triple_plans` certifies between two looks at the clock.
+CLOCK_TRIPLES = 16
+
 
 #: The most facet normals a triple keeps for :func:`_facet_bound` (the newest hulls'
 #: first): a few hulls' worth.
@@ -412,8 +417,9 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
     decreasing order of their bound (the smallest octagon fit of the three), among
     equal bounds the widest triangle of centroids first; each certified at the fits'
     centres; the search stops when the bound cannot enter the top ``top`` or after
-    ``max_triples`` certificates; the plans kept are then refined
-    (:func:`point_triple_regions`) unless ``refine`` is false.
+    ``max_triples`` certificates, or at the time budget (the search then recorded as cut
+    short, :func:`fcgrasp.core.budget.cut_short`); the plans kept are then refined
+    (:func:`point_triple_regions`) unless ``refine`` is false or the budget has ended.
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> got = point_triple_plans(demo_solid("prism"), mu=0.5, top=2)
@@ -435,7 +441,7 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
         bound = float(fit[order[level]])
         if top is not None and len(found) >= top and found[top - 1][0] >= bound:
             break
-        if certified >= max_triples:
+        if certified >= max_triples or cut_if_over():
             exhaustive = False
             break
         k = order[level]
@@ -451,7 +457,7 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
         p, q, s = table.centroid[a], table.centroid[b], table.centroid[c]
         area = np.linalg.norm(np.cross(q - p, s - p), axis=1)
         for i in np.argsort(-area, kind="stable").tolist():
-            if certified >= max_triples:
+            if certified >= max_triples or certified % CLOCK_TRIPLES == 0 and cut_if_over():
                 break
             rows = (int(a[i]), int(b[i]), int(c[i]))
             tri, start = _nominal(table, rows)
@@ -464,7 +470,9 @@ def point_triple_plans(solid: Solid, mu: Any, top: int | None = 10,
                     del found[top:]
     plans = []
     for _, rows in found:
-        got = _certify(solid, table, rows, alpha, mu_v, margin_v, refine)
+        # past the time budget a triple keeps its nominal centres: not refined
+        got = _certify(solid, table, rows, alpha, mu_v, margin_v,
+                       refine and not cut_if_over())
         if got is not None:
             plans.append(got)
     plans.sort(key=lambda p: (-p.radius, p.facets, p.pieces))
