@@ -507,25 +507,17 @@ def test_a_soft_pair_search_the_clock_ends_keeps_regions_that_hold(monkeypatch):
     (every corner pair and sampled grasps by the closed form), each of them among the
     complete search's candidates, and the answer says it was cut short (not exact)."""
     import fcgrasp as fc
-    from fcgrasp.core import budget
     from fcgrasp.spatial import regions, surfaces
+
+    from .clock import clock_ending_after
 
     rng = np.random.default_rng(8)
     solid = demo_solid("mug")
     full = fc.plan(solid, fingers=2, mu=0.5, top=6, time_limit=None)
     assert full.complete
-    real = budget.cut_if_over
     seen = 0
     for ends_after in (0, 2, 8, 30, 120):
-        calls = [0]
-
-        def clock(counted=True, calls=calls, ends_after=ends_after):
-            calls[0] += 1
-            if calls[0] > ends_after:
-                budget.cut_short()
-                return True
-            return real(counted)
-
+        clock = clock_ending_after(ends_after)
         monkeypatch.setattr(regions, "cut_if_over", clock)
         monkeypatch.setattr(surfaces, "cut_if_over", clock)
         plans = fc.plan(solid, fingers=2, mu=0.5, top=6, time_limit=None)

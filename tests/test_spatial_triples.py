@@ -380,24 +380,15 @@ def test_a_triple_search_the_clock_ends_keeps_regions_that_hold(monkeypatch):
     triples certified, and before each plan's refinement): the plans kept hold at every
     sampled grasp by the cone program, and the answer says it was cut short."""
     import fcgrasp as fc
-    from fcgrasp.core import budget
     from fcgrasp.spatial import triples as T
+
+    from .clock import clock_ending_after
 
     rng = np.random.default_rng(6)
     solid = _random_convex(5)
-    real = budget.cut_if_over
     seen = 0
     for ends_after in (0, 1, 3, 12):
-        calls = [0]
-
-        def clock(counted=True, calls=calls, ends_after=ends_after):
-            calls[0] += 1
-            if calls[0] > ends_after:
-                budget.cut_short()
-                return True
-            return real(counted)
-
-        monkeypatch.setattr(T, "cut_if_over", clock)
+        monkeypatch.setattr(T, "cut_if_over", clock_ending_after(ends_after))
         plans = fc.plan(solid, fingers=3, mu=0.6, top=4, time_limit=None)
         assert not plans.complete and not plans.exact
         for plan in plans:
