@@ -66,22 +66,24 @@ class _Candidates:
     points: FloatArray | None = None
     #: how many candidates (B,), those beyond :data:`MAX_CONTACTS` not listed
     count: np.ndarray | None = None
-    #: all the candidates pooled (:data:`POOLED`): the corners of the box holding
-    #: their points (B, 4, 2) and the arc holding their forces (``pool_centre``,
-    #: ``pool_half`` (B,))
+    #: all the candidates pooled (made with ``pooled``, :data:`POOLED`): the corners of
+    #: the box holding their points (B, 4, 2) and the arc holding their forces
+    #: (``pool_centre``, ``pool_half`` (B,)); None otherwise
     pool: FloatArray | None = None
     pool_centre: FloatArray | None = None
     pool_half: FloatArray | None = None
 
 
 def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: bool,
-                    boxes: FloatArray, half: float, ahead: np.ndarray | None = None
-                    ) -> _Candidates:
+                    boxes: FloatArray, half: float, ahead: np.ndarray | None = None,
+                    pooled: bool = False) -> _Candidates:
     """The pad of ``sign`` (+1: pad A of an external grip, the extreme of ``sign * y``)
     over each box ``(t0, t1, c0, c1)`` of ``boxes`` (B, 4): a superset of its contacts
     (``ok`` False when too many features could touch: more than :data:`MAX_CONTACTS`,
-    as :func:`jaw_poses`).  Inside a hole, ``ahead`` (B, m): the edges ahead of the pad
-    (on its side of the closed jaws) at every pose of the box."""
+    as :func:`jaw_poses`; with ``pooled``, the candidates are pooled instead,
+    :func:`_pooled`, and ``ok`` does not count them).  Inside a hole, ``ahead`` (B, m):
+    the edges ahead of the pad (on its side of the closed jaws) at every pose of the
+    box."""
     t0, t1, c0, c1 = (boxes[:, k:k + 1] for k in range(4))        # (B, 1) each
     B = len(boxes)
     cen = polygon.centroid
@@ -192,12 +194,14 @@ def _pad_candidates(polygon: Polygon, ring: np.ndarray, sign: float, internal: b
     use_all = np.concatenate(use, axis=1)
     count = use_all.sum(axis=1)
     ok = np.isfinite(lower) & (count >= 1)
-    if not POOLED:
+    pool = pool_centre = pool_half = None
+    if pooled:
+        pool, pool_centre, pool_half = _pooled(np.concatenate(P0, axis=1),
+                                               np.concatenate(P1, axis=1),
+                                               np.concatenate(cen_f, axis=1),
+                                               np.concatenate(half_f, axis=1), use_all, face)
+    else:
         ok &= count <= MAX_CONTACTS
-    pool, pool_centre, pool_half = _pooled(np.concatenate(P0, axis=1),
-                                           np.concatenate(P1, axis=1),
-                                           np.concatenate(cen_f, axis=1),
-                                           np.concatenate(half_f, axis=1), use_all, face)
     # the candidates first, at most MAX_CONTACTS of them
     order = np.argsort(~use_all, axis=1, kind="stable")[:, :MAX_CONTACTS]
     r = np.arange(B)[:, None]
@@ -282,8 +286,7 @@ def _items(c: _Candidates) -> list[tuple[FloatArray, FloatArray, FloatArray, np.
     out: list[tuple[FloatArray, FloatArray, FloatArray, np.ndarray]] = [
         (np.stack([c.p0[:, i], c.p1[:, i]], axis=1), c.centre[:, i], c.half[:, i],
             c.valid[:, i] & ~many) for i in range(c.valid.shape[1])]
-    if POOLED and c.pool is not None and c.pool_centre is not None \
-            and c.pool_half is not None:
+    if c.pool is not None and c.pool_centre is not None and c.pool_half is not None:
         out.append((c.pool, c.pool_centre, c.pool_half, many))
     return out
 
@@ -349,19 +352,21 @@ def _pad_signs(internal: bool) -> tuple[float, float]:
 
 
 def _pads(polygon: Polygon, ring: np.ndarray, boxes: FloatArray, half: float,
-          q: FloatArray | None) -> tuple[_Candidates, _Candidates, np.ndarray]:
+          q: FloatArray | None, pooled: bool = False
+          ) -> tuple[_Candidates, _Candidates, np.ndarray]:
     """Both pads' candidates over each box (B, 4), and whether the closed jaws' segment
     is free at every pose of it (always outside; inside a hole with insertion point
     ``q`` from the centroid, each edge that may meet the strip wholly above or below the
-    insertion height, pad A meeting only edges above, pad B below)."""
+    insertion height, pad A meeting only edges above, pad B below); ``pooled``: as
+    :func:`_pad_candidates` (the proofs pool, the payload's bound lists)."""
     sa, sb = _pad_signs(q is not None)
     if q is None:
-        return (_pad_candidates(polygon, ring, sa, False, boxes, half),
-                _pad_candidates(polygon, ring, sb, False, boxes, half),
+        return (_pad_candidates(polygon, ring, sa, False, boxes, half, pooled=pooled),
+                _pad_candidates(polygon, ring, sb, False, boxes, half, pooled=pooled),
                 np.ones(len(boxes), dtype=bool))
     up, down, free = _hole_sides(polygon, ring, q, boxes, half)
-    return (_pad_candidates(polygon, ring, sa, True, boxes, half, up),
-            _pad_candidates(polygon, ring, sb, True, boxes, half, down), free)
+    return (_pad_candidates(polygon, ring, sa, True, boxes, half, up, pooled),
+            _pad_candidates(polygon, ring, sb, True, boxes, half, down, pooled), free)
 
 
 def _angle_cuts(polygon: Polygon, ring: np.ndarray, t0: float, t1: float) -> FloatArray:
@@ -399,7 +404,7 @@ def _box_proofs_numpy(polygon: Polygon, ring: np.ndarray, jaw: JawParameters,
     """:func:`_box_proofs` by numpy (the reference of the compiled loop)."""
     internal = q is not None
     sa, sb = _pad_signs(internal)
-    ca, cb, free = _pads(polygon, ring, boxes, jaw.pad_width / 2, q)
+    ca, cb, free = _pads(polygon, ring, boxes, jaw.pad_width / 2, q, POOLED)
     proved = ca.ok & cb.ok & free
     # the stops as heights along u: sign * stop lies in [lo, hi]
     a_lo, a_hi = np.minimum(sa * ca.lo, sa * ca.hi), np.maximum(sa * ca.lo, sa * ca.hi)
