@@ -123,11 +123,16 @@ def _generators(points: FloatArray, normals: FloatArray, alpha: Any) -> FloatArr
     return w.reshape(*w.shape[:-3], -1, 6)
 
 
+def _reach(points: FloatArray) -> float:
+    """The contacts' largest distance from their mean: the unit of
+    :func:`_generators`' moments, and so of the slice's radius."""
+    return float(np.max(np.linalg.norm(points - points.mean(axis=0), axis=1)))
+
+
 def _certificate(points: FloatArray, normals: FloatArray, alpha: Any) -> float:
     """The certified radius (module docstring) of three contacts, in lengths (``alpha``
     one half-angle, or one per contact)."""
-    reach = float(np.max(np.linalg.norm(points - points.mean(axis=0), axis=1)))
-    return reach * _slice_radius(_generators(points, normals, alpha))
+    return _reach(points) * _slice_radius(_generators(points, normals, alpha))
 
 
 def _facet_bound(w: FloatArray, facets: FloatArray) -> float:
@@ -151,9 +156,15 @@ def _slice_radius(w: FloatArray) -> float:
     (:func:`_hull_slice_radius`), or 0 at once where a direction with every wrench on
     or behind it is found (:func:`_separated`: a third of the triples of a search on a
     mesh, each a 6-D hull spared)."""
+    return _slice(w)[0]
+
+
+def _slice(w: FloatArray) -> tuple[float, FloatArray | None]:
+    """:func:`_slice_radius` and the facet normals of the hull it was read from (None
+    where no hull was needed, or none exists)."""
     if _separated(w):
-        return 0.0
-    return _hull_slice_radius(w)
+        return 0.0, None
+    return _hull_slice(w)
 
 
 #: Steps :func:`_separated` takes at most in search of a direction that separates.
@@ -272,19 +283,16 @@ class _Triple:
         if fit <= beat:
             return 0.0, 0.0
         points = self.centers(t)
-        reach = float(np.max(np.linalg.norm(points - points.mean(axis=0), axis=1)))
+        reach = _reach(points)
         w = _generators(points, self.normals, alpha)
         if beat > 0 and FACET_BOUND and self.facets is not None and \
                 min(fit, reach * max(_facet_bound(w, self.facets), 0.0)) <= beat:
             return 0.0, 0.0
-        if _separated(w):
-            delta = 0.0
-        else:
-            slice_, facets = _hull_slice(w)
-            delta = reach * slice_
-            if facets is not None:
-                self.facets = facets if self.facets is None else \
-                    np.concatenate([facets, self.facets])[:FACETS_KEPT]
+        slice_, facets = _slice(w)
+        if facets is not None:
+            self.facets = facets if self.facets is None else \
+                np.concatenate([facets, self.facets])[:FACETS_KEPT]
+        delta = reach * slice_
         return min(delta, fit), delta
 
 
