@@ -322,8 +322,7 @@ _KNOWN = ("gripper", "mu", "margin", "rank_by", "top", "along_boundary", "stroke
 def _request_options(options: Any, solid: bool = False) -> dict[str, Any]:
     """The page's options as :class:`~fcgrasp.planning.PlanRequest` keywords (those of
     the chosen gripper only; on a ``solid``, those it takes there: :func:`solid_choices`),
-    or a RequestError
-    for an unknown key, gripper or top."""
+    or a RequestError for an unknown key, gripper or top."""
     if not isinstance(options, dict):
         raise RequestError(f"options must be an object, got {_short(options)}", "options")
     extra = sorted(set(options) - set(_KNOWN))

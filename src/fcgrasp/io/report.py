@@ -110,12 +110,12 @@ def part_dict(shape: Any) -> dict[str, Any]:
             "units_note": shape.units_note}
 
 
-def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], units: str,
-                reason: str | None = None, source: dict[str, Any] | None = None,
-                part: dict[str, Any] | None = None) -> dict[str, Any]:
+def plan_report(shape: Any, plans: list[Any], parameters: dict[str, Any], units: str,
+                reason: str | None = None, source: dict[str, Any] | None = None
+                ) -> dict[str, Any]:
     """The JSON document of ranked plans: each plan's ``to_dict()`` with its rank, the
-    part (``part``, or the polygon's :func:`part_dict`), the parameters, why there is no
-    plan, and where the part came from."""
+    part (:func:`part_dict` of ``shape``, a polygon or a solid), the parameters, why
+    there is no plan, and where the part came from."""
     grasps = []
     for k, p in enumerate(plans):
         d = p.to_dict()
@@ -127,7 +127,7 @@ def plan_report(polygon: Any, plans: list[Any], parameters: dict[str, Any], unit
     scene: dict[str, Any] = {k: parameters.pop(k) for k in ("hand", "scene")
                              if k in parameters}
     out = {"fcgrasp": __version__, "format_version": FORMAT_VERSION, "units": units,
-           "part": part_dict(polygon) if part is None else part, "parameters": parameters,
+           "part": part_dict(shape), "parameters": parameters,
            **scene,
            "grasps": grasps, "reason": None if plans else (reason or "no force-closure grasp"),
            "complete": bool(getattr(plans, "complete", True))}

@@ -249,8 +249,7 @@ class PlanRequest:
         from ..grippers.solids import plans_solids
 
         kind = self.solid_kind()
-        options = {**self.plan_options(), "soft": self.soft}
-        cls = None if kind is None else gripper_type(self.gripper, options)
+        cls = None if kind is None else gripper_type(self.gripper, self.plan_options())
         if kind is None or cls is None or not plans_solids(cls):
             raise _fail("fingers" if self.gripper == "fingers" else "gripper",
                         "a solid part (a mesh) is planned for two soft fingers (--fingers 2) "
