@@ -33,6 +33,17 @@ def _plate(part: fc.Polygon, thickness: float) -> trimesh.Trimesh:
     return trimesh.creation.extrude_polygon(poly, thickness)
 
 
+def _planned(name, hand, mu, scene, pick_type):
+    """``demo:NAME`` planned by ``hand`` in ``scene`` (top 3, no budget): the part, the
+    jaw (its pick a ``pick_type``), the plans and the scene's collision manager."""
+    part = fc.read_part(f"demo:{name}")
+    jaw = ParallelJaw.of_hand(hand, mu, scene)
+    assert isinstance(jaw.pick, pick_type), jaw.pick
+    plans = fc.plan(part, gripper=jaw, top=3, time_limit=None)
+    assert plans, name
+    return part, jaw, plans, _manager(part, scene)
+
+
 def _manager(part: fc.Polygon, scene: Scene) -> trimesh.collision.CollisionManager:
     m = trimesh.collision.CollisionManager()
     m.add_object("plate", _plate(part, scene.thickness))
@@ -91,15 +102,10 @@ CASES = [pytest.param("rectangle", 0.5, 5.0, True, marks=pytest.mark.slow),
 
 @pytest.mark.parametrize("name,mu,thickness,table", CASES)
 def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness, table):
-    part = fc.read_part(f"demo:{name}")
     hand = hand_named("franka")
     scene = Scene(thickness, table=table)
-    jaw = ParallelJaw.of_hand(hand, mu, scene)
+    part, jaw, plans, manager = _planned(name, hand, mu, scene, TopPick)
     pick = jaw.pick
-    assert isinstance(pick, TopPick)
-    plans = fc.plan(part, gripper=jaw, top=3, time_limit=None)
-    assert plans, name
-    manager = _manager(part, scene)
     rng = np.random.default_rng(7)
     checked = 0
     for p in plans:

@@ -27,7 +27,7 @@ from fcgrasp.grippers.jaw._plane_pick import _bands, _cell_clear  # noqa: E402
 from fcgrasp.grippers.jaw._plans import _kind  # noqa: E402
 from fcgrasp.grippers.jaw._poses import _grip_edges  # noqa: E402
 from tests.shapes import star  # noqa: E402
-from tests.test_hand_pick import SHRINK, _closes, _collides, _manager  # noqa: E402
+from tests.test_hand_pick import SHRINK, _closes, _collides, _manager, _planned  # noqa: E402
 
 
 def _swept(hand, origin_from, origin_to, R, open_from, open_to):
@@ -96,16 +96,11 @@ CASES = [("bracket", 0.6, None, False),
 @pytest.mark.parametrize("name,mu,thickness,table", CASES)
 def test_every_sampled_pose_of_a_plan_in_the_plane_is_collision_free(name, mu, thickness,
                                                                        table):
-    part = fc.read_part(f"demo:{name}")
     hand = hand_named("franka")
     scene = Scene(hand.pad_width if thickness is None else thickness, table=table,
                   in_plane=True)
-    jaw = ParallelJaw.of_hand(hand, mu, scene)
+    part, jaw, plans, manager = _planned(name, hand, mu, scene, PlaneReach)
     reach = jaw.pick
-    assert isinstance(reach, PlaneReach), reach
-    plans = fc.plan(part, gripper=jaw, top=3, time_limit=None)
-    assert plans, name
-    manager = _manager(part, scene)
     rng = np.random.default_rng(11)
     checked = 0
     for p in plans:
