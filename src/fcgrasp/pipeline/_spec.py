@@ -19,7 +19,6 @@ from ..core._checks import (
     check_tol,
 )
 from ..core.tolerances import SOLVER_TOL
-from ..core.values import Friction, Margin
 from ..model.hand import Hand
 from ..model.ranking import MEASURES
 from ..model.regions import (
@@ -176,16 +175,6 @@ class PlanSpec:
     @property
     def margin_rad(self) -> float:
         return float(margin_radians(self.margin))
-
-    @property
-    def friction(self) -> Friction:
-        """``mu`` as the value the layers below take unchecked (its cone's half-angle)."""
-        return Friction(self.mu)
-
-    @property
-    def margin_value(self) -> Margin:
-        """``margin`` as the value the layers below take unchecked (its radians)."""
-        return Margin(self.margin)
 
     @property
     def contact_type(self) -> str:
