@@ -1,7 +1,8 @@
 """The package layout: subpackages in layers, each importing only from its own layer or the
-layers below it (``core`` <- ``spatial`` <- ``model`` <- ``io`` <- ``pipeline`` <- ``grippers`` <-
-``planning`` <- ``plotting`` <- ``apps``), no cycle between modules, front ends that never
-import one another and see only public names.  Imports inside functions count too."""
+layers below it (``core`` <- ``spatial`` <- ``model`` <- ``mechanics`` <- ``io`` <-
+``pipeline`` <- ``grippers`` <- ``planning`` <- ``plotting`` <- ``apps``), no cycle between
+modules, front ends that never import one another and see only public names.  Imports inside
+functions count too."""
 
 from __future__ import annotations
 
@@ -13,8 +14,8 @@ import pytest
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
-LAYERS = ["errors", "core", "spatial", "model", "io", "pipeline", "grippers", "planning",
-          "physics", "plotting", "apps"]
+LAYERS = ["errors", "core", "spatial", "model", "mechanics", "io", "pipeline", "grippers",
+          "planning", "physics", "plotting", "apps"]
 LEVEL = {name: k for k, name in enumerate(LAYERS)}
 APPS = ("cli", "batch", "serve")
 
