@@ -83,8 +83,8 @@ def previous_kernels():
     # the previous compiled search, kept here as the baseline: every cell of each row's
     # window of angles read (the window scan), every row's windows widened, every edge's
     # single-edge windows read
-    from fcgrasp.model import _stretch_kernels as K
-    from fcgrasp.model import _stretch_search as Q
+    from fcgrasp.model.stretches import _kernels as K
+    from fcgrasp.model.stretches import _rounds as Q
     windows, single = K.windows, Q._single
     K.vertex_runs_tree = K.vertex_runs_scan
     K.windows = lambda *a: windows(*a[:10])

@@ -139,7 +139,7 @@ def test_two_fingers_stop_at_the_time_limit_by_the_clock():
 def test_two_fingers_memory_budget_stops_the_rounds(monkeypatch):
     """The smallest memory budget (16 MiB) and configurations counted as 1 MB each: the
     first distinct round's collection does not fit."""
-    from fcgrasp.model import _stretch_memo
+    from fcgrasp.model.stretches import _memo as _stretch_memo
 
     rng = np.random.default_rng(3)
     poly = _wavy(rng, 120)
@@ -342,7 +342,7 @@ def test_a_first_round_the_clock_ends_gives_single_edge_plans_cut_short(monkeypa
     closure at its representative contacts and inside the regions (checked by the
     closure test of theorem 6.1 on sampled grasps), distinct alternatives by default."""
     from fcgrasp.core import budget
-    from fcgrasp.model import _stretch_kernels
+    from fcgrasp.model.stretches import _kernels as _stretch_kernels
 
     monkeypatch.setattr(_stretch_kernels, "VERTEX_ROWS", 16)
     monkeypatch.setattr(budget, "FIRST_ANSWER_GRACE", 0.0)

@@ -1,4 +1,4 @@
-"""Three fingers with friction without HiGHS (fcgrasp.grippers._concurrency)
+"""Three fingers with friction without HiGHS (fcgrasp.grippers.three_fingers._concurrency)
 against the HiGHS programs it replaces, kept in the package as the reference
 (``FCGRASP_JIT=0``): the dense simplex against HiGHS on random programs, degenerate ones
 included; the closed form of the concurrency region (Helly, Farkas) against a program
@@ -13,8 +13,8 @@ from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.core import _simplex
-from fcgrasp.grippers import _concurrency as K
-from fcgrasp.grippers import _concurrent as C
+from fcgrasp.grippers.three_fingers import _concurrency as K
+from fcgrasp.grippers.three_fingers import _concurrent as C
 from fcgrasp.grippers.three_fingers import grow_concurrent
 from fcgrasp.io.parts import DEMO_PARTS, demo_part
 from fcgrasp.model.polygon import Polygon

@@ -368,7 +368,8 @@ def test_a_capped_collection_gives_the_plans_of_suppression(seed, jit, monkeypat
     go over it, compiled or not) the plans are still suppression's along the whole
     ranked list."""
     from fcgrasp.core.budget import BudgetExhausted
-    from fcgrasp.model import _stretch_search, stretches
+    from fcgrasp.model import stretches
+    from fcgrasp.model.stretches import _rounds as _stretch_search
 
     monkeypatch.setenv("FCGRASP_JIT", jit)
     monkeypatch.setattr(stretches, "COLLECT_CAP", 20)
@@ -394,7 +395,7 @@ def test_a_distinct_rounds_bound_is_the_kth_largest_configuration(seed):
     rows add no lower bounds): its value is the ``k``-th largest value added so far (0
     before ``k``), read against a sort after every chunk, chunks of any size, values
     tied and repeated; the per-key bound stays at most one per key."""
-    from fcgrasp.model._stretch_windows import TIE, _Bound
+    from fcgrasp.model.stretches._windows import TIE, _Bound
 
     rng = np.random.default_rng(seed)
     for _ in range(200):
@@ -433,7 +434,7 @@ def test_distinct_rounds_with_the_per_key_bound_give_the_same_plans(seed, monkey
           dict(fingers=3, mu=mu, top=int(rng.integers(3, 8)), distinct=fraction,
                time_limit=None)]
     got = [fc.plan(part, **k) for k in kw]
-    from fcgrasp.model import _stretch_search
+    from fcgrasp.model.stretches import _rounds as _stretch_search
 
     bound = stretches._Bound
     monkeypatch.setattr(_stretch_search, "_Bound",
@@ -586,8 +587,8 @@ def _boundary_regions(rng, poly):
     """Pairs of regions along ``poly``'s boundary with the edges of their segments:
     one from anywhere, the other the same shifted a little, a lot, by whole edges,
     ending at a vertex, or elsewhere on the ring."""
-    from fcgrasp.model._stretch_pairs import _polyline
-    from fcgrasp.model._stretch_windows import _rings
+    from fcgrasp.model.stretches._placement import _polyline
+    from fcgrasp.model.stretches._windows import _rings
 
     ring = _rings(poly)[0]
     m = ring.m
@@ -783,11 +784,12 @@ def test_compiled_collection_leaving_copies_out_equals_suppression(seed, monkeyp
     a kept plan's copies (``_Exclusion.copy_columns``; their beaters solved on demand):
     the plans are still suppression's along the whole ranked list, and the collection
     with nothing left out (the reference) gives the same plans and regions."""
-    from fcgrasp.model import _stretch_exclusion, _stretch_search
+    from fcgrasp.model.stretches import _exclusion as _stretch_exclusion
+    from fcgrasp.model.stretches import _rounds as _stretch_search
 
     monkeypatch.setenv("FCGRASP_JIT", "1")
     left_out = []
-    windows = _stretch_search._stretch_kernels.windows
+    windows = _stretch_search._kernels.windows
 
     def counted(*a, ex=None, exs=None, **k):
         out = windows(*a, ex=ex, exs=exs, **k)
@@ -796,7 +798,7 @@ def test_compiled_collection_leaving_copies_out_equals_suppression(seed, monkeyp
             left_out.append(full[1].size - out[1].size)
         return out
 
-    monkeypatch.setattr(_stretch_search._stretch_kernels, "windows", counted)
+    monkeypatch.setattr(_stretch_search._kernels, "windows", counted)
     part, got, _ = _searched_and_suppressed(seed)
     monkeypatch.setattr(_stretch_exclusion._Exclusion, "copy_columns",
                         lambda self, *a: None)
@@ -821,7 +823,7 @@ def test_a_lower_floors_collection_takes_what_the_last_solved(seed, monkeypatch)
     solution and boxes from the last collection (``_Memo.lower``, ``CARRY``): the plans
     and regions are those of rounds that solve every collection anew (the reference),
     on smooth outlines where the floors fall, and the carried solutions are read."""
-    from fcgrasp.model import _stretch_memo
+    from fcgrasp.model.stretches import _memo as _stretch_memo
 
     rng = np.random.default_rng(seed)
     a = np.linspace(0, 2 * np.pi, int(rng.integers(300, 700)), endpoint=False)
@@ -855,8 +857,8 @@ def test_configurations_carried_by_codes_are_those_carried_by_records(monkeypatc
     job takes from the last collection exactly what the records' lookup gives it, on
     seeded collections that share some configurations (negative numbers, a number past
     the ranges, repeats included)."""
-    from fcgrasp.model import _stretch_memo as V
-    from fcgrasp.model._stretch_windows import _Configs
+    from fcgrasp.model.stretches import _memo as V
+    from fcgrasp.model.stretches._windows import _Configs
 
     rng = np.random.default_rng(5)
 

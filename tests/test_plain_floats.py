@@ -78,7 +78,7 @@ def test_stretch_ends_are_the_previous_ends() -> None:
     """Outlines of 3-59 edges, starts around the ring and beyond, regions from a vertex
     and ending at one (trimmed), crossing up to every vertex; and the ends of the
     region polyline itself."""
-    from fcgrasp.model._stretch_pairs import _polyline, _stretch_ends
+    from fcgrasp.model.stretches._placement import _polyline, _stretch_ends
 
     from .test_stretches import random_ring
 

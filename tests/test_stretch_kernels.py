@@ -1,4 +1,4 @@
-"""The compiled loops of the two-finger stretch search (fcgrasp.model._stretch_kernels)
+"""The compiled loops of the two-finger stretch search (fcgrasp.model.stretches._kernels)
 against the numpy search they replace on large rings, kept as the reference: the same
 vertex runs bit for bit, the same configurations, the same plans; the lower bounds of
 the windows against a dense brute force written here; and the top ``k`` of the search
@@ -12,15 +12,15 @@ import pytest
 
 import fcgrasp as fc
 from fcgrasp.core.contacts import rotate
-from fcgrasp.model import _stretch_exclusion as X
-from fcgrasp.model import _stretch_kernels
-from fcgrasp.model import _stretch_pairs as P
-from fcgrasp.model import _stretch_search as Q
-from fcgrasp.model import _stretch_solve as V
-from fcgrasp.model import _stretch_windows as W
 from fcgrasp.model import stretches as S
-from fcgrasp.model._stretch_windows import _Intervals, _rings, _windows_both, _windows_single
 from fcgrasp.model.polygon import Polygon
+from fcgrasp.model.stretches import _exclusion as X
+from fcgrasp.model.stretches import _kernels as _stretch_kernels
+from fcgrasp.model.stretches import _placement as P
+from fcgrasp.model.stretches import _rounds as Q
+from fcgrasp.model.stretches import _solve as V
+from fcgrasp.model.stretches import _windows as W
+from fcgrasp.model.stretches._windows import _Intervals, _rings, _windows_both, _windows_single
 
 from .test_stretches import seeds, smooth_outline
 
@@ -321,9 +321,9 @@ def test_angular_window_misses_no_cell(monkeypatch):
 def test_compiled_solve_is_the_numpy_elimination(seed, monkeypatch):
     """The compiled per-configuration solve against the batched Fourier-Motzkin solve
     on the systems of every configuration of a part (feasible and not)."""
-    from fcgrasp.model._stretch_kernels import solve_rows
-    from fcgrasp.model._stretch_lp import _box_bound, _solve, _system
-    from fcgrasp.model._stretch_windows import _Configs, _stretch_bound
+    from fcgrasp.model.stretches._kernels import solve_rows
+    from fcgrasp.model.stretches._lp import _box_bound, _solve, _system
+    from fcgrasp.model.stretches._windows import _Configs, _stretch_bound
 
     poly, mu, margin = part(seed)
     beta = _beta(mu, margin)
@@ -417,7 +417,7 @@ def test_compiled_end_intervals_are_the_numpy_ones(seed, monkeypatch):
     """The intersection of an edge's intervals against a window of vertices (the ends'
     boxes of every configuration's system), compiled and by numpy; compiled with the
     cells kept in a table (read from it the second time) and without."""
-    from fcgrasp.model import _stretch_windows
+    from fcgrasp.model.stretches import _windows as _stretch_windows
 
     poly, mu, margin = part(seed)
     beta = _beta(mu, margin)
@@ -505,7 +505,7 @@ def test_own_optimum_filter_matches_every_pair(seed):
 
 def test_own_optimum_filter_remembers_sets_not_orders(monkeypatch):
     """The rounds of a distinct search ask the own-optimum filter about the
-    same configurations in another order; :func:`~fcgrasp.model._stretch_kernels.beaten`
+    same configurations in another order; :func:`~fcgrasp.model.stretches._kernels.beaten`
     remembers the answer per set: a permuted set gets the answers permuted, a set with
     one region changed gets its own answers (the definition over every pair)."""
     monkeypatch.setattr(_stretch_kernels, "BEATEN_MEMO_ROWS", 1)
@@ -713,8 +713,8 @@ def test_inside_any_compiled_is_the_numpy_test_and_brute_force(seed):
     here; starts past a ring's end (cyclic), supers that wrap, supers sharing a first
     stretch (the sweep adds them at one start in the order of their room), supers of
     no interior vertex, and one ring either way round."""
-    from fcgrasp.model._stretch_solve import _inside_any
-    from fcgrasp.model._stretch_windows import _Configs
+    from fcgrasp.model.stretches._solve import _inside_any
+    from fcgrasp.model.stretches._windows import _Configs
 
     rng = np.random.default_rng(5 + seed)
     same = bool(seed % 2)
@@ -783,7 +783,7 @@ def test_the_third_fingers_exclusion_compiled_is_numpys(fraction, monkeypatch):
 def _exclusion_both_ways(poly, fraction, rng, monkeypatch, third=False):
     import fcgrasp as fc
     from fcgrasp.model import stretches
-    from fcgrasp.model._stretch_windows import _Configs
+    from fcgrasp.model.stretches._windows import _Configs
 
     plans = fc.plan(poly, fingers=3 if third else 2, mu=0.4, top=4)
     kept = [(p.regions, p.region_edges) for p in plans]
@@ -893,7 +893,7 @@ def test_least_excess_is_the_least_over_every_region(seed):
 
 def test_member_is_isin():
     """The exclusion's look-up of configurations already read: np.isin by binary search."""
-    from fcgrasp.model._stretch_exclusion import _member
+    from fcgrasp.model.stretches._exclusion import _member
 
     rng = np.random.default_rng(3)
     for size in (1, 2, 50, 3000):
@@ -1048,7 +1048,7 @@ def test_thresholds_kept_across_rounds_are_each_rounds_own(third):
     from types import SimpleNamespace
 
     from fcgrasp.model import stretches
-    from fcgrasp.model._stretch_windows import _Configs
+    from fcgrasp.model.stretches._windows import _Configs
 
     poly = fc.read_part("demo:cam")
     rng = np.random.default_rng(31 + third)

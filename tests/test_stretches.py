@@ -354,7 +354,7 @@ def _previous_polyline(ring, i, k, s0, t):
 def random_ring(rng):
     """The ring of a seeded outline of 3-59 edges (an ellipse's points at random
     angles), as the stretch search reads it."""
-    from fcgrasp.model._stretch_windows import _rings
+    from fcgrasp.model.stretches._windows import _rings
 
     m = int(rng.integers(3, 60))
     a = np.sort(rng.uniform(0, 2 * np.pi, m))
@@ -367,7 +367,7 @@ def test_region_polylines_are_the_previous_ones_bit_for_bit():
     once) is the previous implementation's, points bit for bit and edges as Python
     ints: seeded outlines of 3-59 edges, starts around the ring and beyond, regions
     from a vertex (trimmed) and crossing up to every vertex."""
-    from fcgrasp.model._stretch_pairs import _polyline
+    from fcgrasp.model.stretches._placement import _polyline
 
     rng = np.random.default_rng(3)
     for _ in range(150):

@@ -18,10 +18,10 @@ from fcgrasp.grippers.three_fingers import (
     free_stretch,
     three_finger_plans,
 )
-from fcgrasp.model._free_third import FreeThird
-from fcgrasp.model._stretch_windows import _Configs, _rings
 from fcgrasp.model.distinct import distinct_plans, same_alternative
 from fcgrasp.model.stretches import StretchSearch
+from fcgrasp.model.stretches._free_third import FreeThird
+from fcgrasp.model.stretches._windows import _Configs, _rings
 from fcgrasp.pipeline import features, plan_spec
 
 

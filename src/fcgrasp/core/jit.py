@@ -28,7 +28,7 @@ def jit_setting() -> bool | None:
     """``FCGRASP_JIT`` as set in the environment: False ("0", "off", "no", "false"):
     never compile; True ("1", "on", "yes", "true"): always; None (unset or anything
     else): when the work repays it.  Read at every decision, by these kernels and by
-    the stretch search's (:mod:`fcgrasp.model._stretch_kernels`)."""
+    the stretch search's (:mod:`fcgrasp.model.stretches._kernels`)."""
     setting = os.environ.get("FCGRASP_JIT", "auto").strip().lower()
     if setting in ("0", "off", "no", "false"):
         return False
@@ -99,7 +99,7 @@ def njit_all(numba: Any, namespace: dict[str, Any], funcs: list[tuple[str, Any]]
              borrowing: frozenset[str] = frozenset()) -> dict[str, Any]:
     """Compile plain-Python functions with numba, each rebuilt over ``namespace`` and
     stored there under its name, so that compiled functions call compiled ones (here
-    and in :mod:`fcgrasp.model._stretch_kernels`).  The machine code is cached on disk
+    and in :mod:`fcgrasp.model.stretches._kernels`).  The machine code is cached on disk
     beside the functions' module; where there is nowhere to write it (a read-only
     install), compiled without a cache.  Returns ``namespace``.
 

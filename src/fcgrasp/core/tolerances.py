@@ -42,13 +42,13 @@ DEGENERATE_TOL = 1e-12
 LENGTH_RESOLUTION = 1e-5
 
 #: Relative pad on a distinct search's threshold
-#: (:meth:`fcgrasp.model._stretch_exclusion._Exclusion.threshold`) before a configuration
+#: (:meth:`fcgrasp.model.stretches._exclusion._Exclusion.threshold`) before a configuration
 #: is deferred: far above the rounding of the threshold, so a deferred configuration
 #: whose smallest region exceeds it is surely a kept plan's copy by the exclusion's own test too.
 DEFER_PAD = 1e-9
 
 #: Relative margin below a distinct round's floor under which its compiled collection
-#: leaves a kept plan's copies out (:meth:`fcgrasp.model._stretch_exclusion._Exclusion.
+#: leaves a kept plan's copies out (:meth:`fcgrasp.model.stretches._exclusion._Exclusion.
 #: copy_columns`): far above the rounding of the stretches' arcs, which the collection
 #: reads from the arc positions directly.
 COPY_PAD = 1e-9
@@ -141,7 +141,8 @@ LP_TOL = 1e-10
 #: this (times the size) is not accepted (the solver's answer is checked, not trusted).
 CHECK_TOL = 1e-8
 
-#: Three fingers with friction, solved in closed form (:mod:`fcgrasp.grippers._concurrency`):
+#: Three fingers with friction, solved in closed form
+#: (:mod:`fcgrasp.grippers.three_fingers._concurrency`):
 #: the simplex's pivot threshold (programs in units of the part's size), how far Harris's
 #: ratio test lets a basic variable dip below zero, a null combination of three normals
 #: this small (or two lines' determinant: ``PARALLEL_TOL``) counts as none, and pieces
@@ -215,7 +216,7 @@ __all__ = ["TOL", "CONE_TOL", "DEGENERATE_TOL", "LENGTH_RESOLUTION", "CURVE_RESO
 REACH_PAD = 1e-9
 
 #: Radians added to the angular windows of the compiled two-finger stretch search
-#: (:mod:`fcgrasp.model._stretch_kernels`): far above the rounding of the angles it
+#: (:mod:`fcgrasp.model.stretches._kernels`): far above the rounding of the angles it
 #: compares, so no cell the exact test would hold is left unread.
 ANGLE_SLACK = 1e-6
 

@@ -23,10 +23,10 @@ def compile_kernels() -> dict[str, float]:
     """Compile (or load from the cache) every compiled kernel: the closed forms of two
     fingers (:mod:`fcgrasp.core.kernels`; one edge pair's regions,
     :mod:`fcgrasp.model.one_pair`), the two-finger stretch search
-    (:mod:`fcgrasp.model._stretch_kernels`), the dense simplex
+    (:mod:`fcgrasp.model.stretches._kernels`), the dense simplex
     (:mod:`fcgrasp.core._simplex`), the knapsack solver of four fingers and three with
     gravity (:mod:`fcgrasp.model._leximin_kernels`), three fingers with friction
-    (:mod:`fcgrasp.grippers._concurrency`), the parallel jaw's pose model and proofs
+    (:mod:`fcgrasp.grippers.three_fingers._concurrency`), the parallel jaw's pose model and proofs
     (:mod:`fcgrasp.grippers.jaw._kernels`) and the optimality bound's test of a box of
     regions (:mod:`fcgrasp.model.bounds`).  Returns the seconds each took (near zero
     once cached); without numba (or with ``FCGRASP_JIT=0``) nothing is compiled and
@@ -79,7 +79,7 @@ def compile_kernels() -> dict[str, float]:
 
 def _stretches(blob: Any) -> None:
     from ..core.tolerances import RANK_TOL
-    from ..model import _stretch_kernels
+    from ..model.stretches import _kernels as _stretch_kernels
     from .planner import plan
 
     plan(blob, fingers=2, mu=0.3, top=1)
@@ -99,7 +99,7 @@ def _stretches(blob: Any) -> None:
     _stretch_kernels.similar_rows(np.zeros((1, 4)), np.zeros((1, 4)), z, z, z, z, 1.0, 1.0,
                                   0.0, 0.5, z, cells, False, np.zeros(1, bool))
     # the end intervals of windows sharing an edge, with the types of the search's calls
-    from ..model._stretch_windows import _EPS, _Intervals, _rings
+    from ..model.stretches._windows import _EPS, _Intervals, _rings
 
     ring = _rings(blob)[0]
     iv = _Intervals(ring, ring, 1.0, 0.2)

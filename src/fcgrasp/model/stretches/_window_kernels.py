@@ -3,7 +3,7 @@
 row's, the sparse table of runs, the rows' upper bounds and the collection of
 configurations).
 
-Plain Python compiled by :mod:`fcgrasp.model._stretch_kernels` (one namespace for every
+Plain Python compiled by :mod:`fcgrasp.model.stretches._kernels` (one namespace for every
 loop of the search, so that compiled loops call compiled ones); the search calls them
 through that module's wrappers."""
 
@@ -13,16 +13,10 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray, IntArray
-from ..core.tolerances import ROUND_TOL
-from ._stretch_copy_kernels import (
-    _copies_from,
-    _copy_columns,
-    _copy_lengths,
-    _copy_run,
-    _run_span,
-)
-from ._stretch_run_kernels import _append, _grow
+from ...core._checks import FloatArray, IntArray
+from ...core.tolerances import ROUND_TOL
+from ._copy_kernels import _copies_from, _copy_columns, _copy_lengths, _copy_run, _run_span
+from ._run_kernels import _append, _grow
 
 
 def _intersect(a0: int, a1: int, fa: IntArray, la: IntArray, b0: int, b1: int, fb: IntArray,

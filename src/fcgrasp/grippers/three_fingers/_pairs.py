@@ -8,23 +8,15 @@ from typing import Any
 
 import numpy as np
 
-from ..core import budget
-from ..core._checks import FloatArray
-from ..core.tolerances import PIECE_TIE, RANK_TOL
-from ..model.plans import GraspPlan
-from ..model.polygon import Polygon, check_polygon
-from ..model.stretches import crosses_a_vertex
-from ..pipeline import (
-    PlanSpec,
-    search,
-)
-from ._boundary import (
-    regions_plan,
-    stretch_plans_read,
-)
-from ._concurrent import (
-    KEEP_PAIRS,
-)
+from ...core import budget
+from ...core._checks import FloatArray
+from ...core.tolerances import PIECE_TIE, RANK_TOL
+from ...model.plans import GraspPlan
+from ...model.polygon import Polygon, check_polygon
+from ...model.stretches import crosses_a_vertex
+from ...pipeline import PlanSpec, search
+from .._boundary import regions_plan, stretch_plans_read
+from ._concurrent import KEEP_PAIRS
 
 
 def _plan(polygon: Polygon, spec: PlanSpec, edges: tuple[int, ...], regions: FloatArray,

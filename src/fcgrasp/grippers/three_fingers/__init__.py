@@ -63,27 +63,22 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
-from ..core.tolerances import RANK_TOL
-from ..model.distinct import Suppression
-from ..model.plans import GraspPlan, leximin_key
-from ..model.polygon import Polygon
-from ..model.stretches import StretchSearch, crosses_a_vertex
-from ..pipeline import (
-    PlanSpec,
-    candidates,
-    features,
-    search_size,
-)
-from . import _concurrency
-from ._boundary import (
+from ...core._checks import FloatArray
+from ...core.budget import BudgetExhausted, PlanList, exhausted, incomplete
+from ...core.tolerances import RANK_TOL
+from ...model.distinct import Suppression
+from ...model.plans import GraspPlan, leximin_key
+from ...model.polygon import Polygon
+from ...model.stretches import StretchSearch, crosses_a_vertex
+from ...pipeline import PlanSpec, candidates, features, search_size
+from .._boundary import (
     DISTINCT_READ,
     ranked_keyed,
     ranked_unique,
     two_finger_plans_of,
     unread_below,
 )
+from . import _concurrency
 
 __all__ = ["spanning_arcs", "Piece", "concurrent_regions", "three_finger_plans", "SPLITS",
            "KEEP_PAIRS", "free_stretch", "grow_concurrent", "stretch_polylines", "GROW_SEEDS",
@@ -100,7 +95,7 @@ from ._concurrent import (
     concurrent_regions,
     spanning_arcs,
 )
-from ._three_growth import (
+from ._growth import (
     GROW_SEEDS,
     MAX_CORNERS,
     MAX_STEPS,
@@ -108,9 +103,9 @@ from ._three_growth import (
     grow_concurrent,
     stretch_polylines,
 )
-from ._three_pairs import _FreeStretches, _pair_plans, _plan, _tie_step, _with_third, free_stretch
+from ._pairs import _FreeStretches, _pair_plans, _plan, _tie_step, _with_third, free_stretch
 
-#: Candidate triples per compiled call (:mod:`fcgrasp.grippers._concurrency`).
+#: Candidate triples per compiled call (:mod:`fcgrasp.grippers.three_fingers._concurrency`).
 KERNEL_ROWS = 1024
 
 
@@ -293,8 +288,8 @@ class _Solved:
     """What the rounds of :func:`distinct_three_finger_plans` solve again: each round
     runs :func:`_concurrent_plans` from the start, with a lower floor and a larger
     ``keep``, so it meets the rows of the rounds before.  A row's best piece
-    (:func:`~fcgrasp.grippers._concurrent._best_blocks`) and its leximin placement
-    (:func:`~fcgrasp.grippers._concurrent._leximin`) depend on its three features
+    (:func:`~fcgrasp.grippers.three_fingers._concurrent._best_blocks`) and its leximin placement
+    (:func:`~fcgrasp.grippers.three_fingers._concurrent._leximin`) depend on its three features
     only, so they are kept by the row's feature indices and read back as they were."""
 
     def __init__(self) -> None:

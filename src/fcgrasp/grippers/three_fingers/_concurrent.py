@@ -12,9 +12,9 @@ from typing import Any
 
 import numpy as np
 
-from ..core._angles import wrap_positive
-from ..core._checks import FloatArray
-from ..core.tolerances import CHECK_TOL, LEXIMIN_STEP, LP_TOL, PIECE_TIE, ROUND_TOL, TINY
+from ...core._angles import wrap_positive
+from ...core._checks import FloatArray
+from ...core.tolerances import CHECK_TOL, LEXIMIN_STEP, LP_TOL, PIECE_TIE, ROUND_TOL, TINY
 from . import _concurrency
 
 #: How the half-turn excess between two neighbouring cones is split between them (the
@@ -227,8 +227,8 @@ def _solve_blocks(blocks: list[_Block], fixed: FloatArray | None = None,
     can, or (``deep``) the witnesses are placed as far inside the cones as they can be
     (``level`` is then that depth): the placement.
 
-    Solved by the compiled closed form of :mod:`fcgrasp.grippers._concurrency` once it
-    runs (:func:`fcgrasp.grippers._concurrency.available`), the solution vectors then
+    Solved by the compiled closed form of :mod:`fcgrasp.grippers.three_fingers._concurrency` once it
+    runs (:func:`fcgrasp.grippers.three_fingers._concurrency.available`), the solution vectors then
     ``(lo, hi, level)`` only (no witnesses); else by HiGHS (the reference).
     """
     if _concurrency.available():

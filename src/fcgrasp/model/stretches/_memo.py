@@ -10,8 +10,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ._stretch_windows import _Configs
+from ...core._checks import FloatArray
+from ._windows import _Configs
 
 
 @dataclass

@@ -9,17 +9,13 @@ from typing import Any
 
 import numpy as np
 
-from ..core._angles import wrap
-from ..core._checks import FloatArray, check_mu_scalar, check_scalar
-from ..core.tolerances import LEVEL_TIE, RANK_TOL
-from ..model.plans import GraspPlan
-from ..model.polygon import Polygon, check_polygon
-from ..pipeline import (
-    PlanSpec,
-)
-from ._boundary import (
-    regions_plan,
-)
+from ...core._angles import wrap
+from ...core._checks import FloatArray, check_mu_scalar, check_scalar
+from ...core.tolerances import LEVEL_TIE, RANK_TOL
+from ...model.plans import GraspPlan
+from ...model.polygon import Polygon, check_polygon
+from ...pipeline import PlanSpec
+from .._boundary import regions_plan
 from ._concurrent import (
     _SIDES,
     Piece,

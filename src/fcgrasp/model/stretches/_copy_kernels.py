@@ -2,7 +2,7 @@
 configuration surely a kept plan's copy: the arc outside a plan's region, its threshold,
 the least overlap over every placement) and the collection's copies left out in runs.
 
-Plain Python compiled by :mod:`fcgrasp.model._stretch_kernels` (one namespace for every
+Plain Python compiled by :mod:`fcgrasp.model.stretches._kernels` (one namespace for every
 loop of the search, so that compiled loops call compiled ones); the search calls them
 through that module's wrappers."""
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..core._checks import BoolArray, FloatArray, IntArray
+from ...core._checks import BoolArray, FloatArray, IntArray
 
 
 def _copy_columns(a0: float, a1: float, ex: FloatArray, exs: FloatArray, app: IntArray) -> int:
@@ -148,14 +148,14 @@ def _copy_span(c0: float, c1: float, ex: FloatArray, exs: FloatArray, app: IntAr
 
 def _side_threshold(a0: float, a1: float, u0: float, u1: float, per: float, tol: float,
                     keep: float) -> float:
-    """``_stretch_exclusion._Exclusion.threshold``'s length of one side: the stretch
+    """``_exclusion._Exclusion.threshold``'s length of one side: the stretch
     ``[a0, a1]``'s arc outside ``[u0, u1]`` (:func:`_outside_one`) plus ``tol``, over
     ``keep`` (the same operations)."""
     return (_outside_one(a0, a1, u0, u1, per) + tol) / keep
 
 
 def _common_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
-    """``_stretch_exclusion._Exclusion._common`` of one stretch ``[a0, a1]`` and one arc
+    """``_exclusion._Exclusion._common`` of one stretch ``[a0, a1]`` and one arc
     ``[u0, u1]``: the same operations in the same order."""
     common = 0.0
     for j in range(3):
@@ -165,7 +165,7 @@ def _common_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float
 
 
 def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> float:
-    """``_stretch_exclusion._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
+    """``_exclusion._Exclusion._outside`` of one stretch ``[a0, a1]`` and one arc
     ``[u0, u1]``: the same operations in the same order."""
     return (a1 - a0) - _common_one(a0, a1, u0, u1, per)
 
@@ -173,7 +173,7 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
 def _third_rows(ring: IntArray, g0: FloatArray, g1: FloatArray, e0: FloatArray,
                 e1: FloatArray, kr: IntArray, k0: FloatArray, k1: FloatArray,
                 per: FloatArray, fraction: float, pad: float, out: BoolArray) -> None:
-    """``_stretch_exclusion._Exclusion._third_mask`` fused over rows (configurations:
+    """``_exclusion._Exclusion._third_mask`` fused over rows (configurations:
     the third finger's ring, sure arc ``[g0, g1]`` and widest ``[e0, e1]``) and columns
     (the kept plans' remaining regions: ring ``kr``, arc ``[k0, k1]``; ``per`` each
     ring's perimeter): the same numbers, without a matrix of each."""
@@ -190,7 +190,7 @@ def _exclusion_rows(a0x: FloatArray, a1x: FloatArray, a0y: FloatArray, a1y: Floa
                     ax0: FloatArray, ax1: FloatArray, ay0: FloatArray, ay1: FloatArray,
                     perx: float, pery: float, tol: float, keep: float, mask: BoolArray,
                     masked: bool, out: FloatArray) -> None:
-    """``_stretch_exclusion._Exclusion.threshold``: ``out`` lowered to each configuration's least
+    """``_exclusion._Exclusion.threshold``: ``out`` lowered to each configuration's least
     ``tau`` over the kept plans' columns (with ``masked``, those of ``mask[r]`` only),
     fused over rows and columns: the same numbers."""
     for r in range(a0x.size):
@@ -219,7 +219,7 @@ def _least_excess(s0: float, s1: float, e0: float, e1: float, t: float, k0: floa
     regions ``[s, e]`` with ``s`` in ``[s0, s1]``, ``e`` in ``[e0, e1]`` and ``e - s >=
     t``: the function is continuous and linear between the lines ``s = s0, s1, k0, k1``,
     ``e = e0, e1, k0, k1`` and ``e - s = t, k1 - k0``, so its least is at a crossing of
-    two of them inside (-inf: no region).  ``_stretch_exclusion._Exclusion._least_excess`` of
+    two of them inside (-inf: no region).  ``_exclusion._Exclusion._least_excess`` of
     one cell: the same operations."""
     best = np.inf
     for a in range(4):
@@ -252,7 +252,7 @@ def _surely_copy(s0: float, s1: float, e0: float, e1: float, t: float, k0: float
 def _similar_rows(sx: FloatArray, sy: FloatArray, ax0: FloatArray, ax1: FloatArray,
                   ay0: FloatArray, ay1: FloatArray, perx: float, pery: float, tol: float, f: float,
                   t: FloatArray, mask: BoolArray, masked: bool, out: BoolArray) -> None:
-    """``_stretch_exclusion._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
+    """``_exclusion._Exclusion.similar``: ``out[r]`` set where, for some kept plan's
     column (with ``masked``, one of ``mask[r]``), every region pair configuration ``r``
     allows (its ends' intervals ``sx[r]``, ``sy[r]``: first start, last start, first
     end, last end on each ring; smallest region ``t[r]``) overlaps that plan's on both

@@ -10,13 +10,13 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ..core._geom import cross2 as _cross
-from ..core.contacts import rotate
-from ..core.jit import jit_setting, started
-from ..core.tolerances import RANK_TOL, ROUND_TOL
-from . import _stretch_kernels
-from .polygon import Polygon
+from ...core._checks import FloatArray
+from ...core._geom import cross2 as _cross
+from ...core.contacts import rotate
+from ...core.jit import jit_setting, started
+from ...core.tolerances import RANK_TOL, ROUND_TOL
+from ..polygon import Polygon
+from . import _kernels
 
 #: A coefficient of the linear system smaller than this (a cross product of unit
 #: vectors) is zero.
@@ -164,7 +164,7 @@ class _Intervals:
                compiled: bool = False) -> tuple[FloatArray, FloatArray]:
         """For each edge, the intersection of its intervals against vertices
         ``start .. start + count - 1`` (cyclic): ``(0, inf)`` when ``count`` is 0
-        (``compiled``: by :func:`fcgrasp.model._stretch_kernels.window_boxes_shared`,
+        (``compiled``: by :func:`fcgrasp.model.stretches._kernels.window_boxes_shared`,
         which reads the cells an edge's windows share once, or the ``_memo`` form of
         ``window_boxes`` reading the cells from a table up to :data:`MEMO_CELLS`, once
         the windows have asked for an eighth of them)."""
@@ -178,12 +178,12 @@ class _Intervals:
             # more than half, a distinct search's each cell many times)
             if cells > MEMO_CELLS or (self._memo is None and 8 * self._asked < cells):
                 return cast("tuple[FloatArray, FloatArray]",
-                            _stretch_kernels.window_boxes_shared(*args))
+                            _kernels.window_boxes_shared(*args))
             if self._memo is None:
                 shape = (self.ra.m, self.rb.m)
                 self._memo = (np.full(shape, np.nan), np.full(shape, np.nan))
             return cast("tuple[FloatArray, FloatArray]",
-                        _stretch_kernels.window_boxes_memo(*args, *self._memo))
+                        _kernels.window_boxes_memo(*args, *self._memo))
         lo, hi = np.zeros(edge.size), np.full(edge.size, np.inf)
         has = np.flatnonzero(count > 0)
         if has.size:
@@ -523,14 +523,14 @@ def _pairs_single(ra: _Ring, rb: _Ring, same: bool, lb: float) -> _Configs:
 
 
 #: Vertex pairs (``m_a * m_b``) from which the search runs the compiled loops of
-#: :mod:`fcgrasp.model._stretch_kernels`: numba's start-up (about 0.4 s of CPU once per
+#: :mod:`fcgrasp.model.stretches._kernels`: numba's start-up (about 0.4 s of CPU once per
 #: process, to import it and load the cached code) is then less than what they save.
 #: Once loaded, they run for every part; ``FCGRASP_JIT=0`` never runs them,
 #: ``FCGRASP_JIT=1`` always.
 KERNEL_CELLS = 1_500_000
 
 
-#: CPU seconds of batched numpy solves (:func:`~fcgrasp.model._stretch_lp._solve`) after
+#: CPU seconds of batched numpy solves (:func:`~fcgrasp.model.stretches._lp._solve`) after
 #: which a process solves the rest compiled: on an outline of a few hundred edges whose
 #: stretches hold many vertices (an icon's rounded corners) each chunk of configurations
 #: costs tens of milliseconds of Fourier-Motzkin, and numba's start-up is soon repaid.
@@ -562,8 +562,8 @@ def _load_for_depth(top: int | None) -> None:
     """Load the compiled loops for a search of ``top`` plans (:data:`KERNEL_TOP`), where
     numba is there and ``FCGRASP_JIT`` leaves the choice to the search."""
     if (top is None or top > KERNEL_TOP) and jit_setting() is None \
-            and not _stretch_kernels.loaded():
-        _stretch_kernels.available()
+            and not _kernels.loaded():
+        _kernels.available()
 
 
 def stretch_kernels_for(cells: int) -> bool:

@@ -7,21 +7,13 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ..core.tolerances import COPY_PAD, DEFER_PAD, ROUND_TOL
-from . import _stretch_kernels
+from ...core._checks import FloatArray
+from ...core.tolerances import COPY_PAD, DEFER_PAD, ROUND_TOL
+from ..polygon import Polygon
+from . import _kernels
 from ._free_third import FreeThird
-from ._stretch_lp import (
-    BOX_REACH,
-    _ends,
-)
-from ._stretch_windows import (
-    _Configs,
-    _Intervals,
-    _Ring,
-    stretch_kernels_for,
-)
-from .polygon import Polygon
+from ._lp import BOX_REACH, _ends
+from ._windows import _Configs, _Intervals, _Ring, stretch_kernels_for
 
 
 def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
@@ -57,7 +49,7 @@ class _Exclusion:
 
     With ``third`` (the distinct search of three fingers with friction), a configuration
     stands for its *pair* plan, its two regions and a third finger on the longest free
-    stretch (:mod:`fcgrasp.model._free_third`), and the kept plans have three regions: a
+    stretch (:mod:`fcgrasp.model.stretches._free_third`), and the kept plans have three regions: a
     configuration is surely a kept plan's copy when two of the plan's regions are surely
     its two regions' partners (as above) and the third finger's free stretch surely
     overlaps the plan's remaining region by more than ``fraction`` of the shorter
@@ -223,12 +215,12 @@ class _Exclusion:
         arcs = tuple(np.ascontiguousarray(v, float) for v in arcs)
         cells = np.ones((1, 1), bool) if mask is None else np.ascontiguousarray(mask)
         if threshold:
-            _stretch_kernels.exclusion_rows(
+            _kernels.exclusion_rows(
                 *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per,
                 float(self.tol), float(1 - self.fraction), cells, mask is not None, out)
             return True
         work = np.zeros(len(out), bool)
-        _stretch_kernels.similar_rows(
+        _kernels.similar_rows(
             *(np.ascontiguousarray(v, float) for v in spans), *arcs, *per, float(self.tol),
             float(self.fraction), np.ascontiguousarray(t, float), cells, mask is not None,
             work)
@@ -269,7 +261,7 @@ class _Exclusion:
         if ring.size * kr.size >= FUSED_THIRD and stretch_kernels_for(ring.size * kr.size):
             # the same numbers, compiled, without a matrix of each
             per = np.array([float(q.U[q.m]) for q in self.free.rings])
-            _stretch_kernels.third_rows(
+            _kernels.third_rows(
                 np.ascontiguousarray(ring, np.int64),
                 *(np.ascontiguousarray(v, float) for v in (g0, g1, e0, e1)),
                 np.ascontiguousarray(kr), *(np.ascontiguousarray(v, float) for v in (k0, k1)),
@@ -361,7 +353,7 @@ class _Exclusion:
     def thresholds(self, rings: list[_Ring], job: tuple[int, int, float, str], J: Any,
                    idx: np.ndarray, intervals: dict[Any, _Intervals]) -> FloatArray:
         """:meth:`threshold` of the configurations ``idx`` of the collected job ``J``
-        (:class:`~fcgrasp.model._stretch_solve._Job`), the same numbers: the kept plans'
+        (:class:`~fcgrasp.model.stretches._solve._Job`), the same numbers: the kept plans'
         part of each is kept on ``J`` with the plans it covers, and a later round (whose
         kept plans begin with those) reads only the plans kept since.  The rounds of
         one collection threshold its unsolved configurations again and again

@@ -3,7 +3,7 @@ against the other stretch's interior vertices (:func:`_window_boxes` and its sha
 memoised forms), the single-edge windows (:func:`_single`) and the configurations inside
 a longer one.
 
-Plain Python compiled by :mod:`fcgrasp.model._stretch_kernels` (one namespace for every
+Plain Python compiled by :mod:`fcgrasp.model.stretches._kernels` (one namespace for every
 loop of the search, so that compiled loops call compiled ones); the search calls them
 through that module's wrappers."""
 
@@ -13,9 +13,9 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import BoolArray, FloatArray, IntArray
-from ._stretch_run_kernels import _grow
-from ._stretch_window_kernels import _top_add
+from ...core._checks import BoolArray, FloatArray, IntArray
+from ._run_kernels import _grow
+from ._window_kernels import _top_add
 
 
 def _interval(ax: FloatArray, ay: FloatArray, tx: FloatArray, ty: FloatArray, L: FloatArray,
@@ -203,7 +203,7 @@ def _by_start(a: IntArray, ka: IntArray, ma: int) -> Any:
 def _inside_supers(a: IntArray, ka: IntArray, cc: IntArray, kc: IntArray, ep: IntArray,
                    eroom: IntArray, es: IntArray, supers: IntArray, ma: int, mb: int,
                    out: BoolArray) -> None:
-    """``_stretch_solve._inside_any``'s test, one way round, as one sweep over the first
+    """``_solve._inside_any``'s test, one way round, as one sweep over the first
     starts: ``out[i]`` set where configuration ``i`` (first start ``a`` reduced) lies
     inside one of ``supers`` (rows ``iA, kA, iC, kC``), cyclically.
 

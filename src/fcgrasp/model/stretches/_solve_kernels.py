@@ -3,7 +3,7 @@
 that it cannot reach a floor) and the own-optimum filter (:func:`_beaten`,
 :func:`_beaten_tables`).
 
-Plain Python compiled by :mod:`fcgrasp.model._stretch_kernels` (one namespace for every
+Plain Python compiled by :mod:`fcgrasp.model.stretches._kernels` (one namespace for every
 loop of the search, so that compiled loops call compiled ones); the search calls them
 through that module's wrappers."""
 
@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import BoolArray, FloatArray, IntArray
+from ...core._checks import BoolArray, FloatArray, IntArray
 
 #: Cells of the own-optimum filter's tables (:func:`_group_tables`) above which it
 #: scans configurations by start instead (:func:`_beaten`).
@@ -89,7 +89,7 @@ def _below(el: FloatArray, m: int, floor: float, tol: float, eps: float) -> bool
 
 def _solve_rows(rows: FloatArray, ub: FloatArray, tol: float, eps: float, floor: float = 0.0
                 ) -> Any:
-    """``_stretch_lp._solve`` one configuration at a time: the same Fourier-Motzkin
+    """``_lp._solve`` one configuration at a time: the same Fourier-Motzkin
     elimination of ``s0`` (every row with a positive coefficient added to every row with
     a negative one, each divided by its coefficient's magnitude), the same bounds of
     ``t`` from every pair of the rows left, the same read-back of ``u0`` and ``s0``
@@ -214,7 +214,7 @@ def _scan_inside(order: Any, starts: Any, next_start: IntArray, lo: int, span: i
 
 def _beaten(iA: Any, kA: Any, iC: Any, kC: Any, t: Any, ma: int, mb: int, same: bool,
             tie: float, order: Any, keep: Any, check: Any) -> None:
-    """:func:`fcgrasp.model._stretch_search._own_optimum` of one job, without its matrix of
+    """:func:`fcgrasp.model.stretches._rounds._own_optimum` of one job, without its matrix of
     every (sub, super) pair: ``keep[s]`` False where a configuration inside ``s`` (on
     both rings; on one ring, either way round) has a smallest region longer than
     ``t[s] (1 + tie)``.  Candidates are read from the configurations sorted by the

@@ -7,10 +7,10 @@ from typing import cast
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ..core._geom import cross2 as _cross
-from ..core.tolerances import ROUND_TOL
-from ._stretch_windows import _BLOCK, _EPS, _Configs, _gens_x, _gens_y, _inner, _Intervals, _Ring
+from ...core._checks import FloatArray
+from ...core._geom import cross2 as _cross
+from ...core.tolerances import ROUND_TOL
+from ._windows import _BLOCK, _EPS, _Configs, _gens_x, _gens_y, _inner, _Intervals, _Ring
 
 # ----------------------------------------------------------------------------- one LP
 

@@ -10,25 +10,13 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ..core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
-from ..core.tolerances import ROUND_TOL
-from ._stretch_lp import (
-    _system,
-)
-from ._stretch_solve import (
-    _Found,
-    _solve_any,
-)
-from ._stretch_windows import (
-    TIE,
-    _Configs,
-    _ext,
-    _Intervals,
-    _Ring,
-    stretch_kernels_for,
-)
-from .polygon import Polygon
+from ...core._checks import FloatArray
+from ...core._geom import ends_key, leximin_key, midpoints, trim_vertex_ends
+from ...core.tolerances import ROUND_TOL
+from ..polygon import Polygon
+from ._lp import _system
+from ._solve import _Found, _solve_any
+from ._windows import TIE, _Configs, _ext, _Intervals, _Ring, stretch_kernels_for
 
 
 @dataclass(frozen=True)

@@ -3,7 +3,7 @@ vertex matrix ``M`` (:func:`_vertex_runs_tree` under a tree of bounds,
 :func:`_vertex_runs` the window scan kept as its reference) and the growable arrays they
 fill.
 
-Plain Python compiled by :mod:`fcgrasp.model._stretch_kernels` (one namespace for every
+Plain Python compiled by :mod:`fcgrasp.model.stretches._kernels` (one namespace for every
 loop of the search, so that compiled loops call compiled ones); the search calls them
 through that module's wrappers."""
 
@@ -13,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import BoolArray, FloatArray, IntArray
+from ...core._checks import BoolArray, FloatArray, IntArray
 
 
 def _grow(a: FloatArray | IntArray, n: int) -> Any:

@@ -57,33 +57,20 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ..core import budget
-from ..core._angles import shrunk_half_angle
-from ..core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
-from ..core.tolerances import ROUND_TOL, TOL
+from ...core import budget
+from ...core._angles import shrunk_half_angle
+from ...core._checks import FloatArray, check_int, check_mu_scalar, check_scalar
+from ...core.tolerances import ROUND_TOL, TOL
+from ..polygon import Polygon, check_polygon
+from ..regions import DEFAULT_MARGIN_DEG
+from ._exclusion import THIRD_PAD, _Exclusion, _positions
 from ._free_third import FreeThird
-from ._stretch_exclusion import THIRD_PAD, _Exclusion, _positions
-from ._stretch_memo import _Memo
-from ._stretch_pairs import StretchPair, _finish, _pairs
-from ._stretch_search import _configs_in, _search, _vertex_runs
-from ._stretch_solve import (
-    _address_held,
-    _address_space,
-    _jobs,
-    _Keys,
-    _solve_jobs,
-)
-from ._stretch_windows import (
-    TIE,
-    _Bound,
-    _Intervals,
-    _load_for_depth,
-    _rings,
-    _turns,
-)
-from ._stretch_windows import stretch_kernels_for as stretch_kernels_for
-from .polygon import Polygon, check_polygon
-from .regions import DEFAULT_MARGIN_DEG
+from ._memo import _Memo
+from ._placement import StretchPair, _finish, _pairs
+from ._rounds import _configs_in, _search, _vertex_runs
+from ._solve import _address_held, _address_space, _jobs, _Keys, _solve_jobs
+from ._windows import TIE, _Bound, _Intervals, _load_for_depth, _rings, _turns
+from ._windows import stretch_kernels_for as stretch_kernels_for
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -366,9 +353,9 @@ class StretchSearch:
 
 
 class _WidestFree:
-    """The cap of a three-finger round (:func:`~fcgrasp.model._stretch_solve._solve_jobs`'s
+    """The cap of a three-finger round (:func:`~fcgrasp.model.stretches._solve._solve_jobs`'s
     ``cap``): each configuration's third finger's widest free stretch
-    (:meth:`~fcgrasp.model._free_third.FreeThird.widest`)."""
+    (:meth:`~fcgrasp.model.stretches._free_third.FreeThird.widest`)."""
 
     def __init__(self, free: FreeThird) -> None:
         self.free = free

@@ -1,8 +1,8 @@
 r"""Three fingers with friction without a general LP solver (part of
 :mod:`fcgrasp.grippers.three_fingers`).
 
-A convex piece of concurrent grasps (:mod:`fcgrasp.grippers._concurrent`) asks, for each
-corner grasp of a box of regions, for a witness point ``p`` inside three wedges: finger
+A convex piece of concurrent grasps (:mod:`fcgrasp.grippers.three_fingers._concurrent`) asks,
+for each corner grasp of a box of regions, for a witness point ``p`` inside three wedges: finger
 ``i`` at ``x_i`` gives the wedge ``x_i + sigma_i cone(D_i)``, two half-planes
 ``n_k . p >= n_k . x_i`` whose unit normals ``n_k`` are the arc's edges turned a quarter
 turn (signed by the side).  Six half-planes of the plane meet iff every three of them do
@@ -26,12 +26,12 @@ finger and triple).  The witnesses are gone from the program: definition 7.1's m
 over one piece is a linear program in the seven numbers ``lo, hi, level``, solved here by
 a dense simplex with Bland's rule, compiled by numba (microseconds per piece, where the
 sparse HiGHS program with its 16 witness coordinates took milliseconds).  The HiGHS
-program of :func:`fcgrasp.grippers._concurrent._solve_blocks` is kept as the reference
+program of :func:`fcgrasp.grippers.three_fingers._concurrent._solve_blocks` is kept as the reference
 (``FCGRASP_JIT=0``, and the tests' oracle); every answer here is checked against the
 closed form at the returned ends before it is used.
 
-The witnesses a :class:`~fcgrasp.grippers._concurrent.Piece` reports are computed at the
-end, per corner grasp, as the point deepest inside the six half-planes (the best of the
+The witnesses a :class:`~fcgrasp.grippers.three_fingers._concurrent.Piece` reports are computed
+at the end, per corner grasp, as the point deepest inside the six half-planes (the best of the
 twenty vertices of the 3-variable program ``max delta: n_k . p - delta >= n_k . x_k``).
 """
 
@@ -42,10 +42,10 @@ from typing import Any
 
 import numpy as np
 
-from ..core import _simplex
-from ..core._simplex import _lp_max
-from ..core.jit import CompiledLoops
-from ..core.tolerances import (
+from ...core import _simplex
+from ...core._simplex import _lp_max
+from ...core.jit import CompiledLoops
+from ...core.tolerances import (
     CHECK_TOL,
     LP_TOL,
     NULL_TOL,
@@ -58,14 +58,14 @@ from ..core.tolerances import (
 __all__ = ["available", "solve", "best_rows", "witnesses", "facets", "MAXMIN", "FREE",
            "GROW", "DEEP"]
 
-#: Objectives (as :func:`fcgrasp.grippers._concurrent._solve_blocks` has them): the
+#: Objectives (as :func:`fcgrasp.grippers.three_fingers._concurrent._solve_blocks` has them): the
 #: largest common level; with fixed lengths, the largest level of the free regions; one
 #: region as long as it can be; the witnesses as deep inside the cones as they can be.
 MAXMIN, FREE, GROW, DEEP = 0, 1, 2, 3
 
 
 #: How the excess of a half turn is split between two arcs (as
-#: :data:`fcgrasp.grippers._concurrent.SPLITS`), and the eight sides in its order.
+#: :data:`fcgrasp.grippers.three_fingers._concurrent.SPLITS`), and the eight sides in its order.
 SPLITS = (0.0, 0.5, 1.0)
 _SIDES = np.array(list(product((1.0, -1.0), repeat=3)))
 _TRIPLES = np.array([(i, j, k) for i in range(6) for j in range(i + 1, 6)
@@ -326,7 +326,7 @@ def _solve_loop(A0: Any, T0: Any, L0: Any, A1: Any, T1: Any, L1: Any, const: Any
 
 def _row_arcs(center: Any, half: Any, margin: float, splits: Any, round_tol: float,
               lo_out: Any, hi_out: Any) -> int:
-    """:func:`fcgrasp.grippers._concurrent.spanning_arcs` of one row, written as loops
+    """:func:`fcgrasp.grippers.three_fingers._concurrent.spanning_arcs` of one row, written as loops
     (the same expressions in the same order; a sub-arc found twice is kept twice):
     the arcs in ``lo_out[:k]``, ``hi_out[:k]``, returns ``k``."""
     turn = 2 * np.pi
@@ -396,7 +396,8 @@ def _best_rows(A: Any, T: Any, L: Any, center: Any, half: Any, margin: float, sp
                round_tol: float, tie: float, order: Any, level: Any, lo_ang: Any,
                hi_ang: Any, side: Any) -> None:
     """Per row of three single features (``A``, ``T`` (R, 3, 2), ``L`` (R, 3), in units
-    of the part's size), its best piece (:func:`fcgrasp.grippers._concurrent._best_blocks`:
+    of the part's size), its best piece
+    (:func:`fcgrasp.grippers.three_fingers._concurrent._best_blocks`:
     every sub-arc of :func:`_row_arcs` with every side, the first with the largest
     smallest region): ``level[r]`` (-1 where none holds a grasp), the piece's arcs and
     side.  ``order[r]``: fingers 0 and 1 share their feature (regions apart, in order)."""
@@ -461,7 +462,8 @@ def available() -> bool:
 
 def solve(blocks: list[Any], kind: int = MAXMIN, fixed: Any = None, free: Any = None,
           grow: int = 0) -> tuple[np.ndarray, np.ndarray] | None:
-    """Solve the programs of ``blocks`` (:class:`~fcgrasp.grippers._concurrent._Block`,
+    """Solve the programs of ``blocks``
+    (:class:`~fcgrasp.grippers.three_fingers._concurrent._Block`,
     positions in units of the part's size) for the objective ``kind``: ``(x (B, 7),
     ok (B,))`` with ``x = (lo (3), hi (3), level)``, ``ok`` where it is solved and the
     closed form holds at its ends; None when the compiled loops cannot run (numba

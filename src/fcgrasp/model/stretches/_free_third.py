@@ -22,9 +22,9 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core._checks import FloatArray
-from ._stretch_windows import _Configs, _Ring
-from .polygon import Polygon
+from ...core._checks import FloatArray
+from ..polygon import Polygon
+from ._windows import _Configs, _Ring
 
 
 class FreeThird:

@@ -1,7 +1,7 @@
 """Compiled loops of the two-finger stretch search for large rings (part of
 :mod:`fcgrasp.model.stretches`).
 
-The numpy search of :mod:`fcgrasp.model._stretch_windows` holds the vertex matrix ``M``
+The numpy search of :mod:`fcgrasp.model.stretches._windows` holds the vertex matrix ``M``
 as ``m_a x m_b`` booleans and widens every window of rows at once; on a 10,000-edge
 outline that is 10^8 cells per mode and hundreds of passes over every row's runs.  These
 loops do the same work row by row, with nothing of size ``m_a x m_b`` in memory:
@@ -26,8 +26,8 @@ loops do the same work row by row, with nothing of size ``m_a x m_b`` in memory:
   reach it.  On a smooth outline of ``n`` edges both are ``O(n log n)``.
 
 numba is imported on first use (the machine code cached on disk beside each loop's module,
-:mod:`._stretch_run_kernels`, :mod:`._stretch_window_kernels`, :mod:`._stretch_copy_kernels`,
-:mod:`._stretch_end_kernels` and :mod:`._stretch_solve_kernels`); the
+:mod:`._run_kernels`, :mod:`._window_kernels`, :mod:`._copy_kernels`,
+:mod:`._end_kernels` and :mod:`._solve_kernels`); the
 search uses these loops only on rings large enough to repay it
 (:data:`fcgrasp.model.stretches.KERNEL_CELLS`), and ``FCGRASP_JIT=0`` never does.
 """
@@ -39,20 +39,14 @@ from typing import Any
 
 import numpy as np
 
-from ..core._checks import BoolArray, FloatArray, IntArray
-from ..core.jit import CompiledLoops
-from . import (
-    _stretch_copy_kernels,
-    _stretch_end_kernels,
-    _stretch_run_kernels,
-    _stretch_solve_kernels,
-    _stretch_window_kernels,
-)
-from ._stretch_window_kernels import _SHORT
+from ...core._checks import BoolArray, FloatArray, IntArray
+from ...core.jit import CompiledLoops
+from . import _copy_kernels, _end_kernels, _run_kernels, _solve_kernels, _window_kernels
+from ._window_kernels import _SHORT
 
-_LOOPS = CompiledLoops.of_modules((_stretch_run_kernels, _stretch_window_kernels,
-                                   _stretch_copy_kernels, _stretch_end_kernels,
-                                   _stretch_solve_kernels))
+_LOOPS = CompiledLoops.of_modules((_run_kernels, _window_kernels,
+                                   _copy_kernels, _end_kernels,
+                                   _solve_kernels))
 
 
 def _load() -> dict[str, Any]:
@@ -163,7 +157,7 @@ def windows(ptr: IntArray, first: IntArray, last: IntArray, Ua: FloatArray, Ub: 
         parts.append(loops["_windows"](*args, r0, min(r0 + COLLECT_ROWS, ma), *table))
         held += int(parts[-1][1].size)
         if cap is not None and held > cap:
-            from ..core.budget import BudgetExhausted
+            from ...core.budget import BudgetExhausted
 
             raise BudgetExhausted("collection")
     return (parts[0][0], *(np.concatenate([p[j] for p in parts]) for j in range(1, 5)))

@@ -1,7 +1,7 @@
 """The two-finger stretch search: the configurations collected behind the bound, the
 runs until the ``top``-th holds and each configuration's own optimum (part of
 :mod:`fcgrasp.model.stretches`; the leximin levels and the placement are
-:mod:`._stretch_pairs`')."""
+:mod:`._placement`')."""
 
 from __future__ import annotations
 
@@ -9,26 +9,17 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core import budget
-from ..core._checks import FloatArray
-from ..core.jit import jit_setting
-from ..core.tolerances import ANGLE_SLACK, ROUND_TOL
-from . import _stretch_kernels
-from ._stretch_exclusion import _Exclusion
-from ._stretch_lp import (
-    _system,
-)
-from ._stretch_memo import _Job, _Memo
-from ._stretch_pairs import _tie_key
-from ._stretch_solve import (
-    _Found,
-    _jobs,
-    _Keys,
-    _solve_any,
-    _solve_deferred,
-    _solve_jobs,
-)
-from ._stretch_windows import (
+from ...core import budget
+from ...core._checks import FloatArray
+from ...core.jit import jit_setting
+from ...core.tolerances import ANGLE_SLACK, ROUND_TOL
+from . import _kernels
+from ._exclusion import _Exclusion
+from ._lp import _system
+from ._memo import _Job, _Memo
+from ._placement import _tie_key
+from ._solve import _Found, _jobs, _Keys, _solve_any, _solve_deferred, _solve_jobs
+from ._windows import (
     _BLOCK,
     _EPS,
     KERNEL_OWN,
@@ -85,7 +76,7 @@ def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
         # the tree's bounds are decided with a pad far above their rounding (a few ulps
         # of the largest coordinate)
         pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
-        out = _stretch_kernels.vertex_runs_blocks(
+        out = _kernels.vertex_runs_blocks(
             ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
             rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
             width, pad, budget.check_clock)
@@ -105,14 +96,14 @@ def _both(runs: Any, ra: _Ring, rb: _Ring, same: bool, floor: float, collect: bo
     whose surely copies from ``floor`` on the compiled collection leaves out,
     :meth:`_Exclusion.copy_columns`; ``between`` and ``cap``: called between the compiled
     collection's blocks of rows, and the most windows it may hold,
-    :func:`fcgrasp.model._stretch_kernels.windows`)."""
+    :func:`fcgrasp.model.stretches._kernels.windows`)."""
     ptr, first, last = runs
     if stretch_kernels_for(ra.m * rb.m):
         # (a collection reads each row from its first window long enough, by the
         # sparse table of runs, whatever the bound)
         value, keep = (bound.value, bound.k) if bound is not None else (0.0, int(collect))
         ex, exs = copies if copies is not None else (None, None)
-        best, *cfg = _stretch_kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
+        best, *cfg = _kernels.windows(ptr, first, last, ra.U, rb.U, ra.m, rb.m, floor,
                                               collect, same, value, keep, ex=ex, exs=exs,
                                               between=between, cap=cap)
         return best, _both_kept(_Configs(*cfg), ra, rb, same)
@@ -134,7 +125,7 @@ def _single(iv: _Intervals, ra: _Ring, rb: _Ring, same: bool, floor: float, coll
     width = 2 * iv.beta + ANGLE_SLACK
     order, angle_b = _by_angle(rb)
     va = np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi
-    wa, wp, wv, iA, iC, kC = _stretch_kernels.single(
+    wa, wp, wv, iA, iC, kC = _kernels.single(
         A, ra.a[:, 0].copy(), ra.a[:, 1].copy(), ra.t[:, 0].copy(), ra.t[:, 1].copy(), ra.L,
         iv.gx, va, rb.a[:, 0].copy(), rb.a[:, 1].copy(), iv.gy, order, angle_b, width, rb.U,
         iv.sigma, _EPS, floor, collect, same, value, keep, *offsets)
@@ -276,7 +267,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     same alternative as a kept plan are left out (after the filter, which they still
     take part in); they then run without the vertex-aligned lower bound, on every
     configuration, shared with other runs through ``memo``.  ``cap``
-    (:func:`~fcgrasp.model._stretch_solve._solve_jobs`): the configurations are ranked by
+    (:func:`~fcgrasp.model.stretches._solve._solve_jobs`): the configurations are ranked by
     their ``value``, ``t`` capped, and run without the vertex-aligned lower bound (a
     bound on ``t``, not on the value); the own-optimum filter still compares ``t``."""
     keys = _Keys(rings)
@@ -499,7 +490,7 @@ def _own_optimum_of(rings: list[_Ring], found: list[_Found], check: np.ndarray,
         if len(c) >= KERNEL_OWN and jit_setting() is not False:
             rows = np.zeros(len(c), bool)
             rows[:n] = check[idx]
-            keep[np.asarray(idx)] &= _stretch_kernels.beaten(c, t, ra.m, rb.m,
+            keep[np.asarray(idx)] &= _kernels.beaten(c, t, ra.m, rb.m,
                                                              job[0] == job[1], TIE, rows)[:n]
             continue
 

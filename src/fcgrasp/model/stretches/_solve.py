@@ -12,18 +12,14 @@ from typing import Any, cast
 
 import numpy as np
 
-from ..core import budget
-from ..core._checks import FloatArray
-from ..core.tolerances import DEFER_PAD, ROUND_TOL
-from . import _stretch_kernels, _stretch_windows
-from ._stretch_exclusion import _Exclusion
-from ._stretch_lp import (
-    _box_bound,
-    _solve,
-    _system,
-)
-from ._stretch_memo import _Job, _Memo
-from ._stretch_windows import (
+from ...core import budget
+from ...core._checks import FloatArray
+from ...core.tolerances import DEFER_PAD, ROUND_TOL
+from . import _kernels, _windows
+from ._exclusion import _Exclusion
+from ._lp import _box_bound, _solve, _system
+from ._memo import _Job, _Memo
+from ._windows import (
     _EPS,
     KERNEL_CELLS,
     KERNEL_CONFIGS,
@@ -91,17 +87,17 @@ class _Keys:
 
 def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool,
                floor: float = 0.0) -> tuple[FloatArray, FloatArray, FloatArray]:
-    """:func:`~fcgrasp.model._stretch_lp._solve`, or its compiled loop; there, with
+    """:func:`~fcgrasp.model.stretches._lp._solve`, or its compiled loop; there, with
     ``floor`` > 0, a configuration whose largest ``t`` is surely below it gets NaN
     (unsolved: see :func:`_solve_in`)."""
     if compiled:
-        t, s0, u0 = _stretch_kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS, floor)
+        t, s0, u0 = _kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS, floor)
         return t, s0, u0
     start = time.process_time()
     try:
         return _solve(rows, ub, scale)
     finally:
-        _stretch_windows._numpy_spent[0] += time.process_time() - start
+        _windows._numpy_spent[0] += time.process_time() - start
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
@@ -170,7 +166,7 @@ def _solve_in(rings: list[_Ring], job: Any, J: _Job, todo: np.ndarray, beta: flo
     ``J.u0``.  With ``floor`` (the run's: the bound's, or the memo's, below which a run's
     answer is not taken; a configuration below it can neither reach an answer taken
     nor beat one of its configurations), the compiled solve leaves those it proves
-    below it NaN, unsolved (:func:`~fcgrasp.model._stretch_solve_kernels._below`): not kept,
+    below it NaN, unsolved (:func:`~fcgrasp.model.stretches._solve_kernels._below`): not kept,
     and solved again by a later run whose floor is lower."""
     if not todo.size:
         return
@@ -349,7 +345,7 @@ def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,
     kC``; cyclically; on one ring either way round): for each super, only the
     configurations whose first start lies in its first stretch are read (sorted;
     ``compiled``: the same test by one sweep over the first starts,
-    :func:`fcgrasp.model._stretch_kernels.inside_supers`)."""
+    :func:`fcgrasp.model.stretches._kernels.inside_supers`)."""
     out = np.zeros(len(c.iA), bool)
     if compiled:
         sup = np.ascontiguousarray(supers, np.int64).reshape(-1, 4)
@@ -365,7 +361,7 @@ def _inside_any(c: _Configs, supers: np.ndarray, ma: int, mb: int, same: bool,
         a, ka, cc, kc = (c.iC, c.kC, c.iA, c.kA) if flip else (c.iA, c.kA, c.iC, c.kC)
         a = a % ma
         if compiled:
-            _stretch_kernels.inside_supers(
+            _kernels.inside_supers(
                 *(np.ascontiguousarray(v, np.int64) for v in (a, ka, cc, kc, ep, eroom, es)),
                 sup, int(ma), int(mb), out)
             continue
