@@ -98,6 +98,7 @@ if _TYPE_CHECKING:   # for type checkers; at run time these load on first use
         fill_rings,
         simplify_outline,
     )
+    from .model.plans import Plan
     from .model.polygon import (
         Polygon,
     )
@@ -176,6 +177,7 @@ _LAZY = {
     "jaw_payload": "grippers.jaw",
     "jaw_pareto": "grippers.jaw",
     "Polygon": "model.polygon",
+    "Plan": "model.plans",
     "CONTRARY": "core.screws",
     "RECIPROCAL": "core.screws",
     "REPELLING": "core.screws",

@@ -1,5 +1,7 @@
 """A grasp plan, the result of :func:`fcgrasp.plan`, and the keys that order plans.
 
+:class:`Plan` is what the plans of every gripper offer, on a polygon or a solid.
+
 :class:`GraspPlan` holds an edge per finger and an independent region on each
 (definition 7.1), with its quality (section 8.1) computed on first use.  Plans are
 sorted by :func:`rank_key`: the chosen measure of :mod:`fcgrasp.model.ranking`, the leximin
@@ -10,7 +12,7 @@ not depend on how the part's vertices are numbered.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, cast
+from typing import TYPE_CHECKING, Any, Protocol, cast, runtime_checkable
 
 import numpy as np
 
@@ -30,8 +32,39 @@ if TYPE_CHECKING:
     from numpy.typing import ArrayLike
 
 
-__all__ = ["GraspPlan", "PlanList", "leximin_key", "geometric_key", "rank_key",
+__all__ = ["Plan", "GraspPlan", "PlanList", "leximin_key", "geometric_key", "rank_key",
            "check_point_plan"]
+
+
+@runtime_checkable
+class Plan(Protocol):
+    """What every plan offers, whatever its gripper and its part (a typing protocol:
+    :class:`GraspPlan` of point fingers, :class:`~fcgrasp.grippers.jaw.JawPlan` of the
+    parallel jaw, and a solid's :class:`~fcgrasp.spatial.SoftPairPlan`,
+    :class:`~fcgrasp.spatial.PointTriplePlan` and :class:`~fcgrasp.spatial.SolidJawPlan`).
+
+    ``measure``: the size of its independent regions, larger is better (the smallest
+    region's length of point fingers, definition 7.1; the jaw's box ``min(c1 - c0, (t1 -
+    t0) radius)``; a solid's regions' radius); ``regions``: each finger's region (a
+    polyline along the outline, a ring of 3-D points on a facet; the jaw's box of poses
+    ``(theta, offset)``, each a range); ``contacts``: its representative grasp's contact
+    points, one per finger (each of the jaw's pads: its points at the box's centre
+    pose); ``similar``: the plans it stands for as a distinct alternative; ``to_dict()``:
+    its JSON object in the plan report (``fcgrasp/schema``)."""
+
+    @property
+    def measure(self) -> float: ...
+
+    @property
+    def regions(self) -> Any: ...
+
+    @property
+    def contacts(self) -> Any: ...
+
+    @property
+    def similar(self) -> Any: ...
+
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 @dataclass
@@ -161,6 +194,11 @@ class GraspPlan:
     def min_length(self) -> float:
         """Length of the smallest region (the paper's tolerance measure)."""
         return float(np.min(self.lengths))
+
+    @property
+    def measure(self) -> float:
+        """The :class:`Plan` measure: :attr:`min_length`."""
+        return self.min_length
 
     @property
     def fingers(self) -> int:

@@ -44,11 +44,22 @@ class SolidPlan:
 
     radius: float
     similar: tuple[tuple[int, ...], ...]
+    centers: Any
 
     @property
     def min_length(self) -> float:
         """The measure the plans are ranked by: ``radius``."""
         return self.radius
+
+    @property
+    def measure(self) -> float:
+        """The :class:`~fcgrasp.Plan` measure: ``radius``."""
+        return self.radius
+
+    @property
+    def contacts(self) -> Any:
+        """The :class:`~fcgrasp.Plan` contacts: the regions' ``centers`` (fingers, 3)."""
+        return self.centers
 
     def _with_similar(self, d: dict[str, Any]) -> dict[str, Any]:
         """A plan's JSON ``d`` with ``similar`` when it stands for other plans."""

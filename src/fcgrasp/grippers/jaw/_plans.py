@@ -358,6 +358,11 @@ class JawPlan:
     payload: Any = field(default=None, repr=False, compare=False)
 
     @property
+    def regions(self) -> tuple[tuple[float, float], tuple[float, float]]:
+        """The :class:`~fcgrasp.Plan` regions: the box of poses ``(theta, offset)``."""
+        return (self.theta, self.offset)
+
+    @property
     def centre(self) -> tuple[float, float]:
         """The box's centre pose ``(theta, offset)``."""
         return (sum(self.theta) / 2, sum(self.offset) / 2)
