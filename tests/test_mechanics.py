@@ -12,10 +12,11 @@ from itertools import combinations
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 from fcgrasp.errors import FcgraspError
 from fcgrasp.mechanics import planar, spatial
+
+from .conftest import lp_positive_margin
 
 #: parameters only a solid contact has: a soft finger's torsion, the pyramid's edges
 SOLID_ONLY = ("torsion", "facets")
@@ -86,25 +87,13 @@ def _generators_3d(p, n, mu, tor, c, r, edges, widen=1.0):
 
 
 def _spans(w):
-    """Whether the rows of ``w`` positively span their space, by a linear program: the
-    largest ``t`` with ``sum lambda_i w_i = 0``, ``lambda >= t``, ``sum lambda = 1``
-    (positive only when the origin is inside the cone's relative interior), with full
-    rank.  Returns the program's ``t`` (negative: rank deficient)."""
-    k, d = w.shape
-    if np.linalg.matrix_rank(w, tol=1e-9 * np.abs(w).max()) < d:
+    """Whether the rows of ``w`` positively span their space, by a linear program
+    (:func:`~tests.conftest.lp_positive_margin`: positive only when some strictly
+    positive combination of them vanishes), with full rank.  Returns the program's
+    margin (-1: rank deficient)."""
+    if np.linalg.matrix_rank(w, tol=1e-9 * np.abs(w).max()) < w.shape[1]:
         return -1.0
-    # variables (lambda_1..k, t), maximise t
-    c = np.zeros(k + 1)
-    c[-1] = -1
-    a_eq = np.zeros((d + 1, k + 1))
-    a_eq[:d, :k] = w.T
-    a_eq[d, :k] = 1
-    b_eq = np.zeros(d + 1)
-    b_eq[d] = 1
-    a_ub = np.hstack([-np.eye(k), np.ones((k, 1))])         # t - lambda_i <= 0
-    res = linprog(c, A_ub=a_ub, b_ub=np.zeros(k), A_eq=a_eq, b_eq=b_eq,
-                  bounds=[(0, None)] * k + [(None, None)], method="highs")
-    return float(-res.fun) if res.status == 0 else -1.0
+    return lp_positive_margin(w)
 
 
 def _facets(points, tol=1e-9):
