@@ -388,7 +388,9 @@ def _placements_clear(solid, hand, plans, rest, count: int, seed: int) -> int:
     return checked
 
 
-@pytest.mark.parametrize("name,table", [("angle", False), ("angle", True), ("tall", True),
+@pytest.mark.parametrize("name,table", [("angle", False),
+                                        pytest.param("angle", True, marks=pytest.mark.slow),
+                                        ("tall", True),
                                         pytest.param("box", False, marks=pytest.mark.slow)])
 def test_every_sampled_placement_of_a_solid_region_is_collision_free(name, table):
     """Axis points sampled in each region (and its corners): the hand's boxes along the

@@ -76,7 +76,7 @@ def _cases():
                 quick = gripper in ("2f", "4f", "3g")
                 sampled = kind == "rotate" or (kind == "reverse" and gripper == "2f") \
                     or rng.random() < 0.03
-                heavy = (gripper == "jaw" and name not in ("quad", "bracket")) or \
+                heavy = (gripper == "jaw" and name != "bracket") or \
                     (name == "cam" and not quick)
                 marks = [pytest.mark.slow] if heavy or not sampled else []
                 out.append(pytest.param(name, gripper, kind, marks=marks,

@@ -186,7 +186,7 @@ COUNTS = [pytest.param(1, id="sample"), pytest.param(8, id="sweep", marks=pytest
 @pytest.mark.parametrize("scale", COUNTS)
 def test_planar_closure_is_the_linear_programs(scale):
     decided = 0
-    for p, n, mu in _planar_cases(0, 600 * scale):
+    for p, n, mu in _planar_cases(0, 400 * scale):
         c = p.mean(axis=0)
         r = np.linalg.norm(p - c, axis=1).max()
         t = _spans(_generators_2d(p, n, np.broadcast_to(mu, len(p)), c, r))
@@ -194,7 +194,7 @@ def test_planar_closure_is_the_linear_programs(scale):
             continue
         decided += 1
         assert planar.force_closure(p, n, mu) == (t > 0), (p, n, mu, t)
-    assert decided > 570 * scale
+    assert decided > 380 * scale
 
 
 def test_the_unresisted_wrench_is_done_no_negative_work():
@@ -257,7 +257,7 @@ def test_spatial_closure_between_the_pyramids_linear_programs(scale):
     pyramids refute is not (32 edges: the two differ by 0.5 %)."""
     proved = refuted = 0
     edges = 32
-    for p, n, mu, tor in _spatial_cases(4, 100 * scale):
+    for p, n, mu, tor in _spatial_cases(4, 80 * scale):
         c = p.mean(axis=0)
         r = np.linalg.norm(p - c, axis=1).max()
         mus, tors = np.full(len(p), mu), np.full(len(p), tor)
@@ -269,7 +269,7 @@ def test_spatial_closure_between_the_pyramids_linear_programs(scale):
         if _spans(_generators_3d(p, n, mus, tors, c, r, edges, widen)) < -1e-7:
             refuted += 1
             assert not got, (p, n, mu, tor)
-    assert proved > 10 * scale and refuted > 10 * scale
+    assert proved > 8 * scale and refuted > 8 * scale
 
 
 def test_spatial_unresisted_wrench_is_done_no_negative_work():
