@@ -5,6 +5,7 @@ the regions' polylines along the rings."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
@@ -168,6 +169,19 @@ def _tie_key(rings: list[_Ring], f: _Found) -> tuple[Any, ...]:
     search met them in)."""
     iA, kA, iC, kC = f.cfg
     return (f.job[:2], f.job[3], iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
+
+
+def _rank_key(rings: list[_Ring]) -> Callable[[_Found], tuple[Any, ...]]:
+    """The search's order of configurations: ``value`` down, then :func:`_tie_key`
+    (the same tuple, its ring lengths read once: the rounds sort millions)."""
+    m = [r.m for r in rings]
+
+    def key(f: _Found) -> tuple[Any, ...]:
+        iA, kA, iC, kC = f.cfg
+        job = f.job
+        return (-f.value, job[:2], job[3], iA % m[job[0]], kA, iC % m[job[1]], kC)
+
+    return key
 
 
 def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dict[Any, _Intervals],

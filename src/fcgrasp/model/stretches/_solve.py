@@ -33,7 +33,7 @@ from ._windows import (
 )
 
 
-@dataclass
+@dataclass(slots=True)
 class _Found:
     """A solved configuration: ring pair and mode (the job), covered edges, the common
     length ``t`` and the placement; after the second level, both lengths."""
@@ -219,12 +219,14 @@ class _Run:
             self.similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
             ok, sim = ok[~sim], sim[~sim]
         value = t if self.caps is None else np.minimum(t, self.caps[chunk])
-        for j, same in zip(ok, sim, strict=True):
-            c = chunk[j]
-            self.found.append(_Found(job, (int(cfg.iA[c]), int(cfg.kA[c]), int(cfg.iC[c]),
-                                           int(cfg.kC[c])), float(t[j]), float(s0[j]),
-                                     float(u0[j]), similar=bool(same),
-                                     value=float(value[j])))
+        # one conversion per column (Python numbers, as int() and float() of each give)
+        at = chunk[ok]
+        append = self.found.append
+        for a, b, c, d, tj, sj, uj, same, vj in zip(
+                cfg.iA[at].tolist(), cfg.kA[at].tolist(), cfg.iC[at].tolist(),
+                cfg.kC[at].tolist(), t[ok].tolist(), s0[ok].tolist(), u0[ok].tolist(),
+                sim.tolist(), value[ok].tolist(), strict=True):
+            append(_Found(job, (a, b, c, d), tj, sj, uj, similar=same, value=vj))
         ok = ok[~sim]
         self.bound.add(self.keys(job, part.iA[ok], part.iC[ok]), value[ok])
 
