@@ -26,6 +26,7 @@ import numpy as np
 import shapely
 
 from ..core._checks import FloatArray
+from ..core.alternatives import keep_distinct
 from ..core.tolerances import COORD_ROUNDING, REACH_PAD, ROUND_TOL, SLICE_TOL, TOL
 from .plans import GraspPlan
 from .polygon import Polygon
@@ -583,16 +584,12 @@ def distinct_boxes(polygon: Polygon, plans: list[Any], fraction: float,
     if fraction == 0:
         return list(plans)
     syms: dict[Any, list[tuple[str, float]]] = {}     # per grip (:func:`grip_symmetries`)
-    groups: list[list[Any]] = []         # each kept box first, then those it stands for
-    for p in plans:
+
+    def same(q: Any, p: Any) -> bool:
         if p.hole not in syms:
             syms[p.hole] = grip_symmetries(polygon, getattr(p, "insert", None))
-        # the same alternative as any box of a group (a band of adjacent slices is one)
-        group = next((g for g in groups
-                      if any(same_box(q, p, fraction, syms[p.hole], adjacent) for q in g)),
-                     None)
-        if group is not None:
-            group.append(p)
-            continue
-        groups.append([p])
+        return same_box(q, p, fraction, syms[p.hole], adjacent)
+
+    # the same alternative as any box of a group (a band of adjacent slices is one)
+    groups = keep_distinct(plans, same, chain=True)
     return [replace(g[0], similar=len(g) - 1) for g in groups]

@@ -27,6 +27,7 @@ from typing import Any
 
 import numpy as np
 
+from ..core.alternatives import keep_distinct
 from ..core.budget import PlanList, exhausted, incomplete
 
 __all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans", "SAME_SIDE_DEG"]
@@ -106,17 +107,8 @@ def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
         raise ValueError(f"fraction must be in [0, 1], got {fraction!r}")
     if fraction == 0:
         return list(plans)
-    kept: list[Any] = []
-    stands: list[list[tuple[int, ...]]] = []
-    for p in plans:
-        twin = next((k for k, q in enumerate(kept) if same_solid_alternative(q, p, fraction)),
-                    None)
-        if twin is None:
-            kept.append(p)
-            stands.append([])
-        else:
-            stands[twin].append(tuple(p.facets))
-    return [replace(p, similar=tuple(s)) for p, s in zip(kept, stands, strict=True)]
+    groups = keep_distinct(plans, lambda q, p: same_solid_alternative(q, p, fraction))
+    return [replace(g[0], similar=tuple(tuple(p.facets) for p in g[1:])) for g in groups]
 
 
 def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
