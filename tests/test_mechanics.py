@@ -276,6 +276,7 @@ def test_spatial_unresisted_wrench_is_done_no_negative_work():
     seen = 0
     for p, n, mu, tor in _spatial_cases(5, 150):
         d = spatial.unresisted_wrench(p, n, mu, tor)
+        assert (d is None) == spatial.force_closure(p, n, mu, tor)
         if d is None:
             continue
         seen += 1
