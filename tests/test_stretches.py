@@ -382,11 +382,11 @@ def test_region_polylines_are_the_previous_ones_bit_for_bit():
             assert all(type(x) is int for x in e)
 
 
-def test_the_rounds_rank_key_is_the_value_then_the_tie_key():
-    """The search's sort key (:func:`_rank_key`, ring lengths read once) is ``-value``
-    followed by :func:`_tie_key`, on configurations of every ring pair and mode of a
-    part with a hole, wrapped starts included."""
-    from fcgrasp.model.stretches._placement import _rank_key, _tie_key
+def test_exact_ties_are_ordered_by_the_job_then_the_covered_edges():
+    """:func:`_tie_keys`: the job's rings and mode, then each stretch's start reduced
+    modulo its ring's length and its interior vertices, on configurations of every ring
+    pair and mode of a part with a hole, wrapped starts included."""
+    from fcgrasp.model.stretches._placement import _tie_keys
     from fcgrasp.model.stretches._solve import _Found
     from fcgrasp.model.stretches._windows import _rings
 
@@ -395,16 +395,12 @@ def test_the_rounds_rank_key_is_the_value_then_the_tie_key():
     hole = np.c_[np.cos(np.linspace(6.2, 0, 11)), np.sin(np.linspace(6.2, 0, 11))] * 10
     rings = _rings(Polygon(outer, [hole]))
     assert len(rings) == 2
-    key = _rank_key(rings)
-    found = []
+    tie = _tie_keys(rings)
     for _ in range(500):
         x, y = (int(v) for v in rng.integers(0, len(rings), 2))
         cfg = tuple(int(v) for v in (rng.integers(0, 3 * rings[x].m), rng.integers(0, 5),
                                       rng.integers(0, 3 * rings[y].m), rng.integers(0, 5)))
         job = (x, y, float(rng.choice([-1.0, 1.0])), str(rng.choice(["squeeze", "expand"])))
-        f = _Found(job, cfg, float(rng.random()), 0.0, 0.0,
-                   value=float(rng.choice([0.25, 0.5, rng.random()])))
-        assert key(f) == (-f.value, *_tie_key(rings, f))
-        found.append(f)
-    assert sorted(found, key=key) == sorted(found, key=lambda f: (-f.value,
-                                                                   *_tie_key(rings, f)))
+        f = _Found(job, cfg, float(rng.random()), 0.0, 0.0)
+        assert tie(f) == ((x, y), job[3], cfg[0] % rings[x].m, cfg[1], cfg[2] % rings[y].m,
+                          cfg[3])

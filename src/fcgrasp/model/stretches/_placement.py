@@ -164,22 +164,16 @@ def _canonical(rings: list[_Ring], beta: float, found: list[_Found],
     return out
 
 
-def _tie_key(rings: list[_Ring], f: _Found) -> tuple[Any, ...]:
-    """The order of exact ties: the job, then the covered edges (whatever order the
-    search met them in)."""
-    iA, kA, iC, kC = f.cfg
-    return (f.job[:2], f.job[3], iA % rings[f.job[0]].m, kA, iC % rings[f.job[1]].m, kC)
-
-
-def _rank_key(rings: list[_Ring]) -> Callable[[_Found], tuple[Any, ...]]:
-    """The search's order of configurations: ``value`` down, then :func:`_tie_key`
-    (the same tuple, its ring lengths read once: the rounds sort millions)."""
+def _tie_keys(rings: list[_Ring]) -> Callable[[_Found], tuple[Any, ...]]:
+    """The order of exact ties among configurations of ``rings``: the job, then the
+    covered edges (whatever order the search met them in); the rings' lengths read once
+    (the rounds sort millions)."""
     m = [r.m for r in rings]
 
     def key(f: _Found) -> tuple[Any, ...]:
         iA, kA, iC, kC = f.cfg
         job = f.job
-        return (-f.value, job[:2], job[3], iA % m[job[0]], kA, iC % m[job[1]], kC)
+        return (job[:2], job[3], iA % m[job[0]], kA, iC % m[job[1]], kC)
 
     return key
 
@@ -190,7 +184,8 @@ def _finish(rings: list[_Ring], beta: float, found: list[_Found], intervals: dic
     kept, in the leximin order."""
     _second_level(rings, beta, found, intervals, polygon.size)
     found = _canonical(rings, beta, found, intervals, polygon)
-    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), *_tie_key(rings, f)))
+    tie = _tie_keys(rings)
+    found.sort(key=lambda f: (-min(f.lengths), -max(f.lengths), *tie(f)))
     return found
 
 

@@ -17,7 +17,7 @@ from . import _kernels
 from ._exclusion import _Exclusion
 from ._lp import _system
 from ._memo import _Job, _Memo
-from ._placement import _rank_key
+from ._placement import _tie_keys
 from ._solve import _Found, _jobs, _Keys, _solve_any, _solve_deferred, _solve_jobs
 from ._windows import (
     _BLOCK,
@@ -305,7 +305,8 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         if deferred:
             _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
                             similar)
-        found.sort(key=_rank_key(rings))
+        tie = _tie_keys(rings)
+        found.sort(key=lambda f: (-f.value, *tie(f)))
         if memo is None:
             found = [f for f in _own_optimum(rings, found, similar) if not f.similar]
         else:
