@@ -14,15 +14,14 @@ from numpy.typing import ArrayLike
 
 from ...core._checks import FloatArray
 from ...core.closure import closure_escape
-from .contacts import contact_wrenches
+from .contacts import distinct_wrenches
 
 __all__ = ["force_closure", "unresisted_wrench"]
 
 
 def _verdict(points: ArrayLike, normals: ArrayLike, mu: ArrayLike,
              center: ArrayLike | None, radius: float | None) -> tuple[bool, FloatArray]:
-    w = contact_wrenches(points, normals, mu, center=center, radius=radius)
-    closed, twist = closure_escape(np.unique(w.reshape(-1, 3), axis=0))
+    closed, twist = closure_escape(distinct_wrenches(points, normals, mu, center, radius))
     return bool(closed), twist
 
 

@@ -14,6 +14,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...core._checks import FloatArray
+from ...core._geom import unique_rows
 from .._grasp import check_grasp
 
 __all__ = ["DIM", "WRENCH_DIM", "contact_wrenches"]
@@ -42,3 +43,11 @@ def contact_wrenches(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0,
     r = (g.points - g.center) / g.radius
     torque = r[:, None, 0] * forces[..., 1] - r[:, None, 1] * forces[..., 0]
     return np.concatenate([forces, torque[..., None]], axis=-1)
+
+
+def distinct_wrenches(points: ArrayLike, normals: ArrayLike, mu: ArrayLike,
+                      center: ArrayLike | None, radius: float | None) -> FloatArray:
+    """The grasp's generators (:func:`contact_wrenches`) as distinct rows (m, 3): a
+    frictionless contact's one force once."""
+    w = contact_wrenches(points, normals, mu, center=center, radius=radius)
+    return unique_rows(w.reshape(-1, WRENCH_DIM))

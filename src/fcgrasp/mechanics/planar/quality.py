@@ -4,26 +4,21 @@ r"""Grasp quality of one planar grasp (section 8.1), mirrored by
 On the generators of :func:`~fcgrasp.mechanics.planar.contacts.contact_wrenches` (unit
 normal forces, torques over ``radius``): **epsilon**, Ferrari and Canny's L1 measure, the
 radius of the largest ball about the origin inside their convex hull (0 when the grasp
-is not in force closure), and **volume**, the volume of that hull in the 3-D wrench
-space.  The planner's reported ``epsilon_l1`` (:mod:`fcgrasp.model.quality`) scales each
-force to unit length instead, as the paper's generating forces are.
+is not in force closure; :func:`fcgrasp.model.quality.ball_radius`, the planner's), and
+**volume**, the volume of that hull in the 3-D wrench space.  The planner's reported
+``epsilon_l1`` (:mod:`fcgrasp.model.quality`) scales each force to unit length instead,
+as the paper's generating forces are.
 """
 
 from __future__ import annotations
 
-import numpy as np
 from numpy.typing import ArrayLike
 
+from ...model.quality import ball_radius
 from ...spatial.quality import hull_epsilon
-from .contacts import contact_wrenches
+from .contacts import distinct_wrenches
 
 __all__ = ["epsilon", "volume"]
-
-
-def _hull(points: ArrayLike, normals: ArrayLike, mu: ArrayLike, center: ArrayLike | None,
-          radius: float | None) -> tuple[float, float]:
-    w = contact_wrenches(points, normals, mu, center=center, radius=radius)
-    return hull_epsilon(np.unique(w.reshape(-1, 3), axis=0))
 
 
 def epsilon(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0, *,
@@ -35,7 +30,7 @@ def epsilon(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0, *,
     >>> round(epsilon([[1, 0], [-1, 0]], [[1, 0], [-1, 0]], mu=0.5), 4)
     0.3333
     """
-    return _hull(points, normals, mu, center, radius)[0]
+    return ball_radius(distinct_wrenches(points, normals, mu, center, radius))
 
 
 def volume(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0, *,
@@ -46,4 +41,4 @@ def volume(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0, *,
     >>> round(volume([[1, 0], [-1, 0]], [[1, 0], [-1, 0]], mu=0.5), 4)
     0.6667
     """
-    return _hull(points, normals, mu, center, radius)[1]
+    return hull_epsilon(distinct_wrenches(points, normals, mu, center, radius))[1]
