@@ -55,9 +55,9 @@ def solid_choices() -> dict[str, tuple[str, ...]]:
 def part_json(polygon: Any, units: str, name: str = "", notes: Any = ()) -> dict[str, Any]:
     """A part as the page holds it: a planar part's rings, units and a few measures for
     drawing; a solid's triangles (:func:`solid_json`)."""
-    from ..model.polygon import Polygon
+    from ..grippers.solids import is_solid
 
-    if not isinstance(polygon, Polygon):
+    if is_solid(polygon):
         return solid_json(polygon, name)
     return json_ready({"outer": polygon.vertices, "holes": list(polygon.holes),
                        "units": units, "name": name, "edges": polygon.n_edges,
@@ -128,10 +128,10 @@ def page_part(data: Any) -> tuple[Any, str, str]:
 def as_part(shape: Any, source: str, units: str) -> Any:
     """The page's part (:func:`page_part`) as :func:`~fcgrasp.planning.plan_document`
     takes it: a part read from the page, an outline or a solid."""
+    from ..grippers.solids import is_solid
     from ..io.parts import Part
-    from ..model.polygon import Polygon
 
-    if not isinstance(shape, Polygon):
+    if is_solid(shape):
         return Part(None, source, "mesh", units=units, units_note=shape.units_note,
                     solid=shape)
     return Part(polygon=shape, source=source, format="explorer", units=units)
