@@ -28,13 +28,12 @@ from dataclasses import dataclass, field, replace
 from typing import Any
 
 from ..core._checks import check_int, check_scalar
+from ..core.alternatives import Rounds, distinct_rounds
 from ..core.budget import (
     DEFAULT_TIME_LIMIT,
-    BudgetExhausted,
     PlanList,
     check_time_limit,
     deadline,
-    exhausted,
     incomplete,
     settle,
 )
@@ -330,15 +329,12 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
               distinct: Any) -> PlanList:
     """The gripper's plans, with ``distinct`` the top ones that are distinct alternatives
     (:func:`fcgrasp.model.distinct.distinct_plans`): the search is asked for more plans
-    until ``top`` distinct ones are found, it has no more, or it was asked for
+    (:func:`fcgrasp.core.alternatives.distinct_rounds`, each request at least twice the
+    one before, as :class:`~fcgrasp.core.alternatives.Rounds` says) until ``top``
+    distinct ones are found, it has no more, or it was asked for
     :data:`DISTINCT_DEPTH` times ``top`` (a gripper's ``distinct_depth`` where it has
-    one).  Each request asks for at least twice as many plans as the one before, and
-    for as many as the share of distinct plans in the last list read says ``top``
-    need, twice over, or, where that is half the depth, for all of it (a search's time
-    grows slowly with ``top``: on a curved outline, where one grasp fills the ranked
-    list with its copies, one long request costs less than many doubling ones).  The
-    plans kept are those of suppression along the ranked list, however long the last
-    list read was.
+    one).  The plans kept are those of suppression along the ranked list, however long
+    the last list read was.
 
     The requests after the first stop when the time budget ends
     (:func:`fcgrasp.core.budget.deadline`) or at the depth; the plans kept are then an
@@ -357,31 +353,14 @@ def _distinct(polygon: Polygon, gripper: Any, options: SearchOptions,
     found = direct(polygon, options, fraction) if direct is not None else None
     if found is not None:
         return found if isinstance(found, PlanList) else PlanList(found)
-    plans = list(gripper.plan(polygon, options))
     # a gripper may say what distinct means for its plans (the jaw: boxes up to the
     # part's symmetries); regions of contact otherwise
     suppress = getattr(gripper, "distinct_plans", None) or \
         (lambda poly, ps, f: distinct_plans(ps, f, poly.size, limit=options.top))
-    top, ask = options.top, options.top
-    kept = suppress(polygon, plans, fraction)
-    cap = getattr(gripper, "distinct_depth", DISTINCT_DEPTH) * (top or 0)
-    stopped = None
-    while top is not None and ask is not None and len(kept) < top and len(plans) == ask:
-        if ask >= cap:
-            stopped = "depth"
-            break
-        if exhausted():
-            stopped = "time_limit"
-            break
-        need = max(2 * ask, -(-2 * ask * top // max(len(kept), 1)))   # 2 ask top / kept
-        ask = cap if 2 * need >= cap else need     # half the depth: the whole of it
-        try:
-            more = list(gripper.plan(polygon, replace(options, top=ask)))
-        except BudgetExhausted:
-            stopped = "time_limit"
-            break
-        plans, kept = more, suppress(polygon, more, fraction)
-    kept = kept[:top] if top is not None else kept
+    kept, plans, stopped = distinct_rounds(
+        lambda n: list(gripper.plan(polygon, replace(options, top=n))),
+        lambda ps: suppress(polygon, ps, fraction), options.top,
+        Rounds(depth=getattr(gripper, "distinct_depth", DISTINCT_DEPTH)))
     if stopped is None:
         return PlanList(kept)
     last = plans[-1] if plans else None

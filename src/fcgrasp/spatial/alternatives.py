@@ -27,8 +27,8 @@ from typing import Any
 
 import numpy as np
 
-from ..core.alternatives import keep_distinct
-from ..core.budget import PlanList, exhausted, incomplete
+from ..core.alternatives import Rounds, distinct_rounds, keep_distinct
+from ..core.budget import PlanList, incomplete
 
 __all__ = ["SolidPlan", "same_solid_alternative", "distinct_solid_plans", "SAME_SIDE_DEG"]
 
@@ -114,27 +114,28 @@ def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
 def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
     None for every plan): asked for four times more plans than it keeps, and four
-    times more again until ``top`` are kept or the search has no more.  A search that
-    stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time budget
-    that ends between two rounds, ends the rounds: the plans kept are the answer's
-    first, incomplete, with the bound of the search's (the last plan read's radius
-    between rounds: every plan not read is below it)."""
-    if fraction == 0 or top is None:
+    times more again until ``top`` are kept or the search has no more
+    (:func:`fcgrasp.core.alternatives.distinct_rounds`, :data:`SOLID_ROUNDS`).  A search
+    that stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time
+    budget that ends between two rounds, ends the rounds: the plans kept are the
+    answer's first, incomplete, with the bound of the search's (the last plan read's
+    radius between rounds: every plan not read is below it)."""
+    if fraction == 0:
         plans = search(top)
-        kept = distinct_solid_plans(plans, fraction)
+        return _like(plans, list(plans))
+    kept, plans, stopped = distinct_rounds(
+        search, lambda ps: distinct_solid_plans(list(ps), fraction), top, SOLID_ROUNDS)
+    if stopped == "search":
         return _like(plans, kept)
-    n = 4 * top
-    while True:
-        plans = search(n)
-        kept = distinct_solid_plans(plans, fraction)
-        if len(kept) >= top or (len(plans) < n and getattr(plans, "complete", True)):
-            return PlanList(kept[:top])
-        if not getattr(plans, "complete", True):
-            return _like(plans, kept[:top])
-        if exhausted():
-            return incomplete(kept[:top], "time_limit", float(plans[-1].radius),
-                              "region radius")
-        n *= 4
+    if stopped == "time_limit":
+        return incomplete(kept, stopped, float(plans[-1].radius), "region radius")
+    return PlanList(kept)
+
+
+#: How a solid's distinct search asks for longer lists: four times ``top`` plans, then
+#: four times more each round, with no depth (a solid's ranked search is cheap to
+#: extend: its pieces and pairs are kept between rounds).
+SOLID_ROUNDS = Rounds(first=4, factor=4, share=False)
 
 
 def _like(plans: Any, kept: list[Any]) -> PlanList:
