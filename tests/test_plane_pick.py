@@ -119,7 +119,7 @@ def test_every_sampled_pose_of_a_plan_in_the_plane_is_collision_free(name, mu, t
     assert checked >= 16
 
 
-@pytest.mark.parametrize("seed,parts", [(0, 4)] + [pytest.param(s, 12, marks=pytest.mark.slow)
+@pytest.mark.parametrize("seed,parts", [(0, 2)] + [pytest.param(s, 12, marks=pytest.mark.slow)
                                                    for s in range(1, 5)])
 def test_proved_cells_of_random_parts_are_clear_by_fcl(seed, parts):
     """Random cells of jaw poses on seeded star-shaped parts of the hand's size (bumps
@@ -172,7 +172,7 @@ def test_proved_cells_of_random_parts_are_clear_by_fcl(seed, parts):
                         proved += 1
                     else:
                         refused_hits += bool(hit)
-    assert proved >= 50 and refused_hits >= 5, (proved, refused_hits)
+    assert proved >= 12 * parts and refused_hits >= parts, (proved, refused_hits)
 
 
 def test_the_check_finds_collisions_in_what_the_cut_leaves_out():

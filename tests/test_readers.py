@@ -411,19 +411,20 @@ def _files(tmp_path):
 
 @pytest.mark.parametrize("name", ["a.dxf", "a.svg", "a.geojson", "a.wkt", "a.json", "a.gif"])
 def test_every_format_through_fcgrasp_plan(tmp_path, capsys, name):
+    """Each format read and planned by the command (in this process: the command in a
+    process of its own is :func:`test_stdin_and_stdout`'s)."""
+    from fcgrasp.apps.cli import main
+
     _files(tmp_path)
     f = tmp_path / name
-    r = run("plan", f, "--top", "3", "--json", "-")
-    assert r.returncode == 0, r.stderr
-    data = json.loads(r.stdout)                       # --json -: only JSON on stdout
+    capsys.readouterr()
+    assert main(["plan", str(f), "--top", "3", "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)        # --json -: only JSON on stdout
     part = load_part(f)
     assert data["source"]["file"] == str(f) and data["source"]["index"] == part.index
     assert np.allclose(data["part"]["vertices"], part.polygon.vertices, atol=1e-9)
     want = fc.plan(part.polygon, mu=0.3, top=3, disturbance=(10.0, 15.0))
     assert [g["edges"] for g in data["grasps"]] == [list(p.edges) for p in want]
-    from fcgrasp.apps.cli import main  # the listing in process
-
-    capsys.readouterr()
     assert main(["parts", str(f)]) == 0 and "*" in capsys.readouterr().out
 
 

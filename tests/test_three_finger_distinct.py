@@ -153,8 +153,8 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     assert known > 50 and checked > known
 
 
-@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
-                                          for s in range(2, 12))])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 12))])
 def test_every_configuration_left_out_is_a_kept_plans_copy(seed):
     rng = np.random.default_rng(100 + seed)
     n = int(rng.integers(24, 40))
@@ -191,8 +191,8 @@ def _plans_equal(got, ref):
 
 
 # the rounds of the distinct search ask again with a lower floor and a larger keep
-@pytest.mark.parametrize("seed", [0, 4, *(pytest.param(s, marks=pytest.mark.slow)
-                                          for s in range(1, 40) if s != 4)])
+@pytest.mark.parametrize("seed", [4, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(40) if s != 4)])
 def test_rounds_sharing_the_rows_solved_give_a_fresh_rounds_plans(seed, monkeypatch):
     from fcgrasp.grippers import three_fingers as tf
 

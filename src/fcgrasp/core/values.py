@@ -46,7 +46,9 @@ class Friction:
         ``name``)."""
         if isinstance(value, Friction):
             return value
-        return cls(check_mu_scalar(value, name))
+        got = cls.__new__(cls)                  # checked once, naming ``name``
+        object.__setattr__(got, "mu", check_mu_scalar(value, name))
+        return got
 
     @property
     def half_angle(self) -> float:
@@ -82,7 +84,9 @@ class Margin:
         name ``name``)."""
         if isinstance(value, Margin):
             return value
-        return cls(check_margin(value, name))
+        got = cls.__new__(cls)                  # checked once, naming ``name``
+        object.__setattr__(got, "deg", check_margin(value, name))
+        return got
 
     @property
     def radians(self) -> float:
