@@ -209,3 +209,23 @@ def test_growths_programs_solved_in_one_compiled_call_equal_numpys(parts, monkey
             np.testing.assert_array_equal(got[1], ref[1])
             solved += 1
     assert solved >= 100
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_rows_kept_compiled_are_numpys(seed):
+    """The compiled check and drop of the rows without a variable against numpy's
+    (``~A.any(axis=1)``; a NaN coefficient counts as a variable, a NaN right-hand side
+    does not fail): the same rows in the same order, the same verdict."""
+    rng = np.random.default_rng(seed)
+    n, width = int(rng.integers(0, 40)), int(rng.integers(1, 9))
+    A = rng.choice([0.0, 0.0, 1.5, -2.0, np.nan], (n, width))
+    A[rng.random(n) < 0.4] = 0.0
+    rhs = rng.choice([-1.0, -1e-9, 0.0, 3.0, np.nan], n)
+    floor = float(rng.choice([-1e-9, -0.5, 0.0]))
+    got = _frictionless_kernels.kept_rows(A, rhs, floor)
+    fixed = ~A.any(axis=1)
+    if np.any(rhs[fixed] < floor):
+        assert got is False
+    else:
+        np.testing.assert_array_equal(got[0], A[~fixed])
+        np.testing.assert_array_equal(got[1], rhs[~fixed])

@@ -243,6 +243,32 @@ def _system_rows(ea_all: FloatArray, eb_all: FloatArray, ec_all: FloatArray, lay
     return status, A, rhs
 
 
+def _kept_rows(A: FloatArray, rhs: FloatArray, floor: float) -> Any:
+    """The rows of ``(A, rhs)`` with a variable, copied in order, and whether every row
+    without one holds (its right-hand side at least ``floor``): ``(ok, A, rhs)``, the
+    check ``_frictionless_program._system`` makes with numpy (a row with a NaN
+    coefficient has a variable, as ``ndarray.any`` says)."""
+    n, width = A.shape
+    keep = np.empty(n, np.bool_)
+    count = 0
+    ok = True
+    for i in range(n):
+        keep[i] = not _no_variable(A, i, width)
+        if keep[i]:
+            count += 1
+        elif rhs[i] < floor:
+            ok = False
+    A2, rhs2 = np.empty((count, width)), np.empty(count)
+    j = 0
+    for i in range(n):
+        if keep[i]:
+            for c in range(width):
+                A2[j, c] = A[i, c]
+            rhs2[j] = rhs[i]
+            j += 1
+    return ok, A2, rhs2
+
+
 def _before(a: float, b: float) -> bool:
     """Whether ``a`` sorts strictly before ``b`` (nan last, as numpy sorts)."""
     return a < b or (not np.isnan(a) and np.isnan(b))
@@ -396,7 +422,7 @@ def _lp_loop(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArr
 
 
 _FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _no_variable, _system_loop,
-          _system_rows, _before, _first_k, _lp_loop)
+          _system_rows, _kept_rows, _before, _first_k, _lp_loop)
 
 
 def _with_simplex() -> dict[str, Any] | None:
@@ -411,6 +437,17 @@ def _with_simplex() -> dict[str, Any] | None:
 #: compiled over the compiled formulas of :mod:`fcgrasp.core.kernels` (``arc_meet``) and
 #: the dense simplex
 COMPILED = jit.CompiledLoops(dict(globals()), _FUNCS, _with_simplex)
+
+
+def kept_rows(A: FloatArray, rhs: FloatArray, floor: float
+              ) -> tuple[FloatArray, FloatArray] | Literal[False] | None:
+    """:func:`_kept_rows`: the rows with a variable, False where a row without one fails
+    (its right-hand side below ``floor``), None where the loop does not run."""
+    ok, got = COMPILED.run("_kept_rows", A, rhs, float(floor))
+    if not ok:
+        return None
+    holds, A2, rhs2 = got
+    return (A2, rhs2) if holds else False
 
 
 def lp_rows(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArray, ub: FloatArray,

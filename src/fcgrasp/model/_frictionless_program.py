@@ -90,14 +90,21 @@ def _system(polygon: Polygon, edges: tuple[tuple[int, ...], ...], pairing: np.nd
     if got is not None:
         A, bvec, some_fixed = got
         compiled_rows = (A, bvec)
+        if some_fixed:              # the rows without a variable checked and left out
+            kept = _frictionless_kernels.kept_rows(A, bvec, -RANK_TOL * polygon.size)
+            if kept is False:
+                return None
+            if kept is not None:
+                (A, bvec), some_fixed = kept, False
     else:
         rows = _rows_numpy(polygon, edges, gravity, pairing, margin, s)
         if rows is None:
             return None
         A, bvec = rows
         some_fixed = True
-    # rows without a variable (the compiled loop says whether there are any) are
-    # checked here, not handed to the solver
+    # rows without a variable (the compiled loop says whether there are any, and
+    # checks and drops them itself where it runs) are checked here, not handed to the
+    # solver
     if some_fixed:
         fixed = ~A.any(axis=1)
         if fixed.any():
