@@ -208,7 +208,7 @@ def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
 def test_plan_many_from_python_local_and_on_a_client():
     distributed = pytest.importorskip("distributed")
     rng = np.random.default_rng(11)
-    polys = [fc.Polygon(_ring(rng)) for _ in range(5)]
+    polys = [fc.Polygon(_ring(rng)) for _ in range(3)]
     local = {r["path"]: r for r in fc.plan_many(polys, fingers=3, mu=0.5, top=2, workers=2)}
     direct = [fc.plan(p, fingers=3, mu=0.5, top=2) for p in polys]
     for k, plans in enumerate(direct):
