@@ -95,3 +95,37 @@ def test_a_solid_request_takes_the_options_its_gripper_takes_there(kind):
     assert all(set(v) <= {"mu", "margin", "top", "distinct", "time_limit", "stroke", "pad",
                           "hand", "table", "rest", "rest_orientation"}
                for v in choices.values())
+
+
+def test_read_part_reads_a_solid_as_the_command_line_does(tmp_path, capsys):
+    """One entry for every part: ``fc.read_part`` of a mesh file or a built-in solid is
+    the solid ``read_solid`` gives (a two-body file: the body asked for, by default the
+    largest), planned as ``fcgrasp plan`` plans it; the options that read drawings are
+    refused by name, and ``fcgrasp parts`` lists a built-in solid's body."""
+    import numpy as np
+    import trimesh
+
+    from fcgrasp.io.meshes import read_solid
+
+    two = trimesh.util.concatenate([demo_solid("box").mesh,
+                                    demo_solid("cylinder").mesh.apply_translation([80, 0, 0])])
+    path = tmp_path / "two.stl"
+    two.export(path)
+    for part in (None, 0, 1):
+        got, want = fc.read_part(path, part), read_solid(str(path), select=part)
+        assert isinstance(got, fc.Solid)
+        assert np.array_equal(got.mesh.vertices, want.mesh.vertices)
+    assert fc.read_part(path).size == fc.read_part(path, 0).size != fc.read_part(path, 1).size
+    solid = fc.read_part("demo:box", units="cm")
+    assert solid.units == "cm" and solid.size == pytest.approx(demo_solid("box").size / 10)
+    plans = fc.plan(fc.read_part("demo:box"), fingers=2, mu=0.5, top=3)
+    out = tmp_path / "box.json"
+    assert main(["plan", "demo:box", "--fingers", "2", "--soft", "--mu", "0.5", "--top", "3",
+                 "--json", str(out), "--quiet"]) == 0
+    assert [g["radius"] for g in json.loads(out.read_text())["grasps"]] == \
+        [pytest.approx(p.radius, rel=1e-9) for p in plans]
+    for bad in ({"flatten": 0.1}, {"layer": "0"}, {"y_down": True}):
+        with pytest.raises(ValueError, match=next(iter(bad))):
+            fc.read_part(path, **bad)
+    capsys.readouterr()
+    assert main(["parts", "demo:box"]) == 0 and "1 body" in capsys.readouterr().out

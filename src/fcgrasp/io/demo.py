@@ -42,6 +42,9 @@ DEMO_PARTS: dict[str, dict[str, Any]] = {
 def demo_part(name: str) -> Polygon:
     """A built-in part by name (see :data:`DEMO_PARTS`)."""
     if name not in DEMO_PARTS:
-        raise ValueError(f"unknown demo part {name!r}: choose from {', '.join(DEMO_PARTS)}")
+        from ..spatial.solid import DEMO_SOLIDS
+
+        raise ValueError(f"unknown demo part {name!r}: choose from {', '.join(DEMO_PARTS)} "
+                         f"(solids: {', '.join(DEMO_SOLIDS)})")
     d = DEMO_PARTS[name]
     return Polygon(d["vertices"], d.get("holes", ()))

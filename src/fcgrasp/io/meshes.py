@@ -111,16 +111,23 @@ def default_body(bodies: list[Body]) -> Body:
 def read_bodies(source: str, units: str | None = None, file_units: str | None = None,
                 limits: Limits | None = None) -> tuple[list[Body], str, str]:
     """The connected bodies of a mesh file (anything trimesh reads: STL, OBJ, PLY, GLB,
-    3MF, OFF), converted to ``units`` (default mm) from the file's own units (GLB, 3MF
-    record them; ``file_units`` overrides; none: taken as ``units``), largest volume
-    first; the units and a note on where they came from.  Vertices are merged by
-    position; ``limits`` (:mod:`fcgrasp.io.limits`) bounds the file's bytes and
-    triangles."""
+    3MF, OFF) or of ``demo:NAME`` a built-in solid, converted to ``units`` (default mm)
+    from the file's own units (GLB, 3MF record them; ``file_units`` overrides; none:
+    taken as ``units``), largest volume first; the units and a note on where they came
+    from.  Vertices are merged by position; ``limits`` (:mod:`fcgrasp.io.limits`) bounds
+    the file's bytes and triangles."""
     if not isinstance(source, str):
         raise TypeError(f"source must be a path, got {type(source).__name__}")
     units = check_units("mm" if units is None else units, "units", UNITS)
-    loaded = _load_mesh(source, Limits.of(limits))
-    scale, note = _file_scale(loaded, source, units, file_units)
+    if source.startswith("demo:"):                       # a built-in solid, in mm
+        if source[5:] not in DEMO_SOLIDS:
+            raise ValueError(f"unknown demo solid {source[5:]!r}: choose from "
+                             f"{', '.join(DEMO_SOLIDS)}")
+        loaded = demo_mesh(source[5:])
+        scale, note = conversion("mm", units), "built-in solids are in mm"
+    else:
+        loaded = _load_mesh(source, Limits.of(limits))
+        scale, note = _file_scale(loaded, source, units, file_units)
     if scale != 1.0:
         loaded.apply_scale(scale)
     parts = loaded.split(only_watertight=False)

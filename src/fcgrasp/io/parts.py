@@ -41,7 +41,7 @@ import os
 import sys
 from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -66,6 +66,9 @@ from .demo import (
 )
 from .limits import DEFAULT_LIMITS, Limits
 from .units import FILE_UNITS, UNITS, check_units, conversion
+
+if TYPE_CHECKING:
+    from ..spatial.solid import Solid
 
 __all__ = ["read_part", "load_part", "list_parts", "choose_part", "Part", "read_contacts",
            "contacts_from_data", "read_json", "DEMO_PARTS",
@@ -540,29 +543,66 @@ def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
     return replace(best, chosen=why)
 
 
+#: The reading options a solid takes (:func:`fcgrasp.io.meshes.read_solid`); the
+#: others read drawings and images.
+SOLID_OPTIONS = ("units", "file_units", "repair", "max_bytes", "max_elements",
+                 "max_vertices")
+
+
 def load_part(source: str | os.PathLike[str], part: int | str | None = None,
               **options: Any) -> Part:
-    """One part of a file with how it was read (see :func:`list_parts` for the options
-    and :func:`choose_part` for ``part``).
+    """One part of a file with how it was read: an outline of a drawing or an image
+    (see :func:`list_parts` for the options and :func:`choose_part` for ``part``), or
+    the solid of a mesh file or of ``demo:NAME`` a built-in solid
+    (:func:`fcgrasp.io.meshes.read_solid`: ``part`` the body's index, default the
+    largest watertight one; the options :data:`SOLID_OPTIONS`).
 
     Examples
     --------
     >>> p = load_part("demo:rectangle", units="in")
     >>> p.units, round(p.scale, 6), p.polygon.vertices.max(axis=0).round(4).tolist()
     ('in', 0.03937, [3.1496, 1.1811])
+    >>> load_part("demo:box").solid.mesh.extents.tolist()
+    [40.0, 20.0, 10.0]
     """
+    from .meshes import is_solid_source
+
+    if isinstance(source, (str, os.PathLike)) and is_solid_source(os.fspath(source)):
+        return _solid_part(os.fspath(source), part, options)
+    options.pop("repair", None)             # a drawing has nothing to repair
     return choose_part(list_parts(source, **options), part)
 
 
+def _solid_part(spec: str, part: int | str | None, options: dict[str, Any]) -> Part:
+    """:func:`load_part` of a mesh file or a built-in solid."""
+    from .meshes import read_solid
+
+    unused = sorted(k for k, v in options.items() if k not in SOLID_OPTIONS
+                    and v is not None and not (k == "clean" and v is True)
+                    and not (k == "y_down" and v is False))
+    if unused:
+        raise ValueError(f"{spec}: a solid is read with {', '.join(SOLID_OPTIONS)}: "
+                         f"{', '.join(unused)} read drawings and images")
+    limits = Limits.given(options.get("max_bytes"), options.get("max_elements"),
+                          options.get("max_vertices"))
+    solid = read_solid(spec, units=options.get("units"), file_units=options.get("file_units"),
+                       select=part, limits=limits, repair=bool(options.get("repair", False)))
+    return Part(None, spec, "demo" if spec.startswith("demo:") else "mesh",
+                units=solid.units, units_note=solid.units_note, solid=solid)
+
+
 def read_part(source: str | os.PathLike[str], part: int | str | None = None,
-              **options: Any) -> Polygon:
-    """The polygon of one part of a file (see :func:`load_part`).
+              **options: Any) -> Polygon | Solid:
+    """The part of a file that is planned (see :func:`load_part`): a drawing's or an
+    image's polygon, or a mesh's solid; either goes to :func:`fcgrasp.plan`.
 
     Examples
     --------
     >>> read_part("demo:blob").n_edges
     6
+    >>> type(read_part("demo:cylinder")).__name__
+    'Solid'
     """
-    p = load_part(source, part, **options).polygon
+    p = load_part(source, part, **options).shape
     assert p is not None
     return p

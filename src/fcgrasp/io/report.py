@@ -210,7 +210,7 @@ def part_listing(source: str, **reading: Any) -> dict[str, Any]:
     from .meshes import is_solid_source, read_bodies
     from .parts import choose_part, list_parts
 
-    if is_solid_source(source) and not source.startswith("demo:"):
+    if is_solid_source(source):
         limits = Limits.given(reading.get("max_bytes"), reading.get("max_elements"),
                               reading.get("max_vertices"))
         bodies, units, note = read_bodies(source, reading.get("units"),

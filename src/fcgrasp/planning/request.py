@@ -400,14 +400,7 @@ class PlanRequest:
         """Read the request's part (a drawing's outline, or a mesh's solid: its
         ``shape``); when the file holds several, which one was taken and the reader's
         notes are said with ``say``."""
-        if self.is_solid():
-            from ..io.meshes import read_solid
-
-            solid = read_solid(self.part, units=self.units, file_units=self.file_units,
-                               select=self.select, limits=self.limits(), repair=self.repair)
-            return Part(None, self.part, "mesh", units=solid.units,
-                        units_note=solid.units_note, solid=solid)
-        part = load_part(self.part, self.select, **self.reading())
+        part = load_part(self.part, self.select, **self.reading(), repair=self.repair)
         if say is not None:
             for line in part.notices():
                 say(line)
