@@ -258,15 +258,22 @@ def _kept_rows(A: FloatArray, rhs: FloatArray, floor: float) -> Any:
             count += 1
         elif rhs[i] < floor:
             ok = False
-    A2, rhs2 = np.empty((count, width)), np.empty(count)
-    j = 0
-    for i in range(n):
-        if keep[i]:
-            for c in range(width):
-                A2[j, c] = A[i, c]
-            rhs2[j] = rhs[i]
-            j += 1
+    A2, rhs2 = _rows_where(A, rhs, keep, count, width)
     return ok, A2, rhs2
+
+
+def _rows_where(M: FloatArray, rhs: FloatArray, keep: Any, count: int, cols: int) -> Any:
+    """The ``count`` rows of ``M`` (their first ``cols`` columns) and ``rhs`` where
+    ``keep``, in order."""
+    out, out_rhs = np.empty((count, cols)), np.empty(count)
+    r = 0
+    for i in range(keep.shape[0]):
+        if keep[i]:
+            for j in range(cols):
+                out[r, j] = M[i, j]
+            out_rhs[r] = rhs[i]
+            r += 1
+    return out, out_rhs
 
 
 def _before(a: float, b: float) -> bool:
@@ -377,15 +384,7 @@ def _lp_loop(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArr
         for i in range(rows_all):
             if active[i]:
                 nr += 1
-        Ar = np.empty((nr, cols))
-        br = np.empty(nr)
-        r = 0
-        for i in range(rows_all):
-            if active[i]:
-                for j in range(cols):
-                    Ar[r, j] = M[i, j]
-                br[r] = rhs[i]
-                r += 1
+        Ar, br = _rows_where(M, rhs, active, nr, cols)
         dual = np.zeros(nr)
         st = _lp_max(c, Ar, br, nr, cols, y, dual, eps, feas)
         if st != 0 or nr == rows_all:
@@ -422,7 +421,7 @@ def _lp_loop(A0: FloatArray, b0: FloatArray, const: FloatArray, floors: FloatArr
 
 
 _FUNCS = (_wrap_mod, _pair_arc, _edge, _meets, _kind, _no_variable, _system_loop,
-          _system_rows, _kept_rows, _before, _first_k, _lp_loop)
+          _system_rows, _rows_where, _kept_rows, _before, _first_k, _lp_loop)
 
 
 def _with_simplex() -> dict[str, Any] | None:
