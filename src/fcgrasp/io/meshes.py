@@ -169,3 +169,25 @@ def read_solid(source: str, units: str | None = None, repair: bool = False,
     solid = solid_from_mesh(body.mesh, target, source, repair)
     solid.units_note = note
     return solid
+
+
+#: The reading options a solid takes (:func:`read_solid`, as :func:`read_solid_with`
+#: takes them); the others read drawings and images.
+SOLID_OPTIONS = ("units", "file_units", "repair", "max_bytes", "max_elements",
+                 "max_vertices")
+
+
+def read_solid_with(source: str, select: int | str | None, options: dict[str, Any]) -> Solid:
+    """:func:`read_solid` given :func:`fcgrasp.io.parts.load_part`'s keywords: those of
+    :data:`SOLID_OPTIONS`; one that reads drawings (given a value other than its
+    default) is refused by name."""
+    unused = sorted(k for k, v in options.items() if k not in SOLID_OPTIONS
+                    and v is not None and not (k == "clean" and v is True)
+                    and not (k == "y_down" and v is False))
+    if unused:
+        raise ValueError(f"{source}: a solid is read with {', '.join(SOLID_OPTIONS)}: "
+                         f"{', '.join(unused)} read drawings and images")
+    limits = Limits.given(options.get("max_bytes"), options.get("max_elements"),
+                          options.get("max_vertices"))
+    return read_solid(source, units=options.get("units"), file_units=options.get("file_units"),
+                      select=select, limits=limits, repair=bool(options.get("repair", False)))

@@ -543,19 +543,14 @@ def choose_part(parts: list[Part], part: int | str | None = None) -> Part:
     return replace(best, chosen=why)
 
 
-#: The reading options a solid takes (:func:`fcgrasp.io.meshes.read_solid`); the
-#: others read drawings and images.
-SOLID_OPTIONS = ("units", "file_units", "repair", "max_bytes", "max_elements",
-                 "max_vertices")
-
-
 def load_part(source: str | os.PathLike[str], part: int | str | None = None,
               **options: Any) -> Part:
     """One part of a file with how it was read: an outline of a drawing or an image
     (see :func:`list_parts` for the options and :func:`choose_part` for ``part``), or
     the solid of a mesh file or of ``demo:NAME`` a built-in solid
     (:func:`fcgrasp.io.meshes.read_solid`: ``part`` the body's index, default the
-    largest watertight one; the options :data:`SOLID_OPTIONS`).
+    largest watertight one; the options
+    :data:`fcgrasp.io.meshes.SOLID_OPTIONS`).
 
     Examples
     --------
@@ -575,18 +570,9 @@ def load_part(source: str | os.PathLike[str], part: int | str | None = None,
 
 def _solid_part(spec: str, part: int | str | None, options: dict[str, Any]) -> Part:
     """:func:`load_part` of a mesh file or a built-in solid."""
-    from .meshes import read_solid
+    from .meshes import read_solid_with
 
-    unused = sorted(k for k, v in options.items() if k not in SOLID_OPTIONS
-                    and v is not None and not (k == "clean" and v is True)
-                    and not (k == "y_down" and v is False))
-    if unused:
-        raise ValueError(f"{spec}: a solid is read with {', '.join(SOLID_OPTIONS)}: "
-                         f"{', '.join(unused)} read drawings and images")
-    limits = Limits.given(options.get("max_bytes"), options.get("max_elements"),
-                          options.get("max_vertices"))
-    solid = read_solid(spec, units=options.get("units"), file_units=options.get("file_units"),
-                       select=part, limits=limits, repair=bool(options.get("repair", False)))
+    solid = read_solid_with(spec, part, options)
     return Part(None, spec, "demo" if spec.startswith("demo:") else "mesh",
                 units=solid.units, units_note=solid.units_note, solid=solid)
 

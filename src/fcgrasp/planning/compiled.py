@@ -105,6 +105,10 @@ def _stretches(blob: Any) -> None:
     iv = _Intervals(ring, ring, 1.0, 0.2)
     one = np.ones(1, np.int64)
     _stretch_kernels.window_boxes_shared(0 * one, one, one, *iv._flat, 1.0, _EPS)
+    # three fingers' distinct rounds: a third finger's overlap of the kept plans
+    # (the types of _Exclusion._third_mask's call)
+    out = np.zeros((1, 1), bool)
+    _stretch_kernels.third_rows(zi, z, z, z, z, zi, z, z, np.ones(1), 0.5, 1e-9, out)
     # a collection read in blocks of rows (its sparse table built once)
     _stretch_kernels._load()["_table"](np.zeros(5, np.int64), np.zeros(0, np.int64),
                                        np.zeros(0, np.int64), 4)
@@ -125,6 +129,10 @@ def _four(small: Any) -> None:
     from .planner import plan
 
     plan(small, fingers=4, top=1)
+    # the growth's drop of rows without a variable (a curved outline's growth meets them)
+    from ..model._frictionless_kernels import kept_rows
+
+    kept_rows(np.zeros((2, 8)), np.zeros(2), -1.0)
     # the candidate rows that may reach a full top's key, with the types of the search's
     order, z = np.arange(6, dtype=np.int64), np.linspace(1.0, 0.5, 6)
     edge = order.copy()
