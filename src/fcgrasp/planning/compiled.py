@@ -108,7 +108,7 @@ def _stretches(blob: Any) -> None:
     # three fingers' distinct rounds: a third finger's overlap of the kept plans
     # (the types of _Exclusion._third_mask's call)
     out = np.zeros((1, 1), bool)
-    _stretch_kernels.third_rows(zi, z, z, z, z, zi, z, z, np.ones(1), 0.5, 1e-9, out)
+    _stretch_kernels.third_rows(zi, z, z, z, z, zi, z, z, np.ones(1), 0.5, 0.0, out)
     # a collection read in blocks of rows (its sparse table built once)
     _stretch_kernels._load()["_table"](np.zeros(5, np.int64), np.zeros(0, np.int64),
                                        np.zeros(0, np.int64), 4)
