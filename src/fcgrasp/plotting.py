@@ -71,7 +71,14 @@ def save_figure(fig: Any, path: str, outputs: Any = None) -> None:
     from .io.outputs import OutputSet
 
     def write(tmp: str) -> None:
-        fig.savefig(tmp, dpi=120, bbox_inches="tight")
+        # the tight box measured here (savefig's "tight" first draws the whole figure
+        # without output to measure it): the same box, one draw less
+        import matplotlib
+
+        fig.set_dpi(120)
+        box = fig.get_tightbbox(fig.canvas.get_renderer()).padded(
+            matplotlib.rcParams["savefig.pad_inches"])
+        fig.savefig(tmp, dpi=120, bbox_inches=box)
 
     if outputs is not None:
         outputs.add(path, write)
@@ -413,7 +420,7 @@ def plan_figure(polygon: Any, plans: list[Any], path: str, units: str = "",
     for ax in fig.axes:                     # the numbers placed for the final layout
         place_edge_labels(ax)
     if engine is not None:                  # that layout kept: saving does not redo it
-        fig.set_layout_engine("none")
+        fig.set_layout_engine(None)
     save_figure(fig, path, outputs)
     plt.close(fig)
 
