@@ -6,7 +6,10 @@ baselines measured in the same invocation:
 * **complete**: the same command with ``--time-limit 0`` (no budget: the distinct search
   run to its end, as every run was before the budget), stopped by this script after
   ``--cap`` seconds of wall-clock time (the cell then reads ``>CAP``);
-* **ranked**: ``--distinct 0`` (the ranked list, no distinct alternatives).
+* **ranked**: ``--distinct 0`` (the ranked list, no distinct alternatives);
+* **previous** (with ``--previous DIR``, a checkout of an earlier commit): the same
+  default command run by that checkout's code (``PYTHONPATH=DIR/src``, its kernels
+  compiled first), and whether its plans are the same (the JSON's grasps compared).
 
 The default's column says how many plans it proved and whether its answer is complete;
 ``time_limit`` and ``max_memory`` stops print their bound.
@@ -14,7 +17,7 @@ The default's column says how many plans it proved and whether its answer is com
     python benchmarks/bench_defaults.py [--sizes 1000,10000] [--mu 0.2,0.3,0.5,1.0]
                                         [--grippers 2f,3f,4f,jaw] [--shapes smooth,noisy]
                                         [--files dxf/forms.dxf,gears/teeth-32.dxf]
-                                        [--cap 120] [--no-baselines]
+                                        [--cap 120] [--no-baselines] [--previous DIR]
 
 The outlines: ``smooth`` an ellipse with a third harmonic (120 x 70 mm), ``noisy`` a
 five-lobed star with 0.5 % radial noise (100 mm across), each with the given number of
@@ -58,13 +61,15 @@ def outline(shape: str, n: int) -> dict[str, list[list[float]]]:
     return {"vertices": xy.tolist()}
 
 
-def run(argv: list[str], cap: float | None) -> dict[str, object]:
-    """One command in a fresh process: its CPU seconds and peak memory (its own, from
-    ``wait4``), and what its JSON report says; None fields where it was stopped."""
+def run(argv: list[str], cap: float | None, src: str | None = None) -> dict[str, object]:
+    """One command in a fresh process (``src``: the package's sources to run instead of
+    the installed ones): its CPU seconds and peak memory (its own, from ``wait4``), and
+    what its JSON report says; None fields where it was stopped."""
+    env = None if src is None else dict(os.environ, PYTHONPATH=src)
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "plan.json")
         proc = subprocess.Popen([str(FCGRASP), *argv, "--json", out, "--quiet"],
-                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+                                stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, env=env)
         start = time.monotonic()
         while True:
             pid, status, usage = os.wait4(proc.pid, os.WNOHANG)
@@ -82,7 +87,7 @@ def run(argv: list[str], cap: float | None) -> dict[str, object]:
         report = json.loads(Path(out).read_text())
     return {"cpu": usage.ru_utime + usage.ru_stime, "mb": usage.ru_maxrss / 1024,
             "plans": len(report["grasps"]), "complete": report.get("complete", True),
-            "gap": report.get("gap")}
+            "gap": report.get("gap"), "grasps": json.dumps(report["grasps"], sort_keys=True)}
 
 
 def cell(r: dict[str, object], cap: float | None) -> str:
@@ -102,10 +107,14 @@ def main() -> int:
     ap.add_argument("--files", default="")
     ap.add_argument("--cap", type=float, default=120.0)
     ap.add_argument("--no-baselines", action="store_true")
+    ap.add_argument("--previous", default=None,
+                    help="a checkout of an earlier commit: its code's row beside each")
     args = ap.parse_args()
-    # numba's cache compiled once, so that no row pays for it
-    subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
-                   check=True)
+    previous = None if args.previous is None else str(Path(args.previous).resolve() / "src")
+    # numba's cache compiled once (the previous checkout's too), so that no row pays for it
+    for src in [None] + ([previous] if previous else []):
+        subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
+                       check=True, env=None if src is None else dict(os.environ, PYTHONPATH=src))
     parts: list[tuple[str, str]] = []
     with tempfile.TemporaryDirectory() as tmp:
         for shape in filter(None, args.shapes.split(",")):
@@ -115,9 +124,13 @@ def main() -> int:
                 parts.append((f"{shape} {n:,}", path))
         for f in filter(None, args.files.split(",")):
             parts.append((f, str(HERE / "corpus" / f)))
-        print("| part | gripper | mu | default (CPU, peak) | plans | complete | "
-              "complete search | ratio | ranked | ratio |")
-        print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
+        head = ["part", "gripper", "mu", "default (CPU, peak)", "plans", "complete"]
+        if not args.no_baselines:
+            head += ["complete search", "ratio", "ranked", "ratio"]
+        if previous:
+            head += ["previous", "ratio", "same plans"]
+        print("| " + " | ".join(head) + " |")
+        print("|" + " --- |" * len(head))
         for label, path in parts:
             for g in filter(None, args.grippers.split(",")):
                 for mu in filter(None, args.mu.split(",")):
@@ -138,6 +151,13 @@ def main() -> int:
                             ratio = "-" if b.get("cpu") is None or d.get("cpu") is None \
                                 else f"{d['cpu'] / max(b['cpu'], 1e-9):.2f}"
                             row += [cell(b, args.cap), ratio]
+                    if previous:
+                        b = run(argv, args.cap, previous)
+                        ratio = "-" if b.get("cpu") is None or d.get("cpu") is None \
+                            else f"{d['cpu'] / max(b['cpu'], 1e-9):.2f}"
+                        same = "-" if b.get("grasps") is None else \
+                            "yes" if b["grasps"] == d.get("grasps") else "no"
+                        row += [cell(b, args.cap), ratio, same]
                     print("| " + " | ".join(row) + " |", flush=True)
     return 0
 
