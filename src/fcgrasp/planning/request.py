@@ -346,8 +346,7 @@ class PlanRequest:
     def reading(self) -> dict[str, Any]:
         """The reading options as :func:`fcgrasp.io.parts.load_part` keywords."""
         kw = {k: getattr(self, k) for k in READING_OPTIONS if k not in ("select",
-                                                                         "no_clean",
-                                                                         "repair")}
+                                                                         "no_clean")}
         kw["clean"] = not self.no_clean
         return kw
 
@@ -400,7 +399,7 @@ class PlanRequest:
         """Read the request's part (a drawing's outline, or a mesh's solid: its
         ``shape``); when the file holds several, which one was taken and the reader's
         notes are said with ``say``."""
-        part = load_part(self.part, self.select, **self.reading(), repair=self.repair)
+        part = load_part(self.part, self.select, **self.reading())
         if say is not None:
             for line in part.notices():
                 say(line)
