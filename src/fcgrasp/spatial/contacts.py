@@ -80,15 +80,22 @@ def check_spatial_contacts(points: Any, normals: Any, mu: Any = 0.0, torsion: An
         raise ValueError(f"normals must be nonzero vectors, got {normals!r}")
     n = n / length[..., None]
     m = np.broadcast_to(check_array(mu, "mu"), p.shape[:-1]).astype(float)
-    tor = np.broadcast_to(check_array(torsion, "torsion"), p.shape[:-1]).astype(float)
     if np.any(m < 0):
         raise ValueError(f"mu must be >= 0, got {mu!r}")
+    return p, n, m, check_torsion(torsion, m, mu)
+
+
+def check_torsion(torsion: Any, m: FloatArray, mu: Any) -> FloatArray:
+    """A soft finger's ``torsion`` (a length) broadcast to the contacts' checked friction
+    ``m`` (..., k), checked: ``>= 0``, and only with friction (``mu``: as the caller
+    gave it, for the error)."""
+    tor = np.broadcast_to(check_array(torsion, "torsion"), m.shape).astype(float)
     if np.any(tor < 0):
         raise ValueError(f"torsion must be >= 0 (a length), got {torsion!r}")
     if np.any((tor > 0) & (m == 0)):
         raise ValueError(f"torsion (a soft finger) needs friction: mu > 0 where torsion > 0, "
                          f"got mu={mu!r}, torsion={torsion!r}")
-    return p, n, m, tor
+    return tor
 
 
 def check_spatial_grasp(points: Any, normals: Any, mu: Any, torsion: Any, center: Any,

@@ -14,7 +14,7 @@ from __future__ import annotations
 from numpy.typing import ArrayLike
 
 from ...core._checks import FloatArray
-from ...spatial.contacts import check_spatial_contacts, contact_wrench_generators
+from ...spatial.contacts import check_torsion, contact_wrench_generators
 from .._grasp import GraspArgs, check_grasp
 
 __all__ = ["DIM", "WRENCH_DIM", "contact_wrenches"]
@@ -29,8 +29,7 @@ def checked(points: ArrayLike, normals: ArrayLike, mu: ArrayLike, torsion: Array
     """One solid grasp's arguments checked (:func:`fcgrasp.mechanics._grasp.check_grasp`)
     and its torsion per contact."""
     g = check_grasp(points, normals, mu, center, radius, DIM)
-    _, _, _, tor = check_spatial_contacts(g.points, -g.normals, g.mu, torsion)
-    return g, tor
+    return g, check_torsion(torsion, g.mu, mu)
 
 
 def contact_wrenches(points: ArrayLike, normals: ArrayLike, mu: ArrayLike = 0.0,
