@@ -94,7 +94,7 @@ def wait(driver, script, timeout=600.0):
             return value
         if time.monotonic() > end:
             raise AssertionError(f"timed out waiting for {script}")
-        time.sleep(0.05)
+        time.sleep(0.01)        # a round trip to the browser is a few milliseconds
 
 
 def plan_seq(driver):

@@ -766,7 +766,7 @@ def test_exclusion_tests_compiled_are_the_numpy_ones(fraction, monkeypatch):
 @pytest.mark.parametrize("fraction", [0.5, pytest.param(0.3, marks=pytest.mark.slow)])
 def test_the_third_fingers_exclusion_compiled_is_numpys(fraction, monkeypatch):
     """Three fingers' distinct search: which configurations' third finger surely
-    overlaps a kept plan's remaining region (``_Exclusion._third_mask``), and so the
+    overlaps a kept plan's remaining region (``_Exclusion._third_masks``), and so the
     thresholds and copies it masks, by the fused compiled loop and by numpy's
     matrices: the same numbers."""
     import fcgrasp as fc
@@ -817,7 +817,8 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch, third=False):
                 arcs = excl._arcs(x, y) if third else None
                 results.append((excl.threshold(rings, job, cfg, ivs),
                                 excl.similar(rings, job, cfg, t, ivs),
-                                None if arcs is None else excl._third_mask(x, y, cfg, arcs)))
+                                None if arcs is None else
+                                np.array([m for _, m in excl._third_masks(x, y, cfg, arcs)])))
             (tf, sf, mf), (tn, sn, mn) = results
             np.testing.assert_array_equal(tf, tn)
             np.testing.assert_array_equal(sf, sn)

@@ -153,6 +153,51 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     assert known > 50 and checked > known
 
 
+@pytest.mark.parametrize("seed", range(6))
+def test_every_free_stretch_a_plan_can_have_is_a_possible_third(seed):
+    """:meth:`FreeThird.options`: whatever trims the regions' end edges get, the free
+    stretch (:func:`free_stretch`, an edge-by-edge walk) is one of the candidates the
+    configuration can have, holding its sure arc and inside its widest; where
+    :meth:`FreeThird.of` names a ring, that candidate is the only one possible.  Even
+    seeds: ellipses without noise, whose two free stretches tie."""
+    rng = np.random.default_rng(seed)
+    poly = _outline(3 * seed)[0] if seed % 2 == 0 else _ringed(rng, seed % 4 == 1)
+    rings = _rings(poly)
+    free = FreeThird(rings, poly, 1e-9 * poly.size)
+    several = checked = 0
+    for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
+        opts = [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg)
+                if p[0]]
+        ring = int(free.of(x, y, cfg)[0][0])
+        assert ring < 0 or [o[0] for o in opts] == [ring]
+        several += len(opts) > 1
+        for cut_a in ((0, 0), (1, 0), (0, 1)) if kA else ((0, 0),):
+            for cut_c in ((0, 0), (1, 0), (0, 1)) if kC else ((0, 0),):
+                covered = ea[cut_a[0]:len(ea) - cut_a[1]] + ec[cut_c[0]:len(ec) - cut_c[1]]
+                run = free_stretch(poly, covered)
+                if not opts:
+                    continue
+                assert run is not None
+                held = False
+                for r, g0, g1, e0, e1 in opts:
+                    R = rings[r]
+                    where = {int(e): k for k, e in enumerate(R.edges)}
+                    if int(run[0]) not in where:
+                        continue
+                    per = float(R.U[R.m])
+                    start = float(R.U[where[int(run[0])]])
+                    s, e = _arc(start, start + float(poly.lengths[list(run)].sum()), per)
+                    lo, hi = _arc(g0, g1, per)
+                    for k in (-1, 0, 1):
+                        if s + k * per <= lo + 1e-9 and e + k * per >= hi - 1e-9 \
+                                and e0 - 1e-9 <= s + k * per and e + k * per <= e1 + 1e-9:
+                            held = True
+                assert held, (run, opts)
+                checked += 1
+    assert checked > 100
+    assert several > 0 or seed % 2
+
+
 @pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
                                        for s in range(1, 12))])
 def test_every_configuration_left_out_is_a_kept_plans_copy(seed):

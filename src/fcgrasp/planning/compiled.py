@@ -106,7 +106,7 @@ def _stretches(blob: Any) -> None:
     one = np.ones(1, np.int64)
     _stretch_kernels.window_boxes_shared(0 * one, one, one, *iv._flat, 1.0, _EPS)
     # three fingers' distinct rounds: a third finger's overlap of the kept plans
-    # (the types of _Exclusion._third_mask's call)
+    # (the types of _Exclusion._third_mask_of's call)
     out = np.zeros((1, 1), bool)
     _stretch_kernels.third_rows(zi, z, z, z, z, zi, z, z, np.ones(1), 0.5, 0.0, out)
     # a collection read in blocks of rows (its sparse table built once)

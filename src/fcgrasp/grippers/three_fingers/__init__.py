@@ -388,10 +388,10 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
 
     A round that keeps no new plan reads twice as many the next time; with ``depth``,
     the reading stops once ``depth`` times ``top`` two-finger plans are read (as the
-    ranked list's depth does for the other grippers): where a third finger's free
-    stretch is not known before the regions are placed (a region may end on a vertex
-    and free the edge beyond), copies are not left out, and a curved outline has
-    thousands of them.  ``progress(kept, top)`` after each round and each batch of the
+    ranked list's depth does for the other grippers): a copy is left out only where
+    every free stretch its third finger can have (a region may end on a vertex and
+    free the edge beyond; two free stretches may be within an edge of one length)
+    makes it a copy.  ``progress(kept, top)`` after each round and each batch of the
     concurrent search.  The reading also stops when the time budget ends
     (:func:`fcgrasp.core.budget.deadline`) or a round's collection would exceed
     ``spec.max_memory``; stopped early, the plans kept are an exact prefix of the

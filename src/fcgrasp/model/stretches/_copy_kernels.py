@@ -173,7 +173,7 @@ def _outside_one(a0: float, a1: float, u0: float, u1: float, per: float) -> floa
 def _third_rows(ring: IntArray, g0: FloatArray, g1: FloatArray, e0: FloatArray,
                 e1: FloatArray, kr: IntArray, k0: FloatArray, k1: FloatArray,
                 per: FloatArray, fraction: float, pad: float, out: BoolArray) -> None:
-    """``_exclusion._Exclusion._third_mask`` fused over rows (configurations:
+    """``_exclusion._Exclusion._third_mask_of`` fused over rows (configurations:
     the third finger's ring, sure arc ``[g0, g1]`` and widest ``[e0, e1]``) and columns
     (the kept plans' remaining regions: ring ``kr``, arc ``[k0, k1]``; ``per`` each
     ring's perimeter): the same numbers, without a matrix of each."""

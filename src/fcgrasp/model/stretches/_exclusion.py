@@ -53,7 +53,7 @@ class _Exclusion:
     configuration is surely a kept plan's copy when two of the plan's regions are surely
     its two regions' partners (as above) and the third finger's free stretch surely
     overlaps the plan's remaining region by more than ``fraction`` of the shorter
-    (:meth:`_third_mask`)."""
+    (:meth:`_third_masks`)."""
 
     def __init__(self, rings: list[_Ring], polygon: Polygon, kept: Any,
                  fraction: float, seen: Any = (), third: bool = False) -> None:
@@ -243,19 +243,90 @@ class _Exclusion:
                 np.array(c, float) for c in zip(*cols, strict=True)) if cols else ()
         return got or None
 
-    def _third_mask(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],
-                    spans: tuple[FloatArray, FloatArray] | None = None) -> np.ndarray:
-        """Which configurations (rows) have a third finger whose free stretch surely
-        overlaps each column's remaining region (``arcs[4:]``) by more than ``fraction``
-        of the shorter: every free stretch the configuration's plan can have
-        (:meth:`FreeThird.of`: at least its sure arc, at most its widest) on that
-        region's ring, the sure arc's overlap above ``fraction`` of the widest's
-        length or the region's, whichever is less, by :data:`THIRD_PAD` tolerances.
-        ``spans`` (:meth:`_spans`) say which end edges a trim may free
-        (:meth:`FreeThird.trims`; without them, every end edge may be)."""
+    def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
+                t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
+        """Which configurations of ``job`` (smallest regions ``t``) are surely the same
+        alternative as a kept plan (their regions inside :meth:`_spans`; with a third
+        finger, whichever free stretch it can have, :meth:`_third_masks`)."""
+        x, y = job[0], job[1]
+        out = np.zeros(len(t), bool)
+        known = self.seen.get((x, y, job[3]))
+        if known is not None:
+            out |= _member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
+        arcs = self._arcs(x, y)
+        if arcs is None or not len(t):
+            return out
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        t = np.asarray(t, float)
+        if len(arcs) == 4:
+            self._similar_in(rings, job, spans, t, arcs, None, out)
+            return out
+        # every third finger the configuration's plan can have (one free stretch, or two
+        # of about one length) makes it a copy of some kept plan
+        sure, some = np.ones(len(t), bool), np.zeros(len(t), bool)
+        for possible, mask in self._third_masks(x, y, cfg, arcs, spans):
+            if not possible.any():
+                continue
+            some |= possible
+            # only the configurations whose third finger can be a copy's
+            live = np.flatnonzero(possible & sure)
+            has = live[mask[live].any(axis=1)]
+            sub = np.zeros(has.size, bool)
+            if has.size:
+                self._similar_in(rings, job, (spans[0][has], spans[1][has]), t[has],
+                                 arcs[:4], mask[has], sub)
+            sure[live] = False
+            sure[has[sub]] = True
+        out |= sure & some
+        return out
+
+    def _similar_in(self, rings: list[_Ring], job: tuple[int, int, float, str],
+                    spans: tuple[FloatArray, FloatArray], t: FloatArray,
+                    arcs: tuple[FloatArray, ...], mask: np.ndarray | None,
+                    out: np.ndarray) -> None:
+        """:meth:`similar`'s test of the kept plans' columns ``arcs`` (only those of
+        ``mask``, rows by columns, where given) on configurations whose regions lie in
+        ``spans``, or-ed into ``out``."""
+        x, y = job[0], job[1]
+        if self._fused(rings, x, y, spans, arcs, t, False, out, mask):
+            return
+        ax0, ax1, ay0, ay1 = arcs
+        tt = t - self.tol
+        both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
+            & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
+        out |= (both if mask is None else both & mask).any(axis=1)
+
+    def _third_masks(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],
+                     spans: tuple[FloatArray, FloatArray] | None = None,
+                     options: list[Any] | None = None) -> list[tuple[np.ndarray, np.ndarray]]:
+        """For each free stretch that can be the configurations' third finger's
+        (:meth:`FreeThird.options`): where it can (per configuration), and which of
+        those configurations (rows) have a third finger on it that surely overlaps
+        each column's remaining region (``arcs[4:]``) by more than ``fraction`` of the
+        shorter (:meth:`_third_mask_of`).  ``spans`` (:meth:`_spans`) say which end edges
+        a trim may free (:meth:`FreeThird.trims`; without them, every end edge may
+        be), ``options`` are those of :meth:`FreeThird.options` without trims, where
+        already known.  A candidate that no configuration can have has no cell set."""
         assert self.free is not None
-        trims = None if spans is None else self.free.trims(x, y, cfg, spans)
-        ring, g0, g1, e0, e1 = self.free.of(x, y, cfg, trims)
+        if options is None:
+            trims = None if spans is None else self.free.trims(x, y, cfg, spans)
+            options = self.free.options(x, y, cfg, trims)
+        return [(possible, self._third_mask_of(np.where(possible, r, -1), g0, g1, e0, e1,
+                                               arcs)
+                 if possible.any() else np.zeros((possible.size, len(arcs[4])), bool))
+                for possible, r, g0, g1, e0, e1 in options]
+
+    def _third_mask_of(self, ring: np.ndarray, g0: FloatArray, g1: FloatArray,
+                       e0: FloatArray, e1: FloatArray, arcs: tuple[FloatArray, ...]
+                       ) -> np.ndarray:
+        """Which configurations (rows: their third finger's ring, -1 for none, sure arc
+        ``[g0, g1]`` and widest ``[e0, e1]``) have a third finger whose free stretch
+        surely overlaps each column's remaining region (``arcs[4:]``) by more than
+        ``fraction`` of the shorter: every free stretch from the sure arc to the widest
+        on that region's ring, the sure arc's overlap above ``fraction`` of the
+        widest's length or the region's, whichever is less, by :data:`THIRD_PAD`
+        tolerances."""
+        assert self.free is not None
         kr, k0, k1 = arcs[4].astype(np.int64), arcs[5], arcs[6]
         out = np.zeros((ring.size, kr.size), bool)
         if ring.size * kr.size >= FUSED_THIRD and stretch_kernels_for(ring.size * kr.size):
@@ -277,48 +348,6 @@ class _Exclusion:
             short = np.minimum((e1 - e0)[rows, None], (k1 - k0)[cols])
             out[np.ix_(rows, cols)] = common - self.fraction * short > THIRD_PAD * self.tol
         return out
-
-    def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-                t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
-        """Which configurations of ``job`` (smallest regions ``t``) are surely the same
-        alternative as a kept plan (their regions inside :meth:`_spans`)."""
-        x, y = job[0], job[1]
-        out = np.zeros(len(t), bool)
-        known = self.seen.get((x, y, job[3]))
-        if known is not None:
-            out |= _member(self._codes(rings, x, y, cfg.iA, cfg.kA, cfg.iC, cfg.kC), known)
-        arcs = self._arcs(x, y)
-        if arcs is None or not len(t):
-            return out
-        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
-        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs, spans)
-        if mask is not None:
-            # only the configurations whose third finger can be a copy's
-            live = np.flatnonzero(mask.any(axis=1))
-            if live.size:
-                sub = np.zeros(live.size, bool)
-                self._similar_in(rings, job, (spans[0][live], spans[1][live]),
-                                 np.asarray(t, float)[live], arcs[:4], mask[live], sub)
-                out[live] |= sub
-            return out
-        self._similar_in(rings, job, spans, np.asarray(t, float), arcs, None, out)
-        return out
-
-    def _similar_in(self, rings: list[_Ring], job: tuple[int, int, float, str],
-                    spans: tuple[FloatArray, FloatArray], t: FloatArray,
-                    arcs: tuple[FloatArray, ...], mask: np.ndarray | None,
-                    out: np.ndarray) -> None:
-        """:meth:`similar`'s test of the kept plans' columns ``arcs`` (only those of
-        ``mask``, rows by columns, where given) on configurations whose regions lie in
-        ``spans``, or-ed into ``out``."""
-        x, y = job[0], job[1]
-        if self._fused(rings, x, y, spans, arcs, t, False, out, mask):
-            return
-        ax0, ax1, ay0, ay1 = arcs
-        tt = t - self.tol
-        both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
-            & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
-        out |= (both if mask is None else both & mask).any(axis=1)
 
     def copy_columns(self, rings: list[_Ring], x: int, y: int, floor: float
                      ) -> tuple[FloatArray, FloatArray] | None:
@@ -348,7 +377,9 @@ class _Exclusion:
         tol) / (1 - fraction)`` on both sides, where each partner is longer than that.
         A configuration already read holds at any ``t > 0``."""
         out = self._seen_threshold(rings, job, cfg)
-        return np.minimum(out, self._plans_threshold(rings, job, cfg, intervals, 0))
+        options = self._options(job[0], job[1], cfg)
+        return np.minimum(out, self._either_third(
+            self._plans_threshold(rings, job, cfg, intervals, 0, options), options))
 
     def thresholds(self, rings: list[_Ring], job: tuple[int, int, float, str], J: Any,
                    idx: np.ndarray, intervals: dict[Any, _Intervals]) -> FloatArray:
@@ -361,11 +392,13 @@ class _Exclusion:
         configurations)."""
         cfg = J.cfg.take(idx)
         out = self._seen_threshold(rings, job, cfg)
+        options = self._options(job[0], job[1], cfg)
         key = (self.fraction, self.tol)
         taus = J.taus
         if taus is None or taus[0] != key or \
                 [tuple(p) for p in self.plans[:len(taus[1])]] != taus[1]:
-            taus = J.taus = (key, [], np.full(len(J.cfg.iA), np.inf),
+            taus = J.taus = (key, [], np.full((self._thirds(job[0], job[1]),
+                                               len(J.cfg.iA)), np.inf),
                              np.zeros(len(J.cfg.iA), np.int64))
         _, plans, value, covered = taus
         while len(plans) < len(self.plans):
@@ -374,11 +407,14 @@ class _Exclusion:
         for start in np.unique(covered[idx]):
             if start == every:
                 continue
-            rows = idx[covered[idx] == start]
-            value[rows] = np.minimum(value[rows], self._plans_threshold(
-                rings, job, J.cfg.take(rows), intervals, int(start)))
+            sel = covered[idx] == start
+            rows = idx[sel]
+            value[:, rows] = np.minimum(value[:, rows], self._plans_threshold(
+                rings, job, J.cfg.take(rows), intervals, int(start),
+                None if options is None else [tuple(v[sel] if isinstance(v, np.ndarray)
+                                                    else v for v in o) for o in options]))
             covered[rows] = every
-        got: FloatArray = np.minimum(out, value[idx])
+        got: FloatArray = np.minimum(out, self._either_third(value[:, idx], options))
         return got
 
     def _seen_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
@@ -392,26 +428,65 @@ class _Exclusion:
         return out
 
     def _plans_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
-                         cfg: _Configs, intervals: dict[Any, _Intervals], start: int
-                         ) -> FloatArray:
-        """:meth:`threshold`'s part of the kept plans from ``start`` on."""
+                         cfg: _Configs, intervals: dict[Any, _Intervals], start: int,
+                         options: list[Any] | None = None) -> FloatArray:
+        """:meth:`threshold`'s part of the kept plans from ``start`` on, one row per third
+        finger the configurations can have (:meth:`_third_masks`, of ``options``; one row
+        without a third): each the least over the plans of that row, so that a later
+        round's plans lower it (:meth:`thresholds`) and :meth:`_either_third` takes the
+        greatest over the thirds a configuration can have."""
         x, y = job[0], job[1]
-        out = np.full(len(cfg.iA), np.inf)
-        keep = 1 - self.fraction
+        out = np.full((self._thirds(x, y), len(cfg.iA)), np.inf)
         arcs = self._arcs(x, y, start)
-        if keep <= 0 or arcs is None or not len(out):
+        if self.fraction >= 1 or arcs is None or not len(cfg.iA):
             return out
-        mask = None if len(arcs) == 4 else self._third_mask(x, y, cfg, arcs)
+        masks: list[np.ndarray | None] = [None] if len(arcs) == 4 else \
+            [m for _, m in self._third_masks(x, y, cfg, arcs, options=options)]
+        # before the configurations are solved (all of them, in chunks of thousands): the
+        # whole stretches, from the first edge's start to the last edge's end
+        sx, sy = self._spans(rings, job, cfg, intervals, 0)
+        whole = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
+        for k, mask in enumerate(masks):
+            out[k] = self._arcs_threshold(rings, x, y, whole, arcs, mask)
+        return out
+
+    def _options(self, x: int, y: int, cfg: _Configs) -> list[Any] | None:
+        """:meth:`FreeThird.options` of the configurations, without trims (None without a
+        third finger)."""
+        return None if self.free is None else self.free.options(x, y, cfg)
+
+    def _thirds(self, x: int, y: int) -> int:
+        """How many third fingers :meth:`_third_masks` reads on rings ``x`` and ``y`` (1
+        without a third finger)."""
+        return 1 if self.free is None else self.free.count(x, y)
+
+    @staticmethod
+    def _either_third(value: FloatArray, options: list[Any] | None) -> FloatArray:
+        """Of thresholds per third finger (rows, as :meth:`_plans_threshold`'s), each
+        configuration's: the greatest over the thirds it can have (``options``, as
+        :meth:`_options`; inf where it can have none the exclusion knows)."""
+        if options is None:
+            return cast("FloatArray", value[0])
+        possible = np.stack([o[0] for o in options])
+        out = np.where(possible, value, -np.inf).max(axis=0, initial=-np.inf)
+        out[~possible.any(axis=0)] = np.inf
+        return cast("FloatArray", out)
+
+    def _arcs_threshold(self, rings: list[_Ring], x: int, y: int,
+                        whole: tuple[FloatArray, ...], arcs: tuple[FloatArray, ...],
+                        mask: np.ndarray | None) -> FloatArray:
+        """:meth:`threshold` of configurations of rings ``x`` and ``y`` whose whole
+        stretches are ``whole`` (``a0x, a1x, a0y, a1y``) against the kept plans'
+        columns ``arcs`` (those of ``mask`` only, rows by columns, where given)."""
+        out = np.full(len(whole[0]), np.inf)
+        keep = 1 - self.fraction
         rows = np.arange(len(out)) if mask is None else np.flatnonzero(mask.any(axis=1))
         if not rows.size:
             return out
         if mask is not None:
-            cfg, mask = cfg.take(rows), mask[rows]
+            mask = mask[rows]
         sub = out[rows]
-        # before the configurations are solved (all of them, in chunks of thousands): the
-        # whole stretches, from the first edge's start to the last edge's end
-        sx, sy = self._spans(rings, job, cfg, intervals, 0)
-        a0x, a1x, a0y, a1y = spans = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
+        a0x, a1x, a0y, a1y = spans = tuple(v[rows] for v in whole)
         if not self._fused(rings, x, y, spans, arcs[:4], sub, True, sub, mask):
             ax0, ax1, ay0, ay1 = arcs[:4]
             px, py = float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m])
@@ -428,12 +503,12 @@ class _Exclusion:
 #: Cells (configurations x kept plans' columns) from which the exclusion's tests run
 #: compiled (:meth:`_Exclusion._fused`): the threshold, and :meth:`_Exclusion.similar`
 #: (32 crossings of lines per cell and turn: compiled from a few cells on), and the
-#: third finger's test (:meth:`_Exclusion._third_mask`).
+#: third finger's test (:meth:`_Exclusion._third_mask_of`).
 FUSED_CELLS, FUSED_SIMILAR, FUSED_THIRD = 20_000, 16, 20_000
 
 
 #: How many rounding tolerances a pair plan's third finger must beat the overlap a copy
-#: needs by (:meth:`_Exclusion._third_mask`), and by which one free stretch must be
+#: needs by (:meth:`_Exclusion._third_mask_of`), and by which one free stretch must be
 #: longer than another to be surely the third finger's (:class:`FreeThird`): their
 #: lengths are sums of up to thousands of edges, in another order than the plan's.
 THIRD_PAD = 64

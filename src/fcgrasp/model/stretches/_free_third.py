@@ -122,26 +122,51 @@ class FreeThird:
                 cands.append((r, g0, g1, g0, g1))
         return cands
 
-    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
-           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
-        """For each configuration of rings ``x`` and ``y``: the ring of its third
-        finger's free stretch (-1 where none is surely the longest), the sure arc
-        ``[g0, g1]`` and the widest arc ``[e0, e1]`` (arc lengths of that ring, ``g0`` in
-        ``[0, P)``, the ends unrolled past it).  ``trims``: which end edges a trim may
-        free (:meth:`trims`; default: every end edge of a region of two edges or more)."""
-        n = np.asarray(cfg.iA).size
-        # the candidates: (ring, g0, g1, e0, e1) per configuration
+    def count(self, x: int, y: int) -> int:
+        """How many free runs :meth:`options` lists for configurations of rings ``x`` and
+        ``y``: two, and the whole of every other ring."""
+        return 2 + sum(r not in (x, y) for r in range(len(self.rings)))
+
+    def options(self, x: int, y: int, cfg: _Configs,
+                trims: tuple[np.ndarray, ...] | None = None
+                ) -> list[tuple[np.ndarray, int, FloatArray, FloatArray, FloatArray,
+                                FloatArray]]:
+        """Every free stretch that can be each configuration's longest: one entry per
+        candidate run, ``(possible, ring, g0, g1, e0, e1)`` with ``possible`` (per
+        configuration) whether its length, at most its widest arc's, can reach every
+        other run's sure length, and its sure arc ``[g0, g1]`` and widest ``[e0, e1]``
+        as :meth:`of` gives them.  Where a foreign ring's stretch may be the longest,
+        or no run has a length, no candidate is possible.  A configuration whose two
+        free runs differ by less than an end edge has two possible thirds."""
         cands = self._candidates(x, y, cfg, trims)
         sure = np.stack([c[2] - c[1] for c in cands])          # (candidates, n)
         most = np.stack([c[4] - c[3] for c in cands])
-        best = np.argmax(sure, axis=0)
+        n = sure.shape[1]
         cols = np.arange(n)
-        rival = most.copy()
-        rival[best, cols] = -np.inf
+        best = np.argmax(sure, axis=0)
         top = sure[best, cols]
-        # surely the longest: longer than any other could be, and than a foreign ring's
-        ok = (top > rival.max(axis=0, initial=-np.inf) + self.tol) & \
-            (top > self.foreign + self.tol) & (top > 0)
-        ring = np.array([c[0] for c in cands])[best]
-        pick = [np.stack([c[j] for c in cands])[best, cols] for j in range(1, 5)]
-        return (np.where(ok, ring, -1), *pick)
+        second = sure.copy()
+        second[best, cols] = -np.inf
+        second = second.max(axis=0, initial=-np.inf)
+        known = (top > self.foreign + self.tol) & (top > 0)
+        out = []
+        for k, (r, g0, g1, e0, e1) in enumerate(cands):
+            others = np.where(best == k, second, top)
+            out.append((known & (most[k] + self.tol >= others), int(r), g0, g1, e0, e1))
+        return out
+
+    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
+           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
+        """For each configuration of rings ``x`` and ``y``: the ring of its third
+        finger's free stretch (-1 where none is surely the longest: :meth:`options`
+        gives more than one, or none), the sure arc ``[g0, g1]`` and the widest arc
+        ``[e0, e1]`` (arc lengths of that ring, ``g0`` in ``[0, P)``, the ends unrolled
+        past it).  ``trims``: which end edges a trim may free (:meth:`trims`; default:
+        every end edge of a region of two edges or more)."""
+        opts = self.options(x, y, cfg, trims)
+        possible = np.stack([o[0] for o in opts])
+        pick = np.argmax(possible, axis=0)
+        cols = np.arange(possible.shape[1])
+        ring = np.array([o[1] for o in opts])[pick]
+        arcs = [np.stack([o[j] for o in opts])[pick, cols] for j in range(2, 6)]
+        return (np.where(possible.sum(axis=0) == 1, ring, -1), *arcs)

@@ -29,6 +29,8 @@ def _ends(ra: _Ring, rb: _Ring, c: _Configs, Iab: _Intervals, Iba: _Intervals,
 
     def box(iv: _Intervals, edge: np.ndarray, ring: _Ring, first: np.ndarray,
             count: np.ndarray, m: int) -> tuple[FloatArray, FloatArray]:
+        if reach == 0:                  # against no vertex: the whole edge
+            return np.zeros(edge.shape), ring.L[edge].astype(float)
         if reach is None:
             lo, hi = iv.window(edge, (first + 1) % m, count, compiled)
         else:
