@@ -406,6 +406,7 @@ def _boxes_clear(labels, segs, regions=()):
                         & (pts[:, 1] > b[1] - 3.5) & (pts[:, 1] < b[3] + 3.5)).any(), b
 
 
+@pytest.mark.slow       # the default suite's time
 def test_a_real_part_handles_numbers_scale_zoom_and_pan(server, browser, tmp_path):
     """A 2,003-edge part is drawn for a person, not as a chain of beads."""
     browser.get(server)
@@ -702,6 +703,7 @@ def test_a_solid_plans_in_3d_turns_and_goes_back_to_the_plane(server, browser, d
     assert d.find_elements(By.CSS_SELECTOR, "#plans li")[0].get_attribute("data-edges")
 
 
+@pytest.mark.slow       # the default suite's time
 def test_the_optimality_bound_is_shown_as_fcgrasp_plan_prints_it(server, browser, tmp_path):
     """"prove how far from the optimum" (``--bound``) is offered for three fingers with
     friction and four frictionless fingers only; checked, the page prints the line
@@ -846,6 +848,7 @@ def test_a_page_of_another_origin_can_neither_read_nor_plan(server, browser, tmp
     assert page_plans(browser)
 
 
+@pytest.mark.slow       # the default suite's time
 def test_a_file_of_several_parts_offers_them_and_sizes_the_jaw(server, browser, tmp_path):
     """A drawing of two parts: the page takes the largest, lists both (as fcgrasp parts
     does) and takes the other when it is picked; the jaw's stroke and pads follow the
@@ -908,6 +911,7 @@ def test_the_time_limit_stops_the_search_and_the_page_says_so(server, browser, t
                            f"{report['gap']['found']} of 10 plans proved")
 
 
+@pytest.mark.slow       # the default suite's time
 def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     """The jaw with a built-in hand: the page sends the hand's name (never a file), the
     plans come with poses, and the hand's boxes are drawn around the pads; held in the

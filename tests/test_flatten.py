@@ -136,11 +136,11 @@ def _normal_errors(points, params):
 
 
 def _distance_to_polyline(q, pts):
-    a, b = pts[:-1], pts[1:]
-    ab = b - a
-    t = np.clip(((q[:, None] - a) * ab.conjugate()).real / np.maximum(np.abs(ab) ** 2, 1e-300),
-                0, 1)
-    return np.abs(q[:, None] - (a + t * ab)).min(axis=1)
+    """Distance of each point ``q`` (complex) to the polyline ``pts`` (GEOS)."""
+    import shapely
+
+    line = shapely.LineString(np.c_[pts.real, pts.imag])
+    return shapely.distance(shapely.points(np.c_[q.real, q.imag]), line)
 
 
 @pytest.mark.parametrize("seed, count", [(0, 12), pytest.param(1, 400, marks=pytest.mark.slow),

@@ -345,8 +345,8 @@ def test_the_facet_bound_is_never_below_the_hulls_radius(seed):
     assert close > 50 and tight > 0.5 * close, (close, tight)
 
 
-@pytest.mark.parametrize("names", [("cylinder", 4), pytest.param(
-    ("box", 3), marks=pytest.mark.slow)])
+@pytest.mark.parametrize("names", [pytest.param(("cylinder", 4), marks=pytest.mark.slow),
+                                   pytest.param(("box", 3), marks=pytest.mark.slow)])
 def test_triples_refined_with_the_facet_bound_are_the_plans_without_it(names, monkeypatch):
     """The refinement that skips the hulls the facet bound rules out takes the same
     moves: three fingers' plans on meshes with and without it are equal."""
