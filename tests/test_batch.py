@@ -179,6 +179,8 @@ def test_killed_half_way_then_resumed_equals_uninterrupted(tmp_path):
 #: The deadline of a part that never ends (only such a part runs under it, so no test
 #: depends on how fast the machine plans).
 NEVER_ENDING_LIMIT = 2.0
+#: The deadline of a part that never ends and runs alone.
+ALONE_LIMIT = 0.5
 
 
 def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
@@ -201,7 +203,7 @@ def test_a_part_timeout_and_a_dead_worker_are_recorded(tmp_path, monkeypatch):
 
     monkeypatch.setattr(_batch_workers, "_plan_one", never_ends)
     res = {r["path"]: r for r in batch.plan_many([polys[0]], workers=1, fingers=2, mu=0.4,
-                                                 top=2, part_timeout=NEVER_ENDING_LIMIT)}
+                                                 top=2, part_timeout=ALONE_LIMIT)}
     assert "timeout" in res["polygon:0"]["error"]
 
 

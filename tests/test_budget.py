@@ -167,7 +167,7 @@ def test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound(seed
     _every_stop(plan_it, full, every=every)
 
 
-@pytest.mark.parametrize(("fingers", "every"), [(3, 3), *(
+@pytest.mark.parametrize(("fingers", "every"), [(3, 7), *(
     pytest.param(f, 1, marks=pytest.mark.slow) for f in (3, 4))])
 def test_rounds_of_the_ranked_list_stopped_early(fingers, every):
     """Grippers whose distinct plans come from suppressing ever longer ranked lists:

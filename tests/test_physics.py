@@ -361,7 +361,7 @@ def _solid_stress(tmp_path, name, argv):
 
 @pytest.mark.parametrize(("name", "argv"), [
     ("box", ["--fingers", "2", "--soft"]),
-    ("angle", ["--fingers", "3"]),
+    pytest.param("angle", ["--fingers", "3"], marks=pytest.mark.slow),
     pytest.param("angle", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
     pytest.param("prism", ["--fingers", "3"], marks=pytest.mark.slow),
     pytest.param("cylinder", ["--fingers", "2", "--soft"], marks=pytest.mark.slow),
