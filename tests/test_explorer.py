@@ -911,7 +911,6 @@ def test_the_time_limit_stops_the_search_and_the_page_says_so(server, browser, t
                            f"{report['gap']['found']} of 10 plans proved")
 
 
-@pytest.mark.slow       # the default suite's time
 def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     """The jaw with a built-in hand: the page sends the hand's name (never a file), the
     plans come with poses, and the hand's boxes are drawn around the pads; held in the
@@ -951,6 +950,7 @@ def test_a_real_hand_is_drawn_at_each_boxs_pose(server, browser):
     assert not d.find_elements(By.CSS_SELECTOR, "#plan .hand-box")
 
 
+@pytest.mark.slow       # the default suite's time: the hand drawn in 2-D stays
 def test_a_solids_pick_shows_the_hand_the_table_axes_and_a_scale_in_3d(server, browser):
     """A solid picked from a table by the Franka Hand: the 3-D view (three.js, vendored
     from npm) draws the hand's boxes at the selected plan's pose, the table the part
