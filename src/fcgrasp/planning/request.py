@@ -236,57 +236,39 @@ class PlanRequest:
         return what
 
     def _check_solid(self) -> None:
-        """A solid part takes the grippers that plan solids (two fingers with friction,
-        as soft fingers: ``soft`` says so, and two fingers on a solid are soft whether
-        it is given or not; three fingers with friction; a parallel jaw), each with the
-        options its solid plans take (the gripper's ``solid_options``); any other given
-        is refused, named.  On a planar part ``soft`` changes nothing: a soft finger's
-        torsional friction turns about the contact's normal, an axis in the plane, which
-        no planar motion turns about."""
+        """A solid part takes a gripper that plans solids (its class has ``solid_plans``:
+        two fingers with friction, as soft fingers, ``soft`` or not; three fingers with
+        friction; a parallel jaw), with the options its solid plans take (the class's
+        ``solid_options``), each other option given refused by name; ``soft`` only where
+        the gripper's contacts on a solid are soft (``solid_contact``).  On a planar part
+        ``soft`` changes nothing: a soft finger's torsional friction turns about the
+        contact's normal, an axis in the plane, which no planar motion turns about."""
         if not self.is_solid():
             return
         from ..grippers.base import gripper_type
         from ..grippers.solids import plans_solids
 
-        kind = self.solid_kind()
-        cls = None if kind is None else gripper_type(self.gripper, self.plan_options())
-        if kind is None or cls is None or not plans_solids(cls):
+        cls = gripper_type(self.gripper, self.plan_options())
+        if cls is None or not plans_solids(cls) or \
+                (self.soft and getattr(cls, "solid_contact", None) != "soft"):
             raise _fail("fingers" if self.gripper == "fingers" else "gripper",
                         "a solid part (a mesh) is planned for two soft fingers (--fingers 2) "
                         "or three fingers with friction (--fingers 3 --mu MU), or a parallel "
-                        "jaw (--gripper jaw); frictionless fingers hold planar parts only")
+                        "jaw (--gripper jaw); frictionless fingers hold planar parts only, "
+                        f"got {self._what()}")
         takes = set(getattr(cls, "solid_options", ()))
         defaults = {f.name: f.default for f in fields(self) if f.init}
         given = [name for name in (*PLAN_OPTIONS, *LOAD_OPTIONS)
                  if name not in takes and name not in ("gripper", "fingers")
                  and getattr(self, name) != defaults[name]]
         if given:
-            who = {"soft": ("fingers", "two soft fingers"),
-                   "friction": ("fingers", "--fingers 3: three fingers"),
-                   "jaw": ("gripper", "--gripper jaw: a parallel jaw")}
-            name, what = who[kind]
             flags = [f"--{o.replace('_', '-')}" for o in (*PLAN_OPTIONS, *SEARCH_OPTIONS)
                      if o in takes]
             named = ["--mu LOW:HIGH" if g == "mu_high" else "--" + g.replace("_", "-")
                      for g in given]
-            raise _fail(given[0], f"{what} on a solid take{_listed(flags)} only, not "
-                                  f"{' '.join(named)}")
-
-    def solid_kind(self) -> str | None:
-        """How a solid part is grasped: ``"soft"`` (two soft fingers), ``"friction"``
-        (three point fingers with friction), ``"jaw"`` (a parallel jaw with flat pads),
-        or None (not a solid's request)."""
-        if not self.is_solid():
-            return None
-        if self.gripper == "jaw":
-            return "jaw"
-        if self.gripper != "fingers":
-            return None
-        # two point fingers never hold a solid (nothing resists the turn about the line
-        # between them): on a solid two fingers are soft fingers
-        if self.fingers in (None, 2):
-            return "soft"
-        return "friction" if self.fingers == 3 and not self.soft else None
+            title = getattr(cls, "solid_title", self.gripper)
+            raise _fail(given[0], f"on a solid ({self.part}) the options of {title} "
+                                  f"are{_listed(flags)}, not {' '.join(named)}")
 
     def _check_outputs(self) -> None:
         check_outputs(self.json, self.plot, [self.part])
