@@ -337,6 +337,38 @@ def test_the_jaw_past_its_time_keeps_its_first_box_as_the_grid_proved_it(monkeyp
     assert doc.reason is not None and "stopped at its time limit" in doc.reason
 
 
+@pytest.mark.parametrize("distinct", [0.0, 0.5])
+def test_three_fingers_whose_first_read_the_clock_ends_give_plans_cut_short(monkeypatch,
+                                                                            distinct):
+    """Three fingers whose first read of the two-finger stretches alone runs past the
+    budget and its grace (the clock said to be past it at every check): plans, not an
+    error, incomplete and not exact (no bound), their pairs on single edges, each grasp
+    sampled along the single-edge regions (the others at their representative contact)
+    force closure (theorem 6.1's test)."""
+    from fcgrasp.core import budget
+
+    def late() -> None:
+        raise budget.BudgetExhausted("time_limit")
+
+    monkeypatch.setattr(budget, "check_clock", late)
+    part = fc.read_part("demo:cam")
+    plans = fc.plan(part, fingers=3, mu=0.5, top=3, distinct=distinct)
+    assert plans and not plans.complete and not plans.exact
+    assert plans.gap()["bound"] is None
+    rng = np.random.default_rng(6)
+    for p in plans:
+        if p.mode == "pair":
+            assert sum(len(e) == 1 for e in p.region_edges) >= 2
+        for _ in range(20):
+            t = rng.uniform(size=3)
+            pts = [reg[0] + s * (reg[-1] - reg[0]) if len(e) == 1 else c
+                   for reg, s, e, c in zip(p.regions, t, p.region_edges, p.contacts,
+                                           strict=True)]
+            g = fc.Grasp([fc.FrictionPoint(q, n, 0.5)
+                          for q, n in zip(pts, p.normals, strict=True)])
+            assert g.is_force_closure()
+
+
 def test_a_first_round_the_clock_ends_gives_single_edge_plans_cut_short(monkeypatch):
     """Two fingers on a large outline whose stretch search's first answer alone takes
     longer than the budget and its grace (none here; the clock checked between blocks of

@@ -362,8 +362,9 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     """The ``spec.top`` best plans of :func:`three_finger_plans` along the boundary that
     are distinct alternatives (:func:`fcgrasp.model.distinct.distinct_plans` over the
     whole ranked list, exactly), or None where this search does not apply (another
-    ``rank_by``, ``top=None``, a hand, no region covering a vertex: the caller then
-    suppresses the ranked list as usual).
+    ``rank_by``, ``top=None``, a hand, no region covering a vertex; or its first read
+    alone runs past the time budget and its grace: the caller then suppresses the
+    ranked list as usual, whose pairs are then on single edges, cut short).
 
     The ranked list merges two sources, each read in rounds, and each with a level
     every plan it has not given is below:
@@ -448,6 +449,10 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
                 got = stretches.pairs(top=ask, ties=True, exclude=suppression.kept,
                                       fraction=fraction, seen=read, third=True)
             except BudgetExhausted as exc:
+                if not read and str(exc) == "time_limit":
+                    # the first read alone runs past the budget and its grace: the
+                    # ranked list, cut short, suppressed (the caller's rounds)
+                    return None
                 stopped = str(exc) or "time_limit"
                 break
             new = two_finger_plans_of(polygon, two, got, given)

@@ -74,7 +74,14 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
                 budget.cut_short()
                 return out, None
         elif boundary:
-            got, every, below = stretch_plans_read(polygon, two)
+            try:
+                got, every, below = stretch_plans_read(polygon, two)
+            except budget.BudgetExhausted:
+                # the first read alone runs past the budget and its grace: the pairs of
+                # regions on single edges instead, cut short (as two fingers do)
+                budget.cut_short()
+                boundary, free = False, None
+                continue
         else:
             got = search(polygon, two, edges=edges)
             every = ask is None or len(got) < ask
