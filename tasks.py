@@ -88,6 +88,16 @@ def warm_caches(env: dict[str, str]) -> None:
                    check=True)
 
 
+def start_type_check(env: dict[str, str]) -> subprocess.Popen[bytes] | None:
+    """``mypy src`` started in the background (its verdict is the suite's to give; this
+    run only fills mypy's cache in ``.mypy_cache``); None where mypy is not installed."""
+    if subprocess.run([str(PY), "-c", "import mypy"], cwd=ROOT, env=env,
+                      stderr=subprocess.DEVNULL).returncode:
+        return None
+    return subprocess.Popen([str(PY), "-m", "mypy", "--no-error-summary", "src"], cwd=ROOT,
+                            env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+
+
 def build_docs(out: str, env: dict[str, str], quiet: bool = True) -> int:
     """The documentation (docs/: the guide, the API reference from the docstrings, the
     design notes, the gallery) built with Sphinx into ``out``, every warning an error."""
@@ -106,6 +116,10 @@ def main(argv: list[str]) -> int:
     # bytecode cached beside the sources: the suite starts the command line in dozens of
     # processes, each of which would otherwise compile the package again
     env.pop("PYTHONDONTWRITEBYTECODE", None)
+    # mypy's cache made beside the kernels' compilation and the bytecode (one core each):
+    # the suite's type check (tests/test_typing.py) then reads it instead of parsing
+    # numpy's stubs again on one of the suite's cores
+    typing = start_type_check(env) if cmd == "test" else None
     if cmd in ("demo", "test"):
         compile_kernels(env)
     if cmd == "demo":
@@ -114,6 +128,8 @@ def main(argv: list[str]) -> int:
     if cmd == "test":
         ensure_browser()
         warm_caches(env)
+        if typing is not None:
+            typing.wait()
         # a compiled loop that fails fails the suite (it would run by numpy, unseen)
         env["FCGRASP_REQUIRE_JIT"] = "1"
         # the suite runs on every core (pytest-xdist) unless told otherwise (-n 0)
