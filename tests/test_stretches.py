@@ -404,3 +404,42 @@ def test_exact_ties_are_ordered_by_the_job_then_the_covered_edges():
         f = _Found(job, cfg, float(rng.random()), 0.0, 0.0)
         assert tie(f) == ((x, y), job[3], cfg[0] % rings[x].m, cfg[1], cfg[2] % rings[y].m,
                           cfg[3])
+
+
+def _plate(rng, holes):
+    """A rounded plate with ``holes`` small round holes on a grid (a CAD drawing's)."""
+    corners = []
+    for cx, cy, a0 in ((150, 90, 0), (10, 90, 90), (10, 10, 180), (150, 10, 270)):
+        a = np.radians(np.linspace(a0, a0 + 90, 8))
+        corners += list(np.c_[cx + 10 * np.cos(a), cy + 10 * np.sin(a)])
+    rings = []
+    for k in range(holes):
+        c = (22 + 18 * (k % 7), 22 + 20 * (k // 7))
+        a = np.linspace(0, 2 * np.pi, int(rng.integers(8, 20)), endpoint=False)[::-1]
+        r = rng.uniform(2.0, 5.0)
+        rings.append(np.c_[c[0] + r * np.cos(a), c[1] + r * np.sin(a)])
+    return Polygon(np.array(corners), holes=rings)
+
+
+# seed 4: one of the plates where a search that left out rings ten times too long
+# returns other pairs
+@pytest.mark.parametrize("seed", [4, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(12) if s != 4)])
+def test_a_plates_top_pairs_leave_out_the_rings_shorter_than_the_floor(seed, monkeypatch):
+    """On a plate with round holes the ranked search leaves out, once its floor passes
+    them, the ring pairs whose shorter ring is shorter than the floor: the top pairs are
+    those of the search that reads every ring pair, edge for edge."""
+    from fcgrasp.model.stretches import _rounds
+
+    rng = np.random.default_rng(seed)
+    plate = _plate(rng, int(rng.integers(4, 10)))
+    mu = float(rng.choice([0.3, 0.5, 1.0]))
+    for top in (1, 5, 60):
+        got = two_finger_stretches(plate, mu, top=top)
+        with monkeypatch.context() as m:
+            m.setattr(_rounds, "_reach", lambda ring: np.inf)
+            want = two_finger_stretches(plate, mu, top=top)
+        assert [(p.region_edges, p.mode) for p in got] == \
+            [(p.region_edges, p.mode) for p in want]
+        for a, b in zip(got, want, strict=True):
+            assert a.lengths == b.lengths

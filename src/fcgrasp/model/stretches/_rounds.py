@@ -157,6 +157,11 @@ def _guessed_floors(bound: _Bound) -> list[float]:
     return out
 
 
+def _reach(ring: _Ring) -> float:
+    """The longest region a ring holds, with rounding's room: its perimeter."""
+    return float(ring.U[ring.m]) * (1 + ROUND_TOL)
+
+
 def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Intervals],
                 runs: dict[Any, Any], keys: _Keys, prebound: bool = True,
                 guesses: list[float] | None = None, lower: bool = True,
@@ -200,6 +205,11 @@ def _candidates(rings: list[_Ring], bound: _Bound, intervals: dict[Any, _Interva
             x, y, sigma, _ = job
             ra, rb = rings[x], rings[y]
             both = _empty()
+            if collect and min(_reach(ra), _reach(rb)) < bound.floor:
+                # none of this job reaches the floor (the holes of a plate, once a plan
+                # on the outline sets it)
+                prepared.append((job, both))
+                continue
             if x <= y:
                 copies = exclude.copy_columns(rings, x, y, bound.floor) \
                     if collect and exclude is not None else None
