@@ -820,7 +820,7 @@ def _exclusion_both_ways(poly, fraction, rng, monkeypatch, third=False):
                 results.append((excl.threshold(rings, job, cfg, ivs),
                                 excl.similar(rings, job, cfg, t, ivs),
                                 None if arcs is None else
-                                np.array([m for _, m in excl._third_masks(x, y, cfg, arcs)])))
+                                np.array([m for _, _, m in excl._third_masks(x, y, cfg, arcs)])))
             (tf, sf, mf), (tn, sn, mn) = results
             np.testing.assert_array_equal(tf, tn)
             np.testing.assert_array_equal(sf, sn)

@@ -124,9 +124,11 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     free = FreeThird(rings, poly, 1e-9 * poly.size)
     known = checked = 0
     for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
-        ring, g0, g1, e0, e1 = (v[0] for v in free.of(x, y, cfg))
-        if ring < 0:
+        sure = [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg)
+                if p[0]]
+        if len(sure) != 1:                      # not surely one free stretch
             continue
+        ring, g0, g1, e0, e1 = sure[0]
         known += 1
         R = rings[int(ring)]
         per = float(R.U[R.m])
@@ -157,8 +159,7 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
 def test_every_free_stretch_a_plan_can_have_is_a_possible_third(seed):
     """:meth:`FreeThird.options`: whatever trims the regions' end edges get, the free
     stretch (:func:`free_stretch`, an edge-by-edge walk) is one of the candidates the
-    configuration can have, holding its sure arc and inside its widest; where
-    :meth:`FreeThird.of` names a ring, that candidate is the only one possible.  Even
+    configuration can have, holding its sure arc and inside its widest.  Even
     seeds: ellipses without noise, whose two free stretches tie."""
     rng = np.random.default_rng(seed)
     poly = _outline(3 * seed)[0] if seed % 2 == 0 else _ringed(rng, seed % 4 == 1)
@@ -168,8 +169,6 @@ def test_every_free_stretch_a_plan_can_have_is_a_possible_third(seed):
     for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
         opts = [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg)
                 if p[0]]
-        ring = int(free.of(x, y, cfg)[0][0])
-        assert ring < 0 or [o[0] for o in opts] == [ring]
         several += len(opts) > 1
         for cut_a in ((0, 0), (1, 0), (0, 1)) if kA else ((0, 0),):
             for cut_c in ((0, 0), (1, 0), (0, 1)) if kC else ((0, 0),):

@@ -107,8 +107,8 @@ class _Exclusion:
         return bool(self.plans) or bool(self.seen)
 
     @staticmethod
-    def _codes(rings: list[_Ring], x: int, y: int, iA: Any, kA: Any, iC: Any, kC: Any
-               ) -> np.ndarray:
+    def _codes(rings: list[_Ring], x: int, y: int, iA: np.ndarray, kA: np.ndarray,
+               iC: np.ndarray, kC: np.ndarray) -> np.ndarray:
         """One code per configuration of rings ``x`` and ``y`` (starts reduced), sortable
         and equal only for the same configuration: an integer, or where the rings are
         too long for one int64 (``ma (ma + 1) mb (mb + 1)`` past 2**62: tens of
@@ -264,9 +264,7 @@ class _Exclusion:
         # every third finger the configuration's plan can have (one free stretch, or two
         # of about one length) makes it a copy of some kept plan
         sure, some = np.ones(len(t), bool), np.zeros(len(t), bool)
-        for possible, mask in self._third_masks(x, y, cfg, arcs, spans):
-            if not possible.any():
-                continue
+        for _, possible, mask in self._third_masks(x, y, cfg, arcs, spans):
             some |= possible
             # only the configurations whose third finger can be a copy's
             live = np.flatnonzero(possible & sure)
@@ -298,23 +296,24 @@ class _Exclusion:
 
     def _third_masks(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],
                      spans: tuple[FloatArray, FloatArray] | None = None,
-                     options: list[Any] | None = None) -> list[tuple[np.ndarray, np.ndarray]]:
-        """For each free stretch that can be the configurations' third finger's
-        (:meth:`FreeThird.options`): where it can (per configuration), and which of
-        those configurations (rows) have a third finger on it that surely overlaps
-        each column's remaining region (``arcs[4:]``) by more than ``fraction`` of the
-        shorter (:meth:`_third_mask_of`).  ``spans`` (:meth:`_spans`) say which end edges
-        a trim may free (:meth:`FreeThird.trims`; without them, every end edge may
-        be), ``options`` are those of :meth:`FreeThird.options` without trims, where
-        already known.  A candidate that no configuration can have has no cell set."""
+                     options: list[Any] | None = None
+                     ) -> list[tuple[int, np.ndarray, np.ndarray]]:
+        """For each free stretch that some configuration's third finger can have
+        (:meth:`FreeThird.options`): its place among the options, where it can (per
+        configuration), and which of those configurations (rows) have a third finger on
+        it that surely overlaps each column's remaining region (``arcs[4:]``) by more
+        than ``fraction`` of the shorter (:meth:`_third_mask_of`).  ``spans``
+        (:meth:`_spans`) say which end edges a trim may free (:meth:`FreeThird.trims`;
+        without them, every end edge may be), ``options`` are those of
+        :meth:`FreeThird.options` without trims, where already known."""
         assert self.free is not None
         if options is None:
             trims = None if spans is None else self.free.trims(x, y, cfg, spans)
             options = self.free.options(x, y, cfg, trims)
-        return [(possible, self._third_mask_of(np.where(possible, r, -1), g0, g1, e0, e1,
-                                               arcs)
-                 if possible.any() else np.zeros((possible.size, len(arcs[4])), bool))
-                for possible, r, g0, g1, e0, e1 in options]
+        return [(k, possible, self._third_mask_of(np.where(possible, r, -1), g0, g1, e0, e1,
+                                                  arcs))
+                for k, (possible, r, g0, g1, e0, e1) in enumerate(options)
+                if possible.any()]
 
     def _third_mask_of(self, ring: np.ndarray, g0: FloatArray, g1: FloatArray,
                        e0: FloatArray, e1: FloatArray, arcs: tuple[FloatArray, ...]
@@ -397,7 +396,7 @@ class _Exclusion:
         taus = J.taus
         if taus is None or taus[0] != key or \
                 [tuple(p) for p in self.plans[:len(taus[1])]] != taus[1]:
-            taus = J.taus = (key, [], np.full((self._thirds(job[0], job[1]),
+            taus = J.taus = (key, [], np.full((1 if options is None else len(options),
                                                len(J.cfg.iA)), np.inf),
                              np.zeros(len(J.cfg.iA), np.int64))
         _, plans, value, covered = taus
@@ -429,24 +428,25 @@ class _Exclusion:
 
     def _plans_threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
                          cfg: _Configs, intervals: dict[Any, _Intervals], start: int,
-                         options: list[Any] | None = None) -> FloatArray:
+                         options: list[Any] | None) -> FloatArray:
         """:meth:`threshold`'s part of the kept plans from ``start`` on, one row per third
-        finger the configurations can have (:meth:`_third_masks`, of ``options``; one row
-        without a third): each the least over the plans of that row, so that a later
-        round's plans lower it (:meth:`thresholds`) and :meth:`_either_third` takes the
-        greatest over the thirds a configuration can have."""
+        finger in ``options`` (:meth:`_options`; one row without a third): each the
+        least over the plans of that row (inf for a third no configuration can have),
+        so that a later round's plans lower it (:meth:`thresholds`) and
+        :meth:`_either_third` takes the greatest over the thirds a configuration can
+        have."""
         x, y = job[0], job[1]
-        out = np.full((self._thirds(x, y), len(cfg.iA)), np.inf)
+        out = np.full((1 if options is None else len(options), len(cfg.iA)), np.inf)
         arcs = self._arcs(x, y, start)
         if self.fraction >= 1 or arcs is None or not len(cfg.iA):
             return out
-        masks: list[np.ndarray | None] = [None] if len(arcs) == 4 else \
-            [m for _, m in self._third_masks(x, y, cfg, arcs, options=options)]
+        masks: list[tuple[int, np.ndarray | None]] = [(0, None)] if len(arcs) == 4 else \
+            [(k, m) for k, _, m in self._third_masks(x, y, cfg, arcs, options=options)]
         # before the configurations are solved (all of them, in chunks of thousands): the
         # whole stretches, from the first edge's start to the last edge's end
         sx, sy = self._spans(rings, job, cfg, intervals, 0)
         whole = (sx[:, 0], sx[:, 3], sy[:, 0], sy[:, 3])
-        for k, mask in enumerate(masks):
+        for k, mask in masks:
             out[k] = self._arcs_threshold(rings, x, y, whole, arcs, mask)
         return out
 
@@ -454,11 +454,6 @@ class _Exclusion:
         """:meth:`FreeThird.options` of the configurations, without trims (None without a
         third finger)."""
         return None if self.free is None else self.free.options(x, y, cfg)
-
-    def _thirds(self, x: int, y: int) -> int:
-        """How many third fingers :meth:`_third_masks` reads on rings ``x`` and ``y`` (1
-        without a third finger)."""
-        return 1 if self.free is None else self.free.count(x, y)
 
     @staticmethod
     def _either_third(value: FloatArray, options: list[Any] | None) -> FloatArray:

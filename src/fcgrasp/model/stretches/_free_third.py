@@ -7,13 +7,14 @@ usable edges of one ring that neither region covers
 (:func:`fcgrasp.grippers.three_fingers.free_stretch`).  The third region depends only on
 the edges the two regions cover, so it is known before a configuration is solved, up to
 one thing: a region that ends exactly at a vertex does not cover the edge beyond it
-(:func:`fcgrasp.core._geom.trim_vertex_ends`), which frees that edge.  So for each
-configuration :meth:`FreeThird.of` gives an arc every such third covers (the *sure* arc)
-and one it stays inside (the sure arc and the end edges of the regions beside it), and
-only where one free stretch is surely the longest: a ring and the two arcs, or ring -1.
-The distinct search uses them to say "surely the same alternative" of a configuration
-whose third finger surely overlaps a kept plan's region (:class:`~fcgrasp.model.stretches`'s
-``_Exclusion``); -1 only makes it say so less often.
+(:func:`fcgrasp.core._geom.trim_vertex_ends`), which frees that edge; and two free
+stretches of about one length (either side of a squeeze across an ellipse) may each be
+the longest.  So for each configuration :meth:`FreeThird.options` gives every free
+stretch that can be its third finger's, each with an arc every such third covers (the
+*sure* arc) and one it stays inside (the sure arc and the end edges of the regions
+beside it).  The distinct search uses them to say "surely the same alternative" of a
+configuration whose third finger, on each of them, surely overlaps a kept plan's region
+(:class:`~fcgrasp.model.stretches`'s ``_Exclusion``).
 """
 
 from __future__ import annotations
@@ -97,8 +98,8 @@ class FreeThird:
     def _candidates(self, x: int, y: int, cfg: _Configs,
                     trims: tuple[np.ndarray, ...] | None
                     ) -> list[tuple[int, FloatArray, FloatArray, FloatArray, FloatArray]]:
-        """Every free run of each configuration: (ring, g0, g1, e0, e1) as :meth:`of`
-        gives the longest's."""
+        """Every free run of each configuration: (ring, g0, g1, e0, e1) as
+        :meth:`options` gives them."""
         iA, kA = np.asarray(cfg.iA, np.int64), np.asarray(cfg.kA, np.int64)
         iC, kC = np.asarray(cfg.iC, np.int64), np.asarray(cfg.kC, np.int64)
         n = iA.size
@@ -122,11 +123,6 @@ class FreeThird:
                 cands.append((r, g0, g1, g0, g1))
         return cands
 
-    def count(self, x: int, y: int) -> int:
-        """How many free runs :meth:`options` lists for configurations of rings ``x`` and
-        ``y``: two, and the whole of every other ring."""
-        return 2 + sum(r not in (x, y) for r in range(len(self.rings)))
-
     def options(self, x: int, y: int, cfg: _Configs,
                 trims: tuple[np.ndarray, ...] | None = None
                 ) -> list[tuple[np.ndarray, int, FloatArray, FloatArray, FloatArray,
@@ -134,10 +130,13 @@ class FreeThird:
         """Every free stretch that can be each configuration's longest: one entry per
         candidate run, ``(possible, ring, g0, g1, e0, e1)`` with ``possible`` (per
         configuration) whether its length, at most its widest arc's, can reach every
-        other run's sure length, and its sure arc ``[g0, g1]`` and widest ``[e0, e1]``
-        as :meth:`of` gives them.  Where a foreign ring's stretch may be the longest,
-        or no run has a length, no candidate is possible.  A configuration whose two
-        free runs differ by less than an end edge has two possible thirds."""
+        other run's sure length, its ring, and its sure arc ``[g0, g1]`` and widest
+        ``[e0, e1]`` (arc lengths of that ring, ``g0`` in ``[0, P)``, the ends unrolled
+        past it).  Where a foreign ring's stretch may be the longest, or no run has a
+        length, no candidate is possible.  A configuration whose two free runs differ by
+        less than an end edge has two possible thirds.  ``trims``: which end edges a
+        trim may free (:meth:`trims`; default: every end edge of a region of two edges
+        or more)."""
         cands = self._candidates(x, y, cfg, trims)
         sure = np.stack([c[2] - c[1] for c in cands])          # (candidates, n)
         most = np.stack([c[4] - c[3] for c in cands])
@@ -154,19 +153,3 @@ class FreeThird:
             others = np.where(best == k, second, top)
             out.append((known & (most[k] + self.tol >= others), int(r), g0, g1, e0, e1))
         return out
-
-    def of(self, x: int, y: int, cfg: _Configs, trims: tuple[np.ndarray, ...] | None = None
-           ) -> tuple[np.ndarray, FloatArray, FloatArray, FloatArray, FloatArray]:
-        """For each configuration of rings ``x`` and ``y``: the ring of its third
-        finger's free stretch (-1 where none is surely the longest: :meth:`options`
-        gives more than one, or none), the sure arc ``[g0, g1]`` and the widest arc
-        ``[e0, e1]`` (arc lengths of that ring, ``g0`` in ``[0, P)``, the ends unrolled
-        past it).  ``trims``: which end edges a trim may free (:meth:`trims`; default:
-        every end edge of a region of two edges or more)."""
-        opts = self.options(x, y, cfg, trims)
-        possible = np.stack([o[0] for o in opts])
-        pick = np.argmax(possible, axis=0)
-        cols = np.arange(possible.shape[1])
-        ring = np.array([o[1] for o in opts])[pick]
-        arcs = [np.stack([o[j] for o in opts])[pick, cols] for j in range(2, 6)]
-        return (np.where(possible.sum(axis=0) == 1, ring, -1), *arcs)
