@@ -116,6 +116,12 @@ def _configurations(rng, rings, n=300):
                                                           (iA, kA, iC, kC)))
 
 
+def _possible_thirds(free, x, y, cfg):
+    """The free stretches the one configuration ``cfg`` can have its third finger on
+    (:meth:`FreeThird.options`): ``(ring, g0, g1, e0, e1)`` each."""
+    return [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg) if p[0]]
+
+
 @pytest.mark.parametrize("seed", range(4))
 def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     rng = np.random.default_rng(seed)
@@ -124,8 +130,7 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     free = FreeThird(rings, poly, 1e-9 * poly.size)
     known = checked = 0
     for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
-        sure = [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg)
-                if p[0]]
+        sure = _possible_thirds(free, x, y, cfg)
         if len(sure) != 1:                      # not surely one free stretch
             continue
         ring, g0, g1, e0, e1 = sure[0]
@@ -167,8 +172,7 @@ def test_every_free_stretch_a_plan_can_have_is_a_possible_third(seed):
     free = FreeThird(rings, poly, 1e-9 * poly.size)
     several = checked = 0
     for x, y, (_, kA, _, kC), ea, ec, cfg in _configurations(rng, rings):
-        opts = [(r, *(v[0] for v in rest)) for p, r, *rest in free.options(x, y, cfg)
-                if p[0]]
+        opts = _possible_thirds(free, x, y, cfg)
         several += len(opts) > 1
         for cut_a in ((0, 0), (1, 0), (0, 1)) if kA else ((0, 0),):
             for cut_c in ((0, 0), (1, 0), (0, 1)) if kC else ((0, 0),):
