@@ -17,6 +17,7 @@ expanded; an endless stream (``/dev/zero``) is read no further than the limit.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -62,6 +63,13 @@ class Limits:
         return Limits(d.max_bytes if max_bytes is None else max_bytes,
                       d.max_elements if max_elements is None else max_elements,
                       d.max_vertices if max_vertices is None else max_vertices)
+
+    @staticmethod
+    def of_options(options: Mapping[str, Any]) -> Limits:
+        """:meth:`given` of reading options (``load_part``'s keywords, a request's
+        reading): their ``max_bytes``, ``max_elements`` and ``max_vertices``."""
+        return Limits.given(options.get("max_bytes"), options.get("max_elements"),
+                            options.get("max_vertices"))
 
     @staticmethod
     def of(value: Any) -> Limits:

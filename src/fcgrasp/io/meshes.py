@@ -184,7 +184,6 @@ def read_solid_with(source: str, select: int | str | None, options: dict[str, An
     if unused:
         raise ValueError(f"{source}: a solid is read with {', '.join(SOLID_OPTIONS)}: "
                          f"{', '.join(unused)} read drawings and images")
-    limits = Limits.given(options.get("max_bytes"), options.get("max_elements"),
-                          options.get("max_vertices"))
     return read_solid(source, units=options.get("units"), file_units=options.get("file_units"),
-                      select=select, limits=limits, repair=bool(options.get("repair", False)))
+                      select=select, limits=Limits.of_options(options),
+                      repair=bool(options.get("repair", False)))

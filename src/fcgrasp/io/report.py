@@ -211,10 +211,9 @@ def part_listing(source: str, **reading: Any) -> dict[str, Any]:
     from .parts import choose_part, list_parts
 
     if is_solid_source(source):
-        limits = Limits.given(reading.get("max_bytes"), reading.get("max_elements"),
-                              reading.get("max_vertices"))
         bodies, units, note = read_bodies(source, reading.get("units"),
-                                          reading.get("file_units"), limits)
+                                          reading.get("file_units"),
+                                          Limits.of_options(reading))
         return bodies_report(source, bodies, units, note)
     parts = list_parts(source, **reading)
     try:
