@@ -360,6 +360,38 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
 
 @pytest.mark.parametrize("seed", [4, 78, *(pytest.param(s, marks=pytest.mark.slow)
                                        for s in range(5, 60))])
+def test_a_small_collections_long_step_down_gives_the_plans_of_short_ones(seed,
+                                                                         monkeypatch):
+    """A round that finds too few above its floor lowers it by FLOOR_STEP_SMALL where
+    the collection holds fewer than SMALL_COLLECTION configurations (an outline of tens
+    of edges: each collection costs its fixed cost): the plans and regions are those of
+    the short steps alone (``SMALL_COLLECTION = 0``, the reference), in fewer
+    collections, with the first floor high (MEMO_SHARE 0.9) so that both step down."""
+    from fcgrasp.model import stretches
+
+    floors = []
+    original = stretches._Memo.lower
+    monkeypatch.setattr(stretches, "MEMO_SHARE", 0.9)
+    monkeypatch.setattr(stretches._Memo, "lower",
+                        lambda self, f: (floors.append(f), original(self, f))[1])
+    part, got, _ = _searched_and_suppressed(seed)
+    long_steps = len(floors)
+    floors.clear()
+    monkeypatch.setattr(stretches, "SMALL_COLLECTION", 0)
+    rng = np.random.default_rng(seed)
+    _smooth(rng, int(rng.integers(24, 48)))
+    mu, fraction = float(rng.uniform(0.2, 0.5)), float(rng.choice([0.25, 0.5, 0.8]))
+    top = int(rng.integers(3, 8))
+    ref = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction, time_limit=None)
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    for p, q in zip(got, ref, strict=True):
+        for x, y in zip(p.regions, q.regions, strict=True):
+            assert np.array_equal(x, y)
+    assert long_steps < len(floors), (long_steps, len(floors))
+
+
+@pytest.mark.parametrize("seed", [4, 78, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(5, 60))])
 @pytest.mark.parametrize("jit", ["1", "0"])
 def test_a_capped_collection_gives_the_plans_of_suppression(seed, jit, monkeypatch):
     """A distinct round collects at most COLLECT_CAP configurations at once and tries

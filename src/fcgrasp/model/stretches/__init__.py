@@ -322,7 +322,10 @@ class StretchSearch:
                 low, needed = need * (1 - TIE), True
             else:
                 too_few = min(too_few, memo.floor)
-                low = memo.floor * (FLOOR_STEP_SOME if found else FLOOR_STEP_NONE)
+                # (a collection of a few configurations, as on an outline of tens of
+                # edges: a long step, each of its runs costing as much as a big one's)
+                low = memo.floor * (FLOOR_STEP_SMALL if memo.collected < SMALL_COLLECTION
+                                    else FLOOR_STEP_SOME if found else FLOOR_STEP_NONE)
                 if memo.cap is not None and low <= over_cap:
                     # (a floor that went over the cap: half way down to it instead, or
                     # the usual step collected in full once the two meet)
@@ -396,6 +399,12 @@ OVERFLOW_SHARE = 0.85
 #: The factors a distinct round's memo floor is lowered by when fewer than ``top`` were
 #: found above it: some, none.
 FLOOR_STEP_SOME, FLOOR_STEP_NONE = 0.95, 0.9
+
+
+#: A collection smaller than this (configurations) is lowered by
+#: :data:`FLOOR_STEP_SMALL` when too few were found above its floor: a run's cost there is
+#: its fixed cost, not its configurations'.
+SMALL_COLLECTION, FLOOR_STEP_SMALL = 20_000, 0.5
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: ArrayLike,

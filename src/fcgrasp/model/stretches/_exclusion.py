@@ -13,7 +13,7 @@ from ..polygon import Polygon
 from . import _kernels
 from ._free_third import FreeThird
 from ._lp import BOX_REACH, _ends
-from ._windows import _Configs, _Intervals, _Ring, stretch_kernels_for
+from ._windows import _Configs, _Intervals, _Ring, numpy_counted, stretch_kernels_for
 
 
 def _positions(rings: list[_Ring]) -> dict[int, tuple[int, int]]:
@@ -290,8 +290,9 @@ class _Exclusion:
             return
         ax0, ax1, ay0, ay1 = arcs
         tt = t - self.tol
-        both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
-            & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
+        with numpy_counted():
+            both = self._surely_copy(float(rings[x].U[rings[x].m]), spans[0], tt, ax0, ax1) \
+                & self._surely_copy(float(rings[y].U[rings[y].m]), spans[1], tt, ay0, ay1)
         out |= (both if mask is None else both & mask).any(axis=1)
 
     def _third_masks(self, x: int, y: int, cfg: _Configs, arcs: tuple[FloatArray, ...],

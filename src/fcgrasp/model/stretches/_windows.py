@@ -4,6 +4,9 @@ covers) bounded and pruned (part of :mod:`fcgrasp.model.stretches`)."""
 
 from __future__ import annotations
 
+import time
+from collections.abc import Iterator
+from contextlib import contextmanager
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any, cast
@@ -539,6 +542,18 @@ NUMPY_SOLVE_BUDGET = 0.4
 
 
 _numpy_spent = [0.0]
+
+
+@contextmanager
+def numpy_counted() -> Iterator[None]:
+    """Counts the CPU time of the block toward :data:`NUMPY_SOLVE_BUDGET` (numpy work
+    that the compiled loops would do: the exclusion's tests of a small outline, read
+    round after round, as much as its solves)."""
+    start = time.process_time()
+    try:
+        yield
+    finally:
+        _numpy_spent[0] += time.process_time() - start
 
 
 #: Configurations of one job to solve from which the compiled solve runs, whatever the
