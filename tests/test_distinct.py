@@ -362,11 +362,11 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
                                        for s in range(5, 60))])
 def test_a_small_collections_long_step_down_gives_the_plans_of_short_ones(seed,
                                                                          monkeypatch):
-    """A round that finds too few above its floor lowers it by FLOOR_STEP_SMALL where
-    the collection holds fewer than SMALL_COLLECTION configurations (an outline of tens
-    of edges: each collection costs its fixed cost): the plans and regions are those of
-    the short steps alone (``SMALL_COLLECTION = 0``, the reference), in fewer
-    collections, with the first floor high (MEMO_SHARE 0.9) so that both step down."""
+    """A round that finds too few above its floor lowers it by FLOOR_STEP_SMALL on an
+    outline of at most SMALL_OUTLINE edges (each collection costs its fixed cost): the
+    plans and regions are those of the short steps alone (``SMALL_OUTLINE = 0``, the
+    reference), in fewer collections, with the first floor high (MEMO_SHARE 0.9) so
+    that both step down."""
     from fcgrasp.model import stretches
 
     floors = []
@@ -377,7 +377,7 @@ def test_a_small_collections_long_step_down_gives_the_plans_of_short_ones(seed,
     part, got, _ = _searched_and_suppressed(seed)
     long_steps = len(floors)
     floors.clear()
-    monkeypatch.setattr(stretches, "SMALL_COLLECTION", 0)
+    monkeypatch.setattr(stretches, "SMALL_OUTLINE", 0)
     rng = np.random.default_rng(seed)
     _smooth(rng, int(rng.integers(24, 48)))
     mu, fraction = float(rng.uniform(0.2, 0.5)), float(rng.choice([0.25, 0.5, 0.8]))

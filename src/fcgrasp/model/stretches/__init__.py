@@ -322,9 +322,9 @@ class StretchSearch:
                 low, needed = need * (1 - TIE), True
             else:
                 too_few = min(too_few, memo.floor)
-                # (a collection of a few configurations, as on an outline of tens of
-                # edges: a long step, each of its runs costing as much as a big one's)
-                low = memo.floor * (FLOOR_STEP_SMALL if memo.collected < SMALL_COLLECTION
+                # (an outline of tens of edges: a long step, each run costing its fixed
+                # cost, not its few configurations')
+                low = memo.floor * (FLOOR_STEP_SMALL if polygon.n_edges <= SMALL_OUTLINE
                                     else FLOOR_STEP_SOME if found else FLOOR_STEP_NONE)
                 if memo.cap is not None and low <= over_cap:
                     # (a floor that went over the cap: half way down to it instead, or
@@ -401,10 +401,11 @@ OVERFLOW_SHARE = 0.85
 FLOOR_STEP_SOME, FLOOR_STEP_NONE = 0.95, 0.9
 
 
-#: A collection smaller than this (configurations) is lowered by
-#: :data:`FLOOR_STEP_SMALL` when too few were found above its floor: a run's cost there is
-#: its fixed cost, not its configurations'.
-SMALL_COLLECTION, FLOOR_STEP_SMALL = 20_000, 0.5
+#: On an outline of at most this many edges a distinct round's memo floor is lowered by
+#: :data:`FLOOR_STEP_SMALL` when fewer than ``top`` were found above it: its collections
+#: hold hundreds of configurations, and a run costs its fixed cost (on a smooth outline
+#: of hundreds of edges the collection grows steeply as the floor falls).
+SMALL_OUTLINE, FLOOR_STEP_SMALL = 100, 0.5
 
 
 def stretch_regions(polygon: Polygon, stretches: Any, mu: ArrayLike,

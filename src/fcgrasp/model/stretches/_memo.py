@@ -173,11 +173,6 @@ class _Memo:
         """The most configurations a collection may hold (``max_bytes``)."""
         return None if self.max_bytes is None else self.max_bytes // CONFIG_BYTES
 
-    @property
-    def collected(self) -> int:
-        """How many configurations the collection holds."""
-        return sum(len(J.ub) for J in self.jobs.values())
-
     def lower(self, floor: float) -> None:
         """Collect again, down to ``floor``: what the configurations solved or bounded so
         far gave is carried into the new collection (:meth:`restore`), each solved
