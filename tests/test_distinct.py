@@ -358,6 +358,46 @@ def test_distinct_search_with_its_floor_lowered_equals_suppression(seed, monkeyp
         assert len(lowered) >= 2, lowered             # the first floor, then lower
 
 
+@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
+                                      for s in range(2, 30))])
+def test_rounds_that_keep_nothing_read_more_and_give_suppressions_plans(seed,
+                                                                       monkeypatch):
+    """A two-finger distinct round that keeps no new plan makes the next read
+    READ_GROWTH times as many (a half disc's region on its long diameter has copies the
+    exclusion cannot leave out, placed anywhere along the edge): the plans are
+    suppression's along the whole ranked list and those of rounds that read only the
+    plans still missing (``READ_GROWTH = 1``, the reference), in fewer rounds."""
+    from fcgrasp.grippers import _boundary
+    from fcgrasp.grippers._boundary import boundary_plans
+    from fcgrasp.model.stretches import StretchSearch
+    from fcgrasp.pipeline import plan_spec
+
+    rng = np.random.default_rng(seed)
+    a = np.linspace(0, np.pi, int(rng.integers(20, 40)))
+    part = fc.Polygon(np.c_[40 * np.cos(a), float(rng.uniform(15, 40)) * np.sin(a)])
+    mu = float(rng.uniform(0.2, 0.6))
+    top = int(rng.integers(4, 8))
+    rounds = []
+    pairs = StretchSearch.pairs
+    monkeypatch.setattr(StretchSearch, "pairs",
+                        lambda self, *a, **k: (rounds.append(k.get("top")),
+                                               pairs(self, *a, **k))[1])
+    got = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
+    grown = len(rounds)
+    rounds.clear()
+    monkeypatch.setattr(_boundary, "READ_GROWTH", 1)
+    ref = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
+    every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
+    want = distinct_plans(every, 0.5, part.size)[:top]
+    assert [p.edges for p in got] == [p.edges for p in ref] == [p.edges for p in want]
+    for p, q in zip(got, ref, strict=True):
+        for x, y in zip(p.regions, q.regions, strict=True):
+            assert np.array_equal(x, y)
+    assert grown <= len(rounds)
+    if seed == 0:
+        assert grown < len(rounds), (grown, len(rounds))
+
+
 @pytest.mark.parametrize("seed", [4, 78, *(pytest.param(s, marks=pytest.mark.slow)
                                        for s in range(5, 60))])
 def test_a_small_collections_long_step_down_gives_the_plans_of_short_ones(seed,
