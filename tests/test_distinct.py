@@ -324,6 +324,26 @@ def _searched_and_suppressed(seed):
     return part, got, want
 
 
+def _planned_again(seed, part, got):
+    """:func:`_searched_and_suppressed`'s plan of ``seed`` made again (the reference,
+    under the caller's patches), asserted the same edges and regions as ``got``."""
+    rng = np.random.default_rng(seed)
+    _smooth(rng, int(rng.integers(24, 48)))
+    mu = float(rng.uniform(0.2, 0.5))
+    fraction = float(rng.choice([0.25, 0.5, 0.8]))
+    top = int(rng.integers(3, 8))
+    ref = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction, time_limit=None)
+    _same_plans(got, ref)
+
+
+def _same_plans(got, ref):
+    """The same edges, and regions equal to the bit."""
+    assert [p.edges for p in got] == [p.edges for p in ref]
+    for p, q in zip(got, ref, strict=True):
+        for a, b in zip(p.regions, q.regions, strict=True):
+            assert np.array_equal(a, b)
+
+
 @pytest.mark.parametrize("seed", [0, 1, 78, *(pytest.param(s, marks=pytest.mark.slow)
                                                 for s in range(2, 200) if s != 78)])
 def test_distinct_search_equals_suppression_of_every_plan(seed):
@@ -389,10 +409,8 @@ def test_rounds_that_keep_nothing_read_more_and_give_suppressions_plans(seed,
     ref = fc.plan(part, fingers=2, mu=mu, top=top, time_limit=None)
     every = boundary_plans(part, plan_spec(fingers=2, mu=mu, top=None))
     want = distinct_plans(every, 0.5, part.size)[:top]
-    assert [p.edges for p in got] == [p.edges for p in ref] == [p.edges for p in want]
-    for p, q in zip(got, ref, strict=True):
-        for x, y in zip(p.regions, q.regions, strict=True):
-            assert np.array_equal(x, y)
+    assert [p.edges for p in ref] == [p.edges for p in want]
+    _same_plans(got, ref)
     assert grown <= len(rounds)
     if seed == 0:
         assert grown < len(rounds), (grown, len(rounds))
@@ -418,15 +436,7 @@ def test_a_small_collections_long_step_down_gives_the_plans_of_short_ones(seed,
     long_steps = len(floors)
     floors.clear()
     monkeypatch.setattr(stretches, "SMALL_OUTLINE", 0)
-    rng = np.random.default_rng(seed)
-    _smooth(rng, int(rng.integers(24, 48)))
-    mu, fraction = float(rng.uniform(0.2, 0.5)), float(rng.choice([0.25, 0.5, 0.8]))
-    top = int(rng.integers(3, 8))
-    ref = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction, time_limit=None)
-    assert [p.edges for p in got] == [p.edges for p in ref]
-    for p, q in zip(got, ref, strict=True):
-        for x, y in zip(p.regions, q.regions, strict=True):
-            assert np.array_equal(x, y)
+    _planned_again(seed, part, got)
     assert long_steps < len(floors), (long_steps, len(floors))
 
 
@@ -874,16 +884,7 @@ def test_compiled_collection_leaving_copies_out_equals_suppression(seed, monkeyp
     part, got, _ = _searched_and_suppressed(seed)
     monkeypatch.setattr(_stretch_exclusion._Exclusion, "copy_columns",
                         lambda self, *a: None)
-    rng = np.random.default_rng(seed)
-    _smooth(rng, int(rng.integers(24, 48)))
-    mu = float(rng.uniform(0.2, 0.5))
-    fraction = float(rng.choice([0.25, 0.5, 0.8]))
-    top = int(rng.integers(3, 8))
-    ref = fc.plan(part, fingers=2, mu=mu, top=top, distinct=fraction, time_limit=None)
-    assert [p.edges for p in got] == [p.edges for p in ref]
-    for p, q in zip(got, ref, strict=True):
-        for a, b in zip(p.regions, q.regions, strict=True):
-            assert np.array_equal(a, b)
+    _planned_again(seed, part, got)
     if seed in (13, 32, 55):                # (32: a left-out copy beats a plan's edges)
         assert sum(left_out) > 0, left_out
 
