@@ -333,8 +333,9 @@ DISTINCT_READ = 10
 
 #: The factor by which a distinct round that keeps no new plan multiplies the plans the
 #: next one reads (1: each reads the plans still missing, at least
-#: :data:`DISTINCT_READ`, the reference): ``icons/lock.svg`` at mu 0.2 reads thousands of
-#: copies of a region on its long edges, ten at a time in 386 rounds.
+#: :data:`DISTINCT_READ`, the reference; three fingers' rounds grow by it too):
+#: ``icons/lock.svg`` at mu 0.2 has thousands of copies of a region on its long edges,
+#: which ten at a time take 386 rounds.
 READ_GROWTH = 2
 
 

@@ -73,6 +73,7 @@ from ...model.stretches import StretchSearch, crosses_a_vertex
 from ...pipeline import PlanSpec, candidates, features, search_size
 from .._boundary import (
     DISTINCT_READ,
+    READ_GROWTH,
     ranked_keyed,
     ranked_unique,
     two_finger_plans_of,
@@ -387,13 +388,13 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     left out is dropped by suppression anyway, and dropped plans change nothing.
     Each kept plan's ``similar`` lists the plans it stands for among those read.
 
-    A round that keeps no new plan reads twice as many the next time; with ``depth``,
-    the reading stops once ``depth`` times ``top`` two-finger plans are read (as the
-    ranked list's depth does for the other grippers): a copy is left out only where
-    every free stretch its third finger can have (a region may end on a vertex and
-    free the edge beyond; two free stretches may be within an edge of one length)
-    makes it a copy.  ``progress(kept, top)`` after each round and each batch of the
-    concurrent search.  The reading also stops when the time budget ends
+    A round that keeps no new plan makes the next read ``READ_GROWTH`` (twice) as
+    many; with ``depth``, the reading stops once ``depth`` times ``top`` two-finger
+    plans are read (as the ranked list's depth does for the other grippers): a copy
+    is left out only where every free stretch its third finger can have (a region may
+    end on a vertex and free the edge beyond; two free stretches may be within an edge
+    of one length) makes it a copy.  ``progress(kept, top)`` after each round and each
+    batch of the concurrent search.  The reading also stops when the time budget ends
     (:func:`fcgrasp.core.budget.deadline`) or a round's collection would exceed
     ``spec.max_memory``; stopped early, the plans kept are an exact prefix of the
     complete answer, returned incomplete (:class:`~fcgrasp.model.plans.PlanList`) with
@@ -480,7 +481,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
             stopped = "time_limit"
             break
         if len(suppression.kept) == had:
-            ask *= 2                        # copies the search cannot leave out
+            ask *= READ_GROWTH              # copies the search cannot leave out
     kept = suppression.plans()[:top]
     if stopped is None:
         return PlanList(kept)

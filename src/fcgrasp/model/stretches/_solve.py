@@ -4,7 +4,6 @@ solved in chunks behind the bound and shared by the runs of a distinct search (p
 
 from __future__ import annotations
 
-import time
 from collections.abc import Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
@@ -93,11 +92,8 @@ def _solve_any(rows: FloatArray, ub: FloatArray, scale: float, compiled: bool,
     if compiled:
         t, s0, u0 = _kernels.solve_rows(rows, ub, ROUND_TOL * scale, _EPS, floor)
         return t, s0, u0
-    start = time.process_time()
-    try:
+    with _windows.numpy_counted():
         return _solve(rows, ub, scale)
-    finally:
-        _windows._numpy_spent[0] += time.process_time() - start
 
 
 def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Intervals],
