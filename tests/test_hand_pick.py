@@ -110,7 +110,7 @@ def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness,
     checked = 0
     for p in plans:
         assert p.mode == "external"
-        for theta, offset in p.sample(20, rng):
+        for theta, offset in p.sample(10, rng):
             placements, holds = _motion(part, jaw, pick, theta, offset)
             assert holds, (name, theta, offset)
             assert _closes(part, jaw, mu, theta, offset), (name, theta, offset)
@@ -118,7 +118,7 @@ def test_every_sampled_pose_of_every_plan_is_collision_free(name, mu, thickness,
                 assert not _collides(manager, _hand_meshes(hand, opening, origin, R)), \
                     (name, theta, offset, opening, origin)
                 checked += 1
-    assert checked >= 150
+    assert checked >= 75
 
 
 def test_the_check_sees_the_table_and_a_thick_plate():
@@ -388,7 +388,7 @@ def _placements_clear(solid, hand, plans, rest, count: int, seed: int) -> int:
     return checked
 
 
-@pytest.mark.parametrize("name,table", [("angle", False),
+@pytest.mark.parametrize("name,table", [pytest.param("angle", False, marks=pytest.mark.slow),
                                         pytest.param("angle", True, marks=pytest.mark.slow),
                                         ("tall", True),
                                         pytest.param("box", False, marks=pytest.mark.slow)])
@@ -683,7 +683,8 @@ def _tip_placements(plan, count: int, rng) -> list[tuple[np.ndarray, np.ndarray]
     return out
 
 
-@pytest.mark.parametrize("name,fingers", [("bracket", 2), ("cam", 3), ("washer", 2)])
+@pytest.mark.parametrize("name,fingers", [("bracket", 2), ("cam", 3),
+                                          pytest.param("washer", 2, marks=pytest.mark.slow)])
 def test_point_fingers_on_bodies_are_collision_free_by_fcl(tmp_path, name, fingers):
     """Point fingers with --hand tip=R picked from a table: every finger body placed
     along each region (ends, middle, seeded points) and along its descent meets neither

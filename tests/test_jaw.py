@@ -205,7 +205,7 @@ def test_every_sampled_pose_of_a_box_holds(seed):
     found = 0
     for _ in range(4):
         part = _random_part(rng)
-        found += len(_check_plans(part, _jaw_for(part, rng), rng))
+        found += len(_check_plans(part, _jaw_for(part, rng), rng, n=12))
     assert found
 
 
@@ -358,10 +358,11 @@ def test_plan_with_a_gripper_and_the_cli(tmp_path, capsys):
         assert not (tmp_path / "bad.json").exists()
 
 
-def _certify_cases(seed, n_parts, internal=False):
+def _certify_cases(seed, n_parts, internal=False, samples=25):
     """Small boxes around random holding poses of random parts (external; with
     ``internal``, the washer's hole with random jaws) that certify_box proves; each
-    checked at random poses by the independent model.  Returns how many were proved."""
+    checked at its corners and ``samples`` random poses by the independent model.
+    Returns how many were proved."""
     from fcgrasp.grippers.jaw import certify_box
 
     rng = np.random.default_rng(400 + seed)
@@ -398,8 +399,8 @@ def _certify_cases(seed, n_parts, internal=False):
             if got is None:
                 continue
             proved += 1
-            tt = rng.uniform(*box_t, 25)
-            cc = rng.uniform(*box_c, 25)
+            tt = rng.uniform(*box_t, samples)
+            cc = rng.uniform(*box_c, samples)
             tt = np.r_[tt, [box_t[a] for a in (0, 0, 1, 1)]]
             cc = np.r_[cc, [box_c[b] for b in (0, 1, 0, 1)]]
             for t, x in zip(tt, cc, strict=True):
@@ -411,8 +412,8 @@ def _certify_cases(seed, n_parts, internal=False):
 
 @pytest.mark.parametrize("seed", range(1))
 def test_certified_boxes_hold_at_every_sampled_pose(seed):
-    assert _certify_cases(seed, 8) > 6
-    assert _certify_cases(seed, 4, internal=True) > 4
+    assert _certify_cases(seed, 8, samples=8) > 6
+    assert _certify_cases(seed, 4, internal=True, samples=8) > 4
 
 
 @pytest.mark.slow

@@ -88,8 +88,8 @@ def _random_case(rng):
     return points, normals, mu, load, per, total
 
 
-@pytest.mark.parametrize("seed", [*range(4), *(pytest.param(s, marks=pytest.mark.slow)
-                                                 for s in range(4, 40))])
+@pytest.mark.parametrize("seed", [*range(2), *(pytest.param(s, marks=pytest.mark.slow)
+                                                 for s in range(2, 40))])
 def test_grasp_payload_equals_a_program_over_force_components(seed):
     rng = np.random.default_rng(seed)
     for _ in range(60):

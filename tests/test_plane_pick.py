@@ -145,7 +145,7 @@ def test_proved_cells_of_random_parts_are_clear_by_fcl(seed, parts):
         rel = np.stack([part.starts[ring] - part.centroid, part.ends[ring] - part.centroid],
                        axis=1)
         rho = float(np.linalg.norm(rel.reshape(-1, 2), axis=1).max())
-        for _ in range(8):
+        for _ in range(4 if parts < 12 else 8):
             t0 = rng.uniform(0, 2 * np.pi)
             c0 = rng.uniform(-0.8, 0.8) * part.radius
             for side in (1, -1):

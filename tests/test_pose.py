@@ -77,7 +77,7 @@ def _moved_landings(part, plan, sig, n, rng, standoff):
                                        for s in range(1, 12))])
 def test_pose_error_matches_an_independent_monte_carlo(seed):
     part, plans, rng = _plans(seed)
-    n = 4000
+    n = 2000
     for plan in plans:
         scale = part.size * float(rng.uniform(0.01, 0.06))
         sig = (scale, scale * float(rng.uniform(0.3, 1.5)), float(rng.uniform(0.5, 6.0)))

@@ -351,7 +351,7 @@ def test_clean_ring_keeps_curves_and_shape():
 
 def test_fill_rings_against_crossing_count():
     rng = np.random.default_rng(11)
-    for _ in range(30):
+    for _ in range(15):
         rings = [rng.uniform(0, 10, (int(rng.integers(3, 7)), 2)) for _ in range(3)]
         pts = rng.uniform(0, 10, (400, 2))
         for rule in ("evenodd", "nonzero"):

@@ -549,9 +549,9 @@ def _scan_runs(monkeypatch, ra, rb, beta):
     return S._vertex_runs(ra, rb, beta)
 
 
-# by default seed 9: a cam of 1,140 edges far from the origin
-@pytest.mark.parametrize("seed", [9, *(pytest.param(s, marks=pytest.mark.slow)
-                                       for s in range(200) if s != 9)])
+# by default seed 37: a cam of 524 edges far from the origin, mu 0.6
+@pytest.mark.parametrize("seed", [37, *(pytest.param(s, marks=pytest.mark.slow)
+                                        for s in range(200) if s != 37)])
 def test_tree_of_bounds_reads_the_runs_of_the_window_scan(seed, monkeypatch):
     """The tree of bounds over ring b's columns (:func:`_vertex_runs_tree`) against the
     window scan that reads every cell, on rings of hundreds to thousands of edges of

@@ -160,7 +160,8 @@ def test_free_third_holds_every_free_stretch_its_plan_can_have(seed):
     assert known > 50 and checked > known
 
 
-@pytest.mark.parametrize("seed", range(6))
+@pytest.mark.parametrize("seed", [*range(3), *(pytest.param(s, marks=pytest.mark.slow)
+                                              for s in range(3, 6))])
 def test_every_free_stretch_a_plan_can_have_is_a_possible_third(seed):
     """:meth:`FreeThird.options`: whatever trims the regions' end edges get, the free
     stretch (:func:`free_stretch`, an edge-by-edge walk) is one of the candidates the

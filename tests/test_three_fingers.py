@@ -32,8 +32,8 @@ def _unit(a):
     return np.stack([np.cos(a), np.sin(a)], axis=-1)
 
 
-@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
-                                          for s in range(2, 8))])
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 8))])
 def test_spanning_arcs_every_selection_spans(seed):
     rng = np.random.default_rng(seed)
     nonempty = 0
