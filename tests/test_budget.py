@@ -399,3 +399,71 @@ def test_a_first_round_the_clock_ends_gives_single_edge_plans_cut_short(monkeypa
                 assert g.is_force_closure()
     full = fc.plan(part, fingers=2, mu=1.0, top=5, time_limit=None)
     assert full.complete
+
+
+def test_a_memory_budget_ends_the_deadline_and_names_itself():
+    """A deadline's memory budget is read at each check: within it the search goes on;
+    past it (an allocation of 64 MB under a budget of 1 MB) the check ends it, and the
+    stop is named ``max_memory``, for the deadlines inside it too; a deadline without
+    one stops at its clock, named ``time_limit``."""
+    from fcgrasp.core.budget import stop_reason
+
+    with deadline(None, max_memory=2 ** 30):
+        assert not exhausted()
+        check()
+    with deadline(None, max_memory=2 ** 20):
+        block = np.ones(2 ** 23)
+        with deadline(None):
+            assert exhausted() and stop_reason() == "max_memory"
+            with pytest.raises(BudgetExhausted, match="max_memory"):
+                check()
+        del block
+    with deadline(None, checks=0):
+        assert exhausted() and stop_reason() == "time_limit"
+        with pytest.raises(BudgetExhausted, match="time_limit"):
+            check()
+
+
+@pytest.mark.parametrize("case", ["2 soft", "3 friction", "jaw"])
+def test_a_solid_past_its_memory_budget_gives_an_exact_prefix_and_a_sound_bound(
+        case, monkeypatch):
+    """Solids plan under ``max_memory`` (``fcgrasp.plan``): the address space read at
+    each check grows by one byte a check here (a seeded stand-in for a search that
+    allocates), so a budget of ``k`` bytes ends the search at its ``k``-th check, for
+    every ``k`` up to the complete search.  Each answer stopped there says
+    ``max_memory`` in its gap; exact, it is the complete answer's first plans with a
+    bound no later plan's radius passes; cut short inside a search, its plans hold
+    (a positive certified radius) and no bound is claimed."""
+    from fcgrasp.core import budget
+    from fcgrasp.spatial.solid import demo_solid
+
+    from .test_spatial_jaw import _plate_with_holes
+
+    if case == "jaw":
+        solid = _plate_with_holes(10)[0]
+        kw = dict(gripper=fc.ParallelJaw(stroke=(1.0, 80.0), pad_width=3.0, mu=0.5))
+    else:
+        solid = demo_solid("box" if case == "2 soft" else "prism")
+        kw = dict(fingers=int(case[0]), mu=0.5)
+    full = fc.plan(solid, top=4, time_limit=None, **kw)
+    assert full.complete and len(full) >= 2
+    reads = iter(range(10 ** 9))
+    monkeypatch.setattr(budget, "address_held", lambda: next(reads))
+    partials = 0
+    for k in range(400):
+        part = fc.plan(solid, top=4, time_limit=None, max_memory=k + 1, **kw)
+        if part.complete:
+            assert [p.facets for p in part] == [p.facets for p in full]
+            break
+        partials += 1
+        assert part.stopped == "max_memory" and part.gap()["stopped_by"] == "max_memory"
+        if part.exact:
+            assert [p.facets for p in part] == [p.facets for p in full[:len(part)]]
+            rest = [q.radius for q in full[len(part):]]
+            if part.bound is not None and rest:
+                assert max(rest) <= part.bound * (1 + 1e-12)
+        else:
+            assert part.bound is None and all(p.radius > 0 for p in part)
+    else:
+        raise AssertionError("not complete after 400 checks")
+    assert partials >= 1

@@ -76,9 +76,9 @@ def test_a_solid_request_takes_the_options_its_gripper_takes_there(kind):
 
     cls = gripper_type(kind.get("gripper", "fingers"), kind)
     takes = set(cls.solid_options)
-    assert {"mu", "top", "margin", "distinct"} <= takes
+    assert {"mu", "top", "margin", "distinct", "time_limit", "max_memory"} <= takes
     PlanRequest(part="demo:box", **kind)
-    others = {"max_memory": 10 ** 9, "rank_by": "epsilon", "single_edge": True,
+    others = {"rank_by": "epsilon", "single_edge": True,
               "certify": True, "thickness": 3.0, "mass": 1.0, "bound": True,
               "in_plane": True, "finger_radius": 1.0}
     refused = 0
@@ -92,8 +92,8 @@ def test_a_solid_request_takes_the_options_its_gripper_takes_there(kind):
     assert refused >= 7
     choices = solid_choices()
     assert set(choices) == {"2", "3", "jaw"}
-    assert all(set(v) <= {"mu", "margin", "top", "distinct", "time_limit", "stroke", "pad",
-                          "hand", "table", "rest", "rest_orientation"}
+    assert all(set(v) <= {"mu", "margin", "top", "distinct", "time_limit", "max_memory",
+                          "stroke", "pad", "hand", "table", "rest", "rest_orientation"}
                for v in choices.values())
 
 

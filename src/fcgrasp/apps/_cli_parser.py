@@ -216,8 +216,10 @@ def build_parser(commands: Mapping[str, Callable[[Any], int]]) -> argparse.Argum
                             "(regions along the boundary), so the plans' gap is known "
                             "(seconds, up to a minute on a large part)")
         p.add_argument("--max-memory", default=None, metavar="SIZE",
-                       help="memory budget of the search, such as 500M or 4G (default 2G); a "
-                            "search that cannot fit stops at once and says what would")
+                       help="memory budget of the search, such as 500M or 4G (default 2G; "
+                            "on a solid none); a search that cannot fit stops at once and "
+                            "says what would, one past it on a solid stops as at its time "
+                            "limit")
         p.add_argument("--time-limit", default=None, metavar="SECONDS",
                        help="wall-clock seconds the search may spend looking for distinct "
                             "alternatives (default 10; 0: no limit); stopped early it "

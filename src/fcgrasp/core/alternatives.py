@@ -27,7 +27,7 @@ from collections.abc import Callable, Iterable, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
-from .budget import BudgetExhausted, exhausted
+from .budget import BudgetExhausted, exhausted, stop_reason
 
 __all__ = ["keep_distinct", "Rounds", "distinct_rounds"]
 
@@ -105,10 +105,11 @@ def distinct_rounds(search: Callable[[int | None], Sequence[P]],
     """The first ``top`` plans that ``suppress`` keeps along the ranked list of
     ``search(n)`` (the best ``n`` plans; None: every plan), the list read last and why
     the rounds stopped short: None (complete: ``top`` kept, or the search has no
-    more), ``"depth"`` (:attr:`Rounds.depth` times ``top`` read), ``"time_limit"``
-    (the budget of :func:`fcgrasp.core.budget.deadline` ended between two requests, or
-    a request after the first ran out of it) or ``"search"`` (the list read last is an
-    incomplete :class:`~fcgrasp.core.budget.PlanList`: the search stopped itself).
+    more), ``"depth"`` (:attr:`Rounds.depth` times ``top`` read), ``"time_limit"`` or
+    ``"max_memory"`` (a budget of :func:`fcgrasp.core.budget.deadline` ended between
+    two requests, or a request after the first ran out of it) or ``"search"`` (the
+    list read last is an incomplete :class:`~fcgrasp.core.budget.PlanList`: the search
+    stopped itself).
     Whatever the reason, the plans kept are the complete answer's first.
 
     >>> ranked = [10, 9, 9, 8, 5, 4, 4, 1]
@@ -132,11 +133,11 @@ def distinct_rounds(search: Callable[[int | None], Sequence[P]],
         if rounds.depth is not None and ask >= rounds.depth * top:
             return kept, plans, "depth"
         if exhausted():
-            return kept, plans, "time_limit"
+            return kept, plans, stop_reason()
         ask = rounds.after(ask, len(kept), top)
         try:
             more = search(ask)
-        except BudgetExhausted:
-            return kept, plans, "time_limit"
+        except BudgetExhausted as exc:
+            return kept, plans, str(exc) or "time_limit"
         plans, kept = more, suppress(more)
     return kept[:top], plans, None

@@ -1,5 +1,5 @@
-"""Time budgets of a search: a deadline the search reads where it can stop with an
-honest partial answer.
+"""Time and memory budgets of a search: a deadline the search reads where it can stop
+with an honest partial answer.
 
 A planner that runs under :func:`deadline` checks it (:func:`check`) between units of
 work whose results it can keep: a round of the distinct search, a chunk of
@@ -7,6 +7,14 @@ configurations.  When the deadline has passed, :class:`BudgetExhausted` unwinds 
 level that knows what its finished rounds prove, which returns them with a bound on
 what a complete search could still find (:class:`fcgrasp.model.plans.PlanList`), as a
 MIP solver returns its incumbent with its gap.
+
+A deadline may carry a memory budget too (``max_memory``: bytes of address space the
+process may take on past what it held when the deadline began): each check reads the
+process's address space (:func:`address_held`), and a search past its budget stops at
+that check as it would at the end of its time (:func:`stop_reason` says which ended).
+The searches of solids take their memory budget this way; the planar stretch search
+caps its collections' address space itself (``fcgrasp.model.stretches``), since one
+compiled collection can ask for gigabytes between two checks.
 
 The deadline is a context variable: a plan made in a thread (the explorer, a batch)
 has its own, and nested deadlines keep the earlier one.
@@ -34,7 +42,8 @@ from ..errors import FcgraspError
 
 __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhausted",
            "remaining", "interruptible", "poll", "cut_if_over", "cut_short", "settle",
-           "check_time_limit", "PlanList", "incomplete", "STOPPED_BY", "stopped_words"]
+           "check_time_limit", "PlanList", "incomplete", "STOPPED_BY", "stopped_words",
+           "stop_reason", "address_held"]
 
 #: The time budget of :func:`fcgrasp.plan` and ``fcgrasp plan --time-limit`` in seconds
 #: of wall-clock time, for interactive use: the search's first answer is complete
@@ -42,17 +51,33 @@ __all__ = ["DEFAULT_TIME_LIMIT", "BudgetExhausted", "deadline", "check", "exhaus
 #: distinct alternatives stop at it.
 DEFAULT_TIME_LIMIT = 10.0
 
+def address_held() -> int | None:
+    """The process's address space in bytes (Linux), None where it cannot be read."""
+    try:
+        import resource
+
+        with open("/proc/self/statm") as fh:
+            return int(fh.read().split()[0]) * resource.getpagesize()
+    except (ImportError, OSError, ValueError):
+        return None
+
+
 class _Budget:
     """One :func:`deadline`: when it ends (monotonic seconds, None: never), how many
-    more checks it allows (None: any), the deadline around it, and why a search under
+    more checks it allows (None: any), the address space it allows past ``base`` (the
+    process's when it began; None: any), the deadline around it, why a search under
     it returned less than a complete search would (:func:`cut_short`; None: none
-    did)."""
+    did) and whether its memory ran out (``spent``)."""
 
-    __slots__ = ("at", "checks", "outer", "cut")
+    __slots__ = ("at", "checks", "memory", "base", "outer", "cut", "spent")
 
-    def __init__(self, at: float | None, checks: int | None, outer: _Budget | None) -> None:
+    def __init__(self, at: float | None, checks: int | None, outer: _Budget | None,
+                 memory: int | None = None) -> None:
         self.at, self.checks, self.outer = at, checks, outer
+        self.base = None if memory is None else address_held()
+        self.memory = None if self.base is None else memory
         self.cut: str | None = None
+        self.spent = False
 
     def ended(self, count: bool) -> bool:
         """Whether this budget or one around it has ended (``count``: a check spends one
@@ -68,6 +93,10 @@ class _Budget:
                 over = over or b.checks <= 0
                 if count and b.checks > 0:
                     b.checks -= 1
+            if b.memory is not None and b.base is not None and not b.spent:
+                held = address_held()
+                b.spent = held is not None and held - b.base > b.memory
+            over = over or b.spent
             b = b.outer
         return over
 
@@ -118,15 +147,25 @@ def check_time_limit(value: object, name: str = "time_limit") -> float | None:
 
 
 @contextmanager
-def deadline(seconds: float | None, checks: int | None = None) -> Iterator[_Budget]:
+def deadline(seconds: float | None, checks: int | None = None,
+             max_memory: int | None = None) -> Iterator[_Budget]:
     """Run the block under a budget of ``seconds`` of wall-clock time from now (None: no
-    time limit of its own) and of ``checks`` budget checks (None: any; a count makes a
-    partial answer reproducible, whatever the machine's speed, as the tests need).  An
-    enclosing deadline still holds: the first to end ends both.  The budget is given
-    to the block: its ``cut`` says whether a search under it was cut short
-    (:func:`cut_short`)."""
+    time limit of its own), of ``checks`` budget checks (None: any; a count makes a
+    partial answer reproducible, whatever the machine's speed, as the tests need) and
+    of ``max_memory`` bytes of address space past the process's now (None: any; read at
+    each check, so a search may pass it by what it allocates between two checks; where
+    the address space cannot be read, no memory budget).  An enclosing deadline still
+    holds: the first to end ends both.  The budget is given to the block: its ``cut``
+    says whether a search under it was cut short (:func:`cut_short`).
+
+    >>> import numpy as np
+    >>> with deadline(None, max_memory=2 ** 20):
+    ...     block = np.ones(2 ** 23)              # 64 MB
+    ...     exhausted(), stop_reason()
+    (True, 'max_memory')
+    """
     at = None if seconds is None else time.monotonic() + seconds
-    budget = _Budget(at, checks, _CURRENT.get())
+    budget = _Budget(at, checks, _CURRENT.get(), max_memory)
     token = _CURRENT.set(budget)
     try:
         yield budget
@@ -162,7 +201,7 @@ def cut_if_over(counted: bool = True) -> bool:
     (:func:`cut_short`)."""
     over = exhausted() if counted else remaining() <= 0
     if over:
-        cut_short()
+        cut_short(stop_reason())
     return over
 
 
@@ -196,11 +235,23 @@ def exhausted() -> bool:
     return b is not None and b.ended(count=True)
 
 
+def stop_reason() -> str:
+    """Which budget a search that found its deadline ended stops at: ``"max_memory"``
+    where the current deadline or one around it has passed its memory budget, else
+    ``"time_limit"`` (its time, or its count of checks)."""
+    b = _CURRENT.get()
+    while b is not None:
+        if b.spent:
+            return "max_memory"
+        b = b.outer
+    return "time_limit"
+
+
 def check() -> None:
     """Raise :class:`BudgetExhausted` once the current budget has ended (a budget
-    check)."""
+    check), naming the budget (:func:`stop_reason`)."""
     if exhausted():
-        raise BudgetExhausted("time_limit")
+        raise BudgetExhausted(stop_reason())
 
 
 #: Seconds past its budget a first answer may take (:func:`check_clock`): a search
@@ -221,14 +272,15 @@ class PlanList(list):  # type: ignore[type-arg]
     """Plans, best first, with what the search proved about the plans it did not return.
 
     ``complete`` True: these are the exact answer (every plan asked for that exists).
-    False: the search stopped early (``stopped``: ``"time_limit"``, the budget of
-    :func:`fcgrasp.core.budget.deadline`; ``"depth"``, the most plans a distinct search
-    reads), and the plans are still an exact prefix of the complete answer, in order;
-    ``bound`` is then a length no plan the complete search would add after them
-    exceeds: every further alternative's smallest region is at most ``bound`` (None
-    where the search proved none), the gap of an anytime search as a MIP solver reports
-    its own.  ``exact`` False: a search was cut short inside (:func:`cut_short`): every
-    plan holds, but a complete search may rank others before them or find them larger.
+    False: the search stopped early (``stopped``: ``"time_limit"`` or
+    ``"max_memory"``, the budgets of :func:`fcgrasp.core.budget.deadline`; ``"depth"``,
+    the most plans a distinct search reads), and the plans are still an exact prefix
+    of the complete answer, in order; ``bound`` is then a length no plan the complete
+    search would add after them exceeds: every further alternative's smallest region
+    is at most ``bound`` (None where the search proved none), the gap of an anytime
+    search as a MIP solver reports its own.  ``exact`` False: a search was cut short
+    inside (:func:`cut_short`): every plan holds, but a complete search may rank
+    others before them or find them larger.
 
     >>> plans = PlanList([], complete=False, bound=2.5, stopped="time_limit")
     >>> plans.complete, plans.gap()["bound"]

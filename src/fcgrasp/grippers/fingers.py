@@ -84,7 +84,7 @@ class _PointFingers:
     SOLID_NONE: ClassVar[str] = "no facets hold the fingers"
     #: the plan request's options a solid's plans take (the others are refused there)
     solid_options: ClassVar[tuple[str, ...]] = ("mu", "margin", "top", "distinct",
-                                                "time_limit")
+                                                "time_limit", "max_memory")
 
     def __post_init__(self) -> None:
         spec = plan_spec(fingers=self.fingers, mu=self.mu, gravity=self.gravity,

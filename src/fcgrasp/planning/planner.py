@@ -143,7 +143,10 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
         :data:`fcgrasp.pipeline.MAX_MEMORY`, 2 GiB).  The search streams its candidates in
         batches sized to it; a search that cannot fit (every plan of a large part with
         ``top=None``) raises :class:`fcgrasp.pipeline.SearchTooLarge`, a ValueError saying
-        what would fit, before any work.
+        what would fit, before any work.  On a solid (default: none) it is the address
+        space the search may take on, read at each check of its clock
+        (:func:`fcgrasp.core.budget.deadline`): past it the search stops there as at its
+        time limit, with the plans it proved.
     gripper : ParallelJaw, optional
         Plan for a parallel-jaw gripper instead of point fingers
         (:func:`fcgrasp.grippers.jaw.jaw_plans`: boxes of jaw poses, :class:`~fcgrasp.JawPlan`);
@@ -207,13 +210,14 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
         unused = {"rank_by": (rank_by, "min_region"), "hand": (hand, None),
                   "gravity": (gravity, None), "load": (load, None),
                   "force_limit": (force_limit, None), "total_force": (total_force, None),
-                  "along_boundary": (along_boundary, True),
-                  "max_memory": (max_memory, None)}
+                  "along_boundary": (along_boundary, True)}
         for name, (value, default) in unused.items():
             if value is not default and value != default:
                 raise ValueError(f"{name}={value!r} is not used on a solid (its plans take "
-                                 f"fingers or gripper, mu, top, margin, distinct and "
-                                 f"time_limit)")
+                                 f"fingers or gripper, mu, top, margin, distinct, "
+                                 f"time_limit and max_memory)")
+        if max_memory is not None:
+            max_memory = check_int(max_memory, "max_memory", minimum=1)
         if gripper is None:
             if mu is None:
                 mu = DEFAULT_MU if fingers in (2, 3) else 0.0
@@ -222,7 +226,8 @@ def plan(polygon: Polygon, fingers: int = 2, mu: float | None = None, top: int |
             _short_form_unused(gripper, fingers=(fingers, 2), mu=(mu, None))
         from ..grippers.solids import solid_plans
 
-        with collector_paused(), deadline(limit) as spent:
+        # the solids' searches read their memory budget at each check of the clock
+        with collector_paused(), deadline(limit, max_memory=max_memory) as spent:
             return settle(solid_plans(gripper, solid, SearchOptions(top=top, margin=margin),
                                       check_scalar(default_distinct(gripper) if distinct is None
                                                    else distinct, "distinct",

@@ -116,8 +116,8 @@ def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     None for every plan): asked for four times more plans than it keeps, and four
     times more again until ``top`` are kept or the search has no more
     (:func:`fcgrasp.core.alternatives.distinct_rounds`, :data:`SOLID_ROUNDS`).  A search
-    that stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time
-    budget that ends between two rounds, ends the rounds: the plans kept are the
+    that stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time or
+    memory budget that ends between two rounds, ends the rounds: the plans kept are the
     answer's first, incomplete, with the bound of the search's (the last plan read's
     radius between rounds: every plan not read is below it)."""
     if fraction == 0:
@@ -127,7 +127,7 @@ def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
         search, lambda ps: distinct_solid_plans(list(ps), fraction), top, SOLID_ROUNDS)
     if stopped == "search":
         return _like(plans, kept)
-    if stopped == "time_limit":
+    if stopped in ("time_limit", "max_memory"):
         return incomplete(kept, stopped, float(plans[-1].radius), "region radius")
     return PlanList(kept)
 

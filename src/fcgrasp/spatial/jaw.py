@@ -35,7 +35,7 @@ from typing import Any, cast
 import numpy as np
 
 from ..core._checks import FloatArray, check_int, check_scalar
-from ..core.budget import PlanList, exhausted, incomplete
+from ..core.budget import PlanList, exhausted, incomplete, stop_reason
 from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL, ROUND_TOL, TOL
 from ._pieces import inscribed_radius_bound
 from .alternatives import SolidPlan
@@ -370,7 +370,7 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
             # every pair left is below its bound: the plans above it are the answer's
             # first, exactly
             proved = [p for p in plans if p.radius > bound]
-            return incomplete(proved if top is None else proved[:top], "time_limit", bound,
+            return incomplete(proved if top is None else proved[:top], stop_reason(), bound,
                               "region radius")
         try:
             got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)

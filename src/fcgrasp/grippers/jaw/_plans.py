@@ -180,8 +180,8 @@ class ParallelJaw(JawParameters):
     solid_title: ClassVar[str] = "a parallel jaw"
     #: the plan request's options a solid's plans take (the others are refused there)
     solid_options: ClassVar[tuple[str, ...]] = ("mu", "stroke", "pad", "margin", "top",
-                                                "distinct", "time_limit", "hand", "table",
-                                                "rest", "rest_orientation")
+                                                "distinct", "time_limit", "max_memory",
+                                                "hand", "table", "rest", "rest_orientation")
 
     def solid_plans(self, solid: Any, options: Any, fraction: float) -> PlanList:
         """The regions of closing axes on pairs of opposite parallel facets

@@ -68,7 +68,7 @@ from ._free_third import FreeThird
 from ._memo import _Memo
 from ._placement import StretchPair, _finish, _pairs
 from ._rounds import _configs_in, _search, _vertex_runs
-from ._solve import _address_held, _address_space, _jobs, _Keys, _solve_jobs
+from ._solve import _address_space, _jobs, _Keys, _solve_jobs
 from ._windows import TIE, _Bound, _Intervals, _load_for_depth, _rings, _turns
 from ._windows import stretch_kernels_for as stretch_kernels_for
 
@@ -268,7 +268,7 @@ class StretchSearch:
                 # a round of the distinct search under the memory budget (its collection
                 # of a smooth outline can ask for gigabytes at once)
                 if shared and self._held is None:
-                    self._held = _address_held()
+                    self._held = budget.address_held()
                 with _address_space(memo.max_bytes if shared else None, self._held):
                     found = _search(rings, self.beta, self.intervals, self.runs, top_v,
                                     polygon.size, excl or None, memo if shared else None,

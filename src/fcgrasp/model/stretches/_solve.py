@@ -409,17 +409,6 @@ def _solve_deferred(rings: list[_Ring], beta: float, intervals: dict[Any, _Inter
             similar.setdefault(job, (J, []))[1].append(done)
 
 
-def _address_held() -> int | None:
-    """The process's address space in bytes (Linux), None where it cannot be read."""
-    try:
-        import resource
-
-        with open("/proc/self/statm") as fh:
-            return int(fh.read().split()[0]) * resource.getpagesize()
-    except (ImportError, OSError, ValueError):
-        return None
-
-
 @contextmanager
 def _address_space(max_bytes: int | None, base: int | None = None) -> Iterator[None]:
     """The block's new memory capped at ``max_bytes`` more than the process's address
@@ -431,7 +420,7 @@ def _address_space(max_bytes: int | None, base: int | None = None) -> Iterator[N
     (:class:`~fcgrasp.core.budget.BudgetExhausted`, ``"max_memory"``), and the limit in
     force before is put back.  (While the block runs, every thread of the process is
     under the cap.)"""
-    held = _address_held() if base is None else base
+    held = budget.address_held() if base is None else base
     try:
         import resource
 
