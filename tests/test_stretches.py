@@ -443,3 +443,28 @@ def test_a_plates_top_pairs_leave_out_the_rings_shorter_than_the_floor(seed, mon
             [(p.region_edges, p.mode) for p in want]
         for a, b in zip(got, want, strict=True):
             assert a.lengths == b.lengths
+
+
+@pytest.mark.parametrize("seed", [3, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(12) if s != 3)])
+def test_the_ranked_top_grasps_are_the_head_of_every_grasp(seed):
+    """Two fingers' ranked plans (``distinct=0``) on a plate with round holes, where a
+    region as long as a short side lies anywhere along a longer one: many
+    configurations of the best reads are one grasp, and the read grows until ``top``
+    grasps are read.  For each ``top`` the plans are the first ``top`` of every grasp
+    (``top=None``, which reads every configuration), as many as there are (seed 3: the
+    first five configurations are one grasp)."""
+    import fcgrasp as fc
+
+    rng = np.random.default_rng(seed)
+    plate = _plate(rng, int(rng.integers(4, 10)))
+    mu = 0.5 if seed == 3 else float(rng.choice([0.3, 0.5, 1.0]))
+    every = fc.plan(plate, fingers=2, mu=mu, top=None, distinct=0, time_limit=None)
+
+    def key(p):
+        return p.region_edges, p.mode, tuple(np.round(p.lengths, 9))
+
+    for top in (1, 2, 5, 20):
+        got = fc.plan(plate, fingers=2, mu=mu, top=top, distinct=0, time_limit=None)
+        assert got.complete and len(got) == min(top, len(every))
+        assert [key(p) for p in got] == [key(p) for p in every[:top]], top

@@ -10,7 +10,14 @@ from typing import Any
 import numpy as np
 
 from ..core._geom import midpoints
-from ..core.budget import BudgetExhausted, PlanList, exhausted, incomplete
+from ..core.budget import (
+    BudgetExhausted,
+    PlanList,
+    cut_short,
+    exhausted,
+    incomplete,
+    interruptible,
+)
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.distinct import Suppression
 from ..model.frictionless_stretches import FrictionlessStretches, grow_stretches, load_kernels
@@ -296,6 +303,30 @@ def stretch_plans_read(polygon: Polygon, spec: PlanSpec
     return plans, below is None, 0.0 if below is None else below
 
 
+def _grasps_read(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], every: bool
+                 ) -> list[GraspPlan]:
+    """The ``spec.top`` best grasps, ``plans`` those of the best ``spec.top``
+    configurations (:func:`stretch_plans_read`; ``every``: all there are).  A grasp
+    reached by several configurations (a region as long as it is anywhere along a
+    longer edge) is one plan, so a read of ``top`` configurations can give fewer
+    grasps than there are; the read then grows by :data:`READ_GROWTH` until ``top``
+    grasps are read or every configuration is.  Every configuration not read is below
+    every grasp read (the ties of the last read all read), so the first ``top`` read
+    are the answer's.  The time budget may end a deeper read: the grasps read so far
+    are then the answer, cut short (:func:`~fcgrasp.core.budget.cut_short`)."""
+    assert spec.top is not None
+    ask = spec.top
+    while not every and len(plans) < spec.top:
+        ask *= READ_GROWTH
+        try:
+            with interruptible():
+                plans, every, _ = stretch_plans_read(polygon, replace(spec, top=ask))
+        except BudgetExhausted:
+            cut_short()
+            break
+    return plans[:spec.top]
+
+
 def unread_below(pairs: list[StretchPair], top: int | None) -> float | None:
     """A smallest region every configuration left unread by a stretch search asked
     for ``top`` with ties is below (the ``top``-th's, less the search's relative tie
@@ -469,12 +500,12 @@ def boundary_plans(polygon: Polygon, spec: PlanSpec) -> list[GraspPlan]:
         return ranked_unique(polygon, spec, search(polygon, flat))
     if spec.rank_by == "min_region":
         try:
-            plans = stretch_plans_read(polygon, spec)[0]
+            plans, every, _ = stretch_plans_read(polygon, spec)
         except BudgetExhausted as exc:
             if str(exc) != "time_limit":
                 raise
             return _on_single_edges(polygon, spec)
-        return plans if spec.top is None else plans[:spec.top]
+        return plans if spec.top is None else _grasps_read(polygon, spec, plans, every)
     keep = None if spec.top is None else max(spec.top, KEEP_STRETCHES)
     pairs = two_finger_stretches(polygon, spec.mu, spec.margin, top=keep, ties=False)
     multi = [p for p in pairs if max(len(e) for e in p.region_edges) > 1]
