@@ -456,7 +456,9 @@ def test_a_solid_past_its_memory_budget_gives_an_exact_prefix_and_a_sound_bound(
             assert [p.facets for p in part] == [p.facets for p in full]
             break
         partials += 1
-        assert part.stopped == "max_memory" and part.gap()["stopped_by"] == "max_memory"
+        gap = part.gap()
+        assert part.stopped == gap["stopped_by"] == "max_memory"
+        assert gap["measure"] == "region radius"
         if part.exact:
             assert [p.facets for p in part] == [p.facets for p in full[:len(part)]]
             rest = [q.radius for q in full[len(part):]]

@@ -111,6 +111,10 @@ def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
     return [replace(g[0], similar=tuple(tuple(p.facets) for p in g[1:])) for g in groups]
 
 
+#: What a solid's plans are ranked by, as an incomplete answer's gap names it.
+MEASURE = "region radius"
+
+
 def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
     None for every plan): asked for four times more plans than it keeps, and four
@@ -128,8 +132,8 @@ def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     if stopped == "search":
         return _like(plans, kept)
     if stopped in ("time_limit", "max_memory"):
-        return incomplete(kept, stopped, float(plans[-1].radius), "region radius")
-    return PlanList(kept)
+        return incomplete(kept, stopped, float(plans[-1].radius), MEASURE)
+    return PlanList(kept, measure=MEASURE)
 
 
 #: How a solid's distinct search asks for longer lists: four times ``top`` plans, then
@@ -142,4 +146,4 @@ def _like(plans: Any, kept: list[Any]) -> PlanList:
     """``kept`` with the completeness and bound of the search's ``plans``."""
     if isinstance(plans, PlanList):
         return plans.same_answer(kept)
-    return PlanList(kept)
+    return PlanList(kept, measure=MEASURE)

@@ -38,7 +38,7 @@ from ..core._checks import FloatArray, check_int, check_scalar
 from ..core.budget import PlanList, exhausted, incomplete, stop_reason
 from ..core.tolerances import INRADIUS_STEP, PARALLEL_FACETS, PLANAR_TOL, ROUND_TOL, TOL
 from ._pieces import inscribed_radius_bound
-from .alternatives import SolidPlan
+from .alternatives import MEASURE, SolidPlan
 from .regions import DEFAULT_MARGIN_DEG, checked_cone
 from .solid import Facet, Solid
 
@@ -356,7 +356,7 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         top = check_int(top, "top", minimum=1)
     pairs = _facing(solid, _opposite_pairs(solid, PARALLEL_FACETS), stroke_v)
     if not pairs or alpha <= 0:
-        return PlanList()
+        return PlanList(measure=MEASURE)
     used = sorted({k for p in pairs for k in p})
     geoms = np.array([solid.facets[k].polygon for k in used], dtype=object)
     inradius = dict(zip(used, inscribed_radius_bound(geoms).tolist(), strict=True))
@@ -371,7 +371,7 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
             # first, exactly
             proved = [p for p in plans if p.radius > bound]
             return incomplete(proved if top is None else proved[:top], stop_reason(), bound,
-                              "region radius")
+                              MEASURE)
         try:
             got = _region(solid, i, j, stroke_v, pad_v, mu_v, margin_v, alpha)
         except shapely.errors.GEOSException:
@@ -381,4 +381,4 @@ def solid_jaw_plans(solid: Solid, stroke: Any, pad: Any, mu: Any, top: int | Non
         if got is not None:
             plans.append(got)
             plans.sort(key=lambda p: (-p.radius, p.facets))
-    return PlanList(plans if top is None else plans[:top])
+    return PlanList(plans if top is None else plans[:top], measure=MEASURE)
