@@ -148,13 +148,15 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
 
     why = f"at {stopped_words(gap['stopped_by'])}"
     top = report.get("parameters", {}).get("top")
-    if not gap.get("exact", True):
-        return (f"search stopped {why}: {gap['found']} of {top} plans, each proved to hold; "
-                f"a complete search may rank others first")
-    rest = "no bound on the rest was proved" if gap["bound"] is None else \
-        f"every further distinct alternative has a " \
+    at_most = None if gap["bound"] is None else \
         f"{gap.get('measure', 'smallest region')} of at most " \
         f"{gap['bound']:.4g} {report.get('units', '')}".rstrip()
+    if not gap.get("exact", True):
+        others = "" if at_most is None else f", each with a {at_most}"
+        return (f"search stopped {why}: {gap['found']} of {top} plans, each proved to hold; "
+                f"a complete search may rank others first{others}")
+    rest = "no bound on the rest was proved" if at_most is None else \
+        f"every further distinct alternative has a {at_most}"
     return f"search stopped {why}: {gap['found']} of {top} plans proved, exact; {rest}"
 
 

@@ -279,8 +279,10 @@ class PlanList(list):  # type: ignore[type-arg]
     search would add after them exceeds: every further alternative's smallest region
     is at most ``bound`` (None where the search proved none), the gap of an anytime
     search as a MIP solver reports its own.  ``exact`` False: a search was cut short
-    inside (:func:`cut_short`): every plan holds, but a complete search may rank
-    others before them or find them larger.
+    inside (:func:`cut_short`), or gave plans read below its last level: every plan
+    holds, but a complete search may rank others before them or find them larger
+    (``bound``, where given, then bounds every plan of the complete answer that is not
+    among them).
 
     >>> plans = PlanList([], complete=False, bound=2.5, stopped="time_limit")
     >>> plans.complete, plans.gap()["bound"]
@@ -319,10 +321,11 @@ class PlanList(list):  # type: ignore[type-arg]
 def incomplete(plans: Any, stopped: str, bound: float | None,
                measure: str = "smallest region", exact: bool = True) -> PlanList:
     """The plans of a search that stopped early (``stopped``), every further plan's
-    ``measure`` at most ``bound`` (``exact`` False: not an exact prefix, the bound
-    None)."""
-    return PlanList(plans, complete=False, bound=bound if exact else None, stopped=stopped,
-                    measure=measure, exact=exact)
+    ``measure`` at most ``bound`` (``exact`` False: not an exact prefix; ``bound``
+    then bounds every plan of the complete answer that is not among them, None where
+    the search proved none)."""
+    return PlanList(plans, complete=False, bound=bound, stopped=stopped, measure=measure,
+                    exact=exact)
 
 
 def settle(plans: Any, budget: _Budget) -> Any:

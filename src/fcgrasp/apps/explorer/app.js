@@ -773,13 +773,15 @@ function incompleteText(report) {
   const why = {time_limit: "at its time limit (--time-limit)",
                max_memory: "at its memory budget (--max-memory)",
                depth: "at the most plans a distinct search reads"}[g.stopped_by] || "early";
+  const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
+  const atMost = g.bound === null ? null
+    : `${g.measure || "smallest region"} of at most ${g4(g.bound)} ${report.units}`;
   if (g.exact === false)
     return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans, each proved ` +
-      `to hold; a complete search may rank others first`;
-  const g4 = (v) => String(Number(Number(v).toPrecision(4)));   // Python's :.4g
-  const rest = g.bound === null ? "no bound on the rest was proved"
-    : `every further distinct alternative has a ${g.measure || "smallest region"} of at most ${g4(g.bound)} ` +
-      `${report.units}`;
+      `to hold; a complete search may rank others first` +
+      (atMost === null ? "" : `, each with a ${atMost}`);
+  const rest = atMost === null ? "no bound on the rest was proved"
+    : `every further distinct alternative has a ${atMost}`;
   return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans proved, ` +
     `exact; ${rest}`;
 }

@@ -485,14 +485,16 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
     kept = suppression.plans()[:top]
     if stopped is None:
         return PlanList(kept)
+    bound = float(level) if np.isfinite(level) else None
     if len(kept) < top:
         # the plans read below the level, in their order: each holds, but a plan not
-        # read may rank before them (not an exact prefix)
+        # read may rank before them (not an exact prefix); the plans above the level
+        # are all read, so the complete answer's plans not among these are below it
         feed(-np.inf)
         more = suppression.plans()[:top]
         if len(more) > len(kept):
-            return incomplete(more, stopped, None, exact=False)
-    return incomplete(kept, stopped, float(level) if np.isfinite(level) else None)
+            return incomplete(more, stopped, bound, exact=False)
+    return incomplete(kept, stopped, bound)
 
 
 def _ranked(polygon: Polygon, spec: PlanSpec, plans: list[GraspPlan], keep: int | None
