@@ -349,3 +349,29 @@ def test_the_parts_command_lists_a_drawings_parts_and_notes(tmp_path, capsys):
     assert rows[0].startswith("*") and rows[1].startswith(" ")
     assert "40 x 20" in rows[0] and "10 x 10" in rows[1]
     assert [t[len("note: "):] for t in text if t.startswith("note: ")] == report["notes"]
+
+
+def test_fewer_plans_than_asked_say_why(tmp_path, capsys):
+    """A complete search that gives fewer plans than ``--top`` says why on one more
+    line: distinct alternatives, every other plan a copy of one given (each given plan
+    lists its copies in ``similar``, and ``--distinct 0`` gives more); without them,
+    no other plan holds (every plan of the rectangle's two fingers: the two pairs of
+    facing sides).  A search that gives ``top`` plans prints no such line."""
+    out = tmp_path / "plan.json"
+    assert main(["plan", "demo:rectangle", "--fingers", "3", "--mu", "0.5", "--json",
+                 str(out)]) == 0
+    report = json.loads(out.read_text())
+    text = capsys.readouterr()
+    found = len(report["grasps"])
+    assert report["complete"] and 0 < found < 10
+    assert f"{found} of 10 plans: every other plan that holds is the same alternative" \
+        in text.out
+    assert any(g.get("similar") for g in report["grasps"])
+    assert len(plan(read_part("demo:rectangle"), fingers=3, mu=0.5, distinct=0)) > found
+    assert main(["plan", "demo:rectangle", "--mu", "0.5", "--distinct", "0"]) == 0
+    every = plan(read_part("demo:rectangle"), mu=0.5, top=None, distinct=0)
+    assert f"{len(every)} of 10 plans: the search found no other plan that holds" \
+        in capsys.readouterr().out
+    assert main(["plan", "demo:rectangle", "--fingers", "3", "--mu", "0.5", "--top",
+                 "3"]) == 0
+    assert "plans: " not in capsys.readouterr().out

@@ -111,9 +111,9 @@ def cmd_plan(args: Any) -> int:
             for line in plan_table(doc.report):
                 print(line)
             _print_load_and_placement(doc.report, sys.stdout)
-    note = incomplete_note(doc.report)
-    if note is not None and not args.quiet:
-        print(note, file=sys.stderr if _json_out(args) else sys.stdout)
+    for note in (incomplete_note(doc.report), fewer_note(doc.report)):
+        if note is not None and not args.quiet:
+            print(note, file=sys.stderr if _json_out(args) else sys.stdout)
     return 0
 
 
@@ -158,6 +158,29 @@ def incomplete_note(report: dict[str, Any]) -> str | None:
     rest = "no bound on the rest was proved" if at_most is None else \
         f"every further distinct alternative has a {at_most}"
     return f"search stopped {why}: {gap['found']} of {top} plans proved, exact; {rest}"
+
+
+def fewer_note(report: dict[str, Any]) -> str | None:
+    """The line that says why a complete search gave fewer plans than ``top``, or None:
+    with distinct alternatives, every other plan it found is a copy of one given; else
+    there are no more.
+
+    >>> print(fewer_note({"complete": True, "grasps": [{}] * 3,
+    ...                   "parameters": {"top": 10, "distinct": 0.5}}))
+    ... # doctest: +NORMALIZE_WHITESPACE
+    3 of 10 plans: every other plan that holds is the same alternative as one of these
+    (--distinct 0.5; the JSON's "similar" lists them, --distinct 0 every plan)
+    """
+    top = report.get("parameters", {}).get("top")
+    found = len(report.get("grasps", ()))
+    if not report.get("complete", True) or top is None or not 0 < found < top:
+        return None
+    distinct = report["parameters"].get("distinct")
+    if distinct:
+        return (f"{found} of {top} plans: every other plan that holds is the same "
+                f"alternative as one of these (--distinct {distinct:g}; the JSON's "
+                f"\"similar\" lists them, --distinct 0 every plan)")
+    return f"{found} of {top} plans: the search found no other plan that holds"
 
 
 def _print_load_and_placement(report: dict[str, Any], out: Any) -> None:

@@ -745,7 +745,7 @@ function accept(ans) {
     list.appendChild(li);
   });
   $("optimum").textContent = optimumText(ans.report);
-  $("incomplete").textContent = incompleteText(ans.report);
+  $("incomplete").textContent = incompleteText(ans.report) || fewerText(ans.report);
   if (S.solid && !S.solid.aimed && S.plans.length) {
     S.solid.aimed = true;                  // the first plans of a solid: face the best
     Solid3D.aim(S.plans[0]);
@@ -784,6 +784,18 @@ function incompleteText(report) {
     : `every further distinct alternative has a ${atMost}`;
   return `search stopped ${why}: ${g.found} of ${report.parameters.top} plans proved, ` +
     `exact; ${rest}`;
+}
+
+// a complete search with fewer plans than asked: why, as fcgrasp plan prints it
+function fewerText(report) {
+  const top = (report.parameters || {}).top, found = (report.grasps || []).length;
+  if (report.complete === false || top == null || !(found > 0 && found < top)) return "";
+  const d = report.parameters.distinct;
+  if (d)
+    return `${found} of ${top} plans: every other plan that holds is the same alternative ` +
+      `as one of these (--distinct ${d}; the JSON's "similar" lists them, --distinct 0 ` +
+      `every plan)`;
+  return `${found} of ${top} plans: the search found no other plan that holds`;
 }
 
 function select(k) {
