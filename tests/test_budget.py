@@ -178,9 +178,10 @@ def test_three_fingers_that_read_below_their_level_bound_the_plans_left_out():
     """Three fingers stopped with fewer than ``top`` plans above the level the search
     reached give those read below it as well (not an exact prefix), and the level as
     a bound on every plan of the complete answer they leave out: on a seeded outline
-    (52 edges, mu 0.8) stopped after each count of checks up to the complete search,
-    every such bound is above the complete answer's plans left out, and the CLI's
-    line says it."""
+    (52 edges, mu 0.8) stopped after every third count of checks up to the complete
+    search (every count under ``-m slow``, seed 1 of
+    test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound), every such
+    bound is above the complete answer's plans left out, and the CLI's line says it."""
     rng = np.random.default_rng(101)
     poly = _wavy(rng, int(rng.integers(40, 80)))
     mu = float(rng.choice([0.5, 0.8]))
@@ -190,7 +191,7 @@ def test_three_fingers_that_read_below_their_level_bound_the_plans_left_out():
 
     full = plan_it()
     below = 0
-    for checks in range(400):
+    for checks in range(0, 400, 3):
         with deadline(None, checks=checks):
             part = plan_it()
         _check_partial(full, part)
@@ -469,7 +470,7 @@ def test_a_solid_past_its_memory_budget_gives_an_exact_prefix_and_a_sound_bound(
     """Solids plan under ``max_memory`` (``fcgrasp.plan``): the address space read at
     each check grows by one byte a check here (a seeded stand-in for a search that
     allocates), so a budget of ``k`` bytes ends the search at its ``k``-th check, for
-    every ``k`` up to the complete search.  Each answer stopped there says
+    every other ``k`` up to the complete search.  Each answer stopped there says
     ``max_memory`` in its gap; exact, it is the complete answer's first plans with a
     bound no later plan's radius passes; cut short inside a search, its plans hold
     (a positive certified radius) and no bound is claimed."""
@@ -489,7 +490,7 @@ def test_a_solid_past_its_memory_budget_gives_an_exact_prefix_and_a_sound_bound(
     reads = iter(range(10 ** 9))
     monkeypatch.setattr(budget, "address_held", lambda: next(reads))
     partials = 0
-    for k in range(400):
+    for k in range(0, 400, 2):
         part = fc.plan(solid, top=4, time_limit=None, max_memory=k + 1, **kw)
         if part.complete:
             assert [p.facets for p in part] == [p.facets for p in full]
