@@ -328,22 +328,41 @@ def recorded_run(part: Any, plan: Any, direction: dict[str, Any], *,
     return res, (lambda path: animate(part, res, path, units=units))
 
 
-def _finished(fig: Any, bx: Any, h: FloatArray, result: StressResult, units: str
-              ) -> np.ndarray:
-    """A frame of an animation: the load against the displacement so far (``h``) on
-    ``bx`` beside the certified payload, the figure drawn into an image and closed."""
-    import matplotlib.pyplot as plt
-
+def _load_panel(bx: Any, h: FloatArray, result: StressResult, units: str) -> None:
+    """The load against the displacement so far (``h``) on ``bx``, beside the certified
+    payload."""
     bx.plot(h[:, 1], h[:, 2], color="tab:blue")
     bx.axvline(result.certified_payload, color="tab:green", ls="--", label="certified payload")
     bx.set_xlabel("load (N)")
     bx.set_ylabel(f"displacement ({units})")
     bx.legend(loc="upper left")
+
+
+def _frames(frame: Callable[[int], tuple[Any, Any]], h: FloatArray, result: StressResult,
+            units: str, frames: int) -> list[np.ndarray]:
+    """The images of an animation: ``frames`` steps of the history ``h``, each drawn by
+    ``frame(k)`` (a figure and the axes for its load panel, :func:`_load_panel`).  Every
+    frame takes the layout of the last (its labels the widest, as its ranges are), made
+    once: the frames do not jump, and the layout is not fitted 24 times."""
+    import matplotlib.pyplot as plt
+
+    steps = np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int))
+    fig, bx = frame(int(steps[-1]))
+    _load_panel(bx, h[:steps[-1] + 1], result, units)
     fig.tight_layout()
-    fig.canvas.draw()
-    image = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+    p = fig.subplotpars
+    layout = dict(left=p.left, right=p.right, bottom=p.bottom, top=p.top, wspace=p.wspace,
+                  hspace=p.hspace)
     plt.close(fig)
-    return image
+    images = []
+    for k in steps:
+        fig, bx = frame(int(k))
+        _load_panel(bx, h[:k + 1], result, units)
+        fig.subplots_adjust(**layout)
+        fig.canvas.draw()
+        images.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
+        plt.close(fig)
+    return images
 
 
 def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm",
@@ -371,8 +390,8 @@ def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm"
     centre = np.asarray(mesh.center_mass, float)
     size = float(np.linalg.norm(mesh.extents))
     lo, hi = mesh.bounds[0] - 0.3 * size, mesh.bounds[1] + 0.3 * size
-    images = []
-    for k in np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int)):
+
+    def frame(k: int) -> tuple[Any, Any]:
         load, shift, quat = h[k, 1], h[k, 4:7], h[k, 7:11]
         # the motion magnified: ten times the shift and the rotation's angle
         rot = Rotation.from_quat([*quat[1:], quat[0]]).as_rotvec() * 10
@@ -393,7 +412,9 @@ def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm"
         ax.set_box_aspect(tuple(hi - lo))
         ax.set_title(f"load {load:.2f} N (motion x10)", fontsize=9)
         ax.tick_params(labelsize=6)
-        images.append(_finished(fig, fig.add_subplot(1, 2, 2), h[:k + 1], result, units))
+        return fig, fig.add_subplot(1, 2, 2)
+
+    images = _frames(frame, h, result, units, frames)
     iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)
 
 
@@ -413,9 +434,9 @@ def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
         raise ArgumentError("result has no history: run stress_test(..., record=True)",
                             "result")
     check_int(frames, "frames", minimum=1)
-    images = []
     v = np.vstack([polygon.vertices, polygon.vertices[:1]])
-    for k in np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int)):
+
+    def frame(k: int) -> tuple[Any, Any]:
         t, load, moved, turned, dx, dy = h[k]
         fig, (ax, bx) = plt.subplots(1, 2, figsize=(8, 3.6), dpi=80)
         ax.plot(v[:, 0], v[:, 1], color="0.6", lw=1)
@@ -431,5 +452,7 @@ def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
                      head_width=0.02 * polygon.size, color="tab:red")
         ax.set_aspect("equal")
         ax.set_title(f"load {load:.2f} N (motion x10)")
-        images.append(_finished(fig, bx, h[:k + 1], result, units))
+        return fig, bx
+
+    images = _frames(frame, h, result, units, frames)
     iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)
