@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+import ast
+from functools import cache
+from pathlib import Path
+
 import numpy as np
 import pytest
 from scipy.optimize import linprog
@@ -14,6 +18,13 @@ FIRST = ("tests/test_typing.py::test_mypy_clean",
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     items.sort(key=lambda item: item.nodeid not in FIRST)       # stable: the rest in order
+
+
+@cache
+def source_tree(path: Path) -> ast.Module:
+    """A source file's syntax tree, parsed once per test process (the layout, tolerance
+    and typing checks each read every module of the package; none changes a tree)."""
+    return ast.parse(Path(path).read_text())
 
 
 @pytest.fixture

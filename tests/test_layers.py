@@ -12,6 +12,8 @@ from pathlib import Path
 
 import pytest
 
+from .conftest import source_tree
+
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
 LAYERS = ["errors", "core", "spatial", "model", "mechanics", "io", "pipeline", "grippers",
@@ -37,7 +39,7 @@ def _imports(path: Path, annotations: bool = False):
     """Every fcgrasp module a file imports, anywhere in it (functions included), with the
     names taken from it: ``(module, names)``; ``annotations``: those for type checkers
     too."""
-    tree = ast.parse(path.read_text())
+    tree = source_tree(path) if path.is_relative_to(SRC) else ast.parse(path.read_text())
     pkg = _package(path).split(".")
     # imports for type checkers only never run: not an edge of the layers' graph
     typing_only = set() if annotations else {
@@ -184,7 +186,7 @@ def _parameters(paths):
 
     total = any_ = 0
     for p in paths:
-        for node in ast.walk(ast.parse(p.read_text())):
+        for node in ast.walk(source_tree(p)):
             if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue
             a = node.args
