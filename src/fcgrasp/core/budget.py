@@ -201,16 +201,18 @@ def cut_if_over(counted: bool = True) -> bool:
     (:func:`cut_short`)."""
     over = exhausted() if counted else remaining() <= 0
     if over:
-        cut_short(stop_reason())
+        cut_short()
     return over
 
 
-def cut_short(reason: str = "time_limit") -> None:
+def cut_short(reason: str | None = None) -> None:
     """Record that a search stopped at its budget and returned what it had: plans that
     hold, each proved, but fewer, or found by less of the search, than a complete
     search would give (a heuristic's growth stopped, the jaw's boxes sought no
-    further).  Recorded on the current deadline and those around it; the planner
-    then says the answer is incomplete (:func:`fcgrasp.plan`)."""
+    further).  ``reason``: the budget that ended (default :func:`stop_reason`'s).
+    Recorded on the current deadline and those around it; the planner then says the
+    answer is incomplete (:func:`fcgrasp.plan`)."""
+    reason = stop_reason() if reason is None else reason
     b = _CURRENT.get()
     while b is not None:
         if b.cut is None:

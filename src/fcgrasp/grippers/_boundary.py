@@ -17,6 +17,7 @@ from ..core.budget import (
     exhausted,
     incomplete,
     interruptible,
+    stop_reason,
 )
 from ..core.tolerances import LEXIMIN_STEP, RANK_TOL
 from ..model.distinct import Suppression
@@ -444,7 +445,7 @@ def distinct_boundary_plans(polygon: Polygon, spec: PlanSpec, fraction: float,
             stopped = "depth"
             break
         if exhausted():
-            stopped = "time_limit"
+            stopped = stop_reason()
             break
         # the plans read are left out by name, so each round reads further down; a
         # round whose plans were all copies the exclusion could not leave out (a region

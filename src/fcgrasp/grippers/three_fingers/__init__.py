@@ -64,7 +64,7 @@ from typing import Any
 import numpy as np
 
 from ...core._checks import FloatArray
-from ...core.budget import BudgetExhausted, PlanList, exhausted, incomplete
+from ...core.budget import BudgetExhausted, PlanList, exhausted, incomplete, stop_reason
 from ...core.tolerances import RANK_TOL
 from ...model.distinct import Suppression
 from ...model.plans import GraspPlan, leximin_key
@@ -478,7 +478,7 @@ def distinct_three_finger_plans(polygon: Polygon, spec: PlanSpec, fraction: floa
         if line == -np.inf or len(suppression.kept) >= top:
             break
         if exhausted():
-            stopped = "time_limit"
+            stopped = stop_reason()
             break
         if len(suppression.kept) == had:
             ask *= READ_GROWTH              # copies the search cannot leave out
