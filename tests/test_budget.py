@@ -57,8 +57,7 @@ def _check_partial(full, part):
         assert part.gap()["exact"] is False
         assert len(part) <= len(full)
         if part.bound is not None:
-            given = [p for p in part]
-            left = [q.min_length for q in full if not any(_same(q, p) for p in given)]
+            left = [q.min_length for q in full if not any(_same(q, p) for p in part)]
             assert not left or max(left) <= part.bound * (1 + 1e-9), (left, part.bound)
         return
     assert len(part) <= len(full)
@@ -68,15 +67,17 @@ def _check_partial(full, part):
         assert max(rest) <= part.bound * (1 + 1e-9)
 
 
-def _every_stop(plan_it, full, most=400, every=1):
+def _every_stop(plan_it, full, most=400, every=1, each=None):
     """Plan under budgets of 0, 1, 2 ... checks until one completes (past the first
     four, every ``every``-th: the default suite's sample); each answer checked against
-    ``full``.  The number of distinct partial answers seen."""
+    ``full`` (and given to ``each``).  The number of distinct partial answers seen."""
     seen = set()
     for checks in [*range(min(4, most)), *range(4, most, every)]:
         with deadline(None, checks=checks):
             part = plan_it()
         _check_partial(full, part)
+        if each is not None:
+            each(part)
         seen.add((len(part), part.complete))
         if part.complete:
             return seen
@@ -178,10 +179,12 @@ def test_three_fingers_that_read_below_their_level_bound_the_plans_left_out():
     """Three fingers stopped with fewer than ``top`` plans above the level the search
     reached give those read below it as well (not an exact prefix), and the level as
     a bound on every plan of the complete answer they leave out: on a seeded outline
-    (52 edges, mu 0.8) stopped after every third count of checks up to the complete
-    search (every count under ``-m slow``, seed 1 of
+    (52 edges, mu 0.8) stopped after the first four counts of checks and every third
+    after them up to the complete search (every count under ``-m slow``, seed 1 of
     test_three_fingers_stopped_early_give_an_exact_prefix_and_a_sound_bound), every such
     bound is above the complete answer's plans left out, and the CLI's line says it."""
+    from fcgrasp.apps.cli import incomplete_note
+
     rng = np.random.default_rng(101)
     poly = _wavy(rng, int(rng.integers(40, 80)))
     mu = float(rng.choice([0.5, 0.8]))
@@ -189,22 +192,17 @@ def test_three_fingers_that_read_below_their_level_bound_the_plans_left_out():
     def plan_it():
         return fc.plan(poly, fingers=3, mu=mu, top=4, time_limit=None)
 
-    full = plan_it()
-    below = 0
-    for checks in range(0, 400, 3):
-        with deadline(None, checks=checks):
-            part = plan_it()
-        _check_partial(full, part)
-        if not part.exact and part.bound is not None:
-            below += 1
-            from fcgrasp.apps.cli import incomplete_note
+    below = []
 
+    def look(part):
+        if not part.exact and part.bound is not None:
+            below.append(part.bound)
             line = incomplete_note({"complete": False, "units": "mm", "gap": part.gap(),
                                     "parameters": {"top": 4}})
             assert line is not None and f"at most {part.bound:.4g} mm" in line
-        if part.complete:
-            break
-    assert below >= 1
+
+    _every_stop(plan_it, plan_it(), every=3, each=look)
+    assert below
 
 
 @pytest.mark.parametrize(("fingers", "every"), [(3, 7), *(
