@@ -1,4 +1,4 @@
-"""Shared helpers: independent reference methods (LP with scipy's HiGHS) and seeds."""
+"""Shared helpers: independent reference methods (LP with HiGHS, tests._highs) and seeds."""
 
 from __future__ import annotations
 
@@ -8,7 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
+
+from ._highs import linprog
 
 #: The longest tests, run first: on two workers a long test left for the end runs
 #: alone while the other worker has nothing left.

@@ -11,7 +11,8 @@ from __future__ import annotations
 from itertools import product
 
 import numpy as np
-from scipy.optimize import linprog
+
+from ._highs import linprog
 
 
 def _meet(p1, f1, p2, f2):

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.core import _simplex
@@ -19,6 +18,7 @@ from fcgrasp.grippers.three_fingers import grow_concurrent
 from fcgrasp.io.parts import DEMO_PARTS, demo_part
 from fcgrasp.model.polygon import Polygon
 
+from ._highs import linprog
 from .shapes import random_polygon
 from .test_stretches import smooth_outline
 

@@ -10,13 +10,13 @@ import stat
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.apps.cli import main
 from fcgrasp.model.quality import resistance_metrics
 from fcgrasp.planning.planner import geometric_key
 
+from ._highs import linprog
 from .grippers import grip
 from .shapes import random_polygon
 

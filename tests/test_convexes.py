@@ -7,11 +7,11 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.core.convexes import halfspace_rays
 
+from ._highs import linprog
 from .conftest import lp_is_total
 
 SETTINGS = settings(max_examples=60, deadline=None, derandomize=True,

@@ -253,10 +253,10 @@ def test_programs_solved_on_generated_rows_are_solved(seed):
     them for long stretches) solved on rows added as they are violated: the optimum of
     the whole program (HiGHS on every row), a feasible point of it, and infeasible
     exactly where HiGHS says so; with repeated and nearly parallel rows."""
-    from scipy.optimize import linprog
-
     from fcgrasp.core import _simplex
     from fcgrasp.model._frictionless_program import DIRECT_ROWS, _rows_generated
+
+    from ._highs import linprog
 
     rng = np.random.default_rng(seed)
     solved = infeasible = 0

@@ -8,11 +8,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.model.loads import Load, grasp_payload, region_payload
 
+from ._highs import linprog
 from .shapes import random_polygon
 
 

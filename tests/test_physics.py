@@ -85,7 +85,7 @@ def test_the_squeeze_is_in_equilibrium_within_the_cones():
     """The squeeze's forces: positive normal forces, the largest the grip force, and
     (with tangential forces within the cones) a zero net wrench, checked by an LP of
     this test's own."""
-    from scipy.optimize import linprog
+    from ._highs import linprog
 
     rng = np.random.default_rng(11)
     poly = demo_part("blob")
@@ -115,7 +115,7 @@ def test_the_squeeze_is_in_equilibrium_within_the_cones():
 def _tangential_balance(pts, nrm, mu, pushes, wrench):
     """Whether tangential forces within the cones of the normal forces ``pushes`` make
     the contacts balance ``wrench`` (about the origin): an LP of this test's own."""
-    from scipy.optimize import linprog
+    from ._highs import linprog
 
     inward = -nrm / np.linalg.norm(nrm, axis=1)[:, None]
     tang = np.c_[-inward[:, 1], inward[:, 0]]

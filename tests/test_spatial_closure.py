@@ -10,7 +10,6 @@ import itertools
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.spatial import (
@@ -20,6 +19,8 @@ from fcgrasp.spatial import (
     spatial_quality,
     two_soft_closure,
 )
+
+from ._highs import linprog
 
 # ------------------------------------------------------------------ independent oracles
 

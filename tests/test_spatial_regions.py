@@ -208,11 +208,12 @@ def test_octagon_fits_equal_an_lp(cases):
     """The closed-form fit of a turned octagon in a triangle against scipy's LP over the
     centre and scale, on seeded triangles (thin ones too), and the batched fits of a
     mesh's triangles against the one-at-a-time closed form."""
-    from scipy.optimize import linprog
     from shapely import Polygon
 
     from fcgrasp.spatial import _pieces as P
     from fcgrasp.spatial import regions as R
+
+    from ._highs import linprog
 
     rng = np.random.default_rng(cases)
     for _ in range(cases):
@@ -370,10 +371,11 @@ def test_the_vertex_fit_equals_highs(cases):
     three-variable program equals HiGHS' optimum, on seeded convex polygons (hulls of
     random points, thin ones, near-parallel edges) and turned octagons; its centre is
     feasible."""
-    from scipy.optimize import linprog
     from shapely import MultiPoint
 
     from fcgrasp.spatial import _pieces as P
+
+    from ._highs import linprog
 
     rng = np.random.default_rng(cases)
     done = 0

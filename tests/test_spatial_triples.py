@@ -76,7 +76,7 @@ def _pyramids(points, normals, alpha):
 def _slice_support(points, normals, alpha, v):
     """The zero-force slice's support along ``v``: max v . sum(l m) over unit weights
     ``l >= 0`` of the pyramids' generators with zero net force (HiGHS)."""
-    from scipy.optimize import linprog
+    from ._highs import linprog
 
     F, M = _pyramids(points, normals, alpha)
     res = linprog(-(M @ v), A_eq=np.vstack([F.T, np.ones(len(F))]),

@@ -7,10 +7,11 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.model.stability import grasp_stability, grasp_stiffness, least_stiffness
+
+from ._highs import linprog
 
 
 def _energy(q, p, n, kn, f, kt, g, rho):

@@ -7,7 +7,6 @@ import json
 
 import numpy as np
 import pytest
-from scipy.optimize import linprog
 
 import fcgrasp as fc
 from fcgrasp.grippers.three_fingers import concurrent_regions, spanning_arcs, three_finger_plans
@@ -15,6 +14,7 @@ from fcgrasp.io.parts import DEMO_PARTS, demo_part
 from fcgrasp.model.plans import leximin_key
 from fcgrasp.pipeline import plan_spec
 
+from ._highs import linprog
 from .oracle import closure_margin_lp, grasp_wrenches
 from .shapes import random_polygon, star
 from .test_cli import run
