@@ -456,7 +456,7 @@ def _tied_part(rng):
     return fc.Polygon(np.column_stack([np.cos(a), np.sin(a)]))
 
 
-@pytest.mark.parametrize("cases", [pytest.param(60, id="seeded"),
+@pytest.mark.parametrize("cases", [pytest.param(30, id="seeded"),
                                    pytest.param(2000, id="sweep", marks=pytest.mark.slow)])
 def test_compiled_survivor_rows_give_the_numpy_stream(cases, monkeypatch):
     """Once the top is full, the rows of each position that may reach its key
