@@ -28,6 +28,13 @@ def source_tree(path: Path) -> ast.Module:
     return ast.parse(Path(path).read_text())
 
 
+@cache
+def source_nodes(path: Path) -> tuple[ast.AST, ...]:
+    """Every node of :func:`source_tree` of a file (``ast.walk``'s order), listed once
+    per test process: the checks read them several times each."""
+    return tuple(ast.walk(source_tree(path)))
+
+
 @pytest.fixture
 def rng() -> np.random.Generator:
     return np.random.default_rng(20261122)

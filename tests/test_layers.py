@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import source_tree
+from .conftest import source_nodes
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 #: bottom first; ``errors`` may be imported by every layer
@@ -39,13 +39,14 @@ def _imports(path: Path, annotations: bool = False):
     """Every fcgrasp module a file imports, anywhere in it (functions included), with the
     names taken from it: ``(module, names)``; ``annotations``: those for type checkers
     too."""
-    tree = source_tree(path) if path.is_relative_to(SRC) else ast.parse(path.read_text())
+    nodes = source_nodes(path) if path.is_relative_to(SRC) else \
+        tuple(ast.walk(ast.parse(path.read_text())))
     pkg = _package(path).split(".")
     # imports for type checkers only never run: not an edge of the layers' graph
     typing_only = set() if annotations else {
-        id(n) for node in ast.walk(tree) if isinstance(node, ast.If)
+        id(n) for node in nodes if isinstance(node, ast.If)
         and getattr(node.test, "id", "") == "TYPE_CHECKING" for n in ast.walk(node)}
-    for node in ast.walk(tree):
+    for node in nodes:
         if id(node) in typing_only:
             continue
         if isinstance(node, ast.ImportFrom):
@@ -186,7 +187,7 @@ def _parameters(paths):
 
     total = any_ = 0
     for p in paths:
-        for node in ast.walk(source_tree(p)):
+        for node in source_nodes(p):
             if not isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue
             a = node.args

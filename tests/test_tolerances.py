@@ -10,7 +10,7 @@ import numpy as np
 import fcgrasp as fc
 from fcgrasp.core import tolerances
 
-from .conftest import source_tree
+from .conftest import source_nodes
 
 
 def test_every_tolerance_is_named_and_small():
@@ -47,14 +47,15 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 def _bare_small_literals(path: Path, rel: str) -> list[str]:
     """Float literals below 1e-3 in a source file, outside the assignments of
     :data:`NOT_TOLERANCES`: each a tolerance that should be named in tolerances.py."""
-    tree = source_tree(path) if path.is_relative_to(SRC) else ast.parse(path.read_text())
+    nodes = source_nodes(path) if path.is_relative_to(SRC) else \
+        tuple(ast.walk(ast.parse(path.read_text())))
     allowed: set[int] = set()
-    for node in ast.walk(tree):
+    for node in nodes:
         targets = node.targets if isinstance(node, ast.Assign) else \
             [node.target] if isinstance(node, ast.AnnAssign) else []
         if any(isinstance(t, ast.Name) and (rel, t.id) in NOT_TOLERANCES for t in targets):
             allowed |= {id(n) for n in ast.walk(node)}
-    return [f"{rel}:{n.lineno}: {n.value!r}" for n in ast.walk(tree)
+    return [f"{rel}:{n.lineno}: {n.value!r}" for n in nodes
             if isinstance(n, ast.Constant) and isinstance(n.value, float)
             and 0 < abs(n.value) < 1e-3 and id(n) not in allowed]
 

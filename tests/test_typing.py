@@ -9,7 +9,7 @@ from pathlib import Path
 
 import pytest
 
-from .conftest import source_tree
+from .conftest import source_nodes
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -47,7 +47,7 @@ def test_few_parameters_are_any(package):
 
     total = typed_any = 0
     for path in sorted((ROOT / "src" / "fcgrasp" / package).rglob("*.py")):
-        for node in ast.walk(source_tree(path)):
+        for node in source_nodes(path):
             if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 args = node.args
                 for a in [*args.posonlyargs, *args.args, *args.kwonlyargs]:
