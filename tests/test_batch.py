@@ -226,14 +226,17 @@ def test_plan_many_from_python_local_and_on_a_client():
         assert on[k]["grasps"] == local[k]["grasps"]
 
 
-def test_bad_batch_options(tmp_path, folder):
+def test_bad_batch_options(tmp_path, folder, capsys):
+    """Refused in one line, exit 2, nothing written (the command line's own process:
+    test_cli_fuzz; these through its entry point)."""
     for bad in (["--workers", "0"], ["--part-timeout", "-1"], ["--gripper", "jaw"],
                 ["--fingers", "4", "--mu", "0.3"]):
-        r = run("batch", folder, "--out", tmp_path / "x.jsonl", *bad)
-        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
+        code = main(["batch", str(folder), "--out", str(tmp_path / "x.jsonl"), *bad])
+        err = capsys.readouterr().err
+        assert code == 2 and len(err.strip().splitlines()) == 1, (bad, err)
         assert not (tmp_path / "x.jsonl").exists()
-    r = run("batch", tmp_path / "nothing-here", "--out", tmp_path / "x.jsonl")
-    assert r.returncode == 2 and "no part files" in r.stderr
+    code = main(["batch", str(tmp_path / "nothing-here"), "--out", str(tmp_path / "x.jsonl")])
+    assert code == 2 and "no part files" in capsys.readouterr().err
     with pytest.raises(TypeError, match="parts"):
         list(fc.plan_many([3.0]))
     with pytest.raises(ValueError, match="top"):
