@@ -64,18 +64,19 @@ def address_held() -> int | None:
 
 class _Budget:
     """One :func:`deadline`: when it ends (monotonic seconds, None: never), how many
-    more checks it allows (None: any), the address space it allows past ``base`` (the
-    process's when it began; None: any), the deadline around it, why a search under
-    it returned less than a complete search would (:func:`cut_short`; None: none
-    did) and whether its memory ran out (``spent``)."""
+    more checks it allows (None: any), the address space past which it ends
+    (``limit``: the process's when it began plus its memory budget; None: any), the
+    deadline around it, why a search under it returned less than a complete search
+    would (:func:`cut_short`; None: none did) and whether its memory ran out
+    (``spent``)."""
 
-    __slots__ = ("at", "checks", "memory", "base", "outer", "cut", "spent")
+    __slots__ = ("at", "checks", "limit", "outer", "cut", "spent")
 
     def __init__(self, at: float | None, checks: int | None, outer: _Budget | None,
                  memory: int | None = None) -> None:
         self.at, self.checks, self.outer = at, checks, outer
-        self.base = None if memory is None else address_held()
-        self.memory = None if self.base is None else memory
+        base = None if memory is None else address_held()
+        self.limit = None if memory is None or base is None else base + memory
         self.cut: str | None = None
         self.spent = False
 
@@ -93,9 +94,9 @@ class _Budget:
                 over = over or b.checks <= 0
                 if count and b.checks > 0:
                     b.checks -= 1
-            if b.memory is not None and b.base is not None and not b.spent:
+            if b.limit is not None and not b.spent:
                 held = address_held()
-                b.spent = held is not None and held - b.base > b.memory
+                b.spent = held is not None and held > b.limit
             over = over or b.spent
             b = b.outer
         return over
