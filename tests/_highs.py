@@ -13,6 +13,7 @@ programs (feasible, infeasible, unbounded, degenerate).
 
 from __future__ import annotations
 
+from functools import cache
 from types import SimpleNamespace
 from typing import Any
 
@@ -23,17 +24,13 @@ try:
 except ImportError:                 # the test extra not installed: scipy's wrapper
     highspy = None
 
-_SOLVER: Any = None
-
-
+@cache
 def _solver() -> Any:
-    global _SOLVER
-    if _SOLVER is None:
-        h = highspy.Highs()
-        h.setOptionValue("output_flag", False)
-        h.setOptionValue("simplex_strategy", 1)         # dual simplex, as scipy asks
-        _SOLVER = h
-    return _SOLVER
+    """The process's one HiGHS object (its model replaced by each program)."""
+    h = highspy.Highs()
+    h.setOptionValue("output_flag", False)
+    h.setOptionValue("simplex_strategy", 1)             # dual simplex, as scipy asks
+    return h
 
 
 def _bounds(bounds: Any, n: int) -> tuple[np.ndarray, np.ndarray]:

@@ -7,6 +7,7 @@ the same check finds the collisions the pick's rules are there to avoid."""
 from __future__ import annotations
 
 import math
+from functools import cache
 
 import numpy as np
 import pytest
@@ -54,17 +55,12 @@ def _manager(part: fc.Polygon, scene: Scene) -> trimesh.collision.CollisionManag
     return m
 
 
-_BOXES: dict[tuple[float, ...], trimesh.Trimesh] = {}
-
-
-def _box(size: np.ndarray) -> trimesh.Trimesh:
+@cache
+def _box(size: tuple[float, ...]) -> trimesh.Trimesh:
     """A box mesh of ``size`` less :data:`SHRINK` on every side, centred at the origin,
     made once per size (fcl's geometry of it is then made once too, and each placement
     is a transform)."""
-    key = tuple(float(v) for v in size)
-    if key not in _BOXES:
-        _BOXES[key] = trimesh.creation.box(extents=np.asarray(size) - 2 * SHRINK)
-    return _BOXES[key]
+    return trimesh.creation.box(extents=np.asarray(size) - 2 * SHRINK)
 
 
 def _hand_meshes(hand: ParallelHand, opening: float, origin: np.ndarray,
@@ -76,7 +72,7 @@ def _hand_meshes(hand: ParallelHand, opening: float, origin: np.ndarray,
         T = np.eye(4)
         T[:3, :3] = R @ np.asarray(b.rotation)
         T[:3, 3] = origin + R @ np.asarray(b.centre)
-        out.append((_box(np.asarray(b.size)), T))
+        out.append((_box(tuple(float(v) for v in b.size)), T))
     return out
 
 
@@ -679,21 +675,20 @@ def test_point_fingers_refuse_a_hands_options_in_one_line(capsys, argv, field, h
     assert code == 2 and len(err) == 1 and field in err[0] and hint in err[0], err
 
 
-_CYLINDERS: dict[tuple[float, float], trimesh.Trimesh] = {}
+@cache
+def _cylinder(radius: float, length: float) -> trimesh.Trimesh:
+    """A vertical cylinder of 64 sides (inside the true one), centred at the origin,
+    made once per radius and length."""
+    return trimesh.creation.cylinder(radius=radius, height=length, sections=64)
 
 
 def _finger(axis_xy, radius: float, z0: float, length: float
             ) -> tuple[trimesh.Trimesh, np.ndarray]:
-    """A finger body: a vertical cylinder (64 sides, inside the true one) from ``z0``
-    up ``length``, its axis at ``axis_xy``: the cylinder (made once per radius and
-    length, centred at the origin) and its transform, as ``in_collision_single``
-    takes them."""
-    if (radius, length) not in _CYLINDERS:
-        _CYLINDERS[radius, length] = trimesh.creation.cylinder(radius=radius, height=length,
-                                                               sections=64)
+    """A finger body from ``z0`` up ``length``, its axis at ``axis_xy``: the cylinder
+    (:func:`_cylinder`) and its transform, as ``in_collision_single`` takes them."""
     T = np.eye(4)
     T[:3, 3] = (axis_xy[0], axis_xy[1], z0 + length / 2)
-    return _CYLINDERS[radius, length], T
+    return _cylinder(radius, length), T
 
 
 def _tip_placements(plan, count: int, rng) -> list[tuple[np.ndarray, np.ndarray]]:
