@@ -347,22 +347,24 @@ def _frames(frame: Callable[[int], tuple[Any, Any]], h: FloatArray, result: Stre
     import matplotlib.pyplot as plt
 
     steps = np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int))
-    fig, bx = frame(int(steps[-1]))
-    _load_panel(bx, h[:steps[-1] + 1], result, units)
-    fig.tight_layout()
-    p = fig.subplotpars
+
+    def image(k: int, layout: dict[str, float] | None) -> tuple[np.ndarray, Any]:
+        fig, bx = frame(k)
+        _load_panel(bx, h[:k + 1], result, units)
+        if layout is None:
+            fig.tight_layout()
+        else:
+            fig.subplots_adjust(**layout)
+        fig.canvas.draw()
+        out = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
+        p = fig.subplotpars
+        plt.close(fig)
+        return out, p
+
+    last, p = image(int(steps[-1]), None)
     layout = dict(left=p.left, right=p.right, bottom=p.bottom, top=p.top, wspace=p.wspace,
                   hspace=p.hspace)
-    plt.close(fig)
-    images = []
-    for k in steps:
-        fig, bx = frame(int(k))
-        _load_panel(bx, h[:k + 1], result, units)
-        fig.subplots_adjust(**layout)
-        fig.canvas.draw()
-        images.append(np.asarray(fig.canvas.buffer_rgba())[..., :3].copy())
-        plt.close(fig)
-    return images
+    return [image(int(k), layout)[0] for k in steps[:-1]] + [last]
 
 
 def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm",
