@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import ast
+import gc
 from functools import cache
 from pathlib import Path
 
@@ -19,6 +20,19 @@ FIRST = ("tests/test_typing.py::test_mypy_clean",
 
 def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
     items.sort(key=lambda item: item.nodeid not in FIRST)       # stable: the rest in order
+
+
+#: The test processes' garbage collection, once the tests are collected: what the
+#: imports and the collection made lives to the end (frozen: never traversed again),
+#: and the youngest generation is collected every 20,000 allocations instead of 700
+#: (the suite's collections took 10 s of CPU, 4 s so).
+GC_THRESHOLD = (20_000, 20, 20)
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    gc.collect()
+    gc.freeze()
+    gc.set_threshold(*GC_THRESHOLD)
 
 
 @cache
