@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from fcgrasp.core.tolerances import PLANAR_TOL
 from fcgrasp.planning.request import PlanRequest, plan_document
 
 from .oracle import closure_margin_lp
@@ -36,13 +37,17 @@ trimesh = pytest.importorskip("trimesh")
 shapely = pytest.importorskip("shapely")
 
 CORPUS = Path(__file__).resolve().parents[1] / "benchmarks" / "corpus" / "meshes"
-MESHES = sorted(p.name for p in CORPUS.iterdir() if p.suffix.lower() in (".stl", ".ply"))
+MESHES = sorted(p.name for p in CORPUS.iterdir() if p.suffix.lower() in (".stl", ".ply", ".obj"))
 MU = 0.5
 SIDES = 32                          # the friction pyramid inscribed in each cone
 #: how far a region's corners are pulled in (of the part's size), far above the ray
 #: test's ties (the distances along a ray taken as one point)
 HAIR = 1e-5
 TIE = 5e-7
+#: a region point lies on its facet's plane, and a facet's triangles lie within
+#: ``PLANAR_TOL`` of the part's size of that plane (merged so): a point is on the part
+#: when a triangle is hit that near it (the fandisk's curved faces come that close)
+ON_PART = PLANAR_TOL + TIE
 #: the cases of the default suite (the rest under -m slow)
 QUICK = {("angle_block.STL", "pair"), ("angle_block.STL", "jaw"),
          ("idler_riser.STL", "pair"), ("idler_riser.STL", "jaw")}
@@ -176,10 +181,10 @@ def _on_mesh(tri, size, points, inward):
         t, idx = _hits(tri, p - d * n, n)
         front = t > 0
         t, idx = t[front], idx[front]
-        at = idx[np.abs(t - d) <= TIE * size]
+        at = idx[np.abs(t - d) <= ON_PART * size]
         assert len(at), f"a region point {p} is not on the part (hits at {t[:3] - d})"
         # nothing of the part between the point and just outside it
-        assert not np.any(t < d - TIE * size), f"the part covers the region point {p}"
+        assert not np.any(t < d - ON_PART * size), f"the part covers the region point {p}"
         normals.append([_outward(tri[i]) for i in at])
     return normals
 
