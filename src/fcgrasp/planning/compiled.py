@@ -105,6 +105,13 @@ def _stretches(blob: Any) -> None:
     iv = _Intervals(ring, ring, 1.0, 0.2)
     one = np.ones(1, np.int64)
     _stretch_kernels.window_boxes_shared(0 * one, one, one, *iv._flat, 1.0, _EPS)
+    # the compiled references the searches are checked against, with the types of those
+    # checks' calls: each window's end boxes read cell by cell, and the vertex runs by
+    # the window scan
+    _stretch_kernels.window_boxes(0 * one, one, one, *iv._flat, 1.0, _EPS)
+    from ..model.stretches._rounds import vertex_run_args
+
+    _stretch_kernels.vertex_runs_scan(*vertex_run_args(ring, ring, 0.25))
     # three fingers' distinct rounds: a third finger's overlap of the kept plans
     # (the types of _Exclusion._third_mask_of's call)
     out = np.zeros((1, 1), bool)
@@ -177,3 +184,13 @@ def _jaw() -> None:
     boxes = np.array([[np.radians(80), np.radians(100), -30.0, 30.0]])
     _certify._box_proofs(part, _poses._grip_edges(part, None), jaw, boxes,
                          float(shrunk_half_angle(jaw.mu, 2.0)), None)
+    # one pad alone at one pose (the reference of both pads found in one pass), called
+    # from Python as its check calls it
+    from ..grippers.jaw import _kernels as _jaw_kernels
+
+    a, b, f, half, tol = _poses._pose_args(part, jaw, 2.0, None,
+                                           _poses._grip_edges(part, None))[:5]
+    k = _jaw_kernels.K_MAX
+    _jaw_kernels._run("_pad_loop", 0, 1.0, 0.0, 0.0, a, b, f, half, tol, 1.0, -1.0, -1,
+                      np.empty(1), np.zeros(1, bool), np.empty((1, k, 2)), np.empty((1, k)),
+                      np.empty((1, k), np.int64), np.empty((2, a.shape[0])), 0)

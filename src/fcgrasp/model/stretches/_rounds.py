@@ -62,24 +62,35 @@ def _configs_in(ra: _Ring, rb: _Ring, same: bool, runs: tuple[list[int], list[in
     return cfg.take(_disjoint(ra, cfg, same))
 
 
+#: The arguments of the compiled vertex runs (:func:`vertex_run_args`).
+VertexRunArgs = tuple[FloatArray, FloatArray, FloatArray, FloatArray, FloatArray, FloatArray,
+                      FloatArray, FloatArray, float, float]
+
+
+def vertex_run_args(ra: _Ring, rb: _Ring, beta: float) -> VertexRunArgs:
+    """The arguments of the compiled vertex runs of rings ``ra`` and ``rb``
+    (:func:`._kernels.vertex_runs_tree`: each ring's vertices, force generators and
+    angles, the width of a cell's window and the tree's pad)."""
+    gx = np.stack([g for f in _fan(ra) for g in _gens_x(f, beta)], axis=1)
+    gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
+    # a cell holds only if the two force directions are opposite within 2 beta (each
+    # within beta of the chord), and a vertex only if its two normals are within
+    # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
+    width = 2 * beta + ANGLE_SLACK
+    va = np.where(_turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
+    # the tree's bounds are decided with a pad far above their rounding (a few ulps
+    # of the largest coordinate)
+    pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
+    return (ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
+            rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
+            width, pad)
+
+
 def _vertex_runs(ra: _Ring, rb: _Ring, beta: float) -> dict[float, Any]:
     """The runs of True of every row of the vertex matrix of each mode, as row pointers,
     first and last columns (compiled for large rings; :func:`_vertex_matrix` else)."""
     if stretch_kernels_for(ra.m * rb.m):
-        gx = np.stack([g for f in _fan(ra) for g in _gens_x(f, beta)], axis=1)
-        gy = np.stack([g for f in _fan(rb) for g in _gens_y(f, beta)], axis=1)
-        # a cell holds only if the two force directions are opposite within 2 beta (each
-        # within beta of the chord), and a vertex only if its two normals are within
-        # 2 beta of each other: the kernel reads no other cell (a slack keeps it exact)
-        width = 2 * beta + ANGLE_SLACK
-        va = np.where(_turns(ra) <= width, np.arctan2(ra.f[:, 1], ra.f[:, 0]) + np.pi, np.nan)
-        # the tree's bounds are decided with a pad far above their rounding (a few ulps
-        # of the largest coordinate)
-        pad = ROUND_TOL * 8 * max(float(np.abs(ra.a).max()), float(np.abs(rb.a).max()))
-        out = _kernels.vertex_runs_blocks(
-            ra.a[:, 0].copy(), ra.a[:, 1].copy(), gx, va, rb.a[:, 0].copy(),
-            rb.a[:, 1].copy(), np.ascontiguousarray(gy), np.arctan2(rb.f[:, 1], rb.f[:, 0]),
-            width, pad, budget.check_clock)
+        out = _kernels.vertex_runs_blocks(*vertex_run_args(ra, rb, beta), budget.check_clock)
         return {1.0: out[:3], -1.0: out[3:]}
     runs = {}
     for sigma in (1.0, -1.0):
