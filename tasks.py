@@ -71,8 +71,8 @@ def ensure_browser() -> None:
 
 def compile_kernels(env: dict[str, str]) -> None:
     """numba's kernels compiled once, before the demo or the suite (fcgrasp.compile_kernels:
-    about 20 s the first time, the cache beside the sources after that), so that no
-    test worker compiles them again."""
+    two to three minutes the first time, the cache beside the sources after that), so
+    that no test worker compiles them again."""
     print("numba kernels: compiling or loading the cache ...", flush=True)
     subprocess.run([str(PY), "-c", "import fcgrasp; fcgrasp.compile_kernels()"], cwd=ROOT,
                    env=env, check=True)

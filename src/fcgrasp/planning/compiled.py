@@ -2,10 +2,10 @@
 
 numba compiles a kernel on its first call and caches the machine code on disk beside its
 module; a process that finds the cache loads it (about 0.3-0.5 s once) instead of
-compiling (about 20 s for all of them).  :func:`compile_kernels` makes those first
-calls, on small built-in parts, so that a deployment (a container image, a batch
-cluster's workers, ``python3 tasks.py test`` before the suite starts) pays the compile
-once, and no plan of a user does.
+compiling (two to three minutes of CPU for all of them).  :func:`compile_kernels` makes
+those first calls, on small built-in parts, so that a deployment (a container image, a
+batch cluster's workers, ``python3 tasks.py test`` before the suite starts) pays the
+compile once, and no plan of a user does.
 """
 
 from __future__ import annotations
