@@ -1,6 +1,7 @@
-"""The fcgrasp command: real files of every format, driven as a subprocess, compared with
-the library; every failure case checks the exit code, the one-line message and that no
-output file is left behind."""
+"""The fcgrasp command: real files of every format, driven as a subprocess (or through
+its entry point in the test process, where what is tested is the command's own code),
+compared with the library; every failure case checks the exit code, the one-line message
+and that no output file is left behind."""
 
 from __future__ import annotations
 
@@ -24,6 +25,14 @@ def run(*args, timeout=600):
     env = dict(os.environ, MPLBACKEND="Agg")
     return subprocess.run([sys.executable, "-m", "fcgrasp", *map(str, args)],
                           capture_output=True, text=True, timeout=timeout, env=env)
+
+
+def run_here(capsys, *args):
+    """The command run in this test process, as :func:`run` reports it (the command's
+    own code; its start as a process is :func:`run`'s, in this file's other tests)."""
+    code = main([str(a) for a in args])
+    cap = capsys.readouterr()
+    return subprocess.CompletedProcess(args, code, cap.out, cap.err)
 
 
 def library_grasps(poly, **kw):
@@ -97,14 +106,16 @@ WRITERS = {"json": write_json, "geojson": write_geojson, "wkt": write_wkt, "svg"
 
 
 @pytest.mark.parametrize("fmt", sorted(WRITERS))
-def test_plan_command_matches_library(tmp_path, fmt):
+def test_plan_command_matches_library(tmp_path, capsys, fmt):
     part = WRITERS[fmt](tmp_path)
     out = tmp_path / "plan.json"
     fig = tmp_path / "plan.png"
-    # the figure drawn for one format (its reading is what differs between them)
+    # the figure drawn for one format (its reading is what differs between them), that
+    # one as a process, the others in this one
     plot = ["--plot", fig] if fmt == "svg" else []
-    r = run("plan", part, "--mu", "0.4", "--top", "3", "--json", out, *plot,
+    args = ("plan", part, "--mu", "0.4", "--top", "3", "--json", out, *plot,
             *(["--id", "part"] if fmt == "svg" else []))
+    r = run(*args) if fmt == "svg" else run_here(capsys, *args)
     assert r.returncode == 0, r.stderr
     assert "rank" in r.stdout and r.stderr == ""
     data = json.loads(out.read_text())
@@ -120,14 +131,14 @@ def test_svg_transform_applied_and_y_flipped(tmp_path):
     assert np.allclose(poly.vertices, OUTLINE, atol=1e-9)
 
 
-def test_dxf_with_bulges(tmp_path):
+def test_dxf_with_bulges(tmp_path, capsys):
     part = write_dxf(tmp_path)
     poly = read_part(part)
     assert poly.n_edges > 20                      # the arcs were flattened
     # fine chords of ezdxf's Bezier arcs (within 3e-4 of the radius of the true arcs)
     assert 0.999 < poly.area / (40 * 20 + np.pi * 10 ** 2) < 1.001
     out = tmp_path / "dxf.json"
-    r = run("plan", part, "--top", "2", "--json", out)
+    r = run_here(capsys, "plan", part, "--top", "2", "--json", out)
     assert r.returncode == 0, r.stderr
     assert json.loads(out.read_text())["grasps"] == library_grasps(poly, fingers=2, mu=0.3,
                                                                    top=2)
@@ -139,13 +150,13 @@ def test_dxf_with_bulges(tmp_path):
     assert json.loads(out.read_text())["grasps"] == library_grasps(small, fingers=4, top=2)
 
 
-def test_png_silhouette(tmp_path):
+def test_png_silhouette(tmp_path, capsys):
     part = write_png(tmp_path)
     poly = read_part(part)
     lo, hi = poly.vertices.min(axis=0), poly.vertices.max(axis=0)
     assert np.allclose(hi - lo, [98, 48], atol=2)
     out = tmp_path / "png.json"
-    r = run("plan", part, "--mu", "0.3", "--json", out, "--quiet")
+    r = run_here(capsys, "plan", part, "--mu", "0.3", "--json", out, "--quiet")
     assert r.returncode == 0 and r.stdout == ""
     assert json.loads(out.read_text())["grasps"] == library_grasps(poly, fingers=2, mu=0.3,
                                                                    top=10)

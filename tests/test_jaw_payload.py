@@ -140,12 +140,12 @@ def test_the_bound_closes_on_boxes_away_from_the_boundary():
         assert 0 < got.lower and got.gap <= 0.01, (name, got)
 
 
-def test_plans_of_the_jaw_carry_their_payload_in_the_report_and_the_cli(tmp_path):
+def test_plans_of_the_jaw_carry_their_payload_in_the_report_and_the_cli(tmp_path, capsys):
     """A jaw request with a load: each box's certified payload in the JSON, equal to
     jaw_payload's; the command line prints it per box."""
     from fcgrasp.planning import PlanRequest, plan_document
 
-    from .test_cli import run
+    from .test_cli import run_here
 
     req = dict(part="demo:triangle", gripper="jaw", stroke=(5.0, 60.0), pad=8.0, mu=0.5,
                mass=0.5, force_limit=10.0)
@@ -156,8 +156,9 @@ def test_plans_of_the_jaw_carry_their_payload_in_the_report_and_the_cli(tmp_path
         want = jaw_payload(part, box, fc.Load(0.5), force_limit=10.0)
         assert g["payload"]["scale"] == pytest.approx(want.lower)
         assert g["payload"]["worst_grasp_scale"] == pytest.approx(want.upper)
-    out = run("plan", "demo:triangle", "--gripper", "jaw", "--stroke", "5,60", "--pad", "8",
-              "--mu", "0.5", "--mass", "0.5", "--force-limit", "10", "--top", "1")
+    out = run_here(capsys, "plan", "demo:triangle", "--gripper", "jaw", "--stroke", "5,60",
+                   "--pad", "8", "--mu", "0.5", "--mass", "0.5", "--force-limit", "10",
+                   "--top", "1")
     assert out.returncode == 0, out.stderr
     assert "every pose of the box carries" in out.stdout
     assert f"{doc.report['grasps'][0]['payload']['scale']:.3g}x" in out.stdout
