@@ -26,6 +26,7 @@ pytest.importorskip("selenium")
 pytest.importorskip("starlette")
 
 from selenium import webdriver  # noqa: E402
+from selenium.common.exceptions import TimeoutException  # noqa: E402
 from selenium.webdriver.chrome.service import Service  # noqa: E402
 from selenium.webdriver.common.action_chains import ActionChains  # noqa: E402
 from selenium.webdriver.common.by import By  # noqa: E402
@@ -85,16 +86,30 @@ def browser(downloads):
     shutil.rmtree(profile, ignore_errors=True)
 
 
+#: How often the page polls a condition :func:`wait` waits for (ms).
+POLL_MS = 10
+
+
 def wait(driver, script, timeout=600.0):
-    """Poll a JavaScript expression until it is truthy; its value."""
-    end = time.monotonic() + timeout
-    while True:
-        value = driver.execute_script(f"return ({script});")
-        if value:
-            return value
-        if time.monotonic() > end:
-            raise AssertionError(f"timed out waiting for {script}")
-        time.sleep(0.01)        # a round trip to the browser is a few milliseconds
+    """Wait until a JavaScript expression is truthy; its value.  The page polls it
+    (every :data:`POLL_MS`) and answers once: one round trip to the browser per wait,
+    not one per poll (each a few milliseconds of the browser's, the driver's and this
+    process's time).  An error the expression raises is raised here."""
+    driver.set_script_timeout(timeout)
+    try:
+        got = driver.execute_async_script(f"""
+            const done = arguments[arguments.length - 1];
+            const poll = () => {{
+              let value;
+              try {{ value = ({script}); }} catch (e) {{ done({{error: String(e)}}); return; }}
+              if (value) done({{value: value}}); else setTimeout(poll, {POLL_MS});
+            }};
+            poll();""")
+    except TimeoutException:
+        raise AssertionError(f"timed out waiting for {script}") from None
+    if "error" in got:
+        raise AssertionError(f"{script} raised {got['error']}")
+    return got["value"]
 
 
 def plan_seq(driver):
