@@ -35,18 +35,24 @@ def pytest_collection_finish(session: pytest.Session) -> None:
     gc.set_threshold(*GC_THRESHOLD)
 
 
-@cache
-def source_tree(path: Path) -> ast.Module:
-    """A source file's syntax tree, parsed once per test process (the layout, tolerance
-    and typing checks each read every module of the package; none changes a tree)."""
-    return ast.parse(Path(path).read_text())
+#: The package's sources (their syntax trees read once per test process).
+PACKAGE = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 
 
-@cache
 def source_nodes(path: Path) -> tuple[ast.AST, ...]:
-    """Every node of :func:`source_tree` of a file (``ast.walk``'s order), listed once
-    per test process: the checks read them several times each."""
-    return tuple(ast.walk(source_tree(path)))
+    """Every node of a source file's syntax tree (``ast.walk``'s order): a module of the
+    package's listed once per test process (the layout, tolerance and typing checks
+    each read every module, several times; none changes a tree), any other file (a
+    test's probe) read anew."""
+    path = Path(path)
+    if path.is_relative_to(PACKAGE):
+        return _package_nodes(path)
+    return tuple(ast.walk(ast.parse(path.read_text())))
+
+
+@cache
+def _package_nodes(path: Path) -> tuple[ast.AST, ...]:
+    return tuple(ast.walk(ast.parse(path.read_text())))
 
 
 @pytest.fixture

@@ -39,8 +39,7 @@ def _imports(path: Path, annotations: bool = False):
     """Every fcgrasp module a file imports, anywhere in it (functions included), with the
     names taken from it: ``(module, names)``; ``annotations``: those for type checkers
     too."""
-    nodes = source_nodes(path) if path.is_relative_to(SRC) else \
-        tuple(ast.walk(ast.parse(path.read_text())))
+    nodes = source_nodes(path)
     pkg = _package(path).split(".")
     # imports for type checkers only never run: not an edge of the layers' graph
     typing_only = set() if annotations else {

@@ -47,8 +47,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "fcgrasp"
 def _bare_small_literals(path: Path, rel: str) -> list[str]:
     """Float literals below 1e-3 in a source file, outside the assignments of
     :data:`NOT_TOLERANCES`: each a tolerance that should be named in tolerances.py."""
-    nodes = source_nodes(path) if path.is_relative_to(SRC) else \
-        tuple(ast.walk(ast.parse(path.read_text())))
+    nodes = source_nodes(path)
     allowed: set[int] = set()
     for node in nodes:
         targets = node.targets if isinstance(node, ast.Assign) else \
