@@ -18,7 +18,7 @@ from fcgrasp.apps import _batch_workers, batch
 from fcgrasp.apps.cli import main
 from fcgrasp.io.schema import validate
 
-from .test_cli import run
+from .test_cli import run, run_here
 
 OPTIONS = ["--fingers", "2", "--mu", "0.4", "--top", "3"]
 
@@ -231,12 +231,11 @@ def test_bad_batch_options(tmp_path, folder, capsys):
     test_cli_fuzz; these through its entry point)."""
     for bad in (["--workers", "0"], ["--part-timeout", "-1"], ["--gripper", "jaw"],
                 ["--fingers", "4", "--mu", "0.3"]):
-        code = main(["batch", str(folder), "--out", str(tmp_path / "x.jsonl"), *bad])
-        err = capsys.readouterr().err
-        assert code == 2 and len(err.strip().splitlines()) == 1, (bad, err)
+        r = run_here(capsys, "batch", folder, "--out", tmp_path / "x.jsonl", *bad)
+        assert r.returncode == 2 and len(r.stderr.strip().splitlines()) == 1, (bad, r.stderr)
         assert not (tmp_path / "x.jsonl").exists()
-    code = main(["batch", str(tmp_path / "nothing-here"), "--out", str(tmp_path / "x.jsonl")])
-    assert code == 2 and "no part files" in capsys.readouterr().err
+    r = run_here(capsys, "batch", tmp_path / "nothing-here", "--out", tmp_path / "x.jsonl")
+    assert r.returncode == 2 and "no part files" in r.stderr
     with pytest.raises(TypeError, match="parts"):
         list(fc.plan_many([3.0]))
     with pytest.raises(ValueError, match="top"):

@@ -268,12 +268,7 @@ def test_failures_one_line_exit_2_no_output(tmp_path, capsys, k):
     argv = [a.format(tmp=tmp_path) for a in args]
     if argv[0] == "plan" and "--plot" not in argv:
         argv += ["--json", str(out), "--plot", str(fig)]
-    if k in AS_PROCESS:
-        r = run(*argv)
-    else:
-        code = main(argv)
-        cap = capsys.readouterr()
-        r = subprocess.CompletedProcess(argv, code, cap.out, cap.err)
+    r = run(*argv) if k in AS_PROCESS else run_here(capsys, *argv)
     assert r.returncode == 2, (r.stdout, r.stderr)
     lines = r.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith("fcgrasp: error:"), r.stderr

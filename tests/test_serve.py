@@ -370,7 +370,7 @@ def test_fcgrasp_serve_command_errors_are_one_line(capsys):
     import subprocess
     import sys
 
-    from fcgrasp.apps.cli import main
+    from .test_cli import run_here
 
     proc = subprocess.Popen([sys.executable, "-m", "fcgrasp", "serve", "--port", "0"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
@@ -387,10 +387,9 @@ def test_fcgrasp_serve_command_errors_are_one_line(capsys):
         proc.wait(10)
     # refused before a server starts: the command's entry point in this process
     for argv, words in ((["--port", "70000"], "--port"), (["nope.svg"], "nope.svg")):
-        code = main(["serve", *argv])
-        err = capsys.readouterr().err
-        assert code == 2 and err.count("\n") == 1 and words in err
-        assert "Traceback" not in err
+        r = run_here(capsys, "serve", *argv)
+        assert r.returncode == 2 and r.stderr.count("\n") == 1 and words in r.stderr
+        assert "Traceback" not in r.stderr
 
 
 def test_an_idle_planning_process_that_died_is_replaced():
