@@ -181,15 +181,14 @@ def _jaw() -> None:
     from ..grippers.jaw import _certify, _poses
 
     part, jaw = demo_part("rectangle"), ParallelJaw(stroke=(10, 50), pad_width=8, mu=0.5)
+    ring = _poses._grip_edges(part, None)
     boxes = np.array([[np.radians(80), np.radians(100), -30.0, 30.0]])
-    _certify._box_proofs(part, _poses._grip_edges(part, None), jaw, boxes,
-                         float(shrunk_half_angle(jaw.mu, 2.0)), None)
+    _certify._box_proofs(part, ring, jaw, boxes, float(shrunk_half_angle(jaw.mu, 2.0)), None)
     # one pad alone at one pose (the reference of both pads found in one pass), called
     # from Python as its check calls it
     from ..grippers.jaw import _kernels as _jaw_kernels
 
-    a, b, f, half, tol = _poses._pose_args(part, jaw, 2.0, None,
-                                           _poses._grip_edges(part, None))[:5]
+    a, b, f, half, tol = _poses._pose_args(part, jaw, 2.0, None, ring)[:5]
     k = _jaw_kernels.K_MAX
     _jaw_kernels._run("_pad_loop", 0, 1.0, 0.0, 0.0, a, b, f, half, tol, 1.0, -1.0, -1,
                       np.empty(1), np.zeros(1, bool), np.empty((1, k, 2)), np.empty((1, k)),
