@@ -264,6 +264,12 @@ PROJECTED_AXIS = 1e-3
 #: three point contacts (:mod:`fcgrasp.spatial.triples`) and required of its offsets.
 HULL_ROUNDING = 1e-9
 
+#: The zero-force slice of three contacts' wrenches read from its vertices
+#: (:mod:`fcgrasp.spatial._slice`): a support's weights at least minus this, its forces'
+#: balance and its weights' sum within it, a pivot below it a singular support, and two
+#: vertices within it one (the generators' entries are at most 1).
+SLICE_WEIGHT_TOL = 1e-12
+
 #: Solid parts: two facets are opposite parallel faces a parallel jaw's flat pads can
 #: close on when their normals are opposite within this angle, radians (float32 meshes
 #: round a small facet's normal to about 1e-6).

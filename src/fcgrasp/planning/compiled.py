@@ -27,14 +27,15 @@ def compile_kernels() -> dict[str, float]:
     (:mod:`fcgrasp.core._simplex`), the knapsack solver of four fingers and three with
     gravity (:mod:`fcgrasp.model._leximin_kernels`), three fingers with friction
     (:mod:`fcgrasp.grippers.three_fingers._concurrency`), the parallel jaw's pose model and proofs
-    (:mod:`fcgrasp.grippers.jaw._kernels`) and the optimality bound's test of a box of
-    regions (:mod:`fcgrasp.model.bounds`).  Returns the seconds each took (near zero
+    (:mod:`fcgrasp.grippers.jaw._kernels`), the optimality bound's test of a box of
+    regions (:mod:`fcgrasp.model.bounds`) and the zero-force slice of three fingers on
+    solids (:mod:`fcgrasp.spatial._slice`).  Returns the seconds each took (near zero
     once cached); without numba (or with ``FCGRASP_JIT=0``) nothing is compiled and
     every entry is 0.
 
     >>> sorted(compile_kernels())  # doctest: +NORMALIZE_WHITESPACE
-    ['four fingers', 'optimality bound', 'parallel jaw', 'stretches', 'three fingers',
-     'two fingers']
+    ['four fingers', 'optimality bound', 'parallel jaw', 'solids', 'stretches',
+     'three fingers', 'two fingers']
     """
     from ..core.jit import jit_setting
     from ..model.bounds import refutes
@@ -42,7 +43,7 @@ def compile_kernels() -> dict[str, float]:
     from .planner import independent_regions, plan
 
     out = {"two fingers": 0.0, "stretches": 0.0, "three fingers": 0.0, "four fingers": 0.0,
-           "parallel jaw": 0.0, "optimality bound": 0.0}
+           "parallel jaw": 0.0, "optimality bound": 0.0, "solids": 0.0}
     if jit_setting() is False:
         return out
     try:
@@ -64,6 +65,7 @@ def compile_kernels() -> dict[str, float]:
             ("four fingers", lambda: _four(small)),
             ("parallel jaw", lambda: _jaw()),
             ("optimality bound", lambda: refutes(small, 3, 60.0, mu=0.3, max_nodes=200)),
+            ("solids", _solids),
         ]
         for name, run in runs:
             t0 = time.perf_counter()
@@ -128,6 +130,17 @@ def _stretches(blob: Any) -> None:
     F = features(blob, 0.3)
     i = np.arange(len(F.a), dtype=np.intp)
     pair_scores(F.a, F.b, F.center, F.half, i, i[::-1].copy(), 0.0, RANK_TOL)
+
+
+def _solids() -> None:
+    """Three fingers' slice on three faces of a cube (the loops of
+    :mod:`fcgrasp.spatial._slice`, with the types of a search's calls)."""
+    from ..spatial._slice import slice_radius
+    from ..spatial.triples import PYRAMID_EDGES, _generators
+
+    points = np.array([[1.0, 0, 0], [-1.0, 0.2, 0], [0, 1.0, 0.3]])
+    normals = np.array([[-1.0, 0, 0], [1.0, 0, 0], [0, -1.0, 0]])
+    slice_radius(_generators(points, normals, 0.4), PYRAMID_EDGES)
 
 
 def _four(small: Any) -> None:
