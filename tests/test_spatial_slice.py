@@ -89,22 +89,58 @@ def test_every_point_the_slice_keeps_is_in_the_hull(seed):
         assert np.all(out[:count] @ eq[:, 3:6].T + eq[:, 6] <= 1e-12 * scale)
 
 
+def _point_sets(rng, count):
+    """Point sets about the origin and beside it, with many points on one plane (prisms
+    over regular polygons, a cube's corners and face centres: a slice's facets hold
+    several vertices), and flat ones."""
+    for k in range(count):
+        kind = k % 5
+        if kind == 0:
+            pts = rng.normal(size=(int(rng.integers(4, 200)), 3))
+        elif kind == 1:
+            pts = rng.normal(size=(int(rng.integers(4, 60)), 3)) + rng.normal(size=3) * 2
+        elif kind == 2:
+            a = 2 * np.pi * np.arange(int(rng.integers(3, 12))) / 8
+            ring = np.c_[np.cos(a), np.sin(a)]
+            pts = np.concatenate([np.c_[ring, np.full(len(ring), z)]
+                                  for z in rng.uniform(-1, 1, 2)])
+        elif kind == 3:
+            g = np.array(np.meshgrid([-1, 0, 1], [-1, 0, 1], [-1, 0, 1])).reshape(3, -1).T
+            pts = g[np.abs(g).sum(axis=1) > 0] * rng.uniform(0.5, 2, 3) + \
+                rng.normal(scale=0.3, size=3)
+        else:
+            pts = rng.normal(size=(int(rng.integers(4, 30)), 3))
+            pts[:, 2] = 0.0
+        yield kind, pts @ _rotation(rng)
+
+
+def _rotation(rng):
+    q, _ = np.linalg.qr(rng.normal(size=(3, 3)))
+    return q
+
+
 def test_the_3d_inradius_is_qhulls():
-    """The forces' inradius by planes through triples of points is qhull's smallest
-    facet offset, for points around the origin, beside it, and flat."""
+    """The two 3-D inradii (planes through triples of points for the forces; the
+    incremental hull for the slice's vertices) are qhull's smallest facet offset; a flat
+    set has none (the hull does not close, the planes leave no radius); the incremental
+    hull closes on nearly all sets that are not flat."""
     rng = np.random.default_rng(7)
     loops = _slice._LOOPS.get()
-    for k in range(300):
-        pts = rng.normal(size=(int(rng.integers(4, 25)), 3))
-        if k % 3 == 1:
-            pts += rng.normal(size=3) * 2
-        if k % 10 == 9:
-            pts[:, 2] = 0.0
-            assert loops["_inradius3"](pts, 1e-12) == -np.inf
+    closed = solid = 0
+    for kind, pts in _point_sets(rng, 400):
+        status, r = loops["_hull_inradius"](pts, 1e-12)
+        if kind == 4:
+            # (a plane through three nearly collinear points tilts by the rounding)
+            assert status == 0 and loops["_inradius3"](pts, 1e-12) <= 1e-9
             continue
-        eq = spatial.ConvexHull(pts).equations
-        assert loops["_inradius3"](pts, 1e-12) == pytest.approx(float(np.min(-eq[:, 3])),
-                                                                abs=1e-12)
+        want = float(np.min(-spatial.ConvexHull(pts).equations[:, 3]))
+        solid += 1
+        if status:
+            closed += 1
+            assert r == pytest.approx(want, abs=1e-12)
+        if len(pts) <= 40:
+            assert loops["_inradius3"](pts, 1e-12) == pytest.approx(want, abs=1e-12)
+    assert closed >= 0.95 * solid, (closed, solid)
 
 
 def _tied(plans):

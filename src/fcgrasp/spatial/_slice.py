@@ -26,7 +26,10 @@ inradius ``rho``: ``rho >= r_S r_F / sqrt((r_S + M)^2 + r_F^2)`` from the slice'
 inradius ``r_S``, the forces' ``r_F`` and the largest moment ``M`` (a unit direction
 ``(n_f, n_m)`` reaches ``|n_m| r_S`` in the slice and ``|n_f| r_F - |n_m| M`` over the
 forces' ball).  Where that bound does not clear twice the rounding, or the loops do not
-run, the 6-D hull decides (``None``)."""
+run, the 6-D hull decides (``None``).  ``r_S`` is read from the points' 3-D hull built
+incrementally (qhull's where it does not close: flat points, slivers), ``r_F`` from the
+planes through three forces (a triple's refinement moves its contacts, not its normals:
+once per triple)."""
 
 from __future__ import annotations
 
@@ -68,10 +71,23 @@ def pattern_table(edges: int) -> np.ndarray:
     return np.array(rows, dtype=np.int64)
 
 
-def slice_radius(w: FloatArray, edges: int) -> float | None:
+def forces_radius(forces: FloatArray) -> float | None:
+    """The inradius about the origin of the hull of the generators' ``forces`` (n, 3):
+    negative where the origin is outside, ``-inf`` where they are flat; None where the
+    loops do not run."""
+    if not _LOOPS.available():
+        return None
+    ok, r_f = _LOOPS.run("_inradius3", np.ascontiguousarray(forces, dtype=float),
+                         SLICE_WEIGHT_TOL)
+    return float(r_f) if ok else None
+
+
+def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
+                 ) -> float | None:
     """The slice's radius less the rounding (``triples._hull_slice_radius``'s number), or
     None where the 6-D hull must decide (module docstring).  ``w`` (3 * edges, 6): the
-    three pyramids' generators in order."""
+    three pyramids' generators in order; ``forces_inradius``: :func:`forces_radius` of
+    its forces, where the caller has it."""
     if not _LOOPS.available():
         return None
     w = np.ascontiguousarray(w, dtype=float)
@@ -88,15 +104,18 @@ def slice_radius(w: FloatArray, edges: int) -> float | None:
     pts = out[keep]
     if len(pts) < 4:
         return 0.0
-    from scipy.spatial import ConvexHull, QhullError
-
-    try:
-        eq = ConvexHull(pts).equations
-    except (QhullError, ValueError):
-        return 0.0                        # flat: no ball in it
-    r_s = float(np.min(-eq[:, 3]))
-    ok, r_f = _LOOPS.run("_inradius3", np.ascontiguousarray(w[:, :3]), SLICE_WEIGHT_TOL)
+    ok, (closed, r_s) = _LOOPS.run("_hull_inradius", pts, SLICE_WEIGHT_TOL)
     if not ok:
+        return None
+    if not closed:                        # flat, or a sliver: qhull's 3-D hull decides
+        from scipy.spatial import ConvexHull, QhullError
+
+        try:
+            r_s = float(np.min(-ConvexHull(pts).equations[:, 3]))
+        except (QhullError, ValueError):
+            return 0.0                    # flat: no ball in it
+    r_f = forces_radius(w[:, :3]) if forces_inradius is None else forces_inradius
+    if r_f is None:
         return None
     if r_s <= 0 or r_f <= 0:
         return 0.0

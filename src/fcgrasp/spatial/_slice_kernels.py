@@ -136,3 +136,144 @@ def _inradius3(p: Any, tol: float) -> float:
                 if off < best:
                     best = off
     return best if found else -np.inf
+
+
+def _hull_inradius(p: Any, tol: float) -> Any:
+    """The hull of the 3-D points ``p`` by the incremental method (the faces a new point
+    sees replaced by a fan to their horizon; a point within ``tol`` of the hull left
+    out; the points read farthest from the first tetrahedron's centre first), and the
+    distance from the origin to its nearest face plane: ``(status, r)``, status 1 when
+    the faces close (each edge once each way) and every point lies behind every face
+    (within ``tol``): then they are the hull; 0 otherwise (flat points, or rounding
+    that broke the faces)."""
+    n = p.shape[0]
+    if n < 4:
+        return 0, 0.0
+    first = _tetrahedron(p, tol)
+    if first[0] < 0:
+        return 0, 0.0
+    cap = 16 * n + 64
+    F = np.empty((cap, 3), np.int64)
+    plane = np.empty((cap, 4))
+    inner = np.zeros(3)
+    for q in range(4):
+        for k in range(3):
+            inner[k] += p[first[q], k] / 4
+    count = 0
+    for f0, f1, f2 in ((0, 1, 2), (0, 1, 3), (0, 2, 3), (1, 2, 3)):
+        if not _add_face(p, F, plane, count, first[f0], first[f1], first[f2], inner, tol):
+            return 0, 0.0
+        count += 1
+    far = np.empty(n)
+    for i in range(n):
+        dx, dy, dz = p[i, 0] - inner[0], p[i, 1] - inner[1], p[i, 2] - inner[2]
+        far[i] = -(dx * dx + dy * dy + dz * dz)
+    order = np.argsort(far)
+    edges = np.empty((3 * cap, 2), np.int64)
+    for o in range(n):
+        i = order[o]
+        if i == first[0] or i == first[1] or i == first[2] or i == first[3]:
+            continue
+        m = 0
+        f = 0
+        while f < count:                # the faces seen, each moved out of the list
+            if plane[f, 0] * p[i, 0] + plane[f, 1] * p[i, 1] + plane[f, 2] * p[i, 2] \
+                    - plane[f, 3] > tol:
+                for e in range(3):
+                    edges[m, 0], edges[m, 1] = F[f, e], F[f, (e + 1) % 3]
+                    m += 1
+                count -= 1
+                for k in range(3):
+                    F[f, k] = F[count, k]
+                for k in range(4):
+                    plane[f, k] = plane[count, k]
+            else:
+                f += 1
+        for e in range(m):              # the horizon: edges whose reverse was not seen
+            u, v = edges[e, 0], edges[e, 1]
+            shared = False
+            for g in range(m):
+                if edges[g, 0] == v and edges[g, 1] == u:
+                    shared = True
+                    break
+            if not shared:
+                if count >= cap or not _add_face(p, F, plane, count, u, v, i, inner, tol):
+                    return 0, 0.0
+                count += 1
+    # closed: each directed edge of a face once, and its reverse once
+    seen = np.zeros(n * n, np.int32)
+    for f in range(count):
+        for e in range(3):
+            seen[F[f, e] * n + F[f, (e + 1) % 3]] += 1
+    for f in range(count):
+        for e in range(3):
+            u, v = F[f, e], F[f, (e + 1) % 3]
+            if seen[u * n + v] != 1 or seen[v * n + u] != 1:
+                return 0, 0.0
+    r = np.inf
+    for f in range(count):
+        for i in range(n):
+            if plane[f, 0] * p[i, 0] + plane[f, 1] * p[i, 1] + plane[f, 2] * p[i, 2] \
+                    - plane[f, 3] > tol:
+                return 0, 0.0
+        r = min(r, plane[f, 3])
+    return 1, r
+
+
+def _tetrahedron(p: Any, tol: float) -> Any:
+    """Four points of ``p`` spanning space: the extremes along x, the farthest from
+    their line, the farthest from their plane; -1 in the first place where the points
+    are flat (within ``tol``)."""
+    n = p.shape[0]
+    out = np.full(4, -1, np.int64)
+    a = b = 0
+    for i in range(n):
+        if p[i, 0] < p[a, 0]:
+            a = i
+        if p[i, 0] > p[b, 0]:
+            b = i
+    ux, uy, uz = p[b, 0] - p[a, 0], p[b, 1] - p[a, 1], p[b, 2] - p[a, 2]
+    c, best = -1, tol
+    for i in range(n):
+        vx, vy, vz = p[i, 0] - p[a, 0], p[i, 1] - p[a, 1], p[i, 2] - p[a, 2]
+        cx, cy, cz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+        d = (cx * cx + cy * cy + cz * cz) ** 0.5
+        if d > best:
+            c, best = i, d
+    if c < 0:
+        return out
+    vx, vy, vz = p[c, 0] - p[a, 0], p[c, 1] - p[a, 1], p[c, 2] - p[a, 2]
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    length = (nx * nx + ny * ny + nz * nz) ** 0.5
+    nx, ny, nz = nx / length, ny / length, nz / length
+    d, best = -1, tol
+    for i in range(n):
+        h = abs(nx * (p[i, 0] - p[a, 0]) + ny * (p[i, 1] - p[a, 1])
+                + nz * (p[i, 2] - p[a, 2]))
+        if h > best:
+            d, best = i, h
+    if d >= 0:
+        out[0], out[1], out[2], out[3] = a, b, c, d
+    return out
+
+
+def _add_face(p: Any, F: Any, plane: Any, at: int, i: int, j: int, k: int, inner: Any,
+              tol: float) -> bool:
+    """Write the face ``(i, j, k)`` at ``at``, turned so that its normal points away
+    from ``inner`` (a point inside the hull), with its unit normal and offset; False
+    for a sliver (its sides' cross product within ``tol``)."""
+    ux, uy, uz = p[j, 0] - p[i, 0], p[j, 1] - p[i, 1], p[j, 2] - p[i, 2]
+    vx, vy, vz = p[k, 0] - p[i, 0], p[k, 1] - p[i, 1], p[k, 2] - p[i, 2]
+    nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
+    length = (nx * nx + ny * ny + nz * nz) ** 0.5
+    if not length > tol:
+        return False
+    nx, ny, nz = nx / length, ny / length, nz / length
+    h = nx * p[i, 0] + ny * p[i, 1] + nz * p[i, 2]
+    if nx * inner[0] + ny * inner[1] + nz * inner[2] > h:
+        F[at, 0], F[at, 1], F[at, 2] = i, k, j
+        nx, ny, nz, h = -nx, -ny, -nz, -h
+    else:
+        F[at, 0], F[at, 1], F[at, 2] = i, j, k
+    plane[at, 0], plane[at, 1], plane[at, 2], plane[at, 3] = nx, ny, nz, h
+    return True

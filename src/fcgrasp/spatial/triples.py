@@ -51,7 +51,7 @@ from ..core._checks import FloatArray, check_int
 from ..core.budget import cut_if_over
 from ..core.tolerances import HULL_ROUNDING, TOL
 from ._pieces import Halfplanes, _fit, _piece_table
-from ._slice import slice_radius
+from ._slice import forces_radius, slice_radius
 from .contacts import check_spatial_contacts, contact_frames
 from .regions import (
     DEFAULT_MARGIN_DEG,
@@ -100,21 +100,15 @@ class PointTripleSearch:
     exhaustive: bool
 
 
-def _generators(points: FloatArray, normals: FloatArray, alpha: Any) -> FloatArray:
+def _generators(points: FloatArray, normals: FloatArray, alpha: Any,
+                forces: FloatArray | None = None) -> FloatArray:
     """The inscribed pyramids' wrench generators (..., 3 * PYRAMID_EDGES, 6): unit forces
     ``(n + tan(alpha) (cos a t_1 + sin a t_2)) cos(alpha)`` and their moments about the
     contacts' mean over the contacts' reach ``L`` (their largest distance from it; the
     slice's radius is then in units of ``L``); ``alpha`` one half-angle, or one per
-    contact (..., 3)."""
-    t1, t2 = contact_frames(normals)
-    a = 2 * np.pi * np.arange(PYRAMID_EDGES) / PYRAMID_EDGES
-    if np.ndim(alpha) == 0:
-        cos_a, tan_a = math.cos(alpha), math.tan(alpha)
-    else:
-        cos_a = np.cos(np.asarray(alpha, float))[..., None, None]
-        tan_a = np.tan(np.asarray(alpha, float))[..., None, None]
-    f = cos_a * (normals[..., None, :] + tan_a * (
-        np.cos(a)[:, None] * t1[..., None, :] + np.sin(a)[:, None] * t2[..., None, :]))
+    contact (..., 3).  ``forces``: :func:`_pyramid_forces` of these normals and
+    ``alpha``, where the caller has them (a triple's moves keep its normals)."""
+    f = _pyramid_forces(normals, alpha) if forces is None else forces
     arm = points - points.mean(axis=-2, keepdims=True)
     m = np.cross(arm[..., None, :], f)
     # moments over the contacts' reach, so that the hull's rounding is the part's scale's
@@ -122,6 +116,19 @@ def _generators(points: FloatArray, normals: FloatArray, alpha: Any) -> FloatArr
     m = m / np.maximum(reach, TOL)
     w = np.concatenate([f, m], axis=-1)                          # (..., 3, edges, 6)
     return w.reshape(*w.shape[:-3], -1, 6)
+
+
+def _pyramid_forces(normals: FloatArray, alpha: Any) -> FloatArray:
+    """The unit forces of :func:`_generators` (..., 3, PYRAMID_EDGES, 3)."""
+    t1, t2 = contact_frames(normals)
+    a = 2 * np.pi * np.arange(PYRAMID_EDGES) / PYRAMID_EDGES
+    if np.ndim(alpha) == 0:
+        cos_a, tan_a = math.cos(alpha), math.tan(alpha)
+    else:
+        cos_a = np.cos(np.asarray(alpha, float))[..., None, None]
+        tan_a = np.tan(np.asarray(alpha, float))[..., None, None]
+    return np.asarray(cos_a * (normals[..., None, :] + tan_a * (
+        np.cos(a)[:, None] * t1[..., None, :] + np.sin(a)[:, None] * t2[..., None, :])))
 
 
 def _reach(points: FloatArray) -> float:
@@ -162,10 +169,12 @@ def _slice_radius(w: FloatArray) -> float:
     return _slice(w)[0]
 
 
-def _slice(w: FloatArray) -> tuple[float, FloatArray | None]:
+def _slice(w: FloatArray, forces_inradius: float | None = None
+           ) -> tuple[float, FloatArray | None]:
     """:func:`_slice_radius` and the facet normals of the hull it was read from (None
-    where no hull was needed, or none exists)."""
-    fast = slice_radius(w, PYRAMID_EDGES) if SLICE_VERTICES else None
+    where no hull was needed, or none exists); ``forces_inradius``: that of ``w``'s
+    forces (:func:`fcgrasp.spatial._slice.forces_radius`), where the caller has it."""
+    fast = slice_radius(w, PYRAMID_EDGES, forces_inradius) if SLICE_VERTICES else None
     if fast is not None:
         return fast, None
     if _separated(w):
@@ -277,6 +286,9 @@ class _Triple:
     #: the facet normals of the last hulls computed, newest first, at most
     #: :data:`FACETS_KEPT` (:func:`_facet_bound`)
     facets: FloatArray | None = None
+    #: the pyramids' forces and their hull's inradius for one half-angle (the same for
+    #: every move: the normals stay), ``(alpha, forces, inradius)``
+    pyramids: tuple[float, FloatArray, float | None] | None = None
 
     def fits(self, t: FloatArray) -> FloatArray:
         """Each octagon's largest circumradius about the 2-D centres ``t`` (3, 2)."""
@@ -296,11 +308,14 @@ class _Triple:
             return 0.0, 0.0
         points = self.centers(t)
         reach = _reach(points)
-        w = _generators(points, self.normals, alpha)
+        if self.pyramids is None or self.pyramids[0] != alpha:
+            forces = _pyramid_forces(self.normals, alpha)
+            self.pyramids = (alpha, forces, forces_radius(forces.reshape(-1, 3)))
+        w = _generators(points, self.normals, alpha, self.pyramids[1])
         if beat > 0 and FACET_BOUND and self.facets is not None and \
                 min(fit, reach * max(_facet_bound(w, self.facets), 0.0)) <= beat:
             return 0.0, 0.0
-        slice_, facets = _slice(w)
+        slice_, facets = _slice(w, self.pyramids[2])
         if facets is not None:
             self.facets = facets if self.facets is None else \
                 np.concatenate([facets, self.facets])[:FACETS_KEPT]
