@@ -91,6 +91,21 @@ def run(argv: list[str], cap: float | None, src: str | None = None) -> dict[str,
             "gap": report.get("gap"), "grasps": json.dumps(report["grasps"], sort_keys=True)}
 
 
+def warm(previous: str | None) -> None:
+    """numba's cache compiled once (the previous checkout's package ``previous`` too),
+    so that no row pays for it, and both packages' bytecode written, so that neither
+    compiles its sources per run."""
+    for src in [None] + ([previous] if previous else []):
+        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
+        if src is not None:
+            env["PYTHONPATH"] = src
+        subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
+                       check=True, env=env)
+        subprocess.run([sys.executable, "-m", "compileall", "-q",
+                        src or str(HERE.parent / "src")], check=True, env=env,
+                       stdout=subprocess.DEVNULL)
+
+
 def _least(a: dict[str, object], b: dict[str, object]) -> dict[str, object]:
     """Of two runs of one command, the one with less CPU (a stopped run counts as more)."""
     if a.get("cpu") is None:
@@ -124,17 +139,7 @@ def main() -> int:
                     help="a checkout of an earlier commit: its code's row beside each")
     args = ap.parse_args()
     previous = None if args.previous is None else str(Path(args.previous).resolve() / "src")
-    # numba's cache compiled once (the previous checkout's too), so that no row pays for it
-    # and both packages' bytecode written, so that neither compiles its sources per run
-    for src in [None] + ([previous] if previous else []):
-        env = {k: v for k, v in os.environ.items() if k != "PYTHONDONTWRITEBYTECODE"}
-        if src is not None:
-            env["PYTHONPATH"] = src
-        subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
-                       check=True, env=env)
-        subprocess.run([sys.executable, "-m", "compileall", "-q",
-                        src or str(HERE.parent / "src")], check=True, env=env,
-                       stdout=subprocess.DEVNULL)
+    warm(previous)
     parts: list[tuple[str, str]] = []
     with tempfile.TemporaryDirectory() as tmp:
         for shape in filter(None, args.shapes.split(",")):

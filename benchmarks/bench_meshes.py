@@ -5,7 +5,11 @@ peak memory of the process, the plans returned and whether the answer is complet
 beside the ranked list (``--distinct 0``) measured in the same invocation, as a ratio.
 
     python benchmarks/bench_meshes.py [--mu 0.5] [--grippers 2f,3f,jaw] [--files round]
-                                      [--torus 10000,100000]
+                                      [--torus 10000,100000] [--previous DIR]
+
+``--previous DIR`` (a checkout of an earlier commit, ``git worktree add DIR REV``) runs
+the same default command with that checkout's package too, beside it in the same
+invocation: its CPU, the ratio, and whether the plans are the same.
 
 ``--torus`` adds tori of about those many triangles (major radius 40 mm, minor 12 mm,
 ``trimesh.creation.torus``): a curved solid of 10,000 to 100,000 triangles with no two
@@ -19,11 +23,10 @@ Prints a Markdown table and how many runs take more than 2 s.
 from __future__ import annotations
 
 import argparse
-import subprocess
 import sys
 from pathlib import Path
 
-from bench_defaults import cell, run
+from bench_defaults import cell, run, warm
 
 HERE = Path(__file__).resolve().parent
 MESHES = HERE / "corpus" / "meshes"
@@ -44,15 +47,16 @@ def main() -> int:
     ap.add_argument("--grippers", default="2f,3f,jaw")
     ap.add_argument("--files", default="", help="only meshes whose name contains this")
     ap.add_argument("--torus", default="", help="tori of about these many triangles")
+    ap.add_argument("--previous", default=None,
+                    help="a checkout of an earlier commit to run beside the default")
     args = ap.parse_args()
     import tempfile
 
     import trimesh
 
     tmp = tempfile.TemporaryDirectory()
-
-    subprocess.run([sys.executable, "-c", "import fcgrasp; fcgrasp.compile_kernels()"],
-                   check=True)
+    previous = None if args.previous is None else str(Path(args.previous).resolve() / "src")
+    warm(previous)
     files = sorted(p for p in MESHES.iterdir()
                    if p.suffix.lower() in (".stl", ".ply", ".obj", ".off")
                    and args.files in p.name)
@@ -63,9 +67,10 @@ def main() -> int:
         trimesh.creation.torus(major_radius=40, minor_radius=12, major_sections=major,
                                minor_sections=minor).export(str(path))
         files.append(path)
-    print("| mesh | triangles | gripper | default (CPU, peak) | plans | complete | "
-          "ranked | ratio |")
-    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    head = ["mesh", "triangles", "gripper", "default (CPU, peak)", "plans", "complete",
+            "ranked", "ratio"] + (["previous", "ratio", "same plans"] if previous else [])
+    print("| " + " | ".join(head) + " |")
+    print("|" + " --- |" * len(head))
     over = total = 0
     for path in files:
         mesh = trimesh.load(str(path), force="mesh")
@@ -78,9 +83,15 @@ def main() -> int:
                 else f"{d['cpu'] / max(b['cpu'], 1e-9):.2f}"
             total += 1
             over += d.get("cpu") is None or d["cpu"] > 2.0
-            print(f"| {path.name} | {len(mesh.faces)} | {g} | {cell(d, None)} | "
-                  f"{d.get('plans', '-')} | {'yes' if d.get('complete') else 'no'} | "
-                  f"{cell(b, None)} | {ratio} |", flush=True)
+            row = [path.name, str(len(mesh.faces)), g, cell(d, None), str(d.get("plans", "-")),
+                   "yes" if d.get("complete") else "no", cell(b, None), ratio]
+            if previous:
+                p = run(argv, None, previous)
+                row += [cell(p, None),
+                        "-" if d.get("cpu") is None or p.get("cpu") is None
+                        else f"{d['cpu'] / max(p['cpu'], 1e-9):.2f}",
+                        "yes" if d.get("grasps") == p.get("grasps") else "no"]
+            print("| " + " | ".join(row) + " |", flush=True)
     print(f"\n{total - over} of {total} runs within 2 s of CPU")
     return 0
 
