@@ -453,9 +453,10 @@ def test_convex_pieces_equal_the_merge_over_every_piece(seed):
                                        for s in (0, 1, *range(3, 16)))])
 def test_searches_sharing_a_memo_give_the_plans_of_searches_alone(seed):
     """The searches of one solid asked for more and more plans (as the distinct
-    alternatives ask them) sharing a memo of each pair's refined bound and solution
-    give, round after round, the plans of searches that share nothing, and the later
-    rounds read what the earlier computed."""
+    alternatives ask them) sharing a memo of each pair's refined bound and solution,
+    and of each plan's second level, give, round after round, the plans of searches
+    that share nothing (their regions too), and the later rounds read what the earlier
+    computed."""
     solid = _search_corpus(seed)
     rng = np.random.default_rng(seed)
     mu = float(rng.uniform(0.3, 0.9))
@@ -468,7 +469,10 @@ def test_searches_sharing_a_memo_give_the_plans_of_searches_alone(seed):
             assert p.radius == q.radius
             for a, b in zip(p.centers, q.centers, strict=True):
                 np.testing.assert_array_equal(a, b)
-    assert "table" in memo and any(k[0] == "solve" for k in memo if isinstance(k, tuple))
+            np.testing.assert_array_equal(p.regions, q.regions)
+            assert p.radii == q.radii
+    keys = {k[0] for k in memo if isinstance(k, tuple)}
+    assert "table" in memo and {"solve", "grown"} <= keys
 
 
 def test_cone_rows_of_every_pair_at_once_are_those_of_one_pair_at_a_time():

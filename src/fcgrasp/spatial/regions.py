@@ -542,9 +542,11 @@ def facet_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
             bisect.insort(plans, _plan(solid, facets, pieces, *sol, mu_v, margin_v), key=key)
             if top is not None:
                 del plans[top:]
-    # the second level of the plans kept (their measure, the first, ranks them)
-    return [_plan(solid, (p.facets[0], p.facets[1]), (p.pieces[0], p.pieces[1]),
-                  p.centers[0], p.centers[1], p.radius, mu_v, margin_v, grow=leximin)
+    # the second level of the plans kept (their measure, the first, ranks them), each
+    # grown once for the searches that share the memo
+    return [_once(memo, ("grown", mu_v, margin_v, leximin, p.facets, p.pieces), _plan, solid,
+                  (p.facets[0], p.facets[1]), (p.pieces[0], p.pieces[1]), p.centers[0],
+                  p.centers[1], p.radius, mu_v, margin_v, leximin)
             for p in plans]
 
 
