@@ -140,7 +140,17 @@ def _solids() -> None:
 
     points = np.array([[1.0, 0, 0], [-1.0, 0.2, 0], [0, 1.0, 0.3]])
     normals = np.array([[-1.0, 0, 0], [1.0, 0, 0], [0, -1.0, 0]])
-    slice_radius(_generators(points, normals, 0.4), PYRAMID_EDGES)
+    w = _generators(points, normals, 0.4)
+    slice_radius(w, PYRAMID_EDGES)
+    # the loops on their own, as the checks against qhull call them
+    from ..spatial._slice import _LOOPS, pattern_table
+
+    loops = _LOOPS.get()
+    if loops is not None:
+        table = pattern_table(PYRAMID_EDGES)
+        out = np.empty((len(table), 3))
+        loops["_slice_points"](w, table, 1e-12, out)
+        loops["_hull_inradius"](np.ascontiguousarray(w[:4, :3]), 1e-12)
 
 
 def _four(small: Any) -> None:

@@ -93,25 +93,17 @@ def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
     w = np.ascontiguousarray(w, dtype=float)
     table = pattern_table(edges)
     out = np.empty((table.shape[0], 3))
-    ok, n = _LOOPS.run("_slice_points", w, table, SLICE_WEIGHT_TOL, out)
+    ok, got = _LOOPS.run("_slice_inradius", w, table, SLICE_WEIGHT_TOL, out)
     if not ok:
         return None
-    if n < 4:
+    status, r_s, m, scale, moment = got
+    if status == 0:
         return 0.0                        # no 3-D slice: the origin is not inside
-    ok, keep = _LOOPS.run("_distinct_points", out, n, SLICE_WEIGHT_TOL)
-    if not ok:
-        return None
-    pts = out[keep]
-    if len(pts) < 4:
-        return 0.0
-    ok, (closed, r_s) = _LOOPS.run("_hull_inradius", pts, SLICE_WEIGHT_TOL)
-    if not ok:
-        return None
-    if not closed:                        # flat, or a sliver: qhull's 3-D hull decides
+    if status == 2:                       # flat, or a sliver: qhull's 3-D hull decides
         from scipy.spatial import ConvexHull, QhullError
 
         try:
-            r_s = float(np.min(-ConvexHull(pts).equations[:, 3]))
+            r_s = float(np.min(-ConvexHull(out[:m]).equations[:, 3]))
         except (QhullError, ValueError):
             return 0.0                    # flat: no ball in it
     r_f = forces_radius(w[:, :3]) if forces_inradius is None else forces_inradius
@@ -119,8 +111,6 @@ def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
         return None
     if r_s <= 0 or r_f <= 0:
         return 0.0
-    scale = float(np.max(np.linalg.norm(w, axis=1)))
-    moment = float(np.max(np.linalg.norm(w[:, 3:], axis=1)))
     rho = r_s * r_f / math.sqrt((r_s + moment) ** 2 + r_f ** 2)
     if rho <= 2 * HULL_ROUNDING * scale:
         return None

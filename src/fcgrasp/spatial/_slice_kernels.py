@@ -74,6 +74,37 @@ def _slice_points(w: Any, table: Any, tol: float, out: Any) -> int:
     return n
 
 
+def _slice_inradius(w: Any, table: Any, tol: float, out: Any) -> Any:
+    """The slice's inradius from its candidate vertices (:func:`_slice_points`, their
+    duplicates dropped, :func:`_hull_inradius`), in one call: ``(status, r_s, m, scale,
+    moment)``, status 0 where fewer than four distinct points are found (no 3-D slice),
+    1 with the radius ``r_s``, 2 where their hull does not close (the ``m`` distinct
+    points are then ``out[:m]``); ``scale`` and ``moment`` the largest generator and
+    moment lengths."""
+    scale = moment = 0.0
+    for j in range(w.shape[0]):
+        mm = w[j, 3] * w[j, 3] + w[j, 4] * w[j, 4] + w[j, 5] * w[j, 5]
+        ff = w[j, 0] * w[j, 0] + w[j, 1] * w[j, 1] + w[j, 2] * w[j, 2]
+        scale = max(scale, (ff + mm) ** 0.5)
+        moment = max(moment, mm ** 0.5)
+    n = _slice_points(w, table, tol, out)
+    if n < 4:
+        return 0, 0.0, 0, scale, moment
+    keep = _distinct_points(out, n, tol)
+    m = keep.shape[0]
+    pts = np.empty((m, 3))
+    for a in range(m):
+        for k in range(3):
+            pts[a, k] = out[keep[a], k]
+    for a in range(m):
+        for k in range(3):
+            out[a, k] = pts[a, k]
+    if m < 4:
+        return 0, 0.0, m, scale, moment
+    closed, r = _hull_inradius(pts, tol)
+    return (1 if closed else 2), r, m, scale, moment
+
+
 def _distinct_points(pts: Any, n: int, tol: float) -> Any:
     """The indices of ``pts[:n]`` less those within ``tol`` (each coordinate) of one
     kept before, read in order of the first coordinate."""
