@@ -143,14 +143,15 @@ def _solids() -> None:
     w = _generators(points, normals, 0.4)
     slice_radius(w, PYRAMID_EDGES)
     # the loops on their own, as the checks against qhull call them
+    from ..core.tolerances import SLICE_WEIGHT_TOL
     from ..spatial._slice import _LOOPS, pattern_table
 
     loops = _LOOPS.get()
     if loops is not None:
         table = pattern_table(PYRAMID_EDGES)
         out = np.empty((len(table), 3))
-        loops["_slice_points"](w, table, 1e-12, out)
-        loops["_hull_inradius"](np.ascontiguousarray(w[:4, :3]), 1e-12)
+        loops["_slice_points"](w, table, SLICE_WEIGHT_TOL, out)
+        loops["_hull_inradius"](np.ascontiguousarray(w[:4, :3]), SLICE_WEIGHT_TOL)
 
 
 def _four(small: Any) -> None:
