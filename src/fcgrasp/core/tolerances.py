@@ -102,6 +102,11 @@ ON_EDGE_TOL = 1e-6
 #: one line.
 COLLINEAR_TOL = 1e-12
 
+#: Two neighbouring edges of a ring whose turn's sine exceeds this (their cross product
+#: over their lengths' product, some thousand roundings clear of zero) meet only at their
+#: common vertex: the simple-outline check leaves them out of shapely's intersections.
+NEIGHBOUR_TURN = 1e-12
+
 #: The documented range of inputs: coordinates (and every other input number) of
 #: magnitude at most this, and parts at least ``1 / MAX_MAGNITUDE`` across.  Within it,
 #: squares and products of coordinates stay far from float64 overflow and underflow, so

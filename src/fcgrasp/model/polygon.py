@@ -37,7 +37,7 @@ from shapely.geometry import Polygon as ShapelyPolygon
 
 from ..core._checks import FloatArray, _short, numeric_array
 from ..core._geom import signed_area, unique_rows
-from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, TINY
+from ..core.tolerances import COLLINEAR_TOL, MAX_MAGNITUDE, NEIGHBOUR_TURN, TINY
 
 if TYPE_CHECKING:
     from numpy.typing import ArrayLike
@@ -94,9 +94,13 @@ def _check_ring(value: Any, name: str) -> FloatArray:
 def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, int, Any] | None:
     """First pair of edges (global numbers) that intersect other than at a shared vertex.
 
-    Every candidate pair comes from one spatial index query and is intersected in one
-    vectorised call; only the pairs left (none, for a valid part) are looked at."""
-    starts, ends, ids, ring_of = [], [], [], []
+    Every candidate pair (their boxes meet) comes from one spatial index query and is
+    intersected in one vectorised call; only the pairs left (none, for a valid part)
+    are looked at.  Two neighbours along a ring that turn (:data:`NEIGHBOUR_TURN`) meet
+    only at their common vertex, so they are not intersected: shapely's answer for them
+    is that vertex."""
+    starts, ends, ids, ring_of, after = [], [], [], [], []
+    count = 0
     for r, (ring, off) in enumerate(zip(rings, offsets, strict=True)):
         nxt = np.roll(ring, -1, axis=0)
         keep = np.flatnonzero(np.any(ring != nxt, axis=1))
@@ -104,12 +108,23 @@ def _crossing_edges(rings: list[FloatArray], offsets: list[int]) -> tuple[int, i
         ends.append(nxt[keep])
         ids.append(off + keep)
         ring_of.append(np.full(keep.size, r))
+        # each kept edge's neighbour after it (the zero-length edges between left out:
+        # they repeat the vertex the two share)
+        after.append(count + np.roll(np.arange(keep.size), -1))
+        count += keep.size
     p0, p1 = np.concatenate(starts), np.concatenate(ends)
-    edge, ring_id = np.concatenate(ids), np.concatenate(ring_of)
+    edge, ring_id, nxt_of = np.concatenate(ids), np.concatenate(ring_of), np.concatenate(after)
     segs = shapely.linestrings(np.stack([p0, p1], axis=1))
-    left, right = shapely.STRtree(segs).query(segs, predicate="intersects")
+    # the pairs whose boxes meet (those that do not intersect have an empty
+    # intersection below: fine)
+    left, right = shapely.STRtree(segs).query(segs)
     sel = left < right
     left, right = left[sel], right[sel]
+    u, w = p1[left] - p0[left], p1[right] - p0[right]
+    turn = np.abs(u[:, 0] * w[:, 1] - u[:, 1] * w[:, 0]) > NEIGHBOUR_TURN * \
+        np.hypot(u[:, 0], u[:, 1]) * np.hypot(w[:, 0], w[:, 1])
+    apart = turn & ((nxt_of[left] == right) | (nxt_of[right] == left))
+    left, right = left[~apart], right[~apart]
     order = np.lexsort((right, left))
     left, right = left[order], right[order]
     inter = shapely.intersection(segs[left], segs[right])
