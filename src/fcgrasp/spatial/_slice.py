@@ -12,10 +12,12 @@ d_i = 4`` where the pyramids are in general position; so the supports to read ar
 adjacent edges of one pyramid with one edge of each other, two adjacent edges of two
 pyramids, or three edges of one pyramid's fan triangulation with an edge of another
 (:func:`pattern_table`, 2,016 of them against qhull's 6-D hull of 24 points).  A vertex
-whose support is smaller (pyramids in special position, as on two parallel faces) is the
-unique solution of a larger support from this table with zero weights.  Every point kept
-is a point of ``S`` whatever the conditioning (weights at least ``-tol``, the balance
-checked to ``tol``), so the radius read from them never exceeds the slice's.
+whose support is smaller (pyramids in special position, as on two parallel faces) is
+read as the solution of a larger support from this table with zero weights (tested on
+the faces of boxes, exactly opposite normals and seeded triples of every kind: the 6-D
+hull's radius each time).  Every point kept is a point of ``S`` whatever the
+conditioning (weights at least ``-tol``, the balance checked to ``tol``), so the radius
+read from them never exceeds the slice's: a vertex missed could only lower it.
 
 **The radius.**  ``delta`` is the inradius of ``S`` about the origin: the smallest
 ``b / |n_m|`` over the 6-D hull's facets ``n . w <= b`` equals the distance to the nearest
