@@ -402,3 +402,22 @@ def test_a_triple_search_the_clock_ends_keeps_regions_that_hold(monkeypatch):
             assert plan.radius <= plan.delta
             seen += 1
     assert seen >= 3, seen
+
+
+def test_the_fits_a_search_keeps_are_each_pieces_own():
+    """The octagon fits a search keeps per piece (``own_octagon_fit``) are ``_fit`` of
+    that piece, whatever order the pieces are asked in, and a triple's nominal centres
+    read them."""
+    from fcgrasp.spatial._pieces import _fit, own_octagon_fit
+    from fcgrasp.spatial.regions import OCTAGON
+    from fcgrasp.spatial.triples import _nominal
+
+    table = _piece_table(_random_convex(3))
+    order = np.random.default_rng(3).permutation(len(table.facet))
+    for p in order.tolist():
+        want = _fit(table.halfplanes[p], OCTAGON, table.width[p])
+        got = own_octagon_fit(table, p, OCTAGON)
+        assert got[0] == want[0] and np.array_equal(got[1], want[1])
+    assert len(table.own_octagon) == len(order)
+    _, start = _nominal(table, (0, 1, 2))
+    assert np.array_equal(start, [table.own_octagon[p][1] for p in (0, 1, 2)])

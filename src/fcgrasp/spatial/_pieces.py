@@ -80,6 +80,10 @@ class _Pieces:
     width: list[FloatArray] = field(repr=False)  # the piece's width across each edge
     narrow_angle: FloatArray = field(repr=False)  # the narrowest widths' normal angles
     narrow_width: FloatArray = field(repr=False)  # ... and widths (P, NARROW), inf pad
+    #: each piece's octagon fit along its facet's own axis (:func:`own_octagon_fit`),
+    #: found once a search asks for it
+    own_octagon: dict[int, tuple[float, FloatArray]] = field(default_factory=dict,
+                                                            repr=False)
 
 
 def _piece_table(solid: Solid) -> _Pieces:
@@ -132,6 +136,15 @@ def _piece_table(solid: Solid) -> _Pieces:
                     np.zeros(len(verts)), width, narrow_angle, narrow_width)
     table.own_fit[:] = _fit_bounds(table, np.arange(len(verts)), np.zeros(len(verts)))
     return table
+
+
+def own_octagon_fit(table: _Pieces, p: int, corners: FloatArray) -> tuple[float, FloatArray]:
+    """:func:`_fit` of the octagon ``corners`` (along the facet's own axis) in piece ``p``
+    of ``table``, kept in the table: the triples of a search share their pieces."""
+    got = table.own_octagon.get(p)
+    if got is None:
+        got = table.own_octagon[p] = _fit(table.halfplanes[p], corners, table.width[p])
+    return got
 
 
 def _triangle_lengths(E: FloatArray) -> FloatArray:

@@ -50,7 +50,7 @@ import numpy as np
 from ..core._checks import FloatArray, check_int
 from ..core.budget import cut_if_over
 from ..core.tolerances import HULL_ROUNDING, TOL
-from ._pieces import Halfplanes, _fit, _piece_table
+from ._pieces import Halfplanes, _piece_table, own_octagon_fit
 from ._slice import forces_radius, slice_radius
 from .contacts import check_spatial_contacts, contact_frames
 from .regions import (
@@ -330,8 +330,7 @@ def _nominal(table: Any, pieces: tuple[int, int, int]) -> tuple[_Triple, FloatAr
     tri = _Triple(hps, [(E @ OCTAGON.T).max(axis=1) for E, _ in hps],
                   table.origin[list(pieces)], table.axes[list(pieces)],
                   table.normal[list(pieces)])
-    start = np.array([_fit(hps[k], OCTAGON, table.width[p])[1]
-                      for k, p in enumerate(pieces)])
+    start = np.array([own_octagon_fit(table, p, OCTAGON)[1] for p in pieces])
     return tri, start
 
 
