@@ -19,39 +19,63 @@ def _slice_points(w: Any, table: Any, tol: float, out: Any) -> int:
     elimination with partial pivoting; a pivot below ``tol`` skips the row) and the
     point ``sum x_j m_j`` is kept where every weight is at least ``-tol`` and the
     balance holds to ``tol``: a point of the hull at zero force, whatever the
-    conditioning of the solve."""
+    conditioning of the solve.  Rows that share their first three generators with the
+    row before (the table's runs of eight) share the elimination of those columns
+    (the pivots and factors depend on them alone): the fourth column replays it, the
+    same operations in the same order as a whole elimination."""
     n = 0
     M = np.empty((4, 5))
     x = np.empty(4)
+    v = np.empty(4)
+    piv_at = np.empty(3, np.int64)
+    fct_at = np.empty((3, 4))
+    prefix_ok = False
     for r in range(table.shape[0]):
-        for q in range(4):
-            j = table[r, q]
-            M[0, q], M[1, q], M[2, q], M[3, q] = w[j, 0], w[j, 1], w[j, 2], 1.0
-        M[0, 4], M[1, 4], M[2, 4], M[3, 4] = 0.0, 0.0, 0.0, 1.0
-        ok = True
-        for col in range(4):
-            piv, big = col, abs(M[col, col])
-            for rr in range(col + 1, 4):
-                if abs(M[rr, col]) > big:
-                    piv, big = rr, abs(M[rr, col])
-            if big < tol:
-                ok = False
-                break
+        if r == 0 or table[r, 0] != table[r - 1, 0] or table[r, 1] != table[r - 1, 1] \
+                or table[r, 2] != table[r - 1, 2]:
+            # the first three columns and the right-hand side, eliminated
+            for q in range(3):
+                j = table[r, q]
+                M[0, q], M[1, q], M[2, q], M[3, q] = w[j, 0], w[j, 1], w[j, 2], 1.0
+            M[0, 4], M[1, 4], M[2, 4], M[3, 4] = 0.0, 0.0, 0.0, 1.0
+            prefix_ok = True
+            for col in range(3):
+                piv, big = col, abs(M[col, col])
+                for rr in range(col + 1, 4):
+                    if abs(M[rr, col]) > big:
+                        piv, big = rr, abs(M[rr, col])
+                if big < tol:
+                    prefix_ok = False
+                    break
+                piv_at[col] = piv
+                if piv != col:
+                    for cc in range(col, 5):
+                        if cc != 3:
+                            M[col, cc], M[piv, cc] = M[piv, cc], M[col, cc]
+                for rr in range(col + 1, 4):
+                    fct = M[rr, col] / M[col, col]
+                    fct_at[col, rr] = fct
+                    for cc in range(col, 5):
+                        if cc != 3:
+                            M[rr, cc] -= fct * M[col, cc]
+        if not prefix_ok:
+            continue
+        j = table[r, 3]
+        v[0], v[1], v[2], v[3] = w[j, 0], w[j, 1], w[j, 2], 1.0
+        for col in range(3):
+            piv = piv_at[col]
             if piv != col:
-                for cc in range(col, 5):
-                    M[col, cc], M[piv, cc] = M[piv, cc], M[col, cc]
+                v[col], v[piv] = v[piv], v[col]
             for rr in range(col + 1, 4):
-                fct = M[rr, col] / M[col, col]
-                for cc in range(col, 5):
-                    M[rr, cc] -= fct * M[col, cc]
-        if not ok:
+                v[rr] -= fct_at[col, rr] * v[col]
+        if abs(v[3]) < tol:
             continue
         feasible = True
         for col in range(3, -1, -1):
             s = M[col, 4]
             for cc in range(col + 1, 4):
-                s -= M[col, cc] * x[cc]
-            x[col] = s / M[col, col]
+                s -= (v[col] if cc == 3 else M[col, cc]) * x[cc]
+            x[col] = s / (v[3] if col == 3 else M[col, col])
             if x[col] < -tol:
                 feasible = False
                 break
