@@ -71,6 +71,18 @@ def test_the_slices_vertices_give_the_hulls_radius(seed):
     assert decided >= 0.9 * holding > 0, (decided, holding)
 
 
+def test_the_generators_built_in_the_loop_are_the_searchs():
+    """The slice read at three contacts with the generators built in the compiled loop
+    (a triple's refinement) is the slice of ``_generators``' wrenches, number for
+    number, and so is the reach its radius is in units of."""
+    for p, n, mu in _grasps(5, 200):
+        forces = T._pyramid_forces(n, _alpha(mu))
+        want = _slice.slice_radius(T._generators(p, n, _alpha(mu), forces),
+                                   T.PYRAMID_EDGES)
+        got, reach = _slice.slice_radius_at(p, forces, None, T.TOL)
+        assert got == want and reach == T._reach(p)
+
+
 @pytest.mark.parametrize("seed", [0, pytest.param(1, marks=pytest.mark.slow)])
 def test_every_point_the_slice_keeps_is_in_the_hull(seed):
     """Each moment the vertex reading keeps, at zero force, satisfies every facet of the

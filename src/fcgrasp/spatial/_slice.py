@@ -31,7 +31,8 @@ forces' ball).  Where that bound does not clear twice the rounding, or the loops
 run, the 6-D hull decides (``None``).  ``r_S`` is read from the points' 3-D hull built
 incrementally (qhull's where it does not close: flat points, slivers), ``r_F`` from the
 planes through three forces (a triple's refinement moves its contacts, not its normals:
-once per triple)."""
+once per triple); a triple's moves build their wrenches in the same compiled call
+(:func:`slice_radius_at`, ``triples._generators``' numbers)."""
 
 from __future__ import annotations
 
@@ -84,6 +85,25 @@ def forces_radius(forces: FloatArray) -> float | None:
     return float(r_f) if ok else None
 
 
+def slice_radius_at(points: FloatArray, forces: FloatArray, forces_inradius: float | None,
+                    least: float) -> tuple[float | None, float] | None:
+    """:func:`slice_radius` of the generators of three contacts at ``points`` (3, 3)
+    with the pyramids' unit ``forces`` (3, E, 3) (``triples._generators``' numbers,
+    built in the compiled loop; moments over the contacts' reach, at least ``least``),
+    and that reach; None where the loops do not run."""
+    if not _LOOPS.available():
+        return None
+    forces = np.ascontiguousarray(forces, dtype=float)
+    table = pattern_table(forces.shape[1])
+    out = np.empty((table.shape[0], 3))
+    ok, got = _LOOPS.run("_slice_at", np.ascontiguousarray(points, dtype=float), forces,
+                         table, SLICE_WEIGHT_TOL, float(least), out)
+    if not ok:
+        return None
+    *found, reach = got
+    return _radius(tuple(found), out, forces.reshape(-1, 3), forces_inradius), float(reach)
+
+
 def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
                  ) -> float | None:
     """The slice's radius less the rounding (``triples._hull_slice_radius``'s number), or
@@ -98,6 +118,13 @@ def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
     ok, got = _LOOPS.run("_slice_inradius", w, table, SLICE_WEIGHT_TOL, out)
     if not ok:
         return None
+    return _radius(got, out, w[:, :3], forces_inradius)
+
+
+def _radius(got: tuple[int, float, int, float, float], out: FloatArray, forces: FloatArray,
+            forces_inradius: float | None) -> float | None:
+    """The radius from ``_slice_inradius``'s answer ``got`` (its distinct points in
+    ``out``), the 6-D hull's rounding rule applied (module docstring)."""
     status, r_s, m, scale, moment = got
     if status == 0:
         return 0.0                        # no 3-D slice: the origin is not inside
@@ -108,7 +135,7 @@ def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
             r_s = float(np.min(-ConvexHull(out[:m]).equations[:, 3]))
         except (QhullError, ValueError):
             return 0.0                    # flat: no ball in it
-    r_f = forces_radius(w[:, :3]) if forces_inradius is None else forces_inradius
+    r_f = forces_radius(forces) if forces_inradius is None else forces_inradius
     if r_f is None:
         return None
     if r_s <= 0 or r_f <= 0:

@@ -7,6 +7,7 @@ where they do not run, qhull's 6-D hull (``triples._hull_slice``) is the referen
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import numpy as np
@@ -127,6 +128,38 @@ def _slice_inradius(w: Any, table: Any, tol: float, out: Any) -> Any:
         return 0, 0.0, m, scale, moment
     closed, r = _hull_inradius(pts, tol)
     return (1 if closed else 2), r, m, scale, moment
+
+
+def _slice_at(points: Any, forces: Any, table: Any, tol: float, least: float,
+              out: Any) -> Any:
+    """:func:`_slice_inradius` of the generators of three contacts at ``points`` (3, 3)
+    with the pyramids' unit ``forces`` (3, E, 3), built as ``triples._generators``
+    builds them (moments about the points' mean over their reach, at least ``least``),
+    with the reach: ``(status, r_s, m, scale, moment, reach)``."""
+    E = forces.shape[1]
+    w = np.empty((3 * E, 6))
+    cx = (points[0, 0] + points[1, 0] + points[2, 0]) / 3.0
+    cy = (points[0, 1] + points[1, 1] + points[2, 1]) / 3.0
+    cz = (points[0, 2] + points[1, 2] + points[2, 2]) / 3.0
+    arm = np.empty((3, 3))
+    reach = 0.0
+    for i in range(3):
+        arm[i, 0], arm[i, 1], arm[i, 2] = points[i, 0] - cx, points[i, 1] - cy, \
+            points[i, 2] - cz
+        reach = max(reach, math.sqrt(arm[i, 0] * arm[i, 0] + arm[i, 1] * arm[i, 1]
+                                     + arm[i, 2] * arm[i, 2]))
+    unit = max(reach, least)
+    for i in range(3):
+        a0, a1, a2 = arm[i, 0], arm[i, 1], arm[i, 2]
+        for e in range(E):
+            b0, b1, b2 = forces[i, e, 0], forces[i, e, 1], forces[i, e, 2]
+            j = i * E + e
+            w[j, 0], w[j, 1], w[j, 2] = b0, b1, b2
+            w[j, 3] = (a1 * b2 - a2 * b1) / unit
+            w[j, 4] = (a2 * b0 - a0 * b2) / unit
+            w[j, 5] = (a0 * b1 - a1 * b0) / unit
+    status, r, m, scale, moment = _slice_inradius(w, table, tol, out)
+    return status, r, m, scale, moment, reach
 
 
 def _distinct_points(pts: Any, n: int, tol: float) -> Any:

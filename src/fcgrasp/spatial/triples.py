@@ -51,7 +51,7 @@ from ..core._checks import FloatArray, check_int
 from ..core.budget import cut_if_over
 from ..core.tolerances import HULL_ROUNDING, TOL
 from ._pieces import Halfplanes, _piece_table, own_octagon_fit
-from ._slice import forces_radius, slice_radius
+from ._slice import forces_radius, slice_radius, slice_radius_at
 from .contacts import check_spatial_contacts, contact_frames
 from .regions import (
     DEFAULT_MARGIN_DEG,
@@ -307,10 +307,16 @@ class _Triple:
         if fit <= beat:
             return 0.0, 0.0
         points = self.centers(t)
-        reach = _reach(points)
         if self.pyramids is None or self.pyramids[0] != alpha:
             forces = _pyramid_forces(self.normals, alpha)
             self.pyramids = (alpha, forces, forces_radius(forces.reshape(-1, 3)))
+        if SLICE_VERTICES and self.facets is None:
+            # the generators built in the compiled loop with the slice read from them
+            got = slice_radius_at(points, self.pyramids[1], self.pyramids[2], TOL)
+            if got is not None and got[0] is not None:
+                delta = got[1] * got[0]
+                return min(delta, fit), delta
+        reach = _reach(points)
         w = _generators(points, self.normals, alpha, self.pyramids[1])
         if beat > 0 and FACET_BOUND and self.facets is not None and \
                 min(fit, reach * max(_facet_bound(w, self.facets), 0.0)) <= beat:
