@@ -241,7 +241,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
         return out
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
     return _ranked_with(out, top, lambda last: surface_pair_plans(
-        solid, mu_v, alpha, top, margin_v, last, leximin=leximin))
+        solid, mu_v, alpha, top, margin_v, last, leximin=leximin, memo=memo))
 
 
 def _ranked_with(plans: list[Any], top: int | None, across: Any) -> list[Any]:
@@ -254,7 +254,8 @@ def _ranked_with(plans: list[Any], top: int | None, across: Any) -> list[Any]:
 
 def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 10,
                        margin: float = DEFAULT_MARGIN_DEG, floor: float = 0.0,
-                       gap: float = GAP, leximin: bool = True) -> list[SurfacePairPlan]:
+                       gap: float = GAP, leximin: bool = True,
+                       memo: dict[Any, Any] | None = None) -> list[SurfacePairPlan]:
     """The best regions of two soft fingers across facets (module docstring), largest
     first, at most ``top`` (None: every pair of patches), each larger than ``floor``;
     the search stops when no pair of patches left has a bound above ``1 + gap`` times
@@ -265,7 +266,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     with ``leximin``, each plan's second level grown (:func:`_second_level`):
     ``mu`` and ``margin`` as :func:`~fcgrasp.spatial.soft_pair_plans` checked them,
     ``alpha = atan(mu) - margin`` in radians.  An empty list where no patch spans two
-    facets (a box, a prism)."""
+    facets (a box, a prism).  ``memo``: a dict the searches of one solid share (the
+    distinct rounds asking for more plans): each pair's patches, lower bound and plan,
+    computed once (each depends on the pair, the cone and the options alone)."""
     if alpha <= 0:
         return []
     normals, adj, facet_of = _graph(solid)
@@ -295,6 +298,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     heapq.heapify(heap)
     pairs: dict[int, tuple[_Patch, _Patch]] = {}
     found: list[tuple[float, int, FloatArray, FloatArray, float]] = []
+    store: dict[str, dict[int, Any]] = {} if memo is None else memo.setdefault(
+        ("surface pairs", mu, margin, alpha, gap, leximin), {})
+    grown, lower, made = (store.setdefault(name, {}) for name in ("grown", "lower", "made"))
     while heap:
         if cut_if_over():
             break               # the pairs found so far, each certified; cut short
@@ -304,18 +310,13 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
         if -neg <= (limit * (1 + gap) if full else floor):
             break
         if stage == 0:                        # grow the patches, bound by their extent
-            m = k // len(SPREADS)
-            axis, b = d[m], float(beta[k])
-            along = normals @ axis
-            i, j = int(first[m]), int(second[m])
-            a = _grow(i, (along >= math.cos(b)).tolist(), adj)
-            c = _grow(j, (-along >= math.cos(b)).tolist(), adj)
-            if not a or not c or \
-                    len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
+            if k not in grown:
+                grown[k] = _grown_pair(solid, alpha, k, d, beta, normals, first, second,
+                                       adj, facet_of)
+            if grown[k] is None:
                 continue                      # one facet each: the exact case of regions.py
-            pairs[k] = (_patch(solid, i, b, a, normals, axis),
-                        _patch(solid, j, b, c, normals, -axis))
-            tight = min(-neg, _pair_bound(*pairs[k], alpha))
+            pairs[k], pair_bound = grown[k]
+            tight = min(-neg, pair_bound)
             if tight > limit:
                 heapq.heappush(heap, (-tight, 1, k))
             continue
@@ -327,18 +328,10 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
             if tight > limit:
                 heapq.heappush(heap, (-tight, 2, k))
             continue
-        # a lower bound the cone program improves for the pairs kept: the octagons as
-        # large as they hold about the inscribed centres, or about one of them and the
-        # point facing it on the other patch
-        # (the pieces' centroids first: between equal octagons, the one in the middle)
-        r, c1, c2 = max(_facing(p, q, alphas, (p.middle, q.middle), -neg),
-                        _facing(p, q, alphas, (p.centre, q.centre), -neg),
-                        key=lambda x: x[0])
-        if r <= 0:                # the centres outside the convex pieces: their fits'
-            Q1, Q2 = _octagon_axes(p.frame, q.frame)
-            t1 = _fit(p.kernel, Q1 @ p.frame.axes.T)[1]  # type: ignore[arg-type]
-            t2 = _fit(q.kernel, Q2 @ q.frame.axes.T)[1]  # type: ignore[arg-type]
-            r, c1, c2 = _facing(p, q, alphas, (t1, t2), -neg)
+        # a lower bound the cone program improves for the pairs kept
+        if k not in lower:
+            lower[k] = _lower(p, q, alphas, -neg)
+        r, c1, c2 = lower[k]
         if r > limit:
             found.append((r, k, c1, c2, -neg))
             found.sort(key=lambda x: -x[0])
@@ -350,18 +343,66 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
         # past the time budget a pair is kept as its lower bound certified it: neither
         # polished nor grown
         late = cut_if_over()
-        # the cone program where the lower bound may fall short of the pair's best by
-        # more than the gap
-        got = _program(p, q, alphas) if r * (1 + gap) < bound and not late else None
-        if got is not None:
-            d1, d2, g = got
-            g = _certified(d1, d2, p, q, alphas, g)
-            if g > r:
-                r, c1, c2 = g, d1, d2
-        c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if leximin and not late \
-            else (c1, c2, (r, r))
-        plans.append(_surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of, radii))
+        if late or k not in made:
+            plan = _polished(solid, p, q, alphas, r, c1, c2, bound, gap, leximin and not late,
+                             late, mu, margin, facet_of)
+            if late:
+                plans.append(plan)
+                continue
+            made[k] = plan
+        plans.append(made[k])
     return sorted(plans, key=lambda x: -x.radius)
+
+
+def _grown_pair(solid: Solid, alpha: float, k: int, d: FloatArray, beta: FloatArray,
+                normals: FloatArray, first: Any, second: Any, adj: Any, facet_of: Any
+                ) -> tuple[tuple[_Patch, _Patch], float] | None:
+    """Candidate ``k`` of :func:`surface_pair_plans`: its two patches grown about the
+    bisector and its bound from their extent, or None where each patch is one facet
+    (the exact case of :mod:`fcgrasp.spatial.regions`)."""
+    m = k // len(SPREADS)
+    axis, b = d[m], float(beta[k])
+    along = normals @ axis
+    i, j = int(first[m]), int(second[m])
+    a = _grow(i, (along >= math.cos(b)).tolist(), adj)
+    c = _grow(j, (-along >= math.cos(b)).tolist(), adj)
+    if not a or not c or len(set(facet_of[a].tolist())) + len(set(facet_of[c].tolist())) < 3:
+        return None
+    pair = (_patch(solid, i, b, a, normals, axis), _patch(solid, j, b, c, normals, -axis))
+    return pair, _pair_bound(*pair, alpha)
+
+
+def _lower(p: _Patch, q: _Patch, alphas: tuple[float, float], bound: float
+           ) -> tuple[float, FloatArray, FloatArray]:
+    """A pair's lower bound, the cone program to improve it for the pairs kept: the
+    octagons as large as they hold about the inscribed centres, or about one of them and
+    the point facing it on the other patch (the pieces' centroids first: between equal
+    octagons, the one in the middle); ``(r, c1, c2)``."""
+    r, c1, c2 = max(_facing(p, q, alphas, (p.middle, q.middle), bound),
+                    _facing(p, q, alphas, (p.centre, q.centre), bound),
+                    key=lambda x: x[0])
+    if r <= 0:                # the centres outside the convex pieces: their fits'
+        Q1, Q2 = _octagon_axes(p.frame, q.frame)
+        t1 = _fit(p.kernel, Q1 @ p.frame.axes.T)[1]  # type: ignore[arg-type]
+        t2 = _fit(q.kernel, Q2 @ q.frame.axes.T)[1]  # type: ignore[arg-type]
+        r, c1, c2 = _facing(p, q, alphas, (t1, t2), bound)
+    return r, c1, c2
+
+
+def _polished(solid: Solid, p: _Patch, q: _Patch, alphas: tuple[float, float], r: float,
+              c1: FloatArray, c2: FloatArray, bound: float, gap: float, grow: bool,
+              late: bool, mu: float, margin: float, facet_of: Any) -> SurfacePairPlan:
+    """A pair's plan from its lower bound ``(r, c1, c2)``: the cone program where that
+    may fall short of the pair's ``bound`` by more than the ``gap`` (not when ``late``),
+    then with ``grow`` the second level."""
+    got = _program(p, q, alphas) if r * (1 + gap) < bound and not late else None
+    if got is not None:
+        d1, d2, g = got
+        g = _certified(d1, d2, p, q, alphas, g)
+        if g > r:
+            r, c1, c2 = g, d1, d2
+    c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if grow else (c1, c2, (r, r))
+    return _surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of, radii)
 
 
 # ----------------------------------------------------------------------------- triples
