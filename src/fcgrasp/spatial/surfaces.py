@@ -88,6 +88,7 @@ from .regions import (
     OctagonPlan,
     SoftPairPlan,
     _octagon_axes,
+    _once,
     checked_cone,
     facet_pair_plans,
 )
@@ -298,9 +299,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
     heapq.heapify(heap)
     pairs: dict[int, tuple[_Patch, _Patch]] = {}
     found: list[tuple[float, int, FloatArray, FloatArray, float]] = []
-    store: dict[str, dict[int, Any]] = {} if memo is None else memo.setdefault(
-        ("surface pairs", mu, margin, alpha, gap, leximin), {})
-    grown, lower, made = (store.setdefault(name, {}) for name in ("grown", "lower", "made"))
+    search = ("surface pairs", mu, margin, alpha, gap, leximin)     # the memo's keys
     while heap:
         if cut_if_over():
             break               # the pairs found so far, each certified; cut short
@@ -310,12 +309,11 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
         if -neg <= (limit * (1 + gap) if full else floor):
             break
         if stage == 0:                        # grow the patches, bound by their extent
-            if k not in grown:
-                grown[k] = _grown_pair(solid, alpha, k, d, beta, normals, first, second,
-                                       adj, facet_of)
-            if grown[k] is None:
+            grown = _once(memo, (*search, "grown", k), _grown_pair, solid, alpha, k, d, beta,
+                          normals, first, second, adj, facet_of)
+            if grown is None:
                 continue                      # one facet each: the exact case of regions.py
-            pairs[k], pair_bound = grown[k]
+            pairs[k], pair_bound = grown
             tight = min(-neg, pair_bound)
             if tight > limit:
                 heapq.heappush(heap, (-tight, 1, k))
@@ -329,9 +327,7 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
                 heapq.heappush(heap, (-tight, 2, k))
             continue
         # a lower bound the cone program improves for the pairs kept
-        if k not in lower:
-            lower[k] = _lower(p, q, alphas, -neg)
-        r, c1, c2 = lower[k]
+        r, c1, c2 = _once(memo, (*search, "lower", k), _lower, p, q, alphas, -neg)
         if r > limit:
             found.append((r, k, c1, c2, -neg))
             found.sort(key=lambda x: -x[0])
@@ -343,14 +339,9 @@ def surface_pair_plans(solid: Solid, mu: float, alpha: float, top: int | None = 
         # past the time budget a pair is kept as its lower bound certified it: neither
         # polished nor grown
         late = cut_if_over()
-        if late or k not in made:
-            plan = _polished(solid, p, q, alphas, r, c1, c2, bound, gap, leximin and not late,
-                             late, mu, margin, facet_of)
-            if late:
-                plans.append(plan)
-                continue
-            made[k] = plan
-        plans.append(made[k])
+        args = (solid, p, q, alphas, r, c1, c2, bound, gap, leximin, late, mu, margin, facet_of)
+        plans.append(_polished(*args) if late else
+                     _once(memo, (*search, "plan", k), _polished, *args))
     return sorted(plans, key=lambda x: -x.radius)
 
 
@@ -390,18 +381,19 @@ def _lower(p: _Patch, q: _Patch, alphas: tuple[float, float], bound: float
 
 
 def _polished(solid: Solid, p: _Patch, q: _Patch, alphas: tuple[float, float], r: float,
-              c1: FloatArray, c2: FloatArray, bound: float, gap: float, grow: bool,
+              c1: FloatArray, c2: FloatArray, bound: float, gap: float, leximin: bool,
               late: bool, mu: float, margin: float, facet_of: Any) -> SurfacePairPlan:
     """A pair's plan from its lower bound ``(r, c1, c2)``: the cone program where that
-    may fall short of the pair's ``bound`` by more than the ``gap`` (not when ``late``),
-    then with ``grow`` the second level."""
+    may fall short of the pair's ``bound`` by more than the ``gap``, then with
+    ``leximin`` the second level; neither when ``late`` (past the time budget)."""
     got = _program(p, q, alphas) if r * (1 + gap) < bound and not late else None
     if got is not None:
         d1, d2, g = got
         g = _certified(d1, d2, p, q, alphas, g)
         if g > r:
             r, c1, c2 = g, d1, d2
-    c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if grow else (c1, c2, (r, r))
+    c1, c2, radii = _second_level(p, q, c1, c2, r, alphas) if leximin and not late \
+        else (c1, c2, (r, r))
     return _surface_plan(solid, p, q, c1, c2, r, mu, margin, facet_of, radii)
 
 
