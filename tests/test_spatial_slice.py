@@ -132,26 +132,25 @@ def _rotation(rng):
 
 
 def test_the_3d_inradius_is_qhulls():
-    """The two 3-D inradii (planes through triples of points for the forces; the
-    incremental hull for the slice's vertices) are qhull's smallest facet offset; a flat
-    set has none (the hull does not close, the planes leave no radius); the incremental
-    hull closes on nearly all sets that are not flat."""
+    """The 3-D inradius of a point set's hull (the incremental hull of the compiled
+    loops, for the slice's vertices and the forces; ``forces_radius`` with qhull where
+    it does not close) is qhull's smallest facet offset; a flat set has none (the hull
+    does not close, no radius); the incremental hull closes on nearly all sets that are
+    not flat."""
     rng = np.random.default_rng(7)
     loops = _slice._LOOPS.get()
     closed = solid = 0
     for kind, pts in _point_sets(rng, 400):
         status, r = loops["_hull_inradius"](pts, 1e-12)
         if kind == 4:
-            # (a plane through three nearly collinear points tilts by the rounding)
-            assert status == 0 and loops["_inradius3"](pts, 1e-12) <= 1e-9
+            assert status == 0 and _slice.forces_radius(pts) == -np.inf
             continue
         want = float(np.min(-spatial.ConvexHull(pts).equations[:, 3]))
         solid += 1
         if status:
             closed += 1
             assert r == pytest.approx(want, abs=1e-12)
-        if len(pts) <= 40:
-            assert loops["_inradius3"](pts, 1e-12) == pytest.approx(want, abs=1e-12)
+        assert _slice.forces_radius(pts) == pytest.approx(want, abs=1e-12)
     assert closed >= 0.95 * solid, (closed, solid)
 
 

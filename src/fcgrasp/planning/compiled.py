@@ -135,8 +135,8 @@ def _stretches(blob: Any) -> None:
 def _solids() -> None:
     """Three fingers' slice on three faces of a cube (the loops of
     :mod:`fcgrasp.spatial._slice`, with the types of a search's calls)."""
-    from ..core.tolerances import TOL
-    from ..spatial._slice import slice_radius, slice_radius_at
+    from ..core.tolerances import SLICE_WEIGHT_TOL, TOL
+    from ..spatial._slice import _LOOPS, pattern_table, slice_radius, slice_radius_at
     from ..spatial.triples import PYRAMID_EDGES, _generators, _pyramid_forces
 
     points = np.array([[1.0, 0, 0], [-1.0, 0.2, 0], [0, 1.0, 0.3]])
@@ -145,9 +145,6 @@ def _solids() -> None:
     slice_radius(w, PYRAMID_EDGES)
     slice_radius_at(points, _pyramid_forces(normals, 0.4), None, TOL)
     # the loops on their own, as the checks against qhull call them
-    from ..core.tolerances import SLICE_WEIGHT_TOL
-    from ..spatial._slice import _LOOPS, pattern_table
-
     loops = _LOOPS.get()
     if loops is not None:
         table = pattern_table(PYRAMID_EDGES)

@@ -30,8 +30,8 @@ inradius ``r_S``, the forces' ``r_F`` and the largest moment ``M`` (a unit direc
 forces' ball).  Where that bound does not clear twice the rounding, or the loops do not
 run, the 6-D hull decides (``None``).  ``r_S`` is read from the points' 3-D hull built
 incrementally (qhull's where it does not close: flat points, slivers), ``r_F`` from the
-planes through three forces (a triple's refinement moves its contacts, not its normals:
-once per triple); a triple's moves build their wrenches in the same compiled call
+forces' hull built the same way (a triple's refinement moves its contacts, not its
+normals: once per triple); a triple's moves build their wrenches in the same compiled call
 (:func:`slice_radius_at`, ``triples._generators``' numbers)."""
 
 from __future__ import annotations
@@ -75,14 +75,27 @@ def pattern_table(edges: int) -> np.ndarray:
 
 
 def forces_radius(forces: FloatArray) -> float | None:
-    """The inradius about the origin of the hull of the generators' ``forces`` (n, 3):
-    negative where the origin is outside, ``-inf`` where they are flat; None where the
-    loops do not run."""
+    """The inradius about the origin of the hull of the generators' ``forces`` (n, 3)
+    (:func:`_hull_radius`); None where the loops do not run."""
     if not _LOOPS.available():
         return None
-    ok, r_f = _LOOPS.run("_inradius3", np.ascontiguousarray(forces, dtype=float),
-                         SLICE_WEIGHT_TOL)
-    return float(r_f) if ok else None
+    points = np.ascontiguousarray(forces, dtype=float)
+    ok, (closed, r_f) = _LOOPS.run("_hull_inradius", points, SLICE_WEIGHT_TOL)
+    if not ok:
+        return None
+    return float(r_f) if closed else _hull_radius(points)
+
+
+def _hull_radius(points: FloatArray) -> float:
+    """The distance from the origin to the nearest facet plane of the hull of the 3-D
+    ``points`` by qhull's hull (where the compiled one does not close): negative where
+    the origin is outside, ``-inf`` where they are flat."""
+    from scipy.spatial import ConvexHull, QhullError
+
+    try:
+        return float(np.min(-ConvexHull(points).equations[:, 3]))
+    except (QhullError, ValueError):
+        return -math.inf
 
 
 def slice_radius_at(points: FloatArray, forces: FloatArray, forces_inradius: float | None,
@@ -101,7 +114,7 @@ def slice_radius_at(points: FloatArray, forces: FloatArray, forces_inradius: flo
     if not ok:
         return None
     *found, reach = got
-    return _radius(tuple(found), out, forces.reshape(-1, 3), forces_inradius), float(reach)
+    return _radius(tuple(found), forces.reshape(-1, 3), forces_inradius), float(reach)
 
 
 def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
@@ -118,23 +131,18 @@ def slice_radius(w: FloatArray, edges: int, forces_inradius: float | None = None
     ok, got = _LOOPS.run("_slice_inradius", w, table, SLICE_WEIGHT_TOL, out)
     if not ok:
         return None
-    return _radius(got, out, w[:, :3], forces_inradius)
+    return _radius(got, w[:, :3], forces_inradius)
 
 
-def _radius(got: tuple[int, float, int, float, float], out: FloatArray, forces: FloatArray,
+def _radius(got: tuple[int, float, FloatArray, float, float], forces: FloatArray,
             forces_inradius: float | None) -> float | None:
-    """The radius from ``_slice_inradius``'s answer ``got`` (its distinct points in
-    ``out``), the 6-D hull's rounding rule applied (module docstring)."""
-    status, r_s, m, scale, moment = got
+    """The radius from ``_slice_inradius``'s answer ``got``, the 6-D hull's rounding
+    rule applied (module docstring)."""
+    status, r_s, points, scale, moment = got
     if status == 0:
         return 0.0                        # no 3-D slice: the origin is not inside
     if status == 2:                       # flat, or a sliver: qhull's 3-D hull decides
-        from scipy.spatial import ConvexHull, QhullError
-
-        try:
-            r_s = float(np.min(-ConvexHull(out[:m]).equations[:, 3]))
-        except (QhullError, ValueError):
-            return 0.0                    # flat: no ball in it
+        r_s = _hull_radius(points)
     r_f = forces_radius(forces) if forces_inradius is None else forces_inradius
     if r_f is None:
         return None

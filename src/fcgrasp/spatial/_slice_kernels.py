@@ -1,6 +1,6 @@
 r"""Compiled loops of the zero-force slice of three contacts' wrench hull
 (:mod:`fcgrasp.spatial.triples`): the slice's candidate vertices, their duplicates
-dropped, and the inradius of a small 3-D point set.
+dropped, and the inradius of a 3-D point set's hull.
 
 Plain Python compiled by :mod:`fcgrasp.spatial._slice` (one namespace for every loop);
 where they do not run, qhull's 6-D hull (``triples._hull_slice``) is the reference."""
@@ -101,11 +101,10 @@ def _slice_points(w: Any, table: Any, tol: float, out: Any) -> int:
 
 def _slice_inradius(w: Any, table: Any, tol: float, out: Any) -> Any:
     """The slice's inradius from its candidate vertices (:func:`_slice_points`, their
-    duplicates dropped, :func:`_hull_inradius`), in one call: ``(status, r_s, m, scale,
-    moment)``, status 0 where fewer than four distinct points are found (no 3-D slice),
-    1 with the radius ``r_s``, 2 where their hull does not close (the ``m`` distinct
-    points are then ``out[:m]``); ``scale`` and ``moment`` the largest generator and
-    moment lengths."""
+    duplicates dropped, :func:`_hull_inradius`), in one call: ``(status, r_s, points,
+    scale, moment)``, status 0 where fewer than four distinct points are found (no 3-D
+    slice), 1 with the radius ``r_s``, 2 where the hull of the distinct ``points`` does
+    not close; ``scale`` and ``moment`` the largest generator and moment lengths."""
     scale = moment = 0.0
     for j in range(w.shape[0]):
         mm = w[j, 3] * w[j, 3] + w[j, 4] * w[j, 4] + w[j, 5] * w[j, 5]
@@ -113,21 +112,15 @@ def _slice_inradius(w: Any, table: Any, tol: float, out: Any) -> Any:
         scale = max(scale, (ff + mm) ** 0.5)
         moment = max(moment, mm ** 0.5)
     n = _slice_points(w, table, tol, out)
-    if n < 4:
-        return 0, 0.0, 0, scale, moment
     keep = _distinct_points(out, n, tol)
-    m = keep.shape[0]
-    pts = np.empty((m, 3))
-    for a in range(m):
+    pts = np.empty((keep.shape[0], 3))
+    for a in range(keep.shape[0]):
         for k in range(3):
             pts[a, k] = out[keep[a], k]
-    for a in range(m):
-        for k in range(3):
-            out[a, k] = pts[a, k]
-    if m < 4:
-        return 0, 0.0, m, scale, moment
+    if pts.shape[0] < 4:
+        return 0, 0.0, pts, scale, moment
     closed, r = _hull_inradius(pts, tol)
-    return (1 if closed else 2), r, m, scale, moment
+    return (1 if closed else 2), r, pts, scale, moment
 
 
 def _slice_at(points: Any, forces: Any, table: Any, tol: float, least: float,
@@ -135,7 +128,7 @@ def _slice_at(points: Any, forces: Any, table: Any, tol: float, least: float,
     """:func:`_slice_inradius` of the generators of three contacts at ``points`` (3, 3)
     with the pyramids' unit ``forces`` (3, E, 3), built as ``triples._generators``
     builds them (moments about the points' mean over their reach, at least ``least``),
-    with the reach: ``(status, r_s, m, scale, moment, reach)``."""
+    with the reach: ``(status, r_s, points, scale, moment, reach)``."""
     E = forces.shape[1]
     w = np.empty((3 * E, 6))
     cx = (points[0, 0] + points[1, 0] + points[2, 0]) / 3.0
@@ -158,8 +151,8 @@ def _slice_at(points: Any, forces: Any, table: Any, tol: float, least: float,
             w[j, 3] = (a1 * b2 - a2 * b1) / unit
             w[j, 4] = (a2 * b0 - a0 * b2) / unit
             w[j, 5] = (a0 * b1 - a1 * b0) / unit
-    status, r, m, scale, moment = _slice_inradius(w, table, tol, out)
-    return status, r, m, scale, moment, reach
+    status, r, pts, scale, moment = _slice_inradius(w, table, tol, out)
+    return status, r, pts, scale, moment, reach
 
 
 def _distinct_points(pts: Any, n: int, tol: float) -> Any:
@@ -184,46 +177,6 @@ def _distinct_points(pts: Any, n: int, tol: float) -> Any:
             keep[m] = i
             m += 1
     return keep[:m]
-
-
-def _inradius3(p: Any, tol: float) -> float:
-    """The distance from the origin to the nearest facet plane of the hull of the 3-D
-    points ``p`` (negative where the origin is outside; ``-inf`` where the points are
-    flat), by every plane through three of them that has all on one side (within
-    ``tol``): a few tens of points, the forces of three pyramids."""
-    n = p.shape[0]
-    best = np.inf
-    found = False
-    for a in range(n):
-        for b in range(a + 1, n):
-            ux, uy, uz = p[b, 0] - p[a, 0], p[b, 1] - p[a, 1], p[b, 2] - p[a, 2]
-            for c in range(b + 1, n):
-                vx, vy, vz = p[c, 0] - p[a, 0], p[c, 1] - p[a, 1], p[c, 2] - p[a, 2]
-                nx, ny, nz = uy * vz - uz * vy, uz * vx - ux * vz, ux * vy - uy * vx
-                length = (nx * nx + ny * ny + nz * nz) ** 0.5
-                if length < tol:
-                    continue
-                nx, ny, nz = nx / length, ny / length, nz / length
-                h = nx * p[a, 0] + ny * p[a, 1] + nz * p[a, 2]
-                above = below = False
-                for k in range(n):
-                    d = nx * p[k, 0] + ny * p[k, 1] + nz * p[k, 2] - h
-                    if d > tol:
-                        above = True
-                    elif d < -tol:
-                        below = True
-                    if above and below:
-                        break
-                if above and below:
-                    continue
-                if not below and not above:
-                    continue                    # every point on the plane: flat
-                found = True
-                # the outward normal points away from the points: offset h or -h
-                off = -h if above else h
-                if off < best:
-                    best = off
-    return best if found else -np.inf
 
 
 def _hull_inradius(p: Any, tol: float) -> Any:
