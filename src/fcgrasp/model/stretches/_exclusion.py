@@ -125,8 +125,8 @@ class _Exclusion:
 
     @staticmethod
     def _spans(rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-               intervals: dict[Any, _Intervals], reach: int | None = None
-               ) -> tuple[FloatArray, FloatArray]:
+               intervals: dict[Any, _Intervals], reach: int | None = None,
+               whole: np.ndarray | None = None) -> tuple[FloatArray, FloatArray]:
         """Where the regions of each configuration can start and end on its two rings,
         ``(n, 4)`` each: first start, last start, first end, last end, as arc lengths
         (every pair of regions that holds on those edges has its end points in its end
@@ -134,7 +134,16 @@ class _Exclusion:
         the part of it that holds against the other stretch's interior vertices).  An
         empty interval (no region pair holds) gives a last start or end of -inf.  With
         ``reach``, intervals that contain those (:func:`_ends`'s, cheaper); ``reach=0``:
-        against no vertex, the whole end edges (the whole stretches)."""
+        against no vertex, the whole end edges (the whole stretches).  ``whole``: the
+        configurations whose whole windows hold (:mod:`._whole`), whose end edges hold
+        whole: read so, with no vertex."""
+        if whole is not None and whole.any() and reach != 0:
+            sx, sy = _Exclusion._spans(rings, job, cfg, intervals, 0)
+            rest = np.flatnonzero(~whole)
+            if rest.size:
+                sx[rest], sy[rest] = _Exclusion._spans(rings, job, cfg.take(rest), intervals,
+                                                       reach)
+            return sx, sy
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]
         (lo0, hi0, lo1, hi1, ulo0, uhi0, ulo1, uhi1), (off_s, off_u) = _ends(
@@ -244,10 +253,12 @@ class _Exclusion:
         return got or None
 
     def similar(self, rings: list[_Ring], job: tuple[int, int, float, str], cfg: _Configs,
-                t: FloatArray, intervals: dict[Any, _Intervals]) -> np.ndarray:
+                t: FloatArray, intervals: dict[Any, _Intervals],
+                whole: np.ndarray | None = None) -> np.ndarray:
         """Which configurations of ``job`` (smallest regions ``t``) are surely the same
         alternative as a kept plan (their regions inside :meth:`_spans`; with a third
-        finger, whichever free stretch it can have, :meth:`_third_masks`)."""
+        finger, whichever free stretch it can have, :meth:`_third_masks`).  ``whole``:
+        the configurations whose whole windows hold (their spans read with no vertex)."""
         x, y = job[0], job[1]
         out = np.zeros(len(t), bool)
         known = self.seen.get((x, y, job[3]))
@@ -256,7 +267,7 @@ class _Exclusion:
         arcs = self._arcs(x, y)
         if arcs is None or not len(t):
             return out
-        spans = self._spans(rings, job, cfg, intervals, BOX_REACH)
+        spans = self._spans(rings, job, cfg, intervals, BOX_REACH, whole)
         t = np.asarray(t, float)
         if len(arcs) == 4:
             self._similar_in(rings, job, spans, t, arcs, None, out)

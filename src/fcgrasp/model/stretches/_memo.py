@@ -34,6 +34,10 @@ class _Job:
     #: the kept plans' thresholds of each configuration (:meth:`_Exclusion.thresholds`,
     #: which the rounds of one collection share)
     taus: Any = None
+    #: a lower bound of each configuration's ``t``: its largest square where its whole
+    #: windows hold (:func:`~fcgrasp.model.stretches._whole.whole_lower`; 0: not shown,
+    #: NaN: not read yet), None where the job has none
+    lower: FloatArray | None = None
 
 
 _KEY = np.dtype([("iA", np.int64), ("kA", np.int64), ("iC", np.int64), ("kC", np.int64)])

@@ -19,6 +19,7 @@ from ._lp import _system
 from ._memo import _Job, _Memo
 from ._placement import _tie_keys
 from ._solve import _Found, _jobs, _Keys, _solve_any, _solve_deferred, _solve_jobs
+from ._whole import _Whole
 from ._windows import (
     _BLOCK,
     _EPS,
@@ -294,6 +295,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
     keys = _Keys(rings)
     if not exclude and cap is None:
         memo = None
+    whole = _Whole(rings, runs) if exclude else None
     want, fixed = top, None
     # floors guessed by the first search (_candidates), tried in turn while too high
     guesses: list[float] | None = [] if _GUESS and top is not None and cap is None else None
@@ -322,7 +324,7 @@ def _search(rings: list[_Ring], beta: float, intervals: dict[Any, _Intervals],
         similar: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         deferred: dict[Any, tuple[_Job, list[np.ndarray]]] = {}
         found = _solve_jobs(rings, beta, prepared, intervals, bound, scale, keys, exclude,
-                            memo, similar, deferred, cap)
+                            memo, similar, deferred, cap, whole)
         if deferred:
             _solve_deferred(rings, beta, intervals, scale, found, bound.floor, deferred,
                             similar)

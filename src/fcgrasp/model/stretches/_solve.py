@@ -123,15 +123,41 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
                 nan.copy(), nan.copy(), np.zeros(ub.size))
 
 
-def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
-                intervals: dict[Any, _Intervals]) -> None:
-    """The ends' boxes of a lazy job's configurations ``chunk`` not yet bounded."""
-    todo = chunk[np.isnan(J.box[chunk])]
+def _lower(job: Any, J: _Job, idx: np.ndarray, whole: Any) -> FloatArray | None:
+    """The lower bounds ``J.lower`` of the configurations ``idx``, read by ``whole``
+    (:func:`_solve_jobs`) where not read yet; None where the job has none."""
+    if whole is None:
+        return None
+    if J.lower is None:
+        J.lower = np.full(len(J.ub), np.nan)
+    todo = idx[np.isnan(J.lower[idx])]
     if todo.size:
-        x, y, sigma, _ = job
-        J.box[todo] = np.minimum(J.ub[todo], _box_bound(
-            rings[x], rings[y], J.cfg.take(todo), intervals[x, y, sigma],
-            intervals[y, x, sigma], J.compiled))
+        lb = whole(job, J.cfg.take(todo))
+        if lb is None:
+            J.lower = None
+            return None
+        J.lower[todo] = lb
+    out: FloatArray = J.lower[idx]
+    return out
+
+
+def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
+                intervals: dict[Any, _Intervals], whole: Any = None) -> None:
+    """The ends' boxes of a lazy job's configurations ``chunk`` not yet bounded; with
+    ``whole`` (:func:`_solve_jobs`), first their lower bounds: where the whole windows
+    hold, the largest square is the arc length bound itself, the box."""
+    todo = chunk[np.isnan(J.box[chunk])]
+    if not todo.size:
+        return
+    x, y, sigma, _ = job
+    lb = _lower(job, J, todo, whole)
+    if lb is not None:
+        shown = lb > 0
+        J.box[todo[shown]] = J.ub[todo[shown]]
+        todo = todo[~shown]
+    J.box[todo] = np.minimum(J.ub[todo], _box_bound(
+        rings[x], rings[y], J.cfg.take(todo), intervals[x, y, sigma],
+        intervals[y, x, sigma], J.compiled))
 
 
 #: Whether the compiled solve leaves the configurations it proves below the run's floor
@@ -209,8 +235,9 @@ class _Run:
         part = cfg.take(chunk)
         t, s0, u0 = J.t[chunk], J.s0[chunk], J.u0[chunk]
         ok = np.flatnonzero(t > 0)
-        sim = self.exclude.similar(self.rings, job, part.take(ok), t[ok], self.intervals) \
-            if self.exclude else np.zeros(ok.size, bool)
+        whole = J.lower[chunk[ok]] > 0 if J.lower is not None else None
+        sim = self.exclude.similar(self.rings, job, part.take(ok), t[ok], self.intervals,
+                                   whole) if self.exclude else np.zeros(ok.size, bool)
         if self.similar is not None and sim.any():
             self.similar.setdefault(job, (J, []))[1].append(chunk[ok[sim]])
             ok, sim = ok[~sim], sim[~sim]
@@ -233,7 +260,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 memo: _Memo | None = None,
                 similar: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
                 deferred: dict[Any, tuple[_Job, list[np.ndarray]]] | None = None,
-                cap: Any = None) -> list[_Found]:
+                cap: Any = None, whole: Any = None) -> list[_Found]:
     """The largest square pair of every configuration that can still reach the top
     (largest bound first, in chunks; ties with the ``k``-th kept).  With ``exclude``,
     the configurations that are surely a kept plan's alternative do not raise the
@@ -252,7 +279,12 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     ``cap(job, cfg)``: for each configuration a length its value cannot exceed (three
     fingers' pair plans: the third finger's widest free stretch); the search then ranks,
     bounds and prunes by the smaller of ``t`` and the cap (a configuration whose cap is
-    below the floor is not solved), each still solved for its own ``t``."""
+    below the floor is not solved), each still solved for its own ``t``.
+
+    ``whole(job, cfg)`` (:class:`~fcgrasp.model.stretches._whole._Whole`): a lower bound
+    of each configuration's ``t`` (NaN where none is shown, or None); a deferred
+    configuration whose lower bound reaches its threshold is a kept plan's copy at its
+    largest square, so it is filed in ``deferred`` unsolved."""
     found: list[_Found] = []
     for job, cfg in prepared:
         if memo is None:
@@ -279,7 +311,7 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
             if memo is not None:            # lazy: by arc length, boxes as they come
                 if ub[chunk[0]] < bound.floor:
                     break
-                _fill_boxes(rings, job, J, chunk, intervals)
+                _fill_boxes(rings, job, J, chunk, intervals, whole)
                 chunk = chunk[_capped(box, caps, chunk, cap, job, cfg) >= bound.floor]
                 if chunk.size == 0:
                     continue
@@ -297,8 +329,16 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
                 later = np.zeros(chunk.size, bool)
                 later[fresh] = tau * (1 + DEFER_PAD) < box[chunk[fresh]]
                 if later.any():
-                    later_idx.append(chunk[later])
-                    later_tau.append(tau[later[fresh]])
+                    li, lt = chunk[later], tau[later[fresh]]
+                    lb = _lower(job, J, li, whole)
+                    if lb is not None:
+                        # surely copies at their largest square: read only as beaters
+                        copy = lb * (1 - DEFER_PAD) >= lt * (1 + DEFER_PAD)
+                        if copy.any():
+                            deferred.setdefault(job, (J, []))[1].append(li[copy])
+                            li, lt = li[~copy], lt[~copy]
+                    later_idx.append(li)
+                    later_tau.append(lt)
                     chunk = chunk[~later]
             run.settle(chunk)
         if later_idx:
