@@ -134,3 +134,89 @@ def test_copies_left_unsolved_by_their_whole_windows_change_no_plan(seed, monkey
     for p, q in zip(got, ref, strict=True):
         for a, b in zip(p.regions, q.regions, strict=True):
             assert np.array_equal(a, b)
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 30))])
+def test_a_rows_runs_hold_a_cyclic_window_as_its_cells_do(seed):
+    """Whether a row's runs hold ``n`` cyclic columns from ``c0``, by the compiled
+    bisection (``_row_holds``, the collection's) and by numpy's (``_RowRuns.holds``),
+    is whether every one of those cells of the dense matrix is True, on seeded matrices
+    (rows empty, full, with runs through the last and the first column)."""
+    from fcgrasp.model.stretches import _kernels
+    from fcgrasp.model.stretches._whole import _RowRuns
+    from fcgrasp.model.stretches._windows import _row_intervals
+
+    rng = np.random.default_rng(seed)
+    holds = _kernels._load()["_row_holds"]
+    for _ in range(20):
+        m = int(rng.integers(3, 40))
+        M = rng.random((m, m)) < rng.uniform(0.3, 0.98)
+        M[rng.integers(m)] = True
+        M[rng.integers(m)] = False
+        row, first, last = _row_intervals(M)
+        ptr = np.searchsorted(row, np.arange(m + 1))
+        runs = _RowRuns((ptr, first, last), m)
+        rows = rng.integers(0, m, 300)
+        c0 = rng.integers(0, m, 300)
+        n = rng.integers(1, m + 1, 300)
+        want = np.array([M[r, (c + np.arange(k)) % m].all()
+                         for r, c, k in zip(rows, c0, n, strict=True)])
+        assert np.array_equal(runs.holds(rows, c0, n), want)
+        got = [holds(ptr.astype(np.int64), first.astype(np.int64), last.astype(np.int64),
+                     int(r), int(c), int(k), m) for r, c, k in zip(rows, c0, n, strict=True)]
+        assert np.array_equal(got, want)
+
+
+@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in range(2, 40))])
+def test_the_collection_leaves_out_the_copies_its_whole_windows_show(seed):
+    """A distinct round's compiled collection on one ring leaves out, beside the copies
+    at any smallest region from the floor (``exs[4]``), only configurations whose whole
+    windows hold (:func:`whole_lower`, numpy's) with an arc bound above their threshold
+    (:meth:`_Exclusion.thresholds`, numpy's) by the pad both ways, and every such one
+    not within a thousandth of that boundary; with the pad 0 it leaves out none of them."""
+    from fcgrasp.core.tolerances import DEFER_PAD
+    from fcgrasp.model import stretches as S
+    from fcgrasp.model.stretches import _kernels
+    from fcgrasp.model.stretches._exclusion import _Exclusion
+    from fcgrasp.model.stretches._memo import _Job
+    from fcgrasp.model.stretches._whole import _RowRuns, whole_lower
+    from fcgrasp.model.stretches._windows import _both_kept, _Configs, _stretch_bound
+
+    part, mu, _ = _smooth(np.random.default_rng(seed))
+    ss = S.StretchSearch(part, mu, 0.5)
+    kept = ss.pairs(top=2)[:1]
+    ring = ss.rings[0]
+    excl = _Exclusion(ss.rings, part, [(p.regions, p.region_edges) for p in kept], 0.5, [],
+                      False)
+    floor = 0.3 * kept[0].min_length
+    left = 0
+    for sigma in (1.0, -1.0):
+        ptr, first, last = ss.runs[0, 0][sigma]
+        ex, exs = excl.copy_columns(ss.rings, 0, 0, floor)
+        assert exs[5] == DEFER_PAD
+
+        def collect(pad, ex=ex, exs=exs, ptr=ptr, first=first, last=last):
+            _, *cfg = _kernels.windows(ptr, first, last, ring.U, ring.U, ring.m, ring.m,
+                                       floor, True, True, 0.0, 1, ex=ex,
+                                       exs=np.r_[exs[:5], pad])
+            return _both_kept(_Configs(*cfg), ring, ring, True)
+
+        every, some = collect(0.0), collect(DEFER_PAD)
+        code = excl._codes(ss.rings, 0, 0, every.iA, every.kA, every.iC, every.kC)
+        kept_codes = excl._codes(ss.rings, 0, 0, some.iA, some.kA, some.iC, some.kC)
+        out = ~np.isin(code, kept_codes)
+        assert np.isin(kept_codes, code).all()
+        n = len(every.iA)
+        J = _Job(every, _stretch_bound(ring, ring, every), np.full(n, np.nan), np.arange(n),
+                 False, np.full(n, np.nan), np.full(n, np.nan), np.full(n, np.nan), np.zeros(n))
+        tau = excl.thresholds(ss.rings, (0, 0, sigma, "m"), J, np.arange(n), ss.intervals)
+        lb = whole_lower(ring, _RowRuns((ptr, first, last), ring.m), every)
+        shown = (lb > 0) & (lb * (1 - DEFER_PAD) >= tau * (1 + DEFER_PAD))
+        clear = (lb > 0) & (np.abs(lb - tau) > 1e-3 * np.maximum(lb, tau))
+        assert not (out & ~shown & clear).any()
+        assert not (~out & shown & clear).any()
+        left += int(out.sum())
+    if seed < 2:
+        assert left > 0

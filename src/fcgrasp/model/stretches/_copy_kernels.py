@@ -267,3 +267,50 @@ def _similar_rows(sx: FloatArray, sy: FloatArray, ax0: FloatArray, ax1: FloatArr
                                  ay1[c], pery, f, tol):
                 out[r] = True
                 break
+
+
+def _row_holds(ptr: IntArray, first: IntArray, last: IntArray, row: int, c0: int, n: int,
+               m: int) -> bool:
+    """Whether row ``row``'s runs hold the ``n`` cyclic columns from ``c0`` (a run through
+    the last column goes on into the first only where both are runs): by bisection over
+    the row's runs, sorted by their first column (``_whole._RowRuns.holds``)."""
+    c1 = c0 + n - 1
+    b = min(c1, m - 1)
+    lo, hi = ptr[row], ptr[row + 1]
+    while lo < hi:                      # the first run starting after c0
+        mid = (lo + hi) // 2
+        if first[mid] <= c0:
+            lo = mid + 1
+        else:
+            hi = mid
+    if lo == ptr[row] or last[lo - 1] < b:
+        return False
+    if c1 < m:
+        return True
+    return bool(first[ptr[row]] == 0 and last[ptr[row]] >= c1 - m)
+
+
+def _whole_copy(ptr: IntArray, first: IntArray, last: IntArray, m: int, iA: int, kA: int,
+                iC: int, kC: int, a0: float, a1: float, c0: float, c1: float, ub: float,
+                ex: FloatArray, exs: FloatArray) -> bool:
+    """Whether a configuration of one ring with itself (edges ``iA .. iA + kA`` and
+    ``iC .. iC + kC``, reduced; spans ``[a0, a1]`` and ``[c0, c1]``, arc bound ``ub``)
+    is a kept plan's copy at its largest square: its whole windows hold
+    (``_whole.whole_lower``: the four rows of the block outside its interior, the
+    matrix symmetric) so that square is ``ub``, and ``ub`` reaches its threshold
+    (``_exclusion._Exclusion.threshold`` of the kept plans, :func:`_exclusion_rows`'s
+    numbers) by the pad ``exs[5]`` both ways."""
+    if kA + 2 > m or kC + 2 > m:
+        return False
+    tau = np.inf
+    for c in range(ex.shape[1]):
+        ta = _side_threshold(a0, a1, ex[0, c], ex[1, c], exs[0], exs[2], exs[3])
+        tc = _side_threshold(c0, c1, ex[2, c], ex[3, c], exs[1], exs[2], exs[3])
+        if ex[1, c] - ex[0, c] > ta and ex[3, c] - ex[2, c] > tc:
+            tau = min(tau, max(ta, tc))
+    if not ub * (1 - exs[5]) >= tau * (1 + exs[5]):
+        return False
+    return (_row_holds(ptr, first, last, iA, iC, kC + 2, m)
+            and _row_holds(ptr, first, last, (iA + kA + 1) % m, iC, kC + 2, m)
+            and _row_holds(ptr, first, last, iC, iA, kA + 2, m)
+            and _row_holds(ptr, first, last, (iC + kC + 1) % m, iA, kA + 2, m))

@@ -10,7 +10,7 @@ import numpy as np
 from ...core._checks import FloatArray
 from ...core.tolerances import COPY_PAD, DEFER_PAD, ROUND_TOL
 from ..polygon import Polygon
-from . import _kernels
+from . import _kernels, _whole
 from ._free_third import FreeThird
 from ._lp import BOX_REACH, _ends
 from ._windows import _Configs, _Intervals, _Ring, numpy_counted, stretch_kernels_for
@@ -364,19 +364,25 @@ class _Exclusion:
                      ) -> tuple[FloatArray, FloatArray] | None:
         """The kept plans' arcs on rings ``x`` and ``y`` (rows ``ax0, ax1, ay0, ay1``,
         :meth:`_arcs`) and the numbers of :meth:`threshold` (``perx, pery, tol, keep``,
-        then ``drop``) for the compiled collection, which leaves out the configurations
-        whose threshold is below ``drop``: surely a copy at any smallest region from
-        ``floor`` on (``drop`` is :data:`~fcgrasp.core.tolerances.COPY_PAD` below it,
-        and below :data:`~fcgrasp.core.tolerances.DEFER_PAD`'s margin too).  None where
-        nothing is left out (no kept plan on these rings, three fingers' plans)."""
+        then ``drop``, then ``whole``) for the compiled collection, which leaves out the
+        configurations whose threshold is below ``drop``: surely a copy at any smallest
+        region from ``floor`` on (``drop`` is :data:`~fcgrasp.core.tolerances.COPY_PAD`
+        below it, and below :data:`~fcgrasp.core.tolerances.DEFER_PAD`'s margin too);
+        on one ring with itself (``whole`` the pad, 0: not), also those whose whole
+        windows hold with an arc bound above their threshold by that pad both ways
+        (:mod:`._whole`: a copy at the largest square).  None where nothing is left out
+        (no kept plan on these rings, three fingers' plans)."""
         arcs = self._arcs(x, y)
         keep = 1 - self.fraction
         if arcs is None or len(arcs) != 4 or keep <= 0 or floor <= 0 or self.free is not None:
             return None
         per = (float(rings[x].U[rings[x].m]), float(rings[y].U[rings[y].m]))
         drop = floor * (1 - COPY_PAD) / (1 + DEFER_PAD)
+        # one ring with itself: its copies at their largest square left out too, where
+        # their whole windows show it (the pad of that rule; 0: none)
+        whole = DEFER_PAD if x == y and _whole.WHOLE_WINDOWS else 0.0
         return (np.stack(arcs).astype(float),
-                np.array([*per, self.tol, keep, drop], float))
+                np.array([*per, self.tol, keep, drop, whole], float))
 
     def threshold(self, rings: list[_Ring], job: tuple[int, int, float, str],
                   cfg: _Configs, intervals: dict[Any, _Intervals]) -> FloatArray:

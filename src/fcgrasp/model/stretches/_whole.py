@@ -77,9 +77,10 @@ def whole_lower(ring: _Ring, runs: _RowRuns, cfg: _Configs) -> FloatArray:
     return np.where(ok & spans, np.minimum(arc_a, arc_c), 0.0)
 
 
-#: Whether a distinct round leaves a kept plan's copy unsolved where its whole windows
-#: prove its largest square above its threshold (:func:`whole_lower`; False: every such
-#: configuration solved, the reference).
+#: Whether a distinct round leaves out of its collection, or unsolved, a kept plan's
+#: copy whose whole windows prove its largest square above its threshold
+#: (:func:`whole_lower`, the collection's ``_copy_kernels._whole_copy``; False: every
+#: such configuration collected and solved, the reference).
 WHOLE_WINDOWS = True
 
 

@@ -15,7 +15,14 @@ import numpy as np
 
 from ...core._checks import FloatArray, IntArray
 from ...core.tolerances import ROUND_TOL
-from ._copy_kernels import _copies_from, _copy_columns, _copy_lengths, _copy_run, _run_span
+from ._copy_kernels import (
+    _copies_from,
+    _copy_columns,
+    _copy_lengths,
+    _copy_run,
+    _run_span,
+    _whole_copy,
+)
 from ._run_kernels import _append, _grow
 
 
@@ -155,6 +162,8 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
     i = (r - 1) % ma + ma
     n_ex = ex.shape[1]
     app = np.empty(n_ex, np.int64)
+    # (one ring with itself, kept plans, and the pad of the whole windows' rule given)
+    whole = collect and same and n_ex > 0 and exs.size > 5 and exs[5] > 0
     while k < ma - 1 and nc > 0:
         ext_s = Ua[i + k + 1] - Ua[i]
         inner_s = Ua[i + k] - Ua[i + 1]
@@ -258,7 +267,16 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
                 n_new = n_out + q_hi - q_lo + 1
                 oA, okA = _grow(oA, n_new), _grow(okA, n_new)
                 oC, okC = _grow(oC, n_new), _grow(okC, n_new)
+                c0 = Ub[(p - 1) % mb]
                 for q in range(q_lo, q_hi + 1):
+                    if whole:
+                        # a copy at its largest square, where its whole windows hold
+                        ext_u = Ub[q + 1] - Ub[p - 1]
+                        if _whole_copy(ptr, first, last, ma, (r - 1) % ma, k, (p - 1) % mb,
+                                       q - p + 1, Ua[(r - 1) % ma],
+                                       Ua[(r - 1) % ma] + ext_s, c0, c0 + ext_u,
+                                       min(ext_s, ext_u), ex, exs):
+                            continue
                     oA[n_out], okA[n_out] = r - 1, k
                     oC[n_out], okC[n_out] = p - 1, q - p + 1
                     n_out += 1
