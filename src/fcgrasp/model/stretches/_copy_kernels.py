@@ -269,13 +269,12 @@ def _similar_rows(sx: FloatArray, sy: FloatArray, ax0: FloatArray, ax1: FloatArr
                 break
 
 
-def _row_holds(ptr: IntArray, first: IntArray, last: IntArray, row: int, c0: int, n: int,
-               m: int) -> bool:
-    """Whether row ``row``'s runs hold the ``n`` cyclic columns from ``c0`` (a run through
-    the last column goes on into the first only where both are runs): by bisection over
-    the row's runs, sorted by their first column (``_whole._RowRuns.holds``)."""
-    c1 = c0 + n - 1
-    b = min(c1, m - 1)
+def _run_end(ptr: IntArray, first: IntArray, last: IntArray, row: int, c0: int, m: int
+             ) -> int:
+    """The last column of row ``row``'s run that holds column ``c0`` (``0 <= c0 < m``),
+    past ``m - 1`` where the run through the last column goes on into the first (its
+    first run's last plus ``m``); -1 where ``c0`` is in no run: by bisection over the
+    row's runs, sorted by their first column."""
     lo, hi = ptr[row], ptr[row + 1]
     while lo < hi:                      # the first run starting after c0
         mid = (lo + hi) // 2
@@ -283,34 +282,44 @@ def _row_holds(ptr: IntArray, first: IntArray, last: IntArray, row: int, c0: int
             lo = mid + 1
         else:
             hi = mid
-    if lo == ptr[row] or last[lo - 1] < b:
-        return False
-    if c1 < m:
-        return True
-    return bool(first[ptr[row]] == 0 and last[ptr[row]] >= c1 - m)
+    if lo == ptr[row] or last[lo - 1] < c0:
+        return -1
+    end = last[lo - 1]
+    if end == m - 1 and first[ptr[row]] == 0:
+        end = m + last[ptr[row]]
+    return int(end)
 
 
-def _whole_copy(ptr: IntArray, first: IntArray, last: IntArray, m: int, iA: int, kA: int,
-                iC: int, kC: int, a0: float, a1: float, c0: float, c1: float, ub: float,
-                ex: FloatArray, exs: FloatArray) -> bool:
-    """Whether a configuration of one ring with itself (edges ``iA .. iA + kA`` and
-    ``iC .. iC + kC``, reduced; spans ``[a0, a1]`` and ``[c0, c1]``, arc bound ``ub``)
-    is a kept plan's copy at its largest square: its whole windows hold
-    (``_whole.whole_lower``: the four rows of the block outside its interior, the
-    matrix symmetric) so that square is ``ub``, and ``ub`` reaches its threshold
-    (``_exclusion._Exclusion.threshold`` of the kept plans, :func:`_exclusion_rows`'s
-    numbers) by the pad ``exs[5]`` both ways."""
-    if kA + 2 > m or kC + 2 > m:
-        return False
-    tau = np.inf
+def _row_holds(ptr: IntArray, first: IntArray, last: IntArray, row: int, c0: int, n: int,
+               m: int) -> bool:
+    """Whether row ``row``'s runs hold the ``n`` cyclic columns from ``c0`` (at most
+    ``m``; a run through the last column goes on into the first only where both are
+    runs): :func:`_run_end` (``_whole._RowRuns.holds`` in numpy)."""
+    return _run_end(ptr, first, last, row, c0, m) >= c0 + n - 1
+
+
+def _stretch_thresholds(a0: float, a1: float, ex: FloatArray, exs: FloatArray,
+                        ta: FloatArray) -> None:
+    """Stretch 1 ``[a0, a1]``'s threshold against each kept plan's first arc (columns of
+    ``ex``), into ``ta``; inf where that arc is not longer than it (the column gives
+    the configuration no threshold: :func:`_exclusion_rows`)."""
     for c in range(ex.shape[1]):
-        ta = _side_threshold(a0, a1, ex[0, c], ex[1, c], exs[0], exs[2], exs[3])
+        t = _side_threshold(a0, a1, ex[0, c], ex[1, c], exs[0], exs[2], exs[3])
+        ta[c] = t if ex[1, c] - ex[0, c] > t else np.inf
+
+
+def _copy_at_optimum(c0: float, c1: float, ub: float, ta: FloatArray, ex: FloatArray,
+                     exs: FloatArray) -> bool:
+    """Whether a configuration whose largest square is ``ub`` (its whole windows hold),
+    stretch 2 ``[c0, c1]``, stretch 1's thresholds ``ta`` (:func:`_stretch_thresholds`),
+    reaches its threshold (``_exclusion._Exclusion.threshold`` of the kept plans: the
+    least over the columns of the larger side's, :func:`_exclusion_rows`'s numbers) by
+    the pad ``exs[5]`` both ways: a kept plan's copy at its largest square."""
+    lhs = ub * (1 - exs[5])
+    for c in range(ex.shape[1]):
+        if not lhs >= ta[c] * (1 + exs[5]):
+            continue
         tc = _side_threshold(c0, c1, ex[2, c], ex[3, c], exs[1], exs[2], exs[3])
-        if ex[1, c] - ex[0, c] > ta and ex[3, c] - ex[2, c] > tc:
-            tau = min(tau, max(ta, tc))
-    if not ub * (1 - exs[5]) >= tau * (1 + exs[5]):
-        return False
-    return (_row_holds(ptr, first, last, iA, iC, kC + 2, m)
-            and _row_holds(ptr, first, last, (iA + kA + 1) % m, iC, kC + 2, m)
-            and _row_holds(ptr, first, last, iC, iA, kA + 2, m)
-            and _row_holds(ptr, first, last, (iC + kC + 1) % m, iA, kA + 2, m))
+        if ex[3, c] - ex[2, c] > tc and lhs >= max(ta[c], tc) * (1 + exs[5]):
+            return True
+    return False

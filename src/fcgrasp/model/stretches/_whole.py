@@ -79,7 +79,7 @@ def whole_lower(ring: _Ring, runs: _RowRuns, cfg: _Configs) -> FloatArray:
 
 #: Whether a distinct round leaves out of its collection, or unsolved, a kept plan's
 #: copy whose whole windows prove its largest square above its threshold
-#: (:func:`whole_lower`, the collection's ``_copy_kernels._whole_copy``; False: every
+#: (:func:`whole_lower`, the collection's ``_copy_kernels._copy_at_optimum``; False: every
 #: such configuration collected and solved, the reference).
 WHOLE_WINDOWS = True
 

@@ -17,11 +17,14 @@ from ...core._checks import FloatArray, IntArray
 from ...core.tolerances import ROUND_TOL
 from ._copy_kernels import (
     _copies_from,
+    _copy_at_optimum,
     _copy_columns,
     _copy_lengths,
     _copy_run,
+    _row_holds,
+    _run_end,
     _run_span,
-    _whole_copy,
+    _stretch_thresholds,
 )
 from ._run_kernels import _append, _grow
 
@@ -164,6 +167,7 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
     app = np.empty(n_ex, np.int64)
     # (one ring with itself, kept plans, and the pad of the whole windows' rule given)
     whole = collect and same and n_ex > 0 and exs.size > 5 and exs[5] > 0
+    ta = np.full(n_ex, np.inf)
     while k < ma - 1 and nc > 0:
         ext_s = Ua[i + k + 1] - Ua[i]
         inner_s = Ua[i + k] - Ua[i + 1]
@@ -173,6 +177,8 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
         if collect and n_ex > 0 and ext_s >= floor:
             a0 = Ua[(r - 1) % ma]
             n_app = _copy_columns(a0, a0 + ext_s, ex, exs, app)
+            if whole:
+                _stretch_thresholds(a0, a0 + ext_s, ex, exs, ta)
         # the current window's cyclic runs, the most any stretch 2 inside them reaches
         # and the longest vertex-aligned one: runs only shrink as the window grows,
         # so neither grows with k
@@ -267,15 +273,20 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
                 n_new = n_out + q_hi - q_lo + 1
                 oA, okA = _grow(oA, n_new), _grow(okA, n_new)
                 oC, okC = _grow(oC, n_new), _grow(okC, n_new)
-                c0 = Ub[(p - 1) % mb]
+                c0, cp, ra0 = Ub[(p - 1) % mb], (p - 1) % mb, (r - 1) % ma
+                if whole:
+                    # the whole windows' block outside the interior (``_whole``): the
+                    # rows of stretch 1's end vertices hold stretch 2's columns up to
+                    # ``reach``; the row of stretch 2's first vertex holds stretch 1
+                    reach = min(_run_end(ptr, first, last, ra0, cp, mb),
+                                _run_end(ptr, first, last, (r + k) % ma, cp, mb))
+                    starts = k + 2 <= ma and _row_holds(ptr, first, last, cp, ra0, k + 2, ma)
                 for q in range(q_lo, q_hi + 1):
-                    if whole:
-                        # a copy at its largest square, where its whole windows hold
+                    if whole and starts and cp + q - p + 2 <= reach and q - p + 3 <= mb and \
+                            _row_holds(ptr, first, last, (q + 1) % mb, ra0, k + 2, ma):
+                        # a kept plan's copy at its largest square, the arc bound
                         ext_u = Ub[q + 1] - Ub[p - 1]
-                        if _whole_copy(ptr, first, last, ma, (r - 1) % ma, k, (p - 1) % mb,
-                                       q - p + 1, Ua[(r - 1) % ma],
-                                       Ua[(r - 1) % ma] + ext_s, c0, c0 + ext_u,
-                                       min(ext_s, ext_u), ex, exs):
+                        if _copy_at_optimum(c0, c0 + ext_u, min(ext_s, ext_u), ta, ex, exs):
                             continue
                     oA[n_out], okA[n_out] = r - 1, k
                     oC[n_out], okC[n_out] = p - 1, q - p + 1
