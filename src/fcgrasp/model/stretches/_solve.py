@@ -282,9 +282,11 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     below the floor is not solved), each still solved for its own ``t``.
 
     ``whole(job, cfg)`` (:class:`~fcgrasp.model.stretches._whole._Whole`): a lower bound
-    of each configuration's ``t`` (NaN where none is shown, or None); a deferred
-    configuration whose lower bound reaches its threshold is a kept plan's copy at its
-    largest square, so it is filed in ``deferred`` unsolved."""
+    of each configuration's ``t`` where its whole windows hold (0 where that is not
+    shown; None for a job it does not read), then exactly its ``t``: that is its box,
+    its spans are its whole end edges (:meth:`_Exclusion.similar`), and a deferred
+    configuration whose bound reaches its threshold is a kept plan's copy at its
+    largest square, filed in ``deferred`` unsolved."""
     found: list[_Found] = []
     for job, cfg in prepared:
         if memo is None:

@@ -161,7 +161,11 @@ def _window_row(r: int, k: int, nc: int, cs: IntArray, ce: IntArray, ns: IntArra
     after them read from the sparse table ``tptr, tf, tl``, which holds windows of up
     to ``k_max`` rows; ``k_max`` 0: none), and on one ring (``same``) only the
     configurations the search keeps are made (:func:`_both_kept`'s: disjoint stretches,
-    each unordered pair once), else each is read and made (the reference)."""
+    each unordered pair once), else each is read and made (the reference).  On one ring
+    with the pad ``exs[5]`` > 0, a configuration whose whole windows hold (the runs of
+    the rows of its four end vertices, the matrix symmetric) with an arc bound above its
+    threshold by that pad both ways is not collected either: a kept plan's copy at its
+    largest square (:func:`_copy_at_optimum`, :mod:`._whole`)."""
     i = (r - 1) % ma + ma
     n_ex = ex.shape[1]
     app = np.empty(n_ex, np.int64)
