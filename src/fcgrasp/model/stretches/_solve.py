@@ -125,18 +125,14 @@ def _job(rings: list[_Ring], job: Any, cfg: _Configs, intervals: dict[Any, _Inte
 
 def _lower(job: Any, J: _Job, idx: np.ndarray, whole: Any) -> FloatArray | None:
     """The lower bounds ``J.lower`` of the configurations ``idx``, read by ``whole``
-    (:func:`_solve_jobs`) where not read yet; None where the job has none."""
-    if whole is None:
+    (:func:`_solve_jobs`) where not read yet; None where it does not read the job."""
+    if whole is None or not whole.reads(job):
         return None
     if J.lower is None:
         J.lower = np.full(len(J.ub), np.nan)
     todo = idx[np.isnan(J.lower[idx])]
     if todo.size:
-        lb = whole(job, J.cfg.take(todo))
-        if lb is None:
-            J.lower = None
-            return None
-        J.lower[todo] = lb
+        J.lower[todo] = whole(job, J.cfg.take(todo))
     out: FloatArray = J.lower[idx]
     return out
 
@@ -281,9 +277,9 @@ def _solve_jobs(rings: list[_Ring], beta: float, prepared: list[tuple[Any, _Conf
     bounds and prunes by the smaller of ``t`` and the cap (a configuration whose cap is
     below the floor is not solved), each still solved for its own ``t``.
 
-    ``whole(job, cfg)`` (:class:`~fcgrasp.model.stretches._whole._Whole`): a lower bound
-    of each configuration's ``t`` where its whole windows hold (0 where that is not
-    shown; None for a job it does not read), then exactly its ``t``: that is its box,
+    ``whole(job, cfg)`` (:class:`~fcgrasp.model.stretches._whole._Whole`, for the jobs
+    it reads): a lower bound of each configuration's ``t`` where its whole windows hold
+    (0 where that is not shown), then exactly its ``t``: that is its box,
     its spans are its whole end edges (:meth:`_Exclusion.similar`), and a deferred
     configuration whose bound reaches its threshold is a kept plan's copy at its
     largest square, filed in ``deferred`` unsolved."""

@@ -85,17 +85,22 @@ WHOLE_WINDOWS = True
 
 
 class _Whole:
-    """:func:`whole_lower` for the jobs of a search (one ring with itself; None for the
-    others), each ring's and mode's runs made searchable once."""
+    """:func:`whole_lower` for the jobs of a search that it reads (:meth:`reads`), each
+    ring's and mode's runs made searchable once."""
 
     def __init__(self, rings: list[_Ring], runs: dict[Any, Any]) -> None:
         self.rings, self.runs = rings, runs
         self._made: dict[Any, _RowRuns] = {}
 
-    def __call__(self, job: Any, cfg: _Configs) -> FloatArray | None:
-        x, y, sigma, _ = job
-        if x != y or not WHOLE_WINDOWS:
-            return None
+    @staticmethod
+    def reads(job: Any) -> bool:
+        """Whether the job is one ring with itself (the vertex matrix symmetric), with
+        :data:`WHOLE_WINDOWS`."""
+        return bool(job[0] == job[1] and WHOLE_WINDOWS)
+
+    def __call__(self, job: Any, cfg: _Configs) -> FloatArray:
+        """:func:`whole_lower` of the configurations ``cfg`` of a job it reads."""
+        x, _, sigma, _ = job
         key = (x, sigma)
         if key not in self._made:
             self._made[key] = _RowRuns(self.runs[x, x][sigma], self.rings[x].m)
