@@ -393,10 +393,11 @@ def test_compiled_leximin_equals_the_numpy_solver(monkeypatch):
     from fcgrasp.model._leximin_kernels import leximin_rows
     from fcgrasp.model.regions import leximin, max_min_length
 
-    monkeypatch.setenv("FCGRASP_JIT", "0")
     rows = positive = multi = 0
     for p in _four_region_problems(np.random.default_rng(31)):
+        monkeypatch.setenv("FCGRASP_JIT", "0")
         ref_t, ref_lv = max_min_length(p), leximin(p)
+        monkeypatch.setenv("FCGRASP_JIT", "1")
         got_t = leximin_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, SOLVER_TOL,
                              LEXIMIN_STEP, True)[:, 0]
         got_lv = leximin_rows(p.L, p.w1, p.w2, p.K1, p.K2, p.active, SOLVER_TOL,

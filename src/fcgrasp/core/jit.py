@@ -203,7 +203,10 @@ class CompiledLoops:
         self.broken = False
 
     def get(self) -> dict[str, Any] | None:
-        """The compiled loops by name; None without numba (or ``extra``'s names)."""
+        """The compiled loops by name; None without numba (or ``extra``'s names) and
+        with ``FCGRASP_JIT=0``, which never compiles (every caller then runs numpy)."""
+        if jit_setting() is False:
+            return None
         with self._lock:
             if not self._loaded and not self.broken:
                 numba = import_numba()
@@ -242,7 +245,7 @@ class CompiledLoops:
     def available(self) -> bool:
         """Do the loops run here?  Not with ``FCGRASP_JIT=0``, without numba, or once
         one failed to compile."""
-        return jit_setting() is not False and not self.broken and self.get() is not None
+        return not self.broken and self.get() is not None
 
     def run(self, name: str, *args: Any) -> tuple[bool, Any]:
         """Run the loop ``name``: ``(True, what it returns)``, or ``(False, None)`` when
