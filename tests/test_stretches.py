@@ -468,3 +468,75 @@ def test_the_ranked_top_grasps_are_the_head_of_every_grasp(seed):
         got = fc.plan(plate, fingers=2, mu=mu, top=top, distinct=0, time_limit=None)
         assert got.complete and len(got) == min(top, len(every))
         assert [key(p) for p in got] == [key(p) for p in every[:top]], top
+
+
+def _equal_bits(a, b):
+    return all(np.array_equal(x, y, equal_nan=True) for x, y in zip(a, b, strict=True))
+
+
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 40))])
+def test_the_closed_form_of_sign_blocks_is_that_of_every_pair_bit_for_bit(seed):
+    """The closed form's elimination of a variable (``_lp._eliminate``: each
+    configuration's rows with a positive coefficient against those with a negative one)
+    and its bounds of t (``_lp._t_bounds``: lower bounds of u0 against upper bounds)
+    give the rows, in their order, and the bounds of every ordered pair of rows
+    (``tests/previous_lp.py``), bit for bit: on 150 random batches of configurations of
+    1 to 47 rows each (each variable eliminated, and the bounds of t), with rows that
+    miss a variable, coefficients at the elimination's threshold and either side of it,
+    rows repeated, the ``1 >= 0`` rows a batch is padded with, and batches of one sign
+    only; and on the rows the numpy search eliminates on a random part and a random
+    ellipse of 40 to 80 edges (40 seeds with ``-m slow``)."""
+    from fcgrasp.model.stretches import _lp
+    from fcgrasp.model.stretches._windows import _EPS
+
+    from .previous_lp import eliminate_every_pair, t_bounds_every_pair
+
+    rng = np.random.default_rng(900 + seed)
+    special = np.array([0.0, _EPS, -_EPS, 2 * _EPS, -2 * _EPS, 0.5 * _EPS, 1.0, -1.0])
+    for _ in range(150):
+        B, R = int(rng.integers(1, 30)), int(rng.integers(1, 48))
+        r = rng.normal(size=(B, R, 3)) * rng.choice([1e-3, 1.0, 1e3], size=(B, R, 1))
+        pick = rng.random((B, R, 3)) < 0.15
+        r[pick] = rng.choice(special, size=int(pick.sum()))
+        r[rng.random((B, R)) < 0.1] = [1.0, 0.0, 0.0]          # the padding rows
+        if R > 1:
+            r[:, -1] = r[:, 0]                                  # a row repeated
+        sign = rng.integers(3)
+        if sign:                                                # one sign of cu only
+            r[:, :, 1] = np.abs(r[:, :, 1]) * (1 if sign == 1 else -1)
+        assert _equal_bits(_lp._t_bounds(r), t_bounds_every_pair(r))
+        empty = r[:0]
+        assert _equal_bits(_lp._t_bounds(empty), t_bounds_every_pair(empty))
+        r4 = np.concatenate([r, rng.normal(size=(B, R, 1))], axis=2)
+        r4[rng.random((B, R, 4)) < 0.1] = 0.0
+        for var in range(1, 4):
+            assert np.array_equal(_lp._eliminate(r4, var), eliminate_every_pair(r4, var),
+                                  equal_nan=True)
+    # the rows of real searches (numpy's solve, as a fresh process runs a small part)
+    seen, eliminated = [], []
+    solve, eliminate = _lp._t_bounds, _lp._eliminate
+
+    def spy(r):
+        seen.append(r.copy())
+        return solve(r)
+
+    def spy_eliminate(rows, var):
+        eliminated.append((rows.copy(), var))
+        return eliminate(rows, var)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setenv("FCGRASP_JIT", "0")
+        mp.setattr(_lp, "_t_bounds", spy)
+        mp.setattr(_lp, "_eliminate", spy_eliminate)
+        mu = 0.3 + 0.2 * (seed % 3)
+        two_finger_stretches(random_polygon(rng), mu, top=5)
+        a = np.linspace(0, 2 * np.pi, int(rng.integers(40, 81)), endpoint=False)
+        two_finger_stretches(Polygon(np.c_[rng.uniform(30, 60) * np.cos(a),
+                                           rng.uniform(10, 30) * np.sin(a)]), mu, top=5)
+    assert len(seen) >= 2 and len(eliminated) >= 2
+    for r in seen:
+        assert _equal_bits(solve(r), t_bounds_every_pair(r))
+    for rows, var in eliminated:
+        assert np.array_equal(eliminate(rows, var), eliminate_every_pair(rows, var),
+                              equal_nan=True)

@@ -122,16 +122,25 @@ def _eliminate(rows: FloatArray, var: int) -> FloatArray:
 
     Every row with a positive coefficient of ``x_var`` is added to every row with a
     negative one (each divided by its coefficient's magnitude); rows without it stay.
-    The result is trimmed to the most valid rows of any problem of the batch (unused
-    rows read ``1 >= 0``)."""
+    Each configuration's rows of either sign are gathered first (in their order, a
+    block of the most of either that a configuration has), so that only those pairs
+    are formed, in the order of every ordered pair.  The result is trimmed to the most
+    valid rows of any problem of the batch (unused rows read ``1 >= 0``)."""
     B, R, K = rows.shape
     a = rows[:, :, var]
     pos, neg = a > _EPS, a < -_EPS
     with np.errstate(divide="ignore", invalid="ignore"):
-        rp = np.where(pos[..., None], rows / np.abs(a)[..., None], 0.0)
-        rn = np.where(neg[..., None], rows / np.abs(a)[..., None], 0.0)
-    pairs = (rp[:, :, None, :] + rn[:, None, :, :]).reshape(B, R * R, K)
-    valid = (pos[:, :, None] & neg[:, None, :]).reshape(B, R * R)
+        scaled = rows / np.abs(a)[..., None]
+    n_pos = max(int(pos.sum(axis=1).max(initial=0)), 1)
+    n_neg = max(int(neg.sum(axis=1).max(initial=0)), 1)
+    first = np.argsort(~pos, axis=1, kind="stable")[:, :n_pos]
+    second = np.argsort(~neg, axis=1, kind="stable")[:, :n_neg]
+    ok_p = np.take_along_axis(pos, first, axis=1)
+    ok_n = np.take_along_axis(neg, second, axis=1)
+    rp = np.where(ok_p[..., None], np.take_along_axis(scaled, first[..., None], axis=1), 0.0)
+    rn = np.where(ok_n[..., None], np.take_along_axis(scaled, second[..., None], axis=1), 0.0)
+    pairs = (rp[:, :, None, :] + rn[:, None, :, :]).reshape(B, n_pos * n_neg, K)
+    valid = (ok_p[:, :, None] & ok_n[:, None, :]).reshape(B, n_pos * n_neg)
     zero = ~(pos | neg)
     out = np.concatenate([pairs, np.where(zero[..., None], rows, 0.0)], axis=1)
     valid = np.concatenate([valid, zero], axis=1)
@@ -159,15 +168,29 @@ def _bounds(rows: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
 def _t_bounds(r: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     """Bounds of t left by rows ``c0 + cu u0 + ct t >= 0`` once u0 is eliminated: every
     lower bound of u0 (``u0 >= al + ga t``) against every upper bound, and the rows
-    without u0; with the least constant of the rows left without t."""
+    without u0; with the least constant of the rows left without t.
+
+    Each configuration's lower bounds are gathered first, then its upper bounds (a
+    block of the most of either that a configuration has), so that only those pairs
+    are formed; the pairs' quotients are the same numbers whatever the order, and the
+    bounds their least and greatest."""
     c0, cu, ct = r[:, :, 0], r[:, :, 1], r[:, :, 2]
     pos, neg = cu > _EPS, cu < -_EPS
     with np.errstate(divide="ignore", invalid="ignore"):
         al = np.where(pos | neg, -c0 / cu, 0.0)
         ga = np.where(pos | neg, -ct / cu, 0.0)
-    D = ga[:, :, None] - ga[:, None, :]                # (ga_p - ga_n) t <= al_n - al_p
-    E = al[:, None, :] - al[:, :, None]
-    valid = pos[:, :, None] & neg[:, None, :]
+    n_pos = max(int(pos.sum(axis=1).max(initial=0)), 1)
+    n_neg = max(int(neg.sum(axis=1).max(initial=0)), 1)
+    lower = np.argsort(~pos, axis=1, kind="stable")[:, :n_pos]
+    upper = np.argsort(~neg, axis=1, kind="stable")[:, :n_neg]
+
+    def take(a: np.ndarray, at: np.ndarray) -> np.ndarray:
+        return np.take_along_axis(a, at, axis=1)
+
+    al_p, ga_p, al_n, ga_n = take(al, lower), take(ga, lower), take(al, upper), take(ga, upper)
+    D = ga_p[:, :, None] - ga_n[:, None, :]            # (ga_p - ga_n) t <= al_n - al_p
+    E = al_n[:, None, :] - al_p[:, :, None]
+    valid = take(pos, lower)[:, :, None] & take(neg, upper)[:, None, :]
     zero = ~(pos | neg)
     with np.errstate(divide="ignore", invalid="ignore"):
         q = E / D
