@@ -138,11 +138,13 @@ class _Exclusion:
         configurations whose whole windows hold (:mod:`._whole`), whose end edges hold
         whole: read so, with no vertex."""
         if whole is not None and whole.any() and reach != 0:
-            sx, sy = _Exclusion._spans(rings, job, cfg, intervals, 0)
-            rest = np.flatnonzero(~whole)
-            if rest.size:
-                sx[rest], sy[rest] = _Exclusion._spans(rings, job, cfg.take(rest), intervals,
-                                                       reach)
+            if whole.all():
+                return _Exclusion._spans(rings, job, cfg, intervals, 0)
+            ends, rest = np.flatnonzero(whole), np.flatnonzero(~whole)
+            wx, wy = _Exclusion._spans(rings, job, cfg.take(ends), intervals, 0)
+            rx, ry = _Exclusion._spans(rings, job, cfg.take(rest), intervals, reach)
+            sx, sy = np.empty((whole.size, wx.shape[1])), np.empty((whole.size, wy.shape[1]))
+            sx[ends], sy[ends], sx[rest], sy[rest] = wx, wy, rx, ry
             return sx, sy
         x, y, sigma, _ = job
         ra, rb = rings[x], rings[y]

@@ -126,21 +126,18 @@ def _eliminate(rows: FloatArray, var: int) -> FloatArray:
     block of the most of either that a configuration has), so that only those pairs
     are formed, in the order of every ordered pair.  The result is trimmed to the most
     valid rows of any problem of the batch (unused rows read ``1 >= 0``)."""
-    B, R, K = rows.shape
+    B, _, K = rows.shape
     a = rows[:, :, var]
     pos, neg = a > _EPS, a < -_EPS
     with np.errstate(divide="ignore", invalid="ignore"):
         scaled = rows / np.abs(a)[..., None]
-    n_pos = max(int(pos.sum(axis=1).max(initial=0)), 1)
-    n_neg = max(int(neg.sum(axis=1).max(initial=0)), 1)
-    first = np.argsort(~pos, axis=1, kind="stable")[:, :n_pos]
-    second = np.argsort(~neg, axis=1, kind="stable")[:, :n_neg]
-    ok_p = np.take_along_axis(pos, first, axis=1)
-    ok_n = np.take_along_axis(neg, second, axis=1)
+    first, ok_p = _true_first(pos)
+    second, ok_n = _true_first(neg)
     rp = np.where(ok_p[..., None], np.take_along_axis(scaled, first[..., None], axis=1), 0.0)
     rn = np.where(ok_n[..., None], np.take_along_axis(scaled, second[..., None], axis=1), 0.0)
-    pairs = (rp[:, :, None, :] + rn[:, None, :, :]).reshape(B, n_pos * n_neg, K)
-    valid = (ok_p[:, :, None] & ok_n[:, None, :]).reshape(B, n_pos * n_neg)
+    n_pairs = first.shape[1] * second.shape[1]
+    pairs = (rp[:, :, None, :] + rn[:, None, :, :]).reshape(B, n_pairs, K)
+    valid = (ok_p[:, :, None] & ok_n[:, None, :]).reshape(B, n_pairs)
     zero = ~(pos | neg)
     out = np.concatenate([pairs, np.where(zero[..., None], rows, 0.0)], axis=1)
     valid = np.concatenate([valid, zero], axis=1)
@@ -148,9 +145,17 @@ def _eliminate(rows: FloatArray, var: int) -> FloatArray:
     trivial = np.zeros(K - 1)
     trivial[0] = 1.0
     keep = np.where(valid[..., None], keep, trivial)
-    width = max(int(valid.sum(axis=1).max(initial=0)), 1)
-    order = np.argsort(~valid, axis=1, kind="stable")[:, :width]
+    order, _ = _true_first(valid)
     return np.take_along_axis(keep, order[..., None], axis=1)
+
+
+def _true_first(mask: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Per row of ``mask`` (B, R): the columns of its True entries first, in their
+    order, as many as the row with the most has (at least one), and which of those are
+    True."""
+    width = max(int(mask.sum(axis=1).max(initial=0)), 1)
+    order = np.argsort(~mask, axis=1, kind="stable")[:, :width]
+    return order, np.take_along_axis(mask, order, axis=1)
 
 
 def _bounds(rows: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
@@ -179,18 +184,13 @@ def _t_bounds(r: FloatArray) -> tuple[FloatArray, FloatArray, FloatArray]:
     with np.errstate(divide="ignore", invalid="ignore"):
         al = np.where(pos | neg, -c0 / cu, 0.0)
         ga = np.where(pos | neg, -ct / cu, 0.0)
-    n_pos = max(int(pos.sum(axis=1).max(initial=0)), 1)
-    n_neg = max(int(neg.sum(axis=1).max(initial=0)), 1)
-    lower = np.argsort(~pos, axis=1, kind="stable")[:, :n_pos]
-    upper = np.argsort(~neg, axis=1, kind="stable")[:, :n_neg]
-
-    def take(a: np.ndarray, at: np.ndarray) -> np.ndarray:
-        return np.take_along_axis(a, at, axis=1)
-
-    al_p, ga_p, al_n, ga_n = take(al, lower), take(ga, lower), take(al, upper), take(ga, upper)
+    lower, ok_p = _true_first(pos)
+    upper, ok_n = _true_first(neg)
+    al_p, ga_p = np.take_along_axis(al, lower, axis=1), np.take_along_axis(ga, lower, axis=1)
+    al_n, ga_n = np.take_along_axis(al, upper, axis=1), np.take_along_axis(ga, upper, axis=1)
     D = ga_p[:, :, None] - ga_n[:, None, :]            # (ga_p - ga_n) t <= al_n - al_p
     E = al_n[:, None, :] - al_p[:, :, None]
-    valid = take(pos, lower)[:, :, None] & take(neg, upper)[:, None, :]
+    valid = ok_p[:, :, None] & ok_n[:, None, :]
     zero = ~(pos | neg)
     with np.errstate(divide="ignore", invalid="ignore"):
         q = E / D

@@ -151,6 +151,8 @@ def _fill_boxes(rings: list[_Ring], job: Any, J: _Job, chunk: np.ndarray,
         shown = lb > 0
         J.box[todo[shown]] = J.ub[todo[shown]]
         todo = todo[~shown]
+        if not todo.size:
+            return
     J.box[todo] = np.minimum(J.ub[todo], _box_bound(
         rings[x], rings[y], J.cfg.take(todo), intervals[x, y, sigma],
         intervals[y, x, sigma], J.compiled))
