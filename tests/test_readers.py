@@ -302,6 +302,56 @@ def test_image_silhouettes_with_holes_not_the_border(tmp_path, ext):
         load_part(f, units="mm")
 
 
+@pytest.mark.parametrize("seed", [0, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in range(1, 20))])
+def test_the_chain_approximation_is_scikit_images_bit_for_bit(seed):
+    """The image reader's Douglas-Peucker (``_read_image.approximate_chain``) keeps the
+    points, bit for bit, that scikit-image's ``measure.approximate_polygon`` keeps (the
+    reference): on the contours of 40 random blobs per seed (closed chains, staircases
+    of pixel edges) and on random walks with straight runs, repeated points and a chain
+    that turns back on itself, at tolerances from 0 to beyond the chain."""
+    from skimage.measure import approximate_polygon, find_contours
+
+    from fcgrasp.io._read_image import approximate_chain
+
+    rng = np.random.default_rng(70 + seed)
+    chains = []
+    for _ in range(40):
+        blob = np.zeros((40, 40))
+        for _ in range(int(rng.integers(1, 6))):
+            r, c, w = rng.integers(5, 35), rng.integers(5, 35), rng.integers(2, 9)
+            yy, xx = np.mgrid[:40, :40]
+            blob[(yy - r) ** 2 + (xx - c) ** 2 * rng.uniform(0.3, 3) < w ** 2] = 1
+        chains += find_contours(np.pad(blob, 1), 0.5)
+    for _ in range(40):
+        steps = rng.normal(size=(int(rng.integers(2, 80)), 2))
+        steps[rng.random(len(steps)) < 0.3] = steps[0]            # straight runs
+        steps[rng.random(len(steps)) < 0.1] = 0.0                 # repeated points
+        walk = np.cumsum(steps, axis=0)
+        chains += [walk, np.concatenate([walk, walk[::-1]])]
+    checked = 0
+    for chain in chains:
+        for tol in (0.0, 1e-9, 0.5, 1.0, 2.5, 1e3):
+            want = approximate_polygon(chain, tolerance=tol)
+            got = approximate_chain(chain, tol)
+            assert got.shape == want.shape and np.array_equal(got, want), tol
+            checked += 1
+    assert checked > 500
+
+
+def test_reading_an_image_leaves_scipy_signal_unimported(tmp_path):
+    """A fresh process that reads a silhouette does not import ``scipy.signal`` (which
+    scikit-image's polygon module imports: 0.6 s of its start)."""
+    f = tmp_path / "plate.png"
+    iio.imwrite(f, silhouette())
+    code = ("import sys\nimport fcgrasp as fc\n"
+            f"p = fc.load_part({str(f)!r})\n"
+            "print(len(p.polygon.holes), 'scipy.signal' in sys.modules)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert out == ["1", "False"]
+
+
 def test_image_light_part_on_dark_and_threshold(tmp_path):
     img = 255 - silhouette()
     img[:, :8] = 0
