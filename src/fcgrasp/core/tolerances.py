@@ -302,3 +302,8 @@ COORD_ROUNDING = 1e-15
 #: smallest normal force in equilibrium is at most this share of the largest cannot be
 #: squeezed.
 SQUEEZE_TOL = 1e-6
+
+#: Relative to a solid's size: a pair of pieces is proved to hold no two soft fingers
+#: only where a direction separates them from the friction cones by this much
+#: (:func:`fcgrasp.spatial._pieces.separated`); closer pairs go to the cone program.
+SEPARATION_PAD = 1e-9

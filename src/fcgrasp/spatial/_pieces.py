@@ -15,6 +15,7 @@ from ..core.tolerances import (
     FIT_ROUNDING,
     INRADIUS_STEP,
     PROJECTED_AXIS,
+    SEPARATION_PAD,
 )
 from .solid import Solid
 
@@ -84,6 +85,10 @@ class _Pieces:
     #: found once a search asks for it
     own_octagon: dict[int, tuple[float, FloatArray]] = field(default_factory=dict,
                                                             repr=False)
+    #: each facet's dual rays (:func:`_dual_rays`) by facet, side and half-angle, made
+    #: once a separation test asks for them
+    dual: dict[tuple[int, float, float], tuple[FloatArray, FloatArray]] = field(
+        default_factory=dict, repr=False)
 
 
 def _piece_table(solid: Solid) -> _Pieces:
@@ -303,3 +308,56 @@ def _piece_fit(table: _Pieces, piece: int, corners: FloatArray
     fit = _fit(table.halfplanes[piece], corners, table.width[piece])
     across = float(np.min(table.width[piece] / (2 * (E @ corners.T).max(axis=1))))
     return (min(fit[0], across) if len(E) == 3 else across), fit
+
+
+#: The separation test's candidate directions (:func:`separated`): azimuths about each
+#: cone's axis, and the angles from it, as fractions of the dual cone's half-angle
+#: ``pi / 2 - alpha`` (1: its boundary).
+DUAL_AZIMUTHS, DUAL_FRACTIONS = 24, (1.0, 2.0 / 3.0, 1.0 / 3.0)
+
+
+def _dual_rays(axis: FloatArray, alpha: float) -> tuple[FloatArray, FloatArray]:
+    """Unit directions of the dual of the cone of half-angle ``alpha`` about the unit
+    ``axis`` (every ``w`` within ``pi / 2 - alpha`` of the axis, so ``w . x >= 0`` for
+    every ``x`` in the cone): the axis and rings at :data:`DUAL_FRACTIONS` of that angle
+    (all of them), and the ring on the boundary alone."""
+    t = np.array([1.0, 0.0, 0.0]) if abs(axis[0]) < 0.9 else np.array([0.0, 1.0, 0.0])
+    u = np.cross(axis, t)
+    u /= np.linalg.norm(u)
+    v = np.cross(axis, u)
+    phi = np.linspace(0.0, 2 * math.pi, DUAL_AZIMUTHS, endpoint=False)
+    ring = np.cos(phi)[:, None] * u + np.sin(phi)[:, None] * v
+    rings = [math.cos(f * (math.pi / 2 - alpha)) * axis
+             + math.sin(f * (math.pi / 2 - alpha)) * ring for f in DUAL_FRACTIONS]
+    return np.concatenate([axis[None], *rings]), rings[0]
+
+
+def separated(table: _Pieces, pa: int, pb: int, alpha: float, size: float) -> bool:
+    """Whether no point of piece ``pb`` seen from any point of piece ``pa`` lies inside
+    both friction cones (half-angle ``alpha`` about ``pa``'s inward normal and about
+    ``pb``'s reversed): :func:`separates` with each facet's dual rays, made once."""
+    rays = []
+    for p, side in ((pa, 1.0), (pb, -1.0)):
+        key = (int(table.facet[p]), side, alpha)
+        got = table.dual.get(key)
+        if got is None:
+            got = table.dual[key] = _dual_rays(side * table.normal[p], alpha)
+        rays.append(got)
+    return separates(table.vertices[pa], table.vertices[pb], rays[0], rays[1],
+                     SEPARATION_PAD * size)
+
+
+def separates(v1: FloatArray, v2: FloatArray, rays1: tuple[FloatArray, FloatArray],
+              rays2: tuple[FloatArray, FloatArray], pad: float) -> bool:
+    """Whether a direction ``w`` of the dual of two cones' intersection (a ray of either
+    cone's dual, or the sum of a boundary ray of each: :func:`_dual_rays`' ``rays1`` and
+    ``rays2``) has ``w . (x_2 - x_1) < -pad |w|`` for every vertex ``x_1`` of ``v1`` and
+    ``x_2`` of ``v2`` (3-D, the vertices of two convex pieces).  Every difference of the
+    pieces' points is then outside a cone, so no two soft fingers hold there (the
+    module :mod:`fcgrasp.spatial.regions`: regions of radius 0).  The directions are
+    sampled (:data:`DUAL_AZIMUTHS`, :data:`DUAL_FRACTIONS`): True is a proof, False
+    proves nothing."""
+    (w1, b1), (w2, b2) = rays1, rays2
+    W = np.concatenate([w1, w2, (b1[:, None, :] + b2[None, :, :]).reshape(-1, 3)])
+    reach = (W @ v2.T).max(axis=1) - (W @ v1.T).min(axis=1)
+    return bool(np.any(reach < -pad * np.linalg.norm(W, axis=1)))

@@ -117,8 +117,8 @@ MEASURE = "region radius"
 
 def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
-    None for every plan): asked for four times more plans than it keeps, and four
-    times more again until ``top`` are kept or the search has no more
+    None for every plan): asked for four times more plans than it keeps, and twice
+    as many again until ``top`` are kept or the search has no more
     (:func:`fcgrasp.core.alternatives.distinct_rounds`, :data:`SOLID_ROUNDS`).  A search
     that stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time or
     memory budget that ends between two rounds, ends the rounds: the plans kept are the
@@ -137,9 +137,10 @@ def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
 
 
 #: How a solid's distinct search asks for longer lists: four times ``top`` plans, then
-#: four times more each round, with no depth (a solid's ranked search is cheap to
-#: extend: its pieces and pairs are kept between rounds).
-SOLID_ROUNDS = Rounds(first=4, factor=4, share=False)
+#: twice as many each round, with no depth (a solid's ranked search is cheap to extend:
+#: its pieces, pairs and grown plans are kept between rounds, and each plan a round
+#: reads has its second level grown, so a round reads no further than it must).
+SOLID_ROUNDS = Rounds(first=4, factor=2, share=False)
 
 
 def _like(plans: Any, kept: list[Any]) -> PlanList:
