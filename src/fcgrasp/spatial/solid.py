@@ -119,9 +119,12 @@ def solid_from_mesh(mesh: Any, units: str = "mm", source: str = "",
                  source)
 
 
-def _facets(mesh: Any) -> list[Facet]:
+def _facets(mesh: Any, batched: bool = True) -> list[Facet]:
     """Every triangle in one facet: trimesh's coplanar groups and the triangles left
-    (those batched: one polygon each, convex)."""
+    (those batched: one polygon each, convex).  ``batched``: the groups of at most
+    :data:`GROUP_BATCH` triangles united at once (shapely's ``union_all`` along an
+    axis, the same union of each group: a torus's quads are 50,000 such groups), their
+    convexity read at once; False: each group on its own, the reference."""
     import shapely
     from shapely import Polygon as ShapelyPolygon
     from shapely import union_all
@@ -143,20 +146,55 @@ def _facets(mesh: Any) -> list[Facet]:
     tri[~ccw] = tri[~ccw][:, ::-1]
     polys = np.empty(len(groups), dtype=object)
     polys[single] = shapely.polygons(tri[single])
+    convex = np.zeros(len(groups), bool)
+    if batched:
+        _united(groups, vertices, faces, origins, axes, polys, convex)
     out = []
     for k, g in enumerate(groups):
         if single[k]:
             poly = polys[k]
             pieces: tuple[Any, ...] = (poly,)
         else:
-            tris = (vertices[faces[list(g)]] - origins[k]) @ axes[k].T     # (m, 3, 2)
-            poly = union_all([ShapelyPolygon(t) for t in tris]).buffer(0)
+            if polys[k] is None:
+                tris = (vertices[faces[list(g)]] - origins[k]) @ axes[k].T     # (m, 3, 2)
+                poly = union_all([ShapelyPolygon(t) for t in tris]).buffer(0)
+            else:
+                poly = polys[k]
             if poly.geom_type != "Polygon":   # pieces touching at a point: the largest
                 poly = max(poly.geoms, key=lambda p: p.area)
-            pieces = tuple(_convex_pieces(poly))
+                convex[k] = False
+            pieces = (poly,) if convex[k] else tuple(_convex_pieces(poly))
         out.append(Facet(k, g, normals[k], origins[k], axes[k], poly, float(poly.area),
                          pieces))
     return out
+
+
+#: Groups of at most this many triangles are united together (:func:`_facets`).
+GROUP_BATCH = 8
+
+
+def _united(groups: list[tuple[int, ...]], vertices: FloatArray, faces: Any,
+            origins: FloatArray, axes: FloatArray, polys: np.ndarray,
+            convex: np.ndarray) -> None:
+    """Into ``polys`` the union (``buffer(0)``) of each group of 2 to
+    :data:`GROUP_BATCH` triangles in its facet's frame, in one call, and into
+    ``convex`` whether it is convex as :func:`_convex_pieces` reads it."""
+    import shapely
+
+    small = [k for k, g in enumerate(groups) if 1 < len(g) <= GROUP_BATCH]
+    if not small:
+        return
+    idx = np.array(small)
+    sizes = np.array([len(groups[k]) for k in small])
+    # (each group's triangles as the reference computes them: the same coordinates)
+    tris = np.concatenate([(vertices[faces[list(groups[k])]] - origins[k]) @ axes[k].T
+                           for k in small])
+    grid = np.full((len(small), GROUP_BATCH), None, dtype=object)
+    slot = np.arange(len(tris)) - np.repeat(np.cumsum(sizes) - sizes, sizes)
+    grid[np.repeat(np.arange(len(small)), sizes), slot] = shapely.polygons(tris)
+    united = shapely.buffer(shapely.union_all(grid, axis=1), 0)
+    polys[idx] = united
+    convex[idx] = shapely.area(united) >= shapely.area(shapely.convex_hull(united)) * (1 - TOL)
 
 
 def _coplanar_groups(mesh: Any, vertices: FloatArray, faces: Any) -> list[tuple[int, ...]]:
