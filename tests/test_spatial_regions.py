@@ -654,3 +654,47 @@ def test_a_search_without_the_separation_test_gives_the_same_plans(monkeypatch):
     assert sum(separated) >= 20
     monkeypatch.setattr(R, "SEPARATE", False)
     assert plans() == with_test
+
+
+@pytest.mark.parametrize("cases", [200, pytest.param(3000, marks=pytest.mark.slow)])
+def test_symmetric_piece_fits_equal_an_lp(cases, monkeypatch):
+    """The fit of a turned octagon in a centrally symmetric piece, in closed form from
+    the piece's widths (:func:`fcgrasp.spatial._pieces._fit` given them: the caps of
+    round holes and bosses; its other ways, the vertices and scipy's LP, refused here),
+    against HiGHS's LP over the centre and scale, on seeded regular polygons of 4 to 64
+    sides stretched and sheared (still symmetric)."""
+    import scipy.optimize
+    import shapely
+
+    from fcgrasp.spatial import _pieces as P
+
+    from ._highs import linprog
+
+    def refused(*args, **kwargs):
+        raise AssertionError("the closed form was not taken")
+
+    monkeypatch.setattr(P, "_vertex_fit", refused)
+    monkeypatch.setattr(scipy.optimize, "linprog", refused)
+    rng = np.random.default_rng(cases)
+    checked = 0
+    for _ in range(cases):
+        n = 2 * int(rng.integers(2, 33))
+        ang = rng.uniform(0, 2 * math.pi) + np.arange(n) * 2 * math.pi / n
+        ring = np.c_[np.cos(ang), np.sin(ang)] @ (rng.normal(size=(2, 2)) + 2 * np.eye(2))
+        ring = ring * rng.uniform(0.1, 50) + rng.normal(size=2) * 20
+        E, h = P._halfplanes(shapely.Polygon(ring).convex_hull)
+        if len(E) != n:
+            continue
+        phi = rng.uniform(0, 2 * math.pi)
+        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
+                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        ring2 = P._ring(shapely.Polygon(ring).convex_hull)
+        width = h - (E @ ring2.T).min(axis=1)
+        s, t = P._fit((E, h), corners, width)
+        k = (E @ corners.T).max(axis=1)
+        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
+                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-9 * np.abs(ring).max())
+        assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
+        checked += 1
+    assert checked > cases // 2

@@ -69,6 +69,8 @@ from ._pieces import (
     _piece_fit,
     _piece_table,
     _Pieces,
+    _ring,
+    _ring_halfplanes,
     separated,
 )
 from ._program import solve_linear
@@ -344,7 +346,12 @@ def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
     floats (:func:`_holds`, shrunk by bisection towards ``r`` where it sits a rounding
     outside).  Returns the centres and the two radii (``(r, r)`` when neither grows)."""
     f1, f2 = solid.facets[facets[0]], solid.facets[facets[1]]
-    halfplanes = (_halfplanes(f1.pieces[pieces[0]]), _halfplanes(f2.pieces[pieces[1]]))
+    rings = (_ring(f1.pieces[pieces[0]]), _ring(f2.pieces[pieces[1]]))
+    halfplanes = (_ring_halfplanes(rings[0]), _ring_halfplanes(rings[1]))
+    # each piece's width across its edges: the fit of a centrally symmetric piece (the
+    # caps of round holes and bosses) in closed form (:func:`_fit`)
+    widths = [h - (E @ ring.T).min(axis=1) for (E, h), ring in zip(halfplanes, rings,
+                                                                   strict=True)]
     Q1, Q2 = _octagon_axes(f1, f2)
     best = (c1, c2, (r, r))
     # bounds that skip the program where nothing can grow: an octagon's fit in its piece
@@ -355,7 +362,7 @@ def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
               if parallel else math.inf)
     for side in (0, 1):
         f, Q = (f1, Q1) if side == 0 else (f2, Q2)
-        fit = _fit(halfplanes[side], Q @ f.axes.T)[0]
+        fit = _fit(halfplanes[side], Q @ f.axes.T, widths[side])[0]
         if min(fit, across) <= r * (1 + TOL):
             continue
         got = _grow_program(solid, facets, halfplanes, alpha, r, side)
