@@ -19,6 +19,18 @@ from fcgrasp.spatial.solid import demo_solid, solid_from_mesh
 trimesh = pytest.importorskip("trimesh")
 
 
+def _octagon(phi):
+    """The unit octagon's corners, the first at angle ``phi``."""
+    return np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
+                 np.sin(phi + np.arange(8) * math.pi / 4)]
+
+
+def _lp_fit(linprog, E, h, k):
+    """The octagon's fit as the LP over its centre and scale (``E t + s k <= h``)."""
+    return linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
+                   bounds=[(None, None), (None, None), (0, None)], method="highs")
+
+
 def _random_convex(seed):
     rng = np.random.default_rng(seed)
     pts = rng.normal(size=(int(rng.integers(6, 14)), 3)) * rng.uniform(5, 20, 3)
@@ -227,12 +239,10 @@ def test_octagon_fits_equal_an_lp(cases):
             continue
         E, h = P._halfplanes(poly)
         phi = rng.uniform(0, 2 * math.pi)
-        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
-                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        corners = _octagon(phi)
         s, t = P._fit((E, h), corners)
         k = (E @ corners.T).max(axis=1)
-        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
-                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        lp = _lp_fit(linprog, E, h, k)
         assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-8 * np.abs(tri).max())
         assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
     solid = solid_from_mesh(trimesh.creation.icosphere(subdivisions=2, radius=7.0))
@@ -389,12 +399,10 @@ def test_the_vertex_fit_equals_highs(cases):
         if not 4 <= len(E) <= P._VERTEX_FIT_EDGES:
             continue
         phi = rng.uniform(0, 2 * math.pi)
-        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
-                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        corners = _octagon(phi)
         k = (E @ corners.T).max(axis=1)
         s, t = P._vertex_fit(E, h, k)
-        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
-                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        lp = _lp_fit(linprog, E, h, k)
         assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-9 * np.abs(pts).max())
         assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
         done += 1
@@ -686,14 +694,12 @@ def test_symmetric_piece_fits_equal_an_lp(cases, monkeypatch):
         if len(E) != n:
             continue
         phi = rng.uniform(0, 2 * math.pi)
-        corners = np.c_[np.cos(phi + np.arange(8) * math.pi / 4),
-                        np.sin(phi + np.arange(8) * math.pi / 4)]
+        corners = _octagon(phi)
         ring2 = P._ring(shapely.Polygon(ring).convex_hull)
         width = h - (E @ ring2.T).min(axis=1)
         s, t = P._fit((E, h), corners, width)
         k = (E @ corners.T).max(axis=1)
-        lp = linprog([0, 0, -1], A_ub=np.c_[E, k], b_ub=h,
-                     bounds=[(None, None), (None, None), (0, None)], method="highs")
+        lp = _lp_fit(linprog, E, h, k)
         assert s == pytest.approx(lp.x[2], rel=1e-7, abs=1e-9 * np.abs(ring).max())
         assert np.all(E @ t + s * k <= h + 1e-9 * np.abs(h).max())
         checked += 1
