@@ -7,6 +7,7 @@ curved solids, and nothing changes where no surface is curved."""
 from __future__ import annotations
 
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -318,3 +319,44 @@ def test_the_second_level_across_facets_grows_one_region():
     _check_plans(np.random.default_rng(5), solid, mu, [plan], inside=20)
     flat = soft_pair_plans(solid, mu, top=1, leximin=False)[0]
     assert flat.radii == (flat.radius, flat.radius) and flat.radius == plan.radius
+
+
+def test_a_patch_whose_projected_triangles_overlap_has_a_kernel(monkeypatch):
+    """Triangles of a patch that overlap in its plane's projection (a fold) are united
+    in full, also where GEOS's coverage union refuses them (it raises on some overlaps:
+    ``fcgrasp plan angle_block.STL --mu 1.0 --distinct 0.3`` met one); the kernel's
+    piece is inside the union."""
+    from types import SimpleNamespace
+
+    import shapely
+
+    from fcgrasp.spatial._patches import _kernel
+
+    vertices = np.array([[0.0, 0, 0], [10, 0, 0], [0, 10, 0], [2, 2, 1], [12, 2, 1],
+                         [2, 12, 1]])
+    faces = np.array([[0, 1, 2], [3, 4, 5]])
+    solid = SimpleNamespace(mesh=SimpleNamespace(vertices=vertices, faces=faces),
+                            size=20.0)
+    frame = SimpleNamespace(origin=np.zeros(3), axes=np.array([[1.0, 0, 0], [0, 1.0, 0]]))
+    union = shapely.union_all(shapely.polygons(vertices[faces][:, :, :2]))
+
+    def refused(*args, **kwargs):
+        raise shapely.errors.GEOSException("CoverageUnion cannot process overlapping inputs")
+
+    for coverage in (shapely.coverage_union_all, refused):
+        monkeypatch.setattr(shapely, "coverage_union_all", coverage)
+        patch = SimpleNamespace(kernel=None, triangles=np.array([0, 1]), frame=frame,
+                                centre=np.zeros(2), middle=np.zeros(2), inradius=np.inf)
+        E, h = _kernel(solid, patch)
+        assert len(E) and np.all(E @ patch.middle <= h + 1e-9)
+        assert union.buffer(1e-6).contains(shapely.Point(patch.middle))
+
+
+@pytest.mark.slow
+def test_the_mesh_whose_patch_geos_refused_plans(tmp_path, capsys):
+    from fcgrasp.apps.cli import main
+
+    mesh = Path(__file__).resolve().parents[1] / "benchmarks/corpus/meshes/angle_block.STL"
+    out = tmp_path / "plans.json"
+    assert main(["plan", str(mesh), "--mu", "1.0", "--distinct", "0.3", "--json",
+                 str(out), "--quiet"]) == 0, capsys.readouterr().err

@@ -150,8 +150,12 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
     faces = np.asarray(solid.mesh.faces)
     tri = (vertices[faces[patch.triangles]] - patch.frame.origin) @ patch.frame.axes.T
     polys = shapely.polygons(tri)
-    union = shapely.coverage_union_all(polys)          # edge-matched: the fast union
-    if abs(union.area - float(np.sum(shapely.area(polys)))) > SURFACE_TOL * union.area:
+    try:
+        union = shapely.coverage_union_all(polys)      # edge-matched: the fast union
+    except shapely.errors.GEOSException:               # GEOS finds them overlapping
+        union = None
+    if union is None or \
+            abs(union.area - float(np.sum(shapely.area(polys)))) > SURFACE_TOL * union.area:
         union = shapely.union_all(polys)               # they overlap: the full one
     union = union.simplify(SURFACE_TOL * solid.size)
     if union.geom_type != "Polygon":          # touching at points: the seed's part
