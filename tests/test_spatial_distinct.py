@@ -93,3 +93,76 @@ def test_the_command_line_keeps_top_distinct_plans(tmp_path):
     want = top_distinct(lambda n: soft_pair_plans(cyl, 0.5, top=n), 3, 0.5)
     assert len(want) == 3
     assert [g["facets"] for g in doc["grasps"]] == [list(p.facets) for p in want]
+
+
+def _soft_corpus(seed):
+    """Tessellated solids whose distinct plans read copies on the next facets: a
+    subdivided icosphere stretched into an ellipsoid, a cylinder, a torus, a corpus mesh."""
+    from pathlib import Path
+
+    from fcgrasp.io.meshes import read_solid
+
+    rng = np.random.default_rng(seed)
+    kind = seed % 4
+    if kind == 0:
+        mesh = trimesh.creation.icosphere(subdivisions=int(rng.integers(1, 3)), radius=20.0)
+        mesh.vertices *= rng.uniform(0.6, 1.4, 3)
+        return solid_from_mesh(mesh, "mm", f"ico{seed}")
+    if kind == 1:
+        return solid_from_mesh(trimesh.creation.cylinder(
+            radius=float(rng.uniform(5, 20)), height=float(rng.uniform(10, 40)),
+            sections=int(rng.integers(8, 40))), "mm", f"cyl{seed}")
+    if kind == 2:
+        return solid_from_mesh(trimesh.creation.torus(
+            major_radius=30.0, minor_radius=float(rng.uniform(6, 14)),
+            major_sections=int(rng.integers(8, 24)), minor_sections=int(rng.integers(6, 12))),
+            "mm", f"torus{seed}")
+    corpus = Path(__file__).resolve().parents[1] / "benchmarks" / "corpus" / "meshes"
+    names = ["angle_block.STL", "plate_holes.STL", "round.stl", "idler_riser.STL"]
+    return read_solid(str(corpus / names[(seed // 4) % len(names)]))
+
+
+def _plan_record(p):
+    return (type(p).__name__, p.facets, p.pieces, p.radius, tuple(p.radii),
+            p.centers.tolist(), p.regions.tolist(), p.similar)
+
+
+@pytest.mark.parametrize("seed", [2, *(pytest.param(s, marks=pytest.mark.slow)
+                                       for s in (0, 1, *range(3, 24)))])
+def test_plans_grown_where_the_rule_needs_them_are_every_plan_grown(seed):
+    """Two soft fingers' distinct plans with each plan's second level grown only where
+    it is kept or the bounds of its centres do not decide (``spatial._grown``) are
+    those of every plan read grown, then suppressed (the reference): the same plans,
+    centres, radii and ``similar``, at several fractions; and where the bounds decide,
+    they give the rule's verdict on the grown plan."""
+    from fcgrasp.spatial import _grown
+
+    solid = _soft_corpus(seed)
+    rng = np.random.default_rng(seed)
+    mu = float(rng.choice([0.3, 0.5, 1.0]))
+    for fraction in (0.5,) if seed == 2 else (0.3, 0.5, 1.0):
+        memo: dict = {}
+        want = top_distinct(lambda n, memo=memo: soft_pair_plans(
+            solid, mu, top=n, margin=0.5, memo=memo), 10, fraction)
+        got = _grown.soft_pair_distinct(solid, mu, 0.5, 10, fraction)
+        assert [_plan_record(p) for p in got] == [_plan_record(p) for p in want]
+    # the bounds' verdicts against the rule on the grown plans
+    memo = {}
+    first = soft_pair_plans(solid, mu, top=40, margin=0.5, memo=memo, grow_facets=False)
+    facets = [p for p in first if type(p).__name__ == "SoftPairPlan"]
+    leaders = [_grown.grown(solid, p, memo) for p in facets[:8]]
+    assert all(type(p).__name__ == "SurfacePairPlan" or p.radii == (p.radius, p.radius)
+               for p in first)                  # at their first level
+    cache: dict = {}
+    decided = 0
+    for p in facets:
+        pieces = _grown.pieces_of(solid, p, cache)
+        full = _grown.grown(solid, p, memo)
+        for leader in leaders:
+            # fractions in fine steps: some plans sit near each reach
+            for fraction in np.linspace(0.05, 1.0, 40).tolist():
+                verdict = _grown._decided(leader, p, pieces, fraction)
+                if verdict is not None:
+                    decided += 1
+                    assert verdict == same_solid_alternative(leader, full, fraction)
+    assert decided > 0 or seed % 4 == 0     # (an icosphere's large pieces decide none)

@@ -307,3 +307,9 @@ SQUEEZE_TOL = 1e-6
 #: only where a direction separates them from the friction cones by this much
 #: (:func:`fcgrasp.spatial._pieces.separated`); closer pairs go to the cone program.
 SEPARATION_PAD = 1e-9
+
+#: Relative to the reach of the rule of the same alternative on solids: a plan whose
+#: centres are known only to lie in their pieces is decided the same alternative as a
+#: kept plan (or not) only where the pieces' farthest (nearest) points are this much
+#: inside (outside) the reach (:mod:`fcgrasp.spatial._grown`); else it is grown.
+SIMILAR_PAD = 1e-9

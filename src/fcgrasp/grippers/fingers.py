@@ -235,13 +235,9 @@ class TwoFingers(_PointFingers):
     def solid_plans(self, solid: Any, options: SearchOptions, fraction: float) -> PlanList:
         """Two soft fingers with friction ``mu`` on a solid, on facets and across the
         facets of curved surfaces (:func:`fcgrasp.spatial.soft_pair_plans`)."""
-        from ..spatial.alternatives import top_distinct
-        from ..spatial.surfaces import soft_pair_plans
+        from ..spatial._grown import soft_pair_distinct
 
-        memo: dict[Any, Any] = {}          # the rounds share each pair's work
-        return top_distinct(lambda n: soft_pair_plans(solid, self.mu, top=n,
-                                                      margin=options.margin, memo=memo),
-                            options.top, fraction)
+        return soft_pair_distinct(solid, self.mu, options.margin, options.top, fraction)
 
 
 

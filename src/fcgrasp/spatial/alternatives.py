@@ -115,7 +115,8 @@ def distinct_solid_plans(plans: list[Any], fraction: float) -> list[Any]:
 MEASURE = "region radius"
 
 
-def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
+def top_distinct(search: Any, top: int | None, fraction: float,
+                 suppress: Any = None) -> PlanList:
     """The first ``top`` distinct plans of a ranked ``search(n)`` (the best ``n`` plans,
     None for every plan): asked for four times more plans than it keeps, and twice
     as many again until ``top`` are kept or the search has no more
@@ -123,12 +124,15 @@ def top_distinct(search: Any, top: int | None, fraction: float) -> PlanList:
     that stops early (:class:`~fcgrasp.core.budget.PlanList` incomplete), or a time or
     memory budget that ends between two rounds, ends the rounds: the plans kept are the
     answer's first, incomplete, with the bound of the search's (the last plan read's
-    radius between rounds: every plan not read is below it)."""
+    radius between rounds: every plan not read is below it).  ``suppress(plans)``: the
+    plans kept of a list read (default :func:`distinct_solid_plans`)."""
     if fraction == 0:
         plans = search(top)
         return _like(plans, list(plans))
-    kept, plans, stopped = distinct_rounds(
-        search, lambda ps: distinct_solid_plans(list(ps), fraction), top, SOLID_ROUNDS)
+    if suppress is None:
+        def suppress(ps: Any) -> list[Any]:
+            return distinct_solid_plans(list(ps), fraction)
+    kept, plans, stopped = distinct_rounds(search, suppress, top, SOLID_ROUNDS)
     if stopped == "search":
         return _like(plans, kept)
     if stopped in ("time_limit", "max_memory"):

@@ -219,15 +219,17 @@ def _second_level(p: _Patch, q: _Patch, c1: FloatArray, c2: FloatArray, r: float
 
 def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
                     margin: Any = DEFAULT_MARGIN_DEG, leximin: bool = True,
-                    across: bool = True, memo: dict[Any, Any] | None = None
-                    ) -> list[SoftPairPlan]:
+                    across: bool = True, memo: dict[Any, Any] | None = None,
+                    grow_facets: bool = True) -> list[SoftPairPlan]:
     """The best regions of two soft fingers on ``solid``, largest first: the exact
     regions on pairs of facets (:func:`~fcgrasp.spatial.regions.facet_pair_plans`, with
     ``leximin`` their second level grown) and, with ``across`` (the default), the
     certified regions across the facets of curved surfaces (:func:`surface_pair_plans`,
     searched only above the facets' ``top``-th), ranked together by ``radius``;
     ``memo``: what the searches of one solid share (:func:`~fcgrasp.spatial.regions.
-    facet_pair_plans`).
+    facet_pair_plans`); ``grow_facets=False``: the plans on pairs of facets at their
+    first level, for a caller that grows those it keeps
+    (:func:`fcgrasp.spatial._grown.grown`).
 
     >>> from fcgrasp.spatial.solid import demo_solid
     >>> [round(p.radius, 2) for p in soft_pair_plans(demo_solid("mug"), mu=0.5, top=2)]
@@ -237,7 +239,7 @@ def soft_pair_plans(solid: Solid, mu: Any, top: int | None = 10,
     """
     if not isinstance(across, bool):
         raise TypeError(f"across must be a bool, got {across!r}")
-    out = facet_pair_plans(solid, mu, top, margin, leximin, memo)
+    out = facet_pair_plans(solid, mu, top, margin, leximin and grow_facets, memo)
     if not across:
         return out
     mu_v, margin_v, alpha = checked_cone(mu, margin, solid)
