@@ -108,9 +108,9 @@ def _piece_table(solid: Solid, batched: bool = True) -> _Pieces:
     geoms = np.array(polys, dtype=object)
     n = len(polys)
     if batched:
-        rings, hps, centroid, reach, width = _batched_rings(geoms, owner)
+        rings, hps, width = _batched_rings(geoms)
         verts = [f.to_3d(ring) for f, ring in zip(owner, rings, strict=True)]
-        _batched_reach(verts, centroid, reach)
+        centroid, reach = _batched_centres(verts)
     else:
         rings = [_ring(piece) for piece in polys]
         hps = [_ring_halfplanes(ring) for ring in rings]
@@ -155,13 +155,12 @@ def _piece_table(solid: Solid, batched: bool = True) -> _Pieces:
     return table
 
 
-def _batched_rings(geoms: np.ndarray, owner: list[Any]
-                   ) -> tuple[list[FloatArray], list[Halfplanes], FloatArray, FloatArray,
-                              list[FloatArray]]:
+def _batched_rings(geoms: np.ndarray
+                   ) -> tuple[list[FloatArray], list[Halfplanes], list[FloatArray]]:
     """:func:`_piece_table`'s rings (:func:`_ring`), half-planes
-    (:func:`_ring_halfplanes`), centroids of the 3-D vertices, reaches (NaN, filled by
-    :func:`_batched_reach`) and widths, each group of pieces with one vertex count at
-    once (the same elementwise arithmetic; a ring with a zero-length edge alone)."""
+    (:func:`_ring_halfplanes`) and widths across the edges, each group of pieces with
+    one vertex count at once (the same elementwise arithmetic; a ring with a
+    zero-length edge alone)."""
     import shapely
 
     n = len(geoms)
@@ -171,10 +170,7 @@ def _batched_rings(geoms: np.ndarray, owner: list[Any]
     rings: list[FloatArray] = [coords[ends[i]:ends[i + 1] - 1] for i in range(n)]
     hps: list[Halfplanes] = [(np.zeros((0, 2)), np.zeros(0))] * n
     width: list[FloatArray] = [np.zeros(0)] * n
-    centroid = np.zeros((n, 3))
     sizes = ends[1:] - ends[:-1] - 1
-    origin = np.array([f.origin for f in owner]).reshape(n, 3)
-    axes = np.array([f.axes for f in owner]).reshape(n, 2, 3)
     for m in np.unique(sizes).tolist():
         idx = np.flatnonzero(sizes == m)
         R = np.stack([rings[i] for i in idx.tolist()])                    # (g, m, 2)
@@ -190,19 +186,20 @@ def _batched_rings(geoms: np.ndarray, owner: list[Any]
             else:
                 hps[i] = _ring_halfplanes(rings[i])
                 width[i] = hps[i][1] - (hps[i][0] @ rings[i].T).min(axis=1)
-        V = origin[idx, None, :] + np.matmul(R, axes[idx])                # (g, m, 3)
-        centroid[idx] = V.mean(axis=1)
-    return rings, hps, centroid, np.full(n, np.nan), width
+    return rings, hps, width
 
 
-def _batched_reach(verts: list[FloatArray], centroid: FloatArray, reach: FloatArray) -> None:
-    """Into ``reach`` each piece's largest distance of a vertex from its centroid,
-    pieces of one vertex count at once."""
+def _batched_centres(verts: list[FloatArray]) -> tuple[FloatArray, FloatArray]:
+    """Each piece's centroid and largest distance of a vertex from it, pieces of one
+    vertex count at once."""
+    centroid, reach = np.zeros((len(verts), 3)), np.zeros(len(verts))
     sizes = np.array([len(v) for v in verts])
     for m in np.unique(sizes).tolist():
         idx = np.flatnonzero(sizes == m)
-        V = np.stack([verts[i] for i in idx.tolist()])
+        V = np.stack([verts[i] for i in idx.tolist()])                    # (g, m, 3)
+        centroid[idx] = V.mean(axis=1)
         reach[idx] = np.max(np.linalg.norm(V - centroid[idx, None, :], axis=2), axis=1)
+    return centroid, reach
 
 
 def own_octagon_fit(table: _Pieces, p: int, corners: FloatArray) -> tuple[float, FloatArray]:
