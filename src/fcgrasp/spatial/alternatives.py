@@ -142,8 +142,8 @@ def top_distinct(search: Any, top: int | None, fraction: float,
 
 #: How a solid's distinct search asks for longer lists: four times ``top`` plans, then
 #: twice as many each round, with no depth (a solid's ranked search is cheap to extend:
-#: its pieces, pairs and grown plans are kept between rounds, and each plan a round
-#: reads has its second level grown, so a round reads no further than it must).
+#: its pieces, pairs and plans are kept between rounds, and a round that reads past the
+#: plans the answer needs pays for each plan it reads).
 SOLID_ROUNDS = Rounds(first=4, factor=2, share=False)
 
 
