@@ -164,8 +164,7 @@ def _outside(solid: Solid, facet: Facet, level: float, near: Any = None) -> Any:
     the others are left out."""
     import shapely
 
-    V = np.asarray(solid.mesh.vertices, float)
-    tris = V[np.asarray(solid.mesh.faces)]                              # (T, 3, 3)
+    tris = solid.triangles                                              # (T, 3, 3)
     s = (tris - facet.origin) @ facet.normal                            # (T, 3)
     hit = np.any(s < -level, axis=1)
     if near is not None and hit.any():

@@ -17,6 +17,7 @@ with a handle: 1,584 triangles, curved walls), all in millimetres.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -76,6 +77,12 @@ class Solid:
         """The diagonal of the bounding box (lengths are relative to it)."""
         lo, hi = self.mesh.bounds
         return float(np.linalg.norm(hi - lo))
+
+    @cached_property
+    def triangles(self) -> FloatArray:
+        """The mesh's triangles' corners (T, 3, 3), read once (trimesh hashes its arrays
+        on every access: the jaw's shadows read them for every facet it tries)."""
+        return np.asarray(self.mesh.vertices, float)[np.asarray(self.mesh.faces)]
 
 
 def solid_from_mesh(mesh: Any, units: str = "mm", source: str = "",
