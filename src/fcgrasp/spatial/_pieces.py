@@ -133,8 +133,7 @@ def _piece_table(solid: Solid, batched: bool = True) -> _Pieces:
     tri = np.flatnonzero(triangle)
     if tri.size:
         E3 = np.array([hps[k][0] for k in tri.tolist()])                   # (T, 3, 2)
-        a, b = E3[:, [1, 2, 0]], E3[:, [2, 0, 1]]
-        lengths = np.abs(a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0])   # _triangle_lengths
+        lengths = _triangle_lengths(E3)
         edge_angle[tri] = np.arctan2(E3[..., 1], E3[..., 0])
         # sum(l h) is twice the area
         twice = np.array([ll @ hps[k][1] for ll, k in zip(lengths, tri.tolist(), strict=True)])
@@ -213,10 +212,10 @@ def own_octagon_fit(table: _Pieces, p: int, corners: FloatArray) -> tuple[float,
 
 def _triangle_lengths(E: FloatArray) -> FloatArray:
     """A triangle's edge lengths up to a common factor, from its edges' unit normals
-    (3, 2): each is the sine of the opposite angle (the law of sines), the cross product
-    of the other two normals."""
-    a, b = E[[1, 2, 0]], E[[2, 0, 1]]
-    return np.asarray(np.abs(a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]))
+    (..., 3, 2): each is the sine of the opposite angle (the law of sines), the cross
+    product of the other two normals."""
+    a, b = E[..., [1, 2, 0], :], E[..., [2, 0, 1], :]
+    return np.asarray(np.abs(a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]))
 
 
 def _support(angle: FloatArray) -> FloatArray:
