@@ -153,10 +153,9 @@ def test_plans_grown_where_the_rule_needs_them_are_every_plan_grown(seed):
     leaders = [_grown.grown(solid, p, memo) for p in facets[:8]]
     assert all(type(p).__name__ == "SurfacePairPlan" or p.radii == (p.radius, p.radius)
                for p in first)                  # at their first level
-    cache: dict = {}
     decided = 0
     for p in facets:
-        pieces = _grown.pieces_of(solid, p, cache)
+        pieces = _grown.pieces_of(solid, p, memo)
         full = _grown.grown(solid, p, memo)
         for leader in leaders:
             # fractions in fine steps: some plans sit near each reach

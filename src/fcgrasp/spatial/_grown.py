@@ -20,14 +20,13 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import replace
-from itertools import permutations
 from typing import Any
 
 import numpy as np
 
 from ..core.budget import PlanList
 from ..core.tolerances import SIMILAR_PAD
-from .alternatives import SAME_SIDE_DEG, same_solid_alternative
+from .alternatives import paired, same_sides, same_solid_alternative
 from .solid import Solid
 
 #: A piece holding a grown centre: its 3-D vertices (m, 3), its facet's origin, normal
@@ -47,36 +46,33 @@ def grown(solid: Solid, plan: Any, memo: dict[Any, Any]) -> Any:
                  plan.radius, plan.mu, plan.margin, True)
 
 
-def pieces_of(solid: Solid, plan: Any, cache: dict[Any, Piece]) -> list[Piece]:
-    """The pieces (:data:`Piece`) that hold ``plan``'s centres, one per finger."""
-    from ._pieces import _ring, _ring_halfplanes
+def pieces_of(solid: Solid, plan: Any, memo: dict[Any, Any]) -> list[Piece]:
+    """The pieces (:data:`Piece`) that hold ``plan``'s centres, one per finger, read from
+    the pieces' table the search made (the same memo entry)."""
+    from ._pieces import _piece_table
+    from .regions import _once
 
+    table = _once(memo, "table", _piece_table, solid)
     out = []
     for f, k in zip(plan.facets, plan.pieces, strict=True):
-        got = cache.get((f, k))
-        if got is None:
-            facet = solid.facets[f]
-            ring = _ring(facet.pieces[k])
-            E, h = _ring_halfplanes(ring)
-            got = cache[(f, k)] = (facet.to_3d(ring), facet.origin, facet.normal,
-                                   facet.axes, E, h)
-        out.append(got)
+        p = int(table.start[f]) + k
+        E, h = table.halfplanes[p]
+        out.append((table.vertices[p], table.origin[p], table.normal[p], table.axes[p], E, h))
     return out
 
 
-def _decided(kept: Any, plan: Any, pieces: list[Piece], fraction: float) -> bool | None:
+def _decided(kept: Any, plan: Any, pieces: list[Piece] | None, fraction: float
+             ) -> bool | None:
     """Whether ``plan`` (its centres anywhere in ``pieces``) is the same alternative as
     ``kept`` (:func:`~fcgrasp.spatial.alternatives.same_solid_alternative`), or None
-    where the bounds of its centres do not decide."""
+    where the bounds of its centres do not decide (or no ``pieces`` are given)."""
+    if pieces is None:
+        return None
     k = len(kept.centers)
     if k != len(plan.centers):
         return False
     reach = (kept.radius + plan.radius) / fraction
-    a = np.asarray(kept.normals, float)
-    b = np.asarray(plan.normals, float)
-    a = a / np.linalg.norm(a, axis=-1, keepdims=True)
-    b = b / np.linalg.norm(b, axis=-1, keepdims=True)
-    side = a @ b.T > np.cos(np.radians(SAME_SIDE_DEG))             # (kept, plan)
+    side = same_sides(kept, plan)                                    # (kept, plan)
     far, near = np.zeros((k, k)), np.zeros((k, k))
     for j, (V, o, n, A, E, h) in enumerate(pieces):
         for i, c in enumerate(np.asarray(kept.centers, float)):
@@ -84,12 +80,9 @@ def _decided(kept: Any, plan: Any, pieces: list[Piece], fraction: float) -> bool
             rel = c - o
             out = max(0.0, float(np.max(E @ (A @ rel) - h)))
             near[i, j] = math.hypot(float(rel @ n), out)
-    sure = side & (far < reach * (1 - SIMILAR_PAD))
-    maybe = side & (near < reach * (1 + SIMILAR_PAD))
-    perms = list(permutations(range(k)))
-    if any(all(sure[i, p[i]] for i in range(k)) for p in perms):
+    if paired(side & (far < reach * (1 - SIMILAR_PAD))):
         return True
-    if not any(all(maybe[i, p[i]] for i in range(k)) for p in perms):
+    if not paired(side & (near < reach * (1 + SIMILAR_PAD))):
         return False
     return None
 
@@ -106,22 +99,17 @@ def distinct_grown(plans: list[Any], fraction: float, top: int | None,
     for p in plans:
         pieces = where(p)
         mine = p if pieces is None else None          # the grown plan, once made
-        joined = False
         for leader, members in groups:
-            if mine is None:
-                assert pieces is not None
-                verdict = _decided(leader, p, pieces, fraction)
-                if verdict is None:
-                    mine = grow(p)
-                    verdict = same_solid_alternative(leader, mine, fraction)
-            else:
+            verdict = _decided(leader, p, pieces, fraction) if mine is None else None
+            if verdict is None:
+                mine = grow(p) if mine is None else mine
                 verdict = same_solid_alternative(leader, mine, fraction)
             if verdict:
                 members.append(p)
-                joined = True
                 break
-        if not joined and (top is None or len(groups) < top):
-            groups.append((mine if mine is not None else grow(p), []))
+        else:
+            if top is None or len(groups) < top:
+                groups.append((mine if mine is not None else grow(p), []))
     return [replace(g, similar=tuple(tuple(q.facets) for q in m)) for g, m in groups]
 
 
@@ -136,7 +124,6 @@ def soft_pair_distinct(solid: Solid, mu: float, margin: float, top: int | None,
     from .surfaces import SurfacePairPlan, soft_pair_plans
 
     memo: dict[Any, Any] = {}
-    cache: dict[Any, Piece] = {}
     if fraction == 0:                   # every plan kept: each grown by the search
         return top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=margin,
                                                       memo=memo), top, fraction)
@@ -148,7 +135,7 @@ def soft_pair_distinct(solid: Solid, mu: float, margin: float, top: int | None,
         return distinct_grown(
             list(plans), fraction, top,
             lambda p: grown(solid, p, memo) if on_facets(p) else p,
-            lambda p: pieces_of(solid, p, cache) if on_facets(p) else None)
+            lambda p: pieces_of(solid, p, memo) if on_facets(p) else None)
 
     return top_distinct(lambda n: soft_pair_plans(solid, mu, top=n, margin=margin,
                                                   memo=memo, grow_facets=False),

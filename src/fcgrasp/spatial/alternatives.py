@@ -86,17 +86,28 @@ def same_solid_alternative(p: Any, q: Any, fraction: float) -> bool:
     """
     if fraction <= 0:
         return False
-    k = len(p.centers)
-    if k != len(q.centers):
+    if len(p.centers) != len(q.centers):
         return False
     reach = (p.radius + q.radius) / fraction
     d = np.linalg.norm(p.centers[:, None, :] - q.centers[None, :, :], axis=-1)
-    near = d < reach
+    return paired((d < reach) & same_sides(p, q))
+
+
+def same_sides(p: Any, q: Any) -> Any:
+    """Which fingers of ``p`` (rows) and ``q`` (columns) press within
+    :data:`SAME_SIDE_DEG` of each other (their inward ``normals``; every pair where a
+    plan has none)."""
     np_, nq = getattr(p, "normals", None), getattr(q, "normals", None)
-    if np_ is not None and nq is not None:
-        a = np.asarray(np_, float) / np.linalg.norm(np_, axis=-1, keepdims=True)
-        b = np.asarray(nq, float) / np.linalg.norm(nq, axis=-1, keepdims=True)
-        near &= a @ b.T > np.cos(np.radians(SAME_SIDE_DEG))
+    if np_ is None or nq is None:
+        return np.ones((len(p.centers), len(q.centers)), bool)
+    a = np.asarray(np_, float) / np.linalg.norm(np_, axis=-1, keepdims=True)
+    b = np.asarray(nq, float) / np.linalg.norm(nq, axis=-1, keepdims=True)
+    return a @ b.T > np.cos(np.radians(SAME_SIDE_DEG))
+
+
+def paired(near: Any) -> bool:
+    """Whether the fingers can be paired so that every pair is ``near`` (k, k)."""
+    k = len(near)
     return any(all(near[i, perm[i]] for i in range(k)) for perm in permutations(range(k)))
 
 
