@@ -336,7 +336,7 @@ def test_a_patch_whose_projected_triangles_overlap_has_a_kernel(monkeypatch):
                          [2, 12, 1]])
     faces = np.array([[0, 1, 2], [3, 4, 5]])
     solid = SimpleNamespace(mesh=SimpleNamespace(vertices=vertices, faces=faces),
-                            size=20.0)
+                            triangles=vertices[faces], size=20.0)
     frame = SimpleNamespace(origin=np.zeros(3), axes=np.array([[1.0, 0, 0], [0, 1.0, 0]]))
     union = shapely.union_all(shapely.polygons(vertices[faces][:, :, :2]))
 

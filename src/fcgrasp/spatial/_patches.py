@@ -146,9 +146,7 @@ def _kernel(solid: Solid, patch: _Patch) -> Halfplanes:
 
     if patch.kernel is not None:
         return patch.kernel
-    vertices = np.asarray(solid.mesh.vertices, float)
-    faces = np.asarray(solid.mesh.faces)
-    tri = (vertices[faces[patch.triangles]] - patch.frame.origin) @ patch.frame.axes.T
+    tri = (solid.triangles[patch.triangles] - patch.frame.origin) @ patch.frame.axes.T
     polys = shapely.polygons(tri)
     try:
         union = shapely.coverage_union_all(polys)      # edge-matched: the fast union
@@ -291,10 +289,8 @@ def _lift(solid: Solid, patch: _Patch, xy: FloatArray) -> FloatArray:
     """Points (k, 2) of the patch's plane lifted onto its triangles along ``n_0`` (the
     first triangle whose projection holds each point; the nearest for a point a rounding
     outside every one)."""
-    vertices = np.asarray(solid.mesh.vertices, float)
-    faces = np.asarray(solid.mesh.faces)
     f = patch.frame
-    tri3 = vertices[faces[patch.triangles]] - f.origin                  # (m, 3, 3)
+    tri3 = solid.triangles[patch.triangles] - f.origin                  # (m, 3, 3)
     tri = tri3 @ f.axes.T                                               # (m, 3, 2)
     h = tri3 @ f.normal                                                 # (m, 3)
     a, b, c = tri[:, 0], tri[:, 1], tri[:, 2]
@@ -318,10 +314,8 @@ def _on_surface(solid: Solid, patch: _Patch, corners: FloatArray) -> FloatArray:
     that triangle's plane along ``n_0`` (batched)."""
     import shapely
 
-    vertices = np.asarray(solid.mesh.vertices, float)
-    faces = np.asarray(solid.mesh.faces)
     f = patch.frame
-    tri3 = vertices[faces[patch.triangles]]
+    tri3 = solid.triangles[patch.triangles]
     clipped = shapely.intersection(shapely.polygons((tri3 - f.origin) @ f.axes.T),
                                    shapely.Polygon(corners))
     idx = np.flatnonzero((shapely.get_type_id(clipped) == 3) & (shapely.area(clipped) > 0))

@@ -491,9 +491,7 @@ def surface_triple_plans(solid: Solid, mu: float, alpha: float, top: int | None 
     seeds = np.array(_seeds(normals, adj, areas, SPREADS[0] * alpha), np.intp)
     if len(seeds) < 3:
         return []
-    vertices = np.asarray(solid.mesh.vertices, float)
-    faces = np.asarray(solid.mesh.faces)
-    where = vertices[faces[seeds]].mean(axis=1)
+    where = solid.triangles[seeds].mean(axis=1)
     trio = np.array(list(combinations(range(len(seeds)), 3)), np.intp)
     slack = math.sin(alpha) - _unbalance(normals[seeds][trio])
     pts = where[trio]
