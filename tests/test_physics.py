@@ -280,8 +280,10 @@ def test_a_solids_animation_is_drawn(tmp_path):
     assert h.shape[1] == 11 and len(h) > 5
     assert np.allclose(np.linalg.norm(h[:, 7:11], axis=1), 1.0)
     assert np.all(np.linalg.norm(h[:, 4:7], axis=1) <= h[:, 2] + 1e-12)
-    animate_solid(solid, res, str(tmp_path / "a.gif"), frames=3)
-    assert (tmp_path / "a.gif").read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    _blitted_frames_are_whole_drawings(
+        lambda path: animate_solid(solid, res, path, frames=4), tmp_path, pixels=200)
+    # (a whole 3-D drawing sorts the fingers and the part by depth; the frames draw
+    # the fingers over the part)
 
 
 @pytest.mark.slow
@@ -301,8 +303,32 @@ def test_the_animation_is_drawn(tmp_path):
     pts, nrm = sample_grasps(poly, plan.regions, 1, np.random.default_rng(0))[0]
     res = stress_test(poly, pts, nrm, 0.5, [1.0, 0.0, 0.0], record=True)
     assert len(res.history) > 5
-    animate(poly, res, str(tmp_path / "a.gif"), frames=3)
-    assert (tmp_path / "a.gif").read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    _blitted_frames_are_whole_drawings(
+        lambda path: animate(poly, res, path, frames=4), tmp_path, pixels=20)
+
+
+def _blitted_frames_are_whole_drawings(draw, tmp_path, pixels: int) -> None:
+    """An animation's frames, each drawn over one drawing of the still figure (the
+    default), are the frames of the whole figure drawn anew for each (``BLIT`` off, the
+    reference): a GIF of the frames asked, each the reference's but for at most
+    ``pixels`` pixels of another colour, and the frames differ (the part moves, the
+    load's curve grows)."""
+    import imageio.v3 as iio
+
+    from fcgrasp.physics import _runs
+
+    got, want = tmp_path / "blit.gif", tmp_path / "whole.gif"
+    draw(str(got))
+    with pytest.MonkeyPatch.context() as m:
+        m.setattr(_runs, "BLIT", False)
+        draw(str(want))
+    assert got.read_bytes()[:6] in (b"GIF87a", b"GIF89a")
+    a, b = (iio.imread(f).astype(float) for f in (got, want))
+    assert a.shape == b.shape and a.shape[0] == 4
+    differ = np.abs(a - b).max(axis=-1) > 60            # pixels of another colour
+    assert differ.sum(axis=(1, 2)).max() <= pixels, differ.sum(axis=(1, 2))
+    assert all(np.abs(a[k] - a[-1]).max(axis=-1).__gt__(60).mean() > 1e-4
+               for k in range(3))
 
 
 def test_the_prism_inertia_is_the_closed_form_of_a_box_and_of_a_disc():

@@ -328,43 +328,67 @@ def recorded_run(part: Any, plan: Any, direction: dict[str, Any], *,
     return res, (lambda path: animate(part, res, path, units=units))
 
 
-def _load_panel(bx: Any, h: FloatArray, result: StressResult, units: str) -> None:
-    """The load against the displacement so far (``h``) on ``bx``, beside the certified
-    payload."""
-    bx.plot(h[:, 1], h[:, 2], color="tab:blue")
+def _load_panel(bx: Any, h: FloatArray, result: StressResult, units: str) -> list[Any]:
+    """The load against the displacement (the whole history ``h`` sets the panel's
+    ranges) on ``bx``, beside the certified payload: the curve and the legend, which
+    each frame draws again (:func:`_frames`)."""
+    (curve,) = bx.plot(h[:, 1], h[:, 2], color="tab:blue")
     bx.axvline(result.certified_payload, color="tab:green", ls="--", label="certified payload")
     bx.set_xlabel("load (N)")
     bx.set_ylabel(f"displacement ({units})")
-    bx.legend(loc="upper left")
+    return [curve, bx.legend(loc="upper left")]
 
 
-def _frames(frame: Callable[[int], tuple[Any, Any]], h: FloatArray, result: StressResult,
-            units: str, frames: int) -> list[np.ndarray]:
-    """The images of an animation: ``frames`` steps of the history ``h``, each drawn by
-    ``frame(k)`` (a figure and the axes for its load panel, :func:`_load_panel`).  Every
-    frame takes the layout of the last (its labels the widest, as its ranges are), made
-    once: the frames do not jump, and the layout is not fitted 24 times."""
+#: Frames drawn over one drawing of the still figure (False: each frame draws the whole
+#: figure, the reference the tests compare with).
+BLIT = True
+
+
+def _steps(h: FloatArray, frames: int) -> list[int]:
+    """The records of the history ``h`` an animation of ``frames`` frames shows."""
+    return [int(k) for k in np.unique(np.linspace(0, len(h) - 1, frames).round())]
+
+
+def _frames(fig: Any, update: Callable[[int], list[Any]], steps: list[int]
+            ) -> list[np.ndarray]:
+    """The images of an animation of one figure, a frame per record ``k`` of ``steps``,
+    set by ``update(k)``, which returns the artists that frame draws, in their order
+    (those it changed and those drawn over them).  The figure is laid out and drawn
+    once without those artists (its axes, ticks and every still artist: the last step
+    sets the widest labels, the ranges hold every step, so nothing jumps), and each
+    frame is that image with the artists drawn over it (matplotlib's blitting)."""
     import matplotlib.pyplot as plt
 
-    steps = np.unique(np.linspace(0, len(h) - 1, frames).round().astype(int))
-
-    def image(k: int, layout: dict[str, float] | None) -> tuple[np.ndarray, Any]:
-        fig, bx = frame(k)
-        _load_panel(bx, h[:k + 1], result, units)
-        if layout is None:
-            fig.tight_layout()
+    moving = update(steps[-1])
+    for a in moving:
+        a.set_animated(BLIT)
+    fig.tight_layout()
+    canvas = fig.canvas
+    canvas.draw()
+    still = canvas.copy_from_bbox(fig.bbox)
+    images = []
+    for k in steps:
+        if not BLIT:                        # the reference: the whole figure drawn
+            update(k)
+            canvas.draw()
         else:
-            fig.subplots_adjust(**layout)
-        fig.canvas.draw()
-        out = np.asarray(fig.canvas.buffer_rgba())[..., :3].copy()
-        p = fig.subplotpars
-        plt.close(fig)
-        return out, p
+            canvas.restore_region(still)
+            for a in update(k):
+                if hasattr(a, "do_3d_projection"):      # a 3-D artist, projected
+                    a.do_3d_projection()
+                fig.draw_artist(a)
+        images.append(np.asarray(canvas.buffer_rgba())[..., :3].copy())
+    plt.close(fig)
+    return images
 
-    last, p = image(int(steps[-1]), None)
-    layout = dict(left=p.left, right=p.right, bottom=p.bottom, top=p.top, wspace=p.wspace,
-                  hspace=p.hspace)
-    return [image(int(k), layout)[0] for k in steps[:-1]] + [last]
+
+def _limits(ax: Any, *points: FloatArray) -> None:
+    """``ax``'s ranges set to hold every point given (each an array of rows), with
+    matplotlib's margins: the ranges of every frame at once."""
+    pts = np.vstack([np.asarray(p, float).reshape(-1, np.asarray(p).shape[-1])
+                     for p in points])
+    ax.update_datalim(pts[:, :2])
+    ax.autoscale_view()
 
 
 def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm",
@@ -393,30 +417,35 @@ def animate_solid(solid: Any, result: StressResult, path: str, units: str = "mm"
     size = float(np.linalg.norm(mesh.extents))
     lo, hi = mesh.bounds[0] - 0.3 * size, mesh.bounds[1] + 0.3 * size
 
-    def frame(k: int) -> tuple[Any, Any]:
+    fig = plt.figure(figsize=(8, 3.6), dpi=80)
+    ax = fig.add_subplot(1, 2, 1, projection="3d")
+    ax.add_collection3d(Poly3DCollection(tri, facecolor="none", edgecolor="0.75", lw=0.3))
+    part = Poly3DCollection(tri, facecolor="0.8", edgecolor="0.4", lw=0.3, alpha=0.8)
+    ax.add_collection3d(part)
+    fingers = []                            # drawn over the moved part
+    for q, nn in zip(result.contacts, result.normals, strict=True):
+        fingers.append(ax.scatter(*q, color="tab:red", s=12))
+        a, b = q + 0.25 * size * nn, q + 0.05 * size * nn
+        fingers += ax.plot(*np.c_[a, b], color="tab:red")
+    ax.set_xlim(lo[0], hi[0])
+    ax.set_ylim(lo[1], hi[1])
+    ax.set_zlim(lo[2], hi[2])
+    ax.set_box_aspect(tuple(hi - lo))
+    ax.tick_params(labelsize=6)
+    title = ax.set_title("", fontsize=9)
+    panel = _load_panel(fig.add_subplot(1, 2, 2), h, result, units)
+
+    def update(k: int) -> list[Any]:
         load, shift, quat = h[k, 1], h[k, 4:7], h[k, 7:11]
         # the motion magnified: ten times the shift and the rotation's angle
         rot = Rotation.from_quat([*quat[1:], quat[0]]).as_rotvec() * 10
         R = Rotation.from_rotvec(rot).as_matrix()
-        moved = (tri - centre) @ R.T + centre + 10 * shift
-        fig = plt.figure(figsize=(8, 3.6), dpi=80)
-        ax = fig.add_subplot(1, 2, 1, projection="3d")
-        ax.add_collection3d(Poly3DCollection(tri, facecolor="none", edgecolor="0.75", lw=0.3))
-        ax.add_collection3d(Poly3DCollection(moved, facecolor="0.8", edgecolor="0.4", lw=0.3,
-                                             alpha=0.8))
-        for q, nn in zip(result.contacts, result.normals, strict=True):
-            ax.scatter(*q, color="tab:red", s=12)
-            a, b = q + 0.25 * size * nn, q + 0.05 * size * nn
-            ax.plot(*np.c_[a, b], color="tab:red")
-        ax.set_xlim(lo[0], hi[0])
-        ax.set_ylim(lo[1], hi[1])
-        ax.set_zlim(lo[2], hi[2])
-        ax.set_box_aspect(tuple(hi - lo))
-        ax.set_title(f"load {load:.2f} N (motion x10)", fontsize=9)
-        ax.tick_params(labelsize=6)
-        return fig, fig.add_subplot(1, 2, 2)
+        part.set_verts((tri - centre) @ R.T + centre + 10 * shift)
+        title.set_text(f"load {load:.2f} N (motion x10)")
+        panel[0].set_data(h[:k + 1, 1], h[:k + 1, 2])
+        return [part, *fingers, title, *panel]
 
-    images = _frames(frame, h, result, units, frames)
+    images = _frames(fig, update, _steps(h, frames))
     iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)
 
 
@@ -437,24 +466,34 @@ def animate(polygon: Any, result: StressResult, path: str, units: str = "mm",
                             "result")
     check_int(frames, "frames", minimum=1)
     v = np.vstack([polygon.vertices, polygon.vertices[:1]])
+    c = np.asarray(polygon.centroid)
 
-    def frame(k: int) -> tuple[Any, Any]:
-        t, load, moved, turned, dx, dy = h[k]
-        fig, (ax, bx) = plt.subplots(1, 2, figsize=(8, 3.6), dpi=80)
-        ax.plot(v[:, 0], v[:, 1], color="0.6", lw=1)
-        a = math.radians(turned) * 10
-        c = np.asarray(polygon.centroid)
+    def moved(k: int) -> FloatArray:
+        # the motion magnified: ten times the shift and the turn
+        a = math.radians(h[k, 3]) * 10
         rot = np.array([[math.cos(a), -math.sin(a)], [math.sin(a), math.cos(a)]])
-        shift = np.array([dx, dy]) * 10
-        w = (v - c) @ rot.T + c + shift
-        ax.fill(w[:, 0], w[:, 1], color="0.8")
-        for p, n in zip(result.contacts, result.normals, strict=True):
-            ax.plot(*p, "o", color="tab:red")
-            ax.arrow(*(p + 0.15 * polygon.size * n), *(-0.1 * polygon.size * n),
-                     head_width=0.02 * polygon.size, color="tab:red")
-        ax.set_aspect("equal")
-        ax.set_title(f"load {load:.2f} N (motion x10)")
-        return fig, bx
+        return np.asarray((v - c) @ rot.T + c + h[k, 4:6] * 10)
 
-    images = _frames(frame, h, result, units, frames)
+    steps = _steps(h, frames)
+    fig, (ax, bx) = plt.subplots(1, 2, figsize=(8, 3.6), dpi=80)
+    (part,) = ax.fill(v[:, 0], v[:, 1], color="0.8")
+    over = ax.plot(v[:, 0], v[:, 1], color="0.6", lw=1)        # drawn over the moved part
+    tips = []
+    for p, n in zip(result.contacts, result.normals, strict=True):
+        over += ax.plot(*p, "o", color="tab:red")
+        tips.append(p + 0.15 * polygon.size * n)
+        over.append(ax.arrow(*tips[-1], *(-0.1 * polygon.size * n),
+                             head_width=0.02 * polygon.size, color="tab:red"))
+    ax.set_aspect("equal")
+    _limits(ax, v, np.array(tips), *(moved(k) for k in steps))
+    title = ax.set_title("")
+    panel = _load_panel(bx, h, result, units)
+
+    def update(k: int) -> list[Any]:
+        part.set_xy(moved(k))
+        title.set_text(f"load {h[k, 1]:.2f} N (motion x10)")
+        panel[0].set_data(h[:k + 1, 1], h[:k + 1, 2])
+        return [part, *over, title, *panel]
+
+    images = _frames(fig, update, steps)
     iio.imwrite(path, np.stack(images), extension=".gif", duration=120, loop=0)
