@@ -722,7 +722,7 @@ def _seeded_outlines(rng, cases):
         yield poly, ROUND_TOL * poly.size
 
 
-@pytest.mark.parametrize("cases", [pytest.param(80, id="seeded"),
+@pytest.mark.parametrize("cases", [pytest.param(40, id="seeded"),
                                    pytest.param(1500, id="sweep", marks=pytest.mark.slow)])
 def test_the_shared_pieces_bound_the_overlap_from_below(cases):
     """What two boundary regions' pieces on the same edges surely have in common

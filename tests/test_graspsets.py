@@ -99,7 +99,7 @@ def _points(poly, f, rng, n):
 def test_two_finger_set_agrees_with_general_test(soft):
     rng = np.random.default_rng(1 + soft)
     total = agree_true = 0
-    while total < 10_000:
+    while total < 5_000:
         poly, feats, mu = _two_finger_trial(rng, soft)
         gs = grasp_set(poly, feats, mu=mu)
         p = _points(poly, feats[0], rng, 24)
@@ -112,7 +112,7 @@ def test_two_finger_set_agrees_with_general_test(soft):
         assert np.array_equal(got, ref), (poly, feats, mu, p[got != ref], q[got != ref])
         total += len(p)
         agree_true += int(ref.sum())
-    assert agree_true > 1000
+    assert agree_true > 500
 
 
 @pytest.mark.parametrize("cases", [4, pytest.param(50, marks=pytest.mark.slow)])
@@ -191,7 +191,7 @@ def _four_finger_trial(rng, mode):
 def test_four_finger_set_agrees_with_general_test(mode):
     rng = np.random.default_rng({"four": 10, "three": 11, "gravity": 12}[mode])
     total = positives = 0
-    while total < 5_000:
+    while total < 2_500:
         poly, edges, g = _four_finger_trial(rng, mode)
         gs = grasp_set(poly, edges, gravity=g)
         pts = list(edge_points(poly, edges, rng, 24))
@@ -205,13 +205,13 @@ def test_four_finger_set_agrees_with_general_test(mode):
         assert np.array_equal(got, ref), (poly, edges, g)
         total += len(pts[0])
         positives += int(ref.sum())
-    assert positives > 250
+    assert positives > 125
 
 
 def test_three_pairings_describe_the_same_set():
     rng = np.random.default_rng(20)
     compared = nonempty = 0
-    while compared < 300:
+    while compared < 150:
         poly = random_polygon(rng)
         idx = np.flatnonzero(poly.usable)
         if len(idx) < 4:
@@ -233,7 +233,7 @@ def test_three_pairings_describe_the_same_set():
             assert np.array_equal(v, verdicts[0])
         nonempty += not sets[0][1].is_empty
         compared += 1
-    assert nonempty > 30
+    assert nonempty > 15
 
 
 def test_empty_set_reasons_corollary_6_1():
@@ -260,7 +260,7 @@ def test_empty_set_reasons_corollary_6_1():
 def test_regions_back_project_onto_the_sampled_grasps():
     rng = np.random.default_rng(31)
     done = 0
-    while done < 20:
+    while done < 10:
         poly, edges, _ = _four_finger_trial(rng, "four")
         gs = grasp_set(poly, edges)
         if gs.is_empty:

@@ -213,14 +213,14 @@ def test_the_unresisted_wrench_is_done_no_negative_work():
 
 def test_planar_epsilon_and_volume_are_the_hulls_facets():
     checked = 0
-    for p, n, mu in _planar_cases(2, 300):
+    for p, n, mu in _planar_cases(2, 150):
         w = planar.contact_wrenches(p, n, mu).reshape(-1, 3)
         ref = _epsilon_by_facets(w)
         assert planar.epsilon(p, n, mu) == pytest.approx(ref, abs=1e-9)
         if np.linalg.matrix_rank(w - w.mean(axis=0), tol=1e-6) == 3:
             assert planar.volume(p, n, mu) == pytest.approx(_volume_3d(w), rel=1e-6)
         checked += ref > 0
-    assert checked > 30
+    assert checked > 15
 
 
 def test_planar_generators_are_the_contacts_forces():

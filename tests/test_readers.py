@@ -307,7 +307,7 @@ def test_image_silhouettes_with_holes_not_the_border(tmp_path, ext):
 def test_the_chain_approximation_is_scikit_images_bit_for_bit(seed):
     """The image reader's Douglas-Peucker (``_read_image.approximate_chain``) keeps the
     points, bit for bit, that scikit-image's ``measure.approximate_polygon`` keeps (the
-    reference): on the contours of 40 random blobs per seed (closed chains, staircases
+    reference): on the contours of 20 random blobs per seed (closed chains, staircases
     of pixel edges) and on random walks with straight runs, repeated points and a chain
     that turns back on itself, at tolerances from 0 to beyond the chain."""
     from skimage.measure import approximate_polygon, find_contours
@@ -316,7 +316,7 @@ def test_the_chain_approximation_is_scikit_images_bit_for_bit(seed):
 
     rng = np.random.default_rng(70 + seed)
     chains = []
-    for _ in range(40):
+    for _ in range(20):
         blob = np.zeros((40, 40))
         for _ in range(int(rng.integers(1, 6))):
             r, c, w = rng.integers(5, 35), rng.integers(5, 35), rng.integers(2, 9)

@@ -292,7 +292,7 @@ def test_a_separating_direction_spares_the_hull_and_changes_no_radius(seed, monk
     """The slice's radius with the separating direction's shortcut (``_separated``: 0 at
     once) is the radius read from the 6-D hull (the reference) on 1,000 seeded triples
     of every kind (nearly collinear contacts, coplanar normals, contacts nearly
-    opposite, scales 1e-3 to 1e3, narrow and wide cones; 400 by default), and the
+    opposite, scales 1e-3 to 1e3, narrow and wide cones; 200 by default), and the
     shortcut decides a good share of those that fail (the hull's path: the slice's
     vertices, ``tests/test_spatial_slice.py``, left out)."""
     from fcgrasp.spatial import triples as T
@@ -300,7 +300,7 @@ def test_a_separating_direction_spares_the_hull_and_changes_no_radius(seed, monk
     monkeypatch.setattr(T, "SLICE_VERTICES", False)
     rng = np.random.default_rng(seed)
     spared = failed = 0
-    for _ in range(400 if seed == 0 else 1000):
+    for _ in range(200 if seed == 0 else 1000):
         p, n, mu = _random_grasp(rng)
         if rng.random() < 0.3:                      # some far from holding
             n = n * np.where(rng.random(3) < 0.5, 1.0, -1.0)[:, None]
