@@ -160,12 +160,12 @@ SEEDS = [0] + [pytest.param(k, marks=pytest.mark.slow) for k in range(1, 8)]
 @pytest.mark.parametrize("seed", SEEDS)
 def test_every_objective_matches_highs(seed):
     """The four programs of a piece (max-min, free levels, one region grown, deepest
-    placement) by the kernel and by HiGHS, on every piece of 15 random triples (120
+    placement) by the kernel and by HiGHS, on every piece of 8 random triples (120
     under ``-m slow``)."""
     rng = np.random.default_rng(20 + seed)
     count = 0
     doubled = 0
-    for a, t, L, center, half, margin in _triples(rng, 15):
+    for a, t, L, center, half, margin in _triples(rng, 8):
         order = bool(np.all(a[0] == a[1]))
         blocks = C._blocks(a, t, L, center, half, margin, 0, order)
         if not blocks:
@@ -192,7 +192,7 @@ def test_every_objective_matches_highs(seed):
                 for v in (*r, *(g[o] if o.any() else [])):
                     if v is not None and blk.order:      # the regions apart, in order
                         assert v[3] <= v[1] + 1e-9
-    assert count > 100 and doubled > 0
+    assert count > 50 and doubled > 0, (count, doubled)
 
 
 @pytest.mark.parametrize("seed", SEEDS)

@@ -566,7 +566,7 @@ def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves(parts):
                           mu=float(rng.uniform(0.3, 1.0)))
         beta = float(shrunk_half_angle(jaw.mu, 0.5))
         ring = _poses._grip_edges(part, None)
-        th, c = _poses_of(rng, part, jaw, 400)
+        th, c = _poses_of(rng, part, jaw, 200)
         w = rng.choice([1e-3, 1e-2, 0.05, 0.2], th.size) * rng.random(th.size)
         cw = rng.choice([1e-3, 1e-2, 0.1], th.size) * rng.random(th.size) * part.size
         boxes = np.c_[th, th + w, c, c + cw]
@@ -580,7 +580,7 @@ def test_compiled_pooled_proofs_are_the_numpy_proofs_on_curves(parts):
         many = (ca.count > _poses.MAX_CONTACTS) | (cb.count > _poses.MAX_CONTACTS)
         pooled += int((ok & many).sum())
         proved += int(ok.sum())
-    assert pooled >= 15 * parts and proved >= 80 * parts, (pooled, proved)
+    assert pooled >= 8 * parts and proved >= 40 * parts, (pooled, proved)
 
 
 @pytest.mark.parametrize("parts", [1, pytest.param(4, marks=pytest.mark.slow)])

@@ -26,7 +26,7 @@ def plan_grasps_ok(p, rng, n):
 
 # ------------------------------------------------------------------ no false closure
 
-@settings(max_examples=40, deadline=None, derandomize=True,
+@settings(max_examples=20, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), kind=st.sampled_from(["convex", "star", "holes",
                                                              "rectangle", "regular"]),
@@ -41,7 +41,7 @@ def test_no_false_force_closure_in_plans(seed, kind, log_mu, fingers):
         assert plan_grasps_ok(p, rng, 20).all()
 
 
-@settings(max_examples=40, deadline=None, derandomize=True,
+@settings(max_examples=20, deadline=None, derandomize=True,
           suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), log_mu=st.floats(np.log(1e-3), np.log(10.0)))
 def test_no_false_force_closure_in_grasp_sets(seed, log_mu):

@@ -49,8 +49,7 @@ TIE = 5e-7
 #: when a triangle is hit that near it (the fandisk's curved faces come that close)
 ON_PART = PLANAR_TOL + TIE
 #: the cases of the default suite (the rest under -m slow)
-QUICK = {("angle_block.STL", "pair"), ("angle_block.STL", "jaw"),
-         ("idler_riser.STL", "pair"), ("idler_riser.STL", "jaw")}
+QUICK = {("angle_block.STL", "pair"), ("idler_riser.STL", "jaw")}
 
 
 def _mesh(name):
