@@ -173,7 +173,7 @@ def test_compiled_proofs_are_the_numpy_proofs():
         for hole in _holes(part):
             ring = _poses._grip_edges(part, hole)
             q = None if hole is None else _poses.insertion_point(part, hole) - part.centroid
-            th, c = _poses_of(rng, part, jaw, 600)
+            th, c = _poses_of(rng, part, jaw, 300)
             w = rng.choice([1e-5, 1e-3, 1e-2, 0.05, 0.3], th.size) * rng.random(th.size)
             cw = rng.choice([1e-4, 1e-2, 0.1], th.size) * rng.random(th.size) * part.size
             boxes = np.c_[th, th + w, c, c + cw]
@@ -185,7 +185,7 @@ def test_compiled_proofs_are_the_numpy_proofs():
             np.testing.assert_allclose(hi[ok], hi_ref[ok], rtol=0, atol=1e-9 * part.size)
             boxes_seen += len(boxes)
             proved += int(ok.sum())
-    assert boxes_seen >= 20000 and proved >= 1000
+    assert boxes_seen >= 10000 and proved >= 500, (boxes_seen, proved)
 
 
 def _numpy_only(monkeypatch):
@@ -215,7 +215,7 @@ def test_a_slice_across_a_window_is_read_from_the_slices(monkeypatch):
     rng = np.random.default_rng(18)
     seen = {True: 0, False: 0}
     stopped = 0
-    for k in range(9):
+    for k in range(5):
         plate = k % 3 == 2
         if plate:
             part = _filleted_plate(rng)
@@ -265,7 +265,7 @@ def test_a_slice_across_a_window_is_read_from_the_slices(monkeypatch):
                                     _poses.NEAR_STRIP * tol, stop_gap=tol, failed=failed)
                     assert not np.any(failed & np.array(ref))     # never a holding angle
                     stopped += int(failed.sum())
-    assert min(seen.values()) >= 40 and stopped >= 20, (seen, stopped)
+    assert min(seen.values()) >= 20 and stopped >= 10, (seen, stopped)
 
 
 def test_compiled_slices_are_the_numpy_slices(monkeypatch):
@@ -338,7 +338,7 @@ def test_compiled_proofs_drop_the_dominated_candidates_as_numpy_does(monkeypatch
     assert seen >= 10 and proved >= 4, (seen, proved)
 
 
-@pytest.mark.parametrize("seed, parts", [(15, 5), pytest.param(16, 60, marks=pytest.mark.slow)])
+@pytest.mark.parametrize("seed, parts", [(15, 3), pytest.param(16, 60, marks=pytest.mark.slow)])
 def test_compiled_certify_box_is_the_numpy_subdivision(seed, parts, monkeypatch):
     """The compiled proof goes depth first over the edges near each box; numpy goes
     breadth first over every edge: the same boxes are examined, so the same answer
@@ -462,7 +462,7 @@ def _comb(rng):
     return fc.Polygon(ring @ rot.T + 100 * rng.normal(size=2)), th
 
 
-@pytest.mark.parametrize("cases", [pytest.param(60, id="seeded"),
+@pytest.mark.parametrize("cases", [pytest.param(30, id="seeded"),
                                    pytest.param(600, id="sweep", marks=pytest.mark.slow)])
 def test_pruned_slices_are_every_edges_slices_bit_for_bit(cases):
     """The compiled slices of an external grip read, per cell, only the edges that may

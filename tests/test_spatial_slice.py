@@ -58,7 +58,7 @@ def test_the_slices_vertices_give_the_hulls_radius(seed):
     """Where the vertices decide (not None), their radius is the 6-D hull's to 1e-12
     of the generators' scale; they decide most of the triples that hold."""
     decided = holding = 0
-    for p, n, mu in _grasps(seed, 300 if seed == 0 else 2000):
+    for p, n, mu in _grasps(seed, 150 if seed == 0 else 2000):
         w = T._generators(p, n, _alpha(mu))
         want = T._hull_slice_radius(w)
         got = _slice.slice_radius(w, T.PYRAMID_EDGES)
@@ -89,7 +89,7 @@ def test_every_point_the_slice_keeps_is_in_the_hull(seed):
     6-D hull (qhull's) to 1e-12: the radius read from them cannot exceed the slice's."""
     table = _slice.pattern_table(T.PYRAMID_EDGES)
     loops = _slice._LOOPS.get()
-    for p, n, mu in _grasps(100 + seed, 100 if seed == 0 else 1000):
+    for p, n, mu in _grasps(100 + seed, 50 if seed == 0 else 1000):
         w = T._generators(p, n, _alpha(mu))
         try:
             eq = spatial.ConvexHull(w).equations
