@@ -9,6 +9,7 @@ import json
 import os
 import subprocess
 import sys
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -201,6 +202,25 @@ def test_version_and_help():
     for cmd in ("plan", "check", "demo"):
         r = run(cmd, "--help")
         assert r.returncode == 0 and "example" in r.stdout
+
+
+def test_the_command_exits_with_mains_code_its_heap_frozen(monkeypatch, capsys):
+    """``fcgrasp`` and ``python -m fcgrasp`` run :func:`~fcgrasp.apps.cli.run`: the
+    command's code as the exit status, the heap frozen once the command is done (so the
+    interpreter's finalization skips its collections), not before."""
+    import gc
+
+    from fcgrasp.apps import cli
+
+    calls = []
+    monkeypatch.setattr(cli, "main", lambda: calls.append("main") or 3)
+    monkeypatch.setattr(gc, "freeze", lambda: calls.append("freeze"))
+    with pytest.raises(SystemExit) as exc:
+        cli.run()
+    assert exc.value.code == 3 and calls == ["main", "freeze"]
+    meta = (Path(__file__).resolve().parents[1] / "pyproject.toml").read_text()
+    assert 'fcgrasp = "fcgrasp.apps.cli:run"' in meta
+    assert "run()" in (Path(cli.__file__).parents[1] / "__main__.py").read_text()
 
 
 def test_output_is_deterministic(tmp_path):

@@ -1,7 +1,5 @@
 """``python -m fcgrasp``: the command line."""
 
-import sys
+from .apps.cli import run
 
-from .apps.cli import main
-
-sys.exit(main())
+run()

@@ -472,5 +472,20 @@ def main(argv: list[str] | None = None) -> int:
         return EXIT_INTERNAL
 
 
+def run() -> None:
+    """The ``fcgrasp`` command (and ``python -m fcgrasp``): :func:`main` on the process's
+    arguments, then the process exits with its code.  The heap is frozen first
+    (``gc.freeze``): the interpreter's finalization then skips the collections of every
+    object the command made (numba's types and loaded kernels among them): about 0.1 s
+    of the 1.1 s of CPU of ``fcgrasp plan`` on a 384-edge icon.  The outputs are written
+    and closed by then (each atomically), and exit handlers still run."""
+    import gc
+
+    code = main()
+    sys.stdout.flush()
+    gc.freeze()
+    sys.exit(code)
+
+
 if __name__ == "__main__":  # pragma: no cover
-    sys.exit(main())
+    run()
