@@ -53,6 +53,10 @@ t0 = time.process_time()
 plans = fc.plan(poly, **kw)
 print(json.dumps({"edges": poly.n_edges, "read": read, "cpu": time.process_time() - t0,
                   "plans": len(plans)}))
+# the process ends as the fcgrasp command does (fcgrasp.apps.cli.run): its heap frozen,
+# which the interpreter's finalization then does not collect
+import gc
+gc.freeze()
 """
 
 GRIPPERS = {"2f": "2 fingers", "3f": "3 fingers",
