@@ -46,6 +46,13 @@ def _halfplanes(piece: Any) -> Halfplanes:
     return _ring_halfplanes(_ring(piece))
 
 
+def _ring_widths(halfplanes: Halfplanes, ring: FloatArray) -> FloatArray:
+    """The widths of a convex ring across its edges: along each edge's normal, from the
+    edge's line to the farthest vertex (``halfplanes``: the ring's, :func:`_ring_halfplanes`)."""
+    E, h = halfplanes
+    return np.asarray(h - (E @ ring.T).min(axis=1))
+
+
 def _ring_halfplanes(ring: FloatArray) -> Halfplanes:
     """``E x <= h`` for a counter-clockwise convex ring (zero-length edges dropped)."""
     d = np.roll(ring, -1, axis=0) - ring
@@ -119,7 +126,7 @@ def _piece_table(solid: Solid, batched: bool = True) -> _Pieces:
         reach = np.array([np.max(np.linalg.norm(v - c, axis=1))
                           for v, c in zip(verts, centroid, strict=True)])
         # the width across each edge (its normal's direction)
-        width = [h - (E @ ring.T).min(axis=1) for (E, h), ring in zip(hps, rings, strict=True)]
+        width = [_ring_widths(hp, ring) for hp, ring in zip(hps, rings, strict=True)]
     area, length = shapely.area(geoms), shapely.length(geoms)
     inradius = 2 * area / length                              # exact for triangles
     other = np.array([len(v) != 3 for v in verts], bool)
@@ -184,7 +191,7 @@ def _batched_rings(geoms: np.ndarray
                 hps[i], width[i] = (E[j], h[j]), W[j]
             else:
                 hps[i] = _ring_halfplanes(rings[i])
-                width[i] = hps[i][1] - (hps[i][0] @ rings[i].T).min(axis=1)
+                width[i] = _ring_widths(hps[i], rings[i])
     return rings, hps, width
 
 

@@ -71,6 +71,7 @@ from ._pieces import (
     _Pieces,
     _ring,
     _ring_halfplanes,
+    _ring_widths,
     separated,
 )
 from ._program import solve_linear
@@ -350,8 +351,7 @@ def _second_level(solid: Solid, facets: tuple[int, int], pieces: tuple[int, int]
     halfplanes = (_ring_halfplanes(rings[0]), _ring_halfplanes(rings[1]))
     # each piece's width across its edges: the fit of a centrally symmetric piece (the
     # caps of round holes and bosses) in closed form (:func:`_fit`)
-    widths = [h - (E @ ring.T).min(axis=1) for (E, h), ring in zip(halfplanes, rings,
-                                                                   strict=True)]
+    widths = [_ring_widths(hp, ring) for hp, ring in zip(halfplanes, rings, strict=True)]
     Q1, Q2 = _octagon_axes(f1, f2)
     best = (c1, c2, (r, r))
     # bounds that skip the program where nothing can grow: an octagon's fit in its piece

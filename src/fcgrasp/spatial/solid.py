@@ -201,7 +201,7 @@ def _united(groups: list[tuple[int, ...]], vertices: FloatArray, faces: Any,
     grid[np.repeat(np.arange(len(small)), sizes), slot] = shapely.polygons(tris)
     united = shapely.buffer(shapely.union_all(grid, axis=1), 0)
     polys[idx] = united
-    convex[idx] = shapely.area(united) >= shapely.area(shapely.convex_hull(united)) * (1 - TOL)
+    convex[idx] = _convex(shapely.area(united), shapely.area(shapely.convex_hull(united)))
 
 
 def _coplanar_groups(mesh: Any, vertices: FloatArray, faces: Any) -> list[tuple[int, ...]]:
@@ -240,12 +240,19 @@ def _coplanar_groups(mesh: Any, vertices: FloatArray, faces: Any) -> list[tuple[
     return groups
 
 
+def _convex(area: Any, hull_area: Any) -> Any:
+    """Whether a polygon of ``area`` is convex as a facet's pieces are read: within
+    :data:`~fcgrasp.core.tolerances.TOL` of its convex hull's ``hull_area`` (elementwise
+    on arrays)."""
+    return area >= hull_area * (1 - TOL)
+
+
 def _convex_pieces(poly: Any) -> list[Any]:
     """The polygon itself when convex, else its constrained triangles merged greedily
     while each union stays convex (largest pieces first)."""
     from shapely import constrained_delaunay_triangles
 
-    if poly.area >= poly.convex_hull.area * (1 - TOL):
+    if _convex(poly.area, poly.convex_hull.area):
         return [poly]
     tris = sorted(constrained_delaunay_triangles(poly).geoms, key=lambda t: -t.area)
     pieces: list[Any] = []
@@ -261,7 +268,7 @@ def _convex_pieces(poly: Any) -> list[Any]:
                                & (boxes[:len(pieces), 3] >= tb[1]))
         for i in near:
             u = pieces[i].union(t)
-            if u.geom_type == "Polygon" and u.area >= u.convex_hull.area * (1 - TOL):
+            if u.geom_type == "Polygon" and _convex(u.area, u.convex_hull.area):
                 pieces[i] = u
                 boxes[i] = u.bounds
                 break
