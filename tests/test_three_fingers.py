@@ -642,3 +642,38 @@ def test_free_stretch_is_the_edge_by_edge_walk(seed):
         want = _free_stretch_reference(part, covered)
         assert free.longest(covered) == want
         assert free_stretch(part, covered) == want
+
+
+def _pair_outline(rng):
+    """A smooth outline (an ellipse with a harmonic) or a noisy star, 40-160 edges:
+    where the third finger's free stretch, not the two fingers, sets the pair plans."""
+    n = int(rng.integers(40, 160))
+    a = np.linspace(0, 2 * np.pi, n, endpoint=False)
+    if rng.random() < 0.6:
+        r = 1 + rng.uniform(0, 0.15) * np.cos(int(rng.integers(2, 5)) * a)
+        w, h = rng.uniform(30, 70), rng.uniform(15, 40)
+        return fc.Polygon(np.c_[w * r * np.cos(a), h * r * np.sin(a)])
+    r = 40 * (1 + 0.3 * np.sin(5 * a)) * (1 + rng.uniform(0, 0.01) * rng.standard_normal(n))
+    return fc.Polygon(np.c_[r * np.cos(a), r * np.sin(a)])
+
+
+@pytest.mark.parametrize("seed", [*range(6), *(pytest.param(s, marks=pytest.mark.slow)
+                                               for s in range(6, 206))])
+def test_pair_plans_by_their_bound_are_the_reference_plans(seed, monkeypatch):
+    """The two-finger list read in the order of the pair plans' bounds (``PAIR_CAP``)
+    gives the plans of the list read by the two fingers' smallest region (the
+    reference): the same regions, in the same order, ``top`` 1 to 12, friction 0.2 to
+    1.0."""
+    from fcgrasp.grippers.three_fingers import _pairs
+
+    rng = np.random.default_rng(9100 + seed)
+    part = _pair_outline(rng)
+    spec = plan_spec(fingers=3, mu=float(rng.choice([0.2, 0.3, 0.5, 1.0])),
+                     top=int(rng.integers(1, 13)))
+    got = three_finger_plans(part, spec)
+    monkeypatch.setattr(_pairs, "PAIR_CAP", False)
+    want = three_finger_plans(part, spec)
+    assert [p.region_edges for p in got] == [p.region_edges for p in want]
+    for g, w in zip(got, want, strict=True):
+        for a, b in zip(g.regions, w.regions, strict=True):
+            assert np.allclose(a, b, rtol=0, atol=1e-9 * part.size)

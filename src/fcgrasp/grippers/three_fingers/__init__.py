@@ -166,9 +166,10 @@ def three_finger_plans(polygon: Polygon, spec: PlanSpec, edges: Any = None,
     if more is not None and keep is not None:
         mins = sorted((float(min(p.lengths)) for p in plans + pairs), reverse=True)
         level = mins[keep - 1] if len(mins) >= keep else 0.0
-        ask, below = more
+        ask, below, stretches = more
         if below > level:
-            pairs = _pair_plans(polygon, spec, edges, F, keep, level=level, start=ask)[0]
+            pairs = _pair_plans(polygon, spec, edges, F, keep, level=level, start=ask,
+                                stretches=stretches)[0]
     plans += pairs
     return _ranked(polygon, spec, plans, keep)
 

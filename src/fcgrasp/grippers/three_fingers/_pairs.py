@@ -13,9 +13,9 @@ from ...core._checks import FloatArray
 from ...core.tolerances import PIECE_TIE, RANK_TOL
 from ...model.plans import GraspPlan
 from ...model.polygon import Polygon, check_polygon
-from ...model.stretches import crosses_a_vertex
+from ...model.stretches import StretchSearch, crosses_a_vertex
 from ...pipeline import PlanSpec, search
-from .._boundary import regions_plan, stretch_plans_read
+from .._boundary import regions_plan, stretch_plans_read, two_finger_plans_of, unread_below
 from ._concurrent import KEEP_PAIRS
 
 
@@ -34,7 +34,8 @@ def _tie_step(length: Any, size: float) -> Any:
 
 def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
                 keep: int | None, level: float = 0.0, first: bool = False,
-                start: int | None = None) -> tuple[list[GraspPlan], tuple[int, float] | None]:
+                start: int | None = None, stretches: StretchSearch | None = None
+                ) -> tuple[list[GraspPlan], tuple[int, float, StretchSearch | None] | None]:
     """Two fingers that hold on their own (the exact two-finger plans) and a third
     anywhere on the longest feature of another edge: force closure whatever the third
     finger does.  Along the boundary (``spec.along_boundary``, no hand, no chosen edges,
@@ -51,8 +52,17 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     falls along the list), so the pairs returned are all that can rank among the best
     ``keep`` or tie with the last (to the two-finger search's tie tolerance).  Returns
     them and, with ``first`` (the first read that has ``keep`` pairs only), where to
-    read on and the smallest region every pair not read is below (None: nothing left
-    that can rank)."""
+    read on, the smallest region every pair not read is below (None: nothing left
+    that can rank) and the stretch search to read on with (``stretches``).
+
+    Along the boundary the two-finger list is read in the order of each pair plan's
+    bound (:data:`PAIR_CAP`: the smaller of its two fingers' smallest region and the
+    third finger's widest free stretch, :meth:`~fcgrasp.model.stretches.StretchSearch.
+    pairs` with ``third``), one search read deeper each time: on a smooth outline at a
+    wide cone the two fingers' regions outrun the free stretch by far, and the list by
+    the two fingers' regions alone reaches the pair plans' level only after millions
+    of configurations.  Every pair plan not read is below the last read's bound as it
+    is below its two fingers'."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return [], None
     boundary = (spec.along_boundary and spec.hand is None and edges is None
@@ -60,6 +70,9 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     size = polygon.size
     ask = None if keep is None else start or max(KEEP_PAIRS, keep)
     free = _FreeStretches(polygon) if boundary else None
+    if boundary and PAIR_CAP and ask is not None and stretches is None:
+        stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory,
+                                  share=PAIR_SHARE)
     out: list[GraspPlan] = []
     while True:
         two = replace(spec, fingers=2, top=ask, rank_by="min_region",
@@ -69,18 +82,18 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             # (each plan holds; a complete read may rank others first)
             try:
                 with budget.interruptible():
-                    got, every, below = stretch_plans_read(polygon, two)
+                    got, every, below = _read(polygon, two, stretches)
             except budget.BudgetExhausted:
                 budget.cut_short()
                 return out, None
         elif boundary:
             try:
-                got, every, below = stretch_plans_read(polygon, two)
+                got, every, below = _read(polygon, two, stretches)
             except budget.BudgetExhausted:
                 # the first read alone runs past the budget and its grace: the pairs of
                 # regions on single edges instead, cut short (as two fingers do)
                 budget.cut_short()
-                boundary, free = False, None
+                boundary, free, stretches = False, None, None
                 continue
         else:
             got = search(polygon, two, edges=edges)
@@ -101,7 +114,34 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
             return out, None
         ask = 2 * max(ask, len(got))
         if first and len(out) >= keep:  # enough for the triples' floor
-            return out, (ask, below)
+            return out, (ask, below, stretches)
+
+
+#: Whether :func:`_pair_plans` reads the two-finger list along the boundary in the order
+#: of the pair plans' bounds (True), or by the two fingers' smallest region alone (False:
+#: the reference, :func:`~fcgrasp.grippers._boundary.stretch_plans_read`).
+PAIR_CAP = True
+
+
+#: The share of the best two-finger region from which the bound-ordered read first
+#: collects configurations (:class:`~fcgrasp.model.stretches.StretchSearch`'s
+#: ``share``; lowered as the reading needs): the ranked list's pair plans lie near the
+#: top, where a distinct search's rounds reach far below it.
+PAIR_SHARE = 0.9
+
+
+def _read(polygon: Polygon, two: PlanSpec, stretches: StretchSearch | None
+          ) -> tuple[list[GraspPlan], bool, float]:
+    """The two-finger plans of one read of ``two.top`` configurations (with ties), whether
+    they are every one, and the level every configuration not read is below: by the pair
+    plans' bounds from ``stretches``, or by the smallest region
+    (:func:`~fcgrasp.grippers._boundary.stretch_plans_read`) without it."""
+    if stretches is None:
+        return stretch_plans_read(polygon, two)
+    pairs = stretches.pairs(top=two.top, ties=True, third=True)
+    below = unread_below(pairs, two.top)
+    return two_finger_plans_of(polygon, two, pairs), below is None, \
+        0.0 if below is None else below
 
 
 def _with_third(polygon: Polygon, spec: PlanSpec, p: GraspPlan, F: Any,

@@ -181,8 +181,14 @@ class StretchSearch:
     """
 
     def __init__(self, polygon: Polygon, mu: ArrayLike, margin: ArrayLike = DEFAULT_MARGIN_DEG,
-                 max_bytes: int | None = None) -> None:
+                 max_bytes: int | None = None, share: float | None = None) -> None:
         self.beta = _check_args(polygon, mu, margin)
+        #: the share of the best smallest region from which the runs that share a memo
+        #: first collect (None: :data:`MEMO_SHARE`; lowered as the answers need)
+        self.share = MEMO_SHARE if share is None else check_scalar(share, "share",
+                                                                     positive=True)
+        if self.share > 1:
+            raise ValueError(f"share must be in (0, 1], got {share!r}")
         self.max_bytes = None if max_bytes is None else check_int(max_bytes, "max_bytes",
                                                                   minimum=1)
         self.polygon = check_polygon(polygon)
@@ -248,7 +254,7 @@ class StretchSearch:
         if cap is not None and self._best is None:
             self.pairs(top=top_v)
         if shared and memo.prepared is None and self._best is not None and memo.floor == 0.0:
-            memo.lower(MEMO_SHARE * self._best)
+            memo.lower(self.share * self._best)
         # the highest floor whose collection did not fit the memory budget: a run that
         # needs to collect down to it or below cannot be made
         overflow = -np.inf
@@ -370,7 +376,7 @@ class _WidestFree:
 #: The distinct search's memo (:class:`_Memo`) first collects the configurations whose arc
 #: length reaches this share of the best smallest region (lowered when a run's
 #: ``top``-th falls below it): a smooth outline of 2,000 edges has tens of millions of
-#: configurations, most far below any plan kept.
+#: configurations, most far below any plan kept.  (``StretchSearch``'s ``share``.)
 MEMO_SHARE = 0.5
 
 
