@@ -55,14 +55,16 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     read on, the smallest region every pair not read is below (None: nothing left
     that can rank) and the stretch search to read on with (``stretches``).
 
-    Along the boundary the two-finger list is read in the order of each pair plan's
-    bound (:data:`PAIR_CAP`: the smaller of its two fingers' smallest region and the
-    third finger's widest free stretch, :meth:`~fcgrasp.model.stretches.StretchSearch.
-    pairs` with ``third``), one search read deeper each time: on a smooth outline at a
-    wide cone the two fingers' regions outrun the free stretch by far, and the list by
-    the two fingers' regions alone reaches the pair plans' level only after millions
-    of configurations.  Every pair plan not read is below the last read's bound as it
-    is below its two fingers'."""
+    The first read is the ranked two-finger search's (by the smallest region: where the
+    two fingers set the pair plans' level, it is the only read).  Each deeper read
+    along the boundary reads the list in the order of each pair plan's bound
+    (:data:`PAIR_CAP`: the smaller of its two fingers' smallest region and the third
+    finger's widest free stretch, :meth:`~fcgrasp.model.stretches.StretchSearch.pairs`
+    with ``third``), one search read deeper each time: on a smooth outline at a wide
+    cone the two fingers' regions outrun the free stretch by far, and the list by the
+    two fingers' regions alone reaches the pair plans' level only after millions of
+    configurations.  Every pair plan not read is below a read's level either way (below
+    its bound, which is below its two fingers' region)."""
     if edges is not None and len(set(int(e) for e in edges)) != 3:
         return [], None
     boundary = (spec.along_boundary and spec.hand is None and edges is None
@@ -70,13 +72,13 @@ def _pair_plans(polygon: Polygon, spec: PlanSpec, edges: Any, F: Any,
     size = polygon.size
     ask = None if keep is None else start or max(KEEP_PAIRS, keep)
     free = _FreeStretches(polygon) if boundary else None
-    if boundary and PAIR_CAP and ask is not None and stretches is None:
-        stretches = StretchSearch(polygon, spec.mu, spec.margin, max_bytes=spec.max_memory,
-                                  share=PAIR_SHARE)
     out: list[GraspPlan] = []
     while True:
         two = replace(spec, fingers=2, top=ask, rank_by="min_region",
                       along_boundary=boundary)
+        if boundary and PAIR_CAP and (out or start) and stretches is None:
+            stretches = StretchSearch(polygon, spec.mu, spec.margin,
+                                      max_bytes=spec.max_memory, share=PAIR_SHARE)
         if boundary and out:
             # a deeper read: the time budget may end it, and the pairs read are kept
             # (each plan holds; a complete read may rank others first)
