@@ -268,3 +268,71 @@ def test_a_pair_geos_cannot_build_gives_no_region(monkeypatch):
     monkeypatch.setattr(jaw, "_region", fails_on_one)
     got = solid_jaw_plans(solid, STROKE, PAD, MU, top=4, margin=MARGIN)
     assert [p.facets for p in got] == [p.facets for p in want if p.facets != broken]
+
+
+def _torus(major, minor):
+    """A torus (radii 40 and 12 mm) of ``major`` by ``minor`` sections: no two facets
+    coplanar, its inner faces with most of the part beyond their planes."""
+    mesh = trimesh.creation.torus(40, 12, major_sections=major, minor_sections=minor)
+    return solid_from_mesh(mesh, "mm", f"torus{major}x{minor}")
+
+
+@pytest.mark.parametrize("sections", [(64, 16), pytest.param((48, 24), marks=pytest.mark.slow),
+                                      pytest.param((96, 32), marks=pytest.mark.slow)])
+def test_every_axis_on_a_torus_holds(sections):
+    """The regions on a curved solid, whose pads meet the part beyond their facets
+    everywhere but on the rim: every sampled axis of every region returned (pads of 2,
+    6 and 10 mm) holds, its pads reaching their facets first (rays cast here): the
+    union of a facet's shadows keeps every triangle (GEOS's floating overlay loses some
+    that share sides), and the buffer by the pad's radius holds the pad's disc (its
+    chords outside it)."""
+    rng = np.random.default_rng(sum(sections))
+    solid = _torus(*sections)
+    seen = 0
+    for pad in (2.0, 6.0, 10.0):
+        for plan in solid_jaw_plans(solid, (2, 150), pad, MU, top=3, margin=MARGIN):
+            for x in _axes_inside(rng, solid, plan, 6):
+                assert _holds(solid, plan, x)
+            seen += 1
+    assert seen
+
+
+def _screened(monkeypatch, solid, stroke, pad):
+    """``solid_jaw_plans`` of every pair with and without the one-shadow screen, and how
+    many pairs the screen decided."""
+    from fcgrasp.spatial import jaw
+
+    decided = []
+    screen = jaw._one_shadow_covers
+
+    def counted(*args):
+        out = screen(*args)
+        decided.append(out)
+        return out
+
+    monkeypatch.setattr(jaw, "_one_shadow_covers", counted)
+    got = solid_jaw_plans(solid, stroke, pad, MU, top=None, margin=MARGIN)
+    monkeypatch.setattr(jaw, "SHADOW_SCREEN", False)
+    want = solid_jaw_plans(solid, stroke, pad, MU, top=None, margin=MARGIN)
+    monkeypatch.setattr(jaw, "SHADOW_SCREEN", True)
+    return got, want, sum(decided)
+
+
+@pytest.mark.parametrize("seed", [0, 1, *(pytest.param(s, marks=pytest.mark.slow)
+                                          for s in range(2, 14))])
+def test_the_shadow_screen_gives_the_cut_plans(seed, monkeypatch):
+    """A pair whose overlap lies within the pad's radius of one shadow is given no region
+    without the union of the shadows: every plan is the one the cut gives (the same
+    pairs, regions and radii, bit for bit), on tori and stepped prisms with pads of 1
+    to 12 mm; the screen decides some pairs of a torus and leaves others to the cut."""
+    rng = np.random.default_rng(700 + seed)
+    torus = seed % 2 == 0
+    solid = _torus(int(rng.choice([48, 64])), 24) if torus else _extruded(seed)
+    pad = float(rng.uniform(4 if torus else 1, 12))
+    got, want, decided = _screened(monkeypatch, solid, (1.0, 150.0), pad)
+    assert [(p.facets, p.radius, p.area) for p in got] == \
+        [(p.facets, p.radius, p.area) for p in want]
+    for g, w in zip(got, want, strict=True):
+        assert np.array_equal(g.regions[0], w.regions[0])
+    if torus:
+        assert decided > 0                       # the inner faces of a torus

@@ -79,6 +79,16 @@ class Solid:
         return float(np.linalg.norm(hi - lo))
 
     @cached_property
+    def vertices(self) -> FloatArray:
+        """The mesh's vertices (V, 3), read once."""
+        return np.asarray(self.mesh.vertices, float)
+
+    @cached_property
+    def faces(self) -> np.ndarray:
+        """The mesh's triangles as rows of three vertex indices (T, 3), read once."""
+        return np.asarray(self.mesh.faces)
+
+    @cached_property
     def triangles(self) -> FloatArray:
         """The mesh's triangles' corners (T, 3, 3), read once (trimesh hashes its arrays
         on every access: the jaw's shadows read them for every facet it tries)."""
