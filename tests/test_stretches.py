@@ -200,6 +200,11 @@ def test_bad_arguments():
         two_finger_stretches(poly, -1)
     with pytest.raises(ValueError, match="top"):
         two_finger_stretches(poly, 0.3, top=0)
+    from fcgrasp.model.stretches import StretchSearch
+
+    for share in (0, -0.5, 1.5, float("nan")):
+        with pytest.raises(ValueError, match="share"):
+            StretchSearch(poly, 0.3, share=share)
 
 
 def _check_plans(seed):

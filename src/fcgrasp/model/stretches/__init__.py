@@ -173,7 +173,10 @@ class StretchSearch:
     """:func:`two_finger_stretches` of one part, ``mu`` and ``margin``, asked several
     times (the rounds of ``distinct=``, :func:`fcgrasp.grippers._boundary.distinct_boundary_plans`):
     the rings' vertex matrices once, and for the runs that exclude plans every
-    configuration collected once and each solved once.
+    configuration collected once and each solved once.  ``max_bytes``: the memory
+    budget of those runs' collections; ``share``: the share of the best smallest
+    region down to which they first collect (default :data:`MEMO_SHARE`; three
+    fingers' ranked pair plans, near the top, read from 0.9).
 
     >>> sq = Polygon([[0, 0], [10, 0], [10, 3], [0, 3]])
     >>> [p.region_edges for p in StretchSearch(sq, 0.3).pairs(top=1)]
