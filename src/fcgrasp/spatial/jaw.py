@@ -206,7 +206,7 @@ BUFFER_QUAD_SEGS = 8
 
 
 def _one_shadow_covers(solid: Solid, facets: tuple[Facet, Facet], to_a: tuple[Any, Any],
-                       region: Any, level: float, pad: float) -> bool:
+                       region: Any, level: float, pad: float, shift: FloatArray) -> bool:
     """Whether :func:`_region`'s cut leaves nothing of ``region`` (a polygon in the first
     facet's plane), shown by one triangle wholly on a pad's side of its facet (its
     shadow, ``to_a`` of each facet: into the first facet's frame, a triangle, convex):
@@ -215,8 +215,11 @@ def _one_shadow_covers(solid: Solid, facets: tuple[Facet, Facet], to_a: tuple[An
     triangles' sides of the plane, read here from the vertices').  The distance to a
     convex set is convex, so the whole region (inside its vertices' hull) is then
     within the pad's radius of the shadow, inside the buffer the cut takes away (which
-    holds that radius's: :data:`BUFFER_QUAD_SEGS`).  False says nothing (the cut then
-    decides)."""
+    holds that radius's: :data:`BUFFER_QUAD_SEGS`).  The triangles near the region on
+    each facet (``shift``: from the first facet to the second along the axis) are
+    tried first, within the region's radius and the pad's of its centre
+    (:attr:`~fcgrasp.spatial.solid.Solid.triangle_tree`: a few of a large mesh's),
+    then every triangle.  False says nothing (the cut then decides)."""
     import shapely
 
     reach = pad / 2 - PLANAR_TOL * solid.size
@@ -228,28 +231,55 @@ def _one_shadow_covers(solid: Solid, facets: tuple[Facet, Facet], to_a: tuple[An
         return False
     pts = np.concatenate(rings)
     lo, hi = pts.min(axis=0), pts.max(axis=0)
+    mid = (lo + hi) / 2
+    tree, spread = solid.triangle_tree
+    ball = float(np.hypot(*(hi - lo))) / 2 + reach + spread
     verts, faces = solid.vertices, solid.faces
-    for facet, into in zip(facets, to_a, strict=True):
-        height = verts @ facet.normal - facet.origin @ facet.normal
-        # (the corners' least and greatest column by column: numpy's reductions along
-        # an axis of three cost ten times as much)
-        s0, s1, s2 = height[faces[:, 0]], height[faces[:, 1]], height[faces[:, 2]]
-        whole = np.flatnonzero((np.minimum(np.minimum(s0, s1), s2) < -level)
-                               & (np.maximum(np.maximum(s0, s1), s2) <= 0))
-        if not whole.size:
-            continue
-        flat = np.asarray(into(verts))
-        c0, c1, c2 = (flat[faces[whole, k]] for k in range(3))            # (m, 2) each
-        low = np.minimum(np.minimum(c0, c1), c2) - reach
-        high = np.maximum(np.maximum(c0, c1), c2) + reach
-        # a shadow whose box grown by the reach does not hold the region's box misses
-        # some vertex by more than the reach
-        box = (low[:, 0] <= lo[0]) & (low[:, 1] <= lo[1]) & (high[:, 0] >= hi[0]) \
-            & (high[:, 1] >= hi[1])
-        if box.any() and _within(pts, np.stack([c0[box], c1[box], c2[box]], axis=1),
-                                 reach, solid.size).any():
-            return True
+    # the triangles about the region first (where a curved part rises beyond the
+    # facet's plane), then every one (a wall across a pocket)
+    near = [np.asarray(tree.query_ball_point(facets[0].to_3d(mid) + moved, ball), int)
+            for moved in (0.0, shift)]
+    for every in (False, True):
+        for facet, into, rows in zip(facets, to_a, near, strict=True):
+            if (every or len(rows)) and _a_shadow_covers(
+                    verts, faces if every else faces[rows], facet, into, pts, level, reach,
+                    solid.size, every):
+                return True
     return False
+
+
+def _a_shadow_covers(verts: FloatArray, rows: np.ndarray, facet: Facet, into: Any,
+                     pts: FloatArray, level: float, reach: float, size: float,
+                     every: bool) -> bool:
+    """:func:`_one_shadow_covers` of the triangles ``rows`` (their corners' indices into
+    ``verts``; ``every``: all the mesh's, read through its vertices once) on the side
+    of ``facet``."""
+    if every:
+        height = (verts @ facet.normal - facet.origin @ facet.normal)[rows]     # (m, 3)
+    else:
+        corners = verts[rows]                                               # (m, 3, 3)
+        height = corners @ facet.normal - facet.origin @ facet.normal
+    # (the corners' least and greatest column by column: numpy's reductions along an
+    # axis of three cost ten times as much)
+    s0, s1, s2 = height[:, 0], height[:, 1], height[:, 2]
+    whole = (np.minimum(np.minimum(s0, s1), s2) < -level) \
+        & (np.maximum(np.maximum(s0, s1), s2) <= 0)
+    if not whole.any():
+        return False
+    if every:
+        flat = np.asarray(into(verts))[rows[whole]]                         # (m, 3, 2)
+    else:
+        flat = np.asarray(into(corners[whole].reshape(-1, 3))).reshape(-1, 3, 2)
+    c0, c1, c2 = flat[:, 0], flat[:, 1], flat[:, 2]                         # (m, 2) each
+    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    low = np.minimum(np.minimum(c0, c1), c2) - reach
+    high = np.maximum(np.maximum(c0, c1), c2) + reach
+    # a shadow whose box grown by the reach does not hold the region's box misses some
+    # vertex by more than the reach
+    box = (low[:, 0] <= lo[0]) & (low[:, 1] <= lo[1]) & (high[:, 0] >= hi[0]) \
+        & (high[:, 1] >= hi[1])
+    return bool(box.any()) and bool(_within(
+        pts, np.stack([c0[box], c1[box], c2[box]], axis=1), reach, size).any())
 
 
 def _within(pts: FloatArray, tris: FloatArray, reach: float, size: float) -> np.ndarray:
@@ -393,7 +423,7 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
     # axis whose pad meets a shadow)
     grown = pad / 2 / math.cos(math.pi / (4 * BUFFER_QUAD_SEGS))
     if SHADOW_SCREEN and _one_shadow_covers(solid, (a, b), (a.to_2d, b_into_a), region,
-                                            level, pad):
+                                            level, pad, h * axis):
         return None                     # the grown shadows cover the whole overlap
     for facet in (a, b):
         blocked = _outside(solid, facet, level,

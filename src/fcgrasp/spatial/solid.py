@@ -89,6 +89,19 @@ class Solid:
         return np.asarray(self.mesh.faces)
 
     @cached_property
+    def triangle_tree(self) -> tuple[Any, float]:
+        """A k-d tree of the triangles' centroids and the largest distance from a
+        triangle's centroid to its corners (a ball about a point holds every triangle
+        that comes within ``r`` of it once the tree's ball of ``r`` plus that is read),
+        made once."""
+        from scipy.spatial import cKDTree
+
+        tris = self.triangles
+        centre = tris.mean(axis=1)
+        reach = float(np.sqrt(((tris - centre[:, None]) ** 2).sum(axis=2)).max())
+        return cKDTree(centre), reach
+
+    @cached_property
     def triangles(self) -> FloatArray:
         """The mesh's triangles' corners (T, 3, 3), read once (trimesh hashes its arrays
         on every access: the jaw's shadows read them for every facet it tries)."""
