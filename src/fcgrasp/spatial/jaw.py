@@ -166,7 +166,7 @@ def _outside(solid: Solid, facet: Facet, level: float, near: Any = None) -> Any:
 
     tris = solid.triangles                                              # (T, 3, 3)
     s = (tris - facet.origin) @ facet.normal                            # (T, 3)
-    hit = np.any(s < -level, axis=1)
+    hit, on_side = _sides(s, level)
     if near is not None and hit.any():
         hit[hit] = near(tris[hit])
     if not hit.any():
@@ -175,7 +175,7 @@ def _outside(solid: Solid, facet: Facet, level: float, near: Any = None) -> Any:
     # a triangle wholly on the pad's side is its own shadow (the clip keeps its three
     # corners in order): those are made at once, the few the plane cuts one by one, in
     # the triangles' order
-    whole = np.all(s <= 0, axis=1)
+    whole = on_side[hit]
     shadows = np.empty(len(tris), dtype=object)
     shadows[whole] = shapely.polygons(facet.to_2d(tris[whole].reshape(-1, 3))
                                       .reshape(-1, 3, 2))
@@ -191,6 +191,15 @@ def _outside(solid: Solid, facet: Facet, level: float, near: Any = None) -> Any:
     # with their neighbours (on a 2,048-triangle torus one union of ten shadows keeps
     # 44.7 of their 53.1 mm^2), and a pad would then be placed on the part
     return shapely.union_all(polys, grid_size=ROUND_TOL * solid.size) if polys else None
+
+
+def _sides(height: FloatArray, level: float) -> tuple[np.ndarray, np.ndarray]:
+    """Of triangles whose corners are ``height`` (T, 3) above a facet's plane (its pad's
+    side below): those with a corner beyond ``level`` on the pad's side, and those
+    wholly on it.  Column by column: numpy's reductions along an axis of three cost ten
+    times as much."""
+    s0, s1, s2 = height[:, 0], height[:, 1], height[:, 2]
+    return np.minimum(np.minimum(s0, s1), s2) < -level, np.maximum(np.maximum(s0, s1), s2) <= 0
 
 
 #: Whether :func:`_region` first tries to show its overlap covered by one triangle's
@@ -230,10 +239,10 @@ def _one_shadow_covers(solid: Solid, facets: tuple[Facet, Facet], to_a: tuple[An
     if not rings:
         return False
     pts = np.concatenate(rings)
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
-    mid = (lo + hi) / 2
+    box = pts.min(axis=0), pts.max(axis=0)
+    mid = (box[0] + box[1]) / 2
     tree, spread = solid.triangle_tree
-    ball = float(np.hypot(*(hi - lo))) / 2 + reach + spread
+    ball = float(np.hypot(*(box[1] - box[0]))) / 2 + reach + spread
     verts, faces = solid.vertices, solid.faces
     # the triangles about the region first (where a curved part rises beyond the
     # facet's plane), then every one (a wall across a pocket)
@@ -242,28 +251,26 @@ def _one_shadow_covers(solid: Solid, facets: tuple[Facet, Facet], to_a: tuple[An
     for every in (False, True):
         for facet, into, rows in zip(facets, to_a, near, strict=True):
             if (every or len(rows)) and _a_shadow_covers(
-                    verts, faces if every else faces[rows], facet, into, pts, level, reach,
-                    solid.size, every):
+                    verts, faces if every else faces[rows], facet, into, pts, box, level,
+                    reach, solid.size, every):
                 return True
     return False
 
 
 def _a_shadow_covers(verts: FloatArray, rows: np.ndarray, facet: Facet, into: Any,
-                     pts: FloatArray, level: float, reach: float, size: float,
-                     every: bool) -> bool:
+                     pts: FloatArray, box: tuple[FloatArray, FloatArray], level: float,
+                     reach: float, size: float, every: bool) -> bool:
     """:func:`_one_shadow_covers` of the triangles ``rows`` (their corners' indices into
     ``verts``; ``every``: all the mesh's, read through its vertices once) on the side
-    of ``facet``."""
+    of ``facet``; ``box``: the least and greatest corner of the region's vertices
+    ``pts``."""
     if every:
         height = (verts @ facet.normal - facet.origin @ facet.normal)[rows]     # (m, 3)
     else:
         corners = verts[rows]                                               # (m, 3, 3)
         height = corners @ facet.normal - facet.origin @ facet.normal
-    # (the corners' least and greatest column by column: numpy's reductions along an
-    # axis of three cost ten times as much)
-    s0, s1, s2 = height[:, 0], height[:, 1], height[:, 2]
-    whole = (np.minimum(np.minimum(s0, s1), s2) < -level) \
-        & (np.maximum(np.maximum(s0, s1), s2) <= 0)
+    hit, on_side = _sides(height, level)
+    whole = hit & on_side
     if not whole.any():
         return False
     if every:
@@ -271,15 +278,15 @@ def _a_shadow_covers(verts: FloatArray, rows: np.ndarray, facet: Facet, into: An
     else:
         flat = np.asarray(into(corners[whole].reshape(-1, 3))).reshape(-1, 3, 2)
     c0, c1, c2 = flat[:, 0], flat[:, 1], flat[:, 2]                         # (m, 2) each
-    lo, hi = pts.min(axis=0), pts.max(axis=0)
+    lo, hi = box
     low = np.minimum(np.minimum(c0, c1), c2) - reach
     high = np.maximum(np.maximum(c0, c1), c2) + reach
     # a shadow whose box grown by the reach does not hold the region's box misses some
     # vertex by more than the reach
-    box = (low[:, 0] <= lo[0]) & (low[:, 1] <= lo[1]) & (high[:, 0] >= hi[0]) \
+    held = (low[:, 0] <= lo[0]) & (low[:, 1] <= lo[1]) & (high[:, 0] >= hi[0]) \
         & (high[:, 1] >= hi[1])
-    return bool(box.any()) and bool(_within(
-        pts, np.stack([c0[box], c1[box], c2[box]], axis=1), reach, size).any())
+    return bool(held.any()) and bool(_within(
+        pts, np.stack([c0[held], c1[held], c2[held]], axis=1), reach, size).any())
 
 
 def _within(pts: FloatArray, tris: FloatArray, reach: float, size: float) -> np.ndarray:
@@ -381,17 +388,19 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
     if not stroke[0] <= h <= stroke[1]:
         return None
 
+    def along(coords: Any) -> FloatArray:
+        """Points of B's frame (..., 2) moved along the axis into A's plane and frame."""
+        pts = b.to_3d(np.asarray(coords)[:, :2])
+        return a.to_2d(pts - np.outer((pts - a.origin) @ a.normal, axis)
+                       / float(axis @ a.normal))
+
     def into_a(geom: Any) -> Any:
         """Polygons of B's frame moved along the axis into A's plane and frame: every
         coordinate moved, the parts kept as they are (disjoint parts stay disjoint; an
         overlay of the moved parts, as in :func:`_outside`, can lose some), made valid
         where the move's rounding crosses rings (a hole touching its shell)."""
-        def ring(coords: Any) -> FloatArray:
-            pts = b.to_3d(np.asarray(coords)[:, :2])
-            return a.to_2d(pts - np.outer((pts - a.origin) @ a.normal, axis)
-                           / float(axis @ a.normal))
         parts = [p for p in shapely.get_parts(geom) if isinstance(p, shapely.Polygon)]
-        moved = shapely.transform(shapely.multipolygons(parts), ring)
+        moved = shapely.transform(shapely.multipolygons(parts), along)
         return moved if moved.is_valid else shapely.make_valid(moved)
 
     region = shapely.intersection(a.polygon, into_a(b.polygon))
@@ -414,9 +423,8 @@ def _region(solid: Solid, i: int, j: int, stroke: tuple[float, float], pad: floa
         return near
 
     def b_into_a(pts: FloatArray) -> FloatArray:
-        on_b = b.to_3d(b.to_2d(pts))
-        return a.to_2d(on_b - np.outer((on_b - a.origin) @ a.normal, axis)
-                       / float(axis @ a.normal))
+        """3-D points projected on B's plane, then moved into A's frame."""
+        return along(b.to_2d(pts))
 
     # the pad's radius to buffer by: shapely's buffer puts its arcs' points on the circle
     # of that radius, so that its chords stay outside the pad's (the region holds no

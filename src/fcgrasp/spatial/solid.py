@@ -105,7 +105,7 @@ class Solid:
     def triangles(self) -> FloatArray:
         """The mesh's triangles' corners (T, 3, 3), read once (trimesh hashes its arrays
         on every access: the jaw's shadows read them for every facet it tries)."""
-        return np.asarray(self.mesh.vertices, float)[np.asarray(self.mesh.faces)]
+        return self.vertices[self.faces]
 
 
 def solid_from_mesh(mesh: Any, units: str = "mm", source: str = "",
